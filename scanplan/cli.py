@@ -1,0 +1,224 @@
+"""The ``scanplan`` command line (click).
+
+Exit codes: 0 ok; 2 bad usage or invalid input (the message names the option, key or
+cell and the allowed range); 1 runtime failure (a message, never a traceback — set
+``SCANPLAN_DEBUG=1`` to see one).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import sys
+import traceback
+from typing import Any
+
+import click
+
+from ._version import __version__
+from .errors import InputError
+
+# Python names of inputs → the option a user typed
+OPTION_NAMES = {
+    "map_scale": "--map-scale",
+    "photo_scale": "--photo-scale",
+    "relief_interval_m": "--relief",
+    "focal_mm": "--focal-mm",
+    "frame_mm": "--frame-mm",
+    "frame_width_mm": "--frame-mm",
+    "frame_along_mm": "--frame-mm",
+    "resolving_power_lpmm": "--resolving-power",
+    "forward_overlap_pct": "--overlap-pct",
+    "object_size_m": "--object-size-m",
+    "shape": "--shape",
+    "probability": "--probability",
+    "height_formula": "--height-formula",
+    "pr_coefficient": "--pr-coefficient",
+    "recognition_rounding": "--rounding",
+    "scanner": "--scanner",
+    "camera": "--camera",
+    "bands": "--bands",
+    "bits_per_band": "--bit-depth",
+}
+
+
+class ScanplanGroup(click.Group):
+    """A group that turns :class:`InputError` into exit 2 and crashes into exit 1."""
+
+    def invoke(self, ctx: click.Context) -> Any:
+        try:
+            return super().invoke(ctx)
+        except InputError as exc:
+            field = OPTION_NAMES.get(exc.field, exc.field)
+            click.echo(f"error: {field}: {exc.message}", err=True)
+            ctx.exit(2)
+        except (click.exceptions.ClickException, click.exceptions.Exit,
+                click.exceptions.Abort, SystemExit):
+            raise
+        except Exception as exc:  # a bug or an environment failure: no traceback for users
+            if os.environ.get("SCANPLAN_DEBUG"):
+                traceback.print_exc()
+            click.echo(f"error: {type(exc).__name__}: {exc} (SCANPLAN_DEBUG=1 shows details)",
+                       err=True)
+            ctx.exit(1)
+
+
+class ScaleType(click.ParamType):
+    """A scale denominator: ``2000`` or ``1:2000``."""
+
+    name = "SCALE"
+
+    def convert(self, value: Any, param: click.Parameter | None, ctx: click.Context | None
+                ) -> float:
+        from .norms import parse_scale
+
+        try:
+            return parse_scale(value, param.opts[0] if param else "scale")
+        except InputError as exc:
+            self.fail(exc.message, param, ctx)
+
+
+SCALE = ScaleType()
+
+
+def _echo_json(doc: Any) -> None:
+    click.echo(json.dumps(doc, ensure_ascii=False, indent=2, allow_nan=False))
+
+
+def _finite(ctx: click.Context, param: click.Parameter, value: float | None) -> float | None:
+    if value is not None and not math.isfinite(value):
+        raise click.BadParameter(f"must be a finite number (got {value})", ctx, param)
+    return value
+
+
+@click.group(cls=ScanplanGroup, context_settings={"help_option_names": ["-h", "--help"],
+                                                   "max_content_width": 100})
+@click.version_option(__version__, "--version", prog_name="scanplan")
+def main() -> None:
+    """scanplan — plan photo scale, scan pixel and UAV flight height for topographic maps.
+
+    \b
+    Examples:
+      scanplan scan --map-scale 1:2000 --relief 1.0 --photo-scale 10000 --camera afa-te-100
+      scanplan scan --map-scale 2000 --relief 0.5 --camera rc30-153 \\
+                    --photo-scale 5000 --photo-scale 10000 --photo-scale 15000
+      scanplan cameras list
+    """
+
+
+@main.command()
+@click.option("--map-scale", type=SCALE, required=True, help="Map scale, 2000 or 1:2000.")
+@click.option("--relief", "relief_interval_m", type=float, required=True, callback=_finite,
+              help="Relief (contour) interval h_c [m].")
+@click.option("--photo-scale", "photo_scales", type=SCALE, multiple=True, required=True,
+              help="Photo scale; repeat for a sweep (like seed 001 Tables 6–9).")
+@click.option("--camera", help="Catalogue camera id (scanplan cameras list).")
+@click.option("--focal-mm", type=float, callback=_finite, help="Focal length [mm] (no --camera).")
+@click.option("--frame-mm", help="Frame WxH [mm], across × along track, e.g. 230x230.")
+@click.option("--resolving-power", "resolving_power_lpmm", type=float, callback=_finite,
+              help="Resolving power of the photos R [lines/mm] (default: the camera's).")
+@click.option("--overlap-pct", "forward_overlap_pct", type=float, callback=_finite,
+              help="Forward overlap [%] (default: the norm set's, 60).")
+@click.option("--norms", default="gkinp-02-036-02", show_default=True,
+              help="Norm set name or folder (scanplan norms list).")
+@click.option("--object-size-m", type=float, callback=_finite,
+              help="Size of the smallest object to interpret [m] (default: the norm table's).")
+@click.option("--shape", help="Object shape: circle|rectangle|angle|square|wall (norm table).")
+@click.option("--probability", type=float, callback=_finite,
+              help="Recognition probability, 0 < P < 1 (default 0.75).")
+@click.option("--height-formula", type=click.Choice(["instruction", "parallax"]),
+              help="Form of P_Z (default: the norm set's, instruction).")
+@click.option("--pr-coefficient", type=float, callback=_finite,
+              help="k_R in P_R = k_R/R (default 0.5; the Instruction prints 0.4).")
+@click.option("--rounding", "recognition_rounding", type=click.Choice(["exact", "paper"]),
+              help="sqrt(-ln P) exactly, or the paper's rounded 0.53.")
+@click.option("--scanner", help="Scanner id: round the pixel down to its steps.")
+@click.option("--bands", type=click.IntRange(1, 16), default=1, show_default=True,
+              help="Bands per scanned frame (1 panchromatic, 3 colour).")
+@click.option("--bit-depth", "bits_per_band", type=click.Choice(["8", "16"]), default="8",
+              show_default=True, help="Bits per band.")
+@click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
+def scan(as_json: bool, bits_per_band: str, **kwargs: Any) -> None:
+    """Film photos: every scan-pixel constraint at one or more photo scales.
+
+    Evaluates the Instruction's P_S, P_Z, P_P, P_R (corrected k_R = 0.5) and the
+    interpretation pixel P_D of seed 001, picks the binding one and explains it.
+
+    \b
+    Example (the Instruction's worked example):
+      scanplan scan --map-scale 1:2000 --relief 1.0 --photo-scale 1:10000 \\
+                    --camera afa-te-100 --resolving-power 40
+    """
+    from .api import scan_job
+    from .serialize import scan_plan_dict
+    from .textfmt import format_scan_plan
+
+    job = scan_job(bits_per_band=int(bits_per_band), **kwargs)
+    if as_json:
+        _echo_json(scan_plan_dict(job.plan, job.norm_set))
+    else:
+        click.echo(format_scan_plan(job.plan, job.norm_set.name, job.norm_set.title))
+
+
+@main.group()
+def cameras() -> None:
+    """The camera catalogue (film and digital).
+
+    \b
+    Examples:
+      scanplan cameras list
+      scanplan cameras show rc30-153
+    """
+
+
+@cameras.command("list")
+@click.option("--norms", default="gkinp-02-036-02", show_default=True,
+              help="Norm set whose cameras to add to the catalogue.")
+@click.option("--json", "as_json", is_flag=True, help="Print as JSON.")
+def cameras_list(norms: str, as_json: bool) -> None:
+    """List the catalogue cameras."""
+    from dataclasses import asdict
+
+    from .norms import load_norm_set
+    from .textfmt import table
+
+    ns = load_norm_set(norms)
+    cams = sorted(ns.cameras.values(), key=lambda c: (c.kind, c.id))
+    if as_json:
+        _echo_json([asdict(c) for c in cams])
+        return
+    rows = [["id", "kind", "frame/sensor mm", "f mm", "pixel µm", "name"]]
+    for c in cams:
+        rows.append([c.id, c.kind, f"{c.sensor_width_mm:g}×{c.sensor_height_mm:g}",
+                     f"{c.focal_mm:g}", f"{c.pixel_um:g}" if c.pixel_um else "—", c.name])
+    click.echo(table(rows, align="llrrrl"))
+
+
+@cameras.command("show")
+@click.argument("camera_id")
+@click.option("--norms", default="gkinp-02-036-02", show_default=True,
+              help="Norm set whose cameras to add to the catalogue.")
+@click.option("--json", "as_json", is_flag=True, help="Print as JSON.")
+def cameras_show(camera_id: str, norms: str, as_json: bool) -> None:
+    """Show one camera: CAMERA_ID from `scanplan cameras list`."""
+    from dataclasses import asdict
+
+    from .norms import load_norm_set
+    from .textfmt import table
+
+    cam = load_norm_set(norms).camera(camera_id, "CAMERA_ID")
+    d = asdict(cam)
+    if as_json:
+        _echo_json(d)
+        return
+    click.echo(table([[k, "—" if v in (None, "") else str(v)] for k, v in d.items()],
+                     align="ll"))
+
+
+def run() -> None:  # pragma: no cover - console entry used by python -m scanplan
+    main(prog_name="scanplan")
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,403 @@
+"""Norm sets and the camera/scanner catalogue: finding and loading them.
+
+A norm set is a folder of small CSV files plus ``set.toml`` (layout and value rules in
+:mod:`scanplan.normschema`). Bundled sets ship inside the package (``scanplan/_data/norms``
+in a wheel; ``norms/`` at the repository root in a source checkout). User sets are a path,
+or a name under the user's norm directory (``$SCANPLAN_NORMS_DIR``, else
+``$XDG_DATA_HOME/scanplan/norms``, else ``~/.local/share/scanplan/norms``).
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+import os
+import tomllib
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, field
+from functools import lru_cache
+from pathlib import Path
+from typing import Any
+
+from .errors import InputError, NotFoundError
+from .normschema import PARAMETERS, TABLES, TableSpec, ValueSpec
+from .planner import ScanRules
+
+DEFAULT_NORM_SET = "gkinp-02-036-02"
+CATALOGUE = "catalogue"
+
+__all__ = [
+    "DEFAULT_NORM_SET",
+    "Camera",
+    "MapObject",
+    "NormSet",
+    "bundled_norms_dir",
+    "list_norm_sets",
+    "load_norm_set",
+    "parse_scale",
+    "user_norms_dir",
+]
+
+
+def bundled_norms_dir() -> Path:
+    """Folder holding the bundled norm sets and the catalogue."""
+    here = Path(__file__).resolve().parent
+    for candidate in (here / "_data" / "norms", here.parent / "norms"):
+        if (candidate / DEFAULT_NORM_SET).is_dir():
+            return candidate
+    raise RuntimeError(  # a broken installation, not a user error
+        f"scanplan's bundled norms are missing (looked in {here / '_data' / 'norms'} and "
+        f"{here.parent / 'norms'}); reinstall scanplan"
+    )
+
+
+def user_norms_dir() -> Path:
+    """Folder where ``scanplan norms import`` puts user norm sets."""
+    env = os.environ.get("SCANPLAN_NORMS_DIR")
+    if env:
+        return Path(env).expanduser()
+    xdg = os.environ.get("XDG_DATA_HOME")
+    base = Path(xdg).expanduser() if xdg else Path.home() / ".local" / "share"
+    return base / "scanplan" / "norms"
+
+
+def parse_scale(value: object, field_name: str) -> float:
+    """A scale denominator from ``2000``, ``"2000"``, ``"1:2000"`` or ``"2 000"``.
+
+    Raises
+    ------
+    InputError
+        Naming ``field_name`` when the value is not a finite number > 0.
+    """
+    allowed = "a scale denominator > 0, e.g. 2000 or 1:2000"
+    if isinstance(value, bool):
+        raise InputError(field_name, f"must be {allowed} (got {value!r})")
+    if isinstance(value, int | float):
+        v = float(value)
+    else:
+        text = str(value).strip().replace("\u00a0", "").replace("\u202f", "").replace(" ", "")
+        if text.startswith("1:"):
+            text = text[2:]
+        text = text.replace("\u2212", "-").replace(",", ".")
+        try:
+            v = float(text)
+        except ValueError:
+            raise InputError(field_name, f"must be {allowed} (got {value!r})") from None
+    if not math.isfinite(v) or v <= 0:
+        raise InputError(field_name, f"must be {allowed} (got {value!r})")
+    return v
+
+
+@dataclass(frozen=True)
+class MapObject:
+    """The smallest object a map scale shows (norm table ``objects``)."""
+
+    map_scale: int
+    name: str
+    name_ru: str
+    size_m: float
+    shape: str
+    source: str
+
+
+@dataclass(frozen=True)
+class Camera:
+    """A camera of the catalogue (film or digital)."""
+
+    id: str
+    kind: str
+    name: str
+    sensor_width_mm: float
+    sensor_height_mm: float
+    focal_mm: float
+    pixel_um: float | None = None
+    image_width_px: int | None = None
+    image_height_px: int | None = None
+    f_number: float | None = None
+    shutter: str = ""
+    min_trigger_interval_s: float | None = None
+    resolving_power_lpmm: float | None = None
+    source: str = ""
+
+
+@dataclass(frozen=True)
+class NormSet:
+    """A loaded norm set: parameters, tables, and the catalogue it sees."""
+
+    name: str
+    title: str
+    title_ru: str
+    source: str
+    path: Path
+    bundled: bool
+    imported_from: str
+    imported_at: str
+    parameters: Mapping[str, Any]
+    parameter_sources: Mapping[str, str]
+    shapes: Mapping[str, float]
+    shape_rows: Mapping[str, Mapping[str, str]]
+    objects: tuple[MapObject, ...]
+    cameras: Mapping[str, Camera] = field(default_factory=dict)
+    scanners: Mapping[str, tuple[float, ...]] = field(default_factory=dict)
+    scanner_names: Mapping[str, str] = field(default_factory=dict)
+
+    def rules(self, **overrides: Any) -> ScanRules:
+        """The rules engine's parameters, with user overrides applied and checked.
+
+        Parameters
+        ----------
+        **overrides
+            Parameter names of :data:`scanplan.normschema.PARAMETERS` (None is ignored).
+        """
+        params = dict(self.parameters)
+        for key, value in overrides.items():
+            if value is None:
+                continue
+            spec = PARAMETERS[key]
+            converted = _convert(value, spec.value, f"--{key.replace('_', '-')}")
+            params[key] = converted
+        constraints = params["constraints"]
+        return ScanRules(
+            planimetric_accuracy_mm=params["planimetric_accuracy_mm"],
+            height_accuracy_fraction=params["height_accuracy_fraction"],
+            processing_loss_k=params["processing_loss_k"],
+            photoplan_resolution_mm=params["photoplan_resolution_mm"],
+            pr_coefficient=params["pr_coefficient"],
+            probability=params["probability"],
+            height_formula=params["height_formula"],
+            constraints=tuple(constraints),
+            standard_forward_overlap_pct=params["standard_forward_overlap_pct"],
+            recognition_rounding=params["recognition_rounding"],
+            interpretation_min_lpmm=params["interpretation_min_lpmm"],
+            interpretation_max_lpmm=params["interpretation_max_lpmm"],
+        )
+
+    def shape_coefficient(self, shape: str, field_name: str = "--shape") -> float:
+        """B for ``shape``; :class:`NotFoundError` naming the field if it is unknown."""
+        try:
+            return self.shapes[shape]
+        except KeyError:
+            raise NotFoundError(
+                field_name,
+                f"unknown shape {shape!r}; norm set {self.name!r} has "
+                f"{', '.join(self.shapes)}",
+            ) from None
+
+    def object_for(self, map_scale: float) -> MapObject | None:
+        """The norm object for exactly this map scale, or None."""
+        for obj in self.objects:
+            if obj.map_scale == map_scale:
+                return obj
+        return None
+
+    def camera(self, camera_id: str, field_name: str = "--camera") -> Camera:
+        """A camera by id; :class:`NotFoundError` listing the ids if unknown."""
+        try:
+            return self.cameras[camera_id]
+        except KeyError:
+            raise NotFoundError(
+                field_name,
+                f"unknown camera {camera_id!r}; known: {', '.join(sorted(self.cameras))} "
+                "(scanplan cameras list)",
+            ) from None
+
+    def scanner_steps(self, scanner: str, field_name: str = "--scanner") -> tuple[float, ...]:
+        """Scan pixels [µm] a scanner offers, ascending."""
+        try:
+            return self.scanners[scanner]
+        except KeyError:
+            raise NotFoundError(
+                field_name,
+                f"unknown scanner {scanner!r}; known: {', '.join(sorted(self.scanners))}",
+            ) from None
+
+
+# ---------------------------------------------------------------------------------------
+
+
+def _convert(raw: object, spec: ValueSpec, where: str) -> Any:
+    """Convert a raw value (text from a CSV or a Python value) by its rule, or raise."""
+    if raw is None or (isinstance(raw, str) and raw.strip() == ""):
+        if spec.required:
+            raise InputError(where, f"is empty; must be {spec.describe()}")
+        return None
+    if spec.kind in ("float", "int"):
+        if isinstance(raw, bool):
+            raise InputError(where, f"must be {spec.describe()} (got {raw!r})")
+        try:
+            value: Any = float(str(raw).strip()) if isinstance(raw, str) else float(raw)  # type: ignore[arg-type]
+        except (TypeError, ValueError):
+            raise InputError(where, f"must be {spec.describe()} (got {raw!r})") from None
+        problem = spec.check(value)
+        if problem:
+            raise InputError(where, f"{problem} (got {raw!r})")
+        return int(value) if spec.kind == "int" else value
+    if spec.kind == "list":
+        items = raw if isinstance(raw, list | tuple) else str(raw).split(",")
+        value = tuple(str(x).strip() for x in items if str(x).strip())
+        problem = spec.check(",".join(value))
+        if problem:
+            raise InputError(where, f"{problem} (got {raw!r})")
+        return value
+    value = str(raw).strip()
+    problem = spec.check(value)
+    if problem:
+        raise InputError(where, f"{problem} (got {raw!r})")
+    return value
+
+
+def _read_csv(path: Path) -> list[dict[str, str]]:
+    with path.open(encoding="utf-8", newline="") as fh:
+        return [dict(row) for row in csv.DictReader(fh)]
+
+
+def _typed_rows(path: Path, spec: TableSpec) -> list[dict[str, Any]]:
+    """Rows of a norm table, each value converted by the schema (errors name file:row)."""
+    rows = _read_csv(path)
+    out = []
+    for i, row in enumerate(rows, start=2):
+        typed = {}
+        for col in spec.columns:
+            where = f"{path}:{i} ({col.name})"
+            typed[col.name] = _convert(row.get(col.name), col.value, where)
+        out.append(typed)
+    return out
+
+
+def _load_cameras(path: Path) -> dict[str, Camera]:
+    return {r["id"]: Camera(**r) for r in _typed_rows(path, TABLES["cameras"])}
+
+
+def _load_scanners(path: Path) -> tuple[dict[str, tuple[float, ...]], dict[str, str]]:
+    steps: dict[str, list[float]] = {}
+    names: dict[str, str] = {}
+    for r in _typed_rows(path, TABLES["scanners"]):
+        steps.setdefault(r["scanner"], []).append(r["pixel_um"])
+        names[r["scanner"]] = r["name"] or r["scanner"]
+    return {k: tuple(sorted(v)) for k, v in steps.items()}, names
+
+
+@lru_cache(maxsize=1)
+def _catalogue() -> tuple[dict[str, Camera], dict[str, tuple[float, ...]], dict[str, str]]:
+    folder = bundled_norms_dir() / CATALOGUE
+    cams = _load_cameras(folder / "cameras.csv")
+    steps, names = _load_scanners(folder / "scanners.csv")
+    return cams, steps, names
+
+
+def _resolve(name_or_path: str | os.PathLike[str]) -> tuple[Path, bool]:
+    text = os.fspath(name_or_path)
+    bundled = bundled_norms_dir()
+    if text and "/" not in text and os.sep not in text and text != CATALOGUE:
+        if (bundled / text / "set.toml").is_file():
+            return bundled / text, True
+        if (user_norms_dir() / text / "set.toml").is_file():
+            return user_norms_dir() / text, False
+    p = Path(text).expanduser()
+    if (p / "set.toml").is_file():
+        return p, False
+    known = ", ".join(s for s, _ in list_norm_sets())
+    raise NotFoundError(
+        "--norms",
+        f"no norm set {text!r}: give a bundled or imported name ({known}) or the path of a "
+        "norm set folder (scanplan norms list)",
+    )
+
+
+def load_norm_set(name_or_path: str | os.PathLike[str] = DEFAULT_NORM_SET) -> NormSet:
+    """Load a norm set by bundled/user name or folder path.
+
+    Parameters
+    ----------
+    name_or_path : str or path
+        ``"gkinp-02-036-02"``, an imported set's name, or a folder.
+
+    Returns
+    -------
+    NormSet
+
+    Raises
+    ------
+    NotFoundError
+        If no such set exists (the message lists the known ones).
+    InputError
+        If a file of the set breaks the schema (the message names file, row and column).
+    """
+    path, bundled = _resolve(name_or_path)
+    return _load_path(path.resolve(), bundled)
+
+
+@lru_cache(maxsize=16)
+def _load_path(path: Path, bundled: bool) -> NormSet:
+    try:
+        meta = tomllib.loads((path / "set.toml").read_text(encoding="utf-8")).get("set", {})
+    except (OSError, tomllib.TOMLDecodeError) as exc:
+        raise InputError(f"{path / 'set.toml'}", f"cannot be read: {exc}") from None
+    params: dict[str, Any] = {}
+    sources: dict[str, str] = {}
+    pfile = path / "parameters.csv"
+    for i, row in enumerate(_read_csv(pfile), start=2):
+        name = (row.get("name") or "").strip()
+        if name not in PARAMETERS:
+            raise InputError(f"{pfile}:{i} (name)", f"unknown parameter {name!r}; known: "
+                             f"{', '.join(PARAMETERS)}")
+        params[name] = _convert(row.get("value"), PARAMETERS[name].value, f"{pfile}:{i} (value)")
+        sources[name] = (row.get("source") or "").strip()
+    missing = [n for n in PARAMETERS if n not in params]
+    if missing:
+        raise InputError(str(pfile), f"missing parameters: {', '.join(missing)}")
+    shape_rows = {r["shape"]: r for r in _typed_rows(path / "shapes.csv", TABLES["shapes"])}
+    shapes = {k: float(r["coefficient"]) for k, r in shape_rows.items()}
+    if params["shape"] not in shapes:
+        raise InputError(f"{pfile} (shape)", f"default shape {params['shape']!r} is not in "
+                         f"shapes.csv ({', '.join(shapes)})")
+    objects = []
+    for r in _typed_rows(path / "objects.csv", TABLES["objects"]):
+        if r["shape"] not in shapes:
+            raise InputError(f"{path / 'objects.csv'} (shape)",
+                             f"shape {r['shape']!r} of {r['object']!r} is not in shapes.csv")
+        objects.append(MapObject(r["map_scale"], r["object"], r["object_ru"] or "",
+                                 r["size_m"], r["shape"], r["source"] or ""))
+    cams, steps, names = _catalogue()
+    cams, steps, names = dict(cams), dict(steps), dict(names)
+    if (path / "cameras.csv").is_file():
+        cams.update(_load_cameras(path / "cameras.csv"))
+    if (path / "scanners.csv").is_file():
+        s2, n2 = _load_scanners(path / "scanners.csv")
+        steps.update(s2)
+        names.update(n2)
+    return NormSet(
+        name=str(meta.get("name") or path.name),
+        title=str(meta.get("title", "")),
+        title_ru=str(meta.get("title_ru", "")),
+        source=str(meta.get("source", "")),
+        path=path,
+        bundled=bundled,
+        imported_from=str(meta.get("imported_from", "")),
+        imported_at=str(meta.get("imported_at", "")),
+        parameters=params,
+        parameter_sources=sources,
+        shapes=shapes,
+        shape_rows={k: {kk: str(vv or "") for kk, vv in v.items()} for k, v in shape_rows.items()},
+        objects=tuple(sorted(objects, key=lambda o: o.map_scale)),
+        cameras=cams,
+        scanners=steps,
+        scanner_names=names,
+    )
+
+
+def list_norm_sets() -> list[tuple[str, str]]:
+    """(name, where) of every bundled and user norm set."""
+    found = []
+    for folder, where in ((bundled_norms_dir(), "bundled"), (user_norms_dir(), "user")):
+        if folder.is_dir():
+            for sub in sorted(folder.iterdir()):
+                if (sub / "set.toml").is_file():
+                    found.append((sub.name, where))
+    return found
+
+
+def cameras(norm_set: NormSet | None = None) -> Iterable[Camera]:
+    """Cameras visible to a norm set (the bundled catalogue plus the set's own)."""
+    ns = norm_set or load_norm_set()
+    return ns.cameras.values()

@@ -1,0 +1,345 @@
+"""The shape of a norm set: its parameters, its tables and their columns.
+
+This is the one place that declares what a norm set holds, the type and allowed range of
+every value, its unit, and the header aliases (English and Russian) a spreadsheet may use.
+The loader (:mod:`scanplan.norms`), the spreadsheet importer and the template writer all
+read it. It holds *rules about values*, never normative values themselves — those live in
+the data files under ``norms/``.
+
+A norm set on disk is a folder::
+
+    set.toml          [set] name, title, title_ru, source, imported_from, imported_at
+    parameters.csv    name, value, unit, source, note
+    shapes.csv        shape, coefficient, name_ru, source
+    objects.csv       map_scale, object, object_ru, size_m, shape, source
+    cameras.csv       optional, same columns as norms/catalogue/cameras.csv
+    scanners.csv      optional, same columns as norms/catalogue/scanners.csv
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+CONSTRAINT_IDS = ("PS", "PZ", "PP", "PR", "PD")
+"""Constraints the film rules engine knows (see :mod:`scanplan.planner`)."""
+
+HEIGHT_FORMULAS = ("instruction", "parallax")
+ROUNDING_MODES = ("exact", "paper")
+
+
+@dataclass(frozen=True)
+class ValueSpec:
+    """Type and allowed range of one value.
+
+    Parameters
+    ----------
+    kind : {"float", "int", "text", "choice", "list"}
+        ``list`` is a comma-separated list of ``choices``.
+    min, max : float, optional
+        Bounds; ``min_open``/``max_open`` make them exclusive.
+    choices : tuple of str
+        Allowed words for ``choice`` and ``list``.
+    unit : str
+        Unit shown in templates and messages.
+    required : bool
+        Whether an empty value is an error.
+    """
+
+    kind: str = "float"
+    min: float | None = None
+    max: float | None = None
+    min_open: bool = False
+    max_open: bool = False
+    choices: tuple[str, ...] = ()
+    unit: str = ""
+    required: bool = True
+
+    def describe(self) -> str:
+        """Human description of the allowed values, used in error messages."""
+        if self.kind in ("choice", "list"):
+            words = ", ".join(self.choices)
+            if self.kind == "choice":
+                return f"one of {words}"
+            return f"a comma-separated list of {words}"
+        if self.kind == "text":
+            return "text"
+        lo = "" if self.min is None else f"{'>' if self.min_open else '≥'} {self.min:g}"
+        hi = "" if self.max is None else f"{'<' if self.max_open else '≤'} {self.max:g}"
+        rng = " and ".join(x for x in (lo, hi) if x)
+        kind = "an integer" if self.kind == "int" else "a number"
+        return f"{kind} {rng}".strip() + (f" [{self.unit}]" if self.unit else "")
+
+    def check(self, value: object) -> str | None:
+        """Return None when ``value`` (already converted) is allowed, else the rule broken."""
+        if self.kind in ("float", "int"):
+            v = float(value)  # type: ignore[arg-type]
+            if v != v:  # NaN
+                return f"must be {self.describe()}"
+            if self.min is not None and (v <= self.min if self.min_open else v < self.min):
+                return f"must be {self.describe()}"
+            if self.max is not None and (v >= self.max if self.max_open else v > self.max):
+                return f"must be {self.describe()}"
+            if self.kind == "int" and v != int(v):
+                return f"must be {self.describe()}"
+        elif self.kind == "choice" and value not in self.choices:
+            return f"must be {self.describe()}"
+        elif self.kind == "list":
+            items = [x.strip() for x in str(value).split(",") if x.strip()]
+            bad = [x for x in items if x not in self.choices]
+            if bad or not items:
+                return f"must be {self.describe()}"
+        return None
+
+
+@dataclass(frozen=True)
+class ParameterSpec:
+    """One norm parameter: its value rule, unit and what it means."""
+
+    name: str
+    value: ValueSpec
+    description: str
+    aliases: tuple[str, ...] = ()
+
+
+PARAMETERS: dict[str, ParameterSpec] = {
+    p.name: p
+    for p in (
+        ParameterSpec(
+            "planimetric_accuracy_mm",
+            ValueSpec("float", 0, 10, min_open=True, unit="mm on the map"),
+            "V_s, required planimetric accuracy on the map",
+            ("V_s", "Vs", "точность в плане"),
+        ),
+        ParameterSpec(
+            "height_accuracy_fraction",
+            ValueSpec("float", 0, 1, min_open=True, unit="of h_c"),
+            "V_z / h_c, required height accuracy as a fraction of the relief interval",
+            ("V_z", "Vz", "точность по высоте"),
+        ),
+        ParameterSpec(
+            "processing_loss_k",
+            ValueSpec("float", 1, 10, unit="-"),
+            "k, loss of accuracy in scanning, identification, pointing and measuring",
+            ("k", "коэффициент потери точности"),
+        ),
+        ParameterSpec(
+            "photoplan_resolution_mm",
+            ValueSpec("float", 0, 1, min_open=True, unit="mm on the plan"),
+            "resolution of a graphic photo-plan",
+            ("разрешение фотоплана",),
+        ),
+        ParameterSpec(
+            "pr_coefficient",
+            ValueSpec("float", 0, 2, min_open=True, unit="-"),
+            "k_R in P_R = k_R / R (0.5 corrected, 0.4 as printed)",
+            ("k_R", "kR", "коэффициент PR"),
+        ),
+        ParameterSpec(
+            "probability",
+            ValueSpec("float", 0, 1, min_open=True, max_open=True, unit="-"),
+            "recognition probability required for interpretation",
+            ("P", "вероятность"),
+        ),
+        ParameterSpec(
+            "shape",
+            ValueSpec("text", unit="-"),
+            "default shape of the objects to interpret (a row of the shapes table)",
+            ("форма",),
+        ),
+        ParameterSpec(
+            "height_formula",
+            ValueSpec("choice", choices=HEIGHT_FORMULAS),
+            "form of the height constraint P_Z",
+            ("формула высот",),
+        ),
+        ParameterSpec(
+            "constraints",
+            ValueSpec("list", choices=CONSTRAINT_IDS),
+            "constraints the rules engine evaluates",
+            ("ограничения",),
+        ),
+        ParameterSpec(
+            "standard_forward_overlap_pct",
+            ValueSpec("float", 0, 100, max_open=True, unit="%"),
+            "forward overlap the Instruction's height formula assumes",
+            ("стандартное перекрытие",),
+        ),
+        ParameterSpec(
+            "recognition_rounding",
+            ValueSpec("choice", choices=ROUNDING_MODES),
+            "exact sqrt(-ln P), or the paper's rounded 0.53",
+            ("округление",),
+        ),
+        ParameterSpec(
+            "interpretation_min_lpmm",
+            ValueSpec("float", 0, 1000, min_open=True, unit="lines/mm"),
+            "lower end of the image resolving power qualitative interpretation needs",
+        ),
+        ParameterSpec(
+            "interpretation_max_lpmm",
+            ValueSpec("float", 0, 1000, min_open=True, unit="lines/mm"),
+            "upper end of the image resolving power qualitative interpretation needs",
+        ),
+    )
+}
+"""Every parameter a norm set must define."""
+
+
+@dataclass(frozen=True)
+class ColumnSpec:
+    """One column of a norm table."""
+
+    name: str
+    value: ValueSpec
+    description: str
+    aliases: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True)
+class TableSpec:
+    """One table of a norm set: file name, key column and columns."""
+
+    name: str
+    file: str
+    key: tuple[str, ...]
+    columns: tuple[ColumnSpec, ...]
+    required: bool = True
+    title_ru: str = ""
+    description: str = ""
+    extra: dict[str, str] = field(default_factory=dict)
+
+    def column(self, name: str) -> ColumnSpec:
+        """The column called ``name``."""
+        for c in self.columns:
+            if c.name == name:
+                return c
+        raise KeyError(name)
+
+
+_TEXT = ValueSpec("text")
+_TEXT_OPT = ValueSpec("text", required=False)
+_SOURCE = ColumnSpec("source", _TEXT_OPT, "where the value comes from", ("источник",))
+
+TABLES: dict[str, TableSpec] = {
+    t.name: t
+    for t in (
+        TableSpec(
+            "parameters",
+            "parameters.csv",
+            ("name",),
+            (
+                ColumnSpec("name", _TEXT, "parameter name", ("parameter", "параметр", "имя")),
+                ColumnSpec("value", _TEXT, "value (rule depends on the parameter)",
+                           ("значение",)),
+                ColumnSpec("unit", _TEXT_OPT, "unit", ("единица", "ед. изм.")),
+                _SOURCE,
+                ColumnSpec("note", _TEXT_OPT, "note", ("примечание",)),
+            ),
+            title_ru="Параметры",
+            description="coefficients of the technical instruction",
+        ),
+        TableSpec(
+            "shapes",
+            "shapes.csv",
+            ("shape",),
+            (
+                ColumnSpec("shape", _TEXT, "shape id", ("форма", "форма объекта")),
+                ColumnSpec(
+                    "coefficient",
+                    ValueSpec("float", 0, 10, min_open=True, unit="-"),
+                    "shape recognition coefficient B",
+                    ("B", "коэффициент", "коэффициент распознавания формы"),
+                ),
+                ColumnSpec("name_ru", _TEXT_OPT, "Russian name", ("название",)),
+                _SOURCE,
+            ),
+            title_ru="Коэффициенты формы",
+            description="shape coefficients B of the recognition model (seed 001 Table 2)",
+        ),
+        TableSpec(
+            "objects",
+            "objects.csv",
+            ("map_scale",),
+            (
+                ColumnSpec(
+                    "map_scale",
+                    ValueSpec("int", 1, None, unit="1:Mk"),
+                    "map scale denominator",
+                    ("масштаб", "масштаб карты", "масштаб карты (плана)"),
+                ),
+                ColumnSpec("object", _TEXT, "object", ("наименование объекта", "объект")),
+                ColumnSpec("object_ru", _TEXT_OPT, "object (Russian)", ()),
+                ColumnSpec(
+                    "size_m",
+                    ValueSpec("float", 0, 1000, min_open=True, unit="m"),
+                    "size of the smallest object shown at that scale",
+                    ("size", "размер", "размер объекта", "размер объекта L, м"),
+                ),
+                ColumnSpec("shape", _TEXT, "shape id (a row of the shapes table)", ("форма",)),
+                _SOURCE,
+            ),
+            title_ru="Минимальные объекты",
+            description="smallest map objects per map scale (seed 001 Table 3)",
+        ),
+        TableSpec(
+            "cameras",
+            "cameras.csv",
+            ("id",),
+            (
+                ColumnSpec("id", _TEXT, "camera id", ("камера",)),
+                ColumnSpec("kind", ValueSpec("choice", choices=("film", "digital")),
+                           "film or digital", ("тип",)),
+                ColumnSpec("name", _TEXT, "model", ("модель", "наименование")),
+                ColumnSpec("sensor_width_mm", ValueSpec("float", 0, 1000, min_open=True,
+                                                        unit="mm"),
+                           "frame/sensor side across track", ("ширина кадра",)),
+                ColumnSpec("sensor_height_mm", ValueSpec("float", 0, 1000, min_open=True,
+                                                         unit="mm"),
+                           "frame/sensor side along track", ("высота кадра",)),
+                ColumnSpec("focal_mm", ValueSpec("float", 0, 2000, min_open=True, unit="mm"),
+                           "focal length", ("фокусное расстояние",)),
+                ColumnSpec("pixel_um", ValueSpec("float", 0, 1000, min_open=True, unit="µm",
+                                                 required=False),
+                           "pixel pitch (digital)", ("размер пикселя",)),
+                ColumnSpec("image_width_px", ValueSpec("int", 1, None, unit="px",
+                                                       required=False),
+                           "image width", ()),
+                ColumnSpec("image_height_px", ValueSpec("int", 1, None, unit="px",
+                                                        required=False),
+                           "image height", ()),
+                ColumnSpec("f_number", ValueSpec("float", 0, 100, min_open=True, unit="-",
+                                                 required=False),
+                           "f-number", ("диафрагма",)),
+                ColumnSpec("shutter", _TEXT_OPT, "shutter type", ("затвор",)),
+                ColumnSpec("min_trigger_interval_s", ValueSpec("float", 0, 3600,
+                                                               unit="s", required=False),
+                           "minimum interval between exposures", ()),
+                ColumnSpec("resolving_power_lpmm", ValueSpec("float", 0, 1000, min_open=True,
+                                                             unit="lines/mm",
+                                                             required=False),
+                           "resolving power of the photo (film)",
+                           ("разрешающая способность",)),
+                _SOURCE,
+            ),
+            required=False,
+            title_ru="Камеры",
+            description="camera catalogue",
+        ),
+        TableSpec(
+            "scanners",
+            "scanners.csv",
+            ("scanner", "pixel_um"),
+            (
+                ColumnSpec("scanner", _TEXT, "scanner id", ("сканер",)),
+                ColumnSpec("name", _TEXT_OPT, "model", ("модель",)),
+                ColumnSpec("pixel_um", ValueSpec("float", 0, 1000, min_open=True, unit="µm"),
+                           "a scan pixel the scanner offers", ("размер пикселя",)),
+                _SOURCE,
+            ),
+            required=False,
+            title_ru="Сканеры",
+            description="scan pixel sizes offered by each scanner",
+        ),
+    )
+}
+"""Every table a norm set may hold (``required=False``: optional)."""

@@ -1,0 +1,751 @@
+"""The rules engine: which scan pixel a contract needs, and why.
+
+Every enabled constraint gives the largest scan pixel that still protects one property of
+the map (planimetric accuracy, heights, the graphic photo-plan, the photo's resolving
+power, interpretation of the smallest map objects). The scan pixel is their minimum; the
+constraint that attains it is *binding*. The engine reports every constraint with its
+margin to the binding one, the reason it exists, and warnings drawn from seed 001's
+conclusions.
+
+Two layers:
+
+- :func:`evaluate` — one vectorised call over any number of scenarios (pure numpy).
+- :func:`plan_scan` — a film/scan plan for a handful of photo scales, with explanations,
+  inverse answers (largest photo scale for a scanner pixel, interpretation limit),
+  scanner steps and data volume. Its result objects feed the terminal, ``--json`` and the
+  reports alike.
+
+The engine takes its normative numbers in a :class:`ScanRules` (built from a norm set by
+:meth:`scanplan.norms.NormSet.rules`); it reads no files.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from . import formulas as F
+from .errors import InputError
+
+__all__ = [
+    "CONSTRAINTS",
+    "ConstraintInfo",
+    "ConstraintResult",
+    "Evaluation",
+    "ObjectSpec",
+    "PlanWarning",
+    "ScanInputs",
+    "ScanPlan",
+    "ScanRules",
+    "ScanScenario",
+    "evaluate",
+    "interpretation_limit_photo_scale",
+    "max_photo_scale",
+    "plan_scan",
+    "round_to_scanner",
+]
+
+
+@dataclass(frozen=True)
+class ScanRules:
+    """Normative parameters of the film rules engine (from a norm set).
+
+    Attributes mirror :data:`scanplan.normschema.PARAMETERS`.
+    """
+
+    planimetric_accuracy_mm: float
+    height_accuracy_fraction: float
+    processing_loss_k: float
+    photoplan_resolution_mm: float
+    pr_coefficient: float
+    probability: float
+    height_formula: str
+    constraints: tuple[str, ...]
+    standard_forward_overlap_pct: float
+    recognition_rounding: str
+    interpretation_min_lpmm: float
+    interpretation_max_lpmm: float
+
+
+@dataclass(frozen=True)
+class ConstraintInfo:
+    """What a constraint protects and where its formula comes from."""
+
+    id: str
+    name: str
+    name_ru: str
+    protects: str
+    equation: str
+    depends_on_photo_scale: bool
+
+
+CONSTRAINTS: dict[str, ConstraintInfo] = {
+    "PS": ConstraintInfo(
+        "PS", "planimetric accuracy", "точность в плане",
+        "keeps the planimetric error of the model within V_s on the map after the "
+        "processing loss k",
+        "P_S = V_s·Mk/(k·Mc) — GKINP (GNTA)-02-036-02; seed 001 eq. 1", True),
+    "PZ": ConstraintInfo(
+        "PZ", "height accuracy", "точность по высоте",
+        "keeps the height error within V_z = fraction·h_c after the processing loss k",
+        "P_Z = V_z·f/(k·Mc·b) (Instruction) or V_z·b/(k·Mc·f) (parallax) — seed 001 eq. 2",
+        True),
+    "PP": ConstraintInfo(
+        "PP", "graphic photo-plan", "графический фотоплан",
+        "keeps the resolution of a graphic photo-plan (70 µm on the plan)",
+        "P_P = 0.070·Mk/Mc — GKINP (GNTA)-02-036-02; seed 001 eq. 3", True),
+    "PR": ConstraintInfo(
+        "PR", "resolving power of the photo", "разрешающая способность снимка",
+        "keeps the photo's resolving power R in the digital image",
+        "P_R = k_R/R, k_R = 0.5 (printed 0.4) — seed 001 eqs. 4–6", False),
+    "PD": ConstraintInfo(
+        "PD", "interpretation", "дешифрирование",
+        "lets the map's smallest objects be recognised with probability P",
+        "P_D = 2·k_R·L·sqrt(−ln P)/(B·Mc) — seed 001 eq. 16", True),
+}
+"""The film constraints, in the Instruction's order."""
+
+
+# ---------------------------------------------------------------------------------------
+# Vectorised core
+# ---------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Evaluation:
+    """Vectorised engine output.
+
+    Attributes
+    ----------
+    ids : tuple of str
+        Enabled constraints, in the order of the first axis of ``pixel_um``.
+    pixel_um : ndarray, shape (n_constraints, ...)
+        Each constraint's largest allowed scan pixel [µm].
+    binding_index : ndarray of int
+        Index into ``ids`` of the binding constraint.
+    scan_pixel_um : ndarray
+        The scan pixel, min over constraints [µm].
+    """
+
+    ids: tuple[str, ...]
+    pixel_um: NDArray[np.float64]
+    binding_index: NDArray[np.intp]
+    scan_pixel_um: NDArray[np.float64]
+
+    @property
+    def binding(self) -> NDArray[np.str_]:
+        """Id of the binding constraint per scenario."""
+        return np.asarray(self.ids)[self.binding_index]
+
+    @property
+    def margin_pct(self) -> NDArray[np.float64]:
+        """How much larger each constraint is than the binding one [%]."""
+        return (self.pixel_um / self.scan_pixel_um - 1.0) * 100.0
+
+
+def constraint_pixels_um(
+    rules: ScanRules,
+    *,
+    map_scale: ArrayLike,
+    photo_scale: ArrayLike,
+    relief_interval_m: ArrayLike,
+    focal_mm: ArrayLike,
+    frame_along_mm: ArrayLike,
+    forward_overlap_pct: ArrayLike,
+    resolving_power_lpmm: ArrayLike,
+    object_size_m: ArrayLike,
+    shape_coefficient: ArrayLike,
+    height_formula: str | None = None,
+) -> dict[str, NDArray[np.float64]]:
+    """Each enabled constraint's pixel [µm], vectorised (see :data:`CONSTRAINTS`)."""
+    out: dict[str, NDArray[np.float64]] = {}
+    for cid in rules.constraints:
+        if cid == "PS":
+            out[cid] = F.planimetric_pixel_um(
+                map_scale, photo_scale,
+                planimetric_accuracy_mm=rules.planimetric_accuracy_mm,
+                processing_loss_k=rules.processing_loss_k)
+        elif cid == "PZ":
+            out[cid] = F.height_pixel_um(
+                relief_interval_m, photo_scale, focal_mm,
+                F.photo_base_mm(frame_along_mm, forward_overlap_pct),
+                height_accuracy_fraction=rules.height_accuracy_fraction,
+                processing_loss_k=rules.processing_loss_k,
+                method=height_formula or rules.height_formula)  # type: ignore[arg-type]
+        elif cid == "PP":
+            out[cid] = F.photoplan_pixel_um(
+                map_scale, photo_scale, photoplan_resolution_mm=rules.photoplan_resolution_mm)
+        elif cid == "PR":
+            out[cid] = F.resolving_power_pixel_um(
+                resolving_power_lpmm, pr_coefficient=rules.pr_coefficient)
+        elif cid == "PD":
+            out[cid] = F.interpretation_pixel_um(
+                np.asarray(object_size_m, dtype=np.float64) * 1000.0, photo_scale,
+                shape_coefficient, rules.probability,
+                pr_coefficient=rules.pr_coefficient,
+                rounding=rules.recognition_rounding)  # type: ignore[arg-type]
+        else:  # the norm schema only lets known ids through
+            raise ValueError(f"unknown constraint {cid!r}")
+    return out
+
+
+def evaluate(
+    rules: ScanRules,
+    *,
+    map_scale: ArrayLike,
+    photo_scale: ArrayLike,
+    relief_interval_m: ArrayLike,
+    focal_mm: ArrayLike,
+    frame_along_mm: ArrayLike,
+    forward_overlap_pct: ArrayLike,
+    resolving_power_lpmm: ArrayLike,
+    object_size_m: ArrayLike = np.nan,
+    shape_coefficient: ArrayLike = np.nan,
+) -> Evaluation:
+    """Evaluate the enabled constraints and pick the binding one, for any array of scenarios.
+
+    Parameters
+    ----------
+    rules : ScanRules
+        Normative parameters and the list of enabled constraints.
+    map_scale : array_like
+        Mk [-].
+    photo_scale : array_like
+        Mc [-].
+    relief_interval_m : array_like
+        h_c [m].
+    focal_mm : array_like
+        f [mm].
+    frame_along_mm : array_like
+        Frame side along track l_y [mm].
+    forward_overlap_pct : array_like
+        p [%].
+    resolving_power_lpmm : array_like
+        R of the photo [lines/mm].
+    object_size_m : array_like
+        L of the object to interpret [m] (needed when P_D is enabled).
+    shape_coefficient : array_like
+        B of that object [-].
+
+    Returns
+    -------
+    Evaluation
+        All inputs broadcast together; inputs are not validated here (see
+        :func:`plan_scan`), NaN in gives NaN out.
+    """
+    values = constraint_pixels_um(
+        rules, map_scale=map_scale, photo_scale=photo_scale,
+        relief_interval_m=relief_interval_m, focal_mm=focal_mm,
+        frame_along_mm=frame_along_mm, forward_overlap_pct=forward_overlap_pct,
+        resolving_power_lpmm=resolving_power_lpmm, object_size_m=object_size_m,
+        shape_coefficient=shape_coefficient)
+    ids = tuple(values)
+    arrays = np.broadcast_arrays(*values.values())
+    stacked = np.stack(arrays)
+    idx = np.argmin(stacked, axis=0)
+    scan = np.take_along_axis(stacked, idx[np.newaxis], axis=0)[0]
+    return Evaluation(ids=ids, pixel_um=stacked, binding_index=idx, scan_pixel_um=scan)
+
+
+def max_photo_scale(
+    rules: ScanRules,
+    pixel_um: ArrayLike,
+    *,
+    map_scale: ArrayLike,
+    relief_interval_m: ArrayLike,
+    focal_mm: ArrayLike,
+    frame_along_mm: ArrayLike,
+    forward_overlap_pct: ArrayLike,
+    resolving_power_lpmm: ArrayLike,
+    object_size_m: ArrayLike = np.nan,
+    shape_coefficient: ArrayLike = np.nan,
+) -> tuple[NDArray[np.float64], NDArray[np.str_]]:
+    """The largest photo scale denominator Mc a given scan pixel supports.
+
+    Every constraint except P_R is a limit on the ground divided by Mc, so
+    Mc_max = min_i(P_i(Mc = 1) / pixel). P_R does not depend on Mc: a pixel coarser than P_R
+    supports no photo scale (Mc_max = 0, limited by ``"PR"``).
+
+    Parameters
+    ----------
+    rules : ScanRules
+        As :func:`evaluate`.
+    pixel_um : array_like
+        The scan pixel available [µm].
+    map_scale, relief_interval_m, focal_mm, frame_along_mm : array_like
+        As :func:`evaluate`.
+    forward_overlap_pct, resolving_power_lpmm, object_size_m, shape_coefficient : array_like
+        As :func:`evaluate`.
+
+    Returns
+    -------
+    mc_max : ndarray
+        Largest Mc [-] (0 where no scale works).
+    limiting : ndarray of str
+        The constraint that sets it.
+    """
+    at_unit_scale = constraint_pixels_um(
+        rules, map_scale=map_scale, photo_scale=1.0, relief_interval_m=relief_interval_m,
+        focal_mm=focal_mm, frame_along_mm=frame_along_mm,
+        forward_overlap_pct=forward_overlap_pct, resolving_power_lpmm=resolving_power_lpmm,
+        object_size_m=object_size_m, shape_coefficient=shape_coefficient)
+    pixel = np.asarray(pixel_um, dtype=np.float64)
+    scaled = {k: v for k, v in at_unit_scale.items() if CONSTRAINTS[k].depends_on_photo_scale}
+    if scaled:
+        ids = np.asarray(tuple(scaled))
+        stacked = np.stack(np.broadcast_arrays(*scaled.values(), pixel))[:-1]
+        ratios = stacked / pixel
+        idx = np.argmin(ratios, axis=0)
+        mc = np.take_along_axis(ratios, idx[np.newaxis], axis=0)[0]
+        limiting = ids[idx]
+    else:
+        mc = np.full(np.shape(pixel), np.inf)
+        limiting = np.full(np.shape(pixel), "", dtype="<U2")
+    if "PR" in at_unit_scale:
+        pr = at_unit_scale["PR"]
+        too_coarse = pixel > pr * (1.0 + 1e-12)
+        mc, limiting, too_coarse = np.broadcast_arrays(mc, limiting, too_coarse)
+        mc = np.where(too_coarse, 0.0, mc)
+        limiting = np.where(too_coarse, "PR", limiting)
+    return np.asarray(mc, dtype=np.float64), np.asarray(limiting)
+
+
+def interpretation_limit_photo_scale(
+    object_size_m: ArrayLike,
+    shape_coefficient: ArrayLike,
+    probability: ArrayLike,
+    resolving_power_lpmm: ArrayLike,
+    *,
+    rounding: str = "exact",
+) -> NDArray[np.float64]:
+    """Mc_interp: the smallest photo scale at which the object is still recognisable.
+
+    Mc_interp = 2·L·sqrt(−ln P)·R / B, i.e. the Mc where P_D = P_R (equivalently
+    A = L·sqrt(−ln P)/B). At larger Mc the object cannot be interpreted even on the
+    original photos.
+
+    Parameters
+    ----------
+    object_size_m : array_like
+        L [m].
+    shape_coefficient : array_like
+        B [-].
+    probability : array_like
+        P in (0, 1).
+    resolving_power_lpmm : array_like
+        R of the photo [lines/mm].
+    rounding : {"exact", "paper"}
+        See :func:`scanplan.formulas.probability_root`.
+
+    Returns
+    -------
+    ndarray
+        Mc_interp [-]: ≈ 8850 for 20 cm poles (1:2000 map), circle, P = 0.75, R = 40.
+
+    Notes
+    -----
+    Seed 001 conclusion 1 ("keep Mc/Mk < 5" for 1:2000) follows from it.
+    """
+    root = F.probability_root(probability, rounding)  # type: ignore[arg-type]
+    return (
+        2.0 * np.asarray(object_size_m, dtype=np.float64) * 1000.0 * root
+        * np.asarray(resolving_power_lpmm, dtype=np.float64)
+        / np.asarray(shape_coefficient, dtype=np.float64)
+    )
+
+
+def round_to_scanner(pixel_um: ArrayLike, steps_um: Sequence[float]) -> NDArray[np.float64]:
+    """Largest scanner step not coarser than ``pixel_um`` (NaN if all steps are coarser).
+
+    Parameters
+    ----------
+    pixel_um : array_like
+        Required scan pixel [µm].
+    steps_um : sequence of float
+        Pixels the scanner offers [µm].
+
+    Returns
+    -------
+    ndarray
+        Scanner pixel to use [µm].
+    """
+    steps = np.sort(np.asarray(steps_um, dtype=np.float64))
+    pixel = np.asarray(pixel_um, dtype=np.float64)
+    idx = np.searchsorted(steps, pixel * (1.0 + 1e-9), side="right") - 1
+    return np.where(idx >= 0, steps[np.clip(idx, 0, None)], np.nan)
+
+
+# ---------------------------------------------------------------------------------------
+# A plan for a handful of photo scales, with explanations
+# ---------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class ObjectSpec:
+    """The object the interpretation constraint protects."""
+
+    name: str
+    size_m: float
+    shape: str
+    shape_coefficient: float
+    source: str  # "norm table objects, 1:2000 row (seed 001 Table 3)" or "--object-size-m"
+
+
+@dataclass(frozen=True)
+class ScanInputs:
+    """Inputs of a film scan plan (validated by :func:`plan_scan`)."""
+
+    map_scale: float
+    relief_interval_m: float
+    photo_scales: tuple[float, ...]
+    focal_mm: float
+    frame_width_mm: float
+    frame_along_mm: float
+    resolving_power_lpmm: float
+    forward_overlap_pct: float
+    object: ObjectSpec | None
+    camera: str = ""
+    scanner: str = ""
+    scanner_steps_um: tuple[float, ...] = ()
+    bands: int = 1
+    bits_per_band: int = 8
+
+
+@dataclass(frozen=True)
+class ConstraintResult:
+    """One constraint at one photo scale."""
+
+    id: str
+    name: str
+    pixel_um: float
+    margin_um: float
+    margin_pct: float
+    binding: bool
+    protects: str
+    equation: str
+    reason: str
+    details: dict[str, Any] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class PlanWarning:
+    """A warning or note from the rules (``severity`` is ``"warning"`` or ``"info"``)."""
+
+    code: str
+    message: str
+    photo_scales: tuple[float, ...] = ()
+    severity: str = "warning"
+
+
+@dataclass(frozen=True)
+class ScanScenario:
+    """The engine's answer at one photo scale."""
+
+    photo_scale: float
+    photo_to_map_ratio: float
+    constraints: tuple[ConstraintResult, ...]
+    binding: str
+    scan_pixel_um: float
+    explanation: str
+    scanner_pixel_um: float | None
+    frame_megabytes: float
+    resolution_on_ground_mm: float
+    required_resolving_power_lpmm: float | None
+    recognition_probability: float | None
+    height_pixel_other_um: float | None
+
+    def constraint(self, cid: str) -> ConstraintResult:
+        """The result of constraint ``cid``."""
+        for c in self.constraints:
+            if c.id == cid:
+                return c
+        raise KeyError(cid)
+
+
+@dataclass(frozen=True)
+class ScanPlan:
+    """A complete film scan plan: inputs, rules, one scenario per photo scale, warnings."""
+
+    inputs: ScanInputs
+    rules: ScanRules
+    scenarios: tuple[ScanScenario, ...]
+    warnings: tuple[PlanWarning, ...]
+    interpretation_limit_photo_scale: float | None
+    scanner_max_photo_scale: float | None
+    scanner_max_photo_scale_limit: str | None
+
+
+def _check(name: str, value: float, *, lo: float | None = None, hi: float | None = None,
+           lo_open: bool = True, hi_open: bool = False, unit: str = "") -> None:
+    ok = isinstance(value, int | float) and not isinstance(value, bool) and math.isfinite(value)
+    if ok and lo is not None:
+        ok = value > lo if lo_open else value >= lo
+    if ok and hi is not None:
+        ok = value < hi if hi_open else value <= hi
+    if not ok:
+        parts = []
+        if lo is not None:
+            parts.append(f"{'>' if lo_open else '≥'} {lo:g}")
+        if hi is not None:
+            parts.append(f"{'<' if hi_open else '≤'} {hi:g}")
+        rng = " and ".join(parts)
+        raise InputError(name, f"must be a finite number {rng}{' ' + unit if unit else ''} "
+                               f"(got {value!r})")
+
+
+def validate_inputs(inp: ScanInputs, rules: ScanRules) -> None:
+    """Raise :class:`InputError` (field = the input's name) for any value out of range."""
+    _check("map_scale", inp.map_scale, lo=0)
+    if not inp.photo_scales:
+        raise InputError("photo_scale", "give at least one photo scale")
+    for mc in inp.photo_scales:
+        _check("photo_scale", mc, lo=0)
+    _check("relief_interval_m", inp.relief_interval_m, lo=0, unit="m")
+    _check("focal_mm", inp.focal_mm, lo=0, unit="mm")
+    _check("frame_width_mm", inp.frame_width_mm, lo=0, unit="mm")
+    _check("frame_along_mm", inp.frame_along_mm, lo=0, unit="mm")
+    _check("resolving_power_lpmm", inp.resolving_power_lpmm, lo=0, unit="lines/mm")
+    _check("forward_overlap_pct", inp.forward_overlap_pct, lo=0, hi=100, lo_open=False,
+           hi_open=True, unit="%")
+    _check("bands", inp.bands, lo=1, lo_open=False)
+    _check("bits_per_band", inp.bits_per_band, lo=1, lo_open=False)
+    for s in inp.scanner_steps_um:
+        _check("scanner", s, lo=0, unit="µm")
+    if inp.object is not None:
+        _check("object_size_m", inp.object.size_m, lo=0, unit="m")
+        _check("shape", inp.object.shape_coefficient, lo=0)
+    elif "PD" in rules.constraints:
+        raise InputError(
+            "object_size_m",
+            f"the norm set has no smallest object for map scale 1:{inp.map_scale:g}; "
+            "give the object size in m (> 0)")
+    _check("probability", rules.probability, lo=0, hi=1, hi_open=True)
+    _check("pr_coefficient", rules.pr_coefficient, lo=0)
+
+
+def _fmt(x: float) -> str:
+    return f"{x:.1f}"
+
+
+def _reason(cid: str, inp: ScanInputs, rules: ScanRules) -> str:
+    """Why constraint ``cid`` is there, with this contract's numbers."""
+    k = rules.processing_loss_k
+    if cid == "PS":
+        ground = rules.planimetric_accuracy_mm * inp.map_scale / 1000.0
+        return (f"keeps planimetric error within {rules.planimetric_accuracy_mm:g} mm at "
+                f"1:{inp.map_scale:g} ({ground:g} m on the ground) after processing loss k = {k:g}")
+    if cid == "PZ":
+        vz = rules.height_accuracy_fraction * inp.relief_interval_m
+        return (f"keeps height error within {rules.height_accuracy_fraction:g}·h_c = {vz:g} m "
+                f"(relief interval {inp.relief_interval_m:g} m) after k = {k:g}, "
+                f"{rules.height_formula} form")
+    if cid == "PP":
+        return (f"keeps the graphic photo-plan resolution of "
+                f"{rules.photoplan_resolution_mm * 1000:g} µm at 1:{inp.map_scale:g}")
+    if cid == "PR":
+        return (f"keeps the photo's resolving power of {inp.resolving_power_lpmm:g} lines/mm "
+                f"(k_R = {rules.pr_coefficient:g})")
+    obj = inp.object
+    assert obj is not None
+    return (f"lets {obj.name} ({obj.size_m:g} m, {obj.shape}, B = {obj.shape_coefficient:g}) "
+            f"be recognised with probability {rules.probability:g}")
+
+
+def plan_scan(inp: ScanInputs, rules: ScanRules) -> ScanPlan:
+    """Evaluate a film scan plan at each photo scale, with explanations and warnings.
+
+    Parameters
+    ----------
+    inp : ScanInputs
+        Map, camera, photo scales, object to interpret, scanner.
+    rules : ScanRules
+        Normative parameters.
+
+    Returns
+    -------
+    ScanPlan
+
+    Raises
+    ------
+    InputError
+        For out-of-range input (``field`` is the input's name, e.g. ``"photo_scale"``).
+    """
+    validate_inputs(inp, rules)
+    mc = np.asarray(inp.photo_scales, dtype=np.float64)
+    obj = inp.object
+    size_m = obj.size_m if obj else np.nan
+    coef = obj.shape_coefficient if obj else np.nan
+    common: dict[str, Any] = dict(
+        map_scale=inp.map_scale, relief_interval_m=inp.relief_interval_m,
+        focal_mm=inp.focal_mm, frame_along_mm=inp.frame_along_mm,
+        forward_overlap_pct=inp.forward_overlap_pct,
+        resolving_power_lpmm=inp.resolving_power_lpmm, object_size_m=size_m,
+        shape_coefficient=coef)
+    ev = evaluate(rules, photo_scale=mc, **common)
+    other_formula = "parallax" if rules.height_formula == "instruction" else "instruction"
+    pz_other = F.height_pixel_um(
+        inp.relief_interval_m, mc, inp.focal_mm,
+        F.photo_base_mm(inp.frame_along_mm, inp.forward_overlap_pct),
+        height_accuracy_fraction=rules.height_accuracy_fraction,
+        processing_loss_k=rules.processing_loss_k, method=other_formula)  # type: ignore[arg-type]
+    a_mm = F.resolution_on_ground_mm(mc, inp.resolving_power_lpmm)
+    rounding = rules.recognition_rounding
+    if obj:
+        r_needed = F.required_resolving_power_lpmm(
+            obj.size_m * 1000.0, mc, obj.shape_coefficient, rules.probability,
+            rounding=rounding)  # type: ignore[arg-type]
+        mc_interp = float(interpretation_limit_photo_scale(
+            obj.size_m, obj.shape_coefficient, rules.probability, inp.resolving_power_lpmm,
+            rounding=rounding))
+    else:
+        r_needed = np.full_like(mc, np.nan)
+        mc_interp = None
+    scanner_px = (round_to_scanner(ev.scan_pixel_um, inp.scanner_steps_um)
+                  if inp.scanner_steps_um else None)
+    delivered = scanner_px if scanner_px is not None else ev.scan_pixel_um
+    volume_px = np.where(np.isfinite(delivered), delivered, ev.scan_pixel_um)
+    mbytes = F.scanned_frame_bytes(inp.frame_width_mm, inp.frame_along_mm, volume_px,
+                                   bands=inp.bands, bits_per_band=inp.bits_per_band) / 1e6
+    # image resolving power after scanning: the photo's R, or what the pixel keeps
+    r_eff = np.minimum(inp.resolving_power_lpmm, rules.pr_coefficient / (volume_px / 1000.0))
+    p_rec = (F.recognition_probability(obj.size_m * 1000.0,
+                                       F.resolution_on_ground_mm(mc, r_eff),
+                                       obj.shape_coefficient) if obj else None)
+
+    warnings: list[PlanWarning] = []
+    scenarios = []
+    margins = ev.margin_pct
+    for j, scale in enumerate(mc):
+        bind_i = int(ev.binding_index[j])
+        scan = float(ev.scan_pixel_um[j])
+        results = []
+        for i, cid in enumerate(ev.ids):
+            info = CONSTRAINTS[cid]
+            val = float(ev.pixel_um[i, j])
+            details: dict[str, Any] = {}
+            if cid == "PZ":
+                details = {"formula": rules.height_formula,
+                           f"{other_formula}_pixel_um": float(pz_other[j]),
+                           "base_mm": float(F.photo_base_mm(inp.frame_along_mm,
+                                                            inp.forward_overlap_pct))}
+            elif cid == "PD" and obj:
+                details = {"object": obj.name, "object_size_m": obj.size_m,
+                           "shape": obj.shape, "shape_coefficient": obj.shape_coefficient,
+                           "probability": rules.probability,
+                           "required_resolving_power_lpmm": float(r_needed[j])}
+            elif cid == "PR":
+                details = {"pr_coefficient": rules.pr_coefficient,
+                           "resolving_power_lpmm": inp.resolving_power_lpmm}
+            results.append(ConstraintResult(
+                id=cid, name=info.name, pixel_um=val, margin_um=val - scan,
+                margin_pct=float(margins[i, j]), binding=(i == bind_i),
+                protects=info.protects, equation=info.equation,
+                reason=_reason(cid, inp, rules), details=details))
+        bind = ev.ids[bind_i]
+        runner = sorted((r for r in results if not r.binding), key=lambda r: r.pixel_um)
+        explanation = (
+            f"{bind} ({CONSTRAINTS[bind].name}) binds at 1:{scale:g}: {_fmt(scan)} µm "
+            f"{results[bind_i].reason}"
+            + (f"; next is {runner[0].id} at {_fmt(runner[0].pixel_um)} µm "
+               f"(+{runner[0].margin_pct:.0f} %)" if runner else "") + ".")
+        sp = float(scanner_px[j]) if scanner_px is not None else None
+        scenarios.append(ScanScenario(
+            photo_scale=float(scale), photo_to_map_ratio=float(scale / inp.map_scale),
+            constraints=tuple(results), binding=bind, scan_pixel_um=scan,
+            explanation=explanation,
+            scanner_pixel_um=sp if sp is None or math.isfinite(sp) else None,
+            frame_megabytes=float(mbytes[j]), resolution_on_ground_mm=float(a_mm[j]),
+            required_resolving_power_lpmm=float(r_needed[j]) if obj else None,
+            recognition_probability=float(p_rec[j]) if p_rec is not None else None,
+            height_pixel_other_um=float(pz_other[j])))
+
+    warnings.extend(_scenario_warnings(inp, rules, scenarios, mc_interp))
+    if ("PZ" in rules.constraints and rules.height_formula == "instruction"
+            and not math.isclose(inp.forward_overlap_pct, rules.standard_forward_overlap_pct)):
+        warnings.append(PlanWarning(
+            "overlap_not_standard",
+            f"forward overlap {inp.forward_overlap_pct:g} % is not the Instruction's "
+            f"{rules.standard_forward_overlap_pct:g} %: the printed height formula "
+            "V_z·f/(k·Mc·b) lets a larger overlap allow a coarser pixel. The parallax form "
+            "gives " + ", ".join(f"{_fmt(s.height_pixel_other_um or 0)} µm at 1:{s.photo_scale:g}"
+                                 for s in scenarios)
+            + " (--height-formula parallax to use it)."))
+
+    mc_max = limit = None
+    if inp.scanner_steps_um:
+        finest = min(inp.scanner_steps_um)
+        m, lim = max_photo_scale(rules, finest, **common)
+        mc_max, limit = float(m), str(lim)
+    return ScanPlan(inputs=inp, rules=rules, scenarios=tuple(scenarios),
+                    warnings=tuple(warnings), interpretation_limit_photo_scale=mc_interp,
+                    scanner_max_photo_scale=mc_max, scanner_max_photo_scale_limit=limit)
+
+
+def _scales(xs: Sequence[ScanScenario]) -> str:
+    return ", ".join(f"1:{x.photo_scale:g}" for x in xs)
+
+
+def _scenario_warnings(inp: ScanInputs, rules: ScanRules, scen: Sequence[ScanScenario],
+                       mc_interp: float | None) -> list[PlanWarning]:
+    """Warnings from seed 001's conclusions, one per code, naming the photo scales."""
+    out = []
+    obj = inp.object
+    if obj and mc_interp is not None:
+        bad = [s for s in scen if s.photo_scale > mc_interp * (1 + 1e-12)]
+        if bad:
+            what = f"{obj.name} ({obj.size_m:g} m, {obj.shape})"
+            pr = float(F.resolving_power_pixel_um(inp.resolving_power_lpmm,
+                                                  pr_coefficient=rules.pr_coefficient))
+            need = ", ".join(f"{s.required_resolving_power_lpmm:.1f}" for s in bad)
+            if "PD" in rules.constraints:
+                pds = ", ".join(_fmt(s.constraint("PD").pixel_um) for s in bad)
+                head = (f"at {_scales(bad)} P_D ({pds} µm) < P_R ({_fmt(pr)} µm): {what} cannot "
+                        "be interpreted even on the original photos, and scanning finer than "
+                        "P_R does not help — the photo does not carry that detail")
+                code = "not_interpretable"
+            else:
+                head = (f"{_scales(bad)} is above the interpretation limit "
+                        f"1:{math.floor(mc_interp):d}: {what} cannot be interpreted even on the "
+                        "original photos (this norm set does not check interpretation)")
+                code = "above_interpretation_limit"
+            out.append(PlanWarning(
+                code,
+                f"{head}. They need R ≥ {need} lines/mm; the photo has "
+                f"{inp.resolving_power_lpmm:g}. Remedies: interpret them in the field, use "
+                "photos with a higher resolving power, or fly a larger photo scale "
+                f"(1:{math.floor(mc_interp):d} or larger, Mc/Mk ≤ "
+                f"{mc_interp / inp.map_scale:.1f}).",
+                photo_scales=tuple(s.photo_scale for s in bad)))
+    for s in scen:
+        if s.binding != "PR":
+            continue
+        others = [c for c in s.constraints if c.id != "PR"]
+        if not others:
+            continue
+        coarsest = min(others, key=lambda c: c.pixel_um)
+        ratio = (coarsest.pixel_um / s.scan_pixel_um) ** 2
+        if ratio > 1.0 + 1e-9:
+            out.append(PlanWarning(
+                "pr_drives_volume",
+                f"at 1:{s.photo_scale:g} P_R ({_fmt(s.scan_pixel_um)} µm) binds only to keep "
+                f"the photo's resolving power; accuracy and interpretation allow "
+                f"{_fmt(coarsest.pixel_um)} µm ({coarsest.id}), which is {ratio:.1f}× less "
+                "data per frame (seed 001 conclusion 3).",
+                photo_scales=(s.photo_scale,), severity="info"))
+    if inp.scanner_steps_um:
+        fine = [s for s in scen if s.scanner_pixel_um is None]
+        if fine:
+            out.append(PlanWarning(
+                "scanner_too_coarse",
+                f"at {_scales(fine)} the scan pixel ("
+                + ", ".join(_fmt(s.scan_pixel_um) for s in fine)
+                + f" µm) is finer than the finest step of scanner {inp.scanner!r} "
+                f"({min(inp.scanner_steps_um):g} µm); choose a larger photo scale or another "
+                "scanner",
+                photo_scales=tuple(s.photo_scale for s in fine)))
+    return out

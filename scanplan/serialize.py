@@ -1,0 +1,97 @@
+"""Result objects → plain dicts (the one shape that --json and the reports print)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict
+from typing import Any
+
+from .norms import NormSet
+from .planner import ScanPlan
+
+__all__ = ["norm_set_dict", "scale_value", "scan_plan_dict"]
+
+
+def scale_value(x: float) -> int | float:
+    """A scale denominator as an int when it is whole (10000, not 10000.0)."""
+    return int(x) if math.isfinite(x) and float(x).is_integer() else x
+
+
+def _clean(x: Any) -> Any:
+    if isinstance(x, float) and not math.isfinite(x):
+        return None
+    if isinstance(x, dict):
+        return {k: _clean(v) for k, v in x.items()}
+    if isinstance(x, list | tuple):
+        return [_clean(v) for v in x]
+    return x
+
+
+def norm_set_dict(ns: NormSet, map_scale: float | None = None) -> dict[str, Any]:
+    """Which norm set, and which of its rows a plan used."""
+    used_obj = ns.object_for(map_scale) if map_scale is not None else None
+    return {
+        "name": ns.name,
+        "title": ns.title,
+        "path": str(ns.path),
+        "bundled": ns.bundled,
+        "imported_from": ns.imported_from or None,
+        "imported_at": ns.imported_at or None,
+        "parameters": {k: (list(v) if isinstance(v, tuple) else v)
+                       for k, v in ns.parameters.items()},
+        "parameter_sources": dict(ns.parameter_sources),
+        "object_row": asdict(used_obj) if used_obj else None,
+    }
+
+
+def scan_plan_dict(plan: ScanPlan, ns: NormSet | None = None) -> dict[str, Any]:
+    """The ``scanplan scan --json`` document (keys per spec/interface.md, plus extras)."""
+    inp = plan.inputs
+    scenarios = []
+    for s in plan.scenarios:
+        constraints = {}
+        for c in s.constraints:
+            entry: dict[str, Any] = {"pixel_um": c.pixel_um, "margin_um": c.margin_um,
+                                     "margin_pct": c.margin_pct, "binding": c.binding,
+                                     "name": c.name, "reason": c.reason,
+                                     "equation": c.equation}
+            entry.update(c.details)
+            constraints[c.id] = entry
+        scenarios.append({
+            "photo_scale": scale_value(s.photo_scale),
+            "photo_to_map_ratio": s.photo_to_map_ratio,
+            "constraints": constraints,
+            "binding": s.binding,
+            "scan_pixel_um": s.scan_pixel_um,
+            "explanation": s.explanation,
+            "scanner_pixel_um": s.scanner_pixel_um,
+            "frame_megabytes": s.frame_megabytes,
+            "resolution_on_ground_mm": s.resolution_on_ground_mm,
+            "required_resolving_power_lpmm": s.required_resolving_power_lpmm,
+            "recognition_probability": s.recognition_probability,
+        })
+    doc: dict[str, Any] = {
+        "inputs": {
+            "map_scale": scale_value(inp.map_scale),
+            "relief_interval_m": inp.relief_interval_m,
+            "photo_scales": [scale_value(x) for x in inp.photo_scales],
+            "camera": inp.camera or None,
+            "focal_mm": inp.focal_mm,
+            "frame_mm": [inp.frame_width_mm, inp.frame_along_mm],
+            "resolving_power_lpmm": inp.resolving_power_lpmm,
+            "forward_overlap_pct": inp.forward_overlap_pct,
+            "object": asdict(inp.object) if inp.object else None,
+            "scanner": inp.scanner or None,
+            "scanner_steps_um": list(inp.scanner_steps_um),
+            "bands": inp.bands,
+            "bits_per_band": inp.bits_per_band,
+        },
+        "scenarios": scenarios,
+        "interpretation_limit_photo_scale": plan.interpretation_limit_photo_scale,
+        "scanner_max_photo_scale": plan.scanner_max_photo_scale,
+        "scanner_max_photo_scale_limit": plan.scanner_max_photo_scale_limit,
+        "warnings": [asdict(w) for w in plan.warnings],
+    }
+    if ns is not None:
+        doc["norms"] = norm_set_dict(ns, inp.map_scale)
+    return _clean(doc)
