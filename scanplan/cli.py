@@ -177,7 +177,12 @@ def cameras() -> None:
               help="Norm set whose cameras to add to the catalogue.")
 @click.option("--json", "as_json", is_flag=True, help="Print as JSON.")
 def cameras_list(norms: str, as_json: bool) -> None:
-    """List the catalogue cameras."""
+    """List the catalogue cameras.
+
+    \b
+    Example:
+      scanplan cameras list --json
+    """
     from dataclasses import asdict
 
     from .norms import load_norm_set

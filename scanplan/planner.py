@@ -245,8 +245,10 @@ def evaluate(
         resolving_power_lpmm=resolving_power_lpmm, object_size_m=object_size_m,
         shape_coefficient=shape_coefficient)
     ids = tuple(values)
-    arrays = np.broadcast_arrays(*values.values())
-    stacked = np.stack(arrays)
+    shape = np.broadcast_shapes(*(np.shape(x) for x in (
+        map_scale, photo_scale, relief_interval_m, focal_mm, frame_along_mm,
+        forward_overlap_pct, resolving_power_lpmm, object_size_m, shape_coefficient)))
+    stacked = np.stack([np.broadcast_to(v, shape) for v in values.values()])
     idx = np.argmin(stacked, axis=0)
     scan = np.take_along_axis(stacked, idx[np.newaxis], axis=0)[0]
     return Evaluation(ids=ids, pixel_um=stacked, binding_index=idx, scan_pixel_um=scan)

@@ -1,0 +1,33 @@
+"""Shared fixtures: the bundled norm sets and a helper to build engine inputs."""
+
+from __future__ import annotations
+
+import pytest
+
+from scanplan.norms import load_norm_set
+from scanplan.planner import ScanRules
+
+
+@pytest.fixture(scope="session")
+def norms():
+    """The bundled default norm set (GKINP with k_R = 0.5 and P_D)."""
+    return load_norm_set("gkinp-02-036-02")
+
+
+@pytest.fixture(scope="session")
+def printed_norms():
+    """The Instruction exactly as printed (k_R = 0.4, no P_D)."""
+    return load_norm_set("gkinp-02-036-02-printed")
+
+
+@pytest.fixture(scope="session")
+def rules(norms) -> ScanRules:
+    return norms.rules()
+
+
+@pytest.fixture(scope="session")
+def paper_rules(norms) -> ScanRules:
+    """Seed 001's arithmetic: sqrt(-ln 0.75) taken as 0.53 (its constant 1.8302)."""
+    return norms.rules(recognition_rounding="paper")
+
+

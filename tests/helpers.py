@@ -1,0 +1,24 @@
+"""Helpers shared by the tests (imported as ``helpers``; tests/ is on sys.path)."""
+
+from __future__ import annotations
+
+import dataclasses
+
+from scanplan.planner import ObjectSpec, ScanInputs, ScanRules
+
+
+def circle(norms, size_m: float) -> ObjectSpec:
+    return ObjectSpec("object", size_m, "circle", norms.shapes["circle"], "test")
+
+
+def film_inputs(norms, *, map_scale, relief, photo_scales, size_m, frame=230.0, focal=153.0,
+                r=40.0, overlap=60.0, **kw) -> ScanInputs:
+    """Seed 001 Tables 1, 8, 9 camera by default: 23×23 cm, f 153 mm, R 40, 60 %."""
+    return ScanInputs(map_scale=map_scale, relief_interval_m=relief,
+                      photo_scales=tuple(photo_scales), focal_mm=focal, frame_width_mm=frame,
+                      frame_along_mm=frame, resolving_power_lpmm=r, forward_overlap_pct=overlap,
+                      object=circle(norms, size_m) if size_m else None, **kw)
+
+
+def only(rules: ScanRules, *ids: str) -> ScanRules:
+    return dataclasses.replace(rules, constraints=ids)
