@@ -94,6 +94,7 @@ def scan_job(
     scanner: str | None = None,
     bands: int = 1,
     bits_per_band: int = 8,
+    pixel_um: Iterable[float] = (),
 ) -> ScanJob:
     """Like :func:`scan`, returning the norm set too (for reports)."""
     ns = load_norm_set(norms)
@@ -135,7 +136,8 @@ def scan_job(
         map_scale=mk, relief_interval_m=relief_interval_m, photo_scales=scales, focal_mm=f,
         frame_width_mm=w, frame_along_mm=h, resolving_power_lpmm=r,
         forward_overlap_pct=overlap, object=obj, camera=camera or "", scanner=scanner or "",
-        scanner_steps_um=steps, bands=bands, bits_per_band=bits_per_band)
+        scanner_steps_um=steps, bands=bands, bits_per_band=bits_per_band,
+        candidate_pixels_um=tuple(pixel_um))
     return ScanJob(plan_scan(inputs, rules), ns)
 
 
@@ -167,6 +169,9 @@ def scan(**kwargs: object) -> ScanPlan:
         Scanner id: round the scan pixel down to its steps.
     bands, bits_per_band : int
         For the data volume of a scanned frame.
+    pixel_um : iterable of float
+        Scan pixels [µm] to answer "what is the largest photo scale this pixel supports"
+        (the scanner's steps are always answered).
 
     Returns
     -------

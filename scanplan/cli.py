@@ -40,6 +40,7 @@ OPTION_NAMES = {
     "camera": "--camera",
     "bands": "--bands",
     "bits_per_band": "--bit-depth",
+    "pixel_um": "--pixel-um",
 }
 
 
@@ -134,6 +135,9 @@ def main() -> None:
 @click.option("--rounding", "recognition_rounding", type=click.Choice(["exact", "paper"]),
               help="sqrt(-ln P) exactly, or the paper's rounded 0.53.")
 @click.option("--scanner", help="Scanner id: round the pixel down to its steps.")
+@click.option("--pixel-um", "pixel_um", type=float, multiple=True, callback=lambda c, p, v: tuple(
+    _finite(c, p, x) for x in v), help="A scan pixel you have [µm]: show the largest photo "
+              "scale it supports (repeatable).")
 @click.option("--bands", type=click.IntRange(1, 16), default=1, show_default=True,
               help="Bands per scanned frame (1 panchromatic, 3 colour).")
 @click.option("--bit-depth", "bits_per_band", type=click.Choice(["8", "16"]), default="8",

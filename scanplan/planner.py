@@ -38,6 +38,7 @@ __all__ = [
     "ConstraintResult",
     "Evaluation",
     "ObjectSpec",
+    "PixelReach",
     "PlanWarning",
     "ScanInputs",
     "ScanPlan",
@@ -416,6 +417,7 @@ class ScanInputs:
     scanner_steps_um: tuple[float, ...] = ()
     bands: int = 1
     bits_per_band: int = 8
+    candidate_pixels_um: tuple[float, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -470,6 +472,19 @@ class ScanScenario:
 
 
 @dataclass(frozen=True)
+class PixelReach:
+    """The inverse answer for one available scan pixel: the largest photo scale it supports.
+
+    ``max_photo_scale`` is 0 when the pixel is coarser than P_R (no photo scale keeps the
+    photo's resolving power); ``limit`` names the constraint that sets it.
+    """
+
+    pixel_um: float
+    max_photo_scale: float
+    limit: str
+
+
+@dataclass(frozen=True)
 class ScanPlan:
     """A complete film scan plan: inputs, rules, one scenario per photo scale, warnings."""
 
@@ -478,8 +493,7 @@ class ScanPlan:
     scenarios: tuple[ScanScenario, ...]
     warnings: tuple[PlanWarning, ...]
     interpretation_limit_photo_scale: float | None
-    scanner_max_photo_scale: float | None
-    scanner_max_photo_scale_limit: str | None
+    max_photo_scales: tuple[PixelReach, ...] = ()
 
 
 def _check(name: str, value: float, *, lo: float | None = None, hi: float | None = None,
@@ -518,6 +532,8 @@ def validate_inputs(inp: ScanInputs, rules: ScanRules) -> None:
     _check("bits_per_band", inp.bits_per_band, lo=1, lo_open=False)
     for s in inp.scanner_steps_um:
         _check("scanner", s, lo=0, unit="µm")
+    for s in inp.candidate_pixels_um:
+        _check("pixel_um", s, lo=0, unit="µm")
     if inp.object is not None:
         _check("object_size_m", inp.object.size_m, lo=0, unit="m")
         _check("shape", inp.object.shape_coefficient, lo=0)
@@ -678,14 +694,15 @@ def plan_scan(inp: ScanInputs, rules: ScanRules) -> ScanPlan:
                                  for s in scenarios)
             + " (--height-formula parallax to use it)."))
 
-    mc_max = limit = None
-    if inp.scanner_steps_um:
-        finest = min(inp.scanner_steps_um)
-        m, lim = max_photo_scale(rules, finest, **common)
-        mc_max, limit = float(m), str(lim)
+    pixels = sorted(set(inp.scanner_steps_um) | set(inp.candidate_pixels_um))
+    reach: tuple[PixelReach, ...] = ()
+    if pixels:
+        m, lim = max_photo_scale(rules, np.asarray(pixels), **common)
+        reach = tuple(PixelReach(float(p), float(mm), str(ll))
+                      for p, mm, ll in zip(pixels, m, lim, strict=True))
     return ScanPlan(inputs=inp, rules=rules, scenarios=tuple(scenarios),
                     warnings=tuple(warnings), interpretation_limit_photo_scale=mc_interp,
-                    scanner_max_photo_scale=mc_max, scanner_max_photo_scale_limit=limit)
+                    max_photo_scales=reach)
 
 
 def _scales(xs: Sequence[ScanScenario]) -> str:

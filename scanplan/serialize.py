@@ -88,8 +88,7 @@ def scan_plan_dict(plan: ScanPlan, ns: NormSet | None = None) -> dict[str, Any]:
         },
         "scenarios": scenarios,
         "interpretation_limit_photo_scale": plan.interpretation_limit_photo_scale,
-        "scanner_max_photo_scale": plan.scanner_max_photo_scale,
-        "scanner_max_photo_scale_limit": plan.scanner_max_photo_scale_limit,
+        "max_photo_scales": [asdict(r) for r in plan.max_photo_scales],
         "warnings": [asdict(w) for w in plan.warnings],
     }
     if ns is not None:

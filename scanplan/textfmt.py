@@ -92,17 +92,18 @@ def format_scan_plan(plan: ScanPlan, norm_name: str = "", norm_title: str = "") 
             f"P ≥ {plan.rules.probability:g} on photos up to 1:{math.floor(mci):d} "
             f"(Mc/Mk ≤ {mci / inp.map_scale:.1f}) at R {inp.resolving_power_lpmm:g} lines/mm.",
             ""))
-    if plan.scanner_max_photo_scale is not None:
-        m = plan.scanner_max_photo_scale
-        finest = min(inp.scanner_steps_um)
-        if m > 0:
-            lines.append(_wrap(
-                f"Scanner {inp.scanner}: its finest pixel {finest:g} µm supports photo scales up "
-                f"to 1:{math.floor(m):d} (limited by {plan.scanner_max_photo_scale_limit}).", ""))
-        else:
-            lines.append(_wrap(
-                f"Scanner {inp.scanner}: its finest pixel {finest:g} µm is coarser than P_R; "
-                "no photo scale keeps the photo's resolving power.", ""))
+    if plan.max_photo_scales:
+        lines.append("")
+        who = " and ".join(x for x in (f"scanner {inp.scanner}" if inp.scanner else "",
+                                       "--pixel-um" if inp.candidate_pixels_um else "") if x)
+        lines.append(f"Largest photo scale each scan pixel supports ({who}):")
+        rows = [["pixel µm", "photo scale", "limited by"]]
+        for r in plan.max_photo_scales:
+            if r.max_photo_scale > 0:
+                rows.append([f"{r.pixel_um:g}", f"1:{math.floor(r.max_photo_scale):d}", r.limit])
+            else:
+                rows.append([f"{r.pixel_um:g}", "none", "PR (pixel coarser than P_R)"])
+        lines.append(table(rows, align="rrl"))
     if plan.warnings:
         lines.append("")
         lines.append("Warnings:")

@@ -169,3 +169,16 @@ def test_internal_error_is_exit_1_without_traceback(monkeypatch):
     r = run(*BASE, "--photo-scale", "10000")
     assert r.exit_code == 1
     assert "disk on fire" in r.stderr and "Traceback" not in r.output
+
+
+def test_largest_photo_scale_per_pixel():
+    """Inverse answer: 10 µm supports 1:8315 for Table 8's setting (P_Z limits); a pixel
+    coarser than P_R = 12.5 µm supports no photo scale."""
+    r = run(*BASE, "--photo-scale", "5000", "--pixel-um", "10", "--pixel-um", "14", "--json")
+    assert r.exit_code == 0, r.output
+    reach = {x["pixel_um"]: x for x in json.loads(r.stdout)["max_photo_scales"]}
+    assert reach[10.0]["max_photo_scale"] == pytest.approx(8315.2, abs=0.1)
+    assert reach[10.0]["limit"] == "PZ"
+    assert reach[14.0]["max_photo_scale"] == 0 and reach[14.0]["limit"] == "PR"
+    r = run(*BASE, "--photo-scale", "5000", "--pixel-um", "-3")
+    assert r.exit_code == 2 and "--pixel-um" in r.stderr
