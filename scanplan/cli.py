@@ -105,6 +105,7 @@ def main() -> None:
       scanplan scan --map-scale 2000 --relief 0.5 --camera rc30-153 \\
                     --photo-scale 5000 --photo-scale 10000 --photo-scale 15000
       scanplan cameras list
+      scanplan norms list
     """
 
 
@@ -223,6 +224,11 @@ def cameras_show(camera_id: str, norms: str, as_json: bool) -> None:
         return
     click.echo(table([[k, "—" if v in (None, "") else str(v)] for k, v in d.items()],
                      align="ll"))
+
+
+from .cli_norms import norms  # noqa: E402  (the group needs `main` defined first)
+
+main.add_command(norms)
 
 
 def run() -> None:  # pragma: no cover - console entry used by python -m scanplan

@@ -35,6 +35,7 @@ __all__ = [
     "list_norm_sets",
     "load_norm_set",
     "parse_scale",
+    "read_norm_set_folder",
     "user_norms_dir",
 ]
 
@@ -324,11 +325,34 @@ def load_norm_set(name_or_path: str | os.PathLike[str] = DEFAULT_NORM_SET) -> No
         If a file of the set breaks the schema (the message names file, row and column).
     """
     path, bundled = _resolve(name_or_path)
-    return _load_path(path.resolve(), bundled)
+    path = path.resolve()
+    return _load_path(path, bundled, _fingerprint(path))
+
+
+def _fingerprint(path: Path) -> tuple[tuple[str, int, int], ...]:
+    """(name, size, mtime) of the set's files: a replaced set is never served from cache."""
+    out = []
+    for f in sorted(path.iterdir()):
+        if f.is_file():
+            st = f.stat()
+            out.append((f.name, st.st_size, st.st_mtime_ns))
+    return tuple(out)
 
 
 @lru_cache(maxsize=16)
-def _load_path(path: Path, bundled: bool) -> NormSet:
+def _load_path(path: Path, bundled: bool, fingerprint: tuple[tuple[str, int, int], ...]
+               ) -> NormSet:
+    return read_norm_set_folder(path, bundled=bundled)
+
+
+def read_norm_set_folder(path: Path, *, bundled: bool = False) -> NormSet:
+    """Read and check the norm set in ``path`` (uncached; :func:`load_norm_set` caches).
+
+    Raises
+    ------
+    InputError
+        If a file of the set breaks the schema (message names file, row and column).
+    """
     try:
         meta = tomllib.loads((path / "set.toml").read_text(encoding="utf-8")).get("set", {})
     except (OSError, tomllib.TOMLDecodeError) as exc:
@@ -392,7 +416,8 @@ def list_norm_sets() -> list[tuple[str, str]]:
     for folder, where in ((bundled_norms_dir(), "bundled"), (user_norms_dir(), "user")):
         if folder.is_dir():
             for sub in sorted(folder.iterdir()):
-                if (sub / "set.toml").is_file():
+                # ".NAME.tmp-*" / ".NAME.old-*" are an interrupted import's leftovers
+                if not sub.name.startswith(".") and (sub / "set.toml").is_file():
                     found.append((sub.name, where))
     return found
 

@@ -1,0 +1,120 @@
+"""Benchmark: importing a norm workbook whose objects table has 10,000 rows.
+
+Builds the workbook in code (the bundled set plus 10,000 extra ``objects`` rows typed as
+Russian-locale text: ``"1:12 345"``, ``"0,25"``), then times
+:func:`scanplan.norms_io.import_norm_file` end to end — zip checks, reading, header
+matching, checking every cell, cross-table rules, writing the set folder, loading it back
+with the regular loader, and the atomic rename — into a temporary norm directory. Also
+times the same table as a CSV. Target: under 2 s for the workbook.
+
+Run: ``python benchmarks/bench_norms_import.py [--rows 10000] [--repeat 3]``
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import tempfile
+import time
+from pathlib import Path
+
+import openpyxl
+
+from scanplan.norms import DEFAULT_NORM_SET, bundled_norms_dir
+from scanplan.norms_io import import_norm_file
+
+TARGET_S = 2.0
+
+
+def _bundled(table: str) -> list[list[str]]:
+    with (bundled_norms_dir() / DEFAULT_NORM_SET / f"{table}.csv").open(
+        encoding="utf-8", newline=""
+    ) as fh:
+        return [list(r) for r in csv.reader(fh)]
+
+
+def _extra_rows(n: int) -> list[list[str]]:
+    return [
+        [
+            f"1:{30000 + i:,}".replace(",", "\u00a0"),
+            f"object {i}",
+            f"объект {i}",
+            f"{0.1 + (i % 50) / 100:.2f}".replace(".", ","),
+            "circle",
+            "benchmark",
+        ]
+        for i in range(n)
+    ]
+
+
+def build_workbook(path: Path, rows: int) -> Path:
+    """The bundled set as a workbook with ``rows`` extra objects."""
+    wb = openpyxl.Workbook()
+    wb.remove(wb.active)
+    for table in ("parameters", "shapes", "objects"):
+        ws = wb.create_sheet(table)
+        for row in _bundled(table):
+            ws.append(row)
+        if table == "objects":
+            for row in _extra_rows(rows):
+                ws.append(row)
+    wb.save(path)
+    return path
+
+
+def build_csv(path: Path, rows: int) -> Path:
+    """The objects table with ``rows`` extra rows as a Russian-Excel CSV (';', cp1251)."""
+    lines = [";".join(r) for r in _bundled("objects")[:1] + _extra_rows(rows)]
+    path.write_bytes(("\n".join(lines) + "\n").encode("cp1251", errors="replace"))
+    return path
+
+
+def _best(fn, repeat: int) -> float:
+    best = float("inf")
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        fn()
+        best = min(best, time.perf_counter() - t0)
+    return best
+
+
+def run(rows: int = 10_000, repeat: int = 3) -> dict[str, float]:
+    """Time the imports; return {'rows', 'xlsx_s', 'csv_s', 'target_s'}."""
+    with tempfile.TemporaryDirectory() as tmp:
+        folder = Path(tmp)
+        book = build_workbook(folder / "norms-10k.xlsx", rows)
+        table = build_csv(folder / "objects.csv", rows)
+        root = folder / "user-norms"
+        counter = iter(range(10**6))
+
+        def xlsx() -> None:
+            _, parsed = import_norm_file(book, f"bench-{next(counter)}", root=root)
+            assert len(parsed.tables["objects"]) == rows + 4
+
+        def csv_() -> None:
+            _, parsed = import_norm_file(table, f"bench-{next(counter)}", root=root)
+            assert len(parsed.tables["objects"]) == rows
+
+        return {
+            "rows": rows,
+            "xlsx_s": _best(xlsx, repeat),
+            "csv_s": _best(csv_, repeat),
+            "target_s": TARGET_S,
+        }
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--rows", type=int, default=10_000)
+    ap.add_argument("--repeat", type=int, default=3)
+    args = ap.parse_args()
+    r = run(args.rows, args.repeat)
+    ok = r["xlsx_s"] < TARGET_S
+    print(f"import of a {r['rows']:,}-row objects table (best of {args.repeat}):")
+    print(f"  .xlsx  {r['xlsx_s']:.3f} s   target < {TARGET_S:.1f} s   {'PASS' if ok else 'FAIL'}")
+    print(f"  .csv   {r['csv_s']:.3f} s")
+    return 0 if ok else 1
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

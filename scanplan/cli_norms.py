@@ -1,0 +1,376 @@
+"""``scanplan norms``: list, show, validate, import and template norm sets.
+
+Registered by :mod:`scanplan.cli` (``main.add_command(norms)``); it also runs on its own
+(``norms.main(args)``). Every problem is an :class:`~scanplan.errors.InputError`: printed as
+``error: ...`` on stderr (or as JSON with ``--json``) with exit code 2, never a traceback.
+"""
+
+from __future__ import annotations
+
+import functools
+import json
+import os
+import sys
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import click
+
+from . import norms as _norms
+from . import norms_io
+from .errors import InputError
+from .normschema import PARAMETERS, TABLES
+
+__all__ = ["norms"]
+
+
+def _fail(exc: InputError, as_json: bool) -> None:
+    """Report an InputError (all problems of a NormImportError) and exit 2."""
+    if isinstance(exc, norms_io.NormImportError):
+        problems = list(exc.problems)
+        total = exc.total
+    else:
+        problems = [norms_io.ImportProblem(exc.field, exc.message)]
+        total = 1
+    if as_json:
+        click.echo(
+            json.dumps(
+                {
+                    "ok": False,
+                    "error_count": total,
+                    "errors": [p.as_dict() for p in problems],
+                    "errors_omitted": total - len(problems),
+                },
+                ensure_ascii=False,
+                indent=2,
+            )
+        )
+    else:
+        if isinstance(exc, norms_io.NormImportError):
+            head = exc.message.split("\n", 1)[0]
+            click.echo(f"error: {exc.field}: {head}", err=True)
+            for line in norms_io.format_problems(problems, total):
+                click.echo(f"  {line}", err=True)
+        else:
+            click.echo(f"error: {exc.field}: {exc.message}", err=True)
+    sys.exit(2)
+
+
+def _guard(fn: Callable[..., Any]) -> Callable[..., Any]:
+    """Turn InputError into the documented exit 2 (JSON when ``--json`` was given)."""
+
+    @functools.wraps(fn)
+    def wrapper(*args: Any, **kwargs: Any) -> Any:
+        try:
+            return fn(*args, **kwargs)
+        except InputError as exc:
+            _fail(exc, bool(kwargs.get("as_json")))
+
+    return wrapper
+
+
+def _table(rows: list[list[str]], header: list[str]) -> str:
+    widths = [max(len(str(x)) for x in col) for col in zip(header, *rows, strict=False)]
+    lines = ["  ".join(str(h).ljust(w) for h, w in zip(header, widths, strict=False)).rstrip()]
+    lines.append("  ".join("-" * w for w in widths))
+    for r in rows:
+        lines.append("  ".join(str(x).ljust(w) for x, w in zip(r, widths, strict=False)).rstrip())
+    return "\n".join(lines)
+
+
+def _txt(v: Any) -> str:
+    if v is None:
+        return ""
+    if isinstance(v, list | tuple):
+        return ",".join(map(str, v))
+    if isinstance(v, float):
+        return f"{v:g}"
+    return str(v)
+
+
+_JSON = click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
+
+
+@click.group("norms")
+def norms() -> None:
+    """Norm sets: list, show, validate and import spreadsheets, write a template.
+
+    A norm set holds the coefficients of a technical instruction, shape coefficients,
+    the smallest map objects per map scale, and optionally cameras and scanners. Bundled
+    sets ship with scanplan; imported ones live in $SCANPLAN_NORMS_DIR (else
+    ~/.local/share/scanplan/norms). See docs/norms.md.
+
+    \b
+    Example:
+      scanplan norms template my-norms.xlsx
+      (edit it in Excel)
+      scanplan norms validate my-norms.xlsx
+      scanplan norms import my-norms.xlsx --name my-enterprise
+      scanplan scan --norms my-enterprise ...
+    """
+
+
+@norms.command("list")
+@_JSON
+@_guard
+def list_cmd(as_json: bool) -> None:
+    """List the bundled and imported norm sets.
+
+    \b
+    Example:
+      scanplan norms list
+      scanplan norms list --json
+    """
+    out = []
+    for name, where in _norms.list_norm_sets():
+        if name.startswith("."):
+            continue  # a leftover of an interrupted import
+        try:
+            ns = _norms.load_norm_set(
+                name if where == "bundled" else _norms.user_norms_dir() / name
+            )
+            item = {
+                "name": name,
+                "where": where,
+                "title": ns.title,
+                "imported_from": ns.imported_from,
+                "imported_at": ns.imported_at,
+                "path": str(ns.path),
+                "ok": True,
+            }
+        except InputError as exc:
+            item = {
+                "name": name,
+                "where": where,
+                "title": "",
+                "imported_from": "",
+                "imported_at": "",
+                "path": "",
+                "ok": False,
+                "error": str(exc),
+            }
+        out.append(item)
+    if as_json:
+        click.echo(
+            json.dumps(
+                {"norm_sets": out, "user_dir": str(_norms.user_norms_dir())},
+                ensure_ascii=False,
+                indent=2,
+            )
+        )
+        return
+    rows = [
+        [
+            i["name"],
+            i["where"] + ("" if i["ok"] else " (broken)"),
+            i["imported_at"][:10],
+            (i["title"] or i.get("error", ""))[:70],
+        ]
+        for i in out
+    ]
+    click.echo(_table(rows, ["name", "where", "imported", "title"]))
+    click.echo(f"\nuser norm sets: {_norms.user_norms_dir()}")
+
+
+@norms.command("show")
+@click.argument("name")
+@_JSON
+@_guard
+def show_cmd(name: str, as_json: bool) -> None:
+    """Show a norm set: meta, parameters (value, unit, source) and tables.
+
+    NAME is a bundled or imported set name, or a norm-set folder.
+
+    \b
+    Example:
+      scanplan norms show gkinp-02-036-02
+      scanplan norms show my-enterprise --json
+    """
+    data = norms_io.norm_set_dict(_norms.load_norm_set(name))
+    if as_json:
+        click.echo(json.dumps(data, ensure_ascii=False, indent=2))
+        return
+    out = [f"{data['name']} ({'bundled' if data['bundled'] else 'user'}: {data['path']})"]
+    for key in ("title", "title_ru", "source", "imported_from", "imported_at"):
+        if data[key]:
+            out.append(f"  {key}: {data[key]}")
+    out.append("\nparameters")
+    out.append(
+        _table(
+            [[k, _txt(v["value"]), v["unit"], v["source"]] for k, v in data["parameters"].items()],
+            ["name", "value", "unit", "source"],
+        )
+    )
+    for tname in ("shapes", "objects", "cameras", "scanners"):
+        rows = data.get(tname) or []
+        if not rows:
+            continue
+        cols = [
+            c.name
+            for c in TABLES[tname].columns
+            if c.name != "source" and any(r.get(c.name) not in (None, "") for r in rows)
+        ]
+        out.append(f"\n{tname}")
+        out.append(_table([[_txt(r.get(c)) for c in cols] for r in rows], cols))
+    click.echo("\n".join(out))
+
+
+def _summary(parsed: norms_io.ParsedNormSet) -> dict[str, Any]:
+    return {
+        "ok": True,
+        "file": parsed.source_file,
+        "tables": parsed.counts(),
+        "from_file": list(parsed.from_file),
+        "base": parsed.base,
+        "warnings": list(parsed.warnings),
+    }
+
+
+_TABLE = click.option(
+    "--table",
+    type=click.Choice(list(TABLES)),
+    default=None,
+    help="Table a CSV holds (default: from its name or headers).",
+)
+_BASE = click.option(
+    "--base",
+    default=None,
+    metavar="NAME|PATH",
+    help="Set supplying what the file lacks (a CSV always has one: default "
+    f"{_norms.DEFAULT_NORM_SET}).",
+)
+
+
+@norms.command("validate")
+@click.argument("file", type=click.Path(dir_okay=False, path_type=Path))
+@_TABLE
+@_BASE
+@_JSON
+@_guard
+def validate_cmd(file: Path, table: str | None, base: str | None, as_json: bool) -> None:
+    """Check a norm workbook (.xlsx) or CSV without writing anything.
+
+    Every problem is listed with a cell address you can paste into Excel's Name Box,
+    the header, the value, the rule and a hint. Exit code 2 when there are problems.
+
+    \b
+    Example:
+      scanplan norms validate my-norms.xlsx
+      scanplan norms validate objects.csv --json
+    """
+    parsed = norms_io.read_norm_file(file, table=table, base=base)
+    if as_json:
+        click.echo(json.dumps(_summary(parsed), ensure_ascii=False, indent=2))
+        return
+    click.echo(
+        f"{file.name}: OK — "
+        + ", ".join(f"{n} {k}" for k, n in parsed.counts().items())
+        + (
+            f" (base {parsed.base}; from the file: {', '.join(parsed.from_file)})"
+            if parsed.base
+            else ""
+        )
+    )
+    for w in parsed.warnings:
+        click.echo(f"note: {w}", err=True)
+
+
+@norms.command("import")
+@click.argument("file", type=click.Path(dir_okay=False, path_type=Path))
+@click.option("--name", required=True, help="Name of the new user set (a folder name).")
+@click.option("--force", is_flag=True, help="Replace an existing user set of that name.")
+@click.option("--title", default=None, help="Title of the set (default: from the file).")
+@_TABLE
+@_BASE
+@_JSON
+@_guard
+def import_cmd(
+    file: Path,
+    name: str,
+    force: bool,
+    title: str | None,
+    table: str | None,
+    base: str | None,
+    as_json: bool,
+) -> None:
+    """Import a norm workbook (.xlsx) or CSV as a user norm set.
+
+    Nothing is written unless the whole file is valid; an existing set is replaced only
+    with --force, atomically. A .csv holds one table and is merged onto --base (default
+    the bundled set): it replaces that table, or for parameters only the parameters it
+    names.
+
+    \b
+    Example:
+      scanplan norms import my-norms.xlsx --name my-enterprise
+      scanplan norms import objects.csv --name my-objects --base gkinp-02-036-02
+      scanplan norms import my-norms.xlsx --name my-enterprise --force --json
+    """
+    path, parsed = norms_io.import_norm_file(
+        file, name, force=force, table=table, base=base, title=title
+    )
+    if as_json:
+        click.echo(
+            json.dumps(
+                {**_summary(parsed), "name": name, "path": str(path)}, ensure_ascii=False, indent=2
+            )
+        )
+        return
+    click.echo(
+        f"imported {file.name} as norm set {name!r} ({path}): "
+        + ", ".join(f"{n} {k}" for k, n in parsed.counts().items())
+    )
+    for w in parsed.warnings:
+        click.echo(f"note: {w}", err=True)
+    click.echo(f"use it with: scanplan scan --norms {name} ...")
+
+
+@norms.command("template")
+@click.argument("file", type=click.Path(dir_okay=False, path_type=Path))
+@click.option(
+    "--norms",
+    "norm_set",
+    default=_norms.DEFAULT_NORM_SET,
+    metavar="NAME|PATH",
+    show_default=True,
+    help="Set to pre-fill the workbook with.",
+)
+@click.option(
+    "--lang",
+    type=click.Choice(["en", "ru"]),
+    default="en",
+    show_default=True,
+    help="Sheet names and headers in English or Russian.",
+)
+@click.option("--no-catalogue", is_flag=True, help="Leave out the cameras and scanners.")
+@click.option("--force", is_flag=True, help="Overwrite an existing file.")
+@_JSON
+@_guard
+def template_cmd(
+    file: Path, norm_set: str, lang: str, no_catalogue: bool, force: bool, as_json: bool
+) -> None:
+    """Write a norm workbook pre-filled with a norm set, to edit and import back.
+
+    One sheet per table, header comments with units and rules, data validation on
+    numeric columns. Importing it unchanged gives the same set.
+
+    \b
+    Example:
+      scanplan norms template my-norms.xlsx
+      scanplan norms template my-norms-ru.xlsx --lang ru --norms gkinp-02-036-02-printed
+    """
+    out = norms_io.write_template(
+        file, norm_set, lang=lang, catalogue=not no_catalogue, force=force
+    )
+    if as_json:
+        click.echo(
+            json.dumps(
+                {"ok": True, "file": str(out), "norms": norm_set, "lang": lang},
+                ensure_ascii=False,
+                indent=2,
+            )
+        )
+        return
+    click.echo(f"wrote {out} (pre-filled with {norm_set}; {len(PARAMETERS)} parameters)")
+    click.echo(f"next: edit it, then scanplan norms import {os.fspath(file)} --name NAME")
