@@ -10,23 +10,15 @@ Run: ``python benchmarks/bench_engine.py [--n 1000000] [--repeat 7]``
 from __future__ import annotations
 
 import argparse
-import time
 
 import numpy as np
+from _timing import best_of
 
 from scanplan.norms import load_norm_set
 from scanplan.planner import evaluate
 
 TARGET_RATIO = 3.0
 
-
-def _best(fn, repeat: int) -> float:
-    best = float("inf")
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        fn()
-        best = min(best, time.perf_counter() - t0)
-    return best
 
 
 def run(n: int = 1_000_000, repeat: int = 7, seed: int = 1) -> dict[str, float]:
@@ -61,8 +53,8 @@ def run(n: int = 1_000_000, repeat: int = 7, seed: int = 1) -> dict[str, float]:
         return np.minimum(np.minimum(np.minimum(ps, pz), np.minimum(ppx, pr)), pd)
 
     np.testing.assert_allclose(engine().scan_pixel_um, bare(), rtol=1e-12)
-    engine_s = _best(engine, repeat)
-    bare_s = _best(bare, repeat)
+    engine_s = best_of(engine, repeat)
+    bare_s = best_of(bare, repeat)
     return {"n": n, "engine_s": engine_s, "bare_s": bare_s, "ratio": engine_s / bare_s,
             "target": TARGET_RATIO}
 

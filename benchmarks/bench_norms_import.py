@@ -15,10 +15,10 @@ from __future__ import annotations
 import argparse
 import csv
 import tempfile
-import time
 from pathlib import Path
 
 import openpyxl
+from _timing import best_of
 
 from scanplan.norms import DEFAULT_NORM_SET, bundled_norms_dir
 from scanplan.norms_io import import_norm_file
@@ -69,14 +69,6 @@ def build_csv(path: Path, rows: int) -> Path:
     return path
 
 
-def _best(fn, repeat: int) -> float:
-    best = float("inf")
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        fn()
-        best = min(best, time.perf_counter() - t0)
-    return best
-
 
 def run(rows: int = 10_000, repeat: int = 3) -> dict[str, float]:
     """Time the imports; return {'rows', 'xlsx_s', 'csv_s', 'target_s'}."""
@@ -97,8 +89,8 @@ def run(rows: int = 10_000, repeat: int = 3) -> dict[str, float]:
 
         return {
             "rows": rows,
-            "xlsx_s": _best(xlsx, repeat),
-            "csv_s": _best(csv_, repeat),
+            "xlsx_s": best_of(xlsx, repeat),
+            "csv_s": best_of(csv_, repeat),
             "target_s": TARGET_S,
         }
 

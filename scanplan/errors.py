@@ -6,6 +6,11 @@ names the offending field (option, project key or spreadsheet cell) and what is 
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+from typing import TypeVar
+
+T = TypeVar("T")
+
 
 class InputError(ValueError):
     """Invalid user input.
@@ -27,3 +32,21 @@ class InputError(ValueError):
 
 class NotFoundError(InputError):
     """A named thing (norm set, camera, scanner, shape) does not exist."""
+
+
+def pick_method(methods: Mapping[str, T], name: str, label: str = "method") -> T:
+    """``methods[name]`` for a model dispatch table, or a ValueError listing the names.
+
+    Parameters
+    ----------
+    methods : mapping
+        Name → implementation (e.g. ``HEIGHT_PIXEL_METHODS``).
+    name : str
+        The requested method.
+    label : str
+        How the message names the choice (``"height formula"``).
+    """
+    try:
+        return methods[name]
+    except KeyError:
+        raise ValueError(f"{label} must be one of {sorted(methods)} (got {name!r})") from None

@@ -25,6 +25,8 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from .errors import pick_method
+
 __all__ = [
     "HEIGHT_PIXEL_METHODS",
     "height_pixel_instruction_um",
@@ -230,12 +232,7 @@ def height_pixel_um(
     ValueError
         For an unknown method.
     """
-    try:
-        fn = HEIGHT_PIXEL_METHODS[method]
-    except KeyError:
-        raise ValueError(
-            f"height formula must be one of {sorted(HEIGHT_PIXEL_METHODS)} (got {method!r})"
-        ) from None
+    fn = pick_method(HEIGHT_PIXEL_METHODS, method, "height formula")
     return fn(
         relief_interval_m,
         photo_scale,

@@ -28,6 +28,7 @@ from typing import Any, Literal
 import numpy as np
 import numpy.typing as npt
 
+from scanplan.errors import pick_method
 from scanplan.flight import (
     _finite,
     _in_range,
@@ -312,11 +313,7 @@ def haze_mtf(
     ValueError
         For an unknown method name.
     """
-    try:
-        fn = HAZE_METHODS[method]
-    except KeyError:
-        raise ValueError(f"method must be one of {sorted(HAZE_METHODS)} (got {method!r})") from None
-    return fn(freq_lpmm, **kwargs)
+    return pick_method(HAZE_METHODS, method)(freq_lpmm, **kwargs)
 
 
 def turbulence_mtf(
@@ -993,13 +990,7 @@ def threshold_contrast(
     ValueError
         For an unknown method name.
     """
-    try:
-        fn = THRESHOLD_METHODS[method]
-    except KeyError:
-        raise ValueError(
-            f"method must be one of {sorted(THRESHOLD_METHODS)} (got {method!r})"
-        ) from None
-    return fn(freq_lpmm, nyquist_lpmm, **kwargs)
+    return pick_method(THRESHOLD_METHODS, method)(freq_lpmm, nyquist_lpmm, **kwargs)
 
 
 # =================================================================================
