@@ -16,11 +16,13 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 
 from .errors import InputError
-from .norms import DEFAULT_NORM_SET, NormSet, load_norm_set, parse_scale
+from .mtf import DEFAULT_K0
+from .norms import DEFAULT_NORM_SET, MapObject, NormSet, load_norm_set, parse_scale
 from .normschema import PARAMETERS
 from .planner import ObjectSpec, ScanInputs, ScanPlan, plan_scan
+from .uav import UavInputs, UavPlan, plan_uav
 
-__all__ = ["ScanJob", "parse_frame_mm", "resolve_object", "scan"]
+__all__ = ["ScanJob", "UavJob", "parse_frame_mm", "resolve_object", "scan", "scan_job", "uav_job"]
 
 
 @dataclass(frozen=True)
@@ -67,11 +69,15 @@ def resolve_object(
         return ObjectSpec("object", float(object_size_m), shape_id, coef, "object_size_m")
     if norm_obj is None:
         return None
-    shape_id = shape or norm_obj.shape
-    coef = ns.shape_coefficient(shape_id, "shape")
-    return ObjectSpec(norm_obj.name, norm_obj.size_m, shape_id, coef,
-                      f"norm set {ns.name}, table objects, 1:{norm_obj.map_scale} "
-                      f"({norm_obj.source})")
+    return norm_object_spec(ns, norm_obj, shape)
+
+
+def norm_object_spec(ns: NormSet, obj: MapObject, shape: str | None = None) -> ObjectSpec:
+    """An :class:`ObjectSpec` for a row of the norm set's ``objects`` table."""
+    shape_id = shape or obj.shape
+    return ObjectSpec(obj.name, obj.size_m, shape_id, ns.shape_coefficient(shape_id, "shape"),
+                      f"norm set {ns.name}, table objects, 1:{obj.map_scale} ({obj.source})",
+                      map_scale=obj.map_scale)
 
 
 def scan_job(
@@ -118,15 +124,7 @@ def scan_job(
                          "(lines/mm > 0, typically 25–60 for aerial film)")
     overrides = {"probability": probability, "height_formula": height_formula,
                  "pr_coefficient": pr_coefficient, "recognition_rounding": recognition_rounding}
-    for key, value in overrides.items():
-        if value is not None:
-            problem = None
-            try:
-                problem = PARAMETERS[key].value.check(value)
-            except (TypeError, ValueError):
-                problem = f"must be {PARAMETERS[key].value.describe()}"
-            if problem:
-                raise InputError(key, f"{problem} (got {value!r})")
+    _check_overrides(overrides)
     rules = ns.rules(**overrides)
     obj = resolve_object(ns, mk, object_size_m=object_size_m, shape=shape)
     steps = ns.scanner_steps(scanner, "scanner") if scanner else ()
@@ -178,3 +176,113 @@ def scan(**kwargs: object) -> ScanPlan:
     ScanPlan
     """
     return scan_job(**kwargs).plan  # type: ignore[arg-type]
+
+
+@dataclass(frozen=True)
+class UavJob:
+    """A computed UAV plan together with the norm set it used."""
+
+    plan: UavPlan
+    norm_set: NormSet
+
+
+def uav_job(
+    *,
+    height_m: float,
+    camera: str | None = None,
+    pixel_um: float | None = None,
+    focal_mm: float | None = None,
+    sensor_mm: object | None = None,
+    f_number: float | None = None,
+    speed_ms: float = 15.0,
+    exposure_s: float = 0.001,
+    forward_overlap_pct: float = 80.0,
+    side_overlap_pct: float = 60.0,
+    height_tolerance_pct: float = 0.0,
+    map_scale: object | None = None,
+    relief_interval_m: float | None = None,
+    norms: str | os.PathLike[str] = DEFAULT_NORM_SET,
+    object_size_m: float | None = None,
+    shape: str | None = None,
+    probability: float | None = None,
+    height_formula: str | None = None,
+    r_max: float = 0.3,
+    r_min: float = 0.1,
+    threshold_k0: float | None = None,
+    shift_factor: float = 1.0,
+    area_m: object | None = None,
+    roll_deg: float = 0.0,
+    pitch_deg: float = 0.0,
+) -> UavJob:
+    """Plan a UAV flight (see :func:`scanplan.uav.plan_uav`); names as the CLI options.
+
+    A catalogue ``camera`` gives pixel, focal length, sensor, image size, f-number and
+    minimum trigger interval; explicit values override it. ``map_scale`` with
+    ``relief_interval_m`` adds the norm set's constraints and the maximum flight height.
+    """
+    ns = load_norm_set(norms)
+    cam = ns.camera(camera, "camera") if camera else None
+    if cam is not None and cam.kind != "digital":
+        raise InputError("camera", f"{camera!r} is a film camera; use `scanplan scan` for "
+                         "film, or a digital camera (scanplan cameras list)")
+    p = pixel_um if pixel_um is not None else (cam.pixel_um if cam else None)
+    f = focal_mm if focal_mm is not None else (cam.focal_mm if cam else None)
+    if sensor_mm is not None:
+        w, h = parse_frame_mm(sensor_mm, "sensor_mm")
+    elif cam is not None:
+        w, h = cam.sensor_width_mm, cam.sensor_height_mm
+    else:
+        w = h = None
+    n0 = f_number if f_number is not None else (cam.f_number if cam else None)
+    if cam is None and (p is None or f is None or w is None):
+        raise InputError("camera", "give a catalogue camera id, or the pixel pitch, focal "
+                         "length and sensor size (scanplan cameras list)")
+    if n0 is None:
+        raise InputError("f_number", "the camera has no f-number in the catalogue; give the "
+                         "working f-number (> 0)")
+    rules = None
+    mk = None
+    map_obj = None
+    if map_scale is not None:
+        mk = parse_scale(map_scale, "map_scale")
+        if relief_interval_m is None:
+            raise InputError("relief_interval_m", "give the relief interval h_c (m > 0) with "
+                             "the map scale")
+        overrides = {"probability": probability, "height_formula": height_formula}
+        _check_overrides(overrides)
+        rules = ns.rules(**overrides)
+        map_obj = resolve_object(ns, mk, object_size_m=object_size_m, shape=shape)
+        if map_obj is None and "PD" in rules.constraints:
+            raise InputError("object_size_m", f"the norm set has no smallest object for map "
+                             f"scale 1:{mk:g}; give the object size in m (> 0)")
+    objects = [norm_object_spec(ns, o, shape) for o in ns.objects]
+    if map_obj is not None and map_obj.map_scale is None:
+        objects.insert(0, map_obj)
+    area_w = area_l = None
+    if area_m is not None:
+        area_w, area_l = parse_frame_mm(area_m, "area_m")
+    inputs = UavInputs(
+        pixel_um=p, focal_mm=f, f_number=n0, sensor_width_mm=w, sensor_height_mm=h,  # type: ignore[arg-type]
+        height_m=height_m, speed_ms=speed_ms, exposure_s=exposure_s,
+        forward_overlap_pct=forward_overlap_pct, side_overlap_pct=side_overlap_pct,
+        height_tolerance_up_pct=height_tolerance_pct, camera=camera or "",
+        camera_name=cam.name if cam else "", image_width_px=cam.image_width_px if cam else None,
+        image_height_px=cam.image_height_px if cam else None,
+        min_trigger_interval_s=cam.min_trigger_interval_s if cam else None,
+        r_max=r_max, r_min=r_min,
+        threshold_k0=threshold_k0 if threshold_k0 is not None else DEFAULT_K0,
+        shift_factor=shift_factor, roll_deg=roll_deg, pitch_deg=pitch_deg, map_scale=mk,
+        relief_interval_m=relief_interval_m, map_object=map_obj, objects=tuple(objects),
+        area_width_m=area_w, area_length_m=area_l)
+    return UavJob(plan_uav(inputs, rules), ns)
+
+
+def _check_overrides(overrides: dict[str, object]) -> None:
+    for key, value in overrides.items():
+        if value is not None:
+            try:
+                problem = PARAMETERS[key].value.check(value)
+            except (TypeError, ValueError):
+                problem = f"must be {PARAMETERS[key].value.describe()}"
+            if problem:
+                raise InputError(key, f"{problem} (got {value!r})")

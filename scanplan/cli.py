@@ -41,6 +41,19 @@ OPTION_NAMES = {
     "bands": "--bands",
     "bits_per_band": "--bit-depth",
     "pixel_um": "--pixel-um",
+    "sensor_mm": "--sensor-mm",
+    "sensor_width_mm": "--sensor-mm",
+    "sensor_height_mm": "--sensor-mm",
+    "f_number": "--f-number",
+    "height_m": "--height-m",
+    "speed_ms": "--speed-ms",
+    "exposure_s": "--exposure-s",
+    "side_overlap_pct": "--side-overlap-pct",
+    "height_tolerance_up_pct": "--height-tolerance-pct",
+    "r_min": "--r-min",
+    "r_max": "--r-max",
+    "k0": "--k0",
+    "area_m": "--area-m",
 }
 
 
@@ -164,6 +177,72 @@ def scan(as_json: bool, bits_per_band: str, **kwargs: Any) -> None:
         _echo_json(scan_plan_dict(job.plan, job.norm_set))
     else:
         click.echo(format_scan_plan(job.plan, job.norm_set.name, job.norm_set.title))
+
+
+@main.command()
+@click.option("--camera", help="Digital camera id (scanplan cameras list).")
+@click.option("--pixel-um", type=float, callback=_finite, help="Pixel pitch [µm] (no --camera).")
+@click.option("--focal-mm", type=float, callback=_finite, help="Focal length [mm].")
+@click.option("--sensor-mm", help="Sensor WxH [mm], across × along track, e.g. 36x24.")
+@click.option("--f-number", type=float, callback=_finite,
+              help="Working f-number (default: the catalogue's).")
+@click.option("--height-m", type=float, required=True, callback=_finite,
+              help="Planned flight height above ground [m].")
+@click.option("--height-tolerance-pct", type=float, default=0.0, show_default=True,
+              callback=_finite, help="How much higher the UAV may fly than planned [%] "
+              "(seed 002: 300 m planned, 420 m flown = 40).")
+@click.option("--speed-ms", type=float, default=15.0, show_default=True, callback=_finite,
+              help="Ground speed [m/s].")
+@click.option("--exposure-s", type=float, default=0.001, show_default=True, callback=_finite,
+              help="Exposure time [s].")
+@click.option("--overlap-pct", "forward_overlap_pct", type=float, default=80.0,
+              show_default=True, callback=_finite, help="Forward overlap [%].")
+@click.option("--side-overlap-pct", type=float, default=60.0, show_default=True,
+              callback=_finite, help="Side overlap [%].")
+@click.option("--map-scale", type=SCALE, help="Map scale: adds the constraints and max height.")
+@click.option("--relief", "relief_interval_m", type=float, callback=_finite,
+              help="Relief interval h_c [m] (with --map-scale).")
+@click.option("--norms", default="gkinp-02-036-02", show_default=True,
+              help="Norm set name or folder.")
+@click.option("--object-size-m", type=float, callback=_finite,
+              help="Smallest object to interpret [m] (default: the norm table's).")
+@click.option("--shape", help="Object shape (norm table).")
+@click.option("--probability", type=float, callback=_finite,
+              help="Required recognition probability, 0 < P < 1.")
+@click.option("--height-formula", type=click.Choice(["instruction", "parallax"]),
+              help="Form of the height constraint.")
+@click.option("--r-max", type=float, default=0.3, show_default=True, callback=_finite,
+              help="Brightness coefficient of the lightest detail.")
+@click.option("--r-min", type=float, default=0.1, show_default=True, callback=_finite,
+              help="Brightness coefficient of the darkest detail.")
+@click.option("--k0", "threshold_k0", type=float, callback=_finite,
+              help="Sensor threshold contrast at low frequency (default 0.03).")
+@click.option("--shift-factor", type=float, default=1.0, show_default=True, callback=_finite,
+              help="Photographic/geometric image shift (0.6–0.7 summer, 1 bright canopy).")
+@click.option("--area-m", help="Block to cover, WIDTHxLENGTH [m], e.g. 2000x3000.")
+@click.option("--roll-deg", type=float, default=0.0, callback=_finite,
+              help="Roll for the tilted-frame corner GSD [°].")
+@click.option("--pitch-deg", type=float, default=0.0, callback=_finite,
+              help="Pitch for the tilted-frame corner GSD [°].")
+@click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
+def uav(as_json: bool, **kwargs: Any) -> None:
+    """Digital camera on a UAV: GSD, real ground resolution L from the MTF chain, blur,
+    flight geometry; with --map-scale/--relief the constraints and the maximum height.
+
+    \b
+    Example (seed 002's flight):
+      scanplan uav --camera canon-eos-5d-mark-ii-50 --f-number 8 --height-m 300 \\
+                   --height-tolerance-pct 40 --speed-ms 25 --map-scale 2000 --relief 0.5
+    """
+    from .api import uav_job
+    from .serialize import uav_plan_dict
+    from .textfmt import format_uav_plan
+
+    job = uav_job(**kwargs)
+    if as_json:
+        _echo_json(uav_plan_dict(job.plan, job.norm_set))
+    else:
+        click.echo(format_uav_plan(job.plan, job.norm_set.name))
 
 
 @main.group()

@@ -397,6 +397,7 @@ class ObjectSpec:
     shape: str
     shape_coefficient: float
     source: str  # "norm table objects, 1:2000 row (seed 001 Table 3)" or "--object-size-m"
+    map_scale: int | None = None  # the norm table row's map scale, if it came from one
 
 
 @dataclass(frozen=True)

@@ -8,8 +8,9 @@ from typing import Any
 
 from .norms import NormSet
 from .planner import ScanPlan
+from .uav import UavPlan
 
-__all__ = ["norm_set_dict", "scale_value", "scan_plan_dict"]
+__all__ = ["norm_set_dict", "scale_value", "scan_plan_dict", "uav_plan_dict"]
 
 
 def scale_value(x: float) -> int | float:
@@ -89,6 +90,41 @@ def scan_plan_dict(plan: ScanPlan, ns: NormSet | None = None) -> dict[str, Any]:
         "scenarios": scenarios,
         "interpretation_limit_photo_scale": plan.interpretation_limit_photo_scale,
         "max_photo_scales": [asdict(r) for r in plan.max_photo_scales],
+        "warnings": [asdict(w) for w in plan.warnings],
+    }
+    if ns is not None:
+        doc["norms"] = norm_set_dict(ns, inp.map_scale)
+    return _clean(doc)
+
+
+def uav_plan_dict(plan: UavPlan, ns: NormSet | None = None) -> dict[str, Any]:
+    """The ``scanplan uav --json`` document (keys per spec/interface.md, plus extras)."""
+    inp = plan.inputs
+    doc: dict[str, Any] = {
+        "inputs": {k: v for k, v in asdict(inp).items() if k not in ("objects", "map_object")},
+        "heights_m": plan.heights_m,
+        "gsd_m": plan.gsd_m,
+        "gsd_at_max_height_m": plan.gsd_at_max_height_m,
+        "nyquist_lpmm": plan.nyquist_lpmm,
+        "resolving_power_lpmm": plan.resolving_power_lpmm,
+        "resolving_power_corner_lpmm": plan.resolving_power_corner_lpmm,
+        "resolvable": plan.resolvable,
+        "sensor_limited": plan.sensor_limited,
+        "ground_resolution_m": plan.ground_resolution_m,
+        "ground_resolution_corner_m": plan.ground_resolution_corner_m,
+        "ground_resolution_at_max_height_m": plan.ground_resolution_at_max_height_m,
+        "ground_resolution_to_gsd": plan.ground_resolution_to_gsd,
+        "motion_blur_px": plan.motion_blur_px,
+        "max_exposure_s": plan.max_exposure_s,
+        "max_speed_ms": plan.max_speed_ms,
+        "tilted_corner_gsd_m": plan.tilted_corner_gsd_m,
+        "flight": plan.flight,
+        "recognition": [asdict(r) for r in plan.recognition],
+        "map_object": asdict(inp.map_object) if inp.map_object else None,
+        "constraints": {lim.id: {k: v for k, v in asdict(lim).items() if k != "id"}
+                        for lim in plan.limits},
+        "max_height_m": plan.max_height_m,
+        "binding": plan.binding,
         "warnings": [asdict(w) for w in plan.warnings],
     }
     if ns is not None:

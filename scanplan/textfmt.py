@@ -8,8 +8,9 @@ from collections.abc import Sequence
 
 from .planner import CONSTRAINTS, ScanPlan
 from .serialize import scale_value
+from .uav import UavPlan
 
-__all__ = ["format_scan_plan", "table"]
+__all__ = ["format_scan_plan", "format_uav_plan", "table"]
 
 
 def table(rows: Sequence[Sequence[str]], *, align: str = "", gap: int = 2) -> str:
@@ -110,4 +111,95 @@ def format_scan_plan(plan: ScanPlan, norm_name: str = "", norm_title: str = "") 
         for w in plan.warnings:
             mark = "!" if w.severity == "warning" else "i"
             lines.append(_wrap(f"{w.message} [{w.code}]", f"  {mark} "))
+    return "\n".join(lines)
+
+
+def _m(x: float | None, digits: int = 3) -> str:
+    return "—" if x is None else f"{x:.{digits}f}"
+
+
+def format_uav_plan(plan: UavPlan, norm_name: str = "") -> str:
+    """The terminal report of ``scanplan uav``."""
+    inp = plan.inputs
+    h = plan.heights_m
+    cam = inp.camera or "camera"
+    lines = [
+        f"UAV plan — {cam}" + (f" ({inp.camera_name})" if inp.camera_name else ""),
+        f"pixel {inp.pixel_um:g} µm, f {inp.focal_mm:g} mm, f/{inp.f_number:g}, sensor "
+        f"{inp.sensor_width_mm:g}×{inp.sensor_height_mm:g} mm; height {h['planned']:g} m"
+        + (f" (flown {h['min']:g}–{h['max']:g} m)" if h["max"] != h["min"] else "")
+        + f", speed {inp.speed_ms:g} m/s, exposure {inp.exposure_s:g} s, overlaps "
+        f"{inp.forward_overlap_pct:g}/{inp.side_overlap_pct:g} %",
+        f"scene contrast r {inp.r_max:g}/{inp.r_min:g}, threshold contrast K0 {inp.threshold_k0:g}"
+        + (f"; norm set {norm_name}" if norm_name else ""),
+        "",
+    ]
+    rows = [["", "", f"at {h['planned']:g} m"]]
+    if h["max"] != h["planned"]:
+        rows[0].append(f"at {h['max']:g} m")
+    two = len(rows[0]) == 4
+    rows.append(["GSD", "m", _m(plan.gsd_m), *([_m(plan.gsd_at_max_height_m)] if two else [])])
+    rows.append(["sensor limit (Nyquist)", "lines/mm", f"{plan.nyquist_lpmm:.1f}",
+                 *([""] if two else [])])
+    rows.append(["resolving power R, centre / corner", "lines/mm",
+                 f"{_num(plan.resolving_power_lpmm)} / {_num(plan.resolving_power_corner_lpmm)}",
+                 *([""] if two else [])])
+    rows.append(["ground resolution L (centre)", "m", _m(plan.ground_resolution_m),
+                 *([_m(plan.ground_resolution_at_max_height_m)] if two else [])])
+    rows.append(["L at the frame corner", "m", _m(plan.ground_resolution_corner_m),
+                 *([""] if two else [])])
+    rows.append(["L / GSD", "", _num(plan.ground_resolution_to_gsd, 2), *([""] if two else [])])
+    rows.append([f"motion blur (at {h['min']:g} m)", "px", f"{plan.motion_blur_px:.2f}",
+                 *([""] if two else [])])
+    if plan.tilted_corner_gsd_m is not None:
+        rows.append([f"worst corner GSD, roll {inp.roll_deg:g}° pitch {inp.pitch_deg:g}°", "m",
+                     "", *([_m(plan.tilted_corner_gsd_m)] if two else [])])
+    lines.append(table(rows, align="ll" + "r" * (len(rows[0]) - 2)))
+    lines.append(f"blur ≤ 0.5 px needs exposure ≤ 1/{math.ceil(1 / plan.max_exposure_s):d} s "
+                 f"or speed ≤ {plan.max_speed_ms:.1f} m/s")
+    fl = plan.flight
+    lines += ["", "Flight geometry (at the planned height):"]
+    frows = [["footprint", f"{fl['footprint_across_m']:.0f} × {fl['footprint_along_m']:.0f} m"],
+             ["base / line spacing", f"{fl['base_m']:.1f} m / {fl['line_spacing_m']:.1f} m"],
+             ["photo interval", f"{fl['photo_interval_s']:.2f} s"
+              + (f" (camera minimum {fl['min_trigger_interval_s']:g} s)"
+                 if "min_trigger_interval_s" in fl else "")],
+             [f"forward overlap at {h['min']:g} / {h['max']:g} m",
+              f"{fl['forward_overlap_at_min_height_pct']:.1f} / "
+              f"{fl['forward_overlap_at_max_height_pct']:.1f} %"]]
+    if "strips" in fl:
+        frows += [["strips × photos", f"{fl['strips']} × {fl['photos_per_strip']} = "
+                   f"{fl['photos']} photos"],
+                  ["flight length / time", f"{fl['flight_length_m'] / 1000:.1f} km / "
+                   + (f"{fl['flight_time_s'] / 60:.0f} min" if fl.get("flight_time_s") else "—")]]
+        if "data_volume_bytes" in fl:
+            frows.append(["data volume", f"{fl['data_volume_bytes'] / 1e9:.1f} GB"])
+    lines.append(table([[f"  {a}", b] for a, b in frows], align="ll"))
+    if plan.recognition:
+        lines += ["", "Recognition probability of the norm objects (P = exp(−(B·L/L_obj)²)):"]
+        rrows = [["  object", "map", "size m", "shape", f"{h['planned']:g} m",
+                  f"{h['max']:g} m", "corner"]]
+        for r in plan.recognition:
+            rrows.append([f"  {r.object}", f"1:{r.map_scale}" if r.map_scale else "—",
+                          f"{r.object_size_m:g}", r.shape, _num(r.probability, 2),
+                          _num(r.probability_at_max_height, 2),
+                          _num(r.probability_corner_at_max_height, 2)])
+        lines.append(table(rrows, align="llrlrrr"))
+    if plan.limits:
+        tol = inp.height_tolerance_up_pct
+        lines += ["", f"Maximum flight height for map 1:{scale_value(inp.map_scale or 0)}, relief "
+                  f"interval {inp.relief_interval_m:g} m"
+                  + (f" (checked at +{tol:g} % height)" if tol else "") + ":"]
+        lrows = [["  constraint", "limit on the ground", "compared with", "max height"]]
+        for lim in sorted(plan.limits, key=lambda x: x.max_height_m):
+            lrows.append([f"  {lim.id}  {lim.name}", f"{lim.limit_m:.3f} m", lim.compares,
+                          f"{lim.max_height_m:.0f} m" + ("*" if lim.binding else " ")])
+        lines.append(table(lrows, align="lrlr"))
+        b = next(x for x in plan.limits if x.binding)
+        lines.append(_wrap(f"Maximum height {plan.max_height_m:.0f} m: {b.id} ({b.name}) binds — "
+                           f"{b.reason}.", ""))
+    if plan.warnings:
+        lines += ["", "Warnings:"]
+        for w in plan.warnings:
+            lines.append(_wrap(f"{w.message} [{w.code}]", "  ! "))
     return "\n".join(lines)

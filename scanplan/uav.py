@@ -1,0 +1,428 @@
+"""UAV digital-camera planning: real ground resolution combined with the Instruction.
+
+A digital camera delivers two things on the ground (docs/architecture.md):
+GSD = p·H/f (geometry) and the MTF ground resolution L = H/(2·R·f) (seed 000). The
+Instruction's geometric constraints are limits on the ground that the GSD must not exceed
+(P_S, P_Z, P_P multiplied by Mc); the interpretation constraint is a limit that L must not
+exceed (seed 001's A ≤ L_obj·sqrt(−ln P)/B with A ≡ L). Each limit gives a maximum flight
+height; the smallest is binding.
+
+Light UAVs do not hold the planned height (seed 002: 300 m planned, 300–420 m flown): the
+constraints are checked at the highest height flown, blur and overlaps at the lowest.
+
+Pure numpy on top of :mod:`scanplan.mtf` and :mod:`scanplan.flight`; no I/O.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from . import flight as FL
+from . import formulas as F
+from . import mtf as M
+from .errors import InputError
+from .orientation import attitude_matrix, corner_gsd
+from .planner import CONSTRAINTS, ObjectSpec, PlanWarning, ScanRules
+
+__all__ = ["HeightLimit", "Recognition", "UavInputs", "UavPlan", "plan_uav"]
+
+_BISECTION_STEPS = 60
+_MAX_SEARCH_HEIGHT_M = 20_000.0
+
+
+@dataclass(frozen=True)
+class UavInputs:
+    """Camera, flight and (optionally) the map a UAV flight must serve.
+
+    Lengths on the sensor in mm/µm, on the ground in m; angles in degrees; overlaps in %.
+    """
+
+    pixel_um: float
+    focal_mm: float
+    f_number: float
+    sensor_width_mm: float
+    sensor_height_mm: float
+    height_m: float
+    speed_ms: float
+    exposure_s: float
+    forward_overlap_pct: float = 80.0
+    side_overlap_pct: float = 60.0
+    height_tolerance_up_pct: float = 0.0
+    height_tolerance_down_pct: float = 0.0
+    camera: str = ""
+    camera_name: str = ""
+    image_width_px: int | None = None
+    image_height_px: int | None = None
+    min_trigger_interval_s: float | None = None
+    r_max: float = 0.3
+    r_min: float = 0.1
+    threshold_k0: float = M.DEFAULT_K0
+    haze_contrast: float = M.DEFAULT_HAZE_CONTRAST
+    shift_factor: float = 1.0
+    random_speed_ms: float = 0.0
+    roll_rate_rad_s: float = 0.0
+    pitch_rate_rad_s: float = 0.0
+    yaw_rate_rad_s: float = 0.0
+    roll_deg: float = 0.0
+    pitch_deg: float = 0.0
+    map_scale: float | None = None
+    relief_interval_m: float | None = None
+    map_object: ObjectSpec | None = None
+    objects: tuple[ObjectSpec, ...] = ()
+    area_width_m: float | None = None
+    area_length_m: float | None = None
+    bands: int = 3
+    bits_per_band: int = 8
+
+
+@dataclass(frozen=True)
+class Recognition:
+    """Recognition probability of one norm object, P = exp(−(B·L/L_obj)²) (seed 001 eq. 7)."""
+
+    object: str
+    object_size_m: float
+    shape: str
+    map_scale: int | None
+    probability: float | None
+    probability_at_max_height: float | None
+    probability_corner_at_max_height: float | None
+
+
+@dataclass(frozen=True)
+class HeightLimit:
+    """One constraint as a maximum planned flight height."""
+
+    id: str
+    name: str
+    limit_m: float          # ground limit the GSD (or L) must not exceed [m]
+    compares: str           # "GSD" or "L"
+    max_height_m: float     # planned height, tolerance applied [m]
+    binding: bool
+    margin_pct: float
+    reason: str
+    equation: str
+
+
+@dataclass(frozen=True)
+class UavPlan:
+    """Everything ``scanplan uav`` reports (one result object for text, JSON and reports)."""
+
+    inputs: UavInputs
+    heights_m: dict[str, float]
+    gsd_m: float
+    gsd_at_max_height_m: float
+    nyquist_lpmm: float
+    resolving_power_lpmm: float | None
+    resolving_power_corner_lpmm: float | None
+    ground_resolution_m: float | None
+    ground_resolution_corner_m: float | None
+    ground_resolution_at_max_height_m: float | None
+    ground_resolution_to_gsd: float | None
+    resolvable: bool
+    sensor_limited: bool
+    motion_blur_px: float
+    max_exposure_s: float
+    max_speed_ms: float
+    tilted_corner_gsd_m: float | None
+    flight: dict[str, Any]
+    recognition: tuple[Recognition, ...]
+    limits: tuple[HeightLimit, ...]
+    max_height_m: float | None
+    binding: str | None
+    warnings: tuple[PlanWarning, ...]
+    mtf_centre: dict[str, Any] = field(default_factory=dict)
+
+
+def _chain(inp: UavInputs, height_m: Any) -> tuple[M.Camera, M.Flight, M.Atmosphere,
+                                                   M.Motion, M.Scene, M.Threshold]:
+    cam = M.Camera(inp.pixel_um, inp.focal_mm, inp.f_number, inp.sensor_width_mm,
+                   inp.sensor_height_mm)
+    fl = M.Flight(height_m, inp.speed_ms, inp.exposure_s, inp.shift_factor)
+    atm = M.Atmosphere(contrast_coefficient=inp.haze_contrast)
+    mot = M.Motion(inp.random_speed_ms, inp.roll_rate_rad_s, inp.pitch_rate_rad_s,
+                   inp.yaw_rate_rad_s)
+    return cam, fl, atm, mot, M.Scene(inp.r_max, inp.r_min), M.Threshold(
+        params={"k0": inp.threshold_k0})
+
+
+def _resolution(inp: UavInputs, height_m: Any) -> M.UAVResolution:
+    try:
+        return M.uav_resolution(*_chain(inp, height_m))
+    except ValueError as exc:  # the models name their field first: "pixel_um must be > 0"
+        name = str(exc).split(" ", 1)[0]
+        raise InputError(name, str(exc).split(" ", 1)[1] if " " in str(exc) else str(exc)
+                         ) from None
+
+
+def _f(x: Any) -> float | None:
+    v = float(np.asarray(x))
+    return v if math.isfinite(v) else None
+
+
+def max_height_for_ground_resolution(inp: UavInputs, limit_m: float) -> float:
+    """Highest height at which the centre L does not exceed ``limit_m`` (bisection).
+
+    L grows with height (tests in tests/test_mtf.py); where L is not resolvable it is taken
+    as exceeding every limit. Returns 0 if even 1 m fails, the search ceiling if nothing
+    fails below it.
+    """
+    lo, hi = 1.0, _MAX_SEARCH_HEIGHT_M
+
+    def ok(h: float) -> bool:
+        lr = _resolution(inp, h).centre.ground_resolution_m
+        v = float(np.asarray(lr))
+        return math.isfinite(v) and v <= limit_m
+
+    if not ok(lo):
+        return 0.0
+    if ok(hi):
+        return hi
+    for _ in range(_BISECTION_STEPS):
+        mid = 0.5 * (lo + hi)
+        if ok(mid):
+            lo = mid
+        else:
+            hi = mid
+        if hi - lo < 1e-3:
+            break
+    return lo
+
+
+def _check_inputs(inp: UavInputs) -> None:
+    def pos(name: str, v: float | None, unit: str = "") -> None:
+        if v is None or not (isinstance(v, int | float) and math.isfinite(v) and v > 0):
+            raise InputError(name, f"must be a finite number > 0{' ' + unit if unit else ''} "
+                             f"(got {v!r})")
+
+    pos("pixel_um", inp.pixel_um, "µm")
+    pos("focal_mm", inp.focal_mm, "mm")
+    pos("f_number", inp.f_number)
+    pos("sensor_width_mm", inp.sensor_width_mm, "mm")
+    pos("sensor_height_mm", inp.sensor_height_mm, "mm")
+    pos("height_m", inp.height_m, "m")
+    pos("exposure_s", inp.exposure_s, "s")
+    if not (math.isfinite(inp.speed_ms) and inp.speed_ms >= 0):
+        raise InputError("speed_ms", f"must be a finite number ≥ 0 m/s (got {inp.speed_ms!r})")
+    for name in ("forward_overlap_pct", "side_overlap_pct"):
+        v = getattr(inp, name)
+        if not (math.isfinite(v) and 0 <= v < 100):
+            raise InputError(name, f"must be ≥ 0 and < 100 % (got {v!r})")
+    for name in ("height_tolerance_up_pct", "height_tolerance_down_pct"):
+        v = getattr(inp, name)
+        if not (math.isfinite(v) and 0 <= v < 100):
+            raise InputError(name, f"must be ≥ 0 and < 100 % (got {v!r})")
+    if not (0 <= inp.r_min <= inp.r_max <= 1 and inp.r_max > 0):
+        raise InputError("r_min", f"need 0 ≤ r_min ≤ r_max ≤ 1 (got r_min {inp.r_min!r}, "
+                         f"r_max {inp.r_max!r})")
+    if inp.map_scale is not None:
+        pos("map_scale", inp.map_scale)
+        pos("relief_interval_m", inp.relief_interval_m, "m")
+    for name in ("area_width_m", "area_length_m"):
+        v = getattr(inp, name)
+        if v is not None:
+            pos(name, v, "m")
+
+
+def _ground_limits(inp: UavInputs, rules: ScanRules) -> dict[str, tuple[float, str, str]]:
+    """id → (ground limit [m], compares-with, reason) for the enabled constraints.
+
+    P_S, P_Z, P_P of seed 001 eqs. 1–3 times Mc are limits on the ground; P_R has no digital
+    counterpart (the sensor is the "scan"); P_D becomes a limit on L.
+    """
+    assert inp.map_scale is not None and inp.relief_interval_m is not None
+    out: dict[str, tuple[float, str, str]] = {}
+    k = rules.processing_loss_k
+    mk = inp.map_scale
+    # the evaluation at Mc = 1 gives each pixel limit times Mc, i.e. on the ground [µm → m]
+    if "PS" in rules.constraints:
+        g = float(F.planimetric_pixel_um(mk, 1.0, planimetric_accuracy_mm=rules.
+                                         planimetric_accuracy_mm, processing_loss_k=k)) / 1e6
+        out["PS"] = (g, "GSD", f"planimetric error ≤ {rules.planimetric_accuracy_mm:g} mm at "
+                     f"1:{mk:g} after k = {k:g}")
+    if "PZ" in rules.constraints:
+        base_mm = F.photo_base_mm(inp.sensor_height_mm, inp.forward_overlap_pct)
+        g = float(F.height_pixel_um(inp.relief_interval_m, 1.0, inp.focal_mm, base_mm,
+                                    height_accuracy_fraction=rules.height_accuracy_fraction,
+                                    processing_loss_k=k, method=rules.height_formula)) / 1e6
+        vz = rules.height_accuracy_fraction * inp.relief_interval_m
+        out["PZ"] = (g, "GSD", f"height error ≤ {vz:g} m (relief interval "
+                     f"{inp.relief_interval_m:g} m) after k = {k:g}, {rules.height_formula} form")
+    if "PP" in rules.constraints:
+        g = float(F.photoplan_pixel_um(mk, 1.0, photoplan_resolution_mm=rules.
+                                       photoplan_resolution_mm)) / 1e6
+        out["PP"] = (g, "GSD", f"photo-plan resolution {rules.photoplan_resolution_mm * 1000:g}"
+                     f" µm at 1:{mk:g}")
+    obj = inp.map_object
+    if "PD" in rules.constraints and obj is not None:
+        root = float(F.probability_root(rules.probability, rules.recognition_rounding))  # type: ignore[arg-type]
+        g = obj.size_m * root / obj.shape_coefficient
+        out["PD"] = (g, "L", f"{obj.name} ({obj.size_m:g} m, {obj.shape}) recognised with "
+                     f"probability {rules.probability:g} on the real ground resolution L")
+    return out
+
+
+def plan_uav(inp: UavInputs, rules: ScanRules | None = None) -> UavPlan:
+    """Plan a UAV flight: GSD, MTF ground resolution, blur, flight geometry, and — with a map
+    scale — the maximum flight height under the norm set's constraints.
+
+    Parameters
+    ----------
+    inp : UavInputs
+        Camera, flight, scene and map.
+    rules : ScanRules, optional
+        Needed when ``inp.map_scale`` is given.
+
+    Returns
+    -------
+    UavPlan
+
+    Raises
+    ------
+    InputError
+        Naming the field for out-of-range input.
+    """
+    _check_inputs(inp)
+    band = FL.height_band(inp.height_m, inp.height_tolerance_up_pct / 100.0,
+                          inp.height_tolerance_down_pct / 100.0)
+    h_plan, h_lo, h_hi = inp.height_m, float(band.min_m), float(band.max_m)
+    res = _resolution(inp, np.array([h_plan, h_hi]))
+    c, k = res.centre, res.corner
+    gsd = FL.ground_sample_distance_m(inp.pixel_um, np.array([h_plan, h_lo, h_hi]),
+                                      inp.focal_mm)
+    gsd_plan, gsd_lo, gsd_hi = (float(x) for x in gsd)
+    resolvable = bool(np.asarray(c.resolvable)[0])
+    warnings: list[PlanWarning] = []
+
+    blur = float(FL.motion_blur_px(inp.speed_ms, inp.exposure_s, gsd_lo))
+    max_exp = float(FL.max_exposure_for_blur_s(max(inp.speed_ms, 1e-12), gsd_lo))
+    max_speed = float(FL.max_speed_for_blur_ms(inp.exposure_s, gsd_lo))
+    if blur > FL.MAX_BLUR_PX:
+        warnings.append(PlanWarning(
+            "motion_blur",
+            f"motion blur {blur:.2f} px at {h_lo:g} m exceeds {FL.MAX_BLUR_PX:g} px: use an "
+            f"exposure ≤ 1/{math.ceil(1 / max_exp):d} s or a speed ≤ {max_speed:.1f} m/s"))
+
+    fp_across = float(FL.footprint_m(inp.sensor_width_mm, h_plan, inp.focal_mm))
+    fp_along = float(FL.footprint_m(inp.sensor_height_mm, h_plan, inp.focal_mm))
+    base = float(FL.photo_base_m(fp_along, inp.forward_overlap_pct))
+    spacing = float(FL.line_spacing_m(fp_across, inp.side_overlap_pct))
+    interval = float(FL.photo_interval_s(base, inp.speed_ms)) if inp.speed_ms > 0 else math.inf
+    fl: dict[str, Any] = {
+        "footprint_across_m": fp_across, "footprint_along_m": fp_along, "base_m": base,
+        "line_spacing_m": spacing, "photo_interval_s": interval,
+        "forward_overlap_at_min_height_pct": float(FL.actual_overlap_pct(
+            inp.forward_overlap_pct, h_plan, h_lo)),
+        "side_overlap_at_min_height_pct": float(FL.actual_overlap_pct(
+            inp.side_overlap_pct, h_plan, h_lo)),
+        "forward_overlap_at_max_height_pct": float(FL.actual_overlap_pct(
+            inp.forward_overlap_pct, h_plan, h_hi)),
+    }
+    if inp.min_trigger_interval_s:
+        fl["min_trigger_interval_s"] = inp.min_trigger_interval_s
+        fl["max_speed_for_trigger_ms"] = float(FL.max_speed_for_trigger_ms(
+            base, inp.min_trigger_interval_s))
+        if interval < inp.min_trigger_interval_s:
+            warnings.append(PlanWarning(
+                "trigger_interval",
+                f"photo interval {interval:.2f} s is shorter than the camera's minimum "
+                f"{inp.min_trigger_interval_s:g} s: fly ≤ {fl['max_speed_for_trigger_ms']:.1f} "
+                "m/s or lower the forward overlap"))
+    if inp.area_width_m and inp.area_length_m:
+        strips = int(FL.strip_count(inp.area_width_m, spacing))
+        per_strip = int(FL.photos_per_strip(inp.area_length_m, base))
+        length = float(FL.flight_length_m(strips, inp.area_length_m, spacing))
+        fl.update({"strips": strips, "photos_per_strip": per_strip,
+                   "photos": strips * per_strip, "flight_length_m": length,
+                   "flight_time_s": float(FL.flight_time_s(length, inp.speed_ms))
+                   if inp.speed_ms > 0 else None})
+        if inp.image_width_px and inp.image_height_px:
+            fl["data_volume_bytes"] = float(FL.data_volume_bytes(
+                strips * per_strip, inp.image_width_px, inp.image_height_px,
+                inp.bands, inp.bits_per_band))
+
+    tilt = None
+    if inp.roll_deg or inp.pitch_deg:
+        rot = attitude_matrix(math.radians(inp.roll_deg), math.radians(inp.pitch_deg))
+        tilt = _f(corner_gsd(h_hi, inp.focal_mm, inp.pixel_um, inp.sensor_width_mm,
+                             inp.sensor_height_mm, rotation=rot).worst_m)
+
+    l_plan = _f(np.asarray(c.ground_resolution_m)[0])
+    l_hi = _f(np.asarray(c.ground_resolution_m)[1])
+    l_corner_hi = _f(np.asarray(k.ground_resolution_m)[1])
+    if not resolvable:
+        warnings.append(PlanWarning(
+            "not_resolvable",
+            f"object contrast K = {float(M.object_contrast(inp.r_max, inp.r_min)):.3f} is below "
+            f"the sensor's threshold contrast {inp.threshold_k0:g}: nothing is resolved, so "
+            "the ground resolution L has no value"))
+
+    def p_rec(obj: ObjectSpec, l_m: float | None) -> float | None:
+        if l_m is None:
+            return None
+        return float(F.recognition_probability(obj.size_m, l_m, obj.shape_coefficient))
+
+    recognition = tuple(
+        Recognition(o.name, o.size_m, o.shape, o.map_scale, p_rec(o, l_plan),
+                    p_rec(o, l_hi), p_rec(o, l_corner_hi))
+        for o in inp.objects)
+
+    limits: tuple[HeightLimit, ...] = ()
+    max_h = binding = None
+    if inp.map_scale is not None:
+        if rules is None:
+            raise ValueError("rules are needed with a map scale")
+        up = 1.0 + inp.height_tolerance_up_pct / 100.0
+        raw = []
+        for cid, (g, compares, reason) in _ground_limits(inp, rules).items():
+            h_at_limit = (g * inp.focal_mm / (inp.pixel_um / 1000.0) if compares == "GSD"
+                          else max_height_for_ground_resolution(inp, g))
+            raw.append((cid, g, compares, reason, h_at_limit / up))
+        if raw:
+            best = min(raw, key=lambda r: r[4])
+            max_h, binding = best[4], best[0]
+            limits = tuple(HeightLimit(
+                id=cid, name=CONSTRAINTS[cid].name, limit_m=g, compares=compares,
+                max_height_m=h, binding=(cid == binding),
+                margin_pct=(h / max_h - 1) * 100 if max_h > 0 else math.inf, reason=reason,
+                equation=CONSTRAINTS[cid].equation) for cid, g, compares, reason, h in raw)
+            if h_plan > max_h * (1 + 1e-9):
+                warnings.append(PlanWarning(
+                    "height_above_max",
+                    f"planned height {h_plan:g} m is above the maximum {max_h:.0f} m set by "
+                    f"{binding} ({CONSTRAINTS[binding].name})"
+                    + (f" with a {inp.height_tolerance_up_pct:g} % height tolerance"
+                       if inp.height_tolerance_up_pct else "")))
+        if ("PZ" in rules.constraints and rules.height_formula == "instruction"
+                and not math.isclose(inp.forward_overlap_pct,
+                                     rules.standard_forward_overlap_pct)):
+            warnings.append(PlanWarning(
+                "overlap_not_standard",
+                f"forward overlap {inp.forward_overlap_pct:g} % is not the Instruction's "
+                f"{rules.standard_forward_overlap_pct:g} %: the printed height formula "
+                "V_z·f/(k·Mc·b) lets a larger overlap allow a coarser pixel (--height-formula "
+                "parallax for the parallax form)"))
+
+    freq = np.linspace(0, float(M.nyquist_lpmm(inp.pixel_um)), 41)
+    curves = M.contrast_curves(freq, *_chain(inp, h_plan))
+    return UavPlan(
+        inputs=inp, heights_m={"planned": h_plan, "min": h_lo, "max": h_hi},
+        gsd_m=gsd_plan, gsd_at_max_height_m=gsd_hi,
+        nyquist_lpmm=float(M.nyquist_lpmm(inp.pixel_um)),
+        resolving_power_lpmm=_f(np.asarray(c.r_lpmm)[0]),
+        resolving_power_corner_lpmm=_f(np.asarray(k.r_lpmm)[0]),
+        ground_resolution_m=l_plan, ground_resolution_corner_m=_f(
+            np.asarray(k.ground_resolution_m)[0]),
+        ground_resolution_at_max_height_m=l_hi,
+        ground_resolution_to_gsd=_f(np.asarray(c.l_over_gsd)[0]),
+        resolvable=resolvable,
+        sensor_limited=bool(np.asarray(c.resolving_power.sensor_limited)[0]),
+        motion_blur_px=blur, max_exposure_s=max_exp, max_speed_ms=max_speed,
+        tilted_corner_gsd_m=tilt, flight=fl, recognition=recognition, limits=limits,
+        max_height_m=max_h, binding=binding, warnings=tuple(warnings),
+        mtf_centre={"freq_lpmm": freq.tolist(),
+                    **{name: np.asarray(v).ravel().tolist() for name, v in curves.items()}})
+
