@@ -210,6 +210,10 @@ def uav_job(
     r_min: float = 0.1,
     threshold_k0: float | None = None,
     shift_factor: float = 1.0,
+    random_speed_ms: float = 0.0,
+    roll_rate_rad_s: float = 0.0,
+    pitch_rate_rad_s: float = 0.0,
+    yaw_rate_rad_s: float = 0.0,
     area_m: object | None = None,
     roll_deg: float = 0.0,
     pitch_deg: float = 0.0,
@@ -271,7 +275,9 @@ def uav_job(
         min_trigger_interval_s=cam.min_trigger_interval_s if cam else None,
         r_max=r_max, r_min=r_min,
         threshold_k0=threshold_k0 if threshold_k0 is not None else DEFAULT_K0,
-        shift_factor=shift_factor, roll_deg=roll_deg, pitch_deg=pitch_deg, map_scale=mk,
+        shift_factor=shift_factor, random_speed_ms=random_speed_ms,
+        roll_rate_rad_s=roll_rate_rad_s, pitch_rate_rad_s=pitch_rate_rad_s,
+        yaw_rate_rad_s=yaw_rate_rad_s, roll_deg=roll_deg, pitch_deg=pitch_deg, map_scale=mk,
         relief_interval_m=relief_interval_m, map_object=map_obj, objects=tuple(objects),
         area_width_m=area_w, area_length_m=area_l)
     return UavJob(plan_uav(inputs, rules), ns)

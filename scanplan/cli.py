@@ -54,6 +54,10 @@ OPTION_NAMES = {
     "r_max": "--r-max",
     "k0": "--k0",
     "area_m": "--area-m",
+    "random_speed_ms": "--random-speed-ms",
+    "roll_rate_rad_s": "--roll-rate",
+    "pitch_rate_rad_s": "--pitch-rate",
+    "yaw_rate_rad_s": "--yaw-rate",
 }
 
 
@@ -219,6 +223,14 @@ def scan(as_json: bool, bits_per_band: str, **kwargs: Any) -> None:
               help="Sensor threshold contrast at low frequency (default 0.03).")
 @click.option("--shift-factor", type=float, default=1.0, show_default=True, callback=_finite,
               help="Photographic/geometric image shift (0.6–0.7 summer, 1 bright canopy).")
+@click.option("--random-speed-ms", type=float, default=0.0, callback=_finite,
+              help="RMS random linear speed of a light UAV [m/s].")
+@click.option("--roll-rate", "roll_rate_rad_s", type=float, default=0.0, callback=_finite,
+              help="RMS angular rate about the longitudinal axis [rad/s].")
+@click.option("--pitch-rate", "pitch_rate_rad_s", type=float, default=0.0, callback=_finite,
+              help="RMS angular rate about the transverse axis [rad/s].")
+@click.option("--yaw-rate", "yaw_rate_rad_s", type=float, default=0.0, callback=_finite,
+              help="RMS angular rate about the vertical axis [rad/s].")
 @click.option("--area-m", help="Block to cover, WIDTHxLENGTH [m], e.g. 2000x3000.")
 @click.option("--roll-deg", type=float, default=0.0, callback=_finite,
               help="Roll for the tilted-frame corner GSD [°].")

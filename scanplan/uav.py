@@ -215,6 +215,10 @@ def _check_inputs(inp: UavInputs) -> None:
         v = getattr(inp, name)
         if not (math.isfinite(v) and 0 <= v < 100):
             raise InputError(name, f"must be ≥ 0 and < 100 % (got {v!r})")
+    for name in ("random_speed_ms", "roll_rate_rad_s", "pitch_rate_rad_s", "yaw_rate_rad_s"):
+        v = getattr(inp, name)
+        if not (math.isfinite(v) and v >= 0):
+            raise InputError(name, f"must be a finite number ≥ 0 (got {v!r})")
     if not (0 <= inp.r_min <= inp.r_max <= 1 and inp.r_max > 0):
         raise InputError("r_min", f"need 0 ≤ r_min ≤ r_max ≤ 1 (got r_min {inp.r_min!r}, "
                          f"r_max {inp.r_max!r})")

@@ -137,3 +137,24 @@ def test_bad_input_exits_2_naming_the_field(extra, option):
     r = CliRunner().invoke(main, ["uav", "--height-m", "100", *extra])
     assert r.exit_code == 2, r.output
     assert option in r.stderr and "Traceback" not in r.output
+
+
+def test_docs_worked_example_reproduced_by_the_cli():
+    """docs/uav-models.md's seed 002 table (with random motion 1 m/s, 0.02 rad/s) comes out
+    of `scanplan uav` unchanged: L 6.34 / 6.65 cm at 300 m, 8.84 cm at 420 m, P 0.910 / 0.832
+    / 0.817 for the 20 cm poles."""
+    r = CliRunner().invoke(main, [
+        "uav", "--camera", "canon-eos-5d-mark-ii-50", "--f-number", "8", "--height-m", "300",
+        "--height-tolerance-pct", "40", "--speed-ms", "25", "--shift-factor", "0.65",
+        "--random-speed-ms", "1", "--roll-rate", "0.02", "--pitch-rate", "0.02",
+        "--yaw-rate", "0.02", "--map-scale", "2000", "--relief", "0.5", "--json"])
+    assert r.exit_code == 0, r.output
+    d = json.loads(r.stdout)
+    assert d["ground_resolution_m"] == pytest.approx(0.0634, abs=5e-5)
+    assert d["ground_resolution_corner_m"] == pytest.approx(0.0665, abs=5e-5)
+    assert d["ground_resolution_at_max_height_m"] == pytest.approx(0.0884, abs=5e-5)
+    poles = d["recognition"][0]
+    assert poles["probability"] == pytest.approx(0.910, abs=5e-4)
+    assert poles["probability_at_max_height"] == pytest.approx(0.832, abs=5e-4)
+    assert poles["probability_corner_at_max_height"] == pytest.approx(0.817, abs=5e-4)
+    assert d["binding"] == "PD" and d["max_height_m"] == pytest.approx(376, abs=1)
