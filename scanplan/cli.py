@@ -12,6 +12,7 @@ import math
 import os
 import sys
 import traceback
+from collections.abc import Callable
 from typing import Any
 
 import click
@@ -110,6 +111,25 @@ def _finite(ctx: click.Context, param: click.Parameter, value: float | None) -> 
     return value
 
 
+def norm_options(f: Callable[..., Any]) -> Callable[..., Any]:
+    """The norm options shared by scan, uav and plan (spec/interface.md)."""
+    for opt in reversed([
+        click.option("--norms", default="gkinp-02-036-02", show_default=True,
+                     help="Norm set name or folder (scanplan norms list)."),
+        click.option("--object-size-m", type=float, callback=_finite,
+                     help="Size of the smallest object to interpret [m] (default: the norm "
+                     "table's for the map scale)."),
+        click.option("--shape", help="Object shape: circle|rectangle|angle|square|wall "
+                     "(norm table)."),
+        click.option("--probability", type=float, callback=_finite,
+                     help="Required recognition probability, 0 < P < 1 (default 0.75)."),
+        click.option("--height-formula", type=click.Choice(["instruction", "parallax"]),
+                     help="Form of the height constraint P_Z (default: the norm set's)."),
+    ]):
+        f = opt(f)
+    return f
+
+
 @click.group(cls=ScanplanGroup, context_settings={"help_option_names": ["-h", "--help"],
                                                    "max_content_width": 100})
 @click.version_option(__version__, "--version", prog_name="scanplan")
@@ -139,15 +159,7 @@ def main() -> None:
               help="Resolving power of the photos R [lines/mm] (default: the camera's).")
 @click.option("--overlap-pct", "forward_overlap_pct", type=float, callback=_finite,
               help="Forward overlap [%] (default: the norm set's, 60).")
-@click.option("--norms", default="gkinp-02-036-02", show_default=True,
-              help="Norm set name or folder (scanplan norms list).")
-@click.option("--object-size-m", type=float, callback=_finite,
-              help="Size of the smallest object to interpret [m] (default: the norm table's).")
-@click.option("--shape", help="Object shape: circle|rectangle|angle|square|wall (norm table).")
-@click.option("--probability", type=float, callback=_finite,
-              help="Recognition probability, 0 < P < 1 (default 0.75).")
-@click.option("--height-formula", type=click.Choice(["instruction", "parallax"]),
-              help="Form of P_Z (default: the norm set's, instruction).")
+@norm_options
 @click.option("--pr-coefficient", type=float, callback=_finite,
               help="k_R in P_R = k_R/R (default 0.5; the Instruction prints 0.4).")
 @click.option("--rounding", "recognition_rounding", type=click.Choice(["exact", "paper"]),
@@ -206,15 +218,7 @@ def scan(as_json: bool, bits_per_band: str, **kwargs: Any) -> None:
 @click.option("--map-scale", type=SCALE, help="Map scale: adds the constraints and max height.")
 @click.option("--relief", "relief_interval_m", type=float, callback=_finite,
               help="Relief interval h_c [m] (with --map-scale).")
-@click.option("--norms", default="gkinp-02-036-02", show_default=True,
-              help="Norm set name or folder.")
-@click.option("--object-size-m", type=float, callback=_finite,
-              help="Smallest object to interpret [m] (default: the norm table's).")
-@click.option("--shape", help="Object shape (norm table).")
-@click.option("--probability", type=float, callback=_finite,
-              help="Required recognition probability, 0 < P < 1.")
-@click.option("--height-formula", type=click.Choice(["instruction", "parallax"]),
-              help="Form of the height constraint.")
+@norm_options
 @click.option("--r-max", type=float, default=0.3, show_default=True, callback=_finite,
               help="Brightness coefficient of the lightest detail.")
 @click.option("--r-min", type=float, default=0.1, show_default=True, callback=_finite,

@@ -684,16 +684,13 @@ def plan_scan(inp: ScanInputs, rules: ScanRules) -> ScanPlan:
             height_pixel_other_um=float(pz_other[j])))
 
     warnings.extend(_scenario_warnings(inp, rules, scenarios, mc_interp))
-    if ("PZ" in rules.constraints and rules.height_formula == "instruction"
-            and not math.isclose(inp.forward_overlap_pct, rules.standard_forward_overlap_pct)):
-        warnings.append(PlanWarning(
-            "overlap_not_standard",
-            f"forward overlap {inp.forward_overlap_pct:g} % is not the Instruction's "
-            f"{rules.standard_forward_overlap_pct:g} %: the printed height formula "
-            "V_z·f/(k·Mc·b) lets a larger overlap allow a coarser pixel. The parallax form "
-            "gives " + ", ".join(f"{_fmt(s.height_pixel_other_um or 0)} µm at 1:{s.photo_scale:g}"
-                                 for s in scenarios)
-            + " (--height-formula parallax to use it)."))
+    overlap = overlap_warning(
+        rules, inp.forward_overlap_pct,
+        "The parallax form gives " + ", ".join(
+            f"{_fmt(s.height_pixel_other_um or 0)} µm at 1:{s.photo_scale:g}" for s in scenarios)
+        + ".")
+    if overlap:
+        warnings.append(overlap)
 
     pixels = sorted(set(inp.scanner_steps_um) | set(inp.candidate_pixels_um))
     reach: tuple[PixelReach, ...] = ()
@@ -704,6 +701,31 @@ def plan_scan(inp: ScanInputs, rules: ScanRules) -> ScanPlan:
     return ScanPlan(inputs=inp, rules=rules, scenarios=tuple(scenarios),
                     warnings=tuple(warnings), interpretation_limit_photo_scale=mc_interp,
                     max_photo_scales=reach)
+
+
+def overlap_warning(rules: ScanRules, forward_overlap_pct: float, detail: str = ""
+                    ) -> PlanWarning | None:
+    """``overlap_not_standard`` when the printed height formula meets a non-standard overlap.
+
+    Parameters
+    ----------
+    rules : ScanRules
+        Enabled constraints, height formula and the Instruction's standard overlap.
+    forward_overlap_pct : float
+        The overlap flown [%].
+    detail : str
+        A sentence with the parallax form's numbers, if the caller has them.
+    """
+    if ("PZ" not in rules.constraints or rules.height_formula != "instruction"
+            or math.isclose(forward_overlap_pct, rules.standard_forward_overlap_pct)):
+        return None
+    return PlanWarning(
+        "overlap_not_standard",
+        f"forward overlap {forward_overlap_pct:g} % is not the Instruction's "
+        f"{rules.standard_forward_overlap_pct:g} %: the printed height formula "
+        "V_z·f/(k·Mc·b) lets a larger overlap allow a coarser pixel. "
+        + (detail + " " if detail else "") + "(--height-formula parallax to use the "
+        "parallax form.)")
 
 
 def _scales(xs: Sequence[ScanScenario]) -> str:

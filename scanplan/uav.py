@@ -26,7 +26,7 @@ from . import formulas as F
 from . import mtf as M
 from .errors import InputError
 from .orientation import attitude_matrix, corner_gsd
-from .planner import CONSTRAINTS, ObjectSpec, PlanWarning, ScanRules
+from .planner import CONSTRAINTS, ObjectSpec, PlanWarning, ScanRules, overlap_warning
 
 __all__ = ["HeightLimit", "Recognition", "UavInputs", "UavPlan", "plan_uav"]
 
@@ -400,15 +400,9 @@ def plan_uav(inp: UavInputs, rules: ScanRules | None = None) -> UavPlan:
                     f"{binding} ({CONSTRAINTS[binding].name})"
                     + (f" with a {inp.height_tolerance_up_pct:g} % height tolerance"
                        if inp.height_tolerance_up_pct else "")))
-        if ("PZ" in rules.constraints and rules.height_formula == "instruction"
-                and not math.isclose(inp.forward_overlap_pct,
-                                     rules.standard_forward_overlap_pct)):
-            warnings.append(PlanWarning(
-                "overlap_not_standard",
-                f"forward overlap {inp.forward_overlap_pct:g} % is not the Instruction's "
-                f"{rules.standard_forward_overlap_pct:g} %: the printed height formula "
-                "V_z·f/(k·Mc·b) lets a larger overlap allow a coarser pixel (--height-formula "
-                "parallax for the parallax form)"))
+        overlap = overlap_warning(rules, inp.forward_overlap_pct)
+        if overlap:
+            warnings.append(overlap)
 
     freq = np.linspace(0, float(M.nyquist_lpmm(inp.pixel_um)), 41)
     curves = M.contrast_curves(freq, *_chain(inp, h_plan))
