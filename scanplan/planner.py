@@ -495,6 +495,7 @@ class ScanPlan:
     warnings: tuple[PlanWarning, ...]
     interpretation_limit_photo_scale: float | None
     max_photo_scales: tuple[PixelReach, ...] = ()
+    sweep: dict[str, Any] = field(default_factory=dict)
 
 
 def _check(name: str, value: float, *, lo: float | None = None, hi: float | None = None,
@@ -698,7 +699,16 @@ def plan_scan(inp: ScanInputs, rules: ScanRules) -> ScanPlan:
         m, lim = max_photo_scale(rules, np.asarray(pixels), **common)
         reach = tuple(PixelReach(float(p), float(mm), str(ll))
                       for p, mm, ll in zip(pixels, m, lim, strict=True))
-    return ScanPlan(inputs=inp, rules=rules, scenarios=tuple(scenarios),
+    # a dense sweep of photo scales for plots and the Sweep sheet (one vectorised call)
+    lo, hi = float(mc.min()) * 0.5, float(mc.max()) * 2.0
+    grid = np.geomspace(lo, hi, 61)
+    dense = evaluate(rules, photo_scale=grid, **common)
+    sweep: dict[str, Any] = {"photo_scale": grid.tolist()}
+    for i, cid in enumerate(dense.ids):
+        sweep[cid] = dense.pixel_um[i].tolist()
+    sweep["scan_pixel_um"] = dense.scan_pixel_um.tolist()
+    sweep["binding"] = dense.binding.tolist()
+    return ScanPlan(inputs=inp, rules=rules, scenarios=tuple(scenarios), sweep=sweep,
                     warnings=tuple(warnings), interpretation_limit_photo_scale=mc_interp,
                     max_photo_scales=reach)
 

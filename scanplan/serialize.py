@@ -90,6 +90,7 @@ def scan_plan_dict(plan: ScanPlan, ns: NormSet | None = None) -> dict[str, Any]:
         "scenarios": scenarios,
         "interpretation_limit_photo_scale": plan.interpretation_limit_photo_scale,
         "max_photo_scales": [asdict(r) for r in plan.max_photo_scales],
+        "sweep": plan.sweep,
         "warnings": [asdict(w) for w in plan.warnings],
     }
     if ns is not None:
@@ -126,6 +127,8 @@ def uav_plan_dict(plan: UavPlan, ns: NormSet | None = None) -> dict[str, Any]:
         "max_height_m": plan.max_height_m,
         "binding": plan.binding,
         "warnings": [asdict(w) for w in plan.warnings],
+        "mtf_centre": plan.mtf_centre,
+        "height_curve": plan.height_curve,
     }
     if ns is not None:
         doc["norms"] = norm_set_dict(ns, inp.map_scale)

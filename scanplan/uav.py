@@ -135,6 +135,7 @@ class UavPlan:
     binding: str | None
     warnings: tuple[PlanWarning, ...]
     mtf_centre: dict[str, Any] = field(default_factory=dict)
+    height_curve: dict[str, Any] = field(default_factory=dict)
 
 
 def _chain(inp: UavInputs, height_m: Any) -> tuple[M.Camera, M.Flight, M.Atmosphere,
@@ -404,6 +405,15 @@ def plan_uav(inp: UavInputs, rules: ScanRules | None = None) -> UavPlan:
         if overlap:
             warnings.append(overlap)
 
+    # GSD and L against height, for plots (one vectorised call)
+    top = max(h_hi, max_h or 0.0) * 1.5
+    hs = np.linspace(top / 30.0, top, 30)
+    curve = _resolution(inp, hs).centre
+    height_curve = {"height_m": hs.tolist(),
+                    "gsd_m": np.asarray(curve.gsd_m).ravel().tolist(),
+                    "ground_resolution_m": [
+                        None if not math.isfinite(v) else v
+                        for v in np.asarray(curve.ground_resolution_m).ravel().tolist()]}
     freq = np.linspace(0, float(M.nyquist_lpmm(inp.pixel_um)), 41)
     curves = M.contrast_curves(freq, *_chain(inp, h_plan))
     return UavPlan(
@@ -419,7 +429,8 @@ def plan_uav(inp: UavInputs, rules: ScanRules | None = None) -> UavPlan:
         resolvable=resolvable,
         sensor_limited=bool(np.asarray(c.resolving_power.sensor_limited)[0]),
         motion_blur_px=blur, max_exposure_s=max_exp, max_speed_ms=max_speed,
-        tilted_corner_gsd_m=tilt, flight=fl, recognition=recognition, limits=limits,
+        tilted_corner_gsd_m=tilt, flight=fl, height_curve=height_curve,
+        recognition=recognition, limits=limits,
         max_height_m=max_h, binding=binding, warnings=tuple(warnings),
         mtf_centre={"freq_lpmm": freq.tolist(),
                     **{name: np.asarray(v).ravel().tolist() for name, v in curves.items()}})
