@@ -1,0 +1,48 @@
+"""Shared report pieces: atomic writing, reproducible dates, labels in both locales."""
+
+from __future__ import annotations
+
+import os
+
+import pytest
+
+from scanplan.reports import report_datetime, templates_dir, write_atomic
+from scanplan.reports.labels import LABELS, t
+
+
+def test_labels_have_the_same_keys_in_both_locales():
+    assert set(LABELS["en"]) == set(LABELS["ru"])
+    assert t("approved", "ru") == "УТВЕРЖДАЮ" and t("approved", "en") == "APPROVED"
+
+
+def test_write_atomic_replaces_and_leaves_no_temporary(tmp_path):
+    target = tmp_path / "r.bin"
+    write_atomic(target, b"one")
+    write_atomic(target, b"two")
+    assert target.read_bytes() == b"two"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["r.bin"]
+
+
+def test_write_atomic_failure_keeps_the_old_file(tmp_path, monkeypatch):
+    target = tmp_path / "r.bin"
+    target.write_bytes(b"previous")
+
+    def broken_replace(src, dst):
+        raise OSError("disk full")
+
+    monkeypatch.setattr(os, "replace", broken_replace)
+    with pytest.raises(OSError):
+        write_atomic(target, b"new")
+    assert target.read_bytes() == b"previous"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["r.bin"]
+
+
+def test_source_date_epoch(monkeypatch):
+    monkeypatch.setenv("SOURCE_DATE_EPOCH", "1700000000")
+    assert report_datetime().isoformat() == "2023-11-14T22:13:20+00:00"
+
+
+def test_bundled_font_has_cyrillic():
+    fonts = templates_dir() / "fonts"
+    assert (fonts / "DejaVuSans.ttf").stat().st_size > 100_000
+    assert (fonts / "LICENSE-DejaVu.txt").exists()
