@@ -130,6 +130,59 @@ def norm_options(f: Callable[..., Any]) -> Callable[..., Any]:
     return f
 
 
+def report_options(f: Callable[..., Any]) -> Callable[..., Any]:
+    """--xlsx/--pdf and the title/approval fields of the reports (scan, uav, plan)."""
+    for opt in reversed([
+        click.option("--xlsx", "xlsx_path", type=click.Path(dir_okay=False),
+                     help="Write the Excel report to this file (atomically)."),
+        click.option("--pdf", "pdf_path", type=click.Path(dir_okay=False),
+                     help="Write the PDF specification to this file (atomically)."),
+        click.option("--locale", type=click.Choice(["en", "ru"]), default="en",
+                     show_default=True, help="Language of the reports."),
+        click.option("--project-name", default="", help="Project name for the title block."),
+        click.option("--customer", default="", help="Customer for the title block."),
+        click.option("--contractor", default="", help="Contractor for the title block."),
+        click.option("--approver-position", default="",
+                     help="Approval block: position of the person who approves."),
+        click.option("--approver-name", default="", help="Approval block: name."),
+    ]):
+        f = opt(f)
+    return f
+
+
+def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
+                   spec: Any = None) -> None:
+    """Write the requested reports; say where on stderr (stdout may carry --json)."""
+    xlsx, pdf = opts.pop("xlsx_path"), opts.pop("pdf_path")
+    from .reports import ReportMeta
+
+    meta = ReportMeta(project=opts.pop("project_name"), customer=opts.pop("customer"),
+                      contractor=opts.pop("contractor"), locale=opts.pop("locale"),
+                      approver_position=opts.pop("approver_position"),
+                      approver_name=opts.pop("approver_name"))
+    for path, kind in ((xlsx, "xlsx"), (pdf, "pdf")):
+        if not path:
+            continue
+        target = os.path.abspath(path)
+        if not os.path.isdir(os.path.dirname(target)):
+            raise InputError(f"--{kind}", f"folder {os.path.dirname(target)!r} does not exist")
+        if kind == "xlsx":
+            from .reports.excel import write_xlsx as writer
+        else:
+            from .reports.pdf import write_pdf as writer
+        extra = {"spec": spec} if spec is not None else {}
+        writer(target, scan=scan, uav=uav, meta=meta, **extra)
+        click.echo(f"wrote {path}", err=True)
+
+
+REPORT_KEYS = ("xlsx_path", "pdf_path", "locale", "project_name", "customer", "contractor",
+               "approver_position", "approver_name")
+
+
+def _split_report_options(kwargs: dict[str, Any]) -> dict[str, Any]:
+    return {k: kwargs.pop(k) for k in REPORT_KEYS}
+
+
 @click.group(cls=ScanplanGroup, context_settings={"help_option_names": ["-h", "--help"],
                                                    "max_content_width": 100})
 @click.version_option(__version__, "--version", prog_name="scanplan")
@@ -172,6 +225,7 @@ def main() -> None:
               help="Bands per scanned frame (1 panchromatic, 3 colour).")
 @click.option("--bit-depth", "bits_per_band", type=click.Choice(["8", "16"]), default="8",
               show_default=True, help="Bits per band.")
+@report_options
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
 def scan(as_json: bool, bits_per_band: str, **kwargs: Any) -> None:
     """Film photos: every scan-pixel constraint at one or more photo scales.
@@ -188,11 +242,13 @@ def scan(as_json: bool, bits_per_band: str, **kwargs: Any) -> None:
     from .serialize import scan_plan_dict
     from .textfmt import format_scan_plan
 
+    report = _split_report_options(kwargs)
     job = scan_job(bits_per_band=int(bits_per_band), **kwargs)
     if as_json:
         _echo_json(scan_plan_dict(job.plan, job.norm_set))
     else:
         click.echo(format_scan_plan(job.plan, job.norm_set.name, job.norm_set.title))
+    _write_reports(report, scan=job)
 
 
 @main.command()
@@ -240,6 +296,7 @@ def scan(as_json: bool, bits_per_band: str, **kwargs: Any) -> None:
               help="Roll for the tilted-frame corner GSD [°].")
 @click.option("--pitch-deg", type=float, default=0.0, callback=_finite,
               help="Pitch for the tilted-frame corner GSD [°].")
+@report_options
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
 def uav(as_json: bool, **kwargs: Any) -> None:
     """Digital camera on a UAV: GSD, real ground resolution L from the MTF chain, blur,
@@ -254,11 +311,101 @@ def uav(as_json: bool, **kwargs: Any) -> None:
     from .serialize import uav_plan_dict
     from .textfmt import format_uav_plan
 
+    report = _split_report_options(kwargs)
     job = uav_job(**kwargs)
     if as_json:
         _echo_json(uav_plan_dict(job.plan, job.norm_set))
     else:
         click.echo(format_uav_plan(job.plan, job.norm_set.name))
+    _write_reports(report, uav=job)
+
+
+@main.command()
+@click.argument("projects", nargs=-1, required=True, type=click.Path())
+@click.option("--out", "out_dir", type=click.Path(file_okay=False),
+              help="Write spec.xlsx and spec.pdf into this folder (batch: NAME.xlsx/.pdf).")
+@click.option("--xlsx", "xlsx_path", type=click.Path(dir_okay=False),
+              help="Write the Excel report to this file (one project).")
+@click.option("--pdf", "pdf_path", type=click.Path(dir_okay=False),
+              help="Write the PDF specification to this file (one project).")
+@click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
+def plan(projects: tuple[str, ...], out_dir: str | None, xlsx_path: str | None,
+         pdf_path: str | None, as_json: bool) -> None:
+    """The main job: the scan / flight specification for a mapping contract.
+
+    PROJECTS are project files (TOML) or folders of them; several give a batch with one
+    summary table, and a bad file is reported while the others still run.
+
+    \b
+    Examples:
+      scanplan plan examples/lida-2000-film.toml --out out/
+      scanplan plan examples/ --json
+    """
+    from .project import load_project
+    from .serialize import plan_result_dict
+    from .spec import plan_project
+    from .textfmt import format_plan_result
+
+    files: list[str] = []
+    for item in projects:
+        if os.path.isdir(item):
+            files += sorted(os.path.join(item, f) for f in os.listdir(item)
+                            if f.endswith(".toml"))
+        else:
+            files.append(item)
+    if not files:
+        raise InputError("PROJECTS", "no project files (*.toml) found")
+    batch = len(files) > 1
+    if batch and (xlsx_path or pdf_path):
+        raise InputError("--xlsx", "--xlsx/--pdf name one file; with several projects use --out")
+    if out_dir:
+        if os.path.exists(out_dir) and not os.path.isdir(out_dir):
+            raise InputError("--out", f"{out_dir!r} is not a folder")
+        os.makedirs(out_dir, exist_ok=True)
+
+    def run_one(path: str) -> Any:
+        result = plan_project(load_project(path))
+        targets = {"xlsx_path": xlsx_path, "pdf_path": pdf_path}
+        if out_dir:
+            stem = os.path.splitext(os.path.basename(path))[0] if batch else "spec"
+            targets = {"xlsx_path": os.path.join(out_dir, stem + ".xlsx"),
+                       "pdf_path": os.path.join(out_dir, stem + ".pdf")}
+        film = result.film.job if result.film else None
+        uav_ = result.uav.job if result.uav else None
+        _write_reports({**targets, "locale": result.meta.locale,
+                        "project_name": result.meta.project, "customer": result.meta.customer,
+                        "contractor": result.meta.contractor,
+                        "approver_position": result.meta.approver_position,
+                        "approver_name": result.meta.approver_name}, scan=film, uav=uav_,
+                       spec=result)
+        return result
+
+    if not batch:
+        result = run_one(files[0])
+        if as_json:
+            _echo_json(plan_result_dict(result))
+        else:
+            click.echo(format_plan_result(result))
+        return
+    done: list[tuple[str, Any]] = []
+    failed: list[tuple[str, str]] = []
+    with click.progressbar(files, label="planning", file=sys.stderr) as bar:
+        for path in bar:
+            try:
+                done.append((path, run_one(path)))
+            except InputError as exc:
+                failed.append((path, f"{exc.field}: {exc.message}"))
+    if as_json:
+        _echo_json({"projects": [plan_result_dict(r) for _, r in done],
+                    "errors": [{"file": f, "message": m} for f, m in failed]})
+    else:
+        from .textfmt import batch_summary
+
+        click.echo(batch_summary(done, failed))
+    for _path, msg in failed:
+        click.echo(f"error: {msg}", err=True)
+    if failed:
+        sys.exit(2)
 
 
 @main.group()

@@ -10,7 +10,7 @@ from .norms import NormSet
 from .planner import ScanPlan
 from .uav import UavPlan
 
-__all__ = ["norm_set_dict", "scale_value", "scan_plan_dict", "uav_plan_dict"]
+__all__ = ["norm_set_dict", "plan_result_dict", "scale_value", "scan_plan_dict", "uav_plan_dict"]
 
 
 def scale_value(x: float) -> int | float:
@@ -132,4 +132,51 @@ def uav_plan_dict(plan: UavPlan, ns: NormSet | None = None) -> dict[str, Any]:
     }
     if ns is not None:
         doc["norms"] = norm_set_dict(ns, inp.map_scale)
+    return _clean(doc)
+
+
+def plan_result_dict(result: Any) -> dict[str, Any]:
+    """The ``scanplan plan --json`` document: project, film, uav, specification, warnings."""
+    from dataclasses import asdict as _asdict
+
+    doc: dict[str, Any] = {"project": {"file": str(result.project.path),
+                                       **_asdict(result.meta)}}
+    spec: dict[str, Any] = {}
+    if result.film:
+        f = result.film
+        doc["film"] = scan_plan_dict(f.job.plan, f.job.norm_set)
+        rec = f.recommended
+        spec["film"] = {
+            "recommended_photo_scale": scale_value(rec.photo_scale) if rec else None,
+            "reason": f.reason,
+            "binding": rec.binding if rec else None,
+            "scan_pixel_um": rec.scan_pixel_um if rec else None,
+            "scanner_pixel_um": rec.scanner_pixel_um if rec else None,
+            "margins_pct": {c.id: c.margin_pct for c in rec.constraints} if rec else None,
+            "recognition_probability": rec.recognition_probability if rec else None,
+            "frame_megabytes": rec.frame_megabytes if rec else None,
+            "frames": f.frames, "strips": f.strips, "scanned_gigabytes": f.scanned_gigabytes,
+            "side_overlap_pct": f.side_overlap_pct,
+        }
+    if result.uav:
+        u = result.uav
+        p = u.job.plan
+        doc["uav"] = uav_plan_dict(p, u.job.norm_set)
+        spec["uav"] = {
+            "planned_height_m": u.planned_height_m,
+            "recommended_height_m": u.recommended_height_m,
+            "max_height_m": u.max_height_m, "reason": u.reason, "binding": p.binding,
+            "height_tolerance_pct": p.inputs.height_tolerance_up_pct,
+            "gsd_m": p.gsd_m, "ground_resolution_m": p.ground_resolution_m,
+            "ground_resolution_to_gsd": p.ground_resolution_to_gsd,
+            "recognition": [asdict(r) for r in p.recognition],
+            "forward_overlap_pct": p.inputs.forward_overlap_pct,
+            "side_overlap_pct": p.inputs.side_overlap_pct,
+            "motion_blur_px": p.motion_blur_px, "max_exposure_s": p.max_exposure_s,
+            "max_speed_ms": p.max_speed_ms, **p.flight,
+        }
+    if result.comparison:
+        spec["comparison"] = result.comparison
+    doc["specification"] = spec
+    doc["warnings"] = [asdict(w) for w in result.warnings]
     return _clean(doc)

@@ -3,14 +3,16 @@
 from __future__ import annotations
 
 import math
+import os
 import textwrap
 from collections.abc import Sequence
+from typing import Any
 
 from .planner import CONSTRAINTS, ScanPlan
 from .serialize import scale_value
 from .uav import UavPlan
 
-__all__ = ["format_scan_plan", "format_uav_plan", "table"]
+__all__ = ["format_plan_result", "format_scan_plan", "format_uav_plan", "table"]
 
 
 def table(rows: Sequence[Sequence[str]], *, align: str = "", gap: int = 2) -> str:
@@ -203,3 +205,111 @@ def format_uav_plan(plan: UavPlan, norm_name: str = "") -> str:
         for w in plan.warnings:
             lines.append(_wrap(f"{w.message} [{w.code}]", "  ! "))
     return "\n".join(lines)
+
+
+def format_plan_result(result: Any) -> str:
+    """The concise terminal summary of ``scanplan plan``."""
+    meta = result.meta
+    inp_map = result.project.values["map"]
+    lines = [f"{meta.project} — map 1:{inp_map['scale']}, relief interval "
+             f"{inp_map['relief_interval_m']:g} m"]
+    if meta.customer or meta.contractor:
+        lines.append(", ".join(x for x in (f"customer {meta.customer}" if meta.customer else "",
+                                           f"contractor {meta.contractor}"
+                                           if meta.contractor else "") if x))
+    if result.film:
+        f = result.film
+        s = f.recommended
+        lines += ["", "Film:"]
+        if s is None:
+            lines.append(_wrap(f.reason, "  "))
+        else:
+            px = (f"{s.scan_pixel_um:.1f} µm"
+                  + (f" → scanner step {s.scanner_pixel_um:g} µm" if s.scanner_pixel_um else ""))
+            rows = [["  recommended photo scale", f"1:{scale_value(s.photo_scale)}"],
+                    ["  scan pixel", px],
+                    ["  binding constraint", f"{s.binding} ({CONSTRAINTS[s.binding].name})"],
+                    ["  recognition of the map object", _num(s.recognition_probability, 2)],
+                    ["  scanned frame", f"{s.frame_megabytes:,.0f} MB"]]
+            if f.frames is not None:
+                rows.append(["  frames for the area", f"{f.frames} ({f.strips} strips), "
+                             f"{f.scanned_gigabytes:,.1f} GB scanned"])
+            lines.append(table(rows, align="ll"))
+            lines.append(_wrap(f.reason, "  "))
+    if result.uav:
+        u = result.uav
+        p = u.job.plan
+        lines += ["", "UAV:"]
+        if u.recommended_height_m is None:
+            lines.append(_wrap(u.reason, "  "))
+        else:
+            tol = p.inputs.height_tolerance_up_pct
+            rows = [["  recommended flight height", f"{u.recommended_height_m:g} m"
+                     + (f" (flown up to {p.heights_m['max']:g} m, +{tol:g} %)" if tol else "")],
+                    ["  maximum flight height", f"{u.max_height_m:.0f} m ({p.binding} "
+                     f"{CONSTRAINTS[p.binding].name})" if p.binding else "—"],
+                    ["  GSD / ground resolution L", f"{p.gsd_m:.3f} m / "
+                     f"{_m(p.ground_resolution_m)} m (L/GSD "
+                     f"{_num(p.ground_resolution_to_gsd, 2)})"]]
+            obj = p.inputs.map_object
+            if obj is not None:
+                rec = next((r for r in p.recognition if r.object == obj.name
+                            and r.object_size_m == obj.size_m), None)
+                if rec:
+                    rows.append(["  recognition of the map object",
+                                 f"{_num(rec.probability, 2)} ({obj.name}, {obj.size_m:g} m)"])
+            fl = p.flight
+            rows.append(["  overlaps / base / spacing",
+                         f"{p.inputs.forward_overlap_pct:g} % / {p.inputs.side_overlap_pct:g} % "
+                         f"— {fl['base_m']:.1f} m / {fl['line_spacing_m']:.1f} m"])
+            rows.append(["  photo interval", f"{fl['photo_interval_s']:.2f} s"])
+            if "photos" in fl:
+                rows.append(["  photos / strips", f"{fl['photos']} / {fl['strips']}"])
+                rows.append(["  flight", f"{fl['flight_length_m'] / 1000:.1f} km"
+                             + (f", {fl['flight_time_s'] / 60:.0f} min"
+                                if fl.get("flight_time_s") else "")])
+                if "data_volume_bytes" in fl:
+                    rows.append(["  data volume", f"{fl['data_volume_bytes'] / 1e9:.1f} GB"])
+            rows.append(["  blur limit", f"exposure ≤ 1/{math.ceil(1 / p.max_exposure_s):d} s "
+                         f"or speed ≤ {p.max_speed_ms:.1f} m/s"])
+            lines.append(table(rows, align="ll"))
+            lines.append(_wrap(u.reason, "  "))
+    if result.comparison:
+        lines += ["", "Film and UAV side by side:"]
+        rows = [["  quantity", "film", "UAV", "unit"]]
+        for c in result.comparison:
+            def v(x: Any) -> str:
+                if x is None:
+                    return "—"
+                return f"{x:,.3f}" if isinstance(x, float) else str(x)
+            rows.append([f"  {c['quantity']}", v(c["film"]), v(c["uav"]), c["unit"]])
+        lines.append(table(rows, align="lrrl"))
+    if result.warnings:
+        lines += ["", "Warnings:"]
+        for w in result.warnings:
+            mark = "!" if w.severity == "warning" else "i"
+            lines.append(_wrap(f"{w.message} [{w.code}]", f"  {mark} "))
+    return "\n".join(lines)
+
+
+def batch_summary(done: list[tuple[str, Any]], failed: list[tuple[str, str]]) -> str:
+    """One table for a batch of projects: the headline of each, then the failures."""
+    rows = [["project", "map", "film: photo scale", "scan µm", "UAV: height m", "max m",
+             "binding"]]
+    for path, r in done:
+        f, u = r.film, r.uav
+        rec = f.recommended if f else None
+        rows.append([
+            os.path.basename(path), f"1:{r.project.values['map']['scale']}",
+            (f"1:{scale_value(rec.photo_scale)}" if rec else "none") if f else "—",
+            (_num(rec.scanner_pixel_um or rec.scan_pixel_um) if rec else "—") if f else "—",
+            _num(u.recommended_height_m, 0) if u else "—",
+            _num(u.max_height_m, 0) if u else "—",
+            " / ".join(x for x in ((rec.binding if rec else "") if f else "",
+                                   (u.job.plan.binding or "") if u else "") if x) or "—"])
+    out = table(rows, align="llrrrrl")
+    if failed:
+        out += f"\n{len(done)} planned, {len(failed)} failed:"
+        for path, msg in failed:
+            out += "\n" + _wrap(f"{os.path.basename(path)}: {msg}", "  ! ")
+    return out

@@ -1,0 +1,249 @@
+"""Project files (TOML): one file describes one mapping contract.
+
+:func:`load_project` reads and validates a file: unknown keys, wrong types and
+out-of-range values are :class:`~scanplan.errors.InputError` naming the key and its line
+(``film.forward_overlap_pct (line 21)``) — never silently ignored. The layout is in
+shared/spec/interface.md and docs/project-file.md.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import re
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from .errors import InputError
+
+__all__ = ["KEYS", "Project", "load_project", "parse_project"]
+
+MAX_PROJECT_BYTES = 1_000_000
+
+# section → key → (type name, description with unit and default)
+KEYS: dict[str, dict[str, tuple[str, str]]] = {
+    "project": {
+        "name": ("str", "project name (title block)"),
+        "customer": ("str", "customer (title block)"),
+        "contractor": ("str", "contractor (title block)"),
+        "locale": ("str", '"en" or "ru": language of the reports (default "en")'),
+        "approver_position": ("str", "approval block: position"),
+        "approver_name": ("str", "approval block: name"),
+    },
+    "map": {
+        "scale": ("scale", "map scale denominator Mk, 2000 or \"1:2000\" (required)"),
+        "relief_interval_m": ("number", "relief (contour) interval h_c [m] (required)"),
+    },
+    "norms": {
+        "set": ("str", 'norm set name or folder (default "gkinp-02-036-02")'),
+        "pr_coefficient": ("number", "k_R in P_R = k_R/R (default: the set's, 0.5)"),
+        "height_formula": ("str", '"instruction" or "parallax" (default: the set\'s)'),
+        "probability": ("number", "required recognition probability (default 0.75)"),
+        "shape": ("str", "shape of the object to interpret (default: the norm table's)"),
+        "object_size_m": ("number", "size of the object to interpret [m] (default: the norm "
+                          "table's for the map scale)"),
+    },
+    "film": {
+        "camera": ("str", "catalogue camera id (or focal_mm + frame_mm)"),
+        "focal_mm": ("number", "focal length [mm]"),
+        "frame_mm": ("str", 'frame "WxH" [mm], across × along track'),
+        "resolving_power_lpmm": ("number", "resolving power of the photos R [lines/mm] "
+                                 "(default: the camera's)"),
+        "forward_overlap_pct": ("number", "forward overlap [%] (default 60)"),
+        "side_overlap_pct": ("number", "side overlap [%] (default 30)"),
+        "photo_scales": ("scales", "candidate photo scales Mc (required)"),
+        "scanner": ("str", "scanner id: scan pixels it offers (optional)"),
+        "bands": ("int", "bands per scanned frame (default 1)"),
+        "bits_per_band": ("int", "bits per band (default 8)"),
+    },
+    "uav": {
+        "camera": ("str", "digital camera id (or pixel_um + focal_mm + sensor_mm)"),
+        "pixel_um": ("number", "pixel pitch [µm]"),
+        "focal_mm": ("number", "focal length [mm]"),
+        "sensor_mm": ("str", 'sensor "WxH" [mm], across × along track'),
+        "f_number": ("number", "working f-number (default: the catalogue's)"),
+        "height_m": ("number", "planned flight height [m] (default: the maximum allowed)"),
+        "height_tolerance_pct": ("number", "how much higher the UAV may fly [%] (default 0)"),
+        "speed_ms": ("number", "ground speed [m/s] (default 15)"),
+        "exposure_s": ("number", "exposure time [s] (default 0.001)"),
+        "forward_overlap_pct": ("number", "forward overlap [%] (default 80)"),
+        "side_overlap_pct": ("number", "side overlap [%] (default 60)"),
+        "roll_deg": ("number", "roll for the tilted-frame corner GSD [°] (default 0)"),
+        "pitch_deg": ("number", "pitch for the tilted-frame corner GSD [°] (default 0)"),
+    },
+    "uav.target": {
+        "r_max": ("number", "brightness coefficient of the lightest detail (default 0.3)"),
+        "r_min": ("number", "brightness coefficient of the darkest detail (default 0.1)"),
+    },
+    "uav.atmosphere": {
+        "threshold_k0": ("number", "sensor threshold contrast at low frequency (default 0.03)"),
+    },
+    "uav.motion": {
+        "shift_factor": ("number", "photographic/geometric shift (default 1; 0.6–0.7 summer)"),
+        "random_speed_ms": ("number", "RMS random linear speed [m/s] (default 0)"),
+        "roll_rate_rad_s": ("number", "RMS roll rate [rad/s] (default 0)"),
+        "pitch_rate_rad_s": ("number", "RMS pitch rate [rad/s] (default 0)"),
+        "yaw_rate_rad_s": ("number", "RMS yaw rate [rad/s] (default 0)"),
+    },
+    "area": {
+        "width_m": ("number", "block width across the flight lines [m]"),
+        "length_m": ("number", "block length along the flight lines [m]"),
+    },
+}
+"""Every key a project file may hold: the documented contract."""
+
+
+@dataclass(frozen=True)
+class Project:
+    """A validated project file."""
+
+    path: Path
+    name: str
+    values: dict[str, dict[str, Any]]
+    lines: dict[str, int] = field(default_factory=dict)
+
+    def get(self, section: str, key: str, default: Any = None) -> Any:
+        """``values[section][key]`` or ``default``."""
+        return self.values.get(section, {}).get(key, default)
+
+    def has(self, section: str) -> bool:
+        """Whether the file has this section."""
+        return section in self.values
+
+    def where(self, section: str, key: str) -> str:
+        """``section.key (line N)`` — how errors name a key."""
+        dotted = f"{section}.{key}"
+        line = self.lines.get(dotted) or self.lines.get(section)
+        return f"{dotted} (line {line})" if line else dotted
+
+
+def _key_lines(text: str) -> dict[str, int]:
+    """Line of each ``section.key`` and ``[section]`` header (plain TOML, no inline tables)."""
+    lines: dict[str, int] = {}
+    section = ""
+    header = re.compile(r"^\s*\[\s*([A-Za-z0-9_.\- ]+?)\s*\]\s*(#.*)?$")
+    assign = re.compile(r"^\s*([A-Za-z0-9_\-]+|\"[^\"]+\")\s*=")
+    for no, line in enumerate(text.splitlines(), start=1):
+        m = header.match(line)
+        if m:
+            section = m.group(1).replace(" ", "")
+            lines.setdefault(section, no)
+            continue
+        m = assign.match(line)
+        if m:
+            key = m.group(1).strip('"')
+            lines.setdefault(f"{section}.{key}" if section else key, no)
+    return lines
+
+
+def _flatten(doc: dict[str, Any]) -> dict[str, dict[str, Any]]:
+    """{"uav": {"camera": .., "target": {..}}} → {"uav": {...}, "uav.target": {...}}."""
+    out: dict[str, dict[str, Any]] = {}
+
+    def walk(prefix: str, table: dict[str, Any]) -> None:
+        own = {}
+        for k, v in table.items():
+            name = f"{prefix}.{k}" if prefix else k
+            if isinstance(v, dict) and (name in KEYS or not prefix):
+                walk(name, v)
+            else:
+                own[k] = v
+        if prefix:
+            out[prefix] = own
+
+    walk("", doc)
+    return out
+
+
+def _check_type(kind: str, value: Any) -> str | None:
+    if kind == "str":
+        return None if isinstance(value, str) else "must be text (in quotes)"
+    if kind == "int":
+        ok = isinstance(value, int) and not isinstance(value, bool)
+        return None if ok else "must be a whole number"
+    if kind == "number":
+        ok = isinstance(value, int | float) and not isinstance(value, bool)
+        if ok and not math.isfinite(float(value)):
+            return "must be a finite number"
+        return None if ok else "must be a number"
+    if kind == "scale":
+        ok = (isinstance(value, int | float | str)) and not isinstance(value, bool)
+        return None if ok else 'must be a scale denominator like 2000 or "1:2000"'
+    if kind == "scales":
+        if not isinstance(value, list) or not value:
+            return "must be a non-empty list of scales, e.g. [5000, 10000]"
+        bad = [v for v in value if isinstance(v, bool) or not isinstance(v, int | float | str)]
+        return 'must be a list of scales like [5000, "1:10000"]' if bad else None
+    raise AssertionError(kind)
+
+
+def parse_project(text: str, path: str | os.PathLike[str] = "project.toml") -> Project:
+    """Validate the text of a project file (see :func:`load_project`)."""
+    p = Path(path)
+    try:
+        doc = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError(str(p), f"is not valid TOML: {exc}") from None
+    lines = _key_lines(text)
+    flat = _flatten(doc)
+    for section, table in flat.items():
+        if section not in KEYS:
+            line = lines.get(section)
+            where = f"[{section}]" + (f" (line {line})" if line else "")
+            raise InputError(f"{p}: {where}", f"unknown section; known: "
+                             f"{', '.join('[' + k + ']' for k in KEYS)}")
+        for key, value in table.items():
+            dotted = f"{section}.{key}"
+            where = f"{p}: {dotted}" + (f" (line {lines[dotted]})" if dotted in lines else "")
+            if key not in KEYS[section]:
+                raise InputError(where, f"unknown key; [{section}] takes "
+                                 f"{', '.join(KEYS[section])}")
+            kind, desc = KEYS[section][key]
+            problem = _check_type(kind, value)
+            if problem:
+                raise InputError(where, f"{problem} — {desc} (got {value!r})")
+    if "map" not in flat or "scale" not in flat["map"]:
+        raise InputError(f"{p}: map.scale", "is required: the map scale, e.g. scale = 2000")
+    if "relief_interval_m" not in flat["map"]:
+        raise InputError(f"{p}: map.relief_interval_m", "is required: the relief interval in m")
+    if "film" not in flat and "uav" not in flat:
+        raise InputError(f"{p}", "needs a [film] or a [uav] section (or both)")
+    if "film" in flat and "photo_scales" not in flat["film"]:
+        raise InputError(f"{p}: film.photo_scales", "is required in [film]: candidate photo "
+                         "scales, e.g. photo_scales = [5000, 10000, 15000]")
+    locale = flat.get("project", {}).get("locale", "en")
+    if locale not in ("en", "ru"):
+        raise InputError(f"{p}: project.locale" + (f" (line {lines['project.locale']})"
+                                                    if "project.locale" in lines else ""),
+                         f'must be "en" or "ru" (got {locale!r})')
+    name = flat.get("project", {}).get("name") or p.stem
+    return Project(path=p, name=name, values=flat, lines=lines)
+
+
+def load_project(path: str | os.PathLike[str]) -> Project:
+    """Read and validate a project file.
+
+    Raises
+    ------
+    InputError
+        Naming the file and the key with its line, for an unreadable file, invalid TOML,
+        an unknown section or key, a wrong type, or a missing required key. Range checks
+        happen when the plan is computed (the same checks as the command line), and name the
+        key the same way.
+    """
+    p = Path(path)
+    try:
+        size = p.stat().st_size
+        if size > MAX_PROJECT_BYTES:
+            raise InputError(str(p), f"is {size:,} bytes; a project file is at most "
+                             f"{MAX_PROJECT_BYTES:,} bytes")
+        text = p.read_text(encoding="utf-8")
+    except InputError:
+        raise
+    except UnicodeDecodeError:
+        raise InputError(str(p), "is not UTF-8 text") from None
+    except OSError as exc:
+        raise InputError(str(p), f"cannot be read: {exc.strerror or exc}") from None
+    return parse_project(text, p)

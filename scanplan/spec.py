@@ -1,0 +1,268 @@
+"""The specification for a mapping contract: what ``scanplan plan PROJECT.toml`` answers.
+
+Film: the recommended photo scale among the candidates — the one that meets every
+constraint at the least cost (fewest frames = the smallest photo scale, i.e. the largest
+Mc, that keeps the map's objects interpretable and that the scanner can scan), its scan
+pixel rounded to the scanner's steps, frames and scanned volume for the area.
+UAV: the recommended and maximum flight height (with the height tolerance) and the flight
+at the recommended height. Both: a side-by-side comparison. Nothing here recomputes a
+formula; it chooses among engine results.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+from . import flight as FL
+from .api import ScanJob, UavJob, scan_job, uav_job
+from .errors import InputError
+from .planner import PlanWarning, ScanScenario
+from .project import Project
+from .reports import ReportMeta
+
+__all__ = ["FilmSpec", "PlanResult", "UavSpec", "plan_project"]
+
+HEIGHT_STEP_M = 5.0  # recommended heights are rounded down to this step
+DEFAULT_FILM_SIDE_OVERLAP_PCT = 30.0
+PROVISIONAL_HEIGHT_M = 100.0
+
+_FILM_KEYS = {
+    "map_scale": "map.scale", "relief_interval_m": "map.relief_interval_m",
+    "photo_scale": "film.photo_scales", "camera": "film.camera", "focal_mm": "film.focal_mm",
+    "frame_mm": "film.frame_mm", "frame_width_mm": "film.frame_mm",
+    "frame_along_mm": "film.frame_mm", "resolving_power_lpmm": "film.resolving_power_lpmm",
+    "forward_overlap_pct": "film.forward_overlap_pct", "scanner": "film.scanner",
+    "bands": "film.bands", "bits_per_band": "film.bits_per_band",
+}
+_UAV_KEYS = {
+    "map_scale": "map.scale", "relief_interval_m": "map.relief_interval_m",
+    "camera": "uav.camera", "pixel_um": "uav.pixel_um", "focal_mm": "uav.focal_mm",
+    "sensor_mm": "uav.sensor_mm", "sensor_width_mm": "uav.sensor_mm",
+    "sensor_height_mm": "uav.sensor_mm", "f_number": "uav.f_number",
+    "height_m": "uav.height_m", "height_tolerance_up_pct": "uav.height_tolerance_pct",
+    "speed_ms": "uav.speed_ms", "exposure_s": "uav.exposure_s",
+    "forward_overlap_pct": "uav.forward_overlap_pct", "side_overlap_pct": "uav.side_overlap_pct",
+    "r_max": "uav.target.r_max", "r_min": "uav.target.r_min",
+    "threshold_k0": "uav.atmosphere.threshold_k0", "k0": "uav.atmosphere.threshold_k0",
+    "shift_factor": "uav.motion.shift_factor", "random_speed_ms": "uav.motion.random_speed_ms",
+    "roll_rate_rad_s": "uav.motion.roll_rate_rad_s",
+    "pitch_rate_rad_s": "uav.motion.pitch_rate_rad_s",
+    "yaw_rate_rad_s": "uav.motion.yaw_rate_rad_s", "area_m": "area",
+    "area_width_m": "area.width_m", "area_length_m": "area.length_m",
+}
+_NORM_KEYS = {"object_size_m": "norms.object_size_m", "shape": "norms.shape",
+              "probability": "norms.probability", "height_formula": "norms.height_formula",
+              "pr_coefficient": "norms.pr_coefficient", "--norms": "norms.set",
+              "recognition_rounding": "norms.set"}
+
+
+def _as_project_error(project: Project, exc: InputError, keys: dict[str, str]) -> InputError:
+    dotted = keys.get(exc.field) or _NORM_KEYS.get(exc.field)
+    if dotted is None:
+        return InputError(f"{project.path}: {exc.field}", exc.message)
+    section, _, key = dotted.rpartition(".")
+    where = project.where(section, key) if section else dotted
+    return InputError(f"{project.path}: {where}", exc.message)
+
+
+@dataclass(frozen=True)
+class FilmSpec:
+    """The film part of a specification."""
+
+    job: ScanJob
+    recommended: ScanScenario | None
+    reason: str
+    frames: int | None
+    strips: int | None
+    scanned_gigabytes: float | None
+    side_overlap_pct: float
+
+
+@dataclass(frozen=True)
+class UavSpec:
+    """The UAV part of a specification (the flight at the recommended height)."""
+
+    job: UavJob
+    planned_height_m: float | None
+    recommended_height_m: float | None
+    max_height_m: float | None
+    reason: str
+
+
+@dataclass(frozen=True)
+class PlanResult:
+    """Everything ``scanplan plan`` reports for one project."""
+
+    project: Project
+    meta: ReportMeta
+    film: FilmSpec | None
+    uav: UavSpec | None
+    comparison: list[dict[str, Any]] = field(default_factory=list)
+    warnings: tuple[PlanWarning, ...] = ()
+
+
+def _film(project: Project) -> FilmSpec:
+    g = project.get
+    kw: dict[str, Any] = dict(
+        map_scale=g("map", "scale"), relief_interval_m=g("map", "relief_interval_m"),
+        photo_scales=g("film", "photo_scales"), camera=g("film", "camera"),
+        focal_mm=g("film", "focal_mm"), frame_mm=g("film", "frame_mm"),
+        resolving_power_lpmm=g("film", "resolving_power_lpmm"),
+        forward_overlap_pct=g("film", "forward_overlap_pct"),
+        norms=g("norms", "set", "gkinp-02-036-02"), object_size_m=g("norms", "object_size_m"),
+        shape=g("norms", "shape"), probability=g("norms", "probability"),
+        height_formula=g("norms", "height_formula"),
+        pr_coefficient=g("norms", "pr_coefficient"), scanner=g("film", "scanner"),
+        bands=g("film", "bands", 1), bits_per_band=g("film", "bits_per_band", 8))
+    side = g("film", "side_overlap_pct", DEFAULT_FILM_SIDE_OVERLAP_PCT)
+    if not (0 <= side < 100):
+        raise InputError(f"{project.path}: {project.where('film', 'side_overlap_pct')}",
+                         f"must be ≥ 0 and < 100 % (got {side!r})")
+    try:
+        job = scan_job(**kw)
+    except InputError as exc:
+        raise _as_project_error(project, exc, _FILM_KEYS) from None
+    plan = job.plan
+    limit = plan.interpretation_limit_photo_scale
+    feasible = [s for s in plan.scenarios
+                if (limit is None or s.photo_scale <= limit * (1 + 1e-12))
+                and (not plan.inputs.scanner or s.scanner_pixel_um is not None)]
+    if feasible:
+        best = max(feasible, key=lambda s: (s.photo_scale, s.scanner_pixel_um or 0))
+        reason = (f"1:{best.photo_scale:g} is the smallest candidate photo scale (fewest frames) "
+                  f"that meets every constraint: {best.explanation}")
+    else:
+        best = None
+        why = []
+        if limit is not None:
+            why.append(f"the map's objects need photo scales up to 1:{math.floor(limit):d}")
+        if plan.inputs.scanner:
+            why.append(f"scanner {plan.inputs.scanner} must reach the scan pixel")
+        reason = ("no candidate photo scale meets every constraint (" + "; ".join(why)
+                  + "); add a larger photo scale to film.photo_scales")
+    frames = strips = None
+    gigabytes = None
+    area_w, area_l = g("area", "width_m"), g("area", "length_m")
+    if best is not None and area_w and area_l:
+        inp = plan.inputs
+        across = inp.frame_width_mm * best.photo_scale / 1000.0
+        along = inp.frame_along_mm * best.photo_scale / 1000.0
+        strips = int(FL.strip_count(area_w, FL.line_spacing_m(across, side)))
+        per_strip = int(FL.photos_per_strip(area_l, FL.photo_base_m(
+            along, inp.forward_overlap_pct)))
+        frames = strips * per_strip
+        gigabytes = frames * best.frame_megabytes / 1000.0
+    return FilmSpec(job=job, recommended=best, reason=reason, frames=frames, strips=strips,
+                    scanned_gigabytes=gigabytes, side_overlap_pct=side)
+
+
+def _uav_kwargs(project: Project, height_m: float) -> dict[str, Any]:
+    g = project.get
+    area = None
+    if g("area", "width_m") and g("area", "length_m"):
+        area = (g("area", "width_m"), g("area", "length_m"))
+    kw: dict[str, Any] = dict(
+        height_m=height_m, camera=g("uav", "camera"), pixel_um=g("uav", "pixel_um"),
+        focal_mm=g("uav", "focal_mm"), sensor_mm=g("uav", "sensor_mm"),
+        f_number=g("uav", "f_number"), height_tolerance_pct=g("uav", "height_tolerance_pct", 0.0),
+        map_scale=g("map", "scale"), relief_interval_m=g("map", "relief_interval_m"),
+        norms=g("norms", "set", "gkinp-02-036-02"), object_size_m=g("norms", "object_size_m"),
+        shape=g("norms", "shape"), probability=g("norms", "probability"),
+        height_formula=g("norms", "height_formula"),
+        r_max=g("uav.target", "r_max", 0.3), r_min=g("uav.target", "r_min", 0.1),
+        threshold_k0=g("uav.atmosphere", "threshold_k0"),
+        shift_factor=g("uav.motion", "shift_factor", 1.0),
+        random_speed_ms=g("uav.motion", "random_speed_ms", 0.0),
+        roll_rate_rad_s=g("uav.motion", "roll_rate_rad_s", 0.0),
+        pitch_rate_rad_s=g("uav.motion", "pitch_rate_rad_s", 0.0),
+        yaw_rate_rad_s=g("uav.motion", "yaw_rate_rad_s", 0.0), area_m=area,
+        roll_deg=g("uav", "roll_deg", 0.0), pitch_deg=g("uav", "pitch_deg", 0.0))
+    for key, default in (("speed_ms", 15.0), ("exposure_s", 0.001),
+                         ("forward_overlap_pct", 80.0), ("side_overlap_pct", 60.0)):
+        kw[key] = g("uav", key, default)
+    return kw
+
+
+def _uav(project: Project) -> UavSpec:
+    planned = project.get("uav", "height_m")
+    try:
+        first = uav_job(**_uav_kwargs(project, planned or PROVISIONAL_HEIGHT_M))
+    except InputError as exc:
+        raise _as_project_error(project, exc, _UAV_KEYS) from None
+    max_h = first.plan.max_height_m
+    if max_h is None or max_h <= 0:
+        return UavSpec(first, planned, None, max_h,
+                       "no flight height meets every constraint with this camera")
+    rounded = math.floor(max_h / HEIGHT_STEP_M) * HEIGHT_STEP_M
+    if planned is None:
+        rec = rounded
+        reason = (f"the maximum height {max_h:.0f} m ({first.plan.binding} binds) rounded down "
+                  f"to {HEIGHT_STEP_M:g} m")
+    elif planned > max_h:
+        rec = rounded
+        reason = (f"the planned {planned:g} m is above the maximum {max_h:.0f} m "
+                  f"({first.plan.binding} binds); lowered to {rec:g} m")
+    else:
+        rec = planned
+        reason = f"the planned height is within the maximum {max_h:.0f} m"
+    job = first if rec == (planned or PROVISIONAL_HEIGHT_M) else uav_job(
+        **_uav_kwargs(project, rec))
+    return UavSpec(job, planned, rec, max_h, reason)
+
+
+def _comparison(film: FilmSpec, uav: UavSpec) -> list[dict[str, Any]]:
+    s = film.recommended
+    u = uav.job.plan
+    rows: list[dict[str, Any]] = []
+
+    def row(key: str, film_value: Any, uav_value: Any, unit: str) -> None:
+        rows.append({"quantity": key, "film": film_value, "uav": uav_value, "unit": unit})
+
+    if s is not None:
+        pixel = s.scanner_pixel_um or s.scan_pixel_um
+        row("pixel on the ground", pixel * s.photo_scale / 1e6, u.gsd_m, "m")
+        row("resolution on the ground (A / L)", s.resolution_on_ground_mm / 1000.0,
+            u.ground_resolution_m, "m")
+        obj = uav.job.plan.inputs.map_object
+        p_uav = None
+        if obj is not None:
+            p_uav = next((r.probability for r in u.recognition if r.object == obj.name
+                          and r.object_size_m == obj.size_m), None)
+        row("recognition probability of the map object", s.recognition_probability, p_uav, "")
+    row("frames / photos", film.frames, u.flight.get("photos"), "")
+    vol = u.flight.get("data_volume_bytes")
+    row("data volume", film.scanned_gigabytes, vol / 1e9 if vol else None, "GB")
+    return rows
+
+
+def plan_project(project: Project) -> PlanResult:
+    """Compute the specification for a validated project.
+
+    Raises
+    ------
+    InputError
+        Naming the project key and its line for out-of-range values.
+    """
+    g = project.get
+    meta = ReportMeta(project=project.name, customer=g("project", "customer", ""),
+                      contractor=g("project", "contractor", ""),
+                      locale=g("project", "locale", "en"),
+                      approver_position=g("project", "approver_position", ""),
+                      approver_name=g("project", "approver_name", ""))
+    film = _film(project) if project.has("film") else None
+    uav = _uav(project) if project.has("uav") else None
+    warnings: list[PlanWarning] = []
+    if film:
+        warnings.extend(film.job.plan.warnings)
+        if film.recommended is None:
+            warnings.append(PlanWarning("no_feasible_photo_scale", film.reason))
+    if uav:
+        warnings.extend(uav.job.plan.warnings)
+        if uav.planned_height_m and uav.recommended_height_m and \
+                uav.recommended_height_m < uav.planned_height_m:
+            warnings.append(PlanWarning("height_lowered", uav.reason))
+    comparison = _comparison(film, uav) if film and uav else []
+    return PlanResult(project=project, meta=meta, film=film, uav=uav, comparison=comparison,
+                      warnings=tuple(warnings))
