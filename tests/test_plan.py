@@ -166,3 +166,18 @@ def test_every_documented_key_is_in_the_project_docs():
         assert f"[{section}]" in docs
         for key in keys:
             assert f"`{key}`" in docs, (section, key)
+
+
+def test_plan_writes_both_reports_with_the_specification(tmp_path):
+    """`--out DIR` writes spec.xlsx (and spec.pdf when the PDF writer is present); the
+    workbook's Summary carries the same recommended photo scale as --json."""
+    openpyxl = pytest.importorskip("openpyxl")
+    r = CliRunner().invoke(main, ["plan", str(EXAMPLES / "instruction-2000-film.toml"),
+                                  "--out", str(tmp_path)])
+    assert r.exit_code == 0, r.output
+    assert (tmp_path / "spec.xlsx").exists() and (tmp_path / "spec.pdf").exists()
+    wb = openpyxl.load_workbook(tmp_path / "spec.xlsx")
+    ws = wb.worksheets[0]
+    cells = {ws.cell(row, 1).value: ws.cell(row, 2).value for row in range(1, ws.max_row + 1)}
+    assert cells["Recommended photo scale"] == 8000
+    assert cells["Scan pixel, µm"] == pytest.approx(12.5)

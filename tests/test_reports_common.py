@@ -46,3 +46,19 @@ def test_bundled_font_has_cyrillic():
     fonts = templates_dir() / "fonts"
     assert (fonts / "DejaVuSans.ttf").stat().st_size > 100_000
     assert (fonts / "LICENSE-DejaVu.txt").exists()
+
+
+def test_write_atomic_file_mode(tmp_path):
+    """A new report is readable like any file the user creates (0666 less the umask, not
+    mkstemp's 0600); a replaced one keeps its mode."""
+    umask = os.umask(0o022)
+    try:
+        new = write_atomic(tmp_path / "new.pdf", b"x")
+        assert new.stat().st_mode & 0o777 == 0o644
+        old = tmp_path / "old.pdf"
+        old.write_bytes(b"x")
+        old.chmod(0o640)
+        write_atomic(old, b"y")
+        assert old.stat().st_mode & 0o777 == 0o640
+    finally:
+        os.umask(umask)

@@ -61,12 +61,19 @@ def write_atomic(path: str | os.PathLike[str], data: bytes) -> Path:
     """
     target = Path(path)
     folder = target.parent if str(target.parent) else Path(".")
+    try:  # keep the mode of the file being replaced; a new file gets 0666 less the umask
+        mode = target.stat().st_mode & 0o7777
+    except FileNotFoundError:
+        umask = os.umask(0)
+        os.umask(umask)
+        mode = 0o666 & ~umask
     fd, tmp = tempfile.mkstemp(dir=folder, prefix=f".{target.name}.", suffix=".tmp")
     try:
         with os.fdopen(fd, "wb") as fh:
             fh.write(data)
             fh.flush()
             os.fsync(fh.fileno())
+        os.chmod(tmp, mode)
         os.replace(tmp, target)
     except BaseException:
         try:

@@ -1,0 +1,703 @@
+"""The PDF report: jinja2 templates in ``templates/`` rendered by WeasyPrint.
+
+The report *renders* a :class:`scanplan.api.ScanJob` and/or :class:`scanplan.api.UavJob`
+(their plans and norm set); every number comes from the plan objects, formatted per
+locale (decimal comma in Russian). The document is A4 with a title block, an approval
+block, inputs, the result table with the binding constraint highlighted and explained,
+warnings, formulas with their sources, SVG plots and "page X of Y" footers.
+
+Safety: templates are autoescaped, so user text (project, customer, ...) is always shown
+as text; and the renderer's URL fetcher (:class:`BundledAssetFetcher`) serves only
+``data:`` URLs and files inside the bundled templates folder — nothing a project file
+says can make WeasyPrint read another local file or the network.
+
+Reproducibility: the creation date comes from :func:`scanplan.reports.report_datetime`
+(``SOURCE_DATE_EPOCH``), the PDF identifier is a hash of the content, and the SVG plots
+are deterministic, so the same input gives a byte-identical PDF.
+"""
+
+from __future__ import annotations
+
+import base64
+import math
+import mimetypes
+import os
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+from urllib.parse import unquote, urlsplit
+from urllib.request import url2pathname
+
+import jinja2
+import weasyprint
+from markupsafe import Markup
+from weasyprint.urls import URLFetcher, URLFetcherResponse
+
+from .._version import __version__
+from ..api import ScanJob, UavJob
+from ..flight import MAX_BLUR_PX
+from ..norms import NormSet
+from ..planner import CONSTRAINTS, ScanPlan
+from ..uav import UavPlan
+from . import ReportMeta, plots, report_datetime, templates_dir, write_atomic
+from .labels import LABELS, t
+
+if TYPE_CHECKING:
+    from ..spec import PlanResult
+
+__all__ = ["BundledAssetFetcher", "render_html", "render_pdf", "write_pdf"]
+
+_DEFAULT_META = ReportMeta()
+
+_WARNING_CODES = (
+    "not_interpretable", "above_interpretation_limit", "pr_drives_volume",
+    "scanner_too_coarse", "overlap_not_standard", "motion_blur", "trigger_interval",
+    "not_resolvable", "height_above_max", "no_feasible_photo_scale", "height_lowered")
+
+_MAX_COLUMNS = 6  # photo scales per result table on A4 portrait
+_RUNNING_HEADER_CHARS = 60
+
+_UAV_FORMULAS = (
+    ("GSD = p·H/f", "pdf_f_gsd", "docs/uav-models.md §1; seed 002"),
+    ("L = H/(2·R·f), K(R) = K_thr(R)", "pdf_f_l", "seed 000, eqs. 1–8"),
+    ("P = exp(−(B·L/L_obj)²)", "pdf_f_p", "seed 001 eq. 7"),
+    ("L ≤ L_obj·sqrt(−ln P)/B", "pdf_f_pd", "seed 001 eq. 16 with A ≡ L"),
+    ("H_max = H·(1 + Δ_H)", "pdf_f_tol", "seed 002"),
+)
+
+
+# ---------------------------------------------------------------------------------------
+# URL fetcher: data: URLs and the bundled assets only
+# ---------------------------------------------------------------------------------------
+
+
+class BundledAssetFetcher(URLFetcher):  # type: ignore[misc]
+    """A WeasyPrint URL fetcher that serves ``data:`` URLs and bundled assets, nothing else.
+
+    A ``file:`` URL is served only if it resolves (symlinks followed) to a regular file
+    strictly inside ``root``; every other URL (``http:``, ``https:``, ``ftp:``, other
+    local files) raises :class:`ValueError`, which WeasyPrint reports as a warning and
+    skips. Every URL asked for is recorded in :attr:`requested`, every refusal in
+    :attr:`refused`.
+
+    Parameters
+    ----------
+    root : path, optional
+        The folder whose files may be read (default: :func:`templates_dir`).
+    """
+
+    def __init__(self, root: str | os.PathLike[str] | None = None) -> None:
+        super().__init__(allowed_protocols=("data",), allow_redirects=False)
+        self.root = Path(root if root is not None else templates_dir()).resolve(strict=True)
+        self.requested: list[str] = []
+        self.refused: list[str] = []
+
+    def fetch(self, url: str, headers: Any = None) -> Any:
+        """Serve ``url`` if it is a ``data:`` URL or a bundled file; else raise ValueError.
+
+        Parameters
+        ----------
+        url : str
+            An absolute URL.
+        headers : mapping, optional
+            Ignored (no network access is ever made).
+
+        Returns
+        -------
+        weasyprint.urls.URLFetcherResponse
+        """
+        self.requested.append(url)
+        scheme = url.split(":", 1)[0].lower() if ":" in url else ""
+        if scheme == "data":
+            return super().fetch(url)
+        if scheme == "file":
+            parts = urlsplit(url)
+            if parts.netloc not in ("", "localhost"):
+                return self._refuse(url, "remote file URL")
+            try:
+                path = Path(url2pathname(unquote(parts.path))).resolve(strict=True)
+            except (OSError, RuntimeError, ValueError):
+                return self._refuse(url, "no such bundled file")
+            if path == self.root or not path.is_relative_to(self.root) or not path.is_file():
+                return self._refuse(url, "outside the bundled templates")
+            mime = mimetypes.guess_type(path.name)[0] or "application/octet-stream"
+            if path.suffix == ".ttf":
+                mime = "font/ttf"
+            return URLFetcherResponse(path.as_uri(), path.read_bytes(),
+                                      {"Content-Type": mime})
+        return self._refuse(url, "only data: URLs and bundled assets are allowed")
+
+    def _refuse(self, url: str, why: str) -> Any:
+        self.refused.append(url)
+        raise ValueError(f"scanplan report: refused to fetch {url!r} ({why})")
+
+
+# ---------------------------------------------------------------------------------------
+# Formatting
+# ---------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class _Fmt:
+    locale: str
+
+    def label(self, key: str, **kw: Any) -> str:
+        text = t(key, self.locale)
+        return text.format(**kw) if kw else text
+
+    def num(self, x: float | None, digits: int = 1) -> str:
+        if x is None or (isinstance(x, float) and not math.isfinite(x)):
+            return "—"
+        return plots.number(float(x), digits, self.locale)
+
+    def g(self, x: float | None) -> str:
+        """Shortest form (like ``:g``) with the locale's decimal separator."""
+        if x is None or (isinstance(x, float) and not math.isfinite(x)):
+            return "—"
+        text = f"{float(x):g}"
+        if "e" in text:
+            return text
+        if abs(float(x)) >= 10000 and float(x).is_integer():
+            return self.num(x, 0)
+        return text.replace(".", ",") if self.locale == "ru" else text
+
+    def scale(self, x: float) -> str:
+        return "1:" + (self.num(x, 0) if float(x).is_integer() else self.g(x))
+
+    def floor_scale(self, x: float) -> str:
+        return "1:" + self.num(math.floor(x), 0)
+
+    def cname(self, cid: str) -> str:
+        info = CONSTRAINTS[cid]
+        return info.name_ru if self.locale == "ru" else info.name
+
+
+def _shorten(text: str, limit: int) -> str:
+    """``text`` cut to ``limit`` characters with an ellipsis (for the running header)."""
+    return text if len(text) <= limit else text[:limit - 1].rstrip() + "…"
+
+
+def _css_string(text: str) -> str:
+    """``text`` as a CSS string literal (quotes, backslashes and ``<`` escaped)."""
+    out = []
+    for ch in text:
+        if ch in '"\\<>\n\r' or ord(ch) < 32:
+            out.append(f"\\{ord(ch):X} ")
+        else:
+            out.append(ch)
+    return '"' + "".join(out) + '"'
+
+
+def _object_name(ns: NormSet, name: str, size_m: float, map_scale: int | None,
+                 locale: str) -> str:
+    """The Russian name of a norm-table object, when the norm set has one."""
+    if locale != "ru":
+        return name
+    for o in ns.objects:
+        if o.name == name and o.size_m == size_m and (map_scale is None
+                                                      or o.map_scale == map_scale):
+            return o.name_ru or name
+    return name
+
+
+def _shape_name(ns: NormSet, shape: str, locale: str) -> str:
+    """The shape's Russian name from the norm set's shapes table, when it has one."""
+    if locale == "ru":
+        return ns.shape_rows.get(shape, {}).get("name_ru") or shape
+    return shape
+
+
+def _warnings(ws: Any, f: _Fmt) -> list[dict[str, str]]:
+    out = []
+    for w in ws:
+        key = f"pdf_warn_{w.code}"
+        heading = f.label(key) if w.code in _WARNING_CODES else w.code
+        out.append({"code": w.code, "severity": w.severity, "heading": heading,
+                    "message": w.message})
+    return out
+
+
+def _svg_uri(svg: str) -> str:
+    return "data:image/svg+xml;base64," + base64.b64encode(svg.encode("utf-8")).decode()
+
+
+# ---------------------------------------------------------------------------------------
+# View models: plain strings and flags the templates lay out
+# ---------------------------------------------------------------------------------------
+
+
+def _norm_view(ns: NormSet, f: _Fmt) -> dict[str, Any]:
+    title = ns.title_ru if f.locale == "ru" and ns.title_ru else ns.title
+    return {"name": ns.name, "title": title, "source": ns.source,
+            "imported_from": ns.imported_from, "imported_at": ns.imported_at}
+
+
+def _scan_view(job: ScanJob, f: _Fmt) -> dict[str, Any]:
+    plan: ScanPlan = job.plan
+    inp, rules, ns = plan.inputs, plan.rules, job.norm_set
+    um = f.label("pdf_um")
+    inputs: list[tuple[str, str]] = [
+        (f.label("map_scale"), f.scale(inp.map_scale)),
+        (f.label("relief_interval_m"), f.g(inp.relief_interval_m)),
+        (f.label("photo_scale"), ", ".join(f.scale(s) for s in inp.photo_scales)),
+    ]
+    if inp.camera:
+        inputs.append((f.label("camera"), inp.camera))
+    inputs += [
+        (f.label("focal_mm"), f.g(inp.focal_mm)),
+        (f.label("frame_mm"), f"{f.g(inp.frame_width_mm)} × {f.g(inp.frame_along_mm)}"),
+        (f.label("resolving_power_lpmm"), f.g(inp.resolving_power_lpmm)),
+        (f.label("forward_overlap_pct"), f.g(inp.forward_overlap_pct)),
+    ]
+    obj = inp.object
+    obj_name = ""
+    if obj is not None:
+        obj_name = _object_name(ns, obj.name, obj.size_m, obj.map_scale, f.locale)
+        inputs += [
+            (f.label("object"), f"{obj_name}: {f.g(obj.size_m)} {f.label('pdf_m')}, "
+                                f"{_shape_name(ns, obj.shape, f.locale)}, "
+                                f"B = {f.g(obj.shape_coefficient)}"),
+            (f.label("probability"), f.g(rules.probability)),
+            (f.label("norm_rows"), obj.source),
+        ]
+    if "PZ" in rules.constraints:
+        key = f"pdf_hf_{rules.height_formula}"
+        inputs.append((f.label("pdf_height_formula"),
+                       f.label(key) if key in LABELS["en"] else rules.height_formula))
+    if inp.scanner:
+        inputs.append((f.label("scanner"), f"{inp.scanner} ("
+                       + ", ".join(f.g(s) for s in inp.scanner_steps_um) + f" {um})"))
+    inputs.append((f.label("pdf_bands"), f"{inp.bands} × {inp.bits_per_band}"))
+    inputs.append((f.label("norm_set"), ns.name))
+
+    # at most _MAX_COLUMNS photo scales per table, so a wide plan stays inside A4
+    scen = plan.scenarios
+    n_tables = math.ceil(len(scen) / _MAX_COLUMNS)
+    size = math.ceil(len(scen) / n_tables)
+    tables = [_scan_table(plan, scen[i:i + size], f) for i in range(0, len(scen), size)]
+
+    explanations = []
+    for s in plan.scenarios:
+        if f.locale == "en":
+            explanations.append(s.explanation)
+            continue
+        b = s.constraint(s.binding)
+        runner = sorted((c for c in s.constraints if not c.binding), key=lambda c: c.pixel_um)
+        text = f.label("pdf_binding_sentence", scale=f.scale(s.photo_scale),
+                       pixel=f.num(s.scan_pixel_um, 1), cid=b.id, name=f.cname(b.id))
+        if runner:
+            text += f.label("pdf_binding_next", cid=runner[0].id,
+                            pixel=f.num(runner[0].pixel_um, 1),
+                            margin=f.num(runner[0].margin_pct, 0))
+        explanations.append(text + ".")
+
+    limit = ""
+    mci = plan.interpretation_limit_photo_scale
+    if mci is not None and obj is not None:
+        limit = f.label("pdf_interpretation_limit", object=obj_name, p=f.g(rules.probability),
+                        scale=f.floor_scale(mci), ratio=f.num(mci / inp.map_scale, 1),
+                        r=f.g(inp.resolving_power_lpmm))
+    reach = [{"pixel": f.g(r.pixel_um),
+              "scale": f.floor_scale(r.max_photo_scale) if r.max_photo_scale > 0
+              else f.label("pdf_none"),
+              "limit": f"{r.limit} — {f.cname(r.limit)}" if r.limit in CONSTRAINTS else r.limit}
+             for r in plan.max_photo_scales]
+    formulas = [{"id": cid, "name": f.cname(cid), "equation": CONSTRAINTS[cid].equation,
+                 "protects": CONSTRAINTS[cid].protects if f.locale == "en" else ""}
+                for cid in rules.constraints]
+    params = [{"name": k, "value": _param_text(v, f), "source": ns.parameter_sources.get(k, "")}
+              for k, v in ns.parameters.items()]
+    return {
+        "inputs": inputs, "tables": tables,
+        "explanations": explanations, "interpretation_limit": limit, "reach": reach,
+        "warnings": _warnings(plan.warnings, f), "formulas": formulas, "params": params,
+        "norm": _norm_view(ns, f),
+        "plot": _svg_uri(plots.constraints_svg(plan, f.locale)),
+    }
+
+
+def _scan_table(plan: ScanPlan, scenarios: Any, f: _Fmt) -> dict[str, Any]:
+    """The result table for some photo scales: constraints (binding flagged), summary rows."""
+    inp, rules, um = plan.inputs, plan.rules, f.label("pdf_um")
+    obj = inp.object
+    header = [f.scale(s.photo_scale) for s in scenarios]
+    rows: list[dict[str, Any]] = [{
+        "label": f.label("photo_to_map"), "unit": "",
+        "cells": [{"text": f.num(s.photo_to_map_ratio, 1), "binding": False, "margin": ""}
+                  for s in scenarios], "kind": "ratio"}]
+    for cid in rules.constraints:
+        rows.append({"label": f"{cid} — {f.cname(cid)}", "unit": um, "kind": "constraint",
+                     "cells": [{"text": f.num(s.constraint(cid).pixel_um, 1),
+                                "binding": s.constraint(cid).binding,
+                                "margin": "" if s.constraint(cid).binding
+                                else f"+{f.num(s.constraint(cid).margin_pct, 0)} %"}
+                               for s in scenarios]})
+    summary: list[dict[str, Any]] = [
+        {"label": f.label("binding"), "unit": "",
+         "cells": [s.binding for s in scenarios], "strong": False},
+        {"label": f.label("scan_pixel_um").rsplit(",", 1)[0], "unit": um,
+         "cells": [f.num(s.scan_pixel_um, 1) for s in scenarios], "strong": True},
+    ]
+    if inp.scanner:
+        summary.append({"label": f.label("scanner_pixel_um").rsplit(",", 1)[0], "unit": um,
+                        "cells": [f.num(s.scanner_pixel_um, 1) for s in scenarios],
+                        "strong": True})
+    summary.append({"label": f.label("frame_megabytes").rsplit(",", 1)[0],
+                    "unit": f.label("pdf_mb"),
+                    "cells": [f.num(s.frame_megabytes, 0) for s in scenarios],
+                    "strong": False})
+    summary.append({"label": f.label("pdf_resolution_on_ground"), "unit": f.label("pdf_mm"),
+                    "cells": [f.num(s.resolution_on_ground_mm, 1) for s in scenarios],
+                    "strong": False})
+    if obj is not None:
+        summary.append({"label": f.label("pdf_required_r"), "unit": f.label("pdf_lpmm"),
+                        "cells": [f.num(s.required_resolving_power_lpmm, 1)
+                                  for s in scenarios], "strong": False})
+        summary.append({"label": f.label("pdf_recognition_at_scan"), "unit": "",
+                        "cells": [f.num(s.recognition_probability, 2)
+                                  for s in scenarios], "strong": False})
+
+    return {"header": header, "rows": rows, "summary": summary}
+
+
+def _param_text(v: Any, f: _Fmt) -> str:
+    if isinstance(v, list | tuple):
+        return ", ".join(str(x) for x in v)
+    if isinstance(v, bool) or not isinstance(v, int | float):
+        return str(v)
+    return f.g(v)
+
+
+def _uav_view(job: UavJob, f: _Fmt) -> dict[str, Any]:
+    plan: UavPlan = job.plan
+    inp, ns, h = plan.inputs, job.norm_set, plan.heights_m
+    m = f.label("pdf_m")
+    cam = inp.camera + (f" ({inp.camera_name})" if inp.camera_name else "")
+    inputs: list[tuple[str, str]] = []
+    if cam:
+        inputs.append((f.label("camera"), cam))
+    inputs += [
+        (f.label("pdf_pixel_pitch_um"), f.g(inp.pixel_um)),
+        (f.label("focal_mm"), f.g(inp.focal_mm)),
+        (f.label("pdf_f_number"), f.g(inp.f_number)),
+        (f.label("pdf_sensor_mm"), f"{f.g(inp.sensor_width_mm)} × {f.g(inp.sensor_height_mm)}"),
+        (f.label("height_m"), f.g(h["planned"])),
+    ]
+    if h["max"] != h["min"] or h["min"] != h["planned"]:
+        inputs.append((f.label("pdf_flown_heights"), f"{f.g(h['min'])} – {f.g(h['max'])}"))
+    inputs += [
+        (f.label("pdf_speed_ms"), f.g(inp.speed_ms)),
+        (f.label("pdf_exposure_s"), f.g(inp.exposure_s)),
+        (f.label("forward_overlap_pct") + " / " + f.label("side_overlap_pct").split(",")[0],
+         f"{f.g(inp.forward_overlap_pct)} / {f.g(inp.side_overlap_pct)}"),
+        (f.label("pdf_scene"), f"{f.g(inp.r_max)} / {f.g(inp.r_min)}"),
+        (f.label("pdf_threshold_k0"), f.g(inp.threshold_k0)),
+    ]
+    if inp.map_scale is not None:
+        inputs += [(f.label("map_scale"), f.scale(inp.map_scale)),
+                   (f.label("relief_interval_m"), f.g(inp.relief_interval_m))]
+        obj = inp.map_object
+        if obj is not None:
+            name = _object_name(ns, obj.name, obj.size_m, obj.map_scale, f.locale)
+            inputs.append((f.label("object"), f"{name}: {f.g(obj.size_m)} {m}, "
+                                              f"{_shape_name(ns, obj.shape, f.locale)}, "
+                                              f"B = {f.g(obj.shape_coefficient)}"))
+    inputs.append((f.label("norm_set"), ns.name))
+
+    two = h["max"] != h["planned"]
+    cols = [f.label("pdf_at_height", h=f.g(h["planned"]))]
+    if two:
+        cols.append(f.label("pdf_at_height", h=f.g(h["max"])))
+
+    def row(label: str, *vals: str) -> dict[str, Any]:
+        cells = list(vals) + [""] * (len(cols) - len(vals))
+        return {"label": label, "cells": cells[:len(cols)]}
+
+    results = [
+        row(f.label("gsd_m"), f.num(plan.gsd_m, 3), f.num(plan.gsd_at_max_height_m, 3)),
+        row(f.label("nyquist_lpmm"), f.num(plan.nyquist_lpmm, 1)),
+        row(f.label("resolving_power_system") + " " + f.label("pdf_centre_corner"),
+            f"{f.num(plan.resolving_power_lpmm, 1)} / "
+            f"{f.num(plan.resolving_power_corner_lpmm, 1)}"),
+        row(f.label("ground_resolution_m"), f.num(plan.ground_resolution_m, 3),
+            f.num(plan.ground_resolution_at_max_height_m, 3)),
+        row(f.label("pdf_l_corner"), f.num(plan.ground_resolution_corner_m, 3)),
+        row(f.label("l_over_gsd"), f.num(plan.ground_resolution_to_gsd, 2)),
+        row(f.label("motion_blur_px") + f" ({f.label('pdf_at_height', h=f.g(h['min']))})",
+            f.num(plan.motion_blur_px, 2)),
+    ]
+    if plan.tilted_corner_gsd_m is not None:
+        results.append(row(f.label("pdf_tilted_gsd", roll=f.g(inp.roll_deg),
+                                   pitch=f.g(inp.pitch_deg)),
+                           *(["", f.num(plan.tilted_corner_gsd_m, 3)] if two
+                             else [f.num(plan.tilted_corner_gsd_m, 3)])))
+    blur = f.label("pdf_blur_limit", blur=f.g(MAX_BLUR_PX),
+                   exposure=f"1/{math.ceil(1 / plan.max_exposure_s):d}",
+                   speed=f.num(plan.max_speed_ms, 1))
+    fl = plan.flight
+    flight = [
+        (f.label("pdf_footprint"), f"{f.num(fl['footprint_across_m'], 0)} × "
+                                   f"{f.num(fl['footprint_along_m'], 0)}"),
+        (f.label("pdf_base"), f.num(fl["base_m"], 1)),
+        (f.label("pdf_line_spacing"), f.num(fl["line_spacing_m"], 1)),
+        (f.label("pdf_photo_interval"), f.num(fl["photo_interval_s"], 2)
+         + (f" ({f.label('pdf_trigger_min')} {f.g(fl['min_trigger_interval_s'])})"
+            if "min_trigger_interval_s" in fl else "")),
+        (f.label("pdf_overlap_at", lo=f.g(h["min"]), hi=f.g(h["max"])),
+         f"{f.num(fl['forward_overlap_at_min_height_pct'], 1)} / "
+         f"{f.num(fl['forward_overlap_at_max_height_pct'], 1)}"),
+    ]
+    if "strips" in fl:
+        flight.append((f.label("pdf_strips"), f"{fl['strips']} × {fl['photos_per_strip']} = "
+                                              f"{fl['photos']}"))
+        flight.append((f.label("pdf_flight_length"),
+                       f"{f.num(fl['flight_length_m'] / 1000, 1)} / "
+                       + (f.num(fl["flight_time_s"] / 60, 0) if fl.get("flight_time_s")
+                          else "—")))
+        if "data_volume_bytes" in fl:
+            flight.append((f.label("pdf_data_volume"), f.num(fl["data_volume_bytes"] / 1e9, 1)))
+    recognition = [{
+        "object": _object_name(ns, r.object, r.object_size_m, r.map_scale, f.locale),
+        "map": f.scale(r.map_scale) if r.map_scale else "—", "size": f.g(r.object_size_m),
+        "shape": _shape_name(ns, r.shape, f.locale), "p": f.num(r.probability, 2),
+        "p_max": f.num(r.probability_at_max_height, 2),
+        "p_corner": f.num(r.probability_corner_at_max_height, 2)} for r in plan.recognition]
+    limits = [{"id": lim.id, "name": f.cname(lim.id), "limit": f.num(lim.limit_m, 3),
+               "compares": lim.compares, "max_height": f.num(lim.max_height_m, 0),
+               "margin": "" if lim.binding or not math.isfinite(lim.margin_pct)
+               else f"+{f.num(lim.margin_pct, 0)} %",
+               "binding": lim.binding}
+              for lim in sorted(plan.limits, key=lambda x: x.max_height_m)]
+    limits_title = ""
+    max_sentence = ""
+    if plan.limits and inp.map_scale is not None:
+        tol = inp.height_tolerance_up_pct
+        limits_title = f.label("pdf_limits", scale=f.scale(inp.map_scale),
+                               hc=f.g(inp.relief_interval_m)) + (
+            f.label("pdf_tol_note", tol=f.g(tol)) if tol else "")
+        b = next(x for x in plan.limits if x.binding)
+        max_sentence = f.label("pdf_max_height_sentence", h=f.num(plan.max_height_m, 0),
+                               cid=b.id, name=f.cname(b.id), reason=b.reason)
+    formulas = [{"equation": eq, "meaning": f.label(key), "source": src}
+                for eq, key, src in _UAV_FORMULAS
+                if plan.limits or key not in ("pdf_f_pd", "pdf_f_tol")]
+    limit_formulas = [{"id": lim.id, "name": f.cname(lim.id), "equation": lim.equation}
+                      for lim in plan.limits]
+    return {
+        "inputs": inputs, "cols": cols, "results": results, "blur": blur, "flight": flight,
+        "recognition": recognition, "recognition_cols": [
+            f.label("pdf_at_height", h=f.g(h["planned"])),
+            f.label("pdf_at_height", h=f.g(h["max"])),
+            f.label("pdf_corner_at", h=f.g(h["max"]))],
+        "limits": limits, "limits_title": limits_title, "max_sentence": max_sentence,
+        "warnings": _warnings(plan.warnings, f), "formulas": formulas,
+        "limit_formulas": limit_formulas, "norm": _norm_view(ns, f),
+        "plot_mtf": _svg_uri(plots.mtf_svg(plan, f.locale)),
+        "plot_height": _svg_uri(plots.height_svg(plan, f.locale)),
+        "not_resolvable": not plan.resolvable,
+    }
+
+
+def _comparison_view(scan: ScanJob, uav: UavJob, f: _Fmt) -> dict[str, Any]:
+    sp, up = scan.plan, uav.plan
+    um, m = f.label("pdf_um"), f.label("pdf_m")
+    film_result = "; ".join(f"{f.scale(s.photo_scale)}: {f.num(s.scan_pixel_um, 1)} {um} "
+                            f"({s.binding})" for s in sp.scenarios)
+    uav_result = (f"{f.label('max_height_m').split(',')[0]}: {f.num(up.max_height_m, 0)} {m}"
+                  f" ({up.binding}); " if up.max_height_m is not None else "") + (
+        f"GSD {f.num(up.gsd_m, 3)} {m}, L {f.num(up.ground_resolution_m, 3)} {m} "
+        f"({f.label('pdf_at_height', h=f.g(up.heights_m['planned']))})")
+    film_binding = ", ".join(dict.fromkeys(f"{s.binding} — {f.cname(s.binding)}"
+                                           for s in sp.scenarios))
+    return {"rows": [
+        (f.label("map_scale"), f.scale(sp.inputs.map_scale),
+         f.scale(up.inputs.map_scale) if up.inputs.map_scale is not None else "—"),
+        (f.label("binding"), film_binding,
+         f"{up.binding} — {f.cname(up.binding)}" if up.binding else "—"),
+        (f.label("pdf_result"), film_result, uav_result),
+        (f.label("warnings"), str(len(sp.warnings)), str(len(up.warnings))),
+    ]}
+
+
+def _spec_view(spec: PlanResult, f: _Fmt) -> dict[str, Any]:
+    """The specification of ``scanplan plan``: what was chosen, with its reason."""
+    rows: list[tuple[str, str]] = []
+    reasons: list[str] = []
+    if spec.film is not None:
+        fs, rec = spec.film, spec.film.recommended
+        if rec is not None:
+            rows.append((f.label("spec_recommended_photo_scale"), f.scale(rec.photo_scale)))
+            px = f.num(rec.scan_pixel_um, 1)
+            if rec.scanner_pixel_um is not None:
+                px += f" → {f.num(rec.scanner_pixel_um, 1)}"
+            rows.append((f.label("scan_pixel_um"), px))
+            rows.append((f.label("binding"), f"{rec.binding} — {f.cname(rec.binding)}"))
+            rows.append((f.label("probability"), f.num(rec.recognition_probability, 2)))
+            if fs.frames is not None:
+                rows.append((f.label("spec_frames"), f.g(fs.frames)))
+                rows.append((f.label("spec_scanned_gb"), f.num(fs.scanned_gigabytes, 1)))
+        reasons.append(fs.reason)
+    if spec.uav is not None:
+        u, p = spec.uav, spec.uav.job.plan
+        if u.planned_height_m is not None:
+            rows.append((f.label("spec_planned_height_m"), f.num(u.planned_height_m, 0)))
+        rows.append((f.label("spec_recommended_height_m"), f.num(u.recommended_height_m, 0)))
+        rows.append((f.label("max_height_m"), f.num(u.max_height_m, 0)))
+        if p.binding:
+            rows.append((f.label("binding"), f"{p.binding} — {f.cname(p.binding)}"))
+        if "photos" in p.flight:
+            rows.append((f.label("spec_photos"), f.g(p.flight["photos"])))
+        if "data_volume_bytes" in p.flight:
+            rows.append((f.label("spec_data_gb"), f.num(p.flight["data_volume_bytes"] / 1e9, 1)))
+        reasons.append(u.reason)
+    comparison = [(c["quantity"], "—" if c["film"] is None else f.num(c["film"], 3),
+                   "—" if c["uav"] is None else f.num(c["uav"], 3), c["unit"])
+                  for c in spec.comparison]
+    return {"rows": rows, "reasons": reasons, "comparison": comparison}
+
+
+# ---------------------------------------------------------------------------------------
+# Rendering
+# ---------------------------------------------------------------------------------------
+
+
+def _environment() -> jinja2.Environment:
+    env = jinja2.Environment(
+        loader=jinja2.FileSystemLoader(str(templates_dir())),
+        autoescape=jinja2.select_autoescape(["html", "htm", "xml"], default=True,
+                                            default_for_string=True),
+        undefined=jinja2.StrictUndefined, trim_blocks=True, lstrip_blocks=True,
+        keep_trailing_newline=True)
+    return env
+
+
+def render_html(*, scan: ScanJob | None = None, uav: UavJob | None = None,
+                meta: ReportMeta = _DEFAULT_META, spec: PlanResult | None = None) -> str:
+    """The report as an HTML document (what :func:`render_pdf` hands to WeasyPrint).
+
+    Parameters
+    ----------
+    scan : ScanJob, optional
+        A film scan plan and its norm set.
+    uav : UavJob, optional
+        A UAV flight plan and its norm set.
+    meta : ReportMeta
+        Title and approval block, locale.
+    spec : PlanResult, optional
+        The specification of ``scanplan plan`` (shown first, after the title block).
+
+    Returns
+    -------
+    str
+        The HTML document; all user text escaped.
+
+    Raises
+    ------
+    ValueError
+        If neither ``scan`` nor ``uav`` is given, or the locale is unknown.
+    """
+    if scan is None and uav is None:
+        raise ValueError("give a scan plan, a UAV plan, or both")
+    if meta.locale not in ("en", "ru"):
+        raise ValueError(f"locale must be 'en' or 'ru' (got {meta.locale!r})")
+    f = _Fmt(meta.locale)
+    now = report_datetime()
+    date = meta.date or now.date().isoformat()
+    if scan is not None and uav is not None:
+        title = f.label("pdf_title_plan")
+    elif scan is not None:
+        title = f.label("title_scan")
+    else:
+        title = f.label("title_uav")
+    footer = (f"{_css_string(f.label('page') + ' ')} counter(page) "
+              f"{_css_string(' ' + f.label('of') + ' ')} counter(pages)")
+    ctx = {
+        "lang": meta.locale, "title": title, "meta": meta, "date": date,
+        "running_project": _shorten(" ".join(meta.project.split()), _RUNNING_HEADER_CHARS),
+        "created": now.strftime("%Y-%m-%dT%H:%M:%SZ"),
+        "generator": f"scanplan {__version__}",
+        "footer_css": Markup(f"@page {{ @bottom-center {{ content: {footer}; }} }}"),
+        "L": _Labels(f),
+        "scan": _scan_view(scan, f) if scan is not None else None,
+        "uav": _uav_view(uav, f) if uav is not None else None,
+        "comparison": (_comparison_view(scan, uav, f)
+                       if scan is not None and uav is not None else None),
+        "spec": _spec_view(spec, f) if spec is not None else None,
+    }
+    return _environment().get_template("report.html").render(**ctx)
+
+
+class _Labels:
+    """``L.key`` / ``L('key', x=1)`` in templates: labels in the report's locale."""
+
+    def __init__(self, f: _Fmt) -> None:
+        self._f = f
+
+    def __getattr__(self, key: str) -> str:
+        try:
+            return self._f.label(key)
+        except KeyError:
+            raise AttributeError(key) from None
+
+    def __call__(self, key: str, **kw: Any) -> str:
+        return self._f.label(key, **kw)
+
+
+def render_pdf(*, scan: ScanJob | None = None, uav: UavJob | None = None,
+               meta: ReportMeta = _DEFAULT_META,
+               url_fetcher: Callable[[str], Any] | None = None,
+               spec: PlanResult | None = None) -> bytes:
+    """Render the report to PDF bytes (A4; nothing is written).
+
+    Parameters
+    ----------
+    scan : ScanJob, optional
+        A film scan plan and its norm set.
+    uav : UavJob, optional
+        A UAV flight plan and its norm set. Both: the sections one after the other and a
+        short comparison.
+    meta : ReportMeta
+        Title and approval block, locale (``"en"`` or ``"ru"``).
+    url_fetcher : BundledAssetFetcher, optional
+        For tests; default a fresh :class:`BundledAssetFetcher`.
+    spec : PlanResult, optional
+        The specification of ``scanplan plan``.
+
+    Returns
+    -------
+    bytes
+        The PDF. With ``SOURCE_DATE_EPOCH`` set, identical input gives identical bytes.
+    """
+    html = render_html(scan=scan, uav=uav, meta=meta, spec=spec)
+    fetcher = url_fetcher if url_fetcher is not None else BundledAssetFetcher()
+    base = templates_dir().resolve().as_uri() + "/"
+    doc = weasyprint.HTML(string=html, base_url=base, url_fetcher=fetcher)
+    return doc.write_pdf(pdf_identifier=True)  # type: ignore[no-any-return]
+
+
+def write_pdf(path: str | os.PathLike[str], *, scan: ScanJob | None = None,
+              uav: UavJob | None = None, meta: ReportMeta = _DEFAULT_META,
+              spec: PlanResult | None = None) -> Path:
+    """Render the report and write it atomically to ``path``.
+
+    The PDF is rendered in memory first; on any error an existing file at ``path`` is left
+    as it was and no temporary file remains.
+
+    Parameters
+    ----------
+    path : path
+        Target ``.pdf``.
+    scan, uav : optional
+        As :func:`render_pdf` (at least one).
+    meta : ReportMeta
+        Title and approval block, locale.
+    spec : PlanResult, optional
+        The specification of ``scanplan plan``.
+
+    Returns
+    -------
+    Path
+        ``path``.
+    """
+    return write_atomic(path, render_pdf(scan=scan, uav=uav, meta=meta, spec=spec))

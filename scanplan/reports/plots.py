@@ -1,0 +1,260 @@
+"""Plots for the PDF report: deterministic SVG from matplotlib (no pyplot, no global state).
+
+Each function draws numbers already held by a plan object (``ScanPlan.sweep``,
+``UavPlan.mtf_centre``, ``UavPlan.height_curve``) — nothing is recomputed here. Text is
+drawn as paths in DejaVu Sans (bundled with matplotlib, Cyrillic included), so the figures
+look the same on any machine, and ``svg.hashsalt`` plus an empty date make the SVG
+byte-identical from run to run.
+"""
+
+from __future__ import annotations
+
+import io
+import math
+from collections.abc import Callable, Sequence
+from typing import Any
+
+import matplotlib
+from matplotlib.figure import Figure
+from matplotlib.ticker import FixedLocator, FuncFormatter, NullFormatter
+
+from ..planner import CONSTRAINTS, ScanPlan
+from ..uav import UavPlan
+from .labels import t
+
+__all__ = ["constraints_svg", "height_svg", "mtf_svg", "number"]
+
+_RC: dict[str, Any] = {
+    "svg.hashsalt": "scanplan",
+    "svg.fonttype": "path",
+    "font.family": "DejaVu Sans",
+    "font.size": 8.0,
+    "axes.titlesize": 8.5,
+    "axes.labelsize": 8.0,
+    "legend.fontsize": 7.0,
+    "xtick.labelsize": 7.0,
+    "ytick.labelsize": 7.0,
+    "axes.grid": True,
+    "grid.color": "#d8d8d8",
+    "grid.linewidth": 0.5,
+    "axes.spines.top": False,
+    "axes.spines.right": False,
+    "path.simplify": False,
+}
+_COLOURS = {"PS": "#1f77b4", "PZ": "#d62728", "PP": "#2ca02c", "PR": "#9467bd",
+            "PD": "#ff7f0e"}
+_SIZE_IN = (6.6, 3.0)
+
+
+def number(x: float, digits: int, locale: str) -> str:
+    """``x`` with ``digits`` decimals, decimal comma in Russian, thin-space thousands.
+
+    Parameters
+    ----------
+    x : float
+        The value.
+    digits : int
+        Decimals.
+    locale : {"en", "ru"}
+        Decimal separator and thousands grouping.
+
+    Returns
+    -------
+    str
+        ``"12.5"`` / ``"12,5"``; ``"10,000"`` / ``"10 000"`` (no-break space); ``"—"`` for
+        a non-finite value.
+    """
+    if x is None or not math.isfinite(x):
+        return "—"
+    text = f"{x:,.{digits}f}"
+    if locale == "ru":
+        return text.replace(",", "\u00a0").replace(".", ",")
+    return text
+
+
+def _tick(locale: str) -> FuncFormatter:
+    def fmt(x: float, _pos: int | None = None) -> str:
+        if float(x).is_integer():
+            return number(x, 0, locale)
+        text = f"{x:.6g}"
+        return text.replace(".", ",") if locale == "ru" else text
+    return FuncFormatter(fmt)
+
+
+def _nice_log_ticks(lo: float, hi: float) -> list[float]:
+    """1-2-5 ticks covering [lo, hi] (for short log axes)."""
+    out = []
+    for e in range(math.floor(math.log10(lo)) - 1, math.ceil(math.log10(hi)) + 1):
+        for m in (1, 2, 5):
+            v = m * 10.0 ** e
+            if lo / 1.3 <= v <= hi * 1.3:
+                out.append(float(f"{v:.12g}"))
+    return out
+
+
+def _svg(draw: Callable[[Figure], None]) -> str:
+    with matplotlib.rc_context(_RC):
+        fig = Figure(figsize=_SIZE_IN, layout="constrained")
+        draw(fig)
+        buf = io.StringIO()
+        fig.savefig(buf, format="svg", metadata={"Date": None, "Creator": None})
+    return buf.getvalue()
+
+
+def constraints_svg(plan: ScanPlan, locale: str = "en") -> str:
+    """Each constraint's scan pixel against the photo scale (``plan.sweep``), log–log.
+
+    The evaluated photo scales are marked on the scan pixel curve (the minimum).
+
+    Parameters
+    ----------
+    plan : ScanPlan
+        A plan with its dense sweep.
+    locale : {"en", "ru"}
+        Language of the labels and decimal separator.
+
+    Returns
+    -------
+    str
+        An SVG document.
+    """
+    sweep = plan.sweep
+    xs: Sequence[float] = sweep["photo_scale"]
+
+    def draw(fig: Figure) -> None:
+        ax = fig.add_subplot()
+        for cid in plan.rules.constraints:
+            if cid not in sweep:
+                continue
+            name = CONSTRAINTS[cid].name_ru if locale == "ru" else CONSTRAINTS[cid].name
+            ax.plot(xs, sweep[cid], color=_COLOURS.get(cid), linewidth=1.1,
+                    label=f"{cid} — {name}")
+        ax.plot(xs, sweep["scan_pixel_um"], color="black", linewidth=2.4, alpha=0.25,
+                label=t("scan_pixel_um", locale))
+        px = [s.photo_scale for s in plan.scenarios]
+        py = [s.scan_pixel_um for s in plan.scenarios]
+        ax.plot(px, py, linestyle="none", marker="o", markersize=4.5, color="black")
+        for s in plan.scenarios if len(plan.scenarios) <= 6 else ():
+            ax.annotate(f"{s.binding} {number(s.scan_pixel_um, 1, locale)}",
+                        (s.photo_scale, s.scan_pixel_um), textcoords="offset points",
+                        xytext=(0, -11), ha="center", fontsize=6.5)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlim(min(xs), max(xs))
+        # label the evaluated photo scales (1-2-5 ticks when many): log minor labels collide
+        ticks = sorted(set(px)) if len(set(px)) <= 6 else _nice_log_ticks(min(xs), max(xs))
+        ax.xaxis.set_major_locator(FixedLocator(ticks))
+        ax.xaxis.set_minor_formatter(NullFormatter())
+        ax.xaxis.set_major_formatter(_tick(locale))
+        lo = min(min(v for v in sweep[c] if v == v) for c in plan.rules.constraints
+                 if c in sweep)
+        hi = max(max(v for v in sweep[c] if v == v) for c in plan.rules.constraints
+                 if c in sweep)
+        ax.yaxis.set_major_locator(FixedLocator(_nice_log_ticks(lo, hi)))
+        ax.yaxis.set_minor_formatter(NullFormatter())
+        ax.yaxis.set_major_formatter(_tick(locale))
+        ax.set_xlabel(f"{t('photo_scale', locale)} 1:Mc")
+        ax.set_ylabel(t("pixel_um", locale))
+        ax.legend(loc="upper right", frameon=False)
+
+    return _svg(draw)
+
+
+def mtf_svg(plan: UavPlan, locale: str = "en") -> str:
+    """Image contrast and threshold contrast against frequency, with R marked.
+
+    Parameters
+    ----------
+    plan : UavPlan
+        A plan with ``mtf_centre`` (at the planned height).
+    locale : {"en", "ru"}
+        Language of the labels and decimal separator.
+
+    Returns
+    -------
+    str
+        An SVG document.
+    """
+    m = plan.mtf_centre
+    freq = m["freq_lpmm"]
+
+    def draw(fig: Figure) -> None:
+        ax = fig.add_subplot()
+        ax.plot(freq, m["image_contrast"], color="#1f77b4", linewidth=1.4,
+                label=t("image_contrast", locale))
+        ax.plot(freq, m["threshold"], color="#d62728", linewidth=1.2, linestyle="--",
+                label=t("threshold", locale))
+        r = plan.resolving_power_lpmm
+        if r is not None:
+            ax.axvline(r, color="black", linewidth=0.8, linestyle=":")
+            ax.annotate(f"R = {number(r, 1, locale)}", (r, 1.0),
+                        xycoords=("data", "axes fraction"), textcoords="offset points",
+                        xytext=(3, -10), fontsize=7)
+        ax.axvline(plan.nyquist_lpmm, color="grey", linewidth=0.6)
+        ax.annotate(t("pdf_nyquist_short", locale), (plan.nyquist_lpmm, 0.5),
+                    xycoords=("data", "axes fraction"), textcoords="offset points",
+                    xytext=(-7, 0), rotation=90, ha="right", va="center", fontsize=6.5,
+                    color="grey")
+        ax.set_yscale("log")
+        ax.set_xlim(0, max(freq) * 1.02 if freq else 1)
+        values = [v for k in ("image_contrast", "threshold") for v in m[k] if v and v > 0]
+        if values:
+            ax.yaxis.set_major_locator(FixedLocator(_nice_log_ticks(min(values),
+                                                                    max(values))))
+        ax.yaxis.set_minor_formatter(NullFormatter())
+        ax.xaxis.set_major_formatter(_tick(locale))
+        ax.yaxis.set_major_formatter(_tick(locale))
+        ax.set_xlabel(t("frequency_lpmm", locale))
+        ax.set_ylabel(t("contrast", locale))
+        fig.legend(loc="outside right upper", frameon=False)
+
+    return _svg(draw)
+
+
+def height_svg(plan: UavPlan, locale: str = "en") -> str:
+    """GSD and ground resolution L against flight height, planned/flown/maximum heights.
+
+    Parameters
+    ----------
+    plan : UavPlan
+        A plan with ``height_curve``.
+    locale : {"en", "ru"}
+        Language of the labels and decimal separator.
+
+    Returns
+    -------
+    str
+        An SVG document.
+    """
+    c = plan.height_curve
+    hs = c["height_m"]
+    ls = [math.nan if v is None else v for v in c["ground_resolution_m"]]
+
+    def draw(fig: Figure) -> None:
+        ax = fig.add_subplot()
+        ax.plot(hs, c["gsd_m"], color="#2ca02c", linewidth=1.3, label="GSD")
+        ax.plot(hs, ls, color="#1f77b4", linewidth=1.3, label="L")
+        marks = [(plan.heights_m["planned"], "black", "-", t("pdf_h_planned", locale))]
+        if plan.heights_m["max"] != plan.heights_m["planned"]:
+            marks.append((plan.heights_m["max"], "grey", "--", t("pdf_h_flown_max", locale)))
+        if plan.max_height_m is not None and plan.binding is not None:
+            marks.append((plan.max_height_m, "#d62728", ":",
+                          t("pdf_h_max", locale).format(cid=plan.binding)))
+        for h, colour, style, label in marks:
+            ax.axvline(h, color=colour, linestyle=style, linewidth=0.9,
+                       label=f"{label}: {number(h, 0, locale)} {t('pdf_m', locale)}")
+        for lim in plan.limits:
+            if lim.binding and lim.limit_m <= max(max(c["gsd_m"]), max(
+                    (v for v in ls if v == v), default=0.0)) * 1.05:
+                ax.axhline(lim.limit_m, color="#d62728", linewidth=0.6, linestyle="-.",
+                           label=f"{lim.compares} ≤ {number(lim.limit_m, 3, locale)} "
+                                 f"{t('pdf_m', locale)} ({lim.id})")
+        ax.set_xlim(0, max(hs))
+        ax.set_ylim(bottom=0)
+        ax.xaxis.set_major_formatter(_tick(locale))
+        ax.yaxis.set_major_formatter(_tick(locale))
+        ax.set_xlabel(t("height_m", locale))
+        ax.set_ylabel(f"GSD, L, {t('pdf_m', locale)}")
+        fig.legend(loc="outside right upper", frameon=False)
+
+    return _svg(draw)
