@@ -1,0 +1,80 @@
+"""Benchmark: 1,000 project variants planned in batch; per-project time without and with
+reports.
+
+Variants of the three example contracts (map scale, relief interval, candidate photo scales,
+flight height) are written to a temporary folder and planned the way ``scanplan plan DIR``
+does (load, validate, plan). Reports are timed on a sample (``--report-sample``, default
+20) and given per project, since a report pair dominates the time.
+
+Run: ``python benchmarks/bench_plan_batch.py [--n 1000] [--report-sample 20]``
+"""
+
+from __future__ import annotations
+
+import argparse
+import itertools
+import tempfile
+import time
+from pathlib import Path
+
+from scanplan.project import load_project
+from scanplan.reports.excel import render_xlsx
+from scanplan.reports.pdf import render_pdf
+from scanplan.spec import plan_project
+
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+
+
+def variants(folder: Path, n: int) -> list[Path]:
+    """``n`` project files: the examples with varied map, relief, scales and heights."""
+    film = (EXAMPLES / "instruction-2000-film.toml").read_text(encoding="utf-8")
+    uav = (EXAMPLES / "uav-canon-2000.toml").read_text(encoding="utf-8")
+    reliefs = (0.25, 0.5, 1.0, 2.0)
+    heights = (150, 200, 250, 300, 350)
+    out = []
+    for i, (relief, h) in zip(range(n), itertools.cycle(itertools.product(reliefs, heights)),
+                              strict=False):
+        if i % 2:
+            text = film.replace("relief_interval_m = 1.0", f"relief_interval_m = {relief}")
+            text = text.replace("[6000, 8000, 10000]", f"[{5000 + 10 * i}, 8000, 10000]")
+        else:
+            text = uav.replace("relief_interval_m = 0.5", f"relief_interval_m = {relief}")
+            text = text.replace("height_m = 300", f"height_m = {h + i % 7}")
+        p = folder / f"v{i:04d}.toml"
+        p.write_text(text, encoding="utf-8")
+        out.append(p)
+    return out
+
+
+def run(n: int = 1000, report_sample: int = 20) -> dict[str, float]:
+    """{'n', 'plan_s_per_project', 'report_s_per_project', 'with_reports_s_per_project'}."""
+    with tempfile.TemporaryDirectory() as tmp:
+        files = variants(Path(tmp), n)
+        t0 = time.perf_counter()
+        results = [plan_project(load_project(p)) for p in files]
+        plan_s = (time.perf_counter() - t0) / n
+        sample = results[:report_sample]
+        t0 = time.perf_counter()
+        for r in sample:
+            jobs = {"scan": r.film.job if r.film else None, "uav": r.uav.job if r.uav else None}
+            render_xlsx(**jobs, meta=r.meta, spec=r)
+            render_pdf(**jobs, meta=r.meta, spec=r)
+        report_s = (time.perf_counter() - t0) / len(sample)
+    return {"n": n, "plan_s_per_project": plan_s, "report_s_per_project": report_s,
+            "with_reports_s_per_project": plan_s + report_s}
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--n", type=int, default=1000)
+    ap.add_argument("--report-sample", type=int, default=20)
+    a = ap.parse_args()
+    r = run(a.n, a.report_sample)
+    print(f"{r['n']:,} projects: {r['plan_s_per_project'] * 1000:.1f} ms per project without "
+          f"reports ({r['plan_s_per_project'] * r['n']:.1f} s in all); with the report pair "
+          f"{r['with_reports_s_per_project']:.2f} s per project "
+          f"(reports timed on {a.report_sample} projects)")
+
+
+if __name__ == "__main__":
+    main()
