@@ -44,6 +44,7 @@ __all__ = [
     "ScanPlan",
     "ScanRules",
     "ScanScenario",
+    "check_range",
     "evaluate",
     "interpretation_limit_photo_scale",
     "max_photo_scale",
@@ -498,8 +499,13 @@ class ScanPlan:
     sweep: dict[str, Any] = field(default_factory=dict)
 
 
-def _check(name: str, value: float, *, lo: float | None = None, hi: float | None = None,
-           lo_open: bool = True, hi_open: bool = False, unit: str = "") -> None:
+def check_range(name: str, value: float | None, *, lo: float | None = None,
+                hi: float | None = None, lo_open: bool = True, hi_open: bool = False,
+                unit: str = "") -> None:
+    """Raise :class:`InputError` naming ``name`` unless ``value`` is finite and in range.
+
+    ``lo``/``hi`` are exclusive when ``lo_open``/``hi_open`` (default: > lo, ≤ hi).
+    """
     ok = isinstance(value, int | float) and not isinstance(value, bool) and math.isfinite(value)
     if ok and lo is not None:
         ok = value > lo if lo_open else value >= lo
@@ -518,34 +524,34 @@ def _check(name: str, value: float, *, lo: float | None = None, hi: float | None
 
 def validate_inputs(inp: ScanInputs, rules: ScanRules) -> None:
     """Raise :class:`InputError` (field = the input's name) for any value out of range."""
-    _check("map_scale", inp.map_scale, lo=0)
+    check_range("map_scale", inp.map_scale, lo=0)
     if not inp.photo_scales:
         raise InputError("photo_scale", "give at least one photo scale")
     for mc in inp.photo_scales:
-        _check("photo_scale", mc, lo=0)
-    _check("relief_interval_m", inp.relief_interval_m, lo=0, unit="m")
-    _check("focal_mm", inp.focal_mm, lo=0, unit="mm")
-    _check("frame_width_mm", inp.frame_width_mm, lo=0, unit="mm")
-    _check("frame_along_mm", inp.frame_along_mm, lo=0, unit="mm")
-    _check("resolving_power_lpmm", inp.resolving_power_lpmm, lo=0, unit="lines/mm")
-    _check("forward_overlap_pct", inp.forward_overlap_pct, lo=0, hi=100, lo_open=False,
+        check_range("photo_scale", mc, lo=0)
+    check_range("relief_interval_m", inp.relief_interval_m, lo=0, unit="m")
+    check_range("focal_mm", inp.focal_mm, lo=0, unit="mm")
+    check_range("frame_width_mm", inp.frame_width_mm, lo=0, unit="mm")
+    check_range("frame_along_mm", inp.frame_along_mm, lo=0, unit="mm")
+    check_range("resolving_power_lpmm", inp.resolving_power_lpmm, lo=0, unit="lines/mm")
+    check_range("forward_overlap_pct", inp.forward_overlap_pct, lo=0, hi=100, lo_open=False,
            hi_open=True, unit="%")
-    _check("bands", inp.bands, lo=1, lo_open=False)
-    _check("bits_per_band", inp.bits_per_band, lo=1, lo_open=False)
+    check_range("bands", inp.bands, lo=1, lo_open=False)
+    check_range("bits_per_band", inp.bits_per_band, lo=1, lo_open=False)
     for s in inp.scanner_steps_um:
-        _check("scanner", s, lo=0, unit="µm")
+        check_range("scanner", s, lo=0, unit="µm")
     for s in inp.candidate_pixels_um:
-        _check("pixel_um", s, lo=0, unit="µm")
+        check_range("pixel_um", s, lo=0, unit="µm")
     if inp.object is not None:
-        _check("object_size_m", inp.object.size_m, lo=0, unit="m")
-        _check("shape", inp.object.shape_coefficient, lo=0)
+        check_range("object_size_m", inp.object.size_m, lo=0, unit="m")
+        check_range("shape", inp.object.shape_coefficient, lo=0)
     elif "PD" in rules.constraints:
         raise InputError(
             "object_size_m",
             f"the norm set has no smallest object for map scale 1:{inp.map_scale:g}; "
             "give the object size in m (> 0)")
-    _check("probability", rules.probability, lo=0, hi=1, hi_open=True)
-    _check("pr_coefficient", rules.pr_coefficient, lo=0)
+    check_range("probability", rules.probability, lo=0, hi=1, hi_open=True)
+    check_range("pr_coefficient", rules.pr_coefficient, lo=0)
 
 
 def _fmt(x: float) -> str:

@@ -26,7 +26,14 @@ from . import formulas as F
 from . import mtf as M
 from .errors import InputError
 from .orientation import attitude_matrix, corner_gsd
-from .planner import CONSTRAINTS, ObjectSpec, PlanWarning, ScanRules, overlap_warning
+from .planner import (
+    CONSTRAINTS,
+    ObjectSpec,
+    PlanWarning,
+    ScanRules,
+    check_range,
+    overlap_warning,
+)
 
 __all__ = ["HeightLimit", "Recognition", "UavInputs", "UavPlan", "plan_uav"]
 
@@ -194,42 +201,26 @@ def max_height_for_ground_resolution(inp: UavInputs, limit_m: float) -> float:
 
 
 def _check_inputs(inp: UavInputs) -> None:
-    def pos(name: str, v: float | None, unit: str = "") -> None:
-        if v is None or not (isinstance(v, int | float) and math.isfinite(v) and v > 0):
-            raise InputError(name, f"must be a finite number > 0{' ' + unit if unit else ''} "
-                             f"(got {v!r})")
-
-    pos("pixel_um", inp.pixel_um, "µm")
-    pos("focal_mm", inp.focal_mm, "mm")
-    pos("f_number", inp.f_number)
-    pos("sensor_width_mm", inp.sensor_width_mm, "mm")
-    pos("sensor_height_mm", inp.sensor_height_mm, "mm")
-    pos("height_m", inp.height_m, "m")
-    pos("exposure_s", inp.exposure_s, "s")
-    if not (math.isfinite(inp.speed_ms) and inp.speed_ms >= 0):
-        raise InputError("speed_ms", f"must be a finite number ≥ 0 m/s (got {inp.speed_ms!r})")
-    for name in ("forward_overlap_pct", "side_overlap_pct"):
-        v = getattr(inp, name)
-        if not (math.isfinite(v) and 0 <= v < 100):
-            raise InputError(name, f"must be ≥ 0 and < 100 % (got {v!r})")
-    for name in ("height_tolerance_up_pct", "height_tolerance_down_pct"):
-        v = getattr(inp, name)
-        if not (math.isfinite(v) and 0 <= v < 100):
-            raise InputError(name, f"must be ≥ 0 and < 100 % (got {v!r})")
-    for name in ("random_speed_ms", "roll_rate_rad_s", "pitch_rate_rad_s", "yaw_rate_rad_s"):
-        v = getattr(inp, name)
-        if not (math.isfinite(v) and v >= 0):
-            raise InputError(name, f"must be a finite number ≥ 0 (got {v!r})")
+    for name, unit in (("pixel_um", "µm"), ("focal_mm", "mm"), ("f_number", ""),
+                       ("sensor_width_mm", "mm"), ("sensor_height_mm", "mm"),
+                       ("height_m", "m"), ("exposure_s", "s")):
+        check_range(name, getattr(inp, name), lo=0, unit=unit)
+    for name in ("speed_ms", "random_speed_ms", "roll_rate_rad_s", "pitch_rate_rad_s",
+                 "yaw_rate_rad_s"):
+        check_range(name, getattr(inp, name), lo=0, lo_open=False)
+    for name in ("forward_overlap_pct", "side_overlap_pct", "height_tolerance_up_pct",
+                 "height_tolerance_down_pct"):
+        check_range(name, getattr(inp, name), lo=0, hi=100, lo_open=False, hi_open=True,
+                    unit="%")
     if not (0 <= inp.r_min <= inp.r_max <= 1 and inp.r_max > 0):
         raise InputError("r_min", f"need 0 ≤ r_min ≤ r_max ≤ 1 (got r_min {inp.r_min!r}, "
                          f"r_max {inp.r_max!r})")
     if inp.map_scale is not None:
-        pos("map_scale", inp.map_scale)
-        pos("relief_interval_m", inp.relief_interval_m, "m")
+        check_range("map_scale", inp.map_scale, lo=0)
+        check_range("relief_interval_m", inp.relief_interval_m, lo=0, unit="m")
     for name in ("area_width_m", "area_length_m"):
-        v = getattr(inp, name)
-        if v is not None:
-            pos(name, v, "m")
+        if getattr(inp, name) is not None:
+            check_range(name, getattr(inp, name), lo=0, unit="m")
 
 
 def _ground_limits(inp: UavInputs, rules: ScanRules) -> dict[str, tuple[float, str, str]]:
