@@ -15,6 +15,8 @@ from pathlib import Path
 
 import pytest
 
+from scanplan.reports.labels import LABELS
+
 pypdf = pytest.importorskip("pypdf")
 weasyprint = pytest.importorskip("weasyprint")
 
@@ -266,3 +268,29 @@ def test_templates_are_bundled():
                  "_macros.html"):
         assert (templates_dir() / name).is_file(), name
     assert Path(P.__file__).name == "pdf.py"
+
+
+def test_plan_with_both_sections_has_one_comparison_table(tmp_path):
+    """With a specification, the PDF shows the specification's side-by-side table only."""
+    from pathlib import Path
+
+    from scanplan.project import load_project
+    from scanplan.reports.pdf import render_html
+    from scanplan.spec import plan_project
+
+    examples = Path(__file__).resolve().parent.parent / "examples"
+    if not examples.is_dir():
+        pytest.skip("examples/ not found beside the tests")
+    film = (examples / "instruction-2000-film.toml").read_text(encoding="utf-8")
+    uav = (examples / "uav-canon-2000.toml").read_text(encoding="utf-8")
+    p = tmp_path / "both.toml"
+    p.write_text(film.replace("[area]", uav[uav.index("[uav]"):uav.index("[area]")] + "[area]"),
+                 encoding="utf-8")
+    r = plan_project(load_project(p))
+    old_heading = f">{LABELS['en']['pdf_comparison']}<"
+    html = render_html(scan=r.film.job, uav=r.uav.job, meta=r.meta, spec=r)
+    assert html.count("Film and UAV side by side") == 1
+    assert "pixel on the ground" in html
+    assert old_heading not in html
+    without_spec = render_html(scan=r.film.job, uav=r.uav.job, meta=r.meta)
+    assert old_heading in without_spec

@@ -621,8 +621,10 @@ def render_html(*, scan: ScanJob | None = None, uav: UavJob | None = None,
         "L": _Labels(f),
         "scan": _scan_view(scan, f) if scan is not None else None,
         "uav": _uav_view(uav, f) if uav is not None else None,
+        # with a specification its own side-by-side table is shown; not this one as well
         "comparison": (_comparison_view(scan, uav, f)
-                       if scan is not None and uav is not None else None),
+                       if scan is not None and uav is not None
+                       and not (spec is not None and spec.comparison) else None),
         "spec": _spec_view(spec, f) if spec is not None else None,
     }
     return _environment().get_template("report.html").render(**ctx)
