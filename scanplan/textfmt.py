@@ -116,10 +116,6 @@ def format_scan_plan(plan: ScanPlan, norm_name: str = "", norm_title: str = "") 
     return "\n".join(lines)
 
 
-def _m(x: float | None, digits: int = 3) -> str:
-    return "—" if x is None else f"{x:.{digits}f}"
-
-
 def format_uav_plan(plan: UavPlan, norm_name: str = "") -> str:
     """The terminal report of ``scanplan uav``."""
     inp = plan.inputs
@@ -140,22 +136,23 @@ def format_uav_plan(plan: UavPlan, norm_name: str = "") -> str:
     if h["max"] != h["planned"]:
         rows[0].append(f"at {h['max']:g} m")
     two = len(rows[0]) == 4
-    rows.append(["GSD", "m", _m(plan.gsd_m), *([_m(plan.gsd_at_max_height_m)] if two else [])])
+    rows.append(["GSD", "m", _num(plan.gsd_m, 3),
+                 *([_num(plan.gsd_at_max_height_m, 3)] if two else [])])
     rows.append(["sensor limit (Nyquist)", "lines/mm", f"{plan.nyquist_lpmm:.1f}",
                  *([""] if two else [])])
     rows.append(["resolving power R, centre / corner", "lines/mm",
                  f"{_num(plan.resolving_power_lpmm)} / {_num(plan.resolving_power_corner_lpmm)}",
                  *([""] if two else [])])
-    rows.append(["ground resolution L (centre)", "m", _m(plan.ground_resolution_m),
-                 *([_m(plan.ground_resolution_at_max_height_m)] if two else [])])
-    rows.append(["L at the frame corner", "m", _m(plan.ground_resolution_corner_m),
+    rows.append(["ground resolution L (centre)", "m", _num(plan.ground_resolution_m, 3),
+                 *([_num(plan.ground_resolution_at_max_height_m, 3)] if two else [])])
+    rows.append(["L at the frame corner", "m", _num(plan.ground_resolution_corner_m, 3),
                  *([""] if two else [])])
     rows.append(["L / GSD", "", _num(plan.ground_resolution_to_gsd, 2), *([""] if two else [])])
     rows.append([f"motion blur (at {h['min']:g} m)", "px", f"{plan.motion_blur_px:.2f}",
                  *([""] if two else [])])
     if plan.tilted_corner_gsd_m is not None:
         rows.append([f"worst corner GSD, roll {inp.roll_deg:g}° pitch {inp.pitch_deg:g}°", "m",
-                     "", *([_m(plan.tilted_corner_gsd_m)] if two else [])])
+                     "", *([_num(plan.tilted_corner_gsd_m, 3)] if two else [])])
     lines.append(table(rows, align="ll" + "r" * (len(rows[0]) - 2)))
     lines.append(f"blur ≤ 0.5 px needs exposure ≤ 1/{math.ceil(1 / plan.max_exposure_s):d} s "
                  f"or speed ≤ {plan.max_speed_ms:.1f} m/s")
@@ -249,7 +246,7 @@ def format_plan_result(result: Any) -> str:
                     ["  maximum flight height", f"{u.max_height_m:.0f} m ({p.binding} "
                      f"{CONSTRAINTS[p.binding].name})" if p.binding else "—"],
                     ["  GSD / ground resolution L", f"{p.gsd_m:.3f} m / "
-                     f"{_m(p.ground_resolution_m)} m (L/GSD "
+                     f"{_num(p.ground_resolution_m, 3)} m (L/GSD "
                      f"{_num(p.ground_resolution_to_gsd, 2)})"]]
             obj = p.inputs.map_object
             if obj is not None:
