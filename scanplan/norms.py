@@ -10,6 +10,8 @@ or a name under the user's norm directory (``$SCANPLAN_NORMS_DIR``, else
 from __future__ import annotations
 
 import csv
+import glob
+import io
 import math
 import os
 import tomllib
@@ -22,6 +24,7 @@ from typing import Any
 from .errors import InputError, NotFoundError
 from .normschema import PARAMETERS, TABLES, TableSpec, ValueSpec
 from .planner import ScanRules
+from .safeio import read_limited
 
 DEFAULT_NORM_SET = "gkinp-02-036-02"
 CATALOGUE = "catalogue"
@@ -155,7 +158,7 @@ class NormSet:
             if value is None:
                 continue
             spec = PARAMETERS[key]
-            converted = _convert(value, spec.value, f"--{key.replace('_', '-')}")
+            converted = _convert(value, spec.value, key)
             params[key] = converted
         constraints = params["constraints"]
         return ScanRules(
@@ -247,9 +250,26 @@ def _convert(raw: object, spec: ValueSpec, where: str) -> Any:
     return value
 
 
+MAX_SET_FILE_BYTES = 20 * 1024 * 1024
+"""Largest file of a norm-set folder read [bytes]."""
+
+
+def _read_text(path: Path) -> str:
+    """A file of a norm-set folder as text: a regular UTF-8 file of bounded size (a FIFO or
+    a link to /dev/zero is refused, never read)."""
+    data = read_limited(path, MAX_SET_FILE_BYTES, field=str(path))
+    try:
+        return data.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise InputError(str(path), f"is not UTF-8 text (byte {exc.start:,})") from None
+
+
 def _read_csv(path: Path) -> list[dict[str, str]]:
-    with path.open(encoding="utf-8", newline="") as fh:
-        return [dict(row) for row in csv.DictReader(fh)]
+    with io.StringIO(_read_text(path), newline="") as fh:
+        try:
+            return [dict(row) for row in csv.DictReader(fh)]
+        except csv.Error as exc:
+            raise InputError(str(path), f"cannot be read as CSV: {exc}") from None
 
 
 def _typed_rows(path: Path, spec: TableSpec) -> list[dict[str, Any]]:
@@ -289,20 +309,45 @@ def _catalogue() -> tuple[dict[str, Camera], dict[str, tuple[float, ...]], dict[
 def _resolve(name_or_path: str | os.PathLike[str]) -> tuple[Path, bool]:
     text = os.fspath(name_or_path)
     bundled = bundled_norms_dir()
-    if text and "/" not in text and os.sep not in text and text != CATALOGUE:
+    if not text.strip():
+        raise NotFoundError("--norms", "is empty; give a norm set name (scanplan norms list) "
+                            "or the path of a norm set folder")
+    # a name is looked up in the bundled and user folders; "..", ".x" and "a/b" are paths
+    is_name = "/" not in text and os.sep not in text and not text.startswith(".")
+    if text and is_name and text != CATALOGUE:
         if (bundled / text / "set.toml").is_file():
             return bundled / text, True
-        if (user_norms_dir() / text / "set.toml").is_file():
+        if (user_norms_dir() / text / "set.toml").is_file() or _put_back(text):
             return user_norms_dir() / text, False
     p = Path(text).expanduser()
     if (p / "set.toml").is_file():
         return p, False
     known = ", ".join(s for s, _ in list_norm_sets())
+    if not is_name or text.startswith("~"):
+        raise NotFoundError(
+            "--norms",
+            f"no norm set folder {text!r}: {p.absolute()} has no set.toml (a norm set is a "
+            f"bundled or imported name: {known}; or a folder with set.toml and its CSV files)",
+        )
     raise NotFoundError(
         "--norms",
         f"no norm set {text!r}: give a bundled or imported name ({known}) or the path of a "
         "norm set folder (scanplan norms list)",
     )
+
+
+def _put_back(name: str) -> bool:
+    """Restore user set ``name`` if a crashed ``norms import --force`` left it aside."""
+    folder = user_norms_dir()
+    try:
+        if not any(folder.glob(f".{glob.escape(name)}.old-*")):
+            return False
+        from .norms_io import recover_norm_dir
+
+        recover_norm_dir(folder, name)
+    except OSError:
+        return False
+    return (folder / name / "set.toml").is_file()
 
 
 def load_norm_set(name_or_path: str | os.PathLike[str] = DEFAULT_NORM_SET) -> NormSet:
@@ -354,7 +399,7 @@ def read_norm_set_folder(path: Path, *, bundled: bool = False) -> NormSet:
         If a file of the set breaks the schema (message names file, row and column).
     """
     try:
-        meta = tomllib.loads((path / "set.toml").read_text(encoding="utf-8")).get("set", {})
+        meta = tomllib.loads(_read_text(path / "set.toml")).get("set", {})
     except (OSError, tomllib.TOMLDecodeError) as exc:
         raise InputError(f"{path / 'set.toml'}", f"cannot be read: {exc}") from None
     params: dict[str, Any] = {}

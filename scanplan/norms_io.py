@@ -21,6 +21,8 @@ write_norm_set
     Write a parsed set as a user norm set (temporary folder + rename; ``force`` replaces).
 import_norm_file
     ``read_norm_file`` + ``write_norm_set``.
+recover_norm_dir
+    Finish or undo an import a crash interrupted (``.NAME.old-*``, ``.NAME.tmp-*``).
 write_template
     The template workbook.
 norm_set_dict
@@ -33,34 +35,49 @@ openpyxl is imported lazily: the rest of scanplan never needs it.
 
 from __future__ import annotations
 
+import bisect
+import contextlib
 import csv
 import dataclasses
 import datetime as _dt
+import errno
 import io
 import json
 import math
 import os
 import re
+import secrets
 import shutil
+import stat
 import tempfile
 import zipfile
-from collections.abc import Iterable, Mapping, Sequence
+import zlib
+from collections.abc import Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 from . import norms as _norms
-from .errors import InputError, NotFoundError
+from .errors import InputError, NotFoundError, WriteError
 from .normschema import PARAMETERS, TABLES, ColumnSpec, TableSpec, ValueSpec
+from .reports import write_atomic
+from .safeio import file_kind, read_limited
 
 __all__ = [
     "HEADER_SCAN_ROWS",
+    "MAX_CELLS",
+    "MAX_CELL_CHARS",
+    "MAX_COLUMNS",
     "MAX_COMPRESSION_RATIO",
+    "MAX_CSV_ROW_CHARS",
     "MAX_ERRORS_SHOWN",
     "MAX_FILE_BYTES",
     "MAX_MEMBER_BYTES",
+    "MAX_MERGED",
     "MAX_ROWS",
     "MAX_TOTAL_UNCOMPRESSED_BYTES",
+    "MAX_ZIP_DIRECTORY_BYTES",
+    "MAX_ZIP_MEMBERS",
     "META_TABLE",
     "ImportProblem",
     "NormImportError",
@@ -71,6 +88,7 @@ __all__ = [
     "norm_set_dict",
     "parse_number",
     "read_norm_file",
+    "recover_norm_dir",
     "write_norm_set",
     "write_template",
 ]
@@ -92,6 +110,20 @@ MAX_ERRORS_KEPT = 1000
 """Problems kept for ``--json`` (the total is always counted)."""
 HEADER_SCAN_ROWS = 20
 """Rows searched for the header row."""
+MAX_COLUMNS = 256
+"""Rightmost column a value may be in (IV, Excel 2003's last); a norm table has 14 at most."""
+MAX_CELLS = 3_000_000
+"""Most filled cells one workbook or CSV may have (bounds the memory a file can take)."""
+MAX_MERGED = 1_000
+"""Most merged cell ranges one sheet may have."""
+MAX_CELL_CHARS = 32_767
+"""Longest text one cell may hold (Excel's own limit)."""
+MAX_CSV_ROW_CHARS = 1_000_000
+"""Longest row of a CSV, all its lines [characters]."""
+MAX_ZIP_MEMBERS = 10_000
+"""Most parts (zip members) an .xlsx may have."""
+MAX_ZIP_DIRECTORY_BYTES = 2 * 1024 * 1024
+"""Largest zip directory of an .xlsx [bytes] (checked before it is parsed)."""
 
 XLSX_SUFFIXES = (".xlsx", ".xlsm")
 CSV_SUFFIXES = (".csv", ".txt", ".tsv")
@@ -164,6 +196,13 @@ class ImportProblem:
     value: str | None = None
     hint: str = ""
 
+    def __post_init__(self) -> None:
+        # text from the file is shown on a terminal: no control characters, no megabytes
+        for name, limit in (("address", 300), ("message", 2000), ("header", 200)):
+            object.__setattr__(self, name, _printable(getattr(self, name), limit))
+        if self.value is not None:
+            object.__setattr__(self, "value", _printable(self.value, 200))
+
     def __str__(self) -> str:
         parts = [self.address]
         if self.header:
@@ -179,6 +218,17 @@ class ImportProblem:
         d = dataclasses.asdict(self)
         d["text"] = str(self)
         return d
+
+
+_UNPRINTABLE = re.compile(r"[\x00-\x1f\x7f-\x9f\u202a-\u202e\u2066-\u2069]")
+
+
+def _printable(text: str, limit: int) -> str:
+    """``text`` safe to print: control (and bidi) characters escaped, cut at ``limit``."""
+    text = _UNPRINTABLE.sub(lambda m: f"\\u{ord(m.group()):04x}", str(text))
+    if len(text) > limit:
+        text = text[:limit] + f"… ({len(text):,} characters)"
+    return text
 
 
 def format_problems(
@@ -243,8 +293,9 @@ class _Problems:
             raise NormImportError(source, self.items, self.total)
 
 
-def _fail(source: str, message: str, hint: str = "") -> NormImportError:
-    return NormImportError(source, [ImportProblem(source, message, hint=hint)])
+def _fail(source: str, message: str, hint: str = "", at: str | None = None) -> NormImportError:
+    """One problem of file ``source``, at cell ``at`` (default: the file itself)."""
+    return NormImportError(source, [ImportProblem(at or source, message, hint=hint)])
 
 
 # =========================================================================================
@@ -397,6 +448,8 @@ def _convert(
         text = _num_text(raw)
     else:
         text = str(raw).strip()
+    if spec.kind == "text":
+        _check_text(text)
     if spec.kind == "choice":
         folded = {c.casefold(): c for c in spec.choices}
         text = folded.get(text.casefold(), text)
@@ -408,6 +461,40 @@ def _convert(
     if problem:
         raise _Bad(problem, "spelling matters" if spec.choices else "")
     return text
+
+
+_CONTROL = re.compile(r"[\x00-\x08\x0b\x0c\x0e-\x1f\x7f-\x9f]")
+_FORMULA_START = "=+-@"
+
+
+def _check_text(text: str) -> None:
+    """Refuse text a norm set must not store (raise _Bad).
+
+    A norm set is CSV files engineers open in Excel, and its text goes into workbooks:
+    text starting with ``=``, ``+``, ``-`` or ``@`` would run as a formula there
+    (``=HYPERLINK(...)``, ``+cmd|' /C calc'!A0``), so it is refused — numbers such as
+    ``-2`` and a lone ``-`` are fine. Leading tabs and line breaks are trimmed before.
+    Control characters (terminal escapes) and text longer than Excel's cell limit are
+    refused too.
+    """
+    if len(text) > MAX_CELL_CHARS:
+        raise _Bad(
+            f"the text is {len(text):,} characters long; the limit is {MAX_CELL_CHARS:,} "
+            "(Excel's, for one cell)",
+            "shorten it",
+        )
+    bad = _CONTROL.search(text)
+    if bad:
+        raise _Bad(
+            f"the text contains the control character U+{ord(bad.group()):04X}",
+            "delete it (it comes with text copied from another program)",
+        )
+    if len(text) > 1 and text[0] in _FORMULA_START and not _NUMBER_RE.fullmatch(text):
+        raise _Bad(
+            f'text may not start with "{text[0]}": it would run as a formula in Excel '
+            "(the norm set is stored as CSV files)",
+            f'delete the leading "{text[0]}", or start the text with a letter or digit',
+        )
 
 
 # =========================================================================================
@@ -503,18 +590,26 @@ class _Grid:
     formula_without_value: set[tuple[int, int]] = field(default_factory=set)
     percent_cells: set[tuple[int, int]] = field(default_factory=set)
     file_label: str = ""  # for base-set CSVs: "set/objects.csv" (file:row addresses)
-    _fill: dict[tuple[int, int], Any] = field(default_factory=dict)
+    # vertical merges: column → sorted (first row, last row, value); looked up, not expanded
+    _fill: dict[int, list[tuple[int, int, Any]]] = field(default_factory=dict)
+    _fill_starts: dict[int, list[int]] = field(default_factory=dict)
     _group: dict[tuple[int, int], Any] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
+        n = len(self.rows)
         for r1, c1, r2, c2 in self.merged:
+            if not (1 <= r1 <= n and 1 <= c1 <= MAX_COLUMNS) or r2 < r1 or c2 < c1:
+                continue  # nothing there (a merge below the data or right of the limit)
             top = self.raw(r1, c1)
-            if c1 == c2:  # a vertical merge: every row of it shows the value
-                for r in range(r1 + 1, r2 + 1):
-                    self._fill[(r, c1)] = top
+            r2, c2 = min(r2, n), min(c2, MAX_COLUMNS)
+            if c1 == c2 and r2 > r1 and top is not None:  # every row of it shows the value
+                self._fill.setdefault(c1, []).append((r1, r2, top))
             for r in range(r1, min(r2, HEADER_SCAN_ROWS) + 1):  # only headers use groups
                 for c in range(c1, min(c2, c1 + 200) + 1):
                     self._group[(r, c)] = top
+        for c, spans in self._fill.items():
+            spans.sort(key=lambda s: s[0])
+            self._fill_starts[c] = [s[0] for s in spans]
 
     def raw(self, r: int, c: int) -> Any:
         if r - 1 < len(self.rows):
@@ -525,8 +620,12 @@ class _Grid:
 
     def value(self, r: int, c: int) -> Any:
         v = self.raw(r, c)
-        if v is None and (r, c) in self._fill:
-            return self._fill[(r, c)]
+        if v is None and c in self._fill:
+            i = bisect.bisect_left(self._fill_starts[c], r) - 1
+            if i >= 0:
+                r1, r2, top = self._fill[c][i]
+                if r1 < r <= r2:
+                    return top
         return v
 
     def group(self, r: int, c: int) -> Any:
@@ -563,7 +662,7 @@ def _find_header(grid: _Grid, spec: TableSpec, problems: _Problems | None) -> _L
     index = _COLUMN_INDEX[spec.name]
     last_row = min(HEADER_SCAN_ROWS, len(grid.rows))
     width = max(
-        [grid.width(r) for r in range(1, last_row + 1)] + [c for (_, c) in grid._fill], default=0
+        [grid.width(r) for r in range(1, last_row + 1)] + list(grid._fill), default=0
     )
     best: tuple[int, dict[str, tuple[int, str]], list[tuple[int, str, str]]] | None = None
     for r in range(1, last_row + 1):
@@ -760,11 +859,15 @@ def _size(n: int) -> str:
 
 def _check_file(path: Path) -> int:
     try:
-        size = path.stat().st_size
+        st = path.stat()
     except OSError as exc:
         raise NotFoundError(str(path), f"cannot be read: {exc.strerror or exc}") from None
-    if not path.is_file():
-        raise InputError(str(path), "is not a file")
+    if not stat.S_ISREG(st.st_mode):
+        raise InputError(
+            str(path),
+            f"is {file_kind(st.st_mode)}, not a regular file; give the workbook or CSV file",
+        )
+    size = st.st_size
     if size > MAX_FILE_BYTES:
         raise _fail(
             path.name,
@@ -774,104 +877,190 @@ def _check_file(path: Path) -> int:
     return size
 
 
-_DOCTYPE = re.compile(rb"<!\s*(?:DOCTYPE|ENTITY)", re.I)
+# "<!DOCTYPE" / "<!ENTITY" in UTF-8 (or any ASCII-compatible encoding) and in UTF-16 LE/BE
+_DOCTYPE = re.compile(
+    rb"<!\s*(?:DOCTYPE|ENTITY)"
+    rb"|<\x00!\x00(?:\s\x00)*(?:D\x00O\x00C\x00T\x00Y\x00P\x00E|E\x00N\x00T\x00I\x00T\x00Y)"
+    rb"|\x00<\x00!(?:\x00\s)*\x00(?:D\x00O\x00C\x00T\x00Y\x00P\x00E|E\x00N\x00T\x00I\x00T\x00Y)",
+    re.I,
+)
+_SCAN_OVERLAP = 64  # bytes of one chunk searched again with the next (a DTD split by a chunk)
+_CHUNK = 1 << 20
+_ZIP_ERRORS: tuple[type[BaseException], ...] = (
+    zipfile.BadZipFile,
+    zlib.error,
+    OSError,
+    EOFError,
+    RuntimeError,  # an encrypted member
+    NotImplementedError,  # an unknown compression method
+)
+try:
+    import lzma
+
+    _ZIP_ERRORS += (lzma.LZMAError,)
+except ImportError:  # pragma: no cover - Python without lzma
+    pass
+_WIDEST_TABLE = max(len(t.columns) for t in TABLES.values())
+_WORKSHEET = re.compile(r"xl/worksheets/[^/]+\.xml")  # checked while they are streamed
 
 
-def _inspect_xlsx(path: Path) -> dict[str, bytes]:
-    """Check an .xlsx before any XML parser sees it: zip limits, no DTD anywhere.
+def _zip_directory_size(path: Path) -> int | None:
+    """Size of a zip's central directory [bytes] from its end records (None: none found).
+
+    Read before :class:`zipfile.ZipFile` parses the directory, whose every entry becomes an
+    object: a 20 MB file of empty entries would cost seconds and 100+ MB.
+    """
+    with open(path, "rb") as fh:
+        fh.seek(0, os.SEEK_END)
+        size = fh.tell()
+        n = min(size, 22 + 65535)
+        fh.seek(size - n)
+        tail = fh.read(n)
+        i = tail.rfind(b"PK\x05\x06")
+        if i < 0 or len(tail) - i < 22:
+            return None
+        cd = int.from_bytes(tail[i + 12 : i + 16], "little")
+        if i >= 20 and tail[i - 20 : i - 16] == b"PK\x06\x07":  # zip64: its record wins
+            fh.seek(int.from_bytes(tail[i - 12 : i - 4], "little"))
+            rec = fh.read(56)
+            if len(rec) == 56 and rec[:4] == b"PK\x06\x06":
+                cd = max(cd, int.from_bytes(rec[40:48], "little"))
+    return cd
+
+
+def _inspect_xlsx(zf: zipfile.ZipFile, name: str) -> dict[str, zipfile.ZipInfo]:
+    """Check an .xlsx before any XML parser sees it: zip limits, no DTD in any XML part.
+
+    Every limit is checked on the zip directory first (nothing is decompressed for a zip
+    bomb); then every XML part but the worksheets is streamed through the DTD check and
+    dropped (worksheets are checked the same way while :func:`_read_xlsx` streams them).
 
     Returns
     -------
     dict
-        Worksheet member name (``xl/worksheets/sheet1.xml``) → its XML.
+        Member name → its :class:`zipfile.ZipInfo`.
     """
-    name = path.name
-    try:
-        zf = zipfile.ZipFile(path)
-    except (zipfile.BadZipFile, OSError) as exc:
+    infos = zf.infolist()
+    if len(infos) > MAX_ZIP_MEMBERS:
+        raise _fail(
+            name, f"has {len(infos):,} zip members (the limit is {MAX_ZIP_MEMBERS:,})",
+            "not a norm workbook",
+        )
+    total = 0
+    for info in infos:
+        sheet = info.filename.startswith("xl/worksheets/")
+        hint = (
+            f"delete unused rows and columns: a norm table has at most {MAX_ROWS:,} rows"
+            if sheet
+            else "not a norm workbook"
+        )
+        if info.file_size > MAX_MEMBER_BYTES:
+            raise _fail(
+                name,
+                f"zip member {info.filename} would unpack to {_size(info.file_size)}; the "
+                f"limit is {_size(MAX_MEMBER_BYTES)}",
+                hint,
+            )
+        if (
+            info.file_size > 1_000_000
+            and info.compress_size
+            and info.file_size / info.compress_size > MAX_COMPRESSION_RATIO
+        ):
+            raise _fail(
+                name,
+                f"zip member {info.filename} is compressed "
+                f"{info.file_size / info.compress_size:.0f}:1; the limit is "
+                f"{MAX_COMPRESSION_RATIO}:1 (a zip bomb?)",
+                "not a norm workbook",
+            )
+        total += info.file_size
+    if total > MAX_TOTAL_UNCOMPRESSED_BYTES:
         raise _fail(
             name,
-            f"is not an .xlsx workbook (not a zip file: {exc})",
-            'save it from Excel as "Excel Workbook (*.xlsx)"',
+            f"would unpack to {_size(total)}; the limit is "
+            f"{_size(MAX_TOTAL_UNCOMPRESSED_BYTES)}",
+            "not a norm workbook",
+        )
+    for info in infos:
+        low = info.filename.lower()
+        if _WORKSHEET.fullmatch(low) or not low.endswith((".xml", ".rels", ".vml")):
+            continue
+        _stream_member(zf, info, name, f"zip member {info.filename}", lambda _chunk: None)
+    return {i.filename: i for i in infos}
+
+
+def _stream_member(
+    zf: zipfile.ZipFile, info: zipfile.ZipInfo, name: str, part: str, sink: Any
+) -> None:
+    """Decompress one member in 1 MB chunks into ``sink``, refusing a DTD in any chunk
+    (before ``sink`` sees it) and more bytes than :data:`MAX_MEMBER_BYTES`.
+
+    Nothing is kept: memory is one chunk whatever the member's size. ``sink`` may raise
+    to stop early (the rest is never decompressed).
+    """
+    got = 0
+    tail = b""
+    try:
+        with zf.open(info) as fh:
+            while chunk := fh.read(_CHUNK):
+                got += len(chunk)
+                if got > MAX_MEMBER_BYTES:
+                    raise _fail(
+                        name,
+                        f"{part} unpacks to more than {_size(MAX_MEMBER_BYTES)}",
+                        "not a norm workbook",
+                    )
+                window = tail + chunk
+                if _DOCTYPE.search(window):
+                    raise _fail(
+                        name,
+                        f"{part} declares a DTD or XML entities (entity expansion, "
+                        "'billion laughs', external entities); refused, nothing was read",
+                        "Excel never writes these: the file was made by something else",
+                    )
+                tail = window[-_SCAN_OVERLAP:]
+                sink(chunk)
+    except _ZIP_ERRORS as exc:
+        raise _fail(
+            name,
+            f"is a damaged .xlsx ({info.filename}: {exc})",
+            "open it in Excel and save it again",
         ) from None
-    out: dict[str, bytes] = {}
-    total = 0
-    with zf:
-        infos = zf.infolist()
-        if len(infos) > 10_000:
-            raise _fail(name, f"has {len(infos)} zip members; not a norm workbook")
-        for info in infos:
-            if info.file_size > MAX_MEMBER_BYTES:
-                raise _fail(
-                    name,
-                    f"zip member {info.filename} would unpack to "
-                    f"{_size(info.file_size)}; the limit is "
-                    f"{_size(MAX_MEMBER_BYTES)}",
-                    "not a norm workbook",
-                )
-            if (
-                info.file_size > 1_000_000
-                and info.compress_size
-                and info.file_size / info.compress_size > MAX_COMPRESSION_RATIO
-            ):
-                raise _fail(
-                    name,
-                    f"zip member {info.filename} is compressed "
-                    f"{info.file_size / info.compress_size:.0f}:1; the limit is "
-                    f"{MAX_COMPRESSION_RATIO}:1 (a zip bomb?)",
-                    "not a norm workbook",
-                )
-            if not info.filename.lower().endswith((".xml", ".rels", ".vml")):
-                continue
-            data = bytearray()
-            try:
-                with zf.open(info) as fh:
-                    while chunk := fh.read(1 << 20):
-                        data += chunk
-                        if len(data) > MAX_MEMBER_BYTES:
-                            raise _fail(
-                                name,
-                                f"zip member {info.filename} unpacks to more "
-                                f"than {_size(MAX_MEMBER_BYTES)}",
-                                "not a norm workbook",
-                            )
-            except (
-                zipfile.BadZipFile,
-                OSError,
-                EOFError,
-                RuntimeError,
-                NotImplementedError,
-            ) as exc:
-                raise _fail(
-                    name,
-                    f"is a damaged .xlsx ({info.filename}: {exc})",
-                    "open it in Excel and save it again",
-                ) from None
-            total += len(data)
-            if total > MAX_TOTAL_UNCOMPRESSED_BYTES:
-                raise _fail(
-                    name,
-                    f"unpacks to more than {_size(MAX_TOTAL_UNCOMPRESSED_BYTES)}",
-                    "not a norm workbook",
-                )
-            if b"<!" in data and _DOCTYPE.search(data):
-                raise _fail(
-                    name,
-                    f"zip member {info.filename} declares a DTD or XML entities "
-                    "(entity expansion, 'billion laughs'); refused",
-                    "Excel never writes these: the file was made by something else",
-                )
-            if info.filename.startswith("xl/worksheets/"):
-                out[info.filename] = bytes(data)
-    return out
 
 
 class _Refused(Exception):
-    """The XML declares a DTD or entities."""
+    """The XML declares a DTD or entities, or a sheet breaks a limit (see ``reason``)."""
+
+    def __init__(self, reason: str = "dtd", where: tuple[int, int] = (0, 0)) -> None:
+        super().__init__(reason)
+        self.reason = reason
+        self.where = where
 
 
 def _refuse(*_: object) -> None:
     raise _Refused
+
+
+class _SparseRow(Sequence[Any]):
+    """A row with few values far apart (``A5`` and ``IV5``): stored as a dict, not a list."""
+
+    __slots__ = ("cells", "n")
+
+    def __init__(self, cells: dict[int, Any], n: int) -> None:
+        self.cells = cells  # 1-based column → value
+        self.n = n
+
+    def __len__(self) -> int:
+        return self.n
+
+    def __getitem__(self, i: Any) -> Any:
+        if isinstance(i, slice):
+            return [self[j] for j in range(*i.indices(self.n))]
+        if i < 0:
+            i += self.n
+        if not 0 <= i < self.n:
+            raise IndexError(i)
+        return self.cells.get(i + 1)
 
 
 class _SheetReader:
@@ -880,7 +1069,13 @@ class _SheetReader:
     Values: str, float, bool, an Excel error string (``"#DIV/0!"``), ``datetime`` marker for
     date-formatted numbers. Also records merged ranges, formula cells without a cached
     value and percent-formatted cells. DTDs and entity declarations are refused, as
-    defusedxml does.
+    defusedxml does. Feed it chunks (:meth:`feed`, :meth:`close`) or a whole part
+    (:meth:`parse`).
+
+    Limits (raise :class:`_Refused` with ``reason`` and the cell, and stop reading): a value
+    below row ``max_rows`` ("rows"), right of column ``max_columns`` ("columns"), more than
+    ``max_cells`` values ("cells"), more than :data:`MAX_MERGED` merged ranges ("merged").
+    Empty rows and cells (formatting only) count for none of them.
     """
 
     def __init__(
@@ -890,17 +1085,22 @@ class _SheetReader:
         percent_styles: set[int],
         max_rows: int,
         epoch: _dt.datetime = _dt.datetime(1899, 12, 30),
+        *,
+        max_columns: int | None = None,
+        max_cells: int | None = None,
     ) -> None:
         self.shared = shared
         self.epoch = epoch
         self.date_styles = date_styles
         self.percent_styles = percent_styles
         self.max_rows = max_rows
+        self.max_columns = MAX_COLUMNS if max_columns is None else max_columns
+        self.cells_left = MAX_CELLS if max_cells is None else max_cells
         self.rows: dict[int, dict[int, Any]] = {}
         self.merged: list[tuple[int, int, int, int]] = []
         self.formula_missing: set[tuple[int, int]] = set()
         self.percent: set[tuple[int, int]] = set()
-        self.too_many = 0
+        self._parser: Any = None
         self._row = 0
         self._col = 0
         self._attrs: dict[str, str] = {}
@@ -911,7 +1111,7 @@ class _SheetReader:
         self._in_is = False
         self._in_rph = 0
 
-    def parse(self, data: bytes) -> None:
+    def _make_parser(self) -> Any:
         import xml.parsers.expat as expat
 
         p = expat.ParserCreate()
@@ -924,14 +1124,41 @@ class _SheetReader:
         p.StartElementHandler = self._start
         p.EndElementHandler = self._end
         p.CharacterDataHandler = self._chars
-        p.Parse(data, True)
+        return p
+
+    def feed(self, data: bytes) -> None:
+        """Parse the next chunk of the part."""
+        if self._parser is None:
+            self._parser = self._make_parser()
+        self._parser.Parse(data, False)
+
+    def close(self) -> None:
+        """The part is complete (expat reports a truncated one)."""
+        if self._parser is None:
+            self._parser = self._make_parser()
+        self._parser.Parse(b"", True)
+
+    def parse(self, data: bytes) -> None:
+        """Parse a whole part."""
+        self.feed(data)
+        self.close()
+
+    def _place(self, pos: tuple[int, int]) -> None:
+        """Count a value at ``pos`` against the limits (refuse, and stop, past one)."""
+        if pos[0] > self.max_rows:
+            raise _Refused("rows", pos)
+        if pos[1] > self.max_columns:
+            raise _Refused("columns", pos)
+        self.cells_left -= 1
+        if self.cells_left < 0:
+            raise _Refused("cells", pos)
 
     def _start(self, tag: str, attrs: dict[str, str]) -> None:
         tag = tag.rpartition(":")[2]
         if tag == "c":
             ref = attrs.get("r")
             if ref:
-                m = re.fullmatch(r"([A-Z]{1,3})(\d+)", ref)
+                m = re.fullmatch(r"([A-Z]{1,3})(\d{1,9})", ref)
                 if m:
                     self._col = _col_number(m.group(1))
                     self._row = int(m.group(2))
@@ -945,11 +1172,8 @@ class _SheetReader:
             self._has_f = False
         elif tag == "row":
             r = attrs.get("r")
-            self._row = int(r) if r and r.isdigit() else self._row + 1
+            self._row = int(r) if r and r.isdigit() and len(r) < 10 else self._row + 1
             self._col = 0
-            if self._row > self.max_rows:
-                self.too_many = self._row
-                raise _Refused("rows")
         elif tag == "v":
             self._text = []
         elif tag == "t" and self._in_is and not self._in_rph:
@@ -966,9 +1190,11 @@ class _SheetReader:
                 a, _, b = ref.partition(":")
                 r1, c1 = _cell_ref(a)
                 r2, c2 = _cell_ref(b) if b else (r1, c1)
-                self.merged.append((r1, c1, r2, c2))
             except ValueError:
-                pass
+                return
+            if len(self.merged) >= MAX_MERGED:
+                raise _Refused("merged", (r1, c1))
+            self.merged.append((r1, c1, r2, c2))
 
     def _chars(self, data: str) -> None:
         if self._text is not None:
@@ -998,13 +1224,15 @@ class _SheetReader:
             value = "".join(self._inline)
         elif v is None or v == "":
             if self._has_f:
+                self._place(pos)
                 self.formula_missing.add(pos)
             return
         elif t == "s":
             try:
-                value = self.shared[int(v)]
-            except (ValueError, IndexError):
-                value = None
+                i = int(v)
+            except ValueError:
+                i = -1
+            value = self.shared[i] if 0 <= i < len(self.shared) else None
             if value is not None and not isinstance(value, str):
                 value = str(value)
         elif t in ("str", "e"):
@@ -1027,12 +1255,13 @@ class _SheetReader:
                 if si in self.date_styles and isinstance(value, float):
                     try:
                         value = self.epoch + _dt.timedelta(days=value)
-                    except OverflowError:
+                    except (OverflowError, ValueError):
                         value = _dt.datetime(1900, 1, 1)
                 elif si in self.percent_styles:
                     self.percent.add(pos)
-        if value is None:
+        if value is None or value == "":
             return
+        self._place(pos)
         self.rows.setdefault(self._row, {})[self._col] = value
 
     def grid(self, label: str) -> _Grid:
@@ -1043,9 +1272,14 @@ class _SheetReader:
             if not cells:
                 rows.append(())
                 continue
-            line = [None] * max(cells)
+            width = max(cells)
+            if width > 2 * len(cells) + 16:  # a few values far apart: keep them sparse
+                rows.append(_SparseRow(cells, width))
+                continue
+            line = [None] * width
             for c, v in cells.items():
-                line[c - 1] = v
+                if c > 0:
+                    line[c - 1] = v
             rows.append(line)
         return _Grid(
             label,
@@ -1077,110 +1311,241 @@ def _percent_styles(wb: Any) -> set[int]:
     return out
 
 
+def _sheet_refusal(exc: _Refused, title: str, name: str) -> NormImportError:
+    """The message for a worksheet :class:`_SheetReader` refused."""
+    r, c = exc.where
+    at = _Grid(title, []).address(r, max(c, 1))
+    if exc.reason == "rows":
+        return _fail(
+            name,
+            f"sheet {title!r} has more than {MAX_ROWS:,} rows (a value in row {r:,}); "
+            "refused without reading further",
+            "delete unused rows below the table or split it",
+            at=at,
+        )
+    if exc.reason == "columns":
+        return _fail(
+            name,
+            f"a value in column {_col_letter(c)}, right of column {_col_letter(MAX_COLUMNS)} "
+            f"(the limit; a norm table has at most {_WIDEST_TABLE} columns)",
+            "delete the cells right of the table, or move notes to another sheet",
+            at=at,
+        )
+    if exc.reason == "cells":
+        return _fail(
+            name,
+            f"more than {MAX_CELLS:,} filled cells in the workbook; refused without reading "
+            "further",
+            "a norm workbook is small: delete unused rows, columns and sheets",
+            at=at,
+        )
+    if exc.reason == "merged":
+        return _fail(
+            name,
+            f"sheet {title!r} has more than {MAX_MERGED:,} merged cell ranges",
+            "unmerge the cells (Home → Merge & Center → Unmerge Cells)",
+            at=at,
+        )
+    return _fail(
+        name,
+        f"sheet {title!r} declares a DTD or XML entities; refused, nothing was read",
+        "Excel never writes these",
+    )
+
+
 def _read_xlsx(path: Path) -> list[_Grid]:
-    """Every sheet of a workbook as a grid.
+    """Every sheet of a workbook as a grid (sheets that are no norm table: empty grids).
 
     openpyxl (which uses defusedxml when it is installed) reads the workbook part: sheet
-    names and order, shared strings, number formats. The worksheets themselves are
-    streamed by :class:`_SheetReader` (expat, DTDs refused) — openpyxl's cell reader
-    takes several times longer on a 10,000-row table.
+    names and order, shared strings, number formats (:func:`_read_workbook_part`). The
+    worksheets of norm tables are streamed from the zip by :class:`_SheetReader` (expat,
+    DTDs refused) in 1 MB chunks, and reading stops at the first limit broken — a
+    million-row sheet is refused after :data:`MAX_ROWS` rows, never held in memory. Other
+    sheets are never read. openpyxl's cell reader takes several times longer on a
+    10,000-row table.
     """
-    sheets_xml = _inspect_xlsx(path)
+    name = path.name
+    try:
+        directory = _zip_directory_size(path)
+    except OSError as exc:
+        raise _fail(name, f"cannot be read ({exc.strerror or exc})") from None
+    if directory is not None and directory > MAX_ZIP_DIRECTORY_BYTES:
+        raise _fail(
+            name,
+            f"has a zip directory of {_size(directory)}; the limit is "
+            f"{_size(MAX_ZIP_DIRECTORY_BYTES)}",
+            "not a norm workbook",
+        )
+    try:
+        zf = zipfile.ZipFile(path)
+    except Exception as exc:  # BadZipFile, OSError, ValueError, ... for a file that is no zip
+        raise _fail(
+            name,
+            f"is not an .xlsx workbook (not a zip file: {exc})",
+            'save it from Excel as "Excel Workbook (*.xlsx)"',
+        ) from None
+    with zf:
+        members = _inspect_xlsx(zf, name)
+        book = _read_workbook_part(path, name)
+        grids = []
+        date_styles, pct_styles, epoch = book["date_styles"], book["percent_styles"], book["epoch"]
+        cells_left = MAX_CELLS
+        for title, state, member in book["sheets"]:
+            table = _match(_SHEET_INDEX, title)
+            if table is None:
+                if state == "visible":
+                    grids.append(_Grid(title, []))  # ignored (with a note), never read
+                continue
+            info = members.get(member)
+            if info is None:
+                raise _fail(
+                    name,
+                    f"sheet {title!r} has no worksheet part ({member or '?'})",
+                    "open it in Excel and save it again",
+                )
+            reader = _SheetReader(
+                book["shared"],
+                date_styles,
+                pct_styles,
+                MAX_ROWS + HEADER_SCAN_ROWS,
+                epoch,
+                max_cells=cells_left,
+            )
+            part = f"sheet {title!r} (zip member {member})"
+            try:
+                _stream_member(zf, info, name, part, reader.feed)
+                reader.close()
+            except _Refused as exc:
+                raise _sheet_refusal(exc, title, name) from None
+            except InputError:
+                raise
+            except Exception as exc:  # expat errors on a damaged sheet
+                raise _fail(
+                    name,
+                    f"sheet {title!r} cannot be read ({type(exc).__name__}: {exc})",
+                    "open it in Excel and save it again",
+                ) from None
+            cells_left = reader.cells_left
+            grids.append(reader.grid(title))
+    return grids
+
+
+def _read_workbook_part(path: Path, name: str) -> dict[str, Any]:
+    """What openpyxl reads of a workbook: sheet names, states and parts, shared strings,
+    date and percent styles, the date epoch.
+
+    openpyxl parses these parts with defusedxml (its presence switches openpyxl to it). Its
+    ``load_workbook`` would also parse the start of every worksheet — all of one without a
+    ``<dimension>`` element, 12 s for a million rows — so only the parts needed are read,
+    with openpyxl's own reader, and no worksheet is opened here.
+    """
     try:
         import openpyxl
+        from openpyxl.reader.excel import ExcelReader
+        from openpyxl.styles.stylesheet import apply_stylesheet
     except ImportError:  # pragma: no cover - a declared dependency
         raise InputError(
-            path.name, "reading .xlsx needs openpyxl: pip install openpyxl defusedxml"
+            name, "reading .xlsx needs openpyxl: pip install openpyxl defusedxml"
         ) from None
     if not getattr(openpyxl, "DEFUSEDXML", False):  # pragma: no cover
-        raise InputError(path.name, "reading .xlsx safely needs defusedxml: pip install defusedxml")
+        raise InputError(name, "reading .xlsx safely needs defusedxml: pip install defusedxml")
+    reader = None
     try:
-        wb = openpyxl.load_workbook(path, read_only=True, data_only=True, keep_links=False)
+        reader = ExcelReader(path, read_only=True, keep_vba=False, data_only=True,
+                             keep_links=False)
+        reader.read_manifest()
+        reader.read_strings()
+        reader.read_workbook()
+        wb = reader.wb
+        apply_stylesheet(reader.archive, wb)
+        sheets = [
+            (str(sheet.name), str(sheet.state or "visible"), str(rel.target).lstrip("/"))
+            for sheet, rel in reader.parser.find_sheets()
+            if "chartsheet" not in str(rel.Type)
+        ]
     except Exception as exc:  # openpyxl raises many types for broken files
         kind = type(exc).__name__
         cause: BaseException | None = exc
         while cause is not None:  # openpyxl wraps defusedxml's refusal in a ValueError
             if any(w in type(cause).__name__ for w in ("Forbidden", "DTD", "Entit")):
                 raise _fail(
-                    path.name,
+                    name,
                     f"declares a DTD or XML entities ({type(cause).__name__}); refused",
                     "Excel never writes these: the file was made by something else",
                 ) from None
             cause = cause.__cause__ or cause.__context__
         raise _fail(
-            path.name,
+            name,
             f"cannot be read as an .xlsx workbook ({kind}: {exc})",
             'open it in Excel and save it as "Excel Workbook (*.xlsx)"',
         ) from None
-    grids = []
-    try:
-        date_styles = set(getattr(wb, "_date_formats", ())) | set(
-            getattr(wb, "_timedelta_formats", ())
-        )
-        pct_styles = _percent_styles(wb)
-        epoch = _dt.datetime(1899, 12, 30)
-        if getattr(wb, "epoch", None) == _dt.datetime(1904, 1, 1):
-            epoch = _dt.datetime(1904, 1, 1)
-        for ws in wb.worksheets:
-            if (
-                getattr(ws, "sheet_state", "visible") != "visible"
-                and _match(_SHEET_INDEX, ws.title) is None
-            ):
-                continue
-            member = str(getattr(ws, "_worksheet_path", "")).lstrip("/")
-            data = sheets_xml.get(member)
-            if data is None:
-                raise _fail(
-                    path.name,
-                    f"sheet {ws.title!r} has no worksheet part ({member or '?'})",
-                    "open it in Excel and save it again",
-                )
-            reader = _SheetReader(
-                getattr(ws, "_shared_strings", []),
-                date_styles,
-                pct_styles,
-                MAX_ROWS + HEADER_SCAN_ROWS,
-                epoch,
-            )
-            try:
-                reader.parse(data)
-            except _Refused:
-                if reader.too_many:
-                    raise _fail(
-                        _Grid(ws.title, []).address(reader.too_many, 1),
-                        f"sheet {ws.title!r} has more than {MAX_ROWS:,} rows",
-                        "delete unused rows below the table or split it",
-                    ) from None
-                raise _fail(
-                    path.name,
-                    f"sheet {ws.title!r} declares a DTD or XML entities; refused",
-                    "Excel never writes these",
-                ) from None
-            except Exception as exc:  # expat errors on a damaged sheet
-                raise _fail(
-                    path.name,
-                    f"sheet {ws.title!r} cannot be read ({type(exc).__name__}: {exc})",
-                    "open it in Excel and save it again",
-                ) from None
-            grids.append(reader.grid(ws.title))
     finally:
-        wb.close()
-    return grids
+        if reader is not None:
+            reader.archive.close()
+    epoch = _dt.datetime(1899, 12, 30)
+    if getattr(wb, "epoch", None) == _dt.datetime(1904, 1, 1):
+        epoch = _dt.datetime(1904, 1, 1)
+    return {
+        "sheets": sheets,
+        "shared": reader.shared_strings,
+        "date_styles": set(getattr(wb, "_date_formats", ()))
+        | set(getattr(wb, "_timedelta_formats", ())),
+        "percent_styles": _percent_styles(wb),
+        "epoch": epoch,
+    }
 
 
-def _decode_text(data: bytes) -> str:
+def _decode_text(data: bytes, name: str = "the file") -> str:
+    """The text of a CSV: UTF-16 (with a BOM), UTF-8 (BOM or not), else Windows-1251."""
+    hint = 'save it from Excel as "CSV UTF-8 (Comma delimited) (*.csv)"'
     if data.startswith((b"\xff\xfe", b"\xfe\xff")):
-        return data.decode("utf-16")
-    try:
-        return data.decode("utf-8-sig")
-    except UnicodeDecodeError:
-        return data.decode("cp1251")  # a Russian-locale Excel "CSV (разделители - запятые)"
+        try:
+            text = data.decode("utf-16")
+        except UnicodeDecodeError as exc:
+            raise _fail(
+                name, f"is not valid UTF-16 text (byte {exc.start:,}: {exc.reason})", hint
+            ) from None
+    else:
+        try:
+            text = data.decode("utf-8-sig")
+        except UnicodeDecodeError:
+            try:  # a Russian-locale Excel "CSV (разделители - запятые)"
+                text = data.decode("cp1251")
+            except UnicodeDecodeError as exc:
+                raise _fail(
+                    name,
+                    f"is neither UTF-8 nor Windows-1251 text (byte 0x{data[exc.start]:02X} at "
+                    f"position {exc.start:,})",
+                    hint,
+                ) from None
+    if "\x00" in text:
+        raise _fail(
+            name,
+            "contains NUL characters: a binary file, or UTF-16 text without a byte-order mark",
+            hint,
+        )
+    return text
+
+
+_EOL = re.compile(r"\r\n|\r|\n")
+
+
+class _RowTooLong(Exception):
+    """A CSV row (with all its lines) is longer than :data:`MAX_CSV_ROW_CHARS`."""
 
 
 def _read_csv_grid(path: Path) -> _Grid:
-    """A CSV (UTF-8, UTF-16 or cp1251; comma, semicolon or tab separated) as a grid."""
-    text = _decode_text(path.read_bytes())
-    sample = "\n".join(text.splitlines()[: HEADER_SCAN_ROWS + 5])
+    """A CSV (UTF-8, UTF-16 or cp1251; comma, semicolon or tab separated) as a grid.
+
+    Bounded: the file is read with a limit, a row may hold at most
+    :data:`MAX_CSV_ROW_CHARS` characters (checked line by line, before the row is split),
+    :data:`MAX_COLUMNS` columns and the file :data:`MAX_CELLS` values; reading stops at the
+    first row past :data:`MAX_ROWS`.
+    """
+    name = path.name
+    text = _decode_text(read_limited(path, MAX_FILE_BYTES, field=str(path)), name)
+    head = text[: 64 * 1024]  # the separator is sniffed on the first lines only
+    sample = "\n".join(head.splitlines()[: HEADER_SCAN_ROWS + 5])
     counts = {d: sample.count(d) for d in (";", "\t", ",")}
     try:
         delim = csv.Sniffer().sniff(sample, delimiters=";\t,").delimiter
@@ -1189,15 +1554,69 @@ def _read_csv_grid(path: Path) -> _Grid:
     # a Russian Excel writes ";" and decimal commas: prefer ";" when it is on every line
     if delim == "," and counts[";"] and all(";" in ln for ln in sample.splitlines() if ln):
         delim = ";"
-    rows = []
-    for i, row in enumerate(csv.reader(io.StringIO(text, newline=""), delimiter=delim)):
-        if i > MAX_ROWS + HEADER_SCAN_ROWS:
-            raise _fail(
-                path.name,
-                f"has more than {MAX_ROWS:,} rows",
-                "split the table or delete unused rows",
-            )
-        rows.append(tuple(row))
+    row_chars = [0]
+
+    def lines() -> Iterator[str]:  # physical lines, each counted before it is cut out
+        pos, end = 0, len(text)
+        while pos < end:
+            m = _EOL.search(text, pos)
+            stop = m.end() if m else end
+            row_chars[0] += stop - pos
+            if row_chars[0] > MAX_CSV_ROW_CHARS:
+                raise _RowTooLong
+            yield text[pos:stop]
+            pos = stop
+
+    label = _Grid(path.stem, [])
+    rows: list[Sequence[str]] = []
+    cells = 0
+    reader = csv.reader(lines(), delimiter=delim)
+    try:
+        for row in reader:
+            row_chars[0] = 0
+            n = len(rows) + 1
+            if n > MAX_ROWS + HEADER_SCAN_ROWS:
+                raise _fail(
+                    name,
+                    f"more than {MAX_ROWS:,} rows (row {n:,} is past the limit); refused "
+                    "without reading further",
+                    "split the table or delete unused rows",
+                    at=label.address(n, 1),
+                )
+            while row and not row[-1]:  # Excel pads rows with separators
+                row.pop()
+            if len(row) > MAX_COLUMNS:
+                raise _fail(
+                    name,
+                    f"row {n:,} has {len(row):,} columns; the limit is {MAX_COLUMNS} (a norm "
+                    f"table has at most {_WIDEST_TABLE})",
+                    "delete the columns right of the table",
+                    at=label.address(n, MAX_COLUMNS + 1),
+                )
+            cells += sum(1 for v in row if v)
+            if cells > MAX_CELLS:
+                raise _fail(
+                    name,
+                    f"more than {MAX_CELLS:,} filled cells; refused without reading further",
+                    "a norm table is small: delete unused rows and columns",
+                    at=label.address(n, 1),
+                )
+            rows.append(tuple(row))
+    except _RowTooLong:
+        raise _fail(
+            name,
+            f"row {len(rows) + 1:,} is longer than {MAX_CSV_ROW_CHARS:,} characters (a "
+            "runaway quote, or not a CSV file)",
+            "check the quotes in that row; a norm table row is short",
+            at=label.address(len(rows) + 1, 1),
+        ) from None
+    except csv.Error as exc:
+        raise _fail(
+            name,
+            f"cannot be read as CSV (line {reader.line_num:,}: {exc})",
+            f"one cell holds at most {MAX_CELL_CHARS:,} characters; check the quotes",
+            at=label.address(len(rows) + 1, 1),
+        ) from None
     return _Grid(path.stem, rows)
 
 
@@ -1465,7 +1884,7 @@ def read_norm_file(
             h = loc.grid.value(loc.header_row, c)
             if c not in known and not _is_empty(h):
                 warnings.append(
-                    f'{loc.grid.address(loc.header_row, c)}: column "{h}" '
+                    f'{loc.grid.address(loc.header_row, c)}: column "{_printable(h, 200)}" '
                     "ignored (not a column of table "
                     f"{loc.spec.name!r})"
                 )
@@ -1570,10 +1989,105 @@ def _toml_str(s: str) -> str:
 
 
 def _write_file(path: Path, text: str) -> None:
-    with open(path, "w", encoding="utf-8", newline="") as fh:
-        fh.write(text)
-        fh.flush()
-        os.fsync(fh.fileno())
+    """Create ``path`` (it must not exist) with ``text`` as UTF-8, fsynced."""
+    fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_BINARY", 0), 0o666)
+    try:
+        view = memoryview(text.encode("utf-8"))
+        while view:
+            n = os.write(fd, view)
+            if n <= 0:
+                raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+            view = view[n:]
+        os.fsync(fd)
+    finally:
+        os.close(fd)
+
+
+# An import's own folders beside the set: ".NAME.tmp-XXXXXXXX" (the new set being written)
+# and ".NAME.old-XXXXXXXX" (the set it replaces, between the two renames).
+_LEFTOVER = re.compile(r"\.(?P<name>.+)\.(?P<kind>tmp|old)-[A-Za-z0-9_]{8}")
+
+
+@contextlib.contextmanager
+def _norm_dir_lock(folder: Path) -> Iterator[None]:
+    """Serialise imports and repairs in one norm directory (``flock``; no-op without it)."""
+    fd = None
+    try:
+        import fcntl
+
+        fd = os.open(folder, os.O_RDONLY)
+        fcntl.flock(fd, fcntl.LOCK_EX)
+    except (ImportError, OSError):
+        pass
+    try:
+        yield
+    finally:
+        if fd is not None:
+            os.close(fd)
+
+
+def recover_norm_dir(
+    root: str | os.PathLike[str] | None = None, name: str | None = None
+) -> list[str]:
+    """Finish or undo the imports a crash (power loss, ``kill -9``) interrupted.
+
+    :func:`write_norm_set` replaces a set by renaming it to ``.NAME.old-*``, renaming the
+    new one (``.NAME.tmp-*``) in, and deleting the old one. After a crash between the two
+    renames the set is missing and its previous content sits in ``.NAME.old-*``: it is put
+    back. A ``.NAME.old-*`` beside an existing ``NAME`` (the crash came after the swap) and
+    every ``.NAME.tmp-*`` (an unfinished new set) are deleted. Runs at the start of every
+    import, of ``scanplan norms list``, and when a set name is not found.
+
+    Parameters
+    ----------
+    root : path, optional
+        Norm directory (default :func:`scanplan.norms.user_norms_dir`).
+    name : str, optional
+        Only this set's leftovers.
+
+    Returns
+    -------
+    list of str
+        What was done, one line each (empty when nothing was left over).
+
+    Raises
+    ------
+    WriteError
+        A previous set could not be put back (it stays where it is; nothing is deleted).
+    """
+    root_dir = Path(root) if root is not None else _norms.user_norms_dir()
+    if not root_dir.is_dir():
+        return []
+    with _norm_dir_lock(root_dir):
+        return _recover_locked(root_dir, name)
+
+
+def _recover_locked(root_dir: Path, only: str | None = None) -> list[str]:
+    found: dict[str, dict[str, list[Path]]] = {}
+    for p in sorted(root_dir.iterdir()):
+        m = _LEFTOVER.fullmatch(p.name)
+        if m and (only is None or m["name"] == only) and p.is_dir() and not p.is_symlink():
+            found.setdefault(m["name"], {"tmp": [], "old": []})[m["kind"]].append(p)
+    done = []
+    for name, kinds in found.items():
+        target = root_dir / name
+        olds = kinds["old"]
+        backups = [p for p in olds if (p / "set.toml").is_file()]
+        if backups and not os.path.lexists(target):
+            keep = max(backups, key=lambda p: (p / "set.toml").stat().st_mtime)
+            try:
+                os.replace(keep, target)
+            except OSError as exc:
+                raise WriteError.from_os_error(
+                    str(target), exc, action=f"put back norm set {name!r} from {keep.name} to"
+                ) from exc
+            olds = [p for p in olds if p != keep]
+            done.append(f"put back norm set {name!r} (an interrupted import had moved it to "
+                        f"{keep.name})")
+        for p in olds + kinds["tmp"]:
+            shutil.rmtree(p, ignore_errors=True)
+            done.append(f"deleted {p.name} (left by an interrupted import)")
+    return done
 
 
 def _csv_text(spec: TableSpec, rows: Sequence[Mapping[str, str]]) -> str:
@@ -1598,7 +2112,9 @@ def write_norm_set(
     The set is written to a temporary folder next to the target (same file system),
     loaded back with the regular loader, and renamed into place. With ``force`` an
     existing set is moved aside, the new one renamed in, and the old one deleted (restored
-    if the rename fails). Any failure leaves the norm directory as it was.
+    if the rename fails). Any failure — including ``KeyboardInterrupt`` — leaves the norm
+    directory as it was; what a crash leaves behind is put right by
+    :func:`recover_norm_dir`, which runs first (under a lock on the directory).
 
     Parameters
     ----------
@@ -1617,6 +2133,14 @@ def write_norm_set(
     -------
     Path
         The set's folder.
+
+    Raises
+    ------
+    InputError
+        ``--name``: unsafe, or taken and no ``force``.
+    WriteError
+        The set could not be written (disk full, permission, interrupted rename); the
+        message names the set's folder and the reason.
     """
     check_set_name(name)
     root_dir = Path(root) if root is not None else _norms.user_norms_dir()
@@ -1625,7 +2149,6 @@ def write_norm_set(
         raise InputError(
             "--name", f"norm set {name!r} already exists ({target}); give --force to replace it"
         )
-    root_dir.mkdir(parents=True, exist_ok=True)
     meta = dict(parsed.meta)
     default_title = (
         f"{name}: imported from {parsed.source_file}"
@@ -1645,34 +2168,81 @@ def write_norm_set(
     ]
     if parsed.base:
         toml.append(f"base = {_toml_str(parsed.base)}")
+    files = {TABLES[t].file: _csv_text(TABLES[t], rows) for t, rows in parsed.tables.items()}
+    files["set.toml"] = "\n".join(toml) + "\n"
+    action = f"write norm set {name!r} to"
+    created = []  # the norm directory and its parents this import creates
+    probe = root_dir.absolute()
+    while not os.path.lexists(probe) and probe != probe.parent:
+        created.append(probe)
+        probe = probe.parent
+    try:
+        try:
+            root_dir.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise WriteError.from_os_error(str(root_dir), exc, action="create folder") from exc
+        with _norm_dir_lock(root_dir):
+            try:
+                _recover_locked(root_dir, name)
+                if target.exists() and not force:  # a set the recovery put back
+                    raise InputError(
+                        "--name",
+                        f"norm set {name!r} already exists ({target}); give --force to "
+                        "replace it",
+                    )
+                _swap_in(root_dir, name, files)
+            except OSError as exc:
+                if isinstance(exc, WriteError):
+                    raise
+                raise WriteError.from_os_error(str(target), exc, action=action) from exc
+    except BaseException:
+        for folder in created:  # deepest first; only while still empty
+            try:
+                folder.rmdir()
+            except OSError:
+                break
+        raise
+    return target
+
+
+def _swap_in(root_dir: Path, name: str, files: Mapping[str, str]) -> None:
+    """Write ``files`` as set ``name``: temporary folder, verify, rename (swap) into place."""
+    target = root_dir / name
     tmp = Path(tempfile.mkdtemp(prefix=f".{name}.tmp-", dir=root_dir))
     old: Path | None = None
     try:
         mask = os.umask(0o022)
         os.umask(mask)
         os.chmod(tmp, 0o777 & ~mask)  # mkdtemp makes 0700; a set folder is an ordinary one
-        for tname, rows in parsed.tables.items():
-            _write_file(tmp / TABLES[tname].file, _csv_text(TABLES[tname], rows))
-        _write_file(tmp / "set.toml", "\n".join(toml) + "\n")
+        for fname, text in files.items():
+            _write_file(tmp / fname, text)
         _norms.read_norm_set_folder(tmp.resolve())  # the loader must accept it
-        if target.exists():
-            old = Path(tempfile.mkdtemp(prefix=f".{name}.old-", dir=root_dir))
-            old.rmdir()
-            os.replace(target, old)
-            try:
-                os.replace(tmp, target)
-            except BaseException:
-                os.replace(old, target)
-                old = None
-                raise
-        else:
+        if not os.path.lexists(target):
             os.replace(tmp, target)
+            return
+        old = root_dir / f".{name}.old-{secrets.token_hex(4)}"
+        os.replace(target, old)
+        try:
+            os.replace(tmp, target)
+        except BaseException as exc:
+            try:
+                os.replace(old, target)
+            except OSError as undo:
+                note = (
+                    f"the previous set could not be put back ({undo.strerror or undo}); it is "
+                    f"kept in {old}, and listing, importing or loading the set puts it back"
+                )
+                if isinstance(exc, OSError):
+                    raise WriteError.from_os_error(
+                        str(target), exc, action=f"write norm set {name!r} to", note=note
+                    ) from exc
+                raise
+            old = None
+            raise
     except BaseException:
         shutil.rmtree(tmp, ignore_errors=True)
         raise
-    if old is not None:
-        shutil.rmtree(old, ignore_errors=True)
-    return target
+    shutil.rmtree(old, ignore_errors=True)
 
 
 def import_norm_file(
@@ -1849,8 +2419,9 @@ def write_template(
 
     One sheet per table (plus ``set`` with the title and source), a bold frozen header
     whose cells carry comments (description, unit, rule), data validation on numeric
-    columns and parameter values, and fitted column widths. Written to a temporary file and
-    renamed into place.
+    columns and parameter values, and fitted column widths. Rendered in memory, then
+    written atomically (:func:`scanplan.reports.write_atomic`): on any failure an existing
+    file is left as it was (mode included) and no temporary file remains.
 
     Parameters
     ----------
@@ -1905,7 +2476,7 @@ def write_template(
             cell.comment = Comment(text, "scanplan", width=320, height=120)
         for ri, row in enumerate(rows, start=2):
             for ci, col in enumerate(spec.columns, start=1):
-                ws.cell(row=ri, column=ci, value=row.get(col.name))
+                _text_cell(ws.cell(row=ri, column=ci), row.get(col.name))
         widths = [
             len(str(ws.cell(row=1, column=ci).value)) for ci in range(1, len(spec.columns) + 1)
         ]
@@ -1954,20 +2525,33 @@ def write_template(
         c.font, c.fill = bold, fill
     for ri, key in enumerate(META_KEYS, start=2):
         ws.cell(row=ri, column=1, value=key)
-        ws.cell(row=ri, column=2, value=getattr(ns, key) or None)
+        _text_cell(ws.cell(row=ri, column=2), getattr(ns, key) or None)
     ws.column_dimensions["A"].width = 12
     ws.column_dimensions["B"].width = 100
     ws.freeze_panes = "A2"
-    out.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp_name = tempfile.mkstemp(prefix=f".{out.stem}.", suffix=".xlsx.tmp", dir=out.parent)
-    os.close(fd)
+    buf = io.BytesIO()
+    wb.save(buf)  # rendered in memory: a failure here touches no file
     try:
-        wb.save(tmp_name)
-        os.replace(tmp_name, out)
-    except BaseException:
-        Path(tmp_name).unlink(missing_ok=True)
-        raise
+        out.parent.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise WriteError.from_os_error(str(out.parent), exc, action="create folder") from exc
+    write_atomic(path, buf.getvalue())  # temporary file, fsync, the replaced file's mode
     return out
+
+
+_XML_ILLEGAL = re.compile(r"[\x00-\x08\x0b\x0c\x0e-\x1f]")
+
+
+def _text_cell(cell: Any, value: Any) -> None:
+    """Put ``value`` in a template cell; text stays text (never a formula, whatever it
+    starts with), and characters a workbook cannot hold are dropped."""
+    if not isinstance(value, str):
+        cell.value = value
+        return
+    cell.value = _XML_ILLEGAL.sub("", value)
+    cell.data_type = "s"  # openpyxl would make "=..." a formula
+    if value[:1] in _FORMULA_START:
+        cell.quotePrefix = True  # and Excel keeps it text when the cell is edited
 
 
 def _validation(cls: Any, spec: ValueSpec, name: str) -> Any:

@@ -17,10 +17,14 @@ from pathlib import Path
 from typing import Any
 
 from .errors import InputError
+from .safeio import read_limited
 
 __all__ = ["KEYS", "Project", "load_project", "parse_project"]
 
 MAX_PROJECT_BYTES = 1_000_000
+MAX_TEXT_CHARS = 1_000
+"""Longest text value (a project name, a customer, an id) [characters]."""
+_CONTROL = re.compile(r"[\x00-\x08\x0b-\x1f\x7f-\x9f]")
 
 # section → key → (type name, description with unit and default)
 KEYS: dict[str, dict[str, tuple[str, str]]] = {
@@ -37,7 +41,8 @@ KEYS: dict[str, dict[str, tuple[str, str]]] = {
         "relief_interval_m": ("number", "relief (contour) interval h_c [m] (required)"),
     },
     "norms": {
-        "set": ("str", 'norm set name or folder (default "gkinp-02-036-02")'),
+        "set": ("str", 'norm set name, or a folder relative to the project file (default '
+                '"gkinp-02-036-02")'),
         "pr_coefficient": ("number", "k_R in P_R = k_R/R (default: the set's, 0.5)"),
         "height_formula": ("str", '"instruction" or "parallax" (default: the set\'s)'),
         "probability": ("number", "required recognition probability (default 0.75)"),
@@ -179,6 +184,34 @@ def _check_type(kind: str, value: Any) -> str | None:
     raise AssertionError(kind)
 
 
+def _check_text(kind: str, value: Any) -> str | None:
+    """Text is shown on terminals and in reports: bounded, no control characters (terminal
+    escapes). HTML, URLs and formulas are fine: the reports show them as text."""
+    if kind != "str":
+        return None
+    if len(value) > MAX_TEXT_CHARS:
+        return f"is {len(value):,} characters long; at most {MAX_TEXT_CHARS:,}"
+    bad = _CONTROL.search(value)
+    if bad:
+        return f"contains the control character U+{ord(bad.group()):04X}"
+    return None
+
+
+def _shown(value: Any) -> str:
+    """``repr(value)``, cut to 200 characters."""
+    text = repr(value)
+    return text if len(text) <= 200 else text[:200] + f"… ({len(text):,} characters)"
+
+
+def _norm_set_path(value: str, folder: Path) -> str:
+    """``[norms] set``: a name stays a name; a relative folder is taken from the project
+    file's folder (not from wherever scanplan runs)."""
+    is_path = "/" in value or os.sep in value or value.startswith((".", "~"))
+    if not is_path or value.startswith("~") or os.path.isabs(value):
+        return value
+    return os.path.join(folder, value)
+
+
 def parse_project(text: str, path: str | os.PathLike[str] = "project.toml") -> Project:
     """Validate the text of a project file (see :func:`load_project`)."""
     p = Path(path)
@@ -201,9 +234,9 @@ def parse_project(text: str, path: str | os.PathLike[str] = "project.toml") -> P
                 raise InputError(where, f"unknown key; [{section}] takes "
                                  f"{', '.join(KEYS[section])}")
             kind, desc = KEYS[section][key]
-            problem = _check_type(kind, value)
+            problem = _check_type(kind, value) or _check_text(kind, value)
             if problem:
-                raise InputError(where, f"{problem} — {desc} (got {value!r})")
+                raise InputError(where, f"{problem} — {desc} (got {_shown(value)})")
     if "map" not in flat or "scale" not in flat["map"]:
         raise InputError(f"{p}: map.scale", "is required: the map scale, e.g. scale = 2000")
     if "relief_interval_m" not in flat["map"]:
@@ -219,6 +252,8 @@ def parse_project(text: str, path: str | os.PathLike[str] = "project.toml") -> P
                                                     if "project.locale" in lines else ""),
                          f'must be "en" or "ru" (got {locale!r})')
     name = flat.get("project", {}).get("name") or p.stem
+    if "set" in flat.get("norms", {}):
+        flat["norms"]["set"] = _norm_set_path(flat["norms"]["set"], p.parent)
     return Project(path=p, name=name, values=flat, lines=lines)
 
 
@@ -234,16 +269,13 @@ def load_project(path: str | os.PathLike[str]) -> Project:
         key the same way.
     """
     p = Path(path)
+    # a regular file, read with a bound: a FIFO or a link to /dev/zero is refused, not read
+    data = read_limited(p, MAX_PROJECT_BYTES, field=str(p))
+    if data.startswith((b"\xff\xfe", b"\xfe\xff")):
+        raise InputError(str(p), "is UTF-16 text; save it as UTF-8")
     try:
-        size = p.stat().st_size
-        if size > MAX_PROJECT_BYTES:
-            raise InputError(str(p), f"is {size:,} bytes; a project file is at most "
-                             f"{MAX_PROJECT_BYTES:,} bytes")
-        text = p.read_text(encoding="utf-8")
-    except InputError:
-        raise
-    except UnicodeDecodeError:
-        raise InputError(str(p), "is not UTF-8 text") from None
-    except OSError as exc:
-        raise InputError(str(p), f"cannot be read: {exc.strerror or exc}") from None
+        text = data.decode("utf-8-sig")  # Notepad's UTF-8 has a byte-order mark
+    except UnicodeDecodeError as exc:
+        raise InputError(str(p), f"is not UTF-8 text (byte {exc.start:,}); save it as "
+                         "UTF-8") from None
     return parse_project(text, p)
