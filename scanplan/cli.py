@@ -18,7 +18,7 @@ from typing import Any
 import click
 
 from ._version import __version__
-from .errors import InputError
+from .errors import InputError, WriteError
 
 # Python names of inputs → the option a user typed
 OPTION_NAMES = {
@@ -54,6 +54,12 @@ OPTION_NAMES = {
     "r_min": "--r-min",
     "r_max": "--r-max",
     "k0": "--k0",
+    "threshold_k0": "--k0",
+    "shift_factor": "--shift-factor",
+    "roll_deg": "--roll-deg",
+    "pitch_deg": "--pitch-deg",
+    "area_width_m": "--area-m",
+    "area_length_m": "--area-m",
     "area_m": "--area-m",
     "random_speed_ms": "--random-speed-ms",
     "roll_rate_rad_s": "--roll-rate",
@@ -75,6 +81,20 @@ class ScanplanGroup(click.Group):
         except (click.exceptions.ClickException, click.exceptions.Exit,
                 click.exceptions.Abort, SystemExit):
             raise
+        except WriteError as exc:  # disk full, no permission, an interrupted rename
+            if os.environ.get("SCANPLAN_DEBUG"):
+                traceback.print_exc()
+            click.echo(f"error: {exc.message}", err=True)
+            ctx.exit(1)
+        except OSError as exc:  # another environment failure: name the file and the reason
+            if os.environ.get("SCANPLAN_DEBUG"):
+                traceback.print_exc()
+            where = " -> ".join(os.fsdecode(f) if isinstance(f, str | bytes) else str(f)
+                                for f in (exc.filename, exc.filename2) if f is not None)
+            reason = exc.strerror or str(exc) or type(exc).__name__
+            click.echo(f"error: {where + ': ' if where else ''}{reason} "
+                       "(SCANPLAN_DEBUG=1 shows details)", err=True)
+            ctx.exit(1)
         except Exception as exc:  # a bug or an environment failure: no traceback for users
             if os.environ.get("SCANPLAN_DEBUG"):
                 traceback.print_exc()
@@ -152,27 +172,63 @@ def report_options(f: Callable[..., Any]) -> Callable[..., Any]:
 
 def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
                    spec: Any = None) -> None:
-    """Write the requested reports; say where on stderr (stdout may carry --json)."""
+    """Write the requested reports as one transaction; say where on stderr (stdout may
+    carry --json).
+
+    Both reports are rendered to memory first (a rendering failure touches no file), then
+    written with :func:`scanplan.reports.write_atomic_many`: after any failure the previous
+    spec.xlsx and spec.pdf are both as they were — never a new workbook beside an old PDF.
+    """
     xlsx, pdf = opts.pop("xlsx_path"), opts.pop("pdf_path")
-    from .reports import ReportMeta
+    from .reports import ReportMeta, write_atomic_many
 
     meta = ReportMeta(project=opts.pop("project_name"), customer=opts.pop("customer"),
                       contractor=opts.pop("contractor"), locale=opts.pop("locale"),
                       approver_position=opts.pop("approver_position"),
                       approver_name=opts.pop("approver_name"))
-    for path, kind in ((xlsx, "xlsx"), (pdf, "pdf")):
-        if not path:
-            continue
-        target = os.path.abspath(path)
-        if not os.path.isdir(os.path.dirname(target)):
-            raise InputError(f"--{kind}", f"folder {os.path.dirname(target)!r} does not exist")
+    wanted = [(path, kind) for path, kind in ((xlsx, "xlsx"), (pdf, "pdf")) if path]
+    for path, kind in wanted:
+        folder = os.path.dirname(os.path.abspath(path))
+        if not os.path.isdir(folder):
+            raise InputError(f"--{kind}", f"folder {folder!r} does not exist")
+    if len(wanted) == 2 and (os.path.normcase(os.path.realpath(xlsx))
+                             == os.path.normcase(os.path.realpath(pdf))):
+        raise InputError("--pdf", f"{pdf!r} is the file --xlsx writes; give another name")
+    extra = {"spec": spec} if spec is not None else {}
+    files: dict[str, bytes] = {}
+    for path, kind in wanted:
         if kind == "xlsx":
-            from .reports.excel import write_xlsx as writer
+            from .reports.excel import render_xlsx as render
         else:
-            from .reports.pdf import write_pdf as writer
-        extra = {"spec": spec} if spec is not None else {}
-        writer(target, scan=scan, uav=uav, meta=meta, **extra)
+            from .reports.pdf import render_pdf as render
+        files[path] = render(scan=scan, uav=uav, meta=meta, **extra)
+    write_atomic_many(files)
+    for path in files:
         click.echo(f"wrote {path}", err=True)
+
+
+def _make_folder(path: str) -> list[str]:
+    """``os.makedirs(path)``; the folders it created, deepest first (to undo on failure)."""
+    created = []
+    probe = os.path.abspath(path)
+    while probe and not os.path.exists(probe):
+        created.append(probe)
+        probe = os.path.dirname(probe)
+    try:
+        os.makedirs(path, exist_ok=True)
+    except OSError as exc:
+        _remove_empty(created)
+        raise WriteError.from_os_error(path, exc, action="create folder") from exc
+    return created
+
+
+def _remove_empty(folders: list[str]) -> None:
+    """Remove the folders (deepest first) that are still empty."""
+    for folder in folders:
+        try:
+            os.rmdir(folder)
+        except OSError:
+            return
 
 
 REPORT_KEYS = ("xlsx_path", "pdf_path", "locale", "project_name", "customer", "contractor",
@@ -341,11 +397,6 @@ def plan(projects: tuple[str, ...], out_dir: str | None, xlsx_path: str | None,
       scanplan plan examples/lida-2000-film.toml --out out/
       scanplan plan examples/ --json
     """
-    from .project import load_project
-    from .serialize import plan_result_dict
-    from .spec import plan_project
-    from .textfmt import format_plan_result
-
     files: list[str] = []
     for item in projects:
         if os.path.isdir(item):
@@ -358,10 +409,24 @@ def plan(projects: tuple[str, ...], out_dir: str | None, xlsx_path: str | None,
     batch = len(files) > 1
     if batch and (xlsx_path or pdf_path):
         raise InputError("--xlsx", "--xlsx/--pdf name one file; with several projects use --out")
+    created: list[str] = []
     if out_dir:
         if os.path.exists(out_dir) and not os.path.isdir(out_dir):
             raise InputError("--out", f"{out_dir!r} is not a folder")
-        os.makedirs(out_dir, exist_ok=True)
+        created = _make_folder(out_dir)
+    try:
+        _plan_files(files, batch, out_dir, xlsx_path, pdf_path, as_json)
+    finally:  # a folder --out created stays only if something was written into it
+        _remove_empty(created)
+
+
+def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: str | None,
+                pdf_path: str | None, as_json: bool) -> None:
+    """``plan`` after its arguments are checked: run one project or a batch."""
+    from .project import load_project
+    from .serialize import plan_result_dict
+    from .spec import plan_project
+    from .textfmt import format_plan_result
 
     def run_one(path: str) -> Any:
         result = plan_project(load_project(path))
@@ -389,21 +454,34 @@ def plan(projects: tuple[str, ...], out_dir: str | None, xlsx_path: str | None,
         return
     done: list[tuple[str, Any]] = []
     failed: list[tuple[str, str]] = []
+    stopped = ""  # a write failure (disk full) stops the batch: the project it stopped at
     with click.progressbar(files, label="planning", file=sys.stderr) as bar:
         for path in bar:
             try:
                 done.append((path, run_one(path)))
-            except InputError as exc:
+            except InputError as exc:  # a bad project: report it, run the others
                 failed.append((path, f"{exc.field}: {exc.message}"))
+            except WriteError as exc:
+                failed.append((path, exc.message))
+                stopped = path
+                break
+    not_run = files[len(done) + len(failed):]
     if as_json:
         _echo_json({"projects": [plan_result_dict(r) for _, r in done],
-                    "errors": [{"file": f, "message": m} for f, m in failed]})
+                    "errors": [{"file": f, "message": m} for f, m in failed]
+                    + [{"file": f, "message": "not planned: the batch stopped"}
+                       for f in not_run]})
     else:
         from .textfmt import batch_summary
 
         click.echo(batch_summary(done, failed))
     for _path, msg in failed:
         click.echo(f"error: {msg}", err=True)
+    if stopped:
+        click.echo(f"error: the batch stopped at {stopped} ({len(done)} of {len(files)} "
+                   "projects written" + (f"; not planned: {', '.join(not_run)}" if not_run
+                                         else "") + ")", err=True)
+        sys.exit(1)
     if failed:
         sys.exit(2)
 

@@ -3,10 +3,13 @@
 Registered by :mod:`scanplan.cli` (``main.add_command(norms)``); it also runs on its own
 (``norms.main(args)``). Every problem is an :class:`~scanplan.errors.InputError`: printed as
 ``error: ...`` on stderr (or as JSON with ``--json``) with exit code 2, never a traceback.
+A failure to write (:class:`~scanplan.errors.WriteError`: disk full, permission, an
+interrupted rename) is exit code 1 with ``error: cannot write PATH: REASON``.
 """
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import json
 import os
@@ -19,7 +22,7 @@ import click
 
 from . import norms as _norms
 from . import norms_io
-from .errors import InputError
+from .errors import InputError, WriteError
 from .normschema import PARAMETERS, TABLES
 
 __all__ = ["norms"]
@@ -57,8 +60,36 @@ def _fail(exc: InputError, as_json: bool) -> None:
     sys.exit(2)
 
 
+def _write_failed(exc: WriteError, as_json: bool) -> None:
+    """Report a failed write (the previous file or set is intact) and exit 1."""
+    if os.environ.get("SCANPLAN_DEBUG"):
+        import traceback
+
+        traceback.print_exc()
+    if as_json:
+        click.echo(
+            json.dumps(
+                {
+                    "ok": False,
+                    "error_count": 1,
+                    "errors": [
+                        norms_io.ImportProblem(
+                            exc.path, "; ".join(x for x in (exc.reason, exc.note) if x)
+                        ).as_dict()
+                    ],
+                    "errors_omitted": 0,
+                },
+                ensure_ascii=False,
+                indent=2,
+            )
+        )
+    click.echo(f"error: {exc.message}", err=True)
+    sys.exit(1)
+
+
 def _guard(fn: Callable[..., Any]) -> Callable[..., Any]:
-    """Turn InputError into the documented exit 2 (JSON when ``--json`` was given)."""
+    """Turn InputError into the documented exit 2 and WriteError into exit 1 (JSON when
+    ``--json`` was given)."""
 
     @functools.wraps(fn)
     def wrapper(*args: Any, **kwargs: Any) -> Any:
@@ -66,6 +97,8 @@ def _guard(fn: Callable[..., Any]) -> Callable[..., Any]:
             return fn(*args, **kwargs)
         except InputError as exc:
             _fail(exc, bool(kwargs.get("as_json")))
+        except WriteError as exc:
+            _write_failed(exc, bool(kwargs.get("as_json")))
 
     return wrapper
 
@@ -122,6 +155,10 @@ def list_cmd(as_json: bool) -> None:
       scanplan norms list
       scanplan norms list --json
     """
+    # an import a crash interrupted: put the set it was replacing back, drop its leftovers
+    with contextlib.suppress(OSError):
+        for line in norms_io.recover_norm_dir():
+            click.echo(f"note: {line}", err=True)
     out = []
     for name, where in _norms.list_norm_sets():
         if name.startswith("."):

@@ -2,6 +2,8 @@
 
 ``InputError`` is the one exception the command line turns into exit code 2: it always
 names the offending field (option, project key or spreadsheet cell) and what is allowed.
+``WriteError`` (disk full, no permission, an interrupted rename) is exit code 1: it names
+the file being written and the operating system's reason.
 """
 
 from __future__ import annotations
@@ -32,6 +34,52 @@ class InputError(ValueError):
 
 class NotFoundError(InputError):
     """A named thing (norm set, camera, scanner, shape) does not exist."""
+
+
+class WriteError(OSError):
+    """A report, template or norm set could not be written; the previous one is intact.
+
+    An :class:`OSError` (``errno``, ``strerror`` and ``filename`` are set), so code that
+    catches ``OSError`` keeps working; its message names what the user asked to write, not
+    a temporary file: ``cannot write out/spec.pdf: No space left on device``.
+
+    Parameters
+    ----------
+    path : str
+        What was being written, as the user named it.
+    reason : str
+        The operating system's reason (``strerror``), e.g. ``No space left on device``.
+    errno : int, optional
+        The error number of the underlying :class:`OSError`.
+    action : str
+        The verb phrase before ``path`` (``"write"``, ``"write norm set 'x' to"``).
+    note : str
+        A further sentence, e.g. where a backup was kept when putting it back failed.
+    """
+
+    def __init__(self, path: str, reason: str, errno: int | None = None, *,
+                 action: str = "write", note: str = "") -> None:
+        super().__init__(errno, reason, path)
+        self.path = path
+        self.reason = reason
+        self.action = action
+        self.note = note
+
+    @property
+    def message(self) -> str:
+        """``cannot ACTION PATH: REASON[; NOTE]``."""
+        text = f"cannot {self.action} {self.path}: {self.reason}"
+        return f"{text}; {self.note}" if self.note else text
+
+    def __str__(self) -> str:
+        return self.message
+
+    @classmethod
+    def from_os_error(cls, path: str, exc: OSError, *, action: str = "write",
+                      note: str = "") -> WriteError:
+        """Wrap ``exc`` (its ``strerror``, else its text) for ``path``."""
+        reason = exc.strerror or str(exc) or type(exc).__name__
+        return cls(path, reason, exc.errno, action=action, note=note)
 
 
 def pick_method(methods: Mapping[str, T], name: str, label: str = "method") -> T:

@@ -575,8 +575,11 @@ def test_template_features(tmp_path):
 def test_template_leaves_no_temp_on_failure(tmp_path, monkeypatch):
     import openpyxl.workbook.workbook as wbmod
 
-    def broken(self, filename):
-        Path(filename).write_bytes(b"partial")
+    def broken(self, filename):  # the workbook is rendered to memory, then written
+        if hasattr(filename, "write"):
+            filename.write(b"partial")
+        else:
+            Path(filename).write_bytes(b"partial")
         raise OSError("disk full")
 
     monkeypatch.setattr(wbmod.Workbook, "save", broken)
