@@ -6,11 +6,13 @@ import math
 from dataclasses import asdict
 from typing import Any
 
+from .messages import Message, params_json
 from .norms import NormSet
-from .planner import ScanPlan
+from .planner import PlanWarning, ScanPlan
 from .uav import UavPlan
 
-__all__ = ["norm_set_dict", "plan_result_dict", "scale_value", "scan_plan_dict", "uav_plan_dict"]
+__all__ = ["norm_set_dict", "plan_result_dict", "scale_value", "scan_plan_dict", "uav_plan_dict",
+           "warning_dict"]
 
 
 def scale_value(x: float) -> int | float:
@@ -26,6 +28,16 @@ def _clean(x: Any) -> Any:
     if isinstance(x, list | tuple):
         return [_clean(v) for v in x]
     return x
+
+
+def warning_dict(w: PlanWarning) -> dict[str, Any]:
+    """A warning: ``code``, ``message`` (English), ``photo_scales``, ``severity`` and the
+    message's ``params`` (the numbers and names in it; a nested message as
+    ``{"code", "params"}``)."""
+    doc = asdict(w)
+    if isinstance(w.message, Message):
+        doc["params"] = params_json(w.message.params)
+    return doc
 
 
 def norm_set_dict(ns: NormSet, map_scale: float | None = None) -> dict[str, Any]:
@@ -91,7 +103,7 @@ def scan_plan_dict(plan: ScanPlan, ns: NormSet | None = None) -> dict[str, Any]:
         "interpretation_limit_photo_scale": plan.interpretation_limit_photo_scale,
         "max_photo_scales": [asdict(r) for r in plan.max_photo_scales],
         "sweep": plan.sweep,
-        "warnings": [asdict(w) for w in plan.warnings],
+        "warnings": [warning_dict(w) for w in plan.warnings],
     }
     if ns is not None:
         doc["norms"] = norm_set_dict(ns, inp.map_scale)
@@ -126,7 +138,7 @@ def uav_plan_dict(plan: UavPlan, ns: NormSet | None = None) -> dict[str, Any]:
                         for lim in plan.limits},
         "max_height_m": plan.max_height_m,
         "binding": plan.binding,
-        "warnings": [asdict(w) for w in plan.warnings],
+        "warnings": [warning_dict(w) for w in plan.warnings],
         "mtf_centre": plan.mtf_centre,
         "height_curve": plan.height_curve,
     }
@@ -178,5 +190,5 @@ def plan_result_dict(result: Any) -> dict[str, Any]:
     if result.comparison:
         spec["comparison"] = result.comparison
     doc["specification"] = spec
-    doc["warnings"] = [asdict(w) for w in result.warnings]
+    doc["warnings"] = [warning_dict(w) for w in result.warnings]
     return _clean(doc)

@@ -44,9 +44,10 @@ from openpyxl.worksheet.worksheet import Worksheet
 from openpyxl.writer.excel import ExcelWriter
 
 from .._version import __version__
-from ..planner import CONSTRAINTS
+from ..messages import localize
+from ..planner import CONSTRAINTS, height_formula_name
 from . import ReportMeta, report_datetime, write_atomic
-from .labels import t
+from .labels import LABELS, t
 
 if TYPE_CHECKING:
     from ..api import ScanJob, UavJob
@@ -261,6 +262,10 @@ class _Book:
     def t(self, key: str) -> str:
         return t(key, self.loc)
 
+    def text(self, value: object) -> str:
+        """An engine sentence (a :class:`~scanplan.messages.Message`) in the report's language."""
+        return localize(value, self.loc)
+
     def yes_no(self, value: bool) -> str:
         return self.t("xlsx_yes" if value else "xlsx_no")
 
@@ -400,7 +405,7 @@ class _Book:
                     row = self.kv(ws, row, self.t("scanner_pixel_um"), rec.scanner_pixel_um,
                                   "0.0")
                 row = self.kv(ws, row, self.t("binding"),
-                              f"{rec.binding} — {self.cname(rec.binding)}")
+                              self.cname(rec.binding))
                 row = self.kv(ws, row, self.t("probability"), rec.recognition_probability,
                               "0.00")
                 row = self.kv(ws, row, self.t("frame_megabytes"), rec.frame_megabytes, "#,##0")
@@ -408,7 +413,7 @@ class _Book:
                     row = self.kv(ws, row, self.t("spec_frames"), f.frames, "#,##0")
                     row = self.kv(ws, row, self.t("spec_scanned_gb"), f.scanned_gigabytes,
                                   "#,##0.0")
-            row = self.kv(ws, row, self.t("spec_reason"), f.reason, wrap=True)
+            row = self.kv(ws, row, self.t("spec_reason"), self.text(f.reason), wrap=True)
         if spec.uav is not None:
             u, p = spec.uav, spec.uav.job.plan
             if u.planned_height_m is not None:
@@ -419,20 +424,21 @@ class _Book:
             row = self.kv(ws, row, self.t("max_height_m"), u.max_height_m, "0")
             if p.binding:
                 row = self.kv(ws, row, self.t("binding"),
-                              f"{p.binding} — {self.cname(p.binding)}")
+                              self.cname(p.binding))
             if "photos" in p.flight:
                 row = self.kv(ws, row, self.t("spec_photos"), p.flight["photos"], "#,##0")
             if "data_volume_bytes" in p.flight:
                 row = self.kv(ws, row, self.t("spec_data_gb"),
                               p.flight["data_volume_bytes"] / 1e9, "#,##0.0")
-            row = self.kv(ws, row, self.t("spec_reason"), u.reason, wrap=True)
+            row = self.kv(ws, row, self.t("spec_reason"), self.text(u.reason), wrap=True)
         if spec.comparison:
             row = self.section(ws, row + 1, self.t("spec_comparison"))
             _header(ws, row, [self.t("spec_quantity"), self.t("spec_film"), self.t("spec_uav"),
                               self.t("unit")])
             row += 1
             for c in spec.comparison:
-                put_text(ws, row, 1, c["quantity"])
+                key = f"spec_cmp_{c.get('key', '')}"
+                put_text(ws, row, 1, self.t(key) if key in LABELS["en"] else c["quantity"])
                 for col, key in ((2, "film"), (3, "uav")):
                     value = c[key]
                     if isinstance(value, int | float):
@@ -440,7 +446,8 @@ class _Book:
                                 else "#,##0")
                     else:
                         put_text(ws, row, col, MISSING)
-                put_text(ws, row, 4, c["unit"])
+                unit = {"m": "pdf_m", "GB": "pdf_gb"}.get(c["unit"])
+                put_text(ws, row, 4, self.t(unit) if unit else c["unit"])
                 row += 1
         return row
 
@@ -464,7 +471,7 @@ class _Book:
             put_num(ws, row, 7, s.resolution_on_ground_mm, F1)
             put_num(ws, row, 8, s.required_resolving_power_lpmm, F1)
             put_num(ws, row, 9, s.recognition_probability, F3)
-            put_text(ws, row, 10, s.explanation, wrap=True)
+            put_text(ws, row, 10, self.text(s.explanation), wrap=True)
             row += 1
         row += 1
         put_text(ws, row, 1, self.t("xlsx_interpretation_limit"), wrap=True)
@@ -532,7 +539,7 @@ class _Book:
         row = self.kv(ws, row, self.t("xlsx_object_size_m"), obj.size_m, F3)
         row = self.kv(ws, row, self.t("xlsx_shape"), self.shape_name(ns, obj.shape))
         row = self.kv(ws, row, self.t("xlsx_shape_coefficient"), obj.shape_coefficient, F2)
-        return self.kv(ws, row, self.t("xlsx_object_source"), obj.source)
+        return self.kv(ws, row, self.t("xlsx_object_source"), self.text(obj.source))
 
     def _inputs_scan(self, ws: Worksheet, row: int, job: ScanJob) -> int:
         inp, rules = job.plan.inputs, job.plan.rules
@@ -548,7 +555,8 @@ class _Book:
         row = self.kv(ws, row, self.t("forward_overlap_pct"), inp.forward_overlap_pct, F1)
         row = self._object_rows(ws, row, inp.object, job.norm_set)
         row = self.kv(ws, row, self.t("probability"), rules.probability, F3)
-        row = self.kv(ws, row, self.t("xlsx_height_formula"), rules.height_formula)
+        row = self.kv(ws, row, self.t("xlsx_height_formula"),
+                      self.text(height_formula_name(rules.height_formula)))
         row = self.kv(ws, row, self.t("xlsx_pr_coefficient"), rules.pr_coefficient, F2)
         row = self.kv(ws, row, self.t("scanner"), inp.scanner or None)
         if inp.scanner_steps_um:
@@ -626,8 +634,8 @@ class _Book:
                          put_num(ws, row, 6, c.margin_um, UM),
                          put_num(ws, row, 7, c.margin_pct, PCT),
                          put_text(ws, row, 8, self.yes_no(c.binding))]
-                put_text(ws, row, 9, c.reason, wrap=True)
-                put_text(ws, row, 10, c.equation, wrap=True)
+                put_text(ws, row, 9, self.text(c.reason), wrap=True)
+                put_text(ws, row, 10, self.text(c.equation), wrap=True)
                 if c.binding:
                     _mark(cells)
                 row += 1
@@ -726,8 +734,8 @@ class _Book:
                          put_num(ws, row, 5, lim.max_height_m, F1),
                          put_num(ws, row, 6, lim.margin_pct, PCT),
                          put_text(ws, row, 7, self.yes_no(lim.binding))]
-                put_text(ws, row, 9, lim.reason, wrap=True)
-                put_text(ws, row, 10, lim.equation, wrap=True)
+                put_text(ws, row, 9, self.text(lim.reason), wrap=True)
+                put_text(ws, row, 10, self.text(lim.equation), wrap=True)
                 if lim.binding:
                     _mark(cells)
                 row += 1
@@ -943,7 +951,7 @@ class _Book:
                      put_text(ws, row, 3, w.code),
                      put_text(ws, row, 4, ", ".join(_scale_text(s) for s in w.photo_scales),
                               wrap=True),
-                     put_text(ws, row, 5, w.message, wrap=True)]
+                     put_text(ws, row, 5, self.text(w.message), wrap=True)]
             if w.severity == "warning":
                 for cell in cells:
                     cell.fill = _WARNING_FILL

@@ -215,8 +215,6 @@ LABELS: dict[str, dict[str, str]] = {
                             "constraint's margin.",
         "pdf_binding_note_uav": "highlighted: the binding constraint (the lowest maximum "
                                 "height); small figures give the other constraints' margins.",
-        "pdf_binding_sentence": "At {scale} the scan pixel is {pixel} µm, set by {cid} ({name})",
-        "pdf_binding_next": "; the next constraint is {cid} at {pixel} µm (+{margin} %)",
         "pdf_interpretation_limit": "Interpretation limit: {object} can be recognised with P "
                                     "≥ {p} on photos up to {scale} (Mc/Mk ≤ {ratio}) at R = "
                                     "{r} lines/mm.",
@@ -232,7 +230,6 @@ LABELS: dict[str, dict[str, str]] = {
         "pdf_meaning": "Meaning",
         "pdf_parameter": "Parameter",
         "pdf_imported_from": "imported from",
-        "pdf_engine_language": "",
         "pdf_generated_by": "Prepared with {generator}.",
         "pdf_pixel_pitch_um": "Sensor pixel pitch, µm",
         "pdf_f_number": "f-number",
@@ -273,6 +270,12 @@ LABELS: dict[str, dict[str, str]] = {
         "pdf_f_p": "recognition probability of an object of size L_obj, shape coefficient B",
         "pdf_f_pd": "interpretation as a limit on L (maximum height)",
         "pdf_f_tol": "constraints are checked at the highest height flown (Δ_H: tolerance)",
+        "pdf_src_gsd": "docs/uav-models.md §1; seed 002",
+        "pdf_src_l": "seed 000, eqs. 1–8",
+        "pdf_src_p": "seed 001 eq. 7",
+        "pdf_src_pd": "seed 001 eq. 16 with A ≡ L",
+        "pdf_src_tol": "seed 002",
+        "pdf_gb": "GB",
         "pdf_h_planned": "planned",
         "pdf_h_flown_max": "highest flown",
         "pdf_h_max": "maximum ({cid})",
@@ -303,6 +306,11 @@ LABELS: dict[str, dict[str, str]] = {
         "spec_quantity": "Quantity",
         "spec_film": "Film",
         "spec_uav": "UAV",
+        "spec_cmp_ground_pixel": "pixel on the ground",
+        "spec_cmp_ground_resolution": "resolution on the ground (A / L)",
+        "spec_cmp_recognition": "recognition probability of the map object",
+        "spec_cmp_frames": "frames / photos",
+        "spec_cmp_data_volume": "data volume",
     },
     "ru": {
         "title_scan": "Техническое задание на сканирование аэрофотоснимков",
@@ -515,9 +523,6 @@ LABELS: dict[str, dict[str, str]] = {
                             "условий.",
         "pdf_binding_note_uav": "выделено определяющее условие (наименьшая максимальная "
                                 "высота); мелкие цифры — запас остальных условий.",
-        "pdf_binding_sentence": "При масштабе {scale} размер пикселя сканирования {pixel} мкм "
-                                "определяет условие {cid} ({name})",
-        "pdf_binding_next": "; следующее условие — {cid}, {pixel} мкм (+{margin} %)",
         "pdf_interpretation_limit": "Предел дешифрирования: {object} распознаются с "
                                     "вероятностью не ниже {p} на снимках масштаба до {scale} "
                                     "(Mc/Mk ≤ {ratio}) при R = {r} мм⁻¹.",
@@ -533,8 +538,6 @@ LABELS: dict[str, dict[str, str]] = {
         "pdf_meaning": "Смысл",
         "pdf_parameter": "Параметр",
         "pdf_imported_from": "импортировано из",
-        "pdf_engine_language": "Тексты обоснований и предупреждений формирует расчётный "
-                               "модуль; они приводятся на английском языке.",
         "pdf_generated_by": "Подготовлено программой {generator}.",
         "pdf_pixel_pitch_um": "Размер пикселя матрицы, мкм",
         "pdf_f_number": "Диафрагменное число",
@@ -571,13 +574,19 @@ LABELS: dict[str, dict[str, str]] = {
         "pdf_limit_on_ground": "Предел на местности, м",
         "pdf_compared": "Сравнивается с",
         "pdf_max_height_sentence": "Максимальную высоту полёта {h} м определяет условие {cid} "
-                                   "({name}).",
+                                   "({name}): {reason}.",
         "pdf_f_gsd": "размер пикселя на местности (пиксель p, высота H, фокусное расстояние f)",
         "pdf_f_l": "линейное разрешение на местности по ЧКХ; R — частота, при которой "
                    "контраст изображения K равен пороговому",
         "pdf_f_p": "вероятность распознавания объекта размера L_obj с коэффициентом формы B",
         "pdf_f_pd": "условие дешифрирования как предел для L (максимальная высота)",
         "pdf_f_tol": "условия проверяются на наибольшей фактической высоте (Δ_H — допуск)",
+        "pdf_src_gsd": "docs/uav-models.md, § 1; Зверев, Фисенко, 2014",
+        "pdf_src_l": "оценка ЛРМ цифровых аэрофотосъёмочных систем БПЛА, ф. (1)–(8)",
+        "pdf_src_p": "Михеева, Илюшенко, 2015, ф. (7)",
+        "pdf_src_pd": "Михеева, Илюшенко, 2015, ф. (16) при A ≡ L",
+        "pdf_src_tol": "Зверев, Фисенко, 2014",
+        "pdf_gb": "ГБ",
         "pdf_h_planned": "плановая",
         "pdf_h_flown_max": "наибольшая фактическая",
         "pdf_h_max": "максимальная ({cid})",
@@ -608,6 +617,11 @@ LABELS: dict[str, dict[str, str]] = {
         "spec_quantity": "Показатель",
         "spec_film": "Плёнка",
         "spec_uav": "БПЛА",
+        "spec_cmp_ground_pixel": "Размер пикселя на местности",
+        "spec_cmp_ground_resolution": "Разрешение на местности (A / L)",
+        "spec_cmp_recognition": "Вероятность распознавания объекта карты",
+        "spec_cmp_frames": "Число снимков",
+        "spec_cmp_data_volume": "Объём данных",
     },
 }
 

@@ -22,6 +22,7 @@ import base64
 import math
 import mimetypes
 import os
+import re
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -37,6 +38,7 @@ from weasyprint.urls import URLFetcher, URLFetcherResponse
 from .._version import __version__
 from ..api import ScanJob, UavJob
 from ..flight import MAX_BLUR_PX
+from ..messages import localize
 from ..norms import NormSet
 from ..planner import CONSTRAINTS, ScanPlan
 from ..uav import UavPlan
@@ -58,13 +60,14 @@ _WARNING_CODES = (
 _MAX_COLUMNS = 6  # photo scales per result table on A4 portrait
 _RUNNING_HEADER_CHARS = 60
 
-_UAV_FORMULAS = (
-    ("GSD = p·H/f", "pdf_f_gsd", "docs/uav-models.md §1; seed 002"),
-    ("L = H/(2·R·f), K(R) = K_thr(R)", "pdf_f_l", "seed 000, eqs. 1–8"),
-    ("P = exp(−(B·L/L_obj)²)", "pdf_f_p", "seed 001 eq. 7"),
-    ("L ≤ L_obj·sqrt(−ln P)/B", "pdf_f_pd", "seed 001 eq. 16 with A ≡ L"),
-    ("H_max = H·(1 + Δ_H)", "pdf_f_tol", "seed 002"),
+_UAV_FORMULAS = (  # formula, meaning (label), source (label)
+    ("GSD = p·H/f", "pdf_f_gsd", "pdf_src_gsd"),
+    ("L = H/(2·R·f), K(R) = K_thr(R)", "pdf_f_l", "pdf_src_l"),
+    ("P = exp(−(B·L/L_obj)²)", "pdf_f_p", "pdf_src_p"),
+    ("L ≤ L_obj·sqrt(−ln P)/B", "pdf_f_pd", "pdf_src_pd"),
+    ("H_max = H·(1 + Δ_H)", "pdf_f_tol", "pdf_src_tol"),
 )
+_COMPARISON_UNITS = {"m": "pdf_m", "GB": "pdf_gb"}
 
 
 # ---------------------------------------------------------------------------------------
@@ -214,7 +217,7 @@ def _warnings(ws: Any, f: _Fmt) -> list[dict[str, str]]:
         key = f"pdf_warn_{w.code}"
         heading = f.label(key) if w.code in _WARNING_CODES else w.code
         out.append({"code": w.code, "severity": w.severity, "heading": heading,
-                    "message": w.message})
+                    "message": localize(w.message, f.locale)})
     return out
 
 
@@ -259,7 +262,7 @@ def _scan_view(job: ScanJob, f: _Fmt) -> dict[str, Any]:
                                 f"{_shape_name(ns, obj.shape, f.locale)}, "
                                 f"B = {f.g(obj.shape_coefficient)}"),
             (f.label("probability"), f.g(rules.probability)),
-            (f.label("norm_rows"), obj.source),
+            (f.label("norm_rows"), localize(obj.source, f.locale)),
         ]
     if "PZ" in rules.constraints:
         key = f"pdf_hf_{rules.height_formula}"
@@ -277,20 +280,7 @@ def _scan_view(job: ScanJob, f: _Fmt) -> dict[str, Any]:
     size = math.ceil(len(scen) / n_tables)
     tables = [_scan_table(plan, scen[i:i + size], f) for i in range(0, len(scen), size)]
 
-    explanations = []
-    for s in plan.scenarios:
-        if f.locale == "en":
-            explanations.append(s.explanation)
-            continue
-        b = s.constraint(s.binding)
-        runner = sorted((c for c in s.constraints if not c.binding), key=lambda c: c.pixel_um)
-        text = f.label("pdf_binding_sentence", scale=f.scale(s.photo_scale),
-                       pixel=f.num(s.scan_pixel_um, 1), cid=b.id, name=f.cname(b.id))
-        if runner:
-            text += f.label("pdf_binding_next", cid=runner[0].id,
-                            pixel=f.num(runner[0].pixel_um, 1),
-                            margin=f.num(runner[0].margin_pct, 0))
-        explanations.append(text + ".")
+    explanations = [localize(s.explanation, f.locale) for s in plan.scenarios]
 
     limit = ""
     mci = plan.interpretation_limit_photo_scale
@@ -303,8 +293,9 @@ def _scan_view(job: ScanJob, f: _Fmt) -> dict[str, Any]:
               else f.label("pdf_none"),
               "limit": f"{r.limit} — {f.cname(r.limit)}" if r.limit in CONSTRAINTS else r.limit}
              for r in plan.max_photo_scales]
-    formulas = [{"id": cid, "name": f.cname(cid), "equation": CONSTRAINTS[cid].equation,
-                 "protects": CONSTRAINTS[cid].protects if f.locale == "en" else ""}
+    formulas = [{"id": cid, "name": f.cname(cid),
+                 "equation": localize(CONSTRAINTS[cid].equation, f.locale),
+                 "protects": localize(CONSTRAINTS[cid].protects, f.locale)}
                 for cid in rules.constraints]
     params = [{"name": k, "value": _param_text(v, f), "source": ns.parameter_sources.get(k, "")}
               for k, v in ns.parameters.items()]
@@ -478,11 +469,13 @@ def _uav_view(job: UavJob, f: _Fmt) -> dict[str, Any]:
             f.label("pdf_tol_note", tol=f.g(tol)) if tol else "")
         b = next(x for x in plan.limits if x.binding)
         max_sentence = f.label("pdf_max_height_sentence", h=f.num(plan.max_height_m, 0),
-                               cid=b.id, name=f.cname(b.id), reason=b.reason)
-    formulas = [{"equation": eq, "meaning": f.label(key), "source": src}
+                               cid=b.id, name=f.cname(b.id),
+                               reason=localize(b.reason, f.locale))
+    formulas = [{"equation": eq, "meaning": f.label(key), "source": f.label(src)}
                 for eq, key, src in _UAV_FORMULAS
                 if plan.limits or key not in ("pdf_f_pd", "pdf_f_tol")]
-    limit_formulas = [{"id": lim.id, "name": f.cname(lim.id), "equation": lim.equation}
+    limit_formulas = [{"id": lim.id, "name": f.cname(lim.id),
+                       "equation": localize(lim.equation, f.locale)}
                       for lim in plan.limits]
     return {
         "inputs": inputs, "cols": cols, "results": results, "blur": blur, "flight": flight,
@@ -520,6 +513,19 @@ def _comparison_view(scan: ScanJob, uav: UavJob, f: _Fmt) -> dict[str, Any]:
     ]}
 
 
+def _comparison_quantity(row: dict[str, Any], f: _Fmt) -> str:
+    """A row of the specification's film/UAV table named in the report's language."""
+    key = f"spec_cmp_{row.get('key', '')}"
+    return f.label(key) if key in LABELS["en"] else str(row["quantity"])
+
+
+def _comparison_value(x: Any, f: _Fmt) -> str:
+    """A value of the film/UAV table: counts as whole numbers, the rest with 3 decimals."""
+    if x is None:
+        return "—"
+    return f.num(x, 0 if isinstance(x, int) else 3)
+
+
 def _spec_view(spec: PlanResult, f: _Fmt) -> dict[str, Any]:
     """The specification of ``scanplan plan``: what was chosen, with its reason."""
     rows: list[tuple[str, str]] = []
@@ -537,7 +543,7 @@ def _spec_view(spec: PlanResult, f: _Fmt) -> dict[str, Any]:
             if fs.frames is not None:
                 rows.append((f.label("spec_frames"), f.g(fs.frames)))
                 rows.append((f.label("spec_scanned_gb"), f.num(fs.scanned_gigabytes, 1)))
-        reasons.append(fs.reason)
+        reasons.append(localize(fs.reason, f.locale))
     if spec.uav is not None:
         u, p = spec.uav, spec.uav.job.plan
         if u.planned_height_m is not None:
@@ -550,9 +556,11 @@ def _spec_view(spec: PlanResult, f: _Fmt) -> dict[str, Any]:
             rows.append((f.label("spec_photos"), f.g(p.flight["photos"])))
         if "data_volume_bytes" in p.flight:
             rows.append((f.label("spec_data_gb"), f.num(p.flight["data_volume_bytes"] / 1e9, 1)))
-        reasons.append(u.reason)
-    comparison = [(c["quantity"], "—" if c["film"] is None else f.num(c["film"], 3),
-                   "—" if c["uav"] is None else f.num(c["uav"], 3), c["unit"])
+        reasons.append(localize(u.reason, f.locale))
+    comparison = [(_comparison_quantity(c, f), _comparison_value(c["film"], f),
+                   _comparison_value(c["uav"], f),
+                   f.label(_COMPARISON_UNITS[c["unit"]]) if c["unit"] in _COMPARISON_UNITS
+                   else c["unit"])
                   for c in spec.comparison]
     return {"rows": rows, "reasons": reasons, "comparison": comparison}
 
@@ -562,13 +570,30 @@ def _spec_view(spec: PlanResult, f: _Fmt) -> dict[str, Any]:
 # ---------------------------------------------------------------------------------------
 
 
+_LONG_RUN = re.compile(r"[^\s\u200b]{30}(?=[^\s\u200b])")
+
+
+def _breakable(value: Any) -> Any:
+    """Every ``{{ value }}`` of the templates: a run of 30+ characters without a space gets
+    zero-width spaces, so a table cell can wrap it (``overflow-wrap: break-word``).
+
+    ``overflow-wrap: anywhere`` would do the same, but WeasyPrint's table layout is then
+    quadratic in the length of a cell's text (a 1,200-character object name of a norm set:
+    45 s). Markup (the footer CSS) and ``data:`` URIs (the plots) are left as they are.
+    """
+    if (isinstance(value, str) and len(value) > 30 and not isinstance(value, Markup)
+            and not value.startswith("data:")):
+        return _LONG_RUN.sub(lambda m: m.group() + "\u200b", value)
+    return value
+
+
 def _environment() -> jinja2.Environment:
     env = jinja2.Environment(
         loader=jinja2.FileSystemLoader(str(templates_dir())),
         autoescape=jinja2.select_autoescape(["html", "htm", "xml"], default=True,
                                             default_for_string=True),
         undefined=jinja2.StrictUndefined, trim_blocks=True, lstrip_blocks=True,
-        keep_trailing_newline=True)
+        keep_trailing_newline=True, finalize=_breakable)
     return env
 
 

@@ -1,0 +1,437 @@
+"""The engine's sentences in English and Russian: one catalogue of coded messages.
+
+Every sentence the engine writes — a constraint's reason, the explanation of the binding
+constraint, a warning, the reason of a specification, a maximum flight height's reason,
+the text of a formula — is a :class:`Message`: a stable ``code`` from :data:`MESSAGES`
+and the ``params`` (numbers, names) that fill its template. A message *is* its English
+text (``Message`` subclasses ``str``), so ``warning.message``, ``constraint.reason`` and
+``scenario.explanation`` read, print and serialise exactly as plain English strings;
+``message.text("ru")`` renders the same numbers in Russian for the reports.
+
+Templates use :meth:`str.format` fields with these parameter kinds:
+
+- numbers, with an ordinary format spec (``{x:g}``, ``{x:.1f}``, ``{n:d}``); in Russian
+  the decimal point becomes a comma and thousands (``{x:,.0f}``, or a whole number
+  ≥ 10 000 under ``g``) are grouped with a no-break space — the rule of the Russian
+  reports (:func:`scanplan.reports.plots.number`);
+- ``{x:scale}`` — a scale denominator as ``1:8000`` (English) / ``1:8 000`` (Russian);
+- lists, each item formatted with the spec and joined by ``", "`` (English) or ``"; "``
+  (Russian, where the comma is the decimal separator); a spec starting with ``;`` joins
+  with ``"; "`` in both languages;
+- ``{"en": ..., "ru": ...}`` — a name given in both languages (a constraint's name, a norm
+  object's name, a shape);
+- a nested :class:`Message`, rendered in the same language (``""`` or ``None`` for an
+  optional part that is absent).
+
+In a Russian template ``~`` is a no-break space, so a number stays on the line of its unit
+(``{x:.1f}~мкм``), as Russian typesetting requires.
+
+Plain data and :meth:`str.format`; no I/O (core module).
+"""
+
+from __future__ import annotations
+
+import numbers
+import string
+from collections.abc import Mapping
+from typing import Any
+
+__all__ = ["LOCALES", "MESSAGES", "Message", "localize", "params_json", "placeholders",
+           "render"]
+
+LOCALES = ("en", "ru")
+
+_NBSP = "\u00a0"
+_TIE = "~"  # in a Russian template: a no-break space (a number stays with its unit)
+_M001 = "Михеева, Илюшенко, 2015"  # seed 001, as the Russian reports cite it
+_TAIL_EN = (" They need R ≥ {need:.1f} lines/mm; the photo has {r:g}. Remedies: interpret them "
+            "in the field, use photos with a higher resolving power, or fly a larger photo "
+            "scale ({limit:scale} or larger, Mc/Mk ≤ {ratio:.1f}).")
+_TAIL_RU = (" Для них нужна разрешающая способность R ≥ {need:.1f}~мм⁻¹, у снимков — {r:g}~"
+            "мм⁻¹. Выход: дешифрировать эти объекты в поле, использовать снимки с более высокой "
+            "разрешающей способностью или выполнить аэрофотосъёмку в более крупном масштабе "
+            "({limit:scale} или крупнее, Mc/Mk ≤ {ratio:.1f}).")
+
+MESSAGES: dict[str, dict[str, str]] = {
+    # --- what each film constraint protects, and its formula with the source ------------
+    "protects.PS": {
+        "en": "keeps the planimetric error of the model within V_s on the map after the "
+              "processing loss k",
+        "ru": "ограничивает ошибку положения точек модели в плане величиной V_s на карте с "
+              "учётом потери точности при обработке~k",
+    },
+    "protects.PZ": {
+        "en": "keeps the height error within V_z = fraction·h_c after the processing loss k",
+        "ru": "ограничивает ошибку высот величиной V_z = доля·h_c с учётом потери точности "
+              "при обработке~k",
+    },
+    "protects.PP": {
+        "en": "keeps the resolution of a graphic photo-plan (70 µm on the plan)",
+        "ru": "сохраняет разрешающую способность графического фотоплана (70~мкм на плане)",
+    },
+    "protects.PR": {
+        "en": "keeps the photo's resolving power R in the digital image",
+        "ru": "передаёт разрешающую способность снимка R в цифровое изображение",
+    },
+    "protects.PD": {
+        "en": "lets the map's smallest objects be recognised with probability P",
+        "ru": "обеспечивает распознавание наименьших объектов карты с вероятностью P",
+    },
+    "equation.PS": {
+        "en": "P_S = V_s·Mk/(k·Mc) — GKINP (GNTA)-02-036-02; seed 001 eq. 1",
+        "ru": f"P_S = V_s·Mk/(k·Mc) — ГКИНП (ГНТА)-02-036-02; {_M001}, ф. (1)",
+    },
+    "equation.PZ": {
+        "en": "P_Z = V_z·f/(k·Mc·b) (Instruction) or V_z·b/(k·Mc·f) (parallax) — seed 001 eq. 2",
+        "ru": "P_Z = V_z·f/(k·Mc·b) (по Инструкции) или V_z·b/(k·Mc·f) (параллактическая) — "
+              f"{_M001}, ф. (2)",
+    },
+    "equation.PP": {
+        "en": "P_P = 0.070·Mk/Mc — GKINP (GNTA)-02-036-02; seed 001 eq. 3",
+        "ru": f"P_P = 0,070·Mk/Mc — ГКИНП (ГНТА)-02-036-02; {_M001}, ф. (3)",
+    },
+    "equation.PR": {
+        "en": "P_R = k_R/R, k_R = 0.5 (printed 0.4) — seed 001 eqs. 4–6",
+        "ru": f"P_R = k_R/R, k_R = 0,5 (в Инструкции напечатано 0,4) — {_M001}, ф. (4)–(6)",
+    },
+    "equation.PD": {
+        "en": "P_D = 2·k_R·L·sqrt(−ln P)/(B·Mc) — seed 001 eq. 16",
+        "ru": f"P_D = 2·k_R·L·sqrt(−ln P)/(B·Mc) — {_M001}, ф. (16)",
+    },
+    # --- why each film constraint is there, with the contract's numbers -----------------
+    "reason.PS": {
+        "en": "keeps planimetric error within {vs:g} mm at {map:scale} ({ground:g} m on the "
+              "ground) after processing loss k = {k:g}",
+        "ru": "ограничивает ошибку положения в плане величиной {vs:g}~мм в масштабе "
+              "{map:scale} ({ground:g}~м на местности) с учётом потери точности при обработке "
+              "k = {k:g}",
+    },
+    "reason.PZ": {
+        "en": "keeps height error within {fraction:g}·h_c = {vz:g} m (relief interval {hc:g} m) "
+              "after k = {k:g}, {formula} form",
+        "ru": "ограничивает ошибку высот величиной {fraction:g}·h_c = {vz:g}~м (высота сечения "
+              "рельефа {hc:g}~м) с учётом k = {k:g} ({formula})",
+    },
+    "reason.PP": {
+        "en": "keeps the graphic photo-plan resolution of {resolution:g} µm at {map:scale}",
+        "ru": "сохраняет разрешающую способность графического фотоплана {resolution:g}~мкм в "
+              "масштабе {map:scale}",
+    },
+    "reason.PR": {
+        "en": "keeps the photo's resolving power of {r:g} lines/mm (k_R = {kr:g})",
+        "ru": "сохраняет разрешающую способность снимка {r:g}~мм⁻¹ (k_R = {kr:g})",
+    },
+    "reason.PD": {
+        "en": "lets {object} ({size:g} m, {shape}, B = {b:g}) be recognised with probability "
+              "{p:g}",
+        "ru": "обеспечивает распознавание объектов «{object}» ({size:g}~м, {shape}, B = {b:g}) "
+              "с вероятностью {p:g}",
+    },
+    "height_formula.instruction": {
+        "en": "instruction",
+        "ru": "формула Инструкции",
+    },
+    "height_formula.parallax": {
+        "en": "parallax",
+        "ru": "параллактическая формула",
+    },
+    # --- the binding constraint at one photo scale -------------------------------------
+    "explanation": {
+        "en": "{cid} ({name}) binds at {scale:scale}: {pixel:.1f} µm {reason}{next}.",
+        "ru": "При масштабе {scale:scale} размер пикселя сканирования {pixel:.1f}~мкм "
+              "определяет условие {cid} ({name}): такой пиксель {reason}{next}.",
+    },
+    "explanation.next": {
+        "en": "; next is {cid} at {pixel:.1f} µm (+{margin:.0f} %)",
+        "ru": "; следующее условие — {cid}, {pixel:.1f}~мкм (+{margin:.0f}~%)",
+    },
+    # --- film warnings (seed 001's conclusions) -----------------------------------------
+    "at_scale": {
+        "en": "at {scales:scale}",
+        "ru": "При масштабе снимков {scales:scale}",
+    },
+    "at_scales": {
+        "en": "at {scales:scale}",
+        "ru": "При масштабах снимков {scales:scale}",
+    },
+    "not_interpretable": {
+        "en": "{at} P_D ({pd:.1f} µm) < P_R ({pr:.1f} µm): {object} ({size:g} m, {shape}) cannot "
+              "be interpreted even on the original photos, and scanning finer than P_R does "
+              "not help — the photo does not carry that detail." + _TAIL_EN,
+        "ru": "{at} P_D ({pd:.1f}~мкм) < P_R ({pr:.1f}~мкм): объекты «{object}» ({size:g}~м, "
+              "{shape}) не дешифрируются даже по исходным снимкам, и сканирование с пикселем "
+              "мельче P_R не поможет — на снимке нет таких деталей." + _TAIL_RU,
+    },
+    "above_interpretation_limit": {
+        "en": "{scales:scale} is above the interpretation limit {limit:scale}: {object} "
+              "({size:g} m, {shape}) cannot be interpreted even on the original photos (this "
+              "norm set does not check interpretation)." + _TAIL_EN,
+        "ru": "Снимки масштаба {scales:scale} мельче предела дешифрирования {limit:scale}: "
+              "объекты «{object}» ({size:g}~м, {shape}) не дешифрируются даже по исходным "
+              "снимкам (эти нормативы не проверяют условие дешифрирования)." + _TAIL_RU,
+    },
+    "pr_drives_volume": {
+        "en": "at {scale:scale} P_R ({pr:.1f} µm) binds only to keep the photo's resolving "
+              "power; accuracy and interpretation allow {coarsest:.1f} µm ({cid}), which is "
+              "{ratio:.1f}× less data per frame (seed 001 conclusion 3).",
+        "ru": "При масштабе снимков {scale:scale} условие P_R ({pr:.1f}~мкм) определяет пиксель "
+              "только ради сохранения разрешающей способности снимка; условия точности и "
+              "дешифрирования допускают {coarsest:.1f}~мкм ({cid}), то есть в {ratio:.1f}~раза "
+              f"меньший объём данных на снимок ({_M001}, вывод 3).",
+    },
+    "scanner_too_coarse": {
+        "en": "{at} the scan pixel ({pixels:.1f} µm) is finer than the finest step of scanner "
+              "'{scanner}' ({step:g} µm); choose a larger photo scale or another scanner",
+        "ru": "{at} размер пикселя сканирования ({pixels:.1f}~мкм) меньше наименьшего шага "
+              "сканера «{scanner}» ({step:g}~мкм); выберите более крупный масштаб снимков или "
+              "другой сканер.",
+    },
+    "overlap_not_standard": {
+        "en": "forward overlap {overlap:g} % is not the Instruction's {standard:g} %: the "
+              "printed height formula V_z·f/(k·Mc·b) lets a larger overlap allow a coarser "
+              "pixel. {detail}(--height-formula parallax to use the parallax form.)",
+        "ru": "Перекрытие {overlap:g}~% отличается от принятого в Инструкции {standard:g}~%: по "
+              "напечатанной в Инструкции формуле точности по высоте V_z·f/(k·Mc·b) большее "
+              "перекрытие допускает более крупный пиксель. {detail}(Параллактическую форму "
+              "задаёт параметр height_formula = parallax.)",
+    },
+    "overlap_not_standard.detail": {
+        "en": "The parallax form gives {pairs}. ",
+        "ru": "Параллактическая форма даёт {pairs}. ",
+    },
+    "overlap_not_standard.pair": {
+        "en": "{pixel:.1f} µm at {scale:scale}",
+        "ru": "{pixel:.1f}~мкм при {scale:scale}",
+    },
+    # --- UAV: the constraints as limits on the ground, warnings -------------------------
+    "limit.PS": {
+        "en": "planimetric error ≤ {vs:g} mm at {map:scale} after k = {k:g}",
+        "ru": "ошибка положения в плане ≤ {vs:g}~мм в масштабе {map:scale} с учётом k = {k:g}",
+    },
+    "limit.PZ": {
+        "en": "height error ≤ {vz:g} m (relief interval {hc:g} m) after k = {k:g}, {formula} "
+              "form",
+        "ru": "ошибка высот ≤ {vz:g}~м (высота сечения рельефа {hc:g}~м) с учётом k = {k:g} "
+              "({formula})",
+    },
+    "limit.PP": {
+        "en": "photo-plan resolution {resolution:g} µm at {map:scale}",
+        "ru": "разрешающая способность фотоплана {resolution:g}~мкм в масштабе {map:scale}",
+    },
+    "limit.PD": {
+        "en": "{object} ({size:g} m, {shape}) recognised with probability {p:g} on the real "
+              "ground resolution L",
+        "ru": "распознавание объектов «{object}» ({size:g}~м, {shape}) с вероятностью {p:g} "
+              "по реальному линейному разрешению на местности L",
+    },
+    "motion_blur": {
+        "en": "motion blur {blur:.2f} px at {height:g} m exceeds {limit:g} px: use an exposure ≤ "
+              "1/{denominator:d} s or a speed ≤ {speed:.1f} m/s",
+        "ru": "Смаз {blur:.2f}~пикс. на высоте {height:g}~м больше допустимого {limit:g}~пикс.: "
+              "нужна выдержка не длиннее 1/{denominator:d}~с или скорость не выше {speed:.1f}~"
+              "м/с.",
+    },
+    "trigger_interval": {
+        "en": "photo interval {interval:.2f} s is shorter than the camera's minimum "
+              "{minimum:g} s: fly ≤ {speed:.1f} m/s or lower the forward overlap",
+        "ru": "Интервал фотографирования {interval:.2f}~с короче наименьшего интервала "
+              "срабатывания затвора камеры {minimum:g}~с: снизьте скорость до {speed:.1f}~м/с "
+              "или уменьшите продольное перекрытие.",
+    },
+    "not_resolvable": {
+        "en": "object contrast K = {contrast:.3f} is below the sensor's threshold contrast "
+              "{threshold:g}: nothing is resolved, so the ground resolution L has no value",
+        "ru": "Контраст объекта K = {contrast:.3f} ниже порогового контраста {threshold:g}: "
+              "детали не разрешаются, и линейное разрешение на местности L не определено.",
+    },
+    "height_above_max": {
+        "en": "planned height {height:g} m is above the maximum {max:.0f} m set by {cid} "
+              "({name}){tolerance}",
+        "ru": "Плановая высота полёта {height:g}~м выше максимальной {max:.0f}~м по условию "
+              "{cid} ({name}){tolerance}.",
+    },
+    "height_above_max.tolerance": {
+        "en": " with a {tolerance:g} % height tolerance",
+        "ru": " с учётом допуска высоты {tolerance:g}~%",
+    },
+    # --- where the object to interpret comes from --------------------------------------
+    "object_source.norm": {
+        "en": "norm set {name}, table objects, {map:scale} ({source})",
+        "ru": "нормативы {name}, таблица наименьших объектов (objects), {map:scale} ({source})",
+    },
+    "object_source.user": {
+        "en": "object_size_m",
+        "ru": "размер объекта задан пользователем (object_size_m)",
+    },
+    # --- the specification (scanplan plan) ----------------------------------------------
+    "spec.film": {
+        "en": "{scale:scale} is the smallest candidate photo scale (fewest frames) that meets "
+              "every constraint: {explanation}",
+        "ru": "{scale:scale} — самый мелкий из рассмотренных масштабов снимков (наименьшее "
+              "число снимков), при котором выполняются все условия. {explanation}",
+    },
+    "no_feasible_photo_scale": {
+        "en": "no candidate photo scale meets every constraint ({why:;}); add a larger photo "
+              "scale to film.photo_scales",
+        "ru": "Ни один из рассмотренных масштабов снимков не удовлетворяет всем условиям "
+              "({why:;}); добавьте более крупный масштаб снимков в film.photo_scales.",
+    },
+    "no_feasible_photo_scale.objects": {
+        "en": "the map's objects need photo scales up to {limit:scale}",
+        "ru": "для дешифрирования объектов карты масштаб снимков должен быть не мельче "
+              "{limit:scale}",
+    },
+    "no_feasible_photo_scale.scanner": {
+        "en": "scanner {scanner} must reach the scan pixel",
+        "ru": "наименьший шаг сканера {scanner} должен быть не больше размера пикселя "
+              "сканирования",
+    },
+    "spec.uav_none": {
+        "en": "no flight height meets every constraint with this camera",
+        "ru": "Ни одна высота полёта не удовлетворяет всем условиям с этой камерой.",
+    },
+    "spec.uav_rounded": {
+        "en": "the maximum height {max:.0f} m ({cid} binds) rounded down to {step:g} m",
+        "ru": "Рекомендуемая высота полёта — максимальная {max:.0f}~м (определяющее условие "
+              "{cid}), округлённая в меньшую сторону с шагом {step:g}~м.",
+    },
+    "height_lowered": {
+        "en": "the planned {planned:g} m is above the maximum {max:.0f} m ({cid} binds); "
+              "lowered to {recommended:g} m",
+        "ru": "Плановая высота полёта {planned:g}~м выше максимальной {max:.0f}~м "
+              "(определяющее условие {cid}); высота понижена до {recommended:g}~м.",
+    },
+    "spec.uav_within": {
+        "en": "the planned height is within the maximum {max:.0f} m",
+        "ru": "Плановая высота полёта не превышает максимальную {max:.0f}~м.",
+    },
+}
+"""Message code → template per locale (same codes and the same fields in every locale)."""
+
+
+def placeholders(template: str) -> set[str]:
+    """The field names a template uses (``{x:g}`` → ``"x"``)."""
+    return {name for _, name, _, _ in string.Formatter().parse(template) if name}
+
+
+def _number(x: float, spec: str, locale: str) -> str:
+    if spec == "scale":
+        if float(x).is_integer():
+            whole = int(x)
+            text = f"{whole:,d}".replace(",", _NBSP) if locale == "ru" else f"{whole:d}"
+        else:
+            text = f"{float(x):g}".replace(".", ",") if locale == "ru" else f"{float(x):g}"
+        return "1:" + text
+    if spec.endswith("d") and float(x).is_integer():
+        x = int(x)
+    if locale != "ru":
+        return format(x, spec)
+    if spec in ("", "g") and float(x).is_integer() and abs(x) >= 10000:
+        spec = ",.0f"  # the reports group whole numbers from 10 000
+    return format(x, spec).replace(",", _NBSP).replace(".", ",")
+
+
+class _Param:
+    """A parameter value formatted for one locale (see the module docstring)."""
+
+    __slots__ = ("locale", "value")
+
+    def __init__(self, value: Any, locale: str) -> None:
+        self.value = value
+        self.locale = locale
+
+    def __format__(self, spec: str) -> str:
+        v, loc = self.value, self.locale
+        if v is None:
+            return ""
+        if isinstance(v, Message):
+            return format(v.text(loc), spec)
+        if isinstance(v, Mapping):
+            return format(str(v.get(loc) or v.get("en", "")), spec)
+        if isinstance(v, list | tuple):
+            if spec.startswith(";"):
+                sep, spec = "; ", spec[1:]
+            else:
+                sep = "; " if loc == "ru" else ", "
+            return sep.join(format(_Param(x, loc), spec) for x in v)
+        if isinstance(v, numbers.Real) and not isinstance(v, bool):
+            return _number(v, spec, loc)
+        return format(str(v), spec)
+
+
+def render(code: str, params: Mapping[str, Any] | None = None, locale: str = "en") -> str:
+    """The message ``code`` with ``params`` in ``locale`` (unknown locale → English).
+
+    Parameters
+    ----------
+    code : str
+        A key of :data:`MESSAGES`.
+    params : mapping, optional
+        The values of the template's fields.
+    locale : {"en", "ru"}
+        Language.
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    KeyError
+        For an unknown code or a missing parameter.
+    """
+    templates = MESSAGES[code]
+    template = templates.get(locale) or templates["en"]
+    if locale == "ru":
+        template = template.replace(_TIE, _NBSP)
+    values = {k: _Param(v, locale) for k, v in (params or {}).items()}
+    return template.format_map(values)
+
+
+class Message(str):
+    """A coded engine sentence: its English text, plus ``code`` and ``params``.
+
+    ``Message("reason.PR", r=40, kr=0.5)`` equals the English text (it is a ``str``), so
+    it can stand wherever the engine used to put a plain English sentence;
+    :meth:`text` gives it in another locale with the same numbers.
+    """
+
+    code: str
+    params: dict[str, Any]
+
+    def __new__(cls, code: str, params: Mapping[str, Any] | None = None, /,
+                **kw: Any) -> Message:
+        values = {**(params or {}), **kw}
+        self = super().__new__(cls, render(code, values, "en"))
+        self.code = code
+        self.params = values
+        return self
+
+    def __getnewargs__(self) -> tuple[Any, ...]:  # type: ignore[override]
+        return (self.code, self.params)
+
+    def text(self, locale: str = "en") -> str:
+        """The sentence in ``locale`` (``"en"`` or ``"ru"``)."""
+        return render(self.code, self.params, locale)
+
+
+def localize(value: Any, locale: str = "en") -> str:
+    """``value`` in ``locale`` if it is a :class:`Message`, else the value as text."""
+    if isinstance(value, Message):
+        return value.text(locale)
+    return "" if value is None else str(value)
+
+
+def params_json(value: Any) -> Any:
+    """Message parameters as plain JSON data (a nested message → ``{code, params}``)."""
+    if isinstance(value, Message):
+        return {"code": value.code, "params": params_json(value.params)}
+    if isinstance(value, Mapping):
+        return {str(k): params_json(v) for k, v in value.items()}
+    if isinstance(value, list | tuple):
+        return [params_json(v) for v in value]
+    if isinstance(value, numbers.Integral) and not isinstance(value, bool):
+        return int(value)
+    if isinstance(value, numbers.Real) and not isinstance(value, bool):
+        return float(value)
+    return value

@@ -1,0 +1,409 @@
+"""The engine's sentences as coded messages in English and Russian (scanplan.messages).
+
+The catalogue has the same codes and the same template fields in both languages; every code
+the engine can emit is reached by a case below; a message is its English text (so the
+terminal, ``--json`` and the English reports read as before) and renders the same numbers in
+Russian; the Russian reports of the bundled examples carry no English engine sentence.
+"""
+
+from __future__ import annotations
+
+import ast
+import copy
+import dataclasses
+import html
+import io
+import json
+import pickle
+import re
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import pytest
+from click.testing import CliRunner
+
+from scanplan.api import scan_job, uav_job
+from scanplan.cli import main
+from scanplan.messages import LOCALES, MESSAGES, Message, localize, placeholders
+from scanplan.planner import CONSTRAINTS, PlanWarning, plan_scan
+from scanplan.project import load_project
+from scanplan.reports.labels import LABELS
+from scanplan.spec import PlanResult, plan_project
+
+ROOT = Path(__file__).resolve().parent.parent
+EXAMPLES = ROOT / "examples"
+EPOCH = "1700000000"
+NBSP = "\u00a0"
+
+# English words of the engine's sentences that a Russian report must not contain
+ENGLISH_PHRASES = ("binds", "the photo", "cannot be interpreted", "keeps", "recognised",
+                   "next is", "Remedies", "is above", "rounded down", "the planned",
+                   "is within", "less data", "motion blur", "forward overlap", "lets",
+                   "smallest candidate", "finer than", "lines/mm", "norm set", "conclusion 3",
+                   "on the ground", "after k", "instruction form", "with probability",
+                   "(printed 0.4)", "(Instruction) or")
+
+
+# --- the catalogue -------------------------------------------------------------------------
+
+
+def test_catalogue_has_every_code_in_both_locales():
+    assert LOCALES == ("en", "ru")
+    for code, templates in MESSAGES.items():
+        assert set(templates) == set(LOCALES), code
+        assert all(templates[loc].strip() for loc in LOCALES), code
+        assert "~" not in templates["en"], code  # "~" ties a number to its unit in Russian
+
+
+def test_templates_have_the_same_fields_in_both_locales():
+    for code, templates in MESSAGES.items():
+        assert placeholders(templates["en"]) == placeholders(templates["ru"]), code
+
+
+def test_russian_templates_are_russian():
+    """No English word in a Russian template outside symbols, ids and option names."""
+    allowed = {"objects", "parallax", "sqrt"}
+    for code, templates in MESSAGES.items():
+        text = re.sub(r"\{[^}]*\}", " ", templates["ru"])
+        words = set(re.findall(r"[A-Za-z_][A-Za-z_.]*[A-Za-z_]", text))
+        # symbols such as Mc, Mk, V_s, k_R, h_c, L_obj are short or have "_"; ids have "_"
+        words = {w for w in words if len(w) > 2 and "_" not in w and w != w.upper()}
+        assert words <= allowed, (code, words - allowed)
+
+
+def test_russian_uses_yo_like_the_labels():
+    """The labels write ё (съёмка, расчёт, объём); the messages do too."""
+    ru = " ".join(t["ru"] for t in MESSAGES.values())
+    for word in ("съемк", "учетом", "объем ", "дает", "передает"):
+        assert word not in ru, word
+
+
+# --- Message: a str with a code and parameters ------------------------------------------------
+
+
+def test_a_message_is_its_english_text_and_renders_in_russian():
+    m = Message("reason.PR", r=40, kr=0.5)
+    assert m == "keeps the photo's resolving power of 40 lines/mm (k_R = 0.5)"
+    assert isinstance(m, str) and str(m) == m and f"{m}" == m
+    assert m.code == "reason.PR" and m.params == {"r": 40, "kr": 0.5}
+    assert m.text("en") == m
+    assert m.text("ru") == f"сохраняет разрешающую способность снимка 40{NBSP}мм⁻¹ (k_R = 0,5)"
+    assert m.text("de") == m  # unknown locale: English
+    assert localize(m, "ru") == m.text("ru") and localize("plain", "ru") == "plain"
+    assert localize(None) == ""
+
+
+def test_numbers_scales_lists_names_and_nested_messages_per_locale():
+    pair = Message("overlap_not_standard.pair", pixel=13.888, scale=10000.0)
+    assert pair == "13.9 µm at 1:10000"
+    assert pair.text("ru") == f"13,9{NBSP}мкм при 1:10{NBSP}000"
+    detail = Message("overlap_not_standard.detail", pairs=[pair, pair])
+    assert detail == "The parallax form gives 13.9 µm at 1:10000, 13.9 µm at 1:10000. "
+    assert detail.text("ru") == (f"Параллактическая форма даёт 13,9{NBSP}мкм при 1:10{NBSP}000; "
+                                 f"13,9{NBSP}мкм при 1:10{NBSP}000. ")
+    at = Message("at_scales", scales=[10000.0, 15000.0])
+    assert at == "at 1:10000, 1:15000"
+    assert at.text("ru") == f"При масштабах снимков 1:10{NBSP}000; 1:15{NBSP}000"
+    lim = Message("height_above_max", height=600.0, max=376.4, cid="PD",
+                  name={"en": "interpretation", "ru": "дешифрирование"}, tolerance=None)
+    assert lim == "planned height 600 m is above the maximum 376 m set by PD (interpretation)"
+    assert "по условию PD (дешифрирование)" in lim.text("ru")
+    why = Message("no_feasible_photo_scale", why=[
+        Message("no_feasible_photo_scale.objects", limit=8847),
+        Message("no_feasible_photo_scale.scanner", scanner="photoscan-td")])
+    assert "(the map's objects need photo scales up to 1:8847; scanner photoscan-td" in why
+
+
+def test_messages_survive_copy_pickle_and_json():
+    m = Message("explanation", cid="PR", name={"en": "resolving power of the photo",
+                                               "ru": "разрешающая способность снимка"},
+                scale=8000.0, pixel=12.5, reason=Message("reason.PR", r=40, kr=0.5), next=None)
+    for other in (copy.deepcopy(m), pickle.loads(pickle.dumps(m))):
+        assert isinstance(other, Message) and other == m
+        assert other.text("ru") == m.text("ru")
+    assert json.loads(json.dumps({"m": m})) == {"m": str(m)}
+
+
+def test_messages_module_is_pure():
+    """Plain data and str.format: the core's import rules (test_norm_sets) hold for it too."""
+    tree = ast.parse((ROOT / "scanplan" / "messages.py").read_text(encoding="utf-8"))
+    imported = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            imported |= {a.name.split(".")[0] for a in node.names}
+        elif isinstance(node, ast.ImportFrom) and node.module:
+            imported.add(node.module.split(".")[0])
+    assert imported <= {"__future__", "numbers", "re", "string", "collections", "typing"}
+
+
+# --- every code the engine can emit -------------------------------------------------------------
+
+
+def _messages(value: Any) -> Iterator[Message]:
+    """Every Message in ``value`` and nested in its parameters."""
+    if isinstance(value, Message):
+        yield value
+        for v in value.params.values():
+            yield from _messages(v)
+    elif isinstance(value, list | tuple):
+        for v in value:
+            yield from _messages(v)
+    elif isinstance(value, dict):
+        for v in value.values():
+            yield from _messages(v)
+
+
+def _scan_messages(plan: Any) -> Iterator[Any]:
+    if plan.inputs.object is not None:
+        yield plan.inputs.object.source
+    for s in plan.scenarios:
+        yield s.explanation
+        for c in s.constraints:
+            yield from (c.reason, c.equation, c.protects)
+    yield from (w.message for w in plan.warnings)
+
+
+def _uav_messages(plan: Any) -> Iterator[Any]:
+    if plan.inputs.map_object is not None:
+        yield plan.inputs.map_object.source
+    for lim in plan.limits:
+        yield from (lim.reason, lim.equation)
+    yield from (w.message for w in plan.warnings)
+
+
+def _project(tmp_path: Path, name: str, text: str) -> PlanResult:
+    path = tmp_path / f"{name}.toml"
+    path.write_text(text, encoding="utf-8")
+    return plan_project(load_project(path))
+
+
+@pytest.fixture(scope="module")
+def emitted(tmp_path_factory) -> dict[str, list[Any]]:
+    """Cases that raise every warning and reach every message: {case: [engine sentences]}."""
+    tmp = tmp_path_factory.mktemp("projects")
+    out: dict[str, list[Any]] = {}
+    film = dict(map_scale=2000, relief_interval_m=0.5, photo_scales=[5000, 10000, 15000, 20000],
+                camera="rc30-153", scanner="photoscan-td")
+    job = scan_job(**film)
+    out["film"] = list(_scan_messages(job.plan))
+    out["film 80 %"] = list(_scan_messages(scan_job(**film, forward_overlap_pct=80).plan))
+    out["film one scale"] = list(_scan_messages(scan_job(**{**film, "photo_scales": [10000]},
+                                                         ).plan))
+    out["film parallax"] = list(_scan_messages(scan_job(**film, height_formula="parallax").plan))
+    out["film own object"] = list(_scan_messages(scan_job(**film, object_size_m=0.3,
+                                                          shape="square").plan))
+    no_pd = dataclasses.replace(job.plan.rules, constraints=("PS", "PZ", "PP", "PR"))
+    out["film without PD"] = list(_scan_messages(plan_scan(job.plan.inputs, no_pd)))
+    uav = dict(camera="canon-eos-5d-mark-ii-50", f_number=8, height_m=300,
+               height_tolerance_pct=40, speed_ms=25, forward_overlap_pct=80, map_scale=2000,
+               relief_interval_m=0.5, area_m=(2000, 3000))
+    out["uav"] = list(_uav_messages(uav_job(**uav).plan))
+    out["uav too high"] = list(_uav_messages(uav_job(**{**uav, "height_m": 600}).plan))
+    out["uav too high, no tolerance"] = list(_uav_messages(uav_job(
+        **{**uav, "height_m": 600, "height_tolerance_pct": 0}).plan))
+    out["uav trigger"] = list(_uav_messages(uav_job(**{**uav, "forward_overlap_pct": 97}).plan))
+    out["uav flat scene"] = list(_uav_messages(uav_job(**{**uav, "r_min": 0.3}).plan))
+    out["uav parallax"] = list(_uav_messages(uav_job(**uav, height_formula="parallax").plan))
+    film_toml = (EXAMPLES / "instruction-2000-film.toml").read_text(encoding="utf-8")
+    uav_toml = (EXAMPLES / "uav-canon-2000.toml").read_text(encoding="utf-8")
+    variants = {
+        "plan film": film_toml,
+        "plan no photo scale": film_toml.replace("photo_scales = [6000, 8000, 10000]",
+                                                 "photo_scales = [10000, 12000]"),
+        "plan uav": uav_toml,
+        "plan uav lowered": uav_toml.replace("height_m = 300", "height_m = 500"),
+        "plan uav no height": uav_toml.replace("height_m = 300\n", ""),
+        "plan uav nothing resolved": uav_toml.replace("r_min = 0.1", "r_min = 0.3"),
+    }
+    for name, text in variants.items():
+        r = _project(tmp, name.replace(" ", "-"), text)
+        found = [w.message for w in r.warnings]
+        if r.film:
+            found += [r.film.reason, *_scan_messages(r.film.job.plan)]
+        if r.uav:
+            found += [r.uav.reason, *_uav_messages(r.uav.job.plan)]
+        out[name] = found
+    return out
+
+
+def test_every_catalogue_code_is_reached_and_every_sentence_is_a_message(emitted):
+    codes = set()
+    for case, found in emitted.items():
+        for value in found:
+            assert isinstance(value, Message), (case, value)
+            codes |= {m.code for m in _messages(value)}
+    assert codes == set(MESSAGES), (set(MESSAGES) - codes, codes - set(MESSAGES))
+
+
+def test_every_warning_code_is_its_message_code(emitted):
+    warning_codes = {k.removeprefix("pdf_warn_") for k in LABELS["en"]
+                     if k.startswith("pdf_warn_")}
+    seen = set()
+    for found in emitted.values():
+        for value in found:
+            if value.code in warning_codes:
+                seen.add(value.code)
+    assert seen == warning_codes  # each warning the reports have a heading for is raised
+
+
+def test_russian_rendering_of_every_emitted_sentence(emitted):
+    """Decimal comma, no English words beyond symbols, ids and the norm data's own text."""
+    for case, found in emitted.items():
+        for value in found:
+            ru = value.text("ru")
+            assert ru != str(value), (case, ru)
+            assert "~" not in ru, (case, ru)
+            assert not re.search(r"\d (мкм|мм|м|пикс\.|%)(\W|$)", ru), (case, ru)  # tied
+            for phrase in ENGLISH_PHRASES:
+                assert phrase not in ru, (case, phrase, ru)
+            assert _english_words(ru, []) == [], (case, ru)
+            assert not re.search(r"\d\.\d", ru), (case, ru)  # decimal comma
+
+
+def test_english_text_is_what_the_engine_always_said(emitted):
+    """Phrases the docs and earlier tests quote, unchanged."""
+    film = " ".join(map(str, emitted["film"]))
+    assert ("PZ (height accuracy) binds at 1:10000: 8.3 µm keeps height error within 0.2·h_c = "
+            "0.1 m (relief interval 0.5 m) after k = 2, instruction form; next is PD at 11.1 µm "
+            "(+33 %).") in film
+    assert ("at 1:10000, 1:15000, 1:20000 P_D (11.1, 7.4, 5.5 µm) < P_R (12.5 µm): poles, "
+            "hydrants (0.2 m, circle) cannot be interpreted even on the original photos") in film
+    assert ("finer than the finest step of scanner 'photoscan-td' (7 µm); choose a larger photo "
+            "scale or another scanner") in film
+    assert "P_S = V_s·Mk/(k·Mc) — GKINP (GNTA)-02-036-02; seed 001 eq. 1" in film
+    uav = " ".join(map(str, emitted["plan uav lowered"]))
+    assert "the planned 500 m is above the maximum 376 m (PD binds); lowered to 375 m" in uav
+    assert CONSTRAINTS["PR"].equation == "P_R = k_R/R, k_R = 0.5 (printed 0.4) — seed 001 eqs. 4–6"
+
+
+def test_json_keeps_english_and_adds_the_parameters():
+    r = CliRunner().invoke(main, ["plan", str(EXAMPLES / "uav-canon-2000.toml"), "--json"])
+    assert r.exit_code == 0, r.output
+    doc = json.loads(r.stdout)
+    blur = next(w for w in doc["warnings"] if w["code"] == "motion_blur")
+    assert blur["message"].startswith("motion blur 0.65 px at 300 m exceeds 0.5 px")
+    assert blur["params"]["denominator"] == 1301 and blur["params"]["height"] == 300
+    assert doc["specification"]["uav"]["reason"] == "the planned height is within the maximum 376 m"
+    assert PlanWarning("x", "plain").text("ru") == "plain"  # a plain string stays as it is
+
+
+# --- the Russian reports of the bundled examples -------------------------------------------
+
+
+def _norm_text(text: str) -> str:
+    return " ".join(text.replace(NBSP, " ").split())
+
+
+def _allowed(result: PlanResult) -> list[str]:
+    """Text a Russian report may show in English: the user's own text and the norm data."""
+    m = result.meta
+    out = [m.project, m.customer, m.contractor, m.approver_position, m.approver_name,
+]
+    jobs = [j for j in (result.film.job if result.film else None,
+                        result.uav.job if result.uav else None) if j is not None]
+    for job in jobs:
+        ns = job.norm_set
+        out += [ns.source, ns.title, *ns.parameter_sources.values(),
+                *(o.source for o in ns.objects)]
+        out += [str(v) for v in ns.parameters.values()]
+        out += [s.get("source", "") for s in ns.shape_rows.values()]
+        inp = job.plan.inputs
+        out += [getattr(inp, "camera", ""), getattr(inp, "camera_name", "")]
+    return sorted((_norm_text(x) for x in out if x), key=len, reverse=True)
+
+
+def _english_words(text: str, allowed: list[str]) -> list[str]:
+    text = _norm_text(text)
+    for a in allowed:
+        text = text.replace(a, " ")
+    word = r"[A-Za-z]*[a-z][A-Za-z]*"
+    return re.findall(rf"\b{word}(?: +{word}\b)+", text)
+
+
+@pytest.fixture(scope="module", params=sorted(p.name for p in EXAMPLES.glob("*.toml")))
+def russian(request, tmp_path_factory):
+    """A bundled example (and film + UAV together) rendered in Russian: PDF text, xlsx cells."""
+    pypdf = pytest.importorskip("pypdf")
+    openpyxl = pytest.importorskip("openpyxl")
+    from scanplan.reports.excel import render_xlsx
+    from scanplan.reports.pdf import render_pdf
+
+    result = plan_project(load_project(EXAMPLES / request.param))
+    meta = dataclasses.replace(result.meta, locale="ru")
+    kw = dict(scan=result.film.job if result.film else None,
+              uav=result.uav.job if result.uav else None, meta=meta, spec=result)
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setenv("SOURCE_DATE_EPOCH", EPOCH)
+        pdf = render_pdf(**kw)
+        xlsx = render_xlsx(**kw)
+    text = "\n".join(p.extract_text() for p in pypdf.PdfReader(io.BytesIO(pdf)).pages)
+    book = openpyxl.load_workbook(io.BytesIO(xlsx))
+    cells = [c.value for ws in book for row in ws.iter_rows() for c in row
+             if isinstance(c.value, str)]
+    return result, text, cells
+
+
+def _engine_sentences(result: PlanResult) -> list[Message]:
+    found: list[Any] = [w.message for w in result.warnings]
+    if result.film:
+        found += [result.film.reason, *_scan_messages(result.film.job.plan)]
+    if result.uav:
+        found += [result.uav.reason, *_uav_messages(result.uav.job.plan)]
+    return [m for m in found if isinstance(m, Message)]
+
+
+def _squeeze(text: str) -> str:
+    """Text without any whitespace (the PDF wraps lines anywhere, even after a slash)."""
+    return re.sub(r"\s", "", text)
+
+
+def test_russian_pdf_has_no_english_engine_sentence(russian):
+    result, text, _ = russian
+    flat = _norm_text(text)
+    for phrase in ENGLISH_PHRASES:
+        assert phrase not in flat, phrase
+    assert _english_words(text, _allowed(result)) == []
+    assert "английском" not in flat  # the old note saying the engine's texts are English
+    # the engine's sentences are there, in Russian: warnings, reasons of the specification,
+    # explanations, formulas, the binding limit's reason
+    squeezed = _squeeze(text)
+    shown = [m for m in _engine_sentences(result)
+             if not m.code.startswith(("reason.", "limit.", "object_source."))]
+    if result.uav:
+        shown += [lim.reason for lim in result.uav.job.plan.limits if lim.binding]
+    assert shown
+    for m in shown:
+        assert _squeeze(m.text("ru")) in squeezed, m.code
+
+
+def test_russian_workbook_has_no_english_engine_sentence(russian):
+    result, _, cells = russian
+    allowed = _allowed(result)
+    for value in cells:
+        for phrase in ENGLISH_PHRASES:
+            assert phrase not in value, (phrase, value)
+        assert _english_words(value, allowed) == [], value
+    # warnings, reasons, explanations, constraint reasons and formulas, limits, object source
+    for m in _engine_sentences(result):
+        if not m.code.startswith("protects."):
+            assert m.text("ru") in cells, m.code
+
+
+def test_no_engine_language_note_left():
+    assert "pdf_engine_language" not in LABELS["en"]
+    assert "pdf_engine_language" not in LABELS["ru"]
+    macros = (ROOT / "templates" / "_macros.html").read_text(encoding="utf-8")
+    assert "engine_language" not in macros
+
+
+def test_english_pdf_shows_the_english_sentences():
+    """The English report prints exactly the engine's English text."""
+    pytest.importorskip("weasyprint")
+    from scanplan.reports.pdf import render_html
+
+    result = plan_project(load_project(EXAMPLES / "instruction-2000-film.toml"))
+    page = html.unescape(render_html(scan=result.film.job, meta=result.meta, spec=result))
+    for m in _engine_sentences(result):
+        if not m.code.startswith("reason."):  # a reason is shown inside its explanation
+            assert str(m) in page, m.code
