@@ -15,7 +15,9 @@ import os
 from collections.abc import Iterable
 from dataclasses import dataclass
 
+from .domains import check_domain
 from .errors import InputError
+from .messages import Message
 from .mtf import DEFAULT_K0
 from .norms import DEFAULT_NORM_SET, MapObject, NormSet, load_norm_set, parse_scale
 from .normschema import PARAMETERS
@@ -64,9 +66,14 @@ def resolve_object(
     """
     norm_obj = ns.object_for(map_scale)
     if object_size_m is not None:
-        shape_id = shape or (norm_obj.shape if norm_obj else ns.parameters["shape"])
+        check_domain("object_size_m", object_size_m)
+        shape_id = shape if shape is not None else (
+            norm_obj.shape if norm_obj else ns.parameters["shape"])
         coef = ns.shape_coefficient(shape_id, "shape")
-        return ObjectSpec("object", float(object_size_m), shape_id, coef, "object_size_m")
+        return ObjectSpec("object", float(object_size_m), shape_id, coef,
+                          Message("object_source.user"),
+                          name_ru="объект",
+                          shape_ru=ns.shape_rows.get(shape_id, {}).get("name_ru", ""))
     if norm_obj is None:
         return None
     return norm_object_spec(ns, norm_obj, shape)
@@ -74,10 +81,12 @@ def resolve_object(
 
 def norm_object_spec(ns: NormSet, obj: MapObject, shape: str | None = None) -> ObjectSpec:
     """An :class:`ObjectSpec` for a row of the norm set's ``objects`` table."""
-    shape_id = shape or obj.shape
+    shape_id = shape if shape is not None else obj.shape
     return ObjectSpec(obj.name, obj.size_m, shape_id, ns.shape_coefficient(shape_id, "shape"),
-                      f"norm set {ns.name}, table objects, 1:{obj.map_scale} ({obj.source})",
-                      map_scale=obj.map_scale)
+                      Message("object_source.norm", name=ns.name, map=obj.map_scale,
+                              source=obj.source),
+                      map_scale=obj.map_scale, name_ru=obj.name_ru,
+                      shape_ru=ns.shape_rows.get(shape_id, {}).get("name_ru", ""))
 
 
 def scan_job(
@@ -105,9 +114,17 @@ def scan_job(
     """Like :func:`scan`, returning the norm set too (for reports)."""
     ns = load_norm_set(norms)
     mk = parse_scale(map_scale, "map_scale")
+    check_domain("map_scale", mk)
+    if isinstance(photo_scales, str | bytes) or not isinstance(photo_scales, Iterable):
+        raise InputError("photo_scale", f"must be a list of scales (got {photo_scales!r})")
     scales = tuple(parse_scale(s, "photo_scale") for s in photo_scales)
-    if camera:
+    for mc in scales:
+        check_domain("photo_scale", mc)
+    if camera is not None:
         cam = ns.camera(camera, "camera")
+        if cam.kind != "film":
+            raise InputError("camera", f"{camera!r} is a digital camera; use `scanplan uav` "
+                             "for digital cameras, or a film camera (scanplan cameras list)")
         f = focal_mm if focal_mm is not None else cam.focal_mm
         w, h = (parse_frame_mm(frame_mm) if frame_mm is not None
                 else (cam.sensor_width_mm, cam.sensor_height_mm))
@@ -127,7 +144,7 @@ def scan_job(
     _check_overrides(overrides)
     rules = ns.rules(**overrides)
     obj = resolve_object(ns, mk, object_size_m=object_size_m, shape=shape)
-    steps = ns.scanner_steps(scanner, "scanner") if scanner else ()
+    steps = ns.scanner_steps(scanner, "scanner") if scanner is not None else ()
     overlap = (forward_overlap_pct if forward_overlap_pct is not None
                else rules.standard_forward_overlap_pct)
     inputs = ScanInputs(
@@ -225,7 +242,7 @@ def uav_job(
     ``relief_interval_m`` adds the norm set's constraints and the maximum flight height.
     """
     ns = load_norm_set(norms)
-    cam = ns.camera(camera, "camera") if camera else None
+    cam = ns.camera(camera, "camera") if camera is not None else None
     if cam is not None and cam.kind != "digital":
         raise InputError("camera", f"{camera!r} is a film camera; use `scanplan scan` for "
                          "film, or a digital camera (scanplan cameras list)")
@@ -249,6 +266,7 @@ def uav_job(
     map_obj = None
     if map_scale is not None:
         mk = parse_scale(map_scale, "map_scale")
+        check_domain("map_scale", mk)
         if relief_interval_m is None:
             raise InputError("relief_interval_m", "give the relief interval h_c (m > 0) with "
                              "the map scale")
@@ -287,7 +305,8 @@ def _check_overrides(overrides: dict[str, object]) -> None:
     for key, value in overrides.items():
         if value is not None:
             try:
-                problem = PARAMETERS[key].value.check(value)
+                problem = (f"must be {PARAMETERS[key].value.describe()}"
+                           if isinstance(value, bool) else PARAMETERS[key].value.check(value))
             except (TypeError, ValueError):
                 problem = f"must be {PARAMETERS[key].value.describe()}"
             if problem:

@@ -30,7 +30,9 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from . import formulas as F
+from .domains import check_domain, check_range
 from .errors import InputError
+from .messages import Message, localize
 
 __all__ = [
     "CONSTRAINTS",
@@ -46,6 +48,7 @@ __all__ = [
     "ScanScenario",
     "check_range",
     "evaluate",
+    "height_formula_name",
     "interpretation_limit_photo_scale",
     "max_photo_scale",
     "plan_scan",
@@ -87,28 +90,16 @@ class ConstraintInfo:
 
 
 CONSTRAINTS: dict[str, ConstraintInfo] = {
-    "PS": ConstraintInfo(
-        "PS", "planimetric accuracy", "точность в плане",
-        "keeps the planimetric error of the model within V_s on the map after the "
-        "processing loss k",
-        "P_S = V_s·Mk/(k·Mc) — GKINP (GNTA)-02-036-02; seed 001 eq. 1", True),
-    "PZ": ConstraintInfo(
-        "PZ", "height accuracy", "точность по высоте",
-        "keeps the height error within V_z = fraction·h_c after the processing loss k",
-        "P_Z = V_z·f/(k·Mc·b) (Instruction) or V_z·b/(k·Mc·f) (parallax) — seed 001 eq. 2",
-        True),
-    "PP": ConstraintInfo(
-        "PP", "graphic photo-plan", "графический фотоплан",
-        "keeps the resolution of a graphic photo-plan (70 µm on the plan)",
-        "P_P = 0.070·Mk/Mc — GKINP (GNTA)-02-036-02; seed 001 eq. 3", True),
-    "PR": ConstraintInfo(
-        "PR", "resolving power of the photo", "разрешающая способность снимка",
-        "keeps the photo's resolving power R in the digital image",
-        "P_R = k_R/R, k_R = 0.5 (printed 0.4) — seed 001 eqs. 4–6", False),
-    "PD": ConstraintInfo(
-        "PD", "interpretation", "дешифрирование",
-        "lets the map's smallest objects be recognised with probability P",
-        "P_D = 2·k_R·L·sqrt(−ln P)/(B·Mc) — seed 001 eq. 16", True),
+    "PS": ConstraintInfo("PS", "planimetric accuracy", "точность в плане",
+                         Message("protects.PS"), Message("equation.PS"), True),
+    "PZ": ConstraintInfo("PZ", "height accuracy", "точность по высоте",
+                         Message("protects.PZ"), Message("equation.PZ"), True),
+    "PP": ConstraintInfo("PP", "graphic photo-plan", "графический фотоплан",
+                         Message("protects.PP"), Message("equation.PP"), True),
+    "PR": ConstraintInfo("PR", "resolving power of the photo", "разрешающая способность снимка",
+                         Message("protects.PR"), Message("equation.PR"), False),
+    "PD": ConstraintInfo("PD", "interpretation", "дешифрирование",
+                         Message("protects.PD"), Message("equation.PD"), True),
 }
 """The film constraints, in the Instruction's order."""
 
@@ -397,8 +388,16 @@ class ObjectSpec:
     size_m: float
     shape: str
     shape_coefficient: float
-    source: str  # "norm table objects, 1:2000 row (seed 001 Table 3)" or "--object-size-m"
+    source: str  # where it comes from (a Message: object_source.norm / object_source.user)
     map_scale: int | None = None  # the norm table row's map scale, if it came from one
+    name_ru: str = ""   # the norm table's Russian name (reports in Russian)
+    shape_ru: str = ""  # the shape's Russian name
+
+    def names(self) -> dict[str, Any]:
+        """Message parameters naming the object: ``object``, ``size``, ``shape``."""
+        return {"object": {"en": self.name, "ru": self.name_ru or self.name},
+                "size": self.size_m,
+                "shape": {"en": self.shape, "ru": self.shape_ru or self.shape}}
 
 
 @dataclass(frozen=True)
@@ -424,7 +423,11 @@ class ScanInputs:
 
 @dataclass(frozen=True)
 class ConstraintResult:
-    """One constraint at one photo scale."""
+    """One constraint at one photo scale.
+
+    ``protects``, ``equation`` and ``reason`` are :class:`~scanplan.messages.Message` s:
+    English text that renders in another locale with ``.text(locale)``.
+    """
 
     id: str
     name: str
@@ -440,17 +443,26 @@ class ConstraintResult:
 
 @dataclass(frozen=True)
 class PlanWarning:
-    """A warning or note from the rules (``severity`` is ``"warning"`` or ``"info"``)."""
+    """A warning or note from the rules (``severity`` is ``"warning"`` or ``"info"``).
+
+    ``message`` is a :class:`~scanplan.messages.Message` (its English text) whose code is
+    ``code``; :meth:`text` renders it in another locale.
+    """
 
     code: str
     message: str
     photo_scales: tuple[float, ...] = ()
     severity: str = "warning"
 
+    def text(self, locale: str = "en") -> str:
+        """The message in ``locale`` (``"en"`` or ``"ru"``)."""
+        return localize(self.message, locale)
+
 
 @dataclass(frozen=True)
 class ScanScenario:
-    """The engine's answer at one photo scale."""
+    """The engine's answer at one photo scale (``explanation``: a
+    :class:`~scanplan.messages.Message`)."""
 
     photo_scale: float
     photo_to_map_ratio: float
@@ -499,87 +511,66 @@ class ScanPlan:
     sweep: dict[str, Any] = field(default_factory=dict)
 
 
-def check_range(name: str, value: float | None, *, lo: float | None = None,
-                hi: float | None = None, lo_open: bool = True, hi_open: bool = False,
-                unit: str = "") -> None:
-    """Raise :class:`InputError` naming ``name`` unless ``value`` is finite and in range.
-
-    ``lo``/``hi`` are exclusive when ``lo_open``/``hi_open`` (default: > lo, ≤ hi).
-    """
-    ok = isinstance(value, int | float) and not isinstance(value, bool) and math.isfinite(value)
-    if ok and lo is not None:
-        ok = value > lo if lo_open else value >= lo
-    if ok and hi is not None:
-        ok = value < hi if hi_open else value <= hi
-    if not ok:
-        parts = []
-        if lo is not None:
-            parts.append(f"{'>' if lo_open else '≥'} {lo:g}")
-        if hi is not None:
-            parts.append(f"{'<' if hi_open else '≤'} {hi:g}")
-        rng = " and ".join(parts)
-        raise InputError(name, f"must be a finite number {rng}{' ' + unit if unit else ''} "
-                               f"(got {value!r})")
-
-
 def validate_inputs(inp: ScanInputs, rules: ScanRules) -> None:
-    """Raise :class:`InputError` (field = the input's name) for any value out of range."""
-    check_range("map_scale", inp.map_scale, lo=0)
+    """Raise :class:`InputError` (field = the input's name) for any value outside its domain
+    (:data:`scanplan.domains.DOMAINS`)."""
+    check_domain("map_scale", inp.map_scale)
     if not inp.photo_scales:
         raise InputError("photo_scale", "give at least one photo scale")
     for mc in inp.photo_scales:
-        check_range("photo_scale", mc, lo=0)
-    check_range("relief_interval_m", inp.relief_interval_m, lo=0, unit="m")
-    check_range("focal_mm", inp.focal_mm, lo=0, unit="mm")
-    check_range("frame_width_mm", inp.frame_width_mm, lo=0, unit="mm")
-    check_range("frame_along_mm", inp.frame_along_mm, lo=0, unit="mm")
-    check_range("resolving_power_lpmm", inp.resolving_power_lpmm, lo=0, unit="lines/mm")
-    check_range("forward_overlap_pct", inp.forward_overlap_pct, lo=0, hi=100, lo_open=False,
-           hi_open=True, unit="%")
-    check_range("bands", inp.bands, lo=1, lo_open=False)
-    check_range("bits_per_band", inp.bits_per_band, lo=1, lo_open=False)
+        check_domain("photo_scale", mc)
+    for name in ("relief_interval_m", "focal_mm", "frame_width_mm", "frame_along_mm",
+                 "resolving_power_lpmm", "forward_overlap_pct", "bands", "bits_per_band"):
+        check_domain(name, getattr(inp, name))
     for s in inp.scanner_steps_um:
-        check_range("scanner", s, lo=0, unit="µm")
+        check_domain("scanner", s)
     for s in inp.candidate_pixels_um:
-        check_range("pixel_um", s, lo=0, unit="µm")
+        check_domain("pixel_um", s)
     if inp.object is not None:
-        check_range("object_size_m", inp.object.size_m, lo=0, unit="m")
-        check_range("shape", inp.object.shape_coefficient, lo=0)
+        check_domain("object_size_m", inp.object.size_m)
+        check_domain("shape", inp.object.shape_coefficient)
     elif "PD" in rules.constraints:
         raise InputError(
             "object_size_m",
             f"the norm set has no smallest object for map scale 1:{inp.map_scale:g}; "
             "give the object size in m (> 0)")
-    check_range("probability", rules.probability, lo=0, hi=1, hi_open=True)
-    check_range("pr_coefficient", rules.pr_coefficient, lo=0)
+    check_domain("probability", rules.probability)
+    check_domain("pr_coefficient", rules.pr_coefficient)
 
 
-def _fmt(x: float) -> str:
-    return f"{x:.1f}"
+def height_formula_name(formula: str) -> Message | str:
+    """The height formula's name as a message parameter (``instruction``/``parallax``)."""
+    try:
+        return Message(f"height_formula.{formula}")
+    except KeyError:
+        return formula
 
 
-def _reason(cid: str, inp: ScanInputs, rules: ScanRules) -> str:
+def _reason(cid: str, inp: ScanInputs, rules: ScanRules) -> Message:
     """Why constraint ``cid`` is there, with this contract's numbers."""
     k = rules.processing_loss_k
     if cid == "PS":
         ground = rules.planimetric_accuracy_mm * inp.map_scale / 1000.0
-        return (f"keeps planimetric error within {rules.planimetric_accuracy_mm:g} mm at "
-                f"1:{inp.map_scale:g} ({ground:g} m on the ground) after processing loss k = {k:g}")
+        return Message("reason.PS", vs=rules.planimetric_accuracy_mm, map=inp.map_scale,
+                       ground=ground, k=k)
     if cid == "PZ":
         vz = rules.height_accuracy_fraction * inp.relief_interval_m
-        return (f"keeps height error within {rules.height_accuracy_fraction:g}·h_c = {vz:g} m "
-                f"(relief interval {inp.relief_interval_m:g} m) after k = {k:g}, "
-                f"{rules.height_formula} form")
+        return Message("reason.PZ", fraction=rules.height_accuracy_fraction, vz=vz,
+                       hc=inp.relief_interval_m, k=k,
+                       formula=height_formula_name(rules.height_formula))
     if cid == "PP":
-        return (f"keeps the graphic photo-plan resolution of "
-                f"{rules.photoplan_resolution_mm * 1000:g} µm at 1:{inp.map_scale:g}")
+        return Message("reason.PP", resolution=rules.photoplan_resolution_mm * 1000,
+                       map=inp.map_scale)
     if cid == "PR":
-        return (f"keeps the photo's resolving power of {inp.resolving_power_lpmm:g} lines/mm "
-                f"(k_R = {rules.pr_coefficient:g})")
+        return Message("reason.PR", r=inp.resolving_power_lpmm, kr=rules.pr_coefficient)
     obj = inp.object
     assert obj is not None
-    return (f"lets {obj.name} ({obj.size_m:g} m, {obj.shape}, B = {obj.shape_coefficient:g}) "
-            f"be recognised with probability {rules.probability:g}")
+    return Message("reason.PD", obj.names(), b=obj.shape_coefficient, p=rules.probability)
+
+
+def _constraint_name(cid: str) -> dict[str, str]:
+    info = CONSTRAINTS[cid]
+    return {"en": info.name, "ru": info.name_ru}
 
 
 def plan_scan(inp: ScanInputs, rules: ScanRules) -> ScanPlan:
@@ -674,11 +665,11 @@ def plan_scan(inp: ScanInputs, rules: ScanRules) -> ScanPlan:
                 reason=_reason(cid, inp, rules), details=details))
         bind = ev.ids[bind_i]
         runner = sorted((r for r in results if not r.binding), key=lambda r: r.pixel_um)
-        explanation = (
-            f"{bind} ({CONSTRAINTS[bind].name}) binds at 1:{scale:g}: {_fmt(scan)} µm "
-            f"{results[bind_i].reason}"
-            + (f"; next is {runner[0].id} at {_fmt(runner[0].pixel_um)} µm "
-               f"(+{runner[0].margin_pct:.0f} %)" if runner else "") + ".")
+        explanation = Message(
+            "explanation", cid=bind, name=_constraint_name(bind), scale=float(scale),
+            pixel=scan, reason=results[bind_i].reason,
+            next=Message("explanation.next", cid=runner[0].id, pixel=runner[0].pixel_um,
+                         margin=runner[0].margin_pct) if runner else None)
         sp = float(scanner_px[j]) if scanner_px is not None else None
         scenarios.append(ScanScenario(
             photo_scale=float(scale), photo_to_map_ratio=float(scale / inp.map_scale),
@@ -693,9 +684,9 @@ def plan_scan(inp: ScanInputs, rules: ScanRules) -> ScanPlan:
     warnings.extend(_scenario_warnings(inp, rules, scenarios, mc_interp))
     overlap = overlap_warning(
         rules, inp.forward_overlap_pct,
-        "The parallax form gives " + ", ".join(
-            f"{_fmt(s.height_pixel_other_um or 0)} µm at 1:{s.photo_scale:g}" for s in scenarios)
-        + ".")
+        Message("overlap_not_standard.detail", pairs=[
+            Message("overlap_not_standard.pair", pixel=s.height_pixel_other_um or 0,
+                    scale=s.photo_scale) for s in scenarios]))
     if overlap:
         warnings.append(overlap)
 
@@ -719,8 +710,8 @@ def plan_scan(inp: ScanInputs, rules: ScanRules) -> ScanPlan:
                     max_photo_scales=reach)
 
 
-def overlap_warning(rules: ScanRules, forward_overlap_pct: float, detail: str = ""
-                    ) -> PlanWarning | None:
+def overlap_warning(rules: ScanRules, forward_overlap_pct: float,
+                    detail: Message | None = None) -> PlanWarning | None:
     """``overlap_not_standard`` when the printed height formula meets a non-standard overlap.
 
     Parameters
@@ -729,23 +720,21 @@ def overlap_warning(rules: ScanRules, forward_overlap_pct: float, detail: str = 
         Enabled constraints, height formula and the Instruction's standard overlap.
     forward_overlap_pct : float
         The overlap flown [%].
-    detail : str
-        A sentence with the parallax form's numbers, if the caller has them.
+    detail : Message, optional
+        ``overlap_not_standard.detail``: the parallax form's numbers, if the caller has them.
     """
     if ("PZ" not in rules.constraints or rules.height_formula != "instruction"
             or math.isclose(forward_overlap_pct, rules.standard_forward_overlap_pct)):
         return None
-    return PlanWarning(
-        "overlap_not_standard",
-        f"forward overlap {forward_overlap_pct:g} % is not the Instruction's "
-        f"{rules.standard_forward_overlap_pct:g} %: the printed height formula "
-        "V_z·f/(k·Mc·b) lets a larger overlap allow a coarser pixel. "
-        + (detail + " " if detail else "") + "(--height-formula parallax to use the "
-        "parallax form.)")
+    return PlanWarning("overlap_not_standard", Message(
+        "overlap_not_standard", overlap=forward_overlap_pct,
+        standard=rules.standard_forward_overlap_pct, detail=detail))
 
 
-def _scales(xs: Sequence[ScanScenario]) -> str:
-    return ", ".join(f"1:{x.photo_scale:g}" for x in xs)
+def _at_scales(xs: Sequence[ScanScenario]) -> Message:
+    """``at 1:10000, 1:15000`` (the Russian form agrees in number)."""
+    return Message("at_scale" if len(xs) == 1 else "at_scales",
+                   scales=[x.photo_scale for x in xs])
 
 
 def _scenario_warnings(inp: ScanInputs, rules: ScanRules, scen: Sequence[ScanScenario],
@@ -756,29 +745,20 @@ def _scenario_warnings(inp: ScanInputs, rules: ScanRules, scen: Sequence[ScanSce
     if obj and mc_interp is not None:
         bad = [s for s in scen if s.photo_scale > mc_interp * (1 + 1e-12)]
         if bad:
-            what = f"{obj.name} ({obj.size_m:g} m, {obj.shape})"
             pr = float(F.resolving_power_pixel_um(inp.resolving_power_lpmm,
                                                   pr_coefficient=rules.pr_coefficient))
-            need = ", ".join(f"{s.required_resolving_power_lpmm:.1f}" for s in bad)
+            common: dict[str, Any] = {
+                **obj.names(), "need": [s.required_resolving_power_lpmm for s in bad],
+                "r": inp.resolving_power_lpmm, "limit": math.floor(mc_interp),
+                "ratio": mc_interp / inp.map_scale}
             if "PD" in rules.constraints:
-                pds = ", ".join(_fmt(s.constraint("PD").pixel_um) for s in bad)
-                head = (f"at {_scales(bad)} P_D ({pds} µm) < P_R ({_fmt(pr)} µm): {what} cannot "
-                        "be interpreted even on the original photos, and scanning finer than "
-                        "P_R does not help — the photo does not carry that detail")
-                code = "not_interpretable"
+                msg = Message("not_interpretable", common, at=_at_scales(bad),
+                              pd=[s.constraint("PD").pixel_um for s in bad], pr=pr)
             else:
-                head = (f"{_scales(bad)} is above the interpretation limit "
-                        f"1:{math.floor(mc_interp):d}: {what} cannot be interpreted even on the "
-                        "original photos (this norm set does not check interpretation)")
-                code = "above_interpretation_limit"
-            out.append(PlanWarning(
-                code,
-                f"{head}. They need R ≥ {need} lines/mm; the photo has "
-                f"{inp.resolving_power_lpmm:g}. Remedies: interpret them in the field, use "
-                "photos with a higher resolving power, or fly a larger photo scale "
-                f"(1:{math.floor(mc_interp):d} or larger, Mc/Mk ≤ "
-                f"{mc_interp / inp.map_scale:.1f}).",
-                photo_scales=tuple(s.photo_scale for s in bad)))
+                msg = Message("above_interpretation_limit", common,
+                              scales=[s.photo_scale for s in bad])
+            out.append(PlanWarning(msg.code, msg,
+                                   photo_scales=tuple(s.photo_scale for s in bad)))
     for s in scen:
         if s.binding != "PR":
             continue
@@ -790,20 +770,16 @@ def _scenario_warnings(inp: ScanInputs, rules: ScanRules, scen: Sequence[ScanSce
         if ratio > 1.0 + 1e-9:
             out.append(PlanWarning(
                 "pr_drives_volume",
-                f"at 1:{s.photo_scale:g} P_R ({_fmt(s.scan_pixel_um)} µm) binds only to keep "
-                f"the photo's resolving power; accuracy and interpretation allow "
-                f"{_fmt(coarsest.pixel_um)} µm ({coarsest.id}), which is {ratio:.1f}× less "
-                "data per frame (seed 001 conclusion 3).",
+                Message("pr_drives_volume", scale=s.photo_scale, pr=s.scan_pixel_um,
+                        coarsest=coarsest.pixel_um, cid=coarsest.id, ratio=ratio),
                 photo_scales=(s.photo_scale,), severity="info"))
     if inp.scanner_steps_um:
         fine = [s for s in scen if s.scanner_pixel_um is None]
         if fine:
             out.append(PlanWarning(
                 "scanner_too_coarse",
-                f"at {_scales(fine)} the scan pixel ("
-                + ", ".join(_fmt(s.scan_pixel_um) for s in fine)
-                + f" µm) is finer than the finest step of scanner {inp.scanner!r} "
-                f"({min(inp.scanner_steps_um):g} µm); choose a larger photo scale or another "
-                "scanner",
+                Message("scanner_too_coarse", at=_at_scales(fine),
+                        pixels=[s.scan_pixel_um for s in fine], scanner=inp.scanner,
+                        step=min(inp.scanner_steps_um)),
                 photo_scales=tuple(s.photo_scale for s in fine)))
     return out

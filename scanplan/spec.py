@@ -17,7 +17,9 @@ from typing import Any
 
 from . import flight as FL
 from .api import ScanJob, UavJob, scan_job, uav_job
+from .domains import check_domain
 from .errors import InputError
+from .messages import Message
 from .planner import PlanWarning, ScanScenario
 from .project import Project
 from .reports import ReportMeta
@@ -51,6 +53,7 @@ _UAV_KEYS = {
     "pitch_rate_rad_s": "uav.motion.pitch_rate_rad_s",
     "yaw_rate_rad_s": "uav.motion.yaw_rate_rad_s", "area_m": "area",
     "area_width_m": "area.width_m", "area_length_m": "area.length_m",
+    "roll_deg": "uav.roll_deg", "pitch_deg": "uav.pitch_deg",
 }
 _NORM_KEYS = {"object_size_m": "norms.object_size_m", "shape": "norms.shape",
               "probability": "norms.probability", "height_formula": "norms.height_formula",
@@ -69,7 +72,8 @@ def _as_project_error(project: Project, exc: InputError, keys: dict[str, str]) -
 
 @dataclass(frozen=True)
 class FilmSpec:
-    """The film part of a specification."""
+    """The film part of a specification (``reason``: a :class:`~scanplan.messages.Message`,
+    English text that renders in another locale with ``.text(locale)``)."""
 
     job: ScanJob
     recommended: ScanScenario | None
@@ -82,7 +86,8 @@ class FilmSpec:
 
 @dataclass(frozen=True)
 class UavSpec:
-    """The UAV part of a specification (the flight at the recommended height)."""
+    """The UAV part of a specification (the flight at the recommended height; ``reason``: a
+    :class:`~scanplan.messages.Message`)."""
 
     job: UavJob
     planned_height_m: float | None
@@ -117,9 +122,11 @@ def _film(project: Project) -> FilmSpec:
         pr_coefficient=g("norms", "pr_coefficient"), scanner=g("film", "scanner"),
         bands=g("film", "bands", 1), bits_per_band=g("film", "bits_per_band", 8))
     side = g("film", "side_overlap_pct", DEFAULT_FILM_SIDE_OVERLAP_PCT)
-    if not (0 <= side < 100):
+    try:
+        check_domain("side_overlap_pct", side)
+    except InputError as exc:
         raise InputError(f"{project.path}: {project.where('film', 'side_overlap_pct')}",
-                         f"must be ≥ 0 and < 100 % (got {side!r})")
+                         exc.message) from None
     try:
         job = scan_job(**kw)
     except InputError as exc:
@@ -131,21 +138,20 @@ def _film(project: Project) -> FilmSpec:
                 and (not plan.inputs.scanner or s.scanner_pixel_um is not None)]
     if feasible:
         best = max(feasible, key=lambda s: (s.photo_scale, s.scanner_pixel_um or 0))
-        reason = (f"1:{best.photo_scale:g} is the smallest candidate photo scale (fewest frames) "
-                  f"that meets every constraint: {best.explanation}")
+        reason = Message("spec.film", scale=best.photo_scale, explanation=best.explanation)
     else:
         best = None
         why = []
         if limit is not None:
-            why.append(f"the map's objects need photo scales up to 1:{math.floor(limit):d}")
+            why.append(Message("no_feasible_photo_scale.objects", limit=math.floor(limit)))
         if plan.inputs.scanner:
-            why.append(f"scanner {plan.inputs.scanner} must reach the scan pixel")
-        reason = ("no candidate photo scale meets every constraint (" + "; ".join(why)
-                  + "); add a larger photo scale to film.photo_scales")
+            why.append(Message("no_feasible_photo_scale.scanner", scanner=plan.inputs.scanner))
+        reason = Message("no_feasible_photo_scale", why=why)
     frames = strips = None
     gigabytes = None
-    area_w, area_l = g("area", "width_m"), g("area", "length_m")
-    if best is not None and area_w and area_l:
+    area = _area(project)
+    if best is not None and area is not None:
+        area_w, area_l = area
         inp = plan.inputs
         across = inp.frame_width_mm * best.photo_scale / 1000.0
         along = inp.frame_along_mm * best.photo_scale / 1000.0
@@ -158,11 +164,26 @@ def _film(project: Project) -> FilmSpec:
                     scanned_gigabytes=gigabytes, side_overlap_pct=side)
 
 
+def _area(project: Project) -> tuple[float, float] | None:
+    """``[area]`` width and length [m], both or neither; each in its domain."""
+    width, length = project.get("area", "width_m"), project.get("area", "length_m")
+    if width is None and length is None:
+        return None
+    for key, value in (("width_m", width), ("length_m", length)):
+        where = f"{project.path}: {project.where('area', key)}"
+        if value is None:
+            raise InputError(where, "is required with the other side of [area]: give both "
+                             "width_m and length_m")
+        try:
+            check_domain(f"area_{key}", value)
+        except InputError as exc:
+            raise InputError(where, exc.message) from None
+    return float(width), float(length)
+
+
 def _uav_kwargs(project: Project, height_m: float) -> dict[str, Any]:
     g = project.get
-    area = None
-    if g("area", "width_m") and g("area", "length_m"):
-        area = (g("area", "width_m"), g("area", "length_m"))
+    area = _area(project)
     kw: dict[str, Any] = dict(
         height_m=height_m, camera=g("uav", "camera"), pixel_um=g("uav", "pixel_um"),
         focal_mm=g("uav", "focal_mm"), sensor_mm=g("uav", "sensor_mm"),
@@ -188,27 +209,32 @@ def _uav_kwargs(project: Project, height_m: float) -> dict[str, Any]:
 def _uav(project: Project) -> UavSpec:
     planned = project.get("uav", "height_m")
     try:
-        first = uav_job(**_uav_kwargs(project, planned or PROVISIONAL_HEIGHT_M))
+        first = uav_job(**_uav_kwargs(
+            project, planned if planned is not None else PROVISIONAL_HEIGHT_M))
     except InputError as exc:
         raise _as_project_error(project, exc, _UAV_KEYS) from None
     max_h = first.plan.max_height_m
     if max_h is None or max_h <= 0:
-        return UavSpec(first, planned, None, max_h,
-                       "no flight height meets every constraint with this camera")
+        return UavSpec(first, planned, None, max_h, Message("spec.uav_none"))
     rounded = math.floor(max_h / HEIGHT_STEP_M) * HEIGHT_STEP_M
     if planned is None:
         rec = rounded
-        reason = (f"the maximum height {max_h:.0f} m ({first.plan.binding} binds) rounded down "
-                  f"to {HEIGHT_STEP_M:g} m")
+        reason = Message("spec.uav_rounded", max=max_h, cid=first.plan.binding,
+                         step=HEIGHT_STEP_M)
     elif planned > max_h:
         rec = rounded
-        reason = (f"the planned {planned:g} m is above the maximum {max_h:.0f} m "
-                  f"({first.plan.binding} binds); lowered to {rec:g} m")
+        reason = Message("height_lowered", planned=planned, max=max_h,
+                         cid=first.plan.binding, recommended=rec)
     else:
         rec = planned
-        reason = f"the planned height is within the maximum {max_h:.0f} m"
-    job = first if rec == (planned or PROVISIONAL_HEIGHT_M) else uav_job(
-        **_uav_kwargs(project, rec))
+        reason = Message("spec.uav_within", max=max_h)
+    if rec == (planned if planned is not None else PROVISIONAL_HEIGHT_M):
+        job = first
+    else:
+        try:
+            job = uav_job(**_uav_kwargs(project, rec))
+        except InputError as exc:
+            raise _as_project_error(project, exc, _UAV_KEYS) from None
     return UavSpec(job, planned, rec, max_h, reason)
 
 
@@ -217,23 +243,25 @@ def _comparison(film: FilmSpec, uav: UavSpec) -> list[dict[str, Any]]:
     u = uav.job.plan
     rows: list[dict[str, Any]] = []
 
-    def row(key: str, film_value: Any, uav_value: Any, unit: str) -> None:
-        rows.append({"quantity": key, "film": film_value, "uav": uav_value, "unit": unit})
+    def row(key: str, quantity: str, film_value: Any, uav_value: Any, unit: str) -> None:
+        rows.append({"quantity": quantity, "key": key, "film": film_value, "uav": uav_value,
+                     "unit": unit})
 
     if s is not None:
         pixel = s.scanner_pixel_um or s.scan_pixel_um
-        row("pixel on the ground", pixel * s.photo_scale / 1e6, u.gsd_m, "m")
-        row("resolution on the ground (A / L)", s.resolution_on_ground_mm / 1000.0,
-            u.ground_resolution_m, "m")
+        row("ground_pixel", "pixel on the ground", pixel * s.photo_scale / 1e6, u.gsd_m, "m")
+        row("ground_resolution", "resolution on the ground (A / L)",
+            s.resolution_on_ground_mm / 1000.0, u.ground_resolution_m, "m")
         obj = uav.job.plan.inputs.map_object
         p_uav = None
         if obj is not None:
             p_uav = next((r.probability for r in u.recognition if r.object == obj.name
                           and r.object_size_m == obj.size_m), None)
-        row("recognition probability of the map object", s.recognition_probability, p_uav, "")
-    row("frames / photos", film.frames, u.flight.get("photos"), "")
+        row("recognition", "recognition probability of the map object",
+            s.recognition_probability, p_uav, "")
+    row("frames", "frames / photos", film.frames, u.flight.get("photos"), "")
     vol = u.flight.get("data_volume_bytes")
-    row("data volume", film.scanned_gigabytes, vol / 1e9 if vol else None, "GB")
+    row("data_volume", "data volume", film.scanned_gigabytes, vol / 1e9 if vol else None, "GB")
     return rows
 
 
@@ -251,6 +279,7 @@ def plan_project(project: Project) -> PlanResult:
                       locale=g("project", "locale", "en"),
                       approver_position=g("project", "approver_position", ""),
                       approver_name=g("project", "approver_name", ""))
+    _area(project)  # checked even when no plan uses it
     film = _film(project) if project.has("film") else None
     uav = _uav(project) if project.has("uav") else None
     warnings: list[PlanWarning] = []

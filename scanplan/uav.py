@@ -24,20 +24,24 @@ import numpy as np
 from . import flight as FL
 from . import formulas as F
 from . import mtf as M
+from .domains import check_domain
 from .errors import InputError
+from .messages import Message
 from .orientation import attitude_matrix, corner_gsd
 from .planner import (
     CONSTRAINTS,
     ObjectSpec,
     PlanWarning,
     ScanRules,
-    check_range,
+    height_formula_name,
     overlap_warning,
 )
 
 __all__ = ["HeightLimit", "Recognition", "UavInputs", "UavPlan", "plan_uav"]
 
-_BISECTION_STEPS = 60
+_HEIGHT_GRID_POINTS = 257  # 1 m … 20 km in steps of 4 %
+_HEIGHT_PASS_POINTS = 62  # each refinement pass cuts the bracket 63-fold
+_HEIGHT_TOLERANCE_M = 1e-3
 _MAX_SEARCH_HEIGHT_M = 20_000.0
 
 
@@ -101,7 +105,11 @@ class Recognition:
 
 @dataclass(frozen=True)
 class HeightLimit:
-    """One constraint as a maximum planned flight height."""
+    """One constraint as a maximum planned flight height.
+
+    ``reason`` and ``equation`` are :class:`~scanplan.messages.Message` s: English text that
+    renders in another locale with ``.text(locale)``.
+    """
 
     id: str
     name: str
@@ -172,92 +180,106 @@ def _f(x: Any) -> float | None:
 
 
 def max_height_for_ground_resolution(inp: UavInputs, limit_m: float) -> float:
-    """Highest height at which the centre L does not exceed ``limit_m`` (bisection).
+    """Highest height at which the centre L does not exceed ``limit_m``.
 
-    L grows with height (tests in tests/test_mtf.py); where L is not resolvable it is taken
-    as exceeding every limit. Returns 0 if even 1 m fails, the search ceiling if nothing
-    fails below it.
+    Vectorised search: L on a log grid of heights from 1 m to the search ceiling in one
+    call, then passes that cut the bracket of the *first* crossing 63-fold each, again one
+    call per pass, until it is narrower than 1 mm (about four MTF solves in all, instead of
+    a scalar bisection's 25). L grows with height (tests/test_mtf.py); should it not, the
+    first crossing is the safe answer. Where L is not resolvable it is taken as exceeding
+    every limit. Returns 0 if even 1 m fails, the ceiling if nothing fails below it.
+
+    Parameters
+    ----------
+    inp : UavInputs
+        Camera, flight and target.
+    limit_m : float
+        The largest ground resolution L allowed [m].
+
+    Returns
+    -------
+    float
+        The maximum height [m], within 1 mm below the crossing.
     """
-    lo, hi = 1.0, _MAX_SEARCH_HEIGHT_M
+    def ok(heights_m: np.ndarray) -> np.ndarray:
+        lr = np.asarray(_resolution(inp, heights_m).centre.ground_resolution_m, dtype=float)
+        return np.isfinite(lr) & (lr <= limit_m)
 
-    def ok(h: float) -> bool:
-        lr = _resolution(inp, h).centre.ground_resolution_m
-        v = float(np.asarray(lr))
-        return math.isfinite(v) and v <= limit_m
-
-    if not ok(lo):
+    grid = np.geomspace(1.0, _MAX_SEARCH_HEIGHT_M, _HEIGHT_GRID_POINTS)
+    fails = np.flatnonzero(~ok(grid))
+    if fails.size == 0:
+        return _MAX_SEARCH_HEIGHT_M
+    if fails[0] == 0:
         return 0.0
-    if ok(hi):
-        return hi
-    for _ in range(_BISECTION_STEPS):
-        mid = 0.5 * (lo + hi)
-        if ok(mid):
-            lo = mid
+    lo, hi = float(grid[fails[0] - 1]), float(grid[fails[0]])
+    while hi - lo >= _HEIGHT_TOLERANCE_M:
+        inner = np.linspace(lo, hi, _HEIGHT_PASS_POINTS + 2)[1:-1]
+        fails = np.flatnonzero(~ok(inner))
+        if fails.size == 0:
+            lo = float(inner[-1])
         else:
-            hi = mid
-        if hi - lo < 1e-3:
-            break
+            hi = float(inner[fails[0]])
+            if fails[0] > 0:
+                lo = float(inner[fails[0] - 1])
     return lo
 
 
 def _check_inputs(inp: UavInputs) -> None:
-    for name, unit in (("pixel_um", "µm"), ("focal_mm", "mm"), ("f_number", ""),
-                       ("sensor_width_mm", "mm"), ("sensor_height_mm", "mm"),
-                       ("height_m", "m"), ("exposure_s", "s")):
-        check_range(name, getattr(inp, name), lo=0, unit=unit)
-    for name in ("speed_ms", "random_speed_ms", "roll_rate_rad_s", "pitch_rate_rad_s",
-                 "yaw_rate_rad_s"):
-        check_range(name, getattr(inp, name), lo=0, lo_open=False)
-    for name in ("forward_overlap_pct", "side_overlap_pct", "height_tolerance_up_pct",
-                 "height_tolerance_down_pct"):
-        check_range(name, getattr(inp, name), lo=0, hi=100, lo_open=False, hi_open=True,
-                    unit="%")
-    if not (0 <= inp.r_min <= inp.r_max <= 1 and inp.r_max > 0):
-        raise InputError("r_min", f"need 0 ≤ r_min ≤ r_max ≤ 1 (got r_min {inp.r_min!r}, "
-                         f"r_max {inp.r_max!r})")
+    """Every input in its domain (:data:`scanplan.domains.DOMAINS`), field = its name."""
+    for name in ("pixel_um", "focal_mm", "f_number", "sensor_width_mm", "sensor_height_mm",
+                 "height_m", "exposure_s", "speed_ms", "random_speed_ms", "roll_rate_rad_s",
+                 "pitch_rate_rad_s", "yaw_rate_rad_s", "forward_overlap_pct",
+                 "side_overlap_pct", "height_tolerance_up_pct", "height_tolerance_down_pct",
+                 "roll_deg", "pitch_deg", "threshold_k0", "shift_factor", "r_max", "r_min"):
+        check_domain(name, getattr(inp, name))
+    if inp.r_min > inp.r_max:
+        raise InputError("r_min", f"must be ≤ r_max: the darkest detail is not lighter than the "
+                         f"lightest (got r_min {inp.r_min!r}, r_max {inp.r_max!r})")
     if inp.map_scale is not None:
-        check_range("map_scale", inp.map_scale, lo=0)
-        check_range("relief_interval_m", inp.relief_interval_m, lo=0, unit="m")
+        check_domain("map_scale", inp.map_scale)
+        check_domain("relief_interval_m", inp.relief_interval_m)
+    if inp.map_object is not None:
+        check_domain("object_size_m", inp.map_object.size_m)
+        check_domain("shape", inp.map_object.shape_coefficient)
     for name in ("area_width_m", "area_length_m"):
         if getattr(inp, name) is not None:
-            check_range(name, getattr(inp, name), lo=0, unit="m")
+            check_domain(name, getattr(inp, name))
 
 
-def _ground_limits(inp: UavInputs, rules: ScanRules) -> dict[str, tuple[float, str, str]]:
+def _ground_limits(inp: UavInputs, rules: ScanRules) -> dict[str, tuple[float, str, Message]]:
     """id → (ground limit [m], compares-with, reason) for the enabled constraints.
 
     P_S, P_Z, P_P of seed 001 eqs. 1–3 times Mc are limits on the ground; P_R has no digital
     counterpart (the sensor is the "scan"); P_D becomes a limit on L.
     """
     assert inp.map_scale is not None and inp.relief_interval_m is not None
-    out: dict[str, tuple[float, str, str]] = {}
+    out: dict[str, tuple[float, str, Message]] = {}
     k = rules.processing_loss_k
     mk = inp.map_scale
     # the evaluation at Mc = 1 gives each pixel limit times Mc, i.e. on the ground [µm → m]
     if "PS" in rules.constraints:
         g = float(F.planimetric_pixel_um(mk, 1.0, planimetric_accuracy_mm=rules.
                                          planimetric_accuracy_mm, processing_loss_k=k)) / 1e6
-        out["PS"] = (g, "GSD", f"planimetric error ≤ {rules.planimetric_accuracy_mm:g} mm at "
-                     f"1:{mk:g} after k = {k:g}")
+        out["PS"] = (g, "GSD", Message("limit.PS", vs=rules.planimetric_accuracy_mm, map=mk,
+                                       k=k))
     if "PZ" in rules.constraints:
         base_mm = F.photo_base_mm(inp.sensor_height_mm, inp.forward_overlap_pct)
         g = float(F.height_pixel_um(inp.relief_interval_m, 1.0, inp.focal_mm, base_mm,
                                     height_accuracy_fraction=rules.height_accuracy_fraction,
                                     processing_loss_k=k, method=rules.height_formula)) / 1e6
         vz = rules.height_accuracy_fraction * inp.relief_interval_m
-        out["PZ"] = (g, "GSD", f"height error ≤ {vz:g} m (relief interval "
-                     f"{inp.relief_interval_m:g} m) after k = {k:g}, {rules.height_formula} form")
+        out["PZ"] = (g, "GSD", Message("limit.PZ", vz=vz, hc=inp.relief_interval_m, k=k,
+                                       formula=height_formula_name(rules.height_formula)))
     if "PP" in rules.constraints:
         g = float(F.photoplan_pixel_um(mk, 1.0, photoplan_resolution_mm=rules.
                                        photoplan_resolution_mm)) / 1e6
-        out["PP"] = (g, "GSD", f"photo-plan resolution {rules.photoplan_resolution_mm * 1000:g}"
-                     f" µm at 1:{mk:g}")
+        out["PP"] = (g, "GSD", Message("limit.PP",
+                                       resolution=rules.photoplan_resolution_mm * 1000, map=mk))
     obj = inp.map_object
     if "PD" in rules.constraints and obj is not None:
         root = float(F.probability_root(rules.probability, rules.recognition_rounding))  # type: ignore[arg-type]
         g = obj.size_m * root / obj.shape_coefficient
-        out["PD"] = (g, "L", f"{obj.name} ({obj.size_m:g} m, {obj.shape}) recognised with "
-                     f"probability {rules.probability:g} on the real ground resolution L")
+        out["PD"] = (g, "L", Message("limit.PD", obj.names(), p=rules.probability))
     return out
 
 
@@ -282,6 +304,8 @@ def plan_uav(inp: UavInputs, rules: ScanRules | None = None) -> UavPlan:
         Naming the field for out-of-range input.
     """
     _check_inputs(inp)
+    if rules is not None:
+        check_domain("probability", rules.probability)
     band = FL.height_band(inp.height_m, inp.height_tolerance_up_pct / 100.0,
                           inp.height_tolerance_down_pct / 100.0)
     h_plan, h_lo, h_hi = inp.height_m, float(band.min_m), float(band.max_m)
@@ -297,10 +321,9 @@ def plan_uav(inp: UavInputs, rules: ScanRules | None = None) -> UavPlan:
     max_exp = float(FL.max_exposure_for_blur_s(max(inp.speed_ms, 1e-12), gsd_lo))
     max_speed = float(FL.max_speed_for_blur_ms(inp.exposure_s, gsd_lo))
     if blur > FL.MAX_BLUR_PX:
-        warnings.append(PlanWarning(
-            "motion_blur",
-            f"motion blur {blur:.2f} px at {h_lo:g} m exceeds {FL.MAX_BLUR_PX:g} px: use an "
-            f"exposure ≤ 1/{math.ceil(1 / max_exp):d} s or a speed ≤ {max_speed:.1f} m/s"))
+        warnings.append(PlanWarning("motion_blur", Message(
+            "motion_blur", blur=blur, height=h_lo, limit=FL.MAX_BLUR_PX,
+            denominator=math.ceil(1 / max_exp), speed=max_speed)))
 
     fp_across = float(FL.footprint_m(inp.sensor_width_mm, h_plan, inp.focal_mm))
     fp_along = float(FL.footprint_m(inp.sensor_height_mm, h_plan, inp.focal_mm))
@@ -322,11 +345,9 @@ def plan_uav(inp: UavInputs, rules: ScanRules | None = None) -> UavPlan:
         fl["max_speed_for_trigger_ms"] = float(FL.max_speed_for_trigger_ms(
             base, inp.min_trigger_interval_s))
         if interval < inp.min_trigger_interval_s:
-            warnings.append(PlanWarning(
-                "trigger_interval",
-                f"photo interval {interval:.2f} s is shorter than the camera's minimum "
-                f"{inp.min_trigger_interval_s:g} s: fly ≤ {fl['max_speed_for_trigger_ms']:.1f} "
-                "m/s or lower the forward overlap"))
+            warnings.append(PlanWarning("trigger_interval", Message(
+                "trigger_interval", interval=interval, minimum=inp.min_trigger_interval_s,
+                speed=fl["max_speed_for_trigger_ms"])))
     if inp.area_width_m and inp.area_length_m:
         strips = int(FL.strip_count(inp.area_width_m, spacing))
         per_strip = int(FL.photos_per_strip(inp.area_length_m, base))
@@ -345,16 +366,18 @@ def plan_uav(inp: UavInputs, rules: ScanRules | None = None) -> UavPlan:
         rot = attitude_matrix(math.radians(inp.roll_deg), math.radians(inp.pitch_deg))
         tilt = _f(corner_gsd(h_hi, inp.focal_mm, inp.pixel_um, inp.sensor_width_mm,
                              inp.sensor_height_mm, rotation=rot).worst_m)
+        if tilt is None or not tilt > 0:
+            raise InputError("roll_deg" if abs(inp.roll_deg) >= abs(inp.pitch_deg)
+                             else "pitch_deg", "at this roll and pitch a corner of the frame "
+                             "looks at or above the horizon; give a smaller tilt")
 
     l_plan = _f(np.asarray(c.ground_resolution_m)[0])
     l_hi = _f(np.asarray(c.ground_resolution_m)[1])
     l_corner_hi = _f(np.asarray(k.ground_resolution_m)[1])
     if not resolvable:
-        warnings.append(PlanWarning(
-            "not_resolvable",
-            f"object contrast K = {float(M.object_contrast(inp.r_max, inp.r_min)):.3f} is below "
-            f"the sensor's threshold contrast {inp.threshold_k0:g}: nothing is resolved, so "
-            "the ground resolution L has no value"))
+        warnings.append(PlanWarning("not_resolvable", Message(
+            "not_resolvable", contrast=float(M.object_contrast(inp.r_max, inp.r_min)),
+            threshold=inp.threshold_k0)))
 
     def p_rec(obj: ObjectSpec, l_m: float | None) -> float | None:
         if l_m is None:
@@ -386,12 +409,13 @@ def plan_uav(inp: UavInputs, rules: ScanRules | None = None) -> UavPlan:
                 margin_pct=(h / max_h - 1) * 100 if max_h > 0 else math.inf, reason=reason,
                 equation=CONSTRAINTS[cid].equation) for cid, g, compares, reason, h in raw)
             if h_plan > max_h * (1 + 1e-9):
-                warnings.append(PlanWarning(
-                    "height_above_max",
-                    f"planned height {h_plan:g} m is above the maximum {max_h:.0f} m set by "
-                    f"{binding} ({CONSTRAINTS[binding].name})"
-                    + (f" with a {inp.height_tolerance_up_pct:g} % height tolerance"
-                       if inp.height_tolerance_up_pct else "")))
+                info = CONSTRAINTS[binding]
+                warnings.append(PlanWarning("height_above_max", Message(
+                    "height_above_max", height=h_plan, max=max_h, cid=binding,
+                    name={"en": info.name, "ru": info.name_ru},
+                    tolerance=Message("height_above_max.tolerance",
+                                      tolerance=inp.height_tolerance_up_pct)
+                    if inp.height_tolerance_up_pct else None)))
         overlap = overlap_warning(rules, inp.forward_overlap_pct)
         if overlap:
             warnings.append(overlap)

@@ -31,3 +31,18 @@ def paper_rules(norms) -> ScanRules:
     return norms.rules(recognition_rounding="paper")
 
 
+
+
+def pytest_terminal_summary(terminalreporter, exitstatus, config):
+    """Print how many generated inputs the fuzz suite ran (issue 7: at least 1,000)."""
+    import sys
+
+    fuzz = sys.modules.get("test_fuzz")
+    counts = getattr(fuzz, "COUNTS", None)
+    if not counts:
+        return
+    total = sum(counts.values())
+    profile = "long" if getattr(fuzz, "LONG", False) else "fast"
+    terminalreporter.write_sep("-", f"fuzz: {total:,} generated inputs ({profile} profile)")
+    for family, n in sorted(counts.items()):
+        terminalreporter.write_line(f"  {family:<36} {n:>6,}")
