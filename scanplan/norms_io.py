@@ -40,7 +40,6 @@ import contextlib
 import csv
 import dataclasses
 import datetime as _dt
-import errno
 import io
 import json
 import math
@@ -61,7 +60,7 @@ from . import norms as _norms
 from .errors import InputError, NotFoundError, WriteError
 from .normschema import PARAMETERS, TABLES, ColumnSpec, TableSpec, ValueSpec
 from .reports import write_atomic
-from .safeio import file_kind, read_limited
+from .safeio import file_kind, read_limited, write_all
 
 __all__ = [
     "HEADER_SCAN_ROWS",
@@ -1992,13 +1991,7 @@ def _write_file(path: Path, text: str) -> None:
     """Create ``path`` (it must not exist) with ``text`` as UTF-8, fsynced."""
     fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_BINARY", 0), 0o666)
     try:
-        view = memoryview(text.encode("utf-8"))
-        while view:
-            n = os.write(fd, view)
-            if n <= 0:
-                raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
-            view = view[n:]
-        os.fsync(fd)
+        write_all(fd, text.encode("utf-8"))
     finally:
         os.close(fd)
 

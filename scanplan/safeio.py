@@ -8,12 +8,13 @@ more than its limit, so reading is bounded in time and memory whatever the path 
 
 from __future__ import annotations
 
+import errno
 import os
 import stat
 
 from .errors import InputError, NotFoundError
 
-__all__ = ["file_kind", "read_limited", "size_text"]
+__all__ = ["file_kind", "read_limited", "size_text", "write_all"]
 
 
 def size_text(n: int) -> str:
@@ -96,3 +97,30 @@ def read_limited(path: str | os.PathLike[str], limit: int, *, field: str | None 
         return b"".join(chunks)
     finally:
         os.close(fd)
+
+
+def write_all(fd: int, data: bytes) -> None:
+    """Write all of ``data`` to the open file ``fd`` and fsync it.
+
+    ``os.write`` may write less than asked (a full disk, a signal); the loop goes on until
+    everything is written, and a write that makes no progress is reported as a full disk.
+
+    Parameters
+    ----------
+    fd : int
+        An open file descriptor.
+    data : bytes
+        The whole content.
+
+    Raises
+    ------
+    OSError
+        From the system, or ``ENOSPC`` when a write makes no progress.
+    """
+    view = memoryview(data).cast("B")
+    while view:
+        n = os.write(fd, view)
+        if n <= 0:
+            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+        view = view[n:]
+    os.fsync(fd)

@@ -4,8 +4,20 @@ from __future__ import annotations
 
 import pytest
 
+from scanplan import norms as norms_mod
 from scanplan.norms import load_norm_set
 from scanplan.planner import ScanRules
+
+
+@pytest.fixture()
+def user_dir(tmp_path, monkeypatch):
+    """An empty user norm directory (``$SCANPLAN_NORMS_DIR``), the loader cache cleared."""
+    d = tmp_path / "user-norms"
+    d.mkdir()
+    monkeypatch.setenv("SCANPLAN_NORMS_DIR", str(d))
+    norms_mod._load_path.cache_clear()
+    yield d
+    norms_mod._load_path.cache_clear()
 
 
 @pytest.fixture(scope="session")

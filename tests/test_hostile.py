@@ -42,7 +42,6 @@ import pytest
 from click.testing import CliRunner
 from norm_corpus import BILLION_LAUGHS, english_workbook, save, sheet_member, to_shared_strings
 
-from scanplan import norms as norms_mod
 from scanplan import norms_io
 from scanplan.cli import main
 from scanplan.norms import DEFAULT_NORM_SET, bundled_norms_dir
@@ -129,17 +128,6 @@ def peak_mb(fn, *args, **kwargs):
 
 def tree(root: Path) -> set[str]:
     return {str(p.relative_to(root)) for p in root.rglob("*")}
-
-
-@pytest.fixture()
-def user_dir(tmp_path, monkeypatch):
-    """An empty user norm directory (``$SCANPLAN_NORMS_DIR``)."""
-    d = tmp_path / "user-norms"
-    d.mkdir()
-    monkeypatch.setenv("SCANPLAN_NORMS_DIR", str(d))
-    norms_mod._load_path.cache_clear()
-    yield d
-    norms_mod._load_path.cache_clear()
 
 
 def parts_of(path: Path) -> dict[str, bytes]:

@@ -22,7 +22,6 @@ from norm_corpus import (
     save,
 )
 
-from scanplan import norms as norms_mod
 from scanplan import norms_io
 from scanplan.cli_norms import norms as norms_group
 from scanplan.errors import InputError
@@ -50,17 +49,6 @@ COMPARED = (
     "scanners",
     "scanner_names",
 )
-
-
-@pytest.fixture()
-def user_dir(tmp_path, monkeypatch):
-    """An empty user norm directory (``$SCANPLAN_NORMS_DIR``)."""
-    d = tmp_path / "user-norms"
-    d.mkdir()
-    monkeypatch.setenv("SCANPLAN_NORMS_DIR", str(d))
-    norms_mod._load_path.cache_clear()
-    yield d
-    norms_mod._load_path.cache_clear()
 
 
 @pytest.fixture(scope="module")

@@ -23,6 +23,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import WriteError
+from ..safeio import write_all
 
 __all__ = ["ReportMeta", "report_datetime", "templates_dir", "write_atomic",
            "write_atomic_many"]
@@ -203,13 +204,7 @@ def _write_temp(target: Path, data: bytes) -> Path:
     tmp = Path(name)
     try:
         try:
-            view = memoryview(data).cast("B")
-            while view:
-                n = os.write(fd, view)
-                if n <= 0:
-                    raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
-                view = view[n:]
-            os.fsync(fd)
+            write_all(fd, data)
         finally:
             os.close(fd)
         os.chmod(tmp, mode)
