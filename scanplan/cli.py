@@ -131,6 +131,16 @@ def _finite(ctx: click.Context, param: click.Parameter, value: float | None) -> 
     return value
 
 
+def _text(ctx: click.Context, param: click.Parameter, value: str) -> str:
+    """Report text from an option: the same rule as in a project file."""
+    from .project import text_problem
+
+    problem = text_problem(value) if value else None
+    if problem:
+        raise click.BadParameter(problem, ctx, param)
+    return value
+
+
 def norm_options(f: Callable[..., Any]) -> Callable[..., Any]:
     """The norm options shared by scan, uav and plan (spec/interface.md)."""
     for opt in reversed([
@@ -159,12 +169,15 @@ def report_options(f: Callable[..., Any]) -> Callable[..., Any]:
                      help="Write the PDF specification to this file (atomically)."),
         click.option("--locale", type=click.Choice(["en", "ru"]), default="en",
                      show_default=True, help="Language of the reports."),
-        click.option("--project-name", default="", help="Project name for the title block."),
-        click.option("--customer", default="", help="Customer for the title block."),
-        click.option("--contractor", default="", help="Contractor for the title block."),
-        click.option("--approver-position", default="",
+        click.option("--project-name", default="", callback=_text,
+                     help="Project name for the title block."),
+        click.option("--customer", default="", callback=_text,
+                     help="Customer for the title block."),
+        click.option("--contractor", default="", callback=_text,
+                     help="Contractor for the title block."),
+        click.option("--approver-position", default="", callback=_text,
                      help="Approval block: position of the person who approves."),
-        click.option("--approver-name", default="", help="Approval block: name."),
+        click.option("--approver-name", default="", callback=_text, help="Approval block: name."),
     ]):
         f = opt(f)
     return f

@@ -19,7 +19,7 @@ from typing import Any
 from .errors import InputError
 from .safeio import read_limited
 
-__all__ = ["KEYS", "Project", "load_project", "parse_project"]
+__all__ = ["KEYS", "Project", "load_project", "parse_project", "text_problem"]
 
 MAX_PROJECT_BYTES = 1_000_000
 MAX_TEXT_CHARS = 1_000
@@ -185,10 +185,20 @@ def _check_type(kind: str, value: Any) -> str | None:
 
 
 def _check_text(kind: str, value: Any) -> str | None:
-    """Text is shown on terminals and in reports: bounded, no control characters (terminal
-    escapes). HTML, URLs and formulas are fine: the reports show them as text."""
-    if kind != "str":
-        return None
+    return text_problem(value) if kind == "str" else None
+
+
+def text_problem(value: str) -> str | None:
+    """What is wrong with a user text shown on terminals and in reports, or None.
+
+    Bounded (:data:`MAX_TEXT_CHARS`) and free of control characters (terminal escapes).
+    HTML, URLs and formulas are fine: the reports show them as text.
+
+    Parameters
+    ----------
+    value : str
+        The text (a project name, customer, approver ...).
+    """
     if len(value) > MAX_TEXT_CHARS:
         return f"is {len(value):,} characters long; at most {MAX_TEXT_CHARS:,}"
     bad = _CONTROL.search(value)

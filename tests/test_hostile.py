@@ -950,3 +950,16 @@ def test_big_project_file_is_refused_unread(tmp_path):
     with p.open("wb") as fh:
         fh.truncate(50 * MB)  # sparse: costs no disk
     refused(cli("plan", p), "big.toml", "the limit is")
+
+
+@pytest.mark.parametrize("option", ["--project-name", "--customer", "--contractor",
+                                    "--approver-position", "--approver-name"])
+@pytest.mark.parametrize("value", ["x" * 1001, "red \x1b[31malert", "a\x00b"])
+def test_report_text_options_follow_the_project_file_rule(option, value):
+    """The title-block options are bounded and free of control characters, like the project
+    file's [project] text (a terminal escape would reach the terminal and the reports)."""
+    r = CliRunner().invoke(main, ["scan", "--map-scale", "2000", "--relief", "1",
+                                  "--photo-scale", "10000", "--camera", "afa-te-100",
+                                  option, value])
+    assert r.exit_code == 2, r.output
+    assert option in r.output and "Traceback" not in r.output
