@@ -51,6 +51,14 @@ def parse_frame_mm(text: object, field: str = "frame_mm") -> tuple[float, float]
     return w, h
 
 
+def _scale(value: object, field: str) -> float:
+    """A scale denominator (``2000`` or ``"1:2000"``) within its domain; ``field`` is
+    ``map_scale`` or ``photo_scale``."""
+    denominator = parse_scale(value, field)
+    check_domain(field, denominator)
+    return denominator
+
+
 def resolve_object(
     ns: NormSet,
     map_scale: float,
@@ -113,13 +121,10 @@ def scan_job(
 ) -> ScanJob:
     """Like :func:`scan`, returning the norm set too (for reports)."""
     ns = load_norm_set(norms)
-    mk = parse_scale(map_scale, "map_scale")
-    check_domain("map_scale", mk)
+    mk = _scale(map_scale, "map_scale")
     if isinstance(photo_scales, str | bytes) or not isinstance(photo_scales, Iterable):
         raise InputError("photo_scale", f"must be a list of scales (got {photo_scales!r})")
-    scales = tuple(parse_scale(s, "photo_scale") for s in photo_scales)
-    for mc in scales:
-        check_domain("photo_scale", mc)
+    scales = tuple(_scale(s, "photo_scale") for s in photo_scales)
     if camera is not None:
         cam = ns.camera(camera, "camera")
         if cam.kind != "film":
@@ -265,8 +270,7 @@ def uav_job(
     mk = None
     map_obj = None
     if map_scale is not None:
-        mk = parse_scale(map_scale, "map_scale")
-        check_domain("map_scale", mk)
+        mk = _scale(map_scale, "map_scale")
         if relief_interval_m is None:
             raise InputError("relief_interval_m", "give the relief interval h_c (m > 0) with "
                              "the map scale")

@@ -81,26 +81,23 @@ class ScanplanGroup(click.Group):
         except (click.exceptions.ClickException, click.exceptions.Exit,
                 click.exceptions.Abort, SystemExit):
             raise
-        except WriteError as exc:  # disk full, no permission, an interrupted rename
+        except Exception as exc:  # an environment failure or a bug: no traceback for users
             if os.environ.get("SCANPLAN_DEBUG"):
                 traceback.print_exc()
-            click.echo(f"error: {exc.message}", err=True)
+            click.echo(f"error: {_failure_text(exc)}", err=True)
             ctx.exit(1)
-        except OSError as exc:  # another environment failure: name the file and the reason
-            if os.environ.get("SCANPLAN_DEBUG"):
-                traceback.print_exc()
-            where = " -> ".join(os.fsdecode(f) if isinstance(f, str | bytes) else str(f)
-                                for f in (exc.filename, exc.filename2) if f is not None)
-            reason = exc.strerror or str(exc) or type(exc).__name__
-            click.echo(f"error: {where + ': ' if where else ''}{reason} "
-                       "(SCANPLAN_DEBUG=1 shows details)", err=True)
-            ctx.exit(1)
-        except Exception as exc:  # a bug or an environment failure: no traceback for users
-            if os.environ.get("SCANPLAN_DEBUG"):
-                traceback.print_exc()
-            click.echo(f"error: {type(exc).__name__}: {exc} (SCANPLAN_DEBUG=1 shows details)",
-                       err=True)
-            ctx.exit(1)
+
+
+def _failure_text(exc: Exception) -> str:
+    """The one-line message of a runtime failure (exit 1)."""
+    if isinstance(exc, WriteError):  # disk full, no permission, an interrupted rename
+        return exc.message
+    if isinstance(exc, OSError):  # another environment failure: name the file and the reason
+        where = " -> ".join(os.fsdecode(f) if isinstance(f, str | bytes) else str(f)
+                            for f in (exc.filename, exc.filename2) if f is not None)
+        reason = exc.strerror or str(exc) or type(exc).__name__
+        return f"{where + ': ' if where else ''}{reason} (SCANPLAN_DEBUG=1 shows details)"
+    return f"{type(exc).__name__}: {exc} (SCANPLAN_DEBUG=1 shows details)"
 
 
 class ScaleType(click.ParamType):

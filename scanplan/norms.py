@@ -306,6 +306,18 @@ def _catalogue() -> tuple[dict[str, Camera], dict[str, tuple[float, ...]], dict[
     return cams, steps, names
 
 
+def is_set_name(text: str) -> bool:
+    """Whether ``--norms``/``[norms] set`` text is a set *name* (looked up in the bundled
+    and user folders) rather than a folder path: no separator, not starting with ``.``.
+
+    Parameters
+    ----------
+    text : str
+        What the user wrote.
+    """
+    return "/" not in text and os.sep not in text and not text.startswith(".")
+
+
 def _resolve(name_or_path: str | os.PathLike[str]) -> tuple[Path, bool]:
     text = os.fspath(name_or_path)
     bundled = bundled_norms_dir()
@@ -313,7 +325,7 @@ def _resolve(name_or_path: str | os.PathLike[str]) -> tuple[Path, bool]:
         raise NotFoundError("--norms", "is empty; give a norm set name (scanplan norms list) "
                             "or the path of a norm set folder")
     # a name is looked up in the bundled and user folders; "..", ".x" and "a/b" are paths
-    is_name = "/" not in text and os.sep not in text and not text.startswith(".")
+    is_name = is_set_name(text)
     if text and is_name and text != CATALOGUE:
         if (bundled / text / "set.toml").is_file():
             return bundled / text, True

@@ -216,8 +216,9 @@ def _shown(value: Any) -> str:
 def _norm_set_path(value: str, folder: Path) -> str:
     """``[norms] set``: a name stays a name; a relative folder is taken from the project
     file's folder (not from wherever scanplan runs)."""
-    is_path = "/" in value or os.sep in value or value.startswith((".", "~"))
-    if not is_path or value.startswith("~") or os.path.isabs(value):
+    from .norms import is_set_name
+
+    if is_set_name(value) or value.startswith("~") or os.path.isabs(value):
         return value
     return os.path.join(folder, value)
 

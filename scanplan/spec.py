@@ -208,11 +208,15 @@ def _uav_kwargs(project: Project, height_m: float) -> dict[str, Any]:
 
 def _uav(project: Project) -> UavSpec:
     planned = project.get("uav", "height_m")
-    try:
-        first = uav_job(**_uav_kwargs(
-            project, planned if planned is not None else PROVISIONAL_HEIGHT_M))
-    except InputError as exc:
-        raise _as_project_error(project, exc, _UAV_KEYS) from None
+
+    def job_at(height_m: float) -> UavJob:
+        try:
+            return uav_job(**_uav_kwargs(project, height_m))
+        except InputError as exc:
+            raise _as_project_error(project, exc, _UAV_KEYS) from None
+
+    first_height = planned if planned is not None else PROVISIONAL_HEIGHT_M
+    first = job_at(first_height)
     max_h = first.plan.max_height_m
     if max_h is None or max_h <= 0:
         return UavSpec(first, planned, None, max_h, Message("spec.uav_none"))
@@ -228,13 +232,7 @@ def _uav(project: Project) -> UavSpec:
     else:
         rec = planned
         reason = Message("spec.uav_within", max=max_h)
-    if rec == (planned if planned is not None else PROVISIONAL_HEIGHT_M):
-        job = first
-    else:
-        try:
-            job = uav_job(**_uav_kwargs(project, rec))
-        except InputError as exc:
-            raise _as_project_error(project, exc, _UAV_KEYS) from None
+    job = first if rec == first_height else job_at(rec)
     return UavSpec(job, planned, rec, max_h, reason)
 
 
