@@ -11,6 +11,7 @@ Errors are :class:`scanplan.errors.InputError` whose ``field`` is the argument n
 
 from __future__ import annotations
 
+import math
 import os
 from collections.abc import Iterable
 from dataclasses import dataclass
@@ -23,6 +24,11 @@ from .norms import DEFAULT_NORM_SET, MapObject, NormSet, load_norm_set, parse_sc
 from .normschema import PARAMETERS
 from .planner import ObjectSpec, ScanInputs, ScanPlan, plan_scan
 from .uav import UavInputs, UavPlan, plan_uav
+
+HEIGHT_STEP_M = 5.0
+"""Recommended flight heights are rounded down to this step [m]."""
+PROVISIONAL_HEIGHT_M = 100.0
+"""Height of the first pass when the planned height is to be derived [m]."""
 
 __all__ = ["ScanJob", "UavJob", "parse_frame_mm", "resolve_object", "scan", "scan_job", "uav_job"]
 
@@ -210,7 +216,7 @@ class UavJob:
 
 def uav_job(
     *,
-    height_m: float,
+    height_m: float | None = None,
     camera: str | None = None,
     pixel_um: float | None = None,
     focal_mm: float | None = None,
@@ -239,13 +245,30 @@ def uav_job(
     area_m: object | None = None,
     roll_deg: float = 0.0,
     pitch_deg: float = 0.0,
+    max_height_m: float | None = None,
+    gsd_cm: float | None = None,
 ) -> UavJob:
     """Plan a UAV flight (see :func:`scanplan.uav.plan_uav`); names as the CLI options.
 
     A catalogue ``camera`` gives pixel, focal length, sensor, image size, f-number and
     minimum trigger interval; explicit values override it. ``map_scale`` with
     ``relief_interval_m`` adds the norm set's constraints and the maximum flight height.
+    ``max_height_m`` is the altitude ceiling for the highest flown height (default: the
+    norm set's ``uav_max_height_m``); ``gsd_cm`` a target GSD the flight must deliver.
+    Without ``height_m`` the flight is planned at the maximum planned height, rounded
+    down to :data:`HEIGHT_STEP_M` (needs a map scale or a target GSD).
     """
+    if height_m is None:
+        if map_scale is None and gsd_cm is None:
+            raise InputError("height_m", "give the planned flight height (m ≥ 1), a target "
+                             "GSD, or a map scale to derive it from")
+        kw = dict(locals())
+        first = uav_job(**{**kw, "height_m": PROVISIONAL_HEIGHT_M})
+        max_h = first.plan.max_height_m
+        if max_h is None or max_h < HEIGHT_STEP_M:
+            return first
+        rec = math.floor(max_h / HEIGHT_STEP_M) * HEIGHT_STEP_M
+        return first if rec == PROVISIONAL_HEIGHT_M else uav_job(**{**kw, "height_m": rec})
     ns = load_norm_set(norms)
     cam = ns.camera(camera, "camera") if camera is not None else None
     if cam is not None and cam.kind != "digital":
@@ -274,9 +297,13 @@ def uav_job(
         if relief_interval_m is None:
             raise InputError("relief_interval_m", "give the relief interval h_c (m > 0) with "
                              "the map scale")
-        overrides = {"probability": probability, "height_formula": height_formula}
-        _check_overrides(overrides)
-        rules = ns.rules(**overrides)
+        _check_overrides({"probability": probability})
+        if height_formula is not None:
+            spec = PARAMETERS["digital_height_formula"].value
+            if not isinstance(height_formula, str) or spec.check(height_formula):
+                raise InputError("height_formula", f"must be {spec.describe()} for a digital "
+                                 f"camera (got {height_formula!r})")
+        rules = ns.rules(probability=probability, digital_height_formula=height_formula)
         map_obj = resolve_object(ns, mk, object_size_m=object_size_m, shape=shape)
         if map_obj is None and "PD" in rules.constraints:
             raise InputError("object_size_m", f"the norm set has no smallest object for map "
@@ -301,7 +328,11 @@ def uav_job(
         roll_rate_rad_s=roll_rate_rad_s, pitch_rate_rad_s=pitch_rate_rad_s,
         yaw_rate_rad_s=yaw_rate_rad_s, roll_deg=roll_deg, pitch_deg=pitch_deg, map_scale=mk,
         relief_interval_m=relief_interval_m, map_object=map_obj, objects=tuple(objects),
-        area_width_m=area_w, area_length_m=area_l)
+        area_width_m=area_w, area_length_m=area_l,
+        ceiling_m=float(max_height_m if max_height_m is not None
+                        else ns.parameters["uav_max_height_m"]),
+        ceiling_from_project=max_height_m is not None,
+        gsd_target_m=gsd_cm / 100.0 if gsd_cm is not None else None)
     return UavJob(plan_uav(inputs, rules), ns)
 
 

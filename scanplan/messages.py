@@ -291,8 +291,8 @@ MESSAGES: dict[str, dict[str, str]] = {
         "ru": "Ни одна высота полёта не удовлетворяет всем условиям с этой камерой.",
     },
     "spec.uav_rounded": {
-        "en": "the maximum height {max:.0f} m ({cid} binds) rounded down to {step:g} m",
-        "ru": "Рекомендуемая высота полёта — максимальная {max:.0f}~м (определяющее условие "
+        "en": "the maximum planned height {max:.0f} m ({cid} binds) rounded down to {step:g} m",
+        "ru": "Рекомендуемая высота полёта — максимальная плановая {max:.0f}~м (определяющее условие "
               "{cid}), округлённая в меньшую сторону с шагом {step:g}~м.",
     },
     "height_lowered": {
@@ -302,8 +302,78 @@ MESSAGES: dict[str, dict[str, str]] = {
               "(определяющее условие {cid}); высота понижена до {recommended:g}~м.",
     },
     "spec.uav_within": {
-        "en": "the planned height is within the maximum {max:.0f} m",
-        "ru": "Плановая высота полёта не превышает максимальную {max:.0f}~м.",
+        "en": "the planned height is within the maximum planned height {max:.0f} m",
+        "ru": "Плановая высота полёта не превышает максимальную плановую {max:.0f}~м.",
+    },
+    # --- digital height accuracy, altitude ceiling, target GSD (scanplan.uav) -------------
+    "height_formula.normal_case": {
+        "en": "normal-case stereo",
+        "ru": "нормальный случай стереосъёмки",
+    },
+    "limit.PZ.normal_case": {
+        "en": "RMS height error σ_Z = (H/B)·(H/c)·σ_px ≤ V_z = {vz:g} m (relief interval {hc:g} m) "
+              "with the widest stereo base of {overlap:g} % overlap (B = {steps:d} × the photo "
+              "step, B/H = {bh:.3f}) and a parallax error σ_px = {sigma:g} px{multi}",
+        "ru": "средняя квадратическая ошибка высот σ_Z = (H/B)·(H/c)·σ_px ≤ V_z = {vz:g}~м "
+              "(высота сечения рельефа {hc:g}~м) при наибольшем базисе с перекрытием {overlap:g}~% "
+              "(B = {steps:d}~× шаг фотографирования, B/H = {bh:.3f}) и ошибке измерения параллакса "
+              "σ_px = {sigma:g}~пикс.{multi}",
+    },
+    "limit.PZ.multi": {
+        "en": ", improved {f:.2f}× by the other photos of the strip",
+        "ru": ", с уточнением {f:.2f} по остальным снимкам маршрута",
+    },
+    "protects.GSD": {
+        "en": "gives the ground sample distance the customer asked for",
+        "ru": "обеспечивает заданный заказчиком размер пикселя на местности",
+    },
+    "equation.GSD": {
+        "en": "GSD = p·H/c ≤ the target GSD",
+        "ru": "GSD = p·H/c ≤ заданного значения",
+    },
+    "protects.CEIL": {
+        "en": "keeps the highest flown height within the legal or airframe altitude ceiling",
+        "ru": "удерживает наибольшую фактическую высоту полёта в пределах допустимой высоты",
+    },
+    "equation.CEIL": {
+        "en": "H·(1 + height tolerance) ≤ ceiling — Federal Rules for the Use of the Airspace "
+              "of the Russian Federation, para. 52.1",
+        "ru": "H·(1 + допуск высоты) ≤ предельной высоты — Федеральные правила использования "
+              "воздушного пространства Российской Федерации, п. 52.1",
+    },
+    "limit.GSD": {
+        "en": "GSD at the highest flown height ≤ the target {gsd:g} cm",
+        "ru": "GSD на наибольшей фактической высоте ≤ заданного {gsd:g}~см",
+    },
+    "limit.CEIL": {
+        "en": "highest flown height ≤ the altitude ceiling {ceiling:g} m ({source})",
+        "ru": "наибольшая фактическая высота ≤ предельной высоты полёта {ceiling:g}~м ({source})",
+    },
+    "ceiling.project": {
+        "en": "set in the project",
+        "ru": "задана в проекте",
+    },
+    "ceiling.norms": {
+        "en": "the norm set's ceiling for flights without an airspace-use permission",
+        "ru": "предел набора норм для полётов без разрешения на использование воздушного "
+              "пространства",
+    },
+    "ceiling_binds": {
+        "en": "the altitude ceiling of {ceiling:g} m binds: with the +{tolerance:g} % height "
+              "tolerance the plan may be at most {max:.0f} m, while the other constraints "
+              "would allow planning up to {allow:.0f} m ({cid} binds there). Flying higher "
+              "needs an airspace-use permission; then raise [uav] max_height_m",
+        "ru": "Определяет предельная высота полёта {ceiling:g}~м: с допуском высоты "
+              "+{tolerance:g}~% плановая высота не более {max:.0f}~м, тогда как остальные "
+              "условия допускают плановую высоту до {allow:.0f}~м (там определяет условие "
+              "{cid}). Полёт выше требует разрешения на использование воздушного пространства; "
+              "тогда увеличьте [uav] max_height_m.",
+    },
+    "max_height.sentence": {
+        "en": "Maximum planned height {max:.0f} m (highest flown {flown:.0f} m): {cid} ({name}) "
+              "binds — {reason}",
+        "ru": "Максимальная плановая высота {max:.0f}~м (наибольшая фактическая {flown:.0f}~м) "
+              "определяется условием {cid} ({name}): {reason}.",
     },
 }
 """Message code → template per locale (same codes and the same fields in every locale)."""

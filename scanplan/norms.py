@@ -174,6 +174,10 @@ class NormSet:
             recognition_rounding=params["recognition_rounding"],
             interpretation_min_lpmm=params["interpretation_min_lpmm"],
             interpretation_max_lpmm=params["interpretation_max_lpmm"],
+            digital_height_formula=params["digital_height_formula"],
+            image_measurement_px=params["image_measurement_px"],
+            multi_ray=params["multi_ray"],
+            uav_max_height_m=params["uav_max_height_m"],
         )
 
     def shape_coefficient(self, shape: str, field_name: str = "--shape") -> float:

@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from . import flight as FL
-from .api import ScanJob, UavJob, scan_job, uav_job
+from .api import HEIGHT_STEP_M, PROVISIONAL_HEIGHT_M, ScanJob, UavJob, scan_job, uav_job
 from .domains import check_domain
 from .errors import InputError
 from .messages import Message
@@ -26,9 +26,7 @@ from .reports import ReportMeta
 
 __all__ = ["FilmSpec", "PlanResult", "UavSpec", "plan_project"]
 
-HEIGHT_STEP_M = 5.0  # recommended heights are rounded down to this step
 DEFAULT_FILM_SIDE_OVERLAP_PCT = 30.0
-PROVISIONAL_HEIGHT_M = 100.0
 
 _FILM_KEYS = {
     "map_scale": "map.scale", "relief_interval_m": "map.relief_interval_m",
@@ -54,6 +52,8 @@ _UAV_KEYS = {
     "yaw_rate_rad_s": "uav.motion.yaw_rate_rad_s", "area_m": "area",
     "area_width_m": "area.width_m", "area_length_m": "area.length_m",
     "roll_deg": "uav.roll_deg", "pitch_deg": "uav.pitch_deg",
+    "max_height_m": "uav.max_height_m", "gsd_cm": "uav.gsd_cm",
+    "height_formula": "uav.height_formula",
 }
 _NORM_KEYS = {"object_size_m": "norms.object_size_m", "shape": "norms.shape",
               "probability": "norms.probability", "height_formula": "norms.height_formula",
@@ -92,7 +92,7 @@ class UavSpec:
     job: UavJob
     planned_height_m: float | None
     recommended_height_m: float | None
-    max_height_m: float | None
+    max_height_m: float | None  # the maximum PLANNED height (highest flown meets every limit)
     reason: str
 
 
@@ -191,7 +191,8 @@ def _uav_kwargs(project: Project, height_m: float) -> dict[str, Any]:
         map_scale=g("map", "scale"), relief_interval_m=g("map", "relief_interval_m"),
         norms=g("norms", "set", "gkinp-02-036-02"), object_size_m=g("norms", "object_size_m"),
         shape=g("norms", "shape"), probability=g("norms", "probability"),
-        height_formula=g("norms", "height_formula"),
+        height_formula=g("uav", "height_formula"),
+        max_height_m=g("uav", "max_height_m"), gsd_cm=g("uav", "gsd_cm"),
         r_max=g("uav.target", "r_max", 0.3), r_min=g("uav.target", "r_min", 0.1),
         threshold_k0=g("uav.atmosphere", "threshold_k0"),
         shift_factor=g("uav.motion", "shift_factor", 1.0),

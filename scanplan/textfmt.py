@@ -8,6 +8,7 @@ import textwrap
 from collections.abc import Sequence
 from typing import Any
 
+from .messages import Message
 from .planner import CONSTRAINTS, ScanPlan
 from .serialize import scale_value
 from .uav import UavPlan
@@ -189,14 +190,27 @@ def format_uav_plan(plan: UavPlan, norm_name: str = "") -> str:
         lines += ["", f"Maximum flight height for map 1:{scale_value(inp.map_scale or 0)}, relief "
                   f"interval {inp.relief_interval_m:g} m"
                   + (f" (checked at +{tol:g} % height)" if tol else "") + ":"]
-        lrows = [["  constraint", "limit on the ground", "compared with", "max height"]]
+        lrows = [["  constraint", "limit", "compared with", "max planned", "highest flown"]]
         for lim in sorted(plan.limits, key=lambda x: x.max_height_m):
             lrows.append([f"  {lim.id}  {lim.name}", f"{lim.limit_m:.3f} m", lim.compares,
-                          f"{lim.max_height_m:.0f} m" + ("*" if lim.binding else " ")])
-        lines.append(table(lrows, align="lrlr"))
+                          f"{lim.max_height_m:.0f} m" + ("*" if lim.binding else " "),
+                          f"{lim.max_flown_height_m or lim.max_height_m:.0f} m"])
+        lines.append(table(lrows, align="lrlrr"))
         b = next(x for x in plan.limits if x.binding)
-        lines.append(_wrap(f"Maximum height {plan.max_height_m:.0f} m: {b.id} ({b.name}) binds — "
-                           f"{b.reason}.", ""))
+        lines.append(_wrap(str(Message("max_height.sentence", max=plan.max_height_m,
+                                       flown=plan.max_flown_height_m or plan.max_height_m,
+                                       cid=b.id, name=b.name, reason=b.reason)) + ".", ""))
+        acc = plan.height_accuracy
+        if acc:
+            forms = acc["forms"]
+            lines.append(_wrap(
+                f"Height accuracy: σ_Z {acc['sigma_z_at_highest_flown_height_m']:.3f} m at "
+                f"{h['max']:g} m (required {acc['height_accuracy_m']:g} m RMS; "
+                f"{acc['sigma_z_in_gsd']:.2f} GSD). Maximum planned height by form: "
+                f"normal case {forms['normal_case']['max_planned_height_m']:.0f} m, "
+                f"Instruction {forms['instruction']['max_planned_height_m']:.0f} m, parallax "
+                f"(single-step base) {forms['parallax']['max_planned_height_m']:.0f} m "
+                f"[{acc['formula']} used].", ""))
     if plan.warnings:
         lines += ["", "Warnings:"]
         for w in plan.warnings:
