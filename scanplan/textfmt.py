@@ -257,11 +257,20 @@ def format_plan_result(result: Any) -> str:
             tol = p.inputs.height_tolerance_up_pct
             rows = [["  recommended flight height", f"{u.recommended_height_m:g} m"
                      + (f" (flown up to {p.heights_m['max']:g} m, +{tol:g} %)" if tol else "")],
-                    ["  maximum flight height", f"{u.max_height_m:.0f} m ({p.binding} "
-                     f"{CONSTRAINTS[p.binding].name})" if p.binding else "—"],
+                    ["  maximum planned height", f"{u.max_height_m:.0f} m"
+                     + (f" (flown up to {p.max_flown_height_m:.0f} m)" if tol else "")
+                     + f" ({p.binding} {CONSTRAINTS[p.binding].name})" if p.binding else "—"],
                     ["  GSD / ground resolution L", f"{p.gsd_m:.3f} m / "
                      f"{_num(p.ground_resolution_m, 3)} m (L/GSD "
                      f"{_num(p.ground_resolution_to_gsd, 2)})"]]
+            if p.constraints_max_height_m is not None:
+                rows.append(["  without the ceiling", f"{p.constraints_max_height_m:.0f} m "
+                             "(an airspace-use permission is needed above the ceiling)"])
+            if p.height_accuracy:
+                acc = p.height_accuracy
+                rows.append(["  height error σ_Z", f"{acc['sigma_z_at_highest_flown_height_m']:.3f}"
+                             f" m at {p.heights_m['max']:g} m (required "
+                             f"{acc['height_accuracy_m']:g} m RMS)"])
             obj = p.inputs.map_object
             if obj is not None:
                 rec = next((r for r in p.recognition if r.object == obj.name
