@@ -576,7 +576,7 @@ _OVERLAP_EPS = 1e-9
 
 
 def stereo_base_fraction(
-    forward_overlap_pct: ArrayLike, min_stereo_overlap_pct: ArrayLike = 60.0
+    forward_overlap_pct: ArrayLike, min_stereo_overlap_pct: ArrayLike
 ) -> FloatArray:
     """Widest stereo base with standard overlap, as a fraction of the along-track footprint.
 
@@ -589,8 +589,9 @@ def stereo_base_fraction(
     ----------
     forward_overlap_pct : array_like
         Forward overlap p flown [%], 0 ≤ p < 100.
-    min_stereo_overlap_pct : array_like, optional
-        Standard stereo overlap p_min [%] (norm: 60 %, GKINP (GNTA)-02-036-02).
+    min_stereo_overlap_pct : array_like
+        Standard stereo overlap p_min [%] (norm parameter ``standard_forward_overlap_pct``,
+        60 % in GKINP (GNTA)-02-036-02).
 
     Returns
     -------
@@ -611,7 +612,7 @@ def stereo_base_fraction(
 
 
 def strip_multi_ray_factor(
-    forward_overlap_pct: ArrayLike, min_stereo_overlap_pct: ArrayLike = 60.0
+    forward_overlap_pct: ArrayLike, min_stereo_overlap_pct: ArrayLike
 ) -> FloatArray:
     """σ_Z of a point intersected from every photo of its strip, over σ_Z of the widest pair.
 

@@ -306,10 +306,6 @@ MESSAGES: dict[str, dict[str, str]] = {
         "ru": "Плановая высота полёта не превышает максимальную плановую {max:.0f}~м.",
     },
     # --- digital height accuracy, altitude ceiling, target GSD (scanplan.uav) -------------
-    "height_formula.normal_case": {
-        "en": "normal-case stereo",
-        "ru": "нормальный случай стереосъёмки",
-    },
     "limit.PZ.normal_case": {
         "en": "RMS height error σ_Z = (H/B)·(H/c)·σ_px ≤ V_z = {vz:g} m (relief interval {hc:g} m) "
               "with the widest stereo base of {overlap:g} % overlap (B = {steps:d} × the photo "
@@ -337,9 +333,10 @@ MESSAGES: dict[str, dict[str, str]] = {
     },
     "equation.CEIL": {
         "en": "H·(1 + height tolerance) ≤ ceiling — Federal Rules for the Use of the Airspace "
-              "of the Russian Federation, para. 52.1",
+              "of the Russian Federation (Government Decree No. 138 of 11 March 2010)",
         "ru": "H·(1 + допуск высоты) ≤ предельной высоты — Федеральные правила использования "
-              "воздушного пространства Российской Федерации, п. 52.1",
+              "воздушного пространства Российской Федерации (постановление Правительства РФ "
+              "от 11 марта 2010 г. № 138)",
     },
     "limit.GSD": {
         "en": "GSD at the highest flown height ≤ the target {gsd:g} cm",
@@ -359,21 +356,19 @@ MESSAGES: dict[str, dict[str, str]] = {
               "пространства",
     },
     "ceiling_binds": {
-        "en": "the altitude ceiling of {ceiling:g} m binds: with the +{tolerance:g} % height "
-              "tolerance the plan may be at most {max:.0f} m, while the other constraints "
+        "en": "the altitude ceiling of {ceiling:g} m binds: {tolerance}the plan may be at most "
+              "{max:.0f} m, while the other constraints "
               "would allow planning up to {allow:.0f} m ({cid} binds there). Flying higher "
               "needs an airspace-use permission; then raise [uav] max_height_m",
-        "ru": "Определяет предельная высота полёта {ceiling:g}~м: с допуском высоты "
-              "+{tolerance:g}~% плановая высота не более {max:.0f}~м, тогда как остальные "
+        "ru": "Определяет предельная высота полёта {ceiling:g}~м: {tolerance}плановая высота "
+              "не более {max:.0f}~м, тогда как остальные "
               "условия допускают плановую высоту до {allow:.0f}~м (там определяет условие "
               "{cid}). Полёт выше требует разрешения на использование воздушного пространства; "
               "тогда увеличьте [uav] max_height_m.",
     },
-    "max_height.sentence": {
-        "en": "Maximum planned height {max:.0f} m (highest flown {flown:.0f} m): {cid} ({name}) "
-              "binds — {reason}",
-        "ru": "Максимальная плановая высота {max:.0f}~м (наибольшая фактическая {flown:.0f}~м) "
-              "определяется условием {cid} ({name}): {reason}.",
+    "ceiling_binds.tolerance": {
+        "en": "with the +{tolerance:g} % height tolerance ",
+        "ru": "с допуском высоты +{tolerance:g}~% ",
     },
 }
 """Message code → template per locale (same codes and the same fields in every locale)."""

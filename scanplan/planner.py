@@ -75,11 +75,11 @@ class ScanRules:
     recognition_rounding: str
     interpretation_min_lpmm: float
     interpretation_max_lpmm: float
-    # digital (UAV) blocks — scanplan.uav; defaults = the bundled norm set's values
-    digital_height_formula: str = "normal_case"
-    image_measurement_px: float = 0.5
-    multi_ray: str = "off"
-    uav_max_height_m: float = 150.0
+    # digital (UAV) blocks — scanplan.uav
+    digital_height_formula: str
+    image_measurement_px: float
+    multi_ray: str
+    uav_max_height_m: float
 
 
 @dataclass(frozen=True)

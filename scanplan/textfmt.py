@@ -8,7 +8,6 @@ import textwrap
 from collections.abc import Sequence
 from typing import Any
 
-from .messages import Message
 from .planner import CONSTRAINTS, ScanPlan
 from .serialize import scale_value
 from .uav import UavPlan
@@ -187,9 +186,11 @@ def format_uav_plan(plan: UavPlan, norm_name: str = "") -> str:
         lines.append(table(rrows, align="llrlrrr"))
     if plan.limits:
         tol = inp.height_tolerance_up_pct
-        lines += ["", f"Maximum flight height for map 1:{scale_value(inp.map_scale or 0)}, relief "
-                  f"interval {inp.relief_interval_m:g} m"
-                  + (f" (checked at +{tol:g} % height)" if tol else "") + ":"]
+        head = (f"Maximum planned height for map 1:{scale_value(inp.map_scale)}, relief "
+                f"interval {inp.relief_interval_m:g} m" if inp.map_scale is not None
+                else "Maximum planned height")
+        lines += ["", head + (f" (limits checked at the highest flown height, +{tol:g} %)"
+                              if tol else "") + ":"]
         lrows = [["  constraint", "limit", "compared with", "max planned", "highest flown"]]
         for lim in sorted(plan.limits, key=lambda x: x.max_height_m):
             lrows.append([f"  {lim.id}  {lim.name}", f"{lim.limit_m:.3f} m", lim.compares,
@@ -197,9 +198,9 @@ def format_uav_plan(plan: UavPlan, norm_name: str = "") -> str:
                           f"{lim.max_flown_height_m or lim.max_height_m:.0f} m"])
         lines.append(table(lrows, align="lrlrr"))
         b = next(x for x in plan.limits if x.binding)
-        lines.append(_wrap(str(Message("max_height.sentence", max=plan.max_height_m,
-                                       flown=plan.max_flown_height_m or plan.max_height_m,
-                                       cid=b.id, name=b.name, reason=b.reason)) + ".", ""))
+        lines.append(_wrap(f"Maximum planned height {plan.max_height_m:.0f} m (highest flown "
+                           f"{plan.max_flown_height_m or plan.max_height_m:.0f} m): {b.id} "
+                           f"({b.name}) binds — {b.reason}.", ""))
         acc = plan.height_accuracy
         if acc:
             forms = acc["forms"]

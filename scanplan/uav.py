@@ -425,8 +425,10 @@ def _height_limits(inp: UavInputs, rules: ScanRules | None) -> tuple[
         if nxt[4] > max_h * (1 + 1e-9):
             allow = nxt[4]
             warnings.append(PlanWarning("ceiling_binds", Message(
-                "ceiling_binds", ceiling=inp.ceiling_m, tolerance=inp.height_tolerance_up_pct,
-                max=max_h, allow=allow, cid=nxt[0]), severity="info"))
+                "ceiling_binds", ceiling=inp.ceiling_m, max=max_h, allow=allow, cid=nxt[0],
+                tolerance=Message("ceiling_binds.tolerance",
+                                  tolerance=inp.height_tolerance_up_pct)
+                if inp.height_tolerance_up_pct else None), severity="info"))
     if h_plan > max_h * (1 + 1e-9):
         info = CONSTRAINTS[binding]
         warnings.append(PlanWarning("height_above_max", Message(

@@ -36,15 +36,15 @@ SEED002 = dict(camera="canon-eos-5d-mark-ii-50", f_number=8.0, height_m=300.0,
 def test_widest_standard_stereo_base():
     """80 % and 90 % blocks keep a 60 % pair two and four photo steps apart: B = 0.4·footprint,
     as a 60 % block; 70 % and 85 % lose a little (0.3); below 60 % the single step."""
-    got = F.stereo_base_fraction([60, 70, 80, 85, 90, 55])
+    got = F.stereo_base_fraction([60, 70, 80, 85, 90, 55], 60)
     assert got == pytest.approx([0.4, 0.3, 0.4, 0.3, 0.4, 0.45])
 
 
 def test_strip_multi_ray_factor_closed_form():
     """f = n·sqrt(6/(m(m² − 1))): m rays of the strip against the widest pair (n steps)."""
-    assert F.strip_multi_ray_factor(60) == pytest.approx(1.0)           # m = 2, n = 1
-    assert F.strip_multi_ray_factor(80) == pytest.approx(2 * math.sqrt(6 / 120))  # 0.447
-    assert F.strip_multi_ray_factor(90) == pytest.approx(4 * math.sqrt(6 / 990))
+    assert F.strip_multi_ray_factor(60, 60) == pytest.approx(1.0)           # m = 2, n = 1
+    assert F.strip_multi_ray_factor(80, 60) == pytest.approx(2 * math.sqrt(6 / 120))  # 0.447
+    assert F.strip_multi_ray_factor(90, 60) == pytest.approx(4 * math.sqrt(6 / 990))
 
 
 def test_strip_multi_ray_factor_is_the_least_squares_intersection():
@@ -61,7 +61,7 @@ def test_strip_multi_ray_factor_is_the_least_squares_intersection():
     m, n = 5, 2                         # 80 %: 5 photos see the point, the 60 % pair is 2 apart
     rays = sigma_z(np.arange(m) * s)
     pair = sigma_z(np.array([0.0, n * s]))
-    assert rays / pair == pytest.approx(float(F.strip_multi_ray_factor(80)), rel=1e-12)
+    assert rays / pair == pytest.approx(float(F.strip_multi_ray_factor(80, 60)), rel=1e-12)
 
 
 def test_normal_case_by_hand():
@@ -97,7 +97,7 @@ def test_more_overlap_never_shrinks_the_stereo_base_below_one_step(p, q):
     """The widest standard base is at least the single step and at most 1 − p_min (once
     the overlap reaches the standard), whatever the overlap."""
     lo = min(p, q)
-    frac = float(F.stereo_base_fraction(lo))
+    frac = float(F.stereo_base_fraction(lo, 60))
     assert frac >= (1 - lo / 100) - 1e-12
     if lo >= 60:
         assert frac <= 0.4 + 1e-12
@@ -117,7 +117,7 @@ def test_aguera_vega_2017_vertical_rmse():
     p_um, h, ly = 17.3 / 4032 * 1000, 120.0, 13.0
     sigma = load_norm_set("gkinp-02-036-02").parameters["image_measurement_px"]
     for c in (14.0, 17.0):                       # focal length does not matter
-        bh = float(F.stereo_base_fraction(80)) * ly / c
+        bh = float(F.stereo_base_fraction(80, 60)) * ly / c
         sz = float(F.normal_case_height_error_m(h, bh * h, c, p_um, sigma))
         assert sz == pytest.approx(0.0496, abs=5e-4)
         assert 0.75 < sz / 0.047 < 1.33
@@ -168,7 +168,7 @@ def test_multi_ray_norm_parameter_raises_the_limit():
     job = uav_job(**SEED002, map_scale=2000, relief_interval_m=0.5)
     off = _height_accuracy(job.plan.inputs, ns.rules())
     strip = _height_accuracy(job.plan.inputs, dataclasses.replace(ns.rules(), multi_ray="strip"))
-    assert strip[0] == pytest.approx(off[0] / float(F.strip_multi_ray_factor(80)))
+    assert strip[0] == pytest.approx(off[0] / float(F.strip_multi_ray_factor(80, 60)))
     assert strip[2]["multi_ray_factor"] == pytest.approx(0.4472, abs=1e-4)
 
 
