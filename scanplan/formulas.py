@@ -34,14 +34,11 @@ from .errors import pick_method
 
 __all__ = [
     "HEIGHT_PIXEL_METHODS",
-    "normal_case_height_error_m",
-    "stereo_base_fraction",
-    "stereo_height_ground_limit_m",
-    "strip_multi_ray_factor",
     "height_pixel_instruction_um",
     "height_pixel_parallax_um",
     "height_pixel_um",
     "interpretation_pixel_um",
+    "normal_case_height_error_m",
     "photo_base_mm",
     "photoplan_pixel_um",
     "planimetric_pixel_um",
@@ -52,6 +49,9 @@ __all__ = [
     "resolution_on_ground_mm",
     "resolving_power_pixel_um",
     "scanned_frame_bytes",
+    "stereo_base_fraction",
+    "stereo_height_ground_limit_m",
+    "strip_multi_ray_factor",
     "transfer_size_mm",
 ]
 

@@ -245,10 +245,10 @@ MESSAGES: dict[str, dict[str, str]] = {
               "детали не разрешаются, и линейное разрешение на местности L не определено.",
     },
     "height_above_max": {
-        "en": "planned height {height:g} m is above the maximum {max:.0f} m set by {cid} "
-              "({name}){tolerance}",
-        "ru": "Плановая высота полёта {height:g}~м выше максимальной {max:.0f}~м по условию "
-              "{cid} ({name}){tolerance}.",
+        "en": "planned height {height:g} m is above the maximum planned height {max:.0f} m set "
+              "by {cid} ({name}){tolerance}",
+        "ru": "Плановая высота полёта {height:g}~м выше максимальной плановой {max:.0f}~м по "
+              "условию {cid} ({name}){tolerance}.",
     },
     "height_above_max.tolerance": {
         "en": " with a {tolerance:g} % height tolerance",
@@ -292,7 +292,8 @@ MESSAGES: dict[str, dict[str, str]] = {
     },
     "spec.uav_rounded": {
         "en": "the maximum planned height {max:.0f} m ({cid} binds) rounded down to {step:g} m",
-        "ru": "Рекомендуемая высота полёта — максимальная плановая {max:.0f}~м (определяющее условие "
+        "ru": "Рекомендуемая высота полёта — максимальная плановая {max:.0f}~м (определяющее "
+              "условие "
               "{cid}), округлённая в меньшую сторону с шагом {step:g}~м.",
     },
     "height_lowered": {
@@ -312,7 +313,8 @@ MESSAGES: dict[str, dict[str, str]] = {
               "step, B/H = {bh:.3f}) and a parallax error σ_px = {sigma:g} px{multi}",
         "ru": "средняя квадратическая ошибка высот σ_Z = (H/B)·(H/c)·σ_px ≤ V_z = {vz:g}~м "
               "(высота сечения рельефа {hc:g}~м) при наибольшем базисе с перекрытием {overlap:g}~% "
-              "(B = {steps:d}~× шаг фотографирования, B/H = {bh:.3f}) и ошибке измерения параллакса "
+              "(B = {steps:d}~× шаг фотографирования, B/H = {bh:.3f}) и ошибке измерения "
+              "параллакса "
               "σ_px = {sigma:g}~пикс.{multi}",
     },
     "limit.PZ.multi": {

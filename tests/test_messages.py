@@ -24,13 +24,13 @@ import pytest
 from click.testing import CliRunner
 
 from scanplan.api import scan_job, uav_job
-from scanplan.uav import plan_uav
 from scanplan.cli import main
 from scanplan.messages import LOCALES, MESSAGES, Message, localize, placeholders
 from scanplan.planner import CONSTRAINTS, PlanWarning, plan_scan
 from scanplan.project import load_project
 from scanplan.reports.labels import LABELS
 from scanplan.spec import PlanResult, plan_project
+from scanplan.uav import plan_uav
 
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLES = ROOT / "examples"
@@ -108,7 +108,8 @@ def test_numbers_scales_lists_names_and_nested_messages_per_locale():
     assert at.text("ru") == f"При масштабах снимков 1:10{NBSP}000; 1:15{NBSP}000"
     lim = Message("height_above_max", height=600.0, max=376.4, cid="PD",
                   name={"en": "interpretation", "ru": "дешифрирование"}, tolerance=None)
-    assert lim == "planned height 600 m is above the maximum 376 m set by PD (interpretation)"
+    assert lim == ("planned height 600 m is above the maximum planned height 376 m set by PD "
+                   "(interpretation)")
     assert "по условию PD (дешифрирование)" in lim.text("ru")
     why = Message("no_feasible_photo_scale", why=[
         Message("no_feasible_photo_scale.objects", limit=8847),

@@ -264,7 +264,8 @@ LABELS: dict[str, dict[str, str]] = {
         "pdf_tol_note": " (constraints checked at +{tol} % height)",
         "pdf_limit_on_ground": "Limit on the ground, m",
         "pdf_compared": "Compared with",
-        "pdf_max_height_sentence": "Maximum planned flight height {h} m: {cid} ({name}) binds — {reason}.",
+        "pdf_max_height_sentence": "Maximum planned flight height {h} m: {cid} ({name}) binds — "
+                                   "{reason}.",
         "pdf_f_gsd": "ground sample distance (pixel p, height H, focal length f)",
         "pdf_f_l": "MTF ground resolution; R is where the image contrast K meets the threshold",
         "pdf_f_p": "recognition probability of an object of size L_obj, shape coefficient B",
@@ -588,11 +589,13 @@ LABELS: dict[str, dict[str, str]] = {
         "pdf_object": "Объект",
         "pdf_size_m": "Размер, м",
         "pdf_shape": "Форма",
-        "pdf_limits": "Максимальная плановая высота полёта для карты {scale}, сечение рельефа {hc} м",
+        "pdf_limits": "Максимальная плановая высота полёта для карты {scale}, сечение рельефа "
+                      "{hc} м",
         "pdf_tol_note": " (условия проверены на высоте +{tol} %)",
         "pdf_limit_on_ground": "Предел на местности, м",
         "pdf_compared": "Сравнивается с",
-        "pdf_max_height_sentence": "Максимальную плановую высоту полёта {h} м определяет условие {cid} "
+        "pdf_max_height_sentence": "Максимальную плановую высоту полёта {h} м определяет "
+                                   "условие {cid} "
                                    "({name}): {reason}.",
         "pdf_f_gsd": "размер пикселя на местности (пиксель p, высота H, фокусное расстояние f)",
         "pdf_f_l": "линейное разрешение на местности по ЧКХ; R — частота, при которой "
