@@ -309,13 +309,12 @@ MESSAGES: dict[str, dict[str, str]] = {
     # --- digital height accuracy, altitude ceiling, target GSD (scanplan.uav) -------------
     "limit.PZ.normal_case": {
         "en": "RMS height error σ_Z = (H/B)·(H/c)·σ_px ≤ V_z = {vz:g} m (relief interval {hc:g} m) "
-              "with the widest stereo base of {overlap:g} % overlap (B = {steps:d} × the photo "
-              "step, B/H = {bh:.3f}) and a parallax error σ_px = {sigma:g} px{multi}",
+              "with a parallax error σ_px = {sigma:g} px and the widest stereo base of "
+              "{overlap:g} % overlap (B = {steps:d} × the photo step, B/H = {bh:.3f}){multi}",
         "ru": "средняя квадратическая ошибка высот σ_Z = (H/B)·(H/c)·σ_px ≤ V_z = {vz:g}~м "
-              "(высота сечения рельефа {hc:g}~м) при наибольшем базисе с перекрытием {overlap:g}~% "
-              "(B = {steps:d}~× шаг фотографирования, B/H = {bh:.3f}) и ошибке измерения "
-              "параллакса "
-              "σ_px = {sigma:g}~пикс.{multi}",
+              "(высота сечения рельефа {hc:g}~м) при ошибке измерения параллакса "
+              "σ_px = {sigma:g}~пикс. и наибольшем базисе с перекрытием {overlap:g}~% "
+              "(B = {steps:d}~× шаг фотографирования, B/H = {bh:.3f}){multi}",
     },
     "limit.PZ.multi": {
         "en": ", improved {f:.2f}× by the other photos of the strip",
