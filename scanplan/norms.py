@@ -22,7 +22,7 @@ from pathlib import Path
 from typing import Any
 
 from .errors import InputError, NotFoundError
-from .normschema import PARAMETERS, TABLES, TableSpec, ValueSpec
+from .normschema import LATER_PARAMETERS, PARAMETERS, TABLES, TableSpec, ValueSpec
 from .planner import ScanRules
 from .safeio import read_limited
 
@@ -429,6 +429,13 @@ def read_norm_set_folder(path: Path, *, bundled: bool = False) -> NormSet:
         params[name] = _convert(row.get("value"), PARAMETERS[name].value, f"{pfile}:{i} (value)")
         sources[name] = (row.get("source") or "").strip()
     missing = [n for n in PARAMETERS if n not in params]
+    if missing and not bundled and set(missing) <= set(LATER_PARAMETERS):
+        base = load_norm_set(DEFAULT_NORM_SET)
+        for n in missing:
+            params[n] = base.parameters[n]
+            sources[n] = (f"{base.parameter_sources[n]} (taken from {DEFAULT_NORM_SET}: this "
+                          "set predates the parameter)")
+        missing = []
     if missing:
         raise InputError(str(pfile), f"missing parameters: {', '.join(missing)}")
     shape_rows = {r["shape"]: r for r in _typed_rows(path / "shapes.csv", TABLES["shapes"])}

@@ -27,6 +27,10 @@ HEIGHT_FORMULAS = ("instruction", "parallax")
 DIGITAL_HEIGHT_FORMULAS = ("normal_case", "instruction", "parallax")
 """Forms of the height constraint for digital (UAV) cameras (:mod:`scanplan.uav`)."""
 MULTI_RAY_MODES = ("off", "strip")
+LATER_PARAMETERS = ("digital_height_formula", "image_measurement_px", "multi_ray",
+                    "uav_max_height_m")
+"""Parameters added after norm sets were first stored: a stored set without them takes
+them from the bundled default set (its source says so) instead of failing to load."""
 ROUNDING_MODES = ("exact", "paper")
 
 

@@ -21,6 +21,7 @@ from hypothesis import strategies as st
 from scanplan import formulas as F
 from scanplan.api import uav_job
 from scanplan.cli import main
+from scanplan.errors import InputError
 from scanplan.norms import load_norm_set
 from scanplan.project import load_project
 from scanplan.serialize import plan_result_dict
@@ -315,3 +316,25 @@ def test_height_plot_marks_planned_flown_and_maximum():
     for text in ("planned: 300", "highest flown: 420", "maximum planned (PZ): 214",
                  "highest flown at the maximum: 300"):
         assert text in svg, text
+
+
+def test_a_stored_set_older_than_the_digital_parameters_still_loads(tmp_path):
+    """A norm set stored before the digital-height and ceiling parameters existed takes them
+    from the bundled set, and its source says so."""
+    import shutil
+
+    src = ROOT / "norms" / "gkinp-02-036-02"
+    dst = tmp_path / "old-set"
+    shutil.copytree(src, dst)
+    lines = (dst / "parameters.csv").read_text(encoding="utf-8").splitlines(keepends=True)
+    later = ("digital_height_formula", "image_measurement_px", "multi_ray", "uav_max_height_m")
+    (dst / "parameters.csv").write_text("".join(x for x in lines if not x.startswith(later)),
+                                        encoding="utf-8")
+    ns = load_norm_set(str(dst))
+    assert ns.parameters["uav_max_height_m"] == 150
+    assert "this set predates the parameter" in ns.parameter_sources["multi_ray"]
+    # a set missing an original parameter is still refused
+    (dst / "parameters.csv").write_text("".join(x for x in lines if not x.startswith("shape,")),
+                                        encoding="utf-8")
+    with pytest.raises(InputError, match="missing parameters: shape"):
+        load_norm_set(str(dst))
