@@ -328,6 +328,7 @@ LABELS: dict[str, dict[str, str]] = {
         "hf_parallax": "parallax, single-step base, V_z·b/(k·Mc·f)",
         "GSD": "target GSD",
         "CEIL": "altitude ceiling",
+        "pdf_warn_ceiling_binds": "The altitude ceiling binds",
         "pdf_height_forms": "Height error σ_Z = {sigma} m at the highest flown height {h} m "
                             "(required V_z = {vz} m, RMS). Maximum planned height by height "
                             "formula — {forms}.",
@@ -660,6 +661,7 @@ LABELS: dict[str, dict[str, str]] = {
         "hf_parallax": "параллактическая, базис одного шага, V_z·b/(k·Mc·f)",
         "GSD": "заданный размер пикселя на местности",
         "CEIL": "предельная высота полёта",
+        "pdf_warn_ceiling_binds": "Высоту ограничивает предельная высота полёта",
         "pdf_height_forms": "Ошибка высот σ_Z = {sigma} м на наибольшей фактической высоте "
                             "{h} м (требуется V_z = {vz} м, СКО). Максимальная плановая высота "
                             "по формулам точности высот — {forms}.",
