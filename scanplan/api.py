@@ -30,6 +30,19 @@ HEIGHT_STEP_M = 5.0
 PROVISIONAL_HEIGHT_M = 100.0
 """Height of the first pass when the planned height is to be derived [m]."""
 
+
+def height_step_m(max_height_m: float) -> float:
+    """The step a recommended height is rounded down to: 5 m, or 1 m below 5 m [m]."""
+    return HEIGHT_STEP_M if max_height_m >= HEIGHT_STEP_M else 1.0
+
+
+def recommended_height_m(max_height_m: float | None) -> float | None:
+    """The maximum planned height rounded down to :func:`height_step_m`; None below 1 m."""
+    if max_height_m is None or max_height_m < 1.0:
+        return None
+    step = height_step_m(max_height_m)
+    return math.floor(max_height_m / step) * step
+
 __all__ = ["ScanJob", "UavJob", "parse_frame_mm", "resolve_object", "scan", "scan_job", "uav_job"]
 
 
@@ -264,10 +277,11 @@ def uav_job(
                              "GSD, or a map scale to derive it from")
         kw = dict(locals())
         first = uav_job(**{**kw, "height_m": PROVISIONAL_HEIGHT_M})
-        max_h = first.plan.max_height_m
-        if max_h is None or max_h < HEIGHT_STEP_M:
-            return first
-        rec = math.floor(max_h / HEIGHT_STEP_M) * HEIGHT_STEP_M
+        rec = recommended_height_m(first.plan.max_height_m)
+        if rec is None:
+            raise InputError("height_m", "no flight height of 1 m or more meets every limit "
+                             f"(maximum {first.plan.max_height_m or 0:.2f} m); give the "
+                             "planned height to see the plan")
         return first if rec == PROVISIONAL_HEIGHT_M else uav_job(**{**kw, "height_m": rec})
     ns = load_norm_set(norms)
     cam = ns.camera(camera, "camera") if camera is not None else None

@@ -16,7 +16,15 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from . import flight as FL
-from .api import HEIGHT_STEP_M, PROVISIONAL_HEIGHT_M, ScanJob, UavJob, scan_job, uav_job
+from .api import (
+    PROVISIONAL_HEIGHT_M,
+    ScanJob,
+    UavJob,
+    height_step_m,
+    recommended_height_m,
+    scan_job,
+    uav_job,
+)
 from .domains import check_domain
 from .errors import InputError
 from .messages import Message
@@ -219,13 +227,13 @@ def _uav(project: Project) -> UavSpec:
     first_height = planned if planned is not None else PROVISIONAL_HEIGHT_M
     first = job_at(first_height)
     max_h = first.plan.max_height_m
-    if max_h is None or max_h <= 0:
+    rounded = recommended_height_m(max_h)
+    if max_h is None or rounded is None:
         return UavSpec(first, planned, None, max_h, Message("spec.uav_none"))
-    rounded = math.floor(max_h / HEIGHT_STEP_M) * HEIGHT_STEP_M
     if planned is None:
         rec = rounded
         reason = Message("spec.uav_rounded", max=max_h, cid=first.plan.binding,
-                         step=HEIGHT_STEP_M)
+                         step=height_step_m(max_h))
     elif planned > max_h:
         rec = rounded
         reason = Message("height_lowered", planned=planned, max=max_h,

@@ -338,3 +338,19 @@ def test_a_stored_set_older_than_the_digital_parameters_still_loads(tmp_path):
                                         encoding="utf-8")
     with pytest.raises(InputError, match="missing parameters: shape"):
         load_norm_set(str(dst))
+
+
+def test_a_ceiling_below_the_rounding_step_is_never_exceeded(tmp_path):
+    """A 6 m ceiling flown +40 %: at most 4.3 m planned; recommended 4 m (1 m steps below
+    5 m), never the provisional height."""
+    text = (ROOT / "examples" / "uav-canon-2000.toml").read_text(encoding="utf-8")
+    path = tmp_path / "low.toml"
+    path.write_text(text.replace("max_height_m = 500", "max_height_m = 6").replace(
+        "height_m = 300\n", ""), encoding="utf-8")
+    u = plan_project(load_project(path)).uav
+    assert u.recommended_height_m == 4 and u.job.plan.heights_m["max"] <= 6
+    job = uav_job(**{**SEED002, "height_m": None}, gsd_cm=3.0, max_height_m=6)
+    assert job.plan.heights_m["planned"] == 4
+    r = CliRunner().invoke(main, ["uav", "--camera", "dji-mavic-3e", "--gsd-cm", "2",
+                                  "--max-height-m", "1.2", "--height-tolerance-pct", "40"])
+    assert r.exit_code == 2 and "--height-m" in r.stderr
