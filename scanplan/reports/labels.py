@@ -329,6 +329,13 @@ LABELS: dict[str, dict[str, str]] = {
         "GSD": "target GSD",
         "CEIL": "altitude ceiling",
         "pdf_warn_ceiling_binds": "The altitude ceiling binds",
+        "param_digital_height_formula": "Height accuracy of digital blocks",
+        "param_image_measurement_px": "Parallax measurement error σ_px, px",
+        "param_multi_ray": "Multi-ray improvement of the height error",
+        "param_uav_max_height_m": "Altitude ceiling of UAV flights, m",
+        "value_normal_case": "normal-case stereo",
+        "value_multi_ray_off": "off (one stereo pair)",
+        "value_multi_ray_strip": "all photos of the strip",
         "pdf_height_forms": "Height error σ_Z = {sigma} m at the highest flown height {h} m "
                             "(required V_z = {vz} m, RMS). Maximum planned height by height "
                             "formula — {forms}.",
@@ -662,6 +669,13 @@ LABELS: dict[str, dict[str, str]] = {
         "GSD": "заданный размер пикселя на местности",
         "CEIL": "предельная высота полёта",
         "pdf_warn_ceiling_binds": "Высоту ограничивает предельная высота полёта",
+        "param_digital_height_formula": "Точность высот цифровой аэросъёмки",
+        "param_image_measurement_px": "Ошибка измерения параллакса σ_px, пикс.",
+        "param_multi_ray": "Многолучевое уточнение ошибки высот",
+        "param_uav_max_height_m": "Предельная высота полёта БВС, м",
+        "value_normal_case": "нормальный случай стереосъёмки",
+        "value_multi_ray_off": "нет (одна стереопара)",
+        "value_multi_ray_strip": "все снимки маршрута",
         "pdf_height_forms": "Ошибка высот σ_Z = {sigma} м на наибольшей фактической высоте "
                             "{h} м (требуется V_z = {vz} м, СКО). Максимальная плановая высота "
                             "по формулам точности высот — {forms}.",
