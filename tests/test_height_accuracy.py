@@ -142,7 +142,8 @@ def test_uav_height_constraint_is_normal_case():
     plan = uav_job(**SEED002, map_scale=2000, relief_interval_m=0.5, max_height_m=500).plan
     pz = next(x for x in plan.limits if x.id == "PZ")
     assert pz.limit_m == pytest.approx(0.1 * 0.192 / 0.5)
-    assert pz.max_flown_height_m == pytest.approx(0.1 * 0.192 / 0.5 * 50 / 6.41e-3)
+    px_mm = plan.inputs.pixel_um / 1000          # 6.41 µm (36 mm / 5616 px)
+    assert pz.max_flown_height_m == pytest.approx(0.1 * 0.192 / 0.5 * 50 / px_mm)
     assert pz.max_height_m == pytest.approx(pz.max_flown_height_m / 1.4)
     assert plan.binding == "PZ" and plan.max_height_m == pytest.approx(213.95, abs=0.05)
     acc = plan.height_accuracy
@@ -153,13 +154,14 @@ def test_uav_height_constraint_is_normal_case():
     forms = acc["forms"]
     assert forms["instruction"]["max_planned_height_m"] == pytest.approx(2902, abs=1)
     assert forms["parallax"]["max_planned_height_m"] == pytest.approx(
-        0.1 * 0.096 / 2 * 50 / 6.41e-3 / 1.4)
+        0.1 * 0.096 / 2 * 50 / px_mm / 1.4)
     assert (forms["parallax"]["max_planned_height_m"]
             < forms["normal_case"]["max_planned_height_m"]
             < forms["instruction"]["max_planned_height_m"])
     # at the highest flown height of the maximum plan σ_Z is exactly V_z
     up = plan.max_flown_height_m
-    assert F.normal_case_height_error_m(up, 0.192 * up, 50, 6.41, 0.5) == pytest.approx(0.1)
+    assert F.normal_case_height_error_m(up, 0.192 * up, 50, plan.inputs.pixel_um, 0.5
+                                        ) == pytest.approx(0.1)
 
 
 def test_multi_ray_norm_parameter_raises_the_limit():
@@ -203,7 +205,7 @@ def test_target_gsd_gives_the_height():
     """gsd_cm → the height: GSD at the highest flown height ≤ the target."""
     job = uav_job(**{**SEED002, "height_m": None}, gsd_cm=3.0, max_height_m=1000)
     plan = job.plan
-    h_max = 0.03 * 50 / 6.41e-3 / 1.4
+    h_max = 0.03 * 50 / (plan.inputs.pixel_um / 1000) / 1.4
     assert plan.binding == "GSD" and plan.max_height_m == pytest.approx(h_max)
     assert plan.heights_m["planned"] == math.floor(h_max / 5) * 5
     assert plan.gsd_at_max_height_m <= 0.03
@@ -354,3 +356,19 @@ def test_a_ceiling_below_the_rounding_step_is_never_exceeded(tmp_path):
     r = CliRunner().invoke(main, ["uav", "--camera", "dji-mavic-3e", "--gsd-cm", "2",
                                   "--max-height-m", "1.2", "--height-tolerance-pct", "40"])
     assert r.exit_code == 2 and "--height-m" in r.stderr
+
+
+@settings(max_examples=40, deadline=None)
+@given(ceiling=st.floats(2, 3000), tol=st.floats(0, 80), gsd=st.floats(0.5, 30))
+def test_a_derived_height_never_flies_above_the_ceiling(ceiling, tol, gsd):
+    """Whatever the ceiling, tolerance and target GSD: the planned height is the rounded
+    maximum, its highest flown height is within the ceiling and the target GSD holds there."""
+    job = uav_job(camera="dji-mavic-3e", height_tolerance_pct=tol, gsd_cm=gsd,
+                  max_height_m=ceiling)
+    p = job.plan
+    assert p.heights_m["planned"] <= p.max_height_m * (1 + 1e-9)
+    assert p.heights_m["max"] <= ceiling * (1 + 1e-9)
+    assert p.gsd_at_max_height_m <= gsd / 100 * (1 + 1e-9)
+    assert p.max_flown_height_m == pytest.approx(p.max_height_m * (1 + tol / 100))
+    gsd_height = gsd / 100 * p.inputs.focal_mm / (p.inputs.pixel_um / 1000)
+    assert p.binding == ("CEIL" if ceiling < gsd_height else "GSD")

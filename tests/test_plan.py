@@ -69,7 +69,7 @@ def test_uav_seed_002_flight():
     assert u["recommended_flown_height_m"] == pytest.approx(294)
     assert u["ceiling_m"] == 500 and u["constraints_max_height_m"] is None
     assert u["sigma_z_m"] == pytest.approx(0.0982, abs=1e-4)
-    assert u["gsd_m"] == pytest.approx(6.41e-3 * 210 / 50)
+    assert u["gsd_m"] == pytest.approx(doc["uav"]["inputs"]["pixel_um"] / 1000 * 210 / 50)
     assert u["ground_resolution_m"] == pytest.approx(0.0448, abs=5e-5)
     assert u["recognition"][0]["probability"] == pytest.approx(0.954, abs=5e-4)
     assert u["photos"] == 5168 and u["strips"] == 34
