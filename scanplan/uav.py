@@ -8,7 +8,14 @@ exceed (seed 001's A ≤ L_obj·sqrt(−ln P)/B with A ≡ L). Each limit gives 
 height; the smallest is binding.
 
 Light UAVs do not hold the planned height (seed 002: 300 m planned, 300–420 m flown): the
-constraints are checked at the highest height flown, blur and overlaps at the lowest.
+constraints are checked at the highest height flown, blur and overlaps at the lowest. The
+*maximum planned height* is the largest planned height whose highest flown height,
+planned × (1 + tolerance), still meets every limit; an altitude ceiling limits that highest
+flown height (docs/uav-models.md §10).
+
+The height constraint of a digital block is by default the stereo normal case with the
+widest base of standard overlap, σ_Z = (H/B)·(H/c)·σ_px ≤ V_z (docs/uav-models.md §9); the
+Instruction's P_Z and its parallax form are computed beside it for comparison.
 
 Pure numpy on top of :mod:`scanplan.mtf` and :mod:`scanplan.flight`; no I/O.
 """
