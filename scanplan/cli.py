@@ -377,7 +377,8 @@ def scan(as_json: bool, bits_per_band: str, **kwargs: Any) -> None:
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
 def uav(as_json: bool, **kwargs: Any) -> None:
     """Digital camera on a UAV: GSD, real ground resolution L from the MTF chain, blur,
-    flight geometry; with --map-scale/--relief the constraints and the maximum height.
+    flight geometry; with --map-scale/--relief the constraints and the maximum planned height
+    (its highest flown height within the altitude ceiling --max-height-m).
 
     \b
     Example (seed 002's flight):
