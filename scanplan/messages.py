@@ -316,6 +316,12 @@ MESSAGES: dict[str, dict[str, str]] = {
               "σ_px = {sigma:g}~пикс. и наибольшем базисе с перекрытием {overlap:g}~% "
               "(B = {steps:d}~× шаг фотографирования, B/H = {bh:.3f}){multi}",
     },
+    "equation.PZ.normal_case": {
+        "en": "σ_Z = (H/B)·(H/c)·σ_px ≤ V_z, B the widest base of standard stereo overlap — "
+              "normal case of stereo photogrammetry, Kraus (2007), Luhmann et al. (2014)",
+        "ru": "σ_Z = (H/B)·(H/c)·σ_px ≤ V_z, B — наибольший базис со стандартным продольным "
+              "перекрытием — нормальный случай стереосъёмки, Краус (2007), Луман и др. (2014)",
+    },
     "limit.PZ.multi": {
         "en": ", improved {f:.2f}× by the other photos of the strip",
         "ru": ", с уточнением {f:.2f} по остальным снимкам маршрута",

@@ -423,7 +423,9 @@ def _height_limits(inp: UavInputs, rules: ScanRules | None) -> tuple[
         id=cid, name=CONSTRAINTS[cid].name, limit_m=g, compares=compares,
         max_height_m=h, binding=(cid == binding),
         margin_pct=(h / max_h - 1) * 100 if max_h > 0 else math.inf, reason=reason,
-        equation=CONSTRAINTS[cid].equation, max_flown_height_m=h * up, details=details)
+        equation=Message("equation.PZ.normal_case")
+        if cid == "PZ" and details.get("formula") == "normal_case"
+        else CONSTRAINTS[cid].equation, max_flown_height_m=h * up, details=details)
         for cid, g, compares, reason, h, details in raw)
     allow = None
     others = [r for r in raw if r[0] != "CEIL"]
