@@ -214,7 +214,8 @@ LABELS: dict[str, dict[str, str]] = {
                             "smallest allowed pixel); small figures give each other "
                             "constraint's margin.",
         "pdf_binding_note_uav": "highlighted: the binding constraint (the lowest maximum "
-                                "height); small figures give the other constraints' margins.",
+                                "planned height); small figures give the other constraints' "
+                                "margins.",
         "pdf_interpretation_limit": "Interpretation limit: {object} can be recognised with P "
                                     "≥ {p} on photos up to {scale} (Mc/Mk ≤ {ratio}) at R = "
                                     "{r} lines/mm.",
@@ -261,7 +262,7 @@ LABELS: dict[str, dict[str, str]] = {
         "pdf_size_m": "Size, m",
         "pdf_shape": "Shape",
         "pdf_limits": "Maximum planned flight height for the map {scale}, relief interval {hc} m",
-        "pdf_tol_note": " (constraints checked at +{tol} % height)",
+        "pdf_tol_note": " (limits checked at the highest flown height, +{tol} %)",
         "pdf_limit_on_ground": "Limit on the ground, m",
         "pdf_compared": "Compared with",
         "pdf_max_height_sentence": "Maximum planned flight height {h} m: {cid} ({name}) binds — "
@@ -550,7 +551,7 @@ LABELS: dict[str, dict[str, str]] = {
                             "(наименьший допустимый пиксель); мелкие цифры — запас остальных "
                             "условий.",
         "pdf_binding_note_uav": "выделено определяющее условие (наименьшая максимальная "
-                                "высота); мелкие цифры — запас остальных условий.",
+                                "плановая высота); мелкие цифры — запас остальных условий.",
         "pdf_interpretation_limit": "Предел дешифрирования: {object} распознаются с "
                                     "вероятностью не ниже {p} на снимках масштаба до {scale} "
                                     "(Mc/Mk ≤ {ratio}) при R = {r} мм⁻¹.",
@@ -599,7 +600,7 @@ LABELS: dict[str, dict[str, str]] = {
         "pdf_shape": "Форма",
         "pdf_limits": "Максимальная плановая высота полёта для карты {scale}, сечение рельефа "
                       "{hc} м",
-        "pdf_tol_note": " (условия проверены на высоте +{tol} %)",
+        "pdf_tol_note": " (условия проверены на наибольшей фактической высоте, +{tol} %)",
         "pdf_limit_on_ground": "Предел на местности, м",
         "pdf_compared": "Сравнивается с",
         "pdf_max_height_sentence": "Максимальную плановую высоту полёта {h} м определяет "
