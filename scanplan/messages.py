@@ -323,8 +323,8 @@ MESSAGES: dict[str, dict[str, str]] = {
               "перекрытием — нормальный случай стереосъёмки, Краус (2007), Луман и др. (2014)",
     },
     "limit.PZ.multi": {
-        "en": ", improved {f:.2f}× by the other photos of the strip",
-        "ru": ", с уточнением {f:.2f} по остальным снимкам маршрута",
+        "en": ", σ_Z multiplied by {f:.2f} for the rays of every photo of the strip",
+        "ru": ", σ_Z с множителем {f:.2f} за счёт лучей всех снимков маршрута",
     },
     "protects.GSD": {
         "en": "gives the ground sample distance the customer asked for",
