@@ -20,7 +20,7 @@ from .errors import InputError
 from .messages import Message
 from .mtf import DEFAULT_K0
 from .norms import DEFAULT_NORM_SET, MapObject, NormSet, load_norm_set, parse_scale
-from .normschema import PARAMETERS
+from .normschema import ORIENTATIONS, PARAMETERS
 from .planner import ObjectSpec, ScanInputs, ScanPlan, plan_scan
 from .uav import UavInputs, UavPlan, plan_uav
 
@@ -239,24 +239,37 @@ def uav_job(
     area_m: object | None = None,
     roll_deg: float = 0.0,
     pitch_deg: float = 0.0,
+    orientation: str | None = None,
 ) -> UavJob:
     """Plan a UAV flight (see :func:`scanplan.uav.plan_uav`); names as the CLI options.
 
     A catalogue ``camera`` gives pixel, focal length, sensor, image size, f-number and
     minimum trigger interval; explicit values override it. ``map_scale`` with
     ``relief_interval_m`` adds the norm set's constraints and the maximum flight height.
+    ``orientation`` (``"landscape"``: sensor width across track, or ``"portrait"``;
+    default the catalogue's, else landscape) turns the frame for footprint, base and
+    spacing; the pitch of a catalogue camera is sensor width / image width.
     """
     ns = load_norm_set(norms)
     cam = ns.camera(camera, "camera") if camera is not None else None
     if cam is not None and cam.kind != "digital":
         raise InputError("camera", f"{camera!r} is a film camera; use `scanplan scan` for "
                          "film, or a digital camera (scanplan cameras list)")
+    if orientation is not None and orientation not in ORIENTATIONS:
+        raise InputError("orientation", f"must be one of {', '.join(ORIENTATIONS)} "
+                         f"(got {orientation!r})")
+    mount = orientation or (cam.orientation if cam else "") or "landscape"
     p = pixel_um if pixel_um is not None else (cam.pixel_um if cam else None)
     f = focal_mm if focal_mm is not None else (cam.focal_mm if cam else None)
+    w_px = h_px = None
+    if cam is not None:
+        _, _, w_px, h_px = cam.frame(mount)
     if sensor_mm is not None:
         w, h = parse_frame_mm(sensor_mm, "sensor_mm")
+        if mount == "portrait":
+            w, h = h, w
     elif cam is not None:
-        w, h = cam.sensor_width_mm, cam.sensor_height_mm
+        w, h, _, _ = cam.frame(mount)
     else:
         w = h = None
     n0 = f_number if f_number is not None else (cam.f_number if cam else None)
@@ -292,8 +305,8 @@ def uav_job(
         height_m=height_m, speed_ms=speed_ms, exposure_s=exposure_s,
         forward_overlap_pct=forward_overlap_pct, side_overlap_pct=side_overlap_pct,
         height_tolerance_up_pct=height_tolerance_pct, camera=camera or "",
-        camera_name=cam.name if cam else "", image_width_px=cam.image_width_px if cam else None,
-        image_height_px=cam.image_height_px if cam else None,
+        camera_name=cam.name if cam else "", image_width_px=w_px, image_height_px=h_px,
+        orientation=mount, platform=cam.carrier if cam else "uav",
         min_trigger_interval_s=cam.min_trigger_interval_s if cam else None,
         r_max=r_max, r_min=r_min,
         threshold_k0=threshold_k0 if threshold_k0 is not None else DEFAULT_K0,

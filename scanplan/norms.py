@@ -33,6 +33,7 @@ __all__ = [
     "DEFAULT_NORM_SET",
     "Camera",
     "MapObject",
+    "PITCH_TOLERANCE",
     "NormSet",
     "bundled_norms_dir",
     "list_norm_sets",
@@ -104,9 +105,20 @@ class MapObject:
     source: str
 
 
+PITCH_TOLERANCE = 0.02
+"""Largest relative difference between a published pixel pitch and sensor width / image
+width that the catalogue accepts (a published pitch is rounded, e.g. 3.3 µm for 3.2765 µm)."""
+
+
 @dataclass(frozen=True)
 class Camera:
-    """A camera of the catalogue (film or digital)."""
+    """A camera of the catalogue (film or digital).
+
+    ``sensor_width_mm``/``image_width_px`` lie across track when the camera is mounted
+    ``landscape`` (the default), as in QGroundControl. For a digital camera with an image
+    width, ``pixel_um`` is the exact pitch sensor width / image width (square pixels) and
+    ``published_pixel_um`` the rounded value a data sheet prints, if any.
+    """
 
     id: str
     kind: str
@@ -122,6 +134,39 @@ class Camera:
     min_trigger_interval_s: float | None = None
     resolving_power_lpmm: float | None = None
     source: str = ""
+    platform: str = ""
+    orientation: str = ""
+    note: str = ""
+    published_pixel_um: float | None = None
+
+    @property
+    def carrier(self) -> str:
+        """``"uav"`` or ``"aircraft"`` (the ``platform`` column, or the kind's default)."""
+        return self.platform or ("aircraft" if self.kind == "film" else "uav")
+
+    def frame(self, orientation: str | None = None) -> tuple[float, float, int | None,
+                                                          int | None]:
+        """The imaged frame as mounted: (across, along [mm], across, along [px]).
+
+        With an image size the frame is image size × pitch (square pixels, so the along
+        side is image height × sensor width / image width, as QGroundControl's footprint);
+        without one, the sensor's published sides.
+
+        Parameters
+        ----------
+        orientation : {"landscape", "portrait"}, optional
+            Default: the catalogue's, else landscape. Portrait puts the image height
+            across track.
+        """
+        o = orientation or self.orientation or "landscape"
+        w_px, h_px = self.image_width_px, self.image_height_px
+        if self.pixel_um is not None and w_px and h_px:
+            w_mm, h_mm = self.sensor_width_mm, h_px * self.sensor_width_mm / w_px
+        else:
+            w_mm, h_mm = self.sensor_width_mm, self.sensor_height_mm
+        if o == "portrait":
+            return h_mm, w_mm, h_px, w_px
+        return w_mm, h_mm, w_px, h_px
 
 
 @dataclass(frozen=True)
@@ -286,7 +331,27 @@ def _typed_rows(path: Path, spec: TableSpec) -> list[dict[str, Any]]:
 
 
 def _load_cameras(path: Path) -> dict[str, Camera]:
-    return {r["id"]: Camera(**r) for r in _typed_rows(path, TABLES["cameras"])}
+    """Cameras of a catalogue file; ids unique, the exact pitch derived (file:row errors)."""
+    out: dict[str, Camera] = {}
+    for i, r in enumerate(_typed_rows(path, TABLES["cameras"]), start=2):
+        if r["id"] in out:
+            raise InputError(f"{path}:{i} (id)", f"camera id {r['id']!r} appears twice; "
+                             "ids must be unique (keep both entries under different ids)")
+        for key in ("platform", "orientation", "note", "shutter", "source"):
+            r[key] = r[key] or ""
+        published = r["pixel_um"]
+        r["published_pixel_um"] = published
+        if r["kind"] == "digital" and r["image_width_px"]:
+            exact = r["sensor_width_mm"] * 1000.0 / r["image_width_px"]
+            if published is not None and abs(published / exact - 1) > PITCH_TOLERANCE:
+                raise InputError(
+                    f"{path}:{i} (pixel_um)",
+                    f"{published:g} µm disagrees with sensor width / image width = "
+                    f"{r['sensor_width_mm']:g} mm / {r['image_width_px']} px = {exact:.4g} µm "
+                    f"by more than {PITCH_TOLERANCE:.0%}; correct one of them")
+            r["pixel_um"] = exact
+        out[r["id"]] = Camera(**r)
+    return out
 
 
 def _load_scanners(path: Path) -> tuple[dict[str, tuple[float, ...]], dict[str, str]]:

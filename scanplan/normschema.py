@@ -24,6 +24,8 @@ CONSTRAINT_IDS = ("PS", "PZ", "PP", "PR", "PD")
 """Constraints the film rules engine knows (see :mod:`scanplan.planner`)."""
 
 HEIGHT_FORMULAS = ("instruction", "parallax")
+ORIENTATIONS = ("landscape", "portrait")
+"""Camera mounting: landscape = image width (sensor width) across track, as QGroundControl."""
 ROUNDING_MODES = ("exact", "paper")
 
 
@@ -313,6 +315,13 @@ TABLES: dict[str, TableSpec] = {
                     "film or digital",
                     ("тип",),
                 ),
+                ColumnSpec(
+                    "platform",
+                    ValueSpec("choice", choices=("uav", "aircraft"), required=False),
+                    "what carries it: uav, or aircraft (manned aerial survey); default: uav "
+                    "for digital, aircraft for film",
+                    ("носитель",),
+                ),
                 ColumnSpec("name", _TEXT, "model", ("модель", "наименование")),
                 ColumnSpec(
                     "sensor_width_mm",
@@ -335,7 +344,8 @@ TABLES: dict[str, TableSpec] = {
                 ColumnSpec(
                     "pixel_um",
                     ValueSpec("float", 0, 1000, min_open=True, unit="µm", required=False),
-                    "pixel pitch (digital)",
+                    "published pixel pitch (digital); with the image width the pitch used "
+                    "is sensor width / image width, which must agree within 2 %",
                     ("размер пикселя",),
                 ),
                 ColumnSpec(
@@ -369,6 +379,14 @@ TABLES: dict[str, TableSpec] = {
                     "resolving power of the photo (film)",
                     ("разрешающая способность",),
                 ),
+                ColumnSpec(
+                    "orientation",
+                    ValueSpec("choice", choices=ORIENTATIONS, required=False),
+                    "mounting: landscape (image width across track, the default) or portrait",
+                    ("ориентация",),
+                ),
+                ColumnSpec("note", _TEXT_OPT, "why an entry exists twice, caveats",
+                           ("примечание",)),
                 _SOURCE,
             ),
             required=False,

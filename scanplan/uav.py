@@ -88,6 +88,8 @@ class UavInputs:
     area_length_m: float | None = None
     bands: int = 3
     bits_per_band: int = 8
+    orientation: str = "landscape"
+    platform: str = "uav"
 
 
 @dataclass(frozen=True)
@@ -351,7 +353,9 @@ def plan_uav(inp: UavInputs, rules: ScanRules | None = None) -> UavPlan:
     if inp.area_width_m and inp.area_length_m:
         strips = int(FL.strip_count(inp.area_width_m, spacing))
         per_strip = int(FL.photos_per_strip(inp.area_length_m, base))
-        length = float(FL.flight_length_m(strips, inp.area_length_m, spacing))
+        # each strip is flown over its photographed span, first to last exposure (the
+        # photos past the block ends included), not the block length
+        length = float(FL.flight_length_m(strips, (per_strip - 1) * base, spacing))
         fl.update({"strips": strips, "photos_per_strip": per_strip,
                    "photos": strips * per_strip, "flight_length_m": length,
                    "flight_time_s": float(FL.flight_time_s(length, inp.speed_ms))
