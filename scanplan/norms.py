@@ -16,7 +16,7 @@ import math
 import os
 import tomllib
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 from functools import lru_cache
 from pathlib import Path
 from typing import Any
@@ -138,6 +138,13 @@ class Camera:
     orientation: str = ""
     note: str = ""
     published_pixel_um: float | None = None
+
+    def row(self) -> dict[str, Any]:
+        """The catalogue row as written in ``cameras.csv`` (the published pitch, not the
+        derived one, under ``pixel_um``)."""
+        d = asdict(self)
+        d["pixel_um"] = d.pop("published_pixel_um")
+        return d
 
     @property
     def carrier(self) -> str:

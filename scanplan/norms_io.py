@@ -2327,7 +2327,7 @@ def _set_rows(ns: Any, catalogue: bool = True) -> dict[str, list[dict[str, Any]]
         return out
     cam_cols = [c.name for c in TABLES["cameras"].columns]
     out["cameras"] = [
-        {k: (v if v != "" else None) for k, v in dataclasses.asdict(c).items() if k in cam_cols}
+        {k: (v if v != "" else None) for k, v in c.row().items() if k in cam_cols}
         for c in sorted(ns.cameras.values(), key=lambda c: c.id)
     ]
     src: dict[tuple[str, float], str] = {}
