@@ -18,7 +18,7 @@ from dataclasses import dataclass
 from .domains import check_domain
 from .errors import InputError
 from .messages import Message
-from .mtf import DEFAULT_K0
+from .mtf import DEFAULT_HAZE_CONTRAST, DEFAULT_K0
 from .norms import DEFAULT_NORM_SET, MapObject, NormSet, load_norm_set, parse_scale
 from .normschema import ORIENTATIONS, PARAMETERS
 from .planner import ObjectSpec, ScanInputs, ScanPlan, plan_scan
@@ -200,6 +200,13 @@ def scan(**kwargs: object) -> ScanPlan:
     return scan_job(**kwargs).plan  # type: ignore[arg-type]
 
 
+UAV_DEFAULTS = {"speed_ms": 15.0, "forward_overlap_pct": 80.0, "side_overlap_pct": 60.0}
+"""Flight defaults for a camera on a UAV (docs/project-file.md)."""
+AIRCRAFT_SIDE_OVERLAP_PCT = 30.0
+"""Side overlap for a camera on a manned aircraft, as for film (the specification's film
+default)."""
+
+
 @dataclass(frozen=True)
 class UavJob:
     """A computed UAV plan together with the norm set it used."""
@@ -216,10 +223,10 @@ def uav_job(
     focal_mm: float | None = None,
     sensor_mm: object | None = None,
     f_number: float | None = None,
-    speed_ms: float = 15.0,
+    speed_ms: float | None = None,
     exposure_s: float = 0.001,
-    forward_overlap_pct: float = 80.0,
-    side_overlap_pct: float = 60.0,
+    forward_overlap_pct: float | None = None,
+    side_overlap_pct: float | None = None,
     height_tolerance_pct: float = 0.0,
     map_scale: object | None = None,
     relief_interval_m: float | None = None,
@@ -231,6 +238,7 @@ def uav_job(
     r_max: float = 0.3,
     r_min: float = 0.1,
     threshold_k0: float | None = None,
+    haze_contrast: float | None = None,
     shift_factor: float = 1.0,
     random_speed_ms: float = 0.0,
     roll_rate_rad_s: float = 0.0,
@@ -246,6 +254,10 @@ def uav_job(
     A catalogue ``camera`` gives pixel, focal length, sensor, image size, f-number and
     minimum trigger interval; explicit values override it. ``map_scale`` with
     ``relief_interval_m`` adds the norm set's constraints and the maximum flight height.
+    Defaults for a UAV camera: speed 15 m/s, overlaps 80/60 %. A camera carried by an
+    aircraft (catalogue ``platform = aircraft``) needs the ground speed, and its overlaps
+    default to the norm set's standard forward overlap (the Instruction's 60 %) and 30 %
+    side overlap, as for film.
     ``orientation`` (``"landscape"``: sensor width across track, or ``"portrait"``;
     default the catalogue's, else landscape) turns the frame for footprint, base and
     spacing; the pitch of a catalogue camera is sensor width / image width.
@@ -255,6 +267,19 @@ def uav_job(
     if cam is not None and cam.kind != "digital":
         raise InputError("camera", f"{camera!r} is a film camera; use `scanplan scan` for "
                          "film, or a digital camera (scanplan cameras list)")
+    aircraft = cam is not None and cam.carrier == "aircraft"
+    if speed_ms is None:
+        if aircraft:
+            raise InputError("speed_ms", f"give the aircraft's ground speed in m/s (> 0): "
+                             f"{camera!r} is flown on a manned aircraft, and the UAV default "
+                             f"{UAV_DEFAULTS['speed_ms']:g} m/s does not apply")
+        speed_ms = UAV_DEFAULTS["speed_ms"]
+    if forward_overlap_pct is None:
+        forward_overlap_pct = (float(ns.parameters["standard_forward_overlap_pct"]) if aircraft
+                               else UAV_DEFAULTS["forward_overlap_pct"])
+    if side_overlap_pct is None:
+        side_overlap_pct = (AIRCRAFT_SIDE_OVERLAP_PCT if aircraft
+                            else UAV_DEFAULTS["side_overlap_pct"])
     if orientation is not None and orientation not in ORIENTATIONS:
         raise InputError("orientation", f"must be one of {', '.join(ORIENTATIONS)} "
                          f"(got {orientation!r})")
@@ -310,6 +335,7 @@ def uav_job(
         min_trigger_interval_s=cam.min_trigger_interval_s if cam else None,
         r_max=r_max, r_min=r_min,
         threshold_k0=threshold_k0 if threshold_k0 is not None else DEFAULT_K0,
+        haze_contrast=haze_contrast if haze_contrast is not None else DEFAULT_HAZE_CONTRAST,
         shift_factor=shift_factor, random_speed_ms=random_speed_ms,
         roll_rate_rad_s=roll_rate_rad_s, pitch_rate_rad_s=pitch_rate_rad_s,
         yaw_rate_rad_s=yaw_rate_rad_s, roll_deg=roll_deg, pitch_deg=pitch_deg, map_scale=mk,

@@ -46,6 +46,7 @@ OPTION_NAMES = {
     "sensor_width_mm": "--sensor-mm",
     "sensor_height_mm": "--sensor-mm",
     "f_number": "--f-number",
+    "orientation": "--orientation",
     "height_m": "--height-m",
     "speed_ms": "--speed-ms",
     "exposure_s": "--exposure-s",
@@ -55,6 +56,7 @@ OPTION_NAMES = {
     "r_max": "--r-max",
     "k0": "--k0",
     "threshold_k0": "--k0",
+    "haze_contrast": "--haze-contrast",
     "shift_factor": "--shift-factor",
     "roll_deg": "--roll-deg",
     "pitch_deg": "--pitch-deg",
@@ -321,7 +323,11 @@ def scan(as_json: bool, bits_per_band: str, **kwargs: Any) -> None:
 @click.option("--camera", help="Digital camera id (scanplan cameras list).")
 @click.option("--pixel-um", type=float, callback=_finite, help="Pixel pitch [µm] (no --camera).")
 @click.option("--focal-mm", type=float, callback=_finite, help="Focal length [mm].")
-@click.option("--sensor-mm", help="Sensor WxH [mm], across × along track, e.g. 36x24.")
+@click.option("--sensor-mm", help="Sensor WxH [mm], e.g. 36x24 (W across track when "
+              "mounted landscape).")
+@click.option("--orientation", type=click.Choice(["landscape", "portrait"]),
+              help="Camera mounting: landscape = sensor width across track (default: the "
+              "catalogue's, else landscape); portrait turns footprint, spacing and base.")
 @click.option("--f-number", type=float, callback=_finite,
               help="Working f-number (default: the catalogue's).")
 @click.option("--height-m", type=float, required=True, callback=_finite,
@@ -329,14 +335,16 @@ def scan(as_json: bool, bits_per_band: str, **kwargs: Any) -> None:
 @click.option("--height-tolerance-pct", type=float, default=0.0, show_default=True,
               callback=_finite, help="How much higher the UAV may fly than planned [%] "
               "(seed 002: 300 m planned, 420 m flown = 40).")
-@click.option("--speed-ms", type=float, default=15.0, show_default=True, callback=_finite,
-              help="Ground speed [m/s].")
+@click.option("--speed-ms", type=float, callback=_finite,
+              help="Ground speed [m/s] (default 15 for a UAV; required for a camera on an "
+              "aircraft).")
 @click.option("--exposure-s", type=float, default=0.001, show_default=True, callback=_finite,
               help="Exposure time [s].")
-@click.option("--overlap-pct", "forward_overlap_pct", type=float, default=80.0,
-              show_default=True, callback=_finite, help="Forward overlap [%].")
-@click.option("--side-overlap-pct", type=float, default=60.0, show_default=True,
-              callback=_finite, help="Side overlap [%].")
+@click.option("--overlap-pct", "forward_overlap_pct", type=float, callback=_finite,
+              help="Forward overlap [%] (default 80 for a UAV, the norm set's 60 for a camera "
+              "on an aircraft).")
+@click.option("--side-overlap-pct", type=float, callback=_finite,
+              help="Side overlap [%] (default 60 for a UAV, 30 for a camera on an aircraft).")
 @click.option("--map-scale", type=SCALE, help="Map scale: adds the constraints and max height.")
 @click.option("--relief", "relief_interval_m", type=float, callback=_finite,
               help="Relief interval h_c [m] (with --map-scale).")
@@ -345,6 +353,9 @@ def scan(as_json: bool, bits_per_band: str, **kwargs: Any) -> None:
               help="Brightness coefficient of the lightest detail.")
 @click.option("--r-min", type=float, default=0.1, show_default=True, callback=_finite,
               help="Brightness coefficient of the darkest detail.")
+@click.option("--haze-contrast", type=float, callback=_finite,
+              help="Contrast transmission of the air column c, 0 < c ≤ 1 (default 0.9: "
+              "clear air below 500 m).")
 @click.option("--k0", "threshold_k0", type=float, callback=_finite,
               help="Sensor threshold contrast at low frequency (default 0.03).")
 @click.option("--shift-factor", type=float, default=1.0, show_default=True, callback=_finite,

@@ -94,6 +94,9 @@ DEFAULT_WAVELENGTH_UM = 0.55
 DEFAULT_K0 = 0.03
 #: Frequency-independent contrast transmission of the air below a UAV [–].
 DEFAULT_HAZE_CONTRAST = 0.9
+DEFAULT_HAZE_MAX_HEIGHT_M = 500.0
+"""Height up to which :data:`DEFAULT_HAZE_CONTRAST` is argued (clear air, docs/uav-models.md
+"Defaults and why"); above it a plan says the default is used out of its range."""
 #: Bracketing grid and refinement steps of the resolving-power solver.
 DEFAULT_GRID_POINTS = 5
 DEFAULT_ITERATIONS = 12

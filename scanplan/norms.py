@@ -31,9 +31,9 @@ CATALOGUE = "catalogue"
 
 __all__ = [
     "DEFAULT_NORM_SET",
+    "PITCH_TOLERANCE",
     "Camera",
     "MapObject",
-    "PITCH_TOLERANCE",
     "NormSet",
     "bundled_norms_dir",
     "list_norm_sets",

@@ -232,7 +232,8 @@ def _check_inputs(inp: UavInputs) -> None:
                  "height_m", "exposure_s", "speed_ms", "random_speed_ms", "roll_rate_rad_s",
                  "pitch_rate_rad_s", "yaw_rate_rad_s", "forward_overlap_pct",
                  "side_overlap_pct", "height_tolerance_up_pct", "height_tolerance_down_pct",
-                 "roll_deg", "pitch_deg", "threshold_k0", "shift_factor", "r_max", "r_min"):
+                 "roll_deg", "pitch_deg", "threshold_k0", "haze_contrast", "shift_factor",
+                 "r_max", "r_min"):
         check_domain(name, getattr(inp, name))
     if inp.r_min > inp.r_max:
         raise InputError("r_min", f"must be ≤ r_max: the darkest detail is not lighter than the "
@@ -319,6 +320,10 @@ def plan_uav(inp: UavInputs, rules: ScanRules | None = None) -> UavPlan:
     resolvable = bool(np.asarray(c.resolvable)[0])
     warnings: list[PlanWarning] = []
 
+    if inp.haze_contrast == M.DEFAULT_HAZE_CONTRAST and h_hi > M.DEFAULT_HAZE_MAX_HEIGHT_M:
+        warnings.append(PlanWarning("haze_default_height", Message(
+            "haze_default_height", c=inp.haze_contrast, valid=M.DEFAULT_HAZE_MAX_HEIGHT_M,
+            height=h_hi, key="[uav.atmosphere] haze_contrast"), severity="info"))
     blur = float(FL.motion_blur_px(inp.speed_ms, inp.exposure_s, gsd_lo))
     max_exp = float(FL.max_exposure_for_blur_s(max(inp.speed_ms, 1e-12), gsd_lo))
     max_speed = float(FL.max_speed_for_blur_ms(inp.exposure_s, gsd_lo))

@@ -125,6 +125,8 @@ def render_xlsx(
         raise ValueError("render_xlsx needs a scan plan, a UAV plan or both")
     when = report_datetime()
     book = _Book(meta, when)
+    if uav is not None:
+        book.platform = uav.plan.inputs.platform
     book.summary(scan, uav, spec)
     book.inputs(scan, uav)
     if scan is not None:
@@ -252,6 +254,7 @@ class _Book:
     def __init__(self, meta: ReportMeta, when: _dt.datetime) -> None:
         self.meta = meta
         self.loc = meta.locale if meta.locale in ("en", "ru") else "en"
+        self.platform = "uav"  # "aircraft": the digital-camera sheets name an aerial survey
         self.when = when
         self.wb = Workbook()
         self._first = True
@@ -260,7 +263,7 @@ class _Book:
     # -- helpers ------------------------------------------------------------------------
 
     def t(self, key: str) -> str:
-        return t(key, self.loc)
+        return t(key, self.loc, self.platform)
 
     def text(self, value: object) -> str:
         """An engine sentence (a :class:`~scanplan.messages.Message`) in the report's language."""

@@ -626,6 +626,32 @@ LABELS: dict[str, dict[str, str]] = {
 }
 
 
-def t(key: str, locale: str = "en") -> str:
-    """The label ``key`` in ``locale`` (``"en"`` or ``"ru"``)."""
-    return LABELS[locale if locale in LABELS else "en"][key]
+AIRCRAFT_LABELS: dict[str, dict[str, str]] = {
+    "en": {
+        "title_uav": "Aerial survey specification (digital camera)",
+        "xlsx_sheet_uav": "Aerial survey",
+        "xlsx_section_uav": "Aerial survey, digital camera",
+        "pdf_uav_section": "Aerial survey, digital camera",
+        "spec_comparison": "Film and digital camera side by side",
+        "spec_uav": "Digital camera",
+    },
+    "ru": {
+        "title_uav": "Техническое задание на аэрофотосъёмку цифровой камерой",
+        "xlsx_sheet_uav": "Аэрофотосъёмка",
+        "xlsx_section_uav": "Аэрофотосъёмка цифровой камерой",
+        "pdf_uav_section": "Аэрофотосъёмка цифровой камерой",
+        "spec_comparison": "Сравнение плёночной и цифровой съёмки",
+        "spec_uav": "Цифровая камера",
+    },
+}
+"""Labels that name the carrier: a large-format camera on a manned aircraft (catalogue
+``platform = aircraft``) is an aerial survey with a digital camera, not a UAV flight."""
+
+
+def t(key: str, locale: str = "en", platform: str = "uav") -> str:
+    """The label ``key`` in ``locale`` (``"en"`` or ``"ru"``); ``platform="aircraft"``
+    words the digital-camera section as a manned aerial survey."""
+    loc = locale if locale in LABELS else "en"
+    if platform == "aircraft" and key in AIRCRAFT_LABELS[loc]:
+        return AIRCRAFT_LABELS[loc][key]
+    return LABELS[loc][key]
