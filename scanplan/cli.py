@@ -509,25 +509,37 @@ def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: s
 
 @main.group()
 def cameras() -> None:
-    """The camera catalogue (film and digital).
+    """The camera and scanner catalogue (film, digital on UAVs, digital on aircraft).
 
     \b
     Examples:
       scanplan cameras list
+      scanplan cameras list --kind aircraft
       scanplan cameras show rc30-153
+      scanplan cameras show photoscan-td
     """
 
 
+_CAMERA_KINDS = ("film", "digital", "uav", "aircraft", "scanner")
+
+
 @cameras.command("list")
+@click.option("--kind", type=click.Choice(_CAMERA_KINDS),
+              help="Only film or digital cameras, cameras carried by a UAV or an aircraft, "
+              "or the scanners.")
 @click.option("--norms", default="gkinp-02-036-02", show_default=True,
               help="Norm set whose cameras to add to the catalogue.")
-@click.option("--json", "as_json", is_flag=True, help="Print as JSON.")
-def cameras_list(norms: str, as_json: bool) -> None:
-    """List the catalogue cameras.
+@click.option("--json", "as_json", is_flag=True,
+              help="Print as JSON (a list of cameras; of scanner steps with --kind scanner).")
+def cameras_list(kind: str | None, norms: str, as_json: bool) -> None:
+    """List the catalogue cameras, then the scanners and their scan pixels.
+
+    Every row names its source (`scanplan cameras show ID`). A digital camera's pitch is
+    sensor width / image width.
 
     \b
     Example:
-      scanplan cameras list --json
+      scanplan cameras list --kind digital --json
     """
     from dataclasses import asdict
 
@@ -535,15 +547,37 @@ def cameras_list(norms: str, as_json: bool) -> None:
     from .textfmt import table
 
     ns = load_norm_set(norms)
-    cams = sorted(ns.cameras.values(), key=lambda c: (c.kind, c.id))
+    cams = [c for c in sorted(ns.cameras.values(), key=lambda c: (c.kind, c.carrier, c.id))
+            if kind in (None, c.kind, c.carrier)]
+    scanners = sorted(ns.scanner_details) if kind in (None, "scanner") else []
     if as_json:
-        _echo_json([asdict(c) for c in cams])
+        if kind == "scanner":
+            _echo_json([asdict(s) for sid in scanners for s in ns.scanner_details[sid]])
+        else:
+            _echo_json([asdict(c) for c in cams])
         return
-    rows = [["id", "kind", "frame/sensor mm", "f mm", "pixel µm", "name"]]
-    for c in cams:
-        rows.append([c.id, c.kind, f"{c.sensor_width_mm:g}×{c.sensor_height_mm:g}",
-                     f"{c.focal_mm:g}", f"{c.pixel_um:g}" if c.pixel_um else "—", c.name])
-    click.echo(table(rows, align="llrrrl"))
+    if cams:
+        rows = [["id", "kind", "carried by", "frame/sensor mm", "image px", "f mm",
+                 "pixel µm", "name"]]
+        for c in cams:
+            px = (f"{c.image_width_px}×{c.image_height_px}"
+                  if c.image_width_px and c.image_height_px else "—")
+            rows.append([c.id, c.kind, c.carrier,
+                         f"{c.sensor_width_mm:g}×{c.sensor_height_mm:g}", px, f"{c.focal_mm:g}",
+                         f"{c.pixel_um:.4g}" if c.pixel_um else "—", c.name])
+        click.echo(table(rows, align="lllrrrrl"))
+        click.echo(f"{len(cams)} cameras")
+    if scanners:
+        rows = [["scanner", "scan pixels µm", "bit depth", "name"]]
+        for sid in scanners:
+            steps = ns.scanner_details[sid]
+            depth = "; ".join(dict.fromkeys(s.bit_depth for s in steps if s.bit_depth)) or "—"
+            rows.append([sid, ", ".join(f"{s.pixel_um:g}" for s in steps), depth,
+                         ns.scanner_names.get(sid, sid)])
+        if cams:
+            click.echo("")
+        click.echo(table(rows, align="llll"))
+        click.echo(f"{len(scanners)} scanners")
 
 
 @cameras.command("show")
@@ -552,14 +586,28 @@ def cameras_list(norms: str, as_json: bool) -> None:
               help="Norm set whose cameras to add to the catalogue.")
 @click.option("--json", "as_json", is_flag=True, help="Print as JSON.")
 def cameras_show(camera_id: str, norms: str, as_json: bool) -> None:
-    """Show one camera: CAMERA_ID from `scanplan cameras list`."""
+    """Show one camera or scanner: CAMERA_ID from `scanplan cameras list`."""
     from dataclasses import asdict
 
     from .norms import load_norm_set
     from .textfmt import table
 
-    cam = load_norm_set(norms).camera(camera_id, "CAMERA_ID")
+    ns = load_norm_set(norms)
+    if camera_id not in ns.cameras and camera_id in ns.scanner_details:
+        steps = [asdict(s) for s in ns.scanner_details[camera_id]]
+        if as_json:
+            _echo_json(steps)
+            return
+        rows = [["pixel µm", "bit depth", "frame min", "note", "source"]]
+        rows += [[f"{s['pixel_um']:g}", s["bit_depth"] or "—",
+                  "—" if s["frame_scan_min"] is None else f"{s['frame_scan_min']:g}",
+                  s["note"] or "—", s["source"] or "—"] for s in steps]
+        click.echo(f"{camera_id}: {ns.scanner_names.get(camera_id, camera_id)}")
+        click.echo(table(rows, align="rllll"))
+        return
+    cam = ns.camera(camera_id, "CAMERA_ID")
     d = asdict(cam)
+    d["carried_by"] = cam.carrier
     if as_json:
         _echo_json(d)
         return

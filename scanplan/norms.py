@@ -17,6 +17,7 @@ import os
 import tomllib
 from collections.abc import Iterable, Mapping
 from dataclasses import asdict, dataclass, field
+from difflib import get_close_matches
 from functools import lru_cache
 from pathlib import Path
 from typing import Any
@@ -35,6 +36,7 @@ __all__ = [
     "Camera",
     "MapObject",
     "NormSet",
+    "ScannerStep",
     "bundled_norms_dir",
     "list_norm_sets",
     "load_norm_set",
@@ -177,6 +179,19 @@ class Camera:
 
 
 @dataclass(frozen=True)
+class ScannerStep:
+    """One scan pixel a scanner offers, with what its source publishes about it."""
+
+    scanner: str
+    name: str
+    pixel_um: float
+    bit_depth: str = ""
+    frame_scan_min: float | None = None
+    note: str = ""
+    source: str = ""
+
+
+@dataclass(frozen=True)
 class NormSet:
     """A loaded norm set: parameters, tables, and the catalogue it sees."""
 
@@ -196,6 +211,7 @@ class NormSet:
     cameras: Mapping[str, Camera] = field(default_factory=dict)
     scanners: Mapping[str, tuple[float, ...]] = field(default_factory=dict)
     scanner_names: Mapping[str, str] = field(default_factory=dict)
+    scanner_details: Mapping[str, tuple[ScannerStep, ...]] = field(default_factory=dict)
 
     def rules(self, **overrides: Any) -> ScanRules:
         """The rules engine's parameters, with user overrides applied and checked.
@@ -251,9 +267,12 @@ class NormSet:
         try:
             return self.cameras[camera_id]
         except KeyError:
+            close = get_close_matches(str(camera_id).lower(), list(self.cameras), n=3,
+                                      cutoff=0.6)
+            hint = f"did you mean {', '.join(close)}? " if close else ""
             raise NotFoundError(
                 field_name,
-                f"unknown camera {camera_id!r}; known: {', '.join(sorted(self.cameras))} "
+                f"unknown camera {camera_id!r}; {hint}{len(self.cameras)} cameras are known "
                 "(scanplan cameras list)",
             ) from None
 
@@ -262,9 +281,13 @@ class NormSet:
         try:
             return self.scanners[scanner]
         except KeyError:
+            close = get_close_matches(str(scanner).lower(), list(self.scanners), n=3,
+                                      cutoff=0.6)
+            hint = f"did you mean {', '.join(close)}? " if close else ""
             raise NotFoundError(
                 field_name,
-                f"unknown scanner {scanner!r}; known: {', '.join(sorted(self.scanners))}",
+                f"unknown scanner {scanner!r}; {hint}known: {', '.join(sorted(self.scanners))}"
+                " (scanplan cameras list --kind scanner)",
             ) from None
 
 
@@ -361,21 +384,31 @@ def _load_cameras(path: Path) -> dict[str, Camera]:
     return out
 
 
-def _load_scanners(path: Path) -> tuple[dict[str, tuple[float, ...]], dict[str, str]]:
-    steps: dict[str, list[float]] = {}
+_Scanners = tuple[dict[str, tuple[float, ...]], dict[str, str], dict[str, tuple[ScannerStep, ...]]]
+
+
+def _load_scanners(path: Path) -> _Scanners:
+    """Steps, names and per-step details of a scanners file; a step listed twice for one
+    scanner is an error (file:row)."""
+    details: dict[str, list[ScannerStep]] = {}
     names: dict[str, str] = {}
-    for r in _typed_rows(path, TABLES["scanners"]):
-        steps.setdefault(r["scanner"], []).append(r["pixel_um"])
-        names[r["scanner"]] = r["name"] or r["scanner"]
-    return {k: tuple(sorted(v)) for k, v in steps.items()}, names
+    for i, r in enumerate(_typed_rows(path, TABLES["scanners"]), start=2):
+        sid = r["scanner"]
+        if any(s.pixel_um == r["pixel_um"] for s in details.get(sid, ())):
+            raise InputError(f"{path}:{i} (pixel_um)", f"scanner {sid!r} lists "
+                             f"{r['pixel_um']:g} µm twice; each step once")
+        names[sid] = r["name"] or names.get(sid) or sid
+        details.setdefault(sid, []).append(ScannerStep(
+            sid, names[sid], r["pixel_um"], r["bit_depth"] or "", r["frame_scan_min"],
+            r["note"] or "", r["source"] or ""))
+    det = {k: tuple(sorted(v, key=lambda s: s.pixel_um)) for k, v in details.items()}
+    return {k: tuple(s.pixel_um for s in v) for k, v in det.items()}, names, det
 
 
 @lru_cache(maxsize=1)
-def _catalogue() -> tuple[dict[str, Camera], dict[str, tuple[float, ...]], dict[str, str]]:
+def _catalogue() -> tuple[dict[str, Camera], _Scanners]:
     folder = bundled_norms_dir() / CATALOGUE
-    cams = _load_cameras(folder / "cameras.csv")
-    steps, names = _load_scanners(folder / "scanners.csv")
-    return cams, steps, names
+    return _load_cameras(folder / "cameras.csv"), _load_scanners(folder / "scanners.csv")
 
 
 def is_set_name(text: str) -> bool:
@@ -511,14 +544,15 @@ def read_norm_set_folder(path: Path, *, bundled: bool = False) -> NormSet:
                              f"shape {r['shape']!r} of {r['object']!r} is not in shapes.csv")
         objects.append(MapObject(r["map_scale"], r["object"], r["object_ru"] or "",
                                  r["size_m"], r["shape"], r["source"] or ""))
-    cams, steps, names = _catalogue()
-    cams, steps, names = dict(cams), dict(steps), dict(names)
+    cams, (steps, names, details) = _catalogue()
+    cams, steps, names, details = dict(cams), dict(steps), dict(names), dict(details)
     if (path / "cameras.csv").is_file():
         cams.update(_load_cameras(path / "cameras.csv"))
     if (path / "scanners.csv").is_file():
-        s2, n2 = _load_scanners(path / "scanners.csv")
+        s2, n2, d2 = _load_scanners(path / "scanners.csv")
         steps.update(s2)
         names.update(n2)
+        details.update(d2)
     return NormSet(
         name=str(meta.get("name") or path.name),
         title=str(meta.get("title", "")),
@@ -536,6 +570,7 @@ def read_norm_set_folder(path: Path, *, bundled: bool = False) -> NormSet:
         cameras=cams,
         scanners=steps,
         scanner_names=names,
+        scanner_details=details,
     )
 
 

@@ -406,6 +406,17 @@ TABLES: dict[str, TableSpec] = {
                     "a scan pixel the scanner offers",
                     ("размер пикселя",),
                 ),
+                ColumnSpec("bit_depth", _TEXT_OPT, "radiometric resolution as published, "
+                           "e.g. '10 internal, 8 or 12 output' [bit]",
+                           ("разрядность",)),
+                ColumnSpec(
+                    "frame_scan_min",
+                    ValueSpec("float", 0, 1440, min_open=True, unit="min", required=False),
+                    "time to scan one 23×23 cm frame at this pixel, as published",
+                    ("время сканирования кадра",),
+                ),
+                ColumnSpec("note", _TEXT_OPT, "colour or black-and-white, caveats",
+                           ("примечание",)),
                 _SOURCE,
             ),
             required=False,
