@@ -615,6 +615,44 @@ def cameras_show(camera_id: str, norms: str, as_json: bool) -> None:
                      align="ll"))
 
 
+@cameras.command("import")
+@click.argument("file", type=click.Path(dir_okay=False))
+@click.option("--force", is_flag=True, help="Replace user cameras/scanners with the same id.")
+@click.option("--source", default="", help="Where the values come from (added to each row).")
+@click.option("--table", type=click.Choice(["cameras", "scanners"]),
+              help="The table a CSV holds (default: from its name or headers).")
+@click.option("--json", "as_json", is_flag=True, help="Print what was imported as JSON.")
+def cameras_import(file: str, force: bool, source: str, table: str | None,
+                   as_json: bool) -> None:
+    """Add cameras and scanners from FILE to the user catalogue.
+
+    FILE is QGroundControl's camera list (CameraMetaData.json), a workbook (.xlsx) with a
+    "cameras"/"Камеры" and/or "scanners"/"Сканеры" sheet (headers in English or Russian,
+    as in `scanplan norms template`), or a CSV of one of those tables. Nothing is written
+    unless the whole file is valid; every norm set then sees the cameras.
+
+    \b
+    Examples:
+      scanplan cameras import CameraMetaData.json --source "QGroundControl 4.4"
+      scanplan cameras import our-cameras.xlsx --force
+    """
+    from .cameras_io import import_camera_file
+
+    folder, parsed = import_camera_file(file, force=force, source=source, table=table)
+    if as_json:
+        _echo_json({"path": str(folder), "cameras": [r["id"] for r in parsed.cameras],
+                    "scanners": sorted({r["scanner"] for r in parsed.scanners}),
+                    "warnings": list(parsed.warnings)})
+        return
+    steps = len(parsed.scanners)
+    click.echo(f"imported {len(parsed.cameras)} cameras and {steps} scanner steps from "
+               f"{os.path.basename(file)} into the user catalogue ({folder})")
+    for w in parsed.warnings:
+        click.echo(f"note: {w}", err=True)
+    if parsed.cameras:
+        click.echo(f"use them with: scanplan uav --camera {parsed.cameras[0]['id']} ...")
+
+
 from .cli_norms import norms  # noqa: E402  (the group needs `main` defined first)
 
 main.add_command(norms)

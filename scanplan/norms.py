@@ -488,7 +488,16 @@ def load_norm_set(name_or_path: str | os.PathLike[str] = DEFAULT_NORM_SET) -> No
     """
     path, bundled = _resolve(name_or_path)
     path = path.resolve()
-    return _load_path(path, bundled, _fingerprint(path))
+    return _load_path(path, bundled, _fingerprint(path), _user_catalogue_fingerprint())
+
+
+def _user_catalogue_fingerprint() -> tuple[tuple[str, int, int], ...]:
+    """(name, size, mtime) of the user catalogue's files: an import is seen at once."""
+    folder = user_norms_dir() / CATALOGUE
+    try:
+        return _fingerprint(folder) if folder.is_dir() else ()
+    except OSError:
+        return ()
 
 
 def _fingerprint(path: Path) -> tuple[tuple[str, int, int], ...]:
@@ -502,8 +511,8 @@ def _fingerprint(path: Path) -> tuple[tuple[str, int, int], ...]:
 
 
 @lru_cache(maxsize=16)
-def _load_path(path: Path, bundled: bool, fingerprint: tuple[tuple[str, int, int], ...]
-               ) -> NormSet:
+def _load_path(path: Path, bundled: bool, fingerprint: tuple[tuple[str, int, int], ...],
+               user_catalogue: tuple[tuple[str, int, int], ...] = ()) -> NormSet:
     return read_norm_set_folder(path, bundled=bundled)
 
 
@@ -546,13 +555,15 @@ def read_norm_set_folder(path: Path, *, bundled: bool = False) -> NormSet:
                                  r["size_m"], r["shape"], r["source"] or ""))
     cams, (steps, names, details) = _catalogue()
     cams, steps, names, details = dict(cams), dict(steps), dict(names), dict(details)
-    if (path / "cameras.csv").is_file():
-        cams.update(_load_cameras(path / "cameras.csv"))
-    if (path / "scanners.csv").is_file():
-        s2, n2, d2 = _load_scanners(path / "scanners.csv")
-        steps.update(s2)
-        names.update(n2)
-        details.update(d2)
+    # the user catalogue (scanplan cameras import), then the set's own rows
+    for folder in (user_norms_dir() / CATALOGUE, path):
+        if (folder / "cameras.csv").is_file():
+            cams.update(_load_cameras(folder / "cameras.csv"))
+        if (folder / "scanners.csv").is_file():
+            s2, n2, d2 = _load_scanners(folder / "scanners.csv")
+            steps.update(s2)
+            names.update(n2)
+            details.update(d2)
     return NormSet(
         name=str(meta.get("name") or path.name),
         title=str(meta.get("title", "")),
