@@ -272,8 +272,8 @@ class NormSet:
             hint = f"did you mean {', '.join(close)}? " if close else ""
             raise NotFoundError(
                 field_name,
-                f"unknown camera {camera_id!r}; {hint}{len(self.cameras)} cameras are known "
-                "(scanplan cameras list)",
+                f"unknown camera {camera_id!r}; {hint}known: {', '.join(sorted(self.cameras))}"
+                " (scanplan cameras list)",
             ) from None
 
     def scanner_steps(self, scanner: str, field_name: str = "--scanner") -> tuple[float, ...]:

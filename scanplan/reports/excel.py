@@ -580,6 +580,7 @@ class _Book:
             ("xlsx_pixel_pitch_um", inp.pixel_um, F2),
             ("focal_mm", inp.focal_mm, F2),
             ("xlsx_f_number", inp.f_number, F1),
+            ("orientation", self.t(f"orientation_{inp.orientation}"), None),
             ("xlsx_sensor_width_mm", inp.sensor_width_mm, F2),
             ("xlsx_sensor_height_mm", inp.sensor_height_mm, F2),
             ("xlsx_image_width_px", inp.image_width_px, INT),

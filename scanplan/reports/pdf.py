@@ -374,6 +374,7 @@ def _uav_view(job: UavJob, f: _Fmt) -> dict[str, Any]:
         (f.label("focal_mm"), f.g(inp.focal_mm)),
         (f.label("pdf_f_number"), f.g(inp.f_number)),
         (f.label("pdf_sensor_mm"), f"{f.g(inp.sensor_width_mm)} × {f.g(inp.sensor_height_mm)}"),
+        (f.label("orientation"), f.label(f"orientation_{inp.orientation}")),
         (f.label("height_m"), f.g(h["planned"])),
     ]
     if h["max"] != h["min"] or h["min"] != h["planned"]:
