@@ -332,6 +332,8 @@ def uav_job(
         height_tolerance_up_pct=height_tolerance_pct, camera=camera or "",
         camera_name=cam.name if cam else "", image_width_px=w_px, image_height_px=h_px,
         orientation=mount, platform=cam.carrier if cam else "uav",
+        lens_table_centre=_lens(ns, camera, "centre"), lens_table_corner=_lens(ns, camera,
+                                                                              "corner"),
         min_trigger_interval_s=cam.min_trigger_interval_s if cam else None,
         r_max=r_max, r_min=r_min,
         threshold_k0=threshold_k0 if threshold_k0 is not None else DEFAULT_K0,
@@ -342,6 +344,13 @@ def uav_job(
         relief_interval_m=relief_interval_m, map_object=map_obj, objects=tuple(objects),
         area_width_m=area_w, area_length_m=area_l)
     return UavJob(plan_uav(inputs, rules), ns)
+
+
+def _lens(ns: NormSet, camera: str | None, position: str
+          ) -> tuple[tuple[float, ...], tuple[float, ...]] | None:
+    """The catalogue's lens MTF table of ``camera`` at ``position``, if one is published."""
+    curve = ns.lens_mtf.get(camera or "", {}).get(position)
+    return (curve.freq_lpmm, curve.mtf) if curve else None
 
 
 def _check_overrides(overrides: dict[str, object]) -> None:

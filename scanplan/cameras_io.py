@@ -64,6 +64,9 @@ class ParsedCameras:
         Name of the file it came from.
     cameras, scanners : list of dict
         Rows (schema column → text) for ``cameras.csv`` and ``scanners.csv``.
+    lens_mtf : tuple of dict
+        Rows for ``lens-mtf.csv`` (a camera's lens MTF table, from a ``lens_mtf`` /
+        ``ЧКХ объективов`` sheet).
     warnings : tuple of str
         Notes (ignored sheets, columns, entries).
     """
@@ -72,6 +75,7 @@ class ParsedCameras:
     cameras: list[dict[str, str]]
     scanners: list[dict[str, str]]
     warnings: tuple[str, ...] = ()
+    lens_mtf: tuple[dict[str, str], ...] = ()
 
 
 def _slug(text: str) -> str:
@@ -216,8 +220,8 @@ def read_camera_file(path: str | os.PathLike[str], *, source: str = "",
         For an unreadable, oversized or hostile file.
     """
     p = Path(path)
-    if table is not None and table not in ("cameras", "scanners"):
-        raise InputError("--table", f"must be cameras or scanners (got {table!r})")
+    if table is not None and table not in ("cameras", "scanners", "lens_mtf"):
+        raise InputError("--table", f"must be cameras, scanners or lens_mtf (got {table!r})")
     if len(source) > 1000 or _text_problem(source):
         raise InputError("--source", "must be text of at most 1,000 characters without "
                          "control characters")
@@ -227,23 +231,24 @@ def read_camera_file(path: str | os.PathLike[str], *, source: str = "",
     else:
         if p.suffix.lower() in norms_io.CSV_SUFFIXES and table is None:
             stem = p.stem.lower()
-            table = "scanners" if "scanner" in stem or "сканер" in stem else (
-                "cameras" if "camera" in stem or "камер" in stem else None)
+            table = ("lens_mtf" if "mtf" in stem or "чкх" in stem else
+                     "scanners" if "scanner" in stem or "сканер" in stem else
+                     "cameras" if "camera" in stem or "камер" in stem else None)
         parsed_set = norms_io.read_norm_file(p, table=table, base=_norms.DEFAULT_NORM_SET)
-        wanted = [t for t in parsed_set.from_file if t in ("cameras", "scanners")]
+        wanted = [t for t in parsed_set.from_file if t in ("cameras", "scanners", "lens_mtf")]
         if not wanted:
             raise norms_io._fail(p.name, "has no cameras or scanners table",
                                  'name the sheet "cameras" ("Камеры") or "scanners" '
                                  '("Сканеры"), or give --table')
         stamp = f"imported from {p.name}" + (f"; {source}" if source else "")
-        out: dict[str, list[dict[str, str]]] = {"cameras": [], "scanners": []}
+        out: dict[str, list[dict[str, str]]] = {"cameras": [], "scanners": [], "lens_mtf": []}
         for name in wanted:
             for row in parsed_set.tables[name]:
                 row = dict(row)
                 row["source"] = f"{row['source']} ({stamp})" if row.get("source") else stamp
                 out[name].append(row)
         parsed = ParsedCameras(p.name, out["cameras"], out["scanners"],
-                               parsed_set.warnings)
+                               parsed_set.warnings, tuple(out["lens_mtf"]))
     _check_rows(parsed)
     return parsed
 
@@ -258,24 +263,35 @@ def _csv_text(table: str, rows: list[dict[str, str]]) -> str:
     return buf.getvalue()
 
 
-def _check_rows(parsed: ParsedCameras) -> None:
-    """Run the loader's rules (unique ids, pitch within 2 %, one row per step) on the rows."""
+def _check_rows(parsed: ParsedCameras, known_cameras: set[str] | None = None) -> None:
+    """Run the loader's rules (unique ids, pitch within 2 %, one row per step, lens tables
+    of known digital cameras) on the rows."""
     with tempfile.TemporaryDirectory() as tmp:
-        for table, rows in (("cameras", parsed.cameras), ("scanners", parsed.scanners)):
+        for table, rows in (("cameras", parsed.cameras), ("scanners", parsed.scanners),
+                            ("lens_mtf", list(parsed.lens_mtf))):
             if rows:
                 f = Path(tmp) / TABLES[table].file
                 f.write_text(_csv_text(table, rows), encoding="utf-8")
                 try:
                     if table == "cameras":
                         _norms._load_cameras(f)
-                    else:
+                    elif table == "scanners":
                         _norms._load_scanners(f)
+                    else:
+                        _norms._load_lens_mtf(f)
                 except InputError as exc:
                     msg = exc.message
                     m = re.match(r".*?:(\d+) \((\w+)\)$", exc.field)
                     at = (f"{parsed.source_file} {table} row {int(m.group(1)) - 1} "
                           f"({m.group(2)})" if m else parsed.source_file)
                     raise norms_io._fail(parsed.source_file, msg, at=at) from None
+    if known_cameras is not None:
+        digital = known_cameras | {r["id"] for r in parsed.cameras if r.get("kind") == "digital"}
+        for i, r in enumerate(parsed.lens_mtf, start=1):
+            if r.get("camera") not in digital:
+                raise norms_io._fail(parsed.source_file, f"{r.get('camera')!r} is not a digital "
+                                     "camera of the catalogue or of this file",
+                                     at=f"{parsed.source_file} lens_mtf row {i} (camera)")
 
 
 def _existing(folder: Path, table: str) -> list[dict[str, str]]:
@@ -305,6 +321,8 @@ def import_camera_file(path: str | os.PathLike[str], *, force: bool = False,
         The user catalogue folder and what was added.
     """
     parsed = read_camera_file(path, source=source, table=table)
+    ns = _norms.load_norm_set()
+    _check_rows(parsed, {c.id for c in ns.cameras.values() if c.kind == "digital"})
     folder = user_catalogue_dir()
     folder.mkdir(parents=True, exist_ok=True)
     new_ids = {r["id"] for r in parsed.cameras}
@@ -319,9 +337,12 @@ def import_camera_file(path: str | os.PathLike[str], *, force: bool = False,
     cams = [r for r in old_cams if r.get("id") not in new_ids] + parsed.cameras
     scanners = [r for r in old_scanners if r.get("scanner") not in new_scanners] + \
         parsed.scanners
-    merged = ParsedCameras(parsed.source_file, cams, scanners)
+    curves = {(r["camera"], r["position"]) for r in parsed.lens_mtf}
+    lens = [r for r in _existing(folder, "lens_mtf")
+            if (r.get("camera"), r.get("position")) not in curves] + list(parsed.lens_mtf)
+    merged = ParsedCameras(parsed.source_file, cams, scanners, (), tuple(lens))
     _check_rows(merged)
-    for table, rows in (("cameras", cams), ("scanners", scanners)):
+    for table, rows in (("cameras", cams), ("scanners", scanners), ("lens_mtf", lens)):
         if rows:
             _replace(folder / TABLES[table].file, _csv_text(table, rows))
     return folder, parsed

@@ -608,9 +608,14 @@ def cameras_show(camera_id: str, norms: str, as_json: bool) -> None:
     cam = ns.camera(camera_id, "CAMERA_ID")
     d = asdict(cam)
     d["carried_by"] = cam.carrier
+    lens = ns.lens_mtf.get(cam.id, {})
+    d["lens_mtf"] = {pos: asdict(curve) for pos, curve in lens.items()} or None
     if as_json:
         _echo_json(d)
         return
+    d["lens_mtf"] = "; ".join(
+        f"{pos}: {len(c.freq_lpmm)} points to {c.freq_lpmm[-1]:g} lines/mm ({c.source or '—'})"
+        for pos, c in lens.items()) or "— (diffraction formula)"
     click.echo(table([[k, "—" if v in (None, "") else str(v)] for k, v in d.items()],
                      align="ll"))
 
@@ -619,7 +624,7 @@ def cameras_show(camera_id: str, norms: str, as_json: bool) -> None:
 @click.argument("file", type=click.Path(dir_okay=False))
 @click.option("--force", is_flag=True, help="Replace user cameras/scanners with the same id.")
 @click.option("--source", default="", help="Where the values come from (added to each row).")
-@click.option("--table", type=click.Choice(["cameras", "scanners"]),
+@click.option("--table", type=click.Choice(["cameras", "scanners", "lens_mtf"]),
               help="The table a CSV holds (default: from its name or headers).")
 @click.option("--json", "as_json", is_flag=True, help="Print what was imported as JSON.")
 def cameras_import(file: str, force: bool, source: str, table: str | None,

@@ -19,6 +19,7 @@ from collections.abc import Iterable, Mapping
 from dataclasses import asdict, dataclass, field
 from difflib import get_close_matches
 from functools import lru_cache
+from itertools import pairwise
 from pathlib import Path
 from typing import Any
 
@@ -34,6 +35,7 @@ __all__ = [
     "DEFAULT_NORM_SET",
     "PITCH_TOLERANCE",
     "Camera",
+    "LensCurve",
     "MapObject",
     "NormSet",
     "ScannerStep",
@@ -179,6 +181,15 @@ class Camera:
 
 
 @dataclass(frozen=True)
+class LensCurve:
+    """A lens MTF table of one camera at one image point (table ``lens_mtf``)."""
+
+    freq_lpmm: tuple[float, ...]
+    mtf: tuple[float, ...]
+    source: str = ""
+
+
+@dataclass(frozen=True)
 class ScannerStep:
     """One scan pixel a scanner offers, with what its source publishes about it."""
 
@@ -212,6 +223,7 @@ class NormSet:
     scanners: Mapping[str, tuple[float, ...]] = field(default_factory=dict)
     scanner_names: Mapping[str, str] = field(default_factory=dict)
     scanner_details: Mapping[str, tuple[ScannerStep, ...]] = field(default_factory=dict)
+    lens_mtf: Mapping[str, Mapping[str, LensCurve]] = field(default_factory=dict)
 
     def rules(self, **overrides: Any) -> ScanRules:
         """The rules engine's parameters, with user overrides applied and checked.
@@ -405,6 +417,28 @@ def _load_scanners(path: Path) -> _Scanners:
     return {k: tuple(s.pixel_um for s in v) for k, v in det.items()}, names, det
 
 
+def _load_lens_mtf(path: Path) -> dict[str, dict[str, LensCurve]]:
+    """Lens MTF tables: camera → position → curve (≥ 2 points, one per frequency)."""
+    points: dict[tuple[str, str], list[tuple[float, float, str, int]]] = {}
+    for i, r in enumerate(_typed_rows(path, TABLES["lens_mtf"]), start=2):
+        points.setdefault((r["camera"], r["position"]), []).append(
+            (r["freq_lpmm"], r["mtf"], r["source"] or "", i))
+    out: dict[str, dict[str, LensCurve]] = {}
+    for (cam, pos), pts in points.items():
+        pts.sort()
+        for a, b in pairwise(pts):
+            if a[0] == b[0]:
+                raise InputError(f"{path}:{b[3]} (freq_lpmm)", f"{cam} {pos}: frequency "
+                                 f"{b[0]:g} lines/mm appears twice; each frequency once")
+        if len(pts) < 2:
+            raise InputError(f"{path}:{pts[0][3]} (freq_lpmm)", f"{cam} {pos}: a curve needs "
+                             "at least two frequencies")
+        sources = "; ".join(dict.fromkeys(p[2] for p in pts if p[2]))
+        out.setdefault(cam, {})[pos] = LensCurve(tuple(p[0] for p in pts),
+                                                 tuple(p[1] for p in pts), sources)
+    return out
+
+
 @lru_cache(maxsize=1)
 def _catalogue() -> tuple[dict[str, Camera], _Scanners]:
     folder = bundled_norms_dir() / CATALOGUE
@@ -555,7 +589,12 @@ def read_norm_set_folder(path: Path, *, bundled: bool = False) -> NormSet:
                                  r["size_m"], r["shape"], r["source"] or ""))
     cams, (steps, names, details) = _catalogue()
     cams, steps, names, details = dict(cams), dict(steps), dict(names), dict(details)
-    # the user catalogue (scanplan cameras import), then the set's own rows
+    # the bundled lens tables, the user catalogue (scanplan cameras import), the set's own
+    lens: dict[str, dict[str, LensCurve]] = {}
+    for folder in (bundled_norms_dir() / CATALOGUE, user_norms_dir() / CATALOGUE, path):
+        if (folder / "lens-mtf.csv").is_file():
+            for cam_id, curves in _load_lens_mtf(folder / "lens-mtf.csv").items():
+                lens.setdefault(cam_id, {}).update(curves)
     for folder in (user_norms_dir() / CATALOGUE, path):
         if (folder / "cameras.csv").is_file():
             cams.update(_load_cameras(folder / "cameras.csv"))
@@ -582,7 +621,19 @@ def read_norm_set_folder(path: Path, *, bundled: bool = False) -> NormSet:
         scanners=steps,
         scanner_names=names,
         scanner_details=details,
+        lens_mtf=_checked_lens(lens, cams),
     )
+
+
+def _checked_lens(lens: dict[str, dict[str, LensCurve]], cams: Mapping[str, Camera]
+                  ) -> dict[str, dict[str, LensCurve]]:
+    """Lens tables of known digital cameras only (an unknown id is an error)."""
+    for cam_id in lens:
+        cam = cams.get(cam_id)
+        if cam is None or cam.kind != "digital":
+            raise InputError("lens-mtf.csv (camera)", f"{cam_id!r} is not a digital camera of "
+                             "the catalogue (scanplan cameras list --kind digital)")
+    return lens
 
 
 def list_norm_sets() -> list[tuple[str, str]]:

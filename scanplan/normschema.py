@@ -423,6 +423,38 @@ TABLES: dict[str, TableSpec] = {
             title_ru="Сканеры",
             description="scan pixel sizes offered by each scanner",
         ),
+        TableSpec(
+            "lens_mtf",
+            "lens-mtf.csv",
+            ("camera", "position", "freq_lpmm"),
+            (
+                ColumnSpec("camera", _TEXT, "camera id (a row of the cameras table)",
+                           ("камера",)),
+                ColumnSpec(
+                    "position",
+                    ValueSpec("choice", choices=("centre", "corner")),
+                    "image point the curve describes: centre, or corner (tangential)",
+                    ("положение", "точка поля"),
+                ),
+                ColumnSpec(
+                    "freq_lpmm",
+                    ValueSpec("float", 0, 2000, unit="lines/mm"),
+                    "spatial frequency on the image",
+                    ("частота", "пространственная частота"),
+                ),
+                ColumnSpec(
+                    "mtf",
+                    ValueSpec("float", 0, 1, unit="-"),
+                    "lens MTF at that frequency (at the working f-number of the flight)",
+                    ("ЧКХ", "MTF"),
+                ),
+                _SOURCE,
+            ),
+            required=False,
+            title_ru="ЧКХ объективов",
+            description="manufacturer's lens MTF per camera (frequency → MTF); replaces the "
+            "diffraction formula in the MTF chain",
+        ),
     )
 }
 """Every table a norm set may hold (``required=False``: optional)."""

@@ -90,6 +90,8 @@ class UavInputs:
     bits_per_band: int = 8
     orientation: str = "landscape"
     platform: str = "uav"
+    lens_table_centre: tuple[tuple[float, ...], tuple[float, ...]] | None = None
+    lens_table_corner: tuple[tuple[float, ...], tuple[float, ...]] | None = None
 
 
 @dataclass(frozen=True)
@@ -158,7 +160,8 @@ class UavPlan:
 def _chain(inp: UavInputs, height_m: Any) -> tuple[M.Camera, M.Flight, M.Atmosphere,
                                                    M.Motion, M.Scene, M.Threshold]:
     cam = M.Camera(inp.pixel_um, inp.focal_mm, inp.f_number, inp.sensor_width_mm,
-                   inp.sensor_height_mm)
+                   inp.sensor_height_mm, lens_table_centre=inp.lens_table_centre,
+                   lens_table_corner=inp.lens_table_corner)
     fl = M.Flight(height_m, inp.speed_ms, inp.exposure_s, inp.shift_factor)
     atm = M.Atmosphere(contrast_coefficient=inp.haze_contrast)
     mot = M.Motion(inp.random_speed_ms, inp.roll_rate_rad_s, inp.pitch_rate_rad_s,

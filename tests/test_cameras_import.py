@@ -165,3 +165,46 @@ def test_a_file_without_camera_tables_is_refused(tmp_path, user_dir):
     book = write_template(tmp_path / "t.xlsx", lang="en", catalogue=False)
     with pytest.raises(InputError, match="no cameras or scanners table"):
         read_camera_file(book)
+
+
+def test_a_lens_mtf_table_replaces_the_diffraction_formula(tmp_path, user_dir):
+    """A user lens table (frequency → MTF, centre and corner) is used by the MTF chain:
+    R and L equal the chain evaluated with that table, and a poorer lens gives a larger L."""
+    from scanplan import mtf
+
+    f = tmp_path / "lens-mtf.csv"
+    rows = ["camera,position,freq_lpmm,mtf,source"]
+    for pos, drop in (("centre", 0.006), ("corner", 0.008)):
+        for n in (0, 20, 40, 80, 120, 160, 200):
+            rows.append(f"dji-zenmuse-p1-35,{pos},{n},{max(0.0, 1 - drop * n):.3f},test chart")
+    f.write_text("\n".join(rows) + "\n", encoding="utf-8")
+    before = uav_job(camera="dji-zenmuse-p1-35", height_m=100.0).plan
+    r = _cli("cameras", "import", str(f))
+    assert r.exit_code == 0, r.output
+    ns = load_norm_set()
+    curve = ns.lens_mtf["dji-zenmuse-p1-35"]["centre"]
+    assert curve.freq_lpmm[:3] == (0.0, 20.0, 40.0) and curve.source == (
+        "test chart (imported from lens-mtf.csv)")
+    after = uav_job(camera="dji-zenmuse-p1-35", height_m=100.0).plan
+    cam = ns.cameras["dji-zenmuse-p1-35"]
+    direct = mtf.uav_resolution(
+        mtf.Camera(cam.pixel_um, 35.0, 2.8, 35.9, cam.frame()[1],
+                   lens_table_centre=(curve.freq_lpmm, curve.mtf),
+                   lens_table_corner=(ns.lens_mtf["dji-zenmuse-p1-35"]["corner"].freq_lpmm,
+                                      ns.lens_mtf["dji-zenmuse-p1-35"]["corner"].mtf)),
+        mtf.Flight(100.0, 15.0, 0.001), threshold=mtf.Threshold(params={"k0": 0.03}))
+    assert after.resolving_power_lpmm == pytest.approx(float(direct.centre.r_lpmm), rel=1e-9)
+    assert after.ground_resolution_m > before.ground_resolution_m
+    r = _cli("cameras", "show", "dji-zenmuse-p1-35")
+    assert "centre: 7 points to 200 lines/mm (test chart" in r.output
+
+
+def test_a_lens_table_for_an_unknown_camera_is_refused(tmp_path, user_dir):
+    f = tmp_path / "lens-mtf.csv"
+    f.write_text("camera,position,freq_lpmm,mtf\nno-such,centre,0,1\nno-such,centre,50,0.5\n",
+                 encoding="utf-8")
+    r = _cli("cameras", "import", str(f))
+    assert r.exit_code == 2 and "no-such" in r.stderr and "not a digital camera" in r.stderr
+    f.write_text("camera,position,freq_lpmm,mtf\ndji-mavic-3e,centre,0,1\n", encoding="utf-8")
+    r = _cli("cameras", "import", str(f))
+    assert r.exit_code == 2 and "at least two frequencies" in r.stderr
