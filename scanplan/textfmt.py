@@ -299,7 +299,7 @@ def format_plan_result(result: Any) -> str:
 
 def batch_summary(done: list[tuple[str, Any]], failed: list[tuple[str, str]]) -> str:
     """One table for a batch of projects: the headline of each, then the failures."""
-    rows = [["project", "map", "film: photo scale", "scan µm", "UAV: height m", "max m",
+    rows = [["project", "map", "film: photo scale", "scan µm", "digital camera: height m", "max m",
              "binding"]]
     for path, r in done:
         f, u = r.film, r.uav
