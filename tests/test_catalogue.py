@@ -262,6 +262,13 @@ def test_scanner_steps_and_sources():
                for s in ps2000)
     # binary multiples of 7 µm, plus 21 µm
     assert {s.pixel_um for s in ps2000} - {21.0} == {7.0 * 2 ** k for k in range(6)}
+    # the two test papers' scanners: only the pixels they tested, and they say so
+    assert NS.scanner_steps("zeiss-scai") == (7.0, 14.0)
+    assert NS.scanner_steps("lh-dsw300") == (12.5, 25.0)
+    for sid in ("zeiss-scai", "lh-dsw300"):
+        assert all("only the scan pixels the test used" in s.note and "ISPRS" in s.source
+                   for s in NS.scanner_details[sid])
+    assert len(NS.scanners) >= 4
 
 
 def test_unknown_ids_suggest_the_close_ones():
@@ -274,13 +281,14 @@ def test_unknown_ids_suggest_the_close_ones():
 def test_cameras_list_kinds_and_json():
     runner = CliRunner()
     r = runner.invoke(main, ["cameras", "list"])
-    assert r.exit_code == 0 and "65 cameras" in r.output and "2 scanners" in r.output
+    assert r.exit_code == 0 and "65 cameras" in r.output and "4 scanners" in r.output
     r = runner.invoke(main, ["cameras", "list", "--kind", "aircraft", "--json"])
     rows = json.loads(r.stdout)
     assert {c["platform"] or "aircraft" for c in rows} == {"aircraft"}
     assert len([c for c in rows if c["kind"] == "digital"]) == 12
     r = runner.invoke(main, ["cameras", "list", "--kind", "scanner", "--json"])
-    assert {s["scanner"] for s in json.loads(r.stdout)} == {"photoscan-td", "photoscan-2000"}
+    assert {s["scanner"] for s in json.loads(r.stdout)} == {
+        "photoscan-td", "photoscan-2000", "zeiss-scai", "lh-dsw300"}
     r = runner.invoke(main, ["cameras", "show", "photoscan-2000", "--json"])
     assert r.exit_code == 0 and len(json.loads(r.stdout)) == 7
 
