@@ -327,3 +327,27 @@ def test_scanner_step_listed_twice_is_refused(tmp_path):
     text = "scanner,name,pixel_um,source\ns1,S,7,x\ns1,S,7,x\n"
     with pytest.raises(InputError, match=r"scanners.csv:3 \(pixel_um\).*twice"):
         read_norm_set_folder(_set_with(tmp_path, scanners=text))
+
+
+def test_bundled_aerial_example():
+    """examples/aerial-ultracam-5000.toml: a 1:5000 map, UltraCam Eagle 80 at manned
+    heights — maximum 4524 m bound by P_Z (GSD ≤ V_z·f/(k·b) on the ground), GSD 0.294 m,
+    3 strips × 13 photos at the Instruction's 60/30 % overlaps, the haze note."""
+    from pathlib import Path
+
+    from scanplan.project import load_project
+    from scanplan.spec import plan_project
+
+    path = Path(__file__).resolve().parent.parent / "examples" / "aerial-ultracam-5000.toml"
+    if not path.is_file():
+        pytest.skip("examples/ not beside the tests")
+    res = plan_project(load_project(path))
+    u, p = res.uav, res.uav.job.plan
+    assert p.inputs.platform == "aircraft" and p.binding == "PZ"
+    # P_Z on the ground: V_z·f/(k·b) with V_z = 0.2·1 m, k = 2, b = 0.4·(13080·5.2 µm)
+    b_mm = 0.4 * 13080 * 5.2e-3
+    assert u.max_height_m == pytest.approx(0.2 * 80 / (2 * b_mm) * 80 / 5.2e-3, rel=1e-9)
+    assert u.recommended_height_m == 4520
+    assert p.gsd_m == pytest.approx(5.2e-6 * 4520 / 0.080, rel=1e-12)
+    assert (p.flight["strips"], p.flight["photos_per_strip"]) == (3, 13)
+    assert "haze_default_height" in {w.code for w in p.warnings}
