@@ -208,3 +208,32 @@ def test_a_lens_table_for_an_unknown_camera_is_refused(tmp_path, user_dir):
     f.write_text("camera,position,freq_lpmm,mtf\ndji-mavic-3e,centre,0,1\n", encoding="utf-8")
     r = _cli("cameras", "import", str(f))
     assert r.exit_code == 2 and "at least two frequencies" in r.stderr
+
+
+def test_a_workbook_with_an_external_entity_is_refused(tmp_path, user_dir):
+    """The norm importer's XML defences apply: a DTD in the cameras sheet is refused before
+    any parsing, /etc/passwd is never read, nothing is written."""
+    import re
+    import zipfile
+
+    from openpyxl import Workbook
+
+    wb = Workbook()
+    ws = wb.active
+    ws.title = "cameras"
+    ws.append(["id", "kind", "name", "sensor_width_mm", "sensor_height_mm", "focal_mm"])
+    ws.append(["c1", "digital", "C1", 36, 24, 35])
+    clean = tmp_path / "clean.xlsx"
+    wb.save(clean)
+    bad = tmp_path / "evil.xlsx"
+    with zipfile.ZipFile(clean) as zin, zipfile.ZipFile(bad, "w") as zout:
+        for item in zin.infolist():
+            data = zin.read(item.filename)
+            if item.filename == "xl/worksheets/sheet1.xml":
+                data = (b'<?xml version="1.0" encoding="UTF-8"?>\n<!DOCTYPE worksheet '
+                        b'[<!ENTITY xxe SYSTEM "file:///etc/passwd">]>\n'
+                        + re.sub(rb"^<\?xml[^>]*\?>\s*", b"", data))
+            zout.writestr(item, data)
+    r = _cli("cameras", "import", str(bad))
+    assert r.exit_code == 2 and "DTD or XML entities" in r.stderr and "root:" not in r.output
+    assert not user_catalogue_dir().exists() or not any(user_catalogue_dir().iterdir())
