@@ -325,6 +325,13 @@ def import_camera_file(path: str | os.PathLike[str], *, force: bool = False,
     _check_rows(parsed, {c.id for c in ns.cameras.values() if c.kind == "digital"})
     folder = user_catalogue_dir()
     folder.mkdir(parents=True, exist_ok=True)
+    with norms_io._norm_dir_lock(folder):  # one import at a time: no lost update
+        _merge_into(folder, parsed, force)
+    return folder, parsed
+
+
+def _merge_into(folder: Path, parsed: ParsedCameras, force: bool) -> None:
+    """Add ``parsed`` to the catalogue files in ``folder`` (checked, then replaced)."""
     new_ids = {r["id"] for r in parsed.cameras}
     new_scanners = {r["scanner"] for r in parsed.scanners}
     old_cams = _existing(folder, "cameras")
@@ -345,7 +352,6 @@ def import_camera_file(path: str | os.PathLike[str], *, force: bool = False,
     for table, rows in (("cameras", cams), ("scanners", scanners), ("lens_mtf", lens)):
         if rows:
             _replace(folder / TABLES[table].file, _csv_text(table, rows))
-    return folder, parsed
 
 
 def _replace(target: Path, text: str) -> None:

@@ -351,3 +351,16 @@ def test_bundled_aerial_example():
     assert p.gsd_m == pytest.approx(5.2e-6 * 4520 / 0.080, rel=1e-12)
     assert (p.flight["strips"], p.flight["photos_per_strip"]) == (3, 13)
     assert "haze_default_height" in {w.code for w in p.warnings}
+
+
+def test_portrait_turns_an_explicit_sensor_too():
+    land = uav_job(pixel_um=4.0, focal_mm=35.0, sensor_mm="36x24", f_number=4.0,
+                   height_m=100.0).plan
+    port = uav_job(pixel_um=4.0, focal_mm=35.0, sensor_mm="36x24", f_number=4.0,
+                   height_m=100.0, orientation="portrait").plan
+    assert land.flight["footprint_across_m"] == pytest.approx(36 * 100 / 35)
+    assert port.flight["footprint_across_m"] == pytest.approx(24 * 100 / 35)
+    assert port.flight["footprint_along_m"] == pytest.approx(36 * 100 / 35)
+    with pytest.raises(InputError, match="orientation"):
+        uav_job(pixel_um=4.0, focal_mm=35.0, sensor_mm="36x24", f_number=4.0,
+                height_m=100.0, orientation="sideways")
