@@ -348,7 +348,8 @@ def scan(as_json: bool, bits_per_band: str, **kwargs: Any) -> None:
 @click.option("--k0", "threshold_k0", type=float, callback=_finite,
               help="Sensor threshold contrast at low frequency (default 0.03).")
 @click.option("--shift-factor", type=float, default=1.0, show_default=True, callback=_finite,
-              help="Photographic/geometric image shift (0.6–0.7 summer, 1 bright canopy).")
+              help="Photographic/geometric image shift, 0 < k ≤ 1 (0.6–0.7 summer, "
+              "1 bright canopy).")
 @click.option("--random-speed-ms", type=float, default=0.0, callback=_finite,
               help="RMS random linear speed of a light UAV [m/s].")
 @click.option("--roll-rate", "roll_rate_rad_s", type=float, default=0.0, callback=_finite,

@@ -71,7 +71,7 @@ DOMAINS: dict[str, Domain] = {
     "pitch_deg": Domain(-45, 45, "°", meaning="pitch for the tilted-frame corner GSD"),
     "threshold_k0": Domain(0, 1, lo_open=True, hi_open=True,
                            meaning="sensor threshold contrast at low frequency"),
-    "shift_factor": Domain(0, 10, lo_open=True,
+    "shift_factor": Domain(0, 1, lo_open=True,
                            meaning="photographic/geometric image shift factor"),
     "r_max": Domain(0, 1, lo_open=True, meaning="brightness coefficient of the lightest detail"),
     "r_min": Domain(0, 1, meaning="brightness coefficient of the darkest detail"),
