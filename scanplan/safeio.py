@@ -14,7 +14,7 @@ import stat
 
 from .errors import InputError, NotFoundError
 
-__all__ = ["file_kind", "read_limited", "size_text", "write_all"]
+__all__ = ["file_kind", "fsync_dir", "read_limited", "size_text", "write_all"]
 
 
 def size_text(n: int) -> str:
@@ -124,3 +124,26 @@ def write_all(fd: int, data: bytes) -> None:
             raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
         view = view[n:]
     os.fsync(fd)
+
+
+def fsync_dir(folder: str | os.PathLike[str]) -> None:
+    """fsync a folder, so that the renames and new names in it survive a power loss.
+
+    Best effort: a file system or platform that cannot fsync a folder (Windows, some network
+    shares) is skipped silently — the files themselves were fsynced before.
+
+    Parameters
+    ----------
+    folder : path
+        The folder.
+    """
+    try:
+        fd = os.open(folder, os.O_RDONLY | getattr(os, "O_DIRECTORY", 0))
+    except OSError:
+        return
+    try:
+        os.fsync(fd)
+    except OSError:
+        pass
+    finally:
+        os.close(fd)
