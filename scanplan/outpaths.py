@@ -87,6 +87,12 @@ def check_target(path: str, field: str, kind: str, *, inputs: Iterable[str] = ()
     if path.strip() == "-":
         raise InputError(field, "'-' (standard output) cannot take a report: reports are "
                          "binary files; give a file name")
+    folder = os.path.dirname(os.path.abspath(path))
+    limit = name_max(folder) if os.path.isdir(folder) else 255
+    size = len(os.fsencode(os.path.basename(path)))
+    if size > limit:
+        raise InputError(field, f"the file name is {size} bytes long; the file system allows "
+                         f"{limit}")
     shown = repr(path)
     try:
         st = os.lstat(path)
@@ -110,12 +116,6 @@ def check_target(path: str, field: str, kind: str, *, inputs: Iterable[str] = ()
         raise InputError(field, f"{shown} does not end in {SUFFIX[kind]}; the "
                          f"{'workbook' if kind == 'xlsx' else 'PDF'} is written only to a "
                          f"{SUFFIX[kind]} file")
-    folder = os.path.dirname(os.path.abspath(path))
-    limit = name_max(folder) if os.path.isdir(folder) else 255
-    size = len(os.fsencode(os.path.basename(path)))
-    if size > limit:
-        raise InputError(field, f"the file name is {size} bytes long; the file system allows "
-                         f"{limit}")
     if st is None:
         return
     if stat.S_ISLNK(st.st_mode):

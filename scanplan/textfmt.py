@@ -34,6 +34,11 @@ def _num(x: float | None, digits: int = 1) -> str:
     return f"{x:.{digits}f}"
 
 
+def _interval(seconds: float) -> str:
+    """The photo interval; none at ground speed 0 (a hovering UAV), never ``inf``."""
+    return f"{seconds:.2f} s" if math.isfinite(seconds) else "— (ground speed 0)"
+
+
 def _wrap(text: str, indent: str) -> str:
     return textwrap.fill(text, width=96, initial_indent=indent,
                          subsequent_indent=" " * len(indent))
@@ -160,7 +165,7 @@ def format_uav_plan(plan: UavPlan, norm_name: str = "") -> str:
     lines += ["", "Flight geometry (at the planned height):"]
     frows = [["footprint", f"{fl['footprint_across_m']:.0f} × {fl['footprint_along_m']:.0f} m"],
              ["base / line spacing", f"{fl['base_m']:.1f} m / {fl['line_spacing_m']:.1f} m"],
-             ["photo interval", f"{fl['photo_interval_s']:.2f} s"
+             ["photo interval", _interval(fl['photo_interval_s'])
               + (f" (camera minimum {fl['min_trigger_interval_s']:g} s)"
                  if "min_trigger_interval_s" in fl else "")],
              [f"forward overlap at {h['min']:g} / {h['max']:g} m",
@@ -259,7 +264,7 @@ def format_plan_result(result: Any) -> str:
             rows.append(["  overlaps / base / spacing",
                          f"{p.inputs.forward_overlap_pct:g} % / {p.inputs.side_overlap_pct:g} % "
                          f"— {fl['base_m']:.1f} m / {fl['line_spacing_m']:.1f} m"])
-            rows.append(["  photo interval", f"{fl['photo_interval_s']:.2f} s"])
+            rows.append(["  photo interval", _interval(fl['photo_interval_s'])])
             if "photos" in fl:
                 rows.append(["  photos / strips", f"{fl['photos']} / {fl['strips']}"])
                 rows.append(["  flight", f"{fl['flight_length_m'] / 1000:.1f} km"
