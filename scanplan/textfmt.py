@@ -36,7 +36,7 @@ def _num(x: float | None, digits: int = 1) -> str:
 
 def _interval(seconds: float) -> str:
     """The photo interval; none at ground speed 0 (a hovering UAV), never ``inf``."""
-    return f"{seconds:.2f} s" if math.isfinite(seconds) else "— (ground speed 0)"
+    return f"{seconds:.2f} s" if math.isfinite(seconds) else "— (ground speed ≈ 0)"
 
 
 def _wrap(text: str, indent: str) -> str:
