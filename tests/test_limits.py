@@ -123,8 +123,7 @@ def test_shift_factor_range_is_the_documented_one():
                "--shift-factor", "1").exit_code == 0
     r = cli("uav", "--camera", CANON, "--height-m", "300", "--shift-factor", "1.5")
     assert r.exit_code == 2
-    assert "error: --shift-factor: must be > 0 and ≤ 1" in r.stderr or \
-           "error: --shift-factor:" in r.stderr and "1.5" in r.stderr
+    assert "error: --shift-factor: must be a finite number > 0 and ≤ 1 (got 1.5)" in r.stderr
     assert "0 < k ≤ 1" in cli("uav", "--help").stdout
 
 
@@ -163,7 +162,8 @@ def _with_styles(tmp_path, n: int):
             if info.filename == "xl/styles.xml":
                 xf = b"".join(b'<xf numFmtId="%d" fontId="0" fillId="0" borderId="0"/>'
                               % rnd.randrange(10**6) for _ in range(n))
-                data = re.sub(rb'<cellXfs count="\d+">', lambda m: m.group(0) + xf, data)
+                head = re.search(rb'<cellXfs count="\d+">', data).end()
+                data = data[:head] + xf + data[head:]
             zout.writestr(info, data)
     return path
 
