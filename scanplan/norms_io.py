@@ -60,7 +60,7 @@ from . import norms as _norms
 from .errors import InputError, NotFoundError, WriteError
 from .normschema import PARAMETERS, TABLES, ColumnSpec, TableSpec, ValueSpec
 from .reports import write_atomic
-from .safeio import file_kind, fsync_dir, read_limited, write_all
+from .safeio import dir_lock, file_kind, fsync_dir, read_limited, write_all
 
 __all__ = [
     "HEADER_SCAN_ROWS",
@@ -2037,22 +2037,10 @@ def _write_file(path: Path, text: str) -> None:
 _LEFTOVER = re.compile(r"\.(?P<name>.+)\.(?P<kind>tmp|old)-[A-Za-z0-9_]{8}")
 
 
-@contextlib.contextmanager
-def _norm_dir_lock(folder: Path) -> Iterator[None]:
-    """Serialise imports and repairs in one norm directory (``flock``; no-op without it)."""
-    fd = None
-    try:
-        import fcntl
-
-        fd = os.open(folder, os.O_RDONLY)
-        fcntl.flock(fd, fcntl.LOCK_EX)
-    except (ImportError, OSError):
-        pass
-    try:
-        yield
-    finally:
-        if fd is not None:
-            os.close(fd)
+def _norm_dir_lock(folder: Path) -> contextlib.AbstractContextManager[None]:
+    """Serialise imports and repairs in one norm directory, and keep loads out while a set
+    is swapped (an exclusive ``flock``; loads take it shared; no-op without ``flock``)."""
+    return dir_lock(folder, exclusive=True)
 
 
 def recover_norm_dir(
