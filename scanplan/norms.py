@@ -78,7 +78,11 @@ def parse_scale(value: object, field_name: str) -> float:
     if isinstance(value, bool):
         raise InputError(field_name, f"must be {allowed} (got {value!r})")
     if isinstance(value, int | float):
-        v = float(value)
+        try:
+            v = float(value)
+        except OverflowError:  # an integer too large for a float
+            raise InputError(field_name, f"must be {allowed} (got a number too large for "
+                             "a float)") from None
     else:
         text = str(value).strip().replace("\u00a0", "").replace("\u202f", "").replace(" ", "")
         if text.startswith("1:"):
@@ -325,6 +329,11 @@ def _resolve(name_or_path: str | os.PathLike[str]) -> tuple[Path, bool]:
     if not text.strip():
         raise NotFoundError("--norms", "is empty; give a norm set name (scanplan norms list) "
                             "or the path of a norm set folder")
+    longest = max(len(os.fsencode(part)) for part in text.split(os.sep))
+    if longest > 255 or len(os.fsencode(text)) > 4096:
+        raise NotFoundError("--norms", f"is {len(text):,} characters long: no norm set has "
+                            "such a name (an imported name has at most 64 characters; a "
+                            "folder name at most 255 bytes, a path 4,096; scanplan norms list)")
     # a name is looked up in the bundled and user folders; "..", ".x" and "a/b" are paths
     is_name = is_set_name(text)
     if text and is_name and text != CATALOGUE:
