@@ -34,6 +34,13 @@ def _num(x: float | None, digits: int = 1) -> str:
     return f"{x:.{digits}f}"
 
 
+def _um(x: float | None) -> str:
+    """A pixel [µm]: one decimal, or two significant digits below 1 µm (never ``0.0``)."""
+    if x is None or not math.isfinite(x) or x >= 0.95:
+        return _num(x)
+    return f"{x:.2g}"
+
+
 def _interval(seconds: float) -> str:
     """The photo interval; none at ground speed 0 (a hovering UAV), never ``inf``."""
     return f"{seconds:.2f} s" if math.isfinite(seconds) else "— (ground speed ≈ 0)"
@@ -70,10 +77,10 @@ def format_scan_plan(plan: ScanPlan, norm_name: str = "", norm_title: str = "") 
         row = [f"{cid}  {CONSTRAINTS[cid].name}", "µm"]
         for s in plan.scenarios:
             c = s.constraint(cid)
-            row.append(_num(c.pixel_um) + ("*" if c.binding else " "))
+            row.append(_um(c.pixel_um) + ("*" if c.binding else " "))
         rows.append(row)
     rows.append(["binding", "", *(s.binding + " " for s in plan.scenarios)])
-    rows.append(["scan pixel", "µm", *(_num(s.scan_pixel_um) + " " for s in plan.scenarios)])
+    rows.append(["scan pixel", "µm", *(_um(s.scan_pixel_um) + " " for s in plan.scenarios)])
     if inp.scanner:
         rows.append([f"scanner {inp.scanner} step", "µm",
                      *(_num(s.scanner_pixel_um) + " " for s in plan.scenarios)])
@@ -226,7 +233,7 @@ def format_plan_result(result: Any) -> str:
         if s is None:
             lines.append(_wrap(f.reason, "  "))
         else:
-            px = (f"{s.scan_pixel_um:.1f} µm"
+            px = (f"{_um(s.scan_pixel_um)} µm"
                   + (f" → scanner step {s.scanner_pixel_um:g} µm" if s.scanner_pixel_um else ""))
             rows = [["  recommended photo scale", f"1:{scale_value(s.photo_scale)}"],
                     ["  scan pixel", px],
@@ -304,7 +311,7 @@ def batch_summary(done: list[tuple[str, Any]], failed: list[tuple[str, str]]) ->
         rows.append([
             os.path.basename(path), f"1:{r.project.values['map']['scale']}",
             (f"1:{scale_value(rec.photo_scale)}" if rec else "none") if f else "—",
-            (_num(rec.scanner_pixel_um or rec.scan_pixel_um) if rec else "—") if f else "—",
+            (_um(rec.scanner_pixel_um or rec.scan_pixel_um) if rec else "—") if f else "—",
             _num(u.recommended_height_m, 0) if u else "—",
             _num(u.max_height_m, 0) if u else "—",
             " / ".join(x for x in ((rec.binding if rec else "") if f else "",
