@@ -122,6 +122,34 @@ def _echo_json(doc: Any) -> None:
     click.echo(json.dumps(doc, ensure_ascii=False, indent=2, allow_nan=False))
 
 
+class _JsonStream:
+    """Print ``{"KEY": [item, ...], ...}`` one item at a time, byte-identical to
+    :func:`_echo_json` of the whole document: a batch of thousands of projects never holds
+    every result in memory (issue 17)."""
+
+    def __init__(self, key: str) -> None:
+        self.key, self.n = key, 0
+
+    @staticmethod
+    def _dumps(value: Any) -> str:
+        return json.dumps(value, ensure_ascii=False, indent=2, allow_nan=False)
+
+    def add(self, item: Any) -> None:
+        """Print the next item of the list (flushed: a reader sees it at once)."""
+        body = "\n".join("    " + line for line in self._dumps(item).splitlines())
+        head = f'{{\n  {self._dumps(self.key)}: [\n' if self.n == 0 else ",\n"
+        click.echo(head + body, nl=False)
+        sys.stdout.flush()
+        self.n += 1
+
+    def close(self, rest: dict[str, Any]) -> None:
+        """End the list and print the document's other keys."""
+        out = f'{{\n  {self._dumps(self.key)}: []' if self.n == 0 else "\n  ]"
+        for key, value in rest.items():
+            out += f",\n  {self._dumps(key)}: " + self._dumps(value).replace("\n", "\n  ")
+        click.echo(out + "\n}")
+
+
 def _finite(ctx: click.Context, param: click.Parameter, value: float | None) -> float | None:
     if value is not None and not math.isfinite(value):
         raise click.BadParameter(f"must be a finite number (got {value})", ctx, param)
@@ -508,13 +536,18 @@ def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: s
         else:
             click.echo(format_plan_result(result))
         return
-    done: list[tuple[str, Any]] = []
+    done: list[tuple[str, Any]] = []  # with --json the results are streamed, not kept
     failed: list[tuple[str, str]] = []
+    stream = _JsonStream("projects") if as_json else None
     stopped = ""  # a write failure (disk full) stops the batch: the project it stopped at
     with click.progressbar(files, label="planning", file=sys.stderr) as bar:
         for path in bar:
             try:
-                done.append((path, run_one(path)))
+                result = run_one(path)
+                if stream is not None:
+                    stream.add(plan_result_dict(result))
+                    result = None
+                done.append((path, result))
             except InputError as exc:  # a bad project: report it, run the others
                 failed.append((path, f"{exc.field}: {exc.message}"))
             except WriteError as exc:
@@ -522,11 +555,10 @@ def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: s
                 stopped = path
                 break
     not_run = files[len(done) + len(failed):]
-    if as_json:
-        _echo_json({"projects": [plan_result_dict(r) for _, r in done],
-                    "errors": [{"file": f, "message": m} for f, m in failed]
-                    + [{"file": f, "message": "not planned: the batch stopped"}
-                       for f in not_run]})
+    if stream is not None:
+        stream.close({"errors": [{"file": f, "message": m} for f, m in failed]
+                      + [{"file": f, "message": "not planned: the batch stopped"}
+                         for f in not_run]})
     else:
         from .textfmt import batch_summary
 

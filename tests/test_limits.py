@@ -275,3 +275,54 @@ def test_extreme_film_input_prints_no_zero_pixel_inf_or_nan(mk, mc, relief, size
     for line in rows:
         value = line.split()[-1].rstrip("*")
         assert float(value) > 0, (args, line)
+
+
+# ---------------------------------------------------------------------------------------
+# Issue 17 item 6: the batch JSON is streamed
+# ---------------------------------------------------------------------------------------
+
+
+def test_batch_json_is_streamed_and_keeps_no_results(tmp_path, monkeypatch):
+    """Bug: ``plan --json`` over 2,000 projects held 647 MB at its peak (every result kept
+    until the end). Each project's JSON is printed when it is planned and the result
+    dropped; the document is byte-identical to the one built whole."""
+    import gc
+    import weakref
+    from pathlib import Path
+
+    import scanplan.spec as spec_mod
+
+    examples = Path(__file__).resolve().parent.parent / "examples"
+    for i in range(6):
+        (tmp_path / f"p{i}.toml").write_bytes(
+            (examples / "instruction-2000-film.toml").read_bytes())
+    (tmp_path / "p9-bad.toml").write_text("[map]\nscale = -5\n", encoding="utf-8")
+    alive: list[weakref.ref] = []
+    most = [0]
+    real = spec_mod.plan_project
+
+    def counting(project):
+        result = real(project)
+        gc.collect()
+        most[0] = max(most[0], sum(r() is not None for r in alive))
+        alive.append(weakref.ref(result))
+        return result
+
+    monkeypatch.setattr(spec_mod, "plan_project", counting)
+    r = cli("plan", tmp_path, "--json")
+    assert r.exit_code == 2  # the bad project
+    doc = json.loads(r.stdout)
+    assert r.stdout == json.dumps(doc, ensure_ascii=False, indent=2) + "\n"
+    assert len(doc["projects"]) == 6
+    assert [e["file"].rsplit("/", 1)[-1] for e in doc["errors"]] == ["p9-bad.toml"]
+    assert most[0] == 0  # no earlier result was alive when the next one was planned
+
+
+def test_batch_json_with_every_project_bad_is_still_one_document(tmp_path):
+    for i in range(2):
+        (tmp_path / f"b{i}.toml").write_text("[map]\nscale = -5\n", encoding="utf-8")
+    r = cli("plan", tmp_path, "--json")
+    assert r.exit_code == 2
+    doc = json.loads(r.stdout)
+    assert doc["projects"] == [] and len(doc["errors"]) == 2
+    assert r.stdout == json.dumps(doc, ensure_ascii=False, indent=2) + "\n"
