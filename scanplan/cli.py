@@ -12,6 +12,7 @@ import math
 import os
 import sys
 import traceback
+import warnings
 from collections.abc import Callable
 from typing import Any
 
@@ -73,7 +74,10 @@ class ScanplanGroup(click.Group):
 
     def invoke(self, ctx: click.Context) -> Any:
         try:
-            return super().invoke(ctx)
+            with warnings.catch_warnings():
+                if not os.environ.get("SCANPLAN_DEBUG"):  # no library's warning on a
+                    warnings.simplefilter("ignore")  # user's terminal (the tests raise them)
+                return super().invoke(ctx)
         except InputError as exc:
             field = OPTION_NAMES.get(exc.field, exc.field)
             click.echo(f"error: {field}: {exc.message}", err=True)
