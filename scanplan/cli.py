@@ -452,7 +452,7 @@ def plan(projects: tuple[str, ...], out_dir: str | None, xlsx_path: str | None,
 
     \b
     Examples:
-      scanplan plan examples/lida-2000-film.toml --out out/
+      scanplan plan examples/instruction-2000-film.toml --out out/
       scanplan plan examples/ --json
     """
     files: list[str] = []
