@@ -2471,6 +2471,9 @@ def write_template(
         raise InputError("--lang", f"must be en or ru (got {lang!r})")
     if out.exists() and not force:
         raise InputError("FILE", f"{out} exists; give --force to overwrite it")
+    from .outpaths import check_target  # links, folders, FIFOs, write-protected, long names
+
+    check_target(os.fspath(out), "FILE", "xlsx", force=True)
     ns = _norms.load_norm_set(norm_set)
     data = _set_rows(ns, catalogue)
     wb = Workbook()

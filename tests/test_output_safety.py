@@ -478,3 +478,17 @@ def test_norm_folder_is_fsynced_after_the_swap(user_dir, monkeypatch):
     synced.clear()
     import_norm_file(src, "mine", force=True)
     assert str(user_dir) in synced
+
+
+def test_norm_template_follows_the_same_rules(work):
+    """``norms template FILE --force`` refuses a symbolic link and a write-protected file
+    like the reports do (it replaced the link with a workbook)."""
+    (work / "l.xlsx").symlink_to("proj.toml")
+    (work / "ro.xlsx").write_bytes(b"x")
+    (work / "ro.xlsx").chmod(0o444)
+    r = cli("norms", "template", "l.xlsx", "--force")
+    assert r.exit_code == 2 and "is a symbolic link" in r.output
+    assert (work / "l.xlsx").is_symlink()
+    r = cli("norms", "template", "ro.xlsx", "--force")
+    assert r.exit_code == 2 and "is write-protected" in r.output
+    assert (work / "ro.xlsx").read_bytes() == b"x"
