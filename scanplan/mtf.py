@@ -94,6 +94,9 @@ DEFAULT_WAVELENGTH_UM = 0.55
 DEFAULT_K0 = 0.03
 #: Frequency-independent contrast transmission of the air below a UAV [–].
 DEFAULT_HAZE_CONTRAST = 0.9
+DEFAULT_HAZE_MAX_HEIGHT_M = 500.0
+"""Height up to which :data:`DEFAULT_HAZE_CONTRAST` is argued (clear air, docs/uav-models.md
+"Defaults and why"); above it a plan says the default is used out of its range."""
 #: Bracketing grid and refinement steps of the resolving-power solver.
 DEFAULT_GRID_POINTS = 5
 DEFAULT_ITERATIONS = 12
@@ -725,8 +728,9 @@ def linear_motion_mtf(
     shift_mm : array_like
         Photographic shift δ [mm] (:func:`photographic_image_shift_mm`).
     shutter_efficiency : array_like, optional
-        Optical efficiency of the shutter η [–], 0 < η ≤ 1 (1: rectangular opening,
-        plain sinc).
+        Optical efficiency of the shutter η [–], 0.5 ≤ η ≤ 1 (1: rectangular opening,
+        plain sinc). Below 0.5 the two boxes swap roles (η and 1 − η give the same
+        trapezoid), so 0.3 would silently act as 0.7: it is refused.
 
     Returns
     -------
@@ -741,7 +745,7 @@ def linear_motion_mtf(
     """
     n = _finite("freq_lpmm", freq_lpmm)
     d = _nonnegative("shift_mm", shift_mm)
-    eta = _in_range("shutter_efficiency", shutter_efficiency, 0.0, 1.0, low_inclusive=False)
+    eta = _in_range("shutter_efficiency", shutter_efficiency, 0.5, 1.0)
     return _k_linear_motion(n, eta * d, (1.0 - eta) * d)
 
 
@@ -1136,6 +1140,7 @@ def solve_resolving_power(
         est = np.where(ok, np.clip(polished, est - width, est + width), est)
         est = np.clip(est, 0.0, ceiling)
     r = np.where(crossed, est, ceiling)
+    resolvable = resolvable & (r > 0.0)  # a crossing at N = 0 resolves nothing
     sensor_limited = resolvable & (~crossed | (r >= np.broadcast_to(rm, shape) * (1 - 1e-12)))
     r = np.where(resolvable, r, np.nan)
     return ResolvingPower(
@@ -1497,9 +1502,7 @@ class _Chain:
         delta = photographic_image_shift_mm(
             geometric_image_shift_mm(w, t, f, h), flight.shift_factor
         )
-        eta = _in_range(
-            "shutter_efficiency", camera.shutter_efficiency, 0.0, 1.0, low_inclusive=False
-        )
+        eta = _in_range("shutter_efficiency", camera.shutter_efficiency, 0.5, 1.0)
         sigma = random_shift_rms_mm(
             geometric_image_shift_mm(motion.random_speed_ms, t, f, h),
             angular_shift_tilt_mm(motion.roll_rate_rad_s, t, f, q),
@@ -1750,11 +1753,18 @@ def resolving_power(
         direction,
         disable,
     )
-    rm = chain.nyquist
-    width = chain.motion_width_mm
+    # every configuration gets its own R, even where nothing depends on it (zero motion:
+    # no component varies with the flying height)
+    shape = np.broadcast_shapes(np.shape(chain.nyquist), np.shape(chain.motion_width_mm),
+                                *(v.shape[:-1] for v in chain.prm.values()),
+                                *(np.shape(x) for x in (flight.height_m, flight.speed_ms,
+                                                        flight.exposure_s)))
+    rm = np.broadcast_to(chain.nyquist, shape)
+    width = np.broadcast_to(chain.motion_width_mm, shape)
     upper = None
-    if np.any(width > 0):
-        upper = np.where(width > 0, 1.0 / np.where(width > 0, width, 1.0), rm)
+    below = width * rm > 1.0  # the sinc's first zero lies below R_m (no 1/width overflow)
+    if np.any(below):
+        upper = np.where(below, 1.0 / np.where(below, width, 1.0), rm)
     kobj = _col(scene.contrast)
     kthr = threshold.prepare(_col(rm))
 

@@ -25,7 +25,7 @@ from .api import (
     scan_job,
     uav_job,
 )
-from .domains import check_domain
+from .domains import DOMAINS, check_domain
 from .errors import InputError
 from .messages import Message
 from .planner import PlanWarning, ScanScenario
@@ -49,10 +49,12 @@ _UAV_KEYS = {
     "camera": "uav.camera", "pixel_um": "uav.pixel_um", "focal_mm": "uav.focal_mm",
     "sensor_mm": "uav.sensor_mm", "sensor_width_mm": "uav.sensor_mm",
     "sensor_height_mm": "uav.sensor_mm", "f_number": "uav.f_number",
+    "orientation": "uav.orientation",
     "height_m": "uav.height_m", "height_tolerance_up_pct": "uav.height_tolerance_pct",
     "speed_ms": "uav.speed_ms", "exposure_s": "uav.exposure_s",
     "forward_overlap_pct": "uav.forward_overlap_pct", "side_overlap_pct": "uav.side_overlap_pct",
     "r_max": "uav.target.r_max", "r_min": "uav.target.r_min",
+    "haze_contrast": "uav.atmosphere.haze_contrast",
     "threshold_k0": "uav.atmosphere.threshold_k0", "k0": "uav.atmosphere.threshold_k0",
     "shift_factor": "uav.motion.shift_factor", "random_speed_ms": "uav.motion.random_speed_ms",
     "roll_rate_rad_s": "uav.motion.roll_rate_rad_s",
@@ -141,9 +143,11 @@ def _film(project: Project) -> FilmSpec:
         raise _as_project_error(project, exc, _FILM_KEYS) from None
     plan = job.plan
     limit = plan.interpretation_limit_photo_scale
+    finest = DOMAINS["pixel_um"].lo  # below it no scanner (nor film) gives a meaningful pixel
     feasible = [s for s in plan.scenarios
                 if (limit is None or s.photo_scale <= limit * (1 + 1e-12))
-                and (not plan.inputs.scanner or s.scanner_pixel_um is not None)]
+                and (not plan.inputs.scanner or s.scanner_pixel_um is not None)
+                and s.scan_pixel_um >= finest]
     if feasible:
         best = max(feasible, key=lambda s: (s.photo_scale, s.scanner_pixel_um or 0))
         reason = Message("spec.film", scale=best.photo_scale, explanation=best.explanation)
@@ -154,6 +158,8 @@ def _film(project: Project) -> FilmSpec:
             why.append(Message("no_feasible_photo_scale.objects", limit=math.floor(limit)))
         if plan.inputs.scanner:
             why.append(Message("no_feasible_photo_scale.scanner", scanner=plan.inputs.scanner))
+        if any(s.scan_pixel_um < finest for s in plan.scenarios):
+            why.append(Message("no_feasible_photo_scale.pixel", finest=finest))
         reason = Message("no_feasible_photo_scale", why=why)
     frames = strips = None
     gigabytes = None
@@ -203,15 +209,17 @@ def _uav_kwargs(project: Project, height_m: float) -> dict[str, Any]:
         max_height_m=g("uav", "max_height_m"), gsd_cm=g("uav", "gsd_cm"),
         r_max=g("uav.target", "r_max", 0.3), r_min=g("uav.target", "r_min", 0.1),
         threshold_k0=g("uav.atmosphere", "threshold_k0"),
+        haze_contrast=g("uav.atmosphere", "haze_contrast"),
         shift_factor=g("uav.motion", "shift_factor", 1.0),
         random_speed_ms=g("uav.motion", "random_speed_ms", 0.0),
         roll_rate_rad_s=g("uav.motion", "roll_rate_rad_s", 0.0),
         pitch_rate_rad_s=g("uav.motion", "pitch_rate_rad_s", 0.0),
         yaw_rate_rad_s=g("uav.motion", "yaw_rate_rad_s", 0.0), area_m=area,
-        roll_deg=g("uav", "roll_deg", 0.0), pitch_deg=g("uav", "pitch_deg", 0.0))
-    for key, default in (("speed_ms", 15.0), ("exposure_s", 0.001),
-                         ("forward_overlap_pct", 80.0), ("side_overlap_pct", 60.0)):
-        kw[key] = g("uav", key, default)
+        roll_deg=g("uav", "roll_deg", 0.0), pitch_deg=g("uav", "pitch_deg", 0.0),
+        orientation=g("uav", "orientation"))
+    kw["exposure_s"] = g("uav", "exposure_s", 0.001)
+    for key in ("speed_ms", "forward_overlap_pct", "side_overlap_pct"):
+        kw[key] = g("uav", key)  # defaults by carrier in uav_job
     return kw
 
 

@@ -34,6 +34,18 @@ def _num(x: float | None, digits: int = 1) -> str:
     return f"{x:.{digits}f}"
 
 
+def _um(x: float | None) -> str:
+    """A pixel [µm]: one decimal, or two significant digits below 1 µm (never ``0.0``)."""
+    if x is None or not math.isfinite(x) or x >= 0.95:
+        return _num(x)
+    return f"{x:.2g}"
+
+
+def _interval(seconds: float) -> str:
+    """The photo interval; none at ground speed 0 (a hovering UAV), never ``inf``."""
+    return f"{seconds:.2f} s" if math.isfinite(seconds) else "— (ground speed ≈ 0)"
+
+
 def _wrap(text: str, indent: str) -> str:
     return textwrap.fill(text, width=96, initial_indent=indent,
                          subsequent_indent=" " * len(indent))
@@ -65,10 +77,10 @@ def format_scan_plan(plan: ScanPlan, norm_name: str = "", norm_title: str = "") 
         row = [f"{cid}  {CONSTRAINTS[cid].name}", "µm"]
         for s in plan.scenarios:
             c = s.constraint(cid)
-            row.append(_num(c.pixel_um) + ("*" if c.binding else " "))
+            row.append(_um(c.pixel_um) + ("*" if c.binding else " "))
         rows.append(row)
     rows.append(["binding", "", *(s.binding + " " for s in plan.scenarios)])
-    rows.append(["scan pixel", "µm", *(_num(s.scan_pixel_um) + " " for s in plan.scenarios)])
+    rows.append(["scan pixel", "µm", *(_um(s.scan_pixel_um) + " " for s in plan.scenarios)])
     if inp.scanner:
         rows.append([f"scanner {inp.scanner} step", "µm",
                      *(_num(s.scanner_pixel_um) + " " for s in plan.scenarios)])
@@ -116,13 +128,20 @@ def format_scan_plan(plan: ScanPlan, norm_name: str = "", norm_title: str = "") 
     return "\n".join(lines)
 
 
+def _carrier(platform: str) -> str:
+    """How the terminal names the digital-camera flight: a UAV, or a manned aerial survey
+    (a large-format camera, catalogue ``platform = aircraft``)."""
+    return "Aerial survey (digital camera)" if platform == "aircraft" else "UAV"
+
+
 def format_uav_plan(plan: UavPlan, norm_name: str = "") -> str:
     """The terminal report of ``scanplan uav``."""
     inp = plan.inputs
     h = plan.heights_m
     cam = inp.camera or "camera"
     lines = [
-        f"UAV plan — {cam}" + (f" ({inp.camera_name})" if inp.camera_name else ""),
+        f"{_carrier(inp.platform)} plan — {cam}"
+        + (f" ({inp.camera_name})" if inp.camera_name else ""),
         f"pixel {inp.pixel_um:g} µm, f {inp.focal_mm:g} mm, f/{inp.f_number:g}, sensor "
         f"{inp.sensor_width_mm:g}×{inp.sensor_height_mm:g} mm; height {h['planned']:g} m"
         + (f" (flown {h['min']:g}–{h['max']:g} m)" if h["max"] != h["min"] else "")
@@ -160,7 +179,7 @@ def format_uav_plan(plan: UavPlan, norm_name: str = "") -> str:
     lines += ["", "Flight geometry (at the planned height):"]
     frows = [["footprint", f"{fl['footprint_across_m']:.0f} × {fl['footprint_along_m']:.0f} m"],
              ["base / line spacing", f"{fl['base_m']:.1f} m / {fl['line_spacing_m']:.1f} m"],
-             ["photo interval", f"{fl['photo_interval_s']:.2f} s"
+             ["photo interval", _interval(fl['photo_interval_s'])
               + (f" (camera minimum {fl['min_trigger_interval_s']:g} s)"
                  if "min_trigger_interval_s" in fl else "")],
              [f"forward overlap at {h['min']:g} / {h['max']:g} m",
@@ -236,7 +255,7 @@ def format_plan_result(result: Any) -> str:
         if s is None:
             lines.append(_wrap(f.reason, "  "))
         else:
-            px = (f"{s.scan_pixel_um:.1f} µm"
+            px = (f"{_um(s.scan_pixel_um)} µm"
                   + (f" → scanner step {s.scanner_pixel_um:g} µm" if s.scanner_pixel_um else ""))
             rows = [["  recommended photo scale", f"1:{scale_value(s.photo_scale)}"],
                     ["  scan pixel", px],
@@ -251,7 +270,7 @@ def format_plan_result(result: Any) -> str:
     if result.uav:
         u = result.uav
         p = u.job.plan
-        lines += ["", "UAV:"]
+        lines += ["", f"{_carrier(p.inputs.platform)}:"]
         if u.recommended_height_m is None:
             lines.append(_wrap(u.reason, "  "))
         else:
@@ -283,7 +302,7 @@ def format_plan_result(result: Any) -> str:
             rows.append(["  overlaps / base / spacing",
                          f"{p.inputs.forward_overlap_pct:g} % / {p.inputs.side_overlap_pct:g} % "
                          f"— {fl['base_m']:.1f} m / {fl['line_spacing_m']:.1f} m"])
-            rows.append(["  photo interval", f"{fl['photo_interval_s']:.2f} s"])
+            rows.append(["  photo interval", _interval(fl['photo_interval_s'])])
             if "photos" in fl:
                 rows.append(["  photos / strips", f"{fl['photos']} / {fl['strips']}"])
                 rows.append(["  flight", f"{fl['flight_length_m'] / 1000:.1f} km"
@@ -296,8 +315,9 @@ def format_plan_result(result: Any) -> str:
             lines.append(table(rows, align="ll"))
             lines.append(_wrap(u.reason, "  "))
     if result.comparison:
-        lines += ["", "Film and UAV side by side:"]
-        rows = [["  quantity", "film", "UAV", "unit"]]
+        word = _carrier(result.uav.job.plan.inputs.platform) if result.uav else "UAV"
+        lines += ["", f"Film and {word if word == 'UAV' else 'digital camera'} side by side:"]
+        rows = [["  quantity", "film", word if word == "UAV" else "digital", "unit"]]
         for c in result.comparison:
             def v(x: Any) -> str:
                 if x is None:
@@ -315,7 +335,7 @@ def format_plan_result(result: Any) -> str:
 
 def batch_summary(done: list[tuple[str, Any]], failed: list[tuple[str, str]]) -> str:
     """One table for a batch of projects: the headline of each, then the failures."""
-    rows = [["project", "map", "film: photo scale", "scan µm", "UAV: height m", "max m",
+    rows = [["project", "map", "film: photo scale", "scan µm", "digital camera: height m", "max m",
              "binding"]]
     for path, r in done:
         f, u = r.film, r.uav
@@ -323,7 +343,7 @@ def batch_summary(done: list[tuple[str, Any]], failed: list[tuple[str, str]]) ->
         rows.append([
             os.path.basename(path), f"1:{r.project.values['map']['scale']}",
             (f"1:{scale_value(rec.photo_scale)}" if rec else "none") if f else "—",
-            (_num(rec.scanner_pixel_um or rec.scan_pixel_um) if rec else "—") if f else "—",
+            (_um(rec.scanner_pixel_um or rec.scan_pixel_um) if rec else "—") if f else "—",
             _num(u.recommended_height_m, 0) if u else "—",
             _num(u.max_height_m, 0) if u else "—",
             " / ".join(x for x in ((rec.binding if rec else "") if f else "",

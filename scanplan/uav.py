@@ -95,6 +95,10 @@ class UavInputs:
     area_length_m: float | None = None
     bands: int = 3
     bits_per_band: int = 8
+    orientation: str = "landscape"
+    platform: str = "uav"
+    lens_table_centre: tuple[tuple[float, ...], tuple[float, ...]] | None = None
+    lens_table_corner: tuple[tuple[float, ...], tuple[float, ...]] | None = None
     ceiling_m: float | None = None
     ceiling_from_project: bool = False
     gsd_target_m: float | None = None
@@ -177,7 +181,8 @@ class UavPlan:
 def _chain(inp: UavInputs, height_m: Any) -> tuple[M.Camera, M.Flight, M.Atmosphere,
                                                    M.Motion, M.Scene, M.Threshold]:
     cam = M.Camera(inp.pixel_um, inp.focal_mm, inp.f_number, inp.sensor_width_mm,
-                   inp.sensor_height_mm)
+                   inp.sensor_height_mm, lens_table_centre=inp.lens_table_centre,
+                   lens_table_corner=inp.lens_table_corner)
     fl = M.Flight(height_m, inp.speed_ms, inp.exposure_s, inp.shift_factor)
     atm = M.Atmosphere(contrast_coefficient=inp.haze_contrast)
     mot = M.Motion(inp.random_speed_ms, inp.roll_rate_rad_s, inp.pitch_rate_rad_s,
@@ -251,7 +256,8 @@ def _check_inputs(inp: UavInputs) -> None:
                  "height_m", "exposure_s", "speed_ms", "random_speed_ms", "roll_rate_rad_s",
                  "pitch_rate_rad_s", "yaw_rate_rad_s", "forward_overlap_pct",
                  "side_overlap_pct", "height_tolerance_up_pct", "height_tolerance_down_pct",
-                 "roll_deg", "pitch_deg", "threshold_k0", "shift_factor", "r_max", "r_min"):
+                 "roll_deg", "pitch_deg", "threshold_k0", "haze_contrast", "shift_factor",
+                 "r_max", "r_min"):
         check_domain(name, getattr(inp, name))
     if inp.r_min > inp.r_max:
         raise InputError("r_min", f"must be ≤ r_max: the darkest detail is not lighter than the "
@@ -449,6 +455,16 @@ def _height_limits(inp: UavInputs, rules: ScanRules | None) -> tuple[
     return limits, max_h, binding, allow, accuracy, warnings
 
 
+def _flight_time_s(length_m: float, speed_ms: float) -> float | None:
+    """Time on the strips [s]; None at ground speed 0, or where a subnormal speed makes it
+    infinite (never ``inf`` in a result)."""
+    if speed_ms <= 0:
+        return None
+    with np.errstate(over="ignore", divide="ignore"):
+        t = float(FL.flight_time_s(length_m, speed_ms))
+    return t if math.isfinite(t) else None
+
+
 def plan_uav(inp: UavInputs, rules: ScanRules | None = None) -> UavPlan:
     """Plan a UAV flight: GSD, MTF ground resolution, blur, flight geometry, and — with a map
     scale — the maximum flight height under the norm set's constraints.
@@ -483,6 +499,10 @@ def plan_uav(inp: UavInputs, rules: ScanRules | None = None) -> UavPlan:
     resolvable = bool(np.asarray(c.resolvable)[0])
     warnings: list[PlanWarning] = []
 
+    if inp.haze_contrast == M.DEFAULT_HAZE_CONTRAST and h_hi > M.DEFAULT_HAZE_MAX_HEIGHT_M:
+        warnings.append(PlanWarning("haze_default_height", Message(
+            "haze_default_height", c=inp.haze_contrast, valid=M.DEFAULT_HAZE_MAX_HEIGHT_M,
+            height=h_hi, key="[uav.atmosphere] haze_contrast"), severity="info"))
     blur = float(FL.motion_blur_px(inp.speed_ms, inp.exposure_s, gsd_lo))
     max_exp = float(FL.max_exposure_for_blur_s(max(inp.speed_ms, 1e-12), gsd_lo))
     max_speed = float(FL.max_speed_for_blur_ms(inp.exposure_s, gsd_lo))
@@ -495,7 +515,9 @@ def plan_uav(inp: UavInputs, rules: ScanRules | None = None) -> UavPlan:
     fp_along = float(FL.footprint_m(inp.sensor_height_mm, h_plan, inp.focal_mm))
     base = float(FL.photo_base_m(fp_along, inp.forward_overlap_pct))
     spacing = float(FL.line_spacing_m(fp_across, inp.side_overlap_pct))
-    interval = float(FL.photo_interval_s(base, inp.speed_ms)) if inp.speed_ms > 0 else math.inf
+    with np.errstate(over="ignore"):  # a subnormal speed: inf, shown as "—"
+        interval = (float(FL.photo_interval_s(base, inp.speed_ms)) if inp.speed_ms > 0
+                    else math.inf)
     fl: dict[str, Any] = {
         "footprint_across_m": fp_across, "footprint_along_m": fp_along, "base_m": base,
         "line_spacing_m": spacing, "photo_interval_s": interval,
@@ -515,13 +537,14 @@ def plan_uav(inp: UavInputs, rules: ScanRules | None = None) -> UavPlan:
                 "trigger_interval", interval=interval, minimum=inp.min_trigger_interval_s,
                 speed=fl["max_speed_for_trigger_ms"])))
     if inp.area_width_m and inp.area_length_m:
-        strips = int(FL.strip_count(inp.area_width_m, spacing))
+        strips = max(1, int(FL.strip_count(inp.area_width_m, spacing)))  # 1e-300 m: one
         per_strip = int(FL.photos_per_strip(inp.area_length_m, base))
-        length = float(FL.flight_length_m(strips, inp.area_length_m, spacing))
+        # each strip is flown over its photographed span, first to last exposure (the
+        # photos past the block ends included), not the block length
+        length = float(FL.flight_length_m(strips, (per_strip - 1) * base, spacing))
         fl.update({"strips": strips, "photos_per_strip": per_strip,
                    "photos": strips * per_strip, "flight_length_m": length,
-                   "flight_time_s": float(FL.flight_time_s(length, inp.speed_ms))
-                   if inp.speed_ms > 0 else None})
+                   "flight_time_s": _flight_time_s(length, inp.speed_ms)})
         if inp.image_width_px and inp.image_height_px:
             fl["data_volume_bytes"] = float(FL.data_volume_bytes(
                 strips * per_strip, inp.image_width_px, inp.image_height_px,

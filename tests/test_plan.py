@@ -105,7 +105,7 @@ def test_film_and_uav_side_by_side(tmp_path):
     doc = plan_json(str(p))
     rows = {r["quantity"]: r for r in doc["specification"]["comparison"]}
     assert rows["pixel on the ground"]["film"] == pytest.approx(7e-6 * 8000)
-    assert rows["pixel on the ground"]["uav"] == pytest.approx(0.03846)
+    assert rows["pixel on the ground"]["uav"] == pytest.approx(36 / 5616 * 300 / 50)
 
 
 BAD = {
