@@ -479,7 +479,7 @@ def _uav_view(job: UavJob, f: _Fmt) -> dict[str, Any]:
     if acc:
         m = f.label("pdf_m")
         height_forms = f.label("pdf_height_forms", sigma=f.num(
-            acc["sigma_z_at_highest_flown_height_m"], 3), h=f.g(h["max"]),
+            acc["sigma_z_at_highest_flown_height_m"], 3), h=f.num(h["max"], 0),
             vz=f.g(acc["height_accuracy_m"]), forms="; ".join(
                 f"{f.label('hf_' + k)}: {f.num(acc['forms'][k]['max_planned_height_m'], 0)} {m}"
                 for k in ("normal_case", "instruction", "parallax")))
