@@ -372,3 +372,25 @@ def test_a_derived_height_never_flies_above_the_ceiling(ceiling, tol, gsd):
     assert p.max_flown_height_m == pytest.approx(p.max_height_m * (1 + tol / 100))
     gsd_height = gsd / 100 * p.inputs.focal_mm / (p.inputs.pixel_um / 1000)
     assert p.binding == ("CEIL" if ceiling < gsd_height else "GSD")
+
+
+def test_pdf_inputs_show_the_ceiling_and_the_target_gsd(tmp_path):
+    pytest.importorskip("weasyprint")
+    pypdf = pytest.importorskip("pypdf")
+    import io
+
+    from scanplan.reports import ReportMeta
+    from scanplan.reports.pdf import render_pdf
+
+    job = uav_job(**SEED002, map_scale=2000, relief_interval_m=0.5, max_height_m=500,
+                  gsd_cm=3.0)
+    for locale, words in (("en", ("Altitude ceiling (highest flown height), m",
+                                  "Target GSD, cm", "Maximum planned height by height formula")),
+                          ("ru", ("Предельная высота полёта (наибольшая фактическая), м",
+                                  "Заданный размер пикселя на местности, см",
+                                  "Максимальная плановая высота по формулам точности высот"))):
+        data = render_pdf(uav=job, meta=ReportMeta(project="p", locale=locale))
+        text = " ".join(" ".join(pg.extract_text().split())
+                        for pg in pypdf.PdfReader(io.BytesIO(data)).pages)
+        for w in words:
+            assert w in text, (locale, w)

@@ -379,6 +379,10 @@ def _uav_view(job: UavJob, f: _Fmt) -> dict[str, Any]:
     ]
     if h["max"] != h["min"] or h["min"] != h["planned"]:
         inputs.append((f.label("pdf_flown_heights"), f"{f.g(h['min'])} – {f.g(h['max'])}"))
+    if inp.ceiling_m is not None:
+        inputs.append((f.label("ceiling_m"), f.g(inp.ceiling_m)))
+    if inp.gsd_target_m is not None:
+        inputs.append((f.label("gsd_target_cm"), f.g(inp.gsd_target_m * 100.0)))
     inputs += [
         (f.label("pdf_speed_ms"), f.g(inp.speed_ms)),
         (f.label("pdf_exposure_s"), f.g(inp.exposure_s)),
