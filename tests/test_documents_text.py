@@ -1,0 +1,201 @@
+"""Documents fit to sign (issue 13): the text of every page of every example's PDF and of
+every workbook cell and chart, in English and in Russian, holds no internal jargon.
+
+Every project file in ``examples/`` (globbed, so new examples are covered) is planned in
+both locales and rendered to spec.pdf and spec.xlsx. The extracted text must not contain
+
+- "seed 0…" (the papers are cited by their references, never by our file names),
+- repository paths (``docs/…``, ``….md``, ``….py``, ``norms/…``),
+- code identifiers: snake_case names (norm-schema parameters such as
+  ``planimetric_accuracy_mm``, message codes such as ``not_interpretable``) except a
+  project-file key written as the reader types it (``[norms] height_formula``), and the
+  raw values ``instruction`` / ``exact`` / ``paper`` of the norm set,
+- command-line flags (``--height-formula``);
+
+and the Russian documents hold no English: no Latin word of 3+ letters outside a short
+list of names, units and symbols (camera and lens model names from the catalogue,
+"scanplan", GSD/MTF, formula symbols) and outside the user's own text (project name,
+customer, ... — shown as typed).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import io
+import re
+import zipfile
+from functools import cache
+from pathlib import Path
+
+import pytest
+
+pypdf = pytest.importorskip("pypdf")
+pytest.importorskip("weasyprint")
+
+from openpyxl import load_workbook  # noqa: E402
+
+from scanplan import norms as norms_mod  # noqa: E402
+from scanplan.project import KEYS, load_project  # noqa: E402
+from scanplan.reports.excel import render_xlsx  # noqa: E402
+from scanplan.reports.pdf import render_pdf  # noqa: E402
+from scanplan.spec import plan_project  # noqa: E402
+
+EXAMPLES = sorted((Path(__file__).resolve().parent.parent / "examples").glob("*.toml"))
+LOCALES = ("en", "ru")
+
+_SEED = re.compile(r"seed\s*0", re.IGNORECASE)
+_PATH = re.compile(r"\b(?:docs|norms|scanplan|templates|tests|examples|benchmarks)/"
+                   r"|\b[\w-]+\.(?:md|py|toml|csv)\b")
+_FLAG = re.compile(r"(?<![\w-])--[a-z][a-z-]+")
+_SNAKE = re.compile(r"\b[a-z][a-z0-9]+(?:_[a-z0-9]+)+\b")
+_RAW_VALUES = re.compile(r"\b(?:instruction|exact|paper)\b")  # norm-set values as stored
+_PROJECT_KEY = re.compile(r"\[([a-z][a-z.]*)\]\s+([a-z][a-z0-9_]*)")
+_LATIN_WORD = re.compile(r"[A-Za-z][A-Za-z'’-]*[A-Za-z]")
+
+# Latin words a Russian document may hold: units, symbols and abbreviations of formulas,
+# the program's name. Camera/lens/scanner names come from the catalogue (below).
+_RU_ALLOWED = {
+    "scanplan", "gsd", "mtf", "ln", "sqrt", "exp", "max", "min", "obj", "thr", "mc", "mk",
+    "px", "rgb", "jpeg", "tiff", "dpi", "nyquist",
+}
+
+
+def _project_keys() -> set[tuple[str, str]]:
+    return {(sec, key) for sec, keys in KEYS.items() for key in keys}
+
+
+@cache
+def _catalogue_words() -> frozenset[str]:
+    """Words of the catalogue's model names (the part before any parenthesis)."""
+    cams, _steps, scanners = norms_mod._catalogue()
+    names = [c.name for c in cams.values()] + list(scanners.values())
+    words: set[str] = set()
+    for name in names:
+        model = re.sub(r"\([^)]*\)", " ", name)
+        words.update(w.lower() for w in _LATIN_WORD.findall(model))
+    return frozenset(words - {"with", "and", "lens", "assumed"})
+
+
+@cache
+def _documents(example: str, locale: str) -> dict[str, str]:
+    """{'pdf page N' / 'xlsx SHEET' / 'xlsx chart N': text} for one example in one locale."""
+    project = load_project(example)
+    values = {sec: dict(v) for sec, v in project.values.items()}
+    values.setdefault("project", {})["locale"] = locale
+    project = dataclasses.replace(project, values=values)
+    result = plan_project(project)
+    scan = result.film.job if result.film else None
+    uav = result.uav.job if result.uav else None
+    out: dict[str, str] = {}
+    pdf = pypdf.PdfReader(io.BytesIO(render_pdf(scan=scan, uav=uav, meta=result.meta,
+                                                spec=result)))
+    for i, page in enumerate(pdf.pages, 1):
+        out[f"pdf page {i}"] = page.extract_text()
+    data = render_xlsx(scan=scan, uav=uav, meta=result.meta, spec=result)
+    wb = load_workbook(io.BytesIO(data))
+    for ws in wb.worksheets:
+        cells = [ws.title]
+        for row in ws.iter_rows():
+            cells += [c.value for c in row if isinstance(c.value, str)]
+        for hf in (ws.oddHeader, ws.oddFooter):
+            cells += [part.text for part in (hf.left, hf.center, hf.right) if part.text]
+        out[f"xlsx sheet {ws.title!r}"] = "\n".join(cells)
+    with zipfile.ZipFile(io.BytesIO(data)) as z:
+        for name in sorted(n for n in z.namelist() if n.startswith("xl/charts/chart")):
+            xml = z.read(name).decode("utf-8")
+            out[f"xlsx {name}"] = "\n".join(re.findall(r"<(?:a:t|c:v)>([^<]*)</", xml))
+    return out
+
+
+def _user_text(example: str) -> list[str]:
+    """The user's own text in the project file (shown as typed, any language)."""
+    project = load_project(example)
+    texts = [project.name]
+    for sec in ("project",):
+        for key, value in project.values.get(sec, {}).items():
+            if isinstance(value, str) and key != "locale":
+                texts.append(value)
+    return [" ".join(t.split()) for t in texts if t and t.strip()]
+
+
+def _without_user_text(text: str, example: str) -> str:
+    flat = " ".join(text.split())
+    for t in sorted(_user_text(example), key=len, reverse=True):
+        flat = flat.replace(t, " ")
+        if len(t) > 40:  # the running header shortens the project name with an ellipsis
+            for n in range(20, len(t)):
+                flat = flat.replace(t[:n] + "…", " ")
+    return flat
+
+
+def jargon(text: str) -> list[str]:
+    """What in ``text`` is internal jargon (any locale); [] when it is clean."""
+    found = []
+    found += [f"seed reference {m.group()!r}" for m in _SEED.finditer(text)]
+    found += [f"repository path {m.group()!r}" for m in _PATH.finditer(text)]
+    found += [f"command-line flag {m.group()!r}" for m in _FLAG.finditer(text)]
+    keys = _project_keys()
+    shown_keys = {m.group(2) for m in _PROJECT_KEY.finditer(text)
+                  if (m.group(1), m.group(2)) in keys}
+    found += [f"code identifier {m.group()!r}" for m in _SNAKE.finditer(text)
+              if m.group() not in shown_keys]
+    found += [f"raw norm value {m.group()!r}" for m in _RAW_VALUES.finditer(text)]
+    return found
+
+
+def english_in_russian(text: str) -> list[str]:
+    """Latin words (3+ letters) in a Russian text that are not names, units or symbols."""
+    allowed = _RU_ALLOWED | _catalogue_words()
+    text = _PROJECT_KEY.sub(" ", text)  # a project-file key is typed as it is
+    return sorted({w for w in _LATIN_WORD.findall(text)
+                   if len(w) >= 3 and w.lower() not in allowed})
+
+
+CASES = [pytest.param(str(e), loc, id=f"{e.stem}-{loc}") for e in EXAMPLES for loc in LOCALES]
+
+
+def test_examples_exist():
+    assert len(EXAMPLES) >= 3
+
+
+@pytest.mark.parametrize(("example", "locale"), CASES)
+def test_documents_have_no_internal_jargon(example, locale):
+    problems = []
+    for where, text in _documents(example, locale).items():
+        problems += [f"{where}: {p}" for p in jargon(_without_user_text(text, example))]
+    assert not problems, "\n".join(problems)
+
+
+@pytest.mark.parametrize("example", [str(e) for e in EXAMPLES], ids=[e.stem for e in EXAMPLES])
+def test_russian_documents_have_no_english(example):
+    problems = []
+    for where, text in _documents(example, "ru").items():
+        words = english_in_russian(_without_user_text(text, example))
+        if words:
+            problems.append(f"{where}: {', '.join(words)}")
+    assert not problems, "\n".join(problems)
+
+
+# --- the detectors themselves catch what they are for -------------------------------
+
+
+@pytest.mark.parametrize("text", [
+    "Source: seed 001 Table 3", "docs/uav-models.md §1", "planimetric_accuracy_mm 0.2",
+    "(--height-formula parallax to use the parallax form.)", "[not_interpretable]",
+    "height formula instruction", "rounding exact"])
+def test_jargon_detector_catches(text):
+    assert jargon(text)
+
+
+@pytest.mark.parametrize("text", [
+    'set [norms] height_formula = "parallax" in the project file', "P_S = V_s·Mk/(k·Mc)",
+    "r_max / r_min 0.3 / 0.1", "Instruction GKINP (GNTA)-02-036-02, 2002", "circle, B = 0.97"])
+def test_jargon_detector_passes(text):
+    assert not jargon(text)
+
+
+def test_english_detector():
+    assert english_in_russian("Объект: object, круг") == ["object"]
+    assert english_in_russian("Источник: Instruction for photogrammetric works") != []
+    assert english_in_russian("GSD 0,038 м; P = exp(−(B·L/L_obj)²); scanplan 0.1.0") == []
+    assert english_in_russian("[norms] height_formula = «parallax»") == ["parallax"]
