@@ -130,11 +130,11 @@ MESSAGES: dict[str, dict[str, str]] = {
               "с вероятностью {p:g}",
     },
     "height_formula.instruction": {
-        "en": "instruction",
+        "en": "Instruction's (f/b)",
         "ru": "формула Инструкции",
     },
     "height_formula.parallax": {
-        "en": "parallax",
+        "en": "parallax (b/f)",
         "ru": "параллактическая формула",
     },
     # --- the binding constraint at one photo scale -------------------------------------

@@ -49,14 +49,14 @@ _PATH = re.compile(r"\b(?:docs|norms|scanplan|templates|tests|examples|benchmark
 _FLAG = re.compile(r"(?<![\w-])--[a-z][a-z-]+")
 _SNAKE = re.compile(r"\b[a-z][a-z0-9]+(?:_[a-z0-9]+)+\b")
 _RAW_VALUES = re.compile(r"\b(?:instruction|exact|paper)\b")  # norm-set values as stored
-_PROJECT_KEY = re.compile(r"\[([a-z][a-z.]*)\]\s+([a-z][a-z0-9_]*)")
+_PROJECT_KEY = re.compile(r'\[([a-z][a-z.]*)\]\s+([a-z][a-z0-9_]*)(?:\s*=\s*"[^"]*")?')
 _LATIN_WORD = re.compile(r"[A-Za-z][A-Za-z'’-]*[A-Za-z]")
 
 # Latin words a Russian document may hold: units, symbols and abbreviations of formulas,
 # the program's name. Camera/lens/scanner names come from the catalogue (below).
 _RU_ALLOWED = {
     "scanplan", "gsd", "mtf", "ln", "sqrt", "exp", "max", "min", "obj", "thr", "mc", "mk",
-    "px", "rgb", "jpeg", "tiff", "dpi", "nyquist",
+    "px", "rgb", "jpeg", "tiff", "dpi", "uas",
 }
 
 

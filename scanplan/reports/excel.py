@@ -44,10 +44,13 @@ from openpyxl.worksheet.worksheet import Worksheet
 from openpyxl.writer.excel import ExcelWriter
 
 from .._version import __version__
-from ..messages import localize
+from ..messages import localize  # noqa: F401  (re-exported for callers)
 from ..planner import CONSTRAINTS, height_formula_name
 from . import ReportMeta, report_datetime, write_atomic
 from .labels import LABELS, t
+from .references import Bibliography
+from .wording import (camera_title, display_message, document_date, object_title,
+                      param_name, param_value, scanner_title, shape_title)
 
 if TYPE_CHECKING:
     from ..api import ScanJob, UavJob
@@ -134,7 +137,8 @@ def render_xlsx(
         book.uav(uav)
         book.mtf(uav)
     book.norms(scan, uav)
-    book.warnings(scan, uav)
+    book.warnings(scan, uav, spec)
+    book.references()
     return book.to_bytes()
 
 
@@ -256,15 +260,17 @@ class _Book:
         self.wb = Workbook()
         self._first = True
         self.title_text = ""
+        self.bib = Bibliography(self.loc)
 
     # -- helpers ------------------------------------------------------------------------
 
     def t(self, key: str) -> str:
         return t(key, self.loc)
 
-    def text(self, value: object) -> str:
-        """An engine sentence (a :class:`~scanplan.messages.Message`) in the report's language."""
-        return localize(value, self.loc)
+    def text(self, value: object, ns: NormSet | None = None) -> str:
+        """An engine sentence (a :class:`~scanplan.messages.Message`) in the report's
+        language, ids shown by their names and the works it names by reference numbers."""
+        return self.bib.cite(display_message(value, ns, self.loc))
 
     def yes_no(self, value: bool) -> str:
         return self.t("xlsx_yes" if value else "xlsx_no")
@@ -277,18 +283,16 @@ class _Book:
             return cid
 
     def obj_name(self, ns: NormSet, name: str, map_scale: int | None) -> str:
-        """A norm object's name in the report's language (the norm table's Russian name)."""
-        if self.loc == "ru":
-            for obj in ns.objects:
-                if obj.name == name and (map_scale is None or obj.map_scale == map_scale):
-                    return obj.name_ru or name
-        return name
+        """A norm object's name in the report's language (unnamed: "object of the given
+        size")."""
+        for obj in ns.objects:
+            if obj.name == name and (map_scale is None or obj.map_scale == map_scale):
+                return object_title(obj, self.loc)
+        return object_title(type("_O", (), {"name": name, "name_ru": ""})(), self.loc)
 
     def shape_name(self, ns: NormSet, shape: str) -> str:
-        """A shape id in the report's language (the norm table's Russian name)."""
-        if self.loc == "ru":
-            return ns.shape_rows.get(shape, {}).get("name_ru") or shape
-        return shape
+        """A shape in words in the report's language."""
+        return shape_title(ns, shape, self.loc)
 
     def sheet(self, key: str, *, landscape: bool, widths: Sequence[float],
               header_rows: int = 1) -> Worksheet:
@@ -308,7 +312,8 @@ class _Book:
         ws.page_margins.top = ws.page_margins.bottom = 0.6
         ws.print_title_rows = f"1:{header_rows}"
         ws.freeze_panes = f"A{header_rows + 1}"
-        ws.oddFooter.center.text = f"{self.t('page')} &P {self.t('of')} &N"
+        sep = " / " if self.loc == "ru" else " "
+        ws.oddFooter.center.text = f"{self.t('sheet')} &P{sep}{self.t('sheets_of')} &N"
         ws.oddFooter.right.text = "&A"
         _widths(ws, widths)
         return ws
@@ -371,20 +376,43 @@ class _Book:
         put_text(ws, 1, 1, self.title_text).font = _TITLE
         m = self.meta
         row = 3
-        for key, value in (("project", m.project), ("customer", m.customer),
-                           ("contractor", m.contractor),
-                           ("date", m.date or self.when.date().isoformat())):
+        block = [("project", m.project), ("customer", m.customer), ("contractor", m.contractor)]
+        block += [(k, v) for k, v in (("organisation", m.organisation),
+                                      ("contract_number", m.contract_number)) if v]
+        block.append(("date", document_date(m.date or self.when.date(), self.loc)))
+        for key, value in block:
             put_text(ws, row, 1, self.t(key), bold=True)
-            put_text(ws, row, 2, value)
+            put_text(ws, row, 2, value, wrap=True)
             row += 1
+        line = "________________"
+        blocks = [("approved", m.approver_position + (f", {m.organisation}"
+                                                     if m.organisation else ""),
+                   m.approver_name)]
+        if m.agreed_position or m.agreed_name or m.agreed_organisation:
+            blocks.append(("agreed", m.agreed_position + (f", {m.agreed_organisation}"
+                                                         if m.agreed_organisation else ""),
+                           m.agreed_name))
+        for head, position, name in blocks:
+            row += 1
+            put_text(ws, row, 1, self.t(head)).font = _SECTION
+            row += 1
+            for key, value in (("position", position), ("name", name),
+                               ("signature", line), ("date", line)):
+                put_text(ws, row, 1, self.t(key), bold=True)
+                put_text(ws, row, 2, value, wrap=True)
+                row += 1
         row += 1
-        put_text(ws, row, 1, self.t("approved")).font = _SECTION
-        row += 1
-        for key, value in (("position", m.approver_position), ("name", m.approver_name),
-                           ("signature", "________________"), ("date", "________________")):
+        for key, value in (("compiled_by", m.compiled_by), ("checked_by", m.checked_by)):
             put_text(ws, row, 1, self.t(key), bold=True)
-            put_text(ws, row, 2, value)
+            put_text(ws, row, 2, value or line)
+            put_text(ws, row, 3, line)
             row += 1
+        box = self._warning_lines(scan, uav, spec)
+        if box:
+            row = self.section(ws, row + 1, self.t("warnings_box"))
+            for text in box:
+                put_text(ws, row, 1, text, wrap=False).fill = _WARNING_FILL
+                row += 1
         if spec is not None:
             row = self._summary_spec(ws, row + 1, spec)
         if scan is not None:
@@ -413,7 +441,8 @@ class _Book:
                     row = self.kv(ws, row, self.t("spec_frames"), f.frames, "#,##0")
                     row = self.kv(ws, row, self.t("spec_scanned_gb"), f.scanned_gigabytes,
                                   "#,##0.0")
-            row = self.kv(ws, row, self.t("spec_reason"), self.text(f.reason), wrap=True)
+            row = self.kv(ws, row, self.t("spec_reason"), self.text(f.reason, f.job.norm_set),
+                          wrap=True)
         if spec.uav is not None:
             u, p = spec.uav, spec.uav.job.plan
             if u.planned_height_m is not None:
@@ -430,7 +459,8 @@ class _Book:
             if "data_volume_bytes" in p.flight:
                 row = self.kv(ws, row, self.t("spec_data_gb"),
                               p.flight["data_volume_bytes"] / 1e9, "#,##0.0")
-            row = self.kv(ws, row, self.t("spec_reason"), self.text(u.reason), wrap=True)
+            row = self.kv(ws, row, self.t("spec_reason"), self.text(u.reason, u.job.norm_set),
+                          wrap=True)
         if spec.comparison:
             row = self.section(ws, row + 1, self.t("spec_comparison"))
             _header(ws, row, [self.t("spec_quantity"), self.t("spec_film"), self.t("spec_uav"),
@@ -471,7 +501,7 @@ class _Book:
             put_num(ws, row, 7, s.resolution_on_ground_mm, F1)
             put_num(ws, row, 8, s.required_resolving_power_lpmm, F1)
             put_num(ws, row, 9, s.recognition_probability, F3)
-            put_text(ws, row, 10, self.text(s.explanation), wrap=True)
+            put_text(ws, row, 10, self.text(s.explanation, job.norm_set), wrap=True)
             row += 1
         row += 1
         put_text(ws, row, 1, self.t("xlsx_interpretation_limit"), wrap=True)
@@ -510,8 +540,7 @@ class _Book:
             _mark((ws.cell(r0, 2), ws.cell(r0 + 1, 2)))
         obj = plan.inputs.map_object
         if obj is not None:
-            row = self.kv(ws, row, self.t("object"),
-                          self.obj_name(job.norm_set, obj.name, obj.map_scale))
+            row = self.kv(ws, row, self.t("object"), object_title(obj, self.loc), wrap=True)
             for rec in plan.recognition:
                 if rec.object == obj.name and rec.object_size_m == obj.size_m:
                     row = self.kv(ws, row, self.t("xlsx_p_planned"), rec.probability, F3)
@@ -535,11 +564,12 @@ class _Book:
     def _object_rows(self, ws: Worksheet, row: int, obj: Any, ns: NormSet) -> int:
         if obj is None:
             return self.kv(ws, row, self.t("object"), None)
-        row = self.kv(ws, row, self.t("object"), self.obj_name(ns, obj.name, obj.map_scale))
+        row = self.kv(ws, row, self.t("object"), object_title(obj, self.loc), wrap=True)
         row = self.kv(ws, row, self.t("xlsx_object_size_m"), obj.size_m, F3)
         row = self.kv(ws, row, self.t("xlsx_shape"), self.shape_name(ns, obj.shape))
         row = self.kv(ws, row, self.t("xlsx_shape_coefficient"), obj.shape_coefficient, F2)
-        return self.kv(ws, row, self.t("xlsx_object_source"), self.text(obj.source))
+        return self.kv(ws, row, self.t("xlsx_object_source"), self.text(obj.source),
+                       wrap=True)
 
     def _inputs_scan(self, ws: Worksheet, row: int, job: ScanJob) -> int:
         inp, rules = job.plan.inputs, job.plan.rules
@@ -547,7 +577,8 @@ class _Book:
         row = self.kv(ws, row, self.t("map_scale"), inp.map_scale, SCALE)
         row = self.kv(ws, row, self.t("relief_interval_m"), inp.relief_interval_m, F2)
         row = self.kv_list(ws, row, self.t("photo_scale"), inp.photo_scales, SCALE)
-        row = self.kv(ws, row, self.t("camera"), inp.camera or None)
+        row = self.kv(ws, row, self.t("camera"),
+                      camera_title(job.norm_set, inp.camera, self.loc) or None, wrap=True)
         row = self.kv(ws, row, self.t("focal_mm"), inp.focal_mm, F2)
         row = self.kv(ws, row, self.t("xlsx_frame_across_mm"), inp.frame_width_mm, F1)
         row = self.kv(ws, row, self.t("xlsx_frame_along_mm"), inp.frame_along_mm, F1)
@@ -558,7 +589,8 @@ class _Book:
         row = self.kv(ws, row, self.t("xlsx_height_formula"),
                       self.text(height_formula_name(rules.height_formula)))
         row = self.kv(ws, row, self.t("xlsx_pr_coefficient"), rules.pr_coefficient, F2)
-        row = self.kv(ws, row, self.t("scanner"), inp.scanner or None)
+        row = self.kv(ws, row, self.t("scanner"),
+                      scanner_title(job.norm_set, inp.scanner, self.loc) or None)
         if inp.scanner_steps_um:
             row = self.kv_list(ws, row, self.t("xlsx_scanner_steps_um"), inp.scanner_steps_um,
                                UM)
@@ -572,8 +604,8 @@ class _Book:
         inp = job.plan.inputs
         row = self.section(ws, row, self.t("xlsx_section_uav"))
         rows: list[tuple[str, object, str | None]] = [
-            ("camera", inp.camera or None, None),
-            ("xlsx_camera_name", inp.camera_name or None, None),
+            ("camera", camera_title(job.norm_set, inp.camera, self.loc, inp.camera_name)
+             or None, None),
             ("xlsx_pixel_pitch_um", inp.pixel_um, F2),
             ("focal_mm", inp.focal_mm, F2),
             ("xlsx_f_number", inp.f_number, F1),
@@ -864,11 +896,13 @@ class _Book:
             row = self._norm_set(ws, row, ns, [o for o in objs if o is not None]) + 1
 
     def _norm_set(self, ws: Worksheet, row: int, ns: NormSet, objs: list[Any]) -> int:
-        row = self.section(ws, row, f"{self.t('norm_set')}: {ns.name}")
         title = ns.title_ru if self.loc == "ru" and ns.title_ru else ns.title
-        row = self.kv(ws, row, self.t("xlsx_norm_id"), ns.name)
+        row = self.section(ws, row, f"{self.t('norm_set')}: {title}")
+        row = self.kv(ws, row, self.t("xlsx_norm_id"), f'[norms] set = "{ns.name}"')
         row = self.kv(ws, row, self.t("xlsx_title"), title, wrap=True)
-        row = self.kv(ws, row, self.t("source"), ns.source, wrap=True)
+        numbers = re.findall(r"\[\d+\]", self.bib.cite(ns.source))
+        row = self.kv(ws, row, self.t("source"),
+                      "; ".join(dict.fromkeys(numbers)) if numbers else ns.source, wrap=True)
         row = self.kv(ws, row, self.t("xlsx_bundled"), bool(ns.bundled))
         if not ns.bundled:  # a bundled set's folder depends on the installation
             row = self.kv(ws, row, self.t("xlsx_folder"), str(ns.path))
@@ -878,34 +912,27 @@ class _Book:
         row = self.section(ws, row + 1, self.t("xlsx_parameters"))
         _header(ws, row, [self.t("xlsx_parameter"), self.t("value"), self.t("source")])
         row += 1
-        for key in sorted(ns.parameters):
+        for key in ns.parameters:
             value = ns.parameters[key]
-            put_text(ws, row, 1, key)
-            if isinstance(value, bool):
-                put_text(ws, row, 2, self.yes_no(value))
-            elif isinstance(value, int | float):
+            put_text(ws, row, 1, param_name(ns, key, self.loc), wrap=True)
+            if isinstance(value, int | float) and not isinstance(value, bool):
                 put_num(ws, row, 2, value, "0.0##")
-                ws.cell(row, 2).alignment = Alignment(horizontal="left")
-            elif isinstance(value, list | tuple):
-                put_text(ws, row, 2, ", ".join(str(v) for v in value))
+                ws.cell(row, 2).alignment = Alignment(horizontal="left", vertical="top")
             else:
-                put_text(ws, row, 2, value)
-            put_text(ws, row, 3, ns.parameter_sources.get(key, ""), wrap=True)
+                put_text(ws, row, 2, param_value(ns, key, value, self.loc), wrap=True)
+            put_text(ws, row, 3, self.bib.cite(ns.parameter_sources.get(key, "")), wrap=True)
             row += 1
         shapes_used = {o.shape for o in objs}
         row = self.section(ws, row + 1, self.t("xlsx_shapes"))
-        _header(ws, row, [self.t("xlsx_shape"), self.t("xlsx_title"),
-                          self.t("xlsx_shape_coefficient"), self.t("xlsx_used"),
-                          self.t("source")])
+        _header(ws, row, [self.t("xlsx_shape"), self.t("xlsx_shape_coefficient"),
+                          self.t("xlsx_used"), self.t("source")])
         row += 1
         for shape, coef in ns.shapes.items():
             meta = ns.shape_rows.get(shape, {})
-            cells = [put_text(ws, row, 1, shape),
-                     put_text(ws, row, 2, meta.get("name_ru", "") if self.loc == "ru"
-                              else shape),
-                     put_num(ws, row, 3, coef, F2),
-                     put_text(ws, row, 4, self.yes_no(shape in shapes_used))]
-            put_text(ws, row, 5, meta.get("source", ""), wrap=True)
+            cells = [put_text(ws, row, 1, self.shape_name(ns, shape)),
+                     put_num(ws, row, 2, coef, F2),
+                     put_text(ws, row, 3, self.yes_no(shape in shapes_used))]
+            put_text(ws, row, 4, self.bib.cite(meta.get("source", "")), wrap=True)
             if shape in shapes_used:
                 _mark(cells)
             row += 1
@@ -916,46 +943,77 @@ class _Book:
         row += 1
         used_rows = {(o.map_scale, o.name, o.size_m) for o in objs if o.map_scale is not None}
         for obj in ns.objects:
-            name = obj.name_ru if self.loc == "ru" and obj.name_ru else obj.name
             is_used = (obj.map_scale, obj.name, obj.size_m) in used_rows
             cells = [put_num(ws, row, 1, obj.map_scale, SCALE),
-                     put_text(ws, row, 2, name, wrap=True),
+                     put_text(ws, row, 2, object_title(obj, self.loc), wrap=True),
                      put_num(ws, row, 3, obj.size_m, F3),
                      put_text(ws, row, 4, self.yes_no(is_used)),
                      put_text(ws, row, 5, self.shape_name(ns, obj.shape))]
-            put_text(ws, row, 6, obj.source, wrap=True)
+            put_text(ws, row, 6, self.bib.cite(obj.source), wrap=True)
             if is_used:
                 _mark(cells)
             row += 1
         return row
 
-    def warnings(self, scan: ScanJob | None, uav: UavJob | None) -> None:
-        ws = self.sheet("xlsx_sheet_warnings", landscape=True, widths=(26, 16, 24, 24, 100))
-        _header(ws, 1, [self.t("xlsx_section"), self.t("xlsx_severity"), self.t("xlsx_code"),
-                        self.t("photo_scale"), self.t("xlsx_message")])
-        items: list[tuple[str, PlanWarning]] = []
+    def _warning_items(self, scan: ScanJob | None, uav: UavJob | None,
+                       spec: PlanResult | None = None) -> list[tuple[str, PlanWarning, Any]]:
+        items: list[tuple[str, PlanWarning, Any]] = []
         if scan is not None:
-            items += [(self.t("xlsx_section_scan"), w) for w in scan.plan.warnings]
+            items += [(self.t("xlsx_section_scan"), w, scan.norm_set) for w in scan.plan.warnings]
         if uav is not None:
-            items += [(self.t("xlsx_section_uav"), w) for w in uav.plan.warnings]
+            items += [(self.t("xlsx_section_uav"), w, uav.norm_set) for w in uav.plan.warnings]
+        if spec is not None:
+            seen = {w.code for _, w, _ in items}
+            items += [(self.t("spec_title"), w, None) for w in spec.warnings
+                      if w.code not in seen]
+        return items
+
+    def _heading(self, w: PlanWarning) -> str:
+        key = f"pdf_warn_{w.code}"
+        return self.t(key) if key in LABELS["en"] else ""
+
+    def _warning_lines(self, scan: ScanJob | None, uav: UavJob | None,
+                       spec: PlanResult | None) -> list[str]:
+        """Every warning in short form (the Summary sheet's box)."""
+        out = []
+        for _section, w, ns in self._warning_items(scan, uav, spec):
+            head = self._heading(w) or self.text(w.message, ns)
+            scales = ", ".join(_scale_text(s) for s in w.photo_scales)
+            out.append(f"! {head}" + (f": {scales}" if scales else ""))
+        return list(dict.fromkeys(out))
+
+    def warnings(self, scan: ScanJob | None, uav: UavJob | None,
+                 spec: PlanResult | None = None) -> None:
+        ws = self.sheet("xlsx_sheet_warnings", landscape=True, widths=(20, 14, 30, 20, 90))
+        _header(ws, 1, [self.t("xlsx_section"), self.t("xlsx_severity"), self.t("warnings"),
+                        self.t("photo_scale"), self.t("xlsx_message")])
+        items = self._warning_items(scan, uav, spec)
         if not items:
             put_text(ws, 2, 1, self.t("no_warnings"))
             return
-        for row, (section, w) in enumerate(items, start=2):
+        for row, (section, w, ns) in enumerate(items, start=2):
             try:
                 severity = self.t(f"xlsx_severity_{w.severity}")
             except KeyError:
                 severity = w.severity
             cells = [put_text(ws, row, 1, section, wrap=True),
                      put_text(ws, row, 2, severity),
-                     put_text(ws, row, 3, w.code),
+                     put_text(ws, row, 3, self._heading(w), wrap=True),
                      put_text(ws, row, 4, ", ".join(_scale_text(s) for s in w.photo_scales),
                               wrap=True),
-                     put_text(ws, row, 5, self.text(w.message), wrap=True)]
+                     put_text(ws, row, 5, self.text(w.message, ns), wrap=True)]
             if w.severity == "warning":
                 for cell in cells:
                     cell.fill = _WARNING_FILL
         ws.auto_filter.ref = f"A1:E{len(items) + 1}"
+
+    def references(self) -> None:
+        """The works the workbook cites, numbered as in its cells."""
+        ws = self.sheet("references", landscape=False, widths=(6, 110))
+        _header(ws, 1, ["№", self.t("references")])
+        for row, (n, text) in enumerate(self.bib.entries(), start=2):
+            put_num(ws, row, 1, n, INT)
+            put_text(ws, row, 2, text, wrap=True)
 
 
 
