@@ -17,9 +17,10 @@ from scanplan.reports import excel as X
 from scanplan.reports.excel import render_xlsx, write_xlsx
 
 INJECTION = '=HYPERLINK("http://x","y")'
-EN_SHEETS = ["Summary", "Inputs", "Constraints", "Sweep", "UAV", "MTF", "Norms", "Warnings"]
+EN_SHEETS = ["Summary", "Inputs", "Constraints", "Sweep", "UAV", "MTF", "Norms", "Warnings",
+             "References"]
 RU_SHEETS = ["Сводка", "Исходные данные", "Условия", "Ряд масштабов", "БПЛА", "ФПМ",
-             "Нормативы", "Предупреждения"]
+             "Нормативы", "Предупреждения", "Список литературы"]
 
 
 @pytest.fixture(scope="module")
@@ -87,9 +88,10 @@ def test_sheet_names_in_both_locales(both_en, both_ru):
 
 def test_only_sheets_with_content(scan, uav):
     assert load(render_xlsx(scan=scan)).sheetnames == [
-        "Summary", "Inputs", "Constraints", "Sweep", "Norms", "Warnings"]
+        "Summary", "Inputs", "Constraints", "Sweep", "Norms", "Warnings", "References"]
     assert load(render_xlsx(uav=uav, meta=ReportMeta(locale="ru"))).sheetnames == [
-        "Сводка", "Исходные данные", "БПЛА", "ФПМ", "Нормативы", "Предупреждения"]
+        "Сводка", "Исходные данные", "БПЛА", "ФПМ", "Нормативы", "Предупреждения",
+        "Список литературы"]
 
 
 def test_nothing_to_report_is_an_error():
@@ -195,8 +197,10 @@ def test_numbers_are_numbers(both_en, both_ru):
 
 def test_warnings_sheet(both_en, scan, uav):
     ws = both_en["Warnings"]
-    codes = [ws.cell(r, 3).value for r in range(2, ws.max_row + 1)]
-    assert codes == [w.code for w in scan.plan.warnings + uav.plan.warnings]
+    headings = [ws.cell(r, 3).value for r in range(2, ws.max_row + 1)]
+    # each warning by its heading, never by its code (issue 13)
+    assert headings == [X.t(f"pdf_warn_{w.code}", "en")
+                        for w in scan.plan.warnings + uav.plan.warnings]
     quiet = dataclasses.replace(scan, plan=dataclasses.replace(scan.plan, warnings=()))
     ws = load(render_xlsx(scan=quiet))["Warnings"]
     assert ws["A2"].value == "No warnings."
@@ -263,7 +267,7 @@ def test_byte_identical_with_source_date_epoch(monkeypatch, scan, uav):
         assert {i.date_time for i in z.infolist()} == {(2023, 11, 14, 22, 13, 20)}
         core = z.read("docProps/core.xml").decode()
     assert core.count("2023-11-14T22:13:20Z") == 2  # created and modified
-    assert load(one)["Сводка"]["B6"].value == "2023-11-14"
+    assert load(one)["Сводка"]["B6"].value == "14.11.2023"  # the Russian date convention
     monkeypatch.setenv("SOURCE_DATE_EPOCH", "1700000060")
     assert render_xlsx(scan=scan, uav=uav, meta=meta) != one
 

@@ -1009,7 +1009,7 @@ class _Book:
 
     def references(self) -> None:
         """The works the workbook cites, numbered as in its cells."""
-        ws = self.sheet("references", landscape=False, widths=(6, 110))
+        ws = self.sheet("references", landscape=False, widths=(8, 110, 8))
         _header(ws, 1, ["№", self.t("references")])
         for row, (n, text) in enumerate(self.bib.entries(), start=2):
             put_num(ws, row, 1, n, INT)
