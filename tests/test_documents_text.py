@@ -199,3 +199,37 @@ def test_english_detector():
     assert english_in_russian("Источник: Instruction for photogrammetric works") != []
     assert english_in_russian("GSD 0,038 м; P = exp(−(B·L/L_obj)²); scanplan 0.1.0") == []
     assert english_in_russian("[norms] height_formula = «parallax»") == ["parallax"]
+
+
+@pytest.mark.parametrize(("example", "locale"), CASES)
+def test_no_near_empty_last_page(example, locale):
+    """The last page carries real content (not a lone signature block or a footer note):
+    at least a quarter of the text of an average earlier page."""
+    pages = [text for where, text in _documents(example, locale).items()
+             if where.startswith("pdf page")]
+    if len(pages) < 2:
+        return
+    mean = sum(len(p) for p in pages[:-1]) / (len(pages) - 1)
+    assert len(pages[-1]) >= 0.25 * mean, (len(pages[-1]), mean, pages[-1][:300])
+
+
+@pytest.mark.parametrize(("example", "locale"), CASES)
+def test_signing_blocks_and_sheet_numbers(example, locale):
+    """Approval block, compiled/checked lines, references and «Лист N / Листов M»."""
+    docs = _documents(example, locale)
+    pages = [text for where, text in docs.items() if where.startswith("pdf page")]
+    first, last = " ".join(pages[0].split()), " ".join(pages[-1].split())
+    n = len(pages)
+    if locale == "ru":
+        assert "УТВЕРЖДАЮ" in first
+        assert "Составил" in last and "Проверил" in last and "Список литературы" in " ".join(
+            pages)
+        assert all(f"Лист {i} / Листов {n}" in " ".join(p.split())
+                   for i, p in enumerate(pages, 1))
+        assert re.search(r"Дата \d\d\.\d\d\.\d{4}", first)
+    else:
+        assert "APPROVED" in first
+        assert "Compiled by" in last and "Checked by" in last and "References" in " ".join(
+            pages)
+        assert all(f"Sheet {i} of {n}" in " ".join(p.split()) for i, p in enumerate(pages, 1))
+        assert re.search(r"Date \d{4}-\d\d-\d\d", first)
