@@ -56,7 +56,7 @@ _LATIN_WORD = re.compile(r"[A-Za-z][A-Za-z'’-]*[A-Za-z]")
 # the program's name. Camera/lens/scanner names come from the catalogue (below).
 _RU_ALLOWED = {
     "scanplan", "gsd", "mtf", "ln", "sqrt", "exp", "max", "min", "obj", "thr", "mc", "mk",
-    "px", "rgb", "jpeg", "tiff", "dpi", "uas",
+    "px", "rgb", "jpeg", "tiff", "dpi", "uas-fp",
 }
 
 
