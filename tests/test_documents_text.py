@@ -233,3 +233,43 @@ def test_signing_blocks_and_sheet_numbers(example, locale):
             pages)
         assert all(f"Sheet {i} of {n}" in " ".join(p.split()) for i, p in enumerate(pages, 1))
         assert re.search(r"Date \d{4}-\d\d-\d\d", first)
+
+
+_TERMINAL_PROJECT = """
+[project]
+name = "Карта"
+locale = "{locale}"
+[map]
+scale = 10000
+relief_interval_m = 1.0
+[film]
+camera = "rc30-153"
+photo_scales = [15000, 20000, 25000, 30000]
+scanner = "photoscan-td"
+[uav]
+camera = "canon-eos-5d-mark-ii-50"
+f_number = 8
+height_m = 300
+"""
+
+
+@pytest.mark.parametrize("locale", LOCALES)
+def test_terminal_summary_speaks_the_projects_language(tmp_path, locale):
+    from click.testing import CliRunner
+
+    from scanplan.cli import main
+
+    path = tmp_path / "p.toml"
+    path.write_text(_TERMINAL_PROJECT.format(locale=locale), encoding="utf-8")
+    out = CliRunner().invoke(main, ["plan", str(path)])
+    assert out.exit_code == 0, out.output
+    text = out.stdout
+    if locale == "ru":
+        for phrase in ("рекомендуемый масштаб снимков", "пиксель сканирования",
+                       "рекомендуемая высота полёта", "Предупреждения:", "8,3 мкм"):
+            assert phrase in text, phrase
+        # no English sentence: the words left are symbols, ids in brackets, names
+        body = re.sub(r"\[[a-z]+_[a-z_]+\]", " ", text)  # the codes, not "[norms]"
+        assert english_in_russian(body) == [], english_in_russian(body)
+    else:
+        assert "recommended photo scale" in text and "8.3 µm" in text
