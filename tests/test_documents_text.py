@@ -273,3 +273,32 @@ def test_terminal_summary_speaks_the_projects_language(tmp_path, locale):
         assert english_in_russian(body) == [], english_in_russian(body)
     else:
         assert "recommended photo scale" in text and "8.3 µm" in text
+
+
+@pytest.mark.parametrize("example", [str(e) for e in EXAMPLES], ids=[e.stem for e in EXAMPLES])
+def test_wrapped_cells_have_room(example):
+    """A wrapped cell longer than its column gets a row tall enough for its lines, so it
+    does not run over the next row where the row height is taken from the file
+    (LibreOffice)."""
+    import math
+
+    from openpyxl.utils import get_column_letter
+
+    from scanplan.reports.excel import render_xlsx as render
+
+    project = load_project(example)
+    result = plan_project(project)
+    data = render(scan=result.film.job if result.film else None,
+                  uav=result.uav.job if result.uav else None, meta=result.meta, spec=result)
+    wb = load_workbook(io.BytesIO(data))
+    for ws in wb.worksheets:
+        for row in ws.iter_rows():
+            for cell in row:
+                if not (isinstance(cell.value, str) and cell.alignment.wrap_text):
+                    continue
+                width = ws.column_dimensions[get_column_letter(cell.column)].width or 8.43
+                lines = math.ceil(len(cell.value) / max(width * 1.1 - 1, 4))
+                if lines > 1:
+                    height = ws.row_dimensions[cell.row].height
+                    assert height is not None and height >= 14 * lines, (
+                        ws.title, cell.coordinate, lines, height)

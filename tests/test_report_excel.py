@@ -173,7 +173,11 @@ def test_mtf_sheet_has_every_component_contrast_threshold_and_r(both_en, uav):
 def test_sweep_sheet_and_norms_used_rows(both_en, scan):
     ws = both_en["Sweep"]
     sweep = scan.plan.sweep
-    assert ws.max_row == len(sweep["photo_scale"]) + 1
+    n = len(sweep["photo_scale"])
+    # the sweep, then (below a blank row) the candidate photo scales the chart labels
+    assert ws.cell(n + 2, 1).value is None
+    assert [ws.cell(n + 4 + i, 1).value for i in range(len(scan.plan.scenarios))] == [
+        s.photo_scale for s in scan.plan.scenarios]
     assert ws["B2"].value == exact(sweep["PS"][0])
     assert ws["G2"].value == exact(sweep["scan_pixel_um"][0])
     assert is_marked(ws.cell(2, 2 + scan.plan.rules.constraints.index(sweep["binding"][0])))
@@ -209,7 +213,7 @@ def test_warnings_sheet(both_en, scan, uav):
 # --- layout -----------------------------------------------------------------------------
 
 
-def test_charts_present(both_en, both_en_bytes):
+def test_charts_present(both_en, both_en_bytes, scan):
     assert len(both_en["Sweep"]._charts) == 1
     assert len(both_en["MTF"]._charts) == 1
     assert len(both_en["UAV"]._charts) == 1  # GSD and L against height
@@ -218,8 +222,17 @@ def test_charts_present(both_en, both_en_bytes):
         charts = [n for n in names if n.startswith("xl/charts/chart")]
         assert len(charts) == 3
         sweep_xml = z.read(charts[0]).decode()
-    # one series per constraint plus the scan pixel; log photo-scale axis
-    assert sweep_xml.count("<ser>") == 6 and "logBase" in sweep_xml
+    # one series per constraint, the scan pixel, one labelled point per candidate photo
+    # scale (issue 13: every candidate scale named on the chart); log pixel axis with the
+    # photo-scale ticks on the candidates
+    assert sweep_xml.count("<ser>") == 6 + len(scan.plan.scenarios) and "logBase" in sweep_xml
+    assert sweep_xml.count("<showSerName val=\"1\"") == len(scan.plan.scenarios)
+    assert "<majorUnit" in sweep_xml
+    # charts start a printed page (never split), below their data
+    for name in ("Sweep", "UAV", "MTF"):
+        ws = both_en[name]
+        anchor_row = ws._charts[0].anchor._from.row + 1
+        assert anchor_row - 1 in [b.id for b in ws.row_breaks.brk], name
 
 
 def test_page_setup_frozen_headers_print_titles(both_en):

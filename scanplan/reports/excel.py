@@ -38,6 +38,10 @@ from typing import TYPE_CHECKING, Any
 from openpyxl import Workbook
 from openpyxl.cell.cell import ILLEGAL_CHARACTERS_RE
 from openpyxl.chart import Reference, ScatterChart, Series
+from openpyxl.chart.axis import ChartLines
+from openpyxl.chart.label import DataLabelList
+from openpyxl.chart.shapes import GraphicalProperties
+from openpyxl.worksheet.pagebreak import Break
 from openpyxl.styles import Alignment, Font, PatternFill
 from openpyxl.utils import get_column_letter
 from openpyxl.worksheet.worksheet import Worksheet
@@ -132,7 +136,7 @@ def render_xlsx(
     book.inputs(scan, uav)
     if scan is not None:
         book.constraints(scan)
-        book.sweep(scan)
+        book.sweep(scan, spec)
     if uav is not None:
         book.uav(uav)
         book.mtf(uav)
@@ -359,6 +363,8 @@ class _Book:
         props.title = _clean_text(self.title_text)[:255]
         if self.meta.project:
             props.subject = _clean_text(self.meta.project)[:255]
+        for ws in self.wb.worksheets:
+            _fit_rows(ws)
         raw = io.BytesIO()
         # ExcelWriter, not Workbook.save: save() stamps `modified` with the current time.
         archive = zipfile.ZipFile(raw, "w", zipfile.ZIP_DEFLATED, allowZip64=True)
@@ -382,7 +388,7 @@ class _Book:
         block.append(("date", document_date(m.date or self.when.date(), self.loc)))
         for key, value in block:
             put_text(ws, row, 1, self.t(key), bold=True)
-            put_text(ws, row, 2, value, wrap=True)
+            put_text(ws, row, 2, value)  # one line, running over the empty cells beside it
             row += 1
         line = "________________"
         blocks = [("approved", m.approver_position + (f", {m.organisation}"
@@ -399,7 +405,7 @@ class _Book:
             for key, value in (("position", position), ("name", name),
                                ("signature", line), ("date", line)):
                 put_text(ws, row, 1, self.t(key), bold=True)
-                put_text(ws, row, 2, value, wrap=True)
+                put_text(ws, row, 2, value)
                 row += 1
         row += 1
         for key, value in (("compiled_by", m.compiled_by), ("checked_by", m.checked_by)):
@@ -674,7 +680,7 @@ class _Book:
         if row > 2:
             ws.auto_filter.ref = f"A1:J{row - 1}"
 
-    def sweep(self, job: ScanJob) -> None:
+    def sweep(self, job: ScanJob, spec: PlanResult | None = None) -> None:
         sweep = job.plan.sweep
         scales = list(sweep.get("photo_scale", []))
         ids = [cid for cid in job.plan.rules.constraints if cid in sweep]
@@ -702,16 +708,61 @@ class _Book:
             return
         chart = _scatter(self.t("plot_constraints"), self.t("photo_scale"), self.t("pixel_um"))
         chart.x_axis.number_format = SCALE
-        chart.x_axis.scaling.logBase = 10
-        chart.x_axis.scaling.min = _finite(scales[0])
-        chart.x_axis.scaling.max = _finite(scales[-1])
-        chart.y_axis.scaling.min = 0
+        # a linear axis whose ticks fall on every candidate photo scale (a log axis would
+        # label only 1:1000, 1:10000, ...)
+        lo, hi, step = _scale_ticks([s.photo_scale for s in job.plan.scenarios],
+                                    _finite(scales[0]) or 0.0, _finite(scales[-1]) or 1.0)
+        chart.x_axis.scaling.min = lo
+        chart.x_axis.scaling.max = hi
+        chart.x_axis.majorUnit = step
+        chart.x_axis.majorGridlines = ChartLines()
+        chart.y_axis.number_format = "General"
+        # pixels span a decade or more: a log axis shows the deciding (smallest) one clearly
+        values = [v for cid in ids for v in (_finite(x) for x in sweep[cid]) if v]
+        chart.y_axis.scaling.logBase = 10
+        chart.y_axis.scaling.min = _log_floor(min(values, default=1.0))
+        chart.y_axis.scaling.max = _log_ceil(max(values, default=100.0))
+        chart.y_axis.majorGridlines = ChartLines()
+        chart.y_axis.minorGridlines = ChartLines()
         xref = Reference(ws, min_col=1, min_row=2, max_row=n + 1)
         for j, cid in enumerate(ids):
             _add_series(chart, ws, xref, 2 + j, n, self.cname(cid))
         _add_series(chart, ws, xref, pixel_col, n, self.t("scan_pixel_um"), width_emu=44450,
                     dash="dash", color="000000")
-        ws.add_chart(chart, f"{get_column_letter(pixel_col + 3)}2")
+        rec = spec.film.recommended if spec is not None and spec.film is not None else None
+        self._candidate_markers(chart, ws, job, n + 3, rec.photo_scale if rec else None)
+        _chart_below(ws, chart, n + 1 + 2 + len(job.plan.scenarios) + 2)
+
+    def _candidate_markers(self, chart: ScatterChart, ws: Worksheet, job: ScanJob,
+                           first_row: int, recommended: float | None) -> None:
+        """One labelled point per candidate photo scale at its scan pixel: the chart names
+        every candidate scale (a log axis labels only 1:1000, 1:10000, ...); the
+        recommended one (the smallest feasible scale) stands out."""
+        scen = job.plan.scenarios
+        _header(ws, first_row, [self.t("photo_scale"), self.t("scan_pixel_um"),
+                                self.t("binding")])
+        for i, s in enumerate(scen):
+            row = first_row + 1 + i
+            put_num(ws, row, 1, s.photo_scale, SCALE)
+            put_num(ws, row, 2, s.scan_pixel_um, UM)
+            put_text(ws, row, 3, s.binding)
+            label = f"1:{_group(s.photo_scale, self.loc)}"
+            if s.photo_scale == recommended:
+                label += " (" + self.t("xlsx_recommended") + ")"
+            xref = Reference(ws, min_col=1, min_row=row, max_row=row)
+            series = _add_series(chart, ws, xref, 2, 1, label, first_row=row)
+            series.graphicalProperties.line.noFill = True
+            series.marker.symbol = "diamond" if s.photo_scale == recommended else "circle"
+            series.marker.size = 11 if s.photo_scale == recommended else 7
+            color = "C00000" if s.photo_scale == recommended else "000000"
+            series.marker.graphicalProperties = GraphicalProperties(solidFill=color)
+            series.marker.graphicalProperties.line.solidFill = color
+            series.dLbls = DataLabelList()
+            series.dLbls.showSerName = True
+            series.dLbls.showVal = False
+            series.dLbls.showCatName = False
+            series.dLbls.showLegendKey = False
+            series.dLbls.position = "t"
 
     # -- UAV and MTF --------------------------------------------------------------------
 
@@ -816,10 +867,55 @@ class _Book:
                 put_num(ws, first + i, 3, curve["ground_resolution_m"][i], F4, missing=None)
             n = len(heights)
             chart = _scatter(self.t("plot_height"), self.t("height_m"), self.t("gsd_m") + "; L")
+            chart.x_axis.scaling.min = 0
+            chart.y_axis.scaling.min = 0
+            chart.x_axis.majorGridlines = ChartLines()
             xref = Reference(ws, min_col=1, min_row=first, max_row=first + n - 1)
             _add_series(chart, ws, xref, 2, n, self.t("gsd_m"), first_row=first)
             _add_series(chart, ws, xref, 3, n, self.t("ground_resolution_m"), first_row=first)
-            ws.add_chart(chart, f"E{row}")
+            top = max((v for v in (_finite(x) for key in ("gsd_m", "ground_resolution_m")
+                                   for x in curve[key]) if v is not None), default=1.0)
+            end = self._height_markers(chart, ws, plan, first + n + 1, top,
+                                       max(heights))
+            _chart_below(ws, chart, end + 1)
+
+    def _height_markers(self, chart: ScatterChart, ws: Worksheet, plan: Any, row: int,
+                        top: float, right: float) -> int:
+        """Vertical lines at the planned, highest flown and maximum heights and the binding
+        ground limit as a horizontal line (two-point series, their cells below the curve).
+        Returns the next free row."""
+        h = plan.heights_m
+        m = " м" if self.loc == "ru" else " m"
+        marks: list[tuple[str, float, float, float, float, str, str]] = []
+        if h.get("planned"):
+            marks.append((f"{self.t('xlsx_planned')}: {_group(h['planned'], self.loc)}{m}",
+                          h["planned"], 0.0, h["planned"], top, "000000", "solid"))
+        if h.get("max") and h["max"] != h.get("planned"):
+            marks.append((f"{self.t('xlsx_highest_flown')}: {_group(h['max'], self.loc)}{m}",
+                          h["max"], 0.0, h["max"], top, "7F7F7F", "dash"))
+        if plan.max_height_m is not None:
+            marks.append((f"{self.t('max_height_m').split(',')[0]} ({plan.binding}): "
+                          f"{_group(round(plan.max_height_m), self.loc)}{m}",
+                          plan.max_height_m, 0.0, plan.max_height_m, top, "C00000", "sysDot"))
+        b = next((lim for lim in plan.limits if lim.binding), None)
+        if b is not None and b.limit_m <= top * 1.5:
+            marks.append((f"{b.compares} ≤ {_fmt_number(b.limit_m, self.loc, 3)}{m} "
+                          f"({b.id})", 0.0, b.limit_m, right, b.limit_m, "C00000", "dashDot"))
+        if not marks:
+            return row
+        _header(ws, row, [self.t("xlsx_marker"), "x", "y"])
+        row += 1
+        for label, x0, y0, x1, y1, color, dash in marks:
+            put_text(ws, row, 1, label)
+            put_num(ws, row, 2, x0, F1)
+            put_num(ws, row, 3, y0, F4)
+            put_num(ws, row + 1, 2, x1, F1)
+            put_num(ws, row + 1, 3, y1, F4)
+            xref = Reference(ws, min_col=2, min_row=row, max_row=row + 1)
+            _add_series(chart, ws, xref, 3, 2, label, first_row=row, color=color,
+                        dash=None if dash == "solid" else dash)
+            row += 2
+        return row
 
     def mtf(self, job: UavJob) -> None:
         plan = job.plan
@@ -852,7 +948,13 @@ class _Book:
                 put_num(ws, i + 2, 2 + j, mc[k][i], F4, missing=None)
         chart = _scatter(self.t("plot_mtf"), self.t("frequency_lpmm"), self.t("contrast"))
         chart.x_axis.scaling.min = 0
-        chart.y_axis.scaling.min = 0
+        # contrast and threshold meet low on the curve: a log axis shows the crossing
+        low = [v for k in ("image_contrast", "threshold") if k in mc
+               for v in (_finite(x) for x in mc[k]) if v is not None and v > 0]
+        chart.y_axis.scaling.logBase = 10
+        chart.y_axis.scaling.min = _log_floor(min(low, default=0.01))
+        chart.y_axis.scaling.max = 1
+        chart.y_axis.majorGridlines = ChartLines()
         xref = Reference(ws, min_col=1, min_row=2, max_row=n + 1)
         for k in ("image_contrast", "threshold"):
             if k in cols:
@@ -861,17 +963,16 @@ class _Book:
         mcol = ncol + 2
         if r is not None and "image_contrast" in mc:
             # a two-point vertical series at R marks the crossing
-            top = max((v for v in (_finite(x) for x in mc["image_contrast"]) if v is not None),
-                      default=1.0)
+            top = 1.0
             _header(ws, 1, [self.t("xlsx_r_marker"), self.t("contrast")], col=mcol)
-            for i, yv in enumerate((0.0, top)):
+            for i, yv in enumerate((chart.y_axis.scaling.min, top)):
                 put_num(ws, 2 + i, mcol, r, F1)
                 put_num(ws, 2 + i, mcol + 1, yv, F3)
             mref = Reference(ws, min_col=mcol, min_row=2, max_row=3)
             unit = "мм⁻¹" if self.loc == "ru" else "lines/mm"
             label = f"R = {_fmt_number(r, self.loc)} {unit}"
             _add_series(chart, ws, mref, mcol + 1, 2, label, dash="dash", color="C00000")
-        ws.add_chart(chart, f"{get_column_letter(mcol)}6")
+        _chart_below(ws, chart, n + 3)
 
     # -- Norms and Warnings -------------------------------------------------------------
 
@@ -889,7 +990,7 @@ class _Book:
             else:
                 used.append((job.norm_set, [obj], section))
         ws = self.sheet("xlsx_sheet_norms", landscape=True,
-                        widths=(34, 40, 16, 12, 24, 60, 12))
+                        widths=(46, 34, 44, 12, 24, 50))
         _header(ws, 1, [self.t("xlsx_parameter"), self.t("value"), self.t("source")])
         row = 2
         for ns, objs, _section in used:
@@ -925,14 +1026,14 @@ class _Book:
         shapes_used = {o.shape for o in objs}
         row = self.section(ws, row + 1, self.t("xlsx_shapes"))
         _header(ws, row, [self.t("xlsx_shape"), self.t("xlsx_shape_coefficient"),
-                          self.t("xlsx_used"), self.t("source")])
+                          self.t("source"), self.t("xlsx_used")])
         row += 1
         for shape, coef in ns.shapes.items():
             meta = ns.shape_rows.get(shape, {})
             cells = [put_text(ws, row, 1, self.shape_name(ns, shape)),
                      put_num(ws, row, 2, coef, F2),
-                     put_text(ws, row, 3, self.yes_no(shape in shapes_used))]
-            put_text(ws, row, 4, self.bib.cite(meta.get("source", "")), wrap=True)
+                     put_text(ws, row, 4, self.yes_no(shape in shapes_used))]
+            put_text(ws, row, 3, self.bib.cite(meta.get("source", "")), wrap=True)
             if shape in shapes_used:
                 _mark(cells)
             row += 1
@@ -1036,6 +1137,74 @@ def _scatter(title: str, x_title: str, y_title: str) -> ScatterChart:
     chart.width = 24
     chart.height = 13
     return chart
+
+
+def _scale_ticks(candidates: Sequence[float], lo: float, hi: float) -> tuple[float, float,
+                                                                            float]:
+    """(min, max, major unit) of a photo-scale axis with a tick on every candidate scale:
+    the largest round step that divides them all, at most 20 ticks over the range."""
+    for step in (10000.0, 5000.0, 2500.0, 2000.0, 1000.0, 500.0, 250.0, 100.0):
+        if all(float(c) % step == 0 for c in candidates) and (hi - lo) / step <= 20:
+            break
+    else:
+        step = max((hi - lo) / 10, 1.0)
+    return math.floor(lo / step) * step, math.ceil(hi / step) * step, step
+
+
+def _log_floor(x: float) -> float:
+    """The power of ten at or below ``x`` (a log axis's minimum)."""
+    return float(10 ** math.floor(math.log10(x))) if x > 0 else 0.01
+
+
+def _log_ceil(x: float) -> float:
+    """The power of ten at or above ``x`` (a log axis's maximum)."""
+    return float(10 ** math.ceil(math.log10(x))) if x > 0 else 1.0
+
+
+def _group(x: float, locale: str) -> str:
+    """A whole number grouped by thousands (no-break space in Russian)."""
+    text = f"{round(float(x)):,d}"
+    return text.replace(",", "\u00a0") if locale == "ru" else text.replace(",", "")
+
+
+_CM_PER_CHAR = 0.2  # a column width unit (one "0" of Calibri 11) on paper [cm], about
+
+
+def _sheet_width_cm(ws: Worksheet) -> float:
+    """The printed width of the sheet's used columns at 100 % [cm]."""
+    widths = [ws.column_dimensions[get_column_letter(c)].width or 8.43
+              for c in range(1, ws.max_column + 1)]
+    return sum(widths) * _CM_PER_CHAR
+
+
+def _chart_below(ws: Worksheet, chart: ScatterChart, row: int) -> None:
+    """Put ``chart`` below the data from ``row`` on, starting a printed page, sized to the
+    sheet's printed width (the page is fitted to that width) and short enough to fit the
+    page's height: a chart is never split across pages nor shrunk to a stamp."""
+    ws.row_breaks.append(Break(id=row - 1))
+    sheet_cm = max(_sheet_width_cm(ws), 24.0)
+    landscape = ws.page_setup.orientation == "landscape"
+    page_ratio = (17.0 / 27.7) if landscape else (26.0 / 19.0)  # printable height/width
+    chart.width = 0.95 * sheet_cm
+    chart.height = min(0.55 * chart.width, 0.8 * sheet_cm * page_ratio)
+    ws.add_chart(chart, f"A{row}")
+
+
+def _fit_rows(ws: Worksheet) -> None:
+    """Row heights for wrapped text, so no wrapped cell runs over the next row in programs
+    that do not measure text when opening a file (LibreOffice keeps stored heights)."""
+    width = {c: (ws.column_dimensions[get_column_letter(c)].width or 8.43)
+             for c in range(1, ws.max_column + 1)}
+    for row in ws.iter_rows():
+        lines = 1
+        for cell in row:
+            if not isinstance(cell.value, str) or not cell.alignment.wrap_text:
+                continue
+            chars = max(width.get(cell.column, 8.43) * 1.1 - 1, 4)
+            n = sum(max(1, math.ceil(len(part) / chars)) for part in cell.value.split("\n"))
+            lines = max(lines, n)
+        if lines > 1:
+            ws.row_dimensions[row[0].row].height = 15 * lines + 2
 
 
 def _add_series(chart: ScatterChart, ws: Worksheet, xref: Reference, col: int, n: int,

@@ -664,6 +664,10 @@ _SIGNING: dict[str, dict[str, str]] = {
         "warnings_box": "Warnings",
         "warnings_box_more": "Details: the warnings of each section below.",
         "pdf_table_of_objects": "norm table of the smallest objects",
+        "xlsx_recommended": "recommended",
+        "xlsx_planned": "planned",
+        "xlsx_highest_flown": "highest flown",
+        "xlsx_marker": "Chart marker",
     },
     "ru": {
         "param_planimetric_accuracy_mm": "Точность в плане V_s, мм в масштабе карты",
@@ -697,6 +701,10 @@ _SIGNING: dict[str, dict[str, str]] = {
         "warnings_box": "Предупреждения",
         "warnings_box_more": "Подробно — в предупреждениях разделов ниже.",
         "pdf_table_of_objects": "таблица наименьших объектов нормативов",
+        "xlsx_recommended": "рекомендуемый",
+        "xlsx_planned": "плановая",
+        "xlsx_highest_flown": "наибольшая фактическая",
+        "xlsx_marker": "Отметка на графике",
     },
 }
 for _loc in LOCALES:
