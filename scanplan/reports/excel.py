@@ -41,9 +41,9 @@ from openpyxl.chart import Reference, ScatterChart, Series
 from openpyxl.chart.axis import ChartLines
 from openpyxl.chart.label import DataLabelList
 from openpyxl.chart.shapes import GraphicalProperties
-from openpyxl.worksheet.pagebreak import Break
 from openpyxl.styles import Alignment, Font, PatternFill
 from openpyxl.utils import get_column_letter
+from openpyxl.worksheet.pagebreak import Break
 from openpyxl.worksheet.worksheet import Worksheet
 from openpyxl.writer.excel import ExcelWriter
 
@@ -53,8 +53,16 @@ from ..planner import CONSTRAINTS, height_formula_name
 from . import ReportMeta, report_datetime, write_atomic
 from .labels import LABELS, t
 from .references import Bibliography
-from .wording import (camera_title, display_message, document_date, object_title,
-                      param_name, param_value, scanner_title, shape_title)
+from .wording import (
+    camera_title,
+    display_message,
+    document_date,
+    object_title,
+    param_name,
+    param_value,
+    scanner_title,
+    shape_title,
+)
 
 if TYPE_CHECKING:
     from ..api import ScanJob, UavJob

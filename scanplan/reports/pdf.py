@@ -45,8 +45,16 @@ from ..uav import UavPlan
 from . import ReportMeta, plots, report_datetime, templates_dir, write_atomic
 from .labels import LABELS, t
 from .references import Bibliography
-from .wording import (camera_title, display_message, document_date, object_title,
-                      param_name, param_value, scanner_title, shape_title)
+from .wording import (
+    camera_title,
+    display_message,
+    document_date,
+    object_title,
+    param_name,
+    param_value,
+    scanner_title,
+    shape_title,
+)
 
 if TYPE_CHECKING:
     from ..spec import PlanResult
