@@ -291,12 +291,18 @@ def test_wrapped_cells_have_room(example):
     data = render(scan=result.film.job if result.film else None,
                   uav=result.uav.job if result.uav else None, meta=result.meta, spec=result)
     wb = load_workbook(io.BytesIO(data))
+    def col_width(c: int) -> float:
+        return ws.column_dimensions[get_column_letter(c)].width or 8.43
+
     for ws in wb.worksheets:
+        merged = {(r.min_row, r.min_col): sum(col_width(c) for c in range(r.min_col,
+                                                                          r.max_col + 1))
+                  for r in ws.merged_cells.ranges}
         for row in ws.iter_rows():
             for cell in row:
                 if not (isinstance(cell.value, str) and cell.alignment.wrap_text):
                     continue
-                width = ws.column_dimensions[get_column_letter(cell.column)].width or 8.43
+                width = merged.get((cell.row, cell.column), col_width(cell.column))
                 lines = math.ceil(len(cell.value) / max(width * 1.1 - 1, 4))
                 if lines > 1:
                     height = ws.row_dimensions[cell.row].height

@@ -48,7 +48,6 @@ from openpyxl.worksheet.worksheet import Worksheet
 from openpyxl.writer.excel import ExcelWriter
 
 from .._version import __version__
-from ..messages import localize  # noqa: F401  (re-exported for callers)
 from ..planner import CONSTRAINTS, height_formula_name
 from . import ReportMeta, report_datetime, write_atomic
 from .labels import LABELS, t
@@ -57,6 +56,7 @@ from .wording import (
     camera_title,
     display_message,
     document_date,
+    name_title,
     object_title,
     param_name,
     param_value,
@@ -300,7 +300,7 @@ class _Book:
         for obj in ns.objects:
             if obj.name == name and (map_scale is None or obj.map_scale == map_scale):
                 return object_title(obj, self.loc)
-        return object_title(type("_O", (), {"name": name, "name_ru": ""})(), self.loc)
+        return name_title(name, "", self.loc)
 
     def shape_name(self, ns: NormSet, shape: str) -> str:
         """A shape in words in the report's language."""
@@ -342,6 +342,14 @@ class _Book:
             put_text(ws, row, 2, MISSING)
         else:
             put_text(ws, row, 2, value, wrap=wrap)
+        return row + 1
+
+    def _wide_kv(self, ws: Worksheet, row: int, label: str, text: str) -> int:
+        """A ``label | long text`` row whose text spans the sheet's columns B…J (merged),
+        so a paragraph reads as a paragraph, not a narrow column."""
+        put_text(ws, row, 1, label, wrap=True)
+        put_text(ws, row, 2, text, wrap=True)
+        ws.merge_cells(start_row=row, start_column=2, end_row=row, end_column=10)
         return row + 1
 
     def kv_list(self, ws: Worksheet, row: int, label: str, values: Sequence[float],
@@ -455,8 +463,8 @@ class _Book:
                     row = self.kv(ws, row, self.t("spec_frames"), f.frames, "#,##0")
                     row = self.kv(ws, row, self.t("spec_scanned_gb"), f.scanned_gigabytes,
                                   "#,##0.0")
-            row = self.kv(ws, row, self.t("spec_reason"), self.text(f.reason, f.job.norm_set),
-                          wrap=True)
+            row = self._wide_kv(ws, row, self.t("spec_reason"),
+                                self.text(f.reason, f.job.norm_set))
         if spec.uav is not None:
             u, p = spec.uav, spec.uav.job.plan
             if u.planned_height_m is not None:
@@ -473,8 +481,8 @@ class _Book:
             if "data_volume_bytes" in p.flight:
                 row = self.kv(ws, row, self.t("spec_data_gb"),
                               p.flight["data_volume_bytes"] / 1e9, "#,##0.0")
-            row = self.kv(ws, row, self.t("spec_reason"), self.text(u.reason, u.job.norm_set),
-                          wrap=True)
+            row = self._wide_kv(ws, row, self.t("spec_reason"),
+                                self.text(u.reason, u.job.norm_set))
         if spec.comparison:
             row = self.section(ws, row + 1, self.t("spec_comparison"))
             _header(ws, row, [self.t("spec_quantity"), self.t("spec_film"), self.t("spec_uav"),
@@ -1203,12 +1211,16 @@ def _fit_rows(ws: Worksheet) -> None:
     that do not measure text when opening a file (LibreOffice keeps stored heights)."""
     width = {c: (ws.column_dimensions[get_column_letter(c)].width or 8.43)
              for c in range(1, ws.max_column + 1)}
+    merged = {(r.min_row, r.min_col): sum(width.get(c, 8.43)
+                                          for c in range(r.min_col, r.max_col + 1))
+              for r in ws.merged_cells.ranges if r.min_row == r.max_row}
     for row in ws.iter_rows():
         lines = 1
         for cell in row:
             if not isinstance(cell.value, str) or not cell.alignment.wrap_text:
                 continue
-            chars = max(width.get(cell.column, 8.43) * 1.1 - 1, 4)
+            w = merged.get((cell.row, cell.column), width.get(cell.column, 8.43))
+            chars = max(w * 1.1 - 1, 4)
             n = sum(max(1, math.ceil(len(part) / chars)) for part in cell.value.split("\n"))
             lines = max(lines, n)
         if lines > 1:

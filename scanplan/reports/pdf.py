@@ -49,6 +49,7 @@ from .wording import (
     camera_title,
     display_message,
     document_date,
+    name_title,
     object_title,
     param_name,
     param_value,
@@ -216,7 +217,7 @@ def _object_name(ns: NormSet, name: str, size_m: float, map_scale: int | None,
         if o.name == name and o.size_m == size_m and (map_scale is None
                                                       or o.map_scale == map_scale):
             return object_title(o, locale)
-    return object_title(type("_O", (), {"name": name, "name_ru": ""})(), locale)
+    return name_title(name, "", locale)
 
 
 def _shape_name(ns: NormSet, shape: str, locale: str) -> str:

@@ -16,7 +16,7 @@ from ..messages import Message, localize
 from ..norms import NormSet
 from .labels import LABELS, t
 
-__all__ = ["camera_title", "display_message", "document_date", "object_title",
+__all__ = ["camera_title", "display_message", "document_date", "name_title", "object_title",
            "param_name", "param_value", "scanner_title", "shape_title"]
 
 _PAREN_ENGLISH = re.compile(r"\s*\((?=[^)]*[A-Za-z]{4})[^)]*\)")
@@ -54,23 +54,20 @@ def shape_title(ns: NormSet, shape: str, locale: str) -> str:
 
 
 def object_title(obj: Any, locale: str) -> str:
-    """The object to interpret, by name in the report's language.
-
-    An object given only by its size (no name) is "the object of the given size".
+    """The object to interpret (anything with ``name`` and ``name_ru``) by name in the
+    report's language; an object given only by its size is "the object of the given size".
     """
-    name = getattr(obj, "name", "") or ""
-    if locale == "ru":
-        name_ru = getattr(obj, "name_ru", "") or ""
-        if name_ru and name_ru != "объект":
-            return name_ru
-        if name and name != "object" and not re.search(r"[A-Za-z]", name):
-            return name
-        if name and name != "object" and not name_ru:
-            return name  # a user's own name, shown as typed
+    return name_title(getattr(obj, "name", "") or "", getattr(obj, "name_ru", "") or "",
+                      locale)
+
+
+def name_title(name: str, name_ru: str, locale: str) -> str:
+    """An object's name in the report's language (see :func:`object_title`)."""
+    if locale == "ru" and name_ru and name_ru != "объект":
+        return name_ru
+    if not name or name == "object":  # the engine's placeholder for a size-only object
         return t("obj_unnamed", locale)
-    if not name or name == "object":
-        return t("obj_unnamed", locale)
-    return name
+    return name  # a norm table's or the user's own name, shown as written
 
 
 def _label_or(key: str, locale: str, default: str) -> str:
