@@ -1220,11 +1220,14 @@ def _fit_rows(ws: Worksheet) -> None:
             if not isinstance(cell.value, str) or not cell.alignment.wrap_text:
                 continue
             w = merged.get((cell.row, cell.column), width.get(cell.column, 8.43))
-            chars = max(w * 1.1 - 1, 4)
+            chars = max(w * (0.9 if cell.font.bold else 1.05) - 1, 4)
             n = sum(max(1, math.ceil(len(part) / chars)) for part in cell.value.split("\n"))
             lines = max(lines, n)
         if lines > 1:
             ws.row_dimensions[row[0].row].height = 15 * lines + 2
+            for cell in row:  # numbers beside a paragraph read from its first line
+                if cell.value is not None and cell.alignment.vertical != "top":
+                    cell.alignment = cell.alignment.copy(vertical="top")
 
 
 def _add_series(chart: ScatterChart, ws: Worksheet, xref: Reference, col: int, n: int,
