@@ -1227,7 +1227,9 @@ def _fit_rows(ws: Worksheet) -> None:
             ws.row_dimensions[row[0].row].height = 15 * lines + 2
             for cell in row:  # numbers beside a paragraph read from its first line
                 if cell.value is not None and cell.alignment.vertical != "top":
-                    cell.alignment = cell.alignment.copy(vertical="top")
+                    al = cell.alignment
+                    cell.alignment = Alignment(horizontal=al.horizontal, vertical="top",
+                                               wrap_text=al.wrap_text)
 
 
 def _add_series(chart: ScatterChart, ws: Worksheet, xref: Reference, col: int, n: int,
