@@ -308,3 +308,23 @@ def test_wrapped_cells_have_room(example):
                     height = ws.row_dimensions[cell.row].height
                     assert height is not None and height >= 14 * lines, (
                         ws.title, cell.coordinate, lines, height)
+
+
+@pytest.mark.parametrize("locale", LOCALES)
+def test_film_and_uav_document_is_clean_and_ends_on_a_full_page(tmp_path, locale):
+    """Film and UAV side by side (the longest document): no jargon, no English in Russian,
+    and the references travel with the signatures to the last page."""
+    path = tmp_path / "both.toml"
+    path.write_text(_TERMINAL_PROJECT.format(locale=locale)
+                    + "[area]\nwidth_m = 5000\nlength_m = 6000\n", encoding="utf-8")
+    docs = _documents(str(path), locale)
+    pages = [t for w, t in docs.items() if w.startswith("pdf page")]
+    mean = sum(len(p) for p in pages[:-1]) / (len(pages) - 1)
+    assert len(pages[-1]) >= 0.25 * mean
+    problems = []
+    for where, text in docs.items():
+        clean = _without_user_text(text, str(path))
+        problems += [f"{where}: {p}" for p in jargon(clean)]
+        if locale == "ru":
+            problems += [f"{where}: {w}" for w in english_in_russian(clean)]
+    assert not problems, "\n".join(problems)
