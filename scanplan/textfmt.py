@@ -34,6 +34,18 @@ def _num(x: float | None, digits: int = 1) -> str:
     return f"{x:.{digits}f}"
 
 
+def _um(x: float | None) -> str:
+    """A pixel [µm]: one decimal, or two significant digits below 1 µm (never ``0.0``)."""
+    if x is None or not math.isfinite(x) or x >= 0.95:
+        return _num(x)
+    return f"{x:.2g}"
+
+
+def _interval(seconds: float) -> str:
+    """The photo interval; none at ground speed 0 (a hovering UAV), never ``inf``."""
+    return f"{seconds:.2f} s" if math.isfinite(seconds) else "— (ground speed ≈ 0)"
+
+
 def _wrap(text: str, indent: str) -> str:
     return textwrap.fill(text, width=96, initial_indent=indent,
                          subsequent_indent=" " * len(indent))
@@ -65,10 +77,10 @@ def format_scan_plan(plan: ScanPlan, norm_name: str = "", norm_title: str = "") 
         row = [f"{cid}  {CONSTRAINTS[cid].name}", "µm"]
         for s in plan.scenarios:
             c = s.constraint(cid)
-            row.append(_num(c.pixel_um) + ("*" if c.binding else " "))
+            row.append(_um(c.pixel_um) + ("*" if c.binding else " "))
         rows.append(row)
     rows.append(["binding", "", *(s.binding + " " for s in plan.scenarios)])
-    rows.append(["scan pixel", "µm", *(_num(s.scan_pixel_um) + " " for s in plan.scenarios)])
+    rows.append(["scan pixel", "µm", *(_um(s.scan_pixel_um) + " " for s in plan.scenarios)])
     if inp.scanner:
         rows.append([f"scanner {inp.scanner} step", "µm",
                      *(_num(s.scanner_pixel_um) + " " for s in plan.scenarios)])
@@ -160,7 +172,7 @@ def format_uav_plan(plan: UavPlan, norm_name: str = "") -> str:
     lines += ["", "Flight geometry (at the planned height):"]
     frows = [["footprint", f"{fl['footprint_across_m']:.0f} × {fl['footprint_along_m']:.0f} m"],
              ["base / line spacing", f"{fl['base_m']:.1f} m / {fl['line_spacing_m']:.1f} m"],
-             ["photo interval", f"{fl['photo_interval_s']:.2f} s"
+             ["photo interval", _interval(fl['photo_interval_s'])
               + (f" (camera minimum {fl['min_trigger_interval_s']:g} s)"
                  if "min_trigger_interval_s" in fl else "")],
              [f"forward overlap at {h['min']:g} / {h['max']:g} m",
@@ -257,6 +269,12 @@ def _n(x: float | None, digits: int, loc: str, group: bool = False) -> str:
     return text
 
 
+def _um_loc(x: float | None, loc: str) -> str:
+    """A pixel [µm] as :func:`_um` writes it, with the locale's decimal separator."""
+    text = _um(x)
+    return text.replace(".", ",") if loc == "ru" else text
+
+
 def _g(x: float, loc: str) -> str:
     text = f"{x:g}"
     return text.replace(".", ",") if loc == "ru" else text
@@ -294,7 +312,7 @@ def format_plan_result(result: Any, locale: str | None = None) -> str:
         if s is None:
             lines.append(_wrap(localize(f.reason, loc), "  "))
         else:
-            px = (f"{_n(s.scan_pixel_um, 1, loc)} {T['um']}"
+            px = (f"{_um_loc(s.scan_pixel_um, loc)} {T['um']}"
                   + (f" → {T['scanner_step']} {_g(s.scanner_pixel_um, loc)} {T['um']}"
                      if s.scanner_pixel_um else ""))
             rows = [[f"  {T['photo_scale']}", _sc(s.photo_scale, loc)],
@@ -370,7 +388,10 @@ def _uav_summary(u: Any, loc: str, T: dict[str, str], cname: Any) -> list[str]:
                  f"{_g(p.inputs.forward_overlap_pct, loc)} % / "
                  f"{_g(p.inputs.side_overlap_pct, loc)} % "
                  f"— {_n(fl['base_m'], 1, loc)} {m} / {_n(fl['line_spacing_m'], 1, loc)} {m}"])
-    rows.append([f"  {T['interval']}", f"{_n(fl['photo_interval_s'], 2, loc)} {T['s']}"])
+    rows.append([f"  {T['interval']}",
+                 _interval(fl["photo_interval_s"]) if loc == "en" else
+                 (f"{_n(fl['photo_interval_s'], 2, loc)} {T['s']}"
+                  if math.isfinite(fl["photo_interval_s"]) else "— (путевая скорость ≈ 0)")])
     if "photos" in fl:
         rows.append([f"  {T['photos']}", f"{fl['photos']} / {fl['strips']}"])
         rows.append([f"  {T['flight']}", f"{_n(fl['flight_length_m'] / 1000, 1, loc)} {T['km']}"
@@ -396,7 +417,7 @@ def batch_summary(done: list[tuple[str, Any]], failed: list[tuple[str, str]]) ->
         rows.append([
             os.path.basename(path), f"1:{r.project.values['map']['scale']}",
             (f"1:{scale_value(rec.photo_scale)}" if rec else "none") if f else "—",
-            (_num(rec.scanner_pixel_um or rec.scan_pixel_um) if rec else "—") if f else "—",
+            (_um(rec.scanner_pixel_um or rec.scan_pixel_um) if rec else "—") if f else "—",
             _num(u.recommended_height_m, 0) if u else "—",
             _num(u.max_height_m, 0) if u else "—",
             " / ".join(x for x in ((rec.binding if rec else "") if f else "",
