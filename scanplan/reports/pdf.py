@@ -2,9 +2,14 @@
 
 The report *renders* a :class:`scanplan.api.ScanJob` and/or :class:`scanplan.api.UavJob`
 (their plans and norm set); every number comes from the plan objects, formatted per
-locale (decimal comma in Russian). The document is A4 with a title block, an approval
-block, inputs, the result table with the binding constraint highlighted and explained,
-warnings, formulas with their sources, SVG plots and "page X of Y" footers.
+locale (decimal comma in Russian). The document is A4 with the approval block («УТВЕРЖДАЮ»
+/ APPROVED) and, when the project names one, the agreement block («СОГЛАСОВАНО» / AGREED),
+a title block (organisation and contract number when given), every warning in short form
+on page 1, inputs, the result table with the binding constraint highlighted and explained,
+warnings, formulas with numbered references, SVG plots, the list of references, the
+«Составил / Проверил» (compiled / checked) lines and «Лист N / Листов M» ("Sheet N of M")
+footers. Nothing internal reaches the page: parameters by name and unit, values in words,
+cameras and scanners by model, works by reference number (:mod:`.references`, :mod:`.wording`).
 
 Safety: templates are autoescaped, so user text (project, customer, ...) is always shown
 as text; and the renderer's URL fetcher (:class:`BundledAssetFetcher`) serves only
