@@ -886,6 +886,8 @@ class _Book:
             chart.x_axis.scaling.min = 0
             chart.y_axis.scaling.min = 0
             chart.x_axis.majorGridlines = ChartLines()
+            chart.x_axis.number_format = "0"
+            chart.y_axis.number_format = "0.00"
             xref = Reference(ws, min_col=1, min_row=first, max_row=first + n - 1)
             _add_series(chart, ws, xref, 2, n, self.t("gsd_m"), first_row=first)
             _add_series(chart, ws, xref, 3, n, self.t("ground_resolution_m"), first_row=first)
@@ -913,6 +915,11 @@ class _Book:
             marks.append((f"{self.t('max_height_m').split(',')[0]} ({plan.binding}): "
                           f"{_group(round(plan.max_height_m), self.loc)}{m}",
                           plan.max_height_m, 0.0, plan.max_height_m, top, "C00000", "sysDot"))
+            ratio = h["max"] / h["planned"] if h.get("planned") and h.get("max") else 1.0
+            if ratio > 1:  # where the binding limit is checked: the maximum flown high
+                flown = plan.max_height_m * ratio
+                marks.append((f"{self.t('xlsx_max_flown')}: {_group(flown, self.loc)}{m}",
+                              flown, 0.0, flown, top, "C00000", "dash"))
         b = next((lim for lim in plan.limits if lim.binding), None)
         if b is not None and b.limit_m <= top * 1.5:
             marks.append((f"{b.compares} ≤ {_fmt_number(b.limit_m, self.loc, 3)}{m} "
@@ -971,6 +978,9 @@ class _Book:
         chart.y_axis.scaling.min = _log_floor(min(low, default=0.01))
         chart.y_axis.scaling.max = 1
         chart.y_axis.majorGridlines = ChartLines()
+        chart.y_axis.minorGridlines = ChartLines()
+        chart.y_axis.number_format = "General"
+        chart.x_axis.number_format = "0"
         xref = Reference(ws, min_col=1, min_row=2, max_row=n + 1)
         for k in ("image_contrast", "threshold"):
             if k in cols:

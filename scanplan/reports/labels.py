@@ -667,6 +667,7 @@ _SIGNING: dict[str, dict[str, str]] = {
         "xlsx_recommended": "recommended",
         "xlsx_planned": "planned",
         "xlsx_highest_flown": "highest flown",
+        "xlsx_max_flown": "flown at the maximum height, up to",
         "xlsx_marker": "Chart marker",
     },
     "ru": {
@@ -704,6 +705,7 @@ _SIGNING: dict[str, dict[str, str]] = {
         "xlsx_recommended": "рекомендуемый",
         "xlsx_planned": "плановая",
         "xlsx_highest_flown": "наибольшая фактическая",
+        "xlsx_max_flown": "фактическая при максимальной высоте, до",
         "xlsx_marker": "Отметка на графике",
     },
 }
