@@ -29,7 +29,7 @@ import mimetypes
 import os
 import re
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 from urllib.parse import unquote, urlsplit
@@ -161,7 +161,7 @@ class BundledAssetFetcher(URLFetcher):  # type: ignore[misc]
 @dataclass(frozen=True)
 class _Fmt:
     locale: str
-    bib: Bibliography = field(default_factory=lambda: Bibliography("en"))
+    bib: Bibliography  # the document's references, numbered as it cites them
 
     def cite(self, text: str) -> str:
         """``text`` with the works it names replaced by reference numbers."""
