@@ -33,7 +33,23 @@ def _ru_model(name: str) -> str:
 
 
 def camera_title(ns: NormSet, camera_id: str, locale: str, name: str = "") -> str:
-    """The camera as a reader knows it: the catalogue's model name (not its id)."""
+    """The camera as a reader knows it: the catalogue's model name (not its id).
+
+    Parameters
+    ----------
+    ns : NormSet
+        The norm set whose catalogue holds the camera.
+    camera_id : str
+        The catalogue id (``""``: none).
+    locale : {"en", "ru"}
+        In Russian, English remarks in parentheses are dropped and units written in Russian.
+    name : str, optional
+        A name to show when the id is not in the catalogue (a camera given by its data).
+
+    Returns
+    -------
+    str
+    """
     cam = ns.cameras.get(camera_id) if camera_id else None
     title = (cam.name if cam is not None else "") or name or camera_id
     return _ru_model(title) if locale == "ru" else title
@@ -75,7 +91,20 @@ def _label_or(key: str, locale: str, default: str) -> str:
 
 
 def param_name(ns: NormSet, key: str, locale: str) -> str:
-    """A norm-set parameter by its human name with unit."""
+    """A norm-set parameter by its human name with unit (``param_<key>`` label).
+
+    Parameters
+    ----------
+    ns : NormSet
+        The norm set (for a parameter without a label: its note).
+    key : str
+        The parameter's schema name.
+    locale : {"en", "ru"}
+
+    Returns
+    -------
+    str
+    """
     label = f"param_{key}"
     if label in LABELS["en"]:
         return t(label, locale)
@@ -85,7 +114,24 @@ def param_name(ns: NormSet, key: str, locale: str) -> str:
 
 def param_value(ns: NormSet, key: str, value: Any, locale: str,
                 number: Any = None) -> str:
-    """A norm-set parameter's value in words (shape, height formula, rounding)."""
+    """A norm-set parameter's value in words (shape with its coefficient, height formula,
+    rounding; a number through ``number``).
+
+    Parameters
+    ----------
+    ns : NormSet
+    key : str
+        The parameter's schema name.
+    value : object
+        Its value.
+    locale : {"en", "ru"}
+    number : callable, optional
+        Formats a number in the report's convention (default ``str``).
+
+    Returns
+    -------
+    str
+    """
     if key == "shape" and isinstance(value, str):
         coef = ns.shapes.get(value)
         title = shape_title(ns, value, locale)
@@ -100,7 +146,20 @@ def param_value(ns: NormSet, key: str, value: Any, locale: str,
 
 
 def display_message(msg: Any, ns: NormSet | None, locale: str) -> str:
-    """An engine sentence in ``locale`` with ids (scanner, camera) shown by their names."""
+    """An engine sentence in ``locale`` with ids (scanner, camera) shown by their names.
+
+    Parameters
+    ----------
+    msg : Message or str
+        The sentence (a plain string is returned as it is).
+    ns : NormSet or None
+        Where the ids are looked up (None: ids stay).
+    locale : {"en", "ru"}
+
+    Returns
+    -------
+    str
+    """
     if isinstance(msg, Message) and ns is not None:
         params = dict(msg.params)
         changed = False
