@@ -128,13 +128,20 @@ def format_scan_plan(plan: ScanPlan, norm_name: str = "", norm_title: str = "") 
     return "\n".join(lines)
 
 
+def _carrier(platform: str) -> str:
+    """How the terminal names the digital-camera flight: a UAV, or a manned aerial survey
+    (a large-format camera, catalogue ``platform = aircraft``)."""
+    return "Aerial survey (digital camera)" if platform == "aircraft" else "UAV"
+
+
 def format_uav_plan(plan: UavPlan, norm_name: str = "") -> str:
     """The terminal report of ``scanplan uav``."""
     inp = plan.inputs
     h = plan.heights_m
     cam = inp.camera or "camera"
     lines = [
-        f"UAV plan — {cam}" + (f" ({inp.camera_name})" if inp.camera_name else ""),
+        f"{_carrier(inp.platform)} plan — {cam}"
+        + (f" ({inp.camera_name})" if inp.camera_name else ""),
         f"pixel {inp.pixel_um:g} µm, f {inp.focal_mm:g} mm, f/{inp.f_number:g}, sensor "
         f"{inp.sensor_width_mm:g}×{inp.sensor_height_mm:g} mm; height {h['planned']:g} m"
         + (f" (flown {h['min']:g}–{h['max']:g} m)" if h["max"] != h["min"] else "")
@@ -230,6 +237,9 @@ _TERMINAL: dict[str, dict[str, str]] = {
         "photos": "photos / strips", "flight": "flight", "volume": "data volume",
         "blur": "blur limit", "exposure": "exposure", "or_speed": "or speed",
         "side_by_side": "Film and UAV side by side:", "quantity": "quantity",
+        "aircraft": f"{_carrier('aircraft')}:",
+        "side_by_side_aircraft": "Film and digital camera side by side:",
+        "digital_col": "digital",
         "film_col": "film", "uav_col": "UAV", "unit": "unit", "warnings": "Warnings:",
         "m": "m", "um": "µm", "mb": "MB", "gb": "GB", "s": "s", "km": "km", "min": "min",
         "ms": "m/s",
@@ -248,6 +258,8 @@ _TERMINAL: dict[str, dict[str, str]] = {
         "flight": "маршруты", "volume": "объём данных", "blur": "предел смаза",
         "exposure": "выдержка", "or_speed": "или скорость",
         "side_by_side": "Плёнка и БПЛА:", "quantity": "показатель", "film_col": "плёнка",
+        "aircraft": "Аэрофотосъёмка цифровой камерой:",
+        "side_by_side_aircraft": "Плёнка и цифровая камера:", "digital_col": "цифровая",
         "uav_col": "БПЛА", "unit": "ед.", "warnings": "Предупреждения:",
         "m": "м", "um": "мкм", "mb": "МБ", "gb": "ГБ", "s": "с", "km": "км", "min": "мин",
         "ms": "м/с",
@@ -331,8 +343,10 @@ def format_plan_result(result: Any, locale: str | None = None) -> str:
     if result.uav:
         lines += _uav_summary(result.uav, loc, T, cname)
     if result.comparison:
-        lines += ["", T["side_by_side"]]
-        rows = [[f"  {T['quantity']}", T["film_col"], T["uav_col"], T["unit"]]]
+        aircraft = bool(result.uav) and result.uav.job.plan.inputs.platform == "aircraft"
+        lines += ["", T["side_by_side_aircraft" if aircraft else "side_by_side"]]
+        rows = [[f"  {T['quantity']}", T["film_col"],
+                 T["digital_col" if aircraft else "uav_col"], T["unit"]]]
         for c in result.comparison:
             def v(x: Any) -> str:
                 if x is None:
@@ -361,7 +375,7 @@ def _uav_summary(u: Any, loc: str, T: dict[str, str], cname: Any) -> list[str]:
     from .messages import localize
 
     p = u.job.plan
-    lines = ["", T["uav"]]
+    lines = ["", T["aircraft" if p.inputs.platform == "aircraft" else "uav"]]
     if u.recommended_height_m is None:
         lines.append(_wrap(localize(u.reason, loc), "  "))
         return lines
@@ -409,7 +423,7 @@ def _uav_summary(u: Any, loc: str, T: dict[str, str], cname: Any) -> list[str]:
 
 def batch_summary(done: list[tuple[str, Any]], failed: list[tuple[str, str]]) -> str:
     """One table for a batch of projects: the headline of each, then the failures."""
-    rows = [["project", "map", "film: photo scale", "scan µm", "UAV: height m", "max m",
+    rows = [["project", "map", "film: photo scale", "scan µm", "digital camera: height m", "max m",
              "binding"]]
     for path, r in done:
         f, u = r.film, r.uav
