@@ -67,8 +67,8 @@ def _project_keys() -> set[tuple[str, str]]:
 @cache
 def _catalogue_words() -> frozenset[str]:
     """Words of the catalogue's model names (the part before any parenthesis)."""
-    cams, _steps, scanners = norms_mod._catalogue()
-    names = [c.name for c in cams.values()] + list(scanners.values())
+    ns = norms_mod.load_norm_set()
+    names = [c.name for c in ns.cameras.values()] + list(ns.scanner_names.values())
     words: set[str] = set()
     for name in names:
         model = re.sub(r"\([^)]*\)", " ", name)
@@ -328,3 +328,20 @@ def test_film_and_uav_document_is_clean_and_ends_on_a_full_page(tmp_path, locale
         if locale == "ru":
             problems += [f"{where}: {w}" for w in english_in_russian(clean)]
     assert not problems, "\n".join(problems)
+
+
+def test_every_warning_has_a_heading_in_both_languages():
+    """The page-1 warnings box names each warning by a short heading: every warning code
+    the engine can emit has one (``pdf_warn_<code>``) in English and Russian."""
+    import pathlib
+
+    from scanplan.reports.labels import LABELS
+
+    src = "".join(p.read_text(encoding="utf-8")
+                  for p in pathlib.Path(norms_mod.__file__).parent.glob("*.py"))
+    codes = set(re.findall(r'PlanWarning\(\s*"([a-z_]+)"', src))
+    codes |= {"not_interpretable", "above_interpretation_limit"}  # built from a variable
+    assert len(codes) >= 10
+    for loc in LOCALES:
+        missing = sorted(c for c in codes if f"pdf_warn_{c}" not in LABELS[loc])
+        assert not missing, (loc, missing)

@@ -701,6 +701,7 @@ _SIGNING: dict[str, dict[str, str]] = {
         "xlsx_highest_flown": "highest flown",
         "xlsx_max_flown": "flown at the maximum height, up to",
         "xlsx_marker": "Chart marker",
+        "pdf_warn_haze_default_height": "Haze contrast assumed for clear air",
     },
     "ru": {
         "param_planimetric_accuracy_mm": "Точность в плане V_s, мм в масштабе карты",
@@ -739,6 +740,7 @@ _SIGNING: dict[str, dict[str, str]] = {
         "xlsx_highest_flown": "наибольшая фактическая",
         "xlsx_max_flown": "фактическая при максимальной высоте, до",
         "xlsx_marker": "Отметка на графике",
+        "pdf_warn_haze_default_height": "Контраст дымки принят для чистого воздуха",
     },
 }
 for _loc in LOCALES:

@@ -69,11 +69,6 @@ __all__ = ["BundledAssetFetcher", "render_html", "render_pdf", "write_pdf"]
 
 _DEFAULT_META = ReportMeta()
 
-_WARNING_CODES = (
-    "not_interpretable", "above_interpretation_limit", "pr_drives_volume",
-    "scanner_too_coarse", "overlap_not_standard", "motion_blur", "trigger_interval",
-    "not_resolvable", "height_above_max", "no_feasible_photo_scale", "height_lowered")
-
 _MAX_COLUMNS = 6  # photo scales per result table on A4 portrait
 _RUNNING_HEADER_CHARS = 60
 
