@@ -108,8 +108,8 @@ CONSTRAINTS: dict[str, ConstraintInfo] = {
     # limits of a UAV flight only (scanplan.uav); the film engine never enables them
     "GSD": ConstraintInfo("GSD", "target GSD", "заданный размер пикселя на местности",
                           Message("protects.GSD"), Message("equation.GSD"), False),
-    "CEIL": ConstraintInfo("CEIL", "altitude ceiling", "предельная высота полёта",
-                           Message("protects.CEIL"), Message("equation.CEIL"), False),
+    "HC": ConstraintInfo("HC", "altitude ceiling", "предельная высота полёта",
+                         Message("protects.HC"), Message("equation.HC"), False),
 }
 """The film constraints, in the Instruction's order, then the UAV-only limits."""
 

@@ -418,8 +418,8 @@ def _height_limits(inp: UavInputs, rules: ScanRules | None) -> tuple[
                     g * inp.focal_mm / (inp.pixel_um / 1000.0) / up, {}))
     if inp.ceiling_m is not None:
         source = Message("ceiling.project" if inp.ceiling_from_project else "ceiling.norms")
-        raw.append(("CEIL", inp.ceiling_m, "H", Message("limit.CEIL", ceiling=inp.ceiling_m,
-                                                        source=source),
+        raw.append(("HC", inp.ceiling_m, "H", Message("limit.HC", ceiling=inp.ceiling_m,
+                                                      source=source),
                     inp.ceiling_m / up, {"from_project": inp.ceiling_from_project}))
     if not raw:
         return (), None, None, None, accuracy, warnings
@@ -434,8 +434,8 @@ def _height_limits(inp: UavInputs, rules: ScanRules | None) -> tuple[
         else CONSTRAINTS[cid].equation, max_flown_height_m=h * up, details=details)
         for cid, g, compares, reason, h, details in raw)
     allow = None
-    others = [r for r in raw if r[0] != "CEIL"]
-    if binding == "CEIL" and others:
+    others = [r for r in raw if r[0] != "HC"]
+    if binding == "HC" and others:
         nxt = min(others, key=lambda r: r[4])
         if nxt[4] > max_h * (1 + 1e-9):
             allow = nxt[4]

@@ -347,7 +347,7 @@ def test_bundled_aerial_example():
     res = plan_project(load_project(path))
     u, p = res.uav, res.uav.job.plan
     assert p.inputs.platform == "aircraft" and p.binding == "PZ"
-    assert p.ceiling_m is None and all(x.id != "CEIL" for x in p.limits)
+    assert p.ceiling_m is None and all(x.id != "HC" for x in p.limits)
     bh = 0.4 * 13080 * 5.2e-3 / 80
     assert u.max_height_m == pytest.approx(0.2 * bh / 0.5 * 80 / 5.2e-3, rel=1e-9)
     assert u.recommended_height_m == 2090

@@ -185,7 +185,7 @@ def test_other_height_formulas_on_request():
 
 def test_ceiling_binds_and_says_what_the_constraints_allow():
     plan = uav_job(**SEED002, map_scale=2000, relief_interval_m=0.5).plan
-    assert plan.binding == "CEIL" and plan.ceiling_m == 150
+    assert plan.binding == "HC" and plan.ceiling_m == 150
     assert plan.max_height_m == pytest.approx(150 / 1.4)
     assert plan.max_flown_height_m == pytest.approx(150)
     assert plan.constraints_max_height_m == pytest.approx(213.95, abs=0.05)
@@ -196,7 +196,7 @@ def test_ceiling_binds_and_says_what_the_constraints_allow():
 
 def test_ceiling_applies_without_a_map():
     plan = uav_job(**{**SEED002, "height_m": 200.0}).plan
-    assert [x.id for x in plan.limits] == ["CEIL"]
+    assert [x.id for x in plan.limits] == ["HC"]
     assert "height_above_max" in {w.code for w in plan.warnings}
     assert "ceiling_binds" not in {w.code for w in plan.warnings}
 
@@ -211,7 +211,7 @@ def test_target_gsd_gives_the_height():
     assert plan.gsd_at_max_height_m <= 0.03
     # with a tight ceiling the ceiling wins and says so
     low = uav_job(**{**SEED002, "height_m": None}, gsd_cm=3.0).plan
-    assert low.binding == "CEIL" and low.heights_m["max"] <= 150
+    assert low.binding == "HC" and low.heights_m["max"] <= 150
     assert "ceiling_binds" in {w.code for w in low.warnings}
 
 
@@ -278,7 +278,7 @@ def test_example_without_the_permission_stays_under_150_m(tmp_path):
     path = tmp_path / "p.toml"
     path.write_text(text, encoding="utf-8")
     u = plan_project(load_project(path)).uav
-    assert u.job.plan.binding == "CEIL"
+    assert u.job.plan.binding == "HC"
     assert u.recommended_height_m == 105 and u.job.plan.heights_m["max"] <= 150
     assert u.job.plan.constraints_max_height_m == pytest.approx(213.95, abs=0.05)
 
@@ -306,8 +306,20 @@ def test_norm_parameters_carry_their_sources():
         for key in ("digital_height_formula", "image_measurement_px", "multi_ray",
                     "uav_max_height_m"):
             assert ns.parameter_sources[key], (name, key)
-        assert "52.1" in ns.parameter_sources["uav_max_height_m"]
-        assert "Measurement 98" in ns.parameter_sources["image_measurement_px"]
+        # each source names works of the bibliography, which give the full reference
+        from scanplan.reports.references import Bibliography
+
+        for key, works in (("uav_max_height_m", ("para. 52.1",)),
+                           ("image_measurement_px", ("Measurement, 2017, vol. 98",
+                                                     "Close-Range Photogrammetry")),
+                           ("digital_height_formula", ("Photogrammetry: Geometry from Images",
+                                                       "Close-Range Photogrammetry"))):
+            bib = Bibliography("en")
+            cited = bib.cite(ns.parameter_sources[key])
+            assert cited.startswith("[1]"), (key, cited)
+            entries = " ".join(text for _, text in bib.entries())
+            for w in works:
+                assert w in entries, (key, w)
 
 
 def test_height_plot_marks_planned_flown_and_maximum():
@@ -371,7 +383,7 @@ def test_a_derived_height_never_flies_above_the_ceiling(ceiling, tol, gsd):
     assert p.gsd_at_max_height_m <= gsd / 100 * (1 + 1e-9)
     assert p.max_flown_height_m == pytest.approx(p.max_height_m * (1 + tol / 100))
     gsd_height = gsd / 100 * p.inputs.focal_mm / (p.inputs.pixel_um / 1000)
-    assert p.binding == ("CEIL" if ceiling < gsd_height else "GSD")
+    assert p.binding == ("HC" if ceiling < gsd_height else "GSD")
 
 
 def test_pdf_inputs_show_the_ceiling_and_the_target_gsd(tmp_path):

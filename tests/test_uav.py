@@ -173,7 +173,7 @@ def test_docs_worked_example_reproduced_by_the_cli():
     # (planned × 1.4) still meets the binding limit. By default the norm set's 150 m
     # ceiling for the highest flown height binds: 150 / 1.4 = 107 m planned, and the
     # constraints would allow 214 m (the digital height accuracy, PZ)
-    assert d["binding"] == "CEIL" and d["ceiling_m"] == 150
+    assert d["binding"] == "HC" and d["ceiling_m"] == 150
     assert d["max_planned_height_m"] == d["max_height_m"] == pytest.approx(150 / 1.4)
     assert d["max_flown_height_m"] == pytest.approx(150)
     assert d["constraints_max_height_m"] == pytest.approx(214, abs=1)
