@@ -172,7 +172,7 @@ def format_uav_plan(plan: UavPlan, norm_name: str = "") -> str:
                   ["flight length / time", f"{fl['flight_length_m'] / 1000:.1f} km / "
                    + (f"{fl['flight_time_s'] / 60:.0f} min" if fl.get("flight_time_s") else "—")]]
         if "data_volume_bytes" in fl:
-            frows.append(["data volume", f"{fl['data_volume_bytes'] / 1e9:.1f} GB"])
+            frows.append(["data volume", _volume(fl["data_volume_bytes"])])
     lines.append(table([[f"  {a}", b] for a, b in frows], align="ll"))
     if plan.recognition:
         lines += ["", "Recognition probability of the norm objects (P = exp(−(B·L/L_obj)²)):"]
@@ -266,7 +266,7 @@ def format_plan_result(result: Any) -> str:
                              + (f", {fl['flight_time_s'] / 60:.0f} min"
                                 if fl.get("flight_time_s") else "")])
                 if "data_volume_bytes" in fl:
-                    rows.append(["  data volume", f"{fl['data_volume_bytes'] / 1e9:.1f} GB"])
+                    rows.append(["  data volume", _volume(fl["data_volume_bytes"])])
             rows.append(["  blur limit", f"exposure ≤ 1/{math.ceil(1 / p.max_exposure_s):d} s "
                          f"or speed ≤ {p.max_speed_ms:.1f} m/s"])
             lines.append(table(rows, align="ll"))
@@ -310,3 +310,13 @@ def batch_summary(done: list[tuple[str, Any]], failed: list[tuple[str, str]]) ->
         for path, msg in failed:
             out += "\n" + _wrap(f"{os.path.basename(path)}: {msg}", "  ! ")
     return out
+
+
+def _volume(uncompressed_bytes: float) -> str:
+    """``163.5 GB uncompressed (JPEG ≈ 18.2 GB)``: the JPEG estimate of
+    :func:`scanplan.flight.jpeg_volume_bytes`."""
+    from .flight import JPEG_COMPRESSION_RATIO, jpeg_volume_bytes
+
+    jpeg = float(jpeg_volume_bytes(uncompressed_bytes)) / 1e9
+    return (f"{uncompressed_bytes / 1e9:.1f} GB uncompressed "
+            f"(JPEG ≈ {jpeg:.1f} GB at {JPEG_COMPRESSION_RATIO:g}:1)")

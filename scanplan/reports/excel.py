@@ -43,6 +43,7 @@ from openpyxl.utils import get_column_letter
 from openpyxl.worksheet.worksheet import Worksheet
 from openpyxl.writer.excel import ExcelWriter
 
+from .. import flight as FL
 from .._version import __version__
 from ..messages import localize
 from ..planner import CONSTRAINTS, height_formula_name
@@ -277,7 +278,12 @@ class _Book:
             return cid
 
     def obj_name(self, ns: NormSet, name: str, map_scale: int | None) -> str:
-        """A norm object's name in the report's language (the norm table's Russian name)."""
+        """An object's name in the report's language (the norm table's Russian name; a
+        project's unnamed object in the report's language)."""
+        from ..api import USER_OBJECT_NAME
+
+        if map_scale is None and name == USER_OBJECT_NAME["en"]:
+            return USER_OBJECT_NAME.get(self.loc, name)
         if self.loc == "ru":
             for obj in ns.objects:
                 if obj.name == name and (map_scale is None or obj.map_scale == map_scale):
@@ -430,6 +436,8 @@ class _Book:
             if "data_volume_bytes" in p.flight:
                 row = self.kv(ws, row, self.t("spec_data_gb"),
                               p.flight["data_volume_bytes"] / 1e9, "#,##0.0")
+                row = self.kv(ws, row, self.t("data_volume_jpeg_gb"), float(
+                    FL.jpeg_volume_bytes(p.flight["data_volume_bytes"])) / 1e9, "#,##0.0")
             row = self.kv(ws, row, self.t("spec_reason"), self.text(u.reason), wrap=True)
         if spec.comparison:
             row = self.section(ws, row + 1, self.t("spec_comparison"))

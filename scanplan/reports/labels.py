@@ -174,7 +174,7 @@ LABELS: dict[str, dict[str, str]] = {
         "xlsx_flight_photos": "Photos",
         "xlsx_flight_flight_length_m": "Length of the strips, m",
         "xlsx_flight_flight_time_s": "Time on the strips, s",
-        "xlsx_flight_data_volume_bytes": "Data volume, bytes",
+        "xlsx_flight_data_volume_bytes": "Data volume, uncompressed, bytes",
         "xlsx_mtf_components": "Modulation transfer functions at the frame centre",
         "xlsx_mtf_haze": "Haze",
         "xlsx_mtf_turbulence": "Turbulence",
@@ -255,7 +255,7 @@ LABELS: dict[str, dict[str, str]] = {
         "pdf_overlap_at": "Forward overlap at {lo} / {hi} m, %",
         "pdf_strips": "Strips × photos per strip = photos",
         "pdf_flight_length": "Flight length, km / time, min",
-        "pdf_data_volume": "Data volume, GB",
+        "pdf_data_volume": "Data volume, uncompressed, GB",
         "pdf_recognition": "Recognition probability of the norm objects, P = exp(−(B·L/L_obj)²)",
         "pdf_object": "Object",
         "pdf_size_m": "Size, m",
@@ -300,7 +300,7 @@ LABELS: dict[str, dict[str, str]] = {
         "spec_recommended_height_m": "Recommended flight height, m",
         "spec_planned_height_m": "Planned flight height, m",
         "spec_photos": "Photos for the area",
-        "spec_data_gb": "Data volume, GB",
+        "spec_data_gb": "Data volume, uncompressed, GB",
         "spec_reason": "Why",
         "spec_comparison": "Film and UAV side by side",
         "spec_quantity": "Quantity",
@@ -310,7 +310,7 @@ LABELS: dict[str, dict[str, str]] = {
         "spec_cmp_ground_resolution": "resolution on the ground (A / L)",
         "spec_cmp_recognition": "recognition probability of the map object",
         "spec_cmp_frames": "frames / photos",
-        "spec_cmp_data_volume": "data volume",
+        "spec_cmp_data_volume": "data volume, uncompressed",
     },
     "ru": {
         "title_scan": "Техническое задание на сканирование аэрофотоснимков",
@@ -482,7 +482,7 @@ LABELS: dict[str, dict[str, str]] = {
         "xlsx_flight_photos": "Всего снимков",
         "xlsx_flight_flight_length_m": "Длина маршрутов, м",
         "xlsx_flight_flight_time_s": "Время на маршрутах, с",
-        "xlsx_flight_data_volume_bytes": "Объём данных, байт",
+        "xlsx_flight_data_volume_bytes": "Объём данных без сжатия, байт",
         "xlsx_mtf_components": "Функции передачи модуляции в центре кадра",
         "xlsx_mtf_haze": "Дымка",
         "xlsx_mtf_turbulence": "Турбулентность",
@@ -563,7 +563,7 @@ LABELS: dict[str, dict[str, str]] = {
         "pdf_overlap_at": "Продольное перекрытие на {lo} / {hi} м, %",
         "pdf_strips": "Маршрутов × снимков в маршруте = снимков",
         "pdf_flight_length": "Длина маршрутов, км / время, мин",
-        "pdf_data_volume": "Объём данных, ГБ",
+        "pdf_data_volume": "Объём данных без сжатия, ГБ",
         "pdf_recognition": "Вероятность распознавания объектов по нормативам, P = "
                            "exp(−(B·L/L_obj)²)",
         "pdf_object": "Объект",
@@ -611,7 +611,7 @@ LABELS: dict[str, dict[str, str]] = {
         "spec_recommended_height_m": "Рекомендуемая высота полёта, м",
         "spec_planned_height_m": "Плановая высота полёта, м",
         "spec_photos": "Число снимков на объект",
-        "spec_data_gb": "Объём данных, ГБ",
+        "spec_data_gb": "Объём данных без сжатия, ГБ",
         "spec_reason": "Обоснование",
         "spec_comparison": "Сравнение плёночной съёмки и БПЛА",
         "spec_quantity": "Показатель",
@@ -621,7 +621,7 @@ LABELS: dict[str, dict[str, str]] = {
         "spec_cmp_ground_resolution": "Разрешение на местности (A / L)",
         "spec_cmp_recognition": "Вероятность распознавания объекта карты",
         "spec_cmp_frames": "Число снимков",
-        "spec_cmp_data_volume": "Объём данных",
+        "spec_cmp_data_volume": "Объём данных без сжатия",
     },
 }
 
@@ -629,3 +629,7 @@ LABELS: dict[str, dict[str, str]] = {
 def t(key: str, locale: str = "en") -> str:
     """The label ``key`` in ``locale`` (``"en"`` or ``"ru"``)."""
     return LABELS[locale if locale in LABELS else "en"][key]
+
+# data volume as JPEG (the uncompressed volume / scanplan.flight.JPEG_COMPRESSION_RATIO)
+LABELS["en"]["data_volume_jpeg_gb"] = "Data volume as JPEG (estimate, 9:1), GB"
+LABELS["ru"]["data_volume_jpeg_gb"] = "Объём данных в JPEG (оценка, 9:1), ГБ"

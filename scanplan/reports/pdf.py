@@ -35,6 +35,7 @@ import weasyprint
 from markupsafe import Markup
 from weasyprint.urls import URLFetcher, URLFetcherResponse
 
+from .. import flight as FL
 from .._version import __version__
 from ..api import ScanJob, UavJob
 from ..flight import MAX_BLUR_PX
@@ -194,14 +195,10 @@ def _css_string(text: str) -> str:
 
 def _object_name(ns: NormSet, name: str, size_m: float, map_scale: int | None,
                  locale: str) -> str:
-    """The Russian name of a norm-table object, when the norm set has one."""
-    if locale != "ru":
-        return name
-    for o in ns.objects:
-        if o.name == name and o.size_m == size_m and (map_scale is None
-                                                      or o.map_scale == map_scale):
-            return o.name_ru or name
-    return name
+    """The object's name in the report's language (see :func:`api.object_display_name`)."""
+    from ..api import object_display_name
+
+    return object_display_name(ns, name, size_m, map_scale, locale)
 
 
 def _shape_name(ns: NormSet, shape: str, locale: str) -> str:
@@ -448,6 +445,8 @@ def _uav_view(job: UavJob, f: _Fmt) -> dict[str, Any]:
                           else "—")))
         if "data_volume_bytes" in fl:
             flight.append((f.label("pdf_data_volume"), f.num(fl["data_volume_bytes"] / 1e9, 1)))
+            flight.append((f.label("data_volume_jpeg_gb"),
+                           f.num(float(FL.jpeg_volume_bytes(fl["data_volume_bytes"])) / 1e9, 1)))
     recognition = [{
         "object": _object_name(ns, r.object, r.object_size_m, r.map_scale, f.locale),
         "map": f.scale(r.map_scale) if r.map_scale else "—", "size": f.g(r.object_size_m),
@@ -556,6 +555,8 @@ def _spec_view(spec: PlanResult, f: _Fmt) -> dict[str, Any]:
             rows.append((f.label("spec_photos"), f.g(p.flight["photos"])))
         if "data_volume_bytes" in p.flight:
             rows.append((f.label("spec_data_gb"), f.num(p.flight["data_volume_bytes"] / 1e9, 1)))
+            rows.append((f.label("data_volume_jpeg_gb"), f.num(float(FL.jpeg_volume_bytes(
+                p.flight["data_volume_bytes"])) / 1e9, 1)))
         reasons.append(localize(u.reason, f.locale))
     comparison = [(_comparison_quantity(c, f), _comparison_value(c["film"], f),
                    _comparison_value(c["uav"], f),
