@@ -160,6 +160,7 @@ def plan_result_dict(result: Any) -> dict[str, Any]:
         rec = f.recommended
         spec["film"] = {
             "recommended_photo_scale": scale_value(rec.photo_scale) if rec else None,
+            "archive": f.archive,
             "reason": f.reason,
             "binding": rec.binding if rec else None,
             "scan_pixel_um": rec.scan_pixel_um if rec else None,

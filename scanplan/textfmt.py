@@ -223,7 +223,8 @@ def format_plan_result(result: Any) -> str:
         else:
             px = (f"{s.scan_pixel_um:.1f} µm"
                   + (f" → scanner step {s.scanner_pixel_um:g} µm" if s.scanner_pixel_um else ""))
-            rows = [["  recommended photo scale", f"1:{scale_value(s.photo_scale)}"],
+            rows = [["  photo scale (existing photos, given)" if f.archive
+                     else "  recommended photo scale", f"1:{scale_value(s.photo_scale)}"],
                     ["  scan pixel", px],
                     ["  binding constraint", f"{s.binding} ({CONSTRAINTS[s.binding].name})"],
                     ["  recognition of the map object", _num(s.recognition_probability, 2)],

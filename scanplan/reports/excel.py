@@ -404,8 +404,9 @@ class _Book:
         if spec.film is not None:
             f, rec = spec.film, spec.film.recommended
             if rec is not None:
-                row = self.kv(ws, row, self.t("spec_recommended_photo_scale"), rec.photo_scale,
-                              '"1:"0')
+                key = ("spec_archive_photo_scale" if f.archive
+                       else "spec_recommended_photo_scale")
+                row = self.kv(ws, row, self.t(key), rec.photo_scale, '"1:"0')
                 row = self.kv(ws, row, self.t("scan_pixel_um"), rec.scan_pixel_um, "0.0")
                 if rec.scanner_pixel_um is not None:
                     row = self.kv(ws, row, self.t("scanner_pixel_um"), rec.scanner_pixel_um,

@@ -633,3 +633,5 @@ def t(key: str, locale: str = "en") -> str:
 # data volume as JPEG (the uncompressed volume / scanplan.flight.JPEG_COMPRESSION_RATIO)
 LABELS["en"]["data_volume_jpeg_gb"] = "Data volume as JPEG (estimate, 9:1), GB"
 LABELS["ru"]["data_volume_jpeg_gb"] = "Объём данных в JPEG (оценка, 9:1), ГБ"
+LABELS["en"]["spec_archive_photo_scale"] = "Photo scale (existing photos, given)"
+LABELS["ru"]["spec_archive_photo_scale"] = "Масштаб снимков (имеющиеся снимки, задан)"

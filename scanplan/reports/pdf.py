@@ -532,7 +532,8 @@ def _spec_view(spec: PlanResult, f: _Fmt) -> dict[str, Any]:
     if spec.film is not None:
         fs, rec = spec.film, spec.film.recommended
         if rec is not None:
-            rows.append((f.label("spec_recommended_photo_scale"), f.scale(rec.photo_scale)))
+            rows.append((f.label("spec_archive_photo_scale" if fs.archive
+                                 else "spec_recommended_photo_scale"), f.scale(rec.photo_scale)))
             px = f.num(rec.scan_pixel_um, 1)
             if rec.scanner_pixel_um is not None:
                 px += f" → {f.num(rec.scanner_pixel_um, 1)}"
