@@ -10,6 +10,7 @@ or a name under the user's norm directory (``$SCANPLAN_NORMS_DIR``, else
 from __future__ import annotations
 
 import csv
+import difflib
 import glob
 import io
 import math
@@ -35,6 +36,7 @@ __all__ = [
     "MapObject",
     "NormSet",
     "bundled_norms_dir",
+    "did_you_mean",
     "list_norm_sets",
     "load_norm_set",
     "parse_scale",
@@ -201,8 +203,8 @@ class NormSet:
         except KeyError:
             raise NotFoundError(
                 field_name,
-                f"unknown camera {camera_id!r}; known: {', '.join(sorted(self.cameras))} "
-                "(scanplan cameras list)",
+                f"unknown camera {camera_id!r}{did_you_mean(camera_id, self.cameras)} Known: "
+                f"{', '.join(sorted(self.cameras))} (scanplan cameras list)",
             ) from None
 
     def scanner_steps(self, scanner: str, field_name: str = "--scanner") -> tuple[float, ...]:
@@ -212,8 +214,35 @@ class NormSet:
         except KeyError:
             raise NotFoundError(
                 field_name,
-                f"unknown scanner {scanner!r}; known: {', '.join(sorted(self.scanners))}",
+                f"unknown scanner {scanner!r}{did_you_mean(scanner, self.scanners)} Known: "
+                f"{', '.join(sorted(self.scanners))}",
             ) from None
+
+
+def did_you_mean(word: str, choices: Iterable[str]) -> str:
+    """``" — did you mean 'rc30-153'?"`` for the closest ids (difflib), else ``"."``
+    (either ends the sentence naming the unknown id).
+
+    Case, spaces and underscores are ignored (``RC30_153`` finds ``rc30-153``).
+
+    Parameters
+    ----------
+    word : str
+        What the user typed.
+    choices : iterable of str
+        The known ids.
+    """
+    def key(x: str) -> str:
+        return str(x).strip().lower().replace("_", "-").replace(" ", "-")
+
+    by_key: dict[str, str] = {}
+    for c in choices:
+        by_key.setdefault(key(c), c)
+    close = difflib.get_close_matches(key(word), list(by_key), n=3, cutoff=0.6)
+    if not close:
+        return "."
+    names = " or ".join(repr(by_key[c]) for c in close)
+    return f" — did you mean {names}?"
 
 
 # ---------------------------------------------------------------------------------------
