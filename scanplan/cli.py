@@ -32,6 +32,7 @@ OPTION_NAMES = {
     "resolving_power_lpmm": "--resolving-power",
     "forward_overlap_pct": "--overlap-pct",
     "object_size_m": "--object-size-m",
+    "object_name": "--object-name",
     "shape": "--shape",
     "probability": "--probability",
     "height_formula": "--height-formula",
@@ -138,6 +139,11 @@ def _text(ctx: click.Context, param: click.Parameter, value: str) -> str:
     return value
 
 
+def _text_or_none(ctx: click.Context, param: click.Parameter, value: str | None
+                  ) -> str | None:
+    return None if value is None else _text(ctx, param, value)
+
+
 def norm_options(f: Callable[..., Any]) -> Callable[..., Any]:
     """The norm options shared by scan, uav and plan (spec/interface.md)."""
     for opt in reversed([
@@ -148,6 +154,9 @@ def norm_options(f: Callable[..., Any]) -> Callable[..., Any]:
                      "table's for the map scale)."),
         click.option("--shape", help="Object shape: circle|rectangle|angle|square|wall "
                      "(norm table)."),
+        click.option("--object-name", callback=_text_or_none,
+                     help="Name of your own object (with --object-size-m), as the reports "
+                     "show it."),
         click.option("--probability", type=float, callback=_finite,
                      help="Required recognition probability, 0 < P < 1 (default 0.75)."),
         click.option("--height-formula", type=click.Choice(["instruction", "parallax"]),
@@ -404,7 +413,8 @@ def plan(projects: tuple[str, ...], out_dir: str | None, xlsx_path: str | None,
 
     \b
     Examples:
-      scanplan plan examples/lida-2000-film.toml --out out/
+      scanplan plan examples/instruction-2000-film.toml --out out/
+      scanplan plan examples/archive-12000-for-2000.toml
       scanplan plan examples/ --json
     """
     files: list[str] = []
@@ -482,9 +492,12 @@ def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: s
                     + [{"file": f, "message": "not planned: the batch stopped"}
                        for f in not_run]})
     else:
-        from .textfmt import batch_summary
+        from .textfmt import batch_summary, batch_warnings
 
         click.echo(batch_summary(done, failed))
+        warned = batch_warnings(done)
+        if warned:
+            click.echo(warned)
     for _path, msg in failed:
         click.echo(f"error: {msg}", err=True)
     if stopped:

@@ -100,13 +100,19 @@ def format_scan_plan(plan: ScanPlan, norm_name: str = "", norm_title: str = "") 
         who = " and ".join(x for x in (f"scanner {inp.scanner}" if inp.scanner else "",
                                        "--pixel-um" if inp.candidate_pixels_um else "") if x)
         lines.append(f"Largest photo scale each scan pixel supports ({who}):")
-        rows = [["pixel µm", "photo scale", "limited by"]]
+        both = plan.interpretation_limit_photo_scale is not None
+        rows = [["pixel µm", "largest photo scale", "limited by"]
+                + (["with the object interpretable"] if both else [])]
         for r in plan.max_photo_scales:
             if r.max_photo_scale > 0:
-                rows.append([f"{r.pixel_um:g}", f"1:{math.floor(r.max_photo_scale):d}", r.limit])
+                row = [f"{r.pixel_um:g}", f"1:{math.floor(r.max_photo_scale):d}", r.limit]
             else:
-                rows.append([f"{r.pixel_um:g}", "none", "PR (pixel coarser than P_R)"])
-        lines.append(table(rows, align="rrl"))
+                row = [f"{r.pixel_um:g}", "none", "PR (pixel coarser than P_R)"]
+            if both:
+                mi = r.max_photo_scale_interpretable
+                row.append(f"1:{math.floor(mi):d}" if mi else "none")
+            rows.append(row)
+        lines.append(table(rows, align="rrlr" if both else "rrl"))
     if plan.warnings:
         lines.append("")
         lines.append("Warnings:")
@@ -321,3 +327,16 @@ def _volume(uncompressed_bytes: float) -> str:
     jpeg = float(jpeg_volume_bytes(uncompressed_bytes)) / 1e9
     return (f"{uncompressed_bytes / 1e9:.1f} GB uncompressed "
             f"(JPEG ≈ {jpeg:.1f} GB at {JPEG_COMPRESSION_RATIO:g}:1)")
+
+
+def batch_warnings(done: list[tuple[str, Any]]) -> str:
+    """The warnings of each project of a batch, under its file name ("" if none)."""
+    out: list[str] = []
+    for path, r in done:
+        if not r.warnings:
+            continue
+        out += ["", f"Warnings — {os.path.basename(path)}:"]
+        for w in r.warnings:
+            mark = "!" if w.severity == "warning" else "i"
+            out.append(_wrap(f"{w.message} [{w.code}]", f"  {mark} "))
+    return "\n".join(out)

@@ -488,14 +488,17 @@ class _Book:
         row += 1
         if plan.max_photo_scales:
             row = self.section(ws, row + 1, self.t("xlsx_reach"))
-            _header(ws, row, [self.t("pixel_um"), self.t("xlsx_max_photo_scale"),
-                              self.t("xlsx_limit")])
+            both = plan.interpretation_limit_photo_scale is not None
+            _header(ws, row, [self.t("pixel_um"), self.t("reach_pixel"), self.t("xlsx_limit")]
+                    + ([self.t("reach_interpretable")] if both else []))
             row += 1
             for reach in plan.max_photo_scales:
                 put_num(ws, row, 1, reach.pixel_um, UM)
                 put_num(ws, row, 2, reach.max_photo_scale if reach.max_photo_scale > 0
                         else None, SCALE)
                 put_text(ws, row, 3, self.cname(reach.limit))
+                if both:
+                    put_num(ws, row, 4, reach.max_photo_scale_interpretable or None, SCALE)
                 row += 1
         return row
 

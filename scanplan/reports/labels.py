@@ -635,3 +635,9 @@ LABELS["en"]["data_volume_jpeg_gb"] = "Data volume as JPEG (estimate, 9:1), GB"
 LABELS["ru"]["data_volume_jpeg_gb"] = "Объём данных в JPEG (оценка, 9:1), ГБ"
 LABELS["en"]["spec_archive_photo_scale"] = "Photo scale (existing photos, given)"
 LABELS["ru"]["spec_archive_photo_scale"] = "Масштаб снимков (имеющиеся снимки, задан)"
+# the inverse table: the largest photo scale per scan pixel, with and without the
+# interpretation limit
+LABELS["en"]["reach_pixel"] = "Largest photo scale the pixel supports"
+LABELS["ru"]["reach_pixel"] = "Предельный масштаб снимков для пикселя"
+LABELS["en"]["reach_interpretable"] = "Largest photo scale with the map object interpretable"
+LABELS["ru"]["reach_interpretable"] = "Предельный масштаб снимков с дешифрированием объекта"

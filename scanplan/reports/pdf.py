@@ -288,7 +288,9 @@ def _scan_view(job: ScanJob, f: _Fmt) -> dict[str, Any]:
     reach = [{"pixel": f.g(r.pixel_um),
               "scale": f.floor_scale(r.max_photo_scale) if r.max_photo_scale > 0
               else f.label("pdf_none"),
-              "limit": f"{r.limit} — {f.cname(r.limit)}" if r.limit in CONSTRAINTS else r.limit}
+              "limit": f"{r.limit} — {f.cname(r.limit)}" if r.limit in CONSTRAINTS else r.limit,
+              "interpretable": (f.floor_scale(r.max_photo_scale_interpretable)
+                                if r.max_photo_scale_interpretable else f.label("pdf_none"))}
              for r in plan.max_photo_scales]
     formulas = [{"id": cid, "name": f.cname(cid),
                  "equation": localize(CONSTRAINTS[cid].equation, f.locale),
@@ -299,6 +301,7 @@ def _scan_view(job: ScanJob, f: _Fmt) -> dict[str, Any]:
     return {
         "inputs": inputs, "tables": tables,
         "explanations": explanations, "interpretation_limit": limit, "reach": reach,
+        "reach_interpretable": obj is not None and mci is not None,
         "warnings": _warnings(plan.warnings, f), "formulas": formulas, "params": params,
         "norm": _norm_view(ns, f),
         "plot": _svg_uri(plots.constraints_svg(plan, f.locale)),
