@@ -573,6 +573,10 @@ from .cli_norms import norms  # noqa: E402  (the group needs `main` defined firs
 
 main.add_command(norms)
 
+from .cli_init import init  # noqa: E402
+
+main.add_command(init)
+
 
 def run() -> None:  # pragma: no cover - console entry used by python -m scanplan
     main(prog_name="scanplan")
