@@ -115,7 +115,7 @@ def project_text(a: InitAnswers) -> str:
             "forward_overlap_pct = 60\t# [%], 50 or more (stereo)",
         ]
         if a.archive_photo_scale is not None:
-            out += [f"photo_scale = {_n(a.archive_photo_scale)}              "
+            out += [f"photo_scale = {_n(a.archive_photo_scale)}\t"
                     "# existing (archive) photos: their scale is given, not chosen"]
         else:
             scales = a.photo_scales or default_photo_scales(a.map_scale)
