@@ -307,6 +307,14 @@ def init(project: str, force: bool, **opts: Any) -> None:
                          "--photo-scales (candidates), not both")
     archive = (parse_scale(opts["archive_photo_scale"], "--photo-scale")
                if opts["archive_photo_scale"] else None)
+    if ask and kind != "uav" and not opts["photo_scales"] and archive is None:
+        if click.confirm("Scan existing (archive) photos of a given scale?", default=False):
+            archive = parse_scale(click.prompt("Scale of the existing photos (e.g. 12000)"),
+                                  "--photo-scale")
+        else:
+            default = ",".join(f"{x:g}" for x in default_photo_scales(map_scale))
+            opts["photo_scales"] = click.prompt("Candidate photo scales, comma-separated",
+                                                default=default)
     answers = InitAnswers(
         kind=kind, map_scale=map_scale, relief_interval_m=relief, name=name,
         customer=opts["customer"], contractor=opts["contractor"], locale=locale,

@@ -111,3 +111,19 @@ def test_no_overwrite_race(tmp_path, monkeypatch):
     assert r.exit_code == 2 and "exists" in r.output
     assert p.read_text(encoding="utf-8") == "theirs\n"
     assert os.listdir(tmp_path) == ["x.toml"]
+
+
+def test_prompts_for_archive_photos(tmp_path, monkeypatch):
+    monkeypatch.setattr(cli_init, "_interactive", lambda: True)
+    p = tmp_path / "archive.toml"
+    # kind, map scale, relief, name, locale, film camera, archive?, its scale
+    r = _cli("init", str(p), input="film\n2000\n1\n\nru\n\ny\n1:12000\n")
+    assert r.exit_code == 0, r.output
+    doc = tomllib.loads(p.read_text(encoding="utf-8"))
+    assert doc["film"]["photo_scale"] == 12000 and doc["project"]["locale"] == "ru"
+    assert _cli("plan", str(p)).exit_code == 0
+    p2 = tmp_path / "candidates.toml"
+    r = _cli("init", str(p2), input="film\n1000\n0.5\n\nen\n\nn\n\n")
+    assert r.exit_code == 0, r.output
+    assert tomllib.loads(p2.read_text(encoding="utf-8"))["film"]["photo_scales"] == [
+        3000, 4000, 5000, 6000]
