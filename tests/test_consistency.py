@@ -188,3 +188,22 @@ def test_named_object_in_the_reports(tmp_path):
     cells = [str(c.value) for ws in wb for row in ws.iter_rows() for c in row if c.value]
     assert any("объект дешифрирования" in c for c in cells)
     assert "object" not in cells
+
+
+def test_inverse_table_both_columns_in_the_reports(tmp_path):
+    """The workbook and the PDF label both columns (en and ru)."""
+    pypdf = pytest.importorskip("pypdf")
+    from openpyxl import load_workbook
+
+    for locale, label in (("en", "Largest photo scale with the map object interpretable"),
+                          ("ru", "Предельный масштаб снимков с дешифрированием объекта")):
+        x, p = tmp_path / f"{locale}.xlsx", tmp_path / f"{locale}.pdf"
+        r = _cli("scan", "--map-scale", "2000", "--relief", "1", "--photo-scale", "10000",
+                 "--camera", "afa-te-100", "--scanner", "photoscan-td", "--locale", locale,
+                 "--xlsx", str(x), "--pdf", str(p))
+        assert r.exit_code == 0, r.output
+        cells = {str(c.value) for ws in load_workbook(x) for row in ws.iter_rows()
+                 for c in row if c.value is not None}
+        assert label in cells
+        text = " ".join(" ".join(pg.extract_text().split()) for pg in pypdf.PdfReader(p).pages)
+        assert label in text or label.replace(" ", "") in text.replace(" ", "")
