@@ -237,7 +237,7 @@ def format_plan_result(result: Any) -> str:
                     ["  scanned frame", f"{s.frame_megabytes:,.0f} MB"]]
             if f.frames is not None:
                 rows.append(["  frames for the area", f"{f.frames} ({f.strips} strips), "
-                             f"{f.scanned_gigabytes:,.1f} GB scanned"])
+                             f"{f.scanned_gigabytes:,.1f} GB scanned, uncompressed"])
             lines.append(table(rows, align="ll"))
             lines.append(_wrap(f.reason, "  "))
     if result.uav:
