@@ -51,6 +51,8 @@ class InitAnswers:
     uav_camera: str = DEFAULT_UAV_CAMERA
     height_m: float | None = None
     area_m: tuple[float, float] | None = None
+    object_name: str = ""
+    object_size_m: float | None = None
 
 
 def _s(text: str) -> str:
@@ -101,8 +103,12 @@ def project_text(a: InitAnswers) -> str:
         "[norms]",
         f"set = {_s(a.norms)}\t# norm set (scanplan norms list)",
         "# probability = 0.75\t# required recognition probability",
-        "# object_name = \"manhole covers\"\t# your own object to interpret, with its size:",
-        "# object_size_m = 0.6\t#   (default: the norm table's for the map scale)",
+        (f"object_name = {_s(a.object_name)}\t# your own object to interpret, with its size"
+         if a.object_name else
+         "# object_name = \"manhole covers\"\t# your own object to interpret, with its size:"),
+        (f"object_size_m = {_n(a.object_size_m)}\t# [m] (default: the norm table's for the "
+         "map scale)" if a.object_size_m is not None else
+         "# object_size_m = 0.6\t#   (default: the norm table's for the map scale)"),
         "# shape = \"circle\"\t# circle | rectangle | angle | square | wall",
     ]
     if a.kind in ("film", "both"):
@@ -255,6 +261,10 @@ def _area(text: str | None) -> tuple[float, float] | None:
 @click.option("--height-m", type=float, help="Planned UAV height [m] (default: the highest "
               "the constraints allow).")
 @click.option("--area-m", help="Block WIDTHxLENGTH [m], e.g. 2000x3000 (optional).")
+@click.option("--object-name", default="", help="Name of your own object to interpret "
+              "(with --object-size-m).")
+@click.option("--object-size-m", type=float, help="Size of your own object to interpret [m] "
+              "(default: the norm table's smallest object for the map scale).")
 @click.option("--force", is_flag=True, help="Replace an existing file.")
 def init(project: str, force: bool, **opts: Any) -> None:
     """Write a commented project file that `scanplan plan` runs as it is.
@@ -322,7 +332,8 @@ def init(project: str, force: bool, **opts: Any) -> None:
         resolving_power_lpmm=opts["resolving_power_lpmm"],
         photo_scales=_scales(opts["photo_scales"]), archive_photo_scale=archive,
         scanner=opts["scanner"], uav_camera=uav_camera, height_m=opts["height_m"],
-        area_m=_area(opts["area_m"]))
+        area_m=_area(opts["area_m"]), object_name=opts["object_name"],
+        object_size_m=opts["object_size_m"])
     text = project_text(answers)
     try:
         check_answers(text, project)
@@ -342,7 +353,8 @@ _KEY_OPTIONS = {
     "film.scanner": "--scanner", "film.resolving_power_lpmm": "--resolving-power",
     "uav.height_m": "--height-m", "norms.set": "--norms", "area.width_m": "--area-m",
     "area.length_m": "--area-m", "project.name": "--name", "project.customer": "--customer",
-    "project.contractor": "--contractor",
+    "project.contractor": "--contractor", "norms.object_size_m": "--object-size-m",
+    "norms.object_name": "--object-name",
 }
 
 

@@ -127,3 +127,16 @@ def test_prompts_for_archive_photos(tmp_path, monkeypatch):
     assert r.exit_code == 0, r.output
     assert tomllib.loads(p2.read_text(encoding="utf-8"))["film"]["photo_scales"] == [
         3000, 4000, 5000, 6000]
+
+
+def test_own_object_for_a_scale_without_a_norm_object(tmp_path):
+    """1:100000 has no norm object: init says which option gives one, and with it plans."""
+    p = tmp_path / "small.toml"
+    r = _cli("init", str(p), "--kind", "film", "--map-scale", "100000", "--relief", "20")
+    assert r.exit_code == 2 and "error: --object-size-m" in r.output and not p.exists()
+    r = _cli("init", str(p), "--kind", "film", "--map-scale", "100000", "--relief", "20",
+             "--object-size-m", "10", "--object-name", "bridges")
+    assert r.exit_code == 0, r.output
+    doc = tomllib.loads(p.read_text(encoding="utf-8"))
+    assert doc["norms"]["object_name"] == "bridges" and doc["norms"]["object_size_m"] == 10
+    assert _cli("plan", str(p)).exit_code == 0
