@@ -15,7 +15,7 @@ import os
 from collections.abc import Iterable
 from dataclasses import dataclass
 
-from .domains import check_domain
+from .domains import MAX_LIST_ITEMS, check_domain
 from .errors import InputError
 from .messages import Message
 from .mtf import DEFAULT_K0
@@ -188,7 +188,11 @@ def scan_job(
     mk = _scale(map_scale, "map_scale")
     if isinstance(photo_scales, str | bytes) or not isinstance(photo_scales, Iterable):
         raise InputError("photo_scale", f"must be a list of scales (got {photo_scales!r})")
-    scales = tuple(_scale(s, "photo_scale") for s in photo_scales)
+    scales = tuple(_scale(s, "photo_scale") for _, s in zip(range(MAX_LIST_ITEMS + 1),
+                                                            photo_scales, strict=False))
+    if len(scales) > MAX_LIST_ITEMS:
+        raise InputError("photo_scale", f"more than {MAX_LIST_ITEMS} photo scales; give at "
+                         f"most {MAX_LIST_ITEMS} candidates")
     if camera is not None:
         cam = ns.camera(camera, "camera")
         if cam.kind != "film":
@@ -222,7 +226,7 @@ def scan_job(
         frame_width_mm=w, frame_along_mm=h, resolving_power_lpmm=r,
         forward_overlap_pct=overlap, object=obj, camera=camera or "", scanner=scanner or "",
         scanner_steps_um=steps, bands=bands, bits_per_band=bits_per_band,
-        candidate_pixels_um=tuple(pixel_um))
+        candidate_pixels_um=_at_most(pixel_um, "pixel_um", "scan pixels"))
     return ScanJob(plan_scan(inputs, rules), ns)
 
 
@@ -370,6 +374,15 @@ def uav_job(
         relief_interval_m=relief_interval_m, map_object=map_obj, objects=tuple(objects),
         area_width_m=area_w, area_length_m=area_l)
     return UavJob(plan_uav(inputs, rules), ns)
+
+
+def _at_most(values: Iterable[float], field: str, what: str) -> tuple[float, ...]:
+    """The values as a tuple; :class:`InputError` beyond :data:`MAX_LIST_ITEMS` of them."""
+    out = tuple(v for _, v in zip(range(MAX_LIST_ITEMS + 1), values, strict=False))
+    if len(out) > MAX_LIST_ITEMS:
+        raise InputError(field, f"more than {MAX_LIST_ITEMS} {what}; give at most "
+                         f"{MAX_LIST_ITEMS}")
+    return out
 
 
 def _check_overrides(overrides: dict[str, object]) -> None:

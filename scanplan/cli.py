@@ -12,6 +12,7 @@ import math
 import os
 import sys
 import traceback
+import warnings
 from collections.abc import Callable
 from typing import Any
 
@@ -74,7 +75,10 @@ class ScanplanGroup(click.Group):
 
     def invoke(self, ctx: click.Context) -> Any:
         try:
-            return super().invoke(ctx)
+            with warnings.catch_warnings():
+                if not os.environ.get("SCANPLAN_DEBUG"):  # no library's warning on a
+                    warnings.simplefilter("ignore")  # user's terminal (the tests raise them)
+                return super().invoke(ctx)
         except InputError as exc:
             field = OPTION_NAMES.get(exc.field, exc.field)
             click.echo(f"error: {field}: {exc.message}", err=True)
@@ -121,6 +125,34 @@ SCALE = ScaleType()
 
 def _echo_json(doc: Any) -> None:
     click.echo(json.dumps(doc, ensure_ascii=False, indent=2, allow_nan=False))
+
+
+class _JsonStream:
+    """Print ``{"KEY": [item, ...], ...}`` one item at a time, byte-identical to
+    :func:`_echo_json` of the whole document: a batch of thousands of projects never holds
+    every result in memory (issue 17)."""
+
+    def __init__(self, key: str) -> None:
+        self.key, self.n = key, 0
+
+    @staticmethod
+    def _dumps(value: Any) -> str:
+        return json.dumps(value, ensure_ascii=False, indent=2, allow_nan=False)
+
+    def add(self, item: Any) -> None:
+        """Print the next item of the list (flushed: a reader sees it at once)."""
+        body = "\n".join("    " + line for line in self._dumps(item).splitlines())
+        head = f'{{\n  {self._dumps(self.key)}: [\n' if self.n == 0 else ",\n"
+        click.echo(head + body, nl=False)
+        sys.stdout.flush()
+        self.n += 1
+
+    def close(self, rest: dict[str, Any]) -> None:
+        """End the list and print the document's other keys."""
+        out = f'{{\n  {self._dumps(self.key)}: []' if self.n == 0 else "\n  ]"
+        for key, value in rest.items():
+            out += f",\n  {self._dumps(key)}: " + self._dumps(value).replace("\n", "\n  ")
+        click.echo(out + "\n}")
 
 
 def _finite(ctx: click.Context, param: click.Parameter, value: float | None) -> float | None:
@@ -173,6 +205,8 @@ def report_options(f: Callable[..., Any]) -> Callable[..., Any]:
                      help="Write the Excel report to this file (atomically)."),
         click.option("--pdf", "pdf_path", type=click.Path(dir_okay=False),
                      help="Write the PDF specification to this file (atomically)."),
+        click.option("--force", is_flag=True, help="Replace an existing --xlsx/--pdf file "
+                     "that scanplan did not write."),
         click.option("--locale", type=click.Choice(["en", "ru"]), default="en",
                      show_default=True, help="Language of the reports."),
         click.option("--project-name", default="", callback=_text,
@@ -199,6 +233,10 @@ def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
     spec.xlsx and spec.pdf are both as they were — never a new workbook beside an old PDF.
     """
     xlsx, pdf = opts.pop("xlsx_path"), opts.pop("pdf_path")
+    force, inputs = opts.pop("force", False), opts.pop("inputs", ())
+    fields = opts.pop("fields", {"xlsx": "--xlsx", "pdf": "--pdf"})
+    note = opts.pop("note", "")
+    from .outpaths import check_target
     from .reports import ReportMeta, write_atomic_many
 
     meta = ReportMeta(project=opts.pop("project_name"), customer=opts.pop("customer"),
@@ -206,13 +244,19 @@ def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
                       approver_position=opts.pop("approver_position"),
                       approver_name=opts.pop("approver_name"))
     wanted = [(path, kind) for path, kind in ((xlsx, "xlsx"), (pdf, "pdf")) if path]
+
+    def check() -> None:  # before rendering, and again under the folder lock
+        for path, kind in wanted:
+            check_target(path, fields[kind], kind, inputs=inputs, force=force)
+
     for path, kind in wanted:
         folder = os.path.dirname(os.path.abspath(path))
         if not os.path.isdir(folder):
-            raise InputError(f"--{kind}", f"folder {folder!r} does not exist")
+            raise InputError(fields[kind], f"folder {folder!r} does not exist")
     if len(wanted) == 2 and (os.path.normcase(os.path.realpath(xlsx))
                              == os.path.normcase(os.path.realpath(pdf))):
         raise InputError("--pdf", f"{pdf!r} is the file --xlsx writes; give another name")
+    check()
     extra = {"spec": spec} if spec is not None else {}
     files: dict[str, bytes] = {}
     for path, kind in wanted:
@@ -221,9 +265,9 @@ def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
         else:
             from .reports.pdf import render_pdf as render
         files[path] = render(scan=scan, uav=uav, meta=meta, **extra)
-    write_atomic_many(files)
+    write_atomic_many(files, check=check)
     for path in files:
-        click.echo(f"wrote {path}", err=True)
+        click.echo(f"wrote {path}{note}", err=True)
 
 
 def _make_folder(path: str) -> list[str]:
@@ -250,7 +294,7 @@ def _remove_empty(folders: list[str]) -> None:
             return
 
 
-REPORT_KEYS = ("xlsx_path", "pdf_path", "locale", "project_name", "customer", "contractor",
+REPORT_KEYS = ("xlsx_path", "pdf_path", "force", "locale", "project_name", "customer", "contractor",
                "approver_position", "approver_name")
 
 
@@ -357,7 +401,8 @@ def scan(as_json: bool, bits_per_band: str, **kwargs: Any) -> None:
 @click.option("--k0", "threshold_k0", type=float, callback=_finite,
               help="Sensor threshold contrast at low frequency (default 0.03).")
 @click.option("--shift-factor", type=float, default=1.0, show_default=True, callback=_finite,
-              help="Photographic/geometric image shift (0.6–0.7 summer, 1 bright canopy).")
+              help="Photographic/geometric image shift, 0 < k ≤ 1 (0.6–0.7 summer, "
+              "1 bright canopy).")
 @click.option("--random-speed-ms", type=float, default=0.0, callback=_finite,
               help="RMS random linear speed of a light UAV [m/s].")
 @click.option("--roll-rate", "roll_rate_rad_s", type=float, default=0.0, callback=_finite,
@@ -398,14 +443,17 @@ def uav(as_json: bool, **kwargs: Any) -> None:
 @main.command()
 @click.argument("projects", nargs=-1, required=True, type=click.Path())
 @click.option("--out", "out_dir", type=click.Path(file_okay=False),
-              help="Write spec.xlsx and spec.pdf into this folder (batch: NAME.xlsx/.pdf).")
+              help="Write spec.xlsx and spec.pdf into this folder (batch: NAME.xlsx/.pdf, "
+              "NAME-2.xlsx/.pdf for a second project named NAME).")
 @click.option("--xlsx", "xlsx_path", type=click.Path(dir_okay=False),
-              help="Write the Excel report to this file (one project).")
+              help="Write the Excel report to this file (one project; not with --out).")
 @click.option("--pdf", "pdf_path", type=click.Path(dir_okay=False),
-              help="Write the PDF specification to this file (one project).")
+              help="Write the PDF specification to this file (one project; not with --out).")
+@click.option("--force", is_flag=True,
+              help="Replace existing report files that scanplan did not write.")
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
 def plan(projects: tuple[str, ...], out_dir: str | None, xlsx_path: str | None,
-         pdf_path: str | None, as_json: bool) -> None:
+         pdf_path: str | None, force: bool, as_json: bool) -> None:
     """The main job: the scan / flight specification for a mapping contract.
 
     PROJECTS are project files (TOML) or folders of them; several give a batch with one
@@ -427,6 +475,9 @@ def plan(projects: tuple[str, ...], out_dir: str | None, xlsx_path: str | None,
     if not files:
         raise InputError("PROJECTS", "no project files (*.toml) found")
     batch = len(files) > 1
+    if out_dir and (xlsx_path or pdf_path):
+        raise InputError("--out", "give either --out (a folder for both reports) or "
+                         "--xlsx/--pdf (file names), not both")
     if batch and (xlsx_path or pdf_path):
         raise InputError("--xlsx", "--xlsx/--pdf name one file; with several projects use --out")
     created: list[str] = []
@@ -435,29 +486,56 @@ def plan(projects: tuple[str, ...], out_dir: str | None, xlsx_path: str | None,
             raise InputError("--out", f"{out_dir!r} is not a folder")
         created = _make_folder(out_dir)
     try:
-        _plan_files(files, batch, out_dir, xlsx_path, pdf_path, as_json)
+        _plan_files(files, batch, out_dir, xlsx_path, pdf_path, as_json, force)
     finally:  # a folder --out created stays only if something was written into it
         _remove_empty(created)
 
 
+def batch_stems(files: list[str]) -> list[str]:
+    """One report name per project of a batch: the file's stem, ``STEM-2``, ``STEM-3`` …
+    for later projects with the same stem (compared without case: some file systems ignore
+    it), so that no project's reports replace another's."""
+    used: set[str] = set()
+    out = []
+    for path in files:
+        stem = os.path.splitext(os.path.basename(path))[0] or "spec"
+        name, n = stem, 1
+        while name.casefold() in used:
+            n += 1
+            name = f"{stem}-{n}"
+        used.add(name.casefold())
+        out.append(name)
+    return out
+
+
 def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: str | None,
-                pdf_path: str | None, as_json: bool) -> None:
+                pdf_path: str | None, as_json: bool, force: bool = False) -> None:
     """``plan`` after its arguments are checked: run one project or a batch."""
     from .project import load_project
     from .serialize import plan_result_dict
     from .spec import plan_project
     from .textfmt import format_plan_result
 
+    stems = dict(zip(files, batch_stems(files), strict=True)) if batch else {}
+
     def run_one(path: str) -> Any:
-        result = plan_project(load_project(path))
         targets = {"xlsx_path": xlsx_path, "pdf_path": pdf_path}
+        fields = {"xlsx": "--xlsx", "pdf": "--pdf"}
+        note = ""
         if out_dir:
-            stem = os.path.splitext(os.path.basename(path))[0] if batch else "spec"
+            stem = stems[path] if batch else "spec"
             targets = {"xlsx_path": os.path.join(out_dir, stem + ".xlsx"),
                        "pdf_path": os.path.join(out_dir, stem + ".pdf")}
+            fields = {"xlsx": "--out", "pdf": "--out"}
+            if batch:
+                base = os.path.splitext(os.path.basename(path))[0]
+                note = f" (for {path}" + (f"; the name {base} is taken by another project "
+                                          "of this batch" if stem != base else "") + ")"
+        result = plan_project(load_project(path))
         film = result.film.job if result.film else None
         uav_ = result.uav.job if result.uav else None
-        _write_reports({**targets, "locale": result.meta.locale,
+        _write_reports({**targets, "force": force, "inputs": files, "fields": fields,
+                        "note": note, "locale": result.meta.locale,
                         "project_name": result.meta.project, "customer": result.meta.customer,
                         "contractor": result.meta.contractor,
                         "approver_position": result.meta.approver_position,
@@ -472,13 +550,18 @@ def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: s
         else:
             click.echo(format_plan_result(result))
         return
-    done: list[tuple[str, Any]] = []
+    done: list[tuple[str, Any]] = []  # with --json the results are streamed, not kept
     failed: list[tuple[str, str]] = []
+    stream = _JsonStream("projects") if as_json else None
     stopped = ""  # a write failure (disk full) stops the batch: the project it stopped at
     with click.progressbar(files, label="planning", file=sys.stderr) as bar:
         for path in bar:
             try:
-                done.append((path, run_one(path)))
+                result = run_one(path)
+                if stream is not None:
+                    stream.add(plan_result_dict(result))
+                    result = None
+                done.append((path, result))
             except InputError as exc:  # a bad project: report it, run the others
                 failed.append((path, f"{exc.field}: {exc.message}"))
             except WriteError as exc:
@@ -486,11 +569,10 @@ def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: s
                 stopped = path
                 break
     not_run = files[len(done) + len(failed):]
-    if as_json:
-        _echo_json({"projects": [plan_result_dict(r) for _, r in done],
-                    "errors": [{"file": f, "message": m} for f, m in failed]
-                    + [{"file": f, "message": "not planned: the batch stopped"}
-                       for f in not_run]})
+    if stream is not None:
+        stream.close({"errors": [{"file": f, "message": m} for f, m in failed]
+                      + [{"file": f, "message": "not planned: the batch stopped"}
+                         for f in not_run]})
     else:
         from .textfmt import batch_summary, batch_warnings
 

@@ -16,7 +16,10 @@ from dataclasses import dataclass
 
 from .errors import InputError
 
-__all__ = ["DOMAINS", "HINTS", "Domain", "check_domain", "check_range"]
+__all__ = ["DOMAINS", "HINTS", "MAX_LIST_ITEMS", "Domain", "check_domain", "check_range"]
+
+MAX_LIST_ITEMS = 100
+"""Most values of a repeated input (photo scales of a sweep, scan pixels to check)."""
 
 
 @dataclass(frozen=True)
@@ -71,7 +74,7 @@ DOMAINS: dict[str, Domain] = {
     "pitch_deg": Domain(-45, 45, "°", meaning="pitch for the tilted-frame corner GSD"),
     "threshold_k0": Domain(0, 1, lo_open=True, hi_open=True,
                            meaning="sensor threshold contrast at low frequency"),
-    "shift_factor": Domain(0, 10, lo_open=True,
+    "shift_factor": Domain(0, 1, lo_open=True,
                            meaning="photographic/geometric image shift factor"),
     "r_max": Domain(0, 1, lo_open=True, meaning="brightness coefficient of the lightest detail"),
     "r_min": Domain(0, 1, meaning="brightness coefficient of the darkest detail"),
@@ -117,7 +120,11 @@ def check_range(name: str, value: float | None, *, lo: float | None = None,
     unit : str
         Unit named in the message.
     """
-    ok = isinstance(value, int | float) and not isinstance(value, bool) and math.isfinite(value)
+    ok = isinstance(value, int | float) and not isinstance(value, bool)
+    try:
+        ok = ok and math.isfinite(value)  # type: ignore[arg-type]
+    except OverflowError:  # an integer too large for a float
+        ok = False
     if ok and lo is not None:
         ok = value > lo if lo_open else value >= lo
     if ok and hi is not None:
@@ -129,8 +136,12 @@ def check_range(name: str, value: float | None, *, lo: float | None = None,
         if hi is not None:
             parts.append(f"{'<' if hi_open else '≤'} {_bound(hi)}")
         rng = " and ".join(parts)
+        try:
+            shown = repr(value)
+        except ValueError:  # over Python's 4,300-digit limit
+            shown = "a number of more than 4,300 digits"
         raise InputError(name, f"must be a finite number {rng}{' ' + unit if unit else ''} "
-                               f"(got {value!r})")
+                               f"(got {shown[:200]})")
 
 
 def check_domain(name: str, value: float | None, domain: str | None = None) -> None:

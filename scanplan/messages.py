@@ -286,6 +286,11 @@ MESSAGES: dict[str, dict[str, str]] = {
         "ru": "наименьший шаг сканера {scanner} должен быть не больше размера пикселя "
               "сканирования",
     },
+    "no_feasible_photo_scale.pixel": {
+        "en": "a scan pixel under {finest:g} µm is beyond any scanner and the film itself",
+        "ru": "пиксель сканирования меньше {finest:g}~мкм недостижим ни для сканера, ни для "
+              "самой плёнки",
+    },
     "spec.uav_none": {
         "en": "no flight height meets every constraint with this camera",
         "ru": "Ни одна высота полёта не удовлетворяет всем условиям с этой камерой.",

@@ -1136,6 +1136,7 @@ def solve_resolving_power(
         est = np.where(ok, np.clip(polished, est - width, est + width), est)
         est = np.clip(est, 0.0, ceiling)
     r = np.where(crossed, est, ceiling)
+    resolvable = resolvable & (r > 0.0)  # a crossing at N = 0 resolves nothing
     sensor_limited = resolvable & (~crossed | (r >= np.broadcast_to(rm, shape) * (1 - 1e-12)))
     r = np.where(resolvable, r, np.nan)
     return ResolvingPower(
@@ -1750,11 +1751,18 @@ def resolving_power(
         direction,
         disable,
     )
-    rm = chain.nyquist
-    width = chain.motion_width_mm
+    # every configuration gets its own R, even where nothing depends on it (zero motion:
+    # no component varies with the flying height)
+    shape = np.broadcast_shapes(np.shape(chain.nyquist), np.shape(chain.motion_width_mm),
+                                *(v.shape[:-1] for v in chain.prm.values()),
+                                *(np.shape(x) for x in (flight.height_m, flight.speed_ms,
+                                                        flight.exposure_s)))
+    rm = np.broadcast_to(chain.nyquist, shape)
+    width = np.broadcast_to(chain.motion_width_mm, shape)
     upper = None
-    if np.any(width > 0):
-        upper = np.where(width > 0, 1.0 / np.where(width > 0, width, 1.0), rm)
+    below = width * rm > 1.0  # the sinc's first zero lies below R_m (no 1/width overflow)
+    if np.any(below):
+        upper = np.where(below, 1.0 / np.where(below, width, 1.0), rm)
     kobj = _col(scene.contrast)
     kthr = threshold.prepare(_col(rm))
 

@@ -15,6 +15,7 @@ import glob
 import io
 import math
 import os
+import stat
 import tomllib
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
@@ -25,7 +26,7 @@ from typing import Any
 from .errors import InputError, NotFoundError
 from .normschema import PARAMETERS, TABLES, TableSpec, ValueSpec
 from .planner import ScanRules
-from .safeio import read_limited
+from .safeio import dir_lock, read_limited
 
 DEFAULT_NORM_SET = "gkinp-02-036-02"
 CATALOGUE = "catalogue"
@@ -79,7 +80,11 @@ def parse_scale(value: object, field_name: str) -> float:
     if isinstance(value, bool):
         raise InputError(field_name, f"must be {allowed} (got {value!r})")
     if isinstance(value, int | float):
-        v = float(value)
+        try:
+            v = float(value)
+        except OverflowError:  # an integer too large for a float
+            raise InputError(field_name, f"must be {allowed} (got a number too large for "
+                             "a float)") from None
     else:
         text = str(value).strip().replace("\u00a0", "").replace("\u202f", "").replace(" ", "")
         if text.startswith("1:"):
@@ -353,12 +358,17 @@ def _resolve(name_or_path: str | os.PathLike[str]) -> tuple[Path, bool]:
     if not text.strip():
         raise NotFoundError("--norms", "is empty; give a norm set name (scanplan norms list) "
                             "or the path of a norm set folder")
+    longest = max(len(os.fsencode(part)) for part in text.split(os.sep))
+    if longest > 255 or len(os.fsencode(text)) > 4096:
+        raise NotFoundError("--norms", f"is {len(text):,} characters long: no norm set has "
+                            "such a name (an imported name has at most 64 characters; a "
+                            "folder name at most 255 bytes, a path 4,096; scanplan norms list)")
     # a name is looked up in the bundled and user folders; "..", ".x" and "a/b" are paths
     is_name = is_set_name(text)
     if text and is_name and text != CATALOGUE:
         if (bundled / text / "set.toml").is_file():
             return bundled / text, True
-        if (user_norms_dir() / text / "set.toml").is_file() or _put_back(text):
+        if _user_set_exists(text) or _put_back(text):
             return user_norms_dir() / text, False
     p = Path(text).expanduser()
     if (p / "set.toml").is_file():
@@ -375,6 +385,16 @@ def _resolve(name_or_path: str | os.PathLike[str]) -> tuple[Path, bool]:
         f"no norm set {text!r}: give a bundled or imported name ({known}) or the path of a "
         "norm set folder (scanplan norms list)",
     )
+
+
+def _user_set_exists(name: str) -> bool:
+    """Whether user set ``name`` exists; looked at again under the norm directory's shared
+    lock when it seems missing (an import may be swapping it in right now)."""
+    found = (user_norms_dir() / name / "set.toml").is_file()
+    if not found and user_norms_dir().is_dir():
+        with dir_lock(user_norms_dir(), exclusive=False):
+            found = (user_norms_dir() / name / "set.toml").is_file()
+    return found
 
 
 def _put_back(name: str) -> bool:
@@ -410,24 +430,35 @@ def load_norm_set(name_or_path: str | os.PathLike[str] = DEFAULT_NORM_SET) -> No
     InputError
         If a file of the set breaks the schema (the message names file, row and column).
     """
-    path, bundled = _resolve(name_or_path)
-    path = path.resolve()
-    return _load_path(path, bundled, _fingerprint(path))
+    for _ in range(3):
+        path, bundled = _resolve(name_or_path)
+        path = path.resolve()
+        if bundled:  # read-only, part of the installation
+            return _load_path(path, bundled, _fingerprint(path))
+        # An import replaces a set under an exclusive lock on its folder's parent (the norm
+        # directory); reading under a shared lock sees the old set or the new one, never a
+        # mix, and never a set missing half-way through the swap.
+        with dir_lock(path.parent, exclusive=False):
+            if (path / "set.toml").is_file():
+                return _load_path(path, bundled, _fingerprint(path))
+    raise NotFoundError("--norms", f"norm set {os.fspath(name_or_path)!r} disappeared while "
+                        "it was read (replaced or deleted by another program); try again")
 
 
-def _fingerprint(path: Path) -> tuple[tuple[str, int, int], ...]:
-    """(name, size, mtime) of the set's files: a replaced set is never served from cache."""
+def _fingerprint(path: Path) -> tuple[tuple[str, int, int, int, int], ...]:
+    """(name, size, mtime, inode, ctime) of the set's files: a replaced set is never served
+    from the cache (an import writes new files, so at least the inode and ctime change)."""
     out = []
     for f in sorted(path.iterdir()):
-        if f.is_file():
-            st = f.stat()
-            out.append((f.name, st.st_size, st.st_mtime_ns))
+        st = f.stat()
+        if stat.S_ISREG(st.st_mode):
+            out.append((f.name, st.st_size, st.st_mtime_ns, st.st_ino, st.st_ctime_ns))
     return tuple(out)
 
 
 @lru_cache(maxsize=16)
-def _load_path(path: Path, bundled: bool, fingerprint: tuple[tuple[str, int, int], ...]
-               ) -> NormSet:
+def _load_path(path: Path, bundled: bool,
+               fingerprint: tuple[tuple[str, int, int, int, int], ...]) -> NormSet:
     return read_norm_set_folder(path, bundled=bundled)
 
 

@@ -60,7 +60,7 @@ from . import norms as _norms
 from .errors import InputError, NotFoundError, WriteError
 from .normschema import PARAMETERS, TABLES, ColumnSpec, TableSpec, ValueSpec
 from .reports import write_atomic
-from .safeio import file_kind, read_limited, write_all
+from .safeio import dir_lock, file_kind, fsync_dir, read_limited, write_all
 
 __all__ = [
     "HEADER_SCAN_ROWS",
@@ -121,6 +121,12 @@ MAX_CSV_ROW_CHARS = 1_000_000
 """Longest row of a CSV, all its lines [characters]."""
 MAX_ZIP_MEMBERS = 10_000
 """Most parts (zip members) an .xlsx may have."""
+MAX_PART_ELEMENTS = 100_000
+"""Most XML elements in a workbook part other than a worksheet or the shared strings
+(styles, workbook, relationships, ...; Excel itself keeps at most 64,000 cell styles)."""
+MAX_STRINGS_ELEMENTS = 600_000
+"""Most XML elements in the shared strings part: 200,000 distinct texts of up to three
+elements each (about 5 s and 100 MB to read)."""
 MAX_ZIP_DIRECTORY_BYTES = 2 * 1024 * 1024
 """Largest zip directory of an .xlsx [bytes] (checked before it is parsed)."""
 
@@ -984,8 +990,30 @@ def _inspect_xlsx(zf: zipfile.ZipFile, name: str) -> dict[str, zipfile.ZipInfo]:
         low = info.filename.lower()
         if _WORKSHEET.fullmatch(low) or not low.endswith((".xml", ".rels", ".vml")):
             continue
-        _stream_member(zf, info, name, f"zip member {info.filename}", lambda _chunk: None)
+        limit = MAX_STRINGS_ELEMENTS if low == "xl/sharedstrings.xml" else MAX_PART_ELEMENTS
+        _stream_member(zf, info, name, f"zip member {info.filename}", _ElementCount(
+            name, info.filename, limit))
     return {i.filename: i for i in infos}
+
+
+class _ElementCount:
+    """A :func:`_stream_member` sink that refuses a part with more than ``limit`` XML
+    elements (start tags): parsing styles or strings costs time and memory per element,
+    so a small file with millions of them is refused before any parser sees it."""
+
+    def __init__(self, name: str, member: str, limit: int) -> None:
+        self.name, self.member, self.limit, self.n = name, member, limit, 0
+
+    def __call__(self, chunk: bytes) -> None:
+        self.n += chunk.count(b"<") - chunk.count(b"</")
+        if self.n > self.limit:
+            raise _fail(
+                self.name,
+                f"zip member {self.member} holds more than {self.limit:,} XML elements (the "
+                "limit); refused without reading it",
+                "not a norm workbook: Excel keeps at most 64,000 cell styles; open it in "
+                "Excel, delete unused styles, and save it again",
+            )
 
 
 def _stream_member(
@@ -1865,6 +1893,14 @@ def read_norm_file(
                 meta_loc = loc
             else:
                 located.append(loc)
+        if not present:  # an import that takes nothing from the file is an error
+            sheets = ", ".join(repr(_printable(g.label, 60)) for g in grids) or "none"
+            raise _fail(
+                p.name,
+                f"no sheet is a norm table (sheets: {sheets}); nothing would be imported",
+                "name each sheet after its table: " + ", ".join(_ALL_TABLES)
+                + " (Excel names a new sheet after the file or 'Sheet1'; rename it)",
+            )
     elif suffix in CSV_SUFFIXES:
         located.append(_locate_csv_table(_read_csv_grid(p), table, p.name))
         base = base or _norms.DEFAULT_NORM_SET
@@ -2001,22 +2037,10 @@ def _write_file(path: Path, text: str) -> None:
 _LEFTOVER = re.compile(r"\.(?P<name>.+)\.(?P<kind>tmp|old)-[A-Za-z0-9_]{8}")
 
 
-@contextlib.contextmanager
-def _norm_dir_lock(folder: Path) -> Iterator[None]:
-    """Serialise imports and repairs in one norm directory (``flock``; no-op without it)."""
-    fd = None
-    try:
-        import fcntl
-
-        fd = os.open(folder, os.O_RDONLY)
-        fcntl.flock(fd, fcntl.LOCK_EX)
-    except (ImportError, OSError):
-        pass
-    try:
-        yield
-    finally:
-        if fd is not None:
-            os.close(fd)
+def _norm_dir_lock(folder: Path) -> contextlib.AbstractContextManager[None]:
+    """Serialise imports and repairs in one norm directory, and keep loads out while a set
+    is swapped (an exclusive ``flock``; loads take it shared; no-op without ``flock``)."""
+    return dir_lock(folder, exclusive=True)
 
 
 def recover_norm_dir(
@@ -2212,6 +2236,7 @@ def _swap_in(root_dir: Path, name: str, files: Mapping[str, str]) -> None:
         _norms.read_norm_set_folder(tmp.resolve())  # the loader must accept it
         if not os.path.lexists(target):
             os.replace(tmp, target)
+            fsync_dir(root_dir)  # the rename survives a power loss
             return
         old = root_dir / f".{name}.old-{secrets.token_hex(4)}"
         os.replace(target, old)
@@ -2235,6 +2260,7 @@ def _swap_in(root_dir: Path, name: str, files: Mapping[str, str]) -> None:
     except BaseException:
         shutil.rmtree(tmp, ignore_errors=True)
         raise
+    fsync_dir(root_dir)
     shutil.rmtree(old, ignore_errors=True)
 
 
@@ -2445,6 +2471,9 @@ def write_template(
         raise InputError("--lang", f"must be en or ru (got {lang!r})")
     if out.exists() and not force:
         raise InputError("FILE", f"{out} exists; give --force to overwrite it")
+    from .outpaths import check_target  # links, folders, FIFOs, write-protected, long names
+
+    check_target(os.fspath(out), "FILE", "xlsx", force=True)
     ns = _norms.load_norm_set(norm_set)
     data = _set_rows(ns, catalogue)
     wb = Workbook()

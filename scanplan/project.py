@@ -16,12 +16,17 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from .domains import MAX_LIST_ITEMS
 from .errors import InputError
 from .safeio import read_limited
 
 __all__ = ["KEYS", "Project", "load_project", "parse_project", "text_problem"]
 
 MAX_PROJECT_BYTES = 1_000_000
+"""Largest project file [bytes]."""
+MAX_NESTING = 32
+"""Deepest nesting of arrays and inline tables (no key of a project file nests at all; the
+bound keeps a hostile file from exhausting the parser's recursion)."""
 MAX_TEXT_CHARS = 1_000
 """Longest text value (a project name, a customer, an id) [characters]."""
 _CONTROL = re.compile(r"[\x00-\x08\x0b-\x1f\x7f-\x9f]")
@@ -174,18 +179,68 @@ def _check_type(kind: str, value: Any) -> str | None:
         return None if ok else "must be a whole number"
     if kind == "number":
         ok = isinstance(value, int | float) and not isinstance(value, bool)
-        if ok and not math.isfinite(float(value)):
-            return "must be a finite number"
+        if ok and not _finite(value):
+            return "must be a finite number (at most about 1.8e308)"
         return None if ok else "must be a number"
     if kind == "scale":
         ok = (isinstance(value, int | float | str)) and not isinstance(value, bool)
+        if ok and not isinstance(value, str) and not _finite(value):
+            return "must be a finite scale denominator like 2000"
         return None if ok else 'must be a scale denominator like 2000 or "1:2000"'
     if kind == "scales":
         if not isinstance(value, list) or not value:
             return "must be a non-empty list of scales, e.g. [5000, 10000]"
-        bad = [v for v in value if isinstance(v, bool) or not isinstance(v, int | float | str)]
-        return 'must be a list of scales like [5000, "1:10000"]' if bad else None
+        if len(value) > MAX_LIST_ITEMS:
+            return f"has {len(value):,} scales; at most {MAX_LIST_ITEMS}"
+        bad = [v for v in value if isinstance(v, bool) or not isinstance(v, int | float | str)
+               or (not isinstance(v, str) and not _finite(v))]
+        return 'must be a list of finite scales like [5000, "1:10000"]' if bad else None
     raise AssertionError(kind)
+
+
+def _finite(value: float) -> bool:
+    """Whether a TOML number is finite as a float (an integer of 400 digits is not)."""
+    try:
+        return math.isfinite(float(value))
+    except OverflowError:
+        return False
+
+
+_STRING = re.compile(
+    r'"""(?:[^\\]|\\.)*?"""'  # multi-line basic string
+    r"|'''.*?'''"  # multi-line literal string
+    r'|"(?:[^"\\\n]|\\.)*"'  # basic string
+    r"|'[^'\n]*'"  # literal string
+    r"|#[^\n]*",  # comment
+    re.DOTALL)
+_BRACKET = re.compile(r"[\[\]{}\n]")
+
+
+def _nesting_problem(text: str) -> tuple[int, str] | None:
+    """(line, message) where arrays or inline tables nest deeper than :data:`MAX_NESTING`.
+
+    Strings and comments are skipped; table headers (``[x]`` at the start of a line)
+    open and close on their line, so they count as depth 1 at most.
+    """
+    depth = 0
+    line = 1
+    pos = 0
+    skips = [(m.start(), m.end()) for m in _STRING.finditer(text)] + [(len(text), len(text))]
+    for start, end in skips:
+        for b in _BRACKET.finditer(text, pos, start):
+            ch = b.group()
+            if ch == "\n":
+                line += 1
+            elif ch in "[{":
+                depth += 1
+                if depth > MAX_NESTING:
+                    return line, (f"nests arrays or inline tables more than {MAX_NESTING} "
+                                  "deep")
+            else:
+                depth = max(depth - 1, 0)
+        line += text.count("\n", start, end)
+        pos = end
+    return None
 
 
 def _check_text(kind: str, value: Any) -> str | None:
@@ -213,7 +268,10 @@ def text_problem(value: str) -> str | None:
 
 def _shown(value: Any) -> str:
     """``repr(value)``, cut to 200 characters."""
-    text = repr(value)
+    try:
+        text = repr(value)
+    except ValueError:  # an integer over Python's 4,300-digit conversion limit
+        return "a number of more than 4,300 digits"
     return text if len(text) <= 200 else text[:200] + f"… ({len(text):,} characters)"
 
 
@@ -227,14 +285,32 @@ def _norm_set_path(value: str, folder: Path) -> str:
     return os.path.join(folder, value)
 
 
+def _where_line(p: Path, lines: dict[str, int], line: int) -> str:
+    """``FILE: section.key (line N)`` for the key whose value runs through ``line``."""
+    key = max((k for k, n in lines.items() if n <= line and "." in k),
+              key=lambda k: lines[k], default="")
+    return f"{p}: " + (f"{key} (line {lines[key]})" if key else f"line {line}")
+
+
 def parse_project(text: str, path: str | os.PathLike[str] = "project.toml") -> Project:
     """Validate the text of a project file (see :func:`load_project`)."""
     p = Path(path)
+    lines = _key_lines(text)
+    deep = _nesting_problem(text)
+    if deep:
+        raise InputError(_where_line(p, lines, deep[0]), deep[1])
     try:
         doc = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise InputError(str(p), f"is not valid TOML: {exc}") from None
-    lines = _key_lines(text)
+    except ValueError:  # an integer over Python's 4,300-digit conversion limit
+        long = re.search(r"\d{4000,}", text)
+        line = text.count("\n", 0, long.start()) + 1 if long else 0
+        raise InputError(_where_line(p, lines, line) if line else str(p),
+                         "holds a number of more than 4,300 digits; must be a finite number "
+                         "(at most about 1.8e308)") from None
+    except RecursionError:  # the nesting check above should make this unreachable
+        raise InputError(str(p), "nests arrays or inline tables too deeply") from None
     flat = _flatten(doc)
     for section, table in flat.items():
         if section not in KEYS:

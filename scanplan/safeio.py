@@ -8,13 +8,15 @@ more than its limit, so reading is bounded in time and memory whatever the path 
 
 from __future__ import annotations
 
+import contextlib
 import errno
 import os
 import stat
+from collections.abc import Iterator
 
 from .errors import InputError, NotFoundError
 
-__all__ = ["file_kind", "read_limited", "size_text", "write_all"]
+__all__ = ["dir_lock", "file_kind", "fsync_dir", "read_limited", "size_text", "write_all"]
 
 
 def size_text(n: int) -> str:
@@ -124,3 +126,55 @@ def write_all(fd: int, data: bytes) -> None:
             raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
         view = view[n:]
     os.fsync(fd)
+
+
+def fsync_dir(folder: str | os.PathLike[str]) -> None:
+    """fsync a folder, so that the renames and new names in it survive a power loss.
+
+    Best effort: a file system or platform that cannot fsync a folder (Windows, some network
+    shares) is skipped silently — the files themselves were fsynced before.
+
+    Parameters
+    ----------
+    folder : path
+        The folder.
+    """
+    try:
+        fd = os.open(folder, os.O_RDONLY | getattr(os, "O_DIRECTORY", 0))
+    except OSError:
+        return
+    try:
+        os.fsync(fd)
+    except OSError:
+        pass
+    finally:
+        os.close(fd)
+
+
+@contextlib.contextmanager
+def dir_lock(folder: str | os.PathLike[str], *, exclusive: bool) -> Iterator[None]:
+    """Hold a ``flock`` on ``folder``: shared for readers, exclusive for writers.
+
+    A no-op where ``flock`` is missing (not POSIX) or the folder cannot be opened (it does
+    not exist, no permission): locking is cooperation between scanplan processes.
+
+    Parameters
+    ----------
+    folder : path
+        The folder to lock.
+    exclusive : bool
+        ``LOCK_EX`` (writers) or ``LOCK_SH`` (readers).
+    """
+    fd = None
+    try:
+        import fcntl
+
+        fd = os.open(folder, os.O_RDONLY)
+        fcntl.flock(fd, fcntl.LOCK_EX if exclusive else fcntl.LOCK_SH)
+    except (ImportError, OSError):
+        pass
+    try:
+        yield
+    finally:
+        if fd is not None:
+            os.close(fd)

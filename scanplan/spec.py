@@ -18,7 +18,7 @@ from typing import Any
 from . import flight as FL
 from .api import ScanJob, UavJob, scan_job, uav_job
 from .archive import archive_film
-from .domains import check_domain
+from .domains import DOMAINS, check_domain
 from .errors import InputError
 from .messages import Message
 from .planner import PlanWarning, ScanScenario
@@ -150,9 +150,11 @@ def _choose_photo_scale(job: ScanJob) -> tuple[ScanScenario | None, str]:
     """Among candidate photo scales: the smallest that meets every constraint."""
     plan = job.plan
     limit = plan.interpretation_limit_photo_scale
+    finest = DOMAINS["pixel_um"].lo  # below it no scanner (nor film) gives a meaningful pixel
     feasible = [s for s in plan.scenarios
                 if (limit is None or s.photo_scale <= limit * (1 + 1e-12))
-                and (not plan.inputs.scanner or s.scanner_pixel_um is not None)]
+                and (not plan.inputs.scanner or s.scanner_pixel_um is not None)
+                and s.scan_pixel_um >= finest]
     if feasible:
         best = max(feasible, key=lambda s: (s.photo_scale, s.scanner_pixel_um or 0))
         reason = Message("spec.film", scale=best.photo_scale, explanation=best.explanation)
@@ -163,6 +165,8 @@ def _choose_photo_scale(job: ScanJob) -> tuple[ScanScenario | None, str]:
             why.append(Message("no_feasible_photo_scale.objects", limit=math.floor(limit)))
         if plan.inputs.scanner:
             why.append(Message("no_feasible_photo_scale.scanner", scanner=plan.inputs.scanner))
+        if any(s.scan_pixel_um < finest for s in plan.scenarios):
+            why.append(Message("no_feasible_photo_scale.pixel", finest=finest))
         reason = Message("no_feasible_photo_scale", why=why)
     return best, reason
 

@@ -34,6 +34,18 @@ def _num(x: float | None, digits: int = 1) -> str:
     return f"{x:.{digits}f}"
 
 
+def _um(x: float | None) -> str:
+    """A pixel [µm]: one decimal, or two significant digits below 1 µm (never ``0.0``)."""
+    if x is None or not math.isfinite(x) or x >= 0.95:
+        return _num(x)
+    return f"{x:.2g}"
+
+
+def _interval(seconds: float) -> str:
+    """The photo interval; none at ground speed 0 (a hovering UAV), never ``inf``."""
+    return f"{seconds:.2f} s" if math.isfinite(seconds) else "— (ground speed ≈ 0)"
+
+
 def _wrap(text: str, indent: str) -> str:
     return textwrap.fill(text, width=96, initial_indent=indent,
                          subsequent_indent=" " * len(indent))
@@ -65,10 +77,10 @@ def format_scan_plan(plan: ScanPlan, norm_name: str = "", norm_title: str = "") 
         row = [f"{cid}  {CONSTRAINTS[cid].name}", "µm"]
         for s in plan.scenarios:
             c = s.constraint(cid)
-            row.append(_num(c.pixel_um) + ("*" if c.binding else " "))
+            row.append(_um(c.pixel_um) + ("*" if c.binding else " "))
         rows.append(row)
     rows.append(["binding", "", *(s.binding + " " for s in plan.scenarios)])
-    rows.append(["scan pixel", "µm", *(_num(s.scan_pixel_um) + " " for s in plan.scenarios)])
+    rows.append(["scan pixel", "µm", *(_um(s.scan_pixel_um) + " " for s in plan.scenarios)])
     if inp.scanner:
         rows.append([f"scanner {inp.scanner} step", "µm",
                      *(_num(s.scanner_pixel_um) + " " for s in plan.scenarios)])
@@ -166,7 +178,7 @@ def format_uav_plan(plan: UavPlan, norm_name: str = "") -> str:
     lines += ["", "Flight geometry (at the planned height):"]
     frows = [["footprint", f"{fl['footprint_across_m']:.0f} × {fl['footprint_along_m']:.0f} m"],
              ["base / line spacing", f"{fl['base_m']:.1f} m / {fl['line_spacing_m']:.1f} m"],
-             ["photo interval", f"{fl['photo_interval_s']:.2f} s"
+             ["photo interval", _interval(fl['photo_interval_s'])
               + (f" (camera minimum {fl['min_trigger_interval_s']:g} s)"
                  if "min_trigger_interval_s" in fl else "")],
              [f"forward overlap at {h['min']:g} / {h['max']:g} m",
@@ -227,7 +239,7 @@ def format_plan_result(result: Any) -> str:
         if s is None:
             lines.append(_wrap(f.reason, "  "))
         else:
-            px = (f"{s.scan_pixel_um:.1f} µm"
+            px = (f"{_um(s.scan_pixel_um)} µm"
                   + (f" → scanner step {s.scanner_pixel_um:g} µm" if s.scanner_pixel_um else ""))
             rows = [["  photo scale (existing photos, given)" if f.archive
                      else "  recommended photo scale", f"1:{scale_value(s.photo_scale)}"],
@@ -266,7 +278,7 @@ def format_plan_result(result: Any) -> str:
             rows.append(["  overlaps / base / spacing",
                          f"{p.inputs.forward_overlap_pct:g} % / {p.inputs.side_overlap_pct:g} % "
                          f"— {fl['base_m']:.1f} m / {fl['line_spacing_m']:.1f} m"])
-            rows.append(["  photo interval", f"{fl['photo_interval_s']:.2f} s"])
+            rows.append(["  photo interval", _interval(fl['photo_interval_s'])])
             if "photos" in fl:
                 rows.append(["  photos / strips", f"{fl['photos']} / {fl['strips']}"])
                 rows.append(["  flight", f"{fl['flight_length_m'] / 1000:.1f} km"
@@ -306,7 +318,7 @@ def batch_summary(done: list[tuple[str, Any]], failed: list[tuple[str, str]]) ->
         rows.append([
             os.path.basename(path), f"1:{r.project.values['map']['scale']}",
             (f"1:{scale_value(rec.photo_scale)}" if rec else "none") if f else "—",
-            (_num(rec.scanner_pixel_um or rec.scan_pixel_um) if rec else "—") if f else "—",
+            (_um(rec.scanner_pixel_um or rec.scan_pixel_um) if rec else "—") if f else "—",
             _num(u.recommended_height_m, 0) if u else "—",
             _num(u.max_height_m, 0) if u else "—",
             " / ".join(x for x in ((rec.binding if rec else "") if f else "",

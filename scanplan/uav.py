@@ -283,6 +283,16 @@ def _ground_limits(inp: UavInputs, rules: ScanRules) -> dict[str, tuple[float, s
     return out
 
 
+def _flight_time_s(length_m: float, speed_ms: float) -> float | None:
+    """Time on the strips [s]; None at ground speed 0, or where a subnormal speed makes it
+    infinite (never ``inf`` in a result)."""
+    if speed_ms <= 0:
+        return None
+    with np.errstate(over="ignore", divide="ignore"):
+        t = float(FL.flight_time_s(length_m, speed_ms))
+    return t if math.isfinite(t) else None
+
+
 def plan_uav(inp: UavInputs, rules: ScanRules | None = None) -> UavPlan:
     """Plan a UAV flight: GSD, MTF ground resolution, blur, flight geometry, and — with a map
     scale — the maximum flight height under the norm set's constraints.
@@ -329,7 +339,9 @@ def plan_uav(inp: UavInputs, rules: ScanRules | None = None) -> UavPlan:
     fp_along = float(FL.footprint_m(inp.sensor_height_mm, h_plan, inp.focal_mm))
     base = float(FL.photo_base_m(fp_along, inp.forward_overlap_pct))
     spacing = float(FL.line_spacing_m(fp_across, inp.side_overlap_pct))
-    interval = float(FL.photo_interval_s(base, inp.speed_ms)) if inp.speed_ms > 0 else math.inf
+    with np.errstate(over="ignore"):  # a subnormal speed: inf, shown as "—"
+        interval = (float(FL.photo_interval_s(base, inp.speed_ms)) if inp.speed_ms > 0
+                    else math.inf)
     fl: dict[str, Any] = {
         "footprint_across_m": fp_across, "footprint_along_m": fp_along, "base_m": base,
         "line_spacing_m": spacing, "photo_interval_s": interval,
@@ -349,13 +361,12 @@ def plan_uav(inp: UavInputs, rules: ScanRules | None = None) -> UavPlan:
                 "trigger_interval", interval=interval, minimum=inp.min_trigger_interval_s,
                 speed=fl["max_speed_for_trigger_ms"])))
     if inp.area_width_m and inp.area_length_m:
-        strips = int(FL.strip_count(inp.area_width_m, spacing))
+        strips = max(1, int(FL.strip_count(inp.area_width_m, spacing)))  # 1e-300 m: one
         per_strip = int(FL.photos_per_strip(inp.area_length_m, base))
         length = float(FL.flight_length_m(strips, inp.area_length_m, spacing))
         fl.update({"strips": strips, "photos_per_strip": per_strip,
                    "photos": strips * per_strip, "flight_length_m": length,
-                   "flight_time_s": float(FL.flight_time_s(length, inp.speed_ms))
-                   if inp.speed_ms > 0 else None})
+                   "flight_time_s": _flight_time_s(length, inp.speed_ms)})
         if inp.image_width_px and inp.image_height_px:
             fl["data_volume_bytes"] = float(FL.data_volume_bytes(
                 strips * per_strip, inp.image_width_px, inp.image_height_px,

@@ -234,11 +234,27 @@ def work(tmp_path, monkeypatch):
     return w
 
 
+def previous_report(name: str) -> bytes:
+    """Recognisable bytes of a report scanplan wrote before (its creator property says
+    scanplan, so it is replaced without --force)."""
+    if name.endswith(".pdf"):
+        return b"%PDF-1.7\n<</Creator (scanplan 0.0)>>\nOLD " + name.encode() * 50
+    import io
+    import zipfile
+
+    buf = io.BytesIO()
+    with zipfile.ZipFile(buf, "w") as zf:
+        zf.writestr("docProps/core.xml", "<cp:coreProperties><dc:creator>scanplan 0.0"
+                    "</dc:creator></cp:coreProperties>")
+        zf.writestr("OLD", name * 50)
+    return buf.getvalue()
+
+
 def put_old(work: Path, targets: tuple[str, ...]) -> None:
     """The previous reports: recognisable bytes and a mode a rewrite must keep."""
     for t in targets:
         p = work / t
-        p.write_bytes(b"OLD " + t.encode() * 50)
+        p.write_bytes(previous_report(t))
         p.chmod(0o640)
 
 
@@ -544,13 +560,14 @@ def test_same_file_for_xlsx_and_pdf_is_bad_input(work, fixed_renders):
 
 def test_target_that_is_a_folder_writes_nothing(work, fixed_renders):
     """Bug: with out/spec.pdf a folder, ``plan --out`` wrote spec.xlsx, then crashed on
-    the PDF (IsADirectoryError). Now nothing is written, exit 1 naming the file."""
+    the PDF (IsADirectoryError). Now nothing is written, exit 2 naming the file (issue 19:
+    a target that is not a regular file is bad input, refused before anything is written)."""
     (work / "out/spec.pdf").mkdir()
     put_old(work, ("out/spec.xlsx",))
     before = snapshot(work)
     r = cli("plan", FILM, "--out", "out")
-    assert r.exit_code == 1
-    assert "error: cannot write out/spec.pdf: it is a folder" in r.stderr
+    assert r.exit_code == 2
+    assert "error: --out: 'out/spec.pdf' is a folder; give a file name" in r.stderr
     assert snapshot(work) == before
 
 
@@ -685,7 +702,7 @@ def test_batch_bad_project_still_continues_and_disk_full_wins(batch, work, fixed
     doc = json.loads(r.stdout)
     assert [Path(e["file"]).name for e in doc["errors"]] == ["0-bad.toml", "b.toml"]
     assert "cannot write out/b.xlsx: No space left on device" in doc["errors"][1]["message"]
-    assert (work / "out/b.xlsx").read_bytes().startswith(b"OLD ")
+    assert (work / "out/b.xlsx").read_bytes() == previous_report("out/b.xlsx")
     assert (work / "out/a.xlsx").read_bytes() == XLSX_BYTES
 
 

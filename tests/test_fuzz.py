@@ -733,6 +733,88 @@ def test_project_valid_extremes(mk, relief, mc, height, sections):
 
 
 # ----------------------------------------------------------------------------------------
+# Hostile project files (issue 17 items 2–3): exit 2 naming key and line, bounded work
+# ----------------------------------------------------------------------------------------
+
+BIG_INT = "1" + "0" * 400  # too large for a float
+HUGE_INT = "1" + "0" * 5000  # over Python's 4,300-digit conversion limit
+DEEP_ARRAY = "[" * 3000 + "]" * 3000
+DEEP_TABLE = "{ a = " * 3000 + "1" + " }" * 3000
+MANY_SCALES = "[" + ", ".join(str(5000 + i) for i in range(100_000)) + "]"
+
+HOSTILE_PROJECTS = [  # (id, base, section, key, value, what the message says)
+    ("relief-overflow", "film", "map", "relief_interval_m", BIG_INT, "finite number"),
+    ("relief-5000-digits", "film", "map", "relief_interval_m", HUGE_INT, "4,300 digits"),
+    ("map-scale-overflow", "film", "map", "scale", BIG_INT, "finite scale"),
+    ("photo-scale-overflow", "film", "film", "photo_scales", f"[6000, {BIG_INT}]",
+     "finite scales"),
+    ("height-5000-digits", "uav", "uav", "height_m", HUGE_INT, "4,300 digits"),
+    ("photo-scales-deep", "film", "film", "photo_scales", DEEP_ARRAY, "more than 32 deep"),
+    ("camera-deep-table", "film", "film", "camera", DEEP_TABLE, "more than 32 deep"),
+    ("speed-deep-array", "uav", "uav", "speed_ms", DEEP_ARRAY, "more than 32 deep"),
+    ("photo-scales-101", "film", "film", "photo_scales",
+     "[" + ", ".join(str(5000 + 10 * i) for i in range(101)) + "]", "at most 100"),
+    ("photo-scales-100000", "film", "film", "photo_scales", MANY_SCALES, "at most 100"),
+    ("norm-set-100000-chars", "film", "norms", "set", '"' + "a" * 100_000 + '"',
+     "at most 1,000"),
+    ("norm-set-300-chars", "film", "norms", "set", '"' + "a" * 300 + '"',
+     "no norm set has such a name"),
+]
+
+
+@pytest.mark.parametrize("case", HOSTILE_PROJECTS, ids=[c[0] for c in HOSTILE_PROJECTS])
+def test_hostile_project_files_exit_2_naming_key_and_line(case):
+    """Bug: these exited 1 (OverflowError, RecursionError, a path error) or ran for 25 s
+    and 1 GB (100,000 photo scales). Now exit 2 naming ``section.key (line N)``, refused
+    before any work, in bounded memory."""
+    import tracemalloc
+
+    _id, base, section, key, value, said = case
+    COUNTS["project file, hostile corpus"] += 1
+    text = _set_key(FILM_PROJECT if base == "film" else UAV_PROJECT, section, key, value)
+    tracemalloc.start()
+    try:
+        r, _p = _plan(text)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert r.exit_code == 2, (case[0], r.output[:500])
+    line = _line_of(text, section, key)
+    assert f"{section}.{key} (line {line})" in r.output, (case[0], r.output[:500])
+    assert said in r.output, (case[0], r.output[:500])
+    assert "Error" not in r.output and "Traceback" not in r.output
+    assert len(r.output) < 2000  # the value is shown cut, not echoed whole
+    assert peak < 100 * 2**20
+
+
+EXTREME_VALID_PROJECTS = [  # (id, base, section, key, value): in the documented domains
+    ("speed-0", "uav", "uav", "speed_ms", "0"),
+    ("speed-subnormal", "uav", "uav", "speed_ms", "1e-320"),
+    ("exposure-10s", "uav", "uav", "exposure_s", "10"),
+    ("area-subnormal", "uav", "area", "width_m", "1e-300"),
+    ("area-1000km", "uav", "area", "length_m", "1000000"),
+    ("photo-scales-100", "film", "film", "photo_scales",
+     "[" + ", ".join(str(5000 + 100 * i) for i in range(100)) + "]"),
+]
+
+
+@pytest.mark.parametrize("case", EXTREME_VALID_PROJECTS,
+                         ids=[c[0] for c in EXTREME_VALID_PROJECTS])
+def test_extreme_valid_project_files_give_finite_results(case):
+    """In-domain extremes: exit 0, every JSON number finite, no ``inf``/``nan`` and no
+    library warning in the text output."""
+    _id, base, section, key, value = case
+    COUNTS["project file, valid extreme corpus"] += 1
+    text = _set_key(FILM_PROJECT if base == "film" else UAV_PROJECT, section, key, value)
+    r, _p = _plan(text, "--json")
+    assert r.exit_code == 0, (case[0], r.output[:800])
+    finite_json(r.stdout)
+    r, _p = _plan(text)
+    assert r.exit_code == 0, (case[0], r.output[:800])
+    assert not re.search(r"\b(inf|nan)\b|\w+Warning\b", r.output), (case[0], r.output)
+
+
+# ----------------------------------------------------------------------------------------
 # Norm spreadsheets (CSV and xlsx): exit 0 or 2, and a bad cell is named
 # ----------------------------------------------------------------------------------------
 

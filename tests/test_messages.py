@@ -212,6 +212,9 @@ def emitted(tmp_path_factory) -> dict[str, list[Any]]:
         "plan film": film_toml,
         "plan no photo scale": film_toml.replace("photo_scales = [6000, 8000, 10000]",
                                                  "photo_scales = [10000, 12000]"),
+        "plan pixel too fine": film_toml.replace(  # issue 17: a scan pixel under 0.1 µm
+            "photo_scales = [6000, 8000, 10000]", "photo_scales = [100000]").replace(
+            "relief_interval_m = 1.0", "relief_interval_m = 0.01"),
         "plan uav": uav_toml,
         "plan uav lowered": uav_toml.replace("height_m = 300", "height_m = 500"),
         "plan uav no height": uav_toml.replace("height_m = 300\n", ""),

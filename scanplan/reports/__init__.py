@@ -16,14 +16,17 @@ import contextlib
 import datetime as _dt
 import errno
 import os
+import re
 import secrets
+import stat
 import tempfile
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import WriteError
-from ..safeio import write_all
+from ..outpaths import folder_lock, name_max
+from ..safeio import fsync_dir, write_all
 
 __all__ = ["ReportMeta", "report_datetime", "templates_dir", "write_atomic",
            "write_atomic_many"]
@@ -92,7 +95,8 @@ def write_atomic(path: str | os.PathLike[str], data: bytes) -> Path:
     return write_atomic_many({path: data})[0]
 
 
-def write_atomic_many(files: Mapping[str | os.PathLike[str], bytes]) -> list[Path]:
+def write_atomic_many(files: Mapping[str | os.PathLike[str], bytes], *,
+                      check: Callable[[], None] | None = None) -> list[Path]:
     """Write several files as one transaction: all of them are replaced, or none is.
 
     Every file is first written to a temporary file beside its target (``.NAME.*.tmp``,
@@ -104,10 +108,20 @@ def write_atomic_many(files: Mapping[str | os.PathLike[str], bytes]) -> list[Pat
     their backups (new ones removed) and every temporary and backup file is deleted, so all
     previous files are byte-identical and nothing is left behind.
 
+    The whole write holds an exclusive lock on the targets' folders
+    (:func:`scanplan.outpaths.folder_lock`), so two scanplan runs writing into one folder
+    never interleave their files. Under that lock, temporaries and backups of these targets
+    that a killed run left behind (``.NAME.*.tmp``, ``.NAME.*.old``) are deleted first, and
+    after the renames the folders are fsynced (the renames survive a power loss). A name up
+    to the file system's limit (255 bytes) is fine: the temporary names are shortened.
+
     Parameters
     ----------
     files : mapping of path to bytes
         Target → complete content, written in this order. Folders must exist.
+    check : callable, optional
+        Called under the lock before anything is written (re-checks the targets: what was
+        checked before rendering may have changed since); its exception stops the write.
 
     Returns
     -------
@@ -138,6 +152,32 @@ def write_atomic_many(files: Mapping[str | os.PathLike[str], bytes]) -> list[Pat
         seen.add(key)
         if os.path.isdir(target):
             raise WriteError(shown, "it is a folder", errno.EISDIR)
+    folders = sorted({os.fspath(target.parent) for target, _, _ in items})
+    with folder_lock(folders):
+        if check is not None:
+            check()
+        for target, _, _ in items:
+            _remove_stale(target)
+        before = {shown: _identity(target) for target, shown, _ in items}
+        try:
+            return _write_locked(items, before)
+        finally:
+            for folder in folders:
+                fsync_dir(folder)
+
+
+def _identity(path: Path) -> tuple[int, int, int, int] | None:
+    """(device, inode, size, mtime) of ``path``, or None when it does not exist."""
+    try:
+        st = os.lstat(path)
+    except OSError:
+        return None
+    return (st.st_dev, st.st_ino, st.st_size, st.st_mtime_ns)
+
+
+def _write_locked(items: list[tuple[Path, str, bytes]],
+                  before: Mapping[str, tuple[int, int, int, int] | None]) -> list[Path]:
+    """:func:`write_atomic_many` under the folder lock."""
     current = items[0][1] if items else ""
     temps: list[Path] = []
     steps: list[_Step] = []  # one per rename started, in order
@@ -160,7 +200,12 @@ def write_atomic_many(files: Mapping[str | os.PathLike[str], bytes]) -> list[Pat
             if i >= len(steps) or not steps[i].replaced:
                 _discard(tmp)
         if not note and not committed and len(items) > 1:
-            note = "none of " + ", ".join(s for _, s, _ in items) + " was changed"
+            changed = [s for t, s, _ in items if _identity(t) != before[s]]
+            if changed:  # only another program (not holding our lock) can have done it
+                note = (", ".join(changed) + " changed during the write (by another "
+                        "program); scanplan put back what it had replaced")
+            else:
+                note = "none of " + ", ".join(s for _, s, _ in items) + " was changed"
         if isinstance(exc, OSError) and not isinstance(exc, WriteError) and not committed:
             raise WriteError.from_os_error(current, exc, note=note) from exc
         if committed:
@@ -197,10 +242,45 @@ def _new_mode(target: Path) -> int:
         return 0o666 & ~umask
 
 
+_HIDDEN_EXTRA = len(".") + len(".") + 8 + len(".tmp")  # ".NAME.xxxxxxxx.tmp"
+
+
+def _hidden_stem(target: Path) -> str:
+    """``NAME`` of the hidden names ``.NAME.xxxxxxxx.tmp`` / ``.old`` beside ``target``:
+    the target's name, shortened (at a character boundary) so that they fit the folder's
+    file-name limit."""
+    room = name_max(target.parent) - _HIDDEN_EXTRA
+    raw = os.fsencode(target.name)
+    if len(raw) <= room:
+        return target.name
+    return os.fsdecode(raw[:max(room, 1)].decode("utf-8", "ignore").encode("utf-8")) or "r"
+
+
+def _remove_stale(target: Path) -> None:
+    """Delete the temporaries and backups of ``target`` a killed writer left behind.
+
+    Runs under the folder lock, so no other scanplan writer is using them. Only our own
+    names are touched: ``.NAME.`` + 8 characters of :func:`tempfile.mkstemp` or
+    :func:`secrets.token_hex` + ``.tmp`` / ``.old``, regular files only.
+    """
+    pattern = re.compile(re.escape(f".{_hidden_stem(target)}.") + r"[a-z0-9_]{8}\.(tmp|old)")
+    try:
+        names = os.listdir(target.parent)
+    except OSError:
+        return
+    for name in names:
+        if pattern.fullmatch(name):
+            path = target.parent / name
+            with contextlib.suppress(OSError):
+                if stat.S_ISREG(os.lstat(path).st_mode):
+                    os.unlink(path)
+
+
 def _write_temp(target: Path, data: bytes) -> Path:
     """Write ``data`` to a new temporary file beside ``target`` (fsync, chmod)."""
     mode = _new_mode(target)
-    fd, name = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.", suffix=".tmp")
+    fd, name = tempfile.mkstemp(dir=target.parent, prefix=f".{_hidden_stem(target)}.",
+                                suffix=".tmp")
     tmp = Path(name)
     try:
         try:
@@ -221,7 +301,7 @@ def _backup(target: Path) -> tuple[Path, bool]:
     shares, a file owned by someone else) the file is moved aside instead.
     """
     for _ in range(100):
-        backup = target.with_name(f".{target.name}.{secrets.token_hex(4)}.old")
+        backup = target.with_name(f".{_hidden_stem(target)}.{secrets.token_hex(4)}.old")
         if os.path.lexists(backup):
             continue
         try:

@@ -1,0 +1,224 @@
+"""Where reports may be written: the rules that keep a user's files safe.
+
+A report target (``--xlsx``, ``--pdf``, the files ``plan --out`` names) is checked before
+anything is rendered and again, under a lock on its folder, just before it is written:
+
+* ``-`` is refused: reports are binary files, never written to standard output.
+* A target that is one of the run's input files (a project file), by name, through a
+  symbolic link or as a hard link, is refused — even with ``--force``.
+* The extension must fit the report: ``.xlsx`` for the workbook, ``.pdf`` for the PDF.
+* A symbolic link, a folder, a FIFO or a device is refused (scanplan replaces regular files
+  by renaming a new file over them; that would replace a link, not the file it points to).
+* A write-protected file is refused, even with ``--force`` (its protection is the owner's
+  statement; make it writable first).
+* A file name longer than the folder's limit (255 bytes on common file systems) is refused.
+* An existing non-empty file that scanplan did not write is replaced only with ``--force``.
+  scanplan recognises its own reports by their document properties: the workbook's creator
+  (``docProps/core.xml``, ``dc:creator``) and the PDF's document information (``/Creator``)
+  both start with ``scanplan``. An empty file holds nothing to lose and is replaced.
+
+:func:`folder_lock` serialises report writers in one folder (``flock``, as the norm folder
+lock): two runs writing into one ``--out`` folder cannot interleave their pairs, and the
+stale temporaries of a killed run are removed by the next run under that lock
+(:func:`scanplan.reports.write_atomic_many`).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import re
+import stat
+import zipfile
+import zlib
+from collections.abc import Iterable, Iterator
+
+from .errors import InputError
+
+__all__ = ["OUR_MARK", "check_target", "folder_lock", "name_max", "written_by_scanplan"]
+
+OUR_MARK = b"scanplan"
+"""Start of the creator property of every report scanplan writes."""
+
+SUFFIX = {"xlsx": ".xlsx", "pdf": ".pdf"}
+MAX_REPORT_BYTES = 64 * 1024 * 1024
+"""An existing file larger than this is not looked into (scanplan's reports are far
+smaller): it is treated as not written by scanplan [bytes]."""
+_MAX_INFLATED = 16 * 1024 * 1024  # most bytes decompressed while looking for the PDF's /Creator
+_CREATOR_XML = re.compile(rb"<dc:creator>\s*scanplan[\s<]")
+_CREATOR_PDF = re.compile(rb"/Creator\s*\(scanplan[ )]")
+_STREAM = re.compile(rb"stream\r?\n")
+
+
+def name_max(folder: str | os.PathLike[str]) -> int:
+    """Longest file name [bytes] the folder's file system accepts (255 where unknown)."""
+    try:
+        return int(os.pathconf(folder, "PC_NAME_MAX"))
+    except (OSError, ValueError, AttributeError):
+        return 255
+
+
+def _same_file(a: os.stat_result, b: os.stat_result) -> bool:
+    return (a.st_dev, a.st_ino) == (b.st_dev, b.st_ino)
+
+
+def check_target(path: str, field: str, kind: str, *, inputs: Iterable[str] = (),
+                 force: bool = False) -> None:
+    """Refuse a report target that is unsafe to write (rules in the module docstring).
+
+    Parameters
+    ----------
+    path : str
+        The target as the user gave it.
+    field : str
+        How messages name it (``--xlsx``, ``--out``).
+    kind : {"xlsx", "pdf"}
+        The report it is for.
+    inputs : iterable of str
+        The run's input files; none of them may be the target.
+    force : bool
+        Replace an existing file scanplan did not write (``--force``).
+
+    Raises
+    ------
+    InputError
+        Naming ``field`` and the reason (exit 2).
+    """
+    if path.strip() == "-":
+        raise InputError(field, "'-' (standard output) cannot take a report: reports are "
+                         "binary files; give a file name")
+    folder = os.path.dirname(os.path.abspath(path))
+    limit = name_max(folder) if os.path.isdir(folder) else 255
+    size = len(os.fsencode(os.path.basename(path)))
+    if size > limit:
+        raise InputError(field, f"the file name is {size} bytes long; the file system allows "
+                         f"{limit}")
+    shown = repr(path)
+    try:
+        st = os.lstat(path)
+    except FileNotFoundError:
+        st = None
+    except OSError as exc:
+        raise InputError(field, f"{shown} cannot be checked: {exc.strerror or exc}") from None
+    real = None
+    if st is not None:
+        with contextlib.suppress(OSError):
+            real = os.stat(path)
+    for item in inputs if real is not None else ():
+        try:
+            same = _same_file(real, os.stat(item))  # type: ignore[arg-type]
+        except OSError:
+            continue
+        if same:
+            raise InputError(field, f"{shown} is the input file {item!r}; a report never "
+                             "replaces an input — give another name")
+    if not path.lower().endswith(SUFFIX[kind]):
+        raise InputError(field, f"{shown} does not end in {SUFFIX[kind]}; the "
+                         f"{'workbook' if kind == 'xlsx' else 'PDF'} is written only to a "
+                         f"{SUFFIX[kind]} file")
+    if st is None:
+        return
+    if stat.S_ISLNK(st.st_mode):
+        raise InputError(field, f"{shown} is a symbolic link (to {os.readlink(path)!r}); "
+                         "scanplan replaces files, not links — name the file itself")
+    if not stat.S_ISREG(st.st_mode):
+        from .safeio import file_kind
+
+        raise InputError(field, f"{shown} is {file_kind(st.st_mode)}; give a file name")
+    if not os.access(path, os.W_OK) or not st.st_mode & 0o222:  # root too: no write bit
+        raise InputError(field, f"{shown} is write-protected; scanplan leaves it alone "
+                         "(make it writable, or give another name)")
+    if st.st_size and not force and not written_by_scanplan(path, kind):
+        raise InputError(field, f"{shown} exists and was not written by scanplan; give "
+                         "--force to replace it, or another name")
+
+
+def written_by_scanplan(path: str | os.PathLike[str], kind: str) -> bool:
+    """Whether ``path`` is a report scanplan wrote (its creator property says so).
+
+    Parameters
+    ----------
+    path : path
+        An existing regular file.
+    kind : {"xlsx", "pdf"}
+        What it should be.
+
+    Returns
+    -------
+    bool
+        False for anything else, an unreadable file or one over :data:`MAX_REPORT_BYTES`.
+    """
+    from .safeio import read_limited
+
+    try:
+        data = read_limited(path, MAX_REPORT_BYTES)
+    except InputError:
+        return False
+    if kind == "xlsx":
+        return _xlsx_is_ours(data)
+    return _pdf_is_ours(data)
+
+
+def _xlsx_is_ours(data: bytes) -> bool:
+    import io
+
+    try:
+        with zipfile.ZipFile(io.BytesIO(data)) as zf, zf.open("docProps/core.xml") as fh:
+            return bool(_CREATOR_XML.search(fh.read(65536)))
+    except (zipfile.BadZipFile, KeyError, OSError, ValueError, RuntimeError,
+            NotImplementedError, EOFError, zlib.error):
+        return False
+
+
+def _pdf_is_ours(data: bytes) -> bool:
+    """The document information (plain, or in a compressed object stream) names scanplan."""
+    if not data.startswith(b"%PDF-"):
+        return False
+    if _CREATOR_PDF.search(data):
+        return True
+    budget = _MAX_INFLATED
+    starts = [m.end() for m in _STREAM.finditer(data)]
+    for start in reversed(starts):  # the information object is written last
+        inflate = zlib.decompressobj()
+        try:
+            chunk = inflate.decompress(data[start:start + budget], budget)
+        except zlib.error:
+            continue
+        if _CREATOR_PDF.search(chunk):
+            return True
+        budget -= len(chunk)
+        if budget <= 0:
+            return False
+    return False
+
+
+@contextlib.contextmanager
+def folder_lock(folders: Iterable[str | os.PathLike[str]]) -> Iterator[None]:
+    """Hold an exclusive ``flock`` on each folder (sorted, so two writers never deadlock).
+
+    Only other scanplan writers wait for it; without ``flock`` (not POSIX) or where a folder
+    cannot be opened it is a no-op for that folder.
+    """
+    fds: list[int] = []
+    try:
+        try:
+            import fcntl
+        except ImportError:  # pragma: no cover - not POSIX
+            fcntl = None  # type: ignore[assignment]
+        for folder in sorted({os.path.realpath(f) for f in folders}):
+            if fcntl is None:
+                break
+            try:
+                fd = os.open(folder, os.O_RDONLY)
+            except OSError:
+                continue
+            fds.append(fd)
+            try:
+                fcntl.flock(fd, fcntl.LOCK_EX)
+            except OSError:
+                pass
+        yield
+    finally:
+        for fd in fds:
+            os.close(fd)
+
