@@ -18,9 +18,9 @@ from dataclasses import dataclass
 from .domains import MAX_LIST_ITEMS, check_domain
 from .errors import InputError
 from .messages import Message
-from .mtf import DEFAULT_K0
+from .mtf import DEFAULT_HAZE_CONTRAST, DEFAULT_K0
 from .norms import DEFAULT_NORM_SET, MapObject, NormSet, load_norm_set, parse_scale
-from .normschema import PARAMETERS
+from .normschema import ORIENTATIONS, PARAMETERS
 from .planner import ObjectSpec, ScanInputs, ScanPlan, plan_scan
 from .uav import UavInputs, UavPlan, plan_uav
 
@@ -269,6 +269,13 @@ def scan(**kwargs: object) -> ScanPlan:
     return scan_job(**kwargs).plan  # type: ignore[arg-type]
 
 
+UAV_DEFAULTS = {"speed_ms": 15.0, "forward_overlap_pct": 80.0, "side_overlap_pct": 60.0}
+"""Flight defaults for a camera on a UAV (docs/project-file.md)."""
+AIRCRAFT_SIDE_OVERLAP_PCT = 30.0
+"""Side overlap for a camera on a manned aircraft, as for film (the specification's film
+default)."""
+
+
 @dataclass(frozen=True)
 class UavJob:
     """A computed UAV plan together with the norm set it used."""
@@ -285,10 +292,10 @@ def uav_job(
     focal_mm: float | None = None,
     sensor_mm: object | None = None,
     f_number: float | None = None,
-    speed_ms: float = 15.0,
+    speed_ms: float | None = None,
     exposure_s: float = 0.001,
-    forward_overlap_pct: float = 80.0,
-    side_overlap_pct: float = 60.0,
+    forward_overlap_pct: float | None = None,
+    side_overlap_pct: float | None = None,
     height_tolerance_pct: float = 0.0,
     map_scale: object | None = None,
     relief_interval_m: float | None = None,
@@ -301,6 +308,7 @@ def uav_job(
     r_max: float = 0.3,
     r_min: float = 0.1,
     threshold_k0: float | None = None,
+    haze_contrast: float | None = None,
     shift_factor: float = 1.0,
     random_speed_ms: float = 0.0,
     roll_rate_rad_s: float = 0.0,
@@ -309,24 +317,54 @@ def uav_job(
     area_m: object | None = None,
     roll_deg: float = 0.0,
     pitch_deg: float = 0.0,
+    orientation: str | None = None,
 ) -> UavJob:
     """Plan a UAV flight (see :func:`scanplan.uav.plan_uav`); names as the CLI options.
 
     A catalogue ``camera`` gives pixel, focal length, sensor, image size, f-number and
     minimum trigger interval; explicit values override it. ``map_scale`` with
     ``relief_interval_m`` adds the norm set's constraints and the maximum flight height.
+    Defaults for a UAV camera: speed 15 m/s, overlaps 80/60 %. A camera carried by an
+    aircraft (catalogue ``platform = aircraft``) needs the ground speed, and its overlaps
+    default to the norm set's standard forward overlap (the Instruction's 60 %) and 30 %
+    side overlap, as for film.
+    ``orientation`` (``"landscape"``: sensor width across track, or ``"portrait"``;
+    default the catalogue's, else landscape) turns the frame for footprint, base and
+    spacing; the pitch of a catalogue camera is sensor width / image width.
     """
     ns = load_norm_set(norms)
     cam = ns.camera(camera, "camera") if camera is not None else None
     if cam is not None and cam.kind != "digital":
         raise InputError("camera", f"{camera!r} is a film camera; use `scanplan scan` for "
                          "film, or a digital camera (scanplan cameras list)")
+    aircraft = cam is not None and cam.carrier == "aircraft"
+    if speed_ms is None:
+        if aircraft:
+            raise InputError("speed_ms", f"give the aircraft's ground speed in m/s (> 0): "
+                             f"{camera!r} is flown on a manned aircraft, and the UAV default "
+                             f"{UAV_DEFAULTS['speed_ms']:g} m/s does not apply")
+        speed_ms = UAV_DEFAULTS["speed_ms"]
+    if forward_overlap_pct is None:
+        forward_overlap_pct = (float(ns.parameters["standard_forward_overlap_pct"]) if aircraft
+                               else UAV_DEFAULTS["forward_overlap_pct"])
+    if side_overlap_pct is None:
+        side_overlap_pct = (AIRCRAFT_SIDE_OVERLAP_PCT if aircraft
+                            else UAV_DEFAULTS["side_overlap_pct"])
+    if orientation is not None and orientation not in ORIENTATIONS:
+        raise InputError("orientation", f"must be one of {', '.join(ORIENTATIONS)} "
+                         f"(got {orientation!r})")
+    mount = orientation or (cam.orientation if cam else "") or "landscape"
     p = pixel_um if pixel_um is not None else (cam.pixel_um if cam else None)
     f = focal_mm if focal_mm is not None else (cam.focal_mm if cam else None)
+    w_px = h_px = None
+    if cam is not None:
+        _, _, w_px, h_px = cam.frame(mount)
     if sensor_mm is not None:
         w, h = parse_frame_mm(sensor_mm, "sensor_mm")
+        if mount == "portrait":
+            w, h = h, w
     elif cam is not None:
-        w, h = cam.sensor_width_mm, cam.sensor_height_mm
+        w, h, _, _ = cam.frame(mount)
     else:
         w = h = None
     n0 = f_number if f_number is not None else (cam.f_number if cam else None)
@@ -363,17 +401,27 @@ def uav_job(
         height_m=height_m, speed_ms=speed_ms, exposure_s=exposure_s,
         forward_overlap_pct=forward_overlap_pct, side_overlap_pct=side_overlap_pct,
         height_tolerance_up_pct=height_tolerance_pct, camera=camera or "",
-        camera_name=cam.name if cam else "", image_width_px=cam.image_width_px if cam else None,
-        image_height_px=cam.image_height_px if cam else None,
+        camera_name=cam.name if cam else "", image_width_px=w_px, image_height_px=h_px,
+        orientation=mount, platform=cam.carrier if cam else "uav",
+        lens_table_centre=_lens(ns, camera, "centre"), lens_table_corner=_lens(ns, camera,
+                                                                              "corner"),
         min_trigger_interval_s=cam.min_trigger_interval_s if cam else None,
         r_max=r_max, r_min=r_min,
         threshold_k0=threshold_k0 if threshold_k0 is not None else DEFAULT_K0,
+        haze_contrast=haze_contrast if haze_contrast is not None else DEFAULT_HAZE_CONTRAST,
         shift_factor=shift_factor, random_speed_ms=random_speed_ms,
         roll_rate_rad_s=roll_rate_rad_s, pitch_rate_rad_s=pitch_rate_rad_s,
         yaw_rate_rad_s=yaw_rate_rad_s, roll_deg=roll_deg, pitch_deg=pitch_deg, map_scale=mk,
         relief_interval_m=relief_interval_m, map_object=map_obj, objects=tuple(objects),
         area_width_m=area_w, area_length_m=area_l)
     return UavJob(plan_uav(inputs, rules), ns)
+
+
+def _lens(ns: NormSet, camera: str | None, position: str
+          ) -> tuple[tuple[float, ...], tuple[float, ...]] | None:
+    """The catalogue's lens MTF table of ``camera`` at ``position``, if one is published."""
+    curve = ns.lens_mtf.get(camera or "", {}).get(position)
+    return (curve.freq_lpmm, curve.mtf) if curve else None
 
 
 def _at_most(values: Iterable[float], field: str, what: str) -> tuple[float, ...]:

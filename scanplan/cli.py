@@ -48,6 +48,7 @@ OPTION_NAMES = {
     "sensor_width_mm": "--sensor-mm",
     "sensor_height_mm": "--sensor-mm",
     "f_number": "--f-number",
+    "orientation": "--orientation",
     "height_m": "--height-m",
     "speed_ms": "--speed-ms",
     "exposure_s": "--exposure-s",
@@ -57,6 +58,7 @@ OPTION_NAMES = {
     "r_max": "--r-max",
     "k0": "--k0",
     "threshold_k0": "--k0",
+    "haze_contrast": "--haze-contrast",
     "shift_factor": "--shift-factor",
     "roll_deg": "--roll-deg",
     "pitch_deg": "--pitch-deg",
@@ -374,7 +376,11 @@ def scan(as_json: bool, bits_per_band: str, **kwargs: Any) -> None:
 @click.option("--camera", help="Digital camera id (scanplan cameras list).")
 @click.option("--pixel-um", type=float, callback=_finite, help="Pixel pitch [µm] (no --camera).")
 @click.option("--focal-mm", type=float, callback=_finite, help="Focal length [mm].")
-@click.option("--sensor-mm", help="Sensor WxH [mm], across × along track, e.g. 36x24.")
+@click.option("--sensor-mm", help="Sensor WxH [mm], e.g. 36x24 (W across track when "
+              "mounted landscape).")
+@click.option("--orientation", type=click.Choice(["landscape", "portrait"]),
+              help="Camera mounting: landscape = sensor width across track (default: the "
+              "catalogue's, else landscape); portrait turns footprint, spacing and base.")
 @click.option("--f-number", type=float, callback=_finite,
               help="Working f-number (default: the catalogue's).")
 @click.option("--height-m", type=float, required=True, callback=_finite,
@@ -382,14 +388,16 @@ def scan(as_json: bool, bits_per_band: str, **kwargs: Any) -> None:
 @click.option("--height-tolerance-pct", type=float, default=0.0, show_default=True,
               callback=_finite, help="How much higher the UAV may fly than planned [%] "
               "(seed 002: 300 m planned, 420 m flown = 40).")
-@click.option("--speed-ms", type=float, default=15.0, show_default=True, callback=_finite,
-              help="Ground speed [m/s].")
+@click.option("--speed-ms", type=float, callback=_finite,
+              help="Ground speed [m/s] (default 15 for a UAV; required for a camera on an "
+              "aircraft).")
 @click.option("--exposure-s", type=float, default=0.001, show_default=True, callback=_finite,
               help="Exposure time [s].")
-@click.option("--overlap-pct", "forward_overlap_pct", type=float, default=80.0,
-              show_default=True, callback=_finite, help="Forward overlap [%].")
-@click.option("--side-overlap-pct", type=float, default=60.0, show_default=True,
-              callback=_finite, help="Side overlap [%].")
+@click.option("--overlap-pct", "forward_overlap_pct", type=float, callback=_finite,
+              help="Forward overlap [%] (default 80 for a UAV, the norm set's 60 for a camera "
+              "on an aircraft).")
+@click.option("--side-overlap-pct", type=float, callback=_finite,
+              help="Side overlap [%] (default 60 for a UAV, 30 for a camera on an aircraft).")
 @click.option("--map-scale", type=SCALE, help="Map scale: adds the constraints and max height.")
 @click.option("--relief", "relief_interval_m", type=float, callback=_finite,
               help="Relief interval h_c [m] (with --map-scale).")
@@ -398,6 +406,9 @@ def scan(as_json: bool, bits_per_band: str, **kwargs: Any) -> None:
               help="Brightness coefficient of the lightest detail.")
 @click.option("--r-min", type=float, default=0.1, show_default=True, callback=_finite,
               help="Brightness coefficient of the darkest detail.")
+@click.option("--haze-contrast", type=float, callback=_finite,
+              help="Contrast transmission of the air column c, 0 < c ≤ 1 (default 0.9: "
+              "clear air below 500 m).")
 @click.option("--k0", "threshold_k0", type=float, callback=_finite,
               help="Sensor threshold contrast at low frequency (default 0.03).")
 @click.option("--shift-factor", type=float, default=1.0, show_default=True, callback=_finite,
@@ -591,68 +602,10 @@ def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: s
         sys.exit(2)
 
 
-@main.group()
-def cameras() -> None:
-    """The camera catalogue (film and digital).
-
-    \b
-    Examples:
-      scanplan cameras list
-      scanplan cameras show rc30-153
-    """
-
-
-@cameras.command("list")
-@click.option("--norms", default="gkinp-02-036-02", show_default=True,
-              help="Norm set whose cameras to add to the catalogue.")
-@click.option("--json", "as_json", is_flag=True, help="Print as JSON.")
-def cameras_list(norms: str, as_json: bool) -> None:
-    """List the catalogue cameras.
-
-    \b
-    Example:
-      scanplan cameras list --json
-    """
-    from dataclasses import asdict
-
-    from .norms import load_norm_set
-    from .textfmt import table
-
-    ns = load_norm_set(norms)
-    cams = sorted(ns.cameras.values(), key=lambda c: (c.kind, c.id))
-    if as_json:
-        _echo_json([asdict(c) for c in cams])
-        return
-    rows = [["id", "kind", "frame/sensor mm", "f mm", "pixel µm", "name"]]
-    for c in cams:
-        rows.append([c.id, c.kind, f"{c.sensor_width_mm:g}×{c.sensor_height_mm:g}",
-                     f"{c.focal_mm:g}", f"{c.pixel_um:g}" if c.pixel_um else "—", c.name])
-    click.echo(table(rows, align="llrrrl"))
-
-
-@cameras.command("show")
-@click.argument("camera_id")
-@click.option("--norms", default="gkinp-02-036-02", show_default=True,
-              help="Norm set whose cameras to add to the catalogue.")
-@click.option("--json", "as_json", is_flag=True, help="Print as JSON.")
-def cameras_show(camera_id: str, norms: str, as_json: bool) -> None:
-    """Show one camera: CAMERA_ID from `scanplan cameras list`."""
-    from dataclasses import asdict
-
-    from .norms import load_norm_set
-    from .textfmt import table
-
-    cam = load_norm_set(norms).camera(camera_id, "CAMERA_ID")
-    d = asdict(cam)
-    if as_json:
-        _echo_json(d)
-        return
-    click.echo(table([[k, "—" if v in (None, "") else str(v)] for k, v in d.items()],
-                     align="ll"))
-
-
+from .cli_cameras import cameras  # noqa: E402
 from .cli_norms import norms  # noqa: E402  (the group needs `main` defined first)
 
+main.add_command(cameras)
 main.add_command(norms)
 
 from .cli_init import init  # noqa: E402

@@ -72,6 +72,8 @@ DOMAINS: dict[str, Domain] = {
     "yaw_rate_rad_s": Domain(0, 10, "rad/s", meaning="RMS yaw rate"),
     "roll_deg": Domain(-45, 45, "°", meaning="roll for the tilted-frame corner GSD"),
     "pitch_deg": Domain(-45, 45, "°", meaning="pitch for the tilted-frame corner GSD"),
+    "haze_contrast": Domain(0, 1, lo_open=True,
+                            meaning="contrast transmission of the air column (haze)"),
     "threshold_k0": Domain(0, 1, lo_open=True, hi_open=True,
                            meaning="sensor threshold contrast at low frequency"),
     "shift_factor": Domain(0, 1, lo_open=True,

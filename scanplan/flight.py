@@ -362,7 +362,14 @@ def photos_per_strip(
     -----
     ceil(length/B) + 1 exposures span the block; one more beyond each end (the
     usual rule in Russian aerial-survey practice) makes the end models full stereo
-    pairs. Total photos = strips × photos per strip.
+    pairs. Total photos = strips × photos per strip, and the strip is flown over its
+    photographed span (photos − 1)·B, not over the block length.
+
+    QGroundControl counts differently: ceil(d/B) images for a transect whose first and
+    last trigger points are d apart (SurveyComplexItem, ``_cameraShots``), the transect
+    being the polygon's span (plus its turnaround only when images are taken there) —
+    that is, no exposures past the ends. For a block length L, scanplan counts
+    ceil(L/B) + 3 per strip against QGroundControl's ceil(L/B) (docs/uav-models.md).
     """
     length = _positive("area_length_m", area_length_m)
     b = _positive("base_m", base_m)
@@ -383,7 +390,8 @@ def flight_length_m(
     n_strips : array_like
         Number of strips [–].
     strip_length_m : array_like
-        Flown length of one strip [m] (e.g. (photos per strip − 1) × B).
+        Flown length of one strip [m]: its photographed span, (photos per strip − 1) × B
+        (longer than the block by the exposures past its ends).
     line_spacing_m : array_like
         Line spacing [m].
     turn_m : array_like, optional

@@ -231,6 +231,14 @@ MESSAGES: dict[str, dict[str, str]] = {
               "нужна выдержка не длиннее 1/{denominator:d}~с или скорость не выше {speed:.1f}~"
               "м/с.",
     },
+    "haze_default_height": {
+        "en": "the haze contrast coefficient {c:g} assumed for clear air below {valid:g} m is "
+              "applied at {height:g} m, where haze lowers contrast more: give the expected "
+              "value for the flight ({key})",
+        "ru": "Коэффициент снижения контраста дымкой {c:g}, принятый для чистого воздуха ниже "
+              "{valid:g}~м, применён на высоте {height:g}~м, где дымка снижает контраст "
+              "сильнее: задайте ожидаемое значение ({key}).",
+    },
     "trigger_interval": {
         "en": "photo interval {interval:.2f} s is shorter than the camera's minimum "
               "{minimum:g} s: fly ≤ {speed:.1f} m/s or lower the forward overlap",

@@ -94,6 +94,9 @@ DEFAULT_WAVELENGTH_UM = 0.55
 DEFAULT_K0 = 0.03
 #: Frequency-independent contrast transmission of the air below a UAV [–].
 DEFAULT_HAZE_CONTRAST = 0.9
+DEFAULT_HAZE_MAX_HEIGHT_M = 500.0
+"""Height up to which :data:`DEFAULT_HAZE_CONTRAST` is argued (clear air, docs/uav-models.md
+"Defaults and why"); above it a plan says the default is used out of its range."""
 #: Bracketing grid and refinement steps of the resolving-power solver.
 DEFAULT_GRID_POINTS = 5
 DEFAULT_ITERATIONS = 12
@@ -725,8 +728,9 @@ def linear_motion_mtf(
     shift_mm : array_like
         Photographic shift δ [mm] (:func:`photographic_image_shift_mm`).
     shutter_efficiency : array_like, optional
-        Optical efficiency of the shutter η [–], 0 < η ≤ 1 (1: rectangular opening,
-        plain sinc).
+        Optical efficiency of the shutter η [–], 0.5 ≤ η ≤ 1 (1: rectangular opening,
+        plain sinc). Below 0.5 the two boxes swap roles (η and 1 − η give the same
+        trapezoid), so 0.3 would silently act as 0.7: it is refused.
 
     Returns
     -------
@@ -741,7 +745,7 @@ def linear_motion_mtf(
     """
     n = _finite("freq_lpmm", freq_lpmm)
     d = _nonnegative("shift_mm", shift_mm)
-    eta = _in_range("shutter_efficiency", shutter_efficiency, 0.0, 1.0, low_inclusive=False)
+    eta = _in_range("shutter_efficiency", shutter_efficiency, 0.5, 1.0)
     return _k_linear_motion(n, eta * d, (1.0 - eta) * d)
 
 
@@ -1498,9 +1502,7 @@ class _Chain:
         delta = photographic_image_shift_mm(
             geometric_image_shift_mm(w, t, f, h), flight.shift_factor
         )
-        eta = _in_range(
-            "shutter_efficiency", camera.shutter_efficiency, 0.0, 1.0, low_inclusive=False
-        )
+        eta = _in_range("shutter_efficiency", camera.shutter_efficiency, 0.5, 1.0)
         sigma = random_shift_rms_mm(
             geometric_image_shift_mm(motion.random_speed_ms, t, f, h),
             angular_shift_tilt_mm(motion.roll_rate_rad_s, t, f, q),

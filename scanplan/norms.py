@@ -10,7 +10,6 @@ or a name under the user's norm directory (``$SCANPLAN_NORMS_DIR``, else
 from __future__ import annotations
 
 import csv
-import difflib
 import glob
 import io
 import math
@@ -18,8 +17,10 @@ import os
 import stat
 import tomllib
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
+from difflib import get_close_matches
 from functools import lru_cache
+from itertools import pairwise
 from pathlib import Path
 from typing import Any
 
@@ -33,9 +34,12 @@ CATALOGUE = "catalogue"
 
 __all__ = [
     "DEFAULT_NORM_SET",
+    "PITCH_TOLERANCE",
     "Camera",
+    "LensCurve",
     "MapObject",
     "NormSet",
+    "ScannerStep",
     "bundled_norms_dir",
     "did_you_mean",
     "list_norm_sets",
@@ -111,9 +115,20 @@ class MapObject:
     source: str
 
 
+PITCH_TOLERANCE = 0.02
+"""Largest relative difference between a published pixel pitch and sensor width / image
+width that the catalogue accepts (a published pitch is rounded, e.g. 3.3 µm for 3.2765 µm)."""
+
+
 @dataclass(frozen=True)
 class Camera:
-    """A camera of the catalogue (film or digital)."""
+    """A camera of the catalogue (film or digital).
+
+    ``sensor_width_mm``/``image_width_px`` lie across track when the camera is mounted
+    ``landscape`` (the default), as in QGroundControl. For a digital camera with an image
+    width, ``pixel_um`` is the exact pitch sensor width / image width (square pixels) and
+    ``published_pixel_um`` the rounded value a data sheet prints, if any.
+    """
 
     id: str
     kind: str
@@ -128,6 +143,68 @@ class Camera:
     shutter: str = ""
     min_trigger_interval_s: float | None = None
     resolving_power_lpmm: float | None = None
+    source: str = ""
+    platform: str = ""
+    orientation: str = ""
+    note: str = ""
+    published_pixel_um: float | None = None
+
+    def row(self) -> dict[str, Any]:
+        """The catalogue row as written in ``cameras.csv`` (the published pitch, not the
+        derived one, under ``pixel_um``)."""
+        d = asdict(self)
+        d["pixel_um"] = d.pop("published_pixel_um")
+        return d
+
+    @property
+    def carrier(self) -> str:
+        """``"uav"`` or ``"aircraft"`` (the ``platform`` column, or the kind's default)."""
+        return self.platform or ("aircraft" if self.kind == "film" else "uav")
+
+    def frame(self, orientation: str | None = None) -> tuple[float, float, int | None,
+                                                          int | None]:
+        """The imaged frame as mounted: (across, along [mm], across, along [px]).
+
+        With an image size the frame is image size × pitch (square pixels, so the along
+        side is image height × sensor width / image width, as QGroundControl's footprint);
+        without one, the sensor's published sides.
+
+        Parameters
+        ----------
+        orientation : {"landscape", "portrait"}, optional
+            Default: the catalogue's, else landscape. Portrait puts the image height
+            across track.
+        """
+        o = orientation or self.orientation or "landscape"
+        w_px, h_px = self.image_width_px, self.image_height_px
+        if self.pixel_um is not None and w_px and h_px:
+            w_mm, h_mm = self.sensor_width_mm, h_px * self.sensor_width_mm / w_px
+        else:
+            w_mm, h_mm = self.sensor_width_mm, self.sensor_height_mm
+        if o == "portrait":
+            return h_mm, w_mm, h_px, w_px
+        return w_mm, h_mm, w_px, h_px
+
+
+@dataclass(frozen=True)
+class LensCurve:
+    """A lens MTF table of one camera at one image point (table ``lens_mtf``)."""
+
+    freq_lpmm: tuple[float, ...]
+    mtf: tuple[float, ...]
+    source: str = ""
+
+
+@dataclass(frozen=True)
+class ScannerStep:
+    """One scan pixel a scanner offers, with what its source publishes about it."""
+
+    scanner: str
+    name: str
+    pixel_um: float
+    bit_depth: str = ""
+    frame_scan_min: float | None = None
+    note: str = ""
     source: str = ""
 
 
@@ -151,6 +228,8 @@ class NormSet:
     cameras: Mapping[str, Camera] = field(default_factory=dict)
     scanners: Mapping[str, tuple[float, ...]] = field(default_factory=dict)
     scanner_names: Mapping[str, str] = field(default_factory=dict)
+    scanner_details: Mapping[str, tuple[ScannerStep, ...]] = field(default_factory=dict)
+    lens_mtf: Mapping[str, Mapping[str, LensCurve]] = field(default_factory=dict)
 
     def rules(self, **overrides: Any) -> ScanRules:
         """The rules engine's parameters, with user overrides applied and checked.
@@ -220,12 +299,12 @@ class NormSet:
             raise NotFoundError(
                 field_name,
                 f"unknown scanner {scanner!r}{did_you_mean(scanner, self.scanners)} Known: "
-                f"{', '.join(sorted(self.scanners))}",
+                f"{', '.join(sorted(self.scanners))} (scanplan cameras list --kind scanner)",
             ) from None
 
 
 def did_you_mean(word: str, choices: Iterable[str]) -> str:
-    """``" — did you mean 'rc30-153'?"`` for the closest ids (difflib), else ``"."``
+    """``" — did you mean rc30-153?"`` for the closest ids (difflib), else ``"."``
     (either ends the sentence naming the unknown id).
 
     Case, spaces and underscores are ignored (``RC30_153`` finds ``rc30-153``).
@@ -243,10 +322,10 @@ def did_you_mean(word: str, choices: Iterable[str]) -> str:
     by_key: dict[str, str] = {}
     for c in choices:
         by_key.setdefault(key(c), c)
-    close = difflib.get_close_matches(key(word), list(by_key), n=3, cutoff=0.6)
+    close = get_close_matches(key(word), list(by_key), n=3, cutoff=0.6)
     if not close:
         return "."
-    names = " or ".join(repr(by_key[c]) for c in close)
+    names = " or ".join(by_key[c] for c in close)
     return f" — did you mean {names}?"
 
 
@@ -320,24 +399,76 @@ def _typed_rows(path: Path, spec: TableSpec) -> list[dict[str, Any]]:
 
 
 def _load_cameras(path: Path) -> dict[str, Camera]:
-    return {r["id"]: Camera(**r) for r in _typed_rows(path, TABLES["cameras"])}
+    """Cameras of a catalogue file; ids unique, the exact pitch derived (file:row errors)."""
+    out: dict[str, Camera] = {}
+    for i, r in enumerate(_typed_rows(path, TABLES["cameras"]), start=2):
+        if r["id"] in out:
+            raise InputError(f"{path}:{i} (id)", f"camera id {r['id']!r} appears twice; "
+                             "ids must be unique (keep both entries under different ids)")
+        for key in ("platform", "orientation", "note", "shutter", "source"):
+            r[key] = r[key] or ""
+        published = r["pixel_um"]
+        r["published_pixel_um"] = published
+        if r["kind"] == "digital" and r["image_width_px"]:
+            exact = r["sensor_width_mm"] * 1000.0 / r["image_width_px"]
+            if published is not None and abs(published / exact - 1) > PITCH_TOLERANCE:
+                raise InputError(
+                    f"{path}:{i} (pixel_um)",
+                    f"{published:g} µm disagrees with sensor width / image width = "
+                    f"{r['sensor_width_mm']:g} mm / {r['image_width_px']} px = {exact:.4g} µm "
+                    f"by more than {PITCH_TOLERANCE:.0%}; correct one of them")
+            r["pixel_um"] = exact
+        out[r["id"]] = Camera(**r)
+    return out
 
 
-def _load_scanners(path: Path) -> tuple[dict[str, tuple[float, ...]], dict[str, str]]:
-    steps: dict[str, list[float]] = {}
+_Scanners = tuple[dict[str, tuple[float, ...]], dict[str, str], dict[str, tuple[ScannerStep, ...]]]
+
+
+def _load_scanners(path: Path) -> _Scanners:
+    """Steps, names and per-step details of a scanners file; a step listed twice for one
+    scanner is an error (file:row)."""
+    details: dict[str, list[ScannerStep]] = {}
     names: dict[str, str] = {}
-    for r in _typed_rows(path, TABLES["scanners"]):
-        steps.setdefault(r["scanner"], []).append(r["pixel_um"])
-        names[r["scanner"]] = r["name"] or r["scanner"]
-    return {k: tuple(sorted(v)) for k, v in steps.items()}, names
+    for i, r in enumerate(_typed_rows(path, TABLES["scanners"]), start=2):
+        sid = r["scanner"]
+        if any(s.pixel_um == r["pixel_um"] for s in details.get(sid, ())):
+            raise InputError(f"{path}:{i} (pixel_um)", f"scanner {sid!r} lists "
+                             f"{r['pixel_um']:g} µm twice; each step once")
+        names[sid] = r["name"] or names.get(sid) or sid
+        details.setdefault(sid, []).append(ScannerStep(
+            sid, names[sid], r["pixel_um"], r["bit_depth"] or "", r["frame_scan_min"],
+            r["note"] or "", r["source"] or ""))
+    det = {k: tuple(sorted(v, key=lambda s: s.pixel_um)) for k, v in details.items()}
+    return {k: tuple(s.pixel_um for s in v) for k, v in det.items()}, names, det
+
+
+def _load_lens_mtf(path: Path) -> dict[str, dict[str, LensCurve]]:
+    """Lens MTF tables: camera → position → curve (≥ 2 points, one per frequency)."""
+    points: dict[tuple[str, str], list[tuple[float, float, str, int]]] = {}
+    for i, r in enumerate(_typed_rows(path, TABLES["lens_mtf"]), start=2):
+        points.setdefault((r["camera"], r["position"]), []).append(
+            (r["freq_lpmm"], r["mtf"], r["source"] or "", i))
+    out: dict[str, dict[str, LensCurve]] = {}
+    for (cam, pos), pts in points.items():
+        pts.sort()
+        for a, b in pairwise(pts):
+            if a[0] == b[0]:
+                raise InputError(f"{path}:{b[3]} (freq_lpmm)", f"{cam} {pos}: frequency "
+                                 f"{b[0]:g} lines/mm appears twice; each frequency once")
+        if len(pts) < 2:
+            raise InputError(f"{path}:{pts[0][3]} (freq_lpmm)", f"{cam} {pos}: a curve needs "
+                             "at least two frequencies")
+        sources = "; ".join(dict.fromkeys(p[2] for p in pts if p[2]))
+        out.setdefault(cam, {})[pos] = LensCurve(tuple(p[0] for p in pts),
+                                                 tuple(p[1] for p in pts), sources)
+    return out
 
 
 @lru_cache(maxsize=1)
-def _catalogue() -> tuple[dict[str, Camera], dict[str, tuple[float, ...]], dict[str, str]]:
+def _catalogue() -> tuple[dict[str, Camera], _Scanners]:
     folder = bundled_norms_dir() / CATALOGUE
-    cams = _load_cameras(folder / "cameras.csv")
-    steps, names = _load_scanners(folder / "scanners.csv")
-    return cams, steps, names
+    return _load_cameras(folder / "cameras.csv"), _load_scanners(folder / "scanners.csv")
 
 
 def is_set_name(text: str) -> bool:
@@ -433,16 +564,26 @@ def load_norm_set(name_or_path: str | os.PathLike[str] = DEFAULT_NORM_SET) -> No
     for _ in range(3):
         path, bundled = _resolve(name_or_path)
         path = path.resolve()
+        user_cat = _user_catalogue_fingerprint()
         if bundled:  # read-only, part of the installation
-            return _load_path(path, bundled, _fingerprint(path))
+            return _load_path(path, bundled, _fingerprint(path), user_cat)
         # An import replaces a set under an exclusive lock on its folder's parent (the norm
         # directory); reading under a shared lock sees the old set or the new one, never a
         # mix, and never a set missing half-way through the swap.
         with dir_lock(path.parent, exclusive=False):
             if (path / "set.toml").is_file():
-                return _load_path(path, bundled, _fingerprint(path))
+                return _load_path(path, bundled, _fingerprint(path), user_cat)
     raise NotFoundError("--norms", f"norm set {os.fspath(name_or_path)!r} disappeared while "
                         "it was read (replaced or deleted by another program); try again")
+
+
+def _user_catalogue_fingerprint() -> tuple[tuple[str, int, int, int, int], ...]:
+    """The user catalogue's files (``scanplan cameras import``): an import is seen at once."""
+    folder = user_norms_dir() / CATALOGUE
+    try:
+        return _fingerprint(folder) if folder.is_dir() else ()
+    except OSError:
+        return ()
 
 
 def _fingerprint(path: Path) -> tuple[tuple[str, int, int, int, int], ...]:
@@ -458,7 +599,8 @@ def _fingerprint(path: Path) -> tuple[tuple[str, int, int, int, int], ...]:
 
 @lru_cache(maxsize=16)
 def _load_path(path: Path, bundled: bool,
-               fingerprint: tuple[tuple[str, int, int, int, int], ...]) -> NormSet:
+               fingerprint: tuple[tuple[str, int, int, int, int], ...],
+               user_catalogue: tuple[tuple[str, int, int, int, int], ...] = ()) -> NormSet:
     return read_norm_set_folder(path, bundled=bundled)
 
 
@@ -499,14 +641,22 @@ def read_norm_set_folder(path: Path, *, bundled: bool = False) -> NormSet:
                              f"shape {r['shape']!r} of {r['object']!r} is not in shapes.csv")
         objects.append(MapObject(r["map_scale"], r["object"], r["object_ru"] or "",
                                  r["size_m"], r["shape"], r["source"] or ""))
-    cams, steps, names = _catalogue()
-    cams, steps, names = dict(cams), dict(steps), dict(names)
-    if (path / "cameras.csv").is_file():
-        cams.update(_load_cameras(path / "cameras.csv"))
-    if (path / "scanners.csv").is_file():
-        s2, n2 = _load_scanners(path / "scanners.csv")
-        steps.update(s2)
-        names.update(n2)
+    cams, (steps, names, details) = _catalogue()
+    cams, steps, names, details = dict(cams), dict(steps), dict(names), dict(details)
+    # the bundled lens tables, the user catalogue (scanplan cameras import), the set's own
+    lens: dict[str, dict[str, LensCurve]] = {}
+    for folder in (bundled_norms_dir() / CATALOGUE, user_norms_dir() / CATALOGUE, path):
+        if (folder / "lens-mtf.csv").is_file():
+            for cam_id, curves in _load_lens_mtf(folder / "lens-mtf.csv").items():
+                lens.setdefault(cam_id, {}).update(curves)
+    for folder in (user_norms_dir() / CATALOGUE, path):
+        if (folder / "cameras.csv").is_file():
+            cams.update(_load_cameras(folder / "cameras.csv"))
+        if (folder / "scanners.csv").is_file():
+            s2, n2, d2 = _load_scanners(folder / "scanners.csv")
+            steps.update(s2)
+            names.update(n2)
+            details.update(d2)
     return NormSet(
         name=str(meta.get("name") or path.name),
         title=str(meta.get("title", "")),
@@ -524,7 +674,20 @@ def read_norm_set_folder(path: Path, *, bundled: bool = False) -> NormSet:
         cameras=cams,
         scanners=steps,
         scanner_names=names,
+        scanner_details=details,
+        lens_mtf=_checked_lens(lens, cams),
     )
+
+
+def _checked_lens(lens: dict[str, dict[str, LensCurve]], cams: Mapping[str, Camera]
+                  ) -> dict[str, dict[str, LensCurve]]:
+    """Lens tables of known digital cameras only (an unknown id is an error)."""
+    for cam_id in lens:
+        cam = cams.get(cam_id)
+        if cam is None or cam.kind != "digital":
+            raise InputError("lens-mtf.csv (camera)", f"{cam_id!r} is not a digital camera of "
+                             "the catalogue (scanplan cameras list --kind digital)")
+    return lens
 
 
 def list_norm_sets() -> list[tuple[str, str]]:

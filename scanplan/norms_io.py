@@ -2353,25 +2353,21 @@ def _set_rows(ns: Any, catalogue: bool = True) -> dict[str, list[dict[str, Any]]
         return out
     cam_cols = [c.name for c in TABLES["cameras"].columns]
     out["cameras"] = [
-        {k: (v if v != "" else None) for k, v in dataclasses.asdict(c).items() if k in cam_cols}
+        {k: (v if v != "" else None) for k, v in c.row().items() if k in cam_cols}
         for c in sorted(ns.cameras.values(), key=lambda c: c.id)
     ]
-    src: dict[tuple[str, float], str] = {}
-    for folder in (_norms.bundled_norms_dir() / _norms.CATALOGUE, ns.path):
-        for r in _raw_csv(folder / "scanners.csv"):
-            try:
-                src[(r["scanner"], float(r["pixel_um"]))] = r.get("source", "")
-            except (KeyError, ValueError):
-                continue
     out["scanners"] = [
         {
-            "scanner": s,
-            "name": ns.scanner_names.get(s, s),
-            "pixel_um": px,
-            "source": src.get((s, px)) or None,
+            "scanner": st.scanner,
+            "name": st.name or None,
+            "pixel_um": st.pixel_um,
+            "bit_depth": st.bit_depth or None,
+            "frame_scan_min": st.frame_scan_min,
+            "note": st.note or None,
+            "source": st.source or None,
         }
-        for s in sorted(ns.scanners)
-        for px in ns.scanners[s]
+        for s in sorted(ns.scanner_details)
+        for st in ns.scanner_details[s]
     ]
     return out
 

@@ -24,6 +24,8 @@ CONSTRAINT_IDS = ("PS", "PZ", "PP", "PR", "PD")
 """Constraints the film rules engine knows (see :mod:`scanplan.planner`)."""
 
 HEIGHT_FORMULAS = ("instruction", "parallax")
+ORIENTATIONS = ("landscape", "portrait")
+"""Camera mounting: landscape = image width (sensor width) across track, as QGroundControl."""
 ROUNDING_MODES = ("exact", "paper")
 
 
@@ -313,6 +315,13 @@ TABLES: dict[str, TableSpec] = {
                     "film or digital",
                     ("тип",),
                 ),
+                ColumnSpec(
+                    "platform",
+                    ValueSpec("choice", choices=("uav", "aircraft"), required=False),
+                    "what carries it: uav, or aircraft (manned aerial survey); default: uav "
+                    "for digital, aircraft for film",
+                    ("носитель",),
+                ),
                 ColumnSpec("name", _TEXT, "model", ("модель", "наименование")),
                 ColumnSpec(
                     "sensor_width_mm",
@@ -335,7 +344,8 @@ TABLES: dict[str, TableSpec] = {
                 ColumnSpec(
                     "pixel_um",
                     ValueSpec("float", 0, 1000, min_open=True, unit="µm", required=False),
-                    "pixel pitch (digital)",
+                    "published pixel pitch (digital); with the image width the pitch used "
+                    "is sensor width / image width, which must agree within 2 %",
                     ("размер пикселя",),
                 ),
                 ColumnSpec(
@@ -369,6 +379,14 @@ TABLES: dict[str, TableSpec] = {
                     "resolving power of the photo (film)",
                     ("разрешающая способность",),
                 ),
+                ColumnSpec(
+                    "orientation",
+                    ValueSpec("choice", choices=ORIENTATIONS, required=False),
+                    "mounting: landscape (image width across track, the default) or portrait",
+                    ("ориентация",),
+                ),
+                ColumnSpec("note", _TEXT_OPT, "why an entry exists twice, caveats",
+                           ("примечание",)),
                 _SOURCE,
             ),
             required=False,
@@ -388,11 +406,54 @@ TABLES: dict[str, TableSpec] = {
                     "a scan pixel the scanner offers",
                     ("размер пикселя",),
                 ),
+                ColumnSpec("bit_depth", _TEXT_OPT, "radiometric resolution as published, "
+                           "e.g. '10 internal, 8 or 12 output' [bit]",
+                           ("разрядность",)),
+                ColumnSpec(
+                    "frame_scan_min",
+                    ValueSpec("float", 0, 1440, min_open=True, unit="min", required=False),
+                    "time to scan one 23×23 cm frame at this pixel, as published",
+                    ("время сканирования кадра",),
+                ),
+                ColumnSpec("note", _TEXT_OPT, "colour or black-and-white, caveats",
+                           ("примечание",)),
                 _SOURCE,
             ),
             required=False,
             title_ru="Сканеры",
             description="scan pixel sizes offered by each scanner",
+        ),
+        TableSpec(
+            "lens_mtf",
+            "lens-mtf.csv",
+            ("camera", "position", "freq_lpmm"),
+            (
+                ColumnSpec("camera", _TEXT, "camera id (a row of the cameras table)",
+                           ("камера",)),
+                ColumnSpec(
+                    "position",
+                    ValueSpec("choice", choices=("centre", "corner")),
+                    "image point the curve describes: centre, or corner (tangential)",
+                    ("положение", "точка поля"),
+                ),
+                ColumnSpec(
+                    "freq_lpmm",
+                    ValueSpec("float", 0, 2000, unit="lines/mm"),
+                    "spatial frequency on the image",
+                    ("частота", "пространственная частота"),
+                ),
+                ColumnSpec(
+                    "mtf",
+                    ValueSpec("float", 0, 1, unit="-"),
+                    "lens MTF at that frequency (at the working f-number of the flight)",
+                    ("ЧКХ", "MTF"),
+                ),
+                _SOURCE,
+            ),
+            required=False,
+            title_ru="ЧКХ объективов",
+            description="manufacturer's lens MTF per camera (frequency → MTF); replaces the "
+            "diffraction formula in the MTF chain",
         ),
     )
 }

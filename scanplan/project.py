@@ -76,14 +76,18 @@ KEYS: dict[str, dict[str, tuple[str, str]]] = {
         "camera": ("str", "digital camera id (or pixel_um + focal_mm + sensor_mm)"),
         "pixel_um": ("number", "pixel pitch [µm]"),
         "focal_mm": ("number", "focal length [mm]"),
-        "sensor_mm": ("str", 'sensor "WxH" [mm], across × along track'),
+        "sensor_mm": ("str", 'sensor "WxH" [mm], W across track when mounted landscape'),
+        "orientation": ("str", '"landscape" (sensor width across track) or "portrait" '
+                        "(default: the catalogue's, else landscape)"),
         "f_number": ("number", "working f-number (default: the catalogue's)"),
         "height_m": ("number", "planned flight height [m] (default: the maximum allowed)"),
         "height_tolerance_pct": ("number", "how much higher the UAV may fly [%] (default 0)"),
-        "speed_ms": ("number", "ground speed [m/s] (default 15)"),
+        "speed_ms": ("number", "ground speed [m/s] (default 15; required for a camera on an "
+                     "aircraft)"),
         "exposure_s": ("number", "exposure time [s] (default 0.001)"),
-        "forward_overlap_pct": ("number", "forward overlap [%] (default 80)"),
-        "side_overlap_pct": ("number", "side overlap [%] (default 60)"),
+        "forward_overlap_pct": ("number", "forward overlap [%] (default 80; on an aircraft "
+                                "the norm set's 60)"),
+        "side_overlap_pct": ("number", "side overlap [%] (default 60; on an aircraft 30)"),
         "roll_deg": ("number", "roll for the tilted-frame corner GSD [°] (default 0)"),
         "pitch_deg": ("number", "pitch for the tilted-frame corner GSD [°] (default 0)"),
     },
@@ -93,6 +97,8 @@ KEYS: dict[str, dict[str, tuple[str, str]]] = {
     },
     "uav.atmosphere": {
         "threshold_k0": ("number", "sensor threshold contrast at low frequency (default 0.03)"),
+        "haze_contrast": ("number", "contrast transmission of the air column c, 0 < c ≤ 1 "
+                          "(default 0.9: clear air below 500 m)"),
     },
     "uav.motion": {
         "shift_factor": ("number", "photographic/geometric shift (default 1; 0.6–0.7 summer)"),

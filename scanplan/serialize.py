@@ -185,6 +185,7 @@ def plan_result_dict(result: Any) -> dict[str, Any]:
             "recognition": [asdict(r) for r in p.recognition],
             "forward_overlap_pct": p.inputs.forward_overlap_pct,
             "side_overlap_pct": p.inputs.side_overlap_pct,
+            "orientation": p.inputs.orientation, "platform": p.inputs.platform,
             "motion_blur_px": p.motion_blur_px, "max_exposure_s": p.max_exposure_s,
             "max_speed_ms": p.max_speed_ms, **p.flight,
         }

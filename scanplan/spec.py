@@ -44,10 +44,12 @@ _UAV_KEYS = {
     "camera": "uav.camera", "pixel_um": "uav.pixel_um", "focal_mm": "uav.focal_mm",
     "sensor_mm": "uav.sensor_mm", "sensor_width_mm": "uav.sensor_mm",
     "sensor_height_mm": "uav.sensor_mm", "f_number": "uav.f_number",
+    "orientation": "uav.orientation",
     "height_m": "uav.height_m", "height_tolerance_up_pct": "uav.height_tolerance_pct",
     "speed_ms": "uav.speed_ms", "exposure_s": "uav.exposure_s",
     "forward_overlap_pct": "uav.forward_overlap_pct", "side_overlap_pct": "uav.side_overlap_pct",
     "r_max": "uav.target.r_max", "r_min": "uav.target.r_min",
+    "haze_contrast": "uav.atmosphere.haze_contrast",
     "threshold_k0": "uav.atmosphere.threshold_k0", "k0": "uav.atmosphere.threshold_k0",
     "shift_factor": "uav.motion.shift_factor", "random_speed_ms": "uav.motion.random_speed_ms",
     "roll_rate_rad_s": "uav.motion.roll_rate_rad_s",
@@ -224,15 +226,17 @@ def _uav_kwargs(project: Project, height_m: float) -> dict[str, Any]:
         height_formula=g("norms", "height_formula"),
         r_max=g("uav.target", "r_max", 0.3), r_min=g("uav.target", "r_min", 0.1),
         threshold_k0=g("uav.atmosphere", "threshold_k0"),
+        haze_contrast=g("uav.atmosphere", "haze_contrast"),
         shift_factor=g("uav.motion", "shift_factor", 1.0),
         random_speed_ms=g("uav.motion", "random_speed_ms", 0.0),
         roll_rate_rad_s=g("uav.motion", "roll_rate_rad_s", 0.0),
         pitch_rate_rad_s=g("uav.motion", "pitch_rate_rad_s", 0.0),
         yaw_rate_rad_s=g("uav.motion", "yaw_rate_rad_s", 0.0), area_m=area,
-        roll_deg=g("uav", "roll_deg", 0.0), pitch_deg=g("uav", "pitch_deg", 0.0))
-    for key, default in (("speed_ms", 15.0), ("exposure_s", 0.001),
-                         ("forward_overlap_pct", 80.0), ("side_overlap_pct", 60.0)):
-        kw[key] = g("uav", key, default)
+        roll_deg=g("uav", "roll_deg", 0.0), pitch_deg=g("uav", "pitch_deg", 0.0),
+        orientation=g("uav", "orientation"))
+    kw["exposure_s"] = g("uav", "exposure_s", 0.001)
+    for key in ("speed_ms", "forward_overlap_pct", "side_overlap_pct"):
+        kw[key] = g("uav", key)  # defaults by carrier in uav_job
     return kw
 
 

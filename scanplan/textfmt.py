@@ -134,13 +134,20 @@ def format_scan_plan(plan: ScanPlan, norm_name: str = "", norm_title: str = "") 
     return "\n".join(lines)
 
 
+def _carrier(platform: str) -> str:
+    """How the terminal names the digital-camera flight: a UAV, or a manned aerial survey
+    (a large-format camera, catalogue ``platform = aircraft``)."""
+    return "Aerial survey (digital camera)" if platform == "aircraft" else "UAV"
+
+
 def format_uav_plan(plan: UavPlan, norm_name: str = "") -> str:
     """The terminal report of ``scanplan uav``."""
     inp = plan.inputs
     h = plan.heights_m
     cam = inp.camera or "camera"
     lines = [
-        f"UAV plan — {cam}" + (f" ({inp.camera_name})" if inp.camera_name else ""),
+        f"{_carrier(inp.platform)} plan — {cam}"
+        + (f" ({inp.camera_name})" if inp.camera_name else ""),
         f"pixel {inp.pixel_um:g} µm, f {inp.focal_mm:g} mm, f/{inp.f_number:g}, sensor "
         f"{inp.sensor_width_mm:g}×{inp.sensor_height_mm:g} mm; height {h['planned']:g} m"
         + (f" (flown {h['min']:g}–{h['max']:g} m)" if h["max"] != h["min"] else "")
@@ -255,7 +262,7 @@ def format_plan_result(result: Any) -> str:
     if result.uav:
         u = result.uav
         p = u.job.plan
-        lines += ["", "UAV:"]
+        lines += ["", f"{_carrier(p.inputs.platform)}:"]
         if u.recommended_height_m is None:
             lines.append(_wrap(u.reason, "  "))
         else:
@@ -291,8 +298,9 @@ def format_plan_result(result: Any) -> str:
             lines.append(table(rows, align="ll"))
             lines.append(_wrap(u.reason, "  "))
     if result.comparison:
-        lines += ["", "Film and UAV side by side:"]
-        rows = [["  quantity", "film", "UAV", "unit"]]
+        word = _carrier(result.uav.job.plan.inputs.platform) if result.uav else "UAV"
+        lines += ["", f"Film and {word if word == 'UAV' else 'digital camera'} side by side:"]
+        rows = [["  quantity", "film", word if word == "UAV" else "digital", "unit"]]
         for c in result.comparison:
             def v(x: Any) -> str:
                 if x is None:
@@ -310,7 +318,7 @@ def format_plan_result(result: Any) -> str:
 
 def batch_summary(done: list[tuple[str, Any]], failed: list[tuple[str, str]]) -> str:
     """One table for a batch of projects: the headline of each, then the failures."""
-    rows = [["project", "map", "film: photo scale", "scan µm", "UAV: height m", "max m",
+    rows = [["project", "map", "film: photo scale", "scan µm", "digital camera: height m", "max m",
              "binding"]]
     for path, r in done:
         f, u = r.film, r.uav

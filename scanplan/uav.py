@@ -88,6 +88,10 @@ class UavInputs:
     area_length_m: float | None = None
     bands: int = 3
     bits_per_band: int = 8
+    orientation: str = "landscape"
+    platform: str = "uav"
+    lens_table_centre: tuple[tuple[float, ...], tuple[float, ...]] | None = None
+    lens_table_corner: tuple[tuple[float, ...], tuple[float, ...]] | None = None
 
 
 @dataclass(frozen=True)
@@ -156,7 +160,8 @@ class UavPlan:
 def _chain(inp: UavInputs, height_m: Any) -> tuple[M.Camera, M.Flight, M.Atmosphere,
                                                    M.Motion, M.Scene, M.Threshold]:
     cam = M.Camera(inp.pixel_um, inp.focal_mm, inp.f_number, inp.sensor_width_mm,
-                   inp.sensor_height_mm)
+                   inp.sensor_height_mm, lens_table_centre=inp.lens_table_centre,
+                   lens_table_corner=inp.lens_table_corner)
     fl = M.Flight(height_m, inp.speed_ms, inp.exposure_s, inp.shift_factor)
     atm = M.Atmosphere(contrast_coefficient=inp.haze_contrast)
     mot = M.Motion(inp.random_speed_ms, inp.roll_rate_rad_s, inp.pitch_rate_rad_s,
@@ -230,7 +235,8 @@ def _check_inputs(inp: UavInputs) -> None:
                  "height_m", "exposure_s", "speed_ms", "random_speed_ms", "roll_rate_rad_s",
                  "pitch_rate_rad_s", "yaw_rate_rad_s", "forward_overlap_pct",
                  "side_overlap_pct", "height_tolerance_up_pct", "height_tolerance_down_pct",
-                 "roll_deg", "pitch_deg", "threshold_k0", "shift_factor", "r_max", "r_min"):
+                 "roll_deg", "pitch_deg", "threshold_k0", "haze_contrast", "shift_factor",
+                 "r_max", "r_min"):
         check_domain(name, getattr(inp, name))
     if inp.r_min > inp.r_max:
         raise InputError("r_min", f"must be ≤ r_max: the darkest detail is not lighter than the "
@@ -327,6 +333,10 @@ def plan_uav(inp: UavInputs, rules: ScanRules | None = None) -> UavPlan:
     resolvable = bool(np.asarray(c.resolvable)[0])
     warnings: list[PlanWarning] = []
 
+    if inp.haze_contrast == M.DEFAULT_HAZE_CONTRAST and h_hi > M.DEFAULT_HAZE_MAX_HEIGHT_M:
+        warnings.append(PlanWarning("haze_default_height", Message(
+            "haze_default_height", c=inp.haze_contrast, valid=M.DEFAULT_HAZE_MAX_HEIGHT_M,
+            height=h_hi, key="[uav.atmosphere] haze_contrast"), severity="info"))
     blur = float(FL.motion_blur_px(inp.speed_ms, inp.exposure_s, gsd_lo))
     max_exp = float(FL.max_exposure_for_blur_s(max(inp.speed_ms, 1e-12), gsd_lo))
     max_speed = float(FL.max_speed_for_blur_ms(inp.exposure_s, gsd_lo))
@@ -363,7 +373,9 @@ def plan_uav(inp: UavInputs, rules: ScanRules | None = None) -> UavPlan:
     if inp.area_width_m and inp.area_length_m:
         strips = max(1, int(FL.strip_count(inp.area_width_m, spacing)))  # 1e-300 m: one
         per_strip = int(FL.photos_per_strip(inp.area_length_m, base))
-        length = float(FL.flight_length_m(strips, inp.area_length_m, spacing))
+        # each strip is flown over its photographed span, first to last exposure (the
+        # photos past the block ends included), not the block length
+        length = float(FL.flight_length_m(strips, (per_strip - 1) * base, spacing))
         fl.update({"strips": strips, "photos_per_strip": per_strip,
                    "photos": strips * per_strip, "flight_length_m": length,
                    "flight_time_s": _flight_time_s(length, inp.speed_ms)})

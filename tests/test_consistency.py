@@ -119,14 +119,14 @@ def test_data_volume_says_uncompressed_and_estimates_jpeg():
 
 
 def test_did_you_mean():
-    assert did_you_mean("rc30", ["rc30-153", "afa-te-100"]) == " — did you mean 'rc30-153'?"
-    assert did_you_mean("DJI_Mavic_3E", ["dji-mavic-3e"]) == " — did you mean 'dji-mavic-3e'?"
+    assert did_you_mean("rc30", ["rc30-153", "afa-te-100"]) == " — did you mean rc30-153?"
+    assert did_you_mean("DJI_Mavic_3E", ["dji-mavic-3e"]) == " — did you mean dji-mavic-3e?"
     assert did_you_mean("zzzz", ["rc30-153"]) == "."
     r = _cli("uav", "--camera", "dji-zenmuse-p1", "--height-m", "100")
-    assert r.exit_code == 2 and "did you mean 'dji-zenmuse-p1-35'" in r.output
+    assert r.exit_code == 2 and "did you mean dji-zenmuse-p1-35" in r.output
     r = _cli("scan", "--map-scale", "2000", "--relief", "1", "--photo-scale", "10000",
              "--camera", "rc30-153", "--scanner", "photoscan")
-    assert r.exit_code == 2 and "did you mean 'photoscan-td'" in r.output
+    assert r.exit_code == 2 and "did you mean photoscan-td" in r.output
 
 
 @pytest.mark.parametrize("norm_set", ["gkinp-02-036-02", "gkinp-02-036-02-printed"])

@@ -23,11 +23,11 @@ EXAMPLES = ROOT / "examples"
 UAV_500 = {
     "file": "uav-p1-500.toml",
     "planned_height_m": 100,
-    # P_P binds: GSD ≤ 0.07 mm × 500 = 35 mm at the highest flown height 1.1·H:
-    # H = 0.035 m × 35 mm / 4.4 µm / 1.1 = 253.1 m
-    "max_height_m": 253.1,
+    # P_P binds: GSD ≤ 0.07 mm × 500 = 35 mm at the highest flown height 1.1·H, with the
+    # exact pitch 35.9 mm / 8192 px = 4.382 µm: H = 0.035 m × 35 mm / 4.382 µm / 1.1 = 254.1 m
+    "max_height_m": 254.1,
     "binding": "PP",
-    "gsd_m": 0.01257,  # 4.4 µm × 100 m / 35 mm
+    "gsd_m": 0.012521,  # 4.382 µm × 100 m / 35 mm
     "object": "gas-valve covers, survey marks",
     "object_size_m": 0.15,
     "photos": 1240,

@@ -251,7 +251,7 @@ UAV_BAD: dict[str, list[str]] = {
 }
 UAV_CAMERA_BAD = ["nope", "../x", "", "rc30-153"]
 UAV_MANUAL_BAD = {
-    "--pixel-um": [*BAD_POSITIVE, "0.01", "500"],
+    "--pixel-um": [*BAD_POSITIVE, "0.01", "1e4"],  # 500 µm is inside the domain (≤ 1000)
     "--focal-mm": [*BAD_POSITIVE, "0.1", "1e5"],
     "--sensor-mm": ["abc", "0x24", "36x", "-36x24", "nanx24", "1e9x24", ""],
 }

@@ -5,12 +5,14 @@ The examples are collected from the help text of every command and subcommand (l
 starting with ``scanplan``, ``\\`` continuations joined) and run in order in a scratch
 folder holding a copy of ``examples/``, with an empty user norm directory. The files an
 example presupposes the user has (``objects.csv``: a table they edited) are put there
-first; examples that build on each other (template → validate → import → use) run in
+first (also QGroundControl's ``CameraMetaData.json`` and a camera workbook); examples
+that build on each other (template → validate → import → use) run in
 that order.
 """
 
 from __future__ import annotations
 
+import json
 import shlex
 import shutil
 from pathlib import Path
@@ -80,6 +82,14 @@ def test_every_help_example_runs(tmp_path, monkeypatch):
     monkeypatch.setenv("SCANPLAN_NORMS_DIR", str(tmp_path / "user-norms"))
     norms_mod._load_path.cache_clear()
     runner = CliRunner()
+    # files the user brings: QGroundControl's camera list, a camera workbook of their own
+    (work / "CameraMetaData.json").write_text(json.dumps([{
+        "canonicalName": "Sony a7r IV 35mm", "brand": "Sony", "model": "a7r IV 35mm",
+        "sensorWidth": 35.7, "sensorHeight": 23.8, "imageWidth": 9504, "imageHeight": 6336,
+        "focalLength": 35, "landscape": True, "fixedOrientation": False,
+        "minTriggerInterval": 1.0, "deprecatedTranslatedName": ""}]), encoding="utf-8")
+    made = runner.invoke(main, ["norms", "template", "our-cameras.xlsx"], prog_name="scanplan")
+    assert made.exit_code == 0, made.output
     seen: set[str] = set()
     ran = 0
     try:

@@ -63,7 +63,7 @@ def test_bad_answers_write_nothing_and_name_the_option(tmp_path):
     p = tmp_path / "x.toml"
     cases = [
         (["--map-scale", "2000", "--relief", "1", "--film-camera", "rc30"], "--film-camera",
-         "did you mean 'rc30-153'?"),
+         "did you mean rc30-153?"),
         (["--map-scale", "50", "--relief", "1"], "--map-scale", "≥ 100"),
         (["--map-scale", "2000", "--relief", "-1"], "--relief", "relief"),
         (["--map-scale", "2000"], "--relief", "is required"),

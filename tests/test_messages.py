@@ -294,7 +294,7 @@ def test_json_keeps_english_and_adds_the_parameters():
     doc = json.loads(r.stdout)
     blur = next(w for w in doc["warnings"] if w["code"] == "motion_blur")
     assert blur["message"].startswith("motion blur 0.65 px at 300 m exceeds 0.5 px")
-    assert blur["params"]["denominator"] == 1301 and blur["params"]["height"] == 300
+    assert blur["params"]["denominator"] == 1300 and blur["params"]["height"] == 300
     assert doc["specification"]["uav"]["reason"] == "the planned height is within the maximum 376 m"
     assert PlanWarning("x", "plain").text("ru") == "plain"  # a plain string stays as it is
 

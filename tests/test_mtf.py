@@ -80,12 +80,30 @@ def test_linear_motion_trapezoid():
     n = np.linspace(0, 400, 801)
     d = 0.004
     np.testing.assert_allclose(mtf.linear_motion_mtf(n, d, 1.0), np.abs(np.sinc(n * d)))
-    # η and 1 − η give the same trapezoid
-    np.testing.assert_allclose(mtf.linear_motion_mtf(n, d, 0.7), mtf.linear_motion_mtf(n, d, 0.3))
+    # η and 1 − η give the same trapezoid: the product of sincs of widths 0.7·δ and 0.3·δ
+    np.testing.assert_allclose(mtf.linear_motion_mtf(n, d, 0.7),
+                               np.abs(np.sinc(n * 0.7 * d) * np.sinc(n * 0.3 * d)))
     # first zero at 1 / (max(η, 1 − η)·δ)
     assert mtf.linear_motion_mtf(1 / (0.7 * d), d, 0.7) == pytest.approx(0.0, abs=1e-15)
     # a slower opening (smaller η) transfers less at the same frequency
     assert mtf.linear_motion_mtf(100.0, d, 0.7) > mtf.linear_motion_mtf(100.0, d, 1.0) - 1
+
+
+@pytest.mark.parametrize("eta", [0.3, 0.0, 0.4999, 1.01])
+def test_shutter_efficiency_outside_half_to_one_is_refused(eta):
+    """Regression (cross-check of issue 16): η < 0.5 describes the same trapezoid as
+    1 − η, so η = 0.3 used to act silently as 0.7; it is refused, in the component and in
+    the whole chain."""
+    with pytest.raises(ValueError, match=r"shutter_efficiency must be in \[0.5, 1\]"):
+        mtf.linear_motion_mtf(10.0, 0.004, eta)
+    cam = mtf.Camera(4.0, 35.0, 5.6, 36.0, 24.0, shutter_efficiency=eta)
+    with pytest.raises(ValueError, match="shutter_efficiency"):
+        mtf.uav_resolution(cam, mtf.Flight(300.0, 25.0, 0.001))
+
+
+def test_shutter_efficiency_bounds_are_accepted():
+    for eta in (0.5, 1.0):
+        assert 0 < float(mtf.linear_motion_mtf(10.0, 0.004, eta)) <= 1
 
 
 def test_image_shift_formulas():

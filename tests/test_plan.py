@@ -62,7 +62,7 @@ def test_uav_seed_002_flight():
     u = doc["specification"]["uav"]
     assert u["recommended_height_m"] == 300 and u["binding"] == "PD"
     assert u["max_height_m"] == pytest.approx(376, abs=1)
-    assert u["gsd_m"] == pytest.approx(0.03846)
+    assert u["gsd_m"] == pytest.approx(36 / 5616 * 300 / 50)  # 36 mm / 5616 px, exact pitch
     assert u["ground_resolution_m"] == pytest.approx(0.0634, abs=5e-5)
     assert u["recognition"][0]["probability"] == pytest.approx(0.910, abs=5e-4)
     assert u["photos"] == 2592 and u["strips"] == 24
@@ -97,7 +97,7 @@ def test_film_and_uav_side_by_side(tmp_path):
     doc = plan_json(str(p))
     rows = {r["quantity"]: r for r in doc["specification"]["comparison"]}
     assert rows["pixel on the ground"]["film"] == pytest.approx(7e-6 * 8000)
-    assert rows["pixel on the ground"]["uav"] == pytest.approx(0.03846)
+    assert rows["pixel on the ground"]["uav"] == pytest.approx(36 / 5616 * 300 / 50)
 
 
 BAD = {

@@ -1,7 +1,8 @@
 """`scanplan uav`: MTF ground resolution combined with the Instruction's constraints.
 
-The seed 002 case: Canon EOS 5D Mark II (5616×3744, 6.41 µm; the catalogue assumes a 50 mm
-lens, worked at f/8), 300 m planned, 300–420 m flown, 80 % forward overlap.
+The seed 002 case: Canon EOS 5D Mark II (5616×3744 on 36×24 mm: pitch 36 mm/5616 =
+6.4103 µm, exact; the catalogue assumes a 50 mm lens, worked at f/8), 300 m planned,
+300–420 m flown, 80 % forward overlap.
 """
 
 from __future__ import annotations
@@ -19,14 +20,15 @@ from scanplan.cli import main
 SEED002 = dict(camera="canon-eos-5d-mark-ii-50", f_number=8.0, height_m=300.0,
                height_tolerance_pct=40.0, speed_ms=25.0, exposure_s=0.001,
                forward_overlap_pct=80.0, shift_factor=0.65)
+P_MM = 36 / 5616  # seed 002: 5616 px across a 36 mm sensor [mm]
 
 
 def test_seed_002_worked_example():
     """GSD, L, L/GSD and the recognition probability of the 1:2000 objects at 300 and 420 m."""
     plan = uav_job(**SEED002, map_scale=2000, relief_interval_m=0.5).plan
     # GSD = p·H/f, derived by hand
-    assert plan.gsd_m == pytest.approx(6.41e-3 * 300 / 50)            # 0.0385 m
-    assert plan.gsd_at_max_height_m == pytest.approx(6.41e-3 * 420 / 50)  # 0.0538 m
+    assert plan.gsd_m == pytest.approx(P_MM * 300 / 50)            # 0.0385 m
+    assert plan.gsd_at_max_height_m == pytest.approx(P_MM * 420 / 50)  # 0.0538 m
     assert plan.heights_m == {"planned": 300.0, "min": 300.0, "max": 420.0}
     # L = H/(2·R·f) with R from the MTF chain; seed 000: GSD overstates resolution (~2×)
     r = plan.resolving_power_lpmm
@@ -54,7 +56,7 @@ def test_max_height_gsd_limited_is_exact():
     plan = uav_job(**{**SEED002, "height_tolerance_pct": 0.0}, map_scale=2000,
                    relief_interval_m=0.5, norms="gkinp-02-036-02-printed").plan
     assert plan.binding == "PP"
-    assert plan.max_height_m == pytest.approx(0.14 * 50 / 6.41e-3)
+    assert plan.max_height_m == pytest.approx(0.14 * 50 / P_MM)
     plan40 = uav_job(**SEED002, map_scale=2000, relief_interval_m=0.5,
                      norms="gkinp-02-036-02-printed").plan
     assert plan40.max_height_m == pytest.approx(plan.max_height_m / 1.4)
@@ -68,7 +70,7 @@ def test_max_height_interpretation_limited_meets_its_limit():
     limit = 0.2 * math.sqrt(-math.log(0.75)) / 0.97
     pd = next(x for x in plan.limits if x.id == "PD")
     assert pd.limit_m == pytest.approx(limit) and pd.compares == "L" and pd.binding
-    cam = mtf.Camera(6.41, 50, 8, 36, 24)
+    cam = mtf.Camera(P_MM * 1000, 50, 8, 36, 24)
     flown = plan.max_height_m * 1.4
     res = mtf.uav_resolution(cam, mtf.Flight(flown, 25, 0.001, 0.65),
                              threshold=mtf.Threshold(params={"k0": 0.03}))
@@ -101,7 +103,7 @@ def test_cli_json_contract():
                 "ground_resolution_to_gsd", "motion_blur_px", "recognition", "max_height_m",
                 "warnings"):
         assert key in doc
-    assert doc["nyquist_lpmm"] == pytest.approx(1 / (2 * 6.41e-3))
+    assert doc["nyquist_lpmm"] == pytest.approx(1 / (2 * P_MM))
     assert {"object", "object_size_m", "shape", "probability"} <= set(doc["recognition"][0])
 
 

@@ -126,6 +126,8 @@ def render_xlsx(
         raise ValueError("render_xlsx needs a scan plan, a UAV plan or both")
     when = report_datetime()
     book = _Book(meta, when)
+    if uav is not None:
+        book.platform = uav.plan.inputs.platform
     book.summary(scan, uav, spec)
     book.inputs(scan, uav)
     if scan is not None:
@@ -253,6 +255,7 @@ class _Book:
     def __init__(self, meta: ReportMeta, when: _dt.datetime) -> None:
         self.meta = meta
         self.loc = meta.locale if meta.locale in ("en", "ru") else "en"
+        self.platform = "uav"  # "aircraft": the digital-camera sheets name an aerial survey
         self.when = when
         self.wb = Workbook()
         self._first = True
@@ -261,7 +264,7 @@ class _Book:
     # -- helpers ------------------------------------------------------------------------
 
     def t(self, key: str) -> str:
-        return t(key, self.loc)
+        return t(key, self.loc, self.platform)
 
     def text(self, value: object) -> str:
         """An engine sentence (a :class:`~scanplan.messages.Message`) in the report's language."""
@@ -589,6 +592,7 @@ class _Book:
             ("xlsx_pixel_pitch_um", inp.pixel_um, F2),
             ("focal_mm", inp.focal_mm, F2),
             ("xlsx_f_number", inp.f_number, F1),
+            ("orientation", self.t(f"orientation_{inp.orientation}"), None),
             ("xlsx_sensor_width_mm", inp.sensor_width_mm, F2),
             ("xlsx_sensor_height_mm", inp.sensor_height_mm, F2),
             ("xlsx_image_width_px", inp.image_width_px, INT),

@@ -118,10 +118,13 @@ LABELS: dict[str, dict[str, str]] = {
         "xlsx_camera_name": "Camera model",
         "xlsx_pixel_pitch_um": "Sensor pixel pitch, µm",
         "xlsx_f_number": "F-number",
-        "xlsx_sensor_width_mm": "Sensor width, mm",
-        "xlsx_sensor_height_mm": "Sensor height, mm",
-        "xlsx_image_width_px": "Image width, px",
-        "xlsx_image_height_px": "Image height, px",
+        "xlsx_sensor_width_mm": "Sensor side across track, mm",
+        "xlsx_sensor_height_mm": "Sensor side along track, mm",
+        "xlsx_image_width_px": "Image side across track, px",
+        "xlsx_image_height_px": "Image side along track, px",
+        "orientation": "Camera mounting",
+        "orientation_landscape": "landscape (image width across track)",
+        "orientation_portrait": "portrait (image width along track)",
         "xlsx_tolerance_up_pct": "Height tolerance up, %",
         "xlsx_tolerance_down_pct": "Height tolerance down, %",
         "xlsx_speed_ms": "Ground speed, m/s",
@@ -233,7 +236,7 @@ LABELS: dict[str, dict[str, str]] = {
         "pdf_generated_by": "Prepared with {generator}.",
         "pdf_pixel_pitch_um": "Sensor pixel pitch, µm",
         "pdf_f_number": "f-number",
-        "pdf_sensor_mm": "Sensor, mm",
+        "pdf_sensor_mm": "Sensor, across × along track, mm",
         "pdf_flown_heights": "Heights flown, m",
         "pdf_speed_ms": "Ground speed, m/s",
         "pdf_exposure_s": "Exposure, s",
@@ -422,10 +425,13 @@ LABELS: dict[str, dict[str, str]] = {
         "xlsx_camera_name": "Модель камеры",
         "xlsx_pixel_pitch_um": "Размер пикселя матрицы, мкм",
         "xlsx_f_number": "Диафрагменное число",
-        "xlsx_sensor_width_mm": "Ширина матрицы, мм",
-        "xlsx_sensor_height_mm": "Высота матрицы, мм",
-        "xlsx_image_width_px": "Ширина снимка, пикс.",
-        "xlsx_image_height_px": "Высота снимка, пикс.",
+        "xlsx_sensor_width_mm": "Сторона матрицы поперёк маршрута, мм",
+        "xlsx_sensor_height_mm": "Сторона матрицы вдоль маршрута, мм",
+        "xlsx_image_width_px": "Сторона снимка поперёк маршрута, пикс.",
+        "xlsx_image_height_px": "Сторона снимка вдоль маршрута, пикс.",
+        "orientation": "Ориентация камеры",
+        "orientation_landscape": "альбомная (ширина снимка поперёк маршрута)",
+        "orientation_portrait": "книжная (ширина снимка вдоль маршрута)",
         "xlsx_tolerance_up_pct": "Допуск высоты вверх, %",
         "xlsx_tolerance_down_pct": "Допуск высоты вниз, %",
         "xlsx_speed_ms": "Скорость полёта, м/с",
@@ -541,7 +547,7 @@ LABELS: dict[str, dict[str, str]] = {
         "pdf_generated_by": "Подготовлено программой {generator}.",
         "pdf_pixel_pitch_um": "Размер пикселя матрицы, мкм",
         "pdf_f_number": "Диафрагменное число",
-        "pdf_sensor_mm": "Размер матрицы, мм",
+        "pdf_sensor_mm": "Размер матрицы поперёк × вдоль маршрута, мм",
         "pdf_flown_heights": "Фактические высоты полёта, м",
         "pdf_speed_ms": "Путевая скорость, м/с",
         "pdf_exposure_s": "Выдержка, с",
@@ -626,9 +632,36 @@ LABELS: dict[str, dict[str, str]] = {
 }
 
 
-def t(key: str, locale: str = "en") -> str:
-    """The label ``key`` in ``locale`` (``"en"`` or ``"ru"``)."""
-    return LABELS[locale if locale in LABELS else "en"][key]
+AIRCRAFT_LABELS: dict[str, dict[str, str]] = {
+    "en": {
+        "title_uav": "Aerial survey specification (digital camera)",
+        "xlsx_sheet_uav": "Aerial survey",
+        "xlsx_section_uav": "Aerial survey, digital camera",
+        "pdf_uav_section": "Aerial survey, digital camera",
+        "spec_comparison": "Film and digital camera side by side",
+        "spec_uav": "Digital camera",
+    },
+    "ru": {
+        "title_uav": "Техническое задание на аэрофотосъёмку цифровой камерой",
+        "xlsx_sheet_uav": "Аэрофотосъёмка",
+        "xlsx_section_uav": "Аэрофотосъёмка цифровой камерой",
+        "pdf_uav_section": "Аэрофотосъёмка цифровой камерой",
+        "spec_comparison": "Сравнение плёночной и цифровой съёмки",
+        "spec_uav": "Цифровая камера",
+    },
+}
+"""Labels that name the carrier: a large-format camera on a manned aircraft (catalogue
+``platform = aircraft``) is an aerial survey with a digital camera, not a UAV flight."""
+
+
+def t(key: str, locale: str = "en", platform: str = "uav") -> str:
+    """The label ``key`` in ``locale`` (``"en"`` or ``"ru"``); ``platform="aircraft"``
+    words the digital-camera section as a manned aerial survey."""
+    loc = locale if locale in LABELS else "en"
+    if platform == "aircraft" and key in AIRCRAFT_LABELS[loc]:
+        return AIRCRAFT_LABELS[loc][key]
+    return LABELS[loc][key]
+
 
 # data volume as JPEG (the uncompressed volume / scanplan.flight.JPEG_COMPRESSION_RATIO)
 LABELS["en"]["data_volume_jpeg_gb"] = "Data volume as JPEG (estimate, 9:1), GB"

@@ -145,9 +145,10 @@ class BundledAssetFetcher(URLFetcher):  # type: ignore[misc]
 @dataclass(frozen=True)
 class _Fmt:
     locale: str
+    platform: str = "uav"
 
     def label(self, key: str, **kw: Any) -> str:
-        text = t(key, self.locale)
+        text = t(key, self.locale, self.platform)
         return text.format(**kw) if kw else text
 
     def num(self, x: float | None, digits: int = 1) -> str:
@@ -373,6 +374,7 @@ def _uav_view(job: UavJob, f: _Fmt) -> dict[str, Any]:
         (f.label("focal_mm"), f.g(inp.focal_mm)),
         (f.label("pdf_f_number"), f.g(inp.f_number)),
         (f.label("pdf_sensor_mm"), f"{f.g(inp.sensor_width_mm)} × {f.g(inp.sensor_height_mm)}"),
+        (f.label("orientation"), f.label(f"orientation_{inp.orientation}")),
         (f.label("height_m"), f.g(h["planned"])),
     ]
     if h["max"] != h["min"] or h["min"] != h["planned"]:
@@ -631,7 +633,7 @@ def render_html(*, scan: ScanJob | None = None, uav: UavJob | None = None,
         raise ValueError("give a scan plan, a UAV plan, or both")
     if meta.locale not in ("en", "ru"):
         raise ValueError(f"locale must be 'en' or 'ru' (got {meta.locale!r})")
-    f = _Fmt(meta.locale)
+    f = _Fmt(meta.locale, uav.plan.inputs.platform if uav is not None else "uav")
     now = report_datetime()
     date = meta.date or now.date().isoformat()
     if scan is not None and uav is not None:
