@@ -60,8 +60,9 @@ def _scale(value: object, field: str) -> float:
     return denominator
 
 
-USER_OBJECT_NAME = {"en": "object to interpret", "ru": "объект дешифрирования"}
-"""The name of a project's own object when the project does not name it."""
+USER_OBJECT_NAME = {"en": "object of the given size", "ru": "объект заданного размера"}
+"""The name of a project's own object when the project does not name it (the reports'
+label ``obj_unnamed``)."""
 
 
 def object_display_name(ns: NormSet, name: str, size_m: float, map_scale: int | None,

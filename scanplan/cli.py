@@ -241,10 +241,11 @@ def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
     from .outpaths import check_target
     from .reports import ReportMeta, write_atomic_many
 
-    meta = ReportMeta(project=opts.pop("project_name"), customer=opts.pop("customer"),
-                      contractor=opts.pop("contractor"), locale=opts.pop("locale"),
-                      approver_position=opts.pop("approver_position"),
-                      approver_name=opts.pop("approver_name"))
+    meta = opts.pop("meta", None) or ReportMeta(
+        project=opts.pop("project_name"), customer=opts.pop("customer"),
+        contractor=opts.pop("contractor"), locale=opts.pop("locale"),
+        approver_position=opts.pop("approver_position"),
+        approver_name=opts.pop("approver_name"))
     wanted = [(path, kind) for path, kind in ((xlsx, "xlsx"), (pdf, "pdf")) if path]
 
     def check() -> None:  # before rendering, and again under the folder lock
@@ -550,7 +551,8 @@ def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: s
                         "project_name": result.meta.project, "customer": result.meta.customer,
                         "contractor": result.meta.contractor,
                         "approver_position": result.meta.approver_position,
-                        "approver_name": result.meta.approver_name}, scan=film, uav=uav_,
+                        "approver_name": result.meta.approver_name,
+                        "meta": result.meta}, scan=film, uav=uav_,
                        spec=result)
         return result
 

@@ -44,6 +44,7 @@ LOCALES = ("en", "ru")
 _NBSP = "\u00a0"
 _TIE = "~"  # in a Russian template: a no-break space (a number stays with its unit)
 _M001 = "Михеева, Илюшенко, 2015"  # seed 001, as the Russian reports cite it
+_M001_EN = "Miheeva & Ilushenko 2015"  # seed 001, as the English reports cite it
 _TAIL_EN = (" They need R ≥ {need:.1f} lines/mm; the photo has {r:g}. Remedies: interpret them "
             "in the field, use photos with a higher resolving power, or fly a larger photo "
             "scale ({limit:scale} or larger, Mc/Mk ≤ {ratio:.1f}).")
@@ -78,24 +79,25 @@ MESSAGES: dict[str, dict[str, str]] = {
         "ru": "обеспечивает распознавание наименьших объектов карты с вероятностью P",
     },
     "equation.PS": {
-        "en": "P_S = V_s·Mk/(k·Mc) — GKINP (GNTA)-02-036-02; seed 001 eq. 1",
+        "en": f"P_S = V_s·Mk/(k·Mc) — GKINP (GNTA)-02-036-02; {_M001_EN}, eq. (1)",
         "ru": f"P_S = V_s·Mk/(k·Mc) — ГКИНП (ГНТА)-02-036-02; {_M001}, ф. (1)",
     },
     "equation.PZ": {
-        "en": "P_Z = V_z·f/(k·Mc·b) (Instruction) or V_z·b/(k·Mc·f) (parallax) — seed 001 eq. 2",
+        "en": "P_Z = V_z·f/(k·Mc·b) (Instruction) or V_z·b/(k·Mc·f) (parallax) — "
+              f"{_M001_EN}, eq. (2)",
         "ru": "P_Z = V_z·f/(k·Mc·b) (по Инструкции) или V_z·b/(k·Mc·f) (параллактическая) — "
               f"{_M001}, ф. (2)",
     },
     "equation.PP": {
-        "en": "P_P = 0.070·Mk/Mc — GKINP (GNTA)-02-036-02; seed 001 eq. 3",
+        "en": f"P_P = 0.070·Mk/Mc — GKINP (GNTA)-02-036-02; {_M001_EN}, eq. (3)",
         "ru": f"P_P = 0,070·Mk/Mc — ГКИНП (ГНТА)-02-036-02; {_M001}, ф. (3)",
     },
     "equation.PR": {
-        "en": "P_R = k_R/R, k_R = 0.5 (printed 0.4) — seed 001 eqs. 4–6",
+        "en": f"P_R = k_R/R, k_R = 0.5 (printed 0.4) — {_M001_EN}, eqs. (4)–(6)",
         "ru": f"P_R = k_R/R, k_R = 0,5 (в Инструкции напечатано 0,4) — {_M001}, ф. (4)–(6)",
     },
     "equation.PD": {
-        "en": "P_D = 2·k_R·L·sqrt(−ln P)/(B·Mc) — seed 001 eq. 16",
+        "en": f"P_D = 2·k_R·L·sqrt(−ln P)/(B·Mc) — {_M001_EN}, eq. (16)",
         "ru": f"P_D = 2·k_R·L·sqrt(−ln P)/(B·Mc) — {_M001}, ф. (16)",
     },
     # --- why each film constraint is there, with the contract's numbers -----------------
@@ -128,11 +130,11 @@ MESSAGES: dict[str, dict[str, str]] = {
               "с вероятностью {p:g}",
     },
     "height_formula.instruction": {
-        "en": "instruction",
+        "en": "Instruction's (f/b)",
         "ru": "формула Инструкции",
     },
     "height_formula.parallax": {
-        "en": "parallax",
+        "en": "parallax (b/f)",
         "ru": "параллактическая формула",
     },
     # --- the binding constraint at one photo scale -------------------------------------
@@ -173,7 +175,7 @@ MESSAGES: dict[str, dict[str, str]] = {
     "pr_drives_volume": {
         "en": "at {scale:scale} P_R ({pr:.1f} µm) binds only to keep the photo's resolving "
               "power; accuracy and interpretation allow {coarsest:.1f} µm ({cid}), which is "
-              "{ratio:.1f}× less data per frame (seed 001 conclusion 3).",
+              f"{{ratio:.1f}}× less data per frame ({_M001_EN}, conclusion 3).",
         "ru": "При масштабе снимков {scale:scale} условие P_R ({pr:.1f}~мкм) определяет пиксель "
               "только ради сохранения разрешающей способности снимка; условия точности и "
               "дешифрирования допускают {coarsest:.1f}~мкм ({cid}), то есть в {ratio:.1f}~раза "
@@ -189,11 +191,12 @@ MESSAGES: dict[str, dict[str, str]] = {
     "overlap_not_standard": {
         "en": "forward overlap {overlap:g} % is not the Instruction's {standard:g} %: the "
               "printed height formula V_z·f/(k·Mc·b) lets a larger overlap allow a coarser "
-              "pixel. {detail}(--height-formula parallax to use the parallax form.)",
+              "pixel. {detail}(The parallax form: [norms] height_formula = \"parallax\" in the "
+              "project file.)",
         "ru": "Перекрытие {overlap:g}~% отличается от принятого в Инструкции {standard:g}~%: по "
               "напечатанной в Инструкции формуле точности по высоте V_z·f/(k·Mc·b) большее "
               "перекрытие допускает более крупный пиксель. {detail}(Параллактическую форму "
-              "задаёт параметр height_formula = parallax.)",
+              "задаёт ключ [norms] height_formula = \"parallax\" файла проекта.)",
     },
     "overlap_not_standard.detail": {
         "en": "The parallax form gives {pairs}. ",
@@ -264,12 +267,12 @@ MESSAGES: dict[str, dict[str, str]] = {
     },
     # --- where the object to interpret comes from --------------------------------------
     "object_source.norm": {
-        "en": "norm set {name}, table objects, {map:scale} ({source})",
-        "ru": "нормативы {name}, таблица наименьших объектов (objects), {map:scale} ({source})",
+        "en": "norm table of the smallest objects, {map:scale} ({source})",
+        "ru": "таблица наименьших объектов нормативов, {map:scale} ({source})",
     },
     "object_source.user": {
-        "en": "object_size_m",
-        "ru": "размер объекта задан пользователем (object_size_m)",
+        "en": "size given in the project file ([norms] object_size_m)",
+        "ru": "размер задан в файле проекта ([norms] object_size_m)",
     },
     # --- the specification (scanplan plan) ----------------------------------------------
     "spec.film": {
@@ -280,9 +283,9 @@ MESSAGES: dict[str, dict[str, str]] = {
     },
     "no_feasible_photo_scale": {
         "en": "no candidate photo scale meets every constraint ({why:;}); add a larger photo "
-              "scale to film.photo_scales",
+              "scale to [film] photo_scales",
         "ru": "Ни один из рассмотренных масштабов снимков не удовлетворяет всем условиям "
-              "({why:;}); добавьте более крупный масштаб снимков в film.photo_scales.",
+              "({why:;}); добавьте более крупный масштаб снимков в [film] photo_scales.",
     },
     "no_feasible_photo_scale.objects": {
         "en": "the map's objects need photo scales up to {limit:scale}",

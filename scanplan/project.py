@@ -40,6 +40,13 @@ KEYS: dict[str, dict[str, tuple[str, str]]] = {
         "locale": ("str", '"en" or "ru": language of the reports (default "en")'),
         "approver_position": ("str", "approval block: position"),
         "approver_name": ("str", "approval block: name"),
+        "organisation": ("str", "the contractor's organisation (title block)"),
+        "contract_number": ("str", "contract number (title block)"),
+        "compiled_by": ("str", "compiled by: name (signature block)"),
+        "checked_by": ("str", "checked by: name (signature block)"),
+        "agreed_position": ("str", "agreement block (customer): position"),
+        "agreed_name": ("str", "agreement block (customer): name"),
+        "agreed_organisation": ("str", "agreement block (customer): organisation"),
     },
     "map": {
         "scale": ("scale", "map scale denominator Mk, 2000 or \"1:2000\" (required)"),

@@ -297,6 +297,10 @@ def _comparison(film: FilmSpec, uav: UavSpec) -> list[dict[str, Any]]:
     return rows
 
 
+_SIGNING_KEYS = ("organisation", "contract_number", "compiled_by", "checked_by",
+                 "agreed_position", "agreed_name", "agreed_organisation")
+
+
 def plan_project(project: Project) -> PlanResult:
     """Compute the specification for a validated project.
 
@@ -310,7 +314,8 @@ def plan_project(project: Project) -> PlanResult:
                       contractor=g("project", "contractor", ""),
                       locale=g("project", "locale", "en"),
                       approver_position=g("project", "approver_position", ""),
-                      approver_name=g("project", "approver_name", ""))
+                      approver_name=g("project", "approver_name", ""),
+                      **{k: g("project", k, "") for k in _SIGNING_KEYS})
     _area(project)  # checked even when no plan uses it
     film = _film(project) if project.has("film") else None
     uav = _uav(project) if project.has("uav") else None

@@ -229,91 +229,206 @@ def format_uav_plan(plan: UavPlan, norm_name: str = "") -> str:
     return "\n".join(lines)
 
 
-def format_plan_result(result: Any) -> str:
-    """The concise terminal summary of ``scanplan plan``."""
+_TERMINAL: dict[str, dict[str, str]] = {
+    "en": {
+        "map": "map", "relief": "relief interval", "customer": "customer",
+        "contractor": "contractor", "film": "Film:", "uav": "UAV:",
+        "photo_scale": "recommended photo scale", "scan_pixel": "scan pixel",
+        "scanner_step": "scanner step", "binding": "binding constraint",
+        "recognition": "recognition of the map object", "frame": "scanned frame",
+        "frames": "frames for the area", "strips": "strips",
+        "scanned": "scanned, uncompressed",
+        "photo_scale_archive": "photo scale (existing photos, given)",
+        "height": "recommended flight height", "flown": "flown up to",
+        "max_height": "maximum flight height", "gsd": "GSD / ground resolution L",
+        "overlaps": "overlaps / base / spacing", "interval": "photo interval",
+        "photos": "photos / strips", "flight": "flight", "volume": "data volume",
+        "blur": "blur limit", "exposure": "exposure", "or_speed": "or speed",
+        "side_by_side": "Film and UAV side by side:", "quantity": "quantity",
+        "aircraft": f"{_carrier('aircraft')}:",
+        "side_by_side_aircraft": "Film and digital camera side by side:",
+        "digital_col": "digital",
+        "film_col": "film", "uav_col": "UAV", "unit": "unit", "warnings": "Warnings:",
+        "m": "m", "um": "µm", "mb": "MB", "gb": "GB", "s": "s", "km": "km", "min": "min",
+        "ms": "m/s",
+    },
+    "ru": {
+        "map": "карта", "relief": "высота сечения рельефа", "customer": "заказчик",
+        "contractor": "исполнитель", "film": "Плёночная аэрофотосъёмка:", "uav": "БПЛА:",
+        "photo_scale": "рекомендуемый масштаб снимков", "scan_pixel": "пиксель сканирования",
+        "scanner_step": "шаг сканера", "binding": "определяющее условие",
+        "recognition": "вероятность распознавания объекта карты", "frame": "объём снимка",
+        "frames": "снимков на объект", "strips": "маршрутов",
+        "scanned": "сканирование без сжатия",
+        "photo_scale_archive": "масштаб снимков (имеющиеся снимки, задан)",
+        "height": "рекомендуемая высота полёта", "flown": "фактически до",
+        "max_height": "максимальная высота полёта", "gsd": "GSD / линейное разрешение L",
+        "overlaps": "перекрытия / базис / между маршрутами",
+        "interval": "интервал фотографирования", "photos": "снимков / маршрутов",
+        "flight": "маршруты", "volume": "объём данных", "blur": "предел смаза",
+        "exposure": "выдержка", "or_speed": "или скорость",
+        "side_by_side": "Плёнка и БПЛА:", "quantity": "показатель", "film_col": "плёнка",
+        "aircraft": "Аэрофотосъёмка цифровой камерой:",
+        "side_by_side_aircraft": "Плёнка и цифровая камера:", "digital_col": "цифровая",
+        "uav_col": "БПЛА", "unit": "ед.", "warnings": "Предупреждения:",
+        "m": "м", "um": "мкм", "mb": "МБ", "gb": "ГБ", "s": "с", "km": "км", "min": "мин",
+        "ms": "м/с",
+    },
+}
+_CMP_RU = {"pixel on the ground": "пиксель на местности",
+           "resolution on the ground (A / L)": "разрешение на местности (A / L)",
+           "recognition probability of the map object": "вероятность распознавания",
+           "frames / photos": "снимков", "data volume": "объём данных"}
+
+
+def _n(x: float | None, digits: int, loc: str, group: bool = False) -> str:
+    """A number in the locale's convention (decimal comma and thin grouping in Russian)."""
+    if x is None or (isinstance(x, float) and not math.isfinite(x)):
+        return "—"
+    text = f"{x:,.{digits}f}" if group else f"{x:.{digits}f}"
+    if loc == "ru":
+        text = text.replace(",", "\u00a0").replace(".", ",")
+    return text
+
+
+def _um_loc(x: float | None, loc: str) -> str:
+    """A pixel [µm] as :func:`_um` writes it, with the locale's decimal separator."""
+    text = _um(x)
+    return text.replace(".", ",") if loc == "ru" else text
+
+
+def _g(x: float, loc: str) -> str:
+    text = f"{x:g}"
+    return text.replace(".", ",") if loc == "ru" else text
+
+
+def _sc(x: float, loc: str) -> str:
+    return "1:" + (_n(float(x), 0, loc, group=True) if loc == "ru" else str(scale_value(x)))
+
+
+def format_plan_result(result: Any, locale: str | None = None) -> str:
+    """The concise terminal summary of ``scanplan plan``, in the project's language
+    (``[project] locale``) unless ``locale`` is given."""
+    from .messages import localize
+
     meta = result.meta
+    loc = locale or (meta.locale if meta.locale in _TERMINAL else "en")
+    T = _TERMINAL[loc]
+
+    def cname(cid: str) -> str:
+        info = CONSTRAINTS[cid]
+        return info.name_ru if loc == "ru" else info.name
+
     inp_map = result.project.values["map"]
-    lines = [f"{meta.project} — map 1:{inp_map['scale']}, relief interval "
-             f"{inp_map['relief_interval_m']:g} m"]
+    lines = [f"{meta.project} — {T['map']} {_sc(scale_value(inp_map['scale']), loc)}, "
+             f"{T['relief']} {_g(inp_map['relief_interval_m'], loc)} {T['m']}"]
     if meta.customer or meta.contractor:
-        lines.append(", ".join(x for x in (f"customer {meta.customer}" if meta.customer else "",
-                                           f"contractor {meta.contractor}"
+        lines.append(", ".join(x for x in (f"{T['customer']} {meta.customer}"
+                                           if meta.customer else "",
+                                           f"{T['contractor']} {meta.contractor}"
                                            if meta.contractor else "") if x))
     if result.film:
         f = result.film
         s = f.recommended
-        lines += ["", "Film:"]
+        lines += ["", T["film"]]
         if s is None:
-            lines.append(_wrap(f.reason, "  "))
+            lines.append(_wrap(localize(f.reason, loc), "  "))
         else:
-            px = (f"{_um(s.scan_pixel_um)} µm"
-                  + (f" → scanner step {s.scanner_pixel_um:g} µm" if s.scanner_pixel_um else ""))
-            rows = [["  photo scale (existing photos, given)" if f.archive
-                     else "  recommended photo scale", f"1:{scale_value(s.photo_scale)}"],
-                    ["  scan pixel", px],
-                    ["  binding constraint", f"{s.binding} ({CONSTRAINTS[s.binding].name})"],
-                    ["  recognition of the map object", _num(s.recognition_probability, 2)],
-                    ["  scanned frame", f"{s.frame_megabytes:,.0f} MB"]]
+            px = (f"{_um_loc(s.scan_pixel_um, loc)} {T['um']}"
+                  + (f" → {T['scanner_step']} {_g(s.scanner_pixel_um, loc)} {T['um']}"
+                     if s.scanner_pixel_um else ""))
+            rows = [[f"  {T['photo_scale_archive' if f.archive else 'photo_scale']}",
+                     _sc(s.photo_scale, loc)],
+                    [f"  {T['scan_pixel']}", px],
+                    [f"  {T['binding']}", f"{s.binding} ({cname(s.binding)})"],
+                    [f"  {T['recognition']}", _n(s.recognition_probability, 2, loc)],
+                    [f"  {T['frame']}", f"{_n(s.frame_megabytes, 0, loc, True)} {T['mb']}"]]
             if f.frames is not None:
-                rows.append(["  frames for the area", f"{f.frames} ({f.strips} strips), "
-                             f"{f.scanned_gigabytes:,.1f} GB scanned, uncompressed"])
+                rows.append([f"  {T['frames']}", f"{f.frames} ({f.strips} {T['strips']}), "
+                             f"{_n(f.scanned_gigabytes, 1, loc, True)} {T['gb']} "
+                             f"{T['scanned']}" if loc == "en" else
+                             f"{f.frames} ({T['strips']}: {f.strips}), {T['scanned']} "
+                             f"{_n(f.scanned_gigabytes, 1, loc, True)} {T['gb']}"])
             lines.append(table(rows, align="ll"))
-            lines.append(_wrap(f.reason, "  "))
+            lines.append(_wrap(localize(f.reason, loc), "  "))
     if result.uav:
-        u = result.uav
-        p = u.job.plan
-        lines += ["", f"{_carrier(p.inputs.platform)}:"]
-        if u.recommended_height_m is None:
-            lines.append(_wrap(u.reason, "  "))
-        else:
-            tol = p.inputs.height_tolerance_up_pct
-            rows = [["  recommended flight height", f"{u.recommended_height_m:g} m"
-                     + (f" (flown up to {p.heights_m['max']:g} m, +{tol:g} %)" if tol else "")],
-                    ["  maximum flight height", f"{u.max_height_m:.0f} m ({p.binding} "
-                     f"{CONSTRAINTS[p.binding].name})" if p.binding else "—"],
-                    ["  GSD / ground resolution L", f"{p.gsd_m:.3f} m / "
-                     f"{_num(p.ground_resolution_m, 3)} m (L/GSD "
-                     f"{_num(p.ground_resolution_to_gsd, 2)})"]]
-            obj = p.inputs.map_object
-            if obj is not None:
-                rec = next((r for r in p.recognition if r.object == obj.name
-                            and r.object_size_m == obj.size_m), None)
-                if rec:
-                    rows.append(["  recognition of the map object",
-                                 f"{_num(rec.probability, 2)} ({obj.name}, {obj.size_m:g} m)"])
-            fl = p.flight
-            rows.append(["  overlaps / base / spacing",
-                         f"{p.inputs.forward_overlap_pct:g} % / {p.inputs.side_overlap_pct:g} % "
-                         f"— {fl['base_m']:.1f} m / {fl['line_spacing_m']:.1f} m"])
-            rows.append(["  photo interval", _interval(fl['photo_interval_s'])])
-            if "photos" in fl:
-                rows.append(["  photos / strips", f"{fl['photos']} / {fl['strips']}"])
-                rows.append(["  flight", f"{fl['flight_length_m'] / 1000:.1f} km"
-                             + (f", {fl['flight_time_s'] / 60:.0f} min"
-                                if fl.get("flight_time_s") else "")])
-                if "data_volume_bytes" in fl:
-                    rows.append(["  data volume", _volume(fl["data_volume_bytes"])])
-            rows.append(["  blur limit", f"exposure ≤ 1/{math.ceil(1 / p.max_exposure_s):d} s "
-                         f"or speed ≤ {p.max_speed_ms:.1f} m/s"])
-            lines.append(table(rows, align="ll"))
-            lines.append(_wrap(u.reason, "  "))
+        lines += _uav_summary(result.uav, loc, T, cname)
     if result.comparison:
-        word = _carrier(result.uav.job.plan.inputs.platform) if result.uav else "UAV"
-        lines += ["", f"Film and {word if word == 'UAV' else 'digital camera'} side by side:"]
-        rows = [["  quantity", "film", word if word == "UAV" else "digital", "unit"]]
+        aircraft = bool(result.uav) and result.uav.job.plan.inputs.platform == "aircraft"
+        lines += ["", T["side_by_side_aircraft" if aircraft else "side_by_side"]]
+        rows = [[f"  {T['quantity']}", T["film_col"],
+                 T["digital_col" if aircraft else "uav_col"], T["unit"]]]
         for c in result.comparison:
             def v(x: Any) -> str:
                 if x is None:
                     return "—"
-                return f"{x:,.3f}" if isinstance(x, float) else str(x)
-            rows.append([f"  {c['quantity']}", v(c["film"]), v(c["uav"]), c["unit"]])
+                return _n(x, 3, loc, True) if isinstance(x, float) else str(x)
+            q = _CMP_RU.get(c["quantity"], c["quantity"]) if loc == "ru" else c["quantity"]
+            unit = {"m": T["m"], "GB": T["gb"]}.get(c["unit"], c["unit"])
+            rows.append([f"  {q}", v(c["film"]), v(c["uav"]), unit])
         lines.append(table(rows, align="lrrl"))
     if result.warnings:
-        lines += ["", "Warnings:"]
+        lines += ["", T["warnings"]]
         for w in result.warnings:
             mark = "!" if w.severity == "warning" else "i"
-            lines.append(_wrap(f"{w.message} [{w.code}]", f"  {mark} "))
+            text = localize(w.message, loc)
+            if loc == "ru":  # ids by their names, as the Russian documents show them
+                from .reports.wording import display_message
+
+                ns = (result.film or result.uav).job.norm_set
+                text = display_message(w.message, ns, loc)
+            lines.append(_wrap(f"{text} [{w.code}]", f"  {mark} "))
     return "\n".join(lines)
+
+
+def _uav_summary(u: Any, loc: str, T: dict[str, str], cname: Any) -> list[str]:
+    """The UAV part of :func:`format_plan_result`."""
+    from .messages import localize
+
+    p = u.job.plan
+    lines = ["", T["aircraft" if p.inputs.platform == "aircraft" else "uav"]]
+    if u.recommended_height_m is None:
+        lines.append(_wrap(localize(u.reason, loc), "  "))
+        return lines
+    tol = p.inputs.height_tolerance_up_pct
+    m = T["m"]
+    rows = [[f"  {T['height']}", f"{_g(u.recommended_height_m, loc)} {m}"
+             + (f" ({T['flown']} {_g(p.heights_m['max'], loc)} {m}, +{_g(tol, loc)} %)"
+                if tol else "")],
+            [f"  {T['max_height']}", f"{_n(u.max_height_m, 0, loc)} {m} ({p.binding} "
+             f"{cname(p.binding)})" if p.binding else "—"],
+            [f"  {T['gsd']}", f"{_n(p.gsd_m, 3, loc)} {m} / "
+             f"{_n(p.ground_resolution_m, 3, loc)} {m} (L/GSD "
+             f"{_n(p.ground_resolution_to_gsd, 2, loc)})"]]
+    obj = p.inputs.map_object
+    if obj is not None:
+        rec = next((r for r in p.recognition if r.object == obj.name
+                    and r.object_size_m == obj.size_m), None)
+        if rec:
+            name = (obj.name_ru or obj.name) if loc == "ru" else obj.name
+            rows.append([f"  {T['recognition']}",
+                         f"{_n(rec.probability, 2, loc)} ({name}, {_g(obj.size_m, loc)} {m})"])
+    fl = p.flight
+    rows.append([f"  {T['overlaps']}",
+                 f"{_g(p.inputs.forward_overlap_pct, loc)} % / "
+                 f"{_g(p.inputs.side_overlap_pct, loc)} % "
+                 f"— {_n(fl['base_m'], 1, loc)} {m} / {_n(fl['line_spacing_m'], 1, loc)} {m}"])
+    rows.append([f"  {T['interval']}",
+                 _interval(fl["photo_interval_s"]) if loc == "en" else
+                 (f"{_n(fl['photo_interval_s'], 2, loc)} {T['s']}"
+                  if math.isfinite(fl["photo_interval_s"]) else "— (путевая скорость ≈ 0)")])
+    if "photos" in fl:
+        rows.append([f"  {T['photos']}", f"{fl['photos']} / {fl['strips']}"])
+        rows.append([f"  {T['flight']}", f"{_n(fl['flight_length_m'] / 1000, 1, loc)} {T['km']}"
+                     + (f", {_n(fl['flight_time_s'] / 60, 0, loc)} {T['min']}"
+                        if fl.get("flight_time_s") else "")])
+        if "data_volume_bytes" in fl:
+            rows.append([f"  {T['volume']}", _volume(fl["data_volume_bytes"], loc)])
+    rows.append([f"  {T['blur']}", f"{T['exposure']} ≤ 1/{math.ceil(1 / p.max_exposure_s):d} "
+                 f"{T['s']} {T['or_speed']} ≤ {_n(p.max_speed_ms, 1, loc)} {T['ms']}"])
+    lines.append(table(rows, align="ll"))
+    lines.append(_wrap(localize(u.reason, loc), "  "))
+    return lines
 
 
 def batch_summary(done: list[tuple[str, Any]], failed: list[tuple[str, str]]) -> str:
@@ -339,14 +454,17 @@ def batch_summary(done: list[tuple[str, Any]], failed: list[tuple[str, str]]) ->
     return out
 
 
-def _volume(uncompressed_bytes: float) -> str:
-    """``163.5 GB uncompressed (JPEG ≈ 18.2 GB)``: the JPEG estimate of
-    :func:`scanplan.flight.jpeg_volume_bytes`."""
+def _volume(uncompressed_bytes: float, loc: str = "en") -> str:
+    """``163.5 GB uncompressed (JPEG ≈ 18.2 GB at 9:1)``: the JPEG estimate of
+    :func:`scanplan.flight.jpeg_volume_bytes`, in the locale's words and numbers."""
     from .flight import JPEG_COMPRESSION_RATIO, jpeg_volume_bytes
 
     jpeg = float(jpeg_volume_bytes(uncompressed_bytes)) / 1e9
-    return (f"{uncompressed_bytes / 1e9:.1f} GB uncompressed "
-            f"(JPEG ≈ {jpeg:.1f} GB at {JPEG_COMPRESSION_RATIO:g}:1)")
+    full = _n(uncompressed_bytes / 1e9, 1, loc, True)
+    ratio = _g(JPEG_COMPRESSION_RATIO, loc)
+    if loc == "ru":
+        return f"{full} ГБ без сжатия (JPEG ≈ {_n(jpeg, 1, loc, True)} ГБ при {ratio}:1)"
+    return f"{full} GB uncompressed (JPEG ≈ {_n(jpeg, 1, loc, True)} GB at {ratio}:1)"
 
 
 def batch_warnings(done: list[tuple[str, Any]]) -> str:
@@ -358,5 +476,5 @@ def batch_warnings(done: list[tuple[str, Any]]) -> str:
         out += ["", f"Warnings — {os.path.basename(path)}:"]
         for w in r.warnings:
             mark = "!" if w.severity == "warning" else "i"
-            out.append(_wrap(f"{w.message} [{w.code}]", f"  {mark} "))
+            out.append(_wrap(f"{w.text(r.meta.locale)} [{w.code}]", f"  {mark} "))
     return "\n".join(out)

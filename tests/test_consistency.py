@@ -166,10 +166,10 @@ def test_object_name_in_both_languages(tmp_path):
                                          tmp_path / "b.toml"))
     obj = unnamed.film.job.plan.inputs.object
     assert obj.name == USER_OBJECT_NAME["en"] and obj.name_ru == USER_OBJECT_NAME["ru"]
-    assert _object_name(ns, obj.name, obj.size_m, None, "ru") == "объект дешифрирования"
-    assert object_display_name(ns, obj.name, obj.size_m, None, "en") == "object to interpret"
+    assert _object_name(ns, obj.name, obj.size_m, None, "ru") == "объект заданного размера"
+    assert object_display_name(ns, obj.name, obj.size_m, None, "en") == "object of the given size"
     reason_ru = unnamed.film.job.plan.scenarios[0].constraint("PD").reason.text("ru")
-    assert "объект дешифрирования" in reason_ru and "object" not in reason_ru
+    assert "объект заданного размера" in reason_ru and "object" not in reason_ru
     with pytest.raises(InputError) as exc:
         parse_project(base.format(norms='object_name = "x"\n'), tmp_path / "c.toml")
     assert "norms.object_name (line 5)" in exc.value.field
@@ -186,7 +186,7 @@ def test_named_object_in_the_reports(tmp_path):
 
     wb = load_workbook(tmp_path / "s.xlsx")
     cells = [str(c.value) for ws in wb for row in ws.iter_rows() for c in row if c.value]
-    assert any("объект дешифрирования" in c for c in cells)
+    assert any("объект заданного размера" in c for c in cells)
     assert "object" not in cells
 
 
@@ -207,3 +207,10 @@ def test_inverse_table_both_columns_in_the_reports(tmp_path):
         assert label in cells
         text = " ".join(" ".join(pg.extract_text().split()) for pg in pypdf.PdfReader(p).pages)
         assert label in text or label.replace(" ", "") in text.replace(" ", "")
+
+
+def test_unnamed_object_is_the_reports_label():
+    from scanplan.reports.labels import LABELS
+
+    for loc in ("en", "ru"):
+        assert USER_OBJECT_NAME[loc] == LABELS[loc]["obj_unnamed"]

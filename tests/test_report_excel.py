@@ -17,9 +17,10 @@ from scanplan.reports import excel as X
 from scanplan.reports.excel import render_xlsx, write_xlsx
 
 INJECTION = '=HYPERLINK("http://x","y")'
-EN_SHEETS = ["Summary", "Inputs", "Constraints", "Sweep", "UAV", "MTF", "Norms", "Warnings"]
+EN_SHEETS = ["Summary", "Inputs", "Constraints", "Sweep", "UAV", "MTF", "Norms", "Warnings",
+             "References"]
 RU_SHEETS = ["Сводка", "Исходные данные", "Условия", "Ряд масштабов", "БПЛА", "ФПМ",
-             "Нормативы", "Предупреждения"]
+             "Нормативы", "Предупреждения", "Список литературы"]
 
 
 @pytest.fixture(scope="module")
@@ -87,9 +88,10 @@ def test_sheet_names_in_both_locales(both_en, both_ru):
 
 def test_only_sheets_with_content(scan, uav):
     assert load(render_xlsx(scan=scan)).sheetnames == [
-        "Summary", "Inputs", "Constraints", "Sweep", "Norms", "Warnings"]
+        "Summary", "Inputs", "Constraints", "Sweep", "Norms", "Warnings", "References"]
     assert load(render_xlsx(uav=uav, meta=ReportMeta(locale="ru"))).sheetnames == [
-        "Сводка", "Исходные данные", "БПЛА", "ФПМ", "Нормативы", "Предупреждения"]
+        "Сводка", "Исходные данные", "БПЛА", "ФПМ", "Нормативы", "Предупреждения",
+        "Список литературы"]
 
 
 def test_nothing_to_report_is_an_error():
@@ -171,7 +173,11 @@ def test_mtf_sheet_has_every_component_contrast_threshold_and_r(both_en, uav):
 def test_sweep_sheet_and_norms_used_rows(both_en, scan):
     ws = both_en["Sweep"]
     sweep = scan.plan.sweep
-    assert ws.max_row == len(sweep["photo_scale"]) + 1
+    n = len(sweep["photo_scale"])
+    # the sweep, then (below a blank row) the candidate photo scales the chart labels
+    assert ws.cell(n + 2, 1).value is None
+    assert [ws.cell(n + 4 + i, 1).value for i in range(len(scan.plan.scenarios))] == [
+        s.photo_scale for s in scan.plan.scenarios]
     assert ws["B2"].value == exact(sweep["PS"][0])
     assert ws["G2"].value == exact(sweep["scan_pixel_um"][0])
     assert is_marked(ws.cell(2, 2 + scan.plan.rules.constraints.index(sweep["binding"][0])))
@@ -196,8 +202,10 @@ def test_numbers_are_numbers(both_en, both_ru):
 
 def test_warnings_sheet(both_en, scan, uav):
     ws = both_en["Warnings"]
-    codes = [ws.cell(r, 3).value for r in range(2, ws.max_row + 1)]
-    assert codes == [w.code for w in scan.plan.warnings + uav.plan.warnings]
+    headings = [ws.cell(r, 3).value for r in range(2, ws.max_row + 1)]
+    # each warning by its heading, never by its code (issue 13)
+    assert headings == [X.t(f"pdf_warn_{w.code}", "en")
+                        for w in scan.plan.warnings + uav.plan.warnings]
     quiet = dataclasses.replace(scan, plan=dataclasses.replace(scan.plan, warnings=()))
     ws = load(render_xlsx(scan=quiet))["Warnings"]
     assert ws["A2"].value == "No warnings."
@@ -206,7 +214,7 @@ def test_warnings_sheet(both_en, scan, uav):
 # --- layout -----------------------------------------------------------------------------
 
 
-def test_charts_present(both_en, both_en_bytes):
+def test_charts_present(both_en, both_en_bytes, scan):
     assert len(both_en["Sweep"]._charts) == 1
     assert len(both_en["MTF"]._charts) == 1
     assert len(both_en["UAV"]._charts) == 1  # GSD and L against height
@@ -215,8 +223,17 @@ def test_charts_present(both_en, both_en_bytes):
         charts = [n for n in names if n.startswith("xl/charts/chart")]
         assert len(charts) == 3
         sweep_xml = z.read(charts[0]).decode()
-    # one series per constraint plus the scan pixel; log photo-scale axis
-    assert sweep_xml.count("<ser>") == 6 and "logBase" in sweep_xml
+    # one series per constraint, the scan pixel, one labelled point per candidate photo
+    # scale (issue 13: every candidate scale named on the chart); log pixel axis with the
+    # photo-scale ticks on the candidates
+    assert sweep_xml.count("<ser>") == 6 + len(scan.plan.scenarios) and "logBase" in sweep_xml
+    assert sweep_xml.count("<showSerName val=\"1\"") == len(scan.plan.scenarios)
+    assert "<majorUnit" in sweep_xml
+    # charts start a printed page (never split), below their data
+    for name in ("Sweep", "UAV", "MTF"):
+        ws = both_en[name]
+        anchor_row = ws._charts[0].anchor._from.row + 1
+        assert anchor_row - 1 in [b.id for b in ws.row_breaks.brk], name
 
 
 def test_page_setup_frozen_headers_print_titles(both_en):
@@ -264,7 +281,7 @@ def test_byte_identical_with_source_date_epoch(monkeypatch, scan, uav):
         assert {i.date_time for i in z.infolist()} == {(2023, 11, 14, 22, 13, 20)}
         core = z.read("docProps/core.xml").decode()
     assert core.count("2023-11-14T22:13:20Z") == 2  # created and modified
-    assert load(one)["Сводка"]["B6"].value == "2023-11-14"
+    assert load(one)["Сводка"]["B6"].value == "14.11.2023"  # the Russian date convention
     monkeypatch.setenv("SOURCE_DATE_EPOCH", "1700000060")
     assert render_xlsx(scan=scan, uav=uav, meta=meta) != one
 

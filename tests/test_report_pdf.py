@@ -106,10 +106,13 @@ def test_english_title_approval_and_binding(doc_en):
     # UAV: maximum height and its binding constraint
     assert "Maximum flight height 386 m: PD (interpretation) binds" in text
     # warnings, formulas with sources
-    assert "Not interpretable." in text and "[not_interpretable]" in text
+    assert "Not interpretable." in text and "[not_interpretable]" not in text
     assert "Motion blur." in text
-    assert "P_S = V_s·Mk/(k·Mc) — GKINP (GNTA)-02-036-02; seed 001 eq. 1" in text
-    assert "L = H/(2·R·f)" in text and "seed 001 eq. 7" in text and "seed 000" in text
+    # formulas cite numbered references, listed at the end in full (issue 13)
+    assert re.search(r"P_S = V_s·Mk/\(k·Mc\) — \[\d\]; \[\d\], eq\. \(1\)", text)
+    assert "L = H/(2·R·f)" in text and "seed 0" not in text
+    assert "References" in text and "Miheeva A.A., Ilushenko A. Resolution calculation" in text
+    assert "GKINP (GNTA)-02-036-02. Instruction for photogrammetric works" in text
     assert "Comparison" in text
 
 
@@ -129,8 +132,8 @@ def test_russian_title_approval_and_binding(doc_ru):
     assert re.search(r"\b12,5\b", text) and "1:20 000" in text  # decimal comma, grouping
 
 
-@pytest.mark.parametrize("which, word, of", [("doc_en", "Page", "of"),
-                                             ("doc_ru", "Страница", "из")])
+@pytest.mark.parametrize("which, word, of", [("doc_en", "Sheet", "of"),
+                                             ("doc_ru", "Лист", "/ Листов")])
 def test_every_page_is_numbered_x_of_y(request, which, word, of):
     doc = request.getfixturevalue(which)
     n = len(doc.pages)
@@ -240,7 +243,7 @@ def test_scan_only_html_has_the_binding_cells_highlighted(scan):
     html = P.render_html(scan=scan, meta=ReportMeta(locale="ru"))
     # one highlighted cell per photo scale, in the binding constraint's row
     assert html.count('class="num binding"') == len(scan.plan.scenarios)
-    assert 'lang="ru"' in html and "Страница" in html and "УТВЕРЖДАЮ" in html
+    assert 'lang="ru"' in html and "Лист" in html and "УТВЕРЖДАЮ" in html
 
 
 def test_many_photo_scales_split_into_tables_that_fit_a4():

@@ -47,6 +47,13 @@ class ReportMeta:
     approver_position: str = ""
     approver_name: str = ""
     date: str = ""  # ISO date; default: report_datetime()
+    organisation: str = ""  # the contractor's organisation (title block)
+    contract_number: str = ""
+    compiled_by: str = ""  # «Составил»: name
+    checked_by: str = ""  # «Проверил»: name
+    agreed_position: str = ""  # «СОГЛАСОВАНО» block (the customer's side)
+    agreed_name: str = ""
+    agreed_organisation: str = ""
 
 
 def report_datetime() -> _dt.datetime:

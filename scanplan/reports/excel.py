@@ -38,17 +38,32 @@ from typing import TYPE_CHECKING, Any
 from openpyxl import Workbook
 from openpyxl.cell.cell import ILLEGAL_CHARACTERS_RE
 from openpyxl.chart import Reference, ScatterChart, Series
+from openpyxl.chart.axis import ChartLines
+from openpyxl.chart.label import DataLabelList
+from openpyxl.chart.shapes import GraphicalProperties
 from openpyxl.styles import Alignment, Font, PatternFill
 from openpyxl.utils import get_column_letter
+from openpyxl.worksheet.pagebreak import Break
 from openpyxl.worksheet.worksheet import Worksheet
 from openpyxl.writer.excel import ExcelWriter
 
 from .. import flight as FL
 from .._version import __version__
-from ..messages import localize
 from ..planner import CONSTRAINTS, height_formula_name
 from . import ReportMeta, report_datetime, write_atomic
 from .labels import LABELS, t
+from .references import Bibliography
+from .wording import (
+    camera_title,
+    display_message,
+    document_date,
+    name_title,
+    object_title,
+    param_name,
+    param_value,
+    scanner_title,
+    shape_title,
+)
 
 if TYPE_CHECKING:
     from ..api import ScanJob, UavJob
@@ -132,12 +147,13 @@ def render_xlsx(
     book.inputs(scan, uav)
     if scan is not None:
         book.constraints(scan)
-        book.sweep(scan)
+        book.sweep(scan, spec)
     if uav is not None:
         book.uav(uav)
         book.mtf(uav)
     book.norms(scan, uav)
-    book.warnings(scan, uav)
+    book.warnings(scan, uav, spec)
+    book.references()
     return book.to_bytes()
 
 
@@ -260,15 +276,17 @@ class _Book:
         self.wb = Workbook()
         self._first = True
         self.title_text = ""
+        self.bib = Bibliography(self.loc)
 
     # -- helpers ------------------------------------------------------------------------
 
     def t(self, key: str) -> str:
         return t(key, self.loc, self.platform)
 
-    def text(self, value: object) -> str:
-        """An engine sentence (a :class:`~scanplan.messages.Message`) in the report's language."""
-        return localize(value, self.loc)
+    def text(self, value: object, ns: NormSet | None = None) -> str:
+        """An engine sentence (a :class:`~scanplan.messages.Message`) in the report's
+        language, ids shown by their names and the works it names by reference numbers."""
+        return self.bib.cite(display_message(value, ns, self.loc))
 
     def yes_no(self, value: bool) -> str:
         return self.t("xlsx_yes" if value else "xlsx_no")
@@ -281,23 +299,20 @@ class _Book:
             return cid
 
     def obj_name(self, ns: NormSet, name: str, map_scale: int | None) -> str:
-        """An object's name in the report's language (the norm table's Russian name; a
-        project's unnamed object in the report's language)."""
+        """A norm object's name in the report's language (unnamed: "object of the given
+        size")."""
         from ..api import USER_OBJECT_NAME
 
-        if map_scale is None and name == USER_OBJECT_NAME["en"]:
-            return USER_OBJECT_NAME.get(self.loc, name)
-        if self.loc == "ru":
-            for obj in ns.objects:
-                if obj.name == name and (map_scale is None or obj.map_scale == map_scale):
-                    return obj.name_ru or name
-        return name
+        if map_scale is None and name == USER_OBJECT_NAME["en"]:  # a project's unnamed object
+            return name_title("", "", self.loc)
+        for obj in ns.objects:
+            if obj.name == name and (map_scale is None or obj.map_scale == map_scale):
+                return object_title(obj, self.loc)
+        return name_title(name, "", self.loc)
 
     def shape_name(self, ns: NormSet, shape: str) -> str:
-        """A shape id in the report's language (the norm table's Russian name)."""
-        if self.loc == "ru":
-            return ns.shape_rows.get(shape, {}).get("name_ru") or shape
-        return shape
+        """A shape in words in the report's language."""
+        return shape_title(ns, shape, self.loc)
 
     def sheet(self, key: str, *, landscape: bool, widths: Sequence[float],
               header_rows: int = 1) -> Worksheet:
@@ -317,7 +332,8 @@ class _Book:
         ws.page_margins.top = ws.page_margins.bottom = 0.6
         ws.print_title_rows = f"1:{header_rows}"
         ws.freeze_panes = f"A{header_rows + 1}"
-        ws.oddFooter.center.text = f"{self.t('page')} &P {self.t('of')} &N"
+        sep = " / " if self.loc == "ru" else " "
+        ws.oddFooter.center.text = f"{self.t('sheet')} &P{sep}{self.t('sheets_of')} &N"
         ws.oddFooter.right.text = "&A"
         _widths(ws, widths)
         return ws
@@ -334,6 +350,14 @@ class _Book:
             put_text(ws, row, 2, MISSING)
         else:
             put_text(ws, row, 2, value, wrap=wrap)
+        return row + 1
+
+    def _wide_kv(self, ws: Worksheet, row: int, label: str, text: str) -> int:
+        """A ``label | long text`` row whose text spans the sheet's columns B…J (merged),
+        so a paragraph reads as a paragraph, not a narrow column."""
+        put_text(ws, row, 1, label, wrap=True)
+        put_text(ws, row, 2, text, wrap=True)
+        ws.merge_cells(start_row=row, start_column=2, end_row=row, end_column=10)
         return row + 1
 
     def kv_list(self, ws: Worksheet, row: int, label: str, values: Sequence[float],
@@ -363,6 +387,8 @@ class _Book:
         props.title = _clean_text(self.title_text)[:255]
         if self.meta.project:
             props.subject = _clean_text(self.meta.project)[:255]
+        for ws in self.wb.worksheets:
+            _fit_rows(ws)
         raw = io.BytesIO()
         # ExcelWriter, not Workbook.save: save() stamps `modified` with the current time.
         archive = zipfile.ZipFile(raw, "w", zipfile.ZIP_DEFLATED, allowZip64=True)
@@ -380,20 +406,43 @@ class _Book:
         put_text(ws, 1, 1, self.title_text).font = _TITLE
         m = self.meta
         row = 3
-        for key, value in (("project", m.project), ("customer", m.customer),
-                           ("contractor", m.contractor),
-                           ("date", m.date or self.when.date().isoformat())):
+        block = [("project", m.project), ("customer", m.customer), ("contractor", m.contractor)]
+        block += [(k, v) for k, v in (("organisation", m.organisation),
+                                      ("contract_number", m.contract_number)) if v]
+        block.append(("date", document_date(m.date or self.when.date(), self.loc)))
+        for key, value in block:
             put_text(ws, row, 1, self.t(key), bold=True)
-            put_text(ws, row, 2, value)
+            put_text(ws, row, 2, value)  # one line, running over the empty cells beside it
             row += 1
+        line = "________________"
+        blocks = [("approved", m.approver_position + (f", {m.organisation}"
+                                                     if m.organisation else ""),
+                   m.approver_name)]
+        if m.agreed_position or m.agreed_name or m.agreed_organisation:
+            blocks.append(("agreed", m.agreed_position + (f", {m.agreed_organisation}"
+                                                         if m.agreed_organisation else ""),
+                           m.agreed_name))
+        for head, position, name in blocks:
+            row += 1
+            put_text(ws, row, 1, self.t(head)).font = _SECTION
+            row += 1
+            for key, value in (("position", position), ("name", name),
+                               ("signature", line), ("date", line)):
+                put_text(ws, row, 1, self.t(key), bold=True)
+                put_text(ws, row, 2, value)
+                row += 1
         row += 1
-        put_text(ws, row, 1, self.t("approved")).font = _SECTION
-        row += 1
-        for key, value in (("position", m.approver_position), ("name", m.approver_name),
-                           ("signature", "________________"), ("date", "________________")):
+        for key, value in (("compiled_by", m.compiled_by), ("checked_by", m.checked_by)):
             put_text(ws, row, 1, self.t(key), bold=True)
-            put_text(ws, row, 2, value)
+            put_text(ws, row, 2, value or line)
+            put_text(ws, row, 3, line)
             row += 1
+        box = self._warning_lines(scan, uav, spec)
+        if box:
+            row = self.section(ws, row + 1, self.t("warnings_box"))
+            for text in box:
+                put_text(ws, row, 1, text, wrap=False).fill = _WARNING_FILL
+                row += 1
         if spec is not None:
             row = self._summary_spec(ws, row + 1, spec)
         if scan is not None:
@@ -423,7 +472,8 @@ class _Book:
                     row = self.kv(ws, row, self.t("spec_frames"), f.frames, "#,##0")
                     row = self.kv(ws, row, self.t("spec_scanned_gb"), f.scanned_gigabytes,
                                   "#,##0.0")
-            row = self.kv(ws, row, self.t("spec_reason"), self.text(f.reason), wrap=True)
+            row = self._wide_kv(ws, row, self.t("spec_reason"),
+                                self.text(f.reason, f.job.norm_set))
         if spec.uav is not None:
             u, p = spec.uav, spec.uav.job.plan
             if u.planned_height_m is not None:
@@ -442,7 +492,8 @@ class _Book:
                               p.flight["data_volume_bytes"] / 1e9, "#,##0.0")
                 row = self.kv(ws, row, self.t("data_volume_jpeg_gb"), float(
                     FL.jpeg_volume_bytes(p.flight["data_volume_bytes"])) / 1e9, "#,##0.0")
-            row = self.kv(ws, row, self.t("spec_reason"), self.text(u.reason), wrap=True)
+            row = self._wide_kv(ws, row, self.t("spec_reason"),
+                                self.text(u.reason, u.job.norm_set))
         if spec.comparison:
             row = self.section(ws, row + 1, self.t("spec_comparison"))
             _header(ws, row, [self.t("spec_quantity"), self.t("spec_film"), self.t("spec_uav"),
@@ -483,7 +534,7 @@ class _Book:
             put_num(ws, row, 7, s.resolution_on_ground_mm, F1)
             put_num(ws, row, 8, s.required_resolving_power_lpmm, F1)
             put_num(ws, row, 9, s.recognition_probability, F3)
-            put_text(ws, row, 10, self.text(s.explanation), wrap=True)
+            put_text(ws, row, 10, self.text(s.explanation, job.norm_set), wrap=True)
             row += 1
         row += 1
         put_text(ws, row, 1, self.t("xlsx_interpretation_limit"), wrap=True)
@@ -525,8 +576,7 @@ class _Book:
             _mark((ws.cell(r0, 2), ws.cell(r0 + 1, 2)))
         obj = plan.inputs.map_object
         if obj is not None:
-            row = self.kv(ws, row, self.t("object"),
-                          self.obj_name(job.norm_set, obj.name, obj.map_scale))
+            row = self.kv(ws, row, self.t("object"), object_title(obj, self.loc), wrap=True)
             for rec in plan.recognition:
                 if rec.object == obj.name and rec.object_size_m == obj.size_m:
                     row = self.kv(ws, row, self.t("xlsx_p_planned"), rec.probability, F3)
@@ -550,11 +600,12 @@ class _Book:
     def _object_rows(self, ws: Worksheet, row: int, obj: Any, ns: NormSet) -> int:
         if obj is None:
             return self.kv(ws, row, self.t("object"), None)
-        row = self.kv(ws, row, self.t("object"), self.obj_name(ns, obj.name, obj.map_scale))
+        row = self.kv(ws, row, self.t("object"), object_title(obj, self.loc), wrap=True)
         row = self.kv(ws, row, self.t("xlsx_object_size_m"), obj.size_m, F3)
         row = self.kv(ws, row, self.t("xlsx_shape"), self.shape_name(ns, obj.shape))
         row = self.kv(ws, row, self.t("xlsx_shape_coefficient"), obj.shape_coefficient, F2)
-        return self.kv(ws, row, self.t("xlsx_object_source"), self.text(obj.source))
+        return self.kv(ws, row, self.t("xlsx_object_source"), self.text(obj.source),
+                       wrap=True)
 
     def _inputs_scan(self, ws: Worksheet, row: int, job: ScanJob) -> int:
         inp, rules = job.plan.inputs, job.plan.rules
@@ -562,7 +613,8 @@ class _Book:
         row = self.kv(ws, row, self.t("map_scale"), inp.map_scale, SCALE)
         row = self.kv(ws, row, self.t("relief_interval_m"), inp.relief_interval_m, F2)
         row = self.kv_list(ws, row, self.t("photo_scale"), inp.photo_scales, SCALE)
-        row = self.kv(ws, row, self.t("camera"), inp.camera or None)
+        row = self.kv(ws, row, self.t("camera"),
+                      camera_title(job.norm_set, inp.camera, self.loc) or None, wrap=True)
         row = self.kv(ws, row, self.t("focal_mm"), inp.focal_mm, F2)
         row = self.kv(ws, row, self.t("xlsx_frame_across_mm"), inp.frame_width_mm, F1)
         row = self.kv(ws, row, self.t("xlsx_frame_along_mm"), inp.frame_along_mm, F1)
@@ -573,7 +625,8 @@ class _Book:
         row = self.kv(ws, row, self.t("xlsx_height_formula"),
                       self.text(height_formula_name(rules.height_formula)))
         row = self.kv(ws, row, self.t("xlsx_pr_coefficient"), rules.pr_coefficient, F2)
-        row = self.kv(ws, row, self.t("scanner"), inp.scanner or None)
+        row = self.kv(ws, row, self.t("scanner"),
+                      scanner_title(job.norm_set, inp.scanner, self.loc) or None)
         if inp.scanner_steps_um:
             row = self.kv_list(ws, row, self.t("xlsx_scanner_steps_um"), inp.scanner_steps_um,
                                UM)
@@ -587,8 +640,8 @@ class _Book:
         inp = job.plan.inputs
         row = self.section(ws, row, self.t("xlsx_section_uav"))
         rows: list[tuple[str, object, str | None]] = [
-            ("camera", inp.camera or None, None),
-            ("xlsx_camera_name", inp.camera_name or None, None),
+            ("camera", camera_title(job.norm_set, inp.camera, self.loc, inp.camera_name)
+             or None, None),
             ("xlsx_pixel_pitch_um", inp.pixel_um, F2),
             ("focal_mm", inp.focal_mm, F2),
             ("xlsx_f_number", inp.f_number, F1),
@@ -658,7 +711,7 @@ class _Book:
         if row > 2:
             ws.auto_filter.ref = f"A1:J{row - 1}"
 
-    def sweep(self, job: ScanJob) -> None:
+    def sweep(self, job: ScanJob, spec: PlanResult | None = None) -> None:
         sweep = job.plan.sweep
         scales = list(sweep.get("photo_scale", []))
         ids = [cid for cid in job.plan.rules.constraints if cid in sweep]
@@ -686,16 +739,61 @@ class _Book:
             return
         chart = _scatter(self.t("plot_constraints"), self.t("photo_scale"), self.t("pixel_um"))
         chart.x_axis.number_format = SCALE
-        chart.x_axis.scaling.logBase = 10
-        chart.x_axis.scaling.min = _finite(scales[0])
-        chart.x_axis.scaling.max = _finite(scales[-1])
-        chart.y_axis.scaling.min = 0
+        # a linear axis whose ticks fall on every candidate photo scale (a log axis would
+        # label only 1:1000, 1:10000, ...)
+        lo, hi, step = _scale_ticks([s.photo_scale for s in job.plan.scenarios],
+                                    _finite(scales[0]) or 0.0, _finite(scales[-1]) or 1.0)
+        chart.x_axis.scaling.min = lo
+        chart.x_axis.scaling.max = hi
+        chart.x_axis.majorUnit = step
+        chart.x_axis.majorGridlines = ChartLines()
+        chart.y_axis.number_format = "General"
+        # pixels span a decade or more: a log axis shows the deciding (smallest) one clearly
+        values = [v for cid in ids for v in (_finite(x) for x in sweep[cid]) if v]
+        chart.y_axis.scaling.logBase = 10
+        chart.y_axis.scaling.min = _log_floor(min(values, default=1.0))
+        chart.y_axis.scaling.max = _log_ceil(max(values, default=100.0))
+        chart.y_axis.majorGridlines = ChartLines()
+        chart.y_axis.minorGridlines = ChartLines()
         xref = Reference(ws, min_col=1, min_row=2, max_row=n + 1)
         for j, cid in enumerate(ids):
             _add_series(chart, ws, xref, 2 + j, n, self.cname(cid))
         _add_series(chart, ws, xref, pixel_col, n, self.t("scan_pixel_um"), width_emu=44450,
                     dash="dash", color="000000")
-        ws.add_chart(chart, f"{get_column_letter(pixel_col + 3)}2")
+        rec = spec.film.recommended if spec is not None and spec.film is not None else None
+        self._candidate_markers(chart, ws, job, n + 3, rec.photo_scale if rec else None)
+        _chart_below(ws, chart, n + 1 + 2 + len(job.plan.scenarios) + 2)
+
+    def _candidate_markers(self, chart: ScatterChart, ws: Worksheet, job: ScanJob,
+                           first_row: int, recommended: float | None) -> None:
+        """One labelled point per candidate photo scale at its scan pixel: the chart names
+        every candidate scale (a log axis labels only 1:1000, 1:10000, ...); the
+        recommended one (the smallest feasible scale) stands out."""
+        scen = job.plan.scenarios
+        _header(ws, first_row, [self.t("photo_scale"), self.t("scan_pixel_um"),
+                                self.t("binding")])
+        for i, s in enumerate(scen):
+            row = first_row + 1 + i
+            put_num(ws, row, 1, s.photo_scale, SCALE)
+            put_num(ws, row, 2, s.scan_pixel_um, UM)
+            put_text(ws, row, 3, s.binding)
+            label = f"1:{_group(s.photo_scale, self.loc)}"
+            if s.photo_scale == recommended:
+                label += " (" + self.t("xlsx_recommended") + ")"
+            xref = Reference(ws, min_col=1, min_row=row, max_row=row)
+            series = _add_series(chart, ws, xref, 2, 1, label, first_row=row)
+            series.graphicalProperties.line.noFill = True
+            series.marker.symbol = "diamond" if s.photo_scale == recommended else "circle"
+            series.marker.size = 11 if s.photo_scale == recommended else 7
+            color = "C00000" if s.photo_scale == recommended else "000000"
+            series.marker.graphicalProperties = GraphicalProperties(solidFill=color)
+            series.marker.graphicalProperties.line.solidFill = color
+            series.dLbls = DataLabelList()
+            series.dLbls.showSerName = True
+            series.dLbls.showVal = False
+            series.dLbls.showCatName = False
+            series.dLbls.showLegendKey = False
+            series.dLbls.position = "t"
 
     # -- UAV and MTF --------------------------------------------------------------------
 
@@ -800,10 +898,62 @@ class _Book:
                 put_num(ws, first + i, 3, curve["ground_resolution_m"][i], F4, missing=None)
             n = len(heights)
             chart = _scatter(self.t("plot_height"), self.t("height_m"), self.t("gsd_m") + "; L")
+            chart.x_axis.scaling.min = 0
+            chart.y_axis.scaling.min = 0
+            chart.x_axis.majorGridlines = ChartLines()
+            chart.x_axis.number_format = "0"
+            chart.y_axis.number_format = "0.00"
             xref = Reference(ws, min_col=1, min_row=first, max_row=first + n - 1)
             _add_series(chart, ws, xref, 2, n, self.t("gsd_m"), first_row=first)
             _add_series(chart, ws, xref, 3, n, self.t("ground_resolution_m"), first_row=first)
-            ws.add_chart(chart, f"E{row}")
+            top = max((v for v in (_finite(x) for key in ("gsd_m", "ground_resolution_m")
+                                   for x in curve[key]) if v is not None), default=1.0)
+            end = self._height_markers(chart, ws, plan, first + n + 1, top,
+                                       max(heights))
+            _chart_below(ws, chart, end + 1)
+
+    def _height_markers(self, chart: ScatterChart, ws: Worksheet, plan: Any, row: int,
+                        top: float, right: float) -> int:
+        """Vertical lines at the planned, highest flown and maximum heights and the binding
+        ground limit as a horizontal line (two-point series, their cells below the curve).
+        Returns the next free row."""
+        h = plan.heights_m
+        m = " м" if self.loc == "ru" else " m"
+        marks: list[tuple[str, float, float, float, float, str, str]] = []
+        if h.get("planned"):
+            marks.append((f"{self.t('xlsx_planned')}: {_group(h['planned'], self.loc)}{m}",
+                          h["planned"], 0.0, h["planned"], top, "000000", "solid"))
+        if h.get("max") and h["max"] != h.get("planned"):
+            marks.append((f"{self.t('xlsx_highest_flown')}: {_group(h['max'], self.loc)}{m}",
+                          h["max"], 0.0, h["max"], top, "7F7F7F", "dash"))
+        if plan.max_height_m is not None:
+            marks.append((f"{self.t('max_height_m').split(',')[0]} ({plan.binding}): "
+                          f"{_group(round(plan.max_height_m), self.loc)}{m}",
+                          plan.max_height_m, 0.0, plan.max_height_m, top, "C00000", "sysDot"))
+            ratio = h["max"] / h["planned"] if h.get("planned") and h.get("max") else 1.0
+            if ratio > 1:  # where the binding limit is checked: the maximum flown high
+                flown = plan.max_height_m * ratio
+                marks.append((f"{self.t('xlsx_max_flown')}: {_group(flown, self.loc)}{m}",
+                              flown, 0.0, flown, top, "C00000", "dash"))
+        b = next((lim for lim in plan.limits if lim.binding), None)
+        if b is not None and b.limit_m <= top * 1.5:
+            marks.append((f"{b.compares} ≤ {_fmt_number(b.limit_m, self.loc, 3)}{m} "
+                          f"({b.id})", 0.0, b.limit_m, right, b.limit_m, "C00000", "dashDot"))
+        if not marks:
+            return row
+        _header(ws, row, [self.t("xlsx_marker"), "x", "y"])
+        row += 1
+        for label, x0, y0, x1, y1, color, dash in marks:
+            put_text(ws, row, 1, label)
+            put_num(ws, row, 2, x0, F1)
+            put_num(ws, row, 3, y0, F4)
+            put_num(ws, row + 1, 2, x1, F1)
+            put_num(ws, row + 1, 3, y1, F4)
+            xref = Reference(ws, min_col=2, min_row=row, max_row=row + 1)
+            _add_series(chart, ws, xref, 3, 2, label, first_row=row, color=color,
+                        dash=None if dash == "solid" else dash)
+            row += 2
+        return row
 
     def mtf(self, job: UavJob) -> None:
         plan = job.plan
@@ -836,7 +986,16 @@ class _Book:
                 put_num(ws, i + 2, 2 + j, mc[k][i], F4, missing=None)
         chart = _scatter(self.t("plot_mtf"), self.t("frequency_lpmm"), self.t("contrast"))
         chart.x_axis.scaling.min = 0
-        chart.y_axis.scaling.min = 0
+        # contrast and threshold meet low on the curve: a log axis shows the crossing
+        low = [v for k in ("image_contrast", "threshold") if k in mc
+               for v in (_finite(x) for x in mc[k]) if v is not None and v > 0]
+        chart.y_axis.scaling.logBase = 10
+        chart.y_axis.scaling.min = _log_floor(min(low, default=0.01))
+        chart.y_axis.scaling.max = 1
+        chart.y_axis.majorGridlines = ChartLines()
+        chart.y_axis.minorGridlines = ChartLines()
+        chart.y_axis.number_format = "General"
+        chart.x_axis.number_format = "0"
         xref = Reference(ws, min_col=1, min_row=2, max_row=n + 1)
         for k in ("image_contrast", "threshold"):
             if k in cols:
@@ -845,17 +1004,16 @@ class _Book:
         mcol = ncol + 2
         if r is not None and "image_contrast" in mc:
             # a two-point vertical series at R marks the crossing
-            top = max((v for v in (_finite(x) for x in mc["image_contrast"]) if v is not None),
-                      default=1.0)
+            top = 1.0
             _header(ws, 1, [self.t("xlsx_r_marker"), self.t("contrast")], col=mcol)
-            for i, yv in enumerate((0.0, top)):
+            for i, yv in enumerate((chart.y_axis.scaling.min, top)):
                 put_num(ws, 2 + i, mcol, r, F1)
                 put_num(ws, 2 + i, mcol + 1, yv, F3)
             mref = Reference(ws, min_col=mcol, min_row=2, max_row=3)
             unit = "мм⁻¹" if self.loc == "ru" else "lines/mm"
             label = f"R = {_fmt_number(r, self.loc)} {unit}"
             _add_series(chart, ws, mref, mcol + 1, 2, label, dash="dash", color="C00000")
-        ws.add_chart(chart, f"{get_column_letter(mcol)}6")
+        _chart_below(ws, chart, n + 3)
 
     # -- Norms and Warnings -------------------------------------------------------------
 
@@ -873,18 +1031,20 @@ class _Book:
             else:
                 used.append((job.norm_set, [obj], section))
         ws = self.sheet("xlsx_sheet_norms", landscape=True,
-                        widths=(34, 40, 16, 12, 24, 60, 12))
+                        widths=(46, 34, 44, 12, 24, 50))
         _header(ws, 1, [self.t("xlsx_parameter"), self.t("value"), self.t("source")])
         row = 2
         for ns, objs, _section in used:
             row = self._norm_set(ws, row, ns, [o for o in objs if o is not None]) + 1
 
     def _norm_set(self, ws: Worksheet, row: int, ns: NormSet, objs: list[Any]) -> int:
-        row = self.section(ws, row, f"{self.t('norm_set')}: {ns.name}")
         title = ns.title_ru if self.loc == "ru" and ns.title_ru else ns.title
-        row = self.kv(ws, row, self.t("xlsx_norm_id"), ns.name)
+        row = self.section(ws, row, f"{self.t('norm_set')}: {title}")
+        row = self.kv(ws, row, self.t("xlsx_norm_id"), f'[norms] set = "{ns.name}"')
         row = self.kv(ws, row, self.t("xlsx_title"), title, wrap=True)
-        row = self.kv(ws, row, self.t("source"), ns.source, wrap=True)
+        numbers = re.findall(r"\[\d+\]", self.bib.cite(ns.source))
+        row = self.kv(ws, row, self.t("source"),
+                      "; ".join(dict.fromkeys(numbers)) if numbers else ns.source, wrap=True)
         row = self.kv(ws, row, self.t("xlsx_bundled"), bool(ns.bundled))
         if not ns.bundled:  # a bundled set's folder depends on the installation
             row = self.kv(ws, row, self.t("xlsx_folder"), str(ns.path))
@@ -894,34 +1054,27 @@ class _Book:
         row = self.section(ws, row + 1, self.t("xlsx_parameters"))
         _header(ws, row, [self.t("xlsx_parameter"), self.t("value"), self.t("source")])
         row += 1
-        for key in sorted(ns.parameters):
+        for key in ns.parameters:
             value = ns.parameters[key]
-            put_text(ws, row, 1, key)
-            if isinstance(value, bool):
-                put_text(ws, row, 2, self.yes_no(value))
-            elif isinstance(value, int | float):
+            put_text(ws, row, 1, param_name(ns, key, self.loc), wrap=True)
+            if isinstance(value, int | float) and not isinstance(value, bool):
                 put_num(ws, row, 2, value, "0.0##")
-                ws.cell(row, 2).alignment = Alignment(horizontal="left")
-            elif isinstance(value, list | tuple):
-                put_text(ws, row, 2, ", ".join(str(v) for v in value))
+                ws.cell(row, 2).alignment = Alignment(horizontal="left", vertical="top")
             else:
-                put_text(ws, row, 2, value)
-            put_text(ws, row, 3, ns.parameter_sources.get(key, ""), wrap=True)
+                put_text(ws, row, 2, param_value(ns, key, value, self.loc), wrap=True)
+            put_text(ws, row, 3, self.bib.cite(ns.parameter_sources.get(key, "")), wrap=True)
             row += 1
         shapes_used = {o.shape for o in objs}
         row = self.section(ws, row + 1, self.t("xlsx_shapes"))
-        _header(ws, row, [self.t("xlsx_shape"), self.t("xlsx_title"),
-                          self.t("xlsx_shape_coefficient"), self.t("xlsx_used"),
-                          self.t("source")])
+        _header(ws, row, [self.t("xlsx_shape"), self.t("xlsx_shape_coefficient"),
+                          self.t("source"), self.t("xlsx_used")])
         row += 1
         for shape, coef in ns.shapes.items():
             meta = ns.shape_rows.get(shape, {})
-            cells = [put_text(ws, row, 1, shape),
-                     put_text(ws, row, 2, meta.get("name_ru", "") if self.loc == "ru"
-                              else shape),
-                     put_num(ws, row, 3, coef, F2),
+            cells = [put_text(ws, row, 1, self.shape_name(ns, shape)),
+                     put_num(ws, row, 2, coef, F2),
                      put_text(ws, row, 4, self.yes_no(shape in shapes_used))]
-            put_text(ws, row, 5, meta.get("source", ""), wrap=True)
+            put_text(ws, row, 3, self.bib.cite(meta.get("source", "")), wrap=True)
             if shape in shapes_used:
                 _mark(cells)
             row += 1
@@ -932,46 +1085,77 @@ class _Book:
         row += 1
         used_rows = {(o.map_scale, o.name, o.size_m) for o in objs if o.map_scale is not None}
         for obj in ns.objects:
-            name = obj.name_ru if self.loc == "ru" and obj.name_ru else obj.name
             is_used = (obj.map_scale, obj.name, obj.size_m) in used_rows
             cells = [put_num(ws, row, 1, obj.map_scale, SCALE),
-                     put_text(ws, row, 2, name, wrap=True),
+                     put_text(ws, row, 2, object_title(obj, self.loc), wrap=True),
                      put_num(ws, row, 3, obj.size_m, F3),
                      put_text(ws, row, 4, self.yes_no(is_used)),
                      put_text(ws, row, 5, self.shape_name(ns, obj.shape))]
-            put_text(ws, row, 6, obj.source, wrap=True)
+            put_text(ws, row, 6, self.bib.cite(obj.source), wrap=True)
             if is_used:
                 _mark(cells)
             row += 1
         return row
 
-    def warnings(self, scan: ScanJob | None, uav: UavJob | None) -> None:
-        ws = self.sheet("xlsx_sheet_warnings", landscape=True, widths=(26, 16, 24, 24, 100))
-        _header(ws, 1, [self.t("xlsx_section"), self.t("xlsx_severity"), self.t("xlsx_code"),
-                        self.t("photo_scale"), self.t("xlsx_message")])
-        items: list[tuple[str, PlanWarning]] = []
+    def _warning_items(self, scan: ScanJob | None, uav: UavJob | None,
+                       spec: PlanResult | None = None) -> list[tuple[str, PlanWarning, Any]]:
+        items: list[tuple[str, PlanWarning, Any]] = []
         if scan is not None:
-            items += [(self.t("xlsx_section_scan"), w) for w in scan.plan.warnings]
+            items += [(self.t("xlsx_section_scan"), w, scan.norm_set) for w in scan.plan.warnings]
         if uav is not None:
-            items += [(self.t("xlsx_section_uav"), w) for w in uav.plan.warnings]
+            items += [(self.t("xlsx_section_uav"), w, uav.norm_set) for w in uav.plan.warnings]
+        if spec is not None:
+            seen = {w.code for _, w, _ in items}
+            items += [(self.t("spec_title"), w, None) for w in spec.warnings
+                      if w.code not in seen]
+        return items
+
+    def _heading(self, w: PlanWarning) -> str:
+        key = f"pdf_warn_{w.code}"
+        return self.t(key) if key in LABELS["en"] else ""
+
+    def _warning_lines(self, scan: ScanJob | None, uav: UavJob | None,
+                       spec: PlanResult | None) -> list[str]:
+        """Every warning in short form (the Summary sheet's box)."""
+        out = []
+        for _section, w, ns in self._warning_items(scan, uav, spec):
+            head = self._heading(w) or self.text(w.message, ns)
+            scales = ", ".join(_scale_text(s) for s in w.photo_scales)
+            out.append(f"! {head}" + (f": {scales}" if scales else ""))
+        return list(dict.fromkeys(out))
+
+    def warnings(self, scan: ScanJob | None, uav: UavJob | None,
+                 spec: PlanResult | None = None) -> None:
+        ws = self.sheet("xlsx_sheet_warnings", landscape=True, widths=(20, 14, 30, 20, 90))
+        _header(ws, 1, [self.t("xlsx_section"), self.t("xlsx_severity"), self.t("warnings"),
+                        self.t("photo_scale"), self.t("xlsx_message")])
+        items = self._warning_items(scan, uav, spec)
         if not items:
             put_text(ws, 2, 1, self.t("no_warnings"))
             return
-        for row, (section, w) in enumerate(items, start=2):
+        for row, (section, w, ns) in enumerate(items, start=2):
             try:
                 severity = self.t(f"xlsx_severity_{w.severity}")
             except KeyError:
                 severity = w.severity
             cells = [put_text(ws, row, 1, section, wrap=True),
                      put_text(ws, row, 2, severity),
-                     put_text(ws, row, 3, w.code),
+                     put_text(ws, row, 3, self._heading(w), wrap=True),
                      put_text(ws, row, 4, ", ".join(_scale_text(s) for s in w.photo_scales),
                               wrap=True),
-                     put_text(ws, row, 5, self.text(w.message), wrap=True)]
+                     put_text(ws, row, 5, self.text(w.message, ns), wrap=True)]
             if w.severity == "warning":
                 for cell in cells:
                     cell.fill = _WARNING_FILL
         ws.auto_filter.ref = f"A1:E{len(items) + 1}"
+
+    def references(self) -> None:
+        """The works the workbook cites, numbered as in its cells."""
+        ws = self.sheet("references", landscape=False, widths=(8, 110, 8))
+        _header(ws, 1, ["№", self.t("references")])
+        for row, (n, text) in enumerate(self.bib.entries(), start=2):
+            put_num(ws, row, 1, n, INT)
+            put_text(ws, row, 2, text, wrap=True)
 
 
 
@@ -994,6 +1178,83 @@ def _scatter(title: str, x_title: str, y_title: str) -> ScatterChart:
     chart.width = 24
     chart.height = 13
     return chart
+
+
+def _scale_ticks(candidates: Sequence[float], lo: float, hi: float) -> tuple[float, float,
+                                                                            float]:
+    """(min, max, major unit) of a photo-scale axis with a tick on every candidate scale:
+    the largest round step that divides them all, at most 20 ticks over the range."""
+    for step in (10000.0, 5000.0, 2500.0, 2000.0, 1000.0, 500.0, 250.0, 100.0):
+        if all(float(c) % step == 0 for c in candidates) and (hi - lo) / step <= 20:
+            break
+    else:
+        step = max((hi - lo) / 10, 1.0)
+    return math.floor(lo / step) * step, math.ceil(hi / step) * step, step
+
+
+def _log_floor(x: float) -> float:
+    """The power of ten at or below ``x`` (a log axis's minimum)."""
+    return float(10 ** math.floor(math.log10(x))) if x > 0 else 0.01
+
+
+def _log_ceil(x: float) -> float:
+    """The power of ten at or above ``x`` (a log axis's maximum)."""
+    return float(10 ** math.ceil(math.log10(x))) if x > 0 else 1.0
+
+
+def _group(x: float, locale: str) -> str:
+    """A whole number grouped by thousands (no-break space in Russian)."""
+    text = f"{round(float(x)):,d}"
+    return text.replace(",", "\u00a0") if locale == "ru" else text.replace(",", "")
+
+
+_CM_PER_CHAR = 0.2  # a column width unit (one "0" of Calibri 11) on paper [cm], about
+
+
+def _sheet_width_cm(ws: Worksheet) -> float:
+    """The printed width of the sheet's used columns at 100 % [cm]."""
+    widths = [ws.column_dimensions[get_column_letter(c)].width or 8.43
+              for c in range(1, ws.max_column + 1)]
+    return sum(widths) * _CM_PER_CHAR
+
+
+def _chart_below(ws: Worksheet, chart: ScatterChart, row: int) -> None:
+    """Put ``chart`` below the data from ``row`` on, starting a printed page, sized to the
+    sheet's printed width (the page is fitted to that width) and short enough to fit the
+    page's height: a chart is never split across pages nor shrunk to a stamp."""
+    ws.row_breaks.append(Break(id=row - 1))
+    sheet_cm = max(_sheet_width_cm(ws), 24.0)
+    landscape = ws.page_setup.orientation == "landscape"
+    page_ratio = (17.0 / 27.7) if landscape else (26.0 / 19.0)  # printable height/width
+    chart.width = 0.95 * sheet_cm
+    chart.height = min(0.55 * chart.width, 0.8 * sheet_cm * page_ratio)
+    ws.add_chart(chart, f"A{row}")
+
+
+def _fit_rows(ws: Worksheet) -> None:
+    """Row heights for wrapped text, so no wrapped cell runs over the next row in programs
+    that do not measure text when opening a file (LibreOffice keeps stored heights)."""
+    width = {c: (ws.column_dimensions[get_column_letter(c)].width or 8.43)
+             for c in range(1, ws.max_column + 1)}
+    merged = {(r.min_row, r.min_col): sum(width.get(c, 8.43)
+                                          for c in range(r.min_col, r.max_col + 1))
+              for r in ws.merged_cells.ranges if r.min_row == r.max_row}
+    for row in ws.iter_rows():
+        lines = 1
+        for cell in row:
+            if not isinstance(cell.value, str) or not cell.alignment.wrap_text:
+                continue
+            w = merged.get((cell.row, cell.column), width.get(cell.column, 8.43))
+            chars = max(w * (0.9 if cell.font.bold else 1.05) - 1, 4)
+            n = sum(max(1, math.ceil(len(part) / chars)) for part in cell.value.split("\n"))
+            lines = max(lines, n)
+        if lines > 1:
+            ws.row_dimensions[row[0].row].height = 15 * lines + 2
+            for cell in row:  # numbers beside a paragraph read from its first line
+                if cell.value is not None and cell.alignment.vertical != "top":
+                    al = cell.alignment
+                    cell.alignment = Alignment(horizontal=al.horizontal, vertical="top",
+                                               wrap_text=al.wrap_text)
 
 
 def _add_series(chart: ScatterChart, ws: Worksheet, xref: Reference, col: int, n: int,

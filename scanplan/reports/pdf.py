@@ -2,9 +2,14 @@
 
 The report *renders* a :class:`scanplan.api.ScanJob` and/or :class:`scanplan.api.UavJob`
 (their plans and norm set); every number comes from the plan objects, formatted per
-locale (decimal comma in Russian). The document is A4 with a title block, an approval
-block, inputs, the result table with the binding constraint highlighted and explained,
-warnings, formulas with their sources, SVG plots and "page X of Y" footers.
+locale (decimal comma in Russian). The document is A4 with the approval block («УТВЕРЖДАЮ»
+/ APPROVED) and, when the project names one, the agreement block («СОГЛАСОВАНО» / AGREED),
+a title block (organisation and contract number when given), every warning in short form
+on page 1, inputs, the result table with the binding constraint highlighted and explained,
+warnings, formulas with numbered references, SVG plots, the list of references, the
+«Составил / Проверил» (compiled / checked) lines and «Лист N / Листов M» ("Sheet N of M")
+footers. Nothing internal reaches the page: parameters by name and unit, values in words,
+cameras and scanners by model, works by reference number (:mod:`.references`, :mod:`.wording`).
 
 Safety: templates are autoescaped, so user text (project, customer, ...) is always shown
 as text; and the renderer's URL fetcher (:class:`BundledAssetFetcher`) serves only
@@ -45,6 +50,18 @@ from ..planner import CONSTRAINTS, ScanPlan
 from ..uav import UavPlan
 from . import ReportMeta, plots, report_datetime, templates_dir, write_atomic
 from .labels import LABELS, t
+from .references import Bibliography
+from .wording import (
+    camera_title,
+    display_message,
+    document_date,
+    name_title,
+    object_title,
+    param_name,
+    param_value,
+    scanner_title,
+    shape_title,
+)
 
 if TYPE_CHECKING:
     from ..spec import PlanResult
@@ -52,11 +69,6 @@ if TYPE_CHECKING:
 __all__ = ["BundledAssetFetcher", "render_html", "render_pdf", "write_pdf"]
 
 _DEFAULT_META = ReportMeta()
-
-_WARNING_CODES = (
-    "not_interpretable", "above_interpretation_limit", "pr_drives_volume",
-    "scanner_too_coarse", "overlap_not_standard", "motion_blur", "trigger_interval",
-    "not_resolvable", "height_above_max", "no_feasible_photo_scale", "height_lowered")
 
 _MAX_COLUMNS = 6  # photo scales per result table on A4 portrait
 _RUNNING_HEADER_CHARS = 60
@@ -145,7 +157,12 @@ class BundledAssetFetcher(URLFetcher):  # type: ignore[misc]
 @dataclass(frozen=True)
 class _Fmt:
     locale: str
+    bib: Bibliography  # the document's references, numbered as it cites them
     platform: str = "uav"
+
+    def cite(self, text: str) -> str:
+        """``text`` with the works it names replaced by reference numbers."""
+        return self.bib.cite(text)
 
     def label(self, key: str, **kw: Any) -> str:
         text = t(key, self.locale, self.platform)
@@ -196,26 +213,33 @@ def _css_string(text: str) -> str:
 
 def _object_name(ns: NormSet, name: str, size_m: float, map_scale: int | None,
                  locale: str) -> str:
-    """The object's name in the report's language (see :func:`api.object_display_name`)."""
-    from ..api import object_display_name
+    """A norm-table object's name in the report's language (unnamed: "object of the given
+    size")."""
+    from ..api import USER_OBJECT_NAME
 
-    return object_display_name(ns, name, size_m, map_scale, locale)
+    if map_scale is None and name == USER_OBJECT_NAME["en"]:  # a project's unnamed object
+        return name_title("", "", locale)
+    for o in ns.objects:
+        if o.name == name and o.size_m == size_m and (map_scale is None
+                                                      or o.map_scale == map_scale):
+            return object_title(o, locale)
+    return name_title(name, "", locale)
 
 
 def _shape_name(ns: NormSet, shape: str, locale: str) -> str:
-    """The shape's Russian name from the norm set's shapes table, when it has one."""
-    if locale == "ru":
-        return ns.shape_rows.get(shape, {}).get("name_ru") or shape
-    return shape
+    """The shape in words in the report's language."""
+    return shape_title(ns, shape, locale)
 
 
-def _warnings(ws: Any, f: _Fmt) -> list[dict[str, str]]:
+def _warnings(ws: Any, f: _Fmt, ns: NormSet | None = None) -> list[dict[str, str]]:
     out = []
     for w in ws:
         key = f"pdf_warn_{w.code}"
-        heading = f.label(key) if w.code in _WARNING_CODES else w.code
+        heading = f.label(key) if key in LABELS["en"] else ""
+        scales = ", ".join(f.scale(x) for x in getattr(w, "photo_scales", ()) or ())
         out.append({"code": w.code, "severity": w.severity, "heading": heading,
-                    "message": localize(w.message, f.locale)})
+                    "scales": scales,
+                    "message": f.cite(display_message(w.message, ns, f.locale))})
     return out
 
 
@@ -230,7 +254,11 @@ def _svg_uri(svg: str) -> str:
 
 def _norm_view(ns: NormSet, f: _Fmt) -> dict[str, Any]:
     title = ns.title_ru if f.locale == "ru" and ns.title_ru else ns.title
-    return {"name": ns.name, "title": title, "source": ns.source,
+    cited = f.cite(ns.source)
+    numbers = re.findall(r"\[\d+\]", cited)
+    # a source naming known works is shown by their numbers (its prose is the bibliography's)
+    source = "; ".join(dict.fromkeys(numbers)) if numbers else ns.source
+    return {"name": ns.name, "title": title, "source": source,
             "imported_from": ns.imported_from, "imported_at": ns.imported_at}
 
 
@@ -244,7 +272,7 @@ def _scan_view(job: ScanJob, f: _Fmt) -> dict[str, Any]:
         (f.label("photo_scale"), ", ".join(f.scale(s) for s in inp.photo_scales)),
     ]
     if inp.camera:
-        inputs.append((f.label("camera"), inp.camera))
+        inputs.append((f.label("camera"), camera_title(ns, inp.camera, f.locale)))
     inputs += [
         (f.label("focal_mm"), f.g(inp.focal_mm)),
         (f.label("frame_mm"), f"{f.g(inp.frame_width_mm)} × {f.g(inp.frame_along_mm)}"),
@@ -254,23 +282,23 @@ def _scan_view(job: ScanJob, f: _Fmt) -> dict[str, Any]:
     obj = inp.object
     obj_name = ""
     if obj is not None:
-        obj_name = _object_name(ns, obj.name, obj.size_m, obj.map_scale, f.locale)
+        obj_name = object_title(obj, f.locale)
         inputs += [
             (f.label("object"), f"{obj_name}: {f.g(obj.size_m)} {f.label('pdf_m')}, "
                                 f"{_shape_name(ns, obj.shape, f.locale)}, "
                                 f"B = {f.g(obj.shape_coefficient)}"),
             (f.label("probability"), f.g(rules.probability)),
-            (f.label("norm_rows"), localize(obj.source, f.locale)),
+            (f.label("norm_rows"), f.cite(localize(obj.source, f.locale))),
         ]
     if "PZ" in rules.constraints:
         key = f"pdf_hf_{rules.height_formula}"
         inputs.append((f.label("pdf_height_formula"),
                        f.label(key) if key in LABELS["en"] else rules.height_formula))
     if inp.scanner:
-        inputs.append((f.label("scanner"), f"{inp.scanner} ("
+        inputs.append((f.label("scanner"), f"{scanner_title(ns, inp.scanner, f.locale)} ("
                        + ", ".join(f.g(s) for s in inp.scanner_steps_um) + f" {um})"))
     inputs.append((f.label("pdf_bands"), f"{inp.bands} × {inp.bits_per_band}"))
-    inputs.append((f.label("norm_set"), ns.name))
+    inputs.append((f.label("norm_set"), _norm_view(ns, f)["title"]))
 
     # at most _MAX_COLUMNS photo scales per table, so a wide plan stays inside A4
     scen = plan.scenarios
@@ -278,7 +306,8 @@ def _scan_view(job: ScanJob, f: _Fmt) -> dict[str, Any]:
     size = math.ceil(len(scen) / n_tables)
     tables = [_scan_table(plan, scen[i:i + size], f) for i in range(0, len(scen), size)]
 
-    explanations = [localize(s.explanation, f.locale) for s in plan.scenarios]
+    explanations = [f.cite(display_message(s.explanation, ns, f.locale))
+                    for s in plan.scenarios]
 
     limit = ""
     mci = plan.interpretation_limit_photo_scale
@@ -294,16 +323,18 @@ def _scan_view(job: ScanJob, f: _Fmt) -> dict[str, Any]:
                                 if r.max_photo_scale_interpretable else f.label("pdf_none"))}
              for r in plan.max_photo_scales]
     formulas = [{"id": cid, "name": f.cname(cid),
-                 "equation": localize(CONSTRAINTS[cid].equation, f.locale),
+                 "equation": f.cite(localize(CONSTRAINTS[cid].equation, f.locale)),
                  "protects": localize(CONSTRAINTS[cid].protects, f.locale)}
                 for cid in rules.constraints]
-    params = [{"name": k, "value": _param_text(v, f), "source": ns.parameter_sources.get(k, "")}
+    params = [{"name": param_name(ns, k, f.locale),
+               "value": param_value(ns, k, v, f.locale, f.g),
+               "source": f.cite(ns.parameter_sources.get(k, ""))}
               for k, v in ns.parameters.items()]
     return {
         "inputs": inputs, "tables": tables,
         "explanations": explanations, "interpretation_limit": limit, "reach": reach,
         "reach_interpretable": obj is not None and mci is not None,
-        "warnings": _warnings(plan.warnings, f), "formulas": formulas, "params": params,
+        "warnings": _warnings(plan.warnings, f, ns), "formulas": formulas, "params": params,
         "norm": _norm_view(ns, f),
         "plot": _svg_uri(plots.constraints_svg(plan, f.locale)),
     }
@@ -353,19 +384,11 @@ def _scan_table(plan: ScanPlan, scenarios: Any, f: _Fmt) -> dict[str, Any]:
     return {"header": header, "rows": rows, "summary": summary}
 
 
-def _param_text(v: Any, f: _Fmt) -> str:
-    if isinstance(v, list | tuple):
-        return ", ".join(str(x) for x in v)
-    if isinstance(v, bool) or not isinstance(v, int | float):
-        return str(v)
-    return f.g(v)
-
-
 def _uav_view(job: UavJob, f: _Fmt) -> dict[str, Any]:
     plan: UavPlan = job.plan
     inp, ns, h = plan.inputs, job.norm_set, plan.heights_m
     m = f.label("pdf_m")
-    cam = inp.camera + (f" ({inp.camera_name})" if inp.camera_name else "")
+    cam = camera_title(ns, inp.camera, f.locale, inp.camera_name)
     inputs: list[tuple[str, str]] = []
     if cam:
         inputs.append((f.label("camera"), cam))
@@ -392,11 +415,11 @@ def _uav_view(job: UavJob, f: _Fmt) -> dict[str, Any]:
                    (f.label("relief_interval_m"), f.g(inp.relief_interval_m))]
         obj = inp.map_object
         if obj is not None:
-            name = _object_name(ns, obj.name, obj.size_m, obj.map_scale, f.locale)
+            name = object_title(obj, f.locale)
             inputs.append((f.label("object"), f"{name}: {f.g(obj.size_m)} {m}, "
                                               f"{_shape_name(ns, obj.shape, f.locale)}, "
                                               f"B = {f.g(obj.shape_coefficient)}"))
-    inputs.append((f.label("norm_set"), ns.name))
+    inputs.append((f.label("norm_set"), _norm_view(ns, f)["title"]))
 
     two = h["max"] != h["planned"]
     cols = [f.label("pdf_at_height", h=f.g(h["planned"]))]
@@ -474,12 +497,12 @@ def _uav_view(job: UavJob, f: _Fmt) -> dict[str, Any]:
         b = next(x for x in plan.limits if x.binding)
         max_sentence = f.label("pdf_max_height_sentence", h=f.num(plan.max_height_m, 0),
                                cid=b.id, name=f.cname(b.id),
-                               reason=localize(b.reason, f.locale))
-    formulas = [{"equation": eq, "meaning": f.label(key), "source": f.label(src)}
+                               reason=f.cite(localize(b.reason, f.locale)))
+    formulas = [{"equation": eq, "meaning": f.label(key), "source": f.cite(f.label(src))}
                 for eq, key, src in _UAV_FORMULAS
                 if plan.limits or key not in ("pdf_f_pd", "pdf_f_tol")]
     limit_formulas = [{"id": lim.id, "name": f.cname(lim.id),
-                       "equation": localize(lim.equation, f.locale)}
+                       "equation": f.cite(localize(lim.equation, f.locale))}
                       for lim in plan.limits]
     return {
         "inputs": inputs, "cols": cols, "results": results, "blur": blur, "flight": flight,
@@ -488,7 +511,7 @@ def _uav_view(job: UavJob, f: _Fmt) -> dict[str, Any]:
             f.label("pdf_at_height", h=f.g(h["max"])),
             f.label("pdf_corner_at", h=f.g(h["max"]))],
         "limits": limits, "limits_title": limits_title, "max_sentence": max_sentence,
-        "warnings": _warnings(plan.warnings, f), "formulas": formulas,
+        "warnings": _warnings(plan.warnings, f, ns), "formulas": formulas,
         "limit_formulas": limit_formulas, "norm": _norm_view(ns, f),
         "plot_mtf": _svg_uri(plots.mtf_svg(plan, f.locale)),
         "plot_height": _svg_uri(plots.height_svg(plan, f.locale)),
@@ -548,7 +571,7 @@ def _spec_view(spec: PlanResult, f: _Fmt) -> dict[str, Any]:
             if fs.frames is not None:
                 rows.append((f.label("spec_frames"), f.g(fs.frames)))
                 rows.append((f.label("spec_scanned_gb"), f.num(fs.scanned_gigabytes, 1)))
-        reasons.append(localize(fs.reason, f.locale))
+        reasons.append(f.cite(display_message(fs.reason, fs.job.norm_set, f.locale)))
     if spec.uav is not None:
         u, p = spec.uav, spec.uav.job.plan
         if u.planned_height_m is not None:
@@ -563,7 +586,7 @@ def _spec_view(spec: PlanResult, f: _Fmt) -> dict[str, Any]:
             rows.append((f.label("spec_data_gb"), f.num(p.flight["data_volume_bytes"] / 1e9, 1)))
             rows.append((f.label("data_volume_jpeg_gb"), f.num(float(FL.jpeg_volume_bytes(
                 p.flight["data_volume_bytes"])) / 1e9, 1)))
-        reasons.append(localize(u.reason, f.locale))
+        reasons.append(f.cite(display_message(u.reason, u.job.norm_set, f.locale)))
     comparison = [(_comparison_quantity(c, f), _comparison_value(c["film"], f),
                    _comparison_value(c["uav"], f),
                    f.label(_COMPARISON_UNITS[c["unit"]]) if c["unit"] in _COMPARISON_UNITS
@@ -633,17 +656,25 @@ def render_html(*, scan: ScanJob | None = None, uav: UavJob | None = None,
         raise ValueError("give a scan plan, a UAV plan, or both")
     if meta.locale not in ("en", "ru"):
         raise ValueError(f"locale must be 'en' or 'ru' (got {meta.locale!r})")
-    f = _Fmt(meta.locale, uav.plan.inputs.platform if uav is not None else "uav")
+    f = _Fmt(meta.locale, Bibliography(meta.locale),
+             uav.plan.inputs.platform if uav is not None else "uav")
     now = report_datetime()
-    date = meta.date or now.date().isoformat()
+    date = document_date(meta.date or now.date(), meta.locale)
     if scan is not None and uav is not None:
         title = f.label("pdf_title_plan")
     elif scan is not None:
         title = f.label("title_scan")
     else:
         title = f.label("title_uav")
-    footer = (f"{_css_string(f.label('page') + ' ')} counter(page) "
-              f"{_css_string(' ' + f.label('of') + ' ')} counter(pages)")
+    if meta.locale == "ru":  # «Лист 2 / Листов 4»
+        footer = (f"{_css_string(f.label('sheet') + ' ')} counter(page) "
+                  f"{_css_string(' / ' + f.label('sheets_of') + ' ')} counter(pages)")
+    else:  # "Sheet 2 of 4"
+        footer = (f"{_css_string(f.label('sheet') + ' ')} counter(page) "
+                  f"{_css_string(' ' + f.label('sheets_of') + ' ')} counter(pages)")
+    scan_view = _scan_view(scan, f) if scan is not None else None
+    uav_view = _uav_view(uav, f) if uav is not None else None
+    spec_view = _spec_view(spec, f) if spec is not None else None
     ctx = {
         "lang": meta.locale, "title": title, "meta": meta, "date": date,
         "running_project": _shorten(" ".join(meta.project.split()), _RUNNING_HEADER_CHARS),
@@ -651,15 +682,39 @@ def render_html(*, scan: ScanJob | None = None, uav: UavJob | None = None,
         "generator": f"scanplan {__version__}",
         "footer_css": Markup(f"@page {{ @bottom-center {{ content: {footer}; }} }}"),
         "L": _Labels(f),
-        "scan": _scan_view(scan, f) if scan is not None else None,
-        "uav": _uav_view(uav, f) if uav is not None else None,
+        "scan": scan_view,
+        "uav": uav_view,
         # with a specification its own side-by-side table is shown; not this one as well
         "comparison": (_comparison_view(scan, uav, f)
                        if scan is not None and uav is not None
                        and not (spec is not None and spec.comparison) else None),
-        "spec": _spec_view(spec, f) if spec is not None else None,
+        "spec": spec_view,
+        "warnings_box": _warnings_box(scan_view, uav_view, spec, f),
+        "references": f.bib.entries(),
     }
     return _environment().get_template("report.html").render(**ctx)
+
+
+def _warnings_box(scan_view: Any, uav_view: Any, spec: PlanResult | None,
+                  f: _Fmt) -> list[str]:
+    """Every warning in short form for page 1 (an approver sees them before signing)."""
+    items: list[str] = []
+    for view in (scan_view, uav_view):
+        if view is not None:
+            items += [(w["heading"] or w["message"]) + (f": {w['scales']}" if w["scales"]
+                                                         else "") for w in view["warnings"]]
+    if spec is not None:
+        seen = {x["code"] for view in (scan_view, uav_view) if view
+                for x in view["warnings"]}
+        for w in spec.warnings:
+            if w.code not in seen:
+                key = f"pdf_warn_{w.code}"
+                items.append(f.label(key) if key in LABELS["en"] else localize(w.message,
+                                                                              f.locale))
+    counts: dict[str, int] = {}
+    for item in items:
+        counts[item] = counts.get(item, 0) + 1
+    return [f"{k} (×{n})" if n > 1 else k for k, n in counts.items()]
 
 
 class _Labels:

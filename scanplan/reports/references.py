@@ -1,0 +1,142 @@
+"""References of the reports: the bundled bibliography and a per-document citation list.
+
+The norm tables' ``source`` cells and the message catalogue name a work by a short form
+("seed 001 Table 3", "GKINP (GNTA)-02-036-02; seed 001 eq. 1", "Михеева, Илюшенко, 2015,
+ф. (16)"). A document numbers the works in the order it first cites them: each short form
+becomes ``[n]`` and its locator is written in the document's language ("[2], Table 3",
+"[2], табл. 3"); the list of references closes the document. A cell that names none of
+the known works — already a full citation, such as a user's norm set — is shown as is.
+
+The bibliography is data: ``norms/references.toml`` (each work in English and Russian,
+the short forms it is cited by).
+"""
+
+from __future__ import annotations
+
+import re
+import tomllib
+from dataclasses import dataclass, field
+from functools import cache
+
+from ..norms import bundled_norms_dir
+
+__all__ = ["Bibliography", "Reference", "references"]
+
+
+@dataclass(frozen=True)
+class Reference:
+    """One work: its id, the short forms that cite it, its entry in both languages."""
+
+    id: str
+    aliases: tuple[str, ...]
+    en: str
+    ru: str
+
+    def text(self, locale: str) -> str:
+        """The bibliographic entry in ``locale`` (the Russian original in Russian)."""
+        return self.ru if locale == "ru" else self.en
+
+
+@cache
+def references() -> tuple[Reference, ...]:
+    """The bundled bibliography (``norms/references.toml``)."""
+    data = tomllib.loads((bundled_norms_dir() / "references.toml").read_text("utf-8"))
+    return tuple(Reference(id=r["id"], aliases=tuple(r["aliases"]), en=r["en"], ru=r["ru"])
+                 for r in data["reference"])
+
+
+@cache
+def _alias_pattern() -> tuple[re.Pattern[str], dict[str, Reference]]:
+    by_alias = {a.casefold(): ref for ref in references() for a in ref.aliases}
+    alts = sorted(by_alias, key=len, reverse=True)
+    pattern = re.compile("|".join(re.escape(a) for a in alts), re.IGNORECASE)
+    return pattern, by_alias
+
+
+# Locators as the norm tables write them, in each language (applied in order).
+_LOCATORS: dict[str, tuple[tuple[str, str], ...]] = {
+    "en": (
+        (r"\bconclusions after Table (\d+)", r"conclusions after Table \1"),
+        (r"\bTable (\d+) discussion", r"discussion of Table \1"),
+        (r"\b(?:its )?ref\. \[(\d+)\]", r"its reference \1"),
+        (r"\beqs\. \(?(\d+)\)?\s*[-–]\s*\(?(\d+)\)?", r"eqs. (\1)–(\2)"),
+        (r"\beq\. \(?(\d+)\)?", r"eq. (\1)"),
+        (r"\bconclusion (\d+)", r"conclusion \1"),
+    ),
+    "ru": (
+        (r"\bconclusions after Table (\d+)", r"выводы после табл. \1"),
+        (r"\bTable (\d+) discussion", r"пояснения к табл. \1"),
+        (r"\b(?:its )?ref\. \[(\d+)\]", r"его источник № \1"),
+        (r"\beqs\. \(?(\d+)\)?\s*[-–]\s*\(?(\d+)\)?", r"ф. (\1)–(\2)"),
+        (r"\beq\. \(?(\d+)\)?", r"ф. (\1)"),
+        (r"\bTables? (\d+)", r"табл. \1"),
+        (r"\bconclusion (\d+)", r"вывод \1"),
+        (r"\bworked example\b", "пример расчёта"),
+        (r"\bas printed\b", "в печатной редакции"),
+        (r"\bafter\b", "после"),
+        (r"\band\b", "и"),
+        (r"\bplus\b", "и"),
+        (r"\bwith\b", "с"),
+        (r"(\d)\.(\d)", r"\1,\2"),
+    ),
+}
+
+
+def _locator(text: str, locale: str) -> str:
+    for pattern, repl in _LOCATORS["ru" if locale == "ru" else "en"]:
+        text = re.sub(pattern, repl, text)
+    return text
+
+
+@dataclass
+class Bibliography:
+    """The references one document cites, numbered in order of first citation.
+
+    Parameters
+    ----------
+    locale : {"en", "ru"}
+        The document's language.
+    """
+
+    locale: str
+    cited: list[Reference] = field(default_factory=list)
+
+    def number(self, ref: Reference) -> int:
+        """The reference's number in this document (cited now if it was not yet)."""
+        if ref not in self.cited:
+            self.cited.append(ref)
+        return self.cited.index(ref) + 1
+
+    def cite(self, text: str) -> str:
+        """``text`` with every short form of a known work replaced by ``[n]`` and the
+        locators after it written in the document's language.
+
+        Text before the first short form (a formula, a sentence) is kept as it is; a text
+        that names no known work is returned unchanged.
+
+        Parameters
+        ----------
+        text : str
+            A source cell or a sentence citing a work.
+
+        Returns
+        -------
+        str
+        """
+        pattern, by_alias = _alias_pattern()
+        matches = list(pattern.finditer(text))
+        if not matches:
+            return text
+        out = [text[:matches[0].start()]]
+        for i, m in enumerate(matches):
+            ref = by_alias[m.group().casefold()]
+            end = matches[i + 1].start() if i + 1 < len(matches) else len(text)
+            rest = _locator(text[m.end():end], self.locale)
+            if rest and not rest.startswith((",", ";", ")", " —", ".")) and rest.strip():
+                rest = ", " + rest.lstrip()
+            out.append(f"[{self.number(ref)}]{rest}")
+        return "".join(out)
+
+    def entries(self) -> list[tuple[int, str]]:
+        """(number, entry) of every work cited so far, in the document's language."""
+        return [(i, ref.text(self.locale)) for i, ref in enumerate(self.cited, 1)]

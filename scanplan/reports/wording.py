@@ -1,0 +1,184 @@
+"""Human wording shared by the PDF and the workbook: parameter names with units, values,
+camera/scanner/object names, dates — never a code identifier in a document.
+
+A norm-set parameter is shown by its label ``param_<name>`` (name and unit in the report's
+language) and its value in words (a shape by its name, the height formula by its form);
+a parameter without a label (a user's norm set) falls back to its note, then its name.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import re
+from typing import Any
+
+from ..messages import Message, localize
+from ..norms import NormSet
+from .labels import LABELS, t
+
+__all__ = ["camera_title", "display_message", "document_date", "name_title", "object_title",
+           "param_name", "param_value", "scanner_title", "shape_title"]
+
+_PAREN_ENGLISH = re.compile(r"\s*\((?=[^)]*[A-Za-z]{4})[^)]*\)")
+
+
+def _ru_model(name: str) -> str:
+    """A catalogue model name for a Russian document: English remarks dropped, units in
+    Russian (the model itself stays as the maker writes it)."""
+    name = _PAREN_ENGLISH.sub("", name)
+    name = re.sub(r"\bwith\b", "с", name)
+    name = re.sub(r"(\d)\s*cm\b", r"\1 см", name)
+    name = re.sub(r"(\d)\s*mm\b", r"\1 мм", name)
+    return re.sub(r"(\d)x(\d)", r"\1×\2", name)
+
+
+def camera_title(ns: NormSet, camera_id: str, locale: str, name: str = "") -> str:
+    """The camera as a reader knows it: the catalogue's model name (not its id).
+
+    Parameters
+    ----------
+    ns : NormSet
+        The norm set whose catalogue holds the camera.
+    camera_id : str
+        The catalogue id (``""``: none).
+    locale : {"en", "ru"}
+        In Russian, English remarks in parentheses are dropped and units written in Russian.
+    name : str, optional
+        A name to show when the id is not in the catalogue (a camera given by its data).
+
+    Returns
+    -------
+    str
+    """
+    cam = ns.cameras.get(camera_id) if camera_id else None
+    title = (cam.name if cam is not None else "") or name or camera_id
+    return _ru_model(title) if locale == "ru" else title
+
+
+def scanner_title(ns: NormSet, scanner_id: str, locale: str) -> str:
+    """The scanner's model name (not its id)."""
+    title = ns.scanner_names.get(scanner_id, "") or scanner_id
+    return _ru_model(title) if locale == "ru" else title
+
+
+def shape_title(ns: NormSet, shape: str, locale: str) -> str:
+    """A shape in words: "circle" / "круг" (the norm set's Russian name)."""
+    if locale == "ru":
+        return ns.shape_rows.get(shape, {}).get("name_ru") or _label_or(
+            f"shape_{shape}", locale, shape)
+    return shape
+
+
+def object_title(obj: Any, locale: str) -> str:
+    """The object to interpret (anything with ``name`` and ``name_ru``) by name in the
+    report's language; an object given only by its size is "the object of the given size".
+    """
+    return name_title(getattr(obj, "name", "") or "", getattr(obj, "name_ru", "") or "",
+                      locale)
+
+
+def name_title(name: str, name_ru: str, locale: str) -> str:
+    """An object's name in the report's language (see :func:`object_title`)."""
+    if locale == "ru" and name_ru and name_ru != "объект":
+        return name_ru
+    if not name or name == "object":  # the engine's placeholder for a size-only object
+        return t("obj_unnamed", locale)
+    return name  # a norm table's or the user's own name, shown as written
+
+
+def _label_or(key: str, locale: str, default: str) -> str:
+    return t(key, locale) if key in LABELS["en"] else default
+
+
+def param_name(ns: NormSet, key: str, locale: str) -> str:
+    """A norm-set parameter by its human name with unit (``param_<key>`` label).
+
+    Parameters
+    ----------
+    ns : NormSet
+        The norm set (for a parameter without a label: its note).
+    key : str
+        The parameter's schema name.
+    locale : {"en", "ru"}
+
+    Returns
+    -------
+    str
+    """
+    label = f"param_{key}"
+    if label in LABELS["en"]:
+        return t(label, locale)
+    note = getattr(ns, "parameter_notes", {}).get(key, "") if ns is not None else ""
+    return note or key.replace("_", " ")
+
+
+def param_value(ns: NormSet, key: str, value: Any, locale: str,
+                number: Any = None) -> str:
+    """A norm-set parameter's value in words (shape with its coefficient, height formula,
+    rounding; a number through ``number``).
+
+    Parameters
+    ----------
+    ns : NormSet
+    key : str
+        The parameter's schema name.
+    value : object
+        Its value.
+    locale : {"en", "ru"}
+    number : callable, optional
+        Formats a number in the report's convention (default ``str``).
+
+    Returns
+    -------
+    str
+    """
+    if key == "shape" and isinstance(value, str):
+        coef = ns.shapes.get(value)
+        title = shape_title(ns, value, locale)
+        return f"{title} (B = {number(coef) if number else coef})" if coef else title
+    if isinstance(value, str):
+        return _label_or(f"value_{key}_{value}", locale, value)
+    if isinstance(value, list | tuple):
+        return ", ".join(str(v) for v in value)
+    if isinstance(value, bool):
+        return t("xlsx_yes" if value else "xlsx_no", locale)
+    return number(value) if number else str(value)
+
+
+def display_message(msg: Any, ns: NormSet | None, locale: str) -> str:
+    """An engine sentence in ``locale`` with ids (scanner, camera) shown by their names.
+
+    Parameters
+    ----------
+    msg : Message or str
+        The sentence (a plain string is returned as it is).
+    ns : NormSet or None
+        Where the ids are looked up (None: ids stay).
+    locale : {"en", "ru"}
+
+    Returns
+    -------
+    str
+    """
+    if isinstance(msg, Message) and ns is not None:
+        params = dict(msg.params)
+        changed = False
+        if isinstance(params.get("scanner"), str) and params["scanner"]:
+            params["scanner"] = scanner_title(ns, params["scanner"], locale)
+            changed = True
+        if isinstance(params.get("camera"), str) and params["camera"]:
+            params["camera"] = camera_title(ns, params["camera"], locale)
+            changed = True
+        if changed:
+            msg = Message(msg.code, params)
+    return localize(msg, locale)
+
+
+def document_date(when: _dt.date | str, locale: str) -> str:
+    """A date as the document's convention writes it: 23.11.2026 (ru), 2026-11-23 (en)."""
+    if isinstance(when, str):
+        try:
+            when = _dt.date.fromisoformat(when)
+        except ValueError:
+            return when
+    return when.strftime("%d.%m.%Y") if locale == "ru" else when.isoformat()

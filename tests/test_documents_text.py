@@ -1,0 +1,347 @@
+"""Documents fit to sign (issue 13): the text of every page of every example's PDF and of
+every workbook cell and chart, in English and in Russian, holds no internal jargon.
+
+Every project file in ``examples/`` (globbed, so new examples are covered) is planned in
+both locales and rendered to spec.pdf and spec.xlsx. The extracted text must not contain
+
+- "seed 0…" (the papers are cited by their references, never by our file names),
+- repository paths (``docs/…``, ``….md``, ``….py``, ``norms/…``),
+- code identifiers: snake_case names (norm-schema parameters such as
+  ``planimetric_accuracy_mm``, message codes such as ``not_interpretable``) except a
+  project-file key written as the reader types it (``[norms] height_formula``), and the
+  raw values ``instruction`` / ``exact`` / ``paper`` of the norm set,
+- command-line flags (``--height-formula``);
+
+and the Russian documents hold no English: no Latin word of 3+ letters outside a short
+list of names, units and symbols (camera and lens model names from the catalogue,
+"scanplan", GSD/MTF, formula symbols) and outside the user's own text (project name,
+customer, ... — shown as typed).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import io
+import re
+import zipfile
+from functools import cache
+from pathlib import Path
+
+import pytest
+
+pypdf = pytest.importorskip("pypdf")
+pytest.importorskip("weasyprint")
+
+from openpyxl import load_workbook  # noqa: E402
+
+from scanplan import norms as norms_mod  # noqa: E402
+from scanplan.project import KEYS, load_project  # noqa: E402
+from scanplan.reports.excel import render_xlsx  # noqa: E402
+from scanplan.reports.pdf import render_pdf  # noqa: E402
+from scanplan.spec import plan_project  # noqa: E402
+
+EXAMPLES = sorted((Path(__file__).resolve().parent.parent / "examples").glob("*.toml"))
+LOCALES = ("en", "ru")
+
+_SEED = re.compile(r"seed\s*0", re.IGNORECASE)
+_PATH = re.compile(r"\b(?:docs|norms|scanplan|templates|tests|examples|benchmarks)/"
+                   r"|\b[\w-]+\.(?:md|py|toml|csv)\b")
+_FLAG = re.compile(r"(?<![\w-])--[a-z][a-z-]+")
+_SNAKE = re.compile(r"\b[a-z][a-z0-9]+(?:_[a-z0-9]+)+\b")
+_RAW_VALUES = re.compile(r"\b(?:instruction|exact|paper)\b")  # norm-set values as stored
+_PROJECT_KEY = re.compile(r'\[([a-z][a-z.]*)\]\s+([a-z][a-z0-9_]*)(?:\s*=\s*"[^"]*")?')
+_LATIN_WORD = re.compile(r"[A-Za-z][A-Za-z'’-]*[A-Za-z]")
+
+# Latin words a Russian document may hold: units, symbols and abbreviations of formulas,
+# the program's name. Camera/lens/scanner names come from the catalogue (below).
+_RU_ALLOWED = {
+    "scanplan", "gsd", "mtf", "ln", "sqrt", "exp", "max", "min", "obj", "thr", "mc", "mk",
+    "px", "rgb", "jpeg", "tiff", "dpi", "uas-fp",
+}
+
+
+def _project_keys() -> set[tuple[str, str]]:
+    return {(sec, key) for sec, keys in KEYS.items() for key in keys}
+
+
+@cache
+def _catalogue_words() -> frozenset[str]:
+    """Words of the catalogue's model names (the part before any parenthesis)."""
+    ns = norms_mod.load_norm_set()
+    names = [c.name for c in ns.cameras.values()] + list(ns.scanner_names.values())
+    words: set[str] = set()
+    for name in names:
+        model = re.sub(r"\([^)]*\)", " ", name)
+        words.update(w.lower() for w in _LATIN_WORD.findall(model))
+    return frozenset(words - {"with", "and", "lens", "assumed"})
+
+
+@cache
+def _documents(example: str, locale: str) -> dict[str, str]:
+    """{'pdf page N' / 'xlsx SHEET' / 'xlsx chart N': text} for one example in one locale."""
+    project = load_project(example)
+    values = {sec: dict(v) for sec, v in project.values.items()}
+    values.setdefault("project", {})["locale"] = locale
+    project = dataclasses.replace(project, values=values)
+    result = plan_project(project)
+    scan = result.film.job if result.film else None
+    uav = result.uav.job if result.uav else None
+    out: dict[str, str] = {}
+    pdf = pypdf.PdfReader(io.BytesIO(render_pdf(scan=scan, uav=uav, meta=result.meta,
+                                                spec=result)))
+    for i, page in enumerate(pdf.pages, 1):
+        out[f"pdf page {i}"] = page.extract_text()
+    data = render_xlsx(scan=scan, uav=uav, meta=result.meta, spec=result)
+    wb = load_workbook(io.BytesIO(data))
+    for ws in wb.worksheets:
+        cells = [ws.title]
+        for row in ws.iter_rows():
+            cells += [c.value for c in row if isinstance(c.value, str)]
+        for hf in (ws.oddHeader, ws.oddFooter):
+            cells += [part.text for part in (hf.left, hf.center, hf.right) if part.text]
+        out[f"xlsx sheet {ws.title!r}"] = "\n".join(cells)
+    with zipfile.ZipFile(io.BytesIO(data)) as z:
+        for name in sorted(n for n in z.namelist() if n.startswith("xl/charts/chart")):
+            xml = z.read(name).decode("utf-8")
+            out[f"xlsx {name}"] = "\n".join(re.findall(r"<(?:a:t|c:v)>([^<]*)</", xml))
+    return out
+
+
+def _user_text(example: str) -> list[str]:
+    """The user's own text in the project file (shown as typed, any language)."""
+    project = load_project(example)
+    texts = [project.name]
+    for sec in ("project",):
+        for key, value in project.values.get(sec, {}).items():
+            if isinstance(value, str) and key != "locale":
+                texts.append(value)
+    return [" ".join(t.split()) for t in texts if t and t.strip()]
+
+
+def _without_user_text(text: str, example: str) -> str:
+    flat = " ".join(text.split())
+    for t in sorted(_user_text(example), key=len, reverse=True):
+        flat = flat.replace(t, " ")
+        if len(t) > 40:  # the running header shortens the project name with an ellipsis
+            for n in range(20, len(t)):
+                flat = flat.replace(t[:n] + "…", " ")
+    return flat
+
+
+def jargon(text: str) -> list[str]:
+    """What in ``text`` is internal jargon (any locale); [] when it is clean."""
+    found = []
+    found += [f"seed reference {m.group()!r}" for m in _SEED.finditer(text)]
+    found += [f"repository path {m.group()!r}" for m in _PATH.finditer(text)]
+    found += [f"command-line flag {m.group()!r}" for m in _FLAG.finditer(text)]
+    keys = _project_keys()
+    shown_keys = {m.group(2) for m in _PROJECT_KEY.finditer(text)
+                  if (m.group(1), m.group(2)) in keys}
+    found += [f"code identifier {m.group()!r}" for m in _SNAKE.finditer(text)
+              if m.group() not in shown_keys]
+    found += [f"raw norm value {m.group()!r}" for m in _RAW_VALUES.finditer(text)]
+    return found
+
+
+def english_in_russian(text: str) -> list[str]:
+    """Latin words (3+ letters) in a Russian text that are not names, units or symbols."""
+    allowed = _RU_ALLOWED | _catalogue_words()
+    text = _PROJECT_KEY.sub(" ", text)  # a project-file key is typed as it is
+    return sorted({w for w in _LATIN_WORD.findall(text)
+                   if len(w) >= 3 and w.lower() not in allowed})
+
+
+CASES = [pytest.param(str(e), loc, id=f"{e.stem}-{loc}") for e in EXAMPLES for loc in LOCALES]
+
+
+def test_examples_exist():
+    assert len(EXAMPLES) >= 3
+
+
+@pytest.mark.parametrize(("example", "locale"), CASES)
+def test_documents_have_no_internal_jargon(example, locale):
+    problems = []
+    for where, text in _documents(example, locale).items():
+        problems += [f"{where}: {p}" for p in jargon(_without_user_text(text, example))]
+    assert not problems, "\n".join(problems)
+
+
+@pytest.mark.parametrize("example", [str(e) for e in EXAMPLES], ids=[e.stem for e in EXAMPLES])
+def test_russian_documents_have_no_english(example):
+    problems = []
+    for where, text in _documents(example, "ru").items():
+        words = english_in_russian(_without_user_text(text, example))
+        if words:
+            problems.append(f"{where}: {', '.join(words)}")
+    assert not problems, "\n".join(problems)
+
+
+# --- the detectors themselves catch what they are for -------------------------------
+
+
+@pytest.mark.parametrize("text", [
+    "Source: seed 001 Table 3", "docs/uav-models.md §1", "planimetric_accuracy_mm 0.2",
+    "(--height-formula parallax to use the parallax form.)", "[not_interpretable]",
+    "height formula instruction", "rounding exact"])
+def test_jargon_detector_catches(text):
+    assert jargon(text)
+
+
+@pytest.mark.parametrize("text", [
+    'set [norms] height_formula = "parallax" in the project file', "P_S = V_s·Mk/(k·Mc)",
+    "r_max / r_min 0.3 / 0.1", "Instruction GKINP (GNTA)-02-036-02, 2002", "circle, B = 0.97"])
+def test_jargon_detector_passes(text):
+    assert not jargon(text)
+
+
+def test_english_detector():
+    assert english_in_russian("Объект: object, круг") == ["object"]
+    assert english_in_russian("Источник: Instruction for photogrammetric works") != []
+    assert english_in_russian("GSD 0,038 м; P = exp(−(B·L/L_obj)²); scanplan 0.1.0") == []
+    assert english_in_russian("[norms] height_formula = «parallax»") == ["parallax"]
+
+
+@pytest.mark.parametrize(("example", "locale"), CASES)
+def test_no_near_empty_last_page(example, locale):
+    """The last page carries real content (not a lone signature block or a footer note):
+    at least a quarter of the text of an average earlier page."""
+    pages = [text for where, text in _documents(example, locale).items()
+             if where.startswith("pdf page")]
+    if len(pages) < 2:
+        return
+    mean = sum(len(p) for p in pages[:-1]) / (len(pages) - 1)
+    assert len(pages[-1]) >= 0.25 * mean, (len(pages[-1]), mean, pages[-1][:300])
+
+
+@pytest.mark.parametrize(("example", "locale"), CASES)
+def test_signing_blocks_and_sheet_numbers(example, locale):
+    """Approval block, compiled/checked lines, references and «Лист N / Листов M»."""
+    docs = _documents(example, locale)
+    pages = [text for where, text in docs.items() if where.startswith("pdf page")]
+    first, last = " ".join(pages[0].split()), " ".join(pages[-1].split())
+    n = len(pages)
+    if locale == "ru":
+        assert "УТВЕРЖДАЮ" in first
+        assert "Составил" in last and "Проверил" in last and "Список литературы" in " ".join(
+            pages)
+        assert all(f"Лист {i} / Листов {n}" in " ".join(p.split())
+                   for i, p in enumerate(pages, 1))
+        assert re.search(r"Дата \d\d\.\d\d\.\d{4}", first)
+    else:
+        assert "APPROVED" in first
+        assert "Compiled by" in last and "Checked by" in last and "References" in " ".join(
+            pages)
+        assert all(f"Sheet {i} of {n}" in " ".join(p.split()) for i, p in enumerate(pages, 1))
+        assert re.search(r"Date \d{4}-\d\d-\d\d", first)
+
+
+_TERMINAL_PROJECT = """
+[project]
+name = "Карта"
+locale = "{locale}"
+[map]
+scale = 10000
+relief_interval_m = 1.0
+[film]
+camera = "rc30-153"
+photo_scales = [15000, 20000, 25000, 30000]
+scanner = "photoscan-td"
+[uav]
+camera = "canon-eos-5d-mark-ii-50"
+f_number = 8
+height_m = 300
+"""
+
+
+@pytest.mark.parametrize("locale", LOCALES)
+def test_terminal_summary_speaks_the_projects_language(tmp_path, locale):
+    from click.testing import CliRunner
+
+    from scanplan.cli import main
+
+    path = tmp_path / "p.toml"
+    path.write_text(_TERMINAL_PROJECT.format(locale=locale), encoding="utf-8")
+    out = CliRunner().invoke(main, ["plan", str(path)])
+    assert out.exit_code == 0, out.output
+    text = out.stdout
+    if locale == "ru":
+        for phrase in ("рекомендуемый масштаб снимков", "пиксель сканирования",
+                       "рекомендуемая высота полёта", "Предупреждения:", "8,3 мкм"):
+            assert phrase in text, phrase
+        # no English sentence: the words left are symbols, ids in brackets, names
+        body = re.sub(r"\[[a-z]+_[a-z_]+\]", " ", text)  # the codes, not "[norms]"
+        assert english_in_russian(body) == [], english_in_russian(body)
+    else:
+        assert "recommended photo scale" in text and "8.3 µm" in text
+
+
+@pytest.mark.parametrize("example", [str(e) for e in EXAMPLES], ids=[e.stem for e in EXAMPLES])
+def test_wrapped_cells_have_room(example):
+    """A wrapped cell longer than its column gets a row tall enough for its lines, so it
+    does not run over the next row where the row height is taken from the file
+    (LibreOffice)."""
+    import math
+
+    from openpyxl.utils import get_column_letter
+
+    from scanplan.reports.excel import render_xlsx as render
+
+    project = load_project(example)
+    result = plan_project(project)
+    data = render(scan=result.film.job if result.film else None,
+                  uav=result.uav.job if result.uav else None, meta=result.meta, spec=result)
+    wb = load_workbook(io.BytesIO(data))
+    def col_width(c: int) -> float:
+        return ws.column_dimensions[get_column_letter(c)].width or 8.43
+
+    for ws in wb.worksheets:
+        merged = {(r.min_row, r.min_col): sum(col_width(c) for c in range(r.min_col,
+                                                                          r.max_col + 1))
+                  for r in ws.merged_cells.ranges}
+        for row in ws.iter_rows():
+            for cell in row:
+                if not (isinstance(cell.value, str) and cell.alignment.wrap_text):
+                    continue
+                width = merged.get((cell.row, cell.column), col_width(cell.column))
+                lines = math.ceil(len(cell.value) / max(width * 1.1 - 1, 4))
+                if lines > 1:
+                    height = ws.row_dimensions[cell.row].height
+                    assert height is not None and height >= 14 * lines, (
+                        ws.title, cell.coordinate, lines, height)
+
+
+@pytest.mark.parametrize("locale", LOCALES)
+def test_film_and_uav_document_is_clean_and_ends_on_a_full_page(tmp_path, locale):
+    """Film and UAV side by side (the longest document): no jargon, no English in Russian,
+    and the references travel with the signatures to the last page."""
+    path = tmp_path / "both.toml"
+    path.write_text(_TERMINAL_PROJECT.format(locale=locale)
+                    + "[area]\nwidth_m = 5000\nlength_m = 6000\n", encoding="utf-8")
+    docs = _documents(str(path), locale)
+    pages = [t for w, t in docs.items() if w.startswith("pdf page")]
+    mean = sum(len(p) for p in pages[:-1]) / (len(pages) - 1)
+    assert len(pages[-1]) >= 0.25 * mean
+    problems = []
+    for where, text in docs.items():
+        clean = _without_user_text(text, str(path))
+        problems += [f"{where}: {p}" for p in jargon(clean)]
+        if locale == "ru":
+            problems += [f"{where}: {w}" for w in english_in_russian(clean)]
+    assert not problems, "\n".join(problems)
+
+
+def test_every_warning_has_a_heading_in_both_languages():
+    """The page-1 warnings box names each warning by a short heading: every warning code
+    the engine can emit has one (``pdf_warn_<code>``) in English and Russian."""
+    import pathlib
+
+    from scanplan.reports.labels import LABELS
+
+    src = "".join(p.read_text(encoding="utf-8")
+                  for p in pathlib.Path(norms_mod.__file__).parent.glob("*.py"))
+    codes = set(re.findall(r'PlanWarning\(\s*"([a-z_]+)"', src))
+    codes |= {"not_interpretable", "above_interpretation_limit"}  # built from a variable
+    assert len(codes) >= 10
+    for loc in LOCALES:
+        missing = sorted(c for c in codes if f"pdf_warn_{c}" not in LABELS[loc])
+        assert not missing, (loc, missing)

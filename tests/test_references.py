@@ -1,0 +1,65 @@
+"""The reports' bibliography (norms/references.toml) and the citation renderer."""
+
+from __future__ import annotations
+
+import re
+
+import pytest
+
+from scanplan.norms import list_norm_sets, load_norm_set
+from scanplan.reports.references import Bibliography, references
+
+
+def test_every_work_in_both_languages_with_unique_short_forms():
+    refs = references()
+    assert len(refs) >= 5
+    seen: set[str] = set()
+    for ref in refs:
+        assert ref.en.strip() and ref.ru.strip(), ref.id
+        assert re.search(r"[а-яё]", ref.ru, re.IGNORECASE), ref.id  # a Russian entry
+        for alias in ref.aliases:
+            assert alias.casefold() not in seen, alias
+            seen.add(alias.casefold())
+
+
+def test_the_papers_and_the_instruction_are_there():
+    ids = {r.id: r for r in references()}
+    assert "2002" in ids["gkinp-02-036-02"].ru and "ЦНИИГАиК" in ids["gkinp-02-036-02"].ru
+    assert "№ 12" in ids["miheeva-medvedev-2010"].ru and "103–108" in ids[
+        "miheeva-medvedev-2010"].ru
+    assert "Михеева" in ids["miheeva-ilushenko-2015"].ru
+    assert "Зверев" in ids["zverev-fisenko-2014"].ru
+
+
+def test_short_forms_become_numbers_with_locators_in_the_reports_language():
+    en, ru = Bibliography("en"), Bibliography("ru")
+    assert en.cite("seed 001 Table 3") == "[1], Table 3"
+    assert ru.cite("seed 001 Table 3") == "[1], табл. 3"
+    assert en.cite("GKINP (GNTA)-02-036-02; seed 001 eq. 1 (V_s)") == "[2]; [1], eq. (1) (V_s)"
+    assert ru.cite("seed 001 eqs. 5-6 and its ref. [2]") == "[1], ф. (5)–(6) и его источник № 2"
+    # the numbers follow the order of first citation and are stable within a document
+    assert [n for n, _ in en.entries()] == [1, 2]
+    assert en.entries()[0][1].startswith("Miheeva A.A., Ilushenko A.")
+    assert ru.entries()[0][1].startswith("Михеева А.А., Илюшенко А.")
+
+
+def test_a_full_citation_passes_through():
+    text = ("Условные знаки для топографических планов масштабов 1:5000, 1:2000, 1:1000, "
+            "1:500. — М.: Недра, 1989, с. 12")
+    assert Bibliography("ru").cite(text) == text
+
+
+@pytest.mark.parametrize("name", [n for n, where in list_norm_sets() if where == "bundled"])
+@pytest.mark.parametrize("locale", ["en", "ru"])
+def test_every_bundled_source_cell_is_cited_without_seed(name, locale):
+    ns = load_norm_set(name)
+    bib = Bibliography(locale)
+    # the set's own source is prose naming the works: the reports show their numbers only
+    assert re.findall(r"\[\d+\]", bib.cite(ns.source))
+    cells = [*ns.parameter_sources.values(), *(o.source for o in ns.objects),
+             *(row.get("source", "") for row in ns.shape_rows.values())]
+    for cell in cells:
+        shown = bib.cite(cell)
+        assert not re.search(r"seed\s*0", shown, re.IGNORECASE), (cell, shown)
+        if locale == "ru" and shown != cell:  # a cited cell: its locator is Russian too
+            assert not re.search(r"\b[a-z]{3,}\b", shown), (cell, shown)
