@@ -44,7 +44,7 @@ def test_archive_and_russian(tmp_path):
     assert doc["project"] == {"name": 'План "Лида" #1', "customer": "", "contractor": "",
                               "locale": "ru"}
     out = _cli("plan", str(p))
-    assert out.exit_code == 0 and "1:12000" in out.output
+    assert out.exit_code == 0 and "1:12\u00a0000" in out.output  # the Russian summary
 
 
 def test_never_overwrites_without_force(tmp_path):
