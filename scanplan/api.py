@@ -43,7 +43,8 @@ def recommended_height_m(max_height_m: float | None) -> float | None:
     step = height_step_m(max_height_m)
     return math.floor(max_height_m / step) * step
 
-__all__ = ["ScanJob", "UavJob", "parse_frame_mm", "resolve_object", "scan", "scan_job", "uav_job"]
+__all__ = ["USER_OBJECT_NAME", "ScanJob", "UavJob", "object_display_name", "parse_frame_mm",
+           "resolve_object", "scan", "scan_job", "uav_job"]
 
 
 @dataclass(frozen=True)
@@ -78,28 +79,68 @@ def _scale(value: object, field: str) -> float:
     return denominator
 
 
+USER_OBJECT_NAME = {"en": "object of the given size", "ru": "объект заданного размера"}
+"""The name of a project's own object when the project does not name it (the reports'
+label ``obj_unnamed``)."""
+
+
+def object_display_name(ns: NormSet, name: str, size_m: float, map_scale: int | None,
+                        locale: str) -> str:
+    """An object's name in a report's language.
+
+    A norm-table row gives its Russian name; a project's own object keeps the name the
+    project gave it (in its writer's language); an unnamed one is
+    :data:`USER_OBJECT_NAME` in ``locale``.
+
+    Parameters
+    ----------
+    ns : NormSet
+        The norm set whose ``objects`` table names the rows.
+    name, size_m, map_scale
+        The object's (English) name, size [m] and, for a norm row, its map scale.
+    locale : str
+        ``"en"`` or ``"ru"``.
+    """
+    if map_scale is None and name == USER_OBJECT_NAME["en"]:
+        return USER_OBJECT_NAME.get(locale, name)
+    if locale != "ru":
+        return name
+    for o in ns.objects:
+        if o.name == name and o.size_m == size_m and (map_scale is None
+                                                      or o.map_scale == map_scale):
+            return o.name_ru or name
+    return name
+
+
 def resolve_object(
     ns: NormSet,
     map_scale: float,
     *,
     object_size_m: float | None = None,
     shape: str | None = None,
+    object_name: str | None = None,
 ) -> ObjectSpec | None:
     """The object the interpretation constraint protects.
 
-    The user's size wins; otherwise the norm set's smallest object for exactly this map
-    scale (seed 001 Table 3). With neither, None (the engine then asks for a size if P_D is
-    enabled — never a guess).
+    The user's size wins (named ``object_name``, else :data:`USER_OBJECT_NAME`);
+    otherwise the norm set's smallest object for exactly this map scale (seed 001
+    Table 3; the conventional signs for 1:1000 and 1:500). With neither, None (the engine
+    then asks for a size if P_D is enabled — never a guess).
     """
     norm_obj = ns.object_for(map_scale)
+    if object_name is not None and object_size_m is None:
+        raise InputError("object_size_m", "give the size of the named object in m (> 0) "
+                         "with its name")
     if object_size_m is not None:
         check_domain("object_size_m", object_size_m)
         shape_id = shape if shape is not None else (
             norm_obj.shape if norm_obj else ns.parameters["shape"])
         coef = ns.shape_coefficient(shape_id, "shape")
-        return ObjectSpec("object", float(object_size_m), shape_id, coef,
+        name = (object_name or "").strip()
+        en, ru = (name, name) if name else (USER_OBJECT_NAME["en"], USER_OBJECT_NAME["ru"])
+        return ObjectSpec(en, float(object_size_m), shape_id, coef,
                           Message("object_source.user"),
-                          name_ru="объект",
+                          name_ru=ru,
                           shape_ru=ns.shape_rows.get(shape_id, {}).get("name_ru", ""))
     if norm_obj is None:
         return None
@@ -116,6 +157,29 @@ def norm_object_spec(ns: NormSet, obj: MapObject, shape: str | None = None) -> O
                       shape_ru=ns.shape_rows.get(shape_id, {}).get("name_ru", ""))
 
 
+def recognition_rows(ns: NormSet, map_scale: float | None) -> list[MapObject]:
+    """The norm objects a UAV recognition table lists: those of the map scale; without a
+    map scale, every object once (the same name and size at two map scales is one row).
+
+    Parameters
+    ----------
+    ns : NormSet
+        The norm set.
+    map_scale : float or None
+        Mk of the plan [-].
+    """
+    if map_scale is not None:
+        return [o for o in ns.objects if o.map_scale == map_scale]
+    seen: set[tuple[str, float, str]] = set()
+    rows = []
+    for o in ns.objects:
+        key = (o.name, o.size_m, o.shape)
+        if key not in seen:
+            seen.add(key)
+            rows.append(o)
+    return rows
+
+
 def scan_job(
     *,
     map_scale: object,
@@ -129,6 +193,7 @@ def scan_job(
     norms: str | os.PathLike[str] = DEFAULT_NORM_SET,
     object_size_m: float | None = None,
     shape: str | None = None,
+    object_name: str | None = None,
     probability: float | None = None,
     height_formula: str | None = None,
     pr_coefficient: float | None = None,
@@ -171,7 +236,8 @@ def scan_job(
                  "pr_coefficient": pr_coefficient, "recognition_rounding": recognition_rounding}
     _check_overrides(overrides)
     rules = ns.rules(**overrides)
-    obj = resolve_object(ns, mk, object_size_m=object_size_m, shape=shape)
+    obj = resolve_object(ns, mk, object_size_m=object_size_m, shape=shape,
+                         object_name=object_name)
     steps = ns.scanner_steps(scanner, "scanner") if scanner is not None else ()
     overlap = (forward_overlap_pct if forward_overlap_pct is not None
                else rules.standard_forward_overlap_pct)
@@ -256,6 +322,7 @@ def uav_job(
     norms: str | os.PathLike[str] = DEFAULT_NORM_SET,
     object_size_m: float | None = None,
     shape: str | None = None,
+    object_name: str | None = None,
     probability: float | None = None,
     height_formula: str | None = None,
     r_max: float = 0.3,
@@ -362,11 +429,12 @@ def uav_job(
                 raise InputError("height_formula", f"must be {spec.describe()} for a digital "
                                  f"camera (got {height_formula!r})")
         rules = ns.rules(probability=probability, digital_height_formula=height_formula)
-        map_obj = resolve_object(ns, mk, object_size_m=object_size_m, shape=shape)
+        map_obj = resolve_object(ns, mk, object_size_m=object_size_m, shape=shape,
+                                 object_name=object_name)
         if map_obj is None and "PD" in rules.constraints:
             raise InputError("object_size_m", f"the norm set has no smallest object for map "
                              f"scale 1:{mk:g}; give the object size in m (> 0)")
-    objects = [norm_object_spec(ns, o, shape) for o in ns.objects]
+    objects = [norm_object_spec(ns, o, shape) for o in recognition_rows(ns, mk)]
     if map_obj is not None and map_obj.map_scale is None:
         objects.insert(0, map_obj)
     area_w = area_l = None

@@ -33,6 +33,7 @@ OPTION_NAMES = {
     "resolving_power_lpmm": "--resolving-power",
     "forward_overlap_pct": "--overlap-pct",
     "object_size_m": "--object-size-m",
+    "object_name": "--object-name",
     "shape": "--shape",
     "probability": "--probability",
     "height_formula": "--height-formula",
@@ -174,6 +175,11 @@ def _text(ctx: click.Context, param: click.Parameter, value: str) -> str:
     return value
 
 
+def _text_or_none(ctx: click.Context, param: click.Parameter, value: str | None
+                  ) -> str | None:
+    return None if value is None else _text(ctx, param, value)
+
+
 def norm_options(f: Callable[..., Any]) -> Callable[..., Any]:
     """The norm options shared by scan, uav and plan (spec/interface.md)."""
     for opt in reversed([
@@ -184,6 +190,9 @@ def norm_options(f: Callable[..., Any]) -> Callable[..., Any]:
                      "table's for the map scale)."),
         click.option("--shape", help="Object shape: circle|rectangle|angle|square|wall "
                      "(norm table)."),
+        click.option("--object-name", callback=_text_or_none,
+                     help="Name of your own object (with --object-size-m), as the reports "
+                     "show it."),
         click.option("--probability", type=float, callback=_finite,
                      help="Required recognition probability, 0 < P < 1 (default 0.75)."),
         click.option("--height-formula",
@@ -477,6 +486,7 @@ def plan(projects: tuple[str, ...], out_dir: str | None, xlsx_path: str | None,
     \b
     Examples:
       scanplan plan examples/instruction-2000-film.toml --out out/
+      scanplan plan examples/archive-12000-for-2000.toml
       scanplan plan examples/ --json
     """
     files: list[str] = []
@@ -589,9 +599,12 @@ def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: s
                       + [{"file": f, "message": "not planned: the batch stopped"}
                          for f in not_run]})
     else:
-        from .textfmt import batch_summary
+        from .textfmt import batch_summary, batch_warnings
 
         click.echo(batch_summary(done, failed))
+        warned = batch_warnings(done)
+        if warned:
+            click.echo(warned)
     for _path, msg in failed:
         click.echo(f"error: {msg}", err=True)
     if stopped:
@@ -608,6 +621,10 @@ from .cli_norms import norms  # noqa: E402  (the group needs `main` defined firs
 
 main.add_command(cameras)
 main.add_command(norms)
+
+from .cli_init import init  # noqa: E402
+
+main.add_command(init)
 
 
 def run() -> None:  # pragma: no cover - console entry used by python -m scanplan

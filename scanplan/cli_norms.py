@@ -140,7 +140,8 @@ def norms() -> None:
       (edit it in Excel)
       scanplan norms validate my-norms.xlsx
       scanplan norms import my-norms.xlsx --name my-enterprise
-      scanplan scan --norms my-enterprise ...
+      scanplan scan --norms my-enterprise --map-scale 2000 --relief 1 \\
+                    --photo-scale 10000 --camera rc30-153
     """
 
 

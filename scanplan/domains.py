@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 from .errors import InputError
 
-__all__ = ["DOMAINS", "MAX_LIST_ITEMS", "Domain", "check_domain", "check_range"]
+__all__ = ["DOMAINS", "HINTS", "MAX_LIST_ITEMS", "Domain", "check_domain", "check_range"]
 
 MAX_LIST_ITEMS = 100
 """Most values of a repeated input (photo scales of a sweep, scan pixels to check)."""
@@ -44,8 +44,8 @@ DOMAINS: dict[str, Domain] = {
     "frame_width_mm": Domain(1, 1000, "mm", meaning="frame side across track"),
     "frame_along_mm": Domain(1, 1000, "mm", meaning="frame side along track"),
     "resolving_power_lpmm": Domain(1, 2000, "lines/mm", meaning="resolving power of the photos R"),
-    "forward_overlap_pct": Domain(0, 100, "%", hi_open=True, meaning="forward overlap"),
-    "side_overlap_pct": Domain(0, 100, "%", hi_open=True, meaning="side overlap"),
+    "forward_overlap_pct": Domain(50, 100, "%", hi_open=True, meaning="forward overlap"),
+    "side_overlap_pct": Domain(10, 100, "%", hi_open=True, meaning="side overlap"),
     "scanner": Domain(0.1, 1000, "µm", meaning="scanner step"),
     "pixel_um": Domain(0.1, 1000, "µm", meaning="pixel size (scan pixel or sensor pitch)"),
     "bands": Domain(1, 16, meaning="bands per scanned frame"),
@@ -88,6 +88,14 @@ DOMAINS: dict[str, Domain] = {
 }
 """Input name → its domain. The names are the Python names of the inputs; the command line
 and the project file map them to their options and keys."""
+
+HINTS: dict[str, str] = {
+    "forward_overlap_pct": "a percentage, e.g. 60 (film) or 80 (UAV), not a fraction like "
+                           "0.8; under 50 % a point is on one photo only: no stereo model",
+    "side_overlap_pct": "a percentage, e.g. 30 (film) or 60 (UAV), not a fraction like "
+                        "0.6; under 10 % any drift leaves gaps between the strips",
+}
+"""Why a domain is what it is, added to the message when a value falls outside it."""
 
 
 def _bound(x: float) -> str:
@@ -154,5 +162,11 @@ def check_domain(name: str, value: float | None, domain: str | None = None) -> N
         The key of :data:`DOMAINS` when it differs from ``name``.
     """
     d = DOMAINS[domain or name]
-    check_range(name, value, lo=d.lo, hi=d.hi, lo_open=d.lo_open, hi_open=d.hi_open,
-                unit=d.unit)
+    try:
+        check_range(name, value, lo=d.lo, hi=d.hi, lo_open=d.lo_open, hi_open=d.hi_open,
+                    unit=d.unit)
+    except InputError as exc:
+        hint = HINTS.get(domain or name)
+        if hint is None:
+            raise
+        raise InputError(exc.field, f"{exc.message}: {hint}") from None

@@ -16,6 +16,7 @@ import numpy as np
 import numpy.typing as npt
 
 __all__ = [
+    "JPEG_COMPRESSION_RATIO",
     "HeightBand",
     "actual_overlap_pct",
     "data_volume_bytes",
@@ -24,6 +25,7 @@ __all__ = [
     "footprint_m",
     "ground_sample_distance_m",
     "height_band",
+    "jpeg_volume_bytes",
     "line_spacing_m",
     "max_exposure_for_blur_s",
     "max_speed_for_blur_ms",
@@ -648,3 +650,34 @@ def actual_overlap_pct(
     h0 = _positive("planned_height_m", planned_height_m)
     h = _positive("actual_height_m", actual_height_m)
     return 100.0 * (1.0 - (1.0 - p0 / 100.0) * h0 / h)
+
+
+JPEG_COMPRESSION_RATIO = 9.0
+"""Uncompressed 8-bit RGB size / JPEG file size of a camera's finest JPEG [–].
+
+Canon publishes the file sizes of its cameras' image-quality settings: the EOS 7D Mark II
+writes a 20.2-megapixel Large/Fine JPEG of about 6.6 MB (Canon U.S.A., "Photo capacity
+and movie recording time on memory cards – EOS 7D Mark II", support article ART168772,
+2017; Canon's test conditions: ISO 100, Standard picture style), while the same frame
+uncompressed (3 bands × 8 bits) is 60.6 MB: 9.2:1, rounded to 9:1. Detailed scenes (forest,
+town roofs) compress less, so this is an estimate, not a bound; the uncompressed volume is
+the one to size storage for."""
+
+
+def jpeg_volume_bytes(uncompressed_bytes: npt.ArrayLike,
+                      ratio: float = JPEG_COMPRESSION_RATIO) -> NDArrayFloat:
+    """An estimate of the same photos stored as JPEG: uncompressed bytes / ``ratio``.
+
+    Parameters
+    ----------
+    uncompressed_bytes : array_like
+        Uncompressed volume [bytes] (:func:`data_volume_bytes`).
+    ratio : float, optional
+        Compression ratio [–] (default :data:`JPEG_COMPRESSION_RATIO`, 9:1, with its source).
+
+    Returns
+    -------
+    numpy.ndarray
+        Bytes.
+    """
+    return np.asarray(uncompressed_bytes, dtype=np.float64) / ratio

@@ -41,6 +41,7 @@ __all__ = [
     "NormSet",
     "ScannerStep",
     "bundled_norms_dir",
+    "did_you_mean",
     "list_norm_sets",
     "load_norm_set",
     "parse_scale",
@@ -288,13 +289,10 @@ class NormSet:
         try:
             return self.cameras[camera_id]
         except KeyError:
-            close = get_close_matches(str(camera_id).lower(), list(self.cameras), n=3,
-                                      cutoff=0.6)
-            hint = f"did you mean {', '.join(close)}? " if close else ""
             raise NotFoundError(
                 field_name,
-                f"unknown camera {camera_id!r}; {hint}known: {', '.join(sorted(self.cameras))}"
-                " (scanplan cameras list)",
+                f"unknown camera {camera_id!r}{did_you_mean(camera_id, self.cameras)} Known: "
+                f"{', '.join(sorted(self.cameras))} (scanplan cameras list)",
             ) from None
 
     def scanner_steps(self, scanner: str, field_name: str = "--scanner") -> tuple[float, ...]:
@@ -302,14 +300,37 @@ class NormSet:
         try:
             return self.scanners[scanner]
         except KeyError:
-            close = get_close_matches(str(scanner).lower(), list(self.scanners), n=3,
-                                      cutoff=0.6)
-            hint = f"did you mean {', '.join(close)}? " if close else ""
             raise NotFoundError(
                 field_name,
-                f"unknown scanner {scanner!r}; {hint}known: {', '.join(sorted(self.scanners))}"
-                " (scanplan cameras list --kind scanner)",
+                f"unknown scanner {scanner!r}{did_you_mean(scanner, self.scanners)} Known: "
+                f"{', '.join(sorted(self.scanners))} (scanplan cameras list --kind scanner)",
             ) from None
+
+
+def did_you_mean(word: str, choices: Iterable[str]) -> str:
+    """``" — did you mean rc30-153?"`` for the closest ids (difflib), else ``"."``
+    (either ends the sentence naming the unknown id).
+
+    Case, spaces and underscores are ignored (``RC30_153`` finds ``rc30-153``).
+
+    Parameters
+    ----------
+    word : str
+        What the user typed.
+    choices : iterable of str
+        The known ids.
+    """
+    def key(x: str) -> str:
+        return str(x).strip().lower().replace("_", "-").replace(" ", "-")
+
+    by_key: dict[str, str] = {}
+    for c in choices:
+        by_key.setdefault(key(c), c)
+    close = get_close_matches(key(word), list(by_key), n=3, cutoff=0.6)
+    if not close:
+        return "."
+    names = " or ".join(by_key[c] for c in close)
+    return f" — did you mean {names}?"
 
 
 # ---------------------------------------------------------------------------------------

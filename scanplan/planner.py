@@ -501,11 +501,18 @@ class PixelReach:
 
     ``max_photo_scale`` is 0 when the pixel is coarser than P_R (no photo scale keeps the
     photo's resolving power); ``limit`` names the constraint that sets it.
+    ``max_photo_scale_interpretable`` also respects the interpretation limit: a finer pixel
+    lets P_D allow smaller photo scales, but past the limit the photo itself does not carry
+    the object (P_D < P_R), so both are reported.
     """
 
     pixel_um: float
     max_photo_scale: float
     limit: str
+    max_photo_scale_interpretable: float | None = None
+    """The same, no larger than the interpretation limit (the photo scale beyond which the
+    map's object cannot be interpreted even on the original photos, whatever the pixel);
+    None without an object."""
 
 
 @dataclass(frozen=True)
@@ -704,7 +711,8 @@ def plan_scan(inp: ScanInputs, rules: ScanRules) -> ScanPlan:
     reach: tuple[PixelReach, ...] = ()
     if pixels:
         m, lim = max_photo_scale(rules, np.asarray(pixels), **common)
-        reach = tuple(PixelReach(float(p), float(mm), str(ll))
+        reach = tuple(PixelReach(float(p), float(mm), str(ll),
+                                 None if mc_interp is None else min(float(mm), mc_interp))
                       for p, mm, ll in zip(pixels, m, lim, strict=True))
     # a dense sweep of photo scales for plots and the Sweep sheet (one vectorised call)
     lo, hi = float(mc.min()) * 0.5, float(mc.max()) * 2.0

@@ -62,6 +62,8 @@ KEYS: dict[str, dict[str, tuple[str, str]]] = {
         "shape": ("str", "shape of the object to interpret (default: the norm table's)"),
         "object_size_m": ("number", "size of the object to interpret [m] (default: the norm "
                           "table's for the map scale)"),
+        "object_name": ("str", "name of the project's own object (with object_size_m); shown "
+                        "in the reports as written"),
     },
     "film": {
         "camera": ("str", "catalogue camera id (or focal_mm + frame_mm)"),
@@ -71,7 +73,9 @@ KEYS: dict[str, dict[str, tuple[str, str]]] = {
                                  "(default: the camera's)"),
         "forward_overlap_pct": ("number", "forward overlap [%] (default 60)"),
         "side_overlap_pct": ("number", "side overlap [%] (default 30)"),
-        "photo_scales": ("scales", "candidate photo scales Mc (required)"),
+        "photo_scales": ("scales", "candidate photo scales Mc to choose from (or photo_scale)"),
+        "photo_scale": ("scale", "the scale of existing (archive) photos to scan, e.g. 12000: "
+                        "given, not chosen (instead of photo_scales)"),
         "scanner": ("str", "scanner id: scan pixels it offers (optional)"),
         "bands": ("int", "bands per scanned frame (default 1)"),
         "bits_per_band": ("int", "bits per band (default 8)"),
@@ -352,9 +356,21 @@ def parse_project(text: str, path: str | os.PathLike[str] = "project.toml") -> P
         raise InputError(f"{p}: map.relief_interval_m", "is required: the relief interval in m")
     if "film" not in flat and "uav" not in flat:
         raise InputError(f"{p}", "needs a [film] or a [uav] section (or both)")
-    if "film" in flat and "photo_scales" not in flat["film"]:
-        raise InputError(f"{p}: film.photo_scales", "is required in [film]: candidate photo "
-                         "scales, e.g. photo_scales = [5000, 10000, 15000]")
+    if "film" in flat:
+        film = flat["film"]
+        if "photo_scales" in film and "photo_scale" in film:
+            raise InputError(f"{p}: {_where(lines, 'film', 'photo_scale')}", "give either "
+                             "photo_scale (existing photos to scan) or photo_scales "
+                             "(candidates to choose from), not both")
+        if "photo_scales" not in film and "photo_scale" not in film:
+            raise InputError(f"{p}: film.photo_scales", "is required in [film]: candidate "
+                             "photo scales, e.g. photo_scales = [5000, 10000, 15000]; or, for "
+                             "existing photos, their scale: photo_scale = 12000")
+    _parse_scales(flat, lines, p)
+    if "object_name" in flat.get("norms", {}) and "object_size_m" not in flat["norms"]:
+        raise InputError(f"{p}: {_where(lines, 'norms', 'object_name')}", "needs "
+                         "object_size_m: the size of the named object in m, e.g. "
+                         "object_size_m = 0.15")
     locale = flat.get("project", {}).get("locale", "en")
     if locale not in ("en", "ru"):
         raise InputError(f"{p}: project.locale" + (f" (line {lines['project.locale']})"
@@ -364,6 +380,37 @@ def parse_project(text: str, path: str | os.PathLike[str] = "project.toml") -> P
     if "set" in flat.get("norms", {}):
         flat["norms"]["set"] = _norm_set_path(flat["norms"]["set"], p.parent)
     return Project(path=p, name=name, values=flat, lines=lines)
+
+
+def _where(lines: dict[str, int], section: str, key: str) -> str:
+    dotted = f"{section}.{key}"
+    return f"{dotted} (line {lines[dotted]})" if dotted in lines else dotted
+
+
+def _number(value: float) -> int | float:
+    """2000.0 → 2000 (a scale prints as 1:2000, never 1:2000.0)."""
+    return int(value) if float(value).is_integer() else value
+
+
+def _parse_scales(flat: dict[str, dict[str, Any]], lines: dict[str, int], p: Path) -> None:
+    """Scales written ``2000``, ``"1:2000"`` or ``"1:2 000"`` become numbers, once, here:
+    everything after the loader sees a denominator."""
+    from .norms import parse_scale
+
+    for section, key in (("map", "scale"), ("film", "photo_scale")):
+        if key in flat.get(section, {}):
+            where = f"{p}: {_where(lines, section, key)}"
+            try:
+                flat[section][key] = _number(parse_scale(flat[section][key], where))
+            except InputError as exc:
+                raise InputError(where, exc.message) from None
+    if "photo_scales" in flat.get("film", {}):
+        where = f"{p}: {_where(lines, 'film', 'photo_scales')}"
+        try:
+            flat["film"]["photo_scales"] = [_number(parse_scale(v, where))
+                                            for v in flat["film"]["photo_scales"]]
+        except InputError as exc:
+            raise InputError(where, exc.message) from None
 
 
 def load_project(path: str | os.PathLike[str]) -> Project:

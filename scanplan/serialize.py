@@ -131,7 +131,7 @@ def uav_plan_dict(plan: UavPlan, ns: NormSet | None = None) -> dict[str, Any]:
         "max_exposure_s": plan.max_exposure_s,
         "max_speed_ms": plan.max_speed_ms,
         "tilted_corner_gsd_m": plan.tilted_corner_gsd_m,
-        "flight": plan.flight,
+        "flight": _flight_json(plan.flight),
         "recognition": [asdict(r) for r in plan.recognition],
         "map_object": asdict(inp.map_object) if inp.map_object else None,
         "constraints": {lim.id: {k: v for k, v in asdict(lim).items() if k != "id"}
@@ -165,6 +165,7 @@ def plan_result_dict(result: Any) -> dict[str, Any]:
         rec = f.recommended
         spec["film"] = {
             "recommended_photo_scale": scale_value(rec.photo_scale) if rec else None,
+            "archive": f.archive,
             "reason": f.reason,
             "binding": rec.binding if rec else None,
             "scan_pixel_um": rec.scan_pixel_um if rec else None,
@@ -205,3 +206,15 @@ def plan_result_dict(result: Any) -> dict[str, Any]:
     doc["specification"] = spec
     doc["warnings"] = [warning_dict(w) for w in result.warnings]
     return _clean(doc)
+
+
+def _flight_json(flight: dict[str, Any]) -> dict[str, Any]:
+    """The flight dict, plus ``data_volume_jpeg_bytes`` (an estimate: the uncompressed
+    ``data_volume_bytes`` / :data:`scanplan.flight.JPEG_COMPRESSION_RATIO`) and the ratio."""
+    from .flight import JPEG_COMPRESSION_RATIO, jpeg_volume_bytes
+
+    out = dict(flight)
+    if "data_volume_bytes" in out:
+        out["data_volume_jpeg_bytes"] = float(jpeg_volume_bytes(out["data_volume_bytes"]))
+        out["jpeg_compression_ratio"] = JPEG_COMPRESSION_RATIO
+    return out

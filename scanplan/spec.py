@@ -25,6 +25,7 @@ from .api import (
     scan_job,
     uav_job,
 )
+from .archive import archive_film
 from .domains import DOMAINS, check_domain
 from .errors import InputError
 from .messages import Message
@@ -66,6 +67,7 @@ _UAV_KEYS = {
     "height_formula": "uav.height_formula",
 }
 _NORM_KEYS = {"object_size_m": "norms.object_size_m", "shape": "norms.shape",
+              "object_name": "norms.object_name",
               "probability": "norms.probability", "height_formula": "norms.height_formula",
               "pr_coefficient": "norms.pr_coefficient", "--norms": "norms.set",
               "recognition_rounding": "norms.set"}
@@ -92,6 +94,7 @@ class FilmSpec:
     strips: int | None
     scanned_gigabytes: float | None
     side_overlap_pct: float
+    archive: bool = False  # existing photos at a given scale ([film] photo_scale)
 
 
 @dataclass(frozen=True)
@@ -120,14 +123,17 @@ class PlanResult:
 
 def _film(project: Project) -> FilmSpec:
     g = project.get
+    archive_scale = g("film", "photo_scale")
     kw: dict[str, Any] = dict(
         map_scale=g("map", "scale"), relief_interval_m=g("map", "relief_interval_m"),
-        photo_scales=g("film", "photo_scales"), camera=g("film", "camera"),
+        photo_scales=([archive_scale] if archive_scale is not None
+                      else g("film", "photo_scales")), camera=g("film", "camera"),
         focal_mm=g("film", "focal_mm"), frame_mm=g("film", "frame_mm"),
         resolving_power_lpmm=g("film", "resolving_power_lpmm"),
         forward_overlap_pct=g("film", "forward_overlap_pct"),
         norms=g("norms", "set", "gkinp-02-036-02"), object_size_m=g("norms", "object_size_m"),
-        shape=g("norms", "shape"), probability=g("norms", "probability"),
+        shape=g("norms", "shape"), object_name=g("norms", "object_name"),
+        probability=g("norms", "probability"),
         height_formula=g("norms", "height_formula"),
         pr_coefficient=g("norms", "pr_coefficient"), scanner=g("film", "scanner"),
         bands=g("film", "bands", 1), bits_per_band=g("film", "bits_per_band", 8))
@@ -140,7 +146,18 @@ def _film(project: Project) -> FilmSpec:
     try:
         job = scan_job(**kw)
     except InputError as exc:
-        raise _as_project_error(project, exc, _FILM_KEYS) from None
+        keys = (_FILM_KEYS if archive_scale is None
+                else {**_FILM_KEYS, "photo_scale": "film.photo_scale"})
+        raise _as_project_error(project, exc, keys) from None
+    if archive_scale is not None:
+        job, best, reason = archive_film(job)
+    else:
+        best, reason = _choose_photo_scale(job)
+    return _film_spec(project, job, best, reason, side)
+
+
+def _choose_photo_scale(job: ScanJob) -> tuple[ScanScenario | None, str]:
+    """Among candidate photo scales: the smallest that meets every constraint."""
     plan = job.plan
     limit = plan.interpretation_limit_photo_scale
     finest = DOMAINS["pixel_um"].lo  # below it no scanner (nor film) gives a meaningful pixel
@@ -161,6 +178,13 @@ def _film(project: Project) -> FilmSpec:
         if any(s.scan_pixel_um < finest for s in plan.scenarios):
             why.append(Message("no_feasible_photo_scale.pixel", finest=finest))
         reason = Message("no_feasible_photo_scale", why=why)
+    return best, reason
+
+
+def _film_spec(project: Project, job: ScanJob, best: ScanScenario | None, reason: str,
+               side: float) -> FilmSpec:
+    """Frames and scanned volume of the recommended photo scale over ``[area]``."""
+    plan = job.plan
     frames = strips = None
     gigabytes = None
     area = _area(project)
@@ -175,7 +199,8 @@ def _film(project: Project) -> FilmSpec:
         frames = strips * per_strip
         gigabytes = frames * best.frame_megabytes / 1000.0
     return FilmSpec(job=job, recommended=best, reason=reason, frames=frames, strips=strips,
-                    scanned_gigabytes=gigabytes, side_overlap_pct=side)
+                    scanned_gigabytes=gigabytes, side_overlap_pct=side,
+                    archive=project.get("film", "photo_scale") is not None)
 
 
 def _area(project: Project) -> tuple[float, float] | None:
@@ -204,7 +229,8 @@ def _uav_kwargs(project: Project, height_m: float) -> dict[str, Any]:
         f_number=g("uav", "f_number"), height_tolerance_pct=g("uav", "height_tolerance_pct", 0.0),
         map_scale=g("map", "scale"), relief_interval_m=g("map", "relief_interval_m"),
         norms=g("norms", "set", "gkinp-02-036-02"), object_size_m=g("norms", "object_size_m"),
-        shape=g("norms", "shape"), probability=g("norms", "probability"),
+        shape=g("norms", "shape"), object_name=g("norms", "object_name"),
+        probability=g("norms", "probability"),
         height_formula=g("uav", "height_formula"),
         max_height_m=g("uav", "max_height_m"), gsd_cm=g("uav", "gsd_cm"),
         r_max=g("uav.target", "r_max", 0.3), r_min=g("uav.target", "r_min", 0.1),

@@ -112,13 +112,19 @@ def format_scan_plan(plan: ScanPlan, norm_name: str = "", norm_title: str = "") 
         who = " and ".join(x for x in (f"scanner {inp.scanner}" if inp.scanner else "",
                                        "--pixel-um" if inp.candidate_pixels_um else "") if x)
         lines.append(f"Largest photo scale each scan pixel supports ({who}):")
-        rows = [["pixel µm", "photo scale", "limited by"]]
+        both = plan.interpretation_limit_photo_scale is not None
+        rows = [["pixel µm", "largest photo scale", "limited by"]
+                + (["with the object interpretable"] if both else [])]
         for r in plan.max_photo_scales:
             if r.max_photo_scale > 0:
-                rows.append([f"{r.pixel_um:g}", f"1:{math.floor(r.max_photo_scale):d}", r.limit])
+                row = [f"{r.pixel_um:g}", f"1:{math.floor(r.max_photo_scale):d}", r.limit]
             else:
-                rows.append([f"{r.pixel_um:g}", "none", "PR (pixel coarser than P_R)"])
-        lines.append(table(rows, align="rrl"))
+                row = [f"{r.pixel_um:g}", "none", "PR (pixel coarser than P_R)"]
+            if both:
+                mi = r.max_photo_scale_interpretable
+                row.append(f"1:{math.floor(mi):d}" if mi else "none")
+            rows.append(row)
+        lines.append(table(rows, align="rrlr" if both else "rrl"))
     if plan.warnings:
         lines.append("")
         lines.append("Warnings:")
@@ -191,7 +197,7 @@ def format_uav_plan(plan: UavPlan, norm_name: str = "") -> str:
                   ["flight length / time", f"{fl['flight_length_m'] / 1000:.1f} km / "
                    + (f"{fl['flight_time_s'] / 60:.0f} min" if fl.get("flight_time_s") else "—")]]
         if "data_volume_bytes" in fl:
-            frows.append(["data volume", f"{fl['data_volume_bytes'] / 1e9:.1f} GB"])
+            frows.append(["data volume", _volume(fl["data_volume_bytes"])])
     lines.append(table([[f"  {a}", b] for a, b in frows], align="ll"))
     if plan.recognition:
         lines += ["", "Recognition probability of the norm objects (P = exp(−(B·L/L_obj)²)):"]
@@ -245,7 +251,9 @@ _TERMINAL: dict[str, dict[str, str]] = {
         "photo_scale": "recommended photo scale", "scan_pixel": "scan pixel",
         "scanner_step": "scanner step", "binding": "binding constraint",
         "recognition": "recognition of the map object", "frame": "scanned frame",
-        "frames": "frames for the area", "strips": "strips", "scanned": "scanned",
+        "frames": "frames for the area", "strips": "strips",
+        "scanned": "scanned, uncompressed",
+        "photo_scale_archive": "photo scale (existing photos, given)",
         "height": "recommended flight height", "flown": "flown up to",
         "max_height": "maximum planned height", "gsd": "GSD / ground resolution L",
         "overlaps": "overlaps / base / spacing", "interval": "photo interval",
@@ -269,7 +277,9 @@ _TERMINAL: dict[str, dict[str, str]] = {
         "photo_scale": "рекомендуемый масштаб снимков", "scan_pixel": "пиксель сканирования",
         "scanner_step": "шаг сканера", "binding": "определяющее условие",
         "recognition": "вероятность распознавания объекта карты", "frame": "объём снимка",
-        "frames": "снимков на объект", "strips": "маршрутов", "scanned": "сканирование",
+        "frames": "снимков на объект", "strips": "маршрутов",
+        "scanned": "сканирование без сжатия",
+        "photo_scale_archive": "масштаб снимков (имеющиеся снимки, задан)",
         "height": "рекомендуемая высота полёта", "flown": "фактически до",
         "max_height": "максимальная плановая высота", "gsd": "GSD / линейное разрешение L",
         "overlaps": "перекрытия / базис / между маршрутами",
@@ -351,7 +361,8 @@ def format_plan_result(result: Any, locale: str | None = None) -> str:
             px = (f"{_um_loc(s.scan_pixel_um, loc)} {T['um']}"
                   + (f" → {T['scanner_step']} {_g(s.scanner_pixel_um, loc)} {T['um']}"
                      if s.scanner_pixel_um else ""))
-            rows = [[f"  {T['photo_scale']}", _sc(s.photo_scale, loc)],
+            rows = [[f"  {T['photo_scale_archive' if f.archive else 'photo_scale']}",
+                     _sc(s.photo_scale, loc)],
                     [f"  {T['scan_pixel']}", px],
                     [f"  {T['binding']}", f"{s.binding} ({cname(s.binding)})"],
                     [f"  {T['recognition']}", _n(s.recognition_probability, 2, loc)],
@@ -447,8 +458,7 @@ def _uav_summary(u: Any, loc: str, T: dict[str, str], cname: Any) -> list[str]:
                      + (f", {_n(fl['flight_time_s'] / 60, 0, loc)} {T['min']}"
                         if fl.get("flight_time_s") else "")])
         if "data_volume_bytes" in fl:
-            rows.append([f"  {T['volume']}",
-                         f"{_n(fl['data_volume_bytes'] / 1e9, 1, loc, True)} {T['gb']}"])
+            rows.append([f"  {T['volume']}", _volume(fl["data_volume_bytes"], loc)])
     rows.append([f"  {T['blur']}", f"{T['exposure']} ≤ 1/{math.ceil(1 / p.max_exposure_s):d} "
                  f"{T['s']} {T['or_speed']} ≤ {_n(p.max_speed_ms, 1, loc)} {T['ms']}"])
     lines.append(table(rows, align="ll"))
@@ -477,3 +487,29 @@ def batch_summary(done: list[tuple[str, Any]], failed: list[tuple[str, str]]) ->
         for path, msg in failed:
             out += "\n" + _wrap(f"{os.path.basename(path)}: {msg}", "  ! ")
     return out
+
+
+def _volume(uncompressed_bytes: float, loc: str = "en") -> str:
+    """``163.5 GB uncompressed (JPEG ≈ 18.2 GB at 9:1)``: the JPEG estimate of
+    :func:`scanplan.flight.jpeg_volume_bytes`, in the locale's words and numbers."""
+    from .flight import JPEG_COMPRESSION_RATIO, jpeg_volume_bytes
+
+    jpeg = float(jpeg_volume_bytes(uncompressed_bytes)) / 1e9
+    full = _n(uncompressed_bytes / 1e9, 1, loc, True)
+    ratio = _g(JPEG_COMPRESSION_RATIO, loc)
+    if loc == "ru":
+        return f"{full} ГБ без сжатия (JPEG ≈ {_n(jpeg, 1, loc, True)} ГБ при {ratio}:1)"
+    return f"{full} GB uncompressed (JPEG ≈ {_n(jpeg, 1, loc, True)} GB at {ratio}:1)"
+
+
+def batch_warnings(done: list[tuple[str, Any]]) -> str:
+    """The warnings of each project of a batch, under its file name ("" if none)."""
+    out: list[str] = []
+    for path, r in done:
+        if not r.warnings:
+            continue
+        out += ["", f"Warnings — {os.path.basename(path)}:"]
+        for w in r.warnings:
+            mark = "!" if w.severity == "warning" else "i"
+            out.append(_wrap(f"{w.text(r.meta.locale)} [{w.code}]", f"  {mark} "))
+    return "\n".join(out)

@@ -554,7 +554,7 @@ CORPUS: tuple[Case, ...] = (
         "duplicate-key",
         _duplicate_key,
         False,
-        ("'objects'!A6",),
+        ("'objects'!A8",),  # after the 6 bundled rows (1:500 and 1:1000 added, issue 13)
         ("duplicate map_scale", "'objects'!A2"),
     ),
     Case(
@@ -575,7 +575,7 @@ CORPUS: tuple[Case, ...] = (
         "many-errors",
         _many_errors,
         False,
-        ("'objects'!D6", "'objects'!D25"),
+        ("'objects'!D8", "'objects'!D27"),
         ("30 problems", "+10 more"),
     ),
     # --- hostile or oversized files

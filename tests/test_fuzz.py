@@ -136,7 +136,7 @@ def scan_args(draw) -> list[str]:
     if draw(st.booleans()):
         args += ["--probability", num(draw(st.floats(0.05, 0.99)))]
     if draw(st.booleans()):
-        args += ["--overlap-pct", num(draw(st.floats(0, 95)))]
+        args += ["--overlap-pct", num(draw(st.floats(50, 95)))]
     if draw(st.booleans()):
         args += ["--height-formula", draw(st.sampled_from(["instruction", "parallax"]))]
     if draw(st.booleans()):
@@ -176,8 +176,8 @@ def uav_args(draw) -> list[str]:
         args += ["--speed-ms", num(draw(with_edges(1, 80))),
                  "--exposure-s", num(draw(with_edges(1e-5, 0.01)))]
     if draw(st.booleans()):
-        args += ["--overlap-pct", num(draw(st.floats(0, 95))),
-                 "--side-overlap-pct", num(draw(st.floats(0, 90)))]
+        args += ["--overlap-pct", num(draw(st.floats(50, 95))),
+                 "--side-overlap-pct", num(draw(st.floats(10, 90)))]
     if draw(st.booleans()):
         r_max = draw(st.floats(0.05, 1.0))
         args += ["--r-max", num(r_max), "--r-min", num(draw(st.floats(0, 1)) * r_max)]
@@ -206,7 +206,7 @@ SCAN_BAD: dict[str, list[str]] = {
     "--photo-scale": BAD_SCALE,
     "--relief": [*BAD_POSITIVE, "1e-5", "5000"],
     "--resolving-power": [*BAD_POSITIVE, "0.5", "1e5"],
-    "--overlap-pct": [*NOT_A_NUMBER, "-1", "100", "150", "1e308"],
+    "--overlap-pct": [*NOT_A_NUMBER, "-1", "100", "150", "1e308", "0.8"],
     "--object-size-m": [*BAD_POSITIVE, "1e-9", "1e9"],
     "--probability": [*NOT_A_NUMBER, "0", "1", "1.5", "-0.1"],
     "--pr-coefficient": [*BAD_POSITIVE, "3"],
@@ -232,8 +232,8 @@ UAV_BAD: dict[str, list[str]] = {
     "--height-tolerance-pct": [*NOT_A_NUMBER, "-1", "100", "1e9"],
     "--speed-ms": [*NOT_A_NUMBER, "-1", "1e6"],
     "--exposure-s": [*BAD_POSITIVE, "100"],
-    "--overlap-pct": [*NOT_A_NUMBER, "-5", "100", "101"],
-    "--side-overlap-pct": [*NOT_A_NUMBER, "-5", "100"],
+    "--overlap-pct": [*NOT_A_NUMBER, "-5", "100", "101", "0.8"],
+    "--side-overlap-pct": [*NOT_A_NUMBER, "-5", "100", "0.6"],
     "--f-number": [*BAD_POSITIVE, "0.1", "500"],
     "--r-max": [*NOT_A_NUMBER, "-0.1", "1.5"],
     "--random-speed-ms": [*NOT_A_NUMBER, "-1", "1e9"],
@@ -444,8 +444,8 @@ def _valid_by_accident(name: str, value: object) -> bool:
     """Values of the bad list that happen to be valid for this particular input."""
     if isinstance(value, bool) or not isinstance(value, int | float):
         return False
-    zero_ok = ("speed_ms", "random_speed_ms", "roll_rate_rad_s", "forward_overlap_pct",
-               "side_overlap_pct", "height_tolerance_pct", "roll_deg", "pitch_deg")
+    zero_ok = ("speed_ms", "random_speed_ms", "roll_rate_rad_s", "height_tolerance_pct",
+               "roll_deg", "pitch_deg")
     tiny_ok = (*zero_ok, "r_max", "threshold_k0", "shift_factor")
     if name in zero_ok and value == 0:
         return True
@@ -596,10 +596,6 @@ FREE_TEXT = {("project", "name"), ("project", "customer"), ("project", "contract
              ("project", "approver_position"), ("project", "approver_name")}
 # values the key accepts although they are in the generic bad list
 ACCEPTS = {
-    ("film", "forward_overlap_pct"): {"0", "-0.0"},
-    ("film", "side_overlap_pct"): {"0", "-0.0"},
-    ("uav", "forward_overlap_pct"): {"0", "-0.0"},
-    ("uav", "side_overlap_pct"): {"0", "-0.0"},
     ("uav", "height_tolerance_pct"): {"0", "-0.0"},
     ("uav", "roll_deg"): {"0", "-1", "-0.0"},
     ("uav", "pitch_deg"): {"0", "-1", "-0.0"},

@@ -218,6 +218,7 @@ def emitted(tmp_path_factory) -> dict[str, list[Any]]:
         base.norm_set.rules(), multi_ray="strip"))))
     film_toml = (EXAMPLES / "instruction-2000-film.toml").read_text(encoding="utf-8")
     uav_toml = (EXAMPLES / "uav-canon-2000.toml").read_text(encoding="utf-8")
+    archive_toml = (EXAMPLES / "archive-12000-for-2000.toml").read_text(encoding="utf-8")
     variants = {
         "plan film": film_toml,
         "plan no photo scale": film_toml.replace("photo_scales = [6000, 8000, 10000]",
@@ -230,6 +231,13 @@ def emitted(tmp_path_factory) -> dict[str, list[Any]]:
         "plan uav within": uav_toml.replace("height_m = 300", "height_m = 200"),
         "plan uav no height": uav_toml.replace("height_m = 300\n", ""),
         "plan uav nothing resolved": uav_toml.replace("r_min = 0.1", "r_min = 0.3"),
+        # archive photos: the scale is given (issue 13)
+        "plan archive": archive_toml,
+        "plan archive readable": archive_toml.replace('photo_scale = "1:12000"',
+                                                      "photo_scale = 8000"),
+        "plan archive fine scanner": (EXAMPLES / "map-10000-relief-1m.toml").read_text(
+            encoding="utf-8").replace("photo_scales = [15000, 20000, 25000, 30000]",
+                                      "photo_scale = 30000"),
     }
     for name, text in variants.items():
         r = _project(tmp, name.replace(" ", "-"), text)

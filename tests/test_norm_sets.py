@@ -24,7 +24,7 @@ def test_bundled_sets_load(norms, printed_norms):
     assert norms.shapes == {"circle": 0.97, "rectangle": 1.45, "angle": 1.58, "square": 1.72,
                             "wall": 2.78}
     assert [(o.map_scale, o.size_m) for o in norms.objects] == [
-        (2000, 0.2), (5000, 1.5), (10000, 2.2), (25000, 2.2)]
+        (500, 0.15), (1000, 0.2), (2000, 0.2), (5000, 1.5), (10000, 2.2), (25000, 2.2)]
     assert all(norms.parameter_sources[k] for k in norms.parameters)
     names = {n for n, _ in list_norm_sets()}
     assert {"gkinp-02-036-02", "gkinp-02-036-02-printed"} <= names

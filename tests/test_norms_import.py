@@ -147,7 +147,7 @@ def test_cap_and_json_keep_all(corpus_dir):
     assert res.exit_code == 2
     data = json.loads(res.stdout)
     assert data["ok"] is False and data["error_count"] == 45 and len(data["errors"]) == 45
-    assert data["errors"][0]["address"] == "'objects'!D6"
+    assert data["errors"][0]["address"] == "'objects'!D8"  # after the 6 bundled rows
     res = CliRunner().invoke(norms_group, ["validate", str(path)])
     assert res.exit_code == 2
     assert "+25 more" in res.stderr
@@ -593,7 +593,7 @@ def test_cli_flow(tmp_path, user_dir):
     t = tmp_path / "t.xlsx"
     assert runner.invoke(norms_group, ["template", str(t)]).exit_code == 0
     res = runner.invoke(norms_group, ["validate", str(t), "--json"])
-    assert res.exit_code == 0 and json.loads(res.stdout)["tables"]["objects"] == 4
+    assert res.exit_code == 0 and json.loads(res.stdout)["tables"]["objects"] == 6
     res = runner.invoke(norms_group, ["import", str(t), "--name", "cli-set", "--json"])
     assert res.exit_code == 0, res.output
     assert json.loads(res.stdout)["name"] == "cli-set"

@@ -183,8 +183,9 @@ def test_sweep_sheet_and_norms_used_rows(both_en, scan):
     assert ws["G2"].value == exact(sweep["scan_pixel_um"][0])
     assert is_marked(ws.cell(2, 2 + scan.plan.rules.constraints.index(sweep["binding"][0])))
     norms = both_en["Norms"]
-    row = find_row(norms, B="poles, hydrants")
-    assert norms[f"A{row}"].value == 2000 and is_marked(norms[f"A{row}"])
+    row = find_row(norms, A=2000, B="poles, hydrants")
+    assert is_marked(norms[f"A{row}"])
+    assert not is_marked(norms[f"A{find_row(norms, A=1000, B='poles, hydrants')}"])
     assert not is_marked(norms[f"A{find_row(norms, B='communal wells')}"])
 
 

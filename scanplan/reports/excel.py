@@ -47,6 +47,7 @@ from openpyxl.worksheet.pagebreak import Break
 from openpyxl.worksheet.worksheet import Worksheet
 from openpyxl.writer.excel import ExcelWriter
 
+from .. import flight as FL
 from .._version import __version__
 from ..planner import CONSTRAINTS, height_formula_name
 from . import ReportMeta, report_datetime, write_atomic
@@ -323,6 +324,10 @@ class _Book:
     def obj_name(self, ns: NormSet, name: str, map_scale: int | None) -> str:
         """A norm object's name in the report's language (unnamed: "object of the given
         size")."""
+        from ..api import USER_OBJECT_NAME
+
+        if map_scale is None and name == USER_OBJECT_NAME["en"]:  # a project's unnamed object
+            return name_title("", "", self.loc)
         for obj in ns.objects:
             if obj.name == name and (map_scale is None or obj.map_scale == map_scale):
                 return object_title(obj, self.loc)
@@ -474,8 +479,9 @@ class _Book:
         if spec.film is not None:
             f, rec = spec.film, spec.film.recommended
             if rec is not None:
-                row = self.kv(ws, row, self.t("spec_recommended_photo_scale"), rec.photo_scale,
-                              '"1:"0')
+                key = ("spec_archive_photo_scale" if f.archive
+                       else "spec_recommended_photo_scale")
+                row = self.kv(ws, row, self.t(key), rec.photo_scale, '"1:"0')
                 row = self.kv(ws, row, self.t("scan_pixel_um"), rec.scan_pixel_um, "0.0")
                 if rec.scanner_pixel_um is not None:
                     row = self.kv(ws, row, self.t("scanner_pixel_um"), rec.scanner_pixel_um,
@@ -509,6 +515,8 @@ class _Book:
             if "data_volume_bytes" in p.flight:
                 row = self.kv(ws, row, self.t("spec_data_gb"),
                               p.flight["data_volume_bytes"] / 1e9, "#,##0.0")
+                row = self.kv(ws, row, self.t("data_volume_jpeg_gb"), float(
+                    FL.jpeg_volume_bytes(p.flight["data_volume_bytes"])) / 1e9, "#,##0.0")
             row = self._wide_kv(ws, row, self.t("spec_reason"),
                                 self.text(u.reason, u.job.norm_set))
         if spec.comparison:
@@ -559,14 +567,17 @@ class _Book:
         row += 1
         if plan.max_photo_scales:
             row = self.section(ws, row + 1, self.t("xlsx_reach"))
-            _header(ws, row, [self.t("pixel_um"), self.t("xlsx_max_photo_scale"),
-                              self.t("xlsx_limit")])
+            both = plan.interpretation_limit_photo_scale is not None
+            _header(ws, row, [self.t("pixel_um"), self.t("reach_pixel"), self.t("xlsx_limit")]
+                    + ([self.t("reach_interpretable")] if both else []))
             row += 1
             for reach in plan.max_photo_scales:
                 put_num(ws, row, 1, reach.pixel_um, UM)
                 put_num(ws, row, 2, reach.max_photo_scale if reach.max_photo_scale > 0
                         else None, SCALE)
                 put_text(ws, row, 3, self.cname(reach.limit))
+                if both:
+                    put_num(ws, row, 4, reach.max_photo_scale_interpretable or None, SCALE)
                 row += 1
         return row
 

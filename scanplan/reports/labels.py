@@ -45,7 +45,7 @@ LABELS: dict[str, dict[str, str]] = {
         "scanner": "Scanner",
         "scan_pixel_um": "Scan pixel, µm",
         "scanner_pixel_um": "Scanner step, µm",
-        "frame_megabytes": "Scanned frame, MB",
+        "frame_megabytes": "Scanned frame, uncompressed, MB",
         "pixel_um": "Pixel, µm",
         "constraint": "Constraint",
         "value": "Value",
@@ -177,7 +177,7 @@ LABELS: dict[str, dict[str, str]] = {
         "xlsx_flight_photos": "Photos",
         "xlsx_flight_flight_length_m": "Length of the strips, m",
         "xlsx_flight_flight_time_s": "Time on the strips, s",
-        "xlsx_flight_data_volume_bytes": "Data volume, bytes",
+        "xlsx_flight_data_volume_bytes": "Data volume, uncompressed, bytes",
         "xlsx_mtf_components": "Modulation transfer functions at the frame centre",
         "xlsx_mtf_haze": "Haze",
         "xlsx_mtf_turbulence": "Turbulence",
@@ -259,7 +259,7 @@ LABELS: dict[str, dict[str, str]] = {
         "pdf_overlap_at": "Forward overlap at {lo} / {hi} m, %",
         "pdf_strips": "Strips × photos per strip = photos",
         "pdf_flight_length": "Flight length, km / time, min",
-        "pdf_data_volume": "Data volume, GB",
+        "pdf_data_volume": "Data volume, uncompressed, GB",
         "pdf_recognition": "Recognition probability of the norm objects, P = exp(−(B·L/L_obj)²)",
         "pdf_object": "Object",
         "pdf_size_m": "Size, m",
@@ -301,11 +301,11 @@ LABELS: dict[str, dict[str, str]] = {
         "spec_title": "Specification",
         "spec_recommended_photo_scale": "Recommended photo scale",
         "spec_frames": "Frames for the area",
-        "spec_scanned_gb": "Scanned volume, GB",
+        "spec_scanned_gb": "Scanned volume, uncompressed, GB",
         "spec_recommended_height_m": "Recommended flight height, m",
         "spec_planned_height_m": "Planned flight height, m",
         "spec_photos": "Photos for the area",
-        "spec_data_gb": "Data volume, GB",
+        "spec_data_gb": "Data volume, uncompressed, GB",
         "spec_reason": "Why",
         "spec_comparison": "Film and UAV side by side",
         "spec_quantity": "Quantity",
@@ -315,7 +315,6 @@ LABELS: dict[str, dict[str, str]] = {
         "spec_cmp_ground_resolution": "resolution on the ground (A / L)",
         "spec_cmp_recognition": "recognition probability of the map object",
         "spec_cmp_frames": "frames / photos",
-        "spec_cmp_data_volume": "data volume",
         "pdf_h_max_flown": "highest flown at the maximum",
         "pdf_h_ceiling": "altitude ceiling",
         "max_planned_height_m": "Maximum planned flight height, m",
@@ -346,6 +345,7 @@ LABELS: dict[str, dict[str, str]] = {
         "pdf_height_forms": "Height error σ_Z = {sigma} m at the highest flown height {h} m "
                             "(required V_z = {vz} m, RMS). Maximum planned height by height "
                             "formula — {forms}.",
+        "spec_cmp_data_volume": "data volume, uncompressed",
     },
     "ru": {
         "title_scan": "Техническое задание на сканирование аэрофотоснимков",
@@ -383,7 +383,7 @@ LABELS: dict[str, dict[str, str]] = {
         "scanner": "Сканер",
         "scan_pixel_um": "Размер пикселя сканирования, мкм",
         "scanner_pixel_um": "Шаг сканера, мкм",
-        "frame_megabytes": "Объём снимка, МБ",
+        "frame_megabytes": "Объём снимка без сжатия, МБ",
         "pixel_um": "Пиксель, мкм",
         "constraint": "Условие",
         "value": "Значение",
@@ -520,7 +520,7 @@ LABELS: dict[str, dict[str, str]] = {
         "xlsx_flight_photos": "Всего снимков",
         "xlsx_flight_flight_length_m": "Длина маршрутов, м",
         "xlsx_flight_flight_time_s": "Время на маршрутах, с",
-        "xlsx_flight_data_volume_bytes": "Объём данных, байт",
+        "xlsx_flight_data_volume_bytes": "Объём данных без сжатия, байт",
         "xlsx_mtf_components": "Функции передачи модуляции в центре кадра",
         "xlsx_mtf_haze": "Дымка",
         "xlsx_mtf_turbulence": "Турбулентность",
@@ -601,7 +601,7 @@ LABELS: dict[str, dict[str, str]] = {
         "pdf_overlap_at": "Продольное перекрытие на {lo} / {hi} м, %",
         "pdf_strips": "Маршрутов × снимков в маршруте = снимков",
         "pdf_flight_length": "Длина маршрутов, км / время, мин",
-        "pdf_data_volume": "Объём данных, ГБ",
+        "pdf_data_volume": "Объём данных без сжатия, ГБ",
         "pdf_recognition": "Вероятность распознавания объектов по нормативам, P = "
                            "exp(−(B·L/L_obj)²)",
         "pdf_object": "Объект",
@@ -647,11 +647,11 @@ LABELS: dict[str, dict[str, str]] = {
         "spec_title": "Техническое задание",
         "spec_recommended_photo_scale": "Рекомендуемый масштаб снимков",
         "spec_frames": "Число снимков на объект",
-        "spec_scanned_gb": "Объём сканирования, ГБ",
+        "spec_scanned_gb": "Объём сканирования без сжатия, ГБ",
         "spec_recommended_height_m": "Рекомендуемая высота полёта, м",
         "spec_planned_height_m": "Плановая высота полёта, м",
         "spec_photos": "Число снимков на объект",
-        "spec_data_gb": "Объём данных, ГБ",
+        "spec_data_gb": "Объём данных без сжатия, ГБ",
         "spec_reason": "Обоснование",
         "spec_comparison": "Сравнение плёночной съёмки и БПЛА",
         "spec_quantity": "Показатель",
@@ -661,7 +661,6 @@ LABELS: dict[str, dict[str, str]] = {
         "spec_cmp_ground_resolution": "Разрешение на местности (A / L)",
         "spec_cmp_recognition": "Вероятность распознавания объекта карты",
         "spec_cmp_frames": "Число снимков",
-        "spec_cmp_data_volume": "Объём данных",
         "pdf_h_max_flown": "наибольшая фактическая при максимальной",
         "pdf_h_ceiling": "предельная высота полёта",
         "max_planned_height_m": "Максимальная плановая высота полёта, м",
@@ -693,6 +692,7 @@ LABELS: dict[str, dict[str, str]] = {
         "pdf_height_forms": "Ошибка высот σ_Z = {sigma} м на наибольшей фактической высоте "
                             "{h} м (требуется V_z = {vz} м, СКО). Максимальная плановая высота "
                             "по формулам точности высот — {forms}.",
+        "spec_cmp_data_volume": "Объём данных без сжатия",
     },
 }
 
@@ -810,3 +810,15 @@ _SIGNING: dict[str, dict[str, str]] = {
 }
 for _loc in LOCALES:
     LABELS[_loc].update(_SIGNING[_loc])
+
+# data volume as JPEG (the uncompressed volume / scanplan.flight.JPEG_COMPRESSION_RATIO)
+LABELS["en"]["data_volume_jpeg_gb"] = "Data volume as JPEG (estimate, 9:1), GB"
+LABELS["ru"]["data_volume_jpeg_gb"] = "Объём данных в JPEG (оценка, 9:1), ГБ"
+LABELS["en"]["spec_archive_photo_scale"] = "Photo scale (existing photos, given)"
+LABELS["ru"]["spec_archive_photo_scale"] = "Масштаб снимков (имеющиеся снимки, задан)"
+# the inverse table: the largest photo scale per scan pixel, with and without the
+# interpretation limit
+LABELS["en"]["reach_pixel"] = "Largest photo scale the pixel supports"
+LABELS["ru"]["reach_pixel"] = "Предельный масштаб снимков для пикселя"
+LABELS["en"]["reach_interpretable"] = "Largest photo scale with the map object interpretable"
+LABELS["ru"]["reach_interpretable"] = "Предельный масштаб снимков с дешифрированием объекта"

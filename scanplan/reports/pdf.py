@@ -40,6 +40,7 @@ import weasyprint
 from markupsafe import Markup
 from weasyprint.urls import URLFetcher, URLFetcherResponse
 
+from .. import flight as FL
 from .._version import __version__
 from ..api import ScanJob, UavJob
 from ..flight import MAX_BLUR_PX
@@ -214,6 +215,10 @@ def _object_name(ns: NormSet, name: str, size_m: float, map_scale: int | None,
                  locale: str) -> str:
     """A norm-table object's name in the report's language (unnamed: "object of the given
     size")."""
+    from ..api import USER_OBJECT_NAME
+
+    if map_scale is None and name == USER_OBJECT_NAME["en"]:  # a project's unnamed object
+        return name_title("", "", locale)
     for o in ns.objects:
         if o.name == name and o.size_m == size_m and (map_scale is None
                                                       or o.map_scale == map_scale):
@@ -313,7 +318,9 @@ def _scan_view(job: ScanJob, f: _Fmt) -> dict[str, Any]:
     reach = [{"pixel": f.g(r.pixel_um),
               "scale": f.floor_scale(r.max_photo_scale) if r.max_photo_scale > 0
               else f.label("pdf_none"),
-              "limit": f"{r.limit} — {f.cname(r.limit)}" if r.limit in CONSTRAINTS else r.limit}
+              "limit": f"{r.limit} — {f.cname(r.limit)}" if r.limit in CONSTRAINTS else r.limit,
+              "interpretable": (f.floor_scale(r.max_photo_scale_interpretable)
+                                if r.max_photo_scale_interpretable else f.label("pdf_none"))}
              for r in plan.max_photo_scales]
     formulas = [{"id": cid, "name": f.cname(cid),
                  "equation": f.cite(localize(CONSTRAINTS[cid].equation, f.locale)),
@@ -326,6 +333,7 @@ def _scan_view(job: ScanJob, f: _Fmt) -> dict[str, Any]:
     return {
         "inputs": inputs, "tables": tables,
         "explanations": explanations, "interpretation_limit": limit, "reach": reach,
+        "reach_interpretable": obj is not None and mci is not None,
         "warnings": _warnings(plan.warnings, f, ns), "formulas": formulas, "params": params,
         "norm": _norm_view(ns, f),
         "plot": _svg_uri(plots.constraints_svg(plan, f.locale)),
@@ -469,6 +477,8 @@ def _uav_view(job: UavJob, f: _Fmt) -> dict[str, Any]:
                           else "—")))
         if "data_volume_bytes" in fl:
             flight.append((f.label("pdf_data_volume"), f.num(fl["data_volume_bytes"] / 1e9, 1)))
+            flight.append((f.label("data_volume_jpeg_gb"),
+                           f.num(float(FL.jpeg_volume_bytes(fl["data_volume_bytes"])) / 1e9, 1)))
     recognition = [{
         "object": _object_name(ns, r.object, r.object_size_m, r.map_scale, f.locale),
         "map": f.scale(r.map_scale) if r.map_scale else "—", "size": f.g(r.object_size_m),
@@ -565,7 +575,8 @@ def _spec_view(spec: PlanResult, f: _Fmt) -> dict[str, Any]:
     if spec.film is not None:
         fs, rec = spec.film, spec.film.recommended
         if rec is not None:
-            rows.append((f.label("spec_recommended_photo_scale"), f.scale(rec.photo_scale)))
+            rows.append((f.label("spec_archive_photo_scale" if fs.archive
+                                 else "spec_recommended_photo_scale"), f.scale(rec.photo_scale)))
             px = f.num(rec.scan_pixel_um, 1)
             if rec.scanner_pixel_um is not None:
                 px += f" → {f.num(rec.scanner_pixel_um, 1)}"
@@ -588,6 +599,8 @@ def _spec_view(spec: PlanResult, f: _Fmt) -> dict[str, Any]:
             rows.append((f.label("spec_photos"), f.g(p.flight["photos"])))
         if "data_volume_bytes" in p.flight:
             rows.append((f.label("spec_data_gb"), f.num(p.flight["data_volume_bytes"] / 1e9, 1)))
+            rows.append((f.label("data_volume_jpeg_gb"), f.num(float(FL.jpeg_volume_bytes(
+                p.flight["data_volume_bytes"])) / 1e9, 1)))
         reasons.append(f.cite(display_message(u.reason, u.job.norm_set, f.locale)))
     comparison = [(_comparison_quantity(c, f), _comparison_value(c["film"], f),
                    _comparison_value(c["uav"], f),
