@@ -289,6 +289,8 @@ LABELS: dict[str, dict[str, str]] = {
         "pdf_warn_above_interpretation_limit": "Above the interpretation limit",
         "pdf_warn_pr_drives_volume": "P_R drives the data volume",
         "pdf_warn_scanner_too_coarse": "Scanner too coarse",
+        "pdf_warn_archive_not_interpretable": "Objects not interpretable on the existing photos",
+        "pdf_warn_archive_scanner_too_coarse": "Scanner too coarse for the existing photos",
         "pdf_warn_overlap_not_standard": "Non-standard forward overlap",
         "pdf_warn_motion_blur": "Motion blur",
         "pdf_warn_trigger_interval": "Camera trigger interval",
@@ -635,6 +637,9 @@ LABELS: dict[str, dict[str, str]] = {
         "pdf_warn_above_interpretation_limit": "За пределом дешифрирования",
         "pdf_warn_pr_drives_volume": "Объём данных определяет P_R",
         "pdf_warn_scanner_too_coarse": "Шаг сканера слишком крупный",
+        "pdf_warn_archive_not_interpretable": "Объекты не дешифрируются на имеющихся снимках",
+        "pdf_warn_archive_scanner_too_coarse": "Шаг сканера крупнее нужного для имеющихся "
+                                               "снимков",
         "pdf_warn_overlap_not_standard": "Нестандартное продольное перекрытие",
         "pdf_warn_motion_blur": "Смаз изображения",
         "pdf_warn_trigger_interval": "Интервал срабатывания камеры",
