@@ -11,6 +11,7 @@ Errors are :class:`scanplan.errors.InputError` whose ``field`` is the argument n
 
 from __future__ import annotations
 
+import math
 import os
 from collections.abc import Iterable
 from dataclasses import dataclass
@@ -23,6 +24,24 @@ from .norms import DEFAULT_NORM_SET, MapObject, NormSet, load_norm_set, parse_sc
 from .normschema import ORIENTATIONS, PARAMETERS
 from .planner import ObjectSpec, ScanInputs, ScanPlan, plan_scan
 from .uav import UavInputs, UavPlan, plan_uav
+
+HEIGHT_STEP_M = 5.0
+"""Recommended flight heights are rounded down to this step [m]."""
+PROVISIONAL_HEIGHT_M = 100.0
+"""Height of the first pass when the planned height is to be derived [m]."""
+
+
+def height_step_m(max_height_m: float) -> float:
+    """The step a recommended height is rounded down to: 5 m, or 1 m below 5 m [m]."""
+    return HEIGHT_STEP_M if max_height_m >= HEIGHT_STEP_M else 1.0
+
+
+def recommended_height_m(max_height_m: float | None) -> float | None:
+    """The maximum planned height rounded down to :func:`height_step_m`; None below 1 m."""
+    if max_height_m is None or max_height_m < 1.0:
+        return None
+    step = height_step_m(max_height_m)
+    return math.floor(max_height_m / step) * step
 
 __all__ = ["USER_OBJECT_NAME", "ScanJob", "UavJob", "object_display_name", "parse_frame_mm",
            "resolve_object", "scan", "scan_job", "uav_job"]
@@ -287,7 +306,7 @@ class UavJob:
 
 def uav_job(
     *,
-    height_m: float,
+    height_m: float | None = None,
     camera: str | None = None,
     pixel_um: float | None = None,
     focal_mm: float | None = None,
@@ -319,6 +338,8 @@ def uav_job(
     roll_deg: float = 0.0,
     pitch_deg: float = 0.0,
     orientation: str | None = None,
+    max_height_m: float | None = None,
+    gsd_cm: float | None = None,
 ) -> UavJob:
     """Plan a UAV flight (see :func:`scanplan.uav.plan_uav`); names as the CLI options.
 
@@ -332,7 +353,25 @@ def uav_job(
     ``orientation`` (``"landscape"``: sensor width across track, or ``"portrait"``;
     default the catalogue's, else landscape) turns the frame for footprint, base and
     spacing; the pitch of a catalogue camera is sensor width / image width.
+    ``max_height_m`` is the altitude ceiling for the highest flown height (default for a
+    UAV: the norm set's ``uav_max_height_m``; none for a camera on a manned aircraft, which
+    flies 1,000–5,000 m under its own clearance); ``gsd_cm`` a target GSD the flight must
+    deliver.
+    Without ``height_m`` the flight is planned at the maximum planned height, rounded
+    down to :data:`HEIGHT_STEP_M` (needs a map scale or a target GSD).
     """
+    if height_m is None:
+        if map_scale is None and gsd_cm is None:
+            raise InputError("height_m", "give the planned flight height (m ≥ 1), a target "
+                             "GSD, or a map scale to derive it from")
+        kw = dict(locals())
+        first = uav_job(**{**kw, "height_m": PROVISIONAL_HEIGHT_M})
+        rec = recommended_height_m(first.plan.max_height_m)
+        if rec is None:
+            raise InputError("height_m", "no flight height of 1 m or more meets every limit "
+                             f"(maximum {first.plan.max_height_m or 0:.2f} m); give the "
+                             "planned height to see the plan")
+        return first if rec == PROVISIONAL_HEIGHT_M else uav_job(**{**kw, "height_m": rec})
     ns = load_norm_set(norms)
     cam = ns.camera(camera, "camera") if camera is not None else None
     if cam is not None and cam.kind != "digital":
@@ -383,9 +422,13 @@ def uav_job(
         if relief_interval_m is None:
             raise InputError("relief_interval_m", "give the relief interval h_c (m > 0) with "
                              "the map scale")
-        overrides = {"probability": probability, "height_formula": height_formula}
-        _check_overrides(overrides)
-        rules = ns.rules(**overrides)
+        _check_overrides({"probability": probability})
+        if height_formula is not None:
+            spec = PARAMETERS["digital_height_formula"].value
+            if not isinstance(height_formula, str) or spec.check(height_formula):
+                raise InputError("height_formula", f"must be {spec.describe()} for a digital "
+                                 f"camera (got {height_formula!r})")
+        rules = ns.rules(probability=probability, digital_height_formula=height_formula)
         map_obj = resolve_object(ns, mk, object_size_m=object_size_m, shape=shape,
                                  object_name=object_name)
         if map_obj is None and "PD" in rules.constraints:
@@ -414,7 +457,11 @@ def uav_job(
         roll_rate_rad_s=roll_rate_rad_s, pitch_rate_rad_s=pitch_rate_rad_s,
         yaw_rate_rad_s=yaw_rate_rad_s, roll_deg=roll_deg, pitch_deg=pitch_deg, map_scale=mk,
         relief_interval_m=relief_interval_m, map_object=map_obj, objects=tuple(objects),
-        area_width_m=area_w, area_length_m=area_l)
+        area_width_m=area_w, area_length_m=area_l,
+        ceiling_m=float(max_height_m) if max_height_m is not None
+        else None if aircraft else float(ns.parameters["uav_max_height_m"]),
+        ceiling_from_project=max_height_m is not None,
+        gsd_target_m=gsd_cm / 100.0 if gsd_cm is not None else None)
     return UavJob(plan_uav(inputs, rules), ns)
 
 

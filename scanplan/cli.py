@@ -50,6 +50,8 @@ OPTION_NAMES = {
     "f_number": "--f-number",
     "orientation": "--orientation",
     "height_m": "--height-m",
+    "max_height_m": "--max-height-m",
+    "gsd_cm": "--gsd-cm",
     "speed_ms": "--speed-ms",
     "exposure_s": "--exposure-s",
     "side_overlap_pct": "--side-overlap-pct",
@@ -193,8 +195,10 @@ def norm_options(f: Callable[..., Any]) -> Callable[..., Any]:
                      "show it."),
         click.option("--probability", type=float, callback=_finite,
                      help="Required recognition probability, 0 < P < 1 (default 0.75)."),
-        click.option("--height-formula", type=click.Choice(["instruction", "parallax"]),
-                     help="Form of the height constraint P_Z (default: the norm set's)."),
+        click.option("--height-formula",
+                     type=click.Choice(["instruction", "parallax", "normal_case"]),
+                     help="Form of the height constraint P_Z (default: the norm set's; "
+                     "normal_case for digital cameras only)."),
     ]):
         f = opt(f)
     return f
@@ -384,8 +388,15 @@ def scan(as_json: bool, bits_per_band: str, **kwargs: Any) -> None:
               "catalogue's, else landscape); portrait turns footprint, spacing and base.")
 @click.option("--f-number", type=float, callback=_finite,
               help="Working f-number (default: the catalogue's).")
-@click.option("--height-m", type=float, required=True, callback=_finite,
-              help="Planned flight height above ground [m].")
+@click.option("--height-m", type=float, callback=_finite,
+              help="Planned flight height above ground [m] (default: the maximum planned "
+              "height, rounded down to 5 m; needs --map-scale or --gsd-cm).")
+@click.option("--gsd-cm", type=float, callback=_finite,
+              help="Target ground sample distance [cm]: the highest flown height must "
+              "deliver it.")
+@click.option("--max-height-m", type=float, callback=_finite,
+              help="Altitude ceiling for the highest flown height above ground [m] "
+              "(default: the norm set's, 150 m).")
 @click.option("--height-tolerance-pct", type=float, default=0.0, show_default=True,
               callback=_finite, help="How much higher the UAV may fly than planned [%] "
               "(seed 002: 300 m planned, 420 m flown = 40).")
@@ -432,7 +443,8 @@ def scan(as_json: bool, bits_per_band: str, **kwargs: Any) -> None:
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
 def uav(as_json: bool, **kwargs: Any) -> None:
     """Digital camera on a UAV: GSD, real ground resolution L from the MTF chain, blur,
-    flight geometry; with --map-scale/--relief the constraints and the maximum height.
+    flight geometry; with --map-scale/--relief the constraints and the maximum planned height
+    (its highest flown height within the altitude ceiling --max-height-m).
 
     \b
     Example (seed 002's flight):

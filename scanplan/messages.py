@@ -256,10 +256,10 @@ MESSAGES: dict[str, dict[str, str]] = {
               "детали не разрешаются, и линейное разрешение на местности L не определено.",
     },
     "height_above_max": {
-        "en": "planned height {height:g} m is above the maximum {max:.0f} m set by {cid} "
-              "({name}){tolerance}",
-        "ru": "Плановая высота полёта {height:g}~м выше максимальной {max:.0f}~м по условию "
-              "{cid} ({name}){tolerance}.",
+        "en": "planned height {height:g} m is above the maximum planned height {max:.0f} m set "
+              "by {cid} ({name}){tolerance}",
+        "ru": "Плановая высота полёта {height:g}~м выше максимальной плановой {max:.0f}~м по "
+              "условию {cid} ({name}){tolerance}.",
     },
     "height_above_max.tolerance": {
         "en": " with a {tolerance:g} % height tolerance",
@@ -307,8 +307,9 @@ MESSAGES: dict[str, dict[str, str]] = {
         "ru": "Ни одна высота полёта не удовлетворяет всем условиям с этой камерой.",
     },
     "spec.uav_rounded": {
-        "en": "the maximum height {max:.0f} m ({cid} binds) rounded down to {step:g} m",
-        "ru": "Рекомендуемая высота полёта — максимальная {max:.0f}~м (определяющее условие "
+        "en": "the maximum planned height {max:.0f} m ({cid} binds) rounded down to {step:g} m",
+        "ru": "Рекомендуемая высота полёта — максимальная плановая {max:.0f}~м (определяющее "
+              "условие "
               "{cid}), округлённая в меньшую сторону с шагом {step:g}~м.",
     },
     "height_lowered": {
@@ -318,8 +319,77 @@ MESSAGES: dict[str, dict[str, str]] = {
               "(определяющее условие {cid}); высота понижена до {recommended:g}~м.",
     },
     "spec.uav_within": {
-        "en": "the planned height is within the maximum {max:.0f} m",
-        "ru": "Плановая высота полёта не превышает максимальную {max:.0f}~м.",
+        "en": "the planned height is within the maximum planned height {max:.0f} m",
+        "ru": "Плановая высота полёта не превышает максимальную плановую {max:.0f}~м.",
+    },
+    # --- digital height accuracy, altitude ceiling, target GSD (scanplan.uav) -------------
+    "limit.PZ.normal_case": {
+        "en": "RMS height error σ_Z = (H/B)·(H/c)·σ_px ≤ V_z = {vz:g} m (relief interval {hc:g} m) "
+              "with a parallax error σ_px = {sigma:g} px and the widest stereo base of "
+              "{overlap:g} % overlap (B = {steps:d} × the photo step, B/H = {bh:.3f}){multi}",
+        "ru": "средняя квадратическая ошибка высот σ_Z = (H/B)·(H/c)·σ_px ≤ V_z = {vz:g}~м "
+              "(высота сечения рельефа {hc:g}~м) при ошибке измерения параллакса "
+              "σ_px = {sigma:g}~пикс. и наибольшем базисе с перекрытием {overlap:g}~% "
+              "(B = {steps:d}~× шаг фотографирования, B/H = {bh:.3f}){multi}",
+    },
+    "equation.PZ.normal_case": {
+        "en": "σ_Z = (H/B)·(H/c)·σ_px ≤ V_z, B the widest base of standard stereo overlap — "
+              "normal case of stereo photogrammetry, Kraus (2007), Luhmann et al. (2014)",
+        "ru": "σ_Z = (H/B)·(H/c)·σ_px ≤ V_z, B — наибольший базис со стандартным продольным "
+              "перекрытием — нормальный случай стереосъёмки, Краус (2007), Луман и др. (2014)",
+    },
+    "limit.PZ.multi": {
+        "en": ", σ_Z multiplied by {f:.2f} for the rays of every photo of the strip",
+        "ru": ", σ_Z с множителем {f:.2f} за счёт лучей всех снимков маршрута",
+    },
+    "protects.GSD": {
+        "en": "gives the ground sample distance the customer asked for",
+        "ru": "обеспечивает заданный заказчиком размер пикселя на местности",
+    },
+    "equation.GSD": {
+        "en": "GSD = p·H/c ≤ the target GSD",
+        "ru": "GSD = p·H/c ≤ заданного значения",
+    },
+    "protects.HC": {
+        "en": "keeps the highest flown height within the legal or airframe altitude ceiling",
+        "ru": "удерживает наибольшую фактическую высоту полёта в пределах допустимой высоты",
+    },
+    "equation.HC": {
+        "en": "H·(1 + height tolerance) ≤ ceiling — Federal Rules for the Use of the Airspace",
+        "ru": "H·(1 + допуск высоты) ≤ предельной высоты — Федеральные правила использования "
+              "воздушного пространства",
+    },
+    "limit.GSD": {
+        "en": "GSD at the highest flown height ≤ the target {gsd:g} cm",
+        "ru": "GSD на наибольшей фактической высоте ≤ заданного {gsd:g}~см",
+    },
+    "limit.HC": {
+        "en": "highest flown height ≤ the altitude ceiling {ceiling:g} m ({source})",
+        "ru": "наибольшая фактическая высота ≤ предельной высоты полёта {ceiling:g}~м ({source})",
+    },
+    "ceiling.project": {
+        "en": "set in the project",
+        "ru": "задана в проекте",
+    },
+    "ceiling.norms": {
+        "en": "the norm set's ceiling for flights without an airspace-use permission",
+        "ru": "предел набора норм для полётов без разрешения на использование воздушного "
+              "пространства",
+    },
+    "ceiling_binds": {
+        "en": "the altitude ceiling of {ceiling:g} m binds: {tolerance}the plan may be at most "
+              "{max:.0f} m, while the other constraints "
+              "would allow planning up to {allow:.0f} m ({cid} binds there). Flying higher "
+              "needs an airspace-use permission; then raise [uav] max_height_m",
+        "ru": "Определяет предельная высота полёта {ceiling:g}~м: {tolerance}плановая высота "
+              "не более {max:.0f}~м, тогда как остальные "
+              "условия допускают плановую высоту до {allow:.0f}~м (там определяет условие "
+              "{cid}). Полёт выше требует разрешения на использование воздушного пространства; "
+              "тогда увеличьте [uav] max_height_m.",
+    },
+    "ceiling_binds.tolerance": {
+        "en": "with the +{tolerance:g} % height tolerance ",
+        "ru": "с допуском высоты +{tolerance:g}~% ",
     },
 }
 

@@ -25,7 +25,7 @@ from pathlib import Path
 from typing import Any
 
 from .errors import InputError, NotFoundError
-from .normschema import PARAMETERS, TABLES, TableSpec, ValueSpec
+from .normschema import LATER_PARAMETERS, PARAMETERS, TABLES, TableSpec, ValueSpec
 from .planner import ScanRules
 from .safeio import dir_lock, read_limited
 
@@ -260,6 +260,10 @@ class NormSet:
             recognition_rounding=params["recognition_rounding"],
             interpretation_min_lpmm=params["interpretation_min_lpmm"],
             interpretation_max_lpmm=params["interpretation_max_lpmm"],
+            digital_height_formula=params["digital_height_formula"],
+            image_measurement_px=params["image_measurement_px"],
+            multi_ray=params["multi_ray"],
+            uav_max_height_m=params["uav_max_height_m"],
         )
 
     def shape_coefficient(self, shape: str, field_name: str = "--shape") -> float:
@@ -627,6 +631,13 @@ def read_norm_set_folder(path: Path, *, bundled: bool = False) -> NormSet:
         params[name] = _convert(row.get("value"), PARAMETERS[name].value, f"{pfile}:{i} (value)")
         sources[name] = (row.get("source") or "").strip()
     missing = [n for n in PARAMETERS if n not in params]
+    if missing and not bundled and set(missing) <= set(LATER_PARAMETERS):
+        base = load_norm_set(DEFAULT_NORM_SET)
+        for n in missing:
+            params[n] = base.parameters[n]
+            sources[n] = (f"{base.parameter_sources[n]} (taken from {DEFAULT_NORM_SET}: this "
+                          "set predates the parameter)")
+        missing = []
     if missing:
         raise InputError(str(pfile), f"missing parameters: {', '.join(missing)}")
     shape_rows = {r["shape"]: r for r in _typed_rows(path / "shapes.csv", TABLES["shapes"])}

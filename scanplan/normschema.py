@@ -24,6 +24,13 @@ CONSTRAINT_IDS = ("PS", "PZ", "PP", "PR", "PD")
 """Constraints the film rules engine knows (see :mod:`scanplan.planner`)."""
 
 HEIGHT_FORMULAS = ("instruction", "parallax")
+DIGITAL_HEIGHT_FORMULAS = ("normal_case", "instruction", "parallax")
+"""Forms of the height constraint for digital (UAV) cameras (:mod:`scanplan.uav`)."""
+MULTI_RAY_MODES = ("off", "strip")
+LATER_PARAMETERS = ("digital_height_formula", "image_measurement_px", "multi_ray",
+                    "uav_max_height_m")
+"""Parameters added after norm sets were first stored: a stored set without them takes
+them from the bundled default set (its source says so) instead of failing to load."""
 ORIENTATIONS = ("landscape", "portrait")
 """Camera mounting: landscape = image width (sensor width) across track, as QGroundControl."""
 ROUNDING_MODES = ("exact", "paper")
@@ -183,6 +190,30 @@ PARAMETERS: dict[str, ParameterSpec] = {
             ValueSpec("float", 0, 1000, min_open=True, unit="lines/mm"),
             "upper end of the image resolving power qualitative interpretation needs",
             ("R max", "разрешающая способность для дешифрирования, до"),
+        ),
+        ParameterSpec(
+            "digital_height_formula",
+            ValueSpec("choice", choices=DIGITAL_HEIGHT_FORMULAS),
+            "form of the height constraint for digital cameras",
+            ("формула высот для цифровых камер",),
+        ),
+        ParameterSpec(
+            "image_measurement_px",
+            ValueSpec("float", 0, 10, min_open=True, unit="px"),
+            "sigma_px, RMS error of a measured parallax in a digital block",
+            ("sigma_px", "ошибка измерения параллакса"),
+        ),
+        ParameterSpec(
+            "multi_ray",
+            ValueSpec("choice", choices=MULTI_RAY_MODES),
+            "multi-ray improvement of the digital height error (off or strip)",
+            ("многолучевое уточнение",),
+        ),
+        ParameterSpec(
+            "uav_max_height_m",
+            ValueSpec("float", 0, 20000, min_open=True, unit="m"),
+            "altitude ceiling of UAV flights above ground",
+            ("предельная высота полёта БВС",),
         ),
     )
 }

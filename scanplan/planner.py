@@ -75,6 +75,11 @@ class ScanRules:
     recognition_rounding: str
     interpretation_min_lpmm: float
     interpretation_max_lpmm: float
+    # digital (UAV) blocks — scanplan.uav
+    digital_height_formula: str
+    image_measurement_px: float
+    multi_ray: str
+    uav_max_height_m: float
 
 
 @dataclass(frozen=True)
@@ -100,8 +105,13 @@ CONSTRAINTS: dict[str, ConstraintInfo] = {
                          Message("protects.PR"), Message("equation.PR"), False),
     "PD": ConstraintInfo("PD", "interpretation", "дешифрирование",
                          Message("protects.PD"), Message("equation.PD"), True),
+    # limits of a UAV flight only (scanplan.uav); the film engine never enables them
+    "GSD": ConstraintInfo("GSD", "target GSD", "заданный размер пикселя на местности",
+                          Message("protects.GSD"), Message("equation.GSD"), False),
+    "HC": ConstraintInfo("HC", "altitude ceiling", "предельная высота полёта",
+                         Message("protects.HC"), Message("equation.HC"), False),
 }
-"""The film constraints, in the Instruction's order."""
+"""The film constraints, in the Instruction's order, then the UAV-only limits."""
 
 
 # ---------------------------------------------------------------------------------------

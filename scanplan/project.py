@@ -56,7 +56,8 @@ KEYS: dict[str, dict[str, tuple[str, str]]] = {
         "set": ("str", 'norm set name, or a folder relative to the project file (default '
                 '"gkinp-02-036-02")'),
         "pr_coefficient": ("number", "k_R in P_R = k_R/R (default: the set's, 0.5)"),
-        "height_formula": ("str", '"instruction" or "parallax" (default: the set\'s)'),
+        "height_formula": ("str", '"instruction" or "parallax": the film height constraint '
+                           '(default: the set\'s)'),
         "probability": ("number", "required recognition probability (default 0.75)"),
         "shape": ("str", "shape of the object to interpret (default: the norm table's)"),
         "object_size_m": ("number", "size of the object to interpret [m] (default: the norm "
@@ -87,7 +88,8 @@ KEYS: dict[str, dict[str, tuple[str, str]]] = {
         "orientation": ("str", '"landscape" (sensor width across track) or "portrait" '
                         "(default: the catalogue's, else landscape)"),
         "f_number": ("number", "working f-number (default: the catalogue's)"),
-        "height_m": ("number", "planned flight height [m] (default: the maximum allowed)"),
+        "height_m": ("number", "planned flight height [m] (default: the maximum planned "
+                     "height, rounded down to 5 m)"),
         "height_tolerance_pct": ("number", "how much higher the UAV may fly [%] (default 0)"),
         "speed_ms": ("number", "ground speed [m/s] (default 15; required for a camera on an "
                      "aircraft)"),
@@ -97,6 +99,13 @@ KEYS: dict[str, dict[str, tuple[str, str]]] = {
         "side_overlap_pct": ("number", "side overlap [%] (default 60; on an aircraft 30)"),
         "roll_deg": ("number", "roll for the tilted-frame corner GSD [°] (default 0)"),
         "pitch_deg": ("number", "pitch for the tilted-frame corner GSD [°] (default 0)"),
+        "max_height_m": ("number", "altitude ceiling for the highest flown height above ground "
+                         "[m] (default for a UAV: the norm set's, 150 m; none for an aircraft)"),
+        "gsd_cm": ("number", "target ground sample distance [cm]: the flight must deliver it "
+                   "at the highest flown height (optional)"),
+        "height_formula": ("str", '"normal_case", "instruction" or "parallax": the height '
+                           "constraint of the digital block (default: the set's, "
+                           '"normal_case")'),
     },
     "uav.target": {
         "r_max": ("number", "brightness coefficient of the lightest detail (default 0.3)"),

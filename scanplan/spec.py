@@ -16,7 +16,15 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from . import flight as FL
-from .api import ScanJob, UavJob, scan_job, uav_job
+from .api import (
+    PROVISIONAL_HEIGHT_M,
+    ScanJob,
+    UavJob,
+    height_step_m,
+    recommended_height_m,
+    scan_job,
+    uav_job,
+)
 from .archive import archive_film
 from .domains import DOMAINS, check_domain
 from .errors import InputError
@@ -27,9 +35,7 @@ from .reports import ReportMeta
 
 __all__ = ["FilmSpec", "PlanResult", "UavSpec", "plan_project"]
 
-HEIGHT_STEP_M = 5.0  # recommended heights are rounded down to this step
 DEFAULT_FILM_SIDE_OVERLAP_PCT = 30.0
-PROVISIONAL_HEIGHT_M = 100.0
 
 _FILM_KEYS = {
     "map_scale": "map.scale", "relief_interval_m": "map.relief_interval_m",
@@ -57,6 +63,8 @@ _UAV_KEYS = {
     "yaw_rate_rad_s": "uav.motion.yaw_rate_rad_s", "area_m": "area",
     "area_width_m": "area.width_m", "area_length_m": "area.length_m",
     "roll_deg": "uav.roll_deg", "pitch_deg": "uav.pitch_deg",
+    "max_height_m": "uav.max_height_m", "gsd_cm": "uav.gsd_cm",
+    "height_formula": "uav.height_formula",
 }
 _NORM_KEYS = {"object_size_m": "norms.object_size_m", "shape": "norms.shape",
               "object_name": "norms.object_name",
@@ -97,7 +105,7 @@ class UavSpec:
     job: UavJob
     planned_height_m: float | None
     recommended_height_m: float | None
-    max_height_m: float | None
+    max_height_m: float | None  # the maximum PLANNED height (highest flown meets every limit)
     reason: str
 
 
@@ -223,7 +231,8 @@ def _uav_kwargs(project: Project, height_m: float) -> dict[str, Any]:
         norms=g("norms", "set", "gkinp-02-036-02"), object_size_m=g("norms", "object_size_m"),
         shape=g("norms", "shape"), object_name=g("norms", "object_name"),
         probability=g("norms", "probability"),
-        height_formula=g("norms", "height_formula"),
+        height_formula=g("uav", "height_formula"),
+        max_height_m=g("uav", "max_height_m"), gsd_cm=g("uav", "gsd_cm"),
         r_max=g("uav.target", "r_max", 0.3), r_min=g("uav.target", "r_min", 0.1),
         threshold_k0=g("uav.atmosphere", "threshold_k0"),
         haze_contrast=g("uav.atmosphere", "haze_contrast"),
@@ -252,13 +261,13 @@ def _uav(project: Project) -> UavSpec:
     first_height = planned if planned is not None else PROVISIONAL_HEIGHT_M
     first = job_at(first_height)
     max_h = first.plan.max_height_m
-    if max_h is None or max_h <= 0:
+    rounded = recommended_height_m(max_h)
+    if max_h is None or rounded is None:
         return UavSpec(first, planned, None, max_h, Message("spec.uav_none"))
-    rounded = math.floor(max_h / HEIGHT_STEP_M) * HEIGHT_STEP_M
     if planned is None:
         rec = rounded
         reason = Message("spec.uav_rounded", max=max_h, cid=first.plan.binding,
-                         step=HEIGHT_STEP_M)
+                         step=height_step_m(max_h))
     elif planned > max_h:
         rec = rounded
         reason = Message("height_lowered", planned=planned, max=max_h,

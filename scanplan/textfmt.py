@@ -211,17 +211,32 @@ def format_uav_plan(plan: UavPlan, norm_name: str = "") -> str:
         lines.append(table(rrows, align="llrlrrr"))
     if plan.limits:
         tol = inp.height_tolerance_up_pct
-        lines += ["", f"Maximum flight height for map 1:{scale_value(inp.map_scale or 0)}, relief "
-                  f"interval {inp.relief_interval_m:g} m"
-                  + (f" (checked at +{tol:g} % height)" if tol else "") + ":"]
-        lrows = [["  constraint", "limit on the ground", "compared with", "max height"]]
+        head = (f"Maximum planned height for map 1:{scale_value(inp.map_scale)}, relief "
+                f"interval {inp.relief_interval_m:g} m" if inp.map_scale is not None
+                else "Maximum planned height")
+        lines += ["", head + (f" (limits checked at the highest flown height, +{tol:g} %)"
+                              if tol else "") + ":"]
+        lrows = [["  constraint", "limit", "compared with", "max planned", "highest flown"]]
         for lim in sorted(plan.limits, key=lambda x: x.max_height_m):
             lrows.append([f"  {lim.id}  {lim.name}", f"{lim.limit_m:.3f} m", lim.compares,
-                          f"{lim.max_height_m:.0f} m" + ("*" if lim.binding else " ")])
-        lines.append(table(lrows, align="lrlr"))
+                          f"{lim.max_height_m:.0f} m" + ("*" if lim.binding else " "),
+                          f"{lim.max_flown_height_m or lim.max_height_m:.0f} m"])
+        lines.append(table(lrows, align="lrlrr"))
         b = next(x for x in plan.limits if x.binding)
-        lines.append(_wrap(f"Maximum height {plan.max_height_m:.0f} m: {b.id} ({b.name}) binds — "
-                           f"{b.reason}.", ""))
+        lines.append(_wrap(f"Maximum planned height {plan.max_height_m:.0f} m (highest flown "
+                           f"{plan.max_flown_height_m or plan.max_height_m:.0f} m): {b.id} "
+                           f"({b.name}) binds — {b.reason}.", ""))
+        acc = plan.height_accuracy
+        if acc:
+            forms = acc["forms"]
+            lines.append(_wrap(
+                f"Height accuracy: σ_Z {acc['sigma_z_at_highest_flown_height_m']:.3f} m at "
+                f"{h['max']:g} m (required {acc['height_accuracy_m']:g} m RMS; "
+                f"{acc['sigma_z_in_gsd']:.2f} GSD). Maximum planned height by form: "
+                f"normal case {forms['normal_case']['max_planned_height_m']:.0f} m, "
+                f"Instruction {forms['instruction']['max_planned_height_m']:.0f} m, parallax "
+                f"(single-step base) {forms['parallax']['max_planned_height_m']:.0f} m "
+                f"[{acc['formula']} used].", ""))
     if plan.warnings:
         lines += ["", "Warnings:"]
         for w in plan.warnings:
@@ -240,7 +255,7 @@ _TERMINAL: dict[str, dict[str, str]] = {
         "scanned": "scanned, uncompressed",
         "photo_scale_archive": "photo scale (existing photos, given)",
         "height": "recommended flight height", "flown": "flown up to",
-        "max_height": "maximum flight height", "gsd": "GSD / ground resolution L",
+        "max_height": "maximum planned height", "gsd": "GSD / ground resolution L",
         "overlaps": "overlaps / base / spacing", "interval": "photo interval",
         "photos": "photos / strips", "flight": "flight", "volume": "data volume",
         "blur": "blur limit", "exposure": "exposure", "or_speed": "or speed",
@@ -251,6 +266,10 @@ _TERMINAL: dict[str, dict[str, str]] = {
         "film_col": "film", "uav_col": "UAV", "unit": "unit", "warnings": "Warnings:",
         "m": "m", "um": "µm", "mb": "MB", "gb": "GB", "s": "s", "km": "km", "min": "min",
         "ms": "m/s",
+        "no_ceiling": "without the ceiling",
+        "no_ceiling_note": "(an airspace-use permission is needed above the ceiling)",
+        "sigma_z": "height error σ_Z", "at": "at", "required_rms": "required",
+        "rms": "RMS",
     },
     "ru": {
         "map": "карта", "relief": "высота сечения рельефа", "customer": "заказчик",
@@ -262,7 +281,7 @@ _TERMINAL: dict[str, dict[str, str]] = {
         "scanned": "сканирование без сжатия",
         "photo_scale_archive": "масштаб снимков (имеющиеся снимки, задан)",
         "height": "рекомендуемая высота полёта", "flown": "фактически до",
-        "max_height": "максимальная высота полёта", "gsd": "GSD / линейное разрешение L",
+        "max_height": "максимальная плановая высота", "gsd": "GSD / линейное разрешение L",
         "overlaps": "перекрытия / базис / между маршрутами",
         "interval": "интервал фотографирования", "photos": "снимков / маршрутов",
         "flight": "маршруты", "volume": "объём данных", "blur": "предел смаза",
@@ -273,6 +292,11 @@ _TERMINAL: dict[str, dict[str, str]] = {
         "uav_col": "БПЛА", "unit": "ед.", "warnings": "Предупреждения:",
         "m": "м", "um": "мкм", "mb": "МБ", "gb": "ГБ", "s": "с", "km": "км", "min": "мин",
         "ms": "м/с",
+        "no_ceiling": "без учёта предельной высоты",
+        "no_ceiling_note": "(выше предельной нужно разрешение на использование воздушного "
+                           "пространства)",
+        "sigma_z": "ошибка высот σ_Z", "at": "на высоте", "required_rms": "требуется",
+        "rms": "СКО",
     },
 }
 _CMP_RU = {"pixel on the ground": "пиксель на местности",
@@ -395,11 +419,22 @@ def _uav_summary(u: Any, loc: str, T: dict[str, str], cname: Any) -> list[str]:
     rows = [[f"  {T['height']}", f"{_g(u.recommended_height_m, loc)} {m}"
              + (f" ({T['flown']} {_g(p.heights_m['max'], loc)} {m}, +{_g(tol, loc)} %)"
                 if tol else "")],
-            [f"  {T['max_height']}", f"{_n(u.max_height_m, 0, loc)} {m} ({p.binding} "
-             f"{cname(p.binding)})" if p.binding else "—"],
+            [f"  {T['max_height']}", f"{_n(u.max_height_m, 0, loc)} {m}"
+             + (f" ({T['flown']} {_n(p.max_flown_height_m, 0, loc)} {m})"
+                if tol and p.max_flown_height_m is not None else "")
+             + f" ({p.binding} {cname(p.binding)})" if p.binding else "—"],
             [f"  {T['gsd']}", f"{_n(p.gsd_m, 3, loc)} {m} / "
              f"{_n(p.ground_resolution_m, 3, loc)} {m} (L/GSD "
              f"{_n(p.ground_resolution_to_gsd, 2, loc)})"]]
+    if p.constraints_max_height_m is not None:
+        rows.append([f"  {T['no_ceiling']}", f"{_n(p.constraints_max_height_m, 0, loc)} {m} "
+                     f"{T['no_ceiling_note']}"])
+    acc = p.height_accuracy
+    if acc:
+        rows.append([f"  {T['sigma_z']}",
+                     f"{_n(acc['sigma_z_at_highest_flown_height_m'], 3, loc)} {m} {T['at']} "
+                     f"{_g(p.heights_m['max'], loc)} {m} ({T['required_rms']} "
+                     f"{_g(acc['height_accuracy_m'], loc)} {m} {T['rms']})"])
     obj = p.inputs.map_object
     if obj is not None:
         rec = next((r for r in p.recognition if r.object == obj.name

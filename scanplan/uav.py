@@ -8,7 +8,14 @@ exceed (seed 001's A ≤ L_obj·sqrt(−ln P)/B with A ≡ L). Each limit gives 
 height; the smallest is binding.
 
 Light UAVs do not hold the planned height (seed 002: 300 m planned, 300–420 m flown): the
-constraints are checked at the highest height flown, blur and overlaps at the lowest.
+constraints are checked at the highest height flown, blur and overlaps at the lowest. The
+*maximum planned height* is the largest planned height whose highest flown height,
+planned × (1 + tolerance), still meets every limit; an altitude ceiling limits that highest
+flown height (docs/uav-models.md §10).
+
+The height constraint of a digital block is by default the stereo normal case with the
+widest base of standard overlap, σ_Z = (H/B)·(H/c)·σ_px ≤ V_z (docs/uav-models.md §9); the
+Instruction's P_Z and its parallax form are computed beside it for comparison.
 
 Pure numpy on top of :mod:`scanplan.mtf` and :mod:`scanplan.flight`; no I/O.
 """
@@ -16,7 +23,7 @@ Pure numpy on top of :mod:`scanplan.mtf` and :mod:`scanplan.flight`; no I/O.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -92,6 +99,9 @@ class UavInputs:
     platform: str = "uav"
     lens_table_centre: tuple[tuple[float, ...], tuple[float, ...]] | None = None
     lens_table_corner: tuple[tuple[float, ...], tuple[float, ...]] | None = None
+    ceiling_m: float | None = None
+    ceiling_from_project: bool = False
+    gsd_target_m: float | None = None
 
 
 @dataclass(frozen=True)
@@ -117,13 +127,15 @@ class HeightLimit:
 
     id: str
     name: str
-    limit_m: float          # ground limit the GSD (or L) must not exceed [m]
-    compares: str           # "GSD" or "L"
-    max_height_m: float     # planned height, tolerance applied [m]
+    limit_m: float          # limit the GSD, L (on the ground) or H (flown) must not exceed [m]
+    compares: str           # "GSD", "L" or "H" (the altitude ceiling)
+    max_height_m: float     # largest PLANNED height whose highest flown height meets it [m]
     binding: bool
     margin_pct: float
     reason: str
     equation: str
+    max_flown_height_m: float | None = None  # max_height_m × (1 + tolerance) [m]
+    details: dict[str, Any] = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -155,6 +167,15 @@ class UavPlan:
     warnings: tuple[PlanWarning, ...]
     mtf_centre: dict[str, Any] = field(default_factory=dict)
     height_curve: dict[str, Any] = field(default_factory=dict)
+    max_flown_height_m: float | None = None
+    ceiling_m: float | None = None
+    constraints_max_height_m: float | None = None
+    height_accuracy: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def max_planned_height_m(self) -> float | None:
+        """The largest planned height whose highest flown height meets every limit [m]."""
+        return self.max_height_m
 
 
 def _chain(inp: UavInputs, height_m: Any) -> tuple[M.Camera, M.Flight, M.Atmosphere,
@@ -250,6 +271,79 @@ def _check_inputs(inp: UavInputs) -> None:
     for name in ("area_width_m", "area_length_m"):
         if getattr(inp, name) is not None:
             check_domain(name, getattr(inp, name))
+    if inp.ceiling_m is not None:
+        check_domain("max_height_m", inp.ceiling_m)
+    if inp.gsd_target_m is not None:
+        check_domain("gsd_cm", inp.gsd_target_m * 100.0)
+
+
+def _height_accuracy(inp: UavInputs, rules: ScanRules
+                     ) -> tuple[float, Message, dict[str, Any]]:
+    """The height constraint of a digital block: (GSD limit [m], reason, details).
+
+    Three forms, each as the largest GSD on the ground (evaluated at Mc = 1):
+
+    - ``normal_case`` (default for digital cameras): σ_Z = (H/B)·(H/c)·σ_px·f ≤ V_z with
+      the widest base of standard stereo overlap (:func:`scanplan.formulas.
+      stereo_height_ground_limit_m`), V_z read as an RMS error;
+    - ``instruction`` and ``parallax``: the Instruction's P_Z and its parallax form with the
+      single-step base b = l_y·(1 − p) and the processing loss k (seed 001 eq. 2).
+
+    All three are in ``details["forms"]`` for comparison; ``rules.digital_height_formula``
+    picks the one that constrains the flight.
+    """
+    assert inp.relief_interval_m is not None
+    k = rules.processing_loss_k
+    vz = rules.height_accuracy_fraction * inp.relief_interval_m
+    pixel_m = inp.pixel_um / 1e6
+    up = 1.0 + inp.height_tolerance_up_pct / 100.0
+    base_mm = F.photo_base_mm(inp.sensor_height_mm, inp.forward_overlap_pct)
+    forms: dict[str, dict[str, float]] = {}
+    for form in ("instruction", "parallax"):
+        g = float(F.height_pixel_um(inp.relief_interval_m, 1.0, inp.focal_mm, base_mm,
+                                    height_accuracy_fraction=rules.height_accuracy_fraction,
+                                    processing_loss_k=k, method=form)) / 1e6  # type: ignore[arg-type]
+        forms[form] = {"ground_limit_m": g}
+    fraction = float(F.stereo_base_fraction(inp.forward_overlap_pct,
+                                            rules.standard_forward_overlap_pct))
+    steps = round(fraction / (1.0 - inp.forward_overlap_pct / 100.0))
+    bh = fraction * inp.sensor_height_mm / inp.focal_mm
+    multi = (float(F.strip_multi_ray_factor(inp.forward_overlap_pct,
+                                            rules.standard_forward_overlap_pct))
+             if rules.multi_ray == "strip" else 1.0)
+    sigma = rules.image_measurement_px
+    forms["normal_case"] = {"ground_limit_m": float(F.stereo_height_ground_limit_m(
+        vz, bh, sigma, multi))}
+    for v in forms.values():
+        v["max_flown_height_m"] = v["ground_limit_m"] * inp.focal_mm / 1000.0 / pixel_m
+        v["max_planned_height_m"] = v["max_flown_height_m"] / up
+    formula = rules.digital_height_formula
+    h_plan = inp.height_m
+    h_hi = h_plan * up
+    sz = F.normal_case_height_error_m(np.array([h_plan, h_hi]),
+                                      bh * np.array([h_plan, h_hi]), inp.focal_mm,
+                                      inp.pixel_um, sigma, multi)
+    details: dict[str, Any] = {
+        "formula": formula, "height_accuracy_m": vz,
+        "height_accuracy_meaning": "RMS (one standard deviation) of the model heights",
+        "stereo_base_steps": steps, "stereo_base_to_height": bh,
+        "stereo_overlap_pct": 100.0 * (1.0 - fraction),
+        "single_step_base_to_height": float(base_mm) / inp.focal_mm,
+        "image_measurement_px": sigma, "multi_ray": rules.multi_ray,
+        "multi_ray_factor": multi, "processing_loss_k": k,
+        "sigma_z_at_planned_height_m": float(sz[0]),
+        "sigma_z_at_highest_flown_height_m": float(sz[1]),
+        "sigma_z_in_gsd": sigma * multi / bh,
+        "forms": forms,
+    }
+    if formula == "normal_case":
+        reason = Message("limit.PZ.normal_case", vz=vz, hc=inp.relief_interval_m, bh=bh,
+                         steps=steps, overlap=100.0 * (1.0 - fraction), sigma=sigma,
+                         multi=Message("limit.PZ.multi", f=multi) if multi < 1.0 else None)
+    else:
+        reason = Message("limit.PZ", vz=vz, hc=inp.relief_interval_m, k=k,
+                         formula=height_formula_name(formula))
+    return forms[formula]["ground_limit_m"], reason, details
 
 
 def _ground_limits(inp: UavInputs, rules: ScanRules) -> dict[str, tuple[float, str, Message]]:
@@ -269,13 +363,8 @@ def _ground_limits(inp: UavInputs, rules: ScanRules) -> dict[str, tuple[float, s
         out["PS"] = (g, "GSD", Message("limit.PS", vs=rules.planimetric_accuracy_mm, map=mk,
                                        k=k))
     if "PZ" in rules.constraints:
-        base_mm = F.photo_base_mm(inp.sensor_height_mm, inp.forward_overlap_pct)
-        g = float(F.height_pixel_um(inp.relief_interval_m, 1.0, inp.focal_mm, base_mm,
-                                    height_accuracy_fraction=rules.height_accuracy_fraction,
-                                    processing_loss_k=k, method=rules.height_formula)) / 1e6
-        vz = rules.height_accuracy_fraction * inp.relief_interval_m
-        out["PZ"] = (g, "GSD", Message("limit.PZ", vz=vz, hc=inp.relief_interval_m, k=k,
-                                       formula=height_formula_name(rules.height_formula)))
+        g, reason, _ = _height_accuracy(inp, rules)
+        out["PZ"] = (g, "GSD", reason)
     if "PP" in rules.constraints:
         g = float(F.photoplan_pixel_um(mk, 1.0, photoplan_resolution_mm=rules.
                                        photoplan_resolution_mm)) / 1e6
@@ -287,6 +376,83 @@ def _ground_limits(inp: UavInputs, rules: ScanRules) -> dict[str, tuple[float, s
         g = obj.size_m * root / obj.shape_coefficient
         out["PD"] = (g, "L", Message("limit.PD", obj.names(), p=rules.probability))
     return out
+
+
+def _height_limits(inp: UavInputs, rules: ScanRules | None) -> tuple[
+        tuple[HeightLimit, ...], float | None, str | None, float | None, dict[str, Any],
+        list[PlanWarning]]:
+    """Every limit as a maximum PLANNED height, the binding one, and the ceiling's effect.
+
+    A limit on the GSD or on L holds at the highest flown height H·(1 + tolerance); the
+    altitude ceiling limits the highest flown height itself. So every limit gives the
+    largest planned height whose highest flown height still meets it, and the smallest is
+    the maximum planned height.
+
+    Returns
+    -------
+    limits, max planned height [m], binding id, what the constraints other than the
+    ceiling allow [m] (None unless the ceiling binds), height-accuracy details, warnings.
+    """
+    up = 1.0 + inp.height_tolerance_up_pct / 100.0
+    h_plan = inp.height_m
+    raw: list[tuple[str, float, str, Message, float, dict[str, Any]]] = []
+    accuracy: dict[str, Any] = {}
+    warnings: list[PlanWarning] = []
+    if inp.map_scale is not None:
+        if rules is None:
+            raise ValueError("rules are needed with a map scale")
+        if "PZ" in rules.constraints:
+            accuracy = _height_accuracy(inp, rules)[2]
+        for cid, (g, compares, reason) in _ground_limits(inp, rules).items():
+            h_at_limit = (g * inp.focal_mm / (inp.pixel_um / 1000.0) if compares == "GSD"
+                          else max_height_for_ground_resolution(inp, g))
+            raw.append((cid, g, compares, reason, h_at_limit / up,
+                        accuracy if cid == "PZ" else {}))
+        digital = replace(rules, height_formula=rules.digital_height_formula)
+        overlap = overlap_warning(digital, inp.forward_overlap_pct)
+        if overlap:
+            warnings.append(overlap)
+    if inp.gsd_target_m is not None:
+        g = inp.gsd_target_m
+        raw.append(("GSD", g, "GSD", Message("limit.GSD", gsd=g * 100.0),
+                    g * inp.focal_mm / (inp.pixel_um / 1000.0) / up, {}))
+    if inp.ceiling_m is not None:
+        source = Message("ceiling.project" if inp.ceiling_from_project else "ceiling.norms")
+        raw.append(("HC", inp.ceiling_m, "H", Message("limit.HC", ceiling=inp.ceiling_m,
+                                                      source=source),
+                    inp.ceiling_m / up, {"from_project": inp.ceiling_from_project}))
+    if not raw:
+        return (), None, None, None, accuracy, warnings
+    best = min(raw, key=lambda r: r[4])
+    max_h, binding = best[4], best[0]
+    limits = tuple(HeightLimit(
+        id=cid, name=CONSTRAINTS[cid].name, limit_m=g, compares=compares,
+        max_height_m=h, binding=(cid == binding),
+        margin_pct=(h / max_h - 1) * 100 if max_h > 0 else math.inf, reason=reason,
+        equation=Message("equation.PZ.normal_case")
+        if cid == "PZ" and details.get("formula") == "normal_case"
+        else CONSTRAINTS[cid].equation, max_flown_height_m=h * up, details=details)
+        for cid, g, compares, reason, h, details in raw)
+    allow = None
+    others = [r for r in raw if r[0] != "HC"]
+    if binding == "HC" and others:
+        nxt = min(others, key=lambda r: r[4])
+        if nxt[4] > max_h * (1 + 1e-9):
+            allow = nxt[4]
+            warnings.append(PlanWarning("ceiling_binds", Message(
+                "ceiling_binds", ceiling=inp.ceiling_m, max=max_h, allow=allow, cid=nxt[0],
+                tolerance=Message("ceiling_binds.tolerance",
+                                  tolerance=inp.height_tolerance_up_pct)
+                if inp.height_tolerance_up_pct else None), severity="info"))
+    if h_plan > max_h * (1 + 1e-9):
+        info = CONSTRAINTS[binding]
+        warnings.append(PlanWarning("height_above_max", Message(
+            "height_above_max", height=h_plan, max=max_h, cid=binding,
+            name={"en": info.name, "ru": info.name_ru},
+            tolerance=Message("height_above_max.tolerance",
+                              tolerance=inp.height_tolerance_up_pct)
+            if inp.height_tolerance_up_pct else None)))
+    return limits, max_h, binding, allow, accuracy, warnings
 
 
 def _flight_time_s(length_m: float, speed_ms: float) -> float | None:
@@ -412,39 +578,13 @@ def plan_uav(inp: UavInputs, rules: ScanRules | None = None) -> UavPlan:
                     p_rec(o, l_hi), p_rec(o, l_corner_hi))
         for o in inp.objects)
 
-    limits: tuple[HeightLimit, ...] = ()
-    max_h = binding = None
-    if inp.map_scale is not None:
-        if rules is None:
-            raise ValueError("rules are needed with a map scale")
-        up = 1.0 + inp.height_tolerance_up_pct / 100.0
-        raw = []
-        for cid, (g, compares, reason) in _ground_limits(inp, rules).items():
-            h_at_limit = (g * inp.focal_mm / (inp.pixel_um / 1000.0) if compares == "GSD"
-                          else max_height_for_ground_resolution(inp, g))
-            raw.append((cid, g, compares, reason, h_at_limit / up))
-        if raw:
-            best = min(raw, key=lambda r: r[4])
-            max_h, binding = best[4], best[0]
-            limits = tuple(HeightLimit(
-                id=cid, name=CONSTRAINTS[cid].name, limit_m=g, compares=compares,
-                max_height_m=h, binding=(cid == binding),
-                margin_pct=(h / max_h - 1) * 100 if max_h > 0 else math.inf, reason=reason,
-                equation=CONSTRAINTS[cid].equation) for cid, g, compares, reason, h in raw)
-            if h_plan > max_h * (1 + 1e-9):
-                info = CONSTRAINTS[binding]
-                warnings.append(PlanWarning("height_above_max", Message(
-                    "height_above_max", height=h_plan, max=max_h, cid=binding,
-                    name={"en": info.name, "ru": info.name_ru},
-                    tolerance=Message("height_above_max.tolerance",
-                                      tolerance=inp.height_tolerance_up_pct)
-                    if inp.height_tolerance_up_pct else None)))
-        overlap = overlap_warning(rules, inp.forward_overlap_pct)
-        if overlap:
-            warnings.append(overlap)
+    limits, max_h, binding, allow, accuracy, lim_warnings = _height_limits(inp, rules)
+    warnings.extend(lim_warnings)
+    up = 1.0 + inp.height_tolerance_up_pct / 100.0
+    max_flown = max_h * up if max_h is not None else None
 
     # GSD and L against height, for plots (one vectorised call)
-    top = max(h_hi, max_h or 0.0) * 1.5
+    top = max(h_hi, max_flown or 0.0) * 1.3
     hs = np.linspace(top / 30.0, top, 30)
     curve = _resolution(inp, hs).centre
     height_curve = {"height_m": hs.tolist(),
@@ -470,6 +610,8 @@ def plan_uav(inp: UavInputs, rules: ScanRules | None = None) -> UavPlan:
         tilted_corner_gsd_m=tilt, flight=fl, height_curve=height_curve,
         recognition=recognition, limits=limits,
         max_height_m=max_h, binding=binding, warnings=tuple(warnings),
+        max_flown_height_m=max_flown, ceiling_m=inp.ceiling_m,
+        constraints_max_height_m=allow, height_accuracy=accuracy,
         mtf_centre={"freq_lpmm": freq.tolist(),
                     **{name: np.asarray(v).ravel().tolist() for name, v in curves.items()}})
 

@@ -540,14 +540,14 @@ CORPUS: tuple[Case, ...] = (
         "missing-parameter",
         _missing_parameter,
         False,
-        ("'parameters'!A14",),
+        ("'parameters'!A18",),
         ("missing parameter 'probability'",),
     ),
     Case(
         "unknown-parameter",
         _unknown_parameter,
         False,
-        ("'parameters'!A15",),
+        ("'parameters'!A19",),
         ("unknown parameter",),
     ),
     Case(

@@ -331,8 +331,11 @@ def test_scanner_step_listed_twice_is_refused(tmp_path):
 
 def test_bundled_aerial_example():
     """examples/aerial-ultracam-5000.toml: a 1:5000 map, UltraCam Eagle 80 at manned
-    heights — maximum 4524 m bound by P_Z (GSD ≤ V_z·f/(k·b) on the ground), GSD 0.294 m,
-    3 strips × 13 photos at the Instruction's 60/30 % overlaps, the haze note."""
+    heights — maximum 2093 m bound by the digital height accuracy P_Z (normal case:
+    GSD ≤ V_z·(B/H)/σ_px with V_z = 0.2·1 m, B/H = 0.4·13080·5.2 µm / 80 mm, σ_px 0.5 px),
+    GSD 0.136 m, 6 strips × 25 photos at the Instruction's 60/30 % overlaps, no altitude
+    ceiling for a manned aircraft, the haze note. (The Instruction's printed P_Z would allow
+    4524 m; it is reported beside it.)"""
     from pathlib import Path
 
     from scanplan.project import load_project
@@ -344,12 +347,16 @@ def test_bundled_aerial_example():
     res = plan_project(load_project(path))
     u, p = res.uav, res.uav.job.plan
     assert p.inputs.platform == "aircraft" and p.binding == "PZ"
-    # P_Z on the ground: V_z·f/(k·b) with V_z = 0.2·1 m, k = 2, b = 0.4·(13080·5.2 µm)
+    assert p.ceiling_m is None and all(x.id != "HC" for x in p.limits)
+    bh = 0.4 * 13080 * 5.2e-3 / 80
+    assert u.max_height_m == pytest.approx(0.2 * bh / 0.5 * 80 / 5.2e-3, rel=1e-9)
+    assert u.recommended_height_m == 2090
+    assert p.gsd_m == pytest.approx(5.2e-6 * 2090 / 0.080, rel=1e-12)
+    assert (p.flight["strips"], p.flight["photos_per_strip"]) == (6, 25)
+    # the Instruction's printed form, for comparison: V_z·f/(k·b) on the ground
     b_mm = 0.4 * 13080 * 5.2e-3
-    assert u.max_height_m == pytest.approx(0.2 * 80 / (2 * b_mm) * 80 / 5.2e-3, rel=1e-9)
-    assert u.recommended_height_m == 4520
-    assert p.gsd_m == pytest.approx(5.2e-6 * 4520 / 0.080, rel=1e-12)
-    assert (p.flight["strips"], p.flight["photos_per_strip"]) == (3, 13)
+    assert p.height_accuracy["forms"]["instruction"]["max_planned_height_m"] == pytest.approx(
+        0.2 * 80 / (2 * b_mm) * 80 / 5.2e-3, rel=1e-9)
     assert "haze_default_height" in {w.code for w in p.warnings}
 
 

@@ -617,6 +617,7 @@ STR_BAD = {
     ("film", "frame_mm"): ['"0x230"', '"abc"', '"230x"'],
     ("uav", "camera"): ['"nope"', '"../x"', '"rc30-153"'],
     ("uav", "sensor_mm"): ['"0x24"', '"abc"'],
+    ("uav", "height_formula"): ['"x"', '""', '"Normal_case"'],
 }
 
 

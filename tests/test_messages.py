@@ -32,6 +32,7 @@ from scanplan.reports.labels import LABELS
 from scanplan.reports.references import Bibliography
 from scanplan.reports.wording import camera_title, display_message, scanner_title
 from scanplan.spec import PlanResult, plan_project
+from scanplan.uav import plan_uav
 
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLES = ROOT / "examples"
@@ -65,7 +66,7 @@ def test_templates_have_the_same_fields_in_both_locales():
 
 def test_russian_templates_are_russian():
     """No English word in a Russian template outside symbols, ids and option names."""
-    allowed = {"objects", "parallax", "sqrt"}
+    allowed = {"objects", "parallax", "sqrt", "uav"}  # "uav": the project section [uav]
     for code, templates in MESSAGES.items():
         text = re.sub(r"\{[^}]*\}", " ", templates["ru"])
         text = re.sub(r"\[[a-z.]+\] [a-z_]+", " ", text)  # a project-file key, as typed
@@ -110,7 +111,8 @@ def test_numbers_scales_lists_names_and_nested_messages_per_locale():
     assert at.text("ru") == f"При масштабах снимков 1:10{NBSP}000; 1:15{NBSP}000"
     lim = Message("height_above_max", height=600.0, max=376.4, cid="PD",
                   name={"en": "interpretation", "ru": "дешифрирование"}, tolerance=None)
-    assert lim == "planned height 600 m is above the maximum 376 m set by PD (interpretation)"
+    assert lim == ("planned height 600 m is above the maximum planned height 376 m set by PD "
+                   "(interpretation)")
     assert "по условию PD (дешифрирование)" in lim.text("ru")
     why = Message("no_feasible_photo_scale", why=[
         Message("no_feasible_photo_scale.objects", limit=8847),
@@ -208,6 +210,12 @@ def emitted(tmp_path_factory) -> dict[str, list[Any]]:
     out["uav trigger"] = list(_uav_messages(uav_job(**{**uav, "forward_overlap_pct": 97}).plan))
     out["uav flat scene"] = list(_uav_messages(uav_job(**{**uav, "r_min": 0.3}).plan))
     out["uav parallax"] = list(_uav_messages(uav_job(**uav, height_formula="parallax").plan))
+    gsd = uav_job(**uav, gsd_cm=2.0).plan
+    out["uav target GSD"] = [*_uav_messages(gsd),
+                             *(CONSTRAINTS[lim.id].protects for lim in gsd.limits)]
+    base = uav_job(**uav)
+    out["uav multi-ray"] = list(_uav_messages(plan_uav(base.plan.inputs, dataclasses.replace(
+        base.norm_set.rules(), multi_ray="strip"))))
     film_toml = (EXAMPLES / "instruction-2000-film.toml").read_text(encoding="utf-8")
     uav_toml = (EXAMPLES / "uav-canon-2000.toml").read_text(encoding="utf-8")
     archive_toml = (EXAMPLES / "archive-12000-for-2000.toml").read_text(encoding="utf-8")
@@ -220,6 +228,7 @@ def emitted(tmp_path_factory) -> dict[str, list[Any]]:
             "relief_interval_m = 1.0", "relief_interval_m = 0.01"),
         "plan uav": uav_toml,
         "plan uav lowered": uav_toml.replace("height_m = 300", "height_m = 500"),
+        "plan uav within": uav_toml.replace("height_m = 300", "height_m = 200"),
         "plan uav no height": uav_toml.replace("height_m = 300\n", ""),
         "plan uav nothing resolved": uav_toml.replace("r_min = 0.1", "r_min = 0.3"),
         # archive photos: the scale is given (issue 13)
@@ -288,7 +297,7 @@ def test_english_text_is_what_the_engine_always_said(emitted):
     assert "P_S = V_s·Mk/(k·Mc) — GKINP (GNTA)-02-036-02; Miheeva & Ilushenko 2015, eq. (1)" \
         in film  # issue 13: works by author and year, never "seed 001"
     uav = " ".join(map(str, emitted["plan uav lowered"]))
-    assert "the planned 500 m is above the maximum 376 m (PD binds); lowered to 375 m" in uav
+    assert "the planned 500 m is above the maximum 214 m (PZ binds); lowered to 210 m" in uav
     assert CONSTRAINTS["PR"].equation == ("P_R = k_R/R, k_R = 0.5 (printed 0.4) — "
                                           "Miheeva & Ilushenko 2015, eqs. (4)–(6)")
 
@@ -298,9 +307,11 @@ def test_json_keeps_english_and_adds_the_parameters():
     assert r.exit_code == 0, r.output
     doc = json.loads(r.stdout)
     blur = next(w for w in doc["warnings"] if w["code"] == "motion_blur")
-    assert blur["message"].startswith("motion blur 0.65 px at 300 m exceeds 0.5 px")
-    assert blur["params"]["denominator"] == 1300 and blur["params"]["height"] == 300
-    assert doc["specification"]["uav"]["reason"] == "the planned height is within the maximum 376 m"
+    # the example is lowered from the planned 300 m to 210 m (the digital height accuracy)
+    assert blur["message"].startswith("motion blur 0.93 px at 210 m exceeds 0.5 px")
+    assert blur["params"]["denominator"] == 1858 and blur["params"]["height"] == 210
+    assert doc["specification"]["uav"]["reason"] == ("the planned 300 m is above the maximum "
+                                                     "214 m (PZ binds); lowered to 210 m")
     assert PlanWarning("x", "plain").text("ru") == "plain"  # a plain string stays as it is
 
 

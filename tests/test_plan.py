@@ -56,23 +56,31 @@ def test_table_9_setting():
 
 
 def test_uav_seed_002_flight():
-    """Canon 5D Mark II at 300 m (flown to 420 m): max height 376 m bound by
-    interpretation on L; GSD 3.85 cm, L 6.34 cm; recognition of 20 cm poles 0.91."""
+    """Canon 5D Mark II planned at 300 m, flown +40 %, for a 1:2000 plan with 0.5 m relief:
+    the digital height accuracy (σ_Z = (H/B)·(H/c)·σ_px ≤ 0.1 m RMS, B/H 0.192, 0.5 px)
+    allows at most 214 m planned (flown up to 300 m), so the 300 m plan is lowered to
+    210 m (flown up to 294 m, under the project's 500 m ceiling): GSD 2.69 cm, L 4.48 cm,
+    recognition of 20 cm poles 0.954. (At 300 m the seed's L, P stand: tests/test_uav.py.)"""
     doc = plan_json(str(EXAMPLES / "uav-canon-2000.toml"))
     u = doc["specification"]["uav"]
-    assert u["recommended_height_m"] == 300 and u["binding"] == "PD"
-    assert u["max_height_m"] == pytest.approx(376, abs=1)
-    assert u["gsd_m"] == pytest.approx(36 / 5616 * 300 / 50)  # 36 mm / 5616 px, exact pitch
-    assert u["ground_resolution_m"] == pytest.approx(0.0634, abs=5e-5)
-    assert u["recognition"][0]["probability"] == pytest.approx(0.910, abs=5e-4)
-    assert u["photos"] == 2592 and u["strips"] == 24
+    assert u["recommended_height_m"] == 210 and u["binding"] == "PZ"
+    assert u["max_height_m"] == u["max_planned_height_m"] == pytest.approx(213.95, abs=0.05)
+    assert u["max_flown_height_m"] == pytest.approx(299.53, abs=0.05)
+    assert u["recommended_flown_height_m"] == pytest.approx(294)
+    assert u["ceiling_m"] == 500 and u["constraints_max_height_m"] is None
+    assert u["sigma_z_m"] == pytest.approx(0.0982, abs=1e-4)
+    assert u["gsd_m"] == pytest.approx(doc["uav"]["inputs"]["pixel_um"] / 1000 * 210 / 50)
+    assert u["ground_resolution_m"] == pytest.approx(0.0448, abs=5e-5)
+    assert u["recognition"][0]["probability"] == pytest.approx(0.954, abs=5e-4)
+    assert u["photos"] == 5168 and u["strips"] == 34
 
 
 def test_text_summary_shows_the_same_numbers():
     r = CliRunner().invoke(main, ["plan", str(EXAMPLES / "uav-canon-2000.toml")])
     assert r.exit_code == 0
-    assert "376 m (PD interpretation)" in r.output
-    assert "0.038 m / 0.063 m" in r.output
+    assert "210 m (flown up to 294 m, +40 %)" in r.output
+    assert "214 m (flown up to 300 m) (PZ height accuracy)" in r.output
+    assert "0.027 m / 0.045 m" in r.output
     r = CliRunner().invoke(main, ["plan", str(EXAMPLES / "instruction-2000-film.toml")])
     assert "recommended photo scale        1:8000" in r.output
 
@@ -83,9 +91,9 @@ def test_height_lowered_when_above_the_maximum(tmp_path):
     p = tmp_path / "high.toml"
     p.write_text(text, encoding="utf-8")
     result = plan_project(load_project(p))
-    assert result.uav.recommended_height_m == 375 and result.uav.planned_height_m == 500
+    assert result.uav.recommended_height_m == 210 and result.uav.planned_height_m == 500
     assert "height_lowered" in {w.code for w in result.warnings}
-    assert result.uav.job.plan.heights_m["planned"] == 375
+    assert result.uav.job.plan.heights_m["planned"] == 210
 
 
 def test_film_and_uav_side_by_side(tmp_path):

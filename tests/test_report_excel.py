@@ -34,9 +34,10 @@ def scan():
 @pytest.fixture(scope="module")
 def uav():
     """Seed 002's flight."""
+    # the Instruction's height form and a raised ceiling: interpretation (PD) binds
     return uav_job(camera="canon-eos-5d-mark-ii-50", f_number=8, height_m=300,
-                   height_tolerance_pct=40, speed_ms=25, map_scale=2000,
-                   relief_interval_m=0.5, area_m="2000x3000")
+                   height_tolerance_pct=40, speed_ms=25, map_scale=2000, max_height_m=1000,
+                   height_formula="instruction", relief_interval_m=0.5, area_m="2000x3000")
 
 
 def load(data: bytes) -> openpyxl.Workbook:
@@ -139,7 +140,7 @@ def test_summary_headline_is_read_from_the_plan(both_en, scan, uav):
     assert labels["GSD, m"] == exact(uav.plan.gsd_m)
     assert labels["Ground resolution L, m"] == exact(uav.plan.ground_resolution_m)
     assert labels["L/GSD"] == exact(uav.plan.ground_resolution_to_gsd)
-    assert labels["Maximum flight height, m"] == exact(uav.plan.max_height_m)
+    assert labels["Maximum planned flight height, m"] == exact(uav.plan.max_height_m)
     assert labels["Binding constraint"].startswith("PD")
     assert labels["APPROVED"] is None and labels["Position"] == "Chief engineer"
     assert (ws["A6"].value, ws["B6"].value) == ("Date", "2024-05-01")

@@ -37,9 +37,10 @@ def scan():
 
 @pytest.fixture(scope="module")
 def uav():
+    # the Instruction's height form and a raised ceiling: interpretation (PD) binds
     return uav_job(camera="canon-eos-5d-mark-ii-50", f_number=8, height_m=300,
-                   height_tolerance_pct=40, speed_ms=25, map_scale=2000,
-                   relief_interval_m=0.5)
+                   height_tolerance_pct=40, speed_ms=25, map_scale=2000, max_height_m=1000,
+                   height_formula="instruction", relief_interval_m=0.5)
 
 
 def _meta(locale: str, project: str) -> ReportMeta:
@@ -104,7 +105,8 @@ def test_english_title_approval_and_binding(doc_en):
     assert "PR (resolving power of the photo) binds at 1:5000: 12.5 µm" in text
     assert "Binding constraint" in text
     # UAV: maximum height and its binding constraint
-    assert "Maximum flight height 386 m: PD (interpretation) binds" in text
+    assert "Maximum planned flight height 386 m: PD (interpretation) binds" in text
+    assert "Maximum planned height by height formula — normal-case stereo" in text
     # warnings, formulas with sources
     assert "Not interpretable." in text and "[not_interpretable]" not in text
     assert "Motion blur." in text
@@ -125,7 +127,8 @@ def test_russian_title_approval_and_binding(doc_ru):
     assert ("При масштабе 1:10 000 размер пикселя сканирования 8,3 мкм определяет условие "
             "PZ (точность по высоте)") in text
     assert "Определяющее условие" in text
-    assert "Максимальную высоту полёта 386 м определяет условие PD (дешифрирование)" in text
+    assert ("Максимальную плановую высоту полёта 386 м определяет условие PD (дешифрирование)"
+            in text)
     assert "Формулы и источники" in text and "Предупреждения" in text
     assert "Дешифрирование невозможно." in text
     assert "столбы, гидранты: 0,2 м, круг" in text  # norm object and shape in Russian

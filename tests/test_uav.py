@@ -20,6 +20,9 @@ from scanplan.cli import main
 SEED002 = dict(camera="canon-eos-5d-mark-ii-50", f_number=8.0, height_m=300.0,
                height_tolerance_pct=40.0, speed_ms=25.0, exposure_s=0.001,
                forward_overlap_pct=80.0, shift_factor=0.65)
+# the seed 002 flight was flown up to 420 m: far above the 150 m ceiling of the norm set
+# (flights without an airspace-use permission), so the tests of the other limits raise it
+HIGH = dict(max_height_m=20_000.0)
 P_MM = 36 / 5616  # seed 002: 5616 px across a 36 mm sensor [mm]
 
 
@@ -54,31 +57,37 @@ def test_max_height_gsd_limited_is_exact():
     """Without P_D (the Instruction as printed) the photo-plan limit 0.07 mm·Mk binds:
     GSD ≤ 0.14 m at 1:2000 → H_max = 0.14·f/p, divided by the height tolerance."""
     plan = uav_job(**{**SEED002, "height_tolerance_pct": 0.0}, map_scale=2000,
-                   relief_interval_m=0.5, norms="gkinp-02-036-02-printed").plan
+                   relief_interval_m=0.5, norms="gkinp-02-036-02-printed", **HIGH,
+                   height_formula="instruction").plan
     assert plan.binding == "PP"
     assert plan.max_height_m == pytest.approx(0.14 * 50 / P_MM)
     plan40 = uav_job(**SEED002, map_scale=2000, relief_interval_m=0.5,
-                     norms="gkinp-02-036-02-printed").plan
+                     norms="gkinp-02-036-02-printed", **HIGH, height_formula="instruction").plan
     assert plan40.max_height_m == pytest.approx(plan.max_height_m / 1.4)
 
 
 def test_max_height_interpretation_limited_meets_its_limit():
-    """With P_D, L must not exceed L_obj·sqrt(−ln P)/B; at the max height flown (+40 %)
-    the centre L sits exactly on that limit, and the binding constraint is named."""
-    plan = uav_job(**SEED002, map_scale=2000, relief_interval_m=0.5).plan
+    """With P_D, L must not exceed L_obj·sqrt(−ln P)/B; at the highest height flown at the
+    maximum planned height (+40 %) the centre L sits exactly on that limit, and the binding
+    constraint is named. (The Instruction's height form, which allows 2,902 m here, and no
+    ceiling: P_D binds at a maximum planned height of 376 m, flown up to 526 m.)"""
+    plan = uav_job(**SEED002, map_scale=2000, relief_interval_m=0.5, **HIGH,
+                   height_formula="instruction").plan
     assert plan.binding == "PD"
     limit = 0.2 * math.sqrt(-math.log(0.75)) / 0.97
     pd = next(x for x in plan.limits if x.id == "PD")
     assert pd.limit_m == pytest.approx(limit) and pd.compares == "L" and pd.binding
+    assert plan.max_flown_height_m == pytest.approx(plan.max_height_m * 1.4)
+    assert pd.max_flown_height_m == pytest.approx(plan.max_flown_height_m)
     cam = mtf.Camera(P_MM * 1000, 50, 8, 36, 24)
-    flown = plan.max_height_m * 1.4
+    flown = plan.max_flown_height_m
     res = mtf.uav_resolution(cam, mtf.Flight(flown, 25, 0.001, 0.65),
                              threshold=mtf.Threshold(params={"k0": 0.03}))
     assert float(res.centre.ground_resolution_m) == pytest.approx(limit, rel=1e-4)
     assert all(x.max_height_m >= plan.max_height_m for x in plan.limits)
     assert "height_above_max" not in {w.code for w in plan.warnings}
     higher = uav_job(**{**SEED002, "height_m": 500.0}, map_scale=2000,
-                     relief_interval_m=0.5).plan
+                     relief_interval_m=0.5, **HIGH, height_formula="instruction").plan
     assert "height_above_max" in {w.code for w in higher.warnings}
 
 
@@ -145,11 +154,12 @@ def test_docs_worked_example_reproduced_by_the_cli():
     """docs/uav-models.md's seed 002 table (with random motion 1 m/s, 0.02 rad/s) comes out
     of `scanplan uav` unchanged: L 6.34 / 6.65 cm at 300 m, 8.84 cm at 420 m, P 0.910 / 0.832
     / 0.817 for the 20 cm poles."""
-    r = CliRunner().invoke(main, [
+    args = [
         "uav", "--camera", "canon-eos-5d-mark-ii-50", "--f-number", "8", "--height-m", "300",
         "--height-tolerance-pct", "40", "--speed-ms", "25", "--shift-factor", "0.65",
         "--random-speed-ms", "1", "--roll-rate", "0.02", "--pitch-rate", "0.02",
-        "--yaw-rate", "0.02", "--map-scale", "2000", "--relief", "0.5", "--json"])
+        "--yaw-rate", "0.02", "--map-scale", "2000", "--relief", "0.5", "--json"]
+    r = CliRunner().invoke(main, args)
     assert r.exit_code == 0, r.output
     d = json.loads(r.stdout)
     assert d["ground_resolution_m"] == pytest.approx(0.0634, abs=5e-5)
@@ -159,4 +169,24 @@ def test_docs_worked_example_reproduced_by_the_cli():
     assert poles["probability"] == pytest.approx(0.910, abs=5e-4)
     assert poles["probability_at_max_height"] == pytest.approx(0.832, abs=5e-4)
     assert poles["probability_corner_at_max_height"] == pytest.approx(0.817, abs=5e-4)
-    assert d["binding"] == "PD" and d["max_height_m"] == pytest.approx(376, abs=1)
+    # the new meaning of "maximum": the largest PLANNED height whose highest flown height
+    # (planned × 1.4) still meets the binding limit. By default the norm set's 150 m
+    # ceiling for the highest flown height binds: 150 / 1.4 = 107 m planned, and the
+    # constraints would allow 214 m (the digital height accuracy, PZ)
+    assert d["binding"] == "HC" and d["ceiling_m"] == 150
+    assert d["max_planned_height_m"] == d["max_height_m"] == pytest.approx(150 / 1.4)
+    assert d["max_flown_height_m"] == pytest.approx(150)
+    assert d["constraints_max_height_m"] == pytest.approx(214, abs=1)
+    assert "ceiling_binds" in {w["code"] for w in d["warnings"]}
+    # with the ceiling raised (airspace-use permission), the normal-case height accuracy
+    # binds at 214 m planned, flown up to 300 m; the Instruction's height form instead
+    # lets interpretation (P_D on L) bind at 376 m planned, flown up to 526 m
+    for extra, cid, planned in ((["--max-height-m", "500"], "PZ", 214),
+                                (["--max-height-m", "1000", "--height-formula",
+                                  "instruction"], "PD", 376)):
+        r = CliRunner().invoke(main, [*args, *extra])
+        assert r.exit_code == 0, r.output
+        d = json.loads(r.stdout)
+        assert d["binding"] == cid and d["max_height_m"] == pytest.approx(planned, abs=1)
+        assert d["max_flown_height_m"] == pytest.approx(d["max_height_m"] * 1.4)
+        assert d["ceiling_m"] is not None and d["max_flown_height_m"] <= d["ceiling_m"]

@@ -70,6 +70,7 @@ if TYPE_CHECKING:
     from ..norms import NormSet
     from ..planner import PlanWarning
     from ..spec import PlanResult
+    from ..uav import UavPlan
 
 __all__ = ["render_xlsx", "write_xlsx"]
 
@@ -291,6 +292,28 @@ class _Book:
     def yes_no(self, value: bool) -> str:
         return self.t("xlsx_yes" if value else "xlsx_no")
 
+    def _height_rows(self, ws: Worksheet, row: int, plan: UavPlan) -> int:
+        """Highest flown height at the maximum, the ceiling, and the height accuracy."""
+        row = self.kv(ws, row, self.t("max_flown_height_m"), plan.max_flown_height_m, F1)
+        if plan.ceiling_m is not None:
+            row = self.kv(ws, row, self.t("ceiling_m"), plan.ceiling_m, F1)
+        if plan.constraints_max_height_m is not None:
+            row = self.kv(ws, row, self.t("constraints_max_height_m"),
+                          plan.constraints_max_height_m, F1)
+        acc = plan.height_accuracy
+        if acc:
+            row = self.kv(ws, row, self.t("height_accuracy_m"), acc["height_accuracy_m"], F4)
+            row = self.kv(ws, row, self.t("sigma_z_m"),
+                          acc["sigma_z_at_highest_flown_height_m"], F4)
+            row = self.kv(ws, row, self.t("stereo_base_to_height"),
+                          acc["stereo_base_to_height"], "0.000")
+            row = self.kv(ws, row, self.t("image_measurement_px"),
+                          acc["image_measurement_px"], F2)
+            for form in ("normal_case", "instruction", "parallax"):
+                row = self.kv(ws, row, f"{self.t('height_forms')}: {self.t('hf_' + form)}",
+                              acc["forms"][form]["max_planned_height_m"], F1)
+        return row
+
     def cname(self, cid: str) -> str:
         """A constraint id with its localised name: ``PZ — height accuracy``."""
         try:
@@ -482,6 +505,8 @@ class _Book:
             row = self.kv(ws, row, self.t("spec_recommended_height_m"),
                           u.recommended_height_m, "0")
             row = self.kv(ws, row, self.t("max_height_m"), u.max_height_m, "0")
+            if p.max_flown_height_m is not None:
+                row = self.kv(ws, row, self.t("max_flown_height_m"), p.max_flown_height_m, "0")
             if p.binding:
                 row = self.kv(ws, row, self.t("binding"),
                               self.cname(p.binding))
@@ -832,11 +857,13 @@ class _Book:
             row = self.kv(ws, row, self.t("max_height_m"), plan.max_height_m, F1)
             row = self.kv(ws, row, self.t("binding"), self.cname(plan.binding or ""))
             _mark((ws.cell(r0, 2), ws.cell(r0 + 1, 2)))
+            row = self._height_rows(ws, row, plan)
         if plan.limits:
             row = self.section(ws, row + 1, self.t("xlsx_height_limits"))
             _header(ws, row, [self.t("xlsx_id"), self.t("constraint"), self.t("xlsx_compares"),
                               self.t("xlsx_limit_m"), self.t("max_height_m"),
-                              self.t("margin_pct"), self.t("binding"), "", self.t("reason"),
+                              self.t("margin_pct"), self.t("binding"),
+                              self.t("max_flown_height_m"), self.t("reason"),
                               self.t("xlsx_equation")])
             row += 1
             for lim in plan.limits:
@@ -847,7 +874,8 @@ class _Book:
                          put_num(ws, row, 4, lim.limit_m, F4),
                          put_num(ws, row, 5, lim.max_height_m, F1),
                          put_num(ws, row, 6, lim.margin_pct, PCT),
-                         put_text(ws, row, 7, self.yes_no(lim.binding))]
+                         put_text(ws, row, 7, self.yes_no(lim.binding)),
+                         put_num(ws, row, 8, lim.max_flown_height_m, F1)]
                 put_text(ws, row, 9, self.text(lim.reason), wrap=True)
                 put_text(ws, row, 10, self.text(lim.equation), wrap=True)
                 if lim.binding:

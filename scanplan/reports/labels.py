@@ -54,7 +54,7 @@ LABELS: dict[str, dict[str, str]] = {
         "margin_pct": "Margin, %",
         "reason": "Reason",
         "height_m": "Flight height, m",
-        "max_height_m": "Maximum flight height, m",
+        "max_height_m": "Maximum planned flight height, m",
         "gsd_m": "GSD, m",
         "ground_resolution_m": "Ground resolution L, m",
         "l_over_gsd": "L/GSD",
@@ -217,7 +217,8 @@ LABELS: dict[str, dict[str, str]] = {
                             "smallest allowed pixel); small figures give each other "
                             "constraint's margin.",
         "pdf_binding_note_uav": "highlighted: the binding constraint (the lowest maximum "
-                                "height); small figures give the other constraints' margins.",
+                                "planned height); small figures give the other constraints' "
+                                "margins.",
         "pdf_interpretation_limit": "Interpretation limit: {object} can be recognised with P "
                                     "≥ {p} on photos up to {scale} (Mc/Mk ≤ {ratio}) at R = "
                                     "{r} lines/mm.",
@@ -263,11 +264,12 @@ LABELS: dict[str, dict[str, str]] = {
         "pdf_object": "Object",
         "pdf_size_m": "Size, m",
         "pdf_shape": "Shape",
-        "pdf_limits": "Maximum flight height for the map {scale}, relief interval {hc} m",
-        "pdf_tol_note": " (constraints checked at +{tol} % height)",
+        "pdf_limits": "Maximum planned flight height for the map {scale}, relief interval {hc} m",
+        "pdf_tol_note": " (limits checked at the highest flown height, +{tol} %)",
         "pdf_limit_on_ground": "Limit on the ground, m",
         "pdf_compared": "Compared with",
-        "pdf_max_height_sentence": "Maximum flight height {h} m: {cid} ({name}) binds — {reason}.",
+        "pdf_max_height_sentence": "Maximum planned flight height {h} m: {cid} ({name}) binds — "
+                                   "{reason}.",
         "pdf_f_gsd": "ground sample distance (pixel p, height H, focal length f)",
         "pdf_f_l": "MTF ground resolution; R is where the image contrast K meets the threshold",
         "pdf_f_p": "recognition probability of an object of size L_obj, shape coefficient B",
@@ -281,7 +283,7 @@ LABELS: dict[str, dict[str, str]] = {
         "pdf_gb": "GB",
         "pdf_h_planned": "planned",
         "pdf_h_flown_max": "highest flown",
-        "pdf_h_max": "maximum ({cid})",
+        "pdf_h_max": "maximum planned ({cid})",
         "pdf_nyquist_short": "Nyquist",
         "pdf_warn_not_interpretable": "Not interpretable",
         "pdf_warn_above_interpretation_limit": "Above the interpretation limit",
@@ -314,6 +316,36 @@ LABELS: dict[str, dict[str, str]] = {
         "spec_cmp_recognition": "recognition probability of the map object",
         "spec_cmp_frames": "frames / photos",
         "spec_cmp_data_volume": "data volume, uncompressed",
+        "pdf_h_max_flown": "highest flown at the maximum",
+        "pdf_h_ceiling": "altitude ceiling",
+        "max_planned_height_m": "Maximum planned flight height, m",
+        "max_flown_height_m": "Highest flown height at the maximum, m",
+        "ceiling_m": "Altitude ceiling (highest flown height), m",
+        "constraints_max_height_m": "Maximum planned height without the ceiling, m",
+        "height_accuracy_m": "Required height accuracy V_z (RMS), m",
+        "sigma_z_m": "Height error σ_Z at the highest flown height, m",
+        "stereo_base_to_height": "Stereo base-to-height ratio B/H",
+        "image_measurement_px": "Parallax measurement error σ_px, px",
+        "height_forms": "Maximum planned height by height formula",
+        "hf_normal_case": "normal-case stereo, σ_Z = (H/B)·(H/c)·σ_px",
+        "hf_instruction": "Instruction, V_z·f/(k·Mc·b)",
+        "hf_parallax": "parallax, single-step base, V_z·b/(k·Mc·f)",
+        "GSD": "target GSD",
+        "HC": "altitude ceiling",
+        "pdf_warn_ceiling_binds": "The altitude ceiling binds",
+        "gsd_target_cm": "Target GSD, cm",
+        "param_digital_height_formula": "Height accuracy of digital blocks",
+        "param_image_measurement_px": "Parallax measurement error σ_px, px",
+        "param_multi_ray": "Multi-ray improvement of the height error",
+        "param_uav_max_height_m": "Altitude ceiling without an airspace-use permission, m",
+        "value_digital_height_formula_normal_case": "normal-case stereo (B/f)",
+        "value_digital_height_formula_instruction": "as printed in the Instruction (f/b)",
+        "value_digital_height_formula_parallax": "parallax form (b/f)",
+        "value_multi_ray_off": "off (one stereo pair)",
+        "value_multi_ray_strip": "all photos of the strip",
+        "pdf_height_forms": "Height error σ_Z = {sigma} m at the highest flown height {h} m "
+                            "(required V_z = {vz} m, RMS). Maximum planned height by height "
+                            "formula — {forms}.",
     },
     "ru": {
         "title_scan": "Техническое задание на сканирование аэрофотоснимков",
@@ -360,7 +392,7 @@ LABELS: dict[str, dict[str, str]] = {
         "margin_pct": "Запас, %",
         "reason": "Обоснование",
         "height_m": "Высота полёта, м",
-        "max_height_m": "Максимальная высота полёта, м",
+        "max_height_m": "Максимальная плановая высота полёта, м",
         "gsd_m": "GSD, м",
         "ground_resolution_m": "Линейное разрешение на местности L, м",
         "l_over_gsd": "L/GSD",
@@ -528,7 +560,7 @@ LABELS: dict[str, dict[str, str]] = {
                             "(наименьший допустимый пиксель); мелкие цифры — запас остальных "
                             "условий.",
         "pdf_binding_note_uav": "выделено определяющее условие (наименьшая максимальная "
-                                "высота); мелкие цифры — запас остальных условий.",
+                                "плановая высота); мелкие цифры — запас остальных условий.",
         "pdf_interpretation_limit": "Предел дешифрирования: {object} распознаются с "
                                     "вероятностью не ниже {p} на снимках масштаба до {scale} "
                                     "(Mc/Mk ≤ {ratio}) при R = {r} мм⁻¹.",
@@ -575,11 +607,13 @@ LABELS: dict[str, dict[str, str]] = {
         "pdf_object": "Объект",
         "pdf_size_m": "Размер, м",
         "pdf_shape": "Форма",
-        "pdf_limits": "Максимальная высота полёта для карты {scale}, сечение рельефа {hc} м",
-        "pdf_tol_note": " (условия проверены на высоте +{tol} %)",
+        "pdf_limits": "Максимальная плановая высота полёта для карты {scale}, сечение рельефа "
+                      "{hc} м",
+        "pdf_tol_note": " (условия проверены на наибольшей фактической высоте, +{tol} %)",
         "pdf_limit_on_ground": "Предел на местности, м",
         "pdf_compared": "Сравнивается с",
-        "pdf_max_height_sentence": "Максимальную высоту полёта {h} м определяет условие {cid} "
+        "pdf_max_height_sentence": "Максимальную плановую высоту полёта {h} м определяет "
+                                   "условие {cid} "
                                    "({name}): {reason}.",
         "pdf_f_gsd": "размер пикселя на местности (пиксель p, высота H, фокусное расстояние f)",
         "pdf_f_l": "линейное разрешение на местности по ЧКХ; R — частота, при которой "
@@ -595,7 +629,7 @@ LABELS: dict[str, dict[str, str]] = {
         "pdf_gb": "ГБ",
         "pdf_h_planned": "плановая",
         "pdf_h_flown_max": "наибольшая фактическая",
-        "pdf_h_max": "максимальная ({cid})",
+        "pdf_h_max": "максимальная плановая ({cid})",
         "pdf_nyquist_short": "Найквист",
         "pdf_warn_not_interpretable": "Дешифрирование невозможно",
         "pdf_warn_above_interpretation_limit": "За пределом дешифрирования",
@@ -628,6 +662,37 @@ LABELS: dict[str, dict[str, str]] = {
         "spec_cmp_recognition": "Вероятность распознавания объекта карты",
         "spec_cmp_frames": "Число снимков",
         "spec_cmp_data_volume": "Объём данных без сжатия",
+        "pdf_h_max_flown": "наибольшая фактическая при максимальной",
+        "pdf_h_ceiling": "предельная высота полёта",
+        "max_planned_height_m": "Максимальная плановая высота полёта, м",
+        "max_flown_height_m": "Наибольшая фактическая высота при максимальной плановой, м",
+        "ceiling_m": "Предельная высота полёта (наибольшая фактическая), м",
+        "constraints_max_height_m": "Максимальная плановая высота без учёта предельной, м",
+        "height_accuracy_m": "Требуемая точность высот V_z (СКО), м",
+        "sigma_z_m": "Ошибка высот σ_Z на наибольшей фактической высоте, м",
+        "stereo_base_to_height": "Отношение базиса к высоте B/H",
+        "image_measurement_px": "Ошибка измерения параллакса σ_px, пикс.",
+        "height_forms": "Максимальная плановая высота по формулам точности высот",
+        "hf_normal_case": "нормальный случай стереосъёмки, σ_Z = (H/B)·(H/c)·σ_px",
+        "hf_instruction": "по Инструкции, V_z·f/(k·Mc·b)",
+        "hf_parallax": "параллактическая, базис одного шага, V_z·b/(k·Mc·f)",
+        "GSD": "заданный размер пикселя на местности",
+        "HC": "предельная высота полёта",
+        "pdf_warn_ceiling_binds": "Высоту ограничивает предельная высота полёта",
+        "gsd_target_cm": "Заданный размер пикселя на местности, см",
+        "param_digital_height_formula": "Точность высот цифровой аэросъёмки",
+        "param_image_measurement_px": "Ошибка измерения параллакса σ_px, пикс.",
+        "param_multi_ray": "Многолучевое уточнение ошибки высот",
+        "param_uav_max_height_m": "Предельная высота полёта без разрешения на использование "
+                                  "воздушного пространства, м",
+        "value_digital_height_formula_normal_case": "нормальный случай стереосъёмки (B/f)",
+        "value_digital_height_formula_instruction": "по Инструкции (f/b)",
+        "value_digital_height_formula_parallax": "параллактическая (b/f)",
+        "value_multi_ray_off": "нет (одна стереопара)",
+        "value_multi_ray_strip": "все снимки маршрута",
+        "pdf_height_forms": "Ошибка высот σ_Z = {sigma} м на наибольшей фактической высоте "
+                            "{h} м (требуется V_z = {vz} м, СКО). Максимальная плановая высота "
+                            "по формулам точности высот — {forms}.",
     },
 }
 

@@ -402,6 +402,10 @@ def _uav_view(job: UavJob, f: _Fmt) -> dict[str, Any]:
     ]
     if h["max"] != h["min"] or h["min"] != h["planned"]:
         inputs.append((f.label("pdf_flown_heights"), f"{f.g(h['min'])} – {f.g(h['max'])}"))
+    if inp.ceiling_m is not None:
+        inputs.append((f.label("ceiling_m"), f.g(inp.ceiling_m)))
+    if inp.gsd_target_m is not None:
+        inputs.append((f.label("gsd_target_cm"), f.g(inp.gsd_target_m * 100.0)))
     inputs += [
         (f.label("pdf_speed_ms"), f.g(inp.speed_ms)),
         (f.label("pdf_exposure_s"), f.g(inp.exposure_s)),
@@ -483,6 +487,7 @@ def _uav_view(job: UavJob, f: _Fmt) -> dict[str, Any]:
         "p_corner": f.num(r.probability_corner_at_max_height, 2)} for r in plan.recognition]
     limits = [{"id": lim.id, "name": f.cname(lim.id), "limit": f.num(lim.limit_m, 3),
                "compares": lim.compares, "max_height": f.num(lim.max_height_m, 0),
+               "max_flown": f.num(lim.max_flown_height_m or lim.max_height_m, 0),
                "margin": "" if lim.binding or not math.isfinite(lim.margin_pct)
                else f"+{f.num(lim.margin_pct, 0)} %",
                "binding": lim.binding}
@@ -498,6 +503,15 @@ def _uav_view(job: UavJob, f: _Fmt) -> dict[str, Any]:
         max_sentence = f.label("pdf_max_height_sentence", h=f.num(plan.max_height_m, 0),
                                cid=b.id, name=f.cname(b.id),
                                reason=f.cite(localize(b.reason, f.locale)))
+    height_forms = ""
+    acc = plan.height_accuracy
+    if acc:
+        m = f.label("pdf_m")
+        height_forms = f.label("pdf_height_forms", sigma=f.num(
+            acc["sigma_z_at_highest_flown_height_m"], 3), h=f.num(h["max"], 0),
+            vz=f.g(acc["height_accuracy_m"]), forms="; ".join(
+                f"{f.label('hf_' + k)}: {f.num(acc['forms'][k]['max_planned_height_m'], 0)} {m}"
+                for k in ("normal_case", "instruction", "parallax")))
     formulas = [{"equation": eq, "meaning": f.label(key), "source": f.cite(f.label(src))}
                 for eq, key, src in _UAV_FORMULAS
                 if plan.limits or key not in ("pdf_f_pd", "pdf_f_tol")]
@@ -511,6 +525,7 @@ def _uav_view(job: UavJob, f: _Fmt) -> dict[str, Any]:
             f.label("pdf_at_height", h=f.g(h["max"])),
             f.label("pdf_corner_at", h=f.g(h["max"]))],
         "limits": limits, "limits_title": limits_title, "max_sentence": max_sentence,
+        "height_forms": height_forms,
         "warnings": _warnings(plan.warnings, f, ns), "formulas": formulas,
         "limit_formulas": limit_formulas, "norm": _norm_view(ns, f),
         "plot_mtf": _svg_uri(plots.mtf_svg(plan, f.locale)),

@@ -238,18 +238,26 @@ def height_svg(plan: UavPlan, locale: str = "en") -> str:
         ax = fig.add_subplot()
         ax.plot(hs, c["gsd_m"], color="#2ca02c", linewidth=1.3, label="GSD")
         ax.plot(hs, ls, color="#1f77b4", linewidth=1.3, label="L")
+        # planned / highest flown at the plan; maximum planned / its highest flown height:
+        # a GSD or L limit line meets its curve at the highest flown height, not the plan
         marks = [(plan.heights_m["planned"], "black", "-", t("pdf_h_planned", locale))]
         if plan.heights_m["max"] != plan.heights_m["planned"]:
             marks.append((plan.heights_m["max"], "grey", "--", t("pdf_h_flown_max", locale)))
         if plan.max_height_m is not None and plan.binding is not None:
             marks.append((plan.max_height_m, "#d62728", ":",
                           t("pdf_h_max", locale).format(cid=plan.binding)))
+            flown = plan.max_flown_height_m
+            if flown is not None and flown > plan.max_height_m * (1 + 1e-9):
+                marks.append((flown, "#ff7f0e", (0, (5, 2, 1, 2)),
+                              t("pdf_h_max_flown", locale)))
+        if plan.ceiling_m is not None and plan.ceiling_m <= max(hs):
+            marks.append((plan.ceiling_m, "#8c564b", "-", t("pdf_h_ceiling", locale)))
         for h, colour, style, label in marks:
             ax.axvline(h, color=colour, linestyle=style, linewidth=0.9,
                        label=f"{label}: {number(h, 0, locale)} {t('pdf_m', locale)}")
         for lim in plan.limits:
-            if lim.binding and lim.limit_m <= max(max(c["gsd_m"]), max(
-                    (v for v in ls if v == v), default=0.0)) * 1.05:
+            if lim.binding and lim.compares in ("GSD", "L") and lim.limit_m <= max(
+                    max(c["gsd_m"]), max((v for v in ls if v == v), default=0.0)) * 1.05:
                 ax.axhline(lim.limit_m, color="#d62728", linewidth=0.6, linestyle="-.",
                            label=f"{lim.compares} ≤ {number(lim.limit_m, 3, locale)} "
                                  f"{t('pdf_m', locale)} ({lim.id})")
