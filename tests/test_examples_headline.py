@@ -23,18 +23,18 @@ EXAMPLES = ROOT / "examples"
 UAV_500 = {
     "file": "uav-p1-500.toml",
     "planned_height_m": 100,
-    # the altitude ceiling (150 m flown, Russian airspace rules) binds: with the +10 %
-    # tolerance the plan may be at most 150 / 1.1 = 136.4 m
-    "max_height_m": 136.4,
+    # The altitude ceiling binds: 150 m highest flown (Russian airspace rules, para. 52(1))
+    # / 1.1 = 136.4 m planned. Without it P_P would: GSD ≤ 0.07 mm × 500 = 35 mm at the
+    # highest flown height 1.1·H, with the exact pitch 35.9 mm / 8192 px = 4.382 µm:
+    # H = 0.035 m × 35 mm / 4.382 µm / 1.1 = 254.1 m
+    "max_height_m": 150 / 1.1,
     "binding": "HC",
-    # without the ceiling P_P binds: GSD ≤ 0.07 mm × 500 = 35 mm at the highest flown height
-    # 1.1·H, exact pitch 35.9 mm / 8192 px = 4.382 µm: H = 0.035 × 35 / 4.382e-3 / 1.1 = 254.1 m
     "constraints_max_height_m": 254.1,
+    "constraints_binding": "PP",
     "gsd_m": 0.012521,  # 4.382 µm × 100 m / 35 mm
     "object": "gas-valve covers, survey marks",
     "object_size_m": 0.15,
     "photos": 1240,
-    "text_max": "maximum planned height         136 m (flown up to 150 m) (HC",
 }
 FILM_1000 = {
     "file": "film-1000.toml",
@@ -76,6 +76,7 @@ def test_uav_500_json():
     assert u["recommended_height_m"] == UAV_500["planned_height_m"]
     assert u["max_height_m"] == pytest.approx(UAV_500["max_height_m"], abs=0.05)
     assert u["binding"] == UAV_500["binding"]
+    assert u["max_flown_height_m"] == pytest.approx(150.0)
     assert u["constraints_max_height_m"] == pytest.approx(UAV_500["constraints_max_height_m"],
                                                           abs=0.05)
     assert u["gsd_m"] == pytest.approx(UAV_500["gsd_m"], rel=1e-3)
@@ -89,7 +90,11 @@ def test_uav_500_json():
 
 def test_uav_500_text():
     out = _run("plan", str(EXAMPLES / UAV_500["file"]))
-    assert UAV_500["text_max"] in out
+    assert (f"maximum planned height         {UAV_500['max_height_m']:.0f} m (flown up to 150 m)"
+            f" ({UAV_500['binding']}") in out
+    assert (f"without the ceiling            {UAV_500['constraints_max_height_m']:.0f} m"
+            in out)
+    assert f"({UAV_500['constraints_binding']} binds there)" in out
     assert f"{UAV_500['planned_height_m']} m (flown up to 110 m" in out
     assert UAV_500["object"] in out
     assert "uncompressed (JPEG ≈" in out

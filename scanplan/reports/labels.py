@@ -315,7 +315,6 @@ LABELS: dict[str, dict[str, str]] = {
         "spec_cmp_ground_resolution": "resolution on the ground (A / L)",
         "spec_cmp_recognition": "recognition probability of the map object",
         "spec_cmp_frames": "frames / photos",
-        "spec_cmp_data_volume": "data volume, uncompressed",
         "pdf_h_max_flown": "highest flown at the maximum",
         "pdf_h_ceiling": "altitude ceiling",
         "max_planned_height_m": "Maximum planned flight height, m",
@@ -346,6 +345,7 @@ LABELS: dict[str, dict[str, str]] = {
         "pdf_height_forms": "Height error σ_Z = {sigma} m at the highest flown height {h} m "
                             "(required V_z = {vz} m, RMS). Maximum planned height by height "
                             "formula — {forms}.",
+        "spec_cmp_data_volume": "data volume, uncompressed",
     },
     "ru": {
         "title_scan": "Техническое задание на сканирование аэрофотоснимков",
@@ -661,7 +661,6 @@ LABELS: dict[str, dict[str, str]] = {
         "spec_cmp_ground_resolution": "Разрешение на местности (A / L)",
         "spec_cmp_recognition": "Вероятность распознавания объекта карты",
         "spec_cmp_frames": "Число снимков",
-        "spec_cmp_data_volume": "Объём данных без сжатия",
         "pdf_h_max_flown": "наибольшая фактическая при максимальной",
         "pdf_h_ceiling": "предельная высота полёта",
         "max_planned_height_m": "Максимальная плановая высота полёта, м",
@@ -693,6 +692,7 @@ LABELS: dict[str, dict[str, str]] = {
         "pdf_height_forms": "Ошибка высот σ_Z = {sigma} м на наибольшей фактической высоте "
                             "{h} м (требуется V_z = {vz} м, СКО). Максимальная плановая высота "
                             "по формулам точности высот — {forms}.",
+        "spec_cmp_data_volume": "Объём данных без сжатия",
     },
 }
 
