@@ -2,8 +2,8 @@
 archive-photo scan job (issue 13). Their headline numbers, in the terminal text and in
 ``--json``.
 
-The UAV heights depend on the height model; they live in ``UAV_500`` only, so a change of
-the model (a new digital height constraint) is one edit here.
+The UAV heights depend on the height model and the altitude ceiling; they live in
+``UAV_500`` only, so a change of either is one edit here.
 """
 
 from __future__ import annotations
