@@ -15,6 +15,13 @@ camera + flight + atmosphere + motion + scene description (frozen dataclasses wh
 fields may be arrays) and broadcast over every configuration at once. The frequency
 grid is always the **last** axis of a chain result.
 
+The package has one module per component family — :mod:`~scanplan.mtf.atmosphere`,
+:mod:`~scanplan.mtf.lens`, :mod:`~scanplan.mtf.sensor`, :mod:`~scanplan.mtf.motion` — plus
+the threshold models (:mod:`~scanplan.mtf.threshold`), the solver
+(:mod:`~scanplan.mtf.solver`), the input descriptions (:mod:`~scanplan.mtf.descriptions`),
+the component registry (:mod:`~scanplan.mtf.components`) and the chain that multiplies the
+registered components (:mod:`~scanplan.mtf.chain`). Every public name is re-exported here.
+
 Not resolvable is a result, not a number: where K_obj·T(0) ≤ K_thr(0) the resolving
 power and the ground resolution are NaN and ``resolvable`` is False.
 """

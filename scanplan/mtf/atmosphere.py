@@ -43,6 +43,11 @@ def haze_contrast_coefficient(
     in clear air (visibility ≳ 20 km, extinction ≈ 0.2 km⁻¹, optical depth ≈ 0.06–0.1)
     adds path radiance of roughly a tenth of the radiance of a dark (r ≈ 0.1)
     vegetated scene; the value is an estimate, set it from a measurement when known.
+
+    Examples
+    --------
+    >>> round(float(haze_contrast_coefficient(50.0)), 4)
+    0.9
     """
     n = _finite("freq_lpmm", freq_lpmm)
     c = _in_range("contrast_coefficient", contrast_coefficient, 0.0, 1.0, low_inclusive=False)
@@ -87,6 +92,11 @@ def haze_exponential_indicatrix(
     For any practical f·N the bracket is ≈ 1, so T_h ≈ exp(−μH): the haze acts as
     a frequency-independent coefficient, which is why the seed allows
     :func:`haze_contrast_coefficient` instead.
+
+    Examples
+    --------
+    >>> np.round(haze_exponential_indicatrix([0.0, 50.0], 50.0, 300.0), 4).tolist()
+    [1.0, 0.956]
     """
     n = _nonnegative("freq_lpmm", freq_lpmm)
     f = _positive("focal_mm", focal_mm)
@@ -116,7 +126,7 @@ def haze_mtf(
         Spatial frequency N [lines/mm].
     method : str, optional
         ``"contrast-coefficient"`` (default; frequency independent) or
-        ``"exponential-indicatrix"`` (reconstructed seed 000 eq. 1).
+        ``"exponential-indicatrix"`` (reconstructed seed 000, eq. 1).
     **kwargs
         Parameters of the chosen model.
 
@@ -128,6 +138,11 @@ def haze_mtf(
     ------
     ValueError
         For an unknown method name.
+
+    Examples
+    --------
+    >>> round(float(haze_mtf(50.0, contrast_coefficient=0.8)), 4)
+    0.8
     """
     return pick_method(HAZE_METHODS, method)(freq_lpmm, **kwargs)
 
@@ -153,6 +168,11 @@ def turbulence_mtf(
     Notes
     -----
     Seed 000, eq. 2. f·γ is the RMS blur on the image in mm.
+
+    Examples
+    --------
+    >>> round(float(turbulence_mtf(50.0, 50.0, 5.0)), 6)
+    0.996921
     """
     n = _finite("freq_lpmm", freq_lpmm)
     f = _positive("focal_mm", focal_mm)

@@ -31,6 +31,11 @@ def half_field_angle_rad(
     Notes
     -----
     Seed 000, the formula for β after eq. 3 (printed form lost; restated in spec §3).
+
+    Examples
+    --------
+    >>> round(float(half_field_angle_rad(36.0, 24.0, 50.0)), 4)
+    0.4083
     """
     a = _positive("sensor_width_mm", sensor_width_mm)
     b = _positive("sensor_height_mm", sensor_height_mm)
@@ -66,6 +71,11 @@ def diffraction_cutoff_lpmm(
     -----
     Seed 000, eq. 3 (definition of ν = N/N_c). The exponent of cos β by direction
     follows spec formulas.md §3.
+
+    Examples
+    --------
+    >>> round(float(diffraction_cutoff_lpmm(8.0)), 1)
+    227.3
     """
     n0 = _positive("f_number", f_number)
     lam_mm = _positive("wavelength_um", wavelength_um) * 1e-3
@@ -97,6 +107,11 @@ def diffraction_mtf(nu: npt.ArrayLike) -> NDArrayFloat:
     Notes
     -----
     Seed 000, eq. 3.
+
+    Examples
+    --------
+    >>> np.round(diffraction_mtf([0.0, 0.5, 1.0]), 4).tolist()
+    [1.0, 0.391, 0.0]
     """
     return _k_diffraction(_nonnegative("nu", nu))
 
@@ -131,6 +146,11 @@ def lens_diffraction_mtf(
     Seed 000, eq. 3 with N_c from :func:`diffraction_cutoff_lpmm`. Real lenses are
     not diffraction limited at wide apertures (seed 000: computed MTFs deviate by
     ±0.04–0.07); use :func:`lens_table_mtf` with the manufacturer's curve when known.
+
+    Examples
+    --------
+    >>> round(float(lens_diffraction_mtf(100.0, 8.0)), 4)
+    0.4584
     """
     n = _nonnegative("freq_lpmm", freq_lpmm)
     nc = diffraction_cutoff_lpmm(f_number, wavelength_um, field_angle_rad, direction)
@@ -167,6 +187,11 @@ def lens_table_mtf(
     Seed 000 (after eq. 3): manufacturers publish MTF charts for some lenses; the
     chart replaces the diffraction formula. One table describes one image point and
     one direction.
+
+    Examples
+    --------
+    >>> np.round(lens_table_mtf([10.0, 25.0], [0.0, 20.0, 40.0], [1.0, 0.8, 0.6]), 4).tolist()
+    [0.9, 0.75]
     """
     n = _finite("freq_lpmm", freq_lpmm)
     tf = _nonnegative("table_freq_lpmm", np.ravel(table_freq_lpmm))

@@ -36,6 +36,11 @@ def geometric_image_shift_mm(
     Notes
     -----
     Seed 000, eq. 6.
+
+    Examples
+    --------
+    >>> round(float(geometric_image_shift_mm(25.0, 1e-3, 50.0, 300.0)), 6)
+    0.004167
     """
     w = _nonnegative("speed_ms", speed_ms)
     t = _positive("exposure_s", exposure_s)
@@ -65,6 +70,11 @@ def photographic_image_shift_mm(
     -----
     Seed 000, text after eq. 6 (δ ≈ δ_w; δ ≈ (0.6–0.7)·δ_w). The factor is a norm
     parameter.
+
+    Examples
+    --------
+    >>> round(float(photographic_image_shift_mm(0.004167, 0.65)), 6)
+    0.002709
     """
     d = _nonnegative("geometric_shift_mm", geometric_shift_mm)
     k = _in_range("shift_factor", shift_factor, 0.0, 1.0, low_inclusive=False)
@@ -99,6 +109,11 @@ def linear_motion_mtf(
     of spec formulas.md §3 — the exposure profile is a trapezoid, the convolution of
     two boxes of widths η·δ and (1 − η)·δ, whose transform is the product of sincs.
     First zero at N = 1 / (max(η, 1 − η)·δ).
+
+    Examples
+    --------
+    >>> round(float(linear_motion_mtf(78.125, 0.0027)), 4)
+    0.9284
     """
     n = _finite("freq_lpmm", freq_lpmm)
     d = _nonnegative("shift_mm", shift_mm)
@@ -137,6 +152,11 @@ def angular_shift_tilt_mm(
     Seed 000, eq. 8 (first two forms; printed forms lost, restated in spec §3). The
     exact shift at a point at distance q in the direction of the motion; it is the
     worst case over directions.
+
+    Examples
+    --------
+    >>> round(float(angular_shift_tilt_mm(0.02, 1e-3, 50.0, 21.6)), 6)
+    0.001187
     """
     w = _nonnegative("rate_rad_s", rate_rad_s)
     t = _positive("exposure_s", exposure_s)
@@ -167,6 +187,11 @@ def angular_shift_yaw_mm(
     Notes
     -----
     Seed 000, eq. 8 (third form).
+
+    Examples
+    --------
+    >>> round(float(angular_shift_yaw_mm(0.02, 1e-3, 21.6)), 6)
+    0.000432
     """
     w = _nonnegative("rate_rad_s", rate_rad_s)
     t = _positive("exposure_s", exposure_s)
@@ -196,6 +221,11 @@ def random_shift_rms_mm(*shifts_mm: npt.ArrayLike) -> NDArrayFloat:
     as a root-sum-square"). Each component's shift over the exposure is taken as its
     contribution to σ (the seed's usage; conservative compared with the RMS of a
     uniform smear, δ/√12).
+
+    Examples
+    --------
+    >>> round(float(random_shift_rms_mm(0.003, 0.004)), 6)
+    0.005
     """
     if not shifts_mm:
         return np.zeros(())
@@ -223,6 +253,11 @@ def random_motion_mtf(freq_lpmm: npt.ArrayLike, sigma_mm: npt.ArrayLike) -> NDAr
     Notes
     -----
     Seed 000, eq. 7.
+
+    Examples
+    --------
+    >>> round(float(random_motion_mtf(78.125, 0.002)), 4)
+    0.6176
     """
     n = _finite("freq_lpmm", freq_lpmm)
     return _k_gauss(n, _nonnegative("sigma_mm", sigma_mm))

@@ -25,6 +25,11 @@ def nyquist_lpmm(pixel_um: npt.ArrayLike) -> NDArrayFloat:
     Notes
     -----
     Seed 000, the formula for R_m after the Sandvik threshold function.
+
+    Examples
+    --------
+    >>> round(float(nyquist_lpmm(6.4)), 3)
+    78.125
     """
     return 1.0 / (2.0 * _positive("pixel_um", pixel_um) * 1e-3)
 
@@ -52,6 +57,11 @@ def pixel_aperture_mtf(
     -----
     Seed 000, eq. 4 (component T_g; the seed gives no formula, "described in many
     specialised works"); form from spec formulas.md §3. sinc(x) = sin x / x.
+
+    Examples
+    --------
+    >>> round(float(pixel_aperture_mtf(78.125, 6.4)), 4)
+    0.6366
     """
     n = _finite("freq_lpmm", freq_lpmm)
     p = _positive("pixel_um", pixel_um) * 1e-3
@@ -86,6 +96,11 @@ def charge_transfer_mtf(
     -----
     Seed 000, eq. 4 (component T_t; no printed formula in the seed); form from
     spec formulas.md §3 (Holst).
+
+    Examples
+    --------
+    >>> round(float(charge_transfer_mtf(78.125, 6.4, 2000, 1e-5)), 4)
+    0.9608
     """
     n = _finite("freq_lpmm", freq_lpmm)
     p = _positive("pixel_um", pixel_um) * 1e-3
@@ -127,6 +142,11 @@ def diffusion_mtf(
     Seed 000, eq. 4 (component T_d; no printed formula). Form: D. H. Seib, IEEE
     Trans. Electron Devices 21 (1974) 210–217, as given by G. C. Holst, *CCD
     Arrays, Cameras, and Displays*. Not a seed formula: an optional extra.
+
+    Examples
+    --------
+    >>> round(float(diffusion_mtf(78.125, 10.0)), 4)
+    0.9257
     """
     n = _nonnegative("freq_lpmm", freq_lpmm) * 1e-3  # cycles per µm
     l0 = _nonnegative("diffusion_length_um", diffusion_length_um)

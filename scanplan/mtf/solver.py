@@ -186,6 +186,11 @@ def ground_resolution_m(
     -----
     Seed 000, the formula before eq. 1 (L = H/(2Rf)). Same quantity as seed 001's
     A = Mc/(2R) with Mc = H/f.
+
+    Examples
+    --------
+    >>> round(float(ground_resolution_m(300.0, 40.0, 50.0)), 4)
+    0.075
     """
     h = _positive("height_m", height_m)
     f = _positive("focal_mm", focal_mm)

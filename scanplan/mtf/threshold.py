@@ -33,6 +33,11 @@ def object_contrast(r_max: npt.ArrayLike, r_min: npt.ArrayLike) -> NDArrayFloat:
     Seed 000, the unnumbered formula after the definition of R ("Контраст объекта
     съемки … определяется по формуле"); its printed form is lost in extraction and
     restated in spec formulas.md §3.
+
+    Examples
+    --------
+    >>> round(float(object_contrast(0.3, 0.1)), 4)
+    0.5
     """
     rmax = _positive("r_max", r_max)
     rmin = _nonnegative("r_min", r_min)
@@ -60,6 +65,11 @@ def weber_to_michelson(k_weber: npt.ArrayLike) -> NDArrayFloat:
     Notes
     -----
     Spec formulas.md §3 (Russian texts often use the Weber form).
+
+    Examples
+    --------
+    >>> round(float(weber_to_michelson(0.02)), 4)
+    0.0101
     """
     kw = _in_range("k_weber", k_weber, 0.0, 1.0)
     return kw / (2.0 - kw)
@@ -98,6 +108,11 @@ def threshold_sandvik_exponential(
     detection factor k ≈ 3–5 (Rose criterion) this gives 0.02–0.05; 0.03 is the
     middle of that range. It is a parameter: set it from the camera's noise or a
     measured threshold curve (:func:`threshold_table`).
+
+    Examples
+    --------
+    >>> np.round(threshold_sandvik_exponential([0.0, 78.125], 78.125), 4).tolist()
+    [0.03, 1.0]
     """
     n = _nonnegative("freq_lpmm", freq_lpmm)
     rm = _positive("nyquist_lpmm", nyquist_lpmm)
@@ -137,6 +152,11 @@ def threshold_table(
     -----
     The replacement the spec asks for ("keep the threshold model pluggable, so a
     measured curve can replace it"); not a seed formula.
+
+    Examples
+    --------
+    >>> round(float(threshold_table(20.0, 78.125, [0.0, 40.0], [0.02, 0.1])), 4)
+    0.06
     """
     n = _nonnegative("freq_lpmm", freq_lpmm)
     tf = _nonnegative("table_freq_lpmm", np.ravel(table_freq_lpmm))
@@ -184,5 +204,10 @@ def threshold_contrast(
     ------
     ValueError
         For an unknown method name.
+
+    Examples
+    --------
+    >>> round(float(threshold_contrast(39.0625, 78.125, k0=0.03)), 4)
+    0.1732
     """
     return pick_method(THRESHOLD_METHODS, method)(freq_lpmm, nyquist_lpmm, **kwargs)
