@@ -501,7 +501,7 @@ def motion_blur_px(
 
     Notes
     -----
-    Same quantity as seed 000 eq. 6 (δ_w = w·t·f/H on the image) divided by the
+    Same quantity as seed 000, eq. 6 (δ_w = w·t·f/H on the image) divided by the
     pixel pitch.
     """
     w = _nonnegative("speed_ms", speed_ms)

@@ -6,7 +6,7 @@ Sources
   topographic maps and plans* (2002) — the scan-pixel formulas, quoted in seed 001.
 - Seed 001: A. Miheeva, A. Ilushenko, "Resolution calculation during scanning for
   high-grade interpretation of images", Vestnik of Polotsk State University, ser. F, 2015
-  — eqs. (1)–(16): the corrected P_R coefficient and the recognition model.
+  — eqs. 1–16: the corrected P_R coefficient and the recognition model.
 - K. Kraus, *Photogrammetry: Geometry from Images and Laser Scans*, 2nd ed., Berlin: de
   Gruyter, 2007 — accuracy of the stereo normal case, σ_Z = (H/B)·(H/c)·σ_px (§5 below).
 - T. Luhmann, S. Robson, S. Kyle, J. Boehm, *Close-Range Photogrammetry and 3D Imaging*,
@@ -88,7 +88,7 @@ def photo_base_mm(frame_along_mm: ArrayLike, forward_overlap_pct: ArrayLike) -> 
 
     Notes
     -----
-    The Instruction's b in seed 001 eq. (2).
+    The Instruction's b in seed 001, eq. 2.
     """
     return _f(frame_along_mm) * (1.0 - _f(forward_overlap_pct) / 100.0)
 
@@ -120,7 +120,7 @@ def planimetric_pixel_um(
 
     Notes
     -----
-    GKINP (GNTA)-02-036-02; seed 001 eq. (1).
+    GKINP (GNTA)-02-036-02; seed 001, eq. 1.
     """
     return (
         _f(planimetric_accuracy_mm) * _f(map_scale) / (_f(processing_loss_k) * _f(photo_scale))
@@ -160,7 +160,7 @@ def height_pixel_instruction_um(
 
     Notes
     -----
-    GKINP (GNTA)-02-036-02 as printed; seed 001 eq. (2) and all its tables. V_z is taken
+    GKINP (GNTA)-02-036-02 as printed; seed 001, eq. 2 and all its tables. V_z is taken
     on the ground in mm. Parallax theory gives the reciprocal ratio b/f
     (:func:`height_pixel_parallax_um`); the printed form lets a *larger* overlap (smaller
     b) allow a *coarser* pixel, which is why scanplan warns when the overlap is not the
@@ -197,7 +197,7 @@ def height_pixel_parallax_um(
     -----
     From dZ = (H/b)·dp with H = f·Mc: a parallax error dp = k·P gives a height error
     V_z when P = V_z·b/(k·Mc·f). Miheeva & Medvedev (Vestnik PSU ser. F, 2010, no. 12,
-    pp. 103–108) call the printed Instruction form (seed 001 eq. 2) an error.
+    pp. 103–108) call the printed Instruction form (seed 001, eq. 2) an error.
     """
     vz_mm = _f(height_accuracy_fraction) * _f(relief_interval_m) * _MM_PER_M
     return (
@@ -271,7 +271,7 @@ def photoplan_pixel_um(
 
     Notes
     -----
-    GKINP (GNTA)-02-036-02; seed 001 eq. (3).
+    GKINP (GNTA)-02-036-02; seed 001, eq. 3.
     """
     return _f(photoplan_resolution_mm) * _f(map_scale) / _f(photo_scale) * _UM_PER_MM
 
@@ -286,8 +286,8 @@ def resolving_power_pixel_um(
     resolving_power_lpmm : array_like
         Resolving power of the photo R [lines/mm].
     pr_coefficient : array_like
-        k_R [-]. The Instruction prints 0.4 (seed 001 eq. 4); the corrected value is 0.5
-        (seed 001 eq. 5 and its ref. [2]).
+        k_R [-]. The Instruction prints 0.4 (seed 001, eq. 4); the corrected value is 0.5
+        (seed 001, eq. 5 and its ref. [2]).
 
     Returns
     -------
@@ -296,7 +296,7 @@ def resolving_power_pixel_um(
 
     Notes
     -----
-    Seed 001 eqs. (4)–(6): a pixel P keeps 1/(2P) lines/mm, so 12.5 µm keeps 40 lines/mm
+    Seed 001, eqs. 4–6: a pixel P keeps 1/(2P) lines/mm, so 12.5 µm keeps 40 lines/mm
     and 0.5 is the coefficient that preserves R.
     """
     return _f(pr_coefficient) / _f(resolving_power_lpmm) * _UM_PER_MM
@@ -363,7 +363,7 @@ def probability_root(probability: ArrayLike, rounding: Rounding = "exact") -> Fl
 
     Notes
     -----
-    Seed 001 eqs. (9)–(10). The paper's rounding makes its L and P_D about 1.2 % smaller
+    Seed 001, eqs. 9–10. The paper's rounding makes its L and P_D about 1.2 % smaller
     than exact; scanplan computes exactly by default (a documented deviation).
     """
     neg_ln = -np.log(_f(probability))
@@ -393,7 +393,7 @@ def resolution_on_ground_mm(
 
     Notes
     -----
-    Seed 001 eq. (8), Table 4 (125 mm at 1:10000 and R = 40). For a digital camera the
+    Seed 001, eq. 8, Table 4 (125 mm at 1:10000 and R = 40). For a digital camera the
     same quantity is the MTF ground resolution L = H/(2Rf) with Mc = H/f.
     """
     return _f(photo_scale) / (2.0 * _f(resolving_power_lpmm))
@@ -420,7 +420,7 @@ def recognition_probability(
 
     Notes
     -----
-    Seed 001 eqs. (7) and (9).
+    Seed 001, eqs. 7 and 9.
     """
     ratio = _f(shape_coefficient) * _f(resolution_mm) / _f(object_size_mm)
     return np.exp(-(ratio * ratio))
@@ -453,7 +453,7 @@ def recognisable_size_mm(
 
     Notes
     -----
-    Seed 001 eqs. (10)–(11), Table 5 (paper rounding: L = 1.8302·A for a circle at 0.75).
+    Seed 001, eqs. 10–11, Table 5 (paper rounding: L = 1.8302·A for a circle at 0.75).
     """
     return (
         _f(shape_coefficient) * _f(resolution_mm) / probability_root(probability, rounding)
@@ -479,7 +479,7 @@ def transfer_size_mm(
 
     Notes
     -----
-    Seed 001 eq. (12): 228.8 mm at 1:10000 → 114.4 mm at 1:5000.
+    Seed 001, eq. 12: 228.8 mm at 1:10000 → 114.4 mm at 1:5000.
     """
     return _f(size_mm) * _f(to_photo_scale) / _f(from_photo_scale)
 
@@ -514,7 +514,7 @@ def required_resolving_power_lpmm(
 
     Notes
     -----
-    Seed 001 eqs. (13)–(15): R = Mc/(2A) with A = L·sqrt(−ln P)/B.
+    Seed 001, eqs. 13–15: R = Mc/(2A) with A = L·sqrt(−ln P)/B.
     """
     return (
         _f(shape_coefficient)
@@ -556,7 +556,7 @@ def interpretation_pixel_um(
 
     Notes
     -----
-    Seed 001 eq. (16): with k_R = 0.5 it is P_D = L·sqrt(−ln P)/(B·Mc), and with the
+    Seed 001, eq. 16: with k_R = 0.5 it is P_D = L·sqrt(−ln P)/(B·Mc), and with the
     paper's rounding and B = 0.97, P_D = L/(1.8302·Mc) (Tables 6–9). Writing it as
     k_R/R_needed keeps P_D < P_R equivalent to R_needed > R for any k_R.
     """

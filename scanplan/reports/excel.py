@@ -49,6 +49,7 @@ from openpyxl.writer.excel import ExcelWriter
 
 from .. import flight as FL
 from .._version import __version__
+from ..mtf import component_label
 from ..planner import CONSTRAINTS, height_formula_name
 from . import ReportMeta, report_datetime, write_atomic
 from .labels import LABELS, t
@@ -998,11 +999,10 @@ class _Book:
                 heads.append(self.t("image_contrast"))
             elif k == "threshold":
                 heads.append(self.t("threshold"))
-            else:
-                try:
-                    heads.append(self.t(f"xlsx_mtf_{k}"))
-                except KeyError:
-                    heads.append(k)
+            elif k == "system":
+                heads.append(self.t("xlsx_mtf_system"))
+            else:  # a registered MTF component names itself in both languages
+                heads.append(component_label(k, self.loc))
         ncol = len(cols) + 1
         ws = self.sheet("xlsx_sheet_mtf", landscape=True,
                         widths=(14,) + (12,) * len(cols) + (3, 16, 12))

@@ -1,0 +1,33 @@
+"""The numpydoc Examples of the MTF package run as doctests (fast: no plan, no report)."""
+
+from __future__ import annotations
+
+import doctest
+import importlib
+import inspect
+import pkgutil
+
+import pytest
+
+import scanplan.mtf
+
+MODULES = sorted(m.name for m in pkgutil.iter_modules(scanplan.mtf.__path__, "scanplan.mtf."))
+#: Modules whose every public function is a formula a reader should see worked.
+WITH_EXAMPLES = ("atmosphere", "lens", "sensor", "motion", "threshold", "chain")
+
+
+@pytest.mark.parametrize("name", MODULES)
+def test_examples_run(name):
+    module = importlib.import_module(name)
+    result = doctest.testmod(module, optionflags=doctest.ELLIPSIS, verbose=False)
+    assert result.failed == 0, f"{result.failed} doctest(s) of {name} failed (see stdout)"
+
+
+@pytest.mark.parametrize("family", WITH_EXAMPLES)
+def test_every_public_function_has_an_example(family):
+    module = importlib.import_module(f"scanplan.mtf.{family}")
+    public = [f for n, f in vars(module).items() if inspect.isfunction(f)
+              and not n.startswith("_") and f.__module__ == module.__name__]
+    assert public
+    missing = [f.__name__ for f in public if "\n    Examples\n    --------\n" not in f.__doc__]
+    assert not missing
