@@ -338,7 +338,7 @@ def test_every_warning_has_a_heading_in_both_languages():
     from scanplan.reports.labels import LABELS
 
     src = "".join(p.read_text(encoding="utf-8")
-                  for p in pathlib.Path(norms_mod.__file__).parent.glob("*.py"))
+                  for p in pathlib.Path(norms_mod.__file__).parent.rglob("*.py"))
     codes = set(re.findall(r'PlanWarning\(\s*"([a-z_]+)"', src))
     codes |= {"not_interpretable", "above_interpretation_limit"}  # built from a variable
     assert len(codes) >= 10
