@@ -345,3 +345,12 @@ def test_every_warning_has_a_heading_in_both_languages():
     for loc in LOCALES:
         missing = sorted(c for c in codes if f"pdf_warn_{c}" not in LABELS[loc])
         assert not missing, (loc, missing)
+
+
+def test_height_limits_print_heights_as_heights():
+    """The altitude ceiling's limit is a height (500 m), not a ground size: printed without
+    three decimals, so the Russian decimal comma never reads it as 500 000."""
+    docs = _documents(str(EXAMPLES[0].parent / "uav-canon-2000.toml"), "ru")
+    pdf = "\n".join(v for k, v in docs.items() if k.startswith("pdf"))
+    assert re.search(r"HC — предельная\s+высота полёта\s+500\s", pdf), pdf
+    assert "500,000" not in pdf
