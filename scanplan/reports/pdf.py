@@ -485,7 +485,8 @@ def _uav_view(job: UavJob, f: _Fmt) -> dict[str, Any]:
         "shape": _shape_name(ns, r.shape, f.locale), "p": f.num(r.probability, 2),
         "p_max": f.num(r.probability_at_max_height, 2),
         "p_corner": f.num(r.probability_corner_at_max_height, 2)} for r in plan.recognition]
-    limits = [{"id": lim.id, "name": f.cname(lim.id), "limit": f.num(lim.limit_m, 3 if lim.limit_m < 10 else 0),
+    limits = [{"id": lim.id, "name": f.cname(lim.id),
+               "limit": f.num(lim.limit_m, 3 if lim.limit_m < 10 else 0),
                "compares": lim.compares, "max_height": f.num(lim.max_height_m, 0),
                "max_flown": f.num(lim.max_flown_height_m or lim.max_height_m, 0),
                "margin": "" if lim.binding or not math.isfinite(lim.margin_pct)
