@@ -73,7 +73,7 @@ def format_scan_plan(plan: ScanPlan, norm_name: str = "", norm_title: str = "") 
     lines.append("")
     header = ["", "", *(f"1:{scale_value(s.photo_scale)}" for s in plan.scenarios)]
     rows = [header, ["Mc/Mk", "", *(f"{s.photo_to_map_ratio:.1f}" for s in plan.scenarios)]]
-    for cid in plan.rules.constraints:
+    for cid in plan.constraint_ids:
         row = [f"{cid}  {CONSTRAINTS[cid].name}", "µm"]
         for s in plan.scenarios:
             c = s.constraint(cid)

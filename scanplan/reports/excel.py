@@ -740,7 +740,7 @@ class _Book:
     def sweep(self, job: ScanJob, spec: PlanResult | None = None) -> None:
         sweep = job.plan.sweep
         scales = list(sweep.get("photo_scale", []))
-        ids = [cid for cid in job.plan.rules.constraints if cid in sweep]
+        ids = [cid for cid in job.plan.constraint_ids if cid in sweep]
         ws = self.sheet("xlsx_sheet_sweep", landscape=True,
                         widths=(14,) + (16,) * len(ids) + (16, 30))
         heads = [self.t("photo_scale")] + [f"{self.cname(cid)}, µm" if self.loc == "en"

@@ -714,6 +714,10 @@ def t(key: str, locale: str = "en", platform: str = "uav") -> str:
     loc = locale if locale in LABELS else "en"
     if platform == "aircraft" and key in AIRCRAFT_LABELS[loc]:
         return AIRCRAFT_LABELS[loc][key]
+    if key not in LABELS[loc]:  # a registered constraint names itself
+        from ..rules.registry import CONSTRAINTS
+        if key in CONSTRAINTS:
+            return CONSTRAINTS[key].title(loc)
     return LABELS[loc][key]
 
 

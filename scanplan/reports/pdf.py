@@ -325,7 +325,7 @@ def _scan_view(job: ScanJob, f: _Fmt) -> dict[str, Any]:
     formulas = [{"id": cid, "name": f.cname(cid),
                  "equation": f.cite(localize(CONSTRAINTS[cid].equation, f.locale)),
                  "protects": localize(CONSTRAINTS[cid].protects, f.locale)}
-                for cid in rules.constraints]
+                for cid in plan.constraint_ids]
     params = [{"name": param_name(ns, k, f.locale),
                "value": param_value(ns, k, v, f.locale, f.g),
                "source": f.cite(ns.parameter_sources.get(k, ""))}
@@ -342,14 +342,14 @@ def _scan_view(job: ScanJob, f: _Fmt) -> dict[str, Any]:
 
 def _scan_table(plan: ScanPlan, scenarios: Any, f: _Fmt) -> dict[str, Any]:
     """The result table for some photo scales: constraints (binding flagged), summary rows."""
-    inp, rules, um = plan.inputs, plan.rules, f.label("pdf_um")
+    inp, um = plan.inputs, f.label("pdf_um")
     obj = inp.object
     header = [f.scale(s.photo_scale) for s in scenarios]
     rows: list[dict[str, Any]] = [{
         "label": f.label("photo_to_map"), "unit": "",
         "cells": [{"text": f.num(s.photo_to_map_ratio, 1), "binding": False, "margin": ""}
                   for s in scenarios], "kind": "ratio"}]
-    for cid in rules.constraints:
+    for cid in plan.constraint_ids:
         rows.append({"label": f"{cid} — {f.cname(cid)}", "unit": um, "kind": "constraint",
                      "cells": [{"text": f.num(s.constraint(cid).pixel_um, 1),
                                 "binding": s.constraint(cid).binding,

@@ -127,7 +127,7 @@ def constraints_svg(plan: ScanPlan, locale: str = "en") -> str:
 
     def draw(fig: Figure) -> None:
         ax = fig.add_subplot()
-        for cid in plan.rules.constraints:
+        for cid in plan.constraint_ids:
             if cid not in sweep:
                 continue
             name = CONSTRAINTS[cid].name_ru if locale == "ru" else CONSTRAINTS[cid].name
@@ -150,9 +150,9 @@ def constraints_svg(plan: ScanPlan, locale: str = "en") -> str:
         ax.xaxis.set_major_locator(FixedLocator(ticks))
         ax.xaxis.set_minor_formatter(NullFormatter())
         ax.xaxis.set_major_formatter(_tick(locale))
-        lo = min(min(v for v in sweep[c] if v == v) for c in plan.rules.constraints
+        lo = min(min(v for v in sweep[c] if v == v) for c in plan.constraint_ids
                  if c in sweep)
-        hi = max(max(v for v in sweep[c] if v == v) for c in plan.rules.constraints
+        hi = max(max(v for v in sweep[c] if v == v) for c in plan.constraint_ids
                  if c in sweep)
         ax.yaxis.set_major_locator(FixedLocator(_nice_log_ticks(lo, hi)))
         ax.yaxis.set_minor_formatter(NullFormatter())

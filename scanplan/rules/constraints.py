@@ -1,0 +1,298 @@
+"""The built-in constraints: seed 001's P_S, P_Z, P_P, P_R, P_D and the UAV-only limits.
+
+Each constraint is one :class:`~scanplan.rules.registry.Constraint` record plus the small
+functions it names: the film pixel (seed 001 eqs. 1–6), the reason with the contract's
+numbers, and the digital ground limit (the same limit on the ground, Mc = 1, compared with
+the GSD or the MTF ground resolution L; docs/uav-models.md §9–10). The texts are keys of
+the message catalogue (:mod:`scanplan.messages`).
+
+>>> from scanplan.rules.registry import CONSTRAINTS
+>>> [c.id for c in CONSTRAINTS.values() if "film" in c.workflows][:5]
+['PS', 'PZ', 'PP', 'PR', 'PD']
+>>> CONSTRAINTS["PD"].compares, CONSTRAINTS["HC"].compares
+('L', 'H')
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from .. import formulas as F
+from ..messages import Message
+from .registry import Constraint, DigitalLimit, FilmArgs, register
+
+if TYPE_CHECKING:
+    from .results import ScanInputs, ScanRules, UavInputs
+
+__all__ = ["height_accuracy", "height_formula_name"]
+
+
+def height_formula_name(formula: str) -> Message | str:
+    """The height formula's name as a message parameter (``instruction``/``parallax``).
+
+    >>> str(height_formula_name("no-such-form"))
+    'no-such-form'
+    """
+    try:
+        return Message(f"height_formula.{formula}")
+    except KeyError:
+        return formula
+
+
+def _at_unit_scale_m(pixel_um: Any) -> float:
+    """A pixel limit evaluated at Mc = 1, i.e. the limit on the ground [µm → m]."""
+    return float(pixel_um) / 1e6
+
+
+# --- P_S: planimetric accuracy (seed 001 eq. 1) -------------------------------------------
+
+def _ps_pixel(rules: ScanRules, a: FilmArgs) -> NDArray[np.float64]:
+    return F.planimetric_pixel_um(a.map_scale, a.photo_scale,
+                                  planimetric_accuracy_mm=rules.planimetric_accuracy_mm,
+                                  processing_loss_k=rules.processing_loss_k)
+
+
+def _ps_reason(inp: ScanInputs, rules: ScanRules) -> Message:
+    ground = rules.planimetric_accuracy_mm * inp.map_scale / 1000.0
+    return Message("reason.PS", vs=rules.planimetric_accuracy_mm, map=inp.map_scale,
+                   ground=ground, k=rules.processing_loss_k)
+
+
+def _ps_ground(inp: UavInputs, rules: ScanRules | None) -> DigitalLimit:
+    assert rules is not None and inp.map_scale is not None
+    k, mk = rules.processing_loss_k, inp.map_scale
+    g = _at_unit_scale_m(F.planimetric_pixel_um(
+        mk, 1.0, planimetric_accuracy_mm=rules.planimetric_accuracy_mm, processing_loss_k=k))
+    return DigitalLimit(g, Message("limit.PS", vs=rules.planimetric_accuracy_mm, map=mk, k=k),
+                        {})
+
+
+# --- P_Z: height accuracy (seed 001 eq. 2; digital: the stereo normal case) ----------------
+
+def _pz_pixel(rules: ScanRules, a: FilmArgs) -> NDArray[np.float64]:
+    return F.height_pixel_um(
+        a.relief_interval_m, a.photo_scale, a.focal_mm,
+        F.photo_base_mm(a.frame_along_mm, a.forward_overlap_pct),
+        height_accuracy_fraction=rules.height_accuracy_fraction,
+        processing_loss_k=rules.processing_loss_k,
+        method=a.height_formula)  # type: ignore[arg-type]
+
+
+def _pz_reason(inp: ScanInputs, rules: ScanRules) -> Message:
+    vz = rules.height_accuracy_fraction * inp.relief_interval_m
+    return Message("reason.PZ", fraction=rules.height_accuracy_fraction, vz=vz,
+                   hc=inp.relief_interval_m, k=rules.processing_loss_k,
+                   formula=height_formula_name(rules.height_formula))
+
+
+def _pz_details(inp: ScanInputs, rules: ScanRules, ctx: dict[str, Any], j: int
+                ) -> dict[str, Any]:
+    return {"formula": rules.height_formula,
+            f"{ctx['other_formula']}_pixel_um": float(ctx["pz_other"][j]),
+            "base_mm": float(F.photo_base_mm(inp.frame_along_mm, inp.forward_overlap_pct))}
+
+
+def _pz_ground(inp: UavInputs, rules: ScanRules | None) -> DigitalLimit:
+    assert rules is not None
+    g, reason, details = height_accuracy(inp, rules)
+    return DigitalLimit(g, reason, details,
+                        equation=Message("equation.PZ.normal_case")
+                        if details.get("formula") == "normal_case" else None)
+
+
+def height_accuracy(inp: UavInputs, rules: ScanRules
+                     ) -> tuple[float, Message, dict[str, Any]]:
+    """The height constraint of a digital block: (GSD limit [m], reason, details).
+
+    Three forms, each as the largest GSD on the ground (evaluated at Mc = 1):
+
+    - ``normal_case`` (default for digital cameras): σ_Z = (H/B)·(H/c)·σ_px·f ≤ V_z with
+      the widest base of standard stereo overlap (:func:`scanplan.formulas.
+      stereo_height_ground_limit_m`), V_z read as an RMS error;
+    - ``instruction`` and ``parallax``: the Instruction's P_Z and its parallax form with the
+      single-step base b = l_y·(1 − p) and the processing loss k (seed 001 eq. 2).
+
+    All three are in ``details["forms"]`` for comparison; ``rules.digital_height_formula``
+    picks the one that constrains the flight.
+
+    Parameters
+    ----------
+    inp : UavInputs
+        Camera, flight and map (``relief_interval_m`` given).
+    rules : ScanRules
+        Normative parameters (V_z fraction, σ_px, standard overlap, multi-ray, the form).
+
+    Returns
+    -------
+    ground limit [m], reason (a Message), details (dict)
+    """
+    assert inp.relief_interval_m is not None
+    k = rules.processing_loss_k
+    vz = rules.height_accuracy_fraction * inp.relief_interval_m
+    pixel_m = inp.pixel_um / 1e6
+    up = 1.0 + inp.height_tolerance_up_pct / 100.0
+    base_mm = F.photo_base_mm(inp.sensor_height_mm, inp.forward_overlap_pct)
+    forms: dict[str, dict[str, float]] = {}
+    for form in ("instruction", "parallax"):
+        g = float(F.height_pixel_um(inp.relief_interval_m, 1.0, inp.focal_mm, base_mm,
+                                    height_accuracy_fraction=rules.height_accuracy_fraction,
+                                    processing_loss_k=k, method=form)) / 1e6  # type: ignore[arg-type]
+        forms[form] = {"ground_limit_m": g}
+    fraction = float(F.stereo_base_fraction(inp.forward_overlap_pct,
+                                            rules.standard_forward_overlap_pct))
+    steps = round(fraction / (1.0 - inp.forward_overlap_pct / 100.0))
+    bh = fraction * inp.sensor_height_mm / inp.focal_mm
+    multi = (float(F.strip_multi_ray_factor(inp.forward_overlap_pct,
+                                            rules.standard_forward_overlap_pct))
+             if rules.multi_ray == "strip" else 1.0)
+    sigma = rules.image_measurement_px
+    forms["normal_case"] = {"ground_limit_m": float(F.stereo_height_ground_limit_m(
+        vz, bh, sigma, multi))}
+    for v in forms.values():
+        v["max_flown_height_m"] = v["ground_limit_m"] * inp.focal_mm / 1000.0 / pixel_m
+        v["max_planned_height_m"] = v["max_flown_height_m"] / up
+    formula = rules.digital_height_formula
+    h_plan = inp.height_m
+    h_hi = h_plan * up
+    sz = F.normal_case_height_error_m(np.array([h_plan, h_hi]),
+                                      bh * np.array([h_plan, h_hi]), inp.focal_mm,
+                                      inp.pixel_um, sigma, multi)
+    details: dict[str, Any] = {
+        "formula": formula, "height_accuracy_m": vz,
+        "height_accuracy_meaning": "RMS (one standard deviation) of the model heights",
+        "stereo_base_steps": steps, "stereo_base_to_height": bh,
+        "stereo_overlap_pct": 100.0 * (1.0 - fraction),
+        "single_step_base_to_height": float(base_mm) / inp.focal_mm,
+        "image_measurement_px": sigma, "multi_ray": rules.multi_ray,
+        "multi_ray_factor": multi, "processing_loss_k": k,
+        "sigma_z_at_planned_height_m": float(sz[0]),
+        "sigma_z_at_highest_flown_height_m": float(sz[1]),
+        "sigma_z_in_gsd": sigma * multi / bh,
+        "forms": forms,
+    }
+    if formula == "normal_case":
+        reason = Message("limit.PZ.normal_case", vz=vz, hc=inp.relief_interval_m, bh=bh,
+                         steps=steps, overlap=100.0 * (1.0 - fraction), sigma=sigma,
+                         multi=Message("limit.PZ.multi", f=multi) if multi < 1.0 else None)
+    else:
+        reason = Message("limit.PZ", vz=vz, hc=inp.relief_interval_m, k=k,
+                         formula=height_formula_name(formula))
+    return forms[formula]["ground_limit_m"], reason, details
+
+
+
+# --- P_P: graphic photo-plan (seed 001 eq. 3) -------------------------------------------
+
+def _pp_pixel(rules: ScanRules, a: FilmArgs) -> NDArray[np.float64]:
+    return F.photoplan_pixel_um(a.map_scale, a.photo_scale,
+                                photoplan_resolution_mm=rules.photoplan_resolution_mm)
+
+
+def _pp_reason(inp: ScanInputs, rules: ScanRules) -> Message:
+    return Message("reason.PP", resolution=rules.photoplan_resolution_mm * 1000,
+                   map=inp.map_scale)
+
+
+def _pp_ground(inp: UavInputs, rules: ScanRules | None) -> DigitalLimit:
+    assert rules is not None and inp.map_scale is not None
+    g = _at_unit_scale_m(F.photoplan_pixel_um(
+        inp.map_scale, 1.0, photoplan_resolution_mm=rules.photoplan_resolution_mm))
+    return DigitalLimit(g, Message("limit.PP", resolution=rules.photoplan_resolution_mm * 1000,
+                                   map=inp.map_scale), {})
+
+
+# --- P_R: resolving power of the photo (seed 001 eq. 4); no digital counterpart ----------
+
+def _pr_pixel(rules: ScanRules, a: FilmArgs) -> NDArray[np.float64]:
+    return F.resolving_power_pixel_um(a.resolving_power_lpmm,
+                                      pr_coefficient=rules.pr_coefficient)
+
+
+def _pr_reason(inp: ScanInputs, rules: ScanRules) -> Message:
+    return Message("reason.PR", r=inp.resolving_power_lpmm, kr=rules.pr_coefficient)
+
+
+def _pr_details(inp: ScanInputs, rules: ScanRules, ctx: dict[str, Any], j: int
+                ) -> dict[str, Any]:
+    return {"pr_coefficient": rules.pr_coefficient,
+            "resolving_power_lpmm": inp.resolving_power_lpmm}
+
+
+# --- P_D: interpretation (seed 001 eqs. 5–7); digital: a limit on L ----------------------
+
+def _pd_pixel(rules: ScanRules, a: FilmArgs) -> NDArray[np.float64]:
+    return F.interpretation_pixel_um(
+        np.asarray(a.object_size_m, dtype=np.float64) * 1000.0, a.photo_scale,
+        a.shape_coefficient, rules.probability, pr_coefficient=rules.pr_coefficient,
+        rounding=rules.recognition_rounding)  # type: ignore[arg-type]
+
+
+def _pd_reason(inp: ScanInputs, rules: ScanRules) -> Message:
+    obj = inp.object
+    assert obj is not None
+    return Message("reason.PD", obj.names(), b=obj.shape_coefficient, p=rules.probability)
+
+
+def _pd_details(inp: ScanInputs, rules: ScanRules, ctx: dict[str, Any], j: int
+                ) -> dict[str, Any]:
+    obj = inp.object
+    if obj is None:
+        return {}
+    return {"object": obj.name, "object_size_m": obj.size_m, "shape": obj.shape,
+            "shape_coefficient": obj.shape_coefficient, "probability": rules.probability,
+            "required_resolving_power_lpmm": float(ctx["r_needed"][j])}
+
+
+def _pd_ground(inp: UavInputs, rules: ScanRules | None) -> DigitalLimit | None:
+    assert rules is not None
+    obj = inp.map_object
+    if obj is None:
+        return None
+    root = float(F.probability_root(rules.probability, rules.recognition_rounding))  # type: ignore[arg-type]
+    return DigitalLimit(obj.size_m * root / obj.shape_coefficient,
+                        Message("limit.PD", obj.names(), p=rules.probability), {})
+
+
+# --- UAV-only limits: a target GSD, the altitude ceiling (docs/uav-models.md §10) --------
+
+def _gsd_ground(inp: UavInputs, rules: ScanRules | None) -> DigitalLimit | None:
+    if inp.gsd_target_m is None:
+        return None
+    g = inp.gsd_target_m
+    return DigitalLimit(g, Message("limit.GSD", gsd=g * 100.0), {})
+
+
+def _hc_ground(inp: UavInputs, rules: ScanRules | None) -> DigitalLimit | None:
+    if inp.ceiling_m is None:
+        return None
+    source = Message("ceiling.project" if inp.ceiling_from_project else "ceiling.norms")
+    return DigitalLimit(inp.ceiling_m, Message("limit.HC", ceiling=inp.ceiling_m,
+                                               source=source),
+                        {"from_project": inp.ceiling_from_project})
+
+
+for _record in (
+    Constraint("PS", "planimetric accuracy", "точность в плане", Message("protects.PS"),
+               Message("equation.PS"), True, "GSD", _ps_pixel, _ps_reason, None, _ps_ground),
+    Constraint("PZ", "height accuracy", "точность по высоте", Message("protects.PZ"),
+               Message("equation.PZ"), True, "GSD", _pz_pixel, _pz_reason, _pz_details,
+               _pz_ground),
+    Constraint("PP", "graphic photo-plan", "графический фотоплан", Message("protects.PP"),
+               Message("equation.PP"), True, "GSD", _pp_pixel, _pp_reason, None, _pp_ground),
+    Constraint("PR", "resolving power of the photo", "разрешающая способность снимка",
+               Message("protects.PR"), Message("equation.PR"), False, "L", _pr_pixel,
+               _pr_reason, _pr_details, None),
+    Constraint("PD", "interpretation", "дешифрирование", Message("protects.PD"),
+               Message("equation.PD"), True, "L", _pd_pixel, _pd_reason, _pd_details,
+               _pd_ground),
+    Constraint("GSD", "target GSD", "заданный размер пикселя на местности",
+               Message("protects.GSD"), Message("equation.GSD"), False, "GSD",
+               ground_limit=_gsd_ground, norm_switch=False, needs_map=False),
+    Constraint("HC", "altitude ceiling", "предельная высота полёта", Message("protects.HC"),
+               Message("equation.HC"), False, "H", ground_limit=_hc_ground,
+               norm_switch=False, needs_map=False),
+):
+    register(_record)

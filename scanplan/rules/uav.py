@@ -1,0 +1,452 @@
+"""UAV digital-camera planning: real ground resolution combined with the Instruction.
+
+A digital camera delivers two things on the ground (docs/architecture.md):
+GSD = p·H/f (geometry) and the MTF ground resolution L = H/(2·R·f) (seed 000). The
+Instruction's geometric constraints are limits on the ground that the GSD must not exceed
+(P_S, P_Z, P_P multiplied by Mc); the interpretation constraint is a limit that L must not
+exceed (seed 001's A ≤ L_obj·sqrt(−ln P)/B with A ≡ L). Each limit gives a maximum flight
+height; the smallest is binding.
+
+Light UAVs do not hold the planned height (seed 002: 300 m planned, 300–420 m flown): the
+constraints are checked at the highest height flown, blur and overlaps at the lowest. The
+*maximum planned height* is the largest planned height whose highest flown height,
+planned × (1 + tolerance), still meets every limit; an altitude ceiling limits that highest
+flown height (docs/uav-models.md §10).
+
+The height constraint of a digital block is by default the stereo normal case with the
+widest base of standard overlap, σ_Z = (H/B)·(H/c)·σ_px ≤ V_z (docs/uav-models.md §9); the
+Instruction's P_Z and its parallax form are computed beside it for comparison.
+
+Pure numpy on top of :mod:`scanplan.mtf` and :mod:`scanplan.flight`; no I/O.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+from typing import Any
+
+import numpy as np
+
+from .. import flight as FL
+from .. import formulas as F
+from .. import mtf as M
+from ..domains import check_domain
+from ..errors import InputError
+from ..messages import Message
+from ..orientation import attitude_matrix, corner_gsd
+from .constraints import height_accuracy as _height_accuracy  # noqa: F401  (tests, importers)
+from .film import overlap_warning
+from .registry import CONSTRAINTS, DigitalLimit, digital_ids
+from .results import (
+    HeightLimit,
+    ObjectSpec,
+    PlanWarning,
+    Recognition,
+    ScanRules,
+    UavInputs,
+    UavPlan,
+)
+
+__all__ = ["HeightLimit", "Recognition", "UavInputs", "UavPlan", "plan_uav"]
+
+_HEIGHT_GRID_POINTS = 257  # 1 m … 20 km in steps of 4 %
+_HEIGHT_PASS_POINTS = 62  # each refinement pass cuts the bracket 63-fold
+_HEIGHT_TOLERANCE_M = 1e-3
+_MAX_SEARCH_HEIGHT_M = 20_000.0
+
+
+def _chain(inp: UavInputs, height_m: Any) -> tuple[M.Camera, M.Flight, M.Atmosphere,
+                                                   M.Motion, M.Scene, M.Threshold]:
+    cam = M.Camera(inp.pixel_um, inp.focal_mm, inp.f_number, inp.sensor_width_mm,
+                   inp.sensor_height_mm, lens_table_centre=inp.lens_table_centre,
+                   lens_table_corner=inp.lens_table_corner)
+    fl = M.Flight(height_m, inp.speed_ms, inp.exposure_s, inp.shift_factor)
+    atm = M.Atmosphere(contrast_coefficient=inp.haze_contrast)
+    mot = M.Motion(inp.random_speed_ms, inp.roll_rate_rad_s, inp.pitch_rate_rad_s,
+                   inp.yaw_rate_rad_s)
+    return cam, fl, atm, mot, M.Scene(inp.r_max, inp.r_min), M.Threshold(
+        params={"k0": inp.threshold_k0})
+
+
+def _resolution(inp: UavInputs, height_m: Any) -> M.UAVResolution:
+    try:
+        return M.uav_resolution(*_chain(inp, height_m))
+    except ValueError as exc:  # the models name their field first: "pixel_um must be > 0"
+        name = str(exc).split(" ", 1)[0]
+        raise InputError(name, str(exc).split(" ", 1)[1] if " " in str(exc) else str(exc)
+                         ) from None
+
+
+def _f(x: Any) -> float | None:
+    v = float(np.asarray(x))
+    return v if math.isfinite(v) else None
+
+
+def max_height_for_ground_resolution(inp: UavInputs, limit_m: float) -> float:
+    """Highest height at which the centre L does not exceed ``limit_m``.
+
+    Vectorised search: L on a log grid of heights from 1 m to the search ceiling in one
+    call, then passes that cut the bracket of the *first* crossing 63-fold each, again one
+    call per pass, until it is narrower than 1 mm (about four MTF solves in all, instead of
+    a scalar bisection's 25). L grows with height (tests/test_mtf.py); should it not, the
+    first crossing is the safe answer. Where L is not resolvable it is taken as exceeding
+    every limit. Returns 0 if even 1 m fails, the ceiling if nothing fails below it.
+
+    Parameters
+    ----------
+    inp : UavInputs
+        Camera, flight and target.
+    limit_m : float
+        The largest ground resolution L allowed [m].
+
+    Returns
+    -------
+    float
+        The maximum height [m], within 1 mm below the crossing.
+    """
+    def ok(heights_m: np.ndarray) -> np.ndarray:
+        lr = np.asarray(_resolution(inp, heights_m).centre.ground_resolution_m, dtype=float)
+        return np.isfinite(lr) & (lr <= limit_m)
+
+    grid = np.geomspace(1.0, _MAX_SEARCH_HEIGHT_M, _HEIGHT_GRID_POINTS)
+    fails = np.flatnonzero(~ok(grid))
+    if fails.size == 0:
+        return _MAX_SEARCH_HEIGHT_M
+    if fails[0] == 0:
+        return 0.0
+    lo, hi = float(grid[fails[0] - 1]), float(grid[fails[0]])
+    while hi - lo >= _HEIGHT_TOLERANCE_M:
+        inner = np.linspace(lo, hi, _HEIGHT_PASS_POINTS + 2)[1:-1]
+        fails = np.flatnonzero(~ok(inner))
+        if fails.size == 0:
+            lo = float(inner[-1])
+        else:
+            hi = float(inner[fails[0]])
+            if fails[0] > 0:
+                lo = float(inner[fails[0] - 1])
+    return lo
+
+
+def _check_inputs(inp: UavInputs) -> None:
+    """Every input in its domain (:data:`scanplan.domains.DOMAINS`), field = its name."""
+    for name in ("pixel_um", "focal_mm", "f_number", "sensor_width_mm", "sensor_height_mm",
+                 "height_m", "exposure_s", "speed_ms", "random_speed_ms", "roll_rate_rad_s",
+                 "pitch_rate_rad_s", "yaw_rate_rad_s", "forward_overlap_pct",
+                 "side_overlap_pct", "height_tolerance_up_pct", "height_tolerance_down_pct",
+                 "roll_deg", "pitch_deg", "threshold_k0", "haze_contrast", "shift_factor",
+                 "r_max", "r_min"):
+        check_domain(name, getattr(inp, name))
+    if inp.r_min > inp.r_max:
+        raise InputError("r_min", f"must be ≤ r_max: the darkest detail is not lighter than the "
+                         f"lightest (got r_min {inp.r_min!r}, r_max {inp.r_max!r})")
+    if inp.map_scale is not None:
+        check_domain("map_scale", inp.map_scale)
+        check_domain("relief_interval_m", inp.relief_interval_m)
+    if inp.map_object is not None:
+        check_domain("object_size_m", inp.map_object.size_m)
+        check_domain("shape", inp.map_object.shape_coefficient)
+    for name in ("area_width_m", "area_length_m"):
+        if getattr(inp, name) is not None:
+            check_domain(name, getattr(inp, name))
+    if inp.ceiling_m is not None:
+        check_domain("max_height_m", inp.ceiling_m)
+    if inp.gsd_target_m is not None:
+        check_domain("gsd_cm", inp.gsd_target_m * 100.0)
+
+
+def _limit_rows(inp: UavInputs, rules: ScanRules | None
+                ) -> list[tuple[str, DigitalLimit, float]]:
+    """(id, limit, largest planned height [m]) of every applicable registry constraint.
+
+    A limit on the GSD gives H = g·f/p, one on L the height where L reaches it
+    (:func:`max_height_for_ground_resolution`), one on H itself is that height; each at the
+    highest flown height, so the planned height is that divided by 1 + tolerance.
+    """
+    up = 1.0 + inp.height_tolerance_up_pct / 100.0
+    with_map = inp.map_scale is not None
+    if with_map and rules is None:
+        raise ValueError("rules are needed with a map scale")
+    rows = []
+    for cid in digital_ids(rules.constraints if rules is not None else (), with_map=with_map):
+        rec = CONSTRAINTS[cid]
+        lim = rec.ground_limit(inp, rules)  # type: ignore[misc]
+        if lim is None:
+            continue
+        g = lim.limit_m
+        if rec.compares == "GSD":
+            h_at_limit = g * inp.focal_mm / (inp.pixel_um / 1000.0)
+        elif rec.compares == "L":
+            h_at_limit = max_height_for_ground_resolution(inp, g)
+        else:
+            h_at_limit = g
+        rows.append((cid, lim, h_at_limit / up))
+    return rows
+
+
+def _ceiling_and_height_warnings(inp: UavInputs, rows: list[tuple[str, DigitalLimit, float]],
+                                 max_h: float, binding: str
+                                 ) -> tuple[float | None, list[PlanWarning]]:
+    """``ceiling_binds`` (with what the other constraints allow) and ``height_above_max``."""
+    warnings: list[PlanWarning] = []
+    allow = None
+    others = [r for r in rows if r[0] != "HC"]
+    if binding == "HC" and others:
+        nxt = min(others, key=lambda r: r[2])
+        if nxt[2] > max_h * (1 + 1e-9):
+            allow = nxt[2]
+            warnings.append(PlanWarning("ceiling_binds", Message(
+                "ceiling_binds", ceiling=inp.ceiling_m, max=max_h, allow=allow, cid=nxt[0],
+                tolerance=Message("ceiling_binds.tolerance",
+                                  tolerance=inp.height_tolerance_up_pct)
+                if inp.height_tolerance_up_pct else None), severity="info"))
+    if inp.height_m > max_h * (1 + 1e-9):
+        info = CONSTRAINTS[binding]
+        warnings.append(PlanWarning("height_above_max", Message(
+            "height_above_max", height=inp.height_m, max=max_h, cid=binding,
+            name={"en": info.name, "ru": info.name_ru},
+            tolerance=Message("height_above_max.tolerance",
+                              tolerance=inp.height_tolerance_up_pct)
+            if inp.height_tolerance_up_pct else None)))
+    return allow, warnings
+
+
+def _height_limits(inp: UavInputs, rules: ScanRules | None) -> tuple[
+        tuple[HeightLimit, ...], float | None, str | None, float | None, dict[str, Any],
+        list[PlanWarning]]:
+    """Every limit as a maximum PLANNED height, the binding one, and the ceiling's effect.
+
+    A limit on the GSD or on L holds at the highest flown height H·(1 + tolerance); the
+    altitude ceiling limits the highest flown height itself. So every limit gives the
+    largest planned height whose highest flown height still meets it, and the smallest is
+    the maximum planned height.
+
+    Returns
+    -------
+    limits, max planned height [m], binding id, what the constraints other than the
+    ceiling allow [m] (None unless the ceiling binds), height-accuracy details, warnings.
+    """
+    up = 1.0 + inp.height_tolerance_up_pct / 100.0
+    rows = _limit_rows(inp, rules)
+    accuracy: dict[str, Any] = next((lim.details for cid, lim, _ in rows if cid == "PZ"), {})
+    warnings: list[PlanWarning] = []
+    if inp.map_scale is not None and rules is not None:
+        digital = replace(rules, height_formula=rules.digital_height_formula)
+        overlap = overlap_warning(digital, inp.forward_overlap_pct)
+        if overlap:
+            warnings.append(overlap)
+    if not rows:
+        return (), None, None, None, accuracy, warnings
+    best = min(rows, key=lambda r: r[2])
+    max_h, binding = best[2], best[0]
+    limits = tuple(HeightLimit(
+        id=cid, name=CONSTRAINTS[cid].name, limit_m=lim.limit_m,
+        compares=CONSTRAINTS[cid].compares, max_height_m=h, binding=(cid == binding),
+        margin_pct=(h / max_h - 1) * 100 if max_h > 0 else math.inf, reason=lim.reason,
+        equation=lim.equation or CONSTRAINTS[cid].equation, max_flown_height_m=h * up,
+        details=lim.details)
+        for cid, lim, h in rows)
+    allow, more = _ceiling_and_height_warnings(inp, rows, max_h, binding)
+    return limits, max_h, binding, allow, accuracy, warnings + more
+
+
+def _flight_time_s(length_m: float, speed_ms: float) -> float | None:
+    """Time on the strips [s]; None at ground speed 0, or where a subnormal speed makes it
+    infinite (never ``inf`` in a result)."""
+    if speed_ms <= 0:
+        return None
+    with np.errstate(over="ignore", divide="ignore"):
+        t = float(FL.flight_time_s(length_m, speed_ms))
+    return t if math.isfinite(t) else None
+
+
+def _blur(inp: UavInputs, gsd_lo: float, h_lo: float, h_hi: float,
+          warnings: list[PlanWarning]) -> tuple[float, float, float]:
+    """Motion blur at the lowest height [px], the longest exposure and the highest speed
+    that keep it under :data:`scanplan.flight.MAX_BLUR_PX`; appends the haze and blur
+    warnings."""
+    if inp.haze_contrast == M.DEFAULT_HAZE_CONTRAST and h_hi > M.DEFAULT_HAZE_MAX_HEIGHT_M:
+        warnings.append(PlanWarning("haze_default_height", Message(
+            "haze_default_height", c=inp.haze_contrast, valid=M.DEFAULT_HAZE_MAX_HEIGHT_M,
+            height=h_hi, key="[uav.atmosphere] haze_contrast"), severity="info"))
+    blur = float(FL.motion_blur_px(inp.speed_ms, inp.exposure_s, gsd_lo))
+    max_exp = float(FL.max_exposure_for_blur_s(max(inp.speed_ms, 1e-12), gsd_lo))
+    max_speed = float(FL.max_speed_for_blur_ms(inp.exposure_s, gsd_lo))
+    if blur > FL.MAX_BLUR_PX:
+        warnings.append(PlanWarning("motion_blur", Message(
+            "motion_blur", blur=blur, height=h_lo, limit=FL.MAX_BLUR_PX,
+            denominator=math.ceil(1 / max_exp), speed=max_speed)))
+    return blur, max_exp, max_speed
+
+
+def _flight_geometry(inp: UavInputs, h_plan: float, h_lo: float, h_hi: float,
+                     warnings: list[PlanWarning]) -> dict[str, Any]:
+    """Footprints, base, line spacing, interval, overlaps flown, and — with an area — the
+    strips, photos, flight length/time and data volume; appends the trigger warning."""
+    fp_across = float(FL.footprint_m(inp.sensor_width_mm, h_plan, inp.focal_mm))
+    fp_along = float(FL.footprint_m(inp.sensor_height_mm, h_plan, inp.focal_mm))
+    base = float(FL.photo_base_m(fp_along, inp.forward_overlap_pct))
+    spacing = float(FL.line_spacing_m(fp_across, inp.side_overlap_pct))
+    with np.errstate(over="ignore"):  # a subnormal speed: inf, shown as "—"
+        interval = (float(FL.photo_interval_s(base, inp.speed_ms)) if inp.speed_ms > 0
+                    else math.inf)
+    fl: dict[str, Any] = {
+        "footprint_across_m": fp_across, "footprint_along_m": fp_along, "base_m": base,
+        "line_spacing_m": spacing, "photo_interval_s": interval,
+        "forward_overlap_at_min_height_pct": float(FL.actual_overlap_pct(
+            inp.forward_overlap_pct, h_plan, h_lo)),
+        "side_overlap_at_min_height_pct": float(FL.actual_overlap_pct(
+            inp.side_overlap_pct, h_plan, h_lo)),
+        "forward_overlap_at_max_height_pct": float(FL.actual_overlap_pct(
+            inp.forward_overlap_pct, h_plan, h_hi)),
+    }
+    if inp.min_trigger_interval_s:
+        fl["min_trigger_interval_s"] = inp.min_trigger_interval_s
+        fl["max_speed_for_trigger_ms"] = float(FL.max_speed_for_trigger_ms(
+            base, inp.min_trigger_interval_s))
+        if interval < inp.min_trigger_interval_s:
+            warnings.append(PlanWarning("trigger_interval", Message(
+                "trigger_interval", interval=interval, minimum=inp.min_trigger_interval_s,
+                speed=fl["max_speed_for_trigger_ms"])))
+    if inp.area_width_m and inp.area_length_m:
+        strips = max(1, int(FL.strip_count(inp.area_width_m, spacing)))  # 1e-300 m: one
+        per_strip = int(FL.photos_per_strip(inp.area_length_m, base))
+        # each strip is flown over its photographed span, first to last exposure (the
+        # photos past the block ends included), not the block length
+        length = float(FL.flight_length_m(strips, (per_strip - 1) * base, spacing))
+        fl.update({"strips": strips, "photos_per_strip": per_strip,
+                   "photos": strips * per_strip, "flight_length_m": length,
+                   "flight_time_s": _flight_time_s(length, inp.speed_ms)})
+        if inp.image_width_px and inp.image_height_px:
+            fl["data_volume_bytes"] = float(FL.data_volume_bytes(
+                strips * per_strip, inp.image_width_px, inp.image_height_px,
+                inp.bands, inp.bits_per_band))
+    return fl
+
+
+def _tilted_corner_gsd(inp: UavInputs, h_hi: float) -> float | None:
+    """The worst corner GSD of a tilted frame at the highest height [m] (None untilted)."""
+    if not (inp.roll_deg or inp.pitch_deg):
+        return None
+    rot = attitude_matrix(math.radians(inp.roll_deg), math.radians(inp.pitch_deg))
+    tilt = _f(corner_gsd(h_hi, inp.focal_mm, inp.pixel_um, inp.sensor_width_mm,
+                         inp.sensor_height_mm, rotation=rot).worst_m)
+    if tilt is None or not tilt > 0:
+        raise InputError("roll_deg" if abs(inp.roll_deg) >= abs(inp.pitch_deg)
+                         else "pitch_deg", "at this roll and pitch a corner of the frame "
+                         "looks at or above the horizon; give a smaller tilt")
+    return tilt
+
+
+def _recognition(inp: UavInputs, l_plan: float | None, l_hi: float | None,
+                 l_corner_hi: float | None) -> tuple[Recognition, ...]:
+    """Recognition probability of every norm object at the planned and highest heights."""
+    def p_rec(obj: ObjectSpec, l_m: float | None) -> float | None:
+        if l_m is None:
+            return None
+        return float(F.recognition_probability(obj.size_m, l_m, obj.shape_coefficient))
+
+    return tuple(
+        Recognition(o.name, o.size_m, o.shape, o.map_scale, p_rec(o, l_plan),
+                    p_rec(o, l_hi), p_rec(o, l_corner_hi))
+        for o in inp.objects)
+
+
+def _curves(inp: UavInputs, h_plan: float, h_hi: float, max_flown: float | None
+            ) -> tuple[dict[str, Any], dict[str, Any]]:
+    """GSD and L against height, and the MTF at the planned height, for plots (one
+    vectorised call each)."""
+    top = max(h_hi, max_flown or 0.0) * 1.3
+    hs = np.linspace(top / 30.0, top, 30)
+    curve = _resolution(inp, hs).centre
+    height_curve = {"height_m": hs.tolist(),
+                    "gsd_m": np.asarray(curve.gsd_m).ravel().tolist(),
+                    "ground_resolution_m": [
+                        None if not math.isfinite(v) else v
+                        for v in np.asarray(curve.ground_resolution_m).ravel().tolist()]}
+    freq = np.linspace(0, float(M.nyquist_lpmm(inp.pixel_um)), 41)
+    curves = M.contrast_curves(freq, *_chain(inp, h_plan))
+    mtf_centre = {"freq_lpmm": freq.tolist(),
+                  **{name: np.asarray(v).ravel().tolist() for name, v in curves.items()}}
+    return height_curve, mtf_centre
+
+
+def plan_uav(inp: UavInputs, rules: ScanRules | None = None) -> UavPlan:
+    """Plan a UAV flight: GSD, MTF ground resolution, blur, flight geometry, and — with a map
+    scale — the maximum flight height under the norm set's constraints.
+
+    Steps: check the inputs; the height band and the MTF resolution at the planned and
+    highest heights; blur; flight geometry; tilt; recognition; the registry's limits as
+    heights; the curves for plots.
+
+    Parameters
+    ----------
+    inp : UavInputs
+        Camera, flight, scene and map.
+    rules : ScanRules, optional
+        Needed when ``inp.map_scale`` is given.
+
+    Returns
+    -------
+    UavPlan
+
+    Raises
+    ------
+    InputError
+        Naming the field for out-of-range input.
+
+    Examples
+    --------
+    >>> p = plan_uav(UavInputs(pixel_um=4.0, focal_mm=35, f_number=8, sensor_width_mm=24,
+    ...     sensor_height_mm=16, height_m=100, speed_ms=10, exposure_s=1/1000,
+    ...     ceiling_m=120))
+    >>> round(p.gsd_m * 100, 2), p.binding, round(p.max_height_m)
+    (1.14, 'HC', 120)
+    """
+    _check_inputs(inp)
+    if rules is not None:
+        check_domain("probability", rules.probability)
+    band = FL.height_band(inp.height_m, inp.height_tolerance_up_pct / 100.0,
+                          inp.height_tolerance_down_pct / 100.0)
+    h_plan, h_lo, h_hi = inp.height_m, float(band.min_m), float(band.max_m)
+    res = _resolution(inp, np.array([h_plan, h_hi]))
+    c, k = res.centre, res.corner
+    gsd = FL.ground_sample_distance_m(inp.pixel_um, np.array([h_plan, h_lo, h_hi]),
+                                      inp.focal_mm)
+    gsd_plan, gsd_lo, gsd_hi = (float(x) for x in gsd)
+    resolvable = bool(np.asarray(c.resolvable)[0])
+    warnings: list[PlanWarning] = []
+    blur, max_exp, max_speed = _blur(inp, gsd_lo, h_lo, h_hi, warnings)
+    fl = _flight_geometry(inp, h_plan, h_lo, h_hi, warnings)
+    tilt = _tilted_corner_gsd(inp, h_hi)
+    l_plan = _f(np.asarray(c.ground_resolution_m)[0])
+    l_hi = _f(np.asarray(c.ground_resolution_m)[1])
+    if not resolvable:
+        warnings.append(PlanWarning("not_resolvable", Message(
+            "not_resolvable", contrast=float(M.object_contrast(inp.r_max, inp.r_min)),
+            threshold=inp.threshold_k0)))
+    recognition = _recognition(inp, l_plan, l_hi, _f(np.asarray(k.ground_resolution_m)[1]))
+    limits, max_h, binding, allow, accuracy, lim_warnings = _height_limits(inp, rules)
+    warnings.extend(lim_warnings)
+    up = 1.0 + inp.height_tolerance_up_pct / 100.0
+    max_flown = max_h * up if max_h is not None else None
+    height_curve, mtf_centre = _curves(inp, h_plan, h_hi, max_flown)
+    return UavPlan(
+        inputs=inp, heights_m={"planned": h_plan, "min": h_lo, "max": h_hi},
+        gsd_m=gsd_plan, gsd_at_max_height_m=gsd_hi,
+        nyquist_lpmm=float(M.nyquist_lpmm(inp.pixel_um)),
+        resolving_power_lpmm=_f(np.asarray(c.r_lpmm)[0]),
+        resolving_power_corner_lpmm=_f(np.asarray(k.r_lpmm)[0]),
+        ground_resolution_m=l_plan, ground_resolution_corner_m=_f(
+            np.asarray(k.ground_resolution_m)[0]),
+        ground_resolution_at_max_height_m=l_hi,
+        ground_resolution_to_gsd=_f(np.asarray(c.l_over_gsd)[0]),
+        resolvable=resolvable,
+        sensor_limited=bool(np.asarray(c.resolving_power.sensor_limited)[0]),
+        motion_blur_px=blur, max_exposure_s=max_exp, max_speed_ms=max_speed,
+        tilted_corner_gsd_m=tilt, flight=fl, height_curve=height_curve,
+        recognition=recognition, limits=limits,
+        max_height_m=max_h, binding=binding, warnings=tuple(warnings),
+        max_flown_height_m=max_flown, ceiling_m=inp.ceiling_m,
+        constraints_max_height_m=allow, height_accuracy=accuracy, mtf_centre=mtf_centre)
+
