@@ -13,7 +13,7 @@ from scanplan.errors import InputError, NotFoundError
 from scanplan.norms import bundled_norms_dir, list_norm_sets, load_norm_set
 
 PKG = Path(scanplan.__file__).parent
-CORE = ["formulas.py", "planner.py", "normschema.py", "errors.py"]
+CORE = ["formulas.py", "planner.py", "norms/schema.py", "errors.py"]
 
 
 def test_bundled_sets_load(norms, printed_norms):
