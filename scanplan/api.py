@@ -21,7 +21,7 @@ from .errors import InputError
 from .messages import Message
 from .mtf import DEFAULT_HAZE_CONTRAST, DEFAULT_K0
 from .norms import DEFAULT_NORM_SET, MapObject, NormSet, load_norm_set, parse_scale
-from .normschema import ORIENTATIONS, PARAMETERS
+from .norms.schema import ORIENTATIONS, PARAMETERS
 from .planner import ObjectSpec, ScanInputs, ScanPlan, plan_scan
 from .uav import UavInputs, UavPlan, plan_uav
 

@@ -1,7 +1,7 @@
 """User cameras and scanners: ``scanplan cameras import FILE``.
 
 A user catalogue lives beside the user norm sets, in ``<user norm directory>/catalogue``
-(``cameras.csv`` and ``scanners.csv``, the columns of :mod:`scanplan.normschema`); every norm
+(``cameras.csv`` and ``scanners.csv``, the columns of :mod:`scanplan.norms.schema`); every norm
 set sees it on top of the bundled catalogue (same id: the user's wins). It is filled from
 
 * a spreadsheet (``.xlsx``) with a ``cameras``/``Камеры`` and/or ``scanners``/``Сканеры``
@@ -29,9 +29,13 @@ from pathlib import Path
 from typing import Any
 
 from . import norms as _norms
-from . import norms_io
 from .errors import InputError
-from .normschema import TABLES
+from .norms import cells as norms_cells
+from .norms import export as norms_export
+from .norms import limits as norms_limits
+from .norms import recovery as norms_recovery
+from .norms import store as norms_store
+from .norms.schema import TABLES
 from .safeio import read_limited, write_all
 
 __all__ = ["ParsedCameras", "import_camera_file", "read_camera_file", "user_catalogue_dir"]
@@ -93,38 +97,38 @@ def _read_qgc_json(path: Path, source: str) -> ParsedCameras:
     try:
         text = data.decode("utf-8-sig")
     except UnicodeDecodeError as exc:
-        raise norms_io._fail(path.name, f"is not UTF-8 text (byte {exc.start:,})") from None
+        raise norms_cells._fail(path.name, f"is not UTF-8 text (byte {exc.start:,})") from None
     try:
         doc = json.loads(text, parse_constant=_refuse_constant)
     except json.JSONDecodeError as exc:
-        raise norms_io._fail(path.name, f"is not valid JSON: {exc.msg}",
+        raise norms_cells._fail(path.name, f"is not valid JSON: {exc.msg}",
                              at=f"{path.name}:{exc.lineno}:{exc.colno}") from None
     except (ValueError, RecursionError) as exc:
-        raise norms_io._fail(path.name, f"is not a camera list: {str(exc)[:200]}") from None
+        raise norms_cells._fail(path.name, f"is not a camera list: {str(exc)[:200]}") from None
     if not isinstance(doc, list):
-        raise norms_io._fail(path.name, "is not a camera list: the top level must be a JSON "
+        raise norms_cells._fail(path.name, "is not a camera list: the top level must be a JSON "
                              "list of cameras, as QGroundControl's CameraMetaData.json")
     if len(doc) > MAX_JSON_ENTRIES:
-        raise norms_io._fail(path.name, f"has {len(doc):,} entries; the limit is "
+        raise norms_cells._fail(path.name, f"has {len(doc):,} entries; the limit is "
                              f"{MAX_JSON_ENTRIES:,}")
     spec = TABLES["cameras"]
-    problems = norms_io._Problems()
+    problems = norms_cells._Problems()
     rows: list[dict[str, str]] = []
     seen: dict[str, int] = {}
     for i, item in enumerate(doc, start=1):
         where = f"{path.name} entry {i}"
         if not isinstance(item, dict):
-            problems.add(norms_io.ImportProblem(where, "must be a JSON object (a camera)"))
+            problems.add(_norms.ImportProblem(where, "must be a JSON object (a camera)"))
             continue
         name = item.get("canonicalName")
         if not isinstance(name, str) or not name.strip():
-            problems.add(norms_io.ImportProblem(f"{where} (canonicalName)",
+            problems.add(_norms.ImportProblem(f"{where} (canonicalName)",
                                                 "must be the camera's name (text)"))
             continue
         name = name.strip()
         bad_text = _text_problem(name)
         if bad_text:
-            problems.add(norms_io.ImportProblem(f"{where} (canonicalName)", bad_text))
+            problems.add(_norms.ImportProblem(f"{where} (canonicalName)", bad_text))
             continue
         row = {c.name: "" for c in spec.columns}
         row.update(id=_slug(name), kind="digital", platform="uav", name=name)
@@ -133,26 +137,26 @@ def _read_qgc_json(path: Path, source: str) -> ParsedCameras:
             v = item.get(key)
             rule = spec.column(column).value
             if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v):
-                problems.add(norms_io.ImportProblem(
+                problems.add(_norms.ImportProblem(
                     f"{where} ({key})", f"must be {rule.describe()}",
                     value=None if v is None else str(v)[:50]))
                 ok = False
                 continue
             if integer and v != int(v):
-                problems.add(norms_io.ImportProblem(f"{where} ({key})",
+                problems.add(_norms.ImportProblem(f"{where} ({key})",
                                                     "must be a whole number of pixels",
                                                     value=str(v)))
                 ok = False
                 continue
             problem = rule.check(float(v))
             if problem:
-                problems.add(norms_io.ImportProblem(f"{where} ({key})", problem, value=str(v)))
+                problems.add(_norms.ImportProblem(f"{where} ({key})", problem, value=str(v)))
                 ok = False
                 continue
-            row[column] = norms_io._num_text(float(v))
+            row[column] = norms_cells._num_text(float(v))
         landscape = item.get("landscape", True)
         if not isinstance(landscape, bool):
-            problems.add(norms_io.ImportProblem(f"{where} (landscape)",
+            problems.add(_norms.ImportProblem(f"{where} (landscape)",
                                                 "must be true or false", value=str(landscape)))
             ok = False
         else:
@@ -161,16 +165,16 @@ def _read_qgc_json(path: Path, source: str) -> ParsedCameras:
         rule = spec.column("min_trigger_interval_s").value
         if isinstance(trigger, bool) or not isinstance(trigger, int | float) \
                 or not math.isfinite(trigger) or rule.check(float(trigger)):
-            problems.add(norms_io.ImportProblem(
+            problems.add(_norms.ImportProblem(
                 f"{where} (minTriggerInterval)", f"must be {rule.describe()}",
                 value=str(trigger)[:50]))
             ok = False
         elif trigger > 0:  # QGroundControl writes 0 for "not specified"
-            row["min_trigger_interval_s"] = norms_io._num_text(float(trigger))
+            row["min_trigger_interval_s"] = norms_cells._num_text(float(trigger))
         if not ok:
             continue
         if row["id"] in seen:
-            problems.add(norms_io.ImportProblem(
+            problems.add(_norms.ImportProblem(
                 f"{where} (canonicalName)", f"gives the same id {row['id']!r} as entry "
                 f"{seen[row['id']]}", hint="rename one of them"))
             continue
@@ -182,14 +186,14 @@ def _read_qgc_json(path: Path, source: str) -> ParsedCameras:
         rows.append(row)
     problems.raise_if_any(path.name)
     if not rows:
-        raise norms_io._fail(path.name, "has no cameras")
+        raise norms_cells._fail(path.name, "has no cameras")
     return ParsedCameras(path.name, rows, [])
 
 
 def _text_problem(text: str) -> str | None:
     try:
-        norms_io._check_text(text)
-    except norms_io._Bad as exc:
+        norms_cells._check_text(text)
+    except norms_cells._Bad as exc:
         return str(exc)
     return None
 
@@ -226,18 +230,18 @@ def read_camera_file(path: str | os.PathLike[str], *, source: str = "",
         raise InputError("--source", "must be text of at most 1,000 characters without "
                          "control characters")
     if p.suffix.lower() in JSON_SUFFIXES:
-        norms_io._check_file(p)
+        norms_cells._check_file(p)
         parsed = _read_qgc_json(p, source)
     else:
-        if p.suffix.lower() in norms_io.CSV_SUFFIXES and table is None:
+        if p.suffix.lower() in norms_limits.CSV_SUFFIXES and table is None:
             stem = p.stem.lower()
             table = ("lens_mtf" if "mtf" in stem or "чкх" in stem else
                      "scanners" if "scanner" in stem or "сканер" in stem else
                      "cameras" if "camera" in stem or "камер" in stem else None)
-        parsed_set = norms_io.read_norm_file(p, table=table, base=_norms.DEFAULT_NORM_SET)
+        parsed_set = _norms.read_norm_file(p, table=table, base=_norms.DEFAULT_NORM_SET)
         wanted = [t for t in parsed_set.from_file if t in ("cameras", "scanners", "lens_mtf")]
         if not wanted:
-            raise norms_io._fail(p.name, "has no cameras or scanners table",
+            raise norms_cells._fail(p.name, "has no cameras or scanners table",
                                  'name the sheet "cameras" ("Камеры") or "scanners" '
                                  '("Сканеры"), or give --table')
         stamp = f"imported from {p.name}" + (f"; {source}" if source else "")
@@ -274,22 +278,22 @@ def _check_rows(parsed: ParsedCameras, known_cameras: set[str] | None = None) ->
                 f.write_text(_csv_text(table, rows), encoding="utf-8")
                 try:
                     if table == "cameras":
-                        _norms._load_cameras(f)
+                        norms_store._load_cameras(f)
                     elif table == "scanners":
-                        _norms._load_scanners(f)
+                        norms_store._load_scanners(f)
                     else:
-                        _norms._load_lens_mtf(f)
+                        norms_store._load_lens_mtf(f)
                 except InputError as exc:
                     msg = exc.message
                     m = re.match(r".*?:(\d+) \((\w+)\)$", exc.field)
                     at = (f"{parsed.source_file} {table} row {int(m.group(1)) - 1} "
                           f"({m.group(2)})" if m else parsed.source_file)
-                    raise norms_io._fail(parsed.source_file, msg, at=at) from None
+                    raise norms_cells._fail(parsed.source_file, msg, at=at) from None
     if known_cameras is not None:
         digital = known_cameras | {r["id"] for r in parsed.cameras if r.get("kind") == "digital"}
         for i, r in enumerate(parsed.lens_mtf, start=1):
             if r.get("camera") not in digital:
-                raise norms_io._fail(parsed.source_file, f"{r.get('camera')!r} is not a digital "
+                raise norms_cells._fail(parsed.source_file, f"{r.get('camera')!r} is not a digital "
                                      "camera of the catalogue or of this file",
                                      at=f"{parsed.source_file} lens_mtf row {i} (camera)")
 
@@ -298,7 +302,7 @@ def _existing(folder: Path, table: str) -> list[dict[str, str]]:
     f = folder / TABLES[table].file
     if not f.is_file():
         return []
-    return norms_io._raw_csv(f)
+    return norms_export._raw_csv(f)
 
 
 def import_camera_file(path: str | os.PathLike[str], *, force: bool = False,
@@ -325,7 +329,7 @@ def import_camera_file(path: str | os.PathLike[str], *, force: bool = False,
     _check_rows(parsed, {c.id for c in ns.cameras.values() if c.kind == "digital"})
     folder = user_catalogue_dir()
     folder.mkdir(parents=True, exist_ok=True)
-    with norms_io._norm_dir_lock(folder):  # one import at a time: no lost update
+    with norms_recovery._norm_dir_lock(folder):  # one import at a time: no lost update
         _merge_into(folder, parsed, force)
     return folder, parsed
 

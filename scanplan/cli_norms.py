@@ -21,20 +21,19 @@ from typing import Any
 import click
 
 from . import norms as _norms
-from . import norms_io
 from .errors import InputError, WriteError
-from .normschema import PARAMETERS, TABLES
+from .norms.schema import PARAMETERS, TABLES
 
 __all__ = ["norms"]
 
 
 def _fail(exc: InputError, as_json: bool) -> None:
     """Report an InputError (all problems of a NormImportError) and exit 2."""
-    if isinstance(exc, norms_io.NormImportError):
+    if isinstance(exc, _norms.NormImportError):
         problems = list(exc.problems)
         total = exc.total
     else:
-        problems = [norms_io.ImportProblem(exc.field, exc.message)]
+        problems = [_norms.ImportProblem(exc.field, exc.message)]
         total = 1
     if as_json:
         click.echo(
@@ -50,10 +49,10 @@ def _fail(exc: InputError, as_json: bool) -> None:
             )
         )
     else:
-        if isinstance(exc, norms_io.NormImportError):
+        if isinstance(exc, _norms.NormImportError):
             head = exc.message.split("\n", 1)[0]
             click.echo(f"error: {exc.field}: {head}", err=True)
-            for line in norms_io.format_problems(problems, total):
+            for line in _norms.format_problems(problems, total):
                 click.echo(f"  {line}", err=True)
         else:
             click.echo(f"error: {exc.field}: {exc.message}", err=True)
@@ -73,7 +72,7 @@ def _write_failed(exc: WriteError, as_json: bool) -> None:
                     "ok": False,
                     "error_count": 1,
                     "errors": [
-                        norms_io.ImportProblem(
+                        _norms.ImportProblem(
                             exc.path, "; ".join(x for x in (exc.reason, exc.note) if x)
                         ).as_dict()
                     ],
@@ -158,7 +157,7 @@ def list_cmd(as_json: bool) -> None:
     """
     # an import a crash interrupted: put the set it was replacing back, drop its leftovers
     with contextlib.suppress(OSError):
-        for line in norms_io.recover_norm_dir():
+        for line in _norms.recover_norm_dir():
             click.echo(f"note: {line}", err=True)
     out = []
     for name, where in _norms.list_norm_sets():
@@ -225,7 +224,7 @@ def show_cmd(name: str, as_json: bool) -> None:
       scanplan norms show gkinp-02-036-02
       scanplan norms show my-enterprise --json
     """
-    data = norms_io.norm_set_dict(_norms.load_norm_set(name))
+    data = _norms.norm_set_dict(_norms.load_norm_set(name))
     if as_json:
         click.echo(json.dumps(data, ensure_ascii=False, indent=2))
         return
@@ -254,7 +253,7 @@ def show_cmd(name: str, as_json: bool) -> None:
     click.echo("\n".join(out))
 
 
-def _summary(parsed: norms_io.ParsedNormSet) -> dict[str, Any]:
+def _summary(parsed: _norms.ParsedNormSet) -> dict[str, Any]:
     return {
         "ok": True,
         "file": parsed.source_file,
@@ -297,7 +296,7 @@ def validate_cmd(file: Path, table: str | None, base: str | None, as_json: bool)
       scanplan norms validate my-norms.xlsx
       scanplan norms validate objects.csv --json
     """
-    parsed = norms_io.read_norm_file(file, table=table, base=base)
+    parsed = _norms.read_norm_file(file, table=table, base=base)
     if as_json:
         click.echo(json.dumps(_summary(parsed), ensure_ascii=False, indent=2))
         return
@@ -345,7 +344,7 @@ def import_cmd(
       scanplan norms import objects.csv --name my-objects --base gkinp-02-036-02
       scanplan norms import my-norms.xlsx --name my-enterprise --force --json
     """
-    path, parsed = norms_io.import_norm_file(
+    path, parsed = _norms.import_norm_file(
         file, name, force=force, table=table, base=base, title=title
     )
     if as_json:
@@ -398,7 +397,7 @@ def template_cmd(
       scanplan norms template my-norms.xlsx
       scanplan norms template my-norms-ru.xlsx --lang ru --norms gkinp-02-036-02-printed
     """
-    out = norms_io.write_template(
+    out = _norms.write_template(
         file, norm_set, lang=lang, catalogue=not no_catalogue, force=force
     )
     if as_json:

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import pytest
 
-from scanplan import norms as norms_mod
 from scanplan.norms import load_norm_set
+from scanplan.norms import store as norms_mod
 from scanplan.planner import ScanRules
 
 

@@ -13,8 +13,7 @@ from scanplan.api import uav_job
 from scanplan.cameras_io import import_camera_file, read_camera_file, user_catalogue_dir
 from scanplan.cli import main
 from scanplan.errors import InputError
-from scanplan.norms import load_norm_set
-from scanplan.norms_io import NormImportError, write_template
+from scanplan.norms import NormImportError, load_norm_set, write_template
 
 # two entries in QGroundControl's own format (src/Camera/CameraMetaData.json)
 QGC = [

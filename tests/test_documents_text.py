@@ -34,7 +34,7 @@ pytest.importorskip("weasyprint")
 
 from openpyxl import load_workbook  # noqa: E402
 
-from scanplan import norms as norms_mod  # noqa: E402
+from scanplan.norms import store as norms_mod  # noqa: E402
 from scanplan.project import KEYS, load_project  # noqa: E402
 from scanplan.reports.excel import render_xlsx  # noqa: E402
 from scanplan.reports.pdf import render_pdf  # noqa: E402
@@ -338,7 +338,7 @@ def test_every_warning_has_a_heading_in_both_languages():
     from scanplan.reports.labels import LABELS
 
     src = "".join(p.read_text(encoding="utf-8")
-                  for p in pathlib.Path(norms_mod.__file__).parent.rglob("*.py"))
+                  for p in pathlib.Path(norms_mod.__file__).parent.parent.rglob("*.py"))
     codes = set(re.findall(r'PlanWarning\(\s*"([a-z_]+)"', src))
     # a warning built from a message: msg = Message("code", ...) … PlanWarning(msg.code, …)
     codes |= set(re.findall(r'msg = Message\(\s*"([a-z_]+)"', src))

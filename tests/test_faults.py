@@ -40,11 +40,12 @@ from norm_corpus import english_workbook, russian_workbook, save
 
 import scanplan.reports.excel as excel_mod
 import scanplan.reports.pdf as pdf_mod
-from scanplan import norms as norms_mod
-from scanplan import norms_io
 from scanplan.cli import main
 from scanplan.cli_norms import norms as norms_group
 from scanplan.errors import InputError, WriteError
+from scanplan.norms import recovery as norms_recovery
+from scanplan.norms import store as norms_mod
+from scanplan.norms import writer as norms_writer
 from scanplan.reports import write_atomic, write_atomic_many
 from scanplan.reports.excel import write_xlsx
 from scanplan.reports.pdf import write_pdf
@@ -733,14 +734,14 @@ def user_dir(tmp_path, monkeypatch):
 def set_files(sources, tmp_path_factory):
     """How many files an imported set has (the n of the last file written)."""
     root = tmp_path_factory.mktemp("count")
-    path, _ = norms_io.import_norm_file(sources["ru"], "count", root=root)
+    path, _ = norms_writer.import_norm_file(sources["ru"], "count", root=root)
     return len(list(path.iterdir()))
 
 
 def prepare_sets(user_dir: Path, sources: dict[str, Path], existing: bool) -> None:
-    norms_io.import_norm_file(sources["en"], "keep", root=user_dir)
+    norms_writer.import_norm_file(sources["en"], "keep", root=user_dir)
     if existing:
-        norms_io.import_norm_file(sources["en"], "mine", root=user_dir)
+        norms_writer.import_norm_file(sources["en"], "mine", root=user_dir)
 
 
 def break_verify(monkeypatch: pytest.MonkeyPatch, exc: Callable[[], BaseException]) -> None:
@@ -831,11 +832,11 @@ def test_norm_import_end_to_end_then_success(user_dir, sources, fmp):
     before = snapshot(user_dir.parent)
     Faults(fmp, user_dir.parent).arm("fsync", 3, enospc)
     with pytest.raises(WriteError) as info:
-        norms_io.import_norm_file(sources["ru"], "mine", force=True)
+        norms_writer.import_norm_file(sources["ru"], "mine", force=True)
     assert info.value.errno == errno.ENOSPC and info.value.path == str(user_dir / "mine")
     fmp.undo()
     assert snapshot(user_dir.parent) == before
-    norms_io.import_norm_file(sources["ru"], "mine", force=True, root=user_dir)
+    norms_writer.import_norm_file(sources["ru"], "mine", force=True, root=user_dir)
     norms_mod._load_path.cache_clear()
     assert norms_mod.load_norm_set(user_dir / "mine").parameters[
         "planimetric_accuracy_mm"] == pytest.approx(0.4)
@@ -919,10 +920,10 @@ def test_crash_after_the_swap_leftover_old_is_deleted(user_dir, sources):
     shutil.copytree(user_dir / "mine", user_dir / ".mine.old-0123abcd")
     (user_dir / ".mine.old-0123abcd" / "set.toml").unlink()  # half deleted
     (user_dir / ".other.tmp-zz99yy88").mkdir()
-    actions = norms_io.recover_norm_dir(user_dir)
+    actions = norms_recovery.recover_norm_dir(user_dir)
     assert len(actions) == 2 and all("deleted" in a for a in actions)
     assert sorted(p.name for p in user_dir.iterdir()) == ["keep", "mine"]
-    assert norms_io.recover_norm_dir(user_dir) == []
+    assert norms_recovery.recover_norm_dir(user_dir) == []
 
 
 def test_failed_import_creates_no_norm_dir(tmp_path, sources, monkeypatch, fmp):

@@ -21,8 +21,8 @@ import click
 import pytest
 from click.testing import CliRunner
 
-from scanplan import norms as norms_mod
 from scanplan.cli import main
+from scanplan.norms import store as norms_mod
 
 ROOT = Path(__file__).resolve().parent.parent
 

@@ -42,9 +42,12 @@ import pytest
 from click.testing import CliRunner
 from norm_corpus import BILLION_LAUGHS, english_workbook, save, sheet_member, to_shared_strings
 
-from scanplan import norms_io
 from scanplan.cli import main
 from scanplan.norms import DEFAULT_NORM_SET, bundled_norms_dir
+from scanplan.norms import cells as norms_cells
+from scanplan.norms import importer as norms_importer
+from scanplan.norms import limits as norms_limits
+from scanplan.norms import xlsx as norms_xlsx
 
 MB = 2**20
 MEMORY_BOUND_MB = 200  # generous: what any refused file may cost on top of the program
@@ -191,15 +194,18 @@ CHILD = textwrap.dedent("""
                 return next(int(ln.split()[1]) for ln in fh if ln.startswith("VmHWM:"))
         except (OSError, StopIteration):
             return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
-    from scanplan import norms_io
+    from scanplan.norms import cells as norms_cells
+    from scanplan.norms import importer as norms_importer
+    from scanplan.norms import limits as norms_limits
+    from scanplan.norms import xlsx as norms_xlsx
     from click.testing import CliRunner
     from scanplan.cli import main
     fed = [0]
-    feed = norms_io._SheetReader.feed
+    feed = norms_xlsx._SheetReader.feed
     def counting(self, data):
         fed[0] += len(data)
         return feed(self, data)
-    norms_io._SheetReader.feed = counting
+    norms_xlsx._SheetReader.feed = counting
     before = peak_kb()
     t = time.perf_counter()
     r = CliRunner().invoke(main, sys.argv[1:])
@@ -274,7 +280,7 @@ def test_entities_refused_and_nothing_read(case, prescan, book, tmp_path, user_d
         where = "objects" if not prescan else member
     bad = write_xlsx(tmp_path / f"{case}.xlsx", parts)
     if not prescan:
-        monkeypatch.setattr(norms_io, "_DOCTYPE", re.compile(rb"(?!)"))
+        monkeypatch.setattr(norms_xlsx, "_DOCTYPE", re.compile(rb"(?!)"))
     with opened_files() as opened:
         r = cli("norms", "import", bad, "--name", "x")
     err = refused(r, f"{case}.xlsx", "DTD or XML entities")
@@ -327,8 +333,8 @@ def test_zip_bomb_refused_before_decompression(bomb, user_dir):
         assert zf.getinfo(member).file_size > BOMB_MB * MB
     r = cli("norms", "import", path, "--name", "x")
     refused(r, "bomb.xlsx", member, "would unpack to 300.0 MB", "the limit is 100.0 MB")
-    exc, peak = peak_mb(norms_io.read_norm_file, path)
-    assert isinstance(exc, norms_io.NormImportError)
+    exc, peak = peak_mb(norms_importer.read_norm_file, path)
+    assert isinstance(exc, norms_cells.NormImportError)
     assert peak < MEMORY_BOUND_MB
     note("zip bomb (300 MB in 0.3 MB)", peak_python_mb=peak)
     assert list(user_dir.iterdir()) == []
@@ -344,7 +350,7 @@ def test_zip_bomb_with_lying_sizes_reads_only_what_it_claims(bomb, tmp_path, mon
     with zipfile.ZipFile(liar) as zf:
         assert zf.getinfo(member).file_size == 1000
     fed: dict[str, int] = {}
-    real = norms_io._stream_member
+    real = norms_xlsx._stream_member
 
     def counting(zf, info, name, part, sink):
         fed[info.filename] = 0
@@ -355,9 +361,9 @@ def test_zip_bomb_with_lying_sizes_reads_only_what_it_claims(bomb, tmp_path, mon
 
         return real(zf, info, name, part, count)
 
-    monkeypatch.setattr(norms_io, "_stream_member", counting)
-    exc, peak = peak_mb(norms_io.read_norm_file, liar)
-    assert isinstance(exc, norms_io.NormImportError), exc
+    monkeypatch.setattr(norms_xlsx, "_stream_member", counting)
+    exc, peak = peak_mb(norms_importer.read_norm_file, liar)
+    assert isinstance(exc, norms_cells.NormImportError), exc
     assert "damaged" in str(exc) and member in str(exc)
     assert fed[member] <= 1000 and peak < MEMORY_BOUND_MB
     note("zip with lying sizes", peak_python_mb=peak)
@@ -370,12 +376,12 @@ def test_total_size_and_member_count_limits(book, tmp_path, monkeypatch):
     _, parts, _ = book
     pads = {f"xl/media/pad{i}.bin": b"\0" * 900_000 for i in range(3)}
     p = write_xlsx(tmp_path / "total.xlsx", {**parts, **pads})
-    monkeypatch.setattr(norms_io, "MAX_TOTAL_UNCOMPRESSED_BYTES", 2_000_000)
+    monkeypatch.setattr(norms_limits, "MAX_TOTAL_UNCOMPRESSED_BYTES", 2_000_000)
     refused(cli("norms", "validate", p), "total.xlsx", "would unpack to", "the limit is 1.9 MB")
     many = {f"xl/media/{i}.bin": b"" for i in range(10_001)}
     p = write_xlsx(tmp_path / "many.xlsx", {**parts, **many})
     refused(cli("norms", "validate", p), "many.xlsx", "10,012 zip members")
-    monkeypatch.setattr(norms_io, "MAX_ZIP_DIRECTORY_BYTES", 100_000)
+    monkeypatch.setattr(norms_limits, "MAX_ZIP_DIRECTORY_BYTES", 100_000)
     refused(cli("norms", "validate", p), "many.xlsx", "zip directory")
 
 
@@ -427,9 +433,9 @@ def test_million_row_sheet_as_excel_writes_it_is_refused_unopened(book, tmp_path
                       (member, [head, OBJECTS_HEADER, *([block] * (ROWS // 10_000)), tail]),
                       level=1)
     with zipfile.ZipFile(path) as zf:
-        assert zf.getinfo(member).file_size > norms_io.MAX_MEMBER_BYTES
-    exc, peak = peak_mb(norms_io.read_norm_file, path)
-    assert "would unpack to" in str(exc) and f"at most {norms_io.MAX_ROWS:,} rows" in str(exc)
+        assert zf.getinfo(member).file_size > norms_limits.MAX_MEMBER_BYTES
+    exc, peak = peak_mb(norms_importer.read_norm_file, path)
+    assert "would unpack to" in str(exc) and f"at most {norms_limits.MAX_ROWS:,} rows" in str(exc)
     assert peak < 20
     refused(cli("norms", "validate", path), "excel-million.xlsx", member)
 
@@ -440,7 +446,7 @@ def test_million_line_csv_refused_after_the_limit(tmp_path, user_dir):
         fh.write("map_scale,object,size_m,shape\n")
         for a in range(1, ROWS + 1, 100_000):
             fh.write("".join(f"{i},o,0.5,circle\n" for i in range(a, a + 100_000)))
-    assert path.stat().st_size < norms_io.MAX_FILE_BYTES
+    assert path.stat().st_size < norms_limits.MAX_FILE_BYTES
     res = run_child("norms", "import", path, "--name", "x",
                     env={"SCANPLAN_NORMS_DIR": str(user_dir)})
     assert res["exit"] == 2 and not res["traceback"], res
@@ -463,7 +469,7 @@ def test_row_numbers_and_columns_far_away(book, tmp_path):
     wide = sheet_xml(OBJECTS_HEADER + b"".join(
         objects_row(r)[:-6] + b'<c r="XFD%d"><v>1</v></c></row>' % r for r in range(2, 5002)))
     p = with_objects(book, tmp_path, "wide.xlsx", wide)
-    exc, peak = peak_mb(norms_io.read_norm_file, p)
+    exc, peak = peak_mb(norms_importer.read_norm_file, p)
     assert "'objects'!XFD2" in str(exc) and "right of column IV" in str(exc)
     assert peak < 50
     refused(cli("norms", "validate", p), "'objects'!XFD2", "a norm table has at most 17")
@@ -478,7 +484,7 @@ def test_merged_cell_bombs(book, tmp_path):
     rows = rows.replace(b'<c r="E2" t="inlineStr"><is><t>note</t></is></c></row>', b"</row>", 1)
     sheet = sheet_xml(rows, b'<mergeCells count="3">' + merges + b"</mergeCells>")
     p = with_objects(book, tmp_path, "merged.xlsx", sheet)
-    parsed, peak = peak_mb(norms_io.read_norm_file, p)
+    parsed, peak = peak_mb(norms_importer.read_norm_file, p)
     assert not isinstance(parsed, Exception), parsed
     assert peak < 30
     many = b"".join(b'<mergeCell ref="H%d:I%d"/>' % (r, r) for r in range(1, 1002))
@@ -924,7 +930,7 @@ def test_huge_cell_in_a_workbook(book, tmp_path):
     huge = base64.b64encode(os.urandom(7_500_000))
     rows = OBJECTS_HEADER + objects_row(2) + objects_row(3, b"5000", obj=huge)
     p = with_objects(book, tmp_path, "huge.xlsx", sheet_xml(rows))
-    assert p.stat().st_size < norms_io.MAX_FILE_BYTES
+    assert p.stat().st_size < norms_limits.MAX_FILE_BYTES
     err = refused(cli("norms", "validate", p), "'objects'!B3", "10,000,000 characters long",
                   "the limit is 32,767")
     assert len(err) < 3000

@@ -173,9 +173,9 @@ def test_styles_part_with_a_million_entries_is_refused_before_parsing(tmp_path, 
     took 54–80 s and 2.5 GB in ``norms validate``."""
     import tracemalloc
 
-    from scanplan import norms_io
+    from scanplan.norms import limits as norms_limits
 
-    path = _with_styles(tmp_path, norms_io.MAX_PART_ELEMENTS + 1000)
+    path = _with_styles(tmp_path, norms_limits.MAX_PART_ELEMENTS + 1000)
     tracemalloc.start()
     try:
         r = cli("norms", "validate", path)

@@ -37,7 +37,7 @@ def _versions(parsed) -> dict[str, dict]:
 
 
 def _writer(root: str, w: int, versions, go) -> None:
-    from scanplan import norms_io
+    from scanplan.norms import writer as norms_writer
 
     real_replace = os.replace
 
@@ -50,12 +50,12 @@ def _writer(root: str, w: int, versions, go) -> None:
     for r in range(ROUNDS):
         title = f"version {w * ROUNDS + r:03d}"
         parsed, _ = versions[title]
-        norms_io.write_norm_set(parsed, "shared", force=True, root=root, title=title)
+        norms_writer.write_norm_set(parsed, "shared", force=True, root=root, title=title)
 
 
 def _reader(root: str, out, go) -> None:
     os.environ["SCANPLAN_NORMS_DIR"] = root
-    from scanplan import norms
+    from scanplan.norms import store as norms
 
     norms._load_path.cache_clear()
     seen, failed = [], []
@@ -74,15 +74,16 @@ def _reader(root: str, out, go) -> None:
 def test_concurrent_loads_see_one_version_exactly(tmp_path, monkeypatch):
     from norm_corpus import english_workbook, save
 
-    from scanplan import norms_io
+    from scanplan.norms import importer as norms_importer
+    from scanplan.norms import writer as norms_writer
 
     root = tmp_path / "norms"
     root.mkdir()
     src = save(english_workbook(), tmp_path, "n.xlsx")
-    parsed = norms_io.read_norm_file(src)
+    parsed = norms_importer.read_norm_file(src)
     versions = _versions(parsed)
     first = next(iter(versions))
-    norms_io.write_norm_set(versions[first][0], "shared", root=root, title=first)
+    norms_writer.write_norm_set(versions[first][0], "shared", root=root, title=first)
 
     ctx = mp.get_context("fork")
     go = ctx.Event()

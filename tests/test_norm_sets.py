@@ -15,7 +15,7 @@ from scanplan.norms import bundled_norms_dir, list_norm_sets, load_norm_set
 PKG = Path(scanplan.__file__).parent
 ENGINE = ["rules/film.py", "rules/uav.py", "rules/registry.py", "rules/constraints.py",
           "rules/results.py"]
-CORE = ["formulas.py", "planner.py", "normschema.py", "errors.py", *ENGINE]
+CORE = ["formulas.py", "planner.py", "norms/schema.py", "errors.py", *ENGINE]
 
 
 def test_bundled_sets_load(norms, printed_norms):

@@ -22,19 +22,22 @@ from norm_corpus import (
     save,
 )
 
-from scanplan import norms_io
 from scanplan.cli_norms import norms as norms_group
 from scanplan.errors import InputError
-from scanplan.norms import DEFAULT_NORM_SET, load_norm_set
-from scanplan.norms_io import (
+from scanplan.norms import (
+    DEFAULT_NORM_SET,
     NormImportError,
     import_norm_file,
+    load_norm_set,
     parse_number,
     read_norm_file,
     write_norm_set,
     write_template,
 )
-from scanplan.normschema import PARAMETERS, TABLES
+from scanplan.norms import limits as norms_limits
+from scanplan.norms import writer as norms_writer
+from scanplan.norms import xlsx as norms_xlsx
+from scanplan.norms.schema import PARAMETERS, TABLES
 
 COMPARED = (
     "title",
@@ -81,7 +84,7 @@ def test_corpus_is_big_enough():
 def test_corpus(case, corpus_dir, user_dir, monkeypatch):
     path = case.build(corpus_dir)
     for name, value in case.limits.items():
-        monkeypatch.setattr(norms_io, name, value)
+        monkeypatch.setattr(norms_limits, name, value)
     before = tree_hash(user_dir)
     if case.ok:
         _, parsed = import_norm_file(path, "case")
@@ -291,11 +294,11 @@ def test_entity_expansion_refused_by_every_layer(corpus_dir, monkeypatch):
     with pytest.raises(NormImportError, match="DTD or XML entities"):
         read_norm_file(path)
     # 2. without it, openpyxl (defusedxml) or the worksheet reader (expat) refuses it
-    monkeypatch.setattr(norms_io, "_DOCTYPE", re.compile(rb"(?!)"))
+    monkeypatch.setattr(norms_xlsx, "_DOCTYPE", re.compile(rb"(?!)"))
     with pytest.raises(NormImportError, match="DTD or XML entities"):
         read_norm_file(path)
-    reader = norms_io._SheetReader([], set(), set(), 100)
-    with pytest.raises(norms_io._Refused):
+    reader = norms_xlsx._SheetReader([], set(), set(), 100)
+    with pytest.raises(norms_xlsx._Refused):
         reader.parse(BILLION_LAUGHS + b"<worksheet><sheetData/></worksheet>")
     # 3. and openpyxl, through defusedxml, refuses entities in the parts it parses
     from defusedxml import DefusedXmlException
@@ -316,7 +319,7 @@ def test_entity_expansion_refused_by_every_layer(corpus_dir, monkeypatch):
 
 
 def test_csv_limits(tmp_path, monkeypatch):
-    monkeypatch.setattr(norms_io, "MAX_ROWS", 10)
+    monkeypatch.setattr(norms_limits, "MAX_ROWS", 10)
     p = tmp_path / "objects.csv"
     p.write_text(
         "map_scale,object,size_m,shape\n"
@@ -450,11 +453,11 @@ def test_interrupted_rename_leaves_tree_identical(
             raise exc
         return real(src, dst)
 
-    monkeypatch.setattr(norms_io.os, "replace", broken)
+    monkeypatch.setattr(norms_writer.os, "replace", broken)
     ru = save(russian_workbook(), corpus_dir, "ru-int.xlsx")
     with pytest.raises(type(exc)):
         import_norm_file(ru, "mine", force=True)
-    monkeypatch.setattr(norms_io.os, "replace", real)
+    monkeypatch.setattr(norms_writer.os, "replace", real)
     assert tree_hash(user_dir) == before
     if existing:
         assert load_norm_set("mine").parameters["planimetric_accuracy_mm"] == 0.2
@@ -464,7 +467,7 @@ def test_interrupted_write_leaves_tree_identical(good, user_dir, monkeypatch):
     import_norm_file(good, "mine")
     before = tree_hash(user_dir)
     calls = []
-    real = norms_io._write_file
+    real = norms_writer._write_file
 
     def broken(path, text):
         calls.append(path)
@@ -472,7 +475,7 @@ def test_interrupted_write_leaves_tree_identical(good, user_dir, monkeypatch):
             raise OSError("interrupted")
         return real(path, text)
 
-    monkeypatch.setattr(norms_io, "_write_file", broken)
+    monkeypatch.setattr(norms_writer, "_write_file", broken)
     with pytest.raises(OSError, match="interrupted"):
         import_norm_file(good, "mine", force=True)
     with pytest.raises(OSError, match="interrupted"):
@@ -637,7 +640,7 @@ def test_cli_errors_are_exit_2_without_traceback(tmp_path, user_dir, corpus_dir)
 
 
 def test_zip_member_limit(corpus_dir, monkeypatch):
-    monkeypatch.setattr(norms_io, "MAX_MEMBER_BYTES", 2000)
+    monkeypatch.setattr(norms_limits, "MAX_MEMBER_BYTES", 2000)
     path = save(english_workbook(), corpus_dir, "member.xlsx")
     with zipfile.ZipFile(path) as zf:
         assert max(i.file_size for i in zf.infolist()) > 2000

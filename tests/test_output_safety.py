@@ -397,7 +397,7 @@ def test_killed_write_leftovers_are_cleaned_end_to_end(tmp_path):
     ctx = mp.get_context("fork")
 
     def child() -> None:
-        import scanplan.reports as rep
+        import scanplan.safeio as rep  # the atomic writers live in safeio
 
         real = rep._write_temp
 
@@ -469,7 +469,7 @@ def test_report_folder_is_fsynced_after_the_renames(tmp_path, monkeypatch):
 def test_norm_folder_is_fsynced_after_the_swap(user_dir, monkeypatch):
     from norm_corpus import english_workbook, save
 
-    from scanplan.norms_io import import_norm_file
+    from scanplan.norms import import_norm_file
 
     src = save(english_workbook(), user_dir.parent, "n.xlsx")
     synced = _dir_fsyncs(monkeypatch)

@@ -116,7 +116,7 @@ def test_without_the_dummy_nothing_changed():
 
 def test_norm_schema_allows_exactly_the_norm_switched_constraints():
     """A norm file may list the ids of the records the norm set switches on, no other."""
-    from scanplan.normschema import CONSTRAINT_IDS
+    from scanplan.norms.schema import CONSTRAINT_IDS
     assert set(CONSTRAINT_IDS) == {c.id for c in CONSTRAINTS.values() if c.norm_switch}
 
 

@@ -1,11 +1,12 @@
 """Norm sets and the camera/scanner catalogue: finding and loading them.
 
 A norm set is a folder of small CSV files plus ``set.toml`` (layout and value rules in
-:mod:`scanplan.normschema`). Bundled sets ship inside the package (``scanplan/_data/norms``
+:mod:`scanplan.norms.schema`). Bundled sets ship inside the package (``scanplan/_data/norms``
 in a wheel; ``norms/`` at the repository root in a source checkout). User sets are a path,
 or a name under the user's norm directory (``$SCANPLAN_NORMS_DIR``, else
 ``$XDG_DATA_HOME/scanplan/norms``, else ``~/.local/share/scanplan/norms``).
 """
+
 
 from __future__ import annotations
 
@@ -24,13 +25,12 @@ from itertools import pairwise
 from pathlib import Path
 from typing import Any
 
-from .errors import InputError, NotFoundError
-from .normschema import LATER_PARAMETERS, PARAMETERS, TABLES, TableSpec, ValueSpec
-from .planner import ScanRules
-from .safeio import dir_lock, read_limited
-
-DEFAULT_NORM_SET = "gkinp-02-036-02"
-CATALOGUE = "catalogue"
+from ..errors import InputError, NotFoundError
+from ..planner import ScanRules
+from ..safeio import dir_lock, read_limited
+from .paths import CATALOGUE, DEFAULT_NORM_SET, bundled_norms_dir, user_norms_dir
+from .recovery import recover_norm_dir
+from .schema import LATER_PARAMETERS, PARAMETERS, TABLES, TableSpec, ValueSpec
 
 __all__ = [
     "DEFAULT_NORM_SET",
@@ -49,27 +49,6 @@ __all__ = [
     "user_norms_dir",
 ]
 
-
-def bundled_norms_dir() -> Path:
-    """Folder holding the bundled norm sets and the catalogue."""
-    here = Path(__file__).resolve().parent
-    for candidate in (here / "_data" / "norms", here.parent / "norms"):
-        if (candidate / DEFAULT_NORM_SET).is_dir():
-            return candidate
-    raise RuntimeError(  # a broken installation, not a user error
-        f"scanplan's bundled norms are missing (looked in {here / '_data' / 'norms'} and "
-        f"{here.parent / 'norms'}); reinstall scanplan"
-    )
-
-
-def user_norms_dir() -> Path:
-    """Folder where ``scanplan norms import`` puts user norm sets."""
-    env = os.environ.get("SCANPLAN_NORMS_DIR")
-    if env:
-        return Path(env).expanduser()
-    xdg = os.environ.get("XDG_DATA_HOME")
-    base = Path(xdg).expanduser() if xdg else Path.home() / ".local" / "share"
-    return base / "scanplan" / "norms"
 
 
 def parse_scale(value: object, field_name: str) -> float:
@@ -237,7 +216,7 @@ class NormSet:
         Parameters
         ----------
         **overrides
-            Parameter names of :data:`scanplan.normschema.PARAMETERS` (None is ignored).
+            Parameter names of :data:`scanplan.norms.schema.PARAMETERS` (None is ignored).
         """
         params = dict(self.parameters)
         for key, value in overrides.items():
@@ -538,8 +517,6 @@ def _put_back(name: str) -> bool:
     try:
         if not any(folder.glob(f".{glob.escape(name)}.old-*")):
             return False
-        from .norms_io import recover_norm_dir
-
         recover_norm_dir(folder, name)
     except OSError:
         return False

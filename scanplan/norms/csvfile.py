@@ -1,0 +1,143 @@
+"""Reading a one-table CSV (UTF-8, UTF-16 or Windows-1251; comma, semicolon or tab)."""
+
+from __future__ import annotations
+
+import csv
+import re
+from collections.abc import Iterator, Sequence
+from pathlib import Path
+
+from ..safeio import read_limited
+from . import limits as _limits
+from .cells import _fail
+from .grid import _Grid
+from .xlsx import _WIDEST_TABLE
+
+
+def _decode_text(data: bytes, name: str = "the file") -> str:
+    """The text of a CSV: UTF-16 (with a BOM), UTF-8 (BOM or not), else Windows-1251."""
+    hint = 'save it from Excel as "CSV UTF-8 (Comma delimited) (*.csv)"'
+    if data.startswith((b"\xff\xfe", b"\xfe\xff")):
+        try:
+            text = data.decode("utf-16")
+        except UnicodeDecodeError as exc:
+            raise _fail(
+                name, f"is not valid UTF-16 text (byte {exc.start:,}: {exc.reason})", hint
+            ) from None
+    else:
+        try:
+            text = data.decode("utf-8-sig")
+        except UnicodeDecodeError:
+            try:  # a Russian-locale Excel "CSV (разделители - запятые)"
+                text = data.decode("cp1251")
+            except UnicodeDecodeError as exc:
+                raise _fail(
+                    name,
+                    f"is neither UTF-8 nor Windows-1251 text (byte 0x{data[exc.start]:02X} at "
+                    f"position {exc.start:,})",
+                    hint,
+                ) from None
+    if "\x00" in text:
+        raise _fail(
+            name,
+            "contains NUL characters: a binary file, or UTF-16 text without a byte-order mark",
+            hint,
+        )
+    return text
+
+
+_EOL = re.compile(r"\r\n|\r|\n")
+
+
+class _RowTooLong(Exception):
+    """A CSV row (with all its lines) is longer than :data:`MAX_CSV_ROW_CHARS`."""
+
+
+def _read_csv_grid(path: Path) -> _Grid:
+    """A CSV (UTF-8, UTF-16 or cp1251; comma, semicolon or tab separated) as a grid.
+
+    Bounded: the file is read with a limit, a row may hold at most
+    :data:`MAX_CSV_ROW_CHARS` characters (checked line by line, before the row is split),
+    :data:`MAX_COLUMNS` columns and the file :data:`MAX_CELLS` values; reading stops at the
+    first row past :data:`MAX_ROWS`.
+    """
+    name = path.name
+    text = _decode_text(read_limited(path, _limits.MAX_FILE_BYTES, field=str(path)), name)
+    head = text[: 64 * 1024]  # the separator is sniffed on the first lines only
+    sample = "\n".join(head.splitlines()[: _limits.HEADER_SCAN_ROWS + 5])
+    counts = {d: sample.count(d) for d in (";", "\t", ",")}
+    try:
+        delim = csv.Sniffer().sniff(sample, delimiters=";\t,").delimiter
+    except csv.Error:
+        delim = max(counts, key=lambda d: counts[d])
+    # a Russian Excel writes ";" and decimal commas: prefer ";" when it is on every line
+    if delim == "," and counts[";"] and all(";" in ln for ln in sample.splitlines() if ln):
+        delim = ";"
+    row_chars = [0]
+
+    def lines() -> Iterator[str]:  # physical lines, each counted before it is cut out
+        pos, end = 0, len(text)
+        while pos < end:
+            m = _EOL.search(text, pos)
+            stop = m.end() if m else end
+            row_chars[0] += stop - pos
+            if row_chars[0] > _limits.MAX_CSV_ROW_CHARS:
+                raise _RowTooLong
+            yield text[pos:stop]
+            pos = stop
+
+    label = _Grid(path.stem, [])
+    rows: list[Sequence[str]] = []
+    cells = 0
+    reader = csv.reader(lines(), delimiter=delim)
+    try:
+        for row in reader:
+            row_chars[0] = 0
+            n = len(rows) + 1
+            if n > _limits.MAX_ROWS + _limits.HEADER_SCAN_ROWS:
+                raise _fail(
+                    name,
+                    f"more than {_limits.MAX_ROWS:,} rows (row {n:,} is past the limit); refused "
+                    "without reading further",
+                    "split the table or delete unused rows",
+                    at=label.address(n, 1),
+                )
+            while row and not row[-1]:  # Excel pads rows with separators
+                row.pop()
+            if len(row) > _limits.MAX_COLUMNS:
+                raise _fail(
+                    name,
+                    f"row {n:,} has {len(row):,} columns; the limit is "
+                    f"{_limits.MAX_COLUMNS} (a norm "
+                    f"table has at most {_WIDEST_TABLE})",
+                    "delete the columns right of the table",
+                    at=label.address(n, _limits.MAX_COLUMNS + 1),
+                )
+            cells += sum(1 for v in row if v)
+            if cells > _limits.MAX_CELLS:
+                raise _fail(
+                    name,
+                    f"more than {_limits.MAX_CELLS:,} filled cells; refused without reading "
+                    "further",
+                    "a norm table is small: delete unused rows and columns",
+                    at=label.address(n, 1),
+                )
+            rows.append(tuple(row))
+    except _RowTooLong:
+        raise _fail(
+            name,
+            f"row {len(rows) + 1:,} is longer than {_limits.MAX_CSV_ROW_CHARS:,} characters (a "
+            "runaway quote, or not a CSV file)",
+            "check the quotes in that row; a norm table row is short",
+            at=label.address(len(rows) + 1, 1),
+        ) from None
+    except csv.Error as exc:
+        raise _fail(
+            name,
+            f"cannot be read as CSV (line {reader.line_num:,}: {exc})",
+            f"one cell holds at most {_limits.MAX_CELL_CHARS:,} characters; check the quotes",
+            at=label.address(len(rows) + 1, 1),
+        ) from None
+    return _Grid(path.stem, rows)
+
+

@@ -1,0 +1,342 @@
+"""Assembling a norm set from a read file: every table checked, cross-table rules,
+all problems collected (:func:`read_norm_file`)."""
+
+from __future__ import annotations
+
+import csv
+import os
+from dataclasses import dataclass
+from pathlib import Path
+
+from ..errors import InputError
+from . import store as _norms
+from .cells import (
+    _ALL_TABLES,
+    _SHEET_INDEX,
+    ImportProblem,
+    NormImportError,
+    _check_file,
+    _fail,
+    _is_empty,
+    _match,
+    _norm,
+    _printable,
+    _Problems,
+)
+from .csvfile import _read_csv_grid
+from .grid import _data_rows, _find_header, _Grid, _Located, _Row, _Table
+from .limits import CSV_SUFFIXES, META_KEYS, META_TABLE, XLSX_SUFFIXES
+from .schema import PARAMETERS, TABLES
+from .xlsx import _read_xlsx
+
+# =========================================================================================
+# Assembling a set
+# =========================================================================================
+
+
+@dataclass(frozen=True)
+class ParsedNormSet:
+    """A checked norm set, ready to write.
+
+    Attributes
+    ----------
+    source_file : str
+        Name of the file it came from.
+    tables : dict
+        Table name → rows (dicts of schema column → canonical text), ready for CSV.
+    meta : dict
+        ``title``, ``title_ru``, ``source`` (from the workbook's ``set`` sheet or the base).
+    base : str or None
+        The base set the file was merged onto.
+    from_file : tuple of str
+        Tables the file supplied (the rest came from ``base``).
+    warnings : tuple of str
+        Notes (ignored sheets and columns).
+    """
+
+    source_file: str
+    tables: dict[str, list[dict[str, str]]]
+    meta: dict[str, str]
+    base: str | None = None
+    from_file: tuple[str, ...] = ()
+    warnings: tuple[str, ...] = ()
+
+    def counts(self) -> dict[str, int]:
+        """Rows per table."""
+        return {k: len(v) for k, v in self.tables.items()}
+
+
+def _base_tables(base: str) -> tuple[dict[str, _Table], dict[str, str], str]:
+    """The tables of a base norm set (as grids read from its CSV files)."""
+    ns = _norms.load_norm_set(base)  # checks it and resolves name or path
+    tables: dict[str, _Table] = {}
+    scratch = _Problems()
+    for spec in TABLES.values():
+        p = ns.path / spec.file
+        if not p.is_file():
+            continue
+        with p.open(encoding="utf-8", newline="") as fh:
+            rows = [tuple(r) for r in csv.reader(fh)]
+        grid = _Grid(p.stem, rows, file_label=f"{ns.name}/{spec.file}")
+        loc = _find_header(grid, spec, scratch)
+        if loc is not None:
+            tables[spec.name] = _data_rows(loc, scratch)
+    if scratch.total:  # the loader accepted it, so this would be a bug
+        raise NormImportError(f"base set {base}", scratch.items, scratch.total)
+    meta = {"title": ns.title, "title_ru": ns.title_ru, "source": ns.source}
+    return tables, meta, ns.name
+
+
+def _locate_csv_table(grid: _Grid, table: str | None, name: str) -> _Located:
+    problems = _Problems()
+    if table:
+        spec = _ALL_TABLES.get(table) or _ALL_TABLES.get(_match(_SHEET_INDEX, table) or "")
+        if spec is None or spec is META_TABLE:
+            raise InputError("--table", f"unknown table {table!r}; one of {', '.join(TABLES)}")
+        loc = _find_header(grid, spec, problems)
+        problems.raise_if_any(name)
+        assert loc is not None
+        return loc
+    by_name = _match(_SHEET_INDEX, grid.label)
+    if by_name in TABLES:
+        loc = _find_header(grid, TABLES[by_name], problems)
+        problems.raise_if_any(name)
+        assert loc is not None
+        return loc
+    scored = []
+    for spec in TABLES.values():
+        loc = _find_header(grid, spec, None)
+        if loc is not None:
+            scored.append((len(loc.columns) / len(spec.columns), len(loc.columns), loc))
+    scored.sort(key=lambda t: (t[0], t[1]), reverse=True)
+    if not scored:
+        raise _fail(
+            name,
+            "its header row matches no norm table",
+            "name the file after the table (objects.csv, ...) or give --table " + "|".join(TABLES),
+        )
+    if len(scored) > 1 and scored[0][:2] == scored[1][:2]:
+        raise _fail(
+            name,
+            "its header row fits tables "
+            f"{scored[0][2].spec.name!r} and {scored[1][2].spec.name!r} equally",
+            "give --table",
+        )
+    return scored[0][2]
+
+
+def _cross_checks(
+    tables: dict[str, _Table], problems: _Problems, label: str, present: set[str]
+) -> None:
+    """The rules the loader checks across rows and tables, all collected."""
+    for t in tables.values():
+        seen: dict[tuple[str, ...], _Row] = {}
+        for row in t.rows:
+            if any(k not in row.values for k in t.spec.key):
+                continue
+            key = tuple(row.values[k] for k in t.spec.key)
+            if key in seen:
+                first = seen[key]
+                problems.add(
+                    row.problem(
+                        t.spec.key[-1] if t.spec.name == "scanners" else t.spec.key[0],
+                        f"duplicate {'/'.join(t.spec.key)}: the same as "
+                        f"{first.grid.address(first.number, first.cols.get(t.spec.key[0], 1))}",
+                        "keep one row per " + "/".join(t.spec.key),
+                    )
+                )
+            else:
+                seen[key] = row
+    shapes = tables.get("shapes")
+    shape_ids = [r.values["shape"] for r in shapes.rows if "shape" in r.values] if shapes else []
+    by_ru = {}
+    if shapes:
+        for r in shapes.rows:
+            for alt in (r.values.get("name_ru", ""), r.values.get("shape", "")):
+                if alt:
+                    by_ru.setdefault(alt.casefold(), r.values["shape"])
+
+    def resolve_shape(row: _Row, column: str, what: str) -> None:
+        if column not in row.values:
+            return  # already reported
+        given = row.values[column]
+        if given in shape_ids or not shapes:
+            return
+        if given.casefold() in by_ru:
+            row.values[column] = by_ru[given.casefold()]
+            return
+        problems.add(
+            row.problem(
+                column,
+                f"{what} must be a shape of the shapes table ({', '.join(shape_ids) or 'none'})",
+                "add it to the shapes sheet or fix the spelling",
+            )
+        )
+
+    params = tables.get("parameters")
+    if params is not None:
+        for row in params.rows:
+            if row.values.get("name") == "shape":
+                resolve_shape(row, "value", "the default shape")
+        defined = {r.values.get("name") for r in params.rows}
+        missing = [p for p in PARAMETERS if p not in defined]
+        if missing:
+            g = params.grid
+            last = max((r.number for r in params.rows), default=params.header_row) + 1
+            for p in missing:
+                spec = PARAMETERS[p]
+                problems.add(
+                    ImportProblem(
+                        g.address(last, params.cols.get("name", 1), "name"),
+                        f"missing parameter {p!r} ({spec.description}); must be "
+                        f"{spec.value.describe()}",
+                        hint=f'add a row "{p}"'
+                        + (f' (or "{spec.aliases[-1]}")' if spec.aliases else ""),
+                    )
+                )
+    objects = tables.get("objects")
+    if objects is not None:
+        for row in objects.rows:
+            resolve_shape(row, "shape", f"the shape of {row.values.get('object', '')!r}")
+    for name in ("parameters", "shapes", "objects"):
+        if name not in tables and name not in present:  # a broken sheet is reported already
+            spec = TABLES[name]
+            problems.add(
+                ImportProblem(
+                    label,
+                    f"no sheet for table {name!r} ({spec.description})",
+                    hint=f'add a sheet named "{spec.name}" or "{spec.title_ru}", or import '
+                    "with --base NAME to take it from another set",
+                )
+            )
+
+
+def read_norm_file(
+    path: str | os.PathLike[str], *, table: str | None = None, base: str | None = None
+) -> ParsedNormSet:
+    """Read and check a norm workbook (.xlsx) or a single-table CSV.
+
+    Parameters
+    ----------
+    path : str or path
+        The file. ``.xlsx``/``.xlsm``: one sheet per table (sheet names are table names
+        or their Russian titles). ``.csv``/``.txt``/``.tsv``: one table.
+    table : str, optional
+        The table a CSV holds (default: from the file name, else from its headers).
+    base : str, optional
+        A norm set (name or folder) supplying what the file lacks. A CSV is always merged
+        onto a base (default the bundled set); a workbook only when ``base`` is given.
+        Merging replaces whole tables, except ``parameters``, which merge by name.
+
+    Returns
+    -------
+    ParsedNormSet
+
+    Raises
+    ------
+    NormImportError
+        Listing every problem (cell address, header, value, rule, hint).
+    InputError
+        For an unreadable file, or one over the size limits.
+    """
+    p = Path(path)
+    _check_file(p)
+    suffix = p.suffix.lower()
+    problems = _Problems()
+    warnings: list[str] = []
+    located: list[_Located] = []
+    present: set[str] = set()
+    meta_loc: _Located | None = None
+    if suffix in XLSX_SUFFIXES:
+        grids = _read_xlsx(p)
+        seen: dict[str, str] = {}
+        for g in grids:
+            name = _match(_SHEET_INDEX, g.label)
+            if name is None:
+                warnings.append(
+                    f"sheet {g.label!r} ignored (not a norm table: {', '.join(_ALL_TABLES)})"
+                )
+                continue
+            if name in seen:
+                problems.add(
+                    ImportProblem(
+                        g.address(1, 1),
+                        f"a second sheet for table {name!r} (the first is {seen[name]!r})",
+                        hint="delete or rename one of them",
+                    )
+                )
+                continue
+            seen[name] = g.label
+            present.add(name)
+            loc = _find_header(g, _ALL_TABLES[name], problems)
+            if loc is None:
+                continue
+            if name == META_TABLE.name:
+                meta_loc = loc
+            else:
+                located.append(loc)
+        if not present:  # an import that takes nothing from the file is an error
+            sheets = ", ".join(repr(_printable(g.label, 60)) for g in grids) or "none"
+            raise _fail(
+                p.name,
+                f"no sheet is a norm table (sheets: {sheets}); nothing would be imported",
+                "name each sheet after its table: " + ", ".join(_ALL_TABLES)
+                + " (Excel names a new sheet after the file or 'Sheet1'; rename it)",
+            )
+    elif suffix in CSV_SUFFIXES:
+        located.append(_locate_csv_table(_read_csv_grid(p), table, p.name))
+        base = base or _norms.DEFAULT_NORM_SET
+    elif suffix == ".xls":
+        raise _fail(
+            p.name,
+            "is an old binary Excel file (.xls)",
+            'save it from Excel as "Excel Workbook (*.xlsx)"',
+        )
+    else:
+        raise _fail(p.name, f"unknown file type {suffix or '(none)'}; give .xlsx or .csv")
+
+    for loc in located:
+        known = {c for c, _ in loc.columns.values()}
+        for c in range(1, loc.grid.width(loc.header_row) + 1):
+            h = loc.grid.value(loc.header_row, c)
+            if c not in known and not _is_empty(h):
+                warnings.append(
+                    f'{loc.grid.address(loc.header_row, c)}: column "{_printable(h, 200)}" '
+                    "ignored (not a column of table "
+                    f"{loc.spec.name!r})"
+                )
+    file_tables = {loc.spec.name: _data_rows(loc, problems) for loc in located}
+
+    meta = {k: "" for k in META_KEYS}
+    base_name = None
+    tables: dict[str, _Table] = {}
+    if base:
+        tables, base_meta, base_name = _base_tables(base)
+        meta["source"] = f"base set {base_name}" + (
+            f": {base_meta['source']}" if base_meta["source"] else ""
+        )
+    if meta_loc is not None:
+        for row in _data_rows(meta_loc, problems).rows:
+            key = _norm(row.values.get("key", "")).replace(" ", "_")
+            if key in META_KEYS:
+                meta[key] = row.values.get("value", "")
+            else:
+                warnings.append(
+                    f"{row.grid.address(row.number, row.cols['key'])}: "
+                    f"key {row.values.get('key')!r} ignored ({', '.join(META_KEYS)})"
+                )
+    for name, t in file_tables.items():
+        if name == "parameters" and name in tables:  # merge by parameter name
+            given = {r.values.get("name") for r in t.rows}
+            kept = [r for r in tables[name].rows if r.values["name"] not in given]
+            t.rows = kept + t.rows
+        tables[name] = t
+    _cross_checks(tables, problems, p.name, present)
+    problems.raise_if_any(p.name)
+    order = [n for n in TABLES if n in tables]
+    canonical = {
+        n: [{c.name: r.values.get(c.name, "") for c in TABLES[n].columns} for r in tables[n].rows]
+        for n in order
+    }
+    return ParsedNormSet(p.name, canonical, meta, base_name, tuple(file_tables), tuple(warnings))
+
