@@ -175,7 +175,7 @@ def write_new(path: str, data: bytes, *, force: bool) -> None:
     if not force and os.path.lexists(path):
         raise InputError("PROJECT", f"{path!r} exists; give --force to replace it")
     if force:
-        from .reports import write_atomic
+        from .safeio import write_atomic
 
         write_atomic(path, data)
         return

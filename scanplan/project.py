@@ -20,7 +20,7 @@ from .domains import MAX_LIST_ITEMS
 from .errors import InputError
 from .safeio import read_limited
 
-__all__ = ["KEYS", "Project", "load_project", "parse_project", "text_problem"]
+__all__ = ["KEYS", "Project", "ReportMeta", "load_project", "parse_project", "text_problem"]
 
 MAX_PROJECT_BYTES = 1_000_000
 """Largest project file [bytes]."""
@@ -129,6 +129,30 @@ KEYS: dict[str, dict[str, tuple[str, str]]] = {
     },
 }
 """Every key a project file may hold: the documented contract."""
+
+
+@dataclass(frozen=True)
+class ReportMeta:
+    """Who the report is for and who approves it (title and approval blocks).
+
+    All text comes from users and is rendered as text (escaped in the PDF, stored as a
+    string in Excel — never a formula).
+    """
+
+    project: str = ""
+    customer: str = ""
+    contractor: str = ""
+    locale: str = "en"  # "en" | "ru"
+    approver_position: str = ""
+    approver_name: str = ""
+    date: str = ""  # ISO date; default: report_datetime()
+    organisation: str = ""  # the contractor's organisation (title block)
+    contract_number: str = ""
+    compiled_by: str = ""  # «Составил»: name
+    checked_by: str = ""  # «Проверил»: name
+    agreed_position: str = ""  # «СОГЛАСОВАНО» block (the customer's side)
+    agreed_name: str = ""
+    agreed_organisation: str = ""
 
 
 @dataclass(frozen=True)

@@ -30,8 +30,7 @@ from .domains import DOMAINS, check_domain
 from .errors import InputError
 from .messages import Message
 from .planner import PlanWarning, ScanScenario
-from .project import Project
-from .reports import ReportMeta
+from .project import Project, ReportMeta
 
 __all__ = ["FilmSpec", "PlanResult", "UavSpec", "plan_project"]
 

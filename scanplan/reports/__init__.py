@@ -14,37 +14,13 @@ from __future__ import annotations
 
 import datetime as _dt
 import os
-from dataclasses import dataclass
 from pathlib import Path
 
+from ..project import ReportMeta  # project metadata; it lives with the project file
 from ..safeio import write_atomic, write_atomic_many  # the writers live below reports
 
 __all__ = ["ReportMeta", "report_datetime", "templates_dir", "write_atomic",
            "write_atomic_many"]
-
-
-@dataclass(frozen=True)
-class ReportMeta:
-    """Who the report is for and who approves it (title and approval blocks).
-
-    All text comes from users and is rendered as text (escaped in the PDF, stored as a
-    string in Excel — never a formula).
-    """
-
-    project: str = ""
-    customer: str = ""
-    contractor: str = ""
-    locale: str = "en"  # "en" | "ru"
-    approver_position: str = ""
-    approver_name: str = ""
-    date: str = ""  # ISO date; default: report_datetime()
-    organisation: str = ""  # the contractor's organisation (title block)
-    contract_number: str = ""
-    compiled_by: str = ""  # «Составил»: name
-    checked_by: str = ""  # «Проверил»: name
-    agreed_position: str = ""  # «СОГЛАСОВАНО» block (the customer's side)
-    agreed_name: str = ""
-    agreed_organisation: str = ""
 
 
 def report_datetime() -> _dt.datetime:

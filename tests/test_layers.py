@@ -1,0 +1,97 @@
+"""Import guard for the whole package (as prysm guards its core): each layer of
+docs/architecture.md may import only from its own layer and the layers below it.
+
+Every ``import`` and ``from … import`` in every module is read with :mod:`ast` —
+function-level (lazy) imports included — so an upward import added anywhere fails here.
+"""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import pytest
+
+import scanplan
+
+PKG = Path(scanplan.__file__).parent
+
+# bottom → top; a module's layer is found by its first name below ``scanplan``
+LAYERS: list[tuple[str, set[str]]] = [
+    ("base", {"errors", "messages", "_version", "outpaths", "safeio", "domains"}),
+    ("core", {"flight", "formulas", "orientation", "mtf"}),
+    ("rules", {"rules", "planner", "uav"}),
+    ("norms", {"norms"}),
+    ("project", {"api", "archive", "cameras_io", "project", "spec"}),
+    ("reports", {"reports", "serialize", "textfmt"}),
+    ("cli", {"cli", "cli_norms", "cli_cameras", "cli_init", "__main__", "__init__"}),
+]
+RANK = {name: i for i, (_, names) in enumerate(LAYERS) for name in names}
+
+
+def _top(module: str) -> str:
+    """'scanplan.mtf.chain' → 'mtf'; 'scanplan' (the package itself) → '__init__'."""
+    parts = module.split(".")
+    return parts[1] if len(parts) > 1 else "__init__"
+
+
+def _module_name(path: Path) -> str:
+    parts = list(path.relative_to(PKG.parent).with_suffix("").parts)
+    if parts[-1] == "__init__" and len(parts) > 1:
+        parts = parts[:-1]
+    return ".".join(parts)
+
+
+def imports_of(text: str, name: str, is_package: bool = False) -> list[tuple[int, str]]:
+    """(line, absolute scanplan module) for every import of a scanplan module in the source
+    ``text`` of module ``name``."""
+    package = name if is_package else name.rpartition(".")[0]
+    out = []
+    for node in ast.walk(ast.parse(text)):
+        if isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = package.split(".")[: len(package.split(".")) - (node.level - 1)]
+                target = ".".join(base + ([node.module] if node.module else []))
+            else:
+                target = node.module or ""
+            if target == "scanplan":  # from . import x / from scanplan import x
+                out += [(node.lineno, f"scanplan.{a.name}") for a in node.names]
+            elif target.startswith("scanplan"):
+                out.append((node.lineno, target))
+        elif isinstance(node, ast.Import):
+            out += [(node.lineno, a.name) for a in node.names if a.name.startswith("scanplan")]
+    return out
+
+
+def upward_imports(text: str, name: str, is_package: bool = False) -> list[str]:
+    """The imports in module ``name`` (source ``text``) that point to a higher layer."""
+    own = _top(name)
+    return [f"{name}:{line} imports {target} "
+            f"({LAYERS[RANK[_top(target)]][0]} is above {LAYERS[RANK[own]][0]})"
+            for line, target in imports_of(text, name, is_package)
+            if _top(target) in RANK and RANK[_top(target)] > RANK[own]]
+
+
+MODULES = sorted(PKG.rglob("*.py"))
+
+
+def test_every_module_has_a_layer():
+    tops = {_top(_module_name(p)) for p in MODULES}
+    assert not tops - set(RANK), f"add these to LAYERS: {sorted(tops - set(RANK))}"
+
+
+@pytest.mark.parametrize("path", MODULES, ids=lambda p: str(p.relative_to(PKG)))
+def test_imports_point_down(path):
+    problems = upward_imports(path.read_text(encoding="utf-8"), _module_name(path),
+                              path.name == "__init__.py")
+    assert not problems, "\n".join(problems)
+
+
+@pytest.mark.parametrize("line", ["from .reports import write_atomic",
+                                  "from scanplan.cli import main",
+                                  "import scanplan.spec",
+                                  "from . import textfmt"])
+def test_the_guard_fails_on_an_upward_import(line):
+    """The check can fail: an upward import added to a core module is reported."""
+    text = (PKG / "formulas.py").read_text(encoding="utf-8") + f"\n{line}\n"
+    assert upward_imports(text, "scanplan.formulas")
