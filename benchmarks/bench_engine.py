@@ -1,6 +1,6 @@
 """Benchmark: the rules engine over 1,000,000 scenarios in one vectorised call.
 
-Compares :func:`scanplan.planner.evaluate` (five constraints, binding, scan pixel) with a
+Compares :func:`scanplan.rules.film.evaluate` (five constraints, binding, scan pixel) with a
 bare numpy expression of the same five formulas and a plain ``min`` over them, both run
 in this process on the same arrays. Target: engine / bare ≤ 3.
 
@@ -16,7 +16,7 @@ from _common import Result
 from _timing import best_of
 
 from scanplan.norms import load_norm_set
-from scanplan.planner import evaluate
+from scanplan.rules.film import evaluate
 
 TARGET_RATIO = 3.0
 

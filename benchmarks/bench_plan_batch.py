@@ -22,10 +22,10 @@ from pathlib import Path
 
 from _common import Result
 
-from scanplan.project import load_project
+from scanplan.project.file import load_project
+from scanplan.project.spec import plan_project
 from scanplan.reports.excel import render_xlsx
 from scanplan.reports.pdf import render_pdf
-from scanplan.spec import plan_project
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 TARGET_MS = 100.0  # ours, not the issue's: per project, without reports

@@ -1,6 +1,6 @@
 """Benchmark: resolving power R for many UAV configurations in one vectorised call.
 
-Compares :func:`scanplan.mtf.resolving_power` (one call for every configuration)
+Compares :func:`scanplan.core.mtf.resolving_power` (one call for every configuration)
 with two per-configuration scalar root finders, both using Brent's method written
 here (scipy is not a dependency):
 
@@ -8,7 +8,7 @@ here (scipy is not a dependency):
    same MTF chain with the ``math`` module only — the fastest a Python loop gets,
    and an independent check of the formulas;
 2. **package loop** (a subsample, extrapolated): the package's own public functions
-   (:func:`scanplan.mtf.system_mtf`, :func:`scanplan.mtf.threshold_contrast`) called
+   (:func:`scanplan.core.mtf.system_mtf`, :func:`scanplan.core.mtf.threshold_contrast`) called
    for one configuration at a time — what a caller without the vectorised solver
    would write.
 
@@ -31,7 +31,7 @@ import time
 import numpy as np
 from _common import Result
 
-from scanplan import mtf
+from scanplan.core import mtf
 
 K0 = 0.03
 WAVELENGTH_MM = 0.55e-3

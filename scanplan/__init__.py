@@ -6,8 +6,8 @@ resolution of seed 000, combined into a plan for a mapping contract.
 """
 
 from ._version import __version__
-from .api import scan
 from .errors import InputError
 from .norms import load_norm_set
+from .project.api import scan
 
 __all__ = ["InputError", "__version__", "load_norm_set", "scan"]

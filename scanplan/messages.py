@@ -322,7 +322,7 @@ MESSAGES: dict[str, dict[str, str]] = {
         "en": "the planned height is within the maximum planned height {max:.0f} m",
         "ru": "Плановая высота полёта не превышает максимальную плановую {max:.0f}~м.",
     },
-    # --- digital height accuracy, altitude ceiling, target GSD (scanplan.uav) -------------
+    # --- digital height accuracy, altitude ceiling, target GSD (scanplan.rules.uav) -------------
     "limit.PZ.normal_case": {
         "en": "RMS height error σ_Z = (H/B)·(H/c)·σ_px ≤ V_z = {vz:g} m (relief interval {hc:g} m) "
               "with a parallax error σ_px = {sigma:g} px and the widest stereo base of "

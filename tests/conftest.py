@@ -6,7 +6,7 @@ import pytest
 
 from scanplan.norms import load_norm_set
 from scanplan.norms import store as norms_mod
-from scanplan.planner import ScanRules
+from scanplan.rules.film import ScanRules
 
 
 @pytest.fixture()

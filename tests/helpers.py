@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 
-from scanplan.planner import ObjectSpec, ScanInputs, ScanRules
+from scanplan.rules.film import ObjectSpec, ScanInputs, ScanRules
 
 
 def circle(norms, size_m: float) -> ObjectSpec:

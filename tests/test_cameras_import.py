@@ -9,11 +9,11 @@ import os
 import pytest
 from click.testing import CliRunner
 
-from scanplan.api import uav_job
-from scanplan.cameras_io import import_camera_file, read_camera_file, user_catalogue_dir
-from scanplan.cli import main
+from scanplan.cli.main import main
 from scanplan.errors import InputError
 from scanplan.norms import NormImportError, load_norm_set, write_template
+from scanplan.project.api import uav_job
+from scanplan.project.cameras import import_camera_file, read_camera_file, user_catalogue_dir
 
 # two entries in QGroundControl's own format (src/Camera/CameraMetaData.json)
 QGC = [
@@ -169,7 +169,7 @@ def test_a_file_without_camera_tables_is_refused(tmp_path, user_dir):
 def test_a_lens_mtf_table_replaces_the_diffraction_formula(tmp_path, user_dir):
     """A user lens table (frequency → MTF, centre and corner) is used by the MTF chain:
     R and L equal the chain evaluated with that table, and a poorer lens gives a larger L."""
-    from scanplan import mtf
+    from scanplan.core import mtf
 
     f = tmp_path / "lens-mtf.csv"
     rows = ["camera,position,freq_lpmm,mtf,source"]

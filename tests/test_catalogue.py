@@ -22,8 +22,7 @@ import shutil
 import pytest
 from click.testing import CliRunner
 
-from scanplan.api import uav_job
-from scanplan.cli import main
+from scanplan.cli.main import main
 from scanplan.errors import InputError
 from scanplan.norms import (
     PITCH_TOLERANCE,
@@ -31,6 +30,7 @@ from scanplan.norms import (
     load_norm_set,
     read_norm_set_folder,
 )
+from scanplan.project.api import uav_job
 
 CATALOGUE = bundled_norms_dir() / "catalogue"
 NS = load_norm_set()
@@ -245,7 +245,7 @@ def test_flight_length_covers_the_photographed_span_of_each_strip():
 
 
 def test_image_count_convention_is_documented_beside_qgroundcontrol():
-    from scanplan import flight
+    from scanplan.core import flight
 
     doc = flight.photos_per_strip.__doc__
     assert "QGroundControl" in doc and "ceil(L/B) + 3" in doc
@@ -338,8 +338,8 @@ def test_bundled_aerial_example():
     4524 m; it is reported beside it.)"""
     from pathlib import Path
 
-    from scanplan.project import load_project
-    from scanplan.spec import plan_project
+    from scanplan.project.file import load_project
+    from scanplan.project.spec import plan_project
 
     path = Path(__file__).resolve().parent.parent / "examples" / "aerial-ultracam-5000.toml"
     if not path.is_file():

@@ -8,7 +8,7 @@ import pytest
 from click.testing import CliRunner
 
 from scanplan import __version__
-from scanplan.cli import main
+from scanplan.cli.main import main
 
 BASE = ["scan", "--map-scale", "2000", "--relief", "0.5", "--camera", "rc30-153"]
 
@@ -160,12 +160,12 @@ def test_cameras_list_and_show():
 
 
 def test_internal_error_is_exit_1_without_traceback(monkeypatch):
-    import scanplan.api
+    import scanplan.project.api
 
     def boom(**kw):
         raise RuntimeError("disk on fire")
 
-    monkeypatch.setattr(scanplan.api, "scan_job", boom)
+    monkeypatch.setattr(scanplan.project.api, "scan_job", boom)
     r = run(*BASE, "--photo-scale", "10000")
     assert r.exit_code == 1
     assert "disk on fire" in r.stderr and "Traceback" not in r.output

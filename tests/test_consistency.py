@@ -13,12 +13,12 @@ import json
 import pytest
 from click.testing import CliRunner
 
-from scanplan.api import USER_OBJECT_NAME, object_display_name, scan_job, uav_job
-from scanplan.cli import main
+from scanplan.cli.main import main
 from scanplan.errors import InputError
 from scanplan.norms import did_you_mean, load_norm_set
-from scanplan.project import parse_project
-from scanplan.spec import plan_project
+from scanplan.project.api import USER_OBJECT_NAME, object_display_name, scan_job, uav_job
+from scanplan.project.file import parse_project
+from scanplan.project.spec import plan_project
 
 
 def _cli(*args: str):
@@ -102,7 +102,7 @@ def test_uav_recognition_lists_the_map_scales_objects_once():
 
 
 def test_data_volume_says_uncompressed_and_estimates_jpeg():
-    from scanplan.flight import JPEG_COMPRESSION_RATIO
+    from scanplan.core.flight import JPEG_COMPRESSION_RATIO
     from scanplan.reports.labels import LABELS
 
     assert JPEG_COMPRESSION_RATIO == 9.0  # Canon: 20.2 MP Large/Fine JPEG ≈ 6.6 MB vs 60.6 MB

@@ -9,9 +9,10 @@ import pkgutil
 
 import pytest
 
-import scanplan.mtf
+import scanplan.core.mtf
 
-MODULES = sorted(m.name for m in pkgutil.iter_modules(scanplan.mtf.__path__, "scanplan.mtf."))
+MODULES = sorted(m.name for m in pkgutil.iter_modules(scanplan.core.mtf.__path__,
+                                                     "scanplan.core.mtf."))
 #: Modules whose every public function is a formula a reader should see worked.
 WITH_EXAMPLES = ("atmosphere", "lens", "sensor", "motion", "threshold", "chain")
 
@@ -25,7 +26,7 @@ def test_examples_run(name):
 
 @pytest.mark.parametrize("family", WITH_EXAMPLES)
 def test_every_public_function_has_an_example(family):
-    module = importlib.import_module(f"scanplan.mtf.{family}")
+    module = importlib.import_module(f"scanplan.core.mtf.{family}")
     public = [f for n, f in vars(module).items() if inspect.isfunction(f)
               and not n.startswith("_") and f.__module__ == module.__name__]
     assert public

@@ -35,10 +35,10 @@ pytest.importorskip("weasyprint")
 from openpyxl import load_workbook  # noqa: E402
 
 from scanplan.norms import store as norms_mod  # noqa: E402
-from scanplan.project import KEYS, load_project  # noqa: E402
+from scanplan.project.file import KEYS, load_project  # noqa: E402
+from scanplan.project.spec import plan_project  # noqa: E402
 from scanplan.reports.excel import render_xlsx  # noqa: E402
 from scanplan.reports.pdf import render_pdf  # noqa: E402
-from scanplan.spec import plan_project  # noqa: E402
 
 EXAMPLES = sorted((Path(__file__).resolve().parent.parent / "examples").glob("*.toml"))
 LOCALES = ("en", "ru")
@@ -257,7 +257,7 @@ height_m = 300
 def test_terminal_summary_speaks_the_projects_language(tmp_path, locale):
     from click.testing import CliRunner
 
-    from scanplan.cli import main
+    from scanplan.cli.main import main
 
     path = tmp_path / "p.toml"
     path.write_text(_TERMINAL_PROJECT.format(locale=locale), encoding="utf-8")

@@ -14,7 +14,7 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
-from scanplan.cli import main
+from scanplan.cli.main import main
 
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLES = ROOT / "examples"
@@ -153,8 +153,8 @@ def test_archive_text_and_scale_written_with_colon():
 
 
 def test_archive_russian_messages():
-    from scanplan.project import load_project
-    from scanplan.spec import plan_project
+    from scanplan.project.file import load_project
+    from scanplan.project.spec import plan_project
 
     r = plan_project(load_project(EXAMPLES / ARCHIVE["file"]))
     ru = r.warnings[0].text("ru")

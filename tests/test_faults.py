@@ -40,8 +40,8 @@ from norm_corpus import english_workbook, russian_workbook, save
 
 import scanplan.reports.excel as excel_mod
 import scanplan.reports.pdf as pdf_mod
-from scanplan.cli import main
-from scanplan.cli_norms import norms as norms_group
+from scanplan.cli.main import main
+from scanplan.cli.norms import norms as norms_group
 from scanplan.errors import InputError, WriteError
 from scanplan.norms import recovery as norms_recovery
 from scanplan.norms import store as norms_mod
@@ -219,7 +219,7 @@ class Faults:
 
 @pytest.fixture(scope="module")
 def scan_job():
-    from scanplan.api import scan_job as make
+    from scanplan.project.api import scan_job as make
 
     return make(map_scale=2000, relief_interval_m=0.5, photo_scales=[10000], camera="rc30-153")
 
@@ -540,12 +540,12 @@ def test_debug_shows_the_traceback(work, fixed_renders, monkeypatch, fmp):
 
 def test_other_os_errors_name_the_file(work, monkeypatch):
     """An OSError that is not a write (here: reading the norm set) names its file too."""
-    import scanplan.api
+    import scanplan.project.api
 
     def boom(**kw):
         raise PermissionError(errno.EACCES, os.strerror(errno.EACCES), "/srv/norms/set.toml")
 
-    monkeypatch.setattr(scanplan.api, "scan_job", boom)
+    monkeypatch.setattr(scanplan.project.api, "scan_job", boom)
     r = cli("scan", "--map-scale", "2000", "--relief", "0.5", "--photo-scale", "10000",
             "--camera", "rc30-153")
     assert r.exit_code == 1

@@ -9,7 +9,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from scanplan import flight as fl
+from scanplan.core import flight as fl
 
 # Canon EOS 5D Mark II of seed 002: 36 × 24 mm, 5616 × 3744 px; 50 mm lens (assumed).
 PIXEL_UM = 36.0 / 5616 * 1000.0

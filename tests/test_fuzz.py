@@ -33,10 +33,10 @@ from click.testing import CliRunner
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
-from scanplan.api import scan_job, uav_job
-from scanplan.cli import OPTION_NAMES, main
+from scanplan.cli.main import OPTION_NAMES, main
 from scanplan.errors import InputError
-from scanplan.project import KEYS
+from scanplan.project.api import scan_job, uav_job
+from scanplan.project.file import KEYS
 
 LONG = os.environ.get("SCANPLAN_FUZZ") == "long"
 FACTOR = int(os.environ.get("SCANPLAN_FUZZ_FACTOR", "20")) if LONG else 1
@@ -919,7 +919,7 @@ def test_norm_xlsx_random_cells_never_crash(data):
 
 def test_every_domain_is_documented_with_its_bounds():
     """docs/input-ranges.md lists every entry of DOMAINS with the bounds the code uses."""
-    from scanplan.domains import DOMAINS, _bound
+    from scanplan.core.domains import DOMAINS, _bound
 
     doc = Path(__file__).resolve().parent.parent / "docs" / "input-ranges.md"
     if not doc.is_file():
@@ -941,7 +941,7 @@ def test_every_domain_is_documented_with_its_bounds():
      "object_size_m", "pixel_um", "focal_mm"]))
 def test_domain_edges_on_the_command_line(name):
     """Each film input at its documented bounds runs; just outside them, exit 2 naming it."""
-    from scanplan.domains import DOMAINS
+    from scanplan.core.domains import DOMAINS
 
     d = DOMAINS[name]
     option = OPTION_NAMES[name]

@@ -18,14 +18,14 @@ from click.testing import CliRunner
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from scanplan import formulas as F
-from scanplan.api import uav_job
-from scanplan.cli import main
+from scanplan.cli.main import main
+from scanplan.core import formulas as F
 from scanplan.errors import InputError
 from scanplan.norms import load_norm_set
-from scanplan.project import load_project
-from scanplan.serialize import plan_result_dict
-from scanplan.spec import plan_project
+from scanplan.project.api import uav_job
+from scanplan.project.file import load_project
+from scanplan.project.spec import plan_project
+from scanplan.reports.jsondoc import plan_result_dict
 
 ROOT = Path(__file__).resolve().parent.parent
 SEED002 = dict(camera="canon-eos-5d-mark-ii-50", f_number=8.0, height_m=300.0,
@@ -166,7 +166,7 @@ def test_uav_height_constraint_is_normal_case():
 
 def test_multi_ray_norm_parameter_raises_the_limit():
     ns = load_norm_set("gkinp-02-036-02")
-    from scanplan.uav import _height_accuracy
+    from scanplan.rules.uav import _height_accuracy
 
     job = uav_job(**SEED002, map_scale=2000, relief_interval_m=0.5)
     off = _height_accuracy(job.plan.inputs, ns.rules())

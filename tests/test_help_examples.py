@@ -21,7 +21,7 @@ import click
 import pytest
 from click.testing import CliRunner
 
-from scanplan.cli import main
+from scanplan.cli.main import main
 from scanplan.norms import store as norms_mod
 
 ROOT = Path(__file__).resolve().parent.parent

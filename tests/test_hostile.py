@@ -1,5 +1,5 @@
 """Hostile files (issue 7): every one is refused or neutralised with a clear message, in
-bounded time and memory, through the command line (click's CliRunner on ``scanplan.cli.main``)
+bounded time and memory, through the command line (click's CliRunner on ``scanplan.cli.main.main``)
 and the API.
 
 - norm workbooks: entity expansion (sheet, shared strings, external entities, UTF-16), a real
@@ -42,7 +42,7 @@ import pytest
 from click.testing import CliRunner
 from norm_corpus import BILLION_LAUGHS, english_workbook, save, sheet_member, to_shared_strings
 
-from scanplan.cli import main
+from scanplan.cli.main import main
 from scanplan.norms import DEFAULT_NORM_SET, bundled_norms_dir
 from scanplan.norms import cells as norms_cells
 from scanplan.norms import importer as norms_importer
@@ -199,7 +199,7 @@ CHILD = textwrap.dedent("""
     from scanplan.norms import limits as norms_limits
     from scanplan.norms import xlsx as norms_xlsx
     from click.testing import CliRunner
-    from scanplan.cli import main
+    from scanplan.cli.main import main
     fed = [0]
     feed = norms_xlsx._SheetReader.feed
     def counting(self, data):
@@ -710,10 +710,10 @@ def test_html_in_project_text_cannot_reach_markup_or_stylesheet(tmp_path):
     """The rendered HTML: the user's text only escaped, the one stylesheet the bundled
     report.css, the one <style> the footer; a long unbroken text gets break points (the
     table layout was quadratic in a cell's length: 3,000 characters took 52 s)."""
-    from scanplan.project import load_project
+    from scanplan.project.file import load_project
+    from scanplan.project.spec import plan_project
     from scanplan.reports import templates_dir
     from scanplan.reports.pdf import render_html
-    from scanplan.spec import plan_project
 
     p = tmp_path / "p.toml"
     keys = "\n".join(f"{k} = {json.dumps(v)}" for k, v in HOSTILE_TEXT.items())

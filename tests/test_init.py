@@ -8,8 +8,8 @@ import tomllib
 import pytest
 from click.testing import CliRunner
 
-from scanplan import cli_init
-from scanplan.cli import main
+from scanplan.cli import init as cli_init
+from scanplan.cli.main import main
 
 
 def _cli(*args: str, input: str | None = None):

@@ -19,10 +19,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from norm_corpus import english_workbook
 
-from scanplan.api import uav_job
-from scanplan.cli import main
-from scanplan.domains import DOMAINS
+from scanplan.cli.main import main
+from scanplan.core.domains import DOMAINS
 from scanplan.errors import InputError
+from scanplan.project.api import uav_job
 
 CANON = "canon-eos-5d-mark-ii-50"
 INTERNAL = re.compile(r"\b(r_lpmm|upper_lpmm|nyquist_lpmm|geometric_shift_mm|n_strips|"
@@ -290,7 +290,7 @@ def test_batch_json_is_streamed_and_keeps_no_results(tmp_path, monkeypatch):
     import weakref
     from pathlib import Path
 
-    import scanplan.spec as spec_mod
+    import scanplan.project.spec as spec_mod
 
     examples = Path(__file__).resolve().parent.parent / "examples"
     for i in range(6):

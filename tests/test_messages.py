@@ -23,16 +23,16 @@ from typing import Any
 import pytest
 from click.testing import CliRunner
 
-from scanplan.api import scan_job, uav_job
-from scanplan.cli import main
+from scanplan.cli.main import main
 from scanplan.messages import LOCALES, MESSAGES, Message, localize, placeholders
-from scanplan.planner import CONSTRAINTS, PlanWarning, plan_scan
-from scanplan.project import load_project
+from scanplan.project.api import scan_job, uav_job
+from scanplan.project.file import load_project
+from scanplan.project.spec import PlanResult, plan_project
 from scanplan.reports.labels import LABELS
 from scanplan.reports.references import Bibliography
 from scanplan.reports.wording import camera_title, display_message, scanner_title
-from scanplan.spec import PlanResult, plan_project
-from scanplan.uav import plan_uav
+from scanplan.rules.film import CONSTRAINTS, PlanWarning, plan_scan
+from scanplan.rules.uav import plan_uav
 
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLES = ROOT / "examples"

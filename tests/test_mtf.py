@@ -9,7 +9,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from scanplan import mtf
+from scanplan.core import mtf
 
 # --- the seed 002 case: Canon EOS 5D Mark II (36 × 24 mm, 5616 × 3744 px) ------------
 # Seed 002 gives neither lens nor speed nor exposure; the assumptions (docs/uav-models.md):

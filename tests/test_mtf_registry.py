@@ -15,9 +15,9 @@ import openpyxl
 import pytest
 from click.testing import CliRunner
 
-import scanplan.mtf as M
-from scanplan.api import uav_job
-from scanplan.cli import main
+import scanplan.core.mtf as M
+from scanplan.cli.main import main
+from scanplan.project.api import uav_job
 from scanplan.reports import ReportMeta
 from scanplan.reports.excel import render_xlsx
 

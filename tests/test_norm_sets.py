@@ -15,7 +15,7 @@ from scanplan.norms import bundled_norms_dir, list_norm_sets, load_norm_set
 PKG = Path(scanplan.__file__).parent
 ENGINE = ["rules/film.py", "rules/uav.py", "rules/registry.py", "rules/constraints.py",
           "rules/results.py"]
-CORE = ["formulas.py", "planner.py", "norms/schema.py", "errors.py", *ENGINE]
+CORE = ["core/formulas.py", "norms/schema.py", "errors.py", *ENGINE]
 
 
 def test_bundled_sets_load(norms, printed_norms):
@@ -44,7 +44,7 @@ def test_engine_reads_its_numbers_from_the_norm_set(tmp_path):
     o = dst / "objects.csv"
     o.write_text(o.read_text(encoding="utf-8").replace(",0.20,circle", ",0.40,circle"),
                  encoding="utf-8")
-    from scanplan.api import scan
+    from scanplan.project.api import scan
 
     a = scan(map_scale=2000, relief_interval_m=0.5, photo_scales=[10000], camera="rc30-153")
     b = scan(map_scale=2000, relief_interval_m=0.5, photo_scales=[10000], camera="rc30-153",
@@ -94,7 +94,8 @@ def test_no_normative_numbers_in_the_engine():
     do not appear as literals in the formulas or the rules engine."""
     norm_literals = {0.2, 0.07, 0.4, 0.75, 0.97, 1.45, 1.58, 1.72, 2.78, 1.5, 2.2, 60.0,
                      150.0}
-    for module in ("formulas.py", "rules/film.py", "rules/registry.py", "rules/constraints.py"):
+    for module in ("core/formulas.py", "rules/film.py", "rules/registry.py",
+                   "rules/constraints.py"):
         tree = ast.parse((PKG / module).read_text(encoding="utf-8"))
         found = {n.value for n in ast.walk(tree)
                  if isinstance(n, ast.Constant) and isinstance(n.value, float)}

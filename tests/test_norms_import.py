@@ -22,7 +22,7 @@ from norm_corpus import (
     save,
 )
 
-from scanplan.cli_norms import norms as norms_group
+from scanplan.cli.norms import norms as norms_group
 from scanplan.errors import InputError
 from scanplan.norms import (
     DEFAULT_NORM_SET,
@@ -211,7 +211,7 @@ def test_russian_workbook_values(corpus_dir, user_dir):
 
 def test_russian_workbook_changes_scan(corpus_dir, user_dir):
     """V_s 0.2 → 0.4 doubles P_S; L 0.2 → 0.4 m doubles P_D (seed 001 eq. 1 and 16)."""
-    from scanplan.planner import ObjectSpec, ScanInputs, plan_scan
+    from scanplan.rules.film import ObjectSpec, ScanInputs, plan_scan
 
     import_norm_file(save(russian_workbook(), corpus_dir, "ru-scan.xlsx"), "ru-enterprise")
     base, mine = load_norm_set(DEFAULT_NORM_SET), load_norm_set("ru-enterprise")
@@ -239,7 +239,7 @@ def test_russian_workbook_changes_scan(corpus_dir, user_dir):
 
 
 def test_russian_workbook_through_scan_cli(corpus_dir, user_dir):
-    cli = pytest.importorskip("scanplan.cli")
+    cli = pytest.importorskip("scanplan.cli.main")
     import_norm_file(save(russian_workbook(), corpus_dir, "ru-cli.xlsx"), "ru-cli")
     args = [
         "scan",
@@ -619,9 +619,9 @@ def test_cli_flow(tmp_path, user_dir):
 
 
 def test_cli_via_main():
-    cli = pytest.importorskip("scanplan.cli")
+    cli = pytest.importorskip("scanplan.cli.main")
     if "norms" not in cli.main.commands:
-        pytest.skip("norms not registered in scanplan.cli yet")
+        pytest.skip("norms not registered in scanplan.cli.main yet")
     res = CliRunner().invoke(cli.main, ["norms", "list", "--json"])
     assert res.exit_code == 0
 

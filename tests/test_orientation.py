@@ -9,7 +9,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from scanplan import orientation as ori
+from scanplan.core import orientation as ori
 
 angles = st.floats(-2 * np.pi, 2 * np.pi, allow_nan=False)
 

@@ -23,7 +23,7 @@ from click.testing import CliRunner
 
 import scanplan.reports.excel as excel_mod
 import scanplan.reports.pdf as pdf_mod
-from scanplan.cli import batch_stems, main
+from scanplan.cli.main import batch_stems, main
 from scanplan.errors import WriteError
 from scanplan.outpaths import folder_lock, written_by_scanplan
 from scanplan.reports import write_atomic_many

@@ -8,9 +8,9 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
-from scanplan.cli import main
-from scanplan.project import KEYS, load_project
-from scanplan.spec import plan_project
+from scanplan.cli.main import main
+from scanplan.project.file import KEYS, load_project
+from scanplan.project.spec import plan_project
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 if not EXAMPLES.is_dir():  # running against an installed package from elsewhere

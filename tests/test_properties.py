@@ -9,8 +9,8 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from scanplan import formulas as F
-from scanplan.planner import evaluate, max_photo_scale
+from scanplan.core import formulas as F
+from scanplan.rules.film import evaluate, max_photo_scale
 
 scale = st.floats(500, 100_000)
 relief = st.floats(0.1, 20)
@@ -124,7 +124,7 @@ def test_max_photo_scale_round_trip(rules, mk, h, r, L, b, frac):
 def test_interpretation_limit_is_where_pd_meets_pr(rules, L, b, p, r):
     """Mc_interp = 2·L·sqrt(-ln P)·R/B is exactly where P_D = P_R, and the recognition
     probability there equals P."""
-    from scanplan.planner import interpretation_limit_photo_scale
+    from scanplan.rules.film import interpretation_limit_photo_scale
 
     mc = interpretation_limit_photo_scale(L, b, p, r)
     pd = F.interpretation_pixel_um(L * 1000, mc, b, p, pr_coefficient=rules.pr_coefficient)
@@ -154,7 +154,7 @@ def test_nan_propagates_not_hidden(rules):
 
 def test_scanner_rounding_and_volume():
     """Scanner steps round down; a frame's volume is pixels × bands × bit depth."""
-    from scanplan.planner import round_to_scanner
+    from scanplan.rules.film import round_to_scanner
 
     steps = (7, 14, 21, 28)
     np.testing.assert_array_equal(round_to_scanner([12.5, 14.0, 30, 6.9], steps),

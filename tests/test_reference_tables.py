@@ -14,8 +14,8 @@ import numpy as np
 import pytest
 from helpers import film_inputs, only
 
-from scanplan import formulas as F
-from scanplan.planner import evaluate, plan_scan
+from scanplan.core import formulas as F
+from scanplan.rules.film import evaluate, plan_scan
 
 TRUNC = 0.1  # one unit of the paper's last printed digit
 

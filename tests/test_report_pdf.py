@@ -20,7 +20,7 @@ from scanplan.reports.labels import LABELS
 pypdf = pytest.importorskip("pypdf")
 weasyprint = pytest.importorskip("weasyprint")
 
-from scanplan.api import scan_job, uav_job  # noqa: E402
+from scanplan.project.api import scan_job, uav_job  # noqa: E402
 from scanplan.reports import ReportMeta, templates_dir  # noqa: E402
 from scanplan.reports import pdf as P  # noqa: E402
 from scanplan.reports.plots import constraints_svg, number  # noqa: E402
@@ -280,9 +280,9 @@ def test_plan_with_both_sections_has_one_comparison_table(tmp_path):
     """With a specification, the PDF shows the specification's side-by-side table only."""
     from pathlib import Path
 
-    from scanplan.project import load_project
+    from scanplan.project.file import load_project
+    from scanplan.project.spec import plan_project
     from scanplan.reports.pdf import render_html
-    from scanplan.spec import plan_project
 
     examples = Path(__file__).resolve().parent.parent / "examples"
     if not examples.is_dir():

@@ -13,9 +13,9 @@ import openpyxl
 import pytest
 from click.testing import CliRunner
 
-from scanplan.api import scan_job, uav_job
-from scanplan.cli import main
+from scanplan.cli.main import main
 from scanplan.messages import MESSAGES, Message
+from scanplan.project.api import scan_job, uav_job
 from scanplan.reports import ReportMeta
 from scanplan.reports.excel import render_xlsx
 from scanplan.rules import constraints, film, registry, results, uav

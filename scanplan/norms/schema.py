@@ -21,11 +21,11 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 CONSTRAINT_IDS = ("PS", "PZ", "PP", "PR", "PD")
-"""Constraints the film rules engine knows (see :mod:`scanplan.planner`)."""
+"""Constraints the film rules engine knows (see :mod:`scanplan.rules.film`)."""
 
 HEIGHT_FORMULAS = ("instruction", "parallax")
 DIGITAL_HEIGHT_FORMULAS = ("normal_case", "instruction", "parallax")
-"""Forms of the height constraint for digital (UAV) cameras (:mod:`scanplan.uav`)."""
+"""Forms of the height constraint for digital (UAV) cameras (:mod:`scanplan.rules.uav`)."""
 MULTI_RAY_MODES = ("off", "strip")
 LATER_PARAMETERS = ("digital_height_formula", "image_measurement_px", "multi_ray",
                     "uav_max_height_m")

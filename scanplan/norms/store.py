@@ -26,7 +26,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import InputError, NotFoundError
-from ..planner import ScanRules
+from ..rules.film import ScanRules
 from ..safeio import dir_lock, read_limited
 from .paths import CATALOGUE, DEFAULT_NORM_SET, bundled_norms_dir, user_norms_dir
 from .recovery import recover_norm_dir

@@ -1,7 +1,7 @@
 """Reports for approval: shared pieces of the Excel and PDF writers.
 
-Reports *render* result objects (:class:`scanplan.planner.ScanPlan`,
-:class:`scanplan.uav.UavPlan` and their norm set); they never recompute a number.
+Reports *render* result objects (:class:`scanplan.rules.film.ScanPlan`,
+:class:`scanplan.rules.uav.UavPlan` and their norm set); they never recompute a number.
 Writing is atomic: the whole file is rendered to memory, written to a temporary file
 beside the target and renamed over it, so a crash never leaves a half-written report and
 never destroys the previous one. Several files that belong together (spec.xlsx and
@@ -16,7 +16,7 @@ import datetime as _dt
 import os
 from pathlib import Path
 
-from ..project import ReportMeta  # project metadata; it lives with the project file
+from ..project.file import ReportMeta  # project metadata; it lives with the project file
 from ..safeio import write_atomic, write_atomic_many  # the writers live below reports
 
 __all__ = ["ReportMeta", "report_datetime", "templates_dir", "write_atomic",

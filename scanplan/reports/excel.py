@@ -47,10 +47,10 @@ from openpyxl.worksheet.pagebreak import Break
 from openpyxl.worksheet.worksheet import Worksheet
 from openpyxl.writer.excel import ExcelWriter
 
-from .. import flight as FL
 from .._version import __version__
-from ..mtf import component_label
-from ..planner import CONSTRAINTS, height_formula_name
+from ..core import flight as FL
+from ..core.mtf import component_label
+from ..rules.film import CONSTRAINTS, height_formula_name
 from . import ReportMeta, report_datetime, write_atomic
 from .labels import LABELS, t
 from .references import Bibliography
@@ -67,11 +67,11 @@ from .wording import (
 )
 
 if TYPE_CHECKING:
-    from ..api import ScanJob, UavJob
     from ..norms import NormSet
-    from ..planner import PlanWarning
-    from ..spec import PlanResult
-    from ..uav import UavPlan
+    from ..project.api import ScanJob, UavJob
+    from ..project.spec import PlanResult
+    from ..rules.film import PlanWarning
+    from ..rules.uav import UavPlan
 
 __all__ = ["render_xlsx", "write_xlsx"]
 
@@ -119,9 +119,9 @@ def render_xlsx(
     Parameters
     ----------
     scan : ScanJob, optional
-        A film scan plan and its norm set (:func:`scanplan.api.scan_job`).
+        A film scan plan and its norm set (:func:`scanplan.project.api.scan_job`).
     uav : UavJob, optional
-        A UAV flight plan and its norm set (:func:`scanplan.api.uav_job`).
+        A UAV flight plan and its norm set (:func:`scanplan.project.api.uav_job`).
     meta : ReportMeta
         Title and approval blocks and the language (``meta.locale``: ``"en"``/``"ru"``).
     spec : PlanResult, optional
@@ -325,7 +325,7 @@ class _Book:
     def obj_name(self, ns: NormSet, name: str, map_scale: int | None) -> str:
         """A norm object's name in the report's language (unnamed: "object of the given
         size")."""
-        from ..api import USER_OBJECT_NAME
+        from ..project.api import USER_OBJECT_NAME
 
         if map_scale is None and name == USER_OBJECT_NAME["en"]:  # a project's unnamed object
             return name_title("", "", self.loc)

@@ -804,7 +804,7 @@ _SIGNING: dict[str, dict[str, str]] = {
 for _loc in LOCALES:
     LABELS[_loc].update(_SIGNING[_loc])
 
-# data volume as JPEG (the uncompressed volume / scanplan.flight.JPEG_COMPRESSION_RATIO)
+# data volume as JPEG (the uncompressed volume / scanplan.core.flight.JPEG_COMPRESSION_RATIO)
 LABELS["en"]["data_volume_jpeg_gb"] = "Data volume as JPEG (estimate, 9:1), GB"
 LABELS["ru"]["data_volume_jpeg_gb"] = "Объём данных в JPEG (оценка, 9:1), ГБ"
 LABELS["en"]["spec_archive_photo_scale"] = "Photo scale (existing photos, given)"

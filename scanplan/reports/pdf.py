@@ -1,6 +1,7 @@
 """The PDF report: jinja2 templates in ``templates/`` rendered by WeasyPrint.
 
-The report *renders* a :class:`scanplan.api.ScanJob` and/or :class:`scanplan.api.UavJob`
+The report *renders* a :class:`scanplan.project.api.ScanJob` and/or
+:class:`scanplan.project.api.UavJob`
 (their plans and norm set); every number comes from the plan objects, formatted per
 locale (decimal comma in Russian). The document is A4 with the approval block («УТВЕРЖДАЮ»
 / APPROVED) and, when the project names one, the agreement block («СОГЛАСОВАНО» / AGREED),
@@ -40,14 +41,14 @@ import weasyprint
 from markupsafe import Markup
 from weasyprint.urls import URLFetcher, URLFetcherResponse
 
-from .. import flight as FL
 from .._version import __version__
-from ..api import ScanJob, UavJob
-from ..flight import MAX_BLUR_PX
+from ..core import flight as FL
+from ..core.flight import MAX_BLUR_PX
 from ..messages import localize
 from ..norms import NormSet
-from ..planner import CONSTRAINTS, ScanPlan
-from ..uav import UavPlan
+from ..project.api import ScanJob, UavJob
+from ..rules.film import CONSTRAINTS, ScanPlan
+from ..rules.uav import UavPlan
 from . import ReportMeta, plots, report_datetime, templates_dir, write_atomic
 from .labels import LABELS, t
 from .references import Bibliography
@@ -64,7 +65,7 @@ from .wording import (
 )
 
 if TYPE_CHECKING:
-    from ..spec import PlanResult
+    from ..project.spec import PlanResult
 
 __all__ = ["BundledAssetFetcher", "render_html", "render_pdf", "write_pdf"]
 
@@ -215,7 +216,7 @@ def _object_name(ns: NormSet, name: str, size_m: float, map_scale: int | None,
                  locale: str) -> str:
     """A norm-table object's name in the report's language (unnamed: "object of the given
     size")."""
-    from ..api import USER_OBJECT_NAME
+    from ..project.api import USER_OBJECT_NAME
 
     if map_scale is None and name == USER_OBJECT_NAME["en"]:  # a project's unnamed object
         return name_title("", "", locale)

@@ -20,8 +20,8 @@ import matplotlib
 from matplotlib.figure import Figure
 from matplotlib.ticker import FixedLocator, FuncFormatter, NullFormatter
 
-from ..planner import CONSTRAINTS, ScanPlan
-from ..uav import UavPlan
+from ..rules.film import CONSTRAINTS, ScanPlan
+from ..rules.uav import UavPlan
 from .labels import t
 
 __all__ = ["constraints_svg", "height_svg", "mtf_svg", "number"]

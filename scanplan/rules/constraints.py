@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from .. import formulas as F
+from ..core import formulas as F
 from ..messages import Message
 from .registry import Constraint, DigitalLimit, FilmArgs, register
 
@@ -110,7 +110,7 @@ def height_accuracy(inp: UavInputs, rules: ScanRules
     Three forms, each as the largest GSD on the ground (evaluated at Mc = 1):
 
     - ``normal_case`` (default for digital cameras): σ_Z = (H/B)·(H/c)·σ_px·f ≤ V_z with
-      the widest base of standard stereo overlap (:func:`scanplan.formulas.
+      the widest base of standard stereo overlap (:func:`scanplan.core.formulas.
       stereo_height_ground_limit_m`), V_z read as an RMS error;
     - ``instruction`` and ``parallax``: the Instruction's P_Z and its parallax form with the
       single-step base b = l_y·(1 − p) and the processing loss k (seed 001 eq. 2).

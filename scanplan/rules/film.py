@@ -28,8 +28,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .. import formulas as F
-from ..domains import check_domain, check_range
+from ..core import formulas as F
+from ..core.domains import check_domain, check_range
 from ..errors import InputError
 from ..messages import Message
 from .constraints import height_formula_name
@@ -258,7 +258,7 @@ def interpretation_limit_photo_scale(
     resolving_power_lpmm : array_like
         R of the photo [lines/mm].
     rounding : {"exact", "paper"}
-        See :func:`scanplan.formulas.probability_root`.
+        See :func:`scanplan.core.formulas.probability_root`.
 
     Returns
     -------
@@ -305,7 +305,7 @@ def round_to_scanner(pixel_um: ArrayLike, steps_um: Sequence[float]) -> NDArray[
 
 def validate_inputs(inp: ScanInputs, rules: ScanRules) -> None:
     """Raise :class:`InputError` (field = the input's name) for any value outside its domain
-    (:data:`scanplan.domains.DOMAINS`)."""
+    (:data:`scanplan.core.domains.DOMAINS`)."""
     check_domain("map_scale", inp.map_scale)
     if not inp.photo_scales:
         raise InputError("photo_scale", "give at least one photo scale")

@@ -12,7 +12,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from .. import mtf as M
+from ..core import mtf as M
 from ..messages import localize
 
 __all__ = [
@@ -35,7 +35,7 @@ __all__ = [
 class ScanRules:
     """Normative parameters of the film rules engine (from a norm set).
 
-    Attributes mirror :data:`scanplan.normschema.PARAMETERS`.
+    Attributes mirror :data:`scanplan.norms.schema.PARAMETERS`.
     """
 
     planimetric_accuracy_mm: float
@@ -50,7 +50,7 @@ class ScanRules:
     recognition_rounding: str
     interpretation_min_lpmm: float
     interpretation_max_lpmm: float
-    # digital (UAV) blocks — scanplan.uav
+    # digital (UAV) blocks — scanplan.rules.uav
     digital_height_formula: str
     image_measurement_px: float
     multi_ray: str

@@ -17,7 +17,7 @@ The height constraint of a digital block is by default the stereo normal case wi
 widest base of standard overlap, σ_Z = (H/B)·(H/c)·σ_px ≤ V_z (docs/uav-models.md §9); the
 Instruction's P_Z and its parallax form are computed beside it for comparison.
 
-Pure numpy on top of :mod:`scanplan.mtf` and :mod:`scanplan.flight`; no I/O.
+Pure numpy on top of :mod:`scanplan.core.mtf` and :mod:`scanplan.core.flight`; no I/O.
 """
 
 from __future__ import annotations
@@ -28,13 +28,13 @@ from typing import Any
 
 import numpy as np
 
-from .. import flight as FL
-from .. import formulas as F
-from .. import mtf as M
-from ..domains import check_domain
+from ..core import flight as FL
+from ..core import formulas as F
+from ..core import mtf as M
+from ..core.domains import check_domain
+from ..core.orientation import attitude_matrix, corner_gsd
 from ..errors import InputError
 from ..messages import Message
-from ..orientation import attitude_matrix, corner_gsd
 from .constraints import height_accuracy as _height_accuracy  # noqa: F401  (tests, importers)
 from .film import overlap_warning
 from .registry import CONSTRAINTS, DigitalLimit, digital_ids
@@ -129,7 +129,7 @@ def max_height_for_ground_resolution(inp: UavInputs, limit_m: float) -> float:
 
 
 def _check_inputs(inp: UavInputs) -> None:
-    """Every input in its domain (:data:`scanplan.domains.DOMAINS`), field = its name."""
+    """Every input in its domain (:data:`scanplan.core.domains.DOMAINS`), field = its name."""
     for name in ("pixel_um", "focal_mm", "f_number", "sensor_width_mm", "sensor_height_mm",
                  "height_m", "exposure_s", "speed_ms", "random_speed_ms", "roll_rate_rad_s",
                  "pitch_rate_rad_s", "yaw_rate_rad_s", "forward_overlap_pct",
@@ -263,7 +263,7 @@ def _flight_time_s(length_m: float, speed_ms: float) -> float | None:
 def _blur(inp: UavInputs, gsd_lo: float, h_lo: float, h_hi: float,
           warnings: list[PlanWarning]) -> tuple[float, float, float]:
     """Motion blur at the lowest height [px], the longest exposure and the highest speed
-    that keep it under :data:`scanplan.flight.MAX_BLUR_PX`; appends the haze and blur
+    that keep it under :data:`scanplan.core.flight.MAX_BLUR_PX`; appends the haze and blur
     warnings."""
     if inp.haze_contrast == M.DEFAULT_HAZE_CONTRAST and h_hi > M.DEFAULT_HAZE_MAX_HEIGHT_M:
         warnings.append(PlanWarning("haze_default_height", Message(

@@ -5,8 +5,8 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
-from scanplan.flight import _finite, _in_range, _nonnegative, _positive
-from scanplan.mtf._base import NDArrayFloat, _k_gauss, _k_linear_motion
+from scanplan.core.flight import _finite, _in_range, _nonnegative, _positive
+from scanplan.core.mtf._base import NDArrayFloat, _k_gauss, _k_linear_motion
 
 
 def geometric_image_shift_mm(

@@ -8,9 +8,9 @@ from typing import Any, Literal
 import numpy as np
 import numpy.typing as npt
 
+from scanplan.core.flight import _in_range, _nonnegative, _positive
+from scanplan.core.mtf._base import DEFAULT_K0, NDArrayFloat
 from scanplan.errors import pick_method
-from scanplan.flight import _in_range, _nonnegative, _positive
-from scanplan.mtf._base import DEFAULT_K0, NDArrayFloat
 
 
 def object_contrast(r_max: npt.ArrayLike, r_min: npt.ArrayLike) -> NDArrayFloat:

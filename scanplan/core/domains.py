@@ -14,7 +14,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .errors import InputError
+from ..errors import InputError
 
 __all__ = ["DOMAINS", "HINTS", "MAX_LIST_ITEMS", "Domain", "check_domain", "check_range"]
 

@@ -1,6 +1,6 @@
 """``scanplan norms``: list, show, validate, import and template norm sets.
 
-Registered by :mod:`scanplan.cli` (``main.add_command(norms)``); it also runs on its own
+Registered by :mod:`scanplan.cli.main` (``main.add_command(norms)``); it also runs on its own
 (``norms.main(args)``). Every problem is an :class:`~scanplan.errors.InputError`: printed as
 ``error: ...`` on stderr (or as JSON with ``--json``) with exit code 2, never a traceback.
 A failure to write (:class:`~scanplan.errors.WriteError`: disk full, permission, an
@@ -20,9 +20,9 @@ from typing import Any
 
 import click
 
-from . import norms as _norms
-from .errors import InputError, WriteError
-from .norms.schema import PARAMETERS, TABLES
+from .. import norms as _norms
+from ..errors import InputError, WriteError
+from ..norms.schema import PARAMETERS, TABLES
 
 __all__ = ["norms"]
 

@@ -7,8 +7,8 @@ from typing import Literal
 import numpy as np
 import numpy.typing as npt
 
-from scanplan.flight import _finite, _in_range, _nonnegative, _positive
-from scanplan.mtf._base import DEFAULT_WAVELENGTH_UM, NDArrayFloat, _k_diffraction
+from scanplan.core.flight import _finite, _in_range, _nonnegative, _positive
+from scanplan.core.mtf._base import DEFAULT_WAVELENGTH_UM, NDArrayFloat, _k_diffraction
 
 
 def half_field_angle_rad(

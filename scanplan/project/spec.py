@@ -15,7 +15,11 @@ import math
 from dataclasses import dataclass, field
 from typing import Any
 
-from . import flight as FL
+from ..core import flight as FL
+from ..core.domains import DOMAINS, check_domain
+from ..errors import InputError
+from ..messages import Message
+from ..rules.film import PlanWarning, ScanScenario
 from .api import (
     PROVISIONAL_HEIGHT_M,
     ScanJob,
@@ -26,11 +30,7 @@ from .api import (
     uav_job,
 )
 from .archive import archive_film
-from .domains import DOMAINS, check_domain
-from .errors import InputError
-from .messages import Message
-from .planner import PlanWarning, ScanScenario
-from .project import Project, ReportMeta
+from .file import Project, ReportMeta
 
 __all__ = ["FilmSpec", "PlanResult", "UavSpec", "plan_project"]
 

@@ -31,7 +31,7 @@ from typing import Literal
 import numpy as np
 import numpy.typing as npt
 
-from scanplan.flight import _finite, _positive
+from scanplan.core.flight import _finite, _positive
 
 __all__ = [
     "CORNER_NAMES",

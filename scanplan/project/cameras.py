@@ -28,15 +28,15 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from . import norms as _norms
-from .errors import InputError
-from .norms import cells as norms_cells
-from .norms import export as norms_export
-from .norms import limits as norms_limits
-from .norms import recovery as norms_recovery
-from .norms import store as norms_store
-from .norms.schema import TABLES
-from .safeio import read_limited, write_all
+from .. import norms as _norms
+from ..errors import InputError
+from ..norms import cells as norms_cells
+from ..norms import export as norms_export
+from ..norms import limits as norms_limits
+from ..norms import recovery as norms_recovery
+from ..norms import store as norms_store
+from ..norms.schema import TABLES
+from ..safeio import read_limited, write_all
 
 __all__ = ["ParsedCameras", "import_camera_file", "read_camera_file", "user_catalogue_dir"]
 

@@ -14,7 +14,7 @@ Sources
   q = h/b and m = h/c, and the precision of image matching.
 
 Every function is pure numpy: it broadcasts over any array inputs and does no I/O and no
-validation (the rules engine in :mod:`scanplan.planner` validates once, with messages that
+validation (the rules engine in :mod:`scanplan.rules.film` validates once, with messages that
 name the field). Normative numbers (V_s, k, 70 µm, k_R, P, shape coefficients) are
 arguments: they come from a norm set, never from here.
 
@@ -30,7 +30,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .errors import pick_method
+from ..errors import pick_method
 
 __all__ = [
     "HEIGHT_PIXEL_METHODS",

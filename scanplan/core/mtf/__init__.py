@@ -15,12 +15,13 @@ camera + flight + atmosphere + motion + scene description (frozen dataclasses wh
 fields may be arrays) and broadcast over every configuration at once. The frequency
 grid is always the **last** axis of a chain result.
 
-The package has one module per component family — :mod:`~scanplan.mtf.atmosphere`,
-:mod:`~scanplan.mtf.lens`, :mod:`~scanplan.mtf.sensor`, :mod:`~scanplan.mtf.motion` — plus
-the threshold models (:mod:`~scanplan.mtf.threshold`), the solver
-(:mod:`~scanplan.mtf.solver`), the input descriptions (:mod:`~scanplan.mtf.descriptions`),
-the component registry (:mod:`~scanplan.mtf.components`) and the chain that multiplies the
-registered components (:mod:`~scanplan.mtf.chain`). Every public name is re-exported here.
+The package has one module per component family — :mod:`~scanplan.core.mtf.atmosphere`,
+:mod:`~scanplan.core.mtf.lens`, :mod:`~scanplan.core.mtf.sensor`,
+:mod:`~scanplan.core.mtf.motion` — plus
+the threshold models (:mod:`~scanplan.core.mtf.threshold`), the solver
+(:mod:`~scanplan.core.mtf.solver`), the input descriptions (:mod:`~scanplan.core.mtf.descriptions`),
+the component registry (:mod:`~scanplan.core.mtf.components`) and the chain that multiplies the
+registered components (:mod:`~scanplan.core.mtf.chain`). Every public name is re-exported here.
 
 Not resolvable is a result, not a number: where K_obj·T(0) ≤ K_thr(0) the resolving
 power and the ground resolution are NaN and ``resolvable`` is False.
@@ -28,7 +29,7 @@ power and the ground resolution are NaN and ``resolvable`` is False.
 
 from __future__ import annotations
 
-from scanplan.mtf._base import (
+from scanplan.core.mtf._base import (
     DEFAULT_GRID_POINTS,
     DEFAULT_HAZE_CONTRAST,
     DEFAULT_HAZE_MAX_HEIGHT_M,
@@ -38,14 +39,14 @@ from scanplan.mtf._base import (
     NDArrayBool,
     NDArrayFloat,
 )
-from scanplan.mtf.atmosphere import (
+from scanplan.core.mtf.atmosphere import (
     HAZE_METHODS,
     haze_contrast_coefficient,
     haze_exponential_indicatrix,
     haze_mtf,
     turbulence_mtf,
 )
-from scanplan.mtf.chain import (
+from scanplan.core.mtf.chain import (
     GroundResolution,
     UAVResolution,
     component_mtfs,
@@ -55,7 +56,7 @@ from scanplan.mtf.chain import (
     system_mtf,
     uav_resolution,
 )
-from scanplan.mtf.components import (
+from scanplan.core.mtf.components import (
     COMPONENTS,
     REGISTRY,
     Component,
@@ -68,15 +69,15 @@ from scanplan.mtf.components import (
     register,
     unregister,
 )
-from scanplan.mtf.descriptions import Atmosphere, Camera, Flight, Motion, Scene, Threshold
-from scanplan.mtf.lens import (
+from scanplan.core.mtf.descriptions import Atmosphere, Camera, Flight, Motion, Scene, Threshold
+from scanplan.core.mtf.lens import (
     diffraction_cutoff_lpmm,
     diffraction_mtf,
     half_field_angle_rad,
     lens_diffraction_mtf,
     lens_table_mtf,
 )
-from scanplan.mtf.motion import (
+from scanplan.core.mtf.motion import (
     angular_shift_tilt_mm,
     angular_shift_yaw_mm,
     geometric_image_shift_mm,
@@ -85,14 +86,14 @@ from scanplan.mtf.motion import (
     random_motion_mtf,
     random_shift_rms_mm,
 )
-from scanplan.mtf.sensor import (
+from scanplan.core.mtf.sensor import (
     charge_transfer_mtf,
     diffusion_mtf,
     nyquist_lpmm,
     pixel_aperture_mtf,
 )
-from scanplan.mtf.solver import ResolvingPower, ground_resolution_m, solve_resolving_power
-from scanplan.mtf.threshold import (
+from scanplan.core.mtf.solver import ResolvingPower, ground_resolution_m, solve_resolving_power
+from scanplan.core.mtf.threshold import (
     THRESHOLD_METHODS,
     object_contrast,
     threshold_contrast,

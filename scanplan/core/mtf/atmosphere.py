@@ -8,14 +8,14 @@ from typing import Any, Literal
 import numpy as np
 import numpy.typing as npt
 
-from scanplan.errors import pick_method
-from scanplan.flight import _finite, _in_range, _nonnegative, _positive
-from scanplan.mtf._base import (
+from scanplan.core.flight import _finite, _in_range, _nonnegative, _positive
+from scanplan.core.mtf._base import (
     DEFAULT_HAZE_CONTRAST,
     NDArrayFloat,
     _k_gauss,
     _k_haze_indicatrix,
 )
+from scanplan.errors import pick_method
 
 
 def haze_contrast_coefficient(

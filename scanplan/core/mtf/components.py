@@ -4,7 +4,7 @@ A component is data plus one small function: a :class:`Component` record (name, 
 labels for reports, the seed equation) and its ``prepare`` function, which takes the
 validated inputs of a chain (:class:`Setup`) and returns a :class:`Term` — the kernel
 ``T(N, **params)`` and its per-configuration parameters — or ``None`` where the component
-is identically 1. The chain (:mod:`scanplan.mtf.chain`) multiplies the terms of
+is identically 1. The chain (:mod:`scanplan.core.mtf.chain`) multiplies the terms of
 :data:`REGISTRY`; the plan's MTF table (``UavPlan.mtf_centre``: JSON, the workbook's MTF
 sheet) lists the same components with :func:`component_label`. Adding a component is
 one ``prepare`` function and one :func:`register` call here (the formula itself lives in
@@ -27,8 +27,8 @@ from typing import Literal
 import numpy as np
 import numpy.typing as npt
 
-from scanplan.flight import _in_range, _nonnegative, _positive
-from scanplan.mtf._base import (
+from scanplan.core.flight import _in_range, _nonnegative, _positive
+from scanplan.core.mtf._base import (
     NDArrayFloat,
     _k_charge_transfer,
     _k_diffraction,
@@ -38,10 +38,10 @@ from scanplan.mtf._base import (
     _k_linear_motion,
     _k_sinc,
 )
-from scanplan.mtf.atmosphere import haze_contrast_coefficient, haze_mtf
-from scanplan.mtf.descriptions import Atmosphere, Camera, Flight, Motion
-from scanplan.mtf.lens import diffraction_cutoff_lpmm, lens_table_mtf
-from scanplan.mtf.motion import (
+from scanplan.core.mtf.atmosphere import haze_contrast_coefficient, haze_mtf
+from scanplan.core.mtf.descriptions import Atmosphere, Camera, Flight, Motion
+from scanplan.core.mtf.lens import diffraction_cutoff_lpmm, lens_table_mtf
+from scanplan.core.mtf.motion import (
     angular_shift_tilt_mm,
     angular_shift_yaw_mm,
     geometric_image_shift_mm,
@@ -137,7 +137,7 @@ class Component:
     Attributes
     ----------
     name : str
-        Key in :func:`~scanplan.mtf.component_mtfs`, the JSON ``mtf_centre`` table and
+        Key in :func:`~scanplan.core.mtf.component_mtfs`, the JSON ``mtf_centre`` table and
         ``disable``.
     family : {"atmosphere", "lens", "sensor", "motion"} or str
         Seed 000, eq. 1: T = T_a·T_o·T_m·T_s.

@@ -9,13 +9,13 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from scanplan.mtf._base import (
+from scanplan.core.mtf._base import (
     DEFAULT_HAZE_CONTRAST,
     DEFAULT_K0,
     DEFAULT_WAVELENGTH_UM,
     NDArrayFloat,
 )
-from scanplan.mtf.threshold import (
+from scanplan.core.mtf.threshold import (
     THRESHOLD_METHODS,
     object_contrast,
     threshold_contrast,

@@ -45,7 +45,7 @@ MAX_BLUR_PX = 0.5
 
 
 # ---------------------------------------------------------------------------------
-# Input validation (shared by scanplan.mtf and scanplan.orientation)
+# Input validation (shared by scanplan.core.mtf and scanplan.core.orientation)
 # ---------------------------------------------------------------------------------
 def _first_bad(arr: np.ndarray, bad: np.ndarray) -> str:
     value = np.broadcast_to(arr, bad.shape)[bad].flat[0]

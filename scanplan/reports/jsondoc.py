@@ -6,10 +6,10 @@ import math
 from dataclasses import asdict
 from typing import Any
 
-from .messages import Message, params_json
-from .norms import NormSet
-from .planner import PlanWarning, ScanPlan
-from .uav import UavPlan
+from ..messages import Message, params_json
+from ..norms import NormSet
+from ..rules.film import PlanWarning, ScanPlan
+from ..rules.uav import UavPlan
 
 __all__ = ["norm_set_dict", "plan_result_dict", "scale_value", "scan_plan_dict", "uav_plan_dict",
            "warning_dict"]
@@ -210,8 +210,8 @@ def plan_result_dict(result: Any) -> dict[str, Any]:
 
 def _flight_json(flight: dict[str, Any]) -> dict[str, Any]:
     """The flight dict, plus ``data_volume_jpeg_bytes`` (an estimate: the uncompressed
-    ``data_volume_bytes`` / :data:`scanplan.flight.JPEG_COMPRESSION_RATIO`) and the ratio."""
-    from .flight import JPEG_COMPRESSION_RATIO, jpeg_volume_bytes
+    ``data_volume_bytes`` / :data:`scanplan.core.flight.JPEG_COMPRESSION_RATIO`) and the ratio."""
+    from ..core.flight import JPEG_COMPRESSION_RATIO, jpeg_volume_bytes
 
     out = dict(flight)
     if "data_volume_bytes" in out:

@@ -18,7 +18,7 @@ from typing import Any
 
 import click
 
-from .errors import InputError, WriteError
+from ..errors import InputError, WriteError
 
 __all__ = ["InitAnswers", "init", "project_text"]
 
@@ -156,8 +156,8 @@ def project_text(a: InitAnswers) -> str:
 
 def check_answers(text: str, path: str) -> None:
     """Parse and plan the text as ``scanplan plan`` would; :class:`InputError` if it fails."""
-    from .project import parse_project
-    from .spec import plan_project
+    from ..project.file import parse_project
+    from ..project.spec import plan_project
 
     plan_project(parse_project(text, path))
 
@@ -175,7 +175,7 @@ def write_new(path: str, data: bytes, *, force: bool) -> None:
     if not force and os.path.lexists(path):
         raise InputError("PROJECT", f"{path!r} exists; give --force to replace it")
     if force:
-        from .safeio import write_atomic
+        from ..safeio import write_atomic
 
         write_atomic(path, data)
         return
@@ -185,7 +185,7 @@ def write_new(path: str, data: bytes, *, force: bool) -> None:
         fd, tmp = tempfile.mkstemp(prefix=f".{os.path.basename(path)}.", suffix=".tmp",
                                    dir=folder)
         try:
-            from .safeio import write_all
+            from ..safeio import write_all
 
             write_all(fd, data)
             os.fsync(fd)
@@ -217,7 +217,7 @@ def _interactive() -> bool:
 
 
 def _scales(text: str | None) -> tuple[float, ...]:
-    from .norms import parse_scale
+    from ..norms import parse_scale
 
     if not text:
         return ()
@@ -226,7 +226,7 @@ def _scales(text: str | None) -> tuple[float, ...]:
 
 
 def _area(text: str | None) -> tuple[float, float] | None:
-    from .api import parse_frame_mm
+    from ..project.api import parse_frame_mm
 
     return None if not text else parse_frame_mm(text, "--area-m")
 
@@ -281,7 +281,7 @@ def init(project: str, force: bool, **opts: Any) -> None:
       scanplan init archive.toml --kind film --map-scale 2000 --relief 1 \\
                     --photo-scale 12000 --locale ru --name "План 1:2000"
     """
-    from .norms import parse_scale
+    from ..norms import parse_scale
 
     ask = _interactive()
     kind = opts["kind"] or (click.prompt("Kind of survey", type=click.Choice(KINDS),

@@ -9,14 +9,14 @@ from typing import Any, Literal
 import numpy as np
 import numpy.typing as npt
 
-from scanplan.flight import _nonnegative, _positive, ground_sample_distance_m
-from scanplan.mtf._base import (
+from scanplan.core.flight import _nonnegative, _positive, ground_sample_distance_m
+from scanplan.core.mtf._base import (
     DEFAULT_GRID_POINTS,
     DEFAULT_ITERATIONS,
     NDArrayBool,
     NDArrayFloat,
 )
-from scanplan.mtf.components import (
+from scanplan.core.mtf.components import (
     REGISTRY,
     Direction,
     Field,
@@ -25,10 +25,10 @@ from scanplan.mtf.components import (
     check_disable,
     component_names,
 )
-from scanplan.mtf.descriptions import Atmosphere, Camera, Flight, Motion, Scene, Threshold
-from scanplan.mtf.lens import half_field_angle_rad
-from scanplan.mtf.sensor import nyquist_lpmm
-from scanplan.mtf.solver import ResolvingPower, ground_resolution_m, solve_resolving_power
+from scanplan.core.mtf.descriptions import Atmosphere, Camera, Flight, Motion, Scene, Threshold
+from scanplan.core.mtf.lens import half_field_angle_rad
+from scanplan.core.mtf.sensor import nyquist_lpmm
+from scanplan.core.mtf.solver import ResolvingPower, ground_resolution_m, solve_resolving_power
 
 
 def _col(value: npt.ArrayLike) -> NDArrayFloat:
@@ -39,7 +39,7 @@ def _col(value: npt.ArrayLike) -> NDArrayFloat:
 class _Chain:
     """Validated, prepared chain of the registered components (private).
 
-    Every component of :data:`~scanplan.mtf.components.REGISTRY` prepares its term once
+    Every component of :data:`~scanplan.core.mtf.components.REGISTRY` prepares its term once
     (validation, δ, σ, N_c, pixel aperture, …); parameters get a trailing axis of length 1
     for the frequency grid; :meth:`components` and :meth:`product` then evaluate only the
     kernels. :meth:`astype` gives a float32 copy for the solver's coarse phase.

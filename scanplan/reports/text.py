@@ -8,9 +8,9 @@ import textwrap
 from collections.abc import Sequence
 from typing import Any
 
-from .planner import CONSTRAINTS, ScanPlan
-from .serialize import scale_value
-from .uav import UavPlan
+from ..rules.film import CONSTRAINTS, ScanPlan
+from ..rules.uav import UavPlan
+from .jsondoc import scale_value
 
 __all__ = ["format_plan_result", "format_scan_plan", "format_uav_plan", "table"]
 
@@ -333,7 +333,7 @@ def _sc(x: float, loc: str) -> str:
 def format_plan_result(result: Any, locale: str | None = None) -> str:
     """The concise terminal summary of ``scanplan plan``, in the project's language
     (``[project] locale``) unless ``locale`` is given."""
-    from .messages import localize
+    from ..messages import localize
 
     meta = result.meta
     loc = locale or (meta.locale if meta.locale in _TERMINAL else "en")
@@ -397,7 +397,7 @@ def format_plan_result(result: Any, locale: str | None = None) -> str:
             mark = "!" if w.severity == "warning" else "i"
             text = localize(w.message, loc)
             if loc == "ru":  # ids by their names, as the Russian documents show them
-                from .reports.wording import display_message
+                from .wording import display_message
 
                 ns = (result.film or result.uav).job.norm_set
                 text = display_message(w.message, ns, loc)
@@ -407,7 +407,7 @@ def format_plan_result(result: Any, locale: str | None = None) -> str:
 
 def _uav_summary(u: Any, loc: str, T: dict[str, str], cname: Any) -> list[str]:
     """The UAV part of :func:`format_plan_result`."""
-    from .messages import localize
+    from ..messages import localize
 
     p = u.job.plan
     lines = ["", T["aircraft" if p.inputs.platform == "aircraft" else "uav"]]
@@ -491,8 +491,8 @@ def batch_summary(done: list[tuple[str, Any]], failed: list[tuple[str, str]]) ->
 
 def _volume(uncompressed_bytes: float, loc: str = "en") -> str:
     """``163.5 GB uncompressed (JPEG ≈ 18.2 GB at 9:1)``: the JPEG estimate of
-    :func:`scanplan.flight.jpeg_volume_bytes`, in the locale's words and numbers."""
-    from .flight import JPEG_COMPRESSION_RATIO, jpeg_volume_bytes
+    :func:`scanplan.core.flight.jpeg_volume_bytes`, in the locale's words and numbers."""
+    from ..core.flight import JPEG_COMPRESSION_RATIO, jpeg_volume_bytes
 
     jpeg = float(jpeg_volume_bytes(uncompressed_bytes)) / 1e9
     full = _n(uncompressed_bytes / 1e9, 1, loc, True)

@@ -19,10 +19,10 @@ import math
 
 import numpy as np
 
-from . import formulas as F
+from ..core import formulas as F
+from ..messages import Message
+from ..rules.film import CONSTRAINTS, PlanWarning, ScanPlan, ScanScenario, round_to_scanner
 from .api import ScanJob
-from .messages import Message
-from .planner import CONSTRAINTS, PlanWarning, ScanPlan, ScanScenario, round_to_scanner
 
 __all__ = ["ARCHIVE_REPLACED_CODES", "archive_film"]
 

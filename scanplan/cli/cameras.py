@@ -8,7 +8,7 @@ import click
 
 
 def _echo_json(doc: object) -> None:
-    from .cli import _echo_json as echo
+    from .main import _echo_json as echo
 
     echo(doc)
 
@@ -49,8 +49,8 @@ def cameras_list(kind: str | None, norms: str, as_json: bool) -> None:
     """
     from dataclasses import asdict
 
-    from .norms import load_norm_set
-    from .textfmt import table
+    from ..norms import load_norm_set
+    from ..reports.text import table
 
     ns = load_norm_set(norms)
     cams = [c for c in sorted(ns.cameras.values(), key=lambda c: (c.kind, c.carrier, c.id))
@@ -95,8 +95,8 @@ def cameras_show(camera_id: str, norms: str, as_json: bool) -> None:
     """Show one camera or scanner: CAMERA_ID from `scanplan cameras list`."""
     from dataclasses import asdict
 
-    from .norms import load_norm_set
-    from .textfmt import table
+    from ..norms import load_norm_set
+    from ..reports.text import table
 
     ns = load_norm_set(norms)
     if camera_id not in ns.cameras and camera_id in ns.scanner_details:
@@ -147,7 +147,7 @@ def cameras_import(file: str, force: bool, source: str, table: str | None,
       scanplan cameras import CameraMetaData.json --source "QGroundControl 4.4"
       scanplan cameras import our-cameras.xlsx --force
     """
-    from .cameras_io import import_camera_file
+    from ..project.cameras import import_camera_file
 
     folder, parsed = import_camera_file(file, force=force, source=source, table=table)
     if as_json:

@@ -16,9 +16,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from .domains import MAX_LIST_ITEMS
-from .errors import InputError
-from .safeio import read_limited
+from ..core.domains import MAX_LIST_ITEMS
+from ..errors import InputError
+from ..safeio import read_limited
 
 __all__ = ["KEYS", "Project", "ReportMeta", "load_project", "parse_project", "text_problem"]
 
@@ -324,7 +324,7 @@ def _shown(value: Any) -> str:
 def _norm_set_path(value: str, folder: Path) -> str:
     """``[norms] set``: a name stays a name; a relative folder is taken from the project
     file's folder (not from wherever scanplan runs)."""
-    from .norms import is_set_name
+    from ..norms import is_set_name
 
     if is_set_name(value) or value.startswith("~") or os.path.isabs(value):
         return value
@@ -419,7 +419,7 @@ def _number(value: float) -> int | float:
 def _parse_scales(flat: dict[str, dict[str, Any]], lines: dict[str, int], p: Path) -> None:
     """Scales written ``2000``, ``"1:2000"`` or ``"1:2 000"`` become numbers, once, here:
     everything after the loader sees a denominator."""
-    from .norms import parse_scale
+    from ..norms import parse_scale
 
     for section, key in (("map", "scale"), ("film", "photo_scale")):
         if key in flat.get(section, {}):

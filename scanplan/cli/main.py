@@ -18,8 +18,8 @@ from typing import Any
 
 import click
 
-from ._version import __version__
-from .errors import InputError, WriteError
+from .._version import __version__
+from ..errors import InputError, WriteError
 
 # Python names of inputs → the option a user typed
 OPTION_NAMES = {
@@ -116,7 +116,7 @@ class ScaleType(click.ParamType):
 
     def convert(self, value: Any, param: click.Parameter | None, ctx: click.Context | None
                 ) -> float:
-        from .norms import parse_scale
+        from ..norms import parse_scale
 
         try:
             return parse_scale(value, param.opts[0] if param else "scale")
@@ -167,7 +167,7 @@ def _finite(ctx: click.Context, param: click.Parameter, value: float | None) -> 
 
 def _text(ctx: click.Context, param: click.Parameter, value: str) -> str:
     """Report text from an option: the same rule as in a project file."""
-    from .project import text_problem
+    from ..project.file import text_problem
 
     problem = text_problem(value) if value else None
     if problem:
@@ -242,8 +242,8 @@ def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
     force, inputs = opts.pop("force", False), opts.pop("inputs", ())
     fields = opts.pop("fields", {"xlsx": "--xlsx", "pdf": "--pdf"})
     note = opts.pop("note", "")
-    from .outpaths import check_target
-    from .reports import ReportMeta, write_atomic_many
+    from ..outpaths import check_target
+    from ..reports import ReportMeta, write_atomic_many
 
     meta = opts.pop("meta", None) or ReportMeta(
         project=opts.pop("project_name"), customer=opts.pop("customer"),
@@ -268,9 +268,9 @@ def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
     files: dict[str, bytes] = {}
     for path, kind in wanted:
         if kind == "xlsx":
-            from .reports.excel import render_xlsx as render
+            from ..reports.excel import render_xlsx as render
         else:
-            from .reports.pdf import render_pdf as render
+            from ..reports.pdf import render_pdf as render
         files[path] = render(scan=scan, uav=uav, meta=meta, **extra)
     write_atomic_many(files, check=check)
     for path in files:
@@ -364,9 +364,9 @@ def scan(as_json: bool, bits_per_band: str, **kwargs: Any) -> None:
       scanplan scan --map-scale 1:2000 --relief 1.0 --photo-scale 1:10000 \\
                     --camera afa-te-100 --resolving-power 40
     """
-    from .api import scan_job
-    from .serialize import scan_plan_dict
-    from .textfmt import format_scan_plan
+    from ..project.api import scan_job
+    from ..reports.jsondoc import scan_plan_dict
+    from ..reports.text import format_scan_plan
 
     report = _split_report_options(kwargs)
     job = scan_job(bits_per_band=int(bits_per_band), **kwargs)
@@ -451,9 +451,9 @@ def uav(as_json: bool, **kwargs: Any) -> None:
       scanplan uav --camera canon-eos-5d-mark-ii-50 --f-number 8 --height-m 300 \\
                    --height-tolerance-pct 40 --speed-ms 25 --map-scale 2000 --relief 0.5
     """
-    from .api import uav_job
-    from .serialize import uav_plan_dict
-    from .textfmt import format_uav_plan
+    from ..project.api import uav_job
+    from ..reports.jsondoc import uav_plan_dict
+    from ..reports.text import format_uav_plan
 
     report = _split_report_options(kwargs)
     job = uav_job(**kwargs)
@@ -535,10 +535,10 @@ def batch_stems(files: list[str]) -> list[str]:
 def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: str | None,
                 pdf_path: str | None, as_json: bool, force: bool = False) -> None:
     """``plan`` after its arguments are checked: run one project or a batch."""
-    from .project import load_project
-    from .serialize import plan_result_dict
-    from .spec import plan_project
-    from .textfmt import format_plan_result
+    from ..project.file import load_project
+    from ..project.spec import plan_project
+    from ..reports.jsondoc import plan_result_dict
+    from ..reports.text import format_plan_result
 
     stems = dict(zip(files, batch_stems(files), strict=True)) if batch else {}
 
@@ -599,7 +599,7 @@ def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: s
                       + [{"file": f, "message": "not planned: the batch stopped"}
                          for f in not_run]})
     else:
-        from .textfmt import batch_summary, batch_warnings
+        from ..reports.text import batch_summary, batch_warnings
 
         click.echo(batch_summary(done, failed))
         warned = batch_warnings(done)
@@ -616,13 +616,13 @@ def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: s
         sys.exit(2)
 
 
-from .cli_cameras import cameras  # noqa: E402
-from .cli_norms import norms  # noqa: E402  (the group needs `main` defined first)
+from .cameras import cameras  # noqa: E402
+from .norms import norms  # noqa: E402  (the group needs `main` defined first)
 
 main.add_command(cameras)
 main.add_command(norms)
 
-from .cli_init import init  # noqa: E402
+from .init import init  # noqa: E402
 
 main.add_command(init)
 

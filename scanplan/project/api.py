@@ -16,14 +16,14 @@ import os
 from collections.abc import Iterable
 from dataclasses import dataclass
 
-from .domains import MAX_LIST_ITEMS, check_domain
-from .errors import InputError
-from .messages import Message
-from .mtf import DEFAULT_HAZE_CONTRAST, DEFAULT_K0
-from .norms import DEFAULT_NORM_SET, MapObject, NormSet, load_norm_set, parse_scale
-from .norms.schema import ORIENTATIONS, PARAMETERS
-from .planner import ObjectSpec, ScanInputs, ScanPlan, plan_scan
-from .uav import UavInputs, UavPlan, plan_uav
+from ..core.domains import MAX_LIST_ITEMS, check_domain
+from ..core.mtf import DEFAULT_HAZE_CONTRAST, DEFAULT_K0
+from ..errors import InputError
+from ..messages import Message
+from ..norms import DEFAULT_NORM_SET, MapObject, NormSet, load_norm_set, parse_scale
+from ..norms.schema import ORIENTATIONS, PARAMETERS
+from ..rules.film import ObjectSpec, ScanInputs, ScanPlan, plan_scan
+from ..rules.uav import UavInputs, UavPlan, plan_uav
 
 HEIGHT_STEP_M = 5.0
 """Recommended flight heights are rounded down to this step [m]."""
@@ -341,7 +341,7 @@ def uav_job(
     max_height_m: float | None = None,
     gsd_cm: float | None = None,
 ) -> UavJob:
-    """Plan a UAV flight (see :func:`scanplan.uav.plan_uav`); names as the CLI options.
+    """Plan a UAV flight (see :func:`scanplan.rules.uav.plan_uav`); names as the CLI options.
 
     A catalogue ``camera`` gives pixel, focal length, sensor, image size, f-number and
     minimum trigger interval; explicit values override it. ``map_scale`` with

@@ -8,8 +8,13 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
-from scanplan.flight import _positive
-from scanplan.mtf._base import DEFAULT_GRID_POINTS, DEFAULT_ITERATIONS, NDArrayBool, NDArrayFloat
+from scanplan.core.flight import _positive
+from scanplan.core.mtf._base import (
+    DEFAULT_GRID_POINTS,
+    DEFAULT_ITERATIONS,
+    NDArrayBool,
+    NDArrayFloat,
+)
 
 
 @dataclass(frozen=True, eq=False)
