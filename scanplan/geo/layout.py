@@ -1,0 +1,156 @@
+"""The records the geography layer produces: an area, the strips over it, the photo centres.
+
+These are plain data (numpy arrays and numbers): the project layer puts them in the one
+result object that text, JSON, Excel, PDF and the exported files all render. Every photo
+centre carries its ground elevation and its height above ground (flat ground: the same
+elevation everywhere, AGL = the planned height) so that terrain only fills in two columns.
+
+Coordinates: ``x_m``/``y_m`` in the planning CRS (metric, projected: ``plan_epsg`` or a
+WKT for a local system), ``lon_deg``/``lat_deg`` in WGS 84 (EPSG:4326, lon first as in
+RFC 7946). An abstract ``width_m × length_m`` block has no georeference: its area is a
+rectangle in a local metric frame, ``georeferenced`` is False and the lon/lat are NaN.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+__all__ = ["PHOTO_COLUMNS", "Area", "FlightLayout", "Photos", "Sortie", "Strip"]
+
+#: The per-photo columns of :class:`Photos`, with their units (the CSV/GeoJSON/sheet header).
+PHOTO_COLUMNS: dict[str, str] = {
+    "photo": "running number of the photo in flight order, from 1",
+    "strip": "strip number, from 1, in flight order",
+    "index": "photo number within its strip, from 1",
+    "sortie": "sortie (battery / flight) number, from 1",
+    "x_m": "easting in the planning CRS [m]",
+    "y_m": "northing in the planning CRS [m]",
+    "lon_deg": "longitude, WGS 84 [°]",
+    "lat_deg": "latitude, WGS 84 [°]",
+    "ground_m": "ground elevation under the photo centre [m]",
+    "altitude_m": "flight altitude of the exposure, same height system as ground_m [m]",
+    "agl_m": "height above ground at the photo centre [m]",
+    "gsd_cm": "ground sampling distance at agl_m [cm]",
+    "resolution_cm": "ground resolution L (MTF) at agl_m [cm] (NaN for film)",
+    "recognition_p": "probability of recognising the map objects at agl_m [–] (NaN if none)",
+}
+
+
+@dataclass(frozen=True)
+class Area:
+    """The contract area in the planning CRS.
+
+    Attributes
+    ----------
+    geometry : shapely.Polygon or shapely.MultiPolygon
+        The area in the planning CRS [m] (holes kept).
+    plan_crs : str
+        The planning CRS as given to pyproj (``"EPSG:32637"``; ``"LOCAL"`` for an abstract
+        rectangle).
+    source : str
+        Where the area came from (file name and feature, ``inline polygon`` or
+        ``rectangle W × L m``).
+    georeferenced : bool
+        False for the abstract ``width_m × length_m`` rectangle.
+    area_km2, perimeter_km : float
+        Size of the area [km²] and its boundary length [km] in the planning CRS.
+    centroid_lonlat : tuple of float or None
+        Centroid (lon, lat) in WGS 84 [°]; None when not georeferenced.
+    """
+
+    geometry: Any
+    plan_crs: str
+    source: str
+    georeferenced: bool
+    area_km2: float
+    perimeter_km: float
+    centroid_lonlat: tuple[float, float] | None = None
+
+
+@dataclass(frozen=True)
+class Strip:
+    """One flight line: flown from ``start`` to ``end`` (planning CRS [m]).
+
+    ``segments`` > 1 when the line crosses a concave area or a hole several times and is
+    split (see :mod:`scanplan.geo.lines` for split versus bridge).
+    """
+
+    number: int
+    start_xy_m: tuple[float, float]
+    end_xy_m: tuple[float, float]
+    length_m: float
+    photos: int
+    first_photo: int  # running number of its first photo
+    sortie: int
+    segments: int = 1
+    altitude_m: float | None = None  # strip altitude (terrain 'strip' mode), else None
+
+
+@dataclass(frozen=True)
+class Sortie:
+    """One flight on one battery: its strips, length and time."""
+
+    number: int
+    strips: tuple[int, ...]
+    length_m: float
+    time_s: float | None
+
+
+@dataclass(frozen=True)
+class Photos:
+    """Photo centres as columns (numpy arrays of one length); see :data:`PHOTO_COLUMNS`."""
+
+    columns: dict[str, np.ndarray]
+
+    def __len__(self) -> int:
+        first = next(iter(self.columns.values()), None)
+        return 0 if first is None else int(first.shape[0])
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        return self.columns[name]
+
+
+@dataclass(frozen=True)
+class FlightLayout:
+    """Flight lines and photo centres over an area (film: the aerial survey's flight scheme).
+
+    Attributes
+    ----------
+    area : Area
+    direction_deg : float
+        Flight-line direction, clockwise from grid north of the planning CRS [°], 0 … 180.
+    spacing_m, base_m : float
+        Line spacing and photo base (trigger distance) [m].
+    strips, sorties : tuple
+        :class:`Strip` and :class:`Sortie` records in flight order.
+    photos : Photos
+        Every photo centre.
+    flight_length_m : float
+        Strips plus turns [m] (transit to and from the area not included).
+    turn_length_m : float
+        The turns' share of ``flight_length_m`` [m].
+    flight_time_s : float or None
+        At the ground speed (None for film or a zero speed).
+    extension_bases : float
+        How far strips run past the area, in photo bases, at each end.
+    feasible : bool
+        False when the plan cannot be flown; ``reason`` says why.
+    """
+
+    area: Area
+    direction_deg: float
+    spacing_m: float
+    base_m: float
+    strips: tuple[Strip, ...]
+    sorties: tuple[Sortie, ...]
+    photos: Photos
+    flight_length_m: float
+    turn_length_m: float
+    flight_time_s: float | None
+    extension_bases: float = 1.0
+    feasible: bool = True
+    reason: str | None = None
+    notes: dict[str, Any] = field(default_factory=dict)
