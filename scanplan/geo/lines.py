@@ -50,6 +50,7 @@ import shapely
 from shapely import affinity
 
 from ..core import flight as FL
+from ..messages import Message
 from .layout import PHOTO_COLUMNS, Area, FlightLayout, Photos, Sortie, Strip
 
 __all__ = ["MAX_PHOTO_CENTRES", "MAX_SORTIES", "MAX_STRIPS", "Turn", "band_extents",
@@ -396,8 +397,8 @@ def plan_lines(
     except _TooMany as exc:
         return FlightLayout(strips=(), sorties=(), photos=Photos({}), flight_length_m=math.nan,
                             turn_length_m=math.nan, flight_time_s=None, feasible=False,
-                            reason=f"the area needs {exc.n:,} strips at a line spacing of "
-                                   f"{spacing_m:g} m; at most {MAX_STRIPS:,} are planned",
+                            reason=Message("layout.too_many_strips", n=exc.n,
+                                           spacing=spacing_m, most=MAX_STRIPS),
                             notes=notes, **common)
     gap = (2 * ext + 1) * base_m
     p_strip, p_lo, p_hi = _merge(bands, gap)
@@ -422,9 +423,7 @@ def plan_lines(
     width = float(np.ptp(shapely.bounds(rot)[[0, 2]]))
     if feasible and n_strips == 1 and spacing_m > width:
         feasible = False
-        reason = (f"the line spacing {spacing_m:,.1f} m is larger than the area "
-                  f"({width:,.1f} m across the flight lines): one strip covers it and a block "
-                  "with side overlap cannot be formed; fly a single strip or lower the height")
+        reason = Message("layout.single_strip", spacing=spacing_m, width=width)
     # strips and photos in the original frame
     theta = math.radians(direction)
     cos_t, sin_t = math.cos(theta), math.sin(theta)
@@ -487,9 +486,8 @@ def _sorties(strip_len: np.ndarray, conn: np.ndarray, speed_ms: float | None,
     t_conn = conn / speed_ms
     longest = int(np.argmax(t_strip))
     if t_strip[longest] > limit:
-        return out, (f"strip {longest + 1} alone takes {t_strip[longest] / 60:,.1f} min, longer "
-                     f"than a sortie of {max_min:g} min; turn the flight lines across the "
-                     "area's long side (direction_deg) or split the area")
+        return out, Message("layout.strip_too_long", strip=longest + 1,
+                            minutes=float(t_strip[longest]) / 60.0, limit=max_min)
     k, used = 0, 0.0
     for i in range(n):
         need = t_strip[i] + (t_conn[i - 1] if i and used else 0.0)
@@ -500,8 +498,7 @@ def _sorties(strip_len: np.ndarray, conn: np.ndarray, speed_ms: float | None,
             used += need
         out[i] = k
         if k >= MAX_SORTIES:
-            return out, (f"more than {MAX_SORTIES:,} sorties of {max_min:g} min; the plan "
-                         "is not feasible with this aircraft")
+            return out, Message("layout.too_many_sorties", most=MAX_SORTIES, limit=max_min)
     return out, None
 
 
