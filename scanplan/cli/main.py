@@ -532,10 +532,9 @@ def uav(as_json: bool, **kwargs: Any) -> None:
                    --height-tolerance-pct 40 --speed-ms 25 --map-scale 2000 --relief 0.5
     """
     from ..project.api import uav_job
+    from ..project.flightplan import LayoutOptions
     from ..reports.jsondoc import uav_plan_dict
     from ..reports.text import format_uav_plan
-
-    from ..project.flightplan import LayoutOptions
 
     report = _split_report_options(kwargs)
     area = _area_of(kwargs)

@@ -15,9 +15,10 @@ import math
 from dataclasses import dataclass, field
 from typing import Any
 
-from ..core import flight as FL
 from ..core.domains import DOMAINS, check_domain
 from ..errors import InputError
+from ..geo.area import AreaSpec
+from ..geo.layout import Area, FlightLayout
 from ..messages import Message
 from ..rules.film import PlanWarning, ScanScenario
 from .api import (
@@ -29,8 +30,6 @@ from .api import (
     scan_job,
     uav_job,
 )
-from ..geo.area import AreaSpec
-from ..geo.layout import Area, FlightLayout
 from .archive import archive_film
 from .file import Project, ReportMeta
 from .flightplan import LayoutOptions, area_from_options, film_layout, layout_warnings
