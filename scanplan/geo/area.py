@@ -151,10 +151,19 @@ def load_area(spec: AreaSpec) -> Area | None:
         in_crs = file_crs or user_crs or pyproj.CRS.from_epsg(4326)
     else:
         geom = _inline(spec.polygon)
+        file_crs = None
         where = "inline polygon"
         in_crs = user_crs or pyproj.CRS.from_epsg(4326)
     field = where if spec.file is not None else "polygon"
-    _check_input_geometry(geom, in_crs, field)
+    assumed = spec.file is not None and file_crs is None and user_crs is None
+    try:
+        _check_input_geometry(geom, in_crs, field)
+    except InputError as exc:
+        if assumed and ("latitude" in exc.message or "longitude" in exc.message):
+            raise InputError(exc.field, exc.message + "; the file declares no CRS, so WGS 84 "
+                             "lon/lat was assumed: give [area] crs, e.g. \"EPSG:28407\""
+                             ) from None
+        raise
     plan = _plan_crs(spec.plan_crs, in_crs, geom)
     return _project(geom, in_crs, plan, where, field)
 
