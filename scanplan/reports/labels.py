@@ -251,6 +251,7 @@ LABELS: dict[str, dict[str, str]] = {
         "pdf_trigger_min": "camera minimum",
         "pdf_overlap_at": "Forward overlap at {lo} / {hi} m, %",
         "pdf_strips": "Strips × photos per strip = photos",
+        "pdf_strips_photos": "Strips / photos",
         "pdf_flight_length": "Flight length, km / time, min",
         "pdf_data_volume": "Data volume, uncompressed, GB",
         "pdf_recognition": "Recognition probability of the norm objects, P = exp(−(B·L/L_obj)²)",
@@ -589,6 +590,7 @@ LABELS: dict[str, dict[str, str]] = {
         "pdf_trigger_min": "минимум камеры",
         "pdf_overlap_at": "Продольное перекрытие на {lo} / {hi} м, %",
         "pdf_strips": "Маршрутов × снимков в маршруте = снимков",
+        "pdf_strips_photos": "Маршрутов / снимков",
         "pdf_flight_length": "Длина маршрутов, км / время, мин",
         "pdf_data_volume": "Объём данных без сжатия, ГБ",
         "pdf_recognition": "Вероятность распознавания объектов по нормативам, P = "
