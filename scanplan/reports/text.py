@@ -425,11 +425,24 @@ _AREA_TEXT = {
 }
 
 
+def area_source(area: Any, locale: str = "en") -> str:
+    """Where the area comes from, in ``locale``: the file and feature, an inline polygon, or
+    the rectangle."""
+    if locale != "ru":
+        return area.source
+    if area.source_file:
+        return (f"{area.source_file}, объект «{area.source_feature}»"
+                + (f" слоя «{area.source_layer}»" if area.source_layer else ""))
+    if not area.georeferenced:
+        return area.source.replace("rectangle", "прямоугольник").replace(" m", " м")
+    return "полигон, заданный в файле проекта"
+
+
 def format_area(area: Any, locale: str = "en") -> str:
     """One line: where the area comes from, its size, perimeter and planning CRS."""
     T = _AREA_TEXT[locale]
     crs = f", {area.plan_crs_name}" if area.plan_crs_name else ""
-    return (f"{T['area']}: {area.source} — {_n(area.area_km2, 2, locale, True)} {T['km2']}, "
+    return (f"{T['area']}: {area_source(area, locale)} — {_n(area.area_km2, 2, locale, True)} {T['km2']}, "
             f"{T['perimeter']} {_n(area.perimeter_km, 1, locale, True)} {T['km']}{crs}")
 
 
