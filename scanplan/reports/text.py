@@ -443,7 +443,8 @@ def format_area(area: Any, locale: str = "en") -> str:
     T = _AREA_TEXT[locale]
     crs = f", {area.plan_crs_name}" if area.plan_crs_name else ""
     return (f"{T['area']}: {area_source(area, locale)} — "
-            f"{_n(area.area_km2, 2, locale, True)} {T['km2']}, {T['perimeter']} {_n(area.perimeter_km, 1, locale, True)} {T['km']}{crs}")
+            f"{_n(area.area_km2, 2, locale, True)} {T['km2']}, {T['perimeter']} "
+            f"{_n(area.perimeter_km, 1, locale, True)} {T['km']}{crs}")
 
 
 def format_layout(layout: Any, scale: str = "", locale: str = "en") -> str:
