@@ -5,6 +5,7 @@ names the file, the feature, what is wrong and what is allowed."""
 from __future__ import annotations
 
 import io
+import os
 import zipfile
 from pathlib import Path
 
@@ -255,3 +256,19 @@ def test_google_earth_kml_with_folders_and_pins(tmp_path):
         encoding="utf-8")
     a = load_area(AreaSpec(file=f))
     assert "Block A" in a.source and a.area_km2 > 3
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="named pipes")
+def test_hostile_files_are_refused_before_gdal_opens_them(tmp_path):
+    """A FIFO or a device as the file or as a Shapefile's companion: refused, never read."""
+    os.mkfifo(tmp_path / "pipe.geojson")
+    e = _err(AreaSpec(file=tmp_path / "pipe.geojson"))
+    assert "FIFO" in e.message
+    f = _write(tmp_path / "b.shp", [shapely.Polygon(RING)], ["B"], "ESRI Shapefile")
+    (tmp_path / "b.cpg").unlink(missing_ok=True)
+    os.mkfifo(tmp_path / "b.cpg")
+    e = _err(AreaSpec(file=f))
+    assert "b.cpg is not a regular file" in e.message
+    (tmp_path / "z.kml").symlink_to("/dev/zero")
+    e = _err(AreaSpec(file=tmp_path / "z.kml"))
+    assert "not a regular file" in e.message

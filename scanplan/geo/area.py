@@ -310,7 +310,7 @@ def _listed(items: list[str], most: int = 10) -> str:
 
 
 def _gdal_text(exc: Exception) -> str:
-    text = " ".join(str(exc).split())
+    text = " ".join(str(exc).split()).split("; It might help")[0]
     return text[:300] or type(exc).__name__
 
 
@@ -332,6 +332,20 @@ def _check_size(path: Path, name: str) -> None:
     if st.st_size > MAX_FILE_BYTES:
         raise InputError(name, f"is {size_text(st.st_size)}; the limit is "
                          f"{size_text(MAX_FILE_BYTES)}")
+    # GDAL opens a Shapefile's sidecars (.dbf, .shx, .prj, .cpg) too: none may be a pipe or
+    # a device (a read that never ends)
+    try:
+        siblings = [p for p in path.parent.iterdir()
+                    if p.stem.casefold() == path.stem.casefold() and p != path]
+    except OSError:
+        siblings = []
+    for sib in siblings[:100]:
+        try:
+            mode = sib.stat().st_mode
+        except OSError:
+            continue
+        if not (stat.S_ISREG(mode) or stat.S_ISDIR(mode)):
+            raise InputError(name, f"its companion file {sib.name} is not a regular file")
 
 
 def _kmz_document(data: bytes, name: str) -> bytes:
