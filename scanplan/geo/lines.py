@@ -42,7 +42,7 @@ The layout, in a frame rotated so that the flight direction is +v:
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
 import numpy as np
@@ -424,43 +424,10 @@ def plan_lines(
     if feasible and n_strips == 1 and spacing_m > width:
         feasible = False
         reason = Message("layout.single_strip", spacing=spacing_m, width=width)
-    # strips and photos in the original frame
-    theta = math.radians(direction)
-    cos_t, sin_t = math.cos(theta), math.sin(theta)
-
-    def to_xy(u: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        du, dv = u - origin[0], v - origin[1]
-        if direction == 0.0:
-            return u.astype(float), v.astype(float)
-        return origin[0] + du * cos_t + dv * sin_t, origin[1] - du * sin_t + dv * cos_t
-
-    forward = (np.arange(n_strips) % 2) == 0
-    start_v = np.where(forward, s_lo, s_hi)
-    end_v = np.where(forward, s_hi, s_lo)
-    sx, sy = to_xy(bands.u_m, start_v)
-    ex, ey = to_xy(bands.u_m, end_v)
-    # parts in flight order
-    pf = forward[p_strip]
-    order = np.lexsort((np.where(pf, first, -first), p_strip))
-    p_strip, first, last, n_per, pf = (a[order] for a in (p_strip, first, last, n_per, pf))
-    p_start = np.where(pf, first, last)
-    p_end = np.where(pf, last, first)
-    psx, psy = to_xy(bands.u_m[p_strip], p_start)
-    pex, pey = to_xy(bands.u_m[p_strip], p_end)
-    first_photo = np.r_[0, np.cumsum(photos_per_strip)[:-1]] + 1
-    segs = np.bincount(p_strip, minlength=n_strips)
-    parts_of: list[list[tuple[tuple[float, float], tuple[float, float]]]] = [
-        [] for _ in range(n_strips)]
-    for k in range(len(p_strip)):
-        parts_of[int(p_strip[k])].append(((float(psx[k]), float(psy[k])),
-                                          (float(pex[k]), float(pey[k]))))
-    strips = tuple(
-        Strip(number=i + 1, start_xy_m=(float(sx[i]), float(sy[i])),
-              end_xy_m=(float(ex[i]), float(ey[i])), length_m=float(strip_len[i]),
-              photos=int(photos_per_strip[i]), first_photo=int(first_photo[i]),
-              sortie=int(sortie_of[i]) + 1, segments=int(segs[i]),
-              parts=tuple(parts_of[i]))
-        for i in range(n_strips))
+    to_xy = _to_plan_xy(direction, origin)
+    strips, (p_strip, p_start, pf, n_per), first_photo = _strip_records(
+        bands.u_m, p_strip, first, last, n_per, s_lo, s_hi, photos_per_strip, sortie_of,
+        to_xy)
     sorties = _sortie_records(sortie_of, strip_len, conn, speed_ms)
     if n_photos <= MAX_PHOTO_CENTRES:
         photos = _photos(n_per, p_strip, p_start, pf, bands.u_m, first_photo, sortie_of,
@@ -472,6 +439,57 @@ def plan_lines(
     return FlightLayout(strips=strips, sorties=sorties, photos=photos, flight_length_m=length,
                         turn_length_m=turns, flight_time_s=time_s, feasible=feasible,
                         reason=reason, notes=notes, **common)
+
+
+def _to_plan_xy(direction: float, origin: tuple[float, float]) -> Callable[
+        [np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]:
+    """(u, v) of the rotated frame → (x, y) of the planning CRS (rotation by −direction
+    about ``origin``)."""
+    theta = math.radians(direction)
+    cos_t, sin_t = math.cos(theta), math.sin(theta)
+
+    def to_xy(u: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        if direction == 0.0:
+            return np.asarray(u, dtype=float), np.asarray(v, dtype=float)
+        du, dv = u - origin[0], v - origin[1]
+        return origin[0] + du * cos_t + dv * sin_t, origin[1] - du * sin_t + dv * cos_t
+
+    return to_xy
+
+
+def _strip_records(u: np.ndarray, p_strip: np.ndarray, first: np.ndarray, last: np.ndarray,
+                   n_per: np.ndarray, s_lo: np.ndarray, s_hi: np.ndarray,
+                   photos_per_strip: np.ndarray, sortie_of: np.ndarray,
+                   to_xy: Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]
+                   ) -> tuple[tuple[Strip, ...], tuple[np.ndarray, ...], np.ndarray]:
+    """The :class:`Strip` records (serpentine: strip 1 flown +v), the photographed parts in
+    flight order (strip, first exposure along v, forward?, photos) and each strip's first
+    photo number."""
+    n_strips = len(u)
+    forward = (np.arange(n_strips) % 2) == 0
+    sx, sy = to_xy(u, np.where(forward, s_lo, s_hi))
+    ex, ey = to_xy(u, np.where(forward, s_hi, s_lo))
+    pf = forward[p_strip]
+    order = np.lexsort((np.where(pf, first, -first), p_strip))
+    p_strip, first, last, n_per, pf = (a[order] for a in (p_strip, first, last, n_per, pf))
+    p_start = np.where(pf, first, last)
+    psx, psy = to_xy(u[p_strip], p_start)
+    pex, pey = to_xy(u[p_strip], np.where(pf, last, first))
+    first_photo = np.r_[0, np.cumsum(photos_per_strip)[:-1]] + 1
+    segs = np.bincount(p_strip, minlength=n_strips)
+    parts_of: list[list[tuple[tuple[float, float], tuple[float, float]]]] = [
+        [] for _ in range(n_strips)]
+    for k in range(len(p_strip)):
+        parts_of[int(p_strip[k])].append(((float(psx[k]), float(psy[k])),
+                                          (float(pex[k]), float(pey[k]))))
+    strips = tuple(
+        Strip(number=i + 1, start_xy_m=(float(sx[i]), float(sy[i])),
+              end_xy_m=(float(ex[i]), float(ey[i])), length_m=float(s_hi[i] - s_lo[i]),
+              photos=int(photos_per_strip[i]), first_photo=int(first_photo[i]),
+              sortie=int(sortie_of[i]) + 1, segments=int(segs[i]),
+              parts=tuple(parts_of[i]))
+        for i in range(n_strips))
+    return strips, (p_strip, p_start, pf, n_per), first_photo
 
 
 def _time_s(length_m: float, speed_ms: float | None) -> float | None:
