@@ -36,7 +36,8 @@ The layout, in a frame rotated so that the flight direction is +v:
   simplified outline).
 - **Sorties.** With ``max_flight_time_min`` the strips are grouped in flight order, each
   sortie taking strips while its strips and turns fit the time; the block is split between
-  strips.
+  strips, and a strip longer than a whole sortie is flown in pieces of whole photo bases,
+  each sortie resuming at the next exposure.
 """
 
 from __future__ import annotations
