@@ -11,7 +11,7 @@ from ..safeio import read_limited
 from . import limits as _limits
 from .cells import _fail
 from .grid import _Grid
-from .xlsx import _WIDEST_TABLE
+from .sheetscan import _WIDEST_TABLE
 
 
 def _decode_text(data: bytes, name: str = "the file") -> str:
