@@ -34,6 +34,7 @@ from .schema import TABLES
 
 _WIDEST_TABLE = max(len(t.columns) for t in TABLES.values())
 _REF = re.compile(r"([A-Z]{1,3})(\d{1,9})")
+_COLUMNS = {_col_letter(c): c for c in range(1, 703)}  # A..ZZ
 # Excel's built-in number formats that show a percentage (ECMA-376 part 1, 18.8.30)
 _BUILTIN_PERCENT = frozenset((9, 10))
 _MAIN_NS = "{http://schemas.openxmlformats.org/spreadsheetml/2006/main}"
@@ -108,9 +109,9 @@ class _SheetScan:
         self._parser: Any = None
         self._row = 0
         self._col = 0
-        self._pos: tuple[int, int] | None = None  # the open cell
-        self._filled = False  # the open cell has a value or a formula
-        self._error: list[str] | None = None  # the text of an open error cell
+        self._pos: tuple[int, int] | None = None  # the open cell, until it is counted
+        self._error_at: tuple[int, int] | None = None  # an open error cell
+        self._error: list[str] = []  # its text
 
     def feed(self, data: bytes) -> None:
         """Scan the next chunk of the part."""
@@ -124,7 +125,8 @@ class _SheetScan:
         """The part is complete (expat reports a truncated one)."""
         self.feed(b"")
         self._parser.Parse(b"", True)
-        self._end_cell()
+        if self._error_at is not None:
+            self._end_error()
 
     def parse(self, data: bytes) -> None:
         """Scan a whole part."""
@@ -132,56 +134,69 @@ class _SheetScan:
         self.close()
 
     def _start(self, tag: str, attrs: dict[str, str]) -> None:
-        tag = tag.rpartition(":")[2]
-        if tag == "c":
-            self._end_cell()
-            self._open_cell(attrs)
-        elif tag in ("v", "is"):
-            self._filled = True
-            if self._error is not None and tag == "v":
+        if ":" in tag:
+            tag = tag.rpartition(":")[2]
+        if tag == "v":
+            if self._pos is not None:
+                self._filled()
+            if self._error_at is not None:
                 self._parser.CharacterDataHandler = self._error.append
+        elif tag == "c":
+            if self._error_at is not None:
+                self._end_error()
+            self._open_cell(attrs)
+        elif tag == "is":
+            if self._pos is not None:
+                self._filled()
         elif tag == "f":
-            self._filled = True
             if self._pos is not None:
                 self.formulas.add(self._pos)
+                self._filled()
         elif tag == "row":
-            self._end_cell()
+            if self._error_at is not None:
+                self._end_error()
+            self._pos = None
             r = attrs.get("r")
             self._row = int(r) if r and r.isdigit() and len(r) < 10 else self._row + 1
             self._col = 0
         elif tag == "mergeCell":
-            self._end_cell()
             self._merge(attrs.get("ref", ""))
 
     def _open_cell(self, attrs: dict[str, str]) -> None:
         ref = attrs.get("r")
         m = _REF.fullmatch(ref) if ref else None
         if m:
-            self._col = _col_number(m.group(1))
+            letters = m.group(1)
+            col = _COLUMNS.get(letters)
+            self._col = col if col is not None else _col_number(letters)
             self._row = int(m.group(2))
         else:
             self._col += 1
-        self._pos = (self._row, self._col)
-        t = attrs.get("t", "n")
-        self._filled = t == "inlineStr"
-        self._error = [] if t == "e" else None
-        if t == "n" and self.percent_styles and attrs.get("s") in self.percent_styles:
-            self.percent.add(self._pos)
+        pos = self._pos = (self._row, self._col)
+        t = attrs.get("t")
+        if t is None or t == "n":
+            if self.percent_styles and attrs.get("s") in self.percent_styles:
+                self.percent.add(pos)
+        elif t == "inlineStr":
+            self._filled()
+        elif t == "e":
+            self._error_at = pos
+            self._error = []
 
-    def _end_cell(self) -> None:
-        """Count the cell just closed against the limits (refuse, and stop, past one)."""
+    def _end_error(self) -> None:
+        """Keep the text of the error cell just closed (``#DIV/0!``)."""
+        self._parser.CharacterDataHandler = None
+        text = "".join(self._error).strip()
+        if text and self._error_at is not None:
+            self.errors[self._error_at] = text[:64]
+        self._error_at = None
+
+    def _filled(self) -> None:
+        """The open cell holds a value (or a formula): count it against the limits
+        (refuse, and stop, past one)."""
         pos = self._pos
-        if pos is None:
-            return
-        self._pos = None
-        if self._error is not None:
-            self._parser.CharacterDataHandler = None
-            text = "".join(self._error).strip()
-            self._error = None
-            if text:
-                self.errors[pos] = text[:64]
-        if not self._filled:
-            return
+        assert pos is not None
+        self._pos = None  # counted once
         if pos[0] > self.max_rows:
             raise _Refused("rows", pos)
         if pos[1] > self.max_columns:
@@ -189,10 +204,12 @@ class _SheetScan:
         self.cells_left -= 1
         if self.cells_left < 0:
             raise _Refused("cells", pos)
-        rows, cols = max(self.extent[0], pos[0]), max(self.extent[1], pos[1])
-        if rows * cols > _limits.MAX_SHEET_AREA:
-            raise _Refused("area", pos)
-        self.extent = (rows, cols)
+        rows, cols = self.extent
+        if pos[0] > rows or pos[1] > cols:
+            rows, cols = max(rows, pos[0]), max(cols, pos[1])
+            if rows * cols > _limits.MAX_SHEET_AREA:
+                raise _Refused("area", pos)
+            self.extent = (rows, cols)
 
     def _merge(self, ref: str) -> None:
         try:
