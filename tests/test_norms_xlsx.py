@@ -249,3 +249,97 @@ def test_sparse_far_cells_are_kept_sparse(book, tmp_path):
     assert isinstance(row, norms_xlsx._SparseRow) and len(row) == 256
     assert row[255] == "note" and row[100] is None and row[0] == 1006.0
     assert len(read_norm_file(p).tables["objects"]) == 48
+
+
+# ---------------------------------------------------------------------------------------
+# The pre-scan's fast path (byte patterns) and its expat path agree
+# ---------------------------------------------------------------------------------------
+
+_CELLS = [
+    b'<c r="{c}{r}"><v>1</v></c>',
+    b'<c r="{c}{r}" t="s"><v>0</v></c>',
+    b'<c r="{c}{r}" t="inlineStr"><is><t>x</t></is></c>',
+    b'<c r="{c}{r}" s="3"/>',
+    b'<c r="{c}{r}" s="4"><v>0.6</v></c>',  # percent style
+    b'<c r="{c}{r}"></c>',
+    b"<c><v>2</v></c>",  # no reference
+    b'<c r="{c}{r}"><f>1+1</f><v></v></c>',
+    b'<c r="{c}{r}" t="e"><v>#N/A</v></c>',
+    b'<c r="{c}{r}">\n  <v>3</v>\n</c>',  # pretty-printed
+    b'<c r="{c}{r}" t=\'e\'><v>#REF!</v></c>',
+    b'<x:c r="{c}{r}"><x:v>4</x:v></x:c>',
+]
+
+
+def _random_sheet(rng) -> bytes:
+    rows = []
+    r = 0
+    kinds = _CELLS if rng.random() < 0.6 else [*_CELLS[:4], _CELLS[5]]  # else plain cells
+    for _ in range(rng.randint(0, 40)):
+        r += rng.choice((1, 1, 1, 2, 30))
+        cells = []
+        for c in sorted(rng.sample(range(1, 30), rng.randint(0, 6))):
+            letters = sheetscan._col_letter(c if rng.random() > 0.05 else 300).encode()
+            cells.append(rng.choice(kinds).replace(b"{c}", letters).replace(b"{r}", b"%d" % r))
+        head = b'<row r="%d">' % r if kinds is not _CELLS or rng.random() > 0.1 else b"<row>"
+        rows.append(head + b"".join(cells) + b"</row>")
+    tail = b""
+    if rng.random() < 0.3:
+        tail = b"<mergeCells>" + b'<mergeCell ref="A1:B2"/>' * rng.randint(1, 3) + b"</mergeCells>"
+    return (b'<?xml version="1.0"?>\n<worksheet xmlns="' + NS + b'" xmlns:x="' + NS
+            + b'"><sheetData>' + b"".join(rows) + b"</sheetData>" + tail + b"</worksheet>")
+
+
+def _outcome(data: bytes, fast: bool, cuts: list[int], max_rows: int, max_cells: int):
+    s = sheetscan._SheetScan({4}, max_rows, max_cells=max_cells, max_columns=200, fast=fast)
+    try:
+        start = 0
+        for cut in [*cuts, len(data)]:
+            s.feed(data[start:cut])
+            start = cut
+        s.close()
+    except sheetscan._Refused as exc:
+        return ("refused", exc.reason, exc.where)
+    return (s.extent, s.cells_left, s.formulas, s.errors, s.percent, s.merged)
+
+
+def test_fast_and_expat_scans_agree_on_random_sheets():
+    """Many random sheets of plain and unusual cells, each cut into random chunks: the
+    fast path (switching to expat where it must) gives what expat alone gives."""
+    import random
+
+    rng = random.Random(20261123)
+    switched = plain = 0
+    for _ in range(600):
+        data = _random_sheet(rng)
+        cuts = sorted(rng.sample(range(1, len(data)), min(len(data) - 1, rng.randint(0, 8))))
+        limits = (rng.choice((30, 200, 10**6)), rng.choice((15, 10**6)))
+        want = _outcome(data, False, cuts, *limits)
+        assert _outcome(data, True, cuts, *limits) == want, data
+        s = sheetscan._SheetScan({4}, 10**6, max_columns=10**6, max_cells=10**9)
+        s.feed(data)
+        switched += s._exact
+        plain += not s._exact
+    assert switched > 100 and plain > 100  # both paths were exercised
+
+
+def test_fast_path_takes_a_plain_sheet_without_expat_handlers(monkeypatch):
+    rows = b"".join(b'<row r="%d"><c r="A%d"><v>1</v></c><c r="B%d" t="s"><v>0</v></c>'
+                    b'<c r="C%d" s="2"/></row>' % (r, r, r, r) for r in range(1, 2000))
+    calls = []
+    monkeypatch.setattr(sheetscan._SheetScan, "_start", lambda self, *a: calls.append(a))
+    s = sheetscan._SheetScan(set(), 5000)
+    data = sheet_xml(rows)
+    for i in range(0, len(data), 1000):
+        s.feed(data[i:i + 1000])
+    assert not s._exact and calls == []
+    s.close()  # the last unfinished bit goes through expat
+    assert s.extent == (1999, 2) and s.cells_left == norms_limits.MAX_CELLS - 2 * 1999
+
+
+def test_a_row_without_reference_hands_the_right_row_to_expat():
+    """The fast path leaves the part to expat at the formula; the row before it has no
+    ``r``: the formula cell is in row 2 (one below), not row 1."""
+    rows = b'<row r="1"><c r="A1"><v>1</v></c></row><row><c><f>1</f></c></row>'
+    for fast in (True, False):
+        assert scan(rows, fast=fast).formulas == {(2, 1)}

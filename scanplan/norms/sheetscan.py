@@ -35,6 +35,20 @@ from .schema import TABLES
 _WIDEST_TABLE = max(len(t.columns) for t in TABLES.values())
 _REF = re.compile(r"([A-Z]{1,3})(\d{1,9})")
 _COLUMNS = {_col_letter(c): c for c in range(1, 703)}  # A..ZZ
+
+# The fast path (:meth:`_SheetScan._fast`): cells as Excel and openpyxl write them,
+# counted by byte patterns at C speed. Anything else switches the scan to expat for the
+# rest of the part. Every cell start tag must be one of the two plain forms.
+_ANY_CELL = re.compile(rb"<c[\s/>]")
+_FILLED_CELL = re.compile(rb'<c r="([A-Z]{1,3})([0-9]{1,9})"[^>/]*><(?:v|is)>')
+_EMPTY_CELL = re.compile(rb'<c r="[A-Z]{1,3}[0-9]{1,9}"[^>/]*(?:/>|></c>)')
+_ANY_ROW = re.compile(rb"<row[\s/>]")
+_ROW_WITH_R = re.compile(rb'<row r="[0-9]{1,9}"')
+# formulas, error cells, merged ranges, prefixed tags: the expat scan records them
+_UNUSUAL_BYTES = (b"<f", b't="e"', b"t='e'", b"<mergeCell")
+_PREFIXED_TAG = re.compile(rb"<[A-Za-z_][\w.-]*:")
+_LAST_TAG = re.compile(rb'<(?:c|row) r="([A-Z]{0,3})([0-9]{1,9})"')
+_MAX_CARRY = 4 << 20  # bytes of one unfinished cell the fast path holds before it gives up
 # Excel's built-in number formats that show a percentage (ECMA-376 part 1, 18.8.30)
 _BUILTIN_PERCENT = frozenset((9, 10))
 _MAIN_NS = "{http://schemas.openxmlformats.org/spreadsheetml/2006/main}"
@@ -75,6 +89,13 @@ class _SheetScan:
     positions follow the same rules as calamine's: a cell's ``r`` (``B7``), else one right
     of the previous cell; a row's ``r``, else one below the previous row.
 
+    Two ways to scan, one exact result: while the part holds only plain cells
+    (``<c r="B7" ...><v>`` or ``<is>``, or empty) and nothing to record, whole runs of
+    cells are counted with byte patterns (:meth:`_fast`); at the first run that holds
+    anything else, or would break a limit, the scan switches to expat with a handler per
+    start tag for the rest of the part (:meth:`_start`), which records it and names the
+    exact cell a limit refuses. expat parses every byte either way (DTDs refused).
+
     Attributes (1-based ``(row, column)`` positions)
     ------------------------------------------------
     formulas : set
@@ -87,6 +108,8 @@ class _SheetScan:
         The last row and the last column holding a value (0, 0 for none).
     cells_left : int
         ``max_cells`` less the filled cells seen (passed on to the next sheet).
+
+    ``fast=False`` scans with expat from the first byte (the tests compare the two).
     """
 
     def __init__(
@@ -96,8 +119,14 @@ class _SheetScan:
         *,
         max_columns: int | None = None,
         max_cells: int | None = None,
+        fast: bool = True,
     ) -> None:
         self.percent_styles = {str(i) for i in percent_styles}
+        self._percent_re = (
+            re.compile(rb"""\ss=["'](?:%s)["']""" % b"|".join(b"%d" % i for i in percent_styles))
+            if percent_styles
+            else None
+        )
         self.max_rows = max_rows
         self.max_columns = _limits.MAX_COLUMNS if max_columns is None else max_columns
         self.cells_left = _limits.MAX_CELLS if max_cells is None else max_cells
@@ -112,21 +141,82 @@ class _SheetScan:
         self._pos: tuple[int, int] | None = None  # the open cell, until it is counted
         self._error_at: tuple[int, int] | None = None  # an open error cell
         self._error: list[str] = []  # its text
+        self._exact = not fast  # expat handlers on (for the rest of the part)
+        self._carry = b""  # the fast path's unfinished tail
 
     def feed(self, data: bytes) -> None:
         """Scan the next chunk of the part."""
         if self._parser is None:
             self._parser = _dtd_refusing_parser()
             self._parser.buffer_text = True
-            self._parser.StartElementHandler = self._start
-        self._parser.Parse(data, False)
+            if self._exact:
+                self._go_exact()
+        if self._exact:
+            self._parser.Parse(data, False)
+            return
+        buf = self._carry + data if self._carry else data
+        cut = buf.rfind(b"<c")  # the last cell may be unfinished: keep it for the next chunk
+        if cut < 0:
+            cut = buf.rfind(b"<")
+        if cut < 0:
+            cut = len(buf)
+        if len(buf) - cut > _MAX_CARRY or not self._fast(buf[:cut]):
+            self._carry = b""
+            self._go_exact()
+            self._parser.Parse(buf, False)
+            return
+        self._parser.Parse(buf[:cut], False)
+        self._carry = buf[cut:]
 
     def close(self) -> None:
         """The part is complete (expat reports a truncated one)."""
-        self.feed(b"")
+        if self._parser is None:
+            self.feed(b"")
+        if not self._exact:
+            carry, self._carry = self._carry, b""
+            self._go_exact()
+            self._parser.Parse(carry, False)
         self._parser.Parse(b"", True)
         if self._error_at is not None:
             self._end_error()
+
+    def _go_exact(self) -> None:
+        self._exact = True
+        self._parser.StartElementHandler = self._start
+
+    def _fast(self, part: bytes) -> bool:
+        """Count the complete cells of ``part`` if all are plain and within the limits;
+        False (nothing counted) when expat must scan it."""
+        if any(b in part for b in _UNUSUAL_BYTES) or _PREFIXED_TAG.search(part):
+            return False
+        if self._percent_re is not None and self._percent_re.search(part):
+            return False
+        refs = _FILLED_CELL.findall(part)
+        others = len(_ANY_CELL.findall(part)) - len(refs)
+        if others and others != len(_EMPTY_CELL.findall(part)):
+            return False
+        if len(_ANY_ROW.findall(part)) != len(_ROW_WITH_R.findall(part)):
+            return False
+        if refs:
+            rows = max(self.extent[0], max(int(d) for _, d in refs))
+            letters = {c for c, _ in refs}
+            cols = max(self.extent[1], *(_COLUMNS.get(c.decode()) or 16385 for c in letters))
+            if (
+                rows > self.max_rows
+                or cols > self.max_columns
+                or len(refs) > self.cells_left
+                or rows * cols > _limits.MAX_SHEET_AREA
+            ):
+                return False  # expat finds the cell and refuses it
+            self.cells_left -= len(refs)
+            self.extent = (rows, cols)
+        i = max(part.rfind(b'<c r="'), part.rfind(b'<row r="'))
+        m = _LAST_TAG.match(part, i) if i >= 0 else None
+        if m:  # where the next cell without a reference goes
+            self._row = int(m.group(2))
+            letters = m.group(1).decode()
+            self._col = _COLUMNS.get(letters) or _col_number(letters)
+        return True
 
     def parse(self, data: bytes) -> None:
         """Scan a whole part."""

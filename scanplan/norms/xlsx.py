@@ -223,7 +223,7 @@ def _stream_member(
                         "not a norm workbook",
                     )
                 window = tail + chunk
-                if _DOCTYPE.search(window):
+                if (b"<!" in window or b"<\x00!" in window) and _DOCTYPE.search(window):
                     raise _fail(
                         name,
                         f"{part} declares a DTD or XML entities (entity expansion, "
