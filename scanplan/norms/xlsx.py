@@ -34,8 +34,6 @@ from .sheetscan import (
     _workbook_sheets,
 )
 
-__all__ = ["_Refused", "_SheetScan", "_read_xlsx"]
-
 # "<!DOCTYPE" / "<!ENTITY" in UTF-8 (or any ASCII-compatible encoding) and in UTF-16 LE/BE
 _DOCTYPE = re.compile(
     rb"<!\s*(?:DOCTYPE|ENTITY)"
