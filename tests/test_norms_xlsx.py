@@ -343,3 +343,14 @@ def test_a_row_without_reference_hands_the_right_row_to_expat():
     rows = b'<row r="1"><c r="A1"><v>1</v></c></row><row><c><f>1</f></c></row>'
     for fast in (True, False):
         assert scan(rows, fast=fast).formulas == {(2, 1)}
+
+
+def test_sheet_area_refusal_names_the_cell(book, tmp_path, monkeypatch):
+    monkeypatch.setattr(norms_limits, "MAX_SHEET_AREA", 200)
+    rows = b'<row r="2"><c r="A2"><v>2000</v></c></row><row r="30"><c r="H30"><v>1</v></c></row>'
+    p = with_objects(book, tmp_path, _objects(rows))
+    with pytest.raises(NormImportError) as info:
+        read_norm_file(p)
+    msg = str(info.value)
+    assert "'objects'!H30" in msg and "spans more than 200 cells" in msg
+    assert "delete the cells far right of or below the table" in msg
