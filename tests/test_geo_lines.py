@@ -162,7 +162,9 @@ def test_footprints_cover_the_polygon_with_stereo(geom, direction, fwd, side, fa
     corners = shapely.get_coordinates(rects[0])
     fps = shapely.polygons(corners[None, :, :] + np.c_[lay.photos["x_m"],
                                                        lay.photos["y_m"]][:, None, :])
-    union = shapely.union_all(fps)
+    # snap-rounding overlay: at exactly 50 % overlap footprint edges coincide, and GEOS's
+    # floating overlay can leave false holes in the union
+    union = shapely.union_all(fps, grid_size=1e-6)
     assert geom.difference(union).area <= 1e-6 * geom.area
     rng = np.random.default_rng(0)
     x0, y0, x1, y1 = geom.bounds
