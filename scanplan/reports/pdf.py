@@ -24,7 +24,7 @@ are deterministic, so the same input gives a byte-identical PDF.
 
 from __future__ import annotations
 
-import base64
+import functools
 import math
 import mimetypes
 import os
@@ -49,9 +49,10 @@ from ..norms import NormSet
 from ..project.api import ScanJob, UavJob
 from ..rules.film import CONSTRAINTS, ScanPlan
 from ..rules.uav import UavPlan
-from . import ReportMeta, plots, report_datetime, templates_dir, write_atomic
-from .labels import LABELS, t
+from . import ReportMeta, templates_dir, write_atomic
+from .labels import LABELS
 from .references import Bibliography
+from .view import ReportView, build_view
 from .wording import (
     camera_title,
     display_message,
@@ -157,43 +158,38 @@ class BundledAssetFetcher(URLFetcher):  # type: ignore[misc]
 
 @dataclass(frozen=True)
 class _Fmt:
-    locale: str
-    bib: Bibliography  # the document's references, numbered as it cites them
-    platform: str = "uav"
+    """The view's labels and numbers plus this document's bibliography (its reference
+    numbers follow the order the PDF cites the works in)."""
+
+    view: ReportView
+    bib: Bibliography
+
+    @property
+    def locale(self) -> str:
+        return self.view.locale
 
     def cite(self, text: str) -> str:
         """``text`` with the works it names replaced by reference numbers."""
         return self.bib.cite(text)
 
     def label(self, key: str, **kw: Any) -> str:
-        text = t(key, self.locale, self.platform)
-        return text.format(**kw) if kw else text
+        return self.view.labels(key, **kw)
 
     def num(self, x: float | None, digits: int = 1) -> str:
-        if x is None or (isinstance(x, float) and not math.isfinite(x)):
-            return "—"
-        return plots.number(float(x), digits, self.locale)
+        return self.view.numbers.num(x, digits)
 
     def g(self, x: float | None) -> str:
         """Shortest form (like ``:g``) with the locale's decimal separator."""
-        if x is None or (isinstance(x, float) and not math.isfinite(x)):
-            return "—"
-        text = f"{float(x):g}"
-        if "e" in text:
-            return text
-        if abs(float(x)) >= 10000 and float(x).is_integer():
-            return self.num(x, 0)
-        return text.replace(".", ",") if self.locale == "ru" else text
+        return self.view.numbers.g(x)
 
     def scale(self, x: float) -> str:
-        return "1:" + (self.num(x, 0) if float(x).is_integer() else self.g(x))
+        return self.view.numbers.scale(x)
 
     def floor_scale(self, x: float) -> str:
-        return "1:" + self.num(math.floor(x), 0)
+        return self.view.numbers.floor_scale(x)
 
     def cname(self, cid: str) -> str:
-        info = CONSTRAINTS[cid]
-        return info.name_ru if self.locale == "ru" else info.name
+        return self.view.labels.constraint(cid)
 
 
 def _shorten(text: str, limit: int) -> str:
@@ -242,10 +238,6 @@ def _warnings(ws: Any, f: _Fmt, ns: NormSet | None = None) -> list[dict[str, str
                     "scales": scales,
                     "message": f.cite(display_message(w.message, ns, f.locale))})
     return out
-
-
-def _svg_uri(svg: str) -> str:
-    return "data:image/svg+xml;base64," + base64.b64encode(svg.encode("utf-8")).decode()
 
 
 # ---------------------------------------------------------------------------------------
@@ -337,7 +329,7 @@ def _scan_view(job: ScanJob, f: _Fmt) -> dict[str, Any]:
         "reach_interpretable": obj is not None and mci is not None,
         "warnings": _warnings(plan.warnings, f, ns), "formulas": formulas, "params": params,
         "norm": _norm_view(ns, f),
-        "plot": _svg_uri(plots.constraints_svg(plan, f.locale)),
+        "plot": f.view.plot_uri("constraints"),
     }
 
 
@@ -530,8 +522,8 @@ def _uav_view(job: UavJob, f: _Fmt) -> dict[str, Any]:
         "height_forms": height_forms,
         "warnings": _warnings(plan.warnings, f, ns), "formulas": formulas,
         "limit_formulas": limit_formulas, "norm": _norm_view(ns, f),
-        "plot_mtf": _svg_uri(plots.mtf_svg(plan, f.locale)),
-        "plot_height": _svg_uri(plots.height_svg(plan, f.locale)),
+        "plot_mtf": f.view.plot_uri("mtf"),
+        "plot_height": f.view.plot_uri("height"),
         "not_resolvable": not plan.resolvable,
     }
 
@@ -634,7 +626,9 @@ def _breakable(value: Any) -> Any:
     return value
 
 
+@functools.lru_cache(maxsize=1)
 def _environment() -> jinja2.Environment:
+    """The templates' environment (one per process: templates are compiled once)."""
     env = jinja2.Environment(
         loader=jinja2.FileSystemLoader(str(templates_dir())),
         autoescape=jinja2.select_autoescape(["html", "htm", "xml"], default=True,
@@ -645,7 +639,8 @@ def _environment() -> jinja2.Environment:
 
 
 def render_html(*, scan: ScanJob | None = None, uav: UavJob | None = None,
-                meta: ReportMeta = _DEFAULT_META, spec: PlanResult | None = None) -> str:
+                meta: ReportMeta = _DEFAULT_META, spec: PlanResult | None = None,
+                view: ReportView | None = None) -> str:
     """The report as an HTML document (what :func:`render_pdf` hands to WeasyPrint).
 
     Parameters
@@ -658,6 +653,9 @@ def render_html(*, scan: ScanJob | None = None, uav: UavJob | None = None,
         Title and approval block, locale.
     spec : PlanResult, optional
         The specification of ``scanplan plan`` (shown first, after the title block).
+    view : ReportView, optional
+        The result's view (:func:`scanplan.reports.view.build_view`), shared with the
+        workbook; when given, ``scan``, ``uav``, ``meta`` and ``spec`` are taken from it.
 
     Returns
     -------
@@ -669,13 +667,10 @@ def render_html(*, scan: ScanJob | None = None, uav: UavJob | None = None,
     ValueError
         If neither ``scan`` nor ``uav`` is given, or the locale is unknown.
     """
-    if scan is None and uav is None:
-        raise ValueError("give a scan plan, a UAV plan, or both")
-    if meta.locale not in ("en", "ru"):
-        raise ValueError(f"locale must be 'en' or 'ru' (got {meta.locale!r})")
-    f = _Fmt(meta.locale, Bibliography(meta.locale),
-             uav.plan.inputs.platform if uav is not None else "uav")
-    now = report_datetime()
+    view = _view(scan, uav, meta, spec, view)
+    scan, uav, meta, spec = view.scan, view.uav, view.meta, view.spec
+    f = _Fmt(view, Bibliography(view.locale))
+    now = view.when
     date = document_date(meta.date or now.date(), meta.locale)
     if scan is not None and uav is not None:
         title = f.label("pdf_title_plan")
@@ -710,6 +705,18 @@ def render_html(*, scan: ScanJob | None = None, uav: UavJob | None = None,
         "references": f.bib.entries(),
     }
     return _environment().get_template("report.html").render(**ctx)
+
+
+def _view(scan: ScanJob | None, uav: UavJob | None, meta: ReportMeta,
+          spec: PlanResult | None, view: ReportView | None) -> ReportView:
+    """The given view, or one built from the jobs (checked as the PDF needs them)."""
+    if view is not None:
+        return view
+    if scan is None and uav is None:
+        raise ValueError("give a scan plan, a UAV plan or both")
+    if meta.locale not in ("en", "ru"):
+        raise ValueError(f"locale must be 'en' or 'ru' (got {meta.locale!r})")
+    return build_view(scan=scan, uav=uav, meta=meta, spec=spec)
 
 
 def _warnings_box(scan_view: Any, uav_view: Any, spec: PlanResult | None,
@@ -753,7 +760,7 @@ class _Labels:
 def render_pdf(*, scan: ScanJob | None = None, uav: UavJob | None = None,
                meta: ReportMeta = _DEFAULT_META,
                url_fetcher: Callable[[str], Any] | None = None,
-               spec: PlanResult | None = None) -> bytes:
+               spec: PlanResult | None = None, view: ReportView | None = None) -> bytes:
     """Render the report to PDF bytes (A4; nothing is written).
 
     Parameters
@@ -769,13 +776,16 @@ def render_pdf(*, scan: ScanJob | None = None, uav: UavJob | None = None,
         For tests; default a fresh :class:`BundledAssetFetcher`.
     spec : PlanResult, optional
         The specification of ``scanplan plan``.
+    view : ReportView, optional
+        The result's view, shared with the workbook (then the arguments above but
+        ``url_fetcher`` are taken from it).
 
     Returns
     -------
     bytes
         The PDF. With ``SOURCE_DATE_EPOCH`` set, identical input gives identical bytes.
     """
-    html = render_html(scan=scan, uav=uav, meta=meta, spec=spec)
+    html = render_html(scan=scan, uav=uav, meta=meta, spec=spec, view=view)
     fetcher = url_fetcher if url_fetcher is not None else BundledAssetFetcher()
     base = templates_dir().resolve().as_uri() + "/"
     doc = weasyprint.HTML(string=html, base_url=base, url_fetcher=fetcher)

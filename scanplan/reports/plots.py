@@ -23,6 +23,7 @@ from matplotlib.ticker import FixedLocator, FuncFormatter, NullFormatter
 from ..rules.film import CONSTRAINTS, ScanPlan
 from ..rules.uav import UavPlan
 from .labels import t
+from .view import Numbers
 
 __all__ = ["constraints_svg", "height_svg", "mtf_svg", "number"]
 
@@ -49,7 +50,8 @@ _SIZE_IN = (6.6, 3.0)
 
 
 def number(x: float, digits: int, locale: str) -> str:
-    """``x`` with ``digits`` decimals, decimal comma in Russian, thin-space thousands.
+    """``x`` with ``digits`` decimals, decimal comma in Russian, thin-space thousands
+    (:meth:`scanplan.reports.view.Numbers.num`).
 
     Parameters
     ----------
@@ -66,20 +68,14 @@ def number(x: float, digits: int, locale: str) -> str:
         ``"12.5"`` / ``"12,5"``; ``"10,000"`` / ``"10 000"`` (no-break space); ``"—"`` for
         a non-finite value.
     """
-    if x is None or not math.isfinite(x):
-        return "—"
-    text = f"{x:,.{digits}f}"
-    if locale == "ru":
-        return text.replace(",", "\u00a0").replace(".", ",")
-    return text
+    return Numbers(locale).num(x, digits)
 
 
 def _tick(locale: str) -> FuncFormatter:
+    numbers = Numbers(locale)
+
     def fmt(x: float, _pos: int | None = None) -> str:
-        if float(x).is_integer():
-            return number(x, 0, locale)
-        text = f"{x:.6g}"
-        return text.replace(".", ",") if locale == "ru" else text
+        return numbers.tick(x)
     return FuncFormatter(fmt)
 
 
