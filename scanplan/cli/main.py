@@ -265,13 +265,17 @@ def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
         raise InputError("--pdf", f"{pdf!r} is the file --xlsx writes; give another name")
     check()
     extra = {"spec": spec} if spec is not None else {}
+    from ..reports.view import build_view
+
+    # one view of the result for both documents: labels, numbers and plots built once
+    view = build_view(scan=scan, uav=uav, meta=meta, spec=spec)
     files: dict[str, bytes] = {}
     for path, kind in wanted:
         if kind == "xlsx":
             from ..reports.excel import render_xlsx as render
         else:
             from ..reports.pdf import render_pdf as render
-        files[path] = render(scan=scan, uav=uav, meta=meta, **extra)
+        files[path] = render(scan=scan, uav=uav, meta=meta, view=view, **extra)
     write_atomic_many(files, check=check)
     for path in files:
         click.echo(f"wrote {path}{note}", err=True)

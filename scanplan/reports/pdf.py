@@ -39,6 +39,7 @@ from urllib.request import url2pathname
 import jinja2
 import weasyprint
 from markupsafe import Markup
+from weasyprint.text.fonts import FontConfiguration
 from weasyprint.urls import URLFetcher, URLFetcherResponse
 
 from .._version import __version__
@@ -787,9 +788,26 @@ def render_pdf(*, scan: ScanJob | None = None, uav: UavJob | None = None,
     """
     html = render_html(scan=scan, uav=uav, meta=meta, spec=spec, view=view)
     fetcher = url_fetcher if url_fetcher is not None else BundledAssetFetcher()
-    base = templates_dir().resolve().as_uri() + "/"
-    doc = weasyprint.HTML(string=html, base_url=base, url_fetcher=fetcher)
-    return doc.write_pdf(pdf_identifier=True)  # type: ignore[no-any-return]
+    root = templates_dir().resolve()
+    doc = weasyprint.HTML(string=html, base_url=root.as_uri() + "/", url_fetcher=fetcher)
+    # the process's fonts, ready from the last report; a caller's own fetcher (tests) gets
+    # fresh ones, so that it sees every file the document asks for
+    fonts = _font_config(str(root)) if url_fetcher is None else FontConfiguration()
+    return doc.write_pdf(pdf_identifier=True,  # type: ignore[no-any-return]
+                         font_config=fonts)
+
+
+@functools.lru_cache(maxsize=2)
+def _font_config(root: str) -> FontConfiguration:
+    """The fonts, ready for every PDF of this process (a batch renders many).
+
+    A :class:`weasyprint.text.fonts.FontConfiguration` loads fontconfig's list of the
+    system's fonts when made, and registers the bundled fonts of ``@font-face`` the first
+    time a document names them; one per templates folder ``root`` and process keeps both
+    (and WeasyPrint's per-font caches) from one report to the next.
+    """
+    del root  # the cache key: the bundled fonts of another folder get their own
+    return FontConfiguration()
 
 
 def write_pdf(path: str | os.PathLike[str], *, scan: ScanJob | None = None,
