@@ -50,6 +50,7 @@ BENCHMARKS: dict[str, str] = {
     "norms_import": "bench_norms_import",
     "reports": "bench_reports",
     "plan_batch": "bench_plan_batch",
+    "fast_reports": "bench_fast_reports",
 }
 
 RATIO_FOOTNOTE = (
