@@ -378,7 +378,8 @@ def _scan_table(plan: ScanPlan, scenarios: Any, f: _Fmt) -> dict[str, Any]:
     return {"header": header, "rows": rows, "summary": summary}
 
 
-def _uav_view(job: UavJob, f: _Fmt) -> dict[str, Any]:
+def _uav_inputs(job: UavJob, f: _Fmt) -> list[tuple[str, str]]:
+    """The UAV section's inputs: camera, heights, speed, overlaps, scene, map."""
     plan: UavPlan = job.plan
     inp, ns, h = plan.inputs, job.norm_set, plan.heights_m
     m = f.label("pdf_m")
@@ -418,7 +419,13 @@ def _uav_view(job: UavJob, f: _Fmt) -> dict[str, Any]:
                                               f"{_shape_name(ns, obj.shape, f.locale)}, "
                                               f"B = {f.g(obj.shape_coefficient)}"))
     inputs.append((f.label("norm_set"), _norm_view(ns, f)["title"]))
+    return inputs
 
+
+def _uav_results(plan: UavPlan, f: _Fmt) -> tuple[list[str], list[dict[str, Any]], str]:
+    """The result table's columns (the planned and the highest flown height), its rows
+    and the motion-blur sentence."""
+    inp, h = plan.inputs, plan.heights_m
     two = h["max"] != h["planned"]
     cols = [f.label("pdf_at_height", h=f.g(h["planned"]))]
     if two:
@@ -449,6 +456,12 @@ def _uav_view(job: UavJob, f: _Fmt) -> dict[str, Any]:
     blur = f.label("pdf_blur_limit", blur=f.g(MAX_BLUR_PX),
                    exposure=f"1/{math.ceil(1 / plan.max_exposure_s):d}",
                    speed=f.num(plan.max_speed_ms, 1))
+    return cols, results, blur
+
+
+def _uav_flight(plan: UavPlan, f: _Fmt) -> list[tuple[str, str]]:
+    """The flight geometry at the planned height."""
+    h = plan.heights_m
     fl = plan.flight
     flight = [
         (f.label("pdf_footprint"), f"{f.num(fl['footprint_across_m'], 0)} × "
@@ -473,12 +486,13 @@ def _uav_view(job: UavJob, f: _Fmt) -> dict[str, Any]:
             flight.append((f.label("pdf_data_volume"), f.num(fl["data_volume_bytes"] / 1e9, 1)))
             flight.append((f.label("data_volume_jpeg_gb"),
                            f.num(float(FL.jpeg_volume_bytes(fl["data_volume_bytes"])) / 1e9, 1)))
-    recognition = [{
-        "object": _object_name(ns, r.object, r.object_size_m, r.map_scale, f.locale),
-        "map": f.scale(r.map_scale) if r.map_scale else "—", "size": f.g(r.object_size_m),
-        "shape": _shape_name(ns, r.shape, f.locale), "p": f.num(r.probability, 2),
-        "p_max": f.num(r.probability_at_max_height, 2),
-        "p_corner": f.num(r.probability_corner_at_max_height, 2)} for r in plan.recognition]
+    return flight
+
+
+def _uav_limits(plan: UavPlan, f: _Fmt) -> dict[str, Any]:
+    """The constraints as maximum heights, the sentence on the binding one, the height
+    accuracy forms and the formulas."""
+    inp, h = plan.inputs, plan.heights_m
     limits = [{"id": lim.id, "name": f.cname(lim.id),
                "limit": f.num(lim.limit_m, 3 if lim.limit_m < 10 else 0),
                "compares": lim.compares, "max_height": f.num(lim.max_height_m, 0),
@@ -513,16 +527,30 @@ def _uav_view(job: UavJob, f: _Fmt) -> dict[str, Any]:
     limit_formulas = [{"id": lim.id, "name": f.cname(lim.id),
                        "equation": f.cite(localize(lim.equation, f.locale))}
                       for lim in plan.limits]
+    return {"limits": limits, "limits_title": limits_title, "max_sentence": max_sentence,
+            "height_forms": height_forms, "formulas": formulas,
+            "limit_formulas": limit_formulas}
+
+
+def _uav_view(job: UavJob, f: _Fmt) -> dict[str, Any]:
+    plan: UavPlan = job.plan
+    ns, h = job.norm_set, plan.heights_m
+    cols, results, blur = _uav_results(plan, f)
+    recognition = [{
+        "object": _object_name(ns, r.object, r.object_size_m, r.map_scale, f.locale),
+        "map": f.scale(r.map_scale) if r.map_scale else "—", "size": f.g(r.object_size_m),
+        "shape": _shape_name(ns, r.shape, f.locale), "p": f.num(r.probability, 2),
+        "p_max": f.num(r.probability_at_max_height, 2),
+        "p_corner": f.num(r.probability_corner_at_max_height, 2)} for r in plan.recognition]
     return {
-        "inputs": inputs, "cols": cols, "results": results, "blur": blur, "flight": flight,
+        "inputs": _uav_inputs(job, f), "cols": cols, "results": results, "blur": blur,
+        "flight": _uav_flight(plan, f),
         "recognition": recognition, "recognition_cols": [
             f.label("pdf_at_height", h=f.g(h["planned"])),
             f.label("pdf_at_height", h=f.g(h["max"])),
             f.label("pdf_corner_at", h=f.g(h["max"]))],
-        "limits": limits, "limits_title": limits_title, "max_sentence": max_sentence,
-        "height_forms": height_forms,
-        "warnings": _warnings(plan.warnings, f, ns), "formulas": formulas,
-        "limit_formulas": limit_formulas, "norm": _norm_view(ns, f),
+        **_uav_limits(plan, f),
+        "warnings": _warnings(plan.warnings, f, ns), "norm": _norm_view(ns, f),
         "plot_mtf": f.view.plot_uri("mtf"),
         "plot_height": f.view.plot_uri("height"),
         "not_resolvable": not plan.resolvable,
