@@ -154,7 +154,7 @@ class Labels:
     Examples
     --------
     >>> Labels("ru")("map_scale")
-    'Масштаб карты'
+    'Масштаб карты (плана)'
     >>> Labels("en").has("no such key")
     False
     """
