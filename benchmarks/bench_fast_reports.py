@@ -44,7 +44,8 @@ def _wall(argv: list[str]) -> float:
 
 def cold(runs: int) -> dict[str, float]:
     """Median wall times [s] of fresh processes: the plan with reports, without, bare."""
-    cli = [sys.executable, "-m", "scanplan.cli.main", "plan", str(PROJECT)]
+    cli = [sys.executable, "-c", "from scanplan.cli.main import main; main()", "plan",
+           str(PROJECT)]
     with tempfile.TemporaryDirectory() as out:
         _wall([*cli, "--out", out, "--force"])  # warm the OS file cache, not the process
         with_reports = [_wall([*cli, "--out", out, "--force"]) for _ in range(runs)]

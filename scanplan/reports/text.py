@@ -108,24 +108,7 @@ def format_scan_plan(plan: ScanPlan, norm_name: str = "", norm_title: str = "") 
             f"P ≥ {plan.rules.probability:g} on photos up to 1:{math.floor(mci):d} "
             f"(Mc/Mk ≤ {mci / inp.map_scale:.1f}) at R {inp.resolving_power_lpmm:g} lines/mm.",
             ""))
-    if plan.max_photo_scales:
-        lines.append("")
-        who = " and ".join(x for x in (f"scanner {inp.scanner}" if inp.scanner else "",
-                                       "--pixel-um" if inp.candidate_pixels_um else "") if x)
-        lines.append(f"Largest photo scale each scan pixel supports ({who}):")
-        both = plan.interpretation_limit_photo_scale is not None
-        rows = [["pixel µm", "largest photo scale", "limited by"]
-                + (["with the object interpretable"] if both else [])]
-        for r in plan.max_photo_scales:
-            if r.max_photo_scale > 0:
-                row = [f"{r.pixel_um:g}", f"1:{math.floor(r.max_photo_scale):d}", r.limit]
-            else:
-                row = [f"{r.pixel_um:g}", "none", "PR (pixel coarser than P_R)"]
-            if both:
-                mi = r.max_photo_scale_interpretable
-                row.append(f"1:{math.floor(mi):d}" if mi else "none")
-            rows.append(row)
-        lines.append(table(rows, align="rrlr" if both else "rrl"))
+    lines += _reach_lines(plan)
     if plan.warnings:
         lines.append("")
         lines.append("Warnings:")
@@ -182,6 +165,45 @@ def format_uav_plan(plan: UavPlan, norm_name: str = "") -> str:
     lines.append(table(rows, align="ll" + "r" * (len(rows[0]) - 2)))
     lines.append(f"blur ≤ 0.5 px needs exposure ≤ 1/{math.ceil(1 / plan.max_exposure_s):d} s "
                  f"or speed ≤ {plan.max_speed_ms:.1f} m/s")
+    lines += _flight_lines(plan)
+    lines += _recognition_lines(plan)
+    lines += _limit_lines(plan)
+    if plan.warnings:
+        lines += ["", "Warnings:"]
+        for w in plan.warnings:
+            lines.append(_wrap(f"{w.message} [{w.code}]", "  ! "))
+    return "\n".join(lines)
+
+
+def _reach_lines(plan: ScanPlan) -> list[str]:
+    """The largest photo scale each scan pixel supports (scanner steps, --pixel-um)."""
+    inp = plan.inputs
+    lines: list[str] = []
+    if plan.max_photo_scales:
+        lines.append("")
+        who = " and ".join(x for x in (f"scanner {inp.scanner}" if inp.scanner else "",
+                                       "--pixel-um" if inp.candidate_pixels_um else "") if x)
+        lines.append(f"Largest photo scale each scan pixel supports ({who}):")
+        both = plan.interpretation_limit_photo_scale is not None
+        rows = [["pixel µm", "largest photo scale", "limited by"]
+                + (["with the object interpretable"] if both else [])]
+        for r in plan.max_photo_scales:
+            if r.max_photo_scale > 0:
+                row = [f"{r.pixel_um:g}", f"1:{math.floor(r.max_photo_scale):d}", r.limit]
+            else:
+                row = [f"{r.pixel_um:g}", "none", "PR (pixel coarser than P_R)"]
+            if both:
+                mi = r.max_photo_scale_interpretable
+                row.append(f"1:{math.floor(mi):d}" if mi else "none")
+            rows.append(row)
+        lines.append(table(rows, align="rrlr" if both else "rrl"))
+    return lines
+
+
+def _flight_lines(plan: UavPlan) -> list[str]:
+    """The flight geometry at the planned height."""
+    h = plan.heights_m
+    lines: list[str] = []
     fl = plan.flight
     lines += ["", "Flight geometry (at the planned height):"]
     frows = [["footprint", f"{fl['footprint_across_m']:.0f} × {fl['footprint_along_m']:.0f} m"],
@@ -200,6 +222,13 @@ def format_uav_plan(plan: UavPlan, norm_name: str = "") -> str:
         if "data_volume_bytes" in fl:
             frows.append(["data volume", _volume(fl["data_volume_bytes"])])
     lines.append(table([[f"  {a}", b] for a, b in frows], align="ll"))
+    return lines
+
+
+def _recognition_lines(plan: UavPlan) -> list[str]:
+    """The recognition probability of the norm objects."""
+    h = plan.heights_m
+    lines: list[str] = []
     if plan.recognition:
         lines += ["", "Recognition probability of the norm objects (P = exp(−(B·L/L_obj)²)):"]
         rrows = [["  object", "map", "size m", "shape", f"{h['planned']:g} m",
@@ -210,6 +239,13 @@ def format_uav_plan(plan: UavPlan, norm_name: str = "") -> str:
                           _num(r.probability_at_max_height, 2),
                           _num(r.probability_corner_at_max_height, 2)])
         lines.append(table(rrows, align="llrlrrr"))
+    return lines
+
+
+def _limit_lines(plan: UavPlan) -> list[str]:
+    """The constraints as maximum planned heights, the binding one, height accuracy."""
+    inp, h = plan.inputs, plan.heights_m
+    lines: list[str] = []
     if plan.limits:
         tol = inp.height_tolerance_up_pct
         head = (f"Maximum planned height for map 1:{scale_value(inp.map_scale)}, relief "
@@ -238,11 +274,7 @@ def format_uav_plan(plan: UavPlan, norm_name: str = "") -> str:
                 f"Instruction {forms['instruction']['max_planned_height_m']:.0f} m, parallax "
                 f"(single-step base) {forms['parallax']['max_planned_height_m']:.0f} m "
                 f"[{acc['formula']} used].", ""))
-    if plan.warnings:
-        lines += ["", "Warnings:"]
-        for w in plan.warnings:
-            lines.append(_wrap(f"{w.message} [{w.code}]", "  ! "))
-    return "\n".join(lines)
+    return lines
 
 
 class _Terminal:
