@@ -40,10 +40,13 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from .. import ReportMeta, write_atomic
-from ..labels import t
+from ..labels import t as t  # re-exported: the sheets' labels
 from ..view import ReportView, build_view
 from .book import Book
-from .cells import _BINDING_FILL, MISSING, put_num, put_text
+from .cells import _BINDING_FILL as _BINDING_FILL  # re-exported: the binding highlight
+from .cells import MISSING as MISSING
+from .cells import put_num as put_num
+from .cells import put_text as put_text
 from .closing import norms_sheet, references_sheet, warnings_sheet
 from .film import constraints_sheet, sweep_sheet
 from .inputs import inputs_sheet
@@ -58,8 +61,6 @@ __all__ = ["SHEETS", "Book", "Sheet", "render_xlsx", "write_xlsx"]
 
 _DEFAULT_META = ReportMeta()
 _Book = Book  # the former name
-# re-exported for the tests and for other writers of workbooks
-_ = (_BINDING_FILL, MISSING, put_num, put_text, t)
 
 
 @dataclass(frozen=True)
