@@ -17,6 +17,7 @@ from collections.abc import Callable, Sequence
 from typing import Any
 
 import matplotlib
+from matplotlib.backends.backend_svg import FigureCanvasSVG
 from matplotlib.figure import Figure
 from matplotlib.ticker import FixedLocator, FuncFormatter, NullFormatter
 
@@ -93,7 +94,12 @@ def _nice_log_ticks(lo: float, hi: float) -> list[float]:
 def _svg(draw: Callable[[Figure], None]) -> str:
     with matplotlib.rc_context(_RC):
         fig = Figure(figsize=_SIZE_IN, layout="constrained")
+        FigureCanvasSVG(fig)  # the text is measured as the SVG writer sets it
         draw(fig)
+        # The constrained layout is computed once, here; savefig would otherwise draw the
+        # whole figure a first time (to an idle renderer) only to lay it out. Same bytes.
+        fig.get_layout_engine().execute(fig)
+        fig.set_layout_engine("none")
         buf = io.StringIO()
         fig.savefig(buf, format="svg", metadata={"Date": None, "Creator": None})
     # same glyphs and metrics: point the text at the bundled font, never a system one
