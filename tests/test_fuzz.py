@@ -910,7 +910,12 @@ def test_norm_xlsx_random_cells_never_crash(data):
     r = _validate("norms.xlsx", buf.getvalue())
     if r.exit_code == 2 and ws.title != "Sheet1" and isinstance(bad, str) \
             and bad in BAD_CELLS[column]:
-        assert f"{'ABCDE'[col]}{row + 2}" in r.output, (column, bad, r.output)
+        if column == "shape" and bad == "hexagon":
+            # a well-formed shape name is only unknown against a shapes table: the workbook
+            # has none, so the refusal names the missing table (the name may be defined there)
+            assert "no sheet for table 'shapes'" in r.output, r.output
+        else:
+            assert f"{'ABCDE'[col]}{row + 2}" in r.output, (column, bad, r.output)
 
 
 # ----------------------------------------------------------------------------------------
