@@ -118,11 +118,11 @@ def sun_windows(dates: Sequence[dt.date], lat_deg: float, lon_deg: float,
     if not dates:
         return ()
     offset = float(round(lon_deg / 15.0)) if utc_offset_h is None else float(utc_offset_h)
-    n = int(round(24 * 60 / step_min))
-    minutes = np.arange(n) * step_min
-    day0 = np.array([np.datetime64(d.isoformat(), "m") for d in dates])
-    local = day0[:, None] + minutes.astype("timedelta64[m]")[None, :]
-    utc = local - np.timedelta64(int(round(offset * 60)), "m")
+    n = round(24 * 60 / step_min)
+    seconds = np.round(np.arange(n) * step_min * 60.0).astype(np.int64)
+    day0 = np.array([np.datetime64(d.isoformat(), "s") for d in dates])
+    local = day0[:, None] + seconds.astype("timedelta64[s]")[None, :]
+    utc = local - np.timedelta64(round(offset * 3600), "s")
     elev = sun_elevation_deg(utc.ravel(), lat_deg, lon_deg).reshape(local.shape)
     out = []
     for i, d in enumerate(dates):

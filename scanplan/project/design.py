@@ -155,7 +155,7 @@ def _gsd_checks(project: Project, film: FilmSpec | None, uav: UavSpec | None
                                      False, row.source))
             warnings.append(PlanWarning(
                 "gsd_limit_film",
-                Message("gsd_limit.film", scale=s.photo_scale, pixel=pixel, ground=ground_cm,
+                Message("gsd_limit_film", scale=s.photo_scale, pixel=pixel, ground=ground_cm,
                         verdict=Message("gsd_limit.within" if ok else "gsd_limit.over"),
                         limit=row.max_gsd_cm, map=mk, area=Message(f"gsd_area.{row.area}")),
                 photo_scales=(s.photo_scale,), severity="info"))
@@ -189,7 +189,7 @@ def _block(project: Project, film: FilmSpec | None, uav: UavSpec | None
     warnings = []
     if check.split_needed:
         warnings.append(PlanWarning("block_split", Message(
-            "block.split", range=check.range_m, pct=check.range_pct, h=height,
+            "block_split", range=check.range_m, pct=check.range_pct, h=height,
             limit=check.limit_pct, relief=Message(f"relief.{relief}"), n=check.blocks,
             bands=[Message("block.band", lo=lo, hi=hi) for lo, hi in check.bands_m])))
     return check, ns.parameter_sources.get(pname, ""), warnings
@@ -257,14 +257,14 @@ def _sun(project: Project, film: FilmSpec | None, uav: UavSpec | None
     warnings: list[PlanWarning] = []
     if not any(w.hours > 0 for w in windows):
         warnings.append(PlanWarning("sun_no_window", Message(
-            "sun.none", elev=elev, start=start.isoformat(), end=end.isoformat(),
+            "sun_no_window", elev=elev, start=start.isoformat(), end=end.isoformat(),
             top=max(w.max_elevation_deg for w in windows))))
     elif flight_s:
         days = flying_days(windows, equal_sorties_s(float(flight_s), sortie * 60.0),
                            turn * 60.0)
         if days.days is None:
             warnings.append(PlanWarning("sun_dates_short", Message(
-                "sun.short", n=days.sorties, flown=sum(days.sorties_per_day),
+                "sun_dates_short", n=days.sorties, flown=sum(days.sorties_per_day),
                 start=start.isoformat(), end=end.isoformat())))
     return SunPlan(lat, lon, offset, elev, source, start, end, windows, sortie * 60.0,
                    turn * 60.0, float(flight_s) if flight_s else None, days), warnings
