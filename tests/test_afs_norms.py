@@ -270,3 +270,51 @@ def test_plan_reports_the_sun_window_and_flying_days(tmp_path):
                      ("start_date = 2025-06-01", 'start_date = "June"')):
         with pytest.raises(InputError, match=key.split(" ")[0]):
             plan_project(parse_project(text.replace(bad, key), tmp_path / "bad.toml"))
+
+
+# --- the survey design sheet («Технический проект АФС») ---------------------------------
+
+EXAMPLE = "uav-town-2000-afs.toml"
+
+
+@pytest.mark.parametrize("locale", ["ru", "en"])
+def test_survey_design_sheet_in_workbook_and_pdf(tmp_path, locale):
+    openpyxl = pytest.importorskip("openpyxl")
+    from pathlib import Path
+
+    src = Path(__file__).resolve().parent.parent / "examples" / EXAMPLE
+    path = tmp_path / "p.toml"
+    path.write_text(src.read_text(encoding="utf-8").replace('locale = "ru"',
+                                                             f'locale = "{locale}"'),
+                    encoding="utf-8")
+    res = CliRunner().invoke(main, ["plan", str(path), "--out", str(tmp_path)])
+    assert res.exit_code == 0, res.output
+    wb = openpyxl.load_workbook(tmp_path / "spec.xlsx")
+    name = "Технический проект АФС" if locale == "ru" else "Survey design"
+    assert wb.sheetnames[1] == name
+    ws = wb[name]
+    rows = {r[0]: (r[1], r[2]) for r in ws.iter_rows(min_row=2, values_only=True) if r[0]}
+    gsd_label = ("Размер пикселя на местности на наибольшей фактической высоте и предельный "
+                 "для масштаба плана" if locale == "ru" else
+                 "GSD at the highest flown height against the largest GSD of the plan scale")
+    value, norm = rows[gsd_label]
+    assert "14" in value and ("соответствует" if locale == "ru" else "complies") in value
+    # the norm is cited by its number in the list of references, with its table
+    assert ("табл. Б.1" if locale == "ru" else "Table B.1") in norm and norm.startswith("[")
+    refs = [r[1] for r in wb["Список литературы" if locale == "ru" else "References"]
+            .iter_rows(min_row=2, values_only=True)]
+    n = int(norm[1:norm.index("]")])
+    assert ("ГОСТ Р 59562-2021" if locale == "ru" else "GOST R 59562-2021") in refs[n - 1]
+    coords = "Система координат" if locale == "ru" else "Coordinate system"
+    assert rows[coords][0] == "МСК-50, зона 2"
+    days = "Лётные дни" if locale == "ru" else "Flying days needed"
+    assert rows[days][0].startswith("1 ")
+    # the PDF carries the same sheet, on its own page after the specification
+    pypdf = pytest.importorskip("pypdf")
+    pages = [" ".join(p.extract_text().split())
+             for p in pypdf.PdfReader(tmp_path / "spec.pdf").pages]
+    title = "Технический проект аэрофотосъёмки" if locale == "ru" else "Survey design"
+    (page,) = [p for p in pages if p.startswith(title) or f" {title} " in p[:200]]
+    assert ("МСК-50, зона 2" in page and "Балтийская" in page
+            and ("прил. Б, табл. Б.1" if locale == "ru" else "Appendix B, Table B.1") in page)
+    assert ("разделить на 3 части" if locale == "ru" else "split into 3 parts") in page

@@ -22,7 +22,7 @@ from .labels import t
 from .plots import number
 from .wording import camera_title, display_message, document_date
 
-__all__ = ["DesignView", "design_view", "write_design_sheet"]
+__all__ = ["DesignView", "design_text_lines", "design_view", "write_design_sheet"]
 
 GSD_TABLE = "GOST R 59562-2021, Appendix B, Table B.1"
 SPA = "Reda & Andreas 2004"
@@ -42,6 +42,8 @@ class DesignView:
 
     rows: list[tuple[str, str, str]]
     notes: list[str]
+    keys: list[str]
+    """The label key of each row (``design_gsd_digital``, ``design_sun_window`` …)."""
 
 
 class _W:
@@ -49,10 +51,17 @@ class _W:
 
     def __init__(self, locale: str, cite: Callable[[str], str], platform: str) -> None:
         self.loc, self.cite, self.platform = locale, cite, platform
+        self._keys: dict[str, str] = {}
 
     def t(self, key: str, **kw: Any) -> str:
         text = t(key, self.loc, self.platform)
-        return text.format(**kw) if kw else text
+        text = text.format(**kw) if kw else text
+        self._keys.setdefault(text, key)
+        return text
+
+    def key_of(self, label: str) -> str:
+        """The label key a row's quantity was worded from."""
+        return self._keys.get(label, "")
 
     def n(self, x: float | None, digits: int = 1) -> str:
         if x is None or not math.isfinite(float(x)):
@@ -102,7 +111,7 @@ def _gsd_row(design: Any, workflow: str, w: _W) -> tuple[str, str, str] | None:
         if g.workflow == workflow:
             verdict = w.t("design_complies" if g.complies else "design_exceeds")
             value = w.t("design_gsd_value", gsd=w.n(g.gsd_cm, 1), limit=w.n(g.limit_cm, 0),
-                        verdict=verdict)
+                        verdict=verdict, sign="≤" if g.complies else ">")
             norm = w.cite(GSD_TABLE) + (
                 "; " + w.t("design_dense_urban") if g.area == "dense_urban" else "")
             if workflow == "film":
@@ -259,7 +268,7 @@ def design_view(spec: Any, locale: str, cite: Callable[[str], str]) -> DesignVie
         rows += _film_rows(spec, w)
     rows += _block_rows(design, w) + _sun_rows(design, w) + _binding_rows(spec, w)
     notes = [w.msg(x.message) for x in design.warnings]
-    return DesignView(rows, notes)
+    return DesignView(rows, notes, [w.key_of(label) for label, _, _ in rows])
 
 
 def write_design_sheet(book: Any, spec: Any) -> None:
@@ -292,3 +301,23 @@ def write_design_sheet(book: Any, spec: Any) -> None:
             row += 1
             put_text(ws, row, 1, note, wrap=True)
             ws.merge_cells(start_row=row, start_column=1, end_row=row, end_column=3)
+
+
+TERMINAL_ROWS = ("design_gsd_digital", "design_gsd_film", "design_block", "design_sun_window",
+                 "design_sorties", "design_flying_days")
+"""The survey design rows the terminal summary shows."""
+
+
+def design_text_lines(spec: Any, locale: str) -> list[str]:
+    """The survey design's key figures for the terminal summary of ``scanplan plan``
+    (the GSD against Table Б.1, the one-height rule, the sun window, the flying days)."""
+    view = design_view(spec, locale, lambda text: text)
+    if view is None:
+        return []
+    rows = [(label, value) for (label, value, _), key in zip(view.rows, view.keys, strict=True)
+            if key in TERMINAL_ROWS]
+    if not rows:
+        return []
+    out = ["", t("design_title", locale) + ":"]
+    out += [f"  {label}: {value}" for label, value in rows]
+    return out

@@ -855,7 +855,7 @@ _DESIGN: dict[str, dict[str, str]] = {
                               "the plan scale",
         "design_gsd_film": "Scanned ground pixel (scan pixel × Mc) against the largest GSD "
                            "of the plan scale",
-        "design_gsd_value": "{gsd} cm ≤ {limit} cm: {verdict}",
+        "design_gsd_value": "{gsd} cm {sign} {limit} cm: {verdict}",
         "design_complies": "complies",
         "design_exceeds": "exceeds the table",
         "design_dense_urban": "towns with dense multi-storey buildings",
@@ -915,7 +915,7 @@ _DESIGN: dict[str, dict[str, str]] = {
                               "и предельный для масштаба плана",
         "design_gsd_film": "Размер пикселя скана на местности (пиксель × Mc) и предельный "
                            "для масштаба плана",
-        "design_gsd_value": "{gsd} см ≤ {limit} см: {verdict}",
+        "design_gsd_value": "{gsd} см {sign} {limit} см: {verdict}",
         "design_complies": "соответствует",
         "design_exceeds": "больше табличного",
         "design_dense_urban": "городские населённые пункты с многоэтажной и плотной застройкой",
