@@ -25,6 +25,7 @@ from ..core.blocks import RELIEF_CLASSES, BlockHeightCheck, block_height_check
 from ..errors import InputError
 from ..geo.sun import FlyingDays, SunWindow, equal_sorties_s, flying_days, sun_windows
 from ..messages import Message
+from ..norms.schema import GSD_AREAS
 from ..rules.results import PlanWarning
 from .file import Project
 
@@ -219,6 +220,14 @@ def _sun(project: Project, film: FilmSpec | None, uav: UavSpec | None
          ) -> tuple[SunPlan | None, list[PlanWarning]]:
     lat = _number_in(project, "site", "lat_deg", -90, 90, None, "°")
     lon = _number_in(project, "site", "lon_deg", -180, 180, None, "°")
+    offset = _number_in(project, "schedule", "utc_offset_h", -12, 14, None, "h")
+    elev = _number_in(project, "schedule", "min_sun_elevation_deg", 0, 89.9, None, "°")
+    platform = uav.job.plan.inputs.platform if uav is not None else "aircraft"
+    sortie_d, turn_d = SORTIE_DEFAULTS_MIN.get(platform, SORTIE_DEFAULTS_MIN["uav"])
+    sortie = _number_in(project, "schedule", "sortie_time_min", 0, 1440, sortie_d, "min",
+                        lo_open=True)
+    turn = _number_in(project, "schedule", "turnaround_min", 0, 1440, turn_d, "min")
+    assert sortie is not None and turn is not None
     start = _date(project, "start_date")
     if start is None or lat is None or lon is None:
         for key, value in (("lat_deg", lat), ("lon_deg", lon), ("start_date", start)):
@@ -235,21 +244,13 @@ def _sun(project: Project, film: FilmSpec | None, uav: UavSpec | None
     if (end - start).days + 1 > MAX_SCHEDULE_DAYS:
         raise InputError(_where(project, "schedule", "end_date"),
                          f"the schedule may span at most {MAX_SCHEDULE_DAYS} days")
-    offset = _number_in(project, "schedule", "utc_offset_h", -12, 14, None, "h")
     if offset is None:
         offset = float(round(lon / 15.0))
     ns = (uav.job.norm_set if uav is not None else film.job.norm_set)  # type: ignore[union-attr]
-    elev = _number_in(project, "schedule", "min_sun_elevation_deg", 0, 89.9, None, "°")
     source = "project"
     if elev is None:
         elev = float(ns.parameters["min_sun_elevation_deg"])
         source = ns.parameter_sources.get("min_sun_elevation_deg", "")
-    platform = uav.job.plan.inputs.platform if uav is not None else "aircraft"
-    sortie_d, turn_d = SORTIE_DEFAULTS_MIN.get(platform, SORTIE_DEFAULTS_MIN["uav"])
-    sortie = _number_in(project, "schedule", "sortie_time_min", 0, 1440, sortie_d, "min",
-                        lo_open=True)
-    turn = _number_in(project, "schedule", "turnaround_min", 0, 1440, turn_d, "min")
-    assert sortie is not None and turn is not None
     dates = [start + dt.timedelta(days=i) for i in range((end - start).days + 1)]
     windows = sun_windows(dates, lat, lon, elev, utc_offset_h=offset)
     flight_s = uav.job.plan.flight.get("flight_time_s") if uav is not None else None
@@ -287,6 +288,10 @@ def survey_design(project: Project, film: FilmSpec | None, uav: UavSpec | None
     InputError
         Naming the project key and its line for an out-of-range value.
     """
+    area = project.get("norms", "gsd_area")
+    if area is not None and area not in GSD_AREAS:
+        raise InputError(_where(project, "norms", "gsd_area"),
+                         f"must be one of {', '.join(GSD_AREAS)} (got {area!r})")
     gsd, w1 = _gsd_checks(project, film, uav)
     block, block_source, w2 = _block(project, film, uav)
     sun, w3 = _sun(project, film, uav)
