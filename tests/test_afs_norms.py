@@ -17,7 +17,7 @@ import pytest
 from click.testing import CliRunner
 
 from scanplan.cli.main import main
-from scanplan.core.blocks import block_height_check
+from scanplan.core.blocks import block_bands, block_height_check
 from scanplan.errors import InputError
 from scanplan.geo.sun import SunWindow, flying_days, sun_elevation_deg, sun_windows
 from scanplan.norms import load_norm_set
@@ -147,6 +147,17 @@ def test_block_rule_triggers_at_8_pct_and_not_at_6_pct_on_flat_terrain():
                                   ns.parameters["block_relief_hilly_pct"]).split_needed
     assert block_height_check(_dem(30.0), 200.0, "mountainous",
                               ns.parameters["block_relief_mountain_pct"]).blocks == 2
+
+
+def test_block_bands_say_where_a_dem_is_split():
+    dem = _dem(20.0)  # 40 m range at 200 m: flat limit 14 m → 3 sub-blocks
+    check = block_height_check(dem, 200.0, "flat", 7.0)
+    bands = block_bands(dem, check)
+    assert bands.shape == dem.shape and check.blocks == 3
+    assert set(np.unique(bands)) == {0, 1, 2}
+    for i in range(3):  # every sub-block can be flown at one height
+        z = dem[bands == i]
+        assert z.max() - z.min() <= check.allowed_range_m + 1e-9
 
 
 def test_block_rule_edges():

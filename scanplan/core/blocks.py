@@ -27,7 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-__all__ = ["RELIEF_CLASSES", "BlockHeightCheck", "block_height_check"]
+__all__ = ["RELIEF_CLASSES", "BlockHeightCheck", "block_bands", "block_height_check"]
 
 RELIEF_CLASSES = ("flat", "hilly", "mountainous")
 """Relief classes of §6.2.1: равнинная, всхолмлённая, горная местность."""
@@ -132,3 +132,29 @@ def block_height_check(ground_elevations_m: ArrayLike, flight_height_m: float,
     bands = tuple((lo + i * step, lo + (i + 1) * step if i < n - 1 else hi) for i in range(n))
     return BlockHeightCheck(relief_class, lim, h, lo, hi, rng, 100.0 * rng / h, allowed,
                             bool(over), n, bands, int(z.size))
+
+
+def block_bands(ground_elevations_m: ArrayLike, check: BlockHeightCheck) -> np.ndarray:
+    """Which sub-block each ground elevation belongs to: where the block is split.
+
+    Parameters
+    ----------
+    ground_elevations_m : array_like
+        Ground elevations [m], any shape (a DEM's cells: the result maps them to
+        sub-blocks).
+    check : BlockHeightCheck
+        The result of :func:`block_height_check` on the block.
+
+    Returns
+    -------
+    ndarray of int
+        The band index (0 = lowest ground) per elevation, same shape; −1 for NaN.
+
+    >>> c = block_height_check([100.0, 116.0], 100.0, "flat", 7.0)
+    >>> block_bands([100.0, 105.0, 109.0, 116.0, float("nan")], c).tolist()
+    [0, 0, 1, 2, -1]
+    """
+    z = np.asarray(ground_elevations_m, dtype=np.float64)
+    inner = np.array([hi for _, hi in check.bands_m[:-1]], dtype=np.float64)
+    out = np.digitize(z, inner, right=True).astype(np.int64)
+    return np.where(np.isfinite(z), out, -1)
