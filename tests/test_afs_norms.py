@@ -329,3 +329,33 @@ def test_survey_design_sheet_in_workbook_and_pdf(tmp_path, locale):
     assert ("МСК-50, зона 2" in page and "Балтийская" in page
             and ("прил. Б, табл. Б.1" if locale == "ru" else "Appendix B, Table B.1") in page)
     assert ("разделить на 3 части" if locale == "ru" else "split into 3 parts") in page
+
+
+@pytest.mark.parametrize("name", ["scanplan.core.blocks", "scanplan.geo.sun",
+                                  "scanplan.project.design", "scanplan.norms.store"])
+def test_doctests_of_the_new_modules(name):
+    import doctest
+    import importlib
+
+    result = doctest.testmod(importlib.import_module(name), verbose=False)
+    assert result.failed == 0 and result.attempted > 0
+
+
+def test_layout_gives_the_site_and_the_sorties_once_the_geography_lands():
+    """With a laid-out flight (geo.layout records) the sun window takes the area's centroid
+    and the layout's own sorties."""
+    import shapely
+
+    from scanplan.geo.layout import Area, FlightLayout, Photos, Sortie
+    from scanplan.project.design import layout_site, layout_sorties_s
+
+    area = Area(shapely.box(0, 0, 1000, 1000), "EPSG:32637", "inline polygon", True, 1.0, 4.0,
+                (37.62, 55.75))
+    layout = FlightLayout(area, 0.0, 50.0, 20.0, (), (Sortie(1, (1,), 9000.0, 1500.0),
+                                                     Sortie(2, (2,), 3000.0, 600.0)),
+                          Photos({}), 12000.0, 500.0, 2100.0)
+    assert layout_site(layout) == (55.75, 37.62)
+    assert layout_sorties_s(layout) == [1500.0, 600.0]
+    abstract = FlightLayout(Area(shapely.box(0, 0, 1, 1), "LOCAL", "rectangle", False, 1.0,
+                                 4.0), 0.0, 1.0, 1.0, (), (), Photos({}), 0.0, 0.0, None)
+    assert layout_site(abstract) is None and layout_sorties_s(abstract) is None

@@ -23,6 +23,7 @@ from typing import TYPE_CHECKING, Any
 
 from ..core.blocks import RELIEF_CLASSES, BlockHeightCheck, block_height_check
 from ..errors import InputError
+from ..geo.layout import FlightLayout
 from ..geo.sun import FlyingDays, SunWindow, equal_sorties_s, flying_days, sun_windows
 from ..messages import Message
 from ..norms.schema import GSD_AREAS
@@ -32,7 +33,16 @@ from .file import Project
 if TYPE_CHECKING:
     from .spec import FilmSpec, UavSpec
 
-__all__ = ["GsdCompliance", "SunPlan", "SurveyDesign", "survey_design"]
+__all__ = [
+    "GsdCompliance",
+    "SunPlan",
+    "SurveyDesign",
+    "design_dict",
+    "layout_of",
+    "layout_site",
+    "layout_sorties_s",
+    "survey_design",
+]
 
 DEFAULT_SCHEDULE_DAYS = 30
 """``[schedule] end_date`` defaults to this many days after the start."""
@@ -196,6 +206,35 @@ def _block(project: Project, film: FilmSpec | None, uav: UavSpec | None
     return check, ns.parameter_sources.get(pname, ""), warnings
 
 
+def layout_of(spec: FilmSpec | UavSpec | None) -> FlightLayout | None:
+    """The flight layout of a specification part, when the geography has laid one out
+    (``job.layout``); None for the abstract block."""
+    job = getattr(spec, "job", None)
+    return getattr(job, "layout", None)
+
+
+def layout_sorties_s(layout: FlightLayout | None) -> list[float] | None:
+    """The flight time of each sortie of a layout [s], or None (no layout, or no times).
+
+    >>> from scanplan.geo.layout import Sortie
+    >>> class L: sorties = (Sortie(1, (1, 2), 9000.0, 1500.0), Sortie(2, (3,), 4000.0, 700.0))
+    >>> layout_sorties_s(L())
+    [1500.0, 700.0]
+    """
+    if layout is None or not layout.sorties:
+        return None
+    times = [float(s.time_s) for s in layout.sorties if s.time_s]
+    return times or None
+
+
+def layout_site(layout: FlightLayout | None) -> tuple[float, float] | None:
+    """(lat, lon) of the area's centroid [°] when the layout is georeferenced, else None."""
+    if layout is None or not layout.area.georeferenced or layout.area.centroid_lonlat is None:
+        return None
+    lon, lat = layout.area.centroid_lonlat
+    return float(lat), float(lon)
+
+
 def _date(project: Project, key: str) -> dt.date | None:
     value = project.get("schedule", key)
     if value is None or isinstance(value, dt.date):
@@ -220,10 +259,15 @@ def _sun(project: Project, film: FilmSpec | None, uav: UavSpec | None
          ) -> tuple[SunPlan | None, list[PlanWarning]]:
     lat = _number_in(project, "site", "lat_deg", -90, 90, None, "°")
     lon = _number_in(project, "site", "lon_deg", -180, 180, None, "°")
+    layout = layout_of(uav) or layout_of(film)
+    centroid = layout_site(layout)
+    if lat is None and lon is None and centroid is not None:  # [area] polygon: its centroid
+        lat, lon = centroid
     offset = _number_in(project, "schedule", "utc_offset_h", -12, 14, None, "h")
     elev = _number_in(project, "schedule", "min_sun_elevation_deg", 0, 89.9, None, "°")
     platform = uav.job.plan.inputs.platform if uav is not None else "aircraft"
     sortie_d, turn_d = SORTIE_DEFAULTS_MIN.get(platform, SORTIE_DEFAULTS_MIN["uav"])
+    sortie_d = project.get("uav", "max_flight_time_min") or sortie_d  # the layout's endurance
     sortie = _number_in(project, "schedule", "sortie_time_min", 0, 1440, sortie_d, "min",
                         lo_open=True)
     turn = _number_in(project, "schedule", "turnaround_min", 0, 1440, turn_d, "min")
@@ -254,20 +298,23 @@ def _sun(project: Project, film: FilmSpec | None, uav: UavSpec | None
     dates = [start + dt.timedelta(days=i) for i in range((end - start).days + 1)]
     windows = sun_windows(dates, lat, lon, elev, utc_offset_h=offset)
     flight_s = uav.job.plan.flight.get("flight_time_s") if uav is not None else None
+    from_layout = layout_sorties_s(layout)
+    sortie_s = max(from_layout) if from_layout else sortie * 60.0
     days = None
     warnings: list[PlanWarning] = []
     if not any(w.hours > 0 for w in windows):
         warnings.append(PlanWarning("sun_no_window", Message(
             "sun_no_window", elev=elev, start=start.isoformat(), end=end.isoformat(),
             top=max(w.max_elevation_deg for w in windows))))
-    elif flight_s:
-        days = flying_days(windows, equal_sorties_s(float(flight_s), sortie * 60.0),
-                           turn * 60.0)
+    elif flight_s or from_layout:
+        # the layout's sorties when the geography has split the flight, else equal ones
+        sorties = from_layout or equal_sorties_s(float(flight_s), sortie_s)
+        days = flying_days(windows, sorties, turn * 60.0)
         if days.days is None:
             warnings.append(PlanWarning("sun_dates_short", Message(
                 "sun_dates_short", n=days.sorties, flown=sum(days.sorties_per_day),
                 start=start.isoformat(), end=end.isoformat())))
-    return SunPlan(lat, lon, offset, elev, source, start, end, windows, sortie * 60.0,
+    return SunPlan(lat, lon, offset, elev, source, start, end, windows, sortie_s,
                    turn * 60.0, float(flight_s) if flight_s else None, days), warnings
 
 

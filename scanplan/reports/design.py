@@ -97,8 +97,13 @@ def _project_rows(spec: Any, w: _W) -> list[tuple[str, str, str]]:
     rows.append((w.t("design_map"), w.t("design_map_value", scale=w.scale(p.get("map", "scale")),
                                         hc=w.n(p.get("map", "relief_interval_m"), 2)),
                  w.t("design_norm_contract")))
+    from ..project.design import layout_of
+
+    layout = layout_of(spec.uav) or layout_of(spec.film)
     width, length = p.get("area", "width_m"), p.get("area", "length_m")
-    if width and length:
+    if layout is not None:  # the contract polygon, once the geography lays it out
+        rows.append((w.t("design_area_km2"), w.n(layout.area.area_km2, 2), ""))
+    elif width and length:
         rows.append((w.t("design_area_km2"), w.n(width * length / 1e6, 2), ""))
     for key in ("coordinate_system", "height_system"):
         rows.append((w.t(f"design_{key}"), p.get("project", key) or "—",
