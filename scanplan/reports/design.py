@@ -22,7 +22,8 @@ from .labels import t
 from .plots import number
 from .wording import camera_title, display_message, document_date
 
-__all__ = ["DesignView", "design_text_lines", "design_view", "write_design_sheet"]
+__all__ = ["DesignView", "design_text_lines", "design_view", "write_design_sheet",
+           "write_gsd_limits"]
 
 GSD_TABLE = "GOST R 59562-2021, Appendix B, Table B.1"
 SPA = "Reda & Andreas 2004"
@@ -326,3 +327,23 @@ def design_text_lines(spec: Any, locale: str) -> list[str]:
     out = ["", t("design_title", locale) + ":"]
     out += [f"  {label}: {value}" for label, value in rows]
     return out
+
+
+def write_gsd_limits(book: Any, ws: Any, row: int, ns: Any) -> int:
+    """The norm set's table of the largest GSD per plan scale on the workbook's norms sheet
+    (nothing when the set has none); returns the next row."""
+    if not ns.gsd_limits:
+        return row
+    from .excel import SCALE, _header, put_num, put_text
+
+    row = book.section(ws, row + 1, book.t("xlsx_gsd_limits"))
+    _header(ws, row, [book.t("map_scale"), book.t("xlsx_gsd_area"), book.t("xlsx_max_gsd_cm"),
+                      book.t("source")])
+    row += 1
+    for g in ns.gsd_limits:
+        put_num(ws, row, 1, g.map_scale, SCALE)
+        put_text(ws, row, 2, localize(Message(f"gsd_area.{g.area}"), book.loc), wrap=True)
+        put_num(ws, row, 3, g.max_gsd_cm, "0.##")
+        put_text(ws, row, 4, book.bib.cite(g.source), wrap=True)
+        row += 1
+    return row

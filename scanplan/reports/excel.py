@@ -52,7 +52,7 @@ from ..core import flight as FL
 from ..core.mtf import component_label
 from ..rules.film import CONSTRAINTS, height_formula_name
 from . import ReportMeta, report_datetime, write_atomic
-from .design import write_design_sheet
+from .design import write_design_sheet, write_gsd_limits
 from .labels import LABELS, t
 from .references import Bibliography
 from .wording import (
@@ -1126,7 +1126,7 @@ class _Book:
             if is_used:
                 _mark(cells)
             row += 1
-        return row
+        return write_gsd_limits(self, ws, row, ns)
 
     def _warning_items(self, scan: ScanJob | None, uav: UavJob | None,
                        spec: PlanResult | None = None) -> list[tuple[str, PlanWarning, Any]]:

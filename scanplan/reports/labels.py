@@ -837,6 +837,9 @@ LABELS["ru"]["reach_interpretable"] = "Предельный масштаб сн�
 _DESIGN: dict[str, dict[str, str]] = {
     "en": {
         "design_title": "Survey design",
+        "xlsx_gsd_limits": "Largest GSD of the photos per plan scale",
+        "xlsx_gsd_area": "Territory",
+        "xlsx_max_gsd_cm": "Largest GSD, cm",
         "xlsx_sheet_design": "Survey design",
         "design_quantity": "Item",
         "design_value": "Design value",
@@ -897,6 +900,9 @@ _DESIGN: dict[str, dict[str, str]] = {
     },
     "ru": {
         "design_title": "Технический проект аэрофотосъёмки",
+        "xlsx_gsd_limits": "Предельный размер пикселя на местности для масштаба плана",
+        "xlsx_gsd_area": "Территория",
+        "xlsx_max_gsd_cm": "Размер пикселя на местности, не более, см",
         "xlsx_sheet_design": "Технический проект АФС",
         "design_quantity": "Показатель",
         "design_value": "Проектное значение",
