@@ -287,13 +287,14 @@ def write_design_sheet(book: Any, spec: Any) -> None:
     spec : PlanResult
         The specification.
     """
-    from .excel import _header, put_text
+    from .excel import put_text  # (the excel package re-exports it)
 
     view = design_view(spec, book.loc, book.bib.cite)
     if view is None:
         return
     ws = book.sheet("xlsx_sheet_design", landscape=True, widths=(46, 60, 50))
-    _header(ws, 1, [book.t("design_quantity"), book.t("design_value"), book.t("design_norm")])
+    for col, key in enumerate(("design_quantity", "design_value", "design_norm"), start=1):
+        put_text(ws, 1, col, book.t(key), bold=True)
     row = 2
     for label, value, norm in view.rows:
         put_text(ws, row, 1, label, wrap=True)
@@ -334,14 +335,15 @@ def write_gsd_limits(book: Any, ws: Any, row: int, ns: Any) -> int:
     (nothing when the set has none); returns the next row."""
     if not ns.gsd_limits:
         return row
-    from .excel import SCALE, _header, put_num, put_text
+    from .excel import put_num, put_text  # (the excel package re-exports them)
 
     row = book.section(ws, row + 1, book.t("xlsx_gsd_limits"))
-    _header(ws, row, [book.t("map_scale"), book.t("xlsx_gsd_area"), book.t("xlsx_max_gsd_cm"),
-                      book.t("source")])
+    for col, key in enumerate(("map_scale", "xlsx_gsd_area", "xlsx_max_gsd_cm", "source"),
+                              start=1):
+        put_text(ws, row, col, book.t(key), bold=True)
     row += 1
     for g in ns.gsd_limits:
-        put_num(ws, row, 1, g.map_scale, SCALE)
+        put_num(ws, row, 1, g.map_scale, '"1:"0')
         put_text(ws, row, 2, localize(Message(f"gsd_area.{g.area}"), book.loc), wrap=True)
         put_num(ws, row, 3, g.max_gsd_cm, "0.##")
         put_text(ws, row, 4, book.bib.cite(g.source), wrap=True)
