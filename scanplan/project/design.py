@@ -148,7 +148,8 @@ def _gsd_checks(project: Project, film: FilmSpec | None, uav: UavSpec | None
         if inp.gsd_limit_m is not None and inp.map_scale is not None:
             plan = uav.job.plan
             out.append(GsdCompliance(
-                "digital", int(inp.map_scale), inp.gsd_limit_area, inp.gsd_limit_m * 100.0,
+                "digital", int(inp.map_scale), inp.gsd_limit_area,
+                round(inp.gsd_limit_m * 100.0, 9),  # the table's cm, without float noise
                 plan.gsd_at_max_height_m * 100.0,
                 plan.gsd_at_max_height_m <= inp.gsd_limit_m * (1 + 1e-9),
                 plan.binding == "GL", inp.gsd_limit_source))
