@@ -52,6 +52,7 @@ from ..core import flight as FL
 from ..core.mtf import component_label
 from ..rules.film import CONSTRAINTS, height_formula_name
 from . import ReportMeta, report_datetime, write_atomic
+from .design import write_design_sheet, write_gsd_limits
 from .labels import LABELS, t
 from .references import Bibliography
 from .wording import (
@@ -146,6 +147,8 @@ def render_xlsx(
     if uav is not None:
         book.platform = uav.plan.inputs.platform
     book.summary(scan, uav, spec)
+    if spec is not None:
+        write_design_sheet(book, spec)
     book.inputs(scan, uav)
     if scan is not None:
         book.constraints(scan)
@@ -1123,7 +1126,7 @@ class _Book:
             if is_used:
                 _mark(cells)
             row += 1
-        return row
+        return write_gsd_limits(self, ws, row, ns)
 
     def _warning_items(self, scan: ScanJob | None, uav: UavJob | None,
                        spec: PlanResult | None = None) -> list[tuple[str, PlanWarning, Any]]:
