@@ -52,6 +52,7 @@ OPTION_NAMES = {
     "height_m": "--height-m",
     "max_height_m": "--max-height-m",
     "gsd_cm": "--gsd-cm",
+    "gsd_area": "--gsd-area",
     "speed_ms": "--speed-ms",
     "exposure_s": "--exposure-s",
     "side_overlap_pct": "--side-overlap-pct",
@@ -401,6 +402,10 @@ def scan(as_json: bool, bits_per_band: str, **kwargs: Any) -> None:
 @click.option("--max-height-m", type=float, callback=_finite,
               help="Altitude ceiling for the highest flown height above ground [m] "
               "(default: the norm set's, 150 m).")
+@click.option("--gsd-area", type=click.Choice(["general", "dense_urban"]),
+              help="Row of the largest GSD per plan scale (GOST R 59562-2021 Table B.1): "
+              "dense_urban = towns with dense multi-storey buildings, 14 cm at 1:2000 "
+              "(default general).")
 @click.option("--height-tolerance-pct", type=float, default=0.0, show_default=True,
               callback=_finite, help="How much higher the UAV may fly than planned [%] "
               "(seed 002: 300 m planned, 420 m flown = 40).")

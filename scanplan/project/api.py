@@ -21,7 +21,8 @@ from ..core.mtf import DEFAULT_HAZE_CONTRAST, DEFAULT_K0
 from ..errors import InputError
 from ..messages import Message
 from ..norms import DEFAULT_NORM_SET, MapObject, NormSet, load_norm_set, parse_scale
-from ..norms.schema import ORIENTATIONS, PARAMETERS
+from ..norms.schema import GSD_AREAS, ORIENTATIONS, PARAMETERS
+from ..norms.store import GsdLimit
 from ..rules.film import ObjectSpec, ScanInputs, ScanPlan, plan_scan
 from ..rules.uav import UavInputs, UavPlan, plan_uav
 
@@ -340,6 +341,7 @@ def uav_job(
     orientation: str | None = None,
     max_height_m: float | None = None,
     gsd_cm: float | None = None,
+    gsd_area: str | None = None,
 ) -> UavJob:
     """Plan a UAV flight (see :func:`scanplan.rules.uav.plan_uav`); names as the CLI options.
 
@@ -356,7 +358,8 @@ def uav_job(
     ``max_height_m`` is the altitude ceiling for the highest flown height (default for a
     UAV: the norm set's ``uav_max_height_m``; none for a camera on a manned aircraft, which
     flies 1,000–5,000 m under its own clearance); ``gsd_cm`` a target GSD the flight must
-    deliver.
+    deliver. ``gsd_area`` (``"general"``, the default, or ``"dense_urban"``) picks the row
+    of the norm set's GSD limits per plan scale (constraint GL, ГОСТ Р 59562-2021 Table Б.1).
     Without ``height_m`` the flight is planned at the maximum planned height, rounded
     down to :data:`HEIGHT_STEP_M` (needs a map scale or a target GSD).
     """
@@ -434,6 +437,7 @@ def uav_job(
         if map_obj is None and "PD" in rules.constraints:
             raise InputError("object_size_m", f"the norm set has no smallest object for map "
                              f"scale 1:{mk:g}; give the object size in m (> 0)")
+    gsd_row = _gsd_limit_row(ns, rules, mk, gsd_area)
     objects = [norm_object_spec(ns, o, shape) for o in recognition_rows(ns, mk)]
     if map_obj is not None and map_obj.map_scale is None:
         objects.insert(0, map_obj)
@@ -461,8 +465,21 @@ def uav_job(
         ceiling_m=float(max_height_m) if max_height_m is not None
         else None if aircraft else float(ns.parameters["uav_max_height_m"]),
         ceiling_from_project=max_height_m is not None,
-        gsd_target_m=gsd_cm / 100.0 if gsd_cm is not None else None)
+        gsd_target_m=gsd_cm / 100.0 if gsd_cm is not None else None,
+        gsd_limit_m=gsd_row.max_gsd_cm / 100.0 if gsd_row else None,
+        gsd_limit_area=gsd_row.area if gsd_row else "general",
+        gsd_limit_source=gsd_row.source if gsd_row else "")
     return UavJob(plan_uav(inputs, rules), ns)
+
+
+def _gsd_limit_row(ns: NormSet, rules: object, map_scale: float | None,
+                   area: str | None) -> GsdLimit | None:
+    """The norm set's GSD limit row for the map scale when the set switches GL on."""
+    if area is not None and area not in GSD_AREAS:
+        raise InputError("gsd_area", f"must be one of {', '.join(GSD_AREAS)} (got {area!r})")
+    if rules is None or map_scale is None or "GL" not in getattr(rules, "constraints", ()):
+        return None
+    return ns.gsd_limit(map_scale, area or "general")
 
 
 def _lens(ns: NormSet, camera: str | None, position: str

@@ -8,6 +8,7 @@ shared/spec/interface.md and docs/project-file.md.
 
 from __future__ import annotations
 
+import datetime as dt
 import math
 import os
 import re
@@ -47,6 +48,12 @@ KEYS: dict[str, dict[str, tuple[str, str]]] = {
         "agreed_position": ("str", "agreement block (customer): position"),
         "agreed_name": ("str", "agreement block (customer): name"),
         "agreed_organisation": ("str", "agreement block (customer): organisation"),
+        "purpose": ("str", "purpose of the survey (survey design sheet), e.g. \"topographic "
+                    "plan 1:2000 of the town of Lida\""),
+        "coordinate_system": ("str", "coordinate system of the product, as the contract names "
+                              "it, e.g. \"МСК-50\" or \"СК-2011\" (survey design sheet)"),
+        "height_system": ("str", "height system, e.g. \"Балтийская 1977 г.\" (survey design "
+                          "sheet)"),
     },
     "map": {
         "scale": ("scale", "map scale denominator Mk, 2000 or \"1:2000\" (required)"),
@@ -64,6 +71,9 @@ KEYS: dict[str, dict[str, tuple[str, str]]] = {
                           "table's for the map scale)"),
         "object_name": ("str", "name of the project's own object (with object_size_m); shown "
                         "in the reports as written"),
+        "gsd_area": ("str", '"general" or "dense_urban": the row of the largest GSD per plan '
+                     "scale (GOST R 59562-2021 Table B.1; dense_urban: towns with dense "
+                     'multi-storey buildings, 14 cm at 1:2000) (default "general")'),
     },
     "film": {
         "camera": ("str", "catalogue camera id (or focal_mm + frame_mm)"),
@@ -126,6 +136,29 @@ KEYS: dict[str, dict[str, tuple[str, str]]] = {
     "area": {
         "width_m": ("number", "block width across the flight lines [m]"),
         "length_m": ("number", "block length along the flight lines [m]"),
+    },
+    "terrain": {
+        "ground_elevation_m": ("range", "lowest and highest ground in the block, buildings "
+                               "included, [min, max] [m]: checked against the one-height rule "
+                               "of GOST R 59328-2021 §6.2.1"),
+        "relief_class": ("str", '"flat", "hilly" or "mountainous": the relief class of the '
+                         'one-height rule (default "flat")'),
+    },
+    "site": {
+        "lat_deg": ("number", "latitude of the site, WGS 84 [°], north positive (sun window)"),
+        "lon_deg": ("number", "longitude of the site, WGS 84 [°], east positive (sun window)"),
+    },
+    "schedule": {
+        "start_date": ("date", "first planned flying date, e.g. 2025-06-01"),
+        "end_date": ("date", "last planned flying date (default: 30 days after start_date)"),
+        "utc_offset_h": ("number", "local time = UTC + offset [h] (default: round(lon/15), the "
+                         "solar time zone)"),
+        "sortie_time_min": ("number", "flight time of one sortie (battery or fuel) [min] "
+                            "(default 25 for a UAV, 180 for an aircraft)"),
+        "turnaround_min": ("number", "ground time between sorties [min] (default 15 for a UAV, "
+                           "60 for an aircraft)"),
+        "min_sun_elevation_deg": ("number", "lowest sun elevation for photography [°] "
+                                  "(default: the norm set's, 30°)"),
     },
 }
 """Every key a project file may hold: the documented contract."""
@@ -241,6 +274,23 @@ def _check_type(kind: str, value: Any) -> str | None:
         bad = [v for v in value if isinstance(v, bool) or not isinstance(v, int | float | str)
                or (not isinstance(v, str) and not _finite(v))]
         return 'must be a list of finite scales like [5000, "1:10000"]' if bad else None
+    if kind == "range":
+        ok = (isinstance(value, list) and len(value) == 2
+              and all(isinstance(v, int | float) and not isinstance(v, bool) and _finite(v)
+                      for v in value))
+        if ok and value[0] > value[1]:
+            return "must be [lowest, highest]: the first value may not exceed the second"
+        return None if ok else "must be two finite numbers [lowest, highest], e.g. [120, 185]"
+    if kind == "date":
+        if isinstance(value, dt.date) and not isinstance(value, dt.datetime):
+            return None
+        if isinstance(value, str):
+            try:
+                dt.date.fromisoformat(value)
+                return None
+            except ValueError:
+                pass
+        return "must be a date YYYY-MM-DD, e.g. 2025-06-01"
     raise AssertionError(kind)
 
 

@@ -30,6 +30,7 @@ from .api import (
     uav_job,
 )
 from .archive import archive_film
+from .design import SurveyDesign, survey_design
 from .file import Project, ReportMeta
 
 __all__ = ["FilmSpec", "PlanResult", "UavSpec", "plan_project"]
@@ -63,7 +64,7 @@ _UAV_KEYS = {
     "area_width_m": "area.width_m", "area_length_m": "area.length_m",
     "roll_deg": "uav.roll_deg", "pitch_deg": "uav.pitch_deg",
     "max_height_m": "uav.max_height_m", "gsd_cm": "uav.gsd_cm",
-    "height_formula": "uav.height_formula",
+    "height_formula": "uav.height_formula", "gsd_area": "norms.gsd_area",
 }
 _NORM_KEYS = {"object_size_m": "norms.object_size_m", "shape": "norms.shape",
               "object_name": "norms.object_name",
@@ -118,6 +119,9 @@ class PlanResult:
     uav: UavSpec | None
     comparison: list[dict[str, Any]] = field(default_factory=list)
     warnings: tuple[PlanWarning, ...] = ()
+    design: SurveyDesign | None = None
+    """The survey design checks: GSD against ГОСТ Р 59562-2021 Table Б.1, the one-height
+    rule of a block, the sun window (:mod:`scanplan.project.design`)."""
 
 
 def _film(project: Project) -> FilmSpec:
@@ -232,6 +236,7 @@ def _uav_kwargs(project: Project, height_m: float) -> dict[str, Any]:
         probability=g("norms", "probability"),
         height_formula=g("uav", "height_formula"),
         max_height_m=g("uav", "max_height_m"), gsd_cm=g("uav", "gsd_cm"),
+        gsd_area=g("norms", "gsd_area"),
         r_max=g("uav.target", "r_max", 0.3), r_min=g("uav.target", "r_min", 0.1),
         threshold_k0=g("uav.atmosphere", "threshold_k0"),
         haze_contrast=g("uav.atmosphere", "haze_contrast"),
@@ -338,5 +343,7 @@ def plan_project(project: Project) -> PlanResult:
                 uav.recommended_height_m < uav.planned_height_m:
             warnings.append(PlanWarning("height_lowered", uav.reason))
     comparison = _comparison(film, uav) if film and uav else []
+    design = survey_design(project, film, uav)
+    warnings.extend(design.warnings)
     return PlanResult(project=project, meta=meta, film=film, uav=uav, comparison=comparison,
-                      warnings=tuple(warnings))
+                      warnings=tuple(warnings), design=design)

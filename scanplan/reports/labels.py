@@ -331,6 +331,13 @@ LABELS: dict[str, dict[str, str]] = {
         "param_image_measurement_px": "Parallax measurement error σ_px, px",
         "param_multi_ray": "Multi-ray improvement of the height error",
         "param_uav_max_height_m": "Altitude ceiling without an airspace-use permission, m",
+        "param_block_relief_flat_pct": "Ground height range of a block at one height, flat "
+                                       "terrain, % of the flight height",
+        "param_block_relief_hilly_pct": "Ground height range of a block at one height, hilly "
+                                        "terrain, % of the flight height",
+        "param_block_relief_mountain_pct": "Ground height range of a block at one height, "
+                                           "mountainous terrain, % of the flight height",
+        "param_min_sun_elevation_deg": "Lowest sun elevation for photography, °",
         "value_digital_height_formula_normal_case": "normal-case stereo (B/f)",
         "value_digital_height_formula_instruction": "as printed in the Instruction (f/b)",
         "value_digital_height_formula_parallax": "parallax form (b/f)",
@@ -673,6 +680,16 @@ LABELS: dict[str, dict[str, str]] = {
         "param_multi_ray": "Многолучевое уточнение ошибки высот",
         "param_uav_max_height_m": "Предельная высота полёта без разрешения на использование "
                                   "воздушного пространства, м",
+        "param_block_relief_flat_pct": "Перепад высот в пределах съёмочного участка при одной "
+                                       "высоте фотографирования, равнинная местность, % от "
+                                       "высоты",
+        "param_block_relief_hilly_pct": "Перепад высот в пределах съёмочного участка при одной "
+                                        "высоте фотографирования, всхолмлённая местность, % от "
+                                        "высоты",
+        "param_block_relief_mountain_pct": "Перепад высот в пределах съёмочного участка при "
+                                           "одной высоте фотографирования, горная местность, % "
+                                           "от высоты",
+        "param_min_sun_elevation_deg": "Наименьшая высота Солнца при аэрофотосъёмке, °",
         "value_digital_height_formula_normal_case": "нормальный случай стереосъёмки (B/f)",
         "value_digital_height_formula_instruction": "по Инструкции (f/b)",
         "value_digital_height_formula_parallax": "параллактическая (b/f)",
@@ -739,3 +756,8 @@ LABELS["en"]["reach_pixel"] = "Largest photo scale the pixel supports"
 LABELS["ru"]["reach_pixel"] = "Предельный масштаб снимков для пикселя"
 LABELS["en"]["reach_interpretable"] = "Largest photo scale with the map object interpretable"
 LABELS["ru"]["reach_interpretable"] = "Предельный масштаб снимков с дешифрированием объекта"
+
+from .labels_more import DESIGN as _DESIGN  # noqa: E402  (the survey design sheet)
+
+for _loc in LOCALES:
+    LABELS[_loc].update(_DESIGN[_loc])

@@ -1,6 +1,7 @@
 """More of the report label catalogue (:data:`scanplan.reports.labels.LABELS` merges
-these): the labels of documents fit to sign, and the words of the terminal summary of
-``scanplan plan`` (keys ``term_*``, :func:`scanplan.reports.text.format_plan_result`)."""
+these): the labels of documents fit to sign, the words of the terminal summary of
+``scanplan plan`` (keys ``term_*``, :func:`scanplan.reports.text.format_plan_result`) and
+the survey design sheet (:mod:`scanplan.reports.design`)."""
 
 from __future__ import annotations
 
@@ -203,5 +204,137 @@ TERMINAL: dict[str, dict[str, str]] = {
         "term_cmp_recognition": "вероятность распознавания",
         "term_cmp_frames": "снимков",
         "term_cmp_data_volume": "объём данных",
+    },
+}
+
+
+# The survey design sheet («Технический проект АФС», issue 18): scanplan.reports.design
+DESIGN: dict[str, dict[str, str]] = {
+    "en": {
+        "design_title": "Survey design",
+        "xlsx_gsd_limits": "Largest GSD of the photos per plan scale",
+        "xlsx_gsd_area": "Territory",
+        "xlsx_max_gsd_cm": "Largest GSD, cm",
+        "xlsx_sheet_design": "Survey design",
+        "design_quantity": "Item",
+        "design_value": "Design value",
+        "design_norm": "Norm it meets",
+        "design_notes": "Notes of the survey design",
+        "design_purpose": "Purpose of the survey",
+        "design_norm_contract": "the contract (terms of reference)",
+        "design_norm_project": "the project",
+        "design_map": "Plan scale, relief interval",
+        "design_map_value": "{scale}, h_c = {hc} m",
+        "design_area_km2": "Area, km²",
+        "design_coordinate_system": "Coordinate system",
+        "design_height_system": "Height system",
+        "design_gsd_planned": "GSD at the recommended height, cm",
+        "design_gsd_digital": "GSD at the highest flown height against the largest GSD of "
+                              "the plan scale",
+        "design_gsd_film": "Scanned ground pixel (scan pixel × Mc) against the largest GSD "
+                           "of the plan scale",
+        "design_gsd_value": "{gsd} cm {sign} {limit} cm: {verdict}",
+        "design_complies": "complies",
+        "design_exceeds": "exceeds the table",
+        "design_dense_urban": "towns with dense multi-storey buildings",
+        "design_information": "for information (the table is written for digital photos)",
+        "design_camera_value": "pixel {pixel} µm, focal length {focal} mm",
+        "design_film_camera_value": "focal length {focal} mm",
+        "design_film_height": "Flight height above ground (Mc × f), m",
+        "design_overlaps": "Forward / side overlap, %",
+        "design_overlaps_value": "{fwd} / {side}",
+        "design_strips_photos": "Strips, photos",
+        "design_strips_photos_value": "{strips} strips, {photos} photos",
+        "design_volume": "Data volume, GB",
+        "design_volume_value": "{raw} uncompressed, about {jpeg} as JPEG",
+        "design_block": "Ground height range of the block (one photographing height)",
+        "design_block_value": "{lo}–{hi} m, {pct} % of the flight height; allowed {limit} % "
+                              "({relief})",
+        "design_block_split": "split into {n} parts by ground height or fly following the "
+                              "terrain",
+        "design_block_one": "one height for the block",
+        "design_site": "Site (latitude, longitude)",
+        "design_site_value": "{lat}°, {lon}°",
+        "design_dates": "Planned flying dates",
+        "design_sun_window": "Sun at or above {elev}°",
+        "design_sun_value": "{date}: {span} local time (UTC{utc}); {lo}–{hi} h a day over "
+                            "the dates",
+        "design_sorties": "Sorties",
+        "design_sorties_value": "{n} of up to {sortie} min, {turn} min between them",
+        "design_flying_days": "Flying days needed",
+        "design_days_value": "{n} (the last on {last})",
+        "design_days_none": "more than the planned dates offer",
+        "design_weather": "sun windows only; flying weather not counted",
+        "design_binding": "Binding constraint of the flight height",
+        "design_binding_film": "Binding constraint of the scan pixel",
+        "pdf_warn_block_split": "Block to split by ground height",
+        "pdf_warn_sun_no_window": "No sun window on the planned dates",
+        "pdf_warn_sun_dates_short": "Planned dates too short for the sorties",
+        "pdf_warn_gsd_limit_film": "Scanned ground pixel against the largest GSD of the "
+                                   "plan scale",
+    },
+    "ru": {
+        "design_title": "Технический проект аэрофотосъёмки",
+        "xlsx_gsd_limits": "Предельный размер пикселя на местности для масштаба плана",
+        "xlsx_gsd_area": "Территория",
+        "xlsx_max_gsd_cm": "Размер пикселя на местности, не более, см",
+        "xlsx_sheet_design": "Технический проект АФС",
+        "design_quantity": "Показатель",
+        "design_value": "Проектное значение",
+        "design_norm": "Норматив",
+        "design_notes": "Примечания к проекту",
+        "design_purpose": "Назначение работ",
+        "design_norm_contract": "техническое задание",
+        "design_norm_project": "проект",
+        "design_map": "Масштаб плана, высота сечения рельефа",
+        "design_map_value": "{scale}, h_c = {hc} м",
+        "design_area_km2": "Площадь, км²",
+        "design_coordinate_system": "Система координат",
+        "design_height_system": "Система высот",
+        "design_gsd_planned": "Размер пикселя на местности на рекомендуемой высоте, см",
+        "design_gsd_digital": "Размер пикселя на местности на наибольшей фактической высоте "
+                              "и предельный для масштаба плана",
+        "design_gsd_film": "Размер пикселя скана на местности (пиксель × Mc) и предельный "
+                           "для масштаба плана",
+        "design_gsd_value": "{gsd} см {sign} {limit} см: {verdict}",
+        "design_complies": "соответствует",
+        "design_exceeds": "больше табличного",
+        "design_dense_urban": "городские населённые пункты с многоэтажной и плотной застройкой",
+        "design_information": "для сведения (таблица написана для цифровых снимков)",
+        "design_camera_value": "пиксель {pixel} мкм, фокусное расстояние {focal} мм",
+        "design_film_camera_value": "фокусное расстояние {focal} мм",
+        "design_film_height": "Высота фотографирования (Mc × f), м",
+        "design_overlaps": "Продольное / поперечное перекрытие, %",
+        "design_overlaps_value": "{fwd} / {side}",
+        "design_strips_photos": "Маршруты, снимки",
+        "design_strips_photos_value": "маршрутов: {strips}, снимков: {photos}",
+        "design_volume": "Объём данных, ГБ",
+        "design_volume_value": "{raw} без сжатия, около {jpeg} в JPEG",
+        "design_block": "Перепад высот съёмочного участка (одна высота фотографирования)",
+        "design_block_value": "{lo}–{hi} м, {pct} % высоты фотографирования; допустимо "
+                              "{limit} % (местность {relief})",
+        "design_block_split": "разделить на {n} части по высоте местности или снимать с "
+                              "огибанием рельефа",
+        "design_block_one": "одна высота на участок",
+        "design_site": "Район работ (широта, долгота)",
+        "design_site_value": "{lat}°, {lon}°",
+        "design_dates": "Сроки лётно-съёмочных работ",
+        "design_sun_window": "Высота Солнца не менее {elev}°",
+        "design_sun_value": "{date}: {span} местного времени (всемирное время {utc} ч); "
+                            "{lo}–{hi} ч в сутки за период",
+        "design_sorties": "Вылеты",
+        "design_sorties_value": "{n} продолжительностью до {sortie} мин, {turn} мин между "
+                                "вылетами",
+        "design_flying_days": "Лётные дни",
+        "design_days_value": "{n} (последний — {last})",
+        "design_days_none": "больше, чем дают запланированные сроки",
+        "design_weather": "только по высоте Солнца, без учёта погоды",
+        "design_binding": "Определяющее условие высоты полёта",
+        "design_binding_film": "Определяющее условие размера пикселя сканирования",
+        "pdf_warn_block_split": "Участок нужно разделить по высоте местности",
+        "pdf_warn_sun_no_window": "В запланированные сроки Солнце низко",
+        "pdf_warn_sun_dates_short": "Запланированных сроков не хватает на все вылеты",
+        "pdf_warn_gsd_limit_film": "Размер пикселя скана и предельный размер пикселя для "
+                                   "масштаба плана",
     },
 }

@@ -44,6 +44,7 @@ from .._version import __version__
 from ..messages import localize
 from ..project.api import ScanJob, UavJob
 from . import ReportMeta, templates_dir, write_atomic
+from .design import design_view
 from .labels import LABELS
 from .pdf_sections import (  # noqa: F401  (_object_name: tests)
     _comparison_view,
@@ -231,6 +232,7 @@ def render_html(*, scan: ScanJob | None = None, uav: UavJob | None = None,
     scan_view = _scan_view(scan, f) if scan is not None else None
     uav_view = _uav_view(uav, f) if uav is not None else None
     spec_view = _spec_view(spec, f) if spec is not None else None
+    design = design_view(spec, f.locale, f.cite) if spec is not None else None
     ctx = {
         "lang": meta.locale, "title": title, "meta": meta, "date": date,
         "running_project": _shorten(" ".join(meta.project.split()), _RUNNING_HEADER_CHARS),
@@ -245,6 +247,7 @@ def render_html(*, scan: ScanJob | None = None, uav: UavJob | None = None,
                        if scan is not None and uav is not None
                        and not (spec is not None and spec.comparison) else None),
         "spec": spec_view,
+        "design": design,
         "warnings_box": _warnings_box(scan_view, uav_view, spec, f),
         "references": f.bib.entries(),
     }

@@ -370,6 +370,10 @@ def format_plan_result(result: Any, locale: str | None = None) -> str:
             unit = {"m": T["m"], "GB": T["gb"]}.get(c["unit"], c["unit"])
             rows.append([f"  {q}", v(c["film"]), v(c["uav"]), unit])
         lines.append(table(rows, align="lrrl"))
+    from .design import design_text_lines
+
+    lines += [textwrap.fill(x.strip(), width=96, initial_indent="  ", subsequent_indent="    ")
+              if x.startswith("  ") else x for x in design_text_lines(result, loc)]
     if result.warnings:
         lines += ["", T["warnings"]]
         for w in result.warnings:

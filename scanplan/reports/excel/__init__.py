@@ -40,6 +40,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from .. import ReportMeta, write_atomic
+from ..design import write_design_sheet
 from ..labels import t as t  # re-exported: the sheets' labels
 from ..view import ReportView, build_view
 from .book import Book
@@ -86,6 +87,7 @@ class Sheet:
 #: The workbook's sheets in order.
 SHEETS: tuple[Sheet, ...] = (
     Sheet("summary", lambda b, v: summary_sheet(b, v.scan, v.uav, v.spec)),
+    Sheet("design", lambda b, v: write_design_sheet(b, v.spec), "spec"),
     Sheet("inputs", lambda b, v: inputs_sheet(b, v.scan, v.uav)),
     Sheet("constraints", lambda b, v: constraints_sheet(b, v.scan), "film"),
     Sheet("sweep", lambda b, v: sweep_sheet(b, v.scan, v.spec), "film"),

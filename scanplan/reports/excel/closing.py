@@ -21,6 +21,7 @@ if TYPE_CHECKING:
     from ...project.spec import PlanResult
     from ...rules.film import PlanWarning
 
+from ..design import write_gsd_limits
 from .book import Book
 from .cells import (
     _WARNING_FILL,
@@ -144,7 +145,7 @@ def _norm_set(book: Book, ws: Worksheet, row: int, ns: NormSet, objs: list[Any])
         if is_used:
             _mark(cells)
         row += 1
-    return row
+    return write_gsd_limits(book, ws, row, ns)
 
 
 def warnings_sheet(book: Book, scan: ScanJob | None, uav: UavJob | None,
