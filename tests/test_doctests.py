@@ -32,3 +32,9 @@ def test_every_public_function_has_an_example(family):
     assert public
     missing = [f.__name__ for f in public if "\n    Examples\n    --------\n" not in f.__doc__]
     assert not missing
+
+
+@pytest.mark.parametrize("name", ["scanplan.project.inputs"])
+def test_examples_of_the_project_layer_run(name):
+    result = doctest.testmod(importlib.import_module(name), optionflags=doctest.ELLIPSIS)
+    assert result.attempted and result.failed == 0, f"{result.failed} doctest(s) of {name}"

@@ -8,7 +8,6 @@ cell and the allowed range); 1 runtime failure (a message, never a traceback —
 from __future__ import annotations
 
 import json
-import math
 import os
 import sys
 import traceback
@@ -20,58 +19,11 @@ import click
 
 from .._version import __version__
 from ..errors import InputError, WriteError
+from ..project.inputs import option_names
+from .options import input_option
 
-# Python names of inputs → the option a user typed
-OPTION_NAMES = {
-    "map_scale": "--map-scale",
-    "photo_scale": "--photo-scale",
-    "relief_interval_m": "--relief",
-    "focal_mm": "--focal-mm",
-    "frame_mm": "--frame-mm",
-    "frame_width_mm": "--frame-mm",
-    "frame_along_mm": "--frame-mm",
-    "resolving_power_lpmm": "--resolving-power",
-    "forward_overlap_pct": "--overlap-pct",
-    "object_size_m": "--object-size-m",
-    "object_name": "--object-name",
-    "shape": "--shape",
-    "probability": "--probability",
-    "height_formula": "--height-formula",
-    "pr_coefficient": "--pr-coefficient",
-    "recognition_rounding": "--rounding",
-    "scanner": "--scanner",
-    "camera": "--camera",
-    "bands": "--bands",
-    "bits_per_band": "--bit-depth",
-    "pixel_um": "--pixel-um",
-    "sensor_mm": "--sensor-mm",
-    "sensor_width_mm": "--sensor-mm",
-    "sensor_height_mm": "--sensor-mm",
-    "f_number": "--f-number",
-    "orientation": "--orientation",
-    "height_m": "--height-m",
-    "max_height_m": "--max-height-m",
-    "gsd_cm": "--gsd-cm",
-    "speed_ms": "--speed-ms",
-    "exposure_s": "--exposure-s",
-    "side_overlap_pct": "--side-overlap-pct",
-    "height_tolerance_up_pct": "--height-tolerance-pct",
-    "r_min": "--r-min",
-    "r_max": "--r-max",
-    "k0": "--k0",
-    "threshold_k0": "--k0",
-    "haze_contrast": "--haze-contrast",
-    "shift_factor": "--shift-factor",
-    "roll_deg": "--roll-deg",
-    "pitch_deg": "--pitch-deg",
-    "area_width_m": "--area-m",
-    "area_length_m": "--area-m",
-    "area_m": "--area-m",
-    "random_speed_ms": "--random-speed-ms",
-    "roll_rate_rad_s": "--roll-rate",
-    "pitch_rate_rad_s": "--pitch-rate",
-    "yaw_rate_rad_s": "--yaw-rate",
-}
+OPTION_NAMES = option_names()
+"""Python names of inputs (error fields) → the option a user typed (the input registry's)."""
 
 
 class ScanplanGroup(click.Group):
@@ -109,24 +61,6 @@ def _failure_text(exc: Exception) -> str:
     return f"{type(exc).__name__}: {exc} (SCANPLAN_DEBUG=1 shows details)"
 
 
-class ScaleType(click.ParamType):
-    """A scale denominator: ``2000`` or ``1:2000``."""
-
-    name = "SCALE"
-
-    def convert(self, value: Any, param: click.Parameter | None, ctx: click.Context | None
-                ) -> float:
-        from ..norms import parse_scale
-
-        try:
-            return parse_scale(value, param.opts[0] if param else "scale")
-        except InputError as exc:
-            self.fail(exc.message, param, ctx)
-
-
-SCALE = ScaleType()
-
-
 def _echo_json(doc: Any) -> None:
     click.echo(json.dumps(doc, ensure_ascii=False, indent=2, allow_nan=False))
 
@@ -159,49 +93,14 @@ class _JsonStream:
         click.echo(out + "\n}")
 
 
-def _finite(ctx: click.Context, param: click.Parameter, value: float | None) -> float | None:
-    if value is not None and not math.isfinite(value):
-        raise click.BadParameter(f"must be a finite number (got {value})", ctx, param)
-    return value
-
-
-def _text(ctx: click.Context, param: click.Parameter, value: str) -> str:
-    """Report text from an option: the same rule as in a project file."""
-    from ..project.file import text_problem
-
-    problem = text_problem(value) if value else None
-    if problem:
-        raise click.BadParameter(problem, ctx, param)
-    return value
-
-
-def _text_or_none(ctx: click.Context, param: click.Parameter, value: str | None
-                  ) -> str | None:
-    return None if value is None else _text(ctx, param, value)
-
-
-def norm_options(f: Callable[..., Any]) -> Callable[..., Any]:
-    """The norm options shared by scan, uav and plan (spec/interface.md)."""
-    for opt in reversed([
-        click.option("--norms", default="gkinp-02-036-02", show_default=True,
-                     help="Norm set name or folder (scanplan norms list)."),
-        click.option("--object-size-m", type=float, callback=_finite,
-                     help="Size of the smallest object to interpret [m] (default: the norm "
-                     "table's for the map scale)."),
-        click.option("--shape", help="Object shape: circle|rectangle|angle|square|wall "
-                     "(norm table)."),
-        click.option("--object-name", callback=_text_or_none,
-                     help="Name of your own object (with --object-size-m), as the reports "
-                     "show it."),
-        click.option("--probability", type=float, callback=_finite,
-                     help="Required recognition probability, 0 < P < 1 (default 0.75)."),
-        click.option("--height-formula",
-                     type=click.Choice(["instruction", "parallax", "normal_case"]),
-                     help="Form of the height constraint P_Z (default: the norm set's; "
-                     "normal_case for digital cameras only)."),
-    ]):
-        f = opt(f)
-    return f
+def norm_options(command: str) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
+    """The norm options of ``command`` (scan or uav), from the input registry."""
+    def decorate(f: Callable[..., Any]) -> Callable[..., Any]:
+        for name in reversed(["norms", "object_size_m", "shape", "object_name", "probability",
+                              "height_formula"]):
+            f = input_option(command, name)(f)
+        return f
+    return decorate
 
 
 def report_options(f: Callable[..., Any]) -> Callable[..., Any]:
@@ -213,17 +112,8 @@ def report_options(f: Callable[..., Any]) -> Callable[..., Any]:
                      help="Write the PDF specification to this file (atomically)."),
         click.option("--force", is_flag=True, help="Replace an existing --xlsx/--pdf file "
                      "that scanplan did not write."),
-        click.option("--locale", type=click.Choice(["en", "ru"]), default="en",
-                     show_default=True, help="Language of the reports."),
-        click.option("--project-name", default="", callback=_text,
-                     help="Project name for the title block."),
-        click.option("--customer", default="", callback=_text,
-                     help="Customer for the title block."),
-        click.option("--contractor", default="", callback=_text,
-                     help="Contractor for the title block."),
-        click.option("--approver-position", default="", callback=_text,
-                     help="Approval block: position of the person who approves."),
-        click.option("--approver-name", default="", callback=_text, help="Approval block: name."),
+        *(input_option("uav", name) for name in ("locale", "name", "customer", "contractor",
+                                                  "approver_position", "approver_name")),
     ]):
         f = opt(f)
     return f
@@ -325,32 +215,24 @@ def main() -> None:
     """
 
 
+def _inputs(command: str, names: list[str], **per_name: dict[str, Any]
+            ) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
+    """The registry's options of ``command`` for ``names``, in that order."""
+    def decorate(f: Callable[..., Any]) -> Callable[..., Any]:
+        for name in reversed(names):
+            f = (norm_options(command) if name == "<norms>"
+                 else input_option(command, name, **per_name.get(name, {})))(f)
+        return f
+    return decorate
+
+
 @main.command()
-@click.option("--map-scale", type=SCALE, required=True, help="Map scale, 2000 or 1:2000.")
-@click.option("--relief", "relief_interval_m", type=float, required=True, callback=_finite,
-              help="Relief (contour) interval h_c [m].")
-@click.option("--photo-scale", "photo_scales", type=SCALE, multiple=True, required=True,
-              help="Photo scale; repeat for a sweep (like seed 001 Tables 6–9).")
-@click.option("--camera", help="Catalogue camera id (scanplan cameras list).")
-@click.option("--focal-mm", type=float, callback=_finite, help="Focal length [mm] (no --camera).")
-@click.option("--frame-mm", help="Frame WxH [mm], across × along track, e.g. 230x230.")
-@click.option("--resolving-power", "resolving_power_lpmm", type=float, callback=_finite,
-              help="Resolving power of the photos R [lines/mm] (default: the camera's).")
-@click.option("--overlap-pct", "forward_overlap_pct", type=float, callback=_finite,
-              help="Forward overlap [%] (default: the norm set's, 60).")
-@norm_options
-@click.option("--pr-coefficient", type=float, callback=_finite,
-              help="k_R in P_R = k_R/R (default 0.5; the Instruction prints 0.4).")
-@click.option("--rounding", "recognition_rounding", type=click.Choice(["exact", "paper"]),
-              help="sqrt(-ln P) exactly, or the paper's rounded 0.53.")
-@click.option("--scanner", help="Scanner id: round the pixel down to its steps.")
-@click.option("--pixel-um", "pixel_um", type=float, multiple=True, callback=lambda c, p, v: tuple(
-    _finite(c, p, x) for x in v), help="A scan pixel you have [µm]: show the largest photo "
-              "scale it supports (repeatable).")
-@click.option("--bands", type=click.IntRange(1, 16), default=1, show_default=True,
-              help="Bands per scanned frame (1 panchromatic, 3 colour).")
-@click.option("--bit-depth", "bits_per_band", type=click.Choice(["8", "16"]), default="8",
-              show_default=True, help="Bits per band.")
+@_inputs("scan", ["map_scale", "relief_interval_m", "photo_scales", "camera", "focal_mm",
+                  "frame_mm", "resolving_power_lpmm", "forward_overlap_pct", "<norms>",
+                  "pr_coefficient", "recognition_rounding", "scanner", "pixel_um", "bands",
+                  "bits_per_band"],
+         map_scale={"required": True}, relief_interval_m={"required": True},
+         photo_scales={"required": True})
 @report_options
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
 def scan(as_json: bool, bits_per_band: str, **kwargs: Any) -> None:
@@ -378,67 +260,15 @@ def scan(as_json: bool, bits_per_band: str, **kwargs: Any) -> None:
 
 
 @main.command()
-@click.option("--camera", help="Digital camera id (scanplan cameras list).")
-@click.option("--pixel-um", type=float, callback=_finite, help="Pixel pitch [µm] (no --camera).")
-@click.option("--focal-mm", type=float, callback=_finite, help="Focal length [mm].")
-@click.option("--sensor-mm", help="Sensor WxH [mm], e.g. 36x24 (W across track when "
-              "mounted landscape).")
-@click.option("--orientation", type=click.Choice(["landscape", "portrait"]),
-              help="Camera mounting: landscape = sensor width across track (default: the "
-              "catalogue's, else landscape); portrait turns footprint, spacing and base.")
-@click.option("--f-number", type=float, callback=_finite,
-              help="Working f-number (default: the catalogue's).")
-@click.option("--height-m", type=float, callback=_finite,
-              help="Planned flight height above ground [m] (default: the maximum planned "
-              "height, rounded down to 5 m; needs --map-scale or --gsd-cm).")
-@click.option("--gsd-cm", type=float, callback=_finite,
-              help="Target ground sample distance [cm]: the highest flown height must "
-              "deliver it.")
-@click.option("--max-height-m", type=float, callback=_finite,
-              help="Altitude ceiling for the highest flown height above ground [m] "
-              "(default: the norm set's, 150 m).")
-@click.option("--height-tolerance-pct", type=float, default=0.0, show_default=True,
-              callback=_finite, help="How much higher the UAV may fly than planned [%] "
-              "(seed 002: 300 m planned, 420 m flown = 40).")
-@click.option("--speed-ms", type=float, callback=_finite,
-              help="Ground speed [m/s] (default 15 for a UAV; required for a camera on an "
-              "aircraft).")
-@click.option("--exposure-s", type=float, default=0.001, show_default=True, callback=_finite,
-              help="Exposure time [s].")
-@click.option("--overlap-pct", "forward_overlap_pct", type=float, callback=_finite,
-              help="Forward overlap [%] (default 80 for a UAV, the norm set's 60 for a camera "
-              "on an aircraft).")
-@click.option("--side-overlap-pct", type=float, callback=_finite,
-              help="Side overlap [%] (default 60 for a UAV, 30 for a camera on an aircraft).")
-@click.option("--map-scale", type=SCALE, help="Map scale: adds the constraints and max height.")
-@click.option("--relief", "relief_interval_m", type=float, callback=_finite,
-              help="Relief interval h_c [m] (with --map-scale).")
-@norm_options
-@click.option("--r-max", type=float, default=0.3, show_default=True, callback=_finite,
-              help="Brightness coefficient of the lightest detail.")
-@click.option("--r-min", type=float, default=0.1, show_default=True, callback=_finite,
-              help="Brightness coefficient of the darkest detail.")
-@click.option("--haze-contrast", type=float, callback=_finite,
-              help="Contrast transmission of the air column c, 0 < c ≤ 1 (default 0.9: "
-              "clear air below 500 m).")
-@click.option("--k0", "threshold_k0", type=float, callback=_finite,
-              help="Sensor threshold contrast at low frequency (default 0.03).")
-@click.option("--shift-factor", type=float, default=1.0, show_default=True, callback=_finite,
-              help="Photographic/geometric image shift, 0 < k ≤ 1 (0.6–0.7 summer, "
-              "1 bright canopy).")
-@click.option("--random-speed-ms", type=float, default=0.0, callback=_finite,
-              help="RMS random linear speed of a light UAV [m/s].")
-@click.option("--roll-rate", "roll_rate_rad_s", type=float, default=0.0, callback=_finite,
-              help="RMS angular rate about the longitudinal axis [rad/s].")
-@click.option("--pitch-rate", "pitch_rate_rad_s", type=float, default=0.0, callback=_finite,
-              help="RMS angular rate about the transverse axis [rad/s].")
-@click.option("--yaw-rate", "yaw_rate_rad_s", type=float, default=0.0, callback=_finite,
-              help="RMS angular rate about the vertical axis [rad/s].")
-@click.option("--area-m", help="Block to cover, WIDTHxLENGTH [m], e.g. 2000x3000.")
-@click.option("--roll-deg", type=float, default=0.0, callback=_finite,
-              help="Roll for the tilted-frame corner GSD [°].")
-@click.option("--pitch-deg", type=float, default=0.0, callback=_finite,
-              help="Pitch for the tilted-frame corner GSD [°].")
+@_inputs("uav", ["camera", "pixel_um", "focal_mm", "sensor_mm", "orientation", "f_number",
+                 "height_m", "gsd_cm", "max_height_m", "height_tolerance_pct", "speed_ms",
+                 "exposure_s", "forward_overlap_pct", "side_overlap_pct", "map_scale",
+                 "relief_interval_m", "<norms>", "r_max", "r_min", "haze_contrast",
+                 "threshold_k0", "shift_factor", "random_speed_ms", "roll_rate_rad_s",
+                 "pitch_rate_rad_s", "yaw_rate_rad_s", "area_m", "roll_deg", "pitch_deg"],
+         map_scale={"help": "Map scale, 2000 or 1:2000: adds the constraints and the maximum "
+                    "planned height."},
+         relief_interval_m={"help": "Relief (contour) interval h_c [m] (with --map-scale)."})
 @report_options
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
 def uav(as_json: bool, **kwargs: Any) -> None:

@@ -24,6 +24,10 @@ from ..norms import DEFAULT_NORM_SET, MapObject, NormSet, load_norm_set, parse_s
 from ..norms.schema import ORIENTATIONS, PARAMETERS
 from ..rules.film import ObjectSpec, ScanInputs, ScanPlan, plan_scan
 from ..rules.uav import UavInputs, UavPlan, plan_uav
+from .inputs import by_key, defaults
+
+_FILM = defaults("film")  # the input registry's defaults (scanplan.project.inputs)
+_UAV = defaults("uav")
 
 HEIGHT_STEP_M = 5.0
 """Recommended flight heights are rounded down to this step [m]."""
@@ -199,8 +203,8 @@ def scan_job(
     pr_coefficient: float | None = None,
     recognition_rounding: str | None = None,
     scanner: str | None = None,
-    bands: int = 1,
-    bits_per_band: int = 8,
+    bands: int = _FILM["bands"],
+    bits_per_band: int = _FILM["bits_per_band"],
     pixel_um: Iterable[float] = (),
 ) -> ScanJob:
     """Like :func:`scan`, returning the norm set too (for reports)."""
@@ -289,9 +293,9 @@ def scan(**kwargs: object) -> ScanPlan:
     return scan_job(**kwargs).plan  # type: ignore[arg-type]
 
 
-UAV_DEFAULTS = {"speed_ms": 15.0, "forward_overlap_pct": 80.0, "side_overlap_pct": 60.0}
-"""Flight defaults for a camera on a UAV (docs/project-file.md)."""
-AIRCRAFT_SIDE_OVERLAP_PCT = 30.0
+UAV_DEFAULTS = {k: _UAV[k] for k in ("speed_ms", "forward_overlap_pct", "side_overlap_pct")}
+"""Flight defaults for a camera on a UAV (the input registry's; docs/project-file.md)."""
+AIRCRAFT_SIDE_OVERLAP_PCT: float = by_key("film", "side_overlap_pct").default
 """Side overlap for a camera on a manned aircraft, as for film (the specification's film
 default)."""
 
@@ -313,10 +317,10 @@ def uav_job(
     sensor_mm: object | None = None,
     f_number: float | None = None,
     speed_ms: float | None = None,
-    exposure_s: float = 0.001,
+    exposure_s: float = _UAV["exposure_s"],
     forward_overlap_pct: float | None = None,
     side_overlap_pct: float | None = None,
-    height_tolerance_pct: float = 0.0,
+    height_tolerance_pct: float = _UAV["height_tolerance_pct"],
     map_scale: object | None = None,
     relief_interval_m: float | None = None,
     norms: str | os.PathLike[str] = DEFAULT_NORM_SET,
@@ -325,18 +329,18 @@ def uav_job(
     object_name: str | None = None,
     probability: float | None = None,
     height_formula: str | None = None,
-    r_max: float = 0.3,
-    r_min: float = 0.1,
-    threshold_k0: float | None = None,
-    haze_contrast: float | None = None,
-    shift_factor: float = 1.0,
-    random_speed_ms: float = 0.0,
-    roll_rate_rad_s: float = 0.0,
-    pitch_rate_rad_s: float = 0.0,
-    yaw_rate_rad_s: float = 0.0,
+    r_max: float = _UAV["r_max"],
+    r_min: float = _UAV["r_min"],
+    threshold_k0: float | None = _UAV["threshold_k0"],
+    haze_contrast: float | None = _UAV["haze_contrast"],
+    shift_factor: float = _UAV["shift_factor"],
+    random_speed_ms: float = _UAV["random_speed_ms"],
+    roll_rate_rad_s: float = _UAV["roll_rate_rad_s"],
+    pitch_rate_rad_s: float = _UAV["pitch_rate_rad_s"],
+    yaw_rate_rad_s: float = _UAV["yaw_rate_rad_s"],
     area_m: object | None = None,
-    roll_deg: float = 0.0,
-    pitch_deg: float = 0.0,
+    roll_deg: float = _UAV["roll_deg"],
+    pitch_deg: float = _UAV["pitch_deg"],
     orientation: str | None = None,
     max_height_m: float | None = None,
     gsd_cm: float | None = None,
@@ -346,7 +350,8 @@ def uav_job(
     A catalogue ``camera`` gives pixel, focal length, sensor, image size, f-number and
     minimum trigger interval; explicit values override it. ``map_scale`` with
     ``relief_interval_m`` adds the norm set's constraints and the maximum flight height.
-    Defaults for a UAV camera: speed 15 m/s, overlaps 80/60 %. A camera carried by an
+    Defaults (the input registry's, :mod:`scanplan.project.inputs`) for a UAV camera:
+    :data:`UAV_DEFAULTS`. A camera carried by an
     aircraft (catalogue ``platform = aircraft``) needs the ground speed, and its overlaps
     default to the norm set's standard forward overlap (the Instruction's 60 %) and 30 %
     side overlap, as for film.
