@@ -19,6 +19,7 @@ import click
 
 from .._version import __version__
 from ..errors import InputError, WriteError
+from ..outpaths import batch_stems
 from ..project.inputs import option_names
 from .options import input_option
 
@@ -306,8 +307,11 @@ def uav(as_json: bool, **kwargs: Any) -> None:
 @click.option("--force", is_flag=True,
               help="Replace existing report files that scanplan did not write.")
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
+@click.option("--jobs", type=click.IntRange(1, 256), default=None,
+              help="Projects planned at once in worker processes (default: the machine's "
+              "cores); the output is the same for any number.")
 def plan(projects: tuple[str, ...], out_dir: str | None, xlsx_path: str | None,
-         pdf_path: str | None, force: bool, as_json: bool) -> None:
+         pdf_path: str | None, force: bool, as_json: bool, jobs: int | None) -> None:
     """The main job: the scan / flight specification for a mapping contract.
 
     PROJECTS are project files (TOML) or folders of them; several give a batch with one
@@ -340,90 +344,161 @@ def plan(projects: tuple[str, ...], out_dir: str | None, xlsx_path: str | None,
             raise InputError("--out", f"{out_dir!r} is not a folder")
         created = _make_folder(out_dir)
     try:
-        _plan_files(files, batch, out_dir, xlsx_path, pdf_path, as_json, force)
+        _plan_files(files, batch, out_dir, xlsx_path, pdf_path, as_json, force,
+                    jobs or os.cpu_count() or 1)
     finally:  # a folder --out created stays only if something was written into it
         _remove_empty(created)
 
 
-def batch_stems(files: list[str]) -> list[str]:
-    """One report name per project of a batch: the file's stem, ``STEM-2``, ``STEM-3`` …
-    for later projects with the same stem (compared without case: some file systems ignore
-    it), so that no project's reports replace another's."""
-    used: set[str] = set()
-    out = []
-    for path in files:
-        stem = os.path.splitext(os.path.basename(path))[0] or "spec"
-        name, n = stem, 1
-        while name.casefold() in used:
-            n += 1
-            name = f"{stem}-{n}"
-        used.add(name.casefold())
-        out.append(name)
-    return out
+def _run_project(path: str, out_dir: str | None, stem: str | None, xlsx_path: str | None,
+                 pdf_path: str | None, files: list[str], force: bool) -> Any:
+    """Plan one project and write its reports (both or neither); the PlanResult."""
+    from ..project.file import load_project
+    from ..project.spec import plan_project
+
+    targets = {"xlsx_path": xlsx_path, "pdf_path": pdf_path}
+    fields = {"xlsx": "--xlsx", "pdf": "--pdf"}
+    note = ""
+    if out_dir:
+        targets = {"xlsx_path": os.path.join(out_dir, (stem or "spec") + ".xlsx"),
+                   "pdf_path": os.path.join(out_dir, (stem or "spec") + ".pdf")}
+        fields = {"xlsx": "--out", "pdf": "--out"}
+        if stem is not None:
+            base = os.path.splitext(os.path.basename(path))[0]
+            note = f" (for {path}" + (f"; the name {base} is taken by another project "
+                                      "of this batch" if stem != base else "") + ")"
+    result = plan_project(load_project(path))
+    film = result.film.job if result.film else None
+    uav_ = result.uav.job if result.uav else None
+    _write_reports({**targets, "force": force, "inputs": files, "fields": fields,
+                    "note": note, "meta": result.meta}, scan=film, uav=uav_, spec=result)
+    return result
+
+
+def _batch_worker(task: tuple[Any, ...]) -> tuple[str, str, Any]:
+    """One project of a batch, in a worker process or in this one: (path, outcome,
+    payload) — ``"ok"`` with (PlanResult, JSON document or None, summary row),
+    ``"input"`` or ``"write"`` with the error text."""
+    path, out_dir, stem, files, force, as_json = task
+    from ..api import summary_row
+    from ..reports.jsondoc import plan_result_dict
+
+    try:
+        with warnings.catch_warnings():
+            if not os.environ.get("SCANPLAN_DEBUG"):
+                warnings.simplefilter("ignore")
+            result = _run_project(path, out_dir, stem, None, None, files, force)
+        doc = json.loads(json.dumps(plan_result_dict(result), ensure_ascii=False,
+                                    allow_nan=False)) if as_json else None
+        return path, "ok", (None if as_json else result, doc, summary_row(result))
+    except InputError as exc:  # a bad project: report it, run the others
+        return path, "input", f"{exc.field}: {exc.message}"
+    except WriteError as exc:
+        return path, "write", exc.message
+
+
+class _Progress:
+    """``planning 12/1000`` on stderr, for a batch running longer than a second, and only
+    when stderr is a terminal."""
+
+    def __init__(self, total: int) -> None:
+        import time
+
+        self.total, self.start, self.clock, self.shown = total, time.monotonic(), time, False
+        self.on = sys.stderr.isatty()
+
+    def step(self, done: int) -> None:
+        if self.on and self.clock.monotonic() - self.start > 1.0:
+            sys.stderr.write(f"\rplanning {done}/{self.total}")
+            sys.stderr.flush()
+            self.shown = True
+
+    def close(self) -> None:
+        if self.shown:
+            sys.stderr.write("\n")
+            sys.stderr.flush()
+
+
+def _batch_outcomes(tasks: list[tuple[Any, ...]], jobs: int):  # type: ignore[no-untyped-def]
+    """The outcomes of the batch's projects, in the order of the files."""
+    if jobs <= 1 or len(tasks) <= 1:
+        for task in tasks:
+            yield _batch_worker(task)
+        return
+    from concurrent.futures import ProcessPoolExecutor
+
+    with ProcessPoolExecutor(max_workers=min(jobs, len(tasks))) as pool:
+        try:
+            yield from pool.map(_batch_worker, tasks, chunksize=1)
+        finally:
+            pool.shutdown(cancel_futures=True)
+
+
+def _write_summary(out_dir: str, rows: list[dict[str, Any]], force: bool,
+                   files: list[str]) -> None:
+    """summary.csv and summary.xlsx of a batch (one row per project), as one transaction."""
+    import pandas as pd
+
+    from ..api import SUMMARY_COLUMNS
+    from ..outpaths import check_target
+    from ..reports import write_atomic_many
+    from ..reports.summary import summary_csv, summary_xlsx
+
+    frame = pd.DataFrame(rows, columns=[*SUMMARY_COLUMNS, "error"])
+    targets = {kind: os.path.join(out_dir, f"summary.{kind}") for kind in ("csv", "xlsx")}
+
+    def check() -> None:
+        for kind, path in targets.items():
+            check_target(path, "--out", kind, inputs=files, force=force)
+
+    check()
+    write_atomic_many({targets["csv"]: summary_csv(frame),
+                       targets["xlsx"]: summary_xlsx(frame)}, check=check)
+    for path in targets.values():
+        click.echo(f"wrote {path}", err=True)
 
 
 def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: str | None,
-                pdf_path: str | None, as_json: bool, force: bool = False) -> None:
+                pdf_path: str | None, as_json: bool, force: bool = False,
+                jobs: int = 1) -> None:
     """``plan`` after its arguments are checked: run one project or a batch."""
-    from ..project.file import load_project
-    from ..project.spec import plan_project
     from ..reports.jsondoc import plan_result_dict
     from ..reports.text import format_plan_result
 
-    stems = dict(zip(files, batch_stems(files), strict=True)) if batch else {}
-
-    def run_one(path: str) -> Any:
-        targets = {"xlsx_path": xlsx_path, "pdf_path": pdf_path}
-        fields = {"xlsx": "--xlsx", "pdf": "--pdf"}
-        note = ""
-        if out_dir:
-            stem = stems[path] if batch else "spec"
-            targets = {"xlsx_path": os.path.join(out_dir, stem + ".xlsx"),
-                       "pdf_path": os.path.join(out_dir, stem + ".pdf")}
-            fields = {"xlsx": "--out", "pdf": "--out"}
-            if batch:
-                base = os.path.splitext(os.path.basename(path))[0]
-                note = f" (for {path}" + (f"; the name {base} is taken by another project "
-                                          "of this batch" if stem != base else "") + ")"
-        result = plan_project(load_project(path))
-        film = result.film.job if result.film else None
-        uav_ = result.uav.job if result.uav else None
-        _write_reports({**targets, "force": force, "inputs": files, "fields": fields,
-                        "note": note, "locale": result.meta.locale,
-                        "project_name": result.meta.project, "customer": result.meta.customer,
-                        "contractor": result.meta.contractor,
-                        "approver_position": result.meta.approver_position,
-                        "approver_name": result.meta.approver_name,
-                        "meta": result.meta}, scan=film, uav=uav_,
-                       spec=result)
-        return result
-
     if not batch:
-        result = run_one(files[0])
+        result = _run_project(files[0], out_dir, None, xlsx_path, pdf_path, files, force)
         if as_json:
             _echo_json(plan_result_dict(result))
         else:
             click.echo(format_plan_result(result))
         return
+    stems = batch_stems(files)
+    tasks = [(path, out_dir, stem, files, force, as_json) for path, stem in zip(files, stems,
+                                                                                strict=True)]
     done: list[tuple[str, Any]] = []  # with --json the results are streamed, not kept
     failed: list[tuple[str, str]] = []
+    rows: list[dict[str, Any]] = []
     stream = _JsonStream("projects") if as_json else None
     stopped = ""  # a write failure (disk full) stops the batch: the project it stopped at
-    with click.progressbar(files, label="planning", file=sys.stderr) as bar:
-        for path in bar:
-            try:
-                result = run_one(path)
-                if stream is not None:
-                    stream.add(plan_result_dict(result))
-                    result = None
-                done.append((path, result))
-            except InputError as exc:  # a bad project: report it, run the others
-                failed.append((path, f"{exc.field}: {exc.message}"))
-            except WriteError as exc:
-                failed.append((path, exc.message))
+    progress = _Progress(len(files))
+    for n, (path, outcome, payload) in enumerate(_batch_outcomes(tasks, jobs), start=1):
+        progress.step(n)
+        if outcome == "ok":
+            result, doc, row = payload
+            if stream is not None:
+                stream.add(doc)
+            done.append((path, result))
+            rows.append({**row, "error": ""})
+        else:
+            failed.append((path, payload))
+            rows.append({"file": path, "error": payload})
+            if outcome == "write":
                 stopped = path
                 break
+    progress.close()
     not_run = files[len(done) + len(failed):]
+    if out_dir and not stopped:
+        _write_summary(out_dir, rows, force, files)
     if stream is not None:
         stream.close({"errors": [{"file": f, "message": m} for f, m in failed]
                       + [{"file": f, "message": "not planned: the batch stopped"}
