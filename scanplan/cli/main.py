@@ -27,8 +27,42 @@ OPTION_NAMES = option_names()
 """Python names of inputs (error fields) → the option a user typed (the input registry's)."""
 
 
+LAZY_COMMANDS = {"norms": ("scanplan.cli.norms", "norms",
+                            "Norm sets: list, show, validate and import spreadsheets,...")}
+"""Commands imported only when they run (``scanplan --help`` must not import numpy):
+name → (module, attribute, the short help ``--help`` lists)."""
+
+
 class ScanplanGroup(click.Group):
-    """A group that turns :class:`InputError` into exit 2 and crashes into exit 1."""
+    """A group that turns :class:`InputError` into exit 2 and crashes into exit 1, and
+    imports the heavy subcommands (:data:`LAZY_COMMANDS`) only when they are used."""
+
+    def list_commands(self, ctx: click.Context) -> list[str]:
+        return sorted(set(self.commands) | set(LAZY_COMMANDS))
+
+    def get_command(self, ctx: click.Context, name: str) -> click.Command | None:
+        if name in LAZY_COMMANDS and name not in self.commands:
+            import importlib
+
+            module, attr, _ = LAZY_COMMANDS[name]
+            self.add_command(getattr(importlib.import_module(module), attr), name)
+        return super().get_command(ctx, name)
+
+    def format_commands(self, ctx: click.Context, formatter: click.HelpFormatter) -> None:
+        """The command list, without importing the lazy ones."""
+        limit = formatter.width - 6 - max(len(n) for n in self.list_commands(ctx))
+        rows = []
+        for name in self.list_commands(ctx):
+            if name in self.commands:
+                cmd = self.commands[name]
+                if cmd.hidden:
+                    continue
+                rows.append((name, cmd.get_short_help_str(limit)))
+            else:
+                rows.append((name, LAZY_COMMANDS[name][2]))
+        if rows:
+            with formatter.section("Commands"):
+                formatter.write_dl(rows)
 
     def invoke(self, ctx: click.Context) -> Any:
         try:
@@ -521,11 +555,9 @@ def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: s
         sys.exit(2)
 
 
-from .cameras import cameras  # noqa: E402
-from .norms import norms  # noqa: E402  (the group needs `main` defined first)
+from .cameras import cameras  # noqa: E402  (the group needs `main` defined first)
 
 main.add_command(cameras)
-main.add_command(norms)
 
 from .init import init  # noqa: E402
 
