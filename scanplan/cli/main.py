@@ -167,6 +167,7 @@ def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
     force, inputs = opts.pop("force", False), opts.pop("inputs", ())
     fields = opts.pop("fields", {"xlsx": "--xlsx", "pdf": "--pdf"})
     note = opts.pop("note", "")
+    say = opts.pop("say", None) or (lambda line: click.echo(line, err=True))
     from ..outpaths import check_target
     from ..reports import ReportMeta, write_atomic_many
 
@@ -199,7 +200,7 @@ def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
         files[path] = render(scan=scan, uav=uav, meta=meta, **extra)
     write_atomic_many(files, check=check)
     for path in files:
-        click.echo(f"wrote {path}{note}", err=True)
+        say(f"wrote {path}{note}")
 
 
 def _make_folder(path: str) -> list[str]:
@@ -385,8 +386,10 @@ def plan(projects: tuple[str, ...], out_dir: str | None, xlsx_path: str | None,
 
 
 def _run_project(path: str, out_dir: str | None, stem: str | None, xlsx_path: str | None,
-                 pdf_path: str | None, files: list[str], force: bool) -> Any:
-    """Plan one project and write its reports (both or neither); the PlanResult."""
+                 pdf_path: str | None, files: list[str], force: bool,
+                 say: Callable[[str], None] | None = None) -> Any:
+    """Plan one project and write its reports (both or neither); the PlanResult. ``say``
+    receives the ``wrote FILE`` lines (default: stderr)."""
     from ..project.file import load_project
     from ..project.spec import plan_project
 
@@ -405,30 +408,32 @@ def _run_project(path: str, out_dir: str | None, stem: str | None, xlsx_path: st
     film = result.film.job if result.film else None
     uav_ = result.uav.job if result.uav else None
     _write_reports({**targets, "force": force, "inputs": files, "fields": fields,
-                    "note": note, "meta": result.meta}, scan=film, uav=uav_, spec=result)
+                    "note": note, "meta": result.meta, "say": say}, scan=film, uav=uav_,
+                   spec=result)
     return result
 
 
-def _batch_worker(task: tuple[Any, ...]) -> tuple[str, str, Any]:
+def _batch_worker(task: tuple[Any, ...]) -> tuple[str, str, Any, list[str]]:
     """One project of a batch, in a worker process or in this one: (path, outcome,
-    payload) — ``"ok"`` with (PlanResult, JSON document or None, summary row),
-    ``"input"`` or ``"write"`` with the error text."""
+    payload, the ``wrote FILE`` lines for stderr) — ``"ok"`` with (PlanResult, JSON
+    document or None, summary row), ``"input"`` or ``"write"`` with the error text."""
     path, out_dir, stem, files, force, as_json = task
     from ..api import summary_row
     from ..reports.jsondoc import plan_result_dict
 
+    said: list[str] = []
     try:
         with warnings.catch_warnings():
             if not os.environ.get("SCANPLAN_DEBUG"):
                 warnings.simplefilter("ignore")
-            result = _run_project(path, out_dir, stem, None, None, files, force)
+            result = _run_project(path, out_dir, stem, None, None, files, force, said.append)
         doc = json.loads(json.dumps(plan_result_dict(result), ensure_ascii=False,
                                     allow_nan=False)) if as_json else None
-        return path, "ok", (None if as_json else result, doc, summary_row(result))
+        return path, "ok", (None if as_json else result, doc, summary_row(result)), said
     except InputError as exc:  # a bad project: report it, run the others
-        return path, "input", f"{exc.field}: {exc.message}"
+        return path, "input", f"{exc.field}: {exc.message}", said
     except WriteError as exc:
-        return path, "write", exc.message
+        return path, "write", exc.message, said
 
 
 class _Progress:
@@ -446,6 +451,11 @@ class _Progress:
             sys.stderr.write(f"\rplanning {done}/{self.total}")
             sys.stderr.flush()
             self.shown = True
+
+    def clear(self) -> None:
+        """Wipe the progress line before other stderr lines."""
+        if self.shown:
+            sys.stderr.write("\r\x1b[K")
 
     def close(self) -> None:
         if self.shown:
@@ -515,7 +525,10 @@ def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: s
     stream = _JsonStream("projects") if as_json else None
     stopped = ""  # a write failure (disk full) stops the batch: the project it stopped at
     progress = _Progress(len(files))
-    for n, (path, outcome, payload) in enumerate(_batch_outcomes(tasks, jobs), start=1):
+    for n, (path, outcome, payload, said) in enumerate(_batch_outcomes(tasks, jobs), start=1):
+        progress.clear()
+        for line in said:  # in the order of the files, whichever worker ran them
+            click.echo(line, err=True)
         progress.step(n)
         if outcome == "ok":
             result, doc, row = payload

@@ -110,7 +110,7 @@ def input_option(command: str, name: str, **overrides: Any) -> Callable[..., Any
     if command not in ("scan", "uav") or PLAN_OF[command] not in inp.commands:
         raise KeyError(f"{name} is not an option of {command}")
     kind, callback = _type(inp)
-    default = inp.default
+    default = None if inp.by_carrier else inp.default  # uav_job chooses by carrier
     if inp.choices and default is not None:
         default = str(default)
     if inp.section == "project" and default is None:

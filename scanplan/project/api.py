@@ -24,7 +24,7 @@ from ..norms import DEFAULT_NORM_SET, MapObject, NormSet, load_norm_set, parse_s
 from ..norms.schema import ORIENTATIONS, PARAMETERS
 from ..rules.film import ObjectSpec, ScanInputs, ScanPlan, plan_scan
 from ..rules.uav import UavInputs, UavPlan, plan_uav
-from .inputs import by_key, defaults
+from .inputs import by_key, defaults, records
 
 _FILM = defaults("film")  # the input registry's defaults (scanplan.project.inputs)
 _UAV = defaults("uav")
@@ -293,7 +293,7 @@ def scan(**kwargs: object) -> ScanPlan:
     return scan_job(**kwargs).plan  # type: ignore[arg-type]
 
 
-UAV_DEFAULTS = {k: _UAV[k] for k in ("speed_ms", "forward_overlap_pct", "side_overlap_pct")}
+UAV_DEFAULTS = {r.name: r.default for r in records("uav") if r.by_carrier}
 """Flight defaults for a camera on a UAV (the input registry's; docs/project-file.md)."""
 AIRCRAFT_SIDE_OVERLAP_PCT: float = by_key("film", "side_overlap_pct").default
 """Side overlap for a camera on a manned aircraft, as for film (the specification's film

@@ -73,6 +73,10 @@ class Input:
         The allowed texts, for the option.
     required : bool
         Whether a project file must give it.
+    by_carrier : bool
+        ``default`` is the UAV's; a camera on a manned aircraft has another (or none), so
+        the API and the command line take None and :func:`scanplan.project.api.uav_job`
+        chooses by carrier.
     """
 
     name: str
@@ -90,6 +94,7 @@ class Input:
     cli_help: str = ""
     choices: tuple[str, ...] = ()
     required: bool = False
+    by_carrier: bool = False
 
     @property
     def dotted(self) -> str:
@@ -269,15 +274,15 @@ _RECORDS: tuple[Input, ...] = (
           cli_help="how much higher the UAV may fly than planned [%], e.g. 40: seed 002 "
           "planned 300 m and flew up to 420 m"),
     Input("speed_ms", "uav", "speed_ms", _NUM, "ground speed [m/s]", "m/s", default=15.0,
-          note="required for a camera on an aircraft", domain="speed_ms",
+          by_carrier=True, note="required for a camera on an aircraft", domain="speed_ms",
           option="--speed-ms", commands=(UAV,)),
     Input("exposure_s", "uav", "exposure_s", _NUM, "exposure time [s]", "s", default=0.001,
           domain="exposure_s", option="--exposure-s", commands=(UAV,)),
     Input("forward_overlap_pct", "uav", "forward_overlap_pct", _NUM, "forward overlap [%]",
-          "%", default=80.0, note="on an aircraft the norm set's 60",
+          "%", default=80.0, by_carrier=True, note="on an aircraft the norm set's 60",
           domain="forward_overlap_pct", option="--overlap-pct", commands=(UAV,)),
     Input("side_overlap_pct", "uav", "side_overlap_pct", _NUM, "side overlap [%]", "%",
-          default=60.0, note=f"on an aircraft {_FILM_SIDE_OVERLAP_PCT:g}",
+          default=60.0, by_carrier=True, note=f"on an aircraft {_FILM_SIDE_OVERLAP_PCT:g}",
           domain="side_overlap_pct", option="--side-overlap-pct", commands=(UAV,)),
     Input("roll_deg", "uav", "roll_deg", _NUM, "roll for the tilted-frame corner GSD [°]",
           "°", default=0.0, domain="roll_deg", option="--roll-deg", commands=(UAV,)),
