@@ -15,6 +15,7 @@ import math
 import os
 from collections.abc import Iterable
 from dataclasses import dataclass
+from typing import Any
 
 from ..core.domains import MAX_LIST_ITEMS, check_domain
 from ..core.mtf import DEFAULT_HAZE_CONTRAST, DEFAULT_K0
@@ -22,7 +23,7 @@ from ..errors import InputError
 from ..messages import Message
 from ..norms import DEFAULT_NORM_SET, MapObject, NormSet, load_norm_set, parse_scale
 from ..norms.schema import ORIENTATIONS, PARAMETERS
-from ..rules.film import ObjectSpec, ScanInputs, ScanPlan, plan_scan
+from ..rules.film import ObjectSpec, ScanInputs, ScanPlan, ScanRules, plan_scan
 from ..rules.uav import UavInputs, UavPlan, plan_uav
 from .inputs import by_key, defaults, records
 
@@ -383,6 +384,44 @@ def uav_job(
         raise InputError("camera", f"{camera!r} is a film camera; use `scanplan scan` for "
                          "film, or a digital camera (scanplan cameras list)")
     aircraft = cam is not None and cam.carrier == "aircraft"
+    speed_ms, forward_overlap_pct, side_overlap_pct = _carrier_defaults(
+        ns, camera, aircraft, speed_ms, forward_overlap_pct, side_overlap_pct)
+    frame = _digital_frame(cam, pixel_um, focal_mm, sensor_mm, f_number, orientation)
+    mk, rules, map_obj, objects = _map_constraints(
+        ns, map_scale, relief_interval_m, probability, height_formula, object_size_m, shape,
+        object_name)
+    area_w = area_l = None
+    if area_m is not None:
+        area_w, area_l = parse_frame_mm(area_m, "area_m")
+    inputs = UavInputs(
+        **frame, height_m=height_m, speed_ms=speed_ms, exposure_s=exposure_s,
+        forward_overlap_pct=forward_overlap_pct, side_overlap_pct=side_overlap_pct,
+        height_tolerance_up_pct=height_tolerance_pct, camera=camera or "",
+        camera_name=cam.name if cam else "", platform=cam.carrier if cam else "uav",
+        lens_table_centre=_lens(ns, camera, "centre"), lens_table_corner=_lens(ns, camera,
+                                                                              "corner"),
+        min_trigger_interval_s=cam.min_trigger_interval_s if cam else None,
+        r_max=r_max, r_min=r_min,
+        threshold_k0=threshold_k0 if threshold_k0 is not None else DEFAULT_K0,
+        haze_contrast=haze_contrast if haze_contrast is not None else DEFAULT_HAZE_CONTRAST,
+        shift_factor=shift_factor, random_speed_ms=random_speed_ms,
+        roll_rate_rad_s=roll_rate_rad_s, pitch_rate_rad_s=pitch_rate_rad_s,
+        yaw_rate_rad_s=yaw_rate_rad_s, roll_deg=roll_deg, pitch_deg=pitch_deg, map_scale=mk,
+        relief_interval_m=relief_interval_m, map_object=map_obj, objects=objects,
+        area_width_m=area_w, area_length_m=area_l,
+        ceiling_m=float(max_height_m) if max_height_m is not None
+        else None if aircraft else float(ns.parameters["uav_max_height_m"]),
+        ceiling_from_project=max_height_m is not None,
+        gsd_target_m=gsd_cm / 100.0 if gsd_cm is not None else None)
+    return UavJob(plan_uav(inputs, rules), ns)
+
+
+def _carrier_defaults(ns: NormSet, camera: str | None, aircraft: bool,
+                      speed_ms: float | None, forward_overlap_pct: float | None,
+                      side_overlap_pct: float | None) -> tuple[float, float, float]:
+    """Speed [m/s] and overlaps [%] the caller left out, by carrier: a UAV's
+    (:data:`UAV_DEFAULTS`), or for a camera on a manned aircraft the norm set's standard
+    forward overlap and :data:`AIRCRAFT_SIDE_OVERLAP_PCT` (its speed is required)."""
     if speed_ms is None:
         if aircraft:
             raise InputError("speed_ms", f"give the aircraft's ground speed in m/s (> 0): "
@@ -395,6 +434,14 @@ def uav_job(
     if side_overlap_pct is None:
         side_overlap_pct = (AIRCRAFT_SIDE_OVERLAP_PCT if aircraft
                             else UAV_DEFAULTS["side_overlap_pct"])
+    return speed_ms, forward_overlap_pct, side_overlap_pct
+
+
+def _digital_frame(cam: Any, pixel_um: float | None, focal_mm: float | None,
+                   sensor_mm: object | None, f_number: float | None,
+                   orientation: str | None) -> dict[str, Any]:
+    """The camera's pixel, focal length, f-number and frame as mounted (``UavInputs``
+    fields): the catalogue camera's, each overridden by the value given."""
     if orientation is not None and orientation not in ORIENTATIONS:
         raise InputError("orientation", f"must be one of {', '.join(ORIENTATIONS)} "
                          f"(got {orientation!r})")
@@ -419,6 +466,18 @@ def uav_job(
     if n0 is None:
         raise InputError("f_number", "the camera has no f-number in the catalogue; give the "
                          "working f-number (> 0)")
+    return {"pixel_um": p, "focal_mm": f, "f_number": n0, "sensor_width_mm": w,
+            "sensor_height_mm": h, "image_width_px": w_px, "image_height_px": h_px,
+            "orientation": mount}
+
+
+def _map_constraints(ns: NormSet, map_scale: object | None, relief_interval_m: float | None,
+                     probability: float | None, height_formula: str | None,
+                     object_size_m: float | None, shape: str | None, object_name: str | None
+                     ) -> tuple[float | None, ScanRules | None, ObjectSpec | None,
+                                tuple[ObjectSpec, ...]]:
+    """With a map scale: Mk, the norm set's rules, the map's object; and the objects the
+    recognition table lists (those of the map scale; the project's own object first)."""
     rules = None
     mk = None
     map_obj = None
@@ -442,32 +501,7 @@ def uav_job(
     objects = [norm_object_spec(ns, o, shape) for o in recognition_rows(ns, mk)]
     if map_obj is not None and map_obj.map_scale is None:
         objects.insert(0, map_obj)
-    area_w = area_l = None
-    if area_m is not None:
-        area_w, area_l = parse_frame_mm(area_m, "area_m")
-    inputs = UavInputs(
-        pixel_um=p, focal_mm=f, f_number=n0, sensor_width_mm=w, sensor_height_mm=h,  # type: ignore[arg-type]
-        height_m=height_m, speed_ms=speed_ms, exposure_s=exposure_s,
-        forward_overlap_pct=forward_overlap_pct, side_overlap_pct=side_overlap_pct,
-        height_tolerance_up_pct=height_tolerance_pct, camera=camera or "",
-        camera_name=cam.name if cam else "", image_width_px=w_px, image_height_px=h_px,
-        orientation=mount, platform=cam.carrier if cam else "uav",
-        lens_table_centre=_lens(ns, camera, "centre"), lens_table_corner=_lens(ns, camera,
-                                                                              "corner"),
-        min_trigger_interval_s=cam.min_trigger_interval_s if cam else None,
-        r_max=r_max, r_min=r_min,
-        threshold_k0=threshold_k0 if threshold_k0 is not None else DEFAULT_K0,
-        haze_contrast=haze_contrast if haze_contrast is not None else DEFAULT_HAZE_CONTRAST,
-        shift_factor=shift_factor, random_speed_ms=random_speed_ms,
-        roll_rate_rad_s=roll_rate_rad_s, pitch_rate_rad_s=pitch_rate_rad_s,
-        yaw_rate_rad_s=yaw_rate_rad_s, roll_deg=roll_deg, pitch_deg=pitch_deg, map_scale=mk,
-        relief_interval_m=relief_interval_m, map_object=map_obj, objects=tuple(objects),
-        area_width_m=area_w, area_length_m=area_l,
-        ceiling_m=float(max_height_m) if max_height_m is not None
-        else None if aircraft else float(ns.parameters["uav_max_height_m"]),
-        ceiling_from_project=max_height_m is not None,
-        gsd_target_m=gsd_cm / 100.0 if gsd_cm is not None else None)
-    return UavJob(plan_uav(inputs, rules), ns)
+    return mk, rules, map_obj, tuple(objects)
 
 
 def _lens(ns: NormSet, camera: str | None, position: str
