@@ -365,6 +365,10 @@ def uav_job(
     deliver.
     Without ``height_m`` the flight is planned at the maximum planned height, rounded
     down to :data:`HEIGHT_STEP_M` (needs a map scale or a target GSD).
+
+    Long only by its keyword arguments (one per input of the registry) and this
+    docstring; the work is in named steps: :func:`_carrier_defaults`,
+    :func:`_digital_frame`, :func:`_map_constraints`, then the engine.
     """
     if height_m is None:
         if map_scale is None and gsd_cm is None:
