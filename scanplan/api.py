@@ -16,7 +16,7 @@ pandas is imported inside ``to_frame`` only: ``import scanplan`` stays light.
 >>> r = scanplan.scan(map_scale=2000, relief_interval_m=1.0, photo_scales=[10000],
 ...                   camera="afa-te-100")
 >>> r.to_frame()[["photo_scale", "binding", "scan_pixel_um"]].round(1).to_dict("records")
-[{'photo_scale': 10000, 'binding': 'PR', 'scan_pixel_um': 12.5}]
+[{'photo_scale': 10000, 'binding': 'PD', 'scan_pixel_um': 11.1}]
 """
 
 from __future__ import annotations
@@ -38,7 +38,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from .project.spec import PlanResult
 
 __all__ = ["BatchResult", "ProjectResult", "ScanResult", "UavResult", "batch", "plan",
-           "scan", "summary_row", "uav"]
+           "scan", "summary_frame", "summary_row", "uav"]
 
 FORMATS = ("xlsx", "pdf")
 
@@ -101,6 +101,12 @@ class ScanResult:
 
     job: ScanJob
 
+    def __getattr__(self, name: str) -> Any:
+        """The engine plan's fields (``result.scenarios``, ``result.gsd_m``) as before."""
+        if name.startswith("_") or name == "job":
+            raise AttributeError(name)
+        return getattr(self.job.plan, name)
+
     @property
     def plan(self) -> Any:
         """The engine's :class:`~scanplan.rules.results.ScanPlan`."""
@@ -152,6 +158,12 @@ class UavResult:
 
     job: UavJob
 
+    def __getattr__(self, name: str) -> Any:
+        """The engine plan's fields (``result.scenarios``, ``result.gsd_m``) as before."""
+        if name.startswith("_") or name == "job":
+            raise AttributeError(name)
+        return getattr(self.job.plan, name)
+
     @property
     def plan(self) -> Any:
         """The engine's :class:`~scanplan.rules.results.UavPlan`."""
@@ -199,6 +211,20 @@ SUMMARY_COLUMNS = (
     "uav_photos", "warnings")
 """The columns of a batch summary (``summary.csv``, ``summary.xlsx``, :meth:`BatchResult.
 to_frame`): the headline figures of each specification and its warning codes."""
+
+
+def summary_frame(rows: list[dict[str, Any]], columns: Iterable[str] = SUMMARY_COLUMNS
+                  ) -> pd.DataFrame:
+    """The summary rows as a DataFrame; whole-number columns (scales, frames, photos) as
+    integers, blank where a project has none."""
+    import pandas as pd
+
+    frame = pd.DataFrame(rows, columns=list(columns))
+    for col in ("map_scale", "film_photo_scale", "film_frames", "uav_photos"):
+        values = frame[col].dropna()
+        if all(isinstance(v, int | float) and float(v).is_integer() for v in values):
+            frame[col] = frame[col].astype("Int64")
+    return frame
 
 
 def summary_row(result: PlanResult) -> dict[str, Any]:
@@ -254,9 +280,7 @@ class ProjectResult:
 
     def to_frame(self) -> pd.DataFrame:
         """The summary row (columns: :data:`SUMMARY_COLUMNS`)."""
-        import pandas as pd
-
-        return pd.DataFrame([summary_row(self.spec)], columns=list(SUMMARY_COLUMNS))
+        return summary_frame([summary_row(self.spec)])
 
     def write(self, out_dir: str | os.PathLike[str], formats: Iterable[str] = FORMATS, *,
               name: str = "spec", force: bool = False) -> list[Path]:
@@ -291,10 +315,7 @@ class BatchResult:
 
     def to_frame(self) -> pd.DataFrame:
         """One row per planned project (columns: :data:`SUMMARY_COLUMNS`)."""
-        import pandas as pd
-
-        return pd.DataFrame([summary_row(r.spec) for r in self.results],
-                            columns=list(SUMMARY_COLUMNS))
+        return summary_frame([summary_row(r.spec) for r in self.results])
 
     def write(self, out_dir: str | os.PathLike[str], formats: Iterable[str] = FORMATS, *,
               force: bool = False) -> list[Path]:
@@ -442,15 +463,22 @@ def project_files(paths: Iterable[str | os.PathLike[str]]) -> list[str]:
 
 
 def batch(paths: str | os.PathLike[str] | Iterable[str | os.PathLike[str]]) -> BatchResult:
-    """Plan several project files (folders: their ``*.toml``); a bad one is kept as a
+    r"""Plan several project files (folders: their ``*.toml``); a bad one is kept as a
     typed error while the others are planned.
 
     Examples
     --------
-    >>> import scanplan
-    >>> b = scanplan.batch("examples")
-    >>> len(b.results) >= 7 and not b.errors
-    True
+    >>> import pathlib, tempfile, scanplan
+    >>> folder = pathlib.Path(tempfile.mkdtemp())
+    >>> _ = (folder / "a.toml").write_text(
+    ...     '[map]\nscale = 2000\nrelief_interval_m = 1\n[uav]\ncamera = "dji-zenmuse-p1-35"\n')
+    >>> _ = (folder / "b.toml").write_text("[map]\nscale = 2000\n")
+    >>> b = scanplan.batch(folder)
+    >>> len(b.results), [pathlib.Path(f).name for f in b.errors]
+    (1, ['b.toml'])
+    >>> error = b.errors[str(folder / "b.toml")]
+    >>> error.field.endswith("map.relief_interval_m"), error.message
+    (True, 'is required: the relief interval in m')
     """
     from .project.file import load_project
     from .project.spec import plan_project

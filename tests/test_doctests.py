@@ -34,7 +34,14 @@ def test_every_public_function_has_an_example(family):
     assert not missing
 
 
-@pytest.mark.parametrize("name", ["scanplan.project.inputs"])
+@pytest.mark.parametrize("name", ["scanplan.project.inputs", "scanplan.project.api"])
 def test_examples_of_the_project_layer_run(name):
     result = doctest.testmod(importlib.import_module(name), optionflags=doctest.ELLIPSIS)
     assert result.attempted and result.failed == 0, f"{result.failed} doctest(s) of {name}"
+
+
+def test_examples_of_the_top_level_api_run():
+    import scanplan.api
+
+    result = doctest.testmod(scanplan.api, optionflags=doctest.ELLIPSIS)
+    assert result.attempted >= 4 and result.failed == 0

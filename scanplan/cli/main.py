@@ -481,14 +481,12 @@ def _batch_outcomes(tasks: list[tuple[Any, ...]], jobs: int):  # type: ignore[no
 def _write_summary(out_dir: str, rows: list[dict[str, Any]], force: bool,
                    files: list[str]) -> None:
     """summary.csv and summary.xlsx of a batch (one row per project), as one transaction."""
-    import pandas as pd
-
-    from ..api import SUMMARY_COLUMNS
+    from ..api import SUMMARY_COLUMNS, summary_frame
     from ..outpaths import check_target
     from ..reports import write_atomic_many
     from ..reports.summary import summary_csv, summary_xlsx
 
-    frame = pd.DataFrame(rows, columns=[*SUMMARY_COLUMNS, "error"])
+    frame = summary_frame(rows, [*SUMMARY_COLUMNS, "error"])
     targets = {kind: os.path.join(out_dir, f"summary.{kind}") for kind in ("csv", "xlsx")}
 
     def check() -> None:

@@ -4,7 +4,7 @@
 >>> plan = scan(map_scale=2000, relief_interval_m=1.0, photo_scales=[10000],
 ...             camera="afa-te-100")
 >>> plan.scenarios[0].binding, round(plan.scenarios[0].scan_pixel_um, 1)
-('PR', 12.5)
+('PD', 11.1)
 
 Errors are :class:`scanplan.errors.InputError` whose ``field`` is the argument name.
 """

@@ -25,7 +25,10 @@ def summary_csv(frame: Any) -> bytes:
 
 
 def _cell(value: Any) -> Any:
-    if value is None or (isinstance(value, float) and not math.isfinite(value)):
+    import pandas as pd
+
+    if value is None or value is pd.NA or (isinstance(value, float)
+                                           and not math.isfinite(value)):
         return None
     if hasattr(value, "item"):  # a numpy scalar
         value = value.item()
