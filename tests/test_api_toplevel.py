@@ -138,6 +138,7 @@ def test_batch_jobs_1_and_2_write_identical_files(tmp_path, monkeypatch):
                             str(out), "--jobs", str(jobs)], capture_output=True, text=True)
         assert r.returncode == 2, r.stderr  # the bad file is reported, the others planned
         assert "zz-bad.toml" in r.stderr and "Traceback" not in r.stderr
+        assert "planning" not in r.stderr  # no progress line: stderr is not a terminal
         outs[jobs] = (r.stdout, {p.name: p.read_bytes() for p in sorted(out.iterdir())})
     assert outs[1] == outs[2]
     files = outs[1][1]
