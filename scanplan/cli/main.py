@@ -27,8 +27,14 @@ OPTION_NAMES = option_names()
 """Python names of inputs (error fields) → the option a user typed (the input registry's)."""
 
 
-LAZY_COMMANDS = {"norms": ("scanplan.cli.norms", "norms",
-                            "Norm sets: list, show, validate and import spreadsheets,...")}
+LAZY_COMMANDS = {
+    "cameras": ("scanplan.cli.cameras", "cameras",
+                "The camera and scanner catalogue (film, digital on UAVs,..."),
+    "init": ("scanplan.cli.init", "init",
+             "Write a commented project file that `scanplan plan` runs as it..."),
+    "norms": ("scanplan.cli.norms", "norms",
+              "Norm sets: list, show, validate and import spreadsheets,..."),
+}
 """Commands imported only when they run (``scanplan --help`` must not import numpy):
 name → (module, attribute, the short help ``--help`` lists)."""
 
@@ -566,13 +572,7 @@ def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: s
         sys.exit(2)
 
 
-from .cameras import cameras  # noqa: E402  (the group needs `main` defined first)
 
-main.add_command(cameras)
-
-from .init import init  # noqa: E402
-
-main.add_command(init)
 
 
 def run() -> None:  # pragma: no cover - console entry used by python -m scanplan
