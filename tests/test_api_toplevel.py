@@ -155,3 +155,12 @@ def test_import_scanplan_and_help_do_not_import_numpy():
             "print('numpy' in sys.modules)")
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert r.stdout.strip() == "False", r.stderr
+
+
+def test_batch_to_dict_is_the_cli_json_of_a_batch(tmp_path):
+    for p in EXAMPLES[:2]:
+        (tmp_path / p.name).write_text(p.read_text(encoding="utf-8"), encoding="utf-8")
+    (tmp_path / "zz-bad.toml").write_text("[map]\nscale = 2000\n", encoding="utf-8")
+    cli = CliRunner().invoke(main, ["plan", str(tmp_path), "--json", "--jobs", "1"])
+    assert cli.exit_code == 2
+    assert scanplan.batch(tmp_path).to_dict() == json.loads(cli.stdout)
