@@ -50,8 +50,10 @@ def _json_round_trip(doc: Any) -> dict[str, Any]:
 
 def _write(out_dir: str | os.PathLike[str], stem: str, formats: Iterable[str], *,
            scan: Any = None, uav: Any = None, spec: Any = None, meta: Any = None,
-           force: bool = False) -> list[Path]:
-    """Render the reports to memory, then write them as one transaction (all or none)."""
+           force: bool = False, inputs: Iterable[str] = ()) -> list[Path]:
+    """Render the reports to memory, then write them as one transaction (all or none);
+    the targets are checked as the command line's (never an input file, never a file
+    scanplan did not write unless ``force``)."""
     from .outpaths import check_target
     from .reports import ReportMeta, write_atomic_many
 
@@ -65,7 +67,7 @@ def _write(out_dir: str | os.PathLike[str], stem: str, formats: Iterable[str], *
 
     def check() -> None:
         for kind, path in targets.items():
-            check_target(path, "out_dir", kind, force=force)
+            check_target(path, "out_dir", kind, inputs=inputs, force=force)
 
     check()
     files: dict[str, bytes] = {}
@@ -287,7 +289,8 @@ class ProjectResult:
         """Write ``spec.xlsx`` / ``spec.pdf`` into ``out_dir`` as ``scanplan plan --out``."""
         s = self.spec
         return _write(out_dir, name, formats, scan=s.film.job if s.film else None,
-                      uav=s.uav.job if s.uav else None, spec=s, meta=s.meta, force=force)
+                      uav=s.uav.job if s.uav else None, spec=s, meta=s.meta, force=force,
+                      inputs=[str(s.project.path)])
 
     def _repr_html_(self) -> str:
         row = summary_row(self.spec)

@@ -164,3 +164,15 @@ def test_batch_to_dict_is_the_cli_json_of_a_batch(tmp_path):
     cli = CliRunner().invoke(main, ["plan", str(tmp_path), "--json", "--jobs", "1"])
     assert cli.exit_code == 2
     assert scanplan.batch(tmp_path).to_dict() == json.loads(cli.stdout)
+
+
+def test_notebook_summaries_and_safe_writes(tmp_path):
+    project = scanplan.plan(ROOT / "examples" / "instruction-2000-film.toml")
+    shown = project._repr_html_()
+    assert "Instruction example" in shown and "film_photo_scale" in shown and "8000" in shown
+    assert "1:8000" in project.film._repr_html_()
+    (tmp_path / "spec.xlsx").write_bytes(b"someone else's workbook")
+    with pytest.raises(InputError, match="not written by scanplan"):
+        project.write(tmp_path, formats=["xlsx"])
+    assert (tmp_path / "spec.xlsx").read_bytes() == b"someone else's workbook"
+    assert project.write(tmp_path, formats=["xlsx"], force=True)[0].name == "spec.xlsx"
