@@ -7,10 +7,8 @@ cell and the allowed range); 1 runtime failure (a message, never a traceback —
 
 from __future__ import annotations
 
-import json
 import os
 import sys
-import traceback
 import warnings
 from collections.abc import Callable
 from typing import Any
@@ -19,7 +17,6 @@ import click
 
 from .._version import __version__
 from ..errors import InputError, WriteError
-from ..outpaths import batch_stems
 from ..project.inputs import option_names
 from .options import input_option
 
@@ -85,6 +82,8 @@ class ScanplanGroup(click.Group):
             raise
         except Exception as exc:  # an environment failure or a bug: no traceback for users
             if os.environ.get("SCANPLAN_DEBUG"):
+                import traceback
+
                 traceback.print_exc()
             click.echo(f"error: {_failure_text(exc)}", err=True)
             ctx.exit(1)
@@ -103,6 +102,8 @@ def _failure_text(exc: Exception) -> str:
 
 
 def _echo_json(doc: Any) -> None:
+    import json
+
     click.echo(json.dumps(doc, ensure_ascii=False, indent=2, allow_nan=False))
 
 
@@ -116,6 +117,8 @@ class _JsonStream:
 
     @staticmethod
     def _dumps(value: Any) -> str:
+        import json
+
         return json.dumps(value, ensure_ascii=False, indent=2, allow_nan=False)
 
     def add(self, item: Any) -> None:
@@ -391,6 +394,13 @@ def plan(projects: tuple[str, ...], out_dir: str | None, xlsx_path: str | None,
         _remove_empty(created)
 
 
+def batch_stems(files: list[str]) -> list[str]:
+    """:func:`scanplan.outpaths.batch_stems` (imported when a batch runs)."""
+    from ..outpaths import batch_stems as stems
+
+    return stems(files)
+
+
 def _run_project(path: str, out_dir: str | None, stem: str | None, xlsx_path: str | None,
                  pdf_path: str | None, files: list[str], force: bool,
                  say: Callable[[str], None] | None = None) -> Any:
@@ -424,6 +434,8 @@ def _batch_worker(task: tuple[Any, ...]) -> tuple[str, str, Any, list[str]]:
     payload, the ``wrote FILE`` lines for stderr) — ``"ok"`` with (PlanResult, JSON
     document or None, summary row), ``"input"`` or ``"write"`` with the error text."""
     path, out_dir, stem, files, force, as_json = task
+    import json
+
     from ..api import summary_row
     from ..reports.jsondoc import plan_result_dict
 
