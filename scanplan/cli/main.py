@@ -489,7 +489,12 @@ def _batch_outcomes(tasks: list[tuple[Any, ...]], jobs: int):  # type: ignore[no
         return
     from concurrent.futures import ProcessPoolExecutor
 
-    with ProcessPoolExecutor(max_workers=min(jobs, len(tasks))) as pool:
+    try:
+        pool = ProcessPoolExecutor(max_workers=min(jobs, len(tasks)))
+    except (OSError, NotImplementedError):  # no worker processes here: plan one by one
+        yield from _batch_outcomes(tasks, 1)
+        return
+    with pool:
         try:
             yield from pool.map(_batch_worker, tasks, chunksize=1)
         finally:
