@@ -51,6 +51,7 @@ BENCHMARKS: dict[str, str] = {
     "reports": "bench_reports",
     "plan_batch": "bench_plan_batch",
     "fast_reports": "bench_fast_reports",
+    "help": "bench_help",
 }
 
 RATIO_FOOTNOTE = (
