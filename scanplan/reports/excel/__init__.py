@@ -46,6 +46,7 @@ from ..view import ReportView, build_view
 from .book import Book
 from .cells import _BINDING_FILL as _BINDING_FILL  # re-exported: the binding highlight
 from .cells import MISSING as MISSING
+from .cells import _repack as _repack  # re-exported: the batch summary workbook
 from .cells import put_num as put_num
 from .cells import put_text as put_text
 from .closing import norms_sheet, references_sheet, warnings_sheet
