@@ -40,7 +40,9 @@ __all__ = ["OUR_MARK", "check_target", "folder_lock", "name_max", "written_by_sc
 OUR_MARK = b"scanplan"
 """Start of the creator property of every report scanplan writes."""
 
-SUFFIX = {"xlsx": ".xlsx", "pdf": ".pdf"}
+SUFFIX = {"xlsx": ".xlsx", "pdf": ".pdf", "csv": ".csv"}
+CSV_HEADER = "\ufeffproject,file,map_scale,".encode()
+"""How a batch summary.csv scanplan wrote begins (scanplan.reports.summary)."""
 MAX_REPORT_BYTES = 64 * 1024 * 1024
 """An existing file larger than this is not looked into (scanplan's reports are far
 smaller): it is treated as not written by scanplan [bytes]."""
@@ -113,8 +115,9 @@ def check_target(path: str, field: str, kind: str, *, inputs: Iterable[str] = ()
             raise InputError(field, f"{shown} is the input file {item!r}; a report never "
                              "replaces an input — give another name")
     if not path.lower().endswith(SUFFIX[kind]):
+        what = {"xlsx": "workbook", "pdf": "PDF", "csv": "summary table"}[kind]
         raise InputError(field, f"{shown} does not end in {SUFFIX[kind]}; the "
-                         f"{'workbook' if kind == 'xlsx' else 'PDF'} is written only to a "
+                         f"{what} is written only to a "
                          f"{SUFFIX[kind]} file")
     if st is None:
         return
@@ -156,6 +159,8 @@ def written_by_scanplan(path: str | os.PathLike[str], kind: str) -> bool:
         return False
     if kind == "xlsx":
         return _xlsx_is_ours(data)
+    if kind == "csv":
+        return data.startswith(CSV_HEADER)
     return _pdf_is_ours(data)
 
 
@@ -222,3 +227,19 @@ def folder_lock(folders: Iterable[str | os.PathLike[str]]) -> Iterator[None]:
         for fd in fds:
             os.close(fd)
 
+
+def batch_stems(files: list[str]) -> list[str]:
+    """One report name per project of a batch: the file's stem, ``STEM-2``, ``STEM-3`` …
+    for later projects with the same stem (compared without case: some file systems ignore
+    it), so that no project's reports replace another's."""
+    used: set[str] = set()
+    out = []
+    for path in files:
+        stem = os.path.splitext(os.path.basename(path))[0] or "spec"
+        name, n = stem, 1
+        while name.casefold() in used:
+            n += 1
+            name = f"{stem}-{n}"
+        used.add(name.casefold())
+        out.append(name)
+    return out
