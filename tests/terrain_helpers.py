@@ -1,0 +1,94 @@
+"""Synthetic DEMs (written with rasterio) and flight layouts for the terrain tests."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from pathlib import Path
+
+import numpy as np
+import rasterio
+import shapely
+from rasterio.transform import from_origin
+
+from scanplan.geo.layout import Area, FlightLayout, Photos, Sortie, Strip
+from scanplan.rules.results import UavInputs
+
+PLAN_CRS = "EPSG:32637"
+X0, Y0 = 500_000.0, 6_000_000.0
+SENSOR_W_MM, SENSOR_H_MM, FOCAL_MM, PIXEL_UM = 24.0, 16.0, 35.0, 4.0
+
+
+def uav_inputs(height_m: float = 100.0, up_pct: float = 0.0, down_pct: float = 0.0,
+               gsd_target_cm: float | None = None, **kw) -> UavInputs:
+    return UavInputs(pixel_um=PIXEL_UM, focal_mm=FOCAL_MM, f_number=8,
+                     sensor_width_mm=SENSOR_W_MM, sensor_height_mm=SENSOR_H_MM,
+                     height_m=height_m, speed_ms=10, exposure_s=1 / 2000,
+                     forward_overlap_pct=80, side_overlap_pct=60,
+                     height_tolerance_up_pct=up_pct, height_tolerance_down_pct=down_pct,
+                     gsd_target_m=None if gsd_target_cm is None else gsd_target_cm / 100, **kw)
+
+
+def layout(height_m: float = 100.0, strips: int = 5, per_strip: int = 12,
+           forward_pct: float = 80.0, side_pct: float = 60.0, x0: float = X0, y0: float = Y0,
+           plan_crs: str = PLAN_CRS) -> FlightLayout:
+    """Strips along grid north (direction 0°) at x0 + k·spacing, photos at y0 + j·base."""
+    across = SENSOR_W_MM / FOCAL_MM * height_m
+    along = SENSOR_H_MM / FOCAL_MM * height_m
+    spacing = across * (1 - side_pct / 100)
+    base = along * (1 - forward_pct / 100)
+    xs, ys, strip, index = [], [], [], []
+    recs = []
+    for k in range(strips):
+        js = range(per_strip) if k % 2 == 0 else range(per_strip - 1, -1, -1)
+        for i, j in enumerate(js):
+            xs.append(x0 + k * spacing)
+            ys.append(y0 + j * base)
+            strip.append(k + 1)
+            index.append(i + 1)
+        start = (x0 + k * spacing, y0 + (0 if k % 2 == 0 else (per_strip - 1) * base))
+        end = (x0 + k * spacing, y0 + ((per_strip - 1) * base if k % 2 == 0 else 0))
+        recs.append(Strip(k + 1, start, end, (per_strip - 1) * base, per_strip,
+                          k * per_strip + 1, 1))
+    n = len(xs)
+    cols = {"photo": np.arange(1, n + 1), "strip": np.array(strip), "index": np.array(index),
+            "sortie": np.ones(n, dtype=int), "x_m": np.array(xs), "y_m": np.array(ys),
+            "lon_deg": np.full(n, np.nan), "lat_deg": np.full(n, np.nan),
+            "ground_m": np.zeros(n), "altitude_m": np.full(n, height_m),
+            "agl_m": np.full(n, height_m), "gsd_cm": np.full(n, np.nan),
+            "resolution_cm": np.full(n, np.nan), "recognition_p": np.full(n, np.nan)}
+    geom = shapely.box(x0, y0, x0 + (strips - 1) * spacing, y0 + (per_strip - 1) * base)
+    area = Area(geom, plan_crs, "test rectangle", plan_crs != "LOCAL", geom.area / 1e6,
+                geom.length / 1e3)
+    return FlightLayout(area=area, direction_deg=0.0, spacing_m=spacing, base_m=base,
+                        strips=tuple(recs), sorties=(Sortie(1, tuple(range(1, strips + 1)),
+                                                            0.0, None),),
+                        photos=Photos(cols), flight_length_m=0.0, turn_length_m=0.0,
+                        flight_time_s=None)
+
+
+def write_dem(path: Path, func: Callable[[np.ndarray, np.ndarray], np.ndarray], *,
+              left: float, top: float, cell: float, width: int, height: int,
+              crs: str = PLAN_CRS, nodata: float | None = None, dtype: str = "float32",
+              units: str | None = None) -> Path:
+    """A GeoTIFF whose pixel (r, c) holds func(x, y) at the pixel centre."""
+    cols = left + (np.arange(width) + 0.5) * cell
+    rows = top - (np.arange(height) + 0.5) * cell
+    xx, yy = np.meshgrid(cols, rows)
+    data = np.asarray(func(xx, yy), dtype=dtype)
+    with rasterio.open(path, "w", driver="GTiff", width=width, height=height, count=1,
+                       dtype=dtype, crs=crs, transform=from_origin(left, top, cell, cell),
+                       nodata=nodata, tiled=True, blockxsize=256, blockysize=256) as dst:
+        dst.write(data, 1)
+        if units:
+            dst.set_band_unit(1, units)
+    return path
+
+
+def dem_around(path: Path, func, lay: FlightLayout, cell: float = 2.0, margin: float = 400.0,
+               **kw) -> Path:
+    """A DEM in the plan CRS covering the layout's area with a margin."""
+    x0, y0, x1, y1 = lay.area.geometry.bounds
+    width = int((x1 - x0 + 2 * margin) / cell)
+    height = int((y1 - y0 + 2 * margin) / cell)
+    return write_dem(path, func, left=x0 - margin, top=y1 + margin, cell=cell, width=width,
+                     height=height, **kw)
