@@ -768,7 +768,7 @@ def film_terrain(layout: FlightLayout, ground: Ground, rules: ScanRules, *, map_
     binding = str(np.asarray(ev.binding)[1])
     if pix[1] < pix[0] * (1 - 1e-9):
         warnings.append(PlanWarning("terrain_film_scale", Message(
-            "terrain_film_scale", lo=float(mc.min()), hi=float(mc[i]), frame=frame,
+            "terrain_film_scale", lo=float(round(mc.min())), hi=float(round(mc[i])), frame=frame,
             strip=int(strip[i]), pixel=float(pix[1]), planned=float(pix[0]), cid=binding)))
     return FilmTerrain(photo_scale=photo_scale, altitude_m=alt[inverse], mc=mc[inverse],
                        mc_min=float(mc.min()), mc_max=float(mc[i]), binding_frame=frame,
