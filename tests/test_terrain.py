@@ -13,7 +13,6 @@ is generous; the measured error is below it); overlaps follow to 1e-9 %.
 
 from __future__ import annotations
 
-import math
 import sys
 from pathlib import Path
 
@@ -24,7 +23,7 @@ from hypothesis import strategies as st
 
 sys.path.insert(0, str(Path(__file__).parent))
 
-from terrain_helpers import (  # noqa: E402
+from terrain_helpers import (
     FOCAL_MM,
     PIXEL_UM,
     PLAN_CRS,
@@ -38,10 +37,10 @@ from terrain_helpers import (  # noqa: E402
     write_dem,
 )
 
-from scanplan.errors import InputError  # noqa: E402
-from scanplan.geo import dem as D  # noqa: E402
-from scanplan.geo import terrain as T  # noqa: E402
-from scanplan.rules.uav import ground_resolution_m, plan_uav  # noqa: E402
+from scanplan.errors import InputError
+from scanplan.geo import dem as D
+from scanplan.geo import terrain as T
+from scanplan.rules.uav import ground_resolution_m, plan_uav
 
 H = 100.0
 
@@ -87,7 +86,7 @@ def analytic_overlaps(lay, alt, ground_fn):
 def test_flat_dem_gives_the_planned_height_everywhere(tmp_path):
     lay = layout(H)
     p = dem_around(tmp_path / "flat.tif", lambda x, y: np.full_like(x, 212.5), lay)
-    r, inp, plan = run(lay, p, gsd_target_cm=1.5)
+    r, _inp, plan = run(lay, p, gsd_target_cm=1.5)
     ph = r.layout.photos
     np.testing.assert_allclose(ph["ground_m"], 212.5, atol=1e-9)
     np.testing.assert_allclose(ph["altitude_m"], 312.5, atol=1e-9)
@@ -108,7 +107,7 @@ def test_tilted_plane_agl_gsd_overlaps_are_analytic(tmp_path, mode):
         return 150.0 + 0.08 * (x - X0) - 0.03 * (y - Y0)
 
     p = dem_around(tmp_path / "tilt.tif", lambda x, y: z(x, y), lay, dtype="float64")
-    r, inp, plan = run(lay, p, mode=mode, tol_m=1.0)
+    r, inp, _plan = run(lay, p, mode=mode, tol_m=1.0)
     ph = r.layout.photos
     g = z(ph["x_m"], ph["y_m"])
     np.testing.assert_allclose(ph["ground_m"], g, atol=1e-6)
@@ -157,7 +156,7 @@ def cone(x, y, cx=X0 + 60.0, cy=Y0 + 60.0, top=80.0, slope=0.1):
 def test_cone_hill_within_the_bilinear_bound(tmp_path):
     lay = layout(H)
     p = dem_around(tmp_path / "cone.tif", cone, lay, cell=2.0, dtype="float64")
-    r, inp, _ = run(lay, p)
+    r, _inp, _ = run(lay, p)
     ph = r.layout.photos
     g = cone(ph["x_m"], ph["y_m"])
     err = np.abs(ph["ground_m"] - g)
@@ -176,7 +175,7 @@ def test_cliff_strips_on_either_side_and_the_footprint_range(tmp_path):
         return np.where(x < cliff_x, 100.0, 160.0)
 
     p = dem_around(tmp_path / "cliff.tif", z, lay, cell=1.0)
-    r, inp, _ = run(lay, p, mode="strip")
+    r, _inp, _ = run(lay, p, mode="strip")
     ph = r.layout.photos
     low, high = ph["strip"] <= 2, ph["strip"] >= 3
     np.testing.assert_allclose(ph["ground_m"][low], 100.0)
@@ -200,7 +199,7 @@ def test_cliff_strips_on_either_side_and_the_footprint_range(tmp_path):
 def test_maximum_height_is_where_the_worst_photo_meets_its_constraint(tmp_path, mode):
     lay = layout(H)
     p = dem_around(tmp_path / "cone.tif", cone, lay, dtype="float64")
-    r, inp, plan = run(lay, p, mode=mode, gsd_target_cm=1.5, up_pct=10)
+    r, _inp, plan = run(lay, p, mode=mode, gsd_target_cm=1.5, up_pct=10)
     assert plan.binding == "GSD"
     h_max = r.max_height_m
     assert h_max is not None and 0 < h_max < plan.max_height_m
@@ -223,7 +222,7 @@ def test_strip_maximum_altitude_is_its_lowest_ground_plus_the_limit(tmp_path):
     lay = layout(H)
     p = dem_around(tmp_path / "tilt.tif", lambda x, y: 100 + 0.2 * (x - X0), lay,
                    dtype="float64")
-    r, inp, plan = run(lay, p, mode="constant", gsd_target_cm=1.2)
+    r, _inp, plan = run(lay, p, mode="constant", gsd_target_cm=1.2)
     ph = r.layout.photos
     for s in r.strips:
         sel = ph["strip"] == s.number
@@ -237,7 +236,8 @@ def test_strip_maximum_altitude_is_its_lowest_ground_plus_the_limit(tmp_path):
 
 # --- flat DEM ≡ no DEM --------------------------------------------------------------------
 
-@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@settings(max_examples=25, deadline=None,
+          suppress_health_check=[HealthCheck.function_scoped_fixture])
 @given(level=st.floats(-400, 4000), h=st.floats(40, 300), up=st.floats(0, 50),
        down=st.floats(0, 30), mode=st.sampled_from(T.ALTITUDE_MODES))
 def test_flat_dem_is_the_same_as_no_dem(tmp_path, level, h, up, down, mode):
@@ -246,7 +246,7 @@ def test_flat_dem_is_the_same_as_no_dem(tmp_path, level, h, up, down, mode):
     p = dem_around(tmp_path / f"flat{abs(hash((level, h)))}.tif",
                    lambda x, y: np.full_like(x, level), lay, cell=10.0)
     a, _, pa = run(lay, p, mode=mode, h=h, up_pct=up, down_pct=down, gsd_target_cm=2.0)
-    b, _, pb = run(lay, None, mode=mode, h=h, up_pct=up, down_pct=down, gsd_target_cm=2.0,
+    b, _, _pb = run(lay, None, mode=mode, h=h, up_pct=up, down_pct=down, gsd_target_cm=2.0,
                    rng=(0.0, 0.0))
     pa_, pb_ = a.layout.photos, b.layout.photos
     for col in ("agl_m", "gsd_cm", "resolution_cm", "forward_overlap_pct", "side_overlap_pct"):
@@ -259,7 +259,7 @@ def test_flat_dem_is_the_same_as_no_dem(tmp_path, level, h, up, down, mode):
 
 def test_ground_range_without_a_dem_checks_both_ends():
     lay = layout(H)
-    r, inp, plan = run(lay, None, rng=(120.0, 180.0), gsd_target_cm=1.2)
+    r, _inp, plan = run(lay, None, rng=(120.0, 180.0), gsd_target_cm=1.2)
     ph = r.layout.photos
     assert np.all(np.isnan(ph["ground_m"]))
     np.testing.assert_allclose(ph["altitude_m"], 280.0)  # over the highest ground
@@ -294,7 +294,8 @@ def test_a_dem_that_misses_part_of_the_area_is_refused_saying_how_much(tmp_path)
     x0, y0, x1, y1 = lay.area.geometry.bounds
     half = (x1 - x0) / 2
     p = write_dem(tmp_path / "half.tif", lambda x, y: np.full_like(x, 100.0), left=x0 - 50,
-                  top=y1 + 50, cell=2.0, width=int((half + 50) / 2), height=int((y1 - y0 + 100) / 2))
+                  top=y1 + 50, cell=2.0, width=int((half + 50) / 2),
+                  height=int((y1 - y0 + 100) / 2))
     with pytest.raises(InputError) as e:
         T.ground_under(lay, T.TerrainConfig(dem=p))
     assert e.value.field == "terrain.dem"
