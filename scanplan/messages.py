@@ -700,3 +700,15 @@ MESSAGES.update({
               "плановом масштабе.",
     },
 })
+
+
+MESSAGES.update({
+    "terrain_height_lowered": {
+        "en": "over the relief the flat-ground maximum height {flat:.0f} m is too high: with "
+              "the altitude mode \"{mode}\" the worst photo meets {cid} up to {max:.0f} m above "
+              "the reference ground, so the plan is flown at {recommended:g} m",
+        "ru": "Над рельефом максимальная высота для плоской местности {flat:.0f}~м слишком "
+              "велика: в режиме высоты «{mode}» наихудший снимок удовлетворяет условию {cid} до "
+              "{max:.0f}~м над опорной отметкой, поэтому принята высота {recommended:g}~м.",
+    },
+})

@@ -239,11 +239,12 @@ class TerrainResult:
         """The JSON ``terrain`` section: plain numbers."""
         ph = self.layout.photos
         agl = ph["agl_m"]
+        g_top = np.where(np.isfinite(ph["ground_m"]), ph["ground_m"], ph["ground_max_m"])
         return {
             "source": self.ground.source, "altitude_mode": self.mode,
             "altitude_frame": self.altitude_frame, "height_m": self.height_m,
             "ground_min_m": self.ground.low_m, "ground_max_m": self.ground.high_m,
-            "agl_min_m": float(np.nanmin(agl)) if len(ph) else None,
+            "agl_min_m": float(np.nanmin(ph["altitude_m"] - g_top)) if len(ph) else None,
             "agl_max_m": float(np.nanmax(agl)) if len(ph) else None,
             "max_height_m": self.max_height_m, "binding": self.binding,
             "worst_resolution_photo": self.worst_resolution_photo,

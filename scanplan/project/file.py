@@ -129,6 +129,19 @@ KEYS: dict[str, dict[str, tuple[str, str]]] = {
     },
 }
 """Every key a project file may hold: the documented contract."""
+KEYS["terrain"] = {
+    "dem": ("str", "digital elevation model: a GeoTIFF in any CRS, relative to the project "
+            "file (or ground_elevation_m)"),
+    "ground_elevation_m": ("range", "[min, max] ground elevation under the area without a DEM "
+                           "[m]"),
+    "altitude_mode": ("str", '"constant" (default: one altitude, the planned height over the '
+                      'highest ground), "strip" (one per strip) or "follow" (terrain '
+                      "following)"),
+    "follow_tolerance_m": ("number", "follow mode: how far the height above ground may exceed "
+                           "the planned height [m] (default 5)"),
+    "vertical_unit": ("str", '"m" (default), "ft", "us-ft", "dm" or "cm": the unit of the '
+                      "DEM's heights"),
+}
 
 
 @dataclass(frozen=True)
@@ -218,6 +231,11 @@ def _flatten(doc: dict[str, Any]) -> dict[str, dict[str, Any]]:
 
 
 def _check_type(kind: str, value: Any) -> str | None:
+    if kind == "range":  # [min, max], two finite numbers
+        ok = (isinstance(value, list) and len(value) == 2 and all(
+            isinstance(v, int | float) and not isinstance(v, bool) and _finite(v)
+            for v in value))
+        return None if ok else "must be two numbers [min, max]"
     if kind == "str":
         return None if isinstance(value, str) else "must be text (in quotes)"
     if kind == "int":

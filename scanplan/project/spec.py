@@ -18,6 +18,7 @@ from typing import Any
 from ..core import flight as FL
 from ..core.domains import DOMAINS, check_domain
 from ..errors import InputError
+from ..geo.terrain import TerrainResult
 from ..messages import Message
 from ..rules.film import PlanWarning, ScanScenario
 from .api import (
@@ -31,6 +32,7 @@ from .api import (
 )
 from .archive import archive_film
 from .file import Project, ReportMeta
+from .terrainplan import terrain_config, uav_terrain_spec
 
 __all__ = ["FilmSpec", "PlanResult", "UavSpec", "plan_project"]
 
@@ -106,6 +108,8 @@ class UavSpec:
     recommended_height_m: float | None
     max_height_m: float | None  # the maximum PLANNED height (highest flown meets every limit)
     reason: str
+    terrain: TerrainResult | None = None  # [terrain]: every photo over its own ground
+    terrain_warnings: tuple[PlanWarning, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -275,7 +279,13 @@ def _uav(project: Project) -> UavSpec:
         rec = planned
         reason = Message("spec.uav_within", max=max_h)
     job = first if rec == first_height else job_at(rec)
-    return UavSpec(job, planned, rec, max_h, reason)
+    cfg = terrain_config(project)
+    if cfg is None:
+        return UavSpec(job, planned, rec, max_h, reason)
+    job, terrain, lowered, why, warned = uav_terrain_spec(project, cfg, job, planned, job_at)
+    if lowered is not None:
+        rec, reason = lowered, why
+    return UavSpec(job, planned, rec, max_h, reason, terrain, warned)
 
 
 def _comparison(film: FilmSpec, uav: UavSpec) -> list[dict[str, Any]]:
@@ -334,6 +344,7 @@ def plan_project(project: Project) -> PlanResult:
             warnings.append(PlanWarning("no_feasible_photo_scale", film.reason))
     if uav:
         warnings.extend(uav.job.plan.warnings)
+        warnings.extend(uav.terrain_warnings)
         if uav.planned_height_m and uav.recommended_height_m and \
                 uav.recommended_height_m < uav.planned_height_m:
             warnings.append(PlanWarning("height_lowered", uav.reason))

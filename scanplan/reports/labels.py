@@ -817,3 +817,45 @@ LABELS["en"]["reach_pixel"] = "Largest photo scale the pixel supports"
 LABELS["ru"]["reach_pixel"] = "Предельный масштаб снимков для пикселя"
 LABELS["en"]["reach_interpretable"] = "Largest photo scale with the map object interpretable"
 LABELS["ru"]["reach_interpretable"] = "Предельный масштаб снимков с дешифрированием объекта"
+
+# terrain (issue 12): warning headings and the heights-above-ground plot
+_TERRAIN_LABELS = {
+    "en": {
+        "pdf_warn_terrain_resolution": "Too high above low ground",
+        "pdf_warn_terrain_forward_overlap": "Forward overlap lost over high ground",
+        "pdf_warn_terrain_side_overlap": "Side overlap lost over high ground",
+        "pdf_warn_terrain_no_ground": "Photos without ground elevation",
+        "pdf_warn_terrain_units_feet": "DEM heights may be in feet",
+        "pdf_warn_terrain_geographic": "DEM in geographic coordinates",
+        "pdf_warn_terrain_film_scale": "Relief changes the photo scale",
+        "terrain_plot_title": "Heights above ground along the strips",
+        "terrain_plot_x": "photo number in flight order",
+        "terrain_plot_y": "height above ground, m",
+        "terrain_plot_limit": "maximum planned height",
+        "terrain_plot_planned": "planned height",
+        "terrain_ground_m": "Ground elevation, m",
+        "terrain_agl_m": "Height above ground, m",
+        "terrain_altitude_m": "Flight altitude, m",
+    },
+    "ru": {
+        "pdf_warn_terrain_resolution": "Слишком высоко над пониженным рельефом",
+        "pdf_warn_terrain_forward_overlap": "Продольное перекрытие над возвышенностями "
+                                            "недостаточно",
+        "pdf_warn_terrain_side_overlap": "Поперечное перекрытие над возвышенностями "
+                                         "недостаточно",
+        "pdf_warn_terrain_no_ground": "Снимки без отметки рельефа",
+        "pdf_warn_terrain_units_feet": "Высоты ЦМР, возможно, в футах",
+        "pdf_warn_terrain_geographic": "ЦМР в географических координатах",
+        "pdf_warn_terrain_film_scale": "Рельеф изменяет масштаб снимков",
+        "terrain_plot_title": "Высоты фотографирования над рельефом по маршрутам",
+        "terrain_plot_x": "номер снимка в порядке съёмки",
+        "terrain_plot_y": "высота над рельефом, м",
+        "terrain_plot_limit": "максимальная плановая высота",
+        "terrain_plot_planned": "плановая высота",
+        "terrain_ground_m": "Отметка рельефа, м",
+        "terrain_agl_m": "Высота над рельефом, м",
+        "terrain_altitude_m": "Высота полёта, м",
+    },
+}
+for _loc in LOCALES:
+    LABELS[_loc].update(_TERRAIN_LABELS[_loc])
