@@ -643,7 +643,7 @@ MESSAGES.update({
               "{b:d}), below the planned {planned:g} % at {count:d} photo(s): {photos}.{floor} "
               "Remedies: hold the altitude over the highest ground ([terrain] altitude_mode = "
               "\"constant\" or \"strip\"), or raise [uav] forward_overlap_pct",
-        "ru": "Над повышенным рельефом продольное перекрытие падает до {value:.1f}~% (снимки "
+        "ru": "Над повышенным рельефом продольное перекрытие уменьшается до {value:.1f}~% (снимки "
               "{a:d} и {b:d}) — меньше планового {planned:g}~% у снимков: {count:d} "
               "({photos}).{floor} Выход: отсчитывать высоту от наивысшей точки ([terrain] "
               "altitude_mode = «constant» или «strip») или увеличить [uav] forward_overlap_pct.",
@@ -653,14 +653,14 @@ MESSAGES.update({
               "below the planned {planned:g} % at {count:d} photo(s): {photos}.{floor} Remedies: "
               "hold the altitude over the highest ground ([terrain] altitude_mode = "
               "\"constant\"), or raise [uav] side_overlap_pct",
-        "ru": "Над повышенным рельефом поперечное перекрытие падает до {value:.1f}~% (снимки "
+        "ru": "Над повышенным рельефом поперечное перекрытие уменьшается до {value:.1f}~% (снимки "
               "{a:d} и {b:d}) — меньше планового {planned:g}~% у снимков: {count:d} "
               "({photos}).{floor} Выход: отсчитывать высоту от наивысшей точки ([terrain] "
               "altitude_mode = «constant») или увеличить [uav] side_overlap_pct.",
     },
     "terrain_overlap_floor.forward": {
         "en": " At 50 % or less no ground point is on three photos: the block cannot be tied",
-        "ru": " При 50~% и менее ни одна точка не попадает на три снимка: сеть не строится.",
+        "ru": " При 50~% и менее ни одна точка не изображается на трёх снимках: сеть не строится.",
     },
     "terrain_overlap_floor.side": {
         "en": " At 0 % or less there are gaps between the strips",

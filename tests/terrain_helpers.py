@@ -92,3 +92,67 @@ def dem_around(path: Path, func, lay: FlightLayout, cell: float = 2.0, margin: f
     height = int((y1 - y0 + 2 * margin) / cell)
     return write_dem(path, func, left=x0 - margin, top=y1 + margin, cell=cell, width=width,
                      height=height, **kw)
+
+
+def terrain_cases(tmp: Path) -> dict[str, list]:
+    """Cases that raise every terrain warning: {case: [warning messages and reasons]}."""
+    from pyproj import Transformer
+
+    from scanplan.geo import terrain as T
+    from scanplan.norms import load_norm_set
+    from scanplan.rules.uav import plan_uav
+
+    out: dict[str, list] = {}
+    lay = layout(100.0)
+
+    def slope(x, y):
+        return 100 + 0.3 * (x - X0)
+
+    tilt = dem_around(tmp / "tilt-cases.tif", slope, lay, dtype="float64")
+    for mode in T.ALTITUDE_MODES:
+        inp = uav_inputs(100.0, gsd_target_cm=1.0)
+        res = T.uav_terrain(lay, T.ground_under(lay, T.TerrainConfig(dem=tilt)), inp,
+                            plan_uav(inp), mode, 40.0)
+        out[f"terrain {mode}"] = [w.message for w in res.warnings]
+    inp = uav_inputs(100.0, down_pct=70.0)
+    res = T.uav_terrain(lay, T.ground_under(lay, T.TerrainConfig(dem=tilt)), inp,
+                        plan_uav(inp))
+    out["terrain overlaps"] = [w.message for w in res.warnings]
+    inp = uav_inputs(100.0, down_pct=30.0)
+    res = T.uav_terrain(lay, T.ground_under(lay, T.TerrainConfig(dem=tilt)), inp,
+                        plan_uav(inp))
+    out["terrain overlaps above the floor"] = [w.message for w in res.warnings]
+    ph = lay.photos
+    hx, hy = ph["x_m"][0], ph["y_m"][0]
+    holes = dem_around(tmp / "holes-cases.tif", lambda x, y: np.where(
+        np.hypot(x - hx, y - hy) < 5, -9999.0, 150.0), lay, nodata=-9999.0)
+    out["terrain nodata"] = [w.message for w in T.ground_under(
+        lay, T.TerrainConfig(dem=holes)).warnings]
+    to = Transformer.from_crs(PLAN_CRS, "EPSG:4326", always_xy=True)
+    lon, lat = to.transform(ph["x_m"], ph["y_m"])
+    geo = write_dem(tmp / "geo-cases.tif", lambda x, y: np.full_like(x, 150.0),
+                    left=float(np.min(lon)) - 0.01, top=float(np.max(lat)) + 0.01,
+                    cell=1 / 3600, width=int((np.ptp(lon) + 0.02) * 3600),
+                    height=int((np.ptp(lat) + 0.02) * 3600), crs="EPSG:4326")
+    out["terrain geographic"] = [w.message for w in T.ground_under(
+        lay, T.TerrainConfig(dem=geo)).warnings]
+    # New York: a UTM block, a DEM in the state plane (US survey feet)
+    ny = layout(100.0, x0=585_000.0, y0=4_510_000.0, plan_crs="EPSG:32618")
+    to_ft = Transformer.from_crs("EPSG:32618", "EPSG:2263", always_xy=True)
+    fx, fy = to_ft.transform(ny.photos["x_m"], ny.photos["y_m"])
+    feet = write_dem(tmp / "feet-cases.tif", lambda x, y: np.full_like(x, 300.0),
+                     left=float(np.min(fx)) - 3000, top=float(np.max(fy)) + 3000, cell=10.0,
+                     width=int((np.ptp(fx) + 6000) / 10), height=int((np.ptp(fy) + 6000) / 10),
+                     crs="EPSG:2263")
+    out["terrain feet"] = [w.message for w in T.ground_under(
+        ny, T.TerrainConfig(dem=feet)).warnings]
+    rules = load_norm_set("gkinp-02-036-02").rules()
+    film = layout(1530.0, strips=3, per_strip=5, forward_pct=60, side_pct=30)
+    fdem = dem_around(tmp / "film-cases.tif", lambda x, y: 100 + 0.1 * (x - X0), film,
+                      cell=20.0)
+    ft = T.film_terrain(film, T.ground_under(film, T.TerrainConfig(dem=fdem)), rules,
+                        map_scale=2000, photo_scale=10000, relief_interval_m=1.0,
+                        focal_mm=153, frame_along_mm=230, forward_overlap_pct=60,
+                        resolving_power_lpmm=40, object_size_m=0.2, shape_coefficient=0.97)
+    out["terrain film"] = [w.message for w in ft.warnings]
+    return out

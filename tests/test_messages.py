@@ -16,6 +16,7 @@ import io
 import json
 import pickle
 import re
+import sys
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -67,6 +68,7 @@ def test_templates_have_the_same_fields_in_both_locales():
 def test_russian_templates_are_russian():
     """No English word in a Russian template outside symbols, ids and option names."""
     allowed = {"objects", "parallax", "sqrt", "uav"}  # "uav": the project section [uav]
+    allowed |= {"constant", "strip", "follow"}  # values of [terrain] altitude_mode, as typed
     for code, templates in MESSAGES.items():
         text = re.sub(r"\{[^}]*\}", " ", templates["ru"])
         text = re.sub(r"\[[a-z.]+\] [a-z_]+", " ", text)  # a project-file key, as typed
@@ -145,6 +147,10 @@ def test_messages_module_is_pure():
 # --- every code the engine can emit -------------------------------------------------------------
 
 
+sys.path.insert(0, str(Path(__file__).parent))
+from terrain_helpers import terrain_cases  # noqa: E402
+
+
 def _messages(value: Any) -> Iterator[Message]:
     """Every Message in ``value`` and nested in its parameters."""
     if isinstance(value, Message):
@@ -188,6 +194,7 @@ def emitted(tmp_path_factory) -> dict[str, list[Any]]:
     """Cases that raise every warning and reach every message: {case: [engine sentences]}."""
     tmp = tmp_path_factory.mktemp("projects")
     out: dict[str, list[Any]] = {}
+    out.update(terrain_cases(tmp))  # issue 12: synthetic DEMs
     film = dict(map_scale=2000, relief_interval_m=0.5, photo_scales=[5000, 10000, 15000, 20000],
                 camera="rc30-153", scanner="photoscan-td")
     job = scan_job(**film)
@@ -230,6 +237,7 @@ def emitted(tmp_path_factory) -> dict[str, list[Any]]:
         "plan uav lowered": uav_toml.replace("height_m = 300", "height_m = 500"),
         "plan uav within": uav_toml.replace("height_m = 300", "height_m = 200"),
         "plan uav no height": uav_toml.replace("height_m = 300\n", ""),
+        "plan uav over relief": uav_toml + "\n[terrain]\nground_elevation_m = [120, 180]\n",
         "plan uav nothing resolved": uav_toml.replace("r_min = 0.1", "r_min = 0.3"),
         # archive photos: the scale is given (issue 13)
         "plan archive": archive_toml,
