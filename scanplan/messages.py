@@ -680,7 +680,7 @@ MESSAGES.update({
         "en": "the DEM {file} has its horizontal coordinates in {unit}, and nothing says its "
               "heights are in metres: if they are in feet, state it ([terrain] vertical_unit = "
               "\"ft\" or \"us-ft\")",
-        "ru": "Плановые координаты ЦМР {file} заданы в единицах «{unit}», а единица высот не "
+        "ru": "Плановые координаты ЦМР {file} заданы в {unit}, а единица высот не "
               "указана: если высоты в футах, укажите это ([terrain] vertical_unit = «ft» или "
               "«us-ft»).",
     },

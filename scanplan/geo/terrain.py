@@ -307,7 +307,10 @@ def ground_under(layout: FlightLayout, cfg: TerrainConfig, key: str = "terrain.d
     warnings: list[PlanWarning] = []
     if problem == "ft":
         warnings.append(PlanWarning("terrain_units_feet", Message(
-            "terrain_units_feet", file=info.path.name, unit=info.horizontal_unit)))
+            "terrain_units_feet", file=info.path.name, unit=(
+                {"en": "US survey feet", "ru": "американских геодезических футах"}
+                if "us" in info.horizontal_unit.lower()
+                else {"en": "feet", "ru": "футах"}))))
     lo = float(np.nanmin(s.elevation_m))
     hi = float(np.nanmax(s.elevation_m))
     if not known.all():
