@@ -51,6 +51,7 @@ BENCHMARKS: dict[str, str] = {
     "reports": "bench_reports",
     "plan_batch": "bench_plan_batch",
     "terrain": "bench_terrain",
+    "flight_layout": "bench_flight_layout",
 }
 
 RATIO_FOOTNOTE = (
