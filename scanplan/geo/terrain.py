@@ -757,6 +757,7 @@ def film_terrain(layout: FlightLayout, ground: Ground, rules: ScanRules, *, map_
     h_m = photo_scale * focal_mm / 1000.0
     alt = altitudes_m(g_alt, strip, mode, h_m, follow_tolerance_m)
     mc = (alt - g_res) / (focal_mm / 1000.0)
+    mc_lo = float(((alt - g_alt) / (focal_mm / 1000.0)).min()) if n else photo_scale
     inverse = np.empty(n, dtype=np.int64)
     inverse[order] = np.arange(n)
     i = int(np.argmax(mc))
@@ -772,10 +773,10 @@ def film_terrain(layout: FlightLayout, ground: Ground, rules: ScanRules, *, map_
     binding = str(np.asarray(ev.binding)[1])
     if pix[1] < pix[0] * (1 - 1e-9):
         warnings.append(PlanWarning("terrain_film_scale", Message(
-            "terrain_film_scale", lo=float(round(mc.min())), hi=float(round(mc[i])), frame=frame,
+            "terrain_film_scale", lo=float(round(mc_lo)), hi=float(round(mc[i])), frame=frame,
             strip=int(strip[i]), pixel=float(pix[1]), planned=float(pix[0]), cid=binding)))
     return FilmTerrain(photo_scale=photo_scale, altitude_m=alt[inverse], mc=mc[inverse],
-                       mc_min=float(mc.min()), mc_max=float(mc[i]), binding_frame=frame,
+                       mc_min=mc_lo, mc_max=float(mc[i]), binding_frame=frame,
                        binding_strip=int(strip[i]), scan_pixel_um=float(pix[1]),
                        scan_pixel_planned_um=float(pix[0]), binding=binding,
                        warnings=tuple(warnings))
