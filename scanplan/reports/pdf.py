@@ -537,6 +537,15 @@ def _uav_view(job: UavJob, f: _Fmt) -> dict[str, Any]:
     }
 
 
+def _terrain_plot(spec: PlanResult | None, f: _Fmt) -> str | None:
+    """The heights-above-ground figure of a ``[terrain]`` plan (issue 12), else None."""
+    tr = getattr(getattr(spec, "uav", None), "terrain", None)
+    if tr is None or len(tr.layout.photos) == 0:
+        return None
+    limit = spec.uav.job.plan.max_height_m  # type: ignore[union-attr]
+    return _svg_uri(plots.terrain_svg(tr, limit, f.locale))
+
+
 def _comparison_view(scan: ScanJob, uav: UavJob, f: _Fmt) -> dict[str, Any]:
     sp, up = scan.plan, uav.plan
     um, m = f.label("pdf_um"), f.label("pdf_m")
@@ -692,6 +701,8 @@ def render_html(*, scan: ScanJob | None = None, uav: UavJob | None = None,
                   f"{_css_string(' ' + f.label('sheets_of') + ' ')} counter(pages)")
     scan_view = _scan_view(scan, f) if scan is not None else None
     uav_view = _uav_view(uav, f) if uav is not None else None
+    if uav_view is not None:
+        uav_view["plot_terrain"] = _terrain_plot(spec, f)
     spec_view = _spec_view(spec, f) if spec is not None else None
     ctx = {
         "lang": meta.locale, "title": title, "meta": meta, "date": date,
