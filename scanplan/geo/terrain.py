@@ -134,11 +134,10 @@ class TerrainConfig:
     vertical_unit: str | None = None
 
     def __post_init__(self) -> None:
+        # each key's own value first (the error names it), then whether the keys agree
         if self.altitude_mode not in ALTITUDE_MODES:
             raise InputError("terrain.altitude_mode", f"must be one of {', '.join(ALTITUDE_MODES)}"
                              f" (got {self.altitude_mode!r})")
-        if (self.dem is None) == (self.ground_range_m is None):
-            raise InputError("terrain", "give either dem or ground_elevation_m")
         if self.ground_range_m is not None:
             lo, hi = self.ground_range_m
             if not (math.isfinite(lo) and math.isfinite(hi) and lo <= hi
@@ -152,6 +151,14 @@ class TerrainConfig:
         if self.vertical_unit is not None and self.vertical_unit not in D.UNIT_FACTORS:
             raise InputError("terrain.vertical_unit", "must be one of "
                              f"{', '.join(D.UNIT_FACTORS)} (got {self.vertical_unit!r})")
+        if self.dem is not None and self.ground_range_m is not None:
+            raise InputError("terrain.ground_elevation_m", "give either dem or "
+                             "ground_elevation_m, not both")
+        if self.dem is None and self.ground_range_m is None:
+            raise InputError("terrain", "needs dem (a GeoTIFF) or ground_elevation_m = "
+                             "[min, max]")
+        if self.dem is not None and str(self.dem).strip() in ("", "."):
+            raise InputError("terrain.dem", "is empty: give the DEM's file name")
 
 
 @dataclass(frozen=True)

@@ -431,9 +431,11 @@ _SIGNING_KEYS = ("organisation", "contract_number", "compiled_by", "checked_by",
 
 def _check_terrain(project: Project, area: Area | None) -> None:
     """``[terrain]`` checked once before any plan: its keys, and that there is an area."""
-    if terrain_config(project) is not None and area is None:
-        raise InputError(f"{project.path}: [terrain]", "needs an area to lay the photos over "
-                         "([area] width_m × length_m, polygon or file)")
+    cfg = terrain_config(project)
+    if cfg is not None and area is None:
+        key = "dem" if cfg.dem is not None else "ground_elevation_m"
+        raise InputError(f"{project.path}: {project.where('terrain', key)}", "needs an area "
+                         "to lay the photos over ([area] width_m × length_m, polygon or file)")
 
 
 def plan_project(project: Project) -> PlanResult:

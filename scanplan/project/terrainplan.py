@@ -54,7 +54,7 @@ def terrain_config(project: Project) -> TerrainConfig | None:
     try:
         return TerrainConfig(
             dem=(Path(dem) if Path(dem).is_absolute() else project.path.parent / dem)
-            if dem is not None else None,
+            if dem is not None and dem.strip() else (Path("") if dem is not None else None),
             ground_range_m=(float(rng[0]), float(rng[1])) if rng is not None else None,
             altitude_mode=g("terrain", "altitude_mode", "constant"),
             follow_tolerance_m=float(g("terrain", "follow_tolerance_m", 5.0)),
