@@ -458,3 +458,16 @@ def test_follow_mode_waypoints_step_with_the_ground(tmp_path):
     assert r.layout.notes["altitude_frame"] == "AMSL"
     assert all(s.altitude_m is None for s in r.layout.strips)
 
+
+
+def test_a_layout_without_photos_gives_an_empty_result(tmp_path):
+    from dataclasses import replace
+
+    from scanplan.geo.layout import Photos
+    lay = layout(H)
+    p = dem_around(tmp_path / "flat.tif", lambda x, y: np.full_like(x, 100.0), lay)
+    empty = replace(lay, photos=Photos({k: v[:0] for k, v in lay.photos.columns.items()}),
+                    strips=())
+    r, *_ = run(empty, p)
+    assert len(r.layout.photos) == 0 and r.strips == () and r.warnings == ()
+    assert r.summary()["agl_max_m"] is None

@@ -291,6 +291,8 @@ def ground_under(layout: FlightLayout, cfg: TerrainConfig, key: str = "terrain.d
                       details={"ground_range_m": [float(lo), float(hi)]})
     path = cfg.dem if base_folder is None or cfg.dem.is_absolute() else base_folder / cfg.dem
     info = D.open_dem(path, key)
+    if n == 0:  # a plan that cannot be flown has no photos: nothing to sample
+        return Ground(np.zeros(0), math.nan, math.nan, "dem", info)
     factor, unit_source = D.vertical_factor(info, cfg.vertical_unit)
     plan_crs = layout.area.plan_crs
     if plan_crs.upper() != "LOCAL":
