@@ -620,15 +620,15 @@ MESSAGES.update({
         "en": "Remedies: fly each strip at its own altitude ([terrain] altitude_mode = "
               "\"strip\"), follow the terrain (\"follow\"), split the block along the relief, or "
               "lower the planned height to {max:.0f} m above the highest ground",
-        "ru": "Выход: задать каждому маршруту свою высоту ([terrain] altitude_mode = «strip»), "
-              "следовать рельефу («follow»), разделить блок по рельефу или снизить плановую "
-              "высоту до {max:.0f}~м над наивысшей точкой.",
+        "ru": "Выход: задать каждому маршруту свою высоту или следовать рельефу ([terrain] "
+              "altitude_mode), разделить блок по рельефу или снизить плановую высоту до "
+              "{max:.0f}~м над наивысшей точкой.",
     },
     "terrain_remedy.strip": {
         "en": "Remedies: follow the terrain ([terrain] altitude_mode = \"follow\"), split the "
               "failing strips, or lower the planned height to {max:.0f} m above each strip's "
               "highest ground",
-        "ru": "Выход: следовать рельефу ([terrain] altitude_mode = «follow»), разделить "
+        "ru": "Выход: следовать рельефу ([terrain] altitude_mode), разделить "
               "невыполняющиеся маршруты или снизить плановую высоту до {max:.0f}~м над "
               "наивысшей точкой каждого маршрута.",
     },
@@ -645,8 +645,8 @@ MESSAGES.update({
               "\"constant\" or \"strip\"), or raise [uav] forward_overlap_pct",
         "ru": "Над повышенным рельефом продольное перекрытие уменьшается до {value:.1f}~% (снимки "
               "{a:d} и {b:d}) — меньше планового {planned:g}~% у снимков: {count:d} "
-              "({photos}).{floor} Выход: отсчитывать высоту от наивысшей точки ([terrain] "
-              "altitude_mode = «constant» или «strip») или увеличить [uav] forward_overlap_pct.",
+              "({photos}).{floor} Выход: отсчитывать высоту от наивысшей точки блока или маршрута "
+              "([terrain] altitude_mode) или увеличить [uav] forward_overlap_pct.",
     },
     "terrain_side_overlap": {
         "en": "over high ground the side overlap drops to {value:.1f} % (photos {a:d} and {b:d}), "
@@ -655,8 +655,8 @@ MESSAGES.update({
               "\"constant\"), or raise [uav] side_overlap_pct",
         "ru": "Над повышенным рельефом поперечное перекрытие уменьшается до {value:.1f}~% (снимки "
               "{a:d} и {b:d}) — меньше планового {planned:g}~% у снимков: {count:d} "
-              "({photos}).{floor} Выход: отсчитывать высоту от наивысшей точки ([terrain] "
-              "altitude_mode = «constant») или увеличить [uav] side_overlap_pct.",
+              "({photos}).{floor} Выход: отсчитывать высоту от наивысшей точки блока ([terrain] "
+              "altitude_mode) или увеличить [uav] side_overlap_pct.",
     },
     "terrain_overlap_floor.forward": {
         "en": " At 50 % or less no ground point is on three photos: the block cannot be tied",
@@ -705,10 +705,10 @@ MESSAGES.update({
 MESSAGES.update({
     "terrain_height_lowered": {
         "en": "over the relief the flat-ground maximum height {flat:.0f} m is too high: with "
-              "the altitude mode \"{mode}\" the worst photo meets {cid} up to {max:.0f} m above "
+              "the altitude mode {mode} the worst photo meets {cid} up to {max:.0f} m above "
               "the reference ground, so the plan is flown at {recommended:g} m",
         "ru": "Над рельефом максимальная высота для плоской местности {flat:.0f}~м слишком "
-              "велика: в режиме высоты «{mode}» наихудший снимок удовлетворяет условию {cid} до "
+              "велика: в режиме {mode} наихудший снимок удовлетворяет условию {cid} до "
               "{max:.0f}~м над опорной отметкой, поэтому принята высота {recommended:g}~м.",
     },
 })

@@ -35,6 +35,12 @@ __all__ = ["TERRAIN_KEYS", "film_terrain_spec", "terrain_config", "uav_terrain_s
 TERRAIN_KEYS = KEYS["terrain"]
 """The ``[terrain]`` keys (defined with every project key in :mod:`.file`)."""
 
+_MODE_NAMES = {
+    "constant": {"en": '"constant"', "ru": "постоянной высоты"},
+    "strip": {"en": '"strip"', "ru": "высоты по маршрутам"},
+    "follow": {"en": '"follow"', "ru": "следования рельефу"},
+}  # [terrain] altitude_mode, as the reports name it
+
 _MAX_REFINE = 4  # re-layouts at a lower height before giving up
 
 
@@ -127,7 +133,8 @@ def uav_terrain_spec(project: Project, cfg: TerrainConfig, job: UavJob,
     if rec is not None:
         reason = Message("terrain_height_lowered", planned=planned_m or 0.0,
                          flat=job.plan.max_height_m or 0.0, max=res.max_height_m or 0.0,
-                         recommended=rec, mode=cfg.altitude_mode, cid=res.binding or "")
+                         recommended=rec, mode=_MODE_NAMES[cfg.altitude_mode],
+                         cid=res.binding or "")
     notes = dict(res.layout.notes)
     notes["waypoints"] = res.waypoints
     layout = replace(res.layout, notes=notes)
