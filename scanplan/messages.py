@@ -606,15 +606,16 @@ def params_json(value: Any) -> Any:
 # --- terrain: heights above ground from a DEM (issue 12, scanplan.geo.terrain) --------------
 MESSAGES.update({
     "terrain_resolution": {
-        "en": "over low ground the photos are too high above it: photo {photo:d} (strip "
-              "{strip:d}) is {agl:.0f} m above the ground ({flown:.0f} m flown high), above the "
-              "maximum planned height {limit:.0f} m set by {cid}, by {excess:.0f} m; "
-              "{count:d} strip(s) fail ({strips}; by m: {by}). {remedy}",
-        "ru": "Над пониженным рельефом снимки получаются слишком высоко над землёй: снимок "
-              "{photo:d} (маршрут {strip:d}) — {agl:.0f}~м над землёй ({flown:.0f}~м с учётом "
-              "допуска), выше максимальной плановой высоты {limit:.0f}~м по условию {cid} на "
-              "{excess:.0f}~м; не выполняется на маршрутах: {count:d} ({strips}; превышение, м: "
+        "en": "over low ground the photos are too high above it: at a planned height of "
+              "{height:g} m photo {photo:d} (strip {strip:d}) is {agl:.0f} m above the ground "
+              "({flown:.0f} m flown high), above the maximum planned height {limit:.0f} m "
+              "set by {cid}, by {excess:.0f} m; {count:d} strip(s) fail ({strips}; by m: "
               "{by}). {remedy}",
+        "ru": "Над пониженным рельефом снимки получаются слишком высоко над землёй: при "
+              "плановой высоте {height:g}~м снимок {photo:d} (маршрут {strip:d}) — "
+              "{agl:.0f}~м над землёй ({flown:.0f}~м с учётом допуска), выше максимальной "
+              "плановой высоты {limit:.0f}~м по условию {cid} на {excess:.0f}~м; не "
+              "выполняется на маршрутах: {count:d} ({strips}; превышение, м: {by}). {remedy}",
     },
     "terrain_remedy.constant": {
         "en": "Remedies: fly each strip at its own altitude ([terrain] altitude_mode = "

@@ -657,7 +657,7 @@ def _resolution_warnings(strips: tuple[StripTerrain, ...], plan: UavPlan, mode: 
     remedy = {"constant": "terrain_remedy.constant", "strip": "terrain_remedy.strip",
               "follow": "terrain_remedy.follow"}[mode]
     return [PlanWarning("terrain_resolution", Message(
-        "terrain_resolution", photo=worst.worst_photo, strip=worst.number,
+        "terrain_resolution", height=height_m, photo=worst.worst_photo, strip=worst.number,
         agl=worst.agl_max_m, flown=worst.agl_max_m * (1 + up), limit=plan.max_height_m,
         cid=plan.binding, excess=worst.excess_m, count=len(failing), strips=_listing(nums),
         by=by + (" …" if len(failing) > MAX_LISTED else ""),

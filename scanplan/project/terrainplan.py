@@ -106,8 +106,10 @@ def uav_terrain_spec(project: Project, cfg: TerrainConfig, job: UavJob,
     Returns
     -------
     job, terrain result, the recommended height [m] (None when nothing is recommended
-    anew), the reason (a Message), the warnings of the final check (a lowered height is
-    reported by the specification's reason and its ``height_lowered`` warning).
+    anew), the reason (a Message), the warnings of the final check — and, when a height
+    the project gave was lowered, the check of that height (which strips and photos fail
+    and by how much); the lowering itself is the specification's reason and its
+    ``height_lowered`` warning.
     """
     if job.layout is None:
         raise InputError(f"{project.path}: [terrain]", "needs an area to lay the photos over "
@@ -116,6 +118,7 @@ def uav_terrain_spec(project: Project, cfg: TerrainConfig, job: UavJob,
     res = uav_terrain(job.layout, ground, job.plan.inputs, job.plan, cfg.altitude_mode,
                       cfg.follow_tolerance_m)
     height = job.plan.inputs.height_m
+    first = res
     rec: float | None = None
     reason: Message | None = None
     for _ in range(_MAX_REFINE):
@@ -139,7 +142,10 @@ def uav_terrain_spec(project: Project, cfg: TerrainConfig, job: UavJob,
     notes["waypoints"] = res.waypoints
     layout = replace(res.layout, notes=notes)
     res = replace(res, layout=layout)
-    return replace(job, layout=layout), res, rec, reason, res.warnings
+    warnings = res.warnings
+    if rec is not None and planned_m is not None:  # what the height asked for would miss
+        warnings = tuple(w for w in first.warnings if w.code == "terrain_resolution") + warnings
+    return replace(job, layout=layout), res, rec, reason, warnings
 
 
 def film_terrain_spec(project: Project, cfg: TerrainConfig, layout: FlightLayout,
