@@ -51,6 +51,10 @@ def test_the_valley_shows_what_flat_ground_misses(valley):
     # the largest height over the relief: the flat maximum less the relief under the centres
     assert tr.max_height_m == pytest.approx(u.job.plan.max_height_m - relief, abs=1e-6)
     assert u.recommended_height_m == 5 * (tr.max_height_m // 5)
+    assert u.recommended_height_m == 70  # the headline: 135 m on flat ground
+    miss = next(w for w in valley.warnings if w.code == "terrain_resolution")
+    assert "at a planned height of 135 m" in miss.message and "HC" in miss.message
+    assert "altitude_mode" in miss.message  # the remedy names the key
     w = next(w for w in valley.warnings if w.code == "height_lowered")
     assert w.message.code == "terrain_height_lowered"
     assert "HC" in w.message and "reference ground" in w.message
