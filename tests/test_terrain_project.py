@@ -176,3 +176,23 @@ def test_the_terrain_plot_is_a_deterministic_svg(valley):
     b = terrain_svg(valley.uav.terrain, valley.uav.job.plan.max_height_m, "ru")
     assert a == b and a.startswith("<?xml") and "Высота над рельефом" in a
     assert len(a) < 200_000  # per strip, not per photo
+
+
+def test_the_workbook_has_a_terrain_sheet_per_strip(valley):
+    import io
+
+    import openpyxl
+
+    from scanplan.reports.excel import render_xlsx
+
+    u = valley.uav
+    raw = render_xlsx(uav=u.job, meta=valley.meta, spec=valley)
+    ws = openpyxl.load_workbook(io.BytesIO(raw))["Terrain"]
+    rows = list(ws.iter_rows(min_row=2, values_only=True))
+    assert len(rows) == len(u.terrain.strips)
+    first = u.terrain.strips[0]
+    assert rows[0][0] == first.number and rows[0][7] == pytest.approx(first.max_altitude_m)
+    flat = plan_project(load_project(EXAMPLES / "uav-town-2000.toml"))
+    names = openpyxl.load_workbook(io.BytesIO(render_xlsx(
+        uav=flat.uav.job, meta=flat.meta, spec=flat))).sheetnames
+    assert "Terrain" not in names
