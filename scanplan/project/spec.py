@@ -12,7 +12,7 @@ formula; it chooses among engine results.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 from ..core.domains import DOMAINS, check_domain
@@ -235,10 +235,13 @@ def _film_spec(project: Project, job: ScanJob, best: ScanScenario | None, reason
         strips = len(layout.strips)
         frames = int(layout.notes.get("photos", len(layout.photos)))
         gigabytes = frames * best.frame_megabytes / 1000.0
+    terrain = _film_terrain(project, plan, best, layout)
+    if terrain is not None and terrain.warnings:  # shown with the film plan's own warnings
+        job = replace(job, plan=replace(plan, warnings=plan.warnings + terrain.warnings))
     return FilmSpec(job=job, recommended=best, reason=reason, frames=frames, strips=strips,
                     scanned_gigabytes=gigabytes, side_overlap_pct=side,
                     archive=project.get("film", "photo_scale") is not None, layout=layout,
-                    terrain=_film_terrain(project, plan, best, layout))
+                    terrain=terrain)
 
 
 def _film_terrain(project: Project, plan: Any, best: ScanScenario | None,
@@ -395,6 +398,8 @@ def _uav(project: Project, the_area: Area | None) -> UavSpec:
     job, terrain, lowered, why, warned = uav_terrain_spec(project, cfg, job, planned, job_at)
     if lowered is not None:
         rec, reason = lowered, why
+    if warned:  # shown with the UAV plan's own warnings (terminal, JSON, PDF, workbook)
+        job = replace(job, plan=replace(job.plan, warnings=job.plan.warnings + warned))
     return UavSpec(job, planned, rec, max_h, reason, terrain, warned)
 
 
@@ -465,11 +470,8 @@ def plan_project(project: Project) -> PlanResult:
             warnings.append(PlanWarning("no_feasible_photo_scale", film.reason))
         if film.layout is not None:
             warnings.extend(layout_warnings(film.layout))
-        if film.terrain is not None:
-            warnings.extend(film.terrain.warnings)
     if uav:
         warnings.extend(uav.job.plan.warnings)
-        warnings.extend(uav.terrain_warnings)
         if uav.planned_height_m and uav.recommended_height_m and \
                 uav.recommended_height_m < uav.planned_height_m:
             warnings.append(PlanWarning("height_lowered", uav.reason))
