@@ -767,3 +767,7 @@ from .labels_more import DESIGN as _DESIGN  # noqa: E402  (the survey design she
 
 for _loc in LOCALES:
     LABELS[_loc].update(_DESIGN[_loc])
+from .labels_more import TERRAIN as _TERRAIN  # noqa: E402  (terrain: warnings, plot, sheet)
+
+for _loc in LOCALES:
+    LABELS[_loc].update(_TERRAIN[_loc])
