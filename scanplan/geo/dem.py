@@ -22,8 +22,8 @@ naming the key (and saying how much is missing).
 
 from __future__ import annotations
 
-import re
 import math
+import re
 from dataclasses import dataclass
 from pathlib import Path
 
