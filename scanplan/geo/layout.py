@@ -59,6 +59,10 @@ class Area:
         Size of the area [km²] and its boundary length [km] in the planning CRS.
     centroid_lonlat : tuple of float or None
         Centroid (lon, lat) in WGS 84 [°]; None when not georeferenced.
+    plan_crs_name : str
+        The planning CRS's name for reports (``"WGS 84 / UTM zone 37N"``; ``""`` local).
+    input_crs : str or None
+        The CRS the coordinates were given in (``"EPSG:4326"``); None for a rectangle.
     """
 
     geometry: Any
@@ -68,14 +72,19 @@ class Area:
     area_km2: float
     perimeter_km: float
     centroid_lonlat: tuple[float, float] | None = None
+    plan_crs_name: str = ""
+    input_crs: str | None = None
 
 
 @dataclass(frozen=True)
 class Strip:
     """One flight line: flown from ``start`` to ``end`` (planning CRS [m]).
 
-    ``segments`` > 1 when the line crosses a concave area or a hole several times and is
-    split (see :mod:`scanplan.geo.lines` for split versus bridge).
+    ``segments`` > 1 when the line crosses a concave area or a hole several times: the
+    strip is flown as one line and the camera is off over the gaps (see
+    :mod:`scanplan.geo.lines`, split versus bridge). ``parts`` holds each photographed part
+    as (start_xy_m, end_xy_m) in flight order, first to last exposure of the part (the
+    trigger-on and trigger-off points); one part when the strip has no gap.
     """
 
     number: int
@@ -87,6 +96,7 @@ class Strip:
     sortie: int
     segments: int = 1
     altitude_m: float | None = None  # strip altitude (terrain 'strip' mode), else None
+    parts: tuple[tuple[tuple[float, float], tuple[float, float]], ...] = ()
 
 
 @dataclass(frozen=True)
@@ -138,6 +148,18 @@ class FlightLayout:
         How far strips run past the area, in photo bases, at each end.
     feasible : bool
         False when the plan cannot be flown; ``reason`` says why.
+    kind : str
+        ``"uav"`` or ``"film"`` (the aerial survey's flight scheme; no flight time).
+    footprint_across_m, footprint_along_m : float
+        Ground footprint of one photo across and along the strip at the planned height [m].
+    speed_ms : float or None
+        Ground speed the times are computed at [m/s].
+    turn : str
+        How the turns were counted (``"semicircle"``, ``"turnaround 20 m"``,
+        ``"radius 150 m"``), for reports.
+    notes : dict
+        Extra figures (``bridged_m``: gap length flown with the camera off [m];
+        ``candidates``: directions tried by "auto").
     """
 
     area: Area
@@ -154,3 +176,13 @@ class FlightLayout:
     feasible: bool = True
     reason: str | None = None
     notes: dict[str, Any] = field(default_factory=dict)
+    kind: str = "uav"
+    footprint_across_m: float = float("nan")
+    footprint_along_m: float = float("nan")
+    speed_ms: float | None = None
+    turn: str = "semicircle"
+
+    @property
+    def n_photos(self) -> int:
+        """Number of photo centres."""
+        return len(self.photos)

@@ -1,0 +1,472 @@
+"""The contract area: a polygon from a GIS file or the project file, in a metric planning CRS.
+
+Sources (one of them):
+
+- a file — KML, KMZ, GeoJSON, GeoPackage, Shapefile (anything GDAL reads as vectors),
+  read with pyogrio; ``layer`` and ``feature`` choose when it holds several polygons;
+- an inline ring ``[[lon, lat], ...]`` (or ``[[x, y], ...]`` in ``crs``);
+- the abstract ``width_m × length_m`` block: a rectangle in a local metric frame, not
+  georeferenced, planned by the same code as a real polygon.
+
+Planning happens in a projected metric CRS: ``plan_crs`` when given; else the CRS the
+coordinates came in, when that is projected in metres (a Gauss–Krüger zone, a local
+system); else the UTM zone of the area's centroid (pyproj's database of UTM zones).
+
+Every problem is an :class:`~scanplan.errors.InputError` naming the file (and feature) or
+the key, what is wrong and what is allowed; nothing is guessed. Hostile files are refused
+before a parser sees them: a size bound, a KMZ's zip directory checked (entries, inflated
+size, compression ratio) before anything is inflated, and KML with a document type
+declaration (entities) refused.
+"""
+
+from __future__ import annotations
+
+import io
+import math
+import os
+import re
+import zipfile
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pyproj
+import shapely
+from pyproj.aoi import AreaOfInterest
+from pyproj.database import query_utm_crs_info
+from shapely.validation import explain_validity
+
+from ..errors import InputError
+from ..safeio import read_limited, size_text
+from .layout import Area
+
+__all__ = ["MAX_AREA_KM2", "AreaSpec", "load_area", "rectangle_area"]
+
+MAX_AREA_KM2 = 10_000.0
+"""Largest contract area [km²] (a larger block is a regional programme, not one plan)."""
+MIN_AREA_M2 = 1.0
+"""Smallest area [m²]: below it the polygon is degenerate (points on a line)."""
+MAX_FILE_BYTES = 64 * 1024 * 1024
+"""Largest area file read [bytes] (a town boundary is kilobytes)."""
+MAX_KMZ_ENTRIES = 1_000
+"""Most entries in a KMZ's zip directory."""
+MAX_KMZ_INFLATED = 64 * 1024 * 1024
+"""Most bytes a KMZ may inflate to, all entries together [bytes]."""
+MAX_KMZ_RATIO = 200.0
+"""Largest compression ratio of a KMZ entry (text compresses ~10:1; a bomb ~1000:1)."""
+MAX_FEATURES = 100_000
+"""Most features read from one file."""
+MAX_VERTICES = 1_000_000
+"""Most vertices of the area."""
+_DTD = re.compile(rb"<!\s*(DOCTYPE|ENTITY)", re.IGNORECASE)
+_NAME_FIELDS = ("name", "Name", "NAME", "title", "Title")
+
+
+@dataclass(frozen=True)
+class AreaSpec:
+    """What the project (or the command line) says about the area.
+
+    Attributes
+    ----------
+    file : path or None
+        A GIS file with the polygon.
+    layer : str or None
+        Layer of ``file`` to read (default: every layer).
+    feature : str, int or None
+        The polygon's name (its ``name`` attribute) or running number from 1.
+    polygon : sequence of (x, y) or None
+        An inline ring, lon/lat in WGS 84 unless ``crs``.
+    crs : str or None
+        CRS of ``polygon`` (or of a file that declares none), e.g. ``"EPSG:28407"``.
+    plan_crs : str or None
+        Planning CRS (projected, metres).
+    width_m, length_m : float or None
+        The abstract rectangle.
+    """
+
+    file: str | os.PathLike[str] | None = None
+    layer: str | None = None
+    feature: str | int | None = None
+    polygon: Sequence[Sequence[float]] | None = None
+    crs: str | int | None = None
+    plan_crs: str | int | None = None
+    width_m: float | None = None
+    length_m: float | None = None
+
+
+def rectangle_area(width_m: float, length_m: float) -> Area:
+    """The abstract block ``width_m × length_m`` as an area in a local metric frame.
+
+    The rectangle runs from (0, 0) to (width, length): x across the flight lines, y along
+    them (flight direction 0°), so the same flight-line code plans it as any polygon.
+    """
+    geom = shapely.box(0.0, 0.0, float(width_m), float(length_m))
+    return Area(geometry=geom, plan_crs="LOCAL",
+                source=f"rectangle {width_m:g} × {length_m:g} m", georeferenced=False,
+                area_km2=width_m * length_m / 1e6,
+                perimeter_km=2.0 * (width_m + length_m) / 1e3, centroid_lonlat=None,
+                plan_crs_name="", input_crs=None)
+
+
+def load_area(spec: AreaSpec) -> Area | None:
+    """The area ``spec`` describes, in its planning CRS (None when it describes none).
+
+    Raises
+    ------
+    InputError
+        ``field`` names the file (and feature) or the key (``polygon``, ``crs``,
+        ``plan_crs``, ``file``, ``layer``, ``feature``); the message says what is wrong and
+        what is allowed.
+    """
+    given = [k for k in ("file", "polygon") if getattr(spec, k) is not None]
+    rect = spec.width_m is not None or spec.length_m is not None
+    if len(given) > 1 or (given and rect):
+        raise InputError(given[-1] if len(given) > 1 else given[0],
+                         "give one area: a file, an inline polygon, or width_m × length_m")
+    for key in ("layer", "feature"):
+        if getattr(spec, key) is not None and spec.file is None:
+            raise InputError(key, "chooses among the polygons of [area] file; give the file")
+    if not given:
+        if spec.crs is not None or spec.plan_crs is not None:
+            raise InputError("crs" if spec.crs is not None else "plan_crs",
+                             "applies to a polygon; give [area] file or polygon")
+        if not rect:
+            return None
+        if spec.width_m is None or spec.length_m is None:
+            raise InputError("width_m" if spec.width_m is None else "length_m",
+                             "is required with the other side of [area]: give both width_m "
+                             "and length_m")
+        return rectangle_area(float(spec.width_m), float(spec.length_m))
+    user_crs = _crs(spec.crs, "crs") if spec.crs is not None else None
+    if spec.file is not None:
+        geom, file_crs, where = _read_file(Path(spec.file), spec.layer, spec.feature)
+        if file_crs is not None and user_crs is not None and file_crs != user_crs:
+            raise InputError("crs", f"{user_crs.to_string()} differs from the CRS "
+                             f"{file_crs.to_string()} that {where} declares; remove "
+                             "[area] crs (it is for coordinates without a CRS)")
+        in_crs = file_crs or user_crs or pyproj.CRS.from_epsg(4326)
+    else:
+        geom = _inline(spec.polygon)
+        where = "inline polygon"
+        in_crs = user_crs or pyproj.CRS.from_epsg(4326)
+    field = where if spec.file is not None else "polygon"
+    _check_input_geometry(geom, in_crs, field)
+    plan = _plan_crs(spec.plan_crs, in_crs, geom)
+    return _project(geom, in_crs, plan, where, field)
+
+
+# -------------------------------------------------------------------------------------------
+# Sources
+# -------------------------------------------------------------------------------------------
+def _inline(ring: Any) -> shapely.Polygon:
+    """An inline ring → a polygon; at least 3 distinct points of two finite numbers each."""
+    if not isinstance(ring, list | tuple) or not ring:
+        raise InputError("polygon", "must be a list of [lon, lat] points, e.g. [[37.60, "
+                         "55.75], [37.62, 55.75], [37.62, 55.76]]")
+    if len(ring) > MAX_VERTICES:
+        raise InputError("polygon", f"has {len(ring):,} points; at most {MAX_VERTICES:,}")
+    pts: list[tuple[float, float]] = []
+    for i, p in enumerate(ring, start=1):
+        ok = (isinstance(p, list | tuple) and len(p) == 2
+              and all(isinstance(c, int | float) and not isinstance(c, bool) for c in p))
+        if not ok or not all(math.isfinite(float(c)) for c in p):
+            raise InputError("polygon", f"point {i} must be [lon, lat] (two finite numbers); "
+                             f"got {p!r}"[:300])
+        pts.append((float(p[0]), float(p[1])))
+    if len(pts) > 1 and pts[0] == pts[-1]:
+        pts = pts[:-1]
+    if len(set(pts)) < 3:
+        raise InputError("polygon", f"has {len(set(pts))} distinct point(s); a polygon needs "
+                         "at least 3")
+    return shapely.Polygon(pts)
+
+
+def _read_file(path: Path, layer: str | None, feature: str | int | None
+               ) -> tuple[Any, pyproj.CRS | None, str]:
+    """The chosen polygon of a GIS file, its CRS (None if it declares none) and its name."""
+    import pyogrio
+
+    name = str(path)
+    source: str | io.BytesIO = str(path)
+    suffix = path.suffix.lower()
+    if suffix in (".kmz", ".kml", ".geojson", ".json"):
+        data = read_limited(path, MAX_FILE_BYTES, field=name)
+        if suffix == ".kmz":
+            data = _kmz_document(data, name)
+        if suffix in (".kmz", ".kml"):
+            if _DTD.search(data[:65536]) or _DTD.search(data):
+                raise InputError(name, "holds a document type declaration (<!DOCTYPE> or "
+                                 "<!ENTITY>); KML needs none, and entities are refused. Save "
+                                 "the polygon again from Google Earth or QGIS")
+        source = io.BytesIO(data)
+    else:
+        _check_size(path, name)
+    try:
+        layers = pyogrio.list_layers(source)
+    except Exception as exc:  # GDAL's errors are many classes; any of them: unreadable
+        raise InputError(name, f"cannot be read as a GIS file: {_gdal_text(exc)}") from None
+    names = [str(n) for n, _ in layers]
+    if layer is not None:
+        if layer not in names:
+            raise InputError("layer", f"{layer!r} is not a layer of {name}; its layers: "
+                             f"{_listed(names)}")
+        names = [layer]
+    found: list[tuple[str, str, Any, pyproj.CRS | None]] = []  # (label, layer, geom, crs)
+    other = 0
+    for lyr in names:
+        if isinstance(source, io.BytesIO):
+            source.seek(0)
+        try:
+            meta, _, wkb, fields = pyogrio.raw.read(source, layer=lyr,
+                                                    max_features=MAX_FEATURES)
+        except Exception as exc:
+            raise InputError(name, f"layer {lyr!r} cannot be read: {_gdal_text(exc)}"
+                             ) from None
+        if wkb is None:
+            continue
+        geoms = shapely.from_wkb(wkb, on_invalid="ignore")
+        crs = pyproj.CRS.from_user_input(meta["crs"]) if meta.get("crs") else None
+        labels = _labels(meta, fields, len(geoms))
+        for label, g in zip(labels, geoms, strict=True):
+            if g is None or g.is_empty:
+                continue
+            g = shapely.force_2d(g)
+            if isinstance(g, shapely.GeometryCollection) and not isinstance(
+                    g, shapely.MultiPolygon):
+                polys = [p for p in g.geoms if isinstance(p, shapely.Polygon | shapely.MultiPolygon)]
+                g = shapely.union_all(polys) if polys else None
+            if isinstance(g, shapely.Polygon | shapely.MultiPolygon):
+                found.append((label, lyr, g, crs))
+            else:
+                other += 1
+    if not found:
+        what = f" (it holds {other} point or line feature(s): draw the boundary as a " \
+               "polygon)" if other else ""
+        raise InputError(name, f"holds no polygon{what}")
+    if feature is not None:
+        chosen = _choose(found, feature, name)
+    elif len(found) == 1:
+        chosen = found[0]
+    else:
+        raise InputError(name, f"holds {len(found)} polygons: "
+                         f"{_listed([f'{i}: {f[0]}' for i, f in enumerate(found, 1)])}; "
+                         "choose one with [area] feature = \"its name\" or its number"
+                         + (" (and [area] layer)" if len(names) > 1 else ""))
+    label, lyr, geom, crs = chosen
+    where = f"{name}, feature {label!r}" + (f" of layer {lyr!r}" if len(names) > 1 else "")
+    return geom, crs, where
+
+
+def _choose(found: list[tuple[str, str, Any, Any]], feature: str | int, name: str
+            ) -> tuple[str, str, Any, Any]:
+    if isinstance(feature, int) and not isinstance(feature, bool):
+        if not 1 <= feature <= len(found):
+            raise InputError("feature", f"must be 1 … {len(found)}, the number of a polygon "
+                             f"of {name} (got {feature})")
+        return found[feature - 1]
+    hits = [f for f in found if f[0] == feature] or [
+        f for f in found if f[0].casefold() == str(feature).casefold()]
+    if len(hits) == 1:
+        return hits[0]
+    if not hits:
+        raise InputError("feature", f"{name} has no polygon named {feature!r}; its polygons: "
+                         f"{_listed([f[0] for f in found])}")
+    raise InputError("feature", f"{name} has {len(hits)} polygons named {feature!r}; give its "
+                     f"number (1 … {len(found)}) instead")
+
+
+def _labels(meta: dict[str, Any], fields: list[Any], n: int) -> list[str]:
+    """Each feature's name (its name attribute), else ``#k``."""
+    cols = list(meta.get("fields", []))
+    for key in _NAME_FIELDS:
+        if key in cols:
+            values = fields[cols.index(key)]
+            return [str(v) if v not in (None, "") else f"#{i + 1}"
+                    for i, v in enumerate(values)]
+    return [f"#{i + 1}" for i in range(n)]
+
+
+def _listed(items: list[str], most: int = 10) -> str:
+    shown = ", ".join(items[:most])
+    return shown + (f" … ({len(items)} in all)" if len(items) > most else "")
+
+
+def _gdal_text(exc: Exception) -> str:
+    text = " ".join(str(exc).split())
+    return text[:300] or type(exc).__name__
+
+
+def _check_size(path: Path, name: str) -> None:
+    try:
+        st = path.stat()
+    except FileNotFoundError:
+        from ..errors import NotFoundError
+
+        raise NotFoundError(name, "cannot be read: no such file") from None
+    except OSError as exc:
+        raise InputError(name, f"cannot be read: {exc.strerror or exc}") from None
+    import stat
+
+    if stat.S_ISDIR(st.st_mode) and path.suffix.lower() == ".gdb":
+        return
+    if not stat.S_ISREG(st.st_mode):
+        raise InputError(name, "is not a regular file")
+    if st.st_size > MAX_FILE_BYTES:
+        raise InputError(name, f"is {size_text(st.st_size)}; the limit is "
+                         f"{size_text(MAX_FILE_BYTES)}")
+
+
+def _kmz_document(data: bytes, name: str) -> bytes:
+    """The KML inside a KMZ, its zip directory checked before anything is inflated."""
+    try:
+        zf = zipfile.ZipFile(io.BytesIO(data))
+    except (zipfile.BadZipFile, OSError, ValueError) as exc:
+        raise InputError(name, f"is not a KMZ (zip) file: {exc}") from None
+    with zf:
+        infos = zf.infolist()
+        if len(infos) > MAX_KMZ_ENTRIES:
+            raise InputError(name, f"holds {len(infos):,} entries; at most "
+                             f"{MAX_KMZ_ENTRIES:,}")
+        total = sum(i.file_size for i in infos)
+        if total > MAX_KMZ_INFLATED:
+            raise InputError(name, f"would inflate to {size_text(total)}; the limit is "
+                             f"{size_text(MAX_KMZ_INFLATED)} (a zip bomb?)")
+        for i in infos:
+            if i.file_size > 1024 and i.file_size > MAX_KMZ_RATIO * max(i.compress_size, 1):
+                raise InputError(name, f"entry {i.filename!r} inflates "
+                                 f"{i.file_size / max(i.compress_size, 1):,.0f} times; at most "
+                                 f"{MAX_KMZ_RATIO:g} (a zip bomb?)")
+        kml = [i for i in infos if i.filename.lower().endswith(".kml")]
+        if not kml:
+            raise InputError(name, "holds no .kml document")
+        doc = next((i for i in kml if i.filename.lower() == "doc.kml"), kml[0])
+        try:
+            with zf.open(doc) as fh:
+                out = fh.read(doc.file_size + 1)
+        except (zipfile.BadZipFile, OSError, ValueError, RuntimeError,
+                NotImplementedError) as exc:
+            raise InputError(name, f"entry {doc.filename!r} cannot be read: {exc}") from None
+        if len(out) > doc.file_size:
+            raise InputError(name, f"entry {doc.filename!r} is larger than its zip directory "
+                             "says; refused")
+        return out
+
+
+# -------------------------------------------------------------------------------------------
+# Checks and projection
+# -------------------------------------------------------------------------------------------
+def _crs(value: str | int, key: str) -> pyproj.CRS:
+    try:
+        return pyproj.CRS.from_user_input(value)
+    except (pyproj.exceptions.CRSError, TypeError, ValueError):
+        raise InputError(key, f"{value!r} is not a CRS that pyproj knows; give an EPSG code "
+                         "such as \"EPSG:32637\" (UTM 37N) or \"EPSG:28407\" (Pulkovo 1942 / "
+                         "Gauss–Krüger zone 7)") from None
+
+
+def _n_vertices(geom: Any) -> int:
+    return int(shapely.get_num_coordinates(geom))
+
+
+def _check_input_geometry(geom: Any, crs: pyproj.CRS, field: str) -> None:
+    """Vertex count, lon/lat ranges (geographic input), closed valid rings."""
+    if _n_vertices(geom) > MAX_VERTICES:
+        raise InputError(field, f"has {_n_vertices(geom):,} vertices; at most "
+                         f"{MAX_VERTICES:,}")
+    xy = shapely.get_coordinates(geom)
+    if not np.isfinite(xy).all():
+        raise InputError(field, "has a coordinate that is not a finite number")
+    if crs.is_geographic:
+        lon, lat = xy[:, 0], xy[:, 1]
+        if (np.abs(lat) > 90).any():
+            k = int(np.argmax(np.abs(lat) > 90))
+            hint = (" — latitude and longitude look swapped: give [lon, lat], longitude first"
+                    if (np.abs(lon) <= 90).all() else "")
+            raise InputError(field, f"latitude {lat[k]:g}° is outside −90 … 90{hint}")
+        if (np.abs(lon) > 180).any():
+            k = int(np.argmax(np.abs(lon) > 180))
+            raise InputError(field, f"longitude {lon[k]:g}° is outside −180 … 180")
+    polys = list(getattr(geom, "geoms", [geom]))
+    for p in polys:
+        if len(set(map(tuple, shapely.get_coordinates(p.exterior)))) < 3:
+            raise InputError(field, "has fewer than 3 distinct points; a polygon needs at "
+                             "least 3")
+    if not shapely.area(geom) > 0:
+        raise InputError(field, "encloses no area: its points lie on a line; a block needs "
+                         f"an area ≥ {MIN_AREA_M2:g} m²")
+    if not shapely.is_valid(geom):
+        reason = explain_validity(geom)
+        m = re.match(r"(.*?)\[\s*([-0-9.eE+]+)\s+([-0-9.eE+]+)\s*\]", reason)
+        unit = ("lon {:.6f}, lat {:.6f}" if crs.is_geographic else "x {:.2f}, y {:.2f}")
+        if m and "self-intersection" in m.group(1).lower():
+            at = unit.format(float(m.group(2)), float(m.group(3)))
+            raise InputError(field, f"crosses itself at {at}; redraw the boundary so that it "
+                             "does not cross itself (a figure of eight is two polygons)")
+        if m:
+            at = unit.format(float(m.group(2)), float(m.group(3)))
+            raise InputError(field, f"is not a valid polygon: {m.group(1).strip()} at {at}")
+        raise InputError(field, f"is not a valid polygon: {reason}")
+
+
+def _plan_crs(value: str | int | None, in_crs: pyproj.CRS, geom: Any) -> pyproj.CRS:
+    """The planning CRS: given, else the input's when metric projected, else UTM."""
+    if value is not None:
+        plan = _crs(value, "plan_crs")
+        if not _metric_projected(plan):
+            raise InputError("plan_crs", f"{plan.name} is not a projected CRS in metres; give "
+                             "a projected one such as a UTM or a Gauss–Krüger zone")
+        return plan
+    if _metric_projected(in_crs):
+        return in_crs
+    to_ll = pyproj.Transformer.from_crs(in_crs, 4326, always_xy=True)
+    c = geom.representative_point() if not geom.is_empty else geom
+    lon, lat = to_ll.transform(c.x, c.y)
+    zones = query_utm_crs_info(datum_name="WGS 84", area_of_interest=AreaOfInterest(
+        lon, lat, lon, lat))
+    if not zones:
+        raise InputError("plan_crs", f"no UTM zone covers lon {lon:.4f}, lat {lat:.4f} (polar "
+                         "area); give [area] plan_crs, e.g. \"EPSG:3413\"")
+    zones.sort(key=lambda z: (abs((z.area_of_use.west + z.area_of_use.east) / 2 - lon),
+                              z.code))
+    return pyproj.CRS.from_epsg(int(zones[0].code))
+
+
+def _metric_projected(crs: pyproj.CRS) -> bool:
+    return bool(crs.is_projected and crs.axis_info
+                and all(a.unit_name in ("metre", "meter") for a in crs.axis_info[:2]))
+
+
+def _project(geom: Any, in_crs: pyproj.CRS, plan: pyproj.CRS, where: str, field: str) -> Area:
+    tr = pyproj.Transformer.from_crs(in_crs, plan, always_xy=True)
+
+    def fwd(xy: np.ndarray) -> np.ndarray:
+        x, y = tr.transform(xy[:, 0], xy[:, 1])
+        return np.column_stack([x, y])
+
+    with np.errstate(all="ignore"):
+        projected = shapely.transform(geom, fwd)
+    if not np.isfinite(shapely.get_coordinates(projected)).all():
+        raise InputError(field, f"cannot be projected to {plan.name}: it lies outside the "
+                         "CRS's area of use; give [area] plan_crs")
+    if not shapely.is_valid(projected):
+        projected = shapely.make_valid(projected)
+    area_m2 = float(projected.area)
+    if not area_m2 >= MIN_AREA_M2:
+        raise InputError(field, f"encloses {area_m2:g} m²: its points lie on a line; a block "
+                         f"needs an area ≥ {MIN_AREA_M2:g} m²")
+    if area_m2 / 1e6 > MAX_AREA_KM2:
+        raise InputError(field, f"encloses {area_m2 / 1e6:,.0f} km²; at most "
+                         f"{MAX_AREA_KM2:,.0f} km² — split a regional programme into blocks "
+                         "(or are the coordinates in the wrong CRS? set [area] crs)")
+    to_ll = pyproj.Transformer.from_crs(plan, 4326, always_xy=True)
+    c = projected.centroid
+    lon, lat = to_ll.transform(c.x, c.y)
+    epsg = plan.to_epsg()
+    in_epsg = in_crs.to_epsg()
+    return Area(geometry=projected, plan_crs=f"EPSG:{epsg}" if epsg else plan.to_wkt(),
+                source=where, georeferenced=True, area_km2=area_m2 / 1e6,
+                perimeter_km=float(projected.length) / 1e3,
+                centroid_lonlat=(float(lon), float(lat)), plan_crs_name=plan.name,
+                input_crs=f"EPSG:{in_epsg}" if in_epsg else in_crs.name)
