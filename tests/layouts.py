@@ -22,7 +22,7 @@ UTM35 = "EPSG:32635"
 def make_layout(*, width_m: float = 800.0, length_m: float = 500.0, spacing_m: float = 150.0,
                 base_m: float = 60.0, agl_m: float = 120.0, ground_m: float = 150.0,
                 sorties: int = 1, notch: bool = False, georeferenced: bool = True,
-                ) -> FlightLayout:
+                parts: bool = True) -> FlightLayout:
     """A north–south serpentine; ``notch`` cuts the area's middle (strips there split)."""
     if georeferenced:
         to_utm = Transformer.from_crs("EPSG:4326", UTM35, always_xy=True)
@@ -51,11 +51,15 @@ def make_layout(*, width_m: float = 800.0, length_m: float = 500.0, spacing_m: f
                      & (ys < y0 + 0.65 * length_m - base_m / 2))
             ys = ys[keep]
         sortie = i // per_sortie + 1
+        cut = np.flatnonzero(np.abs(np.diff(ys)) > 1.5 * base_m)
+        firsts, lasts = np.r_[0, cut + 1], np.r_[cut, len(ys) - 1]
+        strip_parts = tuple(((float(x), float(ys[a])), (float(x), float(ys[b])))
+                            for a, b in zip(firsts, lasts, strict=True)) if parts else ()
         strips.append(Strip(number=i + 1, start_xy_m=(float(x), float(ys[0])),
                             end_xy_m=(float(x), float(ys[-1])),
                             length_m=float(abs(ys[-1] - ys[0])), photos=len(ys),
                             first_photo=count + 1, sortie=sortie,
-                            segments=1 if len(ys) == per else 2))
+                            segments=len(firsts), parts=strip_parts))
         for j, y in enumerate(ys):
             count += 1
             for k, v in (("photo", count), ("strip", i + 1), ("index", j + 1),

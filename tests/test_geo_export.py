@@ -66,8 +66,9 @@ def _write(tmp_path, files):
 # ---------------------------------------------------------------------------------------
 
 
-def test_kml_opens_in_gdal_with_area_strips_and_numbered_photo_centres(tmp_path):
-    layout = make_layout(notch=True)
+@pytest.mark.parametrize("parts", [True, False], ids=["parts-given", "parts-from-photos"])
+def test_kml_opens_in_gdal_with_area_strips_and_numbered_photo_centres(tmp_path, parts):
+    layout = make_layout(notch=True, parts=parts)
     path = tmp_path / "flight.kml"
     path.write_bytes(render_kml(layout))
     layers = _read_layers(path)
@@ -217,8 +218,9 @@ def _trigger_runs(items):
     return runs
 
 
-def test_plan_file_follows_the_qgc_format_and_triggers_per_strip():
-    layout = make_layout(notch=True)
+@pytest.mark.parametrize("parts", [True, False], ids=["parts-given", "parts-from-photos"])
+def test_plan_file_follows_the_qgc_format_and_triggers_per_strip(parts):
+    layout = make_layout(notch=True, parts=parts)
     doc = json.loads(render_plan(layout, 1, MissionOptions(speed_ms=12.0)))
     items = check_qgc_plan(doc)
     commands = [i["command"] for i in items]

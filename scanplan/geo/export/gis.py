@@ -126,7 +126,9 @@ def _strip_lines(layout: FlightLayout, geo: LonLat
         line = geo.points(np.array([s.start_xy_m, s.end_xy_m]))
         segments = []
         sp = by_strip.get(s.number)
-        if sp is not None and len(sp.runs) > 1:
+        if len(s.parts) > 1:  # the photographed parts the layout gives
+            segments = [geo.points(np.array([a, b])) for a, b in s.parts]
+        elif not s.parts and sp is not None and len(sp.runs) > 1:
             for a, b in sp.runs:
                 i, j = int(sp.order[a]), int(sp.order[b])
                 segments.append(np.array([[lon[i], lat[i]], [lon[j], lat[j]]]))

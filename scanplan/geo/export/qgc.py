@@ -115,23 +115,37 @@ class _Waypoint:
     trigger: str | None  # "on" after it, "off" after it, or None
 
 
+def _nearest(x: np.ndarray, y: np.ndarray, candidates: np.ndarray, xy: tuple[float, float]
+             ) -> int:
+    """The candidate photo nearest to ``xy`` (a position in the photo arrays)."""
+    d = np.hypot(x[candidates] - xy[0], y[candidates] - xy[1])
+    return int(candidates[int(np.argmin(d))])
+
+
 def _strip_waypoints(layout: FlightLayout, number: int, sp: StripPhotos | None
                      ) -> list[_Waypoint]:
-    """The waypoints of one strip in flight order, with the trigger changes."""
+    """The waypoints of one strip in flight order, with the trigger changes.
+
+    The photographed parts are the strip's ``parts`` (trigger-on and trigger-off points)
+    when the layout gives them, else runs of photos (a gap over 1.5 bases splits a run).
+    """
     strip = layout.strips[number - 1]
     start, end = strip.start_xy_m, strip.end_xy_m
     if sp is None or not len(sp.order):  # no photo on it: fly it, the camera off
         return [_Waypoint(*start, None, None), _Waypoint(*end, None, None)]
     x, y = layout.photos["x_m"], layout.photos["y_m"]
+    if strip.parts:
+        parts = [(tuple(map(float, a)), tuple(map(float, b))) for a, b in strip.parts]
+    else:
+        parts = [((float(x[sp.order[a]]), float(y[sp.order[a]])),
+                  (float(x[sp.order[b]]), float(y[sp.order[b]]))) for a, b in sp.runs]
     wps: list[_Waypoint] = []
-    first, last = int(sp.order[0]), int(sp.order[-1])
-    if math.hypot(x[first] - start[0], y[first] - start[1]) > 0.5:
+    if math.dist(parts[0][0], start) > 0.5:
         wps.append(_Waypoint(*start, None, None))
-    for a, b in sp.runs:
-        i, j = int(sp.order[a]), int(sp.order[b])
-        wps.append(_Waypoint(float(x[i]), float(y[i]), i, "on"))
-        wps.append(_Waypoint(float(x[j]), float(y[j]), j, "off"))
-    if math.hypot(x[last] - end[0], y[last] - end[1]) > 0.5:
+    for a, b in parts:
+        wps.append(_Waypoint(*a, _nearest(x, y, sp.order, a), "on"))
+        wps.append(_Waypoint(*b, _nearest(x, y, sp.order, b), "off"))
+    if math.dist(parts[-1][1], end) > 0.5:
         wps.append(_Waypoint(*end, None, None))
     return wps
 
