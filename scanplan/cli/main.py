@@ -237,8 +237,11 @@ def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
     Both reports are rendered to memory first (a rendering failure touches no file), then
     written with :func:`scanplan.reports.write_atomic_many`: after any failure the previous
     spec.xlsx and spec.pdf are both as they were — never a new workbook beside an old PDF.
+    The files ``plan --out`` exports beside them (``opts["exports"]``: path → (kind,
+    bytes), the mission, KML, GeoJSON and CSV of issue 11) join the same transaction.
     """
     xlsx, pdf = opts.pop("xlsx_path"), opts.pop("pdf_path")
+    exports: dict[str, tuple[str, bytes]] = opts.pop("exports", None) or {}
     force, inputs = opts.pop("force", False), opts.pop("inputs", ())
     fields = opts.pop("fields", {"xlsx": "--xlsx", "pdf": "--pdf"})
     note = opts.pop("note", "")
@@ -255,6 +258,8 @@ def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
     def check() -> None:  # before rendering, and again under the folder lock
         for path, kind in wanted:
             check_target(path, fields[kind], kind, inputs=inputs, force=force)
+        for path, (kind, _) in exports.items():
+            check_target(path, "--out", kind, inputs=inputs, force=force)
 
     for path, kind in wanted:
         folder = os.path.dirname(os.path.abspath(path))
@@ -272,6 +277,7 @@ def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
         else:
             from ..reports.pdf import render_pdf as render
         files[path] = render(scan=scan, uav=uav, meta=meta, **extra)
+    files.update({path: data for path, (_, data) in exports.items()})
     write_atomic_many(files, check=check)
     for path in files:
         click.echo(f"wrote {path}{note}", err=True)
@@ -468,7 +474,9 @@ def uav(as_json: bool, **kwargs: Any) -> None:
 @click.argument("projects", nargs=-1, required=True, type=click.Path())
 @click.option("--out", "out_dir", type=click.Path(file_okay=False),
               help="Write spec.xlsx and spec.pdf into this folder (batch: NAME.xlsx/.pdf, "
-              "NAME-2.xlsx/.pdf for a second project named NAME).")
+              "NAME-2.xlsx/.pdf for a second project named NAME); for an area given as a "
+              "polygon also mission.plan (QGroundControl), flight.kml, flight.geojson and "
+              "photos.csv (film: film-flight.kml, film-flight.geojson, film-frames.csv).")
 @click.option("--xlsx", "xlsx_path", type=click.Path(dir_okay=False),
               help="Write the Excel report to this file (one project; not with --out).")
 @click.option("--pdf", "pdf_path", type=click.Path(dir_okay=False),
@@ -556,6 +564,11 @@ def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: s
                 note = f" (for {path}" + (f"; the name {base} is taken by another project "
                                           "of this batch" if stem != base else "") + ")"
         result = plan_project(load_project(path))
+        exports = {}
+        if out_dir:
+            from ..reports.exports import export_files
+
+            exports = export_files(result, out_dir, prefix=f"{stem}-" if batch else "")
         film = result.film.job if result.film else None
         uav_ = result.uav.job if result.uav else None
         _write_reports({**targets, "force": force, "inputs": files, "fields": fields,
@@ -564,7 +577,7 @@ def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: s
                         "contractor": result.meta.contractor,
                         "approver_position": result.meta.approver_position,
                         "approver_name": result.meta.approver_name,
-                        "meta": result.meta}, scan=film, uav=uav_,
+                        "meta": result.meta, "exports": exports}, scan=film, uav=uav_,
                        spec=result)
         return result
 
