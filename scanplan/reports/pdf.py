@@ -706,10 +706,20 @@ def render_html(*, scan: ScanJob | None = None, uav: UavJob | None = None,
                        if scan is not None and uav is not None
                        and not (spec is not None and spec.comparison) else None),
         "spec": spec_view,
+        "geo": _geo_views(spec, meta.locale),
         "warnings_box": _warnings_box(scan_view, uav_view, spec, f),
         "references": f.bib.entries(),
     }
     return _environment().get_template("report.html").render(**ctx)
+
+
+def _geo_views(spec: PlanResult | None, locale: str) -> list[dict[str, Any]]:
+    """The map pages of issue 11 (:mod:`scanplan.reports.mapview`); none without a spec."""
+    if spec is None:
+        return []
+    from .mapview import geo_views
+
+    return geo_views(spec, locale)
 
 
 def _warnings_box(scan_view: Any, uav_view: Any, spec: PlanResult | None,
