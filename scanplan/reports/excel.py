@@ -153,6 +153,10 @@ def render_xlsx(
     if uav is not None:
         book.uav(uav)
         book.mtf(uav)
+    if spec is not None:  # issue 11: the flight over the area
+        from .geosheets import add_geo_sheets
+
+        add_geo_sheets(book, spec)
     book.norms(scan, uav)
     book.warnings(scan, uav, spec)
     book.references()

@@ -25,7 +25,7 @@ from matplotlib.figure import Figure
 from matplotlib.ticker import FuncFormatter
 
 from ..geo.layout import FlightLayout
-from .exports import spec_layouts
+from . import exports as _exports
 from .labels import t
 from .plots import _RC, number
 
@@ -222,25 +222,31 @@ def _point_text(layout: FlightLayout, xy: tuple[float, float], locale: str,
     return f"{number(lat, 6, locale)}; {number(lon, 6, locale)}"
 
 
-def summary_rows(layout: FlightLayout, locale: str) -> list[tuple[str, str]]:
-    """The layout's figures as (label, value) rows."""
+def summary_items(layout: FlightLayout, locale: str) -> list[tuple[str, Any, int]]:
+    """The layout's figures as (label, value, decimals); the CRS is text."""
     film = layout.kind == "film"
     a = layout.area
-    rows = [(t("map_crs", locale), crs_text(layout, locale)),
-            (t("geo_area_km2", locale), number(a.area_km2, 3, locale)),
-            (t("geo_perimeter_km", locale), number(a.perimeter_km, 2, locale)),
-            (t("geo_direction_deg", locale), number(layout.direction_deg, 1, locale)),
-            (t("geo_spacing_m", locale), number(layout.spacing_m, 1, locale)),
-            (t("geo_base_m", locale), number(layout.base_m, 1, locale)),
-            (t("geo_n_strips", locale), number(len(layout.strips), 0, locale)),
-            (t("geo_n_frames" if film else "geo_n_photos", locale),
-             number(len(layout.photos), 0, locale))]
+    rows: list[tuple[str, Any, int]] = [
+        (t("map_crs", locale), crs_text(layout, locale), 0),
+        (t("geo_area_km2", locale), a.area_km2, 3),
+        (t("geo_perimeter_km", locale), a.perimeter_km, 2),
+        (t("geo_direction_deg", locale), layout.direction_deg, 1),
+        (t("geo_spacing_m", locale), layout.spacing_m, 1),
+        (t("geo_base_m", locale), layout.base_m, 1),
+        (t("geo_n_strips", locale), len(layout.strips), 0),
+        (t("geo_n_frames" if film else "geo_n_photos", locale), len(layout.photos), 0)]
     if not film:
-        rows.append((t("geo_n_sorties", locale), number(len(layout.sorties), 0, locale)))
-    rows.append((t("geo_flight_km", locale), number(layout.flight_length_m / 1000, 2, locale)))
+        rows.append((t("geo_n_sorties", locale), len(layout.sorties), 0))
+    rows.append((t("geo_flight_km", locale), layout.flight_length_m / 1000, 2))
     if layout.flight_time_s:
-        rows.append((t("geo_flight_min", locale), number(layout.flight_time_s / 60, 1, locale)))
+        rows.append((t("geo_flight_min", locale), layout.flight_time_s / 60, 1))
     return rows
+
+
+def summary_rows(layout: FlightLayout, locale: str) -> list[tuple[str, str]]:
+    """:func:`summary_items` as text (the PDF)."""
+    return [(label, value if isinstance(value, str) else number(float(value), d, locale))
+            for label, value, d in summary_items(layout, locale)]
 
 
 def strips_table(layout: FlightLayout, locale: str, limit: int | None = MAX_TABLE_STRIPS
@@ -272,7 +278,7 @@ def geo_views(spec: Any, locale: str) -> list[dict[str, Any]]:
     ``caption`` (the CRS), ``rows`` (summary), ``strips`` (table), ``notes``.
     """
     views = []
-    for _kind, layout in spec_layouts(spec):
+    for _kind, layout in _exports.spec_layouts(spec):
         film = layout.kind == "film" or _kind == "film"
         notes = []
         if not layout.feasible:
@@ -281,6 +287,11 @@ def geo_views(spec: Any, locale: str) -> list[dict[str, Any]]:
             notes.append(t("geo_not_georeferenced", locale))
         else:
             notes.append(t("geo_files_note", locale))
+        from .geosheets import MAX_SHEET_PHOTOS
+
+        if len(layout.photos) > MAX_SHEET_PHOTOS:
+            notes.append(t("geo_photos_elsewhere", locale).format(
+                n=number(len(layout.photos), 0, locale)))
         views.append({
             "title": t("map_title_film" if film else "map_title", locale),
             "map": _svg_uri(map_svg(layout, locale)) if layout.area.georeferenced else None,
