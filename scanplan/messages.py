@@ -302,6 +302,38 @@ MESSAGES: dict[str, dict[str, str]] = {
         "ru": "пиксель сканирования меньше {finest:g}~мкм недостижим ни для сканера, ни для "
               "самой плёнки",
     },
+    "layout.too_many_strips": {
+        "en": "the area needs {n:,d} strips at a line spacing of {spacing:g} m; at most "
+              "{most:,d} are planned",
+        "ru": "Для участка нужно {n:,d} маршрутов при расстоянии между ними {spacing:g}~м; "
+              "планируется не более {most:,d}.",
+    },
+    "layout.strip_too_long": {
+        "en": "strip {strip:d} alone takes {minutes:,.1f} min, longer than a sortie of "
+              "{limit:g} min; turn the flight lines across the area's long side "
+              "([area] direction_deg) or split the area",
+        "ru": "Один маршрут {strip:d} занимает {minutes:,.1f}~мин — больше продолжительности "
+              "одного полёта {limit:g}~мин; проложите маршруты поперёк длинной стороны участка "
+              "([area] direction_deg) или разделите участок.",
+    },
+    "layout.too_many_sorties": {
+        "en": "more than {most:,d} sorties of {limit:g} min: the block cannot be flown with "
+              "this aircraft",
+        "ru": "Более {most:,d} полётов по {limit:g}~мин: участок не может быть снят этим "
+              "носителем.",
+    },
+    "layout.single_strip": {
+        "en": "the line spacing {spacing:,.1f} m is larger than the area ({width:,.1f} m "
+              "across the flight lines): one strip covers it and no block with side overlap "
+              "can be formed; fly a single strip or lower the height",
+        "ru": "Расстояние между маршрутами {spacing:,.1f}~м больше ширины участка "
+              "({width:,.1f}~м поперёк маршрутов): его покрывает один маршрут, блок с "
+              "поперечным перекрытием не образуется; снимайте одним маршрутом или ниже.",
+    },
+    "layout.not_feasible": {
+        "en": "the flight plan over the area is not feasible: {why}",
+        "ru": "План полёта над участком невыполним: {why}",
+    },
     "spec.uav_none": {
         "en": "no flight height meets every constraint with this camera",
         "ru": "Ни одна высота полёта не удовлетворяет всем условиям с этой камерой.",

@@ -231,6 +231,14 @@ def emitted(tmp_path_factory) -> dict[str, list[Any]]:
         "plan uav within": uav_toml.replace("height_m = 300", "height_m = 200"),
         "plan uav no height": uav_toml.replace("height_m = 300\n", ""),
         "plan uav nothing resolved": uav_toml.replace("r_min = 0.1", "r_min = 0.3"),
+        # flight layouts that cannot be flown (issue 11)
+        "plan uav one strip": uav_toml.replace("width_m = 2000", "width_m = 10"),
+        "plan uav strip too long": uav_toml.replace("[uav]\n", "[uav]\nmax_flight_time_min = 1\n"),
+        "plan uav too many sorties": uav_toml.replace("[uav]\n", "[uav]\nmax_flight_time_min = 1\n")
+        .replace("width_m = 2000", "width_m = 200000").replace("length_m = 3000",
+                                                               "length_m = 1000"),
+        "plan uav too many strips": uav_toml.replace("height_m = 300", "height_m = 5").replace(
+            "width_m = 2000", "width_m = 1000000"),
         # archive photos: the scale is given (issue 13)
         "plan archive": archive_toml,
         "plan archive readable": archive_toml.replace('photo_scale = "1:12000"',

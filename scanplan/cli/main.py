@@ -67,6 +67,12 @@ OPTION_NAMES = {
     "area_width_m": "--area-m",
     "area_length_m": "--area-m",
     "area_m": "--area-m",
+    "file": "--area-file",
+    "feature": "--area-feature",
+    "layer": "--area-layer",
+    "direction_deg": "--direction-deg",
+    "max_flight_time_min": "--max-flight-time-min",
+    "side_overlap_pct_film": "--side-overlap-pct",
     "random_speed_ms": "--random-speed-ms",
     "roll_rate_rad_s": "--roll-rate",
     "pitch_rate_rad_s": "--pitch-rate",
@@ -202,6 +208,38 @@ def norm_options(f: Callable[..., Any]) -> Callable[..., Any]:
     ]):
         f = opt(f)
     return f
+
+
+def area_options(f: Callable[..., Any]) -> Callable[..., Any]:
+    """--area-file and its polygon choice (scan, uav)."""
+    for opt in reversed([
+        click.option("--area-file", type=click.Path(dir_okay=False),
+                     help="Contract polygon: KML, KMZ, GeoJSON, GeoPackage or Shapefile "
+                     "(strips and photos are laid out over it; not with --area-m)."),
+        click.option("--area-feature", help="The polygon's name or number from 1, when the "
+                     "file holds several."),
+        click.option("--area-layer", help="The file's layer holding the polygon."),
+    ]):
+        f = opt(f)
+    return f
+
+
+def _area_of(kwargs: dict[str, Any]) -> Any:
+    """The --area-file polygon (None without one); pops the area options."""
+    path = kwargs.pop("area_file")
+    feature, layer = kwargs.pop("area_feature"), kwargs.pop("area_layer")
+    if path is None:
+        if feature is not None or layer is not None:
+            raise InputError("--area-feature" if feature is not None else "--area-layer",
+                             "chooses among the polygons of --area-file; give the file")
+        return None
+    from ..geo.area import AreaSpec, load_area
+
+    if feature is not None and feature.isdigit():
+        feature = int(feature)
+    if kwargs.get("area_m") is not None:
+        raise InputError("--area-file", "give one area: --area-file or --area-m")
+    return load_area(AreaSpec(file=path, feature=feature, layer=layer))
 
 
 def report_options(f: Callable[..., Any]) -> Callable[..., Any]:
@@ -357,6 +395,10 @@ def main() -> None:
               help="Bands per scanned frame (1 panchromatic, 3 colour).")
 @click.option("--bit-depth", "bits_per_band", type=click.Choice(["8", "16"]), default="8",
               show_default=True, help="Bits per band.")
+@area_options
+@click.option("--side-overlap-pct", "film_side_overlap_pct", type=float, default=30.0,
+              show_default=True, callback=_finite,
+              help="Side overlap [%] of the flight scheme over --area-file.")
 @report_options
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
 def scan(as_json: bool, bits_per_band: str, **kwargs: Any) -> None:
@@ -375,12 +417,45 @@ def scan(as_json: bool, bits_per_band: str, **kwargs: Any) -> None:
     from ..reports.text import format_scan_plan
 
     report = _split_report_options(kwargs)
+    area = _area_of({**kwargs, "area_m": None})
+    for key in ("area_file", "area_feature", "area_layer"):
+        kwargs.pop(key)
+    side = kwargs.pop("film_side_overlap_pct")
     job = scan_job(bits_per_band=int(bits_per_band), **kwargs)
+    schemes = _film_schemes(job, area, side) if area is not None else []
     if as_json:
-        _echo_json(scan_plan_dict(job.plan, job.norm_set))
+        doc = scan_plan_dict(job.plan, job.norm_set)
+        if area is not None:
+            from ..reports.jsondoc import area_dict, layout_dict
+
+            doc["area"] = area_dict(area)
+            doc["flight_schemes"] = [{"photo_scale": sc.photo_scale, **layout_dict(lay)}
+                                     for sc, lay in schemes]
+        _echo_json(doc)
     else:
         click.echo(format_scan_plan(job.plan, job.norm_set.name, job.norm_set.title))
+        if area is not None:
+            from ..reports.text import format_area, format_layout
+
+            click.echo(format_area(area))
+            for sc, lay in schemes:
+                click.echo(format_layout(lay, f"1:{sc.photo_scale:g}"))
     _write_reports(report, scan=job)
+
+
+def _film_schemes(job: Any, area: Any, side: float) -> list[tuple[Any, Any]]:
+    """The aerial survey's flight scheme over ``area`` at every photo scale of ``job``."""
+    from ..core.domains import check_domain
+    from ..project.flightplan import film_layout
+
+    try:
+        check_domain("side_overlap_pct", side)
+    except InputError as exc:
+        raise InputError("--side-overlap-pct", exc.message) from None
+    inp = job.plan.inputs
+    return [(sc, film_layout(sc, inp.frame_width_mm, inp.frame_along_mm, inp.focal_mm,
+                             inp.forward_overlap_pct, side, area))
+            for sc in job.plan.scenarios]
 
 
 @main.command()
@@ -441,6 +516,11 @@ def scan(as_json: bool, bits_per_band: str, **kwargs: Any) -> None:
 @click.option("--yaw-rate", "yaw_rate_rad_s", type=float, default=0.0, callback=_finite,
               help="RMS angular rate about the vertical axis [rad/s].")
 @click.option("--area-m", help="Block to cover, WIDTHxLENGTH [m], e.g. 2000x3000.")
+@area_options
+@click.option("--direction-deg", help='Flight-line direction over --area-file, clockwise from '
+              'grid north [°], or "auto" (default): the least flight length.')
+@click.option("--max-flight-time-min", type=float, callback=_finite,
+              help="Longest sortie on one battery [min]: the block is split into sorties.")
 @click.option("--roll-deg", type=float, default=0.0, callback=_finite,
               help="Roll for the tilted-frame corner GSD [°].")
 @click.option("--pitch-deg", type=float, default=0.0, callback=_finite,
@@ -458,15 +538,42 @@ def uav(as_json: bool, **kwargs: Any) -> None:
                    --height-tolerance-pct 40 --speed-ms 25 --map-scale 2000 --relief 0.5
     """
     from ..project.api import uav_job
+    from ..project.flightplan import LayoutOptions
     from ..reports.jsondoc import uav_plan_dict
     from ..reports.text import format_uav_plan
 
     report = _split_report_options(kwargs)
-    job = uav_job(**kwargs)
+    area = _area_of(kwargs)
+    direction = kwargs.pop("direction_deg")
+    if direction is not None and direction != "auto":
+        try:
+            direction = float(direction)
+        except ValueError:
+            raise InputError("--direction-deg", f'must be an angle in degrees or "auto" (got '
+                             f"{direction!r})") from None
+    opts = LayoutOptions(direction_deg=direction,
+                         max_flight_time_min=kwargs.pop("max_flight_time_min"))
+    if area is None and kwargs.get("area_m") is None and (
+            direction is not None or opts.max_flight_time_min is not None):
+        raise InputError("--direction-deg" if direction is not None
+                         else "--max-flight-time-min", "applies to an area: give --area-file "
+                         "or --area-m")
+    job = uav_job(**kwargs, area=area, layout_options=opts)
     if as_json:
-        _echo_json(uav_plan_dict(job.plan, job.norm_set))
+        doc = uav_plan_dict(job.plan, job.norm_set)
+        if job.layout is not None:
+            from ..reports.jsondoc import area_dict, layout_dict
+
+            doc["area"] = area_dict(job.layout.area)
+            doc["layout"] = layout_dict(job.layout)
+        _echo_json(doc)
     else:
         click.echo(format_uav_plan(job.plan, job.norm_set.name))
+        if job.layout is not None:
+            from ..reports.text import format_area, format_layout
+
+            click.echo(format_area(job.layout.area))
+            click.echo(format_layout(job.layout))
     _write_reports(report, uav=job)
 
 

@@ -235,7 +235,8 @@ def _read_file(path: Path, layer: str | None, feature: str | int | None
             g = shapely.force_2d(g)
             if isinstance(g, shapely.GeometryCollection) and not isinstance(
                     g, shapely.MultiPolygon):
-                polys = [p for p in g.geoms if isinstance(p, shapely.Polygon | shapely.MultiPolygon)]
+                polys = [p for p in g.geoms
+                         if isinstance(p, shapely.Polygon | shapely.MultiPolygon)]
                 g = shapely.union_all(polys) if polys else None
             if isinstance(g, shapely.Polygon | shapely.MultiPolygon):
                 found.append((label, lyr, g, crs))

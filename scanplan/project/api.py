@@ -19,11 +19,14 @@ from dataclasses import dataclass
 from ..core.domains import MAX_LIST_ITEMS, check_domain
 from ..core.mtf import DEFAULT_HAZE_CONTRAST, DEFAULT_K0
 from ..errors import InputError
+from ..geo.area import rectangle_area
+from ..geo.layout import Area, FlightLayout
 from ..messages import Message
 from ..norms import DEFAULT_NORM_SET, MapObject, NormSet, load_norm_set, parse_scale
 from ..norms.schema import ORIENTATIONS, PARAMETERS
 from ..rules.film import ObjectSpec, ScanInputs, ScanPlan, plan_scan
 from ..rules.uav import UavInputs, UavPlan, plan_uav
+from .flightplan import LayoutOptions, uav_layout, with_layout
 
 HEIGHT_STEP_M = 5.0
 """Recommended flight heights are rounded down to this step [m]."""
@@ -298,10 +301,12 @@ default)."""
 
 @dataclass(frozen=True)
 class UavJob:
-    """A computed UAV plan together with the norm set it used."""
+    """A computed UAV plan together with the norm set it used, and its flight layout over
+    the area (None without an area)."""
 
     plan: UavPlan
     norm_set: NormSet
+    layout: FlightLayout | None = None
 
 
 def uav_job(
@@ -340,6 +345,8 @@ def uav_job(
     orientation: str | None = None,
     max_height_m: float | None = None,
     gsd_cm: float | None = None,
+    area: Area | None = None,
+    layout_options: LayoutOptions | None = None,
 ) -> UavJob:
     """Plan a UAV flight (see :func:`scanplan.rules.uav.plan_uav`); names as the CLI options.
 
@@ -357,6 +364,9 @@ def uav_job(
     UAV: the norm set's ``uav_max_height_m``; none for a camera on a manned aircraft, which
     flies 1,000–5,000 m under its own clearance); ``gsd_cm`` a target GSD the flight must
     deliver.
+    ``area`` (a polygon, :mod:`scanplan.geo.area`) or ``area_m`` (the ``WxL`` block) lays
+    the strips and photo centres out (``layout_options``: direction, turns, sorties); the
+    flight figures (strips, photos, length, time, data volume) come from that layout.
     Without ``height_m`` the flight is planned at the maximum planned height, rounded
     down to :data:`HEIGHT_STEP_M` (needs a map scale or a target GSD).
     """
@@ -462,7 +472,13 @@ def uav_job(
         else None if aircraft else float(ns.parameters["uav_max_height_m"]),
         ceiling_from_project=max_height_m is not None,
         gsd_target_m=gsd_cm / 100.0 if gsd_cm is not None else None)
-    return UavJob(plan_uav(inputs, rules), ns)
+    plan = plan_uav(inputs, rules)
+    if area is None and area_w is not None and area_l is not None:
+        area = rectangle_area(area_w, area_l)
+    if area is None:
+        return UavJob(plan, ns)
+    layout = uav_layout(plan, area, layout_options)
+    return UavJob(with_layout(plan, layout), ns, layout)
 
 
 def _lens(ns: NormSet, camera: str | None, position: str

@@ -106,6 +106,13 @@ KEYS: dict[str, dict[str, tuple[str, str]]] = {
         "height_formula": ("str", '"normal_case", "instruction" or "parallax": the height '
                            "constraint of the digital block (default: the set's, "
                            '"normal_case")'),
+        "turnaround_m": ("number", "multirotor: distance flown past each strip end before "
+                         "turning [m] (default: a semicircle across the line spacing)"),
+        "turn_radius_m": ("number", "fixed-wing: turn radius between strips [m]"),
+        "bank_deg": ("number", "fixed-wing: bank angle in the turns [°]; the radius follows "
+                     "from the speed"),
+        "max_flight_time_min": ("number", "longest sortie on one battery [min]: the block is "
+                                "split into sorties (default: one flight)"),
     },
     "uav.target": {
         "r_max": ("number", "brightness coefficient of the lightest detail (default 0.3)"),
@@ -124,8 +131,24 @@ KEYS: dict[str, dict[str, tuple[str, str]]] = {
         "yaw_rate_rad_s": ("number", "RMS yaw rate [rad/s] (default 0)"),
     },
     "area": {
-        "width_m": ("number", "block width across the flight lines [m]"),
+        "width_m": ("number", "block width across the flight lines [m] (the abstract block, "
+                    "with length_m)"),
         "length_m": ("number", "block length along the flight lines [m]"),
+        "file": ("str", "the contract polygon: a KML, KMZ, GeoJSON, GeoPackage or Shapefile, "
+                 "relative to the project file"),
+        "layer": ("str", "layer of the file holding the polygon (when it has several)"),
+        "feature": ("feature", "the polygon's name, or its number from 1 (when the file holds "
+                    "several)"),
+        "polygon": ("polygon", "the contract polygon inline, [[lon, lat], ...] (WGS 84 unless "
+                    "crs)"),
+        "crs": ("crs", 'CRS of the polygon\'s coordinates when not WGS 84, e.g. "EPSG:28407"'),
+        "plan_crs": ("crs", "projected CRS to plan in (default: the polygon's own when "
+                     "projected, else the UTM zone of the area)"),
+        "direction_deg": ("direction", 'flight-line direction clockwise from grid north [°], '
+                          'or "auto": the least flight length (default "auto")'),
+        "extension_bases": ("int", "exposures past each end of a strip, in photo bases "
+                            "(default 1)"),
+        "ground_elevation_m": ("number", "elevation of the (flat) ground [m] (default 0)"),
     },
 }
 """Every key a project file may hold: the documented contract."""
@@ -233,6 +256,21 @@ def _check_type(kind: str, value: Any) -> str | None:
         if ok and not isinstance(value, str) and not _finite(value):
             return "must be a finite scale denominator like 2000"
         return None if ok else 'must be a scale denominator like 2000 or "1:2000"'
+    if kind == "feature":
+        ok = isinstance(value, str | int) and not isinstance(value, bool)
+        return None if ok else 'must be a name in quotes or a number from 1'
+    if kind == "crs":
+        ok = isinstance(value, str | int) and not isinstance(value, bool)
+        return None if ok else 'must be a CRS like "EPSG:32637" or 32637'
+    if kind == "direction":
+        if value == "auto":
+            return None
+        ok = isinstance(value, int | float) and not isinstance(value, bool) and _finite(value)
+        return None if ok else 'must be an angle in degrees or "auto"'
+    if kind == "polygon":
+        if not isinstance(value, list) or len(value) < 3:
+            return "must be a list of at least 3 [lon, lat] points"
+        return None
     if kind == "scales":
         if not isinstance(value, list) or not value:
             return "must be a non-empty list of scales, e.g. [5000, 10000]"
@@ -403,6 +441,10 @@ def parse_project(text: str, path: str | os.PathLike[str] = "project.toml") -> P
     name = flat.get("project", {}).get("name") or p.stem
     if "set" in flat.get("norms", {}):
         flat["norms"]["set"] = _norm_set_path(flat["norms"]["set"], p.parent)
+    if "file" in flat.get("area", {}):
+        f = flat["area"]["file"]
+        if not (f.startswith("~") or os.path.isabs(f)):
+            flat["area"]["file"] = os.path.join(p.parent, f)
     return Project(path=p, name=name, values=flat, lines=lines)
 
 

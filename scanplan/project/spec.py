@@ -15,9 +15,10 @@ import math
 from dataclasses import dataclass, field
 from typing import Any
 
-from ..core import flight as FL
 from ..core.domains import DOMAINS, check_domain
 from ..errors import InputError
+from ..geo.area import AreaSpec
+from ..geo.layout import Area, FlightLayout
 from ..messages import Message
 from ..rules.film import PlanWarning, ScanScenario
 from .api import (
@@ -31,8 +32,9 @@ from .api import (
 )
 from .archive import archive_film
 from .file import Project, ReportMeta
+from .flightplan import LayoutOptions, area_from_options, film_layout, layout_warnings
 
-__all__ = ["FilmSpec", "PlanResult", "UavSpec", "plan_project"]
+__all__ = ["FilmSpec", "PlanResult", "UavSpec", "plan_project", "project_area"]
 
 DEFAULT_FILM_SIDE_OVERLAP_PCT = 30.0
 
@@ -64,7 +66,13 @@ _UAV_KEYS = {
     "roll_deg": "uav.roll_deg", "pitch_deg": "uav.pitch_deg",
     "max_height_m": "uav.max_height_m", "gsd_cm": "uav.gsd_cm",
     "height_formula": "uav.height_formula",
+    "direction_deg": "area.direction_deg", "extension_bases": "area.extension_bases",
+    "ground_elevation_m": "area.ground_elevation_m", "turnaround_m": "uav.turnaround_m",
+    "turn_radius_m": "uav.turn_radius_m", "bank_deg": "uav.bank_deg",
+    "max_flight_time_min": "uav.max_flight_time_min",
 }
+_AREA_KEYS = ("file", "layer", "feature", "polygon", "crs", "plan_crs", "width_m", "length_m",
+              "direction_deg", "extension_bases", "ground_elevation_m")
 _NORM_KEYS = {"object_size_m": "norms.object_size_m", "shape": "norms.shape",
               "object_name": "norms.object_name",
               "probability": "norms.probability", "height_formula": "norms.height_formula",
@@ -94,6 +102,7 @@ class FilmSpec:
     scanned_gigabytes: float | None
     side_overlap_pct: float
     archive: bool = False  # existing photos at a given scale ([film] photo_scale)
+    layout: FlightLayout | None = None  # the flight scheme at the recommended photo scale
 
 
 @dataclass(frozen=True)
@@ -107,6 +116,11 @@ class UavSpec:
     max_height_m: float | None  # the maximum PLANNED height (highest flown meets every limit)
     reason: str
 
+    @property
+    def layout(self) -> FlightLayout | None:
+        """Strips and photo centres at the recommended height (None without an area)."""
+        return self.job.layout
+
 
 @dataclass(frozen=True)
 class PlanResult:
@@ -118,9 +132,20 @@ class PlanResult:
     uav: UavSpec | None
     comparison: list[dict[str, Any]] = field(default_factory=list)
     warnings: tuple[PlanWarning, ...] = ()
+    area: Area | None = None  # the contract area ([area]), in its planning CRS
+
+    @property
+    def layouts(self) -> dict[str, FlightLayout]:
+        """The flight layouts by job, ``{"film": ..., "uav": ...}`` (those that exist)."""
+        out = {}
+        if self.film is not None and self.film.layout is not None:
+            out["film"] = self.film.layout
+        if self.uav is not None and self.uav.layout is not None:
+            out["uav"] = self.uav.layout
+        return out
 
 
-def _film(project: Project) -> FilmSpec:
+def _film(project: Project, area: Area | None) -> FilmSpec:
     g = project.get
     archive_scale = g("film", "photo_scale")
     kw: dict[str, Any] = dict(
@@ -152,7 +177,7 @@ def _film(project: Project) -> FilmSpec:
         job, best, reason = archive_film(job)
     else:
         best, reason = _choose_photo_scale(job)
-    return _film_spec(project, job, best, reason, side)
+    return _film_spec(project, job, best, reason, side, area)
 
 
 def _choose_photo_scale(job: ScanJob) -> tuple[ScanScenario | None, str]:
@@ -181,25 +206,27 @@ def _choose_photo_scale(job: ScanJob) -> tuple[ScanScenario | None, str]:
 
 
 def _film_spec(project: Project, job: ScanJob, best: ScanScenario | None, reason: str,
-               side: float) -> FilmSpec:
-    """Frames and scanned volume of the recommended photo scale over ``[area]``."""
+               side: float, area: Area | None) -> FilmSpec:
+    """Frames and scanned volume of the recommended photo scale over ``[area]``: the aerial
+    survey's flight scheme (strips and frames laid out over the area)."""
     plan = job.plan
     frames = strips = None
     gigabytes = None
-    area = _area(project)
+    layout = None
     if best is not None and area is not None:
-        area_w, area_l = area
         inp = plan.inputs
-        across = inp.frame_width_mm * best.photo_scale / 1000.0
-        along = inp.frame_along_mm * best.photo_scale / 1000.0
-        strips = int(FL.strip_count(area_w, FL.line_spacing_m(across, side)))
-        per_strip = int(FL.photos_per_strip(area_l, FL.photo_base_m(
-            along, inp.forward_overlap_pct)))
-        frames = strips * per_strip
+        try:
+            layout = film_layout(best, inp.frame_width_mm, inp.frame_along_mm, inp.focal_mm,
+                                 inp.forward_overlap_pct, side, area,
+                                 _layout_options(project))
+        except InputError as exc:
+            raise _as_project_error(project, exc, _UAV_KEYS) from None
+        strips = len(layout.strips)
+        frames = int(layout.notes.get("photos", len(layout.photos)))
         gigabytes = frames * best.frame_megabytes / 1000.0
     return FilmSpec(job=job, recommended=best, reason=reason, frames=frames, strips=strips,
                     scanned_gigabytes=gigabytes, side_overlap_pct=side,
-                    archive=project.get("film", "photo_scale") is not None)
+                    archive=project.get("film", "photo_scale") is not None, layout=layout)
 
 
 def _area(project: Project) -> tuple[float, float] | None:
@@ -219,7 +246,42 @@ def _area(project: Project) -> tuple[float, float] | None:
     return float(width), float(length)
 
 
-def _uav_kwargs(project: Project, height_m: float) -> dict[str, Any]:
+def project_area(project: Project) -> Area | None:
+    """The project's ``[area]`` in its planning CRS: a file, an inline polygon or the
+    ``width_m × length_m`` block (None without one).
+
+    Raises
+    ------
+    InputError
+        Naming the project file, the ``[area]`` key and its line (and the area file and
+        feature for a problem in the file).
+    """
+    g = project.get
+    rect = _area(project)
+    spec = AreaSpec(file=g("area", "file"), layer=g("area", "layer"),
+                    feature=g("area", "feature"), polygon=g("area", "polygon"),
+                    crs=g("area", "crs"), plan_crs=g("area", "plan_crs"),
+                    width_m=rect[0] if rect else None, length_m=rect[1] if rect else None)
+    try:
+        return area_from_options(spec)
+    except InputError as exc:
+        if exc.field in _AREA_KEYS:
+            where = project.where("area", exc.field)
+        else:  # the area file, its feature
+            where = f"{project.where('area', 'file')}: {exc.field}"
+        raise InputError(f"{project.path}: {where}", exc.message) from None
+
+
+def _layout_options(project: Project) -> LayoutOptions:
+    g = project.get
+    return LayoutOptions(
+        direction_deg=g("area", "direction_deg"), extension_bases=g("area", "extension_bases", 1),
+        turnaround_m=g("uav", "turnaround_m"), turn_radius_m=g("uav", "turn_radius_m"),
+        bank_deg=g("uav", "bank_deg"), max_flight_time_min=g("uav", "max_flight_time_min"),
+        ground_m=float(g("area", "ground_elevation_m", 0.0)))
+
+
+def _uav_kwargs(project: Project, height_m: float, the_area: Area | None) -> dict[str, Any]:
     g = project.get
     area = _area(project)
     kw: dict[str, Any] = dict(
@@ -241,19 +303,20 @@ def _uav_kwargs(project: Project, height_m: float) -> dict[str, Any]:
         pitch_rate_rad_s=g("uav.motion", "pitch_rate_rad_s", 0.0),
         yaw_rate_rad_s=g("uav.motion", "yaw_rate_rad_s", 0.0), area_m=area,
         roll_deg=g("uav", "roll_deg", 0.0), pitch_deg=g("uav", "pitch_deg", 0.0),
-        orientation=g("uav", "orientation"))
+        orientation=g("uav", "orientation"), area=the_area,
+        layout_options=_layout_options(project))
     kw["exposure_s"] = g("uav", "exposure_s", 0.001)
     for key in ("speed_ms", "forward_overlap_pct", "side_overlap_pct"):
         kw[key] = g("uav", key)  # defaults by carrier in uav_job
     return kw
 
 
-def _uav(project: Project) -> UavSpec:
+def _uav(project: Project, the_area: Area | None) -> UavSpec:
     planned = project.get("uav", "height_m")
 
     def job_at(height_m: float) -> UavJob:
         try:
-            return uav_job(**_uav_kwargs(project, height_m))
+            return uav_job(**_uav_kwargs(project, height_m, the_area))
         except InputError as exc:
             raise _as_project_error(project, exc, _UAV_KEYS) from None
 
@@ -324,14 +387,16 @@ def plan_project(project: Project) -> PlanResult:
                       approver_position=g("project", "approver_position", ""),
                       approver_name=g("project", "approver_name", ""),
                       **{k: g("project", k, "") for k in _SIGNING_KEYS})
-    _area(project)  # checked even when no plan uses it
-    film = _film(project) if project.has("film") else None
-    uav = _uav(project) if project.has("uav") else None
+    area = project_area(project)  # checked even when no plan uses it
+    film = _film(project, area) if project.has("film") else None
+    uav = _uav(project, area) if project.has("uav") else None
     warnings: list[PlanWarning] = []
     if film:
         warnings.extend(film.job.plan.warnings)
         if film.recommended is None:
             warnings.append(PlanWarning("no_feasible_photo_scale", film.reason))
+        if film.layout is not None:
+            warnings.extend(layout_warnings(film.layout))
     if uav:
         warnings.extend(uav.job.plan.warnings)
         if uav.planned_height_m and uav.recommended_height_m and \
@@ -339,4 +404,4 @@ def plan_project(project: Project) -> PlanResult:
             warnings.append(PlanWarning("height_lowered", uav.reason))
     comparison = _comparison(film, uav) if film and uav else []
     return PlanResult(project=project, meta=meta, film=film, uav=uav, comparison=comparison,
-                      warnings=tuple(warnings))
+                      warnings=tuple(warnings), area=area)

@@ -6,13 +6,15 @@ import math
 from dataclasses import asdict
 from typing import Any
 
+import numpy as np
+
 from ..messages import Message, params_json
 from ..norms import NormSet
 from ..rules.film import PlanWarning, ScanPlan
 from ..rules.uav import UavPlan
 
-__all__ = ["norm_set_dict", "plan_result_dict", "scale_value", "scan_plan_dict", "uav_plan_dict",
-           "warning_dict"]
+__all__ = ["area_dict", "layout_dict", "norm_set_dict", "plan_result_dict", "scale_value",
+           "scan_plan_dict", "uav_plan_dict", "warning_dict"]
 
 
 def scale_value(x: float) -> int | float:
@@ -28,6 +30,59 @@ def _clean(x: Any) -> Any:
     if isinstance(x, list | tuple):
         return [_clean(v) for v in x]
     return x
+
+
+def area_dict(area: Any) -> dict[str, Any]:
+    """The contract area: source, planning CRS (code and name), the CRS it was given in,
+    km², perimeter, centroid (lon, lat); ``georeferenced`` False for the abstract block."""
+    return _clean({
+        "source": area.source, "crs": area.plan_crs, "crs_name": area.plan_crs_name,
+        "input_crs": area.input_crs, "georeferenced": area.georeferenced,
+        "area_km2": area.area_km2, "perimeter_km": area.perimeter_km,
+        "centroid_lonlat": list(area.centroid_lonlat) if area.centroid_lonlat else None})
+
+
+def layout_dict(layout: Any) -> dict[str, Any]:
+    """A flight layout without its photo centres (those go to the exported files): the
+    direction, spacing, base, counts, length and time, ``strips[]`` and ``sorties[]``.
+
+    Strip ends are in the planning CRS (``start_xy_m``/``end_xy_m``) and, for a
+    georeferenced area, in WGS 84 (``start_lonlat``/``end_lonlat``, lon first)."""
+    ends = np.array([[*s.start_xy_m, *s.end_xy_m] for s in layout.strips]).reshape(-1, 4)
+    lonlat = None
+    if layout.area.georeferenced and len(ends):
+        import pyproj
+
+        tr = pyproj.Transformer.from_crs(layout.area.plan_crs, 4326, always_xy=True)
+        lon0, lat0 = tr.transform(ends[:, 0], ends[:, 1])
+        lon1, lat1 = tr.transform(ends[:, 2], ends[:, 3])
+        lonlat = np.column_stack([lon0, lat0, lon1, lat1])
+    strips = []
+    for i, s in enumerate(layout.strips):
+        row: dict[str, Any] = {
+            "number": s.number, "sortie": s.sortie, "photos": s.photos,
+            "first_photo": s.first_photo, "length_m": s.length_m, "segments": s.segments,
+            "start_xy_m": list(s.start_xy_m), "end_xy_m": list(s.end_xy_m)}
+        if lonlat is not None:
+            row["start_lonlat"] = [float(lonlat[i, 0]), float(lonlat[i, 1])]
+            row["end_lonlat"] = [float(lonlat[i, 2]), float(lonlat[i, 3])]
+        strips.append(row)
+    return _clean({
+        "kind": layout.kind, "direction_deg": layout.direction_deg,
+        "line_spacing_m": layout.spacing_m, "base_m": layout.base_m,
+        "footprint_across_m": layout.footprint_across_m,
+        "footprint_along_m": layout.footprint_along_m,
+        "extension_bases": layout.extension_bases, "turn": layout.turn,
+        "n_strips": len(layout.strips),
+        "n_photos": int(layout.notes.get("photos", len(layout.photos))),
+        "n_sorties": len(layout.sorties),
+        "flight_length_m": layout.flight_length_m, "turn_length_m": layout.turn_length_m,
+        "flight_time_s": layout.flight_time_s, "speed_ms": layout.speed_ms,
+        "bridged_m": layout.notes.get("bridged_m"),
+        "feasible": layout.feasible, "reason": layout.reason,
+        "strips": strips,
+        "sorties": [{"number": k.number, "strips": list(k.strips), "length_m": k.length_m,
+                     "time_s": k.time_s} for k in layout.sorties]})
 
 
 def warning_dict(w: PlanWarning) -> dict[str, Any]:
@@ -158,6 +213,8 @@ def plan_result_dict(result: Any) -> dict[str, Any]:
 
     doc: dict[str, Any] = {"project": {"file": str(result.project.path),
                                        **_asdict(result.meta)}}
+    if getattr(result, "area", None) is not None:
+        doc["area"] = area_dict(result.area)
     spec: dict[str, Any] = {}
     if result.film:
         f = result.film
@@ -176,6 +233,8 @@ def plan_result_dict(result: Any) -> dict[str, Any]:
             "frames": f.frames, "strips": f.strips, "scanned_gigabytes": f.scanned_gigabytes,
             "side_overlap_pct": f.side_overlap_pct,
         }
+        if f.layout is not None:
+            spec["film"]["layout"] = layout_dict(f.layout)
     if result.uav:
         u = result.uav
         p = u.job.plan
@@ -201,6 +260,8 @@ def plan_result_dict(result: Any) -> dict[str, Any]:
             "motion_blur_px": p.motion_blur_px, "max_exposure_s": p.max_exposure_s,
             "max_speed_ms": p.max_speed_ms, **p.flight,
         }
+        if u.layout is not None:
+            spec["uav"]["layout"] = layout_dict(u.layout)
     if result.comparison:
         spec["comparison"] = result.comparison
     doc["specification"] = spec

@@ -193,7 +193,8 @@ def format_uav_plan(plan: UavPlan, norm_name: str = "") -> str:
               f"{fl['forward_overlap_at_max_height_pct']:.1f} %"]]
     if "strips" in fl:
         frows += [["strips × photos", f"{fl['strips']} × {fl['photos_per_strip']} = "
-                   f"{fl['photos']} photos"],
+                   f"{fl['photos']} photos" if "photos_per_strip" in fl else
+                   f"{fl['strips']} strips, {fl['photos']} photos"],
                   ["flight length / time", f"{fl['flight_length_m'] / 1000:.1f} km / "
                    + (f"{fl['flight_time_s'] / 60:.0f} min" if fl.get("flight_time_s") else "—")]]
         if "data_volume_bytes" in fl:
@@ -351,6 +352,13 @@ def format_plan_result(result: Any, locale: str | None = None) -> str:
                                            if meta.customer else "",
                                            f"{T['contractor']} {meta.contractor}"
                                            if meta.contractor else "") if x))
+    area = getattr(result, "area", None)
+    if area is not None and area.georeferenced:
+        lines.append(_wrap(format_area(area, loc), ""))
+        for kind, lay in result.layouts.items():
+            scale = (_sc(result.film.recommended.photo_scale, loc)
+                     if kind == "film" and result.film.recommended else "")
+            lines.append(format_layout(lay, scale, loc))
     if result.film:
         f = result.film
         s = f.recommended
@@ -403,6 +411,47 @@ def format_plan_result(result: Any, locale: str | None = None) -> str:
                 text = display_message(w.message, ns, loc)
             lines.append(_wrap(f"{text} [{w.code}]", f"  {mark} "))
     return "\n".join(lines)
+
+
+_AREA_TEXT = {
+    "en": {"area": "Area", "perimeter": "perimeter", "lines": "Flight lines", "at": "at",
+           "direction": "direction", "strips": "strips", "photos": "photos",
+           "turns": "turns", "sorties": "sorties", "not_feasible": "NOT FEASIBLE",
+           "km2": "km²", "km": "km", "min": "min"},
+    "ru": {"area": "Участок", "perimeter": "периметр", "lines": "Маршруты", "at": "в масштабе",
+           "direction": "направление", "strips": "маршрутов", "photos": "снимков",
+           "turns": "развороты", "sorties": "вылетов", "not_feasible": "НЕВЫПОЛНИМО",
+           "km2": "км²", "km": "км", "min": "мин"},
+}
+
+
+def format_area(area: Any, locale: str = "en") -> str:
+    """One line: where the area comes from, its size, perimeter and planning CRS."""
+    T = _AREA_TEXT[locale]
+    crs = f", {area.plan_crs_name}" if area.plan_crs_name else ""
+    return (f"{T['area']}: {area.source} — {_n(area.area_km2, 2, locale, True)} {T['km2']}, "
+            f"{T['perimeter']} {_n(area.perimeter_km, 1, locale, True)} {T['km']}{crs}")
+
+
+def format_layout(layout: Any, scale: str = "", locale: str = "en") -> str:
+    """One line per layout: direction, strips, photos, length (turns), time, sorties; the
+    reason when it cannot be flown. Photo centres are in the exported files, not here."""
+    from ..messages import localize
+
+    T = _AREA_TEXT[locale]
+    head = f"{T['lines']}" + (f" {T['at']} {scale}" if scale else "")
+    n_photos = int(layout.notes.get("photos", len(layout.photos)))
+    text = (f"{head}: {T['direction']} {_n(layout.direction_deg, 1, locale)}°, "
+            f"{len(layout.strips)} {T['strips']}, {_n(n_photos, 0, locale, True)} "
+            f"{T['photos']}, {_n(layout.flight_length_m / 1000, 1, locale, True)} {T['km']} "
+            f"({T['turns']} {_n(layout.turn_length_m / 1000, 1, locale, True)} {T['km']})")
+    if layout.flight_time_s:
+        text += f", {_n(layout.flight_time_s / 60, 0, locale, True)} {T['min']}"
+    if layout.kind == "uav":
+        text += f", {T['sorties']}: {len(layout.sorties)}"
+    if not layout.feasible:
+        text += f" — {T['not_feasible']}: {localize(layout.reason, locale)}"
+    return _wrap(text, "")
 
 
 def _uav_summary(u: Any, loc: str, T: dict[str, str], cname: Any) -> list[str]:

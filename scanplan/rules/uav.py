@@ -281,8 +281,10 @@ def _blur(inp: UavInputs, gsd_lo: float, h_lo: float, h_hi: float,
 
 def _flight_geometry(inp: UavInputs, h_plan: float, h_lo: float, h_hi: float,
                      warnings: list[PlanWarning]) -> dict[str, Any]:
-    """Footprints, base, line spacing, interval, overlaps flown, and — with an area — the
-    strips, photos, flight length/time and data volume; appends the trigger warning."""
+    """Footprints, base, line spacing, interval and overlaps flown; appends the trigger
+    warning. Strips, photos, length, time and data volume over an area come from the
+    flight layout (:mod:`scanplan.project.flightplan`, one model for a rectangle and a
+    polygon)."""
     fp_across = float(FL.footprint_m(inp.sensor_width_mm, h_plan, inp.focal_mm))
     fp_along = float(FL.footprint_m(inp.sensor_height_mm, h_plan, inp.focal_mm))
     base = float(FL.photo_base_m(fp_along, inp.forward_overlap_pct))
@@ -308,19 +310,6 @@ def _flight_geometry(inp: UavInputs, h_plan: float, h_lo: float, h_hi: float,
             warnings.append(PlanWarning("trigger_interval", Message(
                 "trigger_interval", interval=interval, minimum=inp.min_trigger_interval_s,
                 speed=fl["max_speed_for_trigger_ms"])))
-    if inp.area_width_m and inp.area_length_m:
-        strips = max(1, int(FL.strip_count(inp.area_width_m, spacing)))  # 1e-300 m: one
-        per_strip = int(FL.photos_per_strip(inp.area_length_m, base))
-        # each strip is flown over its photographed span, first to last exposure (the
-        # photos past the block ends included), not the block length
-        length = float(FL.flight_length_m(strips, (per_strip - 1) * base, spacing))
-        fl.update({"strips": strips, "photos_per_strip": per_strip,
-                   "photos": strips * per_strip, "flight_length_m": length,
-                   "flight_time_s": _flight_time_s(length, inp.speed_ms)})
-        if inp.image_width_px and inp.image_height_px:
-            fl["data_volume_bytes"] = float(FL.data_volume_bytes(
-                strips * per_strip, inp.image_width_px, inp.image_height_px,
-                inp.bands, inp.bits_per_band))
     return fl
 
 

@@ -1,0 +1,552 @@
+"""Flight lines over an area: strips, photo centres, turns, sorties (docs/flight-lines.md).
+
+One model for every area — a georeferenced polygon with holes and bays, or the abstract
+``width_m × length_m`` rectangle — vectorised with shapely 2 (one call intersects every
+strip's band with the area) and numpy (photo centres are built as arrays, never point by
+point).
+
+The layout, in a frame rotated so that the flight direction is +v:
+
+- **Strips.** n = ceil(W/s) lines (:func:`scanplan.core.flight.strip_count`), W the area's
+  extent across the lines and s the line spacing, centred on the area: the outer lines
+  overhang both sides equally. Strip i is responsible for the band of width s around its
+  line; a band that misses the area (between two islands) is dropped.
+- **Photographed parts.** The band ∩ area gives the stretch(es) of the strip over the
+  area. Parts closer than (2e + 1)·B (e = extension in bases, B = photo base) are photographed
+  through; across a longer gap (a bay of a concave polygon, a hole, water between islands)
+  the strip is *bridged*: flown straight on with the camera off, the parts photographed
+  separately, each with its own extension. Bridging, not splitting the block, keeps one
+  serpentine with one turn per strip; the gap is flown and counted in length and time
+  (``notes["bridged_m"]``); split a strongly branched area into separate areas when the
+  bridges cost more than the extra turns and transits would.
+- **Photo centres.** A part of length L gets ceil(L/B) + 1 + 2e exposures
+  (:func:`scanplan.core.flight.photos_per_strip`) at the base B, centred on the part: e
+  exposures past each end give every point of the area stereo overlap (with a forward
+  overlap ≥ 50 % each point is in ≥ 2 photos along the strip).
+- **Turns.** Between strips the aircraft flies the difference of the strip ends along the
+  lines plus a turn across the distance d between the lines: a semicircle π·d/2 (default,
+  as :func:`scanplan.core.flight.flight_length_m`); a multirotor's turnaround t past the
+  end, 2t + d; or a fixed-wing turn of radius r (given, or r = v²/(g·tan φ) from the speed
+  and the bank angle): πr + (d − 2r) when d ≥ 2r, else the three-arc "omega" turn
+  r·(π + 4β), β = arccos((d/2 + r)/(2r)) — Dubins' shortest path for a heading reversal
+  (Dubins 1957, Amer. J. Math. 79(3), 497–516).
+- **Direction.** A given ``direction_deg`` (clockwise from grid north), or ``"auto"``: the
+  direction of the least flight length among every edge direction of the convex hull and a
+  sweep every 2°, refined around the best to 0.1° (the exact length of each, on a slightly
+  simplified outline).
+- **Sorties.** With ``max_flight_time_min`` the strips are grouped in flight order, each
+  sortie taking strips while its strips and turns fit the time; the block is split between
+  strips.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+from shapely import affinity
+
+from ..core import flight as FL
+from ..messages import Message
+from .layout import PHOTO_COLUMNS, Area, FlightLayout, Photos, Sortie, Strip
+
+__all__ = ["MAX_PHOTO_CENTRES", "MAX_SORTIES", "MAX_STRIPS", "Turn", "band_extents",
+           "plan_lines",
+           "turn_length_m", "turn_radius_m"]
+
+G_MS2 = 9.80665
+"""Standard gravity [m/s²] (CGPM 1901)."""
+MAX_STRIPS = 100_000
+"""Most strips a layout computes (beyond: not feasible)."""
+MAX_SORTIES = 1_000
+"""Most sorties (beyond: not feasible)."""
+MAX_PHOTO_CENTRES = 2_000_000
+"""Most photo centres kept as a table (beyond: counted, not listed)."""
+_AUTO_SWEEP_DEG = 2.0
+
+
+@dataclass(frozen=True)
+class Turn:
+    """How the aircraft turns between strips.
+
+    ``kind``: ``"semicircle"`` (a half circle across the line spacing), ``"turnaround"``
+    (multirotor: ``value_m`` flown past the strip end, across, and back in) or ``"radius"``
+    (fixed-wing: turn radius ``value_m``).
+    """
+
+    kind: str = "semicircle"
+    value_m: float = 0.0
+
+    def describe(self) -> str:
+        """``semicircle``, ``turnaround 20 m``, ``radius 150 m`` (for reports)."""
+        return self.kind if self.kind == "semicircle" else f"{self.kind} {self.value_m:g} m"
+
+
+def turn_radius_m(speed_ms: float, bank_deg: float) -> float:
+    """Radius of a level coordinated turn, r = v²/(g·tan φ) [m].
+
+    Parameters
+    ----------
+    speed_ms : float
+        True airspeed ≈ ground speed in still air [m/s].
+    bank_deg : float
+        Bank angle φ [°], 0 < φ < 90.
+
+    Notes
+    -----
+    FAA, *Pilot's Handbook of Aeronautical Knowledge* (FAA-H-8083-25C, 2023), ch. 5
+    "Aerodynamics of Flight", forces in turns: the horizontal lift component L·sin φ is the
+    centripetal force m·v²/r while L·cos φ = m·g.
+    """
+    return speed_ms ** 2 / (G_MS2 * math.tan(math.radians(bank_deg)))
+
+
+def turn_length_m(across_m: np.ndarray, offset_m: np.ndarray, turn: Turn) -> np.ndarray:
+    """Path flown from the end of one strip to the start of the next [m].
+
+    Parameters
+    ----------
+    across_m : array_like
+        Distance between the two lines [m].
+    offset_m : array_like
+        Difference of the two strip ends along the lines [m] (flown straight).
+    turn : Turn
+        The turn pattern.
+    """
+    d = np.asarray(across_m, dtype=float)
+    off = np.abs(np.asarray(offset_m, dtype=float))
+    if turn.kind == "semicircle":
+        return np.pi * d / 2.0 + off
+    if turn.kind == "turnaround":
+        return 2.0 * turn.value_m + d + off
+    if turn.kind == "radius":
+        r = turn.value_m
+        wide = np.pi * r + (d - 2.0 * r)
+        beta = np.arccos(np.clip((d / 2.0 + r) / (2.0 * r), -1.0, 1.0))
+        omega = r * (np.pi + 4.0 * beta)
+        return np.where(d >= 2.0 * r, wide, omega) + off
+    raise ValueError(f"turn kind must be semicircle, turnaround or radius (got {turn.kind!r})")
+
+
+# -------------------------------------------------------------------------------------------
+# Bands: the part of the area each strip covers
+# -------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class _Bands:
+    u_m: np.ndarray  # line position across, per strip kept
+    parts_strip: np.ndarray  # strip (index into u_m) of each part, sorted by strip, v
+    parts_lo: np.ndarray  # part start along v
+    parts_hi: np.ndarray  # part end along v
+    n_lines: int  # lines before dropping empty bands
+
+
+def _rotated(geom: object, direction_deg: float, origin: tuple[float, float]) -> object:
+    """The area in the frame where the flight direction is +v (rotated counter-clockwise by
+    the direction, which is clockwise from north)."""
+    if direction_deg % 360.0 == 0.0:
+        return geom
+    return affinity.rotate(geom, direction_deg, origin=origin)
+
+
+def _line_positions(geom: object, spacing_m: float) -> tuple[np.ndarray, float, float]:
+    umin, vmin, umax, vmax = shapely.bounds(geom)
+    width = umax - umin
+    n = max(1, int(FL.strip_count(max(width, 1e-300), spacing_m)))
+    if n > MAX_STRIPS:
+        raise _TooMany(n)
+    u = umin + (width - n * spacing_m) / 2.0 + (np.arange(n) + 0.5) * spacing_m
+    return u, vmin, vmax
+
+
+class _TooMany(Exception):
+    def __init__(self, n: int) -> None:
+        self.n = n
+
+
+def _bands(geom: object, spacing_m: float) -> _Bands:
+    u, vmin, vmax = _line_positions(geom, spacing_m)
+    half = spacing_m / 2.0
+    boxes = shapely.box(u - half, vmin - 1.0, u + half, vmax + 1.0)
+    inter = shapely.intersection(boxes, geom)
+    parts, idx = shapely.get_parts(inter, return_index=True)
+    keep = shapely.area(parts) > 0.0
+    parts, idx = parts[keep], idx[keep]
+    b = shapely.bounds(parts)
+    order = np.lexsort((b[:, 1], idx))
+    idx, lo, hi = idx[order], b[order, 1], b[order, 3]
+    used, strip = np.unique(idx, return_inverse=True)
+    return _Bands(u_m=u[used], parts_strip=strip, parts_lo=lo, parts_hi=hi, n_lines=len(u))
+
+
+def _merge(b: _Bands, gap_m: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Parts of a strip closer than ``gap_m`` merged (photographed through)."""
+    if len(b.parts_lo) == 0:
+        return b.parts_strip, b.parts_lo, b.parts_hi
+    span = max(float(np.max(b.parts_hi) - np.min(b.parts_lo)), 1.0)
+    shift = (b.parts_strip * (4.0 * span + 4.0 * gap_m)) - np.min(b.parts_lo)
+    lo, hi = b.parts_lo + shift, b.parts_hi + shift
+    run = np.maximum.accumulate(hi)
+    new = np.ones(len(lo), dtype=bool)
+    new[1:] = (lo[1:] > run[:-1] + gap_m) | (b.parts_strip[1:] != b.parts_strip[:-1])
+    group = np.cumsum(new) - 1
+    first = np.flatnonzero(new)
+    last = np.r_[first[1:], len(lo)] - 1
+    strip = b.parts_strip[first]
+    out_lo = b.parts_lo[first]
+    out_hi = run[last] - shift[last]
+    del group
+    return strip, out_lo, out_hi
+
+
+def _photos_per_part(length_m: np.ndarray, base_m: float, extension: int) -> np.ndarray:
+    return FL.photos_per_strip(np.maximum(length_m, 1e-300), base_m, extension)
+
+
+def _strip_spans(strip: np.ndarray, lo: np.ndarray, hi: np.ndarray, base_m: float,
+                 extension: int, n_strips: int) -> tuple[np.ndarray, ...]:
+    """Per part: photos, first and last exposure along v; per strip: first/last exposure."""
+    n = _photos_per_part(hi - lo, base_m, extension)
+    half = (n - 1) * base_m / 2.0
+    mid = (lo + hi) / 2.0
+    first, last = mid - half, mid + half
+    s_lo = np.full(n_strips, np.inf)
+    s_hi = np.full(n_strips, -np.inf)
+    np.minimum.at(s_lo, strip, first)
+    np.maximum.at(s_hi, strip, last)
+    return n, first, last, s_lo, s_hi
+
+
+def _connections(u: np.ndarray, s_lo: np.ndarray, s_hi: np.ndarray, turn: Turn
+                 ) -> np.ndarray:
+    """Path between strip i and i + 1 (serpentine: strip 0 flown +v) [m]."""
+    if len(u) < 2:
+        return np.zeros(0)
+    forward = (np.arange(len(u) - 1) % 2) == 0  # strip i flown +v ends at its top
+    end_i = np.where(forward, s_hi[:-1], s_lo[:-1])
+    start_next = np.where(forward, s_hi[1:], s_lo[1:])
+    return turn_length_m(np.diff(u), start_next - end_i, turn)
+
+
+def _edges(geom: object) -> np.ndarray:
+    """Every boundary edge of the area as rows (x0, y0, x1, y1) [m]."""
+    rings = shapely.get_rings(shapely.get_parts(geom))
+    out = []
+    for ring in rings:
+        c = shapely.get_coordinates(ring)
+        out.append(np.hstack([c[:-1], c[1:]]))
+    return np.vstack(out) if out else np.zeros((0, 4))
+
+
+def band_extents(edges: np.ndarray, u_start_m: float, spacing_m: float, n: int
+                 ) -> tuple[np.ndarray, np.ndarray]:
+    """Along-line extent (v_min, v_max) of the area in each of ``n`` bands of width
+    ``spacing_m`` from ``u_start_m`` (±inf for a band that misses it).
+
+    The extent of a polygon within a band is that of its boundary within the band (the
+    band's own edges inside the polygon end on the boundary), so each edge is cut to the
+    bands it crosses — numpy over every (edge, band) pair at once. This is the cost of the
+    "auto" direction search, evaluated ~150 times per plan; it agrees with shapely's
+    intersection bounds (tests/test_geo_lines.py) and runs a hundred times faster.
+    """
+    u0, v0, u1, v1 = edges.T
+    lo_u, hi_u = np.minimum(u0, u1), np.maximum(u0, u1)
+    k0 = np.clip(np.floor((lo_u - u_start_m) / spacing_m), 0, n - 1).astype(np.int64)
+    k1 = np.clip(np.floor((hi_u - u_start_m) / spacing_m), 0, n - 1).astype(np.int64)
+    counts = k1 - k0 + 1
+    e = np.repeat(np.arange(len(edges)), counts)
+    k = k0[e] + (np.arange(int(counts.sum())) - np.repeat(np.cumsum(counts) - counts, counts))
+    a = u_start_m + k * spacing_m
+    du, dv = (u1 - u0)[e], (v1 - v0)[e]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ta, tb = (a - u0[e]) / du, (a + spacing_m - u0[e]) / du
+    flat = du == 0
+    t_lo = np.where(flat, 0.0, np.clip(np.minimum(ta, tb), 0.0, 1.0))
+    t_hi = np.where(flat, 1.0, np.clip(np.maximum(ta, tb), 0.0, 1.0))
+    va, vb = v0[e] + t_lo * dv, v0[e] + t_hi * dv
+    lo = np.full(n, np.inf)
+    hi = np.full(n, -np.inf)
+    np.minimum.at(lo, k, np.minimum(va, vb))
+    np.maximum.at(hi, k, np.maximum(va, vb))
+    return lo, hi
+
+
+def _cost(edges: np.ndarray, direction_deg: float, origin: tuple[float, float],
+          spacing_m: float, base_m: float, extension: int, turn: Turn) -> float:
+    """Flight length of the serpentine at a direction (strips + connections) [m]."""
+    t = math.radians(direction_deg)
+    c, s = math.cos(t), math.sin(t)
+    x0, y0 = edges[:, 0] - origin[0], edges[:, 1] - origin[1]
+    x1, y1 = edges[:, 2] - origin[0], edges[:, 3] - origin[1]
+    uv = np.column_stack([x0 * c - y0 * s, x0 * s + y0 * c, x1 * c - y1 * s, x1 * s + y1 * c])
+    umin = float(min(uv[:, 0].min(), uv[:, 2].min()))
+    width = float(max(uv[:, 0].max(), uv[:, 2].max())) - umin
+    n = max(1, int(FL.strip_count(max(width, 1e-300), spacing_m)))
+    if n > MAX_STRIPS:
+        return math.inf
+    u_start = umin + (width - n * spacing_m) / 2.0
+    lo, hi = band_extents(uv, u_start, spacing_m, n)
+    keep = np.isfinite(lo)
+    u = u_start + (np.arange(n) + 0.5) * spacing_m
+    lo, hi, u = lo[keep], hi[keep], u[keep]
+    m = len(u)
+    _, _, _, s_lo, s_hi = _strip_spans(np.arange(m), lo, hi, base_m, extension, m)
+    return float(np.sum(s_hi - s_lo) + np.sum(_connections(u, s_lo, s_hi, turn)))
+
+
+def _auto_direction(geom: object, origin: tuple[float, float], spacing_m: float,
+                    base_m: float, extension: int, turn: Turn) -> tuple[float, int]:
+    """The direction of least flight length, and how many directions were tried."""
+    simple = shapely.simplify(geom, min(spacing_m, base_m) / 4.0, preserve_topology=True)
+    edges = _edges(simple)
+    hull = shapely.get_coordinates(shapely.convex_hull(simple))
+    d = np.diff(hull, axis=0)
+    d = d[np.hypot(d[:, 0], d[:, 1]) > 0]
+    hull_dirs = np.round(np.degrees(np.arctan2(d[:, 0], d[:, 1])) % 180.0, 6)
+    tried: dict[float, float] = {}
+
+    def run(cands: np.ndarray) -> None:
+        for c in np.unique(np.round(np.asarray(cands) % 180.0, 6)):
+            if float(c) not in tried:
+                tried[float(c)] = _cost(edges, float(c), origin, spacing_m, base_m,
+                                        extension, turn)
+
+    run(np.r_[hull_dirs, np.arange(0.0, 180.0, _AUTO_SWEEP_DEG)])
+    for step, reach in ((0.5, 2.0), (0.1, 0.5)):
+        best = sorted(tried, key=tried.__getitem__)[:3]
+        run(np.concatenate([b + np.arange(-reach, reach + 1e-9, step) for b in best]))
+    best = min(tried, key=lambda k: (tried[k], k))
+    return float(best % 180.0), len(tried)
+
+
+# -------------------------------------------------------------------------------------------
+# The layout
+# -------------------------------------------------------------------------------------------
+def plan_lines(
+    area: Area,
+    *,
+    spacing_m: float,
+    base_m: float,
+    footprint_across_m: float,
+    footprint_along_m: float,
+    height_m: float,
+    direction_deg: float | str = "auto",
+    extension_bases: int = 1,
+    turn: Turn = Turn(),
+    speed_ms: float | None = None,
+    max_flight_time_min: float | None = None,
+    ground_m: float = 0.0,
+    photo_values: Mapping[str, float] | None = None,
+    kind: str = "uav",
+) -> FlightLayout:
+    """Strips, photo centres, turns and sorties over ``area``.
+
+    Parameters
+    ----------
+    area : Area
+        The area in its planning CRS (:mod:`scanplan.geo.area`).
+    spacing_m, base_m : float
+        Line spacing and photo base [m] (:func:`scanplan.core.flight.line_spacing_m`,
+        :func:`scanplan.core.flight.photo_base_m`).
+    footprint_across_m, footprint_along_m : float
+        One photo's ground footprint [m] (for reports and coverage checks).
+    height_m : float
+        Planned height above ground [m] (flat ground: every photo's AGL).
+    direction_deg : float or "auto"
+        Flight-line direction clockwise from grid north [°], or the least flight length.
+    extension_bases : int
+        Exposures past each end of every photographed part (default 1).
+    turn : Turn
+        Turn pattern between strips.
+    speed_ms : float, optional
+        Ground speed [m/s] for times (None: no times, as for film).
+    max_flight_time_min : float, optional
+        Longest sortie [min] (None: one sortie).
+    ground_m : float
+        Ground elevation of the flat area [m] (photo ``ground_m``; altitude = ground + H).
+    photo_values : mapping, optional
+        Per-photo figures that are the same at every centre on flat ground: ``gsd_cm``,
+        ``resolution_cm``, ``recognition_p`` (NaN when absent).
+    kind : str
+        ``"uav"`` or ``"film"``.
+
+    Returns
+    -------
+    FlightLayout
+        ``feasible`` False with a ``reason`` when the block cannot be flown as planned.
+    """
+    geom = area.geometry
+    c = geom.centroid
+    origin = (float(c.x), float(c.y))
+    ext = int(extension_bases)
+    notes: dict[str, object] = {}
+    if direction_deg == "auto":
+        direction, tried = _auto_direction(geom, origin, spacing_m, base_m, ext, turn)
+        notes["auto_directions_tried"] = tried
+    else:
+        direction = float(direction_deg) % 180.0
+    common = dict(area=area, direction_deg=direction, spacing_m=spacing_m, base_m=base_m,
+                  extension_bases=float(ext), kind=kind, footprint_across_m=footprint_across_m,
+                  footprint_along_m=footprint_along_m, speed_ms=speed_ms,
+                  turn=turn.describe())
+    rot = _rotated(geom, direction, origin)
+    try:
+        bands = _bands(rot, spacing_m)
+    except _TooMany as exc:
+        return FlightLayout(strips=(), sorties=(), photos=Photos({}), flight_length_m=math.nan,
+                            turn_length_m=math.nan, flight_time_s=None, feasible=False,
+                            reason=Message("layout.too_many_strips", n=exc.n,
+                                           spacing=spacing_m, most=MAX_STRIPS),
+                            notes=notes, **common)
+    gap = (2 * ext + 1) * base_m
+    p_strip, p_lo, p_hi = _merge(bands, gap)
+    n_strips = len(bands.u_m)
+    n_per, first, last, s_lo, s_hi = _strip_spans(p_strip, p_lo, p_hi, base_m, ext, n_strips)
+    strip_len = s_hi - s_lo
+    conn = _connections(bands.u_m, s_lo, s_hi, turn)
+    photographed = np.zeros(n_strips)
+    np.add.at(photographed, p_strip, last - first)
+    notes["bridged_m"] = float(np.sum(strip_len - photographed))
+    # sorties (strip order = flight order)
+    sortie_of, reason = _sorties(strip_len, conn, speed_ms, max_flight_time_min)
+    same = sortie_of[1:] == sortie_of[:-1] if n_strips > 1 else np.zeros(0, dtype=bool)
+    flown_conn = np.where(same, conn, 0.0)
+    length = float(np.sum(strip_len) + np.sum(flown_conn))
+    turns = float(np.sum(flown_conn))
+    time_s = length / speed_ms if speed_ms else None
+    photos_per_strip = np.zeros(n_strips, dtype=np.int64)
+    np.add.at(photos_per_strip, p_strip, n_per)
+    n_photos = int(photos_per_strip.sum())
+    feasible = reason is None
+    width = float(np.ptp(shapely.bounds(rot)[[0, 2]]))
+    if feasible and n_strips == 1 and spacing_m > width:
+        feasible = False
+        reason = Message("layout.single_strip", spacing=spacing_m, width=width)
+    # strips and photos in the original frame
+    theta = math.radians(direction)
+    cos_t, sin_t = math.cos(theta), math.sin(theta)
+
+    def to_xy(u: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        du, dv = u - origin[0], v - origin[1]
+        if direction == 0.0:
+            return u.astype(float), v.astype(float)
+        return origin[0] + du * cos_t + dv * sin_t, origin[1] - du * sin_t + dv * cos_t
+
+    forward = (np.arange(n_strips) % 2) == 0
+    start_v = np.where(forward, s_lo, s_hi)
+    end_v = np.where(forward, s_hi, s_lo)
+    sx, sy = to_xy(bands.u_m, start_v)
+    ex, ey = to_xy(bands.u_m, end_v)
+    # parts in flight order
+    pf = forward[p_strip]
+    order = np.lexsort((np.where(pf, first, -first), p_strip))
+    p_strip, first, last, n_per, pf = (a[order] for a in (p_strip, first, last, n_per, pf))
+    p_start = np.where(pf, first, last)
+    p_end = np.where(pf, last, first)
+    psx, psy = to_xy(bands.u_m[p_strip], p_start)
+    pex, pey = to_xy(bands.u_m[p_strip], p_end)
+    first_photo = np.r_[0, np.cumsum(photos_per_strip)[:-1]] + 1
+    segs = np.bincount(p_strip, minlength=n_strips)
+    parts_of: list[list[tuple[tuple[float, float], tuple[float, float]]]] = [
+        [] for _ in range(n_strips)]
+    for k in range(len(p_strip)):
+        parts_of[int(p_strip[k])].append(((float(psx[k]), float(psy[k])),
+                                          (float(pex[k]), float(pey[k]))))
+    strips = tuple(
+        Strip(number=i + 1, start_xy_m=(float(sx[i]), float(sy[i])),
+              end_xy_m=(float(ex[i]), float(ey[i])), length_m=float(strip_len[i]),
+              photos=int(photos_per_strip[i]), first_photo=int(first_photo[i]),
+              sortie=int(sortie_of[i]) + 1, segments=int(segs[i]),
+              parts=tuple(parts_of[i]))
+        for i in range(n_strips))
+    sorties = _sortie_records(sortie_of, strip_len, conn, speed_ms)
+    if n_photos <= MAX_PHOTO_CENTRES:
+        photos = _photos(n_per, p_strip, p_start, pf, bands.u_m, first_photo, sortie_of,
+                         base_m, to_xy, area, height_m, ground_m, photo_values or {})
+    else:
+        photos = Photos({})
+        notes["photo_centres_omitted"] = n_photos
+    notes["photos"] = n_photos
+    return FlightLayout(strips=strips, sorties=sorties, photos=photos, flight_length_m=length,
+                        turn_length_m=turns, flight_time_s=time_s, feasible=feasible,
+                        reason=reason, notes=notes, **common)
+
+
+def _sorties(strip_len: np.ndarray, conn: np.ndarray, speed_ms: float | None,
+             max_min: float | None) -> tuple[np.ndarray, str | None]:
+    """Sortie index of each strip (greedy in flight order) and why it cannot be flown."""
+    n = len(strip_len)
+    out = np.zeros(n, dtype=np.int64)
+    if not max_min or not speed_ms or n == 0:
+        return out, None
+    limit = max_min * 60.0
+    t_strip = strip_len / speed_ms
+    t_conn = conn / speed_ms
+    longest = int(np.argmax(t_strip))
+    if t_strip[longest] > limit:
+        return out, Message("layout.strip_too_long", strip=longest + 1,
+                            minutes=float(t_strip[longest]) / 60.0, limit=max_min)
+    k, used = 0, 0.0
+    for i in range(n):
+        need = t_strip[i] + (t_conn[i - 1] if i and used else 0.0)
+        if used and used + need > limit:
+            k += 1
+            used = t_strip[i]
+        else:
+            used += need
+        out[i] = k
+        if k >= MAX_SORTIES:
+            return out, Message("layout.too_many_sorties", most=MAX_SORTIES, limit=max_min)
+    return out, None
+
+
+def _sortie_records(sortie_of: np.ndarray, strip_len: np.ndarray, conn: np.ndarray,
+                    speed_ms: float | None) -> tuple[Sortie, ...]:
+    out = []
+    if len(sortie_of) == 0:
+        return ()
+    for k in range(int(sortie_of.max()) + 1):
+        idx = np.flatnonzero(sortie_of == k)
+        inner = conn[idx[:-1]] if len(idx) > 1 else np.zeros(0)
+        length = float(strip_len[idx].sum() + inner.sum())
+        out.append(Sortie(number=k + 1, strips=tuple(int(i) + 1 for i in idx),
+                          length_m=length, time_s=length / speed_ms if speed_ms else None))
+    return tuple(out)
+
+
+def _photos(n_per: np.ndarray, p_strip: np.ndarray, p_start: np.ndarray, pf: np.ndarray,
+            u: np.ndarray, first_photo: np.ndarray, sortie_of: np.ndarray, base_m: float,
+            to_xy: object, area: Area, height_m: float, ground_m: float,
+            values: Mapping[str, float]) -> Photos:
+    total = int(n_per.sum())
+    part = np.repeat(np.arange(len(n_per)), n_per)
+    starts = np.r_[0, np.cumsum(n_per)[:-1]]
+    local = np.arange(total) - starts[part]
+    sign = np.where(pf, 1.0, -1.0)[part]
+    v = p_start[part] + sign * base_m * local
+    strip0 = p_strip[part]
+    x, y = to_xy(u[strip0], v)  # type: ignore[operator]
+    running = np.arange(1, total + 1)
+    if area.georeferenced:
+        import pyproj
+
+        tr = pyproj.Transformer.from_crs(area.plan_crs, 4326, always_xy=True)
+        lon, lat = tr.transform(x, y)
+        lon, lat = np.asarray(lon, dtype=float), np.asarray(lat, dtype=float)
+    else:
+        lon = lat = np.full(total, np.nan)
+    full = np.full(total, 1.0)
+    cols = {
+        "photo": running, "strip": strip0 + 1, "index": running - first_photo[strip0] + 1,
+        "sortie": sortie_of[strip0] + 1, "x_m": np.asarray(x, dtype=float),
+        "y_m": np.asarray(y, dtype=float), "lon_deg": lon, "lat_deg": lat,
+        "ground_m": full * ground_m, "altitude_m": full * (ground_m + height_m),
+        "agl_m": full * height_m,
+        "gsd_cm": full * values.get("gsd_cm", np.nan),
+        "resolution_cm": full * values.get("resolution_cm", np.nan),
+        "recognition_p": full * values.get("recognition_p", np.nan),
+    }
+    assert list(cols) == list(PHOTO_COLUMNS)
+    return Photos(cols)
