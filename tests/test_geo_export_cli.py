@@ -140,3 +140,43 @@ def test_exported_kinds_recognise_only_scanplans_files(tmp_path, kind, text):
         check_target(str(path), "--out", kind)
     with pytest.raises(Exception, match=rf"does not end in \.{kind}"):
         check_target(str(tmp_path / "f.txt"), "--out", kind)
+
+
+def test_town_examples_export_a_mission_that_fires_every_photo(tmp_path):
+    """The town examples end to end (the planner's layouts, not hand-made ones): every
+    sortie's mission passes the format checks, the camera fires each photographed part's
+    photos (the geodesic length of a triggered run over the base, +1, summed over the runs
+    of every sortie, is the layout's photo count), GDAL opens KML and GeoJSON with one
+    feature per photo centre, and the film scheme has its frames but no mission."""
+    from pyproj import Geod
+    from test_geo_export import _read_layers, _trigger_runs, check_qgc_plan
+
+    from scanplan.project.file import load_project
+    from scanplan.project.spec import plan_project
+    from scanplan.reports.exports import export_files
+
+    spec = plan_project(load_project(EXAMPLES / "uav-town-2000.toml"))
+    layout = spec.uav.layout
+    files = export_files(spec, str(tmp_path))
+    names = sorted(os.path.basename(p) for p in files)
+    plans = [n for n in names if n.endswith(".plan")]
+    assert len(plans) == len(layout.sorties) > 1
+    geod, fired, runs = Geod(ellps="WGS84"), 0, 0
+    for path, (kind, data) in files.items():
+        Path(path).write_bytes(data)
+        if kind == "plan":
+            for first, last, dist in _trigger_runs(check_qgc_plan(json.loads(data))):
+                _, _, d = geod.inv(first["params"][5], first["params"][4],
+                                   last["params"][5], last["params"][4])
+                fired += round(d / dist) + 1
+                runs += 1
+    assert fired == len(layout.photos)
+    assert runs == sum(len(s.parts) for s in layout.strips)
+    kml = _read_layers(tmp_path / "flight.kml")
+    assert [len(g) for g, _, _ in kml.values()] == [1, len(layout.strips), len(layout.photos)]
+    (geojson,) = _read_layers(tmp_path / "flight.geojson").values()
+    assert len(geojson[0]) == 1 + len(layout.strips) + len(layout.photos)
+
+    film = plan_project(load_project(EXAMPLES / "film-town-10000.toml"))
+    names = sorted(os.path.basename(p) for p in export_files(film, str(tmp_path)))
+    assert names == ["film-flight.geojson", "film-flight.kml", "film-frames.csv"]
