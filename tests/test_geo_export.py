@@ -284,3 +284,15 @@ def test_mission_options_are_checked():
         MissionOptions(speed_ms=0)
     with pytest.raises(ValueError, match="frame must be one of relative, amsl, terrain"):
         MissionOptions(speed_ms=5, frame="agl")  # type: ignore[arg-type]
+
+
+def test_without_listed_photo_centres_no_mission_and_no_table():
+    """A block whose photo centres were too many to list: no mission (its trigger points
+    and altitudes are unknown; a mission that never triggers must not be written)."""
+    import dataclasses
+
+    from scanplan.geo.layout import Photos
+
+    layout = dataclasses.replace(make_layout(), photos=Photos({}))
+    files = layout_files(layout, mission=MissionOptions(speed_ms=10))
+    assert sorted(files) == ["flight.geojson", "flight.kml"]

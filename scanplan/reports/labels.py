@@ -873,9 +873,12 @@ _GEO: dict[str, dict[str, str]] = {
         "geo_not_feasible": "The flight plan cannot be flown: {reason}",
         "geo_photos_elsewhere": "{n} photo centres are too many for the workbook; they are in "
                                 "the photo-centre table written beside this report.",
-        "geo_files_note": "Written beside this report: the mission for the ground station "
-                          "(one per sortie), the flight for Google Earth and for a GIS, and "
-                          "the table of photo centres.",
+        "geo_files_note": "Files that go with this specification: {items}.",
+        "geo_file_mission": "the mission for the ground station (one per sortie)",
+        "geo_file_flight": "the flight for Google Earth and for a GIS",
+        "geo_file_photos": "the table of photo centres",
+        "geo_file_frames": "the table of frame centres",
+        "map_one_in": "1 in {k} shown",
         "xlsx_sheet_strips": "Strips",
         "xlsx_sheet_photos": "Photos",
         "xlsx_sheet_strips_film": "Survey strips",
@@ -948,9 +951,12 @@ _GEO: dict[str, dict[str, str]] = {
         "geo_not_feasible": "План полёта невыполним: {reason}",
         "geo_photos_elsewhere": "Центров снимков {n} — слишком много для рабочей книги; они "
                                 "в таблице центров снимков, записанной рядом с отчётом.",
-        "geo_files_note": "Рядом с отчётом записаны: полётное задание для наземной станции "
-                          "(по одному на вылет), маршруты для просмотра на глобусе и в ГИС и "
-                          "таблица центров снимков.",
+        "geo_files_note": "К техническому заданию прилагаются файлы: {items}.",
+        "geo_file_mission": "полётное задание для наземной станции (по одному на вылет)",
+        "geo_file_flight": "маршруты для просмотра на глобусе и в ГИС",
+        "geo_file_photos": "таблица центров снимков",
+        "geo_file_frames": "таблица центров кадров",
+        "map_one_in": "показан 1 из {k}",
         "xlsx_sheet_strips": "Маршруты",
         "xlsx_sheet_photos": "Снимки",
         "xlsx_sheet_strips_film": "Маршруты аэрофотосъёмки",

@@ -183,7 +183,7 @@ def map_svg(layout: FlightLayout, locale: str = "en") -> str:
             y = np.asarray(ph["y_m"], float)[::step] / scale
             label = t("map_legend_frames" if film else "map_legend_photos", locale)
             if step > 1:
-                label += f" (1 : {step})"
+                label += f" ({t('map_one_in', locale).format(k=step)})"
             ax.plot(x, y, linestyle="none", marker="o", markersize=1.6, color="#2e7d32",
                     zorder=2.5, label=label)
         ax.set_aspect("equal", adjustable="datalim")
@@ -286,7 +286,11 @@ def geo_views(spec: Any, locale: str) -> list[dict[str, Any]]:
         if not layout.area.georeferenced:
             notes.append(t("geo_not_georeferenced", locale))
         else:
-            notes.append(t("geo_files_note", locale))
+            items = [t("geo_file_flight", locale),
+                     t("geo_file_frames" if film else "geo_file_photos", locale)]
+            if not film and _exports.mission_options(spec, layout) is not None:
+                items.insert(0, t("geo_file_mission", locale))
+            notes.append(t("geo_files_note", locale).format(items="; ".join(items)))
         from .geosheets import MAX_SHEET_PHOTOS
 
         if len(layout.photos) > MAX_SHEET_PHOTOS:

@@ -55,5 +55,6 @@ def layout_files(layout: FlightLayout, *, names: ExportNames | None = None,
         files.update({prefix + k: v for k, v in plan_files(layout, mission, geo=geo).items()})
     files[f"{prefix}flight.kml"] = render_kml(layout, names)
     files[f"{prefix}flight.geojson"] = render_geojson(layout, names)
-    files[f"{prefix}{photos_name}.csv"] = render_csv(layout)
+    if len(layout.photos):
+        files[f"{prefix}{photos_name}.csv"] = render_csv(layout)
     return files

@@ -304,9 +304,12 @@ def plan_files(layout: FlightLayout, options: MissionOptions, *, stem: str = "mi
     Returns
     -------
     dict of str to bytes
-        File name → content; empty for a layout that is not georeferenced or not feasible.
+        File name → content; empty for a layout that is not georeferenced or not feasible,
+        and for one whose photo centres were not listed (too many to keep: without them
+        the trigger points and altitudes are unknown).
     """
-    if not layout.area.georeferenced or not layout.feasible or not layout.sorties:
+    if (not layout.area.georeferenced or not layout.feasible or not layout.sorties
+            or len(layout.photos) == 0):
         return {}
     geo = geo if geo is not None else lonlat(layout)
     n = len(layout.sorties)
