@@ -35,7 +35,7 @@ MAX_MAP_PHOTOS = 4000
 """Most photo centres drawn on the map (every k-th beyond it: the SVG stays small)."""
 MAX_TABLE_STRIPS = 150
 """Most strips listed in the PDF's strips table (the workbook lists all)."""
-_MAP_SIZE_IN = (6.6, 7.4)
+_MAP_SIZE_IN = (6.6, 8.2)  # width, greatest height [in]
 
 # Russian for the words of common projected-CRS names (pyproj's names are English)
 _RU_CRS_WORDS = [(r"\bzone\b", "зона"), (r"\bPulkovo\b", "Пулково"),
@@ -105,7 +105,7 @@ def _draw_strips(ax: Any, layout: FlightLayout, scale: float, label: str) -> Non
         (x0, y0), (x1, y1) = np.asarray(s.start_xy_m) / scale, np.asarray(s.end_xy_m) / scale
         ax.plot([x0, x1], [y0, y1], color="#1565c0", linewidth=0.8, zorder=2,
                 label=label if k == 0 else None)
-        if n <= 60 or k % every == 0:
+        if k % max(1, math.ceil(n / 15)) == 0:  # flight direction on ~15 strips
             ax.annotate("", xy=(x0 + 0.55 * (x1 - x0), y0 + 0.55 * (y1 - y0)),
                         xytext=(x0 + 0.45 * (x1 - x0), y0 + 0.45 * (y1 - y0)),
                         arrowprops={"arrowstyle": "-|>", "color": "#1565c0", "lw": 0.8,
@@ -123,7 +123,8 @@ def _km_ticks(axis: Any, locale: str) -> FuncFormatter:
     def fmt(v: float, _pos: int | None = None) -> str:
         ticks = axis.get_majorticklocs()
         step = float(np.min(np.diff(ticks))) if len(ticks) > 1 else 1.0
-        digits = max(0, -math.floor(math.log10(step) + 1e-9)) if step > 0 else 0
+        digits = next((d for d in range(4) if abs(round(step, d) - step) < 1e-9 * max(step, 1)),
+                      3)  # as many decimals as the step has (0.25 km: two)
         return number(v, digits, locale)
     return FuncFormatter(fmt)
 
@@ -193,7 +194,7 @@ def map_svg(layout: FlightLayout, locale: str = "en") -> str:
         ax.set_xlabel(t("map_easting_km", locale))
         ax.set_ylabel(t("map_northing_km", locale))
         ax.set_title(crs_text(layout, locale), fontsize=8)
-        ax.legend(loc="upper left", framealpha=0.9)
+        fig.legend(loc="outside lower center", ncols=3, frameon=False)
         fig.canvas.draw()  # limits are final before the bar and the arrow are placed
         x0, x1 = ax.get_xlim()
         _scale_bar(ax, x1 - x0, locale)
@@ -201,8 +202,16 @@ def map_svg(layout: FlightLayout, locale: str = "en") -> str:
         if north is not None:
             _north_arrow(ax, north, locale)
 
+    minx, miny, maxx, maxy = layout.area.geometry.bounds
+    if layout.strips:
+        ends = np.array([p for s in layout.strips for p in (s.start_xy_m, s.end_xy_m)])
+        minx, miny = min(minx, ends[:, 0].min()), min(miny, ends[:, 1].min())
+        maxx, maxy = max(maxx, ends[:, 0].max()), max(maxy, ends[:, 1].max())
+    width_in, max_h = _MAP_SIZE_IN
+    ratio = (maxy - miny) / (maxx - minx) if maxx > minx else 1.0
+    height_in = min(max(width_in * 0.85 * ratio + 1.2, 3.8), max_h)  # the area fills it
     with matplotlib.rc_context({**_RC, "axes.grid": True}):
-        fig = Figure(figsize=_MAP_SIZE_IN, layout="constrained")
+        fig = Figure(figsize=(width_in, height_in), layout="constrained")
         draw(fig)
         buf = io.StringIO()
         fig.savefig(buf, format="svg", metadata={"Date": None, "Creator": None})
