@@ -50,6 +50,7 @@ BENCHMARKS: dict[str, str] = {
     "norms_import": "bench_norms_import",
     "reports": "bench_reports",
     "plan_batch": "bench_plan_batch",
+    "flight_layout": "bench_flight_layout",
 }
 
 RATIO_FOOTNOTE = (

@@ -588,6 +588,15 @@ def _bad_for(kind: str) -> list[str]:
         return BAD_TOML_VALUES
     if kind == "scales":
         return ["[]", "[0]", "[-1000]", '["abc"]', "10000", "[nan]", "[[1]]", "[1e400]"]
+    if kind == "feature":  # issue 11: a polygon's name or number
+        return ["true", "1.5", "[1]", "{ a = 1 }", "0", '"x"']
+    if kind == "polygon":
+        return ["[]", "[1, 2, 3]", '"abc"', "[[1, 2]]", "[[0, 0], [1, 1], [2, 2]]",
+                "[[0, 0], [1, 0], [1, 1], [0, 1]]", "[[0, 91], [1, 91], [1, 92]]"]
+    if kind == "crs":
+        return ["true", "1.5", "[1]", '"EPSG:999999"', '"nonsense"', '"EPSG:4326"']
+    if kind == "direction":
+        return ['"north"', "true", "[1]", "nan", "inf", "1e400", "45", "-1"]
     raise AssertionError(kind)
 
 
@@ -605,6 +614,9 @@ ACCEPTS = {
     ("uav.motion", "pitch_rate_rad_s"): {"0", "-0.0"},
     ("uav.motion", "yaw_rate_rad_s"): {"0", "-0.0"},
     ("uav", "speed_ms"): {"0", "-0.0"},
+    ("area", "extension_bases"): {"0"},
+    ("area", "ground_elevation_m"): {"-1", "0", "-0.0"},
+    ("uav", "turnaround_m"): {"0", "-0.0"},
 }
 # string keys whose bad values must be refused (a choice or an id), with the bad values
 STR_BAD = {
@@ -618,6 +630,8 @@ STR_BAD = {
     ("uav", "camera"): ['"nope"', '"../x"', '"rc30-153"'],
     ("uav", "sensor_mm"): ['"0x24"', '"abc"'],
     ("uav", "height_formula"): ['"x"', '""', '"Normal_case"'],
+    ("area", "file"): ['"missing.kml"', '""'],
+    ("area", "layer"): ['"a"'],
 }
 
 

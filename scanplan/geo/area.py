@@ -48,6 +48,8 @@ MAX_AREA_KM2 = 10_000.0
 """Largest contract area [km²] (a larger block is a regional programme, not one plan)."""
 MIN_AREA_M2 = 1.0
 """Smallest area [m²]: below it the polygon is degenerate (points on a line)."""
+MIN_WIDTH_M = 0.1
+"""Smallest mean width 2·area/perimeter [m]: a thinner polygon is a line drawn as a ring."""
 MAX_FILE_BYTES = 64 * 1024 * 1024
 """Largest area file read [bytes] (a town boundary is kilobytes)."""
 MAX_KMZ_ENTRIES = 1_000
@@ -215,11 +217,12 @@ def _read_file(path: Path, layer: str | None, feature: str | int | None
         names = [layer]
     found: list[tuple[str, str, Any, pyproj.CRS | None]] = []  # (label, layer, geom, crs)
     other = 0
+    all_names = [str(n) for n, _ in layers]
     for lyr in names:
         if isinstance(source, io.BytesIO):
             source.seek(0)
-        try:
-            meta, _, wkb, fields = pyogrio.raw.read(source, layer=lyr,
+        try:  # by index: a layer read from memory gets a new random name at every open
+            meta, _, wkb, fields = pyogrio.raw.read(source, layer=all_names.index(lyr),
                                                     max_features=MAX_FEATURES)
         except Exception as exc:
             raise InputError(name, f"layer {lyr!r} cannot be read: {_gdal_text(exc)}"
@@ -394,7 +397,7 @@ def _check_input_geometry(geom: Any, crs: pyproj.CRS, field: str) -> None:
         if len(set(map(tuple, shapely.get_coordinates(p.exterior)))) < 3:
             raise InputError(field, "has fewer than 3 distinct points; a polygon needs at "
                              "least 3")
-    if not shapely.area(geom) > 0:
+    if not shapely.area(shapely.convex_hull(geom)) > 0:
         raise InputError(field, "encloses no area: its points lie on a line; a block needs "
                          f"an area ≥ {MIN_AREA_M2:g} m²")
     if not shapely.is_valid(geom):
@@ -454,9 +457,11 @@ def _project(geom: Any, in_crs: pyproj.CRS, plan: pyproj.CRS, where: str, field:
     if not shapely.is_valid(projected):
         projected = shapely.make_valid(projected)
     area_m2 = float(projected.area)
-    if not area_m2 >= MIN_AREA_M2:
-        raise InputError(field, f"encloses {area_m2:g} m²: its points lie on a line; a block "
-                         f"needs an area ≥ {MIN_AREA_M2:g} m²")
+    width_m = 2.0 * area_m2 / max(float(projected.length), 1e-300)  # a sliver's width
+    if not (area_m2 >= MIN_AREA_M2 and width_m >= MIN_WIDTH_M):
+        raise InputError(field, f"encloses {area_m2:g} m² (mean width {width_m:.2g} m): its "
+                         f"points lie on a line; a block needs an area ≥ {MIN_AREA_M2:g} m² "
+                         f"and a width ≥ {MIN_WIDTH_M:g} m")
     if area_m2 / 1e6 > MAX_AREA_KM2:
         raise InputError(field, f"encloses {area_m2 / 1e6:,.0f} km²; at most "
                          f"{MAX_AREA_KM2:,.0f} km² — split a regional programme into blocks "

@@ -24,7 +24,8 @@ from ..geo.lines import Turn, plan_lines, turn_radius_m
 from ..messages import Message
 from ..rules.results import PlanWarning, ScanScenario, UavPlan
 
-__all__ = ["LayoutOptions", "area_from_options", "film_layout", "layout_warnings",
+__all__ = ["LayoutOptions", "area_from_options", "check_options", "film_layout",
+           "layout_warnings",
            "uav_flight_figures", "uav_layout", "with_layout"]
 
 MAX_EXTENSION_BASES = 10
@@ -68,7 +69,9 @@ def area_from_options(spec: AreaSpec, area_m: tuple[float, float] | None = None
     return load_area(spec)
 
 
-def _check(opts: LayoutOptions, area: Area, speed_ms: float | None) -> None:
+def check_options(opts: LayoutOptions, area: Area, speed_ms: float | None) -> None:
+    """Raise :class:`InputError` (the option's name as field) for layout options out of
+    range, or that do not apply to ``area``."""
     d = opts.direction_deg
     if d is not None and d != "auto":
         if isinstance(d, str) or not math.isfinite(float(d)) or not -360 <= float(d) <= 360:
@@ -121,7 +124,7 @@ def uav_layout(plan: UavPlan, area: Area, opts: LayoutOptions | None = None) -> 
     opts = opts or LayoutOptions()
     inp = plan.inputs
     speed = inp.speed_ms if inp.speed_ms > 0 else None
-    _check(opts, area, speed)
+    check_options(opts, area, speed)
     fl = plan.flight
     obj = inp.map_object
     p_rec = None
@@ -188,7 +191,7 @@ def film_layout(scenario: ScanScenario, frame_width_mm: float, frame_along_mm: f
     same layout as a UAV's. No flight time (the aircraft's speed is not an input).
     """
     opts = opts or LayoutOptions()
-    _check(replace(opts, bank_deg=None, max_flight_time_min=None), area, None)
+    check_options(replace(opts, bank_deg=None, max_flight_time_min=None), area, None)
     across = frame_width_mm * scenario.photo_scale / 1000.0
     along = frame_along_mm * scenario.photo_scale / 1000.0
     spacing = float(FL.line_spacing_m(across, side_overlap_pct))

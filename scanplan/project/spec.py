@@ -32,7 +32,13 @@ from .api import (
 )
 from .archive import archive_film
 from .file import Project, ReportMeta
-from .flightplan import LayoutOptions, area_from_options, film_layout, layout_warnings
+from .flightplan import (
+    LayoutOptions,
+    area_from_options,
+    check_options,
+    film_layout,
+    layout_warnings,
+)
 
 __all__ = ["FilmSpec", "PlanResult", "UavSpec", "plan_project", "project_area"]
 
@@ -272,6 +278,27 @@ def project_area(project: Project) -> Area | None:
         raise InputError(f"{project.path}: {where}", exc.message) from None
 
 
+_LAYOUT_KEYS = (("area", "direction_deg"), ("area", "extension_bases"),
+                ("area", "ground_elevation_m"), ("uav", "turnaround_m"),
+                ("uav", "turn_radius_m"), ("uav", "bank_deg"), ("uav", "max_flight_time_min"))
+
+
+def _check_layout_keys(project: Project, area: Area | None) -> None:
+    """The layout keys checked once, before any plan: in range, and only with an area."""
+    given = [(s, k) for s, k in _LAYOUT_KEYS if project.get(s, k) is not None]
+    if area is None:
+        if given:
+            s, k = given[0]
+            raise InputError(f"{project.path}: {project.where(s, k)}", "applies to an area: "
+                             "give [area] file, polygon, or width_m and length_m")
+        return
+    speed = project.get("uav", "speed_ms", 15.0)
+    try:
+        check_options(_layout_options(project), area, speed if speed and speed > 0 else None)
+    except InputError as exc:
+        raise _as_project_error(project, exc, _UAV_KEYS) from None
+
+
 def _layout_options(project: Project) -> LayoutOptions:
     g = project.get
     return LayoutOptions(
@@ -388,6 +415,7 @@ def plan_project(project: Project) -> PlanResult:
                       approver_name=g("project", "approver_name", ""),
                       **{k: g("project", k, "") for k in _SIGNING_KEYS})
     area = project_area(project)  # checked even when no plan uses it
+    _check_layout_keys(project, area)
     film = _film(project, area) if project.has("film") else None
     uav = _uav(project, area) if project.has("uav") else None
     warnings: list[PlanWarning] = []
