@@ -95,7 +95,8 @@ def test_pdf_says_why_an_abstract_block_has_no_map(spec_with):
     pages = _pdf_pages(spec_with(make_layout(georeferenced=False)))
     text = "\n".join(pages)
     assert "abstract rectangle" in text and "[area] file" in text
-    assert "Flight map" in text and "EPSG" not in text
+    assert "Flight lines over the area" in text and "Flight map" not in text
+    assert "EPSG" not in text
 
 
 @pytest.mark.parametrize("locale", ["en", "ru"])

@@ -153,10 +153,12 @@ def render_xlsx(
     if uav is not None:
         book.uav(uav)
         book.mtf(uav)
-    if spec is not None:  # issue 11: the flight over the area
+    from .exports import view_of  # issue 11: the flight over the area
+
+    if view_of(spec, uav) is not None:
         from .geosheets import add_geo_sheets
 
-        add_geo_sheets(book, spec)
+        add_geo_sheets(book, view_of(spec, uav))
     book.norms(scan, uav)
     book.warnings(scan, uav, spec)
     book.references()

@@ -14,6 +14,7 @@ none of them, and the reports say so.
 from __future__ import annotations
 
 import os
+from dataclasses import dataclass
 from typing import Any
 
 from ..geo.export import ExportNames, MissionOptions, layout_files
@@ -21,7 +22,7 @@ from ..geo.layout import FlightLayout
 from ..outpaths import SUFFIX
 from .labels import t
 
-__all__ = ["KIND_OF_SUFFIX", "export_files", "spec_layouts"]
+__all__ = ["KIND_OF_SUFFIX", "export_files", "spec_layouts", "view_of"]
 
 #: File-name ending → the kind :func:`scanplan.outpaths.check_target` checks it as.
 KIND_OF_SUFFIX = {suffix: kind for kind, suffix in SUFFIX.items()}
@@ -37,6 +38,33 @@ def spec_layouts(spec: Any) -> list[tuple[str, FlightLayout]]:
         if isinstance(layout, FlightLayout):
             out.append((kind, layout))
     return out
+
+
+@dataclass(frozen=True)
+class _UavPart:
+    job: Any
+    layout: FlightLayout | None
+
+
+@dataclass(frozen=True)
+class _JobsView:
+    """A UAV job without a specification (``scanplan uav --area-file … --pdf``), shaped
+    like the specification's parts that :func:`spec_layouts` reads."""
+
+    uav: _UavPart | None
+    film: None = None
+    writes_files: bool = False  # only a specification's run writes the exported files
+
+
+def view_of(spec: Any, uav: Any = None) -> Any:
+    """What the report pages read the flight layouts from: the specification, else a UAV
+    job that carries a georeferenced layout (``uav --area-file``), else None."""
+    if spec is not None:
+        return spec
+    layout = getattr(uav, "layout", None) if uav is not None else None
+    if isinstance(layout, FlightLayout) and layout.area.georeferenced:
+        return _JobsView(_UavPart(uav, uav.layout))
+    return None
 
 
 def export_names(locale: str, title: str = "", film: bool = False) -> ExportNames:

@@ -5,7 +5,8 @@ sortie, photos, length, photographed parts, start and end (latitude/longitude an
 easting/northing in the planning CRS). Photos: one row per photo centre with every column
 of :data:`scanplan.geo.layout.PHOTO_COLUMNS`, up to :data:`MAX_SHEET_PHOTOS`; a larger
 block keeps its photo centres in the CSV written beside the report, and the Strips sheet
-says so. Film layouts get the same sheets for the flight scheme's frames.
+says so; an abstract width × length block (a uniform grid in a local frame) has no Photos
+sheet. Film layouts get the same sheets for the flight scheme's frames.
 """
 
 from __future__ import annotations
@@ -37,7 +38,7 @@ def add_geo_sheets(book: Any, spec: Any) -> None:
     for kind, layout in _exports.spec_layouts(spec):
         film = kind == "film"
         _strips_sheet(book, layout, "xlsx_sheet_strips_film" if film else "xlsx_sheet_strips")
-        if 0 < len(layout.photos) <= MAX_SHEET_PHOTOS:
+        if layout.area.georeferenced and 0 < len(layout.photos) <= MAX_SHEET_PHOTOS:
             _photos_sheet(book, layout, "xlsx_sheet_frames" if film else "xlsx_sheet_photos")
 
 

@@ -873,7 +873,8 @@ _GEO: dict[str, dict[str, str]] = {
         "geo_not_feasible": "The flight plan cannot be flown: {reason}",
         "geo_photos_elsewhere": "{n} photo centres are too many for the workbook; they are in "
                                 "the photo-centre table written beside this report.",
-        "geo_files_note": "Files that go with this specification: {items}.",
+        "geo_files_note": "Files for the crew and a GIS (written beside the reports when "
+                          "the project is planned into a folder): {items}.",
         "geo_file_mission": "the mission for the ground station (one per sortie)",
         "geo_file_flight": "the flight for Google Earth and for a GIS",
         "geo_file_photos": "the table of photo centres",
@@ -951,7 +952,8 @@ _GEO: dict[str, dict[str, str]] = {
         "geo_not_feasible": "План полёта невыполним: {reason}",
         "geo_photos_elsewhere": "Центров снимков {n} — слишком много для рабочей книги; они "
                                 "в таблице центров снимков, записанной рядом с отчётом.",
-        "geo_files_note": "К техническому заданию прилагаются файлы: {items}.",
+        "geo_files_note": "Файлы для экипажа и ГИС (записываются рядом с отчётами при "
+                          "расчёте проекта в папку): {items}.",
         "geo_file_mission": "полётное задание для наземной станции (по одному на вылет)",
         "geo_file_flight": "маршруты для просмотра на глобусе и в ГИС",
         "geo_file_photos": "таблица центров снимков",

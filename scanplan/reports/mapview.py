@@ -294,7 +294,7 @@ def geo_views(spec: Any, locale: str) -> list[dict[str, Any]]:
             notes.append(t("geo_not_feasible", locale).format(reason=layout.reason or ""))
         if not layout.area.georeferenced:
             notes.append(t("geo_not_georeferenced", locale))
-        else:
+        elif getattr(spec, "writes_files", True):
             items = [t("geo_file_flight", locale),
                      t("geo_file_frames" if film else "geo_file_photos", locale)]
             if not film and _exports.mission_options(spec, layout) is not None:
@@ -306,7 +306,8 @@ def geo_views(spec: Any, locale: str) -> list[dict[str, Any]]:
             notes.append(t("geo_photos_elsewhere", locale).format(
                 n=number(len(layout.photos), 0, locale)))
         views.append({
-            "title": t("map_title_film" if film else "map_title", locale),
+            "title": t("map_title_film" if film else "map_title", locale)
+            if layout.area.georeferenced else t("geo_summary", locale),
             "map": _svg_uri(map_svg(layout, locale)) if layout.area.georeferenced else None,
             "caption": crs_text(layout, locale),
             "rows": summary_rows(layout, locale),
