@@ -197,25 +197,37 @@ def render_kml(layout: FlightLayout, names: ExportNames | None = None) -> bytes:
 
     folder = _sub(doc, "Folder")
     _sub(folder, "name", names.photos)
-    ph = layout.photos
-    if len(ph):
-        cols = {k: np.asarray(ph[k]) for k in ("photo", "strip", "index", "sortie",
-                                              "lon_deg", "lat_deg", "agl_m")}
-        for i in range(len(ph)):
-            pm = _sub(folder, "Placemark")
-            _sub(pm, "name", str(int(cols["photo"][i])))
-            _sub(pm, "styleUrl", "#photo")
-            _data(pm, {"strip": str(int(cols["strip"][i])),
-                       "index": str(int(cols["index"][i])),
-                       "sortie": str(int(cols["sortie"][i])),
-                       "agl_m": _fmt(cols["agl_m"][i], 1)})
-            pt = _sub(pm, "Point")
-            _sub(pt, "coordinates",
-                 f"{cols['lon_deg'][i]:.{_DEG}f},{cols['lat_deg'][i]:.{_DEG}f}")
+    _sub(folder, "Placemark").text = _PHOTOS_MARK  # the photo placemarks go here
     body = ET.tostring(root, encoding="unicode", short_empty_elements=True)
     head = ('<?xml version="1.0" encoding="UTF-8"?>\n'
             f"<!-- {GENERATOR}: flight plan (area, strips, photo centres) -->\n")
+    body = body.replace(f"<Placemark>{_PHOTOS_MARK}</Placemark>", _kml_photos(layout.photos))
     return (head + body + "\n").encode("utf-8")
+
+
+_PHOTOS_MARK = "@@scanplan-photo-centres@@"
+
+
+def _kml_photos(ph: Any) -> str:
+    """The photo placemarks as KML text (numbers only: nothing to escape), built column by
+    column — 10⁵ photos in well under a second, where one element tree node each takes
+    tens of seconds."""
+    if not len(ph):
+        return ""
+    ints = [np.asarray(ph[k]).astype(np.int64).astype(str) for k in
+            ("photo", "strip", "index", "sortie")]
+    agl = np.char.mod("%.1f", np.asarray(ph["agl_m"], float))
+    agl = np.where(np.isfinite(np.asarray(ph["agl_m"], float)), agl, "")
+    lon = np.char.mod(f"%.{_DEG}f", np.asarray(ph["lon_deg"], float))
+    lat = np.char.mod(f"%.{_DEG}f", np.asarray(ph["lat_deg"], float))
+    return "".join(
+        f'<Placemark><name>{n}</name><styleUrl>#photo</styleUrl><ExtendedData>'
+        f'<Data name="strip"><value>{s}</value></Data>'
+        f'<Data name="index"><value>{i}</value></Data>'
+        f'<Data name="sortie"><value>{r}</value></Data>'
+        f'<Data name="agl_m"><value>{a}</value></Data></ExtendedData>'
+        f'<Point><coordinates>{x},{y}</coordinates></Point></Placemark>'
+        for n, s, i, r, a, x, y in zip(*ints, agl, lon, lat, strict=True))
 
 
 def _round(points: np.ndarray) -> list[list[float]]:
@@ -270,25 +282,43 @@ def render_geojson(layout: FlightLayout, names: ExportNames | None = None) -> by
                            "length_m": _num(round(strip.length_m, 2))},
             "geometry": geometry,
         })
-    ph = layout.photos
-    cols = [c for c in PHOTO_COLUMNS if c in ph.columns]
-    arrays = {c: np.asarray(ph[c]) for c in cols}
-    for i in range(len(ph)):
-        props: dict[str, Any] = {"kind": "photo"}
-        for c in cols:
-            v = arrays[c][i]
-            props[c] = int(v) if c in _INT_COLUMNS else _num(
-                round(float(v), CSV_DECIMALS.get(c, 3)) if math.isfinite(float(v)) else v)
-        features.append({
-            "type": "Feature", "properties": props,
-            "geometry": {"type": "Point",
-                         "coordinates": [round(float(arrays["lon_deg"][i]), _DEG),
-                                         round(float(arrays["lat_deg"][i]), _DEG)]},
-        })
     doc = {"type": "FeatureCollection", "name": names.title, "generator": GENERATOR,
            "features": features}
-    return (json.dumps(doc, ensure_ascii=False, allow_nan=False, separators=(",", ":"))
-            + "\n").encode("utf-8")
+    text = json.dumps(doc, ensure_ascii=False, allow_nan=False, separators=(",", ":"))
+    photos = _geojson_photos(layout.photos)
+    if photos:  # the photo features after the area and the strips
+        text = text[:-2] + "," + photos + "]}"
+    return (text + "\n").encode("utf-8")
+
+
+def _json_column(values: np.ndarray, decimals: int | None) -> np.ndarray:
+    """One column as JSON literals: integers, numbers rounded to ``decimals`` (shortest
+    form, as :func:`json.dumps` writes a float), ``null`` for NaN."""
+    if decimals is None:
+        return values.astype(np.int64).astype(str)
+    v = np.round(values.astype(float), decimals)
+    out = np.array([repr(float(x)) for x in v], dtype=object)
+    out[~np.isfinite(v)] = "null"
+    return out
+
+
+def _geojson_photos(ph: Any) -> str:
+    """The photo-centre features as JSON text, built column by column (fast for 10⁵)."""
+    if not len(ph):
+        return ""
+    cols = [c for c in PHOTO_COLUMNS if c in ph.columns]
+    lits = [_json_column(np.asarray(ph[c]),
+                         None if c in _INT_COLUMNS else CSV_DECIMALS.get(c, 3)) for c in cols]
+    lon = _json_column(np.asarray(ph["lon_deg"]), _DEG)
+    lat = _json_column(np.asarray(ph["lat_deg"]), _DEG)
+    keys = [json.dumps(c) + ":" for c in cols]
+    rows = []
+    for i in range(len(ph)):
+        props = ",".join(k + v[i] for k, v in zip(keys, lits, strict=True))
+        rows.append('{"type":"Feature","properties":{"kind":"photo",' + props
+                    + '},"geometry":{"type":"Point","coordinates":[' + lon[i] + ","
+                    + lat[i] + "]}}")
+    return ",".join(rows)
 
 
 def render_csv(layout: FlightLayout) -> bytes:
