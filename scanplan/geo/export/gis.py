@@ -157,8 +157,8 @@ def render_kml(layout: FlightLayout, names: ExportNames | None = None) -> bytes:
     doc = _sub(root, "Document")
     _sub(doc, "name", names.title)
     _sub(doc, "description",
-         f"{layout.area.source}; {layout.area.plan_crs}; {len(layout.strips)} × "
-         f"{names.strip.format(n='').strip()}; {len(layout.photos)} × {names.photos}")
+         f"{layout.area.source}; {layout.area.plan_crs}; {names.strips}: "
+         f"{len(layout.strips)}; {names.photos}: {len(layout.photos)}")
     _style(doc, "area", line="ff0000ff", width=2.5, fill="330000ff")
     _style(doc, "strip", line="ffff7f00", width=2.0)
     _style(doc, "photo", line="ff00ffff", icon_scale=0.45)
