@@ -5,6 +5,7 @@ names the file, the feature, what is wrong and what is allowed."""
 from __future__ import annotations
 
 import io
+import os
 import zipfile
 from pathlib import Path
 
@@ -225,3 +226,49 @@ def test_missing_and_unreadable_files(tmp_path):
     assert e.field == str(bad) and "cannot be read" in e.message
     e = _err(AreaSpec(file=tmp_path))
     assert e.field == str(tmp_path)
+
+
+@pytest.mark.filterwarnings("ignore:'crs' was not provided")
+def test_a_file_without_a_crs(tmp_path):
+    """A Shapefile without .prj in Gauss–Krüger metres: WGS 84 was assumed, the message
+    says so; with [area] crs it is read."""
+    x0, y0 = 7_400_000.0, 6_180_000.0
+    f = _write(tmp_path / "noprj.shp", [shapely.box(x0, y0, x0 + 1500, y0 + 1000)], ["B"],
+               "ESRI Shapefile", crs=None)
+    (tmp_path / "noprj.prj").unlink(missing_ok=True)
+    e = _err(AreaSpec(file=f))
+    assert "declares no CRS" in e.message and "[area] crs" in e.message
+    a = load_area(AreaSpec(file=f, crs="EPSG:28407"))
+    assert a.plan_crs == "EPSG:28407" and a.area_km2 == pytest.approx(1.5)
+    e = _err(AreaSpec(file=_write(tmp_path / "gk.shp", [shapely.box(x0, y0, x0 + 9, y0 + 9)],
+                                  ["B"], "ESRI Shapefile", crs="EPSG:28407"), crs=32637))
+    assert e.field == "crs" and "differs" in e.message
+
+
+def test_google_earth_kml_with_folders_and_pins(tmp_path):
+    """Folders are layers (LIBKML); a pin beside the polygon is ignored."""
+    f = tmp_path / "ge.kml"
+    f.write_text(
+        '<?xml version="1.0" encoding="UTF-8"?><kml xmlns="http://www.opengis.net/kml/2.2">'
+        "<Document><Folder><name>Contract</name><Placemark><name>Block A</name>"
+        f"{_poly_kml(RING)}</Placemark><Placemark><name>Base</name><Point><coordinates>"
+        "37.61,55.76,0</coordinates></Point></Placemark></Folder></Document></kml>",
+        encoding="utf-8")
+    a = load_area(AreaSpec(file=f))
+    assert "Block A" in a.source and a.area_km2 > 3
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="named pipes")
+def test_hostile_files_are_refused_before_gdal_opens_them(tmp_path):
+    """A FIFO or a device as the file or as a Shapefile's companion: refused, never read."""
+    os.mkfifo(tmp_path / "pipe.geojson")
+    e = _err(AreaSpec(file=tmp_path / "pipe.geojson"))
+    assert "FIFO" in e.message
+    f = _write(tmp_path / "b.shp", [shapely.Polygon(RING)], ["B"], "ESRI Shapefile")
+    (tmp_path / "b.cpg").unlink(missing_ok=True)
+    os.mkfifo(tmp_path / "b.cpg")
+    e = _err(AreaSpec(file=f))
+    assert "b.cpg is not a regular file" in e.message
+    (tmp_path / "z.kml").symlink_to("/dev/zero")
+    e = _err(AreaSpec(file=tmp_path / "z.kml"))
+    assert "not a regular file" in e.message

@@ -309,3 +309,23 @@ def test_rectangles_agree_with_qgroundcontrol(w, length, fa, fl, side, fwd):
         assert abs(len(lay.strips) - _qgc_transects(w, length, s_qgc)) <= 1
         per_qgc = math.ceil(length / b_qgc - 1e-9)
         assert {x.photos for x in lay.strips} == {per_qgc + extra}
+
+
+@settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(geom=polygons(), limit=st.floats(2, 60), speed=st.floats(3, 30),
+       turn=st.sampled_from([Turn(), Turn("turnaround", 15.0), Turn("radius", 80.0)]))
+def test_sorties_property(geom, limit, speed, turn):
+    """Every strip is flown once, in order; no sortie is longer than the limit; the sortie
+    lengths add up to the flight length; times are length / speed."""
+    lay = _lay(_local(geom), speed_ms=speed, max_flight_time_min=limit, turn=turn)
+    if not lay.feasible:
+        assert lay.reason.code == "layout.strip_too_long"
+        assert max(s_.length_m for s_ in lay.strips) / speed > limit * 60
+        return
+    assert [i for k in lay.sorties for i in k.strips] == list(range(1, len(lay.strips) + 1))
+    assert all(k.time_s <= limit * 60 * (1 + 1e-12) for k in lay.sorties)
+    assert sum(k.length_m for k in lay.sorties) == pytest.approx(lay.flight_length_m)
+    assert lay.flight_time_s == pytest.approx(lay.flight_length_m / speed)
+    assert all(s_.sortie == k.number for k in lay.sorties for s_ in lay.strips
+               if s_.number in k.strips)
+    assert set(np.unique(lay.photos["sortie"])) == {k.number for k in lay.sorties}

@@ -151,6 +151,8 @@ def project_text(a: InitAnswers) -> str:
     else:
         out += ["# width_m = 2000\t# across the flight lines [m]",
                 "# length_m = 3000\t# along the flight lines [m]"]
+    out += ['# file = "block.kml"\t# or the contract polygon instead: KML, KMZ, GeoJSON, '
+            "GeoPackage, Shapefile"]
     return "\n".join(_align(line) for line in out) + "\n"
 
 

@@ -437,7 +437,7 @@ def scan(as_json: bool, bits_per_band: str, **kwargs: Any) -> None:
         if area is not None:
             from ..reports.text import format_area, format_layout
 
-            click.echo(format_area(area))
+            click.echo("\n" + format_area(area))
             for sc, lay in schemes:
                 click.echo(format_layout(lay, f"1:{sc.photo_scale:g}"))
     _write_reports(report, scan=job)
@@ -572,7 +572,7 @@ def uav(as_json: bool, **kwargs: Any) -> None:
         if job.layout is not None:
             from ..reports.text import format_area, format_layout
 
-            click.echo(format_area(job.layout.area))
+            click.echo("\n" + format_area(job.layout.area))
             click.echo(format_layout(job.layout))
     _write_reports(report, uav=job)
 

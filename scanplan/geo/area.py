@@ -27,7 +27,7 @@ import os
 import re
 import zipfile
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -143,7 +143,7 @@ def load_area(spec: AreaSpec) -> Area | None:
         return rectangle_area(float(spec.width_m), float(spec.length_m))
     user_crs = _crs(spec.crs, "crs") if spec.crs is not None else None
     if spec.file is not None:
-        geom, file_crs, where = _read_file(Path(spec.file), spec.layer, spec.feature)
+        geom, file_crs, where, parts = _read_file(Path(spec.file), spec.layer, spec.feature)
         if file_crs is not None and user_crs is not None and file_crs != user_crs:
             raise InputError("crs", f"{user_crs.to_string()} differs from the CRS "
                              f"{file_crs.to_string()} that {where} declares; remove "
@@ -151,12 +151,23 @@ def load_area(spec: AreaSpec) -> Area | None:
         in_crs = file_crs or user_crs or pyproj.CRS.from_epsg(4326)
     else:
         geom = _inline(spec.polygon)
+        file_crs = None
         where = "inline polygon"
+        parts = (None, None, None)
         in_crs = user_crs or pyproj.CRS.from_epsg(4326)
     field = where if spec.file is not None else "polygon"
-    _check_input_geometry(geom, in_crs, field)
+    assumed = spec.file is not None and file_crs is None and user_crs is None
+    try:
+        _check_input_geometry(geom, in_crs, field)
+    except InputError as exc:
+        if assumed and ("latitude" in exc.message or "longitude" in exc.message):
+            raise InputError(exc.field, exc.message + "; the file declares no CRS, so WGS 84 "
+                             "lon/lat was assumed: give [area] crs, e.g. \"EPSG:28407\""
+                             ) from None
+        raise
     plan = _plan_crs(spec.plan_crs, in_crs, geom)
-    return _project(geom, in_crs, plan, where, field)
+    return replace(_project(geom, in_crs, plan, where, field), source_file=parts[0],
+                   source_feature=parts[1], source_layer=parts[2])
 
 
 # -------------------------------------------------------------------------------------------
@@ -186,8 +197,9 @@ def _inline(ring: Any) -> shapely.Polygon:
 
 
 def _read_file(path: Path, layer: str | None, feature: str | int | None
-               ) -> tuple[Any, pyproj.CRS | None, str]:
-    """The chosen polygon of a GIS file, its CRS (None if it declares none) and its name."""
+               ) -> tuple[Any, pyproj.CRS | None, str, tuple[str, str, str | None]]:
+    """The chosen polygon of a GIS file, its CRS (None if it declares none), its name, and
+    (file, feature, layer) for reports."""
     import pyogrio
 
     name = str(path)
@@ -260,7 +272,7 @@ def _read_file(path: Path, layer: str | None, feature: str | int | None
                          + (" (and [area] layer)" if len(names) > 1 else ""))
     label, lyr, geom, crs = chosen
     where = f"{name}, feature {label!r}" + (f" of layer {lyr!r}" if len(names) > 1 else "")
-    return geom, crs, where
+    return geom, crs, where, (name, label, lyr if len(names) > 1 else None)
 
 
 def _choose(found: list[tuple[str, str, Any, Any]], feature: str | int, name: str
@@ -298,7 +310,7 @@ def _listed(items: list[str], most: int = 10) -> str:
 
 
 def _gdal_text(exc: Exception) -> str:
-    text = " ".join(str(exc).split())
+    text = " ".join(str(exc).split()).split("; It might help")[0]
     return text[:300] or type(exc).__name__
 
 
@@ -320,6 +332,20 @@ def _check_size(path: Path, name: str) -> None:
     if st.st_size > MAX_FILE_BYTES:
         raise InputError(name, f"is {size_text(st.st_size)}; the limit is "
                          f"{size_text(MAX_FILE_BYTES)}")
+    # GDAL opens a Shapefile's sidecars (.dbf, .shx, .prj, .cpg) too: none may be a pipe or
+    # a device (a read that never ends)
+    try:
+        siblings = [p for p in path.parent.iterdir()
+                    if p.stem.casefold() == path.stem.casefold() and p != path]
+    except OSError:
+        siblings = []
+    for sib in siblings[:100]:
+        try:
+            mode = sib.stat().st_mode
+        except OSError:
+            continue
+        if not (stat.S_ISREG(mode) or stat.S_ISDIR(mode)):
+            raise InputError(name, f"its companion file {sib.name} is not a regular file")
 
 
 def _kmz_document(data: bytes, name: str) -> bytes:

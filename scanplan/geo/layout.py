@@ -63,6 +63,9 @@ class Area:
         The planning CRS's name for reports (``"WGS 84 / UTM zone 37N"``; ``""`` local).
     input_crs : str or None
         The CRS the coordinates were given in (``"EPSG:4326"``); None for a rectangle.
+    source_file, source_feature, source_layer : str or None
+        The parts of ``source`` for reports in another language: the file, the feature's
+        name and its layer (None for an inline polygon or the rectangle).
     """
 
     geometry: Any
@@ -74,6 +77,9 @@ class Area:
     centroid_lonlat: tuple[float, float] | None = None
     plan_crs_name: str = ""
     input_crs: str | None = None
+    source_file: str | None = None
+    source_feature: str | None = None
+    source_layer: str | None = None
 
 
 @dataclass(frozen=True)

@@ -415,7 +415,7 @@ def plan_lines(
     flown_conn = np.where(same, conn, 0.0)
     length = float(np.sum(strip_len) + np.sum(flown_conn))
     turns = float(np.sum(flown_conn))
-    time_s = length / speed_ms if speed_ms else None
+    time_s = _time_s(length, speed_ms)
     photos_per_strip = np.zeros(n_strips, dtype=np.int64)
     np.add.at(photos_per_strip, p_strip, n_per)
     n_photos = int(photos_per_strip.sum())
@@ -474,6 +474,16 @@ def plan_lines(
                         reason=reason, notes=notes, **common)
 
 
+def _time_s(length_m: float, speed_ms: float | None) -> float | None:
+    """Time at the ground speed [s]; None without a speed, or where a subnormal speed makes
+    it infinite (never ``inf`` in a result)."""
+    if not speed_ms or speed_ms <= 0:
+        return None
+    with np.errstate(over="ignore", divide="ignore"):
+        t = float(length_m) / float(speed_ms)
+    return t if math.isfinite(t) else None
+
+
 def _sorties(strip_len: np.ndarray, conn: np.ndarray, speed_ms: float | None,
              max_min: float | None) -> tuple[np.ndarray, str | None]:
     """Sortie index of each strip (greedy in flight order) and why it cannot be flown."""
@@ -482,8 +492,11 @@ def _sorties(strip_len: np.ndarray, conn: np.ndarray, speed_ms: float | None,
     if not max_min or not speed_ms or n == 0:
         return out, None
     limit = max_min * 60.0
-    t_strip = strip_len / speed_ms
-    t_conn = conn / speed_ms
+    with np.errstate(over="ignore", divide="ignore"):
+        t_strip = strip_len / speed_ms
+        t_conn = conn / speed_ms
+    if not (np.isfinite(t_strip).all() and np.isfinite(t_conn).all()):
+        return out, None  # a subnormal speed: no times, no sorties (as flight_time_s)
     longest = int(np.argmax(t_strip))
     if t_strip[longest] > limit:
         return out, Message("layout.strip_too_long", strip=longest + 1,
@@ -512,7 +525,7 @@ def _sortie_records(sortie_of: np.ndarray, strip_len: np.ndarray, conn: np.ndarr
         inner = conn[idx[:-1]] if len(idx) > 1 else np.zeros(0)
         length = float(strip_len[idx].sum() + inner.sum())
         out.append(Sortie(number=k + 1, strips=tuple(int(i) + 1 for i in idx),
-                          length_m=length, time_s=length / speed_ms if speed_ms else None))
+                          length_m=length, time_s=_time_s(length, speed_ms)))
     return tuple(out)
 
 

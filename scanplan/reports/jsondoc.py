@@ -36,7 +36,8 @@ def area_dict(area: Any) -> dict[str, Any]:
     """The contract area: source, planning CRS (code and name), the CRS it was given in,
     km², perimeter, centroid (lon, lat); ``georeferenced`` False for the abstract block."""
     return _clean({
-        "source": area.source, "crs": area.plan_crs, "crs_name": area.plan_crs_name,
+        "source": area.source, "file": area.source_file, "feature": area.source_feature,
+        "layer": area.source_layer, "crs": area.plan_crs, "crs_name": area.plan_crs_name,
         "input_crs": area.input_crs, "georeferenced": area.georeferenced,
         "area_km2": area.area_km2, "perimeter_km": area.perimeter_km,
         "centroid_lonlat": list(area.centroid_lonlat) if area.centroid_lonlat else None})

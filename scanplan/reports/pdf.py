@@ -470,9 +470,11 @@ def _uav_view(job: UavJob, f: _Fmt) -> dict[str, Any]:
          f"{f.num(fl['forward_overlap_at_max_height_pct'], 1)}"),
     ]
     if "strips" in fl:
-        flight.append((f.label("pdf_strips"), f"{fl['strips']} × {fl['photos_per_strip']} = "
-                                              f"{fl['photos']}" if "photos_per_strip" in fl
-                       else f"{fl['strips']} / {fl['photos']}"))
+        if "photos_per_strip" in fl:
+            flight.append((f.label("pdf_strips"), f"{fl['strips']} × {fl['photos_per_strip']} "
+                                                  f"= {fl['photos']}"))
+        else:  # a polygon: the strips differ in length
+            flight.append((f.label("pdf_strips_photos"), f"{fl['strips']} / {fl['photos']}"))
         flight.append((f.label("pdf_flight_length"),
                        f"{f.num(fl['flight_length_m'] / 1000, 1)} / "
                        + (f.num(fl["flight_time_s"] / 60, 0) if fl.get("flight_time_s")

@@ -354,7 +354,7 @@ def format_plan_result(result: Any, locale: str | None = None) -> str:
                                            if meta.contractor else "") if x))
     area = getattr(result, "area", None)
     if area is not None and area.georeferenced:
-        lines.append(_wrap(format_area(area, loc), ""))
+        lines.append(format_area(area, loc))
         for kind, lay in result.layouts.items():
             scale = (_sc(result.film.recommended.photo_scale, loc)
                      if kind == "film" and result.film.recommended else "")
@@ -425,12 +425,26 @@ _AREA_TEXT = {
 }
 
 
+def area_source(area: Any, locale: str = "en") -> str:
+    """Where the area comes from, in ``locale``: the file and feature, an inline polygon, or
+    the rectangle."""
+    if locale != "ru":
+        return area.source
+    if area.source_file:
+        return (f"{area.source_file}, объект «{area.source_feature}»"
+                + (f" слоя «{area.source_layer}»" if area.source_layer else ""))
+    if not area.georeferenced:
+        return area.source.replace("rectangle", "прямоугольник").replace(" m", " м")
+    return "полигон, заданный в файле проекта"
+
+
 def format_area(area: Any, locale: str = "en") -> str:
     """One line: where the area comes from, its size, perimeter and planning CRS."""
     T = _AREA_TEXT[locale]
     crs = f", {area.plan_crs_name}" if area.plan_crs_name else ""
-    return (f"{T['area']}: {area.source} — {_n(area.area_km2, 2, locale, True)} {T['km2']}, "
-            f"{T['perimeter']} {_n(area.perimeter_km, 1, locale, True)} {T['km']}{crs}")
+    return _wrap(f"{T['area']}: {area_source(area, locale)} — "
+                 f"{_n(area.area_km2, 2, locale, True)} {T['km2']}, {T['perimeter']} "
+                 f"{_n(area.perimeter_km, 1, locale, True)} {T['km']}{crs}", "")
 
 
 def format_layout(layout: Any, scale: str = "", locale: str = "en") -> str:
