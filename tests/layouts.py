@@ -83,7 +83,7 @@ def make_layout(*, width_m: float = 800.0, length_m: float = 500.0, spacing_m: f
     sortie_recs = tuple(
         Sortie(number=s, strips=tuple(st.number for st in strips if st.sortie == s),
                length_m=sum(st.length_m for st in strips if st.sortie == s), time_s=600.0)
-        for s in range(1, sorties + 1))
+        for s in sorted({st.sortie for st in strips}))
     c = area.centroid
     centroid = None
     if georeferenced:

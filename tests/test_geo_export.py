@@ -23,6 +23,8 @@ import numpy as np
 import pandas as pd
 import pytest
 import shapely
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from layouts import UTM35, make_layout
 from pyogrio import list_layers
 from pyogrio.raw import read
@@ -296,3 +298,28 @@ def test_without_listed_photo_centres_no_mission_and_no_table():
     layout = dataclasses.replace(make_layout(), photos=Photos({}))
     files = layout_files(layout, mission=MissionOptions(speed_ms=10))
     assert sorted(files) == ["flight.geojson", "flight.kml"]
+
+
+@settings(max_examples=25, deadline=None)
+@given(width=st.floats(200.0, 3000.0), length=st.floats(200.0, 3000.0),
+       spacing=st.floats(40.0, 300.0), base=st.floats(15.0, 120.0),
+       sorties=st.integers(1, 3), notch=st.booleans(), parts=st.booleans())
+def test_every_mission_fires_every_photo_and_passes_the_format(width, length, spacing, base,
+                                                               sorties, notch, parts):
+    """Over random serpentines (split strips or not, parts given or found from the
+    photos, several sorties): every sortie's plan passes the QGC format checks, the trigger
+    is set and cleared in pairs, and the triggered runs fire exactly the photo count."""
+    layout = make_layout(width_m=width, length_m=length, spacing_m=spacing, base_m=base,
+                         sorties=min(sorties, math.ceil(width / spacing)), notch=notch,
+                         parts=parts)
+    geod, fired = Geod(ellps="WGS84"), 0
+    for s in layout.sorties:
+        items = check_qgc_plan(json.loads(render_plan(layout, s.number,
+                                                      MissionOptions(speed_ms=9.0))))
+        for first, last, dist in _trigger_runs(items):
+            _, _, d = geod.inv(first["params"][5], first["params"][4], last["params"][5],
+                               last["params"][4])
+            n = round(d / dist)  # whole bases apart, up to the UTM scale factor (≤ 0.1 %)
+            assert abs(d - n * dist) <= 1e-3 * d + 0.01 * dist
+            fired += n + 1
+    assert fired == len(layout.photos)

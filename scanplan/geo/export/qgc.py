@@ -224,6 +224,8 @@ def render_plan(layout: FlightLayout, sortie: int, options: MissionOptions, *,
     geo = geo if geo is not None else lonlat(layout)
     by_strip = photos_by_strip(layout)
     strip_numbers = layout.sorties[sortie - 1].strips
+    if not strip_numbers:
+        raise ValueError(f"sortie {sortie} has no strips")
     points: list[_Waypoint] = []
     owners: list[int] = []
     for n in strip_numbers:
@@ -312,9 +314,9 @@ def plan_files(layout: FlightLayout, options: MissionOptions, *, stem: str = "mi
             or len(layout.photos) == 0):
         return {}
     geo = geo if geo is not None else lonlat(layout)
-    n = len(layout.sorties)
-    if n == 1:
-        return {f"{stem}.plan": render_plan(layout, 1, options, geo=geo)}
-    width = max(2, len(str(n)))
+    flown = [s for s in layout.sorties if s.strips]
+    if len(flown) == 1:
+        return {f"{stem}.plan": render_plan(layout, flown[0].number, options, geo=geo)}
+    width = max(2, len(str(len(layout.sorties))))
     return {f"{stem}-{s.number:0{width}d}.plan": render_plan(layout, s.number, options, geo=geo)
-            for s in layout.sorties}
+            for s in flown}
