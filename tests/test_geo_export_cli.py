@@ -180,3 +180,22 @@ def test_town_examples_export_a_mission_that_fires_every_photo(tmp_path):
     film = plan_project(load_project(EXAMPLES / "film-town-10000.toml"))
     names = sorted(os.path.basename(p) for p in export_files(film, str(tmp_path)))
     assert names == ["film-flight.geojson", "film-flight.kml", "film-frames.csv"]
+
+
+def test_the_turn_keys_say_which_aircraft_flies_the_mission(tmp_path):
+    """``[uav] turn_radius_m`` (or ``bank_deg``) is a fixed wing: vehicleType 1 and a 15°
+    climb-out; ``turnaround_m`` (or no turn key) a multirotor: vehicleType 2."""
+    from scanplan.project.file import load_project
+    from scanplan.project.spec import plan_project
+    from scanplan.reports.exports import export_files
+
+    text = (EXAMPLES / "uav-town-2000.toml").read_text(encoding="utf-8")
+    text = text.replace('file = "areas/', f'file = "{EXAMPLES}/areas/')
+    for turn, vehicle, pitch in (("turnaround_m = 20", 2, 0.0),
+                                 ("turn_radius_m = 60", 1, 15.0)):
+        path = tmp_path / "p.toml"
+        path.write_text(text.replace("turnaround_m = 20", turn), encoding="utf-8")
+        files = export_files(plan_project(load_project(path)), str(tmp_path))
+        plan = json.loads(next(d for k, d in files.values() if k == "plan"))
+        assert plan["mission"]["vehicleType"] == vehicle
+        assert plan["mission"]["items"][0]["params"][0] == pitch

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import os
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Literal
 
 from ..geo.export import ExportNames, MissionOptions, layout_files
 from ..geo.layout import FlightLayout
@@ -90,7 +90,18 @@ def mission_options(spec: Any, layout: FlightLayout) -> MissionOptions | None:
     speed = layout.speed_ms if layout.speed_ms else inputs.speed_ms
     if not speed or speed <= 0:
         return None
-    return MissionOptions(speed_ms=float(speed))
+    return MissionOptions(speed_ms=float(speed), vehicle=_vehicle(spec))
+
+
+def _vehicle(spec: Any) -> Literal["multirotor", "fixed_wing"]:
+    """The aircraft, from the turn keys the project gives: ``[uav] turn_radius_m`` or
+    ``[uav] bank_deg`` (turns of a fixed wing) → a fixed wing; otherwise a multirotor."""
+    project = getattr(spec, "project", None)
+    get = getattr(project, "get", None)
+    if get is not None and any(get("uav", key) is not None
+                               for key in ("turn_radius_m", "bank_deg")):
+        return "fixed_wing"
+    return "multirotor"
 
 
 def export_files(spec: Any, folder: str, *, prefix: str = "") -> dict[str, tuple[str, bytes]]:
