@@ -330,7 +330,7 @@ MESSAGES: dict[str, dict[str, str]] = {
               "({width:,.1f}~м поперёк маршрутов): его покрывает один маршрут, блок с "
               "поперечным перекрытием не образуется; снимайте одним маршрутом или ниже.",
     },
-    "layout.not_feasible": {
+    "flight_not_feasible": {
         "en": "the flight plan over the area is not feasible: {why}",
         "ru": "План полёта над участком невыполним: {why}",
     },

@@ -176,7 +176,7 @@ def layout_warnings(layout: FlightLayout) -> tuple[PlanWarning, ...]:
     """A "not feasible" warning with the layout's reason, or nothing."""
     if layout.feasible:
         return ()
-    return (PlanWarning("flight_not_feasible", Message("layout.not_feasible",
+    return (PlanWarning("flight_not_feasible", Message("flight_not_feasible",
                                                        why=layout.reason or "")),)
 
 
