@@ -323,3 +323,22 @@ def test_every_mission_fires_every_photo_and_passes_the_format(width, length, sp
             assert abs(d - n * dist) <= 1e-3 * d + 0.01 * dist
             fired += n + 1
     assert fired == len(layout.photos)
+
+
+def test_a_strip_without_photos_is_flown_with_the_camera_off():
+    """A strip whose photos all fall outside (a sliver): flown start to end, no trigger,
+    at the altitude of the sortie's nearest photo."""
+    import dataclasses
+
+    from scanplan.geo.layout import Photos
+
+    layout = make_layout()
+    keep = layout.photos["strip"] != 2
+    photos = Photos({k: v[keep] for k, v in layout.photos.columns.items()})
+    strips = tuple(dataclasses.replace(s, photos=0, parts=()) if s.number == 2 else s
+                   for s in layout.strips)
+    layout = dataclasses.replace(layout, photos=photos, strips=strips)
+    items = check_qgc_plan(json.loads(render_plan(layout, 1, MissionOptions(speed_ms=5))))
+    assert len(_trigger_runs(items)) == len(layout.strips) - 1
+    wps = [i for i in items if i["command"] == MAV_CMD_NAV_WAYPOINT]
+    assert len(wps) == 2 * len(layout.strips) and {w["params"][6] for w in wps} == {120.0}

@@ -157,21 +157,23 @@ def waypoint_altitudes(layout: FlightLayout, frame: str, points: Sequence[_Waypo
     At a photo centre: its ``altitude_m`` (above mean sea level, ``"amsl"``), its
     ``agl_m`` (``"terrain"``) or ``altitude_m - home_ground_m`` (``"relative"``); at a
     run-in/run-out point the strip's altitude (``Strip.altitude_m``, else that of its
-    nearest photo). Flat ground: every waypoint at the planned height above the home.
+    nearest photo; a strip without photos: the nearest photo of the sortie). Flat ground:
+    every waypoint at the planned height above the home.
     """
     ph = layout.photos
     alt, agl = np.asarray(ph["altitude_m"], float), np.asarray(ph["agl_m"], float)
     out = np.empty(len(points))
     for k, (wp, number) in enumerate(zip(points, strip_numbers, strict=True)):
         i = wp.photo
-        if i is None:  # the nearest waypoint of the same strip that is a photo
-            near = [p.photo for p, n in zip(points, strip_numbers, strict=True)
-                    if n == number and p.photo is not None]
+        if i is None:  # the nearest photo waypoint of the same strip, else of any strip
+            near = ([p.photo for p, n in zip(points, strip_numbers, strict=True)
+                     if n == number and p.photo is not None]
+                    or [p.photo for p in points if p.photo is not None])
             i = min(near, key=lambda j: math.hypot(ph["x_m"][j] - wp.x_m,
                                                    ph["y_m"][j] - wp.y_m)) if near else None
         strip_alt = layout.strips[number - 1].altitude_m
         if i is None:
-            raise ValueError(f"strip {number} has no photo to take its altitude from")
+            raise ValueError(f"sortie of strip {number} has no photo to take altitudes from")
         absolute = strip_alt if (wp.photo is None and strip_alt is not None) else alt[i]
         if frame == "amsl":
             out[k] = absolute
