@@ -199,3 +199,26 @@ def test_the_turn_keys_say_which_aircraft_flies_the_mission(tmp_path):
         plan = json.loads(next(d for k, d in files.values() if k == "plan"))
         assert plan["mission"]["vehicleType"] == vehicle
         assert plan["mission"]["items"][0]["params"][0] == pitch
+
+
+def test_a_plan_with_fewer_sorties_removes_the_stale_missions(work, monkeypatch):
+    """Bug risk: six sorties yesterday, three today — mission-04.plan … must not stay in
+    the folder for a crew to fly. scanplan's own stale exports are removed after the
+    write (and said); another program's file of that name is left alone."""
+    monkeypatch.setattr(exports_mod, "spec_layouts",
+                        lambda spec: [("uav", make_layout(sorties=3))])
+    assert cli("plan", "proj.toml", "--out", "out").exit_code == 0
+    out = work / "out"
+    assert {"mission-01.plan", "mission-02.plan", "mission-03.plan"} <= set(os.listdir(out))
+    (out / "mission-07.plan").write_text('{"fileType": "Plan", "groundStation": "QGC"}')
+    monkeypatch.setattr(exports_mod, "spec_layouts", lambda spec: [("uav", make_layout())])
+    r = cli("plan", "proj.toml", "--out", "out")
+    assert r.exit_code == 0, r.output
+    assert sorted(os.listdir(out)) == sorted([*UAV_FILES, "mission-07.plan"])
+    assert f"removed {os.path.join('out', 'mission-02.plan')} (left from an earlier plan)" \
+        in r.stderr
+    monkeypatch.setattr(exports_mod, "spec_layouts",
+                        lambda spec: [("uav", make_layout(georeferenced=False))])
+    r = cli("plan", "proj.toml", "--out", "out")  # no polygon any more: no files for it
+    assert r.exit_code == 0, r.output
+    assert sorted(os.listdir(out)) == ["mission-07.plan", "spec.pdf", "spec.xlsx"]

@@ -321,6 +321,23 @@ def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
         click.echo(f"wrote {path}{note}", err=True)
 
 
+def _remove_stale_exports(folder: str, written: set[str]) -> None:
+    """Remove the exported files of an earlier run that this one replaced by fewer
+    (``mission-04.plan`` of six sorties, now three); say so on stderr."""
+    from ..outpaths import folder_lock
+    from ..reports.exports import stale_exports
+
+    with folder_lock([folder]):  # not while another scanplan run writes there
+        for path in stale_exports(folder, written):
+            try:
+                os.unlink(path)
+            except OSError as exc:
+                click.echo(f"warning: {path} is left from an earlier plan and could not be "
+                           f"removed ({exc.strerror or exc}); do not fly it", err=True)
+            else:
+                click.echo(f"removed {path} (left from an earlier plan)", err=True)
+
+
 def _make_folder(path: str) -> list[str]:
     """``os.makedirs(path)``; the folders it created, deepest first (to undo on failure)."""
     created = []
@@ -686,6 +703,8 @@ def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: s
                         "approver_name": result.meta.approver_name,
                         "meta": result.meta, "exports": exports}, scan=film, uav=uav_,
                        spec=result)
+        if out_dir and not batch:  # never leave a stale sortie of an earlier plan behind
+            _remove_stale_exports(out_dir, set(exports))
         return result
 
     if not batch:

@@ -14,15 +14,16 @@ none of them, and the reports say so.
 from __future__ import annotations
 
 import os
+import re
 from dataclasses import dataclass
 from typing import Any, Literal
 
 from ..geo.export import ExportNames, MissionOptions, layout_files
 from ..geo.layout import FlightLayout
-from ..outpaths import SUFFIX
+from ..outpaths import SUFFIX, written_by_scanplan
 from .labels import t
 
-__all__ = ["KIND_OF_SUFFIX", "export_files", "spec_layouts", "view_of"]
+__all__ = ["KIND_OF_SUFFIX", "export_files", "spec_layouts", "stale_exports", "view_of"]
 
 #: File-name ending → the kind :func:`scanplan.outpaths.check_target` checks it as.
 KIND_OF_SUFFIX = {suffix: kind for kind, suffix in SUFFIX.items()}
@@ -136,3 +137,46 @@ def export_files(spec: Any, folder: str, *, prefix: str = "") -> dict[str, tuple
             suffix = os.path.splitext(name)[1].lower()
             files[os.path.join(folder, name)] = (KIND_OF_SUFFIX[suffix], data)
     return files
+
+
+_EXPORT_NAME = re.compile(r"(?:film-)?(?:mission(?:-\d+)?\.plan|flight\.kml|flight\.geojson|"
+                          r"photos\.csv|frames\.csv)")
+
+
+def stale_exports(folder: str, written: set[str]) -> list[str]:
+    """Exported files of an earlier run in ``folder`` that this run did not write.
+
+    A plan that now needs three sorties leaves ``mission-04.plan`` … of an earlier plan
+    with six; an area that is no longer a polygon leaves the old KML. A crew must never
+    fly a stale sortie, so ``plan --out`` removes them after its write. Only scanplan's
+    own files (their mark) with the names of a single project's exports count; symbolic
+    links and other files are left alone.
+
+    Parameters
+    ----------
+    folder : str
+        The ``--out`` folder.
+    written : set of str
+        The paths this run wrote.
+
+    Returns
+    -------
+    list of str
+        Paths to remove, sorted.
+    """
+    keep = {os.path.normcase(os.path.abspath(p)) for p in written}
+    out = []
+    try:
+        names = sorted(os.listdir(folder))
+    except OSError:
+        return []
+    for name in names:
+        if not _EXPORT_NAME.fullmatch(name):
+            continue
+        path = os.path.join(folder, name)
+        if os.path.normcase(os.path.abspath(path)) in keep or os.path.islink(path) \
+                or not os.path.isfile(path):
+            continue
+        if written_by_scanplan(path, KIND_OF_SUFFIX[os.path.splitext(name)[1].lower()]):
+            out.append(path)
+    return out
