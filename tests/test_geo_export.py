@@ -107,7 +107,8 @@ def test_kml_escapes_text_and_is_styled(tmp_path):
     ns = {"k": "http://www.opengis.net/kml/2.2"}
     assert root.find("k:Document/k:name", ns).text == 'Lida <"north"> & co'
     assert {s.get("id") for s in root.findall("k:Document/k:Style", ns)} == {
-        "area", "strip", "photo"}
+        "area", "strip", "photo-normal", "photo-highlight"}
+    assert root.find("k:Document/k:StyleMap", ns).get("id") == "photo"
     assert b"scanplan" in data.split(b"<kml", 1)[0]  # the writer's mark, before the root
     path = tmp_path / "f.kml"
     path.write_bytes(data)

@@ -38,6 +38,7 @@ __all__ = ["CSV_DECIMALS", "ExportNames", "render_csv", "render_geojson", "rende
 
 _KML_NS = "http://www.opengis.net/kml/2.2"
 _DEG = 7  # decimals of a degree written (1e-7° ≈ 1 cm)
+_LABELLED_PHOTOS = 1000  # up to this many photo centres, their numbers always show in KML
 #: Decimals written per CSV column (integers: none; the rest: 3).
 CSV_DECIMALS = {"x_m": 3, "y_m": 3, "lon_deg": 8, "lat_deg": 8, "ground_m": 2,
                 "altitude_m": 2, "agl_m": 2, "gsd_cm": 3, "resolution_cm": 3,
@@ -69,7 +70,8 @@ def _sub(parent: ET.Element, tag: str, text: str | None = None) -> ET.Element:
 
 
 def _style(doc: ET.Element, sid: str, *, line: str | None = None, width: float = 2.0,
-           fill: str | None = None, icon_scale: float | None = None) -> None:
+           fill: str | None = None, icon_scale: float | None = None,
+           label_scale: float = 0.6) -> None:
     """A KML style (colours are aabbggrr)."""
     st = _sub(doc, "Style")
     st.set("id", sid)
@@ -80,7 +82,7 @@ def _style(doc: ET.Element, sid: str, *, line: str | None = None, width: float =
         icon = _sub(ic, "Icon")
         _sub(icon, "href", "http://maps.google.com/mapfiles/kml/shapes/placemark_circle.png")
         lab = _sub(st, "LabelStyle")
-        _sub(lab, "scale", "0.6")
+        _sub(lab, "scale", f"{label_scale:g}")
         return
     if line is not None:
         ls = _sub(st, "LineStyle")
@@ -161,7 +163,18 @@ def render_kml(layout: FlightLayout, names: ExportNames | None = None) -> bytes:
          f"{len(layout.strips)}; {names.photos}: {len(layout.photos)}")
     _style(doc, "area", line="ff0000ff", width=2.5, fill="330000ff")
     _style(doc, "strip", line="ffff7f00", width=2.0)
-    _style(doc, "photo", line="ff00ffff", icon_scale=0.45)
+    # photo numbers: shown for a small block; for a large one on pointing (a StyleMap), as
+    # thousands of labels would hide the map
+    few = len(layout.photos) <= _LABELLED_PHOTOS
+    _style(doc, "photo-normal", line="ff00ffff", icon_scale=0.45,
+           label_scale=0.6 if few else 0.0)
+    _style(doc, "photo-highlight", line="ff00ffff", icon_scale=0.7, label_scale=0.9)
+    smap = _sub(doc, "StyleMap")
+    smap.set("id", "photo")
+    for key in ("normal", "highlight"):
+        pair = _sub(smap, "Pair")
+        _sub(pair, "key", key)
+        _sub(pair, "styleUrl", f"#photo-{key}")
 
     folder = _sub(doc, "Folder")
     _sub(folder, "name", names.area)
