@@ -308,13 +308,12 @@ MESSAGES: dict[str, dict[str, str]] = {
         "ru": "Для участка нужно {n:,d} маршрутов при расстоянии между ними {spacing:g}~м; "
               "планируется не более {most:,d}.",
     },
-    "layout.strip_too_long": {
-        "en": "strip {strip:d} alone takes {minutes:,.1f} min, longer than a sortie of "
-              "{limit:g} min; turn the flight lines across the area's long side "
-              "([area] direction_deg) or split the area",
-        "ru": "Один маршрут {strip:d} занимает {minutes:,.1f}~мин — больше продолжительности "
-              "одного полёта {limit:g}~мин; проложите маршруты поперёк длинной стороны участка "
-              "([area] direction_deg) или разделите участок.",
+    "layout.sortie_too_short": {
+        "en": "a sortie of {limit:g} min does not fly even one photo base ({base:,.1f} m at "
+              "{speed:g} m/s); give [uav] max_flight_time_min for the aircraft's endurance",
+        "ru": "За полёт продолжительностью {limit:g}~мин не пролетается даже один базис "
+              "фотографирования ({base:,.1f}~м при {speed:g}~м/с); задайте [uav] "
+              "max_flight_time_min по продолжительности полёта носителя.",
     },
     "layout.too_many_sorties": {
         "en": "more than {most:,d} sorties of {limit:g} min: the block cannot be flown with "

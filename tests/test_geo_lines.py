@@ -267,9 +267,31 @@ def test_sorties_split_the_block_between_strips():
     assert len(one.sorties) == 1 and one.flight_length_m > lay.flight_length_m
 
 
+def test_a_strip_longer_than_a_sortie_is_flown_in_pieces():
+    """20 km strips at 10 m/s take 33 min; with 10-minute sorties each strip is flown in
+    pieces of whole bases, the next sortie resuming at the next exposure."""
+    lay = _lay(rectangle_area(500, 20_000), speed_ms=10.0, max_flight_time_min=10.0)
+    assert lay.feasible and len(lay.sorties) > len(lay.strips)
+    assert all(k.time_s <= 600 + 1e-9 for k in lay.sorties)
+    assert sum(k.length_m for k in lay.sorties) == pytest.approx(lay.flight_length_m)
+    first = [k for k in lay.sorties if 1 in k.strips]
+    assert len(first) == 4  # 20,042 m in pieces of ≤ 6,000 m
+    p = lay.photos
+    s1 = p["strip"] == 1
+    assert (np.diff(p["sortie"][s1]) >= 0).all()
+    assert set(p["sortie"][s1]) == {k.number for k in first}
+    # a piece is whole bases: the exposures of one sortie on strip 1 span ≤ 6,000 m
+    for k in first:
+        y = p["y_m"][s1 & (p["sortie"] == k.number)]
+        assert np.ptp(y) <= 6000 + 1e-6
+    # no turn is flown across a sortie break
+    assert lay.flight_length_m == pytest.approx(
+        sum(s_.length_m for s_ in lay.strips) + lay.turn_length_m)
+
+
 def test_not_feasible_plans_say_why():
-    long = _lay(rectangle_area(500, 20_000), speed_ms=10.0, max_flight_time_min=10.0)
-    assert not long.feasible and long.reason.code == "layout.strip_too_long"
+    short = _lay(rectangle_area(500, 2000), speed_ms=10.0, max_flight_time_min=0.01)
+    assert not short.feasible and short.reason.code == "layout.sortie_too_short"
     many = _lay(rectangle_area(200_000, 300), fa=40, speed_ms=15.0, max_flight_time_min=0.5)
     assert not many.feasible and many.reason.code == "layout.too_many_sorties"
     assert len(many.sorties) >= MAX_SORTIES
@@ -315,17 +337,17 @@ def test_rectangles_agree_with_qgroundcontrol(w, length, fa, fl, side, fwd):
 @given(geom=polygons(), limit=st.floats(2, 60), speed=st.floats(3, 30),
        turn=st.sampled_from([Turn(), Turn("turnaround", 15.0), Turn("radius", 80.0)]))
 def test_sorties_property(geom, limit, speed, turn):
-    """Every strip is flown once, in order; no sortie is longer than the limit; the sortie
-    lengths add up to the flight length; times are length / speed."""
+    """Every strip is flown, in order (a long one over consecutive sorties); no sortie is
+    longer than the limit; the sortie lengths add up to the flight length; times are
+    length / speed."""
     lay = _lay(_local(geom), speed_ms=speed, max_flight_time_min=limit, turn=turn)
-    if not lay.feasible:
-        assert lay.reason.code == "layout.strip_too_long"
-        assert max(s_.length_m for s_ in lay.strips) / speed > limit * 60
-        return
-    assert [i for k in lay.sorties for i in k.strips] == list(range(1, len(lay.strips) + 1))
+    assert lay.feasible, lay.reason
+    flown = [i for k in lay.sorties for i in k.strips]
+    assert [i for j, i in enumerate(flown) if j == 0 or flown[j - 1] != i] == list(
+        range(1, len(lay.strips) + 1))
     assert all(k.time_s <= limit * 60 * (1 + 1e-12) for k in lay.sorties)
     assert sum(k.length_m for k in lay.sorties) == pytest.approx(lay.flight_length_m)
     assert lay.flight_time_s == pytest.approx(lay.flight_length_m / speed)
-    assert all(s_.sortie == k.number for k in lay.sorties for s_ in lay.strips
-               if s_.number in k.strips)
+    assert all(s_.sortie == min(k.number for k in lay.sorties if s_.number in k.strips)
+               for s_ in lay.strips)
     assert set(np.unique(lay.photos["sortie"])) == {k.number for k in lay.sorties}

@@ -233,10 +233,11 @@ def emitted(tmp_path_factory) -> dict[str, list[Any]]:
         "plan uav nothing resolved": uav_toml.replace("r_min = 0.1", "r_min = 0.3"),
         # flight layouts that cannot be flown (issue 11)
         "plan uav one strip": uav_toml.replace("width_m = 2000", "width_m = 10"),
-        "plan uav strip too long": uav_toml.replace("[uav]\n", "[uav]\nmax_flight_time_min = 1\n"),
+        "plan uav sortie too short": uav_toml.replace("[uav]\n",
+                                                      "[uav]\nmax_flight_time_min = 0.001\n"),
         "plan uav too many sorties": uav_toml.replace("[uav]\n", "[uav]\nmax_flight_time_min = 1\n")
         .replace("width_m = 2000", "width_m = 200000").replace("length_m = 3000",
-                                                               "length_m = 1000"),
+                                                               "length_m = 40000"),
         "plan uav too many strips": uav_toml.replace("height_m = 300", "height_m = 5").replace(
             "width_m = 2000", "width_m = 1000000"),
         # archive photos: the scale is given (issue 13)

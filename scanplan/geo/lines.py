@@ -36,13 +36,14 @@ The layout, in a frame rotated so that the flight direction is +v:
   simplified outline).
 - **Sorties.** With ``max_flight_time_min`` the strips are grouped in flight order, each
   sortie taking strips while its strips and turns fit the time; the block is split between
-  strips.
+  strips, and a strip longer than a whole sortie is flown in pieces of whole photo bases,
+  each sortie resuming at the next exposure.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
 import numpy as np
@@ -410,8 +411,9 @@ def plan_lines(
     np.add.at(photographed, p_strip, last - first)
     notes["bridged_m"] = float(np.sum(strip_len - photographed))
     # sorties (strip order = flight order)
-    sortie_of, reason = _sorties(strip_len, conn, speed_ms, max_flight_time_min)
-    same = sortie_of[1:] == sortie_of[:-1] if n_strips > 1 else np.zeros(0, dtype=bool)
+    plan, reason = _sorties(strip_len, conn, speed_ms, max_flight_time_min, base_m)
+    sortie_of = plan.start
+    same = plan.start[1:] == plan.end()[:-1] if n_strips > 1 else np.zeros(0, dtype=bool)
     flown_conn = np.where(same, conn, 0.0)
     length = float(np.sum(strip_len) + np.sum(flown_conn))
     turns = float(np.sum(flown_conn))
@@ -424,29 +426,58 @@ def plan_lines(
     if feasible and n_strips == 1 and spacing_m > width:
         feasible = False
         reason = Message("layout.single_strip", spacing=spacing_m, width=width)
-    # strips and photos in the original frame
+    to_xy = _to_plan_xy(direction, origin)
+    strips, (p_strip, p_start, pf, n_per), first_photo = _strip_records(
+        bands.u_m, p_strip, first, last, n_per, s_lo, s_hi, photos_per_strip, sortie_of,
+        to_xy)
+    sorties = plan.records(speed_ms)
+    if n_photos <= MAX_PHOTO_CENTRES:
+        photos = _photos(n_per, p_strip, p_start, pf, bands.u_m, first_photo, plan,
+                         np.where((np.arange(n_strips) % 2) == 0, s_lo, s_hi), base_m, to_xy,
+                         area, height_m, ground_m, photo_values or {})
+    else:
+        photos = Photos({})
+        notes["photo_centres_omitted"] = n_photos
+    notes["photos"] = n_photos
+    return FlightLayout(strips=strips, sorties=sorties, photos=photos, flight_length_m=length,
+                        turn_length_m=turns, flight_time_s=time_s, feasible=feasible,
+                        reason=reason, notes=notes, **common)
+
+
+def _to_plan_xy(direction: float, origin: tuple[float, float]) -> Callable[
+        [np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]:
+    """(u, v) of the rotated frame → (x, y) of the planning CRS (rotation by −direction
+    about ``origin``)."""
     theta = math.radians(direction)
     cos_t, sin_t = math.cos(theta), math.sin(theta)
 
     def to_xy(u: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        du, dv = u - origin[0], v - origin[1]
         if direction == 0.0:
-            return u.astype(float), v.astype(float)
+            return np.asarray(u, dtype=float), np.asarray(v, dtype=float)
+        du, dv = u - origin[0], v - origin[1]
         return origin[0] + du * cos_t + dv * sin_t, origin[1] - du * sin_t + dv * cos_t
 
+    return to_xy
+
+
+def _strip_records(u: np.ndarray, p_strip: np.ndarray, first: np.ndarray, last: np.ndarray,
+                   n_per: np.ndarray, s_lo: np.ndarray, s_hi: np.ndarray,
+                   photos_per_strip: np.ndarray, sortie_of: np.ndarray,
+                   to_xy: Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]
+                   ) -> tuple[tuple[Strip, ...], tuple[np.ndarray, ...], np.ndarray]:
+    """The :class:`Strip` records (serpentine: strip 1 flown +v), the photographed parts in
+    flight order (strip, first exposure along v, forward?, photos) and each strip's first
+    photo number."""
+    n_strips = len(u)
     forward = (np.arange(n_strips) % 2) == 0
-    start_v = np.where(forward, s_lo, s_hi)
-    end_v = np.where(forward, s_hi, s_lo)
-    sx, sy = to_xy(bands.u_m, start_v)
-    ex, ey = to_xy(bands.u_m, end_v)
-    # parts in flight order
+    sx, sy = to_xy(u, np.where(forward, s_lo, s_hi))
+    ex, ey = to_xy(u, np.where(forward, s_hi, s_lo))
     pf = forward[p_strip]
     order = np.lexsort((np.where(pf, first, -first), p_strip))
     p_strip, first, last, n_per, pf = (a[order] for a in (p_strip, first, last, n_per, pf))
     p_start = np.where(pf, first, last)
-    p_end = np.where(pf, last, first)
-    psx, psy = to_xy(bands.u_m[p_strip], p_start)
-    pex, pey = to_xy(bands.u_m[p_strip], p_end)
+    psx, psy = to_xy(u[p_strip], p_start)
+    pex, pey = to_xy(u[p_strip], np.where(pf, last, first))
     first_photo = np.r_[0, np.cumsum(photos_per_strip)[:-1]] + 1
     segs = np.bincount(p_strip, minlength=n_strips)
     parts_of: list[list[tuple[tuple[float, float], tuple[float, float]]]] = [
@@ -456,22 +487,12 @@ def plan_lines(
                                           (float(pex[k]), float(pey[k]))))
     strips = tuple(
         Strip(number=i + 1, start_xy_m=(float(sx[i]), float(sy[i])),
-              end_xy_m=(float(ex[i]), float(ey[i])), length_m=float(strip_len[i]),
+              end_xy_m=(float(ex[i]), float(ey[i])), length_m=float(s_hi[i] - s_lo[i]),
               photos=int(photos_per_strip[i]), first_photo=int(first_photo[i]),
               sortie=int(sortie_of[i]) + 1, segments=int(segs[i]),
               parts=tuple(parts_of[i]))
         for i in range(n_strips))
-    sorties = _sortie_records(sortie_of, strip_len, conn, speed_ms)
-    if n_photos <= MAX_PHOTO_CENTRES:
-        photos = _photos(n_per, p_strip, p_start, pf, bands.u_m, first_photo, sortie_of,
-                         base_m, to_xy, area, height_m, ground_m, photo_values or {})
-    else:
-        photos = Photos({})
-        notes["photo_centres_omitted"] = n_photos
-    notes["photos"] = n_photos
-    return FlightLayout(strips=strips, sorties=sorties, photos=photos, flight_length_m=length,
-                        turn_length_m=turns, flight_time_s=time_s, feasible=feasible,
-                        reason=reason, notes=notes, **common)
+    return strips, (p_strip, p_start, pf, n_per), first_photo
 
 
 def _time_s(length_m: float, speed_ms: float | None) -> float | None:
@@ -484,54 +505,98 @@ def _time_s(length_m: float, speed_ms: float | None) -> float | None:
     return t if math.isfinite(t) else None
 
 
+@dataclass
+class _SortiePlan:
+    """Sorties in flight order: where each strip starts (``start``), where a strip longer
+    than a sortie is cut (``cuts``: distances from its first exposure [m]), each sortie's
+    strips and length [m]."""
+
+    start: np.ndarray
+    cuts: dict[int, list[float]]
+    strips: list[list[int]]
+    length_m: list[float]
+
+    def end(self) -> np.ndarray:
+        """The sortie each strip ends in."""
+        return self.start + np.array([len(self.cuts.get(i, ())) for i in range(len(self.start))],
+                                     dtype=np.int64)
+
+    def records(self, speed_ms: float | None) -> tuple[Sortie, ...]:
+        return tuple(Sortie(number=k + 1, strips=tuple(i + 1 for i in st), length_m=ln,
+                            time_s=_time_s(ln, speed_ms))
+                     for k, (st, ln) in enumerate(zip(self.strips, self.length_m, strict=True)))
+
+
 def _sorties(strip_len: np.ndarray, conn: np.ndarray, speed_ms: float | None,
-             max_min: float | None) -> tuple[np.ndarray, str | None]:
-    """Sortie index of each strip (greedy in flight order) and why it cannot be flown."""
+             max_min: float | None, base_m: float) -> tuple[_SortiePlan, Message | None]:
+    """Sorties, greedy in flight order, and why the block cannot be flown (None if it can).
+
+    A sortie takes strips (and the turns to them) while its length stays within
+    speed × time. A strip that does not fit starts a new sortie; a strip longer than a whole
+    sortie is flown in pieces of whole photo bases, each sortie resuming where the last one
+    stopped (the next exposure on the base grid), and the block continues in the sortie that
+    flies its last piece.
+    """
     n = len(strip_len)
-    out = np.zeros(n, dtype=np.int64)
+    one = _SortiePlan(np.zeros(n, dtype=np.int64), {}, [list(range(n))] if n else [],
+                      [float(np.sum(strip_len) + np.sum(conn))] if n else [])
     if not max_min or not speed_ms or n == 0:
-        return out, None
-    limit = max_min * 60.0
-    with np.errstate(over="ignore", divide="ignore"):
-        t_strip = strip_len / speed_ms
-        t_conn = conn / speed_ms
-    if not (np.isfinite(t_strip).all() and np.isfinite(t_conn).all()):
-        return out, None  # a subnormal speed: no times, no sorties (as flight_time_s)
-    longest = int(np.argmax(t_strip))
-    if t_strip[longest] > limit:
-        return out, Message("layout.strip_too_long", strip=longest + 1,
-                            minutes=float(t_strip[longest]) / 60.0, limit=max_min)
-    k, used = 0, 0.0
+        return one, None
+    with np.errstate(over="ignore"):
+        limit_m = max_min * 60.0 * speed_ms
+    if not math.isfinite(limit_m) or not np.isfinite(strip_len).all():
+        return one, None
+    if limit_m < base_m:
+        return one, Message("layout.sortie_too_short", limit=max_min, base=base_m,
+                            speed=speed_ms)
+    piece_m = math.floor(limit_m / base_m) * base_m
+    plan = _SortiePlan(np.zeros(n, dtype=np.int64), {}, [[]], [0.0])
+    used = 0.0
+
+    def new_sortie() -> None:
+        plan.strips.append([])
+        plan.length_m.append(0.0)
+
     for i in range(n):
-        need = t_strip[i] + (t_conn[i - 1] if i and used else 0.0)
-        if used and used + need > limit:
-            k += 1
-            used = t_strip[i]
-        else:
-            used += need
-        out[i] = k
-        if k >= MAX_SORTIES:
-            return out, Message("layout.too_many_sorties", most=MAX_SORTIES, limit=max_min)
-    return out, None
-
-
-def _sortie_records(sortie_of: np.ndarray, strip_len: np.ndarray, conn: np.ndarray,
-                    speed_ms: float | None) -> tuple[Sortie, ...]:
-    out = []
-    if len(sortie_of) == 0:
-        return ()
-    for k in range(int(sortie_of.max()) + 1):
-        idx = np.flatnonzero(sortie_of == k)
-        inner = conn[idx[:-1]] if len(idx) > 1 else np.zeros(0)
-        length = float(strip_len[idx].sum() + inner.sum())
-        out.append(Sortie(number=k + 1, strips=tuple(int(i) + 1 for i in idx),
-                          length_m=length, time_s=_time_s(length, speed_ms)))
-    return tuple(out)
+        length = float(strip_len[i])
+        turn = float(conn[i - 1]) if i and used > 0 else 0.0
+        if used > 0 and used + turn + length <= limit_m:  # joins the sortie
+            used += turn + length
+            plan.length_m[-1] += turn + length
+        elif length <= limit_m:  # starts a sortie
+            if used > 0:
+                new_sortie()
+            used = length
+            plan.length_m[-1] += length
+        else:  # longer than a sortie: pieces of whole bases
+            if used > 0:
+                new_sortie()
+            plan.start[i] = len(plan.strips) - 1
+            pos, cuts = 0.0, []
+            while length - pos > limit_m:
+                plan.strips[-1].append(i)
+                plan.length_m[-1] += piece_m
+                pos += piece_m
+                cuts.append(pos - base_m / 2.0)  # between two exposures
+                new_sortie()
+                if len(plan.strips) > MAX_SORTIES:
+                    return plan, Message("layout.too_many_sorties", most=MAX_SORTIES,
+                                         limit=max_min)
+            plan.cuts[i] = cuts
+            plan.strips[-1].append(i)
+            used = length - pos
+            plan.length_m[-1] += used
+            continue
+        plan.start[i] = len(plan.strips) - 1
+        plan.strips[-1].append(i)
+        if len(plan.strips) > MAX_SORTIES:
+            return plan, Message("layout.too_many_sorties", most=MAX_SORTIES, limit=max_min)
+    return plan, None
 
 
 def _photos(n_per: np.ndarray, p_strip: np.ndarray, p_start: np.ndarray, pf: np.ndarray,
-            u: np.ndarray, first_photo: np.ndarray, sortie_of: np.ndarray, base_m: float,
-            to_xy: object, area: Area, height_m: float, ground_m: float,
+            u: np.ndarray, first_photo: np.ndarray, plan: _SortiePlan, start_v: np.ndarray,
+            base_m: float, to_xy: object, area: Area, height_m: float, ground_m: float,
             values: Mapping[str, float]) -> Photos:
     total = int(n_per.sum())
     part = np.repeat(np.arange(len(n_per)), n_per)
@@ -542,6 +607,11 @@ def _photos(n_per: np.ndarray, p_strip: np.ndarray, p_start: np.ndarray, pf: np.
     strip0 = p_strip[part]
     x, y = to_xy(u[strip0], v)  # type: ignore[operator]
     running = np.arange(1, total + 1)
+    sortie = plan.start[strip0].copy()
+    for i, cuts in plan.cuts.items():  # a strip flown in pieces: by distance along it
+        mine = strip0 == i
+        sortie[mine] += np.searchsorted(np.asarray(cuts), np.abs(v[mine] - start_v[i]),
+                                        side="right")
     if area.georeferenced:
         import pyproj
 
@@ -553,7 +623,7 @@ def _photos(n_per: np.ndarray, p_strip: np.ndarray, p_start: np.ndarray, pf: np.
     full = np.full(total, 1.0)
     cols = {
         "photo": running, "strip": strip0 + 1, "index": running - first_photo[strip0] + 1,
-        "sortie": sortie_of[strip0] + 1, "x_m": np.asarray(x, dtype=float),
+        "sortie": sortie + 1, "x_m": np.asarray(x, dtype=float),
         "y_m": np.asarray(y, dtype=float), "lon_deg": lon, "lat_deg": lat,
         "ground_m": full * ground_m, "altitude_m": full * (ground_m + height_m),
         "agl_m": full * height_m,
