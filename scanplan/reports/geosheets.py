@@ -17,7 +17,7 @@ import numpy as np
 
 from ..geo.layout import PHOTO_COLUMNS, FlightLayout
 from . import exports as _exports
-from .mapview import strips_table, summary_items
+from .mapview import summary_items
 from .plots import number
 
 __all__ = ["MAX_SHEET_PHOTOS", "add_geo_sheets"]
@@ -64,12 +64,13 @@ def _strips_sheet(book: Any, layout: FlightLayout, key: str) -> None:
     for note in notes:
         row = book._wide_kv(ws, row, "", note)
     row += 1
-    table = strips_table(layout, loc, limit=None)
     ends = [(book.t(e), book.t(c)) for e in ("strip_start", "strip_end")
             for c in ("photo_lat_deg", "photo_lon_deg")]
     ends += [(book.t(e), book.t(c)) for e in ("strip_start", "strip_end")
              for c in ("photo_x_m", "photo_y_m")]
-    head = [*table["head"][:5], *(f"{e}: {c}" for e, c in ends)]
+    head = [book.t("strip_no"), book.t("strip_sortie"),
+            book.t("strip_frames" if layout.kind == "film" else "strip_photos"),
+            book.t("strip_length_m"), book.t("strip_parts"), *(f"{e}: {c}" for e, c in ends)]
     _header(ws, row, head)
     row += 1
     geo = None

@@ -260,7 +260,8 @@ def summary_rows(layout: FlightLayout, locale: str) -> list[tuple[str, str]]:
 
 def strips_table(layout: FlightLayout, locale: str, limit: int | None = MAX_TABLE_STRIPS
                  ) -> dict[str, Any]:
-    """The strips as table rows (the first ``limit``), with their header and a note."""
+    """The strips as table rows (the first ``limit``), with their header and a note; the
+    numeric columns first (``numeric``: how many)."""
     from ..geo.export.common import lonlat
 
     film = layout.kind == "film"
@@ -275,9 +276,12 @@ def strips_table(layout: FlightLayout, locale: str, limit: int | None = MAX_TABL
              number(s.length_m, 0, locale), str(max(s.segments, len(s.parts) or 1)),
              _point_text(layout, s.start_xy_m, locale, geo),
              _point_text(layout, s.end_xy_m, locale, geo)] for s in shown]
+    if film:  # an aerial survey has no sorties of a battery
+        head = [h for k, h in enumerate(head) if k != 1]
+        rows = [[c for k, c in enumerate(r) if k != 1] for r in rows]
     note = (t("strips_more", locale).format(shown=len(shown), total=len(layout.strips))
             if len(shown) < len(layout.strips) else "")
-    return {"head": head, "rows": rows, "note": note}
+    return {"head": head, "rows": rows, "note": note, "numeric": 4 if film else 5}
 
 
 def geo_views(spec: Any, locale: str) -> list[dict[str, Any]]:
