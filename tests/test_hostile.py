@@ -201,11 +201,11 @@ CHILD = textwrap.dedent("""
     from click.testing import CliRunner
     from scanplan.cli.main import main
     fed = [0]
-    feed = norms_xlsx._SheetReader.feed
+    feed = norms_xlsx._SheetScan.feed
     def counting(self, data):
         fed[0] += len(data)
         return feed(self, data)
-    norms_xlsx._SheetReader.feed = counting
+    norms_xlsx._SheetScan.feed = counting
     before = peak_kb()
     t = time.perf_counter()
     r = CliRunner().invoke(main, sys.argv[1:])

@@ -297,7 +297,7 @@ def test_entity_expansion_refused_by_every_layer(corpus_dir, monkeypatch):
     monkeypatch.setattr(norms_xlsx, "_DOCTYPE", re.compile(rb"(?!)"))
     with pytest.raises(NormImportError, match="DTD or XML entities"):
         read_norm_file(path)
-    reader = norms_xlsx._SheetReader([], set(), set(), 100)
+    reader = norms_xlsx._SheetScan(set(), 100)
     with pytest.raises(norms_xlsx._Refused):
         reader.parse(BILLION_LAUGHS + b"<worksheet><sheetData/></worksheet>")
     # 3. and openpyxl, through defusedxml, refuses entities in the parts it parses

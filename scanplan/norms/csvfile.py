@@ -11,7 +11,7 @@ from ..safeio import read_limited
 from . import limits as _limits
 from .cells import _fail
 from .grid import _Grid
-from .xlsx import _WIDEST_TABLE
+from .sheetscan import _WIDEST_TABLE
 
 
 def _decode_text(data: bytes, name: str = "the file") -> str:
@@ -53,6 +53,80 @@ class _RowTooLong(Exception):
     """A CSV row (with all its lines) is longer than :data:`MAX_CSV_ROW_CHARS`."""
 
 
+def _sniff_delimiter(text: str) -> str:
+    """The separator of a CSV text, sniffed on its first lines only; ``;`` when a Russian
+    Excel wrote it (``;`` on every line, decimal commas)."""
+    head = text[: 64 * 1024]
+    sample = "\n".join(head.splitlines()[: _limits.HEADER_SCAN_ROWS + 5])
+    counts = {d: sample.count(d) for d in (";", "\t", ",")}
+    try:
+        delim = csv.Sniffer().sniff(sample, delimiters=";\t,").delimiter
+    except csv.Error:
+        delim = max(counts, key=lambda d: counts[d])
+    if delim == "," and counts[";"] and all(";" in ln for ln in sample.splitlines() if ln):
+        delim = ";"
+    return delim
+
+
+class _Lines:
+    """The physical lines of a text for :func:`csv.reader`, each counted before it is cut
+    out: a row (all its lines) longer than :data:`MAX_CSV_ROW_CHARS` raises
+    :class:`_RowTooLong`. Call :meth:`new_row` after each row."""
+
+    def __init__(self, text: str) -> None:
+        self.text = text
+        self.row_chars = 0
+
+    def new_row(self) -> None:
+        self.row_chars = 0
+
+    def __iter__(self) -> Iterator[str]:
+        text = self.text
+        pos, end = 0, len(text)
+        while pos < end:
+            m = _EOL.search(text, pos)
+            stop = m.end() if m else end
+            self.row_chars += stop - pos
+            if self.row_chars > _limits.MAX_CSV_ROW_CHARS:
+                raise _RowTooLong
+            yield text[pos:stop]
+            pos = stop
+
+
+def _check_csv_row(row: list[str], n: int, cells: int, name: str, label: _Grid) -> int:
+    """Row ``n`` (trailing empty cells dropped in place) against the row, column and cell
+    limits; returns the filled cells so far."""
+    if n > _limits.MAX_ROWS + _limits.HEADER_SCAN_ROWS:
+        raise _fail(
+            name,
+            f"more than {_limits.MAX_ROWS:,} rows (row {n:,} is past the limit); refused "
+            "without reading further",
+            "split the table or delete unused rows",
+            at=label.address(n, 1),
+        )
+    while row and not row[-1]:  # Excel pads rows with separators
+        row.pop()
+    if len(row) > _limits.MAX_COLUMNS:
+        raise _fail(
+            name,
+            f"row {n:,} has {len(row):,} columns; the limit is "
+            f"{_limits.MAX_COLUMNS} (a norm "
+            f"table has at most {_WIDEST_TABLE})",
+            "delete the columns right of the table",
+            at=label.address(n, _limits.MAX_COLUMNS + 1),
+        )
+    cells += sum(1 for v in row if v)
+    if cells > _limits.MAX_CELLS:
+        raise _fail(
+            name,
+            f"more than {_limits.MAX_CELLS:,} filled cells; refused without reading "
+            "further",
+            "a norm table is small: delete unused rows and columns",
+            at=label.address(n, 1),
+        )
+    return cells
+
+
 def _read_csv_grid(path: Path) -> _Grid:
     """A CSV (UTF-8, UTF-16 or cp1251; comma, semicolon or tab separated) as a grid.
 
@@ -63,65 +137,15 @@ def _read_csv_grid(path: Path) -> _Grid:
     """
     name = path.name
     text = _decode_text(read_limited(path, _limits.MAX_FILE_BYTES, field=str(path)), name)
-    head = text[: 64 * 1024]  # the separator is sniffed on the first lines only
-    sample = "\n".join(head.splitlines()[: _limits.HEADER_SCAN_ROWS + 5])
-    counts = {d: sample.count(d) for d in (";", "\t", ",")}
-    try:
-        delim = csv.Sniffer().sniff(sample, delimiters=";\t,").delimiter
-    except csv.Error:
-        delim = max(counts, key=lambda d: counts[d])
-    # a Russian Excel writes ";" and decimal commas: prefer ";" when it is on every line
-    if delim == "," and counts[";"] and all(";" in ln for ln in sample.splitlines() if ln):
-        delim = ";"
-    row_chars = [0]
-
-    def lines() -> Iterator[str]:  # physical lines, each counted before it is cut out
-        pos, end = 0, len(text)
-        while pos < end:
-            m = _EOL.search(text, pos)
-            stop = m.end() if m else end
-            row_chars[0] += stop - pos
-            if row_chars[0] > _limits.MAX_CSV_ROW_CHARS:
-                raise _RowTooLong
-            yield text[pos:stop]
-            pos = stop
-
+    lines = _Lines(text)
     label = _Grid(path.stem, [])
     rows: list[Sequence[str]] = []
     cells = 0
-    reader = csv.reader(lines(), delimiter=delim)
+    reader = csv.reader(lines, delimiter=_sniff_delimiter(text))
     try:
         for row in reader:
-            row_chars[0] = 0
-            n = len(rows) + 1
-            if n > _limits.MAX_ROWS + _limits.HEADER_SCAN_ROWS:
-                raise _fail(
-                    name,
-                    f"more than {_limits.MAX_ROWS:,} rows (row {n:,} is past the limit); refused "
-                    "without reading further",
-                    "split the table or delete unused rows",
-                    at=label.address(n, 1),
-                )
-            while row and not row[-1]:  # Excel pads rows with separators
-                row.pop()
-            if len(row) > _limits.MAX_COLUMNS:
-                raise _fail(
-                    name,
-                    f"row {n:,} has {len(row):,} columns; the limit is "
-                    f"{_limits.MAX_COLUMNS} (a norm "
-                    f"table has at most {_WIDEST_TABLE})",
-                    "delete the columns right of the table",
-                    at=label.address(n, _limits.MAX_COLUMNS + 1),
-                )
-            cells += sum(1 for v in row if v)
-            if cells > _limits.MAX_CELLS:
-                raise _fail(
-                    name,
-                    f"more than {_limits.MAX_CELLS:,} filled cells; refused without reading "
-                    "further",
-                    "a norm table is small: delete unused rows and columns",
-                    at=label.address(n, 1),
-                )
+            lines.new_row()
+            cells = _check_csv_row(row, len(rows) + 1, cells, name, label)
             rows.append(tuple(row))
     except _RowTooLong:
         raise _fail(
@@ -139,5 +163,3 @@ def _read_csv_grid(path: Path) -> _Grid:
             at=label.address(len(rows) + 1, 1),
         ) from None
     return _Grid(path.stem, rows)
-
-

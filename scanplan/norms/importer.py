@@ -125,10 +125,8 @@ def _locate_csv_table(grid: _Grid, table: str | None, name: str) -> _Located:
     return scored[0][2]
 
 
-def _cross_checks(
-    tables: dict[str, _Table], problems: _Problems, label: str, present: set[str]
-) -> None:
-    """The rules the loader checks across rows and tables, all collected."""
+def _duplicate_keys(tables: dict[str, _Table], problems: _Problems) -> None:
+    """A second row with the key of an earlier one (in every table)."""
     for t in tables.values():
         seen: dict[tuple[str, ...], _Row] = {}
         for row in t.rows:
@@ -147,57 +145,76 @@ def _cross_checks(
                 )
             else:
                 seen[key] = row
-    shapes = tables.get("shapes")
-    shape_ids = [r.values["shape"] for r in shapes.rows if "shape" in r.values] if shapes else []
-    by_ru = {}
-    if shapes:
-        for r in shapes.rows:
+
+
+class _ShapeResolver:
+    """Resolves a shape cell to a shape id of the shapes table (its Russian name or id,
+    any case), reporting one it does not name."""
+
+    def __init__(self, shapes: _Table | None, problems: _Problems) -> None:
+        self.shapes = shapes
+        self.problems = problems
+        self.ids = [r.values["shape"] for r in shapes.rows if "shape" in r.values] if shapes else []
+        self.by_name: dict[str, str] = {}
+        for r in shapes.rows if shapes else ():
             for alt in (r.values.get("name_ru", ""), r.values.get("shape", "")):
                 if alt:
-                    by_ru.setdefault(alt.casefold(), r.values["shape"])
+                    self.by_name.setdefault(alt.casefold(), r.values["shape"])
 
-    def resolve_shape(row: _Row, column: str, what: str) -> None:
+    def __call__(self, row: _Row, column: str, what: str) -> None:
         if column not in row.values:
             return  # already reported
         given = row.values[column]
-        if given in shape_ids or not shapes:
+        if given in self.ids or not self.shapes:
             return
-        if given.casefold() in by_ru:
-            row.values[column] = by_ru[given.casefold()]
+        if given.casefold() in self.by_name:
+            row.values[column] = self.by_name[given.casefold()]
             return
-        problems.add(
+        self.problems.add(
             row.problem(
                 column,
-                f"{what} must be a shape of the shapes table ({', '.join(shape_ids) or 'none'})",
+                f"{what} must be a shape of the shapes table ({', '.join(self.ids) or 'none'})",
                 "add it to the shapes sheet or fix the spelling",
             )
         )
 
+
+def _check_parameters(params: _Table, resolve: _ShapeResolver, problems: _Problems) -> None:
+    """The default shape names a shape; every parameter is defined."""
+    for row in params.rows:
+        if row.values.get("name") == "shape":
+            resolve(row, "value", "the default shape")
+    defined = {r.values.get("name") for r in params.rows}
+    missing = [p for p in PARAMETERS if p not in defined]
+    if not missing:
+        return
+    g = params.grid
+    last = max((r.number for r in params.rows), default=params.header_row) + 1
+    for p in missing:
+        spec = PARAMETERS[p]
+        problems.add(
+            ImportProblem(
+                g.address(last, params.cols.get("name", 1), "name"),
+                f"missing parameter {p!r} ({spec.description}); must be "
+                f"{spec.value.describe()}",
+                hint=f'add a row "{p}"' + (f' (or "{spec.aliases[-1]}")' if spec.aliases else ""),
+            )
+        )
+
+
+def _cross_checks(
+    tables: dict[str, _Table], problems: _Problems, label: str, present: set[str]
+) -> None:
+    """The rules the loader checks across rows and tables, all collected."""
+    _duplicate_keys(tables, problems)
+    resolve = _ShapeResolver(tables.get("shapes"), problems)
     params = tables.get("parameters")
     if params is not None:
-        for row in params.rows:
-            if row.values.get("name") == "shape":
-                resolve_shape(row, "value", "the default shape")
-        defined = {r.values.get("name") for r in params.rows}
-        missing = [p for p in PARAMETERS if p not in defined]
-        if missing:
-            g = params.grid
-            last = max((r.number for r in params.rows), default=params.header_row) + 1
-            for p in missing:
-                spec = PARAMETERS[p]
-                problems.add(
-                    ImportProblem(
-                        g.address(last, params.cols.get("name", 1), "name"),
-                        f"missing parameter {p!r} ({spec.description}); must be "
-                        f"{spec.value.describe()}",
-                        hint=f'add a row "{p}"'
-                        + (f' (or "{spec.aliases[-1]}")' if spec.aliases else ""),
-                    )
-                )
+        _check_parameters(params, resolve, problems)
     objects = tables.get("objects")
     if objects is not None:
         for row in objects.rows:
-            resolve_shape(row, "shape", f"the shape of {row.values.get('object', '')!r}")
+            resolve(row, "shape", f"the shape of {row.values.get('object', '')!r}")
     for name in ("parameters", "shapes", "objects"):
         if name not in tables and name not in present:  # a broken sheet is reported already
             spec = TABLES[name]
@@ -209,6 +226,114 @@ def _cross_checks(
                     "with --base NAME to take it from another set",
                 )
             )
+
+
+@dataclass
+class _Found:
+    """The tables located in a file: data tables, the ``set`` sheet, the sheets present."""
+
+    located: list[_Located]
+    meta: _Located | None
+    present: set[str]
+
+
+def _locate_sheets(
+    grids: list[_Grid], label: str, problems: _Problems, warnings: list[str]
+) -> _Found:
+    """Each workbook sheet named after a table, its header row found; other sheets noted."""
+    found = _Found([], None, set())
+    seen: dict[str, str] = {}
+    for g in grids:
+        name = _match(_SHEET_INDEX, g.label)
+        if name is None:
+            warnings.append(
+                f"sheet {g.label!r} ignored (not a norm table: {', '.join(_ALL_TABLES)})"
+            )
+            continue
+        if name in seen:
+            problems.add(
+                ImportProblem(
+                    g.address(1, 1),
+                    f"a second sheet for table {name!r} (the first is {seen[name]!r})",
+                    hint="delete or rename one of them",
+                )
+            )
+            continue
+        seen[name] = g.label
+        found.present.add(name)
+        loc = _find_header(g, _ALL_TABLES[name], problems)
+        if loc is None:
+            continue
+        if name == META_TABLE.name:
+            found.meta = loc
+        else:
+            found.located.append(loc)
+    if not found.present:  # an import that takes nothing from the file is an error
+        sheets = ", ".join(repr(_printable(g.label, 60)) for g in grids) or "none"
+        raise _fail(
+            label,
+            f"no sheet is a norm table (sheets: {sheets}); nothing would be imported",
+            "name each sheet after its table: " + ", ".join(_ALL_TABLES)
+            + " (Excel names a new sheet after the file or 'Sheet1'; rename it)",
+        )
+    return found
+
+
+def _locate_file(
+    p: Path, table: str | None, problems: _Problems, warnings: list[str]
+) -> _Found:
+    """The tables of a workbook or of a CSV (by the file's suffix); other files refused."""
+    suffix = p.suffix.lower()
+    if suffix in XLSX_SUFFIXES:
+        return _locate_sheets(_read_xlsx(p), p.name, problems, warnings)
+    if suffix in CSV_SUFFIXES:
+        return _Found([_locate_csv_table(_read_csv_grid(p), table, p.name)], None, set())
+    if suffix == ".xls":
+        raise _fail(
+            p.name,
+            "is an old binary Excel file (.xls)",
+            'save it from Excel as "Excel Workbook (*.xlsx)"',
+        )
+    raise _fail(p.name, f"unknown file type {suffix or '(none)'}; give .xlsx or .csv")
+
+
+def _note_ignored_columns(located: list[_Located], warnings: list[str]) -> None:
+    """A note for each header cell that is no column of its table."""
+    for loc in located:
+        known = {c for c, _ in loc.columns.values()}
+        for c in range(1, loc.grid.width(loc.header_row) + 1):
+            h = loc.grid.value(loc.header_row, c)
+            if c not in known and not _is_empty(h):
+                warnings.append(
+                    f'{loc.grid.address(loc.header_row, c)}: column "{_printable(h, 200)}" '
+                    "ignored (not a column of table "
+                    f"{loc.spec.name!r})"
+                )
+
+
+def _read_meta(
+    meta_loc: _Located, meta: dict[str, str], problems: _Problems, warnings: list[str]
+) -> None:
+    """The ``set`` sheet's title, title_ru and source into ``meta``; other keys noted."""
+    for row in _data_rows(meta_loc, problems).rows:
+        key = _norm(row.values.get("key", "")).replace(" ", "_")
+        if key in META_KEYS:
+            meta[key] = row.values.get("value", "")
+        else:
+            warnings.append(
+                f"{row.grid.address(row.number, row.cols['key'])}: "
+                f"key {row.values.get('key')!r} ignored ({', '.join(META_KEYS)})"
+            )
+
+
+def _merge_tables(tables: dict[str, _Table], file_tables: dict[str, _Table]) -> None:
+    """The file's tables over the base's: whole tables replaced, parameters by name."""
+    for name, t in file_tables.items():
+        if name == "parameters" and name in tables:  # merge by parameter name
+            given = {r.values.get("name") for r in t.rows}
+            kept = [r for r in tables[name].rows if r.values["name"] not in given]
+            t.rows = kept + t.rows
+        tables[name] = t
 
 
 def read_norm_file(
@@ -241,71 +366,13 @@ def read_norm_file(
     """
     p = Path(path)
     _check_file(p)
-    suffix = p.suffix.lower()
     problems = _Problems()
     warnings: list[str] = []
-    located: list[_Located] = []
-    present: set[str] = set()
-    meta_loc: _Located | None = None
-    if suffix in XLSX_SUFFIXES:
-        grids = _read_xlsx(p)
-        seen: dict[str, str] = {}
-        for g in grids:
-            name = _match(_SHEET_INDEX, g.label)
-            if name is None:
-                warnings.append(
-                    f"sheet {g.label!r} ignored (not a norm table: {', '.join(_ALL_TABLES)})"
-                )
-                continue
-            if name in seen:
-                problems.add(
-                    ImportProblem(
-                        g.address(1, 1),
-                        f"a second sheet for table {name!r} (the first is {seen[name]!r})",
-                        hint="delete or rename one of them",
-                    )
-                )
-                continue
-            seen[name] = g.label
-            present.add(name)
-            loc = _find_header(g, _ALL_TABLES[name], problems)
-            if loc is None:
-                continue
-            if name == META_TABLE.name:
-                meta_loc = loc
-            else:
-                located.append(loc)
-        if not present:  # an import that takes nothing from the file is an error
-            sheets = ", ".join(repr(_printable(g.label, 60)) for g in grids) or "none"
-            raise _fail(
-                p.name,
-                f"no sheet is a norm table (sheets: {sheets}); nothing would be imported",
-                "name each sheet after its table: " + ", ".join(_ALL_TABLES)
-                + " (Excel names a new sheet after the file or 'Sheet1'; rename it)",
-            )
-    elif suffix in CSV_SUFFIXES:
-        located.append(_locate_csv_table(_read_csv_grid(p), table, p.name))
+    found = _locate_file(p, table, problems, warnings)
+    if p.suffix.lower() in CSV_SUFFIXES:
         base = base or _norms.DEFAULT_NORM_SET
-    elif suffix == ".xls":
-        raise _fail(
-            p.name,
-            "is an old binary Excel file (.xls)",
-            'save it from Excel as "Excel Workbook (*.xlsx)"',
-        )
-    else:
-        raise _fail(p.name, f"unknown file type {suffix or '(none)'}; give .xlsx or .csv")
-
-    for loc in located:
-        known = {c for c, _ in loc.columns.values()}
-        for c in range(1, loc.grid.width(loc.header_row) + 1):
-            h = loc.grid.value(loc.header_row, c)
-            if c not in known and not _is_empty(h):
-                warnings.append(
-                    f'{loc.grid.address(loc.header_row, c)}: column "{_printable(h, 200)}" '
-                    "ignored (not a column of table "
-                    f"{loc.spec.name!r})"
-                )
-    file_tables = {loc.spec.name: _data_rows(loc, problems) for loc in located}
+    _note_ignored_columns(found.located, warnings)
+    file_tables = {loc.spec.name: _data_rows(loc, problems) for loc in found.located}
 
     meta = {k: "" for k in META_KEYS}
     base_name = None
@@ -315,23 +382,10 @@ def read_norm_file(
         meta["source"] = f"base set {base_name}" + (
             f": {base_meta['source']}" if base_meta["source"] else ""
         )
-    if meta_loc is not None:
-        for row in _data_rows(meta_loc, problems).rows:
-            key = _norm(row.values.get("key", "")).replace(" ", "_")
-            if key in META_KEYS:
-                meta[key] = row.values.get("value", "")
-            else:
-                warnings.append(
-                    f"{row.grid.address(row.number, row.cols['key'])}: "
-                    f"key {row.values.get('key')!r} ignored ({', '.join(META_KEYS)})"
-                )
-    for name, t in file_tables.items():
-        if name == "parameters" and name in tables:  # merge by parameter name
-            given = {r.values.get("name") for r in t.rows}
-            kept = [r for r in tables[name].rows if r.values["name"] not in given]
-            t.rows = kept + t.rows
-        tables[name] = t
-    _cross_checks(tables, problems, p.name, present)
+    if found.meta is not None:
+        _read_meta(found.meta, meta, problems, warnings)
+    _merge_tables(tables, file_tables)
+    _cross_checks(tables, problems, p.name, found.present)
     problems.raise_if_any(p.name)
     order = [n for n in TABLES if n in tables]
     canonical = {
@@ -339,4 +393,3 @@ def read_norm_file(
         for n in order
     }
     return ParsedNormSet(p.name, canonical, meta, base_name, tuple(file_tables), tuple(warnings))
-

@@ -26,6 +26,9 @@ MAX_COLUMNS = 256
 """Rightmost column a value may be in (IV, Excel 2003's last); a norm table has 14 at most."""
 MAX_CELLS = 3_000_000
 """Most filled cells one workbook or CSV may have (bounds the memory a file can take)."""
+MAX_SHEET_AREA = 5_000_000
+"""Most cells of one sheet's rectangle from A1 to its last row and column holding a value
+(the spreadsheet library holds that rectangle whole: 200,000 rows × 25 columns)."""
 MAX_MERGED = 1_000
 """Most merged cell ranges one sheet may have."""
 MAX_CELL_CHARS = 32_767

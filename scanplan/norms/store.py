@@ -585,21 +585,11 @@ def _load_path(path: Path, bundled: bool,
     return read_norm_set_folder(path, bundled=bundled)
 
 
-def read_norm_set_folder(path: Path, *, bundled: bool = False) -> NormSet:
-    """Read and check the norm set in ``path`` (uncached; :func:`load_norm_set` caches).
-
-    Raises
-    ------
-    InputError
-        If a file of the set breaks the schema (message names file, row and column).
-    """
-    try:
-        meta = tomllib.loads(_read_text(path / "set.toml")).get("set", {})
-    except (OSError, tomllib.TOMLDecodeError) as exc:
-        raise InputError(f"{path / 'set.toml'}", f"cannot be read: {exc}") from None
+def _read_parameters(pfile: Path, bundled: bool) -> tuple[dict[str, Any], dict[str, str]]:
+    """A set's parameters and their sources; parameters newer than a user set are taken
+    from the default set (with a note in the source)."""
     params: dict[str, Any] = {}
     sources: dict[str, str] = {}
-    pfile = path / "parameters.csv"
     for i, row in enumerate(_read_csv(pfile), start=2):
         name = (row.get("name") or "").strip()
         if name not in PARAMETERS:
@@ -617,18 +607,14 @@ def read_norm_set_folder(path: Path, *, bundled: bool = False) -> NormSet:
         missing = []
     if missing:
         raise InputError(str(pfile), f"missing parameters: {', '.join(missing)}")
-    shape_rows = {r["shape"]: r for r in _typed_rows(path / "shapes.csv", TABLES["shapes"])}
-    shapes = {k: float(r["coefficient"]) for k, r in shape_rows.items()}
-    if params["shape"] not in shapes:
-        raise InputError(f"{pfile} (shape)", f"default shape {params['shape']!r} is not in "
-                         f"shapes.csv ({', '.join(shapes)})")
-    objects = []
-    for r in _typed_rows(path / "objects.csv", TABLES["objects"]):
-        if r["shape"] not in shapes:
-            raise InputError(f"{path / 'objects.csv'} (shape)",
-                             f"shape {r['shape']!r} of {r['object']!r} is not in shapes.csv")
-        objects.append(MapObject(r["map_scale"], r["object"], r["object_ru"] or "",
-                                 r["size_m"], r["shape"], r["source"] or ""))
+    return params, sources
+
+
+def _set_catalogue(path: Path) -> tuple[dict[str, Camera], dict[str, tuple[float, ...]],
+                                         dict[str, str], dict[str, tuple[ScannerStep, ...]],
+                                         dict[str, dict[str, LensCurve]]]:
+    """The cameras, scanner steps, scanner names and details, and lens tables a set sees:
+    the bundled catalogue, the user catalogue (scanplan cameras import), the set's own."""
     cams, (steps, names, details) = _catalogue()
     cams, steps, names, details = dict(cams), dict(steps), dict(names), dict(details)
     # the bundled lens tables, the user catalogue (scanplan cameras import), the set's own
@@ -645,6 +631,36 @@ def read_norm_set_folder(path: Path, *, bundled: bool = False) -> NormSet:
             steps.update(s2)
             names.update(n2)
             details.update(d2)
+    return cams, steps, names, details, lens
+
+
+def read_norm_set_folder(path: Path, *, bundled: bool = False) -> NormSet:
+    """Read and check the norm set in ``path`` (uncached; :func:`load_norm_set` caches).
+
+    Raises
+    ------
+    InputError
+        If a file of the set breaks the schema (message names file, row and column).
+    """
+    try:
+        meta = tomllib.loads(_read_text(path / "set.toml")).get("set", {})
+    except (OSError, tomllib.TOMLDecodeError) as exc:
+        raise InputError(f"{path / 'set.toml'}", f"cannot be read: {exc}") from None
+    pfile = path / "parameters.csv"
+    params, sources = _read_parameters(pfile, bundled)
+    shape_rows = {r["shape"]: r for r in _typed_rows(path / "shapes.csv", TABLES["shapes"])}
+    shapes = {k: float(r["coefficient"]) for k, r in shape_rows.items()}
+    if params["shape"] not in shapes:
+        raise InputError(f"{pfile} (shape)", f"default shape {params['shape']!r} is not in "
+                         f"shapes.csv ({', '.join(shapes)})")
+    objects = []
+    for r in _typed_rows(path / "objects.csv", TABLES["objects"]):
+        if r["shape"] not in shapes:
+            raise InputError(f"{path / 'objects.csv'} (shape)",
+                             f"shape {r['shape']!r} of {r['object']!r} is not in shapes.csv")
+        objects.append(MapObject(r["map_scale"], r["object"], r["object_ru"] or "",
+                                 r["size_m"], r["shape"], r["source"] or ""))
+    cams, steps, names, details, lens = _set_catalogue(path)
     return NormSet(
         name=str(meta.get("name") or path.name),
         title=str(meta.get("title", "")),

@@ -155,9 +155,44 @@ def write_norm_set(
     root_dir = Path(root) if root is not None else _norms.user_norms_dir()
     target = root_dir / name
     if target.exists() and not force:
-        raise InputError(
-            "--name", f"norm set {name!r} already exists ({target}); give --force to replace it"
-        )
+        raise _set_exists(name, target)
+    files = _set_files(parsed, name, title)
+    created = _missing_parents(root_dir)  # the norm directory and parents this creates
+    try:
+        try:
+            root_dir.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise WriteError.from_os_error(str(root_dir), exc, action="create folder") from exc
+        with _norm_dir_lock(root_dir):
+            try:
+                _recover_locked(root_dir, name)
+                if target.exists() and not force:  # a set the recovery put back
+                    raise _set_exists(name, target)
+                _swap_in(root_dir, name, files)
+            except OSError as exc:
+                if isinstance(exc, WriteError):
+                    raise
+                raise WriteError.from_os_error(
+                    str(target), exc, action=f"write norm set {name!r} to"
+                ) from exc
+    except BaseException:
+        for folder in created:  # deepest first; only while still empty
+            try:
+                folder.rmdir()
+            except OSError:
+                break
+        raise
+    return target
+
+
+def _set_exists(name: str, target: Path) -> InputError:
+    return InputError(
+        "--name", f"norm set {name!r} already exists ({target}); give --force to replace it"
+    )
+
+
+def _set_files(parsed: ParsedNormSet, name: str, title: str | None) -> dict[str, str]:
+    """The set's files: one CSV per table and ``set.toml`` (title, source, provenance)."""
     meta = dict(parsed.meta)
     default_title = (
         f"{name}: imported from {parsed.source_file}"
@@ -179,39 +214,17 @@ def write_norm_set(
         toml.append(f"base = {_toml_str(parsed.base)}")
     files = {TABLES[t].file: _csv_text(TABLES[t], rows) for t, rows in parsed.tables.items()}
     files["set.toml"] = "\n".join(toml) + "\n"
-    action = f"write norm set {name!r} to"
-    created = []  # the norm directory and its parents this import creates
-    probe = root_dir.absolute()
+    return files
+
+
+def _missing_parents(folder: Path) -> list[Path]:
+    """``folder`` and its parents that do not exist yet, deepest first."""
+    created = []
+    probe = folder.absolute()
     while not os.path.lexists(probe) and probe != probe.parent:
         created.append(probe)
         probe = probe.parent
-    try:
-        try:
-            root_dir.mkdir(parents=True, exist_ok=True)
-        except OSError as exc:
-            raise WriteError.from_os_error(str(root_dir), exc, action="create folder") from exc
-        with _norm_dir_lock(root_dir):
-            try:
-                _recover_locked(root_dir, name)
-                if target.exists() and not force:  # a set the recovery put back
-                    raise InputError(
-                        "--name",
-                        f"norm set {name!r} already exists ({target}); give --force to "
-                        "replace it",
-                    )
-                _swap_in(root_dir, name, files)
-            except OSError as exc:
-                if isinstance(exc, WriteError):
-                    raise
-                raise WriteError.from_os_error(str(target), exc, action=action) from exc
-    except BaseException:
-        for folder in created:  # deepest first; only while still empty
-            try:
-                folder.rmdir()
-            except OSError:
-                break
-        raise
-    return target
+    return created
 
 
 def _swap_in(root_dir: Path, name: str, files: Mapping[str, str]) -> None:
