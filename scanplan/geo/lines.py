@@ -36,8 +36,8 @@ The layout, in a frame rotated so that the flight direction is +v:
   simplified outline).
 - **Sorties.** With ``max_flight_time_min`` the strips are grouped in flight order, each
   sortie taking strips while its strips and turns fit the time; the block is split between
-  strips, and a strip longer than a whole sortie is flown in pieces of whole photo bases,
-  each sortie resuming at the next exposure.
+  strips, and a strip longer than a whole sortie is flown in pieces cut between two
+  exposures, each sortie resuming at the next exposure.
 """
 
 from __future__ import annotations
@@ -411,11 +411,20 @@ def plan_lines(
     np.add.at(photographed, p_strip, last - first)
     notes["bridged_m"] = float(np.sum(strip_len - photographed))
     # sorties (strip order = flight order)
-    plan, reason = _sorties(strip_len, conn, speed_ms, max_flight_time_min, base_m)
+    forward_v = np.where((np.arange(n_strips) % 2) == 0, s_lo, s_hi)
+
+    def exposures(i: int) -> np.ndarray:
+        mine = p_strip == i
+        k = np.concatenate([np.arange(n) for n in n_per[mine]]) if mine.any() else []
+        v = np.repeat(first[mine], n_per[mine]) + base_m * np.asarray(k, dtype=float)
+        return np.sort(np.abs(v - forward_v[i]))
+
+    plan, reason = _sorties(strip_len, conn, speed_ms, max_flight_time_min, base_m,
+                            exposures)
     sortie_of = plan.start
     same = plan.start[1:] == plan.end()[:-1] if n_strips > 1 else np.zeros(0, dtype=bool)
     flown_conn = np.where(same, conn, 0.0)
-    length = float(np.sum(strip_len) + np.sum(flown_conn))
+    length = float(np.sum(plan.length_m))  # strips, turns within sorties, no resume gaps
     turns = float(np.sum(flown_conn))
     time_s = _time_s(length, speed_ms)
     photos_per_strip = np.zeros(n_strips, dtype=np.int64)
@@ -433,7 +442,7 @@ def plan_lines(
     sorties = plan.records(speed_ms)
     if n_photos <= MAX_PHOTO_CENTRES:
         photos = _photos(n_per, p_strip, p_start, pf, bands.u_m, first_photo, plan,
-                         np.where((np.arange(n_strips) % 2) == 0, s_lo, s_hi), base_m, to_xy,
+                         forward_v, base_m, to_xy,
                          area, height_m, ground_m, photo_values or {})
     else:
         photos = Photos({})
@@ -528,7 +537,8 @@ class _SortiePlan:
 
 
 def _sorties(strip_len: np.ndarray, conn: np.ndarray, speed_ms: float | None,
-             max_min: float | None, base_m: float) -> tuple[_SortiePlan, Message | None]:
+             max_min: float | None, base_m: float,
+             exposures: Callable[[int], np.ndarray]) -> tuple[_SortiePlan, Message | None]:
     """Sorties, greedy in flight order, and why the block cannot be flown (None if it can).
 
     A sortie takes strips (and the turns to them) while its length stays within
@@ -549,7 +559,6 @@ def _sorties(strip_len: np.ndarray, conn: np.ndarray, speed_ms: float | None,
     if limit_m < base_m:
         return one, Message("layout.sortie_too_short", limit=max_min, base=base_m,
                             speed=speed_ms)
-    piece_m = math.floor(limit_m / base_m) * base_m
     plan = _SortiePlan(np.zeros(n, dtype=np.int64), {}, [[]], [0.0])
     used = 0.0
 
@@ -568,23 +577,25 @@ def _sorties(strip_len: np.ndarray, conn: np.ndarray, speed_ms: float | None,
                 new_sortie()
             used = length
             plan.length_m[-1] += length
-        else:  # longer than a sortie: pieces of whole bases
+        else:  # longer than a sortie: in pieces, cut between two exposures
             if used > 0:
                 new_sortie()
             plan.start[i] = len(plan.strips) - 1
-            pos, cuts = 0.0, []
-            while length - pos > limit_m:
+            d = exposures(i)  # distances of its exposures from its first one, ascending
+            begin, cuts = 0.0, []
+            while length - begin > limit_m:
+                j = int(np.searchsorted(d, begin + limit_m, side="right")) - 1
                 plan.strips[-1].append(i)
-                plan.length_m[-1] += piece_m
-                pos += piece_m
-                cuts.append(pos - base_m / 2.0)  # between two exposures
+                plan.length_m[-1] += float(d[j]) - begin
+                cuts.append((float(d[j]) + float(d[j + 1])) / 2.0)
+                begin = float(d[j + 1])  # the next sortie resumes at the next exposure
                 new_sortie()
                 if len(plan.strips) > MAX_SORTIES:
                     return plan, Message("layout.too_many_sorties", most=MAX_SORTIES,
                                          limit=max_min)
             plan.cuts[i] = cuts
             plan.strips[-1].append(i)
-            used = length - pos
+            used = length - begin
             plan.length_m[-1] += used
             continue
         plan.start[i] = len(plan.strips) - 1
