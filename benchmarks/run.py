@@ -50,6 +50,8 @@ BENCHMARKS: dict[str, str] = {
     "norms_import": "bench_norms_import",
     "reports": "bench_reports",
     "plan_batch": "bench_plan_batch",
+    "fast_reports": "bench_fast_reports",
+    "help": "bench_help",
     "flight_layout": "bench_flight_layout",
 }
 

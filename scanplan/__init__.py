@@ -3,11 +3,39 @@
 The Instruction GKINP (GNTA)-02-036-02 scan-pixel rules (with the corrected P_R
 coefficient), seed 001's recognition model, and (for UAV cameras) the MTF ground
 resolution of seed 000, combined into a plan for a mapping contract.
+
+The top-level functions (:mod:`scanplan.api`) — :func:`plan`, :func:`scan`, :func:`uav`,
+:func:`batch` — return results with ``to_dict()`` (the ``--json`` document), ``to_frame()``
+(pandas), ``write()`` and a notebook summary. They are imported on first use, so that
+``import scanplan`` (and ``scanplan --help``) stays light: no numpy until a plan is asked
+for.
 """
+
+from __future__ import annotations
+
+from typing import Any
 
 from ._version import __version__
 from .errors import InputError
-from .norms import load_norm_set
-from .project.api import scan
 
-__all__ = ["InputError", "__version__", "load_norm_set", "scan"]
+__all__ = ["BatchResult", "InputError", "ProjectResult", "ScanResult", "UavResult",
+           "__version__", "batch", "load_norm_set", "plan", "scan", "uav"]
+
+_LAZY = {"plan": "api", "scan": "api", "uav": "api", "batch": "api", "BatchResult": "api",
+         "ProjectResult": "api", "ScanResult": "api", "UavResult": "api",
+         "load_norm_set": "norms"}
+
+
+def __getattr__(name: str) -> Any:
+    """Import the API on first use (PEP 562)."""
+    if name in _LAZY:
+        import importlib
+
+        value = getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'scanplan' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))

@@ -32,6 +32,27 @@ class InputError(ValueError):
         super().__init__(f"{field}: {message}")
 
 
+class FieldValueError(ValueError):
+    """A value a numeric model refuses, with the input it belongs to as a typed field.
+
+    Raised by the array checks of the core (``height_m must be > 0 (got -1)``); the layers
+    above turn it into an :class:`InputError` from ``field`` and ``message`` — never by
+    splitting the text.
+
+    Parameters
+    ----------
+    field : str
+        The model argument (``pixel_um``, ``r_min``).
+    message : str
+        What is wrong, without the name (``must be > 0 (got -1)``).
+    """
+
+    def __init__(self, field: str, message: str) -> None:
+        self.field = field
+        self.message = message
+        super().__init__(f"{field} {message}")
+
+
 class NotFoundError(InputError):
     """A named thing (norm set, camera, scanner, shape) does not exist."""
 

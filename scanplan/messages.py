@@ -373,6 +373,73 @@ MESSAGES: dict[str, dict[str, str]] = {
         "en": ", σ_Z multiplied by {f:.2f} for the rays of every photo of the strip",
         "ru": ", σ_Z с множителем {f:.2f} за счёт лучей всех снимков маршрута",
     },
+    "protects.GL": {
+        "en": "keeps the GSD of the photos within the largest one today's standard recommends "
+              "for the plan scale",
+        "ru": "удерживает размер пикселя на местности в пределах, рекомендуемых действующим "
+              "стандартом для масштаба плана",
+    },
+    "equation.GL": {
+        "en": "GSD = p·H/c ≤ GSD_max(Mk) — GOST R 59562-2021, Appendix B, Table B.1",
+        "ru": "GSD = p·H/c ≤ GSD_max(Mk) — ГОСТ Р 59562-2021, прил. Б, табл. Б.1",
+    },
+    "limit.GL": {
+        "en": "GSD at the highest flown height ≤ {gsd:g} cm for {map:scale} ({area})",
+        "ru": "GSD на наибольшей фактической высоте ≤ {gsd:g}~см для масштаба {map:scale} "
+              "({area})",
+    },
+    "gsd_area.general": {
+        "en": "general",
+        "ru": "общий случай",
+    },
+    "gsd_area.dense_urban": {
+        "en": "towns with dense multi-storey buildings",
+        "ru": "городские населённые пункты с многоэтажной и плотной застройкой",
+    },
+    "gsd_limit_film": {
+        "en": "the scanned ground pixel of {scale:scale} photos, {pixel:g} µm × {scale:,.0f} = "
+              "{ground:.1f} cm, is {verdict} the {limit:g} cm that GOST R 59562-2021 (Table B.1) "
+              "recommends for digital photos for {map:scale} ({area}); for information: the "
+              "table is written for digital cameras",
+        "ru": "Размер пикселя скана на местности для снимков {scale:scale}: {pixel:g}~мкм × "
+              "{scale:,.0f} = {ground:.1f}~см — {verdict} {limit:g}~см, рекомендуемых ГОСТ Р "
+              "59562-2021 (табл. Б.1) для цифровых снимков к масштабу {map:scale} ({area}); "
+              "для сведения: таблица написана для цифровых камер.",
+    },
+    "gsd_limit.within": {"en": "within", "ru": "не больше"},
+    "gsd_limit.over": {"en": "coarser than", "ru": "больше"},
+    "block_split": {
+        "en": "the ground height range in the block, {range:.0f} m, is {pct:.1f} % of the flight "
+              "height {h:g} m, over the {limit:g} % allowed for {relief} (GOST R 59328-2021 "
+              "§6.2.1, second draft): split the block into {n:d} parts by ground height "
+              "({bands:;}) and fly each at its own height, or fly following the terrain",
+        "ru": "Перепад высот в пределах съёмочного участка {range:.0f}~м составляет {pct:.1f}~% "
+              "высоты фотографирования {h:g}~м — больше допустимых {limit:g}~% для местности "
+              "«{relief}» (ГОСТ Р 59328-2021, проект 2-й редакции): разделите участок "
+              "на {n:d} части по высоте местности ({bands:;}) с отдельной высотой "
+              "фотографирования для каждой или выполняйте съёмку с огибанием рельефа.",
+    },
+    "block.band": {
+        "en": "ground {lo:.0f}–{hi:.0f} m",
+        "ru": "местность {lo:.0f}–{hi:.0f}~м",
+    },
+    "relief.flat": {"en": "flat terrain", "ru": "равнинная"},
+    "relief.hilly": {"en": "hilly terrain", "ru": "всхолмлённая"},
+    "relief.mountainous": {"en": "mountainous terrain", "ru": "горная"},
+    "sun_no_window": {
+        "en": "the sun does not reach {elev:g}° at the site from {start} to {end} (at most "
+              "{top:.1f}°): no photography window on these dates; change the dates "
+              "([schedule] start_date, end_date)",
+        "ru": "Солнце не поднимается на {elev:g}° над горизонтом в районе работ с {start} по "
+              "{end} (наибольшая высота {top:.1f}°): в эти даты аэрофотосъёмка невозможна; "
+              "измените сроки ([schedule] start_date, end_date).",
+    },
+    "sun_dates_short": {
+        "en": "the {n:d} sorties do not fit into the sun windows from {start} to {end} (only "
+              "{flown:d} do): extend [schedule] end_date",
+        "ru": "Вылеты ({n:d}) не умещаются в периоды достаточной высоты Солнца с {start} по "
+              "{end} (умещается {flown:d}): продлите срок [schedule] end_date.",
+    },
     "protects.GSD": {
         "en": "gives the ground sample distance the customer asked for",
         "ru": "обеспечивает заданный заказчиком размер пикселя на местности",

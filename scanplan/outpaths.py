@@ -46,7 +46,7 @@ OUR_MARK = b"scanplan"
 SUFFIX = {"xlsx": ".xlsx", "pdf": ".pdf", "plan": ".plan", "kml": ".kml",
           "geojson": ".geojson", "csv": ".csv"}
 _WHAT = {"xlsx": "workbook", "pdf": "PDF", "plan": "mission", "kml": "KML file",
-         "geojson": "GeoJSON file", "csv": "photo table"}
+         "geojson": "GeoJSON file", "csv": "table"}
 #: How scanplan's exported text files name their writer (within their first 4 KiB): the
 #: Plan file's groundStation, the KML's opening comment, the GeoJSON's "generator" member,
 #: the photo table's header (a CSV has no place for a comment).
@@ -56,6 +56,8 @@ _TEXT_MARKS = {
     "geojson": re.compile(rb'"generator"\s*:\s*"scanplan[ "]'),
     "csv": re.compile(rb"\Aphoto,strip,index,sortie,x_m,y_m,lon_deg,lat_deg,"),
 }
+CSV_HEADER = "\ufeffproject,file,map_scale,".encode()
+"""How a batch summary.csv scanplan wrote begins (scanplan.reports.summary)."""
 MAX_REPORT_BYTES = 64 * 1024 * 1024
 """An existing file larger than this is not looked into (scanplan's reports are far
 smaller): it is treated as not written by scanplan [bytes]."""
@@ -170,6 +172,8 @@ def written_by_scanplan(path: str | os.PathLike[str], kind: str) -> bool:
         return False
     if kind == "xlsx":
         return _xlsx_is_ours(data)
+    if kind == "csv" and data.startswith(CSV_HEADER):  # a batch summary
+        return True
     if kind in _TEXT_MARKS:
         return bool(_TEXT_MARKS[kind].search(data[:4096]))
     return _pdf_is_ours(data)
@@ -238,3 +242,19 @@ def folder_lock(folders: Iterable[str | os.PathLike[str]]) -> Iterator[None]:
         for fd in fds:
             os.close(fd)
 
+
+def batch_stems(files: list[str]) -> list[str]:
+    """One report name per project of a batch: the file's stem, ``STEM-2``, ``STEM-3`` …
+    for later projects with the same stem (compared without case: some file systems ignore
+    it), so that no project's reports replace another's."""
+    used: set[str] = set()
+    out = []
+    for path in files:
+        stem = os.path.splitext(os.path.basename(path))[0] or "spec"
+        name, n = stem, 1
+        while name.casefold() in used:
+            n += 1
+            name = f"{stem}-{n}"
+        used.add(name.casefold())
+        out.append(name)
+    return out

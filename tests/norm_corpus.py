@@ -540,14 +540,14 @@ CORPUS: tuple[Case, ...] = (
         "missing-parameter",
         _missing_parameter,
         False,
-        ("'parameters'!A18",),
+        ("'parameters'!A22",),
         ("missing parameter 'probability'",),
     ),
     Case(
         "unknown-parameter",
         _unknown_parameter,
         False,
-        ("'parameters'!A19",),
+        ("'parameters'!A23",),
         ("unknown parameter",),
     ),
     Case(

@@ -32,3 +32,16 @@ def test_every_public_function_has_an_example(family):
     assert public
     missing = [f.__name__ for f in public if "\n    Examples\n    --------\n" not in f.__doc__]
     assert not missing
+
+
+@pytest.mark.parametrize("name", ["scanplan.project.inputs", "scanplan.project.api"])
+def test_examples_of_the_project_layer_run(name):
+    result = doctest.testmod(importlib.import_module(name), optionflags=doctest.ELLIPSIS)
+    assert result.attempted and result.failed == 0, f"{result.failed} doctest(s) of {name}"
+
+
+def test_examples_of_the_top_level_api_run():
+    import scanplan.api
+
+    result = doctest.testmod(scanplan.api, optionflags=doctest.ELLIPSIS)
+    assert result.attempted >= 4 and result.failed == 0

@@ -136,7 +136,8 @@ def test_archive_json():
     pd = d["film"]["scenarios"][0]["constraints"]["PD"]["pixel_um"]
     assert pd == pytest.approx(ARCHIVE["pd_um"], abs=0.01)
     codes = [w["code"] for w in d["warnings"]]
-    assert codes == ["archive_not_interpretable"]
+    # and, for information, the scanned ground pixel against ГОСТ Р 59562-2021 Table Б.1
+    assert codes == ["archive_not_interpretable", "gsd_limit_film"]
     w = d["warnings"][0]
     assert w["params"]["limit"] == ARCHIVE["limit"]
     # the photos exist: nothing advises another flight

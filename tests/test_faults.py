@@ -244,10 +244,12 @@ def previous_report(name: str) -> bytes:
     import zipfile
 
     buf = io.BytesIO()
+    when = (2020, 1, 1, 0, 0, 0)  # fixed: two calls seconds apart give the same bytes
     with zipfile.ZipFile(buf, "w") as zf:
-        zf.writestr("docProps/core.xml", "<cp:coreProperties><dc:creator>scanplan 0.0"
+        zf.writestr(zipfile.ZipInfo("docProps/core.xml", when),
+                    "<cp:coreProperties><dc:creator>scanplan 0.0"
                     "</dc:creator></cp:coreProperties>")
-        zf.writestr("OLD", name * 50)
+        zf.writestr(zipfile.ZipInfo("OLD", when), name * 50)
     return buf.getvalue()
 
 
@@ -663,7 +665,9 @@ def test_batch_write_failure_stops_the_batch(batch, work, fixed_renders, fmp,
     stay written, the failing project's previous pair is intact, later ones are not run."""
     before = snapshot(work)
     Faults(fmp, work).arm(*fault)
-    r = cli("plan", str(batch / "a.toml"), str(batch / "b.toml"), "--out", "out")
+    # --jobs 1: the faults are injected into this process, not into worker processes
+    r = cli("plan", str(batch / "a.toml"), str(batch / "b.toml"), "--out", "out",
+            "--jobs", "1")
     fmp.undo()
     after = snapshot(work)
     for t in BATCH_TARGETS:
@@ -695,7 +699,7 @@ def test_batch_bad_project_still_continues_and_disk_full_wins(batch, work, fixed
     assert r.exit_code == 2 and "2 planned, 1 failed" in r.stdout
     put_old(work, BATCH_TARGETS)
     Faults(fmp, work).arm("write", 3, enospc)
-    r = cli("plan", str(batch), "--out", "out", "--json")
+    r = cli("plan", str(batch), "--out", "out", "--json", "--jobs", "1")  # faults: here
     fmp.undo()
     assert r.exit_code == 1
     import json

@@ -85,8 +85,8 @@ def test_town_example_layout_photos_carry_the_plan_figures(tmp_path):
     assert np.allclose(p["gsd_cm"], plan.gsd_m * 100)
     assert np.allclose(p["resolution_cm"], plan.ground_resolution_m * 100)
     assert np.all((p["recognition_p"] > 0.9) & (p["recognition_p"] <= 1))
-    assert np.all(p["ground_m"] == 160) and np.all(p["agl_m"] == plan.heights_m["planned"])
-    assert np.allclose(p["altitude_m"], 160 + plan.heights_m["planned"])
+    assert np.all(p["ground_m"] == 0) and np.all(p["agl_m"] == plan.heights_m["planned"])
+    assert np.allclose(p["altitude_m"], plan.heights_m["planned"])
     assert lay.notes["bridged_m"] > 0  # the river bay
 
 

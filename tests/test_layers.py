@@ -25,6 +25,7 @@ LAYERS: list[tuple[str, set[str]]] = [
     ("geo", {"geo"}),
     ("project", {"project"}),
     ("reports", {"reports"}),
+    ("api", {"api"}),
     ("cli", {"cli", "__main__", "__init__"}),
 ]
 RANK = {name: i for i, (_, names) in enumerate(LAYERS) for name in names}

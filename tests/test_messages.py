@@ -247,6 +247,22 @@ def emitted(tmp_path_factory) -> dict[str, list[Any]]:
         "plan archive fine scanner": (EXAMPLES / "map-10000-relief-1m.toml").read_text(
             encoding="utf-8").replace("photo_scales = [15000, 20000, 25000, 30000]",
                                       "photo_scale = 30000"),
+        # issue 18: today's norms (Table Б.1, the one-height rule, the sun window)
+        "plan film 1:10000": (EXAMPLES / "map-10000-relief-1m.toml").read_text(
+            encoding="utf-8"),
+        "plan film over table B.1": '[map]\nscale = 25000\nrelief_interval_m = 5\n[film]\n'
+                                    'camera = "rc30-153"\nphoto_scales = [60000]\n',
+        "plan dense urban": uav_toml.replace("[uav]", '[norms]\ngsd_area = "dense_urban"\n\n[uav]'),
+        "plan block flat": uav_toml + "\n[terrain]\nground_elevation_m = [100, 150]\n",
+        "plan block hilly": uav_toml + ('\n[terrain]\nground_elevation_m = [100, 160]\n'
+                                        'relief_class = "hilly"\n'),
+        "plan block mountainous": uav_toml + ('\n[terrain]\nground_elevation_m = [100, 200]\n'
+                                              'relief_class = "mountainous"\n'),
+        "plan sun winter": uav_toml + ("\n[site]\nlat_deg = 60\nlon_deg = 30\n[schedule]\n"
+                                       "start_date = 2025-12-01\nend_date = 2025-12-05\n"),
+        "plan sun short": uav_toml + ("\n[site]\nlat_deg = 60\nlon_deg = 30\n[schedule]\n"
+                                      "start_date = 2025-06-01\nend_date = 2025-06-01\n"
+                                      "turnaround_min = 600\n"),
     }
     for name, text in variants.items():
         r = _project(tmp, name.replace(" ", "-"), text)

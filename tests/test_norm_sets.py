@@ -21,7 +21,7 @@ CORE = ["core/formulas.py", "norms/schema.py", "errors.py", *ENGINE]
 def test_bundled_sets_load(norms, printed_norms):
     assert norms.parameters["pr_coefficient"] == 0.5
     assert printed_norms.parameters["pr_coefficient"] == 0.4
-    assert norms.parameters["constraints"] == ("PS", "PZ", "PP", "PR", "PD")
+    assert norms.parameters["constraints"] == ("PS", "PZ", "PP", "PR", "PD", "GL")
     assert printed_norms.parameters["constraints"] == ("PS", "PZ", "PP", "PR")
     assert norms.shapes == {"circle": 0.97, "rectangle": 1.45, "angle": 1.58, "square": 1.72,
                             "wall": 2.78}

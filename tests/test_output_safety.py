@@ -256,7 +256,8 @@ def test_batch_projects_with_one_name_get_their_own_reports(work, marked_renders
     r = cli("plan", a, b, c, "--out", "out")
     assert r.exit_code == 0, r.output
     assert {p.name for p in (work / "out").iterdir()} == {
-        "x.xlsx", "x.pdf", "x-2.xlsx", "x-2.pdf", "X-3.xlsx", "X-3.pdf"}
+        "x.xlsx", "x.pdf", "x-2.xlsx", "x-2.pdf", "X-3.xlsx", "X-3.pdf",
+        "summary.csv", "summary.xlsx"}  # the batch summary (issue 15)
     assert project_of(work / "out/x.xlsx") == "Project A"
     assert project_of(work / "out/x-2.pdf") == "Project B"
     assert project_of(work / "out/X-3.xlsx") == "Project C"

@@ -297,10 +297,14 @@ def test_failure_while_rendering_keeps_the_old_file(tmp_path, monkeypatch, scan,
     target = tmp_path / "report.xlsx"
     target.write_bytes(b"previous")
 
-    def broken(self, job):
+    def broken(book, view):
         raise RuntimeError("boom")
 
-    monkeypatch.setattr(X._Book, "mtf", broken)
+    # the MTF sheet's writer fails (a sheet is a record of the registry X.SHEETS)
+    sheets = tuple(X.Sheet(s.name, broken, s.section) if s.name == "mtf" else s
+                   for s in X.SHEETS)
+    assert sheets != X.SHEETS
+    monkeypatch.setattr(X, "SHEETS", sheets)
     with pytest.raises(RuntimeError, match="boom"):
         write_xlsx(target, scan=scan, uav=uav)
     assert target.read_bytes() == b"previous"

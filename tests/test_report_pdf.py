@@ -300,3 +300,34 @@ def test_plan_with_both_sections_has_one_comparison_table(tmp_path):
     assert old_heading not in html
     without_spec = render_html(scan=r.film.job, uav=r.uav.job, meta=r.meta)
     assert old_heading in without_spec
+
+
+def test_bundled_fonts_cover_every_character_the_documents_print():
+    """The bundled fonts are cut down to the scripts the documents use (templates/fonts/
+    README.md): every character of the label and message catalogues, the templates, the
+    examples and the bundled norm sets must have a glyph in both of them."""
+    from fontTools.ttLib import TTFont
+
+    root = Path(__file__).resolve().parent.parent
+    sources = [*(root / "scanplan").rglob("*.py"), *(root / "templates").glob("*.*"),
+               *(root / "norms").rglob("*.csv"), *(root / "examples").glob("*.toml")]
+    sources = [p for p in sources if p.suffix not in (".ttf", ".md", ".txt")]
+    chars = set()
+    for path in sources:
+        chars |= {ch for ch in path.read_text(encoding="utf-8") if ch.isprintable()}
+    assert {"№", "≤", "σ", "ё", "«", "µ", "×", "−", "…"} <= chars  # the sample is real
+    for name in ("DejaVuSans.ttf", "DejaVuSans-Bold.ttf"):
+        cmap = TTFont(templates_dir() / "fonts" / name).getBestCmap()
+        missing = sorted(ch for ch in chars if ord(ch) not in cmap and ch != " ")
+        assert not missing, (name, missing)
+
+
+def test_fonts_kept_across_reports_give_the_same_pdf(scan, uav, monkeypatch):
+    """The process keeps one font configuration for every report (a batch renders many);
+    a second render, and one with fresh fonts, are byte-identical."""
+    monkeypatch.setenv("SOURCE_DATE_EPOCH", "1700000000")
+    first = P.render_pdf(scan=scan, uav=uav)
+    assert P._font_config.cache_info().currsize >= 1
+    second = P.render_pdf(scan=scan, uav=uav)
+    fresh = P.render_pdf(scan=scan, uav=uav, url_fetcher=P.BundledAssetFetcher())
+    assert first == second == fresh

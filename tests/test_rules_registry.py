@@ -107,11 +107,11 @@ def test_dummy_constraint_flows_into_the_workbook_and_pdf(dummy):
 
 def test_without_the_dummy_nothing_changed():
     """After unregistering, the real constraints alone (the registry is as shipped)."""
-    assert list(CONSTRAINTS) == ["PS", "PZ", "PP", "PR", "PD", "GSD", "HC"]
+    assert list(CONSTRAINTS) == ["PS", "PZ", "PP", "PR", "PD", "GL", "GSD", "HC"]
     assert [c.id for c in CONSTRAINTS.values() if "film" in c.workflows] == [
         "PS", "PZ", "PP", "PR", "PD"]
     assert [c.id for c in CONSTRAINTS.values() if "digital" in c.workflows] == [
-        "PS", "PZ", "PP", "PD", "GSD", "HC"]
+        "PS", "PZ", "PP", "PD", "GL", "GSD", "HC"]
 
 
 def test_norm_schema_allows_exactly_the_norm_switched_constraints():

@@ -7,11 +7,8 @@ cell and the allowed range); 1 runtime failure (a message, never a traceback —
 
 from __future__ import annotations
 
-import json
-import math
 import os
 import sys
-import traceback
 import warnings
 from collections.abc import Callable
 from typing import Any
@@ -20,68 +17,58 @@ import click
 
 from .._version import __version__
 from ..errors import InputError, WriteError
+from ..project.inputs import option_names
+from .options import finite, input_option
 
-# Python names of inputs → the option a user typed
-OPTION_NAMES = {
-    "map_scale": "--map-scale",
-    "photo_scale": "--photo-scale",
-    "relief_interval_m": "--relief",
-    "focal_mm": "--focal-mm",
-    "frame_mm": "--frame-mm",
-    "frame_width_mm": "--frame-mm",
-    "frame_along_mm": "--frame-mm",
-    "resolving_power_lpmm": "--resolving-power",
-    "forward_overlap_pct": "--overlap-pct",
-    "object_size_m": "--object-size-m",
-    "object_name": "--object-name",
-    "shape": "--shape",
-    "probability": "--probability",
-    "height_formula": "--height-formula",
-    "pr_coefficient": "--pr-coefficient",
-    "recognition_rounding": "--rounding",
-    "scanner": "--scanner",
-    "camera": "--camera",
-    "bands": "--bands",
-    "bits_per_band": "--bit-depth",
-    "pixel_um": "--pixel-um",
-    "sensor_mm": "--sensor-mm",
-    "sensor_width_mm": "--sensor-mm",
-    "sensor_height_mm": "--sensor-mm",
-    "f_number": "--f-number",
-    "orientation": "--orientation",
-    "height_m": "--height-m",
-    "max_height_m": "--max-height-m",
-    "gsd_cm": "--gsd-cm",
-    "speed_ms": "--speed-ms",
-    "exposure_s": "--exposure-s",
-    "side_overlap_pct": "--side-overlap-pct",
-    "height_tolerance_up_pct": "--height-tolerance-pct",
-    "r_min": "--r-min",
-    "r_max": "--r-max",
-    "k0": "--k0",
-    "threshold_k0": "--k0",
-    "haze_contrast": "--haze-contrast",
-    "shift_factor": "--shift-factor",
-    "roll_deg": "--roll-deg",
-    "pitch_deg": "--pitch-deg",
-    "area_width_m": "--area-m",
-    "area_length_m": "--area-m",
-    "area_m": "--area-m",
-    "file": "--area-file",
-    "feature": "--area-feature",
-    "layer": "--area-layer",
-    "direction_deg": "--direction-deg",
-    "max_flight_time_min": "--max-flight-time-min",
-    "side_overlap_pct_film": "--side-overlap-pct",
-    "random_speed_ms": "--random-speed-ms",
-    "roll_rate_rad_s": "--roll-rate",
-    "pitch_rate_rad_s": "--pitch-rate",
-    "yaw_rate_rad_s": "--yaw-rate",
+OPTION_NAMES = {**option_names(), "file": "--area-file", "feature": "--area-feature",
+                "layer": "--area-layer", "direction_deg": "--direction-deg",
+                "max_flight_time_min": "--max-flight-time-min"}
+"""Python names of inputs (error fields) → the option a user typed (the input registry's;
+the area options of ``uav`` and ``scan`` beside it)."""
+
+
+LAZY_COMMANDS = {
+    "cameras": ("scanplan.cli.cameras", "cameras",
+                "The camera and scanner catalogue (film, digital on UAVs,..."),
+    "init": ("scanplan.cli.init", "init",
+             "Write a commented project file that `scanplan plan` runs as it..."),
+    "norms": ("scanplan.cli.norms", "norms",
+              "Norm sets: list, show, validate and import spreadsheets,..."),
 }
+"""Commands imported only when they run (``scanplan --help`` must not import numpy):
+name → (module, attribute, the short help ``--help`` lists)."""
 
 
 class ScanplanGroup(click.Group):
-    """A group that turns :class:`InputError` into exit 2 and crashes into exit 1."""
+    """A group that turns :class:`InputError` into exit 2 and crashes into exit 1, and
+    imports the heavy subcommands (:data:`LAZY_COMMANDS`) only when they are used."""
+
+    def list_commands(self, ctx: click.Context) -> list[str]:
+        return sorted(set(self.commands) | set(LAZY_COMMANDS))
+
+    def get_command(self, ctx: click.Context, name: str) -> click.Command | None:
+        if name in LAZY_COMMANDS and name not in self.commands:
+            import importlib
+
+            module, attr, _ = LAZY_COMMANDS[name]
+            self.add_command(getattr(importlib.import_module(module), attr), name)
+        return super().get_command(ctx, name)
+
+    def format_commands(self, ctx: click.Context, formatter: click.HelpFormatter) -> None:
+        """The command list, without importing the lazy ones."""
+        limit = formatter.width - 6 - max(len(n) for n in self.list_commands(ctx))
+        rows = []
+        for name in self.list_commands(ctx):
+            if name in self.commands:
+                cmd = self.commands[name]
+                if cmd.hidden:
+                    continue
+                rows.append((name, cmd.get_short_help_str(limit)))
+            else:
+                rows.append((name, LAZY_COMMANDS[name][2]))
+        if rows:
+            with formatter.section("Commands"):
+                formatter.write_dl(rows)
 
     def invoke(self, ctx: click.Context) -> Any:
         try:
@@ -98,6 +85,8 @@ class ScanplanGroup(click.Group):
             raise
         except Exception as exc:  # an environment failure or a bug: no traceback for users
             if os.environ.get("SCANPLAN_DEBUG"):
+                import traceback
+
                 traceback.print_exc()
             click.echo(f"error: {_failure_text(exc)}", err=True)
             ctx.exit(1)
@@ -115,25 +104,9 @@ def _failure_text(exc: Exception) -> str:
     return f"{type(exc).__name__}: {exc} (SCANPLAN_DEBUG=1 shows details)"
 
 
-class ScaleType(click.ParamType):
-    """A scale denominator: ``2000`` or ``1:2000``."""
-
-    name = "SCALE"
-
-    def convert(self, value: Any, param: click.Parameter | None, ctx: click.Context | None
-                ) -> float:
-        from ..norms import parse_scale
-
-        try:
-            return parse_scale(value, param.opts[0] if param else "scale")
-        except InputError as exc:
-            self.fail(exc.message, param, ctx)
-
-
-SCALE = ScaleType()
-
-
 def _echo_json(doc: Any) -> None:
+    import json
+
     click.echo(json.dumps(doc, ensure_ascii=False, indent=2, allow_nan=False))
 
 
@@ -147,6 +120,8 @@ class _JsonStream:
 
     @staticmethod
     def _dumps(value: Any) -> str:
+        import json
+
         return json.dumps(value, ensure_ascii=False, indent=2, allow_nan=False)
 
     def add(self, item: Any) -> None:
@@ -165,49 +140,14 @@ class _JsonStream:
         click.echo(out + "\n}")
 
 
-def _finite(ctx: click.Context, param: click.Parameter, value: float | None) -> float | None:
-    if value is not None and not math.isfinite(value):
-        raise click.BadParameter(f"must be a finite number (got {value})", ctx, param)
-    return value
-
-
-def _text(ctx: click.Context, param: click.Parameter, value: str) -> str:
-    """Report text from an option: the same rule as in a project file."""
-    from ..project.file import text_problem
-
-    problem = text_problem(value) if value else None
-    if problem:
-        raise click.BadParameter(problem, ctx, param)
-    return value
-
-
-def _text_or_none(ctx: click.Context, param: click.Parameter, value: str | None
-                  ) -> str | None:
-    return None if value is None else _text(ctx, param, value)
-
-
-def norm_options(f: Callable[..., Any]) -> Callable[..., Any]:
-    """The norm options shared by scan, uav and plan (spec/interface.md)."""
-    for opt in reversed([
-        click.option("--norms", default="gkinp-02-036-02", show_default=True,
-                     help="Norm set name or folder (scanplan norms list)."),
-        click.option("--object-size-m", type=float, callback=_finite,
-                     help="Size of the smallest object to interpret [m] (default: the norm "
-                     "table's for the map scale)."),
-        click.option("--shape", help="Object shape: circle|rectangle|angle|square|wall "
-                     "(norm table)."),
-        click.option("--object-name", callback=_text_or_none,
-                     help="Name of your own object (with --object-size-m), as the reports "
-                     "show it."),
-        click.option("--probability", type=float, callback=_finite,
-                     help="Required recognition probability, 0 < P < 1 (default 0.75)."),
-        click.option("--height-formula",
-                     type=click.Choice(["instruction", "parallax", "normal_case"]),
-                     help="Form of the height constraint P_Z (default: the norm set's; "
-                     "normal_case for digital cameras only)."),
-    ]):
-        f = opt(f)
-    return f
+def norm_options(command: str) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
+    """The norm options of ``command`` (scan or uav), from the input registry."""
+    def decorate(f: Callable[..., Any]) -> Callable[..., Any]:
+        for name in reversed(["norms", "object_size_m", "shape", "object_name", "probability",
+                              "height_formula"]):
+            f = input_option(command, name)(f)
+        return f
+    return decorate
 
 
 def area_options(f: Callable[..., Any]) -> Callable[..., Any]:
@@ -251,17 +191,8 @@ def report_options(f: Callable[..., Any]) -> Callable[..., Any]:
                      help="Write the PDF specification to this file (atomically)."),
         click.option("--force", is_flag=True, help="Replace an existing --xlsx/--pdf file "
                      "that scanplan did not write."),
-        click.option("--locale", type=click.Choice(["en", "ru"]), default="en",
-                     show_default=True, help="Language of the reports."),
-        click.option("--project-name", default="", callback=_text,
-                     help="Project name for the title block."),
-        click.option("--customer", default="", callback=_text,
-                     help="Customer for the title block."),
-        click.option("--contractor", default="", callback=_text,
-                     help="Contractor for the title block."),
-        click.option("--approver-position", default="", callback=_text,
-                     help="Approval block: position of the person who approves."),
-        click.option("--approver-name", default="", callback=_text, help="Approval block: name."),
+        *(input_option("uav", name) for name in ("locale", "name", "customer", "contractor",
+                                                  "approver_position", "approver_name")),
     ]):
         f = opt(f)
     return f
@@ -283,6 +214,7 @@ def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
     force, inputs = opts.pop("force", False), opts.pop("inputs", ())
     fields = opts.pop("fields", {"xlsx": "--xlsx", "pdf": "--pdf"})
     note = opts.pop("note", "")
+    say = opts.pop("say", None) or (lambda line: click.echo(line, err=True))
     from ..outpaths import check_target
     from ..reports import ReportMeta, write_atomic_many
 
@@ -308,17 +240,21 @@ def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
         raise InputError("--pdf", f"{pdf!r} is the file --xlsx writes; give another name")
     check()
     extra = {"spec": spec} if spec is not None else {}
+    from ..reports.view import build_view
+
+    # one view of the result for both documents: labels, numbers and plots built once
+    view = build_view(scan=scan, uav=uav, meta=meta, spec=spec)
     files: dict[str, bytes] = {}
     for path, kind in wanted:
         if kind == "xlsx":
             from ..reports.excel import render_xlsx as render
         else:
             from ..reports.pdf import render_pdf as render
-        files[path] = render(scan=scan, uav=uav, meta=meta, **extra)
+        files[path] = render(scan=scan, uav=uav, meta=meta, view=view, **extra)
     files.update({path: data for path, (_, data) in exports.items()})
     write_atomic_many(files, check=check)
     for path in files:
-        click.echo(f"wrote {path}{note}", err=True)
+        say(f"wrote {path}{note}")
 
 
 def _remove_stale_exports(folder: str, written: set[str]) -> None:
@@ -386,35 +322,27 @@ def main() -> None:
     """
 
 
+def _inputs(command: str, names: list[str], **per_name: dict[str, Any]
+            ) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
+    """The registry's options of ``command`` for ``names``, in that order."""
+    def decorate(f: Callable[..., Any]) -> Callable[..., Any]:
+        for name in reversed(names):
+            f = (norm_options(command) if name == "<norms>"
+                 else input_option(command, name, **per_name.get(name, {})))(f)
+        return f
+    return decorate
+
+
 @main.command()
-@click.option("--map-scale", type=SCALE, required=True, help="Map scale, 2000 or 1:2000.")
-@click.option("--relief", "relief_interval_m", type=float, required=True, callback=_finite,
-              help="Relief (contour) interval h_c [m].")
-@click.option("--photo-scale", "photo_scales", type=SCALE, multiple=True, required=True,
-              help="Photo scale; repeat for a sweep (like seed 001 Tables 6–9).")
-@click.option("--camera", help="Catalogue camera id (scanplan cameras list).")
-@click.option("--focal-mm", type=float, callback=_finite, help="Focal length [mm] (no --camera).")
-@click.option("--frame-mm", help="Frame WxH [mm], across × along track, e.g. 230x230.")
-@click.option("--resolving-power", "resolving_power_lpmm", type=float, callback=_finite,
-              help="Resolving power of the photos R [lines/mm] (default: the camera's).")
-@click.option("--overlap-pct", "forward_overlap_pct", type=float, callback=_finite,
-              help="Forward overlap [%] (default: the norm set's, 60).")
-@norm_options
-@click.option("--pr-coefficient", type=float, callback=_finite,
-              help="k_R in P_R = k_R/R (default 0.5; the Instruction prints 0.4).")
-@click.option("--rounding", "recognition_rounding", type=click.Choice(["exact", "paper"]),
-              help="sqrt(-ln P) exactly, or the paper's rounded 0.53.")
-@click.option("--scanner", help="Scanner id: round the pixel down to its steps.")
-@click.option("--pixel-um", "pixel_um", type=float, multiple=True, callback=lambda c, p, v: tuple(
-    _finite(c, p, x) for x in v), help="A scan pixel you have [µm]: show the largest photo "
-              "scale it supports (repeatable).")
-@click.option("--bands", type=click.IntRange(1, 16), default=1, show_default=True,
-              help="Bands per scanned frame (1 panchromatic, 3 colour).")
-@click.option("--bit-depth", "bits_per_band", type=click.Choice(["8", "16"]), default="8",
-              show_default=True, help="Bits per band.")
+@_inputs("scan", ["map_scale", "relief_interval_m", "photo_scales", "camera", "focal_mm",
+                  "frame_mm", "resolving_power_lpmm", "forward_overlap_pct", "<norms>",
+                  "pr_coefficient", "recognition_rounding", "scanner", "pixel_um", "bands",
+                  "bits_per_band"],
+         map_scale={"required": True}, relief_interval_m={"required": True},
+         photo_scales={"required": True})
 @area_options
 @click.option("--side-overlap-pct", "film_side_overlap_pct", type=float, default=30.0,
-              show_default=True, callback=_finite,
+              show_default=True, callback=finite,
               help="Side overlap [%] of the flight scheme over --area-file.")
 @report_options
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
@@ -476,72 +404,21 @@ def _film_schemes(job: Any, area: Any, side: float) -> list[tuple[Any, Any]]:
 
 
 @main.command()
-@click.option("--camera", help="Digital camera id (scanplan cameras list).")
-@click.option("--pixel-um", type=float, callback=_finite, help="Pixel pitch [µm] (no --camera).")
-@click.option("--focal-mm", type=float, callback=_finite, help="Focal length [mm].")
-@click.option("--sensor-mm", help="Sensor WxH [mm], e.g. 36x24 (W across track when "
-              "mounted landscape).")
-@click.option("--orientation", type=click.Choice(["landscape", "portrait"]),
-              help="Camera mounting: landscape = sensor width across track (default: the "
-              "catalogue's, else landscape); portrait turns footprint, spacing and base.")
-@click.option("--f-number", type=float, callback=_finite,
-              help="Working f-number (default: the catalogue's).")
-@click.option("--height-m", type=float, callback=_finite,
-              help="Planned flight height above ground [m] (default: the maximum planned "
-              "height, rounded down to 5 m; needs --map-scale or --gsd-cm).")
-@click.option("--gsd-cm", type=float, callback=_finite,
-              help="Target ground sample distance [cm]: the highest flown height must "
-              "deliver it.")
-@click.option("--max-height-m", type=float, callback=_finite,
-              help="Altitude ceiling for the highest flown height above ground [m] "
-              "(default: the norm set's, 150 m).")
-@click.option("--height-tolerance-pct", type=float, default=0.0, show_default=True,
-              callback=_finite, help="How much higher the UAV may fly than planned [%] "
-              "(seed 002: 300 m planned, 420 m flown = 40).")
-@click.option("--speed-ms", type=float, callback=_finite,
-              help="Ground speed [m/s] (default 15 for a UAV; required for a camera on an "
-              "aircraft).")
-@click.option("--exposure-s", type=float, default=0.001, show_default=True, callback=_finite,
-              help="Exposure time [s].")
-@click.option("--overlap-pct", "forward_overlap_pct", type=float, callback=_finite,
-              help="Forward overlap [%] (default 80 for a UAV, the norm set's 60 for a camera "
-              "on an aircraft).")
-@click.option("--side-overlap-pct", type=float, callback=_finite,
-              help="Side overlap [%] (default 60 for a UAV, 30 for a camera on an aircraft).")
-@click.option("--map-scale", type=SCALE, help="Map scale: adds the constraints and max height.")
-@click.option("--relief", "relief_interval_m", type=float, callback=_finite,
-              help="Relief interval h_c [m] (with --map-scale).")
-@norm_options
-@click.option("--r-max", type=float, default=0.3, show_default=True, callback=_finite,
-              help="Brightness coefficient of the lightest detail.")
-@click.option("--r-min", type=float, default=0.1, show_default=True, callback=_finite,
-              help="Brightness coefficient of the darkest detail.")
-@click.option("--haze-contrast", type=float, callback=_finite,
-              help="Contrast transmission of the air column c, 0 < c ≤ 1 (default 0.9: "
-              "clear air below 500 m).")
-@click.option("--k0", "threshold_k0", type=float, callback=_finite,
-              help="Sensor threshold contrast at low frequency (default 0.03).")
-@click.option("--shift-factor", type=float, default=1.0, show_default=True, callback=_finite,
-              help="Photographic/geometric image shift, 0 < k ≤ 1 (0.6–0.7 summer, "
-              "1 bright canopy).")
-@click.option("--random-speed-ms", type=float, default=0.0, callback=_finite,
-              help="RMS random linear speed of a light UAV [m/s].")
-@click.option("--roll-rate", "roll_rate_rad_s", type=float, default=0.0, callback=_finite,
-              help="RMS angular rate about the longitudinal axis [rad/s].")
-@click.option("--pitch-rate", "pitch_rate_rad_s", type=float, default=0.0, callback=_finite,
-              help="RMS angular rate about the transverse axis [rad/s].")
-@click.option("--yaw-rate", "yaw_rate_rad_s", type=float, default=0.0, callback=_finite,
-              help="RMS angular rate about the vertical axis [rad/s].")
-@click.option("--area-m", help="Block to cover, WIDTHxLENGTH [m], e.g. 2000x3000.")
+@_inputs("uav", ["camera", "pixel_um", "focal_mm", "sensor_mm", "orientation", "f_number",
+                 "height_m", "gsd_cm", "max_height_m", "gsd_area", "height_tolerance_pct",
+                 "speed_ms",
+                 "exposure_s", "forward_overlap_pct", "side_overlap_pct", "map_scale",
+                 "relief_interval_m", "<norms>", "r_max", "r_min", "haze_contrast",
+                 "threshold_k0", "shift_factor", "random_speed_ms", "roll_rate_rad_s",
+                 "pitch_rate_rad_s", "yaw_rate_rad_s", "area_m", "roll_deg", "pitch_deg"],
+         map_scale={"help": "Map scale, 2000 or 1:2000: adds the constraints and the maximum "
+                    "planned height."},
+         relief_interval_m={"help": "Relief (contour) interval h_c [m] (with --map-scale)."})
 @area_options
 @click.option("--direction-deg", help='Flight-line direction over --area-file, clockwise from '
               'grid north [°], or "auto" (default): the least flight length.')
-@click.option("--max-flight-time-min", type=float, callback=_finite,
+@click.option("--max-flight-time-min", type=float, callback=finite,
               help="Longest sortie on one battery [min]: the block is split into sorties.")
-@click.option("--roll-deg", type=float, default=0.0, callback=_finite,
-              help="Roll for the tilted-frame corner GSD [°].")
-@click.option("--pitch-deg", type=float, default=0.0, callback=_finite,
-              help="Pitch for the tilted-frame corner GSD [°].")
 @report_options
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
 def uav(as_json: bool, **kwargs: Any) -> None:
@@ -608,8 +485,11 @@ def uav(as_json: bool, **kwargs: Any) -> None:
 @click.option("--force", is_flag=True,
               help="Replace existing report files that scanplan did not write.")
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
+@click.option("--jobs", type=click.IntRange(1, 256), default=None,
+              help="Projects planned at once in worker processes (default: the machine's "
+              "cores); the output is the same for any number.")
 def plan(projects: tuple[str, ...], out_dir: str | None, xlsx_path: str | None,
-         pdf_path: str | None, force: bool, as_json: bool) -> None:
+         pdf_path: str | None, force: bool, as_json: bool, jobs: int | None) -> None:
     """The main job: the scan / flight specification for a mapping contract.
 
     PROJECTS are project files (TOML) or folders of them; several give a batch with one
@@ -642,97 +522,192 @@ def plan(projects: tuple[str, ...], out_dir: str | None, xlsx_path: str | None,
             raise InputError("--out", f"{out_dir!r} is not a folder")
         created = _make_folder(out_dir)
     try:
-        _plan_files(files, batch, out_dir, xlsx_path, pdf_path, as_json, force)
+        _plan_files(files, batch, out_dir, xlsx_path, pdf_path, as_json, force,
+                    jobs or os.cpu_count() or 1)
     finally:  # a folder --out created stays only if something was written into it
         _remove_empty(created)
 
 
 def batch_stems(files: list[str]) -> list[str]:
-    """One report name per project of a batch: the file's stem, ``STEM-2``, ``STEM-3`` …
-    for later projects with the same stem (compared without case: some file systems ignore
-    it), so that no project's reports replace another's."""
-    used: set[str] = set()
-    out = []
-    for path in files:
-        stem = os.path.splitext(os.path.basename(path))[0] or "spec"
-        name, n = stem, 1
-        while name.casefold() in used:
-            n += 1
-            name = f"{stem}-{n}"
-        used.add(name.casefold())
-        out.append(name)
-    return out
+    """:func:`scanplan.outpaths.batch_stems` (imported when a batch runs)."""
+    from ..outpaths import batch_stems as stems
+
+    return stems(files)
+
+
+def _run_project(path: str, out_dir: str | None, stem: str | None, xlsx_path: str | None,
+                 pdf_path: str | None, files: list[str], force: bool,
+                 say: Callable[[str], None] | None = None) -> Any:
+    """Plan one project and write its reports (both or neither); the PlanResult. ``say``
+    receives the ``wrote FILE`` lines (default: stderr)."""
+    from ..project.file import load_project
+    from ..project.spec import plan_project
+
+    targets = {"xlsx_path": xlsx_path, "pdf_path": pdf_path}
+    fields = {"xlsx": "--xlsx", "pdf": "--pdf"}
+    note = ""
+    if out_dir:
+        targets = {"xlsx_path": os.path.join(out_dir, (stem or "spec") + ".xlsx"),
+                   "pdf_path": os.path.join(out_dir, (stem or "spec") + ".pdf")}
+        fields = {"xlsx": "--out", "pdf": "--out"}
+        if stem is not None:
+            base = os.path.splitext(os.path.basename(path))[0]
+            note = f" (for {path}" + (f"; the name {base} is taken by another project "
+                                      "of this batch" if stem != base else "") + ")"
+    result = plan_project(load_project(path))
+    exports = {}
+    if out_dir:  # the mission and GIS files join the reports' transaction (issue 11)
+        from ..reports.exports import export_files
+
+        exports = export_files(result, out_dir, prefix=f"{stem}-" if stem is not None else "")
+    film = result.film.job if result.film else None
+    uav_ = result.uav.job if result.uav else None
+    _write_reports({**targets, "force": force, "inputs": files, "fields": fields,
+                    "note": note, "meta": result.meta, "say": say, "exports": exports},
+                   scan=film, uav=uav_, spec=result)
+    if out_dir and stem is None:  # never leave a stale sortie of an earlier plan behind
+        _remove_stale_exports(out_dir, set(exports))
+    return result
+
+
+def _batch_worker(task: tuple[Any, ...]) -> tuple[str, str, Any, list[str]]:
+    """One project of a batch, in a worker process or in this one: (path, outcome,
+    payload, the ``wrote FILE`` lines for stderr) — ``"ok"`` with (PlanResult, JSON
+    document or None, summary row), ``"input"`` or ``"write"`` with the error text."""
+    path, out_dir, stem, files, force, as_json = task
+    import json
+
+    from ..api import summary_row
+    from ..reports.jsondoc import plan_result_dict
+
+    said: list[str] = []
+    try:
+        with warnings.catch_warnings():
+            if not os.environ.get("SCANPLAN_DEBUG"):
+                warnings.simplefilter("ignore")
+            result = _run_project(path, out_dir, stem, None, None, files, force, said.append)
+        doc = json.loads(json.dumps(plan_result_dict(result), ensure_ascii=False,
+                                    allow_nan=False)) if as_json else None
+        return path, "ok", (None if as_json else result, doc, summary_row(result)), said
+    except InputError as exc:  # a bad project: report it, run the others
+        return path, "input", f"{exc.field}: {exc.message}", said
+    except WriteError as exc:
+        return path, "write", exc.message, said
+
+
+class _Progress:
+    """``planning 12/1000`` on stderr, for a batch running longer than a second, and only
+    when stderr is a terminal."""
+
+    def __init__(self, total: int) -> None:
+        import time
+
+        self.total, self.start, self.clock, self.shown = total, time.monotonic(), time, False
+        self.on = sys.stderr.isatty()
+
+    def step(self, done: int) -> None:
+        if self.on and self.clock.monotonic() - self.start > 1.0:
+            sys.stderr.write(f"\rplanning {done}/{self.total}")
+            sys.stderr.flush()
+            self.shown = True
+
+    def clear(self) -> None:
+        """Wipe the progress line before other stderr lines."""
+        if self.shown:
+            sys.stderr.write("\r\x1b[K")
+
+    def close(self) -> None:
+        if self.shown:
+            sys.stderr.write("\n")
+            sys.stderr.flush()
+
+
+def _batch_outcomes(tasks: list[tuple[Any, ...]], jobs: int):  # type: ignore[no-untyped-def]
+    """The outcomes of the batch's projects, in the order of the files."""
+    if jobs <= 1 or len(tasks) <= 1:
+        for task in tasks:
+            yield _batch_worker(task)
+        return
+    from concurrent.futures import ProcessPoolExecutor
+
+    try:
+        pool = ProcessPoolExecutor(max_workers=min(jobs, len(tasks)))
+    except (OSError, NotImplementedError):  # no worker processes here: plan one by one
+        yield from _batch_outcomes(tasks, 1)
+        return
+    with pool:
+        try:
+            yield from pool.map(_batch_worker, tasks, chunksize=1)
+        finally:
+            pool.shutdown(cancel_futures=True)
+
+
+def _write_summary(out_dir: str, rows: list[dict[str, Any]], force: bool,
+                   files: list[str]) -> None:
+    """summary.csv and summary.xlsx of a batch (one row per project), as one transaction."""
+    from ..api import SUMMARY_COLUMNS, summary_frame
+    from ..outpaths import check_target
+    from ..reports import write_atomic_many
+    from ..reports.summary import summary_csv, summary_xlsx
+
+    frame = summary_frame(rows, [*SUMMARY_COLUMNS, "error"])
+    targets = {kind: os.path.join(out_dir, f"summary.{kind}") for kind in ("csv", "xlsx")}
+
+    def check() -> None:
+        for kind, path in targets.items():
+            check_target(path, "--out", kind, inputs=files, force=force)
+
+    check()
+    write_atomic_many({targets["csv"]: summary_csv(frame),
+                       targets["xlsx"]: summary_xlsx(frame)}, check=check)
+    for path in targets.values():
+        click.echo(f"wrote {path}", err=True)
 
 
 def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: str | None,
-                pdf_path: str | None, as_json: bool, force: bool = False) -> None:
+                pdf_path: str | None, as_json: bool, force: bool = False,
+                jobs: int = 1) -> None:
     """``plan`` after its arguments are checked: run one project or a batch."""
-    from ..project.file import load_project
-    from ..project.spec import plan_project
     from ..reports.jsondoc import plan_result_dict
     from ..reports.text import format_plan_result
 
-    stems = dict(zip(files, batch_stems(files), strict=True)) if batch else {}
-
-    def run_one(path: str) -> Any:
-        targets = {"xlsx_path": xlsx_path, "pdf_path": pdf_path}
-        fields = {"xlsx": "--xlsx", "pdf": "--pdf"}
-        note = ""
-        if out_dir:
-            stem = stems[path] if batch else "spec"
-            targets = {"xlsx_path": os.path.join(out_dir, stem + ".xlsx"),
-                       "pdf_path": os.path.join(out_dir, stem + ".pdf")}
-            fields = {"xlsx": "--out", "pdf": "--out"}
-            if batch:
-                base = os.path.splitext(os.path.basename(path))[0]
-                note = f" (for {path}" + (f"; the name {base} is taken by another project "
-                                          "of this batch" if stem != base else "") + ")"
-        result = plan_project(load_project(path))
-        exports = {}
-        if out_dir:
-            from ..reports.exports import export_files
-
-            exports = export_files(result, out_dir, prefix=f"{stem}-" if batch else "")
-        film = result.film.job if result.film else None
-        uav_ = result.uav.job if result.uav else None
-        _write_reports({**targets, "force": force, "inputs": files, "fields": fields,
-                        "note": note, "locale": result.meta.locale,
-                        "project_name": result.meta.project, "customer": result.meta.customer,
-                        "contractor": result.meta.contractor,
-                        "approver_position": result.meta.approver_position,
-                        "approver_name": result.meta.approver_name,
-                        "meta": result.meta, "exports": exports}, scan=film, uav=uav_,
-                       spec=result)
-        if out_dir and not batch:  # never leave a stale sortie of an earlier plan behind
-            _remove_stale_exports(out_dir, set(exports))
-        return result
-
     if not batch:
-        result = run_one(files[0])
+        result = _run_project(files[0], out_dir, None, xlsx_path, pdf_path, files, force)
         if as_json:
             _echo_json(plan_result_dict(result))
         else:
             click.echo(format_plan_result(result))
         return
+    stems = batch_stems(files)
+    tasks = [(path, out_dir, stem, files, force, as_json) for path, stem in zip(files, stems,
+                                                                                strict=True)]
     done: list[tuple[str, Any]] = []  # with --json the results are streamed, not kept
     failed: list[tuple[str, str]] = []
+    rows: list[dict[str, Any]] = []
     stream = _JsonStream("projects") if as_json else None
     stopped = ""  # a write failure (disk full) stops the batch: the project it stopped at
-    with click.progressbar(files, label="planning", file=sys.stderr) as bar:
-        for path in bar:
-            try:
-                result = run_one(path)
-                if stream is not None:
-                    stream.add(plan_result_dict(result))
-                    result = None
-                done.append((path, result))
-            except InputError as exc:  # a bad project: report it, run the others
-                failed.append((path, f"{exc.field}: {exc.message}"))
-            except WriteError as exc:
-                failed.append((path, exc.message))
+    progress = _Progress(len(files))
+    for n, (path, outcome, payload, said) in enumerate(_batch_outcomes(tasks, jobs), start=1):
+        progress.clear()
+        for line in said:  # in the order of the files, whichever worker ran them
+            click.echo(line, err=True)
+        progress.step(n)
+        if outcome == "ok":
+            result, doc, row = payload
+            if stream is not None:
+                stream.add(doc)
+            done.append((path, result))
+            rows.append({**row, "error": ""})
+        else:
+            failed.append((path, payload))
+            rows.append({"file": path, "error": payload})
+            if outcome == "write":
                 stopped = path
                 break
+    progress.close()
     not_run = files[len(done) + len(failed):]
+    if out_dir and not stopped:
+        _write_summary(out_dir, rows, force, files)
     if stream is not None:
         stream.close({"errors": [{"file": f, "message": m} for f, m in failed]
                       + [{"file": f, "message": "not planned: the batch stopped"}
@@ -755,15 +730,7 @@ def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: s
         sys.exit(2)
 
 
-from .cameras import cameras  # noqa: E402
-from .norms import norms  # noqa: E402  (the group needs `main` defined first)
 
-main.add_command(cameras)
-main.add_command(norms)
-
-from .init import init  # noqa: E402
-
-main.add_command(init)
 
 
 def run() -> None:  # pragma: no cover - console entry used by python -m scanplan

@@ -239,7 +239,7 @@ def show_cmd(name: str, as_json: bool) -> None:
             ["name", "value", "unit", "source"],
         )
     )
-    for tname in ("shapes", "objects", "cameras", "scanners"):
+    for tname in ("shapes", "objects", "gsd_limits", "cameras", "scanners"):
         rows = data.get(tname) or []
         if not rows:
             continue

@@ -4,7 +4,8 @@ Pure, vectorised numpy: every function broadcasts over array inputs and does no 
 Lengths on the ground are in metres, on the sensor in millimetres (µm where a name
 says ``_um``), times in seconds, speeds in m/s, overlaps in per cent.
 
-Invalid physical input raises :class:`ValueError` whose message starts with the name
+Invalid physical input raises :class:`~scanplan.errors.FieldValueError` (a ValueError)
+with a typed ``field``: the name
 of the offending parameter, e.g. ``"pixel_um must be > 0 (got -1)"``.
 """
 
@@ -14,6 +15,8 @@ from dataclasses import dataclass
 
 import numpy as np
 import numpy.typing as npt
+
+from ..errors import FieldValueError
 
 __all__ = [
     "JPEG_COMPRESSION_RATIO",
@@ -57,7 +60,7 @@ def _finite(name: str, value: npt.ArrayLike) -> NDArrayFloat:
     arr = np.asarray(value, dtype=float)
     bad = ~np.isfinite(arr)
     if bad.any():
-        raise ValueError(f"{name} must be finite (got {_first_bad(arr, bad)})")
+        raise FieldValueError(name, f"must be finite (got {_first_bad(arr, bad)})")
     return arr
 
 
@@ -66,7 +69,7 @@ def _positive(name: str, value: npt.ArrayLike) -> NDArrayFloat:
     arr = _finite(name, value)
     bad = ~(arr > 0)
     if bad.any():
-        raise ValueError(f"{name} must be > 0 (got {_first_bad(arr, bad)})")
+        raise FieldValueError(name, f"must be > 0 (got {_first_bad(arr, bad)})")
     return arr
 
 
@@ -75,7 +78,7 @@ def _nonnegative(name: str, value: npt.ArrayLike) -> NDArrayFloat:
     arr = _finite(name, value)
     bad = ~(arr >= 0)
     if bad.any():
-        raise ValueError(f"{name} must be >= 0 (got {_first_bad(arr, bad)})")
+        raise FieldValueError(name, f"must be >= 0 (got {_first_bad(arr, bad)})")
     return arr
 
 
@@ -96,8 +99,8 @@ def _in_range(
     if bad.any():
         lo = "[" if low_inclusive else "("
         hi = "]" if high_inclusive else ")"
-        raise ValueError(
-            f"{name} must be in {lo}{low:g}, {high:g}{hi} (got {_first_bad(arr, bad)})"
+        raise FieldValueError(
+            name, f"must be in {lo}{low:g}, {high:g}{hi} (got {_first_bad(arr, bad)})"
         )
     return arr
 

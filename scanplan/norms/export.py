@@ -63,6 +63,12 @@ def _set_rows(ns: Any, catalogue: bool = True) -> dict[str, list[dict[str, Any]]
                 "source": o.source or None,
             }
         )
+    if ns.gsd_limits:
+        out["gsd_limits"] = [
+            {"map_scale": g.map_scale, "area": g.area, "max_gsd_cm": g.max_gsd_cm,
+             "source": g.source or None}
+            for g in ns.gsd_limits
+        ]
     if not catalogue:
         return out
     cam_cols = [c.name for c in TABLES["cameras"].columns]

@@ -20,15 +20,22 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-CONSTRAINT_IDS = ("PS", "PZ", "PP", "PR", "PD")
-"""Constraints the film rules engine knows (see :mod:`scanplan.rules.film`)."""
+CONSTRAINT_IDS = ("PS", "PZ", "PP", "PR", "PD", "GL")
+"""Constraints a norm set may switch on (see :mod:`scanplan.rules.registry`); ``GL`` is
+the GSD limit per plan scale of the set's ``gsd_limits`` table (ГОСТ Р 59562-2021,
+Table Б.1), for digital cameras."""
+
+GSD_AREAS = ("general", "dense_urban")
+"""Rows of the ``gsd_limits`` table: the general limit, and the one for towns with dense
+multi-storey buildings (ГОСТ Р 59562-2021, Table Б.1, footnote to 1:2000)."""
 
 HEIGHT_FORMULAS = ("instruction", "parallax")
 DIGITAL_HEIGHT_FORMULAS = ("normal_case", "instruction", "parallax")
 """Forms of the height constraint for digital (UAV) cameras (:mod:`scanplan.rules.uav`)."""
 MULTI_RAY_MODES = ("off", "strip")
 LATER_PARAMETERS = ("digital_height_formula", "image_measurement_px", "multi_ray",
-                    "uav_max_height_m")
+                    "uav_max_height_m", "block_relief_flat_pct", "block_relief_hilly_pct",
+                    "block_relief_mountain_pct", "min_sun_elevation_deg")
 """Parameters added after norm sets were first stored: a stored set without them takes
 them from the bundled default set (its source says so) instead of failing to load."""
 ORIENTATIONS = ("landscape", "portrait")
@@ -214,6 +221,30 @@ PARAMETERS: dict[str, ParameterSpec] = {
             ValueSpec("float", 0, 20000, min_open=True, unit="m"),
             "altitude ceiling of UAV flights above ground",
             ("предельная высота полёта БВС",),
+        ),
+        ParameterSpec(
+            "block_relief_flat_pct",
+            ValueSpec("float", 0, 100, min_open=True, unit="% of the flight height"),
+            "largest ground height range of a block flown at one height, flat terrain",
+            ("перепад высот, равнинная местность",),
+        ),
+        ParameterSpec(
+            "block_relief_hilly_pct",
+            ValueSpec("float", 0, 100, min_open=True, unit="% of the flight height"),
+            "largest ground height range of a block flown at one height, hilly terrain",
+            ("перепад высот, всхолмлённая местность",),
+        ),
+        ParameterSpec(
+            "block_relief_mountain_pct",
+            ValueSpec("float", 0, 100, min_open=True, unit="% of the flight height"),
+            "largest ground height range of a block flown at one height, mountainous terrain",
+            ("перепад высот, горная местность",),
+        ),
+        ParameterSpec(
+            "min_sun_elevation_deg",
+            ValueSpec("float", 0, 90, max_open=True, unit="°"),
+            "lowest sun elevation above the horizon at which photos are taken",
+            ("высота Солнца", "минимальная высота Солнца"),
         ),
     )
 }
@@ -485,6 +516,38 @@ TABLES: dict[str, TableSpec] = {
             title_ru="ЧКХ объективов",
             description="manufacturer's lens MTF per camera (frequency → MTF); replaces the "
             "diffraction formula in the MTF chain",
+        ),
+        TableSpec(
+            "gsd_limits",
+            "gsd-limits.csv",
+            ("map_scale", "area"),
+            (
+                ColumnSpec(
+                    "map_scale",
+                    ValueSpec("int", 1, None, unit="1:Mk"),
+                    "plan or map scale denominator",
+                    ("scale", "Mk", "масштаб", "масштаб плана или карты",
+                     "масштаб топографического плана или карты"),
+                ),
+                ColumnSpec(
+                    "area",
+                    ValueSpec("choice", choices=GSD_AREAS),
+                    "general, or dense_urban (towns with dense multi-storey buildings)",
+                    ("территория", "тип территории"),
+                ),
+                ColumnSpec(
+                    "max_gsd_cm",
+                    ValueSpec("float", 0, 1000, min_open=True, unit="cm"),
+                    "largest ground sample distance of the photos",
+                    ("GSD", "max GSD", "размер пикселя на местности",
+                     "рекомендуемый размер пикселя на местности (не более)"),
+                ),
+                _SOURCE,
+            ),
+            required=False,
+            title_ru="Предельный размер пикселя",
+            description="largest GSD of digital aerial photos per plan scale "
+            "(ГОСТ Р 59562-2021, Table Б.1)",
         ),
     )
 }

@@ -36,6 +36,7 @@ __all__ = [
     "DEFAULT_NORM_SET",
     "PITCH_TOLERANCE",
     "Camera",
+    "GsdLimit",
     "LensCurve",
     "MapObject",
     "NormSet",
@@ -175,6 +176,20 @@ class LensCurve:
 
 
 @dataclass(frozen=True)
+class GsdLimit:
+    """One row of the table ``gsd_limits``: the largest GSD of the photos for a plan scale.
+
+    ГОСТ Р 59562-2021, Appendix Б, Table Б.1 in the bundled set; ``area`` is ``general`` or
+    ``dense_urban`` (towns with dense multi-storey buildings).
+    """
+
+    map_scale: int
+    area: str
+    max_gsd_cm: float
+    source: str = ""
+
+
+@dataclass(frozen=True)
 class ScannerStep:
     """One scan pixel a scanner offers, with what its source publishes about it."""
 
@@ -209,6 +224,25 @@ class NormSet:
     scanner_names: Mapping[str, str] = field(default_factory=dict)
     scanner_details: Mapping[str, tuple[ScannerStep, ...]] = field(default_factory=dict)
     lens_mtf: Mapping[str, Mapping[str, LensCurve]] = field(default_factory=dict)
+    gsd_limits: tuple[GsdLimit, ...] = ()
+
+    def gsd_limit(self, map_scale: float, area: str = "general") -> GsdLimit | None:
+        """The ``gsd_limits`` row for exactly this map scale and ``area``, or None.
+
+        A ``dense_urban`` request falls back to the ``general`` row when the table has no
+        separate row for the scale (Table Б.1 has one only for 1:2000).
+
+        >>> ns = load_norm_set()
+        >>> ns.gsd_limit(2000).max_gsd_cm, ns.gsd_limit(2000, "dense_urban").max_gsd_cm
+        (20.0, 14.0)
+        >>> ns.gsd_limit(5000, "dense_urban").max_gsd_cm, ns.gsd_limit(3000) is None
+        (30.0, True)
+        """
+        for wanted in dict.fromkeys((area, "general")):
+            for row in self.gsd_limits:
+                if row.map_scale == map_scale and row.area == wanted:
+                    return row
+        return None
 
     def rules(self, **overrides: Any) -> ScanRules:
         """The rules engine's parameters, with user overrides applied and checked.
@@ -448,6 +482,20 @@ def _load_lens_mtf(path: Path) -> dict[str, dict[str, LensCurve]]:
     return out
 
 
+def _load_gsd_limits(path: Path) -> tuple[GsdLimit, ...]:
+    """The ``gsd_limits`` table; a (map scale, area) pair listed twice is an error."""
+    seen: dict[tuple[int, str], int] = {}
+    out = []
+    for i, r in enumerate(_typed_rows(path, TABLES["gsd_limits"]), start=2):
+        key = (r["map_scale"], r["area"])
+        if key in seen:
+            raise InputError(f"{path}:{i} (map_scale)", f"1:{key[0]} {key[1]} is listed twice "
+                             f"(also row {seen[key]}); one row per scale and area")
+        seen[key] = i
+        out.append(GsdLimit(r["map_scale"], r["area"], r["max_gsd_cm"], r["source"] or ""))
+    return tuple(sorted(out, key=lambda g: (g.map_scale, g.area)))
+
+
 @lru_cache(maxsize=1)
 def _catalogue() -> tuple[dict[str, Camera], _Scanners]:
     folder = bundled_norms_dir() / CATALOGUE
@@ -680,6 +728,8 @@ def read_norm_set_folder(path: Path, *, bundled: bool = False) -> NormSet:
         scanner_names=names,
         scanner_details=details,
         lens_mtf=_checked_lens(lens, cams),
+        gsd_limits=(_load_gsd_limits(path / "gsd-limits.csv")
+                    if (path / "gsd-limits.csv").is_file() else ()),
     )
 
 

@@ -4,7 +4,7 @@
 >>> plan = scan(map_scale=2000, relief_interval_m=1.0, photo_scales=[10000],
 ...             camera="afa-te-100")
 >>> plan.scenarios[0].binding, round(plan.scenarios[0].scan_pixel_um, 1)
-('PR', 12.5)
+('PD', 11.1)
 
 Errors are :class:`scanplan.errors.InputError` whose ``field`` is the argument name.
 """
@@ -15,6 +15,7 @@ import math
 import os
 from collections.abc import Iterable
 from dataclasses import dataclass
+from typing import Any
 
 from ..core.domains import MAX_LIST_ITEMS, check_domain
 from ..core.mtf import DEFAULT_HAZE_CONTRAST, DEFAULT_K0
@@ -23,10 +24,15 @@ from ..geo.area import rectangle_area
 from ..geo.layout import Area, FlightLayout
 from ..messages import Message
 from ..norms import DEFAULT_NORM_SET, MapObject, NormSet, load_norm_set, parse_scale
-from ..norms.schema import ORIENTATIONS, PARAMETERS
-from ..rules.film import ObjectSpec, ScanInputs, ScanPlan, plan_scan
+from ..norms.schema import GSD_AREAS, ORIENTATIONS, PARAMETERS
+from ..norms.store import GsdLimit
+from ..rules.film import ObjectSpec, ScanInputs, ScanPlan, ScanRules, plan_scan
 from ..rules.uav import UavInputs, UavPlan, plan_uav
 from .flightplan import LayoutOptions, uav_layout, with_layout
+from .inputs import by_key, defaults, records
+
+_FILM = defaults("film")  # the input registry's defaults (scanplan.project.inputs)
+_UAV = defaults("uav")
 
 HEIGHT_STEP_M = 5.0
 """Recommended flight heights are rounded down to this step [m]."""
@@ -202,8 +208,8 @@ def scan_job(
     pr_coefficient: float | None = None,
     recognition_rounding: str | None = None,
     scanner: str | None = None,
-    bands: int = 1,
-    bits_per_band: int = 8,
+    bands: int = _FILM["bands"],
+    bits_per_band: int = _FILM["bits_per_band"],
     pixel_um: Iterable[float] = (),
 ) -> ScanJob:
     """Like :func:`scan`, returning the norm set too (for reports)."""
@@ -292,9 +298,9 @@ def scan(**kwargs: object) -> ScanPlan:
     return scan_job(**kwargs).plan  # type: ignore[arg-type]
 
 
-UAV_DEFAULTS = {"speed_ms": 15.0, "forward_overlap_pct": 80.0, "side_overlap_pct": 60.0}
-"""Flight defaults for a camera on a UAV (docs/project-file.md)."""
-AIRCRAFT_SIDE_OVERLAP_PCT = 30.0
+UAV_DEFAULTS = {r.name: r.default for r in records("uav") if r.by_carrier}
+"""Flight defaults for a camera on a UAV (the input registry's; docs/project-file.md)."""
+AIRCRAFT_SIDE_OVERLAP_PCT: float = by_key("film", "side_overlap_pct").default
 """Side overlap for a camera on a manned aircraft, as for film (the specification's film
 default)."""
 
@@ -318,10 +324,10 @@ def uav_job(
     sensor_mm: object | None = None,
     f_number: float | None = None,
     speed_ms: float | None = None,
-    exposure_s: float = 0.001,
+    exposure_s: float = _UAV["exposure_s"],
     forward_overlap_pct: float | None = None,
     side_overlap_pct: float | None = None,
-    height_tolerance_pct: float = 0.0,
+    height_tolerance_pct: float = _UAV["height_tolerance_pct"],
     map_scale: object | None = None,
     relief_interval_m: float | None = None,
     norms: str | os.PathLike[str] = DEFAULT_NORM_SET,
@@ -330,21 +336,22 @@ def uav_job(
     object_name: str | None = None,
     probability: float | None = None,
     height_formula: str | None = None,
-    r_max: float = 0.3,
-    r_min: float = 0.1,
-    threshold_k0: float | None = None,
-    haze_contrast: float | None = None,
-    shift_factor: float = 1.0,
-    random_speed_ms: float = 0.0,
-    roll_rate_rad_s: float = 0.0,
-    pitch_rate_rad_s: float = 0.0,
-    yaw_rate_rad_s: float = 0.0,
+    r_max: float = _UAV["r_max"],
+    r_min: float = _UAV["r_min"],
+    threshold_k0: float | None = _UAV["threshold_k0"],
+    haze_contrast: float | None = _UAV["haze_contrast"],
+    shift_factor: float = _UAV["shift_factor"],
+    random_speed_ms: float = _UAV["random_speed_ms"],
+    roll_rate_rad_s: float = _UAV["roll_rate_rad_s"],
+    pitch_rate_rad_s: float = _UAV["pitch_rate_rad_s"],
+    yaw_rate_rad_s: float = _UAV["yaw_rate_rad_s"],
     area_m: object | None = None,
-    roll_deg: float = 0.0,
-    pitch_deg: float = 0.0,
+    roll_deg: float = _UAV["roll_deg"],
+    pitch_deg: float = _UAV["pitch_deg"],
     orientation: str | None = None,
     max_height_m: float | None = None,
     gsd_cm: float | None = None,
+    gsd_area: str = _UAV["gsd_area"],
     area: Area | None = None,
     layout_options: LayoutOptions | None = None,
 ) -> UavJob:
@@ -353,7 +360,8 @@ def uav_job(
     A catalogue ``camera`` gives pixel, focal length, sensor, image size, f-number and
     minimum trigger interval; explicit values override it. ``map_scale`` with
     ``relief_interval_m`` adds the norm set's constraints and the maximum flight height.
-    Defaults for a UAV camera: speed 15 m/s, overlaps 80/60 %. A camera carried by an
+    Defaults (the input registry's, :mod:`scanplan.project.inputs`) for a UAV camera:
+    :data:`UAV_DEFAULTS`. A camera carried by an
     aircraft (catalogue ``platform = aircraft``) needs the ground speed, and its overlaps
     default to the norm set's standard forward overlap (the Instruction's 60 %) and 30 %
     side overlap, as for film.
@@ -363,12 +371,17 @@ def uav_job(
     ``max_height_m`` is the altitude ceiling for the highest flown height (default for a
     UAV: the norm set's ``uav_max_height_m``; none for a camera on a manned aircraft, which
     flies 1,000–5,000 m under its own clearance); ``gsd_cm`` a target GSD the flight must
-    deliver.
+    deliver. ``gsd_area`` (``"general"``, the default, or ``"dense_urban"``) picks the row
+    of the norm set's GSD limits per plan scale (constraint GL, ГОСТ Р 59562-2021 Table Б.1).
     ``area`` (a polygon, :mod:`scanplan.geo.area`) or ``area_m`` (the ``WxL`` block) lays
     the strips and photo centres out (``layout_options``: direction, turns, sorties); the
     flight figures (strips, photos, length, time, data volume) come from that layout.
     Without ``height_m`` the flight is planned at the maximum planned height, rounded
     down to :data:`HEIGHT_STEP_M` (needs a map scale or a target GSD).
+
+    Long only by its keyword arguments (one per input of the registry) and this
+    docstring; the work is in named steps: :func:`_carrier_defaults`,
+    :func:`_digital_frame`, :func:`_map_constraints`, then the engine.
     """
     if height_m is None:
         if map_scale is None and gsd_cm is None:
@@ -388,6 +401,54 @@ def uav_job(
         raise InputError("camera", f"{camera!r} is a film camera; use `scanplan scan` for "
                          "film, or a digital camera (scanplan cameras list)")
     aircraft = cam is not None and cam.carrier == "aircraft"
+    speed_ms, forward_overlap_pct, side_overlap_pct = _carrier_defaults(
+        ns, camera, aircraft, speed_ms, forward_overlap_pct, side_overlap_pct)
+    frame = _digital_frame(cam, pixel_um, focal_mm, sensor_mm, f_number, orientation)
+    mk, rules, map_obj, objects = _map_constraints(
+        ns, map_scale, relief_interval_m, probability, height_formula, object_size_m, shape,
+        object_name)
+    gsd_row = _gsd_limit_row(ns, rules, mk, gsd_area)
+    area_w = area_l = None
+    if area_m is not None:
+        area_w, area_l = parse_frame_mm(area_m, "area_m")
+    inputs = UavInputs(
+        **frame, height_m=height_m, speed_ms=speed_ms, exposure_s=exposure_s,
+        forward_overlap_pct=forward_overlap_pct, side_overlap_pct=side_overlap_pct,
+        height_tolerance_up_pct=height_tolerance_pct, camera=camera or "",
+        camera_name=cam.name if cam else "", platform=cam.carrier if cam else "uav",
+        lens_table_centre=_lens(ns, camera, "centre"), lens_table_corner=_lens(ns, camera,
+                                                                              "corner"),
+        min_trigger_interval_s=cam.min_trigger_interval_s if cam else None,
+        r_max=r_max, r_min=r_min,
+        threshold_k0=threshold_k0 if threshold_k0 is not None else DEFAULT_K0,
+        haze_contrast=haze_contrast if haze_contrast is not None else DEFAULT_HAZE_CONTRAST,
+        shift_factor=shift_factor, random_speed_ms=random_speed_ms,
+        roll_rate_rad_s=roll_rate_rad_s, pitch_rate_rad_s=pitch_rate_rad_s,
+        yaw_rate_rad_s=yaw_rate_rad_s, roll_deg=roll_deg, pitch_deg=pitch_deg, map_scale=mk,
+        relief_interval_m=relief_interval_m, map_object=map_obj, objects=objects,
+        area_width_m=area_w, area_length_m=area_l,
+        ceiling_m=float(max_height_m) if max_height_m is not None
+        else None if aircraft else float(ns.parameters["uav_max_height_m"]),
+        ceiling_from_project=max_height_m is not None,
+        gsd_target_m=gsd_cm / 100.0 if gsd_cm is not None else None,
+        gsd_limit_m=gsd_row.max_gsd_cm / 100.0 if gsd_row else None,
+        gsd_limit_area=gsd_row.area if gsd_row else "general",
+        gsd_limit_source=gsd_row.source if gsd_row else "")
+    plan = plan_uav(inputs, rules)
+    if area is None and area_w is not None and area_l is not None:
+        area = rectangle_area(area_w, area_l)
+    if area is None:
+        return UavJob(plan, ns)
+    layout = uav_layout(plan, area, layout_options)
+    return UavJob(with_layout(plan, layout), ns, layout)
+
+
+def _carrier_defaults(ns: NormSet, camera: str | None, aircraft: bool,
+                      speed_ms: float | None, forward_overlap_pct: float | None,
+                      side_overlap_pct: float | None) -> tuple[float, float, float]:
+    """Speed [m/s] and overlaps [%] the caller left out, by carrier: a UAV's
+    (:data:`UAV_DEFAULTS`), or for a camera on a manned aircraft the norm set's standard
+    forward overlap and :data:`AIRCRAFT_SIDE_OVERLAP_PCT` (its speed is required)."""
     if speed_ms is None:
         if aircraft:
             raise InputError("speed_ms", f"give the aircraft's ground speed in m/s (> 0): "
@@ -400,6 +461,14 @@ def uav_job(
     if side_overlap_pct is None:
         side_overlap_pct = (AIRCRAFT_SIDE_OVERLAP_PCT if aircraft
                             else UAV_DEFAULTS["side_overlap_pct"])
+    return speed_ms, forward_overlap_pct, side_overlap_pct
+
+
+def _digital_frame(cam: Any, pixel_um: float | None, focal_mm: float | None,
+                   sensor_mm: object | None, f_number: float | None,
+                   orientation: str | None) -> dict[str, Any]:
+    """The camera's pixel, focal length, f-number and frame as mounted (``UavInputs``
+    fields): the catalogue camera's, each overridden by the value given."""
     if orientation is not None and orientation not in ORIENTATIONS:
         raise InputError("orientation", f"must be one of {', '.join(ORIENTATIONS)} "
                          f"(got {orientation!r})")
@@ -424,6 +493,18 @@ def uav_job(
     if n0 is None:
         raise InputError("f_number", "the camera has no f-number in the catalogue; give the "
                          "working f-number (> 0)")
+    return {"pixel_um": p, "focal_mm": f, "f_number": n0, "sensor_width_mm": w,
+            "sensor_height_mm": h, "image_width_px": w_px, "image_height_px": h_px,
+            "orientation": mount}
+
+
+def _map_constraints(ns: NormSet, map_scale: object | None, relief_interval_m: float | None,
+                     probability: float | None, height_formula: str | None,
+                     object_size_m: float | None, shape: str | None, object_name: str | None
+                     ) -> tuple[float | None, ScanRules | None, ObjectSpec | None,
+                                tuple[ObjectSpec, ...]]:
+    """With a map scale: Mk, the norm set's rules, the map's object; and the objects the
+    recognition table lists (those of the map scale; the project's own object first)."""
     rules = None
     mk = None
     map_obj = None
@@ -447,38 +528,17 @@ def uav_job(
     objects = [norm_object_spec(ns, o, shape) for o in recognition_rows(ns, mk)]
     if map_obj is not None and map_obj.map_scale is None:
         objects.insert(0, map_obj)
-    area_w = area_l = None
-    if area_m is not None:
-        area_w, area_l = parse_frame_mm(area_m, "area_m")
-    inputs = UavInputs(
-        pixel_um=p, focal_mm=f, f_number=n0, sensor_width_mm=w, sensor_height_mm=h,  # type: ignore[arg-type]
-        height_m=height_m, speed_ms=speed_ms, exposure_s=exposure_s,
-        forward_overlap_pct=forward_overlap_pct, side_overlap_pct=side_overlap_pct,
-        height_tolerance_up_pct=height_tolerance_pct, camera=camera or "",
-        camera_name=cam.name if cam else "", image_width_px=w_px, image_height_px=h_px,
-        orientation=mount, platform=cam.carrier if cam else "uav",
-        lens_table_centre=_lens(ns, camera, "centre"), lens_table_corner=_lens(ns, camera,
-                                                                              "corner"),
-        min_trigger_interval_s=cam.min_trigger_interval_s if cam else None,
-        r_max=r_max, r_min=r_min,
-        threshold_k0=threshold_k0 if threshold_k0 is not None else DEFAULT_K0,
-        haze_contrast=haze_contrast if haze_contrast is not None else DEFAULT_HAZE_CONTRAST,
-        shift_factor=shift_factor, random_speed_ms=random_speed_ms,
-        roll_rate_rad_s=roll_rate_rad_s, pitch_rate_rad_s=pitch_rate_rad_s,
-        yaw_rate_rad_s=yaw_rate_rad_s, roll_deg=roll_deg, pitch_deg=pitch_deg, map_scale=mk,
-        relief_interval_m=relief_interval_m, map_object=map_obj, objects=tuple(objects),
-        area_width_m=area_w, area_length_m=area_l,
-        ceiling_m=float(max_height_m) if max_height_m is not None
-        else None if aircraft else float(ns.parameters["uav_max_height_m"]),
-        ceiling_from_project=max_height_m is not None,
-        gsd_target_m=gsd_cm / 100.0 if gsd_cm is not None else None)
-    plan = plan_uav(inputs, rules)
-    if area is None and area_w is not None and area_l is not None:
-        area = rectangle_area(area_w, area_l)
-    if area is None:
-        return UavJob(plan, ns)
-    layout = uav_layout(plan, area, layout_options)
-    return UavJob(with_layout(plan, layout), ns, layout)
+    return mk, rules, map_obj, tuple(objects)
+
+
+def _gsd_limit_row(ns: NormSet, rules: object, map_scale: float | None,
+                   area: str | None) -> GsdLimit | None:
+    """The norm set's GSD limit row for the map scale when the set switches GL on."""
+    if area is not None and area not in GSD_AREAS:
+        raise InputError("gsd_area", f"must be one of {', '.join(GSD_AREAS)} (got {area!r})")
+    if rules is None or map_scale is None or "GL" not in getattr(rules, "constraints", ()):
+        return None
+    return ns.gsd_limit(map_scale, area or "general")
 
 
 def _lens(ns: NormSet, camera: str | None, position: str

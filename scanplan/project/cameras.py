@@ -93,6 +93,38 @@ def _refuse_constant(name: str) -> Any:
 
 def _read_qgc_json(path: Path, source: str) -> ParsedCameras:
     """QGroundControl's camera list → catalogue rows (every entry checked)."""
+    doc = _qgc_document(path)
+    spec = TABLES["cameras"]
+    problems = norms_cells._Problems()
+    rows: list[dict[str, str]] = []
+    seen: dict[str, int] = {}
+    for i, item in enumerate(doc, start=1):
+        where = f"{path.name} entry {i}"
+        if not isinstance(item, dict):
+            problems.add(_norms.ImportProblem(where, "must be a JSON object (a camera)"))
+            continue
+        row = _qgc_row(item, where, spec, problems)
+        if row is None:
+            continue
+        if row["id"] in seen:
+            problems.add(_norms.ImportProblem(
+                f"{where} (canonicalName)", f"gives the same id {row['id']!r} as entry "
+                f"{seen[row['id']]}", hint="rename one of them"))
+            continue
+        seen[row["id"]] = i
+        given = ("sensorWidth, sensorHeight, imageWidth, imageHeight, focalLength, landscape"
+                 + (", minTriggerInterval" if row["min_trigger_interval_s"] else ""))
+        row["source"] = (f"QGroundControl camera list {path.name}, entry {i}: {given}; "
+                         "pixel = sensor width / image width" + (f"; {source}" if source else ""))
+        rows.append(row)
+    problems.raise_if_any(path.name)
+    if not rows:
+        raise norms_cells._fail(path.name, "has no cameras")
+    return ParsedCameras(path.name, rows, [])
+
+
+def _qgc_document(path: Path) -> list[Any]:
+    """The camera list of a QGroundControl JSON file, read within bounds."""
     data = read_limited(path, MAX_JSON_BYTES, field=str(path))
     try:
         text = data.decode("utf-8-sig")
@@ -111,83 +143,65 @@ def _read_qgc_json(path: Path, source: str) -> ParsedCameras:
     if len(doc) > MAX_JSON_ENTRIES:
         raise norms_cells._fail(path.name, f"has {len(doc):,} entries; the limit is "
                              f"{MAX_JSON_ENTRIES:,}")
-    spec = TABLES["cameras"]
-    problems = norms_cells._Problems()
-    rows: list[dict[str, str]] = []
-    seen: dict[str, int] = {}
-    for i, item in enumerate(doc, start=1):
-        where = f"{path.name} entry {i}"
-        if not isinstance(item, dict):
-            problems.add(_norms.ImportProblem(where, "must be a JSON object (a camera)"))
-            continue
-        name = item.get("canonicalName")
-        if not isinstance(name, str) or not name.strip():
-            problems.add(_norms.ImportProblem(f"{where} (canonicalName)",
-                                                "must be the camera's name (text)"))
-            continue
-        name = name.strip()
-        bad_text = _text_problem(name)
-        if bad_text:
-            problems.add(_norms.ImportProblem(f"{where} (canonicalName)", bad_text))
-            continue
-        row = {c.name: "" for c in spec.columns}
-        row.update(id=_slug(name), kind="digital", platform="uav", name=name)
-        ok = True
-        for key, (column, integer) in _QGC_NUMBERS.items():
-            v = item.get(key)
-            rule = spec.column(column).value
-            if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v):
-                problems.add(_norms.ImportProblem(
-                    f"{where} ({key})", f"must be {rule.describe()}",
-                    value=None if v is None else str(v)[:50]))
-                ok = False
-                continue
-            if integer and v != int(v):
-                problems.add(_norms.ImportProblem(f"{where} ({key})",
-                                                    "must be a whole number of pixels",
-                                                    value=str(v)))
-                ok = False
-                continue
-            problem = rule.check(float(v))
-            if problem:
-                problems.add(_norms.ImportProblem(f"{where} ({key})", problem, value=str(v)))
-                ok = False
-                continue
-            row[column] = norms_cells._num_text(float(v))
-        landscape = item.get("landscape", True)
-        if not isinstance(landscape, bool):
-            problems.add(_norms.ImportProblem(f"{where} (landscape)",
-                                                "must be true or false", value=str(landscape)))
-            ok = False
-        else:
-            row["orientation"] = "landscape" if landscape else "portrait"
-        trigger = item.get("minTriggerInterval", 0)
-        rule = spec.column("min_trigger_interval_s").value
-        if isinstance(trigger, bool) or not isinstance(trigger, int | float) \
-                or not math.isfinite(trigger) or rule.check(float(trigger)):
+    return doc
+
+
+def _qgc_row(item: dict[str, Any], where: str, spec: Any, problems: Any
+             ) -> dict[str, str] | None:
+    """One QGroundControl camera as a catalogue row (no source yet); None, with the
+    problems added, when an entry is bad."""
+    name = item.get("canonicalName")
+    if not isinstance(name, str) or not name.strip():
+        problems.add(_norms.ImportProblem(f"{where} (canonicalName)",
+                                            "must be the camera's name (text)"))
+        return None
+    name = name.strip()
+    bad_text = _text_problem(name)
+    if bad_text:
+        problems.add(_norms.ImportProblem(f"{where} (canonicalName)", bad_text))
+        return None
+    row = {c.name: "" for c in spec.columns}
+    row.update(id=_slug(name), kind="digital", platform="uav", name=name)
+    ok = True
+    for key, (column, integer) in _QGC_NUMBERS.items():
+        v = item.get(key)
+        rule = spec.column(column).value
+        if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v):
             problems.add(_norms.ImportProblem(
-                f"{where} (minTriggerInterval)", f"must be {rule.describe()}",
-                value=str(trigger)[:50]))
+                f"{where} ({key})", f"must be {rule.describe()}",
+                value=None if v is None else str(v)[:50]))
             ok = False
-        elif trigger > 0:  # QGroundControl writes 0 for "not specified"
-            row["min_trigger_interval_s"] = norms_cells._num_text(float(trigger))
-        if not ok:
             continue
-        if row["id"] in seen:
-            problems.add(_norms.ImportProblem(
-                f"{where} (canonicalName)", f"gives the same id {row['id']!r} as entry "
-                f"{seen[row['id']]}", hint="rename one of them"))
+        if integer and v != int(v):
+            problems.add(_norms.ImportProblem(f"{where} ({key})",
+                                                "must be a whole number of pixels",
+                                                value=str(v)))
+            ok = False
             continue
-        seen[row["id"]] = i
-        given = ("sensorWidth, sensorHeight, imageWidth, imageHeight, focalLength, landscape"
-                 + (", minTriggerInterval" if row["min_trigger_interval_s"] else ""))
-        row["source"] = (f"QGroundControl camera list {path.name}, entry {i}: {given}; "
-                         "pixel = sensor width / image width" + (f"; {source}" if source else ""))
-        rows.append(row)
-    problems.raise_if_any(path.name)
-    if not rows:
-        raise norms_cells._fail(path.name, "has no cameras")
-    return ParsedCameras(path.name, rows, [])
+        problem = rule.check(float(v))
+        if problem:
+            problems.add(_norms.ImportProblem(f"{where} ({key})", problem, value=str(v)))
+            ok = False
+            continue
+        row[column] = norms_cells._num_text(float(v))
+    landscape = item.get("landscape", True)
+    if not isinstance(landscape, bool):
+        problems.add(_norms.ImportProblem(f"{where} (landscape)",
+                                            "must be true or false", value=str(landscape)))
+        ok = False
+    else:
+        row["orientation"] = "landscape" if landscape else "portrait"
+    trigger = item.get("minTriggerInterval", 0)
+    rule = spec.column("min_trigger_interval_s").value
+    if isinstance(trigger, bool) or not isinstance(trigger, int | float) \
+            or not math.isfinite(trigger) or rule.check(float(trigger)):
+        problems.add(_norms.ImportProblem(
+            f"{where} (minTriggerInterval)", f"must be {rule.describe()}",
+            value=str(trigger)[:50]))
+        ok = False
+    elif trigger > 0:  # QGroundControl writes 0 for "not specified"
+        row["min_trigger_interval_s"] = norms_cells._num_text(float(trigger))
+    return row if ok else None
 
 
 def _text_problem(text: str) -> str | None:

@@ -8,6 +8,7 @@ shared/spec/interface.md and docs/project-file.md.
 
 from __future__ import annotations
 
+import datetime as dt
 import math
 import os
 import re
@@ -19,6 +20,7 @@ from typing import Any
 from ..core.domains import MAX_LIST_ITEMS
 from ..errors import InputError
 from ..safeio import read_limited
+from .inputs import key_table
 
 __all__ = ["KEYS", "Project", "ReportMeta", "load_project", "parse_project", "text_problem"]
 
@@ -31,127 +33,10 @@ MAX_TEXT_CHARS = 1_000
 """Longest text value (a project name, a customer, an id) [characters]."""
 _CONTROL = re.compile(r"[\x00-\x08\x0b-\x1f\x7f-\x9f]")
 
-# section → key → (type name, description with unit and default)
-KEYS: dict[str, dict[str, tuple[str, str]]] = {
-    "project": {
-        "name": ("str", "project name (title block)"),
-        "customer": ("str", "customer (title block)"),
-        "contractor": ("str", "contractor (title block)"),
-        "locale": ("str", '"en" or "ru": language of the reports (default "en")'),
-        "approver_position": ("str", "approval block: position"),
-        "approver_name": ("str", "approval block: name"),
-        "organisation": ("str", "the contractor's organisation (title block)"),
-        "contract_number": ("str", "contract number (title block)"),
-        "compiled_by": ("str", "compiled by: name (signature block)"),
-        "checked_by": ("str", "checked by: name (signature block)"),
-        "agreed_position": ("str", "agreement block (customer): position"),
-        "agreed_name": ("str", "agreement block (customer): name"),
-        "agreed_organisation": ("str", "agreement block (customer): organisation"),
-    },
-    "map": {
-        "scale": ("scale", "map scale denominator Mk, 2000 or \"1:2000\" (required)"),
-        "relief_interval_m": ("number", "relief (contour) interval h_c [m] (required)"),
-    },
-    "norms": {
-        "set": ("str", 'norm set name, or a folder relative to the project file (default '
-                '"gkinp-02-036-02")'),
-        "pr_coefficient": ("number", "k_R in P_R = k_R/R (default: the set's, 0.5)"),
-        "height_formula": ("str", '"instruction" or "parallax": the film height constraint '
-                           '(default: the set\'s)'),
-        "probability": ("number", "required recognition probability (default 0.75)"),
-        "shape": ("str", "shape of the object to interpret (default: the norm table's)"),
-        "object_size_m": ("number", "size of the object to interpret [m] (default: the norm "
-                          "table's for the map scale)"),
-        "object_name": ("str", "name of the project's own object (with object_size_m); shown "
-                        "in the reports as written"),
-    },
-    "film": {
-        "camera": ("str", "catalogue camera id (or focal_mm + frame_mm)"),
-        "focal_mm": ("number", "focal length [mm]"),
-        "frame_mm": ("str", 'frame "WxH" [mm], across × along track'),
-        "resolving_power_lpmm": ("number", "resolving power of the photos R [lines/mm] "
-                                 "(default: the camera's)"),
-        "forward_overlap_pct": ("number", "forward overlap [%] (default 60)"),
-        "side_overlap_pct": ("number", "side overlap [%] (default 30)"),
-        "photo_scales": ("scales", "candidate photo scales Mc to choose from (or photo_scale)"),
-        "photo_scale": ("scale", "the scale of existing (archive) photos to scan, e.g. 12000: "
-                        "given, not chosen (instead of photo_scales)"),
-        "scanner": ("str", "scanner id: scan pixels it offers (optional)"),
-        "bands": ("int", "bands per scanned frame (default 1)"),
-        "bits_per_band": ("int", "bits per band (default 8)"),
-    },
-    "uav": {
-        "camera": ("str", "digital camera id (or pixel_um + focal_mm + sensor_mm)"),
-        "pixel_um": ("number", "pixel pitch [µm]"),
-        "focal_mm": ("number", "focal length [mm]"),
-        "sensor_mm": ("str", 'sensor "WxH" [mm], W across track when mounted landscape'),
-        "orientation": ("str", '"landscape" (sensor width across track) or "portrait" '
-                        "(default: the catalogue's, else landscape)"),
-        "f_number": ("number", "working f-number (default: the catalogue's)"),
-        "height_m": ("number", "planned flight height [m] (default: the maximum planned "
-                     "height, rounded down to 5 m)"),
-        "height_tolerance_pct": ("number", "how much higher the UAV may fly [%] (default 0)"),
-        "speed_ms": ("number", "ground speed [m/s] (default 15; required for a camera on an "
-                     "aircraft)"),
-        "exposure_s": ("number", "exposure time [s] (default 0.001)"),
-        "forward_overlap_pct": ("number", "forward overlap [%] (default 80; on an aircraft "
-                                "the norm set's 60)"),
-        "side_overlap_pct": ("number", "side overlap [%] (default 60; on an aircraft 30)"),
-        "roll_deg": ("number", "roll for the tilted-frame corner GSD [°] (default 0)"),
-        "pitch_deg": ("number", "pitch for the tilted-frame corner GSD [°] (default 0)"),
-        "max_height_m": ("number", "altitude ceiling for the highest flown height above ground "
-                         "[m] (default for a UAV: the norm set's, 150 m; none for an aircraft)"),
-        "gsd_cm": ("number", "target ground sample distance [cm]: the flight must deliver it "
-                   "at the highest flown height (optional)"),
-        "height_formula": ("str", '"normal_case", "instruction" or "parallax": the height '
-                           "constraint of the digital block (default: the set's, "
-                           '"normal_case")'),
-        "turnaround_m": ("number", "multirotor: distance flown past each strip end before "
-                         "turning [m] (default: a semicircle across the line spacing)"),
-        "turn_radius_m": ("number", "fixed-wing: turn radius between strips [m]"),
-        "bank_deg": ("number", "fixed-wing: bank angle in the turns [°]; the radius follows "
-                     "from the speed"),
-        "max_flight_time_min": ("number", "longest sortie on one battery [min]: the block is "
-                                "split into sorties (default: one flight)"),
-    },
-    "uav.target": {
-        "r_max": ("number", "brightness coefficient of the lightest detail (default 0.3)"),
-        "r_min": ("number", "brightness coefficient of the darkest detail (default 0.1)"),
-    },
-    "uav.atmosphere": {
-        "threshold_k0": ("number", "sensor threshold contrast at low frequency (default 0.03)"),
-        "haze_contrast": ("number", "contrast transmission of the air column c, 0 < c ≤ 1 "
-                          "(default 0.9: clear air below 500 m)"),
-    },
-    "uav.motion": {
-        "shift_factor": ("number", "photographic/geometric shift (default 1; 0.6–0.7 summer)"),
-        "random_speed_ms": ("number", "RMS random linear speed [m/s] (default 0)"),
-        "roll_rate_rad_s": ("number", "RMS roll rate [rad/s] (default 0)"),
-        "pitch_rate_rad_s": ("number", "RMS pitch rate [rad/s] (default 0)"),
-        "yaw_rate_rad_s": ("number", "RMS yaw rate [rad/s] (default 0)"),
-    },
-    "area": {
-        "width_m": ("number", "block width across the flight lines [m] (the abstract block, "
-                    "with length_m)"),
-        "length_m": ("number", "block length along the flight lines [m]"),
-        "file": ("str", "the contract polygon: a KML, KMZ, GeoJSON, GeoPackage or Shapefile, "
-                 "relative to the project file"),
-        "layer": ("str", "layer of the file holding the polygon (when it has several)"),
-        "feature": ("feature", "the polygon's name, or its number from 1 (when the file holds "
-                    "several)"),
-        "polygon": ("polygon", "the contract polygon inline, [[lon, lat], ...] (WGS 84 unless "
-                    "crs)"),
-        "crs": ("crs", 'CRS of the polygon\'s coordinates when not WGS 84, e.g. "EPSG:28407"'),
-        "plan_crs": ("crs", "projected CRS to plan in (default: the polygon's own when "
-                     "projected, else the UTM zone of the area)"),
-        "direction_deg": ("direction", 'flight-line direction clockwise from grid north [°], '
-                          'or "auto": the least flight length (default "auto")'),
-        "extension_bases": ("int", "exposures past each end of a strip, in photo bases "
-                            "(default 1)"),
-        "ground_elevation_m": ("number", "elevation of the (flat) ground [m] (default 0)"),
-    },
-}
-"""Every key a project file may hold: the documented contract."""
+KEYS: dict[str, dict[str, tuple[str, str]]] = key_table()
+"""Every key a project file may hold, section → key → (type, description with unit and
+default): the documented contract, read from the input registry
+(:mod:`scanplan.project.inputs`)."""
 
 
 @dataclass(frozen=True)
@@ -279,6 +164,23 @@ def _check_type(kind: str, value: Any) -> str | None:
         bad = [v for v in value if isinstance(v, bool) or not isinstance(v, int | float | str)
                or (not isinstance(v, str) and not _finite(v))]
         return 'must be a list of finite scales like [5000, "1:10000"]' if bad else None
+    if kind == "range":
+        ok = (isinstance(value, list) and len(value) == 2
+              and all(isinstance(v, int | float) and not isinstance(v, bool) and _finite(v)
+                      for v in value))
+        if ok and value[0] > value[1]:
+            return "must be [lowest, highest]: the first value may not exceed the second"
+        return None if ok else "must be two finite numbers [lowest, highest], e.g. [120, 185]"
+    if kind == "date":
+        if isinstance(value, dt.date) and not isinstance(value, dt.datetime):
+            return None
+        if isinstance(value, str):
+            try:
+                dt.date.fromisoformat(value)
+                return None
+            except ValueError:
+                pass
+        return "must be a date YYYY-MM-DD, e.g. 2025-06-01"
     raise AssertionError(kind)
 
 

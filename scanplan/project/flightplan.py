@@ -49,7 +49,7 @@ class LayoutOptions:
     max_flight_time_min : float or None
         ``[uav] max_flight_time_min``: longest sortie [min].
     ground_m : float
-        ``[area] ground_elevation_m``: elevation of the flat ground [m].
+        elevation of the flat ground [m] (API only; default 0).
     """
 
     direction_deg: float | str | None = None

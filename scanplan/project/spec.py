@@ -11,6 +11,7 @@ formula; it chooses among engine results.
 
 from __future__ import annotations
 
+import inspect
 import math
 from dataclasses import dataclass, field
 from typing import Any
@@ -31,6 +32,7 @@ from .api import (
     uav_job,
 )
 from .archive import archive_film
+from .design import SurveyDesign, survey_design
 from .file import Project, ReportMeta
 from .flightplan import (
     LayoutOptions,
@@ -39,60 +41,46 @@ from .flightplan import (
     film_layout,
     layout_warnings,
 )
+from .inputs import by_key, project_key, records
 
 __all__ = ["FilmSpec", "PlanResult", "UavSpec", "plan_project", "project_area"]
 
-DEFAULT_FILM_SIDE_OVERLAP_PCT = 30.0
-
-_FILM_KEYS = {
-    "map_scale": "map.scale", "relief_interval_m": "map.relief_interval_m",
-    "photo_scale": "film.photo_scales", "camera": "film.camera", "focal_mm": "film.focal_mm",
-    "frame_mm": "film.frame_mm", "frame_width_mm": "film.frame_mm",
-    "frame_along_mm": "film.frame_mm", "resolving_power_lpmm": "film.resolving_power_lpmm",
-    "forward_overlap_pct": "film.forward_overlap_pct", "scanner": "film.scanner",
-    "bands": "film.bands", "bits_per_band": "film.bits_per_band",
-}
-_UAV_KEYS = {
-    "map_scale": "map.scale", "relief_interval_m": "map.relief_interval_m",
-    "camera": "uav.camera", "pixel_um": "uav.pixel_um", "focal_mm": "uav.focal_mm",
-    "sensor_mm": "uav.sensor_mm", "sensor_width_mm": "uav.sensor_mm",
-    "sensor_height_mm": "uav.sensor_mm", "f_number": "uav.f_number",
-    "orientation": "uav.orientation",
-    "height_m": "uav.height_m", "height_tolerance_up_pct": "uav.height_tolerance_pct",
-    "speed_ms": "uav.speed_ms", "exposure_s": "uav.exposure_s",
-    "forward_overlap_pct": "uav.forward_overlap_pct", "side_overlap_pct": "uav.side_overlap_pct",
-    "r_max": "uav.target.r_max", "r_min": "uav.target.r_min",
-    "haze_contrast": "uav.atmosphere.haze_contrast",
-    "threshold_k0": "uav.atmosphere.threshold_k0", "k0": "uav.atmosphere.threshold_k0",
-    "shift_factor": "uav.motion.shift_factor", "random_speed_ms": "uav.motion.random_speed_ms",
-    "roll_rate_rad_s": "uav.motion.roll_rate_rad_s",
-    "pitch_rate_rad_s": "uav.motion.pitch_rate_rad_s",
-    "yaw_rate_rad_s": "uav.motion.yaw_rate_rad_s", "area_m": "area",
-    "area_width_m": "area.width_m", "area_length_m": "area.length_m",
-    "roll_deg": "uav.roll_deg", "pitch_deg": "uav.pitch_deg",
-    "max_height_m": "uav.max_height_m", "gsd_cm": "uav.gsd_cm",
-    "height_formula": "uav.height_formula",
-    "direction_deg": "area.direction_deg", "extension_bases": "area.extension_bases",
-    "ground_elevation_m": "area.ground_elevation_m", "turnaround_m": "uav.turnaround_m",
-    "turn_radius_m": "uav.turn_radius_m", "bank_deg": "uav.bank_deg",
-    "max_flight_time_min": "uav.max_flight_time_min",
-}
+DEFAULT_FILM_SIDE_OVERLAP_PCT: float = by_key("film", "side_overlap_pct").default
+"""Side overlap of film photos when the project gives none [%] (the input registry's)."""
 _AREA_KEYS = ("file", "layer", "feature", "polygon", "crs", "plan_crs", "width_m", "length_m",
-              "direction_deg", "extension_bases", "ground_elevation_m")
-_NORM_KEYS = {"object_size_m": "norms.object_size_m", "shape": "norms.shape",
-              "object_name": "norms.object_name",
-              "probability": "norms.probability", "height_formula": "norms.height_formula",
-              "pr_coefficient": "norms.pr_coefficient", "--norms": "norms.set",
-              "recognition_rounding": "norms.set"}
+              "direction_deg", "extension_bases")
 
 
-def _as_project_error(project: Project, exc: InputError, keys: dict[str, str]) -> InputError:
-    dotted = keys.get(exc.field) or _NORM_KEYS.get(exc.field)
-    if dotted is None:
+def _as_project_error(project: Project, exc: InputError, plan: str,
+                      archive: bool = False) -> InputError:
+    """``exc`` (its ``field`` a Python name) naming the project key and its line."""
+    found = project_key(exc.field, plan)
+    if found is None:
         return InputError(f"{project.path}: {exc.field}", exc.message)
-    section, _, key = dotted.rpartition(".")
-    where = project.where(section, key) if section else dotted
+    section, key = found
+    if archive and (section, key) == ("film", "photo_scales"):
+        key = "photo_scale"
+    where = project.where(section, key) if section else key
     return InputError(f"{project.path}: {where}", exc.message)
+
+
+def _job_kwargs(project: Project, plan: str, takes: Any) -> dict[str, Any]:
+    """The keyword arguments of :func:`scan_job` / :func:`uav_job` the project gives:
+    every key of the plan's inputs (the registry's) the job function ``takes`` and the
+    file holds. A key of the plan's own section wins over a shared one of the same name
+    (``[uav] height_formula`` over ``[norms] height_formula``); keys the file leaves out
+    take the API's defaults, which are the registry's."""
+    params = inspect.signature(takes).parameters
+    own = {r.name for r in records(plan) if r.section.split(".")[0] == plan}
+    kw: dict[str, Any] = {}
+    for r in records(plan):
+        shared = r.section.split(".")[0] != plan
+        if not r.key or r.name not in params or (shared and r.name in own):
+            continue
+        value = project.get(r.section, r.key)
+        if value is not None:
+            kw[r.name] = value
+    return kw
 
 
 @dataclass(frozen=True)
@@ -138,6 +126,9 @@ class PlanResult:
     uav: UavSpec | None
     comparison: list[dict[str, Any]] = field(default_factory=list)
     warnings: tuple[PlanWarning, ...] = ()
+    design: SurveyDesign | None = None
+    """The survey design checks: GSD against ГОСТ Р 59562-2021 Table Б.1, the one-height
+    rule of a block, the sun window (:mod:`scanplan.project.design`)."""
     area: Area | None = None  # the contract area ([area]), in its planning CRS
 
     @property
@@ -152,22 +143,11 @@ class PlanResult:
 
 
 def _film(project: Project, area: Area | None) -> FilmSpec:
-    g = project.get
-    archive_scale = g("film", "photo_scale")
-    kw: dict[str, Any] = dict(
-        map_scale=g("map", "scale"), relief_interval_m=g("map", "relief_interval_m"),
-        photo_scales=([archive_scale] if archive_scale is not None
-                      else g("film", "photo_scales")), camera=g("film", "camera"),
-        focal_mm=g("film", "focal_mm"), frame_mm=g("film", "frame_mm"),
-        resolving_power_lpmm=g("film", "resolving_power_lpmm"),
-        forward_overlap_pct=g("film", "forward_overlap_pct"),
-        norms=g("norms", "set", "gkinp-02-036-02"), object_size_m=g("norms", "object_size_m"),
-        shape=g("norms", "shape"), object_name=g("norms", "object_name"),
-        probability=g("norms", "probability"),
-        height_formula=g("norms", "height_formula"),
-        pr_coefficient=g("norms", "pr_coefficient"), scanner=g("film", "scanner"),
-        bands=g("film", "bands", 1), bits_per_band=g("film", "bits_per_band", 8))
-    side = g("film", "side_overlap_pct", DEFAULT_FILM_SIDE_OVERLAP_PCT)
+    archive_scale = project.get("film", "photo_scale")
+    kw = _job_kwargs(project, "film", scan_job)
+    if archive_scale is not None:
+        kw["photo_scales"] = [archive_scale]
+    side = project.get("film", "side_overlap_pct", DEFAULT_FILM_SIDE_OVERLAP_PCT)
     try:
         check_domain("side_overlap_pct", side)
     except InputError as exc:
@@ -176,9 +156,7 @@ def _film(project: Project, area: Area | None) -> FilmSpec:
     try:
         job = scan_job(**kw)
     except InputError as exc:
-        keys = (_FILM_KEYS if archive_scale is None
-                else {**_FILM_KEYS, "photo_scale": "film.photo_scale"})
-        raise _as_project_error(project, exc, keys) from None
+        raise _as_project_error(project, exc, "film", archive_scale is not None) from None
     if archive_scale is not None:
         job, best, reason = archive_film(job)
     else:
@@ -226,7 +204,7 @@ def _film_spec(project: Project, job: ScanJob, best: ScanScenario | None, reason
                                  inp.forward_overlap_pct, side, area,
                                  _layout_options(project))
         except InputError as exc:
-            raise _as_project_error(project, exc, _UAV_KEYS) from None
+            raise _as_project_error(project, exc, "uav") from None
         strips = len(layout.strips)
         frames = int(layout.notes.get("photos", len(layout.photos)))
         gigabytes = frames * best.frame_megabytes / 1000.0
@@ -279,7 +257,7 @@ def project_area(project: Project) -> Area | None:
 
 
 _LAYOUT_KEYS = (("area", "direction_deg"), ("area", "extension_bases"),
-                ("area", "ground_elevation_m"), ("uav", "turnaround_m"),
+                ("uav", "turnaround_m"),
                 ("uav", "turn_radius_m"), ("uav", "bank_deg"), ("uav", "max_flight_time_min"))
 
 
@@ -296,7 +274,7 @@ def _check_layout_keys(project: Project, area: Area | None) -> None:
     try:
         check_options(_layout_options(project), area, speed if speed and speed > 0 else None)
     except InputError as exc:
-        raise _as_project_error(project, exc, _UAV_KEYS) from None
+        raise _as_project_error(project, exc, "uav") from None
 
 
 def _layout_options(project: Project) -> LayoutOptions:
@@ -304,37 +282,13 @@ def _layout_options(project: Project) -> LayoutOptions:
     return LayoutOptions(
         direction_deg=g("area", "direction_deg"), extension_bases=g("area", "extension_bases", 1),
         turnaround_m=g("uav", "turnaround_m"), turn_radius_m=g("uav", "turn_radius_m"),
-        bank_deg=g("uav", "bank_deg"), max_flight_time_min=g("uav", "max_flight_time_min"),
-        ground_m=float(g("area", "ground_elevation_m", 0.0)))
+        bank_deg=g("uav", "bank_deg"), max_flight_time_min=g("uav", "max_flight_time_min"))
 
 
 def _uav_kwargs(project: Project, height_m: float, the_area: Area | None) -> dict[str, Any]:
-    g = project.get
-    area = _area(project)
-    kw: dict[str, Any] = dict(
-        height_m=height_m, camera=g("uav", "camera"), pixel_um=g("uav", "pixel_um"),
-        focal_mm=g("uav", "focal_mm"), sensor_mm=g("uav", "sensor_mm"),
-        f_number=g("uav", "f_number"), height_tolerance_pct=g("uav", "height_tolerance_pct", 0.0),
-        map_scale=g("map", "scale"), relief_interval_m=g("map", "relief_interval_m"),
-        norms=g("norms", "set", "gkinp-02-036-02"), object_size_m=g("norms", "object_size_m"),
-        shape=g("norms", "shape"), object_name=g("norms", "object_name"),
-        probability=g("norms", "probability"),
-        height_formula=g("uav", "height_formula"),
-        max_height_m=g("uav", "max_height_m"), gsd_cm=g("uav", "gsd_cm"),
-        r_max=g("uav.target", "r_max", 0.3), r_min=g("uav.target", "r_min", 0.1),
-        threshold_k0=g("uav.atmosphere", "threshold_k0"),
-        haze_contrast=g("uav.atmosphere", "haze_contrast"),
-        shift_factor=g("uav.motion", "shift_factor", 1.0),
-        random_speed_ms=g("uav.motion", "random_speed_ms", 0.0),
-        roll_rate_rad_s=g("uav.motion", "roll_rate_rad_s", 0.0),
-        pitch_rate_rad_s=g("uav.motion", "pitch_rate_rad_s", 0.0),
-        yaw_rate_rad_s=g("uav.motion", "yaw_rate_rad_s", 0.0), area_m=area,
-        roll_deg=g("uav", "roll_deg", 0.0), pitch_deg=g("uav", "pitch_deg", 0.0),
-        orientation=g("uav", "orientation"), area=the_area,
-        layout_options=_layout_options(project))
-    kw["exposure_s"] = g("uav", "exposure_s", 0.001)
-    for key in ("speed_ms", "forward_overlap_pct", "side_overlap_pct"):
-        kw[key] = g("uav", key)  # defaults by carrier in uav_job
+    kw = _job_kwargs(project, "uav", uav_job)
+    kw.update(height_m=height_m, area_m=_area(project), area=the_area,
+              layout_options=_layout_options(project))
     return kw
 
 
@@ -345,7 +299,7 @@ def _uav(project: Project, the_area: Area | None) -> UavSpec:
         try:
             return uav_job(**_uav_kwargs(project, height_m, the_area))
         except InputError as exc:
-            raise _as_project_error(project, exc, _UAV_KEYS) from None
+            raise _as_project_error(project, exc, "uav") from None
 
     first_height = planned if planned is not None else PROVISIONAL_HEIGHT_M
     first = job_at(first_height)
@@ -431,5 +385,7 @@ def plan_project(project: Project) -> PlanResult:
                 uav.recommended_height_m < uav.planned_height_m:
             warnings.append(PlanWarning("height_lowered", uav.reason))
     comparison = _comparison(film, uav) if film and uav else []
+    design = survey_design(project, film, uav)
+    warnings.extend(design.warnings)
     return PlanResult(project=project, meta=meta, film=film, uav=uav, comparison=comparison,
-                      warnings=tuple(warnings), area=area)
+                      warnings=tuple(warnings), area=area, design=design)

@@ -2,6 +2,9 @@
 
 Reports *render* result objects (:class:`scanplan.rules.film.ScanPlan`,
 :class:`scanplan.rules.uav.UavPlan` and their norm set); they never recompute a number.
+What they show is built once per result by :func:`scanplan.reports.view.build_view` (the
+sections, the labels and the number formatter of the report's language, the plots) and
+laid out by the renderers: :mod:`.text`, :mod:`.jsondoc`, :mod:`.excel`, :mod:`.pdf`.
 Writing is atomic: the whole file is rendered to memory, written to a temporary file
 beside the target and renamed over it, so a crash never leaves a half-written report and
 never destroys the previous one. Several files that belong together (spec.xlsx and

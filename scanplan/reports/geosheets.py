@@ -43,7 +43,7 @@ def add_geo_sheets(book: Any, spec: Any) -> None:
 
 
 def _strips_sheet(book: Any, layout: FlightLayout, key: str) -> None:
-    from .excel import _header, put_num, put_text
+    from .excel.cells import _header, put_num, put_text
 
     loc = book.loc
     ws = book.sheet(key, landscape=True,
@@ -98,7 +98,7 @@ def _strips_sheet(book: Any, layout: FlightLayout, key: str) -> None:
 
 
 def _photos_sheet(book: Any, layout: FlightLayout, key: str) -> None:
-    from .excel import _header, put_num
+    from .excel.cells import _header, put_num
 
     ph = layout.photos
     cols = [c for c in PHOTO_COLUMNS if c in ph.columns]

@@ -266,6 +266,10 @@ def plan_result_dict(result: Any) -> dict[str, Any]:
     if result.comparison:
         spec["comparison"] = result.comparison
     doc["specification"] = spec
+    if getattr(result, "design", None) is not None:
+        from ..project.design import design_dict
+
+        doc["survey_design"] = design_dict(result.design)
     doc["warnings"] = [warning_dict(w) for w in result.warnings]
     return _clean(doc)
 

@@ -334,6 +334,13 @@ LABELS: dict[str, dict[str, str]] = {
         "param_image_measurement_px": "Parallax measurement error σ_px, px",
         "param_multi_ray": "Multi-ray improvement of the height error",
         "param_uav_max_height_m": "Altitude ceiling without an airspace-use permission, m",
+        "param_block_relief_flat_pct": "Ground height range of a block at one height, flat "
+                                       "terrain, % of the flight height",
+        "param_block_relief_hilly_pct": "Ground height range of a block at one height, hilly "
+                                        "terrain, % of the flight height",
+        "param_block_relief_mountain_pct": "Ground height range of a block at one height, "
+                                           "mountainous terrain, % of the flight height",
+        "param_min_sun_elevation_deg": "Lowest sun elevation for photography, °",
         "value_digital_height_formula_normal_case": "normal-case stereo (B/f)",
         "value_digital_height_formula_instruction": "as printed in the Instruction (f/b)",
         "value_digital_height_formula_parallax": "parallax form (b/f)",
@@ -679,6 +686,16 @@ LABELS: dict[str, dict[str, str]] = {
         "param_multi_ray": "Многолучевое уточнение ошибки высот",
         "param_uav_max_height_m": "Предельная высота полёта без разрешения на использование "
                                   "воздушного пространства, м",
+        "param_block_relief_flat_pct": "Перепад высот в пределах съёмочного участка при одной "
+                                       "высоте фотографирования, равнинная местность, % от "
+                                       "высоты",
+        "param_block_relief_hilly_pct": "Перепад высот в пределах съёмочного участка при одной "
+                                        "высоте фотографирования, всхолмлённая местность, % от "
+                                        "высоты",
+        "param_block_relief_mountain_pct": "Перепад высот в пределах съёмочного участка при "
+                                           "одной высоте фотографирования, горная местность, % "
+                                           "от высоты",
+        "param_min_sun_elevation_deg": "Наименьшая высота Солнца при аэрофотосъёмке, °",
         "value_digital_height_formula_normal_case": "нормальный случай стереосъёмки (B/f)",
         "value_digital_height_formula_instruction": "по Инструкции (f/b)",
         "value_digital_height_formula_parallax": "параллактическая (b/f)",
@@ -727,88 +744,12 @@ def t(key: str, locale: str = "en", platform: str = "uav") -> str:
     return LABELS[loc][key]
 
 
-# Documents fit to sign (issue 13): parameter names with units, values in words, the
-# approval/agreement blocks, sheet numbering, references, the warnings box.
-_SIGNING: dict[str, dict[str, str]] = {
-    "en": {
-        "param_planimetric_accuracy_mm": "Planimetric accuracy V_s, mm on the map",
-        "param_height_accuracy_fraction": "Height accuracy V_z, fraction of the relief interval",
-        "param_processing_loss_k": "Accuracy loss in processing k",
-        "param_photoplan_resolution_mm": "Resolution of a graphic photo-plan, mm on the plan",
-        "param_pr_coefficient": "Coefficient k_R in P_R = k_R/R",
-        "param_probability": "Required recognition probability P",
-        "param_shape": "Shape of the smallest objects (coefficient B)",
-        "param_height_formula": "Height accuracy formula (P_Z)",
-        "param_constraints": "Constraints checked",
-        "param_standard_forward_overlap_pct": "Forward overlap the height formula assumes, %",
-        "param_recognition_rounding": "√(−ln P) in the recognition model",
-        "param_interpretation_min_lpmm": "Resolving power interpretation needs, from, lines/mm",
-        "param_interpretation_max_lpmm": "Resolving power interpretation needs, to, lines/mm",
-        "value_height_formula_instruction": "as printed in the Instruction (f/b)",
-        "value_height_formula_parallax": "parallax form (b/f)",
-        "value_recognition_rounding_exact": "computed, not rounded",
-        "value_recognition_rounding_paper": "rounded to 0.53 as in the paper",
-        "obj_unnamed": "object of the given size",
-        "agreed": "AGREED",
-        "organisation": "Organisation",
-        "contract_number": "Contract No.",
-        "compiled_by": "Compiled by",
-        "checked_by": "Checked by",
-        "sheet": "Sheet",
-        "sheets_of": "of",
-        "references": "References",
-        "warnings_box": "Warnings",
-        "warnings_box_more": "Details: the warnings of each section below.",
-        "pdf_table_of_objects": "norm table of the smallest objects",
-        "xlsx_recommended": "recommended",
-        "xlsx_planned": "planned",
-        "xlsx_highest_flown": "highest flown",
-        "xlsx_max_flown": "flown at the maximum height, up to",
-        "xlsx_marker": "Chart marker",
-        "pdf_warn_haze_default_height": "Haze contrast assumed for clear air",
-    },
-    "ru": {
-        "param_planimetric_accuracy_mm": "Точность в плане V_s, мм в масштабе карты",
-        "param_height_accuracy_fraction": "Точность по высоте V_z, доля высоты сечения рельефа",
-        "param_processing_loss_k": "Потеря точности при обработке k",
-        "param_photoplan_resolution_mm": "Разрешающая способность графического фотоплана, мм "
-                                         "на плане",
-        "param_pr_coefficient": "Коэффициент k_R в P_R = k_R/R",
-        "param_probability": "Требуемая вероятность распознавания P",
-        "param_shape": "Форма наименьших объектов (коэффициент B)",
-        "param_height_formula": "Формула точности по высоте (P_Z)",
-        "param_constraints": "Проверяемые условия",
-        "param_standard_forward_overlap_pct": "Продольное перекрытие, принятое в формуле "
-                                              "точности по высоте, %",
-        "param_recognition_rounding": "√(−ln P) в модели распознавания",
-        "param_interpretation_min_lpmm": "Разрешающая способность для дешифрирования, от, мм⁻¹",
-        "param_interpretation_max_lpmm": "Разрешающая способность для дешифрирования, до, мм⁻¹",
-        "value_height_formula_instruction": "по Инструкции (f/b)",
-        "value_height_formula_parallax": "параллактическая (b/f)",
-        "value_recognition_rounding_exact": "точное значение",
-        "value_recognition_rounding_paper": "округлено до 0,53, как в статье",
-        "obj_unnamed": "объект заданного размера",
-        "agreed": "СОГЛАСОВАНО",
-        "organisation": "Организация",
-        "contract_number": "Договор №",
-        "compiled_by": "Составил",
-        "checked_by": "Проверил",
-        "sheet": "Лист",
-        "sheets_of": "Листов",
-        "references": "Список литературы",
-        "warnings_box": "Предупреждения",
-        "warnings_box_more": "Подробно — в предупреждениях разделов ниже.",
-        "pdf_table_of_objects": "таблица наименьших объектов нормативов",
-        "xlsx_recommended": "рекомендуемый",
-        "xlsx_planned": "плановая",
-        "xlsx_highest_flown": "наибольшая фактическая",
-        "xlsx_max_flown": "фактическая при максимальной высоте, до",
-        "xlsx_marker": "Отметка на графике",
-        "pdf_warn_haze_default_height": "Контраст дымки принят для чистого воздуха",
-    },
-}
+from .labels_more import SIGNING as _SIGNING  # noqa: E402
+from .labels_more import TERMINAL as _TERMINAL  # noqa: E402
+
 for _loc in LOCALES:
     LABELS[_loc].update(_SIGNING[_loc])
+    LABELS[_loc].update(_TERMINAL[_loc])
 
 # data volume as JPEG (the uncompressed volume / scanplan.core.flight.JPEG_COMPRESSION_RATIO)
 LABELS["en"]["data_volume_jpeg_gb"] = "Data volume as JPEG (estimate, 9:1), GB"
@@ -822,6 +763,10 @@ LABELS["ru"]["reach_pixel"] = "Предельный масштаб снимко�
 LABELS["en"]["reach_interpretable"] = "Largest photo scale with the map object interpretable"
 LABELS["ru"]["reach_interpretable"] = "Предельный масштаб снимков с дешифрированием объекта"
 
+from .labels_more import DESIGN as _DESIGN  # noqa: E402  (the survey design sheet)
+
+for _loc in LOCALES:
+    LABELS[_loc].update(_DESIGN[_loc])
 # Issue 11: the flight over the area — map page, strips table, Strips and Photos sheets,
 # names inside the exported files.
 _GEO: dict[str, dict[str, str]] = {

@@ -17,12 +17,14 @@ from collections.abc import Callable, Sequence
 from typing import Any
 
 import matplotlib
+from matplotlib.backends.backend_svg import FigureCanvasSVG
 from matplotlib.figure import Figure
 from matplotlib.ticker import FixedLocator, FuncFormatter, NullFormatter
 
 from ..rules.film import CONSTRAINTS, ScanPlan
 from ..rules.uav import UavPlan
 from .labels import t
+from .view import Numbers
 
 __all__ = ["constraints_svg", "height_svg", "mtf_svg", "number"]
 
@@ -49,7 +51,8 @@ _SIZE_IN = (6.6, 3.0)
 
 
 def number(x: float, digits: int, locale: str) -> str:
-    """``x`` with ``digits`` decimals, decimal comma in Russian, thin-space thousands.
+    """``x`` with ``digits`` decimals, decimal comma in Russian, thin-space thousands
+    (:meth:`scanplan.reports.view.Numbers.num`).
 
     Parameters
     ----------
@@ -66,20 +69,14 @@ def number(x: float, digits: int, locale: str) -> str:
         ``"12.5"`` / ``"12,5"``; ``"10,000"`` / ``"10 000"`` (no-break space); ``"—"`` for
         a non-finite value.
     """
-    if x is None or not math.isfinite(x):
-        return "—"
-    text = f"{x:,.{digits}f}"
-    if locale == "ru":
-        return text.replace(",", "\u00a0").replace(".", ",")
-    return text
+    return Numbers(locale).num(x, digits)
 
 
 def _tick(locale: str) -> FuncFormatter:
+    numbers = Numbers(locale)
+
     def fmt(x: float, _pos: int | None = None) -> str:
-        if float(x).is_integer():
-            return number(x, 0, locale)
-        text = f"{x:.6g}"
-        return text.replace(".", ",") if locale == "ru" else text
+        return numbers.tick(x)
     return FuncFormatter(fmt)
 
 
@@ -97,7 +94,12 @@ def _nice_log_ticks(lo: float, hi: float) -> list[float]:
 def _svg(draw: Callable[[Figure], None]) -> str:
     with matplotlib.rc_context(_RC):
         fig = Figure(figsize=_SIZE_IN, layout="constrained")
+        FigureCanvasSVG(fig)  # the text is measured as the SVG writer sets it
         draw(fig)
+        # The constrained layout is computed once, here; savefig would otherwise draw the
+        # whole figure a first time (to an idle renderer) only to lay it out. Same bytes.
+        fig.get_layout_engine().execute(fig)
+        fig.set_layout_engine("none")
         buf = io.StringIO()
         fig.savefig(buf, format="svg", metadata={"Date": None, "Creator": None})
     # same glyphs and metrics: point the text at the bundled font, never a system one

@@ -64,6 +64,11 @@ _LOCATORS: dict[str, tuple[tuple[str, str], ...]] = {
         (r"\bconclusion (\d+)", r"conclusion \1"),
     ),
     "ru": (
+        (r"\bAppendix B, Table B\.1", "прил. Б, табл. Б.1"),
+        (r"\bTable B\.1", "табл. Б.1"),
+        (r"\bfootnote: towns with dense multi-storey buildings",
+         "сноска: городские населённые пункты с многоэтажной и плотной застройкой"),
+        (r"§(\d+)\.(\d+)\.(\d+)", r"п. \1.\2.\3"),
         (r"\bconclusions after Table (\d+)", r"выводы после табл. \1"),
         (r"\bTable (\d+) discussion", r"пояснения к табл. \1"),
         (r"\b(?:its )?ref\. \[(\d+)\]", r"его источник № \1"),
@@ -77,7 +82,7 @@ _LOCATORS: dict[str, tuple[tuple[str, str], ...]] = {
         (r"\band\b", "и"),
         (r"\bplus\b", "и"),
         (r"\bwith\b", "с"),
-        (r"(\d)\.(\d)", r"\1,\2"),
+        (r"(?<![\d.])(\d+)\.(\d+)(?![.\d])", r"\1,\2"),
     ),
 }
 

@@ -11,6 +11,8 @@ from typing import Any
 from ..rules.film import CONSTRAINTS, ScanPlan
 from ..rules.uav import UavPlan
 from .jsondoc import scale_value
+from .labels import LABELS, t
+from .view import Numbers
 
 __all__ = ["format_plan_result", "format_scan_plan", "format_uav_plan", "table"]
 
@@ -28,17 +30,16 @@ def table(rows: Sequence[Sequence[str]], *, align: str = "", gap: int = 2) -> st
     return "\n".join(out)
 
 
+_EN = Numbers("en")  # the terminal reports of `scan` and `uav` are in English
+
+
 def _num(x: float | None, digits: int = 1) -> str:
-    if x is None or (isinstance(x, float) and not math.isfinite(x)):
-        return "—"
-    return f"{x:.{digits}f}"
+    return _EN.fixed(x, digits)
 
 
 def _um(x: float | None) -> str:
     """A pixel [µm]: one decimal, or two significant digits below 1 µm (never ``0.0``)."""
-    if x is None or not math.isfinite(x) or x >= 0.95:
-        return _num(x)
-    return f"{x:.2g}"
+    return _EN.um(x)
 
 
 def _interval(seconds: float) -> str:
@@ -107,24 +108,7 @@ def format_scan_plan(plan: ScanPlan, norm_name: str = "", norm_title: str = "") 
             f"P ≥ {plan.rules.probability:g} on photos up to 1:{math.floor(mci):d} "
             f"(Mc/Mk ≤ {mci / inp.map_scale:.1f}) at R {inp.resolving_power_lpmm:g} lines/mm.",
             ""))
-    if plan.max_photo_scales:
-        lines.append("")
-        who = " and ".join(x for x in (f"scanner {inp.scanner}" if inp.scanner else "",
-                                       "--pixel-um" if inp.candidate_pixels_um else "") if x)
-        lines.append(f"Largest photo scale each scan pixel supports ({who}):")
-        both = plan.interpretation_limit_photo_scale is not None
-        rows = [["pixel µm", "largest photo scale", "limited by"]
-                + (["with the object interpretable"] if both else [])]
-        for r in plan.max_photo_scales:
-            if r.max_photo_scale > 0:
-                row = [f"{r.pixel_um:g}", f"1:{math.floor(r.max_photo_scale):d}", r.limit]
-            else:
-                row = [f"{r.pixel_um:g}", "none", "PR (pixel coarser than P_R)"]
-            if both:
-                mi = r.max_photo_scale_interpretable
-                row.append(f"1:{math.floor(mi):d}" if mi else "none")
-            rows.append(row)
-        lines.append(table(rows, align="rrlr" if both else "rrl"))
+    lines += _reach_lines(plan)
     if plan.warnings:
         lines.append("")
         lines.append("Warnings:")
@@ -181,6 +165,45 @@ def format_uav_plan(plan: UavPlan, norm_name: str = "") -> str:
     lines.append(table(rows, align="ll" + "r" * (len(rows[0]) - 2)))
     lines.append(f"blur ≤ 0.5 px needs exposure ≤ 1/{math.ceil(1 / plan.max_exposure_s):d} s "
                  f"or speed ≤ {plan.max_speed_ms:.1f} m/s")
+    lines += _flight_lines(plan)
+    lines += _recognition_lines(plan)
+    lines += _limit_lines(plan)
+    if plan.warnings:
+        lines += ["", "Warnings:"]
+        for w in plan.warnings:
+            lines.append(_wrap(f"{w.message} [{w.code}]", "  ! "))
+    return "\n".join(lines)
+
+
+def _reach_lines(plan: ScanPlan) -> list[str]:
+    """The largest photo scale each scan pixel supports (scanner steps, --pixel-um)."""
+    inp = plan.inputs
+    lines: list[str] = []
+    if plan.max_photo_scales:
+        lines.append("")
+        who = " and ".join(x for x in (f"scanner {inp.scanner}" if inp.scanner else "",
+                                       "--pixel-um" if inp.candidate_pixels_um else "") if x)
+        lines.append(f"Largest photo scale each scan pixel supports ({who}):")
+        both = plan.interpretation_limit_photo_scale is not None
+        rows = [["pixel µm", "largest photo scale", "limited by"]
+                + (["with the object interpretable"] if both else [])]
+        for r in plan.max_photo_scales:
+            if r.max_photo_scale > 0:
+                row = [f"{r.pixel_um:g}", f"1:{math.floor(r.max_photo_scale):d}", r.limit]
+            else:
+                row = [f"{r.pixel_um:g}", "none", "PR (pixel coarser than P_R)"]
+            if both:
+                mi = r.max_photo_scale_interpretable
+                row.append(f"1:{math.floor(mi):d}" if mi else "none")
+            rows.append(row)
+        lines.append(table(rows, align="rrlr" if both else "rrl"))
+    return lines
+
+
+def _flight_lines(plan: UavPlan) -> list[str]:
+    """The flight geometry at the planned height."""
+    h = plan.heights_m
+    lines: list[str] = []
     fl = plan.flight
     lines += ["", "Flight geometry (at the planned height):"]
     frows = [["footprint", f"{fl['footprint_across_m']:.0f} × {fl['footprint_along_m']:.0f} m"],
@@ -200,6 +223,13 @@ def format_uav_plan(plan: UavPlan, norm_name: str = "") -> str:
         if "data_volume_bytes" in fl:
             frows.append(["data volume", _volume(fl["data_volume_bytes"])])
     lines.append(table([[f"  {a}", b] for a, b in frows], align="ll"))
+    return lines
+
+
+def _recognition_lines(plan: UavPlan) -> list[str]:
+    """The recognition probability of the norm objects."""
+    h = plan.heights_m
+    lines: list[str] = []
     if plan.recognition:
         lines += ["", "Recognition probability of the norm objects (P = exp(−(B·L/L_obj)²)):"]
         rrows = [["  object", "map", "size m", "shape", f"{h['planned']:g} m",
@@ -210,6 +240,13 @@ def format_uav_plan(plan: UavPlan, norm_name: str = "") -> str:
                           _num(r.probability_at_max_height, 2),
                           _num(r.probability_corner_at_max_height, 2)])
         lines.append(table(rrows, align="llrlrrr"))
+    return lines
+
+
+def _limit_lines(plan: UavPlan) -> list[str]:
+    """The constraints as maximum planned heights, the binding one, height accuracy."""
+    inp, h = plan.inputs, plan.heights_m
+    lines: list[str] = []
     if plan.limits:
         tol = inp.height_tolerance_up_pct
         head = (f"Maximum planned height for map 1:{scale_value(inp.map_scale)}, relief "
@@ -238,97 +275,39 @@ def format_uav_plan(plan: UavPlan, norm_name: str = "") -> str:
                 f"Instruction {forms['instruction']['max_planned_height_m']:.0f} m, parallax "
                 f"(single-step base) {forms['parallax']['max_planned_height_m']:.0f} m "
                 f"[{acc['formula']} used].", ""))
-    if plan.warnings:
-        lines += ["", "Warnings:"]
-        for w in plan.warnings:
-            lines.append(_wrap(f"{w.message} [{w.code}]", "  ! "))
-    return "\n".join(lines)
+    return lines
 
 
-_TERMINAL: dict[str, dict[str, str]] = {
-    "en": {
-        "map": "map", "relief": "relief interval", "customer": "customer",
-        "contractor": "contractor", "film": "Film:", "uav": "UAV:",
-        "photo_scale": "recommended photo scale", "scan_pixel": "scan pixel",
-        "scanner_step": "scanner step", "binding": "binding constraint",
-        "recognition": "recognition of the map object", "frame": "scanned frame",
-        "frames": "frames for the area", "strips": "strips",
-        "scanned": "scanned, uncompressed",
-        "photo_scale_archive": "photo scale (existing photos, given)",
-        "height": "recommended flight height", "flown": "flown up to",
-        "max_height": "maximum planned height", "gsd": "GSD / ground resolution L",
-        "overlaps": "overlaps / base / spacing", "interval": "photo interval",
-        "photos": "photos / strips", "flight": "flight", "volume": "data volume",
-        "blur": "blur limit", "exposure": "exposure", "or_speed": "or speed",
-        "side_by_side": "Film and UAV side by side:", "quantity": "quantity",
-        "aircraft": f"{_carrier('aircraft')}:",
-        "side_by_side_aircraft": "Film and digital camera side by side:",
-        "digital_col": "digital",
-        "film_col": "film", "uav_col": "UAV", "unit": "unit", "warnings": "Warnings:",
-        "m": "m", "um": "µm", "mb": "MB", "gb": "GB", "s": "s", "km": "km", "min": "min",
-        "ms": "m/s",
-        "no_ceiling": "without the ceiling",
-        "no_ceiling_note": "(an airspace-use permission is needed above the ceiling)",
-        "sigma_z": "height error σ_Z", "at": "at", "required_rms": "required",
-        "rms": "RMS",
-    },
-    "ru": {
-        "map": "карта", "relief": "высота сечения рельефа", "customer": "заказчик",
-        "contractor": "исполнитель", "film": "Плёночная аэрофотосъёмка:", "uav": "БПЛА:",
-        "photo_scale": "рекомендуемый масштаб снимков", "scan_pixel": "пиксель сканирования",
-        "scanner_step": "шаг сканера", "binding": "определяющее условие",
-        "recognition": "вероятность распознавания объекта карты", "frame": "объём снимка",
-        "frames": "снимков на объект", "strips": "маршрутов",
-        "scanned": "сканирование без сжатия",
-        "photo_scale_archive": "масштаб снимков (имеющиеся снимки, задан)",
-        "height": "рекомендуемая высота полёта", "flown": "фактически до",
-        "max_height": "максимальная плановая высота", "gsd": "GSD / линейное разрешение L",
-        "overlaps": "перекрытия / базис / между маршрутами",
-        "interval": "интервал фотографирования", "photos": "снимков / маршрутов",
-        "flight": "маршруты", "volume": "объём данных", "blur": "предел смаза",
-        "exposure": "выдержка", "or_speed": "или скорость",
-        "side_by_side": "Плёнка и БПЛА:", "quantity": "показатель", "film_col": "плёнка",
-        "aircraft": "Аэрофотосъёмка цифровой камерой:",
-        "side_by_side_aircraft": "Плёнка и цифровая камера:", "digital_col": "цифровая",
-        "uav_col": "БПЛА", "unit": "ед.", "warnings": "Предупреждения:",
-        "m": "м", "um": "мкм", "mb": "МБ", "gb": "ГБ", "s": "с", "km": "км", "min": "мин",
-        "ms": "м/с",
-        "no_ceiling": "без учёта предельной высоты",
-        "no_ceiling_note": "(выше предельной нужно разрешение на использование воздушного "
-                           "пространства)",
-        "sigma_z": "ошибка высот σ_Z", "at": "на высоте", "required_rms": "требуется",
-        "rms": "СКО",
-    },
-}
-_CMP_RU = {"pixel on the ground": "пиксель на местности",
-           "resolution on the ground (A / L)": "разрешение на местности (A / L)",
-           "recognition probability of the map object": "вероятность распознавания",
-           "frames / photos": "снимков", "data volume": "объём данных"}
+class _Terminal:
+    """The terminal summary's words (``term_*`` of the label catalogue) in one language."""
+
+    def __init__(self, locale: str) -> None:
+        self.locale = locale
+
+    def __getitem__(self, key: str) -> str:
+        return t(f"term_{key}", self.locale)
+
+    def get(self, key: str, default: str) -> str:
+        """The word ``key``, or ``default`` when the catalogue has none."""
+        return LABELS[self.locale].get(f"term_{key}", default)
 
 
 def _n(x: float | None, digits: int, loc: str, group: bool = False) -> str:
     """A number in the locale's convention (decimal comma and thin grouping in Russian)."""
-    if x is None or (isinstance(x, float) and not math.isfinite(x)):
-        return "—"
-    text = f"{x:,.{digits}f}" if group else f"{x:.{digits}f}"
-    if loc == "ru":
-        text = text.replace(",", "\u00a0").replace(".", ",")
-    return text
+    return Numbers(loc).num(x, digits) if group else Numbers(loc).fixed(x, digits)
 
 
 def _um_loc(x: float | None, loc: str) -> str:
     """A pixel [µm] as :func:`_um` writes it, with the locale's decimal separator."""
-    text = _um(x)
-    return text.replace(".", ",") if loc == "ru" else text
+    return Numbers(loc).um(x)
 
 
 def _g(x: float, loc: str) -> str:
-    text = f"{x:g}"
-    return text.replace(".", ",") if loc == "ru" else text
+    return Numbers(loc).short(x)
 
 
 def _sc(x: float, loc: str) -> str:
-    return "1:" + (_n(float(x), 0, loc, group=True) if loc == "ru" else str(scale_value(x)))
+    return "1:" + (Numbers(loc).num(float(x), 0) if loc == "ru" else str(scale_value(x)))
 
 
 def format_plan_result(result: Any, locale: str | None = None) -> str:
@@ -337,8 +316,8 @@ def format_plan_result(result: Any, locale: str | None = None) -> str:
     from ..messages import localize
 
     meta = result.meta
-    loc = locale or (meta.locale if meta.locale in _TERMINAL else "en")
-    T = _TERMINAL[loc]
+    loc = locale or (meta.locale if meta.locale in LABELS else "en")
+    T = _Terminal(loc)
 
     def cname(cid: str) -> str:
         info = CONSTRAINTS[cid]
@@ -395,10 +374,14 @@ def format_plan_result(result: Any, locale: str | None = None) -> str:
                 if x is None:
                     return "—"
                 return _n(x, 3, loc, True) if isinstance(x, float) else str(x)
-            q = _CMP_RU.get(c["quantity"], c["quantity"]) if loc == "ru" else c["quantity"]
+            q = T.get(f"cmp_{c.get('key', '')}", c["quantity"])
             unit = {"m": T["m"], "GB": T["gb"]}.get(c["unit"], c["unit"])
             rows.append([f"  {q}", v(c["film"]), v(c["uav"]), unit])
         lines.append(table(rows, align="lrrl"))
+    from .design import design_text_lines
+
+    lines += [textwrap.fill(x.strip(), width=96, initial_indent="  ", subsequent_indent="    ")
+              if x.startswith("  ") else x for x in design_text_lines(result, loc)]
     if result.warnings:
         lines += ["", T["warnings"]]
         for w in result.warnings:
@@ -468,7 +451,7 @@ def format_layout(layout: Any, scale: str = "", locale: str = "en") -> str:
     return _wrap(text, "")
 
 
-def _uav_summary(u: Any, loc: str, T: dict[str, str], cname: Any) -> list[str]:
+def _uav_summary(u: Any, loc: str, T: _Terminal, cname: Any) -> list[str]:
     """The UAV part of :func:`format_plan_result`."""
     from ..messages import localize
 

@@ -274,6 +274,18 @@ def _hc_ground(inp: UavInputs, rules: ScanRules | None) -> DigitalLimit | None:
                         {"from_project": inp.ceiling_from_project})
 
 
+# --- GL: the largest GSD per plan scale of today's standard (ГОСТ Р 59562-2021, Table Б.1) --
+
+def _gl_ground(inp: UavInputs, rules: ScanRules | None) -> DigitalLimit | None:
+    if inp.gsd_limit_m is None or inp.map_scale is None:
+        return None
+    area = Message(f"gsd_area.{inp.gsd_limit_area}")
+    return DigitalLimit(inp.gsd_limit_m,
+                        Message("limit.GL", gsd=inp.gsd_limit_m * 100.0, map=inp.map_scale,
+                                area=area),
+                        {"area": inp.gsd_limit_area, "source": inp.gsd_limit_source})
+
+
 for _record in (
     Constraint("PS", "planimetric accuracy", "точность в плане", Message("protects.PS"),
                Message("equation.PS"), True, "GSD", _ps_pixel, _ps_reason, None, _ps_ground),
@@ -288,6 +300,10 @@ for _record in (
     Constraint("PD", "interpretation", "дешифрирование", Message("protects.PD"),
                Message("equation.PD"), True, "L", _pd_pixel, _pd_reason, _pd_details,
                _pd_ground),
+    Constraint("GL", "GSD limit of the plan scale",
+               "предельный размер пикселя на местности для масштаба плана",
+               Message("protects.GL"), Message("equation.GL"), False, "GSD",
+               ground_limit=_gl_ground),
     Constraint("GSD", "target GSD", "заданный размер пикселя на местности",
                Message("protects.GSD"), Message("equation.GSD"), False, "GSD",
                ground_limit=_gsd_ground, norm_switch=False, needs_map=False),

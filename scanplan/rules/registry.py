@@ -14,7 +14,7 @@ To add a constraint, write its function(s) and one :class:`Constraint` record in
 ``--json``, the terminal, the workbook and the PDF pick it up from here.
 
 >>> sorted(CONSTRAINTS)[:3]
-['GSD', 'HC', 'PD']
+['GL', 'GSD', 'HC']
 >>> CONSTRAINTS["PS"].workflows
 ('film', 'digital')
 >>> film_ids(("PS", "PR"))
@@ -188,7 +188,7 @@ def digital_ids(enabled: Iterable[str], *, with_map: bool) -> tuple[str, ...]:
 
 
 def _install_builtins() -> None:
-    from . import constraints  # noqa: F401  (registers PS, PZ, PP, PR, PD, GSD, HC)
+    from . import constraints  # noqa: F401  (registers PS, PZ, PP, PR, PD, GL, GSD, HC)
 
 
 _install_builtins()

@@ -283,6 +283,11 @@ class UavInputs:
     ceiling_m: float | None = None
     ceiling_from_project: bool = False
     gsd_target_m: float | None = None
+    gsd_limit_m: float | None = None
+    """The norm set's largest GSD for the map scale (table ``gsd_limits``) [m]."""
+    gsd_limit_area: str = "general"
+    """Its row: ``general`` or ``dense_urban``."""
+    gsd_limit_source: str = ""
 
 
 @dataclass(frozen=True)

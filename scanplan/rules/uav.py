@@ -33,7 +33,7 @@ from ..core import formulas as F
 from ..core import mtf as M
 from ..core.domains import check_domain
 from ..core.orientation import attitude_matrix, corner_gsd
-from ..errors import InputError
+from ..errors import FieldValueError, InputError
 from ..messages import Message
 from .constraints import height_accuracy as _height_accuracy  # noqa: F401  (tests, importers)
 from .film import overlap_warning
@@ -72,10 +72,8 @@ def _chain(inp: UavInputs, height_m: Any) -> tuple[M.Camera, M.Flight, M.Atmosph
 def _resolution(inp: UavInputs, height_m: Any) -> M.UAVResolution:
     try:
         return M.uav_resolution(*_chain(inp, height_m))
-    except ValueError as exc:  # the models name their field first: "pixel_um must be > 0"
-        name = str(exc).split(" ", 1)[0]
-        raise InputError(name, str(exc).split(" ", 1)[1] if " " in str(exc) else str(exc)
-                         ) from None
+    except FieldValueError as exc:  # the models name their field: a typed error, not a text
+        raise InputError(exc.field, exc.message) from None
 
 
 def _f(x: Any) -> float | None:

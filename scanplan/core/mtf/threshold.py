@@ -10,7 +10,7 @@ import numpy.typing as npt
 
 from scanplan.core.flight import _in_range, _nonnegative, _positive
 from scanplan.core.mtf._base import DEFAULT_K0, NDArrayFloat
-from scanplan.errors import pick_method
+from scanplan.errors import FieldValueError, pick_method
 
 
 def object_contrast(r_max: npt.ArrayLike, r_min: npt.ArrayLike) -> NDArrayFloat:
@@ -45,7 +45,7 @@ def object_contrast(r_max: npt.ArrayLike, r_min: npt.ArrayLike) -> NDArrayFloat:
         bad = np.broadcast_to(rmin, np.broadcast(rmin, rmax).shape)[
             np.broadcast_to(rmin > rmax, np.broadcast(rmin, rmax).shape)
         ]
-        raise ValueError(f"r_min must be <= r_max (got {float(bad.flat[0]):g})")
+        raise FieldValueError("r_min", f"must be <= r_max (got {float(bad.flat[0]):g})")
     return (rmax - rmin) / (rmax + rmin)
 
 

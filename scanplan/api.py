@@ -1,0 +1,504 @@
+"""The top-level Python API: plan from a notebook as from the command line.
+
+``scanplan.plan(project)``, ``scanplan.scan(...)``, ``scanplan.uav(...)`` and
+``scanplan.batch(paths)`` return result objects with the same four faces:
+
+- ``.to_dict()`` — exactly the ``--json`` document of the command line;
+- ``.to_frame()`` — a :class:`pandas.DataFrame` (units in the column names, see each
+  class);
+- ``.write(out_dir, formats=("xlsx", "pdf"))`` — the reports, through the same atomic
+  writers as ``scanplan plan --out``;
+- ``_repr_html_`` — a short summary a notebook shows.
+
+pandas is imported inside ``to_frame`` only: ``import scanplan`` stays light.
+
+>>> import scanplan
+>>> r = scanplan.scan(map_scale=2000, relief_interval_m=1.0, photo_scales=[10000],
+...                   camera="afa-te-100")
+>>> r.to_frame()[["photo_scale", "binding", "scan_pixel_um"]].round(1).to_dict("records")
+[{'photo_scale': 10000, 'binding': 'PD', 'scan_pixel_um': 11.1}]
+"""
+
+from __future__ import annotations
+
+import html
+import json
+import os
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from .errors import InputError
+
+if TYPE_CHECKING:  # pragma: no cover
+    import pandas as pd
+
+    from .project.api import ScanJob, UavJob
+    from .project.spec import PlanResult
+
+__all__ = ["BatchResult", "ProjectResult", "ScanResult", "UavResult", "batch", "plan",
+           "scan", "summary_frame", "summary_row", "uav"]
+
+FORMATS = ("xlsx", "pdf")
+
+
+def _json_round_trip(doc: Any) -> dict[str, Any]:
+    """The document as ``--json`` prints it, read back (messages become plain text)."""
+    return json.loads(json.dumps(doc, ensure_ascii=False, allow_nan=False))
+
+
+def _write(out_dir: str | os.PathLike[str], stem: str, formats: Iterable[str], *,
+           scan: Any = None, uav: Any = None, spec: Any = None, meta: Any = None,
+           force: bool = False, inputs: Iterable[str] = ()) -> list[Path]:
+    """Render the reports to memory, then write them as one transaction (all or none);
+    the targets are checked as the command line's (never an input file, never a file
+    scanplan did not write unless ``force``)."""
+    from .outpaths import check_target
+    from .reports import ReportMeta, write_atomic_many
+
+    kinds = list(dict.fromkeys(formats))
+    unknown = [k for k in kinds if k not in FORMATS]
+    if unknown or not kinds:
+        raise InputError("formats", f"must name some of {', '.join(FORMATS)} (got {kinds!r})")
+    folder = Path(out_dir)
+    folder.mkdir(parents=True, exist_ok=True)
+    targets = {kind: str(folder / f"{stem}.{kind}") for kind in kinds}
+
+    def check() -> None:
+        for kind, path in targets.items():
+            check_target(path, "out_dir", kind, inputs=inputs, force=force)
+
+    check()
+    files: dict[str, bytes] = {}
+    extra = {"spec": spec} if spec is not None else {}
+    meta = meta or ReportMeta()
+    if meta.locale in ("en", "ru"):  # one view for every document: plots drawn once
+        from .reports.view import build_view
+
+        extra["view"] = build_view(scan=scan, uav=uav, meta=meta, spec=spec)
+    for kind, path in targets.items():
+        if kind == "xlsx":
+            from .reports.excel import render_xlsx as render
+        else:
+            from .reports.pdf import render_pdf as render
+        files[path] = render(scan=scan, uav=uav, meta=meta, **extra)
+    return write_atomic_many(files, check=check)
+
+
+def _table_html(title: str, rows: list[tuple[str, Any]]) -> str:
+    body = "".join(f"<tr><th style='text-align:left'>{html.escape(k)}</th>"
+                   f"<td>{html.escape(str(v))}</td></tr>" for k, v in rows)
+    return f"<div><strong>{html.escape(title)}</strong><table>{body}</table></div>"
+
+
+def _fmt(x: float | None, digits: int = 1, unit: str = "") -> str:
+    return "—" if x is None else f"{x:,.{digits}f}{(' ' + unit) if unit else ''}"
+
+
+@dataclass(frozen=True)
+class ScanResult:
+    """A film scan plan (``scanplan scan``).
+
+    ``to_frame()``: one row per photo scale — ``photo_scale`` (Mc), ``binding`` (the
+    constraint id), ``scan_pixel_um``, ``scanner_pixel_um`` (rounded to the scanner's
+    steps; NaN without a scanner), ``resolution_on_ground_mm`` (A), ``recognition_probability``,
+    ``frame_megabytes``, and one ``pixel_um_<ID>`` column per evaluated constraint.
+    """
+
+    job: ScanJob
+
+    def __getattr__(self, name: str) -> Any:
+        """The engine plan's fields (``result.scenarios``, ``result.gsd_m``) as before."""
+        if name.startswith("_") or name == "job":
+            raise AttributeError(name)
+        return getattr(self.job.plan, name)
+
+    @property
+    def plan(self) -> Any:
+        """The engine's :class:`~scanplan.rules.results.ScanPlan`."""
+        return self.job.plan
+
+    def to_dict(self) -> dict[str, Any]:
+        """The ``scanplan scan --json`` document."""
+        from .reports.jsondoc import scan_plan_dict
+
+        return _json_round_trip(scan_plan_dict(self.job.plan, self.job.norm_set))
+
+    def to_frame(self) -> pd.DataFrame:
+        """One row per photo scale (columns in the class docstring)."""
+        import pandas as pd
+
+        rows = []
+        for s in self.job.plan.scenarios:
+            row: dict[str, Any] = {
+                "photo_scale": int(s.photo_scale) if float(s.photo_scale).is_integer()
+                else s.photo_scale, "binding": s.binding, "scan_pixel_um": s.scan_pixel_um,
+                "scanner_pixel_um": s.scanner_pixel_um,
+                "resolution_on_ground_mm": s.resolution_on_ground_mm,
+                "recognition_probability": s.recognition_probability,
+                "frame_megabytes": s.frame_megabytes}
+            row.update({f"pixel_um_{c.id}": c.pixel_um for c in s.constraints})
+            rows.append(row)
+        return pd.DataFrame(rows)
+
+    def write(self, out_dir: str | os.PathLike[str], formats: Iterable[str] = FORMATS, *,
+              name: str = "scan", force: bool = False) -> list[Path]:
+        """Write ``NAME.xlsx`` / ``NAME.pdf`` into ``out_dir`` atomically; the paths."""
+        return _write(out_dir, name, formats, scan=self.job, force=force)
+
+    def _repr_html_(self) -> str:
+        rows = [(f"1:{r['photo_scale']:g}", f"{r['scan_pixel_um']:.1f} µm ({r['binding']})")
+                for r in self.to_frame().to_dict("records")]
+        return _table_html("scanplan: film scan pixel by photo scale", rows)
+
+
+@dataclass(frozen=True)
+class UavResult:
+    """A digital-camera flight plan (``scanplan uav``).
+
+    ``to_frame()``: one row per constraint — ``constraint`` (id), ``name``, ``compares``
+    (GSD, L or H), ``limit_m`` (the ground limit), ``max_planned_height_m``,
+    ``max_flown_height_m``, ``margin_pct`` (at the planned height) and ``binding``. Empty
+    without a map scale or a target GSD.
+    """
+
+    job: UavJob
+
+    def __getattr__(self, name: str) -> Any:
+        """The engine plan's fields (``result.scenarios``, ``result.gsd_m``) as before."""
+        if name.startswith("_") or name == "job":
+            raise AttributeError(name)
+        return getattr(self.job.plan, name)
+
+    @property
+    def plan(self) -> Any:
+        """The engine's :class:`~scanplan.rules.results.UavPlan`."""
+        return self.job.plan
+
+    def to_dict(self) -> dict[str, Any]:
+        """The ``scanplan uav --json`` document."""
+        from .reports.jsondoc import uav_plan_dict
+
+        return _json_round_trip(uav_plan_dict(self.job.plan, self.job.norm_set))
+
+    def to_frame(self) -> pd.DataFrame:
+        """One row per constraint (columns in the class docstring)."""
+        import pandas as pd
+
+        cols = ["constraint", "name", "compares", "limit_m", "max_planned_height_m",
+                "max_flown_height_m", "margin_pct", "binding"]
+        rows = [{"constraint": cid, "name": c.get("name"), "compares": c.get("compares"),
+                 "limit_m": c.get("limit_m"), "max_planned_height_m": c.get("max_height_m"),
+                 "max_flown_height_m": c.get("max_flown_height_m"),
+                 "margin_pct": c.get("margin_pct"), "binding": bool(c.get("binding"))}
+                for cid, c in (self.to_dict().get("constraints") or {}).items()]
+        return pd.DataFrame(rows, columns=cols)
+
+    def write(self, out_dir: str | os.PathLike[str], formats: Iterable[str] = FORMATS, *,
+              name: str = "uav", force: bool = False) -> list[Path]:
+        """Write ``NAME.xlsx`` / ``NAME.pdf`` into ``out_dir`` atomically; the paths."""
+        return _write(out_dir, name, formats, uav=self.job, force=force)
+
+    def _repr_html_(self) -> str:
+        p = self.job.plan
+        return _table_html("scanplan: UAV flight", [
+            ("planned height", _fmt(p.heights_m["planned"], 0, "m")),
+            ("GSD", _fmt(p.gsd_m * 100, 2, "cm")),
+            ("ground resolution L", _fmt(p.ground_resolution_m and
+                                         p.ground_resolution_m * 100, 2, "cm")),
+            ("maximum planned height", _fmt(p.max_height_m, 0, "m")),
+            ("binding", p.binding or "—")])
+
+
+SUMMARY_COLUMNS = (
+    "project", "file", "map_scale", "film_photo_scale", "film_scan_pixel_um",
+    "film_scanner_pixel_um", "film_binding", "film_frames", "film_scanned_gigabytes",
+    "uav_recommended_height_m", "uav_max_planned_height_m", "uav_binding", "uav_gsd_cm",
+    "uav_photos", "warnings")
+"""The columns of a batch summary (``summary.csv``, ``summary.xlsx``, :meth:`BatchResult.
+to_frame`): the headline figures of each specification and its warning codes."""
+
+
+def summary_frame(rows: list[dict[str, Any]], columns: Iterable[str] = SUMMARY_COLUMNS
+                  ) -> pd.DataFrame:
+    """The summary rows as a DataFrame; whole-number columns (scales, frames, photos) as
+    integers, blank where a project has none."""
+    import pandas as pd
+
+    frame = pd.DataFrame(rows, columns=list(columns))
+    for col in ("map_scale", "film_photo_scale", "film_frames", "uav_photos"):
+        values = frame[col].dropna()
+        if all(isinstance(v, int | float) and float(v).is_integer() for v in values):
+            frame[col] = frame[col].astype("Int64")
+    return frame
+
+
+def summary_row(result: PlanResult) -> dict[str, Any]:
+    """The batch summary row of one specification (:data:`SUMMARY_COLUMNS`)."""
+    f, u = result.film, result.uav
+    rec = f.recommended if f else None
+    p = u.job.plan if u else None
+    return {
+        "project": result.meta.project, "file": str(result.project.path),
+        "map_scale": result.project.get("map", "scale"),
+        "film_photo_scale": rec.photo_scale if rec else None,
+        "film_scan_pixel_um": rec.scan_pixel_um if rec else None,
+        "film_scanner_pixel_um": rec.scanner_pixel_um if rec else None,
+        "film_binding": rec.binding if rec else None,
+        "film_frames": f.frames if f else None,
+        "film_scanned_gigabytes": f.scanned_gigabytes if f else None,
+        "uav_recommended_height_m": u.recommended_height_m if u else None,
+        "uav_max_planned_height_m": u.max_height_m if u else None,
+        "uav_binding": p.binding if p else None,
+        "uav_gsd_cm": p.gsd_m * 100 if p else None,
+        "uav_photos": p.flight.get("photos") if p else None,
+        "warnings": " ".join(dict.fromkeys(w.code for w in result.warnings)),
+    }
+
+
+@dataclass(frozen=True)
+class ProjectResult:
+    """The specification for one project file (``scanplan plan``).
+
+    ``to_frame()``: one row, the batch summary's (:data:`SUMMARY_COLUMNS`: the
+    recommended photo scale and scan pixel, the recommended and maximum planned height,
+    frames/photos, warning codes). ``film`` / ``uav`` give the detail as
+    :class:`ScanResult` / :class:`UavResult` (a row per photo scale, per constraint).
+    """
+
+    spec: PlanResult
+
+    @property
+    def film(self) -> ScanResult | None:
+        """The film part, or None."""
+        return ScanResult(self.spec.film.job) if self.spec.film else None
+
+    @property
+    def uav(self) -> UavResult | None:
+        """The digital-camera part, or None."""
+        return UavResult(self.spec.uav.job) if self.spec.uav else None
+
+    def to_dict(self) -> dict[str, Any]:
+        """The ``scanplan plan --json`` document."""
+        from .reports.jsondoc import plan_result_dict
+
+        return _json_round_trip(plan_result_dict(self.spec))
+
+    def to_frame(self) -> pd.DataFrame:
+        """The summary row (columns: :data:`SUMMARY_COLUMNS`)."""
+        return summary_frame([summary_row(self.spec)])
+
+    def write(self, out_dir: str | os.PathLike[str], formats: Iterable[str] = FORMATS, *,
+              name: str = "spec", force: bool = False) -> list[Path]:
+        """Write ``spec.xlsx`` / ``spec.pdf`` into ``out_dir`` as ``scanplan plan --out``."""
+        s = self.spec
+        return _write(out_dir, name, formats, scan=s.film.job if s.film else None,
+                      uav=s.uav.job if s.uav else None, spec=s, meta=s.meta, force=force,
+                      inputs=[str(s.project.path)])
+
+    def _repr_html_(self) -> str:
+        row = summary_row(self.spec)
+        shown = [(k, v) for k, v in row.items() if v not in (None, "")]
+        return _table_html(f"scanplan: {self.spec.meta.project}", shown)
+
+
+@dataclass(frozen=True)
+class BatchResult:
+    """The specifications of several project files; a bad file is an error, not a stop.
+
+    ``results`` are in the order of the files; ``errors`` maps each bad file to its
+    :class:`~scanplan.errors.InputError` (naming the key and its line). ``to_frame()`` is
+    the batch summary (:data:`SUMMARY_COLUMNS`), one row per planned project.
+    """
+
+    results: tuple[ProjectResult, ...]
+    errors: Mapping[str, InputError] = field(default_factory=dict)
+
+    def to_dict(self) -> dict[str, Any]:
+        """The ``scanplan plan FILES --json`` document of a batch."""
+        return {"projects": [r.to_dict() for r in self.results],
+                "errors": [{"file": f, "message": f"{e.field}: {e.message}"}
+                           for f, e in self.errors.items()]}
+
+    def to_frame(self) -> pd.DataFrame:
+        """One row per planned project (columns: :data:`SUMMARY_COLUMNS`)."""
+        return summary_frame([summary_row(r.spec) for r in self.results])
+
+    def write(self, out_dir: str | os.PathLike[str], formats: Iterable[str] = FORMATS, *,
+              force: bool = False) -> list[Path]:
+        """Each project's reports as ``STEM.xlsx`` / ``STEM.pdf`` (as ``scanplan plan DIR
+        --out``), each project all or nothing."""
+        from .outpaths import batch_stems
+
+        paths = [str(r.spec.project.path) for r in self.results]
+        written: list[Path] = []
+        for r, stem in zip(self.results, batch_stems(paths), strict=True):
+            written += r.write(out_dir, formats, name=stem, force=force)
+        return written
+
+    def _repr_html_(self) -> str:
+        frame = self.to_frame()
+        errors = "".join(f"<li>{html.escape(f)}: {html.escape(e.message)}</li>"
+                         for f, e in self.errors.items())
+        return frame.to_html(index=False) + (f"<ul>{errors}</ul>" if errors else "")
+
+
+def _load(project: Any) -> Any:
+    """A project file path, a TOML string or a dict of sections → a validated Project."""
+    from .project.file import load_project, parse_project
+
+    if isinstance(project, Mapping):
+        return parse_project(_toml(project), "project.toml")
+    if isinstance(project, os.PathLike) or (isinstance(project, str) and "\n" not in project
+                                            and "=" not in project):
+        return load_project(project)
+    if isinstance(project, str):
+        return parse_project(project, "project.toml")
+    raise InputError("project", "must be a path, the TOML text of a project file, or a dict "
+                     f"of its sections (got {type(project).__name__})")
+
+
+def _toml(doc: Mapping[str, Any]) -> str:
+    """A dict of project-file sections as TOML text (values: numbers, text, lists)."""
+    def value(v: Any) -> str:
+        if isinstance(v, bool):
+            return "true" if v else "false"
+        if isinstance(v, int | float):
+            return repr(v)
+        if isinstance(v, str):
+            return json.dumps(v, ensure_ascii=False)
+        if isinstance(v, list | tuple):
+            return "[" + ", ".join(value(x) for x in v) + "]"
+        raise InputError("project", f"a value must be a number, text or a list (got {v!r})")
+
+    lines: list[str] = []
+
+    def table(name: str, items: Mapping[str, Any]) -> None:
+        lines.append(f"[{name}]")
+        subs = []
+        for k, v in items.items():
+            if isinstance(v, Mapping):
+                subs.append((f"{name}.{k}", v))
+            else:
+                lines.append(f"{k} = {value(v)}")
+        for sub, v in subs:
+            table(sub, v)
+
+    for section, items in doc.items():
+        if not isinstance(items, Mapping):
+            raise InputError("project", f"[{section}] must be a dict of keys")
+        table(section, items)
+    return "\n".join(lines) + "\n"
+
+
+def plan(project: str | os.PathLike[str] | Mapping[str, Any]) -> ProjectResult:
+    """The specification for a mapping contract, as ``scanplan plan PROJECT.toml``.
+
+    Parameters
+    ----------
+    project : path, str or dict
+        A project file, its TOML text, or a dict with the project file's sections and keys
+        (``{"map": {"scale": 2000, ...}, "film": {...}}``; docs/project-file.md).
+
+    Returns
+    -------
+    ProjectResult
+
+    Raises
+    ------
+    InputError
+        Naming the key (and its line) of a bad value.
+
+    Examples
+    --------
+    >>> import scanplan
+    >>> r = scanplan.plan({"map": {"scale": 2000, "relief_interval_m": 1.0},
+    ...                    "uav": {"camera": "dji-zenmuse-p1-35"}})
+    >>> r.to_dict()["specification"]["uav"]["recommended_height_m"] > 0
+    True
+    """
+    from .project.spec import plan_project
+
+    return ProjectResult(plan_project(_load(project)))
+
+
+def scan(**inputs: Any) -> ScanResult:
+    """Plan the scanning of film photos, as ``scanplan scan`` (keywords: the options'
+    Python names, :func:`scanplan.project.api.scan`).
+
+    Examples
+    --------
+    >>> import scanplan
+    >>> r = scanplan.scan(map_scale="1:2000", relief_interval_m=1.0,
+    ...                   photo_scales=[8000, 10000], camera="afa-te-100")
+    >>> list(r.to_frame()["photo_scale"])
+    [8000, 10000]
+    """
+    from .project.api import scan_job
+
+    return ScanResult(scan_job(**inputs))
+
+
+def uav(**inputs: Any) -> UavResult:
+    """Plan a digital-camera flight, as ``scanplan uav`` (keywords: the options' Python
+    names, :func:`scanplan.project.api.uav_job`).
+
+    Examples
+    --------
+    >>> import scanplan
+    >>> r = scanplan.uav(camera="dji-zenmuse-p1-35", height_m=100, map_scale=1000,
+    ...                  relief_interval_m=0.5)
+    >>> "max_planned_height_m" in r.to_frame().columns
+    True
+    """
+    from .project.api import uav_job
+
+    return UavResult(uav_job(**inputs))
+
+
+def project_files(paths: Iterable[str | os.PathLike[str]]) -> list[str]:
+    """Project files of ``paths``: files as given, folders' ``*.toml`` sorted by name."""
+    files: list[str] = []
+    for item in paths:
+        item = os.fspath(item)
+        if os.path.isdir(item):
+            files += sorted(os.path.join(item, f) for f in os.listdir(item)
+                            if f.endswith(".toml"))
+        else:
+            files.append(item)
+    return files
+
+
+def batch(paths: str | os.PathLike[str] | Iterable[str | os.PathLike[str]]) -> BatchResult:
+    r"""Plan several project files (folders: their ``*.toml``); a bad one is kept as a
+    typed error while the others are planned.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile, scanplan
+    >>> folder = pathlib.Path(tempfile.mkdtemp())
+    >>> _ = (folder / "a.toml").write_text(
+    ...     '[map]\nscale = 2000\nrelief_interval_m = 1\n[uav]\ncamera = "dji-zenmuse-p1-35"\n')
+    >>> _ = (folder / "b.toml").write_text("[map]\nscale = 2000\n")
+    >>> b = scanplan.batch(folder)
+    >>> len(b.results), [pathlib.Path(f).name for f in b.errors]
+    (1, ['b.toml'])
+    >>> error = b.errors[str(folder / "b.toml")]
+    >>> error.field.endswith("map.relief_interval_m"), error.message
+    (True, 'is required: the relief interval in m')
+    """
+    from .project.file import load_project
+    from .project.spec import plan_project
+
+    if isinstance(paths, str | os.PathLike):
+        paths = [paths]
+    results: list[ProjectResult] = []
+    errors: dict[str, InputError] = {}
+    for path in project_files(paths):
+        try:
+            results.append(ProjectResult(plan_project(load_project(path))))
+        except InputError as exc:
+            errors[path] = exc
+    return BatchResult(tuple(results), errors)
+

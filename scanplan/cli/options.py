@@ -1,0 +1,131 @@
+"""Click options built from the input registry (:mod:`scanplan.project.inputs`).
+
+An option of ``scanplan scan`` / ``scanplan uav`` takes its name, destination, type,
+choices, default and help from the input's record; the commands only list which inputs
+they take, in the order ``--help`` shows them. Nothing here imports numpy.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from collections.abc import Callable
+from typing import Any
+
+import click
+
+from ..errors import InputError
+from ..project.inputs import Input, describe, get
+
+__all__ = ["SCALE", "ScaleType", "finite", "input_option", "text", "text_or_none"]
+
+PLAN_OF = {"scan": "film", "uav": "uav"}
+"""The plan (registry scope) of each command."""
+
+
+class ScaleType(click.ParamType):
+    """A scale denominator: ``2000`` or ``1:2000``."""
+
+    name = "SCALE"
+
+    def convert(self, value: Any, param: click.Parameter | None, ctx: click.Context | None
+                ) -> float:
+        from ..norms import parse_scale
+
+        try:
+            return parse_scale(value, param.opts[0] if param else "scale")
+        except InputError as exc:
+            self.fail(exc.message, param, ctx)
+
+
+SCALE = ScaleType()
+
+
+def finite(ctx: click.Context, param: click.Parameter, value: float | None) -> float | None:
+    """A click callback: refuse NaN and infinities."""
+    if value is not None and not math.isfinite(value):
+        raise click.BadParameter(f"must be a finite number (got {value})", ctx, param)
+    return value
+
+
+def finite_each(ctx: click.Context, param: click.Parameter, values: tuple[float, ...]
+                ) -> tuple[float, ...]:
+    """:func:`finite` for a repeated option."""
+    return tuple(finite(ctx, param, x) for x in values)  # type: ignore[misc]
+
+
+def text(ctx: click.Context, param: click.Parameter, value: str) -> str:
+    """Report text from an option: the same rule as in a project file."""
+    from ..project.file import text_problem
+
+    problem = text_problem(value) if value else None
+    if problem:
+        raise click.BadParameter(problem, ctx, param)
+    return value
+
+
+def text_or_none(ctx: click.Context, param: click.Parameter, value: str | None) -> str | None:
+    """:func:`text` for an option without a default."""
+    return None if value is None else text(ctx, param, value)
+
+
+def _help(inp: Input) -> str:
+    words = describe(inp, cli=True)
+    if re.match(r"[a-z]+[ ,:;]", words):  # "k_R in …" and "sqrt(…" stay as written
+        words = words[:1].upper() + words[1:]
+    return words + "."
+
+
+def _type(inp: Input) -> tuple[Any, Callable[..., Any] | None]:
+    """The click type and callback of an input's kind."""
+    if inp.choices:
+        return click.Choice(list(inp.choices)), None
+    if inp.kind in ("scale", "scales"):
+        return SCALE, None
+    if inp.kind == "number":
+        return float, finite
+    if inp.kind == "int":
+        from ..core.domains import DOMAINS
+
+        d = DOMAINS[inp.domain]
+        return click.IntRange(int(d.lo), int(d.hi)), None
+    if inp.section == "project":
+        return str, text
+    return str, text_or_none if inp.name == "object_name" else None
+
+
+def input_option(command: str, name: str, **overrides: Any) -> Callable[..., Any]:
+    """The click option of input ``name`` for ``command`` (``"scan"`` or ``"uav"``).
+
+    Parameters
+    ----------
+    command : str
+        The command the option belongs to.
+    name : str
+        The input's Python name (the registry's).
+    **overrides
+        Click arguments that only this command needs (``required=True``).
+    """
+    inp = get(name, PLAN_OF[command])
+    if command not in ("scan", "uav") or PLAN_OF[command] not in inp.commands:
+        raise KeyError(f"{name} is not an option of {command}")
+    kind, callback = _type(inp)
+    default = None if inp.by_carrier else inp.default  # uav_job chooses by carrier
+    if inp.choices and default is not None:
+        default = str(default)
+    if inp.section == "project" and default is None:
+        default = ""
+    kw: dict[str, Any] = {"type": kind, "help": _help(inp)}
+    if callback is not None:
+        kw["callback"] = callback
+    if default is not None:
+        kw["default"] = default
+    if inp.kind == "scales":
+        kw["multiple"] = True
+    if inp.name == "pixel_um" and command == "scan":
+        kw.update(multiple=True, callback=finite_each)
+    kw.update(overrides)
+    dest = inp.option.lstrip("-").replace("-", "_")
+    same = dest == inp.name or inp.section == "project"  # --project-name → project_name
+    decls = [inp.option] if same else [inp.option, inp.name]
+    return click.option(*decls, **kw)

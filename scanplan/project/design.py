@@ -1,0 +1,385 @@
+"""The survey design (технический проект АФС): today's Russian norms applied to a plan.
+
+Three checks beside the Instruction's constraints, each with its norm:
+
+- the GSD against the largest GSD per plan scale, ГОСТ Р 59562-2021 Table Б.1 (the norm
+  set's ``gsd_limits``): for a digital camera it is the constraint GL of the rules engine
+  (here it is only read back for the sheet); for film the scanned ground pixel
+  (scan pixel × Mc) is compared with the same table, for information;
+- one photographing height per block (ГОСТ Р 59328-2021 §6.2.1, second draft):
+  :func:`scanplan.core.blocks.block_height_check` on ``[terrain] ground_elevation_m``;
+- the sun window and the flying days (:mod:`scanplan.geo.sun`) from ``[site]`` and
+  ``[schedule]``.
+
+:func:`survey_design` returns a :class:`SurveyDesign`; the reports render it (the survey
+design sheet) and never recompute a number.
+"""
+
+from __future__ import annotations
+
+import datetime as dt
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+from ..core.blocks import RELIEF_CLASSES, BlockHeightCheck, block_height_check
+from ..errors import InputError
+from ..geo.layout import FlightLayout
+from ..geo.sun import FlyingDays, SunWindow, equal_sorties_s, flying_days, sun_windows
+from ..messages import Message
+from ..norms.schema import GSD_AREAS
+from ..rules.results import PlanWarning
+from .file import Project
+
+if TYPE_CHECKING:
+    from .spec import FilmSpec, UavSpec
+
+__all__ = [
+    "GsdCompliance",
+    "SunPlan",
+    "SurveyDesign",
+    "design_dict",
+    "layout_of",
+    "layout_site",
+    "layout_sorties_s",
+    "survey_design",
+]
+
+DEFAULT_SCHEDULE_DAYS = 30
+"""``[schedule] end_date`` defaults to this many days after the start."""
+MAX_SCHEDULE_DAYS = 366
+"""Longest schedule the sun window is computed for [days]."""
+SORTIE_DEFAULTS_MIN = {"uav": (25.0, 15.0), "aircraft": (180.0, 60.0)}
+"""(sortie flight time, ground time between sorties) [min] when ``[schedule]`` does not say:
+a multirotor battery gives 25–40 min, a survey aircraft's fuel several hours."""
+
+
+@dataclass(frozen=True)
+class GsdCompliance:
+    """The GSD of a workflow against the largest GSD of the plan scale (Table Б.1).
+
+    Attributes
+    ----------
+    workflow : {"digital", "film"}
+    map_scale : int
+    area : str
+        ``general`` or ``dense_urban``.
+    limit_cm : float
+        The table's largest GSD [cm].
+    gsd_cm : float
+        Digital: the GSD at the highest flown height of the recommended height; film: the
+        scanned ground pixel, scan pixel × Mc [cm].
+    complies : bool
+    binding : bool
+        Digital: GL is the binding constraint of the flight height.
+    source : str
+        The table row's source cell.
+    """
+
+    workflow: str
+    map_scale: int
+    area: str
+    limit_cm: float
+    gsd_cm: float
+    complies: bool
+    binding: bool
+    source: str
+
+
+@dataclass(frozen=True)
+class SunPlan:
+    """The sun window at the site over the planned dates, and the flying days.
+
+    Attributes
+    ----------
+    lat_deg, lon_deg, utc_offset_h : float
+    min_elevation_deg : float
+    elevation_source : str
+        ``"project"`` or the norm set's parameter source.
+    start_date, end_date : datetime.date
+    windows : tuple of SunWindow
+    sortie_time_s, turnaround_s : float
+    flight_time_s : float or None
+        Flight time of the whole survey [s] (None: no ``[area]``, or film).
+    days : FlyingDays or None
+    """
+
+    lat_deg: float
+    lon_deg: float
+    utc_offset_h: float
+    min_elevation_deg: float
+    elevation_source: str
+    start_date: dt.date
+    end_date: dt.date
+    windows: tuple[SunWindow, ...]
+    sortie_time_s: float
+    turnaround_s: float
+    flight_time_s: float | None
+    days: FlyingDays | None
+
+    @property
+    def window_hours(self) -> tuple[float, float]:
+        """Shortest and longest daily window over the dates [h]."""
+        hours = [w.hours for w in self.windows]
+        return min(hours), max(hours)
+
+
+@dataclass(frozen=True)
+class SurveyDesign:
+    """What the survey design sheet shows beyond the specification."""
+
+    gsd: tuple[GsdCompliance, ...]
+    block: BlockHeightCheck | None
+    block_source: str
+    sun: SunPlan | None
+    warnings: tuple[PlanWarning, ...]
+
+
+def _where(project: Project, section: str, key: str) -> str:
+    return f"{project.path}: {project.where(section, key)}"
+
+
+def _gsd_checks(project: Project, film: FilmSpec | None, uav: UavSpec | None
+                ) -> tuple[list[GsdCompliance], list[PlanWarning]]:
+    out: list[GsdCompliance] = []
+    warnings: list[PlanWarning] = []
+    area = project.get("norms", "gsd_area") or "general"
+    if uav is not None:
+        inp = uav.job.plan.inputs
+        if inp.gsd_limit_m is not None and inp.map_scale is not None:
+            plan = uav.job.plan
+            out.append(GsdCompliance(
+                "digital", int(inp.map_scale), inp.gsd_limit_area,
+                round(inp.gsd_limit_m * 100.0, 9),  # the table's cm, without float noise
+                plan.gsd_at_max_height_m * 100.0,
+                plan.gsd_at_max_height_m <= inp.gsd_limit_m * (1 + 1e-9),
+                plan.binding == "GL", inp.gsd_limit_source))
+    if film is not None and film.recommended is not None:
+        ns = film.job.norm_set
+        rules = film.job.plan.rules
+        mk = film.job.plan.inputs.map_scale
+        row = ns.gsd_limit(mk, area) if "GL" in rules.constraints else None
+        if row is not None:
+            s = film.recommended
+            pixel = s.scanner_pixel_um or s.scan_pixel_um
+            ground_cm = pixel * s.photo_scale / 1e4
+            ok = ground_cm <= row.max_gsd_cm * (1 + 1e-9)
+            out.append(GsdCompliance("film", int(mk), row.area, row.max_gsd_cm, ground_cm, ok,
+                                     False, row.source))
+            warnings.append(PlanWarning(
+                "gsd_limit_film",
+                Message("gsd_limit_film", scale=s.photo_scale, pixel=pixel, ground=ground_cm,
+                        verdict=Message("gsd_limit.within" if ok else "gsd_limit.over"),
+                        limit=row.max_gsd_cm, map=mk, area=Message(f"gsd_area.{row.area}")),
+                photo_scales=(s.photo_scale,), severity="info"))
+    return out, warnings
+
+
+def _flight_height_m(film: FilmSpec | None, uav: UavSpec | None) -> float | None:
+    """The photographing height of the plan: the UAV's recommended height, else the film
+    photo scale × focal length [m]."""
+    if uav is not None and uav.recommended_height_m is not None:
+        return float(uav.recommended_height_m)
+    if film is not None and film.recommended is not None:
+        return film.recommended.photo_scale * film.job.plan.inputs.focal_mm / 1000.0
+    return None
+
+
+def _block(project: Project, film: FilmSpec | None, uav: UavSpec | None
+           ) -> tuple[BlockHeightCheck | None, str, list[PlanWarning]]:
+    relief = project.get("terrain", "relief_class", "flat")
+    if relief not in RELIEF_CLASSES:
+        raise InputError(_where(project, "terrain", "relief_class"),
+                         f"must be one of {', '.join(RELIEF_CLASSES)} (got {relief!r})")
+    ground = project.get("terrain", "ground_elevation_m")
+    height = _flight_height_m(film, uav)
+    if ground is None or height is None:
+        return None, "", []
+    ns = (uav.job.norm_set if uav is not None else film.job.norm_set)  # type: ignore[union-attr]
+    pname = {"flat": "block_relief_flat_pct", "hilly": "block_relief_hilly_pct",
+             "mountainous": "block_relief_mountain_pct"}[relief]
+    check = block_height_check(ground, height, relief, float(ns.parameters[pname]))
+    warnings = []
+    if check.split_needed:
+        warnings.append(PlanWarning("block_split", Message(
+            "block_split", range=check.range_m, pct=check.range_pct, h=height,
+            limit=check.limit_pct, relief=Message(f"relief.{relief}"), n=check.blocks,
+            bands=[Message("block.band", lo=lo, hi=hi) for lo, hi in check.bands_m])))
+    return check, ns.parameter_sources.get(pname, ""), warnings
+
+
+def layout_of(spec: FilmSpec | UavSpec | None) -> FlightLayout | None:
+    """The flight layout of a specification part, when the geography has laid one out
+    (``job.layout``); None for the abstract block."""
+    job = getattr(spec, "job", None)
+    return getattr(job, "layout", None)
+
+
+def layout_sorties_s(layout: FlightLayout | None) -> list[float] | None:
+    """The flight time of each sortie of a layout [s], or None (no layout, or no times).
+
+    >>> from scanplan.geo.layout import Sortie
+    >>> class L: sorties = (Sortie(1, (1, 2), 9000.0, 1500.0), Sortie(2, (3,), 4000.0, 700.0))
+    >>> layout_sorties_s(L())
+    [1500.0, 700.0]
+    """
+    if layout is None or not layout.sorties:
+        return None
+    times = [float(s.time_s) for s in layout.sorties if s.time_s]
+    return times or None
+
+
+def layout_site(layout: FlightLayout | None) -> tuple[float, float] | None:
+    """(lat, lon) of the area's centroid [°] when the layout is georeferenced, else None."""
+    if layout is None or not layout.area.georeferenced or layout.area.centroid_lonlat is None:
+        return None
+    lon, lat = layout.area.centroid_lonlat
+    return float(lat), float(lon)
+
+
+def _date(project: Project, key: str) -> dt.date | None:
+    value = project.get("schedule", key)
+    if value is None or isinstance(value, dt.date):
+        return value
+    return dt.date.fromisoformat(value)
+
+
+def _number_in(project: Project, section: str, key: str, lo: float, hi: float,
+               default: float | None, what: str, *, lo_open: bool = False) -> float | None:
+    value = project.get(section, key, default)
+    if value is None:
+        return None
+    v = float(value)
+    if v < lo or v > hi or (lo_open and v == lo):
+        low = f"> {lo:g}" if lo_open else f"≥ {lo:g}"
+        raise InputError(_where(project, section, key), f"must be {low} and ≤ {hi:g} {what} "
+                         f"(got {value!r})")
+    return v
+
+
+def _sun(project: Project, film: FilmSpec | None, uav: UavSpec | None
+         ) -> tuple[SunPlan | None, list[PlanWarning]]:
+    lat = _number_in(project, "site", "lat_deg", -90, 90, None, "°")
+    lon = _number_in(project, "site", "lon_deg", -180, 180, None, "°")
+    layout = layout_of(uav) or layout_of(film)
+    centroid = layout_site(layout)
+    if lat is None and lon is None and centroid is not None:  # [area] polygon: its centroid
+        lat, lon = centroid
+    offset = _number_in(project, "schedule", "utc_offset_h", -12, 14, None, "h")
+    elev = _number_in(project, "schedule", "min_sun_elevation_deg", 0, 89.9, None, "°")
+    platform = uav.job.plan.inputs.platform if uav is not None else "aircraft"
+    sortie_d, turn_d = SORTIE_DEFAULTS_MIN.get(platform, SORTIE_DEFAULTS_MIN["uav"])
+    sortie_d = project.get("uav", "max_flight_time_min") or sortie_d  # the layout's endurance
+    sortie = _number_in(project, "schedule", "sortie_time_min", 0, 1440, sortie_d, "min",
+                        lo_open=True)
+    turn = _number_in(project, "schedule", "turnaround_min", 0, 1440, turn_d, "min")
+    assert sortie is not None and turn is not None
+    start = _date(project, "start_date")
+    if start is None or lat is None or lon is None:
+        for key, value in (("lat_deg", lat), ("lon_deg", lon), ("start_date", start)):
+            if value is None and (project.has("site") or project.has("schedule")):
+                section = "schedule" if key == "start_date" else "site"
+                raise InputError(_where(project, section, key), "is required for the sun "
+                                 "window: give [site] lat_deg, lon_deg and [schedule] "
+                                 "start_date")
+        return None, []
+    end = _date(project, "end_date") or start + dt.timedelta(days=DEFAULT_SCHEDULE_DAYS - 1)
+    if end < start:
+        raise InputError(_where(project, "schedule", "end_date"),
+                         f"must not be before start_date {start.isoformat()}")
+    if (end - start).days + 1 > MAX_SCHEDULE_DAYS:
+        raise InputError(_where(project, "schedule", "end_date"),
+                         f"the schedule may span at most {MAX_SCHEDULE_DAYS} days")
+    if offset is None:
+        offset = float(round(lon / 15.0))
+    ns = (uav.job.norm_set if uav is not None else film.job.norm_set)  # type: ignore[union-attr]
+    source = "project"
+    if elev is None:
+        elev = float(ns.parameters["min_sun_elevation_deg"])
+        source = ns.parameter_sources.get("min_sun_elevation_deg", "")
+    dates = [start + dt.timedelta(days=i) for i in range((end - start).days + 1)]
+    windows = sun_windows(dates, lat, lon, elev, utc_offset_h=offset)
+    flight_s = uav.job.plan.flight.get("flight_time_s") if uav is not None else None
+    from_layout = layout_sorties_s(layout)
+    sortie_s = max(from_layout) if from_layout else sortie * 60.0
+    days = None
+    warnings: list[PlanWarning] = []
+    if not any(w.hours > 0 for w in windows):
+        warnings.append(PlanWarning("sun_no_window", Message(
+            "sun_no_window", elev=elev, start=start.isoformat(), end=end.isoformat(),
+            top=max(w.max_elevation_deg for w in windows))))
+    elif flight_s or from_layout:
+        # the layout's sorties when the geography has split the flight, else equal ones
+        sorties = from_layout or equal_sorties_s(float(flight_s), sortie_s)
+        days = flying_days(windows, sorties, turn * 60.0)
+        if days.days is None:
+            warnings.append(PlanWarning("sun_dates_short", Message(
+                "sun_dates_short", n=days.sorties, flown=sum(days.sorties_per_day),
+                start=start.isoformat(), end=end.isoformat())))
+    return SunPlan(lat, lon, offset, elev, source, start, end, windows, sortie_s,
+                   turn * 60.0, float(flight_s) if flight_s else None, days), warnings
+
+
+def survey_design(project: Project, film: FilmSpec | None, uav: UavSpec | None
+                  ) -> SurveyDesign:
+    """The survey design checks of a planned project.
+
+    Parameters
+    ----------
+    project : Project
+        The validated project file (``[terrain]``, ``[site]``, ``[schedule]``, ``[norms]
+        gsd_area`` are read here).
+    film, uav : FilmSpec or UavSpec or None
+        The specification's parts.
+
+    Raises
+    ------
+    InputError
+        Naming the project key and its line for an out-of-range value.
+    """
+    area = project.get("norms", "gsd_area")
+    if area is not None and area not in GSD_AREAS:
+        raise InputError(_where(project, "norms", "gsd_area"),
+                         f"must be one of {', '.join(GSD_AREAS)} (got {area!r})")
+    gsd, w1 = _gsd_checks(project, film, uav)
+    block, block_source, w2 = _block(project, film, uav)
+    sun, w3 = _sun(project, film, uav)
+    return SurveyDesign(tuple(gsd), block, block_source, sun, tuple(w1 + w2 + w3))
+
+
+def design_dict(design: SurveyDesign) -> dict[str, Any]:
+    """The survey design as JSON-ready data (``plan --json`` key ``survey_design``)."""
+    out: dict[str, Any] = {"gsd_limits": [
+        {"workflow": g.workflow, "map_scale": g.map_scale, "area": g.area,
+         "limit_cm": g.limit_cm, "gsd_cm": round(g.gsd_cm, 4), "complies": g.complies,
+         "binding": g.binding, "source": g.source} for g in design.gsd]}
+    b = design.block
+    if b is not None:
+        out["block_height"] = {
+            "relief_class": b.relief_class, "limit_pct": b.limit_pct,
+            "flight_height_m": b.flight_height_m, "ground_min_m": b.ground_min_m,
+            "ground_max_m": b.ground_max_m, "range_m": b.range_m,
+            "range_pct": round(b.range_pct, 3), "split_needed": b.split_needed,
+            "blocks": b.blocks, "bands_m": [list(x) for x in b.bands_m],
+            "source": design.block_source}
+    s = design.sun
+    if s is not None:
+        lo, hi = s.window_hours
+        out["sun"] = {
+            "lat_deg": s.lat_deg, "lon_deg": s.lon_deg, "utc_offset_h": s.utc_offset_h,
+            "min_elevation_deg": s.min_elevation_deg, "start_date": s.start_date.isoformat(),
+            "end_date": s.end_date.isoformat(), "window_hours_min": lo,
+            "window_hours_max": hi,
+            "first_window": _window_dict(s.windows[0]),
+            "sortie_time_min": s.sortie_time_s / 60.0, "turnaround_min": s.turnaround_s / 60.0,
+            "flight_time_min": None if s.flight_time_s is None else s.flight_time_s / 60.0,
+            "sorties": s.days.sorties if s.days else None,
+            "flying_days": s.days.days if s.days else None,
+            "last_date": s.days.last_date.isoformat() if s.days and s.days.last_date else None}
+    return out
+
+
+def _window_dict(w: SunWindow) -> dict[str, Any]:
+    return {"date": w.date.isoformat(),
+            "start": w.start_local.strftime("%H:%M") if w.start_local else None,
+            "end": w.end_local.strftime("%H:%M") if w.end_local else None,
+            "hours": round(w.hours, 2), "max_elevation_deg": round(w.max_elevation_deg, 2)}

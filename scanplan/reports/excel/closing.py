@@ -1,0 +1,183 @@
+"""The closing sheets: the norm set and its rows used, the warnings, the references."""
+
+from __future__ import annotations
+
+import re
+from typing import TYPE_CHECKING, Any
+
+from openpyxl.styles import Alignment
+from openpyxl.worksheet.worksheet import Worksheet
+
+from ..labels import LABELS
+from ..wording import (
+    object_title,
+    param_name,
+    param_value,
+)
+
+if TYPE_CHECKING:
+    from ...norms import NormSet
+    from ...project.api import ScanJob, UavJob
+    from ...project.spec import PlanResult
+    from ...rules.film import PlanWarning
+
+from ..design import write_gsd_limits
+from .book import Book
+from .cells import (
+    _WARNING_FILL,
+    F2,
+    F3,
+    INT,
+    SCALE,
+    _header,
+    _mark,
+    put_num,
+    put_text,
+)
+
+
+def _warning_items(book: Book, scan: ScanJob | None, uav: UavJob | None,
+                   spec: PlanResult | None = None) -> list[tuple[str, PlanWarning, Any]]:
+    items: list[tuple[str, PlanWarning, Any]] = []
+    if scan is not None:
+        items += [(book.t("xlsx_section_scan"), w, scan.norm_set) for w in scan.plan.warnings]
+    if uav is not None:
+        items += [(book.t("xlsx_section_uav"), w, uav.norm_set) for w in uav.plan.warnings]
+    if spec is not None:
+        seen = {w.code for _, w, _ in items}
+        items += [(book.t("spec_title"), w, None) for w in spec.warnings
+                  if w.code not in seen]
+    return items
+
+
+def _heading(book: Book, w: PlanWarning) -> str:
+    key = f"pdf_warn_{w.code}"
+    return book.t(key) if key in LABELS["en"] else ""
+
+
+def _warning_lines(book: Book, scan: ScanJob | None, uav: UavJob | None,
+                   spec: PlanResult | None) -> list[str]:
+    """Every warning in short form (the Summary sheet's box)."""
+    out = []
+    for _section, w, ns in _warning_items(book, scan, uav, spec):
+        head = _heading(book, w) or book.text(w.message, ns)
+        scales = ", ".join(book.numbers.plain_scale(s) for s in w.photo_scales)
+        out.append(f"! {head}" + (f": {scales}" if scales else ""))
+    return list(dict.fromkeys(out))
+
+
+def norms_sheet(book: Book, scan: ScanJob | None, uav: UavJob | None) -> None:
+    used: list[tuple[NormSet, list[Any], str]] = []
+    for job, obj, section in (
+            (scan, scan.plan.inputs.object if scan else None, "xlsx_section_scan"),
+            (uav, uav.plan.inputs.map_object if uav else None, "xlsx_section_uav")):
+        if job is None:
+            continue
+        for ns, objs, _section in used:
+            if ns.name == job.norm_set.name and ns.path == job.norm_set.path:
+                objs.append(obj)
+                break
+        else:
+            used.append((job.norm_set, [obj], section))
+    ws = book.sheet("xlsx_sheet_norms", landscape=True,
+                    widths=(46, 34, 44, 12, 24, 50))
+    _header(ws, 1, [book.t("xlsx_parameter"), book.t("value"), book.t("source")])
+    row = 2
+    for ns, objs, _section in used:
+        row = _norm_set(book, ws, row, ns, [o for o in objs if o is not None]) + 1
+
+
+def _norm_set(book: Book, ws: Worksheet, row: int, ns: NormSet, objs: list[Any]) -> int:
+    title = ns.title_ru if book.loc == "ru" and ns.title_ru else ns.title
+    row = book.section(ws, row, f"{book.t('norm_set')}: {title}")
+    row = book.kv(ws, row, book.t("xlsx_norm_id"), f'[norms] set = "{ns.name}"')
+    row = book.kv(ws, row, book.t("xlsx_title"), title, wrap=True)
+    numbers = re.findall(r"\[\d+\]", book.bib.cite(ns.source))
+    row = book.kv(ws, row, book.t("source"),
+                  "; ".join(dict.fromkeys(numbers)) if numbers else ns.source, wrap=True)
+    row = book.kv(ws, row, book.t("xlsx_bundled"), bool(ns.bundled))
+    if not ns.bundled:  # a bundled set's folder depends on the installation
+        row = book.kv(ws, row, book.t("xlsx_folder"), str(ns.path))
+    if ns.imported_from:
+        row = book.kv(ws, row, book.t("xlsx_imported_from"), ns.imported_from)
+        row = book.kv(ws, row, book.t("xlsx_imported_at"), ns.imported_at)
+    row = book.section(ws, row + 1, book.t("xlsx_parameters"))
+    _header(ws, row, [book.t("xlsx_parameter"), book.t("value"), book.t("source")])
+    row += 1
+    for key in ns.parameters:
+        value = ns.parameters[key]
+        put_text(ws, row, 1, param_name(ns, key, book.loc), wrap=True)
+        if isinstance(value, int | float) and not isinstance(value, bool):
+            put_num(ws, row, 2, value, "0.0##")
+            ws.cell(row, 2).alignment = Alignment(horizontal="left", vertical="top")
+        else:
+            put_text(ws, row, 2, param_value(ns, key, value, book.loc), wrap=True)
+        put_text(ws, row, 3, book.bib.cite(ns.parameter_sources.get(key, "")), wrap=True)
+        row += 1
+    shapes_used = {o.shape for o in objs}
+    row = book.section(ws, row + 1, book.t("xlsx_shapes"))
+    _header(ws, row, [book.t("xlsx_shape"), book.t("xlsx_shape_coefficient"),
+                      book.t("source"), book.t("xlsx_used")])
+    row += 1
+    for shape, coef in ns.shapes.items():
+        meta = ns.shape_rows.get(shape, {})
+        cells = [put_text(ws, row, 1, book.shape_name(ns, shape)),
+                 put_num(ws, row, 2, coef, F2),
+                 put_text(ws, row, 4, book.yes_no(shape in shapes_used))]
+        put_text(ws, row, 3, book.bib.cite(meta.get("source", "")), wrap=True)
+        if shape in shapes_used:
+            _mark(cells)
+        row += 1
+    row = book.section(ws, row + 1, book.t("xlsx_objects"))
+    _header(ws, row, [book.t("map_scale"), book.t("xlsx_object_name"),
+                      book.t("xlsx_object_size_m"), book.t("xlsx_used"),
+                      book.t("xlsx_shape"), book.t("source")])
+    row += 1
+    used_rows = {(o.map_scale, o.name, o.size_m) for o in objs if o.map_scale is not None}
+    for obj in ns.objects:
+        is_used = (obj.map_scale, obj.name, obj.size_m) in used_rows
+        cells = [put_num(ws, row, 1, obj.map_scale, SCALE),
+                 put_text(ws, row, 2, object_title(obj, book.loc), wrap=True),
+                 put_num(ws, row, 3, obj.size_m, F3),
+                 put_text(ws, row, 4, book.yes_no(is_used)),
+                 put_text(ws, row, 5, book.shape_name(ns, obj.shape))]
+        put_text(ws, row, 6, book.bib.cite(obj.source), wrap=True)
+        if is_used:
+            _mark(cells)
+        row += 1
+    return write_gsd_limits(book, ws, row, ns)
+
+
+def warnings_sheet(book: Book, scan: ScanJob | None, uav: UavJob | None,
+             spec: PlanResult | None = None) -> None:
+    ws = book.sheet("xlsx_sheet_warnings", landscape=True, widths=(20, 14, 30, 20, 90))
+    _header(ws, 1, [book.t("xlsx_section"), book.t("xlsx_severity"), book.t("warnings"),
+                    book.t("photo_scale"), book.t("xlsx_message")])
+    items = _warning_items(book, scan, uav, spec)
+    if not items:
+        put_text(ws, 2, 1, book.t("no_warnings"))
+        return
+    for row, (section, w, ns) in enumerate(items, start=2):
+        try:
+            severity = book.t(f"xlsx_severity_{w.severity}")
+        except KeyError:
+            severity = w.severity
+        cells = [put_text(ws, row, 1, section, wrap=True),
+                 put_text(ws, row, 2, severity),
+                 put_text(ws, row, 3, _heading(book, w), wrap=True),
+                 put_text(ws, row, 4, ", ".join(book.numbers.plain_scale(s)
+                                                for s in w.photo_scales), wrap=True),
+                 put_text(ws, row, 5, book.text(w.message, ns), wrap=True)]
+        if w.severity == "warning":
+            for cell in cells:
+                cell.fill = _WARNING_FILL
+    ws.auto_filter.ref = f"A1:E{len(items) + 1}"
+
+
+def references_sheet(book: Book) -> None:
+    """The works the workbook cites, numbered as in its cells."""
+    ws = book.sheet("references", landscape=False, widths=(8, 110, 8))
+    _header(ws, 1, ["№", book.t("references")])
+    for row, (n, text) in enumerate(book.bib.entries(), start=2):
+        put_num(ws, row, 1, n, INT)
+        put_text(ws, row, 2, text, wrap=True)

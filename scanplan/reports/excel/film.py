@@ -1,0 +1,152 @@
+"""The film sheets: every constraint at every photo scale, and the photo-scale sweep with its
+chart."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from openpyxl.chart import Reference, ScatterChart
+from openpyxl.chart.axis import ChartLines
+from openpyxl.chart.label import DataLabelList
+from openpyxl.chart.shapes import GraphicalProperties
+from openpyxl.worksheet.worksheet import Worksheet
+
+from ...rules.film import CONSTRAINTS
+
+if TYPE_CHECKING:
+    from ...project.api import ScanJob
+    from ...project.spec import PlanResult
+
+from .book import Book
+from .cells import (
+    F2,
+    PCT,
+    SCALE,
+    UM,
+    _finite,
+    _header,
+    _mark,
+    put_num,
+    put_text,
+)
+from .charts import (
+    _add_series,
+    _chart_below,
+    _log_ceil,
+    _log_floor,
+    _scale_ticks,
+    _scatter,
+)
+
+
+def constraints_sheet(book: Book, job: ScanJob) -> None:
+    ws = book.sheet("xlsx_sheet_constraints", landscape=True,
+                    widths=(14, 9, 8, 34, 12, 12, 12, 12, 60, 60))
+    _header(ws, 1, [book.t("photo_scale"), book.t("photo_to_map"), book.t("xlsx_id"),
+                    book.t("constraint"), book.t("pixel_um"), book.t("xlsx_margin_um"),
+                    book.t("margin_pct"), book.t("binding"), book.t("reason"),
+                    book.t("xlsx_equation")])
+    row = 2
+    for s in job.plan.scenarios:
+        for c in s.constraints:
+            cells = [put_num(ws, row, 1, s.photo_scale, SCALE),
+                     put_num(ws, row, 2, s.photo_to_map_ratio, F2),
+                     put_text(ws, row, 3, c.id),
+                     put_text(ws, row, 4, book.t(c.id) if c.id in CONSTRAINTS else c.name),
+                     put_num(ws, row, 5, c.pixel_um, UM),
+                     put_num(ws, row, 6, c.margin_um, UM),
+                     put_num(ws, row, 7, c.margin_pct, PCT),
+                     put_text(ws, row, 8, book.yes_no(c.binding))]
+            put_text(ws, row, 9, book.text(c.reason), wrap=True)
+            put_text(ws, row, 10, book.text(c.equation), wrap=True)
+            if c.binding:
+                _mark(cells)
+            row += 1
+    if row > 2:
+        ws.auto_filter.ref = f"A1:J{row - 1}"
+
+
+def sweep_sheet(book: Book, job: ScanJob, spec: PlanResult | None = None) -> None:
+    sweep = job.plan.sweep
+    scales = list(sweep.get("photo_scale", []))
+    ids = [cid for cid in job.plan.constraint_ids if cid in sweep]
+    ws = book.sheet("xlsx_sheet_sweep", landscape=True,
+                    widths=(14,) + (16,) * len(ids) + (16, 30))
+    heads = [book.t("photo_scale")] + [f"{book.cname(cid)}, µm" if book.loc == "en"
+                                       else f"{book.cname(cid)}, мкм" for cid in ids]
+    _header(ws, 1, [*heads, book.t("scan_pixel_um"), book.t("binding")])
+    n = len(scales)
+    pixel_col = len(ids) + 2
+    binding = list(sweep.get("binding", []))
+    scan_px = list(sweep.get("scan_pixel_um", []))
+    for i in range(n):
+        row = i + 2
+        put_num(ws, row, 1, scales[i], SCALE, missing=None)
+        for j, cid in enumerate(ids):
+            cell = put_num(ws, row, 2 + j, sweep[cid][i], UM, missing=None)
+            if i < len(binding) and binding[i] == cid:
+                _mark((cell,))
+        put_num(ws, row, pixel_col, scan_px[i] if i < len(scan_px) else None, UM,
+                missing=None)
+        if i < len(binding):
+            put_text(ws, row, pixel_col + 1, binding[i])
+    if n == 0:
+        return
+    chart = _scatter(book.t("plot_constraints"), book.t("photo_scale"), book.t("pixel_um"))
+    chart.x_axis.number_format = SCALE
+    # a linear axis whose ticks fall on every candidate photo scale (a log axis would
+    # label only 1:1000, 1:10000, ...)
+    lo, hi, step = _scale_ticks([s.photo_scale for s in job.plan.scenarios],
+                                _finite(scales[0]) or 0.0, _finite(scales[-1]) or 1.0)
+    chart.x_axis.scaling.min = lo
+    chart.x_axis.scaling.max = hi
+    chart.x_axis.majorUnit = step
+    chart.x_axis.majorGridlines = ChartLines()
+    chart.y_axis.number_format = "General"
+    # pixels span a decade or more: a log axis shows the deciding (smallest) one clearly
+    values = [v for cid in ids for v in (_finite(x) for x in sweep[cid]) if v]
+    chart.y_axis.scaling.logBase = 10
+    chart.y_axis.scaling.min = _log_floor(min(values, default=1.0))
+    chart.y_axis.scaling.max = _log_ceil(max(values, default=100.0))
+    chart.y_axis.majorGridlines = ChartLines()
+    chart.y_axis.minorGridlines = ChartLines()
+    xref = Reference(ws, min_col=1, min_row=2, max_row=n + 1)
+    for j, cid in enumerate(ids):
+        _add_series(chart, ws, xref, 2 + j, n, book.cname(cid))
+    _add_series(chart, ws, xref, pixel_col, n, book.t("scan_pixel_um"), width_emu=44450,
+                dash="dash", color="000000")
+    rec = spec.film.recommended if spec is not None and spec.film is not None else None
+    _candidate_markers(book, chart, ws, job, n + 3, rec.photo_scale if rec else None)
+    _chart_below(ws, chart, n + 1 + 2 + len(job.plan.scenarios) + 2)
+
+
+def _candidate_markers(book: Book, chart: ScatterChart, ws: Worksheet, job: ScanJob,
+                       first_row: int, recommended: float | None) -> None:
+    """One labelled point per candidate photo scale at its scan pixel: the chart names
+    every candidate scale (a log axis labels only 1:1000, 1:10000, ...); the
+    recommended one (the smallest feasible scale) stands out."""
+    scen = job.plan.scenarios
+    _header(ws, first_row, [book.t("photo_scale"), book.t("scan_pixel_um"),
+                            book.t("binding")])
+    for i, s in enumerate(scen):
+        row = first_row + 1 + i
+        put_num(ws, row, 1, s.photo_scale, SCALE)
+        put_num(ws, row, 2, s.scan_pixel_um, UM)
+        put_text(ws, row, 3, s.binding)
+        label = f"1:{book.numbers.whole(s.photo_scale)}"
+        if s.photo_scale == recommended:
+            label += " (" + book.t("xlsx_recommended") + ")"
+        xref = Reference(ws, min_col=1, min_row=row, max_row=row)
+        series = _add_series(chart, ws, xref, 2, 1, label, first_row=row)
+        series.graphicalProperties.line.noFill = True
+        series.marker.symbol = "diamond" if s.photo_scale == recommended else "circle"
+        series.marker.size = 11 if s.photo_scale == recommended else 7
+        color = "C00000" if s.photo_scale == recommended else "000000"
+        series.marker.graphicalProperties = GraphicalProperties(solidFill=color)
+        series.marker.graphicalProperties.line.solidFill = color
+        series.dLbls = DataLabelList()
+        series.dLbls.showSerName = True
+        series.dLbls.showVal = False
+        series.dLbls.showCatName = False
+        series.dLbls.showLegendKey = False
+        series.dLbls.position = "t"

@@ -1,0 +1,518 @@
+"""The PDF's sections as plain strings and flags the templates lay out.
+
+Each ``_*_view`` turns one part of a :class:`scanplan.reports.view.ReportView` (the
+specification, the film scan, the UAV flight, the comparison) into the dictionary its
+template (``templates/_spec.html``, ``_scan.html``, ``_uav.html``, ``_comparison.html``)
+shows; numbers and labels come from the view (one formatter and one catalogue per
+locale), works are cited by this document's reference numbers (:class:`_Fmt`).
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+from ..core import flight as FL
+from ..core.flight import MAX_BLUR_PX
+from ..messages import localize
+from ..norms import NormSet
+from ..project.api import ScanJob, UavJob
+from ..rules.film import CONSTRAINTS, ScanPlan
+from ..rules.uav import UavPlan
+from .labels import LABELS
+from .references import Bibliography
+from .view import ReportView
+from .wording import (
+    camera_title,
+    display_message,
+    name_title,
+    object_title,
+    param_name,
+    param_value,
+    scanner_title,
+    shape_title,
+)
+
+if TYPE_CHECKING:
+    from ..project.spec import PlanResult
+
+_MAX_COLUMNS = 6  # photo scales per result table on A4 portrait
+
+_UAV_FORMULAS = (  # formula, meaning (label), source (label)
+    ("GSD = p·H/f", "pdf_f_gsd", "pdf_src_gsd"),
+    ("L = H/(2·R·f), K(R) = K_thr(R)", "pdf_f_l", "pdf_src_l"),
+    ("P = exp(−(B·L/L_obj)²)", "pdf_f_p", "pdf_src_p"),
+    ("L ≤ L_obj·sqrt(−ln P)/B", "pdf_f_pd", "pdf_src_pd"),
+    ("H_max = H·(1 + Δ_H)", "pdf_f_tol", "pdf_src_tol"),
+)
+_COMPARISON_UNITS = {"m": "pdf_m", "GB": "pdf_gb"}
+
+
+# ---------------------------------------------------------------------------------------
+# Formatting
+# ---------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class _Fmt:
+    """The view's labels and numbers plus this document's bibliography (its reference
+    numbers follow the order the PDF cites the works in)."""
+
+    view: ReportView
+    bib: Bibliography
+
+    @property
+    def locale(self) -> str:
+        return self.view.locale
+
+    def cite(self, text: str) -> str:
+        """``text`` with the works it names replaced by reference numbers."""
+        return self.bib.cite(text)
+
+    def label(self, key: str, **kw: Any) -> str:
+        return self.view.labels(key, **kw)
+
+    def num(self, x: float | None, digits: int = 1) -> str:
+        return self.view.numbers.num(x, digits)
+
+    def g(self, x: float | None) -> str:
+        """Shortest form (like ``:g``) with the locale's decimal separator."""
+        return self.view.numbers.g(x)
+
+    def scale(self, x: float) -> str:
+        return self.view.numbers.scale(x)
+
+    def floor_scale(self, x: float) -> str:
+        return self.view.numbers.floor_scale(x)
+
+    def cname(self, cid: str) -> str:
+        return self.view.labels.constraint(cid)
+
+
+def _object_name(ns: NormSet, name: str, size_m: float, map_scale: int | None,
+                 locale: str) -> str:
+    """A norm-table object's name in the report's language (unnamed: "object of the given
+    size")."""
+    from ..project.api import USER_OBJECT_NAME
+
+    if map_scale is None and name == USER_OBJECT_NAME["en"]:  # a project's unnamed object
+        return name_title("", "", locale)
+    for o in ns.objects:
+        if o.name == name and o.size_m == size_m and (map_scale is None
+                                                      or o.map_scale == map_scale):
+            return object_title(o, locale)
+    return name_title(name, "", locale)
+
+
+def _shape_name(ns: NormSet, shape: str, locale: str) -> str:
+    """The shape in words in the report's language."""
+    return shape_title(ns, shape, locale)
+
+
+def _warnings(ws: Any, f: _Fmt, ns: NormSet | None = None) -> list[dict[str, str]]:
+    out = []
+    for w in ws:
+        key = f"pdf_warn_{w.code}"
+        heading = f.label(key) if key in LABELS["en"] else ""
+        scales = ", ".join(f.scale(x) for x in getattr(w, "photo_scales", ()) or ())
+        out.append({"code": w.code, "severity": w.severity, "heading": heading,
+                    "scales": scales,
+                    "message": f.cite(display_message(w.message, ns, f.locale))})
+    return out
+
+
+# ---------------------------------------------------------------------------------------
+# View models: plain strings and flags the templates lay out
+# ---------------------------------------------------------------------------------------
+
+
+def _norm_view(ns: NormSet, f: _Fmt) -> dict[str, Any]:
+    title = ns.title_ru if f.locale == "ru" and ns.title_ru else ns.title
+    cited = f.cite(ns.source)
+    numbers = re.findall(r"\[\d+\]", cited)
+    # a source naming known works is shown by their numbers (its prose is the bibliography's)
+    source = "; ".join(dict.fromkeys(numbers)) if numbers else ns.source
+    return {"name": ns.name, "title": title, "source": source,
+            "imported_from": ns.imported_from, "imported_at": ns.imported_at}
+
+
+def _scan_view(job: ScanJob, f: _Fmt) -> dict[str, Any]:
+    plan: ScanPlan = job.plan
+    inp, rules, ns = plan.inputs, plan.rules, job.norm_set
+    um = f.label("pdf_um")
+    inputs: list[tuple[str, str]] = [
+        (f.label("map_scale"), f.scale(inp.map_scale)),
+        (f.label("relief_interval_m"), f.g(inp.relief_interval_m)),
+        (f.label("photo_scale"), ", ".join(f.scale(s) for s in inp.photo_scales)),
+    ]
+    if inp.camera:
+        inputs.append((f.label("camera"), camera_title(ns, inp.camera, f.locale)))
+    inputs += [
+        (f.label("focal_mm"), f.g(inp.focal_mm)),
+        (f.label("frame_mm"), f"{f.g(inp.frame_width_mm)} × {f.g(inp.frame_along_mm)}"),
+        (f.label("resolving_power_lpmm"), f.g(inp.resolving_power_lpmm)),
+        (f.label("forward_overlap_pct"), f.g(inp.forward_overlap_pct)),
+    ]
+    obj = inp.object
+    obj_name = ""
+    if obj is not None:
+        obj_name = object_title(obj, f.locale)
+        inputs += [
+            (f.label("object"), f"{obj_name}: {f.g(obj.size_m)} {f.label('pdf_m')}, "
+                                f"{_shape_name(ns, obj.shape, f.locale)}, "
+                                f"B = {f.g(obj.shape_coefficient)}"),
+            (f.label("probability"), f.g(rules.probability)),
+            (f.label("norm_rows"), f.cite(localize(obj.source, f.locale))),
+        ]
+    if "PZ" in rules.constraints:
+        key = f"pdf_hf_{rules.height_formula}"
+        inputs.append((f.label("pdf_height_formula"),
+                       f.label(key) if key in LABELS["en"] else rules.height_formula))
+    if inp.scanner:
+        inputs.append((f.label("scanner"), f"{scanner_title(ns, inp.scanner, f.locale)} ("
+                       + ", ".join(f.g(s) for s in inp.scanner_steps_um) + f" {um})"))
+    inputs.append((f.label("pdf_bands"), f"{inp.bands} × {inp.bits_per_band}"))
+    inputs.append((f.label("norm_set"), _norm_view(ns, f)["title"]))
+
+    # at most _MAX_COLUMNS photo scales per table, so a wide plan stays inside A4
+    scen = plan.scenarios
+    n_tables = math.ceil(len(scen) / _MAX_COLUMNS)
+    size = math.ceil(len(scen) / n_tables)
+    tables = [_scan_table(plan, scen[i:i + size], f) for i in range(0, len(scen), size)]
+
+    explanations = [f.cite(display_message(s.explanation, ns, f.locale))
+                    for s in plan.scenarios]
+
+    limit = ""
+    mci = plan.interpretation_limit_photo_scale
+    if mci is not None and obj is not None:
+        limit = f.label("pdf_interpretation_limit", object=obj_name, p=f.g(rules.probability),
+                        scale=f.floor_scale(mci), ratio=f.num(mci / inp.map_scale, 1),
+                        r=f.g(inp.resolving_power_lpmm))
+    reach = [{"pixel": f.g(r.pixel_um),
+              "scale": f.floor_scale(r.max_photo_scale) if r.max_photo_scale > 0
+              else f.label("pdf_none"),
+              "limit": f"{r.limit} — {f.cname(r.limit)}" if r.limit in CONSTRAINTS else r.limit,
+              "interpretable": (f.floor_scale(r.max_photo_scale_interpretable)
+                                if r.max_photo_scale_interpretable else f.label("pdf_none"))}
+             for r in plan.max_photo_scales]
+    formulas = [{"id": cid, "name": f.cname(cid),
+                 "equation": f.cite(localize(CONSTRAINTS[cid].equation, f.locale)),
+                 "protects": localize(CONSTRAINTS[cid].protects, f.locale)}
+                for cid in plan.constraint_ids]
+    params = [{"name": param_name(ns, k, f.locale),
+               "value": param_value(ns, k, v, f.locale, f.g),
+               "source": f.cite(ns.parameter_sources.get(k, ""))}
+              for k, v in ns.parameters.items()]
+    return {
+        "inputs": inputs, "tables": tables,
+        "explanations": explanations, "interpretation_limit": limit, "reach": reach,
+        "reach_interpretable": obj is not None and mci is not None,
+        "warnings": _warnings(plan.warnings, f, ns), "formulas": formulas, "params": params,
+        "norm": _norm_view(ns, f),
+        "plot": f.view.plot_uri("constraints"),
+    }
+
+
+def _scan_table(plan: ScanPlan, scenarios: Any, f: _Fmt) -> dict[str, Any]:
+    """The result table for some photo scales: constraints (binding flagged), summary rows."""
+    inp, um = plan.inputs, f.label("pdf_um")
+    obj = inp.object
+    header = [f.scale(s.photo_scale) for s in scenarios]
+    rows: list[dict[str, Any]] = [{
+        "label": f.label("photo_to_map"), "unit": "",
+        "cells": [{"text": f.num(s.photo_to_map_ratio, 1), "binding": False, "margin": ""}
+                  for s in scenarios], "kind": "ratio"}]
+    for cid in plan.constraint_ids:
+        rows.append({"label": f"{cid} — {f.cname(cid)}", "unit": um, "kind": "constraint",
+                     "cells": [{"text": f.num(s.constraint(cid).pixel_um, 1),
+                                "binding": s.constraint(cid).binding,
+                                "margin": "" if s.constraint(cid).binding
+                                else f"+{f.num(s.constraint(cid).margin_pct, 0)} %"}
+                               for s in scenarios]})
+    summary: list[dict[str, Any]] = [
+        {"label": f.label("binding"), "unit": "",
+         "cells": [s.binding for s in scenarios], "strong": False},
+        {"label": f.label("scan_pixel_um").rsplit(",", 1)[0], "unit": um,
+         "cells": [f.num(s.scan_pixel_um, 1) for s in scenarios], "strong": True},
+    ]
+    if inp.scanner:
+        summary.append({"label": f.label("scanner_pixel_um").rsplit(",", 1)[0], "unit": um,
+                        "cells": [f.num(s.scanner_pixel_um, 1) for s in scenarios],
+                        "strong": True})
+    summary.append({"label": f.label("frame_megabytes").rsplit(",", 1)[0],
+                    "unit": f.label("pdf_mb"),
+                    "cells": [f.num(s.frame_megabytes, 0) for s in scenarios],
+                    "strong": False})
+    summary.append({"label": f.label("pdf_resolution_on_ground"), "unit": f.label("pdf_mm"),
+                    "cells": [f.num(s.resolution_on_ground_mm, 1) for s in scenarios],
+                    "strong": False})
+    if obj is not None:
+        summary.append({"label": f.label("pdf_required_r"), "unit": f.label("pdf_lpmm"),
+                        "cells": [f.num(s.required_resolving_power_lpmm, 1)
+                                  for s in scenarios], "strong": False})
+        summary.append({"label": f.label("pdf_recognition_at_scan"), "unit": "",
+                        "cells": [f.num(s.recognition_probability, 2)
+                                  for s in scenarios], "strong": False})
+
+    return {"header": header, "rows": rows, "summary": summary}
+
+
+def _uav_inputs(job: UavJob, f: _Fmt) -> list[tuple[str, str]]:
+    """The UAV section's inputs: camera, heights, speed, overlaps, scene, map."""
+    plan: UavPlan = job.plan
+    inp, ns, h = plan.inputs, job.norm_set, plan.heights_m
+    m = f.label("pdf_m")
+    cam = camera_title(ns, inp.camera, f.locale, inp.camera_name)
+    inputs: list[tuple[str, str]] = []
+    if cam:
+        inputs.append((f.label("camera"), cam))
+    inputs += [
+        (f.label("pdf_pixel_pitch_um"), f.g(inp.pixel_um)),
+        (f.label("focal_mm"), f.g(inp.focal_mm)),
+        (f.label("pdf_f_number"), f.g(inp.f_number)),
+        (f.label("pdf_sensor_mm"), f"{f.g(inp.sensor_width_mm)} × {f.g(inp.sensor_height_mm)}"),
+        (f.label("orientation"), f.label(f"orientation_{inp.orientation}")),
+        (f.label("height_m"), f.g(h["planned"])),
+    ]
+    if h["max"] != h["min"] or h["min"] != h["planned"]:
+        inputs.append((f.label("pdf_flown_heights"), f"{f.g(h['min'])} – {f.g(h['max'])}"))
+    if inp.ceiling_m is not None:
+        inputs.append((f.label("ceiling_m"), f.g(inp.ceiling_m)))
+    if inp.gsd_target_m is not None:
+        inputs.append((f.label("gsd_target_cm"), f.g(inp.gsd_target_m * 100.0)))
+    inputs += [
+        (f.label("pdf_speed_ms"), f.g(inp.speed_ms)),
+        (f.label("pdf_exposure_s"), f.g(inp.exposure_s)),
+        (f.label("forward_overlap_pct") + " / " + f.label("side_overlap_pct").split(",")[0],
+         f"{f.g(inp.forward_overlap_pct)} / {f.g(inp.side_overlap_pct)}"),
+        (f.label("pdf_scene"), f"{f.g(inp.r_max)} / {f.g(inp.r_min)}"),
+        (f.label("pdf_threshold_k0"), f.g(inp.threshold_k0)),
+    ]
+    if inp.map_scale is not None:
+        inputs += [(f.label("map_scale"), f.scale(inp.map_scale)),
+                   (f.label("relief_interval_m"), f.g(inp.relief_interval_m))]
+        obj = inp.map_object
+        if obj is not None:
+            name = object_title(obj, f.locale)
+            inputs.append((f.label("object"), f"{name}: {f.g(obj.size_m)} {m}, "
+                                              f"{_shape_name(ns, obj.shape, f.locale)}, "
+                                              f"B = {f.g(obj.shape_coefficient)}"))
+    inputs.append((f.label("norm_set"), _norm_view(ns, f)["title"]))
+    return inputs
+
+
+def _uav_results(plan: UavPlan, f: _Fmt) -> tuple[list[str], list[dict[str, Any]], str]:
+    """The result table's columns (the planned and the highest flown height), its rows
+    and the motion-blur sentence."""
+    inp, h = plan.inputs, plan.heights_m
+    two = h["max"] != h["planned"]
+    cols = [f.label("pdf_at_height", h=f.g(h["planned"]))]
+    if two:
+        cols.append(f.label("pdf_at_height", h=f.g(h["max"])))
+
+    def row(label: str, *vals: str) -> dict[str, Any]:
+        cells = list(vals) + [""] * (len(cols) - len(vals))
+        return {"label": label, "cells": cells[:len(cols)]}
+
+    results = [
+        row(f.label("gsd_m"), f.num(plan.gsd_m, 3), f.num(plan.gsd_at_max_height_m, 3)),
+        row(f.label("nyquist_lpmm"), f.num(plan.nyquist_lpmm, 1)),
+        row(f.label("resolving_power_system") + " " + f.label("pdf_centre_corner"),
+            f"{f.num(plan.resolving_power_lpmm, 1)} / "
+            f"{f.num(plan.resolving_power_corner_lpmm, 1)}"),
+        row(f.label("ground_resolution_m"), f.num(plan.ground_resolution_m, 3),
+            f.num(plan.ground_resolution_at_max_height_m, 3)),
+        row(f.label("pdf_l_corner"), f.num(plan.ground_resolution_corner_m, 3)),
+        row(f.label("l_over_gsd"), f.num(plan.ground_resolution_to_gsd, 2)),
+        row(f.label("motion_blur_px") + f" ({f.label('pdf_at_height', h=f.g(h['min']))})",
+            f.num(plan.motion_blur_px, 2)),
+    ]
+    if plan.tilted_corner_gsd_m is not None:
+        results.append(row(f.label("pdf_tilted_gsd", roll=f.g(inp.roll_deg),
+                                   pitch=f.g(inp.pitch_deg)),
+                           *(["", f.num(plan.tilted_corner_gsd_m, 3)] if two
+                             else [f.num(plan.tilted_corner_gsd_m, 3)])))
+    blur = f.label("pdf_blur_limit", blur=f.g(MAX_BLUR_PX),
+                   exposure=f"1/{math.ceil(1 / plan.max_exposure_s):d}",
+                   speed=f.num(plan.max_speed_ms, 1))
+    return cols, results, blur
+
+
+def _uav_flight(plan: UavPlan, f: _Fmt) -> list[tuple[str, str]]:
+    """The flight geometry at the planned height."""
+    h = plan.heights_m
+    fl = plan.flight
+    flight = [
+        (f.label("pdf_footprint"), f"{f.num(fl['footprint_across_m'], 0)} × "
+                                   f"{f.num(fl['footprint_along_m'], 0)}"),
+        (f.label("pdf_base"), f.num(fl["base_m"], 1)),
+        (f.label("pdf_line_spacing"), f.num(fl["line_spacing_m"], 1)),
+        (f.label("pdf_photo_interval"), f.num(fl["photo_interval_s"], 2)
+         + (f" ({f.label('pdf_trigger_min')} {f.g(fl['min_trigger_interval_s'])})"
+            if "min_trigger_interval_s" in fl else "")),
+        (f.label("pdf_overlap_at", lo=f.g(h["min"]), hi=f.g(h["max"])),
+         f"{f.num(fl['forward_overlap_at_min_height_pct'], 1)} / "
+         f"{f.num(fl['forward_overlap_at_max_height_pct'], 1)}"),
+    ]
+    if "strips" in fl:
+        if "photos_per_strip" in fl:
+            flight.append((f.label("pdf_strips"), f"{fl['strips']} × {fl['photos_per_strip']} "
+                                                  f"= {fl['photos']}"))
+        else:  # a polygon: the strips differ in length
+            flight.append((f.label("pdf_strips_photos"), f"{fl['strips']} / {fl['photos']}"))
+        flight.append((f.label("pdf_flight_length"),
+                       f"{f.num(fl['flight_length_m'] / 1000, 1)} / "
+                       + (f.num(fl["flight_time_s"] / 60, 0) if fl.get("flight_time_s")
+                          else "—")))
+        if "data_volume_bytes" in fl:
+            flight.append((f.label("pdf_data_volume"), f.num(fl["data_volume_bytes"] / 1e9, 1)))
+            flight.append((f.label("data_volume_jpeg_gb"),
+                           f.num(float(FL.jpeg_volume_bytes(fl["data_volume_bytes"])) / 1e9, 1)))
+    return flight
+
+
+def _uav_limits(plan: UavPlan, f: _Fmt) -> dict[str, Any]:
+    """The constraints as maximum heights, the sentence on the binding one, the height
+    accuracy forms and the formulas."""
+    inp, h = plan.inputs, plan.heights_m
+    limits = [{"id": lim.id, "name": f.cname(lim.id),
+               "limit": f.num(lim.limit_m, 3 if lim.limit_m < 10 else 0),
+               "compares": lim.compares, "max_height": f.num(lim.max_height_m, 0),
+               "max_flown": f.num(lim.max_flown_height_m or lim.max_height_m, 0),
+               "margin": "" if lim.binding or not math.isfinite(lim.margin_pct)
+               else f"+{f.num(lim.margin_pct, 0)} %",
+               "binding": lim.binding}
+              for lim in sorted(plan.limits, key=lambda x: x.max_height_m)]
+    limits_title = ""
+    max_sentence = ""
+    if plan.limits and inp.map_scale is not None:
+        tol = inp.height_tolerance_up_pct
+        limits_title = f.label("pdf_limits", scale=f.scale(inp.map_scale),
+                               hc=f.g(inp.relief_interval_m)) + (
+            f.label("pdf_tol_note", tol=f.g(tol)) if tol else "")
+        b = next(x for x in plan.limits if x.binding)
+        max_sentence = f.label("pdf_max_height_sentence", h=f.num(plan.max_height_m, 0),
+                               cid=b.id, name=f.cname(b.id),
+                               reason=f.cite(localize(b.reason, f.locale)))
+    height_forms = ""
+    acc = plan.height_accuracy
+    if acc:
+        m = f.label("pdf_m")
+        height_forms = f.label("pdf_height_forms", sigma=f.num(
+            acc["sigma_z_at_highest_flown_height_m"], 3), h=f.num(h["max"], 0),
+            vz=f.g(acc["height_accuracy_m"]), forms="; ".join(
+                f"{f.label('hf_' + k)}: {f.num(acc['forms'][k]['max_planned_height_m'], 0)} {m}"
+                for k in ("normal_case", "instruction", "parallax")))
+    formulas = [{"equation": eq, "meaning": f.label(key), "source": f.cite(f.label(src))}
+                for eq, key, src in _UAV_FORMULAS
+                if plan.limits or key not in ("pdf_f_pd", "pdf_f_tol")]
+    limit_formulas = [{"id": lim.id, "name": f.cname(lim.id),
+                       "equation": f.cite(localize(lim.equation, f.locale))}
+                      for lim in plan.limits]
+    return {"limits": limits, "limits_title": limits_title, "max_sentence": max_sentence,
+            "height_forms": height_forms, "formulas": formulas,
+            "limit_formulas": limit_formulas}
+
+
+def _uav_view(job: UavJob, f: _Fmt) -> dict[str, Any]:
+    plan: UavPlan = job.plan
+    ns, h = job.norm_set, plan.heights_m
+    cols, results, blur = _uav_results(plan, f)
+    recognition = [{
+        "object": _object_name(ns, r.object, r.object_size_m, r.map_scale, f.locale),
+        "map": f.scale(r.map_scale) if r.map_scale else "—", "size": f.g(r.object_size_m),
+        "shape": _shape_name(ns, r.shape, f.locale), "p": f.num(r.probability, 2),
+        "p_max": f.num(r.probability_at_max_height, 2),
+        "p_corner": f.num(r.probability_corner_at_max_height, 2)} for r in plan.recognition]
+    return {
+        "inputs": _uav_inputs(job, f), "cols": cols, "results": results, "blur": blur,
+        "flight": _uav_flight(plan, f),
+        "recognition": recognition, "recognition_cols": [
+            f.label("pdf_at_height", h=f.g(h["planned"])),
+            f.label("pdf_at_height", h=f.g(h["max"])),
+            f.label("pdf_corner_at", h=f.g(h["max"]))],
+        **_uav_limits(plan, f),
+        "warnings": _warnings(plan.warnings, f, ns), "norm": _norm_view(ns, f),
+        "plot_mtf": f.view.plot_uri("mtf"),
+        "plot_height": f.view.plot_uri("height"),
+        "not_resolvable": not plan.resolvable,
+    }
+
+
+def _comparison_view(scan: ScanJob, uav: UavJob, f: _Fmt) -> dict[str, Any]:
+    sp, up = scan.plan, uav.plan
+    um, m = f.label("pdf_um"), f.label("pdf_m")
+    film_result = "; ".join(f"{f.scale(s.photo_scale)}: {f.num(s.scan_pixel_um, 1)} {um} "
+                            f"({s.binding})" for s in sp.scenarios)
+    uav_result = (f"{f.label('max_height_m').split(',')[0]}: {f.num(up.max_height_m, 0)} {m}"
+                  f" ({up.binding}); " if up.max_height_m is not None else "") + (
+        f"GSD {f.num(up.gsd_m, 3)} {m}, L {f.num(up.ground_resolution_m, 3)} {m} "
+        f"({f.label('pdf_at_height', h=f.g(up.heights_m['planned']))})")
+    film_binding = ", ".join(dict.fromkeys(f"{s.binding} — {f.cname(s.binding)}"
+                                           for s in sp.scenarios))
+    return {"rows": [
+        (f.label("map_scale"), f.scale(sp.inputs.map_scale),
+         f.scale(up.inputs.map_scale) if up.inputs.map_scale is not None else "—"),
+        (f.label("binding"), film_binding,
+         f"{up.binding} — {f.cname(up.binding)}" if up.binding else "—"),
+        (f.label("pdf_result"), film_result, uav_result),
+        (f.label("warnings"), str(len(sp.warnings)), str(len(up.warnings))),
+    ]}
+
+
+def _comparison_quantity(row: dict[str, Any], f: _Fmt) -> str:
+    """A row of the specification's film/UAV table named in the report's language."""
+    key = f"spec_cmp_{row.get('key', '')}"
+    return f.label(key) if key in LABELS["en"] else str(row["quantity"])
+
+
+def _comparison_value(x: Any, f: _Fmt) -> str:
+    """A value of the film/UAV table: counts as whole numbers, the rest with 3 decimals."""
+    if x is None:
+        return "—"
+    return f.num(x, 0 if isinstance(x, int) else 3)
+
+
+def _spec_view(spec: PlanResult, f: _Fmt) -> dict[str, Any]:
+    """The specification of ``scanplan plan``: what was chosen, with its reason."""
+    rows: list[tuple[str, str]] = []
+    reasons: list[str] = []
+    if spec.film is not None:
+        fs, rec = spec.film, spec.film.recommended
+        if rec is not None:
+            rows.append((f.label("spec_archive_photo_scale" if fs.archive
+                                 else "spec_recommended_photo_scale"), f.scale(rec.photo_scale)))
+            px = f.num(rec.scan_pixel_um, 1)
+            if rec.scanner_pixel_um is not None:
+                px += f" → {f.num(rec.scanner_pixel_um, 1)}"
+            rows.append((f.label("scan_pixel_um"), px))
+            rows.append((f.label("binding"), f"{rec.binding} — {f.cname(rec.binding)}"))
+            rows.append((f.label("probability"), f.num(rec.recognition_probability, 2)))
+            if fs.frames is not None:
+                rows.append((f.label("spec_frames"), f.g(fs.frames)))
+                rows.append((f.label("spec_scanned_gb"), f.num(fs.scanned_gigabytes, 1)))
+        reasons.append(f.cite(display_message(fs.reason, fs.job.norm_set, f.locale)))
+    if spec.uav is not None:
+        u, p = spec.uav, spec.uav.job.plan
+        if u.planned_height_m is not None:
+            rows.append((f.label("spec_planned_height_m"), f.num(u.planned_height_m, 0)))
+        rows.append((f.label("spec_recommended_height_m"), f.num(u.recommended_height_m, 0)))
+        rows.append((f.label("max_height_m"), f.num(u.max_height_m, 0)))
+        if p.binding:
+            rows.append((f.label("binding"), f"{p.binding} — {f.cname(p.binding)}"))
+        if "photos" in p.flight:
+            rows.append((f.label("spec_photos"), f.g(p.flight["photos"])))
+        if "data_volume_bytes" in p.flight:
+            rows.append((f.label("spec_data_gb"), f.num(p.flight["data_volume_bytes"] / 1e9, 1)))
+            rows.append((f.label("data_volume_jpeg_gb"), f.num(float(FL.jpeg_volume_bytes(
+                p.flight["data_volume_bytes"])) / 1e9, 1)))
+        reasons.append(f.cite(display_message(u.reason, u.job.norm_set, f.locale)))
+    comparison = [(_comparison_quantity(c, f), _comparison_value(c["film"], f),
+                   _comparison_value(c["uav"], f),
+                   f.label(_COMPARISON_UNITS[c["unit"]]) if c["unit"] in _COMPARISON_UNITS
+                   else c["unit"])
+                  for c in spec.comparison]
+    return {"rows": rows, "reasons": reasons, "comparison": comparison}

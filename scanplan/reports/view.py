@@ -1,0 +1,335 @@
+"""The report view model: what every renderer shows, built once per result.
+
+A result (:class:`scanplan.project.spec.PlanResult`, or a film and/or UAV job with their
+norm set) becomes one :class:`ReportView`: the language, the sections present (in document
+order), the labels of that language (:class:`Labels`, the one catalogue of
+:mod:`.labels`), the number formatter of that language (:class:`Numbers`: decimal comma
+and no-break-space thousands in Russian), the warnings as rows, and the plots as SVG —
+drawn on first use and kept, so a workbook, an HTML page and a PDF of one result share
+them and matplotlib is imported only when a plot is asked for. The renderers (terminal
+text, Excel, PDF; the JSON document needs no locale) lay out what the view holds; they
+never recompute a number.
+
+Extending the documents (a new section, e.g. the map page of the area, or a new sheet):
+add its name to :data:`SECTION_ORDER`, make :func:`section_names` say when it is present,
+and give the renderers its layout (a sheet writer registered in
+``scanplan.reports.excel.SHEETS``; a ``{% if view.has('name') %}`` block of the PDF
+templates). See docs/architecture.md, "Reports".
+"""
+
+from __future__ import annotations
+
+import base64
+import datetime as _dt
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+from .labels import LABELS, t
+
+if TYPE_CHECKING:
+    from ..project.api import ScanJob, UavJob
+    from ..project.file import ReportMeta
+    from ..project.spec import PlanResult
+
+__all__ = ["LOCALES", "SECTION_ORDER", "Labels", "Numbers", "ReportView", "build_view",
+           "section_names"]
+
+LOCALES = ("en", "ru")
+MISSING = "—"
+
+#: The sections of a report in document order. A section is present when
+#: :func:`section_names` says so; renderers iterate the names they know.
+SECTION_ORDER: tuple[str, ...] = ("spec", "film", "uav", "comparison")
+
+
+# ---------------------------------------------------------------------------------------
+# Numbers: one formatter per locale
+# ---------------------------------------------------------------------------------------
+
+
+def _finite(x: Any) -> bool:
+    return x is not None and not (isinstance(x, float) and not math.isfinite(x))
+
+
+@dataclass(frozen=True)
+class Numbers:
+    """Every number a document prints, in one locale's convention.
+
+    English: ``12.5``, ``10,000``; Russian: ``12,5``, ``10 000`` (a no-break space groups
+    thousands). A missing or non-finite value prints as ``—``.
+
+    Parameters
+    ----------
+    locale : {"en", "ru"}
+        The document's language.
+
+    Examples
+    --------
+    >>> ru = Numbers("ru")
+    >>> ru.num(12345.678, 1), ru.g(0.25), ru.scale(10000), ru.fixed(2.5, 2)
+    ('12\\xa0345,7', '0,25', '1:10\\xa0000', '2,50')
+    >>> Numbers("en").num(float("nan"))
+    '—'
+    """
+
+    locale: str = "en"
+
+    def _dec(self, text: str) -> str:
+        """``text`` (Python's format) with the locale's decimal separator and grouping."""
+        if self.locale == "ru":
+            return text.replace(",", "\u00a0").replace(".", ",")
+        return text
+
+    def num(self, x: float | None, digits: int = 1) -> str:
+        """``x`` with ``digits`` decimals, thousands grouped."""
+        if not _finite(x) or not math.isfinite(float(x)):  # type: ignore[arg-type]
+            return MISSING
+        return self._dec(f"{float(x):,.{digits}f}")  # type: ignore[arg-type]
+
+    def fixed(self, x: float | None, digits: int = 1) -> str:
+        """``x`` with ``digits`` decimals, thousands not grouped (chart labels, terminal)."""
+        if not _finite(x):
+            return MISSING
+        return self._dec(f"{x:.{digits}f}")
+
+    def whole(self, x: float) -> str:
+        """``x`` rounded to a whole number, grouped in Russian only (``10000``, ``10 000``)."""
+        text = f"{round(float(x)):,d}"
+        return text.replace(",", "\u00a0") if self.locale == "ru" else text.replace(",", "")
+
+    def g(self, x: float | None) -> str:
+        """Shortest form (like ``:g``); whole numbers from 10,000 up grouped."""
+        if not _finite(x):
+            return MISSING
+        text = f"{float(x):g}"  # type: ignore[arg-type]
+        if "e" in text:
+            return text
+        if abs(float(x)) >= 10000 and float(x).is_integer():  # type: ignore[arg-type]
+            return self.num(x, 0)
+        return self._dec(text)
+
+    def short(self, x: float) -> str:
+        """Shortest form (like ``:g``), never grouped (the terminal's inputs)."""
+        return self._dec(f"{x:g}")
+
+    def tick(self, x: float) -> str:
+        """A plot's tick label: whole numbers grouped, others with up to 6 digits."""
+        if float(x).is_integer():
+            return self.num(x, 0)
+        return self._dec(f"{x:.6g}")
+
+    def um(self, x: float | None) -> str:
+        """A pixel [µm]: one decimal, or two significant digits below 1 µm (never ``0.0``)."""
+        if not _finite(x) or x >= 0.95:  # type: ignore[operator]
+            return self.fixed(x, 1)
+        return self._dec(f"{x:.2g}")
+
+    def scale(self, x: float) -> str:
+        """A scale: ``1:10,000`` / ``1:10 000`` (a fractional one in shortest form)."""
+        return "1:" + (self.num(x, 0) if float(x).is_integer() else self.g(x))
+
+    def floor_scale(self, x: float) -> str:
+        """The largest whole scale denominator not above ``x``: ``1:12,345``."""
+        return "1:" + self.num(math.floor(x), 0)
+
+    def plain_scale(self, x: float) -> str:
+        """A scale without grouping: ``1:10000`` (the workbook's cells and charts)."""
+        return f"1:{x:.0f}"
+
+
+# ---------------------------------------------------------------------------------------
+# Labels: the one catalogue, in one locale
+# ---------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Labels:
+    """The report labels (:data:`scanplan.reports.labels.LABELS`) in one language.
+
+    ``platform`` picks the wording of the digital-camera sections: ``"uav"`` (a drone) or
+    ``"aircraft"`` (an aerial survey).
+
+    Examples
+    --------
+    >>> Labels("ru")("map_scale")
+    'Масштаб карты (плана)'
+    >>> Labels("en").has("no such key")
+    False
+    """
+
+    locale: str = "en"
+    platform: str = "uav"
+
+    def __call__(self, key: str, **kw: Any) -> str:
+        """The label ``key``, its ``{fields}`` filled from ``kw``; KeyError if unknown."""
+        text = t(key, self.locale, self.platform)
+        return text.format(**kw) if kw else text
+
+    def has(self, key: str) -> bool:
+        """Whether the catalogue has ``key``."""
+        return key in LABELS["en"]
+
+    def get(self, key: str, default: str) -> str:
+        """The label ``key``, or ``default`` when the catalogue has none."""
+        return self(key) if self.has(key) else default
+
+    def constraint(self, cid: str) -> str:
+        """A constraint's name (the registry's record) in this language."""
+        from ..rules.registry import CONSTRAINTS
+
+        info = CONSTRAINTS[cid]
+        return info.name_ru if self.locale == "ru" else info.name
+
+    def yes_no(self, value: bool) -> str:
+        """Yes / Да."""
+        return self("xlsx_yes" if value else "xlsx_no")
+
+
+# ---------------------------------------------------------------------------------------
+# The view
+# ---------------------------------------------------------------------------------------
+
+
+def section_names(scan: Any, uav: Any, spec: Any) -> tuple[str, ...]:
+    """The sections a report of these results has, in :data:`SECTION_ORDER`.
+
+    Parameters
+    ----------
+    scan, uav : job or None
+        The film and the UAV job.
+    spec : PlanResult or None
+        The specification of ``scanplan plan``.
+
+    Returns
+    -------
+    tuple of str
+        ``"spec"`` with a specification, ``"film"`` / ``"uav"`` with a job,
+        ``"comparison"`` with both jobs.
+    """
+    present = {"spec": spec is not None, "film": scan is not None, "uav": uav is not None,
+               "comparison": scan is not None and uav is not None}
+    return tuple(name for name in SECTION_ORDER if present.get(name))
+
+
+def svg_data_uri(svg: str) -> str:
+    """An SVG as a ``data:`` URI (what the PDF's HTML embeds)."""
+    return "data:image/svg+xml;base64," + base64.b64encode(svg.encode("utf-8")).decode()
+
+
+@dataclass
+class ReportView:
+    """One result as the documents show it; built once (:func:`build_view`), rendered by
+    the workbook and the PDF (and anything else added later).
+
+    Attributes
+    ----------
+    scan, uav : job or None
+        The film scan and UAV flight jobs (plan and norm set).
+    spec : PlanResult or None
+        The specification of ``scanplan plan``.
+    meta : ReportMeta
+        Title, approval blocks, language.
+    when : datetime
+        The document's creation time (``SOURCE_DATE_EPOCH`` when set).
+    locale, platform : str
+        The language and the digital platform (``"uav"`` / ``"aircraft"``).
+    numbers : Numbers
+        The number formatter of ``locale``.
+    labels : Labels
+        The labels of ``locale`` and ``platform``.
+    sections : tuple of str
+        The sections present, in order (:func:`section_names`).
+    """
+
+    scan: ScanJob | None
+    uav: UavJob | None
+    spec: PlanResult | None
+    meta: ReportMeta
+    when: _dt.datetime
+    locale: str
+    platform: str
+    numbers: Numbers
+    labels: Labels
+    sections: tuple[str, ...]
+    _plots: dict[str, str] = field(default_factory=dict, repr=False)
+
+    def has(self, section: str) -> bool:
+        """Whether the report has ``section``."""
+        return section in self.sections
+
+    def plot(self, name: str) -> str:
+        """A plot as SVG text, drawn on first use and kept.
+
+        Parameters
+        ----------
+        name : {"constraints", "mtf", "height"}
+            The film plan's constraints against the photo scale; the UAV plan's MTF at the
+            frame centre; the UAV plan's GSD and L against the height.
+
+        Returns
+        -------
+        str
+            A deterministic SVG (:mod:`scanplan.reports.plots`).
+        """
+        if name not in self._plots:
+            from . import plots  # matplotlib only when a plot is drawn
+
+            draw: dict[str, Callable[[], str]] = {
+                "constraints": lambda: plots.constraints_svg(self._job("scan").plan,
+                                                             self.locale),
+                "mtf": lambda: plots.mtf_svg(self._job("uav").plan, self.locale),
+                "height": lambda: plots.height_svg(self._job("uav").plan, self.locale),
+            }
+            self._plots[name] = draw[name]()
+        return self._plots[name]
+
+    def plot_uri(self, name: str) -> str:
+        """:meth:`plot` as a ``data:`` URI."""
+        return svg_data_uri(self.plot(name))
+
+    def _job(self, which: str) -> Any:
+        job = self.scan if which == "scan" else self.uav
+        if job is None:
+            raise ValueError(f"this report has no {which} plan")
+        return job
+
+
+def build_view(*, scan: ScanJob | None = None, uav: UavJob | None = None,
+               meta: ReportMeta | None = None, spec: PlanResult | None = None,
+               when: _dt.datetime | None = None) -> ReportView:
+    """The view of one result, for every renderer.
+
+    Parameters
+    ----------
+    scan, uav : job, optional
+        The film and/or UAV job (at least one).
+    meta : ReportMeta, optional
+        Title, approval blocks and language (default: English, no project data).
+    spec : PlanResult, optional
+        The specification of ``scanplan plan``.
+    when : datetime, optional
+        The creation time (default :func:`scanplan.reports.report_datetime`).
+
+    Returns
+    -------
+    ReportView
+
+    Raises
+    ------
+    ValueError
+        If neither ``scan`` nor ``uav`` is given.
+    """
+    from . import ReportMeta, report_datetime
+
+    if scan is None and uav is None:
+        raise ValueError("a report needs a scan plan, a UAV plan or both")
+    meta = meta if meta is not None else ReportMeta()
+    locale = meta.locale if meta.locale in LOCALES else "en"
+    platform = uav.plan.inputs.platform if uav is not None else "uav"
+    return ReportView(scan=scan, uav=uav, spec=spec, meta=meta,
+                      when=when if when is not None else report_datetime(),
+                      locale=locale, platform=platform, numbers=Numbers(locale),
+                      labels=Labels(locale, platform),
+                      sections=section_names(scan, uav, spec))
