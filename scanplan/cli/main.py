@@ -18,13 +18,10 @@ import click
 from .._version import __version__
 from ..errors import InputError, WriteError
 from ..project.inputs import option_names
-from .options import finite, input_option
+from .options import input_option
 
-OPTION_NAMES = {**option_names(), "file": "--area-file", "feature": "--area-feature",
-                "layer": "--area-layer", "direction_deg": "--direction-deg",
-                "max_flight_time_min": "--max-flight-time-min"}
-"""Python names of inputs (error fields) → the option a user typed (the input registry's;
-the area options of ``uav`` and ``scan`` beside it)."""
+OPTION_NAMES = option_names()
+"""Python names of inputs (error fields) → the option a user typed (the input registry's)."""
 
 
 LAZY_COMMANDS = {
@@ -148,20 +145,6 @@ def norm_options(command: str) -> Callable[[Callable[..., Any]], Callable[..., A
             f = input_option(command, name)(f)
         return f
     return decorate
-
-
-def area_options(f: Callable[..., Any]) -> Callable[..., Any]:
-    """--area-file and its polygon choice (scan, uav)."""
-    for opt in reversed([
-        click.option("--area-file", type=click.Path(dir_okay=False),
-                     help="Contract polygon: KML, KMZ, GeoJSON, GeoPackage or Shapefile "
-                     "(strips and photos are laid out over it; not with --area-m)."),
-        click.option("--area-feature", help="The polygon's name or number from 1, when the "
-                     "file holds several."),
-        click.option("--area-layer", help="The file's layer holding the polygon."),
-    ]):
-        f = opt(f)
-    return f
 
 
 def _area_of(kwargs: dict[str, Any]) -> Any:
@@ -340,10 +323,7 @@ def _inputs(command: str, names: list[str], **per_name: dict[str, Any]
                   "bits_per_band"],
          map_scale={"required": True}, relief_interval_m={"required": True},
          photo_scales={"required": True})
-@area_options
-@click.option("--side-overlap-pct", "film_side_overlap_pct", type=float, default=30.0,
-              show_default=True, callback=finite,
-              help="Side overlap [%] of the flight scheme over --area-file.")
+@_inputs("scan", ["area_file", "area_feature", "area_layer", "film_side_overlap_pct"])
 @report_options
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
 def scan(as_json: bool, bits_per_band: str, **kwargs: Any) -> None:
@@ -366,6 +346,10 @@ def scan(as_json: bool, bits_per_band: str, **kwargs: Any) -> None:
     for key in ("area_file", "area_feature", "area_layer"):
         kwargs.pop(key)
     side = kwargs.pop("film_side_overlap_pct")
+    if side is None:
+        from ..project.inputs import by_key
+
+        side = by_key("film", "side_overlap_pct").default
     job = scan_job(bits_per_band=int(bits_per_band), **kwargs)
     schemes = _film_schemes(job, area, side) if area is not None else []
     if as_json:
@@ -414,11 +398,8 @@ def _film_schemes(job: Any, area: Any, side: float) -> list[tuple[Any, Any]]:
          map_scale={"help": "Map scale, 2000 or 1:2000: adds the constraints and the maximum "
                     "planned height."},
          relief_interval_m={"help": "Relief (contour) interval h_c [m] (with --map-scale)."})
-@area_options
-@click.option("--direction-deg", help='Flight-line direction over --area-file, clockwise from '
-              'grid north [°], or "auto" (default): the least flight length.')
-@click.option("--max-flight-time-min", type=float, callback=finite,
-              help="Longest sortie on one battery [min]: the block is split into sorties.")
+@_inputs("uav", ["area_file", "area_feature", "area_layer", "direction_deg",
+                 "max_flight_time_min"])
 @report_options
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
 def uav(as_json: bool, **kwargs: Any) -> None:
@@ -439,7 +420,9 @@ def uav(as_json: bool, **kwargs: Any) -> None:
     report = _split_report_options(kwargs)
     area = _area_of(kwargs)
     direction = kwargs.pop("direction_deg")
-    if direction is not None and direction != "auto":
+    if direction == "auto":
+        direction = None  # the default: "auto" over a polygon, along the block's length
+    if direction is not None:
         try:
             direction = float(direction)
         except ValueError:

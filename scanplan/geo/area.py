@@ -310,7 +310,8 @@ def _listed(items: list[str], most: int = 10) -> str:
 
 
 def _gdal_text(exc: Exception) -> str:
-    text = " ".join(str(exc).split()).split("; It might help")[0]
+    said = f"{exc}"
+    text = " ".join(said.split()).split("; It might help")[0]
     return text[:300] or type(exc).__name__
 
 

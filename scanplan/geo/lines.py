@@ -382,7 +382,7 @@ def plan_lines(
     c = geom.centroid
     origin = (float(c.x), float(c.y))
     ext = int(extension_bases)
-    notes: dict[str, object] = {}
+    notes: dict[str, object] = {"max_flight_time_min": max_flight_time_min}
     if direction_deg == "auto":
         direction, tried = _auto_direction(geom, origin, spacing_m, base_m, ext, turn)
         notes["auto_directions_tried"] = tried

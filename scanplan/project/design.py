@@ -215,15 +215,22 @@ def layout_of(spec: FilmSpec | UavSpec | None) -> FlightLayout | None:
 
 
 def layout_sorties_s(layout: FlightLayout | None) -> list[float] | None:
-    """The flight time of each sortie of a layout [s], or None (no layout, or no times).
+    """The flight time of each sortie of a layout [s], or None (no layout, no times, or no
+    sortie limit given to the layout: it is then one flight, and the schedule's own
+    estimate applies).
 
     >>> from scanplan.geo.layout import Sortie
-    >>> class L: sorties = (Sortie(1, (1, 2), 9000.0, 1500.0), Sortie(2, (3,), 4000.0, 700.0))
+    >>> class L:
+    ...     sorties = (Sortie(1, (1, 2), 9000.0, 1500.0), Sortie(2, (3,), 4000.0, 700.0))
+    ...     notes = {"max_flight_time_min": 25}
     >>> layout_sorties_s(L())
     [1500.0, 700.0]
     """
     if layout is None or not layout.sorties:
         return None
+    notes = getattr(layout, "notes", {})
+    if "max_flight_time_min" in notes and not notes["max_flight_time_min"]:
+        return None  # laid out as one flight: the schedule's sortie time applies
     times = [float(s.time_s) for s in layout.sorties if s.time_s]
     return times or None
 

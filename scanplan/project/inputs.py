@@ -355,7 +355,7 @@ _RECORDS: tuple[Input, ...] = (
           "polygon's own when projected in metres, else the UTM zone of the area)"),
     Input("direction_deg", "area", "direction_deg", "direction", "flight-line direction "
           'clockwise from grid north [°], or "auto": the least flight length', "°",
-          default="auto"),
+          default="auto", option="--direction-deg", commands=(UAV,)),
     Input("extension_bases", "area", "extension_bases", _INT, "exposures past each end of a "
           "strip, in photo bases", default=1),
     Input("turnaround_m", "uav", "turnaround_m", _NUM, "multirotor: distance flown past each "
@@ -367,7 +367,18 @@ _RECORDS: tuple[Input, ...] = (
           "radius follows from the speed, r = v²/(g·tan φ)", "°"),
     Input("max_flight_time_min", "uav", "max_flight_time_min", _NUM, "longest sortie on one "
           "battery [min]: the block is split into sorties", "min",
-          note="default: one flight"),
+          note="default: one flight", option="--max-flight-time-min", commands=(UAV,)),
+    Input("area_file", "", "", _STR, "contract polygon: KML, KMZ, GeoJSON, GeoPackage or "
+          "Shapefile; strips and photos are laid out over it (not with --area-m)",
+          option="--area-file", commands=(FILM, UAV), fields=("file",)),
+    Input("area_feature", "", "", _STR, "the polygon's name or number from 1, when the file "
+          "holds several", option="--area-feature", commands=(FILM, UAV),
+          fields=("feature",)),
+    Input("area_layer", "", "", _STR, "the file's layer holding the polygon",
+          option="--area-layer", commands=(FILM, UAV), fields=("layer",)),
+    Input("film_side_overlap_pct", "", "", _NUM, "side overlap [%] of the flight scheme over "
+          "--area-file", "%", note="default 30", option="--side-overlap-pct",
+          commands=(FILM,), domain="side_overlap_pct"),
     # [terrain] (the one-height rule of GOST R 59328-2021 §6.2.1)
     Input("ground_elevation_m", "terrain", "ground_elevation_m", "range", "lowest and "
           "highest ground in the block, buildings included, [min, max] [m]: checked against "

@@ -270,7 +270,7 @@ def _check_layout_keys(project: Project, area: Area | None) -> None:
             raise InputError(f"{project.path}: {project.where(s, k)}", "applies to an area: "
                              "give [area] file, polygon, or width_m and length_m")
         return
-    speed = project.get("uav", "speed_ms", 15.0)
+    speed = project.get("uav", "speed_ms", by_key("uav", "speed_ms").default)
     try:
         check_options(_layout_options(project), area, speed if speed and speed > 0 else None)
     except InputError as exc:
