@@ -52,6 +52,7 @@ BENCHMARKS: dict[str, str] = {
     "plan_batch": "bench_plan_batch",
     "fast_reports": "bench_fast_reports",
     "help": "bench_help",
+    "terrain": "bench_terrain",
     "flight_layout": "bench_flight_layout",
 }
 

@@ -667,3 +667,115 @@ def params_json(value: Any) -> Any:
     if isinstance(value, numbers.Real) and not isinstance(value, bool):
         return float(value)
     return value
+
+
+# --- terrain: heights above ground from a DEM (issue 12, scanplan.geo.terrain) --------------
+MESSAGES.update({
+    "terrain_resolution": {
+        "en": "over low ground the photos are too high above it: at a planned height of "
+              "{height:g} m photo {photo:d} (strip {strip:d}) is {agl:.0f} m above the ground "
+              "({flown:.0f} m flown high), above the maximum planned height {limit:.0f} m "
+              "set by {cid}, by {excess:.0f} m; {count:d} strip(s) fail ({strips}; by m: "
+              "{by}). {remedy}",
+        "ru": "Над пониженным рельефом снимки получаются слишком высоко над землёй: при "
+              "плановой высоте {height:g}~м снимок {photo:d} (маршрут {strip:d}) — "
+              "{agl:.0f}~м над землёй ({flown:.0f}~м с учётом допуска), выше максимальной "
+              "плановой высоты {limit:.0f}~м по условию {cid} на {excess:.0f}~м; не "
+              "выполняется на маршрутах: {count:d} ({strips}; превышение, м: {by}). {remedy}",
+    },
+    "terrain_remedy.constant": {
+        "en": "Remedies: fly each strip at its own altitude ([terrain] altitude_mode = "
+              "\"strip\"), follow the terrain (\"follow\"), split the block along the relief, or "
+              "lower the planned height to {max:.0f} m above the highest ground",
+        "ru": "Выход: задать каждому маршруту свою высоту или следовать рельефу ([terrain] "
+              "altitude_mode), разделить блок по рельефу или снизить плановую высоту до "
+              "{max:.0f}~м над наивысшей точкой.",
+    },
+    "terrain_remedy.strip": {
+        "en": "Remedies: follow the terrain ([terrain] altitude_mode = \"follow\"), split the "
+              "failing strips, or lower the planned height to {max:.0f} m above each strip's "
+              "highest ground",
+        "ru": "Выход: следовать рельефу ([terrain] altitude_mode), разделить "
+              "невыполняющиеся маршруты или снизить плановую высоту до {max:.0f}~м над "
+              "наивысшей точкой каждого маршрута.",
+    },
+    "terrain_remedy.follow": {
+        "en": "Remedies: a smaller tolerance ([terrain] follow_tolerance_m) or a planned height "
+              "of at most {max:.0f} m",
+        "ru": "Выход: уменьшить допуск ([terrain] follow_tolerance_m) или снизить плановую "
+              "высоту до {max:.0f}~м.",
+    },
+    "terrain_forward_overlap": {
+        "en": "over high ground the forward overlap drops to {value:.1f} % (photos {a:d} and "
+              "{b:d}), below the planned {planned:g} % at {count:d} photo(s): {photos}.{floor} "
+              "Remedies: hold the altitude over the highest ground ([terrain] altitude_mode = "
+              "\"constant\" or \"strip\"), or raise [uav] forward_overlap_pct",
+        "ru": "Над повышенным рельефом продольное перекрытие уменьшается до {value:.1f}~% (снимки "
+              "{a:d} и {b:d}) — меньше планового {planned:g}~% у снимков: {count:d} "
+              "({photos}).{floor} Выход: отсчитывать высоту от наивысшей точки блока или маршрута "
+              "([terrain] altitude_mode) или увеличить [uav] forward_overlap_pct.",
+    },
+    "terrain_side_overlap": {
+        "en": "over high ground the side overlap drops to {value:.1f} % (photos {a:d} and {b:d}), "
+              "below the planned {planned:g} % at {count:d} photo(s): {photos}.{floor} Remedies: "
+              "hold the altitude over the highest ground ([terrain] altitude_mode = "
+              "\"constant\"), or raise [uav] side_overlap_pct",
+        "ru": "Над повышенным рельефом поперечное перекрытие уменьшается до {value:.1f}~% (снимки "
+              "{a:d} и {b:d}) — меньше планового {planned:g}~% у снимков: {count:d} "
+              "({photos}).{floor} Выход: отсчитывать высоту от наивысшей точки блока ([terrain] "
+              "altitude_mode) или увеличить [uav] side_overlap_pct.",
+    },
+    "terrain_overlap_floor.forward": {
+        "en": " At 50 % or less no ground point is on three photos: the block cannot be tied",
+        "ru": " При 50~% и менее ни одна точка не изображается на трёх снимках: сеть не строится.",
+    },
+    "terrain_overlap_floor.side": {
+        "en": " At 0 % or less there are gaps between the strips",
+        "ru": " При 0~% и менее между маршрутами остаются разрывы.",
+    },
+    "terrain_no_ground": {
+        "en": "{count:d} of {total:d} photo centres have no ground under them ({outside:d} "
+              "outside the DEM, {nodata:d} on nodata): photos {photos}; they are checked at the "
+              "lowest ground of the DEM ({low:.1f} m) for resolution and at the highest "
+              "({high:.1f} m) for overlap",
+        "ru": "Под центрами {count:d} из {total:d} снимков нет высоты рельефа ({outside:d} вне "
+              "ЦМР, {nodata:d} — пропуски данных): снимки {photos}; разрешение для них "
+              "проверено по наинизшей отметке ЦМР ({low:.1f}~м), перекрытие — по наивысшей "
+              "({high:.1f}~м).",
+    },
+    "terrain_units_feet": {
+        "en": "the DEM {file} has its horizontal coordinates in {unit}, and nothing says its "
+              "heights are in metres: if they are in feet, state it ([terrain] vertical_unit = "
+              "\"ft\" or \"us-ft\")",
+        "ru": "Плановые координаты ЦМР {file} заданы в {unit}, а единица высот не "
+              "указана: если высоты в футах, укажите это ([terrain] vertical_unit = «ft» или "
+              "«us-ft»).",
+    },
+    "terrain_geographic": {
+        "en": "the DEM {file} is in geographic coordinates (cells of {cell:.2f}″): the photo "
+              "centres were projected into it and sampled there; the DEM was not warped",
+        "ru": "ЦМР {file} задана в географических координатах (ячейка {cell:.2f}″): центры "
+              "снимков пересчитаны в её систему координат; сама ЦМР не перепроецировалась.",
+    },
+    "terrain_film_scale": {
+        "en": "the relief changes the photo scale from {lo:scale} to {hi:scale}; frame {frame:d} "
+              "(strip {strip:d}, over the lowest ground) binds: it needs a scan pixel of "
+              "{pixel:.1f} µm ({cid}) instead of {planned:.1f} µm at the planned scale",
+        "ru": "Рельеф изменяет масштаб снимков от {lo:scale} до {hi:scale}; определяет снимок "
+              "{frame:d} (маршрут {strip:d}, над наинизшей точкой): ему нужен пиксель "
+              "сканирования {pixel:.1f}~мкм (условие {cid}) вместо {planned:.1f}~мкм при "
+              "плановом масштабе.",
+    },
+})
+
+
+MESSAGES.update({
+    "terrain_height_lowered": {
+        "en": "over the relief the flat-ground maximum height {flat:.0f} m is too high: with "
+              "the altitude mode {mode} the worst photo meets {cid} up to {max:.0f} m above "
+              "the reference ground, so the plan is flown at {recommended:g} m",
+        "ru": "Над рельефом максимальная высота для плоской местности {flat:.0f}~м слишком "
+              "велика: в режиме {mode} наихудший снимок удовлетворяет условию {cid} до "
+              "{max:.0f}~м над опорной отметкой, поэтому принята высота {recommended:g}~м.",
+    },
+})

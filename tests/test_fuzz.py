@@ -600,6 +600,9 @@ def _bad_for(kind: str) -> list[str]:
                 "[[0, 0], [1, 0], [1, 1], [0, 1]]", "[[0, 91], [1, 91], [1, 92]]"]
     if kind == "crs":
         return ["true", "1.5", "[1]", '"EPSG:999999"', '"nonsense"', '"EPSG:4326"']
+    if kind == "range":  # issue 12: [terrain] ground_elevation_m = [min, max]
+        return ["1", '"a"', "[1]", "[1, 2, 3]", '[1, "a"]', "[200, 100]", "[-1000, 0]",
+                "[0, 1e400]", "[0, 9000]", "true"]
     if kind == "direction":
         return ['"north"', "true", "[1]", "nan", "inf", "1e400", "45", "-1"]
     raise AssertionError(kind)
@@ -626,6 +629,7 @@ ACCEPTS = {
     ("schedule", "min_sun_elevation_deg"): {"0", "-0.0"},
     ("area", "extension_bases"): {"0"},
     ("uav", "turnaround_m"): {"0", "-0.0"},
+    ("terrain", "follow_tolerance_m"): {"0", "-0.0"},
 }
 # string keys whose bad values must be refused (a choice or an id), with the bad values
 STR_BAD = {
@@ -643,6 +647,9 @@ STR_BAD = {
     ("terrain", "relief_class"): ['"x"', '""', '"Flat"'],
     ("area", "file"): ['"missing.kml"', '""'],
     ("area", "layer"): ['"a"'],
+    ("terrain", "dem"): ['"nope.tif"', '""', '"../../etc/passwd"'],
+    ("terrain", "altitude_mode"): ['"agl"', '""', '"Constant"'],
+    ("terrain", "vertical_unit"): ['"yd"', '""', '"M"'],
 }
 
 

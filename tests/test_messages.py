@@ -16,6 +16,7 @@ import io
 import json
 import pickle
 import re
+import sys
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -145,6 +146,10 @@ def test_messages_module_is_pure():
 # --- every code the engine can emit -------------------------------------------------------------
 
 
+sys.path.insert(0, str(Path(__file__).parent))
+from terrain_helpers import terrain_cases  # noqa: E402
+
+
 def _messages(value: Any) -> Iterator[Message]:
     """Every Message in ``value`` and nested in its parameters."""
     if isinstance(value, Message):
@@ -188,6 +193,7 @@ def emitted(tmp_path_factory) -> dict[str, list[Any]]:
     """Cases that raise every warning and reach every message: {case: [engine sentences]}."""
     tmp = tmp_path_factory.mktemp("projects")
     out: dict[str, list[Any]] = {}
+    out.update(terrain_cases(tmp))  # issue 12: synthetic DEMs
     film = dict(map_scale=2000, relief_interval_m=0.5, photo_scales=[5000, 10000, 15000, 20000],
                 camera="rc30-153", scanner="photoscan-td")
     job = scan_job(**film)
@@ -230,6 +236,7 @@ def emitted(tmp_path_factory) -> dict[str, list[Any]]:
         "plan uav lowered": uav_toml.replace("height_m = 300", "height_m = 500"),
         "plan uav within": uav_toml.replace("height_m = 300", "height_m = 200"),
         "plan uav no height": uav_toml.replace("height_m = 300\n", ""),
+        "plan uav over relief": uav_toml + "\n[terrain]\nground_elevation_m = [120, 180]\n",
         "plan uav nothing resolved": uav_toml.replace("r_min = 0.1", "r_min = 0.3"),
         # flight layouts that cannot be flown (issue 11)
         "plan uav one strip": uav_toml.replace("width_m = 2000", "width_m = 10"),

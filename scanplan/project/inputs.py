@@ -381,8 +381,20 @@ _RECORDS: tuple[Input, ...] = (
           commands=(FILM,), domain="side_overlap_pct"),
     # [terrain] (the one-height rule of GOST R 59328-2021 §6.2.1)
     Input("ground_elevation_m", "terrain", "ground_elevation_m", "range", "lowest and "
-          "highest ground in the block, buildings included, [min, max] [m]: checked against "
-          "the one-height rule of GOST R 59328-2021 §6.2.1", "m"),
+          "highest ground in the block, buildings included, [min, max] [m], without a DEM: "
+          "the plan's ground range, checked against the one-height rule of GOST R 59328-2021 "
+          "§6.2.1", "m"),
+    Input("dem", "terrain", "dem", _STR, "digital elevation model: a GeoTIFF in any CRS, "
+          "relative to the project file (or ground_elevation_m)"),
+    Input("altitude_mode", "terrain", "altitude_mode", _STR, '"constant" (one altitude, the '
+          'planned height over the highest ground), "strip" (one per strip) or "follow" '
+          "(terrain following)", default="constant",
+          choices=("constant", "strip", "follow")),
+    Input("follow_tolerance_m", "terrain", "follow_tolerance_m", _NUM, "follow mode: how far "
+          "the height above ground may exceed the planned height [m]", "m", default=5.0),
+    Input("vertical_unit", "terrain", "vertical_unit", _STR, '"m", "ft", "us-ft", "dm" or '
+          '"cm": the unit of the DEM\'s heights', default="m",
+          choices=("m", "ft", "us-ft", "dm", "cm")),
     Input("relief_class", "terrain", "relief_class", _STR, '"flat", "hilly" or '
           '"mountainous": the relief class of the one-height rule', default="flat",
           choices=("flat", "hilly", "mountainous")),

@@ -13,13 +13,14 @@ from __future__ import annotations
 
 import inspect
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 from ..core.domains import DOMAINS, check_domain
 from ..errors import InputError
 from ..geo.area import AreaSpec
 from ..geo.layout import Area, FlightLayout
+from ..geo.terrain import FilmTerrain, TerrainResult
 from ..messages import Message
 from ..rules.film import PlanWarning, ScanScenario
 from .api import (
@@ -42,6 +43,7 @@ from .flightplan import (
     layout_warnings,
 )
 from .inputs import by_key, project_key, records
+from .terrainplan import film_terrain_spec, terrain_config, uav_terrain_spec
 
 __all__ = ["FilmSpec", "PlanResult", "UavSpec", "plan_project", "project_area"]
 
@@ -97,6 +99,7 @@ class FilmSpec:
     side_overlap_pct: float
     archive: bool = False  # existing photos at a given scale ([film] photo_scale)
     layout: FlightLayout | None = None  # the flight scheme at the recommended photo scale
+    terrain: FilmTerrain | None = None  # [terrain]: the local photo scale of every frame
 
 
 @dataclass(frozen=True)
@@ -109,6 +112,8 @@ class UavSpec:
     recommended_height_m: float | None
     max_height_m: float | None  # the maximum PLANNED height (highest flown meets every limit)
     reason: str
+    terrain: TerrainResult | None = None  # [terrain]: every photo over its own ground
+    terrain_warnings: tuple[PlanWarning, ...] = ()
 
     @property
     def layout(self) -> FlightLayout | None:
@@ -208,9 +213,31 @@ def _film_spec(project: Project, job: ScanJob, best: ScanScenario | None, reason
         strips = len(layout.strips)
         frames = int(layout.notes.get("photos", len(layout.photos)))
         gigabytes = frames * best.frame_megabytes / 1000.0
+    terrain = _film_terrain(project, plan, best, layout)
+    if terrain is not None and terrain.warnings:  # shown with the film plan's own warnings
+        job = replace(job, plan=replace(plan, warnings=plan.warnings + terrain.warnings))
     return FilmSpec(job=job, recommended=best, reason=reason, frames=frames, strips=strips,
                     scanned_gigabytes=gigabytes, side_overlap_pct=side,
-                    archive=project.get("film", "photo_scale") is not None, layout=layout)
+                    archive=project.get("film", "photo_scale") is not None, layout=layout,
+                    terrain=terrain)
+
+
+def _film_terrain(project: Project, plan: Any, best: ScanScenario | None,
+                  layout: FlightLayout | None) -> FilmTerrain | None:
+    """``[terrain]``: the local photo scale of every frame of the flight scheme."""
+    cfg = terrain_config(project)
+    if cfg is None or best is None or layout is None:
+        return None
+    inp = plan.inputs
+    obj = inp.object
+    return film_terrain_spec(
+        project, cfg, layout, plan.rules, map_scale=inp.map_scale,
+        photo_scale=best.photo_scale, relief_interval_m=inp.relief_interval_m,
+        focal_mm=inp.focal_mm, frame_along_mm=inp.frame_along_mm,
+        forward_overlap_pct=inp.forward_overlap_pct,
+        resolving_power_lpmm=inp.resolving_power_lpmm,
+        object_size_m=obj.size_m if obj is not None else math.nan,
+        shape_coefficient=obj.shape_coefficient if obj is not None else math.nan)
 
 
 def _area(project: Project) -> tuple[float, float] | None:
@@ -319,7 +346,15 @@ def _uav(project: Project, the_area: Area | None) -> UavSpec:
         rec = planned
         reason = Message("spec.uav_within", max=max_h)
     job = first if rec == first_height else job_at(rec)
-    return UavSpec(job, planned, rec, max_h, reason)
+    cfg = terrain_config(project)
+    if cfg is None:
+        return UavSpec(job, planned, rec, max_h, reason)
+    job, terrain, lowered, why, warned = uav_terrain_spec(project, cfg, job, planned, job_at)
+    if lowered is not None:
+        rec, reason = lowered, why
+    if warned:  # shown with the UAV plan's own warnings (terminal, JSON, PDF, workbook)
+        job = replace(job, plan=replace(job.plan, warnings=job.plan.warnings + warned))
+    return UavSpec(job, planned, rec, max_h, reason, terrain, warned)
 
 
 def _comparison(film: FilmSpec, uav: UavSpec) -> list[dict[str, Any]]:
@@ -353,6 +388,15 @@ _SIGNING_KEYS = ("organisation", "contract_number", "compiled_by", "checked_by",
                  "agreed_position", "agreed_name", "agreed_organisation")
 
 
+def _check_terrain(project: Project, area: Area | None) -> None:
+    """``[terrain]`` checked once before any plan: its keys, and that there is an area."""
+    cfg = terrain_config(project)
+    if cfg is not None and area is None:
+        key = "dem" if cfg.dem is not None else "ground_elevation_m"
+        raise InputError(f"{project.path}: {project.where('terrain', key)}", "needs an area "
+                         "to lay the photos over ([area] width_m × length_m, polygon or file)")
+
+
 def plan_project(project: Project) -> PlanResult:
     """Compute the specification for a validated project.
 
@@ -370,6 +414,7 @@ def plan_project(project: Project) -> PlanResult:
                       **{k: g("project", k, "") for k in _SIGNING_KEYS})
     area = project_area(project)  # checked even when no plan uses it
     _check_layout_keys(project, area)
+    _check_terrain(project, area)
     film = _film(project, area) if project.has("film") else None
     uav = _uav(project, area) if project.has("uav") else None
     warnings: list[PlanWarning] = []

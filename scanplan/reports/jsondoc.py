@@ -270,8 +270,31 @@ def plan_result_dict(result: Any) -> dict[str, Any]:
         from ..project.design import design_dict
 
         doc["survey_design"] = design_dict(result.design)
+    terrain = terrain_dict(result)
+    if terrain:
+        doc["terrain"] = terrain
     doc["warnings"] = [warning_dict(w) for w in result.warnings]
     return _clean(doc)
+
+
+def terrain_dict(result: Any) -> dict[str, Any]:
+    """The ``terrain`` section of ``plan --json`` (issue 12): the ground, the altitude mode
+    and frame, the AGL range, the worst photos, the maximum height over the relief, every
+    strip's altitude and maximum altitude (``uav``); the local photo scales (``film``).
+    Empty without ``[terrain]``. Per-photo elevations and AGL are in the exported files."""
+    out: dict[str, Any] = {}
+    uav = getattr(result, "uav", None)
+    if uav is not None and getattr(uav, "terrain", None) is not None:
+        out["uav"] = uav.terrain.summary()
+    film = getattr(result, "film", None)
+    ft = getattr(film, "terrain", None) if film is not None else None
+    if ft is not None:
+        out["film"] = {"photo_scale": ft.photo_scale, "photo_scale_min": ft.mc_min,
+                       "photo_scale_max": ft.mc_max, "binding_frame": ft.binding_frame,
+                       "binding_strip": ft.binding_strip, "binding": ft.binding,
+                       "scan_pixel_um": ft.scan_pixel_um,
+                       "scan_pixel_at_planned_scale_um": ft.scan_pixel_planned_um}
+    return out
 
 
 def _flight_json(flight: dict[str, Any]) -> dict[str, Any]:

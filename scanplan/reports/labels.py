@@ -767,6 +767,10 @@ from .labels_more import DESIGN as _DESIGN  # noqa: E402  (the survey design she
 
 for _loc in LOCALES:
     LABELS[_loc].update(_DESIGN[_loc])
+from .labels_more import TERRAIN as _TERRAIN  # noqa: E402  (terrain: warnings, plot, sheet)
+
+for _loc in LOCALES:
+    LABELS[_loc].update(_TERRAIN[_loc])
 # Issue 11: the flight over the area — map page, strips table, Strips and Photos sheets,
 # names inside the exported files.
 _GEO: dict[str, dict[str, str]] = {

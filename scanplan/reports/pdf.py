@@ -55,7 +55,7 @@ from .pdf_sections import (  # noqa: F401  (_object_name: tests)
     _uav_view,
 )
 from .references import Bibliography
-from .view import ReportView, build_view
+from .view import ReportView, build_view, svg_data_uri
 from .wording import document_date
 
 if TYPE_CHECKING:
@@ -183,6 +183,17 @@ def _environment() -> jinja2.Environment:
     return env
 
 
+def _terrain_plot(spec: Any, f: _Fmt) -> str | None:
+    """The heights-above-ground figure of a ``[terrain]`` plan (issue 12), else None."""
+    tr = getattr(getattr(spec, "uav", None), "terrain", None)
+    if tr is None or len(tr.layout.photos) == 0:
+        return None
+    from . import plots
+
+    limit = spec.uav.job.plan.max_height_m
+    return svg_data_uri(plots.terrain_svg(tr, limit, f.locale))
+
+
 def render_html(*, scan: ScanJob | None = None, uav: UavJob | None = None,
                 meta: ReportMeta = _DEFAULT_META, spec: PlanResult | None = None,
                 view: ReportView | None = None) -> str:
@@ -231,6 +242,8 @@ def render_html(*, scan: ScanJob | None = None, uav: UavJob | None = None,
                   f"{_css_string(' ' + f.label('sheets_of') + ' ')} counter(pages)")
     scan_view = _scan_view(scan, f) if scan is not None else None
     uav_view = _uav_view(uav, f) if uav is not None else None
+    if uav_view is not None:
+        uav_view["plot_terrain"] = _terrain_plot(spec, f)
     spec_view = _spec_view(spec, f) if spec is not None else None
     design = design_view(spec, f.locale, f.cite) if spec is not None else None
     ctx = {

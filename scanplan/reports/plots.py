@@ -26,7 +26,7 @@ from ..rules.uav import UavPlan
 from .labels import t
 from .view import Numbers
 
-__all__ = ["constraints_svg", "height_svg", "mtf_svg", "number"]
+__all__ = ["constraints_svg", "height_svg", "mtf_svg", "number", "terrain_svg"]
 
 _RC: dict[str, Any] = {
     "svg.hashsalt": "scanplan",
@@ -269,6 +269,77 @@ def height_svg(plan: UavPlan, locale: str = "en") -> str:
         ax.yaxis.set_major_formatter(_tick(locale))
         ax.set_xlabel(t("height_m", locale))
         ax.set_ylabel(f"GSD, L, {t('pdf_m', locale)}")
+        fig.legend(loc="outside right upper", frameon=False)
+
+    return _svg(draw)
+
+
+def _per_strip(strip: Any, values: Any) -> tuple[list[float], list[float], list[float]]:
+    """(strip numbers, min, max) of ``values`` over each strip's photos."""
+    import numpy as np
+
+    strip = np.asarray(strip)
+    v = np.asarray(values, dtype=float)
+    order = np.argsort(strip, kind="stable")
+    s, v = strip[order], v[order]
+    starts = np.flatnonzero(np.r_[True, s[1:] != s[:-1]])
+    return (s[starts].astype(float).tolist(), np.minimum.reduceat(v, starts).tolist(),
+            np.maximum.reduceat(v, starts).tolist())
+
+
+def terrain_svg(terrain: Any, limit_m: float | None, locale: str = "en") -> str:
+    """Heights above ground of the photos of every strip (issue 12), with the planned
+    height and the maximum planned height; below, the ground and the flight altitude.
+
+    Parameters
+    ----------
+    terrain : scanplan.geo.terrain.TerrainResult
+        Photos with ``strip``, ``agl_m``, ``ground_m``, ``altitude_m``.
+    limit_m : float or None
+        The maximum planned height above ground (the binding constraint's) [m].
+    locale : {"en", "ru"}
+
+    Returns
+    -------
+    str
+        An SVG document: per strip the range (lowest … highest) over its photos.
+    """
+    import numpy as np
+
+    ph = terrain.layout.photos
+    agl = np.asarray(ph["agl_m"], dtype=float)
+    alt = np.asarray(ph["altitude_m"], dtype=float)
+    ground = np.asarray(ph["ground_m"], dtype=float)
+    ground = np.where(np.isfinite(ground), ground, alt - agl)
+    m = t("pdf_m", locale)
+
+    def band(ax: Any, values: Any, colour: str, label: str) -> None:
+        x, lo, hi = _per_strip(ph["strip"], values)
+        ax.fill_between(x, lo, hi, color=colour, alpha=0.35, linewidth=0, step="mid",
+                        label=label)
+        ax.step(x, hi, where="mid", color=colour, linewidth=0.9)
+        ax.step(x, lo, where="mid", color=colour, linewidth=0.6)
+
+    def draw(fig: Figure) -> None:
+        top, bottom = fig.subplots(2, 1, sharex=True, height_ratios=(3, 2))
+        band(top, agl, "#1f77b4", t("terrain_agl_m", locale))
+        top.axhline(terrain.height_m, color="black", linewidth=0.9,
+                    label=f"{t('terrain_plot_planned', locale)}: "
+                          f"{number(terrain.height_m, 0, locale)} {m}")
+        if limit_m is not None:
+            top.axhline(limit_m, color="#d62728", linestyle=":", linewidth=1.0,
+                        label=f"{t('terrain_plot_limit', locale)}"
+                              + (f" ({terrain.binding})" if terrain.binding else "")
+                              + f": {number(limit_m, 0, locale)} {m}")
+        top.set_ylabel(t("terrain_plot_y", locale))
+        top.set_ylim(bottom=0)
+        band(bottom, ground, "#8c564b", t("terrain_ground_m", locale))
+        band(bottom, alt, "#2ca02c", t("terrain_altitude_m", locale))
+        bottom.set_xlabel(t("terrain_plot_x", locale))
+        bottom.set_ylabel(m)
+        for ax in (top, bottom):
+            ax.xaxis.set_major_formatter(_tick(locale))
+            ax.yaxis.set_major_formatter(_tick(locale))
         fig.legend(loc="outside right upper", frameon=False)
 
     return _svg(draw)

@@ -338,6 +338,7 @@ def format_plan_result(result: Any, locale: str | None = None) -> str:
             scale = (_sc(result.film.recommended.photo_scale, loc)
                      if kind == "film" and result.film.recommended else "")
             lines.append(format_layout(lay, scale, loc))
+    lines += [_wrap(t, "") for t in format_terrain(result, loc)]
     if result.film:
         f = result.film
         s = f.recommended
@@ -559,3 +560,55 @@ def batch_warnings(done: list[tuple[str, Any]]) -> str:
             mark = "!" if w.severity == "warning" else "i"
             out.append(_wrap(f"{w.text(r.meta.locale)} [{w.code}]", f"  {mark} "))
     return "\n".join(out)
+
+
+_TERRAIN_TEXT = {
+    "en": {"head": "Terrain", "dem": "DEM", "range": "ground given as a range",
+           "ground": "ground", "under": "under the photos", "mode": "altitude",
+           "constant": "constant", "strip": "per strip", "follow": "following the terrain",
+           "agl": "height above ground", "at_photo": "largest at photo", "strip_n": "strip",
+           "max": "maximum height over the relief", "film": "Terrain (film): photo scale",
+           "binds": "binds: scan pixel", "frame": "frame", "m": "m", "um": "µm"},
+    "ru": {"head": "Рельеф", "dem": "ЦМР", "range": "отметки заданы диапазоном",
+           "ground": "отметки", "under": "под снимками", "mode": "высота полёта",
+           "constant": "постоянная", "strip": "по маршрутам", "follow": "следование рельефу",
+           "agl": "высота над рельефом", "at_photo": "наибольшая у снимка",
+           "strip_n": "маршрут", "max": "максимальная высота с учётом рельефа",
+           "film": "Рельеф (плёнка): масштаб снимков", "binds": "определяет: пиксель",
+           "frame": "снимок", "m": "м", "um": "мкм"},
+}
+
+
+def format_terrain(result: Any, locale: str = "en") -> list[str]:
+    """Lines on the terrain (issue 12): the ground, the altitude mode, the AGL range and
+    the worst photo, the maximum height over the relief; for film the local photo scales
+    and the binding frame. Nothing without ``[terrain]``."""
+    T = _TERRAIN_TEXT[locale if locale in _TERRAIN_TEXT else "en"]
+    out: list[str] = []
+    uav = getattr(result, "uav", None)
+    tr = getattr(uav, "terrain", None) if uav is not None else None
+    if tr is not None:
+        d = tr.summary()
+        src = (f"{T['dem']} {d['dem']} ({d['dem_crs']})" if d["source"] == "dem"
+               else T["range"])
+        alt = tr.layout.photos["altitude_m"]
+        alts = (f"{_n(float(alt.min()), 0, locale)}–{_n(float(alt.max()), 0, locale)}"
+                if alt.size and alt.max() - alt.min() > 0.5
+                else _n(float(alt.max()) if alt.size else None, 0, locale))
+        text = (f"{T['head']}: {src}, {T['ground']} {_n(d['ground_min_m'], 1, locale)}–"
+                f"{_n(d['ground_max_m'], 1, locale)} {T['m']} {T['under']}; {T['mode']} "
+                f"{T[tr.mode]} {alts} {T['m']} ({tr.altitude_frame}); {T['agl']} "
+                f"{_n(d['agl_min_m'], 0, locale)}–{_n(d['agl_max_m'], 0, locale)} {T['m']} "
+                f"({T['at_photo']} {tr.worst_resolution_photo})")
+        if tr.max_height_m is not None:
+            text += (f"; {T['max']} {_n(tr.max_height_m, 0, locale)} {T['m']}"
+                     + (f" ({tr.binding})" if tr.binding else ""))
+        out.append(text)
+    film = getattr(result, "film", None)
+    ft = getattr(film, "terrain", None) if film is not None else None
+    if ft is not None:
+        out.append(f"{T['film']} {_sc(round(ft.mc_min), locale)} … "
+                   f"{_sc(round(ft.mc_max), locale)}; {T['frame']} {ft.binding_frame} "
+                   f"({T['strip_n']} {ft.binding_strip}) {T['binds']} "
+                   f"{_um_loc(ft.scan_pixel_um, locale)} {T['um']} ({ft.binding})")
+    return out

@@ -48,7 +48,8 @@ from .results import (
     UavPlan,
 )
 
-__all__ = ["HeightLimit", "Recognition", "UavInputs", "UavPlan", "plan_uav"]
+__all__ = ["HeightLimit", "Recognition", "UavInputs", "UavPlan", "ground_resolution_m",
+           "plan_uav"]
 
 _HEIGHT_GRID_POINTS = 257  # 1 m … 20 km in steps of 4 %
 _HEIGHT_PASS_POINTS = 62  # each refinement pass cuts the bracket 63-fold
@@ -74,6 +75,31 @@ def _resolution(inp: UavInputs, height_m: Any) -> M.UAVResolution:
         return M.uav_resolution(*_chain(inp, height_m))
     except FieldValueError as exc:  # the models name their field: a typed error, not a text
         raise InputError(exc.field, exc.message) from None
+
+
+def ground_resolution_m(inp: UavInputs, heights_m: Any) -> np.ndarray:
+    """The MTF ground resolution L at the frame centre for an array of heights [m].
+
+    One vectorised solve (seed 000: L = H/(2·R·f)); NaN where nothing is resolved. Used by
+    the terrain layer for every photo's own height above ground.
+
+    Parameters
+    ----------
+    inp : UavInputs
+        Camera, flight and target (``height_m`` is ignored).
+    heights_m : array_like
+        Heights above ground [m], > 0.
+
+    Returns
+    -------
+    ndarray
+        L [m], the shape of ``heights_m``.
+    """
+    h = np.asarray(heights_m, dtype=float)
+    if h.size == 0:
+        return np.zeros(h.shape)
+    lr = _resolution(inp, h.ravel()).centre.ground_resolution_m
+    return np.asarray(lr, dtype=float).reshape(h.shape)
 
 
 def _f(x: Any) -> float | None:

@@ -53,6 +53,7 @@ from .closing import norms_sheet, references_sheet, warnings_sheet
 from .film import constraints_sheet, sweep_sheet
 from .inputs import inputs_sheet
 from .summary import summary_sheet
+from .terrain import terrain_sheet
 from .uav import mtf_sheet, uav_sheet
 
 if TYPE_CHECKING:
@@ -94,6 +95,7 @@ SHEETS: tuple[Sheet, ...] = (
     Sheet("sweep", lambda b, v: sweep_sheet(b, v.scan, v.spec), "film"),
     Sheet("uav", lambda b, v: uav_sheet(b, v.uav), "uav"),
     Sheet("mtf", lambda b, v: mtf_sheet(b, v.uav), "uav"),
+    Sheet("terrain", lambda b, v: terrain_sheet(b, v.spec), "spec"),
     Sheet("flight", lambda b, v: _flight_sheets(b, v)),  # issue 11: Strips, Photos
     Sheet("norms", lambda b, v: norms_sheet(b, v.scan, v.uav)),
     Sheet("warnings", lambda b, v: warnings_sheet(b, v.scan, v.uav, v.spec)),

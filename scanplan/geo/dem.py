@@ -1,0 +1,339 @@
+"""Ground elevations from a digital elevation model (a GeoTIFF in any CRS).
+
+The DEM is opened with rasterio and never read whole: the points to sample (photo centres
+in the planning CRS) are reprojected into the DEM's own CRS with pyproj — the DEM is not
+warped, so a geographic DEM (degrees) is sampled exactly where its own grid is — and then
+read tile by tile (windows of at most :data:`TILE_PX` × :data:`TILE_PX` pixels, only the
+tiles that hold points), so memory stays bounded whatever the size of the file.
+
+Sampling is bilinear between the four pixel centres around a point (a point within half a
+pixel of the raster's edge takes the edge pixels; outside the raster it has no value). A
+point with a nodata pixel among its four neighbours has no value either: scanplan does not
+invent ground it has not been given.
+
+Vertical units: metres unless ``[terrain] vertical_unit`` says feet or centimetres, or the
+band's own unit metadata does; values that look like centimetres or feet are reported
+(:func:`unit_problem`).
+
+Bad input never gives a traceback: a file that is not a readable GeoTIFF, has no CRS, is
+too large under the area, or does not cover it is an :class:`~scanplan.errors.InputError`
+naming the key (and saying how much is missing).
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..errors import InputError
+
+__all__ = ["UNIT_FACTORS", "DemInfo", "Samples", "open_dem", "sample_dem", "unit_problem"]
+
+TILE_PX = 2048
+"""Side of the largest window read at once [pixels] (2048² float64 = 32 MB)."""
+MAX_READ_PX = 400_000_000
+"""Most pixels read under one area (4·10⁸: a 20 km × 20 km block at 1 m)."""
+MAX_DIMENSION_PX = 1_000_000
+"""Largest raster side a header may declare [pixels]; beyond it the file is refused."""
+HIGHEST_GROUND_M = 8_849.0
+"""Everest: no ground is higher [m]."""
+LOWEST_GROUND_M = -450.0
+"""Dead Sea shore: no dry ground is lower [m]."""
+
+#: metres per vertical unit ([terrain] vertical_unit).
+UNIT_FACTORS: dict[str, float] = {"m": 1.0, "ft": 0.3048, "us-ft": 1200.0 / 3937.0,
+                                  "cm": 0.01, "dm": 0.1}
+
+_FOOT_NAMES = ("ft", "foot", "feet", "us-ft", "us survey foot", "us_survey_foot")
+
+
+@dataclass(frozen=True)
+class DemInfo:
+    """What the DEM's header says.
+
+    Attributes
+    ----------
+    path : Path
+    crs_wkt : str
+        The DEM's horizontal CRS (WKT).
+    geographic : bool
+        True when the CRS is geographic (cell sizes in degrees).
+    width_px, height_px : int
+    cell_size : tuple of float
+        Pixel size (x, y) in the CRS's units (degrees for a geographic DEM).
+    bounds : tuple of float
+        (left, bottom, right, top) in the DEM's CRS.
+    nodata : float or None
+    band_unit : str
+        The band's unit metadata ("" when absent).
+    horizontal_unit : str
+        The CRS's linear unit name ("degree" for a geographic CRS).
+    """
+
+    path: Path
+    crs_wkt: str
+    geographic: bool
+    width_px: int
+    height_px: int
+    cell_size: tuple[float, float]
+    bounds: tuple[float, float, float, float]
+    nodata: float | None
+    band_unit: str
+    horizontal_unit: str
+
+
+@dataclass(frozen=True)
+class Samples:
+    """Bilinear DEM values at points [m] (NaN where there is no value).
+
+    ``outside`` marks points outside the raster, ``nodata`` those with a nodata pixel among
+    their four neighbours.
+    """
+
+    elevation_m: NDArray[np.float64]
+    outside: NDArray[np.bool_]
+    nodata: NDArray[np.bool_]
+
+
+def _refuse(key: str, path: Path, why: str) -> InputError:
+    return InputError(key, f"{path.name}: {why}")
+
+
+def open_dem(path: str | Path, key: str = "terrain.dem") -> DemInfo:
+    """Open a DEM and check its header (nothing is read but the header).
+
+    Raises
+    ------
+    InputError
+        Naming ``key``: the file is missing, not a raster rasterio can read, has no CRS
+        or no georeference, several bands without a choice, or absurd dimensions.
+    """
+    import rasterio
+    from rasterio.errors import RasterioError
+
+    p = Path(path)
+    if not p.is_file():
+        raise _refuse(key, p, "no such file")
+    try:
+        with rasterio.open(p) as src:
+            if src.count < 1:
+                raise _refuse(key, p, "has no raster band")
+            if src.width > MAX_DIMENSION_PX or src.height > MAX_DIMENSION_PX:
+                raise _refuse(key, p, f"declares {src.width} × {src.height} pixels, more than "
+                              f"{MAX_DIMENSION_PX:,} on a side: not a DEM scanplan reads "
+                              "(cut it to the area first)")
+            if src.crs is None:
+                raise _refuse(key, p, "has no coordinate reference system: write one into "
+                              "the file (a GeoTIFF with its EPSG code)")
+            t = src.transform
+            if t.is_identity or t.b != 0 or t.d != 0:
+                raise _refuse(key, p, "has no north-up georeference (identity or rotated "
+                              "transform): warp it to a north-up grid first")
+            geographic = bool(src.crs.is_geographic)
+            unit = "degree" if geographic else str(src.crs.linear_units or "metre")
+            band_unit = (src.units[0] or "") if src.units else ""
+            return DemInfo(path=p, crs_wkt=src.crs.to_wkt(), geographic=geographic,
+                           width_px=int(src.width), height_px=int(src.height),
+                           cell_size=(abs(t.a), abs(t.e)), bounds=tuple(src.bounds),
+                           nodata=None if src.nodata is None else float(src.nodata),
+                           band_unit=band_unit, horizontal_unit=unit)
+    except InputError:
+        raise
+    except (RasterioError, OSError, ValueError) as exc:
+        raise _refuse(key, p, f"is not a readable GeoTIFF ({_short(exc)})") from None
+
+
+def _short(exc: Exception) -> str:
+    text = re.sub(r"\s+", " ", str(exc)).strip()
+    return text[:160] + ("…" if len(text) > 160 else "")
+
+
+def vertical_factor(info: DemInfo, unit: str | None) -> tuple[float, str]:
+    """Metres per DEM value and where that came from ("project", "metadata" or "default")."""
+    if unit is not None:
+        return UNIT_FACTORS[unit], "project"
+    band = info.band_unit.strip().lower()
+    if band in _FOOT_NAMES:
+        return (UNIT_FACTORS["us-ft"] if "us" in band else UNIT_FACTORS["ft"]), "metadata"
+    if band in ("cm", "centimetre", "centimeter", "centimetres", "centimeters"):
+        return UNIT_FACTORS["cm"], "metadata"
+    return 1.0, "default"
+
+
+def unit_problem(values_m: NDArray[np.float64], info: DemInfo, source: str) -> str | None:
+    """A heuristic: do the elevations (already scaled to metres) look like another unit?
+
+    Returns ``"cm"`` when they reach above Everest or below the Dead Sea shore (centimetres
+    or decimetres read as metres), ``"ft"`` when the DEM's horizontal unit is the foot but
+    nothing says the heights are in feet (US and some state-plane DEMs hold feet in both),
+    else None. Only when the unit was not stated in the project.
+    """
+    if source == "project":
+        return None
+    finite = values_m[np.isfinite(values_m)]
+    if finite.size and (float(finite.max()) > HIGHEST_GROUND_M
+                        or float(finite.min()) < LOWEST_GROUND_M):
+        return "cm"
+    if source == "default" and "foot" in info.horizontal_unit.lower():
+        return "ft"
+    if source == "default" and "feet" in info.horizontal_unit.lower():
+        return "ft"
+    return None
+
+
+def _to_dem_crs(x: NDArray[np.float64], y: NDArray[np.float64], plan_crs: str,
+                info: DemInfo) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The points in the DEM's CRS (pyproj, lon/lat order for a geographic CRS)."""
+    from pyproj import CRS, Transformer
+
+    dem_crs = CRS.from_wkt(info.crs_wkt)
+    if plan_crs.upper() == "LOCAL":
+        return x, y  # an abstract block: a DEM for it is in the same local frame
+    src = CRS.from_user_input(plan_crs)
+    if src == dem_crs:
+        return x, y
+    tr = Transformer.from_crs(src, dem_crs, always_xy=True)
+    xx, yy = tr.transform(x, y)
+    return np.asarray(xx, dtype=float), np.asarray(yy, dtype=float)
+
+
+def sample_dem(info: DemInfo, x_m: NDArray[np.float64], y_m: NDArray[np.float64],
+               plan_crs: str, factor_m: float = 1.0, key: str = "terrain.dem") -> Samples:
+    """Bilinear DEM values at points given in the planning CRS [m].
+
+    The points go into the DEM's CRS (pyproj); the pixels around them are read in tiles of
+    at most :data:`TILE_PX` square, only where points fall; each point's value is the
+    bilinear mean of its four neighbouring pixel centres, times ``factor_m``.
+
+    Parameters
+    ----------
+    info : DemInfo
+        From :func:`open_dem`.
+    x_m, y_m : ndarray
+        The points in the planning CRS [m].
+    plan_crs : str
+        The planning CRS (``"EPSG:32637"``, or ``"LOCAL"`` when the DEM is in the same
+        local frame).
+    factor_m : float
+        Metres per DEM value.
+
+    Returns
+    -------
+    Samples
+
+    Raises
+    ------
+    InputError
+        When the pixels under the points exceed :data:`MAX_READ_PX`, or the file fails
+        while being read.
+    """
+    import rasterio
+    from rasterio.errors import RasterioError
+    from rasterio.windows import Window
+
+    x = np.asarray(x_m, dtype=float).ravel()
+    y = np.asarray(y_m, dtype=float).ravel()
+    n = x.size
+    elev = np.full(n, np.nan)
+    nodata = np.zeros(n, dtype=bool)
+    if n == 0:
+        return Samples(elev, np.zeros(0, dtype=bool), nodata)
+    dx, dy = _to_dem_crs(x, y, plan_crs, info)
+    left, _bottom, _right, top = info.bounds
+    cw, ch = info.cell_size
+    # fractional index of the point between pixel centres (centre of pixel 0 at 0.0)
+    col = (dx - left) / cw - 0.5
+    row = (top - dy) / ch - 0.5
+    outside = ~(np.isfinite(col) & np.isfinite(row) & (col >= -0.5) & (row >= -0.5)
+                & (col <= info.width_px - 0.5) & (row <= info.height_px - 0.5))
+    inside = np.flatnonzero(~outside)
+    if inside.size == 0:
+        return Samples(elev, outside, nodata)
+    col_i = np.clip(col[inside], 0.0, info.width_px - 1.0)
+    row_i = np.clip(row[inside], 0.0, info.height_px - 1.0)
+    c0 = np.minimum(np.floor(col_i).astype(np.int64), max(info.width_px - 2, 0))
+    r0 = np.minimum(np.floor(row_i).astype(np.int64), max(info.height_px - 2, 0))
+    tc, tr = c0 // TILE_PX, r0 // TILE_PX
+    ntc = info.width_px // TILE_PX + 1
+    tile_id = tr * ntc + tc
+    order = np.argsort(tile_id, kind="stable")
+    ids, starts = np.unique(tile_id[order], return_index=True)
+    ends = np.append(starts[1:], order.size)
+    read_px = 0
+    try:
+        with rasterio.open(info.path) as src:
+            for _tid, s, e in zip(ids.tolist(), starts.tolist(), ends.tolist(), strict=True):
+                sel = order[s:e]
+                r_lo, c_lo = int(r0[sel].min()), int(c0[sel].min())
+                r_hi = min(int(r0[sel].max()) + 2, info.height_px)
+                c_hi = min(int(c0[sel].max()) + 2, info.width_px)
+                read_px += (r_hi - r_lo) * (c_hi - c_lo)
+                if read_px > MAX_READ_PX:
+                    raise _refuse(key, info.path, f"the area covers more than {MAX_READ_PX:,} "
+                                  "of its pixels: resample the DEM to a coarser grid under "
+                                  "the area first")
+                win = Window(c_lo, r_lo, c_hi - c_lo, r_hi - r_lo)
+                block = src.read(1, window=win, masked=True).astype(np.float64)
+                data = np.ma.filled(block, np.nan)
+                _bilinear(data, col_i[sel] - c_lo, row_i[sel] - r_lo, c0[sel] - c_lo,
+                          r0[sel] - r_lo, inside[sel], elev, nodata)
+    except InputError:
+        raise
+    except (RasterioError, OSError, ValueError, MemoryError) as exc:
+        raise _refuse(key, info.path, f"could not be read ({_short(exc)})") from None
+    elev *= factor_m
+    return Samples(elev, outside, nodata)
+
+
+def _bilinear(data: NDArray[np.float64], fc: NDArray[np.float64], fr: NDArray[np.float64],
+              c0: NDArray[np.int64], r0: NDArray[np.int64], where: NDArray[np.int64],
+              out: NDArray[np.float64], nodata: NDArray[np.bool_]) -> None:
+    """Bilinear values of ``data`` at fractional (col, row) into ``out[where]``."""
+    h, w = data.shape
+    c1 = np.minimum(c0 + 1, w - 1)
+    r1 = np.minimum(r0 + 1, h - 1)
+    tx = np.clip(fc - c0, 0.0, 1.0)
+    ty = np.clip(fr - r0, 0.0, 1.0)
+    z00, z01 = data[r0, c0], data[r0, c1]
+    z10, z11 = data[r1, c0], data[r1, c1]
+    v = (z00 * (1 - tx) * (1 - ty) + z01 * tx * (1 - ty) + z10 * (1 - tx) * ty
+         + z11 * tx * ty)
+    bad = ~np.isfinite(v)
+    out[where] = np.where(bad, np.nan, v)
+    nodata[where] = bad
+
+
+def coverage_gap(info: DemInfo, area_geometry: object, plan_crs: str) -> tuple[float, float]:
+    """How much of the area the DEM's extent misses: (km², share 0 … 1).
+
+    The DEM's bounds, densified along their edges, are projected into the planning CRS
+    (pyproj) and differenced from the area (shapely).
+    """
+    import shapely
+    from pyproj import CRS, Transformer
+
+    left, bottom, right, top = info.bounds
+    k = 64
+    t = np.linspace(0.0, 1.0, k, endpoint=False)
+    xs = np.concatenate([left + (right - left) * t, np.full(k, right),
+                         right - (right - left) * t, np.full(k, left)])
+    ys = np.concatenate([np.full(k, bottom), bottom + (top - bottom) * t,
+                         np.full(k, top), top - (top - bottom) * t])
+    if plan_crs.upper() != "LOCAL":
+        tr = Transformer.from_crs(CRS.from_wkt(info.crs_wkt), CRS.from_user_input(plan_crs),
+                                  always_xy=True)
+        xs, ys = (np.asarray(v, dtype=float) for v in tr.transform(xs, ys))
+    extent = shapely.Polygon(np.column_stack([xs, ys]))
+    if not extent.is_valid:
+        extent = shapely.make_valid(extent)
+    area = area_geometry
+    total = float(area.area)  # type: ignore[attr-defined]
+    if not math.isfinite(total) or total <= 0:
+        return 0.0, 0.0
+    missing = float(shapely.difference(area, extent).area)
+    return missing / 1e6, missing / total

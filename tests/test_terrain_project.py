@@ -1,0 +1,198 @@
+"""``[terrain]`` in a project file (issue 12): the example over a synthetic river valley,
+the altitude modes, the JSON section, and bad input through the command line."""
+
+from __future__ import annotations
+
+import json
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+
+from scanplan.cli.main import main
+from scanplan.errors import InputError
+from scanplan.project.file import load_project, parse_project
+from scanplan.project.spec import plan_project
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+VALLEY = EXAMPLES / "uav-town-valley-2000.toml"
+
+
+def _copy_example(tmp: Path, extra: str = "", drop: str = "") -> Path:
+    """The valley example in ``tmp`` (with its KML and DEM), edited."""
+    shutil.copytree(EXAMPLES / "areas", tmp / "areas")
+    shutil.copytree(EXAMPLES / "dem", tmp / "dem")
+    text = VALLEY.read_text(encoding="utf-8")
+    if drop:
+        text = text.replace(drop, "")
+    p = tmp / "valley.toml"
+    p.write_text(text + extra, encoding="utf-8")
+    return p
+
+
+@pytest.fixture(scope="module")
+def valley():
+    return plan_project(load_project(VALLEY))
+
+
+def test_the_valley_shows_what_flat_ground_misses(valley):
+    """Flat ground (the town example) plans 135 m; over the 60 m valley the worst photo
+    is 60 m further from the ground: the altitude ceiling forces the plan down."""
+    flat = plan_project(load_project(EXAMPLES / "uav-town-2000.toml"))
+    assert flat.uav.recommended_height_m == 135
+    assert "height_lowered" not in [w.code for w in flat.warnings]
+    u = valley.uav
+    tr = u.terrain
+    assert tr is not None and tr.mode == "constant"
+    relief = tr.ground.high_m - tr.ground.low_m
+    assert 60 <= relief <= 70
+    # the largest height over the relief: the flat maximum less the relief under the centres
+    assert tr.max_height_m == pytest.approx(u.job.plan.max_height_m - relief, abs=1e-6)
+    assert u.recommended_height_m == 5 * (tr.max_height_m // 5)
+    assert u.recommended_height_m == 70  # the headline: 135 m on flat ground
+    miss = next(w for w in valley.warnings if w.code == "terrain_resolution")
+    assert "at a planned height of 135 m" in miss.message and "HC" in miss.message
+    assert "altitude_mode" in miss.message  # the remedy names the key
+    w = next(w for w in valley.warnings if w.code == "height_lowered")
+    assert w.message.code == "terrain_height_lowered"
+    assert "HC" in w.message and "reference ground" in w.message
+    ph = tr.layout.photos
+    assert ph["agl_m"].max() <= u.job.plan.max_height_m + 1e-6  # the worst photo meets it
+    assert ph["agl_m"].min() == pytest.approx(u.recommended_height_m, abs=1e-6)
+    assert np.all(np.isfinite(ph["ground_m"]))
+    assert u.job.layout is tr.layout  # the exports take the terrain columns
+    assert tr.layout.notes["altitude_frame"] == "AMSL"
+
+
+def test_json_has_the_terrain_section():
+    res = CliRunner().invoke(main, ["plan", str(VALLEY), "--json"])
+    assert res.exit_code == 0, res.output
+    doc = json.loads(res.output)
+    t = doc["terrain"]["uav"]
+    assert t["source"] == "dem" and t["dem"] == "town-valley.tif"
+    assert t["dem_crs"] == "EPSG:32637" and t["altitude_frame"] == "AMSL"
+    assert t["agl_max_m"] <= doc["specification"]["uav"]["max_planned_height_m"] + 1e-6
+    assert len(t["strips"]) == doc["specification"]["uav"]["strips"]
+    assert all(s["excess_m"] == 0 for s in t["strips"])
+
+
+@pytest.mark.parametrize("mode", ["strip", "follow"])
+def test_strip_and_follow_modes_allow_a_higher_plan(valley, tmp_path, mode):
+    p = _copy_example(tmp_path, drop='altitude_mode = "constant"')
+    p.write_text(p.read_text(encoding="utf-8").replace(
+        'dem = "dem/town-valley.tif"', f'dem = "dem/town-valley.tif"\naltitude_mode = "{mode}"'),
+        encoding="utf-8")
+    r = plan_project(load_project(p))
+    tr = r.uav.terrain
+    assert tr.mode == mode
+    if mode == "strip":  # every strip crosses the diagonal valley: no gain here
+        assert r.uav.recommended_height_m >= valley.uav.recommended_height_m
+        assert all(s.altitude_m is not None for s in tr.layout.strips)
+    else:
+        assert r.uav.recommended_height_m > valley.uav.recommended_height_m
+        assert len(tr.layout.notes["waypoints"]) > len(tr.layout.strips)
+        agl = tr.layout.photos["agl_m"]
+        assert agl.max() - agl.min() <= 5.0 + 1e-6  # within the follow tolerance
+
+
+def test_a_corrupt_dem_exits_2_naming_the_key_and_writes_nothing(tmp_path):
+    p = _copy_example(tmp_path)
+    (tmp_path / "dem" / "town-valley.tif").write_bytes(b"II*\x00not a tiff at all")
+    out = tmp_path / "out"
+    res = CliRunner().invoke(main, ["plan", str(p), "--out", str(out)])
+    assert res.exit_code == 2, res.output
+    assert "terrain.dem (line" in res.output and "not a readable GeoTIFF" in res.output
+    assert "Traceback" not in res.output
+    assert not out.exists() or not any(out.iterdir())
+
+
+def test_a_dem_elsewhere_exits_2_saying_how_much_is_missing(tmp_path):
+    shutil.copytree(EXAMPLES / "dem", tmp_path / "dem")
+    shutil.copytree(EXAMPLES / "areas", tmp_path / "areas")
+    film = (EXAMPLES / "film-town-10000.toml").read_text(encoding="utf-8")
+    q = tmp_path / "film.toml"
+    q.write_text(film + '\n[terrain]\ndem = "dem/town-valley.tif"\n', encoding="utf-8")
+    res = CliRunner().invoke(main, ["plan", str(q)])
+    assert res.exit_code == 2
+    assert "does not cover the area" in res.output and "km²" in res.output
+    assert "100.0 %" in res.output
+
+
+@pytest.mark.parametrize("line, message", [
+    ("ground_elevation_m = [100]", "two finite numbers [lowest, highest]"),
+    ('ground_elevation_m = [100, "a"]', "two finite numbers [lowest, highest]"),
+    ("ground_elevation_m = [200, 100]", "the first value may not exceed the second"),
+    ('altitude_mode = "agl"', "constant, strip, follow"),
+    ("follow_tolerance_m = -1", "0 … 500 m"),
+    ('vertical_unit = "yd"', "m, ft, us-ft, cm, dm"),
+    ("dem_file = 'x.tif'", "unknown key"),
+])
+def test_bad_terrain_keys_name_the_key(tmp_path, line, message):
+    uav = (EXAMPLES / "uav-canon-2000.toml").read_text(encoding="utf-8")
+    text = uav + "\n[terrain]\n" + line + ("\nground_elevation_m = [0, 1]"
+                                           if "ground_elevation" not in line
+                                           and "dem" not in line else "") + "\n"
+    p = tmp_path / "p.toml"
+    p.write_text(text, encoding="utf-8")
+    with pytest.raises(InputError) as e:
+        plan_project(load_project(p))
+    assert "terrain." in e.value.field and message in e.value.message
+
+
+def test_a_dem_needs_an_area_on_the_ground(tmp_path):
+    uav = (EXAMPLES / "uav-canon-2000.toml").read_text(encoding="utf-8")
+    shutil.copytree(EXAMPLES / "dem", tmp_path / "dem")
+    p = tmp_path / "p.toml"
+    p.write_text(uav + '\n[terrain]\ndem = "dem/town-valley.tif"\n', encoding="utf-8")
+    with pytest.raises(InputError, match="needs an area on the ground"):
+        plan_project(load_project(p))
+
+
+def test_a_ground_range_on_the_abstract_block():
+    text = (EXAMPLES / "uav-canon-2000.toml").read_text(encoding="utf-8")
+    r = plan_project(parse_project(text + "\n[terrain]\nground_elevation_m = [120, 180]\n",
+                                   EXAMPLES / "x.toml"))
+    tr = r.uav.terrain
+    assert tr.ground.source == "range"
+    assert tr.max_height_m == pytest.approx(r.uav.job.plan.max_height_m - 60.0)
+    assert r.uav.recommended_height_m <= tr.max_height_m
+
+
+def test_terrain_report_texts_in_both_languages(valley):
+    from scanplan.reports.text import format_terrain
+
+    en = format_terrain(valley, "en")[0]
+    ru = format_terrain(valley, "ru")[0]
+    assert "town-valley.tif" in en and "AMSL" in en and "maximum height over the relief" in en
+    assert "Рельеф" in ru and "высота над рельефом" in ru
+
+
+def test_the_terrain_plot_is_a_deterministic_svg(valley):
+    from scanplan.reports.plots import terrain_svg
+
+    a = terrain_svg(valley.uav.terrain, valley.uav.job.plan.max_height_m, "ru")
+    b = terrain_svg(valley.uav.terrain, valley.uav.job.plan.max_height_m, "ru")
+    assert a == b and a.startswith("<?xml") and "Высота над рельефом" in a
+    assert len(a) < 200_000  # per strip, not per photo
+
+
+def test_the_workbook_has_a_terrain_sheet_per_strip(valley):
+    import io
+
+    import openpyxl
+
+    from scanplan.reports.excel import render_xlsx
+
+    u = valley.uav
+    raw = render_xlsx(uav=u.job, meta=valley.meta, spec=valley)
+    ws = openpyxl.load_workbook(io.BytesIO(raw))["Terrain"]
+    rows = list(ws.iter_rows(min_row=2, values_only=True))
+    assert len(rows) == len(u.terrain.strips)
+    first = u.terrain.strips[0]
+    assert rows[0][0] == first.number and rows[0][7] == pytest.approx(first.max_altitude_m)
+    flat = plan_project(load_project(EXAMPLES / "uav-town-2000.toml"))
+    names = openpyxl.load_workbook(io.BytesIO(render_xlsx(
+        uav=flat.uav.job, meta=flat.meta, spec=flat))).sheetnames
+    assert "Terrain" not in names
