@@ -6,7 +6,8 @@ anything is rendered and again, under a lock on its folder, just before it is wr
 * ``-`` is refused: reports are binary files, never written to standard output.
 * A target that is one of the run's input files (a project file), by name, through a
   symbolic link or as a hard link, is refused — even with ``--force``.
-* The extension must fit the report: ``.xlsx`` for the workbook, ``.pdf`` for the PDF.
+* The extension must fit the report: ``.xlsx`` for the workbook, ``.pdf`` for the PDF
+  (and for the files ``plan --out`` exports: ``.plan``, ``.kml``, ``.geojson``, ``.csv``).
 * A symbolic link, a folder, a FIFO or a device is refused (scanplan replaces regular files
   by renaming a new file over them; that would replace a link, not the file it points to).
 * A write-protected file is refused, even with ``--force`` (its protection is the owner's
@@ -15,7 +16,9 @@ anything is rendered and again, under a lock on its folder, just before it is wr
 * An existing non-empty file that scanplan did not write is replaced only with ``--force``.
   scanplan recognises its own reports by their document properties: the workbook's creator
   (``docProps/core.xml``, ``dc:creator``) and the PDF's document information (``/Creator``)
-  both start with ``scanplan``. An empty file holds nothing to lose and is replaced.
+  both start with ``scanplan``; an exported file by its mark (the Plan file's
+  ``groundStation``, the KML's opening comment, the GeoJSON's ``generator``, the photo
+  table's header). An empty file holds nothing to lose and is replaced.
 
 :func:`folder_lock` serialises report writers in one folder (``flock``, as the norm folder
 lock): two runs writing into one ``--out`` folder cannot interleave their pairs, and the
@@ -40,7 +43,19 @@ __all__ = ["OUR_MARK", "check_target", "folder_lock", "name_max", "written_by_sc
 OUR_MARK = b"scanplan"
 """Start of the creator property of every report scanplan writes."""
 
-SUFFIX = {"xlsx": ".xlsx", "pdf": ".pdf", "csv": ".csv"}
+SUFFIX = {"xlsx": ".xlsx", "pdf": ".pdf", "plan": ".plan", "kml": ".kml",
+          "geojson": ".geojson", "csv": ".csv"}
+_WHAT = {"xlsx": "workbook", "pdf": "PDF", "plan": "mission", "kml": "KML file",
+         "geojson": "GeoJSON file", "csv": "table"}
+#: How scanplan's exported text files name their writer (within their first 4 KiB): the
+#: Plan file's groundStation, the KML's opening comment, the GeoJSON's "generator" member,
+#: the photo table's header (a CSV has no place for a comment).
+_TEXT_MARKS = {
+    "plan": re.compile(rb'"groundStation"\s*:\s*"scanplan[ "]'),
+    "kml": re.compile(rb"\A<\?xml[^>]*\?>\s*<!-- scanplan "),
+    "geojson": re.compile(rb'"generator"\s*:\s*"scanplan[ "]'),
+    "csv": re.compile(rb"\Aphoto,strip,index,sortie,x_m,y_m,lon_deg,lat_deg,"),
+}
 CSV_HEADER = "\ufeffproject,file,map_scale,".encode()
 """How a batch summary.csv scanplan wrote begins (scanplan.reports.summary)."""
 MAX_REPORT_BYTES = 64 * 1024 * 1024
@@ -74,8 +89,8 @@ def check_target(path: str, field: str, kind: str, *, inputs: Iterable[str] = ()
         The target as the user gave it.
     field : str
         How messages name it (``--xlsx``, ``--out``).
-    kind : {"xlsx", "pdf"}
-        The report it is for.
+    kind : {"xlsx", "pdf", "plan", "kml", "geojson", "csv"}
+        The report or exported file it is for.
     inputs : iterable of str
         The run's input files; none of them may be the target.
     force : bool
@@ -115,10 +130,8 @@ def check_target(path: str, field: str, kind: str, *, inputs: Iterable[str] = ()
             raise InputError(field, f"{shown} is the input file {item!r}; a report never "
                              "replaces an input — give another name")
     if not path.lower().endswith(SUFFIX[kind]):
-        what = {"xlsx": "workbook", "pdf": "PDF", "csv": "summary table"}[kind]
         raise InputError(field, f"{shown} does not end in {SUFFIX[kind]}; the "
-                         f"{what} is written only to a "
-                         f"{SUFFIX[kind]} file")
+                         f"{_WHAT[kind]} is written only to a {SUFFIX[kind]} file")
     if st is None:
         return
     if stat.S_ISLNK(st.st_mode):
@@ -143,7 +156,7 @@ def written_by_scanplan(path: str | os.PathLike[str], kind: str) -> bool:
     ----------
     path : path
         An existing regular file.
-    kind : {"xlsx", "pdf"}
+    kind : {"xlsx", "pdf", "plan", "kml", "geojson", "csv"}
         What it should be.
 
     Returns
@@ -159,8 +172,10 @@ def written_by_scanplan(path: str | os.PathLike[str], kind: str) -> bool:
         return False
     if kind == "xlsx":
         return _xlsx_is_ours(data)
-    if kind == "csv":
-        return data.startswith(CSV_HEADER)
+    if kind == "csv" and data.startswith(CSV_HEADER):  # a batch summary
+        return True
+    if kind in _TEXT_MARKS:
+        return bool(_TEXT_MARKS[kind].search(data[:4096]))
     return _pdf_is_ours(data)
 
 

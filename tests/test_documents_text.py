@@ -57,6 +57,7 @@ _LATIN_WORD = re.compile(r"[A-Za-z][A-Za-z'’-]*[A-Za-z]")
 _RU_ALLOWED = {
     "scanplan", "gsd", "mtf", "ln", "sqrt", "exp", "max", "min", "obj", "thr", "mc", "mk",
     "px", "rgb", "jpeg", "tiff", "dpi", "uas-fp",
+    "epsg", "wgs", "utm",  # coordinate systems are named by their codes (issue 11)
 }
 
 

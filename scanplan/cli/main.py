@@ -189,8 +189,11 @@ def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
     Both reports are rendered to memory first (a rendering failure touches no file), then
     written with :func:`scanplan.reports.write_atomic_many`: after any failure the previous
     spec.xlsx and spec.pdf are both as they were — never a new workbook beside an old PDF.
+    The files ``plan --out`` exports beside them (``opts["exports"]``: path → (kind,
+    bytes), the mission, KML, GeoJSON and CSV of issue 11) join the same transaction.
     """
     xlsx, pdf = opts.pop("xlsx_path"), opts.pop("pdf_path")
+    exports: dict[str, tuple[str, bytes]] = opts.pop("exports", None) or {}
     force, inputs = opts.pop("force", False), opts.pop("inputs", ())
     fields = opts.pop("fields", {"xlsx": "--xlsx", "pdf": "--pdf"})
     note = opts.pop("note", "")
@@ -208,6 +211,8 @@ def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
     def check() -> None:  # before rendering, and again under the folder lock
         for path, kind in wanted:
             check_target(path, fields[kind], kind, inputs=inputs, force=force)
+        for path, (kind, _) in exports.items():
+            check_target(path, "--out", kind, inputs=inputs, force=force)
 
     for path, kind in wanted:
         folder = os.path.dirname(os.path.abspath(path))
@@ -229,9 +234,27 @@ def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
         else:
             from ..reports.pdf import render_pdf as render
         files[path] = render(scan=scan, uav=uav, meta=meta, view=view, **extra)
+    files.update({path: data for path, (_, data) in exports.items()})
     write_atomic_many(files, check=check)
     for path in files:
         say(f"wrote {path}{note}")
+
+
+def _remove_stale_exports(folder: str, written: set[str]) -> None:
+    """Remove the exported files of an earlier run that this one replaced by fewer
+    (``mission-04.plan`` of six sorties, now three); say so on stderr."""
+    from ..outpaths import folder_lock
+    from ..reports.exports import stale_exports
+
+    with folder_lock([folder]):  # not while another scanplan run writes there
+        for path in stale_exports(folder, written):
+            try:
+                os.unlink(path)
+            except OSError as exc:
+                click.echo(f"warning: {path} is left from an earlier plan and could not be "
+                           f"removed ({exc.strerror or exc}); do not fly it", err=True)
+            else:
+                click.echo(f"removed {path} (left from an earlier plan)", err=True)
 
 
 def _make_folder(path: str) -> list[str]:
@@ -435,7 +458,9 @@ def uav(as_json: bool, **kwargs: Any) -> None:
 @click.argument("projects", nargs=-1, required=True, type=click.Path())
 @click.option("--out", "out_dir", type=click.Path(file_okay=False),
               help="Write spec.xlsx and spec.pdf into this folder (batch: NAME.xlsx/.pdf, "
-              "NAME-2.xlsx/.pdf for a second project named NAME).")
+              "NAME-2.xlsx/.pdf for a second project named NAME); for an area given as a "
+              "polygon also mission.plan (QGroundControl), flight.kml, flight.geojson and "
+              "photos.csv (film: film-flight.kml, film-flight.geojson, film-frames.csv).")
 @click.option("--xlsx", "xlsx_path", type=click.Path(dir_okay=False),
               help="Write the Excel report to this file (one project; not with --out).")
 @click.option("--pdf", "pdf_path", type=click.Path(dir_okay=False),
@@ -513,11 +538,18 @@ def _run_project(path: str, out_dir: str | None, stem: str | None, xlsx_path: st
             note = f" (for {path}" + (f"; the name {base} is taken by another project "
                                       "of this batch" if stem != base else "") + ")"
     result = plan_project(load_project(path))
+    exports = {}
+    if out_dir:  # the mission and GIS files join the reports' transaction (issue 11)
+        from ..reports.exports import export_files
+
+        exports = export_files(result, out_dir, prefix=f"{stem}-" if stem is not None else "")
     film = result.film.job if result.film else None
     uav_ = result.uav.job if result.uav else None
     _write_reports({**targets, "force": force, "inputs": files, "fields": fields,
-                    "note": note, "meta": result.meta, "say": say}, scan=film, uav=uav_,
-                   spec=result)
+                    "note": note, "meta": result.meta, "say": say, "exports": exports},
+                   scan=film, uav=uav_, spec=result)
+    if out_dir and stem is None:  # never leave a stale sortie of an earlier plan behind
+        _remove_stale_exports(out_dir, set(exports))
     return result
 
 

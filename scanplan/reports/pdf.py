@@ -261,10 +261,22 @@ def render_html(*, scan: ScanJob | None = None, uav: UavJob | None = None,
                        and not (spec is not None and spec.comparison) else None),
         "spec": spec_view,
         "design": design,
+        "geo": _geo_views(spec, uav, meta.locale),
         "warnings_box": _warnings_box(scan_view, uav_view, spec, f),
         "references": f.bib.entries(),
     }
     return _environment().get_template("report.html").render(**ctx)
+
+
+def _geo_views(spec: PlanResult | None, uav: UavJob | None, locale: str
+               ) -> list[dict[str, Any]]:
+    """The map pages of issue 11 (:mod:`scanplan.reports.mapview`): the specification's
+    flight layouts, or the UAV job's; none without a layout."""
+    from .exports import view_of
+    from .mapview import geo_views
+
+    view = view_of(spec, uav)
+    return geo_views(view, locale) if view is not None else []
 
 
 def _view(scan: ScanJob | None, uav: UavJob | None, meta: ReportMeta,

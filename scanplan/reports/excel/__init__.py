@@ -96,10 +96,22 @@ SHEETS: tuple[Sheet, ...] = (
     Sheet("uav", lambda b, v: uav_sheet(b, v.uav), "uav"),
     Sheet("mtf", lambda b, v: mtf_sheet(b, v.uav), "uav"),
     Sheet("terrain", lambda b, v: terrain_sheet(b, v.spec), "spec"),
+    Sheet("flight", lambda b, v: _flight_sheets(b, v)),  # issue 11: Strips, Photos
     Sheet("norms", lambda b, v: norms_sheet(b, v.scan, v.uav)),
     Sheet("warnings", lambda b, v: warnings_sheet(b, v.scan, v.uav, v.spec)),
     Sheet("references", lambda b, v: references_sheet(b)),
 )
+
+
+def _flight_sheets(book: Book, view: ReportView) -> None:
+    """The Strips and Photos sheets of the flight over the area (issue 11), when the
+    specification (or the UAV job) has a flight layout."""
+    from ..exports import view_of
+    from ..geosheets import add_geo_sheets
+
+    flights = view_of(view.spec, view.uav)
+    if flights is not None:
+        add_geo_sheets(book, flights)
 
 
 def render_xlsx(

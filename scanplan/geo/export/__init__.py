@@ -1,0 +1,60 @@
+"""Files a crew or a GIS opens: the mission (QGroundControl Plan), KML, GeoJSON, CSV.
+
+:func:`layout_files` renders every file of one flight layout to memory (name → bytes);
+the caller writes them in the same all-or-nothing transaction as the reports
+(:func:`scanplan.safeio.write_atomic_many`). An abstract ``width × length`` block (not
+georeferenced) gets none of them; a plan that is not feasible gets no mission.
+
+| file | content | module |
+|---|---|---|
+| ``mission.plan`` (``mission-01.plan`` … per sortie) | the mission to fly (UAV) | :mod:`.qgc` |
+| ``flight.kml`` | area, strips, numbered photo centres for Google Earth | :mod:`.gis` |
+| ``flight.geojson`` | the same as RFC 7946 GeoJSON | :mod:`.gis` |
+| ``photos.csv`` | every photo centre with its figures | :mod:`.gis` |
+"""
+
+from __future__ import annotations
+
+from ..layout import FlightLayout
+from .common import GENERATOR, lonlat
+from .gis import ExportNames, render_csv, render_geojson, render_kml
+from .qgc import MissionOptions, plan_files, render_plan
+
+__all__ = ["GENERATOR", "ExportNames", "MissionOptions", "layout_files", "plan_files",
+           "render_csv", "render_geojson", "render_kml", "render_plan"]
+
+
+def layout_files(layout: FlightLayout, *, names: ExportNames | None = None,
+                 mission: MissionOptions | None = None, prefix: str = "",
+                 photos_name: str = "photos") -> dict[str, bytes]:
+    """Every exported file of ``layout``: file name → content.
+
+    Parameters
+    ----------
+    layout : FlightLayout
+        The flight lines and photo centres.
+    names : ExportNames, optional
+        Names inside the files (the report's language).
+    mission : MissionOptions, optional
+        With it (a UAV flight), the QGroundControl mission of every sortie as well.
+    prefix : str
+        Put before every file name (``"film-"``; a batch's project name).
+    photos_name : str
+        Stem of the CSV (``"photos"``; ``"frames"`` for film).
+
+    Returns
+    -------
+    dict of str to bytes
+        Empty when the layout is not georeferenced.
+    """
+    if not layout.area.georeferenced:
+        return {}
+    geo = lonlat(layout)
+    files: dict[str, bytes] = {}
+    if mission is not None:
+        files.update({prefix + k: v for k, v in plan_files(layout, mission, geo=geo).items()})
+    files[f"{prefix}flight.kml"] = render_kml(layout, names)
+    files[f"{prefix}flight.geojson"] = render_geojson(layout, names)
+    if len(layout.photos):
+        files[f"{prefix}{photos_name}.csv"] = render_csv(layout)
+    return files

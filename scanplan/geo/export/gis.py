@@ -1,0 +1,357 @@
+"""The flight for Google Earth and a GIS: KML, GeoJSON (RFC 7946) and the photo table (CSV).
+
+* ``flight.kml`` (OGC KML 2.2): a document with three folders — the area (polygon), the
+  strips (lines, numbered, in flight order) and the photo centres (points named by their
+  running number) — and a style for each. Written with :mod:`xml.etree.ElementTree`, which
+  escapes all text (a project name with ``<`` or ``&`` stays text). Geometry is clamped
+  to the ground; the flight altitude of each photo is in its data.
+* ``flight.geojson`` (RFC 7946): one FeatureCollection of the area, the strips and the
+  photo centres (``"kind"``: ``area`` / ``strip`` / ``photo``), WGS 84 longitude/latitude
+  (no ``crs`` member), polygons by the right-hand rule, 7 decimals of a degree (about
+  1 cm). The writer is named in the foreign member ``"generator"``.
+* ``photos.csv``: every photo centre, one row each, the columns of
+  :data:`scanplan.geo.layout.PHOTO_COLUMNS` (units in the names), comma-separated, a dot
+  for decimals, UTF-8, empty cells for values that do not apply.
+
+A strip that crosses the area several times and is split is a MultiLineString of its
+segments (photos further apart than 1.5 bases start a new segment). A block across the
+antimeridian is not split (RFC 7946, 3.1.9): contract areas here are far from it.
+"""
+
+from __future__ import annotations
+
+import io
+import json
+import math
+import xml.etree.ElementTree as ET
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import pandas as pd
+import shapely
+
+from ..layout import PHOTO_COLUMNS, FlightLayout
+from .common import GENERATOR, LonLat, lonlat, photos_by_strip
+
+__all__ = ["CSV_DECIMALS", "ExportNames", "render_csv", "render_geojson", "render_kml"]
+
+_KML_NS = "http://www.opengis.net/kml/2.2"
+_DEG = 7  # decimals of a degree written (1e-7° ≈ 1 cm)
+_LABELLED_PHOTOS = 1000  # up to this many photo centres, their numbers always show in KML
+#: Decimals written per CSV column (integers: none; the rest: 3).
+CSV_DECIMALS = {"x_m": 3, "y_m": 3, "lon_deg": 8, "lat_deg": 8, "ground_m": 2,
+                "altitude_m": 2, "agl_m": 2, "gsd_cm": 3, "resolution_cm": 3,
+                "recognition_p": 4}
+_INT_COLUMNS = ("photo", "strip", "index", "sortie")
+
+
+@dataclass(frozen=True)
+class ExportNames:
+    """The human-readable names inside the files (the report's language)."""
+
+    title: str = "Flight plan"
+    area: str = "Area"
+    strips: str = "Strips"
+    photos: str = "Photo centres"
+    strip: str = "Strip {n}"
+    sortie: str = "sortie {n}"
+
+
+def _coords(points: np.ndarray) -> str:
+    return " ".join(f"{lon:.{_DEG}f},{lat:.{_DEG}f}" for lon, lat in points)
+
+
+def _sub(parent: ET.Element, tag: str, text: str | None = None) -> ET.Element:
+    el = ET.SubElement(parent, tag)
+    if text is not None:
+        el.text = text
+    return el
+
+
+def _style(doc: ET.Element, sid: str, *, line: str | None = None, width: float = 2.0,
+           fill: str | None = None, icon_scale: float | None = None,
+           label_scale: float = 0.6) -> None:
+    """A KML style (colours are aabbggrr)."""
+    st = _sub(doc, "Style")
+    st.set("id", sid)
+    if icon_scale is not None:
+        ic = _sub(st, "IconStyle")
+        _sub(ic, "color", line or "ff00ffff")
+        _sub(ic, "scale", f"{icon_scale:g}")
+        icon = _sub(ic, "Icon")
+        _sub(icon, "href", "http://maps.google.com/mapfiles/kml/shapes/placemark_circle.png")
+        lab = _sub(st, "LabelStyle")
+        _sub(lab, "scale", f"{label_scale:g}")
+        return
+    if line is not None:
+        ls = _sub(st, "LineStyle")
+        _sub(ls, "color", line)
+        _sub(ls, "width", f"{width:g}")
+    ps = _sub(st, "PolyStyle")
+    _sub(ps, "color", fill or "00ffffff")
+    _sub(ps, "fill", "0" if fill is None else "1")
+
+
+def _kml_polygon(parent: ET.Element, poly: Any) -> None:
+    pg = _sub(parent, "Polygon")
+    for tag, ring in [("outerBoundaryIs", poly.exterior),
+                      *[("innerBoundaryIs", r) for r in poly.interiors]]:
+        lr = _sub(_sub(pg, tag), "LinearRing")
+        _sub(lr, "coordinates", _coords(np.asarray(ring.coords)[:, :2]))
+
+
+def _data(pm: ET.Element, values: dict[str, Any]) -> None:
+    ext = _sub(pm, "ExtendedData")
+    for key, value in values.items():
+        d = _sub(ext, "Data")
+        d.set("name", key)
+        _sub(d, "value", value)
+
+
+def _fmt(value: Any, decimals: int) -> str:
+    v = float(value)
+    if not math.isfinite(v):
+        return ""
+    return f"{v:.{decimals}f}"
+
+
+def _strip_lines(layout: FlightLayout, geo: LonLat
+                 ) -> list[tuple[int, np.ndarray, list[np.ndarray]]]:
+    """(strip number, its flown line start→end in lon/lat, its photographed segments)."""
+    by_strip = photos_by_strip(layout)
+    ph = layout.photos
+    lon = np.asarray(ph["lon_deg"]) if len(ph) else np.empty(0)
+    lat = np.asarray(ph["lat_deg"]) if len(ph) else np.empty(0)
+    out = []
+    for s in layout.strips:
+        line = geo.points(np.array([s.start_xy_m, s.end_xy_m]))
+        segments = []
+        sp = by_strip.get(s.number)
+        if len(s.parts) > 1:  # the photographed parts the layout gives
+            segments = [geo.points(np.array([a, b])) for a, b in s.parts]
+        elif not s.parts and sp is not None and len(sp.runs) > 1:
+            for a, b in sp.runs:
+                i, j = int(sp.order[a]), int(sp.order[b])
+                segments.append(np.array([[lon[i], lat[i]], [lon[j], lat[j]]]))
+        out.append((s.number, line, segments))
+    return out
+
+
+def render_kml(layout: FlightLayout, names: ExportNames | None = None) -> bytes:
+    """The flight scheme as KML for Google Earth (see the module docstring).
+
+    Parameters
+    ----------
+    layout : FlightLayout
+        A georeferenced layout.
+    names : ExportNames, optional
+        The names of the document, folders and strips (default English).
+
+    Returns
+    -------
+    bytes
+        The ``.kml`` (UTF-8 XML).
+    """
+    names = names or ExportNames()
+    geo = lonlat(layout)
+    root = ET.Element("kml", {"xmlns": _KML_NS})
+    doc = _sub(root, "Document")
+    _sub(doc, "name", names.title)
+    _sub(doc, "description",
+         f"{layout.area.source}; {layout.area.plan_crs}; {names.strips}: "
+         f"{len(layout.strips)}; {names.photos}: {len(layout.photos)}")
+    _style(doc, "area", line="ff0000ff", width=2.5, fill="330000ff")
+    _style(doc, "strip", line="ffff7f00", width=2.0)
+    # photo numbers: shown for a small block; for a large one on pointing (a StyleMap), as
+    # thousands of labels would hide the map
+    few = len(layout.photos) <= _LABELLED_PHOTOS
+    _style(doc, "photo-normal", line="ff00ffff", icon_scale=0.45,
+           label_scale=0.6 if few else 0.0)
+    _style(doc, "photo-highlight", line="ff00ffff", icon_scale=0.7, label_scale=0.9)
+    smap = _sub(doc, "StyleMap")
+    smap.set("id", "photo")
+    for key in ("normal", "highlight"):
+        pair = _sub(smap, "Pair")
+        _sub(pair, "key", key)
+        _sub(pair, "styleUrl", f"#photo-{key}")
+
+    folder = _sub(doc, "Folder")
+    _sub(folder, "name", names.area)
+    pm = _sub(folder, "Placemark")
+    _sub(pm, "name", names.area)
+    _sub(pm, "styleUrl", "#area")
+    _data(pm, {"area_km2": _fmt(layout.area.area_km2, 4),
+               "perimeter_km": _fmt(layout.area.perimeter_km, 3),
+               "plan_crs": layout.area.plan_crs})
+    polys = list(getattr(geo.area, "geoms", [geo.area]))
+    if len(polys) == 1:
+        _kml_polygon(pm, polys[0])
+    else:
+        mg = _sub(pm, "MultiGeometry")
+        for poly in polys:
+            _kml_polygon(mg, poly)
+
+    folder = _sub(doc, "Folder")
+    _sub(folder, "name", names.strips)
+    for (number, line, segments), strip in zip(_strip_lines(layout, geo), layout.strips,
+                                               strict=True):
+        pm = _sub(folder, "Placemark")
+        _sub(pm, "name", names.strip.format(n=number))
+        _sub(pm, "description", names.sortie.format(n=strip.sortie))
+        _sub(pm, "styleUrl", "#strip")
+        _data(pm, {"strip": str(number), "sortie": str(strip.sortie),
+                   "photos": str(strip.photos), "length_m": _fmt(strip.length_m, 1)})
+        parent = _sub(pm, "MultiGeometry") if segments else pm
+        for seg in segments or [line]:
+            ls = _sub(parent, "LineString")
+            _sub(ls, "tessellate", "1")
+            _sub(ls, "coordinates", _coords(seg))
+
+    folder = _sub(doc, "Folder")
+    _sub(folder, "name", names.photos)
+    _sub(folder, "Placemark").text = _PHOTOS_MARK  # the photo placemarks go here
+    body = ET.tostring(root, encoding="unicode", short_empty_elements=True)
+    head = ('<?xml version="1.0" encoding="UTF-8"?>\n'
+            f"<!-- {GENERATOR}: flight plan (area, strips, photo centres) -->\n")
+    body = body.replace(f"<Placemark>{_PHOTOS_MARK}</Placemark>", _kml_photos(layout.photos))
+    return (head + body + "\n").encode("utf-8")
+
+
+_PHOTOS_MARK = "@@scanplan-photo-centres@@"
+
+
+def _kml_photos(ph: Any) -> str:
+    """The photo placemarks as KML text (numbers only: nothing to escape), built column by
+    column — 10⁵ photos in well under a second, where one element tree node each takes
+    tens of seconds."""
+    if not len(ph):
+        return ""
+    ints = [np.asarray(ph[k]).astype(np.int64).astype(str) for k in
+            ("photo", "strip", "index", "sortie")]
+    agl = np.char.mod("%.1f", np.asarray(ph["agl_m"], float))
+    agl = np.where(np.isfinite(np.asarray(ph["agl_m"], float)), agl, "")
+    lon = np.char.mod(f"%.{_DEG}f", np.asarray(ph["lon_deg"], float))
+    lat = np.char.mod(f"%.{_DEG}f", np.asarray(ph["lat_deg"], float))
+    return "".join(
+        f'<Placemark><name>{n}</name><styleUrl>#photo</styleUrl><ExtendedData>'
+        f'<Data name="strip"><value>{s}</value></Data>'
+        f'<Data name="index"><value>{i}</value></Data>'
+        f'<Data name="sortie"><value>{r}</value></Data>'
+        f'<Data name="agl_m"><value>{a}</value></Data></ExtendedData>'
+        f'<Point><coordinates>{x},{y}</coordinates></Point></Placemark>'
+        for n, s, i, r, a, x, y in zip(*ints, agl, lon, lat, strict=True))
+
+
+def _round(points: np.ndarray) -> list[list[float]]:
+    return [[round(float(a), _DEG), round(float(b), _DEG)] for a, b in points]
+
+
+def _geojson_geometry(geom: Any) -> dict[str, Any]:
+    """A shapely geometry (lon/lat) as a GeoJSON geometry object, coordinates rounded."""
+    mapping = shapely.geometry.mapping(geom)
+
+    def rnd(c: Any) -> Any:
+        if isinstance(c, (list, tuple)) and c and isinstance(c[0], (int, float)):
+            return [round(float(c[0]), _DEG), round(float(c[1]), _DEG)]
+        return [rnd(x) for x in c]
+
+    return {"type": mapping["type"], "coordinates": rnd(mapping["coordinates"])}
+
+
+def _num(value: Any) -> Any:
+    v = float(value)
+    if not math.isfinite(v):
+        return None
+    return int(v) if v.is_integer() and abs(v) < 2**53 else v
+
+
+def render_geojson(layout: FlightLayout, names: ExportNames | None = None) -> bytes:
+    """The flight scheme as one RFC 7946 FeatureCollection (see the module docstring).
+
+    Returns
+    -------
+    bytes
+        The ``.geojson`` (UTF-8 JSON).
+    """
+    names = names or ExportNames()
+    geo = lonlat(layout)
+    features: list[dict[str, Any]] = [{
+        "type": "Feature",
+        "properties": {"kind": "area", "name": names.area, "source": layout.area.source,
+                       "plan_crs": layout.area.plan_crs,
+                       "area_km2": _num(round(layout.area.area_km2, 6)),
+                       "perimeter_km": _num(round(layout.area.perimeter_km, 6))},
+        "geometry": _geojson_geometry(geo.area),
+    }]
+    for (number, line, segments), strip in zip(_strip_lines(layout, geo), layout.strips,
+                                               strict=True):
+        geometry = ({"type": "MultiLineString", "coordinates": [_round(s) for s in segments]}
+                    if segments else {"type": "LineString", "coordinates": _round(line)})
+        features.append({
+            "type": "Feature",
+            "properties": {"kind": "strip", "name": names.strip.format(n=number),
+                           "strip": number, "sortie": strip.sortie, "photos": strip.photos,
+                           "length_m": _num(round(strip.length_m, 2))},
+            "geometry": geometry,
+        })
+    doc = {"type": "FeatureCollection", "name": names.title, "generator": GENERATOR,
+           "features": features}
+    text = json.dumps(doc, ensure_ascii=False, allow_nan=False, separators=(",", ":"))
+    photos = _geojson_photos(layout.photos)
+    if photos:  # the photo features after the area and the strips
+        text = text[:-2] + "," + photos + "]}"
+    return (text + "\n").encode("utf-8")
+
+
+def _json_column(values: np.ndarray, decimals: int | None) -> np.ndarray:
+    """One column as JSON literals: integers, numbers rounded to ``decimals`` (shortest
+    form, as :func:`json.dumps` writes a float), ``null`` for NaN."""
+    if decimals is None:
+        return values.astype(np.int64).astype(str)
+    v = np.round(values.astype(float), decimals)
+    out = np.array([repr(float(x)) for x in v], dtype=object)
+    out[~np.isfinite(v)] = "null"
+    return out
+
+
+def _geojson_photos(ph: Any) -> str:
+    """The photo-centre features as JSON text, built column by column (fast for 10⁵)."""
+    if not len(ph):
+        return ""
+    cols = [c for c in PHOTO_COLUMNS if c in ph.columns]
+    lits = [_json_column(np.asarray(ph[c]),
+                         None if c in _INT_COLUMNS else CSV_DECIMALS.get(c, 3)) for c in cols]
+    lon = _json_column(np.asarray(ph["lon_deg"]), _DEG)
+    lat = _json_column(np.asarray(ph["lat_deg"]), _DEG)
+    keys = [json.dumps(c) + ":" for c in cols]
+    rows = []
+    for i in range(len(ph)):
+        props = ",".join(k + v[i] for k, v in zip(keys, lits, strict=True))
+        rows.append('{"type":"Feature","properties":{"kind":"photo",' + props
+                    + '},"geometry":{"type":"Point","coordinates":[' + lon[i] + ","
+                    + lat[i] + "]}}")
+    return ",".join(rows)
+
+
+def render_csv(layout: FlightLayout) -> bytes:
+    """Every photo centre as a CSV row (see the module docstring).
+
+    Works for an abstract block too (lon/lat empty, x/y in its local frame).
+
+    Returns
+    -------
+    bytes
+        The ``.csv`` (UTF-8, ``\\n`` line ends).
+    """
+    ph = layout.photos
+    cols = [c for c in PHOTO_COLUMNS if c in ph.columns]
+    frame = pd.DataFrame({c: np.asarray(ph[c]) for c in cols}, columns=cols)
+    for c in cols:
+        if c in _INT_COLUMNS:
+            frame[c] = frame[c].astype(np.int64)
+        else:
+            frame[c] = frame[c].astype(float).round(CSV_DECIMALS.get(c, 3))
+    buf = io.StringIO()
+    frame.to_csv(buf, index=False, lineterminator="\n", na_rep="")
+    return buf.getvalue().encode("utf-8")

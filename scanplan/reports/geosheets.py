@@ -1,0 +1,111 @@
+"""The workbook's "Strips" and "Photos" sheets (issue 11).
+
+Strips: the layout's figures (as on the PDF's map page) and one row per strip — number,
+sortie, photos, length, photographed parts, start and end (latitude/longitude and
+easting/northing in the planning CRS). Photos: one row per photo centre with every column
+of :data:`scanplan.geo.layout.PHOTO_COLUMNS`, up to :data:`MAX_SHEET_PHOTOS`; a larger
+block keeps its photo centres in the CSV written beside the report, and the Strips sheet
+says so; an abstract width × length block (a uniform grid in a local frame) has no Photos
+sheet. Film layouts get the same sheets for the flight scheme's frames.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from ..geo.layout import PHOTO_COLUMNS, FlightLayout
+from . import exports as _exports
+from .mapview import summary_items
+from .plots import number
+
+__all__ = ["MAX_SHEET_PHOTOS", "add_geo_sheets"]
+
+MAX_SHEET_PHOTOS = 10_000
+"""Most photo centres put on the Photos sheet (openpyxl writes about 10⁴ rows a second)."""
+
+_PHOTO_FORMATS = {"photo": "0", "strip": "0", "index": "0", "sortie": "0",
+                  "x_m": "0.000", "y_m": "0.000", "lon_deg": "0.00000000",
+                  "lat_deg": "0.00000000", "ground_m": "0.00", "altitude_m": "0.00",
+                  "agl_m": "0.00", "gsd_cm": "0.000", "resolution_cm": "0.000",
+                  "recognition_p": "0.0000"}
+
+
+def add_geo_sheets(book: Any, spec: Any) -> None:
+    """Add the Strips and Photos sheets of every flight layout of ``spec`` to ``book``
+    (a :class:`scanplan.reports.excel._Book`)."""
+    for kind, layout in _exports.spec_layouts(spec):
+        film = kind == "film"
+        _strips_sheet(book, layout, "xlsx_sheet_strips_film" if film else "xlsx_sheet_strips")
+        if layout.area.georeferenced and 0 < len(layout.photos) <= MAX_SHEET_PHOTOS:
+            _photos_sheet(book, layout, "xlsx_sheet_frames" if film else "xlsx_sheet_photos")
+
+
+def _strips_sheet(book: Any, layout: FlightLayout, key: str) -> None:
+    from .excel.cells import _header, put_num, put_text
+
+    loc = book.loc
+    ws = book.sheet(key, landscape=True,
+                    widths=(46, 10, 10, 12, 14, 16, 16, 16, 16, 14, 14, 14, 14))
+    row = book.section(ws, 1, book.t("geo_summary"))
+    for label, value, digits in summary_items(layout, loc):
+        fmt = None if isinstance(value, str) else ("#,##0" if digits == 0 else
+                                                   "#,##0." + "0" * digits)
+        row = book.kv(ws, row, label, value, fmt)
+    notes = []
+    if not layout.feasible:
+        notes.append(book.t("geo_not_feasible").format(reason=layout.reason or ""))
+    if not layout.area.georeferenced:
+        notes.append(book.t("geo_not_georeferenced"))
+    if len(layout.photos) > MAX_SHEET_PHOTOS:
+        notes.append(book.t("geo_photos_elsewhere").format(
+            n=number(len(layout.photos), 0, loc)))
+    for note in notes:
+        row = book._wide_kv(ws, row, "", note)
+    row += 1
+    ends = [(book.t(e), book.t(c)) for e in ("strip_start", "strip_end")
+            for c in ("photo_lat_deg", "photo_lon_deg")]
+    ends += [(book.t(e), book.t(c)) for e in ("strip_start", "strip_end")
+             for c in ("photo_x_m", "photo_y_m")]
+    head = [book.t("strip_no"), book.t("strip_sortie"),
+            book.t("strip_frames" if layout.kind == "film" else "strip_photos"),
+            book.t("strip_length_m"), book.t("strip_parts"), *(f"{e}: {c}" for e, c in ends)]
+    _header(ws, row, head)
+    row += 1
+    geo = None
+    if layout.area.georeferenced:
+        from ..geo.export.common import lonlat
+
+        geo = lonlat(layout)
+    ends = np.array([[s.start_xy_m, s.end_xy_m] for s in layout.strips], float).reshape(-1, 2)
+    ll = geo.points(ends) if geo is not None and len(ends) else np.full_like(ends, np.nan)
+    for k, s in enumerate(layout.strips):
+        put_num(ws, row, 1, s.number, "0")
+        put_num(ws, row, 2, s.sortie, "0")
+        put_num(ws, row, 3, s.photos, "#,##0")
+        put_num(ws, row, 4, s.length_m, "#,##0.0")
+        put_num(ws, row, 5, max(s.segments, len(s.parts) or 1), "0")
+        (lon0, lat0), (lon1, lat1) = ll[2 * k], ll[2 * k + 1]
+        for col, v, fmt in ((6, lat0, "0.00000000"), (7, lon0, "0.00000000"),
+                            (8, lat1, "0.00000000"), (9, lon1, "0.00000000"),
+                            (10, s.start_xy_m[0], "0.000"), (11, s.start_xy_m[1], "0.000"),
+                            (12, s.end_xy_m[0], "0.000"), (13, s.end_xy_m[1], "0.000")):
+            put_num(ws, row, col, v, fmt)
+        row += 1
+    if not layout.strips:
+        put_text(ws, row, 1, "—")
+
+
+def _photos_sheet(book: Any, layout: FlightLayout, key: str) -> None:
+    from .excel.cells import _header, put_num
+
+    ph = layout.photos
+    cols = [c for c in PHOTO_COLUMNS if c in ph.columns]
+    ws = book.sheet(key, landscape=True, widths=[14] * len(cols))
+    _header(ws, 1, [book.t(f"photo_{c}") for c in cols])
+    arrays = [np.asarray(ph[c]) for c in cols]
+    fmts = [_PHOTO_FORMATS.get(c, "0.000") for c in cols]
+    for i in range(len(ph)):
+        for j, (arr, fmt) in enumerate(zip(arrays, fmts, strict=True), start=1):
+            put_num(ws, i + 2, j, arr[i], fmt)

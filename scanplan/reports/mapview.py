@@ -1,0 +1,321 @@
+"""The flight over the area in the reports: a map page and a strips table (issue 11).
+
+:func:`map_svg` draws a flight layout in its planning CRS with matplotlib (deterministic
+SVG, no web tiles, the report's font — as :mod:`scanplan.reports.plots`): the area (holes
+included), the strips with their flight direction and numbers, the photo centres, a north
+arrow (true north at the area's centre: the grid of a projected CRS is turned from it by
+the meridian convergence), a scale bar and the CRS named. :func:`geo_views` gives the PDF
+its map page, a summary and a strips table per layout; an abstract width × length block
+gets a sentence saying why it has no map and no files.
+
+Nothing is recomputed here: every number comes from the :class:`FlightLayout`.
+"""
+
+from __future__ import annotations
+
+import base64
+import io
+import math
+import re
+from typing import Any
+
+import matplotlib
+import numpy as np
+from matplotlib.figure import Figure
+from matplotlib.ticker import FuncFormatter
+
+from ..geo.layout import FlightLayout
+from . import exports as _exports
+from .labels import t
+from .plots import _RC, number
+
+__all__ = ["MAX_MAP_PHOTOS", "MAX_TABLE_STRIPS", "crs_text", "geo_views", "map_svg"]
+
+MAX_MAP_PHOTOS = 4000
+"""Most photo centres drawn on the map (every k-th beyond it: the SVG stays small)."""
+MAX_TABLE_STRIPS = 150
+"""Most strips listed in the PDF's strips table (the workbook lists all)."""
+_MAP_SIZE_IN = (6.6, 8.2)  # width, greatest height [in]
+
+# Russian for the words of common projected-CRS names (pyproj's names are English)
+_RU_CRS_WORDS = [(r"\bzone\b", "зона"), (r"\bPulkovo\b", "Пулково"),
+                 (r"\bGauss-Kruger\b", "Гаусса — Крюгера"), (r"\bCM\b", "осевой меридиан"),
+                 (r"\bN\b", "с. ш."), (r"\bS\b", "ю. ш.")]
+_LATIN_WORD = re.compile(r"[A-Za-z][A-Za-z'-]*[A-Za-z]")
+_RU_KEPT = {"EPSG", "UTM", "WGS", "GSK", "ETRS", "CS"}  # abbreviations kept in Russian
+
+
+def crs_text(layout: FlightLayout, locale: str) -> str:
+    """The planning CRS named for a report: ``EPSG:32635 — WGS 84 / UTM zone 35N``.
+
+    Russian names translate the common words (zone, Pulkovo, Gauss–Kruger); a name with
+    other English words is left out (the EPSG code alone names the system).
+    """
+    area = layout.area
+    if not area.georeferenced:
+        return t("map_local", locale)
+    code = area.plan_crs if len(area.plan_crs) < 40 else ""  # a WKT is not shown
+    name = getattr(area, "plan_crs_name", "") or ""
+    if locale == "ru" and name:
+        name = re.sub(r"(\d)N\b", r"\1 с. ш.", re.sub(r"(\d)S\b", r"\1 ю. ш.", name))
+        for pattern, word in _RU_CRS_WORDS:
+            name = re.sub(pattern, word, name)
+        if any(w not in _RU_KEPT for w in _LATIN_WORD.findall(name)):
+            name = ""
+    parts = [p for p in (code, name) if p]
+    return " — ".join(parts) if parts else t("map_local", locale)
+
+
+def _nice(length: float) -> float:
+    """A 1-2-5 length not over ``length``."""
+    e = 10 ** math.floor(math.log10(length))
+    return max(m * e for m in (1, 2, 5) if m * e <= length)
+
+
+def _true_north_deg(layout: FlightLayout) -> float | None:
+    """Direction of true north at the area's centre, clockwise from grid north [°]."""
+    if not layout.area.georeferenced or layout.area.centroid_lonlat is None:
+        return None
+    from pyproj import CRS, Transformer
+
+    tr = Transformer.from_crs(CRS.from_epsg(4326), CRS.from_user_input(layout.area.plan_crs),
+                              always_xy=True)
+    lon, lat = layout.area.centroid_lonlat
+    x0, y0 = tr.transform(lon, lat)
+    x1, y1 = tr.transform(lon, min(lat + 0.01, 89.99))
+    return math.degrees(math.atan2(x1 - x0, y1 - y0))
+
+
+def _draw_area(ax: Any, geometry: Any, scale: float, label: str) -> None:
+    polys = list(getattr(geometry, "geoms", [geometry]))
+    for k, poly in enumerate(polys):
+        ext = np.asarray(poly.exterior.coords)[:, :2] / scale
+        ax.fill(ext[:, 0], ext[:, 1], facecolor="#fde0dc", edgecolor="#c62828",
+                linewidth=1.2, zorder=1, label=label if k == 0 else None)
+        for ring in poly.interiors:
+            hole = np.asarray(ring.coords)[:, :2] / scale
+            ax.fill(hole[:, 0], hole[:, 1], facecolor="white", edgecolor="#c62828",
+                    linewidth=1.0, zorder=1.5)
+
+
+def _draw_strips(ax: Any, layout: FlightLayout, scale: float, label: str) -> None:
+    n = len(layout.strips)
+    every = max(1, math.ceil(n / 40))  # strip numbers: at most ~40 on the map
+    for k, s in enumerate(layout.strips):
+        (x0, y0), (x1, y1) = np.asarray(s.start_xy_m) / scale, np.asarray(s.end_xy_m) / scale
+        ax.plot([x0, x1], [y0, y1], color="#1565c0", linewidth=0.8, zorder=2,
+                label=label if k == 0 else None)
+        if k % max(1, math.ceil(n / 15)) == 0:  # flight direction on ~15 strips
+            ax.annotate("", xy=(x0 + 0.55 * (x1 - x0), y0 + 0.55 * (y1 - y0)),
+                        xytext=(x0 + 0.45 * (x1 - x0), y0 + 0.45 * (y1 - y0)),
+                        arrowprops={"arrowstyle": "-|>", "color": "#1565c0", "lw": 0.8,
+                                    "mutation_scale": 9},
+                        zorder=3)
+        if k % every == 0 or k == n - 1:
+            ax.annotate(str(s.number), (x0, y0), fontsize=6, color="#0d47a1",
+                        ha="center", va="center", zorder=4,
+                        bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none",
+                              "alpha": 0.8})
+
+
+def _km_ticks(axis: Any, locale: str) -> FuncFormatter:
+    """Tick labels in km with as many decimals as the tick step needs."""
+    def fmt(v: float, _pos: int | None = None) -> str:
+        ticks = axis.get_majorticklocs()
+        step = float(np.min(np.diff(ticks))) if len(ticks) > 1 else 1.0
+        digits = next((d for d in range(4) if abs(round(step, d) - step) < 1e-9 * max(step, 1)),
+                      3)  # as many decimals as the step has (0.25 km: two)
+        return number(v, digits, locale)
+    return FuncFormatter(fmt)
+
+
+def _scale_bar(ax: Any, span_km: float, locale: str) -> None:
+    """A scale bar in the lower right, in metres or kilometres."""
+    length_km = _nice(span_km / 4)
+    x0, x1 = ax.get_xlim()
+    y0, y1 = ax.get_ylim()
+    bx, by = x1 - 0.05 * (x1 - x0) - length_km, y0 + 0.04 * (y1 - y0)
+    ax.plot([bx, bx + length_km], [by, by], color="black", linewidth=2.5, zorder=6,
+            solid_capstyle="butt")
+    text = (f"{number(length_km, 0 if length_km >= 1 else 1, locale)} {t('map_km', locale)}"
+            if length_km >= 1 else f"{number(length_km * 1000, 0, locale)} {t('map_m', locale)}")
+    ax.text(bx + length_km / 2, by + 0.015 * (y1 - y0), text, ha="center", va="bottom",
+            fontsize=7, zorder=6, bbox={"fc": "white", "ec": "none", "alpha": 0.8, "pad": 1})
+
+
+def _north_arrow(ax: Any, north_deg: float, locale: str) -> None:
+    """An arrow to true north in the upper right corner (axes coordinates)."""
+    cx, cy, r = 0.93, 0.88, 0.05
+    dx, dy = r * math.sin(math.radians(north_deg)), r * math.cos(math.radians(north_deg))
+    ax.annotate("", xy=(cx + dx, cy + dy), xytext=(cx - dx, cy - dy),
+                xycoords="axes fraction",
+                arrowprops={"arrowstyle": "-|>,head_width=0.4,head_length=0.8",
+                            "color": "black", "lw": 1.4}, zorder=7)
+    ax.text(cx + 1.5 * dx, cy + 1.5 * dy, t("map_north", locale), transform=ax.transAxes,
+            ha="center", va="center", fontsize=9, fontweight="bold", zorder=7)
+
+
+def map_svg(layout: FlightLayout, locale: str = "en") -> str:
+    """The flight layout drawn in its planning CRS (see the module docstring).
+
+    Parameters
+    ----------
+    layout : FlightLayout
+        Area, strips and photo centres.
+    locale : {"en", "ru"}
+        Language of the labels and decimal separator.
+
+    Returns
+    -------
+    str
+        An SVG document.
+    """
+    film = layout.kind == "film"
+    scale = 1000.0  # axes in km
+    ph = layout.photos
+
+    def draw(fig: Figure) -> None:
+        ax = fig.add_subplot()
+        _draw_area(ax, layout.area.geometry, scale, t("map_legend_area", locale))
+        _draw_strips(ax, layout, scale, t("map_legend_strips", locale))
+        if len(ph):
+            step = max(1, math.ceil(len(ph) / MAX_MAP_PHOTOS))
+            x = np.asarray(ph["x_m"], float)[::step] / scale
+            y = np.asarray(ph["y_m"], float)[::step] / scale
+            label = t("map_legend_frames" if film else "map_legend_photos", locale)
+            if step > 1:
+                label += f" ({t('map_one_in', locale).format(k=step)})"
+            ax.plot(x, y, linestyle="none", marker="o", markersize=1.6, color="#2e7d32",
+                    zorder=2.5, label=label)
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.margins(0.1)
+        ax.xaxis.set_major_formatter(_km_ticks(ax.xaxis, locale))
+        ax.yaxis.set_major_formatter(_km_ticks(ax.yaxis, locale))
+        ax.set_xlabel(t("map_easting_km", locale))
+        ax.set_ylabel(t("map_northing_km", locale))
+        ax.set_title(crs_text(layout, locale), fontsize=8)
+        fig.legend(loc="outside lower center", ncols=3, frameon=False)
+        fig.canvas.draw()  # limits are final before the bar and the arrow are placed
+        x0, x1 = ax.get_xlim()
+        _scale_bar(ax, x1 - x0, locale)
+        north = _true_north_deg(layout)
+        if north is not None:
+            _north_arrow(ax, north, locale)
+
+    minx, miny, maxx, maxy = layout.area.geometry.bounds
+    if layout.strips:
+        ends = np.array([p for s in layout.strips for p in (s.start_xy_m, s.end_xy_m)])
+        minx, miny = min(minx, ends[:, 0].min()), min(miny, ends[:, 1].min())
+        maxx, maxy = max(maxx, ends[:, 0].max()), max(maxy, ends[:, 1].max())
+    width_in, max_h = _MAP_SIZE_IN
+    ratio = (maxy - miny) / (maxx - minx) if maxx > minx else 1.0
+    height_in = min(max(width_in * 0.85 * ratio + 1.2, 3.8), max_h)  # the area fills it
+    with matplotlib.rc_context({**_RC, "axes.grid": True}):
+        fig = Figure(figsize=(width_in, height_in), layout="constrained")
+        draw(fig)
+        buf = io.StringIO()
+        fig.savefig(buf, format="svg", metadata={"Date": None, "Creator": None})
+    return buf.getvalue().replace("'DejaVu Sans'", "'Scanplan Sans'").replace(
+        '"DejaVu Sans"', '"Scanplan Sans"').replace("DejaVu Sans", "Scanplan Sans")
+
+
+def _svg_uri(svg: str) -> str:
+    return "data:image/svg+xml;base64," + base64.b64encode(svg.encode("utf-8")).decode()
+
+
+def _point_text(layout: FlightLayout, xy: tuple[float, float], locale: str,
+                geo: Any) -> str:
+    if geo is None:
+        return f"{number(xy[0], 0, locale)}; {number(xy[1], 0, locale)}"
+    lon, lat = geo.points(np.array([xy]))[0]
+    return f"{number(lat, 6, locale)}; {number(lon, 6, locale)}"
+
+
+def summary_items(layout: FlightLayout, locale: str) -> list[tuple[str, Any, int]]:
+    """The layout's figures as (label, value, decimals); the CRS is text."""
+    film = layout.kind == "film"
+    a = layout.area
+    rows: list[tuple[str, Any, int]] = [
+        (t("map_crs", locale), crs_text(layout, locale), 0),
+        (t("geo_area_km2", locale), a.area_km2, 3),
+        (t("geo_perimeter_km", locale), a.perimeter_km, 2),
+        (t("geo_direction_deg", locale), layout.direction_deg, 1),
+        (t("geo_spacing_m", locale), layout.spacing_m, 1),
+        (t("geo_base_m", locale), layout.base_m, 1),
+        (t("geo_n_strips", locale), len(layout.strips), 0),
+        (t("geo_n_frames" if film else "geo_n_photos", locale), len(layout.photos), 0)]
+    if not film:
+        rows.append((t("geo_n_sorties", locale), len(layout.sorties), 0))
+    rows.append((t("geo_flight_km", locale), layout.flight_length_m / 1000, 2))
+    if layout.flight_time_s:
+        rows.append((t("geo_flight_min", locale), layout.flight_time_s / 60, 1))
+    return rows
+
+
+def summary_rows(layout: FlightLayout, locale: str) -> list[tuple[str, str]]:
+    """:func:`summary_items` as text (the PDF)."""
+    return [(label, value if isinstance(value, str) else number(float(value), d, locale))
+            for label, value, d in summary_items(layout, locale)]
+
+
+def strips_table(layout: FlightLayout, locale: str, limit: int | None = MAX_TABLE_STRIPS
+                 ) -> dict[str, Any]:
+    """The strips as table rows (the first ``limit``), with their header and a note; the
+    numeric columns first (``numeric``: how many)."""
+    from ..geo.export.common import lonlat
+
+    film = layout.kind == "film"
+    geo = lonlat(layout) if layout.area.georeferenced else None
+    where = t("strip_lat_lon" if geo is not None else "strip_xy", locale)
+    head = [t("strip_no", locale), t("strip_sortie", locale),
+            t("strip_frames" if film else "strip_photos", locale), t("strip_length_m", locale),
+            t("strip_parts", locale), f"{t('strip_start', locale)} ({where})",
+            f"{t('strip_end', locale)} ({where})"]
+    shown = layout.strips if limit is None else layout.strips[:limit]
+    rows = [[str(s.number), str(s.sortie), number(s.photos, 0, locale),
+             number(s.length_m, 0, locale), str(max(s.segments, len(s.parts) or 1)),
+             _point_text(layout, s.start_xy_m, locale, geo),
+             _point_text(layout, s.end_xy_m, locale, geo)] for s in shown]
+    if film:  # an aerial survey has no sorties of a battery
+        head = [h for k, h in enumerate(head) if k != 1]
+        rows = [[c for k, c in enumerate(r) if k != 1] for r in rows]
+    note = (t("strips_more", locale).format(shown=len(shown), total=len(layout.strips))
+            if len(shown) < len(layout.strips) else "")
+    return {"head": head, "rows": rows, "note": note, "numeric": 4 if film else 5}
+
+
+def geo_views(spec: Any, locale: str) -> list[dict[str, Any]]:
+    """The PDF's map pages: one per flight layout of ``spec`` (UAV first, then film).
+
+    Each view: ``title``, ``map`` (an SVG ``data:`` URI, or None for an abstract block),
+    ``caption`` (the CRS), ``rows`` (summary), ``strips`` (table), ``notes``.
+    """
+    views = []
+    for _kind, layout in _exports.spec_layouts(spec):
+        film = layout.kind == "film" or _kind == "film"
+        notes = []
+        if not layout.feasible:
+            notes.append(t("geo_not_feasible", locale).format(reason=layout.reason or ""))
+        if not layout.area.georeferenced:
+            notes.append(t("geo_not_georeferenced", locale))
+        elif getattr(spec, "writes_files", True):
+            items = [t("geo_file_flight", locale),
+                     t("geo_file_frames" if film else "geo_file_photos", locale)]
+            if not film and _exports.mission_options(spec, layout) is not None:
+                items.insert(0, t("geo_file_mission", locale))
+            notes.append(t("geo_files_note", locale).format(items="; ".join(items)))
+        from .geosheets import MAX_SHEET_PHOTOS
+
+        if len(layout.photos) > MAX_SHEET_PHOTOS:
+            notes.append(t("geo_photos_elsewhere", locale).format(
+                n=number(len(layout.photos), 0, locale)))
+        views.append({
+            "title": t("map_title_film" if film else "map_title", locale)
+            if layout.area.georeferenced else t("geo_summary", locale),
+            "map": _svg_uri(map_svg(layout, locale)) if layout.area.georeferenced else None,
+            "caption": crs_text(layout, locale),
+            "rows": summary_rows(layout, locale),
+            "strips": strips_table(layout, locale),
+            "notes": notes,
+        })
+    return views
