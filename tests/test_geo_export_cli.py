@@ -222,3 +222,29 @@ def test_a_plan_with_fewer_sorties_removes_the_stale_missions(work, monkeypatch)
     r = cli("plan", "proj.toml", "--out", "out")  # no polygon any more: no files for it
     assert r.exit_code == 0, r.output
     assert sorted(os.listdir(out)) == ["mission-07.plan", "spec.pdf", "spec.xlsx"]
+
+
+def test_a_terrain_plan_flies_its_missions_above_sea_level(tmp_path):
+    """Over a DEM the mission states MAV_FRAME_GLOBAL (0) and every photo waypoint carries
+    the altitude the terrain plan gives its photos (photos.csv altitude_m), not a height
+    above a home whose ground is unknown."""
+    import pandas as pd
+
+    out = tmp_path / "out"
+    res = CliRunner().invoke(main, ["plan", str(EXAMPLES / "uav-town-valley-2000.toml"),
+                                    "--out", str(out)])
+    assert res.exit_code == 0, res.output
+    photos = pd.read_csv(out / "photos.csv")
+    altitudes = set(photos["altitude_m"].round(2))
+    missions = sorted(out.glob("mission*.plan"))
+    assert missions
+    for path in missions:
+        items = json.loads(path.read_text(encoding="utf-8"))["mission"]["items"]
+        positioned = [i for i in items if i["command"] in (16, 22)]
+        assert positioned and {i["frame"] for i in positioned} == {0}
+        for i in items:
+            if i["command"] == 16:
+                assert round(i["params"][6], 2) in altitudes
+    # and the heights above ground hold at every photo (the CSV gives 0.01 m: three
+    # roundings of at most 0.005 m each)
+    assert (photos["altitude_m"] - photos["ground_m"] - photos["agl_m"]).abs().max() < 0.016

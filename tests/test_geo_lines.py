@@ -356,6 +356,11 @@ def test_sorties_property(geom, limit, speed, turn):
     longer than the limit; the sortie lengths add up to the flight length; times are
     length / speed."""
     lay = _lay(_local(geom), speed_ms=speed, max_flight_time_min=limit, turn=turn)
+    if not lay.feasible and lay.reason.code == "layout.single_strip":
+        # an area narrower than one line spacing is "not feasible" by design (the
+        # single-strip case has its own test); check that the reason is true, then skip
+        assert lay.reason.params["spacing"] > lay.reason.params["width"]
+        return
     assert lay.feasible, lay.reason
     flown = [i for k in lay.sorties for i in k.strips]
     assert [i for j, i in enumerate(flown) if j == 0 or flown[j - 1] != i] == list(

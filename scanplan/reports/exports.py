@@ -91,7 +91,11 @@ def mission_options(spec: Any, layout: FlightLayout) -> MissionOptions | None:
     speed = layout.speed_ms if layout.speed_ms else inputs.speed_ms
     if not speed or speed <= 0:
         return None
-    return MissionOptions(speed_ms=float(speed), vehicle=_vehicle(spec))
+    # over a DEM or a ground range the photos' altitudes are above sea level (the DEM's
+    # height system): the mission states them so, not relative to a home whose ground the
+    # plan does not know (docs/exports.md)
+    frame = "amsl" if layout.notes.get("altitude_frame") == "AMSL" else "relative"
+    return MissionOptions(speed_ms=float(speed), vehicle=_vehicle(spec), frame=frame)
 
 
 def _vehicle(spec: Any) -> Literal["multirotor", "fixed_wing"]:
