@@ -96,8 +96,26 @@ def _fmt(x: float | None, digits: int = 1, unit: str = "") -> str:
     return "—" if x is None else f"{x:,.{digits}f}{(' ' + unit) if unit else ''}"
 
 
+class _JobPlan:
+    """What a film and a UAV result share: the engine plan (``.plan``: a
+    :class:`~scanplan.rules.results.ScanPlan` or ``UavPlan``) and its fields read through
+    (``result.scenarios``, ``result.gsd_m``) as before."""
+
+    job: Any
+
+    def __getattr__(self, name: str) -> Any:
+        if name.startswith("_") or name == "job":
+            raise AttributeError(name)
+        return getattr(self.job.plan, name)
+
+    @property
+    def plan(self) -> Any:
+        """The engine's plan record."""
+        return self.job.plan
+
+
 @dataclass(frozen=True)
-class ScanResult:
+class ScanResult(_JobPlan):
     """A film scan plan (``scanplan scan``).
 
     ``to_frame()``: one row per photo scale — ``photo_scale`` (Mc), ``binding`` (the
@@ -107,17 +125,6 @@ class ScanResult:
     """
 
     job: ScanJob
-
-    def __getattr__(self, name: str) -> Any:
-        """The engine plan's fields (``result.scenarios``, ``result.gsd_m``) as before."""
-        if name.startswith("_") or name == "job":
-            raise AttributeError(name)
-        return getattr(self.job.plan, name)
-
-    @property
-    def plan(self) -> Any:
-        """The engine's :class:`~scanplan.rules.results.ScanPlan`."""
-        return self.job.plan
 
     def to_dict(self) -> dict[str, Any]:
         """The ``scanplan scan --json`` document."""
@@ -154,7 +161,7 @@ class ScanResult:
 
 
 @dataclass(frozen=True)
-class UavResult:
+class UavResult(_JobPlan):
     """A digital-camera flight plan (``scanplan uav``).
 
     ``to_frame()``: one row per constraint — ``constraint`` (id), ``name``, ``compares``
@@ -164,17 +171,6 @@ class UavResult:
     """
 
     job: UavJob
-
-    def __getattr__(self, name: str) -> Any:
-        """The engine plan's fields (``result.scenarios``, ``result.gsd_m``) as before."""
-        if name.startswith("_") or name == "job":
-            raise AttributeError(name)
-        return getattr(self.job.plan, name)
-
-    @property
-    def plan(self) -> Any:
-        """The engine's :class:`~scanplan.rules.results.UavPlan`."""
-        return self.job.plan
 
     def to_dict(self) -> dict[str, Any]:
         """The ``scanplan uav --json`` document."""
