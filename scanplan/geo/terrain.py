@@ -105,8 +105,7 @@ TERRAIN_PHOTO_COLUMNS: dict[str, str] = {
 
 ALTITUDE_FRAME = "AMSL"
 """Altitudes are in the height system of the DEM (above mean sea level for the usual
-DEMs); a QGroundControl plan states it as MAV_FRAME_GLOBAL (0)."""
-MAV_FRAME_GLOBAL = 0
+DEMs); the mission export writes such a layout in MAV_FRAME_GLOBAL (0)."""
 
 
 @dataclass(frozen=True)
@@ -600,7 +599,7 @@ def uav_terrain(layout: FlightLayout, ground: Ground, inp: UavInputs, plan: UavP
                                     None) if mode != "follow" else None))
         for s in layout.strips)
     notes = dict(layout.notes)
-    notes.update(altitude_mode=mode, altitude_frame=ALTITUDE_FRAME, mav_frame=MAV_FRAME_GLOBAL)
+    notes.update(altitude_mode=mode, altitude_frame=ALTITUDE_FRAME)
     new_layout = replace(layout, photos=photos, strips=new_strips, notes=notes)
     worst_res = int(cols["photo"][int(np.argmax(agl))]) if n else 0
     both = np.fmin(fw_photo, sd_photo)
