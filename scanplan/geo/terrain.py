@@ -53,7 +53,7 @@ carries the smaller of its two. Flown low by the tolerance down, the footprint s
 
 Film: the photo scale changes with the ground, Mc = (A − g)/f (seed 001 uses Mc = H/f);
 the scan pixel must meet the constraints at the smallest local photo scale (the largest
-Mc), see :func:`film_terrain`.
+Mc), see :mod:`scanplan.geo.terrain_film`.
 """
 
 from __future__ import annotations
@@ -81,7 +81,6 @@ __all__ = [
     "StripTerrain",
     "TerrainConfig",
     "TerrainResult",
-    "film_terrain",
     "ground_under",
     "uav_terrain",
 ]
@@ -699,92 +698,3 @@ def _waypoints(cols: dict[str, NDArray[Any]], mode: str) -> list[dict[str, Any]]
     return [{"strip": int(strip[i]), "photo": int(cols["photo"][i]),
              "x_m": float(cols["x_m"][i]), "y_m": float(cols["y_m"][i]),
              "altitude_m": float(alt[i])} for i in idx]
-
-
-# --- film ----------------------------------------------------------------------------------
-
-@dataclass(frozen=True)
-class FilmTerrain:
-    """Film frames under the terrain: the local photo scale of every frame.
-
-    Attributes
-    ----------
-    photo_scale : float
-        The planned Mc, over the reference (highest) ground.
-    altitude_m : ndarray
-        Per frame [m].
-    mc : ndarray
-        Local photo scale denominator of every frame, Mc = (A − g)/f.
-    mc_min, mc_max : float
-    binding_frame : int
-        Running number of the frame with the largest Mc (the smallest local scale).
-    scan_pixel_um : float
-        The scan pixel at ``mc_max`` (the enabled constraints' minimum) [µm].
-    scan_pixel_planned_um : float
-        At the planned Mc [µm].
-    binding : str
-        The constraint binding at ``mc_max``.
-    """
-
-    photo_scale: float
-    altitude_m: NDArray[np.float64]
-    mc: NDArray[np.float64]
-    mc_min: float
-    mc_max: float
-    binding_frame: int
-    binding_strip: int
-    scan_pixel_um: float
-    scan_pixel_planned_um: float
-    binding: str
-    warnings: tuple[PlanWarning, ...]
-
-
-def film_terrain(layout: FlightLayout, ground: Ground, rules: ScanRules, *, map_scale: float,
-                 photo_scale: float, relief_interval_m: float, focal_mm: float,
-                 frame_along_mm: float, forward_overlap_pct: float,
-                 resolving_power_lpmm: float, object_size_m: float = math.nan,
-                 shape_coefficient: float = math.nan, mode: str = "constant",
-                 follow_tolerance_m: float = DEFAULT_FOLLOW_TOLERANCE_M) -> FilmTerrain:
-    """The local photo scale of every frame and the scan pixel at the smallest of them.
-
-    The aircraft flies the planned Mc over the reference ground (the highest, by the
-    altitude mode): A = g_ref + f·Mc. A frame over ground g has Mc = (A − g)/f (seed 001's
-    Mc = H/f with H above that ground); every film constraint but P_R allows a smaller
-    pixel at a larger Mc, so the frame over the lowest ground binds, and the engine
-    (:func:`scanplan.rules.film.evaluate`) is run at its Mc.
-    """
-    from ..rules.film import evaluate
-
-    ph = layout.photos
-    n = len(ph)
-    order = _order(ph)
-    strip = np.asarray(ph["strip"])[order].astype(np.int64)
-    g = ground.centre_m[order] if ground.centre_m.size == n else np.full(n, np.nan)
-    g_res = np.where(np.isfinite(g), g, ground.low_m)
-    g_alt = np.where(np.isfinite(g), g, ground.high_m)
-    h_m = photo_scale * focal_mm / 1000.0
-    alt = altitudes_m(g_alt, strip, mode, h_m, follow_tolerance_m)
-    mc = (alt - g_res) / (focal_mm / 1000.0)
-    mc_lo = float(((alt - g_alt) / (focal_mm / 1000.0)).min()) if n else photo_scale
-    inverse = np.empty(n, dtype=np.int64)
-    inverse[order] = np.arange(n)
-    i = int(np.argmax(mc))
-    both = np.array([photo_scale, float(mc[i])])
-    ev = evaluate(rules, map_scale=map_scale, photo_scale=both,
-                  relief_interval_m=relief_interval_m, focal_mm=focal_mm,
-                  frame_along_mm=frame_along_mm, forward_overlap_pct=forward_overlap_pct,
-                  resolving_power_lpmm=resolving_power_lpmm, object_size_m=object_size_m,
-                  shape_coefficient=shape_coefficient)
-    pix = np.asarray(ev.scan_pixel_um, dtype=float)
-    frame = int(np.asarray(ph["photo"])[order][i])
-    warnings = list(ground.warnings)
-    binding = str(np.asarray(ev.binding)[1])
-    if pix[1] < pix[0] * (1 - 1e-9):
-        warnings.append(PlanWarning("terrain_film_scale", Message(
-            "terrain_film_scale", lo=float(round(mc_lo)), hi=float(round(mc[i])), frame=frame,
-            strip=int(strip[i]), pixel=float(pix[1]), planned=float(pix[0]), cid=binding)))
-    return FilmTerrain(photo_scale=photo_scale, altitude_m=alt[inverse], mc=mc[inverse],
-                       mc_min=mc_lo, mc_max=float(mc[i]), binding_frame=frame,
-                       binding_strip=int(strip[i]), scan_pixel_um=float(pix[1]),
-                       scan_pixel_planned_um=float(pix[0]), binding=binding,
-                       warnings=tuple(warnings))
