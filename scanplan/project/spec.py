@@ -105,6 +105,8 @@ class FilmSpec:
     """[terrain]: the recommended photo scale as the engine gives it on flat ground (for
     comparison); ``recommended`` is then the engine's answer at the frame over the lowest
     ground (its ``local_photo_scale``), which the specification states."""
+    rejected: tuple[tuple[ScanScenario, FilmTerrain], ...] = ()
+    """[terrain]: the larger candidate scales the relief ruled out, with their frames."""
 
 
 @dataclass(frozen=True)
@@ -216,7 +218,8 @@ def _film_over_terrain(project: Project, job: ScanJob, side: float, area: Area) 
         job = replace(job, plan=replace(plan, warnings=plan.warnings + got.warnings))
     return FilmSpec(job=job, recommended=rec, reason=got.reason, frames=frames, strips=strips,
                     scanned_gigabytes=gigabytes, side_overlap_pct=side, archive=False,
-                    layout=layout, terrain=got.terrain, flat=got.flat)
+                    layout=layout, terrain=got.terrain, flat=got.flat,
+                    rejected=got.rejected)
 
 
 def _choose_photo_scale(job: ScanJob) -> tuple[ScanScenario | None, str]:
