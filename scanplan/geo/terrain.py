@@ -70,7 +70,7 @@ from numpy.typing import NDArray
 from ..core import formulas as F
 from ..errors import InputError
 from ..messages import Message
-from ..rules.results import PlanWarning, ScanRules, UavInputs, UavPlan
+from ..rules.results import PlanWarning, UavInputs, UavPlan
 from . import dem as D
 from .layout import FlightLayout, Photos
 
