@@ -533,6 +533,12 @@ def uav_terrain(layout: FlightLayout, ground: Ground, inp: UavInputs, plan: UavP
                 follow_tolerance_m: float = DEFAULT_FOLLOW_TOLERANCE_M) -> TerrainResult:
     """Every photo at its own AGL; the constraints at the worst photo.
 
+    Steps: the photos in strip order with their ground (:func:`_ground_for_checks`); the
+    altitudes of the mode and the AGL; the per-photo figures at that AGL
+    (:func:`_photo_figures`); the overlaps with the neighbours (:func:`_overlaps`); the
+    layout with the terrain columns (:func:`_terrain_layout`); the closed-form maximum
+    height and the warnings.
+
     Parameters
     ----------
     layout : FlightLayout
@@ -550,31 +556,89 @@ def uav_terrain(layout: FlightLayout, ground: Ground, inp: UavInputs, plan: UavP
     -------
     TerrainResult
     """
-    from ..rules.uav import ground_resolution_m
-
     ph = layout.photos
     n = len(ph)
     order = _order(ph)
     cols = {k: np.asarray(v)[order] for k, v in ph.columns.items()}
-    x, y = cols["x_m"].astype(float), cols["y_m"].astype(float)
     strip = cols["strip"].astype(np.int64)
-    g = ground.centre_m[order] if ground.centre_m.size == n else np.full(n, np.nan)
-    g_res = np.where(np.isfinite(g), g, ground.low_m)   # for resolution: lowest possible
-    g_alt = np.where(np.isfinite(g), g, ground.high_m)  # for the altitude: highest possible
+    g, g_res, g_alt = _ground_for_checks(ground, order, n)
     h = float(inp.height_m)
     alt = altitudes_m(g_alt, strip, mode, h, follow_tolerance_m)
     agl = alt - g_res
     up = inp.height_tolerance_up_pct / 100.0
-    down = inp.height_tolerance_down_pct / 100.0
+    cols.update(ground_m=g, altitude_m=alt, agl_m=agl, **_photo_figures(inp, agl))
+    g_lo, g_hi = _footprint_range(cols["x_m"].astype(float), cols["y_m"].astype(float), agl,
+                                  ground, layout.area.plan_crs, layout.direction_deg,
+                                  inp.sensor_width_mm, inp.sensor_height_mm, inp.focal_mm)
+    ov = _overlaps(layout, cols, alt, ground, inp)
+    cols.update(ground_min_m=g_lo, ground_max_m=g_hi, forward_overlap_pct=ov.forward_photo,
+                side_overlap_pct=ov.side_photo)
+    limit = plan.max_height_m
+    strips = _strip_rows(cols, g_res, limit)
+    new_layout = _terrain_layout(layout, cols, order, strips, mode)
+    worst_res = int(cols["photo"][int(np.argmax(agl))]) if n else 0
+    both = np.fmin(ov.forward_photo, ov.side_photo)
+    worst_ov = int(cols["photo"][int(np.nanargmin(both))]) if np.isfinite(both).any() else 0
+    max_h = None
+    if limit is not None:
+        max_h = max_height_above_reference_m(limit, g_res, g_alt, strip, mode,
+                                             follow_tolerance_m)
+    warnings = list(ground.warnings)
+    warnings += _resolution_warnings(strips, plan, mode, h, max_h, up, agl, cols)
+    warnings += _overlap_warnings(inp, ov.forward, ov.forward_pct, ov.side, ov.side_pct, cols)
+    return TerrainResult(
+        layout=new_layout, mode=mode, height_m=h, strips=strips, max_height_m=max_h,
+        binding=plan.binding, worst_resolution_photo=worst_res, worst_overlap_photo=worst_ov,
+        min_forward_overlap_pct=(float(np.nanmin(ov.forward_pct)) if ov.forward_pct.size
+                                 else math.nan),
+        min_side_overlap_pct=float(np.nanmin(ov.side_pct)) if ov.side_pct.size else math.nan,
+        waypoints=_waypoints(cols, mode), warnings=tuple(warnings), ground=ground)
+
+
+def _ground_for_checks(ground: Ground, order: NDArray[np.int64], n: int
+                       ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """The ground under each photo (strip order; NaN where unknown), and the ground it is
+    checked at: the lowest possible for resolution, the highest for the altitude."""
+    g = ground.centre_m[order] if ground.centre_m.size == n else np.full(n, np.nan)
+    g_res = np.where(np.isfinite(g), g, ground.low_m)
+    g_alt = np.where(np.isfinite(g), g, ground.high_m)
+    return g, g_res, g_alt
+
+
+def _photo_figures(inp: UavInputs, agl: NDArray[np.float64]) -> dict[str, NDArray[np.float64]]:
+    """GSD = p·H/f, the MTF ground resolution L and the recognition probability
+    P = exp(−(B·L/L_obj)²) of every photo at its AGL (``gsd_cm``, ``resolution_cm``,
+    ``recognition_p``)."""
+    from ..rules.uav import ground_resolution_m
+
+    n = agl.size
     gsd = inp.pixel_um / 1000.0 * agl / inp.focal_mm
     lr = ground_resolution_m(inp, np.maximum(agl, 1e-3)) if n else np.zeros(0)
     obj = inp.map_object
     with np.errstate(all="ignore"):
         p_rec = (F.recognition_probability(obj.size_m, lr, obj.shape_coefficient)
                  if obj is not None else np.full(n, np.nan))
+    return {"gsd_cm": gsd * 100.0, "resolution_cm": lr * 100.0,
+            "recognition_p": np.asarray(p_rec, dtype=float)}
+
+
+@dataclass(frozen=True)
+class _Overlaps:
+    forward: _Pairs
+    side: _Pairs
+    forward_pct: NDArray[np.float64]
+    side_pct: NDArray[np.float64]
+    forward_photo: NDArray[np.float64]  # per photo, the smaller with its neighbours
+    side_photo: NDArray[np.float64]
+
+
+def _overlaps(layout: FlightLayout, cols: dict[str, NDArray[Any]], alt: NDArray[np.float64],
+              ground: Ground, inp: UavInputs) -> _Overlaps:
+    """Forward and side overlaps of every pair and of every photo (strip order)."""
+    x, y = cols["x_m"].astype(float), cols["y_m"].astype(float)
+    strip = cols["strip"].astype(np.int64)
+    down = inp.height_tolerance_down_pct / 100.0
     plan_crs = layout.area.plan_crs
-    g_lo, g_hi = _footprint_range(x, y, agl, ground, plan_crs, layout.direction_deg,
-                                  inp.sensor_width_mm, inp.sensor_height_mm, inp.focal_mm)
     along, across = _axes(layout.direction_deg)
     fw = _forward_pairs(x, y, strip, along, layout.base_m)
     sd = _side_pairs(x, y, strip, along, across)
@@ -582,42 +646,27 @@ def uav_terrain(layout: FlightLayout, ground: Ground, inp: UavInputs, plan: UavP
                                inp.focal_mm, down)
     sd_pct = _pair_overlap_pct(sd, x, y, alt, ground, plan_crs, inp.sensor_width_mm,
                                inp.focal_mm, down)
-    fw_photo = _per_photo_min(n, fw, fw_pct)
-    sd_photo = _per_photo_min(n, sd, sd_pct)
-    cols.update(ground_m=g, altitude_m=alt, agl_m=agl, gsd_cm=gsd * 100.0,
-                resolution_cm=lr * 100.0, recognition_p=np.asarray(p_rec, dtype=float),
-                ground_min_m=g_lo, ground_max_m=g_hi, forward_overlap_pct=fw_photo,
-                side_overlap_pct=sd_photo)
+    n = x.size
+    return _Overlaps(fw, sd, fw_pct, sd_pct, _per_photo_min(n, fw, fw_pct),
+                     _per_photo_min(n, sd, sd_pct))
+
+
+def _terrain_layout(layout: FlightLayout, cols: dict[str, NDArray[Any]],
+                    order: NDArray[np.int64], strips: tuple[StripTerrain, ...], mode: str
+                    ) -> FlightLayout:
+    """The layout with the terrain columns (back in its own photo order), each strip's
+    altitude (constant and strip modes) and the altitude mode and frame in its notes."""
+    n = order.size
     inverse = np.empty(n, dtype=np.int64)
     inverse[order] = np.arange(n)
     photos = Photos({k: np.asarray(v)[inverse] for k, v in cols.items()})
-    limit = plan.max_height_m
-    strips = _strip_rows(cols, g_res, limit)
     new_strips = tuple(
         replace(s, altitude_m=(next((r.altitude_max_m for r in strips if r.number == s.number),
                                     None) if mode != "follow" else None))
         for s in layout.strips)
     notes = dict(layout.notes)
     notes.update(altitude_mode=mode, altitude_frame=ALTITUDE_FRAME)
-    new_layout = replace(layout, photos=photos, strips=new_strips, notes=notes)
-    worst_res = int(cols["photo"][int(np.argmax(agl))]) if n else 0
-    both = np.fmin(fw_photo, sd_photo)
-    worst_ov = int(cols["photo"][int(np.nanargmin(both))]) if np.isfinite(both).any() else 0
-    min_fw = float(np.nanmin(fw_pct)) if fw_pct.size else math.nan
-    min_sd = float(np.nanmin(sd_pct)) if sd_pct.size else math.nan
-    max_h = None
-    if limit is not None:
-        max_h = max_height_above_reference_m(limit, g_res, g_alt, strip, mode,
-                                             follow_tolerance_m)
-    warnings = list(ground.warnings)
-    warnings += _resolution_warnings(strips, plan, mode, h, max_h, up, agl, cols)
-    warnings += _overlap_warnings(inp, fw, fw_pct, sd, sd_pct, cols)
-    waypoints = _waypoints(cols, mode)
-    return TerrainResult(
-        layout=new_layout, mode=mode, height_m=h, strips=strips, max_height_m=max_h,
-        binding=plan.binding, worst_resolution_photo=worst_res, worst_overlap_photo=worst_ov,
-        min_forward_overlap_pct=min_fw, min_side_overlap_pct=min_sd, waypoints=waypoints,
-        warnings=tuple(warnings), ground=ground)
+    return replace(layout, photos=photos, strips=new_strips, notes=notes)
 
 
 def _strip_rows(cols: dict[str, NDArray[Any]], g_res: NDArray[np.float64],
