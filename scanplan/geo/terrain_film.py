@@ -140,10 +140,12 @@ def film_terrain(layout: FlightLayout, ground: Ground, rules: ScanRules, *, map_
 
 
 def frames_over_terrain(layout: FlightLayout, ft: FilmTerrain, pixel_um: float,
-                        focal_mm: float, mode: str) -> FlightLayout:
+                        focal_mm: float, mode: str,
+                        recognition_p: NDArray[np.float64] | None = None) -> FlightLayout:
     """The flight scheme with every frame's ground, altitude, height above ground and
-    scanned ground pixel (``pixel_um`` × local Mc) filled in; its notes state the altitude
-    mode and frame (as a UAV terrain layout's)."""
+    scanned ground pixel (``pixel_um`` × local Mc) filled in — and its recognition
+    probability at its local scale when given — its notes stating the altitude mode and
+    frame (as a UAV terrain layout's)."""
     ph = layout.photos
     if len(ph) == 0 or ft.mc.size != len(ph):
         return layout
@@ -153,6 +155,8 @@ def frames_over_terrain(layout: FlightLayout, ft: FilmTerrain, pixel_um: float,
                           else np.full(len(ph), np.nan)),
                 altitude_m=np.asarray(ft.altitude_m, dtype=float), agl_m=agl,
                 gsd_cm=pixel_um * ft.mc / 1e4)
+    if recognition_p is not None:
+        cols["recognition_p"] = np.asarray(recognition_p, dtype=float)
     notes = dict(layout.notes)
     notes.update(altitude_mode=mode, altitude_frame=ALTITUDE_FRAME)
     strips = layout.strips

@@ -214,6 +214,26 @@ def worst_frame_scenario(plan: ScanPlan, candidate: ScanScenario, ft: FilmTerrai
                         local_photo_scale=ft.mc_max)
 
 
+def frame_recognition(plan: ScanPlan, mc: Any, pixel_um: float) -> Any:
+    """Recognition probability of the map's object on every frame at its local scale,
+    P = exp(−(B·a/L)²) with a = Mc / R_eff the photo's resolution on the ground and
+    R_eff = min(R, k_R / pixel) what the scan keeps (the engine's own computation,
+    :func:`scanplan.rules.film.plan_scan`); NaN without an object."""
+    import numpy as np
+
+    from ..core import formulas as F
+
+    inp = plan.inputs
+    obj = inp.object
+    mc = np.asarray(mc, dtype=float)
+    if obj is None:
+        return np.full(mc.size, np.nan)
+    r_eff = min(inp.resolving_power_lpmm, plan.rules.pr_coefficient / (pixel_um / 1000.0))
+    return np.asarray(F.recognition_probability(
+        obj.size_m * 1000.0, F.resolution_on_ground_mm(mc, r_eff), obj.shape_coefficient),
+        dtype=float)
+
+
 def _where(ft: FilmTerrain) -> Message:
     if ft.ground_known:
         return Message("terrain_film_where.dem", frame=ft.binding_frame, strip=ft.binding_strip)
@@ -243,7 +263,8 @@ def film_over_terrain(project: Project, cfg: TerrainConfig, plan: ScanPlan,
             rejected.append((s, ft))
             continue
         pixel = headline.scanner_pixel_um or headline.scan_pixel_um
-        layout = frames_over_terrain(layout, ft, pixel, plan.inputs.focal_mm, cfg.altitude_mode)
+        layout = frames_over_terrain(layout, ft, pixel, plan.inputs.focal_mm, cfg.altitude_mode,
+                                     frame_recognition(plan, ft.mc, pixel))
         rej = Message("spec.film_terrain.rejected",
                       scales=[r.photo_scale for r, _ in rejected],
                       locals=[float(round(t.mc_max)) for _, t in rejected]) if rejected else None

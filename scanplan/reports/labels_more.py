@@ -389,6 +389,10 @@ TERRAIN: dict[str, dict[str, str]] = {
         "map_legend_worst_photo": "Highest above ground: photo {n}",
         "map_agl_colorbar": "Height above ground, m",
         "map_local_scale_axis": "Local photo scale, 1:",
+        "photo_ground_min_m": "Lowest ground under the footprint, m",
+        "photo_ground_max_m": "Highest ground under the footprint, m",
+        "photo_forward_overlap_pct": "Forward overlap, %",
+        "photo_side_overlap_pct": "Side overlap, %",
     },
     "ru": {
         "pdf_warn_terrain_resolution": "Слишком высоко над пониженным рельефом",
@@ -441,5 +445,9 @@ TERRAIN: dict[str, dict[str, str]] = {
         "map_legend_worst_photo": "Выше всех над рельефом: снимок {n}",
         "map_agl_colorbar": "Высота над рельефом, м",
         "map_local_scale_axis": "Масштаб снимка, 1:",
+        "photo_ground_min_m": "Наинизшая отметка под снимком, м",
+        "photo_ground_max_m": "Наивысшая отметка под снимком, м",
+        "photo_forward_overlap_pct": "Продольное перекрытие, %",
+        "photo_side_overlap_pct": "Поперечное перекрытие, %",
     },
 }
