@@ -2,9 +2,10 @@
 
 The aircraft flies the planned photo scale Mc over the reference ground of the altitude
 mode (the highest, see :mod:`scanplan.geo.terrain`): A = g_ref + f·Mc. A frame over ground g
-then has the local photo scale Mc = (A − g)/f — seed 001's Mc = H/f with H the height above
-*that* ground (Miheeva & Ilushenko 2015, eq. for Mc; the Instruction's "photo scale" is the
-scale at the ground, which relief changes across a block). Every film constraint but P_R
+then has the local photo scale Mc = (A − g)/f — the photo scale of a vertical photo,
+Mc = H/f with H the height above *that* ground (formulas.md §2 and §4, "A = Mc/(2R) with
+Mc = H/f"; the Instruction's photo scale is the scale at the ground, which relief changes
+across a block). Every film constraint but P_R
 needs a finer pixel at a larger Mc (P_S, P_Z, P_P and P_D all fall as Mc grows; P_R does
 not depend on Mc), so the frame over the lowest ground — the smallest local photo scale,
 the largest Mc — binds: the scan pixel of the whole block is the engine's
