@@ -16,6 +16,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 from click.testing import CliRunner
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from scanplan.cli.main import main
 from scanplan.project.file import load_project, parse_project
@@ -227,3 +229,33 @@ def test_failing_photos_are_marked_and_the_flat_map_is_unchanged(tmp_path):
     flat = plan_project(load_project(EXAMPLES / "uav-town-2000.toml"))
     (k2, l2), = spec_layouts(flat)
     assert map_terrain(flat, k2, l2) is None  # no [terrain]: the map as before
+
+
+# --- flat ground ≡ no terrain, as a property ----------------------------------------------------
+
+
+@settings(max_examples=15, deadline=None)
+@given(level=st.floats(-400.0, 5000.0, allow_nan=False),
+       scales=st.lists(st.sampled_from([3000, 4000, 5000, 6000, 8000, 10000, 12000]),
+                       min_size=1, max_size=4, unique=True),
+       mode=st.sampled_from(["constant", "strip", "follow"]))
+def test_flat_ground_is_no_terrain_for_film(tmp_path_factory, level, scales, mode):
+    """ground_elevation_m = [g, g] at any level, in any altitude mode: the photo scale,
+    scan pixel, binding constraint and frames of the plan without [terrain] (equality)."""
+    tmp = tmp_path_factory.mktemp("flat")
+    base = FILM_1000.split("[area]")[0].replace(
+        "photo_scales = [4000, 5000, 6000, 8000]", f"photo_scales = {sorted(scales)}") + (
+        "[area]\nwidth_m = 1500\nlength_m = 2000\n")
+    flat = plan_project(parse_project(
+        base + f'[terrain]\nground_elevation_m = [{level!r}, {level!r}]\n'
+        f'altitude_mode = "{mode}"\n', tmp / "a.toml"))
+    none = plan_project(parse_project(base, tmp / "b.toml"))
+    a, b = flat.film.recommended, none.film.recommended
+    assert (a is None) == (b is None)
+    if a is None:
+        return
+    assert (a.photo_scale, a.binding, a.scanner_pixel_um) == (b.photo_scale, b.binding,
+                                                                b.scanner_pixel_um)
+    assert a.scan_pixel_um == pytest.approx(b.scan_pixel_um, rel=1e-12)
+    assert a.local_photo_scale == pytest.approx(b.photo_scale, rel=1e-12)
+    assert flat.film.frames == none.film.frames and not flat.film.rejected
