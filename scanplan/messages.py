@@ -789,6 +789,16 @@ MESSAGES.update({
               "точкой {where} получается в масштабе {local:scale}, и пиксель сканирования "
               "назначен по нему. {explanation}{rejected}",
     },
+    "spec.film_archive_terrain": {
+        "en": "the photos exist at {scale:scale} (archive photos; the scale is given, not "
+              "chosen); over the relief their frames reach {local:scale} at the frame over "
+              "the lowest ground {where}: scan them at {pixel:.1f} µm, which holds there. "
+              "{explanation}",
+        "ru": "Снимки уже получены в масштабе {scale:scale} (архивные снимки; масштаб задан, "
+              "а не выбирается); с учётом рельефа их масштаб доходит до {local:scale} у снимка "
+              "над наинизшей точкой {where}: сканировать их с пикселем {pixel:.1f}~мкм, "
+              "который годится и для него. {explanation}",
+    },
     "spec.film_terrain.rejected": {
         "en": " {scales:scale} was not taken: over the relief its frames reach {locals:scale}, "
               "where not every constraint can be met",

@@ -252,6 +252,7 @@ def emitted(tmp_path_factory) -> dict[str, list[Any]]:
             "width_m = 2000", "width_m = 1000000"),
         # archive photos: the scale is given (issue 13)
         "plan archive": archive_toml,
+        "plan archive over relief": archive_toml + "\n[terrain]\nground_elevation_m = [120, 260]\n",
         "plan archive readable": archive_toml.replace('photo_scale = "1:12000"',
                                                       "photo_scale = 8000"),
         "plan archive fine scanner": (EXAMPLES / "map-10000-relief-1m.toml").read_text(

@@ -259,3 +259,22 @@ def test_flat_ground_is_no_terrain_for_film(tmp_path_factory, level, scales, mod
     assert a.scan_pixel_um == pytest.approx(b.scan_pixel_um, rel=1e-12)
     assert a.local_photo_scale == pytest.approx(b.photo_scale, rel=1e-12)
     assert flat.film.frames == none.film.frames and not flat.film.rejected
+
+
+def test_archive_photos_are_scanned_for_the_frame_over_the_lowest_ground(tmp_path):
+    """Archive photos 1:12000 (f = 153 mm) over ground 120–260 m: Mc_max = 12000 + 140 m /
+    0.153 m = 12915.0; P_D set aside (the poles cannot be interpreted), P_P = 70 µm × 2000 /
+    Mc_max binds there (seed 001, eq. 3) instead of 70 × 2000 / 12000 = 11.667 µm."""
+    text = (EXAMPLES / "archive-12000-for-2000.toml").read_text(encoding="utf-8")
+    p = tmp_path / "a.toml"
+    p.write_text(text + "\n[terrain]\nground_elevation_m = [120, 260]\n", encoding="utf-8")
+    f = plan_project(load_project(p)).film
+    mc_max = 12000 + 140 / F_M
+    rec = f.recommended
+    assert f.archive and rec.photo_scale == 12000
+    assert rec.local_photo_scale == pytest.approx(mc_max, rel=1e-12)
+    assert rec.binding == "PP"
+    assert rec.scan_pixel_um == pytest.approx(70.0 * 2000 / mc_max, rel=1e-12)
+    assert f.flat.scan_pixel_um == pytest.approx(70.0 * 2000 / 12000, rel=1e-12)
+    assert f.terrain.scan_pixel_um == rec.scan_pixel_um and f.terrain.binding == "PP"
+    assert "1:12915" in f.reason.text("en")

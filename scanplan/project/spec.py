@@ -44,7 +44,13 @@ from .flightplan import (
     layout_warnings,
 )
 from .inputs import by_key, project_key, records
-from .terrainplan import film_over_terrain, film_terrain_spec, terrain_config, uav_terrain_spec
+from .terrainplan import (
+    archive_over_terrain,
+    film_over_terrain,
+    film_terrain_spec,
+    terrain_config,
+    uav_terrain_spec,
+)
 
 __all__ = ["FilmSpec", "PlanResult", "UavSpec", "plan_project", "project_area"]
 
@@ -170,12 +176,40 @@ def _film(project: Project, area: Area | None) -> FilmSpec:
     except InputError as exc:
         raise _as_project_error(project, exc, "film", archive_scale is not None) from None
     if archive_scale is not None:
+        raw = job
         job, best, reason = archive_film(job)
+        if area is not None and project.has("terrain"):
+            return _archive_over_terrain(project, raw, job, best, side, area)
     else:
         best, reason = _choose_photo_scale(job)
         if best is not None and area is not None and project.has("terrain"):
             return _film_over_terrain(project, job, side, area)
     return _film_spec(project, job, best, reason, side, area)
+
+
+def _archive_over_terrain(project: Project, raw: ScanJob, job: ScanJob, best: ScanScenario,
+                          side: float, area: Area) -> FilmSpec:
+    """``[terrain]`` with archive photos: the scan pixel of the frame over the lowest
+    ground (:func:`scanplan.project.terrainplan.archive_over_terrain`)."""
+    cfg = terrain_config(project)
+    assert cfg is not None
+    inp = job.plan.inputs
+    try:
+        layout = film_layout(best, inp.frame_width_mm, inp.frame_along_mm, inp.focal_mm,
+                             inp.forward_overlap_pct, side, area, _layout_options(project))
+    except InputError as exc:
+        raise _as_project_error(project, exc, "uav") from None
+    got = archive_over_terrain(project, cfg, raw, job, best, layout)
+    rec, layout = got.headline, got.layout
+    frames = int(layout.notes.get("photos", len(layout.photos))) if layout else None
+    if got.warnings:
+        job = replace(job, plan=replace(job.plan, warnings=job.plan.warnings + got.warnings))
+    return FilmSpec(job=job, recommended=rec, reason=got.reason, frames=frames,
+                    strips=len(layout.strips) if layout else None,
+                    scanned_gigabytes=(frames * rec.frame_megabytes / 1000.0
+                                       if frames is not None and rec is not None else None),
+                    side_overlap_pct=side, archive=True, layout=layout, terrain=got.terrain,
+                    flat=got.flat)
 
 
 def _feasible(plan: Any, s: ScanScenario) -> bool:

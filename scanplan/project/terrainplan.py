@@ -32,8 +32,8 @@ from ..rules.results import PlanWarning, ScanPlan, ScanRules, ScanScenario
 from .api import UavJob, recommended_height_m
 from .file import KEYS, Project
 
-__all__ = ["TERRAIN_KEYS", "FilmOverTerrain", "film_over_terrain", "film_terrain_spec",
-           "terrain_config", "uav_terrain_spec"]
+__all__ = ["TERRAIN_KEYS", "FilmOverTerrain", "archive_over_terrain", "film_over_terrain",
+           "film_terrain_spec", "terrain_config", "uav_terrain_spec"]
 
 TERRAIN_KEYS = KEYS["terrain"]
 """The ``[terrain]`` keys (defined with every project key in :mod:`.file`)."""
@@ -285,3 +285,47 @@ def film_over_terrain(project: Project, cfg: TerrainConfig, plan: ScanPlan,
                    locals=[float(round(t.mc_max)) for _, t in rejected])] if rejected else []
     return FilmOverTerrain(None, None, None, None, tuple(rejected),
                            Message("no_feasible_photo_scale", why=why))
+
+
+def archive_over_terrain(project: Project, cfg: TerrainConfig, raw: Any, flat_job: Any,
+                         flat: ScanScenario, layout: FlightLayout) -> FilmOverTerrain:
+    """Archive photos (``[film] photo_scale``, the scale given) over the relief: the scan
+    pixel that holds at the frame over the lowest ground.
+
+    ``raw`` is the engine's job at the archive scale, ``flat_job``/``flat`` its archive
+    restatement on flat ground (:func:`scanplan.project.archive.archive_film`). The same
+    restatement is made at the largest local Mc; its scan pixel, binding constraint and
+    volume are the specification's, labelled with the archive scale.
+    """
+    from ..rules.film import plan_scan
+    from .archive import archive_film
+
+    plan = raw.plan
+    ft = film_terrain_spec(project, cfg, layout, plan.rules,
+                           **_film_args(plan, flat.photo_scale))
+    worst_plan = plan_scan(replace(plan.inputs, photo_scales=(ft.mc_max,)), plan.rules)
+    wjob, ws, _ = archive_film(replace(raw, plan=worst_plan))
+    headline = replace(ws, photo_scale=flat.photo_scale,
+                       photo_to_map_ratio=flat.photo_to_map_ratio, local_photo_scale=ft.mc_max)
+    pixel = headline.scanner_pixel_um or headline.scan_pixel_um
+    layout = frames_over_terrain(layout, ft, pixel, plan.inputs.focal_mm, cfg.altitude_mode,
+                                 frame_recognition(plan, ft.mc, pixel))
+    # the terrain figures as the archive restatement gives them (P_D set aside where the
+    # objects cannot be interpreted), not the raw engine's
+    kept = tuple(w for w in ft.warnings if w.code != "terrain_film_scale")
+    if headline.scan_pixel_um < flat.scan_pixel_um * (1 - 1e-9):
+        kept += (PlanWarning("terrain_film_scale", Message(
+            "terrain_film_scale", lo=float(round(ft.mc_min)), hi=float(round(ft.mc_max)),
+            where=_where(ft), pixel=headline.scan_pixel_um, planned=flat.scan_pixel_um,
+            cid=headline.binding), severity="info"),)
+    ft = replace(ft, scan_pixel_um=headline.scan_pixel_um, binding=headline.binding,
+                 scan_pixel_planned_um=flat.scan_pixel_um, binding_planned=flat.binding,
+                 warnings=kept)
+    reason = Message("spec.film_archive_terrain", scale=flat.photo_scale, where=_where(ft),
+                     local=float(round(ft.mc_max)), pixel=headline.scan_pixel_um,
+                     explanation=ws.explanation)
+    seen = {w.code for w in flat_job.plan.warnings}
+    extra = [w for w in wjob.plan.warnings if w.code in ("archive_not_interpretable",
+                                                          "archive_scanner_too_coarse")
+             and w.code not in seen]
+    return FilmOverTerrain(flat, headline, layout, ft, (), reason, (*ft.warnings, *extra))
