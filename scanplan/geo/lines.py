@@ -379,24 +379,19 @@ def plan_lines(
         ``feasible`` False with a ``reason`` when the block cannot be flown as planned.
     """
     geom = area.geometry
-    c = geom.centroid
-    origin = (float(c.x), float(c.y))
+    origin = (float(geom.centroid.x), float(geom.centroid.y))
     ext = int(extension_bases)
     notes: dict[str, object] = {"max_flight_time_min": max_flight_time_min}
     direction = _direction(direction_deg, geom, origin, spacing_m, base_m, ext, turn, notes)
     common = dict(area=area, direction_deg=direction, spacing_m=spacing_m, base_m=base_m,
                   extension_bases=float(ext), kind=kind, footprint_across_m=footprint_across_m,
-                  footprint_along_m=footprint_along_m, speed_ms=speed_ms,
-                  turn=turn.describe())
+                  footprint_along_m=footprint_along_m, speed_ms=speed_ms, turn=turn.describe())
     rot = _rotated(geom, direction, origin)
     try:
         bands = _bands(rot, spacing_m)
     except _TooMany as exc:
-        return FlightLayout(strips=(), sorties=(), photos=Photos({}), flight_length_m=math.nan,
-                            turn_length_m=math.nan, flight_time_s=None, feasible=False,
-                            reason=Message("layout.too_many_strips", n=exc.n,
-                                           spacing=spacing_m, most=MAX_STRIPS),
-                            notes=notes, **common)
+        return _not_flown(Message("layout.too_many_strips", n=exc.n, spacing=spacing_m,
+                                  most=MAX_STRIPS), notes, common)
     parts = _Parts.of(bands, base_m, ext, turn)
     notes["bridged_m"] = parts.bridged_m()
     plan, reason = _sorties(parts.strip_len, parts.conn, speed_ms, max_flight_time_min,
@@ -410,6 +405,14 @@ def plan_lines(
                         flight_length_m=length, turn_length_m=turns,
                         flight_time_s=_time_s(length, speed_ms), feasible=reason is None,
                         reason=reason, notes=notes, **common)
+
+
+def _not_flown(reason: Message, notes: dict[str, object],
+               common: dict[str, object]) -> FlightLayout:
+    """A layout with no strips that says why it cannot be planned."""
+    return FlightLayout(strips=(), sorties=(), photos=Photos({}), flight_length_m=math.nan,
+                        turn_length_m=math.nan, flight_time_s=None, feasible=False,
+                        reason=reason, notes=notes, **common)  # type: ignore[arg-type]
 
 
 def _direction(direction_deg: float | str, geom: object, origin: tuple[float, float],
