@@ -1,4 +1,4 @@
-"""Size guard of the package (issue 14): no module over 800 lines and no function over 80
+"""Size and style guards of the package (issue 14): no module over 800 lines and no function over 80
 lines unless its docstring says why, on a line that starts with ``Long because:``.
 
 A long function is a sign to split it into named steps; where one long function really is
@@ -78,3 +78,21 @@ def _function(body_lines: int, doc: str) -> str:
 ])
 def test_the_guard_can_fail(body, doc, flagged):
     assert bool(long_functions(_function(body, doc))) is flagged
+
+
+#: Files that quote the norm tables' source cells (data, written "seed 001 eq. 1").
+QUOTES_DATA = {"reports/references.py"}
+
+
+def test_seed_equations_written_one_way():
+    """Code comments and docstrings cite a seed paper's equation one way, as most of them
+    do: "seed 001, eq. 3" / "seed 001, eqs. 5–7" (a comma after the seed)."""
+    import re
+
+    other = re.compile(r"\b[Ss]eed 00\d[ ;:]+eqs?\b|\b[Ss]eed 00\d,? eqs? \d|"
+                       r"\b[Ss]eed 00\d,? (?:equation|eqn)\b")
+    found = [f"{p.relative_to(PACKAGE)}:{i}" for p in _modules()
+             if str(p.relative_to(PACKAGE)) not in QUOTES_DATA
+             for i, line in enumerate(p.read_text(encoding="utf-8").splitlines(), 1)
+             if other.search(line)]
+    assert not found, f'write "seed 00N, eq. M": {found}'

@@ -1,7 +1,7 @@
 """The built-in constraints: seed 001's P_S, P_Z, P_P, P_R, P_D and the UAV-only limits.
 
 Each constraint is one :class:`~scanplan.rules.registry.Constraint` record plus the small
-functions it names: the film pixel (seed 001 eqs. 1–6), the reason with the contract's
+functions it names: the film pixel (seed 001, eqs. 1–6), the reason with the contract's
 numbers, and the digital ground limit (the same limit on the ground, Mc = 1, compared with
 the GSD or the MTF ground resolution L; docs/uav-models.md §9–10). The texts are keys of
 the message catalogue (:mod:`scanplan.messages`).
@@ -47,7 +47,7 @@ def _at_unit_scale_m(pixel_um: Any) -> float:
     return float(pixel_um) / 1e6
 
 
-# --- P_S: planimetric accuracy (seed 001 eq. 1) -------------------------------------------
+# --- P_S: planimetric accuracy (seed 001, eq. 1) ------------------------------------------
 
 def _ps_pixel(rules: ScanRules, a: FilmArgs) -> NDArray[np.float64]:
     return F.planimetric_pixel_um(a.map_scale, a.photo_scale,
@@ -70,7 +70,7 @@ def _ps_ground(inp: UavInputs, rules: ScanRules | None) -> DigitalLimit:
                         {})
 
 
-# --- P_Z: height accuracy (seed 001 eq. 2; digital: the stereo normal case) ----------------
+# --- P_Z: height accuracy (seed 001, eq. 2; digital: the stereo normal case) ---------------
 
 def _pz_pixel(rules: ScanRules, a: FilmArgs) -> NDArray[np.float64]:
     return F.height_pixel_um(
@@ -113,7 +113,7 @@ def height_accuracy(inp: UavInputs, rules: ScanRules
       the widest base of standard stereo overlap (:func:`scanplan.core.formulas.
       stereo_height_ground_limit_m`), V_z read as an RMS error;
     - ``instruction`` and ``parallax``: the Instruction's P_Z and its parallax form with the
-      single-step base b = l_y·(1 − p) and the processing loss k (seed 001 eq. 2).
+      single-step base b = l_y·(1 − p) and the processing loss k (seed 001, eq. 2).
 
     All three are in ``details["forms"]`` for comparison; ``rules.digital_height_formula``
     picks the one that constrains the flight.
@@ -184,7 +184,7 @@ def height_accuracy(inp: UavInputs, rules: ScanRules
 
 
 
-# --- P_P: graphic photo-plan (seed 001 eq. 3) -------------------------------------------
+# --- P_P: graphic photo-plan (seed 001, eq. 3) ------------------------------------------
 
 def _pp_pixel(rules: ScanRules, a: FilmArgs) -> NDArray[np.float64]:
     return F.photoplan_pixel_um(a.map_scale, a.photo_scale,
@@ -204,7 +204,7 @@ def _pp_ground(inp: UavInputs, rules: ScanRules | None) -> DigitalLimit:
                                    map=inp.map_scale), {})
 
 
-# --- P_R: resolving power of the photo (seed 001 eq. 4); no digital counterpart ----------
+# --- P_R: resolving power of the photo (seed 001, eq. 4); no digital counterpart ---------
 
 def _pr_pixel(rules: ScanRules, a: FilmArgs) -> NDArray[np.float64]:
     return F.resolving_power_pixel_um(a.resolving_power_lpmm,
@@ -221,7 +221,7 @@ def _pr_details(inp: ScanInputs, rules: ScanRules, ctx: dict[str, Any], j: int
             "resolving_power_lpmm": inp.resolving_power_lpmm}
 
 
-# --- P_D: interpretation (seed 001 eqs. 5–7); digital: a limit on L ----------------------
+# --- P_D: interpretation (seed 001, eqs. 5–7); digital: a limit on L ---------------------
 
 def _pd_pixel(rules: ScanRules, a: FilmArgs) -> NDArray[np.float64]:
     return F.interpretation_pixel_um(
