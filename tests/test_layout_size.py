@@ -1,5 +1,6 @@
-"""Size and style guards of the package (issue 14): no module over 800 lines and no function over 80
-lines unless its docstring says why, on a line that starts with ``Long because:``.
+"""Size and style guards of the package (issue 14): no module over 800 lines and no
+function over 80 lines unless its docstring says why, on a line that starts with
+``Long because:``; seed equations cited one way.
 
 A long function is a sign to split it into named steps; where one long function really is
 clearer (a keyword signature with one argument per registry input, a declarative table),
