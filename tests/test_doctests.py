@@ -45,3 +45,17 @@ def test_examples_of_the_top_level_api_run():
 
     result = doctest.testmod(scanplan.api, optionflags=doctest.ELLIPSIS)
     assert result.attempted >= 4 and result.failed == 0
+
+
+@pytest.mark.parametrize("name", ["scanplan.core.formulas", "scanplan.core.flight"])
+def test_every_formula_of_the_core_has_an_example_that_runs(name):
+    """The Instruction's formulas, the recognition model and the block geometry (issue 14,
+    item 5): each public function shows a worked example, and the examples run."""
+    module = importlib.import_module(name)
+    public = [f for n, f in vars(module).items() if inspect.isfunction(f)
+              and not n.startswith("_") and f.__module__ == module.__name__]
+    assert public
+    missing = [f.__name__ for f in public if "\n    Examples\n    --------\n" not in f.__doc__]
+    assert not missing
+    result = doctest.testmod(module, optionflags=doctest.ELLIPSIS, verbose=False)
+    assert result.attempted >= len(public) and result.failed == 0

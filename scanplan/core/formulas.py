@@ -89,6 +89,11 @@ def photo_base_mm(frame_along_mm: ArrayLike, forward_overlap_pct: ArrayLike) -> 
     Notes
     -----
     The Instruction's b in seed 001, eq. 2.
+
+    Examples
+    --------
+    >>> float(photo_base_mm(230.0, 60.0))
+    92.0
     """
     return _f(frame_along_mm) * (1.0 - _f(forward_overlap_pct) / 100.0)
 
@@ -121,6 +126,12 @@ def planimetric_pixel_um(
     Notes
     -----
     GKINP (GNTA)-02-036-02; seed 001, eq. 1.
+
+    Examples
+    --------
+    >>> float(planimetric_pixel_um(2000, 10000, planimetric_accuracy_mm=0.2,
+    ...                            processing_loss_k=2.0))
+    20.0
     """
     return (
         _f(planimetric_accuracy_mm) * _f(map_scale) / (_f(processing_loss_k) * _f(photo_scale))
@@ -165,6 +176,12 @@ def height_pixel_instruction_um(
     (:func:`height_pixel_parallax_um`); the printed form lets a *larger* overlap (smaller
     b) allow a *coarser* pixel, which is why scanplan warns when the overlap is not the
     Instruction's 60 %.
+
+    Examples
+    --------
+    >>> round(float(height_pixel_instruction_um(
+    ...     1.0, 10000, 152.0, 92.0, height_accuracy_fraction=0.2, processing_loss_k=2.0)), 2)
+    16.52
     """
     vz_mm = _f(height_accuracy_fraction) * _f(relief_interval_m) * _MM_PER_M
     return (
@@ -198,6 +215,12 @@ def height_pixel_parallax_um(
     From dZ = (H/b)·dp with H = f·Mc: a parallax error dp = k·P gives a height error
     V_z when P = V_z·b/(k·Mc·f). Miheeva & Medvedev (Vestnik PSU ser. F, 2010, no. 12,
     pp. 103–108) call the printed Instruction form (seed 001, eq. 2) an error.
+
+    Examples
+    --------
+    >>> round(float(height_pixel_parallax_um(
+    ...     1.0, 10000, 152.0, 92.0, height_accuracy_fraction=0.2, processing_loss_k=2.0)), 2)
+    6.05
     """
     vz_mm = _f(height_accuracy_fraction) * _f(relief_interval_m) * _MM_PER_M
     return (
@@ -240,6 +263,12 @@ def height_pixel_um(
     ------
     ValueError
         For an unknown method.
+
+    Examples
+    --------
+    >>> round(float(height_pixel_um(1.0, 10000, 152.0, 92.0, height_accuracy_fraction=0.2,
+    ...                                processing_loss_k=2.0, method="parallax")), 2)
+    6.05
     """
     fn = pick_method(HEIGHT_PIXEL_METHODS, method, "height formula")
     return fn(
@@ -272,6 +301,11 @@ def photoplan_pixel_um(
     Notes
     -----
     GKINP (GNTA)-02-036-02; seed 001, eq. 3.
+
+    Examples
+    --------
+    >>> round(float(photoplan_pixel_um(2000, 10000, photoplan_resolution_mm=0.07)), 2)
+    14.0
     """
     return _f(photoplan_resolution_mm) * _f(map_scale) / _f(photo_scale) * _UM_PER_MM
 
@@ -298,6 +332,11 @@ def resolving_power_pixel_um(
     -----
     Seed 001, eqs. 4–6: a pixel P keeps 1/(2P) lines/mm, so 12.5 µm keeps 40 lines/mm
     and 0.5 is the coefficient that preserves R.
+
+    Examples
+    --------
+    >>> round(float(resolving_power_pixel_um(40.0, pr_coefficient=0.5)), 2)
+    12.5
     """
     return _f(pr_coefficient) / _f(resolving_power_lpmm) * _UM_PER_MM
 
@@ -332,6 +371,11 @@ def scanned_frame_bytes(
     -----
     Seed 001's cost argument (conclusion 3): volume ∝ 1/pixel², so the 10–12.5 µm that P_R
     demands costs (P_other/P_R)² times the data of the pixel the map actually needs.
+
+    Examples
+    --------
+    >>> int(scanned_frame_bytes(230.0, 230.0, 14.0))
+    269912041
     """
     px = _f(pixel_um) / _UM_PER_MM
     n_w = np.ceil(_f(frame_width_mm) / px)
@@ -365,6 +409,11 @@ def probability_root(probability: ArrayLike, rounding: Rounding = "exact") -> Fl
     -----
     Seed 001, eqs. 9–10. The paper's rounding makes its L and P_D about 1.2 % smaller
     than exact; scanplan computes exactly by default (a documented deviation).
+
+    Examples
+    --------
+    >>> round(float(probability_root(0.75)), 4), round(float(probability_root(0.75, "paper")), 4)
+    (0.5364, 0.53)
     """
     neg_ln = -np.log(_f(probability))
     if rounding == "exact":
@@ -395,6 +444,11 @@ def resolution_on_ground_mm(
     -----
     Seed 001, eq. 8, Table 4 (125 mm at 1:10000 and R = 40). For a digital camera the
     same quantity is the MTF ground resolution L = H/(2Rf) with Mc = H/f.
+
+    Examples
+    --------
+    >>> float(resolution_on_ground_mm(10000, 40.0))
+    125.0
     """
     return _f(photo_scale) / (2.0 * _f(resolving_power_lpmm))
 
@@ -421,6 +475,11 @@ def recognition_probability(
     Notes
     -----
     Seed 001, eqs. 7 and 9.
+
+    Examples
+    --------
+    >>> round(float(recognition_probability(228.8, 125.0, 0.97)), 3)
+    0.755
     """
     ratio = _f(shape_coefficient) * _f(resolution_mm) / _f(object_size_mm)
     return np.exp(-(ratio * ratio))
@@ -454,6 +513,11 @@ def recognisable_size_mm(
     Notes
     -----
     Seed 001, eqs. 10–11, Table 5 (paper rounding: L = 1.8302·A for a circle at 0.75).
+
+    Examples
+    --------
+    >>> round(float(recognisable_size_mm(125.0, 0.97, 0.75, rounding="paper")), 1)
+    228.8
     """
     return (
         _f(shape_coefficient) * _f(resolution_mm) / probability_root(probability, rounding)
@@ -480,6 +544,11 @@ def transfer_size_mm(
     Notes
     -----
     Seed 001, eq. 12: 228.8 mm at 1:10000 → 114.4 mm at 1:5000.
+
+    Examples
+    --------
+    >>> float(transfer_size_mm(228.8, 10000, 5000))
+    114.4
     """
     return _f(size_mm) * _f(to_photo_scale) / _f(from_photo_scale)
 
@@ -515,6 +584,11 @@ def required_resolving_power_lpmm(
     Notes
     -----
     Seed 001, eqs. 13–15: R = Mc/(2A) with A = L·sqrt(−ln P)/B.
+
+    Examples
+    --------
+    >>> round(float(required_resolving_power_lpmm(200.0, 10000, 0.97, 0.75)), 2)
+    45.21
     """
     return (
         _f(shape_coefficient)
@@ -559,6 +633,11 @@ def interpretation_pixel_um(
     Seed 001, eq. 16: with k_R = 0.5 it is P_D = L·sqrt(−ln P)/(B·Mc), and with the
     paper's rounding and B = 0.97, P_D = L/(1.8302·Mc) (Tables 6–9). Writing it as
     k_R/R_needed keeps P_D < P_R equivalent to R_needed > R for any k_R.
+
+    Examples
+    --------
+    >>> round(float(interpretation_pixel_um(200.0, 10000, 0.97, 0.75, pr_coefficient=0.5)), 2)
+    11.06
     """
     return (
         2.0
@@ -604,6 +683,11 @@ def stereo_base_fraction(
     An 80 % UAV block keeps every second photo as a 60 % pair, so its stereo base is the
     standard one; the single-step base (20 % of the footprint) halves B/H and doubles
     σ_Z, which is why the parallax form with the single-step base is so pessimistic.
+
+    Examples
+    --------
+    >>> round(float(stereo_base_fraction(80.0, 60.0)), 4)
+    0.4
     """
     step = 1.0 - _f(forward_overlap_pct) / 100.0
     room = 1.0 - _f(min_stereo_overlap_pct) / 100.0
@@ -642,6 +726,11 @@ def strip_multi_ray_factor(
     the neighbouring strips (a conservative omission) and ignores the errors of the
     orientation and of the ground control, which the check-point accuracy of real blocks
     contains: that is why the norm sets leave it off (``multi_ray = off``).
+
+    Examples
+    --------
+    >>> round(float(strip_multi_ray_factor(80.0, 60.0)), 4)
+    0.4472
     """
     step = 1.0 - _f(forward_overlap_pct) / 100.0
     m = np.maximum(np.floor(1.0 / step + _OVERLAP_EPS), 2.0)
@@ -689,6 +778,11 @@ def normal_case_height_error_m(
     σ_Z = GSD·σ_px·f / (B/H): monotone decreasing in B, increasing in H and in p.
     The Instruction's parallax form (Miheeva & Medvedev 2010) is the same relation with
     the single-step base and σ_px = k pixels.
+
+    Examples
+    --------
+    >>> round(float(normal_case_height_error_m(100.0, 40.0, 35.0, 4.4, 0.5)), 4)
+    0.0157
     """
     h = _f(height_m)
     gsd_m = _f(pixel_um) / _UM_PER_MM * h / _f(focal_mm)
@@ -719,6 +813,11 @@ def stereo_height_ground_limit_m(
     -------
     ndarray
         The GSD limit [m on the ground]; the height limit is GSD·c/p.
+
+    Examples
+    --------
+    >>> round(float(stereo_height_ground_limit_m(0.1, 0.4, 0.5)), 4)
+    0.08
     """
     return (_f(height_accuracy_m) * _f(base_to_height)
             / (_f(image_error_px) * _f(multi_ray_factor)))
