@@ -21,6 +21,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..core import formulas as F
+from ..core import stereo as S
 from ..messages import Message
 from .registry import Constraint, DigitalLimit, FilmArgs, register
 
@@ -141,15 +142,15 @@ def height_accuracy(inp: UavInputs, rules: ScanRules
                                     height_accuracy_fraction=rules.height_accuracy_fraction,
                                     processing_loss_k=k, method=form)) / 1e6  # type: ignore[arg-type]
         forms[form] = {"ground_limit_m": g}
-    fraction = float(F.stereo_base_fraction(inp.forward_overlap_pct,
+    fraction = float(S.stereo_base_fraction(inp.forward_overlap_pct,
                                             rules.standard_forward_overlap_pct))
     steps = round(fraction / (1.0 - inp.forward_overlap_pct / 100.0))
     bh = fraction * inp.sensor_height_mm / inp.focal_mm
-    multi = (float(F.strip_multi_ray_factor(inp.forward_overlap_pct,
+    multi = (float(S.strip_multi_ray_factor(inp.forward_overlap_pct,
                                             rules.standard_forward_overlap_pct))
              if rules.multi_ray == "strip" else 1.0)
     sigma = rules.image_measurement_px
-    forms["normal_case"] = {"ground_limit_m": float(F.stereo_height_ground_limit_m(
+    forms["normal_case"] = {"ground_limit_m": float(S.stereo_height_ground_limit_m(
         vz, bh, sigma, multi))}
     for v in forms.values():
         v["max_flown_height_m"] = v["ground_limit_m"] * inp.focal_mm / 1000.0 / pixel_m
@@ -157,7 +158,7 @@ def height_accuracy(inp: UavInputs, rules: ScanRules
     formula = rules.digital_height_formula
     h_plan = inp.height_m
     h_hi = h_plan * up
-    sz = F.normal_case_height_error_m(np.array([h_plan, h_hi]),
+    sz = S.normal_case_height_error_m(np.array([h_plan, h_hi]),
                                       bh * np.array([h_plan, h_hi]), inp.focal_mm,
                                       inp.pixel_um, sigma, multi)
     details: dict[str, Any] = {
