@@ -60,3 +60,22 @@ def test_every_formula_of_the_core_has_an_example_that_runs(name):
     assert not missing
     result = doctest.testmod(module, optionflags=doctest.ELLIPSIS, verbose=False)
     assert result.attempted >= len(public) and result.failed == 0
+
+
+def test_every_example_in_the_package_runs():
+    """Every module of scanplan whose docstrings hold an example (``>>>``) runs it: the
+    examples are documentation that cannot go stale unnoticed."""
+    from pathlib import Path
+
+    root = Path(scanplan.__file__).resolve().parent.parent
+    names = sorted(".".join(p.relative_to(root).with_suffix("").parts)
+                   for p in (root / "scanplan").rglob("*.py")
+                   if ">>>" in p.read_text(encoding="utf-8"))
+    assert "scanplan.core.formulas" in names and "scanplan.rules.film" in names
+    failed = {}
+    for name in names:
+        result = doctest.testmod(importlib.import_module(name), optionflags=doctest.ELLIPSIS,
+                                 verbose=False)
+        if result.failed or not result.attempted:
+            failed[name] = result
+    assert not failed

@@ -96,6 +96,11 @@ def solve_resolving_power(
     interleaved bisection so the bracket also shrinks geometrically). For the
     built-in chain every component is non-increasing and K_thr increasing below the
     ceiling, so the crossing is unique; user tables that oscillate need a finer grid.
+
+    Examples
+    --------
+    >>> solve_resolving_power(lambda n: 0.5 - n / 100.0, [80.0, 40.0]).r_lpmm.tolist()
+    [50.0, 40.0]
     """
     if grid_points < 2:
         raise ValueError(f"grid_points must be >= 2 (got {grid_points})")
@@ -112,12 +117,8 @@ def solve_resolving_power(
     resolvable = b.resolvable & (r > 0.0)  # a crossing at N = 0 resolves nothing
     sensor_limited = resolvable & (~b.crossed | (r >= np.broadcast_to(rm, shape) * (1 - 1e-12)))
     r = np.where(resolvable, r, np.nan)
-    return ResolvingPower(
-        r_lpmm=r,
-        resolvable=resolvable,
-        sensor_limited=sensor_limited,
-        nyquist_lpmm=np.array(np.broadcast_to(rm, shape), dtype=float),
-    )
+    return ResolvingPower(r_lpmm=r, resolvable=resolvable, sensor_limited=sensor_limited,
+                          nyquist_lpmm=np.array(np.broadcast_to(rm, shape), dtype=float))
 
 
 @dataclass(frozen=True, eq=False)
