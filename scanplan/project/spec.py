@@ -112,7 +112,8 @@ class FilmSpec:
     comparison); ``recommended`` is then the engine's answer at the frame over the lowest
     ground (its ``local_photo_scale``), which the specification states."""
     rejected: tuple[tuple[ScanScenario, FilmTerrain], ...] = ()
-    """[terrain]: the larger candidate scales the relief ruled out, with their frames."""
+    """[terrain]: the candidate scales with fewer frames (larger Mc) the relief ruled out,
+    with their frames."""
 
 
 @dataclass(frozen=True)

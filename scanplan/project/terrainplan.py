@@ -175,7 +175,8 @@ class FilmOverTerrain:
         The flight scheme at the chosen scale, every frame's ground and height filled in.
     terrain : FilmTerrain or None
     rejected : tuple
-        (candidate, its FilmTerrain) for the larger candidates the relief rules out.
+        (candidate, its FilmTerrain) for the candidates with fewer frames (larger Mc) the
+        relief rules out.
     reason : Message
     warnings : tuple of PlanWarning
     """
