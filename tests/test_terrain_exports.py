@@ -115,8 +115,18 @@ def test_strip_and_follow_missions_hold_every_altitude_of_the_plan(tmp_path, mod
     if mode == "follow":
         # more waypoints than strip ends: the steps inside the strips are there
         assert len(nav) > 4 * len(spec.uav.layout.strips)
-        # the trigger is on at every photo: the CSV still has every photo
-        assert _csv(out / "photos.csv")["photo"].size == len(spec.uav.layout.photos)
+    # the trigger runs (set at a cut, cleared at the next) still fire every photo once
+    from pyproj import Geod
+
+    from tests.test_geo_export import _trigger_runs, check_qgc_plan
+    geod, fired = Geod(ellps="WGS84"), 0
+    for f in sorted(glob.glob(str(out / "mission*.plan"))):
+        items = check_qgc_plan(json.loads(Path(f).read_text(encoding="utf-8")))
+        for first, last, dist in _trigger_runs(items):
+            _, _, d = geod.inv(first["params"][5], first["params"][4], last["params"][5],
+                               last["params"][4])
+            fired += round(d / dist) + 1
+    assert fired == len(spec.uav.layout.photos)
 
 
 def test_film_frames_carry_their_height_above_ground(tmp_path):
