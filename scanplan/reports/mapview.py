@@ -259,7 +259,7 @@ def _draw_photos_agl(fig: Figure, ax: Any, layout: FlightLayout, mt: MapTerrain,
     sc = ax.scatter(x[::step], y[::step], c=agl[::step], s=size, cmap="viridis", vmin=lo,
                     vmax=hi, edgecolors="#333333", linewidths=0.25 if size > 3.0 else 0.0,
                     zorder=2.5, label=label, rasterized=True)
-    cax = ax.inset_axes((1.03, 0.12, 0.025, 0.76))  # beside the map, no layout pass of its own
+    cax = ax.inset_axes((1.03, 0.12, 0.025, 0.76))  # beside the map, which keeps its width
     cb = fig.colorbar(sc, cax=cax)
     cb.set_label(t("map_agl_colorbar", locale))
     cb.ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _p: number(v, 0, locale)))
