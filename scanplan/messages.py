@@ -342,7 +342,8 @@ MESSAGES: dict[str, dict[str, str]] = {
         "ru": "Ни одна высота полёта не удовлетворяет всем условиям с этой камерой.",
     },
     "spec.uav_rounded": {
-        "en": "the maximum planned height {max:.0f} m ({cid} binds) rounded down to {step:g} m",
+        "en": "the maximum planned height {max:.0f} m ({cid} binds) rounded down to a "
+              "multiple of {step:g} m",
         "ru": "Рекомендуемая высота полёта — максимальная плановая {max:.0f}~м (определяющее "
               "условие "
               "{cid}), округлённая в меньшую сторону с шагом {step:g}~м.",
@@ -634,14 +635,15 @@ MESSAGES.update({
     "terrain_resolution": {
         "en": "over low ground the photos are too high above it: at a planned height of "
               "{height:g} m photo {photo:d} (strip {strip:d}) is {agl:.0f} m above the ground "
-              "({flown:.0f} m flown high), above the maximum planned height {limit:.0f} m "
-              "set by {cid}, by {excess:.0f} m; {count:d} strip(s) fail ({strips}; by m: "
-              "{by}). {remedy}",
+              "({flown:.0f} m with the height tolerance), {excess:.0f} m above the maximum "
+              "planned height {limit:.0f} m set by {cid}; strips that fail: {count:d} "
+              "({strips}; excess in m by strip — strip: m — {by}). {remedy}",
         "ru": "Над пониженным рельефом снимки получаются слишком высоко над землёй: при "
               "плановой высоте {height:g}~м снимок {photo:d} (маршрут {strip:d}) — "
               "{agl:.0f}~м над землёй ({flown:.0f}~м с учётом допуска), выше максимальной "
               "плановой высоты {limit:.0f}~м по условию {cid} на {excess:.0f}~м; не "
-              "выполняется на маршрутах: {count:d} ({strips}; превышение, м: {by}). {remedy}",
+              "выполняется на маршрутах: {count:d} ({strips}; превышение по маршрутам — "
+              "маршрут: м — {by}). {remedy}",
     },
     "terrain_remedy.constant": {
         "en": "Remedies: fly each strip at its own altitude ([terrain] altitude_mode = "

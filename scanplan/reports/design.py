@@ -20,7 +20,7 @@ from ..messages import Message, localize
 from ..rules.registry import CONSTRAINTS
 from .labels import t
 from .view import Numbers
-from .wording import camera_title, display_message, document_date
+from .wording import camera_title, display_message, document_date, sentence
 
 __all__ = ["DesignView", "design_text_lines", "design_view", "write_design_sheet",
            "write_gsd_limits"]
@@ -273,7 +273,7 @@ def design_view(spec: Any, locale: str, cite: Callable[[str], str]) -> DesignVie
     if spec.film is not None:
         rows += _film_rows(spec, w)
     rows += _block_rows(design, w) + _sun_rows(design, w) + _binding_rows(spec, w)
-    notes = [w.msg(x.message) for x in design.warnings]
+    notes = [sentence(w.msg(x.message)) for x in design.warnings]
     return DesignView(rows, notes, [w.key_of(label) for label, _, _ in rows])
 
 

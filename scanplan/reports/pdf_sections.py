@@ -32,6 +32,7 @@ from .wording import (
     param_name,
     param_value,
     scanner_title,
+    sentence,
     shape_title,
 )
 
@@ -111,6 +112,12 @@ def _shape_name(ns: NormSet, shape: str, locale: str) -> str:
     return shape_title(ns, shape, locale)
 
 
+def _after_heading(message: str, heading: str) -> str:
+    """A warning's sentence after its bold heading (``Motion blur.``) reads as a sentence:
+    capitalised, with a full stop."""
+    return sentence(message) if heading else message
+
+
 def _warnings(ws: Any, f: _Fmt, ns: NormSet | None = None) -> list[dict[str, str]]:
     out = []
     for w in ws:
@@ -119,7 +126,8 @@ def _warnings(ws: Any, f: _Fmt, ns: NormSet | None = None) -> list[dict[str, str
         scales = ", ".join(f.scale(x) for x in getattr(w, "photo_scales", ()) or ())
         out.append({"code": w.code, "severity": w.severity, "heading": heading,
                     "scales": scales,
-                    "message": f.cite(display_message(w.message, ns, f.locale))})
+                    "message": _after_heading(f.cite(display_message(w.message, ns, f.locale)),
+                                              heading)})
     return out
 
 
@@ -286,7 +294,7 @@ def _uav_inputs(job: UavJob, f: _Fmt) -> list[tuple[str, str]]:
     inputs += [
         (f.label("pdf_speed_ms"), f.g(inp.speed_ms)),
         (f.label("pdf_exposure_s"), f.g(inp.exposure_s)),
-        (f.label("forward_overlap_pct") + " / " + f.label("side_overlap_pct").split(",")[0],
+        (f.label("design_overlaps"),
          f"{f.g(inp.forward_overlap_pct)} / {f.g(inp.side_overlap_pct)}"),
         (f.label("pdf_scene"), f"{f.g(inp.r_max)} / {f.g(inp.r_min)}"),
         (f.label("pdf_threshold_k0"), f.g(inp.threshold_k0)),
@@ -402,7 +410,7 @@ def _uav_limits(plan: UavPlan, f: _Fmt) -> dict[str, Any]:
     if acc:
         m = f.label("pdf_m")
         height_forms = f.label("pdf_height_forms", sigma=f.num(
-            acc["sigma_z_at_highest_flown_height_m"], 3), h=f.num(h["max"], 0),
+            acc["sigma_z_at_highest_flown_height_m"], 3), h=f.g(h["max"]),
             vz=f.g(acc["height_accuracy_m"]), forms="; ".join(
                 f"{f.label('hf_' + k)}: {f.num(acc['forms'][k]['max_planned_height_m'], 0)} {m}"
                 for k in ("normal_case", "instruction", "parallax")))
@@ -514,7 +522,8 @@ def _spec_view(spec: PlanResult, f: _Fmt) -> dict[str, Any]:
             if fs.frames is not None:
                 rows.append((f.label("spec_frames"), f.g(fs.frames)))
                 rows.append((f.label("spec_scanned_gb"), f.num(fs.scanned_gigabytes, 1)))
-        reasons.append(f.cite(display_message(fs.reason, fs.job.norm_set, f.locale)))
+        reasons.append(sentence(f.cite(display_message(fs.reason, fs.job.norm_set,
+                                                       f.locale))))
     if spec.uav is not None:
         u, p = spec.uav, spec.uav.job.plan
         if u.planned_height_m is not None:
@@ -529,7 +538,7 @@ def _spec_view(spec: PlanResult, f: _Fmt) -> dict[str, Any]:
             rows.append((f.label("spec_data_gb"), f.num(p.flight["data_volume_bytes"] / 1e9, 1)))
             rows.append((f.label("data_volume_jpeg_gb"), f.num(float(FL.jpeg_volume_bytes(
                 p.flight["data_volume_bytes"])) / 1e9, 1)))
-        reasons.append(f.cite(display_message(u.reason, u.job.norm_set, f.locale)))
+        reasons.append(sentence(f.cite(display_message(u.reason, u.job.norm_set, f.locale))))
     comparison = [(_comparison_quantity(c, f), _comparison_value(c["film"], f),
                    _comparison_value(c["uav"], f),
                    f.label(_COMPARISON_UNITS[c["unit"]]) if c["unit"] in _COMPARISON_UNITS

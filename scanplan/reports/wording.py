@@ -17,7 +17,40 @@ from ..norms import NormSet
 from .labels import LABELS, t
 
 __all__ = ["camera_title", "display_message", "document_date", "name_title", "object_title",
-           "param_name", "param_value", "scanner_title", "shape_title"]
+           "param_name", "param_value", "scanner_title", "sentence", "shape_title"]
+
+_LOWER_WORD = re.compile(r"[a-z]+(?:-[a-z]+)*(?=[\s,:;]|$)")
+_SENTENCE_END = ".!?…:"
+
+
+def sentence(text: str) -> str:
+    """An engine sentence as a printed document's sentence: a capital first letter and a
+    full stop.
+
+    The terminal prints English engine sentences after a ``!`` mark, lower case and without
+    a full stop (``! motion blur 0.68 px …``); a document prints them after a heading or
+    alone in a paragraph, where they read as sentences. Only a first word in plain lower
+    case letters is capitalised (``motion`` → ``Motion``), never a symbol (``k_R``,
+    ``σ_Z``) or a number; a text already ending in a sentence mark keeps it.
+
+    Parameters
+    ----------
+    text : str
+        The sentence (any locale: Russian catalogue sentences are already capitalised).
+
+    Returns
+    -------
+    str
+    """
+    text = text.strip()
+    if not text:
+        return text
+    if _LOWER_WORD.match(text):
+        text = text[0].upper() + text[1:]
+    if text[-1] not in _SENTENCE_END:
+        text += "."
+    return text
+
 
 _PAREN_ENGLISH = re.compile(r"\s*\((?=[^)]*[A-Za-z]{4})[^)]*\)")
 
