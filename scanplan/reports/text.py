@@ -256,7 +256,9 @@ def _limit_lines(plan: UavPlan) -> list[str]:
                               if tol else "") + ":"]
         lrows = [["  constraint", "limit", "compared with", "max planned", "highest flown"]]
         for lim in sorted(plan.limits, key=lambda x: x.max_height_m):
-            lrows.append([f"  {lim.id}  {lim.name}", f"{lim.limit_m:.3f} m", lim.compares,
+            limit = (f"{lim.limit_m:g} m" if lim.compares == "H"  # a height, not a size
+                     else f"{lim.limit_m:.3f} m")
+            lrows.append([f"  {lim.id}  {lim.name}", limit, lim.compares,
                           f"{lim.max_height_m:.0f} m" + ("*" if lim.binding else " "),
                           f"{lim.max_flown_height_m or lim.max_height_m:.0f} m"])
         lines.append(table(lrows, align="lrlrr"))
