@@ -357,3 +357,50 @@ def test_height_limits_print_heights_as_heights():
     pdf = "\n".join(v for k, v in docs.items() if k.startswith("pdf"))
     assert re.search(r"HC — предельная\s+высота полёта\s+500\s", pdf), pdf
     assert "500,000" not in pdf
+
+
+# --- sentences a reader signs (the audit of issue 14) ---------------------------------
+
+
+def _warning_headings(locale: str) -> list[str]:
+    from scanplan.reports.labels import LABELS
+
+    return [v for k, v in LABELS[locale].items() if k.startswith("pdf_warn_")]
+
+
+@pytest.mark.parametrize("example", [str(e) for e in EXAMPLES], ids=[e.stem for e in EXAMPLES])
+def test_english_documents_read_as_sentences(example):
+    """A warning after its bold heading, the specification's reason and the survey
+    design's notes are sentences in print (the terminal's lower-case ``! motion blur …``
+    is not): no "Motion blur. motion blur …", no "strip(s)", no "flown high"."""
+    problems = []
+    headings = _warning_headings("en")
+    for where, text in _documents(example, "en").items():
+        flat = " ".join(text.split())
+        for h in headings:
+            problems += [f"{where}: {m.group()!r}" for m in
+                         re.finditer(re.escape(h) + r"\. [a-z]\w*", flat)]
+        problems += [f"{where}: {m.group()!r}" for m in
+                     re.finditer(r"\w+\(s\)|flown high\b|by m:", flat)]
+    assert not problems, "\n".join(problems)
+
+
+def test_height_error_names_the_highest_flown_height_as_the_tables_do():
+    """σ_Z is stated at the highest flown height as the results table heads it (148.5 m
+    for 135 m + 10 %), not rounded half-to-even to 148 m."""
+    docs = _documents(str(EXAMPLES[0].parent / "uav-town-2000.toml"), "en")
+    pdf = " ".join(" ".join(v.split()) for k, v in docs.items() if k.startswith("pdf"))
+    assert "at 148.5 m" in pdf
+    assert "at the highest flown height 148.5 m" in pdf, pdf[:2000]
+    assert "highest flown height 148 m" not in pdf
+
+
+@pytest.mark.parametrize(("locale", "label"), [("en", "Forward / side overlap, %"),
+                                               ("ru", "Продольное / поперечное перекрытие, %")])
+def test_inputs_name_both_overlaps_with_one_unit(locale, label):
+    """The inputs table's overlaps row: "Forward / side overlap, %", not
+    "Forward overlap, % / Side overlap"."""
+    docs = _documents(str(EXAMPLES[0].parent / "uav-canon-2000.toml"), locale)
+    pdf = " ".join(" ".join(v.split()) for k, v in docs.items() if k.startswith("pdf"))
+    assert "% / Side overlap" not in pdf and "% / Поперечное" not in pdf
+    assert label in pdf

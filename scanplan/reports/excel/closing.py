@@ -13,6 +13,7 @@ from ..wording import (
     object_title,
     param_name,
     param_value,
+    sentence,
 )
 
 if TYPE_CHECKING:
@@ -167,7 +168,7 @@ def warnings_sheet(book: Book, scan: ScanJob | None, uav: UavJob | None,
                  put_text(ws, row, 3, _heading(book, w), wrap=True),
                  put_text(ws, row, 4, ", ".join(book.numbers.plain_scale(s)
                                                 for s in w.photo_scales), wrap=True),
-                 put_text(ws, row, 5, book.text(w.message, ns), wrap=True)]
+                 put_text(ws, row, 5, sentence(book.text(w.message, ns)), wrap=True)]
         if w.severity == "warning":
             for cell in cells:
                 cell.fill = _WARNING_FILL

@@ -12,6 +12,7 @@ from ..labels import LABELS
 from ..wording import (
     document_date,
     object_title,
+    sentence,
 )
 
 if TYPE_CHECKING:
@@ -116,7 +117,7 @@ def _summary_spec(book: Book, ws: Worksheet, row: int, spec: PlanResult) -> int:
                 row = book.kv(ws, row, book.t("spec_scanned_gb"), f.scanned_gigabytes,
                               "#,##0.0")
         row = book._wide_kv(ws, row, book.t("spec_reason"),
-                            book.text(f.reason, f.job.norm_set))
+                            sentence(book.text(f.reason, f.job.norm_set)))
     if spec.uav is not None:
         u, p = spec.uav, spec.uav.job.plan
         if u.planned_height_m is not None:
@@ -138,7 +139,7 @@ def _summary_spec(book: Book, ws: Worksheet, row: int, spec: PlanResult) -> int:
             row = book.kv(ws, row, book.t("data_volume_jpeg_gb"), float(
                 FL.jpeg_volume_bytes(p.flight["data_volume_bytes"])) / 1e9, "#,##0.0")
         row = book._wide_kv(ws, row, book.t("spec_reason"),
-                            book.text(u.reason, u.job.norm_set))
+                            sentence(book.text(u.reason, u.job.norm_set)))
     if spec.comparison:
         row = book.section(ws, row + 1, book.t("spec_comparison"))
         _header(ws, row, [book.t("spec_quantity"), book.t("spec_film"), book.t("spec_uav"),
