@@ -404,3 +404,16 @@ def test_inputs_name_both_overlaps_with_one_unit(locale, label):
     pdf = " ".join(" ".join(v.split()) for k, v in docs.items() if k.startswith("pdf"))
     assert "% / Side overlap" not in pdf and "% / Поперечное" not in pdf
     assert label in pdf
+
+
+@pytest.mark.parametrize("locale", LOCALES)
+def test_relief_film_probability_says_which_frame(locale):
+    """Over the relief page 1's recognition probability is the one at the frame over the
+    lowest ground (0.83 at 1:7200), not the results table's 0.88 at 1:6000: it says so."""
+    docs = _documents(str(EXAMPLES[0].parent / "film-town-relief-10000.toml"), locale)
+    first = " ".join(docs["pdf page 1"].split())
+    label = ("Recognition probability at the frame over the lowest ground" if locale == "en"
+             else "Вероятность распознавания на снимке над наинизшей точкой")
+    assert label in first
+    summary = next(v for k, v in docs.items() if k.startswith("xlsx sheet"))
+    assert label in " ".join(summary.split())

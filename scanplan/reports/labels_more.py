@@ -377,6 +377,8 @@ TERRAIN: dict[str, dict[str, str]] = {
         "terrain_film_binding": "Binding constraint at that frame",
         "terrain_film_pixel": "Scan pixel at that frame, µm",
         "terrain_film_flat_pixel": "Scan pixel on flat ground, µm",
+        "terrain_film_probability": "Recognition probability at the frame over the lowest "
+                                    "ground",
         "terrain_film_flat_binding": "Binding constraint on flat ground",
         "terrain_film_rejected": "Smaller photo scales ruled out by the relief",
         "terrain_film_rejected_value": "{scale} (frames down to {local})",
@@ -433,6 +435,8 @@ TERRAIN: dict[str, dict[str, str]] = {
         "terrain_film_binding": "Определяющее условие на этом снимке",
         "terrain_film_pixel": "Пиксель сканирования для этого снимка, мкм",
         "terrain_film_flat_pixel": "Пиксель сканирования для плоской местности, мкм",
+        "terrain_film_probability": "Вероятность распознавания на снимке над наинизшей "
+                                    "точкой",
         "terrain_film_flat_binding": "Определяющее условие для плоской местности",
         "terrain_film_rejected": "Более мелкие масштабы, отклонённые из-за рельефа",
         "terrain_film_rejected_value": "{scale} (снимки до {local})",

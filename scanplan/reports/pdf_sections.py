@@ -518,7 +518,10 @@ def _spec_view(spec: PlanResult, f: _Fmt) -> dict[str, Any]:
             rows.append((f.label("scan_pixel_um"), px))
             rows.append((f.label("binding"), f"{rec.binding} — {f.cname(rec.binding)}"))
             rows += _film_relief_rows(fs, f)
-            rows.append((f.label("probability"), f.num(rec.recognition_probability, 2)))
+            over_relief = getattr(fs, "terrain", None) is not None and getattr(
+                fs, "flat", None) is not None  # the headline is the lowest ground's frame
+            rows.append((f.label("terrain_film_probability" if over_relief else "probability"),
+                         f.num(rec.recognition_probability, 2)))
             if fs.frames is not None:
                 rows.append((f.label("spec_frames"), f.g(fs.frames)))
                 rows.append((f.label("spec_scanned_gb"), f.num(fs.scanned_gigabytes, 1)))

@@ -109,8 +109,11 @@ def _summary_spec(book: Book, ws: Worksheet, row: int, spec: PlanResult) -> int:
                               "0.0")
             row = book.kv(ws, row, book.t("binding"),
                           book.cname(rec.binding))
-            row = book.kv(ws, row, book.t("probability"), rec.recognition_probability,
-                          "0.00")
+            over_relief = getattr(f, "terrain", None) is not None and getattr(
+                f, "flat", None) is not None  # the headline is the lowest ground's frame
+            row = book.kv(ws, row, book.t("terrain_film_probability" if over_relief
+                                          else "probability"),
+                          rec.recognition_probability, "0.00")
             row = book.kv(ws, row, book.t("frame_megabytes"), rec.frame_megabytes, "#,##0")
             if f.frames is not None:
                 row = book.kv(ws, row, book.t("spec_frames"), f.frames, "#,##0")
