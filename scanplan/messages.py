@@ -403,12 +403,12 @@ MESSAGES: dict[str, dict[str, str]] = {
     },
     "gsd_limit_film": {
         "en": "the scanned ground pixel of {scale:scale} photos, {pixel:g} µm × {scale:,.0f} = "
-              "{ground:.1f} cm, is {verdict} the {limit:g} cm that GOST R 59562-2021 (Table B.1) "
+              "{ground:.1f} cm, is {verdict} the {limit:g} cm that GOST R 59562-2021, Table B.1, "
               "recommends for digital photos for {map:scale} ({area}); for information: the "
               "table is written for digital cameras",
         "ru": "Размер пикселя скана на местности для снимков {scale:scale}: {pixel:g}~мкм × "
               "{scale:,.0f} = {ground:.1f}~см — {verdict} {limit:g}~см, рекомендуемых ГОСТ Р "
-              "59562-2021 (табл. Б.1) для цифровых снимков к масштабу {map:scale} ({area}); "
+              "59562-2021, табл. Б.1, для цифровых снимков к масштабу {map:scale} ({area}); "
               "для сведения: таблица написана для цифровых камер.",
     },
     "gsd_limit.within": {"en": "within", "ru": "не больше"},

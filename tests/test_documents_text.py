@@ -417,3 +417,15 @@ def test_relief_film_probability_says_which_frame(locale):
     assert label in first
     summary = next(v for k, v in docs.items() if k.startswith("xlsx sheet"))
     assert label in " ".join(summary.split())
+
+
+@pytest.mark.parametrize(("example", "locale"), CASES)
+def test_citations_read_cleanly(example, locale):
+    """A cited work's locator follows its number directly: "[3], Table B.1", never
+    "[3], (Table B.1)" (a parenthesis after the comma the citation adds)."""
+    problems = []
+    for where, text in _documents(example, locale).items():
+        flat = " ".join(text.split())
+        problems += [f"{where}: {flat[max(0, m.start() - 40):m.end() + 20]!r}"
+                     for m in re.finditer(r"\], \(", flat)]
+    assert not problems, "\n".join(problems)
