@@ -429,3 +429,14 @@ def test_citations_read_cleanly(example, locale):
         problems += [f"{where}: {flat[max(0, m.start() - 40):m.end() + 20]!r}"
                      for m in re.finditer(r"\], \(", flat)]
     assert not problems, "\n".join(problems)
+
+
+@pytest.mark.parametrize("locale", LOCALES)
+def test_scan_pixel_arrow_is_explained(locale):
+    """Page 1's "12.5 → 7.0" names what the arrow joins (the required pixel and the
+    scanner's step)."""
+    docs = _documents(str(EXAMPLES[0].parent / "instruction-2000-film.toml"), locale)
+    first = " ".join(docs["pdf page 1"].split())
+    label = ("Scan pixel, µm (required → the scanner's step) 12.5 → 7.0" if locale == "en"
+             else "Размер пикселя сканирования, мкм (расчётный → шаг сканера) 12,5 → 7,0")
+    assert label in first, first[:1500]

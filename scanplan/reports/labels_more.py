@@ -377,6 +377,7 @@ TERRAIN: dict[str, dict[str, str]] = {
         "terrain_film_binding": "Binding constraint at that frame",
         "terrain_film_pixel": "Scan pixel at that frame, µm",
         "terrain_film_flat_pixel": "Scan pixel on flat ground, µm",
+        "spec_scan_pixel_to_step_um": "Scan pixel, µm (required → the scanner's step)",
         "terrain_film_probability": "Recognition probability at the frame over the lowest "
                                     "ground",
         "terrain_film_flat_binding": "Binding constraint on flat ground",
@@ -435,6 +436,8 @@ TERRAIN: dict[str, dict[str, str]] = {
         "terrain_film_binding": "Определяющее условие на этом снимке",
         "terrain_film_pixel": "Пиксель сканирования для этого снимка, мкм",
         "terrain_film_flat_pixel": "Пиксель сканирования для плоской местности, мкм",
+        "spec_scan_pixel_to_step_um": "Размер пикселя сканирования, мкм (расчётный → шаг "
+                                      "сканера)",
         "terrain_film_probability": "Вероятность распознавания на снимке над наинизшей "
                                     "точкой",
         "terrain_film_flat_binding": "Определяющее условие для плоской местности",

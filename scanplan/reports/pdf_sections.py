@@ -512,10 +512,11 @@ def _spec_view(spec: PlanResult, f: _Fmt) -> dict[str, Any]:
         if rec is not None:
             rows.append((f.label("spec_archive_photo_scale" if fs.archive
                                  else "spec_recommended_photo_scale"), f.scale(rec.photo_scale)))
-            px = f.num(rec.scan_pixel_um, 1)
-            if rec.scanner_pixel_um is not None:
+            px, px_label = f.num(rec.scan_pixel_um, 1), "scan_pixel_um"
+            if rec.scanner_pixel_um is not None:  # "12.5 → 7.0" says what the arrow means
                 px += f" → {f.num(rec.scanner_pixel_um, 1)}"
-            rows.append((f.label("scan_pixel_um"), px))
+                px_label = "spec_scan_pixel_to_step_um"
+            rows.append((f.label(px_label), px))
             rows.append((f.label("binding"), f"{rec.binding} — {f.cname(rec.binding)}"))
             rows += _film_relief_rows(fs, f)
             over_relief = getattr(fs, "terrain", None) is not None and getattr(
