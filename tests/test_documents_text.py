@@ -440,3 +440,23 @@ def test_scan_pixel_arrow_is_explained(locale):
     label = ("Scan pixel, µm (required → the scanner's step) 12.5 → 7.0" if locale == "en"
              else "Размер пикселя сканирования, мкм (расчётный → шаг сканера) 12,5 → 7,0")
     assert label in first, first[:1500]
+
+
+_LONE_HEADING = {"uav-town-2000-afs", "uav-town-valley-2000"}  # see the xfail reason
+
+
+@pytest.mark.parametrize(("example", "locale"), [
+    pytest.param(str(e), loc, id=f"{e.stem}-{loc}", marks=pytest.mark.xfail(
+        strict=True, reason="templates/report.css: table.results { break-inside: avoid } "
+        "also holds the long strips table (class 'results strips', templates/_map.html:18), "
+        "which then leaves its heading alone on a page; fix: table.strips { break-inside: "
+        "auto; } (the integrator, after the report-speed branch)"))
+    if e.stem in _LONE_HEADING else pytest.param(str(e), loc, id=f"{e.stem}-{loc}")
+    for e in EXAMPLES for loc in LOCALES])
+def test_no_page_holds_only_a_heading(example, locale):
+    """Every page carries content: none holds only its running head, a section heading
+    and the sheet number (a long table pushed whole to the next page)."""
+    pages = [" ".join(v.split()) for k, v in _documents(example, locale).items()
+             if k.startswith("pdf page")]
+    short = [(i, p) for i, p in enumerate(pages, 1) if len(p) < 160]
+    assert not short, short
