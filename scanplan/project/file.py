@@ -308,8 +308,8 @@ def parse_project(text: str, path: str | os.PathLike[str] = "project.toml") -> P
             dotted = f"{section}.{key}"
             where = f"{p}: {dotted}" + (f" (line {lines[dotted]})" if dotted in lines else "")
             if key not in KEYS[section]:
-                raise InputError(where, f"unknown key; [{section}] takes "
-                                 f"{', '.join(KEYS[section])}")
+                raise InputError(where, f"unknown key{_did_you_mean(section, key)}; "
+                                 f"[{section}] takes {', '.join(KEYS[section])}")
             kind, desc = KEYS[section][key]
             problem = _check_type(kind, value) or _check_text(kind, value)
             if problem:
@@ -379,6 +379,21 @@ def _parse_scales(flat: dict[str, dict[str, Any]], lines: dict[str, int], p: Pat
                                             for v in flat["film"]["photo_scales"]]
         except InputError as exc:
             raise InputError(where, exc.message) from None
+
+
+def _did_you_mean(section: str, key: str) -> str:
+    """A hint for a mistyped key: the closest key of its section (``heigth_m`` →
+    ``height_m``), or the section that takes this key (``[area] max_flight_time_min`` →
+    ``[uav]``); "" when nothing is close."""
+    import difflib
+
+    close = difflib.get_close_matches(key, list(KEYS[section]), n=1, cutoff=0.75)
+    if close:
+        return f" (did you mean {close[0]}?)"
+    elsewhere = [sec for sec, keys in KEYS.items() if key in keys and sec != section]
+    if elsewhere:
+        return f" (it belongs in [{elsewhere[0]}])"
+    return ""
 
 
 def load_project(path: str | os.PathLike[str]) -> Project:
