@@ -460,3 +460,30 @@ def test_no_page_holds_only_a_heading(example, locale):
              if k.startswith("pdf page")]
     short = [(i, p) for i, p in enumerate(pages, 1) if len(p) < 160]
     assert not short, short
+
+
+@pytest.mark.parametrize("locale", LOCALES)
+def test_relief_maximum_height_stands_beside_the_flat_one(locale):
+    """Over a DEM the plan is lowered to 70 m because the worst photo meets HC only up to
+    72 m: page 1, the survey design and the summary sheet show that 72 m beside the
+    flat-ground 136 m (not a bare "maximum 136 m" above a recommended 70 m)."""
+    docs = _documents(str(EXAMPLES[0].parent / "uav-town-valley-2000.toml"), locale)
+    flat_label, relief_label = (
+        ("Maximum planned flight height on flat ground, m 136",
+         "Maximum planned flight height over the relief (above the reference ground), m 72")
+        if locale == "en" else
+        ("Максимальная плановая высота полёта для плоской местности, м 136",
+         "Максимальная плановая высота полёта с учётом рельефа (над опорной отметкой), м 72"))
+    first = " ".join(docs["pdf page 1"].split())
+    assert flat_label in first and relief_label in first, first[:1500]
+    pdf = " ".join(" ".join(v.split()) for k, v in docs.items() if k.startswith("pdf"))
+    assert pdf.count(relief_label.rsplit(" ", 1)[0]) >= 2  # page 1 and the survey design
+    sheets = " ".join(" ".join(v.split()) for k, v in docs.items() if k.startswith("xlsx"))
+    assert relief_label.rsplit(" ", 1)[0] in sheets
+
+
+def test_flat_ground_documents_keep_one_maximum_height():
+    docs = _documents(str(EXAMPLES[0].parent / "uav-town-2000.toml"), "en")
+    pdf = " ".join(" ".join(v.split()) for k, v in docs.items() if k.startswith("pdf"))
+    assert "over the relief (above" not in pdf and "on flat ground" not in pdf
+    assert "Maximum planned flight height, m 136" in pdf

@@ -22,8 +22,8 @@ from .labels import t
 from .view import Numbers
 from .wording import camera_title, display_message, document_date, sentence
 
-__all__ = ["DesignView", "design_text_lines", "design_view", "write_design_sheet",
-           "write_gsd_limits"]
+__all__ = ["DesignView", "design_text_lines", "design_view", "relief_max_height_m",
+           "write_design_sheet", "write_gsd_limits"]
 
 GSD_TABLE = "GOST R 59562-2021, Appendix B, Table B.1"
 SPA = "Reda & Andreas 2004"
@@ -127,6 +127,17 @@ def _gsd_row(design: Any, workflow: str, w: _W) -> tuple[str, str, str] | None:
     return None
 
 
+def relief_max_height_m(uav: Any) -> float | None:
+    """The maximum planned height over the relief (``[terrain]``: the worst photo meets
+    its binding constraint up to it, above the reference ground) [m], when it is lower than
+    the flat-ground maximum the tables show beside it; None otherwise."""
+    terrain = getattr(uav, "terrain", None)
+    limit = getattr(terrain, "max_height_m", None)
+    if limit is None or uav.max_height_m is None or limit >= uav.max_height_m - 0.5:
+        return None
+    return float(limit)
+
+
 def _uav_rows(spec: Any, w: _W) -> list[tuple[str, str, str]]:
     u = spec.uav
     p = u.job.plan
@@ -145,7 +156,11 @@ def _uav_rows(spec: Any, w: _W) -> list[tuple[str, str, str]]:
                  w.t("design_norm_project")))
     rows.append((w.t("spec_recommended_height_m"), w.n(u.recommended_height_m, 0),
                  _equation(p.binding, w) if p.binding else ""))
-    rows.append((w.t("max_height_m"), w.n(u.max_height_m, 0), ""))
+    relief = relief_max_height_m(u)
+    rows.append((w.t("max_height_m" if relief is None else "spec_max_height_flat_m"),
+                 w.n(u.max_height_m, 0), ""))
+    if relief is not None:
+        rows.append((w.t("spec_max_height_relief_m"), w.n(relief, 0), ""))
     fl = p.flight
     if "strips" in fl:
         rows.append((w.t("design_strips_photos"), w.t("design_strips_photos_value",

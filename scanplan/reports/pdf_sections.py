@@ -21,6 +21,7 @@ from ..norms import NormSet
 from ..project.api import ScanJob, UavJob
 from ..rules.film import CONSTRAINTS, ScanPlan
 from ..rules.uav import UavPlan
+from .design import relief_max_height_m
 from .labels import LABELS
 from .references import Bibliography
 from .view import ReportView
@@ -533,7 +534,11 @@ def _spec_view(spec: PlanResult, f: _Fmt) -> dict[str, Any]:
         if u.planned_height_m is not None:
             rows.append((f.label("spec_planned_height_m"), f.num(u.planned_height_m, 0)))
         rows.append((f.label("spec_recommended_height_m"), f.num(u.recommended_height_m, 0)))
-        rows.append((f.label("max_height_m"), f.num(u.max_height_m, 0)))
+        relief = relief_max_height_m(u)
+        rows.append((f.label("max_height_m" if relief is None else "spec_max_height_flat_m"),
+                     f.num(u.max_height_m, 0)))
+        if relief is not None:
+            rows.append((f.label("spec_max_height_relief_m"), f.num(relief, 0)))
         if p.binding:
             rows.append((f.label("binding"), f"{p.binding} — {f.cname(p.binding)}"))
         if "photos" in p.flight:

@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING
 from openpyxl.worksheet.worksheet import Worksheet
 
 from ...core import flight as FL
+from ..design import relief_max_height_m
 from ..labels import LABELS
 from ..wording import (
     document_date,
@@ -128,7 +129,11 @@ def _summary_spec(book: Book, ws: Worksheet, row: int, spec: PlanResult) -> int:
                           "0")
         row = book.kv(ws, row, book.t("spec_recommended_height_m"),
                       u.recommended_height_m, "0")
-        row = book.kv(ws, row, book.t("max_height_m"), u.max_height_m, "0")
+        relief = relief_max_height_m(u)
+        row = book.kv(ws, row, book.t("max_height_m" if relief is None
+                                      else "spec_max_height_flat_m"), u.max_height_m, "0")
+        if relief is not None:
+            row = book.kv(ws, row, book.t("spec_max_height_relief_m"), relief, "0")
         if p.max_flown_height_m is not None:
             row = book.kv(ws, row, book.t("max_flown_height_m"), p.max_flown_height_m, "0")
         if p.binding:
