@@ -487,3 +487,14 @@ def test_flat_ground_documents_keep_one_maximum_height():
     pdf = " ".join(" ".join(v.split()) for k, v in docs.items() if k.startswith("pdf"))
     assert "over the relief (above" not in pdf and "on flat ground" not in pdf
     assert "Maximum planned flight height, m 136" in pdf
+
+
+def test_summary_box_lists_a_warning_once_with_its_scales():
+    """The workbook's warnings box names each kind of warning once, with every photo scale
+    it concerns ("P_R drives the data volume: 1:6000, 1:8000"), and the Warnings sheet
+    heads that column "Warning"."""
+    docs = _documents(str(EXAMPLES[0].parent / "instruction-2000-film.toml"), "en")
+    summary = docs["xlsx sheet 'Summary'"]
+    lines = [x for x in summary.splitlines() if x.startswith("! P_R drives the data volume")]
+    assert lines == ["! P_R drives the data volume: 1:6000, 1:8000"], lines
+    assert docs["xlsx sheet 'Warnings'"].splitlines()[1:4] == ["Section", "Severity", "Warning"]

@@ -377,6 +377,7 @@ TERRAIN: dict[str, dict[str, str]] = {
         "terrain_film_binding": "Binding constraint at that frame",
         "terrain_film_pixel": "Scan pixel at that frame, µm",
         "terrain_film_flat_pixel": "Scan pixel on flat ground, µm",
+        "xlsx_warning": "Warning",
         "spec_max_height_flat_m": "Maximum planned flight height on flat ground, m",
         "spec_max_height_relief_m": "Maximum planned flight height over the relief (above the "
                                     "reference ground), m",
@@ -439,6 +440,7 @@ TERRAIN: dict[str, dict[str, str]] = {
         "terrain_film_binding": "Определяющее условие на этом снимке",
         "terrain_film_pixel": "Пиксель сканирования для этого снимка, мкм",
         "terrain_film_flat_pixel": "Пиксель сканирования для плоской местности, мкм",
+        "xlsx_warning": "Предупреждение",
         "spec_max_height_flat_m": "Максимальная плановая высота полёта для плоской местности, м",
         "spec_max_height_relief_m": "Максимальная плановая высота полёта с учётом рельефа (над "
                                     "опорной отметкой), м",

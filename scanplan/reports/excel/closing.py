@@ -59,12 +59,13 @@ def _heading(book: Book, w: PlanWarning) -> str:
 def _warning_lines(book: Book, scan: ScanJob | None, uav: UavJob | None,
                    spec: PlanResult | None) -> list[str]:
     """Every warning in short form (the Summary sheet's box)."""
-    out = []
+    scales: dict[str, list[str]] = {}  # heading → photo scales, one line per heading
     for _section, w, ns in _warning_items(book, scan, uav, spec):
         head = _heading(book, w) or book.text(w.message, ns)
-        scales = ", ".join(book.numbers.plain_scale(s) for s in w.photo_scales)
-        out.append(f"! {head}" + (f": {scales}" if scales else ""))
-    return list(dict.fromkeys(out))
+        listed = scales.setdefault(head, [])
+        listed += [x for x in (book.numbers.plain_scale(s) for s in w.photo_scales)
+                   if x not in listed]
+    return [f"! {head}" + (f": {', '.join(xs)}" if xs else "") for head, xs in scales.items()]
 
 
 def norms_sheet(book: Book, scan: ScanJob | None, uav: UavJob | None) -> None:
@@ -152,7 +153,7 @@ def _norm_set(book: Book, ws: Worksheet, row: int, ns: NormSet, objs: list[Any])
 def warnings_sheet(book: Book, scan: ScanJob | None, uav: UavJob | None,
              spec: PlanResult | None = None) -> None:
     ws = book.sheet("xlsx_sheet_warnings", landscape=True, widths=(20, 14, 30, 20, 90))
-    _header(ws, 1, [book.t("xlsx_section"), book.t("xlsx_severity"), book.t("warnings"),
+    _header(ws, 1, [book.t("xlsx_section"), book.t("xlsx_severity"), book.t("xlsx_warning"),
                     book.t("photo_scale"), book.t("xlsx_message")])
     items = _warning_items(book, scan, uav, spec)
     if not items:
