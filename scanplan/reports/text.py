@@ -477,10 +477,10 @@ def format_layout(layout: Any, scale: str = "", locale: str = "en") -> str:
     if layout.flight_time_s:
         text += f", {_n(layout.flight_time_s / 60, 0, locale, True)} {T['min']}"
     if layout.kind == "uav":
-        text += f", {T['sorties']}: {len(layout.sorties)}"
+        text += f", {T['sorties']}:\0{len(layout.sorties)}"  # kept on one line
     if not layout.feasible:
         text += f" — {T['not_feasible']}: {localize(layout.reason, locale)}"
-    return _wrap(text, "")
+    return _wrap(text, "").replace("\0", " ")
 
 
 def _uav_summary(u: Any, loc: str, T: _Terminal, cname: Any) -> list[str]:
