@@ -61,3 +61,12 @@ def test_swapped_polygon_outside_the_latitude_range(tmp_path):
     assert result.exit_code == 2
     assert "latitude 95.08° is outside −90 … 90" in result.output
     assert "give [lon, lat]" in result.output
+
+
+def test_norms_show_names_its_argument(tmp_path, monkeypatch):
+    """``norms show nosuch`` names the argument typed (NAME), not an option --norms the user
+    never gave."""
+    monkeypatch.setenv("SCANPLAN_NORMS_DIR", str(tmp_path))
+    result = CliRunner().invoke(main, ["norms", "show", "nosuch"])
+    assert result.exit_code == 2
+    assert "NAME: no norm set 'nosuch'" in result.output and "--norms" not in result.output

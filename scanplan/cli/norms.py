@@ -224,7 +224,11 @@ def show_cmd(name: str, as_json: bool) -> None:
       scanplan norms show gkinp-02-036-02
       scanplan norms show my-enterprise --json
     """
-    data = _norms.norm_set_dict(_norms.load_norm_set(name))
+    try:
+        loaded = _norms.load_norm_set(name)
+    except InputError as exc:  # named by the argument typed here, not by --norms
+        raise InputError("NAME", exc.message) from None
+    data = _norms.norm_set_dict(loaded)
     if as_json:
         click.echo(json.dumps(data, ensure_ascii=False, indent=2))
         return
