@@ -459,8 +459,9 @@ def uav(as_json: bool, **kwargs: Any) -> None:
 @click.option("--out", "out_dir", type=click.Path(file_okay=False),
               help="Write spec.xlsx and spec.pdf into this folder (batch: NAME.xlsx/.pdf, "
               "NAME-2.xlsx/.pdf for a second project named NAME); for an area given as a "
-              "polygon also mission.plan (QGroundControl), flight.kml, flight.geojson and "
-              "photos.csv (film: film-flight.kml, film-flight.geojson, film-frames.csv).")
+              "polygon also mission.plan (QGroundControl), mission.waypoints (Mission Planner), "
+              "flight.kml, flight.geojson and photos.csv (film: film-flight.kml, "
+              "film-flight.geojson, film-frames.csv).")
 @click.option("--xlsx", "xlsx_path", type=click.Path(dir_okay=False),
               help="Write the Excel report to this file (one project; not with --out).")
 @click.option("--pdf", "pdf_path", type=click.Path(dir_okay=False),
