@@ -148,9 +148,9 @@ _RECORDS: tuple[Input, ...] = (
     _project("customer", "customer (title block)", option="--customer", commands=(FILM, UAV)),
     _project("contractor", "contractor (title block)", option="--contractor",
              commands=(FILM, UAV)),
-    _project("locale", '"en" or "ru": language of the reports', default="en",
-             option="--locale", commands=(FILM, UAV), choices=("en", "ru"),
-             cli_help="language of the reports"),
+    _project("locale", '"en" or "ru": language of the reports and of the terminal summary',
+             default="en", option="--locale", commands=(FILM, UAV), choices=("en", "ru"),
+             cli_help="language of the terminal report and of --xlsx/--pdf"),
     _project("approver_position", "approval block: position", option="--approver-position",
              commands=(FILM, UAV), cli_help="approval block: position of the person who "
              "approves"),
