@@ -7,6 +7,7 @@ number with the decimal comma of the Russian reports.
 from __future__ import annotations
 
 import re
+from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
@@ -14,6 +15,7 @@ from click.testing import CliRunner
 from scanplan.cli.main import main
 from scanplan.reports.labels_cli import CLI
 
+TOWN = str(Path(__file__).resolve().parent.parent / "examples" / "areas" / "town-uav.kml")
 SCAN = ["scan", "--map-scale", "1:2000", "--relief", "1.0", "--photo-scale", "10000",
         "--photo-scale", "15000", "--camera", "afa-te-100", "--scanner", "photoscan-td",
         "--pixel-um", "15"]
@@ -21,11 +23,10 @@ UAV = ["uav", "--camera", "canon-eos-5d-mark-ii-50", "--f-number", "8", "--heigh
        "--height-tolerance-pct", "40", "--speed-ms", "25", "--map-scale", "2000", "--relief",
        "0.5", "--area-m", "2000x3000", "--max-flight-time-min", "30"]
 UAV_POLYGON = ["uav", "--camera", "dji-zenmuse-p1-35", "--height-m", "100", "--area-file",
-               "examples/areas/town-uav.kml", "--roll-deg", "3", "--pitch-deg", "2"]
+               TOWN, "--roll-deg", "3", "--pitch-deg", "2"]
 SCAN_POLYGON = ["scan", "--map-scale", "2000", "--relief", "1", "--photo-scale", "10000",
                 "--focal-mm", "100", "--frame-mm", "180x180", "--resolving-power", "40",
-                "--area-file",
-                "examples/areas/town-uav.kml"]
+                "--area-file", TOWN]
 
 #: English words of the terminal reports (labels, headings, units) that a Russian report
 #: must not show.
@@ -50,7 +51,8 @@ def _run(args):
 
 
 def _english_left(text: str) -> list[str]:
-    text = text.replace("--pixel-um", "")  # the option the user typed, named as typed
+    # the option the user typed and the area file, named as typed
+    text = text.replace("--pixel-um", "").replace(TOWN, "")
     return [word for word in ENGLISH
             if re.search(rf"(?<![\w-]){re.escape(word)}(?![\w-])", text, flags=re.I)]
 
