@@ -89,3 +89,60 @@ def test_russian_numbers_match_the_english_ones():
 def test_a_bad_locale_is_a_usage_error():
     res = CliRunner().invoke(main, [*SCAN, "--locale", "de"])
     assert res.exit_code == 2 and "--locale" in res.output
+
+
+# --- the catalogue listings: `cameras list/show`, `norms list/show`, `norms template` -----
+
+CATALOGUE_ENGLISH = ["kind", "carried by", "frame/sensor", "image px", "pixel µm", "cameras",
+                     "scanners", "scan pixels", "bit depth", "frame min", "note", "source",
+                     "name", "where", "imported", "title", "bundled", "parameters", "value",
+                     "unit", "shapes", "objects", "gsd_limits", "film", "aircraft"]
+
+
+def _catalogue_english(text: str) -> list[str]:
+    return [w for w in CATALOGUE_ENGLISH
+            if re.search(rf"(?<![\w-]){re.escape(w)}(?![\w-])", text, flags=re.I)]
+
+
+def test_cameras_list_in_russian():
+    ru = _run(["cameras", "list", "--locale", "ru"])
+    head = ru.splitlines()[0]
+    assert head.split()[:3] == ["камера", "тип", "носитель"] and "модель" in head
+    assert _catalogue_english(head) == [] and re.search(r"\d,\d", ru)
+    assert "камер: " in ru and "сканеров: " in ru
+    assert "dmc-ii-140" in ru and "цифровая" in ru and "самолёт" in ru
+    en = _run(["cameras", "list"])
+    assert en.splitlines()[0].split()[:3] == ["id", "kind", "carried"]
+    assert re.search(r"^\d+ cameras$", en, flags=re.M)
+
+
+@pytest.mark.parametrize("camera", ["rc30-153", "photoscan-td", "dji-zenmuse-p1-35"])
+def test_cameras_show_in_russian(camera):
+    ru = _run(["cameras", "show", camera, "--locale", "ru"])
+    keys = "\n".join(line.split("  ")[0] for line in ru.splitlines()[1:] if line.strip())
+    assert _catalogue_english(keys) == [], keys
+    assert re.search(r"\d,\d", ru) or camera == "photoscan-td"
+    if camera == "rc30-153":
+        assert "плёночная" in ru and "центральный" in ru and "фокусное расстояние" in ru
+        assert "153,0" in ru and "— (формула дифракции)" in ru
+
+
+def test_norms_list_and_show_in_russian():
+    ru = _run(["norms", "list", "--locale", "ru"])
+    assert ru.splitlines()[0].split()[:2] == ["имя", "где"] and "встроенный" in ru
+    assert "ГКИНП" in ru and _catalogue_english(ru.splitlines()[0]) == []
+    show = _run(["norms", "show", "gkinp-02-036-02", "--locale", "ru"])
+    assert "Коэффициенты формы" in show and "Минимальные объекты" in show
+    assert "круг (B = 0,97)" in show and "Точность в плане" in show
+    heads = [line for line in show.splitlines() if line.startswith(("параметр", "форма",
+                                                                   "масштаб", "камера"))]
+    assert heads and _catalogue_english("\n".join(heads)) == []
+    assert "planimetric_accuracy_mm" in _run(["norms", "show", "gkinp-02-036-02"])
+
+
+def test_norms_template_takes_locale_like_the_other_commands(tmp_path):
+    openpyxl = pytest.importorskip("openpyxl")
+    for flag in ("--locale", "--lang"):  # --lang: the older spelling, still accepted
+        path = tmp_path / f"t{flag}.xlsx"
+        _run(["norms", "template", str(path), flag, "ru", "--no-catalogue"])
+        assert "Параметры" in openpyxl.load_workbook(path, read_only=True).sheetnames
