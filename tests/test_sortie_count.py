@@ -181,13 +181,19 @@ def test_two_different_sortie_lengths_are_an_error_naming_both_keys(tmp_path):
     res = CliRunner().invoke(main, ["plan", str(path)])
     assert res.exit_code == 2
     assert "sortie_time_min" in res.stderr and "max_flight_time_min" in res.stderr
+    assert res.stderr.count(str(path)) == 1  # the file named once
     assert "Traceback" not in res.output
 
 
 @pytest.mark.parametrize("value", ["0", "-5", "2000", '"half an hour"'])
-def test_a_sortie_time_out_of_range_names_its_key(tmp_path, value):
-    with pytest.raises(InputError, match=r"schedule\.sortie_time_min"):
-        _plan(tmp_path, UAV + SCHEDULE + f"sortie_time_min = {value}\n")
+@pytest.mark.parametrize("area", [True, False])
+def test_a_sortie_time_out_of_range_names_its_key(tmp_path, value, area):
+    text = UAV + SCHEDULE + f"sortie_time_min = {value}\n"
+    if not area:
+        text = text.replace("[area]\nwidth_m = 1500\nlength_m = 2000\n", "")
+    with pytest.raises(InputError, match=r"schedule\.sortie_time_min") as err:
+        _plan(tmp_path, text)
+    assert str(err.value).count("p.toml") == 1
 
 
 def test_examples_of_the_sortie_rules_run():

@@ -430,6 +430,7 @@ def plan_project(project: Project) -> PlanResult:
                       approver_name=g("project", "approver_name", ""),
                       **{k: g("project", k, "") for k in _SIGNING_KEYS})
     area = project_area(project)  # checked even when no plan uses it
+    sortie_length(project)  # the one sortie length, checked once: in range, both keys agree
     _check_layout_keys(project, area)
     _check_terrain(project, area)
     film = _film(project, area) if project.has("film") else None
