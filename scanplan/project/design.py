@@ -96,6 +96,8 @@ class SunPlan:
     start_date, end_date : datetime.date
     windows : tuple of SunWindow
     sortie_time_s, turnaround_s : float
+        The planned sortie (the one sortie length, :mod:`scanplan.project.sorties`; a
+        layout's sorties are at most this long) and the ground time between sorties [s].
     flight_time_s : float or None
         Flight time of the whole survey [s] (None: no ``[area]``, or film).
     days : FlyingDays or None
