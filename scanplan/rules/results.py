@@ -292,7 +292,7 @@ class UavInputs:
 
 @dataclass(frozen=True)
 class Recognition:
-    """Recognition probability of one norm object, P = exp(−(B·L/L_obj)²) (seed 001 eq. 7)."""
+    """Recognition probability of one norm object, P = exp(−(B·L/L_obj)²) (seed 001, eq. 7)."""
 
     object: str
     object_size_m: float
