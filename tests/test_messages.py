@@ -242,6 +242,9 @@ def emitted(tmp_path_factory) -> dict[str, list[Any]]:
         "plan pixel too fine": film_toml.replace(  # issue 17: a scan pixel under 0.1 µm
             "photo_scales = [6000, 8000, 10000]", "photo_scales = [100000]").replace(
             "relief_interval_m = 1.0", "relief_interval_m = 0.01"),
+        # film over the relief (issue 12): 1:8000 ruled out, 1:6000 taken; nothing holds
+        "plan film over relief": film_toml + "\n[terrain]\nground_elevation_m = [110, 230]\n",
+        "plan film relief too deep": film_toml + "\n[terrain]\nground_elevation_m = [0, 400]\n",
         "plan uav": uav_toml,
         "plan uav lowered": uav_toml.replace("height_m = 300", "height_m = 500"),
         "plan uav within": uav_toml.replace("height_m = 300", "height_m = 200"),
@@ -259,6 +262,7 @@ def emitted(tmp_path_factory) -> dict[str, list[Any]]:
             "width_m = 2000", "width_m = 1000000"),
         # archive photos: the scale is given (issue 13)
         "plan archive": archive_toml,
+        "plan archive over relief": archive_toml + "\n[terrain]\nground_elevation_m = [120, 260]\n",
         "plan archive readable": archive_toml.replace('photo_scale = "1:12000"',
                                                       "photo_scale = 8000"),
         "plan archive fine scanner": (EXAMPLES / "map-10000-relief-1m.toml").read_text(

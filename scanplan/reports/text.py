@@ -370,14 +370,18 @@ _TERRAIN_TEXT = {
            "constant": "constant", "strip": "per strip", "follow": "following the terrain",
            "agl": "height above ground", "at_photo": "largest at photo", "strip_n": "strip",
            "max": "maximum height over the relief", "film": "Terrain (film): photo scale",
-           "binds": "binds: scan pixel", "frame": "frame", "m": "m", "um": "µm"},
+           "binds": "binds: scan pixel", "frame": "frame", "m": "m", "um": "µm",
+           "lowest": "the frame over the lowest ground", "flat": "on flat ground",
+           "spec": "the specification's scan pixel is the binding frame's"},
     "ru": {"head": "Рельеф", "dem": "ЦМР", "range": "отметки заданы диапазоном",
            "ground": "отметки", "under": "под снимками", "mode": "высота полёта",
            "constant": "постоянная", "strip": "по маршрутам", "follow": "следование рельефу",
            "agl": "высота над рельефом", "at_photo": "наибольшая у снимка",
            "strip_n": "маршрут", "max": "максимальная высота с учётом рельефа",
            "film": "Рельеф (плёнка): масштаб снимков", "binds": "определяет: пиксель",
-           "frame": "снимок", "m": "м", "um": "мкм"},
+           "frame": "снимок", "m": "м", "um": "мкм",
+           "lowest": "снимок над наинизшей точкой", "flat": "для плоской местности",
+           "spec": "пиксель сканирования назначен по определяющему снимку"},
 }
 
 
@@ -409,8 +413,12 @@ def format_terrain(result: Any, locale: str = "en") -> list[str]:
     film = getattr(result, "film", None)
     ft = getattr(film, "terrain", None) if film is not None else None
     if ft is not None:
+        who = (f"{T['frame']} {ft.binding_frame} ({T['strip_n']} {ft.binding_strip})"
+               if ft.ground_known else T["lowest"])
         out.append(f"{T['film']} {_sc(round(ft.mc_min), locale)} … "
-                   f"{_sc(round(ft.mc_max), locale)}; {T['frame']} {ft.binding_frame} "
-                   f"({T['strip_n']} {ft.binding_strip}) {T['binds']} "
-                   f"{_um_loc(ft.scan_pixel_um, locale)} {T['um']} ({ft.binding})")
+                   f"{_sc(round(ft.mc_max), locale)}; {who} {T['binds']} "
+                   f"{_um_loc(ft.scan_pixel_um, locale)} {T['um']} ({ft.binding}), {T['flat']} "
+                   f"{_um_loc(ft.scan_pixel_planned_um, locale)} {T['um']} "
+                   f"({ft.binding_planned or '—'})"
+                   + (f"; {T['spec']}" if getattr(film, "flat", None) is not None else ""))
     return out
