@@ -27,3 +27,16 @@ def test_sorties_keep_their_number(tmp_path):
     block = lines[flight:flight + 3]
     assert not any(x.rstrip().endswith("sorties:") for x in block), block
     assert any("sorties: 1" in x for x in block), block
+
+
+def test_ceiling_limit_is_printed_as_a_height_in_both_languages():
+    """The limits table's HC row gives the ceiling as a height (150 m), not a ground size
+    with three decimals: in Russian "150,000 м" reads as 150 000 m."""
+    argv = ["uav", "--camera", "canon-eos-5d-mark-ii-50", "--height-m", "300",
+            "--map-scale", "2000", "--relief", "0.5"]
+    for locale, shown, wrong in (("en", "150 m  H", "150.000 m"),
+                                 ("ru", "150 м  H", "150,000 м")):
+        out = CliRunner().invoke(main, [*argv, "--locale", locale])
+        assert out.exit_code == 0, out.output
+        row = next(x for x in out.stdout.splitlines() if x.strip().startswith("HC"))
+        assert shown in row and wrong not in row, row
