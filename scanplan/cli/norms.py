@@ -249,6 +249,8 @@ def show_cmd(name: str, as_json: bool, locale: str = "en") -> None:
     try:
         loaded = _norms.load_norm_set(name)
     except InputError as exc:  # named by the argument typed here, not by --norms
+        if exc.field != "--norms":
+            raise
         raise InputError("NAME", exc.message) from None
     data = _norms.norm_set_dict(loaded)
     if as_json:
