@@ -40,3 +40,15 @@ def test_ceiling_limit_is_printed_as_a_height_in_both_languages():
         assert out.exit_code == 0, out.output
         row = next(x for x in out.stdout.splitlines() if x.strip().startswith("HC"))
         assert shown in row and wrong not in row, row
+
+
+def test_russian_terrain_line_has_no_english_frame():
+    """The Russian terminal's terrain line gives the altitude frame in Russian ("над уровнем
+    моря"), not "AMSL"."""
+    from pathlib import Path
+
+    example = Path(__file__).resolve().parent.parent / "examples" / "uav-town-2000-afs.toml"
+    out = CliRunner().invoke(main, ["plan", str(example)])
+    assert out.exit_code == 0, out.output
+    terrain = " ".join(out.stdout.split("\n\n")[0].split())
+    assert "(над уровнем моря)" in terrain and "AMSL" not in terrain, terrain

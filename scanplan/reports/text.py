@@ -372,7 +372,7 @@ _TERRAIN_TEXT = {
            "max": "maximum height over the relief", "film": "Terrain (film): photo scale",
            "binds": "binds: scan pixel", "frame": "frame", "m": "m", "um": "µm",
            "lowest": "the frame over the lowest ground", "flat": "on flat ground",
-           "spec": "the specification's scan pixel is the binding frame's"},
+           "spec": "the specification's scan pixel is the binding frame's", "AMSL": "AMSL"},
     "ru": {"head": "Рельеф", "dem": "ЦМР", "range": "отметки заданы диапазоном",
            "ground": "отметки", "under": "под снимками", "mode": "высота полёта",
            "constant": "постоянная", "strip": "по маршрутам", "follow": "следование рельефу",
@@ -381,7 +381,8 @@ _TERRAIN_TEXT = {
            "film": "Рельеф (плёнка): масштаб снимков", "binds": "определяет: пиксель",
            "frame": "снимок", "m": "м", "um": "мкм",
            "lowest": "снимок над наинизшей точкой", "flat": "для плоской местности",
-           "spec": "пиксель сканирования назначен по определяющему снимку"},
+           "spec": "пиксель сканирования назначен по определяющему снимку",
+           "AMSL": "над уровнем моря"},
 }
 
 
@@ -403,7 +404,8 @@ def format_terrain(result: Any, locale: str = "en") -> list[str]:
                 else _n(float(alt.max()) if alt.size else None, 0, locale))
         text = (f"{T['head']}: {src}, {T['ground']} {_n(d['ground_min_m'], 1, locale)}–"
                 f"{_n(d['ground_max_m'], 1, locale)} {T['m']} {T['under']}; {T['mode']} "
-                f"{T[tr.mode]} {alts} {T['m']} ({tr.altitude_frame}); {T['agl']} "
+                f"{T[tr.mode]} {alts} {T['m']} ({T.get(tr.altitude_frame, tr.altitude_frame)}); "
+                f"{T['agl']} "
                 f"{_n(d['agl_min_m'], 0, locale)}–{_n(d['agl_max_m'], 0, locale)} {T['m']} "
                 f"({T['at_photo']} {tr.worst_resolution_photo})")
         if tr.max_height_m is not None:
