@@ -17,17 +17,18 @@ import base64
 import io
 import math
 import re
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import matplotlib
 import numpy as np
-from matplotlib.figure import Figure
-from matplotlib.ticker import FuncFormatter
 
 from ..geo.layout import FlightLayout
 from . import exports as _exports
 from .labels import t
 from .plots import _RC, number
+
+if TYPE_CHECKING:  # matplotlib is imported when a map is drawn (the workbook draws none)
+    from matplotlib.figure import Figure
+    from matplotlib.ticker import FuncFormatter
 
 __all__ = ["MAX_MAP_PHOTOS", "MAX_TABLE_STRIPS", "crs_text", "geo_views", "map_svg"]
 
@@ -120,6 +121,8 @@ def _draw_strips(ax: Any, layout: FlightLayout, scale: float, label: str) -> Non
 
 def _km_ticks(axis: Any, locale: str) -> FuncFormatter:
     """Tick labels in km with as many decimals as the tick step needs."""
+    from matplotlib.ticker import FuncFormatter
+
     def fmt(v: float, _pos: int | None = None) -> str:
         ticks = axis.get_majorticklocs()
         step = float(np.min(np.diff(ticks))) if len(ticks) > 1 else 1.0
@@ -170,6 +173,9 @@ def map_svg(layout: FlightLayout, locale: str = "en") -> str:
     str
         An SVG document.
     """
+    import matplotlib
+    from matplotlib.figure import Figure
+
     film = layout.kind == "film"
     scale = 1000.0  # axes in km
     ph = layout.photos

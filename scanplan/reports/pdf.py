@@ -35,15 +35,12 @@ from urllib.parse import unquote, urlsplit
 from urllib.request import url2pathname
 
 import jinja2
-import weasyprint
 from markupsafe import Markup
-from weasyprint.text.fonts import FontConfiguration
-from weasyprint.urls import URLFetcher, URLFetcherResponse
 
 from .._version import __version__
 from ..messages import localize
 from ..project.api import ScanJob, UavJob
-from . import ReportMeta, templates_dir, write_atomic
+from . import ReportMeta, _weasy, templates_dir, write_atomic
 from .design import design_view
 from .labels import LABELS
 from .pdf_sections import (  # noqa: F401  (_object_name: tests)
@@ -57,6 +54,10 @@ from .pdf_sections import (  # noqa: F401  (_object_name: tests)
 from .references import Bibliography
 from .view import ReportView, build_view, svg_data_uri
 from .wording import document_date
+
+weasyprint = _weasy.load()  # first: the fast library search and font subsetting (_weasy)
+from weasyprint.text.fonts import FontConfiguration  # noqa: E402
+from weasyprint.urls import URLFetcher, URLFetcherResponse  # noqa: E402
 
 if TYPE_CHECKING:
     from ..project.spec import PlanResult
