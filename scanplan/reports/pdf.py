@@ -382,6 +382,22 @@ def _font_config(root: str) -> FontConfiguration:
     return FontConfiguration()
 
 
+_WARM_UP_HTML = ("<!DOCTYPE html><html><head><meta charset='utf-8'>"
+                 "<link rel='stylesheet' href='report.css'></head><body>"
+                 "<p>Warm-up 0,5 м <strong>1:2000</strong></p></body></html>")
+
+
+def warm_up() -> None:
+    """Pay the first-use costs of a report ahead of it (:mod:`.pdfworker`, while the plan is
+    made): the templates compiled, and a one-line document rendered with the process's
+    fonts, so that fontconfig, Pango and both bundled faces are loaded."""
+    _environment().get_template("report.html")
+    root = templates_dir().resolve()
+    weasyprint.HTML(string=_WARM_UP_HTML, base_url=root.as_uri() + "/",
+                    url_fetcher=BundledAssetFetcher()).write_pdf(
+                        font_config=_font_config(str(root)))
+
+
 def write_pdf(path: str | os.PathLike[str], *, scan: ScanJob | None = None,
               uav: UavJob | None = None, meta: ReportMeta = _DEFAULT_META,
               spec: PlanResult | None = None) -> Path:
