@@ -36,6 +36,7 @@ from typing import Any
 __all__ = ["load"]
 
 _LOADED: ModuleType | None = None
+_ORIGINAL_SUBSET: Any = None  # WeasyPrint's own method, replaced by _fonttools_subset
 
 
 @contextlib.contextmanager
@@ -112,8 +113,11 @@ def _patch_subset(weasyprint: ModuleType) -> None:
         return
     from weasyprint.pdf import fonts
 
+    global _ORIGINAL_SUBSET
     font = getattr(fonts, "Font", None)
     if font is not None and hasattr(font, "_fonttools_subset"):
+        if font._fonttools_subset is not _fonttools_subset:
+            _ORIGINAL_SUBSET = font._fonttools_subset
         font._fonttools_subset = _fonttools_subset
 
 

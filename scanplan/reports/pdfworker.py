@@ -152,8 +152,8 @@ class PdfWorker:
             return False
         # the plots are drawn here, while the child still warms up, and travel with the
         # view (drawn once: ReportView.plot keeps them)
-        for name, job in (("constraints", view.scan), ("mtf", view.uav), ("height", view.uav)):
-            if job is not None:
+        for name, job in (("constraints", "scan"), ("mtf", "uav"), ("height", "uav")):
+            if getattr(view, job, None) is not None:
                 view.plot(name)
         try:
             data = pickle.dumps(view, protocol=pickle.HIGHEST_PROTOCOL)
