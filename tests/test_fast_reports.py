@@ -50,6 +50,7 @@ def test_subsetting_without_layout_tables_gives_the_same_pdf(view, monkeypatch):
     PDF's bytes are those of WeasyPrint's own method."""
     from weasyprint.pdf import fonts
 
+    monkeypatch.setenv("SOURCE_DATE_EPOCH", "1700000000")
     ours = render_pdf(view=view)
     assert fonts.Font._fonttools_subset is _weasy._fonttools_subset or not \
         _weasy.load().__version__.startswith("70.")
@@ -100,7 +101,8 @@ def test_fast_import_falls_back_to_a_plain_import():
 
 
 @fork_only
-def test_worker_renders_the_same_bytes_and_is_reaped(view):
+def test_worker_renders_the_same_bytes_and_is_reaped(view, monkeypatch):
+    monkeypatch.setenv("SOURCE_DATE_EPOCH", "1700000000")
     worker = PdfWorker.start()
     assert worker is not None
     pid = worker.pid
