@@ -40,12 +40,10 @@ def _warm() -> None:
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        from . import pdf, plots  # WeasyPrint (the fast import), the templates' helpers
+        from . import pdf  # WeasyPrint (the fast import), the templates' helpers
 
-        del plots
-        import matplotlib.figure  # noqa: F401  (the plots' imports, here on the idle core)
-        from matplotlib.backends import backend_svg  # noqa: F401
-
+        # matplotlib is not imported here: the parent draws the plots; only a map or a
+        # terrain figure, drawn in the child, imports it (when there is one)
         pdf.warm_up()
 
 
