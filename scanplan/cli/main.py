@@ -667,12 +667,9 @@ def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: s
                 pdf_path: str | None, as_json: bool, force: bool = False,
                 jobs: int = 1) -> None:
     """``plan`` after its arguments are checked: run one project or a batch."""
-    from ..reports.jsondoc import plan_result_dict
-    from ..reports.text import format_plan_result
-
     if not batch:
         worker = None
-        if out_dir or pdf_path:  # started now: it imports the renderer while we plan
+        if out_dir or pdf_path:  # first of all: it imports the renderer while we plan
             from ..reports.pdfworker import PdfWorker
 
             worker = PdfWorker.start()
@@ -682,6 +679,9 @@ def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: s
         finally:
             if worker is not None:
                 worker.stop()
+        from ..reports.jsondoc import plan_result_dict
+        from ..reports.text import format_plan_result
+
         if as_json:
             _echo_json(plan_result_dict(result))
         else:

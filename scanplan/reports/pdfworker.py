@@ -2,14 +2,14 @@
 
 A plan with both reports spends most of its time on the PDF: importing WeasyPrint and
 matplotlib, drawing the plots, laying out the pages. :class:`PdfWorker` forks a child at the
-start of a run that will write a PDF; while the parent reads the project and plans it, the
-child imports the renderer and warms it up (templates compiled, bundled fonts loaded). The
-parent draws the plots (the child is still warming up), hands it the result's view
-(:func:`scanplan.reports.view.build_view`, pickled, the plots in it) and builds the
-workbook itself while the child renders the PDF; the child returns the PDF's
-bytes, and the parent writes both files in one transaction as before (nothing is written by
-the child). The bytes are the same as those of an in-process render (the view carries the
-creation time; ``SOURCE_DATE_EPOCH`` holds for both processes).
+start of a run that will write a PDF; while the parent reads the project, plans it and
+draws the plots, the child imports the renderer and warms it up (templates compiled,
+bundled fonts loaded). The parent hands it the result's view
+(:func:`scanplan.reports.view.build_view`, pickled, the plots in it) and builds the workbook
+itself while the child renders the PDF; the child returns the PDF's bytes, and the parent
+writes both files in one transaction as before (nothing is written by the child). The bytes
+are the same as those of an in-process render (the view carries the creation time;
+``SOURCE_DATE_EPOCH`` holds for both processes).
 
 Robustness: POSIX only (``os.fork``); elsewhere, under ``SCANPLAN_DEBUG=1`` (tracebacks of
 the renderer stay in the process that shows them) and when ``SCANPLAN_NO_FORK=1`` is set,
@@ -29,6 +29,7 @@ import os
 import pickle
 import signal
 import sys
+import threading
 from typing import Any
 
 __all__ = ["PdfWorker"]
@@ -42,8 +43,9 @@ def _warm() -> None:
         warnings.simplefilter("ignore")
         from . import pdf  # WeasyPrint (the fast import), the templates' helpers
 
-        # matplotlib is not imported here: the parent draws the plots; only a map or a
-        # terrain figure, drawn in the child, imports it (when there is one)
+        # matplotlib is not imported here: the parent draws the plots (it has the time while
+        # the child imports WeasyPrint); only a map or terrain figure, drawn in the child,
+        # imports it, when the report has one
         pdf.warm_up()
 
 
@@ -97,6 +99,7 @@ class PdfWorker:
         self._requests: int | None = requests  # parent → child (the view)
         self._replies: int | None = replies  # child → parent (the PDF)
         self.error = ""  # why the worker gave no PDF (for tests and SCANPLAN_DEBUG)
+        self._sender: threading.Thread | None = None  # writes the view (submit)
 
     @classmethod
     def start(cls) -> PdfWorker | None:
@@ -148,23 +151,31 @@ class PdfWorker:
         """
         if self._requests is None:
             return False
-        # the plots are drawn here, while the child still warms up, and travel with the
-        # view (drawn once: ReportView.plot keeps them)
+        # the plots are drawn here, while the child still imports WeasyPrint, and travel
+        # with the view (drawn once: ReportView.plot keeps them)
         for name, job in (("constraints", "scan"), ("mtf", "uav"), ("height", "uav")):
             if getattr(view, job, None) is not None:
                 view.plot(name)
         try:
             data = pickle.dumps(view, protocol=pickle.HIGHEST_PROTOCOL)
-            _write_all(self._requests, data)
-        except Exception as exc:  # unpicklable, or the child is gone (broken pipe)
+        except Exception as exc:  # unpicklable
             self.error = f"{type(exc).__name__}: {exc}"
             self.stop()
             return False
-        finally:
-            if self._requests is not None:
-                os.close(self._requests)
-                self._requests = None
+        # written by a thread: the child reads only when its warm-up is done, and the
+        # parent has the workbook to build meanwhile (a pipe holds 64 kB)
+        fd, self._requests = self._requests, None
+        self._sender = threading.Thread(target=self._send, args=(fd, data), daemon=True)
+        self._sender.start()
         return True
+
+    def _send(self, fd: int, data: bytes) -> None:
+        try:
+            _write_all(fd, data)
+        except OSError as exc:  # the child is gone (broken pipe): result() gives None
+            self.error = f"{type(exc).__name__}: {exc}"
+        finally:
+            os.close(fd)
 
     def result(self) -> bytes | None:
         """The PDF's bytes; None when the child failed (the caller renders in-process).
@@ -176,11 +187,13 @@ class PdfWorker:
         if self._replies is None:
             return None
         try:
-            data = _read_all(self._replies)
+            data = _read_all(self._replies)  # EOF also when the child dies
         finally:
             os.close(self._replies)
             self._replies = None
             self._reap()
+        if self._sender is not None:
+            self._sender.join()
         try:
             status, payload = pickle.loads(data)
         except Exception:  # a child killed before it replied
@@ -204,6 +217,8 @@ class PdfWorker:
             except ProcessLookupError:
                 pass
             self._reap()
+        if self._sender is not None:  # its write ends with the child (broken pipe)
+            self._sender.join()
 
     def _reap(self) -> None:
         if self.pid:
