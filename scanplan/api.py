@@ -219,7 +219,14 @@ to_frame`): the headline figures of each specification and its warning codes."""
 def summary_frame(rows: list[dict[str, Any]], columns: Iterable[str] = SUMMARY_COLUMNS
                   ) -> pd.DataFrame:
     """The summary rows as a DataFrame; whole-number columns (scales, frames, photos) as
-    integers, blank where a project has none."""
+    integers, blank where a project has none.
+
+    Examples
+    --------
+    >>> frame = summary_frame([{"project": "A", "map_scale": 2000.0, "uav_photos": None}])
+    >>> str(frame["map_scale"].dtype), frame.shape
+    ('Int64', (1, 15))
+    """
     import pandas as pd
 
     frame = pd.DataFrame(rows, columns=list(columns))
@@ -231,7 +238,17 @@ def summary_frame(rows: list[dict[str, Any]], columns: Iterable[str] = SUMMARY_C
 
 
 def summary_row(result: PlanResult) -> dict[str, Any]:
-    """The batch summary row of one specification (:data:`SUMMARY_COLUMNS`)."""
+    """The batch summary row of one specification (:data:`SUMMARY_COLUMNS`).
+
+    Examples
+    --------
+    >>> import scanplan
+    >>> r = scanplan.plan({"map": {"scale": 2000, "relief_interval_m": 1.0},
+    ...                    "uav": {"camera": "dji-zenmuse-p1-35"}})
+    >>> row = summary_row(r.spec)
+    >>> row["map_scale"], row["uav_binding"], row["film_photo_scale"]
+    (2000, 'HC', None)
+    """
     f, u = result.film, result.uav
     rec = f.recommended if f else None
     p = u.job.plan if u else None
@@ -454,7 +471,18 @@ def uav(**inputs: Any) -> UavResult:
 
 
 def project_files(paths: Iterable[str | os.PathLike[str]]) -> list[str]:
-    """Project files of ``paths``: files as given, folders' ``*.toml`` sorted by name."""
+    """Project files of ``paths``: files as given, folders' ``*.toml`` sorted by name.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> folder = pathlib.Path(tempfile.mkdtemp())
+    >>> for name in ("b.toml", "a.toml", "notes.txt"):
+    ...     _ = (folder / name).write_text("")
+    >>> [pathlib.Path(f).name for f in project_files([folder, "x.toml"])]
+    ['a.toml', 'b.toml', 'x.toml']
+    >>> import shutil; shutil.rmtree(folder)
+    """
     files: list[str] = []
     for item in paths:
         item = os.fspath(item)

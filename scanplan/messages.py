@@ -302,6 +302,10 @@ MESSAGES: dict[str, dict[str, str]] = {
         "ru": "пиксель сканирования меньше {finest:g}~мкм недостижим ни для сканера, ни для "
               "самой плёнки",
     },
+    "no_feasible_photo_scale.relief": {
+        "en": "over the relief the frames of {scales:scale} reach {locals:scale}",
+        "ru": "с учётом рельефа снимки масштаба {scales:scale} доходят до {locals:scale}",
+    },
     "layout.too_many_strips": {
         "en": "the area needs {n:,d} strips at a line spacing of {spacing:g} m; at most "
               "{most:,d} are planned",
@@ -490,55 +494,11 @@ MESSAGES: dict[str, dict[str, str]] = {
         "ru": "с допуском высоты +{tolerance:g}~% ",
     },
 }
-
-
-# --- archive photos: the photo scale is given, not chosen (issue 13) -------------------
-MESSAGES.update({
-    "spec.film_archive": {
-        "en": "the photos exist at {scale:scale} (archive photos; the scale is given, not "
-              "chosen): scan them at {pixel:.1f} µm. {explanation}",
-        "ru": "Снимки уже получены в масштабе {scale:scale} (архивные снимки; масштаб задан, "
-              "а не выбирается): сканировать их с пикселем {pixel:.1f}~мкм. {explanation}",
-    },
-    "spec.film_archive_uninterpretable": {
-        "en": "the photos exist at {scale:scale} (archive photos; the scale is given, not "
-              "chosen): scan them at {pixel:.1f} µm, where {cid} ({name}) binds. The "
-              "interpretation pixel P_D ({pd:.1f} µm) is finer than P_R and is not used: a "
-              "finer scan adds no detail the photos do not carry. The map's objects "
-              "({objects}) cannot be interpreted on these photos (see the warnings).",
-        "ru": "Снимки уже получены в масштабе {scale:scale} (архивные снимки; масштаб задан, "
-              "а не выбирается): сканировать их с пикселем {pixel:.1f}~мкм, который определяет "
-              "условие {cid} ({name}). Пиксель дешифрирования P_D ({pd:.1f}~мкм) мельче P_R и "
-              "не применяется: более мелкий пиксель не добавит деталей, которых нет на "
-              "снимках. Объекты «{objects}» по этим снимкам не дешифрируются (см. "
-              "предупреждения).",
-    },
-    "archive_not_interpretable": {
-        "en": "on the {scale:scale} photos {object} ({size:g} m, {shape}) cannot be "
-              "interpreted: that needs photos of {limit:scale} or larger (Mc/Mk ≤ "
-              "{ratio:.1f}), or a resolving power R ≥ {need:.1f} lines/mm (the photos have "
-              "{r:g}). What follows: interpret these objects in the field (a field "
-              "interpretation survey of the block), or take them from other sources — "
-              "existing plans of a larger scale, utility and cadastral records, newer "
-              "imagery of a larger scale.",
-        "ru": "На снимках масштаба {scale:scale} объекты «{object}» ({size:g}~м, {shape}) не "
-              "дешифрируются: для этого нужны снимки масштаба {limit:scale} или крупнее "
-              "(Mc/Mk ≤ {ratio:.1f}) либо разрешающая способность R ≥ {need:.1f}~мм⁻¹ (у "
-              "снимков — {r:g}~мм⁻¹). Что из этого следует: эти объекты дешифрировать в поле "
-              "(полевое дешифрирование участка) или взять из других источников — "
-              "существующих планов более крупного масштаба, материалов инвентаризации "
-              "коммуникаций и кадастра, более новых снимков более крупного масштаба.",
-    },
-    "archive_scanner_too_coarse": {
-        "en": "the scan pixel of the {scale:scale} photos ({pixel:.1f} µm) is finer than the "
-              "finest step of scanner '{scanner}' ({step:g} µm): scan them on a scanner with "
-              "a step of {pixel:.1f} µm or finer",
-        "ru": "Пиксель сканирования снимков масштаба {scale:scale} ({pixel:.1f}~мкм) меньше "
-              "наименьшего шага сканера «{scanner}» ({step:g}~мкм): сканировать их на сканере "
-              "с шагом {pixel:.1f}~мкм или мельче.",
-    },
-})
 """Message code → template per locale (same codes and the same fields in every locale)."""
+
+from .messages_archive import ARCHIVE as _ARCHIVE  # noqa: E402  (archive photos, issue 13)
+
+MESSAGES.update(_ARCHIVE)
 
 
 def placeholders(template: str) -> set[str]:
@@ -758,13 +718,58 @@ MESSAGES.update({
               "снимков пересчитаны в её систему координат; сама ЦМР не перепроецировалась.",
     },
     "terrain_film_scale": {
-        "en": "the relief changes the photo scale from {lo:scale} to {hi:scale}; frame {frame:d} "
-              "(strip {strip:d}, over the lowest ground) binds: it needs a scan pixel of "
-              "{pixel:.1f} µm ({cid}) instead of {planned:.1f} µm at the planned scale",
+        "en": "the relief changes the photo scale from {lo:scale} to {hi:scale}; the frame over "
+              "the lowest ground {where} binds: the scan pixel is specified for it, {pixel:.1f} "
+              "µm ({cid}), instead of {planned:.1f} µm on flat ground",
         "ru": "Рельеф изменяет масштаб снимков от {lo:scale} до {hi:scale}; определяет снимок "
-              "{frame:d} (маршрут {strip:d}, над наинизшей точкой): ему нужен пиксель "
-              "сканирования {pixel:.1f}~мкм (условие {cid}) вместо {planned:.1f}~мкм при "
-              "плановом масштабе.",
+              "над наинизшей точкой {where}: пиксель сканирования назначен по нему, "
+              "{pixel:.1f}~мкм (условие {cid}), вместо {planned:.1f}~мкм для плоской "
+              "местности.",
+    },
+    "terrain_film_where.dem": {
+        "en": "(frame {frame:d}, strip {strip:d})",
+        "ru": "(снимок {frame:d}, маршрут {strip:d})",
+    },
+    "terrain_film_where.range": {
+        "en": "(the ground is given as a range: any frame may lie over {low:g} m)",
+        "ru": "(отметки заданы диапазоном: любой снимок может оказаться над {low:g}~м)",
+    },
+    "spec.film_terrain": {
+        "en": "{scale:scale} is the smallest candidate photo scale (fewest frames) whose every "
+              "frame meets every constraint over the relief: flown at {scale:scale} over the "
+              "highest ground, the frame over the lowest ground {where} is at {local:scale}, "
+              "and the scan pixel is specified there. {explanation}{rejected}",
+        "ru": "{scale:scale} — самый мелкий из рассмотренных масштабов снимков (наименьшее "
+              "число снимков), при котором все условия выполняются на каждом снимке с учётом "
+              "рельефа: при масштабе {scale:scale} над наивысшей точкой снимок над наинизшей "
+              "точкой {where} получается в масштабе {local:scale}, и пиксель сканирования "
+              "назначен по нему. {explanation}{rejected}",
+    },
+    "spec.film_archive_terrain": {
+        "en": "the photos exist at {scale:scale} (archive photos; the scale is given, not "
+              "chosen); over the relief their frames reach {local:scale} at the frame over "
+              "the lowest ground {where}: scan them at {pixel:.1f} µm, which holds there. "
+              "{explanation}",
+        "ru": "Снимки уже получены в масштабе {scale:scale} (архивные снимки; масштаб задан, "
+              "а не выбирается); с учётом рельефа их масштаб доходит до {local:scale} у снимка "
+              "над наинизшей точкой {where}: сканировать их с пикселем {pixel:.1f}~мкм, "
+              "который годится и для него. {explanation}",
+    },
+    "spec.film_terrain.rejected": {
+        "en": " {scales:scale} was not taken: over the relief its frames reach {locals:scale}, "
+              "where not every constraint can be met",
+        "ru": " Масштаб {scales:scale} не принят: с учётом рельефа его снимки доходят до "
+              "{locals:scale}, где не все условия выполнимы.",
+    },
+    "terrain_film_scale_changed": {
+        "en": "over the relief {flat:scale} fails: flown over the highest ground, its frame "
+              "over the lowest ground {where} would be at {local:scale}, where not every "
+              "constraint can be met; the plan takes {scale:scale}, whose frames span "
+              "{scale:scale} … {hi:scale}",
+        "ru": "С учётом рельефа масштаб {flat:scale} не подходит: при полёте над наивысшей "
+              "точкой его снимок над наинизшей точкой {where} был бы в масштабе {local:scale}, "
+              "где не все условия выполнимы; принят масштаб {scale:scale}, снимки которого — от "
+              "{scale:scale} до {hi:scale}.",
     },
 })
 

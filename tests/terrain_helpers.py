@@ -99,6 +99,7 @@ def terrain_cases(tmp: Path) -> dict[str, list]:
     from pyproj import Transformer
 
     from scanplan.geo import terrain as T
+    from scanplan.geo import terrain_film as TF
     from scanplan.norms import load_norm_set
     from scanplan.rules.uav import plan_uav
 
@@ -150,7 +151,7 @@ def terrain_cases(tmp: Path) -> dict[str, list]:
     film = layout(1530.0, strips=3, per_strip=5, forward_pct=60, side_pct=30)
     fdem = dem_around(tmp / "film-cases.tif", lambda x, y: 100 + 0.1 * (x - X0), film,
                       cell=20.0)
-    ft = T.film_terrain(film, T.ground_under(film, T.TerrainConfig(dem=fdem)), rules,
+    ft = TF.film_terrain(film, T.ground_under(film, T.TerrainConfig(dem=fdem)), rules,
                         map_scale=2000, photo_scale=10000, relief_interval_m=1.0,
                         focal_mm=153, frame_along_mm=230, forward_overlap_pct=60,
                         resolving_power_lpmm=40, object_size_m=0.2, shape_coefficient=0.97)

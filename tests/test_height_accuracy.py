@@ -19,7 +19,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from scanplan.cli.main import main
-from scanplan.core import formulas as F
+from scanplan.core import stereo as S
 from scanplan.errors import InputError
 from scanplan.norms import load_norm_set
 from scanplan.project.api import uav_job
@@ -37,15 +37,15 @@ SEED002 = dict(camera="canon-eos-5d-mark-ii-50", f_number=8.0, height_m=300.0,
 def test_widest_standard_stereo_base():
     """80 % and 90 % blocks keep a 60 % pair two and four photo steps apart: B = 0.4·footprint,
     as a 60 % block; 70 % and 85 % lose a little (0.3); below 60 % the single step."""
-    got = F.stereo_base_fraction([60, 70, 80, 85, 90, 55], 60)
+    got = S.stereo_base_fraction([60, 70, 80, 85, 90, 55], 60)
     assert got == pytest.approx([0.4, 0.3, 0.4, 0.3, 0.4, 0.45])
 
 
 def test_strip_multi_ray_factor_closed_form():
     """f = n·sqrt(6/(m(m² − 1))): m rays of the strip against the widest pair (n steps)."""
-    assert F.strip_multi_ray_factor(60, 60) == pytest.approx(1.0)           # m = 2, n = 1
-    assert F.strip_multi_ray_factor(80, 60) == pytest.approx(2 * math.sqrt(6 / 120))  # 0.447
-    assert F.strip_multi_ray_factor(90, 60) == pytest.approx(4 * math.sqrt(6 / 990))
+    assert S.strip_multi_ray_factor(60, 60) == pytest.approx(1.0)           # m = 2, n = 1
+    assert S.strip_multi_ray_factor(80, 60) == pytest.approx(2 * math.sqrt(6 / 120))  # 0.447
+    assert S.strip_multi_ray_factor(90, 60) == pytest.approx(4 * math.sqrt(6 / 990))
 
 
 def test_strip_multi_ray_factor_is_the_least_squares_intersection():
@@ -62,19 +62,19 @@ def test_strip_multi_ray_factor_is_the_least_squares_intersection():
     m, n = 5, 2                         # 80 %: 5 photos see the point, the 60 % pair is 2 apart
     rays = sigma_z(np.arange(m) * s)
     pair = sigma_z(np.array([0.0, n * s]))
-    assert rays / pair == pytest.approx(float(F.strip_multi_ray_factor(80, 60)), rel=1e-12)
+    assert rays / pair == pytest.approx(float(S.strip_multi_ray_factor(80, 60)), rel=1e-12)
 
 
 def test_normal_case_by_hand():
     """Kraus' normal case: σ_Z = (H/B)·(H/c)·σ_px. Seed 002's camera at 300 m, 80 %:
     B = 0.4·(24·300/50) = 57.6 m, H/c = 6000, σ_px = 0.5·6.41 µm → 0.1002 m."""
-    sz = F.normal_case_height_error_m(300.0, 57.6, 50.0, 6.41, 0.5)
+    sz = S.normal_case_height_error_m(300.0, 57.6, 50.0, 6.41, 0.5)
     assert sz == pytest.approx((300 / 57.6) * (300 / 0.050) * 0.5 * 6.41e-6)
     # the GSD limit inverts it: at the limit σ_Z equals V_z exactly
     bh = 57.6 / 300
-    g = F.stereo_height_ground_limit_m(0.1, bh, 0.5)
+    g = S.stereo_height_ground_limit_m(0.1, bh, 0.5)
     h = g * 50 / 6.41e-3
-    assert F.normal_case_height_error_m(h, bh * h, 50.0, 6.41, 0.5) == pytest.approx(0.1)
+    assert S.normal_case_height_error_m(h, bh * h, 50.0, 6.41, 0.5) == pytest.approx(0.1)
 
 
 _pos = st.floats(0.1, 1e4, allow_nan=False, allow_infinity=False)
@@ -85,11 +85,11 @@ _pos = st.floats(0.1, 1e4, allow_nan=False, allow_infinity=False)
        k=st.floats(1.01, 3))
 def test_sigma_z_monotone(h, b, f, p, s, k):
     """σ_Z falls with the base and grows with the height and the pixel."""
-    base = F.normal_case_height_error_m(h, b, f, p, s)
-    assert F.normal_case_height_error_m(h, b * k, f, p, s) < base
-    assert F.normal_case_height_error_m(h * k, b, f, p, s) > base
-    assert F.normal_case_height_error_m(h, b, f, p * k, s) > base
-    assert F.normal_case_height_error_m(h, b, f, p, s * k) > base
+    base = S.normal_case_height_error_m(h, b, f, p, s)
+    assert S.normal_case_height_error_m(h, b * k, f, p, s) < base
+    assert S.normal_case_height_error_m(h * k, b, f, p, s) > base
+    assert S.normal_case_height_error_m(h, b, f, p * k, s) > base
+    assert S.normal_case_height_error_m(h, b, f, p, s * k) > base
 
 
 @settings(max_examples=100, deadline=None)
@@ -98,7 +98,7 @@ def test_more_overlap_never_shrinks_the_stereo_base_below_one_step(p, q):
     """The widest standard base is at least the single step and at most 1 − p_min (once
     the overlap reaches the standard), whatever the overlap."""
     lo = min(p, q)
-    frac = float(F.stereo_base_fraction(lo, 60))
+    frac = float(S.stereo_base_fraction(lo, 60))
     assert frac >= (1 - lo / 100) - 1e-12
     if lo >= 60:
         assert frac <= 0.4 + 1e-12
@@ -118,12 +118,12 @@ def test_aguera_vega_2017_vertical_rmse():
     p_um, h, ly = 17.3 / 4032 * 1000, 120.0, 13.0
     sigma = load_norm_set("gkinp-02-036-02").parameters["image_measurement_px"]
     for c in (14.0, 17.0):                       # focal length does not matter
-        bh = float(F.stereo_base_fraction(80, 60)) * ly / c
-        sz = float(F.normal_case_height_error_m(h, bh * h, c, p_um, sigma))
+        bh = float(S.stereo_base_fraction(80, 60)) * ly / c
+        sz = float(S.normal_case_height_error_m(h, bh * h, c, p_um, sigma))
         assert sz == pytest.approx(0.0496, abs=5e-4)
         assert 0.75 < sz / 0.047 < 1.33
         assert 0.75 < sz / 0.058 < 1.33
-        single = float(F.normal_case_height_error_m(h, 0.2 * ly / c * h, c, p_um, sigma))
+        single = float(S.normal_case_height_error_m(h, 0.2 * ly / c * h, c, p_um, sigma))
         assert single / 0.047 > 2.0
 
 
@@ -160,7 +160,7 @@ def test_uav_height_constraint_is_normal_case():
             < forms["instruction"]["max_planned_height_m"])
     # at the highest flown height of the maximum plan σ_Z is exactly V_z
     up = plan.max_flown_height_m
-    assert F.normal_case_height_error_m(up, 0.192 * up, 50, plan.inputs.pixel_um, 0.5
+    assert S.normal_case_height_error_m(up, 0.192 * up, 50, plan.inputs.pixel_um, 0.5
                                         ) == pytest.approx(0.1)
 
 
@@ -171,7 +171,7 @@ def test_multi_ray_norm_parameter_raises_the_limit():
     job = uav_job(**SEED002, map_scale=2000, relief_interval_m=0.5)
     off = _height_accuracy(job.plan.inputs, ns.rules())
     strip = _height_accuracy(job.plan.inputs, dataclasses.replace(ns.rules(), multi_ray="strip"))
-    assert strip[0] == pytest.approx(off[0] / float(F.strip_multi_ray_factor(80, 60)))
+    assert strip[0] == pytest.approx(off[0] / float(S.strip_multi_ray_factor(80, 60)))
     assert strip[2]["multi_ray_factor"] == pytest.approx(0.4472, abs=1e-4)
 
 

@@ -132,15 +132,25 @@ def test_messages_survive_copy_pickle_and_json():
 
 
 def test_messages_module_is_pure():
-    """Plain data and str.format: the core's import rules (test_norm_sets) hold for it too."""
-    tree = ast.parse((ROOT / "scanplan" / "messages.py").read_text(encoding="utf-8"))
-    imported = set()
-    for node in ast.walk(tree):
-        if isinstance(node, ast.Import):
-            imported |= {a.name.split(".")[0] for a in node.names}
-        elif isinstance(node, ast.ImportFrom) and node.module:
-            imported.add(node.module.split(".")[0])
-    assert imported <= {"__future__", "numbers", "re", "string", "collections", "typing"}
+    """Plain data and str.format: the core's import rules (test_norm_sets) hold for it too.
+
+    The catalogue is ``messages.py`` and its parts ``messages_*.py`` (merged into
+    ``MESSAGES``); each imports nothing but these standard modules and the other parts."""
+    parts = sorted((ROOT / "scanplan").glob("messages*.py"))
+    assert parts[0].name == "messages.py"
+    own = {p.stem for p in parts}
+    for path in parts:
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        imported = set()
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Import):
+                imported |= {a.name.split(".")[0] for a in node.names}
+            elif isinstance(node, ast.ImportFrom) and node.module:
+                if node.level:  # relative: only another part of the catalogue
+                    assert node.level == 1 and node.module in own, (path.name, node.module)
+                    continue
+                imported.add(node.module.split(".")[0])
+        assert imported <= {"__future__", "numbers", "re", "string", "collections", "typing"}
 
 
 # --- every code the engine can emit -------------------------------------------------------------
@@ -232,6 +242,9 @@ def emitted(tmp_path_factory) -> dict[str, list[Any]]:
         "plan pixel too fine": film_toml.replace(  # issue 17: a scan pixel under 0.1 µm
             "photo_scales = [6000, 8000, 10000]", "photo_scales = [100000]").replace(
             "relief_interval_m = 1.0", "relief_interval_m = 0.01"),
+        # film over the relief (issue 12): 1:8000 ruled out, 1:6000 taken; nothing holds
+        "plan film over relief": film_toml + "\n[terrain]\nground_elevation_m = [110, 230]\n",
+        "plan film relief too deep": film_toml + "\n[terrain]\nground_elevation_m = [0, 400]\n",
         "plan uav": uav_toml,
         "plan uav lowered": uav_toml.replace("height_m = 300", "height_m = 500"),
         "plan uav within": uav_toml.replace("height_m = 300", "height_m = 200"),
@@ -249,6 +262,7 @@ def emitted(tmp_path_factory) -> dict[str, list[Any]]:
             "width_m = 2000", "width_m = 1000000"),
         # archive photos: the scale is given (issue 13)
         "plan archive": archive_toml,
+        "plan archive over relief": archive_toml + "\n[terrain]\nground_elevation_m = [120, 260]\n",
         "plan archive readable": archive_toml.replace('photo_scale = "1:12000"',
                                                       "photo_scale = 8000"),
         "plan archive fine scanner": (EXAMPLES / "map-10000-relief-1m.toml").read_text(

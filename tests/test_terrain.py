@@ -40,6 +40,7 @@ from terrain_helpers import (
 from scanplan.errors import InputError
 from scanplan.geo import dem as D
 from scanplan.geo import terrain as T
+from scanplan.geo import terrain_film as TF
 from scanplan.rules.uav import ground_resolution_m, plan_uav
 
 H = 100.0
@@ -418,7 +419,7 @@ def test_film_local_scale_and_the_binding_frame(tmp_path):
     p = dem_around(tmp_path / "tilt.tif", lambda x, y: 100 + 0.1 * (x - X0), lay,
                    cell=20.0, dtype="float64")
     g = T.ground_under(lay, T.TerrainConfig(dem=p))
-    ft = T.film_terrain(lay, g, rules, map_scale=2000, photo_scale=mc, relief_interval_m=1.0,
+    ft = TF.film_terrain(lay, g, rules, map_scale=2000, photo_scale=mc, relief_interval_m=1.0,
                         focal_mm=f_mm, frame_along_mm=230, forward_overlap_pct=60,
                         resolving_power_lpmm=40, object_size_m=0.2, shape_coefficient=0.97)
     gx = 100 + 0.1 * (lay.photos["x_m"] - X0)
@@ -433,7 +434,7 @@ def test_film_local_scale_and_the_binding_frame(tmp_path):
     assert ft.scan_pixel_um == pytest.approx(float(ev.scan_pixel_um))
     assert ft.scan_pixel_um < ft.scan_pixel_planned_um
     w = next(w for w in ft.warnings if w.code == "terrain_film_scale")
-    assert f"frame {ft.binding_frame}" in w.message
+    assert f"frame {ft.binding_frame}" in w.message and w.severity == "info"
 
 
 def test_config_checks_name_the_key():

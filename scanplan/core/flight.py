@@ -135,6 +135,11 @@ def ground_sample_distance_m(
     -----
     Seed 000 (text before eq. 1, "GSD"); spec formulas.md §3. p·H/f with p in mm
     gives metres when H is in metres: GSD = pixel_um·1e-3·H/f.
+
+    Examples
+    --------
+    >>> round(float(ground_sample_distance_m(4.4, 100.0, 35.0)), 5)
+    0.01257
     """
     p = _positive("pixel_um", pixel_um)
     h = _positive("height_m", height_m)
@@ -164,6 +169,11 @@ def footprint_m(
     Notes
     -----
     Spec formulas.md §3 "Flight geometry" (the photo scale 1:Mc with Mc = H/f).
+
+    Examples
+    --------
+    >>> round(float(footprint_m(35.9, 100.0, 35.0)), 2)
+    102.57
     """
     s = _positive("sensor_side_mm", sensor_side_mm)
     h = _positive("height_m", height_m)
@@ -191,6 +201,11 @@ def photo_base_m(
     Notes
     -----
     Spec formulas.md §3; the image-side form b = l_y·(1 − p) is seed 001 §1.
+
+    Examples
+    --------
+    >>> round(float(photo_base_m(68.57, 80.0)), 3)
+    13.714
     """
     fp = _positive("footprint_along_m", footprint_along_m)
     p = _overlap("forward_overlap_pct", forward_overlap_pct)
@@ -217,6 +232,11 @@ def line_spacing_m(
     Notes
     -----
     Spec formulas.md §3 "Flight geometry".
+
+    Examples
+    --------
+    >>> round(float(line_spacing_m(102.57, 70.0)), 3)
+    30.771
     """
     fp = _positive("footprint_across_m", footprint_across_m)
     p = _overlap("side_overlap_pct", side_overlap_pct)
@@ -245,6 +265,11 @@ def photo_interval_s(base_m: npt.ArrayLike, speed_ms: npt.ArrayLike) -> NDArrayF
     -----
     Spec formulas.md §3. Compare with the camera's minimum trigger interval using
     :func:`trigger_interval_ok`.
+
+    Examples
+    --------
+    >>> round(float(photo_interval_s(13.7, 10.0)), 2)
+    1.37
     """
     b = _positive("base_m", base_m)
     w = _positive("speed_ms", speed_ms)
@@ -273,6 +298,11 @@ def trigger_interval_ok(
     Notes
     -----
     Spec formulas.md §3 "check against the camera's minimum trigger interval".
+
+    Examples
+    --------
+    >>> trigger_interval_ok([1.37, 0.5], 0.7).tolist()
+    [True, False]
     """
     t = _positive("interval_s", interval_s)
     tmin = _positive("min_trigger_interval_s", min_trigger_interval_s)
@@ -299,6 +329,11 @@ def max_speed_for_trigger_ms(
     Notes
     -----
     Inverse of :func:`photo_interval_s` at the trigger limit (spec formulas.md §3).
+
+    Examples
+    --------
+    >>> round(float(max_speed_for_trigger_ms(13.7, 0.7)), 2)
+    19.57
     """
     b = _positive("base_m", base_m)
     tmin = _positive("min_trigger_interval_s", min_trigger_interval_s)
@@ -335,6 +370,11 @@ def strip_count(
     and each footprint reaches ½·footprint ≥ ½·spacing, so the block is covered and
     the outer strips overhang the edges by ½·footprint·p_side. Add ``extra_strips``
     when a margin beyond the block is required.
+
+    Examples
+    --------
+    >>> int(strip_count(1000.0, 30.0)), int(strip_count(1000.0, 30.0, 1))
+    (34, 35)
     """
     w = _positive("area_width_m", area_width_m)
     s = _positive("line_spacing_m", line_spacing_m)
@@ -373,6 +413,11 @@ def photos_per_strip(
     being the polygon's span (plus its turnaround only when images are taken there) —
     that is, no exposures past the ends. For a block length L, scanplan counts
     ceil(L/B) + 3 per strip against QGroundControl's ceil(L/B) (docs/uav-models.md).
+
+    Examples
+    --------
+    >>> int(photos_per_strip(1000.0, 13.7)), int(photos_per_strip(1000.0, 13.7, 0))
+    (76, 74)
     """
     length = _positive("area_length_m", area_length_m)
     b = _positive("base_m", base_m)
@@ -411,6 +456,11 @@ def flight_length_m(
     -----
     Spec formulas.md §3. Seed 002 notes that light fixed-wing UAVs fly large loops
     ("заход с отворотом") between strips; give ``turn_m`` for such a turn pattern.
+
+    Examples
+    --------
+    >>> round(float(flight_length_m(34, 1000.0, 30.0)), 1)
+    35555.1
     """
     n = _positive("n_strips", n_strips)
     length = _positive("strip_length_m", strip_length_m)
@@ -437,6 +487,11 @@ def flight_time_s(length_m: npt.ArrayLike, speed_ms: npt.ArrayLike) -> NDArrayFl
     Notes
     -----
     Spec formulas.md §3 "Flight geometry" (what every UAV planner shows).
+
+    Examples
+    --------
+    >>> float(flight_time_s(36000.0, 12.0))
+    3000.0
     """
     length = _nonnegative("length_m", length_m)
     w = _positive("speed_ms", speed_ms)
@@ -471,6 +526,11 @@ def data_volume_bytes(
     Notes
     -----
     Spec formulas.md §3 "data volume"; compression (JPEG, lossless raw) is not modelled.
+
+    Examples
+    --------
+    >>> int(data_volume_bytes(100, 8192, 5460))
+    13418496000
     """
     n = _nonnegative("n_photos", n_photos)
     w = _positive("image_width_px", image_width_px)
@@ -506,6 +566,11 @@ def motion_blur_px(
     -----
     Same quantity as seed 000, eq. 6 (δ_w = w·t·f/H on the image) divided by the
     pixel pitch.
+
+    Examples
+    --------
+    >>> round(float(motion_blur_px(12.0, 1e-3, 0.0126)), 3)
+    0.952
     """
     w = _nonnegative("speed_ms", speed_ms)
     t = _positive("exposure_s", exposure_s)
@@ -531,6 +596,11 @@ def max_exposure_for_blur_s(
     -------
     numpy.ndarray
         Exposure [s].
+
+    Examples
+    --------
+    >>> round(float(max_exposure_for_blur_s(12.0, 0.0126)), 6)
+    0.000525
     """
     w = _positive("speed_ms", speed_ms)
     g = _positive("gsd_m", gsd_m)
@@ -556,6 +626,11 @@ def max_speed_for_blur_ms(
     -------
     numpy.ndarray
         Speed [m/s].
+
+    Examples
+    --------
+    >>> round(float(max_speed_for_blur_ms(1e-3, 0.0126)), 2)
+    6.3
     """
     t = _positive("exposure_s", exposure_s)
     g = _positive("gsd_m", gsd_m)
@@ -611,6 +686,12 @@ def height_band(
     -----
     Seed 002 (Zverev & Fisenko 2014): a light UAV planned at 300 m flew 300–420 m.
     Constraints on resolution are checked at H_max, overlaps at H_min (spec §3).
+
+    Examples
+    --------
+    >>> b = height_band(100.0, 0.1)
+    >>> round(float(b.max_m), 6), round(float(b.min_m), 6)
+    (110.0, 90.0)
     """
     h = _positive("height_m", height_m)
     up = _nonnegative("tolerance_up", tolerance_up)
@@ -648,6 +729,11 @@ def actual_overlap_pct(
     -----
     Derived from :func:`photo_base_m` with the footprint ∝ H (spec §3, seed 002).
     Seed 002 case: 80 % at 300 m flown at 420 m gives 1 − 0.2·300/420 = 85.7 %.
+
+    Examples
+    --------
+    >>> round(float(actual_overlap_pct(80.0, 300.0, 420.0)), 1)
+    85.7
     """
     p0 = _overlap("planned_overlap_pct", planned_overlap_pct)
     h0 = _positive("planned_height_m", planned_height_m)
@@ -682,5 +768,10 @@ def jpeg_volume_bytes(uncompressed_bytes: npt.ArrayLike,
     -------
     numpy.ndarray
         Bytes.
+
+    Examples
+    --------
+    >>> float(jpeg_volume_bytes(9e9))
+    1000000000.0
     """
     return np.asarray(uncompressed_bytes, dtype=np.float64) / ratio

@@ -8,7 +8,8 @@ Sources
   high-grade interpretation of images", Vestnik of Polotsk State University, ser. F, 2015
   — eqs. 1–16: the corrected P_R coefficient and the recognition model.
 - K. Kraus, *Photogrammetry: Geometry from Images and Laser Scans*, 2nd ed., Berlin: de
-  Gruyter, 2007 — accuracy of the stereo normal case, σ_Z = (H/B)·(H/c)·σ_px (§5 below).
+  Gruyter, 2007 — accuracy of the stereo normal case, σ_Z = (H/B)·(H/c)·σ_px
+  (:mod:`scanplan.core.stereo`).
 - T. Luhmann, S. Robson, S. Kyle, J. Boehm, *Close-Range Photogrammetry and 3D Imaging*,
   2nd ed., Berlin: de Gruyter, 2014 — the same normal-case relation, σ_Z = q·m·σ_px' with
   q = h/b and m = h/c, and the precision of image matching.
@@ -38,7 +39,6 @@ __all__ = [
     "height_pixel_parallax_um",
     "height_pixel_um",
     "interpretation_pixel_um",
-    "normal_case_height_error_m",
     "photo_base_mm",
     "photoplan_pixel_um",
     "planimetric_pixel_um",
@@ -49,9 +49,6 @@ __all__ = [
     "resolution_on_ground_mm",
     "resolving_power_pixel_um",
     "scanned_frame_bytes",
-    "stereo_base_fraction",
-    "stereo_height_ground_limit_m",
-    "strip_multi_ray_factor",
     "transfer_size_mm",
 ]
 
@@ -89,6 +86,11 @@ def photo_base_mm(frame_along_mm: ArrayLike, forward_overlap_pct: ArrayLike) -> 
     Notes
     -----
     The Instruction's b in seed 001, eq. 2.
+
+    Examples
+    --------
+    >>> float(photo_base_mm(230.0, 60.0))
+    92.0
     """
     return _f(frame_along_mm) * (1.0 - _f(forward_overlap_pct) / 100.0)
 
@@ -121,6 +123,12 @@ def planimetric_pixel_um(
     Notes
     -----
     GKINP (GNTA)-02-036-02; seed 001, eq. 1.
+
+    Examples
+    --------
+    >>> float(planimetric_pixel_um(2000, 10000, planimetric_accuracy_mm=0.2,
+    ...                            processing_loss_k=2.0))
+    20.0
     """
     return (
         _f(planimetric_accuracy_mm) * _f(map_scale) / (_f(processing_loss_k) * _f(photo_scale))
@@ -165,6 +173,12 @@ def height_pixel_instruction_um(
     (:func:`height_pixel_parallax_um`); the printed form lets a *larger* overlap (smaller
     b) allow a *coarser* pixel, which is why scanplan warns when the overlap is not the
     Instruction's 60 %.
+
+    Examples
+    --------
+    >>> round(float(height_pixel_instruction_um(
+    ...     1.0, 10000, 152.0, 92.0, height_accuracy_fraction=0.2, processing_loss_k=2.0)), 2)
+    16.52
     """
     vz_mm = _f(height_accuracy_fraction) * _f(relief_interval_m) * _MM_PER_M
     return (
@@ -198,6 +212,12 @@ def height_pixel_parallax_um(
     From dZ = (H/b)·dp with H = f·Mc: a parallax error dp = k·P gives a height error
     V_z when P = V_z·b/(k·Mc·f). Miheeva & Medvedev (Vestnik PSU ser. F, 2010, no. 12,
     pp. 103–108) call the printed Instruction form (seed 001, eq. 2) an error.
+
+    Examples
+    --------
+    >>> round(float(height_pixel_parallax_um(
+    ...     1.0, 10000, 152.0, 92.0, height_accuracy_fraction=0.2, processing_loss_k=2.0)), 2)
+    6.05
     """
     vz_mm = _f(height_accuracy_fraction) * _f(relief_interval_m) * _MM_PER_M
     return (
@@ -240,6 +260,12 @@ def height_pixel_um(
     ------
     ValueError
         For an unknown method.
+
+    Examples
+    --------
+    >>> round(float(height_pixel_um(1.0, 10000, 152.0, 92.0, height_accuracy_fraction=0.2,
+    ...                                processing_loss_k=2.0, method="parallax")), 2)
+    6.05
     """
     fn = pick_method(HEIGHT_PIXEL_METHODS, method, "height formula")
     return fn(
@@ -272,6 +298,11 @@ def photoplan_pixel_um(
     Notes
     -----
     GKINP (GNTA)-02-036-02; seed 001, eq. 3.
+
+    Examples
+    --------
+    >>> round(float(photoplan_pixel_um(2000, 10000, photoplan_resolution_mm=0.07)), 2)
+    14.0
     """
     return _f(photoplan_resolution_mm) * _f(map_scale) / _f(photo_scale) * _UM_PER_MM
 
@@ -298,6 +329,11 @@ def resolving_power_pixel_um(
     -----
     Seed 001, eqs. 4–6: a pixel P keeps 1/(2P) lines/mm, so 12.5 µm keeps 40 lines/mm
     and 0.5 is the coefficient that preserves R.
+
+    Examples
+    --------
+    >>> round(float(resolving_power_pixel_um(40.0, pr_coefficient=0.5)), 2)
+    12.5
     """
     return _f(pr_coefficient) / _f(resolving_power_lpmm) * _UM_PER_MM
 
@@ -332,6 +368,11 @@ def scanned_frame_bytes(
     -----
     Seed 001's cost argument (conclusion 3): volume ∝ 1/pixel², so the 10–12.5 µm that P_R
     demands costs (P_other/P_R)² times the data of the pixel the map actually needs.
+
+    Examples
+    --------
+    >>> int(scanned_frame_bytes(230.0, 230.0, 14.0))
+    269912041
     """
     px = _f(pixel_um) / _UM_PER_MM
     n_w = np.ceil(_f(frame_width_mm) / px)
@@ -365,6 +406,11 @@ def probability_root(probability: ArrayLike, rounding: Rounding = "exact") -> Fl
     -----
     Seed 001, eqs. 9–10. The paper's rounding makes its L and P_D about 1.2 % smaller
     than exact; scanplan computes exactly by default (a documented deviation).
+
+    Examples
+    --------
+    >>> round(float(probability_root(0.75)), 4), round(float(probability_root(0.75, "paper")), 4)
+    (0.5364, 0.53)
     """
     neg_ln = -np.log(_f(probability))
     if rounding == "exact":
@@ -395,6 +441,11 @@ def resolution_on_ground_mm(
     -----
     Seed 001, eq. 8, Table 4 (125 mm at 1:10000 and R = 40). For a digital camera the
     same quantity is the MTF ground resolution L = H/(2Rf) with Mc = H/f.
+
+    Examples
+    --------
+    >>> float(resolution_on_ground_mm(10000, 40.0))
+    125.0
     """
     return _f(photo_scale) / (2.0 * _f(resolving_power_lpmm))
 
@@ -421,6 +472,11 @@ def recognition_probability(
     Notes
     -----
     Seed 001, eqs. 7 and 9.
+
+    Examples
+    --------
+    >>> round(float(recognition_probability(228.8, 125.0, 0.97)), 3)
+    0.755
     """
     ratio = _f(shape_coefficient) * _f(resolution_mm) / _f(object_size_mm)
     return np.exp(-(ratio * ratio))
@@ -454,6 +510,11 @@ def recognisable_size_mm(
     Notes
     -----
     Seed 001, eqs. 10–11, Table 5 (paper rounding: L = 1.8302·A for a circle at 0.75).
+
+    Examples
+    --------
+    >>> round(float(recognisable_size_mm(125.0, 0.97, 0.75, rounding="paper")), 1)
+    228.8
     """
     return (
         _f(shape_coefficient) * _f(resolution_mm) / probability_root(probability, rounding)
@@ -480,6 +541,11 @@ def transfer_size_mm(
     Notes
     -----
     Seed 001, eq. 12: 228.8 mm at 1:10000 → 114.4 mm at 1:5000.
+
+    Examples
+    --------
+    >>> float(transfer_size_mm(228.8, 10000, 5000))
+    114.4
     """
     return _f(size_mm) * _f(to_photo_scale) / _f(from_photo_scale)
 
@@ -515,6 +581,11 @@ def required_resolving_power_lpmm(
     Notes
     -----
     Seed 001, eqs. 13–15: R = Mc/(2A) with A = L·sqrt(−ln P)/B.
+
+    Examples
+    --------
+    >>> round(float(required_resolving_power_lpmm(200.0, 10000, 0.97, 0.75)), 2)
+    45.21
     """
     return (
         _f(shape_coefficient)
@@ -559,6 +630,11 @@ def interpretation_pixel_um(
     Seed 001, eq. 16: with k_R = 0.5 it is P_D = L·sqrt(−ln P)/(B·Mc), and with the
     paper's rounding and B = 0.97, P_D = L/(1.8302·Mc) (Tables 6–9). Writing it as
     k_R/R_needed keeps P_D < P_R equivalent to R_needed > R for any k_R.
+
+    Examples
+    --------
+    >>> round(float(interpretation_pixel_um(200.0, 10000, 0.97, 0.75, pr_coefficient=0.5)), 2)
+    11.06
     """
     return (
         2.0
@@ -567,158 +643,3 @@ def interpretation_pixel_um(
         * probability_root(probability, rounding)
         / (_f(shape_coefficient) * _f(photo_scale))
     ) * _UM_PER_MM
-
-
-# ---------------------------------------------------------------------------------------
-# §5 Height accuracy of a digital (UAV) block: the stereo normal case
-# ---------------------------------------------------------------------------------------
-_OVERLAP_EPS = 1e-9
-
-
-def stereo_base_fraction(
-    forward_overlap_pct: ArrayLike, min_stereo_overlap_pct: ArrayLike
-) -> FloatArray:
-    """Widest stereo base with standard overlap, as a fraction of the along-track footprint.
-
-    A block flown with forward overlap p has exposures every (1 − p)·footprint. The photos
-    i and i + n overlap by 1 − n·(1 − p); the widest base whose pair still has the standard
-    stereo overlap p_min is n = floor((1 − p_min)/(1 − p)) steps (at least one step):
-    B / footprint = n·(1 − p).
-
-    Parameters
-    ----------
-    forward_overlap_pct : array_like
-        Forward overlap p flown [%], 0 ≤ p < 100.
-    min_stereo_overlap_pct : array_like
-        Standard stereo overlap p_min [%] (norm parameter ``standard_forward_overlap_pct``,
-        60 % in GKINP (GNTA)-02-036-02).
-
-    Returns
-    -------
-    ndarray
-        B / footprint_along [-]: 0.4 for 60 %, 80 % and 90 % blocks (1, 2 and 4 steps),
-        0.3 for 70 % and 85 % (1 and 2 steps).
-
-    Notes
-    -----
-    An 80 % UAV block keeps every second photo as a 60 % pair, so its stereo base is the
-    standard one; the single-step base (20 % of the footprint) halves B/H and doubles
-    σ_Z, which is why the parallax form with the single-step base is so pessimistic.
-    """
-    step = 1.0 - _f(forward_overlap_pct) / 100.0
-    room = 1.0 - _f(min_stereo_overlap_pct) / 100.0
-    n = np.maximum(np.floor(room / step + _OVERLAP_EPS), 1.0)
-    return n * step
-
-
-def strip_multi_ray_factor(
-    forward_overlap_pct: ArrayLike, min_stereo_overlap_pct: ArrayLike
-) -> FloatArray:
-    """σ_Z of a point intersected from every photo of its strip, over σ_Z of the widest pair.
-
-    A ground point lies in at least m = floor(1/(1 − p)) photos of its strip, taken every
-    s = (1 − p)·footprint. A least-squares intersection of the m rays (equal weights, image
-    error σ_x per photo, σ_px = √2·σ_x for a parallax) gives
-    σ_Z = σ_x·H²/(c·s·sqrt(m(m² − 1)/12)); the widest standard pair (n steps, see
-    :func:`stereo_base_fraction`) gives σ_Z = √2·σ_x·H²/(c·n·s). Their ratio is
-
-        f = n·sqrt(6 / (m·(m² − 1)))   (f = 1 for m = 2 or 3 with n = 1 or 2).
-
-    Parameters
-    ----------
-    forward_overlap_pct, min_stereo_overlap_pct : array_like
-        As :func:`stereo_base_fraction` [%].
-
-    Returns
-    -------
-    ndarray
-        f ≤ 1 [-]: 0.447 for an 80 % block (m = 5, n = 2), 1 for 60 %.
-
-    Notes
-    -----
-    Derived here from the collinearity equations of the normal case (Kraus 2007; Luhmann et
-    al. 2014: the precision of a multi-image intersection grows with the square root of the
-    sum of squared base components). It assumes independent, equal image errors, ignores
-    the neighbouring strips (a conservative omission) and ignores the errors of the
-    orientation and of the ground control, which the check-point accuracy of real blocks
-    contains: that is why the norm sets leave it off (``multi_ray = off``).
-    """
-    step = 1.0 - _f(forward_overlap_pct) / 100.0
-    m = np.maximum(np.floor(1.0 / step + _OVERLAP_EPS), 2.0)
-    room = 1.0 - _f(min_stereo_overlap_pct) / 100.0
-    n = np.maximum(np.floor(room / step + _OVERLAP_EPS), 1.0)
-    return np.minimum(n * np.sqrt(6.0 / (m * (m * m - 1.0))), 1.0)
-
-
-def normal_case_height_error_m(
-    height_m: ArrayLike,
-    base_m: ArrayLike,
-    focal_mm: ArrayLike,
-    pixel_um: ArrayLike,
-    image_error_px: ArrayLike,
-    multi_ray_factor: ArrayLike = 1.0,
-) -> FloatArray:
-    """RMS height error of the stereo normal case, σ_Z = (H/B)·(H/c)·σ_px·f.
-
-    Parameters
-    ----------
-    height_m : array_like
-        Flight height above ground H [m].
-    base_m : array_like
-        Stereo base B on the ground [m] (the widest standard pair:
-        :func:`stereo_base_fraction` × footprint along track).
-    focal_mm : array_like
-        Principal distance c [mm].
-    pixel_um : array_like
-        Pixel pitch [µm].
-    image_error_px : array_like
-        σ_px, RMS error of the measured x-parallax [pixels] (norm parameter
-        ``image_measurement_px``).
-    multi_ray_factor : array_like, optional
-        f ≤ 1 for a multi-ray intersection (:func:`strip_multi_ray_factor`); 1 = one pair.
-
-    Returns
-    -------
-    ndarray
-        σ_Z [m], one standard deviation.
-
-    Notes
-    -----
-    Kraus (2007), accuracy of the normal case: σ_Z = (Z/B)·(Z/c)·σ_px; Luhmann et al.
-    (2014): σ_Z = q·m·σ_px' with q = h/b, m = h/c. With GSD = p·H/c it is
-    σ_Z = GSD·σ_px·f / (B/H): monotone decreasing in B, increasing in H and in p.
-    The Instruction's parallax form (Miheeva & Medvedev 2010) is the same relation with
-    the single-step base and σ_px = k pixels.
-    """
-    h = _f(height_m)
-    gsd_m = _f(pixel_um) / _UM_PER_MM * h / _f(focal_mm)
-    return (h / _f(base_m)) * gsd_m * _f(image_error_px) * _f(multi_ray_factor)
-
-
-def stereo_height_ground_limit_m(
-    height_accuracy_m: ArrayLike,
-    base_to_height: ArrayLike,
-    image_error_px: ArrayLike,
-    multi_ray_factor: ArrayLike = 1.0,
-) -> FloatArray:
-    """Largest GSD whose normal-case height error meets the required accuracy.
-
-    σ_Z = GSD·σ_px·f/(B/H) ≤ V_z  ⇔  GSD ≤ V_z·(B/H)/(σ_px·f).
-
-    Parameters
-    ----------
-    height_accuracy_m : array_like
-        Required RMS height error V_z [m] (the Instruction's 0.2·h_c, read as an RMS).
-    base_to_height : array_like
-        B/H of the widest standard pair [-] (independent of H for a given camera and
-        overlap: :func:`stereo_base_fraction` × sensor side along / c).
-    image_error_px, multi_ray_factor : array_like
-        As :func:`normal_case_height_error_m`.
-
-    Returns
-    -------
-    ndarray
-        The GSD limit [m on the ground]; the height limit is GSD·c/p.
-    """
-    return (_f(height_accuracy_m) * _f(base_to_height)
-            / (_f(image_error_px) * _f(multi_ray_factor)))

@@ -85,6 +85,11 @@ def quaternion_eq30(
     product q_z(−α) ⊗ q_x(ω) ⊗ q_y(−χ) (module docstring); the seed's own sentence
     on the rotations ("counter-clockwise by π − α/2, ω, π − χ/2") is garbled in the
     extracted text and is not used.
+
+    Examples
+    --------
+    >>> (np.round(quaternion_eq30(0.0, 0.0, 0.0), 6) + 0.0).tolist()
+    [1.0, 0.0, 0.0, 0.0]
     """
     a = _finite("alpha_rad", alpha_rad) / 2.0
     w = _finite("omega_rad", omega_rad) / 2.0
@@ -110,6 +115,11 @@ def elementary_quaternion(axis: Axis, angle_rad: npt.ArrayLike) -> NDArrayFloat:
     -------
     numpy.ndarray
         (cos θ/2, sin θ/2 · e_axis), shape + (4,).
+
+    Examples
+    --------
+    >>> np.round(elementary_quaternion("z", np.pi / 2), 6).tolist()
+    [0.707107, 0.0, 0.0, 0.707107]
     """
     if axis not in _AXES:
         raise ValueError(f"axis must be 'x', 'y' or 'z' (got {axis!r})")
@@ -132,6 +142,12 @@ def quaternion_multiply(p: npt.ArrayLike, q: npt.ArrayLike) -> NDArrayFloat:
     -------
     numpy.ndarray
         p ⊗ q = (p0 q0 − p·q, p0 q + q0 p + p × q).
+
+    Examples
+    --------
+    >>> qz = elementary_quaternion("z", np.pi / 2)
+    >>> np.round(quaternion_multiply(qz, qz), 6).tolist()
+    [0.0, 0.0, 0.0, 1.0]
     """
     p_ = _finite("p", p)
     q_ = _finite("q", q)
@@ -159,6 +175,11 @@ def rotation_matrix(q: npt.ArrayLike) -> NDArrayFloat:
     -----
     Standard form, e.g. R11 = a0² + a1² − a2² − a3², R12 = 2(a1a2 − a0a3), …
     (spec formulas.md §4: "derive the rotation matrix from it").
+
+    Examples
+    --------
+    >>> np.round(rotation_matrix([1.0, 0.0, 0.0, 0.0]), 6).tolist()
+    [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
     """
     q_ = _finite("q", q)
     norm = np.linalg.norm(q_, axis=-1, keepdims=True)
@@ -183,7 +204,13 @@ def rotation_matrix(q: npt.ArrayLike) -> NDArrayFloat:
 
 
 def elementary_rotation(axis: Axis, angle_rad: npt.ArrayLike) -> NDArrayFloat:
-    """Matrix of a counter-clockwise rotation about a coordinate axis, shape (..., 3, 3)."""
+    """Matrix of a counter-clockwise rotation about a coordinate axis, shape (..., 3, 3).
+
+    Examples
+    --------
+    >>> np.round(elementary_rotation("z", np.pi / 2) @ [1.0, 0.0, 0.0], 6).tolist()
+    [0.0, 1.0, 0.0]
+    """
     return rotation_matrix(elementary_quaternion(axis, angle_rad))
 
 
@@ -207,6 +234,11 @@ def camera_matrix_eq30(
     -----
     Seed 002, eq. 30 with the convention of the module docstring. R_x(+90°) turns
     the aerial camera's −z (optical axis) into eq. 30's +y.
+
+    Examples
+    --------
+    >>> np.round(camera_matrix_eq30(0.0, 0.0, 0.0), 6).tolist()
+    [[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]]
     """
     r30 = rotation_matrix(quaternion_eq30(alpha_rad, omega_rad, chi_rad))
     return r30 @ elementary_rotation("x", np.pi / 2)
@@ -236,6 +268,11 @@ def attitude_matrix(
     -----
     Aerospace z-y-x order; not a seed formula. Seed 002 reports large roll, pitch and
     drift of a light UAV: feed them here and to :func:`corner_gsd`.
+
+    Examples
+    --------
+    >>> np.round(attitude_matrix(0.0, 0.0, 0.0), 6).tolist()
+    [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
     """
     return (
         elementary_rotation("z", yaw_rad)
@@ -287,6 +324,15 @@ def image_point_gsd(
     Jacobian J = ∂G/∂(x, y) maps an image step to a ground step, so a pixel (a
     p × p square) lands on a parallelogram with sides p·J·e_x, p·J·e_y. For a
     vertical photo J = (H/f)·I and both values equal p·H/f everywhere.
+
+    Examples
+    --------
+    >>> gmax, gmean = image_point_gsd(0.0, 0.0, 100.0, 35.0, 4.4)
+    >>> round(float(gmax), 5), round(float(gmean), 5)
+    (0.01257, 0.01257)
+    >>> tilted = image_point_gsd(0.0, 0.0, 100.0, 35.0, 4.4, attitude_matrix(np.radians(10.0), 0.0))
+    >>> round(float(tilted[0]), 5)
+    0.01296
     """
     x = _finite("x_mm", x_mm)
     y = _finite("y_mm", y_mm)
@@ -374,6 +420,14 @@ def corner_gsd(
     Spec formulas.md §3 ("corner GSD of a tilted frame from the exterior
     orientation") and §4; seed 002 (large roll/pitch/drift of light UAVs). Corners
     at (x, y) = (±b/2, ±a/2) in the order of :data:`CORNER_NAMES`.
+
+    Examples
+    --------
+    >>> c = corner_gsd(100.0, 35.0, 4.4, 35.9, 24.0, attitude_matrix(np.radians(5.0), 0.0))
+    >>> np.round(c.gsd_max_m, 5).tolist()
+    [0.01395, 0.01214, 0.01214, 0.01395]
+    >>> round(float(c.gsd_nadir_m), 5)
+    0.01257
     """
     a = _positive("sensor_width_mm", sensor_width_mm)
     b = _positive("sensor_height_mm", sensor_height_mm)

@@ -232,10 +232,6 @@ def sample_dem(info: DemInfo, x_m: NDArray[np.float64], y_m: NDArray[np.float64]
         When the pixels under the points exceed :data:`MAX_READ_PX`, or the file fails
         while being read.
     """
-    import rasterio
-    from rasterio.errors import RasterioError
-    from rasterio.windows import Window
-
     x = np.asarray(x_m, dtype=float).ravel()
     y = np.asarray(y_m, dtype=float).ravel()
     n = x.size
@@ -244,6 +240,31 @@ def sample_dem(info: DemInfo, x_m: NDArray[np.float64], y_m: NDArray[np.float64]
     if n == 0:
         return Samples(elev, np.zeros(0, dtype=bool), nodata)
     dx, dy = _to_dem_crs(x, y, plan_crs, info)
+    pos = _pixel_positions(info, dx, dy)
+    if pos.inside.size:
+        _read_windows(info, pos, elev, nodata, key)
+    elev *= factor_m
+    return Samples(elev, pos.outside, nodata)
+
+
+@dataclass(frozen=True)
+class _Positions:
+    """Where the points fall on the DEM's grid: ``outside`` (all points), then for the
+    points ``inside`` their fractional (col, row) between pixel centres and the upper-left
+    pixel (c0, r0) of their four neighbours."""
+
+    outside: NDArray[np.bool_]
+    inside: NDArray[np.int64]
+    col: NDArray[np.float64]
+    row: NDArray[np.float64]
+    c0: NDArray[np.int64]
+    r0: NDArray[np.int64]
+
+
+def _pixel_positions(info: DemInfo, dx: NDArray[np.float64], dy: NDArray[np.float64]
+                     ) -> _Positions:
+    """The points (in the DEM's CRS) on its pixel grid; within half a pixel of the edge a
+    point takes the edge pixels, beyond it the point is outside."""
     left, _bottom, _right, top = info.bounds
     cw, ch = info.cell_size
     # fractional index of the point between pixel centres (centre of pixel 0 at 0.0)
@@ -252,15 +273,31 @@ def sample_dem(info: DemInfo, x_m: NDArray[np.float64], y_m: NDArray[np.float64]
     outside = ~(np.isfinite(col) & np.isfinite(row) & (col >= -0.5) & (row >= -0.5)
                 & (col <= info.width_px - 0.5) & (row <= info.height_px - 0.5))
     inside = np.flatnonzero(~outside)
-    if inside.size == 0:
-        return Samples(elev, outside, nodata)
     col_i = np.clip(col[inside], 0.0, info.width_px - 1.0)
     row_i = np.clip(row[inside], 0.0, info.height_px - 1.0)
     c0 = np.minimum(np.floor(col_i).astype(np.int64), max(info.width_px - 2, 0))
     r0 = np.minimum(np.floor(row_i).astype(np.int64), max(info.height_px - 2, 0))
-    tc, tr = c0 // TILE_PX, r0 // TILE_PX
+    return _Positions(outside, inside, col_i, row_i, c0, r0)
+
+
+def _read_windows(info: DemInfo, pos: _Positions, elev: NDArray[np.float64],
+                  nodata: NDArray[np.bool_], key: str) -> None:
+    """Read the pixels around the points tile by tile (windows of at most
+    :data:`TILE_PX` square, only tiles holding points) and write the bilinear values
+    into ``elev`` (and the nodata flags into ``nodata``).
+
+    Raises
+    ------
+    InputError
+        When the pixels read exceed :data:`MAX_READ_PX` or the file fails while read.
+    """
+    import rasterio
+    from rasterio.errors import RasterioError
+    from rasterio.windows import Window
+
+    c0, r0 = pos.c0, pos.r0
     ntc = info.width_px // TILE_PX + 1
-    tile_id = tr * ntc + tc
+    tile_id = (r0 // TILE_PX) * ntc + c0 // TILE_PX
     order = np.argsort(tile_id, kind="stable")
     ids, starts = np.unique(tile_id[order], return_index=True)
     ends = np.append(starts[1:], order.size)
@@ -280,14 +317,12 @@ def sample_dem(info: DemInfo, x_m: NDArray[np.float64], y_m: NDArray[np.float64]
                 win = Window(c_lo, r_lo, c_hi - c_lo, r_hi - r_lo)
                 block = src.read(1, window=win, masked=True).astype(np.float64)
                 data = np.ma.filled(block, np.nan)
-                _bilinear(data, col_i[sel] - c_lo, row_i[sel] - r_lo, c0[sel] - c_lo,
-                          r0[sel] - r_lo, inside[sel], elev, nodata)
+                _bilinear(data, pos.col[sel] - c_lo, pos.row[sel] - r_lo, c0[sel] - c_lo,
+                          r0[sel] - r_lo, pos.inside[sel], elev, nodata)
     except InputError:
         raise
     except (RasterioError, OSError, ValueError, MemoryError) as exc:
         raise _refuse(key, info.path, f"could not be read ({_short(exc)})") from None
-    elev *= factor_m
-    return Samples(elev, outside, nodata)
 
 
 def _bilinear(data: NDArray[np.float64], fc: NDArray[np.float64], fr: NDArray[np.float64],

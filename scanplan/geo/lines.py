@@ -379,78 +379,151 @@ def plan_lines(
         ``feasible`` False with a ``reason`` when the block cannot be flown as planned.
     """
     geom = area.geometry
-    c = geom.centroid
-    origin = (float(c.x), float(c.y))
+    origin = (float(geom.centroid.x), float(geom.centroid.y))
     ext = int(extension_bases)
     notes: dict[str, object] = {"max_flight_time_min": max_flight_time_min}
-    if direction_deg == "auto":
-        direction, tried = _auto_direction(geom, origin, spacing_m, base_m, ext, turn)
-        notes["auto_directions_tried"] = tried
-    else:
-        direction = float(direction_deg) % 180.0
+    direction = _direction(direction_deg, geom, origin, spacing_m, base_m, ext, turn, notes)
     common = dict(area=area, direction_deg=direction, spacing_m=spacing_m, base_m=base_m,
                   extension_bases=float(ext), kind=kind, footprint_across_m=footprint_across_m,
-                  footprint_along_m=footprint_along_m, speed_ms=speed_ms,
-                  turn=turn.describe())
+                  footprint_along_m=footprint_along_m, speed_ms=speed_ms, turn=turn.describe())
     rot = _rotated(geom, direction, origin)
     try:
         bands = _bands(rot, spacing_m)
     except _TooMany as exc:
-        return FlightLayout(strips=(), sorties=(), photos=Photos({}), flight_length_m=math.nan,
-                            turn_length_m=math.nan, flight_time_s=None, feasible=False,
-                            reason=Message("layout.too_many_strips", n=exc.n,
-                                           spacing=spacing_m, most=MAX_STRIPS),
-                            notes=notes, **common)
-    gap = (2 * ext + 1) * base_m
-    p_strip, p_lo, p_hi = _merge(bands, gap)
-    n_strips = len(bands.u_m)
-    n_per, first, last, s_lo, s_hi = _strip_spans(p_strip, p_lo, p_hi, base_m, ext, n_strips)
-    strip_len = s_hi - s_lo
-    conn = _connections(bands.u_m, s_lo, s_hi, turn)
-    photographed = np.zeros(n_strips)
-    np.add.at(photographed, p_strip, last - first)
-    notes["bridged_m"] = float(np.sum(strip_len - photographed))
-    # sorties (strip order = flight order)
-    forward_v = np.where((np.arange(n_strips) % 2) == 0, s_lo, s_hi)
+        return _not_flown(Message("layout.too_many_strips", n=exc.n, spacing=spacing_m,
+                                  most=MAX_STRIPS), notes, common)
+    parts = _Parts.of(bands, base_m, ext, turn)
+    notes["bridged_m"] = parts.bridged_m()
+    plan, reason = _sorties(parts.strip_len, parts.conn, speed_ms, max_flight_time_min,
+                            base_m, parts.exposures)
+    length, turns = _flown_m(plan, parts.conn)
+    if reason is None:
+        reason = _single_strip_reason(parts, spacing_m, rot)
+    strips, photos = _records(parts, plan, _to_plan_xy(direction, origin), area, height_m,
+                              ground_m, photo_values or {}, notes)
+    return FlightLayout(strips=strips, sorties=plan.records(speed_ms), photos=photos,
+                        flight_length_m=length, turn_length_m=turns,
+                        flight_time_s=_time_s(length, speed_ms), feasible=reason is None,
+                        reason=reason, notes=notes, **common)
 
-    def exposures(i: int) -> np.ndarray:
-        mine = p_strip == i
-        k = np.concatenate([np.arange(n) for n in n_per[mine]]) if mine.any() else []
-        v = np.repeat(first[mine], n_per[mine]) + base_m * np.asarray(k, dtype=float)
-        return np.sort(np.abs(v - forward_v[i]))
 
-    plan, reason = _sorties(strip_len, conn, speed_ms, max_flight_time_min, base_m,
-                            exposures)
-    sortie_of = plan.start
+def _not_flown(reason: Message, notes: dict[str, object],
+               common: dict[str, object]) -> FlightLayout:
+    """A layout with no strips that says why it cannot be planned."""
+    return FlightLayout(strips=(), sorties=(), photos=Photos({}), flight_length_m=math.nan,
+                        turn_length_m=math.nan, flight_time_s=None, feasible=False,
+                        reason=reason, notes=notes, **common)  # type: ignore[arg-type]
+
+
+def _direction(direction_deg: float | str, geom: object, origin: tuple[float, float],
+               spacing_m: float, base_m: float, extension: int, turn: Turn,
+               notes: dict[str, object]) -> float:
+    """The flight direction [°, 0–180): the one given, or ``"auto"``'s least flight length
+    (noting how many directions were tried)."""
+    if direction_deg == "auto":
+        direction, tried = _auto_direction(geom, origin, spacing_m, base_m, extension, turn)
+        notes["auto_directions_tried"] = tried
+        return direction
+    return float(direction_deg) % 180.0
+
+
+@dataclass(frozen=True, eq=False)
+class _Parts:
+    """The photographed parts of every strip in the rotated frame: part → strip
+    (``p_strip``), exposures (``n_per``), first and last exposure along v; each strip's
+    flown span [``s_lo``, ``s_hi``], the connections (turns) between strips and where each
+    strip starts in flight order (serpentine: even strips flown +v)."""
+
+    u_m: np.ndarray
+    p_strip: np.ndarray
+    n_per: np.ndarray
+    first: np.ndarray
+    last: np.ndarray
+    s_lo: np.ndarray
+    s_hi: np.ndarray
+    conn: np.ndarray
+    forward_v: np.ndarray
+    base_m: float
+
+    @classmethod
+    def of(cls, bands: _Bands, base_m: float, ext: int, turn: Turn) -> _Parts:
+        gap = (2 * ext + 1) * base_m
+        p_strip, p_lo, p_hi = _merge(bands, gap)
+        n_strips = len(bands.u_m)
+        n_per, first, last, s_lo, s_hi = _strip_spans(p_strip, p_lo, p_hi, base_m, ext,
+                                                      n_strips)
+        conn = _connections(bands.u_m, s_lo, s_hi, turn)
+        forward_v = np.where((np.arange(n_strips) % 2) == 0, s_lo, s_hi)
+        return cls(bands.u_m, p_strip, n_per, first, last, s_lo, s_hi, conn, forward_v,
+                   base_m)
+
+    @property
+    def n_strips(self) -> int:
+        return len(self.u_m)
+
+    @property
+    def strip_len(self) -> np.ndarray:
+        """Each strip's flown length [m], bridges included."""
+        return self.s_hi - self.s_lo
+
+    @property
+    def photos_per_strip(self) -> np.ndarray:
+        out = np.zeros(self.n_strips, dtype=np.int64)
+        np.add.at(out, self.p_strip, self.n_per)
+        return out
+
+    def bridged_m(self) -> float:
+        """Length flown with the camera off across gaps between parts [m]."""
+        photographed = np.zeros(self.n_strips)
+        np.add.at(photographed, self.p_strip, self.last - self.first)
+        return float(np.sum(self.strip_len - photographed))
+
+    def exposures(self, i: int) -> np.ndarray:
+        """Distances of strip ``i``'s exposures from where it starts in flight order [m],
+        ascending."""
+        mine = self.p_strip == i
+        k = np.concatenate([np.arange(n) for n in self.n_per[mine]]) if mine.any() else []
+        v = np.repeat(self.first[mine], self.n_per[mine]) + self.base_m * np.asarray(
+            k, dtype=float)
+        return np.sort(np.abs(v - self.forward_v[i]))
+
+
+def _flown_m(plan: _SortiePlan, conn: np.ndarray) -> tuple[float, float]:
+    """Flight length (strips and turns within sorties, no resume gaps) and the turns' part
+    of it [m]."""
+    n_strips = len(plan.start)
     same = plan.start[1:] == plan.end()[:-1] if n_strips > 1 else np.zeros(0, dtype=bool)
     flown_conn = np.where(same, conn, 0.0)
-    length = float(np.sum(plan.length_m))  # strips, turns within sorties, no resume gaps
-    turns = float(np.sum(flown_conn))
-    time_s = _time_s(length, speed_ms)
-    photos_per_strip = np.zeros(n_strips, dtype=np.int64)
-    np.add.at(photos_per_strip, p_strip, n_per)
-    n_photos = int(photos_per_strip.sum())
-    feasible = reason is None
-    width = float(np.ptp(shapely.bounds(rot)[[0, 2]]))
-    if feasible and n_strips == 1 and spacing_m > width:
-        feasible = False
-        reason = Message("layout.single_strip", spacing=spacing_m, width=width)
-    to_xy = _to_plan_xy(direction, origin)
+    return float(np.sum(plan.length_m)), float(np.sum(flown_conn))
+
+
+def _records(parts: _Parts, plan: _SortiePlan,
+             to_xy: Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]],
+             area: Area, height_m: float, ground_m: float, photo_values: Mapping[str, float],
+             notes: dict[str, object]) -> tuple[tuple[Strip, ...], Photos]:
+    """The strip records and the photo-centre table in the planning CRS (the table left
+    empty, and the count noted, beyond :data:`MAX_PHOTO_CENTRES`)."""
     strips, (p_strip, p_start, pf, n_per), first_photo = _strip_records(
-        bands.u_m, p_strip, first, last, n_per, s_lo, s_hi, photos_per_strip, sortie_of,
-        to_xy)
-    sorties = plan.records(speed_ms)
+        parts.u_m, parts.p_strip, parts.first, parts.last, parts.n_per, parts.s_lo,
+        parts.s_hi, parts.photos_per_strip, plan.start, to_xy)
+    n_photos = int(parts.photos_per_strip.sum())
     if n_photos <= MAX_PHOTO_CENTRES:
-        photos = _photos(n_per, p_strip, p_start, pf, bands.u_m, first_photo, plan,
-                         forward_v, base_m, to_xy,
-                         area, height_m, ground_m, photo_values or {})
+        photos = _photos(n_per, p_strip, p_start, pf, parts.u_m, first_photo, plan,
+                         parts.forward_v, parts.base_m, to_xy,
+                         area, height_m, ground_m, photo_values)
     else:
         photos = Photos({})
         notes["photo_centres_omitted"] = n_photos
     notes["photos"] = n_photos
-    return FlightLayout(strips=strips, sorties=sorties, photos=photos, flight_length_m=length,
-                        turn_length_m=turns, flight_time_s=time_s, feasible=feasible,
-                        reason=reason, notes=notes, **common)
+    return strips, photos
+
+
+def _single_strip_reason(parts: _Parts, spacing_m: float, rot: object) -> Message | None:
+    """Why one strip cannot cover an area narrower than the line spacing (None if it can)."""
+    width = float(np.ptp(shapely.bounds(rot)[[0, 2]]))
+    if parts.n_strips == 1 and spacing_m > width:
+        return Message("layout.single_strip", spacing=spacing_m, width=width)
+    return None
 
 
 def _to_plan_xy(direction: float, origin: tuple[float, float]) -> Callable[

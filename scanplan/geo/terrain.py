@@ -53,7 +53,7 @@ carries the smaller of its two. Flown low by the tolerance down, the footprint s
 
 Film: the photo scale changes with the ground, Mc = (A − g)/f (seed 001 uses Mc = H/f);
 the scan pixel must meet the constraints at the smallest local photo scale (the largest
-Mc), see :func:`film_terrain`.
+Mc), see :mod:`scanplan.geo.terrain_film`.
 """
 
 from __future__ import annotations
@@ -70,7 +70,7 @@ from numpy.typing import NDArray
 from ..core import formulas as F
 from ..errors import InputError
 from ..messages import Message
-from ..rules.results import PlanWarning, ScanRules, UavInputs, UavPlan
+from ..rules.results import PlanWarning, UavInputs, UavPlan
 from . import dem as D
 from .layout import FlightLayout, Photos
 
@@ -81,7 +81,6 @@ __all__ = [
     "StripTerrain",
     "TerrainConfig",
     "TerrainResult",
-    "film_terrain",
     "ground_under",
     "uav_terrain",
 ]
@@ -534,6 +533,12 @@ def uav_terrain(layout: FlightLayout, ground: Ground, inp: UavInputs, plan: UavP
                 follow_tolerance_m: float = DEFAULT_FOLLOW_TOLERANCE_M) -> TerrainResult:
     """Every photo at its own AGL; the constraints at the worst photo.
 
+    Steps: the photos in strip order with their ground (:func:`_ground_for_checks`); the
+    altitudes of the mode and the AGL; the per-photo figures at that AGL
+    (:func:`_photo_figures`); the overlaps with the neighbours (:func:`_overlaps`); the
+    layout with the terrain columns (:func:`_terrain_layout`); the closed-form maximum
+    height and the warnings.
+
     Parameters
     ----------
     layout : FlightLayout
@@ -551,31 +556,89 @@ def uav_terrain(layout: FlightLayout, ground: Ground, inp: UavInputs, plan: UavP
     -------
     TerrainResult
     """
-    from ..rules.uav import ground_resolution_m
-
     ph = layout.photos
     n = len(ph)
     order = _order(ph)
     cols = {k: np.asarray(v)[order] for k, v in ph.columns.items()}
-    x, y = cols["x_m"].astype(float), cols["y_m"].astype(float)
     strip = cols["strip"].astype(np.int64)
-    g = ground.centre_m[order] if ground.centre_m.size == n else np.full(n, np.nan)
-    g_res = np.where(np.isfinite(g), g, ground.low_m)   # for resolution: lowest possible
-    g_alt = np.where(np.isfinite(g), g, ground.high_m)  # for the altitude: highest possible
+    g, g_res, g_alt = _ground_for_checks(ground, order, n)
     h = float(inp.height_m)
     alt = altitudes_m(g_alt, strip, mode, h, follow_tolerance_m)
     agl = alt - g_res
     up = inp.height_tolerance_up_pct / 100.0
-    down = inp.height_tolerance_down_pct / 100.0
+    cols.update(ground_m=g, altitude_m=alt, agl_m=agl, **_photo_figures(inp, agl))
+    g_lo, g_hi = _footprint_range(cols["x_m"].astype(float), cols["y_m"].astype(float), agl,
+                                  ground, layout.area.plan_crs, layout.direction_deg,
+                                  inp.sensor_width_mm, inp.sensor_height_mm, inp.focal_mm)
+    ov = _overlaps(layout, cols, alt, ground, inp)
+    cols.update(ground_min_m=g_lo, ground_max_m=g_hi, forward_overlap_pct=ov.forward_photo,
+                side_overlap_pct=ov.side_photo)
+    limit = plan.max_height_m
+    strips = _strip_rows(cols, g_res, limit)
+    new_layout = _terrain_layout(layout, cols, order, strips, mode)
+    worst_res = int(cols["photo"][int(np.argmax(agl))]) if n else 0
+    both = np.fmin(ov.forward_photo, ov.side_photo)
+    worst_ov = int(cols["photo"][int(np.nanargmin(both))]) if np.isfinite(both).any() else 0
+    max_h = None
+    if limit is not None:
+        max_h = max_height_above_reference_m(limit, g_res, g_alt, strip, mode,
+                                             follow_tolerance_m)
+    warnings = list(ground.warnings)
+    warnings += _resolution_warnings(strips, plan, mode, h, max_h, up, agl, cols)
+    warnings += _overlap_warnings(inp, ov.forward, ov.forward_pct, ov.side, ov.side_pct, cols)
+    return TerrainResult(
+        layout=new_layout, mode=mode, height_m=h, strips=strips, max_height_m=max_h,
+        binding=plan.binding, worst_resolution_photo=worst_res, worst_overlap_photo=worst_ov,
+        min_forward_overlap_pct=(float(np.nanmin(ov.forward_pct)) if ov.forward_pct.size
+                                 else math.nan),
+        min_side_overlap_pct=float(np.nanmin(ov.side_pct)) if ov.side_pct.size else math.nan,
+        waypoints=_waypoints(cols, mode), warnings=tuple(warnings), ground=ground)
+
+
+def _ground_for_checks(ground: Ground, order: NDArray[np.int64], n: int
+                       ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """The ground under each photo (strip order; NaN where unknown), and the ground it is
+    checked at: the lowest possible for resolution, the highest for the altitude."""
+    g = ground.centre_m[order] if ground.centre_m.size == n else np.full(n, np.nan)
+    g_res = np.where(np.isfinite(g), g, ground.low_m)
+    g_alt = np.where(np.isfinite(g), g, ground.high_m)
+    return g, g_res, g_alt
+
+
+def _photo_figures(inp: UavInputs, agl: NDArray[np.float64]) -> dict[str, NDArray[np.float64]]:
+    """GSD = p·H/f, the MTF ground resolution L and the recognition probability
+    P = exp(−(B·L/L_obj)²) of every photo at its AGL (``gsd_cm``, ``resolution_cm``,
+    ``recognition_p``)."""
+    from ..rules.uav import ground_resolution_m
+
+    n = agl.size
     gsd = inp.pixel_um / 1000.0 * agl / inp.focal_mm
     lr = ground_resolution_m(inp, np.maximum(agl, 1e-3)) if n else np.zeros(0)
     obj = inp.map_object
     with np.errstate(all="ignore"):
         p_rec = (F.recognition_probability(obj.size_m, lr, obj.shape_coefficient)
                  if obj is not None else np.full(n, np.nan))
+    return {"gsd_cm": gsd * 100.0, "resolution_cm": lr * 100.0,
+            "recognition_p": np.asarray(p_rec, dtype=float)}
+
+
+@dataclass(frozen=True)
+class _Overlaps:
+    forward: _Pairs
+    side: _Pairs
+    forward_pct: NDArray[np.float64]
+    side_pct: NDArray[np.float64]
+    forward_photo: NDArray[np.float64]  # per photo, the smaller with its neighbours
+    side_photo: NDArray[np.float64]
+
+
+def _overlaps(layout: FlightLayout, cols: dict[str, NDArray[Any]], alt: NDArray[np.float64],
+              ground: Ground, inp: UavInputs) -> _Overlaps:
+    """Forward and side overlaps of every pair and of every photo (strip order)."""
+    x, y = cols["x_m"].astype(float), cols["y_m"].astype(float)
+    strip = cols["strip"].astype(np.int64)
+    down = inp.height_tolerance_down_pct / 100.0
     plan_crs = layout.area.plan_crs
-    g_lo, g_hi = _footprint_range(x, y, agl, ground, plan_crs, layout.direction_deg,
-                                  inp.sensor_width_mm, inp.sensor_height_mm, inp.focal_mm)
     along, across = _axes(layout.direction_deg)
     fw = _forward_pairs(x, y, strip, along, layout.base_m)
     sd = _side_pairs(x, y, strip, along, across)
@@ -583,42 +646,27 @@ def uav_terrain(layout: FlightLayout, ground: Ground, inp: UavInputs, plan: UavP
                                inp.focal_mm, down)
     sd_pct = _pair_overlap_pct(sd, x, y, alt, ground, plan_crs, inp.sensor_width_mm,
                                inp.focal_mm, down)
-    fw_photo = _per_photo_min(n, fw, fw_pct)
-    sd_photo = _per_photo_min(n, sd, sd_pct)
-    cols.update(ground_m=g, altitude_m=alt, agl_m=agl, gsd_cm=gsd * 100.0,
-                resolution_cm=lr * 100.0, recognition_p=np.asarray(p_rec, dtype=float),
-                ground_min_m=g_lo, ground_max_m=g_hi, forward_overlap_pct=fw_photo,
-                side_overlap_pct=sd_photo)
+    n = x.size
+    return _Overlaps(fw, sd, fw_pct, sd_pct, _per_photo_min(n, fw, fw_pct),
+                     _per_photo_min(n, sd, sd_pct))
+
+
+def _terrain_layout(layout: FlightLayout, cols: dict[str, NDArray[Any]],
+                    order: NDArray[np.int64], strips: tuple[StripTerrain, ...], mode: str
+                    ) -> FlightLayout:
+    """The layout with the terrain columns (back in its own photo order), each strip's
+    altitude (constant and strip modes) and the altitude mode and frame in its notes."""
+    n = order.size
     inverse = np.empty(n, dtype=np.int64)
     inverse[order] = np.arange(n)
     photos = Photos({k: np.asarray(v)[inverse] for k, v in cols.items()})
-    limit = plan.max_height_m
-    strips = _strip_rows(cols, g_res, limit)
     new_strips = tuple(
         replace(s, altitude_m=(next((r.altitude_max_m for r in strips if r.number == s.number),
                                     None) if mode != "follow" else None))
         for s in layout.strips)
     notes = dict(layout.notes)
     notes.update(altitude_mode=mode, altitude_frame=ALTITUDE_FRAME)
-    new_layout = replace(layout, photos=photos, strips=new_strips, notes=notes)
-    worst_res = int(cols["photo"][int(np.argmax(agl))]) if n else 0
-    both = np.fmin(fw_photo, sd_photo)
-    worst_ov = int(cols["photo"][int(np.nanargmin(both))]) if np.isfinite(both).any() else 0
-    min_fw = float(np.nanmin(fw_pct)) if fw_pct.size else math.nan
-    min_sd = float(np.nanmin(sd_pct)) if sd_pct.size else math.nan
-    max_h = None
-    if limit is not None:
-        max_h = max_height_above_reference_m(limit, g_res, g_alt, strip, mode,
-                                             follow_tolerance_m)
-    warnings = list(ground.warnings)
-    warnings += _resolution_warnings(strips, plan, mode, h, max_h, up, agl, cols)
-    warnings += _overlap_warnings(inp, fw, fw_pct, sd, sd_pct, cols)
-    waypoints = _waypoints(cols, mode)
-    return TerrainResult(
-        layout=new_layout, mode=mode, height_m=h, strips=strips, max_height_m=max_h,
-        binding=plan.binding, worst_resolution_photo=worst_res, worst_overlap_photo=worst_ov,
-        min_forward_overlap_pct=min_fw, min_side_overlap_pct=min_sd, waypoints=waypoints,
-        warnings=tuple(warnings), ground=ground)
+    return replace(layout, photos=photos, strips=new_strips, notes=notes)
 
 
 def _strip_rows(cols: dict[str, NDArray[Any]], g_res: NDArray[np.float64],
@@ -699,92 +747,3 @@ def _waypoints(cols: dict[str, NDArray[Any]], mode: str) -> list[dict[str, Any]]
     return [{"strip": int(strip[i]), "photo": int(cols["photo"][i]),
              "x_m": float(cols["x_m"][i]), "y_m": float(cols["y_m"][i]),
              "altitude_m": float(alt[i])} for i in idx]
-
-
-# --- film ----------------------------------------------------------------------------------
-
-@dataclass(frozen=True)
-class FilmTerrain:
-    """Film frames under the terrain: the local photo scale of every frame.
-
-    Attributes
-    ----------
-    photo_scale : float
-        The planned Mc, over the reference (highest) ground.
-    altitude_m : ndarray
-        Per frame [m].
-    mc : ndarray
-        Local photo scale denominator of every frame, Mc = (A − g)/f.
-    mc_min, mc_max : float
-    binding_frame : int
-        Running number of the frame with the largest Mc (the smallest local scale).
-    scan_pixel_um : float
-        The scan pixel at ``mc_max`` (the enabled constraints' minimum) [µm].
-    scan_pixel_planned_um : float
-        At the planned Mc [µm].
-    binding : str
-        The constraint binding at ``mc_max``.
-    """
-
-    photo_scale: float
-    altitude_m: NDArray[np.float64]
-    mc: NDArray[np.float64]
-    mc_min: float
-    mc_max: float
-    binding_frame: int
-    binding_strip: int
-    scan_pixel_um: float
-    scan_pixel_planned_um: float
-    binding: str
-    warnings: tuple[PlanWarning, ...]
-
-
-def film_terrain(layout: FlightLayout, ground: Ground, rules: ScanRules, *, map_scale: float,
-                 photo_scale: float, relief_interval_m: float, focal_mm: float,
-                 frame_along_mm: float, forward_overlap_pct: float,
-                 resolving_power_lpmm: float, object_size_m: float = math.nan,
-                 shape_coefficient: float = math.nan, mode: str = "constant",
-                 follow_tolerance_m: float = DEFAULT_FOLLOW_TOLERANCE_M) -> FilmTerrain:
-    """The local photo scale of every frame and the scan pixel at the smallest of them.
-
-    The aircraft flies the planned Mc over the reference ground (the highest, by the
-    altitude mode): A = g_ref + f·Mc. A frame over ground g has Mc = (A − g)/f (seed 001's
-    Mc = H/f with H above that ground); every film constraint but P_R allows a smaller
-    pixel at a larger Mc, so the frame over the lowest ground binds, and the engine
-    (:func:`scanplan.rules.film.evaluate`) is run at its Mc.
-    """
-    from ..rules.film import evaluate
-
-    ph = layout.photos
-    n = len(ph)
-    order = _order(ph)
-    strip = np.asarray(ph["strip"])[order].astype(np.int64)
-    g = ground.centre_m[order] if ground.centre_m.size == n else np.full(n, np.nan)
-    g_res = np.where(np.isfinite(g), g, ground.low_m)
-    g_alt = np.where(np.isfinite(g), g, ground.high_m)
-    h_m = photo_scale * focal_mm / 1000.0
-    alt = altitudes_m(g_alt, strip, mode, h_m, follow_tolerance_m)
-    mc = (alt - g_res) / (focal_mm / 1000.0)
-    mc_lo = float(((alt - g_alt) / (focal_mm / 1000.0)).min()) if n else photo_scale
-    inverse = np.empty(n, dtype=np.int64)
-    inverse[order] = np.arange(n)
-    i = int(np.argmax(mc))
-    both = np.array([photo_scale, float(mc[i])])
-    ev = evaluate(rules, map_scale=map_scale, photo_scale=both,
-                  relief_interval_m=relief_interval_m, focal_mm=focal_mm,
-                  frame_along_mm=frame_along_mm, forward_overlap_pct=forward_overlap_pct,
-                  resolving_power_lpmm=resolving_power_lpmm, object_size_m=object_size_m,
-                  shape_coefficient=shape_coefficient)
-    pix = np.asarray(ev.scan_pixel_um, dtype=float)
-    frame = int(np.asarray(ph["photo"])[order][i])
-    warnings = list(ground.warnings)
-    binding = str(np.asarray(ev.binding)[1])
-    if pix[1] < pix[0] * (1 - 1e-9):
-        warnings.append(PlanWarning("terrain_film_scale", Message(
-            "terrain_film_scale", lo=float(round(mc_lo)), hi=float(round(mc[i])), frame=frame,
-            strip=int(strip[i]), pixel=float(pix[1]), planned=float(pix[0]), cid=binding)))
-    return FilmTerrain(photo_scale=photo_scale, altitude_m=alt[inverse], mc=mc[inverse],
-                       mc_min=mc_lo, mc_max=float(mc[i]), binding_frame=frame,
-                       binding_strip=int(strip[i]), scan_pixel_um=float(pix[1]),
-                       scan_pixel_planned_um=float(pix[0]), binding=binding,
-                       warnings=tuple(warnings))

@@ -379,7 +379,7 @@ def uav_job(
     Without ``height_m`` the flight is planned at the maximum planned height, rounded
     down to :data:`HEIGHT_STEP_M` (needs a map scale or a target GSD).
 
-    Long only by its keyword arguments (one per input of the registry) and this
+    Long because: its keyword arguments (one per input of the registry) and this
     docstring; the work is in named steps: :func:`_carrier_defaults`,
     :func:`_digital_frame`, :func:`_map_constraints`, then the engine.
     """

@@ -161,13 +161,15 @@ def _gsd_checks(project: Project, film: FilmSpec | None, uav: UavSpec | None
         if row is not None:
             s = film.recommended
             pixel = s.scanner_pixel_um or s.scan_pixel_um
-            ground_cm = pixel * s.photo_scale / 1e4
+            mc = s.checked_photo_scale  # over relief: the frame over the lowest ground
+            ground_cm = pixel * mc / 1e4
             ok = ground_cm <= row.max_gsd_cm * (1 + 1e-9)
             out.append(GsdCompliance("film", int(mk), row.area, row.max_gsd_cm, ground_cm, ok,
                                      False, row.source))
             warnings.append(PlanWarning(
                 "gsd_limit_film",
-                Message("gsd_limit_film", scale=s.photo_scale, pixel=pixel, ground=ground_cm,
+                Message("gsd_limit_film", scale=float(round(mc)), pixel=pixel,
+                        ground=ground_cm,
                         verdict=Message("gsd_limit.within" if ok else "gsd_limit.over"),
                         limit=row.max_gsd_cm, map=mk, area=Message(f"gsd_area.{row.area}")),
                 photo_scales=(s.photo_scale,), severity="info"))

@@ -20,7 +20,8 @@ from ..core.domains import DOMAINS, check_domain
 from ..errors import InputError
 from ..geo.area import AreaSpec
 from ..geo.layout import Area, FlightLayout
-from ..geo.terrain import FilmTerrain, TerrainResult
+from ..geo.terrain import TerrainResult
+from ..geo.terrain_film import FilmTerrain
 from ..messages import Message
 from ..rules.film import PlanWarning, ScanScenario
 from .api import (
@@ -43,7 +44,13 @@ from .flightplan import (
     layout_warnings,
 )
 from .inputs import by_key, project_key, records
-from .terrainplan import film_terrain_spec, terrain_config, uav_terrain_spec
+from .terrainplan import (
+    archive_over_terrain,
+    film_over_terrain,
+    film_terrain_spec,
+    terrain_config,
+    uav_terrain_spec,
+)
 
 __all__ = ["FilmSpec", "PlanResult", "UavSpec", "plan_project", "project_area"]
 
@@ -100,6 +107,13 @@ class FilmSpec:
     archive: bool = False  # existing photos at a given scale ([film] photo_scale)
     layout: FlightLayout | None = None  # the flight scheme at the recommended photo scale
     terrain: FilmTerrain | None = None  # [terrain]: the local photo scale of every frame
+    flat: ScanScenario | None = None
+    """[terrain]: the recommended photo scale as the engine gives it on flat ground (for
+    comparison); ``recommended`` is then the engine's answer at the frame over the lowest
+    ground (its ``local_photo_scale``), which the specification states."""
+    rejected: tuple[tuple[ScanScenario, FilmTerrain], ...] = ()
+    """[terrain]: the candidate scales with fewer frames (larger Mc) the relief ruled out,
+    with their frames."""
 
 
 @dataclass(frozen=True)
@@ -163,21 +177,92 @@ def _film(project: Project, area: Area | None) -> FilmSpec:
     except InputError as exc:
         raise _as_project_error(project, exc, "film", archive_scale is not None) from None
     if archive_scale is not None:
+        raw = job
         job, best, reason = archive_film(job)
+        if area is not None and project.has("terrain"):
+            return _archive_over_terrain(project, raw, job, best, side, area)
     else:
         best, reason = _choose_photo_scale(job)
+        if best is not None and area is not None and project.has("terrain"):
+            return _film_over_terrain(project, job, side, area)
     return _film_spec(project, job, best, reason, side, area)
+
+
+def _archive_over_terrain(project: Project, raw: ScanJob, job: ScanJob, best: ScanScenario,
+                          side: float, area: Area) -> FilmSpec:
+    """``[terrain]`` with archive photos: the scan pixel of the frame over the lowest
+    ground (:func:`scanplan.project.terrainplan.archive_over_terrain`)."""
+    cfg = terrain_config(project)
+    assert cfg is not None
+    inp = job.plan.inputs
+    try:
+        layout = film_layout(best, inp.frame_width_mm, inp.frame_along_mm, inp.focal_mm,
+                             inp.forward_overlap_pct, side, area, _layout_options(project))
+    except InputError as exc:
+        raise _as_project_error(project, exc, "uav") from None
+    got = archive_over_terrain(project, cfg, raw, job, best, layout)
+    rec, layout = got.headline, got.layout
+    frames = int(layout.notes.get("photos", len(layout.photos))) if layout else None
+    if got.warnings:
+        job = replace(job, plan=replace(job.plan, warnings=job.plan.warnings + got.warnings))
+    return FilmSpec(job=job, recommended=rec, reason=got.reason, frames=frames,
+                    strips=len(layout.strips) if layout else None,
+                    scanned_gigabytes=(frames * rec.frame_megabytes / 1000.0
+                                       if frames is not None and rec is not None else None),
+                    side_overlap_pct=side, archive=True, layout=layout, terrain=got.terrain,
+                    flat=got.flat)
+
+
+def _feasible(plan: Any, s: ScanScenario) -> bool:
+    """A photo scale the specification may take: within the interpretation limit, the
+    scanner reaches its scan pixel, and the pixel is not below any scanner's (and the
+    film's)."""
+    limit = plan.interpretation_limit_photo_scale
+    finest = DOMAINS["pixel_um"].lo  # below it no scanner (nor film) gives a meaningful pixel
+    return ((limit is None or s.photo_scale <= limit * (1 + 1e-12))
+            and (not plan.inputs.scanner or s.scanner_pixel_um is not None)
+            and s.scan_pixel_um >= finest)
+
+
+def _film_over_terrain(project: Project, job: ScanJob, side: float, area: Area) -> FilmSpec:
+    """``[terrain]``: the photo scale and scan pixel that hold at every frame over the
+    relief (:func:`scanplan.project.terrainplan.film_over_terrain`)."""
+    plan = job.plan
+    cfg = terrain_config(project)
+    assert cfg is not None
+    inp = plan.inputs
+    candidates = sorted((s for s in plan.scenarios if _feasible(plan, s)),
+                        key=lambda s: (s.photo_scale, s.scanner_pixel_um or 0), reverse=True)
+
+    def layout_at(s: ScanScenario) -> FlightLayout:
+        try:
+            return film_layout(s, inp.frame_width_mm, inp.frame_along_mm, inp.focal_mm,
+                               inp.forward_overlap_pct, side, area, _layout_options(project))
+        except InputError as exc:
+            raise _as_project_error(project, exc, "uav") from None
+
+    got = film_over_terrain(project, cfg, plan, candidates, layout_at,
+                            lambda s: _feasible(plan, s))
+    rec, layout = got.headline, got.layout
+    frames = strips = gigabytes = None
+    if rec is not None and layout is not None:
+        strips = len(layout.strips)
+        frames = int(layout.notes.get("photos", len(layout.photos)))
+        gigabytes = frames * rec.frame_megabytes / 1000.0
+    if got.warnings:  # shown with the film plan's own warnings
+        job = replace(job, plan=replace(plan, warnings=plan.warnings + got.warnings))
+    return FilmSpec(job=job, recommended=rec, reason=got.reason, frames=frames, strips=strips,
+                    scanned_gigabytes=gigabytes, side_overlap_pct=side, archive=False,
+                    layout=layout, terrain=got.terrain, flat=got.flat,
+                    rejected=got.rejected)
 
 
 def _choose_photo_scale(job: ScanJob) -> tuple[ScanScenario | None, str]:
     """Among candidate photo scales: the smallest that meets every constraint."""
     plan = job.plan
     limit = plan.interpretation_limit_photo_scale
-    finest = DOMAINS["pixel_um"].lo  # below it no scanner (nor film) gives a meaningful pixel
-    feasible = [s for s in plan.scenarios
-                if (limit is None or s.photo_scale <= limit * (1 + 1e-12))
-                and (not plan.inputs.scanner or s.scanner_pixel_um is not None)
-                and s.scan_pixel_um >= finest]
+    finest = DOMAINS["pixel_um"].lo
+    feasible = [s for s in plan.scenarios if _feasible(plan, s)]
     if feasible:
         best = max(feasible, key=lambda s: (s.photo_scale, s.scanner_pixel_um or 0))
         reason = Message("spec.film", scale=best.photo_scale, explanation=best.explanation)

@@ -4,33 +4,36 @@ The project layer's bridge to :mod:`scanplan.geo.terrain`: reads the ``[terrain]
 resolves the DEM beside the project file, and gives the UAV specification its terrain
 result — at the planned height, and, when the flat-ground recommendation fails over the
 relief, at the largest height the worst photo allows (rounded down like every
-recommended height). Film: the local photo scale of every frame of the flight scheme.
+recommended height). Film: the local photo scale of every frame of the flight scheme,
+and the photo scale chosen so that the frame over the lowest ground still meets every
+constraint (:func:`film_over_terrain`).
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
 from ..errors import InputError
 from ..geo.layout import FlightLayout
 from ..geo.terrain import (
-    FilmTerrain,
     Ground,
     TerrainConfig,
     TerrainResult,
-    film_terrain,
     ground_under,
     uav_terrain,
 )
+from ..geo.terrain_film import FilmTerrain, film_terrain, frames_over_terrain
 from ..messages import Message
-from ..rules.results import PlanWarning, ScanRules
+from ..rules.results import PlanWarning, ScanPlan, ScanRules, ScanScenario
 from .api import UavJob, recommended_height_m
 from .file import KEYS, Project
 
-__all__ = ["TERRAIN_KEYS", "film_terrain_spec", "terrain_config", "uav_terrain_spec"]
+__all__ = ["TERRAIN_KEYS", "FilmOverTerrain", "archive_over_terrain", "film_over_terrain",
+           "film_terrain_spec", "terrain_config", "uav_terrain_spec"]
 
 TERRAIN_KEYS = KEYS["terrain"]
 """The ``[terrain]`` keys (defined with every project key in :mod:`.file`)."""
@@ -151,7 +154,179 @@ def uav_terrain_spec(project: Project, cfg: TerrainConfig, job: UavJob,
 def film_terrain_spec(project: Project, cfg: TerrainConfig, layout: FlightLayout,
                       rules: ScanRules, **scenario: Any) -> FilmTerrain:
     """The local photo scale of every frame of the flight scheme (see
-    :func:`scanplan.geo.terrain.film_terrain`)."""
+    :func:`scanplan.geo.terrain_film.film_terrain`)."""
     ground = _ground(project, cfg, layout)
     return film_terrain(layout, ground, rules, mode=cfg.altitude_mode,
                         follow_tolerance_m=cfg.follow_tolerance_m, **scenario)
+
+
+@dataclass(frozen=True)
+class FilmOverTerrain:
+    """The film specification over the relief (see :func:`film_over_terrain`).
+
+    Attributes
+    ----------
+    flat : ScanScenario or None
+        The chosen candidate as the engine gives it on flat ground (its planned scale).
+    headline : ScanScenario or None
+        The specification's scenario: the engine's answer at the smallest local photo
+        scale of the block (``local_photo_scale``), labelled with the flown ``photo_scale``.
+    layout : FlightLayout or None
+        The flight scheme at the chosen scale, every frame's ground and height filled in.
+    terrain : FilmTerrain or None
+    rejected : tuple
+        (candidate, its FilmTerrain) for the candidates with fewer frames (larger Mc) the
+        relief rules out.
+    reason : Message
+    warnings : tuple of PlanWarning
+    """
+
+    flat: ScanScenario | None
+    headline: ScanScenario | None
+    layout: FlightLayout | None
+    terrain: FilmTerrain | None
+    rejected: tuple[tuple[ScanScenario, FilmTerrain], ...]
+    reason: Message
+    warnings: tuple[PlanWarning, ...] = ()
+
+
+def _film_args(plan: ScanPlan, photo_scale: float) -> dict[str, Any]:
+    inp = plan.inputs
+    obj = inp.object
+    return dict(map_scale=inp.map_scale, photo_scale=photo_scale,
+                relief_interval_m=inp.relief_interval_m, focal_mm=inp.focal_mm,
+                frame_along_mm=inp.frame_along_mm,
+                forward_overlap_pct=inp.forward_overlap_pct,
+                resolving_power_lpmm=inp.resolving_power_lpmm,
+                object_size_m=obj.size_m if obj is not None else math.nan,
+                shape_coefficient=obj.shape_coefficient if obj is not None else math.nan)
+
+
+def worst_frame_scenario(plan: ScanPlan, candidate: ScanScenario, ft: FilmTerrain
+                         ) -> tuple[ScanScenario, ScanScenario]:
+    """The engine's scenario at the block's smallest local photo scale (``ft.mc_max``):
+    as computed (labelled with that Mc) and as the specification states it (labelled with
+    the flown scale of ``candidate``, ``local_photo_scale`` = Mc max)."""
+    from ..rules.film import plan_scan
+
+    raw = plan_scan(replace(plan.inputs, photo_scales=(ft.mc_max,)), plan.rules).scenarios[0]
+    return raw, replace(raw, photo_scale=candidate.photo_scale,
+                        photo_to_map_ratio=candidate.photo_to_map_ratio,
+                        local_photo_scale=ft.mc_max)
+
+
+def frame_recognition(plan: ScanPlan, mc: Any, pixel_um: float) -> Any:
+    """Recognition probability of the map's object on every frame at its local scale,
+    P = exp(−(B·a/L)²) with a = Mc / R_eff the photo's resolution on the ground and
+    R_eff = min(R, k_R / pixel) what the scan keeps (the engine's own computation,
+    :func:`scanplan.rules.film.plan_scan`); NaN without an object."""
+    import numpy as np
+
+    from ..core import formulas as F
+
+    inp = plan.inputs
+    obj = inp.object
+    mc = np.asarray(mc, dtype=float)
+    if obj is None:
+        return np.full(mc.size, np.nan)
+    r_eff = min(inp.resolving_power_lpmm, plan.rules.pr_coefficient / (pixel_um / 1000.0))
+    return np.asarray(F.recognition_probability(
+        obj.size_m * 1000.0, F.resolution_on_ground_mm(mc, r_eff), obj.shape_coefficient),
+        dtype=float)
+
+
+def _where(ft: FilmTerrain) -> Message:
+    if ft.ground_known:
+        return Message("terrain_film_where.dem", frame=ft.binding_frame, strip=ft.binding_strip)
+    return Message("terrain_film_where.range", low=ft.ground_low_m)
+
+
+def film_over_terrain(project: Project, cfg: TerrainConfig, plan: ScanPlan,
+                      candidates: list[ScanScenario],
+                      layout_at: Callable[[ScanScenario], FlightLayout],
+                      feasible: Callable[[ScanScenario], bool]) -> FilmOverTerrain:
+    """The photo scale and scan pixel that hold at every frame over the relief.
+
+    The candidates that meet every constraint on flat ground are tried from the smallest
+    scale (fewest frames) up: each is laid out over the area, every frame gets its local
+    photo scale (:func:`scanplan.geo.terrain_film.film_terrain`), and the engine is run at
+    the largest local Mc. The first whose worst frame is ``feasible`` (the flat-ground
+    choice's own test: interpretable, within the scanner and the film) is the
+    specification: its scan pixel and binding constraint are those of the worst frame.
+    Bisection-free: the engine is evaluated once per candidate tried.
+    """
+    rejected: list[tuple[ScanScenario, FilmTerrain]] = []
+    for s in candidates:
+        layout = layout_at(s)
+        ft = film_terrain_spec(project, cfg, layout, plan.rules, **_film_args(plan, s.photo_scale))
+        raw, headline = worst_frame_scenario(plan, s, ft)
+        if not feasible(raw):
+            rejected.append((s, ft))
+            continue
+        pixel = headline.scanner_pixel_um or headline.scan_pixel_um
+        layout = frames_over_terrain(layout, ft, pixel, plan.inputs.focal_mm, cfg.altitude_mode,
+                                     frame_recognition(plan, ft.mc, pixel))
+        rej = Message("spec.film_terrain.rejected",
+                      scales=[r.photo_scale for r, _ in rejected],
+                      locals=[float(round(t.mc_max)) for _, t in rejected]) if rejected else None
+        reason = Message("spec.film_terrain", scale=s.photo_scale, where=_where(ft),
+                         local=float(round(ft.mc_max)), explanation=raw.explanation,
+                         rejected=rej)
+        warnings = list(ft.warnings)
+        if rejected:
+            r, rt = rejected[0]
+            warnings.append(PlanWarning("terrain_film_scale_changed", Message(
+                "terrain_film_scale_changed", flat=r.photo_scale, where=_where(rt),
+                local=float(round(rt.mc_max)), scale=s.photo_scale,
+                hi=float(round(ft.mc_max))), photo_scales=(r.photo_scale,)))
+        return FilmOverTerrain(s, headline, layout, ft, tuple(rejected), reason,
+                               tuple(warnings))
+    why = [Message("no_feasible_photo_scale.relief",
+                   scales=[r.photo_scale for r, _ in rejected],
+                   locals=[float(round(t.mc_max)) for _, t in rejected])] if rejected else []
+    return FilmOverTerrain(None, None, None, None, tuple(rejected),
+                           Message("no_feasible_photo_scale", why=why))
+
+
+def archive_over_terrain(project: Project, cfg: TerrainConfig, raw: Any, flat_job: Any,
+                         flat: ScanScenario, layout: FlightLayout) -> FilmOverTerrain:
+    """Archive photos (``[film] photo_scale``, the scale given) over the relief: the scan
+    pixel that holds at the frame over the lowest ground.
+
+    ``raw`` is the engine's job at the archive scale, ``flat_job``/``flat`` its archive
+    restatement on flat ground (:func:`scanplan.project.archive.archive_film`). The same
+    restatement is made at the largest local Mc; its scan pixel, binding constraint and
+    volume are the specification's, labelled with the archive scale.
+    """
+    from ..rules.film import plan_scan
+    from .archive import archive_film
+
+    plan = raw.plan
+    ft = film_terrain_spec(project, cfg, layout, plan.rules,
+                           **_film_args(plan, flat.photo_scale))
+    worst_plan = plan_scan(replace(plan.inputs, photo_scales=(ft.mc_max,)), plan.rules)
+    wjob, ws, _ = archive_film(replace(raw, plan=worst_plan))
+    headline = replace(ws, photo_scale=flat.photo_scale,
+                       photo_to_map_ratio=flat.photo_to_map_ratio, local_photo_scale=ft.mc_max)
+    pixel = headline.scanner_pixel_um or headline.scan_pixel_um
+    layout = frames_over_terrain(layout, ft, pixel, plan.inputs.focal_mm, cfg.altitude_mode,
+                                 frame_recognition(plan, ft.mc, pixel))
+    # the terrain figures as the archive restatement gives them (P_D set aside where the
+    # objects cannot be interpreted), not the raw engine's
+    kept = tuple(w for w in ft.warnings if w.code != "terrain_film_scale")
+    if headline.scan_pixel_um < flat.scan_pixel_um * (1 - 1e-9):
+        kept += (PlanWarning("terrain_film_scale", Message(
+            "terrain_film_scale", lo=float(round(ft.mc_min)), hi=float(round(ft.mc_max)),
+            where=_where(ft), pixel=headline.scan_pixel_um, planned=flat.scan_pixel_um,
+            cid=headline.binding), severity="info"),)
+    ft = replace(ft, scan_pixel_um=headline.scan_pixel_um, binding=headline.binding,
+                 scan_pixel_planned_um=flat.scan_pixel_um, binding_planned=flat.binding,
+                 warnings=kept)
+    reason = Message("spec.film_archive_terrain", scale=flat.photo_scale, where=_where(ft),
+                     local=float(round(ft.mc_max)), pixel=headline.scan_pixel_um,
+                     explanation=ws.explanation)
+    seen = {w.code for w in flat_job.plan.warnings}
+    extra = [w for w in wjob.plan.warnings if w.code in ("archive_not_interpretable",
+                                                          "archive_scanner_too_coarse")
+             and w.code not in seen]
+    return FilmOverTerrain(flat, headline, layout, ft, (), reason, (*ft.warnings, *extra))

@@ -15,7 +15,8 @@ from typing import Any
 
 import numpy as np
 
-from ..geo.layout import PHOTO_COLUMNS, FlightLayout
+from ..geo.export.gis import photo_columns
+from ..geo.layout import FlightLayout
 from . import exports as _exports
 from .mapview import summary_items
 from .plots import number
@@ -29,7 +30,8 @@ _PHOTO_FORMATS = {"photo": "0", "strip": "0", "index": "0", "sortie": "0",
                   "x_m": "0.000", "y_m": "0.000", "lon_deg": "0.00000000",
                   "lat_deg": "0.00000000", "ground_m": "0.00", "altitude_m": "0.00",
                   "agl_m": "0.00", "gsd_cm": "0.000", "resolution_cm": "0.000",
-                  "recognition_p": "0.0000"}
+                  "recognition_p": "0.0000", "ground_min_m": "0.00", "ground_max_m": "0.00",
+                  "forward_overlap_pct": "0.0", "side_overlap_pct": "0.0"}
 
 
 def add_geo_sheets(book: Any, spec: Any) -> None:
@@ -101,7 +103,7 @@ def _photos_sheet(book: Any, layout: FlightLayout, key: str) -> None:
     from .excel.cells import _header, put_num
 
     ph = layout.photos
-    cols = [c for c in PHOTO_COLUMNS if c in ph.columns]
+    cols = photo_columns(ph)
     ws = book.sheet(key, landscape=True, widths=[14] * len(cols))
     _header(ws, 1, [book.t(f"photo_{c}") for c in cols])
     arrays = [np.asarray(ph[c]) for c in cols]

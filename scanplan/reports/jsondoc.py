@@ -234,6 +234,14 @@ def plan_result_dict(result: Any) -> dict[str, Any]:
             "frames": f.frames, "strips": f.strips, "scanned_gigabytes": f.scanned_gigabytes,
             "side_overlap_pct": f.side_overlap_pct,
         }
+        flat = getattr(f, "flat", None)
+        if rec is not None and flat is not None:  # [terrain]: held at the worst frame
+            spec["film"]["local_photo_scale"] = rec.local_photo_scale
+            spec["film"]["flat_ground"] = {
+                "photo_scale": scale_value(flat.photo_scale), "binding": flat.binding,
+                "scan_pixel_um": flat.scan_pixel_um,
+                "scanner_pixel_um": flat.scanner_pixel_um,
+                "frame_megabytes": flat.frame_megabytes}
         if f.layout is not None:
             spec["film"]["layout"] = layout_dict(f.layout)
     if result.uav:
@@ -293,7 +301,13 @@ def terrain_dict(result: Any) -> dict[str, Any]:
                        "photo_scale_max": ft.mc_max, "binding_frame": ft.binding_frame,
                        "binding_strip": ft.binding_strip, "binding": ft.binding,
                        "scan_pixel_um": ft.scan_pixel_um,
-                       "scan_pixel_at_planned_scale_um": ft.scan_pixel_planned_um}
+                       "scan_pixel_at_planned_scale_um": ft.scan_pixel_planned_um,
+                       "binding_at_planned_scale": ft.binding_planned,
+                       "ground_from_dem": ft.ground_known,
+                       "specified_at_binding_frame": getattr(film, "flat", None) is not None,
+                       "rejected_photo_scales": [
+                           {"photo_scale": r.photo_scale, "photo_scale_max": t.mc_max}
+                           for r, t in getattr(film, "rejected", ())]}
     return out
 
 

@@ -1,7 +1,11 @@
 """Report labels in English and Russian — one dictionary per locale, same keys.
 
 Writers call :func:`t`; a missing key is a bug caught by ``tests`` (both locales must have
-the same keys).
+the same keys). This module holds the labels of the film and UAV specifications; the rest of
+the catalogue lives by concept and is merged into :data:`LABELS` at the end: documents fit to
+sign, the terminal summary, the survey design sheet and terrain in
+:mod:`scanplan.reports.labels_more`, the flight over the area (map page, strips, exported
+files) in :mod:`scanplan.reports.labels_geo`.
 """
 
 from __future__ import annotations
@@ -771,166 +775,7 @@ from .labels_more import TERRAIN as _TERRAIN  # noqa: E402  (terrain: warnings, 
 
 for _loc in LOCALES:
     LABELS[_loc].update(_TERRAIN[_loc])
-# Issue 11: the flight over the area — map page, strips table, Strips and Photos sheets,
-# names inside the exported files.
-_GEO: dict[str, dict[str, str]] = {
-    "en": {
-        "geo_export_title": "Flight plan",
-        "geo_area": "Area",
-        "geo_strips": "Strips",
-        "geo_photos": "Photo centres",
-        "geo_frames": "Frame centres",
-        "geo_strip_n": "Strip {n}",
-        "geo_sortie_n": "sortie {n}",
-        "map_title": "Flight map",
-        "map_title_film": "Flight scheme of the aerial survey",
-        "map_crs": "Coordinate system",
-        "map_north": "N",
-        "map_easting_km": "Easting, km",
-        "map_northing_km": "Northing, km",
-        "map_m": "m",
-        "map_km": "km",
-        "map_legend_area": "Area",
-        "map_legend_strips": "Strips (flight direction)",
-        "map_legend_photos": "Photo centres",
-        "map_legend_frames": "Frame centres",
-        "map_local": "local frame (the block is not georeferenced)",
-        "geo_summary": "Flight lines over the area",
-        "geo_area_km2": "Area, km²",
-        "geo_perimeter_km": "Perimeter, km",
-        "geo_direction_deg": "Strip direction (from grid north, clockwise), °",
-        "geo_spacing_m": "Strip spacing, m",
-        "geo_base_m": "Photo base (trigger distance), m",
-        "geo_n_strips": "Strips",
-        "geo_n_photos": "Photo centres",
-        "geo_n_frames": "Frames",
-        "geo_n_sorties": "Sorties",
-        "geo_flight_km": "Flight length over the area (with turns), km",
-        "geo_flight_min": "Flight time over the area, min",
-        "strips_title": "Strips",
-        "strip_no": "Strip",
-        "strip_sortie": "Sortie",
-        "strip_photos": "Photos",
-        "strip_frames": "Frames",
-        "strip_length_m": "Length, m",
-        "strip_parts": "Photographed parts",
-        "strip_start": "Start",
-        "strip_end": "End",
-        "strip_lat_lon": "latitude, longitude, °",
-        "strip_xy": "easting, northing, m",
-        "strips_more": "The first {shown} of {total} strips; all of them are in the workbook.",
-        "geo_not_georeferenced": "The block is an abstract rectangle (width × length): it has "
-                                 "no place on the map, so no map, mission or GIS files are "
-                                 "written. Give the area as a polygon ([area] file or [area] "
-                                 "polygon) to get them.",
-        "geo_not_feasible": "The flight plan cannot be flown: {reason}",
-        "geo_photos_elsewhere": "{n} photo centres are too many for the workbook; they are in "
-                                "the photo-centre table written beside this report.",
-        "geo_files_note": "Files for the crew and a GIS (written beside the reports when "
-                          "the project is planned into a folder): {items}.",
-        "geo_file_mission": "the mission for the ground station (one per sortie)",
-        "geo_file_flight": "the flight for Google Earth and for a GIS",
-        "geo_file_photos": "the table of photo centres",
-        "geo_file_frames": "the table of frame centres",
-        "map_one_in": "1 in {k} shown",
-        "xlsx_sheet_strips": "Strips",
-        "xlsx_sheet_photos": "Photos",
-        "xlsx_sheet_strips_film": "Survey strips",
-        "xlsx_sheet_frames": "Frames",
-        "photo_photo": "Photo",
-        "photo_strip": "Strip",
-        "photo_index": "No. in strip",
-        "photo_sortie": "Sortie",
-        "photo_x_m": "Easting, m",
-        "photo_y_m": "Northing, m",
-        "photo_lon_deg": "Longitude, °",
-        "photo_lat_deg": "Latitude, °",
-        "photo_ground_m": "Ground elevation, m",
-        "photo_altitude_m": "Flight altitude, m",
-        "photo_agl_m": "Height above ground, m",
-        "photo_gsd_cm": "GSD, cm",
-        "photo_resolution_cm": "Ground resolution L, cm",
-        "photo_recognition_p": "Recognition probability",
-    },
-    "ru": {
-        "geo_export_title": "План полёта",
-        "geo_area": "Участок",
-        "geo_strips": "Маршруты",
-        "geo_photos": "Центры снимков",
-        "geo_frames": "Центры кадров",
-        "geo_strip_n": "Маршрут {n}",
-        "geo_sortie_n": "вылет {n}",
-        "map_title": "Схема маршрутов",
-        "map_title_film": "Схема маршрутов аэрофотосъёмки",
-        "map_crs": "Система координат",
-        "map_north": "С",
-        "map_easting_km": "На восток, км",
-        "map_northing_km": "На север, км",
-        "map_m": "м",
-        "map_km": "км",
-        "map_legend_area": "Участок съёмки",
-        "map_legend_strips": "Маршруты (направление полёта)",
-        "map_legend_photos": "Центры снимков",
-        "map_legend_frames": "Центры кадров",
-        "map_local": "местная система (участок не привязан к карте)",
-        "geo_summary": "Маршруты над участком",
-        "geo_area_km2": "Площадь, км²",
-        "geo_perimeter_km": "Периметр, км",
-        "geo_direction_deg": "Направление маршрутов (от северного направления сетки, по "
-                             "часовой стрелке), °",
-        "geo_spacing_m": "Расстояние между маршрутами, м",
-        "geo_base_m": "Базис фотографирования (шаг срабатывания камеры), м",
-        "geo_n_strips": "Маршрутов",
-        "geo_n_photos": "Центров снимков",
-        "geo_n_frames": "Кадров",
-        "geo_n_sorties": "Вылетов",
-        "geo_flight_km": "Длина полёта над участком (с разворотами), км",
-        "geo_flight_min": "Время полёта над участком, мин",
-        "strips_title": "Маршруты",
-        "strip_no": "Маршрут",
-        "strip_sortie": "Вылет",
-        "strip_photos": "Снимков",
-        "strip_frames": "Кадров",
-        "strip_length_m": "Длина, м",
-        "strip_parts": "Частей съёмки",
-        "strip_start": "Начало",
-        "strip_end": "Конец",
-        "strip_lat_lon": "широта, долгота, °",
-        "strip_xy": "на восток, на север, м",
-        "strips_more": "Первые {shown} из {total} маршрутов; все — в рабочей книге.",
-        "geo_not_georeferenced": "Участок задан условным прямоугольником (ширина × длина): "
-                                 "он не привязан к карте, поэтому схема, полётное задание и "
-                                 "файлы для ГИС не создаются. Чтобы их получить, задайте "
-                                 "участок контуром ([area] file или [area] polygon).",
-        "geo_not_feasible": "План полёта невыполним: {reason}",
-        "geo_photos_elsewhere": "Центров снимков {n} — слишком много для рабочей книги; они "
-                                "в таблице центров снимков, записанной рядом с отчётом.",
-        "geo_files_note": "Файлы для экипажа и ГИС (записываются рядом с отчётами при "
-                          "расчёте проекта в папку): {items}.",
-        "geo_file_mission": "полётное задание для наземной станции (по одному на вылет)",
-        "geo_file_flight": "маршруты для просмотра на глобусе и в ГИС",
-        "geo_file_photos": "таблица центров снимков",
-        "geo_file_frames": "таблица центров кадров",
-        "map_one_in": "показан 1 из {k}",
-        "xlsx_sheet_strips": "Маршруты",
-        "xlsx_sheet_photos": "Снимки",
-        "xlsx_sheet_strips_film": "Маршруты аэрофотосъёмки",
-        "xlsx_sheet_frames": "Кадры",
-        "photo_photo": "Снимок",
-        "photo_strip": "Маршрут",
-        "photo_index": "№ в маршруте",
-        "photo_sortie": "Вылет",
-        "photo_x_m": "На восток, м",
-        "photo_y_m": "На север, м",
-        "photo_lon_deg": "Долгота, °",
-        "photo_lat_deg": "Широта, °",
-        "photo_ground_m": "Отметка земли, м",
-        "photo_altitude_m": "Высота полёта (абсолютная), м",
-        "photo_agl_m": "Высота над землёй, м",
-        "photo_gsd_cm": "GSD, см",
-        "photo_resolution_cm": "Разрешение на местности L, см",
-        "photo_recognition_p": "Вероятность распознавания",
-    },
-}
+from .labels_geo import GEO as _GEO  # noqa: E402  (map page, strips, exported files)
+
 for _loc in LOCALES:
     LABELS[_loc].update(_GEO[_loc])

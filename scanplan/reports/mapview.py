@@ -17,6 +17,7 @@ import base64
 import io
 import math
 import re
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -30,7 +31,8 @@ if TYPE_CHECKING:  # matplotlib is imported when a map is drawn (the workbook dr
     from matplotlib.figure import Figure
     from matplotlib.ticker import FuncFormatter
 
-__all__ = ["MAX_MAP_PHOTOS", "MAX_TABLE_STRIPS", "crs_text", "geo_views", "map_svg"]
+__all__ = ["MAX_MAP_PHOTOS", "MAX_TABLE_STRIPS", "MapTerrain", "crs_text", "geo_views",
+           "map_svg", "map_terrain"]
 
 MAX_MAP_PHOTOS = 4000
 """Most photo centres drawn on the map (every k-th beyond it: the SVG stays small)."""
@@ -38,10 +40,11 @@ MAX_TABLE_STRIPS = 150
 """Most strips listed in the PDF's strips table (the workbook lists all)."""
 _MAP_SIZE_IN = (6.6, 8.2)  # width, greatest height [in]
 _PHOTO_DPI = 300
-"""Resolution [dots per inch] of the photo centres, the map's only raster layer: thousands of
-1.6 pt dots as SVG elements took WeasyPrint about 1.3 s to draw (4,575 photos), as one
-300 dpi picture 0.1 s; printed or zoomed to 400 %, a dot looks the same. The area, the
-strips, the text and the legend stay vector."""
+"""Resolution [dots per inch] of the photo centres of a map without terrain, its only raster
+layer: thousands of 1.6 pt dots as SVG elements took WeasyPrint about 1.3 s to draw (4,575
+photos), as one 300 dpi picture 0.1 s; printed or zoomed to 400 %, a dot looks the same.
+The area, the strips, the text and the legend stay vector."""
+_RASTER_DPI = 150  # the photo centres coloured by height above ground (terrain maps)
 
 # Russian for the words of common projected-CRS names (pyproj's names are English)
 _RU_CRS_WORDS = [(r"\bzone\b", "зона"), (r"\bPulkovo\b", "Пулково"),
@@ -163,7 +166,140 @@ def _north_arrow(ax: Any, north_deg: float, locale: str) -> None:
             ha="center", va="center", fontsize=9, fontweight="bold", zorder=7)
 
 
-def map_svg(layout: FlightLayout, locale: str = "en") -> str:
+@dataclass(frozen=True)
+class MapTerrain:
+    """What the map shows of a ``[terrain]`` plan: the photo centres coloured by their height
+    above ground, and the photos that break a constraint marked.
+
+    Attributes
+    ----------
+    agl_m : ndarray
+        Height above ground of every photo (the layout's order) [m].
+    too_high : ndarray of bool
+        Photos above the maximum planned height (resolution / interpretation fail).
+    overlap_short : ndarray of bool
+        Photos whose forward or side overlap falls below the planned one.
+    limit_m : float or None
+        The maximum planned height [m] and ``cid`` the constraint that sets it.
+    highlight : int or None
+        Running number of the photo to mark (the worst photo, the binding frame).
+    highlight_key : str
+        Its legend label.
+    focal_mm : float or None
+        Film: the focal length, for the colour bar's second axis of local photo scales.
+    """
+
+    agl_m: np.ndarray
+    too_high: np.ndarray
+    overlap_short: np.ndarray
+    limit_m: float | None = None
+    cid: str = ""
+    highlight: int | None = None
+    highlight_key: str = "map_legend_worst_photo"
+    focal_mm: float | None = None
+    agl_range_m: tuple[float, float] | None = None  # the colour bar's span [m]
+
+
+def map_terrain(spec: Any, kind: str, layout: FlightLayout) -> MapTerrain | None:
+    """The :class:`MapTerrain` of a layout of ``spec`` (None when its plan has no
+    ``[terrain]``, i.e. the layout's notes name no altitude mode)."""
+    ph = layout.photos
+    if "altitude_mode" not in layout.notes or len(ph) == 0 or "agl_m" not in ph.columns:
+        return None
+    agl = np.asarray(ph["agl_m"], dtype=float)
+    none = np.zeros(agl.size, dtype=bool)
+    if kind == "film":
+        film = getattr(spec, "film", None)
+        ft = getattr(film, "terrain", None)
+        inp = film.job.plan.inputs if film is not None else None
+        span = None
+        if ft is not None and inp is not None:  # a ground range: the heights it allows
+            span = (ft.mc_min * inp.focal_mm / 1000.0, ft.mc_max * inp.focal_mm / 1000.0)
+        return MapTerrain(agl, none, none, highlight=(ft.binding_frame if ft is not None
+                                                      and ft.ground_known else None),
+                          highlight_key="map_legend_binding_frame",
+                          focal_mm=inp.focal_mm if inp is not None else None,
+                          agl_range_m=span)
+    uav = getattr(spec, "uav", None)
+    tr = getattr(uav, "terrain", None)
+    if uav is None or tr is None:
+        return MapTerrain(agl, none, none)
+    plan = uav.job.plan
+    limit = plan.max_height_m
+    high = agl > limit + 1e-6 if limit is not None else none
+    short = none
+    cols = ph.columns
+    if "forward_overlap_pct" in cols and "side_overlap_pct" in cols:
+        with np.errstate(invalid="ignore"):
+            short = ((np.asarray(cols["forward_overlap_pct"], float)
+                      < plan.inputs.forward_overlap_pct - 0.05)
+                     | (np.asarray(cols["side_overlap_pct"], float)
+                        < plan.inputs.side_overlap_pct - 0.05))
+    d = tr.summary()
+    span = ((d["agl_min_m"], d["agl_max_m"]) if d.get("agl_min_m") is not None
+            and d.get("agl_max_m") is not None else None)
+    return MapTerrain(agl, high, short, limit_m=limit, cid=plan.binding or "",
+                      highlight=tr.worst_resolution_photo or None, agl_range_m=span)
+
+
+def _draw_photos_agl(fig: Figure, ax: Any, layout: FlightLayout, mt: MapTerrain,
+                     scale: float, locale: str) -> None:
+    """The photo centres coloured by height above ground (one scatter), a colour bar in
+    metres (film: with the local photo scale beside it), and one marker layer for each
+    failed check. Vectorised: no per-photo Python work."""
+    from matplotlib.ticker import FuncFormatter
+
+    ph = layout.photos
+    film = layout.kind == "film"
+    x = np.asarray(ph["x_m"], float) / scale
+    y = np.asarray(ph["y_m"], float) / scale
+    step = max(1, math.ceil(x.size / MAX_MAP_PHOTOS))
+    agl = mt.agl_m
+    finite = agl[np.isfinite(agl)]
+    lo, hi = (float(finite.min()), float(finite.max())) if finite.size else (0.0, 1.0)
+    if mt.agl_range_m is not None:  # the heights the ground allows (a range: unknown)
+        lo, hi = min(lo, mt.agl_range_m[0]), max(hi, mt.agl_range_m[1])
+    if hi - lo < 1.0:
+        lo, hi = lo - 0.5, hi + 0.5
+    label = t("map_legend_frames_agl" if film else "map_legend_photos_agl", locale)
+    if step > 1:
+        label += f" ({t('map_one_in', locale).format(k=step)})"
+    shown = math.ceil(x.size / step)
+    size = min(max(3000.0 / max(shown, 1), 3.0), 16.0)  # few frames: larger dots
+    sc = ax.scatter(x[::step], y[::step], c=agl[::step], s=size, cmap="viridis", vmin=lo,
+                    vmax=hi, edgecolors="#333333", linewidths=0.25 if size > 3.0 else 0.0,
+                    zorder=2.5, label=label, rasterized=True)
+    cax = ax.inset_axes((1.03, 0.12, 0.025, 0.76))  # beside the map, which keeps its width
+    cb = fig.colorbar(sc, cax=cax)
+    cb.set_label(t("map_agl_colorbar", locale))
+    cb.ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _p: number(v, 0, locale)))
+    if mt.focal_mm:
+        f_m = mt.focal_mm / 1000.0
+        sec = cb.ax.secondary_yaxis("left", functions=(lambda a: a / f_m, lambda m: m * f_m))
+        sec.set_ylabel(t("map_local_scale_axis", locale))
+        sec.yaxis.set_major_formatter(FuncFormatter(lambda v, _p: number(v, 0, locale)))
+        sec.tick_params(labelsize=6)
+    marks = ((mt.too_high, "x", "#c62828", t("map_legend_too_high", locale).format(
+                 limit=number(mt.limit_m, 0, locale) if mt.limit_m is not None else "—",
+                 cid=mt.cid)),
+             (mt.overlap_short & ~mt.too_high, "v", "#e65100",
+              t("map_legend_overlap_short", locale)))
+    for mask, marker, color, text in marks:
+        idx = np.flatnonzero(mask)
+        if idx.size:
+            idx = idx[::max(1, math.ceil(idx.size / MAX_MAP_PHOTOS))]
+            ax.scatter(x[idx], y[idx], marker=marker, s=9.0, c=color, linewidths=0.6,
+                       zorder=2.7, label=text)
+    if mt.highlight is not None:
+        at = np.flatnonzero(np.asarray(ph["photo"]) == mt.highlight)
+        if at.size:
+            ax.scatter(x[at[:1]], y[at[:1]], marker="o", s=60.0, facecolors="none",
+                       edgecolors="black", linewidths=1.1, zorder=2.9,
+                       label=t(mt.highlight_key, locale).format(n=mt.highlight))
+
+
+def map_svg(layout: FlightLayout, locale: str = "en", terrain: MapTerrain | None = None
+            ) -> str:
     """The flight layout drawn in its planning CRS (see the module docstring).
 
     Parameters
@@ -172,6 +308,10 @@ def map_svg(layout: FlightLayout, locale: str = "en") -> str:
         Area, strips and photo centres.
     locale : {"en", "ru"}
         Language of the labels and decimal separator.
+    terrain : MapTerrain, optional
+        ``[terrain]``: the photo centres are coloured by their height above ground, with a
+        colour bar, and the photos that break a constraint are marked
+        (:func:`map_terrain`).
 
     Returns
     -------
@@ -189,7 +329,9 @@ def map_svg(layout: FlightLayout, locale: str = "en") -> str:
         ax = fig.add_subplot()
         _draw_area(ax, layout.area.geometry, scale, t("map_legend_area", locale))
         _draw_strips(ax, layout, scale, t("map_legend_strips", locale))
-        if len(ph):
+        if len(ph) and terrain is not None:
+            _draw_photos_agl(fig, ax, layout, terrain, scale, locale)
+        elif len(ph):
             step = max(1, math.ceil(len(ph) / MAX_MAP_PHOTOS))
             x = np.asarray(ph["x_m"], float)[::step] / scale
             y = np.asarray(ph["y_m"], float)[::step] / scale
@@ -206,7 +348,9 @@ def map_svg(layout: FlightLayout, locale: str = "en") -> str:
         ax.set_xlabel(t("map_easting_km", locale))
         ax.set_ylabel(t("map_northing_km", locale))
         ax.set_title(crs_text(layout, locale), fontsize=8)
-        fig.legend(loc="outside lower center", ncols=3, frameon=False)
+        longest = max((len(x) for x in ax.get_legend_handles_labels()[1]), default=0)
+        fig.legend(loc="outside lower center", frameon=False,  # a terrain map's longer
+                   ncols=3 if terrain is None else (2 if longest <= 48 else 1))  # entries
         fig.canvas.draw()  # limits are final before the bar and the arrow are placed
         x0, x1 = ax.get_xlim()
         _scale_bar(ax, x1 - x0, locale)
@@ -226,8 +370,11 @@ def map_svg(layout: FlightLayout, locale: str = "en") -> str:
         fig = Figure(figsize=(width_in, height_in), layout="constrained")
         draw(fig)
         buf = io.StringIO()
-        fig.savefig(buf, format="svg", dpi=_PHOTO_DPI,
-                    metadata={"Date": None, "Creator": None})
+        # the photo centres are the one raster layer of a map (thousands of points as SVG
+        # elements take long to write and to print): coloured by height above ground at
+        # 150 dpi, plain at 300 dpi
+        fig.savefig(buf, format="svg", metadata={"Date": None, "Creator": None},
+                    dpi=_RASTER_DPI if terrain is not None else _PHOTO_DPI)
     return buf.getvalue().replace("'DejaVu Sans'", "'Scanplan Sans'").replace(
         '"DejaVu Sans"', '"Scanplan Sans"').replace("DejaVu Sans", "Scanplan Sans")
 
@@ -325,7 +472,8 @@ def geo_views(spec: Any, locale: str) -> list[dict[str, Any]]:
         views.append({
             "title": t("map_title_film" if film else "map_title", locale)
             if layout.area.georeferenced else t("geo_summary", locale),
-            "map": _svg_uri(map_svg(layout, locale)) if layout.area.georeferenced else None,
+            "map": _svg_uri(map_svg(layout, locale, map_terrain(spec, _kind, layout)))
+            if layout.area.georeferenced else None,
             "caption": crs_text(layout, locale),
             "rows": summary_rows(layout, locale),
             "strips": strips_table(layout, locale),

@@ -476,6 +476,25 @@ def _comparison_value(x: Any, f: _Fmt) -> str:
     return f.num(x, 0 if isinstance(x, int) else 3)
 
 
+def _film_relief_rows(fs: Any, f: _Fmt) -> list[tuple[str, str]]:
+    """``[terrain]``: the frame the film specification holds at, and the flat-ground scan
+    pixel beside it (issue 12)."""
+    ft, flat = getattr(fs, "terrain", None), getattr(fs, "flat", None)
+    if ft is None or flat is None:
+        return []
+    where = (f"{f.label('terrain_film_frame')}: {ft.binding_frame} ({ft.binding_strip})"
+             if ft.ground_known else f.label("terrain_film_frame_range",
+                                            low=f.g(ft.ground_low_m)))
+    rows = [(f.label("terrain_film_mc_max"), f"{f.scale(round(ft.mc_max))}; {where}"),
+            (f.label("terrain_film_flat_pixel"),
+             f"{f.num(flat.scan_pixel_um, 1)} ({flat.binding})")]
+    if fs.rejected:
+        rows.append((f.label("terrain_film_rejected"), "; ".join(
+            f.label("terrain_film_rejected_value", scale=f.scale(r.photo_scale),
+                    local=f.scale(round(t.mc_max))) for r, t in fs.rejected)))
+    return rows
+
+
 def _spec_view(spec: PlanResult, f: _Fmt) -> dict[str, Any]:
     """The specification of ``scanplan plan``: what was chosen, with its reason."""
     rows: list[tuple[str, str]] = []
@@ -490,6 +509,7 @@ def _spec_view(spec: PlanResult, f: _Fmt) -> dict[str, Any]:
                 px += f" → {f.num(rec.scanner_pixel_um, 1)}"
             rows.append((f.label("scan_pixel_um"), px))
             rows.append((f.label("binding"), f"{rec.binding} — {f.cname(rec.binding)}"))
+            rows += _film_relief_rows(fs, f)
             rows.append((f.label("probability"), f.num(rec.recognition_probability, 2)))
             if fs.frames is not None:
                 rows.append((f.label("spec_frames"), f.g(fs.frames)))

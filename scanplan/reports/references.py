@@ -53,43 +53,37 @@ def _alias_pattern() -> tuple[re.Pattern[str], dict[str, Reference]]:
     return pattern, by_alias
 
 
-# Locators as the norm tables write them, in each language (applied in order).
-_LOCATORS: dict[str, tuple[tuple[str, str], ...]] = {
-    "en": (
-        (r"\bconclusions after Table (\d+)", r"conclusions after Table \1"),
-        (r"\bTable (\d+) discussion", r"discussion of Table \1"),
-        (r"\b(?:its )?ref\. \[(\d+)\]", r"its reference \1"),
-        (r"\beqs\. \(?(\d+)\)?\s*[-–]\s*\(?(\d+)\)?", r"eqs. (\1)–(\2)"),
-        (r"\beq\. \(?(\d+)\)?", r"eq. (\1)"),
-        (r"\bconclusion (\d+)", r"conclusion \1"),
-    ),
-    "ru": (
-        (r"\bAppendix B, Table B\.1", "прил. Б, табл. Б.1"),
-        (r"\bTable B\.1", "табл. Б.1"),
-        (r"\bfootnote: towns with dense multi-storey buildings",
-         "сноска: городские населённые пункты с многоэтажной и плотной застройкой"),
-        (r"§(\d+)\.(\d+)\.(\d+)", r"п. \1.\2.\3"),
-        (r"\bconclusions after Table (\d+)", r"выводы после табл. \1"),
-        (r"\bTable (\d+) discussion", r"пояснения к табл. \1"),
-        (r"\b(?:its )?ref\. \[(\d+)\]", r"его источник № \1"),
-        (r"\beqs\. \(?(\d+)\)?\s*[-–]\s*\(?(\d+)\)?", r"ф. (\1)–(\2)"),
-        (r"\beq\. \(?(\d+)\)?", r"ф. (\1)"),
-        (r"\bTables? (\d+)", r"табл. \1"),
-        (r"\bconclusion (\d+)", r"вывод \1"),
-        (r"\bworked example\b", "пример расчёта"),
-        (r"\bas printed\b", "в печатной редакции"),
-        (r"\bafter\b", "после"),
-        (r"\band\b", "и"),
-        (r"\bplus\b", "и"),
-        (r"\bwith\b", "с"),
-        (r"(?<![\d.])(\d+)\.(\d+)(?![.\d])", r"\1,\2"),
-    ),
-}
+# Locators as the norm tables write them → (English, Russian) wording, applied in order;
+# None: the locator is left as written in that language.
+_LOCATORS: tuple[tuple[str, str | None, str], ...] = (
+    (r"\bAppendix B, Table B\.1", None, "прил. Б, табл. Б.1"),
+    (r"\bTable B\.1", None, "табл. Б.1"),
+    (r"\bfootnote: towns with dense multi-storey buildings", None,
+     "сноска: городские населённые пункты с многоэтажной и плотной застройкой"),
+    (r"§(\d+)\.(\d+)\.(\d+)", None, r"п. \1.\2.\3"),
+    (r"\bconclusions after Table (\d+)", r"conclusions after Table \1",
+     r"выводы после табл. \1"),
+    (r"\bTable (\d+) discussion", r"discussion of Table \1", r"пояснения к табл. \1"),
+    (r"\b(?:its )?ref\. \[(\d+)\]", r"its reference \1", r"его источник № \1"),
+    (r"\beqs\. \(?(\d+)\)?\s*[-–]\s*\(?(\d+)\)?", r"eqs. (\1)–(\2)", r"ф. (\1)–(\2)"),
+    (r"\beq\. \(?(\d+)\)?", r"eq. (\1)", r"ф. (\1)"),
+    (r"\bTables? (\d+)", None, r"табл. \1"),
+    (r"\bconclusion (\d+)", r"conclusion \1", r"вывод \1"),
+    (r"\bworked example\b", None, "пример расчёта"),
+    (r"\bas printed\b", None, "в печатной редакции"),
+    (r"\bafter\b", None, "после"),
+    (r"\band\b", None, "и"),
+    (r"\bplus\b", None, "и"),
+    (r"\bwith\b", None, "с"),
+    (r"(?<![\d.])(\d+)\.(\d+)(?![.\d])", None, r"\1,\2"),
+)
 
 
 def _locator(text: str, locale: str) -> str:
-    for pattern, repl in _LOCATORS["ru" if locale == "ru" else "en"]:
-        text = re.sub(pattern, repl, text)
+    for pattern, en, ru in _LOCATORS:
+        repl = ru if locale == "ru" else en
+        if repl is not None:
+            text = re.sub(pattern, repl, text)
     return text
 
 

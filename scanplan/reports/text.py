@@ -313,8 +313,6 @@ def _sc(x: float, loc: str) -> str:
 def format_plan_result(result: Any, locale: str | None = None) -> str:
     """The concise terminal summary of ``scanplan plan``, in the project's language
     (``[project] locale``) unless ``locale`` is given."""
-    from ..messages import localize
-
     meta = result.meta
     loc = locale or (meta.locale if meta.locale in LABELS else "en")
     T = _Terminal(loc)
@@ -323,6 +321,27 @@ def format_plan_result(result: Any, locale: str | None = None) -> str:
         info = CONSTRAINTS[cid]
         return info.name_ru if loc == "ru" else info.name
 
+    lines = _plan_heading(result, loc, T)
+    lines += [_wrap(t, "") for t in format_terrain(result, loc)]
+    if result.film:
+        lines += _film_summary(result.film, loc, T, cname)
+    if result.uav:
+        lines += _uav_summary(result.uav, loc, T, cname)
+    if result.comparison:
+        lines += _comparison_lines(result, loc, T)
+    from .design import design_text_lines
+
+    lines += [textwrap.fill(x.strip(), width=96, initial_indent="  ", subsequent_indent="    ")
+              if x.startswith("  ") else x for x in design_text_lines(result, loc)]
+    if result.warnings:
+        lines += _warning_lines(result, loc, T)
+    return "\n".join(lines)
+
+
+def _plan_heading(result: Any, loc: str, T: _Terminal) -> list[str]:
+    """The project, map scale and relief interval, the parties, the area and its flight
+    lines."""
+    meta = result.meta
     inp_map = result.project.values["map"]
     lines = [f"{meta.project} — {T['map']} {_sc(scale_value(inp_map['scale']), loc)}, "
              f"{T['relief']} {_g(inp_map['relief_interval_m'], loc)} {T['m']}"]
@@ -338,63 +357,73 @@ def format_plan_result(result: Any, locale: str | None = None) -> str:
             scale = (_sc(result.film.recommended.photo_scale, loc)
                      if kind == "film" and result.film.recommended else "")
             lines.append(format_layout(lay, scale, loc))
-    lines += [_wrap(t, "") for t in format_terrain(result, loc)]
-    if result.film:
-        f = result.film
-        s = f.recommended
-        lines += ["", T["film"]]
-        if s is None:
-            lines.append(_wrap(localize(f.reason, loc), "  "))
-        else:
-            px = (f"{_um_loc(s.scan_pixel_um, loc)} {T['um']}"
-                  + (f" → {T['scanner_step']} {_g(s.scanner_pixel_um, loc)} {T['um']}"
-                     if s.scanner_pixel_um else ""))
-            rows = [[f"  {T['photo_scale_archive' if f.archive else 'photo_scale']}",
-                     _sc(s.photo_scale, loc)],
-                    [f"  {T['scan_pixel']}", px],
-                    [f"  {T['binding']}", f"{s.binding} ({cname(s.binding)})"],
-                    [f"  {T['recognition']}", _n(s.recognition_probability, 2, loc)],
-                    [f"  {T['frame']}", f"{_n(s.frame_megabytes, 0, loc, True)} {T['mb']}"]]
-            if f.frames is not None:
-                rows.append([f"  {T['frames']}", f"{f.frames} ({f.strips} {T['strips']}), "
-                             f"{_n(f.scanned_gigabytes, 1, loc, True)} {T['gb']} "
-                             f"{T['scanned']}" if loc == "en" else
-                             f"{f.frames} ({T['strips']}: {f.strips}), {T['scanned']} "
-                             f"{_n(f.scanned_gigabytes, 1, loc, True)} {T['gb']}"])
-            lines.append(table(rows, align="ll"))
-            lines.append(_wrap(localize(f.reason, loc), "  "))
-    if result.uav:
-        lines += _uav_summary(result.uav, loc, T, cname)
-    if result.comparison:
-        aircraft = bool(result.uav) and result.uav.job.plan.inputs.platform == "aircraft"
-        lines += ["", T["side_by_side_aircraft" if aircraft else "side_by_side"]]
-        rows = [[f"  {T['quantity']}", T["film_col"],
-                 T["digital_col" if aircraft else "uav_col"], T["unit"]]]
-        for c in result.comparison:
-            def v(x: Any) -> str:
-                if x is None:
-                    return "—"
-                return _n(x, 3, loc, True) if isinstance(x, float) else str(x)
-            q = T.get(f"cmp_{c.get('key', '')}", c["quantity"])
-            unit = {"m": T["m"], "GB": T["gb"]}.get(c["unit"], c["unit"])
-            rows.append([f"  {q}", v(c["film"]), v(c["uav"]), unit])
-        lines.append(table(rows, align="lrrl"))
-    from .design import design_text_lines
+    return lines
 
-    lines += [textwrap.fill(x.strip(), width=96, initial_indent="  ", subsequent_indent="    ")
-              if x.startswith("  ") else x for x in design_text_lines(result, loc)]
-    if result.warnings:
-        lines += ["", T["warnings"]]
-        for w in result.warnings:
-            mark = "!" if w.severity == "warning" else "i"
-            text = localize(w.message, loc)
-            if loc == "ru":  # ids by their names, as the Russian documents show them
-                from .wording import display_message
 
-                ns = (result.film or result.uav).job.norm_set
-                text = display_message(w.message, ns, loc)
-            lines.append(_wrap(f"{text} [{w.code}]", f"  {mark} "))
-    return "\n".join(lines)
+def _film_summary(f: Any, loc: str, T: _Terminal, cname: Any) -> list[str]:
+    """The film block: photo scale, scan pixel, binding constraint, frames, the reason."""
+    from ..messages import localize
+
+    s = f.recommended
+    lines = ["", T["film"]]
+    if s is None:
+        lines.append(_wrap(localize(f.reason, loc), "  "))
+        return lines
+    px = (f"{_um_loc(s.scan_pixel_um, loc)} {T['um']}"
+          + (f" → {T['scanner_step']} {_g(s.scanner_pixel_um, loc)} {T['um']}"
+             if s.scanner_pixel_um else ""))
+    rows = [[f"  {T['photo_scale_archive' if f.archive else 'photo_scale']}",
+             _sc(s.photo_scale, loc)],
+            [f"  {T['scan_pixel']}", px],
+            [f"  {T['binding']}", f"{s.binding} ({cname(s.binding)})"],
+            [f"  {T['recognition']}", _n(s.recognition_probability, 2, loc)],
+            [f"  {T['frame']}", f"{_n(s.frame_megabytes, 0, loc, True)} {T['mb']}"]]
+    if f.frames is not None:
+        rows.append([f"  {T['frames']}", f"{f.frames} ({f.strips} {T['strips']}), "
+                     f"{_n(f.scanned_gigabytes, 1, loc, True)} {T['gb']} "
+                     f"{T['scanned']}" if loc == "en" else
+                     f"{f.frames} ({T['strips']}: {f.strips}), {T['scanned']} "
+                     f"{_n(f.scanned_gigabytes, 1, loc, True)} {T['gb']}"])
+    lines.append(table(rows, align="ll"))
+    lines.append(_wrap(localize(f.reason, loc), "  "))
+    return lines
+
+
+def _comparison_lines(result: Any, loc: str, T: _Terminal) -> list[str]:
+    """Film and digital camera side by side."""
+    aircraft = bool(result.uav) and result.uav.job.plan.inputs.platform == "aircraft"
+    lines = ["", T["side_by_side_aircraft" if aircraft else "side_by_side"]]
+    rows = [[f"  {T['quantity']}", T["film_col"],
+             T["digital_col" if aircraft else "uav_col"], T["unit"]]]
+
+    def v(x: Any) -> str:
+        if x is None:
+            return "—"
+        return _n(x, 3, loc, True) if isinstance(x, float) else str(x)
+
+    for c in result.comparison:
+        q = T.get(f"cmp_{c.get('key', '')}", c["quantity"])
+        unit = {"m": T["m"], "GB": T["gb"]}.get(c["unit"], c["unit"])
+        rows.append([f"  {q}", v(c["film"]), v(c["uav"]), unit])
+    lines.append(table(rows, align="lrrl"))
+    return lines
+
+
+def _warning_lines(result: Any, loc: str, T: _Terminal) -> list[str]:
+    """The warnings (``!``) and notes (``i``) with their codes."""
+    from ..messages import localize
+
+    lines = ["", T["warnings"]]
+    for w in result.warnings:
+        mark = "!" if w.severity == "warning" else "i"
+        text = localize(w.message, loc)
+        if loc == "ru":  # ids by their names, as the Russian documents show them
+            from .wording import display_message
+
+            ns = (result.film or result.uav).job.norm_set
+            text = display_message(w.message, ns, loc)
+        lines.append(_wrap(f"{text} [{w.code}]", f"  {mark} "))
+    return lines
 
 
 _AREA_TEXT = {
@@ -568,14 +597,18 @@ _TERRAIN_TEXT = {
            "constant": "constant", "strip": "per strip", "follow": "following the terrain",
            "agl": "height above ground", "at_photo": "largest at photo", "strip_n": "strip",
            "max": "maximum height over the relief", "film": "Terrain (film): photo scale",
-           "binds": "binds: scan pixel", "frame": "frame", "m": "m", "um": "µm"},
+           "binds": "binds: scan pixel", "frame": "frame", "m": "m", "um": "µm",
+           "lowest": "the frame over the lowest ground", "flat": "on flat ground",
+           "spec": "the specification's scan pixel is the binding frame's"},
     "ru": {"head": "Рельеф", "dem": "ЦМР", "range": "отметки заданы диапазоном",
            "ground": "отметки", "under": "под снимками", "mode": "высота полёта",
            "constant": "постоянная", "strip": "по маршрутам", "follow": "следование рельефу",
            "agl": "высота над рельефом", "at_photo": "наибольшая у снимка",
            "strip_n": "маршрут", "max": "максимальная высота с учётом рельефа",
            "film": "Рельеф (плёнка): масштаб снимков", "binds": "определяет: пиксель",
-           "frame": "снимок", "m": "м", "um": "мкм"},
+           "frame": "снимок", "m": "м", "um": "мкм",
+           "lowest": "снимок над наинизшей точкой", "flat": "для плоской местности",
+           "spec": "пиксель сканирования назначен по определяющему снимку"},
 }
 
 
@@ -607,8 +640,12 @@ def format_terrain(result: Any, locale: str = "en") -> list[str]:
     film = getattr(result, "film", None)
     ft = getattr(film, "terrain", None) if film is not None else None
     if ft is not None:
+        who = (f"{T['frame']} {ft.binding_frame} ({T['strip_n']} {ft.binding_strip})"
+               if ft.ground_known else T["lowest"])
         out.append(f"{T['film']} {_sc(round(ft.mc_min), locale)} … "
-                   f"{_sc(round(ft.mc_max), locale)}; {T['frame']} {ft.binding_frame} "
-                   f"({T['strip_n']} {ft.binding_strip}) {T['binds']} "
-                   f"{_um_loc(ft.scan_pixel_um, locale)} {T['um']} ({ft.binding})")
+                   f"{_sc(round(ft.mc_max), locale)}; {who} {T['binds']} "
+                   f"{_um_loc(ft.scan_pixel_um, locale)} {T['um']} ({ft.binding}), {T['flat']} "
+                   f"{_um_loc(ft.scan_pixel_planned_um, locale)} {T['um']} "
+                   f"({ft.binding_planned or '—'})"
+                   + (f"; {T['spec']}" if getattr(film, "flat", None) is not None else ""))
     return out

@@ -1,7 +1,7 @@
 """The built-in constraints: seed 001's P_S, P_Z, P_P, P_R, P_D and the UAV-only limits.
 
 Each constraint is one :class:`~scanplan.rules.registry.Constraint` record plus the small
-functions it names: the film pixel (seed 001 eqs. 1–6), the reason with the contract's
+functions it names: the film pixel (seed 001, eqs. 1–6), the reason with the contract's
 numbers, and the digital ground limit (the same limit on the ground, Mc = 1, compared with
 the GSD or the MTF ground resolution L; docs/uav-models.md §9–10). The texts are keys of
 the message catalogue (:mod:`scanplan.messages`).
@@ -21,6 +21,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..core import formulas as F
+from ..core import stereo as S
 from ..messages import Message
 from .registry import Constraint, DigitalLimit, FilmArgs, register
 
@@ -47,7 +48,7 @@ def _at_unit_scale_m(pixel_um: Any) -> float:
     return float(pixel_um) / 1e6
 
 
-# --- P_S: planimetric accuracy (seed 001 eq. 1) -------------------------------------------
+# --- P_S: planimetric accuracy (seed 001, eq. 1) ------------------------------------------
 
 def _ps_pixel(rules: ScanRules, a: FilmArgs) -> NDArray[np.float64]:
     return F.planimetric_pixel_um(a.map_scale, a.photo_scale,
@@ -70,7 +71,7 @@ def _ps_ground(inp: UavInputs, rules: ScanRules | None) -> DigitalLimit:
                         {})
 
 
-# --- P_Z: height accuracy (seed 001 eq. 2; digital: the stereo normal case) ----------------
+# --- P_Z: height accuracy (seed 001, eq. 2; digital: the stereo normal case) ---------------
 
 def _pz_pixel(rules: ScanRules, a: FilmArgs) -> NDArray[np.float64]:
     return F.height_pixel_um(
@@ -113,7 +114,7 @@ def height_accuracy(inp: UavInputs, rules: ScanRules
       the widest base of standard stereo overlap (:func:`scanplan.core.formulas.
       stereo_height_ground_limit_m`), V_z read as an RMS error;
     - ``instruction`` and ``parallax``: the Instruction's P_Z and its parallax form with the
-      single-step base b = l_y·(1 − p) and the processing loss k (seed 001 eq. 2).
+      single-step base b = l_y·(1 − p) and the processing loss k (seed 001, eq. 2).
 
     All three are in ``details["forms"]`` for comparison; ``rules.digital_height_formula``
     picks the one that constrains the flight.
@@ -141,15 +142,15 @@ def height_accuracy(inp: UavInputs, rules: ScanRules
                                     height_accuracy_fraction=rules.height_accuracy_fraction,
                                     processing_loss_k=k, method=form)) / 1e6  # type: ignore[arg-type]
         forms[form] = {"ground_limit_m": g}
-    fraction = float(F.stereo_base_fraction(inp.forward_overlap_pct,
+    fraction = float(S.stereo_base_fraction(inp.forward_overlap_pct,
                                             rules.standard_forward_overlap_pct))
     steps = round(fraction / (1.0 - inp.forward_overlap_pct / 100.0))
     bh = fraction * inp.sensor_height_mm / inp.focal_mm
-    multi = (float(F.strip_multi_ray_factor(inp.forward_overlap_pct,
+    multi = (float(S.strip_multi_ray_factor(inp.forward_overlap_pct,
                                             rules.standard_forward_overlap_pct))
              if rules.multi_ray == "strip" else 1.0)
     sigma = rules.image_measurement_px
-    forms["normal_case"] = {"ground_limit_m": float(F.stereo_height_ground_limit_m(
+    forms["normal_case"] = {"ground_limit_m": float(S.stereo_height_ground_limit_m(
         vz, bh, sigma, multi))}
     for v in forms.values():
         v["max_flown_height_m"] = v["ground_limit_m"] * inp.focal_mm / 1000.0 / pixel_m
@@ -157,7 +158,7 @@ def height_accuracy(inp: UavInputs, rules: ScanRules
     formula = rules.digital_height_formula
     h_plan = inp.height_m
     h_hi = h_plan * up
-    sz = F.normal_case_height_error_m(np.array([h_plan, h_hi]),
+    sz = S.normal_case_height_error_m(np.array([h_plan, h_hi]),
                                       bh * np.array([h_plan, h_hi]), inp.focal_mm,
                                       inp.pixel_um, sigma, multi)
     details: dict[str, Any] = {
@@ -184,7 +185,7 @@ def height_accuracy(inp: UavInputs, rules: ScanRules
 
 
 
-# --- P_P: graphic photo-plan (seed 001 eq. 3) -------------------------------------------
+# --- P_P: graphic photo-plan (seed 001, eq. 3) ------------------------------------------
 
 def _pp_pixel(rules: ScanRules, a: FilmArgs) -> NDArray[np.float64]:
     return F.photoplan_pixel_um(a.map_scale, a.photo_scale,
@@ -204,7 +205,7 @@ def _pp_ground(inp: UavInputs, rules: ScanRules | None) -> DigitalLimit:
                                    map=inp.map_scale), {})
 
 
-# --- P_R: resolving power of the photo (seed 001 eq. 4); no digital counterpart ----------
+# --- P_R: resolving power of the photo (seed 001, eq. 4); no digital counterpart ---------
 
 def _pr_pixel(rules: ScanRules, a: FilmArgs) -> NDArray[np.float64]:
     return F.resolving_power_pixel_um(a.resolving_power_lpmm,
@@ -221,7 +222,7 @@ def _pr_details(inp: ScanInputs, rules: ScanRules, ctx: dict[str, Any], j: int
             "resolving_power_lpmm": inp.resolving_power_lpmm}
 
 
-# --- P_D: interpretation (seed 001 eqs. 5–7); digital: a limit on L ----------------------
+# --- P_D: interpretation (seed 001, eqs. 5–7); digital: a limit on L ---------------------
 
 def _pd_pixel(rules: ScanRules, a: FilmArgs) -> NDArray[np.float64]:
     return F.interpretation_pixel_um(

@@ -185,6 +185,16 @@ class ScanScenario:
     required_resolving_power_lpmm: float | None
     recognition_probability: float | None
     height_pixel_other_um: float | None
+    local_photo_scale: float | None = None
+    """Over relief (``[terrain]``): the smallest local photo scale of the block (Mc of the
+    frame over the lowest ground), at which the constraints, the scan pixel and the binding
+    constraint of this scenario were evaluated while ``photo_scale`` stays the scale flown
+    over the reference ground; None on flat ground (evaluated at ``photo_scale``)."""
+
+    @property
+    def checked_photo_scale(self) -> float:
+        """The photo scale the constraints were evaluated at (Mc)."""
+        return self.local_photo_scale if self.local_photo_scale is not None else self.photo_scale
 
     def constraint(self, cid: str) -> ConstraintResult:
         """The result of constraint ``cid``."""
@@ -292,7 +302,7 @@ class UavInputs:
 
 @dataclass(frozen=True)
 class Recognition:
-    """Recognition probability of one norm object, P = exp(−(B·L/L_obj)²) (seed 001 eq. 7)."""
+    """Recognition probability of one norm object, P = exp(−(B·L/L_obj)²) (seed 001, eq. 7)."""
 
     object: str
     object_size_m: float

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 from typing import Any, Literal
 
@@ -226,7 +226,11 @@ def system_mtf(
     >>> np.round(system_mtf([0.0, 40.0], cam, fl), 4).tolist()
     [0.9, 0.6131]
     """
-    comps = component_mtfs(freq_lpmm, camera, flight, atmosphere, motion, **kwargs)
+    return _multiply(component_mtfs(freq_lpmm, camera, flight, atmosphere, motion, **kwargs))
+
+
+def _multiply(comps: Mapping[str, NDArrayFloat]) -> NDArrayFloat:
+    """T(N): the product of the component MTFs, in registry order, broadcast together."""
     total = np.ones(np.broadcast_shapes(*(v.shape for v in comps.values())))
     for v in comps.values():  # fixed number of components
         total = total * v
@@ -273,9 +277,7 @@ def contrast_curves(
     scene = Scene() if scene is None else scene
     threshold = Threshold() if threshold is None else threshold
     comps = component_mtfs(freq_lpmm, camera, flight, atmosphere, motion, **kwargs)
-    t = np.ones(np.broadcast_shapes(*(v.shape for v in comps.values())))
-    for v in comps.values():  # fixed number of components
-        t = t * v
+    t = _multiply(comps)
     k = _col(scene.contrast) * t
     kthr = threshold(np.asarray(freq_lpmm, float), _col(nyquist_lpmm(camera.pixel_um)))
     out = dict(comps)
@@ -344,6 +346,21 @@ def resolving_power(
         direction,
         disable,
     )
+    rm, upper = _search_ceiling(chain, flight)
+    margin, coarse = _margins(chain, scene, threshold, rm, precision)
+    return solve_resolving_power(
+        margin,
+        rm,
+        upper_lpmm=upper,
+        grid_points=grid_points,
+        iterations=iterations,
+        coarse_margin=coarse,
+    )
+
+
+def _search_ceiling(chain: _Chain, flight: Flight) -> tuple[NDArrayFloat, NDArrayFloat | None]:
+    """R_m per configuration and the search ceiling below it: the first zero of the
+    linear-motion sinc, 1/δ, where it lies below R_m (None where it never does)."""
     # every configuration gets its own R, even where nothing depends on it (zero motion:
     # no component varies with the flying height)
     shape = np.broadcast_shapes(np.shape(chain.nyquist), np.shape(chain.motion_width_mm),
@@ -356,6 +373,16 @@ def resolving_power(
     below = width * rm > 1.0  # the sinc's first zero lies below R_m (no 1/width overflow)
     if np.any(below):
         upper = np.where(below, 1.0 / np.where(below, width, 1.0), rm)
+    return rm, upper
+
+
+_Margin = Callable[[NDArrayFloat], NDArrayFloat]
+
+
+def _margins(chain: _Chain, scene: Scene, threshold: Threshold, rm: NDArrayFloat,
+             precision: str) -> tuple[_Margin, _Margin | None]:
+    """The margin K_obj·T(N) − K_thr(N) in float64, and its float32 version for the
+    bracketing steps (``precision="mixed"``; None for ``"double"``)."""
     kobj = _col(scene.contrast)
     kthr = threshold.prepare(_col(rm))
 
@@ -373,14 +400,7 @@ def resolving_power(
 
     elif precision != "double":
         raise ValueError(f"precision must be 'mixed' or 'double' (got {precision!r})")
-    return solve_resolving_power(
-        margin,
-        rm,
-        upper_lpmm=upper,
-        grid_points=grid_points,
-        iterations=iterations,
-        coarse_margin=coarse,
-    )
+    return margin, coarse
 
 
 @dataclass(frozen=True, eq=False)

@@ -96,33 +96,80 @@ def solve_resolving_power(
     interleaved bisection so the bracket also shrinks geometrically). For the
     built-in chain every component is non-increasing and K_thr increasing below the
     ceiling, so the crossing is unique; user tables that oscillate need a finer grid.
+
+    Examples
+    --------
+    >>> solve_resolving_power(lambda n: 0.5 - n / 100.0, [80.0, 40.0]).r_lpmm.tolist()
+    [50.0, 40.0]
     """
     if grid_points < 2:
         raise ValueError(f"grid_points must be >= 2 (got {grid_points})")
     rm = _positive("nyquist_lpmm", nyquist_lpmm)
     ceiling = rm if upper_lpmm is None else np.minimum(rm, _positive("upper_lpmm", upper_lpmm))
     fun = margin if coarse_margin is None else coarse_margin
+    b = _bracket(margin, fun, ceiling, grid_points, coarse=coarse_margin is not None)
+    lo, hi, f_lo, f_hi = _refine(fun, b, iterations)
+    est = _regula_falsi_point(lo, hi, f_lo, f_hi)
+    if polish:
+        est = _polish(margin, est, lo, hi, b.ceiling, b.shape)
+    shape = b.shape
+    r = np.where(b.crossed, est, b.ceiling)
+    resolvable = b.resolvable & (r > 0.0)  # a crossing at N = 0 resolves nothing
+    sensor_limited = resolvable & (~b.crossed | (r >= np.broadcast_to(rm, shape) * (1 - 1e-12)))
+    r = np.where(resolvable, r, np.nan)
+    return ResolvingPower(r_lpmm=r, resolvable=resolvable, sensor_limited=sensor_limited,
+                          nyquist_lpmm=np.array(np.broadcast_to(rm, shape), dtype=float))
+
+
+@dataclass(frozen=True, eq=False)
+class _Bracket:
+    """The first grid interval [lo, hi] where the margin changes sign, per configuration."""
+
+    shape: tuple[int, ...]
+    ceiling: NDArrayFloat
+    resolvable: NDArrayBool  # margin(0) > 0, decided with the exact margin
+    crossed: NDArrayBool  # some grid point above 0 has margin <= 0
+    lo: np.ndarray
+    hi: np.ndarray
+    f_lo: np.ndarray  # > 0 where a crossing exists
+    f_hi: np.ndarray  # <= 0 where a crossing exists
+
+
+def _bracket(margin: Callable[[NDArrayFloat], NDArrayFloat],
+             fun: Callable[[NDArrayFloat], NDArrayFloat], ceiling: NDArrayFloat,
+             grid_points: int, *, coarse: bool) -> _Bracket:
+    """Evaluate ``fun`` once on a uniform grid [0, ceiling] for every configuration and
+    bracket the first crossing (the first grid point with margin ≤ 0)."""
     x = np.linspace(0.0, 1.0, grid_points)
     grid = ceiling[..., None] * x
     m = np.asarray(fun(grid))
     shape = m.shape[:-1]
     grid = np.broadcast_to(grid.astype(m.dtype), m.shape)
     ceiling = np.broadcast_to(ceiling, shape)
-
-    if coarse_margin is None:
+    if not coarse:
         resolvable = m[..., 0] > 0.0
     else:
         m0 = np.asarray(margin(np.zeros((*shape, 1))), dtype=float)[..., 0]
         resolvable = np.broadcast_to(m0, shape) > 0.0
     below = m[..., 1:] <= 0.0
-    crossed = below.any(axis=-1)
     idx = np.argmax(below, axis=-1)[..., None] + 1
-    lo = np.take_along_axis(grid, idx - 1, axis=-1)[..., 0]
-    hi = np.take_along_axis(grid, idx, axis=-1)[..., 0]
-    f_lo = np.take_along_axis(m, idx - 1, axis=-1)[..., 0]  # > 0 where a crossing exists
-    f_hi = np.take_along_axis(m, idx, axis=-1)[..., 0]  # <= 0 where a crossing exists
-    s_lo = np.ones(shape, dtype=m.dtype)  # Illinois weights of the end values
-    s_hi = np.ones(shape, dtype=m.dtype)
+
+    def at(a: np.ndarray, i: np.ndarray) -> np.ndarray:
+        return np.take_along_axis(a, i, axis=-1)[..., 0]
+
+    return _Bracket(shape=shape, ceiling=ceiling, resolvable=resolvable,
+                    crossed=below.any(axis=-1), lo=at(grid, idx - 1), hi=at(grid, idx),
+                    f_lo=at(m, idx - 1), f_hi=at(m, idx))
+
+
+def _refine(fun: Callable[[NDArrayFloat], NDArrayFloat], b: _Bracket,
+            iterations: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Shrink every bracket by a fixed number of vectorised steps: Illinois regula falsi,
+    every fourth step a bisection; returns (lo, hi, f_lo, f_hi) in float64."""
+    shape = b.shape
+    lo, hi, f_lo, f_hi = b.lo, b.hi, b.f_lo, b.f_hi
+    s_lo = np.ones(shape, dtype=f_lo.dtype)  # Illinois weights of the end values
+    s_hi = np.ones(shape, dtype=f_lo.dtype)
     kept = np.zeros(shape, dtype=np.int8)  # +1: hi kept last step, -1: lo kept
     for step in range(iterations):  # fixed count, vectorised over configurations
         if step % 4 == 3:
@@ -140,32 +187,32 @@ def solve_resolving_power(
         lo, f_lo = np.where(pos, mid, lo), np.where(pos, f_mid, f_lo)
         hi, f_hi = np.where(pos, hi, mid), np.where(pos, f_hi, f_mid)
         kept = np.where(pos, 1, -1).astype(np.int8)
-    lo, hi = lo.astype(float), hi.astype(float)
-    f_lo, f_hi = f_lo.astype(float), f_hi.astype(float)
+    return lo.astype(float), hi.astype(float), f_lo.astype(float), f_hi.astype(float)
+
+
+def _regula_falsi_point(lo: np.ndarray, hi: np.ndarray, f_lo: np.ndarray,
+                        f_hi: np.ndarray) -> np.ndarray:
+    """The regula falsi point of each bracket (``lo`` where the end values do not
+    straddle zero)."""
     denom = f_lo - f_hi
     ok = denom > 0
-    est = np.clip(np.where(ok, lo + f_lo * (hi - lo) / np.where(ok, denom, 1.0), lo), lo, hi)
-    if polish:
-        # float64 secant step from the refined root: two evaluations of ``margin``
-        step_ = 1e-6 * ceiling
-        pts = np.stack([est, est + step_], axis=-1)
-        fp = np.broadcast_to(np.asarray(margin(pts), dtype=float), (*shape, 2))
-        slope = (fp[..., 1] - fp[..., 0]) / step_
-        ok = slope < 0
-        polished = est - fp[..., 0] / np.where(ok, slope, -1.0)
-        width = np.maximum(hi - lo, 4.0 * step_)
-        est = np.where(ok, np.clip(polished, est - width, est + width), est)
-        est = np.clip(est, 0.0, ceiling)
-    r = np.where(crossed, est, ceiling)
-    resolvable = resolvable & (r > 0.0)  # a crossing at N = 0 resolves nothing
-    sensor_limited = resolvable & (~crossed | (r >= np.broadcast_to(rm, shape) * (1 - 1e-12)))
-    r = np.where(resolvable, r, np.nan)
-    return ResolvingPower(
-        r_lpmm=r,
-        resolvable=resolvable,
-        sensor_limited=sensor_limited,
-        nyquist_lpmm=np.array(np.broadcast_to(rm, shape), dtype=float),
-    )
+    return np.clip(np.where(ok, lo + f_lo * (hi - lo) / np.where(ok, denom, 1.0), lo), lo, hi)
+
+
+def _polish(margin: Callable[[NDArrayFloat], NDArrayFloat], est: np.ndarray,
+            lo: np.ndarray, hi: np.ndarray, ceiling: NDArrayFloat,
+            shape: tuple[int, ...]) -> np.ndarray:
+    """One float64 secant step of the exact ``margin`` from the refined root (two
+    evaluations), kept within the bracket's width of ``est`` and within [0, ceiling]."""
+    step_ = 1e-6 * ceiling
+    pts = np.stack([est, est + step_], axis=-1)
+    fp = np.broadcast_to(np.asarray(margin(pts), dtype=float), (*shape, 2))
+    slope = (fp[..., 1] - fp[..., 0]) / step_
+    ok = slope < 0
+    polished = est - fp[..., 0] / np.where(ok, slope, -1.0)
+    width = np.maximum(hi - lo, 4.0 * step_)
+    est = np.where(ok, np.clip(polished, est - width, est + width), est)
+    return np.clip(est, 0.0, ceiling)
 
 
 def ground_resolution_m(

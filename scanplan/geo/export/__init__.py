@@ -19,6 +19,7 @@ from ..layout import FlightLayout
 from .common import GENERATOR, lonlat
 from .gis import ExportNames, render_csv, render_geojson, render_kml
 from .qgc import MissionOptions, plan_files, render_plan
+from .steps import mission_layout
 
 __all__ = ["GENERATOR", "ExportNames", "MissionOptions", "layout_files", "plan_files",
            "render_csv", "render_geojson", "render_kml", "render_plan"]
@@ -52,7 +53,10 @@ def layout_files(layout: FlightLayout, *, names: ExportNames | None = None,
     geo = lonlat(layout)
     files: dict[str, bytes] = {}
     if mission is not None:
-        files.update({prefix + k: v for k, v in plan_files(layout, mission, geo=geo).items()})
+        # terrain following: a waypoint at every altitude step (the other files keep the
+        # strips as laid out)
+        files.update({prefix + k: v for k, v in plan_files(mission_layout(layout), mission,
+                                                           geo=geo).items()})
     files[f"{prefix}flight.kml"] = render_kml(layout, names)
     files[f"{prefix}flight.geojson"] = render_geojson(layout, names)
     if len(layout.photos):

@@ -31,9 +31,11 @@ import numpy as np
 import shapely
 
 from ..layout import PHOTO_COLUMNS, FlightLayout
+from ..terrain import TERRAIN_PHOTO_COLUMNS
 from .common import GENERATOR, LonLat, lonlat, photos_by_strip
 
-__all__ = ["CSV_DECIMALS", "ExportNames", "render_csv", "render_geojson", "render_kml"]
+__all__ = ["CSV_DECIMALS", "ExportNames", "photo_columns", "render_csv", "render_geojson",
+           "render_kml"]
 
 _KML_NS = "http://www.opengis.net/kml/2.2"
 _DEG = 7  # decimals of a degree written (1e-7° ≈ 1 cm)
@@ -41,8 +43,19 @@ _LABELLED_PHOTOS = 1000  # up to this many photo centres, their numbers always s
 #: Decimals written per CSV column (integers: none; the rest: 3).
 CSV_DECIMALS = {"x_m": 3, "y_m": 3, "lon_deg": 8, "lat_deg": 8, "ground_m": 2,
                 "altitude_m": 2, "agl_m": 2, "gsd_cm": 3, "resolution_cm": 3,
+                "ground_min_m": 2, "ground_max_m": 2, "forward_overlap_pct": 2,
+                "side_overlap_pct": 2,
                 "recognition_p": 4}
 _INT_COLUMNS = ("photo", "strip", "index", "sortie")
+
+
+def photo_columns(photos: Any) -> list[str]:
+    """The per-photo columns written (the CSV header, the GeoJSON properties, the sheet):
+    those of :data:`~scanplan.geo.layout.PHOTO_COLUMNS` the photos have, then a terrain
+    plan's :data:`~scanplan.geo.terrain.TERRAIN_PHOTO_COLUMNS` (the ground range under the
+    footprint, the overlaps with the neighbours)."""
+    return ([c for c in PHOTO_COLUMNS if c in photos.columns]
+            + [c for c in TERRAIN_PHOTO_COLUMNS if c in photos.columns])
 
 
 @dataclass(frozen=True)
@@ -213,23 +226,34 @@ def render_kml(layout: FlightLayout, names: ExportNames | None = None) -> bytes:
     body = ET.tostring(root, encoding="unicode", short_empty_elements=True)
     head = ('<?xml version="1.0" encoding="UTF-8"?>\n'
             f"<!-- {GENERATOR}: flight plan (area, strips, photo centres) -->\n")
-    body = body.replace(f"<Placemark>{_PHOTOS_MARK}</Placemark>", _kml_photos(layout.photos))
+    body = body.replace(f"<Placemark>{_PHOTOS_MARK}</Placemark>",
+                        _kml_photos(layout.photos, "altitude_mode" in layout.notes))
     return (head + body + "\n").encode("utf-8")
 
 
 _PHOTOS_MARK = "@@scanplan-photo-centres@@"
 
 
-def _kml_photos(ph: Any) -> str:
+def _kml_decimal(ph: Any, key: str) -> np.ndarray:
+    """A column as text with one decimal, empty where not finite."""
+    v = np.asarray(ph[key], float)
+    return np.where(np.isfinite(v), np.char.mod("%.1f", v), "")
+
+
+def _kml_photos(ph: Any, terrain: bool = False) -> str:
     """The photo placemarks as KML text (numbers only: nothing to escape), built column by
     column — 10⁵ photos in well under a second, where one element tree node each takes
-    tens of seconds."""
+    tens of seconds. A terrain plan's photos also carry their ground elevation and flight
+    altitude (``ground_m``, ``altitude_m``, the DEM's height system)."""
     if not len(ph):
         return ""
     ints = [np.asarray(ph[k]).astype(np.int64).astype(str) for k in
             ("photo", "strip", "index", "sortie")]
-    agl = np.char.mod("%.1f", np.asarray(ph["agl_m"], float))
-    agl = np.where(np.isfinite(np.asarray(ph["agl_m"], float)), agl, "")
+    agl = _kml_decimal(ph, "agl_m")
+    if terrain:
+        agl = np.char.add(np.char.add(np.char.add(np.char.add(
+            agl, '</value></Data><Data name="ground_m"><value>'), _kml_decimal(ph, "ground_m")),
+            '</value></Data><Data name="altitude_m"><value>'), _kml_decimal(ph, "altitude_m"))
     lon = np.char.mod(f"%.{_DEG}f", np.asarray(ph["lon_deg"], float))
     lat = np.char.mod(f"%.{_DEG}f", np.asarray(ph["lat_deg"], float))
     return "".join(
@@ -318,7 +342,7 @@ def _geojson_photos(ph: Any) -> str:
     """The photo-centre features as JSON text, built column by column (fast for 10⁵)."""
     if not len(ph):
         return ""
-    cols = [c for c in PHOTO_COLUMNS if c in ph.columns]
+    cols = photo_columns(ph)
     lits = [_json_column(np.asarray(ph[c]),
                          None if c in _INT_COLUMNS else CSV_DECIMALS.get(c, 3)) for c in cols]
     lon = _json_column(np.asarray(ph["lon_deg"]), _DEG)
@@ -346,7 +370,7 @@ def render_csv(layout: FlightLayout) -> bytes:
     import pandas as pd  # here: a report that writes no CSV does not import pandas (0.3 s)
 
     ph = layout.photos
-    cols = [c for c in PHOTO_COLUMNS if c in ph.columns]
+    cols = photo_columns(ph)
     frame = pd.DataFrame({c: np.asarray(ph[c]) for c in cols}, columns=cols)
     for c in cols:
         if c in _INT_COLUMNS:

@@ -224,16 +224,44 @@ def render_plan(layout: FlightLayout, sortie: int, options: MissionOptions, *,
         The ``.plan`` (UTF-8 JSON).
     """
     geo = geo if geo is not None else lonlat(layout)
-    by_strip = photos_by_strip(layout)
     strip_numbers = layout.sorties[sortie - 1].strips
     if not strip_numbers:
         raise ValueError(f"sortie {sortie} has no strips")
+    points, owners = _sortie_waypoints(layout, strip_numbers)
+    home, home_ground = _home(layout, options, geo, points)
+    if altitudes_m is None:
+        alts = waypoint_altitudes(layout, options.frame, points, owners, home_ground)
+    else:
+        alts = np.asarray(altitudes_m, float)
+        if alts.shape != (len(points),) or not np.all(np.isfinite(alts)):
+            raise ValueError(f"altitudes_m must hold {len(points)} finite altitudes, one per "
+                             f"waypoint of sortie {sortie} (got shape {alts.shape})")
+    takeoff_alt = float(alts[0])
+    if options.frame == "terrain":  # the take-off climbs above the home, not the terrain
+        takeoff_alt = float(waypoint_altitudes(layout, "relative", points, owners,
+                                               home_ground)[0])
+    lonlats = geo.points(np.array([[p.x_m, p.y_m] for p in points]))
+    items = _mission_items(layout, options, points, lonlats, alts, home, takeoff_alt)
+    return _plan_document(options, items, home, home_ground)
+
+
+def _sortie_waypoints(layout: FlightLayout, strip_numbers: Sequence[int]
+                      ) -> tuple[list[_Waypoint], list[int]]:
+    """The waypoints of a sortie's strips in flight order, and the strip of each."""
+    by_strip = photos_by_strip(layout)
     points: list[_Waypoint] = []
     owners: list[int] = []
     for n in strip_numbers:
         wps = _strip_waypoints(layout, n, by_strip.get(n))
         points += wps
         owners += [n] * len(wps)
+    return points, owners
+
+
+def _home(layout: FlightLayout, options: MissionOptions, geo: LonLat,
+          points: Sequence[_Waypoint]) -> tuple[tuple[float, float], float]:
+    """The planned home (lon, lat) [°] and its ground elevation [m]: the options' home, else
+    the sortie's first photo (else its first waypoint on ground 0)."""
     ph = layout.photos
     first_photo = next((p.photo for p in points if p.photo is not None), None)
     if options.home_lonlat is not None:
@@ -244,14 +272,14 @@ def render_plan(layout: FlightLayout, sortie: int, options: MissionOptions, *,
         home = tuple(geo.points(np.array([[points[0].x_m, points[0].y_m]]))[0])
     home_ground = (options.home_ground_m if options.home_ground_m is not None
                    else float(ph["ground_m"][first_photo]) if first_photo is not None else 0.0)
-    if altitudes_m is None:
-        alts = waypoint_altitudes(layout, options.frame, points, owners, home_ground)
-    else:
-        alts = np.asarray(altitudes_m, float)
-        if alts.shape != (len(points),) or not np.all(np.isfinite(alts)):
-            raise ValueError(f"altitudes_m must hold {len(points)} finite altitudes, one per "
-                             f"waypoint of sortie {sortie} (got shape {alts.shape})")
-    lonlats = geo.points(np.array([[p.x_m, p.y_m] for p in points]))
+    return home, home_ground
+
+
+def _mission_items(layout: FlightLayout, options: MissionOptions,
+                   points: Sequence[_Waypoint], lonlats: np.ndarray, alts: np.ndarray,
+                   home: tuple[float, float], takeoff_alt: float) -> list[dict[str, Any]]:
+    """The mission items: take-off at the home, the speed, every waypoint with the camera
+    trigger switched on and off along the strips, return to launch."""
     frame, alt_mode = FRAMES[options.frame]
     takeoff_frame = 0 if options.frame == "amsl" else 3  # a take-off is never terrain-framed
     items: list[dict[str, Any]] = []
@@ -261,10 +289,6 @@ def render_plan(layout: FlightLayout, sortie: int, options: MissionOptions, *,
         items.append(_item(len(items) + 1, command, frame_, params, mode))
 
     pitch = 15.0 if options.vehicle == "fixed_wing" else 0.0
-    takeoff_alt = float(alts[0])
-    if options.frame == "terrain":  # the take-off climbs above the home, not the terrain
-        takeoff_alt = float(waypoint_altitudes(layout, "relative", points, owners,
-                                               home_ground)[0])
     add("NAV_TAKEOFF", takeoff_frame, [pitch, 0.0, 0.0, None, home[1], home[0], takeoff_alt],
         2 if takeoff_frame == 0 else 1)
     add("DO_CHANGE_SPEED", MAV_FRAME_MISSION, [_SPEED_GROUND, float(options.speed_ms), -1.0,
@@ -279,6 +303,12 @@ def render_plan(layout: FlightLayout, sortie: int, options: MissionOptions, *,
             add("DO_SET_CAM_TRIGG_DIST", MAV_FRAME_MISSION,
                 [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0])
     add("NAV_RETURN_TO_LAUNCH", MAV_FRAME_MISSION, [0.0] * 7)
+    return items
+
+
+def _plan_document(options: MissionOptions, items: list[dict[str, Any]],
+                   home: tuple[float, float], home_ground: float) -> bytes:
+    """The ``.plan`` file around the mission items (UTF-8 JSON, QGroundControl format 1)."""
     doc = {
         "fileType": "Plan",
         "geoFence": {"circles": [], "polygons": [], "version": 2},
@@ -286,7 +316,7 @@ def render_plan(layout: FlightLayout, sortie: int, options: MissionOptions, *,
         "mission": {
             "cruiseSpeed": float(options.speed_ms),
             "firmwareType": FIRMWARE[options.firmware],
-            "globalPlanAltitudeMode": alt_mode,
+            "globalPlanAltitudeMode": FRAMES[options.frame][1],
             "hoverSpeed": float(options.speed_ms),
             "items": items,
             "plannedHomePosition": [round(home[1], 8), round(home[0], 8),

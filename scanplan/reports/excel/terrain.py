@@ -17,6 +17,7 @@ def terrain_sheet(book: Book, spec: Any) -> None:
     ``[terrain]``."""
     tr = getattr(getattr(spec, "uav", None), "terrain", None)
     if tr is None or not tr.strips:
+        _film_sheet(book, spec)
         return
     ws = book.sheet("terrain_sheet", landscape=True, widths=[9, 12, 12, 12, 12, 12, 12, 14,
                                                               12, 10])
@@ -32,3 +33,35 @@ def terrain_sheet(book: Book, spec: Any) -> None:
                                s.max_altitude_m, s.excess_m), start=2):
             put_num(ws, r, c, v, "0.0")
         put_num(ws, r, 10, s.worst_photo, "0")
+    _film_sheet(book, spec, ws, len(tr.strips) + 3)
+
+
+def _film_sheet(book: Book, spec: Any, ws: Any = None, row: int = 1) -> None:
+    """The film frames over the relief: the local photo scales, the binding frame, the
+    scan pixel there and on flat ground (on the UAV's Terrain sheet below its strips, or on
+    a sheet of its own)."""
+    film = getattr(spec, "film", None)
+    ft = getattr(film, "terrain", None) if film is not None else None
+    if ft is None:
+        return
+    if ws is None:
+        ws = book.sheet("terrain_sheet", landscape=False, widths=[52, 26])
+    row = book.section(ws, row, book.t("terrain_film_title"))
+    row = book.kv(ws, row, book.t("terrain_film_planned"), ft.photo_scale, '"1:"0')
+    row = book.kv(ws, row, book.t("terrain_film_mc_max"), round(ft.mc_max), '"1:"0')
+    frame = (f"{ft.binding_frame} ({ft.binding_strip})" if ft.ground_known
+             else book.t("terrain_film_frame_range").format(low=f"{ft.ground_low_m:g}"))
+    row = book.kv(ws, row, book.t("terrain_film_frame"), frame)
+    row = book.kv(ws, row, book.t("terrain_film_binding"), book.cname(ft.binding))
+    row = book.kv(ws, row, book.t("terrain_film_pixel"), ft.scan_pixel_um, "0.0")
+    row = book.kv(ws, row, book.t("terrain_film_flat_pixel"), ft.scan_pixel_planned_um, "0.0")
+    row = book.kv(ws, row, book.t("terrain_film_flat_binding"),
+                  book.cname(ft.binding_planned) if ft.binding_planned else None)
+    rejected = getattr(film, "rejected", ())
+    if rejected:
+        row = book.kv(ws, row, book.t("terrain_film_rejected"), "; ".join(
+            book.t("terrain_film_rejected_value").format(
+                scale=f"1:{r.photo_scale:.0f}", local=f"1:{t.mc_max:.0f}")
+            for r, t in rejected))
+    if getattr(film, "flat", None) is not None:
+        book.kv(ws, row, book.t("terrain_film_specified"), True)
