@@ -26,7 +26,7 @@ from scanplan.reports.view import build_view
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLE = ROOT / "examples" / "uav-canon-2000.toml"
-fork_only = pytest.mark.skipif(not hasattr(os, "fork"), reason="POSIX fork")
+fork_only = pytest.mark.skipif(not sys.platform.startswith("linux"), reason="Linux fork")
 
 
 @pytest.fixture(scope="module")

@@ -11,16 +11,17 @@ writes both files in one transaction as before (nothing is written by the child)
 are the same as those of an in-process render (the view carries the creation time;
 ``SOURCE_DATE_EPOCH`` holds for both processes).
 
-Robustness: POSIX only (``os.fork``); elsewhere, under ``SCANPLAN_DEBUG=1`` (tracebacks of
-the renderer stay in the process that shows them) and when ``SCANPLAN_NO_FORK=1`` is set,
-:meth:`PdfWorker.start` returns None and the caller renders in-process. A child that fails
-for any reason (an error in the renderer, a crash, a view that cannot be pickled) makes
-:meth:`PdfWorker.result` return None, and the caller renders the PDF in-process — so a
-real error is raised there and reported exactly as without the worker. The child never
-returns into the caller's code (``os._exit``), and every child is reaped: by
-:meth:`PdfWorker.result`, or killed and reaped by :meth:`PdfWorker.stop` (also when the
-run fails before the view is sent). Batches (``plan DIR --jobs N``) do not use it: their
-worker processes already keep the cores busy.
+Robustness: Linux only (``os.fork``; macOS's system libraries are not safe to use in a child
+forked without exec, which is why Python's own multiprocessing spawns there); elsewhere,
+under ``SCANPLAN_DEBUG=1`` (tracebacks of the renderer stay in the process that shows them)
+and when ``SCANPLAN_NO_FORK=1`` is set, :meth:`PdfWorker.start` returns None and the caller
+renders in-process. A child that fails for any reason (an error in the renderer, a crash, a
+view that cannot be pickled) makes :meth:`PdfWorker.result` return None, and the caller
+renders the PDF in-process — so a real error is raised there and reported exactly as without
+the worker. The child never returns into the caller's code (``os._exit``), and every child
+is reaped: by :meth:`PdfWorker.result`, or killed and reaped by :meth:`PdfWorker.stop` (also
+when the run fails before the view is sent). Batches (``plan DIR --jobs N``) do not use it:
+their worker processes already keep the cores busy.
 """
 
 from __future__ import annotations
@@ -109,8 +110,8 @@ class PdfWorker:
         -------
         PdfWorker or None
         """
-        if (not hasattr(os, "fork") or os.environ.get("SCANPLAN_DEBUG")
-                or os.environ.get("SCANPLAN_NO_FORK")):
+        if (not sys.platform.startswith("linux") or not hasattr(os, "fork")
+                or os.environ.get("SCANPLAN_DEBUG") or os.environ.get("SCANPLAN_NO_FORK")):
             return None
         try:
             req_r, req_w = os.pipe()
