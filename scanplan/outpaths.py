@@ -44,17 +44,19 @@ OUR_MARK = b"scanplan"
 """Start of the creator property of every report scanplan writes."""
 
 SUFFIX = {"xlsx": ".xlsx", "pdf": ".pdf", "plan": ".plan", "kml": ".kml",
-          "geojson": ".geojson", "csv": ".csv"}
+          "geojson": ".geojson", "csv": ".csv", "waypoints": ".waypoints"}
 _WHAT = {"xlsx": "workbook", "pdf": "PDF", "plan": "mission", "kml": "KML file",
-         "geojson": "GeoJSON file", "csv": "table"}
+         "geojson": "GeoJSON file", "csv": "table", "waypoints": "waypoint file"}
 #: How scanplan's exported text files name their writer (within their first 4 KiB): the
 #: Plan file's groundStation, the KML's opening comment, the GeoJSON's "generator" member,
-#: the photo table's header (a CSV has no place for a comment).
+#: the photo table's header (a CSV has no place for a comment), the waypoint file's comment.
 _TEXT_MARKS = {
     "plan": re.compile(rb'"groundStation"\s*:\s*"scanplan[ "]'),
     "kml": re.compile(rb"\A<\?xml[^>]*\?>\s*<!-- scanplan "),
     "geojson": re.compile(rb'"generator"\s*:\s*"scanplan[ "]'),
     "csv": re.compile(rb"\Aphoto,strip,index,sortie,x_m,y_m,lon_deg,lat_deg,"),
+    # the waypoint file's comment line after its header (Mission Planner skips it)
+    "waypoints": re.compile(rb"\AQGC WPL 110\r?\n# scanplan "),
 }
 CSV_HEADER = "\ufeffproject,file,map_scale,".encode()
 """How a batch summary.csv scanplan wrote begins (scanplan.reports.summary)."""
@@ -62,7 +64,8 @@ MAX_REPORT_BYTES = 64 * 1024 * 1024
 """An existing file larger than this is not looked into (scanplan's reports are far
 smaller): it is treated as not written by scanplan [bytes]."""
 _MAX_INFLATED = 16 * 1024 * 1024  # most bytes decompressed while looking for the PDF's /Creator
-_CREATOR_XML = re.compile(rb"<dc:creator>\s*scanplan[\s<]")
+# openpyxl writes ``<dc:creator>``, or with lxml installed ``<dc:creator xmlns:dc="...">``
+_CREATOR_XML = re.compile(rb"<dc:creator(?:\s[^>]*)?>\s*scanplan[\s<]")
 _CREATOR_PDF = re.compile(rb"/Creator\s*\(scanplan[ )]")
 _STREAM = re.compile(rb"stream\r?\n")
 
@@ -89,7 +92,7 @@ def check_target(path: str, field: str, kind: str, *, inputs: Iterable[str] = ()
         The target as the user gave it.
     field : str
         How messages name it (``--xlsx``, ``--out``).
-    kind : {"xlsx", "pdf", "plan", "kml", "geojson", "csv"}
+    kind : {"xlsx", "pdf", "plan", "kml", "geojson", "csv", "waypoints"}
         The report or exported file it is for.
     inputs : iterable of str
         The run's input files; none of them may be the target.
@@ -156,7 +159,7 @@ def written_by_scanplan(path: str | os.PathLike[str], kind: str) -> bool:
     ----------
     path : path
         An existing regular file.
-    kind : {"xlsx", "pdf", "plan", "kml", "geojson", "csv"}
+    kind : {"xlsx", "pdf", "plan", "kml", "geojson", "csv", "waypoints"}
         What it should be.
 
     Returns

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import csv
 import datetime as dt
+import html
 import re
 import shutil
 import zipfile
@@ -16,6 +17,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
+from xml.sax.saxutils import escape
 
 import openpyxl
 
@@ -170,7 +172,9 @@ def to_shared_strings(src: Path, dst: Path) -> Path:
     index: dict[str, int] = {}
 
     def share(m: re.Match[bytes]) -> bytes:
-        text = m.group(2).decode()
+        # the cell's text, its XML escapes resolved (openpyxl writes non-ASCII as "&#1050;"
+        # when lxml is installed): split into runs and escaped again below
+        text = html.unescape(m.group(2).decode())
         if text not in index:
             index[text] = len(strings)
             strings.append(text)
@@ -189,9 +193,10 @@ def to_shared_strings(src: Path, dst: Path) -> Path:
         if len(text) > 3:  # rich text: two runs, as Excel writes a partly bold cell
             a, b = text[:2], text[2:]
             return (
-                f'<si><r><rPr><b/></rPr><t>{a}</t></r><r><t xml:space="preserve">{b}</t></r></si>'
+                f"<si><r><rPr><b/></rPr><t>{escape(a)}</t></r>"
+                f'<r><t xml:space="preserve">{escape(b)}</t></r></si>'
             )
-        return f"<si><t>{text}</t></si>"
+        return f"<si><t>{escape(text)}</t></si>"
 
     ns = "http://schemas.openxmlformats.org/spreadsheetml/2006/main"
     parts["xl/sharedStrings.xml"] = (

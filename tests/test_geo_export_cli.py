@@ -26,8 +26,8 @@ from scanplan.outpaths import check_target, written_by_scanplan
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 UAV = EXAMPLES / "uav-canon-2000.toml"
-UAV_FILES = ["flight.geojson", "flight.kml", "mission.plan", "photos.csv", "spec.pdf",
-             "spec.xlsx"]
+UAV_FILES = ["flight.geojson", "flight.kml", "mission.plan", "mission.waypoints",
+             "photos.csv", "spec.pdf", "spec.xlsx"]
 
 
 def cli(*args):
@@ -80,7 +80,8 @@ def test_batch_names_every_file_after_its_project(work, layout):
     assert r.exit_code == 0, r.output
     names = sorted(os.listdir(work / "out"))
     assert "proj-mission.plan" in names and "b-flight.kml" in names and "b-photos.csv" in names
-    assert len([n for n in names if not n.startswith("summary.")]) == 12  # + the batch summary
+    assert "b-mission.waypoints" in names
+    assert len([n for n in names if not n.startswith("summary.")]) == 14  # + the batch summary
 
 
 def test_a_failing_write_leaves_every_previous_file_as_it_was(work, layout, monkeypatch):
@@ -131,6 +132,8 @@ def test_an_abstract_block_writes_only_the_reports(work):
     ("geojson", '{"type": "FeatureCollection", "features": []}'),
     ("csv", "id,x,y\n1,2,3\n"),
     ("kml", '<?xml version="1.0"?><kml/>'),
+    ("waypoints", "QGC WPL 110\r\n0\t1\t0\t16\t0\t0\t0\t0\t55.7\t37.6\t150\t1\r\n"),
+    ("waypoints", "QGC WPL 110\n# my own mission\n"),
 ])
 def test_exported_kinds_recognise_only_scanplans_files(tmp_path, kind, text):
     path = tmp_path / f"f.{kind}"
@@ -215,8 +218,8 @@ def test_a_plan_with_fewer_sorties_removes_the_stale_missions(work, monkeypatch)
     r = cli("plan", "proj.toml", "--out", "out")
     assert r.exit_code == 0, r.output
     assert sorted(os.listdir(out)) == sorted([*UAV_FILES, "mission-07.plan"])
-    assert f"removed {os.path.join('out', 'mission-02.plan')} (left from an earlier plan)" \
-        in r.stderr
+    for stale in ("mission-02.plan", "mission-02.waypoints"):
+        assert f"removed {os.path.join('out', stale)} (left from an earlier plan)" in r.stderr
     monkeypatch.setattr(exports_mod, "spec_layouts",
                         lambda spec: [("uav", make_layout(georeferenced=False))])
     r = cli("plan", "proj.toml", "--out", "out")  # no polygon any more: no files for it

@@ -13,6 +13,25 @@ def _echo_json(doc: object) -> None:
     echo(doc)
 
 
+#: ``--locale`` of the listings, spelt as ``scan``, ``uav`` and ``init`` spell it.
+LOCALE = click.option("--locale", type=click.Choice(["en", "ru"]), default="en",
+                      show_default=True, help="Language of the listing (headers, kinds, "
+                      "numbers); names and sources are shown as the catalogue stores them.")
+
+
+def _num(text: str, locale: str) -> str:
+    """A number written by Python's format, with the locale's decimal separator."""
+    return text.replace(".", ",") if locale == "ru" else text
+
+
+def _word(kind: str, value: str, locale: str) -> str:
+    """A catalogue value in words: the camera's kind, what carries it."""
+    from ..reports.labels_cli import CLI
+
+    key = f"{kind}_{value}"
+    return CLI[locale].get(key, value) if value else value
+
+
 @click.group()
 def cameras() -> None:
     """The camera and scanner catalogue (film, digital on UAVs, digital on aircraft).
@@ -37,7 +56,8 @@ _CAMERA_KINDS = ("film", "digital", "uav", "aircraft", "scanner")
               help="Norm set whose cameras to add to the catalogue.")
 @click.option("--json", "as_json", is_flag=True,
               help="Print as JSON (a list of cameras; of scanner steps with --kind scanner).")
-def cameras_list(kind: str | None, norms: str, as_json: bool) -> None:
+@LOCALE
+def cameras_list(kind: str | None, norms: str, as_json: bool, locale: str = "en") -> None:
     """List the catalogue cameras, then the scanners and their scan pixels.
 
     Every row names its source (`scanplan cameras show ID`). A digital camera's pitch is
@@ -62,28 +82,36 @@ def cameras_list(kind: str | None, norms: str, as_json: bool) -> None:
         else:
             _echo_json([asdict(c) for c in cams])
         return
+    from ..reports.labels_cli import cli_text as w
+    from ..reports.wording import camera_title, scanner_title
+
+    loc = locale
     if cams:
-        rows = [["id", "kind", "carried by", "frame/sensor mm", "image px", "f mm",
-                 "pixel µm", "name"]]
+        rows = [[w(k, loc) for k in ("cam_id", "cam_kind", "cam_carried", "cam_frame",
+                                     "cam_image", "cam_f", "cam_pixel", "cam_name")]]
         for c in cams:
             px = (f"{c.image_width_px}×{c.image_height_px}"
                   if c.image_width_px and c.image_height_px else "—")
-            rows.append([c.id, c.kind, c.carrier,
-                         f"{c.sensor_width_mm:g}×{c.sensor_height_mm:g}", px, f"{c.focal_mm:g}",
-                         f"{c.pixel_um:.4g}" if c.pixel_um else "—", c.name])
+            rows.append([c.id, _word("kind", c.kind, loc), _word("by", c.carrier, loc),
+                         _num(f"{c.sensor_width_mm:g}×{c.sensor_height_mm:g}", loc), px,
+                         _num(f"{c.focal_mm:g}", loc),
+                         _num(f"{c.pixel_um:.4g}", loc) if c.pixel_um else "—",
+                         camera_title(ns, c.id, loc) if loc == "ru" else c.name])
         click.echo(table(rows, align="lllrrrrl"))
-        click.echo(f"{len(cams)} cameras")
+        click.echo(w("cam_count", loc, n=len(cams)))
     if scanners:
-        rows = [["scanner", "scan pixels µm", "bit depth", "name"]]
+        rows = [[w(k, loc) for k in ("scn_scanner", "scn_pixels", "scn_depth", "cam_name")]]
+        sep = "; " if loc == "ru" else ", "  # the comma is Russian's decimal separator
         for sid in scanners:
             steps = ns.scanner_details[sid]
             depth = "; ".join(dict.fromkeys(s.bit_depth for s in steps if s.bit_depth)) or "—"
-            rows.append([sid, ", ".join(f"{s.pixel_um:g}" for s in steps), depth,
-                         ns.scanner_names.get(sid, sid)])
+            rows.append([sid, sep.join(_num(f"{s.pixel_um:g}", loc) for s in steps), depth,
+                         scanner_title(ns, sid, loc) if loc == "ru"
+                         else ns.scanner_names.get(sid, sid)])
         if cams:
             click.echo("")
         click.echo(table(rows, align="llll"))
-        click.echo(f"{len(scanners)} scanners")
+        click.echo(w("scn_count", loc, n=len(scanners)))
 
 
 @cameras.command("show")
@@ -91,24 +119,31 @@ def cameras_list(kind: str | None, norms: str, as_json: bool) -> None:
 @click.option("--norms", default="gkinp-02-036-02", show_default=True,
               help="Norm set whose cameras to add to the catalogue.")
 @click.option("--json", "as_json", is_flag=True, help="Print as JSON.")
-def cameras_show(camera_id: str, norms: str, as_json: bool) -> None:
+@LOCALE
+def cameras_show(camera_id: str, norms: str, as_json: bool, locale: str = "en") -> None:
     """Show one camera or scanner: CAMERA_ID from `scanplan cameras list`."""
     from dataclasses import asdict
 
     from ..norms import load_norm_set
+    from ..reports.labels_cli import cli_text as w
     from ..reports.text import table
+    from ..reports.wording import scanner_title
 
+    loc = locale
     ns = load_norm_set(norms)
     if camera_id not in ns.cameras and camera_id in ns.scanner_details:
         steps = [asdict(s) for s in ns.scanner_details[camera_id]]
         if as_json:
             _echo_json(steps)
             return
-        rows = [["pixel µm", "bit depth", "frame min", "note", "source"]]
-        rows += [[f"{s['pixel_um']:g}", s["bit_depth"] or "—",
-                  "—" if s["frame_scan_min"] is None else f"{s['frame_scan_min']:g}",
+        rows = [[w(k, loc) for k in ("cam_pixel", "scn_depth", "scn_frame_min", "scn_note",
+                                     "source")]]
+        rows += [[_num(f"{s['pixel_um']:g}", loc), s["bit_depth"] or "—",
+                  "—" if s["frame_scan_min"] is None else _num(f"{s['frame_scan_min']:g}", loc),
                   s["note"] or "—", s["source"] or "—"] for s in steps]
-        click.echo(f"{camera_id}: {ns.scanner_names.get(camera_id, camera_id)}")
+        name = (scanner_title(ns, camera_id, loc) if loc == "ru"
+                else ns.scanner_names.get(camera_id, camera_id))
+        click.echo(f"{camera_id}: {name}")
         click.echo(table(rows, align="rllll"))
         return
     cam = ns.camera(camera_id, "CAMERA_ID")
@@ -120,10 +155,57 @@ def cameras_show(camera_id: str, norms: str, as_json: bool) -> None:
         _echo_json(d)
         return
     d["lens_mtf"] = "; ".join(
-        f"{pos}: {len(c.freq_lpmm)} points to {c.freq_lpmm[-1]:g} lines/mm ({c.source or '—'})"
-        for pos, c in lens.items()) or "— (diffraction formula)"
-    click.echo(table([[k, "—" if v in (None, "") else str(v)] for k, v in d.items()],
+        w("lens_mtf_points", loc, pos=w(f"pos_{pos}", loc) if f"pos_{pos}" in
+          _positions() else pos, n=len(c.freq_lpmm), f=_num(f"{c.freq_lpmm[-1]:g}", loc),
+          source=c.source or "—")
+        for pos, c in lens.items()) or w("lens_mtf_none", loc)
+    click.echo(table([[_key(k, loc), _value(k, v, ns, cam.id, loc)] for k, v in d.items()],
                      align="ll"))
+
+
+def _positions() -> set[str]:
+    return {"pos_centre", "pos_corner"}
+
+
+def _key(key: str, locale: str) -> str:
+    """A camera field by name: the schema's key (English), the norm workbook's Russian
+    header (``scanplan norms template --locale ru``) in Russian."""
+    if locale != "ru":
+        return key
+    from ..norms.schema import TABLES
+    from ..reports.labels_cli import CLI
+
+    for col in TABLES["cameras"].columns:
+        if col.name == key and col.aliases:
+            return col.aliases[0]
+    extra = {"carried_by": "carried_effective", "lens_mtf": "ЧКХ объектива",
+             "published_pixel_um": "опубликованный размер пикселя"}.get(key, key)
+    return CLI["ru"].get(extra, extra)
+
+
+def _value(key: str, value: object, ns: object, camera_id: str, locale: str) -> str:
+    """A camera field's value in the listing's language."""
+    if value in (None, ""):
+        return "—"
+    if locale != "ru":
+        return str(value)
+    if key == "kind":
+        return _word("kind", str(value), locale)
+    if key in ("platform", "carried_by"):
+        return _word("by", str(value), locale)
+    if key == "shutter":
+        return _word("shutter", str(value), locale)
+    if key == "orientation":
+        from ..reports.labels import t
+
+        return t(f"orientation_{value}", locale)
+    if key == "name":
+        from ..reports.wording import camera_title
+
+        return camera_title(ns, camera_id, locale)  # type: ignore[arg-type]
+    if isinstance(value, float):
+        return _num(str(value), locale)
+    return str(value)
 
 
 @cameras.command("import")

@@ -353,7 +353,7 @@ def scan(as_json: bool, bits_per_band: str, **kwargs: Any) -> None:
     """
     from ..project.api import scan_job
     from ..reports.jsondoc import scan_plan_dict
-    from ..reports.text import format_scan_plan
+    from ..reports.terminal import format_scan_plan
 
     report = _split_report_options(kwargs)
     area = _area_of({**kwargs, "area_m": None})
@@ -376,14 +376,23 @@ def scan(as_json: bool, bits_per_band: str, **kwargs: Any) -> None:
                                      for sc, lay in schemes]
         _echo_json(doc)
     else:
-        click.echo(format_scan_plan(job.plan, job.norm_set.name, job.norm_set.title))
+        loc = report["locale"] or "en"  # --locale: the terminal speaks the reports' language
+        click.echo(format_scan_plan(job.plan, job.norm_set.name, job.norm_set.title,
+                                    locale=loc, norm_set=job.norm_set))
         if area is not None:
             from ..reports.text import format_area, format_layout
 
-            click.echo("\n" + format_area(area))
+            click.echo("\n" + format_area(area, loc))
             for sc, lay in schemes:
-                click.echo(format_layout(lay, f"1:{sc.photo_scale:g}"))
+                click.echo(format_layout(lay, _scale_text(sc.photo_scale, loc), loc))
     _write_reports(report, scan=job)
+
+
+def _scale_text(scale: float, locale: str) -> str:
+    """A photo scale as the terminal writes it (``1:10000``; Russian ``1:10 000``)."""
+    from ..reports.view import Numbers
+
+    return Numbers(locale).scale(scale) if locale == "ru" else f"1:{scale:g}"
 
 
 def _film_schemes(job: Any, area: Any, side: float) -> list[tuple[Any, Any]]:
@@ -429,7 +438,7 @@ def uav(as_json: bool, **kwargs: Any) -> None:
     from ..project.api import uav_job
     from ..project.flightplan import LayoutOptions
     from ..reports.jsondoc import uav_plan_dict
-    from ..reports.text import format_uav_plan
+    from ..reports.terminal import format_uav_plan
 
     report = _split_report_options(kwargs)
     area = _area_of(kwargs)
@@ -459,12 +468,14 @@ def uav(as_json: bool, **kwargs: Any) -> None:
             doc["layout"] = layout_dict(job.layout)
         _echo_json(doc)
     else:
-        click.echo(format_uav_plan(job.plan, job.norm_set.name))
+        loc = report["locale"] or "en"  # --locale: the terminal speaks the reports' language
+        click.echo(format_uav_plan(job.plan, job.norm_set.name, locale=loc,
+                                   norm_set=job.norm_set))
         if job.layout is not None:
             from ..reports.text import format_area, format_layout
 
-            click.echo("\n" + format_area(job.layout.area))
-            click.echo(format_layout(job.layout))
+            click.echo("\n" + format_area(job.layout.area, loc))
+            click.echo(format_layout(job.layout, locale=loc))
     _write_reports(report, uav=job)
 
 
@@ -473,8 +484,9 @@ def uav(as_json: bool, **kwargs: Any) -> None:
 @click.option("--out", "out_dir", type=click.Path(file_okay=False),
               help="Write spec.xlsx and spec.pdf into this folder (batch: NAME.xlsx/.pdf, "
               "NAME-2.xlsx/.pdf for a second project named NAME); for an area given as a "
-              "polygon also mission.plan (QGroundControl), flight.kml, flight.geojson and "
-              "photos.csv (film: film-flight.kml, film-flight.geojson, film-frames.csv).")
+              "polygon also mission.plan (QGroundControl), mission.waypoints (Mission Planner), "
+              "flight.kml, flight.geojson and photos.csv (film: film-flight.kml, "
+              "film-flight.geojson, film-frames.csv).")
 @click.option("--xlsx", "xlsx_path", type=click.Path(dir_okay=False),
               help="Write the Excel report to this file (one project; not with --out).")
 @click.option("--pdf", "pdf_path", type=click.Path(dir_okay=False),

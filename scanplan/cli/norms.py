@@ -13,6 +13,7 @@ import contextlib
 import functools
 import json
 import os
+import re
 import sys
 from collections.abc import Callable
 from pathlib import Path
@@ -144,10 +145,27 @@ def norms() -> None:
     """
 
 
+_LOCALE = click.option(
+    "--locale",
+    type=click.Choice(["en", "ru"]),
+    default="en",
+    show_default=True,
+    help="Language of the listing (headers, titles, numbers); sources are shown as the "
+    "norm set stores them.",
+)
+
+
+def _w(key: str, locale: str, **fields: Any) -> str:
+    from ..reports.labels_cli import cli_text
+
+    return cli_text(key, locale, **fields)
+
+
 @norms.command("list")
 @_JSON
+@_LOCALE
 @_guard
-def list_cmd(as_json: bool) -> None:
+def list_cmd(as_json: bool, locale: str = "en") -> None:
     """List the bundled and imported norm sets.
 
     \b
@@ -170,7 +188,8 @@ def list_cmd(as_json: bool) -> None:
             item = {
                 "name": name,
                 "where": where,
-                "title": ns.title,
+                "title": ns.title_ru if locale == "ru" and ns.title_ru and not as_json
+                else ns.title,
                 "imported_from": ns.imported_from,
                 "imported_at": ns.imported_at,
                 "path": str(ns.path),
@@ -197,24 +216,27 @@ def list_cmd(as_json: bool) -> None:
             )
         )
         return
+    where_word = {"bundled": _w("ns_bundled", locale), "user": _w("ns_user", locale)}
     rows = [
         [
             i["name"],
-            i["where"] + ("" if i["ok"] else " (broken)"),
+            where_word.get(i["where"], i["where"]) + ("" if i["ok"] else _w("ns_broken", locale)),
             i["imported_at"][:10],
             (i["title"] or i.get("error", ""))[:70],
         ]
         for i in out
     ]
-    click.echo(_table(rows, ["name", "where", "imported", "title"]))
-    click.echo(f"\nuser norm sets: {_norms.user_norms_dir()}")
+    head = [_w(k, locale) for k in ("ns_name", "ns_where", "ns_imported", "ns_title")]
+    click.echo(_table(rows, head))
+    click.echo("\n" + _w("ns_user_dir", locale, path=_norms.user_norms_dir()))
 
 
 @norms.command("show")
 @click.argument("name")
 @_JSON
+@_LOCALE
 @_guard
-def show_cmd(name: str, as_json: bool) -> None:
+def show_cmd(name: str, as_json: bool, locale: str = "en") -> None:
     """Show a norm set: meta, parameters (value, unit, source) and tables.
 
     NAME is a bundled or imported set name, or a norm-set folder.
@@ -227,6 +249,9 @@ def show_cmd(name: str, as_json: bool) -> None:
     data = _norms.norm_set_dict(_norms.load_norm_set(name))
     if as_json:
         click.echo(json.dumps(data, ensure_ascii=False, indent=2))
+        return
+    if locale == "ru":
+        click.echo(_show_ru(data, name))
         return
     out = [f"{data['name']} ({'bundled' if data['bundled'] else 'user'}: {data['path']})"]
     for key in ("title", "title_ru", "source", "imported_from", "imported_at"):
@@ -251,6 +276,70 @@ def show_cmd(name: str, as_json: bool) -> None:
         out.append(f"\n{tname}")
         out.append(_table([[_txt(r.get(c)) for c in cols] for r in rows], cols))
     click.echo("\n".join(out))
+
+
+def _txt_ru(v: Any) -> str:
+    """:func:`_txt` in Russian: a decimal comma, lists joined by "; "."""
+    if isinstance(v, list | tuple):
+        return "; ".join(_txt_ru(x) for x in v)
+    if isinstance(v, float):
+        return f"{v:g}".replace(".", ",")
+    return _txt(v)
+
+
+def _show_ru(data: dict[str, Any], name: str) -> str:
+    """``norms show`` in Russian: the tables and columns as the Russian norm workbook
+    names them (``norms template --locale ru``), parameters by their Russian names."""
+    from ..reports.wording import param_name
+
+    ns = _norms.load_norm_set(name)
+    where = _w("ns_bundled" if data["bundled"] else "ns_user", "ru")
+    out = [f"{data['name']} ({where}: {data['path']})"]
+    if data["title_ru"] or data["title"]:
+        out.append(f"  {_w('ns_title', 'ru')}: {data['title_ru'] or data['title']}")
+    if data["source"]:
+        out.append(f"  {_w('source', 'ru')}: {data['source']}")
+    for key in ("imported_from", "imported_at"):
+        if data[key]:
+            out.append(f"  {_w('ns_imported', 'ru')}: {data[key]}")
+    out.append("\n" + _w("ns_parameters", "ru"))
+    out.append(
+        _table(
+            [[param_name(ns, k, "ru"), _param_ru(ns, k, v["value"]), v["source"]]
+             for k, v in data["parameters"].items()],
+            [_w("ns_parameter", "ru"), _w("ns_value", "ru"), _w("source", "ru")],
+        )
+    )
+    for tname in ("shapes", "objects", "gsd_limits", "cameras", "scanners"):
+        rows = data.get(tname) or []
+        if not rows:
+            continue
+        cols = [
+            c
+            for c in TABLES[tname].columns
+            if c.name != "source" and any(r.get(c.name) not in (None, "") for r in rows)
+        ]
+        out.append("\n" + (TABLES[tname].title_ru or tname))
+        out.append(_table([[_txt_ru(r.get(c.name)) for c in cols] for r in rows],
+                          [_ru_header(c) for c in cols]))
+    return "\n".join(out)
+
+
+def _ru_header(col: Any) -> str:
+    """A column as the Russian norm workbook heads it (its first Russian alias)."""
+    return next((a for a in col.aliases if re.search("[А-Яа-яЁё]", a)), col.name)
+
+
+def _param_ru(ns: Any, key: str, value: Any) -> str:
+    """A parameter's value in Russian words (a shape, a formula) or with a decimal comma."""
+    from ..reports.view import Numbers
+    from ..reports.wording import param_value
+
+    try:
+        text = param_value(ns, key, value, "ru", number=Numbers("ru").g)
+    except (KeyError, ValueError, TypeError):
+        text = ""
+    return text or _txt_ru(value)
 
 
 def _summary(parsed: _norms.ParsedNormSet) -> dict[str, Any]:
@@ -374,11 +463,14 @@ def import_cmd(
     help="Set to pre-fill the workbook with.",
 )
 @click.option(
+    "--locale",
     "--lang",
+    "lang",
     type=click.Choice(["en", "ru"]),
     default="en",
     show_default=True,
-    help="Sheet names and headers in English or Russian.",
+    help="Sheet names and headers in English or Russian (--lang: the same, the older "
+    "spelling).",
 )
 @click.option("--no-catalogue", is_flag=True, help="Leave out the cameras and scanners.")
 @click.option("--force", is_flag=True, help="Overwrite an existing file.")
@@ -395,7 +487,7 @@ def template_cmd(
     \b
     Example:
       scanplan norms template my-norms.xlsx
-      scanplan norms template my-norms-ru.xlsx --lang ru --norms gkinp-02-036-02-printed
+      scanplan norms template my-norms-ru.xlsx --locale ru --norms gkinp-02-036-02-printed
     """
     out = _norms.write_template(
         file, norm_set, lang=lang, catalogue=not no_catalogue, force=force

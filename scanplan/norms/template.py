@@ -95,7 +95,7 @@ def _check_target(out: Path, lang: str, force: bool) -> None:
     if out.suffix.lower() != ".xlsx":
         raise InputError("FILE", f"the template must be an .xlsx file (got {out.name!r})")
     if lang not in ("en", "ru"):
-        raise InputError("--lang", f"must be en or ru (got {lang!r})")
+        raise InputError("--locale", f"must be en or ru (got {lang!r})")
     if out.exists() and not force:
         raise InputError("FILE", f"{out} exists; give --force to overwrite it")
     from ..outpaths import check_target  # links, folders, FIFOs, write-protected, long names

@@ -29,6 +29,7 @@ from ..messages import Message
 from ..norms.schema import GSD_AREAS
 from ..rules.results import PlanWarning
 from .file import Project
+from .sorties import SORTIE_DEFAULTS_MIN, sortie_length
 
 if TYPE_CHECKING:
     from .spec import FilmSpec, UavSpec
@@ -48,9 +49,6 @@ DEFAULT_SCHEDULE_DAYS = 30
 """``[schedule] end_date`` defaults to this many days after the start."""
 MAX_SCHEDULE_DAYS = 366
 """Longest schedule the sun window is computed for [days]."""
-SORTIE_DEFAULTS_MIN = {"uav": (25.0, 15.0), "aircraft": (180.0, 60.0)}
-"""(sortie flight time, ground time between sorties) [min] when ``[schedule]`` does not say:
-a multirotor battery gives 25–40 min, a survey aircraft's fuel several hours."""
 
 
 @dataclass(frozen=True)
@@ -98,6 +96,8 @@ class SunPlan:
     start_date, end_date : datetime.date
     windows : tuple of SunWindow
     sortie_time_s, turnaround_s : float
+        The planned sortie (the one sortie length, :mod:`scanplan.project.sorties`; a
+        layout's sorties are at most this long) and the ground time between sorties [s].
     flight_time_s : float or None
         Flight time of the whole survey [s] (None: no ``[area]``, or film).
     days : FlyingDays or None
@@ -277,9 +277,8 @@ def _sun(project: Project, film: FilmSpec | None, uav: UavSpec | None
     elev = _number_in(project, "schedule", "min_sun_elevation_deg", 0, 89.9, None, "°")
     platform = uav.job.plan.inputs.platform if uav is not None else "aircraft"
     sortie_d, turn_d = SORTIE_DEFAULTS_MIN.get(platform, SORTIE_DEFAULTS_MIN["uav"])
-    sortie_d = project.get("uav", "max_flight_time_min") or sortie_d  # the layout's endurance
-    sortie = _number_in(project, "schedule", "sortie_time_min", 0, 1440, sortie_d, "min",
-                        lo_open=True)
+    # the one sortie length, the layout's too (scanplan.project.sorties)
+    sortie = sortie_length(project, platform).minutes or sortie_d
     turn = _number_in(project, "schedule", "turnaround_min", 0, 1440, turn_d, "min")
     assert sortie is not None and turn is not None
     start = _date(project, "start_date")
@@ -309,7 +308,7 @@ def _sun(project: Project, film: FilmSpec | None, uav: UavSpec | None
     windows = sun_windows(dates, lat, lon, elev, utc_offset_h=offset)
     flight_s = uav.job.plan.flight.get("flight_time_s") if uav is not None else None
     from_layout = layout_sorties_s(layout)
-    sortie_s = max(from_layout) if from_layout else sortie * 60.0
+    sortie_s = sortie * 60.0  # the planned sortie; the layout's sorties are at most this long
     days = None
     warnings: list[PlanWarning] = []
     if not any(w.hours > 0 for w in windows):

@@ -148,9 +148,9 @@ _RECORDS: tuple[Input, ...] = (
     _project("customer", "customer (title block)", option="--customer", commands=(FILM, UAV)),
     _project("contractor", "contractor (title block)", option="--contractor",
              commands=(FILM, UAV)),
-    _project("locale", '"en" or "ru": language of the reports', default="en",
-             option="--locale", commands=(FILM, UAV), choices=("en", "ru"),
-             cli_help="language of the reports"),
+    _project("locale", '"en" or "ru": language of the reports and of the terminal summary',
+             default="en", option="--locale", commands=(FILM, UAV), choices=("en", "ru"),
+             cli_help="language of the terminal report and of --xlsx/--pdf"),
     _project("approver_position", "approval block: position", option="--approver-position",
              commands=(FILM, UAV), cli_help="approval block: position of the person who "
              "approves"),
@@ -365,9 +365,13 @@ _RECORDS: tuple[Input, ...] = (
           "strips [m]", "m"),
     Input("bank_deg", "uav", "bank_deg", _NUM, "fixed-wing: bank angle in the turns [°]; the "
           "radius follows from the speed, r = v²/(g·tan φ)", "°"),
-    Input("max_flight_time_min", "uav", "max_flight_time_min", _NUM, "longest sortie on one "
-          "battery [min]: the block is split into sorties", "min",
-          note="default: one flight", option="--max-flight-time-min", commands=(UAV,)),
+    Input("max_flight_time_min", "uav", "max_flight_time_min", _NUM, "flight time of one "
+          "sortie [min]: the aircraft's endurance on one battery less the reserve; the block "
+          "is split into sorties of at most this long, and the schedule counts its flying "
+          "days from the same sorties", "min",
+          note="default: [schedule] sortie_time_min; with [schedule] and neither key 25 for "
+          "a UAV, 180 for an aircraft; else one flight", option="--max-flight-time-min",
+          commands=(UAV,)),
     Input("area_file", "", "", _STR, "contract polygon: KML, KMZ, GeoJSON, GeoPackage or "
           "Shapefile; strips and photos are laid out over it (not with --area-m)",
           option="--area-file", commands=(FILM, UAV), fields=("file",)),
@@ -410,7 +414,10 @@ _RECORDS: tuple[Input, ...] = (
     Input("utc_offset_h", "schedule", "utc_offset_h", _NUM, "local time = UTC + offset [h]",
           "h", note="default: round(lon/15), the solar time zone"),
     Input("sortie_time_min", "schedule", "sortie_time_min", _NUM, "flight time of one sortie "
-          "(battery or fuel) [min]", "min", note="default 25 for a UAV, 180 for an aircraft"),
+          "(battery or fuel) [min]: the same number as [uav] max_flight_time_min (give one, "
+          "or both equal; two different values are an error); it also splits the flight "
+          "layout, so the layout and the schedule count the same sorties", "min",
+          note="default: [uav] max_flight_time_min, else 25 for a UAV, 180 for an aircraft"),
     Input("turnaround_min", "schedule", "turnaround_min", _NUM, "ground time between "
           "sorties [min]", "min", note="default 15 for a UAV, 60 for an aircraft"),
     Input("min_sun_elevation_deg", "schedule", "min_sun_elevation_deg", _NUM, "lowest sun "

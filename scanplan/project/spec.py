@@ -44,6 +44,7 @@ from .flightplan import (
     layout_warnings,
 )
 from .inputs import by_key, project_key, records
+from .sorties import sortie_length
 from .terrainplan import (
     archive_over_terrain,
     film_over_terrain,
@@ -389,18 +390,34 @@ def _check_layout_keys(project: Project, area: Area | None) -> None:
         raise _as_project_error(project, exc, "uav") from None
 
 
-def _layout_options(project: Project) -> LayoutOptions:
+def _layout_options(project: Project, platform: str = "uav") -> LayoutOptions:
     g = project.get
     return LayoutOptions(
         direction_deg=g("area", "direction_deg"), extension_bases=g("area", "extension_bases", 1),
         turnaround_m=g("uav", "turnaround_m"), turn_radius_m=g("uav", "turn_radius_m"),
-        bank_deg=g("uav", "bank_deg"), max_flight_time_min=g("uav", "max_flight_time_min"))
+        bank_deg=g("uav", "bank_deg"),
+        # the one sortie length: it splits the layout and counts the schedule's sorties
+        max_flight_time_min=sortie_length(project, platform).minutes)
+
+
+def _platform(kw: dict[str, Any]) -> str:
+    """The carrier of the job's camera (``uav`` or ``aircraft``, the catalogue's)."""
+    camera = kw.get("camera")
+    if camera is None:
+        return "uav"
+    try:
+        from ..norms import DEFAULT_NORM_SET, load_norm_set
+
+        cam = load_norm_set(kw.get("norms") or DEFAULT_NORM_SET).camera(camera, "camera")
+    except InputError:  # the job itself names the bad camera or norm set
+        return "uav"
+    return getattr(cam, "carrier", "uav") or "uav"
 
 
 def _uav_kwargs(project: Project, height_m: float, the_area: Area | None) -> dict[str, Any]:
     kw = _job_kwargs(project, "uav", uav_job)
     kw.update(height_m=height_m, area_m=_area(project), area=the_area,
-              layout_options=_layout_options(project))
+              layout_options=_layout_options(project, _platform(kw)))
     return kw
 
 
@@ -498,6 +515,7 @@ def plan_project(project: Project) -> PlanResult:
                       approver_name=g("project", "approver_name", ""),
                       **{k: g("project", k, "") for k in _SIGNING_KEYS})
     area = project_area(project)  # checked even when no plan uses it
+    sortie_length(project)  # the one sortie length, checked once: in range, both keys agree
     _check_layout_keys(project, area)
     _check_terrain(project, area)
     film = _film(project, area) if project.has("film") else None

@@ -1,10 +1,12 @@
 """The files ``scanplan plan --out`` writes beside spec.xlsx and spec.pdf (issue 11).
 
 :func:`export_files` renders, for every flight layout of a specification, the mission
-(UAV: a QGroundControl Plan per sortie), the flight as KML and GeoJSON, and the photo
+(UAV: a QGroundControl Plan per sortie and the same mission as a Mission Planner waypoint
+file), the flight as KML and GeoJSON, and the photo
 centres as CSV — in memory, named for the ``--out`` folder. The command line writes them
 with the reports in one all-or-nothing transaction. A UAV flight writes ``mission.plan``
-(``mission-01.plan`` … for several sorties), ``flight.kml``, ``flight.geojson`` and
+and ``mission.waypoints`` (``mission-01.plan``, ``mission-01.waypoints`` … for several
+sorties), ``flight.kml``, ``flight.geojson`` and
 ``photos.csv``; the film survey's flight scheme ``film-flight.kml``,
 ``film-flight.geojson`` and ``film-frames.csv``. A batch puts the project's name before
 each (``NAME-flight.kml``). An abstract block (width × length, not georeferenced) writes
@@ -153,8 +155,8 @@ def export_files(spec: Any, folder: str, *, prefix: str = "") -> dict[str, tuple
     return files
 
 
-_EXPORT_NAME = re.compile(r"(?:film-)?(?:mission(?:-\d+)?\.plan|flight\.kml|flight\.geojson|"
-                          r"photos\.csv|frames\.csv)")
+_EXPORT_NAME = re.compile(r"(?:film-)?(?:mission(?:-\d+)?\.(?:plan|waypoints)|flight\.kml|"
+                          r"flight\.geojson|photos\.csv|frames\.csv)")
 
 
 def stale_exports(folder: str, written: set[str]) -> list[str]:

@@ -8,13 +8,12 @@ import textwrap
 from collections.abc import Sequence
 from typing import Any
 
-from ..rules.film import CONSTRAINTS, ScanPlan
-from ..rules.uav import UavPlan
+from ..rules.film import CONSTRAINTS
 from .jsondoc import scale_value
 from .labels import LABELS, t
 from .view import Numbers
 
-__all__ = ["format_plan_result", "format_scan_plan", "format_uav_plan", "table"]
+__all__ = ["format_plan_result", "table"]
 
 
 def table(rows: Sequence[Sequence[str]], *, align: str = "", gap: int = 2) -> str:
@@ -30,7 +29,7 @@ def table(rows: Sequence[Sequence[str]], *, align: str = "", gap: int = 2) -> st
     return "\n".join(out)
 
 
-_EN = Numbers("en")  # the terminal reports of `scan` and `uav` are in English
+_EN = Numbers("en")  # English numbers (scanplan.reports.terminal writes `scan` and `uav`)
 
 
 def _num(x: float | None, digits: int = 1) -> str:
@@ -50,232 +49,6 @@ def _interval(seconds: float) -> str:
 def _wrap(text: str, indent: str) -> str:
     return textwrap.fill(text, width=96, initial_indent=indent,
                          subsequent_indent=" " * len(indent))
-
-
-def format_scan_plan(plan: ScanPlan, norm_name: str = "", norm_title: str = "") -> str:
-    """The terminal report of ``scanplan scan``: constraints × photo scales, like seed 001's
-    Tables 6–9, with the binding constraint starred, then reasons and warnings."""
-    inp = plan.inputs
-    cam = (f"camera {inp.camera} (f {inp.focal_mm:g} mm, frame {inp.frame_width_mm:g}×"
-           f"{inp.frame_along_mm:g} mm)" if inp.camera else
-           f"f {inp.focal_mm:g} mm, frame {inp.frame_width_mm:g}×{inp.frame_along_mm:g} mm")
-    lines = [
-        f"Scan plan — map 1:{scale_value(inp.map_scale)}, relief interval "
-        f"{inp.relief_interval_m:g} m",
-        f"{cam}, R {inp.resolving_power_lpmm:g} lines/mm, forward overlap "
-        f"{inp.forward_overlap_pct:g} %",
-    ]
-    if norm_name:
-        lines.append(f"norm set {norm_name}" + (f" — {norm_title}" if norm_title else ""))
-    obj = inp.object
-    if obj:
-        lines.append(f"object to interpret: {obj.name}, {obj.size_m:g} m, {obj.shape} "
-                     f"(B {obj.shape_coefficient:g}), P {plan.rules.probability:g} — {obj.source}")
-    lines.append("")
-    header = ["", "", *(f"1:{scale_value(s.photo_scale)}" for s in plan.scenarios)]
-    rows = [header, ["Mc/Mk", "", *(f"{s.photo_to_map_ratio:.1f}" for s in plan.scenarios)]]
-    for cid in plan.constraint_ids:
-        row = [f"{cid}  {CONSTRAINTS[cid].name}", "µm"]
-        for s in plan.scenarios:
-            c = s.constraint(cid)
-            row.append(_um(c.pixel_um) + ("*" if c.binding else " "))
-        rows.append(row)
-    rows.append(["binding", "", *(s.binding + " " for s in plan.scenarios)])
-    rows.append(["scan pixel", "µm", *(_um(s.scan_pixel_um) + " " for s in plan.scenarios)])
-    if inp.scanner:
-        rows.append([f"scanner {inp.scanner} step", "µm",
-                     *(_num(s.scanner_pixel_um) + " " for s in plan.scenarios)])
-    rows.append([f"scanned frame ({inp.bands} band, {inp.bits_per_band} bit)", "MB",
-                 *(f"{s.frame_megabytes:,.0f} " for s in plan.scenarios)])
-    rows.append(["photo resolution on the ground A", "mm",
-                 *(_num(s.resolution_on_ground_mm) + " " for s in plan.scenarios)])
-    if obj:
-        rows.append(["R needed to interpret", "lines/mm",
-                     *(_num(s.required_resolving_power_lpmm) + " " for s in plan.scenarios)])
-        rows.append(["P(recognition) at the scan pixel", "",
-                     *(_num(s.recognition_probability, 2) + " " for s in plan.scenarios)])
-    lines.append(table(rows, align="ll" + "r" * len(plan.scenarios)))
-    lines.append("* binding constraint (the smallest allowed pixel)")
-    lines.append("")
-    lines.append("Why:")
-    for s in plan.scenarios:
-        lines.append(_wrap(s.explanation, "  "))
-    if plan.interpretation_limit_photo_scale is not None:
-        mci = plan.interpretation_limit_photo_scale
-        lines.append("")
-        lines.append(_wrap(
-            f"Interpretation limit: {obj.name if obj else 'the object'} can be recognised with "
-            f"P ≥ {plan.rules.probability:g} on photos up to 1:{math.floor(mci):d} "
-            f"(Mc/Mk ≤ {mci / inp.map_scale:.1f}) at R {inp.resolving_power_lpmm:g} lines/mm.",
-            ""))
-    lines += _reach_lines(plan)
-    if plan.warnings:
-        lines.append("")
-        lines.append("Warnings:")
-        for w in plan.warnings:
-            mark = "!" if w.severity == "warning" else "i"
-            lines.append(_wrap(f"{w.message} [{w.code}]", f"  {mark} "))
-    return "\n".join(lines)
-
-
-def _carrier(platform: str) -> str:
-    """How the terminal names the digital-camera flight: a UAV, or a manned aerial survey
-    (a large-format camera, catalogue ``platform = aircraft``)."""
-    return "Aerial survey (digital camera)" if platform == "aircraft" else "UAV"
-
-
-def format_uav_plan(plan: UavPlan, norm_name: str = "") -> str:
-    """The terminal report of ``scanplan uav``."""
-    inp = plan.inputs
-    h = plan.heights_m
-    cam = inp.camera or "camera"
-    lines = [
-        f"{_carrier(inp.platform)} plan — {cam}"
-        + (f" ({inp.camera_name})" if inp.camera_name else ""),
-        f"pixel {inp.pixel_um:g} µm, f {inp.focal_mm:g} mm, f/{inp.f_number:g}, sensor "
-        f"{inp.sensor_width_mm:g}×{inp.sensor_height_mm:g} mm; height {h['planned']:g} m"
-        + (f" (flown {h['min']:g}–{h['max']:g} m)" if h["max"] != h["min"] else "")
-        + f", speed {inp.speed_ms:g} m/s, exposure {inp.exposure_s:g} s, overlaps "
-        f"{inp.forward_overlap_pct:g}/{inp.side_overlap_pct:g} %",
-        f"scene contrast r {inp.r_max:g}/{inp.r_min:g}, threshold contrast K0 {inp.threshold_k0:g}"
-        + (f"; norm set {norm_name}" if norm_name else ""),
-        "",
-    ]
-    rows = [["", "", f"at {h['planned']:g} m"]]
-    if h["max"] != h["planned"]:
-        rows[0].append(f"at {h['max']:g} m")
-    two = len(rows[0]) == 4
-    rows.append(["GSD", "m", _num(plan.gsd_m, 3),
-                 *([_num(plan.gsd_at_max_height_m, 3)] if two else [])])
-    rows.append(["sensor limit (Nyquist)", "lines/mm", f"{plan.nyquist_lpmm:.1f}",
-                 *([""] if two else [])])
-    rows.append(["resolving power R, centre / corner", "lines/mm",
-                 f"{_num(plan.resolving_power_lpmm)} / {_num(plan.resolving_power_corner_lpmm)}",
-                 *([""] if two else [])])
-    rows.append(["ground resolution L (centre)", "m", _num(plan.ground_resolution_m, 3),
-                 *([_num(plan.ground_resolution_at_max_height_m, 3)] if two else [])])
-    rows.append(["L at the frame corner", "m", _num(plan.ground_resolution_corner_m, 3),
-                 *([""] if two else [])])
-    rows.append(["L / GSD", "", _num(plan.ground_resolution_to_gsd, 2), *([""] if two else [])])
-    rows.append([f"motion blur (at {h['min']:g} m)", "px", f"{plan.motion_blur_px:.2f}",
-                 *([""] if two else [])])
-    if plan.tilted_corner_gsd_m is not None:
-        rows.append([f"worst corner GSD, roll {inp.roll_deg:g}° pitch {inp.pitch_deg:g}°", "m",
-                     "", *([_num(plan.tilted_corner_gsd_m, 3)] if two else [])])
-    lines.append(table(rows, align="ll" + "r" * (len(rows[0]) - 2)))
-    lines.append(f"blur ≤ 0.5 px needs exposure ≤ 1/{math.ceil(1 / plan.max_exposure_s):d} s "
-                 f"or speed ≤ {plan.max_speed_ms:.1f} m/s")
-    lines += _flight_lines(plan)
-    lines += _recognition_lines(plan)
-    lines += _limit_lines(plan)
-    if plan.warnings:
-        lines += ["", "Warnings:"]
-        for w in plan.warnings:
-            lines.append(_wrap(f"{w.message} [{w.code}]", "  ! "))
-    return "\n".join(lines)
-
-
-def _reach_lines(plan: ScanPlan) -> list[str]:
-    """The largest photo scale each scan pixel supports (scanner steps, --pixel-um)."""
-    inp = plan.inputs
-    lines: list[str] = []
-    if plan.max_photo_scales:
-        lines.append("")
-        who = " and ".join(x for x in (f"scanner {inp.scanner}" if inp.scanner else "",
-                                       "--pixel-um" if inp.candidate_pixels_um else "") if x)
-        lines.append(f"Largest photo scale each scan pixel supports ({who}):")
-        both = plan.interpretation_limit_photo_scale is not None
-        rows = [["pixel µm", "largest photo scale", "limited by"]
-                + (["with the object interpretable"] if both else [])]
-        for r in plan.max_photo_scales:
-            if r.max_photo_scale > 0:
-                row = [f"{r.pixel_um:g}", f"1:{math.floor(r.max_photo_scale):d}", r.limit]
-            else:
-                row = [f"{r.pixel_um:g}", "none", "PR (pixel coarser than P_R)"]
-            if both:
-                mi = r.max_photo_scale_interpretable
-                row.append(f"1:{math.floor(mi):d}" if mi else "none")
-            rows.append(row)
-        lines.append(table(rows, align="rrlr" if both else "rrl"))
-    return lines
-
-
-def _flight_lines(plan: UavPlan) -> list[str]:
-    """The flight geometry at the planned height."""
-    h = plan.heights_m
-    lines: list[str] = []
-    fl = plan.flight
-    lines += ["", "Flight geometry (at the planned height):"]
-    frows = [["footprint", f"{fl['footprint_across_m']:.0f} × {fl['footprint_along_m']:.0f} m"],
-             ["base / line spacing", f"{fl['base_m']:.1f} m / {fl['line_spacing_m']:.1f} m"],
-             ["photo interval", _interval(fl['photo_interval_s'])
-              + (f" (camera minimum {fl['min_trigger_interval_s']:g} s)"
-                 if "min_trigger_interval_s" in fl else "")],
-             [f"forward overlap at {h['min']:g} / {h['max']:g} m",
-              f"{fl['forward_overlap_at_min_height_pct']:.1f} / "
-              f"{fl['forward_overlap_at_max_height_pct']:.1f} %"]]
-    if "strips" in fl:
-        frows += [["strips × photos", f"{fl['strips']} × {fl['photos_per_strip']} = "
-                   f"{fl['photos']} photos" if "photos_per_strip" in fl else
-                   f"{fl['strips']} strips, {fl['photos']} photos"],
-                  ["flight length / time", f"{fl['flight_length_m'] / 1000:.1f} km / "
-                   + (f"{fl['flight_time_s'] / 60:.0f} min" if fl.get("flight_time_s") else "—")]]
-        if "data_volume_bytes" in fl:
-            frows.append(["data volume", _volume(fl["data_volume_bytes"])])
-    lines.append(table([[f"  {a}", b] for a, b in frows], align="ll"))
-    return lines
-
-
-def _recognition_lines(plan: UavPlan) -> list[str]:
-    """The recognition probability of the norm objects."""
-    h = plan.heights_m
-    lines: list[str] = []
-    if plan.recognition:
-        lines += ["", "Recognition probability of the norm objects (P = exp(−(B·L/L_obj)²)):"]
-        rrows = [["  object", "map", "size m", "shape", f"{h['planned']:g} m",
-                  f"{h['max']:g} m", "corner"]]
-        for r in plan.recognition:
-            rrows.append([f"  {r.object}", f"1:{r.map_scale}" if r.map_scale else "—",
-                          f"{r.object_size_m:g}", r.shape, _num(r.probability, 2),
-                          _num(r.probability_at_max_height, 2),
-                          _num(r.probability_corner_at_max_height, 2)])
-        lines.append(table(rrows, align="llrlrrr"))
-    return lines
-
-
-def _limit_lines(plan: UavPlan) -> list[str]:
-    """The constraints as maximum planned heights, the binding one, height accuracy."""
-    inp, h = plan.inputs, plan.heights_m
-    lines: list[str] = []
-    if plan.limits:
-        tol = inp.height_tolerance_up_pct
-        head = (f"Maximum planned height for map 1:{scale_value(inp.map_scale)}, relief "
-                f"interval {inp.relief_interval_m:g} m" if inp.map_scale is not None
-                else "Maximum planned height")
-        lines += ["", head + (f" (limits checked at the highest flown height, +{tol:g} %)"
-                              if tol else "") + ":"]
-        lrows = [["  constraint", "limit", "compared with", "max planned", "highest flown"]]
-        for lim in sorted(plan.limits, key=lambda x: x.max_height_m):
-            lrows.append([f"  {lim.id}  {lim.name}", f"{lim.limit_m:.3f} m", lim.compares,
-                          f"{lim.max_height_m:.0f} m" + ("*" if lim.binding else " "),
-                          f"{lim.max_flown_height_m or lim.max_height_m:.0f} m"])
-        lines.append(table(lrows, align="lrlrr"))
-        b = next(x for x in plan.limits if x.binding)
-        lines.append(_wrap(f"Maximum planned height {plan.max_height_m:.0f} m (highest flown "
-                           f"{plan.max_flown_height_m or plan.max_height_m:.0f} m): {b.id} "
-                           f"({b.name}) binds — {b.reason}.", ""))
-        acc = plan.height_accuracy
-        if acc:
-            forms = acc["forms"]
-            lines.append(_wrap(
-                f"Height accuracy: σ_Z {acc['sigma_z_at_highest_flown_height_m']:.3f} m at "
-                f"{h['max']:g} m (required {acc['height_accuracy_m']:g} m RMS; "
-                f"{acc['sigma_z_in_gsd']:.2f} GSD). Maximum planned height by form: "
-                f"normal case {forms['normal_case']['max_planned_height_m']:.0f} m, "
-                f"Instruction {forms['instruction']['max_planned_height_m']:.0f} m, parallax "
-                f"(single-step base) {forms['parallax']['max_planned_height_m']:.0f} m "
-                f"[{acc['formula']} used].", ""))
-    return lines
 
 
 class _Terminal:

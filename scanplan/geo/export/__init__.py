@@ -8,6 +8,7 @@ georeferenced) gets none of them; a plan that is not feasible gets no mission.
 | file | content | module |
 |---|---|---|
 | ``mission.plan`` (``mission-01.plan`` … per sortie) | the mission to fly (UAV) | :mod:`.qgc` |
+| ``mission.waypoints`` (beside each ``.plan``) | the mission for Mission Planner | :mod:`.wpl` |
 | ``flight.kml`` | area, strips, numbered photo centres for Google Earth | :mod:`.gis` |
 | ``flight.geojson`` | the same as RFC 7946 GeoJSON | :mod:`.gis` |
 | ``photos.csv`` | every photo centre with its figures | :mod:`.gis` |
@@ -20,9 +21,11 @@ from .common import GENERATOR, lonlat
 from .gis import ExportNames, render_csv, render_geojson, render_kml
 from .qgc import MissionOptions, plan_files, render_plan
 from .steps import mission_layout
+from .wpl import render_waypoints, waypoint_files
 
 __all__ = ["GENERATOR", "ExportNames", "MissionOptions", "layout_files", "plan_files",
-           "render_csv", "render_geojson", "render_kml", "render_plan"]
+           "render_csv", "render_geojson", "render_kml", "render_plan", "render_waypoints",
+           "waypoint_files"]
 
 
 def layout_files(layout: FlightLayout, *, names: ExportNames | None = None,
@@ -37,7 +40,8 @@ def layout_files(layout: FlightLayout, *, names: ExportNames | None = None,
     names : ExportNames, optional
         Names inside the files (the report's language).
     mission : MissionOptions, optional
-        With it (a UAV flight), the QGroundControl mission of every sortie as well.
+        With it (a UAV flight), the mission of every sortie as well: the QGroundControl
+        Plan file and the same mission as Mission Planner's waypoint file.
     prefix : str
         Put before every file name (``"film-"``; a batch's project name).
     photos_name : str
@@ -55,8 +59,9 @@ def layout_files(layout: FlightLayout, *, names: ExportNames | None = None,
     if mission is not None:
         # terrain following: a waypoint at every altitude step (the other files keep the
         # strips as laid out)
-        files.update({prefix + k: v for k, v in plan_files(mission_layout(layout), mission,
-                                                           geo=geo).items()})
+        plans = plan_files(mission_layout(layout), mission, geo=geo)
+        plans.update(waypoint_files(plans))  # the same missions for Mission Planner
+        files.update({prefix + k: v for k, v in plans.items()})
     files[f"{prefix}flight.kml"] = render_kml(layout, names)
     files[f"{prefix}flight.geojson"] = render_geojson(layout, names)
     if len(layout.photos):

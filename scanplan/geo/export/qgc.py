@@ -6,7 +6,8 @@ Format: QGroundControl Developer Guide, "Plan File Format" (JSON; ``fileType`` "
 ``items``; ``geoFence`` and ``rallyPoints`` version 2), mission items as ``SimpleItem``:
 ``command`` (MAV_CMD), ``frame`` (MAV_FRAME), ``params`` (seven values, NaN written as
 ``null``), ``autoContinue``, ``doJumpId``. Commands and frames: MAVLink common message set
-(https://mavlink.io/en/messages/common.html). QGroundControl and Mission Planner open it.
+(https://mavlink.io/en/messages/common.html). QGroundControl opens it; Mission Planner
+reads only its simple items and gets the same mission as a waypoint file (:mod:`.wpl`).
 
 Each sortie is one mission::
 

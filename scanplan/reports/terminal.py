@@ -1,0 +1,328 @@
+"""The terminal reports of ``scanplan scan`` and ``scanplan uav``, in the language of
+``--locale`` (English or Russian): words from :mod:`scanplan.reports.labels_cli`, constraint
+names from the label catalogue, messages from :mod:`scanplan.messages`, numbers in the
+locale's convention (:class:`scanplan.reports.view.Numbers`: a decimal comma in Russian).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from ..messages import localize
+from ..rules.film import ScanPlan
+from ..rules.uav import UavPlan
+from .jsondoc import scale_value
+from .labels import t
+from .labels_cli import cli_text
+from .text import _volume, _wrap, table
+from .view import Numbers
+
+__all__ = ["format_scan_plan", "format_uav_plan"]
+
+
+class _Words:
+    """The words and numbers of one terminal report in one locale."""
+
+    def __init__(self, locale: str, norm_set: Any = None) -> None:
+        self.loc = locale if locale in ("en", "ru") else "en"
+        self.n = Numbers(self.loc)
+        self.ns = norm_set
+
+    def __call__(self, key: str, **fields: object) -> str:
+        return cli_text(key, self.loc, **fields)
+
+    def g(self, x: float) -> str:
+        """Shortest form (``:g``), the locale's decimal separator."""
+        return self.n.short(float(x))
+
+    def f(self, x: float | None, digits: int = 1) -> str:
+        """Fixed decimals."""
+        return self.n.fixed(x, digits)
+
+    def scale(self, x: float) -> str:
+        """``1:10000`` (English), ``1:10 000`` (Russian)."""
+        if self.loc == "ru":
+            return "1:" + self.n.num(float(x), 0)
+        return f"1:{scale_value(x)}"
+
+    def constraint(self, cid: str) -> str:
+        """A constraint's name (the label catalogue's, a registered one its own)."""
+        return t(cid, self.loc)
+
+    def object(self, name: str, size_m: float | None = None) -> str:
+        """A norm object's name in the locale (the norm set's Russian name)."""
+        if self.loc == "ru" and self.ns is not None:
+            from .wording import object_title
+
+            for o in getattr(self.ns, "objects", ()):
+                if o.name == name and (size_m is None or o.size_m == size_m):
+                    return object_title(o, self.loc)
+        return name
+
+    def shape(self, shape: str) -> str:
+        """A shape in words (the norm set's Russian name)."""
+        if self.loc == "ru" and self.ns is not None:
+            from .wording import shape_title
+
+            return shape_title(self.ns, shape, self.loc)
+        return shape
+
+
+def format_scan_plan(plan: ScanPlan, norm_name: str = "", norm_title: str = "",
+                     locale: str = "en", norm_set: Any = None) -> str:
+    """The terminal report of ``scanplan scan``: constraints × photo scales, like seed 001's
+    Tables 6–9, with the binding constraint starred, then reasons and warnings.
+
+    Parameters
+    ----------
+    plan : ScanPlan
+    norm_name, norm_title : str
+        The norm set's name and title.
+    locale : {"en", "ru"}
+        The language (``--locale``).
+    norm_set : NormSet, optional
+        For the Russian names of objects and shapes.
+    """
+    w = _Words(locale, norm_set)
+    inp = plan.inputs
+    frame = dict(f=w.g(inp.focal_mm), w=w.g(inp.frame_width_mm), l=w.g(inp.frame_along_mm))
+    cam = (w("scan_camera", camera=inp.camera, **frame) if inp.camera
+           else w("scan_no_camera", **frame))
+    lines = [
+        w("scan_head", map=w.scale(inp.map_scale), hc=w.g(inp.relief_interval_m)),
+        w("scan_camera_line", camera=cam, r=w.g(inp.resolving_power_lpmm),
+          p=w.g(inp.forward_overlap_pct)),
+    ]
+    if norm_name:
+        if w.loc == "ru" and getattr(norm_set, "title_ru", ""):
+            norm_title = norm_set.title_ru
+        lines.append(w("norm_set", name=norm_name) + (f" — {norm_title}" if norm_title else ""))
+    obj = inp.object
+    if obj:
+        lines.append(w("scan_object", name=w.object(obj.name, obj.size_m), size=w.g(obj.size_m),
+                       shape=w.shape(obj.shape), b=w.g(obj.shape_coefficient),
+                       p=w.g(plan.rules.probability), source=localize(obj.source, w.loc)))
+    lines.append("")
+    um = w("um")
+    header = ["", "", *(w.scale(s.photo_scale) for s in plan.scenarios)]
+    rows = [header, ["Mc/Mk", "", *(w.f(s.photo_to_map_ratio, 1) for s in plan.scenarios)]]
+    for cid in plan.constraint_ids:
+        row = [f"{cid}  {w.constraint(cid)}", um]
+        for s in plan.scenarios:
+            c = s.constraint(cid)
+            row.append(w.n.um(c.pixel_um) + ("*" if c.binding else " "))
+        rows.append(row)
+    rows.append([w("binding"), "", *(s.binding + " " for s in plan.scenarios)])
+    rows.append([w("scan_pixel"), um, *(w.n.um(s.scan_pixel_um) + " " for s in plan.scenarios)])
+    if inp.scanner:
+        rows.append([w("scanner_step", scanner=inp.scanner), um,
+                     *(w.f(s.scanner_pixel_um) + " " for s in plan.scenarios)])
+    rows.append([w("scanned_frame", bands=inp.bands, bits=inp.bits_per_band), w("mb"),
+                 *(w.n.num(s.frame_megabytes, 0) + " " for s in plan.scenarios)])
+    rows.append([w("resolution_a"), w("mm"),
+                 *(w.f(s.resolution_on_ground_mm) + " " for s in plan.scenarios)])
+    if obj:
+        rows.append([w("r_needed"), w("lpmm"),
+                     *(w.f(s.required_resolving_power_lpmm) + " " for s in plan.scenarios)])
+        rows.append([w("p_at_pixel"), "",
+                     *(w.f(s.recognition_probability, 2) + " " for s in plan.scenarios)])
+    lines.append(table(rows, align="ll" + "r" * len(plan.scenarios)))
+    lines.append(w("binding_note"))
+    lines.append("")
+    lines.append(w("why"))
+    for s in plan.scenarios:
+        lines.append(_wrap(localize(s.explanation, w.loc), "  "))
+    if plan.interpretation_limit_photo_scale is not None:
+        mci = plan.interpretation_limit_photo_scale
+        lines.append("")
+        lines.append(_wrap(w(
+            "interpretation_limit", obj=w.object(obj.name, obj.size_m) if obj else w("the_object"),
+            p=w.g(plan.rules.probability), scale=w.scale(math.floor(mci)),
+            ratio=w.f(mci / inp.map_scale, 1), r=w.g(inp.resolving_power_lpmm)), ""))
+    lines += _reach_lines(plan, w)
+    lines += _warning_lines(plan.warnings, w, scan=True)
+    return "\n".join(lines)
+
+
+def _warning_lines(warnings: Any, w: _Words, scan: bool = False) -> list[str]:
+    if not warnings:
+        return []
+    out = ["", w("warnings")]
+    for x in warnings:
+        mark = "!" if (not scan or x.severity == "warning") else "i"
+        out.append(_wrap(f"{x.text(w.loc)} [{x.code}]", f"  {mark} "))
+    return out
+
+
+def _reach_lines(plan: ScanPlan, w: _Words) -> list[str]:
+    """The largest photo scale each scan pixel supports (scanner steps, --pixel-um)."""
+    inp = plan.inputs
+    lines: list[str] = []
+    if plan.max_photo_scales:
+        lines.append("")
+        who = w("reach_and").join(
+            x for x in (w("reach_scanner", scanner=inp.scanner) if inp.scanner else "",
+                        "--pixel-um" if inp.candidate_pixels_um else "") if x)
+        lines.append(w("reach_head", who=who))
+        both = plan.interpretation_limit_photo_scale is not None
+        rows = [[w("reach_pixel"), w("reach_scale"), w("reach_limit")]
+                + ([w("reach_interpretable")] if both else [])]
+        for r in plan.max_photo_scales:
+            if r.max_photo_scale > 0:
+                row = [w.g(r.pixel_um), w.scale(math.floor(r.max_photo_scale)), r.limit]
+            else:
+                row = [w.g(r.pixel_um), w("none"), w("reach_pr")]
+            if both:
+                mi = r.max_photo_scale_interpretable
+                row.append(w.scale(math.floor(mi)) if mi else w("none"))
+            rows.append(row)
+        lines.append(table(rows, align="rrlr" if both else "rrl"))
+    return lines
+
+
+def format_uav_plan(plan: UavPlan, norm_name: str = "", locale: str = "en",
+                    norm_set: Any = None) -> str:
+    """The terminal report of ``scanplan uav``.
+
+    Parameters
+    ----------
+    plan : UavPlan
+    norm_name : str
+        The norm set's name.
+    locale : {"en", "ru"}
+        The language (``--locale``).
+    norm_set : NormSet, optional
+        For the Russian names of objects and shapes.
+    """
+    w = _Words(locale, norm_set)
+    inp = plan.inputs
+    h = plan.heights_m
+    carrier = w("carrier_aircraft" if inp.platform == "aircraft" else "carrier_uav")
+    name = inp.camera_name
+    if name and w.loc == "ru" and norm_set is not None:  # English remarks dropped, units
+        from .wording import camera_title
+
+        name = camera_title(norm_set, inp.camera, w.loc, name)
+    lines = [
+        w("uav_head", carrier=carrier, camera=inp.camera or w("camera"))
+        + (f" ({name})" if name else ""),
+        w("uav_line1", pixel=w.g(inp.pixel_um), f=w.g(inp.focal_mm), n=w.g(inp.f_number),
+          w=w.g(inp.sensor_width_mm), h=w.g(inp.sensor_height_mm), height=w.g(h["planned"]))
+        + (w("uav_flown", lo=w.g(h["min"]), hi=w.g(h["max"])) if h["max"] != h["min"] else "")
+        + w("uav_line1_tail", v=w.g(inp.speed_ms), t=w.g(inp.exposure_s),
+            fo=w.g(inp.forward_overlap_pct), so=w.g(inp.side_overlap_pct)),
+        w("uav_line2", rmax=w.g(inp.r_max), rmin=w.g(inp.r_min), k0=w.g(inp.threshold_k0))
+        + (w("uav_norm", name=norm_name) if norm_name else ""),
+        "",
+    ]
+    rows = [["", "", w("at_height", h=w.g(h["planned"]))]]
+    if h["max"] != h["planned"]:
+        rows[0].append(w("at_height", h=w.g(h["max"])))
+    two = len(rows[0]) == 4
+    blank = [""] if two else []
+    m, lpmm = w("m"), w("lpmm")
+    rows.append([w("gsd"), m, w.f(plan.gsd_m, 3),
+                 *([w.f(plan.gsd_at_max_height_m, 3)] if two else [])])
+    rows.append([w("nyquist"), lpmm, w.f(plan.nyquist_lpmm, 1), *blank])
+    rows.append([w("resolving_power"), lpmm,
+                 f"{w.f(plan.resolving_power_lpmm)} / {w.f(plan.resolving_power_corner_lpmm)}",
+                 *blank])
+    rows.append([w("l_centre"), m, w.f(plan.ground_resolution_m, 3),
+                 *([w.f(plan.ground_resolution_at_max_height_m, 3)] if two else [])])
+    rows.append([w("l_corner"), m, w.f(plan.ground_resolution_corner_m, 3), *blank])
+    rows.append([w("l_gsd"), "", w.f(plan.ground_resolution_to_gsd, 2), *blank])
+    rows.append([w("blur", h=w.g(h["min"])), w("px"), w.f(plan.motion_blur_px, 2), *blank])
+    if plan.tilted_corner_gsd_m is not None:
+        rows.append([w("tilted", roll=w.g(inp.roll_deg), pitch=w.g(inp.pitch_deg)), m, "",
+                     *([w.f(plan.tilted_corner_gsd_m, 3)] if two else [])])
+    lines.append(table(rows, align="ll" + "r" * (len(rows[0]) - 2)))
+    lines.append(w("blur_limit", denominator=math.ceil(1 / plan.max_exposure_s),
+                   v=w.f(plan.max_speed_ms, 1)))
+    lines += _flight_lines(plan, w)
+    lines += _recognition_lines(plan, w)
+    lines += _limit_lines(plan, w)
+    lines += _warning_lines(plan.warnings, w)
+    return "\n".join(lines)
+
+
+def _flight_lines(plan: UavPlan, w: _Words) -> list[str]:
+    """The flight geometry at the planned height."""
+    h = plan.heights_m
+    fl = plan.flight
+    m, s = w("m"), w("s")
+    interval = fl["photo_interval_s"]
+    frows = [[w("footprint"), f"{w.f(fl['footprint_across_m'], 0)} × "
+              f"{w.f(fl['footprint_along_m'], 0)} {m}"],
+             [w("base_spacing"), f"{w.f(fl['base_m'], 1)} {m} / {w.f(fl['line_spacing_m'], 1)} "
+              f"{m}"],
+             [w("interval"), (f"{w.f(interval, 2)} {s}" if math.isfinite(interval)
+                              else w("interval_none"))
+              + (w("camera_min", t=w.g(fl["min_trigger_interval_s"]))
+                 if "min_trigger_interval_s" in fl else "")],
+             [w("overlap_at", lo=w.g(h["min"]), hi=w.g(h["max"])),
+              f"{w.f(fl['forward_overlap_at_min_height_pct'], 1)} / "
+              f"{w.f(fl['forward_overlap_at_max_height_pct'], 1)} %"]]
+    if "strips" in fl:
+        frows += [[w("strips_photos"),
+                   w("strips_photos_value", strips=fl["strips"], per=fl["photos_per_strip"],
+                     photos=fl["photos"]) if "photos_per_strip" in fl else
+                   w("strips_photos_total", strips=fl["strips"], photos=fl["photos"])],
+                  [w("length_time"), f"{w.f(fl['flight_length_m'] / 1000, 1)} {w('km')} / "
+                   + (f"{w.f(fl['flight_time_s'] / 60, 0)} {w('min')}"
+                      if fl.get("flight_time_s") else "—")]]
+        if "data_volume_bytes" in fl:
+            frows.append([w("volume"), _volume(fl["data_volume_bytes"], w.loc)])
+    return ["", w("flight_head"), table([[f"  {a}", b] for a, b in frows], align="ll")]
+
+
+def _recognition_lines(plan: UavPlan, w: _Words) -> list[str]:
+    """The recognition probability of the norm objects."""
+    h = plan.heights_m
+    if not plan.recognition:
+        return []
+    rrows = [[f"  {w('rec_object')}", w("rec_map"), w("rec_size"), w("rec_shape"),
+              f"{w.g(h['planned'])} {w('m')}", f"{w.g(h['max'])} {w('m')}", w("rec_corner")]]
+    for r in plan.recognition:
+        rrows.append([f"  {w.object(r.object, r.object_size_m)}",
+                      w.scale(r.map_scale) if r.map_scale else "—",
+                      w.g(r.object_size_m), w.shape(r.shape), w.f(r.probability, 2),
+                      w.f(r.probability_at_max_height, 2),
+                      w.f(r.probability_corner_at_max_height, 2)])
+    return ["", w("recognition_head"), table(rrows, align="llrlrrr")]
+
+
+def _limit_lines(plan: UavPlan, w: _Words) -> list[str]:
+    """The constraints as maximum planned heights, the binding one, height accuracy."""
+    inp, h = plan.inputs, plan.heights_m
+    if not plan.limits:
+        return []
+    m = w("m")
+    tol = inp.height_tolerance_up_pct
+    head = (w("limits_head_map", map=w.scale(inp.map_scale), hc=w.g(inp.relief_interval_m))
+            if inp.map_scale is not None else w("limits_head"))
+    lines = ["", head + (w("limits_flown", tol=w.g(tol)) if tol else "") + ":"]
+    lrows = [[f"  {w('lim_constraint')}", w("lim_limit"), w("lim_compares"), w("lim_max"),
+              w("lim_flown")]]
+    for lim in sorted(plan.limits, key=lambda x: x.max_height_m):
+        lrows.append([f"  {lim.id}  {w.constraint(lim.id)}", f"{w.f(lim.limit_m, 3)} {m}",
+                      lim.compares,
+                      f"{w.f(lim.max_height_m, 0)} {m}" + ("*" if lim.binding else " "),
+                      f"{w.f(lim.max_flown_height_m or lim.max_height_m, 0)} {m}"])
+    lines.append(table(lrows, align="lrlrr"))
+    b = next(x for x in plan.limits if x.binding)
+    lines.append(_wrap(w("lim_sentence", max=w.f(plan.max_height_m, 0),
+                         flown=w.f(plan.max_flown_height_m or plan.max_height_m, 0),
+                         cid=b.id, name=w.constraint(b.id),
+                         reason=localize(b.reason, w.loc)), ""))
+    acc = plan.height_accuracy
+    if acc:
+        forms = acc["forms"]
+        lines.append(_wrap(w(
+            "accuracy", sz=w.f(acc["sigma_z_at_highest_flown_height_m"], 3), h=w.g(h["max"]),
+            req=w.g(acc["height_accuracy_m"]), gsd=w.f(acc["sigma_z_in_gsd"], 2),
+            normal=w.f(forms["normal_case"]["max_planned_height_m"], 0),
+            instruction=w.f(forms["instruction"]["max_planned_height_m"], 0),
+            parallax=w.f(forms["parallax"]["max_planned_height_m"], 0),
+            used=w(f"form_{acc['formula']}")), ""))
+    return lines
