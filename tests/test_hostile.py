@@ -679,6 +679,7 @@ def test_project_text_is_text_everywhere_and_nothing_is_fetched(tmp_path, monkey
 
     monkeypatch.setattr(P, "BundledAssetFetcher", Spy)
     monkeypatch.setattr(socket.socket, "connect", no_connect)
+    monkeypatch.setenv("SCANPLAN_NO_FORK", "1")  # the spies see this process's render
     before = tree(tmp_path)
     with opened_files() as opened:
         r = cli("plan", proj / "p.toml", "--out", "../out")

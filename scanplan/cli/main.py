@@ -198,6 +198,7 @@ def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
     fields = opts.pop("fields", {"xlsx": "--xlsx", "pdf": "--pdf"})
     note = opts.pop("note", "")
     say = opts.pop("say", None) or (lambda line: click.echo(line, err=True))
+    worker = opts.pop("pdf_worker", None)  # the PDF on the second core (reports.pdfworker)
     from ..outpaths import check_target
     from ..reports import ReportMeta, write_atomic_many
 
@@ -227,13 +228,26 @@ def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
 
     # one view of the result for both documents: labels, numbers and plots built once
     view = build_view(scan=scan, uav=uav, meta=meta, spec=spec)
-    files: dict[str, bytes] = {}
+    # the PDF renders in the worker while this process builds the workbook; a worker
+    # that fails gives None and the PDF is rendered here (any error is raised here)
+    forked = worker is not None and pdf is not None and worker.submit(view)
+    rendered: dict[str, bytes] = {}
     for path, kind in wanted:
         if kind == "xlsx":
             from ..reports.excel import render_xlsx as render
+        elif forked:
+            continue
         else:
             from ..reports.pdf import render_pdf as render
-        files[path] = render(scan=scan, uav=uav, meta=meta, view=view, **extra)
+        rendered[path] = render(scan=scan, uav=uav, meta=meta, view=view, **extra)
+    if forked:
+        data = worker.result()
+        if data is None:
+            from ..reports.pdf import render_pdf
+
+            data = render_pdf(scan=scan, uav=uav, meta=meta, view=view, **extra)
+        rendered[pdf] = data
+    files = {path: rendered[path] for path, _ in wanted}  # the order of the wrote lines
     files.update({path: data for path, (_, data) in exports.items()})
     write_atomic_many(files, check=check)
     for path in files:
@@ -533,9 +547,10 @@ def batch_stems(files: list[str]) -> list[str]:
 
 def _run_project(path: str, out_dir: str | None, stem: str | None, xlsx_path: str | None,
                  pdf_path: str | None, files: list[str], force: bool,
-                 say: Callable[[str], None] | None = None) -> Any:
+                 say: Callable[[str], None] | None = None, pdf_worker: Any = None) -> Any:
     """Plan one project and write its reports (both or neither); the PlanResult. ``say``
-    receives the ``wrote FILE`` lines (default: stderr)."""
+    receives the ``wrote FILE`` lines (default: stderr); ``pdf_worker`` (a
+    :class:`scanplan.reports.pdfworker.PdfWorker`) renders the PDF on another core."""
     from ..project.file import load_project
     from ..project.spec import plan_project
 
@@ -559,7 +574,8 @@ def _run_project(path: str, out_dir: str | None, stem: str | None, xlsx_path: st
     film = result.film.job if result.film else None
     uav_ = result.uav.job if result.uav else None
     _write_reports({**targets, "force": force, "inputs": files, "fields": fields,
-                    "note": note, "meta": result.meta, "say": say, "exports": exports},
+                    "note": note, "meta": result.meta, "say": say, "exports": exports,
+                    "pdf_worker": pdf_worker},
                    scan=film, uav=uav_, spec=result)
     if out_dir and stem is None:  # never leave a stale sortie of an earlier plan behind
         _remove_stale_exports(out_dir, set(exports))
@@ -664,11 +680,21 @@ def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: s
                 pdf_path: str | None, as_json: bool, force: bool = False,
                 jobs: int = 1) -> None:
     """``plan`` after its arguments are checked: run one project or a batch."""
-    from ..reports.jsondoc import plan_result_dict
-    from ..reports.text import format_plan_result
-
     if not batch:
-        result = _run_project(files[0], out_dir, None, xlsx_path, pdf_path, files, force)
+        worker = None
+        if out_dir or pdf_path:  # first of all: it imports the renderer while we plan
+            from ..reports.pdfworker import PdfWorker
+
+            worker = PdfWorker.start()
+        try:
+            result = _run_project(files[0], out_dir, None, xlsx_path, pdf_path, files, force,
+                                  pdf_worker=worker)
+        finally:
+            if worker is not None:
+                worker.stop()
+        from ..reports.jsondoc import plan_result_dict
+        from ..reports.text import format_plan_result
+
         if as_json:
             _echo_json(plan_result_dict(result))
         else:

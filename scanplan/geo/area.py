@@ -29,18 +29,18 @@ import zipfile
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-import pyproj
 import shapely
-from pyproj.aoi import AreaOfInterest
-from pyproj.database import query_utm_crs_info
 from shapely.validation import explain_validity
 
 from ..errors import InputError
 from ..safeio import read_limited, size_text
 from .layout import Area
+
+if TYPE_CHECKING:  # pyproj (60 ms) is imported when a polygon is read, not for a block
+    import pyproj
 
 __all__ = ["MAX_AREA_KM2", "AreaSpec", "load_area", "rectangle_area"]
 
@@ -141,6 +141,8 @@ def load_area(spec: AreaSpec) -> Area | None:
                              "is required with the other side of [area]: give both width_m "
                              "and length_m")
         return rectangle_area(float(spec.width_m), float(spec.length_m))
+    import pyproj
+
     user_crs = _crs(spec.crs, "crs") if spec.crs is not None else None
     if spec.file is not None:
         geom, file_crs, where, parts = _read_file(Path(spec.file), spec.layer, spec.feature)
@@ -227,6 +229,8 @@ def _read_file(path: Path, layer: str | None, feature: str | int | None
             raise InputError("layer", f"{layer!r} is not a layer of {name}; its layers: "
                              f"{_listed(names)}")
         names = [layer]
+    import pyproj
+
     found: list[tuple[str, str, Any, pyproj.CRS | None]] = []  # (label, layer, geom, crs)
     other = 0
     all_names = [str(n) for n, _ in layers]
@@ -389,6 +393,8 @@ def _kmz_document(data: bytes, name: str) -> bytes:
 # Checks and projection
 # -------------------------------------------------------------------------------------------
 def _crs(value: str | int, key: str) -> pyproj.CRS:
+    import pyproj
+
     try:
         return pyproj.CRS.from_user_input(value)
     except (pyproj.exceptions.CRSError, TypeError, ValueError):
@@ -443,6 +449,10 @@ def _check_input_geometry(geom: Any, crs: pyproj.CRS, field: str) -> None:
 
 def _plan_crs(value: str | int | None, in_crs: pyproj.CRS, geom: Any) -> pyproj.CRS:
     """The planning CRS: given, else the input's when metric projected, else UTM."""
+    import pyproj
+    from pyproj.aoi import AreaOfInterest
+    from pyproj.database import query_utm_crs_info
+
     if value is not None:
         plan = _crs(value, "plan_crs")
         if not _metric_projected(plan):
@@ -470,6 +480,8 @@ def _metric_projected(crs: pyproj.CRS) -> bool:
 
 
 def _project(geom: Any, in_crs: pyproj.CRS, plan: pyproj.CRS, where: str, field: str) -> Area:
+    import pyproj
+
     tr = pyproj.Transformer.from_crs(in_crs, plan, always_xy=True)
 
     def fwd(xy: np.ndarray) -> np.ndarray:

@@ -18,12 +18,14 @@ from __future__ import annotations
 import os
 import re
 from dataclasses import dataclass
-from typing import Any, Literal
+from typing import TYPE_CHECKING, Any, Literal
 
-from ..geo.export import ExportNames, MissionOptions, layout_files
 from ..geo.layout import FlightLayout
 from ..outpaths import SUFFIX, written_by_scanplan
 from .labels import t
+
+if TYPE_CHECKING:  # the writers (pandas, shapely) are imported when files are written
+    from ..geo.export import ExportNames, MissionOptions
 
 __all__ = ["KIND_OF_SUFFIX", "export_files", "spec_layouts", "stale_exports", "view_of"]
 
@@ -72,6 +74,8 @@ def view_of(spec: Any, uav: Any = None) -> Any:
 
 def export_names(locale: str, title: str = "", film: bool = False) -> ExportNames:
     """The names inside the exported files, in the report's language."""
+    from ..geo.export import ExportNames
+
     return ExportNames(
         title=title or t("geo_export_title", locale),
         area=t("geo_area", locale),
@@ -97,6 +101,8 @@ def mission_options(spec: Any, layout: FlightLayout) -> MissionOptions | None:
     # height system): the mission states them so, not relative to a home whose ground the
     # plan does not know (docs/exports.md)
     frame = "amsl" if layout.notes.get("altitude_frame") == "AMSL" else "relative"
+    from ..geo.export import MissionOptions
+
     return MissionOptions(speed_ms=float(speed), vehicle=_vehicle(spec), frame=frame)
 
 
@@ -133,6 +139,10 @@ def export_files(spec: Any, folder: str, *, prefix: str = "") -> dict[str, tuple
     title = getattr(getattr(spec, "meta", None), "project", "")
     files: dict[str, tuple[str, bytes]] = {}
     for kind, layout in spec_layouts(spec):
+        if not layout.area.georeferenced:  # an abstract block: no files (layout_files)
+            continue
+        from ..geo.export import layout_files
+
         film = kind == "film"
         rendered = layout_files(
             layout, names=export_names(locale, title, film),

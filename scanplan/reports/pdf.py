@@ -35,15 +35,12 @@ from urllib.parse import unquote, urlsplit
 from urllib.request import url2pathname
 
 import jinja2
-import weasyprint
 from markupsafe import Markup
-from weasyprint.text.fonts import FontConfiguration
-from weasyprint.urls import URLFetcher, URLFetcherResponse
 
 from .._version import __version__
 from ..messages import localize
 from ..project.api import ScanJob, UavJob
-from . import ReportMeta, templates_dir, write_atomic
+from . import ReportMeta, _weasy, templates_dir, write_atomic
 from .design import design_view
 from .labels import LABELS
 from .pdf_sections import (  # noqa: F401  (_object_name: tests)
@@ -57,6 +54,10 @@ from .pdf_sections import (  # noqa: F401  (_object_name: tests)
 from .references import Bibliography
 from .view import ReportView, build_view, svg_data_uri
 from .wording import document_date
+
+weasyprint = _weasy.load()  # first: the fast library search and font subsetting (_weasy)
+from weasyprint.text.fonts import FontConfiguration  # noqa: E402
+from weasyprint.urls import URLFetcher, URLFetcherResponse  # noqa: E402
 
 if TYPE_CHECKING:
     from ..project.spec import PlanResult
@@ -379,6 +380,22 @@ def _font_config(root: str) -> FontConfiguration:
     """
     del root  # the cache key: the bundled fonts of another folder get their own
     return FontConfiguration()
+
+
+_WARM_UP_HTML = ("<!DOCTYPE html><html><head><meta charset='utf-8'>"
+                 "<link rel='stylesheet' href='report.css'></head><body>"
+                 "<p>Warm-up 0,5 м <strong>1:2000</strong></p></body></html>")
+
+
+def warm_up() -> None:
+    """Pay the first-use costs of a report ahead of it (:mod:`.pdfworker`, while the plan is
+    made): the templates compiled, and a one-line document rendered with the process's
+    fonts, so that fontconfig, Pango and both bundled faces are loaded."""
+    _environment().get_template("report.html")
+    root = templates_dir().resolve()
+    weasyprint.HTML(string=_WARM_UP_HTML, base_url=root.as_uri() + "/",
+                    url_fetcher=BundledAssetFetcher()).write_pdf(
+                        font_config=_font_config(str(root)))
 
 
 def write_pdf(path: str | os.PathLike[str], *, scan: ScanJob | None = None,

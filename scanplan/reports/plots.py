@@ -14,17 +14,16 @@ from __future__ import annotations
 import io
 import math
 from collections.abc import Callable, Sequence
-from typing import Any
-
-import matplotlib
-from matplotlib.backends.backend_svg import FigureCanvasSVG
-from matplotlib.figure import Figure
-from matplotlib.ticker import FixedLocator, FuncFormatter, NullFormatter
+from typing import TYPE_CHECKING, Any
 
 from ..rules.film import CONSTRAINTS, ScanPlan
 from ..rules.uav import UavPlan
 from .labels import t
 from .view import Numbers
+
+if TYPE_CHECKING:  # matplotlib (0.2 s) is imported when a figure is drawn
+    from matplotlib.figure import Figure
+    from matplotlib.ticker import FuncFormatter
 
 __all__ = ["constraints_svg", "height_svg", "mtf_svg", "number", "terrain_svg"]
 
@@ -73,6 +72,8 @@ def number(x: float, digits: int, locale: str) -> str:
 
 
 def _tick(locale: str) -> FuncFormatter:
+    from matplotlib.ticker import FuncFormatter
+
     numbers = Numbers(locale)
 
     def fmt(x: float, _pos: int | None = None) -> str:
@@ -92,6 +93,10 @@ def _nice_log_ticks(lo: float, hi: float) -> list[float]:
 
 
 def _svg(draw: Callable[[Figure], None]) -> str:
+    import matplotlib
+    from matplotlib.backends.backend_svg import FigureCanvasSVG
+    from matplotlib.figure import Figure
+
     with matplotlib.rc_context(_RC):
         fig = Figure(figsize=_SIZE_IN, layout="constrained")
         FigureCanvasSVG(fig)  # the text is measured as the SVG writer sets it
@@ -128,6 +133,8 @@ def constraints_svg(plan: ScanPlan, locale: str = "en") -> str:
     xs: Sequence[float] = sweep["photo_scale"]
 
     def draw(fig: Figure) -> None:
+        from matplotlib.ticker import FixedLocator, NullFormatter
+
         ax = fig.add_subplot()
         for cid in plan.constraint_ids:
             if cid not in sweep:
@@ -185,6 +192,8 @@ def mtf_svg(plan: UavPlan, locale: str = "en") -> str:
     freq = m["freq_lpmm"]
 
     def draw(fig: Figure) -> None:
+        from matplotlib.ticker import FixedLocator, NullFormatter
+
         ax = fig.add_subplot()
         ax.plot(freq, m["image_contrast"], color="#1f77b4", linewidth=1.4,
                 label=t("image_contrast", locale))

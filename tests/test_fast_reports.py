@@ -1,0 +1,207 @@
+"""Issue 15, fast reports: the tuned WeasyPrint import and font subsetting give the same
+PDF, the PDF worker gives the same bytes as an in-process render and never leaves a
+process behind, and a workbook or a block without a polygon imports no plotting or GIS
+library."""
+
+from __future__ import annotations
+
+import datetime as dt
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+pytest.importorskip("weasyprint")
+
+from scanplan.cli.main import main
+from scanplan.project.file import load_project
+from scanplan.project.spec import plan_project
+from scanplan.reports import _weasy
+from scanplan.reports.pdf import render_pdf
+from scanplan.reports.pdfworker import PdfWorker
+from scanplan.reports.view import build_view
+
+ROOT = Path(__file__).resolve().parents[1]
+EXAMPLE = ROOT / "examples" / "uav-canon-2000.toml"
+fork_only = pytest.mark.skipif(not sys.platform.startswith("linux"), reason="Linux fork")
+
+
+@pytest.fixture(scope="module")
+def view():
+    r = plan_project(load_project(EXAMPLE))
+    return build_view(scan=r.film.job if r.film else None, uav=r.uav.job if r.uav else None,
+                      meta=r.meta, spec=r, when=dt.datetime(2023, 11, 14, tzinfo=dt.UTC))
+
+
+def _gone(pid: int) -> bool:
+    """True when ``pid`` is no child of this process any more (reaped, no zombie)."""
+    try:
+        os.waitpid(pid, os.WNOHANG)
+    except ChildProcessError:
+        return True
+    return False
+
+
+def test_subsetting_without_layout_tables_gives_the_same_pdf(view, monkeypatch):
+    """_weasy._fonttools_subset drops GSUB/GPOS before subsetting instead of after: the
+    PDF's bytes are those of WeasyPrint's own method."""
+    from weasyprint.pdf import fonts
+
+    monkeypatch.setenv("SOURCE_DATE_EPOCH", "1700000000")
+    ours = render_pdf(view=view)
+    assert fonts.Font._fonttools_subset is _weasy._fonttools_subset or not \
+        _weasy.load().__version__.startswith("70.")
+    monkeypatch.setattr(fonts.Font, "_fonttools_subset", _weasy._ORIGINAL_SUBSET)
+    theirs = render_pdf(view=view)
+    assert ours == theirs
+
+
+def _run_python(code: str) -> subprocess.CompletedProcess[str]:
+    return subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          cwd=ROOT, timeout=120, check=False)
+
+
+def test_fast_import_loads_the_same_libraries():
+    """Without find_library WeasyPrint opens the libraries by their sonames: every library
+    a plain import opens is open (HarfBuzz-Subset as present or absent as there)."""
+    code = ("import json, sys\n"
+            "from scanplan.reports import _weasy\n"
+            "w = _weasy.load()\n"
+            "from weasyprint.text import ffi\n"
+            "names = ['gobject', 'pango', 'harfbuzz', 'harfbuzz_subset', 'fontconfig',"
+            " 'pangoft2']\n"
+            "print(json.dumps({n: getattr(ffi, n) is not None for n in names}))\n")
+    fast = _run_python(code)
+    plain = _run_python(code.replace("w = _weasy.load()", "import weasyprint"))
+    assert fast.returncode == 0 and plain.returncode == 0, fast.stderr + plain.stderr
+    assert fast.stdout == plain.stdout
+    assert '"pango": true' in fast.stdout
+
+
+def test_fast_import_falls_back_to_a_plain_import():
+    """When the soname-first import fails, the half-imported modules are dropped and the
+    ordinary import runs (here: the fast path is made to fail at once)."""
+    code = ("import contextlib, sys\n"
+            "from scanplan.reports import _weasy\n"
+            "@contextlib.contextmanager\n"
+            "def broken():\n"
+            "    import weasyprint.urls\n"  # a module of the half-done import
+            "    raise OSError('no library')\n"
+            "    yield\n"
+            "_weasy._no_find_library = broken\n"
+            "w = _weasy.load()\n"
+            "import weasyprint\n"
+            "assert w is weasyprint and w.HTML is not None\n"
+            "print('ok')\n")
+    r = _run_python(code)
+    assert r.returncode == 0 and r.stdout.strip() == "ok", r.stderr
+
+
+@fork_only
+def test_worker_renders_the_same_bytes_and_is_reaped(view, monkeypatch):
+    monkeypatch.setenv("SOURCE_DATE_EPOCH", "1700000000")
+    worker = PdfWorker.start()
+    assert worker is not None
+    pid = worker.pid
+    try:
+        assert worker.submit(view)
+        data = worker.result()
+    finally:
+        worker.stop()
+    assert data is not None, worker.error
+    assert data == render_pdf(view=view)
+    assert _gone(pid)
+
+
+@fork_only
+def test_worker_error_gives_none_and_a_reason():
+    """A view the child cannot render: no PDF from the worker (the caller renders in its
+    own process and raises the error there), the reason kept, the child reaped."""
+    worker = PdfWorker.start()
+    assert worker is not None
+    pid = worker.pid
+    try:
+        assert worker.submit({"not": "a view"})
+        assert worker.result() is None
+    finally:
+        worker.stop()
+    assert "AttributeError" in worker.error
+    assert _gone(pid)
+
+
+@fork_only
+def test_worker_unpicklable_view_is_refused_and_stopped():
+    worker = PdfWorker.start()
+    assert worker is not None
+    pid = worker.pid
+    assert not worker.submit(lambda: None)  # a lambda does not pickle
+    assert worker.result() is None
+    worker.stop()
+    assert _gone(pid)
+
+
+@fork_only
+def test_worker_stopped_before_use_leaves_no_process():
+    """A run that fails before its view is sent (a bad project file) stops the child."""
+    worker = PdfWorker.start()
+    assert worker is not None
+    pid = worker.pid
+    worker.stop()
+    worker.stop()  # idempotent
+    assert _gone(pid)
+
+
+def test_worker_is_off_when_asked(monkeypatch):
+    monkeypatch.setenv("SCANPLAN_NO_FORK", "1")
+    assert PdfWorker.start() is None
+    monkeypatch.delenv("SCANPLAN_NO_FORK")
+    monkeypatch.setenv("SCANPLAN_DEBUG", "1")
+    assert PdfWorker.start() is None
+
+
+@fork_only
+def test_plan_out_with_and_without_the_worker_is_byte_identical(tmp_path, monkeypatch):
+    monkeypatch.setenv("SOURCE_DATE_EPOCH", "1700000000")
+    outs = {}
+    for name, off in (("worker", False), ("inprocess", True)):
+        if off:
+            monkeypatch.setenv("SCANPLAN_NO_FORK", "1")
+        out = tmp_path / name
+        r = CliRunner().invoke(main, ["plan", str(EXAMPLE), "--out", str(out)])
+        assert r.exit_code == 0, r.output
+        outs[name] = {p.name: p.read_bytes() for p in sorted(out.iterdir())}
+    assert outs["worker"] == outs["inprocess"]
+    assert set(outs["worker"]) == {"spec.pdf", "spec.xlsx"}
+
+
+@fork_only
+def test_a_failing_worker_still_writes_the_pdf(tmp_path, monkeypatch):
+    """The child dies before it replies: the parent renders the PDF itself."""
+    import scanplan.reports.pdfworker as pw
+
+    monkeypatch.setenv("SOURCE_DATE_EPOCH", "1700000000")
+    monkeypatch.setattr(pw, "_warm", lambda: os._exit(3))  # the child's first step
+    r = CliRunner().invoke(main, ["plan", str(EXAMPLE), "--out", str(tmp_path)])
+    assert r.exit_code == 0, r.output
+    assert (tmp_path / "spec.pdf").read_bytes().startswith(b"%PDF")
+
+
+@pytest.mark.parametrize(("args", "absent"), [
+    (["plan", str(EXAMPLE)], ("matplotlib", "weasyprint", "pandas", "pyproj", "openpyxl")),
+    (["plan", str(EXAMPLE), "--xlsx", "{tmp}/s.xlsx"], ("matplotlib", "weasyprint", "pandas",
+                                                        "pyproj")),
+])
+def test_what_a_run_does_not_import(tmp_path, args, absent):
+    """A plan without reports imports no report library; a workbook alone no plotting,
+    PDF or GIS library (issue 15: import only what is used)."""
+    argv = [a.replace("{tmp}", str(tmp_path)) for a in args]
+    code = ("import sys\n"
+            "from scanplan.cli.main import main\n"
+            f"try:\n    main({argv!r})\nexcept SystemExit as e:\n    assert not e.code, e.code\n"
+            f"print(sorted(m for m in {list(absent)!r} if m in sys.modules))\n")
+    r = _run_python(code)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.strip().splitlines()[-1] == "[]"
