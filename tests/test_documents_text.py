@@ -442,17 +442,8 @@ def test_scan_pixel_arrow_is_explained(locale):
     assert label in first, first[:1500]
 
 
-_LONE_HEADING = {"uav-town-2000-afs", "uav-town-valley-2000"}  # see the xfail reason
-
-
 @pytest.mark.parametrize(("example", "locale"), [
-    pytest.param(str(e), loc, id=f"{e.stem}-{loc}", marks=pytest.mark.xfail(
-        strict=True, reason="templates/report.css: table.results { break-inside: avoid } "
-        "also holds the long strips table (class 'results strips', templates/_map.html:18), "
-        "which then leaves its heading alone on a page; fix: table.strips { break-inside: "
-        "auto; } (the integrator, after the report-speed branch)"))
-    if e.stem in _LONE_HEADING else pytest.param(str(e), loc, id=f"{e.stem}-{loc}")
-    for e in EXAMPLES for loc in LOCALES])
+    pytest.param(str(e), loc, id=f"{e.stem}-{loc}") for e in EXAMPLES for loc in LOCALES])
 def test_no_page_holds_only_a_heading(example, locale):
     """Every page carries content: none holds only its running head, a section heading
     and the sheet number (a long table pushed whole to the next page)."""
