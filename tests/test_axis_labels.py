@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import re
 from pathlib import Path
 
@@ -16,7 +17,8 @@ _AXIS_KEYS = sorted(set(re.findall(r"set_[xy]label\(f?\"?\{?t\(\"([a-z0-9_]+)\""
 
 
 def test_axis_labels_are_found():
-    assert {"terrain_plot_x", "terrain_plot_y", "height_m"} <= set(_AXIS_KEYS)
+    assert {"terrain_plot_x", "terrain_plot_y", "terrain_plot_y_amsl",
+            "height_m"} <= set(_AXIS_KEYS)
 
 
 @pytest.mark.parametrize("locale", ["en", "ru"])
@@ -24,3 +26,21 @@ def test_axis_labels_are_found():
 def test_axis_label_is_capitalised(key, locale):
     label = LABELS[locale][key]
     assert not label[:1].islower(), (key, locale, label)
+
+
+@pytest.mark.parametrize(("locale", "text"), [("en", "148.5"), ("ru", "148,5")])
+def test_height_legend_gives_heights_as_the_tables_do(locale, text):
+    """uav-town-2000 flies up to 148.5 m (the tables' figure): the GSD/L chart's legend
+    says 148.5, not a rounded 148; whole heights stay whole (70, not 70.0)."""
+    from scanplan.project.file import load_project
+    from scanplan.project.spec import plan_project
+    from scanplan.reports.view import build_view
+
+    example = Path(__file__).resolve().parent.parent / "examples" / "uav-town-2000.toml"
+    result = plan_project(load_project(example))
+    meta = dataclasses.replace(result.meta, locale=locale)
+    view = build_view(scan=None, uav=result.uav.job, meta=meta, spec=result)
+    svg = view.plot("height")
+    legend = " ".join(re.findall(r">([^<>]*)</text>", svg))
+    assert text in svg, legend
+    assert re.search(r": \d+(?:[.,]0) ", svg) is None

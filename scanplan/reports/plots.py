@@ -71,6 +71,12 @@ def number(x: float, digits: int, locale: str) -> str:
     return Numbers(locale).num(x, digits)
 
 
+def _height_digits(h: float) -> int:
+    """Decimals of a height [m] in a legend: as the tables give it (148.5, not 148; 70, not
+    70.0)."""
+    return 0 if abs(h - round(h)) < 0.05 else 1
+
+
 def _tick(locale: str) -> FuncFormatter:
     from matplotlib.ticker import FuncFormatter
 
@@ -265,7 +271,8 @@ def height_svg(plan: UavPlan, locale: str = "en") -> str:
             marks.append((plan.ceiling_m, "#8c564b", "-", t("pdf_h_ceiling", locale)))
         for h, colour, style, label in marks:
             ax.axvline(h, color=colour, linestyle=style, linewidth=0.9,
-                       label=f"{label}: {number(h, 0, locale)} {t('pdf_m', locale)}")
+                       label=f"{label}: {number(h, _height_digits(h), locale)} "
+                             f"{t('pdf_m', locale)}")
         for lim in plan.limits:
             if lim.binding and lim.compares in ("GSD", "L") and lim.limit_m <= max(
                     max(c["gsd_m"]), max((v for v in ls if v == v), default=0.0)) * 1.05:
@@ -345,7 +352,7 @@ def terrain_svg(terrain: Any, limit_m: float | None, locale: str = "en") -> str:
         band(bottom, ground, "#8c564b", t("terrain_ground_m", locale))
         band(bottom, alt, "#2ca02c", t("terrain_altitude_m", locale))
         bottom.set_xlabel(t("terrain_plot_x", locale))
-        bottom.set_ylabel(m)
+        bottom.set_ylabel(t("terrain_plot_y_amsl", locale))
         for ax in (top, bottom):
             ax.xaxis.set_major_formatter(_tick(locale))
             ax.yaxis.set_major_formatter(_tick(locale))
