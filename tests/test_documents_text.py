@@ -489,3 +489,35 @@ def test_summary_box_lists_a_warning_once_with_its_scales():
     lines = [x for x in summary.splitlines() if x.startswith("! P_R drives the data volume")]
     assert lines == ["! P_R drives the data volume: 1:6000, 1:8000"], lines
     assert docs["xlsx sheet 'Warnings'"].splitlines()[1:4] == ["Section", "Severity", "Warning"]
+
+
+def _page_one_warnings(example: str, locale: str) -> list[str]:
+    """The items of page 1's warnings box, from the HTML the PDF is made of."""
+    import html as html_mod
+
+    from scanplan.reports.pdf import render_html
+
+    project = load_project(example)
+    values = {sec: dict(v) for sec, v in project.values.items()}
+    values.setdefault("project", {})["locale"] = locale
+    result = plan_project(dataclasses.replace(project, values=values))
+    page = render_html(scan=result.film.job if result.film else None,
+                       uav=result.uav.job if result.uav else None, meta=result.meta,
+                       spec=result)
+    box = re.search(r'<div class="warnbox">.*?<ul>(.*?)</ul>', page, re.S)
+    return ([html_mod.unescape(x).strip() for x in re.findall(r"<li>(.*?)</li>", box[1], re.S)]
+            if box else [])
+
+
+@pytest.mark.parametrize("locale", LOCALES)
+@pytest.mark.parametrize("example", [str(e) for e in EXAMPLES], ids=[e.stem for e in EXAMPLES])
+def test_page_one_lists_each_kind_of_warning_once(example, locale):
+    """Page 1's warnings: one item per kind of warning with all its photo scales ("P_R
+    drives the data volume: 1:6,000, 1:8,000"), as the workbook's box, not one per scale."""
+    heads = [item.split(": 1:")[0] for item in _page_one_warnings(example, locale)]
+    assert len(heads) == len(set(heads)), heads
+
+
+def test_page_one_groups_the_photo_scales_of_a_warning():
+    items = _page_one_warnings(str(EXAMPLES[0].parent / "instruction-2000-film.toml"), "en")
+    assert "P_R drives the data volume: 1:6,000, 1:8,000" in items, items

@@ -294,12 +294,19 @@ def _view(scan: ScanJob | None, uav: UavJob | None, meta: ReportMeta,
 
 def _warnings_box(scan_view: Any, uav_view: Any, spec: PlanResult | None,
                   f: _Fmt) -> list[str]:
-    """Every warning in short form for page 1 (an approver sees them before signing)."""
-    items: list[str] = []
+    """Every warning in short form for page 1 (an approver sees them before signing): one
+    line per kind of warning, with all the photo scales it concerns (as the workbook's
+    box lists them)."""
+    scales: dict[str, list[str]] = {}  # heading → photo scales, in order
+    times: dict[str, int] = {}  # heading → warnings without a photo scale under it
     for view in (scan_view, uav_view):
-        if view is not None:
-            items += [(w["heading"] or w["message"]) + (f": {w['scales']}" if w["scales"]
-                                                         else "") for w in view["warnings"]]
+        for w in view["warnings"] if view is not None else ():
+            head = w["heading"] or w["message"]
+            listed = scales.setdefault(head, [])
+            listed += [x for x in w["scale_list"] if x not in listed]
+            times[head] = times.get(head, 0) + (not w["scale_list"])
+    items = [h + (f": {', '.join(xs)}" if xs else "") for h, xs in scales.items()
+             for _ in range(1 if xs else max(times[h], 1))]
     if spec is not None:
         seen = {x["code"] for view in (scan_view, uav_view) if view
                 for x in view["warnings"]}

@@ -119,14 +119,14 @@ def _after_heading(message: str, heading: str) -> str:
     return sentence(message) if heading else message
 
 
-def _warnings(ws: Any, f: _Fmt, ns: NormSet | None = None) -> list[dict[str, str]]:
+def _warnings(ws: Any, f: _Fmt, ns: NormSet | None = None) -> list[dict[str, Any]]:
     out = []
     for w in ws:
         key = f"pdf_warn_{w.code}"
         heading = f.label(key) if key in LABELS["en"] else ""
-        scales = ", ".join(f.scale(x) for x in getattr(w, "photo_scales", ()) or ())
+        scale_list = [f.scale(x) for x in getattr(w, "photo_scales", ()) or ()]
         out.append({"code": w.code, "severity": w.severity, "heading": heading,
-                    "scales": scales,
+                    "scales": ", ".join(scale_list), "scale_list": scale_list,
                     "message": _after_heading(f.cite(display_message(w.message, ns, f.locale)),
                                               heading)})
     return out
