@@ -333,6 +333,18 @@ MESSAGES: dict[str, dict[str, str]] = {
               "({width:,.1f}~м поперёк маршрутов): его покрывает один маршрут, блок с "
               "поперечным перекрытием не образуется; снимайте одним маршрутом или ниже.",
     },
+    "area_scale_distortion": {
+        "en": "the planning projection {crs} stretches the ground by up to {pct:.2f} % over "
+              "the area (longitude {west:.4f} … {east:.4f}°), where a 6° UTM zone stays within "
+              "0.1 %: strip spacing, photo base and ground pixel on the map differ from the "
+              "ground by as much; check the area's coordinates, split the block by zones or "
+              "give [area] plan_crs for the area's middle",
+        "ru": "Проекция планирования {crs} растягивает местность до {pct:.2f}~% на участке "
+              "(долгота {west:.4f} … {east:.4f}°), тогда как в 6-градусной зоне UTM искажение "
+              "не более 0,1~%: расстояния между маршрутами, базис фотографирования и размер "
+              "пикселя на местности отличаются на столько же; проверьте координаты участка, "
+              "разделите блок по зонам или задайте [area] plan_crs для середины участка.",
+    },
     "flight_not_feasible": {
         "en": "the flight plan over the area is not feasible: {why}",
         "ru": "План полёта над участком невыполним: {why}",

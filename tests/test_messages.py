@@ -284,6 +284,11 @@ def emitted(tmp_path_factory) -> dict[str, list[Any]]:
         "plan sun short": uav_toml + ("\n[site]\nlat_deg = 60\nlon_deg = 30\n[schedule]\n"
                                       "start_date = 2025-06-01\nend_date = 2025-06-01\n"
                                       "turnaround_min = 600\n"),
+        # an area planned far out of its projection's zone
+        "plan area out of its zone": (EXAMPLES / "uav-town-2000.toml").read_text(
+            encoding="utf-8").replace('file = "areas/town-uav.kml"',
+                                      f'file = "{(EXAMPLES / "areas" / "town-uav.kml").as_posix()}"'
+                                      '\nplan_crs = "EPSG:32634"'),
     }
     for name, text in variants.items():
         r = _project(tmp, name.replace(" ", "-"), text)

@@ -62,6 +62,10 @@ MAX_FEATURES = 100_000
 """Most features read from one file."""
 MAX_VERTICES = 1_000_000
 """Most vertices of the area."""
+MAX_SCALE_ERROR_PCT = 0.1
+"""Largest scale error of the planning projection over the area without a warning [%]:
+what a 6° UTM zone reaches at its edge on the equator (k ≈ 1.001); inside its zone no
+UTM or 6° Gauss–Krüger area exceeds it (geodetic property of the projection, not a norm)."""
 _DTD = re.compile(rb"<!\s*(DOCTYPE|ENTITY)", re.IGNORECASE)
 _NAME_FIELDS = ("name", "Name", "NAME", "title", "Title")
 
@@ -510,8 +514,37 @@ def _project(geom: Any, in_crs: pyproj.CRS, plan: pyproj.CRS, where: str, field:
     lon, lat = to_ll.transform(c.x, c.y)
     epsg = plan.to_epsg()
     in_epsg = in_crs.to_epsg()
+    scale_error_pct, lon_range = _scale_error(geom, in_crs, plan)
     return Area(geometry=projected, plan_crs=f"EPSG:{epsg}" if epsg else plan.to_wkt(),
                 source=where, georeferenced=True, area_km2=area_m2 / 1e6,
                 perimeter_km=float(projected.length) / 1e3,
                 centroid_lonlat=(float(lon), float(lat)), plan_crs_name=plan.name,
-                input_crs=f"EPSG:{in_epsg}" if in_epsg else in_crs.name)
+                input_crs=f"EPSG:{in_epsg}" if in_epsg else in_crs.name,
+                scale_error_pct=scale_error_pct, lon_range_deg=lon_range)
+
+
+def _scale_error(geom: Any, in_crs: pyproj.CRS, plan: pyproj.CRS
+                 ) -> tuple[float, tuple[float, float]]:
+    """The planning projection's largest scale error ``max |k − 1|`` [%] over the area's
+    vertices (inf where pyproj cannot evaluate it) and the area's longitude range [°].
+
+    A 6° UTM zone stays within 0.1 % everywhere (k = 0.9996 on the central meridian, about
+    1.001 at the zone's edge on the equator); a larger error means the area runs far out
+    of the projection's zone — often a mistyped coordinate.
+    """
+    import pyproj
+
+    xy = shapely.get_coordinates(geom)
+    lon, lat = pyproj.Transformer.from_crs(in_crs, 4326, always_xy=True).transform(
+        xy[:, 0], xy[:, 1])
+    lon, lat = np.asarray(lon, dtype=float), np.asarray(lat, dtype=float)
+    with np.errstate(all="ignore"):
+        try:
+            factors = pyproj.Proj(plan).get_factors(lon, lat, errcheck=False)
+            k = np.concatenate([np.atleast_1d(factors.meridional_scale),
+                                np.atleast_1d(factors.parallel_scale)]).astype(float)
+        except (pyproj.exceptions.ProjError, ValueError, TypeError):
+            k = np.array([np.inf])
+    err = np.abs(k - 1.0) * 100.0
+    worst = float(np.max(np.where(np.isfinite(err), err, np.inf))) if err.size else 0.0
+    return worst, (float(np.min(lon)), float(np.max(lon)))

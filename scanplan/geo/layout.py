@@ -63,6 +63,12 @@ class Area:
         The planning CRS's name for reports (``"WGS 84 / UTM zone 37N"``; ``""`` local).
     input_crs : str or None
         The CRS the coordinates were given in (``"EPSG:4326"``); None for a rectangle.
+    scale_error_pct : float or None
+        The planning projection's largest scale error over the area's vertices,
+        ``max |k − 1|`` [%] (pyproj's projection factors; inf where it cannot be
+        evaluated); None for a rectangle.
+    lon_range_deg : tuple of float or None
+        The area's westmost and eastmost longitude [°]; None for a rectangle.
     source_file, source_feature, source_layer : str or None
         The parts of ``source`` for reports in another language: the file, the feature's
         name and its layer (None for an inline polygon or the rectangle).
@@ -80,6 +86,8 @@ class Area:
     source_file: str | None = None
     source_feature: str | None = None
     source_layer: str | None = None
+    scale_error_pct: float | None = None
+    lon_range_deg: tuple[float, float] | None = None
 
 
 @dataclass(frozen=True)

@@ -18,7 +18,7 @@ import numpy as np
 
 from ..core import flight as FL
 from ..errors import InputError
-from ..geo.area import AreaSpec, load_area, rectangle_area
+from ..geo.area import MAX_SCALE_ERROR_PCT, AreaSpec, load_area, rectangle_area
 from ..geo.layout import Area, FlightLayout
 from ..geo.lines import Turn, plan_lines, turn_radius_m
 from ..messages import Message
@@ -173,11 +173,21 @@ def with_layout(plan: UavPlan, layout: FlightLayout) -> UavPlan:
 
 
 def layout_warnings(layout: FlightLayout) -> tuple[PlanWarning, ...]:
-    """A "not feasible" warning with the layout's reason, or nothing."""
-    if layout.feasible:
-        return ()
-    return (PlanWarning("flight_not_feasible", Message("flight_not_feasible",
-                                                       why=layout.reason or "")),)
+    """A "not feasible" warning with the layout's reason, and a warning when the planning
+    projection stretches the area by more than :data:`~scanplan.geo.area.MAX_SCALE_ERROR_PCT`
+    (an area far out of its zone, often a mistyped coordinate)."""
+    out: tuple[PlanWarning, ...] = ()
+    area = layout.area
+    if (area.scale_error_pct is not None and area.lon_range_deg is not None
+            and area.scale_error_pct > MAX_SCALE_ERROR_PCT):
+        west, east = area.lon_range_deg
+        out += (PlanWarning("area_scale_distortion", Message(
+            "area_scale_distortion", crs=area.plan_crs, pct=area.scale_error_pct,
+            west=west, east=east)),)
+    if not layout.feasible:
+        out += (PlanWarning("flight_not_feasible", Message("flight_not_feasible",
+                                                           why=layout.reason or "")),)
+    return out
 
 
 def film_layout(scenario: ScanScenario, frame_width_mm: float, frame_along_mm: float,

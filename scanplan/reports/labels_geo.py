@@ -6,6 +6,7 @@ from __future__ import annotations
 
 GEO: dict[str, dict[str, str]] = {
     "en": {
+        "pdf_warn_area_scale_distortion": "The planning projection distorts the area",
         "geo_export_title": "Flight plan",
         "geo_area": "Area",
         "geo_strips": "Strips",
@@ -84,6 +85,7 @@ GEO: dict[str, dict[str, str]] = {
         "photo_recognition_p": "Recognition probability",
     },
     "ru": {
+        "pdf_warn_area_scale_distortion": "Проекция планирования искажает участок",
         "geo_export_title": "План полёта",
         "geo_area": "Участок",
         "geo_strips": "Маршруты",
