@@ -228,9 +228,9 @@ MESSAGES: dict[str, dict[str, str]] = {
               "по реальному линейному разрешению на местности L",
     },
     "motion_blur": {
-        "en": "motion blur {blur:.2f} px at {height:g} m exceeds {limit:g} px: use an exposure ≤ "
+        "en": "motion blur {blur:g} px at {height:g} m exceeds {limit:g} px: use an exposure ≤ "
               "1/{denominator:d} s or a speed ≤ {speed:.1f} m/s",
-        "ru": "Смаз {blur:.2f}~пикс. на высоте {height:g}~м больше допустимого {limit:g}~пикс.: "
+        "ru": "Смаз {blur:g}~пикс. на высоте {height:g}~м больше допустимого {limit:g}~пикс.: "
               "нужна выдержка не длиннее 1/{denominator:d}~с или скорость не выше {speed:.1f}~"
               "м/с.",
     },

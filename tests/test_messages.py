@@ -501,3 +501,18 @@ def test_english_pdf_shows_the_english_sentences():
             text = _as_document(m, _job_ns(result), "en")
             # after a heading or alone, a document prints it as a sentence (capital, stop)
             assert any(_squeeze(x) in _squeeze(page) for x in (text, sentence(text))), m.code
+
+
+@pytest.mark.parametrize(("blur", "en", "ru"), [(0.5004, "0.5004 px", "0,5004"),
+                                                (0.734, "0.73 px", "0,73")])
+def test_motion_blur_is_never_shown_equal_to_its_limit(blur, en, ru):
+    """A blur just over the 0.5 px limit read "0,50 пикс. больше допустимого 0,5": the
+    warning shows as many decimals as it takes to be above the limit."""
+    from scanplan.core.flight import MAX_BLUR_PX
+    from scanplan.messages import Message
+    from scanplan.rules.uav import _shown_above
+
+    m = Message("motion_blur", blur=_shown_above(blur, MAX_BLUR_PX), height=70.0,
+                limit=MAX_BLUR_PX, denominator=2000, speed=12.0)
+    assert f"motion blur {en} at 70 m exceeds 0.5 px" in m.text("en")
+    assert f"Смаз {ru}" in m.text("ru")
