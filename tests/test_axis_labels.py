@@ -31,7 +31,8 @@ def test_axis_label_is_capitalised(key, locale):
 @pytest.mark.parametrize(("locale", "text"), [("en", "148.5"), ("ru", "148,5")])
 def test_height_legend_gives_heights_as_the_tables_do(locale, text):
     """uav-town-2000 flies up to 148.5 m (the tables' figure): the GSD/L chart's legend
-    says 148.5, not a rounded 148; whole heights stay whole (70, not 70.0)."""
+    says 148.5, not a rounded 148; whole heights stay whole (70, not 70.0); the maximum
+    planned height is in whole metres, as the tables state it (136, not 136.4)."""
     from scanplan.project.file import load_project
     from scanplan.project.spec import plan_project
     from scanplan.reports.view import build_view
@@ -44,3 +45,4 @@ def test_height_legend_gives_heights_as_the_tables_do(locale, text):
     legend = " ".join(re.findall(r">([^<>]*)</text>", svg))
     assert text in svg, legend
     assert re.search(r": \d+(?:[.,]0) ", svg) is None
+    assert "(HC): 136 " in svg, legend

@@ -270,9 +270,12 @@ def height_svg(plan: UavPlan, locale: str = "en") -> str:
         if plan.ceiling_m is not None and plan.ceiling_m <= max(hs):
             marks.append((plan.ceiling_m, "#8c564b", "-", t("pdf_h_ceiling", locale)))
         for h, colour, style, label in marks:
+            # the maximum planned height and its highest flown one in whole metres, as the
+            # tables state them
+            digits = (0 if h in (plan.max_height_m, plan.max_flown_height_m)
+                      else _height_digits(h))
             ax.axvline(h, color=colour, linestyle=style, linewidth=0.9,
-                       label=f"{label}: {number(h, _height_digits(h), locale)} "
-                             f"{t('pdf_m', locale)}")
+                       label=f"{label}: {number(h, digits, locale)} {t('pdf_m', locale)}")
         for lim in plan.limits:
             if lim.binding and lim.compares in ("GSD", "L") and lim.limit_m <= max(
                     max(c["gsd_m"]), max((v for v in ls if v == v), default=0.0)) * 1.05:
