@@ -14,10 +14,10 @@ import pytest
 import rasterio
 from click.testing import CliRunner
 from rasterio.transform import from_origin
+from terrain_helpers import write_dem
 
 from scanplan.cli.main import main
 from scanplan.geo import dem as D
-from tests.terrain_helpers import write_dem
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 SRC = EXAMPLES / "dem" / "town-valley.tif"

@@ -117,8 +117,7 @@ def test_strip_and_follow_missions_hold_every_altitude_of_the_plan(tmp_path, mod
         assert len(nav) > 4 * len(spec.uav.layout.strips)
     # the trigger runs (set at a cut, cleared at the next) still fire every photo once
     from pyproj import Geod
-
-    from tests.test_geo_export import _trigger_runs, check_qgc_plan
+    from test_geo_export import _trigger_runs, check_qgc_plan
     geod, fired = Geod(ellps="WGS84"), 0
     for f in sorted(glob.glob(str(out / "mission*.plan"))):
         items = check_qgc_plan(json.loads(Path(f).read_text(encoding="utf-8")))

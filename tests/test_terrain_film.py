@@ -18,12 +18,12 @@ import pytest
 from click.testing import CliRunner
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from terrain_helpers import write_dem
 
 from scanplan.cli.main import main
 from scanplan.project.file import load_project, parse_project
 from scanplan.project.spec import plan_project
 from scanplan.rules.film import evaluate
-from tests.terrain_helpers import write_dem
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 RELIEF = EXAMPLES / "film-town-relief-10000.toml"
