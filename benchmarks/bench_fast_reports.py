@@ -120,10 +120,7 @@ def pdf_vs_floor(repeat: int, project: Path = PROJECT) -> dict[str, float]:
         return render_pdf(view=view)
 
     def draw() -> None:
-        fresh = build_view(**jobs)
-        for name, job in (("constraints", "scan"), ("mtf", "uav"), ("height", "uav")):
-            if jobs[job] is not None:
-                fresh.plot(name)
+        build_view(**jobs).draw_plots()
 
     base = templates_dir().resolve().as_uri() + "/"
     render()  # warm-up: fonts, templates

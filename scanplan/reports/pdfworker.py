@@ -154,9 +154,9 @@ class PdfWorker:
             return False
         # the plots are drawn here, while the child still imports WeasyPrint, and travel
         # with the view (drawn once: ReportView.plot keeps them)
-        for name, job in (("constraints", "scan"), ("mtf", "uav"), ("height", "uav")):
-            if getattr(view, job, None) is not None:
-                view.plot(name)
+        draw = getattr(view, "draw_plots", None)  # not a view: the child reports it
+        if draw is not None:
+            draw()
         try:
             data = pickle.dumps(view, protocol=pickle.HIGHEST_PROTOCOL)
         except Exception as exc:  # unpicklable

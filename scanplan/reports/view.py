@@ -43,6 +43,11 @@ MISSING = "—"
 #: :func:`section_names` says so; renderers iterate the names they know.
 SECTION_ORDER: tuple[str, ...] = ("spec", "film", "uav", "comparison")
 
+#: The plots a report draws and the plan each is drawn from: the film plan's constraints
+#: against the photo scale; the UAV plan's MTF at the frame centre and its GSD and L
+#: against the height (``plots.<name>_svg``).
+PLOT_JOBS: dict[str, str] = {"constraints": "scan", "mtf": "uav", "height": "uav"}
+
 
 # ---------------------------------------------------------------------------------------
 # Numbers: one formatter per locale
@@ -276,14 +281,16 @@ class ReportView:
         if name not in self._plots:
             from . import plots  # matplotlib only when a plot is drawn
 
-            draw: dict[str, Callable[[], str]] = {
-                "constraints": lambda: plots.constraints_svg(self._job("scan").plan,
-                                                             self.locale),
-                "mtf": lambda: plots.mtf_svg(self._job("uav").plan, self.locale),
-                "height": lambda: plots.height_svg(self._job("uav").plan, self.locale),
-            }
-            self._plots[name] = draw[name]()
+            svg: Callable[[Any, str], str] = getattr(plots, f"{name}_svg")
+            self._plots[name] = svg(self._job(PLOT_JOBS[name]).plan, self.locale)
         return self._plots[name]
+
+    def draw_plots(self) -> None:
+        """Draw every plot this report has (of :data:`PLOT_JOBS` whose plan it carries),
+        so that they travel with the view (e.g. to the PDF worker)."""
+        for name, job in PLOT_JOBS.items():
+            if getattr(self, job) is not None:
+                self.plot(name)
 
     def plot_uri(self, name: str) -> str:
         """:meth:`plot` as a ``data:`` URI."""
