@@ -15,6 +15,7 @@ The layout for the mission only: the KML, GeoJSON and CSV keep the strips as lai
 from __future__ import annotations
 
 from dataclasses import replace
+from typing import Any
 
 import numpy as np
 
@@ -50,7 +51,11 @@ def _cut(layout: FlightLayout, strip: Strip, sp: StripPhotos | None) -> Strip:
     if length <= 0:
         return strip
     axis /= length
-    along = (x[sp.order] - start[0]) * axis[0] + (y[sp.order] - start[1]) * axis[1]
+
+    def along_m(px: Any, py: Any) -> Any:  # distance along the strip from its start [m]
+        return (px - start[0]) * axis[0] + (py - start[1]) * axis[1]
+
+    along = along_m(x[sp.order], y[sp.order])
     if strip.parts:
         parts = [(tuple(map(float, a)), tuple(map(float, b))) for a, b in strip.parts]
     else:
@@ -58,8 +63,7 @@ def _cut(layout: FlightLayout, strip: Strip, sp: StripPhotos | None) -> Strip:
                   (float(x[sp.order[b]]), float(y[sp.order[b]]))) for a, b in sp.runs]
     out: list[tuple[tuple[float, float], tuple[float, float]]] = []
     for a, b in parts:
-        lo = (a[0] - start[0]) * axis[0] + (a[1] - start[1]) * axis[1]
-        hi = (b[0] - start[0]) * axis[0] + (b[1] - start[1]) * axis[1]
+        lo, hi = along_m(*a), along_m(*b)
         inside = sp.order[(along >= min(lo, hi) - 0.5) & (along <= max(lo, hi) + 0.5)]
         steps = np.flatnonzero(np.abs(np.diff(alt[inside])) > _STEP_M)
         if not steps.size:
