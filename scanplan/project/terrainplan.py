@@ -241,6 +241,12 @@ def _where(ft: FilmTerrain) -> Message:
     return Message("terrain_film_where.range", low=ft.ground_low_m)
 
 
+def _rejected_fields(rejected: list[tuple[ScanScenario, FilmTerrain]]) -> dict[str, list[float]]:
+    """The rejected photo scales and their largest local Mc, as the messages take them."""
+    return {"scales": [r.photo_scale for r, _ in rejected],
+            "locals": [float(round(t.mc_max)) for _, t in rejected]}
+
+
 def film_over_terrain(project: Project, cfg: TerrainConfig, plan: ScanPlan,
                       candidates: list[ScanScenario],
                       layout_at: Callable[[ScanScenario], FlightLayout],
@@ -266,9 +272,8 @@ def film_over_terrain(project: Project, cfg: TerrainConfig, plan: ScanPlan,
         pixel = headline.scanner_pixel_um or headline.scan_pixel_um
         layout = frames_over_terrain(layout, ft, pixel, plan.inputs.focal_mm, cfg.altitude_mode,
                                      frame_recognition(plan, ft.mc, pixel))
-        rej = Message("spec.film_terrain.rejected",
-                      scales=[r.photo_scale for r, _ in rejected],
-                      locals=[float(round(t.mc_max)) for _, t in rejected]) if rejected else None
+        rej = (Message("spec.film_terrain.rejected", **_rejected_fields(rejected))
+               if rejected else None)
         reason = Message("spec.film_terrain", scale=s.photo_scale, where=_where(ft),
                          local=float(round(ft.mc_max)), explanation=raw.explanation,
                          rejected=rej)
@@ -281,9 +286,8 @@ def film_over_terrain(project: Project, cfg: TerrainConfig, plan: ScanPlan,
                 hi=float(round(ft.mc_max))), photo_scales=(r.photo_scale,)))
         return FilmOverTerrain(s, headline, layout, ft, tuple(rejected), reason,
                                tuple(warnings))
-    why = [Message("no_feasible_photo_scale.relief",
-                   scales=[r.photo_scale for r, _ in rejected],
-                   locals=[float(round(t.mc_max)) for _, t in rejected])] if rejected else []
+    why = ([Message("no_feasible_photo_scale.relief", **_rejected_fields(rejected))]
+           if rejected else [])
     return FilmOverTerrain(None, None, None, None, tuple(rejected),
                            Message("no_feasible_photo_scale", why=why))
 
