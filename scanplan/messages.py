@@ -657,6 +657,36 @@ MESSAGES.update({
               "выполняется на маршрутах: {count:d} ({strips}; превышение по маршрутам — "
               "маршрут: м — {by}). {remedy}",
     },
+    "terrain_resolution_lowered": {
+        "en": "over low ground the photos would be too high above it at a planned height of "
+              "{height:g} m: photo {photo:d} (strip {strip:d}) would be {agl:.0f} m above the "
+              "ground ({flown:.0f} m with the height tolerance), {excess:.0f} m above the "
+              "maximum planned height {limit:.0f} m set by {cid}; strips that would fail: "
+              "{count:d} ({strips}; excess in m by strip — strip: m — {by}). The plan is "
+              "therefore flown lower. {remedy}",
+        "ru": "При плановой высоте {height:g}~м снимки над пониженным рельефом оказались бы "
+              "слишком высоко над землёй: снимок {photo:d} (маршрут {strip:d}) — {agl:.0f}~м "
+              "над землёй ({flown:.0f}~м с учётом допуска), выше максимальной плановой высоты "
+              "{limit:.0f}~м по условию {cid} на {excess:.0f}~м; не выполнялось бы на "
+              "маршрутах: {count:d} ({strips}; превышение по маршрутам — маршрут: м — {by}). "
+              "Поэтому высота снижена. {remedy}",
+    },
+    "terrain_higher.constant": {
+        "en": "To fly higher: fly each strip at its own altitude ([terrain] altitude_mode = "
+              "\"strip\"), follow the terrain (\"follow\") or split the block along the relief",
+        "ru": "Чтобы лететь выше: задать каждому маршруту свою высоту или следовать рельефу "
+              "([terrain] altitude_mode) либо разделить блок по рельефу.",
+    },
+    "terrain_higher.strip": {
+        "en": "To fly higher: follow the terrain ([terrain] altitude_mode = \"follow\") or "
+              "split the failing strips",
+        "ru": "Чтобы лететь выше: следовать рельефу ([terrain] altitude_mode) или разделить "
+              "невыполняющиеся маршруты.",
+    },
+    "terrain_higher.follow": {
+        "en": "To fly higher: a smaller tolerance ([terrain] follow_tolerance_m)",
+        "ru": "Чтобы лететь выше: уменьшить допуск ([terrain] follow_tolerance_m).",
+    },
     "terrain_remedy.constant": {
         "en": "Remedies: fly each strip at its own altitude ([terrain] altitude_mode = "
               "\"strip\"), follow the terrain (\"follow\"), split the block along the relief, or "
