@@ -10,8 +10,6 @@ files) in :mod:`scanplan.reports.labels_geo`.
 
 from __future__ import annotations
 
-from typing import Any
-
 LOCALES = ("en", "ru")
 
 LABELS: dict[str, dict[str, str]] = {
@@ -748,29 +746,6 @@ def t(key: str, locale: str = "en", platform: str = "uav") -> str:
         if key in CONSTRAINTS:
             return CONSTRAINTS[key].title(loc)
     return LABELS[loc][key]
-
-
-def warning_heading_key(warning: Any) -> str | None:
-    """The label key of a warning's short heading (page 1, the Warnings sheet): its
-    message's own where the finding is said another way (``terrain_resolution`` said as why
-    the height was lowered: ``pdf_warn_terrain_resolution_lowered``), else its code's; None
-    when it has neither.
-
-    Parameters
-    ----------
-    warning : PlanWarning
-        A warning with ``code`` and ``message``.
-
-    Returns
-    -------
-    str or None
-        ``"pdf_warn_<code>"``.
-    """
-    said = getattr(getattr(warning, "message", None), "code", None)
-    for key in (f"pdf_warn_{said}", f"pdf_warn_{warning.code}"):
-        if key in LABELS["en"]:
-            return key
-    return None
 
 
 from .labels_more import SIGNING as _SIGNING  # noqa: E402

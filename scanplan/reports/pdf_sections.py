@@ -22,9 +22,9 @@ from ..project.api import ScanJob, UavJob
 from ..rules.film import CONSTRAINTS, ScanPlan
 from ..rules.uav import UavPlan
 from .design import relief_max_height_m
-from .labels import LABELS, warning_heading_key
+from .labels import LABELS
 from .references import Bibliography
-from .view import ReportView
+from .view import ReportView, warning_heading_key
 from .wording import (
     camera_title,
     display_message,

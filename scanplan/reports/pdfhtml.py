@@ -20,7 +20,6 @@ from ..messages import localize
 from ..project.api import ScanJob, UavJob
 from . import ReportMeta, templates_dir
 from .design import design_view
-from .labels import warning_heading_key
 from .pdf_sections import (  # noqa: F401  (_object_name: tests)
     _comparison_view,
     _Fmt,
@@ -30,7 +29,7 @@ from .pdf_sections import (  # noqa: F401  (_object_name: tests)
     _uav_view,
 )
 from .references import Bibliography
-from .view import ReportView, build_view, svg_data_uri
+from .view import ReportView, build_view, svg_data_uri, warning_heading_key
 from .wording import document_date
 
 if TYPE_CHECKING:

@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Any
 from openpyxl.styles import Alignment
 from openpyxl.worksheet.worksheet import Worksheet
 
-from ..labels import warning_heading_key
+from ..view import warning_heading_key
 from ..wording import (
     object_title,
     param_name,
