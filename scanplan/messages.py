@@ -14,7 +14,8 @@ Templates use :meth:`str.format` fields with these parameter kinds:
   the decimal point becomes a comma and thousands (``{x:,.0f}``, or a whole number
   ≥ 10 000 under ``g``) are grouped with a no-break space — the rule of the Russian
   reports (:func:`scanplan.reports.plots.number`);
-- ``{x:scale}`` — a scale denominator as ``1:8000`` (English) / ``1:8 000`` (Russian);
+- ``{x:scale}`` — a scale denominator (:func:`scale_text`: ``1:25000`` in English,
+  ``1:25 000`` in Russian, ``1:8000`` in both);
 - lists, each item formatted with the spec and joined by ``", "`` (English) or ``"; "``
   (Russian, where the comma is the decimal separator); a spec starting with ``;`` joins
   with ``"; "`` in both languages;
@@ -37,7 +38,7 @@ from collections.abc import Mapping
 from typing import Any
 
 __all__ = ["LOCALES", "MESSAGES", "Message", "localize", "params_json", "placeholders",
-           "render"]
+           "render", "scale_text"]
 
 LOCALES = ("en", "ru")
 
@@ -522,14 +523,38 @@ def placeholders(template: str) -> set[str]:
     return {name for _, name, _, _ in string.Formatter().parse(template) if name}
 
 
+def scale_text(x: float, locale: str = "en") -> str:
+    """A scale ``1:x`` as every document writes it: English never groups the denominator
+    (``1:2000``, ``1:25000``); Russian groups it from five digits with a no-break space
+    (``1:2000``, ``1:25 000``; four-digit numbers stay whole, the rule of Russian
+    typesetting), with a decimal comma in a fractional one.
+
+    Parameters
+    ----------
+    x : float
+        The scale denominator.
+    locale : {"en", "ru"}
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> scale_text(2000), scale_text(25000), scale_text(25000, "ru"), scale_text(2000, "ru")
+    ('1:2000', '1:25000', '1:25\xa0000', '1:2000')
+    """
+    if float(x).is_integer():
+        whole = int(x)
+        if locale == "ru" and abs(whole) >= 10000:
+            return "1:" + f"{whole:,d}".replace(",", _NBSP)
+        return f"1:{whole:d}"
+    return "1:" + (f"{float(x):g}".replace(".", ",") if locale == "ru" else f"{float(x):g}")
+
+
 def _number(x: float, spec: str, locale: str) -> str:
     if spec == "scale":
-        if float(x).is_integer():
-            whole = int(x)
-            text = f"{whole:,d}".replace(",", _NBSP) if locale == "ru" else f"{whole:d}"
-        else:
-            text = f"{float(x):g}".replace(".", ",") if locale == "ru" else f"{float(x):g}"
-        return "1:" + text
+        return scale_text(x, locale)
     if spec.endswith("d") and float(x).is_integer():
         x = int(x)
     if locale != "ru":

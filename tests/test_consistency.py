@@ -30,7 +30,7 @@ INSTRUCTION = dict(map_scale=2000, relief_interval_m=1.0, photo_scales=[10000],
 
 
 def test_inverse_table_shows_the_interpretation_limit_too():
-    """7 µm supports 1:15,798 by the constraints, but 20 cm poles stop at 1:8,847 (seed 001:
+    """7 µm supports 1:15798 by the constraints, but 20 cm poles stop at 1:8847 (seed 001:
     Mc_interp = 2·L·sqrt(−ln P)·R/B), so the table gives both."""
     plan = scan_job(**INSTRUCTION).plan
     reach = {r.pixel_um: r for r in plan.max_photo_scales}

@@ -191,5 +191,5 @@ def test_plan_writes_both_reports_with_the_specification(tmp_path):
     assert cells["Scan pixel, µm"] == pytest.approx(12.5)
     pypdf = pytest.importorskip("pypdf")
     text = "\n".join(page.extract_text() for page in pypdf.PdfReader(tmp_path / "spec.pdf").pages)
-    assert "Recommended photo scale" in text and "1:8,000" in text
+    assert "Recommended photo scale" in text and "1:8000" in text
     assert "12.5 → 7.0" in text

@@ -54,8 +54,11 @@ def test_numbers_never_print_a_non_finite_value():
 
 def test_scales_pixels_and_whole_numbers():
     en, ru = Numbers("en"), Numbers("ru")
-    assert (en.scale(10000), ru.scale(10000)) == ("1:10,000", "1:10\u00a0000")
-    assert (en.plain_scale(10000), en.floor_scale(12345.9)) == ("1:10000", "1:12,345")
+    assert (en.scale(10000), ru.scale(10000)) == ("1:10000", "1:10\u00a0000")
+    # one way in every document: four digits whole in both languages (Russian typesetting)
+    assert (en.scale(2000), ru.scale(2000), ru.floor_scale(8847.9)) == ("1:2000", "1:2000",
+                                                                        "1:8847")
+    assert (en.plain_scale(10000), en.floor_scale(12345.9)) == ("1:10000", "1:12345")
     assert (en.whole(10000), ru.whole(10000)) == ("10000", "10\u00a0000")
     # a pixel under 1 µm keeps two significant digits, never "0.0"
     assert (en.um(0.42), ru.um(0.42), en.um(12.34)) == ("0.42", "0,42", "12.3")

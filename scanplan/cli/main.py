@@ -414,19 +414,13 @@ def scan(as_json: bool, bits_per_band: str, **kwargs: Any) -> None:
         click.echo(format_scan_plan(job.plan, job.norm_set.name, job.norm_set.title,
                                     locale=loc, norm_set=job.norm_set))
         if area is not None:
+            from ..messages import scale_text
             from ..reports.text import format_area, format_layout
 
             click.echo("\n" + format_area(area, loc))
             for sc, lay in schemes:
-                click.echo(format_layout(lay, _scale_text(sc.photo_scale, loc), loc))
+                click.echo(format_layout(lay, scale_text(sc.photo_scale, loc), loc))
     _write_reports(report, scan=job)
-
-
-def _scale_text(scale: float, locale: str) -> str:
-    """A photo scale as the terminal writes it (``1:10000``; Russian ``1:10 000``)."""
-    from ..reports.view import Numbers
-
-    return Numbers(locale).scale(scale) if locale == "ru" else f"1:{scale:g}"
 
 
 def _film_schemes(job: Any, area: Any, side: float) -> list[tuple[Any, Any]]:

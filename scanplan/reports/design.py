@@ -16,7 +16,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..core import flight as FL
-from ..messages import Message, localize
+from ..messages import Message, localize, scale_text
 from ..rules.registry import CONSTRAINTS
 from .labels import t
 from .view import Numbers
@@ -70,7 +70,7 @@ class _W:
         return Numbers(self.loc).num(float(x), digits)  # the report's one formatter
 
     def scale(self, x: float) -> str:
-        return "1:" + self.n(x, 0)
+        return scale_text(x, self.loc)
 
     def msg(self, m: Any, ns: Any = None) -> str:
         return self.cite(display_message(m, ns, self.loc))

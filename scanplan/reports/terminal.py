@@ -9,10 +9,9 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from ..messages import localize
+from ..messages import localize, scale_text
 from ..rules.film import ScanPlan
 from ..rules.uav import UavPlan
-from .jsondoc import scale_value
 from .labels import t
 from .labels_cli import cli_text
 from .text import _volume, _wrap, table
@@ -41,10 +40,8 @@ class _Words:
         return self.n.fixed(x, digits)
 
     def scale(self, x: float) -> str:
-        """``1:10000`` (English), ``1:10 000`` (Russian)."""
-        if self.loc == "ru":
-            return "1:" + self.n.num(float(x), 0)
-        return f"1:{scale_value(x)}"
+        """``1:10000`` (English), ``1:10 000`` (Russian): :func:`scanplan.messages.scale_text`."""
+        return scale_text(x, self.loc)
 
     def constraint(self, cid: str) -> str:
         """A constraint's name (the label catalogue's, a registered one its own)."""

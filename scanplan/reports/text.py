@@ -8,6 +8,7 @@ import textwrap
 from collections.abc import Sequence
 from typing import Any
 
+from ..messages import scale_text
 from ..rules.film import CONSTRAINTS
 from .jsondoc import scale_value
 from .labels import LABELS, t
@@ -80,7 +81,7 @@ def _g(x: float, loc: str) -> str:
 
 
 def _sc(x: float, loc: str) -> str:
-    return "1:" + (Numbers(loc).num(float(x), 0) if loc == "ru" else str(scale_value(x)))
+    return scale_text(x, loc)
 
 
 def format_plan_result(result: Any, locale: str | None = None) -> str:

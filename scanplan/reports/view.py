@@ -26,6 +26,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
+from ..messages import scale_text
 from .labels import LABELS, t
 
 if TYPE_CHECKING:
@@ -132,12 +133,13 @@ class Numbers:
         return self._dec(f"{x:.2g}")
 
     def scale(self, x: float) -> str:
-        """A scale: ``1:10,000`` / ``1:10 000`` (a fractional one in shortest form)."""
-        return "1:" + (self.num(x, 0) if float(x).is_integer() else self.g(x))
+        """A scale as every document writes it (:func:`scanplan.messages.scale_text`):
+        ``1:10000`` / ``1:10 000``, ``1:2000`` in both (a fractional one in shortest form)."""
+        return scale_text(x, self.locale)
 
     def floor_scale(self, x: float) -> str:
-        """The largest whole scale denominator not above ``x``: ``1:12,345``."""
-        return "1:" + self.num(math.floor(x), 0)
+        """The largest whole scale denominator not above ``x``: ``1:12345``."""
+        return scale_text(math.floor(x), self.locale)
 
     def plain_scale(self, x: float) -> str:
         """A scale without grouping: ``1:10000`` (the workbook's cells and charts)."""
