@@ -43,8 +43,11 @@ ADVANCE: dict[str, int] = {**dict.fromkeys("0123456789", 1303), ".": 651, ",": 6
                            "e": 1260}
 _CAP_EM = 1493 / UNITS_PER_EM  # height of a digit or a capital
 _ASCENT_EM, _DESCENT_EM = 1901 / UNITS_PER_EM, 483 / UNITS_PER_EM
-#: The widest glyphs a label may hold (about 1 em); every other glyph is taken as 0.7 em
-_WIDE = frozenset("mwMWДЖМШЩЫЮжмшщыю—%@…")
+#: Bounds of the glyph widths of Latin and Cyrillic labels in DejaVu Sans: the widest
+#: letters and signs (up to 1.1 em), capitals and the broad signs (up to 0.84 em); every
+#: other letter, space or punctuation is at most 0.7 em (checked by the tests)
+_WIDE = frozenset("mwMWщшжфюЩЮЖШЫМФ…—@%")
+_BROAD = frozenset("ыъмЪ=+<>≤≥×±~−#&^")
 
 TICK_PT, LABEL_PT, LEGEND_PT = 7.0, 8.0, 7.0
 TICK_LEN_PT, TICK_PAD_PT = 3.5, 3.5
@@ -82,9 +85,10 @@ def text_width_pt(text: str, size_pt: float) -> float:
 
 
 def estimate_width_pt(text: str, size_pt: float) -> float:
-    """A generous estimate of the width [pt] of any label at ``size_pt``: the exact width
-    of digits and separators, 1.1 em for the widest letters and dashes, 0.7 em for every
-    other glyph (DejaVu Sans letters are 0.28–0.9 em wide).
+    """A generous estimate of the width [pt] of a label at ``size_pt``: the exact width
+    of digits and separators, and for each other glyph a bound of its class (1.1 em for
+    the widest letters and dashes, 0.84 em for capitals and broad signs, 0.7 em for any
+    other letter or punctuation; DejaVu Sans lowercase letters are mostly 0.28–0.64 em).
 
     Parameters
     ----------
@@ -98,8 +102,8 @@ def estimate_width_pt(text: str, size_pt: float) -> float:
     float
         An upper bound of the width [pt] (the tests check it against the font).
     """
-    em = sum(ADVANCE[c] / UNITS_PER_EM if c in ADVANCE else 1.1 if c in _WIDE else 0.7
-             for c in text)
+    em = sum(ADVANCE[c] / UNITS_PER_EM if c in ADVANCE else 1.1 if c in _WIDE
+             else 0.84 if c in _BROAD or c.isupper() else 0.7 for c in text)
     return em * size_pt
 
 
@@ -143,13 +147,18 @@ def nice_ticks(lo: float, hi: float, max_bins: int = 9, *,
     if integer:  # whole steps: 1, 2, 5, 10, …
         steps = [1.0] + [s for s in steps if s > 1]
     eps = 1e-9
-    for step in steps:
-        first = math.floor(lo / step + eps)
-        last = math.ceil(hi / step - eps)
-        if last - first <= max_bins:
-            break
-    ticks = (float(f"{k * step:.12g}") for k in range(first, last + 1))
-    return [v for v in ticks if lo - eps * span <= v <= hi + eps * span]
+
+    def ticks_of(step: float) -> tuple[int, list[float]]:
+        first, last = math.floor(lo / step + eps), math.ceil(hi / step - eps)
+        ticks = (float(f"{k * step:.12g}") for k in range(first, last + 1))
+        return last - first, [v for v in ticks if lo - eps * span <= v <= hi + eps * span]
+
+    pick = next((i for i, step in enumerate(steps) if ticks_of(step)[0] <= max_bins),
+                len(steps) - 1)
+    # at least two ticks within the range (matplotlib's min_n_ticks): a smaller step
+    while pick > 0 and len(ticks_of(steps[pick])[1]) < 2:
+        pick -= 1
+    return ticks_of(steps[pick])[1]
 
 
 def log_ticks(lo: float, hi: float) -> list[float]:
