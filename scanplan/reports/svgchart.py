@@ -356,6 +356,14 @@ class Panel:
         self.items.append(("text", text, x, y, dx, dy, y_axes, anchor, middle, rotation,
                            size, colour))
 
+    def y_fraction(self, y: float) -> float:
+        """Where ``y`` lies on the y axis as drawn so far: 0 at the bottom, 1 at the top
+        (to place a label clear of the curves)."""
+        lo, hi = self.y.limits()
+        if self.y.scale == "log":
+            lo, hi, y = math.log10(lo), math.log10(hi), math.log10(y)
+        return (y - lo) / (hi - lo)
+
     def _extend(self, xs: Sequence[Any], ys: Sequence[Any]) -> None:
         pts = [(a, b) for a, b in zip(xs, ys, strict=False)
                if self.x.ok(a) and self.y.ok(b)]
