@@ -23,7 +23,6 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Sequence
-from dataclasses import dataclass, field
 from itertools import pairwise
 from typing import Any
 
@@ -192,15 +191,16 @@ def _finite(v: Any) -> bool:
     return v is not None and isinstance(v, (int, float)) and math.isfinite(v)
 
 
-@dataclass
 class _Axis:
-    scale: str = "linear"
-    lo: float | None = None
-    hi: float | None = None
-    ticks: list[float] | None = None
-    label: str = ""
-    integer: bool = False
-    data: list[float] = field(default_factory=list)
+    """An axis: its scale, fixed limits and ticks if any, title, and the data drawn on it
+    (a plain class: a dataclass is built when the module is imported)."""
+
+    def __init__(self, scale: str = "linear", integer: bool = False, label: str = "") -> None:
+        self.scale, self.integer, self.label = scale, integer, label
+        self.lo: float | None = None
+        self.hi: float | None = None
+        self.ticks: list[float] | None = None
+        self.data: list[float] = []
 
     def ok(self, v: Any) -> bool:
         """Whether ``v`` can be drawn on this axis (finite; positive on a log axis)."""
@@ -229,12 +229,14 @@ class _Axis:
         return lo, hi
 
 
-@dataclass(frozen=True)
 class _Style:
-    colour: str
-    width: float
-    dash: tuple[float, ...] | None = None
-    alpha: float = 1.0
+    """A line's stroke: colour, width [pt], dash pattern [line widths], opacity."""
+
+    __slots__ = ("alpha", "colour", "dash", "width")
+
+    def __init__(self, colour: str, width: float, dash: tuple[float, ...] | None = None,
+                 alpha: float = 1.0) -> None:
+        self.colour, self.width, self.dash, self.alpha = colour, width, dash, alpha
 
     def attrs(self) -> str:
         out = f'stroke="{self.colour}" stroke-width="{_n(self.width)}"'
