@@ -535,7 +535,29 @@ class Chart:
                 return widths
         return [width]
 
+    def _legend_place(self, entries: list, left: float) -> tuple[list[float], float]:
+        """(column widths, left edge) [pt] of the legend under the plot area: aligned with
+        the plot, or from the figure's left edge when that gives more columns."""
+        col_w = self._legend_layout(entries, self.width_pt - left - _PAD_PT)
+        wider = self._legend_layout(entries, self.width_pt - 2 * _PAD_PT)
+        return (wider, _PAD_PT) if len(wider) > len(col_w) else (col_w, left)
+
     # -- the figure ------------------------------------------------------------------
+    def _x_layout(self, xaxis: _Axis, xlim: tuple[float, float],
+                  left: float) -> tuple[float, list[tuple[float, str]]]:
+        """(plot width [pt], x ticks): the right margin holds half the last tick label."""
+        right = 12.0
+        width = self.width_pt - left - right
+        xticks = self._ticks(xaxis, xlim, width, False)
+        if xticks:
+            probe = _Frame(self.panels[-1], xlim, left, 0, width, 1)
+            v, s = xticks[-1]
+            overhang = probe.px(v) + text_width_pt(s, TICK_PT) / 2 + 2 - (left + width)
+            if overhang > 0:
+                width -= overhang
+                xticks = self._ticks(xaxis, xlim, width, False)
+        return width, xticks
+
     def svg(self) -> str:
         """The figure as a standalone SVG document (deterministic)."""
         panels = self.panels
@@ -561,17 +583,7 @@ class Chart:
         left = (ylabel_x + (nlines - 1) * line_pt + _DESCENT_EM * LABEL_PT + 4.0
                 if nlines else _PAD_PT)
         left += widest + TICK_PAD_PT + TICK_LEN_PT
-        right = 12.0
-        width = self.width_pt - left - right
-        xticks = self._ticks(xaxis, xlim, width, False)
-        # keep the last x tick label within the figure
-        if xticks:
-            probe = _Frame(bottom_panel, xlim, left, 0, width, 1)
-            v, s = xticks[-1]
-            overhang = probe.px(v) + text_width_pt(s, TICK_PT) / 2 + 2 - (left + width)
-            right = max(right, right + overhang)
-            width = self.width_pt - left - right
-            xticks = self._ticks(xaxis, xlim, width, False)
+        width, xticks = self._x_layout(xaxis, xlim, left)
         top = 6.0
         frames = []
         for p, h in zip(panels, heights, strict=True):
@@ -585,12 +597,7 @@ class Chart:
             xlabel_base = y + 3.0 + _ASCENT_EM * LABEL_PT
             y = xlabel_base + _DESCENT_EM * LABEL_PT
         entries = [e for p in panels for e in p.legend]
-        # under the plot area; from the figure's left edge when that gives more columns
-        col_w = self._legend_layout(entries, self.width_pt - left - _PAD_PT)
-        legend_left = left
-        wider = self._legend_layout(entries, self.width_pt - 2 * _PAD_PT)
-        if len(wider) > len(col_w):
-            col_w, legend_left = wider, _PAD_PT
+        col_w, legend_left = self._legend_place(entries, left)
         rows = math.ceil(len(entries) / len(col_w)) if col_w else 0
         row_h = LEGEND_PT * 1.45
         legend_top = y + 5.0
