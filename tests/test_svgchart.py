@@ -312,6 +312,23 @@ def test_nothing_overlaps_and_the_legend_is_below_the_plot(examples):
         assert all(b[2] - 7.0 > plot_bottom for b in legend), key
 
 
+def test_labels_of_close_points_never_overprint():
+    """Photo scales close together: the second label goes above its point; one with no
+    room on either side is left out (the tables give every value)."""
+    chart = Chart("en")
+    ax = chart.panels[0]
+    xs = [5000, 5050, 5100, 9000]
+    ax.plot([1000, 20000], [10, 10], colour="#000000")
+    for x in xs:
+        ax.annotate(f"PR {x}", x, 10, dy=11, anchor="middle", size=6.5)
+    svg = chart.svg()
+    boxes = [b for b in _boxes(svg) if b[4].startswith("PR ")]
+    assert [b[4] for b in boxes] == ["PR 5000", "PR 5050", "PR 9000"]
+    assert boxes[1][2] < boxes[0][2]  # above the line, the first below
+    for a, b in pairwise(sorted(boxes)):
+        assert a[1] <= b[0] or abs(a[2] - b[2]) >= 6.5, (a, b)
+
+
 def test_a_long_axis_title_of_a_short_panel_is_set_in_two_lines(examples):
     r = examples["uav-town-valley-2000"]
     svg = plots.terrain_svg(r.uav.terrain, r.uav.job.plan.max_height_m, "ru")

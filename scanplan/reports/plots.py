@@ -75,11 +75,6 @@ def _height_digits(h: float) -> int:
     return 0 if abs(h - round(h)) < 0.05 else 1
 
 
-def _nice_log_ticks(lo: float, hi: float) -> list[float]:
-    """1-2-5 ticks covering [lo, hi] (for short log axes): :func:`.svgchart.log_ticks`."""
-    return log_ticks(lo, hi)
-
-
 def constraints_svg(plan: ScanPlan, locale: str = "en") -> str:
     """Each constraint's scan pixel against the photo scale (``plan.sweep``), log–log.
 
@@ -121,7 +116,7 @@ def constraints_svg(plan: ScanPlan, locale: str = "en") -> str:
     ax.set_yscale("log")
     ax.set_xlim(min(xs), max(xs))
     # label the evaluated photo scales (1-2-5 ticks when many): log minor labels collide
-    ax.set_xticks(sorted(set(px)) if len(set(px)) <= 6 else _nice_log_ticks(min(xs), max(xs)))
+    ax.set_xticks(sorted(set(px)) if len(set(px)) <= 6 else log_ticks(min(xs), max(xs)))
     ax.set_xlabel(f"{t('photo_scale', locale)} 1:Mc")
     ax.set_ylabel(t("pixel_um", locale))
     return chart.svg()

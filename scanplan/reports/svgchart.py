@@ -663,8 +663,9 @@ class Chart:
             elif kind == "text":
                 texts.append(item)
         out.append("</g>")
+        placed: list[tuple[float, float, float, float]] = []
         for item in texts:
-            out += self._annotation_svg(f, *item[1:])
+            out += self._annotation_svg(f, placed, *item[1:])
         # spines, ticks, tick labels
         marks = [f"M{_n(f.px(v))} {_n(bottom)}v{_n(TICK_LEN_PT)}" for v, _ in xticks]
         marks += [f"M{_n(left)} {_n(f.py(v))}h{_n(-TICK_LEN_PT)}" for v, _ in yticks]
@@ -728,21 +729,41 @@ class Chart:
                 _polyline(lower, f'stroke="{colour}" stroke-width="0.6"')]
 
     @staticmethod
-    def _annotation_svg(f: _Frame, text: str, x: float, y: float, dx: float, dy: float,
-                        y_axes: bool, anchor: str, middle: bool, rotation: float,
-                        size: float, colour: str) -> list[str]:
+    def _annotation_svg(f: _Frame, placed: list[tuple[float, float, float, float]],
+                        text: str, x: float, y: float, dx: float, dy: float, y_axes: bool,
+                        anchor: str, middle: bool, rotation: float, size: float,
+                        colour: str) -> list[str]:
+        """An annotation; a level one that would run into one already ``placed`` goes to
+        the other side of its point (above instead of below), e.g. the labels of photo
+        scales close together, and is left out when both sides are taken."""
         if not f.p.x.ok(x) or not (y_axes or f.p.y.ok(y)):
             return []
         px = f.px(x) + dx
-        py = (f.top + f.h * (1 - y) if y_axes else f.py(y)) + dy
+        at = f.top + f.h * (1 - y) if y_axes else f.py(y)
         shift = _CAP_EM * size / 2 if middle else 0.0
         if rotation:
             # the baseline shift runs across the rotated text
             r = math.radians(rotation)
-            px, py = px + shift * math.sin(r), py + shift * math.cos(r)
-        else:
-            py += shift
-        return [_text(px, py, text, size, anchor=anchor, rotation=rotation, colour=colour)]
+            return [_text(px + shift * math.sin(r), at + dy + shift * math.cos(r), text,
+                          size, anchor=anchor, rotation=rotation, colour=colour)]
+        w = estimate_width_pt(text, size)
+        x0 = px - (w / 2 if anchor == "middle" else w if anchor == "end" else 0.0)
+
+        def box(base: float) -> tuple[float, float, float, float]:
+            return (x0, x0 + w, base - _CAP_EM * size, base + _DESCENT_EM * size)
+
+        def clear(b: tuple[float, float, float, float]) -> bool:
+            return all(b[1] <= o[0] or o[1] <= b[0] or b[3] <= o[2] or o[3] <= b[2]
+                       for o in placed)
+
+        base = at + dy + shift
+        if not clear(box(base)):
+            other = at - dy + shift + (_CAP_EM * size if dy > 0 else -_CAP_EM * size)
+            if not dy or not clear(box(other)):
+                return []  # no room on either side: left out rather than overprinted
+            base = other
+        placed.append(box(base))
+        return [_text(px, base, text, size, anchor=anchor, colour=colour)]
 
     @staticmethod
     def _legend_svg(entries: list, col_w: list[float], rows: int, left: float,
