@@ -5,7 +5,6 @@ plots' legends and annotations lost, and no matplotlib imported by a plan withou
 
 from __future__ import annotations
 
-import dataclasses
 import math
 import subprocess
 import sys
@@ -336,14 +335,6 @@ def test_a_long_axis_title_of_a_short_panel_is_set_in_two_lines(examples):
     texts = _strings(svg)
     assert title not in texts
     assert any(a + " " + b == title for a, b in pairwise(texts))
-
-
-def test_the_height_legend_keeps_the_tables_figures(examples):
-    r = examples["uav-town-2000"]
-    meta = dataclasses.replace(r.meta, locale="ru")
-    assert meta.locale == "ru"
-    svg = plots.height_svg(r.uav.job.plan, "ru")
-    assert "(HC): 136 м" in svg and "148,5" in svg
 
 
 # -- imports -------------------------------------------------------------------------------
