@@ -357,3 +357,22 @@ def test_a_plan_with_both_reports_imports_no_matplotlib(tmp_path):
     assert r.stdout.strip().splitlines()[-1] == "[]"
     assert (out / "spec.pdf").read_bytes().startswith(b"%PDF")
     assert (out / "spec.xlsx").is_file()
+
+
+def test_the_nyquist_label_stands_clear_of_the_curves(examples):
+    """The label beside the Nyquist line is put where neither curve crosses the line
+    (matplotlib's, always half-way up, often lay across the image contrast curve)."""
+    import re
+
+    for name, r in examples.items():
+        if r.uav is None:
+            continue
+        svg = plots.mtf_svg(r.uav.job.plan, "en")
+        root = ET.fromstring(svg.encode("utf-8"))
+        label = next(e for e in root.iter(f"{SVG}text") if e.text == "Nyquist")
+        y = float(re.match(r"translate\(\S+ (\S+)\)", label.get("transform")).group(1))
+        half = estimate_width_pt("Nyquist", 6.5) / 2
+        ends = [float(p.get("points").split()[-1].split(",")[1])
+                for p in root.iter(f"{SVG}polyline")]
+        assert len(ends) == 2
+        assert all(abs(y - e) > half for e in ends), (name, y, ends)
