@@ -19,8 +19,8 @@ pytest.importorskip("weasyprint")
 from scanplan.cli.main import main
 from scanplan.project.file import load_project
 from scanplan.project.spec import plan_project
-from scanplan.reports import _weasy
-from scanplan.reports.pdf import render_pdf
+from scanplan.reports import _weasy, pdfrender
+from scanplan.reports.pdf import render_html, render_pdf
 from scanplan.reports.pdfworker import PdfWorker
 from scanplan.reports.view import build_view
 
@@ -107,7 +107,7 @@ def test_worker_renders_the_same_bytes_and_is_reaped(view, monkeypatch):
     assert worker is not None
     pid = worker.pid
     try:
-        assert worker.submit(view)
+        assert worker.submit(render_html(view=view))
         data = worker.result()
     finally:
         worker.stop()
@@ -117,30 +117,36 @@ def test_worker_renders_the_same_bytes_and_is_reaped(view, monkeypatch):
 
 
 @fork_only
-def test_worker_error_gives_none_and_a_reason():
-    """A view the child cannot render: no PDF from the worker (the caller renders in its
-    own process and raises the error there), the reason kept, the child reaped."""
+def test_worker_error_gives_none_and_a_reason(monkeypatch):
+    """A document the child's renderer fails on: no PDF from the worker (the caller renders
+    in its own process and raises the error there), the reason kept, the child reaped."""
+    def broken(html: str) -> bytes:
+        raise RuntimeError(f"renderer broken on {len(html)} characters")
+
+    monkeypatch.setattr(pdfrender, "html_to_pdf", broken)  # the child is forked with it
     worker = PdfWorker.start()
     assert worker is not None
     pid = worker.pid
     try:
-        assert worker.submit({"not": "a view"})
+        assert worker.submit("<p>a report</p>")
         assert worker.result() is None
     finally:
         worker.stop()
-    assert "AttributeError" in worker.error
+    assert worker.error == "RuntimeError: renderer broken on 15 characters"
     assert _gone(pid)
 
 
 @fork_only
-def test_worker_unpicklable_view_is_refused_and_stopped():
-    worker = PdfWorker.start()
-    assert worker is not None
-    pid = worker.pid
-    assert not worker.submit(lambda: None)  # a lambda does not pickle
-    assert worker.result() is None
-    worker.stop()
-    assert _gone(pid)
+def test_worker_refuses_what_is_not_a_text_and_stops():
+    for bad in (lambda: None, "lone surrogate \udc80"):
+        worker = PdfWorker.start()
+        assert worker is not None
+        pid = worker.pid
+        assert not worker.submit(bad)
+        assert worker.result() is None
+        assert worker.error.startswith(("AttributeError", "UnicodeEncodeError")), worker.error
+        worker.stop()
+        assert _gone(pid)
 
 
 @fork_only
@@ -175,6 +181,79 @@ def test_plan_out_with_and_without_the_worker_is_byte_identical(tmp_path, monkey
         outs[name] = {p.name: p.read_bytes() for p in sorted(out.iterdir())}
     assert outs["worker"] == outs["inprocess"]
     assert set(outs["worker"]) == {"spec.pdf", "spec.xlsx"}
+
+
+_SCAN = ["scan", "--map-scale", "2000", "--relief", "1.0", "--photo-scale", "10000",
+         "--camera", "afa-te-100", "--resolving-power", "40"]
+_UAV = ["uav", "--camera", "canon-eos-5d-mark-ii-50", "--f-number", "8", "--height-m", "300",
+        "--speed-ms", "25", "--map-scale", "2000", "--relief", "0.5"]
+
+
+@fork_only
+@pytest.mark.parametrize("args", [_SCAN, _UAV], ids=["scan", "uav"])
+def test_scan_and_uav_render_their_pdf_on_the_worker(args, tmp_path, monkeypatch):
+    """``scan``/``uav --pdf`` start the worker too; its PDF is the in-process one."""
+    import scanplan.reports.pdfworker as pw
+
+    monkeypatch.setenv("SOURCE_DATE_EPOCH", "1700000000")
+    replies: list[bytes | None] = []
+    real = pw.PdfWorker.result
+
+    def result(self: PdfWorker) -> bytes | None:
+        replies.append(real(self))
+        return replies[-1]
+
+    monkeypatch.setattr(pw.PdfWorker, "result", result)
+    pdfs = {}
+    for name in ("worker", "inprocess"):
+        if name == "inprocess":
+            monkeypatch.setenv("SCANPLAN_NO_FORK", "1")
+        path = tmp_path / f"{name}.pdf"
+        r = CliRunner().invoke(main, [*args, "--pdf", str(path)])
+        assert r.exit_code == 0, r.output
+        pdfs[name] = path.read_bytes()
+    assert len(replies) == 1 and replies[0] is not None  # the worker's run rendered there
+    assert pdfs["worker"] == pdfs["inprocess"] == replies[0]
+
+
+@fork_only
+def test_a_bad_input_stops_the_worker_of_uav(tmp_path, monkeypatch):
+    """A command that fails before its report still reaps the child it started."""
+    import scanplan.reports.pdfworker as pw
+
+    pids: list[int] = []
+    real = pw.PdfWorker.start.__func__
+
+    def start(cls: type[PdfWorker]) -> PdfWorker | None:
+        worker = real(cls)
+        pids.append(worker.pid if worker is not None else 0)
+        return worker
+
+    monkeypatch.setattr(pw.PdfWorker, "start", classmethod(start))
+    r = CliRunner().invoke(main, [*_UAV[:2], "no-such-camera", *_UAV[3:], "--pdf",
+                                  str(tmp_path / "u.pdf")])
+    assert r.exit_code == 2, r.output
+    assert len(pids) == 1 and pids[0] > 0 and _gone(pids[0])
+    assert not (tmp_path / "u.pdf").exists()
+
+
+@fork_only
+def test_an_interrupt_while_the_worker_renders_writes_nothing(tmp_path, monkeypatch):
+    """Ctrl-C while the parent waits for the PDF: no file, no temporary, the child reaped."""
+    import scanplan.reports.pdfworker as pw
+
+    pids: list[int] = []
+
+    def interrupted(self: PdfWorker) -> bytes | None:
+        pids.append(self.pid)
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(pw.PdfWorker, "result", interrupted)
+    out = tmp_path / "out"
+    r = CliRunner().invoke(main, ["plan", str(EXAMPLE), "--out", str(out)])
+    assert r.exit_code not in (0, None), r.output
+    assert not out.exists() or sorted(out.iterdir()) == []
+    assert len(pids) == 1 and pids[0] > 0 and _gone(pids[0])
 
 
 @fork_only

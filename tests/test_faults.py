@@ -274,6 +274,9 @@ def fixed_renders(monkeypatch):
     """Rendering returns fixed bytes (the write is under test, not the renderer)."""
     monkeypatch.setattr(excel_mod, "render_xlsx", lambda **kw: XLSX_BYTES)
     monkeypatch.setattr(pdf_mod, "render_pdf", lambda **kw: PDF_BYTES)
+    # the renders under test are this process's (a PDF worker's child would render the
+    # real document; its own failures: tests/test_fast_reports.py)
+    monkeypatch.setenv("SCANPLAN_NO_FORK", "1")
 
 
 def break_render(monkeypatch: pytest.MonkeyPatch, kind: str,

@@ -47,6 +47,7 @@ def work(tmp_path, monkeypatch):
 
     monkeypatch.setattr(excel_mod, "render_xlsx", xlsx)
     monkeypatch.setattr(pdf_mod, "render_pdf", lambda **kw: b"%PDF-1.7\n/Creator (scanplan t)")
+    monkeypatch.setenv("SCANPLAN_NO_FORK", "1")  # the PDF is this process's stand-in render
     return tmp_path
 
 

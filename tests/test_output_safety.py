@@ -60,6 +60,7 @@ def marked_renders(monkeypatch):
 
     monkeypatch.setattr(excel_mod, "render_xlsx", xlsx)
     monkeypatch.setattr(pdf_mod, "render_pdf", pdf)
+    monkeypatch.setenv("SCANPLAN_NO_FORK", "1")  # the PDF is this process's stand-in render
 
 
 def project_of(path: Path) -> str:

@@ -7,10 +7,12 @@ cell and the allowed range); 1 runtime failure (a message, never a traceback —
 
 from __future__ import annotations
 
+import contextlib
+import functools
 import os
 import sys
 import warnings
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from typing import Any
 
 import click
@@ -228,9 +230,14 @@ def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
 
     # one view of the result for both documents: labels, numbers and plots built once
     view = build_view(scan=scan, uav=uav, meta=meta, spec=spec)
-    # the PDF renders in the worker while this process builds the workbook; a worker
-    # that fails gives None and the PDF is rendered here (any error is raised here)
-    forked = worker is not None and pdf is not None and worker.submit(view)
+    # the PDF renders in the worker, from the HTML written here, while this process builds
+    # the workbook; a worker that fails gives None and the PDF is rendered here (any error
+    # is raised here)
+    forked = False
+    if worker is not None and pdf is not None:
+        from ..reports.pdfhtml import render_html
+
+        forked = worker.submit(render_html(view=view))
     rendered: dict[str, bytes] = {}
     for path, kind in wanted:
         if kind == "xlsx":
@@ -296,7 +303,33 @@ def _remove_empty(folders: list[str]) -> None:
 
 
 REPORT_KEYS = ("xlsx_path", "pdf_path", "force", "locale", "project_name", "customer", "contractor",
-               "approver_position", "approver_name")
+               "approver_position", "approver_name", "pdf_worker")
+
+
+@contextlib.contextmanager
+def _pdf_worker(wanted: bool) -> Iterator[Any]:
+    """The PDF worker (:class:`scanplan.reports.pdfworker.PdfWorker`) when a PDF is
+    ``wanted``, else None; started first of all, so that it imports the renderer while this
+    process imports the engine and plans, and stopped (reaped) however the command ends."""
+    worker = None
+    if wanted:
+        from ..reports.pdfworker import PdfWorker
+
+        worker = PdfWorker.start()
+    try:
+        yield worker
+    finally:
+        if worker is not None:
+            worker.stop()
+
+
+def _pdf_on_second_core(command: Callable[..., Any]) -> Callable[..., Any]:
+    """A command with ``--pdf``: its ``pdf_worker`` argument is :func:`_pdf_worker`'s."""
+    @functools.wraps(command)
+    def run(**kwargs: Any) -> Any:
+        with _pdf_worker(bool(kwargs.get("pdf_path"))) as worker:
+            return command(pdf_worker=worker, **kwargs)
+    return run
 
 
 def _split_report_options(kwargs: dict[str, Any]) -> dict[str, Any]:
@@ -340,6 +373,7 @@ def _inputs(command: str, names: list[str], **per_name: dict[str, Any]
 @_inputs("scan", ["area_file", "area_feature", "area_layer", "film_side_overlap_pct"])
 @report_options
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
+@_pdf_on_second_core
 def scan(as_json: bool, bits_per_band: str, **kwargs: Any) -> None:
     """Film photos: every scan-pixel constraint at one or more photo scales.
 
@@ -425,6 +459,7 @@ def _film_schemes(job: Any, area: Any, side: float) -> list[tuple[Any, Any]]:
                  "max_flight_time_min"])
 @report_options
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
+@_pdf_on_second_core
 def uav(as_json: bool, **kwargs: Any) -> None:
     """Digital camera on a UAV: GSD, real ground resolution L from the MTF chain, blur,
     flight geometry; with --map-scale/--relief the constraints and the maximum planned height
@@ -681,17 +716,9 @@ def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: s
                 jobs: int = 1) -> None:
     """``plan`` after its arguments are checked: run one project or a batch."""
     if not batch:
-        worker = None
-        if out_dir or pdf_path:  # first of all: it imports the renderer while we plan
-            from ..reports.pdfworker import PdfWorker
-
-            worker = PdfWorker.start()
-        try:
+        with _pdf_worker(bool(out_dir or pdf_path)) as worker:
             result = _run_project(files[0], out_dir, None, xlsx_path, pdf_path, files, force,
                                   pdf_worker=worker)
-        finally:
-            if worker is not None:
-                worker.stop()
         from ..reports.jsondoc import plan_result_dict
         from ..reports.text import format_plan_result
 

@@ -1,27 +1,27 @@
 """The PDF rendered on the second core, by a process started before the plan is made.
 
-A plan with both reports spends most of its time on the PDF: importing WeasyPrint and
-matplotlib, drawing the plots, laying out the pages. :class:`PdfWorker` forks a child at the
-start of a run that will write a PDF; while the parent reads the project, plans it and
-draws the plots, the child imports the renderer and warms it up (templates compiled,
-bundled fonts loaded). The parent hands it the result's view
-(:func:`scanplan.reports.view.build_view`, pickled, the plots in it) and builds the workbook
-itself while the child renders the PDF; the child returns the PDF's bytes, and the parent
-writes both files in one transaction as before (nothing is written by the child). The bytes
-are the same as those of an in-process render (the view carries the creation time;
-``SOURCE_DATE_EPOCH`` holds for both processes).
+A plan with both reports spends most of its time on the PDF: importing WeasyPrint, laying
+out and painting the pages. :class:`PdfWorker` forks a child at the start of a run that will
+write a PDF; while the parent imports the engine, reads the project, plans it and writes the
+report's HTML (:func:`scanplan.reports.pdfhtml.render_html`: the plots drawn, the
+templates filled), the child imports the renderer alone (:mod:`.pdfrender`: WeasyPrint, not
+the engine) and warms it up (the bundled fonts loaded). The parent hands it the HTML and
+builds the workbook while the child renders the PDF; the child returns the PDF's bytes, and
+the parent writes both files in one transaction as before (nothing is written by the
+child). The bytes are those of an in-process render of the same HTML (:func:`scanplan.
+reports.pdf.render_pdf` renders exactly that HTML).
 
 Robustness: Linux only (``os.fork``; macOS's system libraries are not safe to use in a child
 forked without exec, which is why Python's own multiprocessing spawns there); elsewhere,
 under ``SCANPLAN_DEBUG=1`` (tracebacks of the renderer stay in the process that shows them)
 and when ``SCANPLAN_NO_FORK=1`` is set, :meth:`PdfWorker.start` returns None and the caller
-renders in-process. A child that fails for any reason (an error in the renderer, a crash, a
-view that cannot be pickled) makes :meth:`PdfWorker.result` return None, and the caller
-renders the PDF in-process — so a real error is raised there and reported exactly as without
-the worker. The child never returns into the caller's code (``os._exit``), and every child
-is reaped: by :meth:`PdfWorker.result`, or killed and reaped by :meth:`PdfWorker.stop` (also
-when the run fails before the view is sent). Batches (``plan DIR --jobs N``) do not use it:
-their worker processes already keep the cores busy.
+renders in-process. A child that fails for any reason (an error in the renderer, a crash)
+makes :meth:`PdfWorker.result` return None, and the caller renders the PDF in-process — so a
+real error is raised there and reported exactly as without the worker. The child never
+returns into the caller's code (``os._exit``), and every child is reaped: by
+:meth:`PdfWorker.result`, or killed and reaped by :meth:`PdfWorker.stop` (also when the run
+fails before the HTML is sent). Batches (``plan DIR --jobs N``) do not use it: their worker
+processes already keep the cores busy.
 """
 
 from __future__ import annotations
@@ -42,12 +42,9 @@ def _warm() -> None:
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        from . import pdf  # WeasyPrint (the fast import), the templates' helpers
+        from . import pdfrender  # WeasyPrint (the fast import) and nothing of the engine
 
-        # matplotlib is not imported here: the parent draws the plots (it has the time while
-        # the child imports WeasyPrint); only a map or terrain figure, drawn in the child,
-        # imports it, when the report has one
-        pdf.warm_up()
+        pdfrender.warm_up()
 
 
 def _read_all(fd: int) -> bytes:
@@ -76,9 +73,9 @@ def _child(requests: int, replies: int) -> None:
         data = _read_all(requests)
         if data:
             try:
-                from .pdf import render_pdf
+                from .pdfrender import html_to_pdf
 
-                reply: tuple[str, Any] = ("ok", render_pdf(view=pickle.loads(data)))
+                reply: tuple[str, Any] = ("ok", html_to_pdf(data.decode("utf-8")))
             except BaseException as exc:  # reported to the parent, which renders
                 reply = ("error", f"{type(exc).__name__}: {exc}")
             _write_all(replies, pickle.dumps(reply, protocol=pickle.HIGHEST_PROTOCOL))
@@ -91,16 +88,16 @@ def _child(requests: int, replies: int) -> None:
 class PdfWorker:
     """A forked child that renders one PDF (see the module docstring).
 
-    Use :meth:`start`; then :meth:`submit` the view, :meth:`result` for the bytes, and
+    Use :meth:`start`; then :meth:`submit` the HTML, :meth:`result` for the bytes, and
     :meth:`stop` in a ``finally`` (harmless after :meth:`result`).
     """
 
     def __init__(self, pid: int, requests: int, replies: int) -> None:
         self.pid = pid
-        self._requests: int | None = requests  # parent → child (the view)
+        self._requests: int | None = requests  # parent → child (the HTML)
         self._replies: int | None = replies  # child → parent (the PDF)
         self.error = ""  # why the worker gave no PDF (for tests and SCANPLAN_DEBUG)
-        self._sender: threading.Thread | None = None  # writes the view (submit)
+        self._sender: threading.Thread | None = None  # writes the HTML (submit)
 
     @classmethod
     def start(cls) -> PdfWorker | None:
@@ -137,29 +134,25 @@ class PdfWorker:
         os.close(rep_w)
         return cls(pid, req_w, rep_r)
 
-    def submit(self, view: Any) -> bool:
-        """Send the report's view to the child.
+    def submit(self, html: str) -> bool:
+        """Send the report's HTML to the child.
 
         Parameters
         ----------
-        view : ReportView
-            The view of the result (pickled: the child renders it).
+        html : str
+            The report (:func:`scanplan.reports.pdfhtml.render_html`).
 
         Returns
         -------
         bool
-            False when the view could not be sent (the caller renders in-process).
+            False when it could not be sent (not a text, or the child is gone before it
+            was asked: the caller renders in-process).
         """
         if self._requests is None:
             return False
-        # the plots are drawn here, while the child still imports WeasyPrint, and travel
-        # with the view (drawn once: ReportView.plot keeps them)
-        draw = getattr(view, "draw_plots", None)  # not a view: the child reports it
-        if draw is not None:
-            draw()
         try:
-            data = pickle.dumps(view, protocol=pickle.HIGHEST_PROTOCOL)
-        except Exception as exc:  # unpicklable
+            data = html.encode("utf-8")
+        except (AttributeError, UnicodeError) as exc:  # not a str; lone surrogates
             self.error = f"{type(exc).__name__}: {exc}"
             self.stop()
             return False

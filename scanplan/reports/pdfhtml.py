@@ -1,0 +1,246 @@
+"""The PDF report as HTML: the jinja2 templates of ``templates/`` filled from a result's view.
+
+:func:`render_html` is everything of the report but the rendering to PDF
+(:mod:`.pdfrender`, WeasyPrint); it imports no WeasyPrint, so the process that plans can
+write the HTML while another imports the renderer (:mod:`.pdfworker`). Templates are
+autoescaped, so user text (project, customer, ...) is always shown as text.
+"""
+
+from __future__ import annotations
+
+import functools
+import re
+from typing import TYPE_CHECKING, Any
+
+import jinja2
+from markupsafe import Markup
+
+from .._version import __version__
+from ..messages import localize
+from ..project.api import ScanJob, UavJob
+from . import ReportMeta, templates_dir
+from .design import design_view
+from .labels import LABELS
+from .pdf_sections import (  # noqa: F401  (_object_name: tests)
+    _comparison_view,
+    _Fmt,
+    _object_name,
+    _scan_view,
+    _spec_view,
+    _uav_view,
+)
+from .references import Bibliography
+from .view import ReportView, build_view, svg_data_uri
+from .wording import document_date
+
+if TYPE_CHECKING:
+    from ..project.spec import PlanResult
+
+__all__ = ["render_html"]
+
+_DEFAULT_META = ReportMeta()
+
+_RUNNING_HEADER_CHARS = 60
+
+
+def _shorten(text: str, limit: int) -> str:
+    """``text`` cut to ``limit`` characters with an ellipsis (for the running header)."""
+    return text if len(text) <= limit else text[:limit - 1].rstrip() + "…"
+
+
+def _css_string(text: str) -> str:
+    """``text`` as a CSS string literal (quotes, backslashes and ``<`` escaped)."""
+    out = []
+    for ch in text:
+        if ch in '"\\<>\n\r' or ord(ch) < 32:
+            out.append(f"\\{ord(ch):X} ")
+        else:
+            out.append(ch)
+    return '"' + "".join(out) + '"'
+
+
+# ---------------------------------------------------------------------------------------
+# Rendering
+# ---------------------------------------------------------------------------------------
+
+
+_LONG_RUN = re.compile(r"[^\s\u200b]{30}(?=[^\s\u200b])")
+
+
+def _breakable(value: Any) -> Any:
+    """Every ``{{ value }}`` of the templates: a run of 30+ characters without a space gets
+    zero-width spaces, so a table cell can wrap it (``overflow-wrap: break-word``).
+
+    ``overflow-wrap: anywhere`` would do the same, but WeasyPrint's table layout is then
+    quadratic in the length of a cell's text (a 1,200-character object name of a norm set:
+    45 s). Markup (the footer CSS) and ``data:`` URIs (the plots) are left as they are.
+    """
+    if (isinstance(value, str) and len(value) > 30 and not isinstance(value, Markup)
+            and not value.startswith("data:")):
+        return _LONG_RUN.sub(lambda m: m.group() + "\u200b", value)
+    return value
+
+
+@functools.lru_cache(maxsize=1)
+def _environment() -> jinja2.Environment:
+    """The templates' environment (one per process: templates are compiled once)."""
+    env = jinja2.Environment(
+        loader=jinja2.FileSystemLoader(str(templates_dir())),
+        autoescape=jinja2.select_autoescape(["html", "htm", "xml"], default=True,
+                                            default_for_string=True),
+        undefined=jinja2.StrictUndefined, trim_blocks=True, lstrip_blocks=True,
+        keep_trailing_newline=True, finalize=_breakable)
+    return env
+
+
+def _terrain_plot(spec: Any, f: _Fmt) -> str | None:
+    """The heights-above-ground figure of a ``[terrain]`` plan (issue 12), else None."""
+    tr = getattr(getattr(spec, "uav", None), "terrain", None)
+    if tr is None or len(tr.layout.photos) == 0:
+        return None
+    from . import plots
+
+    limit = spec.uav.job.plan.max_height_m
+    return svg_data_uri(plots.terrain_svg(tr, limit, f.locale))
+
+
+def render_html(*, scan: ScanJob | None = None, uav: UavJob | None = None,
+                meta: ReportMeta = _DEFAULT_META, spec: PlanResult | None = None,
+                view: ReportView | None = None) -> str:
+    """The report as an HTML document (what :func:`render_pdf` hands to WeasyPrint).
+
+    Parameters
+    ----------
+    scan : ScanJob, optional
+        A film scan plan and its norm set.
+    uav : UavJob, optional
+        A UAV flight plan and its norm set.
+    meta : ReportMeta
+        Title and approval block, locale.
+    spec : PlanResult, optional
+        The specification of ``scanplan plan`` (shown first, after the title block).
+    view : ReportView, optional
+        The result's view (:func:`scanplan.reports.view.build_view`), shared with the
+        workbook; when given, ``scan``, ``uav``, ``meta`` and ``spec`` are taken from it.
+
+    Returns
+    -------
+    str
+        The HTML document; all user text escaped.
+
+    Raises
+    ------
+    ValueError
+        If neither ``scan`` nor ``uav`` is given, or the locale is unknown.
+    """
+    view = _view(scan, uav, meta, spec, view)
+    scan, uav, meta, spec = view.scan, view.uav, view.meta, view.spec
+    f = _Fmt(view, Bibliography(view.locale))
+    now = view.when
+    date = document_date(meta.date or now.date(), meta.locale)
+    if scan is not None and uav is not None:
+        title = f.label("pdf_title_plan")
+    elif scan is not None:
+        title = f.label("title_scan")
+    else:
+        title = f.label("title_uav")
+    if meta.locale == "ru":  # «Лист 2 / Листов 4»
+        footer = (f"{_css_string(f.label('sheet') + ' ')} counter(page) "
+                  f"{_css_string(' / ' + f.label('sheets_of') + ' ')} counter(pages)")
+    else:  # "Sheet 2 of 4"
+        footer = (f"{_css_string(f.label('sheet') + ' ')} counter(page) "
+                  f"{_css_string(' ' + f.label('sheets_of') + ' ')} counter(pages)")
+    scan_view = _scan_view(scan, f) if scan is not None else None
+    uav_view = _uav_view(uav, f) if uav is not None else None
+    if uav_view is not None:
+        uav_view["plot_terrain"] = _terrain_plot(spec, f)
+    spec_view = _spec_view(spec, f) if spec is not None else None
+    design = design_view(spec, f.locale, f.cite) if spec is not None else None
+    ctx = {
+        "lang": meta.locale, "title": title, "meta": meta, "date": date,
+        "running_project": _shorten(" ".join(meta.project.split()), _RUNNING_HEADER_CHARS),
+        "created": now.strftime("%Y-%m-%dT%H:%M:%SZ"),
+        "generator": f"scanplan {__version__}",
+        "footer_css": Markup(f"@page {{ @bottom-center {{ content: {footer}; }} }}"),
+        "L": _Labels(f),
+        "scan": scan_view,
+        "uav": uav_view,
+        # with a specification its own side-by-side table is shown; not this one as well
+        "comparison": (_comparison_view(scan, uav, f)
+                       if scan is not None and uav is not None
+                       and not (spec is not None and spec.comparison) else None),
+        "spec": spec_view,
+        "design": design,
+        "geo": _geo_views(spec, uav, meta.locale),
+        "warnings_box": _warnings_box(scan_view, uav_view, spec, f),
+        "references": f.bib.entries(),
+    }
+    return _environment().get_template("report.html").render(**ctx)
+
+
+def _geo_views(spec: PlanResult | None, uav: UavJob | None, locale: str
+               ) -> list[dict[str, Any]]:
+    """The map pages of issue 11 (:mod:`scanplan.reports.mapview`): the specification's
+    flight layouts, or the UAV job's; none without a layout."""
+    from .exports import view_of
+    from .mapview import geo_views
+
+    view = view_of(spec, uav)
+    return geo_views(view, locale) if view is not None else []
+
+
+def _view(scan: ScanJob | None, uav: UavJob | None, meta: ReportMeta,
+          spec: PlanResult | None, view: ReportView | None) -> ReportView:
+    """The given view, or one built from the jobs (checked as the PDF needs them)."""
+    if view is not None:
+        return view
+    if scan is None and uav is None:
+        raise ValueError("give a scan plan, a UAV plan or both")
+    if meta.locale not in ("en", "ru"):
+        raise ValueError(f"locale must be 'en' or 'ru' (got {meta.locale!r})")
+    return build_view(scan=scan, uav=uav, meta=meta, spec=spec)
+
+
+def _warnings_box(scan_view: Any, uav_view: Any, spec: PlanResult | None,
+                  f: _Fmt) -> list[str]:
+    """Every warning in short form for page 1 (an approver sees them before signing): one
+    line per kind of warning, with all the photo scales it concerns (as the workbook's
+    box lists them)."""
+    scales: dict[str, list[str]] = {}  # heading → photo scales, in order
+    times: dict[str, int] = {}  # heading → warnings without a photo scale under it
+    for view in (scan_view, uav_view):
+        for w in view["warnings"] if view is not None else ():
+            head = w["heading"] or w["message"]
+            listed = scales.setdefault(head, [])
+            listed += [x for x in w["scale_list"] if x not in listed]
+            times[head] = times.get(head, 0) + (not w["scale_list"])
+    items = [h + (f": {', '.join(xs)}" if xs else "") for h, xs in scales.items()
+             for _ in range(1 if xs else max(times[h], 1))]
+    if spec is not None:
+        seen = {x["code"] for view in (scan_view, uav_view) if view
+                for x in view["warnings"]}
+        for w in spec.warnings:
+            if w.code not in seen:
+                key = f"pdf_warn_{w.code}"
+                items.append(f.label(key) if key in LABELS["en"] else localize(w.message,
+                                                                              f.locale))
+    counts: dict[str, int] = {}
+    for item in items:
+        counts[item] = counts.get(item, 0) + 1
+    return [f"{k} (×{n})" if n > 1 else k for k, n in counts.items()]
+
+
+class _Labels:
+    """``L.key`` / ``L('key', x=1)`` in templates: labels in the report's locale."""
+
+    def __init__(self, f: _Fmt) -> None:
+        self._f = f
+
+    def __getattr__(self, key: str) -> str:
+        try:
+            return self._f.label(key)
+        except KeyError:
+            raise AttributeError(key) from None
+
+    def __call__(self, key: str, **kw: Any) -> str:
+        return self._f.label(key, **kw)
