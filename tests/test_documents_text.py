@@ -521,3 +521,15 @@ def test_page_one_lists_each_kind_of_warning_once(example, locale):
 def test_page_one_groups_the_photo_scales_of_a_warning():
     items = _page_one_warnings(str(EXAMPLES[0].parent / "instruction-2000-film.toml"), "en")
     assert "P_R drives the data volume: 1:6,000, 1:8,000" in items, items
+
+
+@pytest.mark.parametrize("locale", LOCALES)
+def test_page_one_says_why_the_valley_plan_was_lowered(locale):
+    """Over the valley the plan is lowered from 135 m to 70 m: page 1 names the finding at
+    135 m as the reason for the lowering, not as a fault of the plan that is flown."""
+    from scanplan.reports.labels import LABELS
+
+    items = _page_one_warnings(str(EXAMPLES[0].parent / "uav-town-valley-2000.toml"), locale)
+    assert LABELS[locale]["pdf_warn_terrain_resolution_lowered"] in items, items
+    assert LABELS[locale]["pdf_warn_terrain_resolution"] not in items, items
+    assert LABELS[locale]["pdf_warn_height_lowered"] in items, items

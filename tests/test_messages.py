@@ -284,6 +284,13 @@ def emitted(tmp_path_factory) -> dict[str, list[Any]]:
         "plan sun short": uav_toml + ("\n[site]\nlat_deg = 60\nlon_deg = 30\n[schedule]\n"
                                       "start_date = 2025-06-01\nend_date = 2025-06-01\n"
                                       "turnaround_min = 600\n"),
+        # the valley flown per strip and following the terrain: the height the plan was
+        # lowered from, and how to fly higher in that mode
+        **{f"plan valley {mode}": (EXAMPLES / "uav-town-valley-2000.toml").read_text(
+            encoding="utf-8").replace('altitude_mode = "constant"', f'altitude_mode = "{mode}"')
+           .replace('dem = "dem/', f'dem = "{(EXAMPLES / "dem").as_posix()}/')
+           .replace('file = "areas/', f'file = "{(EXAMPLES / "areas").as_posix()}/')
+           for mode in ("strip", "follow")},
         # an area planned far out of its projection's zone
         "plan area out of its zone": (EXAMPLES / "uav-town-2000.toml").read_text(
             encoding="utf-8").replace('file = "areas/town-uav.kml"',

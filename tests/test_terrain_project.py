@@ -55,6 +55,12 @@ def test_the_valley_shows_what_flat_ground_misses(valley):
     miss = next(w for w in valley.warnings if w.code == "terrain_resolution")
     assert "at a planned height of 135 m" in miss.message and "HC" in miss.message
     assert "altitude_mode" in miss.message  # the remedy names the key
+    # said as why the height was lowered, not as a fault of the plan that is flown
+    assert miss.severity == "info" and miss.message.code == "terrain_resolution_lowered"
+    assert "therefore flown lower" in miss.message and "To fly higher" in miss.message
+    assert "lower the planned height" not in miss.message
+    ru = miss.message.text("ru")
+    assert "Поэтому высота снижена" in ru and "Чтобы лететь выше" in ru and "135" in ru
     w = next(w for w in valley.warnings if w.code == "height_lowered")
     assert w.message.code == "terrain_height_lowered"
     assert "HC" in w.message and "reference ground" in w.message

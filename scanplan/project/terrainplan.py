@@ -147,8 +147,22 @@ def uav_terrain_spec(project: Project, cfg: TerrainConfig, job: UavJob,
     res = replace(res, layout=layout)
     warnings = res.warnings
     if rec is not None and planned_m is not None:  # what the height asked for would miss
-        warnings = tuple(w for w in first.warnings if w.code == "terrain_resolution") + warnings
+        warnings = _missed_at_planned(first.warnings, cfg.altitude_mode) + warnings
     return replace(job, layout=layout), res, rec, reason, warnings
+
+
+def _missed_at_planned(checked: tuple[PlanWarning, ...], mode: str
+                       ) -> tuple[PlanWarning, ...]:
+    """The ``terrain_resolution`` finding of the height the plan was lowered from, said as
+    the reason it was lowered (a note: the lowering is the ``height_lowered`` warning), with
+    the ways to fly higher instead of "lower the planned height"."""
+    out = []
+    for w in checked:
+        if w.code == "terrain_resolution" and isinstance(w.message, Message):
+            params = {k: v for k, v in w.message.params.items() if k != "remedy"}
+            out.append(replace(w, severity="info", message=Message(
+                "terrain_resolution_lowered", params, remedy=Message(f"terrain_higher.{mode}"))))
+    return tuple(out)
 
 
 def film_terrain_spec(project: Project, cfg: TerrainConfig, layout: FlightLayout,

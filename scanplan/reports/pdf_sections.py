@@ -24,7 +24,7 @@ from ..rules.uav import UavPlan
 from .design import relief_max_height_m
 from .labels import LABELS
 from .references import Bibliography
-from .view import ReportView
+from .view import ReportView, warning_heading_key
 from .wording import (
     camera_title,
     display_message,
@@ -122,8 +122,8 @@ def _after_heading(message: str, heading: str) -> str:
 def _warnings(ws: Any, f: _Fmt, ns: NormSet | None = None) -> list[dict[str, Any]]:
     out = []
     for w in ws:
-        key = f"pdf_warn_{w.code}"
-        heading = f.label(key) if key in LABELS["en"] else ""
+        key = warning_heading_key(w)
+        heading = f.label(key) if key else ""
         scale_list = [f.scale(x) for x in getattr(w, "photo_scales", ()) or ()]
         out.append({"code": w.code, "severity": w.severity, "heading": heading,
                     "scales": ", ".join(scale_list), "scale_list": scale_list,

@@ -20,7 +20,6 @@ from ..messages import localize
 from ..project.api import ScanJob, UavJob
 from . import ReportMeta, templates_dir
 from .design import design_view
-from .labels import LABELS
 from .pdf_sections import (  # noqa: F401  (_object_name: tests)
     _comparison_view,
     _Fmt,
@@ -30,7 +29,7 @@ from .pdf_sections import (  # noqa: F401  (_object_name: tests)
     _uav_view,
 )
 from .references import Bibliography
-from .view import ReportView, build_view, svg_data_uri
+from .view import ReportView, build_view, svg_data_uri, warning_heading_key
 from .wording import document_date
 
 if TYPE_CHECKING:
@@ -221,9 +220,8 @@ def _warnings_box(scan_view: Any, uav_view: Any, spec: PlanResult | None,
                 for x in view["warnings"]}
         for w in spec.warnings:
             if w.code not in seen:
-                key = f"pdf_warn_{w.code}"
-                items.append(f.label(key) if key in LABELS["en"] else localize(w.message,
-                                                                              f.locale))
+                key = warning_heading_key(w)
+                items.append(f.label(key) if key else localize(w.message, f.locale))
     counts: dict[str, int] = {}
     for item in items:
         counts[item] = counts.get(item, 0) + 1

@@ -340,3 +340,26 @@ def build_view(*, scan: ScanJob | None = None, uav: UavJob | None = None,
                       locale=locale, platform=platform, numbers=Numbers(locale),
                       labels=Labels(locale, platform),
                       sections=section_names(scan, uav, spec))
+
+
+def warning_heading_key(warning: Any) -> str | None:
+    """The label key of a warning's short heading (page 1, the Warnings sheet): its
+    message's own where the finding is said another way (``terrain_resolution`` said as why
+    the height was lowered: ``pdf_warn_terrain_resolution_lowered``), else its code's; None
+    when it has neither.
+
+    Parameters
+    ----------
+    warning : PlanWarning
+        A warning with ``code`` and ``message``.
+
+    Returns
+    -------
+    str or None
+        ``"pdf_warn_<code>"``.
+    """
+    said = getattr(getattr(warning, "message", None), "code", None)
+    for key in (f"pdf_warn_{said}", f"pdf_warn_{warning.code}"):
+        if key in LABELS["en"]:
+            return key
+    return None

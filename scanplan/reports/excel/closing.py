@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Any
 from openpyxl.styles import Alignment
 from openpyxl.worksheet.worksheet import Worksheet
 
-from ..labels import LABELS
+from ..view import warning_heading_key
 from ..wording import (
     object_title,
     param_name,
@@ -52,8 +52,8 @@ def _warning_items(book: Book, scan: ScanJob | None, uav: UavJob | None,
 
 
 def _heading(book: Book, w: PlanWarning) -> str:
-    key = f"pdf_warn_{w.code}"
-    return book.t(key) if key in LABELS["en"] else ""
+    key = warning_heading_key(w)
+    return book.t(key) if key else ""
 
 
 def _warning_lines(book: Book, scan: ScanJob | None, uav: UavJob | None,
