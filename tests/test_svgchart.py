@@ -1,7 +1,8 @@
-"""The report's line charts are SVG written directly (scanplan/reports/svgchart.py), not
-matplotlib (issue 15, fast reports): round ticks, broken lines at gaps, escaped text, the
-same bytes every time, a glyph width table that is the bundled font's, nothing of the
-plots' legends and annotations lost, and no matplotlib imported by a plan without a map."""
+"""The report's line charts are SVG written directly (scanplan/reports/svgchart.py and
+chartscale.py), not by matplotlib (issue 15, fast reports): round ticks, broken lines at
+gaps, escaped text, the same bytes every time, a glyph width table that is the bundled
+font's, nothing of the plots' legends and annotations lost, and no matplotlib imported by
+a plan without a map."""
 
 from __future__ import annotations
 
@@ -17,16 +18,19 @@ import pytest
 from scanplan.project.file import load_project
 from scanplan.project.spec import plan_project
 from scanplan.reports import plots
-from scanplan.reports.labels import t
-from scanplan.reports.svgchart import (
+from scanplan.reports.chartscale import (
     ADVANCE,
+    ASCENT_EM,
+    CAP_EM,
+    DESCENT_EM,
     UNITS_PER_EM,
-    Chart,
     estimate_width_pt,
     log_ticks,
     nice_ticks,
     text_width_pt,
 )
+from scanplan.reports.labels import t
+from scanplan.reports.svgchart import Chart
 from scanplan.reports.view import Numbers
 from scanplan.rules.registry import CONSTRAINTS
 
@@ -167,6 +171,11 @@ def test_the_width_table_is_the_bundled_font():
     font = ttlib.TTFont(str(FONT))
     cmap, hmtx = font.getBestCmap(), font["hmtx"]
     assert font["head"].unitsPerEm == UNITS_PER_EM
+    assert (font["hhea"].ascent / UNITS_PER_EM, -font["hhea"].descent / UNITS_PER_EM) == (
+        ASCENT_EM, DESCENT_EM)
+    glyf = font["glyf"]
+    for ch in "H147":  # a capital and the flat-topped digits (round ones overshoot 2 %)
+        assert glyf[cmap[ord(ch)]].yMax / UNITS_PER_EM == CAP_EM, ch
     for ch, width in ADVANCE.items():
         assert hmtx[cmap[ord(ch)]][0] == width, repr(ch)
 

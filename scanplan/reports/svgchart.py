@@ -8,10 +8,10 @@ it never covers a curve.
 
 The layout measures no arbitrary text. Tick labels are digits, separators and signs, whose
 advance widths in the report's font (DejaVu Sans, bundled as ``Scanplan Sans``,
-templates/fonts) are held in a small table (:data:`ADVANCE`, checked against the font by
-the tests): the left margin is the widest y tick label, x tick labels never collide. The
+templates/fonts) are held in a small table (:data:`.chartscale.ADVANCE`, checked against
+the font by the tests): the left margin is the widest y tick label, x tick labels never collide. The
 legend's columns are sized by a generous estimate of the labels' widths
-(:func:`estimate_width_pt`, checked in the tests to be at least the real width of every
+(:func:`.chartscale.estimate_width_pt`, checked in the tests to be at least the real width of every
 label of the report's plots).
 
 The output is deterministic (same input, same bytes): coordinates rounded to 0.01 pt, no
@@ -26,6 +26,16 @@ from collections.abc import Iterable, Sequence
 from itertools import pairwise
 from typing import Any
 
+from .chartscale import (
+    ADVANCE,
+    ASCENT_EM,
+    CAP_EM,
+    DESCENT_EM,
+    estimate_width_pt,
+    log_ticks,
+    nice_ticks,
+    text_width_pt,
+)
 from .view import Numbers
 
 __all__ = ["ADVANCE", "Chart", "Panel", "estimate_width_pt", "log_ticks", "nice_ticks",
@@ -33,19 +43,6 @@ __all__ = ["ADVANCE", "Chart", "Panel", "estimate_width_pt", "log_ticks", "nice_
 
 FONT_FAMILY = "Scanplan Sans"
 WIDTH_PT = 475.2  # 6.6 in, as the figures were
-UNITS_PER_EM = 2048
-#: Advance widths [font units, 2048 per em] of the glyphs a tick label can hold, in DejaVu
-#: Sans (templates/fonts/DejaVuSans.ttf, table ``hmtx``): every digit has the same width.
-ADVANCE: dict[str, int] = {**dict.fromkeys("0123456789", 1303), ".": 651, ",": 651,
-                           "-": 739, "\u2212": 1716, "+": 1716, " ": 651, "\u00a0": 651,
-                           "e": 1260}
-_CAP_EM = 1493 / UNITS_PER_EM  # height of a digit or a capital
-_ASCENT_EM, _DESCENT_EM = 1901 / UNITS_PER_EM, 483 / UNITS_PER_EM
-#: Bounds of the glyph widths of Latin and Cyrillic labels in DejaVu Sans: the widest
-#: letters and signs (up to 1.1 em), capitals and the broad signs (up to 0.84 em); every
-#: other letter, space or punctuation is at most 0.7 em (checked by the tests)
-_WIDE = frozenset("mwMWщшжфюЩЮЖШЫМФ…—@%")
-_BROAD = frozenset("ыъмЪ=+<>≤≥×±~−#&^")
 
 TICK_PT, LABEL_PT, LEGEND_PT = 7.0, 8.0, 7.0
 TICK_LEN_PT, TICK_PAD_PT = 3.5, 3.5
@@ -54,7 +51,6 @@ SPINE_WIDTH_PT = 0.8
 _PAD_PT = 4.0  # between the figure's edge and its outermost text
 _DASHES = {"-": None, "solid": None, "--": (3.7, 1.6), ":": (1.0, 1.65),
            "-.": (6.4, 1.6, 1.0, 1.6)}  # in line widths (as matplotlib scales them)
-_STEPS = (1.0, 2.0, 2.5, 5.0)
 
 
 def escape(text: str) -> str:
@@ -67,124 +63,6 @@ def _n(v: float) -> str:
     """A coordinate with at most two decimals, no trailing zeros (deterministic)."""
     text = f"{v:.2f}".rstrip("0").rstrip(".")
     return "0" if text in ("-0", "") else text
-
-
-def text_width_pt(text: str, size_pt: float) -> float:
-    """The exact width [pt] of a tick label (digits, separators, signs) at ``size_pt``;
-    a glyph outside :data:`ADVANCE` counts as one em (an upper bound).
-
-    Parameters
-    ----------
-    text : str
-        The label, e.g. ``"10\\u00a0000"`` or ``"0,25"``.
-    size_pt : float
-        Font size [pt].
-
-    Returns
-    -------
-    float
-        The width [pt].
-    """
-    return sum(ADVANCE.get(c, UNITS_PER_EM) for c in text) * size_pt / UNITS_PER_EM
-
-
-def estimate_width_pt(text: str, size_pt: float) -> float:
-    """A generous estimate of the width [pt] of a label at ``size_pt``: the exact width
-    of digits and separators, and for each other glyph a bound of its class (1.1 em for
-    the widest letters and dashes, 0.84 em for capitals and broad signs, 0.7 em for any
-    other letter or punctuation; DejaVu Sans lowercase letters are mostly 0.28–0.64 em).
-
-    Parameters
-    ----------
-    text : str
-        The label.
-    size_pt : float
-        Font size [pt].
-
-    Returns
-    -------
-    float
-        An upper bound of the width [pt] (the tests check it against the font).
-    """
-    em = sum(ADVANCE[c] / UNITS_PER_EM if c in ADVANCE else 1.1 if c in _WIDE
-             else 0.84 if c in _BROAD or c.isupper() else 0.7 for c in text)
-    return em * size_pt
-
-
-def nice_ticks(lo: float, hi: float, max_bins: int = 9, *,
-               integer: bool = False) -> list[float]:
-    """Round ticks within [lo, hi]: steps of 1, 2, 2.5 or 5 × 10^k, the smallest step
-    that needs at most ``max_bins`` intervals (matplotlib's ``MaxNLocator``).
-
-    Parameters
-    ----------
-    lo, hi : float
-        The axis limits (any unit).
-    max_bins : int
-        The most intervals between ticks, counting those reaching past the limits.
-    integer : bool
-        Whole steps only (1, 2, 5 × 10^k, at least 1): a count such as strip numbers.
-
-    Returns
-    -------
-    list of float
-        The ticks, ascending; ``[lo]`` for an empty range, ``[]`` for a non-finite one.
-
-    Examples
-    --------
-    >>> nice_ticks(0, 78)
-    [0.0, 10.0, 20.0, 30.0, 40.0, 50.0, 60.0, 70.0]
-    >>> nice_ticks(0, 0.0845)[-1]
-    0.08
-    """
-    if not (math.isfinite(lo) and math.isfinite(hi)):
-        return []
-    if hi < lo:
-        lo, hi = hi, lo
-    span = hi - lo
-    if span <= abs(hi) * 1e-12 or span == 0:
-        return [float(lo)]
-    max_bins = max(1, max_bins)
-    base = 10.0 ** math.floor(math.log10(span / max_bins))
-    mantissas = (1.0, 2.0, 5.0) if integer else _STEPS
-    steps = [m * base * 10.0 ** j for j in range(3) for m in mantissas]
-    if integer:  # whole steps: 1, 2, 5, 10, …
-        steps = [1.0] + [s for s in steps if s > 1]
-    eps = 1e-9
-
-    def ticks_of(step: float) -> tuple[int, list[float]]:
-        first, last = math.floor(lo / step + eps), math.ceil(hi / step - eps)
-        ticks = (float(f"{k * step:.12g}") for k in range(first, last + 1))
-        return last - first, [v for v in ticks if lo - eps * span <= v <= hi + eps * span]
-
-    pick = next((i for i, step in enumerate(steps) if ticks_of(step)[0] <= max_bins),
-                len(steps) - 1)
-    # at least two ticks within the range (matplotlib's min_n_ticks): a smaller step
-    while pick > 0 and len(ticks_of(steps[pick])[1]) < 2:
-        pick -= 1
-    return ticks_of(steps[pick])[1]
-
-
-def log_ticks(lo: float, hi: float) -> list[float]:
-    """1-2-5 ticks covering [lo, hi] (for short log axes), a little past both ends.
-
-    Parameters
-    ----------
-    lo, hi : float
-        The data range, both positive.
-
-    Returns
-    -------
-    list of float
-        E.g. ``[0.05, 0.1, 0.2, 0.5, 1.0]`` for 0.06 … 0.9.
-    """
-    out = []
-    for e in range(math.floor(math.log10(lo)) - 1, math.ceil(math.log10(hi)) + 1):
-        for m in (1, 2, 5):
-            v = m * 10.0 ** e
-            if lo / 1.3 <= v <= hi * 1.3:
-                out.append(float(f"{v:.12g}"))
-    return out
 
 
 def _finite(v: Any) -> bool:
@@ -578,9 +456,9 @@ class Chart:
         widest = max((text_width_pt(s, TICK_PT) for ts in yticks for _, s in ts), default=0)
         ylabels = [_wrap(p.y.label, h) for p, h in zip(panels, heights, strict=True)]
         nlines = max(len(lines) for lines in ylabels)
-        ylabel_x = _PAD_PT + _ASCENT_EM * LABEL_PT
+        ylabel_x = _PAD_PT + ASCENT_EM * LABEL_PT
         line_pt = 1.15 * LABEL_PT
-        left = (ylabel_x + (nlines - 1) * line_pt + _DESCENT_EM * LABEL_PT + 4.0
+        left = (ylabel_x + (nlines - 1) * line_pt + DESCENT_EM * LABEL_PT + 4.0
                 if nlines else _PAD_PT)
         left += widest + TICK_PAD_PT + TICK_LEN_PT
         width, xticks = self._x_layout(xaxis, xlim, left)
@@ -590,12 +468,12 @@ class Chart:
             frames.append(_Frame(p, xlim, left, top, width, h))
             top += h + gap_pt
         plot_bottom = frames[-1].top + frames[-1].h
-        xtick_base = plot_bottom + TICK_LEN_PT + TICK_PAD_PT + _CAP_EM * TICK_PT
-        y = xtick_base + _DESCENT_EM * TICK_PT if xticks else plot_bottom + TICK_LEN_PT
+        xtick_base = plot_bottom + TICK_LEN_PT + TICK_PAD_PT + CAP_EM * TICK_PT
+        y = xtick_base + DESCENT_EM * TICK_PT if xticks else plot_bottom + TICK_LEN_PT
         xlabel_base = None
         if xaxis.label:
-            xlabel_base = y + 3.0 + _ASCENT_EM * LABEL_PT
-            y = xlabel_base + _DESCENT_EM * LABEL_PT
+            xlabel_base = y + 3.0 + ASCENT_EM * LABEL_PT
+            y = xlabel_base + DESCENT_EM * LABEL_PT
         entries = [e for p in panels for e in p.legend]
         col_w, legend_left = self._legend_place(entries, left)
         rows = math.ceil(len(entries) / len(col_w)) if col_w else 0
@@ -675,7 +553,7 @@ class Chart:
         minor = self._minor(f)
         if minor:
             out.append(f'<path d="{minor}" fill="none" stroke="#000000" stroke-width="0.6"/>')
-        base = bottom + TICK_LEN_PT + TICK_PAD_PT + _CAP_EM * TICK_PT
+        base = bottom + TICK_LEN_PT + TICK_PAD_PT + CAP_EM * TICK_PT
         if labels:
             last_end = -math.inf
             for v, s in xticks:
@@ -686,7 +564,7 @@ class Chart:
                 out.append(_text(x, base, s, TICK_PT, anchor="middle"))
         for v, s in yticks:
             out.append(_text(left - TICK_LEN_PT - TICK_PAD_PT,
-                             f.py(v) + _CAP_EM * TICK_PT / 2, s, TICK_PT, anchor="end"))
+                             f.py(v) + CAP_EM * TICK_PT / 2, s, TICK_PT, anchor="end"))
         out.append("</g>")
         return out
 
@@ -740,7 +618,7 @@ class Chart:
             return []
         px = f.px(x) + dx
         at = f.top + f.h * (1 - y) if y_axes else f.py(y)
-        shift = _CAP_EM * size / 2 if middle else 0.0
+        shift = CAP_EM * size / 2 if middle else 0.0
         if rotation:
             # the baseline shift runs across the rotated text
             r = math.radians(rotation)
@@ -750,7 +628,7 @@ class Chart:
         x0 = px - (w / 2 if anchor == "middle" else w if anchor == "end" else 0.0)
 
         def box(base: float) -> tuple[float, float, float, float]:
-            return (x0, x0 + w, base - _CAP_EM * size, base + _DESCENT_EM * size)
+            return (x0, x0 + w, base - CAP_EM * size, base + DESCENT_EM * size)
 
         def clear(b: tuple[float, float, float, float]) -> bool:
             return all(b[1] <= o[0] or o[1] <= b[0] or b[3] <= o[2] or o[3] <= b[2]
@@ -758,7 +636,7 @@ class Chart:
 
         base = at + dy + shift
         if not clear(box(base)):
-            other = at - dy + shift + (_CAP_EM * size if dy > 0 else -_CAP_EM * size)
+            other = at - dy + shift + (CAP_EM * size if dy > 0 else -CAP_EM * size)
             if not dy or not clear(box(other)):
                 return []  # no room on either side: left out rather than overprinted
             base = other
@@ -780,5 +658,5 @@ class Chart:
                 out.append(f'<rect x="{_n(x)}" y="{_n(mid - 3.5)}" width="20" height="7" '
                            f'fill="{colour}" fill-opacity="{_n(alpha)}" stroke="{colour}" '
                            f'stroke-width="0.6"/>')
-            out.append(_text(x + 24, mid + _CAP_EM * LEGEND_PT / 2, label, LEGEND_PT))
+            out.append(_text(x + 24, mid + CAP_EM * LEGEND_PT / 2, label, LEGEND_PT))
         return out
