@@ -6,7 +6,7 @@ order), the labels of that language (:class:`Labels`, the one catalogue of
 :mod:`.labels`), the number formatter of that language (:class:`Numbers`: decimal comma
 and no-break-space thousands in Russian), the warnings as rows, and the plots as SVG —
 drawn on first use and kept, so a workbook, an HTML page and a PDF of one result share
-them and matplotlib is imported only when a plot is asked for. The renderers (terminal
+them (SVG written directly, :mod:`.svgchart`: no plotting library). The renderers (terminal
 text, Excel, PDF; the JSON document needs no locale) lay out what the view holds; they
 never recompute a number.
 
@@ -281,7 +281,7 @@ class ReportView:
             A deterministic SVG (:mod:`scanplan.reports.plots`).
         """
         if name not in self._plots:
-            from . import plots  # matplotlib only when a plot is drawn
+            from . import plots
 
             svg: Callable[[Any, str], str] = getattr(plots, f"{name}_svg")
             self._plots[name] = svg(self._job(PLOT_JOBS[name]).plan, self.locale)
