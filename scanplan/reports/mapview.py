@@ -25,7 +25,29 @@ import numpy as np
 from ..geo.layout import FlightLayout
 from . import exports as _exports
 from .labels import t
-from .plots import _RC, number
+from .plots import number
+
+#: matplotlib's style of the map page (the one figure still drawn with it): deterministic
+#: SVG, text as text, the same font, sizes and grid as the line charts
+#: (:mod:`scanplan.reports.svgchart`)
+_RC: dict[str, Any] = {
+    "svg.hashsalt": "scanplan",
+    "svg.fonttype": "none",
+    "font.family": "DejaVu Sans",
+    "font.size": 8.0,
+    "axes.titlesize": 8.5,
+    "axes.labelsize": 8.0,
+    "legend.fontsize": 7.0,
+    "xtick.labelsize": 7.0,
+    "ytick.labelsize": 7.0,
+    "axes.grid": True,
+    "grid.color": "#d8d8d8",
+    "grid.linewidth": 0.5,
+    "axes.spines.top": False,
+    "axes.spines.right": False,
+    "path.simplify": False,
+}
+
 
 if TYPE_CHECKING:  # matplotlib is imported when a map is drawn (the workbook draws none)
     from matplotlib.figure import Figure

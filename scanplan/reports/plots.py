@@ -21,26 +21,6 @@ from .view import Numbers
 
 __all__ = ["constraints_svg", "height_svg", "mtf_svg", "number", "terrain_svg"]
 
-#: matplotlib's style of the figures still drawn with it (the map page,
-#: :mod:`scanplan.reports.mapview`, imports it): deterministic SVG, text as text, the same
-#: font, sizes and grid as the charts here
-_RC: dict[str, Any] = {
-    "svg.hashsalt": "scanplan",
-    "svg.fonttype": "none",
-    "font.family": "DejaVu Sans",
-    "font.size": 8.0,
-    "axes.titlesize": 8.5,
-    "axes.labelsize": 8.0,
-    "legend.fontsize": 7.0,
-    "xtick.labelsize": 7.0,
-    "ytick.labelsize": 7.0,
-    "axes.grid": True,
-    "grid.color": "#d8d8d8",
-    "grid.linewidth": 0.5,
-    "axes.spines.top": False,
-    "axes.spines.right": False,
-    "path.simplify": False,
-}
 _COLOURS = {"PS": "#1f77b4", "PZ": "#d62728", "PP": "#2ca02c", "PR": "#9467bd",
             "PD": "#ff7f0e"}
 #: colours of further constraints, in turn (matplotlib's cycle, the ones above left out)
