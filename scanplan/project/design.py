@@ -252,34 +252,21 @@ def _date(project: Project, key: str) -> dt.date | None:
     return dt.date.fromisoformat(value)
 
 
-def _number_in(project: Project, section: str, key: str, lo: float, hi: float,
-               default: float | None, what: str, *, lo_open: bool = False) -> float | None:
-    value = project.get(section, key, default)
-    if value is None:
-        return None
-    v = float(value)
-    if v < lo or v > hi or (lo_open and v == lo):
-        low = f"> {lo:g}" if lo_open else f"≥ {lo:g}"
-        raise InputError(_where(project, section, key), f"must be {low} and ≤ {hi:g} {what} "
-                         f"(got {value!r})")
-    return v
-
-
 def _sun(project: Project, film: FilmSpec | None, uav: UavSpec | None
          ) -> tuple[SunPlan | None, list[PlanWarning]]:
-    lat = _number_in(project, "site", "lat_deg", -90, 90, None, "°")
-    lon = _number_in(project, "site", "lon_deg", -180, 180, None, "°")
+    lat = project.number("site", "lat_deg", -90, 90, None, "°")
+    lon = project.number("site", "lon_deg", -180, 180, None, "°")
     layout = layout_of(uav) or layout_of(film)
     centroid = layout_site(layout)
     if lat is None and lon is None and centroid is not None:  # [area] polygon: its centroid
         lat, lon = centroid
-    offset = _number_in(project, "schedule", "utc_offset_h", -12, 14, None, "h")
-    elev = _number_in(project, "schedule", "min_sun_elevation_deg", 0, 89.9, None, "°")
+    offset = project.number("schedule", "utc_offset_h", -12, 14, None, "h")
+    elev = project.number("schedule", "min_sun_elevation_deg", 0, 89.9, None, "°")
     platform = uav.job.plan.inputs.platform if uav is not None else "aircraft"
     sortie_d, turn_d = SORTIE_DEFAULTS_MIN.get(platform, SORTIE_DEFAULTS_MIN["uav"])
     # the one sortie length, the layout's too (scanplan.project.sorties)
     sortie = sortie_length(project, platform).minutes or sortie_d
-    turn = _number_in(project, "schedule", "turnaround_min", 0, 1440, turn_d, "min")
+    turn = project.number("schedule", "turnaround_min", 0, 1440, turn_d, "min")
     assert sortie is not None and turn is not None
     start = _date(project, "start_date")
     if start is None or lat is None or lon is None:

@@ -86,6 +86,31 @@ class Project:
         line = self.lines.get(dotted) or self.lines.get(section)
         return f"{dotted} (line {line})" if line else dotted
 
+    def number(self, section: str, key: str, lo: float, hi: float, default: float | None = None,
+               unit: str = "", *, lo_open: bool = False, meaning: str = "") -> float | None:
+        """``values[section][key]`` (or ``default``) as a number within ``[lo, hi]``
+        (``(lo, hi]`` with ``lo_open``); None when it is absent and there is no default.
+
+        The file's loader has already checked it is a finite number; this is the range the
+        planner gives it meaning in.
+
+        Raises
+        ------
+        InputError
+            Naming the key with its line and the allowed range, e.g. ``schedule.
+            turnaround_min (line 12): must be ≥ 0 and ≤ 1440 min (got 2000)``.
+        """
+        value = self.get(section, key, default)
+        if value is None:
+            return None
+        v = float(value)
+        if v < lo or v > hi or (lo_open and v == lo):
+            low = f"> {lo:g}" if lo_open else f"≥ {lo:g}"
+            raise InputError(f"{self.path}: {self.where(section, key)}",
+                             f"must be {meaning + ' ' if meaning else ''}{low} and ≤ {hi:g}"
+                             f"{' ' + unit if unit else ''} (got {value!r})")
+        return v
+
 
 def _key_lines(text: str) -> dict[str, int]:
     """Line of each ``section.key`` and ``[section]`` header (plain TOML, no inline tables)."""

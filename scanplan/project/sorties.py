@@ -21,7 +21,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any
 
 from ..errors import InputError
 from .file import Project
@@ -55,17 +54,6 @@ class SortieLength:
     source: str
 
 
-def _value(project: Project, section: str, key: str) -> float | None:
-    value: Any = project.get(section, key)
-    if value is None:
-        return None
-    ok = isinstance(value, int | float) and not isinstance(value, bool)
-    if not ok or not math.isfinite(float(value)) or not 0 < float(value) <= MAX_SORTIE_MIN:
-        raise InputError(f"{project.path}: {project.where(section, key)}",
-                         f"must be a flight time in (0, {MAX_SORTIE_MIN:g}] min (got {value!r})")
-    return float(value)
-
-
 def sortie_length(project: Project, platform: str = "uav") -> SortieLength:
     """The one sortie length of ``project`` (see the module's rules).
 
@@ -91,7 +79,8 @@ def sortie_length(project: Project, platform: str = "uav") -> SortieLength:
     >>> sortie_length(Project("p.toml", "p", {"uav": {}}))
     SortieLength(minutes=None, source='')
     """
-    uav, schedule = (_value(project, s, k) for s, k in _KEYS)
+    uav, schedule = (project.number(s, k, 0, MAX_SORTIE_MIN, None, "min", lo_open=True,
+                                    meaning="a flight time") for s, k in _KEYS)
     if uav is not None and schedule is not None and not math.isclose(uav, schedule,
                                                                      rel_tol=1e-9):
         raise InputError(
