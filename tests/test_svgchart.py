@@ -385,3 +385,14 @@ def test_the_nyquist_label_stands_clear_of_the_curves(examples):
                 for p in root.iter(f"{SVG}polyline")]
         assert len(ends) == 2
         assert all(abs(y - e) > half for e in ends), (name, y, ends)
+
+
+@pytest.mark.parametrize(("locale", "expected"), [("en", ["6000", "8000", "10000"]),
+                                                  ("ru", ["6000", "8000", "10\u00a0000"])])
+def test_photo_scale_ticks_read_as_the_scales_in_the_text(locale, expected):
+    """The constraints plot labels its photo scales as every sentence and table writes
+    them (``1:10000``, ``1:10 000``): the denominator, not a grouped number (``10,000``)."""
+    plan = plan_project(load_project(ROOT / "examples" / "instruction-2000-film.toml")).film
+    svg = plots.constraints_svg(plan.job.plan, locale)
+    ticks = [x for x in _strings(svg) if x.replace("\u00a0", "").isdigit()]
+    assert ticks[:3] == expected

@@ -13,6 +13,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from ..messages import scale_text
 from ..rules.film import CONSTRAINTS, ScanPlan
 from ..rules.uav import UavPlan
 from .labels import t
@@ -96,7 +97,8 @@ def constraints_svg(plan: ScanPlan, locale: str = "en") -> str:
     ax.set_yscale("log")
     ax.set_xlim(min(xs), max(xs))
     # label the evaluated photo scales (1-2-5 ticks when many): log minor labels collide
-    ax.set_xticks(sorted(set(px)) if len(set(px)) <= 6 else log_ticks(min(xs), max(xs)))
+    ax.set_xticks(sorted(set(px)) if len(set(px)) <= 6 else log_ticks(min(xs), max(xs)),
+                  fmt=lambda x: scale_text(x, locale).removeprefix("1:"))  # as scales read
     ax.set_xlabel(f"{t('photo_scale', locale)} 1:Mc")
     ax.set_ylabel(t("pixel_um", locale))
     return chart.svg()

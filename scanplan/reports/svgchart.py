@@ -22,7 +22,7 @@ before, and the PDF scales it to the text width.
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from itertools import pairwise
 from typing import Any
 
@@ -78,6 +78,7 @@ class _Axis:
         self.lo: float | None = None
         self.hi: float | None = None
         self.ticks: list[float] | None = None
+        self.fmt: Callable[[float], str] | None = None  # tick labels (default Numbers.tick)
         self.data: list[float] = []
 
     def ok(self, v: Any) -> bool:
@@ -162,9 +163,12 @@ class Panel:
         """Fix the y range (either end; the other follows the data)."""
         self.y.lo, self.y.hi = bottom, top
 
-    def set_xticks(self, ticks: Sequence[float]) -> None:
-        """These x ticks (those within the range; a label that would collide is left out)."""
+    def set_xticks(self, ticks: Sequence[float],
+                   fmt: Callable[[float], str] | None = None) -> None:
+        """These x ticks (those within the range; a label that would collide is left out),
+        labelled by ``fmt`` when given (else as numbers, :meth:`Numbers.tick`)."""
         self.x.ticks = [float(v) for v in ticks]
+        self.x.fmt = fmt
 
     def set_yticks(self, ticks: Sequence[float]) -> None:
         """These y ticks (those within the range)."""
@@ -388,6 +392,7 @@ class Chart:
                     text_width_pt(self.numbers.tick(v), TICK_PT) for v in values))
                 if gap >= need:
                     break
+        label = axis.fmt or self.numbers.tick
         inside = [v for v in values
                   if axis.ok(v) and lo - 1e-9 * abs(hi - lo) <= v <= hi + 1e-9 * abs(hi - lo)]
         if axis.ticks is None and axis.scale == "log" and len(inside) > 1:
@@ -397,7 +402,7 @@ class Chart:
             if closest / span * length < (2.2 * TICK_PT if vertical else 40.0):
                 decades = [v for v in inside if abs(math.log10(v) - round(math.log10(v))) < 1e-9]
                 inside = decades or inside[:1]
-        return [(v, self.numbers.tick(v)) for v in inside]
+        return [(v, label(v)) for v in inside]
 
     # -- legend ----------------------------------------------------------------------
     def _legend_layout(self, entries: list, width: float) -> list[float]:
@@ -447,6 +452,7 @@ class Chart:
             xaxis.lo = p.x.lo if p.x.lo is not None else xaxis.lo
             xaxis.hi = p.x.hi if p.x.hi is not None else xaxis.hi
             xaxis.ticks = p.x.ticks if p.x.ticks is not None else xaxis.ticks
+            xaxis.fmt = p.x.fmt or xaxis.fmt
         xlim = xaxis.limits()
         gap_pt = 8.0
         total = sum(p.weight for p in panels)
