@@ -182,3 +182,17 @@ def test_largest_photo_scale_per_pixel():
     assert reach[14.0]["max_photo_scale"] == 0 and reach[14.0]["limit"] == "PR"
     r = run(*BASE, "--photo-scale", "5000", "--pixel-um", "-3")
     assert r.exit_code == 2 and "--pixel-um" in r.stderr
+
+
+@pytest.mark.parametrize("cmd", [
+    ["uav", "--camera", "dji-zenmuse-p1-35", "--height-m", "100", "--area-m", "20x"],
+    ["init", "/nonexistent-dir/x.toml", "--kind", "uav", "--map-scale", "2000",
+     "--relief", "0.5", "--area-m", "2000by3000"],
+])
+def test_bad_area_m_names_metres_and_a_block_example(cmd):
+    """A block is WIDTHxLENGTH in metres: the error must not ask for millimetres and a
+    230x230 frame (it did — the frame parser's message)."""
+    r = run(*cmd)
+    assert r.exit_code == 2, r.output
+    assert "--area-m" in r.stderr and "WIDTHxLENGTH in m, e.g. 2000x3000" in r.stderr
+    assert "mm" not in r.stderr and "230x230" not in r.stderr

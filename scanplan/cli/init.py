@@ -228,9 +228,9 @@ def _scales(text: str | None) -> tuple[float, ...]:
 
 
 def _area(text: str | None) -> tuple[float, float] | None:
-    from ..project.api import parse_frame_mm
+    from ..project.api import parse_area_m
 
-    return None if not text else parse_frame_mm(text, "--area-m")
+    return None if not text else parse_area_m(text, "--area-m")
 
 
 @click.command("init")

@@ -52,8 +52,8 @@ def recommended_height_m(max_height_m: float | None) -> float | None:
     step = height_step_m(max_height_m)
     return math.floor(max_height_m / step) * step
 
-__all__ = ["USER_OBJECT_NAME", "ScanJob", "UavJob", "object_display_name", "parse_frame_mm",
-           "resolve_object", "scan", "scan_job", "uav_job"]
+__all__ = ["USER_OBJECT_NAME", "ScanJob", "UavJob", "object_display_name", "parse_area_m",
+           "parse_frame_mm", "resolve_object", "scan", "scan_job", "uav_job"]
 
 
 @dataclass(frozen=True)
@@ -66,6 +66,18 @@ class ScanJob:
 
 def parse_frame_mm(text: object, field: str = "frame_mm") -> tuple[float, float]:
     """``"230x230"`` (across × along track, mm) → (230.0, 230.0)."""
+    return _parse_sides(text, field, "WIDTHxHEIGHT", "mm", "230x230")
+
+
+def parse_area_m(text: object, field: str = "area_m") -> tuple[float, float]:
+    """``"2000x3000"`` (block width across × length along the flight lines, m) →
+    (2000.0, 3000.0); an error names the sides in metres, as the block is given."""
+    return _parse_sides(text, field, "WIDTHxLENGTH", "m", "2000x3000")
+
+
+def _parse_sides(text: object, field: str, form: str, unit: str,
+                 example: str) -> tuple[float, float]:
+    """Two sides written ``AxB`` (or a pair) → floats > 0, in ``unit``."""
     if isinstance(text, tuple | list) and len(text) == 2:
         parts = [str(x) for x in text]
     else:
@@ -74,9 +86,9 @@ def parse_frame_mm(text: object, field: str = "frame_mm") -> tuple[float, float]
         w, h = (float(p.strip().replace(",", ".")) for p in parts)
     except ValueError:
         raise InputError(
-            field, f"must be WIDTHxHEIGHT in mm, e.g. 230x230 (got {text!r})") from None
+            field, f"must be {form} in {unit}, e.g. {example} (got {text!r})") from None
     if not (w > 0 and h > 0 and w < float("inf") and h < float("inf")):
-        raise InputError(field, f"sides must be finite numbers > 0 mm (got {text!r})")
+        raise InputError(field, f"sides must be finite numbers > 0 {unit} (got {text!r})")
     return w, h
 
 
@@ -410,7 +422,7 @@ def uav_job(
     gsd_row = _gsd_limit_row(ns, rules, mk, gsd_area)
     area_w = area_l = None
     if area_m is not None:
-        area_w, area_l = parse_frame_mm(area_m, "area_m")
+        area_w, area_l = parse_area_m(area_m, "area_m")
     inputs = UavInputs(
         **frame, height_m=height_m, speed_ms=speed_ms, exposure_s=exposure_s,
         forward_overlap_pct=forward_overlap_pct, side_overlap_pct=side_overlap_pct,
