@@ -15,7 +15,9 @@ Templates use :meth:`str.format` fields with these parameter kinds:
   ≥ 10 000 under ``g``) are grouped with a no-break space — the rule of the Russian
   reports (:func:`scanplan.reports.plots.number`);
 - ``{x:scale}`` — a scale denominator (:func:`scale_text`: ``1:25000`` in English,
-  ``1:25 000`` in Russian, ``1:8000`` in both);
+  ``1:25 000`` in Russian, ``1:8000`` in both); ``{x:denominator}`` — the same
+  denominator without ``1:`` (``8000``, ``25000``; Russian ``25 000``), for a
+  computation with the scale number (``7 µm × 8000``);
 - lists, each item formatted with the spec and joined by ``", "`` (English) or ``"; "``
   (Russian, where the comma is the decimal separator); a spec starting with ``;`` joins
   with ``"; "`` in both languages;
@@ -415,13 +417,13 @@ MESSAGES: dict[str, dict[str, str]] = {
         "ru": "городские населённые пункты с многоэтажной и плотной застройкой",
     },
     "gsd_limit_film": {
-        "en": "the scanned ground pixel of {scale:scale} photos, {pixel:g} µm × {scale:,.0f} = "
-              "{ground:.1f} cm, is {verdict} the {limit:g} cm that GOST R 59562-2021, Table B.1, "
-              "recommends for digital photos for {map:scale} ({area}); for information: the "
-              "table is written for digital cameras",
+        "en": "the scanned ground pixel of {scale:scale} photos, {pixel:g} µm × "
+              "{scale:denominator} = {ground:.1f} cm, is {verdict} the {limit:g} cm that GOST R "
+              "59562-2021, Table B.1, recommends for digital photos for {map:scale} ({area}); "
+              "for information: the table is written for digital cameras",
         "ru": "Размер пикселя скана на местности для снимков {scale:scale}: {pixel:g}~мкм × "
-              "{scale:,.0f} = {ground:.1f}~см — {verdict} {limit:g}~см, рекомендуемых ГОСТ Р "
-              "59562-2021, табл. Б.1, для цифровых снимков к масштабу {map:scale} ({area}); "
+              "{scale:denominator} = {ground:.1f}~см — {verdict} {limit:g}~см, рекомендуемых "
+              "ГОСТ Р 59562-2021, табл. Б.1, для цифровых снимков к масштабу {map:scale} ({area}); "
               "для сведения: таблица написана для цифровых камер.",
     },
     "gsd_limit.within": {"en": "within", "ru": "не больше"},
@@ -555,6 +557,8 @@ def scale_text(x: float, locale: str = "en") -> str:
 def _number(x: float, spec: str, locale: str) -> str:
     if spec == "scale":
         return scale_text(x, locale)
+    if spec == "denominator":
+        return scale_text(x, locale)[2:]
     if spec.endswith("d") and float(x).is_integer():
         x = int(x)
     if locale != "ru":

@@ -363,3 +363,21 @@ def test_layout_gives_the_site_and_the_sorties_once_the_geography_lands():
     abstract = FlightLayout(Area(shapely.box(0, 0, 1, 1), "LOCAL", "rectangle", False, 1.0,
                                  4.0), 0.0, 1.0, 1.0, (), (), Photos({}), 0.0, 0.0, None)
     assert layout_site(abstract) is None and layout_sorties_s(abstract) is None
+
+
+@pytest.mark.parametrize(("scale", "photo", "en", "ru"), [
+    (2000, 8000, "1:8000 photos, 7 µm × 8000 = 5.6 cm",
+     "снимков 1:8000: 7\u00a0мкм × 8000 = 5,6\u00a0см"),
+    (10000, 30000, "1:30000 photos, 5.54348 µm × 30000 = 16.6 cm",
+     "снимков 1:30\u00a0000: 5,54348\u00a0мкм × 30\u00a0000 = 16,6\u00a0см"),
+])
+def test_film_ground_pixel_writes_the_scale_number_as_the_scale(tmp_path, scale, photo, en, ru):
+    """The product pixel × Mc writes Mc as its scale 1:Mc is written (English 8000, never
+    8,000; Russian 8000 and 30 000, never 8 000) — it said '1:8000 photos, 7 µm × 8,000'."""
+    toml = FILM.format(scale=scale, photo=photo)
+    if photo == 8000:
+        toml = toml.replace('camera = "rc30-153"', 'camera = "rc30-153"\nscanner = "photoscan-td"')
+    r = plan_project(parse_project(toml, tmp_path / "f.toml"))
+    (info,) = [w for w in r.warnings if w.code == "gsd_limit_film"]
+    assert en in info.text("en")
+    assert ru in info.text("ru")
