@@ -332,3 +332,17 @@ def test_russian_report_uses_the_norm_tables_russian_names(both_ru):
     assert values["Объект дешифрирования"] == "столбы, гидранты"
     assert values["Форма"] == "круг"
     assert both_ru["Сводка"]["A1"].value.startswith("Техническое задание")
+
+
+def test_scales_read_as_the_documents_write_them(both_en, both_ru):
+    """A scale cell reads as the PDF and the terminal write the scale: English 1:20000,
+    Russian 1:20 000 from five digits and 1:5000 whole (it showed 1:20000 in Russian)."""
+    ru_formats = {c.number_format for ws in both_ru.worksheets for row in ws.iter_rows()
+                  for c in row if isinstance(c.value, int | float) and "1:" in c.number_format}
+    en_formats = {c.number_format for ws in both_en.worksheets for row in ws.iter_rows()
+                  for c in row if isinstance(c.value, int | float) and "1:" in c.number_format}
+    assert en_formats == {'"1:"0'}
+    assert ru_formats == {'[>=10000]"1:"#,##0;"1:"0'}
+    ws = both_ru["Ряд масштабов"]
+    assert any(c.value == 20000 and c.number_format == '[>=10000]"1:"#,##0;"1:"0'
+               for row in ws.iter_rows() for c in row)

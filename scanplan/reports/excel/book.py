@@ -33,6 +33,7 @@ from .cells import (
     _fit_rows,
     _repack,
     _widths,
+    localise_scales,
     put_num,
     put_text,
 )
@@ -163,6 +164,7 @@ class Book:
             props.subject = _clean_text(self.meta.project)[:255]
         for ws in self.wb.worksheets:
             _fit_rows(ws)
+            localise_scales(ws, self.loc)
         raw = io.BytesIO()
         # ExcelWriter, not Workbook.save: save() stamps `modified` with the current time.
         archive = zipfile.ZipFile(raw, "w", zipfile.ZIP_DEFLATED, allowZip64=True)

@@ -18,6 +18,9 @@ from openpyxl.worksheet.worksheet import Worksheet
 
 # Invariant number formats (Excel shows them with the user's decimal separator).
 SCALE = '"1:"0'
+# A scale as a Russian document writes it (scanplan.messages.scale_text): the denominator
+# grouped from five digits (1:25 000, with the user's separator), four digits whole (1:2000).
+SCALE_RU = '[>=10000]"1:"#,##0;"1:"0'
 INT = "#,##0"
 F1 = "0.0"
 F2 = "0.00"
@@ -129,6 +132,17 @@ def _fit_rows(ws: Worksheet) -> None:
                     al = cell.alignment
                     cell.alignment = Alignment(horizontal=al.horizontal, vertical="top",
                                                wrap_text=al.wrap_text)
+
+
+def localise_scales(ws: Worksheet, locale: str) -> None:
+    """In a Russian workbook write every scale cell (format :data:`SCALE`) as the Russian
+    text does, 1:25 000 and 1:2000 (:data:`SCALE_RU`); English keeps 1:25000."""
+    if locale != "ru":
+        return
+    for row in ws.iter_rows():
+        for cell in row:
+            if cell.number_format == SCALE:
+                cell.number_format = SCALE_RU
 
 
 def _repack(raw: bytes, when: _dt.datetime) -> bytes:

@@ -22,6 +22,7 @@ from .cells import (
     F2,
     PCT,
     SCALE,
+    SCALE_RU,
     UM,
     _finite,
     _header,
@@ -93,7 +94,7 @@ def sweep_sheet(book: Book, job: ScanJob, spec: PlanResult | None = None) -> Non
     if n == 0:
         return
     chart = _scatter(book.t("plot_constraints"), book.t("photo_scale"), book.t("pixel_um"))
-    chart.x_axis.number_format = SCALE
+    chart.x_axis.number_format = SCALE_RU if book.loc == "ru" else SCALE
     # a linear axis whose ticks fall on every candidate photo scale (a log axis would
     # label only 1:1000, 1:10000, ...)
     lo, hi, step = _scale_ticks([s.photo_scale for s in job.plan.scenarios],
