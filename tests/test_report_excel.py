@@ -346,3 +346,17 @@ def test_scales_read_as_the_documents_write_them(both_en, both_ru):
     ws = both_ru["Ряд масштабов"]
     assert any(c.value == 20000 and c.number_format == '[>=10000]"1:"#,##0;"1:"0'
                for row in ws.iter_rows() for c in row)
+
+
+def test_warnings_list_their_scales_as_the_text_writes_them(both_en, both_ru):
+    """The Warnings sheet's photo scales and the Summary's '!' lines: Russian 1:10 000 and
+    1:5000 joined by '; ' (as the messages list them), English 1:10000 by ', ' (the Russian
+    sheet said 1:10000, 1:15000)."""
+    en = [r[3] for r in both_en["Warnings"].iter_rows(min_row=2, values_only=True)]
+    ru = [r[3] for r in both_ru["Предупреждения"].iter_rows(min_row=2, values_only=True)]
+    assert "1:10000, 1:15000, 1:20000" in en and "1:5000" in en
+    assert "1:10\u00a0000; 1:15\u00a0000; 1:20\u00a0000" in ru and "1:5000" in ru
+    lines = [r[0] for r in both_ru["Сводка"].iter_rows(values_only=True)
+             if isinstance(r[0], str) and r[0].startswith("! ")]
+    assert any(line.endswith(": 1:15\u00a0000; 1:20\u00a0000") for line in lines), lines
+    assert not any("1:15000" in line for line in lines)

@@ -63,9 +63,16 @@ def _warning_lines(book: Book, scan: ScanJob | None, uav: UavJob | None,
     for _section, w, ns in _warning_items(book, scan, uav, spec):
         head = _heading(book, w) or book.text(w.message, ns)
         listed = scales.setdefault(head, [])
-        listed += [x for x in (book.numbers.plain_scale(s) for s in w.photo_scales)
+        listed += [x for x in (book.numbers.scale(s) for s in w.photo_scales)
                    if x not in listed]
-    return [f"! {head}" + (f": {', '.join(xs)}" if xs else "") for head, xs in scales.items()]
+    sep = _list_sep(book)
+    return [f"! {head}" + (f": {sep.join(xs)}" if xs else "") for head, xs in scales.items()]
+
+
+def _list_sep(book: Book) -> str:
+    """Between the scales of a list: ``"; "`` in Russian, where the comma is the decimal
+    separator (as the messages join them), ``", "`` in English."""
+    return "; " if book.loc == "ru" else ", "
 
 
 def norms_sheet(book: Book, scan: ScanJob | None, uav: UavJob | None) -> None:
@@ -167,8 +174,9 @@ def warnings_sheet(book: Book, scan: ScanJob | None, uav: UavJob | None,
         cells = [put_text(ws, row, 1, section, wrap=True),
                  put_text(ws, row, 2, severity),
                  put_text(ws, row, 3, _heading(book, w), wrap=True),
-                 put_text(ws, row, 4, ", ".join(book.numbers.plain_scale(s)
-                                                for s in w.photo_scales), wrap=True),
+                 put_text(ws, row, 4, _list_sep(book).join(book.numbers.scale(s)
+                                                           for s in w.photo_scales),
+                          wrap=True),
                  put_text(ws, row, 5, sentence(book.text(w.message, ns)), wrap=True)]
         if w.severity == "warning":
             for cell in cells:

@@ -134,7 +134,7 @@ def _candidate_markers(book: Book, chart: ScatterChart, ws: Worksheet, job: Scan
         put_num(ws, row, 1, s.photo_scale, SCALE)
         put_num(ws, row, 2, s.scan_pixel_um, UM)
         put_text(ws, row, 3, s.binding)
-        label = f"1:{book.numbers.whole(s.photo_scale)}"
+        label = book.numbers.scale(s.photo_scale)
         if s.photo_scale == recommended:
             label += " (" + book.t("xlsx_recommended") + ")"
         xref = Reference(ws, min_col=1, min_row=row, max_row=row)

@@ -61,7 +61,8 @@ def _film_sheet(book: Book, spec: Any, ws: Any = None, row: int = 1) -> None:
     if rejected:
         row = book.kv(ws, row, book.t("terrain_film_rejected"), "; ".join(
             book.t("terrain_film_rejected_value").format(
-                scale=f"1:{r.photo_scale:.0f}", local=f"1:{t.mc_max:.0f}")
+                scale=book.numbers.scale(round(r.photo_scale)),
+                local=book.numbers.scale(round(t.mc_max)))
             for r, t in rejected))
     if getattr(film, "flat", None) is not None:
         book.kv(ws, row, book.t("terrain_film_specified"), True)
