@@ -279,3 +279,19 @@ def test_archive_photos_are_scanned_for_the_frame_over_the_lowest_ground(tmp_pat
     assert f.flat.scan_pixel_um == pytest.approx(70.0 * 2000 / 12000, rel=1e-12)
     assert f.terrain.scan_pixel_um == rec.scan_pixel_um and f.terrain.binding == "PP"
     assert "1:12915" in f.reason.text("en")
+
+
+def test_the_film_maps_local_scale_axis_reads_as_scales():
+    """The colour bar's second axis of local photo scales labels them as the text writes
+    scales: 7200 in both languages (it said 7,200 / 7 200), never grouped four digits."""
+    from scanplan.reports.exports import spec_layouts
+    from scanplan.reports.mapview import map_svg, map_terrain
+
+    spec = plan_project(load_project(EXAMPLES / "film-town-relief-10000.toml"))
+    (kind, lay), = spec_layouts(spec)
+    mt = map_terrain(spec, kind, lay)
+    assert mt is not None and mt.focal_mm
+    for loc in ("en", "ru"):
+        svg = map_svg(lay, loc, mt)
+        labels = set(re.findall(r">(7[\s,\u00a0]?[02]00)<", svg))
+        assert labels == {"7000", "7200"}, (loc, labels)

@@ -23,6 +23,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..geo.layout import FlightLayout
+from ..messages import scale_text
 from . import exports as _exports
 from .labels import t
 from .plots import number
@@ -162,6 +163,15 @@ def _km_ticks(axis: Any, locale: str) -> FuncFormatter:
     return FuncFormatter(fmt)
 
 
+def _scale_ticks(locale: str) -> FuncFormatter:
+    """Tick labels of the colour bar's local photo scales 1:Mc, written as the text writes
+    scales (:func:`scanplan.messages.scale_text` without ``1:``): 6000, 25000; Russian
+    6000, 25 000 — not the grouped numbers 6,000 / 6 000."""
+    from matplotlib.ticker import FuncFormatter
+
+    return FuncFormatter(lambda v, _p: scale_text(round(v), locale).removeprefix("1:"))
+
+
 def _scale_bar(ax: Any, span_km: float, locale: str) -> None:
     """A scale bar in the lower right, in metres or kilometres."""
     length_km = _nice(span_km / 4)
@@ -299,7 +309,7 @@ def _draw_photos_agl(fig: Figure, ax: Any, layout: FlightLayout, mt: MapTerrain,
         f_m = mt.focal_mm / 1000.0
         sec = cb.ax.secondary_yaxis("left", functions=(lambda a: a / f_m, lambda m: m * f_m))
         sec.set_ylabel(t("map_local_scale_axis", locale))
-        sec.yaxis.set_major_formatter(FuncFormatter(lambda v, _p: number(v, 0, locale)))
+        sec.yaxis.set_major_formatter(_scale_ticks(locale))
         sec.tick_params(labelsize=6)
     marks = ((mt.too_high, "x", "#c62828", t("map_legend_too_high", locale).format(
                  limit=number(mt.limit_m, 0, locale) if mt.limit_m is not None else "—",
