@@ -533,3 +533,10 @@ def test_page_one_says_why_the_valley_plan_was_lowered(locale):
     assert LABELS[locale]["pdf_warn_terrain_resolution_lowered"] in items, items
     assert LABELS[locale]["pdf_warn_terrain_resolution"] not in items, items
     assert LABELS[locale]["pdf_warn_height_lowered"] in items, items
+
+
+def test_russian_page_one_lists_scales_as_the_messages_do():
+    """Russian lists are joined by '; ' (the comma is the decimal separator), as the
+    messages and the workbook's box list them; page 1 said '1:6000, 1:8000'."""
+    items = _page_one_warnings(str(EXAMPLES[0].parent / "instruction-2000-film.toml"), "ru")
+    assert "Объём данных определяет P_R: 1:6000; 1:8000" in items, items

@@ -69,6 +69,12 @@ class _Fmt:
     def locale(self) -> str:
         return self.view.locale
 
+    @property
+    def list_sep(self) -> str:
+        """Between the items of a list of scales: ``"; "`` in Russian, where the comma is
+        the decimal separator (as the messages join lists), ``", "`` in English."""
+        return "; " if self.locale == "ru" else ", "
+
     def cite(self, text: str) -> str:
         """``text`` with the works it names replaced by reference numbers."""
         return self.bib.cite(text)
@@ -126,7 +132,7 @@ def _warnings(ws: Any, f: _Fmt, ns: NormSet | None = None) -> list[dict[str, Any
         heading = f.label(key) if key else ""
         scale_list = [f.scale(x) for x in getattr(w, "photo_scales", ()) or ()]
         out.append({"code": w.code, "severity": w.severity, "heading": heading,
-                    "scales": ", ".join(scale_list), "scale_list": scale_list,
+                    "scales": f.list_sep.join(scale_list), "scale_list": scale_list,
                     "message": _after_heading(f.cite(display_message(w.message, ns, f.locale)),
                                               heading)})
     return out
@@ -154,7 +160,7 @@ def _scan_view(job: ScanJob, f: _Fmt) -> dict[str, Any]:
     inputs: list[tuple[str, str]] = [
         (f.label("map_scale"), f.scale(inp.map_scale)),
         (f.label("relief_interval_m"), f.g(inp.relief_interval_m)),
-        (f.label("photo_scale"), ", ".join(f.scale(s) for s in inp.photo_scales)),
+        (f.label("photo_scale"), f.list_sep.join(f.scale(s) for s in inp.photo_scales)),
     ]
     if inp.camera:
         inputs.append((f.label("camera"), camera_title(ns, inp.camera, f.locale)))
@@ -181,7 +187,7 @@ def _scan_view(job: ScanJob, f: _Fmt) -> dict[str, Any]:
                        f.label(key) if key in LABELS["en"] else rules.height_formula))
     if inp.scanner:
         inputs.append((f.label("scanner"), f"{scanner_title(ns, inp.scanner, f.locale)} ("
-                       + ", ".join(f.g(s) for s in inp.scanner_steps_um) + f" {um})"))
+                       + f.list_sep.join(f.g(s) for s in inp.scanner_steps_um) + f" {um})"))
     inputs.append((f.label("pdf_bands"), f"{inp.bands} × {inp.bits_per_band}"))
     inputs.append((f.label("norm_set"), _norm_view(ns, f)["title"]))
 

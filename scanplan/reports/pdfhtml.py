@@ -213,7 +213,7 @@ def _warnings_box(scan_view: Any, uav_view: Any, spec: PlanResult | None,
             listed = scales.setdefault(head, [])
             listed += [x for x in w["scale_list"] if x not in listed]
             times[head] = times.get(head, 0) + (not w["scale_list"])
-    items = [h + (f": {', '.join(xs)}" if xs else "") for h, xs in scales.items()
+    items = [h + (f": {f.list_sep.join(xs)}" if xs else "") for h, xs in scales.items()
              for _ in range(1 if xs else max(times[h], 1))]
     if spec is not None:
         seen = {x["code"] for view in (scan_view, uav_view) if view
