@@ -7,6 +7,7 @@ a plan without a map."""
 from __future__ import annotations
 
 import math
+import re
 import subprocess
 import sys
 import xml.etree.ElementTree as ET
@@ -396,3 +397,16 @@ def test_photo_scale_ticks_read_as_the_scales_in_the_text(locale, expected):
     svg = plots.constraints_svg(plan.job.plan, locale)
     ticks = [x for x in _strings(svg) if x.replace("\u00a0", "").isdigit()]
     assert ticks[:3] == expected
+
+
+def test_the_highest_flown_at_the_maximum_shows_over_the_ceiling_it_equals(examples):
+    """Over the valley HC binds: the highest flown height at the maximum is the 150 m
+    ceiling. Its dash-dot line is drawn after (over) the ceiling's solid line at the same x,
+    so both lines of the legend can be seen (the solid line hid it)."""
+    p = examples["uav-town-valley-2000"].uav.job.plan
+    assert p.max_flown_height_m == pytest.approx(p.ceiling_m)
+    svg = plots.height_svg(p, "en")
+    ceiling = re.search(r'<path d="(M[\d.]+ [\d.]+V[\d.]+)"[^>]*stroke="#8c564b"', svg)
+    flown = re.search(r'<path d="(M[\d.]+ [\d.]+V[\d.]+)"[^>]*stroke="#ff7f0e"', svg)
+    assert ceiling and flown and ceiling[1] == flown[1]
+    assert ceiling.start() < flown.start()

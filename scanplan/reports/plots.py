@@ -186,14 +186,16 @@ def height_svg(plan: UavPlan, locale: str = "en") -> str:
         (plan.heights_m["planned"], "#000000", "-", t("pdf_h_planned", locale))]
     if plan.heights_m["max"] != plan.heights_m["planned"]:
         marks.append((plan.heights_m["max"], "#808080", "--", t("pdf_h_flown_max", locale)))
+    # the ceiling before the maximum's lines: where the ceiling binds, the highest flown
+    # height at the maximum is the ceiling, and its dash-dot is drawn over the solid line
+    if plan.ceiling_m is not None and plan.ceiling_m <= max(hs):
+        marks.append((plan.ceiling_m, "#8c564b", "-", t("pdf_h_ceiling", locale)))
     if plan.max_height_m is not None and plan.binding is not None:
         marks.append((plan.max_height_m, "#d62728", ":",
                       t("pdf_h_max", locale).format(cid=plan.binding)))
         flown = plan.max_flown_height_m
         if flown is not None and flown > plan.max_height_m * (1 + 1e-9):
             marks.append((flown, "#ff7f0e", (5, 2, 1, 2), t("pdf_h_max_flown", locale)))
-    if plan.ceiling_m is not None and plan.ceiling_m <= max(hs):
-        marks.append((plan.ceiling_m, "#8c564b", "-", t("pdf_h_ceiling", locale)))
     for h, colour, style, label in marks:
         # the maximum planned height and its highest flown one in whole metres, as the
         # tables state them
