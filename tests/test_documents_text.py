@@ -540,3 +540,18 @@ def test_russian_page_one_lists_scales_as_the_messages_do():
     messages and the workbook's box list them; page 1 said '1:6000, 1:8000'."""
     items = _page_one_warnings(str(EXAMPLES[0].parent / "instruction-2000-film.toml"), "ru")
     assert "Объём данных определяет P_R: 1:6000; 1:8000" in items, items
+
+
+@pytest.mark.parametrize(("locale", "photos"), [("en", "16,432"), ("ru", "16\u00a0432")])
+def test_the_photo_count_is_written_one_way_in_the_pdf(locale, photos):
+    """The valley's 16432 photos: page 1, the flight geometry ('strips / photos') and the
+    flight-lines table group the count alike (the geometry said 88 / 16432)."""
+    from scanplan.reports.pdf import render_html
+
+    project = load_project(str(EXAMPLES[0].parent / "uav-town-valley-2000.toml"))
+    values = {sec: dict(v) for sec, v in project.values.items()}
+    values.setdefault("project", {})["locale"] = locale
+    result = plan_project(dataclasses.replace(project, values=values))
+    page = render_html(uav=result.uav.job, meta=result.meta, spec=result)
+    assert f"88 / {photos}" in page
+    assert "16432" not in page

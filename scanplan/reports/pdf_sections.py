@@ -374,10 +374,12 @@ def _uav_flight(plan: UavPlan, f: _Fmt) -> list[tuple[str, str]]:
     ]
     if "strips" in fl:
         if "photos_per_strip" in fl:
-            flight.append((f.label("pdf_strips"), f"{fl['strips']} × {fl['photos_per_strip']} "
-                                                  f"= {fl['photos']}"))
+            # counts grouped as page 1 and the flight-lines table give them (16,432)
+            flight.append((f.label("pdf_strips"), f"{f.num(fl['strips'], 0)} × "
+                           f"{f.num(fl['photos_per_strip'], 0)} = {f.num(fl['photos'], 0)}"))
         else:  # a polygon: the strips differ in length
-            flight.append((f.label("pdf_strips_photos"), f"{fl['strips']} / {fl['photos']}"))
+            flight.append((f.label("pdf_strips_photos"),
+                           f"{f.num(fl['strips'], 0)} / {f.num(fl['photos'], 0)}"))
         flight.append((f.label("pdf_flight_length"),
                        f"{f.num(fl['flight_length_m'] / 1000, 1)} / "
                        + (f.num(fl["flight_time_s"] / 60, 0) if fl.get("flight_time_s")
