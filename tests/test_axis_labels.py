@@ -46,3 +46,12 @@ def test_height_legend_gives_heights_as_the_tables_do(locale, text):
     assert text in svg, legend
     assert re.search(r": \d+(?:[.,]0) ", svg) is None
     assert "(HC): 136 " in svg, legend
+
+
+def test_russian_height_column_heads_keep_the_unit_with_its_number():
+    """'на 70 м' in a narrow column head broke before 'м' (Russian typesetting keeps a unit
+    on the line of its number: a no-break space)."""
+    from scanplan.reports.labels import t
+
+    assert t("pdf_at_height", "ru").format(h="70") == "на 70\u00a0м"
+    assert t("pdf_corner_at", "ru").format(h="77") == "угол кадра, 77\u00a0м"

@@ -586,8 +586,9 @@ LABELS: dict[str, dict[str, str]] = {
         "pdf_exposure_s": "Выдержка, с",
         "pdf_scene": "Коэффициенты яркости r_max / r_min",
         "pdf_threshold_k0": "Пороговый контраст K0",
-        "pdf_at_height": "на {h} м",
-        "pdf_corner_at": "угол кадра, {h} м",
+        # a no-break space keeps the unit with its number in a narrow column head
+        "pdf_at_height": "на {h}\u00a0м",
+        "pdf_corner_at": "угол кадра, {h}\u00a0м",
         "pdf_centre_corner": "(центр / угол кадра)",
         "pdf_l_corner": "L в углу кадра, м",
         "pdf_tilted_gsd": "Наибольший GSD в углу кадра, крен {roll}°, тангаж {pitch}°, м",
