@@ -191,3 +191,23 @@ def test_batch_shows_each_projects_warnings(tmp_path):
     assert "Warnings — archive-12000-for-2000.toml:" in out
     assert "[archive_not_interpretable]" in out
     assert "Warnings — instruction-2000-film.toml:" in out
+
+
+def test_archive_scan_pixel_curve_passes_through_the_specified_pixel():
+    """With P_D set aside for archive photos 1:12000, the plot's and the Sweep sheet's scan
+    pixel curve is P_P's 11.7 µm there, as specified (it drew P_D's 9.2 µm below the marked
+    point); where the object can be interpreted (up to 1:8847) the curve is unchanged."""
+    from scanplan.project.file import load_project
+    from scanplan.project.spec import plan_project
+
+    plan = plan_project(load_project(EXAMPLES / ARCHIVE["file"])).film.job.plan
+    (s,) = plan.scenarios
+    sw = plan.sweep
+    i = min(range(len(sw["photo_scale"])), key=lambda k: abs(sw["photo_scale"][k] - 12000))
+    assert sw["photo_scale"][i] == pytest.approx(12000)
+    assert (sw["scan_pixel_um"][i], sw["binding"][i]) == (pytest.approx(s.scan_pixel_um), "PP")
+    assert s.scan_pixel_um == pytest.approx(11.67, abs=0.01)
+    limit = plan.interpretation_limit_photo_scale
+    for k, mc in enumerate(sw["photo_scale"]):
+        cids = [c for c in plan.constraint_ids if c in sw and (c != "PD" or mc <= limit)]
+        assert sw["scan_pixel_um"][k] == pytest.approx(min(sw[c][k] for c in cids))

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from typing import Any
 
 import numpy as np
 
@@ -64,6 +65,28 @@ def _without_pd(plan: ScanPlan, s: ScanScenario) -> ScanScenario:
     return dataclasses.replace(s, constraints=constraints, binding=bind.id,
                                scan_pixel_um=pixel, scanner_pixel_um=scanner_px,
                                frame_megabytes=mbytes, explanation=explanation)
+
+
+def _sweep_without_pd(plan: ScanPlan, limit: float) -> dict[str, Any]:
+    """The dense sweep restated as :func:`_without_pd` restates the scenario: at photo
+    scales smaller than the interpretation limit ``limit`` P_D is set aside, so the scan
+    pixel curve passes through the archive photos' scan pixel (the plot and the Sweep sheet
+    drew the minimum with P_D, below the pixel the specification gives)."""
+    sweep = dict(plan.sweep)
+    ids = [c for c in plan.constraint_ids if c in sweep and c != "PD"]
+    if not ids or "scan_pixel_um" not in sweep:
+        return sweep
+    pixel, binding = list(sweep["scan_pixel_um"]), list(sweep.get("binding", []))
+    for i, mc in enumerate(sweep["photo_scale"]):
+        if mc > limit * (1 + 1e-12):
+            cid = min(ids, key=lambda c: sweep[c][i])
+            pixel[i] = sweep[cid][i]
+            if i < len(binding):
+                binding[i] = cid
+    sweep["scan_pixel_um"] = pixel
+    if binding:
+        sweep["binding"] = binding
+    return sweep
 
 
 def archive_film(job: ScanJob) -> tuple[ScanJob, ScanScenario, Message]:
@@ -116,5 +139,8 @@ def archive_film(job: ScanJob) -> tuple[ScanJob, ScanScenario, Message]:
                       pixel=rec.scan_pixel_um, scanner=inp.scanner,
                       step=min(inp.scanner_steps_um))
         new.append(PlanWarning(msg.code, msg, photo_scales=(s.photo_scale,)))
-    plan = dataclasses.replace(plan, scenarios=(rec,), warnings=tuple(new + warnings))
+    sweep = (_sweep_without_pd(plan, limit) if rec is not s and limit is not None
+             else plan.sweep)
+    plan = dataclasses.replace(plan, scenarios=(rec,), warnings=tuple(new + warnings),
+                               sweep=sweep)
     return ScanJob(plan, job.norm_set), rec, reason
