@@ -63,3 +63,31 @@ def test_every_bundled_source_cell_is_cited_without_seed(name, locale):
         assert not re.search(r"seed\s*0", shown, re.IGNORECASE), (cell, shown)
         if locale == "ru" and shown != cell:  # a cited cell: its locator is Russian too
             assert not re.search(r"\b[a-z]{3,}\b", shown), (cell, shown)
+
+
+def test_author_cite_names_the_work_for_output_without_a_reference_list():
+    """The terminal has no reference list: a norm table's source reads as authors and year,
+    in the output's language — never 'seed 001' (the Russian terminal said '(seed 001 Table
+    3)')."""
+    from scanplan.reports.references import author_cite
+
+    assert author_cite("1:2000 (seed 001 Table 3)", "en") == \
+        "1:2000 (Miheeva & Ilushenko 2015, Table 3)"
+    assert author_cite("1:2000 (seed 001 Table 3)", "ru") == \
+        "1:2000 (Михеева, Илюшенко, 2015, табл. 3)"
+    assert author_cite("no work named", "ru") == "no work named"
+
+
+def test_scan_terminal_names_no_seed():
+    from click.testing import CliRunner
+
+    from scanplan.cli.main import main
+
+    for loc in ("en", "ru"):
+        r = CliRunner().invoke(main, ["scan", "--map-scale", "2000", "--relief", "1",
+                                      "--photo-scale", "10000", "--camera", "rc30-153",
+                                      "--locale", loc])
+        assert r.exit_code == 0, r.output
+        assert "seed 0" not in r.output
+        assert ("Михеева, Илюшенко, 2015, табл. 3" if loc == "ru"
+                else "Miheeva & Ilushenko 2015, Table 3") in r.output

@@ -20,7 +20,7 @@ from functools import cache
 
 from ..norms import bundled_norms_dir
 
-__all__ = ["Bibliography", "Reference", "references"]
+__all__ = ["Bibliography", "Reference", "author_cite", "references"]
 
 
 @dataclass(frozen=True)
@@ -85,6 +85,46 @@ def _locator(text: str, locale: str) -> str:
         if repl is not None:
             text = re.sub(pattern, repl, text)
     return text
+
+
+def _short_name(ref: Reference, locale: str) -> str:
+    """The work's short form a reader knows (authors and year), never a ``seed 00x``
+    alias: the first Cyrillic alias in Russian, else the first Latin one."""
+    names = [a for a in ref.aliases if not a.casefold().startswith("seed ")]
+    cyrillic = [a for a in names if re.search("[А-Яа-яЁё]", a)]
+    latin = [a for a in names if a not in cyrillic]
+    pick = (cyrillic or latin) if locale == "ru" else (latin or cyrillic)
+    return pick[0] if pick else ref.id
+
+
+def author_cite(text: str, locale: str) -> str:
+    """``text`` with every short form of a known work written as its authors and year
+    (``Miheeva & Ilushenko 2015, Table 3``; ``Михеева, Илюшенко, 2015, табл. 3``) — for
+    output without a reference list (the terminal), where ``[n]`` would point nowhere.
+
+    Parameters
+    ----------
+    text : str
+        A source cell or a sentence citing a work.
+    locale : {"en", "ru"}
+
+    Returns
+    -------
+    str
+    """
+    pattern, by_alias = _alias_pattern()
+    matches = list(pattern.finditer(text))
+    if not matches:
+        return text
+    out = [text[:matches[0].start()]]
+    for i, m in enumerate(matches):
+        ref = by_alias[m.group().casefold()]
+        end = matches[i + 1].start() if i + 1 < len(matches) else len(text)
+        rest = _locator(text[m.end():end], locale)
+        if rest and not rest.startswith((",", ";", ")", " —", ".")) and rest.strip():
+            rest = ", " + rest.lstrip()
+        out.append(_short_name(ref, locale) + rest)
+    return "".join(out)
 
 
 @dataclass

@@ -14,6 +14,7 @@ from ..rules.film import ScanPlan
 from ..rules.uav import UavPlan
 from .labels import t
 from .labels_cli import cli_text
+from .references import author_cite
 from .text import _volume, _wrap, table
 from .view import Numbers
 
@@ -99,7 +100,8 @@ def format_scan_plan(plan: ScanPlan, norm_name: str = "", norm_title: str = "",
     if obj:
         lines.append(w("scan_object", name=w.object(obj.name, obj.size_m), size=w.g(obj.size_m),
                        shape=w.shape(obj.shape), b=w.g(obj.shape_coefficient),
-                       p=w.g(plan.rules.probability), source=localize(obj.source, w.loc)))
+                       p=w.g(plan.rules.probability),
+                       source=author_cite(localize(obj.source, w.loc), w.loc)))
     lines.append("")
     um = w("um")
     header = ["", "", *(w.scale(s.photo_scale) for s in plan.scenarios)]
