@@ -20,19 +20,17 @@ TERRAIN: dict[str, dict[str, str]] = {
               "выполняется на маршрутах: {count:d} ({strips}; превышение по маршрутам — "
               "маршрут: м — {by}). {remedy}",
     },
-    "terrain_resolution_lowered": {
-        "en": "over low ground the photos would be too high above it at a planned height of "
-              "{height:g} m: photo {photo:d} (strip {strip:d}) would be {agl:.0f} m above the "
-              "ground ({flown:.0f} m with the height tolerance), {excess:.0f} m above the "
-              "maximum planned height {limit:.0f} m set by {cid}; strips that would fail: "
-              "{count:d} ({strips}; excess in m by strip — strip: m — {by}). The plan is "
-              "therefore flown lower. {remedy}",
-        "ru": "При плановой высоте {height:g}~м снимки над пониженным рельефом оказались бы "
-              "слишком высоко над землёй: снимок {photo:d} (маршрут {strip:d}) — {agl:.0f}~м "
-              "над землёй ({flown:.0f}~м с учётом допуска), выше максимальной плановой высоты "
-              "{limit:.0f}~м по условию {cid} на {excess:.0f}~м; не выполнялось бы на "
-              "маршрутах: {count:d} ({strips}; превышение по маршрутам — маршрут: м — {by}). "
-              "Поэтому высота снижена. {remedy}",
+    "terrain_resolution_lowered": {  # the part of terrain_height_lowered that says why
+        "en": ". At the planned height of {height:g} m photo {photo:d} (strip {strip:d}) would "
+              "be {agl:.0f} m above the ground ({flown:.0f} m with the height tolerance), "
+              "{excess:.0f} m above the maximum planned height {limit:.0f} m set by {cid}; "
+              "strips that would fail: {count:d} ({strips}; excess in m by strip — strip: m — "
+              "{by}). {remedy}",
+        "ru": " При плановой высоте {height:g}~м снимок {photo:d} (маршрут {strip:d}) был бы "
+              "на {agl:.0f}~м над землёй ({flown:.0f}~м с учётом допуска), выше максимальной "
+              "плановой высоты {limit:.0f}~м по условию {cid} на {excess:.0f}~м; не "
+              "выполнялось бы на маршрутах: {count:d} ({strips}; превышение по маршрутам — "
+              "маршрут: м — {by}). {remedy}",
     },
     "terrain_higher.constant": {
         "en": "To fly higher: fly each strip at its own altitude ([terrain] altitude_mode = "
@@ -181,9 +179,10 @@ TERRAIN: dict[str, dict[str, str]] = {
     "terrain_height_lowered": {
         "en": "over the relief the flat-ground maximum height {flat:.0f} m is too high: with "
               "the altitude mode {mode} the worst photo meets {cid} up to {max:.0f} m above "
-              "the reference ground, so the plan is flown at {recommended:g} m",
+              "the reference ground, so the plan is flown at {recommended:g} m{why}",
         "ru": "Над рельефом максимальная высота для плоской местности {flat:.0f}~м слишком "
               "велика: в режиме {mode} наихудший снимок удовлетворяет условию {cid} до "
-              "{max:.0f}~м над опорной отметкой, поэтому принята высота {recommended:g}~м.",
+              "{max:.0f}~м над опорной отметкой, поэтому принята высота "
+              "{recommended:g}~м.{why}",
     },
 }

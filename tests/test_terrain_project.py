@@ -52,18 +52,20 @@ def test_the_valley_shows_what_flat_ground_misses(valley):
     assert tr.max_height_m == pytest.approx(u.job.plan.max_height_m - relief, abs=1e-6)
     assert u.recommended_height_m == 5 * (tr.max_height_m // 5)
     assert u.recommended_height_m == 70  # the headline: 135 m on flat ground
-    miss = next(w for w in valley.warnings if w.code == "terrain_resolution")
-    assert "at a planned height of 135 m" in miss.message and "HC" in miss.message
-    assert "altitude_mode" in miss.message  # the remedy names the key
-    # said as why the height was lowered, not as a fault of the plan that is flown
-    assert miss.severity == "info" and miss.message.code == "terrain_resolution_lowered"
-    assert "therefore flown lower" in miss.message and "To fly higher" in miss.message
-    assert "lower the planned height" not in miss.message
-    ru = miss.message.text("ru")
-    assert "Поэтому высота снижена" in ru and "Чтобы лететь выше" in ru and "135" in ru
+    # one warning says the lowering and why: what the planned 135 m would miss, and how to
+    # fly higher (not "lower the planned height": that is done); the flown plan misses nothing
+    assert "terrain_resolution" not in [w.code for w in valley.warnings]
     w = next(w for w in valley.warnings if w.code == "height_lowered")
     assert w.message.code == "terrain_height_lowered"
     assert "HC" in w.message and "reference ground" in w.message
+    assert w.message.params["why"].code == "terrain_resolution_lowered"
+    assert "flown at 70 m. At the planned height of 135 m photo" in w.message
+    assert "strips that would fail: 41" in w.message
+    assert "To fly higher" in w.message and "altitude_mode" in w.message  # names the key
+    assert "lower the planned height" not in w.message
+    ru = w.message.text("ru")
+    assert "принята высота 70\u00a0м. При плановой высоте 135\u00a0м снимок" in ru, ru
+    assert "Чтобы лететь выше" in ru and ru.endswith("по рельефу."), ru
     ph = tr.layout.photos
     assert ph["agl_m"].max() <= u.job.plan.max_height_m + 1e-6  # the worst photo meets it
     assert ph["agl_m"].min() == pytest.approx(u.recommended_height_m, abs=1e-6)

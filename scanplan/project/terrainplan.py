@@ -109,10 +109,9 @@ def uav_terrain_spec(project: Project, cfg: TerrainConfig, job: UavJob,
     Returns
     -------
     job, terrain result, the recommended height [m] (None when nothing is recommended
-    anew), the reason (a Message), the warnings of the final check — and, when a height
-    the project gave was lowered, the check of that height (which strips and photos fail
-    and by how much); the lowering itself is the specification's reason and its
-    ``height_lowered`` warning.
+    anew), the reason (a Message; when a height the project gave was lowered, with what
+    that height would miss: which strips and photos, by how much — the specification's
+    ``height_lowered`` warning), the warnings of the final check.
     """
     if job.layout is None:
         raise InputError(f"{project.path}: [terrain]", "needs an area to lay the photos over "
@@ -136,33 +135,30 @@ def uav_terrain_spec(project: Project, cfg: TerrainConfig, job: UavJob,
         res = uav_terrain(job.layout, _ground(project, cfg, job.layout), job.plan.inputs,
                           job.plan, cfg.altitude_mode, cfg.follow_tolerance_m)
         height, rec = lower, lower
-    if rec is not None:
+    if rec is not None:  # with what the height the project gave would miss, as the why
         reason = Message("terrain_height_lowered", planned=planned_m or 0.0,
                          flat=job.plan.max_height_m or 0.0, max=res.max_height_m or 0.0,
                          recommended=rec, mode=_MODE_NAMES[cfg.altitude_mode],
-                         cid=res.binding or "")
+                         cid=res.binding or "",
+                         why=(_missed_at_planned(first.warnings, cfg.altitude_mode)
+                              if planned_m is not None else None))
     notes = dict(res.layout.notes)
     notes["waypoints"] = res.waypoints
     layout = replace(res.layout, notes=notes)
     res = replace(res, layout=layout)
-    warnings = res.warnings
-    if rec is not None and planned_m is not None:  # what the height asked for would miss
-        warnings = _missed_at_planned(first.warnings, cfg.altitude_mode) + warnings
-    return replace(job, layout=layout), res, rec, reason, warnings
+    return replace(job, layout=layout), res, rec, reason, res.warnings
 
 
-def _missed_at_planned(checked: tuple[PlanWarning, ...], mode: str
-                       ) -> tuple[PlanWarning, ...]:
-    """The ``terrain_resolution`` finding of the height the plan was lowered from, said as
-    the reason it was lowered (a note: the lowering is the ``height_lowered`` warning), with
-    the ways to fly higher instead of "lower the planned height"."""
-    out = []
+def _missed_at_planned(checked: tuple[PlanWarning, ...], mode: str) -> Message | None:
+    """Why the height the project gave was lowered: its ``terrain_resolution`` finding
+    (which photo, which strips, by how much), with the ways to fly higher instead of "lower
+    the planned height" — said inside the one ``height_lowered`` warning, not beside it."""
     for w in checked:
         if w.code == "terrain_resolution" and isinstance(w.message, Message):
             params = {k: v for k, v in w.message.params.items() if k != "remedy"}
-            out.append(replace(w, severity="info", message=Message(
-                "terrain_resolution_lowered", params, remedy=Message(f"terrain_higher.{mode}"))))
-    return tuple(out)
+            return Message("terrain_resolution_lowered", params,
+                           remedy=Message(f"terrain_higher.{mode}"))
+    return None
 
 
 def film_terrain_spec(project: Project, cfg: TerrainConfig, layout: FlightLayout,

@@ -343,8 +343,6 @@ DESIGN: dict[str, dict[str, str]] = {
 TERRAIN: dict[str, dict[str, str]] = {
     "en": {
         "pdf_warn_terrain_resolution": "Too high above low ground",
-        "pdf_warn_terrain_resolution_lowered": "Lowered: too high above low ground at the "
-                                               "planned height",
         "pdf_warn_terrain_forward_overlap": "Forward overlap lost over high ground",
         "pdf_warn_terrain_side_overlap": "Side overlap lost over high ground",
         "pdf_warn_terrain_no_ground": "Photos without ground elevation",
@@ -406,8 +404,6 @@ TERRAIN: dict[str, dict[str, str]] = {
     },
     "ru": {
         "pdf_warn_terrain_resolution": "Слишком высоко над пониженным рельефом",
-        "pdf_warn_terrain_resolution_lowered": "Высота снижена: при плановой высоте снимки "
-                                               "над пониженным рельефом слишком высоко",
         "pdf_warn_terrain_forward_overlap": "Продольное перекрытие над возвышенностями "
                                             "недостаточно",
         "pdf_warn_terrain_side_overlap": "Поперечное перекрытие над возвышенностями "

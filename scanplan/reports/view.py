@@ -345,10 +345,8 @@ def build_view(*, scan: ScanJob | None = None, uav: UavJob | None = None,
 
 
 def warning_heading_key(warning: Any) -> str | None:
-    """The label key of a warning's short heading (page 1, the Warnings sheet): its
-    message's own where the finding is said another way (``terrain_resolution`` said as why
-    the height was lowered: ``pdf_warn_terrain_resolution_lowered``), else its code's; None
-    when it has neither.
+    """The label key of a warning's short heading (page 1, the Warnings sheet, the PDF's
+    warnings): ``pdf_warn_<code>``, None when the catalogue has none.
 
     Parameters
     ----------
@@ -360,8 +358,5 @@ def warning_heading_key(warning: Any) -> str | None:
     str or None
         ``"pdf_warn_<code>"``.
     """
-    said = getattr(getattr(warning, "message", None), "code", None)
-    for key in (f"pdf_warn_{said}", f"pdf_warn_{warning.code}"):
-        if key in LABELS["en"]:
-            return key
-    return None
+    key = f"pdf_warn_{warning.code}"
+    return key if key in LABELS["en"] else None
