@@ -303,7 +303,8 @@ def _uav_summary(u: Any, loc: str, T: _Terminal, cname: Any) -> list[str]:
                  (f"{_n(fl['photo_interval_s'], 2, loc)} {T['s']}"
                   if math.isfinite(fl["photo_interval_s"]) else "— (путевая скорость ≈ 0)")])
     if "photos" in fl:
-        rows.append([f"  {T['photos']}", f"{fl['photos']} / {fl['strips']}"])
+        rows.append([f"  {T['photos']}",  # grouped as the flight-lines line and the PDF
+                     f"{_n(fl['photos'], 0, loc, True)} / {_n(fl['strips'], 0, loc, True)}"])
         rows.append([f"  {T['flight']}", f"{_n(fl['flight_length_m'] / 1000, 1, loc)} {T['km']}"
                      + (f", {_n(fl['flight_time_s'] / 60, 0, loc)} {T['min']}"
                         if fl.get("flight_time_s") else "")])
