@@ -494,3 +494,23 @@ def test_norm_template_follows_the_same_rules(work):
     r = cli("norms", "template", "ro.xlsx", "--force")
     assert r.exit_code == 2 and "is write-protected" in r.output
     assert (work / "ro.xlsx").read_bytes() == b"x"
+
+
+@pytest.mark.parametrize("args", [
+    ["plan", "{uav}", "--pdf", "{missing}/s.pdf"],
+    ["plan", "{uav}", "--xlsx", "{missing}/s.xlsx"],
+    ["uav", "--camera", "canon-eos-5d-mark-ii-50", "--height-m", "300", "--pdf",
+     "{missing}/u.pdf"],
+    ["scan", "--map-scale", "2000", "--relief", "0.5", "--photo-scale", "10000",
+     "--camera", "rc30-153", "--xlsx", "{missing}/s.xlsx"],
+], ids=["plan-pdf", "plan-xlsx", "uav-pdf", "scan-xlsx"])
+def test_a_report_into_a_missing_folder_is_refused_before_the_plan(args, tmp_path):
+    """Exit 2 naming the option, before anything is planned or printed (the audit found
+    the plan printed first and the error after it)."""
+    missing = tmp_path / "no-such-folder"
+    argv = [a.format(uav=EXAMPLES / "uav-canon-2000.toml", missing=missing) for a in args]
+    r = CliRunner().invoke(main, argv)
+    assert r.exit_code == 2, r.output
+    option = "--pdf" if any(a.endswith(".pdf") for a in argv) else "--xlsx"
+    assert r.stdout == "" and f"{option}: folder" in r.stderr, (r.stdout, r.stderr)
+    assert not missing.exists()

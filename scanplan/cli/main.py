@@ -217,10 +217,7 @@ def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
         for path, (kind, _) in exports.items():
             check_target(path, "--out", kind, inputs=inputs, force=force)
 
-    for path, kind in wanted:
-        folder = os.path.dirname(os.path.abspath(path))
-        if not os.path.isdir(folder):
-            raise InputError(fields[kind], f"folder {folder!r} does not exist")
+    _check_folders(wanted, fields)
     if len(wanted) == 2 and (os.path.normcase(os.path.realpath(xlsx))
                              == os.path.normcase(os.path.realpath(pdf))):
         raise InputError("--pdf", f"{pdf!r} is the file --xlsx writes; give another name")
@@ -306,6 +303,22 @@ REPORT_KEYS = ("xlsx_path", "pdf_path", "force", "locale", "project_name", "cust
                "approver_position", "approver_name", "pdf_worker")
 
 
+def _check_folders(wanted: list[tuple[str, str]], fields: dict[str, str]) -> None:
+    """Each report's folder exists (checked before anything is planned, and again when
+    written): exit 2 naming the option."""
+    for path, kind in wanted:
+        folder = os.path.dirname(os.path.abspath(path))
+        if not os.path.isdir(folder):
+            raise InputError(fields[kind], f"folder {folder!r} does not exist")
+
+
+def _report_folders(xlsx_path: str | None, pdf_path: str | None) -> None:
+    """``--xlsx``/``--pdf`` point into existing folders: said before the plan is made,
+    not after it has been printed."""
+    _check_folders([(p, k) for p, k in ((xlsx_path, "xlsx"), (pdf_path, "pdf")) if p],
+                   {"xlsx": "--xlsx", "pdf": "--pdf"})
+
+
 @contextlib.contextmanager
 def _pdf_worker(wanted: bool) -> Iterator[Any]:
     """The PDF worker (:class:`scanplan.reports.pdfworker.PdfWorker`) when a PDF is
@@ -323,10 +336,12 @@ def _pdf_worker(wanted: bool) -> Iterator[Any]:
             worker.stop()
 
 
-def _pdf_on_second_core(command: Callable[..., Any]) -> Callable[..., Any]:
-    """A command with ``--pdf``: its ``pdf_worker`` argument is :func:`_pdf_worker`'s."""
+def _writes_reports(command: Callable[..., Any]) -> Callable[..., Any]:
+    """A command with ``--xlsx``/``--pdf``: their folders checked first, then its
+    ``pdf_worker`` argument is :func:`_pdf_worker`'s."""
     @functools.wraps(command)
     def run(**kwargs: Any) -> Any:
+        _report_folders(kwargs.get("xlsx_path"), kwargs.get("pdf_path"))
         with _pdf_worker(bool(kwargs.get("pdf_path"))) as worker:
             return command(pdf_worker=worker, **kwargs)
     return run
@@ -373,7 +388,7 @@ def _inputs(command: str, names: list[str], **per_name: dict[str, Any]
 @_inputs("scan", ["area_file", "area_feature", "area_layer", "film_side_overlap_pct"])
 @report_options
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
-@_pdf_on_second_core
+@_writes_reports
 def scan(as_json: bool, bits_per_band: str, **kwargs: Any) -> None:
     """Film photos: every scan-pixel constraint at one or more photo scales.
 
@@ -453,7 +468,7 @@ def _film_schemes(job: Any, area: Any, side: float) -> list[tuple[Any, Any]]:
                  "max_flight_time_min"])
 @report_options
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
-@_pdf_on_second_core
+@_writes_reports
 def uav(as_json: bool, **kwargs: Any) -> None:
     """Digital camera on a UAV: GSD, real ground resolution L from the MTF chain, blur,
     flight geometry; with --map-scale/--relief the constraints and the maximum planned height
@@ -555,6 +570,7 @@ def plan(projects: tuple[str, ...], out_dir: str | None, xlsx_path: str | None,
                          "--xlsx/--pdf (file names), not both")
     if batch and (xlsx_path or pdf_path):
         raise InputError("--xlsx", "--xlsx/--pdf name one file; with several projects use --out")
+    _report_folders(xlsx_path, pdf_path)
     created: list[str] = []
     if out_dir:
         if os.path.exists(out_dir) and not os.path.isdir(out_dir):
