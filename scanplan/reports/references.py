@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import re
 import tomllib
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import cache
 
@@ -112,6 +113,13 @@ def author_cite(text: str, locale: str) -> str:
     -------
     str
     """
+    return _replace_citations(text, locale, lambda ref: _short_name(ref, locale))
+
+
+def _replace_citations(text: str, locale: str, name: Callable[[Reference], str]) -> str:
+    """``text`` with every short form of a known work replaced by ``name(work)`` and the
+    locators after it (``Table 3``, ``eq. (16)``) written in ``locale``; text before the
+    first short form kept, a text naming no known work returned unchanged."""
     pattern, by_alias = _alias_pattern()
     matches = list(pattern.finditer(text))
     if not matches:
@@ -123,7 +131,7 @@ def author_cite(text: str, locale: str) -> str:
         rest = _locator(text[m.end():end], locale)
         if rest and not rest.startswith((",", ";", ")", " —", ".")) and rest.strip():
             rest = ", " + rest.lstrip()
-        out.append(_short_name(ref, locale) + rest)
+        out.append(name(ref) + rest)
     return "".join(out)
 
 
@@ -162,19 +170,7 @@ class Bibliography:
         -------
         str
         """
-        pattern, by_alias = _alias_pattern()
-        matches = list(pattern.finditer(text))
-        if not matches:
-            return text
-        out = [text[:matches[0].start()]]
-        for i, m in enumerate(matches):
-            ref = by_alias[m.group().casefold()]
-            end = matches[i + 1].start() if i + 1 < len(matches) else len(text)
-            rest = _locator(text[m.end():end], self.locale)
-            if rest and not rest.startswith((",", ";", ")", " —", ".")) and rest.strip():
-                rest = ", " + rest.lstrip()
-            out.append(f"[{self.number(ref)}]{rest}")
-        return "".join(out)
+        return _replace_citations(text, self.locale, lambda ref: f"[{self.number(ref)}]")
 
     def entries(self) -> list[tuple[int, str]]:
         """(number, entry) of every work cited so far, in the document's language."""
