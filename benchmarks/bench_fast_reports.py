@@ -15,7 +15,9 @@ Two rows, each against a baseline measured in the same run:
   number of A4 pages (the report's page margins), every image the report embeds (the
   plots; the map of a georeferenced area; the heights above ground of a terrain plan),
   drawn the same size, and the bundled font (one short paragraph per page, everything else
-  left out). Target ≤ 1.3×.
+  left out). Target ≤ 1.3×. The note adds the report without its images, with its
+  stylesheet and with none: what its words and tables cost WeasyPrint, which the target
+  would leave 0.3× the floor.
 
 Run: ``python benchmarks/bench_fast_reports.py [--runs 7] [--repeat 5]``
 """
@@ -30,6 +32,7 @@ import subprocess
 import sys
 import tempfile
 import time
+from collections.abc import Callable
 from pathlib import Path
 
 from _common import ROOT, Result
@@ -139,24 +142,28 @@ def pdf_vs_floor(repeat: int, project: Path = PROJECT) -> dict[str, float]:
         return weasyprint.HTML(string=floor_doc, base_url=base,
                                url_fetcher=BundledAssetFetcher()).write_pdf(font_config=fonts)
 
-    # what the report's words and tables cost alone: its HTML with no stylesheet (but the
-    # bundled font) and no images — no styling or drawing change can go below it
-    bare_doc = _TEXT_ONLY_CSS.join(_FIGURE_IMG.sub("", html).split(_STYLESHEET, 1))
-    assert bare_doc != html and "<td" in bare_doc and "<img" not in bare_doc
+    # what the report costs beyond its images: its HTML without them, once with its own
+    # stylesheet and once with none (the bundled font only) — the words and tables that any
+    # styling has to lay out; the 1.3x target leaves them 0.3x the floor
+    no_images = _FIGURE_IMG.sub("", html)
+    bare_doc = _TEXT_ONLY_CSS.join(no_images.split(_STYLESHEET, 1))
+    assert bare_doc != no_images != html and "<td" in bare_doc and "<img" not in no_images
 
-    def text_only() -> bytes:
-        return weasyprint.HTML(string=bare_doc, base_url=base,
-                               url_fetcher=BundledAssetFetcher()).write_pdf(font_config=fonts)
+    def without(doc: str) -> Callable[[], bytes]:
+        return lambda: weasyprint.HTML(string=doc, base_url=base, url_fetcher=(
+            BundledAssetFetcher())).write_pdf(font_config=fonts)
 
-    floor()
-    text_only()
-    pdf_s = floor_s = text_s = float("inf")
+    styled, text_only = without(no_images), without(bare_doc)
+    for warm in (floor, styled, text_only):
+        warm()
+    pdf_s = floor_s = styled_s = text_s = float("inf")
     for _ in range(repeat):  # interleaved: a change of the machine's load hits all
         pdf_s = min(pdf_s, best_of(render, 1))
         floor_s = min(floor_s, best_of(floor, 1))
+        styled_s = min(styled_s, best_of(styled, 1))
         text_s = min(text_s, best_of(text_only, 1))
-    return {"pdf_s": pdf_s, "floor_s": floor_s, "text_s": text_s, "pages": pages,
-            "images": len(images), "plots_s": best_of(draw, repeat)}
+    return {"pdf_s": pdf_s, "floor_s": floor_s, "styled_s": styled_s, "text_s": text_s,
+            "pages": pages, "images": len(images), "plots_s": best_of(draw, repeat)}
 
 
 def measure(quick: bool = False) -> list[Result]:
@@ -187,9 +194,12 @@ def measure(quick: bool = False) -> list[Result]:
                note=f"PDF render {f['pdf_s'] * 1000:.0f} ms (warm, best of {repeat}) / a "
                     f"minimal WeasyPrint document with the same {f['pages']:.0f} pages, "
                     f"the same {f['images']:.0f} images drawn the same size and the bundled "
-                    f"font {f['floor_s'] * 1000:.0f} ms. The report's words and tables "
-                    f"alone (no stylesheet, no images) render in {f['text_s'] * 1000:.0f} ms "
-                    f"= {f['text_s'] / f['floor_s']:.1f}x that floor; drawing the plots "
+                    f"font {f['floor_s'] * 1000:.0f} ms. Without its images the report "
+                    f"renders in {f['styled_s'] * 1000:.0f} ms "
+                    f"({f['styled_s'] / f['floor_s']:.1f}x that floor), with no stylesheet "
+                    f"either in {f['text_s'] * 1000:.0f} ms "
+                    f"({f['text_s'] / f['floor_s']:.1f}x): the target leaves its words and "
+                    f"tables 0.3x; drawing the plots "
                     f"(once per result) {f['plots_s'] * 1000:.0f} ms"),
     ]
 
@@ -206,8 +216,9 @@ def main() -> None:
     f = pdf_vs_floor(args.repeat)
     print(f"PDF render {f['pdf_s'] * 1000:.0f} ms vs minimal document "
           f"{f['floor_s'] * 1000:.0f} ms ({f['pages']:.0f} pages): "
-          f"{f['pdf_s'] / f['floor_s']:.2f}x (target <= {FLOOR_TARGET:g}x); words and "
-          f"tables alone {f['text_s'] * 1000:.0f} ms ({f['text_s'] / f['floor_s']:.1f}x); "
+          f"{f['pdf_s'] / f['floor_s']:.2f}x (target <= {FLOOR_TARGET:g}x); without images "
+          f"{f['styled_s'] * 1000:.0f} ms ({f['styled_s'] / f['floor_s']:.1f}x), without "
+          f"stylesheet too {f['text_s'] * 1000:.0f} ms ({f['text_s'] / f['floor_s']:.1f}x); "
           f"the plots {f['plots_s'] * 1000:.0f} ms")
 
 
