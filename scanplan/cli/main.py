@@ -393,7 +393,7 @@ def scan(as_json: bool, bits_per_band: str, **kwargs: Any) -> None:
     """Film photos: every scan-pixel constraint at one or more photo scales.
 
     Evaluates the Instruction's P_S, P_Z, P_P, P_R (corrected k_R = 0.5) and the
-    interpretation pixel P_D of seed 001, picks the binding one and explains it.
+    interpretation pixel P_D (Miheeva & Ilushenko 2015), picks the binding one and explains it.
 
     \b
     Example (the Instruction's worked example):
@@ -475,7 +475,7 @@ def uav(as_json: bool, **kwargs: Any) -> None:
     (its highest flown height within the altitude ceiling --max-height-m).
 
     \b
-    Example (seed 002's flight):
+    Example (the Ptero-E flight of 2014, flown at 300–420 m):
       scanplan uav --camera canon-eos-5d-mark-ii-50 --f-number 8 --height-m 300 \\
                    --height-tolerance-pct 40 --speed-ms 25 --map-scale 2000 --relief 0.5
     """

@@ -319,7 +319,7 @@ TABLES: dict[str, TableSpec] = {
                 _SOURCE,
             ),
             title_ru="Коэффициенты формы",
-            description="shape coefficients B of the recognition model (seed 001 Table 2)",
+            description="shape coefficients B of the recognition model (Miheeva & Ilushenko 2015, Table 2)",
         ),
         TableSpec(
             "objects",
@@ -363,7 +363,7 @@ TABLES: dict[str, TableSpec] = {
                 _SOURCE,
             ),
             title_ru="Минимальные объекты",
-            description="smallest map objects per map scale (seed 001 Table 3)",
+            description="smallest map objects per map scale (Miheeva & Ilushenko 2015, Table 3)",
         ),
         TableSpec(
             "cameras",

@@ -233,7 +233,7 @@ _RECORDS: tuple[Input, ...] = (
     Input("photo_scales", "film", "photo_scales", "scales",
           "candidate photo scales Mc to choose from (or photo_scale)", domain="photo_scale",
           option="--photo-scale", commands=(FILM,), fields=("photo_scale",),
-          cli_help="photo scale; repeat for a sweep (like seed 001 Tables 6–9)"),
+          cli_help="photo scale; repeat for a sweep (like the published Tables 6–9 of Miheeva & Ilushenko 2015)"),
     Input("photo_scale", "film", "photo_scale", "scale", "the scale of existing (archive) "
           "photos to scan, e.g. 12000: given, not chosen (instead of photo_scales)",
           domain="photo_scale"),
@@ -283,8 +283,8 @@ _RECORDS: tuple[Input, ...] = (
           "UAV may fly [%]", "%", default=0.0, domain="height_tolerance_up_pct",
           option="--height-tolerance-pct", commands=(UAV,),
           fields=("height_tolerance_up_pct",),
-          cli_help="how much higher the UAV may fly than planned [%], e.g. 40: seed 002 "
-          "planned 300 m and flew up to 420 m"),
+          cli_help="how much higher the UAV may fly than planned [%], e.g. 40: the Ptero-E "
+          "flight of 2014 was planned at 300 m and flew up to 420 m"),
     Input("speed_ms", "uav", "speed_ms", _NUM, "ground speed [m/s]", "m/s", default=15.0,
           by_carrier=True, note="required for a camera on an aircraft", domain="speed_ms",
           option="--speed-ms", commands=(UAV,)),
