@@ -319,7 +319,8 @@ TABLES: dict[str, TableSpec] = {
                 _SOURCE,
             ),
             title_ru="Коэффициенты формы",
-            description="shape coefficients B of the recognition model (Miheeva & Ilushenko 2015, Table 2)",
+            description="shape coefficients B of the recognition model "
+            "(Miheeva & Ilushenko 2015, Table 2)",
         ),
         TableSpec(
             "objects",

@@ -233,7 +233,8 @@ _RECORDS: tuple[Input, ...] = (
     Input("photo_scales", "film", "photo_scales", "scales",
           "candidate photo scales Mc to choose from (or photo_scale)", domain="photo_scale",
           option="--photo-scale", commands=(FILM,), fields=("photo_scale",),
-          cli_help="photo scale; repeat for a sweep (like the published Tables 6–9 of Miheeva & Ilushenko 2015)"),
+          cli_help="photo scale; repeat for a sweep (like Tables 6–9 of Miheeva & "
+          "Ilushenko 2015)"),
     Input("photo_scale", "film", "photo_scale", "scale", "the scale of existing (archive) "
           "photos to scan, e.g. 12000: given, not chosen (instead of photo_scales)",
           domain="photo_scale"),
