@@ -29,14 +29,23 @@ Templates use :meth:`str.format` fields with these parameter kinds:
 In a Russian template ``~`` is a no-break space, so a number stays on the line of its unit
 (``{x:.1f}~мкм``), as Russian typesetting requires.
 
+A project-file key is written ``⁅[uav] max_height_m⁆`` or ``⁅[uav] max_height_m|the altitude
+ceiling⁆``: the terminal and the JSON show the key as it is typed (the user edits that
+file), while the documents to sign (inside :func:`document_text`) show the words after
+``|`` — or nothing, with the brackets around it dropped — since the customer and the crew
+read what to do, not which key to type.
+
 Plain data and :meth:`str.format`; no I/O (core module).
 """
 
 from __future__ import annotations
 
 import numbers
+import re
 import string
-from collections.abc import Mapping
+from collections.abc import Iterator, Mapping
+from contextlib import contextmanager
+from contextvars import ContextVar
 from typing import Any
 
 __all__ = ["LOCALES", "MESSAGES", "Message", "localize", "params_json", "placeholders",
@@ -46,6 +55,8 @@ LOCALES = ("en", "ru")
 
 _NBSP = "\u00a0"
 _TIE = "~"  # in a Russian template: a no-break space (a number stays with its unit)
+_KEYREF = re.compile(r"⁅([^⁆|]*)(?:\|([^⁆]*))?⁆")  # ⁅project-file key|words for documents⁆
+_MEDIUM: ContextVar[str] = ContextVar("scanplan_text_medium", default="terminal")
 _M001 = "Михеева, Илюшенко, 2015"  # seed 001, as the Russian reports cite it
 _M001_EN = "Miheeva & Ilushenko 2015"  # seed 001, as the English reports cite it
 _TAIL_EN = (" They need R ≥ {need:.1f} lines/mm; the photo has {r:g}. Remedies: interpret them "
@@ -194,12 +205,13 @@ MESSAGES: dict[str, dict[str, str]] = {
     "overlap_not_standard": {
         "en": "forward overlap {overlap:g} % is not the Instruction's {standard:g} %: the "
               "printed height formula V_z·f/(k·Mc·b) lets a larger overlap allow a coarser "
-              "pixel. {detail}(The parallax form: [norms] height_formula = \"parallax\" in the "
-              "project file.)",
+              "pixel. {detail}(The parallax form: ⁅[norms] height_formula = \"parallax\" in the "
+              "project file|the norm set's parallax height formula⁆.)",
         "ru": "Перекрытие {overlap:g}~% отличается от принятого в Инструкции {standard:g}~%: по "
               "напечатанной в Инструкции формуле точности по высоте V_z·f/(k·Mc·b) большее "
               "перекрытие допускает более крупный пиксель. {detail}(Параллактическую форму "
-              "задаёт ключ [norms] height_formula = \"parallax\" файла проекта.)",
+              "задаёт ⁅ключ [norms] height_formula = \"parallax\" файла проекта|выбор "
+              "формулы высоты в нормативах⁆.)",
     },
     "overlap_not_standard.detail": {
         "en": "The parallax form gives {pairs}. ",
@@ -240,10 +252,10 @@ MESSAGES: dict[str, dict[str, str]] = {
     "haze_default_height": {
         "en": "the haze contrast coefficient {c:g} assumed for clear air below {valid:g} m is "
               "applied at {height:g} m, where haze lowers contrast more: give the expected "
-              "value for the flight ({key})",
+              "value for the flight (⁅{key}⁆)",
         "ru": "Коэффициент снижения контраста дымкой {c:g}, принятый для чистого воздуха ниже "
               "{valid:g}~м, применён на высоте {height:g}~м, где дымка снижает контраст "
-              "сильнее: задайте ожидаемое значение ({key}).",
+              "сильнее: задайте ожидаемое значение (⁅{key}⁆).",
     },
     "trigger_interval": {
         "en": "photo interval {interval:.2f} s is shorter than the camera's minimum "
@@ -274,8 +286,8 @@ MESSAGES: dict[str, dict[str, str]] = {
         "ru": "таблица наименьших объектов нормативов, {map:scale} ({source})",
     },
     "object_source.user": {
-        "en": "size given in the project file ([norms] object_size_m)",
-        "ru": "размер задан в файле проекта ([norms] object_size_m)",
+        "en": "size given in the project file (⁅[norms] object_size_m⁆)",
+        "ru": "размер задан в файле проекта (⁅[norms] object_size_m⁆)",
     },
     # --- the specification (scanplan plan) ----------------------------------------------
     "spec.film": {
@@ -286,9 +298,10 @@ MESSAGES: dict[str, dict[str, str]] = {
     },
     "no_feasible_photo_scale": {
         "en": "no candidate photo scale meets every constraint ({why:;}); add a larger photo "
-              "scale to [film] photo_scales",
+              "scale to ⁅[film] photo_scales|the candidates⁆",
         "ru": "Ни один из рассмотренных масштабов снимков не удовлетворяет всем условиям "
-              "({why:;}); добавьте более крупный масштаб снимков в [film] photo_scales.",
+              "({why:;}); добавьте более крупный масштаб снимков ⁅в [film] photo_scales|в число "
+              "рассматриваемых⁆.",
     },
     "no_feasible_photo_scale.objects": {
         "en": "the map's objects need photo scales up to {limit:scale}",
@@ -317,10 +330,11 @@ MESSAGES: dict[str, dict[str, str]] = {
     },
     "layout.sortie_too_short": {
         "en": "a sortie of {limit:g} min does not fly even one photo base ({base:,.1f} m at "
-              "{speed:g} m/s); give [uav] max_flight_time_min for the aircraft's endurance",
+              "{speed:g} m/s); give ⁅[uav] max_flight_time_min|the sortie time⁆ for the aircraft's "
+              "endurance",
         "ru": "За полёт продолжительностью {limit:g}~мин не пролетается даже один базис "
-              "фотографирования ({base:,.1f}~м при {speed:g}~м/с); задайте [uav] "
-              "max_flight_time_min по продолжительности полёта носителя.",
+              "фотографирования ({base:,.1f}~м при {speed:g}~м/с); задайте ⁅[uav] "
+              "max_flight_time_min|продолжительность вылета⁆ по продолжительности полёта носителя.",
     },
     "layout.too_many_sorties": {
         "en": "more than {most:,d} sorties of {limit:g} min: the block cannot be flown with "
@@ -341,12 +355,13 @@ MESSAGES: dict[str, dict[str, str]] = {
               "the area (longitude {west:.4f} … {east:.4f}°), where a 6° UTM zone stays within "
               "0.1 %: strip spacing, photo base and ground pixel on the map differ from the "
               "ground by as much; check the area's coordinates, split the block by zones or "
-              "give [area] plan_crs for the area's middle",
+              "plan in a projection for the area's middle (⁅[area] plan_crs⁆)",
         "ru": "Проекция планирования {crs} растягивает местность до {pct:.2f}~% на участке "
               "(долгота {west:.4f} … {east:.4f}°), тогда как в 6-градусной зоне UTM искажение "
               "не более 0,1~%: расстояния между маршрутами, базис фотографирования и размер "
               "пикселя на местности отличаются на столько же; проверьте координаты участка, "
-              "разделите блок по зонам или задайте [area] plan_crs для середины участка.",
+              "разделите блок по зонам или задайте проекцию для середины участка "
+              "(⁅[area] plan_crs⁆).",
     },
     "flight_not_feasible": {
         "en": "the flight plan over the area is not feasible: {why}",
@@ -449,16 +464,16 @@ MESSAGES: dict[str, dict[str, str]] = {
     "sun_no_window": {
         "en": "the sun does not reach {elev:g}° at the site from {start} to {end} (at most "
               "{top:.1f}°): no photography window on these dates; change the dates "
-              "([schedule] start_date, end_date)",
+              "(⁅[schedule] start_date, end_date⁆)",
         "ru": "Солнце не поднимается на {elev:g}° над горизонтом в районе работ с {start} по "
               "{end} (наибольшая высота {top:.1f}°): в эти даты аэрофотосъёмка невозможна; "
-              "измените сроки ([schedule] start_date, end_date).",
+              "измените сроки (⁅[schedule] start_date, end_date⁆).",
     },
     "sun_dates_short": {
         "en": "the {n:d} sorties do not fit into the sun windows from {start} to {end} (only "
-              "{flown:d} do): extend [schedule] end_date",
+              "{flown:d} do): extend the end date (⁅[schedule] end_date⁆)",
         "ru": "Вылеты ({n:d}) не умещаются в периоды достаточной высоты Солнца с {start} по "
-              "{end} (умещается {flown:d}): продлите срок [schedule] end_date.",
+              "{end} (умещается {flown:d}): продлите срок работ (⁅[schedule] end_date⁆).",
     },
     "protects.GSD": {
         "en": "gives the ground sample distance the customer asked for",
@@ -498,12 +513,12 @@ MESSAGES: dict[str, dict[str, str]] = {
         "en": "the altitude ceiling of {ceiling:g} m binds: {tolerance}the plan may be at most "
               "{max:.0f} m, while the other constraints "
               "would allow planning up to {allow:.0f} m ({cid} binds there). Flying higher "
-              "needs an airspace-use permission; then raise [uav] max_height_m",
+              "needs an airspace-use permission; then raise the ceiling (⁅[uav] max_height_m⁆)",
         "ru": "Определяет предельная высота полёта {ceiling:g}~м: {tolerance}плановая высота "
               "не более {max:.0f}~м, тогда как остальные "
               "условия допускают плановую высоту до {allow:.0f}~м (там определяет условие "
               "{cid}). Полёт выше требует разрешения на использование воздушного пространства; "
-              "тогда увеличьте [uav] max_height_m.",
+              "тогда увеличьте предельную высоту (⁅[uav] max_height_m⁆).",
     },
     "ceiling_binds.tolerance": {
         "en": "with the +{tolerance:g} % height tolerance ",
@@ -518,6 +533,49 @@ MESSAGES.update(_ARCHIVE)
 from .messages_terrain import TERRAIN as _TERRAIN  # noqa: E402  (the terrain, issue 12)
 
 MESSAGES.update(_TERRAIN)
+
+
+@contextmanager
+def document_text() -> Iterator[None]:
+    """Render messages for a document to sign while the block runs: project-file keys
+    (``⁅[uav] max_height_m|…⁆``) give way to words (see the module docstring)."""
+    token = _MEDIUM.set("document")
+    try:
+        yield
+    finally:
+        _MEDIUM.reset(token)
+
+
+def for_medium(text: str, medium: str | None = None) -> str:
+    """``text`` with its project-file keys as the medium shows them.
+
+    Parameters
+    ----------
+    text : str
+        A rendered message, possibly holding ``⁅key⁆`` or ``⁅key|words⁆``.
+    medium : {"terminal", "document"}, optional
+        Default: the medium in force (``"document"`` inside :func:`document_text`).
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> t = "raise the ceiling (⁅[uav] max_height_m⁆) or fly ⁅[terrain] altitude_mode|lower⁆."
+    >>> for_medium(t, "terminal")
+    'raise the ceiling ([uav] max_height_m) or fly [terrain] altitude_mode.'
+    >>> for_medium(t, "document")
+    'raise the ceiling or fly lower.'
+    """
+    if "⁅" not in text:
+        return text
+    if (medium or _MEDIUM.get()) != "document":
+        return _KEYREF.sub(lambda m: m.group(1), text)
+    text = _KEYREF.sub(lambda m: m.group(2) or "", text)
+    text = re.sub(r"[ \u00a0]*\([ \u00a0,;]*\)", "", text)  # brackets left empty
+    text = re.sub(r"(?<=\S)[ \u00a0]+(?=[.,;:)])", "", text)  # space before punctuation
+    return re.sub(r"(?<=\S)  +", " ", text)
 
 
 def placeholders(template: str) -> set[str]:
@@ -622,7 +680,7 @@ def render(code: str, params: Mapping[str, Any] | None = None, locale: str = "en
     if locale == "ru":
         template = template.replace(_TIE, _NBSP)
     values = {k: _Param(v, locale) for k, v in (params or {}).items()}
-    return template.format_map(values)
+    return for_medium(template.format_map(values))
 
 
 class Message(str):
@@ -639,7 +697,12 @@ class Message(str):
     def __new__(cls, code: str, params: Mapping[str, Any] | None = None, /,
                 **kw: Any) -> Message:
         values = {**(params or {}), **kw}
-        self = super().__new__(cls, render(code, values, "en"))
+        token = _MEDIUM.set("terminal")  # the str value is the terminal's English text
+        try:
+            english = render(code, values, "en")
+        finally:
+            _MEDIUM.reset(token)
+        self = super().__new__(cls, english)
         self.code = code
         self.params = values
         return self

@@ -33,62 +33,64 @@ TERRAIN: dict[str, dict[str, str]] = {
               "маршрут: м — {by}). {remedy}",
     },
     "terrain_higher.constant": {
-        "en": "To fly higher: fly each strip at its own altitude ([terrain] altitude_mode = "
-              "\"strip\"), follow the terrain (\"follow\") or split the block along the relief",
+        "en": "To fly higher: fly each strip at its own altitude (⁅[terrain] altitude_mode = "
+              "\"strip\"⁆), follow the terrain (⁅\"follow\"⁆) or split the block along the relief",
         "ru": "Чтобы лететь выше: задать каждому маршруту свою высоту или следовать рельефу "
-              "([terrain] altitude_mode) либо разделить блок по рельефу.",
+              "(⁅[terrain] altitude_mode⁆) либо разделить блок по рельефу.",
     },
     "terrain_higher.strip": {
-        "en": "To fly higher: follow the terrain ([terrain] altitude_mode = \"follow\") or "
+        "en": "To fly higher: follow the terrain (⁅[terrain] altitude_mode = \"follow\"⁆) or "
               "split the failing strips",
-        "ru": "Чтобы лететь выше: следовать рельефу ([terrain] altitude_mode) или разделить "
+        "ru": "Чтобы лететь выше: следовать рельефу (⁅[terrain] altitude_mode⁆) или разделить "
               "невыполняющиеся маршруты.",
     },
     "terrain_higher.follow": {
-        "en": "To fly higher: a smaller tolerance ([terrain] follow_tolerance_m)",
-        "ru": "Чтобы лететь выше: уменьшить допуск ([terrain] follow_tolerance_m).",
+        "en": "To fly higher: a smaller tolerance (⁅[terrain] follow_tolerance_m⁆)",
+        "ru": "Чтобы лететь выше: уменьшить допуск (⁅[terrain] follow_tolerance_m⁆).",
     },
     "terrain_remedy.constant": {
-        "en": "Remedies: fly each strip at its own altitude ([terrain] altitude_mode = "
-              "\"strip\"), follow the terrain (\"follow\"), split the block along the relief, or "
-              "lower the planned height to {max:.0f} m above the highest ground",
-        "ru": "Выход: задать каждому маршруту свою высоту или следовать рельефу ([terrain] "
-              "altitude_mode), разделить блок по рельефу или снизить плановую высоту до "
+        "en": "Remedies: fly each strip at its own altitude (⁅[terrain] altitude_mode = "
+              "\"strip\"⁆), follow the terrain (⁅\"follow\"⁆), split the block along the "
+              "relief, or lower the planned height to {max:.0f} m above the highest ground",
+        "ru": "Выход: задать каждому маршруту свою высоту или следовать рельефу (⁅[terrain] "
+              "altitude_mode⁆), разделить блок по рельефу или снизить плановую высоту до "
               "{max:.0f}~м над наивысшей точкой.",
     },
     "terrain_remedy.strip": {
-        "en": "Remedies: follow the terrain ([terrain] altitude_mode = \"follow\"), split the "
+        "en": "Remedies: follow the terrain (⁅[terrain] altitude_mode = \"follow\"⁆), split the "
               "failing strips, or lower the planned height to {max:.0f} m above each strip's "
               "highest ground",
-        "ru": "Выход: следовать рельефу ([terrain] altitude_mode), разделить "
+        "ru": "Выход: следовать рельефу (⁅[terrain] altitude_mode⁆), разделить "
               "невыполняющиеся маршруты или снизить плановую высоту до {max:.0f}~м над "
               "наивысшей точкой каждого маршрута.",
     },
     "terrain_remedy.follow": {
-        "en": "Remedies: a smaller tolerance ([terrain] follow_tolerance_m) or a planned height "
+        "en": "Remedies: a smaller tolerance (⁅[terrain] follow_tolerance_m⁆) or a planned height "
               "of at most {max:.0f} m",
-        "ru": "Выход: уменьшить допуск ([terrain] follow_tolerance_m) или снизить плановую "
+        "ru": "Выход: уменьшить допуск (⁅[terrain] follow_tolerance_m⁆) или снизить плановую "
               "высоту до {max:.0f}~м.",
     },
     "terrain_forward_overlap": {
         "en": "over high ground the forward overlap drops to {value:.1f} % (photos {a:d} and "
               "{b:d}), below the planned {planned:g} % at {count:d} photo(s): {photos}.{floor} "
-              "Remedies: hold the altitude over the highest ground ([terrain] altitude_mode = "
-              "\"constant\" or \"strip\"), or raise [uav] forward_overlap_pct",
+              "Remedies: hold the altitude over the highest ground (⁅[terrain] altitude_mode = "
+              "\"constant\" or \"strip\"⁆), or raise the forward overlap "
+              "(⁅[uav] forward_overlap_pct⁆)",
         "ru": "Над повышенным рельефом продольное перекрытие уменьшается до {value:.1f}~% (снимки "
               "{a:d} и {b:d}) — меньше планового {planned:g}~% у снимков: {count:d} "
               "({photos}).{floor} Выход: отсчитывать высоту от наивысшей точки блока или маршрута "
-              "([terrain] altitude_mode) или увеличить [uav] forward_overlap_pct.",
+              "(⁅[terrain] altitude_mode⁆) или увеличить продольное перекрытие "
+              "(⁅[uav] forward_overlap_pct⁆).",
     },
     "terrain_side_overlap": {
         "en": "over high ground the side overlap drops to {value:.1f} % (photos {a:d} and {b:d}), "
               "below the planned {planned:g} % at {count:d} photo(s): {photos}.{floor} Remedies: "
-              "hold the altitude over the highest ground ([terrain] altitude_mode = "
-              "\"constant\"), or raise [uav] side_overlap_pct",
+              "hold the altitude over the highest ground (⁅[terrain] altitude_mode = "
+              "\"constant\"⁆), or raise the side overlap (⁅[uav] side_overlap_pct⁆)",
         "ru": "Над повышенным рельефом поперечное перекрытие уменьшается до {value:.1f}~% (снимки "
               "{a:d} и {b:d}) — меньше планового {planned:g}~% у снимков: {count:d} "
-              "({photos}).{floor} Выход: отсчитывать высоту от наивысшей точки блока ([terrain] "
-              "altitude_mode) или увеличить [uav] side_overlap_pct.",
+              "({photos}).{floor} Выход: отсчитывать высоту от наивысшей точки блока (⁅[terrain] "
+              "altitude_mode⁆) или увеличить поперечное перекрытие (⁅[uav] side_overlap_pct⁆).",
     },
     "terrain_overlap_floor.forward": {
         "en": " At 50 % or less no ground point is on three photos: the block cannot be tied",
@@ -110,11 +112,11 @@ TERRAIN: dict[str, dict[str, str]] = {
     },
     "terrain_units_feet": {
         "en": "the DEM {file} has its horizontal coordinates in {unit}, and nothing says its "
-              "heights are in metres: if they are in feet, state it ([terrain] vertical_unit = "
-              "\"ft\" or \"us-ft\")",
+              "heights are in metres: if they are in feet, state it (⁅[terrain] vertical_unit = "
+              "\"ft\" or \"us-ft\"⁆)",
         "ru": "Плановые координаты ЦМР {file} заданы в {unit}, а единица высот не "
-              "указана: если высоты в футах, укажите это ([terrain] vertical_unit = «ft» или "
-              "«us-ft»).",
+              "указана: если высоты в футах, укажите это (⁅[terrain] vertical_unit = «ft» или "
+              "«us-ft»⁆).",
     },
     "terrain_geographic": {
         "en": "the DEM {file} is in geographic coordinates (cells of {cell:.2f}″): the photo "

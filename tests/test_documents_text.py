@@ -7,9 +7,10 @@ both locales and rendered to spec.pdf and spec.xlsx. The extracted text must not
 - "seed 0…" (the papers are cited by their references, never by our file names),
 - repository paths (``docs/…``, ``….md``, ``….py``, ``norms/…``),
 - code identifiers: snake_case names (norm-schema parameters such as
-  ``planimetric_accuracy_mm``, message codes such as ``not_interpretable``) except a
-  project-file key written as the reader types it (``[norms] height_formula``), and the
+  ``planimetric_accuracy_mm``, message codes such as ``not_interpretable``), and the
   raw values ``instruction`` / ``exact`` / ``paper`` of the norm set,
+- project-file syntax: a ``[section]``, a ``[section] key`` or a ``key = value`` (the
+  documents say what to do in words; the key belongs in the terminal and the docs),
 - command-line flags (``--height-formula``);
 
 and the Russian documents hold no English: no Latin word of 3+ letters outside a short
@@ -50,6 +51,11 @@ _FLAG = re.compile(r"(?<![\w-])--[a-z][a-z-]+")
 _SNAKE = re.compile(r"\b[a-z][a-z0-9]+(?:_[a-z0-9]+)+\b")
 _RAW_VALUES = re.compile(r"\b(?:instruction|exact|paper)\b")  # norm-set values as stored
 _PROJECT_KEY = re.compile(r'\[([a-z][a-z.]*)\]\s+([a-z][a-z0-9_]*)(?:\s*=\s*"[^"]*")?')
+_SECTION = re.compile(r"\[[a-z][a-z._]*\]")
+# a key set to a value; formula symbols (h_c = 0.5 m, k = 2) and words of a sentence
+# ("per strip = photos") are not keys: a key is a project-file key or a snake_case name
+_KEY_VALUE = re.compile(r"\b(?:[a-z][a-z0-9]+(?:_[a-z0-9]+)+|set|scale|camera|locale|file|"
+                        r"polygon|dem|scanner)\s*=\s*[\"«'\w]")
 _LATIN_WORD = re.compile(r"[A-Za-z][A-Za-z'’-]*[A-Za-z]")
 
 # Latin words a Russian document may hold: units, symbols and abbreviations of formulas,
@@ -135,11 +141,9 @@ def jargon(text: str) -> list[str]:
     found += [f"seed reference {m.group()!r}" for m in _SEED.finditer(text)]
     found += [f"repository path {m.group()!r}" for m in _PATH.finditer(text)]
     found += [f"command-line flag {m.group()!r}" for m in _FLAG.finditer(text)]
-    keys = _project_keys()
-    shown_keys = {m.group(2) for m in _PROJECT_KEY.finditer(text)
-                  if (m.group(1), m.group(2)) in keys}
-    found += [f"code identifier {m.group()!r}" for m in _SNAKE.finditer(text)
-              if m.group() not in shown_keys]
+    found += [f"project-file section {m.group()!r}" for m in _SECTION.finditer(text)]
+    found += [f"project-file setting {m.group()!r}" for m in _KEY_VALUE.finditer(text)]
+    found += [f"code identifier {m.group()!r}" for m in _SNAKE.finditer(text)]
     found += [f"raw norm value {m.group()!r}" for m in _RAW_VALUES.finditer(text)]
     return found
 
@@ -183,16 +187,33 @@ def test_russian_documents_have_no_english(example):
 @pytest.mark.parametrize("text", [
     "Source: seed 001 Table 3", "docs/uav-models.md §1", "planimetric_accuracy_mm 0.2",
     "(--height-formula parallax to use the parallax form.)", "[not_interpretable]",
-    "height formula instruction", "rounding exact"])
+    "height formula instruction", "rounding exact",
+    'set [norms] height_formula = "parallax" in the project file', "raise [uav] max_height_m",
+    "([terrain] altitude_mode)", 'Chosen by set = "gkinp-02-036-02"', "a polygon ([area])"])
 def test_jargon_detector_catches(text):
     assert jargon(text)
 
 
 @pytest.mark.parametrize("text", [
-    'set [norms] height_formula = "parallax" in the project file', "P_S = V_s·Mk/(k·Mc)",
-    "r_max / r_min 0.3 / 0.1", "Instruction GKINP (GNTA)-02-036-02, 2002", "circle, B = 0.97"])
+    "use the parallax height formula of the norm set", "P_S = V_s·Mk/(k·Mc)",
+    "r_max / r_min 0.3 / 0.1", "Instruction GKINP (GNTA)-02-036-02, 2002", "circle, B = 0.97",
+    "references [1]; [2]", "h_c = 0.5 m"])
 def test_jargon_detector_passes(text):
     assert not jargon(text)
+
+
+@pytest.mark.parametrize(("example", "locale"), CASES)
+def test_no_claim_of_files_that_are_not_written(example, locale):
+    """A block with no place on the map (an abstract rectangle) writes no mission, GIS or
+    photo-centre files, so its documents never say something is "written beside" them."""
+    project = load_project(example)
+    if project.values.get("area", {}).get("file") or project.values.get("area", {}).get(
+            "polygon"):
+        return
+    claims = ("written beside", "записанной рядом", "записываются рядом")
+    for where, text in _documents(example, locale).items():
+        flat = " ".join(text.split())
+        assert not [c for c in claims if c in flat], (where, flat[:400])
 
 
 def test_english_detector():

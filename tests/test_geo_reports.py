@@ -94,7 +94,8 @@ def test_pdf_has_the_map_page_and_strips_table(spec_with, locale):
 def test_pdf_says_why_an_abstract_block_has_no_map(spec_with):
     pages = _pdf_pages(spec_with(make_layout(georeferenced=False)))
     text = "\n".join(pages)
-    assert "abstract rectangle" in text and "[area] file" in text
+    assert "abstract rectangle" in text and "as a polygon (a boundary file" in text
+    assert "[area]" not in text
     assert "Flight lines over the area" in text and "Flight map" not in text
     assert "EPSG" not in text
 

@@ -25,7 +25,14 @@ import pytest
 from click.testing import CliRunner
 
 from scanplan.cli.main import main
-from scanplan.messages import LOCALES, MESSAGES, Message, localize, placeholders
+from scanplan.messages import (
+    LOCALES,
+    MESSAGES,
+    Message,
+    document_text,
+    localize,
+    placeholders,
+)
 from scanplan.project.api import scan_job, uav_job
 from scanplan.project.file import load_project
 from scanplan.project.spec import PlanResult, plan_project
@@ -150,7 +157,8 @@ def test_messages_module_is_pure():
                     assert node.level == 1 and node.module in own, (path.name, node.module)
                     continue
                 imported.add(node.module.split(".")[0])
-        assert imported <= {"__future__", "numbers", "re", "string", "collections", "typing"}
+        assert imported <= {"__future__", "numbers", "re", "string", "collections", "typing",
+                            "contextlib", "contextvars"}  # the medium a document sets
 
 
 # --- every code the engine can emit -------------------------------------------------------------
@@ -449,7 +457,8 @@ def _squeeze(text: str) -> str:
 
 def _as_document(m: Message, ns: Any, locale: str) -> str:
     """An engine sentence as a document shows it: ids by names, works by reference number."""
-    return Bibliography(locale).cite(display_message(m, ns, locale))
+    with document_text():
+        return Bibliography(locale).cite(display_message(m, ns, locale))
 
 
 def _job_ns(result: PlanResult) -> Any:

@@ -72,6 +72,12 @@ def view_of(spec: Any, uav: Any = None) -> Any:
     return None
 
 
+def files_beside(spec: Any, layout: FlightLayout) -> bool:
+    """Whether the exported files (missions, photo table) are written beside the report of
+    ``spec``: only for an area on the map, and only by a specification's run."""
+    return layout.area.georeferenced and getattr(spec, "writes_files", True)
+
+
 def export_names(locale: str, title: str = "", film: bool = False) -> ExportNames:
     """The names inside the exported files, in the report's language."""
     from ..geo.export import ExportNames

@@ -39,12 +39,13 @@ def add_geo_sheets(book: Any, spec: Any) -> None:
     (a :class:`scanplan.reports.excel._Book`)."""
     for kind, layout in _exports.spec_layouts(spec):
         film = kind == "film"
-        _strips_sheet(book, layout, "xlsx_sheet_strips_film" if film else "xlsx_sheet_strips")
+        _strips_sheet(book, layout, "xlsx_sheet_strips_film" if film else "xlsx_sheet_strips",
+                      _exports.files_beside(spec, layout))
         if layout.area.georeferenced and 0 < len(layout.photos) <= MAX_SHEET_PHOTOS:
             _photos_sheet(book, layout, "xlsx_sheet_frames" if film else "xlsx_sheet_photos")
 
 
-def _strips_sheet(book: Any, layout: FlightLayout, key: str) -> None:
+def _strips_sheet(book: Any, layout: FlightLayout, key: str, files_beside: bool) -> None:
     from .excel.cells import _header, put_num, put_text
 
     loc = book.loc
@@ -60,9 +61,9 @@ def _strips_sheet(book: Any, layout: FlightLayout, key: str) -> None:
         notes.append(book.t("geo_not_feasible").format(reason=layout.reason or ""))
     if not layout.area.georeferenced:
         notes.append(book.t("geo_not_georeferenced"))
-    if len(layout.photos) > MAX_SHEET_PHOTOS:
-        notes.append(book.t("geo_photos_elsewhere").format(
-            n=number(len(layout.photos), 0, loc)))
+    elif len(layout.photos) > MAX_SHEET_PHOTOS:
+        notes.append(book.t("geo_photos_elsewhere" if files_beside else "geo_photos_too_many")
+                     .format(n=number(len(layout.photos), 0, loc)))
     for note in notes:
         row = book._wide_kv(ws, row, "", note)
     row += 1

@@ -53,11 +53,14 @@ GEO: dict[str, dict[str, str]] = {
         "strips_more": "The first {shown} of {total} strips; all of them are in the workbook.",
         "geo_not_georeferenced": "The block is an abstract rectangle (width × length): it has "
                                  "no place on the map, so no map, mission or GIS files are "
-                                 "written. Give the area as a polygon ([area] file or [area] "
-                                 "polygon) to get them.",
+                                 "written. Give the area as a polygon (a boundary file or a "
+                                 "list of vertices) to get them.",
         "geo_not_feasible": "The flight plan cannot be flown: {reason}",
         "geo_photos_elsewhere": "{n} photo centres are too many for the workbook; they are in "
                                 "the photo-centre table written beside this report.",
+        "geo_photos_too_many": "{n} photo centres are too many for the workbook; the "
+                               "photo-centre table is written with the mission files when "
+                               "the project is planned into a folder.",
         "geo_files_note": "Files for the crew and a GIS (written beside the reports when "
                           "the project is planned into a folder): {items}.",
         "geo_file_mission": "the mission for the ground station (one per sortie)",
@@ -134,10 +137,13 @@ GEO: dict[str, dict[str, str]] = {
         "geo_not_georeferenced": "Участок задан условным прямоугольником (ширина × длина): "
                                  "он не привязан к карте, поэтому схема, полётное задание и "
                                  "файлы для ГИС не создаются. Чтобы их получить, задайте "
-                                 "участок контуром ([area] file или [area] polygon).",
+                                 "участок контуром (файлом границы или списком вершин).",
         "geo_not_feasible": "План полёта невыполним: {reason}",
         "geo_photos_elsewhere": "Центров снимков {n} — слишком много для рабочей книги; они "
                                 "в таблице центров снимков, записанной рядом с отчётом.",
+        "geo_photos_too_many": "Центров снимков {n} — слишком много для рабочей книги; "
+                               "таблица центров снимков записывается вместе с полётным "
+                               "заданием при расчёте проекта в папку.",
         "geo_files_note": "Файлы для экипажа и ГИС (записываются рядом с отчётами при "
                           "расчёте проекта в папку): {items}.",
         "geo_file_mission": "полётное задание для наземной станции (по одному на вылет)",

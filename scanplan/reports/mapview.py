@@ -490,7 +490,7 @@ def geo_views(spec: Any, locale: str) -> list[dict[str, Any]]:
             notes.append(t("geo_not_feasible", locale).format(reason=layout.reason or ""))
         if not layout.area.georeferenced:
             notes.append(t("geo_not_georeferenced", locale))
-        elif getattr(spec, "writes_files", True):
+        elif _exports.files_beside(spec, layout):
             items = [t("geo_file_flight", locale),
                      t("geo_file_frames" if film else "geo_file_photos", locale)]
             if not film and _exports.mission_options(spec, layout) is not None:
@@ -498,8 +498,9 @@ def geo_views(spec: Any, locale: str) -> list[dict[str, Any]]:
             notes.append(t("geo_files_note", locale).format(items="; ".join(items)))
         from .geosheets import MAX_SHEET_PHOTOS
 
-        if len(layout.photos) > MAX_SHEET_PHOTOS:
-            notes.append(t("geo_photos_elsewhere", locale).format(
+        if layout.area.georeferenced and len(layout.photos) > MAX_SHEET_PHOTOS:
+            notes.append(t("geo_photos_elsewhere" if _exports.files_beside(spec, layout)
+                           else "geo_photos_too_many", locale).format(
                 n=number(len(layout.photos), 0, locale)))
         views.append({
             "title": t("map_title_film" if film else "map_title", locale)

@@ -16,7 +16,7 @@ import jinja2
 from markupsafe import Markup
 
 from .._version import __version__
-from ..messages import localize
+from ..messages import document_text, localize
 from ..project.api import ScanJob, UavJob
 from . import ReportMeta, templates_dir
 from .design import design_view
@@ -103,6 +103,7 @@ def _terrain_plot(spec: Any, f: _Fmt) -> str | None:
     return svg_data_uri(plots.terrain_svg(tr, limit, f.locale))
 
 
+@document_text()
 def render_html(*, scan: ScanJob | None = None, uav: UavJob | None = None,
                 meta: ReportMeta = _DEFAULT_META, spec: PlanResult | None = None,
                 view: ReportView | None = None) -> str:

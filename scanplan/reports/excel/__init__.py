@@ -39,6 +39,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from ...messages import document_text
 from .. import ReportMeta, write_atomic
 from ..design import write_design_sheet
 from ..labels import t as t  # re-exported: the sheets' labels
@@ -114,6 +115,7 @@ def _flight_sheets(book: Book, view: ReportView) -> None:
         add_geo_sheets(book, flights)
 
 
+@document_text()
 def render_xlsx(
     *,
     scan: ScanJob | None = None,

@@ -99,12 +99,12 @@ def norms_sheet(book: Book, scan: ScanJob | None, uav: UavJob | None) -> None:
 def _norm_set(book: Book, ws: Worksheet, row: int, ns: NormSet, objs: list[Any]) -> int:
     title = ns.title_ru if book.loc == "ru" and ns.title_ru else ns.title
     row = book.section(ws, row, f"{book.t('norm_set')}: {title}")
-    row = book.kv(ws, row, book.t("xlsx_norm_id"), f'[norms] set = "{ns.name}"')
     row = book.kv(ws, row, book.t("xlsx_title"), title, wrap=True)
     numbers = re.findall(r"\[\d+\]", book.bib.cite(ns.source))
     row = book.kv(ws, row, book.t("source"),
                   "; ".join(dict.fromkeys(numbers)) if numbers else ns.source, wrap=True)
-    row = book.kv(ws, row, book.t("xlsx_bundled"), bool(ns.bundled))
+    row = book.kv(ws, row, book.t("xlsx_bundled"),
+                  book.t("xlsx_bundled_yes" if ns.bundled else "xlsx_bundled_no"))
     if not ns.bundled:  # a bundled set's folder depends on the installation
         row = book.kv(ws, row, book.t("xlsx_folder"), str(ns.path))
     if ns.imported_from:
