@@ -21,6 +21,9 @@ Templates use :meth:`str.format` fields with these parameter kinds:
 - lists, each item formatted with the spec and joined by ``", "`` (English) or ``"; "``
   (Russian, where the comma is the decimal separator); a spec starting with ``;`` joins
   with ``"; "`` in both languages;
+- ``{n:,d|маршрут|маршрута|маршрутов}`` — a count and its noun in the form the number
+  takes (:func:`plural`: Russian one/few/many — 1, 21, 101, 1501 маршрут; 2, 22
+  маршрута; 5, 11, 111 маршрутов; English singular/plural);
 - ``{"en": ..., "ru": ...}`` — a name given in both languages (a constraint's name, a norm
   object's name, a shape);
 - a nested :class:`Message`, rendered in the same language (``""`` or ``None`` for an
@@ -325,8 +328,8 @@ MESSAGES: dict[str, dict[str, str]] = {
     "layout.too_many_strips": {
         "en": "the area needs {n:,d} strips at a line spacing of {spacing:g} m; at most "
               "{most:,d} are planned",
-        "ru": "Для участка нужно {n:,d} маршрутов при расстоянии между ними {spacing:g}~м; "
-              "планируется не более {most:,d}.",
+        "ru": "Для участка нужно {n:,d|маршрут|маршрута|маршрутов} при расстоянии между "
+              "ними {spacing:g}~м; планируется не более {most:,d}.",
     },
     "layout.sortie_too_short": {
         "en": "a sortie of {limit:g} min does not fly even one photo base ({base:,.1f} m at "
@@ -451,7 +454,7 @@ MESSAGES: dict[str, dict[str, str]] = {
         "ru": "Перепад высот в пределах съёмочного участка {range:.0f}~м составляет {pct:.1f}~% "
               "высоты фотографирования {h:g}~м — больше допустимых {limit:g}~% для местности "
               "«{relief}» (ГОСТ Р 59328-2021, проект 2-й редакции): разделите участок "
-              "на {n:d} части по высоте местности ({bands:;}) с отдельной высотой "
+              "на {n:d|часть|части|частей} по высоте местности ({bands:;}) с отдельной высотой "
               "фотографирования для каждой или выполняйте съёмку с огибанием рельефа.",
     },
     "block.band": {
@@ -578,6 +581,39 @@ def for_medium(text: str, medium: str | None = None) -> str:
     return re.sub(r"(?<=\S)  +", " ", text)
 
 
+def plural(n: int, forms: tuple[str, ...] | list[str], locale: str = "en") -> str:
+    """The form of a noun that goes with the count ``n``.
+
+    Parameters
+    ----------
+    n : int
+        The count.
+    forms : sequence of str
+        Russian: the forms for one, few and many (``("снимок", "снимка", "снимков")``);
+        English: singular and plural.
+    locale : {"en", "ru"}
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> [plural(n, ("снимок", "снимка", "снимков"), "ru") for n in (1, 2, 5, 11, 21, 1501)]
+    ['снимок', 'снимка', 'снимков', 'снимков', 'снимок', 'снимок']
+    >>> plural(1, ("strip", "strips")), plural(3, ("strip", "strips"))
+    ('strip', 'strips')
+    """
+    n = abs(int(n))
+    if locale == "ru" and len(forms) == 3:
+        if n % 10 == 1 and n % 100 != 11:
+            return forms[0]
+        if 2 <= n % 10 <= 4 and not 12 <= n % 100 <= 14:
+            return forms[1]
+        return forms[2]
+    return forms[0] if n == 1 else forms[-1]
+
+
 def placeholders(template: str) -> set[str]:
     """The field names a template uses (``{x:g}`` → ``"x"``)."""
     return {name for _, name, _, _ in string.Formatter().parse(template) if name}
@@ -650,6 +686,10 @@ class _Param:
                 sep = "; " if loc == "ru" else ", "
             return sep.join(format(_Param(x, loc), spec) for x in v)
         if isinstance(v, numbers.Real) and not isinstance(v, bool):
+            if "|" in spec:  # a count and its noun: {n:d|маршрут|маршрута|маршрутов}
+                spec, *forms = spec.split("|")
+                space = _NBSP if loc == "ru" else " "
+                return f"{_number(v, spec, loc)}{space}{plural(v, forms, loc)}"
             return _number(v, spec, loc)
         return format(str(v), spec)
 

@@ -191,7 +191,7 @@ def test_block_rule_on_the_project_ground_elevations(tmp_path):
     assert r.design.block.split_needed and r.design.block.range_pct == pytest.approx(8.0)
     (w,) = [w for w in r.warnings if w.code == "block_split"]
     assert "2 parts" in w.message and "150–154 m" in w.message
-    assert "2 части" in w.text("ru")
+    assert "2\u00a0части" in w.text("ru")
     ok = plan_project(parse_project(UAV + "[terrain]\nground_elevation_m = [150, 156]\n",
                                     tmp_path / "q.toml"))
     assert not ok.design.block.split_needed

@@ -532,3 +532,40 @@ def test_motion_blur_is_never_shown_equal_to_its_limit(blur, en, ru):
                 limit=MAX_BLUR_PX, denominator=2000, speed=12.0)
     assert f"motion blur {en} at 70 m exceeds 0.5 px" in m.text("en")
     assert f"Смаз {ru}" in m.text("ru")
+
+
+# --- Russian plural forms -------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(("n", "form"), [
+    (1, "снимок"), (2, "снимка"), (5, "снимков"), (11, "снимков"), (21, "снимок"),
+    (22, "снимка"), (25, "снимков"), (101, "снимок"), (111, "снимков"), (1501, "снимок"),
+    (12, "снимков"), (14, "снимков"), (1004, "снимка"), (0, "снимков")])
+def test_russian_plural_forms(n, form):
+    from scanplan.messages import plural
+
+    assert plural(n, ("снимок", "снимка", "снимков"), "ru") == form
+
+
+@pytest.mark.parametrize(("n", "expected"), [(1, "1\u00a0маршрут"), (22, "22\u00a0маршрута"),
+                                             (1501, "1\u00a0501\u00a0маршрут"),
+                                             (111, "111\u00a0маршрутов")])
+def test_a_message_counts_with_the_right_noun(n, expected):
+    text = Message("layout.too_many_strips", n=n, spacing=40.0, most=10).text("ru")
+    assert f"нужно {expected} при" in text
+    assert f"needs {n:,d} strips" in Message("layout.too_many_strips", n=n, spacing=40.0,
+                                             most=10)
+
+
+def test_the_terminal_counts_strips_and_photos_with_the_right_nouns():
+    from types import SimpleNamespace
+
+    from scanplan.reports.text import format_layout
+
+    layout = SimpleNamespace(notes={"photos": 1501}, photos=(), strips=[object()] * 21,
+                             direction_deg=90.0, flight_length_m=1000.0, turn_length_m=0.0,
+                             flight_time_s=0, kind="film", feasible=True, reason=None)
+    text = " ".join(format_layout(layout, locale="ru").split())
+    assert "21 маршрут, 1 501 снимок," in text.replace("\u00a0", " ")
+    text = " ".join(format_layout(layout, locale="en").split())
+    assert "21 strips, 1,501 photos," in text

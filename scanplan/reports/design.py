@@ -16,11 +16,13 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..core import flight as FL
-from ..messages import Message, localize, scale_text
+from ..messages import Message, localize, plural, scale_text
 from ..rules.registry import CONSTRAINTS
 from .labels import t
 from .view import Numbers
 from .wording import camera_title, display_message, document_date, sentence
+
+_PARTS = {"en": ("part", "parts"), "ru": ("часть", "части", "частей")}
 
 __all__ = ["DesignView", "design_text_lines", "design_view", "relief_max_height_m",
            "write_design_sheet", "write_gsd_limits"]
@@ -208,7 +210,8 @@ def _block_rows(design: Any, w: _W) -> list[tuple[str, str, str]]:
     relief = localize(Message(f"relief.{b.relief_class}"), w.loc)
     value = w.t("design_block_value", lo=w.n(b.ground_min_m, 0), hi=w.n(b.ground_max_m, 0),
                 pct=w.n(b.range_pct, 1), limit=w.n(b.limit_pct, 0), relief=relief)
-    value += " — " + (w.t("design_block_split", n=b.blocks) if b.split_needed
+    value += " — " + (w.t("design_block_split", n=b.blocks, parts=plural(
+                          b.blocks, _PARTS[w.loc], w.loc)) if b.split_needed
                       else w.t("design_block_one"))
     return [(w.t("design_block"), value, w.cite(design.block_source))]
 

@@ -214,7 +214,7 @@ CLI: dict[str, dict[str, str]] = {
         "camera_min": " (минимум камеры {t} с)",
         "overlap_at": "продольное перекрытие на {lo} / {hi} м",
         "strips_photos": "маршруты × снимки",
-        "strips_photos_value": "{strips} × {per} = {photos} снимков",
+        "strips_photos_value": "снимков: {strips} × {per} = {photos}",
         "strips_photos_total": "маршрутов: {strips}, снимков: {photos}",
         "length_time": "длина / время полёта",
         "km": "км",

@@ -250,7 +250,7 @@ DESIGN: dict[str, dict[str, str]] = {
         "design_block": "Ground height range of the block (one photographing height)",
         "design_block_value": "{lo}–{hi} m, {pct} % of the flight height; allowed {limit} % "
                               "({relief})",
-        "design_block_split": "split into {n} parts by ground height or fly following the "
+        "design_block_split": "split into {n} {parts} by ground height or fly following the "
                               "terrain",
         "design_block_one": "one height for the block",
         "design_site": "Site (latitude, longitude)",
@@ -313,7 +313,7 @@ DESIGN: dict[str, dict[str, str]] = {
         "design_block": "Перепад высот съёмочного участка (одна высота фотографирования)",
         "design_block_value": "{lo}–{hi} м, {pct} % высоты фотографирования; допустимо "
                               "{limit} % (местность {relief})",
-        "design_block_split": "разделить на {n} части по высоте местности или снимать с "
+        "design_block_split": "разделить на {n} {parts} по высоте местности или снимать с "
                               "огибанием рельефа",
         "design_block_one": "одна высота на участок",
         "design_site": "Район работ (широта, долгота)",

@@ -202,11 +202,12 @@ def _warning_lines(result: Any, loc: str, T: _Terminal) -> list[str]:
 
 _AREA_TEXT = {
     "en": {"area": "Area", "perimeter": "perimeter", "lines": "Flight lines", "at": "at",
-           "direction": "direction", "strips": "strips", "photos": "photos",
+           "direction": "direction", "strips": ("strip", "strips"), "photos": ("photo", "photos"),
            "turns": "turns", "sorties": "sorties", "not_feasible": "NOT FEASIBLE",
            "km2": "km²", "km": "km", "min": "min"},
     "ru": {"area": "Участок", "perimeter": "периметр", "lines": "Маршруты", "at": "в масштабе",
-           "direction": "направление", "strips": "маршрутов", "photos": "снимков",
+           "direction": "направление", "strips": ("маршрут", "маршрута", "маршрутов"),
+           "photos": ("снимок", "снимка", "снимков"),
            "turns": "развороты", "sorties": "вылетов", "not_feasible": "НЕВЫПОЛНИМО",
            "km2": "км²", "km": "км", "min": "мин"},
 }
@@ -237,14 +238,15 @@ def format_area(area: Any, locale: str = "en") -> str:
 def format_layout(layout: Any, scale: str = "", locale: str = "en") -> str:
     """One line per layout: direction, strips, photos, length (turns), time, sorties; the
     reason when it cannot be flown. Photo centres are in the exported files, not here."""
-    from ..messages import localize
+    from ..messages import localize, plural
 
     T = _AREA_TEXT[locale]
     head = f"{T['lines']}" + (f" {T['at']} {scale}" if scale else "")
     n_photos = int(layout.notes.get("photos", len(layout.photos)))
     text = (f"{head}: {T['direction']} {_n(layout.direction_deg, 1, locale)}°, "
-            f"{len(layout.strips)} {T['strips']}, {_n(n_photos, 0, locale, True)} "
-            f"{T['photos']}, {_n(layout.flight_length_m / 1000, 1, locale, True)} {T['km']} "
+            f"{len(layout.strips)} {plural(len(layout.strips), T['strips'], locale)}, "
+            f"{_n(n_photos, 0, locale, True)} {plural(n_photos, T['photos'], locale)}, "
+            f"{_n(layout.flight_length_m / 1000, 1, locale, True)} {T['km']} "
             f"({T['turns']} {_n(layout.turn_length_m / 1000, 1, locale, True)} {T['km']})")
     if layout.flight_time_s:
         text += f", {_n(layout.flight_time_s / 60, 0, locale, True)} {T['min']}"
