@@ -576,3 +576,32 @@ def test_the_photo_count_is_written_one_way_in_the_pdf(locale, photos):
     page = render_html(uav=result.uav.job, meta=result.meta, spec=result)
     assert f"88 / {photos}" in page
     assert "16432" not in page
+
+
+@pytest.mark.parametrize("locale", LOCALES)
+@pytest.mark.parametrize(("example", "source"), [
+    ("uav-town-valley-2000", {"en": "digital elevation model town-valley.tif, EPSG:32637",
+                              "ru": "цифровая модель рельефа town-valley.tif, EPSG:32637"}),
+    ("uav-town-2000-afs", {"en": "the range of ground elevations given for the area",
+                           "ru": "диапазон отметок, заданный для участка"})])
+def test_terrain_pdfs_state_the_dem_the_ground_and_the_altitude(example, source, locale):
+    """The crew and the approver read on paper what the terminal prints: where the ground
+    heights come from, the ground under the photos, the flight altitude above sea level."""
+    path = next(e for e in EXAMPLES if e.stem == example)
+    result = plan_project(load_project(path))
+    tr = result.uav.terrain
+    d = tr.summary()
+    pages = [t for w, t in _documents(str(path), locale).items() if w.startswith("pdf")]
+    flat = " ".join(" ".join(pages).split()).replace("\u00a0", " ")
+    words = {"en": ("Ground heights from", "Ground under the photos",
+                    "Flight altitude above sea level"),
+             "ru": ("Отметки рельефа", "Отметки под снимками", "Высота полёта над уровнем моря")}
+    for w in words[locale]:
+        assert w in flat, w
+    assert source[locale].replace(" ", "") in flat.replace(" ", "")  # lines wrap anywhere
+    sep = "." if locale == "en" else ","
+    lo = f"{d['ground_min_m']:.1f}".replace(".", sep)
+    hi = f"{d['ground_max_m']:.1f}".replace(".", sep)
+    assert f"{lo}–{hi}" in flat
+    alt = tr.layout.photos["altitude_m"]
+    assert f"{float(alt.max()):,.0f}".replace(",", " ") in flat

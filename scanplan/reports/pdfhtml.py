@@ -103,6 +103,43 @@ def _terrain_plot(spec: Any, f: _Fmt) -> str | None:
     return svg_data_uri(plots.terrain_svg(tr, limit, f.locale))
 
 
+def _terrain_rows(spec: Any, f: _Fmt) -> list[tuple[str, str]]:
+    """What the crew and the approver need of the relief, in words: the DEM (file, CRS,
+    cell size) or the ground range given, the ground under the photos, the flight altitude
+    above sea level, the heights above ground and the highest height over the relief."""
+    tr = getattr(getattr(spec, "uav", None), "terrain", None)
+    if tr is None:
+        return []
+    d = tr.summary()
+    m = f.label("terrain_facts_m")
+    rows = []
+    if d["source"] == "dem":
+        cell = d.get("dem_cell_size") or [None, None]
+        size = (f"{f.g(cell[0] * 3600.0)}″" if d.get("dem_geographic")
+                else f"{f.g(abs(cell[0]))} {m}")
+        rows.append((f.label("terrain_facts_dem"), f.label(
+            "terrain_facts_dem_value", file=d["dem"], crs=d["dem_crs"], cell=size)))
+    else:
+        rows.append((f.label("terrain_facts_dem"), f.label("terrain_facts_range")))
+    rows.append((f.label("terrain_facts_ground"),
+                 f"{f.num(d['ground_min_m'], 1)}–{f.num(d['ground_max_m'], 1)} {m}"))
+    alt = tr.layout.photos["altitude_m"]
+    if alt.size:
+        lo, hi = float(alt.min()), float(alt.max())
+        alts = f"{f.num(lo, 0)}–{f.num(hi, 0)}" if hi - lo > 0.5 else f.num(hi, 0)
+        rows.append((f.label("terrain_facts_altitude"), f.label(
+            "terrain_facts_altitude_value", mode=f.label(f"terrain_facts_mode_{tr.mode}"),
+            alt=f"{alts} {m}")))
+    if d["agl_min_m"] is not None:
+        rows.append((f.label("terrain_facts_agl"), f.label(
+            "terrain_facts_agl_value", lo=f.num(d["agl_min_m"], 0),
+            hi=f.num(d["agl_max_m"], 0), unit=m, photo=tr.worst_resolution_photo)))
+    if tr.max_height_m is not None:
+        rows.append((f.label("terrain_facts_max"), f"{f.num(tr.max_height_m, 0)} {m}"
+                     + (f" ({f.cname(tr.binding)})" if tr.binding else "")))
+    return rows
+
+
 @document_text()
 def render_html(*, scan: ScanJob | None = None, uav: UavJob | None = None,
                 meta: ReportMeta = _DEFAULT_META, spec: PlanResult | None = None,
@@ -154,6 +191,7 @@ def render_html(*, scan: ScanJob | None = None, uav: UavJob | None = None,
     uav_view = _uav_view(uav, f) if uav is not None else None
     if uav_view is not None:
         uav_view["plot_terrain"] = _terrain_plot(spec, f)
+        uav_view["terrain_rows"] = _terrain_rows(spec, f)
     spec_view = _spec_view(spec, f) if spec is not None else None
     design = design_view(spec, f.locale, f.cite) if spec is not None else None
     ctx = {
