@@ -140,3 +140,77 @@ def test_own_object_for_a_scale_without_a_norm_object(tmp_path):
     doc = tomllib.loads(p.read_text(encoding="utf-8"))
     assert doc["norms"]["object_name"] == "bridges" and doc["norms"]["object_size_m"] == 10
     assert _cli("plan", str(p)).exit_code == 0
+
+
+def _catalogue():
+    from scanplan.norms import load_norm_set
+
+    return load_norm_set().cameras
+
+
+@pytest.mark.parametrize("locale", ["en", "ru"])
+def test_every_catalogue_camera_gives_a_file_that_plans(tmp_path, locale):
+    """init plans the file before writing it, so exit 0 means `plan` runs it as written:
+    every digital camera (its f-number given where the catalogue has none, the ground speed
+    for a manned aircraft) and every film camera, in both languages of the comments."""
+    for i, (cid, cam) in enumerate(sorted(_catalogue().items())):
+        p = tmp_path / f"c{i}.toml"
+        if cam.kind == "film":
+            args = ["--kind", "film", "--film-camera", cid]
+        else:
+            args = ["--kind", "uav", "--uav-camera", cid]
+            if cam.f_number is None:
+                args += ["--f-number", "5.6"]
+            if cam.carrier == "aircraft":
+                args += ["--speed-ms", "70"]
+        r = _cli("init", str(p), "--map-scale", "2000", "--relief", "0.5", "--locale", locale,
+                 *args)
+        assert r.exit_code == 0, (cid, r.output)
+        assert tomllib.loads(p.read_text(encoding="utf-8"))["project"]["locale"] == locale
+
+
+def test_a_camera_without_an_f_number_names_the_option_not_a_line(tmp_path):
+    cid = next(c for c, cam in sorted(_catalogue().items())
+               if cam.kind != "film" and cam.f_number is None and cam.carrier == "uav")
+    p = tmp_path / "x.toml"
+    r = _cli("init", str(p), "--kind", "uav", "--map-scale", "2000", "--relief", "0.5",
+             "--uav-camera", cid)
+    assert r.exit_code == 2 and "error: --f-number" in r.output and not p.exists()
+    assert "line" not in r.output and "x.toml" not in r.output
+    aircraft = next(c for c, cam in sorted(_catalogue().items()) if cam.carrier == "aircraft")
+    r = _cli("init", str(p), "--kind", "uav", "--map-scale", "5000", "--relief", "1",
+             "--uav-camera", aircraft, "--f-number", "5.6")
+    assert r.exit_code == 2 and "error: --speed-ms" in r.output and not p.exists()
+
+
+def test_prompts_for_the_f_number_at_a_terminal(tmp_path, monkeypatch):
+    monkeypatch.setattr(cli_init, "_interactive", lambda: True)
+    cid = next(c for c, cam in sorted(_catalogue().items())
+               if cam.kind != "film" and cam.f_number is None and cam.carrier == "uav")
+    p = tmp_path / "asked.toml"
+    # kind, map scale, relief, name, locale, UAV camera, f-number
+    r = _cli("init", str(p), input=f"uav\n2000\n0.5\n\nen\n{cid}\n4\n")
+    assert r.exit_code == 0, r.output
+    assert tomllib.loads(p.read_text(encoding="utf-8"))["uav"]["f_number"] == 4
+
+
+def test_russian_comments_and_the_signing_keys(tmp_path):
+    p = tmp_path / "ru.toml"
+    r = _cli("init", str(p), "--kind", "uav", "--map-scale", "500", "--relief", "0.5",
+             "--locale", "ru", "--organisation", "ООО «Аэросъёмка»", "--contract-number",
+             "17/2027", "--compiled-by", "Иванов И. И.", "--checked-by", "Петров П. П.")
+    assert r.exit_code == 0, r.output
+    text = p.read_text(encoding="utf-8")
+    doc = tomllib.loads(text)
+    assert doc["project"]["name"] == "Топографический план 1:500"
+    assert {k: doc["project"][k] for k in ("organisation", "contract_number", "compiled_by",
+                                           "checked_by")} == {
+        "organisation": "ООО «Аэросъёмка»", "contract_number": "17/2027",
+        "compiled_by": "Иванов И. И.", "checked_by": "Петров П. П."}
+    assert "# высота сечения рельефа h_c [м]" in text and "relief (contour)" not in text
+    for commented in ("# [terrain]", "# [site]", "# [schedule]", "# approver_position"):
+        assert commented in text
+    en = tmp_path / "en.toml"
+    assert _cli("init", str(en), "--kind", "uav", "--map-scale", "500", "--relief",
+                "0.5").exit_code == 0
+    assert "# organisation = \"\"" in en.read_text(encoding="utf-8")

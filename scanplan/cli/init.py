@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import sys
 import tempfile
 from dataclasses import dataclass
@@ -53,6 +54,13 @@ class InitAnswers:
     area_m: tuple[float, float] | None = None
     object_name: str = ""
     object_size_m: float | None = None
+    f_number: float | None = None
+    speed_ms: float | None = None
+    aircraft: bool = False
+    organisation: str = ""
+    contract_number: str = ""
+    compiled_by: str = ""
+    checked_by: str = ""
 
 
 def _s(text: str) -> str:
@@ -80,80 +88,189 @@ def _align(line: str) -> str:
     return f"{code.ljust(COMMENT_COLUMN - 1)} {comment}" if sep else line
 
 
+# The comments of the written file, in the language of its reports. Keys stay as typed.
+_COMMENTS: dict[str, dict[str, str]] = {
+    "en": {
+        "head": "# scanplan project: one mapping contract. Plan it with\n"
+                "#   scanplan plan THIS-FILE.toml --out out/\n"
+                "# Every key is described in docs/project-file.md; unknown keys are errors.",
+        "default_name": "Topographic plan 1:{mk}",
+        "name": "title of the reports", "locale": "\"en\" or \"ru\": language of the reports",
+        "signing": "# for the documents to sign (title, approval and signature blocks):",
+        "organisation": "the contractor's organisation", "contract": "contract number",
+        "compiled": "compiled by (name)", "checked": "checked by (name)",
+        "approver": "approval block: position", "approver_name": "approval block: name",
+        "scale": "map scale denominator Mk (1:{mk})",
+        "relief": "relief (contour) interval h_c [m]",
+        "norms": "norm set (scanplan norms list)",
+        "probability": "required recognition probability",
+        "object": "your own object to interpret, with its size",
+        "object_size": "[m] (default: the norm table's for the map scale)",
+        "shape": "circle | rectangle | angle | square | wall",
+        "film": "film camera photos, scanned", "camera": "scanplan cameras list",
+        "r": "resolving power of the photos R [lines/mm]",
+        "forward": "[%], 50 or more (stereo)", "side": "[%], 10 or more",
+        "archive": "existing (archive) photos: their scale is given, not chosen",
+        "scales": "candidate photo scales Mc to choose from",
+        "scale_instead": "instead: the scale of existing photos",
+        "scanner": "round the scan pixel to a scanner's steps",
+        "uav": "digital camera on a UAV", "aircraft": "digital camera on a manned aircraft",
+        "height": "planned height above ground [m]",
+        "height_default": "planned height [m] (default: the highest allowed)",
+        "tolerance": "how much higher the UAV may fly [%]", "speed": "ground speed [m/s]",
+        "exposure": "exposure time [s]", "f_number": "working f-number of the lens",
+        "overlaps_default": "[%] (default: the norm set's standard overlaps)",
+        "area": "the block to cover (both sides, or neither)",
+        "width": "across the flight lines [m]", "length": "along the flight lines [m]",
+        "file": "or the contract polygon instead: KML, KMZ, GeoJSON, GeoPackage, Shapefile",
+        "terrain": "the relief (optional): a DEM, or the ground's range",
+        "dem": "a GeoTIFF in any CRS", "ground": "or [lowest, highest] ground [m]",
+        "mode": "\"constant\", \"strip\" or \"follow\"",
+        "site": "where the sun window is computed (optional)",
+        "lat": "latitude [°], north positive", "lon": "longitude [°], east positive",
+        "schedule": "flying dates and sorties (optional)",
+        "start": "first flying date", "end": "last flying date",
+        "sortie": "flight time of one sortie [min]",
+    },
+    "ru": {
+        "head": "# Проект scanplan: один договор на картографирование. Расчёт:\n"
+                "#   scanplan plan ЭТОТ-ФАЙЛ.toml --out out/\n"
+                "# Все ключи описаны в docs/project-file.md; неизвестный ключ — ошибка.",
+        "default_name": "Топографический план 1:{mk}",
+        "name": "заголовок документов", "locale": "\"en\" или \"ru\": язык документов",
+        "signing": "# для документов на подпись (титул, утверждение, подписи):",
+        "organisation": "организация-исполнитель", "contract": "номер договора",
+        "compiled": "составил (Ф. И. О.)", "checked": "проверил (Ф. И. О.)",
+        "approver": "гриф утверждения: должность", "approver_name": "гриф утверждения: Ф. И. О.",
+        "scale": "знаменатель масштаба карты Mk (1:{mk})",
+        "relief": "высота сечения рельефа h_c [м]",
+        "norms": "набор нормативов (scanplan norms list)",
+        "probability": "требуемая вероятность распознавания",
+        "object": "свой объект дешифрирования и его размер",
+        "object_size": "[м] (по умолчанию — из таблицы нормативов для масштаба)",
+        "shape": "circle | rectangle | angle | square | wall (форма объекта)",
+        "film": "плёночные аэроснимки, сканируются", "camera": "scanplan cameras list",
+        "r": "разрешающая способность снимков R [лин/мм]",
+        "forward": "[%], не менее 50 (стереопары)", "side": "[%], не менее 10",
+        "archive": "имеющиеся (архивные) снимки: масштаб задан, не выбирается",
+        "scales": "рассматриваемые масштабы снимков Mc",
+        "scale_instead": "либо масштаб имеющихся снимков",
+        "scanner": "округлить пиксель сканирования до шагов сканера",
+        "uav": "цифровая камера на БПЛА", "aircraft": "цифровая камера на самолёте",
+        "height": "плановая высота над рельефом [м]",
+        "height_default": "плановая высота [м] (по умолчанию — наибольшая допустимая)",
+        "tolerance": "на сколько выше плана может лететь БПЛА [%]",
+        "speed": "путевая скорость [м/с]", "exposure": "выдержка [с]",
+        "f_number": "рабочее диафрагменное число объектива",
+        "overlaps_default": "[%] (по умолчанию — стандартные перекрытия нормативов)",
+        "area": "участок съёмки (обе стороны или ни одной)",
+        "width": "поперёк маршрутов [м]", "length": "вдоль маршрутов [м]",
+        "file": "или контур по договору: KML, KMZ, GeoJSON, GeoPackage, Shapefile",
+        "terrain": "рельеф (необязательно): ЦМР или диапазон отметок",
+        "dem": "GeoTIFF в любой системе координат",
+        "ground": "или [наинизшая, наивысшая] отметка [м]",
+        "mode": "\"constant\", \"strip\" или \"follow\" (высота полёта)",
+        "site": "для расчёта высоты Солнца (необязательно)",
+        "lat": "широта [°], северная положительна", "lon": "долгота [°], восточная положительна",
+        "schedule": "сроки и вылеты (необязательно)",
+        "start": "первый день съёмки", "end": "последний день съёмки",
+        "sortie": "продолжительность одного вылета [мин]",
+    },
+}
+
+
+def _optional(key: str, value: str, example: str, comment: str) -> str:
+    """``key = value # comment`` when given, else the commented example line."""
+    return (f"{key} = {_s(value)}\t# {comment}" if value else
+            f"# {key} = {_s(example)}\t# {comment}")
+
+
 def project_text(a: InitAnswers) -> str:
-    """The commented TOML text of a project (see docs/project-file.md)."""
-    name = a.name or f"Topographic plan 1:{_n(a.map_scale)}"
+    """The commented TOML text of a project (see docs/project-file.md), its comments in
+    the language of its reports."""
+    c = _COMMENTS["ru" if a.locale == "ru" else "en"]
+    name = a.name or c["default_name"].format(mk=_n(a.map_scale))
     out = [
-        "# scanplan project: one mapping contract. Plan it with",
-        "#   scanplan plan THIS-FILE.toml --out out/",
-        "# Every key is described in docs/project-file.md; unknown keys are errors.",
+        c["head"],
         "",
         "[project]",
-        f"name = {_s(name)}\t# title of the reports",
+        f"name = {_s(name)}\t# {c['name']}",
         f"customer = {_s(a.customer)}",
         f"contractor = {_s(a.contractor)}",
-        f"locale = {_s(a.locale)}\t# \"en\" or \"ru\": language of the reports",
-        "# approver_position = \"Chief engineer\"\t# approval block",
-        "# approver_name = \"\"",
+        f"locale = {_s(a.locale)}\t# {c['locale']}",
+        c["signing"],
+        _optional("organisation", a.organisation, "", c["organisation"]),
+        _optional("contract_number", a.contract_number, "", c["contract"]),
+        _optional("compiled_by", a.compiled_by, "", c["compiled"]),
+        _optional("checked_by", a.checked_by, "", c["checked"]),
+        f"# approver_position = \"\"\t# {c['approver']}",
+        f"# approver_name = \"\"\t# {c['approver_name']}",
         "",
         "[map]",
-        f"scale = {_n(a.map_scale)}\t# map scale denominator Mk (1:{_n(a.map_scale)})",
-        f"relief_interval_m = {_n(a.relief_interval_m)}\t# relief (contour) interval h_c [m]",
+        f"scale = {_n(a.map_scale)}\t# {c['scale'].format(mk=_n(a.map_scale))}",
+        f"relief_interval_m = {_n(a.relief_interval_m)}\t# {c['relief']}",
         "",
         "[norms]",
-        f"set = {_s(a.norms)}\t# norm set (scanplan norms list)",
-        "# probability = 0.75\t# required recognition probability",
-        (f"object_name = {_s(a.object_name)}\t# your own object to interpret, with its size"
-         if a.object_name else
-         "# object_name = \"manhole covers\"\t# your own object to interpret, with its size:"),
-        (f"object_size_m = {_n(a.object_size_m)}\t# [m] (default: the norm table's for the "
-         "map scale)" if a.object_size_m is not None else
-         "# object_size_m = 0.6\t#   (default: the norm table's for the map scale)"),
-        "# shape = \"circle\"\t# circle | rectangle | angle | square | wall",
+        f"set = {_s(a.norms)}\t# {c['norms']}",
+        f"# probability = 0.75\t# {c['probability']}",
+        (f"object_name = {_s(a.object_name)}\t# {c['object']}" if a.object_name else
+         f"# object_name = \"manhole covers\"\t# {c['object']}"),
+        (f"object_size_m = {_n(a.object_size_m)}\t# {c['object_size']}"
+         if a.object_size_m is not None else f"# object_size_m = 0.6\t# {c['object_size']}"),
+        f"# shape = \"circle\"\t# {c['shape']}",
     ]
     if a.kind in ("film", "both"):
-        out += [
-            "",
-            "[film]\t# film camera photos, scanned",
-            f"camera = {_s(a.film_camera)}\t# scanplan cameras list",
-            f"resolving_power_lpmm = {_n(a.resolving_power_lpmm)}\t"
-            "# resolving power of the photos R [lines/mm]",
-            "forward_overlap_pct = 60\t# [%], 50 or more (stereo)",
-        ]
+        out += ["", f"[film]\t# {c['film']}", f"camera = {_s(a.film_camera)}\t# {c['camera']}",
+                f"resolving_power_lpmm = {_n(a.resolving_power_lpmm)}\t# {c['r']}",
+                f"forward_overlap_pct = 60\t# {c['forward']}"]
         if a.archive_photo_scale is not None:
-            out += [f"photo_scale = {_n(a.archive_photo_scale)}\t"
-                    "# existing (archive) photos: their scale is given, not chosen"]
+            out += [f"photo_scale = {_n(a.archive_photo_scale)}\t# {c['archive']}"]
         else:
             scales = a.photo_scales or default_photo_scales(a.map_scale)
-            out += [f"photo_scales = [{', '.join(_n(x) for x in scales)}]\t"
-                    "# candidate photo scales Mc to choose from",
-                    "# photo_scale = 12000\t# instead: the scale of existing photos"]
+            out += [f"photo_scales = [{', '.join(_n(x) for x in scales)}]\t# {c['scales']}",
+                    f"# photo_scale = 12000\t# {c['scale_instead']}"]
         out += [f"scanner = {_s(a.scanner)}" if a.scanner else
-                "# scanner = \"photoscan-td\"\t# round the scan pixel to a scanner's steps"]
+                f"# scanner = \"photoscan-td\"\t# {c['scanner']}"]
     if a.kind in ("uav", "both"):
-        out += [
-            "",
-            "[uav]\t# digital camera on a UAV",
-            f"camera = {_s(a.uav_camera)}\t# scanplan cameras list",
-            (f"height_m = {_n(a.height_m)}\t# planned height above ground [m]"
-             if a.height_m is not None else
-             "# height_m = 100\t# planned height [m] (default: the highest allowed)"),
-            "height_tolerance_pct = 10\t# how much higher the UAV may fly [%]",
-            "speed_ms = 10\t# ground speed [m/s]",
-            "exposure_s = 0.0005\t# exposure time [s]",
-            "forward_overlap_pct = 80\t# [%], 50 or more (stereo)",
-            "side_overlap_pct = 60\t# [%], 10 or more",
-        ]
-    out += ["", "[area]\t# the block to cover (both sides, or neither)"]
+        out += _uav_lines(a, c)
+    out += ["", f"[area]\t# {c['area']}"]
     if a.area_m is not None:
-        out += [f"width_m = {_n(a.area_m[0])}\t# across the flight lines [m]",
-                f"length_m = {_n(a.area_m[1])}\t# along the flight lines [m]"]
+        out += [f"width_m = {_n(a.area_m[0])}\t# {c['width']}",
+                f"length_m = {_n(a.area_m[1])}\t# {c['length']}"]
     else:
-        out += ["# width_m = 2000\t# across the flight lines [m]",
-                "# length_m = 3000\t# along the flight lines [m]"]
-    out += ['# file = "block.kml"\t# or the contract polygon instead: KML, KMZ, GeoJSON, '
-            "GeoPackage, Shapefile"]
+        out += [f"# width_m = 2000\t# {c['width']}", f"# length_m = 3000\t# {c['length']}"]
+    out += [f"# file = \"block.kml\"\t# {c['file']}"]
+    if a.kind in ("uav", "both"):
+        out += ["", f"# [terrain]\t# {c['terrain']}", f"# dem = \"dem.tif\"\t# {c['dem']}",
+                f"# ground_elevation_m = [150, 180]\t# {c['ground']}",
+                f"# altitude_mode = \"constant\"\t# {c['mode']}",
+                "", f"# [site]\t# {c['site']}", f"# lat_deg = 55.75\t# {c['lat']}",
+                f"# lon_deg = 37.62\t# {c['lon']}",
+                "", f"# [schedule]\t# {c['schedule']}",
+                f"# start_date = 2027-06-01\t# {c['start']}",
+                f"# end_date = 2027-06-30\t# {c['end']}",
+                f"# sortie_time_min = 25\t# {c['sortie']}"]
     return "\n".join(_align(line) for line in out) + "\n"
+
+
+def _uav_lines(a: InitAnswers, c: dict[str, str]) -> list[str]:
+    """The ``[uav]`` section: a UAV's defaults, or a manned aircraft's speed with the norm
+    set's overlaps; the f-number when the catalogue has none for the camera."""
+    out = ["", f"[uav]\t# {c['aircraft' if a.aircraft else 'uav']}",
+           f"camera = {_s(a.uav_camera)}\t# {c['camera']}",
+           (f"height_m = {_n(a.height_m)}\t# {c['height']}" if a.height_m is not None else
+            f"# height_m = 100\t# {c['height_default']}")]
+    if a.f_number is not None:
+        out.append(f"f_number = {_n(a.f_number)}\t# {c['f_number']}")
+    if a.aircraft:
+        return [*out, f"speed_ms = {_n(a.speed_ms or 0)}\t# {c['speed']}",
+                f"# forward_overlap_pct = 60\t# {c['overlaps_default']}",
+                f"# side_overlap_pct = 30\t# {c['overlaps_default']}"]
+    return [*out, f"height_tolerance_pct = 10\t# {c['tolerance']}",
+            f"speed_ms = {_n(a.speed_ms if a.speed_ms is not None else 10)}\t# {c['speed']}",
+            f"exposure_s = 0.0005\t# {c['exposure']}",
+            f"forward_overlap_pct = 80\t# {c['forward']}",
+            f"side_overlap_pct = 60\t# {c['side']}"]
 
 
 def check_answers(text: str, path: str) -> None:
@@ -267,6 +384,14 @@ def _area(text: str | None) -> tuple[float, float] | None:
               "(with --object-size-m).")
 @click.option("--object-size-m", type=float, help="Size of your own object to interpret [m] "
               "(default: the norm table's smallest object for the map scale).")
+@click.option("--f-number", type=float, help="Working f-number of the UAV camera's lens (needed "
+              "when the catalogue has none for the camera; asked at a terminal).")
+@click.option("--speed-ms", type=float, help="Ground speed [m/s] (default 10 for a UAV; "
+              "needed for a camera on a manned aircraft, asked at a terminal).")
+@click.option("--organisation", default="", help="The contractor's organisation (title block).")
+@click.option("--contract-number", default="", help="Contract number (title block).")
+@click.option("--compiled-by", default="", help="Compiled by: name (signature block).")
+@click.option("--checked-by", default="", help="Checked by: name (signature block).")
 @click.option("--force", is_flag=True, help="Replace an existing file.")
 def init(project: str, force: bool, **opts: Any) -> None:
     """Write a commented project file that `scanplan plan` runs as it is.
@@ -314,6 +439,10 @@ def init(project: str, force: bool, **opts: Any) -> None:
         uav_camera = (click.prompt("UAV camera id (scanplan cameras list)",
                                    default=DEFAULT_UAV_CAMERA)
                       if ask and kind != "film" else DEFAULT_UAV_CAMERA)
+    f_number, speed_ms, aircraft = opts["f_number"], opts["speed_ms"], False
+    if kind != "film":
+        f_number, speed_ms, aircraft = _camera_needs(uav_camera, opts["norms"], f_number,
+                                                     speed_ms, ask)
     if opts["photo_scales"] and opts["archive_photo_scale"]:
         raise InputError("--photo-scale", "give either --photo-scale (existing photos) or "
                          "--photo-scales (candidates), not both")
@@ -335,17 +464,43 @@ def init(project: str, force: bool, **opts: Any) -> None:
         photo_scales=_scales(opts["photo_scales"]), archive_photo_scale=archive,
         scanner=opts["scanner"], uav_camera=uav_camera, height_m=opts["height_m"],
         area_m=_area(opts["area_m"]), object_name=opts["object_name"],
-        object_size_m=opts["object_size_m"])
+        object_size_m=opts["object_size_m"], f_number=f_number, speed_ms=speed_ms,
+        aircraft=aircraft, organisation=opts["organisation"],
+        contract_number=opts["contract_number"], compiled_by=opts["compiled_by"],
+        checked_by=opts["checked_by"])
     text = project_text(answers)
     try:
         check_answers(text, project)
-    except InputError as exc:  # name the option that gave the key
+    except InputError as exc:  # name the option that gave the key, never the unwritten file
         raise InputError(_option_for(exc.field), exc.message) from None
     folder = os.path.dirname(os.path.abspath(project))
     if not os.path.isdir(folder):
         raise InputError("PROJECT", f"folder {folder!r} does not exist")
     write_new(project, text.encode("utf-8"), force=force)
     click.echo(f"wrote {project}; plan it with: scanplan plan {project}", err=True)
+
+
+def _camera_needs(camera: str, norms: str, f_number: float | None, speed_ms: float | None,
+                  ask: bool) -> tuple[float | None, float | None, bool]:
+    """The f-number and speed a catalogue camera needs beyond the catalogue: asked at a
+    terminal, else an error naming the option; and whether it flies on an aircraft."""
+    from ..norms import load_norm_set
+
+    cam = load_norm_set(norms).camera(camera, "--uav-camera")
+    aircraft = cam.carrier == "aircraft"
+    if f_number is None and cam.f_number is None:
+        if not ask:
+            raise InputError("--f-number", f"the catalogue has no f-number for {camera!r}: "
+                             "give the lens's working f-number (> 0), e.g. --f-number 5.6")
+        f_number = click.prompt(f"Working f-number of the lens of {camera} (e.g. 5.6)",
+                                type=click.FloatRange(min=0, min_open=True))
+    if speed_ms is None and aircraft:
+        if not ask:
+            raise InputError("--speed-ms", f"{camera!r} is flown on a manned aircraft: give "
+                             "its ground speed in m/s (> 0), e.g. --speed-ms 70")
+        speed_ms = click.prompt(f"Ground speed of the aircraft carrying {camera}, m/s",
+                                type=click.FloatRange(min=0, min_open=True))
+    return f_number, speed_ms, aircraft
 
 
 _KEY_OPTIONS = {
@@ -356,13 +511,17 @@ _KEY_OPTIONS = {
     "uav.height_m": "--height-m", "norms.set": "--norms", "area.width_m": "--area-m",
     "area.length_m": "--area-m", "project.name": "--name", "project.customer": "--customer",
     "project.contractor": "--contractor", "norms.object_size_m": "--object-size-m",
-    "norms.object_name": "--object-name",
+    "norms.object_name": "--object-name", "uav.f_number": "--f-number",
+    "uav.speed_ms": "--speed-ms", "project.organisation": "--organisation",
+    "project.contract_number": "--contract-number", "project.compiled_by": "--compiled-by",
+    "project.checked_by": "--checked-by",
 }
 
 
 def _option_for(field: str) -> str:
-    """``x.toml: film.camera (line 27)`` → ``--film-camera`` (the option a user typed)."""
+    """``x.toml: film.camera (line 27)`` → ``--film-camera`` (the option a user typed); a
+    key no option gives is named as the key, without the file that was never written."""
     for key, option in _KEY_OPTIONS.items():
         if f": {key}" in field or field.startswith(key):
             return option
-    return field
+    return re.sub(r"^.*?: ", "", re.sub(r" \(line \d+\)$", "", field))
