@@ -63,10 +63,10 @@ def test_qgroundcontrol_list_round_trips(tmp_path, user_dir):
 
 def test_russian_header_workbook_round_trips(tmp_path, user_dir):
     """The Russian template (sheets «Камеры», «Сканеры», Russian headers) imports back into
-    the same 65 cameras and the scanners' steps."""
+    the same 68 cameras and the scanners' steps."""
     book = write_template(tmp_path / "шаблон.xlsx", lang="ru")
     folder, parsed = import_camera_file(book)
-    assert folder == user_catalogue_dir() and len(parsed.cameras) == 65
+    assert folder == user_catalogue_dir() and len(parsed.cameras) == 68
     bundled = {c.id: c for c in load_norm_set("gkinp-02-036-02-printed").cameras.values()}
     ns = load_norm_set()
     for cid, cam in bundled.items():

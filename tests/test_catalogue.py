@@ -281,7 +281,7 @@ def test_unknown_ids_suggest_the_close_ones():
 def test_cameras_list_kinds_and_json():
     runner = CliRunner()
     r = runner.invoke(main, ["cameras", "list"])
-    assert r.exit_code == 0 and "65 cameras" in r.output and "4 scanners" in r.output
+    assert r.exit_code == 0 and "68 cameras" in r.output and "4 scanners" in r.output
     r = runner.invoke(main, ["cameras", "list", "--kind", "aircraft", "--json"])
     rows = json.loads(r.stdout)
     assert {c["platform"] or "aircraft" for c in rows} == {"aircraft"}

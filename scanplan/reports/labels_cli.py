@@ -133,6 +133,7 @@ CLI: dict[str, dict[str, str]] = {
         "pos_corner": "corner",
         "shutter_leaf": "leaf",
         "shutter_focal-plane": "focal-plane",
+        "shutter_rolling": "electronic (rolling)",
         "carried_effective": "carried_by",
         # norms list / show
         "ns_name": "name",
@@ -271,6 +272,7 @@ CLI: dict[str, dict[str, str]] = {
         "pos_corner": "угол",
         "shutter_leaf": "центральный",
         "shutter_focal-plane": "шторный",
+        "shutter_rolling": "электронный (построчный)",
         "carried_effective": "носитель (с учётом умолчания)",
         "ns_name": "имя",
         "ns_where": "где",
