@@ -133,7 +133,8 @@ def test_own_object_for_a_scale_without_a_norm_object(tmp_path):
     """1:100000 has no norm object: init says which option gives one, and with it plans."""
     p = tmp_path / "small.toml"
     r = _cli("init", str(p), "--kind", "film", "--map-scale", "100000", "--relief", "20")
-    assert r.exit_code == 2 and "error: --object-size-m" in r.output and not p.exists()
+    assert r.exit_code == 2 and "error: --map-scale" in r.output and not p.exists()
+    assert "1:500, 1:1000" in r.output and "size of the object to interpret" in r.output
     r = _cli("init", str(p), "--kind", "film", "--map-scale", "100000", "--relief", "20",
              "--object-size-m", "10", "--object-name", "bridges")
     assert r.exit_code == 0, r.output

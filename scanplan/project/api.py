@@ -259,6 +259,8 @@ def scan_job(
     rules = ns.rules(**overrides)
     obj = resolve_object(ns, mk, object_size_m=object_size_m, shape=shape,
                          object_name=object_name)
+    if obj is None and "PD" in rules.constraints:
+        raise _no_norm_object(ns, mk)
     steps = ns.scanner_steps(scanner, "scanner") if scanner is not None else ()
     overlap = (forward_overlap_pct if forward_overlap_pct is not None
                else rules.standard_forward_overlap_pct)
@@ -535,8 +537,7 @@ def _map_constraints(ns: NormSet, map_scale: object | None, relief_interval_m: f
         map_obj = resolve_object(ns, mk, object_size_m=object_size_m, shape=shape,
                                  object_name=object_name)
         if map_obj is None and "PD" in rules.constraints:
-            raise InputError("object_size_m", f"the norm set has no smallest object for map "
-                             f"scale 1:{mk:g}; give the object size in m (> 0)")
+            raise _no_norm_object(ns, mk)
     objects = [norm_object_spec(ns, o, shape) for o in recognition_rows(ns, mk)]
     if map_obj is not None and map_obj.map_scale is None:
         objects.insert(0, map_obj)
@@ -579,3 +580,17 @@ def _check_overrides(overrides: dict[str, object]) -> None:
                 problem = f"must be {PARAMETERS[key].value.describe()}"
             if problem:
                 raise InputError(key, f"{problem} (got {value!r})")
+
+
+def _no_norm_object(ns: NormSet, mk: float) -> InputError:
+    """The map scale has no smallest object in the norm set. Outside the scales the set
+    covers the usual mistake is the scale (1:50000 for a set of 1:500 … 1:25000), so the
+    error names the map scale and that range; between them (1:3000) the object's size is
+    what is missing. Either way it says how to plan it anyway: an object size of one's own."""
+    covered = sorted({o.map_scale for o in ns.objects if o.map_scale})
+    listing = ", ".join(f"1:{x:g}" for x in covered) or "none"
+    inside = bool(covered) and covered[0] <= mk <= covered[-1]
+    return InputError("object_size_m" if inside else "map_scale",
+                      f"the norm set's smallest objects are for the map scales {listing}, "
+                      f"not 1:{mk:g}: plan one of those scales, or give the size of the "
+                      "object to interpret in m (> 0)")
