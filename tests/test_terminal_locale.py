@@ -146,3 +146,21 @@ def test_norms_template_takes_locale_like_the_other_commands(tmp_path):
         path = tmp_path / f"t{flag}.xlsx"
         _run(["norms", "template", str(path), flag, "ru", "--no-catalogue"])
         assert "Параметры" in openpyxl.load_workbook(path, read_only=True).sheetnames
+
+
+def test_a_blur_just_over_the_limit_is_never_printed_as_the_limit():
+    """0.5004 px beside the warning that it exceeds 0.5 px reads 0.5004, not 0.50."""
+    from click.testing import CliRunner
+
+    import scanplan
+    from scanplan.cli.main import main
+
+    base = dict(camera="canon-eos-5d-mark-ii-50", f_number=8, height_m=300, speed_ms=25)
+    blur25 = scanplan.uav(**base).plan.motion_blur_px
+    speed = 25 * 0.5004 / blur25
+    assert 0.5 < scanplan.uav(**{**base, "speed_ms": speed}).plan.motion_blur_px < 0.505
+    r = CliRunner().invoke(main, ["uav", "--camera", "canon-eos-5d-mark-ii-50", "--f-number",
+                                  "8", "--height-m", "300", "--speed-ms", repr(speed)])
+    assert r.exit_code == 0, r.output
+    row = next(line for line in r.output.splitlines() if line.startswith("motion blur ("))
+    assert row.split()[-1] == "0.5004" and "motion blur 0.5004 px" in r.output

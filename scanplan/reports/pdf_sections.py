@@ -285,10 +285,11 @@ def _uav_inputs(job: UavJob, f: _Fmt) -> list[tuple[str, str]]:
     if cam:
         inputs.append((f.label("camera"), cam))
     inputs += [
-        (f.label("pdf_pixel_pitch_um"), f.g(inp.pixel_um)),
+        (f.label("pdf_pixel_pitch_um"), f.view.numbers.sig(inp.pixel_um)),
         (f.label("focal_mm"), f.g(inp.focal_mm)),
         (f.label("pdf_f_number"), f.g(inp.f_number)),
-        (f.label("pdf_sensor_mm"), f"{f.g(inp.sensor_width_mm)} × {f.g(inp.sensor_height_mm)}"),
+        (f.label("pdf_sensor_mm"), f"{f.view.numbers.sig(inp.sensor_width_mm)} × "
+                                   f"{f.view.numbers.sig(inp.sensor_height_mm)}"),
         (f.label("orientation"), f.label(f"orientation_{inp.orientation}")),
         (f.label("height_m"), f.g(h["planned"])),
     ]
@@ -343,7 +344,7 @@ def _uav_results(plan: UavPlan, f: _Fmt) -> tuple[list[str], list[dict[str, Any]
         row(f.label("pdf_l_corner"), f.num(plan.ground_resolution_corner_m, 3)),
         row(f.label("l_over_gsd"), f.num(plan.ground_resolution_to_gsd, 2)),
         row(f.label("motion_blur_px") + f" ({f.label('pdf_at_height', h=f.g(h['min']))})",
-            f.num(plan.motion_blur_px, 2)),
+            f.num(plan.motion_blur_px, FL.shown_decimals(plan.motion_blur_px, MAX_BLUR_PX))),
     ]
     if plan.tilted_corner_gsd_m is not None:
         results.append(row(f.label("pdf_tilted_gsd", roll=f.g(inp.roll_deg),

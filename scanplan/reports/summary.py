@@ -19,9 +19,23 @@ from . import report_datetime
 __all__ = ["summary_csv", "summary_xlsx"]
 
 
+# The digits a summary shows of each measured column, as the specification prints them
+# (a scan pixel to 0.1 µm, a height to 0.1 m, a GSD to 0.01 cm): a summary is read and
+# compared by people, and 213.94285714285706 m says nothing 213.9 m does not.
+DIGITS = {"film_scan_pixel_um": 1, "film_scanner_pixel_um": 1, "film_scanned_gigabytes": 2,
+          "uav_recommended_height_m": 1, "uav_max_planned_height_m": 1, "uav_gsd_cm": 2}
+
+
+def _rounded(frame: Any) -> Any:
+    """``frame`` with its measured columns rounded to :data:`DIGITS`."""
+    cols = {c: d for c, d in DIGITS.items() if c in frame.columns}
+    return frame.round(cols) if cols else frame
+
+
 def summary_csv(frame: Any) -> bytes:
-    """The summary as UTF-8 CSV (with a byte-order mark, so Excel reads the Cyrillic)."""
-    return frame.to_csv(index=False, lineterminator="\n").encode("utf-8-sig")
+    """The summary as UTF-8 CSV (with a byte-order mark, so Excel reads the Cyrillic),
+    measured columns rounded as the specification prints them (:data:`DIGITS`)."""
+    return _rounded(frame).to_csv(index=False, lineterminator="\n").encode("utf-8-sig")
 
 
 def _cell(value: Any) -> Any:
@@ -49,7 +63,7 @@ def summary_xlsx(frame: Any) -> bytes:
     ws.title = "summary"
     for col, name in enumerate(frame.columns, start=1):
         put_text(ws, 1, col, name).font = Font(bold=True)
-    for row, values in enumerate(frame.itertuples(index=False), start=2):
+    for row, values in enumerate(_rounded(frame).itertuples(index=False), start=2):
         for col, value in enumerate(values, start=1):
             value = _cell(value)
             if isinstance(value, str):

@@ -9,6 +9,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from ..core import flight as FL
 from ..messages import localize, scale_text
 from ..rules.film import ScanPlan
 from ..rules.uav import UavPlan
@@ -206,8 +207,9 @@ def format_uav_plan(plan: UavPlan, norm_name: str = "", locale: str = "en",
     lines = [
         w("uav_head", carrier=carrier, camera=inp.camera or w("camera"))
         + (f" ({name})" if name else ""),
-        w("uav_line1", pixel=w.g(inp.pixel_um), f=w.g(inp.focal_mm), n=w.g(inp.f_number),
-          w=w.g(inp.sensor_width_mm), h=w.g(inp.sensor_height_mm), height=w.g(h["planned"]))
+        w("uav_line1", pixel=w.n.sig(inp.pixel_um), f=w.n.sig(inp.focal_mm),
+          n=w.g(inp.f_number), w=w.n.sig(inp.sensor_width_mm),
+          h=w.n.sig(inp.sensor_height_mm), height=w.g(h["planned"]))
         + (w("uav_flown", lo=w.g(h["min"]), hi=w.g(h["max"])) if h["max"] != h["min"] else "")
         + w("uav_line1_tail", v=w.g(inp.speed_ms), t=w.g(inp.exposure_s),
             fo=w.g(inp.forward_overlap_pct), so=w.g(inp.side_overlap_pct)),
@@ -231,7 +233,9 @@ def format_uav_plan(plan: UavPlan, norm_name: str = "", locale: str = "en",
                  *([w.f(plan.ground_resolution_at_max_height_m, 3)] if two else [])])
     rows.append([w("l_corner"), m, w.f(plan.ground_resolution_corner_m, 3), *blank])
     rows.append([w("l_gsd"), "", w.f(plan.ground_resolution_to_gsd, 2), *blank])
-    rows.append([w("blur", h=w.g(h["min"])), w("px"), w.f(plan.motion_blur_px, 2), *blank])
+    rows.append([w("blur", h=w.g(h["min"])), w("px"), w.f(plan.motion_blur_px,
+                                                   FL.shown_decimals(plan.motion_blur_px,
+                                                                     FL.MAX_BLUR_PX)), *blank])
     if plan.tilted_corner_gsd_m is not None:
         rows.append([w("tilted", roll=w.g(inp.roll_deg), pitch=w.g(inp.pitch_deg)), m, "",
                      *([w.f(plan.tilted_corner_gsd_m, 3)] if two else [])])

@@ -120,6 +120,13 @@ class Numbers:
         """Shortest form (like ``:g``), never grouped (the terminal's inputs)."""
         return self._dec(f"{x:g}")
 
+    def sig(self, x: float | None, digits: int = 4) -> str:
+        """A measured size to ``digits`` significant digits (a pixel pitch of 4.38232 µm is
+        4.382, a derived sensor side of 23.9275 mm is 23.93), never grouped."""
+        if not _finite(x):
+            return MISSING
+        return self._dec(f"{float(x):.{digits}g}")  # type: ignore[arg-type]
+
     def tick(self, x: float) -> str:
         """A plot's tick label: whole numbers grouped, others with up to 6 digits."""
         if float(x).is_integer():

@@ -298,24 +298,11 @@ def _blur(inp: UavInputs, gsd_lo: float, h_lo: float, h_hi: float,
     max_speed = float(FL.max_speed_for_blur_ms(inp.exposure_s, gsd_lo))
     if blur > FL.MAX_BLUR_PX:
         warnings.append(PlanWarning("motion_blur", Message(
-            "motion_blur", blur=_shown_above(blur, FL.MAX_BLUR_PX), height=h_lo,
+            "motion_blur", blur=FL.shown_above(blur, FL.MAX_BLUR_PX), height=h_lo,
             limit=FL.MAX_BLUR_PX,
             denominator=math.ceil(1 / max_exp), speed=max_speed)))
     return blur, max_exp, max_speed
 
-
-def _shown_above(value: float, limit: float) -> float:
-    """``value`` (> ``limit``) rounded to the fewest decimals, two to six, that still show it
-    above ``limit`` (0.5004 px against 0.5 px reads 0.5004, not 0.50).
-
-    >>> _shown_above(0.5004, 0.5), _shown_above(0.734, 0.5)
-    (0.5004, 0.73)
-    """
-    for digits in range(2, 7):
-        shown = round(value, digits)
-        if shown > limit:
-            return shown
-    return value
 
 
 def _flight_geometry(inp: UavInputs, h_plan: float, h_lo: float, h_hi: float,
