@@ -605,3 +605,10 @@ def test_terrain_pdfs_state_the_dem_the_ground_and_the_altitude(example, source,
     assert f"{lo}–{hi}" in flat
     alt = tr.layout.photos["altitude_m"]
     assert f"{float(alt.max()):,.0f}".replace(",", " ") in flat
+
+
+@pytest.mark.parametrize(("example", "locale"), CASES)
+def test_signed_numbers_have_one_sign(example, locale):
+    """A margin below the binding constraint is −21 %, never +-21 %."""
+    for where, text in _documents(example, locale).items():
+        assert not re.search(r"\+\s*[-−]|[-−]\s*\+", text), where

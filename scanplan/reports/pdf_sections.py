@@ -245,7 +245,7 @@ def _scan_table(plan: ScanPlan, scenarios: Any, f: _Fmt) -> dict[str, Any]:
                      "cells": [{"text": f.num(s.constraint(cid).pixel_um, 1),
                                 "binding": s.constraint(cid).binding,
                                 "margin": "" if s.constraint(cid).binding
-                                else f"+{f.num(s.constraint(cid).margin_pct, 0)} %"}
+                                else _margin(f, s.constraint(cid).margin_pct)}
                                for s in scenarios]})
     summary: list[dict[str, Any]] = [
         {"label": f.label("binding"), "unit": "",
@@ -401,7 +401,7 @@ def _uav_limits(plan: UavPlan, f: _Fmt) -> dict[str, Any]:
                "compares": lim.compares, "max_height": f.num(lim.max_height_m, 0),
                "max_flown": f.num(lim.max_flown_height_m or lim.max_height_m, 0),
                "margin": "" if lim.binding or not math.isfinite(lim.margin_pct)
-               else f"+{f.num(lim.margin_pct, 0)} %",
+               else _margin(f, lim.margin_pct),
                "binding": lim.binding}
               for lim in sorted(plan.limits, key=lambda x: x.max_height_m)]
     limits_title = ""
@@ -563,3 +563,10 @@ def _spec_view(spec: PlanResult, f: _Fmt) -> dict[str, Any]:
                    else c["unit"])
                   for c in spec.comparison]
     return {"rows": rows, "reasons": reasons, "comparison": comparison}
+
+
+def _margin(f: _Fmt, pct: float) -> str:
+    """A constraint's margin to the binding one, signed with a real minus (``+7 %``,
+    ``−21 %`` for a constraint set aside below the binding one; never ``+-21 %``)."""
+    return f"{'+' if pct >= 0 else '−'}{f.num(abs(pct), 0)} %"
+
