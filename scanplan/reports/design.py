@@ -186,12 +186,19 @@ def _film_rows(spec: Any, w: _W) -> list[tuple[str, str, str]]:
         return rows
     rows.append((w.t("spec_archive_photo_scale" if f.archive else "spec_recommended_photo_scale"),
                  w.scale(rec.photo_scale), _equation(rec.binding, w)))
-    rows.append((w.t("design_film_height"), w.n(rec.photo_scale * inp.focal_mm / 1000.0, 0), ""))
+    if not f.archive:  # existing photos: no flight is planned, only their scan
+        rows.append((w.t("design_film_height"), w.n(rec.photo_scale * inp.focal_mm / 1000.0,
+                                                    0), ""))
     px = rec.scanner_pixel_um or rec.scan_pixel_um
     rows.append((w.t("scan_pixel_um"), w.n(px, 1), ""))
     row = _gsd_row(spec.design, "film", w)
     if row:
         rows.append(row)
+    if f.archive:
+        if f.frames is not None:
+            rows.append((w.t("design_frames_to_scan"), w.n(f.frames, 0), ""))
+            rows.append((w.t("spec_scanned_gb"), w.n(f.scanned_gigabytes, 1), ""))
+        return rows
     rows.append((w.t("design_overlaps"), w.t(
         "design_overlaps_value", fwd=w.n(inp.forward_overlap_pct, 0),
         side=w.n(f.side_overlap_pct, 0)),
