@@ -91,3 +91,40 @@ def test_scan_terminal_names_no_seed():
         assert "seed 0" not in r.output
         assert ("Михеева, Илюшенко, 2015, табл. 3" if loc == "ru"
                 else "Miheeva & Ilushenko 2015, Table 3") in r.output
+
+
+def test_the_pdf_and_the_workbook_of_one_run_number_a_work_alike():
+    """One view renders both documents of a run: the works share their numbers, and each
+    document lists the works it cites with those numbers (gaps allowed, never renumbered)."""
+    import io
+    import re
+    from pathlib import Path
+
+    import openpyxl
+
+    from scanplan.project.file import load_project
+    from scanplan.project.spec import plan_project
+    from scanplan.reports.excel import render_xlsx
+    from scanplan.reports.pdfhtml import render_html
+    from scanplan.reports.view import build_view
+
+    root = Path(__file__).resolve().parent.parent
+    for name in ("archive-12000-for-2000", "uav-town-2000-afs", "instruction-2000-film"):
+        r = plan_project(load_project(root / "examples" / f"{name}.toml"))
+        for first in ("pdf", "xlsx"):
+            view = build_view(scan=r.film.job if r.film else None,
+                              uav=r.uav.job if r.uav else None, meta=r.meta, spec=r)
+            if first == "xlsx":
+                data = render_xlsx(view=view)
+            html = render_html(view=view)
+            if first == "pdf":
+                data = render_xlsx(view=view)
+            pdf = dict(re.findall(r'<li value="(\d+)">(.*?)</li>', html, re.S))
+            wb = openpyxl.load_workbook(io.BytesIO(data))
+            ws = wb.worksheets[-1]  # the references close the workbook
+            book = {str(row[0]): row[1] for row in ws.iter_rows(min_row=2, values_only=True)}
+            shared = set(pdf) & set(book)
+            assert shared, name
+            for n in shared:
+                assert " ".join(pdf[n].split())[:40] == " ".join(book[n].split())[:40], (
+                    name, first, n)

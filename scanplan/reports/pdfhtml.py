@@ -172,7 +172,7 @@ def render_html(*, scan: ScanJob | None = None, uav: UavJob | None = None,
     """
     view = _view(scan, uav, meta, spec, view)
     scan, uav, meta, spec = view.scan, view.uav, view.meta, view.spec
-    f = _Fmt(view, Bibliography(view.locale))
+    f = _Fmt(view, Bibliography(view.locale, view.citations))
     now = view.when
     date = document_date(meta.date or now.date(), meta.locale)
     if scan is not None and uav is not None:

@@ -143,15 +143,21 @@ class Bibliography:
     ----------
     locale : {"en", "ru"}
         The document's language.
+    cited : list of Reference, optional
+        The numbering: the works in order of first citation. Documents of one set (the
+        PDF and the workbook of a run) share this list, so a work has one number in all
+        of them; each lists only the works it cites itself.
     """
 
     locale: str
     cited: list[Reference] = field(default_factory=list)
+    used: set[str] = field(default_factory=set)
 
     def number(self, ref: Reference) -> int:
         """The reference's number in this document (cited now if it was not yet)."""
         if ref not in self.cited:
             self.cited.append(ref)
+        self.used.add(ref.id)
         return self.cited.index(ref) + 1
 
     def cite(self, text: str) -> str:
@@ -174,4 +180,5 @@ class Bibliography:
 
     def entries(self) -> list[tuple[int, str]]:
         """(number, entry) of every work cited so far, in the document's language."""
-        return [(i, ref.text(self.locale)) for i, ref in enumerate(self.cited, 1)]
+        return [(i, ref.text(self.locale)) for i, ref in enumerate(self.cited, 1)
+                if ref.id in self.used]

@@ -255,6 +255,9 @@ class ReportView:
         The labels of ``locale`` and ``platform``.
     sections : tuple of str
         The sections present, in order (:func:`section_names`).
+    citations : list
+        The works cited so far, in order of first citation, shared by every document
+        rendered from this view: the PDF and the workbook of one run number a work alike.
     """
 
     scan: ScanJob | None
@@ -268,6 +271,7 @@ class ReportView:
     labels: Labels
     sections: tuple[str, ...]
     _plots: dict[str, str] = field(default_factory=dict, repr=False)
+    citations: list[Any] = field(default_factory=list, repr=False)
 
     def has(self, section: str) -> bool:
         """Whether the report has ``section``."""

@@ -52,7 +52,7 @@ class Book:
         self.wb = Workbook()
         self._first = True
         self.title_text = ""
-        self.bib = Bibliography(self.loc)
+        self.bib = Bibliography(self.loc, view.citations)  # numbered as the PDF numbers
 
     def t(self, key: str) -> str:
         """The label ``key`` in the report's language (:class:`..view.Labels`)."""
