@@ -122,6 +122,10 @@ def _user_text(example: str) -> list[str]:
         for key, value in project.values.get(sec, {}).items():
             if isinstance(value, str) and key != "locale":
                 texts.append(value)
+    for sec, key in (("terrain", "dem"), ("area", "file")):  # file names, as the user gave
+        value = project.values.get(sec, {}).get(key)
+        if isinstance(value, str):
+            texts.append(Path(value).name)
     return [" ".join(t.split()) for t in texts if t and t.strip()]
 
 
@@ -152,8 +156,10 @@ def english_in_russian(text: str) -> list[str]:
     """Latin words (3+ letters) in a Russian text that are not names, units or symbols."""
     allowed = _RU_ALLOWED | _catalogue_words()
     text = _PROJECT_KEY.sub(" ", text)  # a project-file key is typed as it is
+    def symbol(w: str) -> bool:  # a formula symbol with its subscript set: H_max → Hmax
+        return w[0].isupper() and w[1:].lower() in allowed
     return sorted({w for w in _LATIN_WORD.findall(text)
-                   if len(w) >= 3 and w.lower() not in allowed})
+                   if len(w) >= 3 and w.lower() not in allowed and not symbol(w)})
 
 
 CASES = [pytest.param(str(e), loc, id=f"{e.stem}-{loc}") for e in EXAMPLES for loc in LOCALES]

@@ -451,7 +451,10 @@ def _engine_sentences(result: PlanResult) -> list[Message]:
 
 def _squeeze(text: str) -> str:
     """Text without any whitespace (the PDF wraps lines anywhere, even after a slash), the
-    documents' reference numbers made alike."""
+    documents' reference numbers made alike, formulas as typeset (P_S → P<sub>S</sub>,
+    read back as PS; sqrt( → √()."""
+    text = re.sub(r"</?sub>", "", text).replace("sqrt(", "√(")
+    text = re.sub(r"(?<![\w])([A-Za-zσΔ])_([A-Za-z0-9]{1,5})(?![\w])", r"\1\2", text)
     return re.sub(r"\[\d+\]", "[n]", re.sub(r"\s", "", text))
 
 

@@ -111,7 +111,7 @@ def test_english_title_approval_and_binding(doc_en):
     assert "Not interpretable." in text and "[not_interpretable]" not in text
     assert "Motion blur." in text
     # formulas cite numbered references, listed at the end in full (issue 13)
-    assert re.search(r"P_S = V_s·Mk/\(k·Mc\) — \[\d\]; \[\d\], eq\. \(1\)", text)
+    assert re.search(r"PS = Vs·Mk/\(k·Mc\) — \[\d\]; \[\d\], eq\. \(1\)", text)  # subscripts set
     assert "L = H/(2·R·f)" in text and "seed 0" not in text
     assert "References" in text and "Miheeva A.A., Ilushenko A. Resolution calculation" in text
     assert "GKINP (GNTA)-02-036-02. Instruction for photogrammetric works" in text

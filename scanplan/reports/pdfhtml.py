@@ -13,7 +13,7 @@ import re
 from typing import TYPE_CHECKING, Any
 
 import jinja2
-from markupsafe import Markup
+from markupsafe import Markup, escape
 
 from .._version import __version__
 from ..messages import document_text, localize
@@ -80,6 +80,18 @@ def _breakable(value: Any) -> Any:
     return value
 
 
+_SUBSCRIPT = re.compile(r"(?<![\w])([A-Za-zσΔ])_([A-Za-z0-9]{1,5})(?![\w])")
+
+
+def typeset(value: Any) -> Markup:
+    """A formula as a printed instruction shows it: ``P_S = V_s·Mk/(k·Mc)`` with its
+    subscripts set as subscripts (``P<sub>S</sub>``) and ``sqrt(`` as a root sign; the
+    rest escaped. The ``formula`` filter of the templates."""
+    text = str(escape(_breakable(value)))
+    text = text.replace("sqrt(", "√(")
+    return Markup(_SUBSCRIPT.sub(r"\1<sub>\2</sub>", text))
+
+
 @functools.lru_cache(maxsize=1)
 def _environment() -> jinja2.Environment:
     """The templates' environment (one per process: templates are compiled once)."""
@@ -89,6 +101,7 @@ def _environment() -> jinja2.Environment:
                                             default_for_string=True),
         undefined=jinja2.StrictUndefined, trim_blocks=True, lstrip_blocks=True,
         keep_trailing_newline=True, finalize=_breakable)
+    env.filters["formula"] = typeset
     return env
 
 
