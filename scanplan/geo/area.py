@@ -25,6 +25,7 @@ import io
 import math
 import os
 import re
+import warnings
 import zipfile
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
@@ -37,6 +38,7 @@ from shapely.validation import explain_validity
 
 from ..errors import InputError
 from ..safeio import read_limited, size_text
+from .gdal_guard import KIND_NAMES, harden, indirection, read_head, sniff
 from .layout import Area
 
 if TYPE_CHECKING:  # pyproj (60 ms) is imported when a polygon is read, not for a block
@@ -209,24 +211,17 @@ def _read_file(path: Path, layer: str | None, feature: str | int | None
     import pyogrio
 
     name = str(path)
-    source: str | io.BytesIO = str(path)
-    suffix = path.suffix.lower()
-    if suffix in (".kmz", ".kml", ".geojson", ".json"):
-        data = read_limited(path, MAX_FILE_BYTES, field=name)
-        if suffix == ".kmz":
-            data = _kmz_document(data, name)
-        if suffix in (".kmz", ".kml"):
-            if _DTD.search(data[:65536]) or _DTD.search(data):
-                raise InputError(name, "holds a document type declaration (<!DOCTYPE> or "
-                                 "<!ENTITY>); KML needs none, and entities are refused. Save "
-                                 "the polygon again from Google Earth or QGIS")
-        source = io.BytesIO(data)
-    else:
-        _check_size(path, name)
+    source, drivers = _source(path, name)
     try:
-        layers = pyogrio.list_layers(source)
+        with warnings.catch_warnings():  # a GeoPackage read from memory has no .gpkg name
+            warnings.simplefilter("ignore", RuntimeWarning)
+            layers = pyogrio.list_layers(source)
+            driver = _rewound(source) and pyogrio.read_info(source, layer=0)["driver"]
     except Exception as exc:  # GDAL's errors are many classes; any of them: unreadable
         raise InputError(name, f"cannot be read as a GIS file: {_gdal_text(exc)}") from None
+    if driver not in drivers:
+        raise InputError(name, f"was opened by GDAL as {driver}, not as {drivers[0]} as its "
+                         "content says; refused")
     names = [str(n) for n, _ in layers]
     if layer is not None:
         if layer not in names:
@@ -239,14 +234,20 @@ def _read_file(path: Path, layer: str | None, feature: str | int | None
     other = 0
     all_names = [str(n) for n, _ in layers]
     for lyr in names:
-        if isinstance(source, io.BytesIO):
-            source.seek(0)
+        _rewound(source)
         try:  # by index: a layer read from memory gets a new random name at every open
-            meta, _, wkb, fields = pyogrio.raw.read(source, layer=all_names.index(lyr),
-                                                    max_features=MAX_FEATURES)
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", RuntimeWarning)
+                meta, _, wkb, fields = pyogrio.raw.read(
+                    source, layer=all_names.index(lyr), max_features=MAX_FEATURES + 1)
         except Exception as exc:
             raise InputError(name, f"layer {lyr!r} cannot be read: {_gdal_text(exc)}"
                              ) from None
+        if wkb is not None and len(wkb) > MAX_FEATURES:
+            raise InputError(name, f"layer {lyr!r} holds "
+                             f"{_feature_count(source, all_names.index(lyr))} features; at "
+                             f"most {MAX_FEATURES:,} are read (none is dropped unseen): save "
+                             "the contract area on its own")
         if wkb is None:
             continue
         geoms = shapely.from_wkb(wkb, on_invalid="ignore")
@@ -323,26 +324,85 @@ def _gdal_text(exc: Exception) -> str:
     return text[:300] or type(exc).__name__
 
 
-def _check_size(path: Path, name: str) -> None:
-    try:
-        st = path.stat()
-    except FileNotFoundError:
-        from ..errors import NotFoundError
+_DRIVERS: dict[str, tuple[str, ...]] = {
+    "kml": ("LIBKML", "KML"), "json": ("GeoJSON",), "gpkg": ("GPKG",),
+    "shp": ("ESRI Shapefile",)}
+"""The GDAL drivers allowed to open each kind of area file (decided by content)."""
+_FORMATS = "KML, KMZ, GeoJSON, GeoPackage or Shapefile"
+MAX_COMPANION_TEXT_BYTES = 1024 * 1024
+"""Largest text companion of a Shapefile (.prj, .cpg) [bytes]."""
 
-        raise NotFoundError(name, "cannot be read: no such file") from None
-    except OSError as exc:
-        raise InputError(name, f"cannot be read: {exc.strerror or exc}") from None
+
+def _source(path: Path, name: str) -> tuple[str | io.BytesIO, tuple[str, ...]]:
+    """What pyogrio opens for the area file ``path`` and the drivers allowed to open it.
+
+    The kind is decided by the file's content, never by its name (:func:`.gdal_guard.
+    sniff`): zip bytes of any name go through the bounded KMZ path and must hold a KML
+    document (an archive in the archive is refused); KML, GeoJSON and GeoPackage are read
+    whole (bounded) and handed to GDAL from memory, so GDAL sees no other file; a Shapefile
+    is opened by its path with its companions checked. A VRT, another archive or any other
+    content is refused.
+    """
+    harden()
+    data = read_limited(path, MAX_FILE_BYTES, field=name)
+    kind = sniff(data)
+    if kind == "zip":
+        data = _kmz_document(data, name)
+        kind = sniff(data)
+        if kind != "kml":
+            raise InputError(name, f"is a zip archive (a KMZ) whose document is "
+                             f"{KIND_NAMES[kind]}, not KML; an archive inside the archive "
+                             "is refused. Save the polygon again as KML or KMZ")
+    if kind == "vrt":
+        raise InputError(name, "is a GDAL virtual dataset (VRT): it names other files or URLs "
+                         "to read, and scanplan reads only the file itself; give the "
+                         f"polygon as {_FORMATS}")
+    if kind == "shp":
+        _check_companions(path, name)
+        return str(path), _DRIVERS[kind]
+    if kind not in _DRIVERS:
+        raise InputError(name, f"cannot be read as a GIS file: its content is "
+                         f"{KIND_NAMES[kind]}; an area file is {_FORMATS} (recognised by "
+                         "its content, whatever its name)")
+    if kind in ("kml", "json"):
+        ref = indirection(data)
+        if ref is not None:
+            raise InputError(name, f"names another dataset ({ref!r}); an area file must hold "
+                             "its polygon itself: GDAL's virtual files and URLs are refused")
+    if kind == "kml" and (_DTD.search(data[:65536]) or _DTD.search(data)):
+        raise InputError(name, "holds a document type declaration (<!DOCTYPE> or "
+                         "<!ENTITY>); KML needs none, and entities are refused. Save "
+                         "the polygon again from Google Earth or QGIS")
+    return io.BytesIO(data), _DRIVERS[kind]
+
+
+def _rewound(source: str | io.BytesIO) -> bool:
+    if isinstance(source, io.BytesIO):
+        source.seek(0)
+    return True
+
+
+def _feature_count(source: str | io.BytesIO, layer: int) -> str:
+    """The number of features of a layer (``"more than N"`` when GDAL cannot count)."""
+    import pyogrio
+
+    _rewound(source)
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)
+            n = int(pyogrio.read_info(source, layer=layer, force_feature_count=True)
+                    ["features"])
+    except Exception:  # counting is only for the message
+        n = -1
+    return f"{n:,}" if n > MAX_FEATURES else f"more than {MAX_FEATURES:,}"
+
+
+def _check_companions(path: Path, name: str) -> None:
+    """A Shapefile's companions (.shx, .dbf, .prj, .cpg, …), which GDAL opens beside it:
+    regular files only (a pipe or a device would be a read that never ends), the index a
+    Shapefile index, the text ones small and naming no other dataset."""
     import stat
 
-    if stat.S_ISDIR(st.st_mode) and path.suffix.lower() == ".gdb":
-        return
-    if not stat.S_ISREG(st.st_mode):
-        raise InputError(name, "is not a regular file")
-    if st.st_size > MAX_FILE_BYTES:
-        raise InputError(name, f"is {size_text(st.st_size)}; the limit is "
-                         f"{size_text(MAX_FILE_BYTES)}")
-    # GDAL opens a Shapefile's sidecars (.dbf, .shx, .prj, .cpg) too: none may be a pipe or
-    # a device (a read that never ends)
     try:
         siblings = [p for p in path.parent.iterdir()
                     if p.stem.casefold() == path.stem.casefold() and p != path]
@@ -355,6 +415,14 @@ def _check_size(path: Path, name: str) -> None:
             continue
         if not (stat.S_ISREG(mode) or stat.S_ISDIR(mode)):
             raise InputError(name, f"its companion file {sib.name} is not a regular file")
+        ext = sib.suffix.lower()
+        if ext == ".shx" and sniff(read_head(sib, 4) or b"") != "shp":
+            raise InputError(name, f"its companion file {sib.name} is not a Shapefile index")
+        if ext in (".prj", ".cpg"):
+            text = read_limited(sib, MAX_COMPANION_TEXT_BYTES, field=f"{name}: {sib.name}")
+            if indirection(text) is not None or sniff(text) in ("zip", "gzip", "archive"):
+                raise InputError(name, f"its companion file {sib.name} is not the plain "
+                                 "text it should be")
 
 
 def _kmz_document(data: bytes, name: str) -> bytes:

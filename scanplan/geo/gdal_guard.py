@@ -30,6 +30,7 @@ import logging
 import os
 import re
 import sys
+import warnings
 import zipfile
 from collections.abc import Iterator
 from dataclasses import dataclass, field
@@ -84,7 +85,8 @@ def harden() -> None:
         import pyogrio
 
         pyogrio.set_gdal_config_options(wanted)
-        with contextlib.suppress(ImportError, AttributeError):
+        with contextlib.suppress(ImportError, AttributeError), warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)  # a skipped driver not built in
             from pyogrio._ogr import _register_drivers
 
             _register_drivers()  # GDALAllRegister again: applies GDAL_SKIP
