@@ -2,8 +2,9 @@
 
 Sources (one of them):
 
-- a file — KML, KMZ, GeoJSON, GeoPackage, Shapefile (anything GDAL reads as vectors),
-  read with pyogrio; ``layer`` and ``feature`` choose when it holds several polygons;
+- a file — KML, KMZ, GeoJSON, GeoPackage, Shapefile, recognised by its content (not its
+  name) and read with pyogrio; ``layer`` and ``feature`` choose when it holds several
+  polygons;
 - an inline ring ``[[lon, lat], ...]`` (or ``[[x, y], ...]`` in ``crs``);
 - the abstract ``width_m × length_m`` block: a rectangle in a local metric frame, not
   georeferenced, planned by the same code as a real polygon.
@@ -14,9 +15,13 @@ system); else the UTM zone of the area's centroid (pyproj's database of UTM zone
 
 Every problem is an :class:`~scanplan.errors.InputError` naming the file (and feature) or
 the key, what is wrong and what is allowed; nothing is guessed. Hostile files are refused
-before a parser sees them: a size bound, a KMZ's zip directory checked (entries, inflated
-size, compression ratio) before anything is inflated, and KML with a document type
-declaration (entities) refused.
+before a parser sees them: GDAL's network and virtual-file access is off for the process
+(:mod:`.gdal_guard`); a size bound; the kind decided by content, a VRT or a reference to
+another dataset refused; zip content of any name read only as a KMZ, its zip directory
+checked (entries, inflated size, compression ratio) before anything is inflated and an
+inner archive refused; KML with a document type declaration (entities) refused; KML,
+GeoJSON and GeoPackage handed to GDAL from memory; more than :data:`MAX_FEATURES` features
+refused with their count, never cut (docs/gis-inputs.md).
 """
 
 from __future__ import annotations
