@@ -330,7 +330,7 @@ def _gdal_text(exc: Exception) -> str:
 
 
 _DRIVERS: dict[str, tuple[str, ...]] = {
-    "kml": ("LIBKML", "KML"), "json": ("GeoJSON",), "gpkg": ("GPKG",),
+    "kml": ("LIBKML", "KML"), "json": ("GeoJSON", "GeoJSONSeq"), "gpkg": ("GPKG",),
     "shp": ("ESRI Shapefile",)}
 """The GDAL drivers allowed to open each kind of area file (decided by content)."""
 _FORMATS = "KML, KMZ, GeoJSON, GeoPackage or Shapefile"
