@@ -216,17 +216,7 @@ def _read_file(path: Path, layer: str | None, feature: str | int | None
     import pyogrio
 
     name = str(path)
-    source, drivers = _source(path, name)
-    try:
-        with warnings.catch_warnings():  # a GeoPackage read from memory has no .gpkg name
-            warnings.simplefilter("ignore", RuntimeWarning)
-            layers = pyogrio.list_layers(source)
-            driver = _rewound(source) and pyogrio.read_info(source, layer=0)["driver"]
-    except Exception as exc:  # GDAL's errors are many classes; any of them: unreadable
-        raise InputError(name, f"cannot be read as a GIS file: {_gdal_text(exc)}") from None
-    if driver not in drivers:
-        raise InputError(name, f"was opened by GDAL as {driver}, not as {drivers[0]} as its "
-                         "content says; refused")
+    source, layers = _layers(path, name)
     names = [str(n) for n, _ in layers]
     if layer is not None:
         if layer not in names:
@@ -379,6 +369,26 @@ def _source(path: Path, name: str) -> tuple[str | io.BytesIO, tuple[str, ...]]:
                          "<!ENTITY>); KML needs none, and entities are refused. Save "
                          "the polygon again from Google Earth or QGIS")
     return io.BytesIO(data), _DRIVERS[kind]
+
+
+def _layers(path: Path, name: str) -> tuple[str | io.BytesIO, Any]:
+    """The source pyogrio reads (:func:`_source`) and its layers, the driver GDAL used
+    checked against the kind the content says."""
+    import pyogrio
+
+    source, drivers = _source(path, name)
+    try:
+        with warnings.catch_warnings():  # a GeoPackage read from memory has no .gpkg name
+            warnings.simplefilter("ignore", RuntimeWarning)
+            layers = pyogrio.list_layers(source)
+            driver = (_rewound(source) and pyogrio.read_info(source, layer=0)["driver"]
+                      if len(layers) else drivers[0])
+    except Exception as exc:  # GDAL's errors are many classes; any of them: unreadable
+        raise InputError(name, f"cannot be read as a GIS file: {_gdal_text(exc)}") from None
+    if driver not in drivers:
+        raise InputError(name, f"was opened by GDAL as {driver}, not as {drivers[0]} as its "
+                         "content says; refused")
+    return source, layers
 
 
 def _rewound(source: str | io.BytesIO) -> bool:
