@@ -230,6 +230,9 @@ def gdal_messages() -> Iterator[GdalMessages]:
     are not UTF-8 makes its error handler raise inside GDAL's callback, and Python prints
     that exception as an "ignored" traceback. Within the block both are collected into the
     yielded :class:`GdalMessages` and nothing reaches the terminal.
+
+    The block swaps process-wide hooks (``sys.unraisablehook``, ``sys.stderr``): it is
+    meant for the short opens and reads of one thread, as scanplan's DEM reader does.
     """
     sink = GdalMessages()
     logger = logging.getLogger("rasterio")
