@@ -162,6 +162,31 @@ def test_vrt_behind_a_kml_prefix_and_vsi_paths_in_text_are_refused(listener, tmp
     assert hits == []
 
 
+def _linked_crs(url: str) -> bytes:
+    return json.dumps({"type": "FeatureCollection", "crs": {
+        "type": "link", "properties": {"href": f"{url}/crs.wkt", "type": "ogcwkt"}},
+        "features": json.loads(_geojson())["features"]}).encode()
+
+
+def test_geojson_crs_link_and_kml_network_links_fetch_nothing(listener, tmp_path):
+    url, hits = listener
+    g = tmp_path / "linked.geojson"
+    g.write_bytes(_linked_crs(url))
+    e = _err(AreaSpec(file=g))
+    assert e.field == str(g) and "CRS as a link" in e.message
+    k = tmp_path / "links.kml"
+    k.write_text(
+        '<?xml version="1.0" encoding="UTF-8"?><kml xmlns="http://www.opengis.net/kml/2.2">'
+        f"<Document><NetworkLink><Link><href>{url}/net.kml</href></Link></NetworkLink>"
+        f'<Style id="s"><IconStyle><Icon><href>{url}/icon.png</href></Icon></IconStyle>'
+        f"</Style><Placemark><name>A</name><styleUrl>{url}/style.kml#s</styleUrl>"
+        "<Polygon><outerBoundaryIs><LinearRing><coordinates>37.6,55.75 37.63,55.75 "
+        "37.63,55.77 37.6,55.75</coordinates></LinearRing></outerBoundaryIs></Polygon>"
+        "</Placemark></Document></kml>", encoding="utf-8")
+    assert load_area(AreaSpec(file=k)).area_km2 > 1  # the polygon; no link followed
+    assert hits == []
+
+
 @pytest.mark.parametrize("name", ["dem.tif", "dem.vrt", "dem.tiff"])
 def test_raster_vrt_dem_is_refused_and_nothing_is_requested(name, listener, tmp_path):
     url, hits = listener
@@ -186,11 +211,14 @@ def test_a_dem_whose_overview_companion_is_a_vrt_is_refused(listener, tmp_path):
     assert open_dem(tmp_path / "dem" / "town-valley.tif").width_px == 260  # a TIFF: fine
 
 
-def test_gdal_itself_is_configured_for_the_process(listener, tmp_path):
+def test_gdal_itself_is_configured_for_the_process(listener, tmp_path, monkeypatch):
     """Past scanplan's own checks: after the first area is read, GDAL (pyogrio's and
-    rasterio's) refuses a VRT and requests no URL, whatever it is handed."""
+    rasterio's) refuses a VRT and requests no URL, whatever it is handed (a host exempted
+    from proxies, as NO_PROXY may list, would bypass the dead proxy: not here)."""
     import pyogrio
 
+    for var in ("NO_PROXY", "no_proxy"):
+        monkeypatch.delenv(var, raising=False)
     url, hits = listener
     f = tmp_path / "b.geojson"
     f.write_bytes(_geojson())
@@ -201,6 +229,7 @@ def test_gdal_itself_is_configured_for_the_process(listener, tmp_path):
     for target in (str(vrt), f"/vsicurl/{url}/town.geojson"):
         with pytest.raises(Exception):  # noqa: B017 - GDAL's error classes vary
             pyogrio.read_info(target)
+    pyogrio.read_info(io.BytesIO(_linked_crs(url)))  # GDAL would fetch the CRS: no request
     rvrt = tmp_path / "direct-raster.vrt"
     rvrt.write_text(_raster_vrt(url), encoding="utf-8")
     with pytest.raises(rasterio.errors.RasterioError), rasterio.open(rvrt, driver="GTiff"):

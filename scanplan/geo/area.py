@@ -74,6 +74,7 @@ MAX_SCALE_ERROR_PCT = 0.1
 what a 6° UTM zone reaches at its edge on the equator (k ≈ 1.001); inside its zone no
 UTM or 6° Gauss–Krüger area exceeds it (geodetic property of the projection, not a norm)."""
 _DTD = re.compile(rb"<!\s*(DOCTYPE|ENTITY)", re.IGNORECASE)
+_GEOJSON_CRS = re.compile(rb'"crs"\s*:\s*\{[^{}]*(?:\{[^{}]*\}[^{}]*)*\}')
 _NAME_FIELDS = ("name", "Name", "NAME", "title", "Title")
 
 
@@ -364,6 +365,10 @@ def _source(path: Path, name: str) -> tuple[str | io.BytesIO, tuple[str, ...]]:
         if ref is not None:
             raise InputError(name, f"names another dataset ({ref!r}); an area file must hold "
                              "its polygon itself: GDAL's virtual files and URLs are refused")
+    if kind == "json" and any(b'"link"' in m.group(0) for m in _GEOJSON_CRS.finditer(data)):
+        raise InputError(name, "gives its CRS as a link (a URL or another file), which GDAL "
+                         "would fetch; scanplan reads nothing but the file itself: give the "
+                         "CRS by name (\"EPSG:…\") in the file or as [area] crs")
     if kind == "kml" and (_DTD.search(data[:65536]) or _DTD.search(data)):
         raise InputError(name, "holds a document type declaration (<!DOCTYPE> or "
                          "<!ENTITY>); KML needs none, and entities are refused. Save "

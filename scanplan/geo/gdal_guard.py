@@ -43,6 +43,10 @@ GDAL_CONFIG: dict[str, str] = {
     # /vsicurl/ (and /vsis3/, /vsigs/, /vsiaz/ … built on it) opens only names ending in
     # an allowed extension: none is allowed, so no URL is ever requested
     "CPL_VSIL_CURL_ALLOWED_EXTENSIONS": "",
+    # everything GDAL fetches itself (a CRS "link", a driver's HTTP request) goes through
+    # a proxy of no scheme curl knows: it fails before any connection or name lookup
+    "GDAL_HTTP_PROXY": "none://no-network.invalid:9",
+    "GDAL_HTTPS_PROXY": "none://no-network.invalid:9",
     "GDAL_HTTP_MAX_RETRY": "0",
     "GDAL_HTTP_TIMEOUT": "1",
     "GDAL_HTTP_CONNECTTIMEOUT": "1",
