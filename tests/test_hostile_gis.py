@@ -317,9 +317,10 @@ def test_geopackage_and_shapefile_are_still_read(tmp_path):
                           [np.array(["Town"], dtype=object)], ["name"], driver=driver,
                           geometry_type="Polygon", crs="EPSG:4326")
         assert load_area(AreaSpec(file=tmp_path / name)).area_km2 > 1
-    (tmp_path / "b.prj").write_text(f"/vsicurl/{'http://127.0.0.1:9'}/x.prj",
-                                    encoding="utf-8")
-    assert "b.prj is not the plain text" in _err(AreaSpec(file=tmp_path / "b.shp")).message
+    for text in ("/vsicurl/http://127.0.0.1:9/x.prj", "http://127.0.0.1:9/x.prj"):
+        (tmp_path / "b.prj").write_text(text, encoding="utf-8")
+        e = _err(AreaSpec(file=tmp_path / "b.shp"))
+        assert "b.prj is not the plain text" in e.message
 
 
 # -------------------------------------------------------------------------------------------

@@ -420,7 +420,7 @@ def _feature_count(source: str | io.BytesIO, layer: int) -> str:
 def _check_companions(path: Path, name: str) -> None:
     """A Shapefile's companions (.shx, .dbf, .prj, .cpg, …), which GDAL opens beside it:
     regular files only (a pipe or a device would be a read that never ends), the index a
-    Shapefile index, the text ones small and naming no other dataset."""
+    Shapefile index, the text ones small and naming no other dataset or URL."""
     import stat
 
     try:
@@ -440,7 +440,8 @@ def _check_companions(path: Path, name: str) -> None:
             raise InputError(name, f"its companion file {sib.name} is not a Shapefile index")
         if ext in (".prj", ".cpg"):
             text = read_limited(sib, MAX_COMPANION_TEXT_BYTES, field=f"{name}: {sib.name}")
-            if indirection(text) is not None or sniff(text) in ("zip", "gzip", "archive"):
+            if (indirection(text) is not None or b"://" in text
+                    or sniff(text) in ("zip", "gzip", "archive")):
                 raise InputError(name, f"its companion file {sib.name} is not the plain "
                                  "text it should be")
 
