@@ -28,7 +28,7 @@ from scanplan.errors import InputError
 from scanplan.geo import area as A
 from scanplan.geo import gdal_guard as G
 from scanplan.geo.area import AreaSpec, load_area
-from scanplan.geo.dem import open_dem
+from scanplan.geo.dem import open_dem, sample_dem
 
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLES = ROOT / "examples"
@@ -338,6 +338,13 @@ def test_dem_in_a_local_engineering_crs_exits_2(tmp_path):
     r = _cli("plan", p)
     assert r.exit_code == 2, r.output
     assert "terrain.dem (line" in r.output and "local (engineering)" in r.output
+    # under an abstract width × length block (a local frame too) the same DEM is sampled
+    info = open_dem(tmp_path / "dem" / "local.tif")
+    x = np.array([info.bounds[0] + 500.0])
+    y = np.array([info.bounds[3] - 500.0])
+    assert info.local and np.isfinite(sample_dem(info, x, y, "LOCAL").elevation_m).all()
+    with pytest.raises(InputError, match="local \\(engineering\\)"):
+        sample_dem(info, x, y, "EPSG:32637")
 
 
 def test_damaged_metadata_byte_is_one_clean_refusal(tmp_path, capfd):
