@@ -2,8 +2,9 @@
 
 Sources (one of them):
 
-- a file — KML, KMZ, GeoJSON, GeoPackage, Shapefile (anything GDAL reads as vectors),
-  read with pyogrio; ``layer`` and ``feature`` choose when it holds several polygons;
+- a file — KML, KMZ, GeoJSON, GeoPackage, Shapefile, recognised by its content (not its
+  name) and read with pyogrio; ``layer`` and ``feature`` choose when it holds several
+  polygons;
 - an inline ring ``[[lon, lat], ...]`` (or ``[[x, y], ...]`` in ``crs``);
 - the abstract ``width_m × length_m`` block: a rectangle in a local metric frame, not
   georeferenced, planned by the same code as a real polygon.
@@ -14,9 +15,13 @@ system); else the UTM zone of the area's centroid (pyproj's database of UTM zone
 
 Every problem is an :class:`~scanplan.errors.InputError` naming the file (and feature) or
 the key, what is wrong and what is allowed; nothing is guessed. Hostile files are refused
-before a parser sees them: a size bound, a KMZ's zip directory checked (entries, inflated
-size, compression ratio) before anything is inflated, and KML with a document type
-declaration (entities) refused.
+before a parser sees them: GDAL's network and virtual-file access is off for the process
+(:mod:`.gdal_guard`); a size bound; the kind decided by content, a VRT or a reference to
+another dataset refused; zip content of any name read only as a KMZ, its zip directory
+checked (entries, inflated size, compression ratio) before anything is inflated and an
+inner archive refused; KML with a document type declaration (entities) refused; KML,
+GeoJSON and GeoPackage handed to GDAL from memory; more than :data:`MAX_FEATURES` features
+refused with their count, never cut (docs/gis-inputs.md).
 """
 
 from __future__ import annotations
@@ -25,6 +30,7 @@ import io
 import math
 import os
 import re
+import warnings
 import zipfile
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
@@ -37,6 +43,7 @@ from shapely.validation import explain_validity
 
 from ..errors import InputError
 from ..safeio import read_limited, size_text
+from .gdal_guard import KIND_NAMES, harden, indirection, read_head, sniff
 from .layout import Area
 
 if TYPE_CHECKING:  # pyproj (60 ms) is imported when a polygon is read, not for a block
@@ -67,6 +74,7 @@ MAX_SCALE_ERROR_PCT = 0.1
 what a 6° UTM zone reaches at its edge on the equator (k ≈ 1.001); inside its zone no
 UTM or 6° Gauss–Krüger area exceeds it (geodetic property of the projection, not a norm)."""
 _DTD = re.compile(rb"<!\s*(DOCTYPE|ENTITY)", re.IGNORECASE)
+_GEOJSON_CRS = re.compile(rb'"crs"\s*:\s*\{[^{}]*(?:\{[^{}]*\}[^{}]*)*\}')
 _NAME_FIELDS = ("name", "Name", "NAME", "title", "Title")
 
 
@@ -209,24 +217,7 @@ def _read_file(path: Path, layer: str | None, feature: str | int | None
     import pyogrio
 
     name = str(path)
-    source: str | io.BytesIO = str(path)
-    suffix = path.suffix.lower()
-    if suffix in (".kmz", ".kml", ".geojson", ".json"):
-        data = read_limited(path, MAX_FILE_BYTES, field=name)
-        if suffix == ".kmz":
-            data = _kmz_document(data, name)
-        if suffix in (".kmz", ".kml"):
-            if _DTD.search(data[:65536]) or _DTD.search(data):
-                raise InputError(name, "holds a document type declaration (<!DOCTYPE> or "
-                                 "<!ENTITY>); KML needs none, and entities are refused. Save "
-                                 "the polygon again from Google Earth or QGIS")
-        source = io.BytesIO(data)
-    else:
-        _check_size(path, name)
-    try:
-        layers = pyogrio.list_layers(source)
-    except Exception as exc:  # GDAL's errors are many classes; any of them: unreadable
-        raise InputError(name, f"cannot be read as a GIS file: {_gdal_text(exc)}") from None
+    source, layers = _layers(path, name)
     names = [str(n) for n, _ in layers]
     if layer is not None:
         if layer not in names:
@@ -239,14 +230,20 @@ def _read_file(path: Path, layer: str | None, feature: str | int | None
     other = 0
     all_names = [str(n) for n, _ in layers]
     for lyr in names:
-        if isinstance(source, io.BytesIO):
-            source.seek(0)
+        _rewound(source)
         try:  # by index: a layer read from memory gets a new random name at every open
-            meta, _, wkb, fields = pyogrio.raw.read(source, layer=all_names.index(lyr),
-                                                    max_features=MAX_FEATURES)
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", RuntimeWarning)
+                meta, _, wkb, fields = pyogrio.raw.read(
+                    source, layer=all_names.index(lyr), max_features=MAX_FEATURES + 1)
         except Exception as exc:
             raise InputError(name, f"layer {lyr!r} cannot be read: {_gdal_text(exc)}"
                              ) from None
+        if wkb is not None and len(wkb) > MAX_FEATURES:
+            raise InputError(name, f"layer {lyr!r} holds "
+                             f"{_feature_count(source, all_names.index(lyr))} features; at "
+                             f"most {MAX_FEATURES:,} are read (none is dropped unseen): save "
+                             "the contract area on its own")
         if wkb is None:
             continue
         geoms = shapely.from_wkb(wkb, on_invalid="ignore")
@@ -323,26 +320,109 @@ def _gdal_text(exc: Exception) -> str:
     return text[:300] or type(exc).__name__
 
 
-def _check_size(path: Path, name: str) -> None:
-    try:
-        st = path.stat()
-    except FileNotFoundError:
-        from ..errors import NotFoundError
+_DRIVERS: dict[str, tuple[str, ...]] = {
+    "kml": ("LIBKML", "KML"), "json": ("GeoJSON", "GeoJSONSeq"), "gpkg": ("GPKG",),
+    "shp": ("ESRI Shapefile",)}
+"""The GDAL drivers allowed to open each kind of area file (decided by content)."""
+_FORMATS = "KML, KMZ, GeoJSON, GeoPackage or Shapefile"
+MAX_COMPANION_TEXT_BYTES = 1024 * 1024
+"""Largest text companion of a Shapefile (.prj, .cpg) [bytes]."""
 
-        raise NotFoundError(name, "cannot be read: no such file") from None
-    except OSError as exc:
-        raise InputError(name, f"cannot be read: {exc.strerror or exc}") from None
+
+def _source(path: Path, name: str) -> tuple[str | io.BytesIO, tuple[str, ...]]:
+    """What pyogrio opens for the area file ``path`` and the drivers allowed to open it.
+
+    The kind is decided by the file's content, never by its name (:func:`.gdal_guard.
+    sniff`): zip bytes of any name go through the bounded KMZ path and must hold a KML
+    document (an archive in the archive is refused); KML, GeoJSON and GeoPackage are read
+    whole (bounded) and handed to GDAL from memory, so GDAL sees no other file; a Shapefile
+    is opened by its path with its companions checked. A VRT, another archive or any other
+    content is refused.
+    """
+    harden()
+    data = read_limited(path, MAX_FILE_BYTES, field=name)
+    kind = sniff(data)
+    if kind == "zip":
+        data = _kmz_document(data, name)
+        kind = sniff(data)
+        if kind != "kml":
+            raise InputError(name, f"is a zip archive (a KMZ) whose document is "
+                             f"{KIND_NAMES[kind]}, not KML; an archive inside the archive "
+                             "is refused. Save the polygon again as KML or KMZ")
+    if kind == "vrt":
+        raise InputError(name, "is a GDAL virtual dataset (VRT): it names other files or URLs "
+                         "to read, and scanplan reads only the file itself; give the "
+                         f"polygon as {_FORMATS}")
+    if kind == "shp":
+        _check_companions(path, name)
+        return str(path), _DRIVERS[kind]
+    if kind not in _DRIVERS:
+        raise InputError(name, f"cannot be read as a GIS file: its content is "
+                         f"{KIND_NAMES[kind]}; an area file is {_FORMATS} (recognised by "
+                         "its content, whatever its name)")
+    if kind in ("kml", "json"):
+        ref = indirection(data)
+        if ref is not None:
+            raise InputError(name, f"names another dataset ({ref!r}); an area file must hold "
+                             "its polygon itself: GDAL's virtual files and URLs are refused")
+    if kind == "json" and any(b'"link"' in m.group(0) for m in _GEOJSON_CRS.finditer(data)):
+        raise InputError(name, "gives its CRS as a link (a URL or another file), which GDAL "
+                         "would fetch; scanplan reads nothing but the file itself: give the "
+                         "CRS by name (\"EPSG:…\") in the file or as [area] crs")
+    if kind == "kml" and (_DTD.search(data[:65536]) or _DTD.search(data)):
+        raise InputError(name, "holds a document type declaration (<!DOCTYPE> or "
+                         "<!ENTITY>); KML needs none, and entities are refused. Save "
+                         "the polygon again from Google Earth or QGIS")
+    return io.BytesIO(data), _DRIVERS[kind]
+
+
+def _layers(path: Path, name: str) -> tuple[str | io.BytesIO, Any]:
+    """The source pyogrio reads (:func:`_source`) and its layers, the driver GDAL used
+    checked against the kind the content says."""
+    import pyogrio
+
+    source, drivers = _source(path, name)
+    try:
+        with warnings.catch_warnings():  # a GeoPackage read from memory has no .gpkg name
+            warnings.simplefilter("ignore", RuntimeWarning)
+            layers = pyogrio.list_layers(source)
+            driver = (_rewound(source) and pyogrio.read_info(source, layer=0)["driver"]
+                      if len(layers) else drivers[0])
+    except Exception as exc:  # GDAL's errors are many classes; any of them: unreadable
+        raise InputError(name, f"cannot be read as a GIS file: {_gdal_text(exc)}") from None
+    if driver not in drivers:
+        raise InputError(name, f"was opened by GDAL as {driver}, not as {drivers[0]} as its "
+                         "content says; refused")
+    return source, layers
+
+
+def _rewound(source: str | io.BytesIO) -> bool:
+    if isinstance(source, io.BytesIO):
+        source.seek(0)
+    return True
+
+
+def _feature_count(source: str | io.BytesIO, layer: int) -> str:
+    """The number of features of a layer (``"more than N"`` when GDAL cannot count)."""
+    import pyogrio
+
+    _rewound(source)
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)
+            n = int(pyogrio.read_info(source, layer=layer, force_feature_count=True)
+                    ["features"])
+    except Exception:  # counting is only for the message
+        n = -1
+    return f"{n:,}" if n > MAX_FEATURES else f"more than {MAX_FEATURES:,}"
+
+
+def _check_companions(path: Path, name: str) -> None:
+    """A Shapefile's companions (.shx, .dbf, .prj, .cpg, …), which GDAL opens beside it:
+    regular files only (a pipe or a device would be a read that never ends), the index a
+    Shapefile index, the text ones small and naming no other dataset or URL."""
     import stat
 
-    if stat.S_ISDIR(st.st_mode) and path.suffix.lower() == ".gdb":
-        return
-    if not stat.S_ISREG(st.st_mode):
-        raise InputError(name, "is not a regular file")
-    if st.st_size > MAX_FILE_BYTES:
-        raise InputError(name, f"is {size_text(st.st_size)}; the limit is "
-                         f"{size_text(MAX_FILE_BYTES)}")
-    # GDAL opens a Shapefile's sidecars (.dbf, .shx, .prj, .cpg) too: none may be a pipe or
-    # a device (a read that never ends)
     try:
         siblings = [p for p in path.parent.iterdir()
                     if p.stem.casefold() == path.stem.casefold() and p != path]
@@ -355,6 +435,15 @@ def _check_size(path: Path, name: str) -> None:
             continue
         if not (stat.S_ISREG(mode) or stat.S_ISDIR(mode)):
             raise InputError(name, f"its companion file {sib.name} is not a regular file")
+        ext = sib.suffix.lower()
+        if ext == ".shx" and sniff(read_head(sib, 4) or b"") != "shp":
+            raise InputError(name, f"its companion file {sib.name} is not a Shapefile index")
+        if ext in (".prj", ".cpg"):
+            text = read_limited(sib, MAX_COMPANION_TEXT_BYTES, field=f"{name}: {sib.name}")
+            if (indirection(text) is not None or b"://" in text
+                    or sniff(text) in ("zip", "gzip", "archive")):
+                raise InputError(name, f"its companion file {sib.name} is not the plain "
+                                 "text it should be")
 
 
 def _kmz_document(data: bytes, name: str) -> bytes:

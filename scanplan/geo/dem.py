@@ -26,13 +26,16 @@ import math
 import re
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
+from .gdal_guard import KIND_NAMES, gdal_messages, harden, read_head, sniff
 
-__all__ = ["UNIT_FACTORS", "DemInfo", "Samples", "open_dem", "sample_dem", "unit_problem"]
+__all__ = ["UNIT_FACTORS", "DemInfo", "Samples", "dem_transformer", "open_dem", "sample_dem",
+           "unit_problem"]
 
 TILE_PX = 2048
 """Side of the largest window read at once [pixels] (2048² float64 = 32 MB)."""
@@ -48,6 +51,9 @@ LOWEST_GROUND_M = -450.0
 #: metres per vertical unit ([terrain] vertical_unit).
 UNIT_FACTORS: dict[str, float] = {"m": 1.0, "ft": 0.3048, "us-ft": 1200.0 / 3937.0,
                                   "cm": 0.01, "dm": 0.1}
+
+GTIFF = "GTiff"
+"""The only GDAL driver a DEM is opened with."""
 
 _FOOT_NAMES = ("ft", "foot", "feet", "us-ft", "us survey foot", "us_survey_foot")
 
@@ -73,6 +79,8 @@ class DemInfo:
         The band's unit metadata ("" when absent).
     horizontal_unit : str
         The CRS's linear unit name ("degree" for a geographic CRS).
+    local : bool
+        True when the CRS is a local (engineering) one, tied to no place on Earth.
     """
 
     path: Path
@@ -85,6 +93,7 @@ class DemInfo:
     nodata: float | None
     band_unit: str
     horizontal_unit: str
+    local: bool = False
 
 
 @dataclass(frozen=True)
@@ -107,45 +116,87 @@ def _refuse(key: str, path: Path, why: str) -> InputError:
 def open_dem(path: str | Path, key: str = "terrain.dem") -> DemInfo:
     """Open a DEM and check its header (nothing is read but the header).
 
+    Only a TIFF is opened, decided by its first bytes whatever its name, with GDAL's GTiff
+    driver alone and GDAL's network and virtual-file access off (:mod:`.gdal_guard`); its
+    ``.ovr`` and ``.msk`` companions, which GDAL opens by name, must be TIFFs too.
+
     Raises
     ------
     InputError
-        Naming ``key``: the file is missing, not a raster rasterio can read, has no CRS
-        or no georeference, several bands without a choice, or absurd dimensions.
+        Naming ``key``: the file is missing, not a TIFF (a VRT, an archive, …), damaged,
+        has no CRS or no georeference, several bands without a choice, or absurd
+        dimensions.
     """
+    harden()
     import rasterio
     from rasterio.errors import RasterioError
 
     p = Path(path)
     if not p.is_file():
         raise _refuse(key, p, "no such file")
+    _check_tiff(p, key)
     try:
-        with rasterio.open(p) as src:
-            if src.count < 1:
-                raise _refuse(key, p, "has no raster band")
-            if src.width > MAX_DIMENSION_PX or src.height > MAX_DIMENSION_PX:
-                raise _refuse(key, p, f"declares {src.width} × {src.height} pixels, more than "
-                              f"{MAX_DIMENSION_PX:,} on a side: not a DEM scanplan reads "
-                              "(cut it to the area first)")
-            if src.crs is None:
-                raise _refuse(key, p, "has no coordinate reference system: write one into "
-                              "the file (a GeoTIFF with its EPSG code)")
-            t = src.transform
-            if t.is_identity or t.b != 0 or t.d != 0:
-                raise _refuse(key, p, "has no north-up georeference (identity or rotated "
-                              "transform): warp it to a north-up grid first")
-            geographic = bool(src.crs.is_geographic)
-            unit = "degree" if geographic else str(src.crs.linear_units or "metre")
-            band_unit = (src.units[0] or "") if src.units else ""
-            return DemInfo(path=p, crs_wkt=src.crs.to_wkt(), geographic=geographic,
-                           width_px=int(src.width), height_px=int(src.height),
-                           cell_size=(abs(t.a), abs(t.e)), bounds=tuple(src.bounds),
-                           nodata=None if src.nodata is None else float(src.nodata),
-                           band_unit=band_unit, horizontal_unit=unit)
+        with gdal_messages() as said, rasterio.open(p, driver=GTIFF) as src:
+            info = _header(src, p, key)
     except InputError:
         raise
     except (RasterioError, OSError, ValueError) as exc:
         raise _refuse(key, p, f"is not a readable GeoTIFF ({_short(exc)})") from None
+    damage = said.damage()
+    if damage is not None:
+        raise _refuse(key, p, f"is a damaged GeoTIFF: {damage}; save it again from your GIS")
+    return info
+
+
+def _header(src: Any, p: Path, key: str) -> DemInfo:
+    """The checked header of an open DEM."""
+    if src.count < 1:
+        raise _refuse(key, p, "has no raster band")
+    if src.width > MAX_DIMENSION_PX or src.height > MAX_DIMENSION_PX:
+        raise _refuse(key, p, f"declares {src.width} × {src.height} pixels, more than "
+                      f"{MAX_DIMENSION_PX:,} on a side: not a DEM scanplan reads "
+                      "(cut it to the area first)")
+    if src.crs is None:
+        raise _refuse(key, p, "has no coordinate reference system: write one into "
+                      "the file (a GeoTIFF with its EPSG code)")
+    t = src.transform
+    if t.is_identity or t.b != 0 or t.d != 0:
+        raise _refuse(key, p, "has no north-up georeference (identity or rotated "
+                      "transform): warp it to a north-up grid first")
+    geographic = bool(src.crs.is_geographic)
+    local = not geographic and not bool(src.crs.is_projected)
+    unit = "degree" if geographic else str(src.crs.linear_units or "metre")
+    band_unit = (src.units[0] or "") if src.units else ""
+    return DemInfo(path=p, crs_wkt=src.crs.to_wkt(), geographic=geographic,
+                   width_px=int(src.width), height_px=int(src.height),
+                   cell_size=(abs(t.a), abs(t.e)), bounds=tuple(src.bounds),
+                   nodata=None if src.nodata is None else float(src.nodata),
+                   band_unit=band_unit, horizontal_unit=unit, local=local)
+
+
+def _check_tiff(p: Path, key: str) -> None:
+    """The DEM and its ``.ovr`` / ``.msk`` companions must be TIFFs by content."""
+    head = read_head(p)
+    if head is None:
+        raise _refuse(key, p, "is not a regular file that can be read")
+    kind = sniff(head)
+    if kind == "vrt":
+        raise _refuse(key, p, "is a GDAL virtual raster (VRT), not a GeoTIFF: it names "
+                      "other files or URLs to read, and scanplan opens only the GeoTIFF "
+                      "itself; give the GeoTIFF")
+    if kind != "tiff":
+        raise _refuse(key, p, f"is not a readable GeoTIFF (its content is "
+                      f"{KIND_NAMES[kind]}, whatever its name)")
+    stem = p.name.casefold()
+    try:
+        siblings = [q for q in p.parent.iterdir() if q.name.casefold().startswith(stem + ".")
+                    and q.name.casefold().endswith((".ovr", ".msk"))]
+    except OSError:
+        siblings = []
+    for q in siblings[:20]:
+        if sniff(read_head(q) or b"") != "tiff":
+            raise _refuse(key, p, f"its companion file {q.name} (overviews or mask, which "
+                          "GDAL opens with the DEM) is not a TIFF; remove it")
 
 
 def _short(exc: Exception) -> str:
@@ -186,18 +237,42 @@ def unit_problem(values_m: NDArray[np.float64], info: DemInfo, source: str) -> s
     return None
 
 
-def _to_dem_crs(x: NDArray[np.float64], y: NDArray[np.float64], plan_crs: str,
-                info: DemInfo) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """The points in the DEM's CRS (pyproj, lon/lat order for a geographic CRS)."""
-    from pyproj import CRS, Transformer
+def dem_transformer(info: DemInfo, plan_crs: str, key: str = "terrain.dem") -> Any:
+    """The pyproj transformer from the planning CRS to the DEM's (None: the same frame).
 
-    dem_crs = CRS.from_wkt(info.crs_wkt)
+    Raises
+    ------
+    InputError
+        Naming ``key``: the DEM is in a local (engineering) CRS while the area is placed on
+        the Earth, or pyproj has no transformation between the two CRSs.
+    """
+    from pyproj import CRS, Transformer
+    from pyproj.exceptions import CRSError, ProjError
+
     if plan_crs.upper() == "LOCAL":
-        return x, y  # an abstract block: a DEM for it is in the same local frame
-    src = CRS.from_user_input(plan_crs)
-    if src == dem_crs:
+        return None  # an abstract block: a DEM for it is in the same local frame
+    if info.local:
+        raise _refuse(key, info.path, "is in a local (engineering) coordinate system, tied "
+                      "to no place on the Earth, while the area is georeferenced: give a "
+                      "DEM in a geographic or projected CRS (e.g. its EPSG code)")
+    try:
+        dem_crs = CRS.from_wkt(info.crs_wkt)
+        src = CRS.from_user_input(plan_crs)
+        if src == dem_crs:
+            return None
+        return Transformer.from_crs(src, dem_crs, always_xy=True)
+    except (CRSError, ProjError) as exc:
+        raise _refuse(key, info.path, f"its CRS cannot be related to the planning CRS "
+                      f"{plan_crs} ({_short(exc)})") from None
+
+
+def _to_dem_crs(x: NDArray[np.float64], y: NDArray[np.float64], plan_crs: str,
+                info: DemInfo, key: str = "terrain.dem"
+                ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The points in the DEM's CRS (pyproj, lon/lat order for a geographic CRS)."""
+    tr = dem_transformer(info, plan_crs, key)
+    if tr is None:
         return x, y
-    tr = Transformer.from_crs(src, dem_crs, always_xy=True)
     xx, yy = tr.transform(x, y)
     return np.asarray(xx, dtype=float), np.asarray(yy, dtype=float)
 
@@ -239,7 +314,7 @@ def sample_dem(info: DemInfo, x_m: NDArray[np.float64], y_m: NDArray[np.float64]
     nodata = np.zeros(n, dtype=bool)
     if n == 0:
         return Samples(elev, np.zeros(0, dtype=bool), nodata)
-    dx, dy = _to_dem_crs(x, y, plan_crs, info)
+    dx, dy = _to_dem_crs(x, y, plan_crs, info, key)
     pos = _pixel_positions(info, dx, dy)
     if pos.inside.size:
         _read_windows(info, pos, elev, nodata, key)
@@ -303,7 +378,7 @@ def _read_windows(info: DemInfo, pos: _Positions, elev: NDArray[np.float64],
     ends = np.append(starts[1:], order.size)
     read_px = 0
     try:
-        with rasterio.open(info.path) as src:
+        with gdal_messages() as said, rasterio.open(info.path, driver=GTIFF) as src:
             for _tid, s, e in zip(ids.tolist(), starts.tolist(), ends.tolist(), strict=True):
                 sel = order[s:e]
                 r_lo, c_lo = int(r0[sel].min()), int(c0[sel].min())
@@ -323,6 +398,9 @@ def _read_windows(info: DemInfo, pos: _Positions, elev: NDArray[np.float64],
         raise
     except (RasterioError, OSError, ValueError, MemoryError) as exc:
         raise _refuse(key, info.path, f"could not be read ({_short(exc)})") from None
+    damage = said.damage()
+    if damage is not None:
+        raise _refuse(key, info.path, f"could not be read ({damage})")
 
 
 def _bilinear(data: NDArray[np.float64], fc: NDArray[np.float64], fr: NDArray[np.float64],
@@ -343,15 +421,23 @@ def _bilinear(data: NDArray[np.float64], fc: NDArray[np.float64], fr: NDArray[np
     nodata[where] = bad
 
 
-def coverage_gap(info: DemInfo, area_geometry: object, plan_crs: str) -> tuple[float, float]:
+def coverage_gap(info: DemInfo, area_geometry: object, plan_crs: str,
+                 key: str = "terrain.dem") -> tuple[float, float]:
     """How much of the area the DEM's extent misses: (km², share 0 … 1).
 
     The DEM's bounds, densified along their edges, are projected into the planning CRS
     (pyproj) and differenced from the area (shapely).
+
+    Raises
+    ------
+    InputError
+        Naming ``key``: the DEM's CRS cannot be related to the planning CRS
+        (:func:`dem_transformer`).
     """
     import shapely
     from pyproj import CRS, Transformer
 
+    dem_transformer(info, plan_crs, key)  # a local DEM under a georeferenced area: refused
     left, bottom, right, top = info.bounds
     k = 64
     t = np.linspace(0.0, 1.0, k, endpoint=False)

@@ -294,7 +294,7 @@ def ground_under(layout: FlightLayout, cfg: TerrainConfig, key: str = "terrain.d
     factor, unit_source = D.vertical_factor(info, cfg.vertical_unit)
     plan_crs = layout.area.plan_crs
     if plan_crs.upper() != "LOCAL":
-        missing_km2, share = D.coverage_gap(info, layout.area.geometry, plan_crs)
+        missing_km2, share = D.coverage_gap(info, layout.area.geometry, plan_crs, key)
         if share > MAX_COVERAGE_GAP:
             raise InputError(key, f"{info.path.name} does not cover the area: "
                              f"{missing_km2:.3g} km² ({share * 100:.1f} %) of it lies outside "
