@@ -201,6 +201,7 @@ def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
     note = opts.pop("note", "")
     say = opts.pop("say", None) or (lambda line: click.echo(line, err=True))
     worker = opts.pop("pdf_worker", None)  # the PDF on the second core (reports.pdfworker)
+    sweep = opts.pop("sweep", None)  # the --out folder whose stale exports go (one project)
     from ..outpaths import check_target
     from ..reports import ReportMeta, write_atomic_many
 
@@ -253,26 +254,21 @@ def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
         rendered[pdf] = data
     files = {path: rendered[path] for path, _ in wanted}  # the order of the wrote lines
     files.update({path: data for path, (_, data) in exports.items()})
-    write_atomic_many(files, check=check)
+    removed: list[str] = []
+
+    def stale() -> list[str]:  # under the transaction's lock, after the check
+        from ..reports.exports import stale_exports
+
+        removed[:] = stale_exports(sweep, set(files))
+        return removed
+
+    # one transaction: the reports, the exported files and the removal of an earlier
+    # run's files this run no longer writes (mission-04.plan of six sorties, now three)
+    write_atomic_many(files, check=check, remove=stale if sweep else None)
     for path in files:
         say(f"wrote {path}{note}")
-
-
-def _remove_stale_exports(folder: str, written: set[str]) -> None:
-    """Remove the exported files of an earlier run that this one replaced by fewer
-    (``mission-04.plan`` of six sorties, now three); say so on stderr."""
-    from ..outpaths import folder_lock
-    from ..reports.exports import stale_exports
-
-    with folder_lock([folder]):  # not while another scanplan run writes there
-        for path in stale_exports(folder, written):
-            try:
-                os.unlink(path)
-            except OSError as exc:
-                click.echo(f"warning: {path} is left from an earlier plan and could not be "
-                           f"removed ({exc.strerror or exc}); do not fly it", err=True)
-            else:
-                click.echo(f"removed {path} (left from an earlier plan)", err=True)
+    for path in removed:
+        say(f"removed {path} (left from an earlier plan)")
 
 
 def _make_folder(path: str) -> list[str]:
@@ -620,10 +616,10 @@ def _run_project(path: str, out_dir: str | None, stem: str | None, xlsx_path: st
     uav_ = result.uav.job if result.uav else None
     _write_reports({**targets, "force": force, "inputs": files, "fields": fields,
                     "note": note, "meta": result.meta, "say": say, "exports": exports,
-                    "pdf_worker": pdf_worker},
+                    "pdf_worker": pdf_worker,
+                    # never leave a stale sortie of an earlier plan behind
+                    "sweep": out_dir if out_dir and stem is None else None},
                    scan=film, uav=uav_, spec=result)
-    if out_dir and stem is None:  # never leave a stale sortie of an earlier plan behind
-        _remove_stale_exports(out_dir, set(exports))
     return result
 
 
