@@ -26,6 +26,7 @@ from __future__ import annotations
 import contextlib
 import json
 import os
+import re
 import tempfile
 from collections.abc import Iterable
 from dataclasses import asdict, dataclass
@@ -130,6 +131,22 @@ def _finish(entries: list[Entry]) -> None:
         _unlink(e.temp)
 
 
+_PARTIAL = re.compile(r"\.scanplan-journal\.[a-z0-9_]{8}\.part")
+
+
+def _remove_partial(folder: str | os.PathLike[str]) -> None:
+    """Delete a journal a killed writer had not finished writing (never renamed: nothing
+    of its transaction was changed)."""
+    try:
+        names = os.listdir(folder)
+    except OSError:
+        return
+    for name in names:
+        if _PARTIAL.fullmatch(name):
+            with contextlib.suppress(OSError):
+                os.unlink(os.path.join(folder, name))
+
+
 def recover(folders: Iterable[str | os.PathLike[str]]) -> list[str]:
     """Roll back or finish the transactions a killed writer left in ``folders``.
 
@@ -153,6 +170,7 @@ def recover(folders: Iterable[str | os.PathLike[str]]) -> list[str]:
     """
     done = []
     for folder in folders:
+        _remove_partial(folder)
         path = Path(folder) / JOURNAL_NAME
         try:
             with open(path, "rb") as fh:
