@@ -683,3 +683,48 @@ def test_different_projects_into_one_folder_never_delete_each_others_files(work,
     assert seen > 0 and mixed == 0
     assert _visible(work / "out") in (town, block)
     assert [n for n in os.listdir(work / "out") if n.startswith(".")] == []
+
+
+@pytest.mark.parametrize("name", ["flight.kml", "flight.geojson"])
+def test_the_area_file_is_never_replaced_even_with_force(work, planned, name):
+    """Bug: an area saved as OUT/flight.kml (or .geojson) was overwritten by the exported
+    flight with --force; only project files were protected as inputs."""
+    out = work / "out"
+    out.mkdir()
+    src = EXAMPLES / "areas" / "town-uav.kml"
+    if name.endswith(".kml"):
+        (out / name).write_bytes(src.read_bytes())
+    else:
+        import json
+
+        import pyogrio.raw
+        import shapely
+
+        _, _, geometry, _ = pyogrio.raw.read(src)
+        polygon = shapely.from_wkb(geometry[0])
+        (out / name).write_text(json.dumps({"type": "FeatureCollection", "features": [
+            {"type": "Feature", "properties": {},
+             "geometry": shapely.geometry.mapping(polygon)}]}), encoding="utf-8")
+    before = (out / name).read_bytes()
+    text = (EXAMPLES / "uav-town-2000.toml").read_text(encoding="utf-8")
+    (work / "area.toml").write_text(text.replace('file = "areas/town-uav.kml"',
+                                                 f'file = "out/{name}"'), encoding="utf-8")
+    r = cli("plan", "area.toml", "--out", "out", "--force")
+    assert r.exit_code == 2, r.output
+    assert f"--out: 'out/{name}' is the input file" in r.stderr
+    assert (out / name).read_bytes() == before
+    assert sorted(os.listdir(out)) == [name]  # nothing of the set was written
+
+
+def test_a_batch_project_named_summary_keeps_its_workbook(work, marked_renders):
+    """Bug: a batch project summary.toml wrote summary.xlsx, which the batch summary then
+    replaced. The project gets summary-2.xlsx (and is told why)."""
+    (work / "summary.toml").write_bytes(FILM.read_bytes())
+    r = cli("plan", "summary.toml", "proj.toml", "--out", "out")
+    assert r.exit_code == 0, r.output
+    names = sorted(os.listdir(work / "out"))
+    assert names == ["proj.pdf", "proj.xlsx", "summary-2.pdf", "summary-2.xlsx",
+                     "summary.csv", "summary.xlsx"]
+    assert "the name summary is taken by the batch summary" in r.stderr
+    assert project_of(work / "out" / "summary-2.xlsx")
+    assert batch_stems(["summary.toml", "Summary.toml"]) == ["summary-2", "Summary-3"]

@@ -604,9 +604,14 @@ def _run_project(path: str, out_dir: str | None, stem: str | None, xlsx_path: st
         fields = {"xlsx": "--out", "pdf": "--out"}
         if stem is not None:
             base = os.path.splitext(os.path.basename(path))[0]
-            note = f" (for {path}" + (f"; the name {base} is taken by another project "
-                                      "of this batch" if stem != base else "") + ")"
+            taken = ("the batch summary" if base.casefold() == "summary"
+                     else "another project of this batch")
+            note = f" (for {path}" + (f"; the name {base} is taken by {taken}"
+                                      if stem != base else "") + ")"
     result = plan_project(load_project(path))
+    # the project's own input files are never replaced either (an area saved as
+    # OUT/flight.kml), even with --force
+    files = [*files, *_project_inputs(result)]
     exports = {}
     if out_dir:  # the mission and GIS files join the reports' transaction (issue 11)
         from ..reports.exports import export_files
@@ -621,6 +626,16 @@ def _run_project(path: str, out_dir: str | None, stem: str | None, xlsx_path: st
                     "sweep": out_dir if out_dir and stem is None else None},
                    scan=film, uav=uav_, spec=result)
     return result
+
+
+def _project_inputs(result: Any) -> list[str]:
+    """The files a planned project read besides itself: its area file, its DEM."""
+    project = getattr(result, "project", None)
+    get = getattr(project, "get", None)
+    if get is None:
+        return []
+    found = (get("area", "file"), get("terrain", "dem"))
+    return [os.path.expanduser(f) for f in found if isinstance(f, str) and f]
 
 
 def _batch_worker(task: tuple[Any, ...]) -> tuple[str, str, Any, list[str]]:
