@@ -24,13 +24,55 @@ import tempfile
 from collections.abc import Callable, Iterable, Iterator, Mapping
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 from .errors import InputError, NotFoundError, WriteError
 from .journal import JOURNAL_NAME, Entry, Journal, recover
 from .outpaths import folder_lock, name_max
 
-__all__ = ["dir_lock", "file_kind", "fsync_dir", "read_limited", "size_text", "write_all",
-           "write_atomic", "write_atomic_many"]
+__all__ = ["csv_safe", "csv_safe_frame", "dir_lock", "file_kind", "fsync_dir", "read_limited",
+           "size_text", "write_all", "write_atomic", "write_atomic_many"]
+
+
+_FORMULA_START = ("=", "+", "-", "@", "\t", "\r")
+
+
+def csv_safe(value: object) -> object:
+    """A CSV cell that a spreadsheet will not run as a formula.
+
+    Text starting with ``=``, ``+``, ``-``, ``@``, a tab or a carriage return gets a
+    leading ``'`` (OWASP, "CSV Injection": a spreadsheet shows the text, it does not run
+    it). Numbers, and text that is a plain number (``-12.5``), are returned unchanged.
+
+    Parameters
+    ----------
+    value : object
+        The cell's value.
+
+    Returns
+    -------
+    object
+        ``value``, or ``"'" + value`` for text a spreadsheet would read as a formula.
+    """
+    if not isinstance(value, str) or not value.startswith(_FORMULA_START):
+        return value
+    try:
+        float(value)
+    except ValueError:
+        return "'" + value
+    return value if value.strip() == value else "'" + value
+
+
+def csv_safe_frame(frame: Any) -> Any:
+    """A copy of a pandas DataFrame whose text columns are :func:`csv_safe`; numeric
+    columns are left as they are."""
+    from pandas.api.types import is_bool_dtype, is_numeric_dtype
+
+    out = frame.copy()
+    for col in out.columns:
+        if not (is_numeric_dtype(out[col].dtype) or is_bool_dtype(out[col].dtype)):
+            out[col] = out[col].map(csv_safe, na_action="ignore")
+    return out
 
 
 def size_text(n: int) -> str:

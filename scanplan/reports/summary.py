@@ -20,8 +20,12 @@ __all__ = ["summary_csv", "summary_xlsx"]
 
 
 def summary_csv(frame: Any) -> bytes:
-    """The summary as UTF-8 CSV (with a byte-order mark, so Excel reads the Cyrillic)."""
-    return frame.to_csv(index=False, lineterminator="\n").encode("utf-8-sig")
+    """The summary as UTF-8 CSV (with a byte-order mark, so Excel reads the Cyrillic); a
+    text cell a spreadsheet would run as a formula (a project named ``=cmd|…``) starts
+    with ``'`` (:func:`scanplan.safeio.csv_safe`)."""
+    from ..safeio import csv_safe_frame
+
+    return csv_safe_frame(frame).to_csv(index=False, lineterminator="\n").encode("utf-8-sig")
 
 
 def _cell(value: Any) -> Any:
