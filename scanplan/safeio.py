@@ -207,12 +207,17 @@ def fsync_dir(folder: str | os.PathLike[str]) -> None:
         os.close(fd)
 
 
+_HELD: dict[str, int] = {}  # folders this process holds a dir_lock on → nesting depth
+
+
 @contextlib.contextmanager
 def dir_lock(folder: str | os.PathLike[str], *, exclusive: bool) -> Iterator[None]:
     """Hold a ``flock`` on ``folder``: shared for readers, exclusive for writers.
 
     A no-op where ``flock`` is missing (not POSIX) or the folder cannot be opened (it does
-    not exist, no permission): locking is cooperation between scanplan processes.
+    not exist, no permission): locking is cooperation between scanplan processes. A lock
+    this process already holds on the folder covers a nested request (``flock`` locks of
+    one process on two descriptors would otherwise wait for each other for ever).
 
     Parameters
     ----------
@@ -221,6 +226,14 @@ def dir_lock(folder: str | os.PathLike[str], *, exclusive: bool) -> Iterator[Non
     exclusive : bool
         ``LOCK_EX`` (writers) or ``LOCK_SH`` (readers).
     """
+    key = os.path.realpath(folder)
+    if _HELD.get(key):
+        _HELD[key] += 1
+        try:
+            yield
+        finally:
+            _HELD[key] -= 1
+        return
     fd = None
     try:
         import fcntl
@@ -229,9 +242,11 @@ def dir_lock(folder: str | os.PathLike[str], *, exclusive: bool) -> Iterator[Non
         fcntl.flock(fd, fcntl.LOCK_EX if exclusive else fcntl.LOCK_SH)
     except (ImportError, OSError):
         pass
+    _HELD[key] = 1
     try:
         yield
     finally:
+        del _HELD[key]
         if fd is not None:
             os.close(fd)
 
