@@ -640,8 +640,10 @@ def _project_inputs(result: Any) -> list[str]:
 
 def _batch_worker(task: tuple[Any, ...]) -> tuple[str, str, Any, list[str]]:
     """One project of a batch, in a worker process or in this one: (path, outcome,
-    payload, the ``wrote FILE`` lines for stderr) — ``"ok"`` with (PlanResult, JSON
-    document or None, summary row), ``"input"`` or ``"write"`` with the error text."""
+    payload, the ``wrote FILE`` lines for stderr) — ``"ok"`` with (text: the summary
+    table's row and the warnings, or None with --json; JSON document or None; summary
+    row), ``"input"`` or ``"write"`` with the error text. No PlanResult leaves it: a batch
+    of thousands keeps only these."""
     path, out_dir, stem, files, force, as_json = task
     import json
 
@@ -656,7 +658,12 @@ def _batch_worker(task: tuple[Any, ...]) -> tuple[str, str, Any, list[str]]:
             result = _run_project(path, out_dir, stem, None, None, files, force, said.append)
         doc = json.loads(json.dumps(plan_result_dict(result), ensure_ascii=False,
                                     allow_nan=False)) if as_json else None
-        return path, "ok", (None if as_json else result, doc, summary_row(result)), said
+        text = None
+        if not as_json:  # the batch keeps this project's text lines, not its result
+            from ..reports.text import batch_row, project_warnings
+
+            text = (batch_row(path, result), project_warnings(path, result))
+        return path, "ok", (text, doc, summary_row(result)), said
     except InputError as exc:  # a bad project: report it, run the others
         return path, "input", f"{exc.field}: {exc.message}", said
     except WriteError as exc:
@@ -751,7 +758,9 @@ def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: s
     stems = batch_stems(files)
     tasks = [(path, out_dir, stem, files, force, as_json) for path, stem in zip(files, stems,
                                                                                 strict=True)]
-    done: list[tuple[str, Any]] = []  # with --json the results are streamed, not kept
+    done: list[str] = []  # results are not kept: --json streams them, text keeps its lines
+    lines: list[list[str]] = []  # the summary table's row of each project
+    warned: list[str] = []  # the warnings of each project, as text
     failed: list[tuple[str, str]] = []
     rows: list[dict[str, Any]] = []
     stream = _JsonStream("projects") if as_json else None
@@ -763,10 +772,14 @@ def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: s
             click.echo(line, err=True)
         progress.step(n)
         if outcome == "ok":
-            result, doc, row = payload
+            text, doc, row = payload
             if stream is not None:
                 stream.add(doc)
-            done.append((path, result))
+            else:
+                lines.append(text[0])
+                if text[1]:
+                    warned.append(text[1])
+            done.append(path)
             rows.append({**row, "error": ""})
         else:
             failed.append((path, payload))
@@ -783,12 +796,11 @@ def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: s
                       + [{"file": f, "message": "not planned: the batch stopped"}
                          for f in not_run]})
     else:
-        from ..reports.text import batch_summary, batch_warnings
+        from ..reports.text import batch_table
 
-        click.echo(batch_summary(done, failed))
-        warned = batch_warnings(done)
+        click.echo(batch_table(lines, failed))
         if warned:
-            click.echo(warned)
+            click.echo("\n".join(warned))
     for _path, msg in failed:
         click.echo(f"error: {msg}", err=True)
     if stopped:
