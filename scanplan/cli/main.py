@@ -271,6 +271,22 @@ def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
         say(f"removed {path} (left from an earlier plan)")
 
 
+def _refuse_dangling_link(path: str) -> None:
+    """``--out`` (or a folder above it) that is a symbolic link to nothing: exit 2 naming
+    it — scanplan creates missing folders, not the target of a broken link."""
+    probe = path
+    while probe and not os.path.exists(probe):
+        if os.path.islink(probe):
+            shown = "" if probe == path else f" (in {path!r})"
+            raise InputError("--out", f"{probe!r}{shown} is a symbolic link to "
+                             f"{os.readlink(probe)!r}, which does not exist; create that "
+                             "folder, or give another")
+        parent = os.path.dirname(probe.rstrip(os.sep))
+        if parent == probe:
+            break
+        probe = parent
+
+
 def _make_folder(path: str) -> list[str]:
     """``os.makedirs(path)``; the folders it created, deepest first (to undo on failure)."""
     created = []
@@ -571,6 +587,7 @@ def plan(projects: tuple[str, ...], out_dir: str | None, xlsx_path: str | None,
     if out_dir:
         if os.path.exists(out_dir) and not os.path.isdir(out_dir):
             raise InputError("--out", f"{out_dir!r} is not a folder")
+        _refuse_dangling_link(out_dir)
         created = _make_folder(out_dir)
     try:
         _plan_files(files, batch, out_dir, xlsx_path, pdf_path, as_json, force,
@@ -625,6 +642,12 @@ def _run_project(path: str, out_dir: str | None, stem: str | None, xlsx_path: st
                     # never leave a stale sortie of an earlier plan behind
                     "sweep": out_dir if out_dir and stem is None else None},
                    scan=film, uav=uav_, spec=result)
+    if out_dir:  # a mission or photo table not written is said, with the reason
+        from ..reports.exports import export_notes
+
+        for line in export_notes(result):
+            (say or (lambda text: click.echo(text, err=True)))(
+                f"note: {line.text(result.meta.locale)}")
     return result
 
 
