@@ -342,12 +342,7 @@ def write_atomic_many(files: Mapping[str | os.PathLike[str], bytes], *,
             raise WriteError(shown, "it is a folder", errno.EISDIR)
     folders = sorted({os.fspath(target.parent) for target, _, _ in items})
     with folder_lock(folders):
-        try:
-            recover(folders)
-        except OSError as exc:
-            raise WriteError.from_os_error(
-                os.path.join(folders[0], JOURNAL_NAME), exc,
-                note="an earlier interrupted write could not be undone") from exc
+        _recover(folders)
         if check is not None:
             check()
         gone = [Path(p) for p in (remove() if remove is not None else ())]
@@ -360,6 +355,16 @@ def write_atomic_many(files: Mapping[str | os.PathLike[str], bytes], *,
         finally:
             for folder in folders:
                 fsync_dir(folder)
+
+
+def _recover(folders: list[str]) -> None:
+    """Undo or finish what a killed writer left in ``folders`` (under their lock)."""
+    try:
+        recover(folders)
+    except OSError as exc:
+        raise WriteError.from_os_error(
+            os.path.join(folders[0], JOURNAL_NAME), exc,
+            note="an earlier interrupted write could not be undone") from exc
 
 
 def _identity(path: Path) -> tuple[int, int, int, int] | None:

@@ -21,6 +21,7 @@ from .._version import __version__
 from ..errors import InputError, WriteError
 from ..project.inputs import option_names
 from .options import input_option
+from .outset import batch_text, project_inputs, refuse_dangling_link, say_export_notes, write_set
 
 OPTION_NAMES = option_names()
 """Python names of inputs (error fields) → the option a user typed (the input registry's)."""
@@ -203,7 +204,7 @@ def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
     worker = opts.pop("pdf_worker", None)  # the PDF on the second core (reports.pdfworker)
     sweep = opts.pop("sweep", None)  # the --out folder whose stale exports go (one project)
     from ..outpaths import check_target
-    from ..reports import ReportMeta, write_atomic_many
+    from ..reports import ReportMeta
 
     meta = opts.pop("meta", None) or ReportMeta(
         project=opts.pop("project_name"), customer=opts.pop("customer"),
@@ -254,37 +255,7 @@ def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
         rendered[pdf] = data
     files = {path: rendered[path] for path, _ in wanted}  # the order of the wrote lines
     files.update({path: data for path, (_, data) in exports.items()})
-    removed: list[str] = []
-
-    def stale() -> list[str]:  # under the transaction's lock, after the check
-        from ..reports.exports import stale_exports
-
-        removed[:] = stale_exports(sweep, set(files))
-        return removed
-
-    # one transaction: the reports, the exported files and the removal of an earlier
-    # run's files this run no longer writes (mission-04.plan of six sorties, now three)
-    write_atomic_many(files, check=check, remove=stale if sweep else None)
-    for path in files:
-        say(f"wrote {path}{note}")
-    for path in removed:
-        say(f"removed {path} (left from an earlier plan)")
-
-
-def _refuse_dangling_link(path: str) -> None:
-    """``--out`` (or a folder above it) that is a symbolic link to nothing: exit 2 naming
-    it — scanplan creates missing folders, not the target of a broken link."""
-    probe = path
-    while probe and not os.path.exists(probe):
-        if os.path.islink(probe):
-            shown = "" if probe == path else f" (in {path!r})"
-            raise InputError("--out", f"{probe!r}{shown} is a symbolic link to "
-                             f"{os.readlink(probe)!r}, which does not exist; create that "
-                             "folder, or give another")
-        parent = os.path.dirname(probe.rstrip(os.sep))
-        if parent == probe:
-            break
-        probe = parent
+    write_set(files, check=check, sweep=sweep, say=say, note=note)
 
 
 def _make_folder(path: str) -> list[str]:
@@ -587,7 +558,7 @@ def plan(projects: tuple[str, ...], out_dir: str | None, xlsx_path: str | None,
     if out_dir:
         if os.path.exists(out_dir) and not os.path.isdir(out_dir):
             raise InputError("--out", f"{out_dir!r} is not a folder")
-        _refuse_dangling_link(out_dir)
+        refuse_dangling_link(out_dir)
         created = _make_folder(out_dir)
     try:
         _plan_files(files, batch, out_dir, xlsx_path, pdf_path, as_json, force,
@@ -628,7 +599,7 @@ def _run_project(path: str, out_dir: str | None, stem: str | None, xlsx_path: st
     result = plan_project(load_project(path))
     # the project's own input files are never replaced either (an area saved as
     # OUT/flight.kml), even with --force
-    files = [*files, *_project_inputs(result)]
+    files = [*files, *project_inputs(result)]
     exports = {}
     if out_dir:  # the mission and GIS files join the reports' transaction (issue 11)
         from ..reports.exports import export_files
@@ -643,22 +614,8 @@ def _run_project(path: str, out_dir: str | None, stem: str | None, xlsx_path: st
                     "sweep": out_dir if out_dir and stem is None else None},
                    scan=film, uav=uav_, spec=result)
     if out_dir:  # a mission or photo table not written is said, with the reason
-        from ..reports.exports import export_notes
-
-        for line in export_notes(result):
-            (say or (lambda text: click.echo(text, err=True)))(
-                f"note: {line.text(result.meta.locale)}")
+        say_export_notes(result, say)
     return result
-
-
-def _project_inputs(result: Any) -> list[str]:
-    """The files a planned project read besides itself: its area file, its DEM."""
-    project = getattr(result, "project", None)
-    get = getattr(project, "get", None)
-    if get is None:
-        return []
-    found = (get("area", "file"), get("terrain", "dem"))
-    return [os.path.expanduser(f) for f in found if isinstance(f, str) and f]
 
 
 def _batch_worker(task: tuple[Any, ...]) -> tuple[str, str, Any, list[str]]:
@@ -681,11 +638,7 @@ def _batch_worker(task: tuple[Any, ...]) -> tuple[str, str, Any, list[str]]:
             result = _run_project(path, out_dir, stem, None, None, files, force, said.append)
         doc = json.loads(json.dumps(plan_result_dict(result), ensure_ascii=False,
                                     allow_nan=False)) if as_json else None
-        text = None
-        if not as_json:  # the batch keeps this project's text lines, not its result
-            from ..reports.text import batch_row, project_warnings
-
-            text = (batch_row(path, result), project_warnings(path, result))
+        text = None if as_json else batch_text(path, result)  # not the result itself
         return path, "ok", (text, doc, summary_row(result)), said
     except InputError as exc:  # a bad project: report it, run the others
         return path, "input", f"{exc.field}: {exc.message}", said
@@ -833,9 +786,6 @@ def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: s
         sys.exit(1)
     if failed:
         sys.exit(2)
-
-
-
 
 
 def run() -> None:  # pragma: no cover - console entry used by python -m scanplan
