@@ -279,6 +279,21 @@ MESSAGES: dict[str, dict[str, str]] = {
         "ru": "Плановая высота полёта {height:g}~м выше максимальной плановой {max:.0f}~м по "
               "условию {cid} ({name}){tolerance}.",
     },
+    "height_not_feasible": {
+        "en": "no flight height is feasible: {cid} ({name}) allows at most {max:.2g} m"
+              "{tolerance}, below the lowest flight height of {lowest:g} m; the planned "
+              "{height:g} m cannot meet it",
+        "ru": "Ни одна высота полёта не выполнима: условие {cid} ({name}) допускает не более "
+              "{max:.2g}~м{tolerance}, что ниже наименьшей высоты полёта {lowest:g}~м; "
+              "плановая высота {height:g}~м ему не удовлетворяет.",
+    },
+    "height_never_feasible": {
+        "en": "no flight height is feasible: {cid} ({name}) cannot be met at any height"
+              "{tolerance}; the planned {height:g} m does not meet it",
+        "ru": "Ни одна высота полёта не выполнима: условие {cid} ({name}) не выполняется ни "
+              "на какой высоте{tolerance}; плановая высота {height:g}~м ему не "
+              "удовлетворяет.",
+    },
     "height_above_max.tolerance": {
         "en": " with a {tolerance:g} % height tolerance",
         "ru": " с учётом допуска высоты {tolerance:g}~%",
@@ -536,6 +551,9 @@ MESSAGES.update(_ARCHIVE)
 from .messages_terrain import TERRAIN as _TERRAIN  # noqa: E402  (the terrain, issue 12)
 
 MESSAGES.update(_TERRAIN)
+from .messages_outputs import OUTPUTS as _OUTPUTS  # noqa: E402  (files not written)
+
+MESSAGES.update(_OUTPUTS)
 
 
 @contextmanager

@@ -246,11 +246,16 @@ def folder_lock(folders: Iterable[str | os.PathLike[str]]) -> Iterator[None]:
             os.close(fd)
 
 
+BATCH_SUMMARY_STEM = "summary"
+"""The name of a batch's summary table (summary.csv, summary.xlsx) in ``--out``."""
+
+
 def batch_stems(files: list[str]) -> list[str]:
     """One report name per project of a batch: the file's stem, ``STEM-2``, ``STEM-3`` …
     for later projects with the same stem (compared without case: some file systems ignore
-    it), so that no project's reports replace another's."""
-    used: set[str] = set()
+    it), so that no project's reports replace another's. ``summary`` is the batch
+    summary's (summary.csv, summary.xlsx): a project named so gets ``summary-2``."""
+    used: set[str] = {BATCH_SUMMARY_STEM}
     out = []
     for path in files:
         stem = os.path.splitext(os.path.basename(path))[0] or "spec"

@@ -21,15 +21,58 @@ import re
 import secrets
 import stat
 import tempfile
-from collections.abc import Callable, Iterator, Mapping
+from collections.abc import Callable, Iterable, Iterator, Mapping
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 from .errors import InputError, NotFoundError, WriteError
+from .journal import JOURNAL_NAME, Entry, Journal, recover
 from .outpaths import folder_lock, name_max
 
-__all__ = ["dir_lock", "file_kind", "fsync_dir", "read_limited", "size_text", "write_all",
-           "write_atomic", "write_atomic_many"]
+__all__ = ["csv_safe", "csv_safe_frame", "dir_lock", "file_kind", "fsync_dir", "read_limited",
+           "size_text", "write_all", "write_atomic", "write_atomic_many"]
+
+
+_FORMULA_START = ("=", "+", "-", "@", "\t", "\r")
+
+
+def csv_safe(value: object) -> object:
+    """A CSV cell that a spreadsheet will not run as a formula.
+
+    Text starting with ``=``, ``+``, ``-``, ``@``, a tab or a carriage return gets a
+    leading ``'`` (OWASP, "CSV Injection": a spreadsheet shows the text, it does not run
+    it). Numbers, and text that is a plain number (``-12.5``), are returned unchanged.
+
+    Parameters
+    ----------
+    value : object
+        The cell's value.
+
+    Returns
+    -------
+    object
+        ``value``, or ``"'" + value`` for text a spreadsheet would read as a formula.
+    """
+    if not isinstance(value, str) or not value.startswith(_FORMULA_START):
+        return value
+    try:
+        float(value)
+    except ValueError:
+        return "'" + value
+    return value if value.strip() == value else "'" + value
+
+
+def csv_safe_frame(frame: Any) -> Any:
+    """A copy of a pandas DataFrame whose text columns are :func:`csv_safe`; numeric
+    columns are left as they are."""
+    from pandas.api.types import is_bool_dtype, is_numeric_dtype
+
+    out = frame.copy()
+    for col in out.columns:
+        if not (is_numeric_dtype(out[col].dtype) or is_bool_dtype(out[col].dtype)):
+            out[col] = out[col].map(csv_safe, na_action="ignore")
+    return out
 
 
 def size_text(n: int) -> str:
@@ -164,12 +207,17 @@ def fsync_dir(folder: str | os.PathLike[str]) -> None:
         os.close(fd)
 
 
+_HELD: dict[str, int] = {}  # folders this process holds a dir_lock on → nesting depth
+
+
 @contextlib.contextmanager
 def dir_lock(folder: str | os.PathLike[str], *, exclusive: bool) -> Iterator[None]:
     """Hold a ``flock`` on ``folder``: shared for readers, exclusive for writers.
 
     A no-op where ``flock`` is missing (not POSIX) or the folder cannot be opened (it does
-    not exist, no permission): locking is cooperation between scanplan processes.
+    not exist, no permission): locking is cooperation between scanplan processes. A lock
+    this process already holds on the folder covers a nested request (``flock`` locks of
+    one process on two descriptors would otherwise wait for each other for ever).
 
     Parameters
     ----------
@@ -178,6 +226,14 @@ def dir_lock(folder: str | os.PathLike[str], *, exclusive: bool) -> Iterator[Non
     exclusive : bool
         ``LOCK_EX`` (writers) or ``LOCK_SH`` (readers).
     """
+    key = os.path.realpath(folder)
+    if _HELD.get(key):
+        _HELD[key] += 1
+        try:
+            yield
+        finally:
+            _HELD[key] -= 1
+        return
     fd = None
     try:
         import fcntl
@@ -186,9 +242,11 @@ def dir_lock(folder: str | os.PathLike[str], *, exclusive: bool) -> Iterator[Non
         fcntl.flock(fd, fcntl.LOCK_EX if exclusive else fcntl.LOCK_SH)
     except (ImportError, OSError):
         pass
+    _HELD[key] = 1
     try:
         yield
     finally:
+        del _HELD[key]
         if fd is not None:
             os.close(fd)
 
@@ -221,24 +279,32 @@ def write_atomic(path: str | os.PathLike[str], data: bytes) -> Path:
 
 
 def write_atomic_many(files: Mapping[str | os.PathLike[str], bytes], *,
-                      check: Callable[[], None] | None = None) -> list[Path]:
+                      check: Callable[[], None] | None = None,
+                      remove: Callable[[], Iterable[str | os.PathLike[str]]] | None = None,
+                      ) -> list[Path]:
     """Write several files as one transaction: all of them are replaced, or none is.
 
     Every file is first written to a temporary file beside its target (``.NAME.*.tmp``,
-    fsynced, given the mode of the file it replaces). Only then are they renamed into
-    place, one after the other; before each rename but the last, the current file is kept
-    under a hidden backup name (``.NAME.*.old``, a hard link, or the file moved aside where
-    hard links are not available). If anything fails — disk full, a permission, an
-    interrupted rename, ``KeyboardInterrupt`` — the files already renamed are put back from
-    their backups (new ones removed) and every temporary and backup file is deleted, so all
-    previous files are byte-identical and nothing is left behind.
+    fsynced, given the mode of the file it replaces). Then a journal is written
+    (:mod:`scanplan.journal`), and only then are the files renamed into place, one after
+    the other, each current file kept under a hidden backup name (``.NAME.*.old``, a hard
+    link, or the file moved aside where hard links are not available); the files ``remove``
+    names (the stale files of an earlier run) are moved aside too. If anything fails — disk
+    full, a permission, an interrupted rename, ``KeyboardInterrupt`` — the files already
+    renamed are put back from their backups (new ones removed) and every temporary and
+    backup file is deleted, so all previous files are byte-identical and nothing is left
+    behind. A process killed outright (``kill -9``, power loss) at any step leaves the
+    journal; the next write into the folder rolls the set back (before the commit point)
+    or finishes it (after), so every file is old or every file is new.
 
-    The whole write holds an exclusive lock on the targets' folders
-    (:func:`scanplan.outpaths.folder_lock`), so two scanplan runs writing into one folder
-    never interleave their files. Under that lock, temporaries and backups of these targets
-    that a killed run left behind (``.NAME.*.tmp``, ``.NAME.*.old``) are deleted first, and
-    after the renames the folders are fsynced (the renames survive a power loss). A name up
-    to the file system's limit (255 bytes) is fine: the temporary names are shortened.
+    The whole transaction — the check, the sweep, the writes — holds an exclusive lock on
+    the targets' folders (:func:`scanplan.outpaths.folder_lock`), so two scanplan runs
+    writing into one folder never interleave their files and one run's sweep never removes
+    what another has just written. Under that lock, a killed run's journal is recovered
+    first, then temporaries and backups of these targets that a killed run left behind
+    (``.NAME.*.tmp``, ``.NAME.*.old``) are deleted; after the renames the folders are
+    fsynced. A name up to the file system's limit (255 bytes) is fine: the temporary names
+    are shortened.
 
     Parameters
     ----------
@@ -247,6 +313,9 @@ def write_atomic_many(files: Mapping[str | os.PathLike[str], bytes], *,
     check : callable, optional
         Called under the lock before anything is written (re-checks the targets: what was
         checked before rendering may have changed since); its exception stops the write.
+    remove : callable, optional
+        Called under the lock after ``check``: the files to remove in the same transaction
+        (none of the targets).
 
     Returns
     -------
@@ -261,12 +330,6 @@ def write_atomic_many(files: Mapping[str | os.PathLike[str], bytes], *,
         Should putting a previous file back fail too, the message says where it is kept.
     ValueError
         The same file is named twice.
-
-    Notes
-    -----
-    A process killed outright (power loss, ``SIGKILL``) between two renames can leave a
-    new file beside an old one; every target still holds a complete file, and the older
-    version of the renamed one is in its ``.NAME.*.old`` backup.
     """
     items = [(Path(p), os.fspath(p), data) for p, data in files.items()]
     seen: set[str] = set()
@@ -279,16 +342,29 @@ def write_atomic_many(files: Mapping[str | os.PathLike[str], bytes], *,
             raise WriteError(shown, "it is a folder", errno.EISDIR)
     folders = sorted({os.fspath(target.parent) for target, _, _ in items})
     with folder_lock(folders):
+        _recover(folders)
         if check is not None:
             check()
-        for target, _, _ in items:
+        gone = [Path(p) for p in (remove() if remove is not None else ())]
+        gone = [p for p in gone if os.path.normcase(os.path.realpath(p)) not in seen]
+        for target in [*(t for t, _, _ in items), *gone]:
             _remove_stale(target)
         before = {shown: _identity(target) for target, shown, _ in items}
         try:
-            return _write_locked(items, before)
+            return _write_locked(items, before, gone, folders[0] if folders else ".")
         finally:
             for folder in folders:
                 fsync_dir(folder)
+
+
+def _recover(folders: list[str]) -> None:
+    """Undo or finish what a killed writer left in ``folders`` (under their lock)."""
+    try:
+        recover(folders)
+    except OSError as exc:
+        raise WriteError.from_os_error(
+            os.path.join(folders[0], JOURNAL_NAME), exc,
+            note="an earlier interrupted write could not be undone") from exc
 
 
 def _identity(path: Path) -> tuple[int, int, int, int] | None:
@@ -300,30 +376,63 @@ def _identity(path: Path) -> tuple[int, int, int, int] | None:
     return (st.st_dev, st.st_ino, st.st_size, st.st_mtime_ns)
 
 
+def _plan_journal(items: list[tuple[Path, str, bytes]], temps: list[Path],
+                  gone: list[Path], folder: str) -> Journal:
+    """The journal of the transaction: backup names chosen, nothing renamed yet."""
+    entries = []
+    for (target, _, _), tmp in zip(items, temps, strict=True):
+        st = os.lstat(tmp)
+        backup = _backup_name(target) if os.path.lexists(target) else None
+        entries.append(Entry(os.path.abspath(target), os.path.abspath(tmp),
+                             backup and os.path.abspath(backup), [st.st_dev, st.st_ino]))
+    for path in gone:
+        entries.append(Entry(os.path.abspath(path), None,
+                             os.path.abspath(_backup_name(path)), None, remove=True))
+    return Journal(folder, entries)
+
+
 def _write_locked(items: list[tuple[Path, str, bytes]],
-                  before: Mapping[str, tuple[int, int, int, int] | None]) -> list[Path]:
+                  before: Mapping[str, tuple[int, int, int, int] | None],
+                  gone: list[Path], folder: str) -> list[Path]:
     """:func:`write_atomic_many` under the folder lock."""
     current = items[0][1] if items else ""
     temps: list[Path] = []
     steps: list[_Step] = []  # one per rename started, in order
+    journal: Journal | None = None
+    committed = False
     try:
         for target, shown, data in items:
             current = shown
             temps.append(_write_temp(target, data))
+        journal = _plan_journal(items, temps, gone, folder)
+        journal.prepare()
+        entries = iter(journal.entries)
         for i, (target, shown, _) in enumerate(items):
             current = shown
             step = _Step(target, shown)
-            if i < len(items) - 1 and os.path.lexists(target):
-                step.backup, step.linked = _backup(target)
+            entry = next(entries)
+            if entry.backup is not None:
+                step.backup, step.linked = _backup(target, Path(entry.backup))
             steps.append(step)
             os.replace(temps[i], target)
             step.replaced = True
+        for path in gone:
+            current = os.fspath(path)
+            entry = next(entries)
+            step = _Step(path, current, backup=Path(entry.backup), removed=True)  # type: ignore[arg-type]
+            steps.append(step)
+            os.replace(path, step.backup)  # type: ignore[arg-type]
+            step.replaced = True
+        journal.commit()
+        committed = True
     except BaseException as exc:
-        committed = len(steps) == len(items) and steps[-1].replaced
         note = "" if committed else _roll_back(steps)
         for i, tmp in enumerate(temps):
             if i >= len(steps) or not steps[i].replaced:
                 _discard(tmp)
+        if journal is not None and not note:
+            with contextlib.suppress(OSError):
+                journal.discard()
         if not note and not committed and len(items) > 1:
             changed = [s for t, s, _ in items if _identity(t) != before[s]]
             if changed:  # only another program (not holding our lock) can have done it
@@ -333,10 +442,12 @@ def _write_locked(items: list[tuple[Path, str, bytes]],
                 note = "none of " + ", ".join(s for _, s, _ in items) + " was changed"
         if isinstance(exc, OSError) and not isinstance(exc, WriteError) and not committed:
             raise WriteError.from_os_error(current, exc, note=note) from exc
-        if committed:
-            _drop_backups(steps)
-        raise
+        if not committed:
+            raise
     _drop_backups(steps)  # committed: the backups are no longer needed
+    if journal is not None:
+        with contextlib.suppress(OSError):
+            journal.discard()
     return [target for target, _, _ in items]
 
 
@@ -349,6 +460,7 @@ class _Step:
     backup: Path | None = None
     linked: bool = False  # the backup is a hard link; the target is still in place
     replaced: bool = False
+    removed: bool = False  # a stale file moved to ``backup`` (not replaced by a new one)
 
 
 def _drop_backups(steps: list[_Step]) -> None:
@@ -419,26 +531,28 @@ def _write_temp(target: Path, data: bytes) -> Path:
     return tmp
 
 
-def _backup(target: Path) -> tuple[Path, bool]:
-    """Keep the current ``target`` under a hidden name: (backup, target still in place).
+def _backup_name(target: Path) -> Path:
+    """A free hidden name ``.NAME.xxxxxxxx.old`` beside ``target``."""
+    while True:
+        backup = target.with_name(f".{_hidden_stem(target)}.{secrets.token_hex(4)}.old")
+        if not os.path.lexists(backup):
+            return backup
+
+
+def _backup(target: Path, backup: Path) -> tuple[Path, bool]:
+    """Keep the current ``target`` as ``backup``: (backup, target still in place).
 
     A hard link leaves ``target`` in place; where links are not possible (FAT, some network
     shares, a file owned by someone else) the file is moved aside instead.
     """
-    for _ in range(100):
-        backup = target.with_name(f".{_hidden_stem(target)}.{secrets.token_hex(4)}.old")
-        if os.path.lexists(backup):
-            continue
-        try:
-            if os.link in os.supports_follow_symlinks:
-                os.link(target, backup, follow_symlinks=False)
-            else:  # pragma: no cover - platform dependent
-                os.link(target, backup)
-            return backup, True
-        except FileExistsError:
-            continue
-        except (OSError, NotImplementedError):
-            break
+    try:
+        if os.link in os.supports_follow_symlinks:
+            os.link(target, backup, follow_symlinks=False)
+        else:  # pragma: no cover - platform dependent
+            os.link(target, backup)
+        return backup, True
+    except (OSError, NotImplementedError):
+        pass
     os.replace(target, backup)
     return backup, False
 
@@ -448,6 +562,8 @@ def _roll_back(steps: list[_Step]) -> str:
     problems = []
     for step in reversed(steps):
         try:
+            if step.removed and not step.replaced:
+                continue  # the stale file was never moved
             if step.backup is None:
                 if step.replaced:
                     os.unlink(step.target)  # it did not exist before

@@ -348,7 +348,9 @@ class Stage:
 
 
 def stages(n: int) -> list[Stage]:
-    """The stages of writing ``n`` files (1 or 2)."""
+    """The stages of writing ``n`` files (1 or 2). The transaction's journal is renamed
+    into place before the targets (``replace`` 1) and again at the commit point
+    (``replace`` n + 2); the targets' renames are ``replace`` 2 … n + 1."""
     last = n - 1
     out = [
         Stage("render-raises", render=0, exc=bug),
@@ -357,24 +359,28 @@ def stages(n: int) -> list[Stage]:
         Stage("fsync-disk-full", (("fsync", n, enospc),), named=last),
         Stage("close-io-error", (("close", 1, eio),)),
         Stage("chmod-fails", (("chmod", n, eperm),), named=last),
-        Stage("rename-fails-first", (("replace", 1, eio),)),
+        Stage("journal-write-fails", (("write", n + 1, enospc),), named=last),
+        Stage("journal-rename-fails", (("replace", 1, eio),), named=last),
+        Stage("rename-fails-first", (("replace", 2, eio),)),
+        Stage("commit-fails", (("replace", n + 2, enospc),), named=last),
         Stage("interrupt-render", render=last, exc=interrupt),
         Stage("interrupt-write", (("write", n, interrupt),)),
-        Stage("interrupt-rename-first", (("replace", 1, interrupt),)),
+        Stage("interrupt-rename-first", (("replace", 2, interrupt),)),
+        Stage("interrupt-commit", (("replace", n + 2, interrupt),)),
     ]
     if n > 1:
         out += [
             Stage("render-raises-second", render=1, exc=bug),
             Stage("open-temp-fails-second", (("open", 2, enospc),), named=1),
             Stage("write-disk-full-second", (("write", 2, enospc),), named=1),
-            Stage("rename-fails-last", (("replace", 2, eio),), named=1),
-            Stage("interrupt-rename-last", (("replace", 2, interrupt),)),
+            Stage("rename-fails-last", (("replace", 3, eio),), named=1),
+            Stage("interrupt-rename-last", (("replace", 3, interrupt),)),
             # no hard links (FAT, some shares): the old file is moved aside, then back
-            Stage("no-links-move-aside-fails", (("replace", 1, eio),), no_hard_links=True,
+            Stage("no-links-move-aside-fails", (("replace", 2, eio),), no_hard_links=True,
                   needs_existing=True),
-            Stage("no-links-rename-fails-last", (("replace", 3, enospc),), named=1,
+            Stage("no-links-rename-fails-last", (("replace", 5, enospc),), named=1,
                   no_hard_links=True, needs_existing=True),
-            Stage("no-links-interrupt-last", (("replace", 3, interrupt),),
+            Stage("no-links-interrupt-last", (("replace", 5, interrupt),),
                   no_hard_links=True, needs_existing=True),
         ]
     return out
@@ -460,7 +466,7 @@ def test_plan_out_never_leaves_a_new_xlsx_beside_an_old_pdf(work, fmp):
     targets = ("out/spec.xlsx", "out/spec.pdf")
     put_old(work, targets)
     before = snapshot(work)
-    Faults(fmp, work).arm("replace", 2, enospc)
+    Faults(fmp, work).arm("replace", 3, enospc)  # 1: the journal, 2: spec.xlsx
     r = cli("plan", FILM, "--out", "out")
     fmp.undo()
     assert r.exit_code == 1
@@ -511,7 +517,7 @@ def test_rollback_that_fails_too_says_where_the_old_file_is(work, fixed_renders,
     Nothing is lost: the message names the backup holding the previous spec.xlsx."""
     put_old(work, ("out/spec.xlsx", "out/spec.pdf"))
     old = snapshot(work)
-    Faults(fmp, work).arm("replace", 2, enospc).arm("replace", 3, eio)
+    Faults(fmp, work).arm("replace", 3, enospc).arm("replace", 4, eio)
     r = cli("plan", FILM, "--out", "out")
     fmp.undo()
     assert r.exit_code == 1 and "Traceback" not in r.output
@@ -522,7 +528,13 @@ def test_rollback_that_fails_too_says_where_the_old_file_is(work, fixed_renders,
     backup = Path(m[1])
     assert backup.read_bytes() == old["out/spec.xlsx"][2]
     assert (work / "out/spec.pdf").read_bytes() == old["out/spec.pdf"][2]
-    assert [p for p in leftovers(work) if not p.endswith(".old")] == []
+    # the journal stays: the next write into the folder puts spec.xlsx back first
+    assert [p for p in leftovers(work) if not p.endswith(".old")] == [
+        "out/.scanplan-journal.json"]
+    from scanplan.journal import recover
+
+    assert recover([work / "out"]) == ["rolled back"]
+    assert snapshot(work) == old and leftovers(work) == []
 
 
 def test_cli_disk_full_message_names_the_file_and_reason(work, fixed_renders, fmp):
@@ -537,7 +549,7 @@ def test_cli_disk_full_message_names_the_file_and_reason(work, fixed_renders, fm
 
 def test_debug_shows_the_traceback(work, fixed_renders, monkeypatch, fmp):
     monkeypatch.setenv("SCANPLAN_DEBUG", "1")
-    Faults(fmp, work).arm("replace", 1, eio)
+    Faults(fmp, work).arm("replace", 2, eio)  # 1 is the journal
     r = cli("plan", FILM, "--out", "out")
     assert r.exit_code == 1 and "Traceback" in r.stderr
     assert "error: cannot write out/spec.xlsx: Input/output error" in r.stderr
@@ -633,6 +645,7 @@ def test_backup_is_a_hard_link_while_renaming(tmp_path, monkeypatch):
 
     monkeypatch.setattr(os, "replace", spy)
     write_atomic_many({a: b"new a", b: b"new b"})
+    seen = [s for s in seen if s[1] in ("a", "b")]  # not the journal's renames
     assert seen[0][2] == b"old a" and any(n.endswith(".old") for n in seen[0][3])
     assert seen[1][1] == "b" and seen[1][2] == b"new a"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["a", "b"]
@@ -656,11 +669,13 @@ def batch(work):
 
 
 @pytest.mark.parametrize(("fault", "written", "named"), [
-    pytest.param(("replace", 1, eio), (), "out/a.xlsx", id="first-project-rename"),
+    # per project: write xlsx, pdf, the journal, its commit; replace the journal, xlsx,
+    # pdf, the commit
+    pytest.param(("replace", 2, eio), (), "out/a.xlsx", id="first-project-rename"),
     pytest.param(("write", 2, enospc), (), "out/a.pdf", id="first-project-disk-full"),
-    pytest.param(("write", 3, enospc), ("a",), "out/b.xlsx", id="second-project-disk-full"),
-    pytest.param(("replace", 4, eio), ("a",), "out/b.pdf", id="second-project-last-rename"),
-    pytest.param(("replace", 4, interrupt), ("a",), "", id="second-project-interrupt"),
+    pytest.param(("write", 5, enospc), ("a",), "out/b.xlsx", id="second-project-disk-full"),
+    pytest.param(("replace", 7, eio), ("a",), "out/b.pdf", id="second-project-last-rename"),
+    pytest.param(("replace", 7, interrupt), ("a",), "", id="second-project-interrupt"),
 ])
 def test_batch_write_failure_stops_the_batch(batch, work, fixed_renders, fmp,
                                              fault, written, named):
@@ -701,7 +716,7 @@ def test_batch_bad_project_still_continues_and_disk_full_wins(batch, work, fixed
     r = cli("plan", str(batch), "--out", "out")
     assert r.exit_code == 2 and "2 planned, 1 failed" in r.stdout
     put_old(work, BATCH_TARGETS)
-    Faults(fmp, work).arm("write", 3, enospc)
+    Faults(fmp, work).arm("write", 5, enospc)  # a: 4 writes (2 files, the journal twice)
     r = cli("plan", str(batch), "--out", "out", "--json", "--jobs", "1")  # faults: here
     fmp.undo()
     assert r.exit_code == 1

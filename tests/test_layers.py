@@ -18,7 +18,8 @@ PKG = Path(scanplan.__file__).parent
 
 # bottom → top; a module's layer is found by its first name below ``scanplan``
 LAYERS: list[tuple[str, set[str]]] = [
-    ("base", {"errors", "messages", "messages_archive", "messages_terrain", "_version",
+    ("base", {"errors", "messages", "messages_archive", "messages_terrain", "_version", "journal",
+              "messages_outputs",
               "outpaths", "safeio"}),
     ("core", {"core"}),
     ("rules", {"rules"}),

@@ -206,6 +206,33 @@ def _project(tmp_path: Path, name: str, text: str) -> PlanResult:
     return plan_project(load_project(path))
 
 
+def _export_notes_cases() -> list[Any]:
+    """Why ``plan --out`` writes no mission or photo table: every reason, from the
+    function that says it (the layouts are made, not planned)."""
+    from types import SimpleNamespace
+
+    from layouts import make_layout
+
+    from scanplan.reports.exports import export_notes
+
+    def spec(layout, platform="uav", speed=10.0):
+        inputs = SimpleNamespace(platform=platform, speed_ms=speed)
+        job = SimpleNamespace(plan=SimpleNamespace(inputs=inputs))
+        return SimpleNamespace(uav=SimpleNamespace(job=job, layout=layout), film=None,
+                               project=SimpleNamespace(get=lambda *a: None),
+                               meta=SimpleNamespace(locale="en"))
+
+    ok = make_layout()
+    unlisted = dataclasses.replace(ok, photos=type(ok.photos)({}),
+                                   notes={**ok.notes, "photos": 2_500_000})
+    infeasible = dataclasses.replace(ok, feasible=False,
+                                     reason=Message("layout.too_many_sorties",
+                                                    most=1000, limit=25.0))
+    return [*export_notes(spec(infeasible)), *export_notes(spec(ok, platform="aircraft")),
+            *export_notes(spec(dataclasses.replace(ok, speed_ms=None), speed=None)),
+            *export_notes(spec(unlisted))]
+
+
 @pytest.fixture(scope="module")
 def emitted(tmp_path_factory) -> dict[str, list[Any]]:
     """Cases that raise every warning and reach every message: {case: [engine sentences]}."""
@@ -305,6 +332,13 @@ def emitted(tmp_path_factory) -> dict[str, list[Any]]:
                                       f'file = "{(EXAMPLES / "areas" / "town-uav.kml").as_posix()}"'
                                       '\nplan_crs = "EPSG:32634"'),
     }
+    variants["plan uav no height is feasible"] = uav_toml.replace(  # at most 0.56 m
+        "max_height_m = 500", "max_height_m = 500\ngsd_cm = 0.01")
+    variants["plan uav never feasible"] = uav_toml.replace(  # at most 0 m
+        'camera = "canon-eos-5d-mark-ii-50"',
+        'pixel_um = 100\nfocal_mm = 1\nsensor_mm = "36x24"').replace(
+        "max_height_m = 500", "max_height_m = 500\ngsd_cm = 0.01")
+    out["files not written"] = _export_notes_cases()
     for name, text in variants.items():
         r = _project(tmp, name.replace(" ", "-"), text)
         found = [w.message for w in r.warnings]

@@ -281,6 +281,31 @@ def check_answers(text: str, path: str) -> None:
     plan_project(parse_project(text, path))
 
 
+def _check_replaceable(path: str) -> None:
+    """What ``--force`` may replace: a regular file that is not write-protected (as for
+    reports: a protection is its owner's statement; a link would be replaced, not the file
+    it points to)."""
+    import stat
+
+    try:
+        st = os.lstat(path)
+    except FileNotFoundError:
+        return
+    except OSError as exc:
+        raise InputError("PROJECT", f"{path!r} cannot be checked: {exc.strerror or exc}"
+                         ) from None
+    if stat.S_ISLNK(st.st_mode):
+        raise InputError("PROJECT", f"{path!r} is a symbolic link (to {os.readlink(path)!r});"
+                         " scanplan replaces files, not links — name the file itself")
+    if not stat.S_ISREG(st.st_mode):
+        from ..safeio import file_kind
+
+        raise InputError("PROJECT", f"{path!r} is {file_kind(st.st_mode)}; give a file name")
+    if not os.access(path, os.W_OK) or not st.st_mode & 0o222:  # root too: no write bit
+        raise InputError("PROJECT", f"{path!r} is write-protected; scanplan leaves it alone "
+                         "even with --force (make it writable, or give another name)")
+
+
 def write_new(path: str, data: bytes, *, force: bool) -> None:
     """Write ``data`` to ``path`` atomically; an existing file only with ``force``.
 
@@ -296,6 +321,7 @@ def write_new(path: str, data: bytes, *, force: bool) -> None:
     if force:
         from ..safeio import write_atomic
 
+        _check_replaceable(path)
         write_atomic(path, data)
         return
     folder = os.path.dirname(os.path.abspath(path))

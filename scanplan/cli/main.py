@@ -21,6 +21,7 @@ from .._version import __version__
 from ..errors import InputError, WriteError
 from ..project.inputs import option_names
 from .options import input_option
+from .outset import batch_text, project_inputs, refuse_dangling_link, say_export_notes, write_set
 
 OPTION_NAMES = option_names()
 """Python names of inputs (error fields) → the option a user typed (the input registry's)."""
@@ -201,8 +202,9 @@ def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
     note = opts.pop("note", "")
     say = opts.pop("say", None) or (lambda line: click.echo(line, err=True))
     worker = opts.pop("pdf_worker", None)  # the PDF on the second core (reports.pdfworker)
+    sweep = opts.pop("sweep", None)  # the --out folder whose stale exports go (one project)
     from ..outpaths import check_target
-    from ..reports import ReportMeta, write_atomic_many
+    from ..reports import ReportMeta
 
     meta = opts.pop("meta", None) or ReportMeta(
         project=opts.pop("project_name"), customer=opts.pop("customer"),
@@ -253,26 +255,7 @@ def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
         rendered[pdf] = data
     files = {path: rendered[path] for path, _ in wanted}  # the order of the wrote lines
     files.update({path: data for path, (_, data) in exports.items()})
-    write_atomic_many(files, check=check)
-    for path in files:
-        say(f"wrote {path}{note}")
-
-
-def _remove_stale_exports(folder: str, written: set[str]) -> None:
-    """Remove the exported files of an earlier run that this one replaced by fewer
-    (``mission-04.plan`` of six sorties, now three); say so on stderr."""
-    from ..outpaths import folder_lock
-    from ..reports.exports import stale_exports
-
-    with folder_lock([folder]):  # not while another scanplan run writes there
-        for path in stale_exports(folder, written):
-            try:
-                os.unlink(path)
-            except OSError as exc:
-                click.echo(f"warning: {path} is left from an earlier plan and could not be "
-                           f"removed ({exc.strerror or exc}); do not fly it", err=True)
-            else:
-                click.echo(f"removed {path} (left from an earlier plan)", err=True)
+    write_set(files, check=check, sweep=sweep, say=say, note=note)
 
 
 def _make_folder(path: str) -> list[str]:
@@ -575,6 +558,7 @@ def plan(projects: tuple[str, ...], out_dir: str | None, xlsx_path: str | None,
     if out_dir:
         if os.path.exists(out_dir) and not os.path.isdir(out_dir):
             raise InputError("--out", f"{out_dir!r} is not a folder")
+        refuse_dangling_link(out_dir)
         created = _make_folder(out_dir)
     try:
         _plan_files(files, batch, out_dir, xlsx_path, pdf_path, as_json, force,
@@ -608,9 +592,14 @@ def _run_project(path: str, out_dir: str | None, stem: str | None, xlsx_path: st
         fields = {"xlsx": "--out", "pdf": "--out"}
         if stem is not None:
             base = os.path.splitext(os.path.basename(path))[0]
-            note = f" (for {path}" + (f"; the name {base} is taken by another project "
-                                      "of this batch" if stem != base else "") + ")"
+            taken = ("the batch summary" if base.casefold() == "summary"
+                     else "another project of this batch")
+            note = f" (for {path}" + (f"; the name {base} is taken by {taken}"
+                                      if stem != base else "") + ")"
     result = plan_project(load_project(path))
+    # the project's own input files are never replaced either (an area saved as
+    # OUT/flight.kml), even with --force
+    files = [*files, *project_inputs(result)]
     exports = {}
     if out_dir:  # the mission and GIS files join the reports' transaction (issue 11)
         from ..reports.exports import export_files
@@ -620,17 +609,21 @@ def _run_project(path: str, out_dir: str | None, stem: str | None, xlsx_path: st
     uav_ = result.uav.job if result.uav else None
     _write_reports({**targets, "force": force, "inputs": files, "fields": fields,
                     "note": note, "meta": result.meta, "say": say, "exports": exports,
-                    "pdf_worker": pdf_worker},
+                    "pdf_worker": pdf_worker,
+                    # never leave a stale sortie of an earlier plan behind
+                    "sweep": out_dir if out_dir and stem is None else None},
                    scan=film, uav=uav_, spec=result)
-    if out_dir and stem is None:  # never leave a stale sortie of an earlier plan behind
-        _remove_stale_exports(out_dir, set(exports))
+    if out_dir:  # a mission or photo table not written is said, with the reason
+        say_export_notes(result, say)
     return result
 
 
 def _batch_worker(task: tuple[Any, ...]) -> tuple[str, str, Any, list[str]]:
     """One project of a batch, in a worker process or in this one: (path, outcome,
-    payload, the ``wrote FILE`` lines for stderr) — ``"ok"`` with (PlanResult, JSON
-    document or None, summary row), ``"input"`` or ``"write"`` with the error text."""
+    payload, the ``wrote FILE`` lines for stderr) — ``"ok"`` with (text: the summary
+    table's row and the warnings, or None with --json; JSON document or None; summary
+    row), ``"input"`` or ``"write"`` with the error text. No PlanResult leaves it: a batch
+    of thousands keeps only these."""
     path, out_dir, stem, files, force, as_json = task
     import json
 
@@ -645,7 +638,8 @@ def _batch_worker(task: tuple[Any, ...]) -> tuple[str, str, Any, list[str]]:
             result = _run_project(path, out_dir, stem, None, None, files, force, said.append)
         doc = json.loads(json.dumps(plan_result_dict(result), ensure_ascii=False,
                                     allow_nan=False)) if as_json else None
-        return path, "ok", (None if as_json else result, doc, summary_row(result)), said
+        text = None if as_json else batch_text(path, result)  # not the result itself
+        return path, "ok", (text, doc, summary_row(result)), said
     except InputError as exc:  # a bad project: report it, run the others
         return path, "input", f"{exc.field}: {exc.message}", said
     except WriteError as exc:
@@ -740,7 +734,9 @@ def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: s
     stems = batch_stems(files)
     tasks = [(path, out_dir, stem, files, force, as_json) for path, stem in zip(files, stems,
                                                                                 strict=True)]
-    done: list[tuple[str, Any]] = []  # with --json the results are streamed, not kept
+    done: list[str] = []  # results are not kept: --json streams them, text keeps its lines
+    lines: list[list[str]] = []  # the summary table's row of each project
+    warned: list[str] = []  # the warnings of each project, as text
     failed: list[tuple[str, str]] = []
     rows: list[dict[str, Any]] = []
     stream = _JsonStream("projects") if as_json else None
@@ -752,10 +748,14 @@ def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: s
             click.echo(line, err=True)
         progress.step(n)
         if outcome == "ok":
-            result, doc, row = payload
+            text, doc, row = payload
             if stream is not None:
                 stream.add(doc)
-            done.append((path, result))
+            else:
+                lines.append(text[0])
+                if text[1]:
+                    warned.append(text[1])
+            done.append(path)
             rows.append({**row, "error": ""})
         else:
             failed.append((path, payload))
@@ -772,12 +772,11 @@ def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: s
                       + [{"file": f, "message": "not planned: the batch stopped"}
                          for f in not_run]})
     else:
-        from ..reports.text import batch_summary, batch_warnings
+        from ..reports.text import batch_table
 
-        click.echo(batch_summary(done, failed))
-        warned = batch_warnings(done)
+        click.echo(batch_table(lines, failed))
         if warned:
-            click.echo(warned)
+            click.echo("\n".join(warned))
     for _path, msg in failed:
         click.echo(f"error: {msg}", err=True)
     if stopped:
@@ -787,9 +786,6 @@ def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: s
         sys.exit(1)
     if failed:
         sys.exit(2)
-
-
-
 
 
 def run() -> None:  # pragma: no cover - console entry used by python -m scanplan

@@ -10,7 +10,7 @@ from pathlib import Path
 
 from ..errors import WriteError
 from ..safeio import dir_lock
-from .paths import user_norms_dir
+from .paths import CATALOGUE, user_norms_dir
 
 # An import's own folders beside the set: ".NAME.tmp-XXXXXXXX" (the new set being written)
 # and ".NAME.old-XXXXXXXX" (the set it replaces, between the two renames).
@@ -69,9 +69,11 @@ def _recover_locked(root_dir: Path, only: str | None = None) -> list[str]:
     for name, kinds in found.items():
         target = root_dir / name
         olds = kinds["old"]
-        backups = [p for p in olds if (p / "set.toml").is_file()]
+        # a set's backup has its set.toml; the user camera catalogue's is the folder
+        backups = [p for p in olds if (p / "set.toml").is_file() or name == CATALOGUE]
         if backups and not os.path.lexists(target):
-            keep = max(backups, key=lambda p: (p / "set.toml").stat().st_mtime)
+            keep = max(backups, key=lambda p: (p / "set.toml" if name != CATALOGUE
+                                               else p).stat().st_mtime)
             try:
                 os.replace(keep, target)
             except OSError as exc:
@@ -79,7 +81,8 @@ def _recover_locked(root_dir: Path, only: str | None = None) -> list[str]:
                     str(target), exc, action=f"put back norm set {name!r} from {keep.name} to"
                 ) from exc
             olds = [p for p in olds if p != keep]
-            done.append(f"put back norm set {name!r} (an interrupted import had moved it to "
+            what = "the user camera catalogue" if name == CATALOGUE else f"norm set {name!r}"
+            done.append(f"put back {what} (an interrupted import had moved it to "
                         f"{keep.name})")
         for p in olds + kinds["tmp"]:
             shutil.rmtree(p, ignore_errors=True)

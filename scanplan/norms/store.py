@@ -571,6 +571,19 @@ def _put_back(name: str) -> bool:
     return (folder / name / "set.toml").is_file()
 
 
+def _put_back_catalogue() -> None:
+    """Restore the user camera catalogue if a killed ``cameras import`` left it aside
+    (``.catalogue.old-*`` and no ``catalogue``): one ``stat`` when all is well."""
+    folder = user_norms_dir()
+    if (folder / CATALOGUE).exists() or not folder.is_dir():
+        return
+    try:
+        if any(folder.glob(f".{CATALOGUE}.old-*")):
+            recover_norm_dir(folder, CATALOGUE)
+    except OSError:
+        pass
+
+
 def load_norm_set(name_or_path: str | os.PathLike[str] = DEFAULT_NORM_SET) -> NormSet:
     """Load a norm set by bundled/user name or folder path.
 
@@ -590,18 +603,20 @@ def load_norm_set(name_or_path: str | os.PathLike[str] = DEFAULT_NORM_SET) -> No
     InputError
         If a file of the set breaks the schema (the message names file, row and column).
     """
+    _put_back_catalogue()
     for _ in range(3):
         path, bundled = _resolve(name_or_path)
         path = path.resolve()
-        user_cat = _user_catalogue_fingerprint()
-        if bundled:  # read-only, part of the installation
-            return _load_path(path, bundled, _fingerprint(path), user_cat)
-        # An import replaces a set under an exclusive lock on its folder's parent (the norm
-        # directory); reading under a shared lock sees the old set or the new one, never a
-        # mix, and never a set missing half-way through the swap.
-        with dir_lock(path.parent, exclusive=False):
-            if (path / "set.toml").is_file():
+        # An import replaces a set, or the user camera catalogue, under an exclusive lock on
+        # the norm directory; reading under a shared lock sees the old version or the new
+        # one, never a mix, and never one missing half-way through the swap.
+        with dir_lock(user_norms_dir(), exclusive=False):
+            user_cat = _user_catalogue_fingerprint()
+            if bundled:  # read-only, part of the installation
                 return _load_path(path, bundled, _fingerprint(path), user_cat)
+            with dir_lock(path.parent, exclusive=False):
+                if (path / "set.toml").is_file():
+                    return _load_path(path, bundled, _fingerprint(path), user_cat)
     raise NotFoundError("--norms", f"norm set {os.fspath(name_or_path)!r} disappeared while "
                         "it was read (replaced or deleted by another program); try again")
 

@@ -12,7 +12,7 @@ import re
 import secrets
 import shutil
 import tempfile
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 
 from ..errors import InputError, WriteError
@@ -227,8 +227,12 @@ def _missing_parents(folder: Path) -> list[Path]:
     return created
 
 
-def _swap_in(root_dir: Path, name: str, files: Mapping[str, str]) -> None:
-    """Write ``files`` as set ``name``: temporary folder, verify, rename (swap) into place."""
+def _swap_in(root_dir: Path, name: str, files: Mapping[str, str],
+             verify: Callable[[Path], object] | None = None) -> None:
+    """Write ``files`` as set ``name``: temporary folder, verify, rename (swap) into place.
+
+    ``verify`` checks the written folder (default: the norm-set loader); the user camera
+    catalogue is swapped in the same way with its own check."""
     target = root_dir / name
     tmp = Path(tempfile.mkdtemp(prefix=f".{name}.tmp-", dir=root_dir))
     old: Path | None = None
@@ -238,7 +242,8 @@ def _swap_in(root_dir: Path, name: str, files: Mapping[str, str]) -> None:
         os.chmod(tmp, 0o777 & ~mask)  # mkdtemp makes 0700; a set folder is an ordinary one
         for fname, text in files.items():
             _write_file(tmp / fname, text)
-        _norms.read_norm_set_folder(tmp.resolve())  # the loader must accept it
+        # the loader must accept it
+        (verify or _norms.read_norm_set_folder)(tmp.resolve())
         if not os.path.lexists(target):
             os.replace(tmp, target)
             fsync_dir(root_dir)  # the rename survives a power loss

@@ -24,19 +24,21 @@ import math
 import os
 import re
 import tempfile
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
 from .. import norms as _norms
-from ..errors import InputError
+from ..core.domains import DOMAINS, Domain
+from ..errors import InputError, WriteError
 from ..norms import cells as norms_cells
 from ..norms import export as norms_export
 from ..norms import limits as norms_limits
 from ..norms import recovery as norms_recovery
 from ..norms import store as norms_store
+from ..norms import writer as norms_writer
 from ..norms.schema import TABLES
-from ..safeio import read_limited, write_all
+from ..safeio import read_limited
 
 __all__ = ["ParsedCameras", "import_camera_file", "read_camera_file", "user_catalogue_dir"]
 
@@ -267,8 +269,76 @@ def read_camera_file(path: str | os.PathLike[str], *, source: str = "",
                 out[name].append(row)
         parsed = ParsedCameras(p.name, out["cameras"], out["scanners"],
                                parsed_set.warnings, tuple(out["lens_mtf"]))
+    if not (parsed.cameras or parsed.scanners or parsed.lens_mtf):
+        raise norms_cells._fail(p.name, "has no cameras: its table has a header and no rows",
+                                "add a row per camera (scanplan norms template shows the "
+                                "columns)")
     _check_rows(parsed)
+    _check_domains(parsed)
     return parsed
+
+
+#: catalogue column → planning domain (:data:`scanplan.core.domains.DOMAINS`), per kind
+_CAMERA_DOMAINS = {
+    "digital": {"sensor_width_mm": "sensor_width_mm", "sensor_height_mm": "sensor_height_mm",
+                "focal_mm": "focal_mm", "pixel_um": "pixel_um", "f_number": "f_number"},
+    "film": {"sensor_width_mm": "frame_width_mm", "sensor_height_mm": "frame_along_mm",
+             "focal_mm": "focal_mm", "resolving_power_lpmm": "resolving_power_lpmm"},
+}
+
+
+def _domain_text(d: Domain) -> str:
+    lo = f"{'>' if d.lo_open else '≥'} {d.lo:g}"
+    hi = f"{'<' if d.hi_open else '≤'} {d.hi:g}"
+    return f"{lo} and {hi}{' ' + d.unit if d.unit else ''}"
+
+
+def _in_domain(d: Domain, x: float) -> bool:
+    return (x > d.lo if d.lo_open else x >= d.lo) and (x < d.hi if d.hi_open else x <= d.hi)
+
+
+def _check_domains(parsed: ParsedCameras) -> None:
+    """Refuse cameras and scanners no command can plan with: every value within the
+    planning domain of the input it becomes (a sensor of 1e-300 mm, an image of 1e20 px
+    — a pixel of 1e-16 µm —, a 0.0001 µm scanner step), named by table, row and column
+    with the allowed range."""
+    problems = norms_cells._Problems()
+    src = parsed.source_file
+
+    def bad(table: str, i: int, col: str, value: str, message: str) -> None:
+        problems.add(_norms.ImportProblem(f"{src} {table} row {i} ({col})", message,
+                                          value=value))
+
+    for i, r in enumerate(parsed.cameras, start=1):
+        for col, name in _CAMERA_DOMAINS.get(r.get("kind") or "digital", {}).items():
+            text = r.get(col) or ""
+            if not text:
+                continue
+            d = DOMAINS[name]
+            if not _in_domain(d, float(text)):
+                bad("cameras", i, col, text, f"must be {_domain_text(d)} ({d.meaning}: the "
+                    "range every command accepts)")
+        if (r.get("kind") or "digital") != "digital":
+            continue
+        d = DOMAINS["pixel_um"]
+        for side, px_col in (("sensor_width_mm", "image_width_px"),
+                             ("sensor_height_mm", "image_height_px")):
+            if not (r.get(side) and r.get(px_col)):
+                continue
+            pitch = float(r[side]) * 1000.0 / float(r[px_col])
+            if not _in_domain(d, pitch):
+                lo, hi = float(r[side]) * 1000.0 / d.hi, float(r[side]) * 1000.0 / d.lo
+                bad("cameras", i, px_col, r[px_col],
+                    f"gives a pixel of {r[side]} mm / {r[px_col]} px = {pitch:.4g} µm; a "
+                    f"pixel must be {_domain_text(d)}, so {px_col} must be between "
+                    f"{math.ceil(lo):,} and {math.floor(hi):,} px")
+    d = DOMAINS["scanner"]
+    for i, r in enumerate(parsed.scanners, start=1):
+        text = r.get("pixel_um") or ""
+        if text and not _in_domain(d, float(text)):
+            bad("scanners", i, "pixel_um", text, f"must be {_domain_text(d)} ({d.meaning}: "
+                "the range every command accepts)")
+    problems.raise_if_any(src)
 
 
 def _csv_text(table: str, rows: list[dict[str, str]]) -> str:
@@ -323,33 +393,74 @@ def import_camera_file(path: str | os.PathLike[str], *, force: bool = False,
                        source: str = "", table: str | None = None) -> tuple[Path, ParsedCameras]:
     """Read, check and add a camera/scanner file to the user catalogue.
 
+    The catalogue is replaced as one version, as a norm set is: the merged tables are
+    written to a temporary folder beside it, checked as every command will read them (the
+    bundled catalogue plus these), and swapped in under the norm directory's exclusive
+    lock; commands read it under the shared lock (old or new, never a mix), and a swap a
+    kill interrupted is put back by the next import or load
+    (:func:`scanplan.norms.recover_norm_dir`).
+
     Parameters
     ----------
     path : str or path
         See :func:`read_camera_file`.
     force : bool
         Replace user cameras (and scanners) that have the same id; without it an id the
-        user catalogue already holds is an error.
+        user catalogue already holds is an error. A camera replaced by one of another kind
+        (digital → film) loses the user lens MTF tables of the old camera (said in the
+        warnings): a lens table belongs to a digital camera.
     source, table
         See :func:`read_camera_file`.
 
     Returns
     -------
     (Path, ParsedCameras)
-        The user catalogue folder and what was added.
+        The user catalogue folder and what was added (its warnings include what the
+        merge dropped).
     """
     parsed = read_camera_file(path, source=source, table=table)
-    ns = _norms.load_norm_set()
-    _check_rows(parsed, {c.id for c in ns.cameras.values() if c.kind == "digital"})
-    folder = user_catalogue_dir()
-    folder.mkdir(parents=True, exist_ok=True)
-    with norms_recovery._norm_dir_lock(folder):  # one import at a time: no lost update
-        _merge_into(folder, parsed, force)
+    root_dir = _norms.user_norms_dir()
+    folder = root_dir / _norms.CATALOGUE
+    try:
+        root_dir.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise WriteError.from_os_error(str(root_dir), exc, action="create folder") from exc
+    with norms_recovery._norm_dir_lock(root_dir):  # one import at a time: no lost update
+        try:
+            norms_recovery._recover_locked(root_dir, _norms.CATALOGUE)
+            files, dropped = _merge_into(folder, parsed, force)
+            norms_writer._swap_in(root_dir, _norms.CATALOGUE, files, verify=_verify_catalogue)
+        except OSError as exc:
+            if isinstance(exc, WriteError):
+                raise
+            raise WriteError.from_os_error(str(folder), exc,
+                                           action="write the camera catalogue") from exc
+    if dropped:
+        parsed = replace(parsed, warnings=(*parsed.warnings, *dropped))
     return folder, parsed
 
 
-def _merge_into(folder: Path, parsed: ParsedCameras, force: bool) -> None:
-    """Add ``parsed`` to the catalogue files in ``folder`` (checked, then replaced)."""
+def _verify_catalogue(folder: Path) -> None:
+    """The written catalogue ``folder`` loads as every command will load it: on top of
+    the bundled catalogue, lens tables of digital cameras only."""
+    cams = dict(norms_store._catalogue()[0])
+    lens: dict[str, dict[str, Any]] = {}
+    bundled = _norms.bundled_norms_dir() / _norms.CATALOGUE
+    for f, load in ((bundled / "lens-mtf.csv", norms_store._load_lens_mtf),
+                    (folder / "lens-mtf.csv", norms_store._load_lens_mtf)):
+        if f.is_file():
+            for cam_id, curves in load(f).items():
+                lens.setdefault(cam_id, {}).update(curves)
+    if (folder / "cameras.csv").is_file():
+        cams.update(norms_store._load_cameras(folder / "cameras.csv"))
+    if (folder / "scanners.csv").is_file():
+        norms_store._load_scanners(folder / "scanners.csv")
+    norms_store._checked_lens(lens, cams)
+
+
+def _merge_into(folder: Path, parsed: ParsedCameras, force: bool
+                ) -> tuple[dict[str, str], list[str]]:
+    """The catalogue files with ``parsed`` added (checked), and what the merge dropped."""
     new_ids = {r["id"] for r in parsed.cameras}
     new_scanners = {r["scanner"] for r in parsed.scanners}
     old_cams = _existing(folder, "cameras")
@@ -365,22 +476,24 @@ def _merge_into(folder: Path, parsed: ParsedCameras, force: bool) -> None:
     curves = {(r["camera"], r["position"]) for r in parsed.lens_mtf}
     lens = [r for r in _existing(folder, "lens_mtf")
             if (r.get("camera"), r.get("position")) not in curves] + list(parsed.lens_mtf)
+    # a lens table belongs to a digital camera: one replaced by a film camera loses it
+    bundled = {c.id: c.kind for c in norms_store._catalogue()[0].values()}
+    kinds = {**bundled, **{r.get("id", ""): r.get("kind", "") for r in cams}}
+    for i, r in enumerate(parsed.lens_mtf, start=1):  # the file's own tables: refused
+        if kinds.get(r.get("camera", "")) != "digital":
+            raise norms_cells._fail(parsed.source_file, f"{r.get('camera')!r} is not a "
+                                    "digital camera of the catalogue or of this file",
+                                    at=f"{parsed.source_file} lens_mtf row {i} (camera)")
+    # the catalogue's tables of a camera that is no longer digital: dropped, and said
+    gone = sorted({r.get("camera", "") for r in lens
+                   if kinds.get(r.get("camera", "")) != "digital"})
+    dropped = [f"the lens MTF table of {cam!r} was removed from the user catalogue: "
+               f"{cam!r} is now a {kinds.get(cam) or 'missing'} camera, and only a digital "
+               "camera has one" for cam in gone]
+    lens = [r for r in lens if r.get("camera") not in gone]
     merged = ParsedCameras(parsed.source_file, cams, scanners, (), tuple(lens))
     _check_rows(merged)
-    for table, rows in (("cameras", cams), ("scanners", scanners), ("lens_mtf", lens)):
-        if rows:
-            _replace(folder / TABLES[table].file, _csv_text(table, rows))
-
-
-def _replace(target: Path, text: str) -> None:
-    """Write ``target`` atomically: a fsynced temporary file renamed over it."""
-    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
-    try:
-        try:
-            write_all(fd, text.encode("utf-8"))
-        finally:
-            os.close(fd)
-        os.replace(tmp, target)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+    files = {TABLES[t].file: _csv_text(t, rows)
+             for t, rows in (("cameras", cams), ("scanners", scanners), ("lens_mtf", lens))
+             if rows}
+    return files, dropped

@@ -27,7 +27,8 @@ from .labels import t
 if TYPE_CHECKING:  # the writers (pandas, shapely) are imported when files are written
     from ..geo.export import ExportNames, MissionOptions
 
-__all__ = ["KIND_OF_SUFFIX", "export_files", "spec_layouts", "stale_exports", "view_of"]
+__all__ = ["KIND_OF_SUFFIX", "export_files", "export_notes", "spec_layouts", "stale_exports",
+           "view_of"]
 
 #: File-name ending → the kind :func:`scanplan.outpaths.check_target` checks it as.
 KIND_OF_SUFFIX = {suffix: kind for kind, suffix in SUFFIX.items()}
@@ -159,6 +160,49 @@ def export_files(spec: Any, folder: str, *, prefix: str = "") -> dict[str, tuple
             suffix = os.path.splitext(name)[1].lower()
             files[os.path.join(folder, name)] = (KIND_OF_SUFFIX[suffix], data)
     return files
+
+
+def export_notes(spec: Any) -> list[Any]:
+    """Why ``plan --out`` writes no mission or no photo table for a georeferenced area
+    (a plan that cannot be flown, too many photos to list, no speed, an aircraft), in the
+    project's language; empty when every file is written.
+
+    Parameters
+    ----------
+    spec : PlanResult
+        The specification of one project.
+
+    Returns
+    -------
+    list of Message
+        One sentence per file not written (``.text(locale)`` in the project's language).
+    """
+    from ..geo.lines import MAX_PHOTO_CENTRES
+    from ..messages import Message
+
+    out = []
+    for kind, layout in spec_layouts(spec):
+        if not layout.area.georeferenced:  # the reports say an abstract block has none
+            continue
+        n = int(layout.notes.get("photos", len(layout.photos)) or 0)
+        listed = len(layout.photos) > 0 or n == 0
+        if kind == "uav":
+            why = None
+            inputs = spec.uav.job.plan.inputs
+            if not layout.feasible:
+                why = Message("export.why_not_feasible", why=layout.reason or "")
+            elif getattr(inputs, "platform", "uav") != "uav":
+                why = Message("export.why_aircraft")
+            elif mission_options(spec, layout) is None:
+                why = Message("export.why_no_speed")
+            elif not listed:
+                why = Message("export.why_not_listed", n=n, most=MAX_PHOTO_CENTRES)
+            if why is not None:
+                out.append(Message("export.no_mission", why=why))
+        if not listed:
+            name = "film-frames.csv" if kind == "film" else "photos.csv"
+            out.append(Message("export.no_photos", name=name, n=n, most=MAX_PHOTO_CENTRES))
+    return out
 
 
 _EXPORT_NAME = re.compile(r"(?:film-)?(?:mission(?:-\d+)?\.(?:plan|waypoints)|flight\.kml|"

@@ -34,8 +34,13 @@ def _rounded(frame: Any) -> Any:
 
 def summary_csv(frame: Any) -> bytes:
     """The summary as UTF-8 CSV (with a byte-order mark, so Excel reads the Cyrillic),
-    measured columns rounded as the specification prints them (:data:`DIGITS`)."""
-    return _rounded(frame).to_csv(index=False, lineterminator="\n").encode("utf-8-sig")
+    measured columns rounded as the specification prints them (:data:`DIGITS`); a text
+    cell a spreadsheet would run as a formula (a project named ``=cmd|…``) starts with
+    ``'`` (:func:`scanplan.safeio.csv_safe`)."""
+    from ..safeio import csv_safe_frame
+
+    return (csv_safe_frame(_rounded(frame)).to_csv(index=False, lineterminator="\n")
+            .encode("utf-8-sig"))
 
 
 def _cell(value: Any) -> Any:

@@ -319,27 +319,39 @@ def _uav_summary(u: Any, loc: str, T: _Terminal, cname: Any) -> list[str]:
     return lines
 
 
-def batch_summary(done: list[tuple[str, Any]], failed: list[tuple[str, str]]) -> str:
-    """One table for a batch of projects: the headline of each, then the failures."""
-    rows = [["project", "map", "film: photo scale", "scan µm", "digital camera: height m", "max m",
-             "binding"]]
-    for path, r in done:
-        f, u = r.film, r.uav
-        rec = f.recommended if f else None
-        rows.append([
-            os.path.basename(path), f"1:{r.project.values['map']['scale']}",
-            (f"1:{scale_value(rec.photo_scale)}" if rec else "none") if f else "—",
-            (_um(rec.scanner_pixel_um or rec.scan_pixel_um) if rec else "—") if f else "—",
-            _num(u.recommended_height_m, 0) if u else "—",
-            _num(u.max_height_m, 0) if u else "—",
-            " / ".join(x for x in ((rec.binding if rec else "") if f else "",
-                                   (u.job.plan.binding or "") if u else "") if x) or "—"])
-    out = table(rows, align="llrrrrl")
+_BATCH_HEADER = ["project", "map", "film: photo scale", "scan µm", "digital camera: height m",
+                 "max m", "binding"]
+
+
+def batch_row(path: str, r: Any) -> list[str]:
+    """The row of one project in :func:`batch_table` (text only: a batch keeps these, not
+    the projects' results)."""
+    f, u = r.film, r.uav
+    rec = f.recommended if f else None
+    return [
+        os.path.basename(path), f"1:{r.project.values['map']['scale']}",
+        (f"1:{scale_value(rec.photo_scale)}" if rec else "none") if f else "—",
+        (_um(rec.scanner_pixel_um or rec.scan_pixel_um) if rec else "—") if f else "—",
+        _num(u.recommended_height_m, 0) if u else "—",
+        _num(u.max_height_m, 0) if u else "—",
+        " / ".join(x for x in ((rec.binding if rec else "") if f else "",
+                               (u.job.plan.binding or "") if u else "") if x) or "—"]
+
+
+def batch_table(rows: list[list[str]], failed: list[tuple[str, str]]) -> str:
+    """One table for a batch of projects: the rows of :func:`batch_row`, then the
+    failures."""
+    out = table([_BATCH_HEADER, *rows], align="llrrrrl")
     if failed:
-        out += f"\n{len(done)} planned, {len(failed)} failed:"
+        out += f"\n{len(rows)} planned, {len(failed)} failed:"
         for path, msg in failed:
             out += "\n" + _wrap(f"{os.path.basename(path)}: {msg}", "  ! ")
     return out
+
+
+def batch_summary(done: list[tuple[str, Any]], failed: list[tuple[str, str]]) -> str:
+    """One table for a batch of projects: the headline of each, then the failures."""
+    return batch_table([batch_row(path, r) for path, r in done], failed)
 
 
 def _volume(uncompressed_bytes: float, loc: str = "en") -> str:
@@ -355,17 +367,20 @@ def _volume(uncompressed_bytes: float, loc: str = "en") -> str:
     return f"{full} GB uncompressed (JPEG ≈ {_n(jpeg, 1, loc, True)} GB at {ratio}:1)"
 
 
+def project_warnings(path: str, r: Any) -> str:
+    """The warnings of one project of a batch under its file name ("" if none)."""
+    if not r.warnings:
+        return ""
+    out = ["", f"Warnings — {os.path.basename(path)}:"]
+    for w in r.warnings:
+        mark = "!" if w.severity == "warning" else "i"
+        out.append(_wrap(f"{w.text(r.meta.locale)} [{w.code}]", f"  {mark} "))
+    return "\n".join(out)
+
+
 def batch_warnings(done: list[tuple[str, Any]]) -> str:
     """The warnings of each project of a batch, under its file name ("" if none)."""
-    out: list[str] = []
-    for path, r in done:
-        if not r.warnings:
-            continue
-        out += ["", f"Warnings — {os.path.basename(path)}:"]
-        for w in r.warnings:
-            mark = "!" if w.severity == "warning" else "i"
-            out.append(_wrap(f"{w.text(r.meta.locale)} [{w.code}]", f"  {mark} "))
-    return "\n".join(out)
+    return "\n".join(t for t in (project_warnings(p, r) for p, r in done) if t)
 
 
 _TERRAIN_TEXT = {

@@ -326,8 +326,32 @@ def validate_inputs(inp: ScanInputs, rules: ScanRules) -> None:
             "object_size_m",
             f"the norm set has no smallest object for map scale 1:{inp.map_scale:g}; "
             "give the object size in m (> 0)")
-    check_domain("probability", rules.probability)
+    check_probability(rules)
     check_domain("pr_coefficient", rules.pr_coefficient)
+
+
+def check_probability(rules: Any) -> None:
+    """P within its domain, and one the rounding can carry.
+
+    The paper's rounding (seed 001, eqs. 9–10; :func:`scanplan.core.formulas.probability_root`)
+    truncates −ln P to two decimals: for P above exp(−0.01) ≈ 0.99005 that is 0, and
+    sqrt(−ln P) = 0 makes the object infinitely large to the model (P_D = 0 µm, a photo
+    scale of 1:0, an infinite resolving power). No result follows from it, so such a P is
+    refused with the paper's rounding; the exact root carries any P of the domain.
+
+    Raises
+    ------
+    InputError
+        ``probability``, naming the range and the remedy.
+    """
+    check_domain("probability", rules.probability)
+    if getattr(rules, "recognition_rounding", "exact") == "paper" and float(
+            F.probability_root(rules.probability, "paper")) <= 0.0:
+        limit = math.floor(math.exp(-0.01) * 1e5) / 1e5
+        raise InputError("probability", f"{rules.probability:g} cannot be used with the "
+                         "paper's rounding (--rounding paper): it truncates −ln P to two "
+                         f"decimals, which is 0 for P > {limit:g}, and the recognition model "
+                         f"then has no answer; give P ≤ {limit:g}, or --rounding exact")
 
 
 def _constraint_name(cid: str) -> dict[str, str]:

@@ -31,12 +31,12 @@ import numpy as np
 from ..core import flight as FL
 from ..core import formulas as F
 from ..core import mtf as M
-from ..core.domains import check_domain
+from ..core.domains import DOMAINS, check_domain
 from ..core.orientation import attitude_matrix, corner_gsd
 from ..errors import FieldValueError, InputError
 from ..messages import Message
 from .constraints import height_accuracy as _height_accuracy  # noqa: F401  (tests, importers)
-from .film import overlap_warning
+from .film import check_probability, overlap_warning
 from .registry import CONSTRAINTS, DigitalLimit, digital_ids
 from .results import (
     HeightLimit,
@@ -226,8 +226,12 @@ def _ceiling_and_height_warnings(inp: UavInputs, rows: list[tuple[str, DigitalLi
                 if inp.height_tolerance_up_pct else None), severity="info"))
     if inp.height_m > max_h * (1 + 1e-9):
         info = CONSTRAINTS[binding]
+        lowest = DOMAINS["height_m"].lo  # below it no height is flown (not "0 m")
+        code = ("height_above_max" if max_h >= lowest else "height_not_feasible"
+                if max_h > 0 else "height_never_feasible")
+        extra = {"lowest": lowest} if code == "height_not_feasible" else {}
         warnings.append(PlanWarning("height_above_max", Message(
-            "height_above_max", height=inp.height_m, max=max_h, cid=binding,
+            code, height=inp.height_m, max=max_h, cid=binding, **extra,
             name={"en": info.name, "ru": info.name_ru},
             tolerance=Message("height_above_max.tolerance",
                               tolerance=inp.height_tolerance_up_pct)
@@ -420,7 +424,7 @@ def plan_uav(inp: UavInputs, rules: ScanRules | None = None) -> UavPlan:
     """
     _check_inputs(inp)
     if rules is not None:
-        check_domain("probability", rules.probability)
+        check_probability(rules)
     band = FL.height_band(inp.height_m, inp.height_tolerance_up_pct / 100.0,
                           inp.height_tolerance_down_pct / 100.0)
     h_plan, h_lo, h_hi = inp.height_m, float(band.min_m), float(band.max_m)

@@ -1,0 +1,95 @@
+"""The output set of ``plan --out`` as the command line writes it: one transaction with
+the sweep of an earlier run's files, the lines it says, the inputs it protects, and the
+``--out`` folders it refuses (docs/reliability.md)."""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable, Mapping
+from typing import Any
+
+import click
+
+from ..errors import InputError
+
+
+def write_set(files: Mapping[str, bytes], *, check: Callable[[], None], sweep: str | None,
+              say: Callable[[str], None], note: str = "") -> None:
+    """Write ``files`` as one transaction (:func:`scanplan.safeio.write_atomic_many`)
+    together with the removal of the exported files of an earlier run into ``sweep``
+    that this run no longer writes (``mission-04.plan`` of six sorties, now three); then
+    say ``wrote FILE`` and ``removed FILE`` lines.
+
+    Parameters
+    ----------
+    files : mapping of str to bytes
+        Every file of the set, in the order of the ``wrote`` lines.
+    check : callable
+        Re-checks the targets under the folder lock.
+    sweep : str or None
+        The ``--out`` folder of a single project (a batch sweeps nothing).
+    say : callable
+        Receives each line.
+    note : str
+        Added to each ``wrote`` line.
+    """
+    from ..safeio import write_atomic_many
+
+    removed: list[str] = []
+
+    def stale() -> list[str]:  # under the transaction's lock, after the check
+        from ..reports.exports import stale_exports
+
+        removed[:] = stale_exports(sweep, set(files)) if sweep else []
+        return removed
+
+    write_atomic_many(files, check=check, remove=stale if sweep else None)
+    for path in files:
+        say(f"wrote {path}{note}")
+    for path in removed:
+        say(f"removed {path} (left from an earlier plan)")
+
+
+def say_export_notes(result: Any, say: Callable[[str], None] | None) -> None:
+    """Say (stderr by default) which mission or photo table ``plan --out`` did not write,
+    and why, in the project's language."""
+    from ..reports.exports import export_notes
+
+    for line in export_notes(result):
+        (say or (lambda text: click.echo(text, err=True)))(
+            f"note: {line.text(result.meta.locale)}")
+
+
+def project_inputs(result: Any) -> list[str]:
+    """The files a planned project read besides itself: its area file, its DEM (never
+    replaced by an output, even with ``--force``)."""
+    project = getattr(result, "project", None)
+    get = getattr(project, "get", None)
+    if get is None:
+        return []
+    found = (get("area", "file"), get("terrain", "dem"))
+    return [os.path.expanduser(f) for f in found if isinstance(f, str) and f]
+
+
+def refuse_dangling_link(path: str) -> None:
+    """``--out`` (or a folder above it) that is a symbolic link to nothing: exit 2 naming
+    it — scanplan creates missing folders, not the target of a broken link."""
+    probe = path
+    while probe and not os.path.exists(probe):
+        if os.path.islink(probe):
+            shown = "" if probe == path else f" (in {path!r})"
+            raise InputError("--out", f"{probe!r}{shown} is a symbolic link to "
+                             f"{os.readlink(probe)!r}, which does not exist; create that "
+                             "folder, or give another")
+        parent = os.path.dirname(probe.rstrip(os.sep))
+        if parent == probe:
+            break
+        probe = parent
+
+
+def batch_text(path: str, result: Any) -> tuple[list[str], str]:
+    """What a text-mode batch keeps of a project: its line of the summary table and its
+    warnings, as text (the result itself is dropped)."""
+    from ..reports.text import batch_row, project_warnings
+
+    return batch_row(path, result), project_warnings(path, result)
