@@ -26,7 +26,7 @@ __all__ = ["DesignView", "design_text_lines", "design_view", "relief_max_height_
            "write_design_sheet", "write_gsd_limits"]
 
 GSD_TABLE = "GOST R 59562-2021, Appendix B, Table B.1"
-SPA = "Reda & Andreas 2004"
+SUN_POSITION = "Meeus 1998"
 
 
 @dataclass(frozen=True)
@@ -213,6 +213,15 @@ def _block_rows(design: Any, w: _W) -> list[tuple[str, str, str]]:
     return [(w.t("design_block"), value, w.cite(design.block_source))]
 
 
+def _zone(s: Any, w: _W) -> str:
+    """The time zone the window's times are in: the site's named zone, or the project's
+    offset from UTC."""
+    utc = f"{s.utc_offset_h:+g}"
+    if s.time_zone:
+        return w.t("design_zone_named", name=s.time_zone, utc=utc)
+    return w.t("design_zone_offset", utc=utc)
+
+
 def _sun_rows(design: Any, w: _W) -> list[tuple[str, str, str]]:
     s = design.sun
     if s is None:
@@ -229,8 +238,8 @@ def _sun_rows(design: Any, w: _W) -> list[tuple[str, str, str]]:
              w.t("design_norm_contract")),
             (w.t("design_sun_window", elev=w.n(s.min_elevation_deg, 0)), w.t(
                 "design_sun_value", date=w.date(first.date), span=span,
-                lo=w.n(lo, 1), hi=w.n(hi, 1), utc=f"{s.utc_offset_h:+g}"),
-             f"{source}; {w.cite(SPA)}")]
+                lo=w.n(lo, 1), hi=w.n(hi, 1), zone=_zone(s, w)),
+             f"{source}; {w.cite(SUN_POSITION)}")]
     if s.days is not None:
         rows.append((w.t("design_sorties"), w.t(
             "design_sorties_value", n=w.n(s.days.sorties, 0),
