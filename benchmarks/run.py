@@ -54,6 +54,7 @@ BENCHMARKS: dict[str, str] = {
     "help": "bench_help",
     "terrain": "bench_terrain",
     "flight_layout": "bench_flight_layout",
+    "sweep": "bench_sweep",
 }
 
 RATIO_FOOTNOTE = (
