@@ -20,7 +20,17 @@ import click
 from .._version import __version__
 from ..errors import InputError, WriteError
 from ..project.inputs import option_names
+from .console import (
+    Progress,
+    closed_pipe,
+    detail,
+    info,
+    set_verbosity,
+    setup_streams,
+    verbosity_options,
+)
 from .options import input_option
+from .projects import check_stdin
 
 OPTION_NAMES = option_names()
 """Python names of inputs (error fields) → the option a user typed (the input registry's)."""
@@ -69,12 +79,19 @@ class ScanplanGroup(click.Group):
             with formatter.section("Commands"):
                 formatter.write_dl(rows)
 
+    def parse_args(self, ctx: click.Context, args: list[str]) -> list[str]:
+        set_verbosity()  # each run starts at the default; -q/-v then set it
+        return super().parse_args(ctx, args)
+
     def invoke(self, ctx: click.Context) -> Any:
+        setup_streams()  # every character written, in any terminal encoding
         try:
             with warnings.catch_warnings():
                 if not os.environ.get("SCANPLAN_DEBUG"):  # no library's warning on a
                     warnings.simplefilter("ignore")  # user's terminal (the tests raise them)
                 return super().invoke(ctx)
+        except BrokenPipeError:  # stdout's reader has gone (| head): stop quietly
+            ctx.exit(closed_pipe())
         except InputError as exc:
             field = OPTION_NAMES.get(exc.field, exc.field)
             click.echo(f"error: {field}: {exc.message}", err=True)
@@ -199,7 +216,7 @@ def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
     force, inputs = opts.pop("force", False), opts.pop("inputs", ())
     fields = opts.pop("fields", {"xlsx": "--xlsx", "pdf": "--pdf"})
     note = opts.pop("note", "")
-    say = opts.pop("say", None) or (lambda line: click.echo(line, err=True))
+    say = opts.pop("say", None) or info
     worker = opts.pop("pdf_worker", None)  # the PDF on the second core (reports.pdfworker)
     from ..outpaths import check_target
     from ..reports import ReportMeta, write_atomic_many
@@ -272,7 +289,7 @@ def _remove_stale_exports(folder: str, written: set[str]) -> None:
                 click.echo(f"warning: {path} is left from an earlier plan and could not be "
                            f"removed ({exc.strerror or exc}); do not fly it", err=True)
             else:
-                click.echo(f"removed {path} (left from an earlier plan)", err=True)
+                info(f"removed {path} (left from an earlier plan)")
 
 
 def _make_folder(path: str) -> list[str]:
@@ -354,6 +371,7 @@ def _split_report_options(kwargs: dict[str, Any]) -> dict[str, Any]:
 @click.group(cls=ScanplanGroup, context_settings={"help_option_names": ["-h", "--help"],
                                                    "max_content_width": 100})
 @click.version_option(__version__, "--version", prog_name="scanplan")
+@verbosity_options
 def main() -> None:
     """scanplan — plan photo scale, scan pixel and UAV flight height for topographic maps.
 
@@ -379,6 +397,7 @@ def _inputs(command: str, names: list[str], **per_name: dict[str, Any]
 
 
 @main.command()
+@verbosity_options
 @_inputs("scan", ["map_scale", "relief_interval_m", "photo_scales", "camera", "focal_mm",
                   "frame_mm", "resolving_power_lpmm", "forward_overlap_pct", "<norms>",
                   "pr_coefficient", "recognition_rounding", "scanner", "pixel_um", "bands",
@@ -454,6 +473,7 @@ def _film_schemes(job: Any, area: Any, side: float) -> list[tuple[Any, Any]]:
 
 
 @main.command()
+@verbosity_options
 @_inputs("uav", ["camera", "pixel_um", "focal_mm", "sensor_mm", "orientation", "f_number",
                  "height_m", "gsd_cm", "max_height_m", "gsd_area", "height_tolerance_pct",
                  "speed_ms",
@@ -524,6 +544,7 @@ def uav(as_json: bool, **kwargs: Any) -> None:
 
 
 @main.command()
+@verbosity_options
 @click.argument("projects", nargs=-1, required=True, type=click.Path())
 @click.option("--out", "out_dir", type=click.Path(file_okay=False),
               help="Write spec.xlsx and spec.pdf into this folder (batch: NAME.xlsx/.pdf, "
@@ -547,7 +568,8 @@ def plan(projects: tuple[str, ...], out_dir: str | None, xlsx_path: str | None,
     """The main job: the scan / flight specification for a mapping contract.
 
     PROJECTS are project files (TOML) or folders of them; several give a batch with one
-    summary table, and a bad file is reported while the others still run.
+    summary table, and a bad file is reported while the others still run. - reads one
+    project from standard input.
 
     \b
     Examples:
@@ -564,6 +586,7 @@ def plan(projects: tuple[str, ...], out_dir: str | None, xlsx_path: str | None,
             files.append(item)
     if not files:
         raise InputError("PROJECTS", "no project files (*.toml) found")
+    check_stdin(files)
     batch = len(files) > 1
     if out_dir and (xlsx_path or pdf_path):
         raise InputError("--out", "give either --out (a folder for both reports) or "
@@ -596,8 +619,8 @@ def _run_project(path: str, out_dir: str | None, stem: str | None, xlsx_path: st
     """Plan one project and write its reports (both or neither); the PlanResult. ``say``
     receives the ``wrote FILE`` lines (default: stderr); ``pdf_worker`` (a
     :class:`scanplan.reports.pdfworker.PdfWorker`) renders the PDF on another core."""
-    from ..project.file import load_project
     from ..project.spec import plan_project
+    from .projects import read_project
 
     targets = {"xlsx_path": xlsx_path, "pdf_path": pdf_path}
     fields = {"xlsx": "--xlsx", "pdf": "--pdf"}
@@ -610,7 +633,7 @@ def _run_project(path: str, out_dir: str | None, stem: str | None, xlsx_path: st
             base = os.path.splitext(os.path.basename(path))[0]
             note = f" (for {path}" + (f"; the name {base} is taken by another project "
                                       "of this batch" if stem != base else "") + ")"
-    result = plan_project(load_project(path))
+    result = plan_project(read_project(path))
     exports = {}
     if out_dir:  # the mission and GIS files join the reports' transaction (issue 11)
         from ..reports.exports import export_files
@@ -652,33 +675,6 @@ def _batch_worker(task: tuple[Any, ...]) -> tuple[str, str, Any, list[str]]:
         return path, "write", exc.message, said
 
 
-class _Progress:
-    """``planning 12/1000`` on stderr, for a batch running longer than a second, and only
-    when stderr is a terminal."""
-
-    def __init__(self, total: int) -> None:
-        import time
-
-        self.total, self.start, self.clock, self.shown = total, time.monotonic(), time, False
-        self.on = sys.stderr.isatty()
-
-    def step(self, done: int) -> None:
-        if self.on and self.clock.monotonic() - self.start > 1.0:
-            sys.stderr.write(f"\rplanning {done}/{self.total}")
-            sys.stderr.flush()
-            self.shown = True
-
-    def clear(self) -> None:
-        """Wipe the progress line before other stderr lines."""
-        if self.shown:
-            sys.stderr.write("\r\x1b[K")
-
-    def close(self) -> None:
-        if self.shown:
-            sys.stderr.write("\n")
-            sys.stderr.flush()
-
-
 def _batch_outcomes(tasks: list[tuple[Any, ...]], jobs: int):  # type: ignore[no-untyped-def]
     """The outcomes of the batch's projects, in the order of the files."""
     if jobs <= 1 or len(tasks) <= 1:
@@ -718,7 +714,7 @@ def _write_summary(out_dir: str, rows: list[dict[str, Any]], force: bool,
     write_atomic_many({targets["csv"]: summary_csv(frame),
                        targets["xlsx"]: summary_xlsx(frame)}, check=check)
     for path in targets.values():
-        click.echo(f"wrote {path}", err=True)
+        info(f"wrote {path}")
 
 
 def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: str | None,
@@ -745,11 +741,12 @@ def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: s
     rows: list[dict[str, Any]] = []
     stream = _JsonStream("projects") if as_json else None
     stopped = ""  # a write failure (disk full) stops the batch: the project it stopped at
-    progress = _Progress(len(files))
+    progress = Progress(len(files), "planning", "projects")
     for n, (path, outcome, payload, said) in enumerate(_batch_outcomes(tasks, jobs), start=1):
         progress.clear()
         for line in said:  # in the order of the files, whichever worker ran them
-            click.echo(line, err=True)
+            info(line)
+        detail(f"{n}/{len(files)} {path}: {outcome}")
         progress.step(n)
         if outcome == "ok":
             result, doc, row = payload
