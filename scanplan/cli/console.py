@@ -8,8 +8,8 @@
 - **A closed pipe.** When the reader of stdout goes away (``scanplan … | head``) the
   command stops quietly with exit code :data:`EXIT_PIPE` (141, as a program that the
   shell reports killed by SIGPIPE), printing nothing more (:func:`closed_pipe`).
-- **Verbosity.** ``-q`` leaves only errors on stderr (no ``wrote FILE`` lines, no
-  progress, no notes); ``-v`` adds how long each project took. :func:`info` prints a
+- **Verbosity.** ``-q`` leaves only warnings and errors on stderr (no ``wrote FILE``
+  lines, no progress); ``-v`` adds a line per project of a batch as it is done. :func:`info` prints a
   note unless quiet, :func:`detail` only when verbose.
 - **Progress.** :func:`progress` is click's progress bar (count, rate, time left) on
   stderr, shown only when stderr is a terminal and not quiet; off a terminal nothing
@@ -107,7 +107,8 @@ def verbosity_options(f: Any) -> Any:
     f = click.option("-v", "--verbose", count=True, expose_value=False, callback=_verbose,
                      help="Say more on stderr: each project of a batch as it is done.")(f)
     return click.option("-q", "--quiet", is_flag=True, expose_value=False, callback=_quiet,
-                        help="Only errors on stderr: no 'wrote FILE' lines, no progress.")(f)
+                        help="Only warnings and errors on stderr: no 'wrote FILE' lines, no "
+                        "progress.")(f)
 
 
 def info(line: str) -> None:
