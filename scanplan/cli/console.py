@@ -9,9 +9,9 @@
   command stops quietly with exit code :data:`EXIT_PIPE` (141, as a program that the
   shell reports killed by SIGPIPE), printing nothing more (:func:`closed_pipe`).
 - **Verbosity.** ``-q`` leaves only warnings and errors on stderr (no ``wrote FILE``
-  lines, no progress); ``-v`` adds a line per project of a batch as it is done. :func:`info` prints a
-  note unless quiet, :func:`detail` only when verbose.
-- **Progress.** :func:`progress` is click's progress bar (count, rate, time left) on
+  lines, no progress); ``-v`` adds a line per project of a batch as it is done.
+  :func:`info` prints a note unless quiet, :func:`detail` only when verbose.
+- **Progress.** :class:`Progress` is click's progress bar (count, rate, time left) on
   stderr, shown only when stderr is a terminal and not quiet; off a terminal nothing
   is drawn.
 """
