@@ -3,7 +3,7 @@
 - **Encodings.** Text goes out in the stream's own encoding. Where that encoding cannot
   show a character (``σ`` or ``×`` in cp1251, ``—`` in cp866, anything beyond ASCII in a
   C locale) the character is written as its ASCII stand-in (``sigma``, ``x``, ``-``) and,
-  failing that, as ``?``: the error handler :data:`FALLBACK` is set on stdout and stderr
+  failing that, as ``?``: an error handler (:func:`fallback_handler`) is set on stdout and stderr
   (:func:`setup_streams`), so no report ever stops on an encoding.
 - **A closed pipe.** When the reader of stdout goes away (``scanplan … | head``) the
   command stops quietly with exit code :data:`EXIT_PIPE` (141, as a program that the
@@ -30,15 +30,16 @@ from typing import Any
 
 import click
 
-__all__ = ["EXIT_PIPE", "FALLBACK", "Progress", "closed_pipe", "detail", "info", "progress",
+__all__ = ["EXIT_PIPE", "FALLBACK", "Progress", "closed_pipe", "detail", "fallback_handler",
+           "info", "progress",
            "set_verbosity", "setup_streams", "verbosity", "verbosity_options"]
 
 EXIT_PIPE = 141
 """Exit code when stdout's reader has gone (128 + SIGPIPE)."""
 
 FALLBACK = "scanplan-ascii"
-"""The codec error handler that writes a character the stream cannot encode as its ASCII
-stand-in, else ``?``."""
+"""The prefix of the codec error handlers (:func:`fallback_handler`) that write a character
+the stream cannot encode as its ASCII stand-in, else ``?``."""
 
 _ASCII = {
     "σ": "sigma", "Σ": "Sum", "×": "x", "·": "*", "−": "-", "–": "-", "—": "-", "…": "...",
@@ -54,7 +55,9 @@ _ASCII = {
 def _stand_in(char: str, encoding: str) -> str:
     """What to write for ``char`` in ``encoding``: its stand-in, its letters without
     accents, else ``?``."""
-    for candidate in (_ASCII.get(char), unicodedata.normalize("NFKD", char)):
+    bare = "".join(c for c in unicodedata.normalize("NFKD", char)
+                   if not unicodedata.combining(c))
+    for candidate in (_ASCII.get(char), bare):
         if candidate:
             try:
                 candidate.encode(encoding)
@@ -64,14 +67,22 @@ def _stand_in(char: str, encoding: str) -> str:
     return "?"
 
 
-def _handler(exc: UnicodeError) -> tuple[str, int]:
-    if not isinstance(exc, UnicodeEncodeError):
-        raise exc
-    text = exc.object[exc.start:exc.end]
-    return "".join(_stand_in(c, exc.encoding) for c in text), exc.end
+def fallback_handler(encoding: str) -> str:
+    """The name of the error handler for streams in ``encoding`` (registered on first use:
+    a code-page codec reports itself as "charmap", so each encoding has its own)."""
+    name = f"{FALLBACK}:{encoding}"
+    try:
+        codecs.lookup_error(name)
+    except LookupError:
+        def handler(exc: UnicodeError) -> tuple[str, int]:
+            if not isinstance(exc, UnicodeEncodeError):
+                raise exc
+            text = exc.object[exc.start:exc.end]
+            return "".join(_stand_in(c, encoding) for c in text), exc.end
 
+        codecs.register_error(name, handler)
+    return name
 
-codecs.register_error(FALLBACK, _handler)
 
 _state: dict[str, int] = {"verbosity": 0}
 
@@ -128,16 +139,16 @@ def _fallback(stream: Any) -> None:
     if not isinstance(stream, io.TextIOWrapper):
         return
     encoding = codecs.lookup(stream.encoding or "ascii").name
-    if encoding.startswith("utf") or stream.errors == FALLBACK:
+    if encoding.startswith("utf") or (stream.errors or "").startswith(FALLBACK):
         return
     try:
-        stream.reconfigure(errors=FALLBACK)
+        stream.reconfigure(errors=fallback_handler(encoding))
     except (ValueError, io.UnsupportedOperation):  # pragma: no cover - a closed stream
         pass
 
 
 def setup_streams() -> None:
-    """Make stdout and stderr write every character (:data:`FALLBACK`)."""
+    """Make stdout and stderr write every character (:func:`fallback_handler`)."""
     _fallback(sys.stdout)
     _fallback(sys.stderr)
 
