@@ -323,7 +323,9 @@ def parse_project(text: str, path: str | os.PathLike[str] = "project.toml") -> P
                          "(at most about 1.8e308)") from None
     except RecursionError:  # the nesting check above should make this unreachable
         raise InputError(str(p), "nests arrays or inline tables too deeply") from None
-    flat = _flatten(doc)
+    from .userconfig import with_user_defaults
+
+    flat = with_user_defaults(_flatten(doc))  # the user's [project] defaults, if any
     for section, table in flat.items():
         if section not in KEYS:
             line = lines.get(section)
