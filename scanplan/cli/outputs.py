@@ -108,7 +108,8 @@ def pdf_renderer(explicit: bool = False) -> Callable[..., bytes] | None:
     try:
         return _load_engine()
     except (OSError, ImportError) as exc:  # cffi's dlopen of Pango, or no WeasyPrint
-        reason = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        text = str(exc)  # the library's own first line: what could not be loaded
+        reason = text.splitlines()[0] if text.strip() else type(exc).__name__
         _state["missing"] = reason
         if not _state["warned"]:
             _state["warned"] = True
