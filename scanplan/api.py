@@ -473,7 +473,9 @@ def _load(project: Any) -> Any:
     from .project.file import load_project, parse_project
 
     if isinstance(project, Mapping):
-        return parse_project(_toml(project), "project.toml")
+        from .project.signature import plain
+
+        return parse_project(_toml(plain(project)), "project.toml")
     if isinstance(project, os.PathLike) or (isinstance(project, str) and "\n" not in project
                                             and "=" not in project):
         return load_project(project)

@@ -68,6 +68,9 @@ def test_numpy_numbers_are_taken_as_numbers(kind):
                      relief_interval_m=np.float32(0.5), forward_overlap_pct=kind(80),
                      speed_ms=kind(10))
     assert r.plan.gsd_m == base.plan.gsd_m and r.plan.max_height_m == base.plan.max_height_m
+    p = scanplan.plan({"map": {"scale": kind(2000), "relief_interval_m": np.float32(0.5)},
+                       "uav": {"camera": P1, "height_m": kind(100)}})
+    assert p.uav.plan.gsd_m == base.plan.gsd_m
     s = scanplan.scan(map_scale=kind(2000), relief_interval_m=kind(1),
                       photo_scales=[kind(8000), kind(10000)], camera="afa-te-100")
     assert list(s.to_frame()["photo_scale"]) == [8000, 10000]
