@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import datetime as dt
 import json
+from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
@@ -91,8 +92,17 @@ def test_plan_names_the_zone_and_prints_legal_time(tmp_path):
     # the legal time is an hour ahead of the solar zone's
     assert (_minutes(sun["first_window"]["start"]) - _minutes(sun6["first_window"]["start"])
             == 60)
-    for locale, word in (("en", "time zone Asia/Novosibirsk, UTC+7"),
-                         ("ru", "часовой пояс Asia/Novosibirsk, всемирное время +7 ч")):
+    for locale, word in (("en", "time zone Asia/Novosibirsk (MSK+4), UTC+7"),
+                         ("ru", "время МСК+4, всемирное время +7 ч")):
         res = CliRunner().invoke(main, ["plan", _project(tmp_path, "", locale)])
         assert res.exit_code == 0, res.output
         assert word in " ".join(res.stdout.split())  # the terminal wraps lines
+
+
+def test_zones_outside_russia_are_named_by_their_iana_name(tmp_path):
+    path = Path(_project(tmp_path, ""))
+    path.write_text(path.read_text(encoding="utf-8").replace("lat_deg = 55.03", "lat_deg = "
+                    "52.52").replace("lon_deg = 82.92", "lon_deg = 13.40"), encoding="utf-8")
+    res = CliRunner().invoke(main, ["plan", str(path)])
+    assert res.exit_code == 0, res.output
+    assert "time zone Europe/Berlin, UTC+2" in " ".join(res.stdout.split())

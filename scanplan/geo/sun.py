@@ -34,7 +34,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 __all__ = ["FlyingDays", "SunWindow", "equal_sorties_s", "flying_days", "sun_elevation_deg",
-           "sun_windows", "time_zone_at", "utc_offset_h_on"]
+           "sun_windows", "time_zone_at", "utc_offset_h_on", "zone_country"]
 
 STEP_MIN = 2.0
 """Time step of the daily search [min]: windows are accurate to about this step."""
@@ -96,6 +96,43 @@ def time_zone_at(lat_deg: float, lon_deg: float) -> str:
     import tzfpy
 
     return str(tzfpy.get_tz(float(lon_deg), float(lat_deg)))
+
+
+def zone_country(time_zone: str) -> str | None:
+    """The ISO 3166 country code of an IANA zone (``"RU"`` for ``"Asia/Novosibirsk"``), from
+    the time-zone database's ``zone.tab`` (tzdata's, else the system's); None when the zone
+    is no country's (``"Etc/GMT-5"``) or the table is missing.
+
+    >>> zone_country("Asia/Novosibirsk"), zone_country("Etc/GMT-5")
+    ('RU', None)
+    """
+    return _zone_countries().get(time_zone)
+
+
+def _zone_countries() -> dict[str, str]:
+    if _ZONE_COUNTRIES:
+        return _ZONE_COUNTRIES
+    text = ""
+    try:
+        from importlib.resources import files
+
+        text = files("tzdata.zoneinfo").joinpath("zone.tab").read_text(encoding="utf-8")
+    except (ImportError, OSError):
+        for folder in ("/usr/share/zoneinfo", "/usr/lib/zoneinfo"):
+            try:
+                with open(f"{folder}/zone.tab", encoding="utf-8") as f:
+                    text = f.read()
+                break
+            except OSError:
+                continue
+    for line in text.splitlines():
+        parts = line.split("\t")
+        if len(parts) >= 3 and not line.startswith("#"):
+            _ZONE_COUNTRIES[parts[2]] = parts[0]
+    return _ZONE_COUNTRIES
+
+
+_ZONE_COUNTRIES: dict[str, str] = {}
 
 
 def utc_offset_h_on(time_zone: str, date: dt.date) -> float:

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..core import flight as FL
+from ..geo.sun import zone_country
 from ..messages import Message, localize, scale_text
 from ..rules.registry import CONSTRAINTS
 from .labels import t
@@ -27,6 +28,9 @@ __all__ = ["DesignView", "design_text_lines", "design_view", "relief_max_height_
 
 GSD_TABLE = "GOST R 59562-2021, Appendix B, Table B.1"
 SUN_POSITION = "Meeus 1998"
+MSK_UTC_OFFSET_H = 3.0
+"""Moscow time, from which Russia's time zones are counted (МСК+N), is UTC+3 [h]
+(Federal Law No. 107-FZ "On the calculation of time", art. 5)."""
 
 
 @dataclass(frozen=True)
@@ -217,6 +221,10 @@ def _zone(s: Any, w: _W) -> str:
     """The time zone the window's times are in: the site's named zone, or the project's
     offset from UTC."""
     utc = f"{s.utc_offset_h:+g}"
+    if s.time_zone and zone_country(s.time_zone) == "RU":  # Russia's zones: MSK−1 … MSK+9
+        msk = s.utc_offset_h - MSK_UTC_OFFSET_H
+        return w.t("design_zone_msk", name=s.time_zone, utc=utc,
+                   msk=f"{msk:+g}".replace("-", "−") if msk else "")
     if s.time_zone:
         return w.t("design_zone_named", name=s.time_zone, utc=utc)
     return w.t("design_zone_offset", utc=utc)

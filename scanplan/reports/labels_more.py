@@ -260,6 +260,7 @@ DESIGN: dict[str, dict[str, str]] = {
         "design_sun_value": "{date}: {span} local time ({zone}); {lo}–{hi} h a day over "
                             "the dates",
         "design_zone_named": "time zone {name}, UTC{utc}",
+        "design_zone_msk": "time zone {name} (MSK{msk}), UTC{utc}",
         "design_zone_offset": "UTC{utc}",
         "design_sorties": "Sorties",
         "design_sorties_value": "{n} of up to {sortie} min, {turn} min between them",
@@ -325,6 +326,7 @@ DESIGN: dict[str, dict[str, str]] = {
         "design_sun_value": "{date}: {span} местного времени ({zone}); "
                             "{lo}–{hi} ч в сутки за период",
         "design_zone_named": "часовой пояс {name}, всемирное время {utc} ч",
+        "design_zone_msk": "время МСК{msk}, всемирное время {utc} ч",
         "design_zone_offset": "всемирное время {utc} ч",
         "design_sorties": "Вылеты",
         "design_sorties_value": "{n} продолжительностью до {sortie} мин, {turn} мин между "
