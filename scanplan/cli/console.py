@@ -24,15 +24,12 @@ import os
 import sys
 import time
 import unicodedata
-from collections.abc import Iterator
-from contextlib import contextmanager
 from typing import Any
 
 import click
 
 __all__ = ["EXIT_PIPE", "FALLBACK", "Progress", "closed_pipe", "detail", "fallback_handler",
-           "info", "progress",
-           "set_verbosity", "setup_streams", "verbosity", "verbosity_options"]
+           "info", "set_verbosity", "setup_streams", "verbosity", "verbosity_options"]
 
 EXIT_PIPE = 141
 """Exit code when stdout's reader has gone (128 + SIGPIPE)."""
@@ -207,13 +204,3 @@ class Progress:
         if self.bar is not None:
             self.bar.__exit__(None, None, None)
             self.bar = None
-
-
-@contextmanager
-def progress(total: int, label: str, unit: str = "") -> Iterator[Progress]:
-    """A :class:`Progress`, closed however the work ends."""
-    bar = Progress(total, label, unit)
-    try:
-        yield bar
-    finally:
-        bar.close()
