@@ -55,6 +55,7 @@ BENCHMARKS: dict[str, str] = {
     "terrain": "bench_terrain",
     "flight_layout": "bench_flight_layout",
     "hostile_gis": "bench_hostile_gis",
+    "sweep": "bench_sweep",
 }
 
 RATIO_FOOTNOTE = (

@@ -6,7 +6,8 @@ resolution of seed 000, combined into a plan for a mapping contract.
 
 The top-level functions (:mod:`scanplan.api`) — :func:`plan`, :func:`scan`, :func:`uav`,
 :func:`batch` — return results with ``to_dict()`` (the ``--json`` document), ``to_frame()``
-(pandas), ``write()`` and a notebook summary. They are imported on first use, so that
+(pandas), ``write()`` and a notebook summary; :func:`sweep` returns a grid of UAV plans
+as one DataFrame. They are imported on first use, so that
 ``import scanplan`` (and ``scanplan --help``) stays light: no numpy until a plan is asked
 for.
 """
@@ -19,9 +20,10 @@ from ._version import __version__
 from .errors import InputError
 
 __all__ = ["BatchResult", "InputError", "ProjectResult", "ScanResult", "UavResult",
-           "__version__", "batch", "load_norm_set", "plan", "scan", "uav"]
+           "__version__", "batch", "load_norm_set", "plan", "scan", "sweep", "uav"]
 
-_LAZY = {"plan": "api", "scan": "api", "uav": "api", "batch": "api", "BatchResult": "api",
+_LAZY = {"plan": "api", "scan": "api", "uav": "api", "sweep": "api", "batch": "api",
+         "BatchResult": "api",
          "ProjectResult": "api", "ScanResult": "api", "UavResult": "api",
          "load_norm_set": "norms"}
 

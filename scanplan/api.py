@@ -8,7 +8,11 @@
   class);
 - ``.write(out_dir, formats=("xlsx", "pdf"))`` — the reports, through the same atomic
   writers as ``scanplan plan --out``;
-- ``_repr_html_`` — a short summary a notebook shows.
+- ``_repr_html_`` — a short summary a notebook shows (and a one-line ``repr``).
+
+A UAV result also has ``.photos``, the photo centres of its flight layout as a DataFrame.
+``scanplan.sweep(...)`` evaluates a grid of cameras, overlaps and heights as one table.
+Numbers may be any :class:`numbers.Real` (``np.int64``, ``np.float32``).
 
 pandas is imported inside ``to_frame`` only: ``import scanplan`` stays light.
 
@@ -37,8 +41,20 @@ if TYPE_CHECKING:  # pragma: no cover
     from .project.api import ScanJob, UavJob
     from .project.spec import PlanResult
 
-__all__ = ["BatchResult", "ProjectResult", "ScanResult", "UavResult", "batch", "plan",
-           "scan", "summary_frame", "summary_row", "uav"]
+__all__ = [
+    "BatchResult",
+    "ProjectResult",
+    "ScanResult",
+    "UavResult",
+    "batch",
+    "photos_frame",
+    "plan",
+    "scan",
+    "summary_frame",
+    "summary_row",
+    "sweep",
+    "uav",
+]
 
 FORMATS = ("xlsx", "pdf")
 
@@ -96,6 +112,48 @@ def _fmt(x: float | None, digits: int = 1, unit: str = "") -> str:
     return "—" if x is None else f"{x:,.{digits}f}{(' ' + unit) if unit else ''}"
 
 
+def _typed(frame: pd.DataFrame, strings: Iterable[str] = (), floats: Iterable[str] = (),
+           flags: Iterable[str] = ()) -> pd.DataFrame:
+    """Columns cast to pandas ``string``, ``float64`` (None → NaN) and ``boolean``: no
+    object column, so frames of many results concatenate cleanly."""
+    for col in strings:
+        frame[col] = frame[col].astype("string")
+    for col in floats:
+        frame[col] = frame[col].astype("float64")
+    for col in flags:
+        frame[col] = frame[col].astype("boolean")
+    return frame
+
+
+def photos_frame(layout: Any) -> pd.DataFrame:
+    """The photo centres of a flight layout, one row each (the columns of ``photos.csv``:
+    :data:`scanplan.geo.layout.PHOTO_COLUMNS`, units in the names); numbering columns as
+    integers. Empty, with those columns, when there is no layout.
+
+    Examples
+    --------
+    >>> import scanplan
+    >>> r = scanplan.uav(camera="dji-zenmuse-p1-35", height_m=100, area_m="300x400")
+    >>> photos = r.photos
+    >>> len(photos) == r.plan.flight["photos"], str(photos["strip"].dtype)
+    (True, 'int64')
+    """
+    import numpy as np
+    import pandas as pd
+
+    from .geo.export.gis import photo_columns
+    from .geo.layout import PHOTO_COLUMNS
+
+    if layout is None:
+        return pd.DataFrame({c: pd.Series(dtype="float64") for c in PHOTO_COLUMNS})
+    ph = layout.photos
+    frame = pd.DataFrame({c: np.asarray(ph[c]) for c in photo_columns(ph)})
+    for col in ("photo", "strip", "index", "sortie"):
+        if col in frame:
+            frame[col] = frame[col].astype("int64")
+    return frame
+
+
 class _JobPlan:
     """What a film and a UAV result share: the engine plan (``.plan``: a
     :class:`~scanplan.rules.results.ScanPlan` or ``UavPlan``) and its fields read through
@@ -147,7 +205,18 @@ class ScanResult(_JobPlan):
                 "frame_megabytes": s.frame_megabytes}
             row.update({f"pixel_um_{c.id}": c.pixel_um for c in s.constraints})
             rows.append(row)
-        return pd.DataFrame(rows)
+        frame = pd.DataFrame(rows)
+        numbers = [c for c in frame.columns if c not in ("photo_scale", "binding")]
+        if frame["photo_scale"].dtype != "int64":
+            numbers.append("photo_scale")
+        return _typed(frame, strings=["binding"], floats=numbers)
+
+    def __repr__(self) -> str:
+        sc = self.job.plan.scenarios
+        shown = ", ".join(f"1:{x.photo_scale:g} → {x.scan_pixel_um:.1f} µm ({x.binding})"
+                          for x in sc[:3])
+        more = f", … {len(sc) - 3} more" if len(sc) > 3 else ""
+        return f"<ScanResult scan pixel by photo scale: {shown}{more}>"
 
     def write(self, out_dir: str | os.PathLike[str], formats: Iterable[str] = FORMATS, *,
               name: str = "scan", force: bool = False) -> list[Path]:
@@ -189,7 +258,23 @@ class UavResult(_JobPlan):
                  "max_flown_height_m": c.get("max_flown_height_m"),
                  "margin_pct": c.get("margin_pct"), "binding": bool(c.get("binding"))}
                 for cid, c in (self.to_dict().get("constraints") or {}).items()]
-        return pd.DataFrame(rows, columns=cols)
+        return _typed(pd.DataFrame(rows, columns=cols),
+                      strings=["constraint", "name", "compares"],
+                      floats=["limit_m", "max_planned_height_m", "max_flown_height_m",
+                              "margin_pct"], flags=["binding"])
+
+    @property
+    def photos(self) -> pd.DataFrame:
+        """The photo centres of the flight layout (:func:`photos_frame`); empty without an
+        area."""
+        return photos_frame(self.job.layout)
+
+    def __repr__(self) -> str:
+        p = self.job.plan
+        top = "" if p.max_height_m is None else \
+            f", maximum planned {p.max_height_m:.0f} m ({p.binding})"
+        return (f"<UavResult {p.inputs.camera or 'camera'} at {p.heights_m['planned']:g} m: "
+                f"GSD {p.gsd_m * 100:.2f} cm{top}>")
 
     def write(self, out_dir: str | os.PathLike[str], formats: Iterable[str] = FORMATS, *,
               name: str = "uav", force: bool = False) -> list[Path]:
@@ -230,11 +315,16 @@ def summary_frame(rows: list[dict[str, Any]], columns: Iterable[str] = SUMMARY_C
     import pandas as pd
 
     frame = pd.DataFrame(rows, columns=list(columns))
-    for col in ("map_scale", "film_photo_scale", "film_frames", "uav_photos"):
+    whole = ("map_scale", "film_photo_scale", "film_frames", "uav_photos")
+    for col in whole:
         values = frame[col].dropna()
         if all(isinstance(v, int | float) and float(v).is_integer() for v in values):
             frame[col] = frame[col].astype("Int64")
-    return frame
+        else:
+            frame[col] = frame[col].astype("float64")
+    text = ("project", "file", "film_binding", "uav_binding", "warnings", "error")
+    return _typed(frame, strings=[c for c in text if c in frame],
+                  floats=[c for c in frame.columns if c not in text and c not in whole])
 
 
 def summary_row(result: PlanResult) -> dict[str, Any]:
@@ -302,6 +392,24 @@ class ProjectResult:
         """The summary row (columns: :data:`SUMMARY_COLUMNS`)."""
         return summary_frame([summary_row(self.spec)])
 
+    @property
+    def photos(self) -> pd.DataFrame:
+        """The photo centres of the UAV (else the film) flight layout (:func:`photos_frame`;
+        a terrain plan's own columns too); empty without an area."""
+        part = self.spec.uav or self.spec.film
+        return photos_frame(getattr(part, "layout", None) if part is not None else None)
+
+    def __repr__(self) -> str:
+        row = summary_row(self.spec)
+        parts = [f"1:{row['map_scale']}" if row["map_scale"] else ""]
+        if row["film_photo_scale"]:
+            parts.append(f"film 1:{row['film_photo_scale']:g}")
+        if row["uav_recommended_height_m"]:
+            parts.append(f"UAV {row['uav_recommended_height_m']:g} m")
+        warn = len(self.spec.warnings)
+        return (f"<ProjectResult {self.spec.meta.project!r}: "
+                f"{', '.join(p for p in parts if p)}; {warn} warnings>")
+
     def write(self, out_dir: str | os.PathLike[str], formats: Iterable[str] = FORMATS, *,
               name: str = "spec", force: bool = False) -> list[Path]:
         """Write ``spec.xlsx`` / ``spec.pdf`` into ``out_dir`` as ``scanplan plan --out``."""
@@ -338,6 +446,9 @@ class BatchResult:
         """One row per planned project (columns: :data:`SUMMARY_COLUMNS`)."""
         return summary_frame([summary_row(r.spec) for r in self.results])
 
+    def __repr__(self) -> str:
+        return f"<BatchResult {len(self.results)} planned, {len(self.errors)} errors>"
+
     def write(self, out_dir: str | os.PathLike[str], formats: Iterable[str] = FORMATS, *,
               force: bool = False) -> list[Path]:
         """Each project's reports as ``STEM.xlsx`` / ``STEM.pdf`` (as ``scanplan plan DIR
@@ -362,7 +473,9 @@ def _load(project: Any) -> Any:
     from .project.file import load_project, parse_project
 
     if isinstance(project, Mapping):
-        return parse_project(_toml(project), "project.toml")
+        from .project.signature import plain
+
+        return parse_project(_toml(plain(project)), "project.toml")
     if isinstance(project, os.PathLike) or (isinstance(project, str) and "\n" not in project
                                             and "=" not in project):
         return load_project(project)
@@ -436,9 +549,36 @@ def plan(project: str | os.PathLike[str] | Mapping[str, Any]) -> ProjectResult:
     return ProjectResult(plan_project(_load(project)))
 
 
+def _registry_keywords(engine: Any, plan_kind: str, returns: str) -> Any:
+    """Give an API function the keyword signature and the numpydoc *Parameters* of the
+    engine's inputs, generated from the input registry (:mod:`scanplan.project.signature`);
+    the function's own docstring keeps its summary and examples."""
+    from .project.signature import parameters_doc, registry_signature
+
+    def wrap(fn: Any) -> Any:
+        fn.__signature__ = registry_signature(engine, plan_kind, returns)
+        summary, _, examples = (fn.__doc__ or "").partition("    Examples\n")
+        params = "\n".join("    " + line if line else "" for line in
+                           parameters_doc(engine, plan_kind).splitlines())
+        fn.__doc__ = (summary.rstrip() + "\n\n" + params + "\n\n    Returns\n    -------\n"
+                      f"    {returns}\n\n    Raises\n    ------\n    InputError\n"
+                      "        Naming the input and its allowed range.\n\n"
+                      + ("    Examples\n" + examples if examples else ""))
+        return fn
+
+    return wrap
+
+
+def _engine(name: str) -> Any:
+    from .project import api as engine
+
+    return getattr(engine, name)
+
+
+@_registry_keywords(_engine("scan_job"), "film", "ScanResult")
 def scan(**inputs: Any) -> ScanResult:
-    """Plan the scanning of film photos, as ``scanplan scan`` (keywords: the options'
-    Python names, :func:`scanplan.project.api.scan`).
+    """Plan the scanning of film photos, as ``scanplan scan``: every constraint at each
+    candidate photo scale. Numbers may be any :class:`numbers.Real`.
 
     Examples
     --------
@@ -449,25 +589,81 @@ def scan(**inputs: Any) -> ScanResult:
     [8000, 10000]
     """
     from .project.api import scan_job
+    from .project.signature import plain
 
-    return ScanResult(scan_job(**inputs))
+    return ScanResult(scan_job(**plain(inputs)))
 
 
+@_registry_keywords(_engine("uav_job"), "uav", "UavResult")
 def uav(**inputs: Any) -> UavResult:
-    """Plan a digital-camera flight, as ``scanplan uav`` (keywords: the options' Python
-    names, :func:`scanplan.project.api.uav_job`).
+    """Plan a digital-camera flight, as ``scanplan uav``: GSD, the MTF ground resolution,
+    blur, flight geometry and, with a map scale or a target GSD, the maximum planned
+    height under every limit. Numbers may be any :class:`numbers.Real`.
 
     Examples
     --------
-    >>> import scanplan
-    >>> r = scanplan.uav(camera="dji-zenmuse-p1-35", height_m=100, map_scale=1000,
-    ...                  relief_interval_m=0.5)
+    >>> import numpy as np, scanplan
+    >>> r = scanplan.uav(camera="dji-zenmuse-p1-35", height_m=np.int64(100),
+    ...                  map_scale=1000, relief_interval_m=np.float32(0.5))
     >>> "max_planned_height_m" in r.to_frame().columns
     True
     """
     from .project.api import uav_job
+    from .project.signature import plain
 
-    return UavResult(uav_job(**inputs))
+    return UavResult(uav_job(**plain(inputs)))
+
+
+def sweep(*, height_m: Any, camera: Any = None, forward_overlap_pct: Any = None,
+          side_overlap_pct: Any = None, **inputs: Any) -> pd.DataFrame:
+    """A grid of UAV plans as one tidy table: every camera × forward overlap × side overlap
+    × height, the heights of each in one vectorised engine pass.
+
+    Parameters
+    ----------
+    height_m : Real or sequence of Real
+        Planned heights above ground. Unit: m.
+    camera : str or sequence of str, optional
+        Catalogue camera ids (``scanplan cameras list``); None with ``pixel_um``,
+        ``focal_mm`` and ``sensor_mm``.
+    forward_overlap_pct, side_overlap_pct : Real or sequence of Real, optional
+        Overlaps. Unit: %. Default: the carrier's, as :func:`uav`.
+    **inputs
+        Any other keyword of :func:`uav`, one value each (not ``area``, ``area_m``,
+        ``layout_options``: a sweep lays out no flight).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per combination; the columns (units in their names) are
+        :data:`scanplan.project.sweep.SWEEP_FRAME_COLUMNS`: ``camera``, ``height_m``,
+        the overlaps, ``gsd_cm``, ``resolution_cm`` (MTF L), ``motion_blur_px``,
+        footprints, ``base_m``, ``line_spacing_m``, ``photo_interval_s``,
+        ``max_planned_height_m``, ``binding``, ``within_limits``. Each row equals
+        :func:`uav` with the same inputs.
+
+    Raises
+    ------
+    InputError
+        Naming the input, and the camera for an error of one camera (no f-number).
+
+    Examples
+    --------
+    >>> import numpy as np, scanplan
+    >>> t = scanplan.sweep(camera=["dji-zenmuse-p1-35", "dji-mavic-3e"],
+    ...                    height_m=np.arange(60, 160, 20), map_scale=2000,
+    ...                    relief_interval_m=0.5)
+    >>> t.shape, str(t["gsd_cm"].dtype), str(t["camera"].dtype)
+    ((10, 17), 'float64', 'string')
+    """
+    from .project.signature import plain
+    from .project.sweep import sweep_frame
+
+    heights = plain(list(height_m) if not isinstance(height_m, str | bytes) and
+                    hasattr(height_m, "__iter__") else height_m)
+    return sweep_frame(height_m=heights, camera=camera,
+                       forward_overlap_pct=plain(forward_overlap_pct),
+                       side_overlap_pct=plain(side_overlap_pct), **plain(inputs))
 
 
 def project_files(paths: Iterable[str | os.PathLike[str]]) -> list[str]:

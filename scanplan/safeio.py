@@ -30,8 +30,8 @@ from .errors import InputError, NotFoundError, WriteError
 from .journal import JOURNAL_NAME, Entry, Journal, recover
 from .outpaths import folder_lock, name_max
 
-__all__ = ["csv_safe", "csv_safe_frame", "dir_lock", "file_kind", "fsync_dir", "read_limited",
-           "size_text", "write_all", "write_atomic", "write_atomic_many"]
+__all__ = ["csv_safe", "csv_safe_frame", "dir_lock", "file_kind", "fsync_dir", "lock_file_for",
+           "read_limited", "size_text", "write_all", "write_atomic", "write_atomic_many"]
 
 
 _FORMULA_START = ("=", "+", "-", "@", "\t", "\r")
@@ -210,21 +210,37 @@ def fsync_dir(folder: str | os.PathLike[str]) -> None:
 _HELD: dict[str, int] = {}  # folders this process holds a dir_lock on → nesting depth
 
 
+def lock_file_for(folder: str | os.PathLike[str]) -> Path:
+    """The lock file of ``folder``: in the user's cache folder (the platform's, through
+    platformdirs), named by a hash of the folder's real path — never a file inside the
+    folder itself, which may be read-only or a user's own project folder."""
+    import hashlib
+
+    import platformdirs
+
+    real = os.path.normcase(os.path.realpath(folder))
+    digest = hashlib.sha256(os.fsencode(real)).hexdigest()[:32]
+    return platformdirs.user_cache_path("scanplan", appauthor=False) / "locks" / \
+        f"{digest}.lock"
+
+
 @contextlib.contextmanager
 def dir_lock(folder: str | os.PathLike[str], *, exclusive: bool) -> Iterator[None]:
-    """Hold a ``flock`` on ``folder``: shared for readers, exclusive for writers.
+    """Hold a reader/writer lock on ``folder``: shared for readers, exclusive for writers.
 
-    A no-op where ``flock`` is missing (not POSIX) or the folder cannot be opened (it does
-    not exist, no permission): locking is cooperation between scanplan processes. A lock
-    this process already holds on the folder covers a nested request (``flock`` locks of
-    one process on two descriptors would otherwise wait for each other for ever).
+    filelock's :class:`~filelock.ReadWriteLock` on :func:`lock_file_for` (SQLite's file
+    locking: POSIX, Windows and macOS alike). Where the lock file cannot be made (no cache
+    folder, no permission) it is a no-op: locking is cooperation between scanplan
+    processes, and a read-only folder is not locked against anyone. A lock this process
+    already holds on the folder covers a nested request (two locks of one process on one
+    file would otherwise wait for each other for ever).
 
     Parameters
     ----------
     folder : path
         The folder to lock.
     exclusive : bool
-        ``LOCK_EX`` (writers) or ``LOCK_SH`` (readers).
+        Exclusive (writers) or shared (readers).
     """
     key = os.path.realpath(folder)
     if _HELD.get(key):
@@ -234,21 +250,26 @@ def dir_lock(folder: str | os.PathLike[str], *, exclusive: bool) -> Iterator[Non
         finally:
             _HELD[key] -= 1
         return
-    fd = None
-    try:
-        import fcntl
+    import sqlite3
 
-        fd = os.open(folder, os.O_RDONLY)
-        fcntl.flock(fd, fcntl.LOCK_EX if exclusive else fcntl.LOCK_SH)
-    except (ImportError, OSError):
-        pass
+    import filelock
+
+    hold: contextlib.AbstractContextManager[None] | None = None
+    try:
+        path = lock_file_for(folder)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        lock = filelock.ReadWriteLock(path, is_singleton=False)
+        hold = lock.write_lock() if exclusive else lock.read_lock()
+        hold.__enter__()
+    except (OSError, ValueError, sqlite3.Error):  # no usable lock file here: no lock
+        hold = None
     _HELD[key] = 1
     try:
         yield
     finally:
         del _HELD[key]
-        if fd is not None:
-            os.close(fd)
+        if hold is not None:
+            hold.__exit__(None, None, None)
 
 
 def write_atomic(path: str | os.PathLike[str], data: bytes) -> Path:

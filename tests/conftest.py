@@ -58,3 +58,11 @@ def pytest_terminal_summary(terminalreporter, exitstatus, config):
     terminalreporter.write_sep("-", f"fuzz: {total:,} generated inputs ({profile} profile)")
     for family, n in sorted(counts.items()):
         terminalreporter.write_line(f"  {family:<36} {n:>6,}")
+
+
+@pytest.fixture(autouse=True)
+def no_user_configuration(tmp_path_factory, monkeypatch):
+    """No test reads the developer's own configuration file (organisation, locale)."""
+    if "SCANPLAN_CONFIG" not in __import__("os").environ:
+        missing = tmp_path_factory.getbasetemp() / "no-user-config.toml"
+        monkeypatch.setenv("SCANPLAN_CONFIG", str(missing))

@@ -4,7 +4,7 @@
   ``gsd_limits``; the constraint GL of digital cameras, information for film);
 - ГОСТ Р 59328-2021 §6.2.1 (second draft): one photographing height per block only while
   the ground height range stays within 7 / 15 / 25 % of the flight height;
-- the sun window from pvlib's NREL SPA, checked against published references.
+- the sun window from astral's NOAA solar position, checked against published references.
 """
 
 from __future__ import annotations

@@ -21,7 +21,8 @@ from scanplan.project.spec import DEFAULT_FILM_SIDE_OVERLAP_PCT
 
 ROOT = Path(__file__).resolve().parents[1]
 PLAN_OF = {"scan": "film", "uav": "uav"}
-NOT_INPUTS = {"xlsx_path", "pdf_path", "force", "as_json"}  # where to write, not what to plan
+NOT_INPUTS = {"xlsx_path", "pdf_path", "force", "as_json",  # where to write, not what to plan
+              "quiet", "verbose"}  # how much to say
 
 
 def test_docs_key_tables_are_generated_from_the_registry():

@@ -20,6 +20,7 @@ from typing import Any
 import click
 
 from ..errors import InputError, WriteError
+from .options import DECIMAL
 
 __all__ = ["InitAnswers", "init", "project_text"]
 
@@ -381,7 +382,7 @@ def _area(text: str | None) -> tuple[float, float] | None:
 @click.option("--kind", type=click.Choice(KINDS), help="film, uav or both (asked if missing "
               "at a terminal; default both).")
 @click.option("--map-scale", help="Map scale, 2000 or 1:2000 (required without a terminal).")
-@click.option("--relief", "relief_interval_m", type=float,
+@click.option("--relief", "relief_interval_m", type=DECIMAL,
               help="Relief (contour) interval h_c [m] (required without a terminal).")
 @click.option("--name", default=None, help="Project name for the title block.")
 @click.option("--customer", default="", help="Customer for the title block.")
@@ -392,7 +393,7 @@ def _area(text: str | None) -> tuple[float, float] | None:
               help="Norm set name or folder.")
 @click.option("--film-camera", default=None,
               help=f"Film camera id (default {DEFAULT_FILM_CAMERA}).")
-@click.option("--resolving-power", "resolving_power_lpmm", type=float,
+@click.option("--resolving-power", "resolving_power_lpmm", type=DECIMAL,
               default=DEFAULT_RESOLVING_POWER, show_default=True,
               help="Resolving power of the photos R [lines/mm].")
 @click.option("--photo-scales", help="Candidate photo scales, comma-separated, e.g. "
@@ -403,12 +404,12 @@ def _area(text: str | None) -> tuple[float, float] | None:
 @click.option("--scanner", default="", help="Scanner id (optional).")
 @click.option("--uav-camera", default=None,
               help=f"Digital camera id (default {DEFAULT_UAV_CAMERA}).")
-@click.option("--height-m", type=float, help="Planned UAV height [m] (default: the highest "
+@click.option("--height-m", type=DECIMAL, help="Planned UAV height [m] (default: the highest "
               "the constraints allow).")
 @click.option("--area-m", help="Block WIDTHxLENGTH [m], e.g. 2000x3000 (optional).")
 @click.option("--object-name", default="", help="Name of your own object to interpret "
               "(with --object-size-m).")
-@click.option("--object-size-m", type=float, help="Size of your own object to interpret [m] "
+@click.option("--object-size-m", type=DECIMAL, help="Size of your own object to interpret [m] "
               "(default: the norm table's smallest object for the map scale).")
 @click.option("--f-number", type=float, help="Working f-number of the UAV camera's lens (needed "
               "when the catalogue has none for the camera; asked at a terminal).")
@@ -449,7 +450,7 @@ def init(project: str, force: bool, **opts: Any) -> None:
                             click.prompt("Map scale (e.g. 2000 or 1:2000)"), "--map-scale")
     relief = opts["relief_interval_m"]
     if relief is None:
-        relief = click.prompt("Relief (contour) interval, m", type=float)
+        relief = click.prompt("Relief (contour) interval, m", type=DECIMAL)
     name = opts["name"]
     if name is None:
         name = click.prompt("Project name", default="") if ask else ""

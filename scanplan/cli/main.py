@@ -20,8 +20,10 @@ import click
 from .._version import __version__
 from ..errors import InputError, WriteError
 from ..project.inputs import option_names
+from . import console, outputs
 from .options import input_option
 from .outset import batch_text, project_inputs, refuse_dangling_link, say_export_notes, write_set
+from .projects import check_stdin
 
 OPTION_NAMES = option_names()
 """Python names of inputs (error fields) → the option a user typed (the input registry's)."""
@@ -70,12 +72,20 @@ class ScanplanGroup(click.Group):
             with formatter.section("Commands"):
                 formatter.write_dl(rows)
 
+    def parse_args(self, ctx: click.Context, args: list[str]) -> list[str]:
+        console.set_verbosity()  # each run starts at the default; -q/-v then set it
+        outputs.reset()  # and with no PDF engine failure of an earlier run
+        return super().parse_args(ctx, args)
+
     def invoke(self, ctx: click.Context) -> Any:
+        console.setup_streams()  # every character written, in any terminal encoding
         try:
             with warnings.catch_warnings():
                 if not os.environ.get("SCANPLAN_DEBUG"):  # no library's warning on a
                     warnings.simplefilter("ignore")  # user's terminal (the tests raise them)
                 return super().invoke(ctx)
+        except BrokenPipeError:  # stdout's reader has gone (| head): stop quietly
+            ctx.exit(console.closed_pipe())
         except InputError as exc:
             field = OPTION_NAMES.get(exc.field, exc.field)
             click.echo(f"error: {field}: {exc.message}", err=True)
@@ -200,9 +210,10 @@ def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
     force, inputs = opts.pop("force", False), opts.pop("inputs", ())
     fields = opts.pop("fields", {"xlsx": "--xlsx", "pdf": "--pdf"})
     note = opts.pop("note", "")
-    say = opts.pop("say", None) or (lambda line: click.echo(line, err=True))
+    say = opts.pop("say", None) or console.info
     worker = opts.pop("pdf_worker", None)  # the PDF on the second core (reports.pdfworker)
     sweep = opts.pop("sweep", None)  # the --out folder whose stale exports go (one project)
+    explicit = opts.pop("pdf_explicit", True)  # asked for by name: its absence fails at the end
     from ..outpaths import check_target
     from ..reports import ReportMeta
 
@@ -241,19 +252,17 @@ def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
     for path, kind in wanted:
         if kind == "xlsx":
             from ..reports.excel import render_xlsx as render
-        elif forked:
-            continue
-        else:
-            from ..reports.pdf import render_pdf as render
+        elif forked or (render := outputs.pdf_renderer(explicit)) is None:
+            continue  # rendered by the worker, or no PDF engine here (a warning said so)
         rendered[path] = render(scan=scan, uav=uav, meta=meta, view=view, **extra)
     if forked:
         data = worker.result()
-        if data is None:
-            from ..reports.pdf import render_pdf
-
-            data = render_pdf(scan=scan, uav=uav, meta=meta, view=view, **extra)
-        rendered[pdf] = data
-    files = {path: rendered[path] for path, _ in wanted}  # the order of the wrote lines
+        if data is None and (render := outputs.pdf_renderer(explicit)) is not None:
+            data = render(scan=scan, uav=uav, meta=meta, view=view, **extra)
+        if data is not None:
+            rendered[pdf] = data
+    files = {p: rendered[p] for p, _ in wanted if p in rendered}  # the wrote lines' order
+    outputs.warn_stale([p for p, _ in wanted if p not in rendered])
     files.update({path: data for path, (_, data) in exports.items()})
     write_set(files, check=check, sweep=sweep, say=say, note=note)
 
@@ -326,7 +335,8 @@ def _writes_reports(command: Callable[..., Any]) -> Callable[..., Any]:
     def run(**kwargs: Any) -> Any:
         _report_folders(kwargs.get("xlsx_path"), kwargs.get("pdf_path"))
         with _pdf_worker(bool(kwargs.get("pdf_path"))) as worker:
-            return command(pdf_worker=worker, **kwargs)
+            command(pdf_worker=worker, **kwargs)
+        outputs.pdf_failure_exit(bool(kwargs.get("pdf_path")))
     return run
 
 
@@ -337,6 +347,7 @@ def _split_report_options(kwargs: dict[str, Any]) -> dict[str, Any]:
 @click.group(cls=ScanplanGroup, context_settings={"help_option_names": ["-h", "--help"],
                                                    "max_content_width": 100})
 @click.version_option(__version__, "--version", prog_name="scanplan")
+@console.verbosity_options
 def main() -> None:
     """scanplan — plan photo scale, scan pixel and UAV flight height for topographic maps.
 
@@ -362,6 +373,7 @@ def _inputs(command: str, names: list[str], **per_name: dict[str, Any]
 
 
 @main.command()
+@console.verbosity_options
 @_inputs("scan", ["map_scale", "relief_interval_m", "photo_scales", "camera", "focal_mm",
                   "frame_mm", "resolving_power_lpmm", "forward_overlap_pct", "<norms>",
                   "pr_coefficient", "recognition_rounding", "scanner", "pixel_um", "bands",
@@ -437,6 +449,7 @@ def _film_schemes(job: Any, area: Any, side: float) -> list[tuple[Any, Any]]:
 
 
 @main.command()
+@console.verbosity_options
 @_inputs("uav", ["camera", "pixel_um", "focal_mm", "sensor_mm", "orientation", "f_number",
                  "height_m", "gsd_cm", "max_height_m", "gsd_area", "height_tolerance_pct",
                  "speed_ms",
@@ -507,6 +520,7 @@ def uav(as_json: bool, **kwargs: Any) -> None:
 
 
 @main.command()
+@console.verbosity_options
 @click.argument("projects", nargs=-1, required=True, type=click.Path())
 @click.option("--out", "out_dir", type=click.Path(file_okay=False),
               help="Write spec.xlsx and spec.pdf into this folder (batch: NAME.xlsx/.pdf, "
@@ -522,15 +536,20 @@ def uav(as_json: bool, **kwargs: Any) -> None:
 @click.option("--force", is_flag=True,
               help="Replace existing report files that scanplan did not write.")
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
+@click.option("--formats", callback=outputs.parse_formats, metavar="LIST",
+              help="The outputs --out writes, comma-separated: xlsx, pdf, missions, gis "
+              "(default: all). Without a PDF engine the others are still written.")
 @click.option("--jobs", type=click.IntRange(1, 256), default=None,
               help="Projects planned at once in worker processes (default: the machine's "
               "cores); the output is the same for any number.")
 def plan(projects: tuple[str, ...], out_dir: str | None, xlsx_path: str | None,
-         pdf_path: str | None, force: bool, as_json: bool, jobs: int | None) -> None:
+         pdf_path: str | None, force: bool, as_json: bool, formats: tuple[str, ...] | None,
+         jobs: int | None) -> None:
     """The main job: the scan / flight specification for a mapping contract.
 
     PROJECTS are project files (TOML) or folders of them; several give a batch with one
-    summary table, and a bad file is reported while the others still run.
+    summary table, and a bad file is reported while the others still run. - reads one
+    project from standard input.
 
     \b
     Examples:
@@ -547,6 +566,7 @@ def plan(projects: tuple[str, ...], out_dir: str | None, xlsx_path: str | None,
             files.append(item)
     if not files:
         raise InputError("PROJECTS", "no project files (*.toml) found")
+    check_stdin(files)
     batch = len(files) > 1
     if out_dir and (xlsx_path or pdf_path):
         raise InputError("--out", "give either --out (a folder for both reports) or "
@@ -562,9 +582,10 @@ def plan(projects: tuple[str, ...], out_dir: str | None, xlsx_path: str | None,
         created = _make_folder(out_dir)
     try:
         _plan_files(files, batch, out_dir, xlsx_path, pdf_path, as_json, force,
-                    jobs or os.cpu_count() or 1)
+                    jobs or os.cpu_count() or 1, formats)
     finally:  # a folder --out created stays only if something was written into it
         _remove_empty(created)
+    outputs.pdf_failure_exit(bool(pdf_path) or "pdf" in (formats or ()))
 
 
 def batch_stems(files: list[str]) -> list[str]:
@@ -576,19 +597,20 @@ def batch_stems(files: list[str]) -> list[str]:
 
 def _run_project(path: str, out_dir: str | None, stem: str | None, xlsx_path: str | None,
                  pdf_path: str | None, files: list[str], force: bool,
-                 say: Callable[[str], None] | None = None, pdf_worker: Any = None) -> Any:
+                 say: Callable[[str], None] | None = None, pdf_worker: Any = None,
+                 formats: tuple[str, ...] | None = None) -> Any:
     """Plan one project and write its reports (both or neither); the PlanResult. ``say``
     receives the ``wrote FILE`` lines (default: stderr); ``pdf_worker`` (a
     :class:`scanplan.reports.pdfworker.PdfWorker`) renders the PDF on another core."""
-    from ..project.file import load_project
     from ..project.spec import plan_project
+    from .projects import read_project
 
     targets = {"xlsx_path": xlsx_path, "pdf_path": pdf_path}
     fields = {"xlsx": "--xlsx", "pdf": "--pdf"}
     note = ""
     if out_dir:
-        targets = {"xlsx_path": os.path.join(out_dir, (stem or "spec") + ".xlsx"),
-                   "pdf_path": os.path.join(out_dir, (stem or "spec") + ".pdf")}
+        targets = {f"{k}_path": os.path.join(out_dir, (stem or "spec") + f".{k}")
+                   if outputs.selected(formats, k) else None for k in ("xlsx", "pdf")}
         fields = {"xlsx": "--out", "pdf": "--out"}
         if stem is not None:
             base = os.path.splitext(os.path.basename(path))[0]
@@ -596,7 +618,7 @@ def _run_project(path: str, out_dir: str | None, stem: str | None, xlsx_path: st
                      else "another project of this batch")
             note = f" (for {path}" + (f"; the name {base} is taken by {taken}"
                                       if stem != base else "") + ")"
-    result = plan_project(load_project(path))
+    result = plan_project(read_project(path))
     # the project's own input files are never replaced either (an area saved as
     # OUT/flight.kml), even with --force
     files = [*files, *project_inputs(result)]
@@ -604,14 +626,16 @@ def _run_project(path: str, out_dir: str | None, stem: str | None, xlsx_path: st
     if out_dir:  # the mission and GIS files join the reports' transaction (issue 11)
         from ..reports.exports import export_files
 
-        exports = export_files(result, out_dir, prefix=f"{stem}-" if stem is not None else "")
+        exports = outputs.chosen_exports(export_files(
+            result, out_dir, prefix=f"{stem}-" if stem is not None else ""), formats)
     film = result.film.job if result.film else None
     uav_ = result.uav.job if result.uav else None
     _write_reports({**targets, "force": force, "inputs": files, "fields": fields,
                     "note": note, "meta": result.meta, "say": say, "exports": exports,
                     "pdf_worker": pdf_worker,
                     # never leave a stale sortie of an earlier plan behind
-                    "sweep": out_dir if out_dir and stem is None else None},
+                    "sweep": out_dir if out_dir and stem is None else None,
+                    "pdf_explicit": bool(pdf_path) or "pdf" in (formats or ())},
                    scan=film, uav=uav_, spec=result)
     if out_dir:  # a mission or photo table not written is said, with the reason
         say_export_notes(result, say)
@@ -624,7 +648,7 @@ def _batch_worker(task: tuple[Any, ...]) -> tuple[str, str, Any, list[str]]:
     table's row and the warnings, or None with --json; JSON document or None; summary
     row), ``"input"`` or ``"write"`` with the error text. No PlanResult leaves it: a batch
     of thousands keeps only these."""
-    path, out_dir, stem, files, force, as_json = task
+    path, out_dir, stem, files, force, as_json, formats = task
     import json
 
     from ..api import summary_row
@@ -635,7 +659,8 @@ def _batch_worker(task: tuple[Any, ...]) -> tuple[str, str, Any, list[str]]:
         with warnings.catch_warnings():
             if not os.environ.get("SCANPLAN_DEBUG"):
                 warnings.simplefilter("ignore")
-            result = _run_project(path, out_dir, stem, None, None, files, force, said.append)
+            result = _run_project(path, out_dir, stem, None, None, files, force, said.append,
+                                  formats=formats)
         doc = json.loads(json.dumps(plan_result_dict(result), ensure_ascii=False,
                                     allow_nan=False)) if as_json else None
         text = None if as_json else batch_text(path, result)  # not the result itself
@@ -644,33 +669,6 @@ def _batch_worker(task: tuple[Any, ...]) -> tuple[str, str, Any, list[str]]:
         return path, "input", f"{exc.field}: {exc.message}", said
     except WriteError as exc:
         return path, "write", exc.message, said
-
-
-class _Progress:
-    """``planning 12/1000`` on stderr, for a batch running longer than a second, and only
-    when stderr is a terminal."""
-
-    def __init__(self, total: int) -> None:
-        import time
-
-        self.total, self.start, self.clock, self.shown = total, time.monotonic(), time, False
-        self.on = sys.stderr.isatty()
-
-    def step(self, done: int) -> None:
-        if self.on and self.clock.monotonic() - self.start > 1.0:
-            sys.stderr.write(f"\rplanning {done}/{self.total}")
-            sys.stderr.flush()
-            self.shown = True
-
-    def clear(self) -> None:
-        """Wipe the progress line before other stderr lines."""
-        if self.shown:
-            sys.stderr.write("\r\x1b[K")
-
-    def close(self) -> None:
-        if self.shown:
-            sys.stderr.write("\n")
-            sys.stderr.flush()
 
 
 def _batch_outcomes(tasks: list[tuple[Any, ...]], jobs: int):  # type: ignore[no-untyped-def]
@@ -712,17 +710,18 @@ def _write_summary(out_dir: str, rows: list[dict[str, Any]], force: bool,
     write_atomic_many({targets["csv"]: summary_csv(frame),
                        targets["xlsx"]: summary_xlsx(frame)}, check=check)
     for path in targets.values():
-        click.echo(f"wrote {path}", err=True)
+        console.info(f"wrote {path}")
 
 
 def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: str | None,
                 pdf_path: str | None, as_json: bool, force: bool = False,
-                jobs: int = 1) -> None:
+                jobs: int = 1, formats: tuple[str, ...] | None = None) -> None:
     """``plan`` after its arguments are checked: run one project or a batch."""
     if not batch:
-        with _pdf_worker(bool(out_dir or pdf_path)) as worker:
+        pdf = bool(pdf_path or (out_dir and outputs.selected(formats, "pdf")))
+        with _pdf_worker(pdf) as worker:
             result = _run_project(files[0], out_dir, None, xlsx_path, pdf_path, files, force,
-                                  pdf_worker=worker)
+                                  pdf_worker=worker, formats=formats)
         from ..reports.jsondoc import plan_result_dict
         from ..reports.text import format_plan_result
 
@@ -732,8 +731,8 @@ def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: s
             click.echo(format_plan_result(result))
         return
     stems = batch_stems(files)
-    tasks = [(path, out_dir, stem, files, force, as_json) for path, stem in zip(files, stems,
-                                                                                strict=True)]
+    tasks = [(path, out_dir, stem, files, force, as_json, formats)
+             for path, stem in zip(files, stems, strict=True)]
     done: list[str] = []  # results are not kept: --json streams them, text keeps its lines
     lines: list[list[str]] = []  # the summary table's row of each project
     warned: list[str] = []  # the warnings of each project, as text
@@ -741,11 +740,12 @@ def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: s
     rows: list[dict[str, Any]] = []
     stream = _JsonStream("projects") if as_json else None
     stopped = ""  # a write failure (disk full) stops the batch: the project it stopped at
-    progress = _Progress(len(files))
+    progress = console.Progress(len(files), "planning", "projects")
     for n, (path, outcome, payload, said) in enumerate(_batch_outcomes(tasks, jobs), start=1):
         progress.clear()
         for line in said:  # in the order of the files, whichever worker ran them
-            click.echo(line, err=True)
+            console.info(line)
+        console.detail(f"{n}/{len(files)} {path}: {outcome}")
         progress.step(n)
         if outcome == "ok":
             text, doc, row = payload

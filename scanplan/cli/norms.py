@@ -131,8 +131,9 @@ def norms() -> None:
 
     A norm set holds the coefficients of a technical instruction, shape coefficients,
     the smallest map objects per map scale, and optionally cameras and scanners. Bundled
-    sets ship with scanplan; imported ones live in $SCANPLAN_NORMS_DIR (else
-    ~/.local/share/scanplan/norms). See docs/norms.md.
+    sets ship with scanplan; imported ones live in $SCANPLAN_NORMS_DIR (else the user data
+    folder: ~/.local/share/scanplan/norms on Linux, ~/Library/Application Support/scanplan/
+    norms on macOS, %LOCALAPPDATA%\\scanplan\\norms on Windows). See docs/norms.md.
 
     \b
     Example:

@@ -17,7 +17,8 @@ import click
 from ..errors import InputError
 from ..project.inputs import Input, describe, get
 
-__all__ = ["SCALE", "ScaleType", "finite", "input_option", "text", "text_or_none"]
+__all__ = ["DECIMAL", "SCALE", "DecimalType", "ScaleType", "finite", "input_option", "text",
+           "text_or_none"]
 
 PLAN_OF = {"scan": "film", "uav": "uav"}
 """The plan (registry scope) of each command."""
@@ -39,6 +40,33 @@ class ScaleType(click.ParamType):
 
 
 SCALE = ScaleType()
+
+
+class DecimalType(click.ParamType):
+    """A number written with a decimal point or a decimal comma (``0.5`` or ``0,5``, as a
+    Russian keyboard types it); a comma is read as the decimal sign only when the number
+    has no point and one comma (a thousands separator is never guessed).
+
+    >>> DECIMAL.convert("0,5", None, None), DECIMAL.convert("1e3", None, None)
+    (0.5, 1000.0)
+    """
+
+    name = "float"
+
+    def convert(self, value: Any, param: click.Parameter | None, ctx: click.Context | None
+                ) -> float:
+        if isinstance(value, int | float) and not isinstance(value, bool):
+            return float(value)
+        text = str(value).strip()
+        if text.count(",") == 1 and "." not in text:
+            text = text.replace(",", ".")
+        try:
+            return float(text)
+        except ValueError:
+            self.fail(f"{value!r} is not a number (write 0.5 or 0,5)", param, ctx)
+
+
+DECIMAL = DecimalType()
 
 
 def finite(ctx: click.Context, param: click.Parameter, value: float | None) -> float | None:
@@ -83,7 +111,7 @@ def _type(inp: Input) -> tuple[Any, Callable[..., Any] | None]:
     if inp.kind in ("scale", "scales"):
         return SCALE, None
     if inp.kind == "number":
-        return float, finite
+        return DECIMAL, finite
     if inp.kind == "int":
         from ..core.domains import DOMAINS
 

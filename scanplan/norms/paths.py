@@ -22,11 +22,14 @@ def bundled_norms_dir() -> Path:
 
 
 def user_norms_dir() -> Path:
-    """Folder where ``scanplan norms import`` puts user norm sets."""
+    """Folder where ``scanplan norms import`` puts user norm sets: ``SCANPLAN_NORMS_DIR``,
+    else ``norms`` in the platform's user data folder (platformdirs: Linux
+    ``$XDG_DATA_HOME/scanplan`` or ``~/.local/share/scanplan``, macOS
+    ``~/Library/Application Support/scanplan``, Windows ``%LOCALAPPDATA%\\scanplan``)."""
     env = os.environ.get("SCANPLAN_NORMS_DIR")
     if env:
         return Path(env).expanduser()
-    xdg = os.environ.get("XDG_DATA_HOME")
-    base = Path(xdg).expanduser() if xdg else Path.home() / ".local" / "share"
-    return base / "scanplan" / "norms"
+    import platformdirs
+
+    return platformdirs.user_data_path("scanplan", appauthor=False) / "norms"
 

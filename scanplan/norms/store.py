@@ -3,8 +3,8 @@
 A norm set is a folder of small CSV files plus ``set.toml`` (layout and value rules in
 :mod:`scanplan.norms.schema`). Bundled sets ship inside the package (``scanplan/_data/norms``
 in a wheel; ``norms/`` at the repository root in a source checkout). User sets are a path,
-or a name under the user's norm directory (``$SCANPLAN_NORMS_DIR``, else
-``$XDG_DATA_HOME/scanplan/norms``, else ``~/.local/share/scanplan/norms``).
+or a name under the user's norm directory (``$SCANPLAN_NORMS_DIR``, else ``norms`` in the
+platform's user data folder: :func:`scanplan.norms.paths.user_norms_dir`).
 """
 
 

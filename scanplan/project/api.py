@@ -505,8 +505,8 @@ def _digital_frame(cam: Any, pixel_um: float | None, focal_mm: float | None,
         raise InputError("camera", "give a catalogue camera id, or the pixel pitch, focal "
                          "length and sensor size (scanplan cameras list)")
     if n0 is None:
-        raise InputError("f_number", "the camera has no f-number in the catalogue; give the "
-                         "working f-number (> 0)")
+        raise InputError("f_number", f"the camera {cam.id if cam else ''!r} has no f-number "
+                         "in the catalogue; give the working f-number (> 0)")
     return {"pixel_um": p, "focal_mm": f, "f_number": n0, "sensor_width_mm": w,
             "sensor_height_mm": h, "image_width_px": w_px, "image_height_px": h_px,
             "orientation": mount}

@@ -24,7 +24,14 @@ from typing import TYPE_CHECKING, Any
 from ..core.blocks import RELIEF_CLASSES, BlockHeightCheck, block_height_check
 from ..errors import InputError
 from ..geo.layout import FlightLayout
-from ..geo.sun import FlyingDays, SunWindow, equal_sorties_s, flying_days, sun_windows
+from ..geo.sun import (
+    FlyingDays,
+    SunWindow,
+    equal_sorties_s,
+    flying_days,
+    sun_windows,
+    time_zone_at,
+)
 from ..messages import Message
 from ..norms.schema import GSD_AREAS
 from ..rules.results import PlanWarning
@@ -89,7 +96,9 @@ class SunPlan:
 
     Attributes
     ----------
-    lat_deg, lon_deg, utc_offset_h : float
+    lat_deg, lon_deg : float
+    utc_offset_h : float
+        Local time = UTC + offset on the first date [h].
     min_elevation_deg : float
     elevation_source : str
         ``"project"`` or the norm set's parameter source.
@@ -101,6 +110,9 @@ class SunPlan:
     flight_time_s : float or None
         Flight time of the whole survey [s] (None: no ``[area]``, or film).
     days : FlyingDays or None
+    time_zone : str or None
+        The site's IANA time zone the times are in (found from the coordinates); None
+        when the project gives ``utc_offset_h``.
     """
 
     lat_deg: float
@@ -115,6 +127,7 @@ class SunPlan:
     turnaround_s: float
     flight_time_s: float | None
     days: FlyingDays | None
+    time_zone: str | None = None
 
     @property
     def window_hours(self) -> tuple[float, float]:
@@ -284,15 +297,14 @@ def _sun(project: Project, film: FilmSpec | None, uav: UavSpec | None
     if (end - start).days + 1 > MAX_SCHEDULE_DAYS:
         raise InputError(_where(project, "schedule", "end_date"),
                          f"the schedule may span at most {MAX_SCHEDULE_DAYS} days")
-    if offset is None:
-        offset = float(round(lon / 15.0))
+    zone = None if offset is not None else time_zone_at(lat, lon)
     ns = (uav.job.norm_set if uav is not None else film.job.norm_set)  # type: ignore[union-attr]
     source = "project"
     if elev is None:
         elev = float(ns.parameters["min_sun_elevation_deg"])
         source = ns.parameter_sources.get("min_sun_elevation_deg", "")
     dates = [start + dt.timedelta(days=i) for i in range((end - start).days + 1)]
-    windows = sun_windows(dates, lat, lon, elev, utc_offset_h=offset)
+    windows = sun_windows(dates, lat, lon, elev, utc_offset_h=offset, time_zone=zone)
     flight_s = uav.job.plan.flight.get("flight_time_s") if uav is not None else None
     from_layout = layout_sorties_s(layout)
     sortie_s = sortie * 60.0  # the planned sortie; the layout's sorties are at most this long
@@ -310,8 +322,9 @@ def _sun(project: Project, film: FilmSpec | None, uav: UavSpec | None
             warnings.append(PlanWarning("sun_dates_short", Message(
                 "sun_dates_short", n=days.sorties, flown=sum(days.sorties_per_day),
                 start=start.isoformat(), end=end.isoformat())))
-    return SunPlan(lat, lon, offset, elev, source, start, end, windows, sortie_s,
-                   turn * 60.0, float(flight_s) if flight_s else None, days), warnings
+    return SunPlan(lat, lon, windows[0].utc_offset_h, elev, source, start, end, windows,
+                   sortie_s, turn * 60.0, float(flight_s) if flight_s else None, days,
+                   zone), warnings
 
 
 def survey_design(project: Project, film: FilmSpec | None, uav: UavSpec | None
@@ -361,6 +374,7 @@ def design_dict(design: SurveyDesign) -> dict[str, Any]:
         lo, hi = s.window_hours
         out["sun"] = {
             "lat_deg": s.lat_deg, "lon_deg": s.lon_deg, "utc_offset_h": s.utc_offset_h,
+            "time_zone": s.time_zone,
             "min_elevation_deg": s.min_elevation_deg, "start_date": s.start_date.isoformat(),
             "end_date": s.end_date.isoformat(), "window_hours_min": lo,
             "window_hours_max": hi,

@@ -22,7 +22,8 @@ from ..errors import InputError
 from ..safeio import read_limited
 from .inputs import key_table
 
-__all__ = ["KEYS", "Project", "ReportMeta", "load_project", "parse_project", "text_problem"]
+__all__ = ["KEYS", "Project", "ReportMeta", "load_project", "parse_project", "parse_project_bytes",
+           "text_problem"]
 
 MAX_PROJECT_BYTES = 1_000_000
 """Largest project file [bytes]."""
@@ -322,7 +323,9 @@ def parse_project(text: str, path: str | os.PathLike[str] = "project.toml") -> P
                          "(at most about 1.8e308)") from None
     except RecursionError:  # the nesting check above should make this unreachable
         raise InputError(str(p), "nests arrays or inline tables too deeply") from None
-    flat = _flatten(doc)
+    from .userconfig import with_user_defaults
+
+    flat = with_user_defaults(_flatten(doc))  # the user's [project] defaults, if any
     for section, table in flat.items():
         if section not in KEYS:
             line = lines.get(section)
@@ -434,7 +437,12 @@ def load_project(path: str | os.PathLike[str]) -> Project:
     """
     p = Path(path)
     # a regular file, read with a bound: a FIFO or a link to /dev/zero is refused, not read
-    data = read_limited(p, MAX_PROJECT_BYTES, field=str(p))
+    return parse_project_bytes(read_limited(p, MAX_PROJECT_BYTES, field=str(p)), p)
+
+
+def parse_project_bytes(data: bytes, p: Path) -> Project:
+    """Validate a project file's bytes (UTF-8, a byte-order mark allowed); ``p`` names it in
+    messages and anchors its relative paths."""
     if data.startswith((b"\xff\xfe", b"\xfe\xff")):
         raise InputError(str(p), "is UTF-16 text; save it as UTF-8")
     try:

@@ -413,7 +413,8 @@ _RECORDS: tuple[Input, ...] = (
     Input("end_date", "schedule", "end_date", "date", "last planned flying date",
           note="default: 30 days after start_date"),
     Input("utc_offset_h", "schedule", "utc_offset_h", _NUM, "local time = UTC + offset [h]",
-          "h", note="default: round(lon/15), the solar time zone"),
+          "h", note="default: the legal time of the site's time zone, found from lat/lon, "
+          "summer time included"),
     Input("sortie_time_min", "schedule", "sortie_time_min", _NUM, "flight time of one sortie "
           "(battery or fuel) [min]: the same number as [uav] max_flight_time_min (give one, "
           "or both equal; two different values are an error); it also splits the flight "

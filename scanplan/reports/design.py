@@ -16,6 +16,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..core import flight as FL
+from ..geo.sun import zone_country
 from ..messages import Message, localize, plural, scale_text
 from ..rules.registry import CONSTRAINTS
 from .labels import t
@@ -28,7 +29,10 @@ __all__ = ["DesignView", "design_text_lines", "design_view", "relief_max_height_
            "write_design_sheet", "write_gsd_limits"]
 
 GSD_TABLE = "GOST R 59562-2021, Appendix B, Table B.1"
-SPA = "Reda & Andreas 2004"
+SUN_POSITION = "Meeus 1998"
+MSK_UTC_OFFSET_H = 3.0
+"""Moscow time, from which Russia's time zones are counted (МСК+N), is UTC+3 [h]
+(Federal Law No. 107-FZ "On the calculation of time", art. 5)."""
 
 
 @dataclass(frozen=True)
@@ -223,6 +227,19 @@ def _block_rows(design: Any, w: _W) -> list[tuple[str, str, str]]:
     return [(w.t("design_block"), value, w.cite(design.block_source))]
 
 
+def _zone(s: Any, w: _W) -> str:
+    """The time zone the window's times are in: the site's named zone, or the project's
+    offset from UTC."""
+    utc = f"{s.utc_offset_h:+g}"
+    if s.time_zone and zone_country(s.time_zone) == "RU":  # Russia's zones: MSK−1 … MSK+9
+        msk = s.utc_offset_h - MSK_UTC_OFFSET_H
+        return w.t("design_zone_msk", name=s.time_zone, utc=utc,
+                   msk=f"{msk:+g}".replace("-", "−") if msk else "")
+    if s.time_zone:
+        return w.t("design_zone_named", name=s.time_zone, utc=utc)
+    return w.t("design_zone_offset", utc=utc)
+
+
 def _sun_rows(design: Any, w: _W) -> list[tuple[str, str, str]]:
     s = design.sun
     if s is None:
@@ -239,8 +256,8 @@ def _sun_rows(design: Any, w: _W) -> list[tuple[str, str, str]]:
              w.t("design_norm_contract")),
             (w.t("design_sun_window", elev=w.n(s.min_elevation_deg, 0)), w.t(
                 "design_sun_value", date=w.date(first.date), span=span,
-                lo=w.n(lo, 1), hi=w.n(hi, 1), utc=f"{s.utc_offset_h:+g}"),
-             f"{source}; {w.cite(SPA)}")]
+                lo=w.n(lo, 1), hi=w.n(hi, 1), zone=_zone(s, w)),
+             f"{source}; {w.cite(SUN_POSITION)}")]
     if s.days is not None:
         rows.append((w.t("design_sorties"), w.t(
             "design_sorties_value", n=w.n(s.days.sorties, 0),

@@ -258,8 +258,11 @@ DESIGN: dict[str, dict[str, str]] = {
         "design_site_value": "{lat}°, {lon}°",
         "design_dates": "Planned flying dates",
         "design_sun_window": "Sun at or above {elev}°",
-        "design_sun_value": "{date}: {span} local time (UTC{utc}); {lo}–{hi} h a day over "
+        "design_sun_value": "{date}: {span} local time ({zone}); {lo}–{hi} h a day over "
                             "the dates",
+        "design_zone_named": "time zone {name}, UTC{utc}",
+        "design_zone_msk": "time zone {name} (MSK{msk}), UTC{utc}",
+        "design_zone_offset": "UTC{utc}",
         "design_sorties": "Sorties",
         "design_sorties_value": "{n} of up to {sortie} min, {turn} min between them",
         "design_flying_days": "Flying days needed",
@@ -322,8 +325,11 @@ DESIGN: dict[str, dict[str, str]] = {
         "design_site_value": "{lat}°, {lon}°",
         "design_dates": "Сроки лётно-съёмочных работ",
         "design_sun_window": "Высота Солнца не менее {elev}°",
-        "design_sun_value": "{date}: {span} местного времени (всемирное время {utc} ч); "
+        "design_sun_value": "{date}: {span} местного времени ({zone}); "
                             "{lo}–{hi} ч в сутки за период",
+        "design_zone_named": "часовой пояс {name}, всемирное время {utc} ч",
+        "design_zone_msk": "время МСК{msk}, всемирное время {utc} ч",
+        "design_zone_offset": "всемирное время {utc} ч",
         "design_sorties": "Вылеты",
         "design_sorties_value": "{n} продолжительностью до {sortie} мин, {turn} мин между "
                                 "вылетами",

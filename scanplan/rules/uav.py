@@ -48,8 +48,8 @@ from .results import (
     UavPlan,
 )
 
-__all__ = ["HeightLimit", "Recognition", "UavInputs", "UavPlan", "ground_resolution_m",
-           "plan_uav"]
+__all__ = ["SWEEP_COLUMNS", "HeightLimit", "Recognition", "UavInputs", "UavPlan",
+           "ground_resolution_m", "height_sweep", "plan_uav"]
 
 _HEIGHT_GRID_POINTS = 257  # 1 m … 20 km in steps of 4 %
 _HEIGHT_PASS_POINTS = 62  # each refinement pass cuts the bracket 63-fold
@@ -469,3 +469,69 @@ def plan_uav(inp: UavInputs, rules: ScanRules | None = None) -> UavPlan:
         max_flown_height_m=max_flown, ceiling_m=inp.ceiling_m,
         constraints_max_height_m=allow, height_accuracy=accuracy, mtf_centre=mtf_centre)
 
+
+
+SWEEP_COLUMNS: dict[str, str] = {
+    "gsd_cm": "GSD at the planned height [cm]",
+    "gsd_at_max_height_cm": "GSD at the highest flown height [cm]",
+    "resolution_cm": "MTF ground resolution L at the planned height [cm] (NaN: not resolved)",
+    "resolution_at_max_height_cm": "L at the highest flown height [cm]",
+    "motion_blur_px": "motion blur at the lowest flown height [px]",
+    "footprint_across_m": "footprint of one photo across the strip [m]",
+    "footprint_along_m": "footprint of one photo along the strip [m]",
+    "base_m": "photo base (trigger distance) [m]",
+    "line_spacing_m": "distance between strips [m]",
+    "photo_interval_s": "time between photos at the ground speed [s] (inf at speed 0)",
+}
+"""The per-height figures of :func:`height_sweep`, with their units."""
+
+
+def height_sweep(inp: UavInputs, heights_m: Any) -> dict[str, np.ndarray]:
+    """The figures of :func:`plan_uav` that change with the planned height, for many heights
+    in one vectorised pass (the MTF chain solved once over every height).
+
+    Parameters
+    ----------
+    inp : UavInputs
+        Camera, flight and target (``height_m`` is ignored; the inputs are checked as
+        :func:`plan_uav` checks them).
+    heights_m : array_like
+        Planned heights above ground [m], each in the domain of ``height_m``.
+
+    Returns
+    -------
+    dict of ndarray
+        :data:`SWEEP_COLUMNS` → one value per height, equal to what :func:`plan_uav` gives
+        at that height (the same formulas on arrays).
+    """
+    h = np.atleast_1d(np.asarray(heights_m, dtype=float))
+    for value in h:
+        check_domain("height_m", float(value))
+    _check_inputs(replace(inp, height_m=float(h[0])))
+    band = FL.height_band(h, inp.height_tolerance_up_pct / 100.0,
+                          inp.height_tolerance_down_pct / 100.0)
+    h_lo, h_hi = np.asarray(band.min_m, dtype=float), np.asarray(band.max_m, dtype=float)
+    lr = np.asarray(_resolution(inp, np.concatenate([h, h_hi])).centre.ground_resolution_m,
+                    dtype=float).ravel()
+    pitch = inp.pixel_um
+    gsd_lo = FL.ground_sample_distance_m(pitch, h_lo, inp.focal_mm)
+    fp_across = FL.footprint_m(inp.sensor_width_mm, h, inp.focal_mm)
+    fp_along = FL.footprint_m(inp.sensor_height_mm, h, inp.focal_mm)
+    base = FL.photo_base_m(fp_along, inp.forward_overlap_pct)
+    with np.errstate(over="ignore"):
+        interval = (FL.photo_interval_s(base, inp.speed_ms) if inp.speed_ms > 0
+                    else np.full(h.shape, np.inf))
+    return {
+        "gsd_cm": FL.ground_sample_distance_m(pitch, h, inp.focal_mm) * 100.0,
+        "gsd_at_max_height_cm": FL.ground_sample_distance_m(pitch, h_hi, inp.focal_mm) * 100,
+        "resolution_cm": lr[:h.size] * 100.0,
+        "resolution_at_max_height_cm": lr[h.size:] * 100.0,
+        "motion_blur_px": np.asarray(FL.motion_blur_px(inp.speed_ms, inp.exposure_s, gsd_lo),
+                                     dtype=float),
+        "footprint_across_m": np.asarray(fp_across, dtype=float),
+        "footprint_along_m": np.asarray(fp_along, dtype=float),
+        "base_m": np.asarray(base, dtype=float),
+        "line_spacing_m": np.asarray(FL.line_spacing_m(fp_across, inp.side_overlap_pct),
+                                     dtype=float),
+        "photo_interval_s": np.asarray(interval, dtype=float),
+    }

@@ -1,0 +1,206 @@
+"""The terminal side of the command line: encodings, a closed pipe, -q/-v, progress.
+
+- **Encodings.** Text goes out in the stream's own encoding. Where that encoding cannot
+  show a character (``σ`` or ``×`` in cp1251, ``—`` in cp866, anything beyond ASCII in a
+  C locale) the character is written as its ASCII stand-in (``sigma``, ``x``, ``-``) and,
+  failing that, as ``?``: an error handler (:func:`fallback_handler`) is set on stdout and stderr
+  (:func:`setup_streams`), so no report ever stops on an encoding.
+- **A closed pipe.** When the reader of stdout goes away (``scanplan … | head``) the
+  command stops quietly with exit code :data:`EXIT_PIPE` (141, as a program that the
+  shell reports killed by SIGPIPE), printing nothing more (:func:`closed_pipe`).
+- **Verbosity.** ``-q`` leaves only warnings and errors on stderr (no ``wrote FILE``
+  lines, no progress); ``-v`` adds a line per project of a batch as it is done.
+  :func:`info` prints a note unless quiet, :func:`detail` only when verbose.
+- **Progress.** :class:`Progress` is click's progress bar (count, rate, time left) on
+  stderr, shown only when stderr is a terminal and not quiet; off a terminal nothing
+  is drawn.
+"""
+
+from __future__ import annotations
+
+import codecs
+import io
+import os
+import sys
+import time
+import unicodedata
+from typing import Any
+
+import click
+
+__all__ = ["EXIT_PIPE", "FALLBACK", "Progress", "closed_pipe", "detail", "fallback_handler",
+           "info", "set_verbosity", "setup_streams", "verbosity", "verbosity_options"]
+
+EXIT_PIPE = 141
+"""Exit code when stdout's reader has gone (128 + SIGPIPE)."""
+
+FALLBACK = "scanplan-ascii"
+"""The prefix of the codec error handlers (:func:`fallback_handler`) that write a character
+the stream cannot encode as its ASCII stand-in, else ``?``."""
+
+_ASCII = {
+    "σ": "sigma", "Σ": "Sum", "×": "x", "·": "*", "−": "-", "–": "-", "—": "-", "…": "...",
+    "≤": "<=", "≥": ">=", "≈": "~", "≠": "!=", "±": "+/-", "√": "sqrt", "°": " deg",
+    "µ": "u", "μ": "u", "²": "2", "³": "3", "«": '"', "»": '"', "„": '"', "“": '"',
+    "”": '"', "‘": "'", "’": "'", "→": "->", "←": "<-", "↑": "^", "↓": "v", "⁻¹": "^-1",
+    "¹": "1", "⁰": "0", "₀": "0", "₁": "1", "₂": "2", "Δ": "D", "δ": "d", "φ": "phi",
+    "λ": "lambda", "π": "pi", "∞": "inf", "\u00a0": " ", "\u202f": " ", "\u2009": " ",
+    "№": "No.", "•": "*", "▲": "^", "▼": "v",
+}
+
+
+def _stand_in(char: str, encoding: str) -> str:
+    """What to write for ``char`` in ``encoding``: its stand-in, its letters without
+    accents, else ``?``."""
+    bare = "".join(c for c in unicodedata.normalize("NFKD", char)
+                   if not unicodedata.combining(c))
+    for candidate in (_ASCII.get(char), bare):
+        if candidate:
+            try:
+                candidate.encode(encoding)
+            except (UnicodeEncodeError, LookupError):
+                continue
+            return candidate
+    return "?"
+
+
+def fallback_handler(encoding: str) -> str:
+    """The name of the error handler for streams in ``encoding`` (registered on first use:
+    a code-page codec reports itself as "charmap", so each encoding has its own)."""
+    name = f"{FALLBACK}:{encoding}"
+    try:
+        codecs.lookup_error(name)
+    except LookupError:
+        def handler(exc: UnicodeError) -> tuple[str, int]:
+            if not isinstance(exc, UnicodeEncodeError):
+                raise exc
+            text = exc.object[exc.start:exc.end]
+            return "".join(_stand_in(c, encoding) for c in text), exc.end
+
+        codecs.register_error(name, handler)
+    return name
+
+
+_state: dict[str, int] = {"verbosity": 0}
+
+
+def set_verbosity(quiet: bool = False, verbose: int = 0) -> None:
+    """-q (−1), default (0), -v (1 and more); the environment variable
+    ``SCANPLAN_VERBOSITY`` carries it into a batch's worker processes."""
+    level = -1 if quiet else int(verbose)
+    _state["verbosity"] = level
+    os.environ["SCANPLAN_VERBOSITY"] = str(level)
+
+
+def verbosity() -> int:
+    """The verbosity in force: −1 quiet, 0 default, ≥ 1 verbose."""
+    env = os.environ.get("SCANPLAN_VERBOSITY")
+    if env and env.lstrip("-").isdigit():
+        return int(env)
+    return _state["verbosity"]
+
+
+def _quiet(ctx: click.Context, param: click.Parameter, value: bool) -> None:
+    if value:
+        set_verbosity(quiet=True)
+
+
+def _verbose(ctx: click.Context, param: click.Parameter, value: int) -> None:
+    if value and verbosity() >= 0:
+        set_verbosity(verbose=value)
+
+
+def verbosity_options(f: Any) -> Any:
+    """``-q/--quiet`` and ``-v/--verbose`` on a command (before or after its name)."""
+    f = click.option("-v", "--verbose", count=True, expose_value=False, callback=_verbose,
+                     help="Say more on stderr: each project of a batch as it is done.")(f)
+    return click.option("-q", "--quiet", is_flag=True, expose_value=False, callback=_quiet,
+                        help="Only warnings and errors on stderr: no 'wrote FILE' lines, no "
+                        "progress.")(f)
+
+
+def info(line: str) -> None:
+    """A note on stderr (``wrote FILE``), unless quiet."""
+    if verbosity() >= 0:
+        click.echo(line, err=True)
+
+
+def detail(line: str) -> None:
+    """A detail on stderr, only when verbose."""
+    if verbosity() >= 1:
+        click.echo(line, err=True)
+
+
+def _fallback(stream: Any) -> None:
+    """Set :data:`FALLBACK` on a text stream whose encoding is not a Unicode one."""
+    if not isinstance(stream, io.TextIOWrapper):
+        return
+    encoding = codecs.lookup(stream.encoding or "ascii").name
+    if encoding.startswith("utf") or (stream.errors or "").startswith(FALLBACK):
+        return
+    try:
+        stream.reconfigure(errors=fallback_handler(encoding))
+    except (ValueError, io.UnsupportedOperation):  # pragma: no cover - a closed stream
+        pass
+
+
+def setup_streams() -> None:
+    """Make stdout and stderr write every character (:func:`fallback_handler`)."""
+    _fallback(sys.stdout)
+    _fallback(sys.stderr)
+
+
+def closed_pipe() -> int:
+    """After stdout's reader went away: point stdout at the null device (so that the
+    interpreter's last flush says nothing) and return :data:`EXIT_PIPE`."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, ValueError, io.UnsupportedOperation):  # not a real file: nothing to do
+        pass
+    return EXIT_PIPE
+
+
+class Progress:
+    """click's progress bar on stderr — count, per cent, rate and time left — for work of
+    ``total`` steps that runs longer than ``delay_s``; drawn only when stderr is a
+    terminal and not quiet (off a terminal nothing is written).
+
+    ``step(done)`` moves it; ``clear()`` wipes the bar before other stderr lines (the next
+    step draws it again); ``close()`` ends it.
+    """
+
+    def __init__(self, total: int, label: str, unit: str = "", delay_s: float = 1.0) -> None:
+        self.total, self.label, self.unit, self.delay_s = total, label, unit, delay_s
+        self.start = time.monotonic()
+        self.on = verbosity() >= 0 and sys.stderr.isatty() and total > 1
+        self.bar: Any = None
+
+    def _rate(self, done: int) -> str:
+        elapsed = time.monotonic() - self.start
+        return f"{done / elapsed:.1f} {self.unit}/s" if elapsed > 0 and done else ""
+
+    def step(self, done: int) -> None:
+        """``done`` of ``total`` steps are done."""
+        if not self.on:
+            return
+        if self.bar is None:
+            if time.monotonic() - self.start <= self.delay_s:
+                return
+            self.bar = click.progressbar(length=self.total, label=self.label,
+                                         file=sys.stderr, show_pos=True, show_eta=True,
+                                         item_show_func=lambda rate: rate)
+            self.bar.__enter__()
+        self.bar.update(done - self.bar.pos, self._rate(done))
+
+    def clear(self) -> None:
+        """Wipe the bar's line (other stderr lines follow)."""
+        if self.bar is not None:
+            sys.stderr.write("\r\x1b[K")
+            sys.stderr.flush()
+
+    def close(self) -> None:
+        """End the bar (its line stays, with the final count)."""
+        if self.bar is not None:
+            self.bar.__exit__(None, None, None)
+            self.bar = None

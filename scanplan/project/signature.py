@@ -1,0 +1,136 @@
+"""Keyword signatures and numpydoc parameter lists of the Python API, from the input registry.
+
+``scanplan.uav(...)`` and ``scanplan.scan(...)`` take the inputs of the registry
+(:mod:`scanplan.project.inputs`) as keywords. Their :class:`inspect.Signature` (what
+``help()``, completion and ``inspect.signature`` show) and the *Parameters* section of
+their docstrings are generated here from the engine functions' keywords
+(:func:`scanplan.project.api.uav_job`, ``scan_job``) and the registry's help text and
+units, so neither is written twice.
+
+Numbers are taken as :class:`numbers.Real` (``np.int64``, ``np.float32``, ``Fraction``)
+and handed to the engine as Python ``int`` / ``float`` (:func:`plain`).
+
+>>> import numpy as np
+>>> plain({"height_m": np.int64(100), "photo_scales": [np.float32(8000)]})
+{'height_m': 100, 'photo_scales': [8000.0]}
+"""
+
+from __future__ import annotations
+
+import inspect
+import numbers
+import textwrap
+from collections.abc import Callable, Mapping
+from typing import Any
+
+from .inputs import Input, get
+
+__all__ = ["parameters_doc", "plain", "registry_signature"]
+
+_TYPES = {"number": "Real", "int": "Integral", "scale": "Real or str", "scales":
+          "iterable of Real or str", "str": "str", "date": "datetime.date or str"}
+_UNITLESS = {"number": "none (a ratio or coefficient)", "int": "none (a count)",
+             "scale": "none (a scale denominator)", "scales": "none (scale denominators)"}
+_EXTRA = {  # engine keywords that are not registry inputs (objects, not values)
+    "area": ("scanplan.geo.layout.Area, optional", "the area to cover as a polygon "
+             "(:func:`scanplan.geo.area.load_area`); lays the strips and photo centres out"),
+    "layout_options": ("scanplan.project.flightplan.LayoutOptions, optional",
+                       "flight direction, turns and sorties of the layout"),
+}
+
+
+def plain(value: Any) -> Any:
+    """``value`` with every real number as a Python ``int`` (integral) or ``float``, in
+    lists, tuples and dicts too; booleans and everything else unchanged."""
+    if isinstance(value, bool) or type(value).__name__ == "bool_":
+        return value
+    if isinstance(value, numbers.Integral):
+        return int(value)
+    if isinstance(value, numbers.Real):
+        return float(value)
+    if isinstance(value, list | tuple):
+        return type(value)(plain(v) for v in value)
+    if isinstance(value, Mapping):
+        return {k: plain(v) for k, v in value.items()}
+    return value
+
+
+def _annotation(rec: Input | None, default: Any, original: Any) -> str:
+    if rec is None:
+        return str(original)
+    text = {"number": "numbers.Real", "int": "numbers.Integral",
+            "scale": "numbers.Real | str", "scales": "Iterable[numbers.Real | str]"}.get(
+        rec.kind, "str")
+    if rec.name == "norms":
+        text = "str | os.PathLike[str]"
+    elif rec.name == "pixel_um" and rec.kind == "number" and default == ():
+        text = "Iterable[numbers.Real]"
+    return f"{text} | None" if default is None or "None" in str(original) else text
+
+
+def _record(name: str, plan: str) -> Input | None:
+    try:
+        return get(name, plan)
+    except KeyError:
+        return None
+
+
+def registry_signature(engine: Callable[..., Any], plan: str,
+                       returns: str) -> inspect.Signature:
+    """The keyword-only signature of ``engine``'s inputs, typed from the registry.
+
+    Parameters
+    ----------
+    engine : callable
+        The engine function whose keywords are the inputs (``uav_job``, ``scan_job``).
+    plan : str
+        ``"uav"`` or ``"film"``: which registry records the names are read from.
+    returns : str
+        The return annotation shown.
+    """
+    params = [inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY, default=p.default,
+                                annotation=_annotation(_record(name, plan), p.default,
+                                                       p.annotation))
+              for name, p in inspect.signature(engine).parameters.items()]
+    return inspect.Signature(params, return_annotation=returns)
+
+
+def _unit(rec: Input) -> str:
+    if rec.unit:
+        return rec.unit
+    return _UNITLESS.get(rec.kind, "")
+
+
+def parameters_doc(engine: Callable[..., Any], plan: str) -> str:
+    """The numpydoc *Parameters* section of ``engine``'s inputs: type, help, unit, default.
+
+    Every numeric input states its unit (``Unit: m``; a ratio says so).
+    """
+    lines = ["Parameters", "----------"]
+    for name, p in inspect.signature(engine).parameters.items():
+        rec = _record(name, plan)
+        if rec is None:
+            kind, text = _EXTRA.get(name, ("object, optional", ""))
+            lines.append(f"{name} : {kind}")
+            lines += textwrap.wrap(text, 84, initial_indent="    ", subsequent_indent="    ")
+            continue
+        optional = p.default is not inspect.Parameter.empty
+        kind = ("iterable of Real" if p.default == () else _TYPES.get(rec.kind, "str")) + (
+            ", optional" if optional else "")
+        text = rec.help[0].upper() + rec.help[1:]
+        unit = _unit(rec)
+        if unit:
+            text += f". Unit: {unit}"
+        if rec.choices:
+            text += ". One of " + ", ".join(f'"{c}"' for c in rec.choices)
+        if rec.by_carrier and rec.default is not None:
+            text += f". Default {rec.default!r} on a UAV" + (f"; {rec.note}" if rec.note
+                                                            else "")
+        elif p.default not in (None, inspect.Parameter.empty, ()):
+            text += f". Default {p.default!r}"
+        elif rec.note:
+            text += f". {rec.note[0].upper()}{rec.note[1:]}"
+        lines.append(f"{name} : {kind}")
+        lines += textwrap.wrap(text + ".", 84, initial_indent="    ",
+                               subsequent_indent="    ")
+    return "\n".join(lines)
