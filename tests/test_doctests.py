@@ -48,7 +48,8 @@ def test_examples_of_the_top_level_api_run():
 
 
 @pytest.mark.parametrize("name", ["scanplan.core.formulas", "scanplan.core.stereo",
-                                  "scanplan.core.flight", "scanplan.core.orientation"])
+                                  "scanplan.core.flight", "scanplan.core.orientation",
+                                  "scanplan.core.shown"])
 def test_every_formula_of_the_core_has_an_example_that_runs(name):
     """The Instruction's formulas, the recognition model and the block geometry (issue 14,
     item 5): each public function shows a worked example, and the examples run."""

@@ -562,7 +562,7 @@ def test_motion_blur_is_never_shown_equal_to_its_limit(blur, en, ru):
     """A blur just over the 0.5 px limit read "0,50 пикс. больше допустимого 0,5": the
     warning shows as many decimals as it takes to be above the limit."""
     from scanplan.core.flight import MAX_BLUR_PX
-    from scanplan.core.flight import shown_above as _shown_above
+    from scanplan.core.shown import shown_above as _shown_above
     from scanplan.messages import Message
 
     m = Message("motion_blur", blur=_shown_above(blur, MAX_BLUR_PX), height=70.0,

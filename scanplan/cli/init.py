@@ -470,19 +470,7 @@ def init(project: str, force: bool, **opts: Any) -> None:
     if kind != "film":
         f_number, speed_ms, aircraft = _camera_needs(uav_camera, opts["norms"], f_number,
                                                      speed_ms, ask)
-    if opts["photo_scales"] and opts["archive_photo_scale"]:
-        raise InputError("--photo-scale", "give either --photo-scale (existing photos) or "
-                         "--photo-scales (candidates), not both")
-    archive = (parse_scale(opts["archive_photo_scale"], "--photo-scale")
-               if opts["archive_photo_scale"] else None)
-    if ask and kind != "uav" and not opts["photo_scales"] and archive is None:
-        if click.confirm("Scan existing (archive) photos of a given scale?", default=False):
-            archive = parse_scale(click.prompt("Scale of the existing photos (e.g. 12000)"),
-                                  "--photo-scale")
-        else:
-            default = ",".join(f"{x:g}" for x in default_photo_scales(map_scale))
-            opts["photo_scales"] = click.prompt("Candidate photo scales, comma-separated",
-                                                default=default)
+    archive = _film_scales(opts, ask and kind != "uav", map_scale)
     answers = InitAnswers(
         kind=kind, map_scale=map_scale, relief_interval_m=relief, name=name,
         customer=opts["customer"], contractor=opts["contractor"], locale=locale,
@@ -507,6 +495,27 @@ def init(project: str, force: bool, **opts: Any) -> None:
     click.echo(f"wrote {project}; plan it with: scanplan plan {project}", err=True)
 
 
+def _film_scales(opts: dict[str, Any], ask: bool, map_scale: float) -> float | None:
+    """The scale of existing photos, or None with the candidates left in
+    ``opts["photo_scales"]`` (asked at a terminal when neither option is given)."""
+    from ..norms import parse_scale
+
+    if opts["photo_scales"] and opts["archive_photo_scale"]:
+        raise InputError("--photo-scale", "give either --photo-scale (existing photos) or "
+                         "--photo-scales (candidates), not both")
+    archive = (parse_scale(opts["archive_photo_scale"], "--photo-scale")
+               if opts["archive_photo_scale"] else None)
+    if ask and not opts["photo_scales"] and archive is None:
+        if click.confirm("Scan existing (archive) photos of a given scale?", default=False):
+            archive = parse_scale(click.prompt("Scale of the existing photos (e.g. 12000)"),
+                                  "--photo-scale")
+        else:
+            default = ",".join(f"{x:g}" for x in default_photo_scales(map_scale))
+            opts["photo_scales"] = click.prompt("Candidate photo scales, comma-separated",
+                                                default=default)
+    return archive
+
+
 def _camera_needs(camera: str, norms: str, f_number: float | None, speed_ms: float | None,
                   ask: bool) -> tuple[float | None, float | None, bool]:
     """The f-number and speed a catalogue camera needs beyond the catalogue: asked at a
@@ -520,13 +529,13 @@ def _camera_needs(camera: str, norms: str, f_number: float | None, speed_ms: flo
             raise InputError("--f-number", f"the catalogue has no f-number for {camera!r}: "
                              "give the lens's working f-number (> 0), e.g. --f-number 5.6")
         f_number = click.prompt(f"Working f-number of the lens of {camera} (e.g. 5.6)",
-                                type=click.FloatRange(min=0, min_open=True))
+                                type=DECIMAL)
     if speed_ms is None and aircraft:
         if not ask:
             raise InputError("--speed-ms", f"{camera!r} is flown on a manned aircraft: give "
                              "its ground speed in m/s (> 0), e.g. --speed-ms 70")
         speed_ms = click.prompt(f"Ground speed of the aircraft carrying {camera}, m/s",
-                                type=click.FloatRange(min=0, min_open=True))
+                                type=DECIMAL)
     return f_number, speed_ms, aircraft
 
 

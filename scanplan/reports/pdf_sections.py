@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Any
 
 from ..core import flight as FL
 from ..core.flight import MAX_BLUR_PX
+from ..core.shown import shown_decimals
 from ..messages import localize
 from ..norms import NormSet
 from ..project.api import ScanJob, UavJob
@@ -344,7 +345,7 @@ def _uav_results(plan: UavPlan, f: _Fmt) -> tuple[list[str], list[dict[str, Any]
         row(f.label("pdf_l_corner"), f.num(plan.ground_resolution_corner_m, 3)),
         row(f.label("l_over_gsd"), f.num(plan.ground_resolution_to_gsd, 2)),
         row(f.label("motion_blur_px") + f" ({f.label('pdf_at_height', h=f.g(h['min']))})",
-            f.num(plan.motion_blur_px, FL.shown_decimals(plan.motion_blur_px, MAX_BLUR_PX))),
+            f.num(plan.motion_blur_px, shown_decimals(plan.motion_blur_px, MAX_BLUR_PX))),
     ]
     if plan.tilted_corner_gsd_m is not None:
         results.append(row(f.label("pdf_tilted_gsd", roll=f.g(inp.roll_deg),

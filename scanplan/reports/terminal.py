@@ -10,6 +10,7 @@ import math
 from typing import Any
 
 from ..core import flight as FL
+from ..core.shown import shown_decimals
 from ..messages import localize, scale_text
 from ..rules.film import ScanPlan
 from ..rules.uav import UavPlan
@@ -234,7 +235,7 @@ def format_uav_plan(plan: UavPlan, norm_name: str = "", locale: str = "en",
     rows.append([w("l_corner"), m, w.f(plan.ground_resolution_corner_m, 3), *blank])
     rows.append([w("l_gsd"), "", w.f(plan.ground_resolution_to_gsd, 2), *blank])
     rows.append([w("blur", h=w.g(h["min"])), w("px"), w.f(plan.motion_blur_px,
-                                                   FL.shown_decimals(plan.motion_blur_px,
+                                                   shown_decimals(plan.motion_blur_px,
                                                                      FL.MAX_BLUR_PX)), *blank])
     if plan.tilted_corner_gsd_m is not None:
         rows.append([w("tilted", roll=w.g(inp.roll_deg), pitch=w.g(inp.pitch_deg)), m, "",

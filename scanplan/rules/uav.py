@@ -33,6 +33,7 @@ from ..core import formulas as F
 from ..core import mtf as M
 from ..core.domains import DOMAINS, check_domain
 from ..core.orientation import attitude_matrix, corner_gsd
+from ..core.shown import shown_above
 from ..errors import FieldValueError, InputError
 from ..messages import Message
 from .constraints import height_accuracy as _height_accuracy  # noqa: F401  (tests, importers)
@@ -302,7 +303,7 @@ def _blur(inp: UavInputs, gsd_lo: float, h_lo: float, h_hi: float,
     max_speed = float(FL.max_speed_for_blur_ms(inp.exposure_s, gsd_lo))
     if blur > FL.MAX_BLUR_PX:
         warnings.append(PlanWarning("motion_blur", Message(
-            "motion_blur", blur=FL.shown_above(blur, FL.MAX_BLUR_PX), height=h_lo,
+            "motion_blur", blur=shown_above(blur, FL.MAX_BLUR_PX), height=h_lo,
             limit=FL.MAX_BLUR_PX,
             denominator=math.ceil(1 / max_exp), speed=max_speed)))
     return blur, max_exp, max_speed
