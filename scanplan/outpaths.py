@@ -44,9 +44,11 @@ OUR_MARK = b"scanplan"
 """Start of the creator property of every report scanplan writes."""
 
 SUFFIX = {"xlsx": ".xlsx", "pdf": ".pdf", "plan": ".plan", "kml": ".kml",
-          "geojson": ".geojson", "csv": ".csv", "waypoints": ".waypoints"}
+          "geojson": ".geojson", "csv": ".csv", "waypoints": ".waypoints", "kmz": ".kmz",
+          "gpkg": ".gpkg"}
 _WHAT = {"xlsx": "workbook", "pdf": "PDF", "plan": "mission", "kml": "KML file",
-         "geojson": "GeoJSON file", "csv": "table", "waypoints": "waypoint file"}
+         "geojson": "GeoJSON file", "csv": "table", "waypoints": "waypoint file",
+         "kmz": "DJI route file", "gpkg": "GeoPackage"}
 #: How scanplan's exported text files name their writer (within their first 4 KiB): the
 #: Plan file's groundStation, the KML's opening comment, the GeoJSON's "generator" member,
 #: the photo table's header (a CSV has no place for a comment), the waypoint file's comment.
@@ -92,7 +94,7 @@ def check_target(path: str, field: str, kind: str, *, inputs: Iterable[str] = ()
         The target as the user gave it.
     field : str
         How messages name it (``--xlsx``, ``--out``).
-    kind : {"xlsx", "pdf", "plan", "kml", "geojson", "csv", "waypoints"}
+    kind : {"xlsx", "pdf", "plan", "kml", "geojson", "csv", "waypoints", "kmz", "gpkg"}
         The report or exported file it is for.
     inputs : iterable of str
         The run's input files; none of them may be the target.
@@ -159,7 +161,7 @@ def written_by_scanplan(path: str | os.PathLike[str], kind: str) -> bool:
     ----------
     path : path
         An existing regular file.
-    kind : {"xlsx", "pdf", "plan", "kml", "geojson", "csv", "waypoints"}
+    kind : {"xlsx", "pdf", "plan", "kml", "geojson", "csv", "waypoints", "kmz", "gpkg"}
         What it should be.
 
     Returns
@@ -179,7 +181,24 @@ def written_by_scanplan(path: str | os.PathLike[str], kind: str) -> bool:
         return True
     if kind in _TEXT_MARKS:
         return bool(_TEXT_MARKS[kind].search(data[:4096]))
+    if kind == "kmz":  # the DJI route file: a ZIP whose comment names scanplan
+        return _zip_comment_is_ours(data)
+    if kind == "gpkg":  # the GeoPackage's dataset metadata item GENERATOR
+        return data.startswith(b"SQLite format 3\x00") and bool(_GPKG_MARK.search(data))
     return _pdf_is_ours(data)
+
+
+_GPKG_MARK = re.compile(rb'<MDI key="GENERATOR">scanplan ')
+
+
+def _zip_comment_is_ours(data: bytes) -> bool:
+    import io
+
+    try:
+        with zipfile.ZipFile(io.BytesIO(data)) as zf:
+            return zf.comment.startswith(OUR_MARK + b" ")
+    except (zipfile.BadZipFile, OSError, ValueError, EOFError):
+        return False
 
 
 def _xlsx_is_ours(data: bytes) -> bool:

@@ -117,7 +117,23 @@ def _vehicle(spec: Any) -> Literal["multirotor", "fixed_wing"]:
     return "multirotor"
 
 
-def export_files(spec: Any, folder: str, *, prefix: str = "") -> dict[str, tuple[str, bytes]]:
+def dji_files(spec: Any, layout: FlightLayout, mission: MissionOptions | None
+              ) -> tuple[dict[str, bytes], str | None]:
+    """The DJI Pilot 2 route files of a UAV flight (``mission-dji.kmz`` …) and, when none
+    is written although a mission is, why (a camera DJI Pilot 2 cannot fly; no EGM96
+    grid for a terrain plan)."""
+    if mission is None:
+        return {}, None
+    from ..geo.export import wpml_files
+    from ..geo.export.steps import mission_layout
+
+    camera = getattr(spec.uav.job.plan.inputs, "camera", None)
+    camera_id = str(getattr(camera, "id", camera))
+    return wpml_files(mission_layout(layout), mission, camera_id)
+
+
+def export_files(spec: Any, folder: str, *, prefix: str = "",
+                 notes: list[str] | None = None) -> dict[str, tuple[str, bytes]]:
     """Every exported file of ``spec``: path in ``folder`` → (kind, content).
 
     Parameters
@@ -128,6 +144,9 @@ def export_files(spec: Any, folder: str, *, prefix: str = "") -> dict[str, tuple
         The ``--out`` folder.
     prefix : str
         Put before every name (a batch: ``"NAME-"``).
+    notes : list of str, optional
+        Receives why a file the user may expect was not written (no DJI route for a
+        camera DJI Pilot 2 cannot fly), for the terminal.
 
     Returns
     -------
@@ -144,11 +163,16 @@ def export_files(spec: Any, folder: str, *, prefix: str = "") -> dict[str, tuple
         from ..geo.export import layout_files
 
         film = kind == "film"
+        mission = None if film else mission_options(spec, layout)
         rendered = layout_files(
-            layout, names=export_names(locale, title, film),
-            mission=None if film else mission_options(spec, layout),
+            layout, names=export_names(locale, title, film), mission=mission,
             prefix=prefix + ("film-" if film else ""),
             photos_name="frames" if film else "photos")
+        if not film:  # the same mission for DJI Pilot 2, when the camera is a DJI one
+            dji, reason = dji_files(spec, layout, mission)
+            rendered.update({prefix + k: v for k, v in dji.items()})
+            if reason and notes is not None:
+                notes.append(f"no {prefix}mission-dji.kmz: {reason}")
         for name, data in rendered.items():
             suffix = os.path.splitext(name)[1].lower()
             files[os.path.join(folder, name)] = (KIND_OF_SUFFIX[suffix], data)
@@ -156,7 +180,8 @@ def export_files(spec: Any, folder: str, *, prefix: str = "") -> dict[str, tuple
 
 
 _EXPORT_NAME = re.compile(r"(?:film-)?(?:mission(?:-\d+)?\.(?:plan|waypoints)|flight\.kml|"
-                          r"flight\.geojson|photos\.csv|frames\.csv)")
+                          r"flight\.geojson|photos\.csv|frames\.csv|"
+                          r"mission-dji(?:-\d+)?\.kmz|flight\.gpkg)")
 
 
 def stale_exports(folder: str, written: set[str]) -> list[str]:
