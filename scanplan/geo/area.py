@@ -38,6 +38,7 @@ from shapely.validation import explain_validity
 from ..errors import InputError
 from ..safeio import read_limited, size_text
 from .layout import Area
+from .vertices import VERTEX_SUFFIXES, read_vertices
 
 if TYPE_CHECKING:  # pyproj (60 ms) is imported when a polygon is read, not for a block
     import pyproj
@@ -211,6 +212,8 @@ def _read_file(path: Path, layer: str | None, feature: str | int | None
     name = str(path)
     source: str | io.BytesIO = str(path)
     suffix = path.suffix.lower()
+    if suffix in VERTEX_SUFFIXES:  # a list of the boundary's vertices (geo/vertices.py)
+        return read_vertices(path, name), None, name, (name, "vertices", None)
     if suffix in (".kmz", ".kml", ".geojson", ".json"):
         data = read_limited(path, MAX_FILE_BYTES, field=name)
         if suffix == ".kmz":

@@ -13,7 +13,7 @@ georeferenced) gets none of them; a plan that is not feasible gets no mission.
 | ``flight.geojson`` | the same as RFC 7946 GeoJSON | :mod:`.gis` |
 | ``photos.csv`` | every photo centre with its figures | :mod:`.gis` |
 | ``flight.gpkg`` | area, strips, photo centres, sorties as one GeoPackage | :mod:`.gpkg` |
-| ``mission-dji.kmz`` (``mission-dji-01.kmz`` … per sortie) | the mission for DJI Pilot 2 | :mod:`.wpml` |
+| ``mission-dji.kmz`` (``mission-dji-01.kmz`` …) | the mission for DJI Pilot 2 | :mod:`.wpml` |
 """
 
 from __future__ import annotations

@@ -16,8 +16,9 @@ strip. The first waypoint turns the gimbal to −90° (nadir). Each photographed
 action group from its first photo's waypoint to its last one with the trigger
 ``multipleDistance`` (a photo every ``interval`` metres from the group's start, the
 specification's "same distance trigger") and the action ``takePhoto``; the interval is
-the part's length on the ellipsoid divided by its photo count less one, so the last photo
-falls on the part's last waypoint and the part fires exactly its photos of photos.csv. A
+the part's length on the ellipsoid divided by its photo count less one, written rounded
+down to 0.1 mm, so the last photo falls on the part's last waypoint (at most a millimetre
+before it, never past it) and the part fires exactly its photos of photos.csv. A
 part of one photo fires once on arrival (``reachPoint``). The aircraft heads along the
 route (``followWayline``) and flies straight lines between waypoints, stopping at each
 (``toPointAndStopWithDiscontinuityCurvature``): the turns are the run-in and run-out legs.
@@ -212,8 +213,8 @@ def _action_group(pm: ET.Element, group_id: int, start: int, end: int, trigger: 
     _sub(group, "actionGroupMode", "sequence")
     trig = _sub(group, "actionTrigger")
     _sub(trig, "actionTriggerType", trigger)
-    if param is not None:
-        _sub(trig, "actionTriggerParam", round(param, 4))
+    if param is not None:  # rounded down: n photos never need more than the part's length
+        _sub(trig, "actionTriggerParam", math.floor(param * 1e4) / 1e4)
     return group
 
 
@@ -247,7 +248,9 @@ def trigger_interval_m(a: RoutePoint, b: RoutePoint, photos: int) -> float:
     length on the WGS 84 ellipsoid [m] over ``photos - 1`` (pyproj ``Geod.inv``)."""
     from pyproj import Geod
 
-    _, _, dist = Geod(ellps="WGS84").inv(a.lon_deg, a.lat_deg, b.lon_deg, b.lat_deg)
+    # from the coordinates as written (8 decimals), so a reader measures the same length
+    _, _, dist = Geod(ellps="WGS84").inv(round(a.lon_deg, 8), round(a.lat_deg, 8),
+                                         round(b.lon_deg, 8), round(b.lat_deg, 8))
     return float(dist) / (photos - 1)
 
 
@@ -290,7 +293,8 @@ def render_waylines(points: Sequence[RoutePoint], mission: WpmlMission) -> bytes
         _sub(heading, "waypointHeadingMode", "followWayline")
         turn = _sub(pm, "waypointTurnParam")
         _sub(turn, "waypointTurnMode", "toPointAndStopWithDiscontinuityCurvature")
-        _sub(turn, "waypointTurnDampingDist", 0)
+        # no waypointTurnDampingDist: required only for the curved turn modes, and its
+        # range (0, segment length] excludes 0
         _sub(pm, "useStraightLine", 1)
         if k == 0:  # the camera looks straight down for the whole route
             _gimbal_nadir(_action_group(pm, group_id, 0, 0, "reachPoint", None))
@@ -348,11 +352,11 @@ def render_template(mission: WpmlMission, *, created_ms: int = 0) -> bytes:
     _sub(pm, "elevationOptimizeEnable", 0)
     _sub(pm, "smartObliqueEnable", 0)
     _sub(pm, "shootType", "distance")
-    _sub(pm, "direction", int(round(mission.direction_deg)) % 360)
-    _sub(pm, "margin", int(round(mission.margin_m)))
+    _sub(pm, "direction", round(mission.direction_deg) % 360)
+    _sub(pm, "margin", round(mission.margin_m))
     overlap = _sub(pm, "overlap")
-    _sub(overlap, "orthoCameraOverlapH", int(round(mission.forward_overlap_pct)))
-    _sub(overlap, "orthoCameraOverlapW", int(round(mission.side_overlap_pct)))
+    _sub(overlap, "orthoCameraOverlapH", round(mission.forward_overlap_pct))
+    _sub(overlap, "orthoCameraOverlapW", round(mission.side_overlap_pct))
     _sub(pm, "ellipsoidHeight", round(mission.area_ellipsoid_height_m, 3))
     _sub(pm, "height", round(mission.area_height_m, 3))
     poly = ET.SubElement(pm, _K + "Polygon")
@@ -384,25 +388,40 @@ def render_kmz(points: Sequence[RoutePoint], mission: WpmlMission) -> bytes:
 _GEOID: list[Any] = []
 
 
+#: Where a system's PROJ keeps the EGM96 grid when pyproj's own data folder has none
+#: (Debian and Ubuntu: package proj-data).
+_SYSTEM_GRIDS = ("/usr/share/proj/us_nga_egm96_15.tif", "/usr/share/proj/egm96_15.gtx")
+
+
 def _egm96_transformer() -> Any:
-    """PROJ's EGM96 height → WGS 84 ellipsoidal height with the geoid grid, else None."""
+    """PROJ's EGM96 height → WGS 84 ellipsoidal height with the geoid grid, else None.
+
+    First PROJ's own choice (EPSG:9707 → EPSG:4979) when its grid is in PROJ's search path;
+    else the grid file of the system's PROJ data through a ``vgridshift`` pipeline
+    (h = H + N). PROJ's "ballpark" operation (N taken as 0) is never used.
+    """
     if _GEOID:
         return _GEOID[0]
-    import pyproj
-    from pyproj import CRS
+    import warnings
+
+    from pyproj import CRS, Transformer
     from pyproj.transformer import TransformerGroup
 
-    def best() -> Any:
+    found = None
+    with warnings.catch_warnings():  # "best transformation is not available": we look on
+        warnings.simplefilter("ignore")
         group = TransformerGroup(CRS.from_epsg(9707), CRS.from_epsg(4979), always_xy=True)
-        for tr in group.transformers:  # a "ballpark" one drops the geoid: never that
-            if "ballpark" not in tr.description.lower() and (tr.accuracy or -1) >= 0:
-                return tr
-        return None
-
-    found = best()
-    if found is None and os.path.isdir("/usr/share/proj"):  # Debian's proj-data
-        pyproj.datadir.append_data_dir("/usr/share/proj")
-        found = best()
+    for tr in group.transformers:
+        if "ballpark" not in tr.description.lower() and (tr.accuracy or -1) >= 0:
+            found = tr
+            break
+    for grid in _SYSTEM_GRIDS if found is None else ():
+        if os.path.isfile(grid):
+            found = Transformer.from_pipeline(
+                "+proj=pipeline +step +proj=unitconvert +xy_in=deg +xy_out=rad "
+                f"+step +proj=vgridshift +grids={grid} +multiplier=1 "
+                "+step +proj=unitconvert +xy_in=rad +xy_out=deg")
+            break
     _GEOID.append(found)
     return found
 

@@ -1,0 +1,160 @@
+"""An area given as a list of its vertices: a CSV or TXT file, one vertex a row.
+
+What a customer's engineer often sends instead of a GIS file::
+
+    lon,lat                lat;lon                  # no header: x then y
+    37.6012,55.7503        55,7503;37,6012          37.6012 55.7503
+    ...                    ...                      ...
+
+* The delimiter is a comma, a semicolon, a tab or spaces (:class:`csv.Sniffer`, else the
+  first of ``;``, tab, ``,`` found on every row, else whitespace).
+* A decimal comma is read where the delimiter is not a comma (``55,7503;37,6012``).
+* A header row is one whose cells are not all numbers; it names the columns: ``lon`` /
+  ``longitude`` / ``x`` / ``easting`` / ``e`` and ``lat`` / ``latitude`` / ``y`` /
+  ``northing`` / ``n`` (any case; ``долгота``, ``широта`` too), in either order, other
+  columns (a point number) ignored. Without a header the file must have two columns:
+  x (longitude, easting) then y (latitude, northing).
+* Coordinates are WGS 84 longitude/latitude unless ``[area] crs`` states the CRS of the
+  list (``"EPSG:28407"``); x is always the easting — a survey list whose X is the
+  northing must name its columns (``northing;easting``).
+* Blank lines and lines starting with ``#`` are skipped; the ring may repeat its first
+  vertex at the end.
+
+The file is split into rows and cells by pandas (:func:`pandas.read_csv`) and the numbers
+read by :func:`pandas.to_numeric`; a cell that is not a number is an input error naming
+its line and column (exit 2).
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import re
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import shapely
+
+from ..errors import InputError
+from ..safeio import read_limited
+
+__all__ = ["VERTEX_SUFFIXES", "read_vertices"]
+
+VERTEX_SUFFIXES = (".csv", ".txt")
+MAX_VERTEX_BYTES = 8 * 1024 * 1024  # a vertex list larger than this is not an area boundary
+_X_NAMES = {"lon", "long", "lng", "longitude", "x", "easting", "east", "e", "долгота"}
+_Y_NAMES = {"lat", "latitude", "y", "northing", "north", "n", "широта"}
+_NUMBER = re.compile(r"^[+-]?(\d+([.,]\d*)?|[.,]\d+)([eE][+-]?\d+)?$")
+
+
+def _lines(text: str) -> list[tuple[int, str]]:
+    """The file's non-blank, non-comment lines with their line numbers (from 1)."""
+    return [(i, line) for i, line in enumerate(text.splitlines(), start=1)
+            if line.strip() and not line.lstrip().startswith("#")]
+
+
+def _delimiter(rows: list[str]) -> str | None:
+    """The delimiter of ``rows``: csv.Sniffer's, else the first of ; tab , on every row;
+    None: whitespace."""
+    sample = "\n".join(rows[:50])
+    try:
+        found = csv.Sniffer().sniff(sample, delimiters=";\t,").delimiter
+    except csv.Error:
+        found = None
+    if found is not None and all(found in r for r in rows[:50]):
+        return found
+    for cand in (";", "\t", ","):
+        if all(cand in r for r in rows[:50]):
+            return cand
+    return None
+
+
+def _cells(line: str, sep: str | None) -> list[str]:
+    parts = next(csv.reader([line], delimiter=sep)) if sep else line.split()
+    return [p.strip() for p in parts]
+
+
+def read_vertices(path: Path, name: str) -> shapely.Polygon:
+    """The polygon of a vertex list (rules in the module docstring).
+
+    Parameters
+    ----------
+    path : Path
+        The CSV or TXT file.
+    name : str
+        How messages name it.
+
+    Returns
+    -------
+    shapely.Polygon
+        In the coordinates of the file (the caller applies ``[area] crs``).
+
+    Raises
+    ------
+    InputError
+        Naming the file, its line and column (exit 2).
+    """
+    import pandas as pd
+
+    data = read_limited(path, MAX_VERTEX_BYTES, field=name)
+    try:
+        text = data.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise InputError(name, f"is not UTF-8 text (byte {exc.start + 1}); save the vertex "
+                         "list as UTF-8 CSV") from None
+    lines = _lines(text)
+    if not lines:
+        raise InputError(name, "holds no vertex: give one 'lon,lat' (or 'x,y') row per "
+                         "vertex of the boundary")
+    sep = _delimiter([line for _, line in lines])
+    first = _cells(lines[0][1], sep)
+    header = not all(_NUMBER.match(c) for c in first if c) or not any(first)
+    cols = _columns(first, name, lines[0][0]) if header else None
+    body = lines[1:] if header else lines
+    numbers = [line for _, line in body]
+    frame = pd.read_csv(io.StringIO("\n".join(numbers)), sep=sep if sep else r"\s+",
+                        header=None, dtype=str, keep_default_na=False,
+                        skipinitialspace=True, engine="python",
+                        names=range(max(len(_cells(r, sep)) for r in numbers))
+                        ) if numbers else pd.DataFrame()
+    if cols is None:
+        if frame.shape[1] != 2:
+            raise InputError(name, f"line {body[0][0]} has {frame.shape[1]} columns and the "
+                             "file no header: give two columns (x, y — longitude, latitude) "
+                             "or a header naming them lon and lat (or x and y)")
+        cols = (0, 1, "x", "y")
+    decimal_comma = sep != ","
+    xy = []
+    for k, label in ((cols[0], cols[2]), (cols[1], cols[3])):
+        raw = (frame[k].fillna("").astype(str).str.strip() if k in frame
+               else pd.Series([""] * len(body)))
+        values = pd.to_numeric(raw.str.replace(",", ".", regex=False) if decimal_comma
+                               else raw, errors="coerce")
+        bad = np.flatnonzero(~np.isfinite(values.to_numpy(dtype=float, na_value=np.nan)))
+        if len(bad):
+            i = int(bad[0])
+            raise InputError(name, f"line {body[i][0]}, column {label!r}: {raw.iloc[i]!r} is "
+                             "not a number" + ("" if decimal_comma else
+                                               " (with a comma delimiter the decimal mark "
+                                               "is a point)"))
+        xy.append(values.to_numpy(dtype=float))
+    pts = list(zip(xy[0].tolist(), xy[1].tolist(), strict=True))
+    if len(pts) > 1 and pts[0] == pts[-1]:
+        pts = pts[:-1]
+    if len(set(pts)) < 3:
+        raise InputError(name, f"has {len(set(pts))} distinct vertex(es); a polygon needs at "
+                         "least 3")
+    return shapely.Polygon(pts)
+
+
+def _columns(header: list[str], name: str, line: int) -> tuple[Any, Any, str, str]:
+    """(x column, y column, x name, y name) from a header row."""
+    low = [h.strip().strip('"').lower() for h in header]
+    xs = [i for i, h in enumerate(low) if h in _X_NAMES]
+    ys = [i for i, h in enumerate(low) if h in _Y_NAMES]
+    if len(xs) != 1 or len(ys) != 1:
+        raise InputError(name, f"line {line} {header!r} is a header but does not name one x and "
+                         "one y column: name them lon and lat (or x and y, easting and "
+                         "northing)"[:400])
+    return xs[0], ys[0], header[xs[0]], header[ys[0]]
