@@ -10,6 +10,7 @@ every waypoint, every trigger and every action back. flight.gpkg is read with py
 
 from __future__ import annotations
 
+import functools
 import io
 import math
 import os
@@ -204,19 +205,27 @@ def test_route_fires_exactly_the_photos_of_photos_csv(example):
                 assert float(np.min(d)) < 0.02, (strip, lon, lat)
 
 
-def _geoid(lon: float, lat: float) -> float:
-    """N of EGM96 from the grid file itself (GDAL reads the grid; bilinear, as PROJ)."""
+@functools.cache
+def _grid():
     import rasterio
 
     grid = next((g for g in wpml_mod._SYSTEM_GRIDS if os.path.isfile(g)), None)
     if grid is None:
-        return float(wpml_mod.egm96_separation_m(np.array([lon]), np.array([lat]))[0])
+        return None
     with rasterio.open(grid) as ds:
-        col, row = ~ds.transform * (lon, lat)  # fractional pixel
-        data = ds.read(1)
-    r0, c0 = int(math.floor(row - 0.5)), int(math.floor(col - 0.5))
+        return ~ds.transform, ds.read(1).astype(float)
+
+
+def _geoid(lon: float, lat: float) -> float:
+    """N of EGM96 read from the grid file itself by GDAL (rasterio) and interpolated
+    bilinearly between its nodes, as PROJ does; else PROJ's own value."""
+    if _grid() is None:
+        return float(wpml_mod.egm96_separation_m(np.array([lon]), np.array([lat]))[0])
+    inverse, data = _grid()
+    col, row = inverse @ (lon, lat)  # fractional pixel; the nodes are pixel centres
+    r0, c0 = math.floor(row - 0.5), math.floor(col - 0.5)
     fr, fc = row - 0.5 - r0, col - 0.5 - c0
-    q = data[r0:r0 + 2, c0:c0 + 2].astype(float)
+    q = data[r0:r0 + 2, c0:c0 + 2]
     return float((q[0, 0] * (1 - fc) + q[0, 1] * fc) * (1 - fr)
                  + (q[1, 0] * (1 - fc) + q[1, 1] * fc) * fr)
 
@@ -345,7 +354,7 @@ def test_no_geoid_no_dji_file(monkeypatch):
 def test_flight_gpkg_reads_back(example):
     import pyogrio
 
-    name, folder, files = example
+    _, folder, files = example
     path = Path(folder) / "flight.gpkg"
     path.write_bytes(files["flight.gpkg"])
     photos = pd.read_csv(io.BytesIO(files["photos.csv"]))
@@ -355,7 +364,7 @@ def test_flight_gpkg_reads_back(example):
     assert info["features"] == len(photos)
     assert "32637" in info["crs"]
     assert info["dataset_metadata"]["GENERATOR"].startswith("scanplan ")
-    meta, _, wkb, fields = pyogrio.raw.read(path, layer="photos")
+    meta, _, _, fields = pyogrio.raw.read(path, layer="photos")
     got = dict(zip(meta["fields"], fields, strict=True))
     assert list(got) == list(photos.columns)
     for col in photos.columns:
