@@ -6,8 +6,8 @@ What a customer's engineer often sends instead of a GIS file::
     37.6012,55.7503        55,7503;37,6012          37.6012 55.7503
     ...                    ...                      ...
 
-* The delimiter is a comma, a semicolon, a tab or spaces (:class:`csv.Sniffer`, else the
-  first of ``;``, tab, ``,`` found on every row, else whitespace).
+* The delimiter is a semicolon, a tab, a comma or spaces: the first of ``;``, tab, ``,``
+  found on every row, else whitespace; the cells are split by :mod:`csv` and pandas.
 * A decimal comma is read where the delimiter is not a comma (``55,7503;37,6012``).
 * A header row is one whose cells are not all numbers; it names the columns: ``lon`` /
   ``longitude`` / ``x`` / ``easting`` / ``e`` and ``lat`` / ``latitude`` / ``y`` /
@@ -55,17 +55,10 @@ def _lines(text: str) -> list[tuple[int, str]]:
 
 
 def _delimiter(rows: list[str]) -> str | None:
-    """The delimiter of ``rows``: csv.Sniffer's, else the first of ; tab , on every row;
-    None: whitespace."""
-    sample = "\n".join(rows[:50])
-    try:
-        found = csv.Sniffer().sniff(sample, delimiters=";\t,").delimiter
-    except csv.Error:
-        found = None
-    if found is not None and all(found in r for r in rows[:50]):
-        return found
+    """The delimiter of ``rows``: the first of ``;``, tab, ``,`` found on every row (a
+    semicolon first: it is never a decimal mark); None: whitespace."""
     for cand in (";", "\t", ","):
-        if all(cand in r for r in rows[:50]):
+        if all(cand in r for r in rows):
             return cand
     return None
 
@@ -113,16 +106,22 @@ def read_vertices(path: Path, name: str) -> shapely.Polygon:
     cols = _columns(first, name, lines[0][0]) if header else None
     body = lines[1:] if header else lines
     numbers = [line for _, line in body]
+    width = len(first) if header else 2
+    for number, line in body:  # a row of another width: a stray delimiter, never guessed
+        n = len(_cells(line, sep))
+        if n != width:
+            raise InputError(name, f"line {number} has {n} cells; "
+                             + (f"the header has {width}" if header else
+                                "without a header the file must have two columns: x, y "
+                                "(longitude, latitude), or a header naming them lon and "
+                                "lat (or x and y)")
+                             + ("; with a comma delimiter the decimal mark is a point"
+                                if sep == "," else ""))
     frame = pd.read_csv(io.StringIO("\n".join(numbers)), sep=sep if sep else r"\s+",
                         header=None, dtype=str, keep_default_na=False,
                         skipinitialspace=True, engine="python",
-                        names=range(max(len(_cells(r, sep)) for r in numbers))
-                        ) if numbers else pd.DataFrame()
+                        names=range(width)) if numbers else pd.DataFrame()
     if cols is None:
-        if frame.shape[1] != 2:
-            raise InputError(name, f"line {body[0][0]} has {frame.shape[1]} columns and the "
-                             "file no header: give two columns (x, y — longitude, latitude) "
-                             "or a header naming them lon and lat (or x and y)")
         cols = (0, 1, "x", "y")
     decimal_comma = sep != ","
     xy = []
