@@ -119,3 +119,12 @@ def test_cli_exit_2_names_the_cell(tmp_path):
     assert res.exit_code == 2
     assert "line 3, column 'lat': 'x' is not a number" in res.output
     assert "Traceback" not in res.output
+
+
+def test_a_wkt_table_is_still_read_by_gdal(tmp_path, kml_area):
+    ring = _ring()
+    wkt = shapely.Polygon(ring).wkt
+    path = tmp_path / "area.csv"
+    path.write_text(f'id,WKT\n1,"{wkt}"\n', encoding="utf-8")
+    area = load_area(AreaSpec(file=str(path)))
+    assert area.geometry.symmetric_difference(kml_area.geometry).area < 1e-6 * area.geometry.area

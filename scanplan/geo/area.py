@@ -212,8 +212,9 @@ def _read_file(path: Path, layer: str | None, feature: str | int | None
     name = str(path)
     source: str | io.BytesIO = str(path)
     suffix = path.suffix.lower()
-    if suffix in VERTEX_SUFFIXES:  # a list of the boundary's vertices (geo/vertices.py)
-        return read_vertices(path, name), None, name, (name, "vertices", None)
+    vertices = read_vertices(path, name) if suffix in VERTEX_SUFFIXES else None
+    if vertices is not None:  # a list of the boundary's vertices (geo/vertices.py)
+        return vertices, None, name, (name, "vertices", None)
     if suffix in (".kmz", ".kml", ".geojson", ".json"):
         data = read_limited(path, MAX_FILE_BYTES, field=name)
         if suffix == ".kmz":

@@ -17,6 +17,8 @@ What a customer's engineer often sends instead of a GIS file::
 * Coordinates are WGS 84 longitude/latitude unless ``[area] crs`` states the CRS of the
   list (``"EPSG:28407"``); x is always the easting — a survey list whose X is the
   northing must name its columns (``northing;easting``).
+* A table whose header names a ``WKT`` (or ``geometry``) column is left to GDAL's CSV
+  driver (a polygon per row).
 * Blank lines and lines starting with ``#`` are skipped; the ring may repeat its first
   vertex at the end.
 
@@ -45,6 +47,7 @@ VERTEX_SUFFIXES = (".csv", ".txt")
 MAX_VERTEX_BYTES = 8 * 1024 * 1024  # a vertex list larger than this is not an area boundary
 _X_NAMES = {"lon", "long", "lng", "longitude", "x", "easting", "east", "e", "долгота"}
 _Y_NAMES = {"lat", "latitude", "y", "northing", "north", "n", "широта"}
+_GEOMETRY_NAMES = {"wkt", "geometry", "the_geom", "geom"}
 _NUMBER = re.compile(r"^[+-]?(\d+([.,]\d*)?|[.,]\d+)([eE][+-]?\d+)?$")
 
 
@@ -68,7 +71,7 @@ def _cells(line: str, sep: str | None) -> list[str]:
     return [p.strip() for p in parts]
 
 
-def read_vertices(path: Path, name: str) -> shapely.Polygon:
+def read_vertices(path: Path, name: str) -> shapely.Polygon | None:
     """The polygon of a vertex list (rules in the module docstring).
 
     Parameters
@@ -80,8 +83,10 @@ def read_vertices(path: Path, name: str) -> shapely.Polygon:
 
     Returns
     -------
-    shapely.Polygon
-        In the coordinates of the file (the caller applies ``[area] crs``).
+    shapely.Polygon or None
+        In the coordinates of the file (the caller applies ``[area] crs``); None for a
+        table whose header names a geometry column (``WKT``, ``geometry``): a GIS table
+        for GDAL, not a vertex list.
 
     Raises
     ------
@@ -102,6 +107,8 @@ def read_vertices(path: Path, name: str) -> shapely.Polygon:
                          "vertex of the boundary")
     sep = _delimiter([line for _, line in lines])
     first = _cells(lines[0][1], sep)
+    if {c.strip().strip('"').lower() for c in first} & _GEOMETRY_NAMES:
+        return None  # a table with a WKT geometry column: GDAL's CSV driver reads it
     header = not all(_NUMBER.match(c) for c in first if c) or not any(first)
     cols = _columns(first, name, lines[0][0]) if header else None
     body = lines[1:] if header else lines
