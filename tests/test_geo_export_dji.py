@@ -286,8 +286,7 @@ def test_djikmz_reads_the_routes(example):
     one action group per waypoint and an action group id no larger than its first
     waypoint (its own simplification, not the documentation's rule), so the groups are
     given to it as their trigger and actions."""
-    xmltodict = pytest.importorskip("xmltodict")
-    pytest.importorskip("djikmz")
+    import xmltodict  # djikmz's own XML reader (its dependency)
     from djikmz.model.action.action import Action
     from djikmz.model.action_group import ActionTrigger
     from djikmz.model.mission_config import MissionConfig
