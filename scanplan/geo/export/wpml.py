@@ -58,6 +58,8 @@ _K = "{" + KML_NS + "}"
 ET.register_namespace("", KML_NS)
 ET.register_namespace("wpml", WPML_NS)
 
+#: The largest ``wpml:globalTransitionalSpeed`` the format allows (Waylines.wpml: 0 … 15).
+MAX_TRANSITIONAL_SPEED = 15.0
 #: The ZIP's fixed time stamp: the same plan gives the same bytes.
 _ZIP_TIME = (2020, 1, 1, 0, 0, 0)
 
@@ -181,7 +183,7 @@ def _mission_config(doc: ET.Element, m: WpmlMission) -> None:
     _sub(cfg, "exitOnRCLost", "executeLostAction")
     _sub(cfg, "executeRCLostAction", "goBack")
     _sub(cfg, "takeOffSecurityHeight", round(min(max(m.takeoff_height_m, 2.0), 1500.0), 1))
-    _sub(cfg, "globalTransitionalSpeed", round(min(m.speed_ms, 15.0), 2))
+    _sub(cfg, "globalTransitionalSpeed", round(min(m.speed_ms, MAX_TRANSITIONAL_SPEED), 2))
     _sub(cfg, "globalRTHHeight", round(min(max(m.takeoff_height_m, 2.0), 1500.0), 1))
     drone = _sub(cfg, "droneInfo")
     _sub(drone, "droneEnumValue", m.payload.drone_enum)
