@@ -37,7 +37,7 @@ import math
 import os
 import zipfile
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any, Literal
 from xml.etree import ElementTree as ET
 
@@ -146,7 +146,10 @@ class WpmlMission:
     area_lonlat : list of (lon, lat)
         The area's outer ring, WGS 84 [°].
     area_height_m : float
-        The template's route height in ``height_mode`` [m].
+        The template's route height [m]: above the take-off point (flat), or EGM96 (terrain).
+    area_ellipsoid_height_m : float
+        The same height above the WGS 84 ellipsoid (terrain); a flat plan, whose take-off
+        site's ellipsoidal height is unknown, repeats ``area_height_m`` [m].
     """
 
     payload: DjiPayload
@@ -556,29 +559,22 @@ def wpml_files(layout: FlightLayout, options: MissionOptions, camera_id: str, *,
                     "proj-data)")
     flown = [s for s in layout.sorties if s.strips]
     width = max(2, len(str(len(layout.sorties))))
-    ring = _outer_ring(geo)
-    agl = float(np.nanmedian(np.asarray(layout.photos["agl_m"], float)))
-    fwd, side = _overlaps(layout)
-    direction = _true_direction(layout, geo)
+    common = {"payload": payload, "speed_ms": float(options.speed_ms),
+              "height_mode": "WGS84" if terrain else "relativeToStartPoint",
+              "shoot_height_m": float(np.nanmedian(np.asarray(layout.photos["agl_m"], float))),
+              "direction_deg": _true_direction(layout, geo), "margin_m": 0.0,
+              "area_lonlat": _outer_ring(geo)}
+    common["forward_overlap_pct"], common["side_overlap_pct"] = _overlaps(layout)
     files: dict[str, bytes] = {}
     for s in flown:
         route = sortie_route(layout, s.number, options, geo=geo, geoid=terrain)
-        rel = sortie_route(layout, s.number, MissionOptions(speed_ms=options.speed_ms),
-                           geo=geo) if terrain else route
+        # above the take-off point (the take-off height), and the template's EGM96 height
+        relative = sortie_route(layout, s.number, replace(options, frame="relative"), geo=geo)
+        amsl = sortie_route(layout, s.number, options, geo=geo) if terrain else relative
         mission = WpmlMission(
-            payload=payload, speed_ms=float(options.speed_ms),
-            height_mode="WGS84" if terrain else "relativeToStartPoint",
-            takeoff_height_m=rel[0].height_m, shoot_height_m=agl,
-            forward_overlap_pct=fwd, side_overlap_pct=side, direction_deg=direction,
-            margin_m=0.0, area_lonlat=ring,
-            area_height_m=(float(np.median([p.height_m for p in rel])) if not terrain
-                           else float(np.median([p.height_m for p in route]))),
+            **common, takeoff_height_m=relative[0].height_m,
+            area_height_m=float(np.median([p.height_m for p in amsl])),
             area_ellipsoid_height_m=float(np.median([p.height_m for p in route])))
-        if terrain:  # the template's height is EGM96 (above sea level), not ellipsoidal
-            amsl = sortie_route(layout, s.number, options, geo=geo)
-            mission = WpmlMission(**{**mission.__dict__,
-                                     "area_height_m": float(np.median(
-                                         [p.height_m for p in amsl]))})
         name = f"{stem}.kmz" if len(flown) == 1 else f"{stem}-{s.number:0{width}d}.kmz"
         files[name] = render_kmz(route, mission)
     return files, None
