@@ -11,6 +11,8 @@ import pyogrio
 import pytest
 import shapely
 from click.testing import CliRunner
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 from pyproj import Transformer
 
 from scanplan.cli.main import main
@@ -92,6 +94,8 @@ def test_a_plan_over_the_vertex_list_is_the_plan_over_the_kml(tmp_path):
     ("1;37.60;55.70\n2;37.62;55.70\n3;37.62;55.71\n", ["line 1 has 3 cells", "header"]),
     ("37.60,55.70\n37.62,55.70\n", ["2 distinct", "at least 3"]),
     ("# nothing\n\n", ["no vertex"]),
+    ("lon;lat\n", ["no vertex"]),
+    ("lon;lat\n1e400;55\n2;3\n4;5\n", ["line 2", "'lon'", "finite"]),
 ])
 def test_bad_vertex_lists_name_line_and_column(tmp_path, text, words):
     path = tmp_path / "v.csv"
@@ -117,7 +121,7 @@ def test_cli_exit_2_names_the_cell(tmp_path):
     (tmp_path / "p.toml").write_text(base.replace("areas/town-uav.kml", "areas/v.csv"))
     res = CliRunner().invoke(main, ["plan", str(tmp_path / "p.toml")])
     assert res.exit_code == 2
-    assert "line 3, column 'lat': 'x' is not a number" in res.output
+    assert "line 3, column 'lat': 'x' is not a finite number" in res.output
     assert "Traceback" not in res.output
 
 
@@ -128,3 +132,25 @@ def test_a_wkt_table_is_still_read_by_gdal(tmp_path, kml_area):
     path.write_text(f'id,WKT\n1,"{wkt}"\n', encoding="utf-8")
     area = load_area(AreaSpec(file=str(path)))
     assert area.geometry.symmetric_difference(kml_area.geometry).area < 1e-6 * area.geometry.area
+
+
+@settings(max_examples=150, deadline=None,
+          suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(st.lists(st.lists(st.one_of(
+    st.floats(allow_nan=True, allow_infinity=True).map(repr),
+    st.text(alphabet=st.characters(blacklist_categories=["Cs"]), max_size=6)),
+    min_size=0, max_size=4), max_size=8),
+    st.sampled_from([",", ";", "\t", " ", ", "]))
+def test_any_text_is_a_polygon_or_an_input_error(tmp_path, rows, sep):
+    """Whatever a vertex list holds, reading it gives a polygon, GDAL's turn (None) or an
+    input error — never another exception."""
+    from scanplan.geo.vertices import read_vertices
+
+    path = tmp_path / "fuzz.csv"
+    path.write_text("\n".join(sep.join(r) for r in rows), encoding="utf-8")
+    try:
+        out = read_vertices(path, "fuzz.csv")
+    except InputError as exc:
+        assert exc.field == "fuzz.csv" and exc.message
+    else:
+        assert out is None or isinstance(out, shapely.Polygon)

@@ -112,6 +112,9 @@ def read_vertices(path: Path, name: str) -> shapely.Polygon | None:
     header = not all(_NUMBER.match(c) for c in first if c) or not any(first)
     cols = _columns(first, name, lines[0][0]) if header else None
     body = lines[1:] if header else lines
+    if not body:
+        raise InputError(name, "holds a header but no vertex: give one row per vertex of the "
+                         "boundary")
     numbers = [line for _, line in body]
     width = len(first) if header else 2
     for number, line in body:  # a row of another width: a stray delimiter, never guessed
@@ -124,24 +127,25 @@ def read_vertices(path: Path, name: str) -> shapely.Polygon | None:
                                 "lat (or x and y)")
                              + ("; with a comma delimiter the decimal mark is a point"
                                 if sep == "," else ""))
-    frame = pd.read_csv(io.StringIO("\n".join(numbers)), sep=sep if sep else r"\s+",
-                        header=None, dtype=str, keep_default_na=False,
-                        skipinitialspace=True, engine="python",
-                        names=range(width)) if numbers else pd.DataFrame()
+    try:
+        frame = pd.read_csv(io.StringIO("\n".join(numbers)), sep=sep if sep else r"\s+",
+                            header=None, dtype=str, keep_default_na=False,
+                            skipinitialspace=True, engine="python", names=range(width))
+    except (ValueError, csv.Error) as exc:  # pandas' ParserError is a ValueError
+        raise InputError(name, f"cannot be read as a vertex list: {exc}"[:300]) from None
     if cols is None:
         cols = (0, 1, "x", "y")
     decimal_comma = sep != ","
     xy = []
     for k, label in ((cols[0], cols[2]), (cols[1], cols[3])):
-        raw = (frame[k].fillna("").astype(str).str.strip() if k in frame
-               else pd.Series([""] * len(body)))
+        raw = frame[k].fillna("").astype(str).str.strip()
         values = pd.to_numeric(raw.str.replace(",", ".", regex=False) if decimal_comma
                                else raw, errors="coerce")
         bad = np.flatnonzero(~np.isfinite(values.to_numpy(dtype=float, na_value=np.nan)))
         if len(bad):
             i = int(bad[0])
             raise InputError(name, f"line {body[i][0]}, column {label!r}: {raw.iloc[i]!r} is "
-                             "not a number" + ("" if decimal_comma else
+                             "not a finite number" + ("" if decimal_comma else
                                                " (with a comma delimiter the decimal mark "
                                                "is a point)"))
         xy.append(values.to_numpy(dtype=float))
