@@ -7,7 +7,8 @@ anything is rendered and again, under a lock on its folder, just before it is wr
 * A target that is one of the run's input files (a project file), by name, through a
   symbolic link or as a hard link, is refused — even with ``--force``.
 * The extension must fit the report: ``.xlsx`` for the workbook, ``.pdf`` for the PDF
-  (and for the files ``plan --out`` exports: ``.plan``, ``.kml``, ``.geojson``, ``.csv``).
+  (and for the files ``plan --out`` exports: ``.plan``, ``.waypoints``, ``.kmz``, ``.kml``,
+  ``.geojson``, ``.gpkg``, ``.csv``).
 * A symbolic link, a folder, a FIFO or a device is refused (scanplan replaces regular files
   by renaming a new file over them; that would replace a link, not the file it points to).
 * A write-protected file is refused, even with ``--force`` (its protection is the owner's
@@ -18,7 +19,8 @@ anything is rendered and again, under a lock on its folder, just before it is wr
   (``docProps/core.xml``, ``dc:creator``) and the PDF's document information (``/Creator``)
   both start with ``scanplan``; an exported file by its mark (the Plan file's
   ``groundStation``, the KML's opening comment, the GeoJSON's ``generator``, the photo
-  table's header). An empty file holds nothing to lose and is replaced.
+  table's header, the DJI route file's ZIP comment, the GeoPackage's ``GENERATOR``
+  metadata item). An empty file holds nothing to lose and is replaced.
 
 :func:`folder_lock` serialises report writers in one folder (``flock``, as the norm folder
 lock): two runs writing into one ``--out`` folder cannot interleave their pairs, and the

@@ -152,7 +152,7 @@ def project_text(a: InitAnswers) -> str:
         out += ["# width_m = 2000\t# across the flight lines [m]",
                 "# length_m = 3000\t# along the flight lines [m]"]
     out += ['# file = "block.kml"\t# or the contract polygon instead: KML, KMZ, GeoJSON, '
-            "GeoPackage, Shapefile"]
+            "GeoPackage, Shapefile, a CSV of its vertices"]
     return "\n".join(_align(line) for line in out) + "\n"
 
 

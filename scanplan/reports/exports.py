@@ -6,9 +6,10 @@ file), the flight as KML and GeoJSON, and the photo
 centres as CSV — in memory, named for the ``--out`` folder. The command line writes them
 with the reports in one all-or-nothing transaction. A UAV flight writes ``mission.plan``
 and ``mission.waypoints`` (``mission-01.plan``, ``mission-01.waypoints`` … for several
-sorties), ``flight.kml``, ``flight.geojson`` and
-``photos.csv``; the film survey's flight scheme ``film-flight.kml``,
-``film-flight.geojson`` and ``film-frames.csv``. A batch puts the project's name before
+sorties), for a DJI camera ``mission-dji.kmz`` (``mission-dji-01.kmz`` …: DJI Pilot 2),
+``flight.kml``, ``flight.geojson``, ``flight.gpkg`` and ``photos.csv``; the film survey's
+flight scheme ``film-flight.kml``, ``film-flight.geojson``, ``film-flight.gpkg`` and
+``film-frames.csv``. A batch puts the project's name before
 each (``NAME-flight.kml``). An abstract block (width × length, not georeferenced) writes
 none of them, and the reports say so.
 """
