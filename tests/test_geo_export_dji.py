@@ -51,7 +51,7 @@ MISSION_CONFIG = ("flyToWaylineMode", "finishAction", "exitOnRCLost", "takeOffSe
 def _files(name: str, folder: str) -> dict[str, bytes]:
     spec = plan_project(load_project(str(EXAMPLES / f"{name}.toml")))
     notes: list[str] = []
-    files = export_files(spec, folder, notes=notes)
+    files = export_files(spec, folder, note=notes.append)
     return {os.path.basename(p): data for p, (_, data) in files.items()} | {
         "_notes": "\n".join(notes).encode()}
 
@@ -248,6 +248,13 @@ def test_heights_relative_or_ellipsoidal(example):
                 expected = near.altitude_m + _geoid(lon, lat)
                 assert 5 < expected - near.altitude_m < 30  # EGM96 over central Russia
                 assert h == pytest.approx(expected, abs=0.02)
+        cfg = wayl.find(f"{K}Document/{W}missionConfig")
+        rth = float(_text(cfg, f"{W}globalRTHHeight"))
+        takeoff = float(_text(cfg, f"{W}takeOffSecurityHeight"))
+        if name == "uav-town-2000":
+            assert rth == takeoff == pytest.approx(float(photos.agl_m.iloc[0]), abs=0.1)
+        else:  # home the sortie's first photo's ground; return above its highest waypoint
+            assert rth >= takeoff
         sys_ = tmpl.find(f"{K}Document/{K}Folder/{W}waylineCoordinateSysParam")
         assert _text(sys_, f"{W}heightMode") == (
             "EGM96" if name == "uav-town-valley-2000" else "relativeToStartPoint")

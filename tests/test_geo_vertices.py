@@ -154,3 +154,11 @@ def test_any_text_is_a_polygon_or_an_input_error(tmp_path, rows, sep):
         assert exc.field == "fuzz.csv" and exc.message
     else:
         assert out is None or isinstance(out, shapely.Polygon)
+
+
+def test_a_vertex_list_has_no_layer(tmp_path):
+    path = tmp_path / "v.csv"
+    path.write_text("lon,lat\n37.6,55.7\n37.7,55.7\n37.7,55.8\n", encoding="utf-8")
+    with pytest.raises(InputError) as err:
+        load_area(AreaSpec(file=str(path), layer="boundary"))
+    assert err.value.field == "layer" and "list of vertices" in err.value.message

@@ -614,12 +614,8 @@ def _run_project(path: str, out_dir: str | None, stem: str | None, xlsx_path: st
     exports = {}
     if out_dir:  # the mission and GIS files join the reports' transaction (issue 11)
         from ..reports.exports import export_files
-
-        notes: list[str] = []
         exports = export_files(result, out_dir, prefix=f"{stem}-" if stem is not None else "",
-                               notes=notes)
-        for line in notes:  # a file the crew may expect is not written: say why
-            (say or (lambda m: click.echo(m, err=True)))(line)
+                               note=say or (lambda line: click.echo(line, err=True)))
     film = result.film.job if result.film else None
     uav_ = result.uav.job if result.uav else None
     _write_reports({**targets, "force": force, "inputs": files, "fields": fields,

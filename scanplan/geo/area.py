@@ -150,7 +150,7 @@ def load_area(spec: AreaSpec) -> Area | None:
 
     user_crs = _crs(spec.crs, "crs") if spec.crs is not None else None
     if spec.file is not None:
-        geom, file_crs, where, parts = _read_file(Path(spec.file), spec.layer, spec.feature)
+        geom, file_crs, where, parts = _read_source(Path(spec.file), spec.layer, spec.feature)
         if file_crs is not None and user_crs is not None and file_crs != user_crs:
             raise InputError("crs", f"{user_crs.to_string()} differs from the CRS "
                              f"{file_crs.to_string()} that {where} declares; remove "
@@ -203,6 +203,20 @@ def _inline(ring: Any) -> shapely.Polygon:
     return shapely.Polygon(pts)
 
 
+def _read_source(path: Path, layer: str | None, feature: str | int | None
+                 ) -> tuple[Any, pyproj.CRS | None, str, tuple[str, str, str | None]]:
+    """A list of the boundary's vertices (CSV/TXT, :mod:`.vertices`), else a GIS file."""
+    name = str(path)
+    vertices = read_vertices(path, name) if path.suffix.lower() in VERTEX_SUFFIXES else None
+    if vertices is None:
+        return _read_file(path, layer, feature)
+    extra = "layer" if layer is not None else "feature" if feature is not None else None
+    if extra is not None:
+        raise InputError(extra, f"{name} is a list of vertices: one polygon, no layers; "
+                         f"remove [area] {extra}")
+    return vertices, None, name, (name, "vertices", None)
+
+
 def _read_file(path: Path, layer: str | None, feature: str | int | None
                ) -> tuple[Any, pyproj.CRS | None, str, tuple[str, str, str | None]]:
     """The chosen polygon of a GIS file, its CRS (None if it declares none), its name, and
@@ -212,9 +226,6 @@ def _read_file(path: Path, layer: str | None, feature: str | int | None
     name = str(path)
     source: str | io.BytesIO = str(path)
     suffix = path.suffix.lower()
-    vertices = read_vertices(path, name) if suffix in VERTEX_SUFFIXES else None
-    if vertices is not None:  # a list of the boundary's vertices (geo/vertices.py)
-        return vertices, None, name, (name, "vertices", None)
     if suffix in (".kmz", ".kml", ".geojson", ".json"):
         data = read_limited(path, MAX_FILE_BYTES, field=name)
         if suffix == ".kmz":

@@ -93,8 +93,31 @@ def read_vertices(path: Path, name: str) -> shapely.Polygon | None:
     InputError
         Naming the file, its line and column (exit 2).
     """
-    import pandas as pd
+    lines = _text_lines(path, name)
+    sep = _delimiter([line for _, line in lines])
+    first = _cells(lines[0][1], sep)
+    if {c.strip().strip('"').lower() for c in first} & _GEOMETRY_NAMES:
+        return None  # a table with a WKT geometry column: GDAL's CSV driver reads it
+    header = not all(_NUMBER.match(c) for c in first if c) or not any(first)
+    cols = _columns(first, name, lines[0][0]) if header else (0, 1, "x", "y")
+    body = lines[1:] if header else lines
+    if not body:
+        raise InputError(name, "holds a header but no vertex: give one row per vertex of the "
+                         "boundary")
+    _check_widths(body, sep, len(first) if header else 2, header, name)
+    x = _column(body, sep, len(first) if header else 2, cols[0], cols[2], name)
+    y = _column(body, sep, len(first) if header else 2, cols[1], cols[3], name)
+    pts = list(zip(x.tolist(), y.tolist(), strict=True))
+    if len(pts) > 1 and pts[0] == pts[-1]:
+        pts = pts[:-1]
+    if len(set(pts)) < 3:
+        raise InputError(name, f"has {len(set(pts))} distinct vertex(es); a polygon needs at "
+                         "least 3")
+    return shapely.Polygon(pts)
 
+
+def _text_lines(path: Path, name: str) -> list[tuple[int, str]]:
+    """The file's UTF-8 text as (line number, line), blank and ``#`` lines left out."""
     data = read_limited(path, MAX_VERTEX_BYTES, field=name)
     try:
         text = data.decode("utf-8-sig")
@@ -105,19 +128,14 @@ def read_vertices(path: Path, name: str) -> shapely.Polygon | None:
     if not lines:
         raise InputError(name, "holds no vertex: give one 'lon,lat' (or 'x,y') row per "
                          "vertex of the boundary")
-    sep = _delimiter([line for _, line in lines])
-    first = _cells(lines[0][1], sep)
-    if {c.strip().strip('"').lower() for c in first} & _GEOMETRY_NAMES:
-        return None  # a table with a WKT geometry column: GDAL's CSV driver reads it
-    header = not all(_NUMBER.match(c) for c in first if c) or not any(first)
-    cols = _columns(first, name, lines[0][0]) if header else None
-    body = lines[1:] if header else lines
-    if not body:
-        raise InputError(name, "holds a header but no vertex: give one row per vertex of the "
-                         "boundary")
-    numbers = [line for _, line in body]
-    width = len(first) if header else 2
-    for number, line in body:  # a row of another width: a stray delimiter, never guessed
+    return lines
+
+
+def _check_widths(body: list[tuple[int, str]], sep: str | None, width: int, header: bool,
+                  name: str) -> None:
+    """Every row has ``width`` cells: a row of another width (a stray delimiter, a decimal
+    comma in a comma-separated file) is refused, never guessed."""
+    for number, line in body:
         n = len(_cells(line, sep))
         if n != width:
             raise InputError(name, f"line {number} has {n} cells; "
@@ -127,35 +145,33 @@ def read_vertices(path: Path, name: str) -> shapely.Polygon | None:
                                 "lat (or x and y)")
                              + ("; with a comma delimiter the decimal mark is a point"
                                 if sep == "," else ""))
+
+
+def _column(body: list[tuple[int, str]], sep: str | None, width: int, k: int, label: str,
+            name: str) -> np.ndarray:
+    """Column ``k`` of the rows as numbers (pandas splits and converts; a decimal comma
+    where the delimiter is not a comma); a cell that is no finite number names its line."""
+    import pandas as pd
+
     try:
-        frame = pd.read_csv(io.StringIO("\n".join(numbers)), sep=sep if sep else r"\s+",
-                            header=None, dtype=str, keep_default_na=False,
-                            skipinitialspace=True, engine="python", names=range(width))
+        frame = pd.read_csv(io.StringIO("\n".join(line for _, line in body)),
+                            sep=sep if sep else r"\s+", header=None, dtype=str,
+                            keep_default_na=False, skipinitialspace=True, engine="python",
+                            names=range(width))
     except (ValueError, csv.Error) as exc:  # pandas' ParserError is a ValueError
         raise InputError(name, f"cannot be read as a vertex list: {exc}"[:300]) from None
-    if cols is None:
-        cols = (0, 1, "x", "y")
     decimal_comma = sep != ","
-    xy = []
-    for k, label in ((cols[0], cols[2]), (cols[1], cols[3])):
-        raw = frame[k].fillna("").astype(str).str.strip()
-        values = pd.to_numeric(raw.str.replace(",", ".", regex=False) if decimal_comma
-                               else raw, errors="coerce")
-        bad = np.flatnonzero(~np.isfinite(values.to_numpy(dtype=float, na_value=np.nan)))
-        if len(bad):
-            i = int(bad[0])
-            raise InputError(name, f"line {body[i][0]}, column {label!r}: {raw.iloc[i]!r} is "
-                             "not a finite number" + ("" if decimal_comma else
-                                               " (with a comma delimiter the decimal mark "
-                                               "is a point)"))
-        xy.append(values.to_numpy(dtype=float))
-    pts = list(zip(xy[0].tolist(), xy[1].tolist(), strict=True))
-    if len(pts) > 1 and pts[0] == pts[-1]:
-        pts = pts[:-1]
-    if len(set(pts)) < 3:
-        raise InputError(name, f"has {len(set(pts))} distinct vertex(es); a polygon needs at "
-                         "least 3")
-    return shapely.Polygon(pts)
+    raw = frame[k].fillna("").astype(str).str.strip()
+    values = pd.to_numeric(raw.str.replace(",", ".", regex=False) if decimal_comma else raw,
+                           errors="coerce").to_numpy(dtype=float, na_value=np.nan)
+    bad = np.flatnonzero(~np.isfinite(values))
+    if len(bad):
+        i = int(bad[0])
+        raise InputError(name, f"line {body[i][0]}, column {label!r}: {raw.iloc[i]!r} is not "
+                         "a finite number" + ("" if decimal_comma else
+                                              " (with a comma delimiter the decimal mark is "
+                                              "a point)"))
+    return values
 
 
 def _columns(header: list[str], name: str, line: int) -> tuple[Any, Any, str, str]:

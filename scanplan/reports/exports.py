@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import os
 import re
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Literal
 
@@ -134,7 +135,7 @@ def dji_files(spec: Any, layout: FlightLayout, mission: MissionOptions | None
 
 
 def export_files(spec: Any, folder: str, *, prefix: str = "",
-                 notes: list[str] | None = None) -> dict[str, tuple[str, bytes]]:
+                 note: Callable[[str], None] | None = None) -> dict[str, tuple[str, bytes]]:
     """Every exported file of ``spec``: path in ``folder`` → (kind, content).
 
     Parameters
@@ -145,9 +146,9 @@ def export_files(spec: Any, folder: str, *, prefix: str = "",
         The ``--out`` folder.
     prefix : str
         Put before every name (a batch: ``"NAME-"``).
-    notes : list of str, optional
-        Receives why a file the user may expect was not written (no DJI route for a
-        camera DJI Pilot 2 cannot fly), for the terminal.
+    note : callable, optional
+        Told why a file the user may expect is not written (no DJI route for a camera
+        DJI Pilot 2 cannot fly), one line each, for the terminal.
 
     Returns
     -------
@@ -172,8 +173,8 @@ def export_files(spec: Any, folder: str, *, prefix: str = "",
         if not film:  # the same mission for DJI Pilot 2, when the camera is a DJI one
             dji, reason = dji_files(spec, layout, mission)
             rendered.update({prefix + k: v for k, v in dji.items()})
-            if reason and notes is not None:
-                notes.append(f"no {prefix}mission-dji.kmz: {reason}")
+            if reason and note is not None:
+                note(f"no {prefix}mission-dji.kmz: {reason}")
         for name, data in rendered.items():
             suffix = os.path.splitext(name)[1].lower()
             files[os.path.join(folder, name)] = (KIND_OF_SUFFIX[suffix], data)

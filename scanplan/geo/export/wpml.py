@@ -134,7 +134,9 @@ class WpmlMission:
     height_mode : {"relativeToStartPoint", "WGS84"}
         How the waypoint heights are given.
     takeoff_height_m : float
-        Safe take-off height above the take-off point [m] (2 … 1500).
+        Safe take-off height above the take-off point [m] (2 … 1500): the first waypoint's.
+    rth_height_m : float
+        Return-to-home height above the take-off point [m]: the sortie's highest waypoint.
     shoot_height_m : float
         Planned height above the ground [m] (the template's shooting height).
     forward_overlap_pct, side_overlap_pct : float
@@ -156,6 +158,7 @@ class WpmlMission:
     speed_ms: float
     height_mode: Literal["relativeToStartPoint", "WGS84"]
     takeoff_height_m: float
+    rth_height_m: float
     shoot_height_m: float
     forward_overlap_pct: float
     side_overlap_pct: float
@@ -187,7 +190,7 @@ def _mission_config(doc: ET.Element, m: WpmlMission) -> None:
     _sub(cfg, "executeRCLostAction", "goBack")
     _sub(cfg, "takeOffSecurityHeight", round(min(max(m.takeoff_height_m, 2.0), 1500.0), 1))
     _sub(cfg, "globalTransitionalSpeed", round(min(m.speed_ms, MAX_TRANSITIONAL_SPEED), 2))
-    _sub(cfg, "globalRTHHeight", round(min(max(m.takeoff_height_m, 2.0), 1500.0), 1))
+    _sub(cfg, "globalRTHHeight", round(min(max(m.rth_height_m, 2.0), 1500.0), 1))
     drone = _sub(cfg, "droneInfo")
     _sub(drone, "droneEnumValue", m.payload.drone_enum)
     _sub(drone, "droneSubEnumValue", m.payload.drone_sub_enum)
@@ -573,6 +576,7 @@ def wpml_files(layout: FlightLayout, options: MissionOptions, camera_id: str, *,
         amsl = sortie_route(layout, s.number, options, geo=geo) if terrain else relative
         mission = WpmlMission(
             **common, takeoff_height_m=relative[0].height_m,
+            rth_height_m=max(p.height_m for p in relative),
             area_height_m=float(np.median([p.height_m for p in amsl])),
             area_ellipsoid_height_m=float(np.median([p.height_m for p in route])))
         name = f"{stem}.kmz" if len(flown) == 1 else f"{stem}-{s.number:0{width}d}.kmz"
