@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import functools
 import io
+import itertools
 import math
 import os
 import shutil
@@ -23,6 +24,8 @@ import defusedxml.ElementTree as DET
 import numpy as np
 import pandas as pd
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from pyproj import Geod
 
 from scanplan.geo.export import wpml as wpml_mod
@@ -410,3 +413,44 @@ def test_own_files_are_recognised_and_stale_ones_removed(tmp_path, example):
     assert not written_by_scanplan(tmp_path / "mission-dji-08.kmz", "kmz")
     assert stale_exports(str(tmp_path), set()) == [str(tmp_path / "flight.gpkg"),
                                                    str(tmp_path / "mission-dji-09.kmz")]
+
+
+@settings(max_examples=25, deadline=None)
+@given(width=st.floats(200.0, 3000.0), length=st.floats(200.0, 3000.0),
+       spacing=st.floats(40.0, 300.0), base=st.floats(15.0, 400.0),
+       sorties=st.integers(1, 3), notch=st.booleans(), parts=st.booleans())
+def test_random_serpentines_fire_every_photo_once(width, length, spacing, base, sorties,
+                                                  notch, parts):
+    """Over random serpentines (split strips, parts of one photo when the base is long,
+    several sorties): the WPML routes fire every photo of every strip exactly once, with
+    no two consecutive waypoints at one place."""
+    import sys
+
+    sys.path.insert(0, str(Path(__file__).parent))
+    from layouts import make_layout
+
+    from scanplan.geo.export import MissionOptions
+
+    layout = make_layout(width_m=width, length_m=length, spacing_m=spacing, base_m=base,
+                         sorties=min(sorties, math.ceil(width / spacing)), notch=notch,
+                         parts=parts)
+    payload = wpml_mod.DJI_CAMERAS["dji-mavic-3e"]
+    mission = wpml_mod.WpmlMission(
+        payload=payload, speed_ms=9.0, height_mode="relativeToStartPoint",
+        takeoff_height_m=120.0, rth_height_m=120.0, shoot_height_m=120.0,
+        forward_overlap_pct=80.0, side_overlap_pct=70.0, direction_deg=0.0, margin_m=0.0,
+        area_lonlat=[(0.0, 0.0), (1.0, 0.0), (1.0, 1.0)], area_height_m=120.0,
+        area_ellipsoid_height_m=120.0)
+    per_strip: dict[int, int] = {}
+    for s in layout.sorties:
+        if not s.strips:
+            continue
+        route = wpml_mod.sortie_route(layout, s.number, MissionOptions(speed_ms=9.0))
+        for a, b in itertools.pairwise(route):
+            assert GEOD.inv(a.lon_deg, a.lat_deg, b.lon_deg, b.lat_deg)[2] > 0.005
+        wayl = DET.fromstring(wpml_mod.render_waylines(route, mission))
+        for strip, runs in _fired(wayl).items():
+            per_strip[strip] = per_strip.get(strip, 0) + sum(n for *_, n in runs)
+    strips = np.asarray(layout.photos["strip"]).astype(int)
+    assert per_strip == {int(k): int(v) for k, v in zip(*np.unique(strips, return_counts=True),
+                                                         strict=True)}

@@ -493,6 +493,8 @@ def sortie_route(layout: FlightLayout, sortie: int, options: MissionOptions, *,
         if wp.trigger == "on":
             end = points[k + 1]
             photos = int(index[end.photo] - index[wp.photo]) + 1
+        elif k and math.dist((wp.x_m, wp.y_m), (points[k - 1].x_m, points[k - 1].y_m)) < 0.01:
+            continue  # the last photo of a one-photo part: the same place as its first
         out.append(RoutePoint(float(lonlats[k, 0]), float(lonlats[k, 1]), float(heights[k]),
                               int(strip), photos))
     return out
