@@ -454,3 +454,40 @@ def test_random_serpentines_fire_every_photo_once(width, length, spacing, base, 
     strips = np.asarray(layout.photos["strip"]).astype(int)
     assert per_strip == {int(k): int(v) for k, v in zip(*np.unique(strips, return_counts=True),
                                                          strict=True)}
+
+
+def test_a_part_of_one_photo_fires_once_at_one_waypoint():
+    """A strip whose last photographed part holds a single photo: that photo is one
+    waypoint with a ``reachPoint`` photo (not two waypoints at one place)."""
+    import dataclasses
+    import sys
+
+    sys.path.insert(0, str(Path(__file__).parent))
+    from layouts import make_layout
+
+    from scanplan.geo.export import MissionOptions
+    from scanplan.geo.layout import Photos
+
+    layout = make_layout(width_m=800.0, length_m=3000.0, spacing_m=150.0, base_m=400.0,
+                         notch=True)
+    strip = next(s for s in layout.strips if len(s.parts) == 2)
+    (a, b), (c, d) = strip.parts
+    ph = layout.photos
+    x, y = np.asarray(ph["x_m"]), np.asarray(ph["y_m"])
+    on_strip = np.asarray(ph["strip"]) == strip.number
+    lo, hi = sorted((c[1], d[1]))
+    in_part = on_strip & (y >= lo - 1e-6) & (y <= hi + 1e-6)
+    keep_one = np.flatnonzero(in_part & (np.abs(y - c[1]) < 1e-6))
+    drop = in_part.copy()
+    drop[keep_one] = False
+    photos = Photos({k: np.asarray(v)[~drop] for k, v in ph.columns.items()})
+    strips = tuple(dataclasses.replace(s, parts=((a, b), (c, c)), photos=s.photos - int(
+        drop.sum())) if s.number == strip.number else s for s in layout.strips)
+    layout = dataclasses.replace(layout, photos=photos, strips=strips)
+    route = wpml_mod.sortie_route(layout, 1, MissionOptions(speed_ms=9.0))
+    mine = [p for p in route if p.strip == strip.number]
+    assert [p.photos for p in mine][-2:] == [1, 0]  # the photo, then the run-out
+    for p, q in itertools.pairwise(route):
+        assert GEOD.inv(p.lon_deg, p.lat_deg, q.lon_deg, q.lat_deg)[2] > 0.005
+    assert sum(p.photos for p in route) == len(photos)
+    assert x.size > len(photos)
