@@ -7,7 +7,8 @@ anything is rendered and again, under a lock on its folder, just before it is wr
 * A target that is one of the run's input files (a project file), by name, through a
   symbolic link or as a hard link, is refused — even with ``--force``.
 * The extension must fit the report: ``.xlsx`` for the workbook, ``.pdf`` for the PDF
-  (and for the files ``plan --out`` exports: ``.plan``, ``.kml``, ``.geojson``, ``.csv``).
+  (and for the files ``plan --out`` exports: ``.plan``, ``.waypoints``, ``.kmz``, ``.kml``,
+  ``.geojson``, ``.gpkg``, ``.csv``).
 * A symbolic link, a folder, a FIFO or a device is refused (scanplan replaces regular files
   by renaming a new file over them; that would replace a link, not the file it points to).
 * A write-protected file is refused, even with ``--force`` (its protection is the owner's
@@ -18,7 +19,8 @@ anything is rendered and again, under a lock on its folder, just before it is wr
   (``docProps/core.xml``, ``dc:creator``) and the PDF's document information (``/Creator``)
   both start with ``scanplan``; an exported file by its mark (the Plan file's
   ``groundStation``, the KML's opening comment, the GeoJSON's ``generator``, the photo
-  table's header). An empty file holds nothing to lose and is replaced.
+  table's header, the DJI route file's ZIP comment, the GeoPackage's ``GENERATOR``
+  metadata item). An empty file holds nothing to lose and is replaced.
 
 :func:`folder_lock` serialises report writers in one folder (``flock``, as the norm folder
 lock): two runs writing into one ``--out`` folder cannot interleave their pairs, and the
@@ -44,9 +46,11 @@ OUR_MARK = b"scanplan"
 """Start of the creator property of every report scanplan writes."""
 
 SUFFIX = {"xlsx": ".xlsx", "pdf": ".pdf", "plan": ".plan", "kml": ".kml",
-          "geojson": ".geojson", "csv": ".csv", "waypoints": ".waypoints"}
+          "geojson": ".geojson", "csv": ".csv", "waypoints": ".waypoints", "kmz": ".kmz",
+          "gpkg": ".gpkg"}
 _WHAT = {"xlsx": "workbook", "pdf": "PDF", "plan": "mission", "kml": "KML file",
-         "geojson": "GeoJSON file", "csv": "table", "waypoints": "waypoint file"}
+         "geojson": "GeoJSON file", "csv": "table", "waypoints": "waypoint file",
+         "kmz": "DJI route file", "gpkg": "GeoPackage"}
 #: How scanplan's exported text files name their writer (within their first 4 KiB): the
 #: Plan file's groundStation, the KML's opening comment, the GeoJSON's "generator" member,
 #: the photo table's header (a CSV has no place for a comment), the waypoint file's comment.
@@ -92,7 +96,7 @@ def check_target(path: str, field: str, kind: str, *, inputs: Iterable[str] = ()
         The target as the user gave it.
     field : str
         How messages name it (``--xlsx``, ``--out``).
-    kind : {"xlsx", "pdf", "plan", "kml", "geojson", "csv", "waypoints"}
+    kind : {"xlsx", "pdf", "plan", "kml", "geojson", "csv", "waypoints", "kmz", "gpkg"}
         The report or exported file it is for.
     inputs : iterable of str
         The run's input files; none of them may be the target.
@@ -159,7 +163,7 @@ def written_by_scanplan(path: str | os.PathLike[str], kind: str) -> bool:
     ----------
     path : path
         An existing regular file.
-    kind : {"xlsx", "pdf", "plan", "kml", "geojson", "csv", "waypoints"}
+    kind : {"xlsx", "pdf", "plan", "kml", "geojson", "csv", "waypoints", "kmz", "gpkg"}
         What it should be.
 
     Returns
@@ -179,7 +183,24 @@ def written_by_scanplan(path: str | os.PathLike[str], kind: str) -> bool:
         return True
     if kind in _TEXT_MARKS:
         return bool(_TEXT_MARKS[kind].search(data[:4096]))
+    if kind == "kmz":  # the DJI route file: a ZIP whose comment names scanplan
+        return _zip_comment_is_ours(data)
+    if kind == "gpkg":  # the GeoPackage's dataset metadata item GENERATOR
+        return data.startswith(b"SQLite format 3\x00") and bool(_GPKG_MARK.search(data))
     return _pdf_is_ours(data)
+
+
+_GPKG_MARK = re.compile(rb'<MDI key="GENERATOR">scanplan ')
+
+
+def _zip_comment_is_ours(data: bytes) -> bool:
+    import io
+
+    try:
+        with zipfile.ZipFile(io.BytesIO(data)) as zf:
+            return zf.comment.startswith(OUR_MARK + b" ")
+    except (zipfile.BadZipFile, OSError, ValueError, EOFError):
+        return False
 
 
 def _xlsx_is_ours(data: bytes) -> bool:

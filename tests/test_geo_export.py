@@ -298,7 +298,7 @@ def test_without_listed_photo_centres_no_mission_and_no_table():
 
     layout = dataclasses.replace(make_layout(), photos=Photos({}))
     files = layout_files(layout, mission=MissionOptions(speed_ms=10))
-    assert sorted(files) == ["flight.geojson", "flight.kml"]
+    assert sorted(files) == ["flight.geojson", "flight.gpkg", "flight.kml"]
 
 
 @settings(max_examples=25, deadline=None)

@@ -26,7 +26,7 @@ from scanplan.outpaths import check_target, written_by_scanplan
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 UAV = EXAMPLES / "uav-canon-2000.toml"
-UAV_FILES = ["flight.geojson", "flight.kml", "mission.plan", "mission.waypoints",
+UAV_FILES = ["flight.geojson", "flight.gpkg", "flight.kml", "mission.plan", "mission.waypoints",
              "photos.csv", "spec.pdf", "spec.xlsx"]
 
 
@@ -82,7 +82,7 @@ def test_batch_names_every_file_after_its_project(work, layout):
     names = sorted(os.listdir(work / "out"))
     assert "proj-mission.plan" in names and "b-flight.kml" in names and "b-photos.csv" in names
     assert "b-mission.waypoints" in names
-    assert len([n for n in names if not n.startswith("summary.")]) == 14  # + the batch summary
+    assert len([n for n in names if not n.startswith("summary.")]) == 16  # + the batch summary
 
 
 def test_a_failing_write_leaves_every_previous_file_as_it_was(work, layout, monkeypatch):
@@ -183,7 +183,8 @@ def test_town_examples_export_a_mission_that_fires_every_photo(tmp_path):
 
     film = plan_project(load_project(EXAMPLES / "film-town-10000.toml"))
     names = sorted(os.path.basename(p) for p in export_files(film, str(tmp_path)))
-    assert names == ["film-flight.geojson", "film-flight.kml", "film-frames.csv"]
+    assert names == ["film-flight.geojson", "film-flight.gpkg", "film-flight.kml",
+                     "film-frames.csv"]
 
 
 def test_the_turn_keys_say_which_aircraft_flies_the_mission(tmp_path):

@@ -123,7 +123,8 @@ _COMMENTS: dict[str, dict[str, str]] = {
         "overlaps_default": "[%] (default: the norm set's standard overlaps)",
         "area": "the block to cover (both sides, or neither)",
         "width": "across the flight lines [m]", "length": "along the flight lines [m]",
-        "file": "or the contract polygon instead: KML, KMZ, GeoJSON, GeoPackage, Shapefile",
+        "file": "or the contract polygon instead: KML, KMZ, GeoJSON, GeoPackage, Shapefile, "
+                "a CSV of its vertices",
         "terrain": "the relief (optional): a DEM, or the ground's range",
         "dem": "a GeoTIFF in any CRS", "ground": "or [lowest, highest] ground [m]",
         "mode": "\"constant\", \"strip\" or \"follow\"",
@@ -166,7 +167,8 @@ _COMMENTS: dict[str, dict[str, str]] = {
         "overlaps_default": "[%] (по умолчанию — стандартные перекрытия нормативов)",
         "area": "участок съёмки (обе стороны или ни одной)",
         "width": "поперёк маршрутов [м]", "length": "вдоль маршрутов [м]",
-        "file": "или контур по договору: KML, KMZ, GeoJSON, GeoPackage, Shapefile",
+        "file": "или контур по договору: KML, KMZ, GeoJSON, GeoPackage, Shapefile, "
+                "CSV вершин",
         "terrain": "рельеф (необязательно): ЦМР или диапазон отметок",
         "dem": "GeoTIFF в любой системе координат",
         "ground": "или [наинизшая, наивысшая] отметка [м]",

@@ -625,9 +625,9 @@ def _run_project(path: str, out_dir: str | None, stem: str | None, xlsx_path: st
     exports = {}
     if out_dir:  # the mission and GIS files join the reports' transaction (issue 11)
         from ..reports.exports import export_files
-
         exports = outputs.chosen_exports(export_files(
-            result, out_dir, prefix=f"{stem}-" if stem is not None else ""), formats)
+            result, out_dir, prefix=f"{stem}-" if stem is not None else "",
+            note=say or console.info), formats)
     film = result.film.job if result.film else None
     uav_ = result.uav.job if result.uav else None
     _write_reports({**targets, "force": force, "inputs": files, "fields": fields,

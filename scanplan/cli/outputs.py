@@ -33,8 +33,8 @@ __all__ = ["FORMATS", "KINDS", "PDF_HELP", "chosen_exports", "parse_formats",
 FORMATS = ("xlsx", "pdf", "missions", "gis")
 """The outputs ``--formats`` can name, in the order of the files written."""
 
-KINDS = {"xlsx": ("xlsx",), "pdf": ("pdf",), "missions": ("plan", "waypoints"),
-         "gis": ("kml", "geojson", "csv")}
+KINDS = {"xlsx": ("xlsx",), "pdf": ("pdf",), "missions": ("plan", "waypoints", "kmz"),
+         "gis": ("kml", "geojson", "csv", "gpkg")}
 """Each output → the file kinds (:data:`scanplan.outpaths.SUFFIX`) it writes."""
 
 PDF_HELP = {

@@ -45,6 +45,7 @@ from ..errors import InputError
 from ..safeio import read_limited, size_text
 from .gdal_guard import KIND_NAMES, harden, indirection, read_head, sniff
 from .layout import Area
+from .vertices import VERTEX_SUFFIXES, read_vertices
 
 if TYPE_CHECKING:  # pyproj (60 ms) is imported when a polygon is read, not for a block
     import pyproj
@@ -157,7 +158,7 @@ def load_area(spec: AreaSpec) -> Area | None:
 
     user_crs = _crs(spec.crs, "crs") if spec.crs is not None else None
     if spec.file is not None:
-        geom, file_crs, where, parts = _read_file(Path(spec.file), spec.layer, spec.feature)
+        geom, file_crs, where, parts = _read_source(Path(spec.file), spec.layer, spec.feature)
         if file_crs is not None and user_crs is not None and file_crs != user_crs:
             raise InputError("crs", f"{user_crs.to_string()} differs from the CRS "
                              f"{file_crs.to_string()} that {where} declares; remove "
@@ -208,6 +209,20 @@ def _inline(ring: Any) -> shapely.Polygon:
         raise InputError("polygon", f"has {len(set(pts))} distinct point(s); a polygon needs "
                          "at least 3")
     return shapely.Polygon(pts)
+
+
+def _read_source(path: Path, layer: str | None, feature: str | int | None
+                 ) -> tuple[Any, pyproj.CRS | None, str, tuple[str, str, str | None]]:
+    """A list of the boundary's vertices (CSV/TXT, :mod:`.vertices`), else a GIS file."""
+    name = str(path)
+    vertices = read_vertices(path, name) if path.suffix.lower() in VERTEX_SUFFIXES else None
+    if vertices is None:
+        return _read_file(path, layer, feature)
+    extra = "layer" if layer is not None else "feature" if feature is not None else None
+    if extra is not None:
+        raise InputError(extra, f"{name} is a list of vertices: one polygon, no layers; "
+                         f"remove [area] {extra}")
+    return vertices, None, name, (name, "vertices", None)
 
 
 def _read_file(path: Path, layer: str | None, feature: str | int | None

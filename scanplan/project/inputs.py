@@ -343,7 +343,8 @@ _RECORDS: tuple[Input, ...] = (
     Input("area_length_m", "area", "length_m", _NUM,
           "block length along the flight lines [m]", "m", domain="area_length_m"),
     Input("file", "area", "file", _STR, "the contract polygon: a KML, KMZ, GeoJSON, "
-          "GeoPackage or Shapefile, relative to the project file"),
+          "GeoPackage or Shapefile, or a CSV/TXT list of its vertices, relative to the "
+          "project file"),
     Input("layer", "area", "layer", _STR, "layer of the file holding the polygon (when it "
           "has several)"),
     Input("feature", "area", "feature", "feature", "the polygon's name, or its number from 1 "

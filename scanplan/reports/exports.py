@@ -6,9 +6,10 @@ file), the flight as KML and GeoJSON, and the photo
 centres as CSV — in memory, named for the ``--out`` folder. The command line writes them
 with the reports in one all-or-nothing transaction. A UAV flight writes ``mission.plan``
 and ``mission.waypoints`` (``mission-01.plan``, ``mission-01.waypoints`` … for several
-sorties), ``flight.kml``, ``flight.geojson`` and
-``photos.csv``; the film survey's flight scheme ``film-flight.kml``,
-``film-flight.geojson`` and ``film-frames.csv``. A batch puts the project's name before
+sorties), for a DJI camera ``mission-dji.kmz`` (``mission-dji-01.kmz`` …: DJI Pilot 2),
+``flight.kml``, ``flight.geojson``, ``flight.gpkg`` and ``photos.csv``; the film survey's
+flight scheme ``film-flight.kml``, ``film-flight.geojson``, ``film-flight.gpkg`` and
+``film-frames.csv``. A batch puts the project's name before
 each (``NAME-flight.kml``). An abstract block (width × length, not georeferenced) writes
 none of them, and the reports say so.
 """
@@ -17,6 +18,7 @@ from __future__ import annotations
 
 import os
 import re
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Literal
 
@@ -124,7 +126,23 @@ def _vehicle(spec: Any) -> Literal["multirotor", "fixed_wing"]:
     return "multirotor"
 
 
-def export_files(spec: Any, folder: str, *, prefix: str = "") -> dict[str, tuple[str, bytes]]:
+def dji_files(spec: Any, layout: FlightLayout, mission: MissionOptions | None
+              ) -> tuple[dict[str, bytes], str | None]:
+    """The DJI Pilot 2 route files of a UAV flight (``mission-dji.kmz`` …) and, when none
+    is written although a mission is, why (a camera DJI Pilot 2 cannot fly; no EGM96
+    grid for a terrain plan)."""
+    if mission is None:
+        return {}, None
+    from ..geo.export import wpml_files
+    from ..geo.export.steps import mission_layout
+
+    camera = getattr(spec.uav.job.plan.inputs, "camera", None)
+    camera_id = str(getattr(camera, "id", camera))
+    return wpml_files(mission_layout(layout), mission, camera_id)
+
+
+def export_files(spec: Any, folder: str, *, prefix: str = "",
+                 note: Callable[[str], None] | None = None) -> dict[str, tuple[str, bytes]]:
     """Every exported file of ``spec``: path in ``folder`` → (kind, content).
 
     Parameters
@@ -135,6 +153,9 @@ def export_files(spec: Any, folder: str, *, prefix: str = "") -> dict[str, tuple
         The ``--out`` folder.
     prefix : str
         Put before every name (a batch: ``"NAME-"``).
+    note : callable, optional
+        Told why a file the user may expect is not written (no DJI route for a camera
+        DJI Pilot 2 cannot fly), one line each, for the terminal.
 
     Returns
     -------
@@ -151,11 +172,16 @@ def export_files(spec: Any, folder: str, *, prefix: str = "") -> dict[str, tuple
         from ..geo.export import layout_files
 
         film = kind == "film"
+        mission = None if film else mission_options(spec, layout)
         rendered = layout_files(
-            layout, names=export_names(locale, title, film),
-            mission=None if film else mission_options(spec, layout),
+            layout, names=export_names(locale, title, film), mission=mission,
             prefix=prefix + ("film-" if film else ""),
             photos_name="frames" if film else "photos")
+        if not film:  # the same mission for DJI Pilot 2, when the camera is a DJI one
+            dji, reason = dji_files(spec, layout, mission)
+            rendered.update({prefix + k: v for k, v in dji.items()})
+            if reason and note is not None:
+                note(f"no {prefix}mission-dji.kmz: {reason}")
         for name, data in rendered.items():
             suffix = os.path.splitext(name)[1].lower()
             files[os.path.join(folder, name)] = (KIND_OF_SUFFIX[suffix], data)
@@ -206,7 +232,8 @@ def export_notes(spec: Any) -> list[Any]:
 
 
 _EXPORT_NAME = re.compile(r"(?:film-)?(?:mission(?:-\d+)?\.(?:plan|waypoints)|flight\.kml|"
-                          r"flight\.geojson|photos\.csv|frames\.csv)")
+                          r"flight\.geojson|photos\.csv|frames\.csv|"
+                          r"mission-dji(?:-\d+)?\.kmz|flight\.gpkg)")
 
 
 def stale_exports(folder: str, written: set[str]) -> list[str]:

@@ -12,6 +12,8 @@ georeferenced) gets none of them; a plan that is not feasible gets no mission.
 | ``flight.kml`` | area, strips, numbered photo centres for Google Earth | :mod:`.gis` |
 | ``flight.geojson`` | the same as RFC 7946 GeoJSON | :mod:`.gis` |
 | ``photos.csv`` | every photo centre with its figures | :mod:`.gis` |
+| ``flight.gpkg`` | area, strips, photo centres, sorties as one GeoPackage | :mod:`.gpkg` |
+| ``mission-dji.kmz`` (``mission-dji-01.kmz`` …) | the mission for DJI Pilot 2 | :mod:`.wpml` |
 """
 
 from __future__ import annotations
@@ -19,13 +21,15 @@ from __future__ import annotations
 from ..layout import FlightLayout
 from .common import GENERATOR, lonlat
 from .gis import ExportNames, render_csv, render_geojson, render_kml
+from .gpkg import render_gpkg
 from .qgc import MissionOptions, plan_files, render_plan
 from .steps import mission_layout
 from .wpl import render_waypoints, waypoint_files
+from .wpml import wpml_files
 
 __all__ = ["GENERATOR", "ExportNames", "MissionOptions", "layout_files", "plan_files",
-           "render_csv", "render_geojson", "render_kml", "render_plan", "render_waypoints",
-           "waypoint_files"]
+           "render_csv", "render_geojson", "render_gpkg", "render_kml", "render_plan",
+           "render_waypoints", "waypoint_files", "wpml_files"]
 
 
 def layout_files(layout: FlightLayout, *, names: ExportNames | None = None,
@@ -64,6 +68,7 @@ def layout_files(layout: FlightLayout, *, names: ExportNames | None = None,
         files.update({prefix + k: v for k, v in plans.items()})
     files[f"{prefix}flight.kml"] = render_kml(layout, names)
     files[f"{prefix}flight.geojson"] = render_geojson(layout, names)
+    files[f"{prefix}flight.gpkg"] = render_gpkg(layout)
     if len(layout.photos):
         files[f"{prefix}{photos_name}.csv"] = render_csv(layout)
     return files
