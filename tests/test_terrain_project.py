@@ -48,8 +48,13 @@ def test_the_valley_shows_what_flat_ground_misses(valley):
     assert tr is not None and tr.mode == "constant"
     relief = tr.ground.high_m - tr.ground.low_m
     assert 60 <= relief <= 70
-    # the largest height over the relief: the flat maximum less the relief under the centres
-    assert tr.max_height_m == pytest.approx(u.job.plan.max_height_m - relief, abs=1e-6)
+    # the largest height over the relief: the flat maximum less the relief under the path
+    # (the ceiling binds: the highest and the lowest ground under the flight lines), at
+    # least the relief under the centres
+    s = tr.summary()
+    path_relief = s["path_agl_max_m"] - s["clearance_min_m"]
+    assert tr.max_height_m == pytest.approx(u.job.plan.max_height_m - path_relief, abs=1e-3)
+    assert tr.max_height_m <= u.job.plan.max_height_m - relief + 1e-6
     assert u.recommended_height_m == 5 * (tr.max_height_m // 5)
     assert u.recommended_height_m == 70  # the headline: 135 m on flat ground
     # one warning says the lowering and why: what the planned 135 m would miss, and how to
@@ -67,8 +72,8 @@ def test_the_valley_shows_what_flat_ground_misses(valley):
     assert "принята высота 70\u00a0м. При плановой высоте 135\u00a0м снимок" in ru, ru
     assert "Чтобы лететь выше" in ru and ru.endswith("по рельефу."), ru
     ph = tr.layout.photos
-    assert ph["agl_m"].max() <= u.job.plan.max_height_m + 1e-6  # the worst photo meets it
-    assert ph["agl_m"].min() == pytest.approx(u.recommended_height_m, abs=1e-6)
+    assert s["path_agl_max_m"] <= u.job.plan.max_height_m + 1e-6  # the ceiling holds
+    assert s["clearance_min_m"] == pytest.approx(u.recommended_height_m, abs=1e-6)
     assert np.all(np.isfinite(ph["ground_m"]))
     assert u.job.layout is tr.layout  # the exports take the terrain columns
     assert tr.layout.notes["altitude_frame"] == "AMSL"
@@ -101,8 +106,14 @@ def test_strip_and_follow_modes_allow_a_higher_plan(valley, tmp_path, mode):
     else:
         assert r.uav.recommended_height_m > valley.uav.recommended_height_m
         assert len(tr.layout.notes["waypoints"]) > len(tr.layout.strips)
-        agl = tr.layout.photos["agl_m"]
-        assert agl.max() - agl.min() <= 5.0 + 1e-6  # within the follow tolerance
+        ph = tr.layout.photos
+        h = r.uav.recommended_height_m
+        assert tr.summary()["clearance_min_m"] >= h - 1e-3  # never closer than planned
+        # above each centre: within the tolerance plus the rise of the valley's side (at
+        # most 0.3) over the photo's stretch of path — the run-in (20 m) and a base at the
+        # ends of a strip — and the grid's reach
+        above = ph["altitude_m"] - ph["ground_m"]
+        assert above.min() >= h - 1e-3 and above.max() <= h + 5.0 + 0.3 * 50.0
 
 
 def test_a_corrupt_dem_exits_2_naming_the_key_and_writes_nothing(tmp_path):
