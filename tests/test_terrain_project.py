@@ -147,6 +147,8 @@ def test_a_dem_elsewhere_exits_2_saying_how_much_is_missing(tmp_path):
     ("follow_tolerance_m = -1", "0 … 500 m"),
     ('vertical_unit = "yd"', "m, ft, us-ft, cm, dm"),
     ("dem_file = 'x.tif'", "unknown key"),
+    ("void_fill_radius_m = -5", "0 … 1000 m"),
+    ("void_fill_margin_m = 1e9", "0 … 500 m"),
 ])
 def test_bad_terrain_keys_name_the_key(tmp_path, line, message):
     uav = (EXAMPLES / "uav-canon-2000.toml").read_text(encoding="utf-8")

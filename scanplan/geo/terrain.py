@@ -533,7 +533,7 @@ def uav_terrain(layout: FlightLayout, ground: Ground, inp: UavInputs, plan: UavP
                 forward_overlap_pct=ov.forward_photo, side_overlap_pct=ov.side_photo)
     limit = plan.max_height_m
     g_res = _checked_ground(plan, wg.footprint_low_m, wg.path_low_m)
-    strips = _strip_rows(cols, g_res, limit)
+    strips = _strip_rows(cols, g_res, g_alt, limit)
     new_layout = _terrain_layout(layout, cols, order, strips, mode)
     worst_res = int(cols["photo"][int(np.argmax(alt - g_res))]) if n else 0
     both = np.fmin(ov.forward_photo, ov.side_photo)
@@ -662,13 +662,17 @@ def _terrain_layout(layout: FlightLayout, cols: dict[str, NDArray[Any]],
 
 
 def _strip_rows(cols: dict[str, NDArray[Any]], g_res: NDArray[np.float64],
-                limit_m: float | None) -> tuple[StripTerrain, ...]:
+                g_alt: NDArray[np.float64], limit_m: float | None
+                ) -> tuple[StripTerrain, ...]:
+    """Per strip: its ground, altitudes, the height above ground from the clearance (over
+    the highest ground under its path) to the checked worst (over ``g_res``), and how far
+    that exceeds the limit."""
     rows = []
     strip = cols["strip"]
     for k in np.unique(strip):
         sel = strip == k
-        agl = cols["agl_m"][sel]
         alt = cols["altitude_m"][sel]
+        agl = alt - g_res[sel]
         gmin = float(g_res[sel].min())
         max_alt = gmin + limit_m if limit_m is not None else None
         excess = max(0.0, float(agl.max()) - limit_m) if limit_m is not None else 0.0
@@ -676,7 +680,8 @@ def _strip_rows(cols: dict[str, NDArray[Any]], g_res: NDArray[np.float64],
             number=int(k), ground_min_m=float(np.nanmin(cols["ground_min_m"][sel])),
             ground_max_m=float(np.nanmax(cols["ground_max_m"][sel])),
             altitude_min_m=float(alt.min()), altitude_max_m=float(alt.max()),
-            agl_min_m=float(agl.min()), agl_max_m=float(agl.max()), max_altitude_m=max_alt,
+            agl_min_m=float((alt - g_alt[sel]).min()), agl_max_m=float(agl.max()),
+            max_altitude_m=max_alt,
             excess_m=excess, worst_photo=int(cols["photo"][sel][int(np.argmax(agl))])))
     return tuple(rows)
 

@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import InputError
+from ..geo.dem_grid import DEFAULT_VOID_MARGIN_M, DEFAULT_VOID_RADIUS_M
 from ..geo.layout import FlightLayout
 from ..geo.terrain import (
     Ground,
@@ -67,7 +68,9 @@ def terrain_config(project: Project) -> TerrainConfig | None:
             ground_range_m=(float(rng[0]), float(rng[1])) if rng is not None else None,
             altitude_mode=g("terrain", "altitude_mode", "constant"),
             follow_tolerance_m=float(g("terrain", "follow_tolerance_m", 5.0)),
-            vertical_unit=g("terrain", "vertical_unit"))
+            vertical_unit=g("terrain", "vertical_unit"),
+            void_fill_radius_m=float(g("terrain", "void_fill_radius_m", DEFAULT_VOID_RADIUS_M)),
+            void_fill_margin_m=float(g("terrain", "void_fill_margin_m", DEFAULT_VOID_MARGIN_M)))
     except InputError as exc:
         raise _named(project, exc) from None
 
