@@ -2,8 +2,8 @@
 where no centre is, changes the worst GSD, the clearance and the altitude ceiling's check.
 
 Flat ground at 150 m (2 m cells) with a 10 m × 10 m square pit or ridge; the layout of
-``terrain_helpers`` (strips along grid north, 27.4 m apart, at 100 m).
-Photos 18.3 m apart (60 %). The centres nearest the feature are more than two cells away, so the bilinear
+``terrain_helpers`` (strips along grid north, 27.4 m apart, photos 18.3 m apart at
+100 m). The centres nearest the feature are more than two cells away, so the bilinear
 ground at every centre is 150 m: a check at the centres alone would see flat ground.
 """
 
@@ -48,7 +48,7 @@ def test_a_pit_between_the_centres_sets_the_worst_gsd(tmp_path):
     # between strips 2 and 3, between two photos: 13.7 m and 9.1 m from the nearest lines
     # and photos
     cx, cy = X0 + 1.5 * lay0.spacing_m, Y0 + 5.5 * lay0.base_m
-    lay, r, _ = _run(tmp_path, _square(cx, cy, -DEPTH_M), gsd_target_cm=2.0)
+    _, r, _ = _run(tmp_path, _square(cx, cy, -DEPTH_M), gsd_target_cm=2.0)
     ph = r.layout.photos
     np.testing.assert_allclose(ph["ground_m"], FLAT_M, atol=1e-6)  # the centres: flat
     gsd_flat = PIXEL_UM / 1000 * H / FOCAL_MM * 100
