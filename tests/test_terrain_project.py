@@ -100,9 +100,15 @@ def test_strip_and_follow_modes_allow_a_higher_plan(valley, tmp_path, mode):
     r = plan_project(load_project(p))
     tr = r.uav.terrain
     assert tr.mode == mode
-    if mode == "strip":  # every strip crosses the diagonal valley: no gain here
-        assert r.uav.recommended_height_m >= valley.uav.recommended_height_m
+    if mode == "strip":  # the direction chosen under the mode: along the valley (45°)
+        assert r.uav.recommended_height_m >= 110 > valley.uav.recommended_height_m
         assert all(s.altitude_m is not None for s in tr.layout.strips)
+        lay = r.uav.job.layout
+        assert abs(lay.direction_deg - 45.0) <= 2.0
+        chosen = lay.notes["terrain_direction"]
+        assert chosen["photos_instead_of"] == valley.uav.job.layout.n_photos
+        assert lay.n_photos < 0.45 * valley.uav.job.layout.n_photos  # 6,272 vs 16,432
+        assert r.uav.job.plan.flight["photos"] == lay.n_photos
     else:
         assert r.uav.recommended_height_m > valley.uav.recommended_height_m
         assert len(tr.layout.notes["waypoints"]) > len(tr.layout.strips)
@@ -217,3 +223,32 @@ def test_the_workbook_has_a_terrain_sheet_per_strip(valley):
     names = openpyxl.load_workbook(io.BytesIO(render_xlsx(
         uav=flat.uav.job, meta=flat.meta, spec=flat))).sheetnames
     assert "Terrain" not in names
+
+
+def test_the_report_names_a_mode_or_direction_that_needs_far_fewer_photos(valley, tmp_path):
+    """Constant altitude over the valley: strips along it would need far fewer photos —
+    an info note, in both languages; in ``follow`` mode there is nothing better to name;
+    strips held across the valley by the project name the direction along it."""
+    w = next(w for w in valley.warnings if w.code == "terrain_other_choice")
+    assert w.severity == "info"
+    assert '"strip" with the lines at 45°' in w.message and "fewer" in w.message
+    n_now = valley.uav.job.layout.n_photos
+    assert f"instead of {n_now}" in w.message
+    pct = float(w.message.split("(")[-1].split(" %")[0])
+    assert pct >= 50.0
+    ru = w.message.text("ru")
+    assert "при направлении маршрутов 45°" in ru and "снимков вместо" in ru
+    follow = _copy_example(tmp_path, drop='altitude_mode = "constant"')
+    follow.write_text(follow.read_text(encoding="utf-8").replace(
+        'dem = "dem/town-valley.tif"', 'dem = "dem/town-valley.tif"\naltitude_mode = "follow"'),
+        encoding="utf-8")
+    assert "terrain_other_choice" not in [w.code for w in plan_project(
+        load_project(follow)).warnings]
+    across = tmp_path / "across.toml"
+    across.write_text(follow.read_text(encoding="utf-8").replace(
+        'altitude_mode = "follow"', 'altitude_mode = "strip"').replace(
+        'direction_deg = "auto"', "direction_deg = 135"), encoding="utf-8")
+    r = plan_project(load_project(across))
+    assert r.uav.job.layout.direction_deg == pytest.approx(135.0)  # the project's own
+    w = next(w for w in r.warnings if w.code == "terrain_other_choice")
+    assert "45°" in w.message
