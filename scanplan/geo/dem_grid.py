@@ -13,8 +13,10 @@ every footprint and run-in) are read with rasterio in windows of at most
 warping). From it a **min-max pyramid** is built: level k holds the minimum and the
 maximum of every aligned 2^k × 2^k block (level 0 is the DEM itself). A query rectangle of
 w × h pixels is answered at the level where it spans at most :data:`BLOCKS_PER_SIDE`
-blocks a side: at most (BLOCKS_PER_SIDE + 1)² look-ups per rectangle, vectorised over all
-rectangles — no Python loop over photos or pixels. The answer is conservative: the
+blocks a side; the rectangles are grouped by their extent in blocks (few distinct ones),
+and each group is answered by one separable running minimum and maximum of that extent
+over the level (``scipy.ndimage``) and one gather — no Python loop over photos or
+pixels. The answer is conservative: the
 blocks cover the rectangle and at most one block (< 1/BLOCKS_PER_SIDE of its side) beyond
 each edge, so the lowest ground is never higher and the highest never lower than the
 ground under the rectangle.
@@ -176,22 +178,58 @@ class GroundGrid:
 def _blocks_range(lo: NDArray[np.float32], hi: NDArray[np.float32], bi0: NDArray[np.int64],
                   bi1: NDArray[np.int64], bj0: NDArray[np.int64], bj1: NDArray[np.int64]
                   ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """min/max over the blocks [bi0, bi1] × [bj0, bj1] of one level (inclusive), NaN
-    propagating (an unknown block makes the range unknown)."""
-    n = bi0.size
-    out_lo = np.full(n, np.inf)
-    out_hi = np.full(n, -np.inf)
-    h, w = lo.shape
-    for dj in range(int((bj1 - bj0).max()) + 1):
-        jj = np.minimum(bj0 + dj, h - 1)
-        row_ok = bj0 + dj <= bj1
-        for di in range(int((bi1 - bi0).max()) + 1):
-            m = row_ok & (bi0 + di <= bi1)
-            ii = np.minimum(bi0 + di, w - 1)
-            out_lo = np.where(m, np.minimum(out_lo, lo[jj, ii]), out_lo)
-            out_hi = np.where(m, np.maximum(out_hi, hi[jj, ii]), out_hi)
+    """min/max over the blocks [bi0, bi1] × [bj0, bj1] of one level (inclusive), an
+    unknown block making the range unknown (NaN).
+
+    The boxes are grouped by their extent in blocks (few distinct ones): for each, one
+    separable running minimum and maximum of that extent over the level
+    (``scipy.ndimage``, each axis once) and one gather of every box's value at its
+    corner; a group needing fewer look-ups than the level has blocks gathers its blocks
+    directly instead.
+    """
+    from scipy.ndimage import maximum_filter1d, minimum_filter1d
+
+    # unknown ground (NaN) as the extreme that wins: −inf for the minimum, +inf for the max
+    lo_k = np.where(np.isnan(lo), -np.inf, lo) if np.isnan(lo).any() else lo
+    hi_k = np.where(np.isnan(hi), np.inf, hi) if np.isnan(hi).any() else hi
+    wi = bi1 - bi0 + 1
+    wj = bj1 - bj0 + 1
+    out_lo = np.empty(bi0.size)
+    out_hi = np.empty(bi0.size)
+    key = wj * (int(wi.max()) + 1) + wi
+    rows: dict[int, tuple[NDArray[np.float32], NDArray[np.float32]]] = {}
+    for kk in np.unique(key).tolist():
+        sel = np.flatnonzero(key == kk)
+        w, h = int(wi[sel[0]]), int(wj[sel[0]])
+        if w * h * sel.size < lo.size:  # few look-ups: gather them directly
+            out_lo[sel], out_hi[sel] = _gather(lo_k, hi_k, bi0[sel], bj0[sel], w, h)
+            continue
+        if w not in rows:  # the running extremes along the rows, w blocks wide
+            rows[w] = (minimum_filter1d(lo_k, w, axis=1, mode="constant", cval=np.inf),
+                       maximum_filter1d(hi_k, w, axis=1, mode="constant", cval=-np.inf))
+        rlo, rhi = rows[w]
+        flo = minimum_filter1d(rlo, h, axis=0, mode="constant", cval=np.inf)
+        fhi = maximum_filter1d(rhi, h, axis=0, mode="constant", cval=-np.inf)
+        # a window of size s holds [c − s//2, c − s//2 + s − 1]: its first block at c − s//2
+        jj = bj0[sel] + h // 2
+        ii = bi0[sel] + w // 2
+        out_lo[sel] = flo[jj, ii]
+        out_hi[sel] = fhi[jj, ii]
     bad = ~np.isfinite(out_lo) | ~np.isfinite(out_hi)
     return np.where(bad, np.nan, out_lo), np.where(bad, np.nan, out_hi)
+
+
+def _gather(lo: NDArray[np.float32], hi: NDArray[np.float32], bi0: NDArray[np.int64],
+            bj0: NDArray[np.int64], w: int, h: int
+            ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """min/max over the w × h blocks from (bj0, bi0), one look-up per block."""
+    out_lo = np.full(bi0.size, np.inf)
+    out_hi = np.full(bi0.size, -np.inf)
+    for dj in range(h):
+        for di in range(w):
+            np.minimum(out_lo, lo[bj0 + dj, bi0 + di], out=out_lo)
+            np.maximum(out_hi, hi[bj0 + dj, bi0 + di], out=out_hi)
+    return out_lo, out_hi
 
 
 def _pyramid(z: NDArray[np.float32], fill: float, levels: int) -> tuple[NDArray[np.float32], ...]:
