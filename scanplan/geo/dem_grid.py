@@ -196,7 +196,7 @@ def _blocks_range(lo: NDArray[np.float32], hi: NDArray[np.float32], bi0: NDArray
     wj = bj1 - bj0 + 1
     out_lo = np.empty(bi0.size)
     out_hi = np.empty(bi0.size)
-    key = wj * (int(wi.max()) + 1) + wi
+    key = wi * (int(wj.max()) + 1) + wj  # sorted by width first: one row pass kept
     rows: dict[int, tuple[NDArray[np.float32], NDArray[np.float32]]] = {}
     for kk in np.unique(key).tolist():
         sel = np.flatnonzero(key == kk)
@@ -205,6 +205,7 @@ def _blocks_range(lo: NDArray[np.float32], hi: NDArray[np.float32], bi0: NDArray
             out_lo[sel], out_hi[sel] = _gather(lo_k, hi_k, bi0[sel], bj0[sel], w, h)
             continue
         if w not in rows:  # the running extremes along the rows, w blocks wide
+            rows.clear()
             rows[w] = (minimum_filter1d(lo_k, w, axis=1, mode="constant", cval=np.inf),
                        maximum_filter1d(hi_k, w, axis=1, mode="constant", cval=-np.inf))
         rlo, rhi = rows[w]
