@@ -199,10 +199,10 @@ TERRAIN: dict[str, dict[str, str]] = {
     },
     "terrain_other_choice": {
         "en": "{what} would allow about {height:.0f} m above the reference ground instead of "
-              "{current:.0f} m over this relief: about {photos:.0f} photos instead of "
-              "{now:d} ({pct:.0f} % fewer; an estimate from the DEM)",
+              "{current:.0f} m over this relief: about {photos:,.0f} photos instead of "
+              "{now:,d} ({pct:.0f} % fewer; an estimate from the DEM)",
         "ru": "{what} позволил бы высоту около {height:.0f}~м над опорной отметкой вместо "
-              "{current:.0f}~м над этим рельефом: около {photos:.0f} снимков вместо {now:d} "
+              "{current:.0f}~м над этим рельефом: около {photos:,.0f} снимков вместо {now:,d} "
               "(на {pct:.0f}~% меньше; оценка по ЦМР).",
     },
     "terrain_choice.mode": {

@@ -233,7 +233,7 @@ def test_the_report_names_a_mode_or_direction_that_needs_far_fewer_photos(valley
     assert w.severity == "info"
     assert '"strip" with the lines at 45°' in w.message and "fewer" in w.message
     n_now = valley.uav.job.layout.n_photos
-    assert f"instead of {n_now}" in w.message
+    assert f"instead of {n_now:,}" in w.message
     pct = float(w.message.split("(")[-1].split(" %")[0])
     assert pct >= 50.0
     ru = w.message.text("ru")
