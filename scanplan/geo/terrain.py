@@ -325,12 +325,7 @@ def ground_under(layout: FlightLayout, cfg: TerrainConfig, key: str = "terrain.d
                 else {"en": "feet", "ru": "футах"}))))
     lo = float(np.nanmin(s.elevation_m))
     hi = float(np.nanmax(s.elevation_m))
-    filled = np.zeros(n, dtype=bool)
-    if grid is not None and not known.all():  # centres on a filled void have ground
-        idx = np.flatnonzero(~known)
-        zero = np.zeros((idx.size, 2))
-        flo, fhi = grid.box_range(ph["x_m"][idx], ph["y_m"][idx], zero, zero)
-        filled[idx] = np.isfinite(flo) & np.isfinite(fhi)
+    filled = _on_filled_voids(layout, grid, known)
     if grid is not None and grid.voids.filled_px:
         v = grid.voids
         warnings.append(PlanWarning("terrain_voids_filled", Message(
@@ -358,6 +353,20 @@ def ground_under(layout: FlightLayout, cfg: TerrainConfig, key: str = "terrain.d
                        voids_unknown_m2=v.unknown_m2, photos_on_filled_voids=int(filled.sum()),
                        missing_extent_km2=missing_km2)
     return Ground(s.elevation_m, lo, hi, "dem", info, factor, tuple(warnings), details, grid)
+
+
+def _on_filled_voids(layout: FlightLayout, grid: GroundGrid | None,
+                     known: NDArray[np.bool_]) -> NDArray[np.bool_]:
+    """The photos whose centre has no DEM value but stands on a filled void."""
+    filled = np.zeros(known.size, dtype=bool)
+    if grid is None or known.all():
+        return filled
+    ph = layout.photos
+    idx = np.flatnonzero(~known)
+    zero = np.zeros((idx.size, 2))
+    lo, hi = grid.box_range(ph["x_m"][idx], ph["y_m"][idx], zero, zero)
+    filled[idx] = np.isfinite(lo) & np.isfinite(hi)
+    return filled
 
 
 def _grid(layout: FlightLayout, info: D.DemInfo, cfg: TerrainConfig, factor: float, key: str,
