@@ -53,6 +53,7 @@ BENCHMARKS: dict[str, str] = {
     "fast_reports": "bench_fast_reports",
     "help": "bench_help",
     "terrain": "bench_terrain",
+    "terrain_block": "bench_terrain_block",
     "flight_layout": "bench_flight_layout",
     "hostile_gis": "bench_hostile_gis",
     "sweep": "bench_sweep",

@@ -129,6 +129,21 @@ def terrain_cases(tmp: Path) -> dict[str, list]:
         np.hypot(x - hx, y - hy) < 5, -9999.0, 150.0), lay, nodata=-9999.0)
     out["terrain nodata"] = [w.message for w in T.ground_under(
         lay, T.TerrainConfig(dem=holes)).warnings]
+    # no fill: a void the fill does not reach, within the share a DEM may miss
+    pin = dem_around(tmp / "pin-cases.tif", lambda x, y: np.where(
+        np.hypot(x - ph["x_m"][29], y - ph["y_m"][29]) < 1.5, -9999.0, 150.0), lay,
+        nodata=-9999.0)
+    out["terrain nodata unfilled"] = [w.message for w in T.ground_under(
+        lay, T.TerrainConfig(dem=pin, void_fill_radius_m=0.0)).warnings]
+    # another altitude mode named: follow far above the strips' height
+    from scanplan.geo.terrain_choice import ModeHeights
+    from scanplan.project.terrainplan import _other_choice
+    inp = uav_inputs(100.0)
+    flat = T.uav_terrain(lay, T.ground_under(lay, T.TerrainConfig(dem=tilt)), inp,
+                         plan_uav(inp), "strip")
+    hint = _other_choice(T.TerrainConfig(dem=tilt, altitude_mode="strip"), flat,
+                         ModeHeights(60.0, 200.0, (0.0,), (100.0,)), 300.0)
+    out["terrain other mode"] = [hint.message]
     to = Transformer.from_crs(PLAN_CRS, "EPSG:4326", always_xy=True)
     lon, lat = to.transform(ph["x_m"], ph["y_m"])
     geo = write_dem(tmp / "geo-cases.tif", lambda x, y: np.full_like(x, 150.0),

@@ -325,7 +325,7 @@ def emitted(tmp_path_factory) -> dict[str, list[Any]]:
             encoding="utf-8").replace('altitude_mode = "constant"', f'altitude_mode = "{mode}"')
            .replace('dem = "dem/', f'dem = "{(EXAMPLES / "dem").as_posix()}/')
            .replace('file = "areas/', f'file = "{(EXAMPLES / "areas").as_posix()}/')
-           for mode in ("strip", "follow")},
+           for mode in ("strip", "follow", "constant")},
         # an area planned far out of its projection's zone
         "plan area out of its zone": (EXAMPLES / "uav-town-2000.toml").read_text(
             encoding="utf-8").replace('file = "areas/town-uav.kml"',

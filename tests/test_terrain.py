@@ -44,6 +44,10 @@ from scanplan.geo import terrain_film as TF
 from scanplan.rules.uav import ground_resolution_m, plan_uav
 
 H = 100.0
+MID = 2 * 12 + 5  # a photo of the middle strip of layout(), inside the area
+GRID_REACH_M = 25.0
+"""How far beyond a footprint or path (of these layouts, 2 m cells) the grid may reach:
+the bilinear support (one cell) and one pyramid block (< 1/8 of the footprint's side)."""
 
 
 def run(lay, dem_path=None, *, mode="constant", h=H, tol_m=5.0, rng=None, **kw):
@@ -112,29 +116,45 @@ def test_tilted_plane_agl_gsd_overlaps_are_analytic(tmp_path, mode):
     ph = r.layout.photos
     g = z(ph["x_m"], ph["y_m"])
     np.testing.assert_allclose(ph["ground_m"], g, atol=1e-6)
+    # the path of each strip: its photos and the run-in (half the spacing, a semicircle
+    # turn) before and after; on a plane its highest ground is at one of its ends
+    run_in = lay.spacing_m / 2
+    ends = {k: max(z(ph["x_m"][ph["strip"] == k][0], ph["y_m"][ph["strip"] == k].min()
+                     - run_in),
+                   z(ph["x_m"][ph["strip"] == k][0], ph["y_m"][ph["strip"] == k].max()
+                     + run_in)) for k in np.unique(ph["strip"])}
+    top = np.array([ends[k] for k in ph["strip"]])
+    alt = ph["altitude_m"]
+    reach = GRID_REACH_M * 0.085  # the conservative reach of the grid × the plane's slope
     if mode == "constant":
-        alt = np.full(len(ph), g.max() + H)
+        assert np.all(alt == alt[0])
+        assert max(ends.values()) + H - 1e-3 <= alt[0] <= max(ends.values()) + H + reach
     elif mode == "strip":
-        alt = np.array([g[ph["strip"] == s].max() for s in ph["strip"]]) + H
+        assert np.all((alt >= top + H - 1e-3) & (alt <= top + H + reach))
     else:
-        alt = ph["altitude_m"]
-        assert np.all(alt - g >= H - 1e-6) and np.all(alt - g <= H + 1.0 + 1e-6)
-    np.testing.assert_allclose(ph["altitude_m"], alt, atol=1e-6)
-    np.testing.assert_allclose(ph["agl_m"], alt - g, atol=1e-6)
-    np.testing.assert_allclose(ph["gsd_cm"], PIXEL_UM / 1000 * (alt - g) / FOCAL_MM * 100,
-                               atol=1e-8)
-    np.testing.assert_allclose(ph["resolution_cm"], ground_resolution_m(inp, alt - g) * 100,
-                               rtol=1e-6)
+        assert np.all(alt - g >= H - 1e-3) and np.all(alt - g <= H + 1.0 + reach + 2.0)
+    assert r.path["clearance_min_m"] >= H - 1e-3
+    # GSD, L at the largest height above the ground seen in the footprint
+    np.testing.assert_allclose(ph["agl_m"], alt - ph["ground_min_m"], atol=1e-9)
+    np.testing.assert_allclose(ph["gsd_cm"], PIXEL_UM / 1000 * ph["agl_m"] / FOCAL_MM * 100,
+                               rtol=1e-12)
+    np.testing.assert_allclose(ph["resolution_cm"],
+                               ground_resolution_m(inp, ph["agl_m"]) * 100, rtol=1e-6)
     fw, sd = analytic_overlaps(lay, alt, z)
     np.testing.assert_allclose(ph["forward_overlap_pct"], fw, atol=1e-6)
     np.testing.assert_allclose(ph["side_overlap_pct"], sd, atol=1e-6)
-    # the footprint range on a plane: the plane at the footprint's corners
+    # the footprint range on a plane: the plane at the footprint's corners; the grid's
+    # answer holds it (never higher / lower) and reaches at most GRID_REACH_M beyond it
     fa = SENSOR_H_MM / FOCAL_MM * (alt - g) / 2
     fc = SENSOR_W_MM / FOCAL_MM * (alt - g) / 2
     lo = z(ph["x_m"] - fc, ph["y_m"] + fa)
     hi = z(ph["x_m"] + fc, ph["y_m"] - fa)
-    np.testing.assert_allclose(ph["ground_min_m"], lo, atol=1e-6)
-    np.testing.assert_allclose(ph["ground_max_m"], hi, atol=1e-6)
+    assert np.all(ph["ground_min_m"] <= lo + 1e-3)
+    assert np.all(ph["ground_max_m"] >= hi - 1e-3)
+    fa2 = SENSOR_H_MM / FOCAL_MM * ph["agl_m"] / 2
+    fc2 = SENSOR_W_MM / FOCAL_MM * ph["agl_m"] / 2
+    assert np.all(ph["ground_min_m"] >= z(ph["x_m"] - fc2, ph["y_m"] + fa2) - reach)
+    assert np.all(ph["ground_max_m"] <= z(ph["x_m"] + fc2, ph["y_m"] - fa2) + reach)
 
 
 def test_constant_mode_holds_the_planned_height_over_the_highest_ground(tmp_path):
@@ -143,7 +163,10 @@ def test_constant_mode_holds_the_planned_height_over_the_highest_ground(tmp_path
                    dtype="float64")
     r, *_ = run(lay, p)
     ph = r.layout.photos
-    assert ph["agl_m"].min() == pytest.approx(H, abs=1e-6)  # over the highest ground
+    # over the highest ground under the path: never closer than planned, and no higher
+    # than the grid's reach above it
+    assert H - 1e-3 <= r.path["clearance_min_m"] <= H + 1e-3
+    assert np.all(ph["altitude_m"] - ph["ground_m"] >= H - 1e-3)
     assert np.all(ph["forward_overlap_pct"] >= 80 - 1e-6)  # nowhere less than planned
     assert r.min_side_overlap_pct >= 60 - 1e-6
 
@@ -163,9 +186,12 @@ def test_cone_hill_within_the_bilinear_bound(tmp_path):
     err = np.abs(ph["ground_m"] - g)
     assert err.max() <= 0.1 * 2.0  # slope × cell: the bilinear bound on a cone
     alt = ph["altitude_m"][0]
-    np.testing.assert_allclose(ph["agl_m"], alt - ph["ground_m"], atol=1e-9)
-    np.testing.assert_allclose(ph["agl_m"], alt - g, atol=0.2)
+    np.testing.assert_allclose(ph["agl_m"], alt - ph["ground_min_m"], atol=1e-9)
+    assert np.all(ph["ground_min_m"] <= ph["ground_m"] + 1e-3)
     assert np.all(ph["altitude_m"] == alt)
+    # the highest ground under a path: the cone beside its top, on the nearest line
+    under = max(cone(x, Y0 + 60.0) for x in np.unique(ph["x_m"]))
+    assert alt >= under + H - 0.2 - 1e-3
 
 
 def test_cliff_strips_on_either_side_and_the_footprint_range(tmp_path):
@@ -183,9 +209,11 @@ def test_cliff_strips_on_either_side_and_the_footprint_range(tmp_path):
     np.testing.assert_allclose(ph["ground_m"][high], 160.0)
     np.testing.assert_allclose(ph["altitude_m"][low], 200.0)
     np.testing.assert_allclose(ph["altitude_m"][high], 260.0)
-    np.testing.assert_allclose(ph["agl_m"], H)
-    # footprints of strips 2 and 3 reach across the cliff: both levels under them
+    # footprints of strips 2 and 3 reach across the cliff: both levels under them; strip
+    # 3 sees the foot of the cliff, 160 m below its altitude
     s2 = ph["strip"] == 2
+    np.testing.assert_allclose(ph["agl_m"][s2], H)
+    np.testing.assert_allclose(ph["agl_m"][ph["strip"] == 3], H + 60.0)
     np.testing.assert_allclose(ph["ground_min_m"][s2], 100.0)
     np.testing.assert_allclose(ph["ground_max_m"][s2], 160.0)
     assert [s.altitude_m for s in r.layout.strips] == [200.0, 200.0, 260.0, 260.0]
@@ -204,11 +232,20 @@ def test_maximum_height_is_where_the_worst_photo_meets_its_constraint(tmp_path, 
     assert plan.binding == "GSD"
     h_max = r.max_height_m
     assert h_max is not None and 0 < h_max < plan.max_height_m
-    at, *_ = run(lay, p, mode=mode, h=h_max, gsd_target_cm=1.5, up_pct=10)
+    # the closed form holds for the footprints at the height it was computed at: there
+    # the worst photo meets the limit exactly; footprints grow with the height, so the
+    # height is found by a few fixed-point steps (the plan's own re-check does the same)
+    worst_then = r.layout.photos["agl_m"] - (r.height_m - h_max)
+    assert worst_then.max() == pytest.approx(plan.max_height_m, abs=1e-6)
+    for _ in range(4):
+        at, *_ = run(lay, p, mode=mode, h=h_max, gsd_target_cm=1.5, up_pct=10)
+        if at.max_height_m >= h_max - 1e-9:
+            break
+        h_max = at.max_height_m
     worst = at.layout.photos["agl_m"].max()
-    assert worst == pytest.approx(plan.max_height_m, abs=1e-6)  # meets it exactly
+    assert plan.max_height_m - 0.05 <= worst <= plan.max_height_m + 1e-6
     flown_gsd = PIXEL_UM / 1000 * worst * 1.10 / FOCAL_MM
-    assert flown_gsd == pytest.approx(0.015, rel=1e-9)  # the binding GSD limit
+    assert flown_gsd <= 0.015 * (1 + 1e-9)  # the binding GSD limit
     assert not [w for w in at.warnings if w.code == "terrain_resolution"]
     above, *_ = run(lay, p, mode=mode, h=h_max + 0.5, gsd_target_cm=1.5, up_pct=10)
     codes = [w.code for w in above.warnings]
@@ -216,7 +253,7 @@ def test_maximum_height_is_where_the_worst_photo_meets_its_constraint(tmp_path, 
     w = next(w for w in above.warnings if w.code == "terrain_resolution")
     assert f"photo {above.worst_resolution_photo}" in w.message
     excess = max(s.excess_m for s in above.strips)
-    assert excess == pytest.approx(0.5, abs=1e-6)
+    assert 0.45 <= excess <= 0.6
 
 
 def test_strip_maximum_altitude_is_its_lowest_ground_plus_the_limit(tmp_path):
@@ -227,7 +264,8 @@ def test_strip_maximum_altitude_is_its_lowest_ground_plus_the_limit(tmp_path):
     ph = r.layout.photos
     for s in r.strips:
         sel = ph["strip"] == s.number
-        assert s.max_altitude_m == pytest.approx(ph["ground_m"][sel].min() + plan.max_height_m)
+        assert s.max_altitude_m == pytest.approx(ph["ground_min_m"][sel].min()
+                                                 + plan.max_height_m)
         assert s.excess_m == pytest.approx(max(0.0, ph["agl_m"][sel].max()
                                                - plan.max_height_m), abs=1e-9)
     w = next(w for w in r.warnings if w.code == "terrain_resolution")
@@ -271,23 +309,90 @@ def test_ground_range_without_a_dem_checks_both_ends():
 
 # --- bad input -------------------------------------------------------------------------------
 
-def test_nodata_holes_are_named_and_checked_at_the_worst_ground(tmp_path):
+def test_a_three_pixel_void_is_filled_conservatively_and_reported(tmp_path):
+    """Three no-data pixels under a photo of the middle strip: filled with the highest
+    known ground within the radius plus the margin (for the altitude) and the lowest minus
+    it (for the scale)."""
     lay = layout(H)
     ph = lay.photos
-    hole_x, hole_y = ph["x_m"][3], ph["y_m"][3]
+    hx, hy = ph["x_m"][MID], ph["y_m"][MID]
+    cell = 2.0
 
     def z(x, y):
         base = 100 + 0.05 * (x - X0)
-        return np.where(np.hypot(x - hole_x, y - hole_y) < 6.0, -9999.0, base)
+        # three pixels in a row, the photo centre on the middle one
+        void = (np.abs(y - hy) < cell / 2) & (np.abs(x - hx) < 1.5 * cell)
+        return np.where(void, -9999.0, base)
 
-    p = dem_around(tmp_path / "holes.tif", z, lay, nodata=-9999.0)
-    r, *_ = run(lay, p)
+    x0, y0, x1, y1 = lay.area.geometry.bounds
+    # pixel centres on the photo centre: the DEM's origin half a cell off it
+    left = hx - cell / 2 - cell * round((hx - x0 + 400) / cell)
+    top = hy + cell / 2 + cell * round((y1 + 400 - hy) / cell)
+    p = write_dem(tmp_path / "void.tif", z, left=left, top=top, cell=cell,
+                  width=int((x1 - x0 + 800) / cell), height=int((y1 - y0 + 800) / cell),
+                  nodata=-9999.0)
+    cfg = T.TerrainConfig(dem=p)
+    ground = T.ground_under(lay, cfg)
+    assert ground.grid.voids.filled_px == 3 and ground.grid.voids.unknown_px == 0
+    assert ground.details["voids_filled_m2"] == pytest.approx(3 * cell * cell)
+    w = next(w for w in ground.warnings if w.code == "terrain_voids_filled")
+    assert "3 pixels (12 m²" in w.message and "50 m" in w.message
+    assert "3~пикселей" in w.text("ru") or "3 пикселей" in w.text("ru")
+    assert "terrain_no_ground" not in [w.code for w in ground.warnings]
+    inp = uav_inputs(H)
+    r = T.uav_terrain(lay, ground, inp, plan_uav(inp))
+    out = r.layout.photos
+    i = int(np.flatnonzero(out["photo"] == ph["photo"][MID])[0])
+    assert np.isnan(out["ground_m"][i])  # the centre itself has no DEM value
+    # the fill: the highest known ground within 50 m of the void (its east end) + 10 m
+    fill_hi = 100 + 0.05 * (hx + cell + 50.0 - X0) + 10.0  # pixel centres
+    fill_lo = 100 + 0.05 * (hx - cell - 50.0 - X0) - 10.0
+    assert out["altitude_m"][i] >= fill_hi + H - 0.5
+    assert out["ground_min_m"][i] <= fill_lo + 1e-3
+    assert r.summary()["voids_filled_px"] == 3
+
+
+def test_a_half_no_data_dem_is_refused_naming_the_share(tmp_path):
+    lay = layout(H, strips=20)
+    x0, _y0, x1, _y1 = lay.area.geometry.bounds
+    mid = (x0 + x1) / 2
+
+    def z(x, y):
+        return np.where(x > mid, -9999.0, 100.0 + 0.0 * y)
+
+    p = dem_around(tmp_path / "half.tif", z, lay, nodata=-9999.0)
+    with pytest.raises(InputError) as e:
+        T.ground_under(lay, T.TerrainConfig(dem=p))
+    msg = e.value.message
+    assert e.value.field == "terrain.dem" and "no-data" in msg and "km²" in msg
+    share = float(msg.split("(")[1].split("%")[0])
+    assert 30.0 < share < 50.0  # the half, but its 50 m beside known ground
+
+
+def test_no_data_beyond_the_radius_counts_with_the_missing_extent(tmp_path):
+    """A 12 m hole (1 % of the block) is filled at the default radius, refused without it;
+    four pixels (0.15 %) without a fill is named and checked at the block's extremes."""
+    lay = layout(H)
+    ph = lay.photos
+    hx, hy = ph["x_m"][MID], ph["y_m"][MID]
+
+    def z(x, y, r):
+        return np.where(np.hypot(x - hx, y - hy) < r, -9999.0, 100 + 0.05 * (x - X0))
+
+    hole = dem_around(tmp_path / "hole.tif", lambda x, y: z(x, y, 6.0), lay, nodata=-9999.0)
+    assert T.ground_under(lay, T.TerrainConfig(dem=hole)).grid.voids.unknown_px == 0
+    with pytest.raises(InputError, match=r"no-data farther than 0 m"):
+        T.ground_under(lay, T.TerrainConfig(dem=hole, void_fill_radius_m=0.0))
+    pin = dem_around(tmp_path / "pin.tif", lambda x, y: z(x, y, 1.5), lay, nodata=-9999.0)
+    g = T.ground_under(lay, T.TerrainConfig(dem=pin, void_fill_radius_m=0.0))
+    assert g.grid.voids.unknown_px >= 1
+    w = next(w for w in g.warnings if w.code == "terrain_no_ground")
+    assert f"photos {ph['photo'][MID]}" in w.message and "1 on nodata" in w.message
+    inp = uav_inputs(H)
+    r = T.uav_terrain(lay, g, inp, plan_uav(inp))
     out = r.layout.photos
     bad = np.isnan(out["ground_m"])
-    assert bad.sum() == 1 and out["photo"][bad][0] == ph["photo"][3]
-    w = next(w for w in r.warnings if w.code == "terrain_no_ground")
-    assert f"photos {ph['photo'][3]}" in w.message and "1 on nodata" in w.message
-    assert out["agl_m"][bad][0] == pytest.approx(out["altitude_m"][bad][0] - r.ground.low_m)
+    assert out["agl_m"][bad][0] == pytest.approx(out["altitude_m"][bad][0] - g.low_m)
 
 
 def test_a_dem_that_misses_part_of_the_area_is_refused_saying_how_much(tmp_path):
@@ -424,7 +529,10 @@ def test_film_local_scale_and_the_binding_frame(tmp_path):
                         resolving_power_lpmm=40, object_size_m=0.2, shape_coefficient=0.97)
     gx = 100 + 0.1 * (lay.photos["x_m"] - X0)
     expect = (gx.max() + h - gx) / (f_mm / 1000)
-    np.testing.assert_allclose(ft.mc, expect, rtol=1e-9)
+    # the layout states no footprint: the centre's bilinear support (one 20 m cell each
+    # way) and the path; conservative by at most two cells of the 0.1 slope each way
+    assert np.all(ft.mc >= expect - 1e-6)
+    assert np.all(ft.mc <= expect + 2 * 0.1 * 2 * 20.0 / (f_mm / 1000))
     assert ft.mc_min == pytest.approx(mc)
     assert ft.binding_frame == int(lay.photos["photo"][np.argmin(gx)])
     from scanplan.rules.film import evaluate
@@ -453,7 +561,10 @@ def test_follow_mode_waypoints_step_with_the_ground(tmp_path):
                    dtype="float64")
     r, *_ = run(lay, p, mode="follow", tol_m=4.0)
     ph = r.layout.photos
-    assert np.all((ph["agl_m"] >= H - 1e-6) & (ph["agl_m"] <= H + 4.0 + 1e-6))
+    assert r.path["clearance_min_m"] >= H - 1e-3
+    reach = 0.5 * (GRID_REACH_M + lay.base_m)  # a step reaches half a base further
+    assert np.all((ph["altitude_m"] - ph["ground_m"] >= H - 1e-3)
+                  & (ph["altitude_m"] - ph["ground_m"] <= H + 4.0 + reach))
     steps = {(w["strip"], w["altitude_m"]) for w in r.waypoints}
     assert len(steps) > 2  # the altitude steps along the slope
     assert r.layout.notes["altitude_frame"] == "AMSL"

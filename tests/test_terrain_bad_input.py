@@ -6,6 +6,7 @@ named warnings while the plan goes on."""
 
 from __future__ import annotations
 
+import re
 import shutil
 from pathlib import Path
 
@@ -130,8 +131,30 @@ def test_a_partly_covering_dem_says_how_much_is_missing(tmp_path):
     assert "km² (" in res.output and "%) of it lies outside the DEM" in res.output
 
 
+def test_a_half_no_data_dem_exits_2_naming_the_share(tmp_path):
+    """The example's DEM with its eastern half no-data: the same rule as a DEM that misses
+    part of the area — exit 2 with the km² and the share, nothing planned."""
+    def half(path: Path) -> None:
+        def cut(z):
+            z = z.copy()
+            z[:, z.shape[1] // 2:] = -9999.0
+            return z
+        _like_example(path, cut, dtype="float32")
+
+    p = _valley_with(tmp_path, half)
+    out = tmp_path / "out"
+    res = CliRunner().invoke(main, ["plan", str(p), "--out", str(out)])
+    assert res.exit_code == 2, res.output
+    assert "Traceback" not in res.output
+    assert "terrain.dem (line" in res.output and "no-data farther than 50 m" in res.output
+    share = float(re.search(r"km² \(([0-9.]+) %\) of the area", res.output).group(1))
+    assert 20.0 < share < 60.0
+    assert not out.exists() or not any(out.iterdir())
+
+
 def test_doubtful_dems_are_named_warnings_and_the_plan_goes_on(tmp_path):
-    """Nodata under a few photos: ``terrain_no_ground`` names them; the plan is made."""
+    """No-data under a few photos: filled and named (``terrain_voids_filled``); the plan is
+    made."""
     def holes(path: Path) -> None:
         def punch(z):
             z = z.copy()
@@ -145,5 +168,7 @@ def test_doubtful_dems_are_named_warnings_and_the_plan_goes_on(tmp_path):
     import json
     d = json.loads(res.output)
     codes = [w["code"] for w in d["warnings"]]
-    assert "terrain_no_ground" in codes
-    assert d["terrain"]["uav"]["photos_without_ground"] > 0
+    assert "terrain_voids_filled" in codes and "terrain_no_ground" not in codes
+    t = d["terrain"]["uav"]
+    assert t["voids_filled_px"] == 16 and t["voids_filled_m2"] == pytest.approx(16 * 400.0)
+    assert t["photos_without_ground"] == 0 and t["photos_on_filled_voids"] > 0

@@ -67,7 +67,8 @@ def test_photos_csv_geojson_and_kml_carry_ground_and_height_above_ground(valley_
     order = np.argsort(ph["photo"])
     for k, dec in (("ground_m", 2), ("altitude_m", 2), ("agl_m", 2), ("ground_min_m", 2)):
         np.testing.assert_allclose(c[k], np.asarray(ph[k])[order], atol=0.5 * 10 ** -dec)
-    np.testing.assert_allclose(c["agl_m"], c["altitude_m"] - c["ground_m"], atol=0.011)
+    # the height above the lowest ground seen in the footprint (GSD, L are taken there)
+    np.testing.assert_allclose(c["agl_m"], c["altitude_m"] - c["ground_min_m"], atol=0.011)
     assert np.all(c["ground_min_m"] <= c["ground_m"] + 0.01)
     assert np.all(c["ground_max_m"] >= c["ground_m"] - 0.01)
     meta, _fids, _geom, fields = read(str(valley_out / "flight.geojson"))

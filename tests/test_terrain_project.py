@@ -48,8 +48,13 @@ def test_the_valley_shows_what_flat_ground_misses(valley):
     assert tr is not None and tr.mode == "constant"
     relief = tr.ground.high_m - tr.ground.low_m
     assert 60 <= relief <= 70
-    # the largest height over the relief: the flat maximum less the relief under the centres
-    assert tr.max_height_m == pytest.approx(u.job.plan.max_height_m - relief, abs=1e-6)
+    # the largest height over the relief: the flat maximum less the relief under the path
+    # (the ceiling binds: the highest and the lowest ground under the flight lines), at
+    # least the relief under the centres
+    s = tr.summary()
+    path_relief = s["path_agl_max_m"] - s["clearance_min_m"]
+    assert tr.max_height_m == pytest.approx(u.job.plan.max_height_m - path_relief, abs=1e-3)
+    assert tr.max_height_m <= u.job.plan.max_height_m - relief + 1e-6
     assert u.recommended_height_m == 5 * (tr.max_height_m // 5)
     assert u.recommended_height_m == 70  # the headline: 135 m on flat ground
     # one warning says the lowering and why: what the planned 135 m would miss, and how to
@@ -67,8 +72,8 @@ def test_the_valley_shows_what_flat_ground_misses(valley):
     assert "принята высота 70\u00a0м. При плановой высоте 135\u00a0м снимок" in ru, ru
     assert "Чтобы лететь выше" in ru and ru.endswith("по рельефу."), ru
     ph = tr.layout.photos
-    assert ph["agl_m"].max() <= u.job.plan.max_height_m + 1e-6  # the worst photo meets it
-    assert ph["agl_m"].min() == pytest.approx(u.recommended_height_m, abs=1e-6)
+    assert s["path_agl_max_m"] <= u.job.plan.max_height_m + 1e-6  # the ceiling holds
+    assert s["clearance_min_m"] == pytest.approx(u.recommended_height_m, abs=1e-6)
     assert np.all(np.isfinite(ph["ground_m"]))
     assert u.job.layout is tr.layout  # the exports take the terrain columns
     assert tr.layout.notes["altitude_frame"] == "AMSL"
@@ -95,14 +100,26 @@ def test_strip_and_follow_modes_allow_a_higher_plan(valley, tmp_path, mode):
     r = plan_project(load_project(p))
     tr = r.uav.terrain
     assert tr.mode == mode
-    if mode == "strip":  # every strip crosses the diagonal valley: no gain here
-        assert r.uav.recommended_height_m >= valley.uav.recommended_height_m
+    if mode == "strip":  # the direction chosen under the mode: along the valley (45°)
+        assert r.uav.recommended_height_m >= 110 > valley.uav.recommended_height_m
         assert all(s.altitude_m is not None for s in tr.layout.strips)
+        lay = r.uav.job.layout
+        assert abs(lay.direction_deg - 45.0) <= 2.0
+        chosen = lay.notes["terrain_direction"]
+        assert chosen["photos_instead_of"] == valley.uav.job.layout.n_photos
+        assert lay.n_photos < 0.45 * valley.uav.job.layout.n_photos  # 6,272 vs 16,432
+        assert r.uav.job.plan.flight["photos"] == lay.n_photos
     else:
         assert r.uav.recommended_height_m > valley.uav.recommended_height_m
         assert len(tr.layout.notes["waypoints"]) > len(tr.layout.strips)
-        agl = tr.layout.photos["agl_m"]
-        assert agl.max() - agl.min() <= 5.0 + 1e-6  # within the follow tolerance
+        ph = tr.layout.photos
+        h = r.uav.recommended_height_m
+        assert tr.summary()["clearance_min_m"] >= h - 1e-3  # never closer than planned
+        # above each centre: within the tolerance plus the rise of the valley's side (at
+        # most 0.3) over the photo's stretch of path — the run-in (20 m) and a base at the
+        # ends of a strip — and the grid's reach
+        above = ph["altitude_m"] - ph["ground_m"]
+        assert above.min() >= h - 1e-3 and above.max() <= h + 5.0 + 0.3 * 50.0
 
 
 def test_a_corrupt_dem_exits_2_naming_the_key_and_writes_nothing(tmp_path):
@@ -136,6 +153,8 @@ def test_a_dem_elsewhere_exits_2_saying_how_much_is_missing(tmp_path):
     ("follow_tolerance_m = -1", "0 … 500 m"),
     ('vertical_unit = "yd"', "m, ft, us-ft, cm, dm"),
     ("dem_file = 'x.tif'", "unknown key"),
+    ("void_fill_radius_m = -5", "0 … 1000 m"),
+    ("void_fill_margin_m = 1e9", "0 … 500 m"),
 ])
 def test_bad_terrain_keys_name_the_key(tmp_path, line, message):
     uav = (EXAMPLES / "uav-canon-2000.toml").read_text(encoding="utf-8")
@@ -204,3 +223,32 @@ def test_the_workbook_has_a_terrain_sheet_per_strip(valley):
     names = openpyxl.load_workbook(io.BytesIO(render_xlsx(
         uav=flat.uav.job, meta=flat.meta, spec=flat))).sheetnames
     assert "Terrain" not in names
+
+
+def test_the_report_names_a_mode_or_direction_that_needs_far_fewer_photos(valley, tmp_path):
+    """Constant altitude over the valley: strips along it would need far fewer photos —
+    an info note, in both languages; in ``follow`` mode there is nothing better to name;
+    strips held across the valley by the project name the direction along it."""
+    w = next(w for w in valley.warnings if w.code == "terrain_other_choice")
+    assert w.severity == "info"
+    assert '"strip" with the lines at 45°' in w.message and "fewer" in w.message
+    n_now = valley.uav.job.layout.n_photos
+    assert f"instead of {n_now:,}" in w.message
+    pct = float(w.message.split("(")[-1].split(" %")[0])
+    assert pct >= 50.0
+    ru = w.message.text("ru")
+    assert "при направлении маршрутов 45°" in ru and "снимков вместо" in ru
+    follow = _copy_example(tmp_path, drop='altitude_mode = "constant"')
+    follow.write_text(follow.read_text(encoding="utf-8").replace(
+        'dem = "dem/town-valley.tif"', 'dem = "dem/town-valley.tif"\naltitude_mode = "follow"'),
+        encoding="utf-8")
+    assert "terrain_other_choice" not in [w.code for w in plan_project(
+        load_project(follow)).warnings]
+    across = tmp_path / "across.toml"
+    across.write_text(follow.read_text(encoding="utf-8").replace(
+        'altitude_mode = "follow"', 'altitude_mode = "strip"').replace(
+        'direction_deg = "auto"', "direction_deg = 135"), encoding="utf-8")
+    r = plan_project(load_project(across))
+    assert r.uav.job.layout.direction_deg == pytest.approx(135.0)  # the project's own
+    w = next(w for w in r.warnings if w.code == "terrain_other_choice")
+    assert "45°" in w.message

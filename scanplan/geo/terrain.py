@@ -58,7 +58,6 @@ Mc), see :mod:`scanplan.geo.terrain_film`.
 
 from __future__ import annotations
 
-import itertools
 import math
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -72,7 +71,10 @@ from ..errors import InputError
 from ..messages import Message
 from ..rules.results import PlanWarning, UavInputs, UavPlan
 from . import dem as D
+from .dem_grid import DEFAULT_VOID_MARGIN_M, DEFAULT_VOID_RADIUS_M, GroundGrid, read_ground_grid
 from .layout import FlightLayout, Photos
+from .terrain_overlaps import MAX_LISTED, _listing, _overlap_warnings, _overlaps
+from .terrain_worst import footprint_ground, path_ground, run_in_m
 
 __all__ = [
     "ALTITUDE_MODES",
@@ -86,13 +88,9 @@ __all__ = [
 ]
 
 ALTITUDE_MODES = ("constant", "strip", "follow")
-FOOTPRINT_GRID = 5
-"""Points per footprint side sampled for the elevation range under a photo."""
 MAX_COVERAGE_GAP = 0.005
 """Largest share of the area a DEM may miss (0.5 %) before it is refused."""
 DEFAULT_FOLLOW_TOLERANCE_M = 5.0
-MAX_LISTED = 6
-"""Photos or strips named in one warning; the rest are counted."""
 
 #: Columns this module adds to :data:`scanplan.geo.layout.PHOTO_COLUMNS`.
 TERRAIN_PHOTO_COLUMNS: dict[str, str] = {
@@ -123,6 +121,9 @@ class TerrainConfig:
         How far the AGL may exceed the planned height in ``follow`` mode [m].
     vertical_unit : str or None
         The DEM's height unit (``m``, ``ft``, ``us-ft``, ``cm``, ``dm``) when stated.
+    void_fill_radius_m, void_fill_margin_m : float
+        No-data within the radius of known ground is filled with the highest (lowest)
+        known ground within it plus (minus) the margin [m] (:mod:`.dem_grid`).
     """
 
     dem: Path | None = None
@@ -130,6 +131,8 @@ class TerrainConfig:
     altitude_mode: str = "constant"
     follow_tolerance_m: float = DEFAULT_FOLLOW_TOLERANCE_M
     vertical_unit: str | None = None
+    void_fill_radius_m: float = DEFAULT_VOID_RADIUS_M
+    void_fill_margin_m: float = DEFAULT_VOID_MARGIN_M
 
     def __post_init__(self) -> None:
         # each key's own value first (the error names it), then whether the keys agree
@@ -146,6 +149,10 @@ class TerrainConfig:
         if not (math.isfinite(self.follow_tolerance_m) and 0 <= self.follow_tolerance_m <= 500):
             raise InputError("terrain.follow_tolerance_m", "must be 0 … 500 m "
                              f"(got {self.follow_tolerance_m!r})")
+        for name, hi in (("void_fill_radius_m", 1000.0), ("void_fill_margin_m", 500.0)):
+            v = getattr(self, name)
+            if not (isinstance(v, int | float) and math.isfinite(v) and 0 <= v <= hi):
+                raise InputError(f"terrain.{name}", f"must be 0 … {hi:g} m (got {v!r})")
         if self.vertical_unit is not None and self.vertical_unit not in D.UNIT_FACTORS:
             raise InputError("terrain.vertical_unit", "must be one of "
                              f"{', '.join(D.UNIT_FACTORS)} (got {self.vertical_unit!r})")
@@ -175,6 +182,7 @@ class Ground:
     factor_m: float = 1.0
     warnings: tuple[PlanWarning, ...] = ()
     details: dict[str, Any] = field(default_factory=dict)
+    grid: GroundGrid | None = None
 
     def sample(self, x_m: NDArray[np.float64], y_m: NDArray[np.float64],
                plan_crs: str) -> NDArray[np.float64]:
@@ -239,6 +247,7 @@ class TerrainResult:
     warnings: tuple[PlanWarning, ...]
     ground: Ground
     altitude_frame: str = ALTITUDE_FRAME
+    path: dict[str, float | None] = field(default_factory=dict)
 
     def summary(self) -> dict[str, Any]:
         """The JSON ``terrain`` section: plain numbers."""
@@ -257,18 +266,12 @@ class TerrainResult:
             "min_forward_overlap_pct": self.min_forward_overlap_pct,
             "min_side_overlap_pct": self.min_side_overlap_pct,
             "strips": [s.__dict__.copy() for s in self.strips],
+            **self.path,
             **self.ground.details,
         }
 
 
 # --- the ground under the photos ----------------------------------------------------------
-
-def _listing(numbers: NDArray[np.int64]) -> str:
-    """``3, 4, 7`` or ``3, 4, 7, 9, 12, 15 and 40 more``."""
-    shown = ", ".join(str(int(v)) for v in numbers[:MAX_LISTED])
-    more = numbers.size - MAX_LISTED
-    return shown + (f" (+{more})" if more > 0 else "")
-
 
 def ground_under(layout: FlightLayout, cfg: TerrainConfig, key: str = "terrain.dem",
                  base_folder: Path | None = None) -> Ground:
@@ -293,6 +296,7 @@ def ground_under(layout: FlightLayout, cfg: TerrainConfig, key: str = "terrain.d
         return Ground(np.zeros(0), math.nan, math.nan, "dem", info)
     factor, unit_source = D.vertical_factor(info, cfg.vertical_unit)
     plan_crs = layout.area.plan_crs
+    missing_km2, share = 0.0, 0.0
     if plan_crs.upper() != "LOCAL":
         missing_km2, share = D.coverage_gap(info, layout.area.geometry, plan_crs, key)
         if share > MAX_COVERAGE_GAP:
@@ -311,6 +315,7 @@ def ground_under(layout: FlightLayout, cfg: TerrainConfig, key: str = "terrain.d
                          "read as metres lie beyond any ground on Earth: they look like "
                          "centimetres or decimetres; state the unit ([terrain] vertical_unit "
                          '= "cm" or "dm")')
+    grid = _grid(layout, info, cfg, factor, key, missing_km2, share)
     warnings: list[PlanWarning] = []
     if problem == "ft":
         warnings.append(PlanWarning("terrain_units_feet", Message(
@@ -320,19 +325,84 @@ def ground_under(layout: FlightLayout, cfg: TerrainConfig, key: str = "terrain.d
                 else {"en": "feet", "ru": "футах"}))))
     lo = float(np.nanmin(s.elevation_m))
     hi = float(np.nanmax(s.elevation_m))
-    if not known.all():
-        bad = ph["photo"][~known].astype(np.int64)
+    filled = _on_filled_voids(layout, grid, known)
+    if grid is not None and grid.voids.filled_px:
+        v = grid.voids
+        warnings.append(PlanWarning("terrain_voids_filled", Message(
+            "terrain_voids_filled", file=info.path.name, pixels=v.filled_px,
+            area_m2=v.filled_m2, share=v.filled_px / max(v.area_px, 1) * 100.0,
+            radius=v.radius_m, margin=v.margin_m, photos=int(filled.sum()))))
+    if not (known | filled).all():
+        bad = ph["photo"][~(known | filled)].astype(np.int64)
         warnings.append(PlanWarning("terrain_no_ground", Message(
             "terrain_no_ground", count=int(bad.size), total=n, photos=_listing(bad),
-            outside=int(s.outside.sum()), nodata=int(s.nodata.sum()), low=lo, high=hi)))
+            outside=int(s.outside.sum()), nodata=int((s.nodata & ~filled).sum()), low=lo,
+            high=hi)))
     if info.geographic:
         warnings.append(PlanWarning("terrain_geographic", Message(
             "terrain_geographic", file=info.path.name, cell=info.cell_size[0] * 3600.0),
             severity="info"))
     details = {"dem": info.path.name, "dem_crs": _crs_name(info.crs_wkt),
                "dem_geographic": info.geographic, "dem_cell_size": list(info.cell_size),
-               "vertical_unit_m": factor, "photos_without_ground": int((~known).sum())}
-    return Ground(s.elevation_m, lo, hi, "dem", info, factor, tuple(warnings), details)
+               "vertical_unit_m": factor,
+               "photos_without_ground": int((~(known | filled)).sum())}
+    if grid is not None:
+        v = grid.voids
+        details.update(void_fill_radius_m=v.radius_m, void_fill_margin_m=v.margin_m,
+                       voids_filled_px=v.filled_px, voids_filled_m2=v.filled_m2,
+                       voids_unknown_m2=v.unknown_m2, photos_on_filled_voids=int(filled.sum()),
+                       missing_extent_km2=missing_km2)
+    return Ground(s.elevation_m, lo, hi, "dem", info, factor, tuple(warnings), details, grid)
+
+
+def _on_filled_voids(layout: FlightLayout, grid: GroundGrid | None,
+                     known: NDArray[np.bool_]) -> NDArray[np.bool_]:
+    """The photos whose centre has no DEM value but stands on a filled void."""
+    filled = np.zeros(known.size, dtype=bool)
+    if grid is None or known.all():
+        return filled
+    ph = layout.photos
+    idx = np.flatnonzero(~known)
+    zero = np.zeros((idx.size, 2))
+    lo, hi = grid.box_range(ph["x_m"][idx], ph["y_m"][idx], zero, zero)
+    filled[idx] = np.isfinite(lo) & np.isfinite(hi)
+    return filled
+
+
+def _grid(layout: FlightLayout, info: D.DemInfo, cfg: TerrainConfig, factor: float, key: str,
+          missing_km2: float, missing_share: float) -> GroundGrid | None:
+    """The DEM under the layout as a min-max pyramid (:mod:`.dem_grid`), over the photo
+    centres' extent widened by three footprint diagonals, the run-in and the fill radius.
+
+    Raises
+    ------
+    InputError
+        When the area's no-data beyond the fill radius and the part outside the DEM
+        together exceed :data:`MAX_COVERAGE_GAP` of the area (both named).
+    """
+    ph = layout.photos
+    x, y = np.asarray(ph["x_m"], float), np.asarray(ph["y_m"], float)
+    diag = math.hypot(layout.footprint_across_m, layout.footprint_along_m)
+    if not math.isfinite(diag):
+        diag = 10.0 * max(layout.spacing_m, layout.base_m)
+    pad = 3.0 * diag + run_in_m(layout) + cfg.void_fill_radius_m
+    bounds = (float(x.min()) - pad, float(y.min()) - pad, float(x.max()) + pad,
+              float(y.max()) + pad)
+    grid = read_ground_grid(info, bounds, layout.area.geometry, layout.area.plan_crs, factor,
+                            cfg.void_fill_radius_m, cfg.void_fill_margin_m, key)
+    if grid is None:
+        return None
+    area_km2 = float(layout.area.geometry.area) / 1e6
+    void_km2 = grid.voids.unknown_m2 / 1e6
+    share = missing_share + (void_km2 / area_km2 if area_km2 > 0 else 0.0)
+    if share > MAX_COVERAGE_GAP:
+        raise InputError(key, f"{info.path.name} has no ground under {missing_km2 + void_km2:.3g}"
+                         f" km² ({share * 100:.1f} %) of the area: {void_km2:.3g} km² of "
+                         f"no-data farther than {cfg.void_fill_radius_m:g} m from known ground "
+                         f"and {missing_km2:.3g} km² outside the DEM; at most "
+                         f"{MAX_COVERAGE_GAP * 100:g} % may be missing: give a DEM without "
+                         "these voids (or a larger [terrain] void_fill_radius_m)")
+    return grid
 
 
 def _crs_name(wkt: str) -> str:
@@ -401,108 +471,6 @@ def altitudes_m(ground_high_m: NDArray[np.float64], strip: NDArray[np.int64], mo
     return _group_max(g, runs) + height_m
 
 
-# --- overlaps ------------------------------------------------------------------------------
-
-def _axes(direction_deg: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    t = math.radians(direction_deg)
-    return np.array([math.sin(t), math.cos(t)]), np.array([math.cos(t), -math.sin(t)])
-
-
-@dataclass(frozen=True)
-class _Pairs:
-    a: NDArray[np.int64]
-    b: NDArray[np.int64]
-    distance_m: NDArray[np.float64]
-
-
-def _forward_pairs(x: NDArray[np.float64], y: NDArray[np.float64], strip: NDArray[np.int64],
-                   along: NDArray[np.float64], base_m: float) -> _Pairs:
-    """Consecutive photos of a strip (in strip order), not across a split (> 1.5 bases)."""
-    same = strip[1:] == strip[:-1]
-    d = np.abs(np.diff(x * along[0] + y * along[1]))
-    ok = same & (d <= 1.5 * base_m + 1e-9)
-    a = np.flatnonzero(ok)
-    return _Pairs(a, a + 1, d[ok])
-
-
-def _side_pairs(x: NDArray[np.float64], y: NDArray[np.float64], strip: NDArray[np.int64],
-                along: NDArray[np.float64], across: NDArray[np.float64]) -> _Pairs:
-    """Each photo and the nearest photo (along the line) of the next strip across."""
-    u = x * along[0] + y * along[1]
-    v = x * across[0] + y * across[1]
-    numbers = np.unique(strip)
-    mean_v = np.array([v[strip == k].mean() for k in numbers])
-    by_v = numbers[np.argsort(mean_v)]
-    a_all, b_all, d_all = [], [], []
-    for k0, k1 in itertools.pairwise(by_v):
-        i0 = np.flatnonzero(strip == k0)
-        i1 = np.flatnonzero(strip == k1)
-        order = np.argsort(u[i1])
-        us = u[i1][order]
-        pos = np.clip(np.searchsorted(us, u[i0]), 1, max(us.size - 1, 1))
-        left = np.clip(pos - 1, 0, us.size - 1)
-        right = np.clip(pos, 0, us.size - 1)
-        pick = np.where(np.abs(us[left] - u[i0]) <= np.abs(us[right] - u[i0]), left, right)
-        j = i1[order][pick]
-        a_all.append(i0)
-        b_all.append(j)
-        d_all.append(np.abs(v[j] - v[i0]))
-    if not a_all:
-        e = np.zeros(0, dtype=np.int64)
-        return _Pairs(e, e, np.zeros(0))
-    return _Pairs(np.concatenate(a_all), np.concatenate(b_all), np.concatenate(d_all))
-
-
-def _pair_overlap_pct(p: _Pairs, x: NDArray[np.float64], y: NDArray[np.float64],
-                      alt: NDArray[np.float64], ground: Ground, plan_crs: str,
-                      side_mm: float, focal_mm: float, down: float) -> NDArray[np.float64]:
-    """Overlap of each pair [%]: 1 − d / footprint(A − g_mid), flown low by ``down``."""
-    if p.a.size == 0:
-        return np.zeros(0)
-    mx, my = (x[p.a] + x[p.b]) / 2, (y[p.a] + y[p.b]) / 2
-    g = ground.sample(mx, my, plan_crs)
-    g = np.where(np.isfinite(g), g, ground.high_m)
-    agl = (alt[p.a] + alt[p.b]) / 2 - g
-    fp = side_mm / focal_mm * agl * (1.0 - down)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return np.where(fp > 0, (1.0 - p.distance_m / fp) * 100.0, -np.inf)
-
-
-def _per_photo_min(n: int, p: _Pairs, values: NDArray[np.float64]) -> NDArray[np.float64]:
-    out = np.full(n, np.inf)
-    np.minimum.at(out, p.a, values)
-    np.minimum.at(out, p.b, values)
-    return np.where(np.isfinite(out), out, np.nan)
-
-
-# --- the footprint range ------------------------------------------------------------------
-
-def _footprint_range(x: NDArray[np.float64], y: NDArray[np.float64], agl: NDArray[np.float64],
-                     ground: Ground, plan_crs: str, direction_deg: float, across_mm: float,
-                     along_mm: float, focal_mm: float
-                     ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Lowest and highest ground under each footprint (5 × 5 points) [m]."""
-    n = x.size
-    if ground.dem is None or n == 0:
-        return np.full(n, ground.low_m), np.full(n, ground.high_m)
-    along, across = _axes(direction_deg)
-    t = np.linspace(-0.5, 0.5, FOOTPRINT_GRID)
-    sa, sc = np.meshgrid(t, t)
-    sa, sc = sa.ravel(), sc.ravel()
-    fa = (along_mm / focal_mm * np.maximum(agl, 0.0))[:, None] * sa[None, :]
-    fc = (across_mm / focal_mm * np.maximum(agl, 0.0))[:, None] * sc[None, :]
-    px = x[:, None] + fa * along[0] + fc * across[0]
-    py = y[:, None] + fa * along[1] + fc * across[1]
-    g = ground.sample(px.ravel(), py.ravel(), plan_crs).reshape(n, -1)
-    with np.errstate(all="ignore"):
-        import warnings as _w
-        with _w.catch_warnings():
-            _w.simplefilter("ignore", RuntimeWarning)
-            lo, hi = np.nanmin(g, axis=1), np.nanmax(g, axis=1)
-    return (np.where(np.isfinite(lo), lo, ground.low_m),
-            np.where(np.isfinite(hi), hi, ground.high_m))
-
-
 # --- the UAV block -------------------------------------------------------------------------
 
 def max_height_above_reference_m(limit_height_m: float, ground_low_m: NDArray[np.float64],
@@ -561,22 +529,22 @@ def uav_terrain(layout: FlightLayout, ground: Ground, inp: UavInputs, plan: UavP
     order = _order(ph)
     cols = {k: np.asarray(v)[order] for k, v in ph.columns.items()}
     strip = cols["strip"].astype(np.int64)
-    g, g_res, g_alt = _ground_for_checks(ground, order, n)
     h = float(inp.height_m)
-    alt = altitudes_m(g_alt, strip, mode, h, follow_tolerance_m)
-    agl = alt - g_res
+    g0 = ground.centre_m[order] if ground.centre_m.size == n else np.full(n, np.nan)
+    wg = worst_ground(layout, ground, cols, g0, mode, h, follow_tolerance_m,
+                      inp.sensor_width_mm / inp.focal_mm, inp.sensor_height_mm / inp.focal_mm)
+    g, g_alt, alt = wg.centre_m, wg.path_high_m, wg.altitude_m
+    agl = alt - wg.footprint_low_m
     up = inp.height_tolerance_up_pct / 100.0
     cols.update(ground_m=g, altitude_m=alt, agl_m=agl, **_photo_figures(inp, agl))
-    g_lo, g_hi = _footprint_range(cols["x_m"].astype(float), cols["y_m"].astype(float), agl,
-                                  ground, layout.area.plan_crs, layout.direction_deg,
-                                  inp.sensor_width_mm, inp.sensor_height_mm, inp.focal_mm)
     ov = _overlaps(layout, cols, alt, ground, inp)
-    cols.update(ground_min_m=g_lo, ground_max_m=g_hi, forward_overlap_pct=ov.forward_photo,
-                side_overlap_pct=ov.side_photo)
+    cols.update(ground_min_m=wg.footprint_low_m, ground_max_m=wg.footprint_high_m,
+                forward_overlap_pct=ov.forward_photo, side_overlap_pct=ov.side_photo)
     limit = plan.max_height_m
-    strips = _strip_rows(cols, g_res, limit)
+    g_res = _checked_ground(plan, wg.footprint_low_m, wg.path_low_m)
+    strips = _strip_rows(cols, g_res, g_alt, limit)
     new_layout = _terrain_layout(layout, cols, order, strips, mode)
-    worst_res = int(cols["photo"][int(np.argmax(agl))]) if n else 0
+    worst_res = int(cols["photo"][int(np.argmax(alt - g_res))]) if n else 0
     both = np.fmin(ov.forward_photo, ov.side_photo)
     worst_ov = int(cols["photo"][int(np.nanargmin(both))]) if np.isfinite(both).any() else 0
     max_h = None
@@ -592,17 +560,79 @@ def uav_terrain(layout: FlightLayout, ground: Ground, inp: UavInputs, plan: UavP
         min_forward_overlap_pct=(float(np.nanmin(ov.forward_pct)) if ov.forward_pct.size
                                  else math.nan),
         min_side_overlap_pct=float(np.nanmin(ov.side_pct)) if ov.side_pct.size else math.nan,
-        waypoints=_waypoints(cols, mode), warnings=tuple(warnings), ground=ground)
+        waypoints=_waypoints(cols, mode), warnings=tuple(warnings), ground=ground,
+        path=_path_summary(alt, wg))
 
 
-def _ground_for_checks(ground: Ground, order: NDArray[np.int64], n: int
-                       ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
-    """The ground under each photo (strip order; NaN where unknown), and the ground it is
-    checked at: the lowest possible for resolution, the highest for the altitude."""
-    g = ground.centre_m[order] if ground.centre_m.size == n else np.full(n, np.nan)
-    g_res = np.where(np.isfinite(g), g, ground.low_m)
-    g_alt = np.where(np.isfinite(g), g, ground.high_m)
-    return g, g_res, g_alt
+@dataclass(frozen=True)
+class WorstGround:
+    """Each photo's ground (strip order) [m]: at its centre (NaN where unknown), under its
+    stretch of the path, over its footprint at the altitude flown; and that altitude."""
+
+    centre_m: NDArray[np.float64]
+    path_low_m: NDArray[np.float64]
+    path_high_m: NDArray[np.float64]
+    footprint_low_m: NDArray[np.float64]
+    footprint_high_m: NDArray[np.float64]
+    altitude_m: NDArray[np.float64]
+
+
+def worst_ground(layout: FlightLayout, ground: Ground, cols: dict[str, NDArray[Any]],
+                 centre_m: NDArray[np.float64], mode: str, height_m: float,
+                 follow_tolerance_m: float, across_per_m: float, along_per_m: float
+                 ) -> WorstGround:
+    """The altitudes of the mode over the highest ground under the path, and the lowest and
+    highest ground over every footprint at that altitude (:mod:`.terrain_worst`).
+
+    ``cols`` are the photos in strip order, ``centre_m`` the ground at their centres (NaN
+    where unknown); ``across_per_m``/``along_per_m`` the footprint sides per metre of
+    height above ground.
+    """
+    g = np.asarray(centre_m, dtype=float)
+    x, y = cols["x_m"].astype(float), cols["y_m"].astype(float)
+    strip = cols["strip"].astype(np.int64)
+    path = path_ground(ground.grid, x, y, strip, layout.direction_deg, run_in_m(layout),
+                       ground.low_m, ground.high_m)
+    # a centre with ground known on a path without (outside the DEM's grid) keeps its own
+    p_hi = np.where(path.known | ~np.isfinite(g), path.high_m, np.fmax(g, path.high_m))
+    p_lo = np.where(path.known | ~np.isfinite(g), path.low_m, np.fmin(g, path.low_m))
+    if ground.grid is None:  # no DEM grid: the centres as sampled, the range where unknown
+        p_hi = np.where(np.isfinite(g), g, ground.high_m)
+        p_lo = np.where(np.isfinite(g), g, ground.low_m)
+    alt = altitudes_m(p_hi, strip, mode, height_m, follow_tolerance_m)
+    f_lo, f_hi = footprint_ground(ground.grid, x, y, alt, np.where(np.isfinite(g), g, p_lo),
+                                  layout.direction_deg, across_per_m, along_per_m,
+                                  ground.low_m, ground.high_m)
+    return WorstGround(g, p_lo, p_hi, f_lo, f_hi, alt)
+
+
+def _checked_ground(plan: UavPlan, footprint_low_m: NDArray[np.float64],
+                    path_low_m: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The ground each photo is checked at against the plan's maximum height L.
+
+    The limits on GSD and L hold over the footprint's lowest ground g_f, the altitude
+    ceiling over the path's lowest g_p: photo i meets them all iff A − g_f ≤ L_r and
+    A − g_p ≤ L_c, i.e. A ≤ min(g_f + L_r, g_p + L_c) = g_eff + L with L = min(L_r, L_c).
+    So g_eff = min(g_f + L_r, g_p + L_c) − L stands for both in the closed-form checks.
+    """
+    limits = getattr(plan, "limits", ()) or ()
+    ceiling = [lim.max_height_m for lim in limits if lim.compares == "H"]
+    rest = [lim.max_height_m for lim in limits if lim.compares != "H"]
+    if not ceiling or plan.max_height_m is None:
+        return footprint_low_m
+    l_c = min(ceiling)
+    l_r = min(rest) if rest else math.inf
+    big = min(l_c, l_r)
+    return np.minimum(footprint_low_m + (l_r - big), path_low_m + (l_c - big))
+
+
+def _path_summary(alt: NDArray[np.float64], wg: WorstGround) -> dict[str, float | None]:
+    """The clearance and the greatest height above ground under the flight path [m]."""
+    if alt.size == 0:
+        return {"clearance_min_m": None, "path_agl_max_m": None, "footprint_agl_max_m": None}
+    return {"clearance_min_m": float(np.min(alt - wg.path_high_m)),
+            "path_agl_max_m": float(np.max(alt - wg.path_low_m)),
+            "footprint_agl_max_m": float(np.max(alt - wg.footprint_low_m))}
 
 
 def _photo_figures(inp: UavInputs, agl: NDArray[np.float64]) -> dict[str, NDArray[np.float64]]:
@@ -620,35 +650,6 @@ def _photo_figures(inp: UavInputs, agl: NDArray[np.float64]) -> dict[str, NDArra
                  if obj is not None else np.full(n, np.nan))
     return {"gsd_cm": gsd * 100.0, "resolution_cm": lr * 100.0,
             "recognition_p": np.asarray(p_rec, dtype=float)}
-
-
-@dataclass(frozen=True)
-class _Overlaps:
-    forward: _Pairs
-    side: _Pairs
-    forward_pct: NDArray[np.float64]
-    side_pct: NDArray[np.float64]
-    forward_photo: NDArray[np.float64]  # per photo, the smaller with its neighbours
-    side_photo: NDArray[np.float64]
-
-
-def _overlaps(layout: FlightLayout, cols: dict[str, NDArray[Any]], alt: NDArray[np.float64],
-              ground: Ground, inp: UavInputs) -> _Overlaps:
-    """Forward and side overlaps of every pair and of every photo (strip order)."""
-    x, y = cols["x_m"].astype(float), cols["y_m"].astype(float)
-    strip = cols["strip"].astype(np.int64)
-    down = inp.height_tolerance_down_pct / 100.0
-    plan_crs = layout.area.plan_crs
-    along, across = _axes(layout.direction_deg)
-    fw = _forward_pairs(x, y, strip, along, layout.base_m)
-    sd = _side_pairs(x, y, strip, along, across)
-    fw_pct = _pair_overlap_pct(fw, x, y, alt, ground, plan_crs, inp.sensor_height_mm,
-                               inp.focal_mm, down)
-    sd_pct = _pair_overlap_pct(sd, x, y, alt, ground, plan_crs, inp.sensor_width_mm,
-                               inp.focal_mm, down)
-    n = x.size
-    return _Overlaps(fw, sd, fw_pct, sd_pct, _per_photo_min(n, fw, fw_pct),
-                     _per_photo_min(n, sd, sd_pct))
 
 
 def _terrain_layout(layout: FlightLayout, cols: dict[str, NDArray[Any]],
@@ -670,13 +671,17 @@ def _terrain_layout(layout: FlightLayout, cols: dict[str, NDArray[Any]],
 
 
 def _strip_rows(cols: dict[str, NDArray[Any]], g_res: NDArray[np.float64],
-                limit_m: float | None) -> tuple[StripTerrain, ...]:
+                g_alt: NDArray[np.float64], limit_m: float | None
+                ) -> tuple[StripTerrain, ...]:
+    """Per strip: its ground, altitudes, the height above ground from the clearance (over
+    the highest ground under its path) to the checked worst (over ``g_res``), and how far
+    that exceeds the limit."""
     rows = []
     strip = cols["strip"]
     for k in np.unique(strip):
         sel = strip == k
-        agl = cols["agl_m"][sel]
         alt = cols["altitude_m"][sel]
+        agl = alt - g_res[sel]
         gmin = float(g_res[sel].min())
         max_alt = gmin + limit_m if limit_m is not None else None
         excess = max(0.0, float(agl.max()) - limit_m) if limit_m is not None else 0.0
@@ -684,7 +689,8 @@ def _strip_rows(cols: dict[str, NDArray[Any]], g_res: NDArray[np.float64],
             number=int(k), ground_min_m=float(np.nanmin(cols["ground_min_m"][sel])),
             ground_max_m=float(np.nanmax(cols["ground_max_m"][sel])),
             altitude_min_m=float(alt.min()), altitude_max_m=float(alt.max()),
-            agl_min_m=float(agl.min()), agl_max_m=float(agl.max()), max_altitude_m=max_alt,
+            agl_min_m=float((alt - g_alt[sel]).min()), agl_max_m=float(agl.max()),
+            max_altitude_m=max_alt,
             excess_m=excess, worst_photo=int(cols["photo"][sel][int(np.argmax(agl))])))
     return tuple(rows)
 
@@ -709,30 +715,6 @@ def _resolution_warnings(strips: tuple[StripTerrain, ...], plan: UavPlan, mode: 
         cid=plan.binding, excess=worst.excess_m, count=len(failing), strips=_listing(nums),
         by=by + (" …" if len(failing) > MAX_LISTED else ""),
         remedy=Message(remedy, max=max_h if max_h is not None else 0.0, height=height_m)))]
-
-
-def _overlap_warnings(inp: UavInputs, fw: _Pairs, fw_pct: NDArray[np.float64], sd: _Pairs,
-                      sd_pct: NDArray[np.float64], cols: dict[str, NDArray[Any]]
-                      ) -> list[PlanWarning]:
-    out = []
-    for kind, pairs, pct, planned in (("forward", fw, fw_pct, inp.forward_overlap_pct),
-                                      ("side", sd, sd_pct, inp.side_overlap_pct)):
-        if pct.size == 0:
-            continue
-        short = pct < planned - 0.05
-        if not short.any():
-            continue
-        i = int(np.argmin(pct))
-        photos = np.unique(np.concatenate([cols["photo"][pairs.a[short]],
-                                           cols["photo"][pairs.b[short]]])).astype(np.int64)
-        floor = 50.0 if kind == "forward" else 0.0
-        out.append(PlanWarning(f"terrain_{kind}_overlap", Message(
-            f"terrain_{kind}_overlap", value=float(pct[i]), planned=planned,
-            a=int(cols["photo"][pairs.a[i]]), b=int(cols["photo"][pairs.b[i]]),
-            count=int(photos.size), photos=_listing(photos),
-            floor=Message(f"terrain_overlap_floor.{kind}") if pct[i] <= floor else None),
-            severity="warning"))
-    return out
 
 
 def _waypoints(cols: dict[str, NDArray[Any]], mode: str) -> list[dict[str, Any]]:

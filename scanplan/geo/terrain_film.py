@@ -28,7 +28,7 @@ from numpy.typing import NDArray
 from ..messages import Message
 from ..rules.results import PlanWarning, ScanRules
 from .layout import FlightLayout, Photos
-from .terrain import ALTITUDE_FRAME, DEFAULT_FOLLOW_TOLERANCE_M, Ground, _order, altitudes_m
+from .terrain import ALTITUDE_FRAME, DEFAULT_FOLLOW_TOLERANCE_M, Ground, _order, worst_ground
 
 __all__ = ["FilmTerrain", "film_terrain", "frames_over_terrain"]
 
@@ -103,10 +103,13 @@ def film_terrain(layout: FlightLayout, ground: Ground, rules: ScanRules, *, map_
     order = _order(ph)
     strip = np.asarray(ph["strip"])[order].astype(np.int64)
     g = ground.centre_m[order] if ground.centre_m.size == n else np.full(n, np.nan)
-    g_res = np.where(np.isfinite(g), g, ground.low_m)
-    g_alt = np.where(np.isfinite(g), g, ground.high_m)
     f_m = focal_mm / 1000.0
-    alt = altitudes_m(g_alt, strip, mode, photo_scale * f_m, follow_tolerance_m)
+    h_m = photo_scale * f_m
+    cols = {k: np.asarray(ph[k])[order] for k in ("photo", "strip", "x_m", "y_m")}
+    wg = worst_ground(layout, ground, cols, g, mode, h_m, follow_tolerance_m,
+                      _per_m(layout.footprint_across_m, h_m),
+                      _per_m(layout.footprint_along_m, h_m))
+    g_res, g_alt, alt = wg.footprint_low_m, wg.path_high_m, wg.altitude_m
     mc = (alt - g_res) / f_m
     mc_lo = float(((alt - g_alt) / f_m).min()) if n else photo_scale
     inverse = np.empty(n, dtype=np.int64)
@@ -138,6 +141,13 @@ def film_terrain(layout: FlightLayout, ground: Ground, rules: ScanRules, *, map_
                        warnings=tuple(warnings), ground_m=g[inverse],
                        binding_planned=str(binds[0]), ground_known=known,
                        ground_low_m=float(ground.low_m))
+
+
+def _per_m(footprint_m: float, height_m: float) -> float:
+    """Footprint side per metre of height above ground (the frame side over f); 0 when the
+    layout does not state its footprint (then only the path and centre are looked at)."""
+    v = footprint_m / height_m if height_m > 0 else math.nan
+    return v if math.isfinite(v) else 0.0
 
 
 def frames_over_terrain(layout: FlightLayout, ft: FilmTerrain, pixel_um: float,

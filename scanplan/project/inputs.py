@@ -398,6 +398,13 @@ _RECORDS: tuple[Input, ...] = (
           choices=("constant", "strip", "follow")),
     Input("follow_tolerance_m", "terrain", "follow_tolerance_m", _NUM, "follow mode: how far "
           "the height above ground may exceed the planned height [m]", "m", default=5.0),
+    Input("void_fill_radius_m", "terrain", "void_fill_radius_m", _NUM, "no-data in the DEM "
+          "within this distance of known ground is filled with the highest known ground "
+          "within it plus void_fill_margin_m (farther no-data counts as missing) [m]", "m",
+          default=50.0),
+    Input("void_fill_margin_m", "terrain", "void_fill_margin_m", _NUM, "added to the "
+          "highest (taken from the lowest) known ground of a filled void [m]", "m",
+          default=10.0),
     Input("vertical_unit", "terrain", "vertical_unit", _STR, '"m", "ft", "us-ft", "dm" or '
           '"cm": the unit of the DEM\'s heights', default="m",
           choices=("m", "ft", "us-ft", "dm", "cm")),

@@ -424,9 +424,13 @@ def _uav_kwargs(project: Project, height_m: float, the_area: Area | None) -> dic
 def _uav(project: Project, the_area: Area | None) -> UavSpec:
     planned = project.get("uav", "height_m")
 
-    def job_at(height_m: float) -> UavJob:
+    def job_at(height_m: float, direction_deg: float | None = None) -> UavJob:
         try:
-            return uav_job(**_uav_kwargs(project, height_m, the_area))
+            kw = _uav_kwargs(project, height_m, the_area)
+            if direction_deg is not None:  # the terrain's choice of direction
+                kw["layout_options"] = replace(kw["layout_options"],
+                                               direction_deg=direction_deg)
+            return uav_job(**kw)
         except InputError as exc:
             raise _as_project_error(project, exc, "uav") from None
 

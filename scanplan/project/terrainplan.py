@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import InputError
+from ..geo.dem_grid import DEFAULT_VOID_MARGIN_M, DEFAULT_VOID_RADIUS_M
 from ..geo.layout import FlightLayout
 from ..geo.terrain import (
     Ground,
@@ -26,6 +27,7 @@ from ..geo.terrain import (
     ground_under,
     uav_terrain,
 )
+from ..geo.terrain_choice import DIRECTIONS_DEG, ModeHeights, mode_heights
 from ..geo.terrain_film import FilmTerrain, film_terrain, frames_over_terrain
 from ..messages import Message
 from ..rules.results import PlanWarning, ScanPlan, ScanRules, ScanScenario
@@ -67,7 +69,9 @@ def terrain_config(project: Project) -> TerrainConfig | None:
             ground_range_m=(float(rng[0]), float(rng[1])) if rng is not None else None,
             altitude_mode=g("terrain", "altitude_mode", "constant"),
             follow_tolerance_m=float(g("terrain", "follow_tolerance_m", 5.0)),
-            vertical_unit=g("terrain", "vertical_unit"))
+            vertical_unit=g("terrain", "vertical_unit"),
+            void_fill_radius_m=float(g("terrain", "void_fill_radius_m", DEFAULT_VOID_RADIUS_M)),
+            void_fill_margin_m=float(g("terrain", "void_fill_margin_m", DEFAULT_VOID_MARGIN_M)))
     except InputError as exc:
         raise _named(project, exc) from None
 
@@ -116,13 +120,41 @@ def uav_terrain_spec(project: Project, cfg: TerrainConfig, job: UavJob,
     if job.layout is None:
         raise InputError(f"{project.path}: [terrain]", "needs an area to lay the photos over "
                          "([area] width_m × length_m, polygon or file)")
-    ground = _ground(project, cfg, job.layout)
-    res = uav_terrain(job.layout, ground, job.plan.inputs, job.plan, cfg.altitude_mode,
-                      cfg.follow_tolerance_m)
+    start_m = job.plan.inputs.height_m
+    job, res, rec, first = _settle(project, cfg, job, job_at)
+    choice = _choices(cfg, job, res)
+    if choice is not None and _auto_direction(project, job):
+        if cfg.altitude_mode == "strip":
+            job, res, rec, first = _strip_direction(project, cfg, job, res, rec, first,
+                                                    job_at, start_m, choice)
+    reason: Message | None = None
+    if rec is not None:  # with what the height the project gave would miss, as the why
+        reason = Message("terrain_height_lowered", planned=planned_m or 0.0,
+                         flat=job.plan.max_height_m or 0.0, max=res.max_height_m or 0.0,
+                         recommended=rec, mode=_MODE_NAMES[cfg.altitude_mode],
+                         cid=res.binding or "",
+                         why=(_missed_at_planned(first.warnings, cfg.altitude_mode)
+                              if planned_m is not None else None))
+    notes = dict(res.layout.notes)
+    notes["waypoints"] = res.waypoints
+    layout = replace(res.layout, notes=notes)
+    res = replace(res, layout=layout)
+    hint = _other_choice(cfg, res, choice, start_m) if choice is not None else None
+    warnings = res.warnings + ((hint,) if hint is not None else ())
+    return replace(job, layout=layout), res, rec, reason, warnings
+
+
+def _settle(project: Project, cfg: TerrainConfig, job: UavJob,
+            job_at: Callable[[float], UavJob]
+            ) -> tuple[UavJob, TerrainResult, float | None, TerrainResult]:
+    """The job checked over the terrain, lowered (and laid out again) while its worst
+    photo fails: (job, result, the lowered height or None, the first result)."""
+    assert job.layout is not None
+    res = uav_terrain(job.layout, _ground(project, cfg, job.layout), job.plan.inputs,
+                      job.plan, cfg.altitude_mode, cfg.follow_tolerance_m)
     height = job.plan.inputs.height_m
     first = res
     rec: float | None = None
-    reason: Message | None = None
     for _ in range(_MAX_REFINE):
         if res.max_height_m is None or res.max_height_m >= height - 1e-9:
             break
@@ -135,18 +167,93 @@ def uav_terrain_spec(project: Project, cfg: TerrainConfig, job: UavJob,
         res = uav_terrain(job.layout, _ground(project, cfg, job.layout), job.plan.inputs,
                           job.plan, cfg.altitude_mode, cfg.follow_tolerance_m)
         height, rec = lower, lower
-    if rec is not None:  # with what the height the project gave would miss, as the why
-        reason = Message("terrain_height_lowered", planned=planned_m or 0.0,
-                         flat=job.plan.max_height_m or 0.0, max=res.max_height_m or 0.0,
-                         recommended=rec, mode=_MODE_NAMES[cfg.altitude_mode],
-                         cid=res.binding or "",
-                         why=(_missed_at_planned(first.warnings, cfg.altitude_mode)
-                              if planned_m is not None else None))
-    notes = dict(res.layout.notes)
-    notes["waypoints"] = res.waypoints
-    layout = replace(res.layout, notes=notes)
-    res = replace(res, layout=layout)
-    return replace(job, layout=layout), res, rec, reason, res.warnings
+    return job, res, rec, first
+
+
+def _auto_direction(project: Project, job: UavJob) -> bool:
+    """True when the project leaves the direction to scanplan over a real area."""
+    d = project.get("area", "direction_deg")
+    return (d is None or d == "auto") and job.layout is not None \
+        and job.layout.area.georeferenced
+
+
+def _choices(cfg: TerrainConfig, job: UavJob, res: TerrainResult) -> ModeHeights | None:
+    """The heights each mode and strip direction allow over this DEM (an estimate)."""
+    lay = job.layout
+    limit = job.plan.max_height_m
+    if lay is None or limit is None or res.ground.grid is None or not lay.n_photos:
+        return None
+    dirs = tuple(sorted({*DIRECTIONS_DEG, round(lay.direction_deg % 180.0, 3)}))
+    return mode_heights(res.ground.grid, lay.area.geometry, limit, lay.spacing_m,
+                        lay.footprint_across_m, cfg.follow_tolerance_m, dirs)
+
+
+def _strip_direction(project: Project, cfg: TerrainConfig, job: UavJob, res: TerrainResult,
+                     rec: float | None, first: TerrainResult,
+                     job_at: Callable[..., UavJob], start_m: float,
+                     choice: ModeHeights | None
+                     ) -> tuple[UavJob, TerrainResult, float | None, TerrainResult]:
+    """``strip`` mode with the automatic direction: the direction whose strips span the
+    least relief, when it allows a markedly higher plan than the direction of the least
+    flight length, laid out and checked; taken when it needs fewer photos."""
+    if choice is None or job.layout is None:
+        return job, res, rec, first
+    d_best, h_best = choice.best_strip()
+    here = choice.strip_m[choice.directions_deg.index(round(job.layout.direction_deg % 180.0,
+                                                            3))]
+    if h_best < here + max(5.0, 0.05 * here) or res.height_m >= start_m - 1e-9:
+        return job, res, rec, first
+    other = job_at(start_m, d_best)
+    if other.layout is None:
+        return job, res, rec, first
+    o_job, o_res, o_rec, o_first = _settle(project, cfg, other,
+                                           lambda h: job_at(h, d_best))
+    if o_job.layout is None or o_job.layout.n_photos >= job.layout.n_photos:
+        return job, res, rec, first
+    notes = dict(o_res.layout.notes)
+    notes["terrain_direction"] = {"direction_deg": d_best,
+                                  "instead_of_deg": job.layout.direction_deg,
+                                  "photos_instead_of": job.layout.n_photos}
+    o_res = replace(o_res, layout=replace(o_res.layout, notes=notes))
+    return replace(o_job, layout=o_res.layout), o_res, o_rec, o_first
+
+
+FAR_FEWER = 0.25
+"""Another mode or direction is named when it needs at least this share fewer photos."""
+
+
+def _other_choice(cfg: TerrainConfig, res: TerrainResult, choice: ModeHeights,
+                  start_m: float) -> PlanWarning | None:
+    """An info note when another altitude mode or strip direction would need far fewer
+    photos (photos ∝ 1/H² at the heights :func:`~scanplan.geo.terrain_choice.mode_heights`
+    estimates, each rounded down like a recommended height and at most the height the
+    plan started from)."""
+    n = res.layout.n_photos
+    h = res.height_m
+    if not n or not h > 0:
+        return None
+    d_best, h_strip = choice.best_strip()
+    options = {"constant": (choice.constant_m, None), "follow": (choice.follow_m, None),
+               "strip": (h_strip, d_best)}
+    best = None
+    for mode, (h_est, d) in options.items():
+        if mode == cfg.altitude_mode and (mode != "strip" or abs(
+                ((d - res.layout.direction_deg) + 90.0) % 180.0 - 90.0) < 10.0):
+            continue
+        h_alt = min(recommended_height_m(h_est) or 0.0, start_m)
+        if h_alt <= h:
+            continue
+        n_alt = n * (h / h_alt) ** 2
+        if n_alt <= (1.0 - FAR_FEWER) * n and (best is None or n_alt < best[2]):
+            best = (mode, d, n_alt, h_alt)
+    if best is None:
+        return None
+    mode, d, n_alt, h_alt = best
+    what = (Message("terrain_choice.strip", mode=_MODE_NAMES[mode], direction=d)
+            if d is not None else Message("terrain_choice.mode", mode=_MODE_NAMES[mode]))
+    return PlanWarning("terrain_other_choice", Message(
+        "terrain_other_choice", what=what, height=h_alt, current=h, photos=float(n_alt),
+        now=n, pct=(1.0 - n_alt / n) * 100.0), severity="info")
 
 
 def _missed_at_planned(checked: tuple[PlanWarning, ...], mode: str) -> Message | None:

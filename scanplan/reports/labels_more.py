@@ -354,6 +354,8 @@ TERRAIN: dict[str, dict[str, str]] = {
         "pdf_warn_terrain_forward_overlap": "Forward overlap lost over high ground",
         "pdf_warn_terrain_side_overlap": "Side overlap lost over high ground",
         "pdf_warn_terrain_no_ground": "Photos without ground elevation",
+        "pdf_warn_terrain_voids_filled": "DEM voids filled",
+        "pdf_warn_terrain_other_choice": "Another direction or mode needs fewer photos",
         "pdf_warn_terrain_units_feet": "DEM heights may be in feet",
         "pdf_warn_terrain_geographic": "DEM in geographic coordinates",
         "pdf_warn_terrain_film_scale": "Relief changes the photo scale",
@@ -431,6 +433,8 @@ TERRAIN: dict[str, dict[str, str]] = {
         "pdf_warn_terrain_side_overlap": "Поперечное перекрытие над возвышенностями "
                                          "недостаточно",
         "pdf_warn_terrain_no_ground": "Снимки без отметки рельефа",
+        "pdf_warn_terrain_voids_filled": "Пропуски ЦМР заполнены",
+        "pdf_warn_terrain_other_choice": "Другое направление или режим требует меньше снимков",
         "pdf_warn_terrain_units_feet": "Высоты ЦМР, возможно, в футах",
         "pdf_warn_terrain_geographic": "ЦМР в географических координатах",
         "pdf_warn_terrain_film_scale": "Рельеф изменяет масштаб снимков",
