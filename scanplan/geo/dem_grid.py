@@ -329,7 +329,8 @@ def _read(info: D.DemInfo, win: tuple[int, int, int, int], factor_m: float, key:
                         "pixels: resample the DEM to a coarser grid under the area first")
     z = np.empty((h, w), dtype=np.float32)
     try:
-        with rasterio.open(info.path) as src:
+        # the file open_dem checked, opened as it was: GeoTIFF only, GDAL's messages kept
+        with D.gdal_messages(), rasterio.open(info.path, driver=D.GTIFF) as src:
             for rr in range(0, h, D.TILE_PX):
                 for cc in range(0, w, D.TILE_PX):
                     tw, th = min(D.TILE_PX, w - cc), min(D.TILE_PX, h - rr)
