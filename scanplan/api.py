@@ -408,7 +408,7 @@ class ProjectResult:
             parts.append(f"UAV {row['uav_recommended_height_m']:g} m")
         warn = len(self.spec.warnings)
         return (f"<ProjectResult {self.spec.meta.project!r}: "
-                f"{', '.join(p for p in parts if p)}; {warn} warnings>")
+                f"{', '.join(p for p in parts if p)}; {warn} warning{'' if warn == 1 else 's'}>")
 
     def write(self, out_dir: str | os.PathLike[str], formats: Iterable[str] = FORMATS, *,
               name: str = "spec", force: bool = False) -> list[Path]:
