@@ -375,19 +375,26 @@ MESSAGES: dict[str, dict[str, str]] = {
     },
     # --- digital height accuracy, altitude ceiling, target GSD (scanplan.rules.uav) -------------
     "limit.PZ.normal_case": {
-        "en": "RMS height error σ_Z = (H/B)·(H/c)·σ_px ≤ V_z = {vz:g} m (relief interval {hc:g} m) "
-              "with a parallax error σ_px = {sigma:g} px and the widest stereo base of "
-              "{overlap:g} % overlap (B = {steps:d} × the photo step, B/H = {bh:.3f}){multi}",
-        "ru": "средняя квадратическая ошибка высот σ_Z = (H/B)·(H/c)·σ_px ≤ V_z = {vz:g}~м "
-              "(высота сечения рельефа {hc:g}~м) при ошибке измерения параллакса "
-              "σ_px = {sigma:g}~пикс. и наибольшем базисе с перекрытием {overlap:g}~% "
-              "(B = {steps:d}~× шаг фотографирования, B/H = {bh:.3f}){multi}",
+        "en": "idealised stereo precision σ_Z = (H/B)·(H/c)·σ_px ≤ V_z = {vz:g} m RMS (relief "
+              "interval {hc:g} m) with a parallax error σ_px = {sigma:g} px (an assumption) and "
+              "the base of a stereo pair with {overlap:g} % overlap at the highest flown "
+              "height and the mission's trigger distance (B = {steps:.2f} × the photo step, "
+              "B/H = {bh:.3f}){multi}",
+        "ru": "идеализированная точность стереоизмерений σ_Z = (H/B)·(H/c)·σ_px ≤ V_z = "
+              "{vz:g}~м (СКО; высота сечения рельефа {hc:g}~м) при ошибке измерения "
+              "параллакса σ_px = {sigma:g}~пикс. (допущение) и базисе стереопары с "
+              "перекрытием {overlap:g}~% на наибольшей фактической высоте при шаге "
+              "фотографирования задания (B = {steps:.2f}~× шаг, B/H = {bh:.3f}){multi}",
     },
     "equation.PZ.normal_case": {
-        "en": "σ_Z = (H/B)·(H/c)·σ_px ≤ V_z, B the widest base of standard stereo overlap — "
-              "normal case of stereo photogrammetry, Kraus (2007), Luhmann et al. (2014)",
-        "ru": "σ_Z = (H/B)·(H/c)·σ_px ≤ V_z, B — наибольший базис со стандартным продольным "
-              "перекрытием — нормальный случай стереосъёмки, Краус (2007), Луман и др. (2014)",
+        "en": "σ_Z = (H/B)·(H/c)·σ_px ≤ V_z, B the base of a pair with the standard overlap "
+              "(a bound of the multi-ray intersection) — idealised stereo precision of the "
+              "normal case, Kraus (2007), Luhmann et al. (2014); ground control, camera "
+              "calibration and the surface are not in it",
+        "ru": "σ_Z = (H/B)·(H/c)·σ_px ≤ V_z, B — базис стереопары со стандартным продольным "
+              "перекрытием (оценка сверху для многолучевой засечки) — идеализированная "
+              "точность стереоизмерений нормального случая, Краус (2007), Луман и др. (2014); "
+              "опорные точки, калибровка камеры и поверхность в ней не учтены",
     },
     "limit.PZ.multi": {
         "en": ", σ_Z multiplied by {f:.2f} for the rays of every photo of the strip",

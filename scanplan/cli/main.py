@@ -460,7 +460,8 @@ def _film_schemes(job: Any, area: Any, side: float) -> list[tuple[Any, Any]]:
                  "exposure_s", "forward_overlap_pct", "side_overlap_pct", "map_scale",
                  "relief_interval_m", "<norms>", "r_max", "r_min", "haze_contrast",
                  "threshold_k0", "shift_factor", "random_speed_ms", "roll_rate_rad_s",
-                 "pitch_rate_rad_s", "yaw_rate_rad_s", "area_m", "roll_deg", "pitch_deg"],
+                 "pitch_rate_rad_s", "yaw_rate_rad_s", "area_m", "roll_deg", "pitch_deg",
+                 "parallax_error_px"],
          map_scale={"help": "Map scale, 2000 or 1:2000: adds the constraints and the maximum "
                     "planned height."},
          relief_interval_m={"help": "Relief (contour) interval h_c [m] (with --map-scale)."})

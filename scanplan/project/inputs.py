@@ -275,6 +275,11 @@ _RECORDS: tuple[Input, ...] = (
     Input("gsd_cm", "uav", "gsd_cm", _NUM, "target ground sample distance [cm]: the flight "
           "must deliver it at the highest flown height", "cm", note="optional",
           domain="gsd_cm", option="--gsd-cm", commands=(UAV,)),
+    Input("parallax_error_px", "uav", "parallax_error_px", _NUM, "RMS error of a measured "
+          "x-parallax σ_px in the height-accuracy model [px]: an assumption (tie-point "
+          "reprojection errors of processing reports suggest 0.5–1.4 px)", "px",
+          note="default: the norm set's image_measurement_px, 0.5",
+          domain="parallax_error_px", option="--parallax-error-px", commands=(UAV,)),
     Input("max_height_m", "uav", "max_height_m", _NUM, "altitude ceiling for the highest "
           "flown height above ground [m]", "m", note="default for a UAV: the norm set's, "
           "150 m; none for an aircraft", domain="max_height_m", option="--max-height-m",
