@@ -446,6 +446,18 @@ MESSAGES: dict[str, dict[str, str]] = {
               "на {n:d} части по высоте местности ({bands:;}) с отдельной высотой "
               "фотографирования для каждой или выполняйте съёмку с огибанием рельефа.",
     },
+    "block_height_waived": {
+        "en": "the one-height rule of GOST R 59328-2021 §6.2.1 (second draft: {limit:g} % for "
+              "{relief}) is waived: the flight follows the relief ([terrain] altitude_mode = "
+              "\"follow\"), so the photographing height is kept over the ground and not one "
+              "height for the block (the ground range, {range:.0f} m, is {pct:.1f} % of the "
+              "flight height {h:g} m)",
+        "ru": "Требование одной высоты фотографирования на участок (ГОСТ Р 59328-2021, §6.2.1, "
+              "проект 2-й редакции: {limit:g}~% для местности «{relief}») не применяется: полёт "
+              "выполняется с огибанием рельефа ([terrain] altitude_mode = \"follow\"), высота "
+              "фотографирования выдерживается над местностью (перепад высот {range:.0f}~м — "
+              "{pct:.1f}~% высоты фотографирования {h:g}~м)",
+    },
     "block.band": {
         "en": "ground {lo:.0f}–{hi:.0f} m",
         "ru": "местность {lo:.0f}–{hi:.0f}~м",

@@ -208,8 +208,13 @@ def _block_rows(design: Any, w: _W) -> list[tuple[str, str, str]]:
     relief = localize(Message(f"relief.{b.relief_class}"), w.loc)
     value = w.t("design_block_value", lo=w.n(b.ground_min_m, 0), hi=w.n(b.ground_max_m, 0),
                 pct=w.n(b.range_pct, 1), limit=w.n(b.limit_pct, 0), relief=relief)
-    value += " — " + (w.t("design_block_split", n=b.blocks) if b.split_needed
-                      else w.t("design_block_one"))
+    if getattr(design, "block_ground", "") == "dem":
+        value += " " + w.t("design_block_dem", n=b.samples)
+    if getattr(design, "block_waived", False):
+        value += " — " + w.t("design_block_waived")
+    else:
+        value += " — " + (w.t("design_block_split", n=b.blocks) if b.split_needed
+                          else w.t("design_block_one"))
     return [(w.t("design_block"), value, w.cite(design.block_source))]
 
 

@@ -253,6 +253,9 @@ DESIGN: dict[str, dict[str, str]] = {
         "design_block_split": "split into {n} parts by ground height or fly following the "
                               "terrain",
         "design_block_one": "one height for the block",
+        "design_block_dem": "(the DEM under the photos, {n} samples)",
+        "design_block_waived": "not applied: the flight follows the relief "
+                               "(altitude_mode = \"follow\")",
         "design_site": "Site (latitude, longitude)",
         "design_site_value": "{lat}°, {lon}°",
         "design_dates": "Planned flying dates",
@@ -316,6 +319,9 @@ DESIGN: dict[str, dict[str, str]] = {
         "design_block_split": "разделить на {n} части по высоте местности или снимать с "
                               "огибанием рельефа",
         "design_block_one": "одна высота на участок",
+        "design_block_dem": "(по ЦМР под снимками, {n} отсчётов)",
+        "design_block_waived": "не применяется: полёт с огибанием рельефа "
+                               "(altitude_mode = \"follow\")",
         "design_site": "Район работ (широта, долгота)",
         "design_site_value": "{lat}°, {lon}°",
         "design_dates": "Сроки лётно-съёмочных работ",
