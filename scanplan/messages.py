@@ -452,9 +452,9 @@ MESSAGES: dict[str, dict[str, str]] = {
               "\"follow\"), so the photographing height is kept over the ground and not one "
               "height for the block (the ground range, {range:.0f} m, is {pct:.1f} % of the "
               "flight height {h:g} m)",
-        "ru": "Требование одной высоты фотографирования на участок (ГОСТ Р 59328-2021, §6.2.1, "
-              "проект 2-й редакции: {limit:g}~% для местности «{relief}») не применяется: полёт "
-              "выполняется с огибанием рельефа ([terrain] altitude_mode = \"follow\"), высота "
+        "ru": "Требование одной высоты фотографирования на участок (ГОСТ Р 59328-2021, проект "
+              "2-й редакции: {limit:g}~% для местности «{relief}») не применяется: полёт "
+              "выполняется с огибанием рельефа (режим [terrain] altitude_mode), высота "
               "фотографирования выдерживается над местностью (перепад высот {range:.0f}~м — "
               "{pct:.1f}~% высоты фотографирования {h:g}~м)",
     },
@@ -503,6 +503,42 @@ MESSAGES: dict[str, dict[str, str]] = {
     "limit.HC": {
         "en": "highest flown height ≤ the altitude ceiling {ceiling:g} m ({source})",
         "ru": "наибольшая фактическая высота ≤ предельной высоты полёта {ceiling:g}~м ({source})",
+    },
+    "limit.HC.below": {
+        "en": "highest flown height below {ceiling:g} m ({source})",
+        "ru": "наибольшая фактическая высота менее {ceiling:g}~м ({source})",
+    },
+    "airspace_conditions": {
+        "en": "conditions of this plan without an airspace-use permission (Federal Rules for "
+              "the Use of the Airspace, as amended by Decree No. 1016 of 21.06.2023, in force "
+              "from 01.03.2024): a UAV of up to 30 kg, in visual line of sight, in daylight, "
+              "strictly below {ceiling:g} m above the ground or water, outside controlled "
+              "aerodrome zones and prohibited, restricted and special zones, and at least "
+              "{aerodrome:g} km from the boundaries of uncontrolled aerodromes; over a "
+              "settlement, aerial photography and the flight need the local government's "
+              "permission at any height (para. 49). Check the rules in force on the flying "
+              "date",
+        "ru": "Условия плана без разрешения на использование воздушного пространства "
+              "(Федеральные правила использования воздушного пространства в ред. "
+              "постановления от 21~июня 2023~г. №~1016, действующей с 1~марта 2024~г.): "
+              "БВС массой до 30~кг, в пределах прямой видимости, в светлое время суток, "
+              "на высоте менее "
+              "{ceiling:g}~м от земной или водной поверхности, вне диспетчерских зон "
+              "аэродромов, запретных зон, зон ограничения полётов и специальных зон, не "
+              "ближе {aerodrome:g}~км от границ неконтролируемых аэродромов; над населённым "
+              "пунктом аэрофотосъёмка и полёт на любой высоте требуют разрешения органа "
+              "местного самоуправления (п. 49). Проверьте правила, действующие на дату "
+              "полётов.",
+    },
+    "airspace_not_below": {
+        "en": "the highest flown height {flown:g} m (planned {planned:g} m) is not below the "
+              "{ceiling:g} m up to which no airspace-use permission is needed (the rule reads "
+              "\"below {ceiling:g} m\"): plan lower, or obtain the permission and raise "
+              "{key}",
+        "ru": "Наибольшая фактическая высота {flown:g}~м (плановая {planned:g}~м) не менее "
+              "{ceiling:g}~м, ниже которых разрешение на использование воздушного "
+              "пространства не требуется (в правилах: «менее {ceiling:g}~м»): снизьте высоту "
+              "или получите разрешение и увеличьте {key}.",
     },
     "ceiling.project": {
         "en": "set in the project",

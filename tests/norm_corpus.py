@@ -545,14 +545,14 @@ CORPUS: tuple[Case, ...] = (
         "missing-parameter",
         _missing_parameter,
         False,
-        ("'parameters'!A22",),
+        ("'parameters'!A23",),
         ("missing parameter 'probability'",),
     ),
     Case(
         "unknown-parameter",
         _unknown_parameter,
         False,
-        ("'parameters'!A23",),
+        ("'parameters'!A24",),
         ("unknown parameter",),
     ),
     Case(

@@ -341,7 +341,7 @@ def test_norm_parameters_carry_their_sources():
         # each source names works of the bibliography, which give the full reference
         from scanplan.reports.references import Bibliography
 
-        for key, works in (("uav_max_height_m", ("para. 52.1",)),
+        for key, works in (("uav_max_height_m", ("No. 1016", "52(3)")),
                            ("image_measurement_px", ("Measurement, 2017, vol. 98",
                                                      "Close-Range Photogrammetry")),
                            ("digital_height_formula", ("Photogrammetry: Geometry from Images",

@@ -35,7 +35,8 @@ DIGITAL_HEIGHT_FORMULAS = ("normal_case", "instruction", "parallax")
 MULTI_RAY_MODES = ("off", "strip")
 LATER_PARAMETERS = ("digital_height_formula", "image_measurement_px", "multi_ray",
                     "uav_max_height_m", "block_relief_flat_pct", "block_relief_hilly_pct",
-                    "block_relief_mountain_pct", "min_sun_elevation_deg")
+                    "block_relief_mountain_pct", "min_sun_elevation_deg",
+                    "uav_uncontrolled_aerodrome_km")
 """Parameters added after norm sets were first stored: a stored set without them takes
 them from the bundled default set (its source says so) instead of failing to load."""
 ORIENTATIONS = ("landscape", "portrait")
@@ -221,6 +222,13 @@ PARAMETERS: dict[str, ParameterSpec] = {
             ValueSpec("float", 0, 20000, min_open=True, unit="m"),
             "altitude ceiling of UAV flights above ground",
             ("предельная высота полёта БВС",),
+        ),
+        ParameterSpec(
+            "uav_uncontrolled_aerodrome_km",
+            ValueSpec("float", 0, 1000, unit="km"),
+            "distance from uncontrolled aerodromes of UAV flights without an airspace-use "
+            "permission",
+            ("удаление от неконтролируемых аэродромов",),
         ),
         ParameterSpec(
             "block_relief_flat_pct",

@@ -443,6 +443,8 @@ def uav_job(
         ceiling_m=float(max_height_m) if max_height_m is not None
         else None if aircraft else float(ns.parameters["uav_max_height_m"]),
         ceiling_from_project=max_height_m is not None,
+        aerodrome_distance_km=None if aircraft or max_height_m is not None
+        else float(ns.parameters["uav_uncontrolled_aerodrome_km"]),
         gsd_target_m=gsd_cm / 100.0 if gsd_cm is not None else None,
         gsd_limit_m=gsd_row.max_gsd_cm / 100.0 if gsd_row else None,
         gsd_limit_area=gsd_row.area if gsd_row else "general",

@@ -345,6 +345,8 @@ LABELS: dict[str, dict[str, str]] = {
         "param_block_relief_mountain_pct": "Ground height range of a block at one height, "
                                            "mountainous terrain, % of the flight height",
         "param_min_sun_elevation_deg": "Lowest sun elevation for photography, °",
+        "param_uav_uncontrolled_aerodrome_km": "Least distance from uncontrolled aerodromes "
+                                               "without an airspace-use permission, km",
         "value_digital_height_formula_normal_case": "normal-case stereo (B/f)",
         "value_digital_height_formula_instruction": "as printed in the Instruction (f/b)",
         "value_digital_height_formula_parallax": "parallax form (b/f)",
@@ -704,6 +706,9 @@ LABELS: dict[str, dict[str, str]] = {
                                            "одной высоте фотографирования, горная местность, % "
                                            "от высоты",
         "param_min_sun_elevation_deg": "Наименьшая высота Солнца при аэрофотосъёмке, °",
+        "param_uav_uncontrolled_aerodrome_km": "Наименьшее удаление от неконтролируемых "
+                                               "аэродромов без разрешения на использование "
+                                               "воздушного пространства, км",
         "value_digital_height_formula_normal_case": "нормальный случай стереосъёмки (B/f)",
         "value_digital_height_formula_instruction": "по Инструкции (f/b)",
         "value_digital_height_formula_parallax": "параллактическая (b/f)",

@@ -320,8 +320,7 @@ DESIGN: dict[str, dict[str, str]] = {
                               "огибанием рельефа",
         "design_block_one": "одна высота на участок",
         "design_block_dem": "(по ЦМР под снимками, {n} отсчётов)",
-        "design_block_waived": "не применяется: полёт с огибанием рельефа "
-                               "(altitude_mode = \"follow\")",
+        "design_block_waived": "не применяется: полёт с огибанием рельефа",
         "design_site": "Район работ (широта, долгота)",
         "design_site_value": "{lat}°, {lon}°",
         "design_dates": "Сроки лётно-съёмочных работ",

@@ -341,9 +341,10 @@ def _hc_ground(inp: UavInputs, rules: ScanRules | None) -> DigitalLimit | None:
     if inp.ceiling_m is None:
         return None
     source = Message("ceiling.project" if inp.ceiling_from_project else "ceiling.norms")
-    return DigitalLimit(inp.ceiling_m, Message("limit.HC", ceiling=inp.ceiling_m,
-                                               source=source),
-                        {"from_project": inp.ceiling_from_project})
+    key = "limit.HC" if inp.ceiling_from_project else "limit.HC.below"
+    return DigitalLimit(inp.ceiling_m, Message(key, ceiling=inp.ceiling_m, source=source),
+                        {"from_project": inp.ceiling_from_project,
+                         "strict": not inp.ceiling_from_project})
 
 
 # --- GL: the largest GSD per plan scale of today's standard (ГОСТ Р 59562-2021, Table Б.1) --
