@@ -26,7 +26,12 @@ from ..geo.terrain import (
     ground_under,
     uav_terrain,
 )
-from ..geo.terrain_film import FilmTerrain, film_terrain, frames_over_terrain
+from ..geo.terrain_film import (
+    FilmTerrain,
+    film_terrain,
+    frames_over_terrain,
+    local_forward_overlap_pct,
+)
 from ..messages import Message
 from ..rules.results import PlanWarning, ScanPlan, ScanRules, ScanScenario
 from .api import UavJob, recommended_height_m
@@ -212,6 +217,14 @@ def _film_args(plan: ScanPlan, photo_scale: float) -> dict[str, Any]:
                 shape_coefficient=obj.shape_coefficient if obj is not None else math.nan)
 
 
+def _at_worst_frame(plan: ScanPlan, ft: FilmTerrain) -> Any:
+    """The engine's inputs at the frame with the largest local Mc: that scale, and for the
+    parallax form the local image base (:func:`local_forward_overlap_pct`)."""
+    inp = plan.inputs
+    return replace(inp, photo_scales=(ft.mc_max,), forward_overlap_pct=local_forward_overlap_pct(
+        plan.rules, inp.forward_overlap_pct, ft.photo_scale, ft.mc_max))
+
+
 def worst_frame_scenario(plan: ScanPlan, candidate: ScanScenario, ft: FilmTerrain
                          ) -> tuple[ScanScenario, ScanScenario]:
     """The engine's scenario at the block's smallest local photo scale (``ft.mc_max``):
@@ -219,7 +232,7 @@ def worst_frame_scenario(plan: ScanPlan, candidate: ScanScenario, ft: FilmTerrai
     the flown scale of ``candidate``, ``local_photo_scale`` = Mc max)."""
     from ..rules.film import plan_scan
 
-    raw = plan_scan(replace(plan.inputs, photo_scales=(ft.mc_max,)), plan.rules).scenarios[0]
+    raw = plan_scan(_at_worst_frame(plan, ft), plan.rules).scenarios[0]
     return raw, replace(raw, photo_scale=candidate.photo_scale,
                         photo_to_map_ratio=candidate.photo_to_map_ratio,
                         local_photo_scale=ft.mc_max)
@@ -318,7 +331,7 @@ def archive_over_terrain(project: Project, cfg: TerrainConfig, raw: Any, flat_jo
     plan = raw.plan
     ft = film_terrain_spec(project, cfg, layout, plan.rules,
                            **_film_args(plan, flat.photo_scale))
-    worst_plan = plan_scan(replace(plan.inputs, photo_scales=(ft.mc_max,)), plan.rules)
+    worst_plan = plan_scan(_at_worst_frame(plan, ft), plan.rules)
     wjob, ws, _ = archive_film(replace(raw, plan=worst_plan))
     headline = replace(ws, photo_scale=flat.photo_scale,
                        photo_to_map_ratio=flat.photo_to_map_ratio, local_photo_scale=ft.mc_max)
