@@ -135,10 +135,10 @@ def test_the_standard_base_is_at_least_one_step_and_continuous(p, q):
 def test_aguera_vega_2017_vertical_rmse():
     """Agüera-Vega, Carvajal-Ramírez & Martínez-Carricondo (2017), "Assessment of
     photogrammetric mapping accuracy based on variation ground control points number using
-    unmanned aerial vehicle", Measurement 98, 221–227: a UAV block at 120 m above ground with
-    a 12-Mpx Micro Four Thirds camera (4032 × 3024 px on 17.3 × 13.0 mm: p = 4.29 µm), 80 %
-    forward overlap, gave a vertical check-point RMSE of 4.7 cm (20 GCPs) and 5.8 cm
-    (15 GCPs). With the widest 60 % base (B/H = 0.4·13.0/c) and σ_px = 0.5 px the normal
+    unmanned aerial vehicle", Measurement 98, 221–227: a UAV block at 120 m above ground
+    gave a vertical check-point RMSE of 4.7 cm (20 GCPs) and 5.8 cm (15 GCPs) (abstract).
+    Assumed: a 12-Mpx Micro Four Thirds camera (4032 × 3024 px on 17.3 × 13.0 mm:
+    p = 4.29 µm) with the short side along track, overlap ≥ 60 %. With the widest 60 % base (B/H = 0.4·13.0/c) and σ_px = 0.5 px the normal
     case predicts σ_Z = p·H·σ_px/(0.4·l_y) = 4.96 cm, whatever the lens (GSD and B/H both
     scale with 1/c): 1.06 × the published 4.7 cm, 0.86 × 5.8 cm. The single-step base (the
     parallax form's) would predict twice as much, 9.9 cm."""
@@ -152,6 +152,25 @@ def test_aguera_vega_2017_vertical_rmse():
         assert 0.75 < sz / 0.058 < 1.33
         single = float(S.normal_case_height_error_m(h, 0.2 * ly / c * h, c, p_um, sigma))
         assert single / 0.047 > 2.0
+
+
+def test_garcia_2020_vertical_rmse():
+    """M. V. Y. Garcia et al. (abstract): DJI Phantom 4 Advanced at 31 m, 80 % forward and
+    90 % side overlap, 5 GCPs with pre-calibrated interior orientation, 22 check points:
+    RMSE Z 3.3 cm. Assumed: the maker's camera data (13.2 × 8.8 mm, 5472 × 3648 px,
+    c = 8.8 mm), short side along track. The standard pair with σ_px = 0.5 px predicts
+    σ_Z = p·H·σ_px/(0.4·l_y) = 1.06 cm: three times below the check points, whose own
+    error, the control's and the calibration's σ_Z leaves out; image noise alone would need
+    σ_px ≈ 1.6 px."""
+    p_um, h, ly, c = 13.2 / 5472 * 1000, 31.0, 8.8, 8.8
+    sigma = load_norm_set("gkinp-02-036-02").parameters["image_measurement_px"]
+    bh = float(S.stereo_base_fraction(80, 60)) * ly / c
+    sz = float(S.normal_case_height_error_m(h, bh * h, c, p_um, sigma))
+    assert sz == pytest.approx(0.01063, abs=5e-5)
+    assert 2.5 < 0.033 / sz < 3.5
+    assert 0.033 / sz * sigma == pytest.approx(1.55, abs=0.05)
+    strip = sz * float(S.strip_multi_ray_factor(80, 60))
+    assert strip == pytest.approx(0.00475, abs=5e-5)
 
 
 # --- the UAV engine ------------------------------------------------------------------------
