@@ -525,7 +525,7 @@ CORPUS: tuple[Case, ...] = (
     Case("date-cell", _date_cell, False, ("'objects'!D2",), ("date",)),
     Case("bool-cell", _bool_cell, False, ("'shapes'!B3",), ("TRUE/FALSE",)),
     # --- bad structure
-    Case("missing-column", _missing_column, False, ("'objects'!F1",), ("missing column 'size_m'",)),
+    Case("missing-column", _missing_column, False, ("'objects'!G1",), ("missing column 'size_m'",)),
     Case(
         "missing-sheet",
         _missing_sheet,

@@ -293,6 +293,12 @@ class TableSpec:
 _TEXT = ValueSpec("text")
 _TEXT_OPT = ValueSpec("text", required=False)
 _SOURCE = ColumnSpec("source", _TEXT_OPT, "where the value comes from", ("источник",))
+FIGURE_STATUSES = ("norm", "recommendation", "estimate", "practice")
+"""What a norm figure is: a requirement of a norm, a recommendation (a recommended appendix, a
+draft's number: a project may set it aside with a reason), an estimate, or practice."""
+_STATUS = ColumnSpec("status", ValueSpec("choice", choices=FIGURE_STATUSES, required=False),
+                     "what the figure is: norm, recommendation, estimate or practice",
+                     ("статус",))
 
 TABLES: dict[str, TableSpec] = {
     t.name: t
@@ -307,6 +313,7 @@ TABLES: dict[str, TableSpec] = {
                 ColumnSpec("unit", _TEXT_OPT, "unit", ("единица", "ед. изм.")),
                 _SOURCE,
                 ColumnSpec("note", _TEXT_OPT, "note", ("примечание",)),
+                _STATUS,
             ),
             title_ru="Параметры",
             description="coefficients of the technical instruction",
@@ -369,6 +376,7 @@ TABLES: dict[str, TableSpec] = {
                 ),
                 ColumnSpec("shape", _TEXT, "shape id (a row of the shapes table)", ("форма",)),
                 _SOURCE,
+                _STATUS,
             ),
             title_ru="Минимальные объекты",
             description="smallest map objects per map scale (seed 001 Table 3)",
@@ -551,6 +559,7 @@ TABLES: dict[str, TableSpec] = {
                      "рекомендуемый размер пикселя на местности (не более)"),
                 ),
                 _SOURCE,
+                _STATUS,
             ),
             required=False,
             title_ru="Предельный размер пикселя",
