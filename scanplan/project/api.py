@@ -365,6 +365,7 @@ def uav_job(
     gsd_cm: float | None = None,
     gsd_area: str = _UAV["gsd_area"],
     parallax_error_px: float | None = None,
+    gsd_limit_reason: str | None = None,
     area: Area | None = None,
     layout_options: LayoutOptions | None = None,
 ) -> UavJob:
@@ -420,7 +421,11 @@ def uav_job(
     mk, rules, map_obj, objects = _map_constraints(
         ns, map_scale, relief_interval_m, probability, height_formula, object_size_m, shape,
         object_name, parallax_error_px)
-    gsd_row = _gsd_limit_row(ns, rules, mk, gsd_area)
+    if gsd_limit_reason is not None and (not isinstance(gsd_limit_reason, str)
+                                         or not gsd_limit_reason.strip()):
+        raise InputError("gsd_limit_reason", "must be the reason, as text, for setting the "
+                         "recommendation aside")
+    gsd_row = None if gsd_limit_reason else _gsd_limit_row(ns, rules, mk, gsd_area)
     area_w = area_l = None
     if area_m is not None:
         area_w, area_l = parse_area_m(area_m, "area_m")

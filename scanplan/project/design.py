@@ -74,6 +74,10 @@ class GsdCompliance:
         Digital: GL is the binding constraint of the flight height.
     source : str
         The table row's source cell.
+    status : str
+        What the figure is (the row's status: a recommendation for Table Б.1).
+    set_aside : str
+        The project's reason for setting the recommendation aside (``""``: applied).
     """
 
     workflow: str
@@ -84,6 +88,8 @@ class GsdCompliance:
     complies: bool
     binding: bool
     source: str
+    status: str = ""
+    set_aside: str = ""
 
 
 @dataclass(frozen=True)
@@ -137,6 +143,9 @@ class SurveyDesign:
     warnings: tuple[PlanWarning, ...]
     block_ground: str = ""  # "dem": the DEM's samples; "range": [terrain] ground_elevation_m
     block_waived: bool = False  # the flight follows the relief: the rule does not apply
+    block_status: str = ""  # what the block relief numbers are (a draft's recommendation)
+    block_set_aside: str = ""  # the project's reason for setting the rule aside
+    sun_status: str = ""  # what the norm set's sun elevation is (practice); "" if the project's
 
 
 def _where(project: Project, section: str, key: str) -> str:
@@ -169,6 +178,10 @@ def _gsd_checks(project: Project, film: FilmSpec | None, uav: UavSpec | None
     area = project.get("norms", "gsd_area") or "general"
     if uav is not None:
         inp = uav.job.plan.inputs
+        reason = project.get("norms.gsd_limits", "reason") or ""
+        ns = uav.job.norm_set
+        row = (ns.gsd_limit(inp.map_scale, area) if inp.map_scale is not None
+               and "GL" in ns.parameters["constraints"] else None)
         if inp.gsd_limit_m is not None and inp.map_scale is not None:
             plan = uav.job.plan
             gsd_m = _worst_gsd_m(uav)
@@ -176,7 +189,17 @@ def _gsd_checks(project: Project, film: FilmSpec | None, uav: UavSpec | None
                 "digital", int(inp.map_scale), inp.gsd_limit_area,
                 round(inp.gsd_limit_m * 100.0, 9),  # the table's cm, without float noise
                 gsd_m * 100.0, gsd_m <= inp.gsd_limit_m * (1 + 1e-9),
-                plan.binding == "GL", inp.gsd_limit_source))
+                plan.binding == "GL", inp.gsd_limit_source,
+                row.status if row is not None else ""))
+        elif reason and row is not None:
+            gsd_m = _worst_gsd_m(uav)
+            out.append(GsdCompliance(
+                "digital", int(inp.map_scale), row.area, row.max_gsd_cm, gsd_m * 100.0,
+                gsd_m <= row.max_gsd_cm / 100.0 * (1 + 1e-9), False, row.source, row.status,
+                reason))
+            warnings.append(PlanWarning("recommendation_set_aside", Message(
+                "recommendation_set_aside.gsd_limits", reason=reason, gsd=gsd_m * 100.0,
+                limit=row.max_gsd_cm), severity="info"))
     if film is not None and film.recommended is not None:
         ns = film.job.norm_set
         rules = film.job.plan.rules
@@ -261,7 +284,12 @@ def _block(project: Project, film: FilmSpec | None, uav: UavSpec | None
     check = block_height_check(ground, height, relief, float(ns.parameters[pname]))
     warnings = []
     waived = project.get("terrain", "altitude_mode", "constant") == "follow"
-    if waived:
+    set_aside = project.get("norms.block_relief", "reason") or ""
+    if set_aside:
+        warnings.append(PlanWarning("recommendation_set_aside", Message(
+            "recommendation_set_aside.block_relief", reason=set_aside, pct=check.range_pct,
+            limit=check.limit_pct), severity="info"))
+    elif waived:
         warnings.append(PlanWarning("block_height_waived", Message(
             "block_height_waived", range=check.range_m, pct=check.range_pct, h=height,
             limit=check.limit_pct, relief=Message(f"relief.{relief}")), severity="info"))
@@ -402,8 +430,17 @@ def survey_design(project: Project, film: FilmSpec | None, uav: UavSpec | None
     gsd, w1 = _gsd_checks(project, film, uav)
     block, block_source, w2, block_ground, waived = _block(project, film, uav)
     sun, w3 = _sun(project, film, uav)
+    ns = uav.job.norm_set if uav is not None else film.job.norm_set if film is not None \
+        else None
+    status = ns.parameter_status if ns is not None else {}
+    relief = project.get("terrain", "relief_class", "flat")
+    pname = {"flat": "block_relief_flat_pct", "hilly": "block_relief_hilly_pct",
+             "mountainous": "block_relief_mountain_pct"}.get(relief, "block_relief_flat_pct")
+    sun_status = ("" if sun is None or sun.elevation_source == "project"
+                  else status.get("min_sun_elevation_deg", ""))
     return SurveyDesign(tuple(gsd), block, block_source, sun, tuple(w1 + w2 + w3),
-                        block_ground, waived)
+                        block_ground, waived, status.get(pname, ""),
+                        project.get("norms.block_relief", "reason") or "", sun_status)
 
 
 def design_dict(design: SurveyDesign) -> dict[str, Any]:
@@ -411,7 +448,8 @@ def design_dict(design: SurveyDesign) -> dict[str, Any]:
     out: dict[str, Any] = {"gsd_limits": [
         {"workflow": g.workflow, "map_scale": g.map_scale, "area": g.area,
          "limit_cm": g.limit_cm, "gsd_cm": round(g.gsd_cm, 4), "complies": g.complies,
-         "binding": g.binding, "source": g.source} for g in design.gsd]}
+         "binding": g.binding, "source": g.source, "status": g.status,
+         "set_aside": g.set_aside or None} for g in design.gsd]}
     b = design.block
     if b is not None:
         out["block_height"] = {
@@ -421,7 +459,8 @@ def design_dict(design: SurveyDesign) -> dict[str, Any]:
             "range_pct": round(b.range_pct, 3), "split_needed": b.split_needed,
             "blocks": b.blocks, "bands_m": [list(x) for x in b.bands_m],
             "samples": b.samples, "ground": design.block_ground,
-            "waived": design.block_waived, "source": design.block_source}
+            "waived": design.block_waived, "source": design.block_source,
+            "status": design.block_status, "set_aside": design.block_set_aside or None}
     s = design.sun
     if s is not None:
         lo, hi = s.window_hours

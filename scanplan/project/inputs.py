@@ -208,6 +208,14 @@ _RECORDS: tuple[Input, ...] = (
           option="--gsd-area", commands=(UAV,), choices=("general", "dense_urban"),
           cli_help="row of the largest GSD per plan scale (GOST R 59562-2021 Table B.1): "
           "dense_urban = towns with dense multi-storey buildings, 14 cm at 1:2000"),
+    Input("gsd_limit_reason", "norms.gsd_limits", "reason", _STR, "sets the recommendation of "
+          "GOST R 59562-2021 Table B.1 (largest GSD per plan scale, a recommended appendix) "
+          "aside for this project, for the reason given; the specification prints it",
+          note="optional", commands=(UAV,)),
+    Input("block_relief_reason", "norms.block_relief", "reason", _STR, "sets the one-height "
+          "rule of a block (GOST R 59328-2021 §6.2.1, the second draft's 7/15/25 %, a "
+          "recommendation) aside for this project, for the reason given; the specification "
+          "prints it", note="optional"),
     Input("recognition_rounding", "", "", _STR, "sqrt(-ln P) exactly, or the paper's "
           "rounded 0.53", option="--rounding", commands=(FILM,), choices=("exact", "paper")),
     # [film]

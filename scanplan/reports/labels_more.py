@@ -212,6 +212,11 @@ TERMINAL: dict[str, dict[str, str]] = {
 DESIGN: dict[str, dict[str, str]] = {
     "en": {
         "design_title": "Survey design",
+        "status_norm": "norm",
+        "status_recommendation": "recommendation",
+        "status_estimate": "estimate",
+        "status_practice": "practice",
+        "design_set_aside": "set aside by the project: {reason}",
         "xlsx_gsd_limits": "Largest GSD of the photos per plan scale",
         "xlsx_gsd_area": "Territory",
         "xlsx_max_gsd_cm": "Largest GSD, cm",
@@ -278,6 +283,11 @@ DESIGN: dict[str, dict[str, str]] = {
     },
     "ru": {
         "design_title": "Технический проект аэрофотосъёмки",
+        "status_norm": "норма",
+        "status_recommendation": "рекомендация",
+        "status_estimate": "оценка",
+        "status_practice": "практика",
+        "design_set_aside": "не применяется по решению проекта: {reason}",
         "xlsx_gsd_limits": "Предельный размер пикселя на местности для масштаба плана",
         "xlsx_gsd_area": "Территория",
         "xlsx_max_gsd_cm": "Размер пикселя на местности, не более, см",
