@@ -138,10 +138,11 @@ def test_aguera_vega_2017_vertical_rmse():
     unmanned aerial vehicle", Measurement 98, 221–227: a UAV block at 120 m above ground
     gave a vertical check-point RMSE of 4.7 cm (20 GCPs) and 5.8 cm (15 GCPs) (abstract).
     Assumed: a 12-Mpx Micro Four Thirds camera (4032 × 3024 px on 17.3 × 13.0 mm:
-    p = 4.29 µm) with the short side along track, overlap ≥ 60 %. With the widest 60 % base (B/H = 0.4·13.0/c) and σ_px = 0.5 px the normal
-    case predicts σ_Z = p·H·σ_px/(0.4·l_y) = 4.96 cm, whatever the lens (GSD and B/H both
-    scale with 1/c): 1.06 × the published 4.7 cm, 0.86 × 5.8 cm. The single-step base (the
-    parallax form's) would predict twice as much, 9.9 cm."""
+    p = 4.29 µm) with the short side along track, overlap ≥ 60 %. With the standard 60 %
+    base (B/H = 0.4·13.0/c) and σ_px = 0.5 px the normal case predicts
+    σ_Z = p·H·σ_px/(0.4·l_y) = 4.96 cm, whatever the lens (GSD and B/H both scale with
+    1/c): 1.06 × the published 4.7 cm, 0.86 × 5.8 cm. The single-step base (the parallax
+    form's) would predict twice as much, 9.9 cm."""
     p_um, h, ly = 17.3 / 4032 * 1000, 120.0, 13.0
     sigma = load_norm_set("gkinp-02-036-02").parameters["image_measurement_px"]
     for c in (14.0, 17.0):                       # focal length does not matter
