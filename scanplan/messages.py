@@ -508,8 +508,10 @@ MESSAGES: dict[str, dict[str, str]] = {
         "ru": "удерживает наибольшую фактическую высоту полёта в пределах допустимой высоты",
     },
     "equation.HC": {
-        "en": "H·(1 + height tolerance) ≤ ceiling — Federal Rules for the Use of the Airspace",
-        "ru": "H·(1 + допуск высоты) ≤ предельной высоты — Федеральные правила использования "
+        "en": "H·(1 + height tolerance) ≤ ceiling; without an airspace-use permission below "
+              "it — Federal Rules for the Use of the Airspace",
+        "ru": "H·(1 + допуск высоты) ≤ предельной высоты; без разрешения на использование "
+              "воздушного пространства — менее неё — Федеральные правила использования "
               "воздушного пространства",
     },
     "limit.GSD": {
