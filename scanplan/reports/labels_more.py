@@ -276,6 +276,13 @@ DESIGN: dict[str, dict[str, str]] = {
         "design_binding": "Binding constraint of the flight height",
         "design_binding_film": "Binding constraint of the scan pixel",
         "pdf_warn_block_split": "Block to split by ground height",
+        "pdf_warn_block_height_waived": "One height per block: waived, the flight follows the "
+                                        "relief",
+        "pdf_warn_recommendation_set_aside": "A recommendation set aside by the project",
+        "pdf_warn_airspace_conditions": "Conditions of flying without an airspace-use "
+                                        "permission (height, settlements, aerodromes)",
+        "pdf_warn_airspace_not_below": "Highest flown height not below the permission-free "
+                                       "ceiling",
         "pdf_warn_sun_no_window": "No sun window on the planned dates",
         "pdf_warn_sun_dates_short": "Planned dates too short for the sorties",
         "pdf_warn_gsd_limit_film": "Scanned ground pixel against the largest GSD of the "
@@ -347,6 +354,14 @@ DESIGN: dict[str, dict[str, str]] = {
         "design_binding": "Определяющее условие высоты полёта",
         "design_binding_film": "Определяющее условие размера пикселя сканирования",
         "pdf_warn_block_split": "Участок нужно разделить по высоте местности",
+        "pdf_warn_block_height_waived": "Одна высота на участок не требуется: полёт с "
+                                        "огибанием рельефа",
+        "pdf_warn_recommendation_set_aside": "Рекомендация не применяется по решению проекта",
+        "pdf_warn_airspace_conditions": "Условия полётов без разрешения на использование "
+                                        "воздушного пространства (высота, населённые пункты, "
+                                        "аэродромы)",
+        "pdf_warn_airspace_not_below": "Наибольшая фактическая высота не ниже предела полётов "
+                                       "без разрешения",
         "pdf_warn_sun_no_window": "В запланированные сроки Солнце низко",
         "pdf_warn_sun_dates_short": "Запланированных сроков не хватает на все вылеты",
         "pdf_warn_gsd_limit_film": "Размер пикселя скана и предельный размер пикселя для "
