@@ -151,7 +151,38 @@ def uav_terrain_spec(project: Project, cfg: TerrainConfig, job: UavJob,
     notes["waypoints"] = res.waypoints
     layout = replace(res.layout, notes=notes)
     res = replace(res, layout=layout)
-    return replace(job, layout=layout), res, rec, reason, res.warnings
+    return (replace(job, layout=layout), res, rec, reason,
+            res.warnings + _height_accuracy_over_relief(job, res))
+
+
+def _height_accuracy_over_relief(job: UavJob, res: TerrainResult) -> tuple[PlanWarning, ...]:
+    """σ_Z at the photo highest above its ground, at its highest flown height, with the
+    mission's trigger distance (fixed in metres at the planned height): a warning when it
+    exceeds V_z. The terrain check holds every photo to the flat limit, which is exact for a
+    block flown at the standard overlap or more (the base of the standard pair grows with
+    the height above ground); below it the one-step base is fixed in metres and the photos
+    over low ground can miss V_z (docs/uav-models.md §9)."""
+    import numpy as np
+
+    from ..rules.constraints import sigma_z_m
+
+    acc = job.plan.height_accuracy
+    if acc.get("formula") != "normal_case":
+        return ()
+    agl = np.asarray(res.layout.photos.columns.get("agl_m", ()), dtype=float)
+    agl = agl[np.isfinite(agl)]
+    if not agl.size:
+        return ()
+    inp = job.plan.inputs
+    rules = replace(job.norm_set.rules(), image_measurement_px=acc["image_measurement_px"],
+                    multi_ray=acc["multi_ray"])
+    flown = float(agl.max()) * (1.0 + inp.height_tolerance_up_pct / 100.0)
+    sz = float(sigma_z_m(inp, rules, flown))
+    if sz <= acc["height_accuracy_m"] * (1 + 1e-9):
+        return ()
+    return (PlanWarning("terrain_height_accuracy", Message(
+        "terrain_height_accuracy", sz=sz, vz=acc["height_accuracy_m"], agl=flown,
+        planned=inp.height_m, overlap=inp.forward_overlap_pct)),)
 
 
 def _missed_at_planned(checked: tuple[PlanWarning, ...], mode: str) -> Message | None:

@@ -279,6 +279,7 @@ DESIGN: dict[str, dict[str, str]] = {
         "pdf_warn_block_height_waived": "One height per block: waived, the flight follows the "
                                         "relief",
         "pdf_warn_recommendation_set_aside": "A recommendation set aside by the project",
+        "pdf_warn_terrain_height_accuracy": "Height accuracy missed over low ground",
         "pdf_warn_airspace_conditions": "Conditions of flying without an airspace-use "
                                         "permission (height, settlements, aerodromes)",
         "pdf_warn_airspace_not_below": "Highest flown height not below the permission-free "
@@ -357,6 +358,8 @@ DESIGN: dict[str, dict[str, str]] = {
         "pdf_warn_block_height_waived": "Одна высота на участок не требуется: полёт с "
                                         "огибанием рельефа",
         "pdf_warn_recommendation_set_aside": "Рекомендация не применяется по решению проекта",
+        "pdf_warn_terrain_height_accuracy": "Точность высот не обеспечена над низкими "
+                                            "участками",
         "pdf_warn_airspace_conditions": "Условия полётов без разрешения на использование "
                                         "воздушного пространства (высота, населённые пункты, "
                                         "аэродромы)",
