@@ -527,7 +527,7 @@ def key_table() -> dict[str, dict[str, tuple[str, str]]]:
 
 _DOC_NOTES = {("norms", "object_name"): ' (an unnamed own object is "object of the given '
                                           'size" / «объект заданного размера»)'}
-_BLOCK = re.compile(r"(<!-- keys: (?P<section>[a-z.]+) -->\n)(.*?)(<!-- /keys -->)", re.DOTALL)
+_BLOCK = re.compile(r"(<!-- keys: (?P<section>[a-z._]+) -->\n)(.*?)(<!-- /keys -->)", re.DOTALL)
 
 
 def markdown_table(section: str) -> str:

@@ -177,16 +177,13 @@ def height_accuracy(inp: UavInputs, rules: ScanRules
 
     Three forms, each as the largest GSD on the ground (evaluated at Mc = 1):
 
-    - ``normal_case`` (default for digital cameras): σ_Z = (H/B)·(H/c)·σ_px·f ≤ V_z at the
-      highest flown height, B the base of a pair with the standard stereo overlap
-      evaluated at the overlap flown there with the mission's trigger distance
-      (:func:`stereo_geometry`, :func:`scanplan.core.stereo.stereo_height_ground_limit_m`),
-      V_z read as an RMS error;
+    - ``normal_case`` (default for digital cameras): σ_Z = (H/B)·(H/c)·σ_px·f ≤ V_z (an
+      RMS) at the highest flown height, B the standard pair's base at the overlap flown
+      there with the mission's trigger distance (:func:`stereo_geometry`);
     - ``instruction`` and ``parallax``: the Instruction's P_Z and its parallax form with the
       single-step base b = l_y·(1 − p) and the processing loss k (seed 001, eq. 2).
 
-    All three are in ``details["forms"]`` for comparison; ``rules.digital_height_formula``
-    picks the one that constrains the flight.
+    All three are in ``details["forms"]``; ``rules.digital_height_formula`` picks one.
 
     Parameters
     ----------
