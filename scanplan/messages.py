@@ -458,21 +458,23 @@ MESSAGES: dict[str, dict[str, str]] = {
               "фотографирования выдерживается над местностью (перепад высот {range:.0f}~м — "
               "{pct:.1f}~% высоты фотографирования {h:g}~м)",
     },
-    "recommendation_set_aside.gsd_limits": {
-        "en": "the largest GSD per plan scale of GOST R 59562-2021 Table B.1 (a recommended "
-              "appendix) is set aside by the project: {reason} (the GSD is {gsd:.1f} cm "
-              "against the recommended {limit:g} cm)",
-        "ru": "Рекомендация ГОСТ Р 59562-2021 (рекомендуемое приложение Б, табл. Б.1) о "
-              "предельном размере пикселя на местности не применяется по решению проекта: "
-              "{reason} (размер пикселя {gsd:.1f}~см при рекомендуемом {limit:g}~см)",
+    "recommendation_set_aside": {
+        "en": "{what} is set aside by the project: {reason}",
+        "ru": "{what} не применяется по решению проекта: {reason}",
     },
-    "recommendation_set_aside.block_relief": {
-        "en": "the one-height rule of a block (GOST R 59328-2021, second draft: {limit:g} % "
-              "of the flight height, a recommendation) is set aside by the project: {reason} "
-              "(the ground height range is {pct:.1f} %)",
+    "set_aside.gsd_limits": {
+        "en": "the largest GSD per plan scale of GOST R 59562-2021 Table B.1 (a recommended "
+              "appendix; the GSD is {gsd:.1f} cm against the recommended {limit:g} cm)",
+        "ru": "Рекомендация ГОСТ Р 59562-2021 (рекомендуемое приложение Б, табл. Б.1) о "
+              "предельном размере пикселя на местности (размер пикселя {gsd:.1f}~см при "
+              "рекомендуемом {limit:g}~см)",
+    },
+    "set_aside.block_relief": {
+        "en": "the one-height rule of a block (GOST R 59328-2021, second draft: {limit:g} % of "
+              "the flight height, a recommendation; the ground height range is {pct:.1f} %)",
         "ru": "Рекомендация одной высоты фотографирования на участок (ГОСТ Р 59328-2021, "
-              "проект 2-й редакции: {limit:g}~% высоты фотографирования) не применяется по "
-              "решению проекта: {reason} (перепад высот {pct:.1f}~%)",
+              "проект 2-й редакции: {limit:g}~% высоты фотографирования; перепад высот "
+              "{pct:.1f}~%)",
     },
     "block.band": {
         "en": "ground {lo:.0f}–{hi:.0f} m",

@@ -198,8 +198,9 @@ def _gsd_checks(project: Project, film: FilmSpec | None, uav: UavSpec | None
                 gsd_m <= row.max_gsd_cm / 100.0 * (1 + 1e-9), False, row.source, row.status,
                 reason))
             warnings.append(PlanWarning("recommendation_set_aside", Message(
-                "recommendation_set_aside.gsd_limits", reason=reason, gsd=gsd_m * 100.0,
-                limit=row.max_gsd_cm), severity="info"))
+                "recommendation_set_aside", reason=reason, what=Message(
+                    "set_aside.gsd_limits", gsd=gsd_m * 100.0, limit=row.max_gsd_cm)),
+                severity="info"))
     if film is not None and film.recommended is not None:
         ns = film.job.norm_set
         rules = film.job.plan.rules
@@ -287,8 +288,9 @@ def _block(project: Project, film: FilmSpec | None, uav: UavSpec | None
     set_aside = project.get("norms.block_relief", "reason") or ""
     if set_aside:
         warnings.append(PlanWarning("recommendation_set_aside", Message(
-            "recommendation_set_aside.block_relief", reason=set_aside, pct=check.range_pct,
-            limit=check.limit_pct), severity="info"))
+            "recommendation_set_aside", reason=set_aside, what=Message(
+                "set_aside.block_relief", pct=check.range_pct, limit=check.limit_pct)),
+            severity="info"))
     elif waived:
         warnings.append(PlanWarning("block_height_waived", Message(
             "block_height_waived", range=check.range_m, pct=check.range_pct, h=height,
