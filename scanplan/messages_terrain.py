@@ -64,6 +64,17 @@ TERRAIN: dict[str, dict[str, str]] = {
               "невыполняющиеся маршруты или снизить плановую высоту до {max:.0f}~м над "
               "наивысшей точкой каждого маршрута.",
     },
+    "terrain_height_accuracy": {
+        "en": "over the relief the photo highest above its ground is flown up to {agl:.0f} m "
+              "above it, where the exposures spaced for {planned:g} m give an idealised "
+              "stereo precision σ_Z = {sz:.3f} m, above the required {vz:g} m: fly a forward "
+              "overlap of at least the standard one (now {overlap:g} %) or a lower height",
+        "ru": "Над рельефом снимок с наибольшей высотой над местностью выполняется с высоты "
+              "до {agl:.0f}~м, где при шаге фотографирования, рассчитанном на {planned:g}~м, "
+              "идеализированная точность стереоизмерений σ_Z = {sz:.3f}~м больше требуемой "
+              "{vz:g}~м: увеличьте продольное перекрытие не менее чем до стандартного (сейчас "
+              "{overlap:g}~%) или снизьте высоту.",
+    },
     "terrain_remedy.follow": {
         "en": "Remedies: a smaller tolerance (⁅[terrain] follow_tolerance_m⁆) or a planned height "
               "of at most {max:.0f} m",

@@ -525,7 +525,7 @@ CORPUS: tuple[Case, ...] = (
     Case("date-cell", _date_cell, False, ("'objects'!D2",), ("date",)),
     Case("bool-cell", _bool_cell, False, ("'shapes'!B3",), ("TRUE/FALSE",)),
     # --- bad structure
-    Case("missing-column", _missing_column, False, ("'objects'!F1",), ("missing column 'size_m'",)),
+    Case("missing-column", _missing_column, False, ("'objects'!G1",), ("missing column 'size_m'",)),
     Case(
         "missing-sheet",
         _missing_sheet,
@@ -545,14 +545,14 @@ CORPUS: tuple[Case, ...] = (
         "missing-parameter",
         _missing_parameter,
         False,
-        ("'parameters'!A22",),
+        ("'parameters'!A23",),
         ("missing parameter 'probability'",),
     ),
     Case(
         "unknown-parameter",
         _unknown_parameter,
         False,
-        ("'parameters'!A23",),
+        ("'parameters'!A24",),
         ("unknown parameter",),
     ),
     Case(

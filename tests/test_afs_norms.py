@@ -330,9 +330,10 @@ def test_survey_design_sheet_in_workbook_and_pdf(tmp_path, locale):
     assert ("МСК-50, зона 2" in page and "Балтийская" in page
             and ("прил. Б, табл. Б.1" if locale == "ru" else "Appendix B, Table B.1") in page)
     # the ground range 150–205 m also drives the terrain plan: one altitude over the highest
-    # ground with the 150 m ceiling over the lowest gives 95 m above the reference ground, so
-    # the 55 m range is 57.9 % of it, over the 15 % hilly limit → 4 bands of ≤ 15 %·95 m
-    assert ("разделить на 4 части" if locale == "ru" else "split into 4 parts") in page
+    # ground, strictly below the 150 m ceiling over the lowest, gives 90 m above the
+    # reference ground (95 m would be flown at exactly 150 m), so the 55 m range is 61 % of
+    # it, over the 15 % hilly limit → 5 bands of ≤ 15 %·90 m
+    assert ("разделить на 5 части" if locale == "ru" else "split into 5 parts") in page
 
 
 @pytest.mark.parametrize("name", ["scanplan.core.blocks", "scanplan.geo.sun",

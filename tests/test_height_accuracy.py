@@ -34,35 +34,61 @@ SEED002 = dict(camera="canon-eos-5d-mark-ii-50", f_number=8.0, height_m=300.0,
 
 
 # --- the formulas -------------------------------------------------------------------------
-def test_widest_standard_stereo_base():
-    """80 % and 90 % blocks keep a 60 % pair two and four photo steps apart: B = 0.4·footprint,
-    as a 60 % block; 70 % and 85 % lose a little (0.3); below 60 % the single step."""
-    got = S.stereo_base_fraction([60, 70, 80, 85, 90, 55], 60)
-    assert got == pytest.approx([0.4, 0.3, 0.4, 0.3, 0.4, 0.45])
+def test_standard_stereo_base_is_continuous():
+    """From the standard overlap on, the base is that of a pair with exactly 60 % overlap,
+    0.4·footprint, a real multiple of the photo step; below it the single step."""
+    got = S.stereo_base_fraction([60, 70, 79, 80, 85, 90, 55], 60)
+    assert got == pytest.approx([0.4, 0.4, 0.4, 0.4, 0.4, 0.4, 0.45])
 
 
 def test_strip_multi_ray_factor_closed_form():
-    """f = n·sqrt(6/(m(m² − 1))): m rays of the strip against the widest pair (n steps)."""
-    assert S.strip_multi_ray_factor(60, 60) == pytest.approx(1.0)           # m = 2, n = 1
+    """At whole numbers of rays m = 1/(1 − p) the RMS multi-ray base is the all-ray one,
+    sqrt(2·s²·m(m² − 1)/12): f = 0.4·m·sqrt(6/(m(m² − 1)))."""
     assert S.strip_multi_ray_factor(80, 60) == pytest.approx(2 * math.sqrt(6 / 120))  # 0.447
     assert S.strip_multi_ray_factor(90, 60) == pytest.approx(4 * math.sqrt(6 / 990))
+    assert S.strip_multi_ray_factor(75, 60) == pytest.approx(0.4 * 4 * math.sqrt(6 / 60))
+
+
+def _lsq_sigma_z(positions: np.ndarray, c: float = 50.0, z: float = 300.0) -> float:
+    """σ_Z (per unit image error) of a least-squares intersection of rays
+    x_i = c·(X − X_i)/Z from projection centres ``positions`` (unknowns X, Z)."""
+    x0 = 0.5 * (positions.min() + positions.max())
+    a = np.column_stack([np.full(positions.size, c / z), -c * (x0 - positions) / z**2])
+    return float(np.sqrt(np.linalg.inv(a.T @ a)[1, 1]))
 
 
 def test_strip_multi_ray_factor_is_the_least_squares_intersection():
     """The closed form equals the covariance of a least-squares intersection of m rays
-    x_i = c·(X − X_i)/Z (unknowns X, Z) over that of the widest pair."""
-    c, z, s = 50.0, 300.0, 10.0
-
-    def sigma_z(positions: np.ndarray) -> float:
-        x0 = 0.5 * (positions.min() + positions.max())
-        a = np.column_stack([np.full(positions.size, c / z),
-                             -c * (x0 - positions) / z**2])
-        return float(np.sqrt(np.linalg.inv(a.T @ a)[1, 1]))
-
-    m, n = 5, 2                         # 80 %: 5 photos see the point, the 60 % pair is 2 apart
-    rays = sigma_z(np.arange(m) * s)
-    pair = sigma_z(np.array([0.0, n * s]))
+    over that of the standard pair (0.4 of the footprint apart)."""
+    fp = 100.0
+    m = 5                               # 80 %: 5 photos see the point
+    rays = _lsq_sigma_z(np.arange(m) * fp / m)
+    pair = _lsq_sigma_z(np.array([0.0, 0.4 * fp]))
     assert rays / pair == pytest.approx(float(S.strip_multi_ray_factor(80, 60)), rel=1e-12)
+
+
+@pytest.mark.parametrize("overlap", [60.0, 70.0, 79.0, 85.0])
+def test_multi_ray_base_is_the_rms_over_the_strip(overlap):
+    """Between whole numbers of rays: every point position x along one photo step, the
+    photos whose footprint contains it, their least-squares σ_Z; the RMS over x equals the
+    closed form's (a pair of base B_eff has σ_Z = √2/B_eff per unit image error)."""
+    fp, s = 100.0, (1 - overlap / 100) * 100.0
+    centres = np.arange(-40, 41) * s
+    sig = []
+    for x in (np.arange(4000) + 0.5) / 4000 * s:
+        seen = centres[np.abs(x - centres) <= fp / 2]
+        sig.append(_lsq_sigma_z(seen - x))
+    rms = math.sqrt(float(np.mean(np.square(sig))))
+    pair = _lsq_sigma_z(np.array([0.0, fp]))   # base = footprint: σ per unit of base
+    assert fp * pair / rms == pytest.approx(float(S.multi_ray_base_fraction(overlap)) * fp,
+                                            rel=2e-3)
+
+
+@settings(max_examples=200, deadline=None)
+@given(p=st.floats(50.5, 95), dp=st.floats(0, 5))
+def test_multi_ray_base_never_falls_with_overlap(p, dp):
+    assert (S.multi_ray_base_fraction(min(p + dp, 95.0))
+            >= S.multi_ray_base_fraction(p) - 1e-12)
 
 
 def test_normal_case_by_hand():
@@ -94,27 +120,29 @@ def test_sigma_z_monotone(h, b, f, p, s, k):
 
 @settings(max_examples=100, deadline=None)
 @given(p=st.floats(50, 95), q=st.floats(50, 95))
-def test_more_overlap_never_shrinks_the_stereo_base_below_one_step(p, q):
-    """The widest standard base is at least the single step and at most 1 − p_min (once
-    the overlap reaches the standard), whatever the overlap."""
+def test_the_standard_base_is_at_least_one_step_and_continuous(p, q):
+    """The standard base is at least the single step, 1 − p_min from the standard overlap on,
+    and Lipschitz in the overlap (no jumps)."""
     lo = min(p, q)
     frac = float(S.stereo_base_fraction(lo, 60))
     assert frac >= (1 - lo / 100) - 1e-12
     if lo >= 60:
-        assert frac <= 0.4 + 1e-12
+        assert frac == pytest.approx(0.4)
+    assert abs(frac - float(S.stereo_base_fraction(q, 60))) <= abs(p - q) / 100 + 1e-12
 
 
 # --- the published anchor --------------------------------------------------------------------
 def test_aguera_vega_2017_vertical_rmse():
     """Agüera-Vega, Carvajal-Ramírez & Martínez-Carricondo (2017), "Assessment of
     photogrammetric mapping accuracy based on variation ground control points number using
-    unmanned aerial vehicle", Measurement 98, 221–227: a UAV block at 120 m above ground with
-    a 12-Mpx Micro Four Thirds camera (4032 × 3024 px on 17.3 × 13.0 mm: p = 4.29 µm), 80 %
-    forward overlap, gave a vertical check-point RMSE of 4.7 cm (20 GCPs) and 5.8 cm
-    (15 GCPs). With the widest 60 % base (B/H = 0.4·13.0/c) and σ_px = 0.5 px the normal
-    case predicts σ_Z = p·H·σ_px/(0.4·l_y) = 4.96 cm, whatever the lens (GSD and B/H both
-    scale with 1/c): 1.06 × the published 4.7 cm, 0.86 × 5.8 cm. The single-step base (the
-    parallax form's) would predict twice as much, 9.9 cm."""
+    unmanned aerial vehicle", Measurement 98, 221–227: a UAV block at 120 m above ground
+    gave a vertical check-point RMSE of 4.7 cm (20 GCPs) and 5.8 cm (15 GCPs) (abstract).
+    Assumed: a 12-Mpx Micro Four Thirds camera (4032 × 3024 px on 17.3 × 13.0 mm:
+    p = 4.29 µm) with the short side along track, overlap ≥ 60 %. With the standard 60 %
+    base (B/H = 0.4·13.0/c) and σ_px = 0.5 px the normal case predicts
+    σ_Z = p·H·σ_px/(0.4·l_y) = 4.96 cm, whatever the lens (GSD and B/H both scale with
+    1/c): 1.06 × the published 4.7 cm, 0.86 × 5.8 cm. The single-step base (the parallax
+    form's) would predict twice as much, 9.9 cm."""
     p_um, h, ly = 17.3 / 4032 * 1000, 120.0, 13.0
     sigma = load_norm_set("gkinp-02-036-02").parameters["image_measurement_px"]
     for c in (14.0, 17.0):                       # focal length does not matter
@@ -125,6 +153,25 @@ def test_aguera_vega_2017_vertical_rmse():
         assert 0.75 < sz / 0.058 < 1.33
         single = float(S.normal_case_height_error_m(h, 0.2 * ly / c * h, c, p_um, sigma))
         assert single / 0.047 > 2.0
+
+
+def test_garcia_2020_vertical_rmse():
+    """M. V. Y. Garcia et al. (abstract): DJI Phantom 4 Advanced at 31 m, 80 % forward and
+    90 % side overlap, 5 GCPs with pre-calibrated interior orientation, 22 check points:
+    RMSE Z 3.3 cm. Assumed: the maker's camera data (13.2 × 8.8 mm, 5472 × 3648 px,
+    c = 8.8 mm), short side along track. The standard pair with σ_px = 0.5 px predicts
+    σ_Z = p·H·σ_px/(0.4·l_y) = 1.06 cm: three times below the check points, whose own
+    error, the control's and the calibration's σ_Z leaves out; image noise alone would need
+    σ_px ≈ 1.6 px."""
+    p_um, h, ly, c = 13.2 / 5472 * 1000, 31.0, 8.8, 8.8
+    sigma = load_norm_set("gkinp-02-036-02").parameters["image_measurement_px"]
+    bh = float(S.stereo_base_fraction(80, 60)) * ly / c
+    sz = float(S.normal_case_height_error_m(h, bh * h, c, p_um, sigma))
+    assert sz == pytest.approx(0.01063, abs=5e-5)
+    assert 2.5 < 0.033 / sz < 3.5
+    assert 0.033 / sz * sigma == pytest.approx(1.55, abs=0.05)
+    strip = sz * float(S.strip_multi_ray_factor(80, 60))
+    assert strip == pytest.approx(0.00475, abs=5e-5)
 
 
 # --- the UAV engine ------------------------------------------------------------------------
@@ -147,7 +194,11 @@ def test_uav_height_constraint_is_normal_case():
     assert pz.max_height_m == pytest.approx(pz.max_flown_height_m / 1.4)
     assert plan.binding == "PZ" and plan.max_height_m == pytest.approx(213.95, abs=0.05)
     acc = plan.height_accuracy
-    assert acc["formula"] == "normal_case" and acc["stereo_base_steps"] == 2
+    assert acc["formula"] == "normal_case"
+    # the trigger distance is fixed at 300 m: at 420 m the overlap is 85.7 % and the 60 %
+    # pair is 2.8 steps apart
+    assert acc["forward_overlap_at_highest_flown_height_pct"] == pytest.approx(100 / 1.4 * 1.2)
+    assert acc["stereo_base_steps"] == pytest.approx(2.8)
     assert acc["stereo_base_to_height"] == pytest.approx(0.192)
     assert acc["sigma_z_in_gsd"] == pytest.approx(0.5 / 0.192)
     # the other two forms, for comparison (issue 13: 2,902 m and the parallax form's few m)
@@ -171,8 +222,9 @@ def test_multi_ray_norm_parameter_raises_the_limit():
     job = uav_job(**SEED002, map_scale=2000, relief_interval_m=0.5)
     off = _height_accuracy(job.plan.inputs, ns.rules())
     strip = _height_accuracy(job.plan.inputs, dataclasses.replace(ns.rules(), multi_ray="strip"))
-    assert strip[0] == pytest.approx(off[0] / float(S.strip_multi_ray_factor(80, 60)))
-    assert strip[2]["multi_ray_factor"] == pytest.approx(0.4472, abs=1e-4)
+    flown = 100 - 20 / 1.4          # 80 % planned at 300 m, flown at 420 m: 85.7 %, 7 rays
+    assert strip[0] == pytest.approx(off[0] / float(S.strip_multi_ray_factor(flown, 60)))
+    assert strip[2]["multi_ray_factor"] == pytest.approx(0.4 / math.sqrt((7 - 1 / 7) / 6))
 
 
 def test_other_height_formulas_on_request():
@@ -246,7 +298,7 @@ def test_cli_uav_json_new_keys():
     assert d["heights_m"]["planned"] == 210 and d["heights_m"]["max"] == pytest.approx(294)
     assert d["ceiling_m"] == 400 and d["constraints_max_height_m"] is None
     assert d["height_accuracy"]["forms"]["instruction"]["max_planned_height_m"] > 2000
-    assert d["constraints"]["PZ"]["details"]["stereo_base_steps"] == 2
+    assert d["constraints"]["PZ"]["details"]["stereo_base_steps"] == pytest.approx(2.8)
 
 
 # --- the example and the project keys --------------------------------------------------------
@@ -309,7 +361,7 @@ def test_norm_parameters_carry_their_sources():
         # each source names works of the bibliography, which give the full reference
         from scanplan.reports.references import Bibliography
 
-        for key, works in (("uav_max_height_m", ("para. 52.1",)),
+        for key, works in (("uav_max_height_m", ("No. 1016", "52(3)")),
                            ("image_measurement_px", ("Measurement, 2017, vol. 98",
                                                      "Close-Range Photogrammetry")),
                            ("digital_height_formula", ("Photogrammetry: Geometry from Images",

@@ -326,6 +326,15 @@ def emitted(tmp_path_factory) -> dict[str, list[Any]]:
            .replace('dem = "dem/', f'dem = "{(EXAMPLES / "dem").as_posix()}/')
            .replace('file = "areas/', f'file = "{(EXAMPLES / "areas").as_posix()}/')
            for mode in ("strip", "follow", "constant")},
+        # recommendations set aside with a reason; the one-step base over relief
+        "plan set aside": uav_toml.replace("[uav]", '[norms.gsd_limits]\nreason = "agreed"\n'
+                                           '\n[norms.block_relief]\nreason = "agreed"\n\n[uav]')
+        + "\n[terrain]\nground_elevation_m = [100, 150]\n",
+        "plan one-step base over relief": ('[map]\nscale = 5000\nrelief_interval_m = 1\n[uav]\n'
+                                           'camera = "ultracam-eagle-80"\nf_number = 5.6\n'
+                                           'speed_ms = 70\nforward_overlap_pct = 50\n[area]\n'
+                                           'width_m = 10000\nlength_m = 15000\n[terrain]\n'
+                                           'ground_elevation_m = [0, 300]\n'),
         # an area planned far out of its projection's zone
         "plan area out of its zone": (EXAMPLES / "uav-town-2000.toml").read_text(
             encoding="utf-8").replace('file = "areas/town-uav.kml"',

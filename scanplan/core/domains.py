@@ -63,6 +63,8 @@ DOMAINS: dict[str, Domain] = {
     "max_height_m": Domain(1, 20_000, "m",
                            meaning="altitude ceiling: highest height flown above ground"),
     "gsd_cm": Domain(0.01, 1000, "cm", meaning="target ground sample distance"),
+    "parallax_error_px": Domain(0.01, 10, "px", lo_open=False,
+                                meaning="RMS error of a measured x-parallax (σ_px)"),
     "height_tolerance_up_pct": Domain(0, 100, "%", hi_open=True,
                                       meaning="how much higher the UAV may fly"),
     "height_tolerance_down_pct": Domain(0, 100, "%", hi_open=True,

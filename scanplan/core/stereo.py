@@ -21,6 +21,7 @@ from numpy.typing import ArrayLike
 from .formulas import _UM_PER_MM, FloatArray, _f
 
 __all__ = [
+    "multi_ray_base_fraction",
     "normal_case_height_error_m",
     "stereo_base_fraction",
     "stereo_height_ground_limit_m",
@@ -33,17 +34,25 @@ _OVERLAP_EPS = 1e-9
 def stereo_base_fraction(
     forward_overlap_pct: ArrayLike, min_stereo_overlap_pct: ArrayLike
 ) -> FloatArray:
-    """Widest stereo base with standard overlap, as a fraction of the along-track footprint.
+    """Base of the standard stereo pair, as a fraction of the along-track footprint.
 
-    A block flown with forward overlap p has exposures every (1 − p)·footprint. The photos
-    i and i + n overlap by 1 − n·(1 − p); the widest base whose pair still has the standard
-    stereo overlap p_min is n = floor((1 − p_min)/(1 − p)) steps (at least one step):
-    B / footprint = n·(1 − p).
+    A block flown with forward overlap p ≥ p_min (the standard stereo overlap) is held to
+    the precision of one stereo pair with exactly the standard overlap,
+    B / footprint = 1 − p_min, a real (not a whole) multiple of the photo step
+    (1 − p)·footprint; below the standard overlap only neighbouring photos overlap and the
+    base is the single step, B / footprint = 1 − p:
+
+        B / footprint = max(1 − p, 1 − p_min).
+
+    Continuous in p and constant from p_min on, so a higher overlap never lowers the
+    height that meets an accuracy.
 
     Parameters
     ----------
     forward_overlap_pct : array_like
-        Forward overlap p flown [%], 0 ≤ p < 100.
+        Forward overlap p [%], 0 ≤ p < 100: the overlap actually flown at the height
+        checked (:func:`scanplan.core.flight.actual_overlap_pct` for a trigger distance
+        fixed at the planned height).
     min_stereo_overlap_pct : array_like
         Standard stereo overlap p_min [%] (norm parameter ``standard_forward_overlap_pct``,
         60 % in GKINP (GNTA)-02-036-02).
@@ -51,38 +60,107 @@ def stereo_base_fraction(
     Returns
     -------
     ndarray
-        B / footprint_along [-]: 0.4 for 60 %, 80 % and 90 % blocks (1, 2 and 4 steps),
-        0.3 for 70 % and 85 % (1 and 2 steps).
+        B / footprint_along [-]: 0.4 for every block flown at 60 % or more with
+        p_min = 60 %, 0.45 at 55 %.
 
     Notes
     -----
-    An 80 % UAV block keeps every second photo as a 60 % pair, so its stereo base is the
-    standard one; the single-step base (20 % of the footprint) halves B/H and doubles
-    σ_Z, which is why the parallax form with the single-step base is so pessimistic.
+    Why one standard pair, whatever the overlap above p_min: the least-squares
+    intersection of every ray of the strip (:func:`multi_ray_base_fraction`) is at
+    least as precise as this pair for every p ≥ 55 % (its effective base is 0.506 of
+    the footprint at 60 % and grows with p), so the pair is a conservative bound of the
+    multi-view block, with no jump where the widest whole-step pair changes (the model
+    before this one allowed 437 m at 80 % and 229 m at 79 % for the same camera).
 
     Examples
     --------
-    >>> round(float(stereo_base_fraction(80.0, 60.0)), 4)
-    0.4
+    >>> [round(float(x), 4) for x in stereo_base_fraction([55.0, 60.0, 79.0, 80.0], 60.0)]
+    [0.45, 0.4, 0.4, 0.4]
     """
     step = 1.0 - _f(forward_overlap_pct) / 100.0
     room = 1.0 - _f(min_stereo_overlap_pct) / 100.0
-    n = np.maximum(np.floor(room / step + _OVERLAP_EPS), 1.0)
-    return n * step
+    return np.maximum(step, room)
+
+
+def _dip_end(n: FloatArray) -> FloatArray:
+    """Where the RMS multi-ray base stops falling above n whole rays: m = n + (4 − n)/9."""
+    return n + np.maximum(4.0 - n, 0.0) / 9.0
+
+
+def _ray_base(m: FloatArray, n: FloatArray) -> FloatArray:
+    """B_eff / footprint for m exposures per footprint, n = ⌊m⌋ ≥ 2 (see
+    :func:`multi_ray_base_fraction`)."""
+    r = np.clip(m - n, 0.0, 1.0)
+    s2 = 1.0 / (m * m)
+    inv = (12.0 / s2) * ((1.0 - r) / (n * (n * n - 1.0)) + r / ((n + 1.0) * n * (n + 2.0)))
+    return np.sqrt(2.0 / inv)
+
+
+def multi_ray_base_fraction(forward_overlap_pct: ArrayLike) -> FloatArray:
+    """Effective base of the least-squares intersection of every ray of a strip, as a
+    fraction of the along-track footprint (RMS over the points of the strip).
+
+    Exposures every s = footprint/m, m = 1/(1 − p) (a real number). A ground point is seen
+    by n = ⌊m⌋ photos on a fraction 1 − r of the strip and by n + 1 on the rest, r = m − ⌊m⌋.
+    The least-squares intersection of n rays equally spaced by s (equal, independent image
+    errors σ_x per photo; parallax error σ_px = √2·σ_x) gives
+
+        σ_Z = σ_x·H²/(c·sqrt(S_n)),   S_n = s²·n(n² − 1)/12,
+
+    and a pair of base B gives σ_Z = σ_px·H²/(c·B). The RMS of σ_Z over the strip is that
+    of a pair of effective base
+
+        B_eff = sqrt(2 / ((1 − r)/S_n + r/S_{n+1})).
+
+    It is continuous in p and equals the all-ray value at whole m (75 %, 80 %, 90 %:
+    0.791, 0.894, 1.285 × footprint). Just above a whole m the spacing grows faster than
+    the rays are added and B_eff dips (by ≤ 1.5 % for n = 2, ≤ 0.2 % for n = 3; none for
+    n ≥ 4, where the dip condition 9r < 4 − n cannot hold): the function returns its lowest
+    value at this or any higher overlap, B_eff(max(m, n + (4 − n)/9)), so that more overlap
+    never lowers it: min(B_eff(max(m, n + (4 − n)/9)), B_eff at the end of the next
+    dip). Below m = 2 (p < 50 %) some ground is seen by one photo only and the
+    single step s is returned.
+
+    Parameters
+    ----------
+    forward_overlap_pct : array_like
+        Forward overlap p flown [%], 0 ≤ p < 100.
+
+    Returns
+    -------
+    ndarray
+        B_eff / footprint_along [-].
+
+    Notes
+    -----
+    Derived from the collinearity equations of the normal case (Kraus 2007; Luhmann et
+    al. 2014: the precision of a multi-image intersection grows with the spread of the
+    projection centres); ``tests/test_height_accuracy.py`` checks it against an explicit
+    least-squares adjustment averaged over point positions. It ignores the neighbouring
+    strips (a conservative omission) and everything that is not image noise (orientation,
+    ground control, calibration, the surface).
+
+    Examples
+    --------
+    >>> [round(float(x), 4) for x in multi_ray_base_fraction([60.0, 75.0, 80.0])]
+    [0.506, 0.7906, 0.8944]
+    """
+    step = 1.0 - _f(forward_overlap_pct) / 100.0
+    m = 1.0 / step
+    n = np.maximum(np.floor(m + _OVERLAP_EPS), 2.0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        here = _ray_base(np.maximum(m, _dip_end(n)), n)
+        after = _ray_base(_dip_end(n + 1.0), n + 1.0)  # the next dip's lowest value
+        eff = np.minimum(here, after)
+    return np.where(m < 2.0 - _OVERLAP_EPS, step, eff)
 
 
 def strip_multi_ray_factor(
     forward_overlap_pct: ArrayLike, min_stereo_overlap_pct: ArrayLike
 ) -> FloatArray:
-    """σ_Z of a point intersected from every photo of its strip, over σ_Z of the widest pair.
+    """σ_Z of the strip's multi-ray intersection over σ_Z of the standard pair (≤ 1).
 
-    A ground point lies in at least m = floor(1/(1 − p)) photos of its strip, taken every
-    s = (1 − p)·footprint. A least-squares intersection of the m rays (equal weights, image
-    error σ_x per photo, σ_px = √2·σ_x for a parallax) gives
-    σ_Z = σ_x·H²/(c·s·sqrt(m(m² − 1)/12)); the widest standard pair (n steps, see
-    :func:`stereo_base_fraction`) gives σ_Z = √2·σ_x·H²/(c·n·s). Their ratio is
-
-        f = n·sqrt(6 / (m·(m² − 1)))   (f = 1 for m = 2 or 3 with n = 1 or 2).
+    f = min(1, :func:`stereo_base_fraction` / :func:`multi_ray_base_fraction`).
 
     Parameters
     ----------
@@ -92,27 +170,21 @@ def strip_multi_ray_factor(
     Returns
     -------
     ndarray
-        f ≤ 1 [-]: 0.447 for an 80 % block (m = 5, n = 2), 1 for 60 %.
+        f ≤ 1 [-]: 0.447 for an 80 % block, 0.79 for 60 %.
 
     Notes
     -----
-    Derived here from the collinearity equations of the normal case (Kraus 2007; Luhmann et
-    al. 2014: the precision of a multi-image intersection grows with the square root of the
-    sum of squared base components). It assumes independent, equal image errors, ignores
-    the neighbouring strips (a conservative omission) and ignores the errors of the
-    orientation and of the ground control, which the check-point accuracy of real blocks
-    contains: that is why the norm sets leave it off (``multi_ray = off``).
+    The norm sets leave it off (``multi_ray = off``): check-point accuracy of real blocks
+    also contains orientation, control and calibration errors that more rays do not
+    remove (docs/uav-models.md §9).
 
     Examples
     --------
     >>> round(float(strip_multi_ray_factor(80.0, 60.0)), 4)
     0.4472
     """
-    step = 1.0 - _f(forward_overlap_pct) / 100.0
-    m = np.maximum(np.floor(1.0 / step + _OVERLAP_EPS), 2.0)
-    room = 1.0 - _f(min_stereo_overlap_pct) / 100.0
-    n = np.maximum(np.floor(room / step + _OVERLAP_EPS), 1.0)
-    return np.minimum(n * np.sqrt(6.0 / (m * (m * m - 1.0))), 1.0)
+    return np.minimum(stereo_base_fraction(forward_overlap_pct, min_stereo_overlap_pct)
+                      / multi_ray_base_fraction(forward_overlap_pct), 1.0)
 
 
 def normal_case_height_error_m(

@@ -83,6 +83,46 @@ class FilmTerrain:
     ground_low_m: float = math.nan
 
 
+def local_forward_overlap_pct(rules: ScanRules, forward_overlap_pct: float,
+                              photo_scale: float, local_scale: float) -> float:
+    """The forward overlap the height constraint sees at a frame of local scale Mc_l [%].
+
+    The exposures are spaced for the planned Mc, so the base on the ground is fixed,
+    B = b·Mc, and the image base of a frame at Mc_l is b_l = b·Mc/Mc_l — the overlap
+    1 − (1 − p)·Mc/Mc_l (:func:`scanplan.core.flight.actual_overlap_pct` with heights ∝ Mc).
+    The parallax form P_Z = V_z·b/(k·Mc·f) takes that local base. The Instruction's form
+    P_Z = V_z·f/(k·Mc·b) keeps the planned base, as it is checked as printed: with the
+    local one its value would not depend on the local scale at all (Mc_l·b_l = Mc·b).
+
+    Parameters
+    ----------
+    rules : ScanRules
+        ``height_formula`` picks the form.
+    forward_overlap_pct : float
+        Planned forward overlap p [%].
+    photo_scale, local_scale : float
+        Planned and local photo scale denominators Mc, Mc_l.
+
+    Returns
+    -------
+    float
+        The overlap for the height constraint at that frame [%].
+
+    Examples
+    --------
+    >>> from scanplan.norms import load_norm_set
+    >>> from dataclasses import replace
+    >>> r = replace(load_norm_set().rules(), height_formula="parallax")
+    >>> round(local_forward_overlap_pct(r, 60.0, 10000.0, 12000.0), 3)
+    66.667
+    """
+    if rules.height_formula != "parallax":
+        return float(forward_overlap_pct)
+    from ..core.flight import actual_overlap_pct
+
+    return float(actual_overlap_pct(forward_overlap_pct, photo_scale, local_scale))
+
+
 def film_terrain(layout: FlightLayout, ground: Ground, rules: ScanRules, *, map_scale: float,
                  photo_scale: float, relief_interval_m: float, focal_mm: float,
                  frame_along_mm: float, forward_overlap_pct: float,
@@ -116,9 +156,11 @@ def film_terrain(layout: FlightLayout, ground: Ground, rules: ScanRules, *, map_
     inverse[order] = np.arange(n)
     i = int(np.argmax(mc)) if n else 0
     mc_hi = float(mc[i]) if n else photo_scale
+    overlap = np.array([forward_overlap_pct, local_forward_overlap_pct(
+        rules, forward_overlap_pct, photo_scale, mc_hi)])  # the parallax form's local base
     ev = evaluate(rules, map_scale=map_scale, photo_scale=np.array([photo_scale, mc_hi]),
                   relief_interval_m=relief_interval_m, focal_mm=focal_mm,
-                  frame_along_mm=frame_along_mm, forward_overlap_pct=forward_overlap_pct,
+                  frame_along_mm=frame_along_mm, forward_overlap_pct=overlap,
                   resolving_power_lpmm=resolving_power_lpmm, object_size_m=object_size_m,
                   shape_coefficient=shape_coefficient)
     pix = np.asarray(ev.scan_pixel_um, dtype=float)

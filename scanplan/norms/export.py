@@ -47,6 +47,7 @@ def _set_rows(ns: Any, catalogue: bool = True) -> dict[str, list[dict[str, Any]]
                 "unit": raw.get("unit") or spec.value.unit,
                 "source": ns.parameter_sources.get(pname, ""),
                 "note": raw.get("note", ""),
+                "status": ns.parameter_status.get(pname) or None,
             }
         )
     sh = TABLES["shapes"]
@@ -61,12 +62,13 @@ def _set_rows(ns: Any, catalogue: bool = True) -> dict[str, list[dict[str, Any]]
                 "size_m": o.size_m,
                 "shape": o.shape,
                 "source": o.source or None,
+                "status": o.status or None,
             }
         )
     if ns.gsd_limits:
         out["gsd_limits"] = [
             {"map_scale": g.map_scale, "area": g.area, "max_gsd_cm": g.max_gsd_cm,
-             "source": g.source or None}
+             "source": g.source or None, "status": g.status or None}
             for g in ns.gsd_limits
         ]
     if not catalogue:

@@ -35,7 +35,8 @@ DIGITAL_HEIGHT_FORMULAS = ("normal_case", "instruction", "parallax")
 MULTI_RAY_MODES = ("off", "strip")
 LATER_PARAMETERS = ("digital_height_formula", "image_measurement_px", "multi_ray",
                     "uav_max_height_m", "block_relief_flat_pct", "block_relief_hilly_pct",
-                    "block_relief_mountain_pct", "min_sun_elevation_deg")
+                    "block_relief_mountain_pct", "min_sun_elevation_deg",
+                    "uav_uncontrolled_aerodrome_km")
 """Parameters added after norm sets were first stored: a stored set without them takes
 them from the bundled default set (its source says so) instead of failing to load."""
 ORIENTATIONS = ("landscape", "portrait")
@@ -223,6 +224,13 @@ PARAMETERS: dict[str, ParameterSpec] = {
             ("предельная высота полёта БВС",),
         ),
         ParameterSpec(
+            "uav_uncontrolled_aerodrome_km",
+            ValueSpec("float", 0, 1000, unit="km"),
+            "distance from uncontrolled aerodromes of UAV flights without an airspace-use "
+            "permission",
+            ("удаление от неконтролируемых аэродромов",),
+        ),
+        ParameterSpec(
             "block_relief_flat_pct",
             ValueSpec("float", 0, 100, min_open=True, unit="% of the flight height"),
             "largest ground height range of a block flown at one height, flat terrain",
@@ -285,6 +293,12 @@ class TableSpec:
 _TEXT = ValueSpec("text")
 _TEXT_OPT = ValueSpec("text", required=False)
 _SOURCE = ColumnSpec("source", _TEXT_OPT, "where the value comes from", ("источник",))
+FIGURE_STATUSES = ("norm", "recommendation", "estimate", "practice")
+"""What a norm figure is: a requirement of a norm, a recommendation (a recommended appendix, a
+draft's number: a project may set it aside with a reason), an estimate, or practice."""
+_STATUS = ColumnSpec("status", ValueSpec("choice", choices=FIGURE_STATUSES, required=False),
+                     "what the figure is: norm, recommendation, estimate or practice",
+                     ("статус",))
 
 TABLES: dict[str, TableSpec] = {
     t.name: t
@@ -299,6 +313,7 @@ TABLES: dict[str, TableSpec] = {
                 ColumnSpec("unit", _TEXT_OPT, "unit", ("единица", "ед. изм.")),
                 _SOURCE,
                 ColumnSpec("note", _TEXT_OPT, "note", ("примечание",)),
+                _STATUS,
             ),
             title_ru="Параметры",
             description="coefficients of the technical instruction",
@@ -362,6 +377,7 @@ TABLES: dict[str, TableSpec] = {
                 ),
                 ColumnSpec("shape", _TEXT, "shape id (a row of the shapes table)", ("форма",)),
                 _SOURCE,
+                _STATUS,
             ),
             title_ru="Минимальные объекты",
             description="smallest map objects per map scale (Miheeva & Ilushenko 2015, Table 3)",
@@ -544,6 +560,7 @@ TABLES: dict[str, TableSpec] = {
                      "рекомендуемый размер пикселя на местности (не более)"),
                 ),
                 _SOURCE,
+                _STATUS,
             ),
             required=False,
             title_ru="Предельный размер пикселя",

@@ -30,7 +30,14 @@ from ..rules.film import ScanRules
 from ..safeio import dir_lock, read_limited
 from .paths import CATALOGUE, DEFAULT_NORM_SET, bundled_norms_dir, user_norms_dir
 from .recovery import recover_norm_dir
-from .schema import LATER_PARAMETERS, PARAMETERS, TABLES, TableSpec, ValueSpec
+from .schema import (
+    FIGURE_STATUSES,
+    LATER_PARAMETERS,
+    PARAMETERS,
+    TABLES,
+    TableSpec,
+    ValueSpec,
+)
 
 __all__ = [
     "DEFAULT_NORM_SET",
@@ -93,6 +100,8 @@ class MapObject:
     size_m: float
     shape: str
     source: str
+    status: str = ""
+    """norm, recommendation, estimate or practice (``""``: not stated)."""
 
 
 PITCH_TOLERANCE = 0.02
@@ -187,6 +196,8 @@ class GsdLimit:
     area: str
     max_gsd_cm: float
     source: str = ""
+    status: str = ""
+    """norm, recommendation, estimate or practice (``""``: not stated)."""
 
 
 @dataclass(frozen=True)
@@ -225,6 +236,8 @@ class NormSet:
     scanner_details: Mapping[str, tuple[ScannerStep, ...]] = field(default_factory=dict)
     lens_mtf: Mapping[str, Mapping[str, LensCurve]] = field(default_factory=dict)
     gsd_limits: tuple[GsdLimit, ...] = ()
+    parameter_status: Mapping[str, str] = field(default_factory=dict)
+    """What each parameter is: norm, recommendation, estimate or practice (may be empty)."""
 
     def gsd_limit(self, map_scale: float, area: str = "general") -> GsdLimit | None:
         """The ``gsd_limits`` row for exactly this map scale and ``area``, or None.
@@ -492,7 +505,8 @@ def _load_gsd_limits(path: Path) -> tuple[GsdLimit, ...]:
             raise InputError(f"{path}:{i} (map_scale)", f"1:{key[0]} {key[1]} is listed twice "
                              f"(also row {seen[key]}); one row per scale and area")
         seen[key] = i
-        out.append(GsdLimit(r["map_scale"], r["area"], r["max_gsd_cm"], r["source"] or ""))
+        out.append(GsdLimit(r["map_scale"], r["area"], r["max_gsd_cm"], r["source"] or "",
+                            r.get("status") or ""))
     return tuple(sorted(out, key=lambda g: (g.map_scale, g.area)))
 
 
@@ -648,11 +662,14 @@ def _load_path(path: Path, bundled: bool,
     return read_norm_set_folder(path, bundled=bundled)
 
 
-def _read_parameters(pfile: Path, bundled: bool) -> tuple[dict[str, Any], dict[str, str]]:
-    """A set's parameters and their sources; parameters newer than a user set are taken
-    from the default set (with a note in the source)."""
+def _read_parameters(pfile: Path, bundled: bool
+                     ) -> tuple[dict[str, Any], dict[str, str], dict[str, str]]:
+    """A set's parameters, their sources and their status (norm, recommendation, estimate,
+    practice or ""); parameters newer than a user set are taken from the default set (with a
+    note in the source)."""
     params: dict[str, Any] = {}
     sources: dict[str, str] = {}
+    statuses: dict[str, str] = {}
     for i, row in enumerate(_read_csv(pfile), start=2):
         name = (row.get("name") or "").strip()
         if name not in PARAMETERS:
@@ -660,6 +677,11 @@ def _read_parameters(pfile: Path, bundled: bool) -> tuple[dict[str, Any], dict[s
                              f"{', '.join(PARAMETERS)}")
         params[name] = _convert(row.get("value"), PARAMETERS[name].value, f"{pfile}:{i} (value)")
         sources[name] = (row.get("source") or "").strip()
+        status = (row.get("status") or "").strip()
+        if status and status not in FIGURE_STATUSES:
+            raise InputError(f"{pfile}:{i} (status)", f"must be one of "
+                             f"{', '.join(FIGURE_STATUSES)} (got {status!r})")
+        statuses[name] = status
     missing = [n for n in PARAMETERS if n not in params]
     if missing and not bundled and set(missing) <= set(LATER_PARAMETERS):
         base = load_norm_set(DEFAULT_NORM_SET)
@@ -667,10 +689,11 @@ def _read_parameters(pfile: Path, bundled: bool) -> tuple[dict[str, Any], dict[s
             params[n] = base.parameters[n]
             sources[n] = (f"{base.parameter_sources[n]} (taken from {DEFAULT_NORM_SET}: this "
                           "set predates the parameter)")
+            statuses[n] = base.parameter_status.get(n, "")
         missing = []
     if missing:
         raise InputError(str(pfile), f"missing parameters: {', '.join(missing)}")
-    return params, sources
+    return params, sources, statuses
 
 
 def _set_catalogue(path: Path) -> tuple[dict[str, Camera], dict[str, tuple[float, ...]],
@@ -710,7 +733,7 @@ def read_norm_set_folder(path: Path, *, bundled: bool = False) -> NormSet:
     except (OSError, tomllib.TOMLDecodeError) as exc:
         raise InputError(f"{path / 'set.toml'}", f"cannot be read: {exc}") from None
     pfile = path / "parameters.csv"
-    params, sources = _read_parameters(pfile, bundled)
+    params, sources, statuses = _read_parameters(pfile, bundled)
     shape_rows = {r["shape"]: r for r in _typed_rows(path / "shapes.csv", TABLES["shapes"])}
     shapes = {k: float(r["coefficient"]) for k, r in shape_rows.items()}
     if params["shape"] not in shapes:
@@ -722,7 +745,8 @@ def read_norm_set_folder(path: Path, *, bundled: bool = False) -> NormSet:
             raise InputError(f"{path / 'objects.csv'} (shape)",
                              f"shape {r['shape']!r} of {r['object']!r} is not in shapes.csv")
         objects.append(MapObject(r["map_scale"], r["object"], r["object_ru"] or "",
-                                 r["size_m"], r["shape"], r["source"] or ""))
+                                 r["size_m"], r["shape"], r["source"] or "",
+                                 r.get("status") or ""))
     cams, steps, names, details, lens = _set_catalogue(path)
     return NormSet(
         name=str(meta.get("name") or path.name),
@@ -745,6 +769,7 @@ def read_norm_set_folder(path: Path, *, bundled: bool = False) -> NormSet:
         lens_mtf=_checked_lens(lens, cams),
         gsd_limits=(_load_gsd_limits(path / "gsd-limits.csv")
                     if (path / "gsd-limits.csv").is_file() else ()),
+        parameter_status=statuses,
     )
 
 

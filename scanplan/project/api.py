@@ -366,6 +366,8 @@ def uav_job(
     max_height_m: float | None = None,
     gsd_cm: float | None = None,
     gsd_area: str = _UAV["gsd_area"],
+    parallax_error_px: float | None = None,
+    gsd_limit_reason: str | None = None,
     area: Area | None = None,
     layout_options: LayoutOptions | None = None,
 ) -> UavJob:
@@ -420,8 +422,12 @@ def uav_job(
     frame = _digital_frame(cam, pixel_um, focal_mm, sensor_mm, f_number, orientation)
     mk, rules, map_obj, objects = _map_constraints(
         ns, map_scale, relief_interval_m, probability, height_formula, object_size_m, shape,
-        object_name)
-    gsd_row = _gsd_limit_row(ns, rules, mk, gsd_area)
+        object_name, parallax_error_px)
+    if gsd_limit_reason is not None and (not isinstance(gsd_limit_reason, str)
+                                         or not gsd_limit_reason.strip()):
+        raise InputError("gsd_limit_reason", "must be the reason, as text, for setting the "
+                         "recommendation aside")
+    gsd_row = None if gsd_limit_reason else _gsd_limit_row(ns, rules, mk, gsd_area)
     area_w = area_l = None
     if area_m is not None:
         area_w, area_l = parse_area_m(area_m, "area_m")
@@ -444,6 +450,8 @@ def uav_job(
         ceiling_m=float(max_height_m) if max_height_m is not None
         else None if aircraft else float(ns.parameters["uav_max_height_m"]),
         ceiling_from_project=max_height_m is not None,
+        aerodrome_distance_km=None if aircraft or max_height_m is not None
+        else float(ns.parameters["uav_uncontrolled_aerodrome_km"]),
         gsd_target_m=gsd_cm / 100.0 if gsd_cm is not None else None,
         gsd_limit_m=gsd_row.max_gsd_cm / 100.0 if gsd_row else None,
         gsd_limit_area=gsd_row.area if gsd_row else "general",
@@ -514,7 +522,8 @@ def _digital_frame(cam: Any, pixel_um: float | None, focal_mm: float | None,
 
 def _map_constraints(ns: NormSet, map_scale: object | None, relief_interval_m: float | None,
                      probability: float | None, height_formula: str | None,
-                     object_size_m: float | None, shape: str | None, object_name: str | None
+                     object_size_m: float | None, shape: str | None, object_name: str | None,
+                     parallax_error_px: float | None = None
                      ) -> tuple[float | None, ScanRules | None, ObjectSpec | None,
                                 tuple[ObjectSpec, ...]]:
     """With a map scale: Mk, the norm set's rules, the map's object; and the objects the
@@ -533,7 +542,10 @@ def _map_constraints(ns: NormSet, map_scale: object | None, relief_interval_m: f
             if not isinstance(height_formula, str) or spec.check(height_formula):
                 raise InputError("height_formula", f"must be {spec.describe()} for a digital "
                                  f"camera (got {height_formula!r})")
-        rules = ns.rules(probability=probability, digital_height_formula=height_formula)
+        if parallax_error_px is not None:
+            check_domain("parallax_error_px", parallax_error_px)
+        rules = ns.rules(probability=probability, digital_height_formula=height_formula,
+                         image_measurement_px=parallax_error_px)
         map_obj = resolve_object(ns, mk, object_size_m=object_size_m, shape=shape,
                                  object_name=object_name)
         if map_obj is None and "PD" in rules.constraints:

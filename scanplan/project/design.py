@@ -7,7 +7,10 @@ Three checks beside the Instruction's constraints, each with its norm:
   (here it is only read back for the sheet); for film the scanned ground pixel
   (scan pixel × Mc) is compared with the same table, for information;
 - one photographing height per block (ГОСТ Р 59328-2021 §6.2.1, second draft):
-  :func:`scanplan.core.blocks.block_height_check` on ``[terrain] ground_elevation_m``;
+  :func:`scanplan.core.blocks.block_height_check` on the ground of the plan — the DEM's
+  samples under every photo's footprint (``[terrain] dem``), else ``[terrain]
+  ground_elevation_m``; waived, with the reason printed, when the flight follows the relief
+  (``[terrain] altitude_mode = "follow"``), as the draft's wording allows;
 - the sun window and the flying days (:mod:`scanplan.geo.sun`) from ``[site]`` and
   ``[schedule]``.
 
@@ -78,6 +81,10 @@ class GsdCompliance:
         Digital: GL is the binding constraint of the flight height.
     source : str
         The table row's source cell.
+    status : str
+        What the figure is (the row's status: a recommendation for Table Б.1).
+    set_aside : str
+        The project's reason for setting the recommendation aside (``""``: applied).
     """
 
     workflow: str
@@ -88,6 +95,8 @@ class GsdCompliance:
     complies: bool
     binding: bool
     source: str
+    status: str = ""
+    set_aside: str = ""
 
 
 @dataclass(frozen=True)
@@ -145,10 +154,34 @@ class SurveyDesign:
     block_source: str
     sun: SunPlan | None
     warnings: tuple[PlanWarning, ...]
+    block_ground: str = ""  # "dem": the DEM's samples; "range": [terrain] ground_elevation_m
+    block_waived: bool = False  # the flight follows the relief: the rule does not apply
+    block_status: str = ""  # what the block relief numbers are (a draft's recommendation)
+    block_set_aside: str = ""  # the project's reason for setting the rule aside
+    sun_status: str = ""  # what the norm set's sun elevation is (practice); "" if the project's
 
 
 def _where(project: Project, section: str, key: str) -> str:
     return f"{project.path}: {project.where(section, key)}"
+
+
+def _worst_gsd_m(uav: UavSpec) -> float:
+    """The GSD at the highest flown height of the worst photo [m]: over relief
+    (``[terrain]``) the photo highest above its ground — photos.csv's largest ``gsd_cm`` —
+    times 1 + the height tolerance; on flat ground the plan's."""
+    import numpy as np
+
+    plan = uav.job.plan
+    flat = float(plan.gsd_at_max_height_m)
+    terrain = getattr(uav, "terrain", None)
+    if terrain is None:
+        return flat
+    gsd_cm = np.asarray(terrain.layout.photos.columns.get("gsd_cm", ()), dtype=float)
+    gsd_cm = gsd_cm[np.isfinite(gsd_cm)]
+    if not gsd_cm.size:
+        return flat
+    up = 1.0 + plan.inputs.height_tolerance_up_pct / 100.0
+    return max(flat, float(gsd_cm.max()) / 100.0 * up)
 
 
 def _gsd_checks(project: Project, film: FilmSpec | None, uav: UavSpec | None
@@ -158,14 +191,29 @@ def _gsd_checks(project: Project, film: FilmSpec | None, uav: UavSpec | None
     area = project.get("norms", "gsd_area") or "general"
     if uav is not None:
         inp = uav.job.plan.inputs
+        reason = project.get("norms.gsd_limits", "reason") or ""
+        ns = uav.job.norm_set
+        row = (ns.gsd_limit(inp.map_scale, area) if inp.map_scale is not None
+               and "GL" in ns.parameters["constraints"] else None)
         if inp.gsd_limit_m is not None and inp.map_scale is not None:
             plan = uav.job.plan
+            gsd_m = _worst_gsd_m(uav)
             out.append(GsdCompliance(
                 "digital", int(inp.map_scale), inp.gsd_limit_area,
                 round(inp.gsd_limit_m * 100.0, 9),  # the table's cm, without float noise
-                plan.gsd_at_max_height_m * 100.0,
-                plan.gsd_at_max_height_m <= inp.gsd_limit_m * (1 + 1e-9),
-                plan.binding == "GL", inp.gsd_limit_source))
+                gsd_m * 100.0, gsd_m <= inp.gsd_limit_m * (1 + 1e-9),
+                plan.binding == "GL", inp.gsd_limit_source,
+                row.status if row is not None else ""))
+        elif reason and row is not None:
+            gsd_m = _worst_gsd_m(uav)
+            out.append(GsdCompliance(
+                "digital", int(inp.map_scale), row.area, row.max_gsd_cm, gsd_m * 100.0,
+                gsd_m <= row.max_gsd_cm / 100.0 * (1 + 1e-9), False, row.source, row.status,
+                reason))
+            warnings.append(PlanWarning("recommendation_set_aside", Message(
+                "recommendation_set_aside", reason=reason, what=Message(
+                    "set_aside.gsd_limits", gsd=gsd_m * 100.0, limit=row.max_gsd_cm)),
+                severity="info"))
     if film is not None and film.recommended is not None:
         ns = film.job.norm_set
         rules = film.job.plan.rules
@@ -199,27 +247,73 @@ def _flight_height_m(film: FilmSpec | None, uav: UavSpec | None) -> float | None
     return None
 
 
+def _ground_samples(project: Project, film: FilmSpec | None, uav: UavSpec | None
+                    ) -> tuple[Any, str] | None:
+    """The ground elevations of the block [m] and where they come from.
+
+    ``"dem"``: with a DEM, the lowest and highest ground under every photo's footprint
+    and under its centre (the UAV terrain check's columns; for film the ground under
+    every frame); ``"range"``: ``[terrain] ground_elevation_m``; None without either.
+    """
+    import numpy as np
+
+    terrain = getattr(uav, "terrain", None)
+    if terrain is not None and terrain.ground.source == "dem":
+        cols = terrain.layout.photos.columns
+        parts = [np.asarray(cols[k], dtype=float).ravel()
+                 for k in ("ground_min_m", "ground_max_m", "ground_m") if k in cols]
+        z = np.concatenate(parts) if parts else np.zeros(0)
+        z = z[np.isfinite(z)]
+        if z.size:
+            return z, "dem"
+        return np.array([terrain.ground.low_m, terrain.ground.high_m]), "dem"
+    ft = getattr(film, "terrain", None)
+    if ft is not None and ft.ground_known and ft.ground_m is not None:
+        z = np.asarray(ft.ground_m, dtype=float)
+        z = z[np.isfinite(z)]
+        if z.size:
+            return np.append(z, ft.ground_low_m) if np.isfinite(ft.ground_low_m) else z, "dem"
+    ground = project.get("terrain", "ground_elevation_m")
+    if ground is not None:
+        return ground, "range"
+    return None
+
+
 def _block(project: Project, film: FilmSpec | None, uav: UavSpec | None
-           ) -> tuple[BlockHeightCheck | None, str, list[PlanWarning]]:
+           ) -> tuple[BlockHeightCheck | None, str, list[PlanWarning], str, bool]:
+    """The one-height rule (ГОСТ Р 59328 §6.2.1, second draft) on the block's ground:
+    (check, its source, warnings, where the ground came from, waived)."""
     relief = project.get("terrain", "relief_class", "flat")
     if relief not in RELIEF_CLASSES:
         raise InputError(_where(project, "terrain", "relief_class"),
                          f"must be one of {', '.join(RELIEF_CLASSES)} (got {relief!r})")
-    ground = project.get("terrain", "ground_elevation_m")
+    samples = _ground_samples(project, film, uav)
     height = _flight_height_m(film, uav)
-    if ground is None or height is None:
-        return None, "", []
+    if samples is None or height is None:
+        return None, "", [], "", False
+    ground, origin = samples
     ns = (uav.job.norm_set if uav is not None else film.job.norm_set)  # type: ignore[union-attr]
     pname = {"flat": "block_relief_flat_pct", "hilly": "block_relief_hilly_pct",
              "mountainous": "block_relief_mountain_pct"}[relief]
     check = block_height_check(ground, height, relief, float(ns.parameters[pname]))
     warnings = []
-    if check.split_needed:
+    waived = project.get("terrain", "altitude_mode", "constant") == "follow"
+    set_aside = project.get("norms.block_relief", "reason") or ""
+    if set_aside:
+        warnings.append(PlanWarning("recommendation_set_aside", Message(
+            "recommendation_set_aside", reason=set_aside, what=Message(
+                "set_aside.block_relief", pct=check.range_pct, limit=check.limit_pct)),
+            severity="info"))
+    elif waived:
+        warnings.append(PlanWarning("block_height_waived", Message(
+            "block_height_waived", range=check.range_m, pct=check.range_pct, h=height,
+            limit=check.limit_pct, relief=Message(f"relief.{relief}")), severity="info"))
+    elif check.split_needed:
         warnings.append(PlanWarning("block_split", Message(
             "block_split", range=check.range_m, pct=check.range_pct, h=height,
             limit=check.limit_pct, relief=Message(f"relief.{relief}"), n=check.blocks,
             bands=[Message("block.band", lo=lo, hi=hi) for lo, hi in check.bands_m])))
-    return check, ns.parameter_sources.get(pname, ""), warnings
+    return check, ns.parameter_sources.get(pname, ""), warnings, origin, waived
 
 
 def layout_of(spec: FilmSpec | UavSpec | None) -> FlightLayout | None:
@@ -349,9 +443,19 @@ def survey_design(project: Project, film: FilmSpec | None, uav: UavSpec | None
         raise InputError(_where(project, "norms", "gsd_area"),
                          f"must be one of {', '.join(GSD_AREAS)} (got {area!r})")
     gsd, w1 = _gsd_checks(project, film, uav)
-    block, block_source, w2 = _block(project, film, uav)
+    block, block_source, w2, block_ground, waived = _block(project, film, uav)
     sun, w3 = _sun(project, film, uav)
-    return SurveyDesign(tuple(gsd), block, block_source, sun, tuple(w1 + w2 + w3))
+    ns = uav.job.norm_set if uav is not None else film.job.norm_set if film is not None \
+        else None
+    status = ns.parameter_status if ns is not None else {}
+    relief = project.get("terrain", "relief_class", "flat")
+    pname = {"flat": "block_relief_flat_pct", "hilly": "block_relief_hilly_pct",
+             "mountainous": "block_relief_mountain_pct"}.get(relief, "block_relief_flat_pct")
+    sun_status = ("" if sun is None or sun.elevation_source == "project"
+                  else status.get("min_sun_elevation_deg", ""))
+    return SurveyDesign(tuple(gsd), block, block_source, sun, tuple(w1 + w2 + w3),
+                        block_ground, waived, status.get(pname, ""),
+                        project.get("norms.block_relief", "reason") or "", sun_status)
 
 
 def design_dict(design: SurveyDesign) -> dict[str, Any]:
@@ -359,7 +463,8 @@ def design_dict(design: SurveyDesign) -> dict[str, Any]:
     out: dict[str, Any] = {"gsd_limits": [
         {"workflow": g.workflow, "map_scale": g.map_scale, "area": g.area,
          "limit_cm": g.limit_cm, "gsd_cm": round(g.gsd_cm, 4), "complies": g.complies,
-         "binding": g.binding, "source": g.source} for g in design.gsd]}
+         "binding": g.binding, "source": g.source, "status": g.status,
+         "set_aside": g.set_aside or None} for g in design.gsd]}
     b = design.block
     if b is not None:
         out["block_height"] = {
@@ -368,7 +473,9 @@ def design_dict(design: SurveyDesign) -> dict[str, Any]:
             "ground_max_m": b.ground_max_m, "range_m": b.range_m,
             "range_pct": round(b.range_pct, 3), "split_needed": b.split_needed,
             "blocks": b.blocks, "bands_m": [list(x) for x in b.bands_m],
-            "source": design.block_source}
+            "samples": b.samples, "ground": design.block_ground,
+            "waived": design.block_waived, "source": design.block_source,
+            "status": design.block_status, "set_aside": design.block_set_aside or None}
     s = design.sun
     if s is not None:
         lo, hi = s.window_hours

@@ -208,6 +208,14 @@ _RECORDS: tuple[Input, ...] = (
           option="--gsd-area", commands=(UAV,), choices=("general", "dense_urban"),
           cli_help="row of the largest GSD per plan scale (GOST R 59562-2021 Table B.1): "
           "dense_urban = towns with dense multi-storey buildings, 14 cm at 1:2000"),
+    Input("gsd_limit_reason", "norms.gsd_limits", "reason", _STR, "sets the recommendation of "
+          "GOST R 59562-2021 Table B.1 (largest GSD per plan scale, a recommended appendix) "
+          "aside for this project, for the reason given; the specification prints it",
+          note="optional", commands=(UAV,)),
+    Input("block_relief_reason", "norms.block_relief", "reason", _STR, "sets the one-height "
+          "rule of a block (GOST R 59328-2021 §6.2.1, the second draft's 7/15/25 %, a "
+          "recommendation) aside for this project, for the reason given; the specification "
+          "prints it", note="optional"),
     Input("recognition_rounding", "", "", _STR, "sqrt(-ln P) exactly, or the paper's "
           "rounded 0.53", option="--rounding", commands=(FILM,), choices=("exact", "paper")),
     # [film]
@@ -276,6 +284,11 @@ _RECORDS: tuple[Input, ...] = (
     Input("gsd_cm", "uav", "gsd_cm", _NUM, "target ground sample distance [cm]: the flight "
           "must deliver it at the highest flown height", "cm", note="optional",
           domain="gsd_cm", option="--gsd-cm", commands=(UAV,)),
+    Input("parallax_error_px", "uav", "parallax_error_px", _NUM, "RMS error of a measured "
+          "x-parallax σ_px in the height-accuracy model [px]: an assumption (tie-point "
+          "reprojection errors of processing reports suggest 0.5–1.4 px)", "px",
+          note="default: the norm set's image_measurement_px, 0.5",
+          domain="parallax_error_px", option="--parallax-error-px", commands=(UAV,)),
     Input("max_height_m", "uav", "max_height_m", _NUM, "altitude ceiling for the highest "
           "flown height above ground [m]", "m", note="default for a UAV: the norm set's, "
           "150 m; none for an aircraft", domain="max_height_m", option="--max-height-m",
@@ -524,7 +537,7 @@ def key_table() -> dict[str, dict[str, tuple[str, str]]]:
 
 _DOC_NOTES = {("norms", "object_name"): ' (an unnamed own object is "object of the given '
                                           'size" / «объект заданного размера»)'}
-_BLOCK = re.compile(r"(<!-- keys: (?P<section>[a-z.]+) -->\n)(.*?)(<!-- /keys -->)", re.DOTALL)
+_BLOCK = re.compile(r"(<!-- keys: (?P<section>[a-z._]+) -->\n)(.*?)(<!-- /keys -->)", re.DOTALL)
 
 
 def markdown_table(section: str) -> str:

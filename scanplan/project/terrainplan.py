@@ -28,7 +28,12 @@ from ..geo.terrain import (
     uav_terrain,
 )
 from ..geo.terrain_choice import DIRECTIONS_DEG, ModeHeights, mode_heights
-from ..geo.terrain_film import FilmTerrain, film_terrain, frames_over_terrain
+from ..geo.terrain_film import (
+    FilmTerrain,
+    film_terrain,
+    frames_over_terrain,
+    local_forward_overlap_pct,
+)
 from ..messages import Message
 from ..rules.results import PlanWarning, ScanPlan, ScanRules, ScanScenario
 from .api import UavJob, recommended_height_m
@@ -141,7 +146,8 @@ def uav_terrain_spec(project: Project, cfg: TerrainConfig, job: UavJob,
     res = replace(res, layout=layout)
     hint = _other_choice(cfg, res, choice, start_m) if choice is not None else None
     warnings = res.warnings + ((hint,) if hint is not None else ())
-    return replace(job, layout=layout), res, rec, reason, warnings
+    return (replace(job, layout=layout), res, rec, reason,
+            warnings + _height_accuracy_over_relief(job, res))
 
 
 def _settle(project: Project, cfg: TerrainConfig, job: UavJob,
@@ -256,6 +262,36 @@ def _other_choice(cfg: TerrainConfig, res: TerrainResult, choice: ModeHeights,
         now=n, pct=(1.0 - n_alt / n) * 100.0), severity="info")
 
 
+def _height_accuracy_over_relief(job: UavJob, res: TerrainResult) -> tuple[PlanWarning, ...]:
+    """σ_Z at the photo highest above its ground, at its highest flown height, with the
+    mission's trigger distance (fixed in metres at the planned height): a warning when it
+    exceeds V_z. The terrain check holds every photo to the flat limit, which is exact for a
+    block flown at the standard overlap or more (the base of the standard pair grows with
+    the height above ground); below it the one-step base is fixed in metres and the photos
+    over low ground can miss V_z (docs/uav-models.md §9)."""
+    import numpy as np
+
+    from ..rules.constraints import sigma_z_m
+
+    acc = job.plan.height_accuracy
+    if acc.get("formula") != "normal_case":
+        return ()
+    agl = np.asarray(res.layout.photos.columns.get("agl_m", ()), dtype=float)
+    agl = agl[np.isfinite(agl)]
+    if not agl.size:
+        return ()
+    inp = job.plan.inputs
+    rules = replace(job.norm_set.rules(), image_measurement_px=acc["image_measurement_px"],
+                    multi_ray=acc["multi_ray"])
+    flown = float(agl.max()) * (1.0 + inp.height_tolerance_up_pct / 100.0)
+    sz = float(sigma_z_m(inp, rules, flown))
+    if sz <= acc["height_accuracy_m"] * (1 + 1e-9):
+        return ()
+    return (PlanWarning("terrain_height_accuracy", Message(
+        "terrain_height_accuracy", sz=sz, vz=acc["height_accuracy_m"], agl=flown,
+        planned=inp.height_m, overlap=inp.forward_overlap_pct)),)
+
+
 def _missed_at_planned(checked: tuple[PlanWarning, ...], mode: str) -> Message | None:
     """Why the height the project gave was lowered: its ``terrain_resolution`` finding
     (which photo, which strips, by how much), with the ways to fly higher instead of "lower
@@ -319,6 +355,14 @@ def _film_args(plan: ScanPlan, photo_scale: float) -> dict[str, Any]:
                 shape_coefficient=obj.shape_coefficient if obj is not None else math.nan)
 
 
+def _at_worst_frame(plan: ScanPlan, ft: FilmTerrain) -> Any:
+    """The engine's inputs at the frame with the largest local Mc: that scale, and for the
+    parallax form the local image base (:func:`local_forward_overlap_pct`)."""
+    inp = plan.inputs
+    return replace(inp, photo_scales=(ft.mc_max,), forward_overlap_pct=local_forward_overlap_pct(
+        plan.rules, inp.forward_overlap_pct, ft.photo_scale, ft.mc_max))
+
+
 def worst_frame_scenario(plan: ScanPlan, candidate: ScanScenario, ft: FilmTerrain
                          ) -> tuple[ScanScenario, ScanScenario]:
     """The engine's scenario at the block's smallest local photo scale (``ft.mc_max``):
@@ -326,7 +370,7 @@ def worst_frame_scenario(plan: ScanPlan, candidate: ScanScenario, ft: FilmTerrai
     the flown scale of ``candidate``, ``local_photo_scale`` = Mc max)."""
     from ..rules.film import plan_scan
 
-    raw = plan_scan(replace(plan.inputs, photo_scales=(ft.mc_max,)), plan.rules).scenarios[0]
+    raw = plan_scan(_at_worst_frame(plan, ft), plan.rules).scenarios[0]
     return raw, replace(raw, photo_scale=candidate.photo_scale,
                         photo_to_map_ratio=candidate.photo_to_map_ratio,
                         local_photo_scale=ft.mc_max)
@@ -425,7 +469,7 @@ def archive_over_terrain(project: Project, cfg: TerrainConfig, raw: Any, flat_jo
     plan = raw.plan
     ft = film_terrain_spec(project, cfg, layout, plan.rules,
                            **_film_args(plan, flat.photo_scale))
-    worst_plan = plan_scan(replace(plan.inputs, photo_scales=(ft.mc_max,)), plan.rules)
+    worst_plan = plan_scan(_at_worst_frame(plan, ft), plan.rules)
     wjob, ws, _ = archive_film(replace(raw, plan=worst_plan))
     headline = replace(ws, photo_scale=flat.photo_scale,
                        photo_to_map_ratio=flat.photo_to_map_ratio, local_photo_scale=ft.mc_max)

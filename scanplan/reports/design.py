@@ -21,7 +21,7 @@ from ..messages import Message, localize, plural, scale_text
 from ..rules.registry import CONSTRAINTS
 from .labels import t
 from .view import Numbers
-from .wording import camera_title, display_message, document_date, sentence
+from .wording import camera_title, display_message, document_date, sentence, with_status
 
 _PARTS = {"en": ("part", "parts"), "ru": ("часть", "части", "частей")}
 
@@ -124,8 +124,10 @@ def _gsd_row(design: Any, workflow: str, w: _W) -> tuple[str, str, str] | None:
             verdict = w.t("design_complies" if g.complies else "design_exceeds")
             value = w.t("design_gsd_value", gsd=w.n(g.gsd_cm, 1), limit=w.n(g.limit_cm, 0),
                         verdict=verdict, sign="≤" if g.complies else ">")
-            norm = w.cite(GSD_TABLE) + (
+            norm = with_status(w.cite(GSD_TABLE), getattr(g, "status", ""), w.loc) + (
                 "; " + w.t("design_dense_urban") if g.area == "dense_urban" else "")
+            if getattr(g, "set_aside", ""):
+                norm += "; " + w.t("design_set_aside", reason=g.set_aside)
             if workflow == "film":
                 norm += "; " + w.t("design_information")
             label = "design_gsd_digital" if workflow == "digital" else "design_gsd_film"
@@ -221,10 +223,19 @@ def _block_rows(design: Any, w: _W) -> list[tuple[str, str, str]]:
     relief = localize(Message(f"relief.{b.relief_class}"), w.loc)
     value = w.t("design_block_value", lo=w.n(b.ground_min_m, 0), hi=w.n(b.ground_max_m, 0),
                 pct=w.n(b.range_pct, 1), limit=w.n(b.limit_pct, 0), relief=relief)
-    value += " — " + (w.t("design_block_split", n=b.blocks, parts=plural(
-                          b.blocks, _PARTS[w.loc], w.loc)) if b.split_needed
-                      else w.t("design_block_one"))
-    return [(w.t("design_block"), value, w.cite(design.block_source))]
+    if getattr(design, "block_ground", "") == "dem":
+        value += " " + w.t("design_block_dem", n=b.samples)
+    if getattr(design, "block_set_aside", ""):
+        value += " — " + w.t("design_set_aside", reason=design.block_set_aside)
+    elif getattr(design, "block_waived", False):
+        value += " — " + w.t("design_block_waived")
+    else:
+        value += " — " + (w.t("design_block_split", n=b.blocks, parts=plural(
+                              b.blocks, _PARTS[w.loc], w.loc)) if b.split_needed
+                          else w.t("design_block_one"))
+    return [(w.t("design_block"), value,
+             with_status(w.cite(design.block_source), getattr(design, "block_status", ""),
+                         w.loc))]
 
 
 def _zone(s: Any, w: _W) -> str:
@@ -249,7 +260,7 @@ def _sun_rows(design: Any, w: _W) -> list[tuple[str, str, str]]:
     span = (f"{first.start_local:%H:%M}–{first.end_local:%H:%M}" if first.start_local
             else "—")
     source = w.t("design_norm_project") if s.elevation_source == "project" else \
-        w.cite(s.elevation_source)
+        with_status(w.cite(s.elevation_source), getattr(design, "sun_status", ""), w.loc)
     rows = [(w.t("design_site"), w.t("design_site_value", lat=w.n(s.lat_deg, 4),
                                      lon=w.n(s.lon_deg, 4)), ""),
             (w.t("design_dates"), f"{w.date(s.start_date)} … {w.date(s.end_date)}",
@@ -388,6 +399,7 @@ def write_gsd_limits(book: Any, ws: Any, row: int, ns: Any) -> int:
         put_num(ws, row, 1, g.map_scale, '"1:"0')
         put_text(ws, row, 2, localize(Message(f"gsd_area.{g.area}"), book.loc), wrap=True)
         put_num(ws, row, 3, g.max_gsd_cm, "0.##")
-        put_text(ws, row, 4, book.bib.cite(g.source), wrap=True)
+        put_text(ws, row, 4, with_status(book.bib.cite(g.source), g.status, book.loc),
+                 wrap=True)
         row += 1
     return row

@@ -324,7 +324,7 @@ LABELS: dict[str, dict[str, str]] = {
         "ceiling_m": "Altitude ceiling (highest flown height), m",
         "constraints_max_height_m": "Maximum planned height without the ceiling, m",
         "height_accuracy_m": "Required height accuracy V_z (RMS), m",
-        "sigma_z_m": "Height error σ_Z at the highest flown height, m",
+        "sigma_z_m": "Idealised stereo precision σ_Z at the highest flown height, m",
         "stereo_base_to_height": "Stereo base-to-height ratio B/H",
         "image_measurement_px": "Parallax measurement error σ_px, px",
         "height_forms": "Maximum planned height by height formula",
@@ -346,14 +346,18 @@ LABELS: dict[str, dict[str, str]] = {
         "param_block_relief_mountain_pct": "Ground height range of a block at one height, "
                                            "mountainous terrain, % of the flight height",
         "param_min_sun_elevation_deg": "Lowest sun elevation for photography, °",
+        "param_uav_uncontrolled_aerodrome_km": "Least distance from uncontrolled aerodromes "
+                                               "without an airspace-use permission, km",
         "value_digital_height_formula_normal_case": "normal-case stereo (B/f)",
         "value_digital_height_formula_instruction": "as printed in the Instruction (f/b)",
         "value_digital_height_formula_parallax": "parallax form (b/f)",
         "value_multi_ray_off": "off (one stereo pair)",
         "value_multi_ray_strip": "all photos of the strip",
-        "pdf_height_forms": "Height error σ_Z = {sigma} m at the highest flown height {h} m "
-                            "(required V_z = {vz} m, RMS). Maximum planned height by height "
-                            "formula — {forms}.",
+        "pdf_height_forms": "Idealised stereo precision σ_Z = {sigma} m at the highest flown "
+                            "height {h} m (required V_z = {vz} m, RMS): image measurement "
+                            "only, with the parallax error σ_px an assumption; ground control, "
+                            "camera calibration and the surface are not in it. Maximum "
+                            "planned height by height formula — {forms}.",
         "spec_cmp_data_volume": "data volume, uncompressed",
     },
     "ru": {
@@ -677,7 +681,8 @@ LABELS: dict[str, dict[str, str]] = {
         "ceiling_m": "Предельная высота полёта (наибольшая фактическая), м",
         "constraints_max_height_m": "Максимальная плановая высота без учёта предельной, м",
         "height_accuracy_m": "Требуемая точность высот V_z (СКО), м",
-        "sigma_z_m": "Ошибка высот σ_Z на наибольшей фактической высоте, м",
+        "sigma_z_m": "Идеализированная точность стереоизмерений σ_Z на наибольшей "
+                     "фактической высоте, м",
         "stereo_base_to_height": "Отношение базиса к высоте B/H",
         "image_measurement_px": "Ошибка измерения параллакса σ_px, пикс.",
         "height_forms": "Максимальная плановая высота по формулам точности высот",
@@ -703,14 +708,20 @@ LABELS: dict[str, dict[str, str]] = {
                                            "одной высоте фотографирования, горная местность, % "
                                            "от высоты",
         "param_min_sun_elevation_deg": "Наименьшая высота Солнца при аэрофотосъёмке, °",
+        "param_uav_uncontrolled_aerodrome_km": "Наименьшее удаление от неконтролируемых "
+                                               "аэродромов без разрешения на использование "
+                                               "воздушного пространства, км",
         "value_digital_height_formula_normal_case": "нормальный случай стереосъёмки (B/f)",
         "value_digital_height_formula_instruction": "по Инструкции (f/b)",
         "value_digital_height_formula_parallax": "параллактическая (b/f)",
         "value_multi_ray_off": "нет (одна стереопара)",
         "value_multi_ray_strip": "все снимки маршрута",
-        "pdf_height_forms": "Ошибка высот σ_Z = {sigma} м на наибольшей фактической высоте "
-                            "{h} м (требуется V_z = {vz} м, СКО). Максимальная плановая высота "
-                            "по формулам точности высот — {forms}.",
+        "pdf_height_forms": "Идеализированная точность стереоизмерений σ_Z = {sigma} м на "
+                            "наибольшей фактической высоте {h} м (требуется V_z = {vz} м, СКО): "
+                            "учтены только ошибки измерения снимков, ошибка параллакса σ_px — "
+                            "допущение; опорные точки, калибровка камеры и поверхность в неё не "
+                            "входят. Максимальная плановая высота по формулам точности высот — "
+                            "{forms}.",
         "spec_cmp_data_volume": "Объём данных без сжатия",
     },
 }

@@ -100,7 +100,8 @@ CLI: dict[str, dict[str, str]] = {
         "lim_flown": "highest flown",
         "lim_sentence": "Maximum planned height {max} m (highest flown {flown} m): {cid} "
                         "({name}) binds — {reason}.",
-        "accuracy": "Height accuracy: σ_Z {sz} m at {h} m (required {req} m RMS; {gsd} GSD). "
+        "accuracy": "Height accuracy (idealised stereo precision): σ_Z {sz} m at {h} m "
+                    "(required {req} m RMS; {gsd} GSD). "
                     "Maximum planned height by form: normal case {normal} m, Instruction "
                     "{instruction} m, parallax (single-step base) {parallax} m [{used} used].",
         "form_normal_case": "normal_case",
@@ -239,7 +240,8 @@ CLI: dict[str, dict[str, str]] = {
         "lim_flown": "наиб. фактическая",
         "lim_sentence": "Максимальная плановая высота {max} м (наибольшая фактическая {flown} "
                         "м): определяет {cid} ({name}) — {reason}.",
-        "accuracy": "Точность высот: σ_Z {sz} м на высоте {h} м (требуется {req} м СКО; "
+        "accuracy": "Точность высот (идеализированная точность стереоизмерений): σ_Z {sz} м "
+                    "на высоте {h} м (требуется {req} м СКО; "
                     "{gsd} GSD). Максимальная плановая высота по формулам: нормальный случай "
                     "{normal} м, Инструкция {instruction} м, параллакс (базис в один шаг) "
                     "{parallax} м [принята: {used}].",

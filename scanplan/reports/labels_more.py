@@ -212,6 +212,11 @@ TERMINAL: dict[str, dict[str, str]] = {
 DESIGN: dict[str, dict[str, str]] = {
     "en": {
         "design_title": "Survey design",
+        "status_norm": "norm",
+        "status_recommendation": "recommendation",
+        "status_estimate": "estimate",
+        "status_practice": "practice",
+        "design_set_aside": "set aside by the project: {reason}",
         "xlsx_gsd_limits": "Largest GSD of the photos per plan scale",
         "xlsx_gsd_area": "Territory",
         "xlsx_max_gsd_cm": "Largest GSD, cm",
@@ -254,6 +259,9 @@ DESIGN: dict[str, dict[str, str]] = {
         "design_block_split": "split into {n} {parts} by ground height or fly following the "
                               "terrain",
         "design_block_one": "one height for the block",
+        "design_block_dem": "(the DEM under the photos, {n} samples)",
+        "design_block_waived": "not applied: the flight follows the relief "
+                               "(altitude_mode = \"follow\")",
         "design_site": "Site (latitude, longitude)",
         "design_site_value": "{lat}°, {lon}°",
         "design_dates": "Planned flying dates",
@@ -272,6 +280,14 @@ DESIGN: dict[str, dict[str, str]] = {
         "design_binding": "Binding constraint of the flight height",
         "design_binding_film": "Binding constraint of the scan pixel",
         "pdf_warn_block_split": "Block to split by ground height",
+        "pdf_warn_block_height_waived": "One height per block: waived, the flight follows the "
+                                        "relief",
+        "pdf_warn_recommendation_set_aside": "A recommendation set aside by the project",
+        "pdf_warn_terrain_height_accuracy": "Height accuracy missed over low ground",
+        "pdf_warn_airspace_conditions": "Conditions of flying without an airspace-use "
+                                        "permission (height, settlements, aerodromes)",
+        "pdf_warn_airspace_not_below": "Highest flown height not below the permission-free "
+                                       "ceiling",
         "pdf_warn_sun_no_window": "No sun window on the planned dates",
         "pdf_warn_sun_dates_short": "Planned dates too short for the sorties",
         "pdf_warn_gsd_limit_film": "Scanned ground pixel against the largest GSD of the "
@@ -279,6 +295,11 @@ DESIGN: dict[str, dict[str, str]] = {
     },
     "ru": {
         "design_title": "Технический проект аэрофотосъёмки",
+        "status_norm": "норма",
+        "status_recommendation": "рекомендация",
+        "status_estimate": "оценка",
+        "status_practice": "практика",
+        "design_set_aside": "не применяется по решению проекта: {reason}",
         "xlsx_gsd_limits": "Предельный размер пикселя на местности для масштаба плана",
         "xlsx_gsd_area": "Территория",
         "xlsx_max_gsd_cm": "Размер пикселя на местности, не более, см",
@@ -321,6 +342,8 @@ DESIGN: dict[str, dict[str, str]] = {
         "design_block_split": "разделить на {n} {parts} по высоте местности или снимать с "
                               "огибанием рельефа",
         "design_block_one": "одна высота на участок",
+        "design_block_dem": "(по ЦМР под снимками, {n} отсчётов)",
+        "design_block_waived": "не применяется: полёт с огибанием рельефа",
         "design_site": "Район работ (широта, долгота)",
         "design_site_value": "{lat}°, {lon}°",
         "design_dates": "Сроки лётно-съёмочных работ",
@@ -340,6 +363,16 @@ DESIGN: dict[str, dict[str, str]] = {
         "design_binding": "Определяющее условие высоты полёта",
         "design_binding_film": "Определяющее условие размера пикселя сканирования",
         "pdf_warn_block_split": "Участок нужно разделить по высоте местности",
+        "pdf_warn_block_height_waived": "Одна высота на участок не требуется: полёт с "
+                                        "огибанием рельефа",
+        "pdf_warn_recommendation_set_aside": "Рекомендация не применяется по решению проекта",
+        "pdf_warn_terrain_height_accuracy": "Точность высот не обеспечена над низкими "
+                                            "участками",
+        "pdf_warn_airspace_conditions": "Условия полётов без разрешения на использование "
+                                        "воздушного пространства (высота, населённые пункты, "
+                                        "аэродромы)",
+        "pdf_warn_airspace_not_below": "Наибольшая фактическая высота не ниже предела полётов "
+                                       "без разрешения",
         "pdf_warn_sun_no_window": "В запланированные сроки Солнце низко",
         "pdf_warn_sun_dates_short": "Запланированных сроков не хватает на все вылеты",
         "pdf_warn_gsd_limit_film": "Размер пикселя скана и предельный размер пикселя для "

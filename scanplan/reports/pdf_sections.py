@@ -30,12 +30,14 @@ from .wording import (
     camera_title,
     display_message,
     name_title,
+    object_status,
     object_title,
     param_name,
     param_value,
     scanner_title,
     sentence,
     shape_title,
+    with_status,
 )
 
 if TYPE_CHECKING:
@@ -180,7 +182,8 @@ def _scan_view(job: ScanJob, f: _Fmt) -> dict[str, Any]:
                                 f"{_shape_name(ns, obj.shape, f.locale)}, "
                                 f"B = {f.g(obj.shape_coefficient)}"),
             (f.label("probability"), f.g(rules.probability)),
-            (f.label("norm_rows"), f.cite(localize(obj.source, f.locale))),
+            (f.label("norm_rows"), with_status(f.cite(localize(obj.source, f.locale)),
+                                               object_status(ns, obj), f.locale)),
         ]
     if "PZ" in rules.constraints:
         key = f"pdf_hf_{rules.height_formula}"
@@ -220,7 +223,8 @@ def _scan_view(job: ScanJob, f: _Fmt) -> dict[str, Any]:
                 for cid in plan.constraint_ids]
     params = [{"name": param_name(ns, k, f.locale),
                "value": param_value(ns, k, v, f.locale, f.g),
-               "source": f.cite(ns.parameter_sources.get(k, ""))}
+               "source": with_status(f.cite(ns.parameter_sources.get(k, "")),
+                                     ns.parameter_status.get(k, ""), f.locale)}
               for k, v in ns.parameters.items()]
     return {
         "inputs": inputs, "tables": tables,

@@ -123,6 +123,28 @@ def _label_or(key: str, locale: str, default: str) -> str:
     return t(key, locale) if key in LABELS["en"] else default
 
 
+def with_status(text: str, status: str, locale: str) -> str:
+    """A figure's source with what the figure is: ``"[3] (recommendation)"``.
+
+    >>> with_status("[3]", "estimate", "ru"), with_status("[3]", "", "en")
+    ('[3] (оценка)', '[3]')
+    """
+    if not status:
+        return text
+    word = t(f"status_{status}", locale)
+    return f"{text} ({word})" if text else word
+
+
+def object_status(ns: NormSet | None, obj: Any) -> str:
+    """The status of a map object's norm row (matched by scale, name and size), or ""."""
+    for o in getattr(ns, "objects", ()):
+        if (o.map_scale, o.name, o.size_m) == (getattr(obj, "map_scale", None),
+                                               getattr(obj, "name", None),
+                                               getattr(obj, "size_m", None)):
+            return o.status
+    return ""
+
+
 def param_name(ns: NormSet, key: str, locale: str) -> str:
     """A norm-set parameter by its human name with unit (``param_<key>`` label).
 

@@ -20,6 +20,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from ..core import flight as FL
 from ..core import formulas as F
 from ..core import stereo as S
 from ..messages import Message
@@ -28,7 +29,7 @@ from .registry import Constraint, DigitalLimit, FilmArgs, register
 if TYPE_CHECKING:
     from .results import ScanInputs, ScanRules, UavInputs
 
-__all__ = ["height_accuracy", "height_formula_name"]
+__all__ = ["height_accuracy", "height_formula_name", "sigma_z_m", "stereo_geometry"]
 
 
 def height_formula_name(formula: str) -> Message | str:
@@ -104,20 +105,85 @@ def _pz_ground(inp: UavInputs, rules: ScanRules | None) -> DigitalLimit:
                         if details.get("formula") == "normal_case" else None)
 
 
+def stereo_geometry(inp: UavInputs, rules: ScanRules, height_ratio: Any
+                    ) -> dict[str, NDArray[np.float64]]:
+    """The stereo geometry of a digital block at heights ``height_ratio`` × planned.
+
+    The trigger distance is fixed in metres at the planned height, s = (1 − p)·footprint(H);
+    at a height h = ratio·H the overlap flown is 1 − (1 − p)/ratio
+    (:func:`scanplan.core.flight.actual_overlap_pct`), and the base of the standard pair
+    and the multi-ray factor follow from that overlap (docs/uav-models.md §9).
+
+    Parameters
+    ----------
+    inp : UavInputs
+        Camera and overlap.
+    rules : ScanRules
+        Standard stereo overlap, multi-ray switch.
+    height_ratio : array_like
+        Height checked over the planned height [-] (1 + tolerance at the highest flown
+        height; (H + relief)/H over the lowest ground).
+
+    Returns
+    -------
+    dict
+        ``overlap_pct`` flown [%], ``base_to_height`` B/h [-], ``base_in_steps`` B/s [-],
+        ``pair_overlap_pct`` (overlap of the standard pair) [%], ``multi_ray_factor`` [-].
+    """
+    ratio = np.asarray(height_ratio, dtype=np.float64)
+    flown = np.asarray(FL.actual_overlap_pct(inp.forward_overlap_pct, 1.0, ratio),
+                       dtype=np.float64)
+    fraction = S.stereo_base_fraction(flown, rules.standard_forward_overlap_pct)
+    multi = (S.strip_multi_ray_factor(flown, rules.standard_forward_overlap_pct)
+             if rules.multi_ray == "strip" else np.ones_like(fraction))
+    step = 1.0 - flown / 100.0
+    return {"overlap_pct": flown, "base_to_height": fraction * inp.sensor_height_mm
+            / inp.focal_mm, "base_in_steps": fraction / step,
+            "pair_overlap_pct": 100.0 * (1.0 - fraction), "multi_ray_factor": multi}
+
+
+def sigma_z_m(inp: UavInputs, rules: ScanRules, height_m: Any) -> NDArray[np.float64]:
+    """Idealised stereo precision σ_Z at flown heights above ground ``height_m`` [m] with the
+    mission's trigger distance (fixed in metres at the planned height ``inp.height_m``).
+
+    σ_Z = (h/B)·(h/c)·σ_px·f with B and f from :func:`stereo_geometry` at the ratio
+    h/H (docs/uav-models.md §9): at the highest flown height (H·(1 + tolerance)), over the
+    lowest ground (H + relief) or both.
+
+    Parameters
+    ----------
+    inp : UavInputs
+        Camera, overlap and planned height.
+    rules : ScanRules
+        σ_px, standard overlap, multi-ray switch.
+    height_m : array_like
+        Heights above ground flown [m], > 0.
+
+    Returns
+    -------
+    ndarray
+        σ_Z [m], one standard deviation.
+    """
+    h = np.asarray(height_m, dtype=np.float64)
+    geo = stereo_geometry(inp, rules, h / inp.height_m)
+    return np.asarray(S.normal_case_height_error_m(
+        h, geo["base_to_height"] * h, inp.focal_mm, inp.pixel_um,
+        rules.image_measurement_px, geo["multi_ray_factor"]), dtype=np.float64)
+
+
 def height_accuracy(inp: UavInputs, rules: ScanRules
                      ) -> tuple[float, Message, dict[str, Any]]:
     """The height constraint of a digital block: (GSD limit [m], reason, details).
 
     Three forms, each as the largest GSD on the ground (evaluated at Mc = 1):
 
-    - ``normal_case`` (default for digital cameras): σ_Z = (H/B)·(H/c)·σ_px·f ≤ V_z with
-      the widest base of standard stereo overlap (:func:`scanplan.core.formulas.
-      stereo_height_ground_limit_m`), V_z read as an RMS error;
+    - ``normal_case`` (default for digital cameras): σ_Z = (H/B)·(H/c)·σ_px·f ≤ V_z (an
+      RMS) at the highest flown height, B the standard pair's base at the overlap flown
+      there with the mission's trigger distance (:func:`stereo_geometry`);
     - ``instruction`` and ``parallax``: the Instruction's P_Z and its parallax form with the
       single-step base b = l_y·(1 − p) and the processing loss k (seed 001, eq. 2).
 
-    All three are in ``details["forms"]`` for comparison; ``rules.digital_height_formula``
-    picks the one that constrains the flight.
+    All three are in ``details["forms"]``; ``rules.digital_height_formula`` picks one.
 
     Parameters
     ----------
@@ -142,13 +208,8 @@ def height_accuracy(inp: UavInputs, rules: ScanRules
                                     height_accuracy_fraction=rules.height_accuracy_fraction,
                                     processing_loss_k=k, method=form)) / 1e6  # type: ignore[arg-type]
         forms[form] = {"ground_limit_m": g}
-    fraction = float(S.stereo_base_fraction(inp.forward_overlap_pct,
-                                            rules.standard_forward_overlap_pct))
-    steps = round(fraction / (1.0 - inp.forward_overlap_pct / 100.0))
-    bh = fraction * inp.sensor_height_mm / inp.focal_mm
-    multi = (float(S.strip_multi_ray_factor(inp.forward_overlap_pct,
-                                            rules.standard_forward_overlap_pct))
-             if rules.multi_ray == "strip" else 1.0)
+    geo = stereo_geometry(inp, rules, np.array([1.0, up]))
+    bh, multi = float(geo["base_to_height"][1]), float(geo["multi_ray_factor"][1])
     sigma = rules.image_measurement_px
     forms["normal_case"] = {"ground_limit_m": float(S.stereo_height_ground_limit_m(
         vz, bh, sigma, multi))}
@@ -156,16 +217,23 @@ def height_accuracy(inp: UavInputs, rules: ScanRules
         v["max_flown_height_m"] = v["ground_limit_m"] * inp.focal_mm / 1000.0 / pixel_m
         v["max_planned_height_m"] = v["max_flown_height_m"] / up
     formula = rules.digital_height_formula
-    h_plan = inp.height_m
-    h_hi = h_plan * up
-    sz = S.normal_case_height_error_m(np.array([h_plan, h_hi]),
-                                      bh * np.array([h_plan, h_hi]), inp.focal_mm,
-                                      inp.pixel_um, sigma, multi)
+    heights = inp.height_m * np.array([1.0, up])
+    sz = S.normal_case_height_error_m(heights, geo["base_to_height"] * heights,
+                                      inp.focal_mm, inp.pixel_um, sigma,
+                                      geo["multi_ray_factor"])
+    steps = float(geo["base_in_steps"][1])
+    overlap = float(geo["pair_overlap_pct"][1])
     details: dict[str, Any] = {
         "formula": formula, "height_accuracy_m": vz,
         "height_accuracy_meaning": "RMS (one standard deviation) of the model heights",
+        "model": "idealised stereo precision (image measurement only: no ground control, "
+                 "calibration or surface errors)",
+        "trigger_spacing_m": (1.0 - inp.forward_overlap_pct / 100.0)
+        * inp.sensor_height_mm * inp.height_m / inp.focal_mm,
+        "forward_overlap_at_highest_flown_height_pct": float(geo["overlap_pct"][1]),
         "stereo_base_steps": steps, "stereo_base_to_height": bh,
-        "stereo_overlap_pct": 100.0 * (1.0 - fraction),
+        "stereo_base_to_height_at_planned_height": float(geo["base_to_height"][0]),
+        "stereo_overlap_pct": overlap,
         "single_step_base_to_height": float(base_mm) / inp.focal_mm,
         "image_measurement_px": sigma, "multi_ray": rules.multi_ray,
         "multi_ray_factor": multi, "processing_loss_k": k,
@@ -176,7 +244,7 @@ def height_accuracy(inp: UavInputs, rules: ScanRules
     }
     if formula == "normal_case":
         reason = Message("limit.PZ.normal_case", vz=vz, hc=inp.relief_interval_m, bh=bh,
-                         steps=steps, overlap=100.0 * (1.0 - fraction), sigma=sigma,
+                         steps=steps, overlap=overlap, sigma=sigma,
                          multi=Message("limit.PZ.multi", f=multi) if multi < 1.0 else None)
     else:
         reason = Message("limit.PZ", vz=vz, hc=inp.relief_interval_m, k=k,
@@ -270,9 +338,10 @@ def _hc_ground(inp: UavInputs, rules: ScanRules | None) -> DigitalLimit | None:
     if inp.ceiling_m is None:
         return None
     source = Message("ceiling.project" if inp.ceiling_from_project else "ceiling.norms")
-    return DigitalLimit(inp.ceiling_m, Message("limit.HC", ceiling=inp.ceiling_m,
-                                               source=source),
-                        {"from_project": inp.ceiling_from_project})
+    key = "limit.HC" if inp.ceiling_from_project else "limit.HC.below"
+    return DigitalLimit(inp.ceiling_m, Message(key, ceiling=inp.ceiling_m, source=source),
+                        {"from_project": inp.ceiling_from_project,
+                         "strict": not inp.ceiling_from_project})
 
 
 # --- GL: the largest GSD per plan scale of today's standard (ГОСТ Р 59562-2021, Table Б.1) --

@@ -292,6 +292,9 @@ class UavInputs:
     lens_table_corner: tuple[tuple[float, ...], tuple[float, ...]] | None = None
     ceiling_m: float | None = None
     ceiling_from_project: bool = False
+    aerodrome_distance_km: float | None = None
+    """The norm set's distance from uncontrolled aerodromes for flights without an
+    airspace-use permission [km] (printed with the ceiling's conditions)."""
     gsd_target_m: float | None = None
     gsd_limit_m: float | None = None
     """The norm set's largest GSD for the map scale (table ``gsd_limits``) [m]."""

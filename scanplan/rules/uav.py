@@ -203,10 +203,43 @@ def _limit_rows(inp: UavInputs, rules: ScanRules | None
             h_at_limit = g * inp.focal_mm / (inp.pixel_um / 1000.0)
         elif rec.compares == "L":
             h_at_limit = max_height_for_ground_resolution(inp, g)
+        elif cid == "HC" and _strict_ceiling(inp):
+            h_at_limit = g * (1.0 - _BELOW)  # "below 150 m": the ceiling itself is not allowed
         else:
             h_at_limit = g
         rows.append((cid, lim, h_at_limit / up))
     return rows
+
+
+_BELOW = 1e-9
+"""A strict ceiling ("below 150 m") as a relative margin: the largest height allowed is the
+ceiling × (1 − _BELOW), so the recommended height (rounded down to 5 m) stays below it."""
+
+
+def _strict_ceiling(inp: UavInputs) -> bool:
+    """The norm set's ceiling for flights without an airspace-use permission is a strict
+    bound (the Federal Rules say "below 150 m"); a project's own ceiling is inclusive."""
+    return inp.ceiling_m is not None and not inp.ceiling_from_project
+
+
+def _airspace_warnings(inp: UavInputs) -> list[PlanWarning]:
+    """The conditions of flying without an airspace-use permission (printed with every plan
+    under the norm set's ceiling), and a warning when the highest flown height is not below
+    that ceiling."""
+    if not _strict_ceiling(inp):
+        return []
+    assert inp.ceiling_m is not None
+    out = [PlanWarning("airspace_conditions", Message(
+        "airspace_conditions", ceiling=inp.ceiling_m,
+        aerodrome=inp.aerodrome_distance_km if inp.aerodrome_distance_km is not None
+        else float("nan")), severity="info")]
+    up = 1.0 + inp.height_tolerance_up_pct / 100.0
+    flown = inp.height_m * up
+    if flown >= inp.ceiling_m * (1.0 - _BELOW):
+        out.append(PlanWarning("airspace_not_below", Message(
+            "airspace_not_below", flown=flown, ceiling=inp.ceiling_m, planned=inp.height_m,
+            key="[uav] max_height_m")))
+    return out
 
 
 def _ceiling_and_height_warnings(inp: UavInputs, rows: list[tuple[str, DigitalLimit, float]],
@@ -265,7 +298,7 @@ def _height_limits(inp: UavInputs, rules: ScanRules | None) -> tuple[
         if overlap:
             warnings.append(overlap)
     if not rows:
-        return (), None, None, None, accuracy, warnings
+        return (), None, None, None, accuracy, warnings + _airspace_warnings(inp)
     best = min(rows, key=lambda r: r[2])
     max_h, binding = best[2], best[0]
     limits = tuple(HeightLimit(
@@ -276,7 +309,7 @@ def _height_limits(inp: UavInputs, rules: ScanRules | None) -> tuple[
         details=lim.details)
         for cid, lim, h in rows)
     allow, more = _ceiling_and_height_warnings(inp, rows, max_h, binding)
-    return limits, max_h, binding, allow, accuracy, warnings + more
+    return limits, max_h, binding, allow, accuracy, warnings + more + _airspace_warnings(inp)
 
 
 def _flight_time_s(length_m: float, speed_ms: float) -> float | None:

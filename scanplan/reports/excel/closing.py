@@ -14,6 +14,7 @@ from ..wording import (
     param_name,
     param_value,
     sentence,
+    with_status,
 )
 
 if TYPE_CHECKING:
@@ -121,7 +122,9 @@ def _norm_set(book: Book, ws: Worksheet, row: int, ns: NormSet, objs: list[Any])
             ws.cell(row, 2).alignment = Alignment(horizontal="left", vertical="top")
         else:
             put_text(ws, row, 2, param_value(ns, key, value, book.loc), wrap=True)
-        put_text(ws, row, 3, book.bib.cite(ns.parameter_sources.get(key, "")), wrap=True)
+        put_text(ws, row, 3, with_status(book.bib.cite(ns.parameter_sources.get(key, "")),
+                                         ns.parameter_status.get(key, ""), book.loc),
+                 wrap=True)
         row += 1
     shapes_used = {o.shape for o in objs}
     row = book.section(ws, row + 1, book.t("xlsx_shapes"))
@@ -150,7 +153,8 @@ def _norm_set(book: Book, ws: Worksheet, row: int, ns: NormSet, objs: list[Any])
                  put_num(ws, row, 3, obj.size_m, F3),
                  put_text(ws, row, 4, book.yes_no(is_used)),
                  put_text(ws, row, 5, book.shape_name(ns, obj.shape))]
-        put_text(ws, row, 6, book.bib.cite(obj.source), wrap=True)
+        put_text(ws, row, 6, with_status(book.bib.cite(obj.source), obj.status, book.loc),
+                 wrap=True)
         if is_used:
             _mark(cells)
         row += 1
