@@ -333,7 +333,7 @@ def test_survey_design_sheet_in_workbook_and_pdf(tmp_path, locale):
     # ground, strictly below the 150 m ceiling over the lowest, gives 90 m above the
     # reference ground (95 m would be flown at exactly 150 m), so the 55 m range is 61 % of
     # it, over the 15 % hilly limit → 5 bands of ≤ 15 %·90 m
-    assert ("разделить на 5 части" if locale == "ru" else "split into 5 parts") in page
+    assert ("разделить на 5 частей" if locale == "ru" else "split into 5 parts") in page
 
 
 @pytest.mark.parametrize("name", ["scanplan.core.blocks", "scanplan.geo.sun",
