@@ -599,8 +599,8 @@ MESSAGES: dict[str, dict[str, str]] = {
     },
     "ceiling.norms": {
         "en": "the norm set's ceiling for flights without an airspace-use permission",
-        "ru": "предел набора норм для полётов без разрешения на использование воздушного "
-              "пространства",
+        "ru": "предельная высота по нормативам для полётов без разрешения на использование "
+              "воздушного пространства",
     },
     "ceiling_binds": {
         "en": "the altitude ceiling of {ceiling:g} m binds: {tolerance}the plan may be at most "

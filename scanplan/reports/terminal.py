@@ -17,7 +17,7 @@ from ..rules.uav import UavPlan
 from .labels import t
 from .labels_cli import cli_text
 from .references import author_cite
-from .text import _volume, _wrap, table
+from .text import _volume, _wrap, code_tag, table
 from .view import Numbers
 
 __all__ = ["format_scan_plan", "format_uav_plan"]
@@ -152,7 +152,7 @@ def _warning_lines(warnings: Any, w: _Words, scan: bool = False) -> list[str]:
     out = ["", w("warnings")]
     for x in warnings:
         mark = "!" if (not scan or x.severity == "warning") else "i"
-        out.append(_wrap(f"{x.text(w.loc)} [{x.code}]", f"  {mark} "))
+        out.append(_wrap(x.text(w.loc) + code_tag(x.code, w.loc), f"  {mark} "))
     return out
 
 

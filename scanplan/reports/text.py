@@ -196,7 +196,7 @@ def _warning_lines(result: Any, loc: str, T: _Terminal) -> list[str]:
 
             ns = (result.film or result.uav).job.norm_set
             text = display_message(w.message, ns, loc)
-        lines.append(_wrap(f"{text} [{w.code}]", f"  {mark} "))
+        lines.append(_wrap(text + code_tag(w.code, loc), f"  {mark} "))
     return lines
 
 
@@ -211,6 +211,21 @@ _AREA_TEXT = {
            "turns": "развороты", "sorties": "вылетов", "not_feasible": "НЕВЫПОЛНИМО",
            "km2": "км²", "km": "км", "min": "мин"},
 }
+
+
+def code_tag(code: str, locale: str) -> str:
+    """`` [code]`` after a warning in the English terminal (a word to search the docs for);
+    nothing in Russian, whose reader gets no English identifiers."""
+    return "" if locale == "ru" else f" [{code}]"
+
+
+def crs_words(name: str, locale: str) -> str:
+    """A coordinate system's name as pyproj gives it, its words in ``locale`` (Russian:
+    ``WGS 84 / UTM, зона 37N``)."""
+    if locale != "ru":
+        return name
+    return (name.replace("UTM zone", "UTM, зона").replace("Gauss-Kruger zone", "Гаусса — "
+            "Крюгера, зона").replace("Pulkovo 1942", "Пулково 1942"))
 
 
 def area_source(area: Any, locale: str = "en") -> str:
@@ -229,7 +244,7 @@ def area_source(area: Any, locale: str = "en") -> str:
 def format_area(area: Any, locale: str = "en") -> str:
     """One line: where the area comes from, its size, perimeter and planning CRS."""
     T = _AREA_TEXT[locale]
-    crs = f", {area.plan_crs_name}" if area.plan_crs_name else ""
+    crs = f", {crs_words(area.plan_crs_name, locale)}" if area.plan_crs_name else ""
     return _wrap(f"{T['area']}: {area_source(area, locale)} — "
                  f"{_n(area.area_km2, 2, locale, True)} {T['km2']}, {T['perimeter']} "
                  f"{_n(area.perimeter_km, 1, locale, True)} {T['km']}{crs}", "")
@@ -374,7 +389,7 @@ def project_warnings(path: str, r: Any) -> str:
     out = ["", f"Warnings — {os.path.basename(path)}:"]
     for w in r.warnings:
         mark = "!" if w.severity == "warning" else "i"
-        out.append(_wrap(f"{w.text(r.meta.locale)} [{w.code}]", f"  {mark} "))
+        out.append(_wrap(w.text(r.meta.locale) + code_tag(w.code, r.meta.locale), f"  {mark} "))
     return "\n".join(out)
 
 
@@ -394,7 +409,7 @@ _TERRAIN_TEXT = {
            "spec": "the specification's scan pixel is the binding frame's", "AMSL": "AMSL"},
     "ru": {"head": "Рельеф", "dem": "ЦМР", "range": "отметки заданы диапазоном",
            "ground": "отметки", "under": "под снимками", "mode": "высота полёта",
-           "constant": "постоянная", "strip": "по маршрутам", "follow": "следование рельефу",
+           "constant": "постоянная", "strip": "по маршрутам", "follow": "с огибанием рельефа",
            "agl": "высота над рельефом", "at_photo": "наибольшая у снимка",
            "strip_n": "маршрут", "max": "максимальная высота с учётом рельефа",
            "film": "Рельеф (плёнка): масштаб снимков", "binds": "определяет: пиксель",
