@@ -350,3 +350,23 @@ def test_the_formulas_heading_is_not_left_alone_at_a_page_foot():
     pages = [p.extract_text() for p in pypdf.PdfReader(io.BytesIO(data)).pages]
     (page,) = [p for p in pages if "Формулы и источники" in p]
     assert "Нормативы:" in page and "Смысл" in page  # the formula table's head
+
+
+def test_a_film_specification_lists_no_parameter_of_a_digital_camera():
+    """The film section's norm parameters leave out what only a UAV plan uses (σ_px, the
+    multi-ray model, the altitude ceiling, the aerodrome distance)."""
+    from scanplan.norms.schema import DIGITAL_ONLY_PARAMETERS
+    from scanplan.project.file import load_project
+    from scanplan.project.spec import plan_project
+    from scanplan.reports.wording import param_name
+
+    root = Path(__file__).resolve().parent.parent
+    r = plan_project(load_project(root / "examples" / "instruction-2000-film.toml"))
+    ns = r.film.job.norm_set
+    html = P.render_html(scan=r.film.job, meta=r.meta, spec=r)
+    from scanplan.reports.pdfhtml import typeset
+
+    names = {k: str(typeset(param_name(ns, k, "en")))
+             for k in DIGITAL_ONLY_PARAMETERS if k in ns.parameters}
+    assert names and not [k for k, n in names.items() if n in html]
+    assert str(typeset(param_name(ns, "planimetric_accuracy_mm", "en"))) in html  # film's stay

@@ -256,6 +256,11 @@ PARAMETERS: dict[str, ParameterSpec] = {
         ),
     )
 }
+
+DIGITAL_ONLY_PARAMETERS = frozenset({"digital_height_formula", "image_measurement_px",
+                                     "multi_ray", "uav_max_height_m",
+                                     "uav_uncontrolled_aerodrome_km"})
+"""Parameters only a digital camera's plan uses: a film specification does not list them."""
 """Every parameter a norm set must define."""
 
 

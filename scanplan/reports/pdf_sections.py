@@ -19,6 +19,7 @@ from ..core.flight import MAX_BLUR_PX
 from ..core.shown import shown_decimals
 from ..messages import localize
 from ..norms import NormSet
+from ..norms.schema import DIGITAL_ONLY_PARAMETERS
 from ..project.api import ScanJob, UavJob
 from ..rules.film import CONSTRAINTS, ScanPlan
 from ..rules.uav import UavPlan
@@ -225,7 +226,7 @@ def _scan_view(job: ScanJob, f: _Fmt) -> dict[str, Any]:
                "value": param_value(ns, k, v, f.locale, f.g),
                "source": with_status(f.cite(ns.parameter_sources.get(k, "")),
                                      ns.parameter_status.get(k, ""), f.locale)}
-              for k, v in ns.parameters.items()]
+              for k, v in ns.parameters.items() if k not in DIGITAL_ONLY_PARAMETERS]
     return {
         "inputs": inputs, "tables": tables,
         "explanations": explanations, "interpretation_limit": limit, "reach": reach,
