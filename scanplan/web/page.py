@@ -1,0 +1,91 @@
+"""The page of ``scanplan serve`` in English and Russian.
+
+The HTML (``static/index.html``) holds no words of its own: every text the page shows is a
+key of :data:`TEXTS`, in both languages (a test checks that both have every key), filled in
+by the script from the configuration this module puts into the page.
+"""
+
+from __future__ import annotations
+
+import html
+import json
+
+from .._version import __version__
+
+__all__ = ["TEXTS", "page_html"]
+
+TEXTS: dict[str, dict[str, str]] = {
+    "en": {
+        "title": "scanplan — plan on the map",
+        "area": "Area", "draw": "Draw the area on the map (polygon tool, top left)",
+        "drop": "…or drop a KML, KMZ, GeoJSON, GeoPackage or vertex CSV here",
+        "choose_file": "Choose a file", "no_area": "No area yet",
+        "area_file": "Area from", "area_drawn": "Area drawn on the map",
+        "block": "…or an abstract block, width × length [m]",
+        "clear_area": "Clear",
+        "dem": "Terrain (DEM, GeoTIFF)", "dem_none": "No DEM: flat ground",
+        "platform": "Camera", "platform_uav": "Digital (UAV, aircraft)",
+        "platform_film": "Film (scanned)", "search_camera": "Search the catalogue…",
+        "scanner": "Scanner", "search_scanner": "Search the scanners…",
+        "chosen": "Chosen", "main": "Main inputs", "more": "All inputs of the project file",
+        "tiles": "Map", "tiles_osm": "OpenStreetMap", "tiles_none": "None (offline)",
+        "results": "Result", "planning": "Planning…", "error": "Not planned",
+        "rec_height": "Recommended flight height", "max_height": "Maximum planned height",
+        "rec_scale": "Recommended photo scale", "scan_pixel": "Scan pixel",
+        "binding": "Binding constraint", "constraint": "Constraint", "limit": "Limit",
+        "margin": "Margin", "max_h": "Max. height, m", "pixel": "Pixel, µm",
+        "gsd": "GSD", "ground_res": "Ground resolution L", "sigma_z": "σ_Z (height RMS)",
+        "strips": "Strips", "photos": "Photos", "sorties": "Sorties", "frames": "Frames",
+        "flight_time": "Flight time", "warnings": "Warnings", "chart": "Chart",
+        "downloads": "Downloads", "dl_toml": "Project file (TOML)", "dl_pdf": "PDF",
+        "dl_xlsx": "Workbook", "dl_zip": "Everything (zip)", "rendering": "Rendering…",
+        "cm": "cm", "m": "m", "min": "min", "um": "µm", "ms": "ms",
+        "legend_strip": "strips", "legend_photo": "photo centres",
+        "legend_takeoff": "take-off", "legend_area": "area",
+        "every": "every {k}th shown", "lang_other": "Русский",
+    },
+    "ru": {
+        "title": "scanplan — проект на карте",
+        "area": "Участок", "draw": "Нарисуйте участок на карте (многоугольник, слева вверху)",
+        "drop": "…или перетащите сюда KML, KMZ, GeoJSON, GeoPackage или CSV вершин",
+        "choose_file": "Выбрать файл", "no_area": "Участок не задан",
+        "area_file": "Участок из файла", "area_drawn": "Участок нарисован на карте",
+        "block": "…или условный блок, ширина × длина [м]",
+        "clear_area": "Очистить",
+        "dem": "Рельеф (ЦМР, GeoTIFF)", "dem_none": "Без ЦМР: ровная местность",
+        "platform": "Камера", "platform_uav": "Цифровая (БВС, самолёт)",
+        "platform_film": "Плёночная (сканирование)", "search_camera": "Поиск по каталогу…",
+        "scanner": "Сканер", "search_scanner": "Поиск сканера…",
+        "chosen": "Выбрано", "main": "Основные данные", "more": "Все ключи файла проекта",
+        "tiles": "Подложка", "tiles_osm": "OpenStreetMap", "tiles_none": "Нет (без сети)",
+        "results": "Результат", "planning": "Расчёт…", "error": "Не рассчитано",
+        "rec_height": "Рекомендуемая высота полёта", "max_height": "Наибольшая плановая высота",
+        "rec_scale": "Рекомендуемый масштаб снимков", "scan_pixel": "Пиксель сканирования",
+        "binding": "Определяющее ограничение", "constraint": "Ограничение", "limit": "Предел",
+        "margin": "Запас", "max_h": "Наиб. высота, м", "pixel": "Пиксель, мкм",
+        "gsd": "GSD (размер пикселя на местности)", "ground_res": "Разрешение на местности L",
+        "sigma_z": "σ_Z (СКО по высоте)",
+        "strips": "Маршруты", "photos": "Снимки", "sorties": "Вылеты", "frames": "Кадры",
+        "flight_time": "Время полёта", "warnings": "Предупреждения", "chart": "График",
+        "downloads": "Скачать", "dl_toml": "Файл проекта (TOML)", "dl_pdf": "PDF",
+        "dl_xlsx": "Книга Excel", "dl_zip": "Всё (zip)", "rendering": "Формирование…",
+        "cm": "см", "m": "м", "min": "мин", "um": "мкм", "ms": "мс",
+        "legend_strip": "маршруты", "legend_photo": "центры снимков",
+        "legend_takeoff": "взлёт", "legend_area": "участок",
+        "every": "показан каждый {k}-й", "lang_other": "English",
+    },
+}
+
+
+def page_html(lang: str, tiles: str = "osm") -> str:
+    """The page in ``lang`` (``"en"`` or ``"ru"``) with the default tile layer ``tiles``
+    (``"osm"``, ``"none"`` or a URL template with ``{z}/{x}/{y}``)."""
+    from pathlib import Path
+
+    lang = lang if lang in TEXTS else "en"
+    config = {"lang": lang, "texts": TEXTS[lang], "tiles": tiles, "version": __version__}
+    text = (Path(__file__).parent / "static" / "index.html").read_text(encoding="utf-8")
+    blob = json.dumps(config, ensure_ascii=False).replace("</", "<\\/")
+    return (text.replace("{{lang}}", lang)
+            .replace("{{title}}", html.escape(TEXTS[lang]["title"]))
+            .replace("{{config}}", blob))
