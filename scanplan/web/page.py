@@ -33,7 +33,10 @@ TEXTS: dict[str, dict[str, str]] = {
         "rec_height": "Recommended flight height", "max_height": "Maximum planned height",
         "rec_scale": "Recommended photo scale", "scan_pixel": "Scan pixel",
         "binding": "Binding constraint", "constraint": "Constraint", "limit": "Limit",
-        "margin": "Margin", "max_h": "Max. height, m", "pixel": "Pixel, µm",
+        "margin": "Margin",
+        "margin_help": "How much higher than the planned height the flight may go before "
+                       "the constraint binds; film: the scan pixel's margin",
+        "max_h": "Max. height, m", "pixel": "Pixel, µm",
         "gsd": "GSD", "ground_res": "Ground resolution L", "sigma_z": "σ_Z (height RMS)",
         "strips": "Strips", "photos": "Photos", "sorties": "Sorties", "frames": "Frames",
         "flight_time": "Flight time", "warnings": "Warnings", "chart": "Chart",
@@ -43,6 +46,13 @@ TEXTS: dict[str, dict[str, str]] = {
         "legend_strip": "strips", "legend_photo": "photo centres",
         "legend_takeoff": "take-off", "legend_area": "area",
         "every": "every {k}th shown", "lang_other": "Русский",
+        "area_km2": "Area", "km2": "km²", "plan_crs": "Planning CRS",
+        "lbl.uav.speed_ms": "Ground speed", "lbl.uav.max_flight_time_min":
+        "Flight time of one sortie", "lbl.area.direction_deg": "Flight-line direction",
+        "lbl.film.photo_scales": "Candidate photo scales",
+        "unit.m": "m", "unit.m/s": "m/s", "unit.min": "min", "unit.s": "s", "unit.mm": "mm",
+        "unit.µm": "µm", "unit.cm": "cm", "unit.h": "h", "unit.rad/s": "rad/s",
+        "unit.lines/mm": "lines/mm",
     },
     "ru": {
         "title": "scanplan — проект на карте",
@@ -62,7 +72,10 @@ TEXTS: dict[str, dict[str, str]] = {
         "rec_height": "Рекомендуемая высота полёта", "max_height": "Наибольшая плановая высота",
         "rec_scale": "Рекомендуемый масштаб снимков", "scan_pixel": "Пиксель сканирования",
         "binding": "Определяющее ограничение", "constraint": "Ограничение", "limit": "Предел",
-        "margin": "Запас", "max_h": "Наиб. высота, м", "pixel": "Пиксель, мкм",
+        "margin": "Запас",
+        "margin_help": "На сколько можно подняться выше плановой высоты, пока ограничение "
+                       "не станет определяющим; плёнка: запас по пикселю сканирования",
+        "max_h": "Наиб. высота, м", "pixel": "Пиксель, мкм",
         "gsd": "GSD (размер пикселя на местности)", "ground_res": "Разрешение на местности L",
         "sigma_z": "σ_Z (СКО по высоте)",
         "strips": "Маршруты", "photos": "Снимки", "sorties": "Вылеты", "frames": "Кадры",
@@ -73,6 +86,13 @@ TEXTS: dict[str, dict[str, str]] = {
         "legend_strip": "маршруты", "legend_photo": "центры снимков",
         "legend_takeoff": "взлёт", "legend_area": "участок",
         "every": "показан каждый {k}-й", "lang_other": "English",
+        "area_km2": "Площадь", "km2": "км²", "plan_crs": "Система координат расчёта",
+        "lbl.uav.speed_ms": "Путевая скорость", "lbl.uav.max_flight_time_min":
+        "Продолжительность одного вылета", "lbl.area.direction_deg": "Направление маршрутов",
+        "lbl.film.photo_scales": "Масштабы снимков (варианты)",
+        "unit.m": "м", "unit.m/s": "м/с", "unit.min": "мин", "unit.s": "с", "unit.mm": "мм",
+        "unit.µm": "мкм", "unit.cm": "см", "unit.h": "ч", "unit.rad/s": "рад/с",
+        "unit.lines/mm": "мм⁻¹",
     },
 }
 

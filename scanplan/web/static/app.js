@@ -123,7 +123,8 @@
   function showMap(fc) {
     planLayer.clearLayers();
     let every = "";
-    const renderer = L.canvas({padding: 0.2});
+    const renderer = L.canvas({padding: 0.2});  // thousands of photo centres
+    const lines = L.svg();  // a few hundred strips, each an element (class "strip")
     for (const f of fc.features) {
       const p = f.properties, g = f.geometry;
       if (p.kind === "area" && !drawn) {
@@ -132,8 +133,8 @@
       } else if (p.kind === "strip") {
         const color = palette[(p.sortie - 1) % palette.length];
         g.coordinates.forEach((line) => L.polyline(line.map((c) => [c[1], c[0]]),
-          {color, weight: 2.5, opacity: 0.9, pmIgnore: true, className: "strip",
-           renderer}).bindTooltip(`${T.strips} ${p.number} · ${T.sorties} ${p.sortie}`)
+          {color, weight: 2.5, opacity: 0.9, pmIgnore: true, className: `strip strip-${p.number}`,
+           renderer: lines}).bindTooltip(`${T.strips} ${p.number} · ${T.sorties} ${p.sortie}`)
           .addTo(planLayer));
       } else if (p.kind === "photos") {
         for (const c of g.coordinates) {
@@ -248,10 +249,11 @@
     const div = document.createElement("div");
     div.className = "field";
     const id = "f-" + row.section.replace(".", "-") + "-" + row.key;
-    const label = row.label || row.key;
-    const unit = row.unit && !label.endsWith(", " + row.unit) &&
-      !label.endsWith(", " + ({m: T.m, "µm": T.um, min: T.min}[row.unit] || row.unit))
-      ? ` [${row.unit}]` : "";
+    const label = T["lbl." + row.section + "." + row.key] || row.label ||
+      row.help.split(/ [\[(:]/)[0];
+    const shown = T["unit." + row.unit] || row.unit;
+    const unit = row.unit && !label.endsWith(", " + row.unit) && !label.endsWith(", " + shown)
+      ? ` [${shown}]` : "";
     let range = "";
     if (row.min != null) range = ` ${row.min_open ? "(" : "["}${row.min} … ${row.max}${row.max_open ? ")" : "]"}`;
     div.innerHTML = `<label for="${id}">${esc(label)}${esc(unit)} <code>${esc(row.section)}.` +
@@ -410,20 +412,22 @@
         `${fmt(s.recommended_height_m, 0)} ${esc(T.m)}</div>` +
         `<div class="label">${esc(T.max_height)}: ${fmt(s.max_planned_height_m, 0)} ${esc(T.m)}</div>` +
         `<div class="binding">${esc(T.binding)}: <b id="binding">${esc(name(s.binding))}</b></div>`;
-      rows = `<tr><th>${esc(T.constraint)}</th><th></th><th>${esc(T.limit)}</th>` +
-        `<th>${esc(T.max_h)}</th><th>${esc(T.margin)}</th></tr>`;
+      rows = `<tr><th>${esc(T.constraint)}</th><th>${esc(T.limit)}</th>` +
+        `<th>${esc(T.max_h)}</th><th title="${esc(T.margin_help)}">${esc(T.margin)}</th></tr>`;
+      const margins = v.margins_pct || {};
       for (const [id, c] of Object.entries(u.constraints || {})) {
+        const m = margins[id] != null ? margins[id] : c.margin_pct;
         const lim = c.compares === "H" ? `${fmt(c.limit_m, 0)} ${T.m}` : `${fmt(c.limit_m * 100, 2)} ${T.cm}`;
-        rows += `<tr class="${c.binding ? "binding" : ""}" data-id="${esc(id)}"><td>${esc(id)}</td>` +
-          `<td>${esc(names[id] || c.name)}</td><td>${lim}</td><td>${fmt(c.max_height_m, 0)}</td>` +
-          `<td class="margin ${c.margin_pct < 0 ? "neg" : ""}">${fmt(c.margin_pct, 1)} %</td></tr>`;
+        rows += `<tr class="${c.binding ? "binding" : ""}" data-id="${esc(id)}"><td><b>${esc(id)}</b> ` +
+          `<small>${esc(names[id] || c.name)}</small></td><td>${lim}</td><td>${fmt(c.max_height_m, 0)}</td>` +
+          `<td class="margin ${m < 0 ? "neg" : ""}">${fmt(m, 1)} %</td></tr>`;
       }
-      figs = [[T.gsd, `${fmt(s.gsd_m * 100, 2)} ${T.cm}`],
-              [T.ground_res, `${fmt(s.ground_resolution_m * 100, 2)} ${T.cm}`],
-              [T.sigma_z, `${fmt(s.sigma_z_m, 3)} ${T.m}`],
-              [T.strips, fmt(s.strips, 0)], [T.photos, fmt(s.photos, 0)],
-              [T.sorties, fmt(s.sorties, 0)],
-              [T.flight_time, s.flight_time_s ? `${fmt(s.flight_time_s / 60, 0)} ${T.min}` : "—"]];
+      figs = [["gsd", `${fmt(s.gsd_m * 100, 2)} ${T.cm}`],
+              ["ground_res", `${fmt(s.ground_resolution_m * 100, 2)} ${T.cm}`],
+              ["sigma_z", `${fmt(s.sigma_z_m, 3)} ${T.m}`],
+              ["strips", fmt(s.strips, 0)], ["photos", fmt(s.photos, 0)],
+              ["sorties", fmt(s.sorties, 0)],
+              ["flight_time", s.flight_time_s ? `${fmt(s.flight_time_s / 60, 0)} ${T.min}` : "—"]];
     } else if (spec.film) {
       const s = spec.film;
       const sc = (doc.film.scenarios || []).find((x) => x.photo_scale === s.recommended_photo_scale);
@@ -432,18 +436,23 @@
         `<div class="label">${esc(T.scan_pixel)}: ${fmt(s.scan_pixel_um, 1)} ${esc(T.um)}` +
         (s.scanner_pixel_um ? ` → ${fmt(s.scanner_pixel_um, 1)} ${esc(T.um)}` : "") + `</div>` +
         `<div class="binding">${esc(T.binding)}: <b id="binding">${esc(name(s.binding))}</b></div>`;
-      rows = `<tr><th>${esc(T.constraint)}</th><th></th><th>${esc(T.pixel)}</th><th></th>` +
+      rows = `<tr><th>${esc(T.constraint)}</th><th>${esc(T.pixel)}</th><th></th>` +
         `<th>${esc(T.margin)}</th></tr>`;
       for (const [id, c] of Object.entries(sc ? sc.constraints : {})) {
-        rows += `<tr class="${c.binding ? "binding" : ""}" data-id="${esc(id)}"><td>${esc(id)}</td>` +
-          `<td>${esc(names[id] || c.name)}</td><td>${fmt(c.pixel_um, 1)}</td><td></td>` +
+        rows += `<tr class="${c.binding ? "binding" : ""}" data-id="${esc(id)}"><td><b>${esc(id)}</b> ` +
+          `<small>${esc(names[id] || c.name)}</small></td><td>${fmt(c.pixel_um, 1)}</td><td></td>` +
           `<td class="margin ${c.margin_pct < 0 ? "neg" : ""}">${fmt(c.margin_pct, 1)} %</td></tr>`;
       }
-      figs = [[T.frames, fmt(s.frames, 0)], [T.strips, fmt(s.strips, 0)]];
+      figs = [["frames", fmt(s.frames, 0)], ["strips", fmt(s.strips, 0)]];
+    }
+    if (doc.area && doc.area.georeferenced) {
+      figs.unshift(["area_km2", `${fmt(doc.area.area_km2, 2)} ${T.km2}`],
+                   ["plan_crs", doc.area.crs_name || doc.area.crs]);
     }
     $("headline").innerHTML = head;
     $("constraints").innerHTML = rows;
-    $("figures").innerHTML = "<dl>" + figs.map(([k, x]) => `<dt>${esc(k)}</dt><dd>${esc(x)}</dd>`)
+    $("figures").innerHTML = "<dl>" + figs.map(([k, x]) =>
+      `<dt>${esc(T[k])}</dt><dd data-k="${esc(k)}">${esc(x)}</dd>`)
       .join("") + "</dl>";
     const ws = v.warnings || [];
     $("warnings").innerHTML = ws.length ? `<h3>${esc(T.warnings)}</h3><ul>` + ws.map((w) =>
