@@ -54,6 +54,7 @@ BENCHMARKS: dict[str, str] = {
     "help": "bench_help",
     "terrain": "bench_terrain",
     "flight_layout": "bench_flight_layout",
+    "serve": "bench_serve",
 }
 
 RATIO_FOOTNOTE = (

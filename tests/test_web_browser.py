@@ -143,7 +143,7 @@ def test_the_russian_page_from_a_dropped_area_file(server, browser):
     _choose_camera(page, "p1", "dji-zenmuse-p1-35")
     page.fill("#f-map-relief_interval_m", "0,5")
     _planned(page)
-    page.wait_for_function("document.querySelector('#state').textContent.includes('мс')")
+    page.wait_for_function("document.querySelector('#state').textContent.includes('рассчитано')")
     assert not page.locator("#error").is_visible(), page.inner_text("#error")
     assert TEXTS["ru"]["binding"] in page.inner_text("#headline")
     assert "точность по высоте" in page.inner_text("#constraints")
@@ -152,3 +152,30 @@ def test_the_russian_page_from_a_dropped_area_file(server, browser):
     assert page.locator("#charts img[data-chart='height']").count() == 1
     _shot(page, "serve-ru-town")
     assert not errors, errors
+
+
+def test_a_dropped_area_and_dem_fly_in_sorties(server, browser):
+    """The town over the valley DEM in 25-minute sorties: each sortie's take-off on the
+    map; the page's picture in docs/serve.png is this one."""
+    page = browser.new_page(viewport={"width": 1400, "height": 860})
+    page.goto(server + "?lang=en")
+    page.wait_for_selector("#f-uav-max_flight_time_min")
+    page.set_input_files("#area-file", str(EXAMPLES / "areas" / "town-uav.kml"))
+    page.set_input_files("#dem-file", str(EXAMPLES / "dem" / "town-valley.tif"))
+    page.wait_for_function("document.querySelector('#dem-status').textContent"
+                           " === 'town-valley.tif'")
+    _choose_camera(page, "p1 35", "dji-zenmuse-p1-35")
+    page.fill("#f-map-relief_interval_m", "0.5")
+    page.fill("#f-uav-height_m", "135")
+    page.fill("#f-uav-max_flight_time_min", "25")
+    before = _seq(page)
+    page.fill("#f-uav-speed_ms", "12")
+    _planned(page, before)
+    assert not page.locator("#error").is_visible(), page.inner_text("#error")
+    sorties = int(page.inner_text("#figures dd[data-k=sorties]"))
+    assert sorties > 1
+    expect(page.locator(".takeoff-icon")).to_have_count(sorties)
+    assert "valley" in page.inner_text("#warnings") or page.locator(
+        "#warnings li").count() > 0
+    page.hover("#constraints tr.binding")
+    _shot(page, "serve-town-dem")

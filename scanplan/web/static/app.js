@@ -388,7 +388,7 @@
       return;
     }
     $("error").hidden = true;
-    $("state").textContent = `${fmt(ms, 0)} ${T.ms}`;
+    $("state").textContent = T.planned_in.replace("{ms}", fmt(ms, 0));
     showResult(body);
     document.body.dataset.result = "ok";
     document.body.dataset.seq = String(seq);
