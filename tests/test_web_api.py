@@ -301,3 +301,17 @@ def test_a_plan_past_its_time_limit_is_stopped_and_the_next_one_runs():
         bad["uav"]["speed_ms"] = -1
         r = c.post("/api/plan", json={"project": bad})  # the worker's input error: 422
         assert r.status_code == 422 and "uav.speed_ms" in r.json()["detail"]
+
+
+def test_no_job_folder_is_left_behind(client):
+    import glob
+    import tempfile
+
+    pattern = str(Path(tempfile.gettempdir()) / "scanplan-job-*")
+    before = set(glob.glob(pattern))
+    bad = json.loads(json.dumps(UAV))
+    bad["uav"]["speed_ms"] = -1
+    assert client.post("/api/view", json={"project": UAV}).status_code == 200
+    assert client.post("/api/plan", json={"project": bad}).status_code == 422
+    assert client.post("/api/download/xlsx", json={"project": UAV}).status_code == 200
+    assert set(glob.glob(pattern)) <= before

@@ -76,6 +76,7 @@ def _seq(page) -> int:
 
 
 def _choose_camera(page, words: str, camera_id: str) -> None:
+    page.wait_for_selector("body[data-catalogue]", timeout=60_000)
     page.fill("#camera-search", words)
     page.click(f"#camera-list li[data-id='{camera_id}']")
 
@@ -94,7 +95,8 @@ def test_draw_choose_see_change_download(server, browser, tmp_path):
     pts = [(0.35, 0.3), (0.65, 0.28), (0.7, 0.7), (0.4, 0.72), (0.35, 0.3)]
     for x, y in pts:
         page.mouse.click(box["x"] + box["width"] * x, box["y"] + box["height"] * y)
-    _planned(page)
+    page.wait_for_function("document.querySelectorAll('path.strip').length > 0 && "
+                           "!document.body.dataset.planning", timeout=60_000)
     assert not page.locator("#error").is_visible(), page.inner_text("#error")
     binding = page.inner_text("#binding")
     assert re.match(r"[A-Z]{2} — \w", binding), binding
@@ -142,7 +144,11 @@ def test_the_russian_page_from_a_dropped_area_file(server, browser):
     page.set_input_files("#area-file", str(EXAMPLES / "areas" / "town-uav.kml"))
     _choose_camera(page, "p1", "dji-zenmuse-p1-35")
     page.fill("#f-map-relief_interval_m", "0,5")
-    _planned(page)
+    page.wait_for_function("document.querySelectorAll('path.strip').length > 0 && "
+                           "!document.body.dataset.planning && "
+                           "document.querySelector('#f-map-relief_interval_m').value === '0,5'",
+                           timeout=60_000)
+    _planned(page, _seq(page) - 1)
     page.wait_for_function("document.querySelector('#state').textContent.includes('рассчитано')")
     assert not page.locator("#error").is_visible(), page.inner_text("#error")
     assert TEXTS["ru"]["binding"] in page.inner_text("#headline")

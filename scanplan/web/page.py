@@ -45,6 +45,7 @@ TEXTS: dict[str, dict[str, str]] = {
         "cm": "cm", "m": "m", "min": "min", "um": "µm", "ms": "ms",
         "legend_strip": "strips", "legend_photo": "photo centres",
         "legend_takeoff": "take-off", "legend_area": "area",
+        "start": "Draw or drop the area and choose a camera: the plan follows every change.",
         "every": "1 in {k} shown", "planned_in": "planned in {ms} ms", "lang_other": "Русский",
         "area_km2": "Area", "km2": "km²", "plan_crs": "Planning CRS",
         "lbl.uav.speed_ms": "Ground speed", "lbl.uav.max_flight_time_min":
@@ -85,6 +86,8 @@ TEXTS: dict[str, dict[str, str]] = {
         "cm": "см", "m": "м", "min": "мин", "um": "мкм", "ms": "мс",
         "legend_strip": "маршруты", "legend_photo": "центры снимков",
         "legend_takeoff": "взлёт", "legend_area": "участок",
+        "start": "Нарисуйте или перетащите участок и выберите камеру: расчёт следует за "
+                 "каждым изменением.",
         "every": "показан 1 из {k}", "planned_in": "рассчитано за {ms} мс", "lang_other": "English",
         "area_km2": "Площадь", "km2": "км²", "plan_crs": "Система координат расчёта",
         "lbl.uav.speed_ms": "Путевая скорость", "lbl.uav.max_flight_time_min":

@@ -483,7 +483,10 @@
 
   /* ---------------------------------------------------------------- start */
   setAreaStatus();
+  $("state").textContent = T.start;
   api("inputs?lang=" + LANG).then((r) => r.json()).then(buildForm);
-  api("catalogue?lang=" + LANG).then((r) => r.json()).then((c) => { state.catalogue = c; });
+  api("catalogue?lang=" + LANG).then((r) => r.json()).then((c) => {
+    state.catalogue = c; document.body.dataset.catalogue = String(c.cameras.length);
+  });
   window.scanplanMap = map;  // for the browser tests and the console
 })();
