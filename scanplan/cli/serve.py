@@ -38,11 +38,8 @@ def serve(host: str, port: int, open_browser: bool, allow_remote: bool, tiles: s
     binding constraint and the strips, download the project file, reports and missions.
 
     The page talks to a JSON API that plans as `scanplan plan` does (the API's
-    documentation is at /docs). Stop it with Ctrl+C.
-
-    \b
-    Example:
-      scanplan serve --open
+    documentation is at /docs). `scanplan serve --open` also opens the page in the
+    browser; Ctrl+C stops the server.
     """
     from ..errors import InputError
 
