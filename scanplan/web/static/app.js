@@ -50,7 +50,9 @@
     tileLayer = L.tileLayer(url, {maxZoom: 19,
       attribution: kind === "osm" ? "© OpenStreetMap contributors" : ""}).addTo(map);
   }
-  const tiles = params.get("tiles") || CFG.tiles || "osm";
+  // the address may choose between the built-in layers; another tile server only by --tiles
+  const asked = params.get("tiles");
+  const tiles = ["osm", "none"].includes(asked) ? asked : CFG.tiles || "osm";
   const tilesSelect = $("tiles");
   if (!["osm", "none"].includes(tiles)) {
     const o = document.createElement("option"); o.value = tiles; o.textContent = tiles;
