@@ -57,6 +57,7 @@ BENCHMARKS: dict[str, str] = {
     "flight_layout": "bench_flight_layout",
     "hostile_gis": "bench_hostile_gis",
     "sweep": "bench_sweep",
+    "serve": "bench_serve",
 }
 
 RATIO_FOOTNOTE = (

@@ -28,6 +28,7 @@ LAYERS: list[tuple[str, set[str]]] = [
     ("project", {"project"}),
     ("reports", {"reports"}),
     ("api", {"api"}),
+    ("web", {"web"}),
     ("cli", {"cli", "__main__", "__init__"}),
 ]
 RANK = {name: i for i, (_, names) in enumerate(LAYERS) for name in names}

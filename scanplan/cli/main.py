@@ -36,6 +36,7 @@ LAZY_COMMANDS = {
              "Write a commented project file that `scanplan plan` runs as it..."),
     "norms": ("scanplan.cli.norms", "norms",
               "Norm sets: list, show, validate and import spreadsheets,..."),
+    "serve": ("scanplan.cli.serve", "serve", "Plan on a map in the browser: a local web page."),
 }
 """Commands imported only when they run (``scanplan --help`` must not import numpy):
 name → (module, attribute, the short help ``--help`` lists)."""

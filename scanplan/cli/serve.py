@@ -1,0 +1,87 @@
+"""``scanplan serve``: the local web page (imported only when the command runs)."""
+
+from __future__ import annotations
+
+import ipaddress
+import secrets
+
+import click
+
+__all__ = ["serve"]
+
+
+def _loopback(host: str) -> bool:
+    if host == "localhost":
+        return True
+    try:
+        return ipaddress.ip_address(host).is_loopback
+    except ValueError:
+        return False
+
+
+@click.command()
+@click.option("--host", default="127.0.0.1", show_default=True,
+              help="Address to listen on. Anything but this machine needs --allow-remote.")
+@click.option("--port", type=click.IntRange(0, 65535), default=8765, show_default=True,
+              help="Port to listen on (0: any free port).")
+@click.option("--open", "open_browser", is_flag=True, help="Open the page in the browser.")
+@click.option("--allow-remote", is_flag=True,
+              help="Listen off this machine; every API call then needs the printed token.")
+@click.option("--tiles", default="osm", show_default=True,
+              help='Background map of the page: "osm" (OpenStreetMap), "none" (offline) or '
+              "a tile URL with {z}/{x}/{y}.")
+@click.option("--time-limit", "limit_s", type=click.FloatRange(1, 3600), default=30.0,
+              show_default=True, help="Longest one plan may run [s] (reports: four times).")
+def serve(host: str, port: int, open_browser: bool, allow_remote: bool, tiles: str,
+          limit_s: float) -> None:
+    """Plan on a map in the browser: draw or drop the area, choose the camera, see the
+    binding constraint and the strips, download the project file, reports and missions.
+
+    The page talks to a JSON API that plans as `scanplan plan` does (the API's
+    documentation is at /docs). `scanplan serve --open` also opens the page in the
+    browser; Ctrl+C stops the server.
+    """
+    from ..errors import InputError
+
+    token = None
+    if not _loopback(host):
+        if not allow_remote:
+            raise InputError("--host", f"{host} is reachable from other machines; add "
+                             "--allow-remote to serve there (a token is then required)")
+        token = secrets.token_urlsafe(18)
+    if tiles not in ("osm", "none") and not (tiles.startswith(("https://", "http://"))
+                                            and "{z}" in tiles):
+        raise InputError("--tiles", 'must be "osm", "none" or an http(s) URL with {z}/{x}/{y} '
+                         f"(got {tiles!r})")
+    import uvicorn
+
+    from ..web.app import create_app
+    from ..web.worker import Planner
+
+    planner = Planner(limit_s=limit_s, report_limit_s=4 * limit_s)
+    app = create_app(token=token, planner=planner, tiles=tiles)
+    config = uvicorn.Config(app, host=host, port=port, log_level="warning")
+    server = uvicorn.Server(config)
+    shown = f"[{host}]" if ":" in host else host
+
+    def announce() -> None:
+        bound = server.servers[0].sockets[0].getsockname()[1] if server.servers else port
+        url = f"http://{'127.0.0.1' if host in ('0.0.0.0', '::') else shown}:{bound}/"
+        click.echo(f"scanplan: the page is at {url}" + (f"?token={token}" if token else ""))
+        if token:
+            click.echo(f"token (every API call needs it): {token}")
+        click.echo("Ctrl+C stops it.")
+        if open_browser:
+            import webbrowser
+
+            webbrowser.open(url + (f"?token={token}" if token else ""))
+
+    original = server.startup
+
+    async def startup(sockets: object = None) -> None:
+        await original(sockets=sockets)  # type: ignore[arg-type]
+        if server.started:
+            announce()
+
+    server.startup = startup  # type: ignore[method-assign]
+    server.run()

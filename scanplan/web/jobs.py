@@ -1,0 +1,258 @@
+"""What the API computes: a project given as tables, planned as ``scanplan plan`` plans it.
+
+Each job takes the project's tables (:mod:`scanplan.web.tomlfile`) and the uploaded files it
+names, writes the project file and links the files into a fresh temporary folder, and runs
+the command line's own steps on it: :func:`~scanplan.project.file.parse_project` (the
+project file's checks and messages), :func:`~scanplan.project.spec.plan_project`,
+:func:`~scanplan.reports.jsondoc.plan_result_dict` (``plan --json``), the report renderers
+and :func:`~scanplan.reports.exports.export_files` (``plan --out``). The folder is removed
+when the job ends, and its path is taken out of every message and document, which name the
+files as the project does (``areas/town.kml``).
+
+A project may name files only by the names of its uploads: ``[area] file`` and
+``[terrain] dem`` must be keys of ``files``, ``[norms] set`` a bundled set's name. No path a
+client sends is opened.
+
+The jobs run in the worker process (:mod:`scanplan.web.worker`); they take and return
+plain data (dicts, text, bytes).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import json
+import os
+import re
+import shutil
+import tempfile
+import zipfile
+from collections.abc import Iterator, Mapping
+from pathlib import Path, PurePosixPath
+from typing import Any
+
+from ..errors import InputError
+from .tomlfile import project_tables, project_toml
+
+__all__ = ["FILE_KEYS", "JOBS", "MAX_MAP_PHOTOS", "PROJECT_NAME", "catalogue_job", "files_job",
+           "plan_job", "view_job"]
+
+PROJECT_NAME = "project.toml"
+"""The project file's name in the job's folder (and in the messages)."""
+FILE_KEYS = (("area", "file"), ("terrain", "dem"))
+"""The keys that name a file: on the page, only an uploaded one."""
+MAX_MAP_PHOTOS = 5_000
+"""Most photo centres drawn on the map; a larger flight shows every k-th."""
+_SAFE_PART = re.compile(r"^[A-Za-z0-9][A-Za-z0-9._-]*$")
+
+
+def _file_name(name: Any, field: str) -> str:
+    """A file name a project may use on the page: relative, ``/``-separated parts of
+    letters, digits and ``._-`` (``areas/town.kml``), no ``..``."""
+    parts = PurePosixPath(name).parts if isinstance(name, str) else ()
+    if not parts or len(name) > 200 or not all(_SAFE_PART.match(p) for p in parts):
+        raise InputError(field, f"must name an uploaded file, e.g. \"town.kml\" (got "
+                         f"{str(name)[:100]!r})")
+    return "/".join(parts)
+
+
+def _check_names(tables: dict[str, dict[str, Any]], files: Mapping[str, str]) -> None:
+    """Refuse a file key that names no upload and a norm set given as a folder."""
+    for section, key in FILE_KEYS:
+        value = tables.get(section, {}).get(key)
+        if value is None:
+            continue
+        field = f"{PROJECT_NAME}: {section}.{key}"
+        name = _file_name(value, field)
+        if name not in files:
+            raise InputError(field, f"names {name!r}, which is not uploaded; upload the file "
+                             "(a path on the server is never opened)")
+    norm_set = tables.get("norms", {}).get("set")
+    if isinstance(norm_set, str):
+        from ..norms import is_set_name
+
+        if not is_set_name(norm_set):
+            raise InputError(f"{PROJECT_NAME}: norms.set", "must be the name of a bundled "
+                             "norm set (scanplan norms list); a folder is not read here")
+
+
+@contextlib.contextmanager
+def _staged(project: Any, files: Mapping[str, str]) -> Iterator[tuple[Path, str]]:
+    """A temporary folder holding the project file and the uploads under the names the
+    project gives them (hard links, else copies); removed on exit. Yields (folder, TOML)."""
+    tables = project_tables(project)
+    text = project_toml(tables)
+    names = {_file_name(n, "files"): p for n, p in files.items()}
+    _check_names(tables, names)
+    folder = Path(tempfile.mkdtemp(prefix="scanplan-job-"))
+    try:
+        for name, stored in names.items():
+            target = folder / name
+            target.parent.mkdir(parents=True, exist_ok=True)
+            try:
+                os.link(stored, target)
+            except OSError:
+                shutil.copyfile(stored, target)
+        yield folder, text
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
+
+
+def _scrub(text: str, folder: Path) -> str:
+    """``text`` without the job's folder: files named as the project names them."""
+    return text.replace(f"{folder}{os.sep}", "").replace(str(folder), ".")
+
+
+@contextlib.contextmanager
+def _planned(project: Any, files: Mapping[str, str]) -> Iterator[tuple[Any, str, Path]]:
+    """(PlanResult, TOML, folder) of the project; an error's field and message without the
+    job's folder."""
+    from ..project.file import parse_project
+    from ..project.spec import plan_project
+
+    with _staged(project, files) as (folder, text):
+        try:
+            result = plan_project(parse_project(text, folder / PROJECT_NAME))
+        except InputError as exc:
+            raise InputError(_scrub(exc.field, folder), _scrub(exc.message, folder)) from None
+        yield result, text, folder
+
+
+def _plan_dict(result: Any, folder: Path) -> dict[str, Any]:
+    """``plan --json`` of the result (as printed and read back), the folder scrubbed."""
+    from ..reports.jsondoc import plan_result_dict
+
+    text = json.dumps(plan_result_dict(result), ensure_ascii=False, allow_nan=False)
+    return json.loads(_scrub(text, folder))
+
+
+def plan_job(project: Any, files: Mapping[str, str]) -> dict[str, Any]:
+    """The ``scanplan plan --json`` document of the project."""
+    with _planned(project, files) as (result, _text, folder):
+        return _plan_dict(result, folder)
+
+
+def view_job(project: Any, files: Mapping[str, str]) -> dict[str, Any]:
+    """What the page shows: ``plan`` (the ``plan --json`` document), ``map`` (GeoJSON of
+    the area, strips, photo centres and take-offs, WGS 84), ``charts`` (the documents'
+    SVG plots: the film plan's constraints, the UAV plan's heights) and ``toml``."""
+    from ..reports.view import PLOT_JOBS, build_view
+
+    with _planned(project, files) as (result, text, folder):
+        doc = _plan_dict(result, folder)
+        view = build_view(scan=result.film.job if result.film else None,
+                          uav=result.uav.job if result.uav else None,
+                          meta=result.meta, spec=result)
+        charts = {name: view.plot(name) for name, job in PLOT_JOBS.items()
+                  if name != "mtf" and getattr(view, job) is not None}
+        from .mapdata import map_features
+
+        return {"plan": doc, "map": map_features(result), "charts": charts, "toml": text,
+                "names": _constraint_names(doc, view.locale),
+                "margins_pct": _margins_at_planned(doc),
+                "warnings": _warnings(result, view.locale)}
+
+
+def _margins_at_planned(doc: dict[str, Any]) -> dict[str, float]:
+    """Each UAV constraint's headroom at the planned height [%]: how much higher than the
+    planned height H the flight may go before that constraint binds, ``(H_max/H − 1)·100``
+    with ``H_max`` its maximum planned height (negative: the planned height breaks it).
+    ``plan --json``'s ``margin_pct`` is the other view, against the binding constraint's
+    height, which does not move with the planned height."""
+    uav = doc.get("uav") or {}
+    planned = (uav.get("heights_m") or {}).get("planned")
+    if not planned:
+        return {}
+    return {cid: (c["max_height_m"] / planned - 1.0) * 100.0
+            for cid, c in (uav.get("constraints") or {}).items()
+            if c.get("max_height_m") is not None}
+
+
+def _warnings(result: Any, locale: str) -> list[dict[str, str]]:
+    """The plan's warnings in ``locale``, worded as the terminal summary words them."""
+    from ..messages import localize
+    from ..reports.wording import display_message
+
+    out = []
+    for w in result.warnings:
+        text = localize(w.message, locale)
+        if locale == "ru":
+            text = display_message(w.message, (result.film or result.uav).job.norm_set, locale)
+        out.append({"code": w.code, "severity": w.severity, "text": text})
+    return out
+
+
+def _constraint_names(doc: dict[str, Any], locale: str) -> dict[str, str]:
+    """The reports' name of each constraint the plan evaluated, in ``locale``."""
+    from ..reports.labels import t
+
+    ids = set((doc.get("uav") or {}).get("constraints") or {})
+    for s in (doc.get("film") or {}).get("scenarios") or []:
+        ids |= set(s.get("constraints") or {})
+    return {cid: t(cid, locale) for cid in sorted(ids)}
+
+
+def files_job(project: Any, files: Mapping[str, str], what: str) -> tuple[str, bytes]:
+    """A download: ``"pdf"``, ``"xlsx"`` (the reports) or ``"zip"`` (the reports, the
+    mission and GIS files of ``plan --out``, the project file and its uploads) as
+    (file name, bytes)."""
+    if what not in ("pdf", "xlsx", "zip"):
+        raise InputError("what", f'must be "pdf", "xlsx" or "zip" (got {what!r})')
+    with _planned(project, files) as (result, text, folder):
+        reports = _reports(result, ("pdf", "xlsx") if what == "zip" else (what,))
+        if what != "zip":
+            return f"spec.{what}", reports[what]
+        from ..reports.exports import export_files
+
+        out = io.BytesIO()
+        with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as zf:
+            zf.writestr(PROJECT_NAME, text)
+            for name in sorted(files):
+                zf.write(folder / _file_name(name, "files"), _file_name(name, "files"))
+            for kind in ("pdf", "xlsx"):
+                zf.writestr(f"spec.{kind}", reports[kind])
+            for path, (_kind, data) in sorted(export_files(result, "").items()):
+                zf.writestr(path, data)
+        return "scanplan.zip", out.getvalue()
+
+
+def _reports(result: Any, kinds: tuple[str, ...]) -> dict[str, bytes]:
+    """The PDF and/or workbook of ``result``, rendered as ``plan --out`` renders them (one
+    view for both)."""
+    from ..reports.view import build_view
+
+    film = result.film.job if result.film else None
+    uav = result.uav.job if result.uav else None
+    view = build_view(scan=film, uav=uav, meta=result.meta, spec=result)
+    out = {}
+    for kind in kinds:
+        if kind == "xlsx":
+            from ..reports.excel import render_xlsx as render
+        else:
+            from ..reports.pdf import render_pdf as render
+        out[kind] = render(scan=film, uav=uav, meta=result.meta, spec=result, view=view)
+    return out
+
+
+def catalogue_job(norms: str, locale: str) -> dict[str, Any]:
+    """The cameras and scanners of a bundled norm set, as ``scanplan cameras list`` lists
+    them: ``cameras`` (id, name, kind, carrier, focal, pixel, sensor) and ``scanners``
+    (id, name, scan pixels)."""
+    from ..norms import is_set_name, load_norm_set
+    from ..reports.wording import camera_title, scanner_title
+
+    if not is_set_name(norms):
+        raise InputError("norms", "must be the name of a bundled norm set")
+    ns = load_norm_set(norms)
+    cams = [{"id": c.id, "name": camera_title(ns, c.id, locale) if locale == "ru" else c.name,
+             "kind": c.kind, "carrier": c.carrier, "focal_mm": c.focal_mm,
+             "pixel_um": c.pixel_um, "sensor_mm": [c.sensor_width_mm, c.sensor_height_mm]}
+            for c in sorted(ns.cameras.values(), key=lambda c: (c.kind, c.carrier, c.id))]
+    scanners = [{"id": sid, "name": scanner_title(ns, sid, locale),
+                 "pixels_um": [s.pixel_um for s in ns.scanner_details[sid]]}
+                for sid in sorted(ns.scanner_details)]
+    return {"norms": norms, "cameras": cams, "scanners": scanners}
+
+
+JOBS = {"plan": plan_job, "view": view_job, "files": files_job, "catalogue": catalogue_job}
+"""The jobs the worker runs, by name."""

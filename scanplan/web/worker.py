@@ -1,0 +1,159 @@
+"""One plan at a time, in a worker process, within a time limit.
+
+:class:`Planner` runs the jobs of :mod:`scanplan.web.jobs` in one long-lived child process
+(started by the ``forkserver`` method, which has the engine imported once, so a replacement
+starts in milliseconds). A request waits for the previous plan (at most ``wait_s``), sends
+its job through a pipe and waits at most ``limit_s`` for the answer; a job past its limit
+is ended by killing the process, which is started again for the next request. The child
+answers with the result, or the field and message of an input error (the command line's),
+or a one-line failure.
+
+``inline=True`` runs the jobs in the server's own process (the tests of the API, where the
+time limit is not what is tested); the lock still gives one plan at a time.
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+import threading
+from typing import Any
+
+from ..errors import InputError
+
+__all__ = ["Busy", "Failed", "Planner", "TimedOut"]
+
+PRELOAD = ["scanplan.web.jobs", "scanplan.project.spec", "scanplan.reports.jsondoc",
+           "scanplan.reports.view", "scanplan.web.mapdata"]
+"""Modules the fork server imports once, before any worker is forked from it."""
+
+
+class Busy(Exception):
+    """Another plan held the planner for longer than the request may wait."""
+
+
+class TimedOut(Exception):
+    """The plan passed its time limit and was stopped."""
+
+
+class Failed(Exception):
+    """The job failed for another reason than its input (the message says how)."""
+
+
+def _answer(job: str, args: tuple[Any, ...]) -> tuple[str, Any]:
+    """Run one job; the tagged answer (``ok``, ``input`` or ``failed``)."""
+    from .jobs import JOBS
+
+    try:
+        return "ok", JOBS[job](*args)
+    except InputError as exc:
+        return "input", (exc.field, exc.message)
+    except MemoryError:
+        return "failed", "the plan needs more memory than the machine has"
+    except Exception as exc:  # a bug or the environment: one line, never a traceback
+        return "failed", f"{type(exc).__name__}: {exc}"[:500]
+
+
+def _loop(conn: Any) -> None:  # pragma: no cover - runs in the child process
+    """The worker: answer jobs until the pipe closes."""
+    import warnings
+
+    warnings.simplefilter("ignore")  # as the command line: no library warning on stderr
+    while True:
+        try:
+            job, args = conn.recv()
+        except (EOFError, OSError):
+            return
+        conn.send(_answer(job, args))
+
+
+class Planner:
+    """Runs jobs one at a time (see the module docstring).
+
+    Parameters
+    ----------
+    limit_s : float
+        Longest a plan may run [s].
+    report_limit_s : float
+        Longest a download (reports, files) may take [s].
+    wait_s : float
+        Longest a request waits for the plan before it [s].
+    inline : bool
+        Run in this process (no time limit).
+    """
+
+    def __init__(self, *, limit_s: float = 30.0, report_limit_s: float = 120.0,
+                 wait_s: float = 60.0, inline: bool = False) -> None:
+        self.limit_s = limit_s
+        self.report_limit_s = report_limit_s
+        self.wait_s = wait_s
+        self.inline = inline
+        self._lock = threading.Lock()
+        self._proc: Any = None
+        self._conn: Any = None
+
+    def _start(self) -> None:
+        ctx = multiprocessing.get_context("forkserver")
+        ctx.set_forkserver_preload(PRELOAD)
+        parent, child = ctx.Pipe()
+        proc = ctx.Process(target=_loop, args=(child,), daemon=True, name="scanplan-plan")
+        proc.start()
+        child.close()
+        self._proc, self._conn = proc, parent
+
+    def _stop(self) -> None:
+        if self._proc is not None:
+            self._proc.kill()
+            self._proc.join(5)
+            self._conn.close()
+        self._proc = self._conn = None
+
+    def warm_up(self) -> None:
+        """Start the worker now (the first plan then does not wait for the imports)."""
+        if not self.inline:
+            with self._lock:
+                if self._proc is None:
+                    self._start()
+
+    def run(self, job: str, *args: Any, limit_s: float | None = None) -> Any:
+        """The result of ``job(*args)``.
+
+        Raises
+        ------
+        InputError
+            The job's input error (the command line's field and message).
+        Busy, TimedOut, Failed
+            As their docstrings say.
+        """
+        if not self._lock.acquire(timeout=self.wait_s):
+            raise Busy(f"another plan is running; tried for {self.wait_s:g} s")
+        try:
+            if self.inline:
+                tag, value = _answer(job, args)
+            else:
+                tag, value = self._remote(job, args, limit_s or self.limit_s)
+        finally:
+            self._lock.release()
+        if tag == "input":
+            raise InputError(*value)
+        if tag == "failed":
+            raise Failed(value)
+        return value
+
+    def _remote(self, job: str, args: tuple[Any, ...], limit_s: float) -> tuple[str, Any]:
+        if self._proc is None or not self._proc.is_alive():
+            self._stop()
+            self._start()
+        try:
+            self._conn.send((job, args))
+            if self._conn.poll(limit_s):
+                return self._conn.recv()  # type: ignore[no-any-return]
+        except (EOFError, OSError):  # the worker died (killed for memory, a crash)
+            self._stop()
+            return "failed", "the planning process stopped unexpectedly"
+        self._stop()
+        raise TimedOut(f"the plan took longer than {limit_s:g} s and was stopped")
+
+    def close(self) -> None:
+        """Stop the worker."""
+        with self._lock:
+            self._stop()
