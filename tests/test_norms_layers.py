@@ -14,7 +14,8 @@ PKG = Path(scanplan.__file__).parent
 NORMS = PKG / "norms"
 
 # Bottom first: a module may import only the modules listed before it.
-ORDER = ("schema", "paths", "limits", "recovery", "store", "cells", "grid", "sheetscan", "xlsx",
+ORDER = ("schema", "paths", "limits", "recovery", "records", "store", "cells", "grid",
+         "sheetscan", "xlsx",
          "csvfile", "importer", "writer", "export", "template")
 # scanplan modules above the norms layer (reports, project files, the CLI and the API).
 ABOVE = ("reports", "cli", "cli_norms", "cli_cameras", "cli_init", "spec", "api",
