@@ -219,13 +219,13 @@ TERRAIN: dict[str, dict[str, str]] = {
               "(на {pct:.0f}~% меньше; оценка по ЦМР).",
     },
     "terrain_choice.mode": {
-        "en": "the altitude mode {mode} ([terrain] altitude_mode)",
-        "ru": "Режим {mode} ([terrain] altitude_mode)",
+        "en": "the altitude mode {mode} (⁅[terrain] altitude_mode⁆)",
+        "ru": "Режим {mode} (⁅[terrain] altitude_mode⁆)",
     },
     "terrain_choice.strip": {
-        "en": "the altitude mode {mode} with the lines at {direction:.0f}° ([terrain] "
-              "altitude_mode, [area] direction_deg)",
-        "ru": "Режим {mode} при направлении маршрутов {direction:.0f}° ([terrain] altitude_mode, "
-              "[area] direction_deg)",
+        "en": "the altitude mode {mode} with the lines at {direction:.0f}° (⁅[terrain] "
+              "altitude_mode, [area] direction_deg⁆)",
+        "ru": "Режим {mode} при направлении маршрутов {direction:.0f}° (⁅[terrain] "
+              "altitude_mode, [area] direction_deg⁆)",
     },
 }

@@ -81,13 +81,13 @@ UAV: dict[str, dict[str, str]] = {
     },
     "block_height_waived": {
         "en": "the one-height rule of GOST R 59328-2021 §6.2.1 (second draft: {limit:g} % for "
-              "{relief}) is waived: the flight follows the relief ([terrain] altitude_mode = "
-              "\"follow\"), so the photographing height is kept over the ground and not one "
+              "{relief}) is waived: the flight follows the relief (⁅[terrain] altitude_mode = "
+              "\"follow\"⁆), so the photographing height is kept over the ground and not one "
               "height for the block (the ground range, {range:.0f} m, is {pct:.1f} % of the "
               "flight height {h:g} m)",
         "ru": "Требование одной высоты фотографирования на участок (ГОСТ Р 59328-2021, проект "
               "2-й редакции: {limit:g}~% для местности «{relief}») не применяется: полёт "
-              "выполняется с огибанием рельефа (режим [terrain] altitude_mode), высота "
+              "выполняется с огибанием рельефа (⁅режим [terrain] altitude_mode⁆), высота "
               "фотографирования выдерживается над местностью (перепад высот {range:.0f}~м — "
               "{pct:.1f}~% высоты фотографирования {h:g}~м)",
     },

@@ -167,7 +167,7 @@ def test_formats_choose_the_outputs(tmp_path):
     r = runner.invoke(main, ["plan", str(POLYGON), "--out", str(tmp_path / "g"),
                              "--formats", "gis,xlsx"])
     assert sorted(p.name for p in (tmp_path / "g").iterdir()) == [
-        "flight.geojson", "flight.kml", "photos.csv", "spec.xlsx"]
+        "flight.geojson", "flight.gpkg", "flight.kml", "photos.csv", "spec.xlsx"]
     bad = runner.invoke(main, ["plan", str(POLYGON), "--out", str(tmp_path / "x"),
                                "--formats", "xlsx,docx"])
     assert bad.exit_code == 2 and "--formats" in bad.output and "missions" in bad.output

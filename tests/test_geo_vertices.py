@@ -125,7 +125,7 @@ def test_cli_exit_2_names_the_cell(tmp_path):
     assert "Traceback" not in res.output
 
 
-def test_a_wkt_table_is_still_read_by_gdal(tmp_path, kml_area):
+def test_a_wkt_table_is_read_by_shapely_not_gdal(tmp_path, kml_area):
     ring = _ring()
     wkt = shapely.Polygon(ring).wkt
     path = tmp_path / "area.csv"

@@ -17,8 +17,9 @@ What a customer's engineer often sends instead of a GIS file::
 * Coordinates are WGS 84 longitude/latitude unless ``[area] crs`` states the CRS of the
   list (``"EPSG:28407"``); x is always the easting — a survey list whose X is the
   northing must name its columns (``northing;easting``).
-* A table whose header names a ``WKT`` (or ``geometry``) column is left to GDAL's CSV
-  driver (a polygon per row).
+* A table whose header names a ``WKT`` (or ``geometry``) column holds a polygon per row,
+  read by shapely (never by GDAL, whose CSV driver follows references): the area is their
+  union.
 * Blank lines and lines starting with ``#`` are skipped; the ring may repeat its first
   vertex at the end.
 
@@ -71,7 +72,7 @@ def _cells(line: str, sep: str | None) -> list[str]:
     return [p.strip() for p in parts]
 
 
-def read_vertices(path: Path, name: str) -> shapely.Polygon | None:
+def read_vertices(path: Path, name: str) -> shapely.Geometry | None:
     """The polygon of a vertex list (rules in the module docstring).
 
     Parameters
@@ -83,10 +84,11 @@ def read_vertices(path: Path, name: str) -> shapely.Polygon | None:
 
     Returns
     -------
-    shapely.Polygon or None
-        In the coordinates of the file (the caller applies ``[area] crs``); None for a
-        table whose header names a geometry column (``WKT``, ``geometry``): a GIS table
-        for GDAL, not a vertex list.
+    shapely.Polygon or shapely.MultiPolygon or None
+        In the coordinates of the file (the caller applies ``[area] crs``): the polygon of
+        the vertices, or the union of the polygons of a table with a geometry column
+        (``WKT``, ``geometry``). None is never returned for a file that has rows; it is
+        kept for the caller's "not a vertex list" branch.
 
     Raises
     ------
@@ -97,7 +99,7 @@ def read_vertices(path: Path, name: str) -> shapely.Polygon | None:
     sep = _delimiter([line for _, line in lines])
     first = _cells(lines[0][1], sep)
     if {c.strip().strip('"').lower() for c in first} & _GEOMETRY_NAMES:
-        return None  # a table with a WKT geometry column: GDAL's CSV driver reads it
+        return _wkt_table(lines, sep, name)
     header = not all(_NUMBER.match(c) for c in first if c) or not any(first)
     cols = _columns(first, name, lines[0][0]) if header else (0, 1, "x", "y")
     body = lines[1:] if header else lines
@@ -184,3 +186,26 @@ def _columns(header: list[str], name: str, line: int) -> tuple[Any, Any, str, st
                          "one y column: name them lon and lat (or x and y, easting and "
                          "northing)"[:400])
     return xs[0], ys[0], header[xs[0]], header[ys[0]]
+
+
+def _wkt_table(lines: list[tuple[int, str]], sep: str | None, name: str) -> shapely.Geometry:
+    """The union of the polygons of a table with a WKT column (one geometry a row)."""
+    rows = list(csv.reader(io.StringIO("\n".join(line for _, line in lines)),
+                           delimiter=sep or ","))
+    head = [c.strip().lower() for c in rows[0]]
+    k = next(i for i, c in enumerate(head) if c in _GEOMETRY_NAMES)
+    parts = []
+    for (line, _), row in zip(lines[1:], rows[1:], strict=False):
+        text = row[k].strip() if k < len(row) else ""
+        try:
+            geom = shapely.from_wkt(text)
+        except (shapely.errors.GEOSException, ValueError):
+            geom = None
+        if geom is None or geom.is_empty or geom.geom_type not in ("Polygon", "MultiPolygon"):
+            raise InputError(name, f"line {line}, column {head[k]}: not a polygon in WKT "
+                             f"({text[:40]!r}); give POLYGON((x y, ...)) a row")
+        parts.append(geom)
+    if not parts:
+        raise InputError(name, "holds a header but no polygon: give one WKT polygon a row")
+    return shapely.union_all(parts)
+

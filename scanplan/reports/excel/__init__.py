@@ -156,6 +156,10 @@ def render_xlsx(
         if scan is None and uav is None:
             raise ValueError("render_xlsx needs a scan plan, a UAV plan or both")
         view = build_view(scan=scan, uav=uav, meta=meta, spec=spec)
+    if not view.citations:  # number the works as the PDF of this result numbers them
+        from ..pdfhtml import render_html
+
+        render_html(view=view)
     book = Book(view)
     for sheet in SHEETS:
         if sheet.section is None or view.has(sheet.section):
