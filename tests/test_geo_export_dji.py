@@ -491,3 +491,19 @@ def test_a_part_of_one_photo_fires_once_at_one_waypoint():
         assert GEOD.inv(p.lon_deg, p.lat_deg, q.lon_deg, q.lat_deg)[2] > 0.005
     assert sum(p.photos for p in route) == len(photos)
     assert x.size > len(photos)
+
+
+def test_the_geopackage_is_the_same_bytes_for_the_same_plan(monkeypatch):
+    """Its layers' timestamps are the build time (SOURCE_DATE_EPOCH), so a rerun of the same
+    plan writes the same file and the output set stays one run's."""
+    from scanplan.geo.export.gpkg import render_gpkg
+    from scanplan.project.file import load_project
+    from scanplan.project.spec import plan_project
+
+    monkeypatch.setenv("SOURCE_DATE_EPOCH", "1700000000")
+    layout = plan_project(load_project(EXAMPLES / "uav-town-2000.toml")).uav.job.layout
+    first = render_gpkg(layout)
+    import time
+
+    time.sleep(1.1)
+    assert render_gpkg(layout) == first

@@ -547,6 +547,7 @@ def planned(monkeypatch, town_plans, marked_renders):
     """``plan`` returns the cached plan of the project file's stem (old/new/block)."""
     import scanplan.project.spec as spec_mod
 
+    monkeypatch.setenv("SOURCE_DATE_EPOCH", "1700000000")  # the GeoPackage's timestamps
     real = spec_mod.plan_project
 
     def cached(project):

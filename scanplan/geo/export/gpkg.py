@@ -69,6 +69,16 @@ def _write(path: str, layer: str, geoms: list[Any], fields: dict[str, np.ndarray
           dataset_options={"VERSION": "1.2"} if first else None)
 
 
+def _build_time() -> str:
+    """``SOURCE_DATE_EPOCH`` (else now, to the second) as GeoPackage writes a timestamp."""
+    import datetime as _dt
+
+    epoch = os.environ.get("SOURCE_DATE_EPOCH", "")
+    when = (_dt.datetime.fromtimestamp(int(epoch), _dt.UTC) if epoch.isdigit()
+            else _dt.datetime.now(_dt.UTC).replace(microsecond=0))
+    return when.strftime("%Y-%m-%dT%H:%M:%S.000Z")
+
+
 def render_gpkg(layout: FlightLayout) -> bytes:
     """``layout`` as a GeoPackage: layers :data:`GPKG_LAYERS` in the planning CRS.
 
@@ -82,9 +92,14 @@ def render_gpkg(layout: FlightLayout) -> bytes:
     bytes
         The ``.gpkg`` file.
     """
+    import pyogrio
+
     crs = layout.area.plan_crs
     area = layout.area.geometry
     strips = layout.strips
+    # the layers' last_change: the build time (SOURCE_DATE_EPOCH, as the reports), so the
+    # same plan gives the same bytes and a rerun is not a different file
+    pyogrio.set_gdal_config_options({"OGR_CURRENT_DATE": _build_time()})
     with tempfile.TemporaryDirectory(prefix="scanplan-gpkg-") as tmp:
         path = os.path.join(tmp, "flight.gpkg")
         _write(path, "area", [area], {"name": np.array(["area"], dtype=object)},

@@ -55,7 +55,6 @@ KML_NS = "http://www.opengis.net/kml/2.2"
 WPML_NS = "http://www.dji.com/wpmz/1.0.2"
 _W = "{" + WPML_NS + "}"
 _K = "{" + KML_NS + "}"
-ET.register_namespace("", KML_NS)
 ET.register_namespace("wpml", WPML_NS)
 
 #: The largest ``wpml:globalTransitionalSpeed`` the format allows (Waylines.wpml: 0 … 15).
@@ -207,7 +206,10 @@ def _document() -> tuple[ET.Element, ET.Element]:
 
 def _xml(root: ET.Element) -> bytes:
     ET.indent(root, space=" ")
-    body = ET.tostring(root, encoding="unicode")
+    ET.register_namespace("wpml", WPML_NS)  # again: a library may have remapped the prefix
+    # KML as the default namespace of this document only (not registered for the process,
+    # where another writer's default, e.g. SVG's, would take it away)
+    body = ET.tostring(root, encoding="unicode", default_namespace=KML_NS)
     return (f'<?xml version="1.0" encoding="UTF-8"?>\n<!-- {GENERATOR} -->\n{body}\n'
             ).encode()
 
