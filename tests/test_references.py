@@ -128,3 +128,27 @@ def test_the_pdf_and_the_workbook_of_one_run_number_a_work_alike():
             for n in shared:
                 assert " ".join(pdf[n].split())[:40] == " ".join(book[n].split())[:40], (
                     name, first, n)
+
+
+def test_the_workbook_and_the_pdf_of_one_view_render_its_html_once(monkeypatch):
+    """The workbook numbers its works by the PDF's HTML; the PDF then uses that HTML, not a
+    second render of it (workbook first is the order of the API's and the batch's writes)."""
+    from pathlib import Path
+
+    from scanplan.project.file import load_project
+    from scanplan.project.spec import plan_project
+    from scanplan.reports import pdfhtml
+    from scanplan.reports.excel import render_xlsx
+    from scanplan.reports.view import build_view
+
+    root = Path(__file__).resolve().parent.parent
+    r = plan_project(load_project(root / "examples" / "instruction-2000-film.toml"))
+    view = build_view(scan=r.film.job, meta=r.meta, spec=r)
+    env = pdfhtml._environment()
+    real = env.get_template
+    calls = []
+    monkeypatch.setattr(env, "get_template",
+                        lambda name, *a, **k: calls.append(name) or real(name, *a, **k))
+    render_xlsx(view=view)
+    html = pdfhtml.render_html(view=view)
+    assert calls.count("report.html") == 1 and pdfhtml.render_html(view=view) is html

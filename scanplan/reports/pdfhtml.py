@@ -184,6 +184,8 @@ def render_html(*, scan: ScanJob | None = None, uav: UavJob | None = None,
         If neither ``scan`` nor ``uav`` is given, or the locale is unknown.
     """
     view = _view(scan, uav, meta, spec, view)
+    if view._html:  # already rendered from this view (the workbook numbers its works
+        return view._html[0]  # by it, the PDF is made from it): the same document
     scan, uav, meta, spec = view.scan, view.uav, view.meta, view.spec
     f = _Fmt(view, Bibliography(view.locale, view.citations))
     now = view.when
@@ -226,7 +228,8 @@ def render_html(*, scan: ScanJob | None = None, uav: UavJob | None = None,
         "warnings_box": _warnings_box(scan_view, uav_view, spec, f),
         "references": f.bib.entries(),
     }
-    return _environment().get_template("report.html").render(**ctx)
+    view._html.append(_environment().get_template("report.html").render(**ctx))
+    return view._html[0]
 
 
 def _geo_views(spec: PlanResult | None, uav: UavJob | None, locale: str

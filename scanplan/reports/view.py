@@ -271,6 +271,7 @@ class ReportView:
     labels: Labels
     sections: tuple[str, ...]
     _plots: dict[str, str] = field(default_factory=dict, repr=False)
+    _html: list[str] = field(default_factory=list, repr=False)  # the PDF's HTML, once
     citations: list[Any] = field(default_factory=list, repr=False)
 
     def has(self, section: str) -> bool:
