@@ -124,7 +124,7 @@ def _echo_json(doc: Any) -> None:
 class _JsonStream:
     """Print ``{"KEY": [item, ...], ...}`` one item at a time, byte-identical to
     :func:`_echo_json` of the whole document: a batch of thousands of projects never holds
-    every result in memory (issue 17)."""
+    every result in memory."""
 
     def __init__(self, key: str) -> None:
         self.key, self.n = key, 0
@@ -204,7 +204,7 @@ def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
     written with :func:`scanplan.reports.write_atomic_many`: after any failure the previous
     spec.xlsx and spec.pdf are both as they were — never a new workbook beside an old PDF.
     The files ``plan --out`` exports beside them (``opts["exports"]``: path → (kind,
-    bytes), the mission, KML, GeoJSON and CSV of issue 11) join the same transaction.
+    bytes): missions, KML, GeoJSON, GeoPackage, CSV) join the same transaction.
     """
     xlsx, pdf = opts.pop("xlsx_path"), opts.pop("pdf_path")
     exports: dict[str, tuple[str, bytes]] = opts.pop("exports", None) or {}
@@ -624,7 +624,7 @@ def _run_project(path: str, out_dir: str | None, stem: str | None, xlsx_path: st
     # OUT/flight.kml), even with --force
     files = [*files, *project_inputs(result)]
     exports = {}
-    if out_dir:  # the mission and GIS files join the reports' transaction (issue 11)
+    if out_dir:  # the mission and GIS files join the reports' transaction
         from ..reports.exports import export_files
         exports = outputs.chosen_exports(export_files(
             result, out_dir, prefix=f"{stem}-" if stem is not None else "",
