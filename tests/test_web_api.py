@@ -303,15 +303,19 @@ def test_a_plan_past_its_time_limit_is_stopped_and_the_next_one_runs():
         assert r.status_code == 422 and "uav.speed_ms" in r.json()["detail"]
 
 
-def test_no_job_folder_is_left_behind(client):
+def test_no_job_folder_is_left_behind(client, tmp_path, monkeypatch):
     import glob
     import tempfile
 
-    pattern = str(Path(tempfile.gettempdir()) / "scanplan-job-*")
+    # a temporary folder of this test's own: another test run on the machine makes job
+    # folders of its own in the shared one meanwhile
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
+    pattern = str(tmp_path / "scanplan-job-*")
     before = set(glob.glob(pattern))
+    assert before == set()
     bad = json.loads(json.dumps(UAV))
     bad["uav"]["speed_ms"] = -1
     assert client.post("/api/view", json={"project": UAV}).status_code == 200
     assert client.post("/api/plan", json={"project": bad}).status_code == 422
     assert client.post("/api/download/xlsx", json={"project": UAV}).status_code == 200
-    assert set(glob.glob(pattern)) <= before
+    assert set(glob.glob(pattern)) == before
