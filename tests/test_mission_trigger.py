@@ -1,0 +1,164 @@
+"""The missions fly what photos.csv promises: a distance-trigger simulator over the files.
+
+The simulator is written from ArduPilot's camera backend, not from scanplan: the aircraft
+flies the written waypoints (read back from the .plan JSON and with pymavlink from the
+.waypoints) along geodesics at the plan's ground speed; a DO command acts at the first
+50 Hz step at or past the waypoint before it; DO_SET_CAM_TRIGG_DIST sets the distance and,
+with param3 = 1, takes an image at once; at every step an image is taken when the
+ellipsoidal distance from the last image reaches the distance — so each image is up to one
+step late and the lateness adds up. Every exposure is matched to its nearest planned photo
+centre; every strip must get as many exposures as photos.csv holds, one per planned photo,
+and every distance-triggered spacing must keep the planned forward overlap within one
+percentage point. Areas: the polygon examples, a Gauss–Krüger rectangle (k > 1), one in
+the southern hemisphere and one across a UTM zone edge.
+"""
+
+from __future__ import annotations
+
+import json
+from collections import Counter
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+from pyproj import Geod, Transformer
+from scipy.spatial import cKDTree
+
+from scanplan.project.file import load_project
+from scanplan.project.spec import plan_project
+from scanplan.reports.exports import export_files
+
+ROOT = Path(__file__).resolve().parent.parent
+EXAMPLES = ROOT / "examples"
+GEOD = Geod(ellps="WGS84")
+LOOP_HZ = 50.0
+
+
+def simulate(items: list[dict], speed_ms: float, phase: float) -> list[tuple[float, float, bool]]:
+    """Exposures (lon, lat, by distance?) of one mission's items flown at ``speed_ms``."""
+    wps: list[tuple[float, float]] = []
+    dos: list[list[list[float]]] = []
+    for it in items:
+        if it["command"] == 16:
+            p = it["params"]
+            wps.append((p[5], p[4]))
+            dos.append([])
+        elif it["command"] == 206:
+            dos[-1].append(it["params"])
+    step = speed_ms / LOOP_HZ
+    shots: list[tuple[float, float, bool]] = []
+    dist_m, last = 0.0, None
+    t0 = phase * step  # where the first step falls on the first segment
+    for k in range(len(wps) - 1):
+        (lon0, lat0), (lon1, lat1) = wps[k], wps[k + 1]
+        az, _, seg = GEOD.inv(lon0, lat0, lon1, lat1)
+        s = np.arange(t0, seg, step) if seg > 0 else np.zeros(0)
+        t0 = (s[-1] + step - seg) if len(s) else t0 - seg
+        if not len(s):
+            for cmd in dos[k]:  # reached within the step: acts at the next one
+                dos[k + 1][:0] = [cmd]
+            continue
+        lon, lat, _ = GEOD.fwd(np.full(len(s), lon0), np.full(len(s), lat0),
+                               np.full(len(s), az), s)
+        for cmd in dos[k]:  # the waypoint reached at this segment's first step
+            dist_m = cmd[0]
+            if cmd[2] == 1:
+                last = (lon[0], lat[0])
+                shots.append((lon[0], lat[0], False))
+        j = 0
+        while dist_m > 0 and last is not None and j < len(s):
+            _, _, d = GEOD.inv(np.full(len(s) - j, last[0]), np.full(len(s) - j, last[1]),
+                               lon[j:], lat[j:])
+            hit = np.flatnonzero(d >= dist_m)
+            if not len(hit):
+                break
+            j += int(hit[0])
+            last = (lon[j], lat[j])
+            shots.append((lon[j], lat[j], True))
+            j += 1
+    return shots
+
+
+def _polygon_project(tmp: Path, name: str, ring: list[tuple[float, float]], extra: str = ""
+                     ) -> Path:
+    src = (EXAMPLES / "uav-town-2000.toml").read_text()
+    src = src.replace('file = "areas/town-uav.kml"',
+                      "polygon = " + json.dumps([list(p) for p in ring]) + "\n" + extra)
+    path = tmp / f"{name}.toml"
+    path.write_text(src)
+    return path
+
+
+def _rect(lon: float, lat: float, w_deg: float, h_deg: float) -> list[tuple[float, float]]:
+    return [(lon, lat), (lon + w_deg, lat), (lon + w_deg, lat + h_deg), (lon, lat + h_deg),
+            (lon, lat)]
+
+
+def _follow(tmp: Path) -> Path:
+    src = (EXAMPLES / "uav-town-valley-2000.toml").read_text()
+    assert 'altitude_mode = "constant"' in src
+    path = tmp / "valley-follow.toml"
+    path.write_text(src.replace('altitude_mode = "constant"', 'altitude_mode = "follow"')
+                    .replace('"areas/', f'"{EXAMPLES}/areas/').replace('"dem/',
+                                                                       f'"{EXAMPLES}/dem/'))
+    return path
+
+
+def _projects(tmp: Path) -> list[Path]:
+    return [
+        EXAMPLES / "uav-town-2000.toml",
+        EXAMPLES / "uav-town-valley-2000.toml",
+        _follow(tmp),
+        # Gauss–Krüger zone 7 (central meridian 39°E): k > 1 off the meridian
+        _polygon_project(tmp, "gk", _rect(40.9, 55.70, 0.05, 0.03),
+                         'plan_crs = "EPSG:28407"'),
+        _polygon_project(tmp, "south", _rect(-47.95, -15.80, 0.04, 0.03)),
+        _polygon_project(tmp, "zones", _rect(35.97, 55.70, 0.06, 0.02)),
+    ]
+
+
+def _check(path: Path, tmp: Path) -> dict[str, float]:
+    spec = plan_project(load_project(path))
+    layout = spec.uav.layout
+    out = tmp / path.stem
+    out.mkdir()
+    files = export_files(spec, str(out))
+    for p, (_kind, data) in files.items():
+        Path(p).write_bytes(data)
+    photos = pd.read_csv(out / "photos.csv")
+    assert len(photos) == len(layout.photos) > 0
+    plans = sorted(out.glob("*.plan"))
+    assert len(plans) == len(layout.sorties)
+    tr = Transformer.from_crs(4326, layout.area.plan_crs, always_xy=True)
+    tree = cKDTree(photos[["x_m", "y_m"]].to_numpy())
+    matched: list[int] = []
+    spacings: list[float] = []
+    for k, plan in enumerate(plans):
+        doc = json.loads(plan.read_text())
+        items = doc["mission"]["items"]
+        speed = next(i["params"][1] for i in items if i["command"] == 178)
+        shots = simulate(items, speed, phase=(k * 0.37) % 1.0)
+        lon = np.array([s[0] for s in shots])
+        lat = np.array([s[1] for s in shots])
+        x, y = tr.transform(lon, lat)
+        _, nearest = tree.query(np.column_stack([x, y]))
+        matched += nearest.tolist()
+        by_dist = np.array([s[2] for s in shots])
+        _, _, d = GEOD.inv(lon[:-1], lat[:-1], lon[1:], lat[1:])
+        spacings += d[by_dist[1:]].tolist()
+    # one exposure per planned photo, so per strip as many as photos.csv holds
+    assert sorted(matched) == list(range(len(photos))), path.name
+    got = Counter(photos["strip"].to_numpy()[matched].tolist())
+    assert got == Counter(photos["strip"].tolist())
+    planned = 1.0 - layout.base_m / layout.footprint_along_m
+    overlap = 1.0 - np.asarray(spacings) / layout.footprint_along_m
+    assert np.all(np.abs(overlap - planned) <= 0.01), path.name
+    return {"photos": len(photos), "worst_pp": float(np.max(np.abs(overlap - planned)) * 100)}
+
+
+@pytest.mark.parametrize("which", range(6), ids=["town", "valley", "valley-follow",
+                                                  "gauss-kruger", "southern", "zone-edge"])
+def test_the_distance_trigger_fires_every_photo_of_photos_csv(tmp_path, which):
+    path = _projects(tmp_path)[which]
+    _check(path, tmp_path)
