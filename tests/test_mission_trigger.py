@@ -16,6 +16,7 @@ the southern hemisphere and one across a UTM zone edge.
 from __future__ import annotations
 
 import json
+import math
 from collections import Counter
 from pathlib import Path
 
@@ -118,6 +119,17 @@ def _projects(tmp: Path) -> list[Path]:
     ]
 
 
+def _from_waypoints(path: Path) -> list[dict]:
+    """The mission items of a ``.waypoints`` file as pymavlink reads it (the home left out),
+    in the Plan file's shape."""
+    mavwp = pytest.importorskip("pymavlink.mavwp")
+    loader = mavwp.MAVWPLoader()
+    n = loader.load(str(path))
+    wps = [loader.wp(i) for i in range(1, n)]
+    return [{"command": w.command, "params": [w.param1, w.param2, w.param3, w.param4,
+                                                w.x, w.y, w.z]} for w in wps]
+
+
 def _check(path: Path, tmp: Path) -> dict[str, float]:
     spec = plan_project(load_project(path))
     layout = spec.uav.layout
@@ -137,6 +149,8 @@ def _check(path: Path, tmp: Path) -> dict[str, float]:
     for k, plan in enumerate(plans):
         doc = json.loads(plan.read_text())
         items = doc["mission"]["items"]
+        if k % 2:  # every other sortie as Mission Planner's file, read by pymavlink
+            items = _from_waypoints(plan.with_suffix(".waypoints"))
         speed = next(i["params"][1] for i in items if i["command"] == 178)
         shots = simulate(items, speed, phase=(k * 0.37) % 1.0)
         lon = np.array([s[0] for s in shots])
@@ -162,3 +176,92 @@ def _check(path: Path, tmp: Path) -> dict[str, float]:
 def test_the_distance_trigger_fires_every_photo_of_photos_csv(tmp_path, which):
     path = _projects(tmp_path)[which]
     _check(path, tmp_path)
+
+
+def _path_m(items: list[dict], home: tuple[float, float] | None) -> float:
+    """The geodesic length of the waypoints' path (from and back to ``home`` if given)."""
+    pts = [(i["params"][5], i["params"][4]) for i in items if i["command"] == 16]
+    if home is not None:
+        pts = [home, *pts, home]
+    lon, lat = np.array(pts).T
+    return float(GEOD.line_length(lon, lat))
+
+
+@pytest.mark.parametrize("turn", ["turnaround_m = 20", "turn_radius_m = 80",
+                                  "turn_radius_m = 300", "bank_deg = 25"])
+@pytest.mark.parametrize("takeoff", [False, True])
+def test_the_mission_path_is_the_reported_flight_length(tmp_path, turn, takeoff):
+    """Multirotor (turnaround) and fixed wing (turn radius, wide and omega turns; a bank
+    angle): the written waypoints' path, transit included, is the reported length within
+    1 %; a fixed wing's camera is armed only after a straight of one turn radius on the
+    line."""
+    src = (EXAMPLES / "uav-town-2000.toml").read_text().replace(
+        '"areas/', f'"{EXAMPLES}/areas/').replace("turnaround_m = 20", turn)
+    if takeoff:
+        src += "\n[flight]\ntakeoff = [38.805, 55.081]\n"
+    path = tmp_path / "p.toml"
+    path.write_text(src)
+    spec = plan_project(load_project(path))
+    layout = spec.uav.layout
+    assert layout.feasible
+    files = export_files(spec, str(tmp_path))
+    plans = sorted((p, d) for p, (kind, d) in files.items() if kind == "plan")
+    assert len(plans) == len(layout.sorties)
+    total, radius = 0.0, layout.notes["turn_m"] if "radius" in layout.turn else 0.0
+    for _name, data in plans:
+        doc = json.loads(data)
+        lat, lon, _ = doc["mission"]["plannedHomePosition"]
+        items = doc["mission"]["items"]
+        total += _path_m(items, (lon, lat) if takeoff else None)
+        if radius:
+            _armed_on_the_line(items, radius)
+    assert total == pytest.approx(layout.flight_length_m, rel=0.01)
+    if takeoff:
+        assert layout.notes["transit_m"] > 0
+        assert sum(s.transit_m for s in layout.sorties) == pytest.approx(
+            layout.notes["transit_m"])
+
+
+def _armed_on_the_line(items: list[dict], radius_m: float) -> None:
+    """Before every trigger-on waypoint the aircraft flies ≥ radius straight on the line."""
+    wps, armed = [], []
+    for it in items:
+        if it["command"] == 16:
+            wps.append((it["params"][5], it["params"][4]))
+        elif it["command"] == 206 and it["params"][0] > 0:
+            armed.append(len(wps) - 1)
+    for k in armed:
+        if k < 1 or k + 1 >= len(wps):
+            continue
+        az_in, _, d_in = GEOD.inv(*wps[k - 1], *wps[k])
+        az_out, _, _ = GEOD.inv(*wps[k], *wps[k + 1])
+        assert abs((az_in - az_out + 180) % 360 - 180) < 1.0  # on the line's heading
+        straight = d_in
+        j = k - 1
+        while straight < radius_m * 0.999 and j >= 1:  # run-in: straight back to the turn
+            az, _, d = GEOD.inv(*wps[j - 1], *wps[j])
+            if abs((az - az_in + 180) % 360 - 180) >= 1.0:
+                break
+            straight += d
+            j -= 1
+        assert straight >= radius_m * 0.999
+
+
+def test_a_ten_km_block_is_packed_within_ten_percent_of_the_bound(tmp_path):
+    """10 × 10 km, 25 min batteries: sorties cut strips where the battery ends (one 10 km
+    strip per sortie was 56 % of a battery); the count is within 10 % of the serpentine's
+    length over one battery, and every sortie fits it."""
+    src = (EXAMPLES / "uav-town-2000.toml").read_text().replace(
+        'file = "areas/town-uav.kml"', "width_m = 10000\nlength_m = 10000").replace(
+        'direction_deg = "auto"\n', "")
+    path = tmp_path / "block.toml"
+    path.write_text(src)
+    layout = plan_project(load_project(path)).uav.layout
+    limit_m = 25 * 60 * layout.speed_ms
+    serpentine = sum(s.length_m for s in layout.strips) + layout.turn_length_m
+    bound = math.ceil(serpentine / limit_m)
+    assert layout.feasible and len(layout.strips) > 200
+    assert bound <= len(layout.sorties) <= 1.1 * bound
+    assert all(s.time_s <= 25 * 60 + 1e-6 for s in layout.sorties)
+    assert sorted(set(layout.photos["sortie"].tolist())) == list(
+        range(1, len(layout.sorties) + 1))
