@@ -322,7 +322,7 @@ def test_every_mission_fires_every_photo_and_passes_the_format(width, length, sp
                                last["params"][4])
             n = math.floor(d / dist)  # whole bases and the half base to the disarm point
             # half a base on the line, or less on the arc of a semicircle turn
-            assert 0.2 * dist - 1e-3 * d <= d - n * dist <= 0.5 * dist + 1e-3 * d
+            assert 0.15 * dist - 1e-3 * d <= d - n * dist <= 0.5 * dist + 1e-3 * d
             fired += n + 1
     assert fired == len(layout.photos)
 

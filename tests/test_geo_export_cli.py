@@ -8,10 +8,9 @@ specification.
 
 from __future__ import annotations
 
-import math
-
 import io
 import json
+import math
 import os
 import zipfile
 from pathlib import Path

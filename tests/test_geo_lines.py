@@ -64,19 +64,24 @@ def test_rectangle_layout_is_the_block_formulas(w, length, s, b, ext):
 
 def test_rectangle_polygon_in_a_projected_crs_equals_the_block():
     """A georeferenced rectangle (UTM 37N corners, lines along its length) gives the same
-    strips, photos and length as ``width_m × length_m`` of its size."""
+    strips, photos and length as ``width_m × length_m`` of its size on the ground: the grid
+    is k times the ground (k, the least scale factor over the area; 0.9996 on the central
+    meridian, 0.99972 here), so the polygon is the block of w/k × length/k and its
+    centres and lengths are k times the block's."""
     x0, y0, w, length = 400_000.0, 6_100_000.0, 2000.0, 3000.0
     ring = [[x0, y0], [x0 + w, y0], [x0 + w, y0 + length], [x0, y0 + length]]
     area = load_area(AreaSpec(polygon=ring, crs="EPSG:32637"))
     assert area.plan_crs == "EPSG:32637" and area.area_km2 == pytest.approx(6.0)
     poly = _lay(area, direction_deg=0.0)
-    rect = _lay(rectangle_area(w, length))
-    assert len(poly.strips) == len(rect.strips) == int(FL.strip_count(w, poly.spacing_m)) == 50
+    k = poly.notes["grid_scale"]
+    assert k == pytest.approx(0.99972, abs=1e-5)
+    rect = _lay(rectangle_area(w / k, length / k))
+    assert len(poly.strips) == len(rect.strips) == 51  # 2000 grid m: 2000.6 m of ground
     assert [s_.photos for s_ in poly.strips] == [s_.photos for s_ in rect.strips]
-    assert poly.flight_length_m == pytest.approx(rect.flight_length_m, rel=1e-12)
-    # photo centres: the same pattern shifted by the corner
-    assert np.allclose(poly.photos["x_m"] - x0, rect.photos["x_m"], atol=1e-6)
-    assert np.allclose(poly.photos["y_m"] - y0, rect.photos["y_m"], atol=1e-6)
+    assert poly.flight_length_m == pytest.approx(rect.flight_length_m * k, rel=1e-9)
+    # photo centres: the same pattern, k times as large, shifted by the corner
+    assert np.allclose(poly.photos["x_m"] - x0, rect.photos["x_m"] * k, atol=1e-6)
+    assert np.allclose(poly.photos["y_m"] - y0, rect.photos["y_m"] * k, atol=1e-6)
     assert np.isfinite(poly.photos["lon_deg"]).all() and np.isnan(rect.photos["lon_deg"]).all()
 
 

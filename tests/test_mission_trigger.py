@@ -269,3 +269,37 @@ def test_a_ten_km_block_is_packed_within_ten_percent_of_the_bound(tmp_path):
     assert all(s.time_s <= 25 * 60 + 1e-6 for s in layout.sorties)
     assert sorted(set(layout.photos["sortie"].tolist())) == list(
         range(1, len(layout.sorties) + 1))
+
+
+def test_exactly_fifty_percent_overlap_leaves_no_ground_without_stereo(tmp_path):
+    """At exactly 50 % forward overlap the footprints of neighbouring photos only touch:
+    the ground distance of the centres must not exceed the base anywhere. The layout puts
+    them a base times the least scale factor of the area apart in the grid (UTM k = 0.9996
+    near the central meridian: a grid base would be 0.04 % longer on the ground), and an
+    extension photo whose footprint misses the area is not taken."""
+    ring = _rect(38.95, 55.70, 0.05, 0.03)  # on UTM 37N's central meridian (39°E)
+    path = _polygon_project(tmp_path, "fifty", ring)
+    path.write_text(path.read_text().replace("forward_overlap_pct = 80",
+                                             "forward_overlap_pct = 50"))
+    layout = plan_project(load_project(path)).uav.layout
+    assert layout.notes["grid_scale"] == pytest.approx(0.9996, abs=2e-5)
+    ph = layout.photos
+    worst = 0.0
+    for s in layout.strips:
+        mine = np.flatnonzero(ph["strip"] == s.number)
+        order = mine[np.argsort(ph["index"][mine])]
+        _, _, d = GEOD.inv(ph["lon_deg"][order[:-1]], ph["lat_deg"][order[:-1]],
+                           ph["lon_deg"][order[1:]], ph["lat_deg"][order[1:]])
+        worst = max(worst, float(np.max(d)) if len(d) else 0.0)
+    assert worst <= layout.base_m * (1 + 1e-7)  # footprints 2·base long overlap or touch
+    assert layout.footprint_along_m == pytest.approx(2 * layout.base_m)
+    # at 50 % an extension photo's footprint ends where the part begins: none is taken
+    src = path.read_text()
+    path.write_text(src.replace("extension_bases = 1", "extension_bases = 0"))
+    assert len(plan_project(load_project(path)).uav.layout.photos) == len(ph)
+    path.write_text(src.replace("forward_overlap_pct = 50", "forward_overlap_pct = 80"))
+    e1 = len(plan_project(load_project(path)).uav.layout.photos)
+    path.write_text(src.replace("forward_overlap_pct = 50", "forward_overlap_pct = 80")
+                    .replace("extension_bases = 1", "extension_bases = 0"))
+    e0 = plan_project(load_project(path)).uav.layout
+    assert e1 == len(e0.photos) + 2 * sum(s.segments for s in e0.strips)

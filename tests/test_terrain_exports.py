@@ -6,11 +6,10 @@ plan, in MAV_FRAME_GLOBAL (0, above mean sea level)."""
 
 from __future__ import annotations
 
-import math
-
 import csv
 import glob
 import json
+import math
 import shutil
 from pathlib import Path
 

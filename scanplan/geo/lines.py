@@ -56,7 +56,7 @@ from .layout import PHOTO_COLUMNS, Area, FlightLayout, Photos, Strip
 from .sorties import MAX_SORTIES, SortiePlan, pack_sorties, packing_bound
 
 __all__ = ["MAX_PHOTO_CENTRES", "MAX_SORTIES", "MAX_STRIPS", "Turn", "band_extents",
-           "plan_lines",
+           "grid_scale", "plan_lines",
            "turn_length_m", "turn_radius_m"]
 
 G_MS2 = 9.80665
@@ -209,8 +209,31 @@ def _merge(b: _Bands, gap_m: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]
     return strip, out_lo, out_hi
 
 
+class _Extension(int):
+    """Exposures past each end of a part (the int), and how far along the line a photo's
+    footprint reaches from its centre [m] (``reach_m``): an extension exposure is kept only
+    while its footprint reaches into the part — one that misses the area adds no coverage."""
+
+    reach_m: float
+
+    def __new__(cls, bases: int, reach_m: float) -> _Extension:
+        obj = int.__new__(cls, bases)
+        obj.reach_m = reach_m if math.isfinite(reach_m) and reach_m > 0 else math.inf
+        return obj
+
+
 def _photos_per_part(length_m: np.ndarray, base_m: float, extension: int) -> np.ndarray:
-    return FL.photos_per_strip(np.maximum(length_m, 1e-300), base_m, extension)
+    """ceil(L/B) + 1 + 2e' exposures: e' ≤ e extension exposures past each end, those whose
+    footprint still reaches into the part (j·B < reach − δ, δ the core's overhang past the
+    part's end, ((n₀ − 1)·B − L)/2)."""
+    length = np.maximum(length_m, 1e-300)
+    core = FL.photos_per_strip(length, base_m, 0)
+    reach = getattr(extension, "reach_m", math.inf)
+    if not int(extension) or not math.isfinite(reach):
+        return core + 2 * int(extension)
+    delta = ((core - 1) * base_m - length) / 2.0
+    kept = np.clip(np.ceil((reach - delta) / base_m) - 1, 0, int(extension)).astype(np.int64)
+    return core + 2 * kept
 
 
 def _strip_spans(strip: np.ndarray, lo: np.ndarray, hi: np.ndarray, base_m: float,
@@ -395,8 +418,14 @@ def plan_lines(
     notes: dict[str, object] = {"max_flight_time_min": max_flight_time_min,
                                 "turn_kind": turn.kind, "turn_m": turn.value_m,
                                 "takeoff_xy_m": takeoff_xy_m}
-    direction = _direction(direction_deg, geom, origin, spacing_m, base_m, ext, turn, notes)
-    common = dict(area=area, direction_deg=direction, spacing_m=spacing_m, base_m=base_m,
+    common_sb = dict(spacing_m=spacing_m, base_m=base_m)  # on the ground, as reported
+    k = grid_scale(area)
+    if k != 1.0:  # laid out in the grid: a ground distance is k times longer there
+        notes["grid_scale"] = k
+        spacing_m, base_m = spacing_m * k, base_m * k
+    direction = _direction(direction_deg, geom, origin, spacing_m, base_m,
+                           _Extension(ext, footprint_along_m * k / 2.0), turn, notes)
+    common = dict(area=area, direction_deg=direction, **common_sb,
                   extension_bases=float(ext), kind=kind, footprint_across_m=footprint_across_m,
                   footprint_along_m=footprint_along_m, speed_ms=speed_ms, turn=turn.describe())
     rot = _rotated(geom, direction, origin)
@@ -405,7 +434,7 @@ def plan_lines(
     except _TooMany as exc:
         return _not_flown(Message("layout.too_many_strips", n=exc.n, spacing=spacing_m,
                                   most=MAX_STRIPS), notes, common)
-    parts = _Parts.of(bands, base_m, ext, turn)
+    parts = _Parts.of(bands, base_m, _Extension(ext, footprint_along_m * k / 2.0), turn)
     notes["bridged_m"] = parts.bridged_m()
     takeoff_uv = (None if takeoff_xy_m is None
                   else _to_rotated_uv(direction, origin)(*takeoff_xy_m))
@@ -422,6 +451,36 @@ def plan_lines(
                         flight_length_m=length, turn_length_m=turns,
                         flight_time_s=_time_s(length, speed_ms), feasible=reason is None,
                         reason=reason, notes=notes, **common)
+
+
+def grid_scale(area: Area) -> float:
+    """The least point scale factor k of the planning projection over ``area`` (1 for the
+    abstract block).
+
+    A ground distance D is D·k in the grid (k: the projection's point scale factor,
+    pyproj ``Proj.get_factors``; the least of the meridional and parallel scales for a
+    projection that is not conformal). Laying the base and the line spacing out as D·k with
+    the least k of the area's vertices and centre keeps the ground spacing of the photo
+    centres at most the planned one everywhere (UTM k = 0.9996 on the central meridian
+    would otherwise leave 0.04 % wider bases on the ground: slivers without stereo at
+    exactly 50 % forward overlap).
+    """
+    if not area.georeferenced:
+        return 1.0
+    from pyproj import Proj, Transformer
+
+    geom = area.geometry
+    xy = np.vstack([shapely.get_coordinates(geom),
+                    [[geom.centroid.x, geom.centroid.y]]])
+    lon, lat = Transformer.from_crs(area.plan_crs, 4326, always_xy=True).transform(
+        xy[:, 0], xy[:, 1])
+    try:
+        f = Proj(area.plan_crs).get_factors(lon, lat)
+        k = np.minimum(np.asarray(f.meridional_scale), np.asarray(f.parallel_scale))
+    except Exception:  # a CRS without factors (not a projection): no correction
+        return 1.0
+    k = k[np.isfinite(k) & (k > 0)]
+    return float(k.min()) if len(k) else 1.0
 
 
 def _not_flown(reason: Message, notes: dict[str, object],

@@ -251,17 +251,18 @@ class _Context:
 
     def _ground_base(self, a: int, b: int, h: np.ndarray) -> float:
         """The distance between two exposures of the run on the ground (ellipsoid) [m]:
-        the grid's base over the projection's scale factor along the run."""
-        base = self.layout.base_m
+        the grid's step between its centres over the projection's scale factor along
+        the run."""
+        step = self.layout.base_m * float(self.layout.notes.get("grid_scale", 1.0))
         if not self.layout.area.georeferenced:
-            return base
+            return step
         tr, geod = self._geo()
         p = np.array([self.x[a], self.y[a]])
-        q = np.array([self.x[b], self.y[b]]) if b != a else p + base * h
+        q = np.array([self.x[b], self.y[b]]) if b != a else p + step * h
         grid = float(np.hypot(*(q - p)))
         lon, lat = tr.transform([p[0], q[0]], [p[1], q[1]])
         ground = geod.line_length(lon, lat)
-        return base * ground / grid if grid > 0 else base
+        return step * ground / grid if grid > 0 else step
 
     def _geo(self) -> tuple[Any, Any]:
         if self.geo is None:
