@@ -50,8 +50,9 @@ def test_rectangle_layout_is_the_block_formulas(w, length, s, b, ext):
     """strips = ceil(W/s), photos per strip = ceil(L/B) + 1 + 2e, flight length =
     strips × span + (strips − 1) × π·s/2 — core/flight.py — plus the run-out of half a
     base past the last photo where the camera trigger is disarmed (geo/mission.py)."""
+    # a footprint long enough that every extension exposure reaches into the block
     lay = plan_lines(rectangle_area(w, length), spacing_m=s, base_m=b, footprint_across_m=2 * s,
-                     footprint_along_m=2 * b, height_m=100, direction_deg=0.0,
+                     footprint_along_m=(2 * ext + 2) * b, height_m=100, direction_deg=0.0,
                      extension_bases=ext)
     n = int(FL.strip_count(w, s))
     k = int(FL.photos_per_strip(length, b, ext))
@@ -344,7 +345,8 @@ def test_rectangles_agree_with_qgroundcontrol(w, length, fa, fl, side, fwd):
     transect's span over the polygon. scanplan: the same spacing and base; ceil(W/s) strips
     (QGC's grid phase gives floor(W/s) or one more: within one strip); ceil(L/B) + 1 + 2e
     photos per strip — with e = 0 one more than QGC's (within one photo per strip), with the
-    default e = 1 three more (the exposures past the ends)."""
+    default e = 1 three more (the exposures past the ends) where the extension photo's
+    footprint reaches into the block, else one more."""
     s_qgc, b_qgc = fa * (1 - side / 100), fl * (1 - fwd / 100)
     for ext, extra in ((0, 1), (1, 3)):
         lay = _lay(rectangle_area(w, length), fa=fa, fl=fl, side=side, fwd=fwd,
@@ -352,6 +354,9 @@ def test_rectangles_agree_with_qgroundcontrol(w, length, fa, fl, side, fwd):
         assert lay.spacing_m == pytest.approx(s_qgc) and lay.base_m == pytest.approx(b_qgc)
         assert abs(len(lay.strips) - _qgc_transects(w, length, s_qgc)) <= 1
         per_qgc = math.ceil(length / b_qgc - 1e-9)
+        overhang = (per_qgc * b_qgc - length) / 2  # of the core exposures past each end
+        if ext and not b_qgc < fl / 2 - overhang:  # its footprint misses the block
+            extra = 1
         assert {x.photos for x in lay.strips} == {per_qgc + extra}
 
 

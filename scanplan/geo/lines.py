@@ -19,10 +19,13 @@ The layout, in a frame rotated so that the flight direction is +v:
   serpentine with one turn per strip; the gap is flown and counted in length and time
   (``notes["bridged_m"]``); split a strongly branched area into separate areas when the
   bridges cost more than the extra turns and transits would.
-- **Photo centres.** A part of length L gets ceil(L/B) + 1 + 2e exposures
-  (:func:`scanplan.core.flight.photos_per_strip`) at the base B, centred on the part: e
-  exposures past each end give every point of the area stereo overlap (with a forward
-  overlap ≥ 50 % each point is in ≥ 2 photos along the strip).
+- **Photo centres.** A part of length L gets ceil(L/B) + 1 exposures
+  (:func:`scanplan.core.flight.photos_per_strip`) at the base B, centred on the part: with
+  a forward overlap ≥ 50 % every point of the area is then in ≥ 2 photos along the strip
+  (stereo). Up to e extension exposures are added past each end, each only while its
+  footprint still reaches into the part. B and the line spacing are laid out in the grid
+  as the ground distances times the least scale factor of the projection over the area
+  (:func:`grid_scale`).
 - **Turns.** Between strips the aircraft flies the difference of the strip ends along the
   lines plus a turn across the distance d between the lines: a semicircle π·d/2 (default,
   as :func:`scanplan.core.flight.flight_length_m`); a multirotor's turnaround t past the
@@ -34,10 +37,10 @@ The layout, in a frame rotated so that the flight direction is +v:
   direction of the least flight length among every edge direction of the convex hull and a
   sweep every 2°, refined around the best to 0.1° (the exact length of each, on a slightly
   simplified outline).
-- **Sorties.** With ``max_flight_time_min`` the strips are grouped in flight order, each
-  sortie taking strips while its strips and turns fit the time; the block is split between
-  strips, and a strip longer than a whole sortie is flown in pieces cut between two
-  exposures, each sortie resuming at the next exposure.
+- **Sorties.** With ``max_flight_time_min`` the serpentine is cut into sorties, each
+  flying the longest stretch its battery allows — whole strips and a part of a strip,
+  the run-in and run-out, and the transit from and to the take-off point when one is
+  given (:mod:`scanplan.geo.sorties`); the next sortie resumes at the next exposure.
 """
 
 from __future__ import annotations
