@@ -627,6 +627,9 @@ def _bad_for(kind: str) -> list[str]:
                 "[0, 1e400]", "[0, 9000]", "true"]
     if kind == "direction":
         return ['"north"', "true", "[1]", "nan", "inf", "1e400", "45", "-1"]
+    if kind == "point":  # [flight] takeoff = [lon, lat]
+        return ["[]", "[1]", '"abc"', "[1, 2, 3]", "[200, 50]", "[10, 95]", "[nan, 1]",
+                "true", '[1, "a"]']
     raise AssertionError(kind)
 
 

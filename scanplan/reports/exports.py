@@ -91,7 +91,8 @@ def export_names(locale: str, title: str = "", film: bool = False) -> ExportName
         strips=t("geo_strips", locale),
         photos=t("geo_frames" if film else "geo_photos", locale),
         strip=t("geo_strip_n", locale),
-        sortie=t("geo_sortie_n", locale))
+        sortie=t("geo_sortie_n", locale),
+        sorties=t("geo_sorties", locale), takeoff=t("geo_takeoff", locale))
 
 
 def mission_options(spec: Any, layout: FlightLayout) -> MissionOptions | None:
