@@ -204,9 +204,11 @@ class _Context:
             for r, run in enumerate(runs):
                 pts += self._run(run, number, h)
                 last = np.array([self.x[run[-1]], self.y[run[-1]]])
-                if r + 1 < len(runs):  # the next run of the strip: disarm half-way
+                if r + 1 < len(runs):  # the next run of the strip: disarm before it
                     nxt = runs[r + 1][0]
-                    pts.append(MissionPoint(*(last + base / 2.0 * h), "trigger_off", number,
+                    gap = float(np.hypot(self.x[nxt] - last[0], self.y[nxt] - last[1]))
+                    pts.append(MissionPoint(*(last + min(base, gap) / 2.0 * h),
+                                            "trigger_off", number,
                                             self._higher(int(run[-1]), int(nxt)), 0.0))
             end = int(mine[-1])
             pe = np.array([self.x[end], self.y[end]])
@@ -225,11 +227,15 @@ class _Context:
         return pts
 
     def _runs(self, mine: np.ndarray) -> list[np.ndarray]:
-        """The strip's photos cut into runs: at a gap (bridged, > 1.5 bases), at an
-        altitude step, and into pieces short enough for the trigger's lateness."""
+        """The strip's photos cut into runs: at a gap (bridged, > 1.5 bases), wherever two
+        centres are not one grid step apart (where two parts of a strip meet closer than a
+        base: a distance trigger cannot fire both), at an altitude step, and into pieces
+        short enough for the trigger's lateness."""
         base = self.layout.base_m
+        grid_step = base * float(self.layout.notes.get("grid_scale", 1.0))
         step = np.hypot(np.diff(self.x[mine]), np.diff(self.y[mine]))
-        cut = (step > 1.5 * base) | (np.abs(np.diff(self.alt[mine])) > _STEP_M)
+        cut = ((step > 1.5 * base) | (np.abs(step - grid_step) > 0.01 * grid_step)
+               | (np.abs(np.diff(self.alt[mine])) > _STEP_M))
         pieces = np.split(mine, np.flatnonzero(cut) + 1)
         most = int(RUN_LATENESS_SHARE * base / self.max_lateness_m) + 1 \
             if self.max_lateness_m > 0 else len(mine)
