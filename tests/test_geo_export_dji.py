@@ -506,3 +506,27 @@ def test_the_geopackage_is_the_same_bytes_for_the_same_plan(monkeypatch):
 
     time.sleep(1.1)
     assert render_gpkg(layout) == first
+
+
+def test_the_geopackage_holds_the_take_off_point_when_one_is_given(tmp_path):
+    import pyogrio
+
+    from scanplan.geo.export.gpkg import render_gpkg
+    from scanplan.project.file import load_project
+    from scanplan.project.spec import plan_project
+
+    src = (EXAMPLES / "uav-town-2000.toml").read_text(encoding="utf-8")
+    src = src.replace('file = "areas/', f'file = "{(EXAMPLES / "areas").as_posix()}/')
+    path = tmp_path / "p.toml"
+    path.write_text(src + "\n[flight]\ntakeoff = [38.80, 55.09]\n", encoding="utf-8")
+    layout = plan_project(load_project(path)).uav.job.layout
+    gpkg = tmp_path / "flight.gpkg"
+    gpkg.write_bytes(render_gpkg(layout))
+    layers = [str(n) for n, _ in pyogrio.list_layers(gpkg)]
+    assert layers[-1] == "takeoff" and set(layers) >= {"area", "strips", "photos", "sorties"}
+    import shapely
+    from pyogrio.raw import read
+
+    _, _, geometry, _ = read(gpkg, layer="takeoff")
+    pt = shapely.from_wkb(geometry[0])
+    assert (pt.x, pt.y) == pytest.approx(layout.notes["takeoff_xy_m"])
