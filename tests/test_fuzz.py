@@ -655,6 +655,8 @@ ACCEPTS = {
     ("area", "extension_bases"): {"0"},
     ("uav", "turnaround_m"): {"0", "-0.0"},
     ("terrain", "follow_tolerance_m"): {"0", "-0.0"},
+    ("terrain", "void_fill_radius_m"): {"0", "-0.0"},  # 0: no void is filled
+    ("terrain", "void_fill_margin_m"): {"0", "-0.0"},
 }
 # string keys whose bad values must be refused (a choice or an id), with the bad values
 STR_BAD = {
