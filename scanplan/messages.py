@@ -360,6 +360,15 @@ MESSAGES: dict[str, dict[str, str]] = {
         "ru": "Более {most:,d} полётов по {limit:g}~мин: участок не может быть снят этим "
               "носителем.",
     },
+    "layout.sortie_cannot_reach": {
+        "en": "a sortie of {limit:g} min ({have:,.0f} m) cannot fly from the take-off point "
+              "to the block, photograph one exposure and return ({need:,.0f} m); move "
+              "[flight] takeoff closer or give a longer [uav] max_flight_time_min",
+        "ru": "За полёт продолжительностью {limit:g}~мин ({have:,.0f}~м) нельзя долететь от "
+              "точки взлёта до участка, сделать хотя бы один снимок и вернуться "
+              "({need:,.0f}~м); перенесите [flight] takeoff ближе или увеличьте [uav] "
+              "max_flight_time_min.",
+    },
     "layout.single_strip": {
         "en": "the line spacing {spacing:,.1f} m is larger than the area ({width:,.1f} m "
               "across the flight lines): one strip covers it and no block with side overlap "

@@ -627,6 +627,9 @@ def _bad_for(kind: str) -> list[str]:
                 "[0, 1e400]", "[0, 9000]", "true"]
     if kind == "direction":
         return ['"north"', "true", "[1]", "nan", "inf", "1e400", "45", "-1"]
+    if kind == "point":  # [flight] takeoff = [lon, lat]
+        return ["[]", "[1]", '"abc"', "[1, 2, 3]", "[200, 50]", "[10, 95]", "[nan, 1]",
+                "true", '[1, "a"]']
     raise AssertionError(kind)
 
 
@@ -652,6 +655,8 @@ ACCEPTS = {
     ("area", "extension_bases"): {"0"},
     ("uav", "turnaround_m"): {"0", "-0.0"},
     ("terrain", "follow_tolerance_m"): {"0", "-0.0"},
+    ("terrain", "void_fill_radius_m"): {"0", "-0.0"},  # 0: no void is filled
+    ("terrain", "void_fill_margin_m"): {"0", "-0.0"},
 }
 # string keys whose bad values must be refused (a choice or an id), with the bad values
 STR_BAD = {

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import io
 import json
+import math
 import os
 import zipfile
 from pathlib import Path
@@ -172,12 +173,13 @@ def test_town_examples_export_a_mission_that_fires_every_photo(tmp_path):
             for first, last, dist in _trigger_runs(check_qgc_plan(json.loads(data))):
                 _, _, d = geod.inv(first["params"][5], first["params"][4],
                                    last["params"][5], last["params"][4])
-                fired += round(d / dist) + 1
+                fired += math.floor(d / dist) + 1  # disarmed half a base on
                 runs += 1
     assert fired == len(layout.photos)
-    assert runs == sum(len(s.parts) for s in layout.strips)
+    assert runs >= sum(len(s.parts) for s in layout.strips)  # long parts re-armed
     kml = _read_layers(tmp_path / "flight.kml")
-    assert [len(g) for g, _, _ in kml.values()] == [1, len(layout.strips), len(layout.photos)]
+    assert [len(g) for g, _, _ in kml.values()] == [1, len(layout.strips),
+                                                     len(layout.sorties), len(layout.photos)]
     (geojson,) = _read_layers(tmp_path / "flight.geojson").values()
     assert len(geojson[0]) == 1 + len(layout.strips) + len(layout.photos)
 

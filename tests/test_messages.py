@@ -293,6 +293,10 @@ def emitted(tmp_path_factory) -> dict[str, list[Any]]:
         "plan uav too many sorties": uav_toml.replace("[uav]\n", "[uav]\nmax_flight_time_min = 1\n")
         .replace("width_m = 2000", "width_m = 200000").replace("length_m = 3000",
                                                                "length_m = 40000"),
+        "plan uav take-off too far": uav_toml.replace("[uav]\n",
+                                                      "[uav]\nmax_flight_time_min = 10\n")
+        .replace("width_m = 2000", "polygon = [[37.6, 55.7], [37.63, 55.7], [37.63, 55.72]]")
+        .replace("length_m = 3000", "") + "\n[flight]\ntakeoff = [39.5, 55.7]\n",
         "plan uav too many strips": uav_toml.replace("height_m = 300", "height_m = 5").replace(
             "width_m = 2000", "width_m = 1000000"),
         # archive photos: the scale is given (issue 13)

@@ -115,12 +115,17 @@ class Strip:
 
 @dataclass(frozen=True)
 class Sortie:
-    """One flight on one battery: its strips, length and time."""
+    """One flight on one battery: its strips (whole or in part), length and time.
+
+    ``length_m`` includes the run-in and run-out and ``transit_m``, the flight from the
+    take-off point to the block and back (0 without a take-off point) [m].
+    """
 
     number: int
     strips: tuple[int, ...]
     length_m: float
     time_s: float | None
+    transit_m: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -153,7 +158,9 @@ class FlightLayout:
     photos : Photos
         Every photo centre.
     flight_length_m : float
-        Strips plus turns [m] (transit to and from the area not included).
+        Every sortie's flight: strips, turns, the run-in and run-out at each end and the
+        transit from and to the take-off point when one is given [m] (the mission's path,
+        :mod:`scanplan.geo.mission`).
     turn_length_m : float
         The turns' share of ``flight_length_m`` [m].
     flight_time_s : float or None

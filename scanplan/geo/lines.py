@@ -19,10 +19,13 @@ The layout, in a frame rotated so that the flight direction is +v:
   serpentine with one turn per strip; the gap is flown and counted in length and time
   (``notes["bridged_m"]``); split a strongly branched area into separate areas when the
   bridges cost more than the extra turns and transits would.
-- **Photo centres.** A part of length L gets ceil(L/B) + 1 + 2e exposures
-  (:func:`scanplan.core.flight.photos_per_strip`) at the base B, centred on the part: e
-  exposures past each end give every point of the area stereo overlap (with a forward
-  overlap ≥ 50 % each point is in ≥ 2 photos along the strip).
+- **Photo centres.** A part of length L gets ceil(L/B) + 1 exposures
+  (:func:`scanplan.core.flight.photos_per_strip`) at the base B, centred on the part: with
+  a forward overlap ≥ 50 % every point of the area is then in ≥ 2 photos along the strip
+  (stereo). Up to e extension exposures are added past each end, each only while its
+  footprint still reaches into the part. B and the line spacing are laid out in the grid
+  as the ground distances times the least scale factor of the projection over the area
+  (:func:`grid_scale`).
 - **Turns.** Between strips the aircraft flies the difference of the strip ends along the
   lines plus a turn across the distance d between the lines: a semicircle π·d/2 (default,
   as :func:`scanplan.core.flight.flight_length_m`); a multirotor's turnaround t past the
@@ -34,10 +37,10 @@ The layout, in a frame rotated so that the flight direction is +v:
   direction of the least flight length among every edge direction of the convex hull and a
   sweep every 2°, refined around the best to 0.1° (the exact length of each, on a slightly
   simplified outline).
-- **Sorties.** With ``max_flight_time_min`` the strips are grouped in flight order, each
-  sortie taking strips while its strips and turns fit the time; the block is split between
-  strips, and a strip longer than a whole sortie is flown in pieces cut between two
-  exposures, each sortie resuming at the next exposure.
+- **Sorties.** With ``max_flight_time_min`` the serpentine is cut into sorties, each
+  flying the longest stretch its battery allows — whole strips and a part of a strip,
+  the run-in and run-out, and the transit from and to the take-off point when one is
+  given (:mod:`scanplan.geo.sorties`); the next sortie resumes at the next exposure.
 """
 
 from __future__ import annotations
@@ -52,18 +55,17 @@ from shapely import affinity
 
 from ..core import flight as FL
 from ..messages import Message
-from .layout import PHOTO_COLUMNS, Area, FlightLayout, Photos, Sortie, Strip
+from .layout import PHOTO_COLUMNS, Area, FlightLayout, Photos, Strip
+from .sorties import MAX_SORTIES, SortiePlan, pack_sorties, packing_bound
 
 __all__ = ["MAX_PHOTO_CENTRES", "MAX_SORTIES", "MAX_STRIPS", "Turn", "band_extents",
-           "plan_lines",
+           "grid_scale", "plan_lines",
            "turn_length_m", "turn_radius_m"]
 
 G_MS2 = 9.80665
 """Standard gravity [m/s²] (CGPM 1901)."""
 MAX_STRIPS = 100_000
 """Most strips a layout computes (beyond: not feasible)."""
-MAX_SORTIES = 1_000
-"""Most sorties (beyond: not feasible)."""
 MAX_PHOTO_CENTRES = 2_000_000
 """Most photo centres kept as a table (beyond: counted, not listed)."""
 _AUTO_SWEEP_DEG = 2.0
@@ -84,6 +86,13 @@ class Turn:
     def describe(self) -> str:
         """``semicircle``, ``turnaround 20 m``, ``radius 150 m`` (for reports)."""
         return self.kind if self.kind == "semicircle" else f"{self.kind} {self.value_m:g} m"
+
+    @property
+    def lead_m(self) -> float:
+        """The straight flown on the line before its first exposure and past its last
+        (run-in and run-out) [m]: a multirotor's turnaround, a fixed wing's turn radius (it
+        is on the line, wings level, before the camera fires); none for the semicircle."""
+        return 0.0 if self.kind == "semicircle" else float(self.value_m)
 
 
 def turn_radius_m(speed_ms: float, bank_deg: float) -> float:
@@ -115,7 +124,8 @@ def turn_length_m(across_m: np.ndarray, offset_m: np.ndarray, turn: Turn) -> np.
     offset_m : array_like
         Difference of the two strip ends along the lines [m] (flown straight).
     turn : Turn
-        The turn pattern.
+        The turn pattern; a fixed wing's includes the run-out and the run-in of one turn
+        radius each (:attr:`Turn.lead_m`), a multirotor's the turnaround out and back.
     """
     d = np.asarray(across_m, dtype=float)
     off = np.abs(np.asarray(offset_m, dtype=float))
@@ -128,7 +138,7 @@ def turn_length_m(across_m: np.ndarray, offset_m: np.ndarray, turn: Turn) -> np.
         wide = np.pi * r + (d - 2.0 * r)
         beta = np.arccos(np.clip((d / 2.0 + r) / (2.0 * r), -1.0, 1.0))
         omega = r * (np.pi + 4.0 * beta)
-        return np.where(d >= 2.0 * r, wide, omega) + off
+        return np.where(d >= 2.0 * r, wide, omega) + off + 2.0 * r  # run-out, run-in
     raise ValueError(f"turn kind must be semicircle, turnaround or radius (got {turn.kind!r})")
 
 
@@ -202,8 +212,31 @@ def _merge(b: _Bands, gap_m: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]
     return strip, out_lo, out_hi
 
 
+class _Extension(int):
+    """Exposures past each end of a part (the int), and how far along the line a photo's
+    footprint reaches from its centre [m] (``reach_m``): an extension exposure is kept only
+    while its footprint reaches into the part — one that misses the area adds no coverage."""
+
+    reach_m: float
+
+    def __new__(cls, bases: int, reach_m: float) -> _Extension:
+        obj = int.__new__(cls, bases)
+        obj.reach_m = reach_m if math.isfinite(reach_m) and reach_m > 0 else math.inf
+        return obj
+
+
 def _photos_per_part(length_m: np.ndarray, base_m: float, extension: int) -> np.ndarray:
-    return FL.photos_per_strip(np.maximum(length_m, 1e-300), base_m, extension)
+    """ceil(L/B) + 1 + 2e' exposures: e' ≤ e extension exposures past each end, those whose
+    footprint still reaches into the part (j·B < reach − δ, δ the core's overhang past the
+    part's end, ((n₀ − 1)·B − L)/2)."""
+    length = np.maximum(length_m, 1e-300)
+    core = FL.photos_per_strip(length, base_m, 0)
+    reach = getattr(extension, "reach_m", math.inf)
+    if not int(extension) or not math.isfinite(reach):
+        return core + 2 * int(extension)
+    delta = ((core - 1) * base_m - length) / 2.0
+    kept = np.clip(np.ceil((reach - delta) / base_m) - 1, 0, int(extension)).astype(np.int64)
+    return core + 2 * kept
 
 
 def _strip_spans(strip: np.ndarray, lo: np.ndarray, hi: np.ndarray, base_m: float,
@@ -341,6 +374,7 @@ def plan_lines(
     ground_m: float = 0.0,
     photo_values: Mapping[str, float] | None = None,
     kind: str = "uav",
+    takeoff_xy_m: tuple[float, float] | None = None,
 ) -> FlightLayout:
     """Strips, photo centres, turns and sorties over ``area``.
 
@@ -372,6 +406,9 @@ def plan_lines(
         ``resolution_cm``, ``recognition_p`` (NaN when absent).
     kind : str
         ``"uav"`` or ``"film"``.
+    takeoff_xy_m : (float, float), optional
+        The take-off (and landing) point in the planning CRS [m]: each sortie's transit
+        from it to the block and back is flown, counted and packed into the battery.
 
     Returns
     -------
@@ -381,9 +418,17 @@ def plan_lines(
     geom = area.geometry
     origin = (float(geom.centroid.x), float(geom.centroid.y))
     ext = int(extension_bases)
-    notes: dict[str, object] = {"max_flight_time_min": max_flight_time_min}
-    direction = _direction(direction_deg, geom, origin, spacing_m, base_m, ext, turn, notes)
-    common = dict(area=area, direction_deg=direction, spacing_m=spacing_m, base_m=base_m,
+    notes: dict[str, object] = {"max_flight_time_min": max_flight_time_min,
+                                "turn_kind": turn.kind, "turn_m": turn.value_m,
+                                "takeoff_xy_m": takeoff_xy_m}
+    common_sb = dict(spacing_m=spacing_m, base_m=base_m)  # on the ground, as reported
+    k = grid_scale(area)
+    if k != 1.0:  # laid out in the grid: a ground distance is k times longer there
+        notes["grid_scale"] = k
+        spacing_m, base_m = spacing_m * k, base_m * k
+    direction = _direction(direction_deg, geom, origin, spacing_m, base_m,
+                           _Extension(ext, footprint_along_m * k / 2.0), turn, notes)
+    common = dict(area=area, direction_deg=direction, **common_sb,
                   extension_bases=float(ext), kind=kind, footprint_across_m=footprint_across_m,
                   footprint_along_m=footprint_along_m, speed_ms=speed_ms, turn=turn.describe())
     rot = _rotated(geom, direction, origin)
@@ -392,19 +437,53 @@ def plan_lines(
     except _TooMany as exc:
         return _not_flown(Message("layout.too_many_strips", n=exc.n, spacing=spacing_m,
                                   most=MAX_STRIPS), notes, common)
-    parts = _Parts.of(bands, base_m, ext, turn)
+    parts = _Parts.of(bands, base_m, _Extension(ext, footprint_along_m * k / 2.0), turn)
     notes["bridged_m"] = parts.bridged_m()
-    plan, reason = _sorties(parts.strip_len, parts.conn, speed_ms, max_flight_time_min,
-                            base_m, parts.exposures)
-    length, turns = _flown_m(plan, parts.conn)
+    takeoff_uv = (None if takeoff_xy_m is None
+                  else _to_rotated_uv(direction, origin)(*takeoff_xy_m))
+    plan, ex_strip, reason = _sortie_plan(parts, turn, takeoff_uv, speed_ms,
+                                          max_flight_time_min, notes)
+    length = float(np.sum(plan.length_m))
+    turns = _turns_flown(plan, ex_strip, parts.conn)
+    notes["transit_m"] = float(np.sum(plan.transit_m))
     if reason is None:
         reason = _single_strip_reason(parts, spacing_m, rot)
-    strips, photos = _records(parts, plan, _to_plan_xy(direction, origin), area, height_m,
-                              ground_m, photo_values or {}, notes)
+    strips, photos = _records(parts, plan, ex_strip, _to_plan_xy(direction, origin), area,
+                              height_m, ground_m, photo_values or {}, notes)
     return FlightLayout(strips=strips, sorties=plan.records(speed_ms), photos=photos,
                         flight_length_m=length, turn_length_m=turns,
                         flight_time_s=_time_s(length, speed_ms), feasible=reason is None,
                         reason=reason, notes=notes, **common)
+
+
+def grid_scale(area: Area) -> float:
+    """The least point scale factor k of the planning projection over ``area`` (1 for the
+    abstract block).
+
+    A ground distance D is D·k in the grid (k: the projection's point scale factor,
+    pyproj ``Proj.get_factors``; the least of the meridional and parallel scales for a
+    projection that is not conformal). Laying the base and the line spacing out as D·k with
+    the least k of the area's vertices and centre keeps the ground spacing of the photo
+    centres at most the planned one everywhere (UTM k = 0.9996 on the central meridian
+    would otherwise leave 0.04 % wider bases on the ground: slivers without stereo at
+    exactly 50 % forward overlap).
+    """
+    if not area.georeferenced:
+        return 1.0
+    from pyproj import Proj, Transformer
+
+    geom = area.geometry
+    xy = np.vstack([shapely.get_coordinates(geom),
+                    [[geom.centroid.x, geom.centroid.y]]])
+    lon, lat = Transformer.from_crs(area.plan_crs, 4326, always_xy=True).transform(
+        xy[:, 0], xy[:, 1])
+    try:
+        f = Proj(area.plan_crs).get_factors(lon, lat)
+        k = np.minimum(np.asarray(f.meridional_scale), np.asarray(f.parallel_scale))
+    except Exception:  # a CRS without factors (not a projection): no correction
+        return 1.0
+    k = k[np.isfinite(k) & (k > 0)]
+    return float(k.min()) if len(k) else 1.0
 
 
 def _not_flown(reason: Message, notes: dict[str, object],
@@ -478,26 +557,8 @@ class _Parts:
         np.add.at(photographed, self.p_strip, self.last - self.first)
         return float(np.sum(self.strip_len - photographed))
 
-    def exposures(self, i: int) -> np.ndarray:
-        """Distances of strip ``i``'s exposures from where it starts in flight order [m],
-        ascending."""
-        mine = self.p_strip == i
-        k = np.concatenate([np.arange(n) for n in self.n_per[mine]]) if mine.any() else []
-        v = np.repeat(self.first[mine], self.n_per[mine]) + self.base_m * np.asarray(
-            k, dtype=float)
-        return np.sort(np.abs(v - self.forward_v[i]))
 
-
-def _flown_m(plan: _SortiePlan, conn: np.ndarray) -> tuple[float, float]:
-    """Flight length (strips and turns within sorties, no resume gaps) and the turns' part
-    of it [m]."""
-    n_strips = len(plan.start)
-    same = plan.start[1:] == plan.end()[:-1] if n_strips > 1 else np.zeros(0, dtype=bool)
-    flown_conn = np.where(same, conn, 0.0)
-    return float(np.sum(plan.length_m)), float(np.sum(flown_conn))
-
-
-def _records(parts: _Parts, plan: _SortiePlan,
+def _records(parts: _Parts, plan: SortiePlan, ex_strip: np.ndarray,
              to_xy: Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]],
              area: Area, height_m: float, ground_m: float, photo_values: Mapping[str, float],
              notes: dict[str, object]) -> tuple[tuple[Strip, ...], Photos]:
@@ -505,11 +566,11 @@ def _records(parts: _Parts, plan: _SortiePlan,
     empty, and the count noted, beyond :data:`MAX_PHOTO_CENTRES`)."""
     strips, (p_strip, p_start, pf, n_per), first_photo = _strip_records(
         parts.u_m, parts.p_strip, parts.first, parts.last, parts.n_per, parts.s_lo,
-        parts.s_hi, parts.photos_per_strip, plan.start, to_xy)
+        parts.s_hi, parts.photos_per_strip, plan.start(parts.n_strips, ex_strip), to_xy)
     n_photos = int(parts.photos_per_strip.sum())
     if n_photos <= MAX_PHOTO_CENTRES:
-        photos = _photos(n_per, p_strip, p_start, pf, parts.u_m, first_photo, plan,
-                         parts.forward_v, parts.base_m, to_xy,
+        photos = _photos(n_per, p_strip, p_start, pf, parts.u_m, first_photo,
+                         plan.exposure_sortie, parts.base_m, to_xy,
                          area, height_m, ground_m, photo_values)
     else:
         photos = Photos({})
@@ -587,100 +648,94 @@ def _time_s(length_m: float, speed_ms: float | None) -> float | None:
     return t if math.isfinite(t) else None
 
 
-@dataclass
-class _SortiePlan:
-    """Sorties in flight order: where each strip starts (``start``), where a strip longer
-    than a sortie is cut (``cuts``: distances from its first exposure [m]), each sortie's
-    strips and length [m]."""
+def _to_rotated_uv(direction: float, origin: tuple[float, float]) -> Callable[
+        [float, float], tuple[float, float]]:
+    """(x, y) of the planning CRS → (u, v) of the rotated frame (the inverse of
+    :func:`_to_plan_xy`)."""
+    theta = math.radians(direction)
+    cos_t, sin_t = math.cos(theta), math.sin(theta)
 
-    start: np.ndarray
-    cuts: dict[int, list[float]]
-    strips: list[list[int]]
-    length_m: list[float]
+    def to_uv(x: float, y: float) -> tuple[float, float]:
+        dx, dy = x - origin[0], y - origin[1]
+        return origin[0] + dx * cos_t - dy * sin_t, origin[1] + dx * sin_t + dy * cos_t
 
-    def end(self) -> np.ndarray:
-        """The sortie each strip ends in."""
-        return self.start + np.array([len(self.cuts.get(i, ())) for i in range(len(self.start))],
-                                     dtype=np.int64)
-
-    def records(self, speed_ms: float | None) -> tuple[Sortie, ...]:
-        return tuple(Sortie(number=k + 1, strips=tuple(i + 1 for i in st), length_m=ln,
-                            time_s=_time_s(ln, speed_ms))
-                     for k, (st, ln) in enumerate(zip(self.strips, self.length_m, strict=True)))
+    return to_uv
 
 
-def _sorties(strip_len: np.ndarray, conn: np.ndarray, speed_ms: float | None,
-             max_min: float | None, base_m: float,
-             exposures: Callable[[int], np.ndarray]) -> tuple[_SortiePlan, Message | None]:
-    """Sorties, greedy in flight order, and why the block cannot be flown (None if it can).
+def _flight_order(parts: _Parts, most: int = MAX_PHOTO_CENTRES
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Every exposure in flight order: its strip, its place along the line (v) and its
+    path distance from the block's first exposure [m] (strips and turns). Beyond ``most``
+    exposures every k-th is kept (with each part's ends): the places a sortie may end."""
+    n_per = parts.n_per
+    total = int(n_per.sum())
+    part = np.repeat(np.arange(len(n_per)), n_per)
+    local = np.arange(total) - np.r_[0, np.cumsum(n_per)[:-1]][part]
+    if total > most:
+        k = math.ceil(total / most)
+        keep = (local % k == 0) | (local == n_per[part] - 1)
+        part, local = part[keep], local[keep]
+    v = parts.first[part] + parts.base_m * local
+    strip = parts.p_strip[part]
+    order = np.lexsort((np.where(strip % 2 == 0, v, -v), strip))
+    strip, v = strip[order], v[order]
+    start = np.r_[0.0, np.cumsum(parts.strip_len[:-1] + parts.conn)]
+    return strip, v, start[strip] + np.abs(v - parts.forward_v[strip])
 
-    A sortie takes strips (and the turns to them) while its length stays within
-    speed × time. A strip that does not fit starts a new sortie; a strip longer than a whole
-    sortie is flown in pieces of whole photo bases, each sortie resuming where the last one
-    stopped (the next exposure on the base grid), and the block continues in the sortie that
-    flies its last piece.
+
+def _sortie_plan(parts: _Parts, turn: Turn, takeoff_uv: tuple[float, float] | None,
+                 speed_ms: float | None, max_min: float | None, notes: dict[str, object]
+                 ) -> tuple[SortiePlan, np.ndarray, Message | None]:
+    """The sorties (:func:`scanplan.geo.sorties.pack_sorties`), the strip of every
+    exposure in flight order, and why the block cannot be flown (None if it can).
+
+    Each sortie flies its run-in (:attr:`Turn.lead_m`) before its first exposure and a
+    run-out of at least half a base past its last (where the camera trigger stops,
+    :mod:`scanplan.geo.mission`); with a take-off point, the transit there and back.
     """
-    n = len(strip_len)
-    one = _SortiePlan(np.zeros(n, dtype=np.int64), {}, [list(range(n))] if n else [],
-                      [float(np.sum(strip_len) + np.sum(conn))] if n else [])
-    if not max_min or not speed_ms or n == 0:
-        return one, None
-    with np.errstate(over="ignore"):
-        limit_m = max_min * 60.0 * speed_ms
-    if not math.isfinite(limit_m) or not np.isfinite(strip_len).all():
-        return one, None
-    if limit_m < base_m:
-        return one, Message("layout.sortie_too_short", limit=max_min, base=base_m,
-                            speed=speed_ms)
-    plan = _SortiePlan(np.zeros(n, dtype=np.int64), {}, [[]], [0.0])
-    used = 0.0
+    ex_strip, ex_v, path = _flight_order(parts)
+    lead_in = turn.lead_m
+    lead_out = max(turn.lead_m, parts.base_m / 2.0)
+    zeros = np.zeros(len(ex_v))
+    if takeoff_uv is None:
+        t_in = t_out = zeros
+    else:
+        sign = np.where(ex_strip % 2 == 0, 1.0, -1.0)
+        du = parts.u_m[ex_strip] - takeoff_uv[0]
+        t_in = np.hypot(du, ex_v - sign * lead_in - takeoff_uv[1])
+        t_out = np.hypot(du, ex_v + sign * lead_out - takeoff_uv[1])
+    limit = None
+    if max_min and speed_ms:
+        with np.errstate(over="ignore"):
+            limit = max_min * 60.0 * speed_ms
+        if not math.isfinite(limit) or not np.isfinite(path).all():
+            limit = None
+        elif limit < parts.base_m:
+            plan, _ = pack_sorties(path, ex_strip, t_in, t_out, lead_in_m=lead_in,
+                                   lead_out_m=lead_out, limit_m=None)
+            return plan, ex_strip, Message("layout.sortie_too_short", limit=max_min,
+                                           base=parts.base_m, speed=speed_ms)
+    if limit is not None and len(path):
+        notes["packing_bound"] = packing_bound(float(path[-1] - path[0]) + lead_in
+                                               + lead_out, limit)
+    plan, reason = pack_sorties(path, ex_strip, t_in, t_out, lead_in_m=lead_in,
+                                lead_out_m=lead_out, limit_m=limit, max_minutes=max_min)
+    return plan, ex_strip, reason
 
-    def new_sortie() -> None:
-        plan.strips.append([])
-        plan.length_m.append(0.0)
 
-    for i in range(n):
-        length = float(strip_len[i])
-        turn = float(conn[i - 1]) if i and used > 0 else 0.0
-        if used > 0 and used + turn + length <= limit_m:  # joins the sortie
-            used += turn + length
-            plan.length_m[-1] += turn + length
-        elif length <= limit_m:  # starts a sortie
-            if used > 0:
-                new_sortie()
-            used = length
-            plan.length_m[-1] += length
-        else:  # longer than a sortie: in pieces, cut between two exposures
-            if used > 0:
-                new_sortie()
-            plan.start[i] = len(plan.strips) - 1
-            d = exposures(i)  # distances of its exposures from its first one, ascending
-            begin, cuts = 0.0, []
-            while length - begin > limit_m:
-                j = int(np.searchsorted(d, begin + limit_m, side="right")) - 1
-                plan.strips[-1].append(i)
-                plan.length_m[-1] += float(d[j]) - begin
-                cuts.append((float(d[j]) + float(d[j + 1])) / 2.0)
-                begin = float(d[j + 1])  # the next sortie resumes at the next exposure
-                new_sortie()
-                if len(plan.strips) > MAX_SORTIES:
-                    return plan, Message("layout.too_many_sorties", most=MAX_SORTIES,
-                                         limit=max_min)
-            plan.cuts[i] = cuts
-            plan.strips[-1].append(i)
-            used = length - begin
-            plan.length_m[-1] += used
-            continue
-        plan.start[i] = len(plan.strips) - 1
-        plan.strips[-1].append(i)
-        if len(plan.strips) > MAX_SORTIES:
-            return plan, Message("layout.too_many_sorties", most=MAX_SORTIES, limit=max_min)
-    return plan, None
+def _turns_flown(plan: SortiePlan, ex_strip: np.ndarray, conn: np.ndarray) -> float:
+    """The turns flown within sorties (between a strip's last exposure and the next
+    strip's first, in one sortie) [m]."""
+    if len(ex_strip) < 2 or len(plan.exposure_sortie) != len(ex_strip):
+        return float(np.sum(conn))
+    change = np.flatnonzero(np.diff(ex_strip))
+    same = plan.exposure_sortie[change] == plan.exposure_sortie[change + 1]
+    return float(np.sum(conn[ex_strip[change][same]]))
 
 
 def _photos(n_per: np.ndarray, p_strip: np.ndarray, p_start: np.ndarray, pf: np.ndarray,
-            u: np.ndarray, first_photo: np.ndarray, plan: _SortiePlan, start_v: np.ndarray,
-            base_m: float, to_xy: object, area: Area, height_m: float, ground_m: float,
+            u: np.ndarray, first_photo: np.ndarray, sortie: np.ndarray, base_m: float,
+            to_xy: object, area: Area, height_m: float, ground_m: float,
             values: Mapping[str, float]) -> Photos:
     total = int(n_per.sum())
     part = np.repeat(np.arange(len(n_per)), n_per)
@@ -690,12 +745,7 @@ def _photos(n_per: np.ndarray, p_strip: np.ndarray, p_start: np.ndarray, pf: np.
     v = p_start[part] + sign * base_m * local
     strip0 = p_strip[part]
     x, y = to_xy(u[strip0], v)  # type: ignore[operator]
-    running = np.arange(1, total + 1)
-    sortie = plan.start[strip0].copy()
-    for i, cuts in plan.cuts.items():  # a strip flown in pieces: by distance along it
-        mine = strip0 == i
-        sortie[mine] += np.searchsorted(np.asarray(cuts), np.abs(v[mine] - start_v[i]),
-                                        side="right")
+    running = np.arange(1, total + 1)  # flight order: the order of ``sortie``
     if area.georeferenced:
         import pyproj
 

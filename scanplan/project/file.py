@@ -190,6 +190,13 @@ def _check_type(kind: str, value: Any) -> str | None:
         bad = [v for v in value if isinstance(v, bool) or not isinstance(v, int | float | str)
                or (not isinstance(v, str) and not _finite(v))]
         return 'must be a list of finite scales like [5000, "1:10000"]' if bad else None
+    if kind == "point":
+        ok = (isinstance(value, list) and len(value) == 2
+              and all(isinstance(v, int | float) and not isinstance(v, bool) and _finite(v)
+                      for v in value))
+        if ok and not (-180 <= value[0] <= 180 and -90 <= value[1] <= 90):
+            return "must be [lon, lat] with lon in −180 … 180° and lat in −90 … 90°"
+        return None if ok else "must be a point [lon, lat] in degrees (WGS 84)"
     if kind == "range":
         ok = (isinstance(value, list) and len(value) == 2
               and all(isinstance(v, int | float) and not isinstance(v, bool) and _finite(v)

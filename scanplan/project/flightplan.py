@@ -50,6 +50,8 @@ class LayoutOptions:
         ``[uav] max_flight_time_min``: longest sortie [min].
     ground_m : float
         elevation of the flat ground [m] (API only; default 0).
+    takeoff_lonlat : (float, float) or None
+        ``[flight] takeoff``: the take-off and landing point of every sortie, WGS 84 [°].
     """
 
     direction_deg: float | str | None = None
@@ -59,6 +61,7 @@ class LayoutOptions:
     bank_deg: float | None = None
     max_flight_time_min: float | None = None
     ground_m: float = 0.0
+    takeoff_lonlat: tuple[float, float] | None = None
 
 
 def area_from_options(spec: AreaSpec, area_m: tuple[float, float] | None = None
@@ -98,6 +101,9 @@ def check_options(opts: LayoutOptions, area: Area, speed_ms: float | None) -> No
             raise InputError(key, f"must be in ({lo:g}, {hi:g}] (got {v!r})")
     if opts.bank_deg is not None and not speed_ms:
         raise InputError("bank_deg", "needs the ground speed (> 0) for the turn radius")
+    if opts.takeoff_lonlat is not None and not area.georeferenced:
+        raise InputError("takeoff", "applies to a polygon area; the width_m × length_m "
+                         "block has no place on the map")
     if not math.isfinite(opts.ground_m) or not -500 <= opts.ground_m <= 9000:
         raise InputError("ground_elevation_m", f"must be in −500 … 9000 m (got "
                          f"{opts.ground_m!r})")
@@ -141,7 +147,18 @@ def uav_layout(plan: UavPlan, area: Area, opts: LayoutOptions | None = None) -> 
         height_m=plan.heights_m["planned"], direction_deg=_direction(opts, area),
         extension_bases=opts.extension_bases, turn=_turn(opts, speed), speed_ms=speed,
         max_flight_time_min=opts.max_flight_time_min, ground_m=opts.ground_m,
-        photo_values=values, kind="uav")
+        photo_values=values, kind="uav", takeoff_xy_m=_takeoff_xy(opts, area))
+
+
+def _takeoff_xy(opts: LayoutOptions, area: Area) -> tuple[float, float] | None:
+    """The take-off point in the area's planning CRS [m] (None when not given)."""
+    if opts.takeoff_lonlat is None or not area.georeferenced:
+        return None
+    from pyproj import Transformer
+
+    tr = Transformer.from_crs(4326, area.plan_crs, always_xy=True)
+    x, y = tr.transform(*map(float, opts.takeoff_lonlat))
+    return float(x), float(y)
 
 
 def uav_flight_figures(plan: UavPlan, layout: FlightLayout) -> dict[str, Any]:

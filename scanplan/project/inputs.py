@@ -380,6 +380,11 @@ _RECORDS: tuple[Input, ...] = (
           "strips [m]", "m"),
     Input("bank_deg", "uav", "bank_deg", _NUM, "fixed-wing: bank angle in the turns [°]; the "
           "radius follows from the speed, r = v²/(g·tan φ)", "°"),
+    Input("takeoff", "flight", "takeoff", "point", "take-off and landing point of every "
+          "sortie, [lon, lat] (WGS 84): the missions' home; each sortie's transit to the "
+          "block and back is flown within its battery and counted in the flight's length "
+          "and time", note="default: none — no transit counted, each mission's home is its "
+          "first waypoint"),
     Input("max_flight_time_min", "uav", "max_flight_time_min", _NUM, "flight time of one "
           "sortie [min]: the aircraft's endurance on one battery less the reserve; the block "
           "is split into sorties of at most this long, and the schedule counts its flying "
@@ -523,7 +528,7 @@ def option_names() -> dict[str, str]:
 
 
 KINDS = ("str", "int", "number", "scale", "scales", "range", "date", "feature", "polygon",
-         "crs", "direction")
+         "crs", "direction", "point")
 
 
 def key_table() -> dict[str, dict[str, tuple[str, str]]]:

@@ -371,7 +371,8 @@ def project_area(project: Project) -> Area | None:
 
 _LAYOUT_KEYS = (("area", "direction_deg"), ("area", "extension_bases"),
                 ("uav", "turnaround_m"),
-                ("uav", "turn_radius_m"), ("uav", "bank_deg"), ("uav", "max_flight_time_min"))
+                ("uav", "turn_radius_m"), ("uav", "bank_deg"), ("uav", "max_flight_time_min"),
+                ("flight", "takeoff"))
 
 
 def _check_layout_keys(project: Project, area: Area | None) -> None:
@@ -397,7 +398,8 @@ def _layout_options(project: Project, platform: str = "uav") -> LayoutOptions:
         turnaround_m=g("uav", "turnaround_m"), turn_radius_m=g("uav", "turn_radius_m"),
         bank_deg=g("uav", "bank_deg"),
         # the one sortie length: it splits the layout and counts the schedule's sorties
-        max_flight_time_min=sortie_length(project, platform).minutes)
+        max_flight_time_min=sortie_length(project, platform).minutes,
+        takeoff_lonlat=g("flight", "takeoff"))
 
 
 def _platform(kw: dict[str, Any]) -> str:

@@ -91,7 +91,8 @@ def export_names(locale: str, title: str = "", film: bool = False) -> ExportName
         strips=t("geo_strips", locale),
         photos=t("geo_frames" if film else "geo_photos", locale),
         strip=t("geo_strip_n", locale),
-        sortie=t("geo_sortie_n", locale))
+        sortie=t("geo_sortie_n", locale),
+        sorties=t("geo_sorties", locale), takeoff=t("geo_takeoff", locale))
 
 
 def mission_options(spec: Any, layout: FlightLayout) -> MissionOptions | None:
@@ -134,11 +135,10 @@ def dji_files(spec: Any, layout: FlightLayout, mission: MissionOptions | None
     if mission is None:
         return {}, None
     from ..geo.export import wpml_files
-    from ..geo.export.steps import mission_layout
 
     camera = getattr(spec.uav.job.plan.inputs, "camera", None)
     camera_id = str(getattr(camera, "id", camera))
-    return wpml_files(mission_layout(layout), mission, camera_id)
+    return wpml_files(layout, mission, camera_id)
 
 
 def export_files(spec: Any, folder: str, *, prefix: str = "",

@@ -59,6 +59,8 @@ __all__ = ["MAX_MAP_PHOTOS", "MAX_TABLE_STRIPS", "MapTerrain", "crs_text", "geo_
 
 MAX_MAP_PHOTOS = 4000
 """Most photo centres drawn on the map (every k-th beyond it: the SVG stays small)."""
+MAX_SORTIE_LABELS = 60
+"""Most sortie numbers written on the map (beyond: every k-th sortie)."""
 MAX_TABLE_STRIPS = 150
 """Most strips listed in the PDF's strips table (the workbook lists all)."""
 _MAP_SIZE_IN = (6.6, 8.2)  # width, greatest height [in]
@@ -148,6 +150,45 @@ def _draw_strips(ax: Any, layout: FlightLayout, scale: float, label: str) -> Non
                         ha="center", va="center", zorder=4,
                         bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none",
                               "alpha": 0.8})
+
+
+def _sortie_starts(layout: FlightLayout) -> list[tuple[int, float, float]]:
+    """(sortie, x, y) of every sortie's first photo [m] (flight order)."""
+    ph = layout.photos
+    if not len(ph):
+        return []
+    sortie = np.asarray(ph["sortie"]).astype(np.int64)
+    photo = np.asarray(ph["photo"]).astype(np.int64)
+    order = np.lexsort((photo, sortie))
+    first = order[np.r_[True, np.diff(sortie[order]) != 0]]
+    return [(int(sortie[i]), float(ph["x_m"][i]), float(ph["y_m"][i])) for i in first]
+
+
+def _draw_sorties(ax: Any, layout: FlightLayout, scale: float, locale: str) -> None:
+    """Where each sortie starts (its number; at most :data:`MAX_SORTIE_LABELS`, else
+    every k-th), the take-off point and the transit from it to each sortie's start."""
+    if layout.kind == "film":
+        return
+    starts = _sortie_starts(layout)
+    takeoff = layout.notes.get("takeoff_xy_m")
+    if takeoff is not None:
+        tx, ty = takeoff[0] / scale, takeoff[1] / scale
+        for k, (_n, x, y) in enumerate(starts):
+            ax.plot([tx, x / scale], [ty, y / scale], color="#6a1b9a", linewidth=0.6,
+                    linestyle=(0, (3, 2)), zorder=1.8,
+                    label=t("map_legend_transit", locale) if k == 0 else None)
+        ax.plot([tx], [ty], linestyle="none", marker="^", markersize=7, color="black",
+                zorder=7, label=t("map_legend_takeoff", locale))
+    if len(starts) < 2:
+        return
+    step = max(1, math.ceil(len(starts) / MAX_SORTIE_LABELS))
+    shown = starts[::step]
+    ax.plot([x / scale for _, x, _ in shown], [y / scale for _, _, y in shown],
+            linestyle="none", marker="s", markersize=3.5, color="#6a1b9a", zorder=6,
+            label=t("map_legend_sorties", locale))
+    for n, x, y in shown:
+        ax.annotate(str(n), (x / scale, y / scale), fontsize=6, color="#6a1b9a",
+                    xytext=(3, 3), textcoords="offset points", zorder=6)
 
 
 def _km_ticks(axis: Any, locale: str) -> FuncFormatter:
@@ -361,6 +402,7 @@ def map_svg(layout: FlightLayout, locale: str = "en", terrain: MapTerrain | None
         ax = fig.add_subplot()
         _draw_area(ax, layout.area.geometry, scale, t("map_legend_area", locale))
         _draw_strips(ax, layout, scale, t("map_legend_strips", locale))
+        _draw_sorties(ax, layout, scale, locale)
         if len(ph) and terrain is not None:
             _draw_photos_agl(fig, ax, layout, terrain, scale, locale)
         elif len(ph):
@@ -395,6 +437,10 @@ def map_svg(layout: FlightLayout, locale: str = "en", terrain: MapTerrain | None
         ends = np.array([p for s in layout.strips for p in (s.start_xy_m, s.end_xy_m)])
         minx, miny = min(minx, ends[:, 0].min()), min(miny, ends[:, 1].min())
         maxx, maxy = max(maxx, ends[:, 0].max()), max(maxy, ends[:, 1].max())
+    takeoff = layout.notes.get("takeoff_xy_m")
+    if takeoff is not None:
+        minx, miny = min(minx, takeoff[0]), min(miny, takeoff[1])
+        maxx, maxy = max(maxx, takeoff[0]), max(maxy, takeoff[1])
     width_in, max_h = _MAP_SIZE_IN
     ratio = (maxy - miny) / (maxx - minx) if maxx > minx else 1.0
     height_in = min(max(width_in * 0.85 * ratio + 1.2, 3.8), max_h)  # the area fills it
@@ -439,6 +485,9 @@ def summary_items(layout: FlightLayout, locale: str) -> list[tuple[str, Any, int
     if not film:
         rows.append((t("geo_n_sorties", locale), len(layout.sorties), 0))
     rows.append((t("geo_flight_km", locale), layout.flight_length_m / 1000, 2))
+    if layout.notes.get("takeoff_xy_m") is not None:
+        rows.append((t("geo_transit_km", locale),
+                     float(layout.notes.get("transit_m", 0.0)) / 1000, 2))
     if layout.flight_time_s:
         rows.append((t("geo_flight_min", locale), layout.flight_time_s / 60, 1))
     return rows

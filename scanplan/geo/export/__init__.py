@@ -23,7 +23,6 @@ from .common import GENERATOR, lonlat
 from .gis import ExportNames, render_csv, render_geojson, render_kml
 from .gpkg import render_gpkg
 from .qgc import MissionOptions, plan_files, render_plan
-from .steps import mission_layout
 from .wpl import render_waypoints, waypoint_files
 from .wpml import wpml_files
 
@@ -63,7 +62,7 @@ def layout_files(layout: FlightLayout, *, names: ExportNames | None = None,
     if mission is not None:
         # terrain following: a waypoint at every altitude step (the other files keep the
         # strips as laid out)
-        plans = plan_files(mission_layout(layout), mission, geo=geo)
+        plans = plan_files(layout, mission, geo=geo)
         plans.update(waypoint_files(plans))  # the same missions for Mission Planner
         files.update({prefix + k: v for k, v in plans.items()})
     files[f"{prefix}flight.kml"] = render_kml(layout, names)

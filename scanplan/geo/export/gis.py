@@ -31,6 +31,7 @@ import numpy as np
 import shapely
 
 from ..layout import PHOTO_COLUMNS, FlightLayout
+from ..mission import sortie_missions
 from ..terrain import TERRAIN_PHOTO_COLUMNS
 from .common import GENERATOR, LonLat, lonlat, photos_by_strip
 
@@ -68,6 +69,8 @@ class ExportNames:
     photos: str = "Photo centres"
     strip: str = "Strip {n}"
     sortie: str = "sortie {n}"
+    sorties: str = "Sorties"
+    takeoff: str = "Take-off point"
 
 
 def _coords(points: np.ndarray) -> str:
@@ -175,6 +178,8 @@ def render_kml(layout: FlightLayout, names: ExportNames | None = None) -> bytes:
          f"{len(layout.strips)}; {names.photos}: {len(layout.photos)}")
     _style(doc, "area", line="ff0000ff", width=2.5, fill="330000ff")
     _style(doc, "strip", line="ffff7f00", width=2.0)
+    _style(doc, "sortie", line="ff9a1b6a", width=1.2)
+    _style(doc, "takeoff", line="ff000000", icon_scale=1.1, label_scale=0.9)
     # photo numbers: shown for a small block; for a large one on pointing (a StyleMap), as
     # thousands of labels would hide the map
     few = len(layout.photos) <= _LABELLED_PHOTOS
@@ -220,6 +225,7 @@ def render_kml(layout: FlightLayout, names: ExportNames | None = None) -> bytes:
             _sub(ls, "tessellate", "1")
             _sub(ls, "coordinates", _coords(seg))
 
+    _kml_sorties(doc, layout, geo, names)
     folder = _sub(doc, "Folder")
     _sub(folder, "name", names.photos)
     _sub(folder, "Placemark").text = _PHOTOS_MARK  # the photo placemarks go here
@@ -232,6 +238,38 @@ def render_kml(layout: FlightLayout, names: ExportNames | None = None) -> bytes:
 
 
 _PHOTOS_MARK = "@@scanplan-photo-centres@@"
+
+
+def _kml_sorties(doc: ET.Element, layout: FlightLayout, geo: LonLat,
+                 names: ExportNames) -> None:
+    """A UAV layout's sorties — each the path of its mission (take-off, run-in, strips,
+    turns, run-out, back; :func:`scanplan.geo.mission.sortie_missions`) — and the
+    take-off point when one is given."""
+    if layout.kind == "film" or not layout.speed_ms or not len(layout.photos):
+        return
+    folder = _sub(doc, "Folder")
+    _sub(folder, "name", names.sorties)
+    takeoff = layout.notes.get("takeoff_xy_m")
+    if takeoff is not None:
+        pm = _sub(folder, "Placemark")
+        _sub(pm, "name", names.takeoff)
+        _sub(pm, "styleUrl", "#takeoff")
+        pt = _sub(pm, "Point")
+        _sub(pt, "coordinates", _coords(geo.points(np.array([takeoff]))))
+    for m in sortie_missions(layout, float(layout.speed_ms)):
+        xy = np.array([[p.x_m, p.y_m] for p in m.points])
+        if m.takeoff_xy_m is not None:
+            xy = np.vstack([m.takeoff_xy_m, xy, m.takeoff_xy_m])
+        pm = _sub(folder, "Placemark")
+        _sub(pm, "name", names.sortie.format(n=m.number))
+        _sub(pm, "styleUrl", "#sortie")
+        sortie = layout.sorties[m.number - 1]
+        _data(pm, {"sortie": str(m.number), "photos": str(m.photos),
+                   "length_m": _fmt(sortie.length_m, 1),
+                   "transit_m": _fmt(sortie.transit_m, 1)})
+        ls = _sub(pm, "LineString")
+        _sub(ls, "tessellate", "1")
+        _sub(ls, "coordinates", _coords(geo.points(xy)))
 
 
 def _kml_decimal(ph: Any, key: str) -> np.ndarray:

@@ -33,6 +33,8 @@ __all__ = ["GPKG_LAYERS", "render_gpkg"]
 
 #: The layers of flight.gpkg, in the order written.
 GPKG_LAYERS = ("area", "strips", "photos", "sorties")
+"""The layers of every GeoPackage; ``takeoff`` (one point) is added when the project gives
+a take-off point (``[flight] takeoff``)."""
 _INT_COLUMNS = ("photo", "strip", "index", "sortie")
 
 
@@ -131,5 +133,9 @@ def render_gpkg(layout: FlightLayout) -> bytes:
                 "time_min": np.array([s.time_s / 60.0 if s.time_s is not None else np.nan
                                       for s in flown], float),
             }, "MultiLineString", crs, False)
+        takeoff = layout.notes.get("takeoff_xy_m")
+        if takeoff is not None:  # [flight] takeoff: where every sortie starts and returns
+            _write(path, "takeoff", [shapely.Point(*takeoff)],
+                   {"name": np.array(["take-off"], dtype=object)}, "Point", crs, False)
         with open(path, "rb") as fh:
             return fh.read()

@@ -9,24 +9,26 @@ Format: QGroundControl Developer Guide, "Plan File Format" (JSON; ``fileType`` "
 (https://mavlink.io/en/messages/common.html). QGroundControl opens it; Mission Planner
 reads only its simple items and gets the same mission as a waypoint file (:mod:`.wpl`).
 
-Each sortie is one mission::
+Each sortie is one mission, rendered from the format-neutral
+:class:`~scanplan.geo.mission.SortieMission` (its waypoints, trigger points and turns)::
 
-    NAV_TAKEOFF (22)                 climb at the planned home to the first strip's altitude
+    NAV_TAKEOFF (22)                 climb at the planned home (the take-off point)
     DO_CHANGE_SPEED (178)            the planned ground speed
-    for each strip, for each of its segments:
-        NAV_WAYPOINT (16)            run-in: the strip's start (when before its first photo)
-        NAV_WAYPOINT (16)            the segment's first photo centre
-        DO_SET_CAM_TRIGG_DIST (206)  trigger every photo base, the first photo at once
-        NAV_WAYPOINT (16)            the segment's last photo centre
-        DO_SET_CAM_TRIGG_DIST (206)  distance 0: trigger off
-        NAV_WAYPOINT (16)            run-out: the strip's end (when past its last photo)
+    for each strip of the sortie (whole or in part):
+        NAV_WAYPOINT (16)            run-in (a turnaround or a fixed wing's turn radius)
+        for each run of photos:
+            NAV_WAYPOINT (16)            the run's first photo centre
+            DO_SET_CAM_TRIGG_DIST (206)  its ground base, one image at once
+            NAV_WAYPOINT (16)            the run's last photo centre
+            NAV_WAYPOINT (16)            half a base on
+            DO_SET_CAM_TRIGG_DIST (206)  distance 0: trigger off
+        NAV_WAYPOINT (16) …          the run-out and the turn to the next strip
     NAV_RETURN_TO_LAUNCH (20)
 
-A DO command acts once the aircraft has reached the NAV waypoint before it, so the camera
-triggers from the first photo centre to the last one of each segment and never in a turn.
-The launch point is not known to scanplan: the planned home is put at the first photo of
-the sortie (the crew moves it to the take-off site in the ground station; return-to-launch
-goes to where the aircraft was armed).
+A DO command acts once the aircraft has reached the NAV waypoint before it: the camera
+fires from the first photo centre of a run to half a base past its last one, never in a
+turn (:mod:`scanplan.geo.mission` states the trigger behaviour relied on). The planned
+home is the take-off point (``[flight] takeoff``), else the sortie's first waypoint.
 
 Altitudes: one per waypoint (:func:`waypoint_altitudes`, or given). The frame is stated on
 every item: MAV_FRAME_GLOBAL_RELATIVE_ALT (3, above the home) for flat ground,
@@ -45,10 +47,11 @@ from typing import Any, Literal
 import numpy as np
 
 from ..layout import FlightLayout
-from .common import GENERATOR, LonLat, StripPhotos, lonlat, photos_by_strip
+from ..mission import MissionPoint, SortieMission, sortie_missions
+from .common import GENERATOR, LonLat, lonlat
 
 __all__ = ["FIRMWARE", "FRAMES", "MAV_CMD", "VEHICLE", "MissionOptions", "plan_files",
-           "render_plan", "waypoint_altitudes"]
+           "render_mission", "render_plan", "waypoint_altitudes"]
 
 #: MAV_CMD numbers used (MAVLink common.xml).
 MAV_CMD = {
@@ -108,81 +111,19 @@ class MissionOptions:
                                  f"(got {getattr(self, name)!r})")
 
 
-@dataclass(frozen=True)
-class _Waypoint:
-    x_m: float
-    y_m: float
-    photo: int | None  # position in the photo arrays (None: the strip's run-in/run-out)
-    trigger: str | None  # "on" after it, "off" after it, or None
-
-
-def _nearest(x: np.ndarray, y: np.ndarray, candidates: np.ndarray, xy: tuple[float, float]
-             ) -> int:
-    """The candidate photo nearest to ``xy`` (a position in the photo arrays)."""
-    d = np.hypot(x[candidates] - xy[0], y[candidates] - xy[1])
-    return int(candidates[int(np.argmin(d))])
-
-
-def _strip_waypoints(layout: FlightLayout, number: int, sp: StripPhotos | None
-                     ) -> list[_Waypoint]:
-    """The waypoints of one strip in flight order, with the trigger changes.
-
-    The photographed parts are the strip's ``parts`` (trigger-on and trigger-off points)
-    when the layout gives them, else runs of photos (a gap over 1.5 bases splits a run).
-    """
-    strip = layout.strips[number - 1]
-    start, end = strip.start_xy_m, strip.end_xy_m
-    if sp is None or not len(sp.order):  # no photo on it: fly it, the camera off
-        return [_Waypoint(*start, None, None), _Waypoint(*end, None, None)]
-    x, y = layout.photos["x_m"], layout.photos["y_m"]
-    if strip.parts:
-        parts = [(tuple(map(float, a)), tuple(map(float, b))) for a, b in strip.parts]
-    else:
-        parts = [((float(x[sp.order[a]]), float(y[sp.order[a]])),
-                  (float(x[sp.order[b]]), float(y[sp.order[b]]))) for a, b in sp.runs]
-    wps: list[_Waypoint] = []
-    if math.dist(parts[0][0], start) > 0.5:
-        wps.append(_Waypoint(*start, None, None))
-    for a, b in parts:
-        wps.append(_Waypoint(*a, _nearest(x, y, sp.order, a), "on"))
-        wps.append(_Waypoint(*b, _nearest(x, y, sp.order, b), "off"))
-    if math.dist(parts[-1][1], end) > 0.5:
-        wps.append(_Waypoint(*end, None, None))
-    return wps
-
-
-def waypoint_altitudes(layout: FlightLayout, frame: str, points: Sequence[_Waypoint],
-                       strip_numbers: Sequence[int], home_ground_m: float) -> np.ndarray:
-    """The altitude of each waypoint in ``frame`` [m].
-
-    At a photo centre: its ``altitude_m`` (above mean sea level, ``"amsl"``), its
-    ``agl_m`` (``"terrain"``) or ``altitude_m - home_ground_m`` (``"relative"``); at a
-    run-in/run-out point the strip's altitude (``Strip.altitude_m``, else that of its
-    nearest photo; a strip without photos: the nearest photo of the sortie). Flat ground:
-    every waypoint at the planned height above the home.
-    """
+def waypoint_altitudes(layout: FlightLayout, frame: str, points: Sequence[MissionPoint],
+                       home_ground_m: float) -> np.ndarray:
+    """The altitude of each waypoint in ``frame`` [m]: that of its photo
+    (:attr:`MissionPoint.photo`) — ``altitude_m`` (above mean sea level, ``"amsl"``),
+    ``agl_m`` (``"terrain"``) or ``altitude_m - home_ground_m`` (``"relative"``). Flat
+    ground: every waypoint at the planned height above the home."""
     ph = layout.photos
-    alt, agl = np.asarray(ph["altitude_m"], float), np.asarray(ph["agl_m"], float)
-    out = np.empty(len(points))
-    for k, (wp, number) in enumerate(zip(points, strip_numbers, strict=True)):
-        i = wp.photo
-        if i is None:  # the nearest photo waypoint of the same strip, else of any strip
-            near = ([p.photo for p, n in zip(points, strip_numbers, strict=True)
-                     if n == number and p.photo is not None]
-                    or [p.photo for p in points if p.photo is not None])
-            i = min(near, key=lambda j: math.hypot(ph["x_m"][j] - wp.x_m,
-                                                   ph["y_m"][j] - wp.y_m)) if near else None
-        strip_alt = layout.strips[number - 1].altitude_m
-        if i is None:
-            raise ValueError(f"sortie of strip {number} has no photo to take altitudes from")
-        absolute = strip_alt if (wp.photo is None and strip_alt is not None) else alt[i]
-        if frame == "amsl":
-            out[k] = absolute
-        elif frame == "terrain":
-            out[k] = agl[i] + (absolute - alt[i])
-        else:
-            out[k] = absolute - home_ground_m
-    return out
+    i = np.array([p.photo for p in points], dtype=np.int64)
+    if frame == "amsl":
+        return np.asarray(ph["altitude_m"], float)[i]
+    if frame == "terrain":
+        return np.asarray(ph["agl_m"], float)[i]
+    return np.asarray(ph["altitude_m"], float)[i] - home_ground_m
 
 
 def _item(seq: int, command: str, frame: int, params: Sequence[float | None],
@@ -225,59 +166,58 @@ def render_plan(layout: FlightLayout, sortie: int, options: MissionOptions, *,
         The ``.plan`` (UTF-8 JSON).
     """
     geo = geo if geo is not None else lonlat(layout)
-    strip_numbers = layout.sorties[sortie - 1].strips
-    if not strip_numbers:
-        raise ValueError(f"sortie {sortie} has no strips")
-    points, owners = _sortie_waypoints(layout, strip_numbers)
-    home, home_ground = _home(layout, options, geo, points)
+    mission = next((m for m in sortie_missions(layout, options.speed_ms)
+                    if m.number == sortie), None)
+    if mission is None:
+        raise ValueError(f"sortie {sortie} has no photos")
+    return render_mission(layout, mission, options, altitudes_m=altitudes_m, geo=geo)
+
+
+def render_mission(layout: FlightLayout, mission: SortieMission, options: MissionOptions, *,
+                   altitudes_m: Sequence[float] | None = None,
+                   geo: LonLat | None = None) -> bytes:
+    """One :class:`~scanplan.geo.mission.SortieMission` as a QGroundControl Plan file
+    (parameters as :func:`render_plan`)."""
+    geo = geo if geo is not None else lonlat(layout)
+    points = mission.points
+    home, home_ground = _home(layout, options, geo, mission)
     if altitudes_m is None:
-        alts = waypoint_altitudes(layout, options.frame, points, owners, home_ground)
+        alts = waypoint_altitudes(layout, options.frame, points, home_ground)
     else:
         alts = np.asarray(altitudes_m, float)
         if alts.shape != (len(points),) or not np.all(np.isfinite(alts)):
             raise ValueError(f"altitudes_m must hold {len(points)} finite altitudes, one per "
-                             f"waypoint of sortie {sortie} (got shape {alts.shape})")
+                             f"waypoint of sortie {mission.number} (got shape {alts.shape})")
     takeoff_alt = float(alts[0])
     if options.frame == "terrain":  # the take-off climbs above the home, not the terrain
-        takeoff_alt = float(waypoint_altitudes(layout, "relative", points, owners,
-                                               home_ground)[0])
+        takeoff_alt = float(waypoint_altitudes(layout, "relative", points, home_ground)[0])
     lonlats = geo.points(np.array([[p.x_m, p.y_m] for p in points]))
-    items = _mission_items(layout, options, points, lonlats, alts, home, takeoff_alt)
+    items = _mission_items(options, points, lonlats, alts, home, takeoff_alt)
     return _plan_document(options, items, home, home_ground)
 
 
-def _sortie_waypoints(layout: FlightLayout, strip_numbers: Sequence[int]
-                      ) -> tuple[list[_Waypoint], list[int]]:
-    """The waypoints of a sortie's strips in flight order, and the strip of each."""
-    by_strip = photos_by_strip(layout)
-    points: list[_Waypoint] = []
-    owners: list[int] = []
-    for n in strip_numbers:
-        wps = _strip_waypoints(layout, n, by_strip.get(n))
-        points += wps
-        owners += [n] * len(wps)
-    return points, owners
-
-
 def _home(layout: FlightLayout, options: MissionOptions, geo: LonLat,
-          points: Sequence[_Waypoint]) -> tuple[tuple[float, float], float]:
-    """The planned home (lon, lat) [°] and its ground elevation [m]: the options' home, else
-    the sortie's first photo (else its first waypoint on ground 0)."""
+          mission: SortieMission) -> tuple[tuple[float, float], float]:
+    """The planned home (lon, lat) [°] and its ground elevation [m]: the options' home,
+    else the take-off point (the mission's first waypoint without one); its ground: the
+    options', else the layout's take-off ground, else that of the sortie's first photo."""
     ph = layout.photos
-    first_photo = next((p.photo for p in points if p.photo is not None), None)
     if options.home_lonlat is not None:
         home = options.home_lonlat
-    elif first_photo is not None:
-        home = (float(ph["lon_deg"][first_photo]), float(ph["lat_deg"][first_photo]))
     else:
-        home = tuple(geo.points(np.array([[points[0].x_m, points[0].y_m]]))[0])
+        home = tuple(geo.points(np.array([mission.home_xy_m]))[0])
+    first = mission.points[0].photo
+    ground = layout.notes.get("takeoff_ground_m")
     home_ground = (options.home_ground_m if options.home_ground_m is not None
-                   else float(ph["ground_m"][first_photo]) if first_photo is not None else 0.0)
-    return home, home_ground
+                   else float(ground) if ground is not None and mission.takeoff_xy_m
+                   else float(ph["ground_m"][first]))
+    if not math.isfinite(home_ground):
+        home_ground = 0.0
+    return (float(home[0]), float(home[1])), home_ground
 
 
-def _mission_items(layout: FlightLayout, options: MissionOptions,
-                   points: Sequence[_Waypoint], lonlats: np.ndarray, alts: np.ndarray,
+def _mission_items(options: MissionOptions,
+                   points: Sequence[MissionPoint], lonlats: np.ndarray, alts: np.ndarray,
                    home: tuple[float, float], takeoff_alt: float) -> list[dict[str, Any]]:
     """The mission items: take-off at the home, the speed, every waypoint with the camera
     trigger switched on and off along the strips, return to launch."""
@@ -297,10 +237,10 @@ def _mission_items(layout: FlightLayout, options: MissionOptions,
     for wp, (lon, lat), alt in zip(points, lonlats, alts, strict=True):
         add("NAV_WAYPOINT", frame, [0.0, 0.0, 0.0, None, float(lat), float(lon), float(alt)],
             alt_mode)
-        if wp.trigger == "on":  # distance, shutter time (0: ignore), trigger once now
+        if wp.role == "trigger_on":  # distance, shutter time (0: ignore), one image now
             add("DO_SET_CAM_TRIGG_DIST", MAV_FRAME_MISSION,
-                [float(layout.base_m), 0.0, 1.0, 0.0, 0.0, 0.0, 0.0])
-        elif wp.trigger == "off":
+                [round(float(wp.trigger_m), 4), 0.0, 1.0, 0.0, 0.0, 0.0, 0.0])
+        elif wp.role == "trigger_off":
             add("DO_SET_CAM_TRIGG_DIST", MAV_FRAME_MISSION,
                 [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0])
     add("NAV_RETURN_TO_LAUNCH", MAV_FRAME_MISSION, [0.0] * 7)
@@ -347,9 +287,9 @@ def plan_files(layout: FlightLayout, options: MissionOptions, *, stem: str = "mi
             or len(layout.photos) == 0):
         return {}
     geo = geo if geo is not None else lonlat(layout)
-    flown = [s for s in layout.sorties if s.strips]
-    if len(flown) == 1:
-        return {f"{stem}.plan": render_plan(layout, flown[0].number, options, geo=geo)}
+    missions = sortie_missions(layout, options.speed_ms)
+    if len(missions) == 1:
+        return {f"{stem}.plan": render_mission(layout, missions[0], options, geo=geo)}
     width = max(2, len(str(len(layout.sorties))))
-    return {f"{stem}-{s.number:0{width}d}.plan": render_plan(layout, s.number, options, geo=geo)
-            for s in flown}
+    return {f"{stem}-{m.number:0{width}d}.plan": render_mission(layout, m, options, geo=geo)
+            for m in missions}

@@ -44,8 +44,9 @@ from xml.etree import ElementTree as ET
 import numpy as np
 
 from ..layout import FlightLayout
+from ..mission import sortie_missions
 from .common import GENERATOR, LonLat, lonlat
-from .qgc import MissionOptions, _home, _sortie_waypoints, waypoint_altitudes
+from .qgc import MissionOptions, _home, waypoint_altitudes
 
 __all__ = ["DJI_CAMERAS", "KML_NS", "WPML_NS", "DjiPayload", "RoutePoint", "WpmlMission",
            "egm96_separation_m", "render_kmz", "render_template", "render_waylines",
@@ -452,13 +453,14 @@ def egm96_separation_m(lon_deg: np.ndarray, lat_deg: np.ndarray) -> np.ndarray |
 
 def sortie_route(layout: FlightLayout, sortie: int, options: MissionOptions, *,
                  geo: LonLat | None = None, geoid: bool = False) -> list[RoutePoint]:
-    """The route of one sortie: the QGroundControl mission's waypoints (:mod:`.qgc`) with
-    the photos each fires up to the next and their heights for WPML.
+    """The route of one sortie: the waypoints of its mission (:mod:`scanplan.geo.mission`,
+    the same the QGroundControl and Mission Planner files fly: run-in, runs of photos,
+    run-out, turns) with the photos each run fires and their heights for WPML.
 
     Parameters
     ----------
     layout : FlightLayout
-        Georeferenced and feasible (for terrain following, :func:`.steps.mission_layout`).
+        Georeferenced and feasible.
     sortie : int
         From 1.
     options : MissionOptions
@@ -477,11 +479,14 @@ def sortie_route(layout: FlightLayout, sortie: int, options: MissionOptions, *,
         When ``geoid`` is asked and PROJ has no EGM96 grid.
     """
     geo = geo if geo is not None else lonlat(layout)
-    strips = layout.sorties[sortie - 1].strips
-    points, owners = _sortie_waypoints(layout, strips)
-    _, home_ground = _home(layout, options, geo, points)
+    mission = next((m for m in sortie_missions(layout, options.speed_ms)
+                    if m.number == sortie), None)
+    if mission is None:
+        raise ValueError(f"sortie {sortie} has no photos")
+    points = mission.points
+    _, home_ground = _home(layout, options, geo, mission)
     frame = "amsl" if options.frame == "amsl" else "relative"
-    heights = waypoint_altitudes(layout, frame, points, owners, home_ground)
+    heights = waypoint_altitudes(layout, frame, points, home_ground)
     lonlats = geo.points(np.array([[p.x_m, p.y_m] for p in points]))
     if geoid:
         n = egm96_separation_m(lonlats[:, 0], lonlats[:, 1])
@@ -490,15 +495,16 @@ def sortie_route(layout: FlightLayout, sortie: int, options: MissionOptions, *,
         heights = heights + n
     index = np.asarray(layout.photos["index"]).astype(np.int64)
     out = []
-    for k, (wp, strip) in enumerate(zip(points, owners, strict=True)):
+    for k, wp in enumerate(points):
         photos = 0
-        if wp.trigger == "on":
-            end = points[k + 1]
-            photos = int(index[end.photo] - index[wp.photo]) + 1
+        if wp.role == "trigger_on":  # a run: its photos up to its last centre ("photo");
+            # a run of one photo has none, its trigger is switched off next
+            end = next(p for p in points[k + 1:] if p.role in ("photo", "trigger_off"))
+            photos = int(index[end.photo] - index[wp.photo]) + 1 if end.role == "photo" else 1
         elif k and math.dist((wp.x_m, wp.y_m), (points[k - 1].x_m, points[k - 1].y_m)) < 0.01:
             continue  # the last photo of a one-photo part: the same place as its first
         out.append(RoutePoint(float(lonlats[k, 0]), float(lonlats[k, 1]), float(heights[k]),
-                              int(strip), photos))
+                              int(wp.strip), photos))
     return out
 
 
@@ -537,7 +543,8 @@ def wpml_files(layout: FlightLayout, options: MissionOptions, camera_id: str, *,
     Parameters
     ----------
     layout : FlightLayout
-        Georeferenced and feasible (terrain following: :func:`.steps.mission_layout`).
+        Georeferenced and feasible (terrain following: the mission's runs end at every
+        altitude step, :mod:`scanplan.geo.mission`).
     options : MissionOptions
         Speed and height frame of the mission.
     camera_id : str

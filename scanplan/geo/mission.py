@@ -1,0 +1,346 @@
+"""The mission a crew flies, independent of any file format (docs/exports.md).
+
+:func:`sortie_missions` turns a :class:`~scanplan.geo.layout.FlightLayout` into one
+:class:`SortieMission` per sortie: the path as waypoints in the planning CRS — run-in,
+the trigger-on and trigger-off points of every photographed run, the turns between strips,
+the run-out — each point saying at which photo's altitude it is flown. The exporters
+(QGroundControl Plan, the Mission Planner waypoint file, any other autopilot format) render
+these records; they compute no geometry of their own, so every format flies the same path,
+and its length is the layout's reported flight length (:mod:`scanplan.geo.lines`).
+
+**The camera trigger.** Each run is armed at its first photo centre with a trigger
+distance and "one image now", and disarmed half a base past its last photo centre. This
+is MAVLink's MAV_CMD_DO_SET_CAM_TRIGG_DIST (param1 distance [m], param3 = 1: one image at
+once) as ArduPilot implements it (``AP_Camera_Backend::update``): while the distance is
+positive, an image is taken whenever the aircraft's distance from where the last image was
+taken reaches it, checked in the 50 Hz camera update, so each image is up to one loop step
+late and the lateness adds up along a run. The trigger distance of a run is the ground
+(ellipsoidal) distance between its planned centres — the grid's base divided by the
+projection's scale factor k — so the exposures fall on the planned centres, not on a grid
+that k stretches. A run holds at most as many photos as keep its added lateness within a
+quarter of a base at the planned speed (:data:`CAMERA_LOOP_HZ`); a longer part is split
+into runs, each re-armed at its first centre (which resets the lateness). The disarm half
+a base past the last centre then comes after the run's last image and before the next
+would be due, so every run fires exactly its photos — also where a waypoint is reached a
+few metres early (ArduCopter's WPNAV_RADIUS, 2 m) — and in ``follow`` altitude mode the
+altitude steps are run boundaries like any other.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from .layout import FlightLayout
+
+__all__ = ["CAMERA_LOOP_HZ", "MissionPoint", "SortieMission", "sortie_missions"]
+
+CAMERA_LOOP_HZ = 50.0
+"""How often the autopilot checks the trigger distance [Hz]: ArduPilot runs
+``AP_Camera::update`` in its 50 Hz scheduler (ArduCopter/ArduPlane ``scheduler_tasks``)."""
+RUN_LATENESS_SHARE = 0.25
+"""The most lateness a run may add up, as a share of its trigger distance."""
+ARC_STEP_DEG = 20.0
+"""Largest turn between two waypoints of an arc [°] (chord 0.5 % short of the arc)."""
+_STEP_M = 1e-6  # an altitude change smaller than this is no step [m]
+
+
+@dataclass(frozen=True)
+class MissionPoint:
+    """One waypoint of a mission (planning CRS).
+
+    Attributes
+    ----------
+    x_m, y_m : float
+        Position in the layout's planning CRS [m].
+    role : str
+        ``"run_in"`` (the start of a strip's straight before its first photo),
+        ``"trigger_on"`` (a run's first photo centre: arm the trigger, one image now),
+        ``"photo"`` (a run's last photo centre), ``"trigger_off"`` (half a base past a
+        run: disarm), ``"run_out"`` (the end of the straight past the last photo) or
+        ``"turn"`` (a point of the turn to the next strip).
+    strip : int
+        The strip (from 1) the point belongs to.
+    photo : int
+        Position in the layout's photo table of the photo whose altitude the point is flown
+        at (the higher of the two neighbours between runs and in turns).
+    trigger_m : float or None
+        ``"trigger_on"``: the trigger distance on the ground [m]; ``"trigger_off"``: 0.
+    """
+
+    x_m: float
+    y_m: float
+    role: str
+    strip: int
+    photo: int
+    trigger_m: float | None = None
+
+
+@dataclass(frozen=True)
+class SortieMission:
+    """One sortie's mission: take-off, the waypoints in order, return.
+
+    Attributes
+    ----------
+    number : int
+        The sortie (from 1).
+    points : tuple of MissionPoint
+        The waypoints in flight order.
+    takeoff_xy_m : (float, float) or None
+        The take-off point in the planning CRS [m] (None: not given; the mission's home is
+        then its first waypoint).
+    photos : int
+        The photos the sortie takes.
+    """
+
+    number: int
+    points: tuple[MissionPoint, ...]
+    takeoff_xy_m: tuple[float, float] | None
+    photos: int
+
+    @property
+    def home_xy_m(self) -> tuple[float, float]:
+        """Where the sortie takes off and returns to [m]."""
+        if self.takeoff_xy_m is not None:
+            return self.takeoff_xy_m
+        return (self.points[0].x_m, self.points[0].y_m)
+
+    def path_length_m(self) -> float:
+        """The length of the path in the planning CRS [m]: take-off point, every waypoint,
+        back to the take-off point (no transit without one)."""
+        xy = np.array([[p.x_m, p.y_m] for p in self.points])
+        if self.takeoff_xy_m is not None:
+            xy = np.vstack([self.takeoff_xy_m, xy, self.takeoff_xy_m])
+        return float(np.sum(np.hypot(*np.diff(xy, axis=0).T)))
+
+
+def sortie_missions(layout: FlightLayout, speed_ms: float, *,
+                    loop_hz: float = CAMERA_LOOP_HZ) -> tuple[SortieMission, ...]:
+    """Every sortie of ``layout`` as a :class:`SortieMission` (see the module's rules).
+
+    Parameters
+    ----------
+    layout : FlightLayout
+        A feasible layout with its photo table.
+    speed_ms : float
+        Ground speed along the strips [m/s] (the lateness of the trigger per loop step).
+    loop_hz : float
+        How often the autopilot checks the trigger distance [Hz].
+
+    Returns
+    -------
+    tuple of SortieMission
+        In flight order; empty without photos.
+    """
+    ph = layout.photos
+    if len(ph) == 0:
+        return ()
+    ctx = _Context.of(layout, speed_ms, loop_hz)
+    sortie = np.asarray(ph["sortie"]).astype(np.int64)
+    order = np.argsort(np.asarray(ph["photo"]), kind="stable")
+    out = []
+    for s in layout.sorties:
+        mine = order[sortie[order] == s.number]
+        if not len(mine):
+            continue
+        out.append(SortieMission(s.number, tuple(ctx.sortie_points(mine)),
+                                 ctx.takeoff, len(mine)))
+    return tuple(out)
+
+
+@dataclass
+class _Context:
+    layout: FlightLayout
+    x: np.ndarray
+    y: np.ndarray
+    alt: np.ndarray
+    strip: np.ndarray
+    lead_m: float
+    turn_kind: str
+    max_lateness_m: float  # one loop step at the speed [m]
+    takeoff: tuple[float, float] | None
+    geo: tuple[Any, Any] | None = None
+
+    @classmethod
+    def of(cls, layout: FlightLayout, speed_ms: float, loop_hz: float) -> _Context:
+        ph = layout.photos
+        kind = str(layout.notes.get("turn_kind", "semicircle"))
+        takeoff = layout.notes.get("takeoff_xy_m")
+        return cls(layout, np.asarray(ph["x_m"], float), np.asarray(ph["y_m"], float),
+                   np.asarray(ph["altitude_m"], float),
+                   np.asarray(ph["strip"]).astype(np.int64),
+                   0.0 if kind == "semicircle" else float(layout.notes.get("turn_m", 0.0)),
+                   kind, speed_ms / loop_hz,
+                   tuple(map(float, takeoff)) if takeoff is not None else None)
+
+    def _higher(self, i: int, j: int) -> int:
+        return i if self.alt[i] >= self.alt[j] else j
+
+    def _heading(self, number: int, idx: np.ndarray) -> np.ndarray:
+        st = self.layout.strips[number - 1]
+        h = np.subtract(st.end_xy_m, st.start_xy_m, dtype=float)
+        if not np.hypot(*h) and len(idx) > 1:
+            h = np.array([self.x[idx[-1]] - self.x[idx[0]], self.y[idx[-1]] - self.y[idx[0]]])
+        norm = float(np.hypot(*h))
+        return h / norm if norm else np.array([0.0, 1.0])
+
+    def sortie_points(self, idx: np.ndarray) -> list[MissionPoint]:
+        """The waypoints of the photos ``idx`` (one sortie, flight order)."""
+        cuts = np.flatnonzero(np.diff(self.strip[idx])) + 1
+        groups = np.split(idx, cuts)
+        base = self.layout.base_m
+        pts: list[MissionPoint] = []
+        for g, mine in enumerate(groups):
+            number = int(self.strip[mine[0]])
+            h = self._heading(number, mine)
+            p0 = np.array([self.x[mine[0]], self.y[mine[0]]])
+            if g == 0 and self.lead_m > 0:
+                pts.append(MissionPoint(*(p0 - self.lead_m * h), "run_in", number,
+                                        int(mine[0])))
+            runs = self._runs(mine)
+            for r, run in enumerate(runs):
+                pts += self._run(run, number, h)
+                last = np.array([self.x[run[-1]], self.y[run[-1]]])
+                if r + 1 < len(runs):  # the next run of the strip: disarm before it
+                    nxt = runs[r + 1][0]
+                    gap = float(np.hypot(self.x[nxt] - last[0], self.y[nxt] - last[1]))
+                    pts.append(MissionPoint(*(last + min(base, gap) / 2.0 * h),
+                                            "trigger_off", number,
+                                            self._higher(int(run[-1]), int(nxt)), 0.0))
+            end = int(mine[-1])
+            pe = np.array([self.x[end], self.y[end]])
+            if g + 1 == len(groups):  # the sortie's last strip: run-out, then return
+                out = max(self.lead_m, base / 2.0)
+                pts.append(MissionPoint(*(pe + base / 2.0 * h), "trigger_off", number,
+                                        end, 0.0))
+                if out > base / 2.0:
+                    pts.append(MissionPoint(*(pe + out * h), "run_out", number, end))
+                continue
+            nxt = groups[g + 1]
+            q = np.array([self.x[nxt[0]], self.y[nxt[0]]])
+            alt_ref = self._higher(end, int(nxt[0]))
+            path = _turn_path(pe, h, q, self.lead_m, self.turn_kind)
+            pts += _with_trigger_off(pe, path, base / 2.0, number, alt_ref)
+        return pts
+
+    def _runs(self, mine: np.ndarray) -> list[np.ndarray]:
+        """The strip's photos cut into runs: at a gap (bridged, > 1.5 bases), wherever two
+        centres are not one grid step apart (where two parts of a strip meet closer than a
+        base: a distance trigger cannot fire both), at an altitude step, and into pieces
+        short enough for the trigger's lateness."""
+        base = self.layout.base_m
+        grid_step = base * float(self.layout.notes.get("grid_scale", 1.0))
+        step = np.hypot(np.diff(self.x[mine]), np.diff(self.y[mine]))
+        cut = ((step > 1.5 * base) | (np.abs(step - grid_step) > 0.01 * grid_step)
+               | (np.abs(np.diff(self.alt[mine])) > _STEP_M))
+        pieces = np.split(mine, np.flatnonzero(cut) + 1)
+        most = int(RUN_LATENESS_SHARE * base / self.max_lateness_m) + 1 \
+            if self.max_lateness_m > 0 else len(mine)
+        out = []
+        for p in pieces:
+            k = math.ceil(len(p) / max(1, most))
+            out += [a for a in np.array_split(p, k) if len(a)]
+        return out
+
+    def _run(self, run: np.ndarray, number: int, h: np.ndarray) -> list[MissionPoint]:
+        """A run: armed at its first centre (the ground base), its last centre."""
+        a, b = int(run[0]), int(run[-1])
+        trigger = self._ground_base(a, b, h)
+        pts = [MissionPoint(float(self.x[a]), float(self.y[a]), "trigger_on", number, a,
+                            trigger)]
+        if b != a:
+            pts.append(MissionPoint(float(self.x[b]), float(self.y[b]), "photo", number, b))
+        return pts
+
+    def _ground_base(self, a: int, b: int, h: np.ndarray) -> float:
+        """The distance between two exposures of the run on the ground (ellipsoid) [m]:
+        the grid's step between its centres over the projection's scale factor along
+        the run."""
+        step = self.layout.base_m * float(self.layout.notes.get("grid_scale", 1.0))
+        if not self.layout.area.georeferenced:
+            return step
+        tr, geod = self._geo()
+        p = np.array([self.x[a], self.y[a]])
+        q = np.array([self.x[b], self.y[b]]) if b != a else p + step * h
+        grid = float(np.hypot(*(q - p)))
+        lon, lat = tr.transform([p[0], q[0]], [p[1], q[1]])
+        ground = geod.line_length(lon, lat)
+        return step * ground / grid if grid > 0 else step
+
+    def _geo(self) -> tuple[Any, Any]:
+        if self.geo is None:
+            from pyproj import Geod, Transformer
+
+            self.geo = (Transformer.from_crs(self.layout.area.plan_crs, 4326, always_xy=True),
+                        Geod(ellps="WGS84"))
+        return self.geo
+
+
+def _turn_path(p: np.ndarray, h: np.ndarray, q: np.ndarray, lead_m: float,
+               kind: str) -> list[tuple[float, float]]:
+    """The waypoints from a strip's last photo ``p`` (heading ``h``) to the next strip's
+    first photo ``q`` (heading −h), ``q`` included, ``p`` not: the run-out, the turn, the
+    run-in (:func:`scanplan.geo.lines.turn_length_m`)."""
+    w = q - p
+    off = float(w @ h)
+    nv = w - off * h
+    d = float(np.hypot(*nv))
+    n = nv / d if d > 0 else np.array([h[1], -h[0]])
+    apex_out = p + (max(0.0, off) + lead_m) * h
+    apex_in = apex_out + d * n
+
+    def at(a: float, b: float) -> tuple[float, float]:  # local (across, along) → plan
+        xy = apex_out + a * n + b * h
+        return float(xy[0]), float(xy[1])
+
+    def arc(ca: float, cb: float, r: float, a0: float, a1: float) -> list[tuple[float, float]]:
+        k = max(1, math.ceil(abs(math.degrees(a1 - a0)) / ARC_STEP_DEG))
+        return [at(ca + r * math.cos(t), cb + r * math.sin(t))
+                for t in np.linspace(a0, a1, k + 1)[1:]]
+
+    out: list[tuple[float, float]] = []
+    if float(np.hypot(*(apex_out - p))) > 1e-6:
+        out.append(at(0.0, 0.0))
+    if kind == "turnaround" or d == 0:
+        out.append(at(d, 0.0))
+    elif kind == "semicircle":
+        out += arc(d / 2.0, 0.0, d / 2.0, math.pi, 0.0)
+    else:  # a fixed wing's turn of radius r (Dubins)
+        r = lead_m
+        if d >= 2.0 * r:
+            out += arc(r, 0.0, r, math.pi, math.pi / 2.0)
+            out += arc(d - r, 0.0, r, math.pi / 2.0, 0.0)
+        else:
+            beta = math.acos((d / 2.0 + r) / (2.0 * r))
+            y = 2.0 * r * math.sin(beta)
+            out += arc(-r, 0.0, r, 0.0, beta)
+            out += arc(d / 2.0, y, r, math.pi + beta, -beta)
+            out += arc(d + r, 0.0, r, math.pi - beta, math.pi)
+    if float(np.hypot(*(q - apex_in))) > 1e-6:
+        out.append((float(q[0]), float(q[1])))
+    else:
+        out[-1] = (float(q[0]), float(q[1]))
+    return out
+
+
+def _with_trigger_off(p: np.ndarray, path: list[tuple[float, float]], after_m: float,
+                      number: int, photo: int) -> list[MissionPoint]:
+    """The turn's waypoints with the trigger-off point ``after_m`` along it from ``p`` (at
+    most half the way; the last point, the next strip's first photo, is left out: its run
+    puts it)."""
+    xy = np.vstack([p, np.array(path)])
+    seg = np.hypot(*np.diff(xy, axis=0).T)
+    cum = np.r_[0.0, np.cumsum(seg)]
+    at = min(after_m, cum[-1] / 2.0)
+    k = int(np.searchsorted(cum, at, side="right"))  # the segment ending at point k
+    k = min(max(k, 1), len(xy) - 1)
+    t = (at - cum[k - 1]) / seg[k - 1] if seg[k - 1] > 0 else 0.0
+    off = xy[k - 1] + t * (xy[k] - xy[k - 1])
+    pts = [MissionPoint(float(x), float(y), "turn", number, photo) for x, y in xy[1:k]]
+    pts.append(MissionPoint(float(off[0]), float(off[1]), "trigger_off", number, photo, 0.0))
+    pts += [MissionPoint(float(x), float(y), "turn", number, photo) for x, y in xy[k:-1]
+            if float(np.hypot(x - off[0], y - off[1])) > 1e-6]
+    return pts

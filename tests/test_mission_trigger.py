@@ -1,0 +1,305 @@
+"""The missions fly what photos.csv promises: a distance-trigger simulator over the files.
+
+The simulator is written from ArduPilot's camera backend, not from scanplan: the aircraft
+flies the written waypoints (read back from the .plan JSON and with pymavlink from the
+.waypoints) along geodesics at the plan's ground speed; a DO command acts at the first
+50 Hz step at or past the waypoint before it; DO_SET_CAM_TRIGG_DIST sets the distance and,
+with param3 = 1, takes an image at once; at every step an image is taken when the
+ellipsoidal distance from the last image reaches the distance — so each image is up to one
+step late and the lateness adds up (flown at the plan's speed, and 1.3 % and 3.1 % faster,
+which changes the lateness per image). Every exposure is matched to its nearest planned photo
+centre; every strip must get as many exposures as photos.csv holds, one per planned photo,
+and every distance-triggered spacing must keep the planned forward overlap within one
+percentage point. Areas: the polygon examples, a Gauss–Krüger rectangle (k > 1), one in
+the southern hemisphere and one across a UTM zone edge.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from collections import Counter
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+from pyproj import Geod, Transformer
+from scipy.spatial import cKDTree
+
+from scanplan.project.file import load_project
+from scanplan.project.spec import plan_project
+from scanplan.reports.exports import export_files
+
+ROOT = Path(__file__).resolve().parent.parent
+EXAMPLES = ROOT / "examples"
+GEOD = Geod(ellps="WGS84")
+LOOP_HZ = 50.0
+
+
+def simulate(items: list[dict], speed_ms: float, phase: float) -> list[tuple[float, float, bool]]:
+    """Exposures (lon, lat, by distance?) of one mission's items flown at ``speed_ms``."""
+    wps: list[tuple[float, float]] = []
+    dos: list[list[list[float]]] = []
+    for it in items:
+        if it["command"] == 16:
+            p = it["params"]
+            wps.append((p[5], p[4]))
+            dos.append([])
+        elif it["command"] == 206:
+            dos[-1].append(it["params"])
+    step = speed_ms / LOOP_HZ
+    shots: list[tuple[float, float, bool]] = []
+    dist_m, last = 0.0, None
+    t0 = phase * step  # where the first step falls on the first segment
+    for k in range(len(wps) - 1):
+        (lon0, lat0), (lon1, lat1) = wps[k], wps[k + 1]
+        az, _, seg = GEOD.inv(lon0, lat0, lon1, lat1)
+        s = np.arange(t0, seg, step) if seg > 0 else np.zeros(0)
+        t0 = (s[-1] + step - seg) if len(s) else t0 - seg
+        if not len(s):
+            for cmd in dos[k]:  # reached within the step: acts at the next one
+                dos[k + 1][:0] = [cmd]
+            continue
+        lon, lat, _ = GEOD.fwd(np.full(len(s), lon0), np.full(len(s), lat0),
+                               np.full(len(s), az), s)
+        for cmd in dos[k]:  # the waypoint reached at this segment's first step
+            dist_m = cmd[0]
+            if cmd[2] == 1:
+                last = (lon[0], lat[0])
+                shots.append((lon[0], lat[0], False))
+        j = 0
+        while dist_m > 0 and last is not None and j < len(s):
+            _, _, d = GEOD.inv(np.full(len(s) - j, last[0]), np.full(len(s) - j, last[1]),
+                               lon[j:], lat[j:])
+            hit = np.flatnonzero(d >= dist_m)
+            if not len(hit):
+                break
+            j += int(hit[0])
+            last = (lon[j], lat[j])
+            shots.append((lon[j], lat[j], True))
+            j += 1
+    return shots
+
+
+def _polygon_project(tmp: Path, name: str, ring: list[tuple[float, float]], extra: str = ""
+                     ) -> Path:
+    src = (EXAMPLES / "uav-town-2000.toml").read_text()
+    src = src.replace('file = "areas/town-uav.kml"',
+                      "polygon = " + json.dumps([list(p) for p in ring]) + "\n" + extra)
+    path = tmp / f"{name}.toml"
+    path.write_text(src)
+    return path
+
+
+def _rect(lon: float, lat: float, w_deg: float, h_deg: float) -> list[tuple[float, float]]:
+    return [(lon, lat), (lon + w_deg, lat), (lon + w_deg, lat + h_deg), (lon, lat + h_deg),
+            (lon, lat)]
+
+
+def _follow(tmp: Path) -> Path:
+    src = (EXAMPLES / "uav-town-valley-2000.toml").read_text()
+    assert 'altitude_mode = "constant"' in src
+    path = tmp / "valley-follow.toml"
+    path.write_text(src.replace('altitude_mode = "constant"', 'altitude_mode = "follow"')
+                    .replace('"areas/', f'"{EXAMPLES}/areas/').replace('"dem/',
+                                                                       f'"{EXAMPLES}/dem/'))
+    return path
+
+
+def _projects(tmp: Path) -> list[Path]:
+    return [
+        EXAMPLES / "uav-town-2000.toml",
+        EXAMPLES / "uav-town-valley-2000.toml",
+        _follow(tmp),
+        # Gauss–Krüger zone 7 (central meridian 39°E): k > 1 off the meridian
+        _polygon_project(tmp, "gk", _rect(40.9, 55.70, 0.05, 0.03),
+                         'plan_crs = "EPSG:28407"'),
+        _polygon_project(tmp, "south", _rect(-47.95, -15.80, 0.04, 0.03)),
+        _polygon_project(tmp, "zones", _rect(35.97, 55.70, 0.06, 0.02)),
+    ]
+
+
+def _from_waypoints(path: Path) -> list[dict]:
+    """The mission items of a ``.waypoints`` file as pymavlink reads it (the home left out),
+    in the Plan file's shape."""
+    mavwp = pytest.importorskip("pymavlink.mavwp")
+    loader = mavwp.MAVWPLoader()
+    n = loader.load(str(path))
+    wps = [loader.wp(i) for i in range(1, n)]
+    return [{"command": w.command, "params": [w.param1, w.param2, w.param3, w.param4,
+                                                w.x, w.y, w.z]} for w in wps]
+
+
+def _check(path: Path, tmp: Path) -> dict[str, float]:
+    spec = plan_project(load_project(path))
+    layout = spec.uav.layout
+    out = tmp / path.stem
+    out.mkdir()
+    files = export_files(spec, str(out))
+    for p, (_kind, data) in files.items():
+        Path(p).write_bytes(data)
+    photos = pd.read_csv(out / "photos.csv")
+    assert len(photos) == len(layout.photos) > 0
+    plans = sorted(out.glob("*.plan"))
+    assert len(plans) == len(layout.sorties)
+    tr = Transformer.from_crs(4326, layout.area.plan_crs, always_xy=True)
+    tree = cKDTree(photos[["x_m", "y_m"]].to_numpy())
+    matched: list[int] = []
+    spacings: list[float] = []
+    for k, plan in enumerate(plans):
+        doc = json.loads(plan.read_text())
+        items = doc["mission"]["items"]
+        if k % 2:  # every other sortie as Mission Planner's file, read by pymavlink
+            items = _from_waypoints(plan.with_suffix(".waypoints"))
+        speed = next(i["params"][1] for i in items if i["command"] == 178)
+        # the plan's speed, and a few percent faster as a real ground speed varies: the
+        # lateness per image (a fraction of a loop step) then differs
+        speed *= (1.0, 1.013, 1.031)[k % 3]
+        shots = simulate(items, speed, phase=(k * 0.37) % 1.0)
+        lon = np.array([s[0] for s in shots])
+        lat = np.array([s[1] for s in shots])
+        x, y = tr.transform(lon, lat)
+        _, nearest = tree.query(np.column_stack([x, y]))
+        matched += nearest.tolist()
+        by_dist = np.array([s[2] for s in shots])
+        _, _, d = GEOD.inv(lon[:-1], lat[:-1], lon[1:], lat[1:])
+        spacings += d[by_dist[1:]].tolist()
+    # one exposure per planned photo, so per strip as many as photos.csv holds
+    assert sorted(matched) == list(range(len(photos))), path.name
+    got = Counter(photos["strip"].to_numpy()[matched].tolist())
+    assert got == Counter(photos["strip"].tolist())
+    planned = 1.0 - layout.base_m / layout.footprint_along_m
+    overlap = 1.0 - np.asarray(spacings) / layout.footprint_along_m
+    assert np.all(np.abs(overlap - planned) <= 0.01), path.name
+    return {"photos": len(photos), "worst_pp": float(np.max(np.abs(overlap - planned)) * 100)}
+
+
+@pytest.mark.parametrize("which", range(6), ids=["town", "valley", "valley-follow",
+                                                  "gauss-kruger", "southern", "zone-edge"])
+def test_the_distance_trigger_fires_every_photo_of_photos_csv(tmp_path, which):
+    path = _projects(tmp_path)[which]
+    _check(path, tmp_path)
+
+
+def _path_m(items: list[dict], home: tuple[float, float] | None) -> float:
+    """The geodesic length of the waypoints' path (from and back to ``home`` if given)."""
+    pts = [(i["params"][5], i["params"][4]) for i in items if i["command"] == 16]
+    if home is not None:
+        pts = [home, *pts, home]
+    lon, lat = np.array(pts).T
+    return float(GEOD.line_length(lon, lat))
+
+
+@pytest.mark.parametrize("turn", ["turnaround_m = 20", "turn_radius_m = 80",
+                                  "turn_radius_m = 300", "bank_deg = 25"])
+@pytest.mark.parametrize("takeoff", [False, True])
+def test_the_mission_path_is_the_reported_flight_length(tmp_path, turn, takeoff):
+    """Multirotor (turnaround) and fixed wing (turn radius, wide and omega turns; a bank
+    angle): the written waypoints' path, transit included, is the reported length within
+    1 %; a fixed wing's camera is armed only after a straight of one turn radius on the
+    line."""
+    src = (EXAMPLES / "uav-town-2000.toml").read_text().replace(
+        '"areas/', f'"{EXAMPLES}/areas/').replace("turnaround_m = 20", turn)
+    if takeoff:
+        src += "\n[flight]\ntakeoff = [38.805, 55.081]\n"
+    path = tmp_path / "p.toml"
+    path.write_text(src)
+    spec = plan_project(load_project(path))
+    layout = spec.uav.layout
+    assert layout.feasible
+    files = export_files(spec, str(tmp_path))
+    plans = sorted((p, d) for p, (kind, d) in files.items() if kind == "plan")
+    assert len(plans) == len(layout.sorties)
+    total, radius = 0.0, layout.notes["turn_m"] if "radius" in layout.turn else 0.0
+    for _name, data in plans:
+        doc = json.loads(data)
+        lat, lon, _ = doc["mission"]["plannedHomePosition"]
+        items = doc["mission"]["items"]
+        total += _path_m(items, (lon, lat) if takeoff else None)
+        if radius:
+            _armed_on_the_line(items, radius)
+    assert total == pytest.approx(layout.flight_length_m, rel=0.01)
+    if takeoff:
+        assert layout.notes["transit_m"] > 0
+        assert sum(s.transit_m for s in layout.sorties) == pytest.approx(
+            layout.notes["transit_m"])
+
+
+def _armed_on_the_line(items: list[dict], radius_m: float) -> None:
+    """Before every trigger-on waypoint the aircraft flies ≥ radius straight on the line."""
+    wps, armed = [], []
+    for it in items:
+        if it["command"] == 16:
+            wps.append((it["params"][5], it["params"][4]))
+        elif it["command"] == 206 and it["params"][0] > 0:
+            armed.append(len(wps) - 1)
+    for k in armed:
+        if k < 1 or k + 1 >= len(wps):
+            continue
+        az_in, _, d_in = GEOD.inv(*wps[k - 1], *wps[k])
+        az_out, _, _ = GEOD.inv(*wps[k], *wps[k + 1])
+        assert abs((az_in - az_out + 180) % 360 - 180) < 1.0  # on the line's heading
+        straight = d_in
+        j = k - 1
+        while straight < radius_m * 0.999 and j >= 1:  # run-in: straight back to the turn
+            az, _, d = GEOD.inv(*wps[j - 1], *wps[j])
+            if abs((az - az_in + 180) % 360 - 180) >= 1.0:
+                break
+            straight += d
+            j -= 1
+        assert straight >= radius_m * 0.999
+
+
+def test_a_ten_km_block_is_packed_within_ten_percent_of_the_bound(tmp_path):
+    """10 × 10 km, 25 min batteries: sorties cut strips where the battery ends (one 10 km
+    strip per sortie was 56 % of a battery); the count is within 10 % of the serpentine's
+    length over one battery, and every sortie fits it."""
+    src = (EXAMPLES / "uav-town-2000.toml").read_text().replace(
+        'file = "areas/town-uav.kml"', "width_m = 10000\nlength_m = 10000").replace(
+        'direction_deg = "auto"\n', "")
+    path = tmp_path / "block.toml"
+    path.write_text(src)
+    layout = plan_project(load_project(path)).uav.layout
+    limit_m = 25 * 60 * layout.speed_ms
+    serpentine = sum(s.length_m for s in layout.strips) + layout.turn_length_m
+    bound = math.ceil(serpentine / limit_m)
+    assert layout.feasible and len(layout.strips) > 200
+    assert bound <= len(layout.sorties) <= 1.1 * bound
+    assert all(s.time_s <= 25 * 60 + 1e-6 for s in layout.sorties)
+    assert sorted(set(layout.photos["sortie"].tolist())) == list(
+        range(1, len(layout.sorties) + 1))
+
+
+def test_exactly_fifty_percent_overlap_leaves_no_ground_without_stereo(tmp_path):
+    """At exactly 50 % forward overlap the footprints of neighbouring photos only touch:
+    the ground distance of the centres must not exceed the base anywhere. The layout puts
+    them a base times the least scale factor of the area apart in the grid (UTM k = 0.9996
+    near the central meridian: a grid base would be 0.04 % longer on the ground), and an
+    extension photo whose footprint misses the area is not taken."""
+    ring = _rect(38.95, 55.70, 0.05, 0.03)  # on UTM 37N's central meridian (39°E)
+    path = _polygon_project(tmp_path, "fifty", ring)
+    path.write_text(path.read_text().replace("forward_overlap_pct = 80",
+                                             "forward_overlap_pct = 50"))
+    layout = plan_project(load_project(path)).uav.layout
+    assert layout.notes["grid_scale"] == pytest.approx(0.9996, abs=2e-5)
+    ph = layout.photos
+    worst = 0.0
+    for s in layout.strips:
+        mine = np.flatnonzero(ph["strip"] == s.number)
+        order = mine[np.argsort(ph["index"][mine])]
+        _, _, d = GEOD.inv(ph["lon_deg"][order[:-1]], ph["lat_deg"][order[:-1]],
+                           ph["lon_deg"][order[1:]], ph["lat_deg"][order[1:]])
+        worst = max(worst, float(np.max(d)) if len(d) else 0.0)
+    assert worst <= layout.base_m * (1 + 1e-7)  # footprints 2·base long overlap or touch
+    assert layout.footprint_along_m == pytest.approx(2 * layout.base_m)
+    # at 50 % an extension photo's footprint ends where the part begins: none is taken
+    src = path.read_text()
+    path.write_text(src.replace("extension_bases = 1", "extension_bases = 0"))
+    assert len(plan_project(load_project(path)).uav.layout.photos) == len(ph)
+    path.write_text(src.replace("forward_overlap_pct = 50", "forward_overlap_pct = 80"))
+    e1 = len(plan_project(load_project(path)).uav.layout.photos)
+    path.write_text(src.replace("forward_overlap_pct = 50", "forward_overlap_pct = 80")
+                    .replace("extension_bases = 1", "extension_bases = 0"))
+    e0 = plan_project(load_project(path)).uav.layout
+    assert e1 == len(e0.photos) + 2 * sum(s.segments for s in e0.strips)
