@@ -667,14 +667,15 @@ def _flight_order(parts: _Parts, most: int = MAX_PHOTO_CENTRES
     """Every exposure in flight order: its strip, its place along the line (v) and its
     path distance from the block's first exposure [m] (strips and turns). Beyond ``most``
     exposures every k-th is kept (with each part's ends): the places a sortie may end."""
-    n_per = parts.n_per
+    n_per = parts.n_per.astype(np.int64)
     total = int(n_per.sum())
-    part = np.repeat(np.arange(len(n_per)), n_per)
-    local = np.arange(total) - np.r_[0, np.cumsum(n_per)[:-1]][part]
-    if total > most:
-        k = math.ceil(total / most)
-        keep = (local % k == 0) | (local == n_per[part] - 1)
-        part, local = part[keep], local[keep]
+    # Every k-th exposure of each part and its last one, counted before anything per
+    # exposure is made (an extreme block has far more exposures than memory).
+    k = max(1, math.ceil(total / most))
+    kept = np.where(n_per > 0, (n_per - 1) // k + 1 + ((n_per - 1) % k != 0), 0)
+    part = np.repeat(np.arange(len(n_per)), kept)
+    nth = np.arange(int(kept.sum())) - np.r_[0, np.cumsum(kept)[:-1]][part]
+    local = np.minimum(nth * k, n_per[part] - 1)
     v = parts.first[part] + parts.base_m * local
     strip = parts.p_strip[part]
     order = np.lexsort((np.where(strip % 2 == 0, v, -v), strip))

@@ -112,7 +112,11 @@ def pack_sorties(path_m: np.ndarray, exposure_strip: np.ndarray, run_in_m: np.nd
     transits: list[float] = []
     a = 0
     while a < n:
-        cost = path_m[a:] - path_m[a] + fixed + run_in_m[a] + run_out_m[a:]
+        # Only exposures within one battery of path from ``a`` can end its sortie (the
+        # cost never falls below the path flown): the work stays linear in exposures.
+        end = a + int(np.searchsorted(path_m[a:], path_m[a] + limit_m - fixed, "right"))
+        end = max(end, a + 1)
+        cost = path_m[a:end] - path_m[a] + fixed + run_in_m[a] + run_out_m[a:end]
         fits = np.flatnonzero(cost <= limit_m)
         if not len(fits) or fits[0] != 0:
             return _failed(n, strips, lengths, transits), Message(
