@@ -236,8 +236,11 @@ def test_flight_length_covers_the_photographed_span_of_each_strip():
     span = (fl["photos_per_strip"] - 1) * fl["base_m"]
     assert span > 3000
     turn = math.pi * fl["line_spacing_m"] / 2
+    # one sortie: no run-in for semicircle turns, and a run-out of half a base past the
+    # last photo (where the camera trigger stops, so the last photo is surely fired)
+    run_out = fl["base_m"] / 2
     assert fl["flight_length_m"] == pytest.approx(fl["strips"] * span
-                                                  + (fl["strips"] - 1) * turn)
+                                                  + (fl["strips"] - 1) * turn + run_out)
     assert fl["flight_time_s"] == pytest.approx(fl["flight_length_m"] / 25.0)
     # the block-length figure it replaces was 2.6 % short here
     old = fl["strips"] * 3000 + (fl["strips"] - 1) * turn
@@ -333,7 +336,7 @@ def test_bundled_aerial_example():
     """examples/aerial-ultracam-5000.toml: a 1:5000 map, UltraCam Eagle 80 at manned
     heights — maximum 2093 m bound by the digital height accuracy P_Z (normal case:
     GSD ≤ V_z·(B/H)/σ_px with V_z = 0.2·1 m, B/H = 0.4·13080·5.2 µm / 80 mm, σ_px 0.5 px),
-    GSD 0.136 m, 6 strips × 25 photos at the Instruction's 60/30 % overlaps, no altitude
+    GSD 0.136 m, 6 strips × 23 photos at the Instruction's 60/30 % overlaps, no altitude
     ceiling for a manned aircraft, the haze note. (The Instruction's printed P_Z would allow
     4524 m; it is reported beside it.)"""
     from pathlib import Path
@@ -352,7 +355,7 @@ def test_bundled_aerial_example():
     assert u.max_height_m == pytest.approx(0.2 * bh / 0.5 * 80 / 5.2e-3, rel=1e-9)
     assert u.recommended_height_m == 2090
     assert p.gsd_m == pytest.approx(5.2e-6 * 2090 / 0.080, rel=1e-12)
-    assert (p.flight["strips"], p.flight["photos_per_strip"]) == (6, 25)
+    assert (p.flight["strips"], p.flight["photos_per_strip"]) == (6, 23)
     # the Instruction's printed form, for comparison: V_z·f/(k·b) on the ground
     b_mm = 0.4 * 13080 * 5.2e-3
     assert p.height_accuracy["forms"]["instruction"]["max_planned_height_m"] == pytest.approx(
