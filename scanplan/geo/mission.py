@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from collections.abc import Collection
 from typing import Any
 
 import numpy as np
@@ -118,7 +119,8 @@ class SortieMission:
 
 
 def sortie_missions(layout: FlightLayout, speed_ms: float, *,
-                    loop_hz: float = CAMERA_LOOP_HZ) -> tuple[SortieMission, ...]:
+                    loop_hz: float = CAMERA_LOOP_HZ,
+                    numbers: Collection[int] | None = None) -> tuple[SortieMission, ...]:
     """Every sortie of ``layout`` as a :class:`SortieMission` (see the module's rules).
 
     Parameters
@@ -129,6 +131,8 @@ def sortie_missions(layout: FlightLayout, speed_ms: float, *,
         Ground speed along the strips [m/s] (the lateness of the trigger per loop step).
     loop_hz : float
         How often the autopilot checks the trigger distance [Hz].
+    numbers : collection of int, optional
+        Only these sorties (from 1); all when not given.
 
     Returns
     -------
@@ -143,6 +147,8 @@ def sortie_missions(layout: FlightLayout, speed_ms: float, *,
     order = np.argsort(np.asarray(ph["photo"]), kind="stable")
     out = []
     for s in layout.sorties:
+        if numbers is not None and s.number not in numbers:
+            continue
         mine = order[sortie[order] == s.number]
         if not len(mine):
             continue
@@ -201,8 +207,9 @@ class _Context:
                 pts.append(MissionPoint(*(p0 - self.lead_m * h), "run_in", number,
                                         int(mine[0])))
             runs = self._runs(mine)
+            triggers = self._ground_bases(runs, h)
             for r, run in enumerate(runs):
-                pts += self._run(run, number, h)
+                pts += self._run(run, number, float(triggers[r]))
                 last = np.array([self.x[run[-1]], self.y[run[-1]]])
                 if r + 1 < len(runs):  # the next run of the strip: disarm before it
                     nxt = runs[r + 1][0]
@@ -245,30 +252,37 @@ class _Context:
             out += [a for a in np.array_split(p, k) if len(a)]
         return out
 
-    def _run(self, run: np.ndarray, number: int, h: np.ndarray) -> list[MissionPoint]:
-        """A run: armed at its first centre (the ground base), its last centre."""
+    def _run(self, run: np.ndarray, number: int, trigger: float) -> list[MissionPoint]:
+        """A run: armed at its first centre (``trigger``: the ground base), its last
+        centre."""
         a, b = int(run[0]), int(run[-1])
-        trigger = self._ground_base(a, b, h)
         pts = [MissionPoint(float(self.x[a]), float(self.y[a]), "trigger_on", number, a,
                             trigger)]
         if b != a:
             pts.append(MissionPoint(float(self.x[b]), float(self.y[b]), "photo", number, b))
         return pts
 
-    def _ground_base(self, a: int, b: int, h: np.ndarray) -> float:
-        """The distance between two exposures of the run on the ground (ellipsoid) [m]:
+    def _ground_bases(self, runs: list[np.ndarray], h: np.ndarray) -> np.ndarray:
+        """The distance between two exposures of each run on the ground (ellipsoid) [m]:
         the grid's step between its centres over the projection's scale factor along
-        the run."""
+        the run (a run of one photo: along one step of the heading ``h``)."""
         step = self.layout.base_m * float(self.layout.notes.get("grid_scale", 1.0))
-        if not self.layout.area.georeferenced:
-            return step
+        if not self.layout.area.georeferenced or not runs:
+            return np.full(len(runs), step)
         tr, geod = self._geo()
-        p = np.array([self.x[a], self.y[a]])
-        q = np.array([self.x[b], self.y[b]]) if b != a else p + step * h
-        grid = float(np.hypot(*(q - p)))
-        lon, lat = tr.transform([p[0], q[0]], [p[1], q[1]])
-        ground = geod.line_length(lon, lat)
-        return step * ground / grid if grid > 0 else step
+        a = np.array([int(r[0]) for r in runs])
+        b = np.array([int(r[-1]) for r in runs])
+        one = a == b
+        px, py = self.x[a], self.y[a]
+        qx = np.where(one, px + step * h[0], self.x[b])
+        qy = np.where(one, py + step * h[1], self.y[b])
+        grid = np.hypot(qx - px, qy - py)
+        lon, lat = tr.transform(np.r_[px, qx], np.r_[py, qy])
+        lon, lat = np.asarray(lon, dtype=float), np.asarray(lat, dtype=float)
+        n = len(runs)
+        ground = np.asarray(geod.inv(lon[:n], lat[:n], lon[n:], lat[n:])[2], dtype=float)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(grid > 0, step * ground / grid, step)
 
     def _geo(self) -> tuple[Any, Any]:
         if self.geo is None:

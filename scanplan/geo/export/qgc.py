@@ -166,8 +166,8 @@ def render_plan(layout: FlightLayout, sortie: int, options: MissionOptions, *,
         The ``.plan`` (UTF-8 JSON).
     """
     geo = geo if geo is not None else lonlat(layout)
-    mission = next((m for m in sortie_missions(layout, options.speed_ms)
-                    if m.number == sortie), None)
+    mission = next(iter(sortie_missions(layout, options.speed_ms, numbers={sortie})),
+                   None)
     if mission is None:
         raise ValueError(f"sortie {sortie} has no photos")
     return render_mission(layout, mission, options, altitudes_m=altitudes_m, geo=geo)

@@ -479,8 +479,8 @@ def sortie_route(layout: FlightLayout, sortie: int, options: MissionOptions, *,
         When ``geoid`` is asked and PROJ has no EGM96 grid.
     """
     geo = geo if geo is not None else lonlat(layout)
-    mission = next((m for m in sortie_missions(layout, options.speed_ms)
-                    if m.number == sortie), None)
+    mission = next(iter(sortie_missions(layout, options.speed_ms, numbers={sortie})),
+                   None)
     if mission is None:
         raise ValueError(f"sortie {sortie} has no photos")
     points = mission.points
