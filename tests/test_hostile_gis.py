@@ -389,3 +389,22 @@ def test_sniff_kinds():
     assert G.sniff(b"") == "empty"
     assert G.indirection(b"x /VSIZIP/y") == "/VSIZIP/"
     assert G.indirection(b"plain text") is None
+
+
+def test_hardening_prints_nothing_when_a_gdal_lacks_a_skipped_driver():
+    """pyogrio's GDAL is built without some skipped drivers (CouchDB, TileDB): hardened
+    before pyogrio was imported, its driver registration printed "Warning 1: Unable to find
+    driver … to unload from GDAL_SKIP" to the user's terminal on every plan with a file
+    output. In a fresh interpreter: nothing on stderr, and the skipped drivers are gone."""
+    import subprocess
+    import sys
+
+    code = ("from scanplan.geo import gdal_guard as g; g.harden()\n"
+            "import pyogrio, rasterio\n"
+            "d = pyogrio.list_drivers()\n"
+            "assert 'VRT' not in d and 'OGR_VRT' not in d, sorted(d)\n")
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                       timeout=120, env={**__import__("os").environ,
+                                         "PYTHONPATH": str(Path(G.__file__).parents[2])})
+    assert r.returncode == 0, r.stderr
+    assert r.stderr == ""

@@ -79,6 +79,12 @@ def harden() -> None:
     them as configuration options, and pyogrio's drivers are registered again so that the
     skipped ones are gone even when pyogrio was imported before scanplan.
     """
+    if not _state["done"]:
+        # pyogrio's GDAL registers its drivers when imported, and would print "unable to
+        # find driver" to stderr for each skipped one it was built without: imported
+        # first, its drivers are re-registered below with its error handler in place
+        with contextlib.suppress(ImportError):
+            import pyogrio  # noqa: F401
     skip = " ".join(dict.fromkeys(
         [*os.environ.get("GDAL_SKIP", "").split(), *SKIPPED_DRIVERS]))
     wanted = {**GDAL_CONFIG, "GDAL_SKIP": skip}
