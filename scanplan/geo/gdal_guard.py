@@ -84,7 +84,7 @@ def harden() -> None:
         # find driver" to stderr for each skipped one it was built without: imported
         # first, its drivers are re-registered below with its error handler in place
         with contextlib.suppress(ImportError):
-            import pyogrio  # noqa: F401
+            import pyogrio
     skip = " ".join(dict.fromkeys(
         [*os.environ.get("GDAL_SKIP", "").split(), *SKIPPED_DRIVERS]))
     wanted = {**GDAL_CONFIG, "GDAL_SKIP": skip}

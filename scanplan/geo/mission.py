@@ -29,8 +29,8 @@ altitude steps are run boundaries like any other.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from collections.abc import Collection
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
