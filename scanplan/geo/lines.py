@@ -414,6 +414,9 @@ def plan_lines(
     -------
     FlightLayout
         ``feasible`` False with a ``reason`` when the block cannot be flown as planned.
+
+    Long because: sixteen inputs, each documented above; the body is the layout's steps
+    in order (grid scale, direction, bands, parts, sorties, records), each one call.
     """
     geom = area.geometry
     origin = (float(geom.centroid.x), float(geom.centroid.y))
