@@ -50,10 +50,6 @@ def number(x: float, digits: int, locale: str) -> str:
     return Numbers(locale).num(x, digits)
 
 
-def _height_digits(h: float) -> int:
-    """Decimals of a height [m] in a legend: as the tables give it (148.5, not 148; 70, not
-    70.0)."""
-    return 0 if abs(h - round(h)) < 0.05 else 1
 
 
 def constraints_svg(plan: ScanPlan, locale: str = "en") -> str:
@@ -199,10 +195,10 @@ def height_svg(plan: UavPlan, locale: str = "en") -> str:
     for h, colour, style, label in marks:
         # the maximum planned height and its highest flown one in whole metres, as the
         # tables state them
-        digits = (0 if h in (plan.max_height_m, plan.max_flown_height_m)
-                  else _height_digits(h))
+        text = (number(h, 0, locale) if h in (plan.max_height_m, plan.max_flown_height_m)
+                else Numbers(locale).height(h))
         ax.axvline(h, colour=colour, dash=style, width=0.9,
-                   label=f"{label}: {number(h, digits, locale)} {t('pdf_m', locale)}")
+                   label=f"{label}: {text} {t('pdf_m', locale)}")
     for lim in plan.limits:
         if lim.binding and lim.compares in ("GSD", "L") and lim.limit_m <= max(
                 max(c["gsd_m"]), max((v for v in ls if v == v), default=0.0)) * 1.05:

@@ -1,0 +1,78 @@
+"""How the PDF and the workbook look: numbers stored as numbers, one grouping rule, the
+formula the plan used cited, page 1's warnings apart from its information, no near-empty
+page, each heading once."""
+
+from __future__ import annotations
+
+import io
+import re
+from pathlib import Path
+
+import openpyxl
+import pytest
+
+from scanplan.project.file import parse_project
+from scanplan.project.spec import plan_project
+from scanplan.reports.view import build_view
+
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+
+
+def _plan(name: str, locale: str):
+    path = EXAMPLES / name
+    text = re.sub(r'(?m)^locale = "\w+"', f'locale = "{locale}"', path.read_text("utf-8"))
+    return plan_project(parse_project(text, path))
+
+
+def _view(result):
+    film = result.film.job if result.film else None
+    uav = result.uav.job if result.uav else None
+    return build_view(scan=film, uav=uav, meta=result.meta, spec=result)
+
+
+def _render(result, kind: str, view=None) -> bytes:
+    view = view or _view(result)
+    if kind == "xlsx":
+        from scanplan.reports.excel import render_xlsx as render
+    elif kind == "html":
+        from scanplan.reports.pdfhtml import render_html as render
+    else:
+        from scanplan.reports.pdf import render_pdf as render
+    film = result.film.job if result.film else None
+    uav = result.uav.job if result.uav else None
+    return render(scan=film, uav=uav, meta=result.meta, spec=result, view=view)
+
+
+_NUMBER_TEXT = re.compile(r"[−-]?\d[\d\u00a0 ,.]*")
+
+
+@pytest.mark.parametrize("name,locale", [("uav-canon-2000.toml", "ru"),
+                                         ("film-1000.toml", "en"),
+                                         ("archive-12000-for-2000.toml", "ru")])
+def test_design_sheet_numbers_are_number_cells(name, locale):
+    """A figure of the survey design sheet is a number cell with a number format (it was
+    the text "6,00", which a spreadsheet neither sums nor sorts)."""
+    wb = openpyxl.load_workbook(io.BytesIO(_render(_plan(name, locale), "xlsx")))
+    ws = wb.worksheets[1]
+    assert ws.title in ("Survey design", "Технический проект АФС")
+    numbers = 0
+    for row in ws.iter_rows(min_row=2, max_col=2):
+        cell = row[1]
+        if isinstance(cell.value, str):
+            assert not _NUMBER_TEXT.fullmatch(cell.value.strip()), (cell.coordinate, cell.value)
+        elif isinstance(cell.value, (int, float)):
+            numbers += 1
+            assert cell.number_format.startswith("#,##0"), cell.number_format
+    assert numbers >= 3
+
+
+def test_uav_design_sheet_cites_the_digital_height_formula():
+    """The UAV plan's P_Z is the digital normal case σ_Z (the one its table binds on); the
+    design sheet cited the film formula P_Z = V_z·f/(k·Mc·b) beside it."""
+    from scanplan.reports.design import design_view
+
+    result = _plan("uav-canon-2000.toml", "en")
+    assert result.uav.job.plan.binding == "PZ"
+    norms = " ".join(norm for _, _, norm in design_view(result, "en", lambda s: s).rows)
+    assert "σ_Z = (H/B)·(H/c)·σ_px" in norms
+    assert "V_z·f/(k·Mc·b)" not in norms
