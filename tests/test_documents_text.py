@@ -513,8 +513,8 @@ def test_summary_box_lists_a_warning_once_with_its_scales():
     heads that column "Warning"."""
     docs = _documents(str(EXAMPLES[0].parent / "instruction-2000-film.toml"), "en")
     summary = docs["xlsx sheet 'Summary'"]
-    lines = [x for x in summary.splitlines() if x.startswith("! P_R drives the data volume")]
-    assert lines == ["! P_R drives the data volume: 1:6000, 1:8000"], lines
+    lines = [x for x in summary.splitlines() if x.startswith("i P_R drives the data volume")]
+    assert lines == ["i P_R drives the data volume: 1:6000, 1:8000"], lines  # information
     assert docs["xlsx sheet 'Warnings'"].splitlines()[1:4] == ["Section", "Severity", "Warning"]
 
 

@@ -76,3 +76,36 @@ def test_uav_design_sheet_cites_the_digital_height_formula():
     norms = " ".join(norm for _, _, norm in design_view(result, "en", lambda s: s).rows)
     assert "σ_Z = (H/B)·(H/c)·σ_px" in norms
     assert "V_z·f/(k·Mc·b)" not in norms
+
+
+def _box(html: str, cls: str) -> str:
+    """The text of page 1's box of class ``cls`` ("" when the page has none)."""
+    m = re.search(rf'<div class="{cls}">(.*?)</div>\s*</div>', html, re.S)
+    return re.sub(r"<[^>]+>", " ", m.group(1)) if m else ""
+
+
+def test_page_one_keeps_warnings_apart_from_information():
+    """Page 1's red box holds what to act on; information and conditions checked (the haze
+    assumption, P_R driving the volume, the design's compliant GSD) have a box of their
+    own. A warning only the specification gives names the section that explains it."""
+    html = _render(_plan("aerial-ultracam-5000.toml", "en"), "html")
+    assert _box(html, "warnbox") == ""  # nothing to act on: no red box
+    assert "Haze contrast assumed" in _box(html, "warnbox notebox")
+    html = _render(_plan("uav-canon-2000.toml", "en"), "html")
+    warn = _box(html, "warnbox")
+    assert "Motion blur" in warn
+    assert "Flight height lowered — see “Specification”" in warn
+    html = _render(_plan("film-1000.toml", "ru"), "html")
+    assert "P_R" not in _box(html, "warnbox")
+    assert "Объём данных определяет P_R" in _box(html, "warnbox notebox")
+    assert "см. «Технический проект аэрофотосъёмки»" in _box(html, "warnbox notebox")
+
+
+def test_uav_specification_on_page_one_gives_gsd_and_overlaps():
+    """The contract's deliverables on page 1 of a UAV specification: the GSD and the
+    overlaps, beside the heights."""
+    html = _render(_plan("uav-canon-2000.toml", "en"), "html")
+    spec = html[html.index('<h2 class="spec">'):html.index("</table>",
+                                                          html.index('<h2 class="spec">'))]
+    assert "GSD at the recommended height, cm</th><td>2.69" in spec.replace("\n", "")
+    assert "Forward / side overlap, %</th><td>80 / 60" in spec.replace("\n", "")
