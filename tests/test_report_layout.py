@@ -109,3 +109,81 @@ def test_uav_specification_on_page_one_gives_gsd_and_overlaps():
                                                           html.index('<h2 class="spec">'))]
     assert "GSD at the recommended height, cm</th><td>2.69" in spec.replace("\n", "")
     assert "Forward / side overlap, %</th><td>80 / 60" in spec.replace("\n", "")
+
+
+def _page_fill(pdf: bytes) -> list[float]:
+    """How far down each page its content reaches (0–1 of the body, header and footer
+    left out), from the pages rasterised at 20 dpi."""
+    import shutil
+    import subprocess
+    import tempfile
+
+    import numpy as np
+    from PIL import Image
+
+    if shutil.which("pdftoppm") is None:
+        pytest.skip("pdftoppm (poppler) is not installed")
+    with tempfile.TemporaryDirectory() as tmp:
+        (Path(tmp) / "d.pdf").write_bytes(pdf)
+        subprocess.run(["pdftoppm", "-gray", "-r", "20", "d.pdf", "p"], cwd=tmp, check=True)
+        fills = []
+        for page in sorted(Path(tmp).glob("p*.pgm")):
+            a = np.asarray(Image.open(page))
+            body = a[int(a.shape[0] * 0.05):int(a.shape[0] * 0.93)]
+            rows = np.flatnonzero((body < 200).any(axis=1))
+            fills.append((rows.max() + 1) / body.shape[0] if rows.size else 0.0)
+    return fills
+
+
+@pytest.mark.parametrize("name,locale", [("film-1000.toml", "ru"),
+                                         ("aerial-ultracam-5000.toml", "en")])
+def test_no_near_empty_page_but_the_last(name, locale):
+    """A few spilled rows then a forced break (a section on a new page, the references moved
+    whole) left pages filled to a sixth; every page but the last is now at least half full."""
+    fills = _page_fill(_render(_plan(name, locale), "pdf"))
+    assert all(f >= 0.5 for f in fills[:-1]), fills
+
+
+def test_an_abstract_area_prints_its_flight_lines_heading_once():
+    html = _render(_plan("film-1000.toml", "en"), "html")
+    assert html.count(">Flight lines over the area<") == 1
+
+
+def test_short_tables_are_kept_whole():
+    """A table of a few rows is not split over two pages (a six-row table split 3/3)."""
+    html = _render(_plan("film-1000.toml", "en"), "html")
+    assert '<table class="results strips short">' in html
+    assert '<table class="kv short">' in html
+    css = (Path(__file__).resolve().parent.parent / "templates" / "report.css").read_text()
+    assert re.search(r"table\.kv\.short[^{]*\{\s*break-inside: avoid", css)
+
+
+def test_a_ground_range_draws_no_flat_heights_chart_and_says_why():
+    """With a range of ground elevations and no DEM every photo is planned over the same
+    ground: the heights chart showed flat ground and the map one colour; neither is drawn
+    coloured, and the documents say why."""
+    from scanplan.reports.exports import spec_layouts
+    from scanplan.reports.mapview import geo_views, map_terrain
+
+    result = _plan("uav-town-2000-afs.toml", "en")
+    html = _render(result, "html")
+    assert "Heights above ground along the strips" not in html
+    assert "no chart of the heights along the strips is drawn" in html
+    film = _plan("film-town-relief-10000.toml", "en")
+    (layout,) = [lay for _kind, lay in spec_layouts(film)]
+    assert map_terrain(film, "film", layout) is None
+    (view,) = geo_views(film, "en")
+    assert any("not coloured by their height above ground" in n for n in view["notes"])
+
+
+def test_film_chart_draws_coinciding_constraints_apart_and_ticks_a_lone_scale():
+    """P_Z lies within 1 % of P_P for the Instruction's example: it is dashed and drawn
+    over the solid P_P; an archive's single photo scale gets round scales beside it."""
+    from scanplan.reports import plots
+
+    svg = plots.constraints_svg(_plan("instruction-2000-film.toml", "en").film.job.plan)
+    red = re.findall(r'<(?:path|polyline)[^>]*stroke="#d62728"[^>]*>', svg)
+    assert red and all("stroke-dasharray" in x for x in red), red[:2]
+    assert svg.index('stroke="#2ca02c"') < svg.index('stroke="#d62728"')
+    assert plots._scale_ticks([12000.0], 6000.0, 24000.0) == [
+        6000.0, 8000.0, 10000.0, 12000.0, 15000.0, 20000.0]

@@ -414,6 +414,8 @@ TERRAIN: dict[str, dict[str, str]] = {
         "terrain_facts_dem": "Ground heights from",
         "terrain_facts_dem_value": "digital elevation model {file}, {crs}, cell {cell}",
         "terrain_facts_range": "the range of ground elevations given for the area",
+        "terrain_facts_no_chart": "Without a DEM the ground under each photo is not known, "
+                                  "so no chart of the heights along the strips is drawn",
         "terrain_facts_ground": "Ground under the photos",
         "terrain_facts_altitude": "Flight altitude above sea level",
         "terrain_facts_altitude_value": "{alt} ({mode})",
@@ -493,6 +495,8 @@ TERRAIN: dict[str, dict[str, str]] = {
         "terrain_facts_dem": "Отметки рельефа",
         "terrain_facts_dem_value": "цифровая модель рельефа {file}, {crs}, размер ячейки {cell}",
         "terrain_facts_range": "диапазон отметок, заданный для участка",
+        "terrain_facts_no_chart": "Без ЦМР отметки под каждым снимком неизвестны, поэтому "
+                                  "график высот по маршрутам не строится",
         "terrain_facts_ground": "Отметки под снимками",
         "terrain_facts_altitude": "Высота полёта над уровнем моря",
         "terrain_facts_altitude_value": "{alt} ({mode})",

@@ -108,8 +108,8 @@ def _environment() -> jinja2.Environment:
 def _terrain_plot(spec: Any, f: _Fmt) -> str | None:
     """The heights-above-ground figure of a ``[terrain]`` plan (issue 12), else None."""
     tr = getattr(getattr(spec, "uav", None), "terrain", None)
-    if tr is None or len(tr.layout.photos) == 0:
-        return None
+    if tr is None or len(tr.layout.photos) == 0 or tr.summary()["source"] != "dem":
+        return None  # a ground range without a DEM: flat ground under every photo, not drawn
     from . import plots
 
     limit = spec.uav.job.plan.max_height_m
@@ -132,8 +132,9 @@ def _terrain_rows(spec: Any, f: _Fmt) -> list[tuple[str, str]]:
                 else f"{f.g(abs(cell[0]))} {m}")
         rows.append((f.label("terrain_facts_dem"), f.label(
             "terrain_facts_dem_value", file=d["dem"], crs=d["dem_crs"], cell=size)))
-    else:
-        rows.append((f.label("terrain_facts_dem"), f.label("terrain_facts_range")))
+    else:  # and no chart of flat ground along the strips: the note says why
+        rows.append((f.label("terrain_facts_dem"), f.label("terrain_facts_range") + ". "
+                     + f.label("terrain_facts_no_chart")))
     rows.append((f.label("terrain_facts_ground"),
                  f"{f.num(d['ground_min_m'], 1)}–{f.num(d['ground_max_m'], 1)} {m}"))
     alt = tr.layout.photos["altitude_m"]
