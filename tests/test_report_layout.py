@@ -187,3 +187,18 @@ def test_film_chart_draws_coinciding_constraints_apart_and_ticks_a_lone_scale():
     assert svg.index('stroke="#2ca02c"') < svg.index('stroke="#d62728"')
     assert plots._scale_ticks([12000.0], 6000.0, 24000.0) == [
         6000.0, 8000.0, 10000.0, 12000.0, 15000.0, 20000.0]
+
+
+def test_workbook_chart_legend_gives_a_height_as_the_pdf_does():
+    """The highest flown height 148.5 m: the workbook's chart legend said 148 m beside the
+    PDF's 148.5 m (one rounding rule, Numbers.height)."""
+    result = _plan("uav-town-2000.toml", "en")
+    assert result.uav.job.plan.heights_m["max"] == pytest.approx(148.5)
+    wb = openpyxl.load_workbook(io.BytesIO(_render(result, "xlsx")))
+    cells = {c.value for ws in wb.worksheets for row in ws.iter_rows() for c in row
+             if isinstance(c.value, str)}
+    assert "highest flown: 148.5 m" in cells
+    assert "highest flown: 148 m" not in cells
+    from scanplan.reports import plots
+
+    assert "148.5 m" in plots.height_svg(result.uav.job.plan, "en")
