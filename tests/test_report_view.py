@@ -59,7 +59,13 @@ def test_scales_pixels_and_whole_numbers():
     assert (en.scale(2000), ru.scale(2000), ru.floor_scale(8847.9)) == ("1:2000", "1:2000",
                                                                         "1:8847")
     assert (en.plain_scale(10000), en.floor_scale(12345.9)) == ("1:10000", "1:12345")
-    assert (en.whole(10000), ru.whole(10000)) == ("10000", "10\u00a0000")
+    assert (en.whole(10000), ru.whole(10000)) == ("10,000", "10\u00a0000")
+    # one grouping rule on every page: a count of four digits is grouped as num() groups it
+    assert (en.g(4575.0), ru.g(1501.0), en.whole(4575), ru.whole(1501)) == (
+        "4,575", "1\u00a0501", "4,575", "1\u00a0501")
+    assert (en.g(4575.0), ru.g(1501.0)) == (en.num(4575, 0), ru.num(1501, 0))
+    # a height in a chart's legend as the tables give it (148.5 is not rounded to 148)
+    assert (en.height(148.5), ru.height(148.5), en.height(70.01)) == ("148.5", "148,5", "70")
     # a pixel under 1 µm keeps two significant digits, never "0.0"
     assert (en.um(0.42), ru.um(0.42), en.um(12.34)) == ("0.42", "0,42", "12.3")
     assert (en.g(2.5), ru.g(2.5), ru.g(25000.0)) == ("2.5", "2,5", "25\u00a0000")

@@ -298,12 +298,17 @@ def test_the_film_maps_local_scale_axis_reads_as_scales():
     """The colour bar's second axis of local photo scales labels them as the text writes
     scales: 7200 in both languages (it said 7,200 / 7 200), never grouped four digits."""
     from scanplan.reports.exports import spec_layouts
-    from scanplan.reports.mapview import map_svg, map_terrain
+    from scanplan.reports.mapview import MapTerrain, map_svg, map_terrain
 
     spec = plan_project(load_project(EXAMPLES / "film-town-relief-10000.toml"))
     (kind, lay), = spec_layouts(spec)
-    mt = map_terrain(spec, kind, lay)
-    assert mt is not None and mt.focal_mm
+    # a ground range leaves every frame over the same ground: the map is not coloured by it
+    assert map_terrain(spec, kind, lay) is None
+    ft, focal = spec.film.terrain, spec.film.job.plan.inputs.focal_mm
+    agl = np.asarray(lay.photos["agl_m"], dtype=float)
+    none = np.zeros(agl.size, dtype=bool)
+    mt = MapTerrain(agl, none, none, focal_mm=focal, agl_range_m=(
+        ft.mc_min * focal / 1000.0, ft.mc_max * focal / 1000.0))  # as a DEM would colour it
     for loc in ("en", "ru"):
         svg = map_svg(lay, loc, mt)
         labels = set(re.findall(r">(7[\s,\u00a0]?[02]00)<", svg))

@@ -25,7 +25,7 @@ from .wording import camera_title, display_message, document_date, sentence, wit
 
 _PARTS = {"en": ("part", "parts"), "ru": ("часть", "части", "частей")}
 
-__all__ = ["DesignView", "design_text_lines", "design_view", "relief_max_height_m",
+__all__ = ["DesignView", "Figure", "design_text_lines", "design_view", "relief_max_height_m",
            "write_design_sheet", "write_gsd_limits"]
 
 GSD_TABLE = "GOST R 59562-2021, Appendix B, Table B.1"
@@ -53,6 +53,24 @@ class DesignView:
     """The label key of each row (``design_gsd_digital``, ``design_sun_window`` …)."""
 
 
+class Figure(str):
+    """A design value that is one number: its text in the report's language, and the number
+    and its decimals, so the workbook writes a number cell (not the text ``"6,00"``)."""
+
+    value: float
+    digits: int
+
+    def __new__(cls, text: str, value: float, digits: int) -> Figure:
+        obj = super().__new__(cls, text)
+        obj.value, obj.digits = float(value), digits
+        return obj
+
+    @property
+    def number_format(self) -> str:
+        """The workbook's number format: thousands grouped, ``digits`` decimals."""
+        return "#,##0" + ("." + "0" * self.digits if self.digits > 0 else "")
+
+
 class _W:
     """Formatting in one locale."""
 
@@ -75,6 +93,13 @@ class _W:
             return "—"
         return Numbers(self.loc).num(float(x), digits)  # the report's one formatter
 
+    def fig(self, x: float | None, digits: int = 1) -> str:
+        """A value that is one number: :meth:`n`'s text carrying the number (:class:`Figure`)."""
+        text = self.n(x, digits)
+        if x is None or text == "—":
+            return text
+        return Figure(text, round(float(x), digits), digits)
+
     def scale(self, x: float) -> str:
         return scale_text(x, self.loc)
 
@@ -91,7 +116,12 @@ class _W:
         return rec.title(self.loc)
 
 
-def _equation(cid: str, w: _W) -> str:
+def _equation(cid: str, w: _W, limits: Any = ()) -> str:
+    """The equation of constraint ``cid`` as the plan used it: a UAV height limit carries
+    its own (the digital normal-case σ_Z of P_Z, not the film formula of the registry)."""
+    lim = next((x for x in limits if x.id == cid), None)
+    if lim is not None and getattr(lim, "equation", None):
+        return w.cite(localize(lim.equation, w.loc))
     rec = CONSTRAINTS.get(cid)
     return w.cite(localize(rec.equation, w.loc)) if rec is not None else ""
 
@@ -109,9 +139,9 @@ def _project_rows(spec: Any, w: _W) -> list[tuple[str, str, str]]:
     layout = layout_of(spec.uav) or layout_of(spec.film)
     width, length = p.get("area", "width_m"), p.get("area", "length_m")
     if layout is not None:  # the contract polygon, once the geography lays it out
-        rows.append((w.t("design_area_km2"), w.n(layout.area.area_km2, 2), ""))
+        rows.append((w.t("design_area_km2"), w.fig(layout.area.area_km2, 2), ""))
     elif width and length:
-        rows.append((w.t("design_area_km2"), w.n(width * length / 1e6, 2), ""))
+        rows.append((w.t("design_area_km2"), w.fig(width * length / 1e6, 2), ""))
     for key in ("coordinate_system", "height_system"):
         rows.append((w.t(f"design_{key}"), p.get("project", key) or "—",
                      w.t("design_norm_contract")))
@@ -154,7 +184,7 @@ def _uav_rows(spec: Any, w: _W) -> list[tuple[str, str, str]]:
     rows = [(w.t("camera"), camera_title(ns, inp.camera, w.loc, inp.camera_name)
              if inp.camera else w.t("design_camera_value", pixel=w.n(inp.pixel_um, 2),
                                     focal=w.n(inp.focal_mm, 1)), "")]
-    rows.append((w.t("design_gsd_planned"), w.n(p.gsd_m * 100, 2), ""))
+    rows.append((w.t("design_gsd_planned"), w.fig(p.gsd_m * 100, 2), ""))
     row = _gsd_row(spec.design, "digital", w)
     if row:
         rows.append(row)
@@ -162,13 +192,13 @@ def _uav_rows(spec: Any, w: _W) -> list[tuple[str, str, str]]:
                                                fwd=w.n(inp.forward_overlap_pct, 0),
                                                side=w.n(inp.side_overlap_pct, 0)),
                  w.t("design_norm_project")))
-    rows.append((w.t("spec_recommended_height_m"), w.n(u.recommended_height_m, 0),
-                 _equation(p.binding, w) if p.binding else ""))
+    rows.append((w.t("spec_recommended_height_m"), w.fig(u.recommended_height_m, 0),
+                 _equation(p.binding, w, p.limits) if p.binding else ""))
     relief = relief_max_height_m(u)
     rows.append((w.t("max_height_m" if relief is None else "spec_max_height_flat_m"),
-                 w.n(u.max_height_m, 0), ""))
+                 w.fig(u.max_height_m, 0), ""))
     if relief is not None:
-        rows.append((w.t("spec_max_height_relief_m"), w.n(relief, 0), ""))
+        rows.append((w.t("spec_max_height_relief_m"), w.fig(relief, 0), ""))
     fl = p.flight
     if "strips" in fl:
         rows.append((w.t("design_strips_photos"), w.t("design_strips_photos_value",
@@ -193,17 +223,17 @@ def _film_rows(spec: Any, w: _W) -> list[tuple[str, str, str]]:
     rows.append((w.t("spec_archive_photo_scale" if f.archive else "spec_recommended_photo_scale"),
                  w.scale(rec.photo_scale), _equation(rec.binding, w)))
     if not f.archive:  # existing photos: no flight is planned, only their scan
-        rows.append((w.t("design_film_height"), w.n(rec.photo_scale * inp.focal_mm / 1000.0,
+        rows.append((w.t("design_film_height"), w.fig(rec.photo_scale * inp.focal_mm / 1000.0,
                                                     0), ""))
     px = rec.scanner_pixel_um or rec.scan_pixel_um
-    rows.append((w.t("scan_pixel_um"), w.n(px, 1), ""))
+    rows.append((w.t("scan_pixel_um"), w.fig(px, 1), ""))
     row = _gsd_row(spec.design, "film", w)
     if row:
         rows.append(row)
     if f.archive:
         if f.frames is not None:
-            rows.append((w.t("design_frames_to_scan"), w.n(f.frames, 0), ""))
-            rows.append((w.t("spec_scanned_gb"), w.n(f.scanned_gigabytes, 1), ""))
+            rows.append((w.t("design_frames_to_scan"), w.fig(f.frames, 0), ""))
+            rows.append((w.t("spec_scanned_gb"), w.fig(f.scanned_gigabytes, 1), ""))
         return rows
     rows.append((w.t("design_overlaps"), w.t(
         "design_overlaps_value", fwd=w.n(inp.forward_overlap_pct, 0),
@@ -212,7 +242,7 @@ def _film_rows(spec: Any, w: _W) -> list[tuple[str, str, str]]:
     if f.frames is not None:
         rows.append((w.t("design_strips_photos"), w.t(
             "design_strips_photos_value", strips=w.n(f.strips, 0), photos=w.n(f.frames, 0)), ""))
-        rows.append((w.t("spec_scanned_gb"), w.n(f.scanned_gigabytes, 1), ""))
+        rows.append((w.t("spec_scanned_gb"), w.fig(f.scanned_gigabytes, 1), ""))
     return rows
 
 
@@ -290,7 +320,7 @@ def _binding_rows(spec: Any, w: _W) -> list[tuple[str, str, str]]:
         text = f"{p.binding} — {w.cname(p.binding)}"
         if lim is not None:
             text += f": {w.msg(lim.reason, spec.uav.job.norm_set)}"
-        rows.append((w.t("design_binding"), text, _equation(p.binding, w)))
+        rows.append((w.t("design_binding"), text, _equation(p.binding, w, p.limits)))
     if spec.film is not None and spec.film.recommended is not None:
         rec = spec.film.recommended
         rows.append((w.t("design_binding_film"), f"{rec.binding} — {w.cname(rec.binding)}",
@@ -340,8 +370,11 @@ def write_design_sheet(book: Any, spec: Any) -> None:
     spec : PlanResult
         The specification.
     """
-    from .excel import put_text  # (the excel package re-exports it)
+    from openpyxl.styles import Alignment
 
+    from .excel import put_num, put_text  # (the excel package re-exports them)
+
+    top_left = Alignment(horizontal="left", vertical="top")
     view = design_view(spec, book.loc, book.bib.cite)
     if view is None:
         return
@@ -351,7 +384,10 @@ def write_design_sheet(book: Any, spec: Any) -> None:
     row = 2
     for label, value, norm in view.rows:
         put_text(ws, row, 1, label, wrap=True)
-        put_text(ws, row, 2, value, wrap=True)
+        if isinstance(value, Figure):  # a number cell with its number format
+            put_num(ws, row, 2, value.value, value.number_format).alignment = top_left
+        else:
+            put_text(ws, row, 2, value, wrap=True)
         put_text(ws, row, 3, norm, wrap=True)
         row += 1
     if view.notes:

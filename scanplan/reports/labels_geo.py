@@ -16,6 +16,9 @@ GEO: dict[str, dict[str, str]] = {
         "geo_sortie_n": "sortie {n}",
         "map_title": "Flight map",
         "map_title_film": "Flight scheme of the aerial survey",
+        "map_ground_unknown": "Only a range of ground elevations is given, not a DEM: the "
+                              "ground under each photo is not known, so the photo centres "
+                              "are not coloured by their height above ground.",
         "map_crs": "Coordinate system",
         "map_north": "N",
         "map_easting_km": "Easting, km",
@@ -104,6 +107,9 @@ GEO: dict[str, dict[str, str]] = {
         "geo_sortie_n": "вылет {n}",
         "map_title": "Схема маршрутов",
         "map_title_film": "Схема маршрутов аэрофотосъёмки",
+        "map_ground_unknown": "Задан только диапазон отметок местности, а не ЦМР: отметка под "
+                              "каждым снимком неизвестна, поэтому центры снимков не окрашены "
+                              "по высоте фотографирования над рельефом.",
         "map_crs": "Система координат",
         "map_north": "С",
         "map_easting_km": "На восток, км",

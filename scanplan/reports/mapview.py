@@ -55,7 +55,7 @@ if TYPE_CHECKING:  # matplotlib is imported when a map is drawn (the workbook dr
     from matplotlib.ticker import FuncFormatter
 
 __all__ = ["MAX_MAP_PHOTOS", "MAX_TABLE_STRIPS", "MapTerrain", "crs_text", "geo_views",
-           "map_svg", "map_terrain"]
+           "ground_known", "map_svg", "map_terrain"]
 
 MAX_MAP_PHOTOS = 4000
 """Most photo centres drawn on the map (every k-th beyond it: the SVG stays small)."""
@@ -279,6 +279,8 @@ def map_terrain(spec: Any, kind: str, layout: FlightLayout) -> MapTerrain | None
     ph = layout.photos
     if "altitude_mode" not in layout.notes or len(ph) == 0 or "agl_m" not in ph.columns:
         return None
+    if not ground_known(spec, kind):
+        return None  # one height above ground for every photo: no colours to tell apart
     agl = np.asarray(ph["agl_m"], dtype=float)
     none = np.zeros(agl.size, dtype=bool)
     if kind == "film":
@@ -313,6 +315,17 @@ def map_terrain(spec: Any, kind: str, layout: FlightLayout) -> MapTerrain | None
             and d.get("agl_max_m") is not None else None)
     return MapTerrain(agl, high, short, limit_m=limit, cid=plan.binding or "",
                       highlight=tr.worst_resolution_photo or None, agl_range_m=span)
+
+
+def ground_known(spec: Any, kind: str) -> bool:
+    """Whether the ground under each photo of a ``[terrain]`` plan is known (a DEM); with
+    only a range of ground elevations every photo is planned over the same ground, and a
+    map coloured by height above ground showed every frame in one colour."""
+    if kind == "film":
+        ft = getattr(getattr(spec, "film", None), "terrain", None)
+        return ft is None or bool(getattr(ft, "ground_known", True))
+    tr = getattr(getattr(spec, "uav", None), "terrain", None)
+    return tr is None or tr.summary().get("source") == "dem"
 
 
 def _draw_photos_agl(fig: Figure, ax: Any, layout: FlightLayout, mt: MapTerrain,
@@ -394,7 +407,6 @@ def map_svg(layout: FlightLayout, locale: str = "en", terrain: MapTerrain | None
     import matplotlib
     from matplotlib.figure import Figure
 
-    film = layout.kind == "film"
     scale = 1000.0  # axes in km
     ph = layout.photos
 
@@ -406,15 +418,7 @@ def map_svg(layout: FlightLayout, locale: str = "en", terrain: MapTerrain | None
         if len(ph) and terrain is not None:
             _draw_photos_agl(fig, ax, layout, terrain, scale, locale)
         elif len(ph):
-            step = max(1, math.ceil(len(ph) / MAX_MAP_PHOTOS))
-            x = np.asarray(ph["x_m"], float)[::step] / scale
-            y = np.asarray(ph["y_m"], float)[::step] / scale
-            label = t("map_legend_frames" if film else "map_legend_photos", locale)
-            if step > 1:
-                label += f" ({t('map_one_in', locale).format(k=step)})"
-            # one picture at print resolution, not thousands of vector dots (_PHOTO_DPI)
-            ax.plot(x, y, linestyle="none", marker="o", markersize=1.6, color="#2e7d32",
-                    zorder=2.5, label=label, rasterized=True)
+            _draw_photos_plain(ax, layout, scale, locale)
         ax.set_aspect("equal", adjustable="datalim")
         ax.margins(0.1)
         ax.xaxis.set_major_formatter(_km_ticks(ax.xaxis, locale))
@@ -432,6 +436,36 @@ def map_svg(layout: FlightLayout, locale: str = "en", terrain: MapTerrain | None
         if north is not None:
             _north_arrow(ax, north, locale)
 
+    with matplotlib.rc_context({**_RC, "axes.grid": True}):
+        fig = Figure(figsize=_map_size_in(layout), layout="constrained")
+        draw(fig)
+        buf = io.StringIO()
+        # the photo centres are the one raster layer of a map (thousands of points as SVG
+        # elements take long to write and to print): coloured by height above ground at
+        # 150 dpi, plain at 300 dpi
+        fig.savefig(buf, format="svg", metadata={"Date": None, "Creator": None},
+                    dpi=_RASTER_DPI if terrain is not None else _PHOTO_DPI)
+    return buf.getvalue().replace("'DejaVu Sans'", "'Scanplan Sans'").replace(
+        '"DejaVu Sans"', '"Scanplan Sans"').replace("DejaVu Sans", "Scanplan Sans")
+
+
+def _draw_photos_plain(ax: Any, layout: FlightLayout, scale: float, locale: str) -> None:
+    """The photo centres as plain dots (no ``[terrain]``, or no known ground under them):
+    one picture at print resolution, not thousands of vector dots (``_PHOTO_DPI``)."""
+    ph = layout.photos
+    step = max(1, math.ceil(len(ph) / MAX_MAP_PHOTOS))
+    x = np.asarray(ph["x_m"], float)[::step] / scale
+    y = np.asarray(ph["y_m"], float)[::step] / scale
+    label = t("map_legend_frames" if layout.kind == "film" else "map_legend_photos", locale)
+    if step > 1:
+        label += f" ({t('map_one_in', locale).format(k=step)})"
+    ax.plot(x, y, linestyle="none", marker="o", markersize=1.6, color="#2e7d32",
+            zorder=2.5, label=label, rasterized=True)
+
+
+def _map_size_in(layout: FlightLayout) -> tuple[float, float]:
+    """The map figure's (width, height) [in]: the page's width, a height the area (its
+    strips and take-off point included) fills."""
     minx, miny, maxx, maxy = layout.area.geometry.bounds
     if layout.strips:
         ends = np.array([p for s in layout.strips for p in (s.start_xy_m, s.end_xy_m)])
@@ -443,18 +477,7 @@ def map_svg(layout: FlightLayout, locale: str = "en", terrain: MapTerrain | None
         maxx, maxy = max(maxx, takeoff[0]), max(maxy, takeoff[1])
     width_in, max_h = _MAP_SIZE_IN
     ratio = (maxy - miny) / (maxx - minx) if maxx > minx else 1.0
-    height_in = min(max(width_in * 0.85 * ratio + 1.2, 3.8), max_h)  # the area fills it
-    with matplotlib.rc_context({**_RC, "axes.grid": True}):
-        fig = Figure(figsize=(width_in, height_in), layout="constrained")
-        draw(fig)
-        buf = io.StringIO()
-        # the photo centres are the one raster layer of a map (thousands of points as SVG
-        # elements take long to write and to print): coloured by height above ground at
-        # 150 dpi, plain at 300 dpi
-        fig.savefig(buf, format="svg", metadata={"Date": None, "Creator": None},
-                    dpi=_RASTER_DPI if terrain is not None else _PHOTO_DPI)
-    return buf.getvalue().replace("'DejaVu Sans'", "'Scanplan Sans'").replace(
-        '"DejaVu Sans"', '"Scanplan Sans"').replace("DejaVu Sans", "Scanplan Sans")
+    return width_in, min(max(width_in * 0.85 * ratio + 1.2, 3.8), max_h)
 
 
 def _svg_uri(svg: str) -> str:
@@ -539,6 +562,8 @@ def geo_views(spec: Any, locale: str) -> list[dict[str, Any]]:
             notes.append(t("geo_not_feasible", locale).format(reason=layout.reason or ""))
         if not layout.area.georeferenced:
             notes.append(t("geo_not_georeferenced", locale))
+        elif "altitude_mode" in layout.notes and not ground_known(spec, _kind):
+            notes.append(t("map_ground_unknown", locale))
         elif _exports.files_beside(spec, layout):
             items = [t("geo_file_flight", locale),
                      t("geo_file_frames" if film else "geo_file_photos", locale)]

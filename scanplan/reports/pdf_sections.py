@@ -556,6 +556,11 @@ def _spec_view(spec: PlanResult, f: _Fmt) -> dict[str, Any]:
             rows.append((f.label("spec_max_height_relief_m"), f.num(relief, 0)))
         if p.binding:
             rows.append((f.label("binding"), f"{p.binding} — {f.cname(p.binding)}"))
+        # the contract's deliverables: the GSD and the overlaps the crew flies
+        rows.append((f.label("design_gsd_planned"), f.num(p.gsd_m * 100.0, 2)))
+        rows.append((f.label("design_overlaps"), f.label(
+            "design_overlaps_value", fwd=f.num(p.inputs.forward_overlap_pct, 0),
+            side=f.num(p.inputs.side_overlap_pct, 0))))
         if "photos" in p.flight:
             rows.append((f.label("spec_photos"), f.g(p.flight["photos"])))
         if "data_volume_bytes" in p.flight:

@@ -108,8 +108,8 @@ def _environment() -> jinja2.Environment:
 def _terrain_plot(spec: Any, f: _Fmt) -> str | None:
     """The heights-above-ground figure of a ``[terrain]`` plan (issue 12), else None."""
     tr = getattr(getattr(spec, "uav", None), "terrain", None)
-    if tr is None or len(tr.layout.photos) == 0:
-        return None
+    if tr is None or len(tr.layout.photos) == 0 or tr.summary()["source"] != "dem":
+        return None  # a ground range without a DEM: flat ground under every photo, not drawn
     from . import plots
 
     limit = spec.uav.job.plan.max_height_m
@@ -132,8 +132,9 @@ def _terrain_rows(spec: Any, f: _Fmt) -> list[tuple[str, str]]:
                 else f"{f.g(abs(cell[0]))} {m}")
         rows.append((f.label("terrain_facts_dem"), f.label(
             "terrain_facts_dem_value", file=d["dem"], crs=d["dem_crs"], cell=size)))
-    else:
-        rows.append((f.label("terrain_facts_dem"), f.label("terrain_facts_range")))
+    else:  # and no chart of flat ground along the strips: the note says why
+        rows.append((f.label("terrain_facts_dem"), f.label("terrain_facts_range") + ". "
+                     + f.label("terrain_facts_no_chart")))
     rows.append((f.label("terrain_facts_ground"),
                  f"{f.num(d['ground_min_m'], 1)}–{f.num(d['ground_max_m'], 1)} {m}"))
     alt = tr.layout.photos["altitude_m"]
@@ -256,31 +257,50 @@ def _view(scan: ScanJob | None, uav: UavJob | None, meta: ReportMeta,
 
 
 def _warnings_box(scan_view: Any, uav_view: Any, spec: PlanResult | None,
-                  f: _Fmt) -> list[str]:
-    """Every warning in short form for page 1 (an approver sees them before signing): one
-    line per kind of warning, with all the photo scales it concerns (as the workbook's
-    box lists them)."""
-    scales: dict[str, list[str]] = {}  # heading → photo scales, in order
-    times: dict[str, int] = {}  # heading → warnings without a photo scale under it
+                  f: _Fmt) -> dict[str, list[str]]:
+    """Page 1's boxes in short form (an approver sees them before signing): ``warnings``,
+    what to act on, apart from ``notes``, information and conditions checked. One line per
+    kind, with all the photo scales it concerns (as the workbook's box lists them); a
+    warning of the specification alone says which section explains it."""
+    scales: dict[tuple[str, str], list[str]] = {}  # (severity, heading) → photo scales
+    times: dict[tuple[str, str], int] = {}  # … → warnings without a photo scale under it
     for view in (scan_view, uav_view):
         for w in view["warnings"] if view is not None else ():
-            head = w["heading"] or w["message"]
+            head = (w["severity"], w["heading"] or w["message"])
             listed = scales.setdefault(head, [])
             listed += [x for x in w["scale_list"] if x not in listed]
             times[head] = times.get(head, 0) + (not w["scale_list"])
-    items = [h + (f": {f.list_sep.join(xs)}" if xs else "") for h, xs in scales.items()
-             for _ in range(1 if xs else max(times[h], 1))]
+    items = [(sev, h + (f": {f.list_sep.join(xs)}" if xs else ""))
+             for (sev, h), xs in scales.items()
+             for _ in range(1 if xs else max(times[(sev, h)], 1))]
     if spec is not None:
         seen = {x["code"] for view in (scan_view, uav_view) if view
                 for x in view["warnings"]}
-        for w in spec.warnings:
-            if w.code not in seen:
-                key = warning_heading_key(w)
-                items.append(f.label(key) if key else localize(w.message, f.locale))
-    counts: dict[str, int] = {}
-    for item in items:
-        counts[item] = counts.get(item, 0) + 1
-    return [f"{k} (×{n})" if n > 1 else k for k, n in counts.items()]
+        items += [(w.severity, _spec_item(w, spec, f)) for w in spec.warnings
+                  if w.code not in seen]
+    out: dict[str, list[str]] = {"warnings": [], "notes": []}
+    for sev in ("warning", "info"):
+        counts: dict[str, int] = {}
+        for s, item in items:
+            if (s == "info") == (sev == "info"):
+                counts[item] = counts.get(item, 0) + 1
+        out["notes" if sev == "info" else "warnings"] = [
+            f"{k} (×{n})" if n > 1 else k for k, n in counts.items()]
+    return out
+
+
+def _spec_item(w: Any, spec: PlanResult, f: _Fmt) -> str:
+    """A warning of the specification alone (no section lists it) on page 1: its heading
+    and the section that explains it — the specification's reasons or the survey design's
+    notes — or, when neither does, its whole sentence."""
+    key = warning_heading_key(w)
+    reasons = [getattr(x, "reason", None) for x in (spec.uav, spec.film) if x is not None]
+    design = getattr(spec, "design", None)
+    if key and w.message in reasons:
+        return f.label("box_see", item=f.label(key), section=f.label("spec_title"))
+    if key and design is not None and any(x.code == w.code for x in design.warnings):
+        return f.label("box_see", item=f.label(key), section=f.label("design_title"))
+    return localize(w.message, f.locale)
 
 
 class _Labels:

@@ -26,6 +26,13 @@ _COLOURS = {"PS": "#1f77b4", "PZ": "#d62728", "PP": "#2ca02c", "PR": "#9467bd",
             "PD": "#ff7f0e"}
 #: colours of further constraints, in turn (matplotlib's cycle, the ones above left out)
 _MORE_COLOURS = ("#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf")
+#: each constraint's dash, so lines that coincide stay apart: P_Z of the Instruction's
+#: formula lies within 1 % of P_P at 1:2000 and was hidden under it. The dashed lines are
+#: drawn after the solid ones, so the colour of the line beneath shows in their gaps.
+_DASHES = {"PZ": (5.0, 2.5), "PR": (6.0, 2.0, 1.5, 2.0), "PD": (1.5, 1.5)}
+#: the mantissas of the photo-scale ticks of a short axis (one or two evaluated scales)
+_SCALE_MANTISSAS = (1.0, 1.5, 2.0, 3.0, 4.0, 5.0, 6.0, 8.0)
+_TICK_GAP = 1.2  # the smallest ratio between neighbouring scale ticks (their labels fit)
 
 
 def number(x: float, digits: int, locale: str) -> str:
@@ -50,10 +57,6 @@ def number(x: float, digits: int, locale: str) -> str:
     return Numbers(locale).num(x, digits)
 
 
-def _height_digits(h: float) -> int:
-    """Decimals of a height [m] in a legend: as the tables give it (148.5, not 148; 70, not
-    70.0)."""
-    return 0 if abs(h - round(h)) < 0.05 else 1
 
 
 def constraints_svg(plan: ScanPlan, locale: str = "en") -> str:
@@ -79,14 +82,14 @@ def constraints_svg(plan: ScanPlan, locale: str = "en") -> str:
     chart = Chart(locale)
     ax = chart.panels[0]
     more = iter(_MORE_COLOURS)
-    for cid in plan.constraint_ids:
-        if cid not in sweep:
-            continue
-        name = CONSTRAINTS[cid].name_ru if locale == "ru" else CONSTRAINTS[cid].name
-        colour = _COLOURS.get(cid) or next(more, "#000000")
-        ax.plot(xs, sweep[cid], colour=colour, width=1.1, label=f"{cid} — {name}")
     ax.plot(xs, sweep["scan_pixel_um"], colour="#000000", width=2.4, alpha=0.25,
-            label=t("scan_pixel_um", locale))
+            label=t("scan_pixel_um", locale))  # beneath the constraints' lines
+    ids = [cid for cid in plan.constraint_ids if cid in sweep]
+    colours = {cid: _COLOURS.get(cid) or next(more, "#000000") for cid in ids}
+    for cid in sorted(ids, key=lambda c: c in _DASHES):  # solid first, dashed over them
+        name = CONSTRAINTS[cid].name_ru if locale == "ru" else CONSTRAINTS[cid].name
+        ax.plot(xs, sweep[cid], colour=colours[cid], width=1.1, dash=_DASHES.get(cid),
+                label=f"{cid} — {name}")
     px = [s.photo_scale for s in plan.scenarios]
     py = [s.scan_pixel_um for s in plan.scenarios]
     ax.markers(px, py, colour="#000000", size=4.5)
@@ -97,11 +100,25 @@ def constraints_svg(plan: ScanPlan, locale: str = "en") -> str:
     ax.set_yscale("log")
     ax.set_xlim(min(xs), max(xs))
     # label the evaluated photo scales (1-2-5 ticks when many): log minor labels collide
-    ax.set_xticks(sorted(set(px)) if len(set(px)) <= 6 else log_ticks(min(xs), max(xs)),
-                  fmt=lambda x: scale_text(x, locale).removeprefix("1:"))  # as scales read
+    ticks = (log_ticks(min(xs), max(xs)) if len(set(px)) > 6 else sorted(set(px))
+             if len(set(px)) >= 3 else _scale_ticks(px, min(xs), max(xs)))
+    ax.set_xticks(ticks, fmt=lambda x: scale_text(x, locale).removeprefix("1:"))
     ax.set_xlabel(f"{t('photo_scale', locale)} 1:Mc")
     ax.set_ylabel(t("pixel_um", locale))
     return chart.svg()
+
+
+def _scale_ticks(evaluated: list[float], lo: float, hi: float) -> list[float]:
+    """The photo-scale ticks of an axis with one or two evaluated scales (an archive's one
+    scale was the axis's only tick): the evaluated scales, and round scales (1, 1.5, 2, 3,
+    4, 5, 6, 8 × 10ⁿ) within [lo, hi] that keep :data:`_TICK_GAP` from every other tick."""
+    ticks = sorted(set(evaluated))
+    for e in range(math.floor(math.log10(lo)), math.ceil(math.log10(hi)) + 1):
+        for m in _SCALE_MANTISSAS:
+            v = float(f"{m * 10.0 ** e:.12g}")
+            if lo <= v <= hi and all(max(v, x) / min(v, x) >= _TICK_GAP for x in ticks):
+                ticks.append(v)
+    return sorted(ticks)
 
 
 def mtf_svg(plan: UavPlan, locale: str = "en") -> str:
@@ -199,10 +216,10 @@ def height_svg(plan: UavPlan, locale: str = "en") -> str:
     for h, colour, style, label in marks:
         # the maximum planned height and its highest flown one in whole metres, as the
         # tables state them
-        digits = (0 if h in (plan.max_height_m, plan.max_flown_height_m)
-                  else _height_digits(h))
+        text = (number(h, 0, locale) if h in (plan.max_height_m, plan.max_flown_height_m)
+                else Numbers(locale).height(h))
         ax.axvline(h, colour=colour, dash=style, width=0.9,
-                   label=f"{label}: {number(h, digits, locale)} {t('pdf_m', locale)}")
+                   label=f"{label}: {text} {t('pdf_m', locale)}")
     for lim in plan.limits:
         if lim.binding and lim.compares in ("GSD", "L") and lim.limit_m <= max(
                 max(c["gsd_m"]), max((v for v in ls if v == v), default=0.0)) * 1.05:

@@ -63,8 +63,12 @@ def _finite(x: Any) -> bool:
 class Numbers:
     """Every number a document prints, in one locale's convention.
 
-    English: ``12.5``, ``10,000``; Russian: ``12,5``, ``10 000`` (a no-break space groups
-    thousands). A missing or non-finite value prints as ``—``.
+    English: ``12.5``, ``4,575``; Russian: ``12,5``, ``4 575`` (a no-break space groups
+    thousands). One rule for every document: a number of 1,000 or more is grouped, whichever
+    method prints it, so a count reads the same on every page; only a scale's denominator
+    keeps four digits whole (``1:2000``, as Russian maps write it) and the terminal's
+    :meth:`fixed` and :meth:`short` are never grouped. A missing or non-finite value prints
+    as ``—``.
 
     Parameters
     ----------
@@ -101,18 +105,22 @@ class Numbers:
         return self._dec(f"{x:.{digits}f}")
 
     def whole(self, x: float) -> str:
-        """``x`` rounded to a whole number, grouped in Russian only (``10000``, ``10 000``)."""
-        text = f"{round(float(x)):,d}"
-        return text.replace(",", "\u00a0") if self.locale == "ru" else text.replace(",", "")
+        """``x`` rounded to a whole number, grouped (``4,575``, ``4 575``)."""
+        return self._dec(f"{round(float(x)):,d}")
+
+    def height(self, x: float) -> str:
+        """A height [m] as the tables give it: whole metres when it is whole to 5 cm, else one
+        decimal (``70``, ``148.5``), so a chart's legend and the tables agree."""
+        return self.num(x, 0 if abs(float(x) - round(float(x))) < 0.05 else 1)
 
     def g(self, x: float | None) -> str:
-        """Shortest form (like ``:g``); whole numbers from 10,000 up grouped."""
+        """Shortest form (like ``:g``); whole numbers from 1,000 up grouped."""
         if not _finite(x):
             return MISSING
         text = f"{float(x):g}"  # type: ignore[arg-type]
         if "e" in text:
             return text
-        if abs(float(x)) >= 10000 and float(x).is_integer():  # type: ignore[arg-type]
+        if abs(float(x)) >= 1000 and float(x).is_integer():  # type: ignore[arg-type]
             return self.num(x, 0)
         return self._dec(text)
 

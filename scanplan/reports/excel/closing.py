@@ -58,16 +58,22 @@ def _heading(book: Book, w: PlanWarning) -> str:
 
 
 def _warning_lines(book: Book, scan: ScanJob | None, uav: UavJob | None,
-                   spec: PlanResult | None) -> list[str]:
-    """Every warning in short form (the Summary sheet's box)."""
+                   spec: PlanResult | None, *, info: bool = False) -> list[str]:
+    """Every warning in short form (the Summary sheet's box), ``"! "`` before each; with
+    ``info``, the information and conditions checked instead, ``"i "`` before each (as the
+    PDF's page 1 keeps them apart from what to act on)."""
     scales: dict[str, list[str]] = {}  # heading → photo scales, one line per heading
     for _section, w, ns in _warning_items(book, scan, uav, spec):
+        if (getattr(w, "severity", "warning") == "info") != info:
+            continue
         head = _heading(book, w) or book.text(w.message, ns)
         listed = scales.setdefault(head, [])
         listed += [x for x in (book.numbers.scale(s) for s in w.photo_scales)
                    if x not in listed]
     sep = _list_sep(book)
-    return [f"! {head}" + (f": {sep.join(xs)}" if xs else "") for head, xs in scales.items()]
+    mark = "i" if info else "!"
+    return [f"{mark} {head}" + (f": {sep.join(xs)}" if xs else "")
+            for head, xs in scales.items()]
 
 
 def _list_sep(book: Book) -> str:

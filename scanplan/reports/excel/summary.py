@@ -81,12 +81,15 @@ def summary_sheet(book: Book, scan: ScanJob | None, uav: UavJob | None,
         put_text(ws, row, 2, value or line)
         put_text(ws, row, 3, line)
         row += 1
-    box = _warning_lines(book, scan, uav, spec)
-    if box:
-        row = book.section(ws, row + 1, book.t("warnings_box"))
-        for text in box:
-            put_text(ws, row, 1, text, wrap=False).fill = _WARNING_FILL
-            row += 1
+    for key, info in (("warnings_box", False), ("notes_box", True)):
+        box = _warning_lines(book, scan, uav, spec, info=info)
+        if box:
+            row = book.section(ws, row + 1, book.t(key))
+            for text in box:
+                cell = put_text(ws, row, 1, text, wrap=False)
+                if not info:  # what to act on is filled; information is not
+                    cell.fill = _WARNING_FILL
+                row += 1
     if spec is not None:
         row = _summary_spec(book, ws, row + 1, spec)
     if scan is not None:
@@ -139,6 +142,11 @@ def _summary_spec(book: Book, ws: Worksheet, row: int, spec: PlanResult) -> int:
         if p.binding:
             row = book.kv(ws, row, book.t("binding"),
                           book.cname(p.binding))
+        row = book.kv(ws, row, book.t("design_gsd_planned"), p.gsd_m * 100.0, "0.00")
+        row = book.kv(ws, row, book.t("forward_overlap_pct"),
+                      p.inputs.forward_overlap_pct, "0")
+        row = book.kv(ws, row, book.t("side_overlap_pct"),
+                      p.inputs.side_overlap_pct, "0")
         if "photos" in p.flight:
             row = book.kv(ws, row, book.t("spec_photos"), p.flight["photos"], "#,##0")
         if "data_volume_bytes" in p.flight:

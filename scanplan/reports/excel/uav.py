@@ -219,10 +219,10 @@ def _height_markers(book: Book, chart: ScatterChart, ws: Worksheet, plan: Any, r
     m = " м" if book.loc == "ru" else " m"
     marks: list[tuple[str, float, float, float, float, str, str]] = []
     if h.get("planned"):
-        marks.append((f"{book.t('xlsx_planned')}: {book.numbers.whole(h['planned'])}{m}",
+        marks.append((f"{book.t('xlsx_planned')}: {book.numbers.height(h['planned'])}{m}",
                       h["planned"], 0.0, h["planned"], top, "000000", "solid"))
     if h.get("max") and h["max"] != h.get("planned"):
-        marks.append((f"{book.t('xlsx_highest_flown')}: {book.numbers.whole(h['max'])}{m}",
+        marks.append((f"{book.t('xlsx_highest_flown')}: {book.numbers.height(h['max'])}{m}",
                       h["max"], 0.0, h["max"], top, "7F7F7F", "dash"))
     if plan.max_height_m is not None:
         marks.append((f"{book.t('max_height_m').split(',')[0]} ({plan.binding}): "
