@@ -7,6 +7,8 @@ from __future__ import annotations
 GEO: dict[str, dict[str, str]] = {
     "en": {
         "pdf_warn_area_scale_distortion": "The planning projection distorts the area",
+        "pdf_warn_area_latlon_swapped": "Latitude and longitude of the area look swapped",
+        "pdf_warn_site_far_from_area": "The site of the sun window is far from the area",
         "geo_export_title": "Flight plan",
         "geo_area": "Area",
         "geo_strips": "Strips",
@@ -95,6 +97,8 @@ GEO: dict[str, dict[str, str]] = {
     },
     "ru": {
         "pdf_warn_area_scale_distortion": "Проекция планирования искажает участок",
+        "pdf_warn_area_latlon_swapped": "Широта и долгота участка, похоже, перепутаны",
+        "pdf_warn_site_far_from_area": "Место расчёта окна съёмки по Солнцу далеко от участка",
         "geo_export_title": "План полёта",
         "geo_area": "Участок",
         "geo_strips": "Маршруты",
