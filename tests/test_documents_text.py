@@ -152,9 +152,23 @@ def jargon(text: str) -> list[str]:
     return found
 
 
+def _cited_originals(text: str) -> set[str]:
+    """Latin words of the works the text lists in their original language: a Russian
+    reference list cites an English work by its English title (GOST R 7.0.100-2018)."""
+    from scanplan.reports.references import references
+
+    flat = " ".join(text.split())
+    words: set[str] = set()
+    for ref in references():
+        head = ref.ru.split(".")[0]  # the authors (or the title of a work without them)
+        if _LATIN_WORD.search(head) and head in flat:
+            words.update(w.lower() for w in _LATIN_WORD.findall(ref.ru))
+    return words
+
+
 def english_in_russian(text: str) -> list[str]:
     """Latin words (3+ letters) in a Russian text that are not names, units or symbols."""
-    allowed = _RU_ALLOWED | _catalogue_words()
+    allowed = _RU_ALLOWED | _catalogue_words() | _cited_originals(text)
     text = _PROJECT_KEY.sub(" ", text)  # a project-file key is typed as it is
     def symbol(w: str) -> bool:  # a formula symbol with its subscript set: H_max → Hmax
         return w[0].isupper() and w[1:].lower() in allowed
