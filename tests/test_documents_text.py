@@ -632,3 +632,35 @@ def test_signed_numbers_have_one_sign(example, locale):
     """A margin below the binding constraint is −21 %, never +-21 %."""
     for where, text in _documents(example, locale).items():
         assert not re.search(r"\+\s*[-−]|[-−]\s*\+", text), where
+
+
+_DECIMAL_POINT = re.compile(r"(?<![\d.])\d+\.\d+(?![\d.])")
+# where a point between digits is not a decimal sign: standards' and clauses' numbers,
+# tables, dates, versions, the reference list's imprints, coordinate system names
+_NOT_DECIMAL = re.compile(r"ГОСТ|GOST|ГКИНП|EPSG|[Тт]абл|п\. |пп\. |§|scanplan|\d\.\d+\.\d|"
+                          r"UTM|[БB]\.\d|Vol\.|p\. |С\. |ed\.|изд\.")
+
+
+@cache
+def _model_names() -> tuple[str, ...]:
+    """Catalogue model names as the maker writes them (``f/1.4``, ``F2.8`` stay)."""
+    ns = norms_mod.load_norm_set()
+    return tuple(c.name for c in ns.cameras.values())
+
+
+@pytest.mark.parametrize("example", [str(e) for e in EXAMPLES], ids=[e.stem for e in EXAMPLES])
+def test_russian_documents_use_the_decimal_comma(example):
+    """«B = 0,97», never «B = 0.97»: every number of a Russian document has the decimal
+    comma (the maker's model names such as «F2.8» are quoted as written)."""
+    problems = []
+    for where, text in _documents(example, "ru").items():
+        flat = " ".join(text.split())
+        for m in _DECIMAL_POINT.finditer(flat):
+            around = flat[max(0, m.start() - 50):m.end() + 30]
+            if _NOT_DECIMAL.search(flat[max(0, m.start() - 14):m.end()]):
+                continue
+            if any(m.group() in name and name.split()[0] in around
+                   for name in _model_names()):
+                continue
+            problems.append(f"{where}: …{around}…")
+    assert not problems, "\n".join(problems)
