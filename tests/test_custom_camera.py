@@ -85,3 +85,19 @@ def test_the_project_file_names_a_custom_camera_in_the_workbook(tmp_path):
     cells = [str(c.value) for ws in book.worksheets for row in ws.iter_rows() for c in row
              if c.value is not None]
     assert any("Survey camera 36 MP" in c for c in cells)
+
+
+def test_a_film_camera_given_by_its_data_is_named_in_the_documents(tmp_path):
+    from scanplan.reports.excel import render_xlsx
+
+    path = tmp_path / "film.toml"
+    path.write_text('[project]\nlocale = "ru"\n[map]\nscale = 2000\nrelief_interval_m = 1\n'
+                    '[film]\ncamera_name = "ТАФА-10"\nfocal_mm = 100\nframe_mm = "180x180"\n'
+                    'resolving_power_lpmm = 40\nphoto_scales = [8000]\n', encoding="utf-8")
+    result = plan_project(load_project(path))
+    assert result.film.job.plan.inputs.camera_name == "ТАФА-10"
+    book = load_workbook(io.BytesIO(render_xlsx(scan=result.film.job, meta=result.meta,
+                                                spec=result)))
+    cells = [str(c.value) for ws in book.worksheets for row in ws.iter_rows() for c in row
+             if c.value is not None]
+    assert any(c == "ТАФА-10" for c in cells)

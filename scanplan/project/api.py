@@ -207,6 +207,7 @@ def scan_job(
     relief_interval_m: float,
     photo_scales: Iterable[object],
     camera: str | None = None,
+    camera_name: str | None = None,
     focal_mm: float | None = None,
     frame_mm: object | None = None,
     resolving_power_lpmm: float | None = None,
@@ -268,6 +269,7 @@ def scan_job(
         map_scale=mk, relief_interval_m=relief_interval_m, photo_scales=scales, focal_mm=f,
         frame_width_mm=w, frame_along_mm=h, resolving_power_lpmm=r,
         forward_overlap_pct=overlap, object=obj, camera=camera or "", scanner=scanner or "",
+        camera_name=_camera_name(camera_name, None if camera is None else cam),
         scanner_steps_um=steps, bands=bands, bits_per_band=bits_per_band,
         candidate_pixels_um=_at_most(pixel_um, "pixel_um", "scan pixels"))
     return ScanJob(plan_scan(inputs, rules), ns)

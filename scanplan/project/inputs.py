@@ -222,6 +222,9 @@ _RECORDS: tuple[Input, ...] = (
     Input("camera", "film", "camera", _STR, "catalogue camera id (or focal_mm + frame_mm)",
           option="--camera", commands=(FILM,),
           cli_help="catalogue camera id (scanplan cameras list)"),
+    Input("camera_name", "film", "camera_name", _STR, "the camera's name as the documents "
+          "show it, for a camera given by focal_mm and frame_mm",
+          note="optional; default: the catalogue's model name"),
     Input("focal_mm", "film", "focal_mm", _NUM, "focal length [mm]", "mm",
           domain="focal_mm", option="--focal-mm", commands=(FILM,),
           cli_help="focal length [mm] (no --camera)"),
