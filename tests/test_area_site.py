@@ -128,3 +128,18 @@ def test_an_abstract_block_has_no_place_to_check(tmp_path):
     codes = _codes(_write(tmp_path, "[area]\nwidth_m = 500\nlength_m = 500\n",
                           _SUN + "[site]\nlat_deg = 55.8\nlon_deg = 37.7\n"))
     assert "site_far_from_area" not in codes and "area_latlon_swapped" not in codes
+
+
+@pytest.mark.parametrize(("locale", "heading"), [
+    ("en", "Latitude and longitude of the area look swapped"),
+    ("ru", "Широта и долгота участка, похоже, перепутаны")])
+def test_the_pdf_names_the_swap_in_its_language(tmp_path, locale, heading):
+    from scanplan.reports.pdf import render_html
+
+    path = _write(tmp_path, "[area]\npolygon = " + json.dumps(SWAPPED) + "\n",
+                  _SUN + "[site]\nlat_deg = 55.755\nlon_deg = 37.605\n", locale=locale)
+    result = plan_project(load_project(path))
+    page = render_html(uav=result.uav.job, meta=result.meta, spec=result)
+    assert heading in page
+    assert ("[lon, lat]" if locale == "en" else "[долгота, широта]") in page
+    assert "[site]" not in page  # no project-file syntax in a document
