@@ -101,3 +101,13 @@ def test_a_film_camera_given_by_its_data_is_named_in_the_documents(tmp_path):
     cells = [str(c.value) for ws in book.worksheets for row in ws.iter_rows() for c in row
              if c.value is not None]
     assert any(c == "ТАФА-10" for c in cells)
+
+
+def test_the_terminal_heads_a_custom_camera_with_its_name():
+    result = CliRunner().invoke(main, ["uav", "--pixel-um", "4.4", "--focal-mm", "35",
+                                       "--sensor-mm", "36x24", "--f-number", "5.6",
+                                       "--height-m", "100", "--camera-name", "Survey 36 MP",
+                                       "--area-m", "500x500"])
+    assert result.exit_code == 0, result.output
+    assert result.output.splitlines()[0] == "UAV plan — Survey 36 MP"
+    assert "data volume" in result.output
