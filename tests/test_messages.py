@@ -473,6 +473,11 @@ def _allowed(result: PlanResult) -> list[str]:
         out += [*ns.scanner_names.values(), *(c.name for c in ns.cameras.values())]
         out += [camera_title(ns, c, "ru") for c in ns.cameras]
         out += [scanner_title(ns, sc, "ru") for sc in ns.scanner_names]
+    from scanplan.reports.references import references
+
+    # a Russian reference list cites an English work by its English title and imprint
+    # (GOST R 7.0.100-2018), never a translation
+    out += [r.ru for r in references()]
     return sorted((_norm_text(x) for x in out if x), key=len, reverse=True)
 
 
