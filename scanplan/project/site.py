@@ -28,7 +28,7 @@ from ..geo.layout import Area
 from ..messages import Message
 from ..rules.results import PlanWarning
 
-__all__ = ["SITE_FAR_KM", "area_site_warnings", "swapped_reason"]
+__all__ = ["SITE_FAR_KM", "area_site_warnings", "site_of", "swapped_reason"]
 
 SITE_FAR_KM = 50.0
 """Largest distance [km] between ``[site]`` and the area's centre without a warning.
@@ -139,8 +139,24 @@ def area_site_warnings(area: Area | None, site: tuple[float, float] | None
 
 
 def site_of(project: Any) -> tuple[float, float] | None:
-    """``[site]`` (lat, lon) [°] when the project gives both, else None (checked ranges:
-    the same calls as the sun window's)."""
+    """``[site]`` as the project gives it.
+
+    Parameters
+    ----------
+    project : Project
+        The validated project file.
+
+    Returns
+    -------
+    tuple of float or None
+        (lat, lon) [°] when both are given, else None.
+
+    Raises
+    ------
+    InputError
+        A latitude outside −90 … 90° or a longitude outside −180 … 180°, naming the key
+        and its line (the same check as the sun window's).
+    """
     lat = project.number("site", "lat_deg", -90, 90, None, "°")
     lon = project.number("site", "lon_deg", -180, 180, None, "°")
     return None if lat is None or lon is None else (float(lat), float(lon))
