@@ -296,9 +296,10 @@ SUMMARY_COLUMNS = (
     "project", "file", "map_scale", "film_photo_scale", "film_scan_pixel_um",
     "film_scanner_pixel_um", "film_binding", "film_frames", "film_scanned_gigabytes",
     "uav_recommended_height_m", "uav_max_planned_height_m", "uav_binding", "uav_gsd_cm",
-    "uav_photos", "warnings")
+    "uav_photos", "warnings", "warning_codes")
 """The columns of a batch summary (``summary.csv``, ``summary.xlsx``, :meth:`BatchResult.
-to_frame`): the headline figures of each specification and its warning codes."""
+to_frame`): the headline figures of each specification, its warnings in words (in the
+project's language) and, for a program that reads the summary, their codes."""
 
 
 def summary_frame(rows: list[dict[str, Any]], columns: Iterable[str] = SUMMARY_COLUMNS
@@ -310,7 +311,7 @@ def summary_frame(rows: list[dict[str, Any]], columns: Iterable[str] = SUMMARY_C
     --------
     >>> frame = summary_frame([{"project": "A", "map_scale": 2000.0, "uav_photos": None}])
     >>> str(frame["map_scale"].dtype), frame.shape
-    ('Int64', (1, 15))
+    ('Int64', (1, 16))
     """
     import pandas as pd
 
@@ -322,7 +323,8 @@ def summary_frame(rows: list[dict[str, Any]], columns: Iterable[str] = SUMMARY_C
             frame[col] = frame[col].astype("Int64")
         else:
             frame[col] = frame[col].astype("float64")
-    text = ("project", "file", "film_binding", "uav_binding", "warnings", "error")
+    text = ("project", "file", "film_binding", "uav_binding", "warnings", "warning_codes",
+            "error")
     return _typed(frame, strings=[c for c in text if c in frame],
                   floats=[c for c in frame.columns if c not in text and c not in whole])
 
@@ -356,8 +358,18 @@ def summary_row(result: PlanResult) -> dict[str, Any]:
         "uav_binding": p.binding if p else None,
         "uav_gsd_cm": p.gsd_m * 100 if p else None,
         "uav_photos": p.flight.get("photos") if p else None,
-        "warnings": " ".join(dict.fromkeys(w.code for w in result.warnings)),
+        "warnings": _warning_words(result),
+        "warning_codes": " ".join(dict.fromkeys(w.code for w in result.warnings)),
     }
+
+
+def _warning_words(result: PlanResult) -> str:
+    """The warnings of a specification as sentences in the project's language, each once,
+    for the people who read a batch summary (the codes are a column of their own)."""
+    from .reports.wording import sentence
+
+    said = (sentence(w.text(result.meta.locale)) for w in result.warnings)
+    return " ".join(dict.fromkeys(t for t in said if t))
 
 
 @dataclass(frozen=True)

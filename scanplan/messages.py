@@ -430,6 +430,9 @@ MESSAGES.update(_OUTPUTS)
 from .messages_uav import UAV as _UAV  # noqa: E402  (height accuracy, ceiling, airspace)
 
 MESSAGES.update(_UAV)
+from .messages_site import SITE as _SITE  # noqa: E402  (where the area is: swap, site)
+
+MESSAGES.update(_SITE)
 
 
 @contextmanager

@@ -152,9 +152,23 @@ def jargon(text: str) -> list[str]:
     return found
 
 
+def _cited_originals(text: str) -> set[str]:
+    """Latin words of the works the text lists in their original language: a Russian
+    reference list cites an English work by its English title (GOST R 7.0.100-2018)."""
+    from scanplan.reports.references import references
+
+    flat = " ".join(text.split())
+    words: set[str] = set()
+    for ref in references():
+        head = ref.ru.split(".")[0]  # the authors (or the title of a work without them)
+        if _LATIN_WORD.search(head) and head in flat:
+            words.update(w.lower() for w in _LATIN_WORD.findall(ref.ru))
+    return words
+
+
 def english_in_russian(text: str) -> list[str]:
     """Latin words (3+ letters) in a Russian text that are not names, units or symbols."""
-    allowed = _RU_ALLOWED | _catalogue_words()
+    allowed = _RU_ALLOWED | _catalogue_words() | _cited_originals(text)
     text = _PROJECT_KEY.sub(" ", text)  # a project-file key is typed as it is
     def symbol(w: str) -> bool:  # a formula symbol with its subscript set: H_max → Hmax
         return w[0].isupper() and w[1:].lower() in allowed
@@ -626,3 +640,35 @@ def test_signed_numbers_have_one_sign(example, locale):
     """A margin below the binding constraint is −21 %, never +-21 %."""
     for where, text in _documents(example, locale).items():
         assert not re.search(r"\+\s*[-−]|[-−]\s*\+", text), where
+
+
+_DECIMAL_POINT = re.compile(r"(?<![\d.])\d+\.\d+(?![\d.])")
+# where a point between digits is not a decimal sign: standards' and clauses' numbers,
+# tables, dates, versions, the reference list's imprints, coordinate system names
+_NOT_DECIMAL = re.compile(r"ГОСТ|GOST|ГКИНП|EPSG|[Тт]абл|п\. |пп\. |§|scanplan|\d\.\d+\.\d|"
+                          r"UTM|[БB]\.\d|Vol\.|p\. |С\. |ed\.|изд\.")
+
+
+@cache
+def _model_names() -> tuple[str, ...]:
+    """Catalogue model names as the maker writes them (``f/1.4``, ``F2.8`` stay)."""
+    ns = norms_mod.load_norm_set()
+    return tuple(c.name for c in ns.cameras.values())
+
+
+@pytest.mark.parametrize("example", [str(e) for e in EXAMPLES], ids=[e.stem for e in EXAMPLES])
+def test_russian_documents_use_the_decimal_comma(example):
+    """«B = 0,97», never «B = 0.97»: every number of a Russian document has the decimal
+    comma (the maker's model names such as «F2.8» are quoted as written)."""
+    problems = []
+    for where, text in _documents(example, "ru").items():
+        flat = " ".join(text.split())
+        for m in _DECIMAL_POINT.finditer(flat):
+            around = flat[max(0, m.start() - 50):m.end() + 30]
+            if _NOT_DECIMAL.search(flat[max(0, m.start() - 14):m.end()]):
+                continue
+            if any(m.group() in name and name.split()[0] in around
+                   for name in _model_names()):
+                continue
+            problems.append(f"{where}: …{around}…")
+    assert not problems, "\n".join(problems)

@@ -344,6 +344,9 @@ def emitted(tmp_path_factory) -> dict[str, list[Any]]:
             encoding="utf-8").replace('file = "areas/town-uav.kml"',
                                       f'file = "{(EXAMPLES / "areas" / "town-uav.kml").as_posix()}"'
                                       '\nplan_crs = "EPSG:32634"'),
+        # where the area is: coordinates swapped (shown by the site, by the CRS), a site
+        # far from the area
+        **_site_variants(uav_toml),
     }
     variants["plan uav no height is feasible"] = uav_toml.replace(  # at most 0.56 m
         "max_height_m = 500", "max_height_m = 500\ngsd_cm = 0.01")
@@ -361,6 +364,23 @@ def emitted(tmp_path_factory) -> dict[str, list[Any]]:
             found += [r.uav.reason, *_uav_messages(r.uav.job.plan)]
         out[name] = found
     return out
+
+
+def _site_variants(uav_toml: str) -> dict[str, str]:
+    """Projects whose area is swapped (Moscow given as [lat, lon]) or far from its site."""
+    base = re.sub(r"\[area\][^\[]*", "", uav_toml)
+    swapped = ("\n[area]\npolygon = [[55.75, 37.60], [55.76, 37.60], [55.76, 37.61], "
+               "[55.75, 37.61]]\n")
+    moscow = ("\n[area]\npolygon = [[37.60, 55.75], [37.61, 55.75], [37.61, 55.76], "
+              "[37.60, 55.76]]\n")
+    sun = "\n[schedule]\nstart_date = 2025-06-01\nend_date = 2025-06-02\n"
+    return {
+        "plan area swapped by the site": base + swapped + sun
+        + "\n[site]\nlat_deg = 55.75\nlon_deg = 37.6\n",
+        "plan area swapped by the crs": base + swapped + 'plan_crs = "EPSG:28407"\n',
+        "plan site far from the area": base + moscow + sun
+        + "\n[site]\nlat_deg = 59.94\nlon_deg = 30.31\n",
+    }
 
 
 def test_every_catalogue_code_is_reached_and_every_sentence_is_a_message(emitted):
@@ -453,6 +473,11 @@ def _allowed(result: PlanResult) -> list[str]:
         out += [*ns.scanner_names.values(), *(c.name for c in ns.cameras.values())]
         out += [camera_title(ns, c, "ru") for c in ns.cameras]
         out += [scanner_title(ns, sc, "ru") for sc in ns.scanner_names]
+    from scanplan.reports.references import references
+
+    # a Russian reference list cites an English work by its English title and imprint
+    # (GOST R 7.0.100-2018), never a translation
+    out += [r.ru for r in references()]
     return sorted((_norm_text(x) for x in out if x), key=len, reverse=True)
 
 

@@ -16,7 +16,8 @@ def test_every_work_in_both_languages_with_unique_short_forms():
     seen: set[str] = set()
     for ref in refs:
         assert ref.en.strip() and ref.ru.strip(), ref.id
-        assert re.search(r"[а-яё]", ref.ru, re.IGNORECASE), ref.id  # a Russian entry
+        if not re.search(r"[а-яё]", ref.ru, re.IGNORECASE):  # an English work, as published
+            assert "(in Russian)" not in ref.en and ref.ru.split(".")[0] in ref.en, ref.id
         for alias in ref.aliases:
             assert alias.casefold() not in seen, alias
             seen.add(alias.casefold())
@@ -152,3 +153,36 @@ def test_the_workbook_and_the_pdf_of_one_view_render_its_html_once(monkeypatch):
     render_xlsx(view=view)
     html = pdfhtml.render_html(view=view)
     assert calls.count("report.html") == 1 and pdfhtml.render_html(view=view) is html
+
+
+@pytest.mark.parametrize("work", ["kraus-2007", "luhmann-2014", "aguera-vega-2017",
+                                  "reda-andreas-2004", "meeus-1998"])
+def test_the_russian_list_cites_an_english_work_by_its_original_title(work):
+    """GOST R 7.0.100-2018: a work is described in the language it was published in."""
+    ref = {r.id: r for r in references()}[work]
+    title = re.split(r"\. (?:\d|Berlin|Measurement|Solar|Richmond)", ref.en.split(". ", 1)[1])[0]
+    assert title in ref.ru, (work, title)
+    assert "на англ. яз." not in ref.ru
+
+
+def test_every_entry_is_a_citable_work():
+    """No entry apologises for itself or points to a work by "e.g.": each names one work."""
+    for ref in references():
+        for text in (ref.en, ref.ru):
+            for phrase in ("not preserved", "не сохранились", "e.g.", "напр.",
+                           "textbook relations", "учебные соотношения"):
+                assert phrase not in text, (ref.id, phrase)
+    lobanov = {r.id: r for r in references()}["uav-geometry"]
+    assert lobanov.ru == "Лобанов А.Н. Фотограмметрия. — М.: Недра, 1984. — 552 с."
+    assert lobanov.en.startswith("Lobanov A.N. Photogrammetry. Moscow: Nedra, 1984.")
+
+
+def test_a_paragraph_of_the_airspace_rules_has_one_form():
+    """Para. 52(3), never 52.3 or 52.1, in every entry and every message."""
+    from scanplan.messages import MESSAGES
+
+    texts = [t for r in references() for t in (r.en, r.ru)]
+    texts += [t for m in MESSAGES.values() for t in m.values()]
+    for text in texts:
+        assert not re.search(r"(?:para\.|paras\.|п\.|пп\.)\s*\d+[,\s\d]*52\.\d", text), text
+        assert not re.search(r"\b52\.\d\b", text), text

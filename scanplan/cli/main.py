@@ -451,9 +451,10 @@ def _film_schemes(job: Any, area: Any, side: float) -> list[tuple[Any, Any]]:
 
 @main.command()
 @console.verbosity_options
-@_inputs("uav", ["camera", "pixel_um", "focal_mm", "sensor_mm", "orientation", "f_number",
-                 "height_m", "gsd_cm", "max_height_m", "gsd_area", "height_tolerance_pct",
-                 "speed_ms", "exposure_s", "forward_overlap_pct", "side_overlap_pct", "map_scale",
+@_inputs("uav", ["camera", "camera_name", "pixel_um", "focal_mm", "sensor_mm", "orientation",
+                 "f_number", "height_m", "gsd_cm", "max_height_m", "gsd_area",
+                 "height_tolerance_pct", "speed_ms", "exposure_s", "forward_overlap_pct",
+                 "side_overlap_pct", "map_scale",
                  "relief_interval_m", "<norms>", "r_max", "r_min", "haze_contrast",
                  "threshold_k0", "shift_factor", "random_speed_ms", "roll_rate_rad_s",
                  "pitch_rate_rad_s", "yaw_rate_rad_s", "area_m", "roll_deg", "pitch_deg",

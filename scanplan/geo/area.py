@@ -252,8 +252,8 @@ def _read_file(path: Path, layer: str | None, feature: str | int | None
                 meta, _, wkb, fields = pyogrio.raw.read(
                     source, layer=all_names.index(lyr), max_features=MAX_FEATURES + 1)
         except Exception as exc:
-            raise InputError(name, f"layer {lyr!r} cannot be read: {_gdal_text(exc)}"
-                             ) from None
+            raise InputError(name, f"layer {lyr!r} cannot be read: "
+                             f"{_gdal_text(exc, name)}") from None
         if wkb is not None and len(wkb) > MAX_FEATURES:
             raise InputError(name, f"layer {lyr!r} holds "
                              f"{_feature_count(source, all_names.index(lyr))} features; at "
@@ -329,8 +329,13 @@ def _listed(items: list[str], most: int = 10) -> str:
     return shown + (f" … ({len(items)} in all)" if len(items) > most else "")
 
 
-def _gdal_text(exc: Exception) -> str:
-    said = f"{exc}"
+_VSIMEM = re.compile(r"/vsimem/\S+?(?=\s*[:;,)]|\s|$)")
+
+
+def _gdal_text(exc: Exception, name: str) -> str:
+    """GDAL's error in one line, the in-memory path pyogrio gave the file's bytes
+    (``/vsimem/pyogrio_…``) replaced by the name of the user's file ``name``."""
+    said = _VSIMEM.sub(lambda _: Path(name).name, f"{exc}").replace(" :", ": ")
     text = " ".join(said.split()).split("; It might help")[0]
     return text[:300] or type(exc).__name__
 
@@ -404,7 +409,8 @@ def _layers(path: Path, name: str) -> tuple[str | io.BytesIO, Any]:
             driver = (_rewound(source) and pyogrio.read_info(source, layer=0)["driver"]
                       if len(layers) else drivers[0])
     except Exception as exc:  # GDAL's errors are many classes; any of them: unreadable
-        raise InputError(name, f"cannot be read as a GIS file: {_gdal_text(exc)}") from None
+        raise InputError(name, "cannot be read as a GIS file: "
+                         f"{_gdal_text(exc, name)}") from None
     if driver not in drivers:
         raise InputError(name, f"was opened by GDAL as {driver}, not as {drivers[0]} as its "
                          "content says; refused")

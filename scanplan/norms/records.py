@@ -55,6 +55,7 @@ class Camera:
     orientation: str = ""
     note: str = ""
     published_pixel_um: float | None = None
+    name_ru: str = ""
 
     def row(self) -> dict[str, Any]:
         """The catalogue row as written in ``cameras.csv`` (the published pitch, not the

@@ -471,6 +471,9 @@ TABLES: dict[str, TableSpec] = {
                 ),
                 ColumnSpec("note", _TEXT_OPT, "why an entry exists twice, caveats",
                            ("примечание",)),
+                ColumnSpec("name_ru", _TEXT_OPT, "the model's name in Russian documents, "
+                           "where the maker writes it in Cyrillic (АФА-ТЭ-100)",
+                           ("название по-русски",)),
                 _SOURCE,
             ),
             required=False,

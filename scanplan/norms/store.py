@@ -313,7 +313,7 @@ def _load_cameras(path: Path) -> dict[str, Camera]:
         if r["id"] in out:
             raise InputError(f"{path}:{i} (id)", f"camera id {r['id']!r} appears twice; "
                              "ids must be unique (keep both entries under different ids)")
-        for key in ("platform", "orientation", "note", "shutter", "source"):
+        for key in ("platform", "orientation", "note", "shutter", "source", "name_ru"):
             r[key] = r[key] or ""
         published = r["pixel_um"]
         r["published_pixel_um"] = published

@@ -207,6 +207,7 @@ def scan_job(
     relief_interval_m: float,
     photo_scales: Iterable[object],
     camera: str | None = None,
+    camera_name: str | None = None,
     focal_mm: float | None = None,
     frame_mm: object | None = None,
     resolving_power_lpmm: float | None = None,
@@ -268,6 +269,7 @@ def scan_job(
         map_scale=mk, relief_interval_m=relief_interval_m, photo_scales=scales, focal_mm=f,
         frame_width_mm=w, frame_along_mm=h, resolving_power_lpmm=r,
         forward_overlap_pct=overlap, object=obj, camera=camera or "", scanner=scanner or "",
+        camera_name=_camera_name(camera_name, None if camera is None else cam),
         scanner_steps_um=steps, bands=bands, bits_per_band=bits_per_band,
         candidate_pixels_um=_at_most(pixel_um, "pixel_um", "scan pixels"))
     return ScanJob(plan_scan(inputs, rules), ns)
@@ -333,6 +335,7 @@ def uav_job(
     *,
     height_m: float | None = None,
     camera: str | None = None,
+    camera_name: str | None = None,
     pixel_um: float | None = None,
     focal_mm: float | None = None,
     sensor_mm: object | None = None,
@@ -435,7 +438,7 @@ def uav_job(
         **frame, height_m=height_m, speed_ms=speed_ms, exposure_s=exposure_s,
         forward_overlap_pct=forward_overlap_pct, side_overlap_pct=side_overlap_pct,
         height_tolerance_up_pct=height_tolerance_pct, camera=camera or "",
-        camera_name=cam.name if cam else "", platform=cam.carrier if cam else "uav",
+        camera_name=_camera_name(camera_name, cam), platform=cam.carrier if cam else "uav",
         lens_table_centre=_lens(ns, camera, "centre"), lens_table_corner=_lens(ns, camera,
                                                                               "corner"),
         min_trigger_interval_s=cam.min_trigger_interval_s if cam else None,
@@ -513,11 +516,37 @@ def _digital_frame(cam: Any, pixel_um: float | None, focal_mm: float | None,
         raise InputError("camera", "give a catalogue camera id, or the pixel pitch, focal "
                          "length and sensor size (scanplan cameras list)")
     if n0 is None:
-        raise InputError("f_number", f"the camera {cam.id if cam else ''!r} has no f-number "
-                         "in the catalogue; give the working f-number (> 0)")
+        raise InputError("f_number", f"the camera {cam.id!r} has no f-number in the "
+                         "catalogue; give the working f-number (> 0)" if cam is not None
+                         else "a camera given by its pixel pitch, focal length and sensor "
+                         "size needs its working f-number (> 0)")
+    if cam is None or pixel_um is not None or sensor_mm is not None:
+        w_px, h_px = _image_px(w, h, p)
     return {"pixel_um": p, "focal_mm": f, "f_number": n0, "sensor_width_mm": w,
             "sensor_height_mm": h, "image_width_px": w_px, "image_height_px": h_px,
             "orientation": mount}
+
+
+def _camera_name(name: object | None, cam: Any) -> str:
+    """The camera's name in the reports: the one given (a camera given by its data), else
+    the catalogue's model name."""
+    if name is None:
+        return cam.name if cam else ""
+    if not isinstance(name, str) or not name.strip():
+        raise InputError("camera_name", f"must be the camera's name as text (got {name!r})")
+    return " ".join(name.split())
+
+
+def _image_px(width_mm: float | None, height_mm: float | None, pixel_um: float | None
+              ) -> tuple[int | None, int | None]:
+    """The image size [px] of a sensor ``width_mm × height_mm`` with pixel pitch
+    ``pixel_um``: side / pitch, to the nearest whole pixel (the pitch is the distance
+    between pixel centres, so a side holds side/pitch pixels — the definition the catalogue
+    follows in reverse: pitch = sensor width / image width). None when a value is missing."""
+    if width_mm is None or height_mm is None or not pixel_um or pixel_um <= 0:
+        return None, None
+    return (max(1, round(float(width_mm) * 1000.0 / float(pixel_um))),
+            max(1, round(float(height_mm) * 1000.0 / float(pixel_um))))
 
 
 def _map_constraints(ns: NormSet, map_scale: object | None, relief_interval_m: float | None,

@@ -39,6 +39,7 @@ from ..messages import Message
 from ..norms.schema import GSD_AREAS
 from ..rules.results import PlanWarning
 from .file import Project
+from .site import area_site_warnings, site_of
 from .sorties import SORTIE_DEFAULTS_MIN, sortie_length
 
 if TYPE_CHECKING:
@@ -352,6 +353,12 @@ def layout_site(layout: FlightLayout | None) -> tuple[float, float] | None:
     return float(lat), float(lon)
 
 
+def _area_of(film: FilmSpec | None, uav: UavSpec | None) -> Any:
+    """The planned area (its layout's), or None."""
+    layout = layout_of(uav) or layout_of(film) or getattr(film, "layout", None)
+    return layout.area if layout is not None else None
+
+
 def _date(project: Project, key: str) -> dt.date | None:
     value = project.get("schedule", key)
     if value is None or isinstance(value, dt.date):
@@ -445,6 +452,7 @@ def survey_design(project: Project, film: FilmSpec | None, uav: UavSpec | None
     gsd, w1 = _gsd_checks(project, film, uav)
     block, block_source, w2, block_ground, waived = _block(project, film, uav)
     sun, w3 = _sun(project, film, uav)
+    w3 = area_site_warnings(_area_of(film, uav), site_of(project)) + w3
     ns = uav.job.norm_set if uav is not None else film.job.norm_set if film is not None \
         else None
     status = ns.parameter_status if ns is not None else {}

@@ -222,6 +222,9 @@ _RECORDS: tuple[Input, ...] = (
     Input("camera", "film", "camera", _STR, "catalogue camera id (or focal_mm + frame_mm)",
           option="--camera", commands=(FILM,),
           cli_help="catalogue camera id (scanplan cameras list)"),
+    Input("camera_name", "film", "camera_name", _STR, "the camera's name as the documents "
+          "show it, for a camera given by focal_mm and frame_mm",
+          note="optional; default: the catalogue's model name"),
     Input("focal_mm", "film", "focal_mm", _NUM, "focal length [mm]", "mm",
           domain="focal_mm", option="--focal-mm", commands=(FILM,),
           cli_help="focal length [mm] (no --camera)"),
@@ -260,6 +263,11 @@ _RECORDS: tuple[Input, ...] = (
     Input("camera", "uav", "camera", _STR, "digital camera id (or pixel_um + focal_mm + "
           "sensor_mm)", option="--camera", commands=(UAV,),
           cli_help="digital camera id (scanplan cameras list)"),
+    Input("camera_name", "uav", "camera_name", _STR, "the camera's name as the documents "
+          "show it, for a camera given by pixel_um, focal_mm and sensor_mm",
+          note="optional; default: the catalogue's model name", option="--camera-name",
+          commands=(UAV,), cli_help="the camera's name in the reports (a camera given by "
+          "--pixel-um, --focal-mm and --sensor-mm)"),
     Input("pixel_um", "uav", "pixel_um", _NUM, "pixel pitch [µm]", "µm", domain="pixel_um",
           option="--pixel-um", commands=(UAV,), cli_help="pixel pitch [µm] (no --camera)"),
     Input("focal_mm", "uav", "focal_mm", _NUM, "focal length [mm]", "mm", domain="focal_mm",

@@ -216,7 +216,8 @@ def _film_rows(spec: Any, w: _W) -> list[tuple[str, str, str]]:
     inp = f.job.plan.inputs
     ns = f.job.norm_set
     rec = f.recommended
-    rows = [(w.t("camera"), camera_title(ns, inp.camera, w.loc) if inp.camera
+    rows = [(w.t("camera"), camera_title(ns, inp.camera, w.loc, inp.camera_name)
+             if inp.camera or inp.camera_name
              else w.t("design_film_camera_value", focal=w.n(inp.focal_mm, 1)), "")]
     if rec is None:
         return rows

@@ -69,8 +69,9 @@ def _strips_sheet(book: Any, layout: FlightLayout, key: str, files_beside: bool)
     row += 1
     ends = [(book.t(e), book.t(c)) for e in ("strip_start", "strip_end")
             for c in ("photo_lat_deg", "photo_lon_deg")]
-    ends += [(book.t(e), book.t(c)) for e in ("strip_start", "strip_end")
-             for c in ("photo_x_m", "photo_y_m")]
+    xy_cols = _xy_order(loc)
+    ends += [(book.t(e), book.t(c)) for e in ("strip_start", "strip_end") for c in xy_cols]
+    i, j = (0, 1) if xy_cols[0] == "photo_x_m" else (1, 0)
     head = [book.t("strip_no"), book.t("strip_sortie"),
             book.t("strip_frames" if layout.kind == "film" else "strip_photos"),
             book.t("strip_length_m"), book.t("strip_parts"), *(f"{e}: {c}" for e, c in ends)]
@@ -92,12 +93,19 @@ def _strips_sheet(book: Any, layout: FlightLayout, key: str, files_beside: bool)
         (lon0, lat0), (lon1, lat1) = ll[2 * k], ll[2 * k + 1]
         for col, v, fmt in ((6, lat0, "0.00000000"), (7, lon0, "0.00000000"),
                             (8, lat1, "0.00000000"), (9, lon1, "0.00000000"),
-                            (10, s.start_xy_m[0], "0.000"), (11, s.start_xy_m[1], "0.000"),
-                            (12, s.end_xy_m[0], "0.000"), (13, s.end_xy_m[1], "0.000")):
+                            (10, s.start_xy_m[i], "0.000"), (11, s.start_xy_m[j], "0.000"),
+                            (12, s.end_xy_m[i], "0.000"), (13, s.end_xy_m[j], "0.000")):
             put_num(ws, row, col, v, fmt)
         row += 1
     if not layout.strips:
         put_text(ws, row, 1, "—")
+
+
+def _xy_order(locale: str) -> tuple[str, str]:
+    """The plane coordinates' columns in the reader's order: a Russian surveyor reads X
+    (north) first, then Y (east) — the geodetic convention of the Gauss–Krüger
+    coordinates in Russia; elsewhere easting, northing."""
+    return ("photo_y_m", "photo_x_m") if locale == "ru" else ("photo_x_m", "photo_y_m")
 
 
 def _photos_sheet(book: Any, layout: FlightLayout, key: str) -> None:
@@ -105,6 +113,9 @@ def _photos_sheet(book: Any, layout: FlightLayout, key: str) -> None:
 
     ph = layout.photos
     cols = photo_columns(ph)
+    if _xy_order(book.loc)[0] == "photo_y_m" and {"x_m", "y_m"} <= set(cols):
+        a, b = cols.index("x_m"), cols.index("y_m")  # X (north) before Y (east)
+        cols[a], cols[b] = cols[b], cols[a]
     ws = book.sheet(key, landscape=True, widths=[14] * len(cols))
     _header(ws, 1, [book.t(f"photo_{c}") for c in cols])
     arrays = [np.asarray(ph[c]) for c in cols]

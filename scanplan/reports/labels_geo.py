@@ -7,6 +7,8 @@ from __future__ import annotations
 GEO: dict[str, dict[str, str]] = {
     "en": {
         "pdf_warn_area_scale_distortion": "The planning projection distorts the area",
+        "pdf_warn_area_latlon_swapped": "Latitude and longitude of the area look swapped",
+        "pdf_warn_site_far_from_area": "The site of the sun window is far from the area",
         "geo_export_title": "Flight plan",
         "geo_area": "Area",
         "geo_strips": "Strips",
@@ -98,6 +100,8 @@ GEO: dict[str, dict[str, str]] = {
     },
     "ru": {
         "pdf_warn_area_scale_distortion": "Проекция планирования искажает участок",
+        "pdf_warn_area_latlon_swapped": "Широта и долгота участка, похоже, перепутаны",
+        "pdf_warn_site_far_from_area": "Место расчёта окна съёмки по Солнцу далеко от участка",
         "geo_export_title": "План полёта",
         "geo_area": "Участок",
         "geo_strips": "Маршруты",
@@ -112,8 +116,8 @@ GEO: dict[str, dict[str, str]] = {
                               "по высоте фотографирования над рельефом.",
         "map_crs": "Система координат",
         "map_north": "С",
-        "map_easting_km": "На восток, км",
-        "map_northing_km": "На север, км",
+        "map_easting_km": "Y (на восток), км",
+        "map_northing_km": "X (на север), км",
         "map_m": "м",
         "map_km": "км",
         "map_legend_area": "Участок съёмки",
@@ -150,7 +154,7 @@ GEO: dict[str, dict[str, str]] = {
         "strip_start": "Начало",
         "strip_end": "Конец",
         "strip_lat_lon": "широта, долгота, °",
-        "strip_xy": "восточная (Y), северная (X) координаты, м",
+        "strip_xy": "координаты X (на север), Y (на восток), м",
         "strips_more": "Первые {shown} из {total} маршрутов; все — в рабочей книге.",
         "geo_not_georeferenced": "Участок задан условным прямоугольником (ширина × длина): "
                                  "он не привязан к карте, поэтому схема, полётное задание и "
@@ -177,8 +181,8 @@ GEO: dict[str, dict[str, str]] = {
         "photo_strip": "Маршрут",
         "photo_index": "№ в маршруте",
         "photo_sortie": "Вылет",
-        "photo_x_m": "На восток, м",
-        "photo_y_m": "На север, м",
+        "photo_x_m": "Y (на восток), м",
+        "photo_y_m": "X (на север), м",
         "photo_lon_deg": "Долгота, °",
         "photo_lat_deg": "Широта, °",
         "photo_ground_m": "Отметка земли, м",

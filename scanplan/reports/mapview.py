@@ -486,8 +486,9 @@ def _svg_uri(svg: str) -> str:
 
 def _point_text(layout: FlightLayout, xy: tuple[float, float], locale: str,
                 geo: Any) -> str:
-    if geo is None:
-        return f"{number(xy[0], 0, locale)}; {number(xy[1], 0, locale)}"
+    if geo is None:  # a Russian surveyor reads X (north) first, then Y (east)
+        first, second = (xy[1], xy[0]) if locale == "ru" else xy
+        return f"{number(first, 0, locale)}; {number(second, 0, locale)}"
     lon, lat = geo.points(np.array([xy]))[0]
     return f"{number(lat, 6, locale)}; {number(lon, 6, locale)}"
 

@@ -166,8 +166,9 @@ def _scan_view(job: ScanJob, f: _Fmt) -> dict[str, Any]:
         (f.label("relief_interval_m"), f.g(inp.relief_interval_m)),
         (f.label("photo_scale"), f.list_sep.join(f.scale(s) for s in inp.photo_scales)),
     ]
-    if inp.camera:
-        inputs.append((f.label("camera"), camera_title(ns, inp.camera, f.locale)))
+    if inp.camera or inp.camera_name:
+        inputs.append((f.label("camera"), camera_title(ns, inp.camera, f.locale,
+                                                       inp.camera_name)))
     inputs += [
         (f.label("focal_mm"), f.g(inp.focal_mm)),
         (f.label("frame_mm"), f"{f.g(inp.frame_width_mm)} × {f.g(inp.frame_along_mm)}"),

@@ -206,8 +206,8 @@ def format_uav_plan(plan: UavPlan, norm_name: str = "", locale: str = "en",
 
         name = camera_title(norm_set, inp.camera, w.loc, name)
     lines = [
-        w("uav_head", carrier=carrier, camera=inp.camera or w("camera"))
-        + (f" ({name})" if name else ""),
+        w("uav_head", carrier=carrier, camera=inp.camera or name or w("camera"))
+        + (f" ({name})" if name and inp.camera else ""),
         w("uav_line1", pixel=w.n.sig(inp.pixel_um), f=w.n.sig(inp.focal_mm),
           n=w.g(inp.f_number), w=w.n.sig(inp.sensor_width_mm),
           h=w.n.sig(inp.sensor_height_mm), height=w.g(h["planned"]))

@@ -84,6 +84,8 @@ def camera_title(ns: NormSet, camera_id: str, locale: str, name: str = "") -> st
     str
     """
     cam = ns.cameras.get(camera_id) if camera_id else None
+    if locale == "ru" and cam is not None and cam.name_ru:  # a Russian model in Cyrillic
+        return cam.name_ru
     title = (cam.name if cam is not None else "") or name or camera_id
     return _ru_model(title) if locale == "ru" else title
 
@@ -167,6 +169,12 @@ def param_name(ns: NormSet, key: str, locale: str) -> str:
     return note or key.replace("_", " ")
 
 
+def _plain_number(x: Any, locale: str) -> str:
+    """A number as it is (``g``), with the decimal comma in Russian."""
+    text = f"{x:g}" if isinstance(x, float) else str(x)
+    return text.replace(".", ",") if locale == "ru" else text
+
+
 def param_value(ns: NormSet, key: str, value: Any, locale: str,
                 number: Any = None) -> str:
     """A norm-set parameter's value in words (shape with its coefficient, height formula,
@@ -187,6 +195,8 @@ def param_value(ns: NormSet, key: str, value: Any, locale: str,
     -------
     str
     """
+    if number is None:  # the report's decimal sign all the same: 0.97 / 0,97
+        number = lambda x: _plain_number(x, locale)  # noqa: E731
     if key == "shape" and isinstance(value, str):
         coef = ns.shapes.get(value)
         title = shape_title(ns, value, locale)
@@ -194,7 +204,9 @@ def param_value(ns: NormSet, key: str, value: Any, locale: str,
     if isinstance(value, str):
         return _label_or(f"value_{key}_{value}", locale, value)
     if isinstance(value, list | tuple):
-        return ", ".join(str(v) for v in value)
+        return ("; " if locale == "ru" else ", ").join(
+            number(v) if isinstance(v, int | float) and not isinstance(v, bool) else str(v)
+            for v in value)
     if isinstance(value, bool):
         return t("xlsx_yes" if value else "xlsx_no", locale)
     return number(value) if number else str(value)

@@ -124,6 +124,7 @@ class ScanInputs:
     object: ObjectSpec | None
     camera: str = ""
     scanner: str = ""
+    camera_name: str = ""
     scanner_steps_um: tuple[float, ...] = ()
     bands: int = 1
     bits_per_band: int = 8

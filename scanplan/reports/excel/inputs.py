@@ -60,7 +60,8 @@ def _inputs_scan(book: Book, ws: Worksheet, row: int, job: ScanJob) -> int:
     row = book.kv(ws, row, book.t("relief_interval_m"), inp.relief_interval_m, F2)
     row = book.kv_list(ws, row, book.t("photo_scale"), inp.photo_scales, SCALE)
     row = book.kv(ws, row, book.t("camera"),
-                  camera_title(job.norm_set, inp.camera, book.loc) or None, wrap=True)
+                  camera_title(job.norm_set, inp.camera, book.loc, inp.camera_name) or None,
+                  wrap=True)
     row = book.kv(ws, row, book.t("focal_mm"), inp.focal_mm, F2)
     row = book.kv(ws, row, book.t("xlsx_frame_across_mm"), inp.frame_width_mm, F1)
     row = book.kv(ws, row, book.t("xlsx_frame_along_mm"), inp.frame_along_mm, F1)
