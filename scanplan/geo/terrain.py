@@ -67,6 +67,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..core import formulas as F
+from ..core.photoscale import ground_pixel_m
 from ..errors import InputError
 from ..messages import Message
 from ..rules.results import PlanWarning, UavInputs, UavPlan
@@ -642,7 +643,7 @@ def _photo_figures(inp: UavInputs, agl: NDArray[np.float64]) -> dict[str, NDArra
     from ..rules.uav import ground_resolution_m
 
     n = agl.size
-    gsd = inp.pixel_um / 1000.0 * agl / inp.focal_mm
+    gsd = ground_pixel_m(inp.pixel_um, agl, inp.focal_mm)
     lr = ground_resolution_m(inp, np.maximum(agl, 1e-3)) if n else np.zeros(0)
     obj = inp.map_object
     with np.errstate(all="ignore"):

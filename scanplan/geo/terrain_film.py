@@ -25,6 +25,11 @@ from dataclasses import dataclass, replace
 import numpy as np
 from numpy.typing import NDArray
 
+from ..core.photoscale import (
+    height_at_photo_scale_m,
+    photo_scale_at_height,
+    scanned_ground_pixel_m,
+)
 from ..messages import Message
 from ..rules.results import PlanWarning, ScanRules
 from .layout import FlightLayout, Photos
@@ -143,15 +148,14 @@ def film_terrain(layout: FlightLayout, ground: Ground, rules: ScanRules, *, map_
     order = _order(ph)
     strip = np.asarray(ph["strip"])[order].astype(np.int64)
     g = ground.centre_m[order] if ground.centre_m.size == n else np.full(n, np.nan)
-    f_m = focal_mm / 1000.0
-    h_m = photo_scale * f_m
+    h_m = float(height_at_photo_scale_m(photo_scale, focal_mm))
     cols = {k: np.asarray(ph[k])[order] for k in ("photo", "strip", "x_m", "y_m")}
     wg = worst_ground(layout, ground, cols, g, mode, h_m, follow_tolerance_m,
                       _per_m(layout.footprint_across_m, h_m),
                       _per_m(layout.footprint_along_m, h_m))
     g_res, g_alt, alt = wg.footprint_low_m, wg.path_high_m, wg.altitude_m
-    mc = (alt - g_res) / f_m
-    mc_lo = float(((alt - g_alt) / f_m).min()) if n else photo_scale
+    mc = photo_scale_at_height(alt - g_res, focal_mm)
+    mc_lo = float(photo_scale_at_height(alt - g_alt, focal_mm).min()) if n else photo_scale
     inverse = np.empty(n, dtype=np.int64)
     inverse[order] = np.arange(n)
     i = int(np.argmax(mc)) if n else 0
@@ -203,11 +207,11 @@ def frames_over_terrain(layout: FlightLayout, ft: FilmTerrain, pixel_um: float,
     if len(ph) == 0 or ft.mc.size != len(ph):
         return layout
     cols = dict(ph.columns)
-    agl = ft.mc * focal_mm / 1000.0
+    agl = height_at_photo_scale_m(ft.mc, focal_mm)
     cols.update(ground_m=(ft.ground_m if ft.ground_m is not None
                           else np.full(len(ph), np.nan)),
                 altitude_m=np.asarray(ft.altitude_m, dtype=float), agl_m=agl,
-                gsd_cm=pixel_um * ft.mc / 1e4)
+                gsd_cm=scanned_ground_pixel_m(pixel_um, ft.mc) * 100.0)
     if recognition_p is not None:
         cols["recognition_p"] = np.asarray(recognition_p, dtype=float)
     notes = dict(layout.notes)

@@ -25,6 +25,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from ..core.blocks import RELIEF_CLASSES, BlockHeightCheck, block_height_check
+from ..core.photoscale import height_at_photo_scale_m
 from ..errors import InputError
 from ..geo.layout import FlightLayout
 from ..geo.sun import (
@@ -243,7 +244,8 @@ def _flight_height_m(film: FilmSpec | None, uav: UavSpec | None) -> float | None
     if uav is not None and uav.recommended_height_m is not None:
         return float(uav.recommended_height_m)
     if film is not None and film.recommended is not None:
-        return film.recommended.photo_scale * film.job.plan.inputs.focal_mm / 1000.0
+        return float(height_at_photo_scale_m(film.recommended.photo_scale,
+                                             film.job.plan.inputs.focal_mm))
     return None
 
 

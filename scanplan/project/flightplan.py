@@ -17,6 +17,7 @@ from typing import Any
 import numpy as np
 
 from ..core import flight as FL
+from ..core.photoscale import height_at_photo_scale_m
 from ..errors import InputError
 from ..geo.area import MAX_SCALE_ERROR_PCT, AreaSpec, load_area, rectangle_area
 from ..geo.layout import Area, FlightLayout
@@ -230,7 +231,8 @@ def film_layout(scenario: ScanScenario, frame_width_mm: float, frame_along_mm: f
     vals.update(values or {})
     return plan_lines(
         area, spacing_m=spacing, base_m=base, footprint_across_m=across,
-        footprint_along_m=along, height_m=focal_mm * scenario.photo_scale / 1000.0,
+        footprint_along_m=along,
+        height_m=float(height_at_photo_scale_m(scenario.photo_scale, focal_mm)),
         direction_deg=_direction(opts, area),
         extension_bases=opts.extension_bases, turn=_turn(replace(opts, bank_deg=None), None),
         speed_ms=None, max_flight_time_min=None, ground_m=opts.ground_m, photo_values=vals,

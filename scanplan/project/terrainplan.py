@@ -384,13 +384,15 @@ def frame_recognition(plan: ScanPlan, mc: Any, pixel_um: float) -> Any:
     import numpy as np
 
     from ..core import formulas as F
+    from ..core.photoscale import effective_resolving_power_lpmm
 
     inp = plan.inputs
     obj = inp.object
     mc = np.asarray(mc, dtype=float)
     if obj is None:
         return np.full(mc.size, np.nan)
-    r_eff = min(inp.resolving_power_lpmm, plan.rules.pr_coefficient / (pixel_um / 1000.0))
+    r_eff = effective_resolving_power_lpmm(inp.resolving_power_lpmm, pixel_um,
+                                           plan.rules.pr_coefficient)
     return np.asarray(F.recognition_probability(
         obj.size_m * 1000.0, F.resolution_on_ground_mm(mc, r_eff), obj.shape_coefficient),
         dtype=float)
