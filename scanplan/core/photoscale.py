@@ -28,6 +28,7 @@ __all__ = [
     "height_at_photo_scale_m",
     "height_for_ground_pixel_m",
     "photo_scale_at_height",
+    "scanned_ground_pixel_cm",
     "scanned_ground_pixel_m",
 ]
 
@@ -36,6 +37,7 @@ FloatArray = NDArray[np.float64]
 _MM_PER_M = 1000.0
 _UM_PER_MM = 1000.0
 _UM_PER_M = 1e6
+_UM_PER_CM = 1e4
 
 
 def _f(x: ArrayLike) -> FloatArray:
@@ -154,6 +156,35 @@ def scanned_ground_pixel_m(pixel_um: ArrayLike, photo_scale: ArrayLike) -> Float
     0.2
     """
     return _f(pixel_um) * _f(photo_scale) / _UM_PER_M
+
+
+def scanned_ground_pixel_cm(pixel_um: ArrayLike, photo_scale: ArrayLike) -> FloatArray:
+    """Ground pixel of a scanned photo in centimetres, P·Mc (the photos table's ``gsd_cm``).
+
+    Parameters
+    ----------
+    pixel_um : array_like
+        Scan pixel on the photo P [µm].
+    photo_scale : array_like
+        Photo scale denominator Mc [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        The scan pixel on the ground [cm].
+
+    Notes
+    -----
+    spec/formulas.md §3, GSD = p·H/f, with H/f = Mc (§2, seed 001, eq. 8). The same relation
+    as :func:`scanned_ground_pixel_m`, scaled once from µm to cm (not from m, which can
+    differ in the last bit).
+
+    Examples
+    --------
+    >>> float(scanned_ground_pixel_cm(7.0, 8000.0))
+    5.6
+    """
+    return _f(pixel_um) * _f(photo_scale) / _UM_PER_CM
 
 
 def height_for_ground_pixel_m(ground_pixel_m: ArrayLike, pixel_um: ArrayLike,

@@ -29,7 +29,7 @@ from numpy.typing import NDArray
 from ..core.photoscale import (
     height_at_photo_scale_m,
     photo_scale_at_height,
-    scanned_ground_pixel_m,
+    scanned_ground_pixel_cm,
 )
 from ..messages import PlanWarning
 from .layout import FlightLayout, Photos
@@ -166,7 +166,7 @@ def frames_over_terrain(layout: FlightLayout, ft: FilmTerrain, pixel_um: float,
     cols.update(ground_m=(ft.ground_m if ft.ground_m is not None
                           else np.full(len(ph), np.nan)),
                 altitude_m=np.asarray(ft.altitude_m, dtype=float), agl_m=agl,
-                gsd_cm=scanned_ground_pixel_m(pixel_um, ft.mc) * 100.0)
+                gsd_cm=scanned_ground_pixel_cm(pixel_um, ft.mc))
     if recognition_p is not None:
         cols["recognition_p"] = np.asarray(recognition_p, dtype=float)
     notes = dict(layout.notes)

@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 
 from ..core import flight as FL
-from ..core.photoscale import height_at_photo_scale_m
+from ..core.photoscale import height_at_photo_scale_m, scanned_ground_pixel_cm
 from ..errors import InputError
 from ..geo.area import MAX_SCALE_ERROR_PCT, AreaSpec, load_area, rectangle_area
 from ..geo.layout import Area, FlightLayout
@@ -225,7 +225,7 @@ def film_layout(scenario: ScanScenario, frame_width_mm: float, frame_along_mm: f
     spacing = float(FL.line_spacing_m(across, side_overlap_pct))
     base = float(FL.photo_base_m(along, forward_overlap_pct))
     pixel = scenario.scanner_pixel_um or scenario.scan_pixel_um
-    vals = {"gsd_cm": pixel * scenario.photo_scale / 1e4,
+    vals = {"gsd_cm": float(scanned_ground_pixel_cm(pixel, scenario.photo_scale)),
             "recognition_p": (scenario.recognition_probability
                               if scenario.recognition_probability is not None else np.nan)}
     vals.update(values or {})
