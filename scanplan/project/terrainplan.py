@@ -26,7 +26,12 @@ from ..geo.terrain_choice import DIRECTIONS_DEG, ModeHeights, mode_heights
 from ..geo.terrain_film import FilmTerrain, frames_over_terrain
 from ..messages import Message
 from ..rules.results import PlanWarning, ScanPlan, ScanRules, ScanScenario
-from ..rules.terrain import film_scale_warning, frame_recognition_p, local_forward_overlap_pct
+from ..rules.terrain import (
+    film_scale_warning,
+    frame_recognition_p,
+    height_accuracy_warnings,
+    local_forward_overlap_pct,
+)
 from .api import UavJob, recommended_height_m
 from .file import KEYS, Project
 from .terraincheck import film_terrain, uav_terrain
@@ -260,28 +265,13 @@ def _height_accuracy_over_relief(job: UavJob, res: TerrainResult) -> tuple[PlanW
     exceeds V_z. The terrain check holds every photo to the flat limit, which is exact for a
     block flown at the standard overlap or more (the base of the standard pair grows with
     the height above ground); below it the one-step base is fixed in metres and the photos
-    over low ground can miss V_z (docs/uav-models.md §9)."""
-    import numpy as np
-
-    from ..rules.constraints import sigma_z_m
-
+    over low ground can miss V_z (docs/uav-models.md §9): see
+    :func:`scanplan.rules.terrain.height_accuracy_warnings`."""
     acc = job.plan.height_accuracy
     if acc.get("formula") != "normal_case":
         return ()
-    agl = np.asarray(res.layout.photos.columns.get("agl_m", ()), dtype=float)
-    agl = agl[np.isfinite(agl)]
-    if not agl.size:
-        return ()
-    inp = job.plan.inputs
-    rules = replace(job.norm_set.rules(), image_measurement_px=acc["image_measurement_px"],
-                    multi_ray=acc["multi_ray"])
-    flown = float(agl.max()) * (1.0 + inp.height_tolerance_up_pct / 100.0)
-    sz = float(sigma_z_m(inp, rules, flown))
-    if sz <= acc["height_accuracy_m"] * (1 + 1e-9):
-        return ()
-    return (PlanWarning("terrain_height_accuracy", Message(
-        "terrain_height_accuracy", sz=sz, vz=acc["height_accuracy_m"], agl=flown,
-        planned=inp.height_m, overlap=inp.forward_overlap_pct)),)
+    return height_accuracy_warnings(job.plan.inputs, job.norm_set.rules(), acc,
+                                    res.layout.photos.columns.get("agl_m", ()))
 
 
 def _missed_at_planned(checked: tuple[PlanWarning, ...], mode: str) -> Message | None:

@@ -11,7 +11,8 @@ records of :mod:`scanplan.rules.registry` meet them, for both carriers:
   footprint's lowest ground, the altitude ceiling over the path's lowest) give every photo
   the ground it is checked at (:func:`checked_ground_m`); its figures at its own height
   (:func:`photo_figures`) and what fails (:func:`resolution_warnings`,
-  :func:`overlap_warnings`).
+  :func:`overlap_warnings`), and the height accuracy at the photo highest above its
+  ground (:func:`height_accuracy_warnings`).
 - Film: the engine (:func:`scanplan.rules.film.evaluate`, every enabled record) at the
   frame with the largest local Mc and at the planned Mc (:func:`film_at_worst_frame`),
   with the parallax form's local base (:func:`local_forward_overlap_pct`); every frame's
@@ -24,7 +25,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any, Protocol
 
 import numpy as np
@@ -34,12 +35,13 @@ from ..core import formulas as F
 from ..core.flight import actual_overlap_pct
 from ..core.photoscale import effective_resolving_power_lpmm, ground_pixel_m
 from ..messages import MAX_LISTED, Message, PlanWarning, listing
+from .constraints import sigma_z_m
 from .film import evaluate
 from .results import ScanInputs, ScanRules, UavInputs, UavPlan
 from .uav import ground_resolution_m
 
 __all__ = ["WorstFrame", "checked_ground_m", "film_at_worst_frame", "film_scale_warning",
-           "frame_recognition_p",
+           "frame_recognition_p", "height_accuracy_warnings",
            "local_forward_overlap_pct", "overlap_warnings", "photo_figures",
            "resolution_warnings"]
 
@@ -162,6 +164,44 @@ def overlap_warnings(inp: UavInputs, fw: _Pairs, fw_pct: NDArray[np.float64], sd
             floor=Message(f"terrain_overlap_floor.{kind}") if pct[i] <= floor else None),
             severity="warning"))
     return out
+
+
+def height_accuracy_warnings(inp: UavInputs, rules: ScanRules, accuracy: dict[str, Any],
+                             agl_m: Any) -> tuple[PlanWarning, ...]:
+    """``terrain_height_accuracy``: σ_Z of the stereo normal case at the photo highest above
+    its ground, at its highest flown height, with the mission's trigger distance (fixed in
+    metres at the planned height), when it exceeds V_z.
+
+    Parameters
+    ----------
+    inp : UavInputs
+        The camera and flight (``height_m`` the planned height) [m].
+    rules : ScanRules
+        The norm set's rules.
+    accuracy : dict
+        The flat plan's ``height_accuracy`` details (``image_measurement_px``,
+        ``multi_ray``, ``height_accuracy_m`` = V_z [m]).
+    agl_m : array_like
+        Every photo's height above its ground [m] (NaN where unknown).
+
+    Returns
+    -------
+    tuple of PlanWarning
+        Empty when σ_Z ≤ V_z or no photo has a height above ground.
+    """
+    agl = np.asarray(agl_m, dtype=float)
+    agl = agl[np.isfinite(agl)]
+    if not agl.size:
+        return ()
+    rules = replace(rules, image_measurement_px=accuracy["image_measurement_px"],
+                    multi_ray=accuracy["multi_ray"])
+    flown = float(agl.max()) * (1.0 + inp.height_tolerance_up_pct / 100.0)
+    sz = float(sigma_z_m(inp, rules, flown))
+    if sz <= accuracy["height_accuracy_m"] * (1 + 1e-9):
+        return ()
+    return (PlanWarning("terrain_height_accuracy", Message(
+        "terrain_height_accuracy", sz=sz, vz=accuracy["height_accuracy_m"], agl=flown,
+        planned=inp.height_m, overlap=inp.forward_overlap_pct)),)
 
 
 # --- film: every frame at its own photo scale ----------------------------------------------
