@@ -554,8 +554,8 @@ def path_summary(alt: NDArray[np.float64], wg: WorstGround) -> dict[str, float |
 
 
 def terrain_layout(layout: FlightLayout, cols: dict[str, NDArray[Any]],
-                    order: NDArray[np.int64], strips: tuple[StripTerrain, ...], mode: str
-                    ) -> FlightLayout:
+                   order: NDArray[np.int64], strips: tuple[StripTerrain, ...], mode: str
+                   ) -> FlightLayout:
     """The layout with the terrain columns (back in its own photo order), each strip's
     altitude (constant and strip modes) and the altitude mode and frame in its notes."""
     n = order.size
@@ -572,11 +572,27 @@ def terrain_layout(layout: FlightLayout, cols: dict[str, NDArray[Any]],
 
 
 def strip_rows(cols: dict[str, NDArray[Any]], g_res: NDArray[np.float64],
-                g_alt: NDArray[np.float64], limit_m: float | None
-                ) -> tuple[StripTerrain, ...]:
+               g_alt: NDArray[np.float64], limit_m: float | None
+               ) -> tuple[StripTerrain, ...]:
     """Per strip: its ground, altitudes, the height above ground from the clearance (over
     the highest ground under its path) to the checked worst (over ``g_res``), and how far
-    that exceeds the limit."""
+    that exceeds the limit.
+
+    Parameters
+    ----------
+    cols : dict of ndarray
+        The photos in strip order with ``strip``, ``photo``, ``altitude_m``,
+        ``ground_min_m`` and ``ground_max_m`` [m].
+    g_res, g_alt : ndarray
+        Every photo's ground for the limit (checked at) and for the altitude (highest under
+        its path) [m].
+    limit_m : float or None
+        The largest height above ``g_res`` any photo may have [m] (None: no limit).
+
+    Returns
+    -------
+    tuple of StripTerrain
+    """
     rows = []
     strip = cols["strip"]
     for k in np.unique(strip):

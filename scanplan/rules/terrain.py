@@ -106,6 +106,19 @@ def checked_ground_m(plan: UavPlan, footprint_low_m: NDArray[np.float64],
     g_p: photo i meets them all iff A − g_f ≤ L_r and A − g_p ≤ L_c, i.e.
     A ≤ min(g_f + L_r, g_p + L_c) = g_eff + L with L = min(L_r, L_c). So
     g_eff = min(g_f + L_r, g_p + L_c) − L stands for both in the closed-form checks.
+
+    Parameters
+    ----------
+    plan : UavPlan
+        The flat-ground plan: ``limits`` (one per enabled constraint record, with its
+        ``compares`` and ``max_height_m``) and ``max_height_m`` L [m].
+    footprint_low_m, path_low_m : ndarray
+        Every photo's lowest ground under its footprint and under its stretch of path [m].
+
+    Returns
+    -------
+    ndarray
+        g_eff [m]: ``footprint_low_m`` itself without a ceiling among the limits.
     """
     limits = getattr(plan, "limits", ()) or ()
     ceiling = [lim.max_height_m for lim in limits if lim.compares == "H"]
@@ -122,7 +135,28 @@ def resolution_warnings(strips: Sequence[_Strip], plan: UavPlan, mode: str, heig
                         max_height_m: float | None, up: float) -> list[PlanWarning]:
     """The ``terrain_resolution`` warning: the strips whose worst photo is higher above its
     ground than the plan's maximum height, the worst of them named, and the remedy of the
-    altitude mode (``up`` is the height tolerance upwards, a fraction)."""
+    altitude mode.
+
+    Parameters
+    ----------
+    strips : sequence of StripTerrain
+        Every strip's worst photo, its AGL and excess over the limit [m].
+    plan : UavPlan
+        The flat-ground plan (``max_height_m`` [m], ``binding``).
+    mode : str
+        The altitude mode (``constant``, ``strip``, ``follow``): which remedy.
+    height_m : float
+        The planned height above the reference ground [m].
+    max_height_m : float or None
+        The largest planned height the worst photo allows [m].
+    up : float
+        The height tolerance upwards (a fraction).
+
+    Returns
+    -------
+    list of PlanWarning
+        Empty when every strip holds.
+    """
     if plan.max_height_m is None or not strips:
         return []
     failing = [s for s in strips if s.excess_m > 1e-6]
@@ -142,9 +176,25 @@ def resolution_warnings(strips: Sequence[_Strip], plan: UavPlan, mode: str, heig
 
 def overlap_warnings(inp: UavInputs, fw: _Pairs, fw_pct: NDArray[np.float64], sd: _Pairs,
                      sd_pct: NDArray[np.float64], photo: NDArray[Any]) -> list[PlanWarning]:
-    """``terrain_forward_overlap``/``terrain_side_overlap``: the pairs (``fw``, ``sd``, their
-    overlaps in %) short of the planned overlap, the worst pair named; ``photo`` the running
-    numbers of the photos in strip order."""
+    """``terrain_forward_overlap``/``terrain_side_overlap``: the pairs short of the planned
+    overlap, the worst pair named.
+
+    Parameters
+    ----------
+    inp : UavInputs
+        The planned forward and side overlaps [%].
+    fw, sd : Pairs
+        Forward and side pairs of photos (indices in strip order).
+    fw_pct, sd_pct : ndarray
+        The overlap of each pair [%].
+    photo : ndarray
+        The running numbers of the photos in strip order.
+
+    Returns
+    -------
+    list of PlanWarning
+        One per kind of overlap that falls short (by more than 0.05 %).
+    """
     out = []
     for kind, pairs, pct, planned in (("forward", fw, fw_pct, inp.forward_overlap_pct),
                                       ("side", sd, sd_pct, inp.side_overlap_pct)):
@@ -262,7 +312,24 @@ def film_at_worst_frame(rules: ScanRules, *, photo_scale: float, worst_scale: fl
                         shape_coefficient: float = math.nan) -> WorstFrame:
     """The engine (:func:`scanplan.rules.film.evaluate`, every enabled constraint record)
     at the planned Mc and at the worst frame's ``worst_scale``, the latter with the
-    parallax form's local base (:func:`local_forward_overlap_pct`)."""
+    parallax form's local base (:func:`local_forward_overlap_pct`).
+
+    Parameters
+    ----------
+    rules : ScanRules
+        The norm set's rules (enabled constraints, height formula).
+    photo_scale, worst_scale : float
+        The planned Mc and the largest local Mc of the block.
+    map_scale, relief_interval_m, focal_mm, frame_along_mm : float
+        Mk; h_c [m]; f [mm]; l_y [mm] (as :func:`scanplan.rules.film.evaluate`).
+    forward_overlap_pct, resolving_power_lpmm, object_size_m, shape_coefficient : float
+        p [%]; R [lp/mm]; the object's size L [m] and shape coefficient B (NaN: none).
+
+    Returns
+    -------
+    WorstFrame
+        Scan pixel [µm] and binding constraint at each of the two scales.
+    """
     overlap = np.array([forward_overlap_pct, local_forward_overlap_pct(
         rules, forward_overlap_pct, photo_scale, worst_scale)])
     ev = evaluate(rules, map_scale=map_scale, photo_scale=np.array([photo_scale, worst_scale]),
@@ -278,8 +345,25 @@ def film_at_worst_frame(rules: ScanRules, *, photo_scale: float, worst_scale: fl
 def film_scale_warning(scan_pixel_um: float, planned_pixel_um: float, binding: str,
                        mc_min: float, mc_max: float, where: Message) -> PlanWarning | None:
     """``terrain_film_scale`` (a note): the relief spreads the local photo scale from
-    1:``mc_min`` to 1:``mc_max`` and the frame ``where`` needs a finer scan pixel
-    ``scan_pixel_um`` than flat ground's ``planned_pixel_um`` [µm]; None when it does not."""
+    1:``mc_min`` to 1:``mc_max`` and the frame ``where`` needs a finer scan pixel than flat
+    ground.
+
+    Parameters
+    ----------
+    scan_pixel_um, planned_pixel_um : float
+        The scan pixel at the worst frame and on flat ground [µm].
+    binding : str
+        The constraint binding at the worst frame.
+    mc_min, mc_max : float
+        The block's largest and smallest local photo scale (denominators).
+    where : Message
+        Which frame (or the lowest ground of a range).
+
+    Returns
+    -------
+    PlanWarning or None
+        None when the worst frame needs no finer pixel.
+    """
     if not scan_pixel_um < planned_pixel_um * (1 - 1e-9):
         return None
     return PlanWarning("terrain_film_scale", Message(
@@ -293,7 +377,23 @@ def frame_recognition_p(inp: ScanInputs, rules: ScanRules, mc: Any,
 
     P = exp(−(B·a/L)²) with a = Mc/(2·R_eff) the photo's resolution on the ground and
     R_eff = min(R, k_R/pixel) what the scan keeps (formulas.md §1–2, the engine's own
-    computation in :func:`scanplan.rules.film.plan_scan`); NaN without an object.
+    computation in :func:`scanplan.rules.film.plan_scan`).
+
+    Parameters
+    ----------
+    inp : ScanInputs
+        The map's object (size [m], shape coefficient) and the photo's R [lp/mm].
+    rules : ScanRules
+        ``pr_coefficient`` k_R.
+    mc : array_like
+        Every frame's local photo scale denominator.
+    pixel_um : float
+        The scan pixel specified [µm].
+
+    Returns
+    -------
+    ndarray
+        P per frame [-]; NaN without an object.
     """
     obj = inp.object
     mc = np.asarray(mc, dtype=float)
