@@ -11,6 +11,8 @@ arithmetic expression with the ingredients of one of them:
 - a focal length and a photo scale, or a focal length and the factor 1000 between mm and m
   (Mc = H/f, H = Mc·f);
 - a pixel and a photo scale (the scanned ground pixel P·Mc);
+- a sensor or frame side with a height and a focal length, or with a photo scale (the
+  footprint l·H/f, l·Mc);
 - the resolving-power coefficient divided (R_eff = min(R, k_R/P)).
 
 Arguments of a call are not looked into (passing ``pixel_um`` and ``focal_mm`` to a core
@@ -31,6 +33,8 @@ PKG = Path(scanplan.__file__).parent
 #: Names that hold a photo scale denominator (Mc).
 SCALE_NAMES = {"photo_scale", "photo_scales", "local_scale", "mc", "mc_min", "mc_max",
                "mc_lo", "mc_hi"}
+#: Names that hold a height above ground.
+HEIGHT_NAMES = {"height_m", "agl", "agl_m", "h_m", "alt", "altitude_m"}
 #: The factor between mm and m, as a focal length in metres spells it.
 MM_PER_M = {1000.0, 1e-3}
 
@@ -65,6 +69,9 @@ def formula_kind(node: ast.AST) -> str | None:
     focal = any("focal" in n for n in names)
     pixel = any("pixel" in n for n in names)
     scale = bool(names & SCALE_NAMES)
+    side = any(n.startswith(("sensor_", "frame_")) or n == "side_mm" for n in names)
+    if side and (scale or (focal and names & HEIGHT_NAMES)):
+        return "l·H/f or l·Mc: core.photoscale.footprint_side_m / frame_side_on_ground_m"
     if focal and pixel:
         return ("GSD = p·H/f or H = GSD·f/p: core.photoscale.ground_pixel_m / "
                 "height_for_ground_pixel_m")
@@ -107,6 +114,9 @@ def test_no_core_formula_outside_core(path):
     "h_m = ft.mc * focal_mm / 1000.0",
     "gsd_cm = pixel_um * ft.mc / 1e4",
     "r = min(r0, rules.pr_coefficient / (pixel_um / 1000.0))",
+    "fp = side_mm / focal_mm * agl * (1.0 - down)",
+    "across = frame_width_mm * scenario.photo_scale / 1000.0",
+    "b = (1 - p / 100) * inp.sensor_height_mm * inp.height_m / inp.focal_mm",
 ])
 def test_the_scan_finds_a_formula_written_out(line):
     """The check can fail: each formula written out inline is found."""

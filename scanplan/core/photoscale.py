@@ -8,7 +8,8 @@ Sources
 -------
 - spec/formulas.md §2 (seed 001, eq. 8 and its note "A = Mc/(2R) with Mc = H/f"): the photo
   scale of a vertical photo, Mc = H/f, H the height above the ground photographed.
-- spec/formulas.md §3 (seed 000, "GSD"): the ground sample distance GSD = p·H/f.
+- spec/formulas.md §3 (seed 000, "GSD"): the ground sample distance GSD = p·H/f; and its
+  "Flight geometry": footprint = sensor side × H/f.
 - spec/formulas.md §1 (seed 001, eqs. 4–6): P_R = k_R/R, the scan pixel that keeps the
   photo's resolving power R; read the other way, a scan pixel P keeps at most k_R/P.
 
@@ -24,6 +25,8 @@ from numpy.typing import ArrayLike, NDArray
 
 __all__ = [
     "effective_resolving_power_lpmm",
+    "footprint_side_m",
+    "frame_side_on_ground_m",
     "ground_pixel_m",
     "height_at_photo_scale_m",
     "height_for_ground_pixel_m",
@@ -129,6 +132,65 @@ def ground_pixel_m(pixel_um: ArrayLike, height_m: ArrayLike, focal_mm: ArrayLike
     0.01257
     """
     return _f(pixel_um) / _UM_PER_MM * _f(height_m) / _f(focal_mm)
+
+
+def footprint_side_m(side_mm: ArrayLike, height_m: ArrayLike, focal_mm: ArrayLike) -> FloatArray:
+    """One side of a vertical photo's footprint on the ground, footprint = l·H/f.
+
+    Parameters
+    ----------
+    side_mm : array_like
+        The sensor's (or frame's) side l [mm].
+    height_m : array_like
+        Height above the ground H [m] (1 m gives the footprint per metre of height).
+    focal_mm : array_like
+        Focal length f [mm].
+
+    Returns
+    -------
+    numpy.ndarray
+        The footprint's side on the ground [m].
+
+    Notes
+    -----
+    spec/formulas.md §3, "Flight geometry": footprint = sensor side × H/f. Unlike
+    :func:`scanplan.core.flight.footprint_m` it does not validate: the terrain checks
+    evaluate it at every photo's and every pair's height above its ground.
+
+    Examples
+    --------
+    >>> round(float(footprint_side_m(24.0, 100.0, 35.0)), 3)
+    68.571
+    """
+    return _f(side_mm) / _f(focal_mm) * _f(height_m)
+
+
+def frame_side_on_ground_m(side_mm: ArrayLike, photo_scale: ArrayLike) -> FloatArray:
+    """One side of a frame on the ground at photo scale 1:Mc, l·Mc.
+
+    Parameters
+    ----------
+    side_mm : array_like
+        The frame's side l [mm].
+    photo_scale : array_like
+        Photo scale denominator Mc [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        The frame's side on the ground [m].
+
+    Notes
+    -----
+    spec/formulas.md §3, "Flight geometry": footprint = sensor side × H/f, with H/f = Mc
+    (§2, seed 001, eq. 8).
+
+    Examples
+    --------
+    >>> float(frame_side_on_ground_m(230.0, 8000.0))
+    1840.0
+    """
+    return _f(side_mm) * _f(photo_scale) / _MM_PER_M
 
 
 def scanned_ground_pixel_m(pixel_um: ArrayLike, photo_scale: ArrayLike) -> FloatArray:

@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from ..core.photoscale import footprint_side_m
 from .layout import FlightLayout
 
 if TYPE_CHECKING:
@@ -88,7 +89,7 @@ def _pair_overlap_pct(p: Pairs, x: NDArray[np.float64], y: NDArray[np.float64],
     g = ground.sample(mx, my, plan_crs)
     g = np.where(np.isfinite(g), g, ground.high_m)
     agl = (alt[p.a] + alt[p.b]) / 2 - g
-    fp = side_mm / focal_mm * agl * (1.0 - down)
+    fp = footprint_side_m(side_mm, agl, focal_mm) * (1.0 - down)
     with np.errstate(divide="ignore", invalid="ignore"):
         return np.where(fp > 0, (1.0 - p.distance_m / fp) * 100.0, -np.inf)
 

@@ -17,7 +17,11 @@ from typing import Any
 import numpy as np
 
 from ..core import flight as FL
-from ..core.photoscale import height_at_photo_scale_m, scanned_ground_pixel_cm
+from ..core.photoscale import (
+    frame_side_on_ground_m,
+    height_at_photo_scale_m,
+    scanned_ground_pixel_cm,
+)
 from ..errors import InputError
 from ..geo.area import MAX_SCALE_ERROR_PCT, AreaSpec, load_area, rectangle_area
 from ..geo.layout import Area, FlightLayout
@@ -220,8 +224,8 @@ def film_layout(scenario: ScanScenario, frame_width_mm: float, frame_along_mm: f
     """
     opts = opts or LayoutOptions()
     check_options(replace(opts, bank_deg=None, max_flight_time_min=None), area, None)
-    across = frame_width_mm * scenario.photo_scale / 1000.0
-    along = frame_along_mm * scenario.photo_scale / 1000.0
+    across = float(frame_side_on_ground_m(frame_width_mm, scenario.photo_scale))
+    along = float(frame_side_on_ground_m(frame_along_mm, scenario.photo_scale))
     spacing = float(FL.line_spacing_m(across, side_overlap_pct))
     base = float(FL.photo_base_m(along, forward_overlap_pct))
     pixel = scenario.scanner_pixel_um or scenario.scan_pixel_um

@@ -14,6 +14,7 @@ import math
 
 import numpy as np
 
+from ..core.photoscale import footprint_side_m
 from ..geo import terrain as G
 from ..geo.layout import FlightLayout
 from ..geo.terrain_film import FilmTerrain, frame_scales
@@ -65,7 +66,8 @@ def uav_terrain(layout: FlightLayout, ground: G.Ground, inp: UavInputs, plan: Ua
     h = float(inp.height_m)
     g0 = ground.centre_m[order] if ground.centre_m.size == n else np.full(n, np.nan)
     wg = G.worst_ground(layout, ground, cols, g0, mode, h, follow_tolerance_m,
-                        inp.sensor_width_mm / inp.focal_mm, inp.sensor_height_mm / inp.focal_mm)
+                        float(footprint_side_m(inp.sensor_width_mm, 1.0, inp.focal_mm)),
+                        float(footprint_side_m(inp.sensor_height_mm, 1.0, inp.focal_mm)))
     g_alt, alt = wg.path_high_m, wg.altitude_m
     agl = alt - wg.footprint_low_m
     up = inp.height_tolerance_up_pct / 100.0

@@ -230,7 +230,7 @@ def height_accuracy(inp: UavInputs, rules: ScanRules
         "model": "idealised stereo precision (image measurement only: no ground control, "
                  "calibration or surface errors)",
         "trigger_spacing_m": (1.0 - inp.forward_overlap_pct / 100.0)
-        * inp.sensor_height_mm * inp.height_m / inp.focal_mm,
+        * float(PS.footprint_side_m(inp.sensor_height_mm, inp.height_m, inp.focal_mm)),
         "forward_overlap_at_highest_flown_height_pct": float(geo["overlap_pct"][1]),
         "stereo_base_steps": steps, "stereo_base_to_height": bh,
         "stereo_base_to_height_at_planned_height": float(geo["base_to_height"][0]),
