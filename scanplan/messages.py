@@ -49,10 +49,11 @@ import string
 from collections.abc import Iterator, Mapping
 from contextlib import contextmanager
 from contextvars import ContextVar
+from dataclasses import dataclass
 from typing import Any
 
-__all__ = ["LOCALES", "MESSAGES", "Message", "localize", "params_json", "placeholders",
-           "render", "scale_text"]
+__all__ = ["LOCALES", "MAX_LISTED", "MESSAGES", "Message", "PlanWarning", "listing",
+           "localize", "params_json", "placeholders", "render", "scale_text"]
 
 LOCALES = ("en", "ru")
 
@@ -672,3 +673,34 @@ def params_json(value: Any) -> Any:
     if isinstance(value, numbers.Real) and not isinstance(value, bool):
         return float(value)
     return value
+
+
+@dataclass(frozen=True)
+class PlanWarning:
+    """A warning or note of a plan (``severity`` is ``"warning"`` or ``"info"``).
+
+    ``message`` is a :class:`Message` (its English text) whose code is ``code``;
+    :meth:`text` renders it in another locale. Base-level, so that the ground and geometry
+    layer (``geo/``) and the rules (``rules/``) state their findings the same way.
+    """
+
+    code: str
+    message: str
+    photo_scales: tuple[float, ...] = ()
+    severity: str = "warning"
+
+    def text(self, locale: str = "en") -> str:
+        """The message in ``locale`` (``"en"`` or ``"ru"``)."""
+        return localize(self.message, locale)
+
+
+MAX_LISTED = 6
+"""Photos or strips named in one warning; the rest are counted."""
+
+
+def listing(numbers: Any) -> str:
+    """``3, 4, 7`` or ``3, 4, 7, 9, 12, 15 (+40)``: the first :data:`MAX_LISTED` numbers of
+    an integer array and how many more."""
+    shown = ", ".join(str(int(v)) for v in numbers[:MAX_LISTED])
+    more = len(numbers) - MAX_LISTED
+    return shown + (f" (+{more})" if more > 0 else "")

@@ -99,8 +99,8 @@ def terrain_cases(tmp: Path) -> dict[str, list]:
     from pyproj import Transformer
 
     from scanplan.geo import terrain as T
-    from scanplan.geo import terrain_film as TF
     from scanplan.norms import load_norm_set
+    from scanplan.project import terraincheck as TC
     from scanplan.rules.uav import plan_uav
 
     out: dict[str, list] = {}
@@ -112,15 +112,15 @@ def terrain_cases(tmp: Path) -> dict[str, list]:
     tilt = dem_around(tmp / "tilt-cases.tif", slope, lay, dtype="float64")
     for mode in T.ALTITUDE_MODES:
         inp = uav_inputs(100.0, gsd_target_cm=1.0)
-        res = T.uav_terrain(lay, T.ground_under(lay, T.TerrainConfig(dem=tilt)), inp,
+        res = TC.uav_terrain(lay, T.ground_under(lay, T.TerrainConfig(dem=tilt)), inp,
                             plan_uav(inp), mode, 40.0)
         out[f"terrain {mode}"] = [w.message for w in res.warnings]
     inp = uav_inputs(100.0, down_pct=70.0)
-    res = T.uav_terrain(lay, T.ground_under(lay, T.TerrainConfig(dem=tilt)), inp,
+    res = TC.uav_terrain(lay, T.ground_under(lay, T.TerrainConfig(dem=tilt)), inp,
                         plan_uav(inp))
     out["terrain overlaps"] = [w.message for w in res.warnings]
     inp = uav_inputs(100.0, down_pct=30.0)
-    res = T.uav_terrain(lay, T.ground_under(lay, T.TerrainConfig(dem=tilt)), inp,
+    res = TC.uav_terrain(lay, T.ground_under(lay, T.TerrainConfig(dem=tilt)), inp,
                         plan_uav(inp))
     out["terrain overlaps above the floor"] = [w.message for w in res.warnings]
     ph = lay.photos
@@ -139,7 +139,7 @@ def terrain_cases(tmp: Path) -> dict[str, list]:
     from scanplan.geo.terrain_choice import ModeHeights
     from scanplan.project.terrainplan import _other_choice
     inp = uav_inputs(100.0)
-    flat = T.uav_terrain(lay, T.ground_under(lay, T.TerrainConfig(dem=tilt)), inp,
+    flat = TC.uav_terrain(lay, T.ground_under(lay, T.TerrainConfig(dem=tilt)), inp,
                          plan_uav(inp), "strip")
     hint = _other_choice(T.TerrainConfig(dem=tilt, altitude_mode="strip"), flat,
                          ModeHeights(60.0, 200.0, (0.0,), (100.0,)), 300.0)
@@ -166,7 +166,7 @@ def terrain_cases(tmp: Path) -> dict[str, list]:
     film = layout(1530.0, strips=3, per_strip=5, forward_pct=60, side_pct=30)
     fdem = dem_around(tmp / "film-cases.tif", lambda x, y: 100 + 0.1 * (x - X0), film,
                       cell=20.0)
-    ft = TF.film_terrain(film, T.ground_under(film, T.TerrainConfig(dem=fdem)), rules,
+    ft = TC.film_terrain(film, T.ground_under(film, T.TerrainConfig(dem=fdem)), rules,
                         map_scale=2000, photo_scale=10000, relief_interval_m=1.0,
                         focal_mm=153, frame_along_mm=230, forward_overlap_pct=60,
                         resolving_power_lpmm=40, object_size_m=0.2, shape_coefficient=0.97)

@@ -101,3 +101,39 @@ def test_the_guard_fails_on_an_upward_import(line):
     """The check can fail: an upward import added to a core module is reported."""
     text = (PKG / "core" / "formulas.py").read_text(encoding="utf-8") + f"\n{line}\n"
     assert upward_imports(text, "scanplan.core.formulas")
+
+
+# geo/ holds the ground and the geometry; the constraints are evaluated at every photo's own
+# height in rules/terrain.py and the two are joined in project/terraincheck.py. geo/ ranks
+# above rules/ in LAYERS (so an import would not be upward), hence this check of its own.
+GEO_MAY_NOT_IMPORT = ("scanplan.rules",)
+
+
+def rules_imports_of_geo(text: str, name: str, is_package: bool = False) -> list[str]:
+    """The imports of ``rules`` (lazy ones and TYPE_CHECKING ones included) in geo module
+    ``name``."""
+    return [f"{name}:{line} imports {target} (geo/ keeps the ground and the geometry; "
+            "evaluate constraints in rules/terrain.py)"
+            for line, target in imports_of(text, name, is_package)
+            if target.startswith(GEO_MAY_NOT_IMPORT)]
+
+
+GEO_MODULES = [p for p in MODULES if _top(_module_name(p)) == "geo"]
+
+
+@pytest.mark.parametrize("path", GEO_MODULES, ids=lambda p: str(p.relative_to(PKG)))
+def test_geo_imports_nothing_of_rules(path):
+    problems = rules_imports_of_geo(path.read_text(encoding="utf-8"), _module_name(path),
+                                    path.name == "__init__.py")
+    assert not problems, "\n".join(problems)
+
+
+@pytest.mark.parametrize("line", ["from ..rules.results import UavInputs",
+                                  "    from ..rules.uav import ground_resolution_m",
+                                  "import scanplan.rules.film",
+                                  "from .. import rules"])
+def test_the_geo_guard_fails_on_a_rules_import(line):
+    """The check can fail: a rules import added to geo/terrain.py (at any depth) is found."""
+    text = (PKG / "geo" / "terrain.py").read_text(encoding="utf-8")
+    body = f"\ndef _probe():\n{line}\n" if line.startswith(" ") else f"\n{line}\n"
+    assert rules_imports_of_geo(text + body, "scanplan.geo.terrain")

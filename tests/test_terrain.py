@@ -40,7 +40,7 @@ from terrain_helpers import (
 from scanplan.errors import InputError
 from scanplan.geo import dem as D
 from scanplan.geo import terrain as T
-from scanplan.geo import terrain_film as TF
+from scanplan.project import terraincheck as TC
 from scanplan.rules.uav import ground_resolution_m, plan_uav
 
 H = 100.0
@@ -56,7 +56,7 @@ def run(lay, dem_path=None, *, mode="constant", h=H, tol_m=5.0, rng=None, **kw):
     cfg = T.TerrainConfig(dem=dem_path, ground_range_m=rng, altitude_mode=mode,
                           follow_tolerance_m=tol_m)
     ground = T.ground_under(lay, cfg)
-    return T.uav_terrain(lay, ground, inp, plan, mode, tol_m), inp, plan
+    return TC.uav_terrain(lay, ground, inp, plan, mode, tol_m), inp, plan
 
 
 def analytic_overlaps(lay, alt, ground_fn):
@@ -340,7 +340,7 @@ def test_a_three_pixel_void_is_filled_conservatively_and_reported(tmp_path):
     assert "3~пикселей" in w.text("ru") or "3 пикселей" in w.text("ru")
     assert "terrain_no_ground" not in [w.code for w in ground.warnings]
     inp = uav_inputs(H)
-    r = T.uav_terrain(lay, ground, inp, plan_uav(inp))
+    r = TC.uav_terrain(lay, ground, inp, plan_uav(inp))
     out = r.layout.photos
     i = int(np.flatnonzero(out["photo"] == ph["photo"][MID])[0])
     assert np.isnan(out["ground_m"][i])  # the centre itself has no DEM value
@@ -389,7 +389,7 @@ def test_no_data_beyond_the_radius_counts_with_the_missing_extent(tmp_path):
     w = next(w for w in g.warnings if w.code == "terrain_no_ground")
     assert f"photos {ph['photo'][MID]}" in w.message and "1 on nodata" in w.message
     inp = uav_inputs(H)
-    r = T.uav_terrain(lay, g, inp, plan_uav(inp))
+    r = TC.uav_terrain(lay, g, inp, plan_uav(inp))
     out = r.layout.photos
     bad = np.isnan(out["ground_m"])
     assert out["agl_m"][bad][0] == pytest.approx(out["altitude_m"][bad][0] - g.low_m)
@@ -524,7 +524,7 @@ def test_film_local_scale_and_the_binding_frame(tmp_path):
     p = dem_around(tmp_path / "tilt.tif", lambda x, y: 100 + 0.1 * (x - X0), lay,
                    cell=20.0, dtype="float64")
     g = T.ground_under(lay, T.TerrainConfig(dem=p))
-    ft = TF.film_terrain(lay, g, rules, map_scale=2000, photo_scale=mc, relief_interval_m=1.0,
+    ft = TC.film_terrain(lay, g, rules, map_scale=2000, photo_scale=mc, relief_interval_m=1.0,
                         focal_mm=f_mm, frame_along_mm=230, forward_overlap_pct=60,
                         resolving_power_lpmm=40, object_size_m=0.2, shape_coefficient=0.97)
     gx = 100 + 0.1 * (lay.photos["x_m"] - X0)

@@ -21,6 +21,7 @@ from hypothesis import strategies as st
 from terrain_helpers import write_dem
 
 from scanplan.cli.main import main
+from scanplan.geo.terrain_worst import run_in_m
 from scanplan.project.file import load_project, parse_project
 from scanplan.project.spec import plan_project
 from scanplan.rules.film import evaluate
@@ -96,15 +97,11 @@ def test_plane_dem_scan_pixel_is_the_flat_formula_at_the_largest_local_mc(tmp_pa
     assert ph["x_m"][at] == pytest.approx(x.min())
     # every frame carries its ground, altitude and height above ground
     np.testing.assert_allclose(ph["ground_m"], plane(ph["x_m"], 0), atol=1e-6)
+    # one altitude, the planned scale over the highest ground under the path: along strips
+    # that run up the slope, the run-in beyond the last frame (plus the grid's reach)
     alt = ph["altitude_m"]
-    # the altitude is set over the highest ground under the path: past the last centre
-    # the aircraft flies on into its turn (a semicircle reaches half a line spacing
-    # further), within the grid's reach (a 10 m cell and a block)
-    from scanplan.geo.terrain_worst import run_in_m
-
-    beyond_m = run_in_m(lay) + 20.0
-    assert np.all(alt == alt[0])
-    assert h_max + F_M * 8000 <= alt[0] <= h_max + 0.02 * beyond_m + F_M * 8000 + 2
+    path_top = h_max + 0.02 * run_in_m(lay) * abs(np.sin(np.radians(lay.direction_deg)))
+    assert np.all(alt == alt[0]) and path_top + F_M * 8000 <= alt[0] <= path_top + F_M * 8000 + 2
     np.testing.assert_allclose(ph["agl_m"], ft.mc * F_M, rtol=1e-12)
     assert np.all(ph["agl_m"] >= alt - ph["ground_m"] - 1e-6)  # over the footprint's lowest
     # the frame volume follows the pixel actually specified (the scanner's 7 µm here)

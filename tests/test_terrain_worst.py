@@ -20,6 +20,7 @@ sys.path.insert(0, str(Path(__file__).parent))
 from terrain_helpers import FOCAL_MM, PIXEL_UM, X0, Y0, dem_around, layout, uav_inputs
 
 from scanplan.geo import terrain as T
+from scanplan.project import terraincheck as TC
 from scanplan.rules.uav import plan_uav
 
 H = 100.0
@@ -40,7 +41,7 @@ def _run(tmp: Path, z, **kw):
     inp = uav_inputs(H, **kw)
     plan = plan_uav(inp)
     ground = T.ground_under(lay, T.TerrainConfig(dem=p))
-    return lay, T.uav_terrain(lay, ground, inp, plan), plan
+    return lay, TC.uav_terrain(lay, ground, inp, plan), plan
 
 
 def test_a_pit_between_the_centres_sets_the_worst_gsd(tmp_path):
@@ -103,7 +104,7 @@ def test_a_ridge_under_a_line_between_the_centres_lifts_the_altitude(tmp_path):
     lay = layout(H, forward_pct=60.0)
     p = dem_around(tmp_path / "ridge.tif", _square(cx, cy, DEPTH_M), lay)
     inp = uav_inputs(H)
-    rs = T.uav_terrain(lay, T.ground_under(lay, T.TerrainConfig(dem=p)), inp, plan_uav(inp),
+    rs = TC.uav_terrain(lay, T.ground_under(lay, T.TerrainConfig(dem=p)), inp, plan_uav(inp),
                        "strip")
     alts = {s.number: s.altitude_m for s in rs.layout.strips}
     assert alts[2] == pytest.approx(FLAT_M + DEPTH_M + H)

@@ -1,12 +1,13 @@
-"""Terrain: every photo at its own height above the ground, the worst photo binding.
+"""Terrain: every photo at its own height above the ground — the ground and the geometry.
 
 The Instruction's constraints and the recognition model depend on the photo scale, i.e.
 on the height above the ground (AGL); the ground under a block is not flat. This module
 gives every photo centre of a :class:`~scanplan.geo.layout.FlightLayout` its ground
 elevation (from a DEM, :mod:`scanplan.geo.dem`, or only a ``[min, max]`` range), a flight
-altitude (by the altitude mode), its AGL, GSD, MTF ground resolution L, recognition
-probability and its forward and side overlaps with its neighbours; then checks the
-constraints where they are worst.
+altitude (by the altitude mode), its AGL, the lowest and highest ground under its footprint
+and its stretch of path, and (:mod:`.terrain_overlaps`) its forward and side overlaps with
+its neighbours. The constraints are evaluated at every photo's own height by
+:mod:`scanplan.rules.terrain`; :mod:`scanplan.project.terraincheck` joins the two.
 
 Altitude modes (``[terrain] altitude_mode``)
 ---------------------------------------------
@@ -66,14 +67,11 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..core import formulas as F
 from ..errors import InputError
-from ..messages import Message
-from ..rules.results import PlanWarning, UavInputs, UavPlan
+from ..messages import Message, PlanWarning, listing
 from . import dem as D
 from .dem_grid import DEFAULT_VOID_MARGIN_M, DEFAULT_VOID_RADIUS_M, GroundGrid, read_ground_grid
 from .layout import FlightLayout, Photos
-from .terrain_overlaps import MAX_LISTED, _listing, _overlap_warnings, _overlaps
 from .terrain_worst import footprint_ground, path_ground, run_in_m
 
 __all__ = [
@@ -83,8 +81,16 @@ __all__ = [
     "StripTerrain",
     "TerrainConfig",
     "TerrainResult",
+    "WorstGround",
+    "altitude_waypoints",
+    "altitudes_m",
     "ground_under",
-    "uav_terrain",
+    "max_height_above_reference_m",
+    "path_summary",
+    "strip_order",
+    "strip_rows",
+    "terrain_layout",
+    "worst_ground",
 ]
 
 ALTITUDE_MODES = ("constant", "strip", "follow")
@@ -335,7 +341,7 @@ def ground_under(layout: FlightLayout, cfg: TerrainConfig, key: str = "terrain.d
     if not (known | filled).all():
         bad = ph["photo"][~(known | filled)].astype(np.int64)
         warnings.append(PlanWarning("terrain_no_ground", Message(
-            "terrain_no_ground", count=int(bad.size), total=n, photos=_listing(bad),
+            "terrain_no_ground", count=int(bad.size), total=n, photos=listing(bad),
             outside=int(s.outside.sum()), nodata=int((s.nodata & ~filled).sum()), low=lo,
             high=hi)))
     if info.geographic:
@@ -415,7 +421,7 @@ def _crs_name(wkt: str) -> str:
 
 # --- altitudes -----------------------------------------------------------------------------
 
-def _order(ph: Photos) -> NDArray[np.int64]:
+def strip_order(ph: Photos) -> NDArray[np.int64]:
     """Photos sorted by strip, then by number within the strip."""
     return np.lexsort((ph["index"], ph["strip"]))
 
@@ -496,74 +502,6 @@ def max_height_above_reference_m(limit_height_m: float, ground_low_m: NDArray[np
     return limit_height_m - float(relief.max())
 
 
-def uav_terrain(layout: FlightLayout, ground: Ground, inp: UavInputs, plan: UavPlan,
-                mode: str = "constant",
-                follow_tolerance_m: float = DEFAULT_FOLLOW_TOLERANCE_M) -> TerrainResult:
-    """Every photo at its own AGL; the constraints at the worst photo.
-
-    Steps: the photos in strip order with their ground (:func:`_ground_for_checks`); the
-    altitudes of the mode and the AGL; the per-photo figures at that AGL
-    (:func:`_photo_figures`); the overlaps with the neighbours (:func:`_overlaps`); the
-    layout with the terrain columns (:func:`_terrain_layout`); the closed-form maximum
-    height and the warnings.
-
-    Parameters
-    ----------
-    layout : FlightLayout
-        Flight lines and photo centres (from the planned height ``inp.height_m``).
-    ground : Ground
-        From :func:`ground_under`.
-    inp : UavInputs
-        The camera and flight; ``height_m`` is the planned AGL over the reference ground.
-    plan : UavPlan
-        The flat-ground plan: its limits as planned heights (``max_height_m``, ``binding``).
-    mode : str
-        ``constant``, ``strip`` or ``follow``.
-
-    Returns
-    -------
-    TerrainResult
-    """
-    ph = layout.photos
-    n = len(ph)
-    order = _order(ph)
-    cols = {k: np.asarray(v)[order] for k, v in ph.columns.items()}
-    strip = cols["strip"].astype(np.int64)
-    h = float(inp.height_m)
-    g0 = ground.centre_m[order] if ground.centre_m.size == n else np.full(n, np.nan)
-    wg = worst_ground(layout, ground, cols, g0, mode, h, follow_tolerance_m,
-                      inp.sensor_width_mm / inp.focal_mm, inp.sensor_height_mm / inp.focal_mm)
-    g, g_alt, alt = wg.centre_m, wg.path_high_m, wg.altitude_m
-    agl = alt - wg.footprint_low_m
-    up = inp.height_tolerance_up_pct / 100.0
-    cols.update(ground_m=g, altitude_m=alt, agl_m=agl, **_photo_figures(inp, agl))
-    ov = _overlaps(layout, cols, alt, ground, inp)
-    cols.update(ground_min_m=wg.footprint_low_m, ground_max_m=wg.footprint_high_m,
-                forward_overlap_pct=ov.forward_photo, side_overlap_pct=ov.side_photo)
-    limit = plan.max_height_m
-    g_res = _checked_ground(plan, wg.footprint_low_m, wg.path_low_m)
-    strips = _strip_rows(cols, g_res, g_alt, limit)
-    new_layout = _terrain_layout(layout, cols, order, strips, mode)
-    worst_res = int(cols["photo"][int(np.argmax(alt - g_res))]) if n else 0
-    both = np.fmin(ov.forward_photo, ov.side_photo)
-    worst_ov = int(cols["photo"][int(np.nanargmin(both))]) if np.isfinite(both).any() else 0
-    max_h = None
-    if limit is not None:
-        max_h = max_height_above_reference_m(limit, g_res, g_alt, strip, mode,
-                                             follow_tolerance_m)
-    warnings = list(ground.warnings)
-    warnings += _resolution_warnings(strips, plan, mode, h, max_h, up, agl, cols)
-    warnings += _overlap_warnings(inp, ov.forward, ov.forward_pct, ov.side, ov.side_pct, cols)
-    return TerrainResult(
-        layout=new_layout, mode=mode, height_m=h, strips=strips, max_height_m=max_h,
-        binding=plan.binding, worst_resolution_photo=worst_res, worst_overlap_photo=worst_ov,
-        min_forward_overlap_pct=(float(np.nanmin(ov.forward_pct)) if ov.forward_pct.size
-                                 else math.nan),
-        min_side_overlap_pct=float(np.nanmin(ov.side_pct)) if ov.side_pct.size else math.nan,
-        waypoints=_waypoints(cols, mode), warnings=tuple(warnings), ground=ground,
-        path=_path_summary(alt, wg))
-
-
 @dataclass(frozen=True)
 class WorstGround:
     """Each photo's ground (strip order) [m]: at its centre (NaN where unknown), under its
@@ -606,27 +544,7 @@ def worst_ground(layout: FlightLayout, ground: Ground, cols: dict[str, NDArray[A
     return WorstGround(g, p_lo, p_hi, f_lo, f_hi, alt)
 
 
-def _checked_ground(plan: UavPlan, footprint_low_m: NDArray[np.float64],
-                    path_low_m: NDArray[np.float64]) -> NDArray[np.float64]:
-    """The ground each photo is checked at against the plan's maximum height L.
-
-    The limits on GSD and L hold over the footprint's lowest ground g_f, the altitude
-    ceiling over the path's lowest g_p: photo i meets them all iff A − g_f ≤ L_r and
-    A − g_p ≤ L_c, i.e. A ≤ min(g_f + L_r, g_p + L_c) = g_eff + L with L = min(L_r, L_c).
-    So g_eff = min(g_f + L_r, g_p + L_c) − L stands for both in the closed-form checks.
-    """
-    limits = getattr(plan, "limits", ()) or ()
-    ceiling = [lim.max_height_m for lim in limits if lim.compares == "H"]
-    rest = [lim.max_height_m for lim in limits if lim.compares != "H"]
-    if not ceiling or plan.max_height_m is None:
-        return footprint_low_m
-    l_c = min(ceiling)
-    l_r = min(rest) if rest else math.inf
-    big = min(l_c, l_r)
-    return np.minimum(footprint_low_m + (l_r - big), path_low_m + (l_c - big))
-
-
-def _path_summary(alt: NDArray[np.float64], wg: WorstGround) -> dict[str, float | None]:
+def path_summary(alt: NDArray[np.float64], wg: WorstGround) -> dict[str, float | None]:
     """The clearance and the greatest height above ground under the flight path [m]."""
     if alt.size == 0:
         return {"clearance_min_m": None, "path_agl_max_m": None, "footprint_agl_max_m": None}
@@ -635,26 +553,9 @@ def _path_summary(alt: NDArray[np.float64], wg: WorstGround) -> dict[str, float 
             "footprint_agl_max_m": float(np.max(alt - wg.footprint_low_m))}
 
 
-def _photo_figures(inp: UavInputs, agl: NDArray[np.float64]) -> dict[str, NDArray[np.float64]]:
-    """GSD = p·H/f, the MTF ground resolution L and the recognition probability
-    P = exp(−(B·L/L_obj)²) of every photo at its AGL (``gsd_cm``, ``resolution_cm``,
-    ``recognition_p``)."""
-    from ..rules.uav import ground_resolution_m
-
-    n = agl.size
-    gsd = inp.pixel_um / 1000.0 * agl / inp.focal_mm
-    lr = ground_resolution_m(inp, np.maximum(agl, 1e-3)) if n else np.zeros(0)
-    obj = inp.map_object
-    with np.errstate(all="ignore"):
-        p_rec = (F.recognition_probability(obj.size_m, lr, obj.shape_coefficient)
-                 if obj is not None else np.full(n, np.nan))
-    return {"gsd_cm": gsd * 100.0, "resolution_cm": lr * 100.0,
-            "recognition_p": np.asarray(p_rec, dtype=float)}
-
-
-def _terrain_layout(layout: FlightLayout, cols: dict[str, NDArray[Any]],
-                    order: NDArray[np.int64], strips: tuple[StripTerrain, ...], mode: str
-                    ) -> FlightLayout:
+def terrain_layout(layout: FlightLayout, cols: dict[str, NDArray[Any]],
+                   order: NDArray[np.int64], strips: tuple[StripTerrain, ...], mode: str
+                   ) -> FlightLayout:
     """The layout with the terrain columns (back in its own photo order), each strip's
     altitude (constant and strip modes) and the altitude mode and frame in its notes."""
     n = order.size
@@ -670,12 +571,28 @@ def _terrain_layout(layout: FlightLayout, cols: dict[str, NDArray[Any]],
     return replace(layout, photos=photos, strips=new_strips, notes=notes)
 
 
-def _strip_rows(cols: dict[str, NDArray[Any]], g_res: NDArray[np.float64],
-                g_alt: NDArray[np.float64], limit_m: float | None
-                ) -> tuple[StripTerrain, ...]:
+def strip_rows(cols: dict[str, NDArray[Any]], g_res: NDArray[np.float64],
+               g_alt: NDArray[np.float64], limit_m: float | None
+               ) -> tuple[StripTerrain, ...]:
     """Per strip: its ground, altitudes, the height above ground from the clearance (over
     the highest ground under its path) to the checked worst (over ``g_res``), and how far
-    that exceeds the limit."""
+    that exceeds the limit.
+
+    Parameters
+    ----------
+    cols : dict of ndarray
+        The photos in strip order with ``strip``, ``photo``, ``altitude_m``,
+        ``ground_min_m`` and ``ground_max_m`` [m].
+    g_res, g_alt : ndarray
+        Every photo's ground for the limit (checked at) and for the altitude (highest under
+        its path) [m].
+    limit_m : float or None
+        The largest height above ``g_res`` any photo may have [m] (None: no limit).
+
+    Returns
+    -------
+    tuple of StripTerrain
+    """
     rows = []
     strip = cols["strip"]
     for k in np.unique(strip):
@@ -695,29 +612,7 @@ def _strip_rows(cols: dict[str, NDArray[Any]], g_res: NDArray[np.float64],
     return tuple(rows)
 
 
-def _resolution_warnings(strips: tuple[StripTerrain, ...], plan: UavPlan, mode: str,
-                         height_m: float, max_h: float | None, up: float,
-                         agl: NDArray[np.float64], cols: dict[str, NDArray[Any]]
-                         ) -> list[PlanWarning]:
-    if plan.max_height_m is None or not strips:
-        return []
-    failing = [s for s in strips if s.excess_m > 1e-6]
-    if not failing:
-        return []
-    worst = max(failing, key=lambda s: s.excess_m)
-    nums = np.array([s.number for s in failing], dtype=np.int64)
-    by = ", ".join(f"{s.number}: {s.excess_m:.0f}" for s in failing[:MAX_LISTED])
-    remedy = {"constant": "terrain_remedy.constant", "strip": "terrain_remedy.strip",
-              "follow": "terrain_remedy.follow"}[mode]
-    return [PlanWarning("terrain_resolution", Message(
-        "terrain_resolution", height=height_m, photo=worst.worst_photo, strip=worst.number,
-        agl=worst.agl_max_m, flown=worst.agl_max_m * (1 + up), limit=plan.max_height_m,
-        cid=plan.binding, excess=worst.excess_m, count=len(failing), strips=_listing(nums),
-        by=by + (" …" if len(failing) > MAX_LISTED else ""),
-        remedy=Message(remedy, max=max_h if max_h is not None else 0.0, height=height_m)))]
-
-
-def _waypoints(cols: dict[str, NDArray[Any]], mode: str) -> list[dict[str, Any]]:
+def altitude_waypoints(cols: dict[str, NDArray[Any]], mode: str) -> list[dict[str, Any]]:
     """Where the altitude steps: the first photo of every strip and of every altitude run."""
     alt = cols["altitude_m"]
     strip = cols["strip"]

@@ -25,6 +25,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from ..core.blocks import RELIEF_CLASSES, BlockHeightCheck, block_height_check
+from ..core.photoscale import height_at_photo_scale_m, scanned_ground_pixel_cm
 from ..errors import InputError
 from ..geo.layout import FlightLayout
 from ..geo.sun import (
@@ -224,7 +225,7 @@ def _gsd_checks(project: Project, film: FilmSpec | None, uav: UavSpec | None
             s = film.recommended
             pixel = s.scanner_pixel_um or s.scan_pixel_um
             mc = s.checked_photo_scale  # over relief: the frame over the lowest ground
-            ground_cm = pixel * mc / 1e4
+            ground_cm = float(scanned_ground_pixel_cm(pixel, mc))
             ok = ground_cm <= row.max_gsd_cm * (1 + 1e-9)
             out.append(GsdCompliance("film", int(mk), row.area, row.max_gsd_cm, ground_cm, ok,
                                      False, row.source))
@@ -244,7 +245,8 @@ def _flight_height_m(film: FilmSpec | None, uav: UavSpec | None) -> float | None
     if uav is not None and uav.recommended_height_m is not None:
         return float(uav.recommended_height_m)
     if film is not None and film.recommended is not None:
-        return film.recommended.photo_scale * film.job.plan.inputs.focal_mm / 1000.0
+        return float(height_at_photo_scale_m(film.recommended.photo_scale,
+                                             film.job.plan.inputs.focal_mm))
     return None
 
 

@@ -17,6 +17,11 @@ from typing import Any
 import numpy as np
 
 from ..core import flight as FL
+from ..core.photoscale import (
+    frame_side_on_ground_m,
+    height_at_photo_scale_m,
+    scanned_ground_pixel_cm,
+)
 from ..errors import InputError
 from ..geo.area import MAX_SCALE_ERROR_PCT, AreaSpec, load_area, rectangle_area
 from ..geo.layout import Area, FlightLayout
@@ -219,18 +224,19 @@ def film_layout(scenario: ScanScenario, frame_width_mm: float, frame_along_mm: f
     """
     opts = opts or LayoutOptions()
     check_options(replace(opts, bank_deg=None, max_flight_time_min=None), area, None)
-    across = frame_width_mm * scenario.photo_scale / 1000.0
-    along = frame_along_mm * scenario.photo_scale / 1000.0
+    across = float(frame_side_on_ground_m(frame_width_mm, scenario.photo_scale))
+    along = float(frame_side_on_ground_m(frame_along_mm, scenario.photo_scale))
     spacing = float(FL.line_spacing_m(across, side_overlap_pct))
     base = float(FL.photo_base_m(along, forward_overlap_pct))
     pixel = scenario.scanner_pixel_um or scenario.scan_pixel_um
-    vals = {"gsd_cm": pixel * scenario.photo_scale / 1e4,
+    vals = {"gsd_cm": float(scanned_ground_pixel_cm(pixel, scenario.photo_scale)),
             "recognition_p": (scenario.recognition_probability
                               if scenario.recognition_probability is not None else np.nan)}
     vals.update(values or {})
     return plan_lines(
         area, spacing_m=spacing, base_m=base, footprint_across_m=across,
-        footprint_along_m=along, height_m=focal_mm * scenario.photo_scale / 1000.0,
+        footprint_along_m=along,
+        height_m=float(height_at_photo_scale_m(scenario.photo_scale, focal_mm)),
         direction_deg=_direction(opts, area),
         extension_bases=opts.extension_bases, turn=_turn(replace(opts, bank_deg=None), None),
         speed_ms=None, max_flight_time_min=None, ground_m=opts.ground_m, photo_values=vals,

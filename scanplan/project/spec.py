@@ -17,6 +17,7 @@ from dataclasses import dataclass, field, replace
 from typing import Any
 
 from ..core.domains import DOMAINS, check_domain
+from ..core.photoscale import scanned_ground_pixel_m
 from ..errors import InputError
 from ..geo.area import AreaSpec
 from ..geo.layout import Area, FlightLayout
@@ -476,7 +477,8 @@ def _comparison(film: FilmSpec, uav: UavSpec) -> list[dict[str, Any]]:
 
     if s is not None:
         pixel = s.scanner_pixel_um or s.scan_pixel_um
-        row("ground_pixel", "pixel on the ground", pixel * s.photo_scale / 1e6, u.gsd_m, "m")
+        row("ground_pixel", "pixel on the ground",
+            float(scanned_ground_pixel_m(pixel, s.photo_scale)), u.gsd_m, "m")
         row("ground_resolution", "resolution on the ground (A / L)",
             s.resolution_on_ground_mm / 1000.0, u.ground_resolution_m, "m")
         obj = uav.job.plan.inputs.map_object

@@ -1,6 +1,7 @@
 """``[terrain]`` in a project: the plan checked over the ground under every photo.
 
-The project layer's bridge to :mod:`scanplan.geo.terrain`: reads the ``[terrain]`` keys,
+The project layer's bridge to the terrain (:mod:`.terraincheck`: the ground and geometry of
+:mod:`scanplan.geo.terrain` checked by :mod:`scanplan.rules.terrain`): reads the ``[terrain]`` keys,
 resolves the DEM beside the project file, and gives the UAV specification its terrain
 result — at the planned height, and, when the flat-ground recommendation fails over the
 relief, at the largest height the worst photo allows (rounded down like every
@@ -20,24 +21,20 @@ from typing import Any
 from ..errors import InputError
 from ..geo.dem_grid import DEFAULT_VOID_MARGIN_M, DEFAULT_VOID_RADIUS_M
 from ..geo.layout import FlightLayout
-from ..geo.terrain import (
-    Ground,
-    TerrainConfig,
-    TerrainResult,
-    ground_under,
-    uav_terrain,
-)
+from ..geo.terrain import Ground, TerrainConfig, TerrainResult, ground_under
 from ..geo.terrain_choice import DIRECTIONS_DEG, ModeHeights, mode_heights
-from ..geo.terrain_film import (
-    FilmTerrain,
-    film_terrain,
-    frames_over_terrain,
-    local_forward_overlap_pct,
-)
+from ..geo.terrain_film import FilmTerrain, frames_over_terrain
 from ..messages import Message
 from ..rules.results import PlanWarning, ScanPlan, ScanRules, ScanScenario
+from ..rules.terrain import (
+    film_scale_warning,
+    frame_recognition_p,
+    height_accuracy_warnings,
+    local_forward_overlap_pct,
+)
 from .api import UavJob, recommended_height_m
 from .file import KEYS, Project
+from .terraincheck import film_terrain, uav_terrain
 
 __all__ = ["TERRAIN_KEYS", "FilmOverTerrain", "archive_over_terrain", "film_over_terrain",
            "film_terrain_spec", "terrain_config", "uav_terrain_spec"]
@@ -268,28 +265,13 @@ def _height_accuracy_over_relief(job: UavJob, res: TerrainResult) -> tuple[PlanW
     exceeds V_z. The terrain check holds every photo to the flat limit, which is exact for a
     block flown at the standard overlap or more (the base of the standard pair grows with
     the height above ground); below it the one-step base is fixed in metres and the photos
-    over low ground can miss V_z (docs/uav-models.md §9)."""
-    import numpy as np
-
-    from ..rules.constraints import sigma_z_m
-
+    over low ground can miss V_z (docs/uav-models.md §9): see
+    :func:`scanplan.rules.terrain.height_accuracy_warnings`."""
     acc = job.plan.height_accuracy
     if acc.get("formula") != "normal_case":
         return ()
-    agl = np.asarray(res.layout.photos.columns.get("agl_m", ()), dtype=float)
-    agl = agl[np.isfinite(agl)]
-    if not agl.size:
-        return ()
-    inp = job.plan.inputs
-    rules = replace(job.norm_set.rules(), image_measurement_px=acc["image_measurement_px"],
-                    multi_ray=acc["multi_ray"])
-    flown = float(agl.max()) * (1.0 + inp.height_tolerance_up_pct / 100.0)
-    sz = float(sigma_z_m(inp, rules, flown))
-    if sz <= acc["height_accuracy_m"] * (1 + 1e-9):
-        return ()
-    return (PlanWarning("terrain_height_accuracy", Message(
-        "terrain_height_accuracy", sz=sz, vz=acc["height_accuracy_m"], agl=flown,
-        planned=inp.height_m, overlap=inp.forward_overlap_pct)),)
+    return height_accuracy_warnings(job.plan.inputs, job.norm_set.rules(), acc,
+                                    res.layout.photos.columns.get("agl_m", ()))
 
 
 def _missed_at_planned(checked: tuple[PlanWarning, ...], mode: str) -> Message | None:
@@ -307,7 +289,7 @@ def _missed_at_planned(checked: tuple[PlanWarning, ...], mode: str) -> Message |
 def film_terrain_spec(project: Project, cfg: TerrainConfig, layout: FlightLayout,
                       rules: ScanRules, **scenario: Any) -> FilmTerrain:
     """The local photo scale of every frame of the flight scheme (see
-    :func:`scanplan.geo.terrain_film.film_terrain`)."""
+    :func:`scanplan.project.terraincheck.film_terrain`)."""
     ground = _ground(project, cfg, layout)
     return film_terrain(layout, ground, rules, mode=cfg.altitude_mode,
                         follow_tolerance_m=cfg.follow_tolerance_m, **scenario)
@@ -376,26 +358,6 @@ def worst_frame_scenario(plan: ScanPlan, candidate: ScanScenario, ft: FilmTerrai
                         local_photo_scale=ft.mc_max)
 
 
-def frame_recognition(plan: ScanPlan, mc: Any, pixel_um: float) -> Any:
-    """Recognition probability of the map's object on every frame at its local scale,
-    P = exp(−(B·a/L)²) with a = Mc / R_eff the photo's resolution on the ground and
-    R_eff = min(R, k_R / pixel) what the scan keeps (the engine's own computation,
-    :func:`scanplan.rules.film.plan_scan`); NaN without an object."""
-    import numpy as np
-
-    from ..core import formulas as F
-
-    inp = plan.inputs
-    obj = inp.object
-    mc = np.asarray(mc, dtype=float)
-    if obj is None:
-        return np.full(mc.size, np.nan)
-    r_eff = min(inp.resolving_power_lpmm, plan.rules.pr_coefficient / (pixel_um / 1000.0))
-    return np.asarray(F.recognition_probability(
-        obj.size_m * 1000.0, F.resolution_on_ground_mm(mc, r_eff), obj.shape_coefficient),
-        dtype=float)
-
-
 def _where(ft: FilmTerrain) -> Message:
     if ft.ground_known:
         return Message("terrain_film_where.dem", frame=ft.binding_frame, strip=ft.binding_strip)
@@ -416,7 +378,7 @@ def film_over_terrain(project: Project, cfg: TerrainConfig, plan: ScanPlan,
 
     The candidates that meet every constraint on flat ground are tried from the smallest
     scale (fewest frames) up: each is laid out over the area, every frame gets its local
-    photo scale (:func:`scanplan.geo.terrain_film.film_terrain`), and the engine is run at
+    photo scale (:func:`scanplan.project.terraincheck.film_terrain`), and the engine is run at
     the largest local Mc. The first whose worst frame is ``feasible`` (the flat-ground
     choice's own test: interpretable, within the scanner and the film) is the
     specification: its scan pixel and binding constraint are those of the worst frame.
@@ -432,7 +394,7 @@ def film_over_terrain(project: Project, cfg: TerrainConfig, plan: ScanPlan,
             continue
         pixel = headline.scanner_pixel_um or headline.scan_pixel_um
         layout = frames_over_terrain(layout, ft, pixel, plan.inputs.focal_mm, cfg.altitude_mode,
-                                     frame_recognition(plan, ft.mc, pixel))
+                                     frame_recognition_p(plan.inputs, plan.rules, ft.mc, pixel))
         rej = (Message("spec.film_terrain.rejected", **_rejected_fields(rejected))
                if rejected else None)
         reason = Message("spec.film_terrain", scale=s.photo_scale, where=_where(ft),
@@ -475,15 +437,13 @@ def archive_over_terrain(project: Project, cfg: TerrainConfig, raw: Any, flat_jo
                        photo_to_map_ratio=flat.photo_to_map_ratio, local_photo_scale=ft.mc_max)
     pixel = headline.scanner_pixel_um or headline.scan_pixel_um
     layout = frames_over_terrain(layout, ft, pixel, plan.inputs.focal_mm, cfg.altitude_mode,
-                                 frame_recognition(plan, ft.mc, pixel))
+                                 frame_recognition_p(plan.inputs, plan.rules, ft.mc, pixel))
     # the terrain figures as the archive restatement gives them (P_D set aside where the
     # objects cannot be interpreted), not the raw engine's
     kept = tuple(w for w in ft.warnings if w.code != "terrain_film_scale")
-    if headline.scan_pixel_um < flat.scan_pixel_um * (1 - 1e-9):
-        kept += (PlanWarning("terrain_film_scale", Message(
-            "terrain_film_scale", lo=float(round(ft.mc_min)), hi=float(round(ft.mc_max)),
-            where=_where(ft), pixel=headline.scan_pixel_um, planned=flat.scan_pixel_um,
-            cid=headline.binding), severity="info"),)
+    note = film_scale_warning(headline.scan_pixel_um, flat.scan_pixel_um, headline.binding,
+                              ft.mc_min, ft.mc_max, _where(ft))
+    kept += (note,) if note is not None else ()
     ft = replace(ft, scan_pixel_um=headline.scan_pixel_um, binding=headline.binding,
                  scan_pixel_planned_um=flat.scan_pixel_um, binding_planned=flat.binding,
                  warnings=kept)

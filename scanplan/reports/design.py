@@ -16,6 +16,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..core import flight as FL
+from ..core.photoscale import height_at_photo_scale_m
 from ..geo.sun import zone_country
 from ..messages import Message, localize, plural, scale_text
 from ..rules.registry import CONSTRAINTS
@@ -224,8 +225,8 @@ def _film_rows(spec: Any, w: _W) -> list[tuple[str, str, str]]:
     rows.append((w.t("spec_archive_photo_scale" if f.archive else "spec_recommended_photo_scale"),
                  w.scale(rec.photo_scale), _equation(rec.binding, w)))
     if not f.archive:  # existing photos: no flight is planned, only their scan
-        rows.append((w.t("design_film_height"), w.fig(rec.photo_scale * inp.focal_mm / 1000.0,
-                                                    0), ""))
+        rows.append((w.t("design_film_height"), w.fig(float(height_at_photo_scale_m(
+            rec.photo_scale, inp.focal_mm)), 0), ""))
     px = rec.scanner_pixel_um or rec.scan_pixel_um
     rows.append((w.t("scan_pixel_um"), w.fig(px, 1), ""))
     row = _gsd_row(spec.design, "film", w)

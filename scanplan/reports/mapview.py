@@ -22,6 +22,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ..core.photoscale import height_at_photo_scale_m, photo_scale_at_height
 from ..geo.layout import FlightLayout
 from ..messages import scale_text
 from . import exports as _exports
@@ -289,7 +290,8 @@ def map_terrain(spec: Any, kind: str, layout: FlightLayout) -> MapTerrain | None
         inp = film.job.plan.inputs if film is not None else None
         span = None
         if ft is not None and inp is not None:  # a ground range: the heights it allows
-            span = (ft.mc_min * inp.focal_mm / 1000.0, ft.mc_max * inp.focal_mm / 1000.0)
+            span = (float(height_at_photo_scale_m(ft.mc_min, inp.focal_mm)),
+                    float(height_at_photo_scale_m(ft.mc_max, inp.focal_mm)))
         return MapTerrain(agl, none, none, highlight=(ft.binding_frame if ft is not None
                                                       and ft.ground_known else None),
                           highlight_key="map_legend_binding_frame",
@@ -360,8 +362,9 @@ def _draw_photos_agl(fig: Figure, ax: Any, layout: FlightLayout, mt: MapTerrain,
     cb.set_label(t("map_agl_colorbar", locale))
     cb.ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _p: number(v, 0, locale)))
     if mt.focal_mm:
-        f_m = mt.focal_mm / 1000.0
-        sec = cb.ax.secondary_yaxis("left", functions=(lambda a: a / f_m, lambda m: m * f_m))
+        f_mm = mt.focal_mm
+        sec = cb.ax.secondary_yaxis("left", functions=(
+            lambda a: photo_scale_at_height(a, f_mm), lambda m: height_at_photo_scale_m(m, f_mm)))
         sec.set_ylabel(t("map_local_scale_axis", locale))
         sec.yaxis.set_major_formatter(_scale_ticks(locale))
         sec.tick_params(labelsize=6)

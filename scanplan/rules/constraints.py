@@ -22,6 +22,7 @@ from numpy.typing import NDArray
 
 from ..core import flight as FL
 from ..core import formulas as F
+from ..core import photoscale as PS
 from ..core import stereo as S
 from ..messages import Message
 from .registry import Constraint, DigitalLimit, FilmArgs, register
@@ -199,7 +200,6 @@ def height_accuracy(inp: UavInputs, rules: ScanRules
     assert inp.relief_interval_m is not None
     k = rules.processing_loss_k
     vz = rules.height_accuracy_fraction * inp.relief_interval_m
-    pixel_m = inp.pixel_um / 1e6
     up = 1.0 + inp.height_tolerance_up_pct / 100.0
     base_mm = F.photo_base_mm(inp.sensor_height_mm, inp.forward_overlap_pct)
     forms: dict[str, dict[str, float]] = {}
@@ -214,7 +214,8 @@ def height_accuracy(inp: UavInputs, rules: ScanRules
     forms["normal_case"] = {"ground_limit_m": float(S.stereo_height_ground_limit_m(
         vz, bh, sigma, multi))}
     for v in forms.values():
-        v["max_flown_height_m"] = v["ground_limit_m"] * inp.focal_mm / 1000.0 / pixel_m
+        v["max_flown_height_m"] = float(PS.height_for_ground_pixel_m(v["ground_limit_m"],
+                                                                     inp.pixel_um, inp.focal_mm))
         v["max_planned_height_m"] = v["max_flown_height_m"] / up
     formula = rules.digital_height_formula
     heights = inp.height_m * np.array([1.0, up])
@@ -229,7 +230,7 @@ def height_accuracy(inp: UavInputs, rules: ScanRules
         "model": "idealised stereo precision (image measurement only: no ground control, "
                  "calibration or surface errors)",
         "trigger_spacing_m": (1.0 - inp.forward_overlap_pct / 100.0)
-        * inp.sensor_height_mm * inp.height_m / inp.focal_mm,
+        * float(PS.footprint_side_m(inp.sensor_height_mm, inp.height_m, inp.focal_mm)),
         "forward_overlap_at_highest_flown_height_pct": float(geo["overlap_pct"][1]),
         "stereo_base_steps": steps, "stereo_base_to_height": bh,
         "stereo_base_to_height_at_planned_height": float(geo["base_to_height"][0]),

@@ -29,6 +29,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..core import formulas as F
+from ..core import photoscale as PS
 from ..core.domains import check_domain, check_range
 from ..errors import InputError
 from ..messages import Message
@@ -401,7 +402,8 @@ def _per_scale_numbers(inp: ScanInputs, rules: ScanRules, mc: NDArray[np.float64
     mbytes = F.scanned_frame_bytes(inp.frame_width_mm, inp.frame_along_mm, volume_px,
                                    bands=inp.bands, bits_per_band=inp.bits_per_band) / 1e6
     # image resolving power after scanning: the photo's R, or what the pixel keeps
-    r_eff = np.minimum(inp.resolving_power_lpmm, rules.pr_coefficient / (volume_px / 1000.0))
+    r_eff = PS.effective_resolving_power_lpmm(inp.resolving_power_lpmm, volume_px,
+                                              rules.pr_coefficient)
     p_rec = (F.recognition_probability(obj.size_m * 1000.0,
                                        F.resolution_on_ground_mm(mc, r_eff),
                                        obj.shape_coefficient) if obj else None)

@@ -13,7 +13,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..core import mtf as M
-from ..messages import localize
+from ..messages import PlanWarning  # a record of the base layer, named here for importers
 
 __all__ = [
     "ConstraintResult",
@@ -149,24 +149,6 @@ class ConstraintResult:
     equation: str
     reason: str
     details: dict[str, Any] = field(default_factory=dict)
-
-
-@dataclass(frozen=True)
-class PlanWarning:
-    """A warning or note from the rules (``severity`` is ``"warning"`` or ``"info"``).
-
-    ``message`` is a :class:`~scanplan.messages.Message` (its English text) whose code is
-    ``code``; :meth:`text` renders it in another locale.
-    """
-
-    code: str
-    message: str
-    photo_scales: tuple[float, ...] = ()
-    severity: str = "warning"
-
-    def text(self, locale: str = "en") -> str:
-        """The message in ``locale`` (``"en"`` or ``"ru"``)."""
-        return localize(self.message, locale)
 
 
 @dataclass(frozen=True)

@@ -31,6 +31,7 @@ import numpy as np
 from ..core import flight as FL
 from ..core import formulas as F
 from ..core import mtf as M
+from ..core import photoscale as PS
 from ..core.domains import DOMAINS, check_domain
 from ..core.orientation import attitude_matrix, corner_gsd
 from ..core.shown import shown_above
@@ -200,7 +201,7 @@ def _limit_rows(inp: UavInputs, rules: ScanRules | None
             continue
         g = lim.limit_m
         if rec.compares == "GSD":
-            h_at_limit = g * inp.focal_mm / (inp.pixel_um / 1000.0)
+            h_at_limit = float(PS.height_for_ground_pixel_m(g, inp.pixel_um, inp.focal_mm))
         elif rec.compares == "L":
             h_at_limit = max_height_for_ground_resolution(inp, g)
         elif cid == "HC" and _strict_ceiling(inp):
