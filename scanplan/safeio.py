@@ -27,7 +27,7 @@ from pathlib import Path
 from typing import Any
 
 from .errors import InputError, NotFoundError, WriteError
-from .journal import JOURNAL_NAME, Entry, Journal, recover
+from .io.journal import JOURNAL_NAME, Entry, Journal, recover
 from .outpaths import folder_lock, name_max
 
 __all__ = ["csv_safe", "csv_safe_frame", "dir_lock", "file_kind", "fsync_dir", "lock_file_for",

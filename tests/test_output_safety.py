@@ -613,7 +613,7 @@ def test_a_polygon_plan_killed_at_every_step_leaves_all_old_or_all_new(work, pla
     link and unlink of the set (reports, missions, GIS files, photo table, the sweep of
     the stale missions), the folder — once the next write has recovered it — holds the old
     set or the new one, byte for byte, and nothing else."""
-    from scanplan.journal import recover
+    from scanplan.io.journal import recover
 
     _polygon_project(work, "old.toml", 25)
     _polygon_project(work, "new.toml", 60)
