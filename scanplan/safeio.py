@@ -28,7 +28,7 @@ from typing import Any
 
 from .errors import InputError, NotFoundError, WriteError
 from .io.journal import JOURNAL_NAME, Entry, Journal, recover
-from .outpaths import folder_lock, name_max
+from .io.targets import folder_lock, name_max
 
 __all__ = ["csv_safe", "csv_safe_frame", "dir_lock", "file_kind", "fsync_dir", "lock_file_for",
            "read_limited", "size_text", "write_all", "write_atomic", "write_atomic_many"]
@@ -319,7 +319,7 @@ def write_atomic_many(files: Mapping[str | os.PathLike[str], bytes], *,
     or finishes it (after), so every file is old or every file is new.
 
     The whole transaction — the check, the sweep, the writes — holds an exclusive lock on
-    the targets' folders (:func:`scanplan.outpaths.folder_lock`), so two scanplan runs
+    the targets' folders (:func:`scanplan.io.targets.folder_lock`), so two scanplan runs
     writing into one folder never interleave their files and one run's sweep never removes
     what another has just written. Under that lock, a killed run's journal is recovered
     first, then temporaries and backups of these targets that a killed run left behind

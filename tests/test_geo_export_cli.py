@@ -23,7 +23,7 @@ import scanplan.reports.excel as excel_mod
 import scanplan.reports.exports as exports_mod
 import scanplan.reports.pdf as pdf_mod
 from scanplan.cli.main import main
-from scanplan.outpaths import check_target, written_by_scanplan
+from scanplan.io.targets import check_target, written_by_scanplan
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 UAV = EXAMPLES / "uav-canon-2000.toml"

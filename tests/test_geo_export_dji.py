@@ -30,7 +30,7 @@ from pyproj import Geod
 
 from scanplan.geo.export import wpml as wpml_mod
 from scanplan.geo.export.gpkg import GPKG_LAYERS
-from scanplan.outpaths import written_by_scanplan
+from scanplan.io.targets import written_by_scanplan
 from scanplan.project.file import load_project
 from scanplan.project.spec import plan_project
 from scanplan.reports.exports import export_files, stale_exports

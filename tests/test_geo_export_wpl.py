@@ -15,7 +15,7 @@ from layouts import make_layout
 
 from scanplan.cli.main import main
 from scanplan.geo.export import MissionOptions, layout_files, render_waypoints
-from scanplan.outpaths import written_by_scanplan
+from scanplan.io.targets import written_by_scanplan
 
 mavwp = pytest.importorskip("pymavlink.mavwp")
 

@@ -20,7 +20,7 @@ PKG = Path(scanplan.__file__).parent
 LAYERS: list[tuple[str, set[str]]] = [
     ("base", {"errors", "messages", "messages_archive", "messages_terrain", "_version", "io",
               "messages_outputs", "messages_uav",
-              "outpaths", "safeio"}),
+              "safeio"}),
     ("core", {"core"}),
     ("rules", {"rules"}),
     ("norms", {"norms"}),

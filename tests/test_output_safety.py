@@ -25,7 +25,7 @@ import scanplan.reports.excel as excel_mod
 import scanplan.reports.pdf as pdf_mod
 from scanplan.cli.main import batch_stems, main
 from scanplan.errors import WriteError
-from scanplan.outpaths import folder_lock, written_by_scanplan
+from scanplan.io.targets import folder_lock, written_by_scanplan
 from scanplan.reports import write_atomic_many
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"

@@ -35,7 +35,7 @@ FORMATS = ("xlsx", "pdf", "missions", "gis")
 
 KINDS = {"xlsx": ("xlsx",), "pdf": ("pdf",), "missions": ("plan", "waypoints", "kmz"),
          "gis": ("kml", "geojson", "csv", "gpkg")}
-"""Each output → the file kinds (:data:`scanplan.outpaths.SUFFIX`) it writes."""
+"""Each output → the file kinds (:data:`scanplan.io.targets.SUFFIX`) it writes."""
 
 PDF_HELP = {
     "linux": "install Pango (Debian/Ubuntu: apt-get install libpango-1.0-0 "

@@ -98,7 +98,7 @@ def _check_target(out: Path, lang: str, force: bool) -> None:
         raise InputError("--locale", f"must be en or ru (got {lang!r})")
     if out.exists() and not force:
         raise InputError("FILE", f"{out} exists; give --force to overwrite it")
-    from ..outpaths import check_target  # links, folders, FIFOs, write-protected, long names
+    from ..io.targets import check_target  # links, folders, FIFOs, write-protected, long names
 
     check_target(os.fspath(out), "FILE", "xlsx", force=True)
 

@@ -23,7 +23,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Literal
 
 from ..geo.layout import FlightLayout
-from ..outpaths import SUFFIX, written_by_scanplan
+from ..io.targets import SUFFIX, written_by_scanplan
 from .labels import t
 
 if TYPE_CHECKING:  # the writers (pandas, shapely) are imported when files are written
@@ -32,7 +32,7 @@ if TYPE_CHECKING:  # the writers (pandas, shapely) are imported when files are w
 __all__ = ["KIND_OF_SUFFIX", "export_files", "export_notes", "spec_layouts", "stale_exports",
            "view_of"]
 
-#: File-name ending → the kind :func:`scanplan.outpaths.check_target` checks it as.
+#: File-name ending → the kind :func:`scanplan.io.targets.check_target` checks it as.
 KIND_OF_SUFFIX = {suffix: kind for kind, suffix in SUFFIX.items()}
 
 
@@ -160,7 +160,7 @@ def export_files(spec: Any, folder: str, *, prefix: str = "",
     Returns
     -------
     dict
-        Path → (kind for :func:`scanplan.outpaths.check_target`, bytes); empty for a
+        Path → (kind for :func:`scanplan.io.targets.check_target`, bytes); empty for a
         project without a georeferenced area.
     """
     locale = getattr(getattr(spec, "meta", None), "locale", "en")
