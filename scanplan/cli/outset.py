@@ -33,7 +33,7 @@ def write_set(files: Mapping[str, bytes], *, check: Callable[[], None], sweep: s
     note : str
         Added to each ``wrote`` line.
     """
-    from ..safeio import write_atomic_many
+    from ..io.files import write_atomic_many
 
     removed: list[str] = []
 

@@ -64,7 +64,7 @@ class Journal:
         self.entries = entries
 
     def _write(self, state: str) -> None:
-        from ..safeio import fsync_dir, write_all
+        from .files import fsync_dir, write_all
 
         data = json.dumps({"version": 1, "state": state,
                            "entries": [asdict(e) for e in self.entries]}).encode()
@@ -94,7 +94,7 @@ class Journal:
         """Delete the journal (the transaction is finished or undone)."""
         with contextlib.suppress(FileNotFoundError):
             os.unlink(self.path)
-        from ..safeio import fsync_dir
+        from .files import fsync_dir
 
         fsync_dir(self.path.parent)
 

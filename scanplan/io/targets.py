@@ -145,7 +145,7 @@ def check_target(path: str, field: str, kind: str, *, inputs: Iterable[str] = ()
         raise InputError(field, f"{shown} is a symbolic link (to {os.readlink(path)!r}); "
                          "scanplan replaces files, not links — name the file itself")
     if not stat.S_ISREG(st.st_mode):
-        from ..safeio import file_kind
+        from .files import file_kind
 
         raise InputError(field, f"{shown} is {file_kind(st.st_mode)}; give a file name")
     if not os.access(path, os.W_OK) or not st.st_mode & 0o222:  # root too: no write bit
@@ -171,7 +171,7 @@ def written_by_scanplan(path: str | os.PathLike[str], kind: str) -> bool:
     bool
         False for anything else, an unreadable file or one over :data:`MAX_REPORT_BYTES`.
     """
-    from ..safeio import read_limited
+    from .files import read_limited
 
     try:
         data = read_limited(path, MAX_REPORT_BYTES)

@@ -10,7 +10,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import InputError, WriteError
-from ..safeio import write_atomic
+from ..io.files import write_atomic
 from . import store as _norms
 from .cells import _FORMULA_START, _shown
 from .export import _set_rows

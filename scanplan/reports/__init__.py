@@ -19,8 +19,8 @@ import datetime as _dt
 import os
 from pathlib import Path
 
+from ..io.files import write_atomic, write_atomic_many  # the writers live below reports
 from ..project.file import ReportMeta  # project metadata; it lives with the project file
-from ..safeio import write_atomic, write_atomic_many  # the writers live below reports
 
 __all__ = ["ReportMeta", "report_datetime", "templates_dir", "write_atomic",
            "write_atomic_many"]

@@ -37,7 +37,7 @@ def summary_csv(frame: Any) -> bytes:
     measured columns rounded as the specification prints them (:data:`DIGITS`); a text
     cell a spreadsheet would run as a formula (a project named ``=cmd|…``) starts with
     ``'`` (:func:`scanplan.safeio.csv_safe`)."""
-    from ..safeio import csv_safe_frame
+    from ..io.files import csv_safe_frame
 
     return (csv_safe_frame(_rounded(frame)).to_csv(index=False, lineterminator="\n")
             .encode("utf-8-sig"))

@@ -415,7 +415,7 @@ def render_csv(layout: FlightLayout) -> bytes:
             frame[c] = frame[c].astype(np.int64)
         else:
             frame[c] = frame[c].astype(float).round(CSV_DECIMALS.get(c, 3))
-    from ...safeio import csv_safe_frame  # text cells never start a formula
+    from ...io.files import csv_safe_frame  # text cells never start a formula
 
     buf = io.StringIO()
     csv_safe_frame(frame).to_csv(buf, index=False, lineterminator="\n", na_rep="")

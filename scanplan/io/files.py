@@ -26,9 +26,9 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from .errors import InputError, NotFoundError, WriteError
-from .io.journal import JOURNAL_NAME, Entry, Journal, recover
-from .io.targets import folder_lock, name_max
+from ..errors import InputError, NotFoundError, WriteError
+from .journal import JOURNAL_NAME, Entry, Journal, recover
+from .targets import folder_lock, name_max
 
 __all__ = ["csv_safe", "csv_safe_frame", "dir_lock", "file_kind", "fsync_dir", "lock_file_for",
            "read_limited", "size_text", "write_all", "write_atomic", "write_atomic_many"]
