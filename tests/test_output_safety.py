@@ -399,7 +399,7 @@ def test_killed_write_leftovers_are_cleaned_end_to_end(tmp_path):
     ctx = mp.get_context("fork")
 
     def child() -> None:
-        import scanplan.io.files as rep  # the atomic writers live in io.files
+        import scanplan.io.atomic as rep  # the atomic writers live in io.atomic
 
         real = rep._write_temp
 

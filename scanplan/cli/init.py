@@ -322,7 +322,7 @@ def write_new(path: str, data: bytes, *, force: bool) -> None:
     if not force and os.path.lexists(path):
         raise InputError("PROJECT", f"{path!r} exists; give --force to replace it")
     if force:
-        from ..io.files import write_atomic
+        from ..io.atomic import write_atomic
 
         _check_replaceable(path)
         write_atomic(path, data)

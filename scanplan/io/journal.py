@@ -1,6 +1,6 @@
 """The journal of an output transaction: what a killed writer is undone (or finished) from.
 
-:func:`scanplan.safeio.write_atomic_many` writes a set of files (the reports, the missions,
+:func:`scanplan.io.atomic.write_atomic_many` writes a set of files (the reports, the missions,
 the GIS files, the photo table) and removes the stale files of an earlier run as one
 transaction. Before it changes anything a user can see, it writes a journal
 (``.scanplan-journal.json``, in the first folder of the set, fsynced): for every target,
@@ -150,7 +150,7 @@ def _remove_partial(folder: str | os.PathLike[str]) -> None:
 def recover(folders: Iterable[str | os.PathLike[str]]) -> list[str]:
     """Roll back or finish the transactions a killed writer left in ``folders``.
 
-    Call it holding the folders' lock (:func:`scanplan.outpaths.folder_lock`), before
+    Call it holding the folders' lock (:func:`scanplan.io.targets.folder_lock`), before
     anything else is written there.
 
     Parameters

@@ -2,7 +2,7 @@
 
 :func:`layout_files` renders every file of one flight layout to memory (name → bytes);
 the caller writes them in the same all-or-nothing transaction as the reports
-(:func:`scanplan.safeio.write_atomic_many`). An abstract ``width × length`` block (not
+(:func:`scanplan.io.atomic.write_atomic_many`). An abstract ``width × length`` block (not
 georeferenced) gets none of them; a plan that is not feasible gets no mission.
 
 | file | content | module |
