@@ -24,20 +24,20 @@ def compare():
         sys.path.remove(str(TOOLS))
 
 
-def _run(folder: Path, projects: str, waypoints: str, csv_row: str) -> Path:
+def _run(folder: Path, work: str, waypoints: str, csv_row: str) -> Path:
     files = folder / "en" / "demo" / "files"
     files.mkdir(parents=True)
-    (folder / "manifest.json").write_text(json.dumps({"projects": projects}))
+    (folder / "manifest.json").write_text(json.dumps({"work": work}))
     (files / "mission.waypoints").write_text(f"QGC WPL 110\n{waypoints}\n")
-    (files / "photos.csv").write_text(f"id,file\n{csv_row.format(projects=projects)}\n")
+    (files / "photos.csv").write_text(f"id,file\n{csv_row.format(work=work)}\n")
     with zipfile.ZipFile(files / "route.kmz", "w") as z:
         z.writestr("wpmz/template.kml", "<kml/>")
     return folder
 
 
 def test_one_difference_is_found_and_the_run_folder_is_not_one(compare, tmp_path):
-    a = _run(tmp_path / "a", "/tmp/scanplan-compare-aaaa", "0\t1\t0\t16", "1,{projects}/x.kml")
-    b = _run(tmp_path / "b", "/tmp/scanplan-compare-bbbb", "0\t1\t0\t22", "1,{projects}/x.kml")
+    a = _run(tmp_path / "a", "/tmp/scanplan-compare-aaaa", "0\t1\t0\t16", "1,{work}/x.kml")
+    b = _run(tmp_path / "b", "/tmp/scanplan-compare-bbbb", "0\t1\t0\t22", "1,{work}/x.kml")
     problems = compare.compare_folders(a, b)
     assert len(problems) == 1, problems
     assert problems[0].startswith("differs: en/demo/files/mission.waypoints")
@@ -46,8 +46,8 @@ def test_one_difference_is_found_and_the_run_folder_is_not_one(compare, tmp_path
 
 
 def test_the_same_runs_match_and_a_missing_file_is_reported(compare, tmp_path, capsys):
-    a = _run(tmp_path / "a", "/tmp/p1", "0\t1", "1,{projects}/x.kml")
-    b = _run(tmp_path / "b", "/tmp/p2", "0\t1", "1,{projects}/x.kml")
+    a = _run(tmp_path / "a", "/tmp/p1", "0\t1", "1,{work}/x.kml")
+    b = _run(tmp_path / "b", "/tmp/p2", "0\t1", "1,{work}/x.kml")
     assert compare.compare_folders(a, b) == []
     assert compare.main(["compare", str(a), str(b)]) == 0
     assert "all 3 files match" in capsys.readouterr().out

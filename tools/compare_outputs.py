@@ -8,16 +8,17 @@ compare them::
     python tools/compare_outputs.py make after/
     python tools/compare_outputs.py compare before/ after/
 
-``make`` copies ``examples/`` into a temporary folder once per language (the
-``[project] locale`` line set to ``en`` or ``ru``) and runs ``scanplan plan PROJECT
---out DIR`` (the files and the terminal summary) and ``scanplan plan PROJECT --json``
-for each project with the code of ``--source``, ``SOURCE_DATE_EPOCH`` set and no user
-configuration or norm sets.
+``make`` copies the source tree of ``--source`` into a temporary folder, and
+``examples/`` beside it once per language (the ``[project] locale`` line set to ``en`` or
+``ru``), and runs ``scanplan plan PROJECT --out DIR`` (the files and the terminal
+summary) and ``scanplan plan PROJECT --json`` for each project with that copy of the
+code, ``SOURCE_DATE_EPOCH`` set and no user configuration or norm sets. (Both runs' paths
+— the bundled norm sets', the projects' — then differ only in the temporary folder.)
 
 ``compare`` reads files that are not byte-identical as what a reader sees: a PDF's text
 (``pdftotext -layout``), a workbook's cell values (openpyxl), a GeoPackage's rows
-(sqlite3), a zip's members, anything else as text, with each run's temporary project
-folder replaced by ``<projects>``. It prints each difference and exits 1 on any.
+(sqlite3), a zip's members, anything else as text, with each run's temporary folder
+replaced by ``<work>``. It prints each difference and exits 1 on any.
 """
 
 from __future__ import annotations
@@ -39,9 +40,10 @@ from pathlib import Path
 REPO = Path(__file__).resolve().parents[1]
 LOCALES = ("en", "ru")
 MANIFEST = "manifest.json"
-PROJECTS_MARK = "<projects>"
+WORK_MARK = "<work>"
 EPOCH = "1700000000"
 MAX_DIFF_LINES = 40
+NOT_CODE = (".git", "tests", "benchmarks", "docs", "examples", "tools", "__pycache__", "*.pyc")
 
 
 # -- make -------------------------------------------------------------------------------
@@ -120,7 +122,7 @@ def make(out: Path, source: Path, examples: Path, jobs: int = 2,
     out : Path
         A new folder: ``LOCALE/PROJECT/`` per run and a manifest.
     source : Path
-        The source tree whose ``scanplan`` plans (put first on ``PYTHONPATH``).
+        The source tree whose ``scanplan`` plans (copied, then put first on ``PYTHONPATH``).
     examples : Path
         The folder of example projects (copied, never written).
     jobs : int
@@ -131,6 +133,8 @@ def make(out: Path, source: Path, examples: Path, jobs: int = 2,
     out.mkdir(parents=True, exist_ok=False)
     work = Path(tempfile.mkdtemp(prefix="scanplan-compare-"))
     try:
+        shutil.copytree(source, work / "source", ignore=shutil.ignore_patterns(*NOT_CODE))
+        source = work / "source"
         (work / "home" / "norms").mkdir(parents=True)
         runs = []
         for locale in LOCALES:
@@ -140,7 +144,7 @@ def make(out: Path, source: Path, examples: Path, jobs: int = 2,
         with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
             done = pool.map(lambda r: run_project(r[0], r[1], source, work / "home"), runs)
             list(done)
-        manifest = {"projects": str(work), "source": str(source), "runs": len(runs)}
+        manifest = {"work": str(work), "runs": len(runs)}
         (out / MANIFEST).write_text(json.dumps(manifest, indent=1), encoding="utf-8")
     finally:
         shutil.rmtree(work, ignore_errors=True)
@@ -186,15 +190,15 @@ def _zip_members(path: Path) -> list[str]:
         return lines
 
 
-def readable(path: Path, projects: str) -> list[str]:
+def readable(path: Path, work: str) -> list[str]:
     """What a reader sees in the output file ``path``, as lines.
 
     Parameters
     ----------
     path : Path
         An output file.
-    projects : str
-        The temporary project folder of its run, replaced by ``<projects>``.
+    work : str
+        The temporary folder of its run, replaced by ``<work>``.
 
     Returns
     -------
@@ -212,14 +216,14 @@ def readable(path: Path, projects: str) -> list[str]:
         lines = _zip_members(path)
     else:
         lines = path.read_bytes().decode("utf-8", errors="replace").splitlines()
-    return [line.replace(projects, PROJECTS_MARK) for line in lines] if projects else lines
+    return [line.replace(work, WORK_MARK) for line in lines] if work else lines
 
 
-def _projects_of(folder: Path) -> str:
+def _work_of(folder: Path) -> str:
     manifest = folder / MANIFEST
     if not manifest.is_file():
         return ""
-    return json.loads(manifest.read_text(encoding="utf-8")).get("projects", "")
+    return json.loads(manifest.read_text(encoding="utf-8")).get("work", "")
 
 
 def _files(folder: Path) -> set[str]:
@@ -227,15 +231,15 @@ def _files(folder: Path) -> set[str]:
             if p.is_file() and p.name != MANIFEST}
 
 
-def compare_file(a: Path, b: Path, projects_a: str = "", projects_b: str = "") -> list[str]:
+def compare_file(a: Path, b: Path, work_a: str = "", work_b: str = "") -> list[str]:
     """The differences between two output files, as readable lines (empty: the same).
 
     Parameters
     ----------
     a, b : Path
         The file of the first and of the second run.
-    projects_a, projects_b : str
-        Each run's temporary project folder (replaced by ``<projects>``).
+    work_a, work_b : str
+        Each run's temporary folder (replaced by ``<work>``).
 
     Returns
     -------
@@ -244,7 +248,7 @@ def compare_file(a: Path, b: Path, projects_a: str = "", projects_b: str = "") -
     """
     if a.read_bytes() == b.read_bytes():
         return []
-    lines_a, lines_b = readable(a, projects_a), readable(b, projects_b)
+    lines_a, lines_b = readable(a, work_a), readable(b, work_b)
     if lines_a == lines_b:
         return []
     diff = list(difflib.unified_diff(lines_a, lines_b, str(a), str(b), n=1, lineterm=""))
@@ -269,9 +273,9 @@ def compare_folders(a: Path, b: Path) -> list[str]:
     files_a, files_b = _files(a), _files(b)
     problems = [f"only in {a}: {name}" for name in sorted(files_a - files_b)]
     problems += [f"only in {b}: {name}" for name in sorted(files_b - files_a)]
-    projects_a, projects_b = _projects_of(a), _projects_of(b)
+    work_a, work_b = _work_of(a), _work_of(b)
     for name in sorted(files_a & files_b):
-        diff = compare_file(a / name, b / name, projects_a, projects_b)
+        diff = compare_file(a / name, b / name, work_a, work_b)
         if diff:
             problems.append(f"differs: {name}\n" + "\n".join(diff))
     return problems
