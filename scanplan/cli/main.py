@@ -207,7 +207,7 @@ def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
     bytes): missions, KML, GeoJSON, GeoPackage, CSV) join the same transaction.
     """
     xlsx, pdf = opts.pop("xlsx_path"), opts.pop("pdf_path")
-    exports: dict[str, tuple[str, bytes]] = opts.pop("exports", None) or {}
+    exports: dict[str, tuple[Any, bytes]] = opts.pop("exports", None) or {}
     force, inputs = opts.pop("force", False), opts.pop("inputs", ())
     fields = opts.pop("fields", {"xlsx": "--xlsx", "pdf": "--pdf"})
     note = opts.pop("note", "")
