@@ -176,13 +176,30 @@ def render_kml(layout: FlightLayout, names: ExportNames | None = None) -> bytes:
     _sub(doc, "description",
          f"{layout.area.source}; {layout.area.plan_crs}; {names.strips}: "
          f"{len(layout.strips)}; {names.photos}: {len(layout.photos)}")
+    _kml_styles(doc, len(layout.photos))
+    _kml_area(doc, layout, geo, names)
+    _kml_strips(doc, layout, geo, names)
+    _kml_sorties(doc, layout, geo, names)
+    folder = _sub(doc, "Folder")
+    _sub(folder, "name", names.photos)
+    _sub(folder, "Placemark").text = _PHOTOS_MARK  # the photo placemarks go here
+    body = ET.tostring(root, encoding="unicode", short_empty_elements=True)
+    head = ('<?xml version="1.0" encoding="UTF-8"?>\n'
+            f"<!-- {GENERATOR}: flight plan (area, strips, photo centres) -->\n")
+    body = body.replace(f"<Placemark>{_PHOTOS_MARK}</Placemark>",
+                        _kml_photos(layout.photos, "altitude_mode" in layout.notes))
+    return (head + body + "\n").encode("utf-8")
+
+
+def _kml_styles(doc: ET.Element, n_photos: int) -> None:
+    """The styles of the area, strips, sorties, take-off and photo centres."""
     _style(doc, "area", line="ff0000ff", width=2.5, fill="330000ff")
     _style(doc, "strip", line="ffff7f00", width=2.0)
     _style(doc, "sortie", line="ff9a1b6a", width=1.2)
     _style(doc, "takeoff", line="ff000000", icon_scale=1.1, label_scale=0.9)
     # photo numbers: shown for a small block; for a large one on pointing (a StyleMap), as
     # thousands of labels would hide the map
-    few = len(layout.photos) <= _LABELLED_PHOTOS
+    few = n_photos <= _LABELLED_PHOTOS
     _style(doc, "photo-normal", line="ff00ffff", icon_scale=0.45,
            label_scale=0.6 if few else 0.0)
     _style(doc, "photo-highlight", line="ff00ffff", icon_scale=0.7, label_scale=0.9)
@@ -193,6 +210,9 @@ def render_kml(layout: FlightLayout, names: ExportNames | None = None) -> bytes:
         _sub(pair, "key", key)
         _sub(pair, "styleUrl", f"#photo-{key}")
 
+
+def _kml_area(doc: ET.Element, layout: FlightLayout, geo: LonLat, names: ExportNames) -> None:
+    """The area's folder: its polygon (or polygons) with its figures."""
     folder = _sub(doc, "Folder")
     _sub(folder, "name", names.area)
     pm = _sub(folder, "Placemark")
@@ -209,6 +229,9 @@ def render_kml(layout: FlightLayout, names: ExportNames | None = None) -> bytes:
         for poly in polys:
             _kml_polygon(mg, poly)
 
+
+def _kml_strips(doc: ET.Element, layout: FlightLayout, geo: LonLat, names: ExportNames) -> None:
+    """The strips' folder: one placemark per strip, its parts where the area is cut."""
     folder = _sub(doc, "Folder")
     _sub(folder, "name", names.strips)
     for (number, line, segments), strip in zip(_strip_lines(layout, geo), layout.strips,
@@ -224,17 +247,6 @@ def render_kml(layout: FlightLayout, names: ExportNames | None = None) -> bytes:
             ls = _sub(parent, "LineString")
             _sub(ls, "tessellate", "1")
             _sub(ls, "coordinates", _coords(seg))
-
-    _kml_sorties(doc, layout, geo, names)
-    folder = _sub(doc, "Folder")
-    _sub(folder, "name", names.photos)
-    _sub(folder, "Placemark").text = _PHOTOS_MARK  # the photo placemarks go here
-    body = ET.tostring(root, encoding="unicode", short_empty_elements=True)
-    head = ('<?xml version="1.0" encoding="UTF-8"?>\n'
-            f"<!-- {GENERATOR}: flight plan (area, strips, photo centres) -->\n")
-    body = body.replace(f"<Placemark>{_PHOTOS_MARK}</Placemark>",
-                        _kml_photos(layout.photos, "altitude_mode" in layout.notes))
-    return (head + body + "\n").encode("utf-8")
 
 
 _PHOTOS_MARK = "@@scanplan-photo-centres@@"
