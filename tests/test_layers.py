@@ -107,9 +107,15 @@ def test_the_guard_fails_on_an_upward_import(line):
 #: Packages kept free of import circles (lazy imports counted): a circle makes the import
 #: order matter and hides which module is below which.
 CIRCLE_FREE = ("scanplan.io", "scanplan.core", "scanplan.geo.export")
-#: Packages whose private names (``_name``) no module outside them imports: what another
-#: package needs is a public name (``core/checks.py`` holds the core's input checks).
-SEALED = ("scanplan.core", "scanplan.io", "scanplan.geo.export")
+#: Packages whose private names (``_name``) a module outside them never uses: what another
+#: package needs is a public name (``core/checks.py`` holds the core's input checks). Every
+#: top-level package and module of scanplan, and these sub-packages:
+SEALED_SUBPACKAGES = ("scanplan.core.mtf", "scanplan.geo.export")
+#: … except these, each with the reason it is not sealed yet.
+NOT_YET_SEALED = {
+    "scanplan.norms": "project/cameras.py reads the norm loaders' private helpers "
+                      "(norms.cells._fail, norms.store._load_cameras …)",
+}
 
 
 def _inside(module: str, package: str) -> bool:
@@ -188,21 +194,38 @@ def circles(graph: dict[str, set[str]]) -> list[list[str]]:
     return found
 
 
+def _private(name: str) -> bool:
+    return name.startswith("_") and not name.startswith("__")
+
+
 def private_imports(sources: dict[str, tuple[str, bool]], package: str) -> list[str]:
-    """Where a module outside ``package`` imports a private name (``_x``) of a module in
-    it: ``"scanplan.reports.x:12 imports scanplan.core.flight._positive"``."""
+    """Where a module outside ``package`` uses a private name (``_x``) of a module in it:
+    imports it (``from scanplan.core.flight import _positive``) or reads it from the module
+    (``from scanplan.norms import cells; cells._fail``) —
+    ``"scanplan.reports.x:12 imports scanplan.core.flight._positive"``."""
     out = []
     for name, (text, is_package) in sources.items():
         if _inside(name, package):
             continue
-        for node in ast.walk(ast.parse(text)):
-            if not isinstance(node, ast.ImportFrom):
-                continue
-            target = _from_target(node, name, is_package)
-            if not _inside(target, package):
-                continue
-            out += [f"{name}:{node.lineno} imports {target}.{alias.name}" for alias in node.names
-                    if alias.name.startswith("_") and not alias.name.startswith("__")]
+        tree = ast.parse(text)
+        modules: dict[str, str] = {}  # a local name bound to a module of the package
+        for node in ast.walk(tree):
+            if isinstance(node, ast.ImportFrom):
+                target = _from_target(node, name, is_package)
+                for alias in node.names:
+                    if _inside(f"{target}.{alias.name}", package) \
+                            and f"{target}.{alias.name}" in sources:
+                        modules[alias.asname or alias.name] = f"{target}.{alias.name}"
+                if _inside(target, package):
+                    out += [f"{name}:{node.lineno} imports {target}.{alias.name}"
+                            for alias in node.names if _private(alias.name)]
+            elif isinstance(node, ast.Import):
+                modules.update({alias.asname: alias.name for alias in node.names
+                                if alias.asname and _inside(alias.name, package)})
+        out += [f"{name}:{node.lineno} reads {modules[node.value.id]}.{node.attr}"
+                for node in ast.walk(tree)
+                if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name)
+                and node.value.id in modules and _private(node.attr)]
     return out
 
 
@@ -216,8 +239,12 @@ def test_no_import_circle_inside_the_package(package):
     assert circles(import_graph(inside)) == []
 
 
+SEALED = sorted({".".join(name.split(".")[:2]) for name in SOURCES} - set(NOT_YET_SEALED)
+                - {"scanplan"}) + list(SEALED_SUBPACKAGES)
+
+
 @pytest.mark.parametrize("package", SEALED)
-def test_no_private_name_is_imported_from_outside_the_package(package):
+def test_no_private_name_is_used_from_outside_the_package(package):
     problems = private_imports(SOURCES, package)
     assert not problems, "\n".join(problems)
 
@@ -235,8 +262,13 @@ def test_the_guards_see_a_lazy_circle_and_a_private_import():
                                                "scanplan.io.c"]]
     sources["scanplan.io.c"] = ("def y():\n    pass\n", False)
     assert circles(import_graph(sources)) == []
-    report = {"scanplan.reports.x": ("from ..core.flight import _first_bad, MAX_BLUR_PX\n",
+    report = {"scanplan.reports.x": ("from ..core.flight import _first_bad, MAX_BLUR_PX\n"
+                                     "from ..core import checks as c\n"
+                                     "def f():\n    return c._first_bad, c.finite\n",
                                      False),
-              "scanplan.core.mtf.y": ("from ..flight import _first_bad\n", False)}
+              "scanplan.core.checks": ("def _first_bad(): pass\n", False),
+              "scanplan.core.flight": ("from .checks import _first_bad\n", False)}
     assert private_imports(report, "scanplan.core") == [
-        "scanplan.reports.x:1 imports scanplan.core.flight._first_bad"]
+        "scanplan.reports.x:1 imports scanplan.core.flight._first_bad",
+        "scanplan.reports.x:4 reads scanplan.core.checks._first_bad"]
+    assert private_imports(report, "scanplan.reports") == []
