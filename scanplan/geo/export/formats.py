@@ -157,34 +157,47 @@ def _one_file(render: Callable[[ExportJob], bytes]
     return lambda job, fmt: {f"{fmt.stems[0]}{fmt.suffix}": render(job)}
 
 
-# Plan files' groundStation, the KML's opening comment, the GeoJSON's "generator" member,
-# the photo table's header (a CSV has no place for a comment), the waypoint file's comment
-# line after its header (Mission Planner skips it)
 FORMATS: list[ExportFormat] = [
-    ExportFormat("plan", ".plan", "mission", _text_mark(rb'"groundStation"\s*:\s*"scanplan[ "]'),
-                 ("mission",), "missions", True, _plans),
-    ExportFormat("waypoints", ".waypoints", "waypoint file",
-                 _text_mark(rb"\AQGC WPL 110\r?\n# scanplan "),
-                 ("mission",), "missions", True, _waypoints),
-    ExportFormat("kml", ".kml", "KML file", _text_mark(rb"\A<\?xml[^>]*\?>\s*<!-- scanplan "),
-                 ("flight",), "gis", False,
-                 _one_file(lambda job: render_kml(job.layout, job.names))),
-    ExportFormat("geojson", ".geojson", "GeoJSON file",
-                 _text_mark(rb'"generator"\s*:\s*"scanplan[ "]'), ("flight",), "gis", False,
-                 _one_file(lambda job: render_geojson(job.layout, job.names))),
-    ExportFormat("gpkg", ".gpkg", "GeoPackage", _gpkg_is_ours, ("flight",), "gis", False,
-                 _one_file(lambda job: render_gpkg(job.layout))),
-    ExportFormat("csv", ".csv", "table",
-                 _text_mark(rb"\Aphoto,strip,index,sortie,x_m,y_m,lon_deg,lat_deg,"),
-                 ("photos", "frames"), "gis", False, _photos),
-    ExportFormat("kmz", ".kmz", "DJI route file", _zip_comment_is_ours, ("mission-dji",),
-                 "missions", True, _dji),
+    ExportFormat(name="plan", suffix=".plan", what="mission",
+                 is_ours=_text_mark(rb'"groundStation"\s*:\s*"scanplan[ "]'),
+                 stems=("mission",), output="missions", per_sortie=True, write=_plans),
+    # the comment line after the header (Mission Planner skips it)
+    ExportFormat(name="waypoints", suffix=".waypoints", what="waypoint file",
+                 is_ours=_text_mark(rb"\AQGC WPL 110\r?\n# scanplan "),
+                 stems=("mission",), output="missions", per_sortie=True, write=_waypoints),
+    ExportFormat(name="kml", suffix=".kml", what="KML file",
+                 is_ours=_text_mark(rb"\A<\?xml[^>]*\?>\s*<!-- scanplan "),
+                 stems=("flight",), output="gis", per_sortie=False,
+                 write=_one_file(lambda job: render_kml(job.layout, job.names))),
+    ExportFormat(name="geojson", suffix=".geojson", what="GeoJSON file",
+                 is_ours=_text_mark(rb'"generator"\s*:\s*"scanplan[ "]'),
+                 stems=("flight",), output="gis", per_sortie=False,
+                 write=_one_file(lambda job: render_geojson(job.layout, job.names))),
+    ExportFormat(name="gpkg", suffix=".gpkg", what="GeoPackage", is_ours=_gpkg_is_ours,
+                 stems=("flight",), output="gis", per_sortie=False,
+                 write=_one_file(lambda job: render_gpkg(job.layout))),
+    # the photo table's header: a CSV has no place for a comment
+    ExportFormat(name="csv", suffix=".csv", what="table",
+                 is_ours=_text_mark(rb"\Aphoto,strip,index,sortie,x_m,y_m,lon_deg,lat_deg,"),
+                 stems=("photos", "frames"), output="gis", per_sortie=False, write=_photos),
+    ExportFormat(name="kmz", suffix=".kmz", what="DJI route file", is_ours=_zip_comment_is_ours,
+                 stems=("mission-dji",), output="missions", per_sortie=True, write=_dji),
 ]
 """Every exported format, in the order its files are written."""
 
 
 def format_named(name: str) -> ExportFormat:
-    """The record of :data:`FORMATS` named ``name`` (``"plan"``, ``"kml"`` …).
+    """The record of :data:`FORMATS` named ``name``.
+
+    Parameters
+    ----------
+    name : str
+        A format's name (``"plan"``, ``"kml"`` …).
+
+    Returns
+    -------
+    ExportFormat
+        Its record.
 
     Raises
     ------
