@@ -70,7 +70,7 @@ def _write(out_dir: str | os.PathLike[str], stem: str, formats: Iterable[str], *
     """Render the reports to memory, then write them as one transaction (all or none);
     the targets are checked as the command line's (never an input file, never a file
     scanplan did not write unless ``force``)."""
-    from .outpaths import check_target
+    from .io.targets import check_target
     from .reports import ReportMeta, write_atomic_many
 
     kinds = list(dict.fromkeys(formats))
@@ -465,7 +465,7 @@ class BatchResult:
               force: bool = False) -> list[Path]:
         """Each project's reports as ``STEM.xlsx`` / ``STEM.pdf`` (as ``scanplan plan DIR
         --out``), each project all or nothing."""
-        from .outpaths import batch_stems
+        from .io.targets import batch_stems
 
         paths = [str(r.spec.project.path) for r in self.results]
         written: list[Path] = []

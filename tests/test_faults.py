@@ -531,7 +531,7 @@ def test_rollback_that_fails_too_says_where_the_old_file_is(work, fixed_renders,
     # the journal stays: the next write into the folder puts spec.xlsx back first
     assert [p for p in leftovers(work) if not p.endswith(".old")] == [
         "out/.scanplan-journal.json"]
-    from scanplan.journal import recover
+    from scanplan.io.journal import recover
 
     assert recover([work / "out"]) == ["rolled back"]
     assert snapshot(work) == old and leftovers(work) == []

@@ -23,7 +23,8 @@ import scanplan.reports.excel as excel_mod
 import scanplan.reports.exports as exports_mod
 import scanplan.reports.pdf as pdf_mod
 from scanplan.cli.main import main
-from scanplan.outpaths import check_target, written_by_scanplan
+from scanplan.geo.export import format_named
+from scanplan.io.targets import check_target, written_by_scanplan
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 UAV = EXAMPLES / "uav-canon-2000.toml"
@@ -66,7 +67,8 @@ def test_plan_out_writes_the_mission_and_gis_files(work, layout):
     assert sorted(os.listdir(work / "out")) == UAV_FILES
     for name in UAV_FILES:
         assert f"wrote {os.path.join('out', name)}" in r.stderr
-        kind = name.rsplit(".", 1)[1]
+        kind = name.rsplit(".", 1)[1]  # a report's kind by name, an export's format record
+        kind = kind if kind in ("xlsx", "pdf") else format_named(kind)
         assert written_by_scanplan(work / "out" / name, kind)  # replaced on the next run
     doc = json.loads((work / "out/mission.plan").read_text())
     assert doc["fileType"] == "Plan"
@@ -140,11 +142,12 @@ def test_an_abstract_block_writes_only_the_reports(work):
 def test_exported_kinds_recognise_only_scanplans_files(tmp_path, kind, text):
     path = tmp_path / f"f.{kind}"
     path.write_text(text)
-    assert not written_by_scanplan(path, kind)
+    fmt = format_named(kind)
+    assert not written_by_scanplan(path, fmt)
     with pytest.raises(Exception, match="was not written by scanplan"):
-        check_target(str(path), "--out", kind)
+        check_target(str(path), "--out", fmt)
     with pytest.raises(Exception, match=rf"does not end in \.{kind}"):
-        check_target(str(tmp_path / "f.txt"), "--out", kind)
+        check_target(str(tmp_path / "f.txt"), "--out", fmt)
 
 
 def test_town_examples_export_a_mission_that_fires_every_photo(tmp_path):
@@ -169,7 +172,7 @@ def test_town_examples_export_a_mission_that_fires_every_photo(tmp_path):
     geod, fired, runs = Geod(ellps="WGS84"), 0, 0
     for path, (kind, data) in files.items():
         Path(path).write_bytes(data)
-        if kind == "plan":
+        if kind.name == "plan":
             for first, last, dist in _trigger_runs(check_qgc_plan(json.loads(data))):
                 _, _, d = geod.inv(first["params"][5], first["params"][4],
                                    last["params"][5], last["params"][4])
@@ -203,7 +206,7 @@ def test_the_turn_keys_say_which_aircraft_flies_the_mission(tmp_path):
         path = tmp_path / "p.toml"
         path.write_text(text.replace("turnaround_m = 20", turn), encoding="utf-8")
         files = export_files(plan_project(load_project(path)), str(tmp_path))
-        plan = json.loads(next(d for k, d in files.values() if k == "plan"))
+        plan = json.loads(next(d for k, d in files.values() if k.name == "plan"))
         assert plan["mission"]["vehicleType"] == vehicle
         assert plan["mission"]["items"][0]["params"][0] == pitch
 

@@ -28,9 +28,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from pyproj import Geod
 
+from scanplan.geo.export import format_named
 from scanplan.geo.export import wpml as wpml_mod
 from scanplan.geo.export.gpkg import GPKG_LAYERS
-from scanplan.outpaths import written_by_scanplan
+from scanplan.io.targets import written_by_scanplan
 from scanplan.project.file import load_project
 from scanplan.project.spec import plan_project
 from scanplan.reports.exports import export_files, stale_exports
@@ -354,9 +355,12 @@ def test_no_geoid_no_dji_file(monkeypatch):
 
     spec = plan_project(load_project(str(EXAMPLES / "uav-town-valley-2000.toml")))
     monkeypatch.setattr(wpml_mod, "egm96_separation_m", lambda lon, lat: None)
-    layout = spec.uav.layout
-    files, reason = exports.dji_files(spec, layout, exports.mission_options(spec, layout))
-    assert files == {} and "EGM96" in reason and "proj-data" in reason
+    notes: list[str] = []
+    files = exports.export_files(spec, "", note=notes.append)
+    assert not any(name.endswith(".kmz") for name in files)
+    assert any(name.endswith(".plan") for name in files)  # the other missions are written
+    assert len(notes) == 1 and notes[0].startswith("no mission-dji.kmz: ")
+    assert "EGM96" in notes[0] and "proj-data" in notes[0]
 
 
 def test_flight_gpkg_reads_back(example):
@@ -388,7 +392,7 @@ def test_flight_gpkg_reads_back(example):
     sorties = pyogrio.read_info(path, layer="sorties")["features"]
     assert sorties == photos.sortie.nunique()
     assert pyogrio.read_info(path, layer="area")["features"] == 1
-    assert written_by_scanplan(path, "gpkg")
+    assert written_by_scanplan(path, format_named("gpkg"))
     if shutil.which("ogrinfo"):  # GDAL's own command, as QGIS users run it
         out = subprocess.run(["ogrinfo", "-ro", "-so", "-al", str(path)], capture_output=True,
                              text=True, check=True).stdout
@@ -408,8 +412,8 @@ def test_own_files_are_recognised_and_stale_ones_removed(tmp_path, example):
     with zipfile.ZipFile(buf, "w") as zf:
         zf.writestr("wpmz/template.kml", "<kml/>")
     (tmp_path / "mission-dji-08.kmz").write_bytes(buf.getvalue())  # not ours: kept
-    assert written_by_scanplan(tmp_path / "mission-dji-09.kmz", "kmz")
-    assert not written_by_scanplan(tmp_path / "mission-dji-08.kmz", "kmz")
+    assert written_by_scanplan(tmp_path / "mission-dji-09.kmz", format_named("kmz"))
+    assert not written_by_scanplan(tmp_path / "mission-dji-08.kmz", format_named("kmz"))
     assert stale_exports(str(tmp_path), set()) == [str(tmp_path / "flight.gpkg"),
                                                    str(tmp_path / "mission-dji-09.kmz")]
 

@@ -14,8 +14,8 @@ from click.testing import CliRunner
 from layouts import make_layout
 
 from scanplan.cli.main import main
-from scanplan.geo.export import MissionOptions, layout_files, render_waypoints
-from scanplan.outpaths import written_by_scanplan
+from scanplan.geo.export import MissionOptions, format_named, layout_files, render_waypoints
+from scanplan.io.targets import written_by_scanplan
 
 mavwp = pytest.importorskip("pymavlink.mavwp")
 
@@ -67,7 +67,7 @@ def test_waypoint_file_holds_the_plans_items(tmp_path, frame):
         assert commands.count(TRIGGER) % 2 == 0 and WAYPOINT in commands
         frames = {w.frame for w in wps[1:] if w.command == WAYPOINT}
         assert frames == {{"relative": 3, "amsl": 0, "terrain": 10}[frame]}
-        assert written_by_scanplan(tmp_path / wpl_name, "waypoints")
+        assert written_by_scanplan(tmp_path / wpl_name, format_named("waypoints"))
 
 
 def test_the_file_is_the_format_mission_planner_reads():

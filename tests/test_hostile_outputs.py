@@ -16,7 +16,7 @@ import pytest
 from click.testing import CliRunner
 
 from scanplan.cli.main import main
-from scanplan.safeio import csv_safe
+from scanplan.io.files import csv_safe
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 FILM = EXAMPLES / "instruction-2000-film.toml"

@@ -9,8 +9,8 @@ from pathlib import Path
 
 import platformdirs
 
+from scanplan.io.files import dir_lock, lock_file_for
 from scanplan.norms.paths import user_norms_dir
-from scanplan.safeio import dir_lock, lock_file_for
 
 
 def _hold(folder: str, exclusive: bool, seconds: float, started: mp.Event) -> None:

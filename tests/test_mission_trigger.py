@@ -209,7 +209,7 @@ def test_the_mission_path_is_the_reported_flight_length(tmp_path, turn, takeoff)
     layout = spec.uav.layout
     assert layout.feasible
     files = export_files(spec, str(tmp_path))
-    plans = sorted((p, d) for p, (kind, d) in files.items() if kind == "plan")
+    plans = sorted((p, d) for p, (kind, d) in files.items() if kind.name == "plan")
     assert len(plans) == len(layout.sorties)
     total, radius = 0.0, layout.notes["turn_m"] if "radius" in layout.turn else 0.0
     for _name, data in plans:

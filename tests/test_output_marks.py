@@ -9,7 +9,7 @@ import zipfile
 
 import pytest
 
-from scanplan.outpaths import written_by_scanplan
+from scanplan.io.targets import written_by_scanplan
 
 DC = "http://purl.org/dc/elements/1.1/"
 CORE = ('<cp:coreProperties xmlns:cp="http://schemas.openxmlformats.org/package/2006/metadata/'

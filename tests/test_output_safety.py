@@ -25,7 +25,7 @@ import scanplan.reports.excel as excel_mod
 import scanplan.reports.pdf as pdf_mod
 from scanplan.cli.main import batch_stems, main
 from scanplan.errors import WriteError
-from scanplan.outpaths import folder_lock, written_by_scanplan
+from scanplan.io.targets import folder_lock, written_by_scanplan
 from scanplan.reports import write_atomic_many
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
@@ -399,7 +399,7 @@ def test_killed_write_leftovers_are_cleaned_end_to_end(tmp_path):
     ctx = mp.get_context("fork")
 
     def child() -> None:
-        import scanplan.safeio as rep  # the atomic writers live in safeio
+        import scanplan.io.atomic as rep  # the atomic writers live in io.atomic
 
         real = rep._write_temp
 
@@ -613,7 +613,7 @@ def test_a_polygon_plan_killed_at_every_step_leaves_all_old_or_all_new(work, pla
     link and unlink of the set (reports, missions, GIS files, photo table, the sweep of
     the stale missions), the folder — once the next write has recovered it — holds the old
     set or the new one, byte for byte, and nothing else."""
-    from scanplan.journal import recover
+    from scanplan.io.journal import recover
 
     _polygon_project(work, "old.toml", 25)
     _polygon_project(work, "new.toml", 60)

@@ -301,7 +301,7 @@ def _check_replaceable(path: str) -> None:
         raise InputError("PROJECT", f"{path!r} is a symbolic link (to {os.readlink(path)!r});"
                          " scanplan replaces files, not links — name the file itself")
     if not stat.S_ISREG(st.st_mode):
-        from ..safeio import file_kind
+        from ..io.files import file_kind
 
         raise InputError("PROJECT", f"{path!r} is {file_kind(st.st_mode)}; give a file name")
     if not os.access(path, os.W_OK) or not st.st_mode & 0o222:  # root too: no write bit
@@ -322,7 +322,7 @@ def write_new(path: str, data: bytes, *, force: bool) -> None:
     if not force and os.path.lexists(path):
         raise InputError("PROJECT", f"{path!r} exists; give --force to replace it")
     if force:
-        from ..safeio import write_atomic
+        from ..io.atomic import write_atomic
 
         _check_replaceable(path)
         write_atomic(path, data)
@@ -333,7 +333,7 @@ def write_new(path: str, data: bytes, *, force: bool) -> None:
         fd, tmp = tempfile.mkstemp(prefix=f".{os.path.basename(path)}.", suffix=".tmp",
                                    dir=folder)
         try:
-            from ..safeio import write_all
+            from ..io.files import write_all
 
             write_all(fd, data)
             os.fsync(fd)

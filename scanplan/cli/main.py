@@ -207,7 +207,7 @@ def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
     bytes): missions, KML, GeoJSON, GeoPackage, CSV) join the same transaction.
     """
     xlsx, pdf = opts.pop("xlsx_path"), opts.pop("pdf_path")
-    exports: dict[str, tuple[str, bytes]] = opts.pop("exports", None) or {}
+    exports: dict[str, tuple[Any, bytes]] = opts.pop("exports", None) or {}
     force, inputs = opts.pop("force", False), opts.pop("inputs", ())
     fields = opts.pop("fields", {"xlsx": "--xlsx", "pdf": "--pdf"})
     note = opts.pop("note", "")
@@ -215,7 +215,7 @@ def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
     worker = opts.pop("pdf_worker", None)  # the PDF on the second core (reports.pdfworker)
     sweep = opts.pop("sweep", None)  # the --out folder whose stale exports go (one project)
     explicit = opts.pop("pdf_explicit", True)  # asked for by name: its absence fails at the end
-    from ..outpaths import check_target
+    from ..io.targets import check_target
     from ..reports import ReportMeta
 
     meta = opts.pop("meta", None) or ReportMeta(
@@ -591,8 +591,8 @@ def plan(projects: tuple[str, ...], out_dir: str | None, xlsx_path: str | None,
 
 
 def batch_stems(files: list[str]) -> list[str]:
-    """:func:`scanplan.outpaths.batch_stems` (imported when a batch runs)."""
-    from ..outpaths import batch_stems as stems
+    """:func:`scanplan.io.targets.batch_stems` (imported when a batch runs)."""
+    from ..io.targets import batch_stems as stems
 
     return stems(files)
 
@@ -697,7 +697,7 @@ def _write_summary(out_dir: str, rows: list[dict[str, Any]], force: bool,
                    files: list[str]) -> None:
     """summary.csv and summary.xlsx of a batch (one row per project), as one transaction."""
     from ..api import SUMMARY_COLUMNS, summary_frame
-    from ..outpaths import check_target
+    from ..io.targets import check_target
     from ..reports import write_atomic_many
     from ..reports.summary import summary_csv, summary_xlsx
 

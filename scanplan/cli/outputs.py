@@ -26,16 +26,12 @@ import click
 
 from ..errors import InputError
 
-__all__ = ["FORMATS", "KINDS", "PDF_HELP", "chosen_exports", "parse_formats",
+__all__ = ["FORMATS", "PDF_HELP", "chosen_exports", "parse_formats",
            "pdf_failure_exit", "pdf_missing", "pdf_renderer", "reset", "selected",
            "warn_stale"]
 
 FORMATS = ("xlsx", "pdf", "missions", "gis")
 """The outputs ``--formats`` can name, in the order of the files written."""
-
-KINDS = {"xlsx": ("xlsx",), "pdf": ("pdf",), "missions": ("plan", "waypoints", "kmz"),
-         "gis": ("kml", "geojson", "csv", "gpkg")}
-"""Each output → the file kinds (:data:`scanplan.outpaths.SUFFIX`) it writes."""
 
 PDF_HELP = {
     "linux": "install Pango (Debian/Ubuntu: apt-get install libpango-1.0-0 "
@@ -76,13 +72,13 @@ def selected(formats: tuple[str, ...] | None, name: str) -> bool:
     return formats is None or name in formats
 
 
-def chosen_exports(exports: dict[str, tuple[str, bytes]],
-                   formats: tuple[str, ...] | None) -> dict[str, tuple[str, bytes]]:
-    """The exported files (path → (kind, bytes)) of the chosen outputs."""
+def chosen_exports(exports: dict[str, tuple[Any, bytes]],
+                   formats: tuple[str, ...] | None) -> dict[str, tuple[Any, bytes]]:
+    """The exported files (path → (format, bytes)) of the chosen outputs: those whose
+    format (:data:`scanplan.geo.export.formats.FORMATS`) belongs to one of ``formats``."""
     if formats is None:
         return exports
-    kinds = {k for f in formats for k in KINDS[f]}
-    return {path: item for path, item in exports.items() if item[0] in kinds}
+    return {path: item for path, item in exports.items() if item[0].output in formats}
 
 
 def pdf_missing() -> str | None:

@@ -15,7 +15,7 @@ from ..errors import InputError
 
 def write_set(files: Mapping[str, bytes], *, check: Callable[[], None], sweep: str | None,
               say: Callable[[str], None], note: str = "") -> None:
-    """Write ``files`` as one transaction (:func:`scanplan.safeio.write_atomic_many`)
+    """Write ``files`` as one transaction (:func:`scanplan.io.atomic.write_atomic_many`)
     together with the removal of the exported files of an earlier run into ``sweep``
     that this run no longer writes (``mission-04.plan`` of six sorties, now three); then
     say ``wrote FILE`` and ``removed FILE`` lines.
@@ -33,7 +33,7 @@ def write_set(files: Mapping[str, bytes], *, check: Callable[[], None], sweep: s
     note : str
         Added to each ``wrote`` line.
     """
-    from ..safeio import write_atomic_many
+    from ..io.atomic import write_atomic_many
 
     removed: list[str] = []
 

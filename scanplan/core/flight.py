@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
-from ..errors import FieldValueError
+from .checks import in_range, nonnegative, positive
 
 __all__ = [
     "JPEG_COMPRESSION_RATIO",
@@ -47,66 +47,8 @@ NDArrayFloat = npt.NDArray[np.float64]
 MAX_BLUR_PX = 0.5
 
 
-# ---------------------------------------------------------------------------------
-# Input validation (shared by scanplan.core.mtf and scanplan.core.orientation)
-# ---------------------------------------------------------------------------------
-def _first_bad(arr: np.ndarray, bad: np.ndarray) -> str:
-    value = np.broadcast_to(arr, bad.shape)[bad].flat[0]
-    return f"{float(value):g}"
-
-
-def _finite(name: str, value: npt.ArrayLike) -> NDArrayFloat:
-    """Return ``value`` as a float array; raise ValueError if any element is NaN/inf."""
-    arr = np.asarray(value, dtype=float)
-    bad = ~np.isfinite(arr)
-    if bad.any():
-        raise FieldValueError(name, f"must be finite (got {_first_bad(arr, bad)})")
-    return arr
-
-
-def _positive(name: str, value: npt.ArrayLike) -> NDArrayFloat:
-    """Return ``value`` as a float array; raise ValueError unless every element is > 0."""
-    arr = _finite(name, value)
-    bad = ~(arr > 0)
-    if bad.any():
-        raise FieldValueError(name, f"must be > 0 (got {_first_bad(arr, bad)})")
-    return arr
-
-
-def _nonnegative(name: str, value: npt.ArrayLike) -> NDArrayFloat:
-    """Return ``value`` as a float array; raise ValueError unless every element is >= 0."""
-    arr = _finite(name, value)
-    bad = ~(arr >= 0)
-    if bad.any():
-        raise FieldValueError(name, f"must be >= 0 (got {_first_bad(arr, bad)})")
-    return arr
-
-
-def _in_range(
-    name: str,
-    value: npt.ArrayLike,
-    low: float,
-    high: float,
-    *,
-    low_inclusive: bool = True,
-    high_inclusive: bool = True,
-) -> NDArrayFloat:
-    """Return ``value`` as a float array; raise ValueError outside [low, high]."""
-    arr = _finite(name, value)
-    ok_low = arr >= low if low_inclusive else arr > low
-    ok_high = arr <= high if high_inclusive else arr < high
-    bad = ~(ok_low & ok_high)
-    if bad.any():
-        lo = "[" if low_inclusive else "("
-        hi = "]" if high_inclusive else ")"
-        raise FieldValueError(
-            name, f"must be in {lo}{low:g}, {high:g}{hi} (got {_first_bad(arr, bad)})"
-        )
-    return arr
-
-
 def _overlap(name: str, value: npt.ArrayLike) -> NDArrayFloat:
-    return _in_range(name, value, 0.0, 100.0, high_inclusive=False)
+    return in_range(name, value, 0.0, 100.0, high_inclusive=False)
 
 
 # ---------------------------------------------------------------------------------
@@ -141,9 +83,9 @@ def ground_sample_distance_m(
     >>> round(float(ground_sample_distance_m(4.4, 100.0, 35.0)), 5)
     0.01257
     """
-    p = _positive("pixel_um", pixel_um)
-    h = _positive("height_m", height_m)
-    f = _positive("focal_mm", focal_mm)
+    p = positive("pixel_um", pixel_um)
+    h = positive("height_m", height_m)
+    f = positive("focal_mm", focal_mm)
     return p * 1e-3 * h / f
 
 
@@ -175,9 +117,9 @@ def footprint_m(
     >>> round(float(footprint_m(35.9, 100.0, 35.0)), 2)
     102.57
     """
-    s = _positive("sensor_side_mm", sensor_side_mm)
-    h = _positive("height_m", height_m)
-    f = _positive("focal_mm", focal_mm)
+    s = positive("sensor_side_mm", sensor_side_mm)
+    h = positive("height_m", height_m)
+    f = positive("focal_mm", focal_mm)
     return s * h / f
 
 
@@ -207,7 +149,7 @@ def photo_base_m(
     >>> round(float(photo_base_m(68.57, 80.0)), 3)
     13.714
     """
-    fp = _positive("footprint_along_m", footprint_along_m)
+    fp = positive("footprint_along_m", footprint_along_m)
     p = _overlap("forward_overlap_pct", forward_overlap_pct)
     return fp * (1.0 - p / 100.0)
 
@@ -238,7 +180,7 @@ def line_spacing_m(
     >>> round(float(line_spacing_m(102.57, 70.0)), 3)
     30.771
     """
-    fp = _positive("footprint_across_m", footprint_across_m)
+    fp = positive("footprint_across_m", footprint_across_m)
     p = _overlap("side_overlap_pct", side_overlap_pct)
     return fp * (1.0 - p / 100.0)
 
@@ -271,8 +213,8 @@ def photo_interval_s(base_m: npt.ArrayLike, speed_ms: npt.ArrayLike) -> NDArrayF
     >>> round(float(photo_interval_s(13.7, 10.0)), 2)
     1.37
     """
-    b = _positive("base_m", base_m)
-    w = _positive("speed_ms", speed_ms)
+    b = positive("base_m", base_m)
+    w = positive("speed_ms", speed_ms)
     return b / w
 
 
@@ -304,8 +246,8 @@ def trigger_interval_ok(
     >>> trigger_interval_ok([1.37, 0.5], 0.7).tolist()
     [True, False]
     """
-    t = _positive("interval_s", interval_s)
-    tmin = _positive("min_trigger_interval_s", min_trigger_interval_s)
+    t = positive("interval_s", interval_s)
+    tmin = positive("min_trigger_interval_s", min_trigger_interval_s)
     return t >= tmin
 
 
@@ -335,8 +277,8 @@ def max_speed_for_trigger_ms(
     >>> round(float(max_speed_for_trigger_ms(13.7, 0.7)), 2)
     19.57
     """
-    b = _positive("base_m", base_m)
-    tmin = _positive("min_trigger_interval_s", min_trigger_interval_s)
+    b = positive("base_m", base_m)
+    tmin = positive("min_trigger_interval_s", min_trigger_interval_s)
     return b / tmin
 
 
@@ -376,9 +318,9 @@ def strip_count(
     >>> int(strip_count(1000.0, 30.0)), int(strip_count(1000.0, 30.0, 1))
     (34, 35)
     """
-    w = _positive("area_width_m", area_width_m)
-    s = _positive("line_spacing_m", line_spacing_m)
-    e = _nonnegative("extra_strips", extra_strips)
+    w = positive("area_width_m", area_width_m)
+    s = positive("line_spacing_m", line_spacing_m)
+    e = nonnegative("extra_strips", extra_strips)
     return (np.ceil(w / s - 1e-9) + np.floor(e)).astype(np.int64)
 
 
@@ -419,9 +361,9 @@ def photos_per_strip(
     >>> int(photos_per_strip(1000.0, 13.7)), int(photos_per_strip(1000.0, 13.7, 0))
     (76, 74)
     """
-    length = _positive("area_length_m", area_length_m)
-    b = _positive("base_m", base_m)
-    e = _nonnegative("extra_per_end", extra_per_end)
+    length = positive("area_length_m", area_length_m)
+    b = positive("base_m", base_m)
+    e = nonnegative("extra_per_end", extra_per_end)
     return (np.ceil(length / b - 1e-9) + 1 + 2 * np.floor(e)).astype(np.int64)
 
 
@@ -462,10 +404,10 @@ def flight_length_m(
     >>> round(float(flight_length_m(34, 1000.0, 30.0)), 1)
     35555.1
     """
-    n = _positive("n_strips", n_strips)
-    length = _positive("strip_length_m", strip_length_m)
-    s = _positive("line_spacing_m", line_spacing_m)
-    turn = np.pi * s / 2.0 if turn_m is None else _nonnegative("turn_m", turn_m)
+    n = positive("n_strips", n_strips)
+    length = positive("strip_length_m", strip_length_m)
+    s = positive("line_spacing_m", line_spacing_m)
+    turn = np.pi * s / 2.0 if turn_m is None else nonnegative("turn_m", turn_m)
     return n * length + (n - 1.0) * turn
 
 
@@ -493,8 +435,8 @@ def flight_time_s(length_m: npt.ArrayLike, speed_ms: npt.ArrayLike) -> NDArrayFl
     >>> float(flight_time_s(36000.0, 12.0))
     3000.0
     """
-    length = _nonnegative("length_m", length_m)
-    w = _positive("speed_ms", speed_ms)
+    length = nonnegative("length_m", length_m)
+    w = positive("speed_ms", speed_ms)
     return length / w
 
 
@@ -532,11 +474,11 @@ def data_volume_bytes(
     >>> int(data_volume_bytes(100, 8192, 5460))
     13418496000
     """
-    n = _nonnegative("n_photos", n_photos)
-    w = _positive("image_width_px", image_width_px)
-    h = _positive("image_height_px", image_height_px)
-    b = _positive("bands", bands)
-    bits_ = _positive("bits", bits)
+    n = nonnegative("n_photos", n_photos)
+    w = positive("image_width_px", image_width_px)
+    h = positive("image_height_px", image_height_px)
+    b = positive("bands", bands)
+    bits_ = positive("bits", bits)
     return n * w * h * b * bits_ / 8.0
 
 
@@ -572,9 +514,9 @@ def motion_blur_px(
     >>> round(float(motion_blur_px(12.0, 1e-3, 0.0126)), 3)
     0.952
     """
-    w = _nonnegative("speed_ms", speed_ms)
-    t = _positive("exposure_s", exposure_s)
-    g = _positive("gsd_m", gsd_m)
+    w = nonnegative("speed_ms", speed_ms)
+    t = positive("exposure_s", exposure_s)
+    g = positive("gsd_m", gsd_m)
     return w * t / g
 
 
@@ -602,9 +544,9 @@ def max_exposure_for_blur_s(
     >>> round(float(max_exposure_for_blur_s(12.0, 0.0126)), 6)
     0.000525
     """
-    w = _positive("speed_ms", speed_ms)
-    g = _positive("gsd_m", gsd_m)
-    b = _positive("max_blur_px", max_blur_px)
+    w = positive("speed_ms", speed_ms)
+    g = positive("gsd_m", gsd_m)
+    b = positive("max_blur_px", max_blur_px)
     return b * g / w
 
 
@@ -632,9 +574,9 @@ def max_speed_for_blur_ms(
     >>> round(float(max_speed_for_blur_ms(1e-3, 0.0126)), 2)
     6.3
     """
-    t = _positive("exposure_s", exposure_s)
-    g = _positive("gsd_m", gsd_m)
-    b = _positive("max_blur_px", max_blur_px)
+    t = positive("exposure_s", exposure_s)
+    g = positive("gsd_m", gsd_m)
+    b = positive("max_blur_px", max_blur_px)
     return b * g / t
 
 
@@ -693,10 +635,10 @@ def height_band(
     >>> round(float(b.max_m), 6), round(float(b.min_m), 6)
     (110.0, 90.0)
     """
-    h = _positive("height_m", height_m)
-    up = _nonnegative("tolerance_up", tolerance_up)
+    h = positive("height_m", height_m)
+    up = nonnegative("tolerance_up", tolerance_up)
     down = up if tolerance_down is None else tolerance_down
-    down = _in_range("tolerance_down", down, 0.0, 1.0, high_inclusive=False)
+    down = in_range("tolerance_down", down, 0.0, 1.0, high_inclusive=False)
     return HeightBand(planned_m=h, min_m=h * (1.0 - down), max_m=h * (1.0 + up))
 
 
@@ -736,8 +678,8 @@ def actual_overlap_pct(
     85.7
     """
     p0 = _overlap("planned_overlap_pct", planned_overlap_pct)
-    h0 = _positive("planned_height_m", planned_height_m)
-    h = _positive("actual_height_m", actual_height_m)
+    h0 = positive("planned_height_m", planned_height_m)
+    h = positive("actual_height_m", actual_height_m)
     return 100.0 * (1.0 - (1.0 - p0 / 100.0) * h0 / h)
 
 

@@ -31,7 +31,7 @@ from typing import Literal
 import numpy as np
 import numpy.typing as npt
 
-from scanplan.core.flight import _finite, _positive
+from scanplan.core.checks import finite, positive
 
 __all__ = [
     "CORNER_NAMES",
@@ -91,9 +91,9 @@ def quaternion_eq30(
     >>> (np.round(quaternion_eq30(0.0, 0.0, 0.0), 6) + 0.0).tolist()
     [1.0, 0.0, 0.0, 0.0]
     """
-    a = _finite("alpha_rad", alpha_rad) / 2.0
-    w = _finite("omega_rad", omega_rad) / 2.0
-    c = _finite("chi_rad", chi_rad) / 2.0
+    a = finite("alpha_rad", alpha_rad) / 2.0
+    w = finite("omega_rad", omega_rad) / 2.0
+    c = finite("chi_rad", chi_rad) / 2.0
     ca, sa, cw, sw, cc, sc = np.cos(a), np.sin(a), np.cos(w), np.sin(w), np.cos(c), np.sin(c)
     a0 = ca * cw * cc - sa * sw * sc
     a1 = ca * sw * cc - sa * cw * sc
@@ -123,7 +123,7 @@ def elementary_quaternion(axis: Axis, angle_rad: npt.ArrayLike) -> NDArrayFloat:
     """
     if axis not in _AXES:
         raise ValueError(f"axis must be 'x', 'y' or 'z' (got {axis!r})")
-    t = _finite("angle_rad", angle_rad) / 2.0
+    t = finite("angle_rad", angle_rad) / 2.0
     q = np.zeros((*t.shape, 4))
     q[..., 0] = np.cos(t)
     q[..., 1 + _AXES[axis]] = np.sin(t)
@@ -149,8 +149,8 @@ def quaternion_multiply(p: npt.ArrayLike, q: npt.ArrayLike) -> NDArrayFloat:
     >>> np.round(quaternion_multiply(qz, qz), 6).tolist()
     [0.0, 0.0, 0.0, 1.0]
     """
-    p_ = _finite("p", p)
-    q_ = _finite("q", q)
+    p_ = finite("p", p)
+    q_ = finite("q", q)
     pw, pv = p_[..., 0], p_[..., 1:]
     qw, qv = q_[..., 0], q_[..., 1:]
     w = pw * qw - np.sum(pv * qv, axis=-1)
@@ -181,7 +181,7 @@ def rotation_matrix(q: npt.ArrayLike) -> NDArrayFloat:
     >>> np.round(rotation_matrix([1.0, 0.0, 0.0, 0.0]), 6).tolist()
     [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
     """
-    q_ = _finite("q", q)
+    q_ = finite("q", q)
     norm = np.linalg.norm(q_, axis=-1, keepdims=True)
     if np.any(norm == 0):
         raise ValueError("q must be a non-zero quaternion (got norm 0)")
@@ -334,12 +334,12 @@ def image_point_gsd(
     >>> round(float(tilted[0]), 5)
     0.01296
     """
-    x = _finite("x_mm", x_mm)
-    y = _finite("y_mm", y_mm)
-    h = _positive("height_m", height_m)
-    f = _positive("focal_mm", focal_mm)
-    p = _positive("pixel_um", pixel_um) * 1e-3
-    r = np.eye(3) if rotation is None else _finite("rotation", rotation)
+    x = finite("x_mm", x_mm)
+    y = finite("y_mm", y_mm)
+    h = positive("height_m", height_m)
+    f = positive("focal_mm", focal_mm)
+    p = positive("pixel_um", pixel_um) * 1e-3
+    r = np.eye(3) if rotation is None else finite("rotation", rotation)
     if r.shape[-2:] != (3, 3):
         raise ValueError(f"rotation must have shape (..., 3, 3) (got {r.shape})")
     xb, yb, fb = np.broadcast_arrays(x, y, -f)
@@ -429,15 +429,15 @@ def corner_gsd(
     >>> round(float(c.gsd_nadir_m), 5)
     0.01257
     """
-    a = _positive("sensor_width_mm", sensor_width_mm)
-    b = _positive("sensor_height_mm", sensor_height_mm)
+    a = positive("sensor_width_mm", sensor_width_mm)
+    b = positive("sensor_height_mm", sensor_height_mm)
     sx = np.array([1.0, 1.0, -1.0, -1.0])
     sy = np.array([1.0, -1.0, -1.0, 1.0])
     x = (b[..., None] / 2.0) * sx
     y = (a[..., None] / 2.0) * sy
-    h = _positive("height_m", height_m)
-    f = _positive("focal_mm", focal_mm)
-    p = _positive("pixel_um", pixel_um)
+    h = positive("height_m", height_m)
+    f = positive("focal_mm", focal_mm)
+    p = positive("pixel_um", pixel_um)
     r = None if rotation is None else np.asarray(rotation, dtype=float)[..., None, :, :]
     gmax, gmean = image_point_gsd(x, y, h[..., None], f[..., None], p[..., None], r)
     return CornerGSD(gsd_max_m=gmax, gsd_mean_m=gmean, gsd_nadir_m=p * 1e-3 * h / f)

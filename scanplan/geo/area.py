@@ -42,7 +42,7 @@ import shapely
 from shapely.validation import explain_validity
 
 from ..errors import InputError
-from ..safeio import read_limited, size_text
+from ..io.files import read_limited, size_text
 from .gdal_guard import KIND_NAMES, harden, indirection, read_head, sniff
 from .layout import Area
 from .vertices import VERTEX_SUFFIXES, read_vertices

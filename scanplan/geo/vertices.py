@@ -40,7 +40,7 @@ import numpy as np
 import shapely
 
 from ..errors import InputError
-from ..safeio import read_limited
+from ..io.files import read_limited
 
 __all__ = ["VERTEX_SUFFIXES", "read_vertices"]
 

@@ -14,7 +14,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import InputError, NotFoundError
-from ..safeio import file_kind
+from ..io.files import file_kind
 from . import limits as _limits
 from .limits import META_TABLE
 from .schema import PARAMETERS, TABLES, TableSpec, ValueSpec

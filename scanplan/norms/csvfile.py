@@ -7,7 +7,7 @@ import re
 from collections.abc import Iterator, Sequence
 from pathlib import Path
 
-from ..safeio import read_limited
+from ..io.files import read_limited
 from . import limits as _limits
 from .cells import _fail
 from .grid import _Grid

@@ -9,7 +9,7 @@ import shutil
 from pathlib import Path
 
 from ..errors import WriteError
-from ..safeio import dir_lock
+from ..io.files import dir_lock
 from .paths import CATALOGUE, user_norms_dir
 
 # An import's own folders beside the set: ".NAME.tmp-XXXXXXXX" (the new set being written)

@@ -26,8 +26,8 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import InputError, NotFoundError
+from ..io.files import dir_lock, read_limited
 from ..rules.film import ScanRules
-from ..safeio import dir_lock, read_limited
 from .paths import CATALOGUE, DEFAULT_NORM_SET, bundled_norms_dir, user_norms_dir
 from .records import PITCH_TOLERANCE, Camera, GsdLimit, LensCurve, MapObject, ScannerStep
 from .recovery import recover_norm_dir

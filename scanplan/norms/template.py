@@ -10,7 +10,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import InputError, WriteError
-from ..safeio import write_atomic
+from ..io.atomic import write_atomic
 from . import store as _norms
 from .cells import _FORMULA_START, _shown
 from .export import _set_rows
@@ -40,7 +40,7 @@ def write_template(
     One sheet per table (plus ``set`` with the title and source), a bold frozen header
     whose cells carry comments (description, unit, rule), data validation on numeric
     columns and parameter values, and fitted column widths. Rendered in memory, then
-    written atomically (:func:`scanplan.safeio.write_atomic`): on any failure an existing
+    written atomically (:func:`scanplan.io.atomic.write_atomic`): on any failure an existing
     file is left as it was (mode included) and no temporary file remains.
 
     Parameters
@@ -98,7 +98,7 @@ def _check_target(out: Path, lang: str, force: bool) -> None:
         raise InputError("--locale", f"must be en or ru (got {lang!r})")
     if out.exists() and not force:
         raise InputError("FILE", f"{out} exists; give --force to overwrite it")
-    from ..outpaths import check_target  # links, folders, FIFOs, write-protected, long names
+    from ..io.targets import check_target  # links, folders, FIFOs, write-protected, long names
 
     check_target(os.fspath(out), "FILE", "xlsx", force=True)
 

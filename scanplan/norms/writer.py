@@ -16,7 +16,7 @@ from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 
 from ..errors import InputError, WriteError
-from ..safeio import fsync_dir, write_all
+from ..io.files import fsync_dir, write_all
 from . import store as _norms
 from .importer import ParsedNormSet, read_norm_file
 from .limits import META_KEYS

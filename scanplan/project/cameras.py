@@ -31,6 +31,7 @@ from typing import Any
 from .. import norms as _norms
 from ..core.domains import DOMAINS, Domain
 from ..errors import InputError, WriteError
+from ..io.files import read_limited
 from ..norms import cells as norms_cells
 from ..norms import export as norms_export
 from ..norms import limits as norms_limits
@@ -38,7 +39,6 @@ from ..norms import recovery as norms_recovery
 from ..norms import store as norms_store
 from ..norms import writer as norms_writer
 from ..norms.schema import TABLES
-from ..safeio import read_limited
 
 __all__ = ["ParsedCameras", "import_camera_file", "read_camera_file", "user_catalogue_dir"]
 

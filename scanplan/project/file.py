@@ -19,7 +19,7 @@ from typing import Any
 
 from ..core.domains import MAX_LIST_ITEMS
 from ..errors import InputError
-from ..safeio import read_limited
+from ..io.files import read_limited
 from .inputs import key_table
 
 __all__ = ["KEYS", "Project", "ReportMeta", "load_project", "parse_project", "parse_project_bytes",

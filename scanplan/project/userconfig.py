@@ -89,7 +89,7 @@ def user_defaults() -> dict[str, Any]:
     hit = _cache.get(key)
     if hit is not None and hit[:2] == (st.st_mtime, st.st_size):
         return dict(hit[2])
-    from ..safeio import read_limited
+    from ..io.files import read_limited
 
     data = read_limited(path, 100_000, field=str(path))
     try:

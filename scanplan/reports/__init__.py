@@ -8,7 +8,7 @@ laid out by the renderers: :mod:`.text`, :mod:`.jsondoc`, :mod:`.excel`, :mod:`.
 Writing is atomic: the whole file is rendered to memory, written to a temporary file
 beside the target and renamed over it, so a crash never leaves a half-written report and
 never destroys the previous one. Several files that belong together (spec.xlsx and
-spec.pdf) are written as one transaction (:func:`scanplan.safeio.write_atomic_many`):
+spec.pdf) are written as one transaction (:func:`scanplan.io.atomic.write_atomic_many`):
 after any failure all of the previous files are as they were. With
 ``SOURCE_DATE_EPOCH`` set, output is reproducible.
 """
@@ -19,8 +19,8 @@ import datetime as _dt
 import os
 from pathlib import Path
 
+from ..io.atomic import write_atomic, write_atomic_many  # the writers live below reports
 from ..project.file import ReportMeta  # project metadata; it lives with the project file
-from ..safeio import write_atomic, write_atomic_many  # the writers live below reports
 
 __all__ = ["ReportMeta", "report_datetime", "templates_dir", "write_atomic",
            "write_atomic_many"]

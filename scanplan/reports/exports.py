@@ -11,7 +11,8 @@ sorties), for a DJI camera ``mission-dji.kmz`` (``mission-dji-01.kmz`` …: DJI 
 flight scheme ``film-flight.kml``, ``film-flight.geojson``, ``film-flight.gpkg`` and
 ``film-frames.csv``. A batch puts the project's name before
 each (``NAME-flight.kml``). An abstract block (width × length, not georeferenced) writes
-none of them, and the reports say so.
+none of them, and the reports say so. The formats, their names and marks are the records of
+:data:`scanplan.geo.export.formats.FORMATS`.
 """
 
 from __future__ import annotations
@@ -23,17 +24,13 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Literal
 
 from ..geo.layout import FlightLayout
-from ..outpaths import SUFFIX, written_by_scanplan
+from ..io.targets import written_by_scanplan
 from .labels import t
 
 if TYPE_CHECKING:  # the writers (pandas, shapely) are imported when files are written
-    from ..geo.export import ExportNames, MissionOptions
+    from ..geo.export import ExportFormat, ExportNames, MissionOptions
 
-__all__ = ["KIND_OF_SUFFIX", "export_files", "export_notes", "spec_layouts", "stale_exports",
-           "view_of"]
-
-#: File-name ending → the kind :func:`scanplan.outpaths.check_target` checks it as.
-KIND_OF_SUFFIX = {suffix: kind for kind, suffix in SUFFIX.items()}
+__all__ = ["export_files", "export_notes", "spec_layouts", "stale_exports", "view_of"]
 
 
 def spec_layouts(spec: Any) -> list[tuple[str, FlightLayout]]:
@@ -127,22 +124,15 @@ def _vehicle(spec: Any) -> Literal["multirotor", "fixed_wing"]:
     return "multirotor"
 
 
-def dji_files(spec: Any, layout: FlightLayout, mission: MissionOptions | None
-              ) -> tuple[dict[str, bytes], str | None]:
-    """The DJI Pilot 2 route files of a UAV flight (``mission-dji.kmz`` …) and, when none
-    is written although a mission is, why (a camera DJI Pilot 2 cannot fly; no EGM96
-    grid for a terrain plan)."""
-    if mission is None:
-        return {}, None
-    from ..geo.export import wpml_files
-
+def camera_id(spec: Any) -> str:
+    """The UAV camera's id (a DJI route is written for a camera DJI Pilot 2 can fly)."""
     camera = getattr(spec.uav.job.plan.inputs, "camera", None)
-    camera_id = str(getattr(camera, "id", camera))
-    return wpml_files(layout, mission, camera_id)
+    return str(getattr(camera, "id", camera))
 
 
 def export_files(spec: Any, folder: str, *, prefix: str = "",
-                 note: Callable[[str], None] | None = None) -> dict[str, tuple[str, bytes]]:
+                 note: Callable[[str], None] | None = None
+                 ) -> dict[str, tuple[ExportFormat, bytes]]:
     """Every exported file of ``spec``: path in ``folder`` → (kind, content).
 
     Parameters
@@ -155,17 +145,18 @@ def export_files(spec: Any, folder: str, *, prefix: str = "",
         Put before every name (a batch: ``"NAME-"``).
     note : callable, optional
         Told why a file the user may expect is not written (no DJI route for a camera
-        DJI Pilot 2 cannot fly), one line each, for the terminal.
+        DJI Pilot 2 cannot fly; no EGM96 grid for a terrain plan), one line each, for the
+        terminal.
 
     Returns
     -------
     dict
-        Path → (kind for :func:`scanplan.outpaths.check_target`, bytes); empty for a
-        project without a georeferenced area.
+        Path → (its format, the kind :func:`scanplan.io.targets.check_target` checks;
+        bytes); empty for a project without a georeferenced area.
     """
     locale = getattr(getattr(spec, "meta", None), "locale", "en")
     title = getattr(getattr(spec, "meta", None), "project", "")
-    files: dict[str, tuple[str, bytes]] = {}
+    files: dict[str, tuple[ExportFormat, bytes]] = {}
     for kind, layout in spec_layouts(spec):
         if not layout.area.georeferenced:  # an abstract block: no files (layout_files)
             continue
@@ -176,16 +167,19 @@ def export_files(spec: Any, folder: str, *, prefix: str = "",
         rendered = layout_files(
             layout, names=export_names(locale, title, film), mission=mission,
             prefix=prefix + ("film-" if film else ""),
-            photos_name="frames" if film else "photos")
-        if not film:  # the same mission for DJI Pilot 2, when the camera is a DJI one
-            dji, reason = dji_files(spec, layout, mission)
-            rendered.update({prefix + k: v for k, v in dji.items()})
-            if reason and note is not None:
-                note(f"no {prefix}mission-dji.kmz: {reason}")
+            photos_name="frames" if film else "photos",
+            camera=None if film else camera_id(spec), note=note)
+        by_suffix = _formats_by_suffix()
         for name, data in rendered.items():
             suffix = os.path.splitext(name)[1].lower()
-            files[os.path.join(folder, name)] = (KIND_OF_SUFFIX[suffix], data)
+            files[os.path.join(folder, name)] = (by_suffix[suffix], data)
     return files
+
+
+def _formats_by_suffix() -> dict[str, ExportFormat]:
+    from ..geo.export.formats import FORMATS
+
+    return {fmt.suffix: fmt for fmt in FORMATS}
 
 
 def export_notes(spec: Any) -> list[Any]:
@@ -231,11 +225,6 @@ def export_notes(spec: Any) -> list[Any]:
     return out
 
 
-_EXPORT_NAME = re.compile(r"(?:film-)?(?:mission(?:-\d+)?\.(?:plan|waypoints)|flight\.kml|"
-                          r"flight\.geojson|photos\.csv|frames\.csv|"
-                          r"mission-dji(?:-\d+)?\.kmz|flight\.gpkg)")
-
-
 def stale_exports(folder: str, written: set[str]) -> list[str]:
     """Exported files of an earlier run in ``folder`` that this run did not write.
 
@@ -257,6 +246,8 @@ def stale_exports(folder: str, written: set[str]) -> list[str]:
     list of str
         Paths to remove, sorted.
     """
+    from ..geo.export.formats import FORMATS
+
     keep = {os.path.normcase(os.path.abspath(p)) for p in written}
     out = []
     try:
@@ -264,12 +255,15 @@ def stale_exports(folder: str, written: set[str]) -> list[str]:
     except OSError:
         return []
     for name in names:
-        if not _EXPORT_NAME.fullmatch(name):
+        # a single project's exports, the film survey's with "film-" before them
+        fmt = next((f for f in FORMATS
+                    if re.fullmatch(f"(?:film-)?{f.name_pattern()}", name)), None)
+        if fmt is None:
             continue
         path = os.path.join(folder, name)
         if os.path.normcase(os.path.abspath(path)) in keep or os.path.islink(path) \
                 or not os.path.isfile(path):
             continue
-        if written_by_scanplan(path, KIND_OF_SUFFIX[os.path.splitext(name)[1].lower()]):
+        if written_by_scanplan(path, fmt):
             out.append(path)
     return out

@@ -36,8 +36,8 @@ def summary_csv(frame: Any) -> bytes:
     """The summary as UTF-8 CSV (with a byte-order mark, so Excel reads the Cyrillic),
     measured columns rounded as the specification prints them (:data:`DIGITS`); a text
     cell a spreadsheet would run as a formula (a project named ``=cmd|…``) starts with
-    ``'`` (:func:`scanplan.safeio.csv_safe`)."""
-    from ..safeio import csv_safe_frame
+    ``'`` (:func:`scanplan.io.files.csv_safe`)."""
+    from ..io.files import csv_safe_frame
 
     return (csv_safe_frame(_rounded(frame)).to_csv(index=False, lineterminator="\n")
             .encode("utf-8-sig"))

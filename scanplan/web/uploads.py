@@ -24,7 +24,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import InputError
-from ..safeio import size_text
+from ..io.files import size_text
 
 __all__ = ["MAX_FILES", "MAX_STORE_BYTES", "MAX_UPLOAD_BYTES", "Upload", "UploadStore",
            "safe_name"]

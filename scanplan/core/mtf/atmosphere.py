@@ -8,7 +8,7 @@ from typing import Any, Literal
 import numpy as np
 import numpy.typing as npt
 
-from scanplan.core.flight import _finite, _in_range, _nonnegative, _positive
+from scanplan.core.checks import finite, in_range, nonnegative, positive
 from scanplan.core.mtf._base import (
     DEFAULT_HAZE_CONTRAST,
     NDArrayFloat,
@@ -49,8 +49,8 @@ def haze_contrast_coefficient(
     >>> round(float(haze_contrast_coefficient(50.0)), 4)
     0.9
     """
-    n = _finite("freq_lpmm", freq_lpmm)
-    c = _in_range("contrast_coefficient", contrast_coefficient, 0.0, 1.0, low_inclusive=False)
+    n = finite("freq_lpmm", freq_lpmm)
+    c = in_range("contrast_coefficient", contrast_coefficient, 0.0, 1.0, low_inclusive=False)
     return np.broadcast_to(c, np.broadcast(n, c).shape).astype(float)
 
 
@@ -98,11 +98,11 @@ def haze_exponential_indicatrix(
     >>> np.round(haze_exponential_indicatrix([0.0, 50.0], 50.0, 300.0), 4).tolist()
     [1.0, 0.956]
     """
-    n = _nonnegative("freq_lpmm", freq_lpmm)
-    f = _positive("focal_mm", focal_mm)
-    h = _positive("height_m", height_m)
-    mu = _nonnegative("scattering_per_km", scattering_per_km)
-    alpha = _positive("indicatrix_per_rad", indicatrix_per_rad)
+    n = nonnegative("freq_lpmm", freq_lpmm)
+    f = positive("focal_mm", focal_mm)
+    h = positive("height_m", height_m)
+    mu = nonnegative("scattering_per_km", scattering_per_km)
+    alpha = positive("indicatrix_per_rad", indicatrix_per_rad)
     return _k_haze_indicatrix(n, f, mu * h * 1e-3, alpha)
 
 
@@ -174,7 +174,7 @@ def turbulence_mtf(
     >>> round(float(turbulence_mtf(50.0, 50.0, 5.0)), 6)
     0.996921
     """
-    n = _finite("freq_lpmm", freq_lpmm)
-    f = _positive("focal_mm", focal_mm)
-    g = _nonnegative("turbulence_urad", turbulence_urad) * 1e-6
+    n = finite("freq_lpmm", freq_lpmm)
+    f = positive("focal_mm", focal_mm)
+    g = nonnegative("turbulence_urad", turbulence_urad) * 1e-6
     return _k_gauss(n, f * g)

@@ -9,7 +9,8 @@ from typing import Any, Literal
 import numpy as np
 import numpy.typing as npt
 
-from scanplan.core.flight import _nonnegative, _positive, ground_sample_distance_m
+from scanplan.core.checks import nonnegative, positive
+from scanplan.core.flight import ground_sample_distance_m
 from scanplan.core.mtf._base import (
     DEFAULT_GRID_POINTS,
     DEFAULT_ITERATIONS,
@@ -60,8 +61,8 @@ class _Chain:
             raise ValueError(f"field must be 'centre' or 'corner' (got {field!r})")
         if direction is None:
             direction = "sagittal" if field == "centre" else "tangential"
-        p_um = _positive("pixel_um", camera.pixel_um)
-        f = _positive("focal_mm", camera.focal_mm)
+        p_um = positive("pixel_um", camera.pixel_um)
+        f = positive("focal_mm", camera.focal_mm)
         if field == "corner":
             beta = half_field_angle_rad(camera.sensor_width_mm, camera.sensor_height_mm, f)
             q = 0.5 * np.hypot(np.asarray(camera.sensor_width_mm, float),
@@ -71,10 +72,10 @@ class _Chain:
         setup = Setup(
             camera, flight, atmosphere, motion, field, direction,
             pixel_um=p_um, pixel_mm=p_um * 1e-3, focal_mm=f,
-            f_number=_positive("f_number", camera.f_number),
-            height_m=_positive("height_m", flight.height_m),
-            exposure_s=_positive("exposure_s", flight.exposure_s),
-            speed_ms=_nonnegative("speed_ms", flight.speed_ms),
+            f_number=positive("f_number", camera.f_number),
+            height_m=positive("height_m", flight.height_m),
+            exposure_s=positive("exposure_s", flight.exposure_s),
+            speed_ms=nonnegative("speed_ms", flight.speed_ms),
             beta_rad=beta, lever_mm=q,
         )
         self.nyquist = nyquist_lpmm(p_um)
@@ -199,7 +200,7 @@ def component_mtfs(
         direction,
         disable,
     )
-    return chain.components(_nonnegative("freq_lpmm", freq_lpmm))
+    return chain.components(nonnegative("freq_lpmm", freq_lpmm))
 
 
 def system_mtf(

@@ -27,7 +27,7 @@ from typing import Literal
 import numpy as np
 import numpy.typing as npt
 
-from scanplan.core.flight import _in_range, _nonnegative, _positive
+from scanplan.core.checks import in_range, nonnegative, positive
 from scanplan.core.mtf._base import (
     NDArrayFloat,
     _k_charge_transfer,
@@ -243,8 +243,8 @@ def _prepare_haze(s: Setup) -> Term | None:
         c = haze_contrast_coefficient(0.0, atm.contrast_coefficient)
         return None if np.all(c == 1.0) else Term(_k_constant, {"c": c})
     if atm.haze_method == "exponential-indicatrix":
-        mu = _nonnegative("scattering_per_km", atm.scattering_per_km)
-        alpha = _positive("indicatrix_per_rad", atm.indicatrix_per_rad)
+        mu = nonnegative("scattering_per_km", atm.scattering_per_km)
+        alpha = positive("indicatrix_per_rad", atm.indicatrix_per_rad)
         return Term(_k_haze_indicatrix,
                     {"f": s.focal_mm, "tau": mu * s.height_m * 1e-3, "alpha": alpha})
     haze_mtf(0.0, atm.haze_method)  # raises ValueError naming the choices
@@ -252,7 +252,7 @@ def _prepare_haze(s: Setup) -> Term | None:
 
 
 def _prepare_turbulence(s: Setup) -> Term | None:
-    gam = _nonnegative("turbulence_urad", s.atmosphere.turbulence_urad)
+    gam = nonnegative("turbulence_urad", s.atmosphere.turbulence_urad)
     if _all_zero(gam):
         return None
     fg = s.focal_mm * gam * 1e-6
@@ -271,13 +271,13 @@ def _prepare_lens(s: Setup) -> Term:
 
 
 def _prepare_pixel(s: Setup) -> Term:
-    ff = _in_range("fill_factor", s.camera.fill_factor, 0.0, 1.0, low_inclusive=False)
+    ff = in_range("fill_factor", s.camera.fill_factor, 0.0, 1.0, low_inclusive=False)
     return Term(_k_pixel, {"aperture_mm": s.pixel_mm * np.sqrt(ff)})
 
 
 def _prepare_charge_transfer(s: Setup) -> Term | None:
-    nt = _nonnegative("ccd_transfers", s.camera.ccd_transfers)
-    eps = _in_range("ccd_inefficiency", s.camera.ccd_inefficiency, 0.0, 1.0,
+    nt = nonnegative("ccd_transfers", s.camera.ccd_transfers)
+    eps = in_range("ccd_inefficiency", s.camera.ccd_inefficiency, 0.0, 1.0,
                     high_inclusive=False)
     if _all_zero(nt * eps):
         return None
@@ -285,9 +285,9 @@ def _prepare_charge_transfer(s: Setup) -> Term | None:
 
 
 def _prepare_diffusion(s: Setup) -> Term | None:
-    l0 = _nonnegative("diffusion_length_um", s.camera.diffusion_length_um)
-    dw = _positive("depletion_um", s.camera.depletion_um)
-    da = _positive("absorption_per_um", s.camera.absorption_per_um)
+    l0 = nonnegative("diffusion_length_um", s.camera.diffusion_length_um)
+    dw = positive("depletion_um", s.camera.depletion_um)
+    da = positive("absorption_per_um", s.camera.absorption_per_um)
     if _all_zero(l0):
         return None
     return Term(_k_diffusion_lpmm, {"l0": l0, "depletion": dw, "absorption": da})
@@ -298,7 +298,7 @@ def _prepare_linear_motion(s: Setup) -> Term | None:
         geometric_image_shift_mm(s.speed_ms, s.exposure_s, s.focal_mm, s.height_m),
         s.flight.shift_factor,
     )
-    eta = _in_range("shutter_efficiency", s.camera.shutter_efficiency, 0.5, 1.0)
+    eta = in_range("shutter_efficiency", s.camera.shutter_efficiency, 0.5, 1.0)
     if _all_zero(delta):
         return None
     d1, d2 = eta * delta, (1.0 - eta) * delta

@@ -7,7 +7,7 @@ from typing import Literal
 import numpy as np
 import numpy.typing as npt
 
-from scanplan.core.flight import _finite, _in_range, _nonnegative, _positive
+from scanplan.core.checks import finite, in_range, nonnegative, positive
 from scanplan.core.mtf._base import DEFAULT_WAVELENGTH_UM, NDArrayFloat, _k_diffraction
 
 
@@ -37,9 +37,9 @@ def half_field_angle_rad(
     >>> round(float(half_field_angle_rad(36.0, 24.0, 50.0)), 4)
     0.4083
     """
-    a = _positive("sensor_width_mm", sensor_width_mm)
-    b = _positive("sensor_height_mm", sensor_height_mm)
-    f = _positive("focal_mm", focal_mm)
+    a = positive("sensor_width_mm", sensor_width_mm)
+    b = positive("sensor_height_mm", sensor_height_mm)
+    f = positive("focal_mm", focal_mm)
     return np.arctan(np.hypot(a, b) / (2.0 * f))
 
 
@@ -77,9 +77,9 @@ def diffraction_cutoff_lpmm(
     >>> round(float(diffraction_cutoff_lpmm(8.0)), 1)
     227.3
     """
-    n0 = _positive("f_number", f_number)
-    lam_mm = _positive("wavelength_um", wavelength_um) * 1e-3
-    beta = _in_range("field_angle_rad", field_angle_rad, 0.0, np.pi / 2, high_inclusive=False)
+    n0 = positive("f_number", f_number)
+    lam_mm = positive("wavelength_um", wavelength_um) * 1e-3
+    beta = in_range("field_angle_rad", field_angle_rad, 0.0, np.pi / 2, high_inclusive=False)
     if direction == "sagittal":
         c = np.cos(beta)
     elif direction == "tangential":
@@ -113,7 +113,7 @@ def diffraction_mtf(nu: npt.ArrayLike) -> NDArrayFloat:
     >>> np.round(diffraction_mtf([0.0, 0.5, 1.0]), 4).tolist()
     [1.0, 0.391, 0.0]
     """
-    return _k_diffraction(_nonnegative("nu", nu))
+    return _k_diffraction(nonnegative("nu", nu))
 
 
 def lens_diffraction_mtf(
@@ -152,7 +152,7 @@ def lens_diffraction_mtf(
     >>> round(float(lens_diffraction_mtf(100.0, 8.0)), 4)
     0.4584
     """
-    n = _nonnegative("freq_lpmm", freq_lpmm)
+    n = nonnegative("freq_lpmm", freq_lpmm)
     nc = diffraction_cutoff_lpmm(f_number, wavelength_um, field_angle_rad, direction)
     return diffraction_mtf(n / nc)
 
@@ -193,9 +193,9 @@ def lens_table_mtf(
     >>> np.round(lens_table_mtf([10.0, 25.0], [0.0, 20.0, 40.0], [1.0, 0.8, 0.6]), 4).tolist()
     [0.9, 0.75]
     """
-    n = _finite("freq_lpmm", freq_lpmm)
-    tf = _nonnegative("table_freq_lpmm", np.ravel(table_freq_lpmm))
-    tm = _in_range("table_mtf", np.ravel(table_mtf), 0.0, 1.0)
+    n = finite("freq_lpmm", freq_lpmm)
+    tf = nonnegative("table_freq_lpmm", np.ravel(table_freq_lpmm))
+    tm = in_range("table_mtf", np.ravel(table_mtf), 0.0, 1.0)
     if tf.shape != tm.shape or tf.size == 0:
         raise ValueError("table_mtf must have the same non-zero length as table_freq_lpmm")
     if np.any(np.diff(tf) <= 0):

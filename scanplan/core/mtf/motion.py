@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
-from scanplan.core.flight import _finite, _in_range, _nonnegative, _positive
+from scanplan.core.checks import finite, in_range, nonnegative, positive
 from scanplan.core.mtf._base import NDArrayFloat, _k_gauss, _k_linear_motion
 
 
@@ -42,10 +42,10 @@ def geometric_image_shift_mm(
     >>> round(float(geometric_image_shift_mm(25.0, 1e-3, 50.0, 300.0)), 6)
     0.004167
     """
-    w = _nonnegative("speed_ms", speed_ms)
-    t = _positive("exposure_s", exposure_s)
-    f = _positive("focal_mm", focal_mm)
-    h = _positive("height_m", height_m)
+    w = nonnegative("speed_ms", speed_ms)
+    t = positive("exposure_s", exposure_s)
+    f = positive("focal_mm", focal_mm)
+    h = positive("height_m", height_m)
     return w * t * f / h
 
 
@@ -76,8 +76,8 @@ def photographic_image_shift_mm(
     >>> round(float(photographic_image_shift_mm(0.004167, 0.65)), 6)
     0.002709
     """
-    d = _nonnegative("geometric_shift_mm", geometric_shift_mm)
-    k = _in_range("shift_factor", shift_factor, 0.0, 1.0, low_inclusive=False)
+    d = nonnegative("geometric_shift_mm", geometric_shift_mm)
+    k = in_range("shift_factor", shift_factor, 0.0, 1.0, low_inclusive=False)
     return k * d
 
 
@@ -115,9 +115,9 @@ def linear_motion_mtf(
     >>> round(float(linear_motion_mtf(78.125, 0.0027)), 4)
     0.9284
     """
-    n = _finite("freq_lpmm", freq_lpmm)
-    d = _nonnegative("shift_mm", shift_mm)
-    eta = _in_range("shutter_efficiency", shutter_efficiency, 0.5, 1.0)
+    n = finite("freq_lpmm", freq_lpmm)
+    d = nonnegative("shift_mm", shift_mm)
+    eta = in_range("shutter_efficiency", shutter_efficiency, 0.5, 1.0)
     return _k_linear_motion(n, eta * d, (1.0 - eta) * d)
 
 
@@ -158,10 +158,10 @@ def angular_shift_tilt_mm(
     >>> round(float(angular_shift_tilt_mm(0.02, 1e-3, 50.0, 21.6)), 6)
     0.001187
     """
-    w = _nonnegative("rate_rad_s", rate_rad_s)
-    t = _positive("exposure_s", exposure_s)
-    f = _positive("focal_mm", focal_mm)
-    q = _nonnegative("q_mm", q_mm)
+    w = nonnegative("rate_rad_s", rate_rad_s)
+    t = positive("exposure_s", exposure_s)
+    f = positive("focal_mm", focal_mm)
+    q = nonnegative("q_mm", q_mm)
     return w * t * (f * f + q * q) / f
 
 
@@ -193,9 +193,9 @@ def angular_shift_yaw_mm(
     >>> round(float(angular_shift_yaw_mm(0.02, 1e-3, 21.6)), 6)
     0.000432
     """
-    w = _nonnegative("rate_rad_s", rate_rad_s)
-    t = _positive("exposure_s", exposure_s)
-    q = _nonnegative("q_mm", q_mm)
+    w = nonnegative("rate_rad_s", rate_rad_s)
+    t = positive("exposure_s", exposure_s)
+    q = nonnegative("q_mm", q_mm)
     return w * t * q
 
 
@@ -229,7 +229,7 @@ def random_shift_rms_mm(*shifts_mm: npt.ArrayLike) -> NDArrayFloat:
     """
     if not shifts_mm:
         return np.zeros(())
-    arrs = [_nonnegative("shifts_mm", s) for s in shifts_mm]
+    arrs = [nonnegative("shifts_mm", s) for s in shifts_mm]
     total = np.zeros(np.broadcast_shapes(*(a.shape for a in arrs)))
     for a in arrs:  # fixed count of components, not of configurations
         total = total + a * a
@@ -259,5 +259,5 @@ def random_motion_mtf(freq_lpmm: npt.ArrayLike, sigma_mm: npt.ArrayLike) -> NDAr
     >>> round(float(random_motion_mtf(78.125, 0.002)), 4)
     0.6176
     """
-    n = _finite("freq_lpmm", freq_lpmm)
-    return _k_gauss(n, _nonnegative("sigma_mm", sigma_mm))
+    n = finite("freq_lpmm", freq_lpmm)
+    return _k_gauss(n, nonnegative("sigma_mm", sigma_mm))

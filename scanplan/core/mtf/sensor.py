@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
-from scanplan.core.flight import _finite, _in_range, _nonnegative, _positive
+from scanplan.core.checks import finite, in_range, nonnegative, positive
 from scanplan.core.mtf._base import NDArrayFloat, _k_charge_transfer, _k_diffusion, _k_sinc
 
 
@@ -31,7 +31,7 @@ def nyquist_lpmm(pixel_um: npt.ArrayLike) -> NDArrayFloat:
     >>> round(float(nyquist_lpmm(6.4)), 3)
     78.125
     """
-    return 1.0 / (2.0 * _positive("pixel_um", pixel_um) * 1e-3)
+    return 1.0 / (2.0 * positive("pixel_um", pixel_um) * 1e-3)
 
 
 def pixel_aperture_mtf(
@@ -63,9 +63,9 @@ def pixel_aperture_mtf(
     >>> round(float(pixel_aperture_mtf(78.125, 6.4)), 4)
     0.6366
     """
-    n = _finite("freq_lpmm", freq_lpmm)
-    p = _positive("pixel_um", pixel_um) * 1e-3
-    ff = _in_range("fill_factor", fill_factor, 0.0, 1.0, low_inclusive=False)
+    n = finite("freq_lpmm", freq_lpmm)
+    p = positive("pixel_um", pixel_um) * 1e-3
+    ff = in_range("fill_factor", fill_factor, 0.0, 1.0, low_inclusive=False)
     return _k_sinc(p * np.sqrt(ff) * n)
 
 
@@ -102,10 +102,10 @@ def charge_transfer_mtf(
     >>> round(float(charge_transfer_mtf(78.125, 6.4, 2000, 1e-5)), 4)
     0.9608
     """
-    n = _finite("freq_lpmm", freq_lpmm)
-    p = _positive("pixel_um", pixel_um) * 1e-3
-    nt = _nonnegative("transfers", transfers)
-    eps = _in_range("inefficiency", inefficiency, 0.0, 1.0, high_inclusive=False)
+    n = finite("freq_lpmm", freq_lpmm)
+    p = positive("pixel_um", pixel_um) * 1e-3
+    nt = nonnegative("transfers", transfers)
+    eps = in_range("inefficiency", inefficiency, 0.0, 1.0, high_inclusive=False)
     return _k_charge_transfer(n, p, nt * eps)
 
 
@@ -148,8 +148,8 @@ def diffusion_mtf(
     >>> round(float(diffusion_mtf(78.125, 10.0)), 4)
     0.9257
     """
-    n = _nonnegative("freq_lpmm", freq_lpmm) * 1e-3  # cycles per µm
-    l0 = _nonnegative("diffusion_length_um", diffusion_length_um)
-    w = _positive("depletion_um", depletion_um)
-    alpha = _positive("absorption_per_um", absorption_per_um)
+    n = nonnegative("freq_lpmm", freq_lpmm) * 1e-3  # cycles per µm
+    l0 = nonnegative("diffusion_length_um", diffusion_length_um)
+    w = positive("depletion_um", depletion_um)
+    alpha = positive("absorption_per_um", absorption_per_um)
     return _k_diffusion(n, l0, w, alpha)

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
-from scanplan.core.flight import _positive
+from scanplan.core.checks import positive
 from scanplan.core.mtf._base import (
     DEFAULT_GRID_POINTS,
     DEFAULT_ITERATIONS,
@@ -104,8 +104,8 @@ def solve_resolving_power(
     """
     if grid_points < 2:
         raise ValueError(f"grid_points must be >= 2 (got {grid_points})")
-    rm = _positive("nyquist_lpmm", nyquist_lpmm)
-    ceiling = rm if upper_lpmm is None else np.minimum(rm, _positive("upper_lpmm", upper_lpmm))
+    rm = positive("nyquist_lpmm", nyquist_lpmm)
+    ceiling = rm if upper_lpmm is None else np.minimum(rm, positive("upper_lpmm", upper_lpmm))
     fun = margin if coarse_margin is None else coarse_margin
     b = _bracket(margin, fun, ceiling, grid_points, coarse=coarse_margin is not None)
     lo, hi, f_lo, f_hi = _refine(fun, b, iterations)
@@ -244,8 +244,8 @@ def ground_resolution_m(
     >>> round(float(ground_resolution_m(300.0, 40.0, 50.0)), 4)
     0.075
     """
-    h = _positive("height_m", height_m)
-    f = _positive("focal_mm", focal_mm)
+    h = positive("height_m", height_m)
+    f = positive("focal_mm", focal_mm)
     r = np.asarray(r_lpmm, dtype=float)
     if np.any(r <= 0):
         raise ValueError("r_lpmm must be > 0 (got a value <= 0)")

@@ -8,7 +8,7 @@ from typing import Any, Literal
 import numpy as np
 import numpy.typing as npt
 
-from scanplan.core.flight import _in_range, _nonnegative, _positive
+from scanplan.core.checks import in_range, nonnegative, positive
 from scanplan.core.mtf._base import DEFAULT_K0, NDArrayFloat
 from scanplan.errors import FieldValueError, pick_method
 
@@ -39,8 +39,8 @@ def object_contrast(r_max: npt.ArrayLike, r_min: npt.ArrayLike) -> NDArrayFloat:
     >>> round(float(object_contrast(0.3, 0.1)), 4)
     0.5
     """
-    rmax = _positive("r_max", r_max)
-    rmin = _nonnegative("r_min", r_min)
+    rmax = positive("r_max", r_max)
+    rmin = nonnegative("r_min", r_min)
     if np.any(rmin > rmax):
         bad = np.broadcast_to(rmin, np.broadcast(rmin, rmax).shape)[
             np.broadcast_to(rmin > rmax, np.broadcast(rmin, rmax).shape)
@@ -71,7 +71,7 @@ def weber_to_michelson(k_weber: npt.ArrayLike) -> NDArrayFloat:
     >>> round(float(weber_to_michelson(0.02)), 4)
     0.0101
     """
-    kw = _in_range("k_weber", k_weber, 0.0, 1.0)
+    kw = in_range("k_weber", k_weber, 0.0, 1.0)
     return kw / (2.0 - kw)
 
 
@@ -114,9 +114,9 @@ def threshold_sandvik_exponential(
     >>> np.round(threshold_sandvik_exponential([0.0, 78.125], 78.125), 4).tolist()
     [0.03, 1.0]
     """
-    n = _nonnegative("freq_lpmm", freq_lpmm)
-    rm = _positive("nyquist_lpmm", nyquist_lpmm)
-    k = _in_range("k0", k0, 0.0, 1.0, low_inclusive=False, high_inclusive=False)
+    n = nonnegative("freq_lpmm", freq_lpmm)
+    rm = positive("nyquist_lpmm", nyquist_lpmm)
+    k = in_range("k0", k0, 0.0, 1.0, low_inclusive=False, high_inclusive=False)
     return k ** (1.0 - n / rm)
 
 
@@ -158,14 +158,14 @@ def threshold_table(
     >>> round(float(threshold_table(20.0, 78.125, [0.0, 40.0], [0.02, 0.1])), 4)
     0.06
     """
-    n = _nonnegative("freq_lpmm", freq_lpmm)
-    tf = _nonnegative("table_freq_lpmm", np.ravel(table_freq_lpmm))
-    tk = _in_range("table_k", np.ravel(table_k), 0.0, 1.0, low_inclusive=False)
+    n = nonnegative("freq_lpmm", freq_lpmm)
+    tf = nonnegative("table_freq_lpmm", np.ravel(table_freq_lpmm))
+    tk = in_range("table_k", np.ravel(table_k), 0.0, 1.0, low_inclusive=False)
     if tf.shape != tk.shape or tf.size == 0:
         raise ValueError("table_k must have the same non-zero length as table_freq_lpmm")
     if np.any(np.diff(tf) <= 0):
         raise ValueError("table_freq_lpmm must be strictly increasing")
-    x = n / _positive("nyquist_lpmm", nyquist_lpmm) if relative else n
+    x = n / positive("nyquist_lpmm", nyquist_lpmm) if relative else n
     return np.interp(x, tf, tk)
 
 

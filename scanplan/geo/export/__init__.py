@@ -2,7 +2,7 @@
 
 :func:`layout_files` renders every file of one flight layout to memory (name → bytes);
 the caller writes them in the same all-or-nothing transaction as the reports
-(:func:`scanplan.safeio.write_atomic_many`). An abstract ``width × length`` block (not
+(:func:`scanplan.io.atomic.write_atomic_many`). An abstract ``width × length`` block (not
 georeferenced) gets none of them; a plan that is not feasible gets no mission.
 
 | file | content | module |
@@ -14,26 +14,34 @@ georeferenced) gets none of them; a plan that is not feasible gets no mission.
 | ``photos.csv`` | every photo centre with its figures | :mod:`.gis` |
 | ``flight.gpkg`` | area, strips, photo centres, sorties as one GeoPackage | :mod:`.gpkg` |
 | ``mission-dji.kmz`` (``mission-dji-01.kmz`` …) | the mission for DJI Pilot 2 | :mod:`.wpml` |
+
+Each kind of file is one record of :data:`.formats.FORMATS` (suffix, what it is, mark,
+writer, one file per sortie or not); :func:`layout_files` writes them in its order.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 from ..layout import FlightLayout
-from .common import GENERATOR, lonlat
+from .common import GENERATOR
+from .formats import FORMATS, ExportFormat, ExportJob, format_named
 from .gis import ExportNames, render_csv, render_geojson, render_kml
 from .gpkg import render_gpkg
 from .qgc import MissionOptions, plan_files, render_plan
 from .wpl import render_waypoints, waypoint_files
 from .wpml import wpml_files
 
-__all__ = ["GENERATOR", "ExportNames", "MissionOptions", "layout_files", "plan_files",
-           "render_csv", "render_geojson", "render_gpkg", "render_kml", "render_plan",
-           "render_waypoints", "waypoint_files", "wpml_files"]
+__all__ = ["FORMATS", "GENERATOR", "ExportFormat", "ExportJob", "ExportNames", "MissionOptions",
+           "format_named", "layout_files", "plan_files", "render_csv", "render_geojson",
+           "render_gpkg", "render_kml", "render_plan", "render_waypoints", "waypoint_files",
+           "wpml_files"]
 
 
 def layout_files(layout: FlightLayout, *, names: ExportNames | None = None,
                  mission: MissionOptions | None = None, prefix: str = "",
-                 photos_name: str = "photos") -> dict[str, bytes]:
+                 photos_name: str = "photos", camera: str | None = None,
+                 note: Callable[[str], None] | None = None) -> dict[str, bytes]:
     """Every exported file of ``layout``: file name → content.
 
     Parameters
@@ -45,10 +53,16 @@ def layout_files(layout: FlightLayout, *, names: ExportNames | None = None,
     mission : MissionOptions, optional
         With it (a UAV flight), the mission of every sortie as well: the QGroundControl
         Plan file and the same mission as Mission Planner's waypoint file.
+    camera : str, optional
+        With a mission, the camera's id: the same mission for DJI Pilot 2 (when DJI Pilot
+        2 can fly the camera).
     prefix : str
         Put before every file name (``"film-"``; a batch's project name).
     photos_name : str
         Stem of the CSV (``"photos"``; ``"frames"`` for film).
+    note : callable, optional
+        Told why a file the user may expect is not written, one line each
+        (``"no mission-dji.kmz: …"``).
 
     Returns
     -------
@@ -57,17 +71,9 @@ def layout_files(layout: FlightLayout, *, names: ExportNames | None = None,
     """
     if not layout.area.georeferenced:
         return {}
-    geo = lonlat(layout)
-    files: dict[str, bytes] = {}
-    if mission is not None:
-        # terrain following: a waypoint at every altitude step (the other files keep the
-        # strips as laid out)
-        plans = plan_files(layout, mission, geo=geo)
-        plans.update(waypoint_files(plans))  # the same missions for Mission Planner
-        files.update({prefix + k: v for k, v in plans.items()})
-    files[f"{prefix}flight.kml"] = render_kml(layout, names)
-    files[f"{prefix}flight.geojson"] = render_geojson(layout, names)
-    files[f"{prefix}flight.gpkg"] = render_gpkg(layout)
-    if len(layout.photos):
-        files[f"{prefix}{photos_name}.csv"] = render_csv(layout)
-    return files
+    job = ExportJob(layout, names, mission, photos_name, camera)
+    for fmt in FORMATS:
+        job.written.update(fmt.write(job, fmt))
+    for line in job.notes if note is not None else ():
+        note(f"no {prefix}{line}")
+    return {prefix + name: data for name, data in job.written.items()}

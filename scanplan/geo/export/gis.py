@@ -192,7 +192,7 @@ def render_kml(layout: FlightLayout, names: ExportNames | None = None) -> bytes:
 
 
 def _kml_styles(doc: ET.Element, n_photos: int) -> None:
-    """The document's styles: area, strips, sorties, take-off, photo centres."""
+    """The styles of the area, strips, sorties, take-off and photo centres."""
     _style(doc, "area", line="ff0000ff", width=2.5, fill="330000ff")
     _style(doc, "strip", line="ffff7f00", width=2.0)
     _style(doc, "sortie", line="ff9a1b6a", width=1.2)
@@ -211,9 +211,8 @@ def _kml_styles(doc: ET.Element, n_photos: int) -> None:
         _sub(pair, "styleUrl", f"#photo-{key}")
 
 
-def _kml_area(doc: ET.Element, layout: FlightLayout, geo: LonLat,
-              names: ExportNames) -> None:
-    """The area's folder: one placemark, its polygon(s) and figures."""
+def _kml_area(doc: ET.Element, layout: FlightLayout, geo: LonLat, names: ExportNames) -> None:
+    """The area's folder: its polygon (or polygons) with its figures."""
     folder = _sub(doc, "Folder")
     _sub(folder, "name", names.area)
     pm = _sub(folder, "Placemark")
@@ -231,9 +230,8 @@ def _kml_area(doc: ET.Element, layout: FlightLayout, geo: LonLat,
             _kml_polygon(mg, poly)
 
 
-def _kml_strips(doc: ET.Element, layout: FlightLayout, geo: LonLat,
-                names: ExportNames) -> None:
-    """The strips' folder: one placemark per strip, its photographed parts as lines."""
+def _kml_strips(doc: ET.Element, layout: FlightLayout, geo: LonLat, names: ExportNames) -> None:
+    """The strips' folder: one placemark per strip, its parts where the area is cut."""
     folder = _sub(doc, "Folder")
     _sub(folder, "name", names.strips)
     for (number, line, segments), strip in zip(_strip_lines(layout, geo), layout.strips,
@@ -429,7 +427,7 @@ def render_csv(layout: FlightLayout) -> bytes:
             frame[c] = frame[c].astype(np.int64)
         else:
             frame[c] = frame[c].astype(float).round(CSV_DECIMALS.get(c, 3))
-    from ...safeio import csv_safe_frame  # text cells never start a formula
+    from ...io.files import csv_safe_frame  # text cells never start a formula
 
     buf = io.StringIO()
     csv_safe_frame(frame).to_csv(buf, index=False, lineterminator="\n", na_rep="")

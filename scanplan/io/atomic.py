@@ -1,15 +1,12 @@
-"""Reading user files safely: regular files only, never more than a limit.
+"""Atomic writes: one file, or a set of files as one transaction (all replaced or none).
 
-A path a user (or a file's content) names may be a FIFO (opening it would wait for a writer
-for ever), a symlink to ``/dev/zero`` (reading it never ends), a device, or a file that grows
-while it is read. :func:`read_limited` refuses everything but a regular file and never reads
-more than its limit, so reading is bounded in time and memory whatever the path is.
-
-Writing is atomic: :func:`write_atomic` renders nothing itself; it writes the bytes to a
-temporary file beside the target, fsyncs and renames it over the target, so a crash never
-leaves a half-written file and never destroys the previous one. Several files that belong
-together (spec.xlsx and spec.pdf) are written as one transaction (:func:`write_atomic_many`).
-Reports and norm sets both use these writers; this module sits below both.
+:func:`write_atomic` renders nothing itself; it writes the bytes to a temporary file beside
+the target, fsyncs and renames it over the target, so a crash never leaves a half-written
+file and never destroys the previous one. Several files that belong together (spec.xlsx and
+spec.pdf) are written as one transaction (:func:`write_atomic_many`), made all-or-nothing
+across a kill by the journal (:mod:`scanplan.io.journal`) and held under the folders' lock
+(:func:`scanplan.io.targets.folder_lock`). Reports and norm sets both use these writers;
+this module sits below both.
 """
 
 from __future__ import annotations
@@ -21,255 +18,16 @@ import re
 import secrets
 import stat
 import tempfile
-from collections.abc import Callable, Iterable, Iterator, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
 
-from .errors import InputError, NotFoundError, WriteError
+from ..errors import WriteError
+from .files import fsync_dir, write_all
 from .journal import JOURNAL_NAME, Entry, Journal, recover
-from .outpaths import folder_lock, name_max
+from .targets import folder_lock, name_max
 
-__all__ = ["csv_safe", "csv_safe_frame", "dir_lock", "file_kind", "fsync_dir", "lock_file_for",
-           "read_limited", "size_text", "write_all", "write_atomic", "write_atomic_many"]
-
-
-_FORMULA_START = ("=", "+", "-", "@", "\t", "\r")
-
-
-def csv_safe(value: object) -> object:
-    """A CSV cell that a spreadsheet will not run as a formula.
-
-    Text starting with ``=``, ``+``, ``-``, ``@``, a tab or a carriage return gets a
-    leading ``'`` (OWASP, "CSV Injection": a spreadsheet shows the text, it does not run
-    it). Numbers, and text that is a plain number (``-12.5``), are returned unchanged.
-
-    Parameters
-    ----------
-    value : object
-        The cell's value.
-
-    Returns
-    -------
-    object
-        ``value``, or ``"'" + value`` for text a spreadsheet would read as a formula.
-    """
-    if not isinstance(value, str) or not value.startswith(_FORMULA_START):
-        return value
-    try:
-        float(value)
-    except ValueError:
-        return "'" + value
-    return value if value.strip() == value else "'" + value
-
-
-def csv_safe_frame(frame: Any) -> Any:
-    """A copy of a pandas DataFrame whose text columns are :func:`csv_safe`; numeric
-    columns are left as they are."""
-    from pandas.api.types import is_bool_dtype, is_numeric_dtype
-
-    out = frame.copy()
-    for col in out.columns:
-        if not (is_numeric_dtype(out[col].dtype) or is_bool_dtype(out[col].dtype)):
-            out[col] = out[col].map(csv_safe, na_action="ignore")
-    return out
-
-
-def size_text(n: int) -> str:
-    """``12.3 MB`` or ``1,234 bytes``."""
-    return f"{n / 2**20:.1f} MB" if n >= 2**20 else f"{n:,} bytes"
-
-
-def file_kind(mode: int) -> str:
-    """What a non-regular file is, for messages (``a FIFO (named pipe)``)."""
-    if stat.S_ISDIR(mode):
-        return "a folder"
-    if stat.S_ISFIFO(mode):
-        return "a FIFO (named pipe)"
-    if stat.S_ISCHR(mode) or stat.S_ISBLK(mode):
-        return "a device"
-    if stat.S_ISSOCK(mode):
-        return "a socket"
-    return "not a regular file"
-
-
-def read_limited(path: str | os.PathLike[str], limit: int, *, field: str | None = None) -> bytes:
-    """The bytes of the regular file ``path``, refused beyond ``limit`` bytes.
-
-    The path is checked before it is opened (a FIFO or a device is never opened), opened
-    without blocking, checked again on the open descriptor (nothing swapped in between),
-    and read with a bound (a growing file, or a ``/proc`` file that reports size 0, cannot
-    exceed it).
-
-    Parameters
-    ----------
-    path : path
-        The file (symlinks are followed: a link to a regular file is fine).
-    limit : int
-        Most bytes accepted.
-    field : str, optional
-        How errors name the file (default: the path).
-
-    Raises
-    ------
-    NotFoundError
-        The file does not exist.
-    InputError
-        It cannot be read, is not a regular file, or is larger than ``limit``.
-    """
-    name = field if field is not None else os.fspath(path)
-    too_big = f"the limit is {size_text(limit)}"
-    try:
-        st = os.stat(path)
-    except FileNotFoundError as exc:
-        raise NotFoundError(name, f"cannot be read: {exc.strerror or 'no such file'}") from None
-    except OSError as exc:
-        raise InputError(name, f"cannot be read: {exc.strerror or exc}") from None
-    if not stat.S_ISREG(st.st_mode):
-        raise InputError(name, f"is {file_kind(st.st_mode)}, not a regular file")
-    if st.st_size > limit:
-        raise InputError(name, f"is {size_text(st.st_size)}; {too_big}")
-    flags = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0)
-    flags |= getattr(os, "O_BINARY", 0)
-    try:
-        fd = os.open(path, flags)
-    except OSError as exc:
-        raise InputError(name, f"cannot be read: {exc.strerror or exc}") from None
-    try:
-        st = os.fstat(fd)
-        if not stat.S_ISREG(st.st_mode):
-            raise InputError(name, f"is {file_kind(st.st_mode)}, not a regular file")
-        chunks: list[bytes] = []
-        got = 0
-        while True:
-            try:
-                chunk = os.read(fd, min(1 << 20, limit + 1 - got))
-            except OSError as exc:
-                raise InputError(name, f"cannot be read: {exc.strerror or exc}") from None
-            if not chunk:
-                break
-            got += len(chunk)
-            if got > limit:
-                raise InputError(name, f"is larger than it said (still growing?); {too_big}")
-            chunks.append(chunk)
-        return b"".join(chunks)
-    finally:
-        os.close(fd)
-
-
-def write_all(fd: int, data: bytes) -> None:
-    """Write all of ``data`` to the open file ``fd`` and fsync it.
-
-    ``os.write`` may write less than asked (a full disk, a signal); the loop goes on until
-    everything is written, and a write that makes no progress is reported as a full disk.
-
-    Parameters
-    ----------
-    fd : int
-        An open file descriptor.
-    data : bytes
-        The whole content.
-
-    Raises
-    ------
-    OSError
-        From the system, or ``ENOSPC`` when a write makes no progress.
-    """
-    view = memoryview(data).cast("B")
-    while view:
-        n = os.write(fd, view)
-        if n <= 0:
-            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
-        view = view[n:]
-    os.fsync(fd)
-
-
-def fsync_dir(folder: str | os.PathLike[str]) -> None:
-    """fsync a folder, so that the renames and new names in it survive a power loss.
-
-    Best effort: a file system or platform that cannot fsync a folder (Windows, some network
-    shares) is skipped silently — the files themselves were fsynced before.
-
-    Parameters
-    ----------
-    folder : path
-        The folder.
-    """
-    try:
-        fd = os.open(folder, os.O_RDONLY | getattr(os, "O_DIRECTORY", 0))
-    except OSError:
-        return
-    try:
-        os.fsync(fd)
-    except OSError:
-        pass
-    finally:
-        os.close(fd)
-
-
-_HELD: dict[str, int] = {}  # folders this process holds a dir_lock on → nesting depth
-
-
-def lock_file_for(folder: str | os.PathLike[str]) -> Path:
-    """The lock file of ``folder``: in the user's cache folder (the platform's, through
-    platformdirs), named by a hash of the folder's real path — never a file inside the
-    folder itself, which may be read-only or a user's own project folder."""
-    import hashlib
-
-    import platformdirs
-
-    real = os.path.normcase(os.path.realpath(folder))
-    digest = hashlib.sha256(os.fsencode(real)).hexdigest()[:32]
-    return platformdirs.user_cache_path("scanplan", appauthor=False) / "locks" / \
-        f"{digest}.lock"
-
-
-@contextlib.contextmanager
-def dir_lock(folder: str | os.PathLike[str], *, exclusive: bool) -> Iterator[None]:
-    """Hold a reader/writer lock on ``folder``: shared for readers, exclusive for writers.
-
-    filelock's :class:`~filelock.ReadWriteLock` on :func:`lock_file_for` (SQLite's file
-    locking: POSIX, Windows and macOS alike). Where the lock file cannot be made (no cache
-    folder, no permission) it is a no-op: locking is cooperation between scanplan
-    processes, and a read-only folder is not locked against anyone. A lock this process
-    already holds on the folder covers a nested request (two locks of one process on one
-    file would otherwise wait for each other for ever).
-
-    Parameters
-    ----------
-    folder : path
-        The folder to lock.
-    exclusive : bool
-        Exclusive (writers) or shared (readers).
-    """
-    key = os.path.realpath(folder)
-    if _HELD.get(key):
-        _HELD[key] += 1
-        try:
-            yield
-        finally:
-            _HELD[key] -= 1
-        return
-    import sqlite3
-
-    import filelock
-
-    hold: contextlib.AbstractContextManager[None] | None = None
-    try:
-        path = lock_file_for(folder)
-        path.parent.mkdir(parents=True, exist_ok=True)
-        lock = filelock.ReadWriteLock(path, is_singleton=False)
-        hold = lock.write_lock() if exclusive else lock.read_lock()
-        hold.__enter__()
-    except (OSError, ValueError, sqlite3.Error):  # no usable lock file here: no lock
-        hold = None
-    _HELD[key] = 1
-    try:
-        yield
-    finally:
-        del _HELD[key]
-        if hold is not None:
-            hold.__exit__(None, None, None)
+__all__ = ["write_atomic", "write_atomic_many"]
 
 
 def write_atomic(path: str | os.PathLike[str], data: bytes) -> Path:
@@ -307,7 +65,7 @@ def write_atomic_many(files: Mapping[str | os.PathLike[str], bytes], *,
 
     Every file is first written to a temporary file beside its target (``.NAME.*.tmp``,
     fsynced, given the mode of the file it replaces). Then a journal is written
-    (:mod:`scanplan.journal`), and only then are the files renamed into place, one after
+    (:mod:`scanplan.io.journal`), and only then are the files renamed into place, one after
     the other, each current file kept under a hidden backup name (``.NAME.*.old``, a hard
     link, or the file moved aside where hard links are not available); the files ``remove``
     names (the stale files of an earlier run) are moved aside too. If anything fails — disk
@@ -319,7 +77,7 @@ def write_atomic_many(files: Mapping[str | os.PathLike[str], bytes], *,
     or finishes it (after), so every file is old or every file is new.
 
     The whole transaction — the check, the sweep, the writes — holds an exclusive lock on
-    the targets' folders (:func:`scanplan.outpaths.folder_lock`), so two scanplan runs
+    the targets' folders (:func:`scanplan.io.targets.folder_lock`), so two scanplan runs
     writing into one folder never interleave their files and one run's sweep never removes
     what another has just written. Under that lock, a killed run's journal is recovered
     first, then temporaries and backups of these targets that a killed run left behind

@@ -6,9 +6,9 @@ anything is rendered and again, under a lock on its folder, just before it is wr
 * ``-`` is refused: reports are binary files, never written to standard output.
 * A target that is one of the run's input files (a project file), by name, through a
   symbolic link or as a hard link, is refused — even with ``--force``.
-* The extension must fit the report: ``.xlsx`` for the workbook, ``.pdf`` for the PDF
-  (and for the files ``plan --out`` exports: ``.plan``, ``.waypoints``, ``.kmz``, ``.kml``,
-  ``.geojson``, ``.gpkg``, ``.csv``).
+* The extension must fit the report: ``.xlsx`` for the workbook, ``.pdf`` for the PDF,
+  ``.csv`` for a batch summary table (and for each file ``plan --out`` exports, the suffix
+  of its format: :data:`scanplan.geo.export.formats.FORMATS`).
 * A symbolic link, a folder, a FIFO or a device is refused (scanplan replaces regular files
   by renaming a new file over them; that would replace a link, not the file it points to).
 * A write-protected file is refused, even with ``--force`` (its protection is the owner's
@@ -17,10 +17,15 @@ anything is rendered and again, under a lock on its folder, just before it is wr
 * An existing non-empty file that scanplan did not write is replaced only with ``--force``.
   scanplan recognises its own reports by their document properties: the workbook's creator
   (``docProps/core.xml``, ``dc:creator``) and the PDF's document information (``/Creator``)
-  both start with ``scanplan``; an exported file by its mark (the Plan file's
-  ``groundStation``, the KML's opening comment, the GeoJSON's ``generator``, the photo
-  table's header, the DJI route file's ZIP comment, the GeoPackage's ``GENERATOR``
-  metadata item). An empty file holds nothing to lose and is replaced.
+  both start with ``scanplan``, a batch summary table by its header; an exported file by
+  the mark its format's record knows (:class:`FileKind` ``is_ours``). An empty file holds
+  nothing to lose and is replaced.
+
+A file kind is a :class:`FileKind` record: its suffix, what it is (for messages) and how
+scanplan's own file of that kind is recognised. The reports' kinds are :data:`KINDS`
+(``"xlsx"``, ``"pdf"``, ``"csv"``, named by a string); the exported formats are records of
+``geo/export/formats.py`` passed to :func:`check_target` and :func:`written_by_scanplan`
+themselves.
 
 :func:`folder_lock` serialises report writers in one folder (``flock``, as the norm folder
 lock): two runs writing into one ``--out`` folder cannot interleave their pairs, and the
@@ -36,32 +41,17 @@ import re
 import stat
 import zipfile
 import zlib
-from collections.abc import Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator
+from dataclasses import dataclass
 
-from .errors import InputError
+from ..errors import InputError
 
-__all__ = ["OUR_MARK", "check_target", "folder_lock", "name_max", "written_by_scanplan"]
+__all__ = ["KINDS", "OUR_MARK", "FileKind", "check_target", "folder_lock", "name_max",
+           "written_by_scanplan"]
 
 OUR_MARK = b"scanplan"
 """Start of the creator property of every report scanplan writes."""
 
-SUFFIX = {"xlsx": ".xlsx", "pdf": ".pdf", "plan": ".plan", "kml": ".kml",
-          "geojson": ".geojson", "csv": ".csv", "waypoints": ".waypoints", "kmz": ".kmz",
-          "gpkg": ".gpkg"}
-_WHAT = {"xlsx": "workbook", "pdf": "PDF", "plan": "mission", "kml": "KML file",
-         "geojson": "GeoJSON file", "csv": "table", "waypoints": "waypoint file",
-         "kmz": "DJI route file", "gpkg": "GeoPackage"}
-#: How scanplan's exported text files name their writer (within their first 4 KiB): the
-#: Plan file's groundStation, the KML's opening comment, the GeoJSON's "generator" member,
-#: the photo table's header (a CSV has no place for a comment), the waypoint file's comment.
-_TEXT_MARKS = {
-    "plan": re.compile(rb'"groundStation"\s*:\s*"scanplan[ "]'),
-    "kml": re.compile(rb"\A<\?xml[^>]*\?>\s*<!-- scanplan "),
-    "geojson": re.compile(rb'"generator"\s*:\s*"scanplan[ "]'),
-    "csv": re.compile(rb"\Aphoto,strip,index,sortie,x_m,y_m,lon_deg,lat_deg,"),
-    # the waypoint file's comment line after its header (Mission Planner skips it)
-    "waypoints": re.compile(rb"\AQGC WPL 110\r?\n# scanplan "),
-}
 CSV_HEADER = "\ufeffproject,file,map_scale,".encode()
 """How a batch summary.csv scanplan wrote begins (scanplan.reports.summary)."""
 MAX_REPORT_BYTES = 64 * 1024 * 1024
@@ -72,6 +62,29 @@ _MAX_INFLATED = 16 * 1024 * 1024  # most bytes decompressed while looking for th
 _CREATOR_XML = re.compile(rb"<dc:creator(?:\s[^>]*)?>\s*scanplan[\s<]")
 _CREATOR_PDF = re.compile(rb"/Creator\s*\(scanplan[ )]")
 _STREAM = re.compile(rb"stream\r?\n")
+
+
+@dataclass(frozen=True)
+class FileKind:
+    """A kind of file scanplan writes: what a target of that kind is checked against.
+
+    Attributes
+    ----------
+    name : str
+        Its short name (``"xlsx"``, ``"plan"``).
+    suffix : str
+        The file-name ending a target must have (``".xlsx"``).
+    what : str
+        What it is, for messages (``"workbook"``).
+    is_ours : callable
+        ``is_ours(data) -> bool``: whether the bytes of an existing file are scanplan's own
+        file of this kind (its mark; the whole file, at most :data:`MAX_REPORT_BYTES`).
+    """
+
+    name: str
+    suffix: str
+    what: str
+    is_ours: Callable[[bytes], bool]
 
 
 def name_max(folder: str | os.PathLike[str]) -> int:
@@ -86,7 +99,7 @@ def _same_file(a: os.stat_result, b: os.stat_result) -> bool:
     return (a.st_dev, a.st_ino) == (b.st_dev, b.st_ino)
 
 
-def check_target(path: str, field: str, kind: str, *, inputs: Iterable[str] = (),
+def check_target(path: str, field: str, kind: str | FileKind, *, inputs: Iterable[str] = (),
                  force: bool = False) -> None:
     """Refuse a report target that is unsafe to write (rules in the module docstring).
 
@@ -96,8 +109,8 @@ def check_target(path: str, field: str, kind: str, *, inputs: Iterable[str] = ()
         The target as the user gave it.
     field : str
         How messages name it (``--xlsx``, ``--out``).
-    kind : {"xlsx", "pdf", "plan", "kml", "geojson", "csv", "waypoints", "kmz", "gpkg"}
-        The report or exported file it is for.
+    kind : {"xlsx", "pdf", "csv"} or FileKind
+        The report (a name in :data:`KINDS`) or the exported format it is for.
     inputs : iterable of str
         The run's input files; none of them may be the target.
     force : bool
@@ -136,16 +149,17 @@ def check_target(path: str, field: str, kind: str, *, inputs: Iterable[str] = ()
         if same:
             raise InputError(field, f"{shown} is the input file {item!r}; a report never "
                              "replaces an input — give another name")
-    if not path.lower().endswith(SUFFIX[kind]):
-        raise InputError(field, f"{shown} does not end in {SUFFIX[kind]}; the "
-                         f"{_WHAT[kind]} is written only to a {SUFFIX[kind]} file")
+    kind = KINDS[kind] if isinstance(kind, str) else kind
+    if not path.lower().endswith(kind.suffix):
+        raise InputError(field, f"{shown} does not end in {kind.suffix}; the "
+                         f"{kind.what} is written only to a {kind.suffix} file")
     if st is None:
         return
     if stat.S_ISLNK(st.st_mode):
         raise InputError(field, f"{shown} is a symbolic link (to {os.readlink(path)!r}); "
                          "scanplan replaces files, not links — name the file itself")
     if not stat.S_ISREG(st.st_mode):
-        from .safeio import file_kind
+        from .files import file_kind
 
         raise InputError(field, f"{shown} is {file_kind(st.st_mode)}; give a file name")
     if not os.access(path, os.W_OK) or not st.st_mode & 0o222:  # root too: no write bit
@@ -156,51 +170,28 @@ def check_target(path: str, field: str, kind: str, *, inputs: Iterable[str] = ()
                          "--force to replace it, or another name")
 
 
-def written_by_scanplan(path: str | os.PathLike[str], kind: str) -> bool:
+def written_by_scanplan(path: str | os.PathLike[str], kind: str | FileKind) -> bool:
     """Whether ``path`` is a report scanplan wrote (its creator property says so).
 
     Parameters
     ----------
     path : path
         An existing regular file.
-    kind : {"xlsx", "pdf", "plan", "kml", "geojson", "csv", "waypoints", "kmz", "gpkg"}
-        What it should be.
+    kind : {"xlsx", "pdf", "csv"} or FileKind
+        What it should be: a report (a name in :data:`KINDS`) or an exported format.
 
     Returns
     -------
     bool
         False for anything else, an unreadable file or one over :data:`MAX_REPORT_BYTES`.
     """
-    from .safeio import read_limited
+    from .files import read_limited
 
     try:
         data = read_limited(path, MAX_REPORT_BYTES)
     except InputError:
         return False
-    if kind == "xlsx":
-        return _xlsx_is_ours(data)
-    if kind == "csv" and data.startswith(CSV_HEADER):  # a batch summary
-        return True
-    if kind in _TEXT_MARKS:
-        return bool(_TEXT_MARKS[kind].search(data[:4096]))
-    if kind == "kmz":  # the DJI route file: a ZIP whose comment names scanplan
-        return _zip_comment_is_ours(data)
-    if kind == "gpkg":  # the GeoPackage's dataset metadata item GENERATOR
-        return data.startswith(b"SQLite format 3\x00") and bool(_GPKG_MARK.search(data))
-    return _pdf_is_ours(data)
-
-
-_GPKG_MARK = re.compile(rb'<MDI key="GENERATOR">scanplan ')
-
-
-def _zip_comment_is_ours(data: bytes) -> bool:
-    import io
-
-    try:
-        with zipfile.ZipFile(io.BytesIO(data)) as zf:
-            return zf.comment.startswith(OUR_MARK + b" ")
-    except (zipfile.BadZipFile, OSError, ValueError, EOFError):
-        return False
+    return (KINDS[kind] if isinstance(kind, str) else kind).is_ours(data)
 
 
 def _xlsx_is_ours(data: bytes) -> bool:
@@ -234,6 +225,14 @@ def _pdf_is_ours(data: bytes) -> bool:
         if budget <= 0:
             return False
     return False
+
+
+KINDS = {kind.name: kind for kind in (
+    FileKind("xlsx", ".xlsx", "workbook", _xlsx_is_ours),
+    FileKind("pdf", ".pdf", "PDF", _pdf_is_ours),
+    FileKind("csv", ".csv", "table", lambda data: data.startswith(CSV_HEADER)),
+)}
+"""The reports' kinds of file: the workbook, the PDF, a batch's summary table."""
 
 
 @contextlib.contextmanager

@@ -1,6 +1,6 @@
 """The journal of an output transaction: what a killed writer is undone (or finished) from.
 
-:func:`scanplan.safeio.write_atomic_many` writes a set of files (the reports, the missions,
+:func:`scanplan.io.atomic.write_atomic_many` writes a set of files (the reports, the missions,
 the GIS files, the photo table) and removes the stale files of an earlier run as one
 transaction. Before it changes anything a user can see, it writes a journal
 (``.scanplan-journal.json``, in the first folder of the set, fsynced): for every target,
@@ -64,7 +64,7 @@ class Journal:
         self.entries = entries
 
     def _write(self, state: str) -> None:
-        from .safeio import fsync_dir, write_all
+        from .files import fsync_dir, write_all
 
         data = json.dumps({"version": 1, "state": state,
                            "entries": [asdict(e) for e in self.entries]}).encode()
@@ -94,7 +94,7 @@ class Journal:
         """Delete the journal (the transaction is finished or undone)."""
         with contextlib.suppress(FileNotFoundError):
             os.unlink(self.path)
-        from .safeio import fsync_dir
+        from .files import fsync_dir
 
         fsync_dir(self.path.parent)
 
@@ -150,7 +150,7 @@ def _remove_partial(folder: str | os.PathLike[str]) -> None:
 def recover(folders: Iterable[str | os.PathLike[str]]) -> list[str]:
     """Roll back or finish the transactions a killed writer left in ``folders``.
 
-    Call it holding the folders' lock (:func:`scanplan.outpaths.folder_lock`), before
+    Call it holding the folders' lock (:func:`scanplan.io.targets.folder_lock`), before
     anything else is written there.
 
     Parameters

@@ -1,0 +1,62 @@
+"""The output comparison script (tools/compare_outputs.py) on two tiny folders: it finds a
+difference a reader would see, and ignores what only the run's folder or the bytes of a
+zip change."""
+
+from __future__ import annotations
+
+import importlib
+import json
+import sys
+import zipfile
+from pathlib import Path
+
+import pytest
+
+TOOLS = Path(__file__).resolve().parents[1] / "tools"
+
+
+@pytest.fixture(scope="module")
+def compare():
+    sys.path.insert(0, str(TOOLS))
+    try:
+        yield importlib.import_module("compare_outputs")
+    finally:
+        sys.path.remove(str(TOOLS))
+
+
+def _run(folder: Path, work: str, waypoints: str, csv_row: str) -> Path:
+    files = folder / "en" / "demo" / "files"
+    files.mkdir(parents=True)
+    (folder / "manifest.json").write_text(json.dumps({"work": work}))
+    (files / "mission.waypoints").write_text(f"QGC WPL 110\n{waypoints}\n")
+    (files / "photos.csv").write_text(f"id,file\n{csv_row.format(work=work)}\n")
+    with zipfile.ZipFile(files / "route.kmz", "w") as z:
+        z.writestr("wpmz/template.kml", "<kml/>")
+    return folder
+
+
+def test_one_difference_is_found_and_the_run_folder_is_not_one(compare, tmp_path):
+    a = _run(tmp_path / "a", "/tmp/scanplan-compare-aaaa", "0\t1\t0\t16", "1,{work}/x.kml")
+    b = _run(tmp_path / "b", "/tmp/scanplan-compare-bbbb", "0\t1\t0\t22", "1,{work}/x.kml")
+    problems = compare.compare_folders(a, b)
+    assert len(problems) == 1, problems
+    assert problems[0].startswith("differs: en/demo/files/mission.waypoints")
+    assert "-0\t1\t0\t16" in problems[0] and "+0\t1\t0\t22" in problems[0]
+    assert compare.main(["compare", str(a), str(b)]) == 1
+
+
+def test_the_same_runs_match_and_a_missing_file_is_reported(compare, tmp_path, capsys):
+    a = _run(tmp_path / "a", "/tmp/p1", "0\t1", "1,{work}/x.kml")
+    b = _run(tmp_path / "b", "/tmp/p2", "0\t1", "1,{work}/x.kml")
+    assert compare.compare_folders(a, b) == []
+    assert compare.main(["compare", str(a), str(b)]) == 0
+    assert "all 3 files match" in capsys.readouterr().out
+    (b / "en" / "demo" / "files" / "photos.csv").unlink()
+    assert compare.compare_folders(a, b) == [f"only in {a}: en/demo/files/photos.csv"]
+
+
+def test_the_locale_line_is_set_or_added(compare):
+    assert compare.with_locale('[project]\nname = "x"\nlocale = "en"\n', "ru") == (
+        '[project]\nname = "x"\nlocale = "ru"\n')
+    assert compare.with_locale('[project]\nname = "x"\n', "ru") == (
+        '[project]\nlocale = "ru"\nname = "x"\n')
