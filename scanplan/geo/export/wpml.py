@@ -44,7 +44,7 @@ from xml.etree import ElementTree as ET
 import numpy as np
 
 from ..layout import FlightLayout
-from ..mission import sortie_missions
+from ..mission import SortieMission, sortie_missions
 from .common import GENERATOR, LonLat, lonlat
 from .qgc import MissionOptions, _home, waypoint_altitudes
 
@@ -452,7 +452,8 @@ def egm96_separation_m(lon_deg: np.ndarray, lat_deg: np.ndarray) -> np.ndarray |
 
 
 def sortie_route(layout: FlightLayout, sortie: int, options: MissionOptions, *,
-                 geo: LonLat | None = None, geoid: bool = False) -> list[RoutePoint]:
+                 geo: LonLat | None = None, geoid: bool = False,
+                 missions: Sequence[SortieMission] | None = None) -> list[RoutePoint]:
     """The route of one sortie: the waypoints of its mission (:mod:`scanplan.geo.mission`,
     the same the QGroundControl and Mission Planner files fly: run-in, runs of photos,
     run-out, turns) with the photos each run fires and their heights for WPML.
@@ -468,6 +469,9 @@ def sortie_route(layout: FlightLayout, sortie: int, options: MissionOptions, *,
     geo : LonLat, optional
     geoid : bool
         Add the EGM96 separation (ellipsoidal heights, for ``"amsl"``).
+    missions : sequence of SortieMission, optional
+        Every sortie's mission at the options' speed (made here when not given; a caller
+        that routes every sortie makes them once).
 
     Returns
     -------
@@ -479,8 +483,9 @@ def sortie_route(layout: FlightLayout, sortie: int, options: MissionOptions, *,
         When ``geoid`` is asked and PROJ has no EGM96 grid.
     """
     geo = geo if geo is not None else lonlat(layout)
-    mission = next((m for m in sortie_missions(layout, options.speed_ms)
-                    if m.number == sortie), None)
+    if missions is None:
+        missions = sortie_missions(layout, options.speed_ms)
+    mission = next((m for m in missions if m.number == sortie), None)
     if mission is None:
         raise ValueError(f"sortie {sortie} has no photos")
     points = mission.points
@@ -580,11 +585,15 @@ def wpml_files(layout: FlightLayout, options: MissionOptions, camera_id: str, *,
               "area_lonlat": _outer_ring(geo)}
     common["forward_overlap_pct"], common["side_overlap_pct"] = _overlaps(layout)
     files: dict[str, bytes] = {}
+    missions = sortie_missions(layout, options.speed_ms)  # once: every route picks its own
     for s in flown:
-        route = sortie_route(layout, s.number, options, geo=geo, geoid=terrain)
+        route = sortie_route(layout, s.number, options, geo=geo, geoid=terrain,
+                             missions=missions)
         # above the take-off point (the take-off height), and the template's EGM96 height
-        relative = sortie_route(layout, s.number, replace(options, frame="relative"), geo=geo)
-        amsl = sortie_route(layout, s.number, options, geo=geo) if terrain else relative
+        relative = sortie_route(layout, s.number, replace(options, frame="relative"),
+                                geo=geo, missions=missions)
+        amsl = (sortie_route(layout, s.number, options, geo=geo, missions=missions)
+                if terrain else relative)
         mission = WpmlMission(
             **common, takeoff_height_m=relative[0].height_m,
             rth_height_m=max(p.height_m for p in relative),
