@@ -18,6 +18,7 @@ georeferenced) gets none of them; a plan that is not feasible gets no mission.
 
 from __future__ import annotations
 
+from ...progress import stage
 from ..layout import FlightLayout
 from .common import GENERATOR, lonlat
 from .gis import ExportNames, render_csv, render_geojson, render_kml
@@ -65,9 +66,13 @@ def layout_files(layout: FlightLayout, *, names: ExportNames | None = None,
         plans = plan_files(layout, mission, geo=geo)
         plans.update(waypoint_files(plans))  # the same missions for Mission Planner
         files.update({prefix + k: v for k, v in plans.items()})
-    files[f"{prefix}flight.kml"] = render_kml(layout, names)
-    files[f"{prefix}flight.geojson"] = render_geojson(layout, names)
-    files[f"{prefix}flight.gpkg"] = render_gpkg(layout)
+    gis = {"flight.kml": lambda: render_kml(layout, names),
+           "flight.geojson": lambda: render_geojson(layout, names),
+           "flight.gpkg": lambda: render_gpkg(layout)}
     if len(layout.photos):
-        files[f"{prefix}{photos_name}.csv"] = render_csv(layout)
+        gis[f"{photos_name}.csv"] = lambda: render_csv(layout)
+    with stage("GIS files", len(gis), "files") as step:
+        for name, render in gis.items():
+            files[prefix + name] = render()
+            step()
     return files

@@ -43,6 +43,7 @@ from xml.etree import ElementTree as ET
 
 import numpy as np
 
+from ...progress import stage
 from ..layout import FlightLayout
 from ..mission import SortieMission, sortie_missions
 from .common import GENERATOR, LonLat, lonlat
@@ -586,19 +587,21 @@ def wpml_files(layout: FlightLayout, options: MissionOptions, camera_id: str, *,
     common["forward_overlap_pct"], common["side_overlap_pct"] = _overlaps(layout)
     files: dict[str, bytes] = {}
     missions = sortie_missions(layout, options.speed_ms)  # once: every route picks its own
-    for s in flown:
-        route = sortie_route(layout, s.number, options, geo=geo, geoid=terrain,
-                             missions=missions)
-        # above the take-off point (the take-off height), and the template's EGM96 height
-        relative = sortie_route(layout, s.number, replace(options, frame="relative"),
-                                geo=geo, missions=missions)
-        amsl = (sortie_route(layout, s.number, options, geo=geo, missions=missions)
-                if terrain else relative)
-        mission = WpmlMission(
-            **common, takeoff_height_m=relative[0].height_m,
-            rth_height_m=max(p.height_m for p in relative),
-            area_height_m=float(np.median([p.height_m for p in amsl])),
-            area_ellipsoid_height_m=float(np.median([p.height_m for p in route])))
-        name = f"{stem}.kmz" if len(flown) == 1 else f"{stem}-{s.number:0{width}d}.kmz"
-        files[name] = render_kmz(route, mission)
+    with stage("DJI routes", len(flown), "sorties") as step:
+        for s in flown:
+            route = sortie_route(layout, s.number, options, geo=geo, geoid=terrain,
+                                 missions=missions)
+            # above the take-off point (the take-off height), and the template's EGM96 height
+            relative = sortie_route(layout, s.number, replace(options, frame="relative"),
+                                    geo=geo, missions=missions)
+            amsl = (sortie_route(layout, s.number, options, geo=geo, missions=missions)
+                    if terrain else relative)
+            mission = WpmlMission(
+                **common, takeoff_height_m=relative[0].height_m,
+                rth_height_m=max(p.height_m for p in relative),
+                area_height_m=float(np.median([p.height_m for p in amsl])),
+                area_ellipsoid_height_m=float(np.median([p.height_m for p in route])))
+            name = f"{stem}.kmz" if len(flown) == 1 else f"{stem}-{s.number:0{width}d}.kmz"
+            files[name] = render_kmz(route, mission)
+            step()
     return files, None
