@@ -22,7 +22,7 @@ from collections.abc import Callable, Iterator
 from contextvars import ContextVar
 from typing import Protocol
 
-__all__ = ["Listener", "listening", "stage"]
+__all__ = ["Listener", "listened", "listening", "stage"]
 
 
 class Listener(Protocol):
@@ -82,3 +82,8 @@ def listening(listener: Listener | None) -> Iterator[None]:
         yield
     finally:
         _listener.reset(token)
+
+
+def listened() -> bool:
+    """Whether somebody listens to the stages here (a terminal draws them)."""
+    return _listener.get() is not None

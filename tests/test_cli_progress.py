@@ -176,3 +176,17 @@ def test_decimal_comma_in_the_direction_and_scan_options():
                                  "--focal-mm", "152.5"])
     assert comma.exit_code == 0, comma.output
     assert comma.stdout == point.stdout
+
+
+def test_a_terminal_is_told_before_a_write_of_many_files(tmp_path, loud, capsys):
+    from scanplan.cli.outset import MANY_FILES, write_set
+
+    files = {str(tmp_path / f"mission-{n:03d}.plan"): b"{}" for n in range(MANY_FILES)}
+    said: list[str] = []
+    write_set(files, check=lambda: None, sweep=None, say=said.append)
+    assert capsys.readouterr().err == ""  # nobody draws the stages: nothing said before
+    assert said == [f"wrote {MANY_FILES} QGroundControl missions: {next(iter(files))} … "
+                    f"{list(files)[-1]}"]
+    with progress.listening(_Recorder()):
+        write_set(files, check=lambda: None, sweep=None, say=said.append)
+    assert capsys.readouterr().err == f"writing {MANY_FILES} files …\n"

@@ -12,7 +12,12 @@ from typing import Any
 import click
 
 from ..errors import InputError
+from ..progress import listened
 from .console import verbosity
+
+MANY_FILES = 50
+"""From this many files on, a terminal drawing the stages of a plan is told before their
+write begins."""
 
 
 def write_set(files: Mapping[str, bytes], *, check: Callable[[], None], sweep: str | None,
@@ -45,6 +50,8 @@ def write_set(files: Mapping[str, bytes], *, check: Callable[[], None], sweep: s
         removed[:] = stale_exports(sweep, set(files)) if sweep else []
         return removed
 
+    if len(files) >= MANY_FILES and listened():  # hundreds take seconds: say so at a terminal
+        click.echo(f"writing {len(files)} files …", err=True)
     write_atomic_many(files, check=check, remove=stale if sweep else None)
     every = verbosity() >= 1  # -v: a line per file
     for line in file_lines(list(files), every=every):
