@@ -222,7 +222,7 @@ def test_a_plan_with_fewer_sorties_removes_the_stale_missions(work, monkeypatch)
     assert {"mission-01.plan", "mission-02.plan", "mission-03.plan"} <= set(os.listdir(out))
     (out / "mission-07.plan").write_text('{"fileType": "Plan", "groundStation": "QGC"}')
     monkeypatch.setattr(exports_mod, "spec_layouts", lambda spec: [("uav", make_layout())])
-    r = cli("plan", "proj.toml", "--out", "out")
+    r = cli("plan", "proj.toml", "--out", "out", "-v")  # -v: a line per file removed
     assert r.exit_code == 0, r.output
     assert sorted(os.listdir(out)) == sorted([*UAV_FILES, "mission-07.plan"])
     for stale in ("mission-02.plan", "mission-02.waypoints"):

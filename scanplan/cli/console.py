@@ -12,24 +12,31 @@
   lines, no progress); ``-v`` adds a line per project of a batch as it is done.
   :func:`info` prints a note unless quiet, :func:`detail` only when verbose.
 - **Progress.** :class:`Progress` is click's progress bar (count, rate, time left) on
-  stderr, shown only when stderr is a terminal and not quiet; off a terminal nothing
-  is drawn.
+  stderr, shown only when stderr is a terminal and not quiet (:func:`shows_progress`);
+  off a terminal nothing is drawn. A batch has one bar over its projects; one plan has a
+  bar per long stage (the missions of every sortie, the reports, the files written),
+  drawn by :class:`StageBar` from the stages the work reports (:mod:`scanplan.progress`).
 """
 
 from __future__ import annotations
 
 import codecs
+import contextlib
 import io
 import os
 import sys
 import time
 import unicodedata
+from collections.abc import Iterable, Iterator
 from typing import Any
 
 import click
 
-__all__ = ["EXIT_PIPE", "FALLBACK", "Progress", "closed_pipe", "detail", "fallback_handler",
-           "info", "set_verbosity", "setup_streams", "verbosity", "verbosity_options"]
+from .. import progress
+
+__all__ = ["EXIT_PIPE", "FALLBACK", "Progress", "StageBar", "closed_pipe", "detail",
+           "fallback_handler", "info", "set_verbosity", "setup_streams", "shows_progress",
+           "stage_bars", "staged", "verbosity", "verbosity_options"]
 
 EXIT_PIPE = 141
 """Exit code when stdout's reader has gone (128 + SIGPIPE)."""
@@ -113,7 +120,8 @@ def _verbose(ctx: click.Context, param: click.Parameter, value: int) -> None:
 def verbosity_options(f: Any) -> Any:
     """``-q/--quiet`` and ``-v/--verbose`` on a command (before or after its name)."""
     f = click.option("-v", "--verbose", count=True, expose_value=False, callback=_verbose,
-                     help="Say more on stderr: each project of a batch as it is done.")(f)
+                     help="Say more on stderr: every file written (not one line per series of "
+                     "missions), each project of a batch as it is done.")(f)
     return click.option("-q", "--quiet", is_flag=True, expose_value=False, callback=_quiet,
                         help="Only warnings and errors on stderr: no 'wrote FILE' lines, no "
                         "progress.")(f)
@@ -161,6 +169,17 @@ def closed_pipe() -> int:
     return EXIT_PIPE
 
 
+def shows_progress(stream: Any = None) -> bool:
+    """Whether progress bars are drawn: on a terminal (``stream``, default stderr) and
+    not quiet (``-q``); never off a terminal (a pipe, a file, a test runner)."""
+    stream = sys.stderr if stream is None else stream
+    try:
+        tty = bool(stream.isatty())
+    except (AttributeError, ValueError):  # no isatty, or a closed stream
+        tty = False
+    return verbosity() >= 0 and tty
+
+
 class Progress:
     """click's progress bar on stderr — count, per cent, rate and time left — for work of
     ``total`` steps that runs longer than ``delay_s``; drawn only when stderr is a
@@ -173,7 +192,7 @@ class Progress:
     def __init__(self, total: int, label: str, unit: str = "", delay_s: float = 1.0) -> None:
         self.total, self.label, self.unit, self.delay_s = total, label, unit, delay_s
         self.start = time.monotonic()
-        self.on = verbosity() >= 0 and sys.stderr.isatty() and total > 1
+        self.on = shows_progress() and total > 1
         self.bar: Any = None
 
     def _rate(self, done: int) -> str:
@@ -204,3 +223,49 @@ class Progress:
         if self.bar is not None:
             self.bar.__exit__(None, None, None)
             self.bar = None
+
+
+class StageBar:
+    """A :class:`scanplan.progress.Listener` that draws each stage of one plan as a
+    :class:`Progress` bar (its label, count, rate and time left), for a stage that runs
+    longer than ``delay_s``; used with :func:`scanplan.progress.listening`."""
+
+    def __init__(self, delay_s: float = 0.5) -> None:
+        self.delay_s = delay_s
+        self.bar: Progress | None = None
+        self.done = 0
+
+    def begin(self, label: str, total: int, unit: str) -> None:
+        """A stage of ``total`` steps begins: a new bar (drawn once it is late)."""
+        self.end()
+        self.bar, self.done = Progress(total, label, unit, self.delay_s), 0
+
+    def advance(self, steps: int) -> None:
+        """``steps`` more steps of the stage are done."""
+        if self.bar is not None:
+            self.done = min(self.done + steps, self.bar.total)
+            self.bar.step(self.done)
+
+    def end(self) -> None:
+        """The stage is over: its bar (if drawn) keeps its final line."""
+        if self.bar is not None:
+            self.bar.close()
+            self.bar = None
+
+
+@contextlib.contextmanager
+def stage_bars() -> Iterator[None]:
+    """Draw the stages of the work done within this block (:class:`StageBar`) when
+    progress is shown (:func:`shows_progress`); otherwise nobody listens."""
+    with progress.listening(StageBar() if shows_progress() else None):
+        yield
+
+
+def staged(items: Iterable[Any], label: str, unit: str = "") -> Iterator[Any]:
+    """``items`` one by one as a stage of :mod:`scanplan.progress` (one step each, counted
+    when the next is asked for, or the loop ends)."""
+    items = list(items)
+    with progress.stage(label, len(items), unit) as step:
+        for item in items:
+            yield item
+            step()

@@ -21,7 +21,7 @@ from .._version import __version__
 from ..errors import InputError, WriteError
 from ..project.inputs import option_names
 from . import console, outputs
-from .options import input_option
+from .options import decimal, input_option
 from .outset import batch_text, project_inputs, refuse_dangling_link, say_export_notes, write_set
 from .projects import check_stdin
 
@@ -250,7 +250,7 @@ def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
 
         forked = worker.submit(render_html(view=view))
     rendered: dict[str, bytes] = {}
-    for path, kind in wanted:
+    for path, kind in console.staged(wanted, "reports", "documents"):
         if kind == "xlsx":
             from ..reports.excel import render_xlsx as render
         elif forked or (render := outputs.pdf_renderer(explicit)) is None:
@@ -489,7 +489,7 @@ def uav(as_json: bool, **kwargs: Any) -> None:
         direction = None  # the default: "auto" over a polygon, along the block's length
     if direction is not None:
         try:
-            direction = float(direction)
+            direction = decimal(direction)  # 12.5 or 12,5
         except ValueError:
             raise InputError("--direction-deg", f'must be an angle in degrees or "auto" (got '
                              f"{direction!r})") from None
@@ -721,7 +721,7 @@ def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: s
     """``plan`` after its arguments are checked: run one project or a batch."""
     if not batch:
         pdf = bool(pdf_path or (out_dir and outputs.selected(formats, "pdf")))
-        with _pdf_worker(pdf) as worker:
+        with _pdf_worker(pdf) as worker, console.stage_bars():
             result = _run_project(files[0], out_dir, None, xlsx_path, pdf_path, files, force,
                                   pdf_worker=worker, formats=formats)
         from ..reports.jsondoc import plan_result_dict

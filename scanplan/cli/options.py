@@ -17,8 +17,8 @@ import click
 from ..errors import InputError
 from ..project.inputs import Input, describe, get
 
-__all__ = ["DECIMAL", "SCALE", "DecimalType", "ScaleType", "finite", "input_option", "text",
-           "text_or_none"]
+__all__ = ["DECIMAL", "SCALE", "DecimalType", "ScaleType", "decimal", "finite", "input_option",
+           "text", "text_or_none"]
 
 PLAN_OF = {"scan": "film", "uav": "uav"}
 """The plan (registry scope) of each command."""
@@ -42,6 +42,23 @@ class ScaleType(click.ParamType):
 SCALE = ScaleType()
 
 
+def decimal(text: str) -> float:
+    """``text`` as a number, with a decimal point or one decimal comma (``"12,5"``).
+
+    Raises
+    ------
+    ValueError
+        Not a number.
+
+    >>> decimal("12,5"), decimal(" 7.25 ")
+    (12.5, 7.25)
+    """
+    text = text.strip()
+    if text.count(",") == 1 and "." not in text:
+        text = text.replace(",", ".")
+    return float(text)
+
+
 class DecimalType(click.ParamType):
     """A number written with a decimal point or a decimal comma (``0.5`` or ``0,5``, as a
     Russian keyboard types it); a comma is read as the decimal sign only when the number
@@ -57,11 +74,8 @@ class DecimalType(click.ParamType):
                 ) -> float:
         if isinstance(value, int | float) and not isinstance(value, bool):
             return float(value)
-        text = str(value).strip()
-        if text.count(",") == 1 and "." not in text:
-            text = text.replace(",", ".")
         try:
-            return float(text)
+            return decimal(str(value))
         except ValueError:
             self.fail(f"{value!r} is not a number (write 0.5 or 0,5)", param, ctx)
 

@@ -5,12 +5,19 @@ the sweep of an earlier run's files, the lines it says, the inputs it protects, 
 from __future__ import annotations
 
 import os
+import re
 from collections.abc import Callable, Mapping
 from typing import Any
 
 import click
 
 from ..errors import InputError
+from ..progress import listened
+from .console import verbosity
+
+MANY_FILES = 50
+"""From this many files on, a terminal drawing the stages of a plan is told before their
+write begins."""
 
 
 def write_set(files: Mapping[str, bytes], *, check: Callable[[], None], sweep: str | None,
@@ -43,11 +50,61 @@ def write_set(files: Mapping[str, bytes], *, check: Callable[[], None], sweep: s
         removed[:] = stale_exports(sweep, set(files)) if sweep else []
         return removed
 
+    if len(files) >= MANY_FILES and listened():  # hundreds take seconds: say so at a terminal
+        click.echo(f"writing {len(files)} files …", err=True)
     write_atomic_many(files, check=check, remove=stale if sweep else None)
-    for path in files:
-        say(f"wrote {path}{note}")
-    for path in removed:
-        say(f"removed {path} (left from an earlier plan)")
+    every = verbosity() >= 1  # -v: a line per file
+    for line in file_lines(list(files), every=every):
+        say(f"wrote {line}{note}")
+    for line in file_lines(removed, every=every):
+        say(f"removed {line} (left from an earlier plan)")
+
+
+_NUMBERED = re.compile(r"^(?P<stem>.*)-(?P<n>\d+)(?P<suffix>\.[^.]+)$")
+KIND_NAMES = {".plan": "QGroundControl missions", ".waypoints": "Mission Planner missions",
+              ".kmz": "DJI Pilot 2 routes"}
+"""What a numbered series of files is, by its suffix (a line of :func:`file_lines`)."""
+
+
+def file_lines(paths: list[str], every: bool = False) -> list[str]:
+    """The files of one write as lines to say: a numbered series of one kind in one
+    folder (``mission-001.plan`` … ``mission-113.plan``) as one line with its count, its
+    first and its last file; every other file on a line of its own.
+
+    Parameters
+    ----------
+    paths : list of str
+        The files, in the order to say them.
+    every : bool
+        A line per file (``-v``).
+
+    Returns
+    -------
+    list of str
+        ``"out/spec.xlsx"``, ``"113 QGroundControl missions: out/mission-001.plan …
+        out/mission-113.plan"``, in the order of each series' first file.
+
+    Examples
+    --------
+    >>> file_lines(["o/spec.pdf", "o/mission-01.plan", "o/mission-02.plan"])
+    ['o/spec.pdf', '2 QGroundControl missions: o/mission-01.plan … o/mission-02.plan']
+    """
+    if every:
+        return list(paths)
+    series: dict[tuple[str, ...], list[str]] = {}
+    for path in paths:
+        folder, name = os.path.split(path)
+        m = _NUMBERED.match(name)
+        key = (folder, m["stem"], m["suffix"]) if m else (path,)
+        series.setdefault(key, []).append(path)
+    lines = []
+    for key, members in series.items():
+        if len(members) == 1:
+            lines.append(members[0])
+            continue
+        kind = KIND_NAMES.get(key[2].lower(), f"{key[2]} files")
+        lines.append(f"{len(members)} {kind}: {members[0]} … {members[-1]}")
+    return lines
 
 
 def say_export_notes(result: Any, say: Callable[[str], None] | None) -> None:

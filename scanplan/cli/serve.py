@@ -53,6 +53,9 @@ def serve(host: str, port: int, open_browser: bool, allow_remote: bool, tiles: s
                                             and "{z}" in tiles):
         raise InputError("--tiles", 'must be "osm", "none" or an http(s) URL with {z}/{x}/{y} '
                          f"(got {tiles!r})")
+    from ..extras import require
+
+    require("serve", "scanplan serve", "the web page")  # fastapi, uvicorn: an extra of the install
     import uvicorn
 
     from ..web.app import create_app

@@ -32,6 +32,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
+from ..extras import require
 from .gdal_guard import KIND_NAMES, gdal_messages, harden, read_head, sniff
 
 __all__ = ["UNIT_FACTORS", "DemInfo", "Samples", "dem_transformer", "open_dem", "sample_dem",
@@ -128,6 +129,7 @@ def open_dem(path: str | Path, key: str = "terrain.dem") -> DemInfo:
         dimensions.
     """
     harden()
+    require("terrain", key, "a DEM")  # rasterio and scipy: an extra of the install
     import rasterio
     from rasterio.errors import RasterioError
 

@@ -21,8 +21,10 @@ writer, one file per sortie or not); :func:`layout_files` writes them in its ord
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Callable
 
+from ...progress import stage
 from ..layout import FlightLayout
 from .common import GENERATOR
 from .formats import FORMATS, ExportFormat, ExportJob, format_named
@@ -72,8 +74,18 @@ def layout_files(layout: FlightLayout, *, names: ExportNames | None = None,
     if not layout.area.georeferenced:
         return {}
     job = ExportJob(layout, names, mission, photos_name, camera)
-    for fmt in FORMATS:
-        job.written.update(fmt.write(job, fmt))
+    # a format written per sortie shows its own progress by sortie; the others, one file
+    # each, are one stage
+    for per_sortie, run in itertools.groupby(FORMATS, key=lambda f: f.per_sortie):
+        formats = list(run)
+        if per_sortie:
+            for fmt in formats:
+                job.written.update(fmt.write(job, fmt))
+            continue
+        with stage("GIS files", len(formats), "files") as step:
+            for fmt in formats:
+                job.written.update(fmt.write(job, fmt))
+                step()
     for line in job.notes if note is not None else ():
         note(f"no {prefix}{line}")
     return {prefix + name: data for name, data in job.written.items()}

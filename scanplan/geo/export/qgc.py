@@ -46,6 +46,7 @@ from typing import Any, Literal
 
 import numpy as np
 
+from ...progress import stage
 from ..layout import FlightLayout
 from ..mission import MissionPoint, SortieMission, sortie_missions
 from .common import GENERATOR, LonLat, lonlat
@@ -291,5 +292,10 @@ def plan_files(layout: FlightLayout, options: MissionOptions, *, stem: str = "mi
     if len(missions) == 1:
         return {f"{stem}.plan": render_mission(layout, missions[0], options, geo=geo)}
     width = max(2, len(str(len(layout.sorties))))
-    return {f"{stem}-{m.number:0{width}d}.plan": render_mission(layout, m, options, geo=geo)
-            for m in missions}
+    files = {}
+    with stage("QGroundControl missions", len(missions), "sorties") as step:
+        for m in missions:
+            files[f"{stem}-{m.number:0{width}d}.plan"] = render_mission(layout, m, options,
+                                                                        geo=geo)
+            step()
+    return files

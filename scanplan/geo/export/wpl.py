@@ -30,6 +30,7 @@ import math
 from collections.abc import Mapping
 from typing import Any
 
+from ...progress import stage
 from .common import GENERATOR
 
 __all__ = ["HEADER", "render_waypoints", "waypoint_files"]
@@ -102,8 +103,11 @@ def waypoint_files(plans: Mapping[str, bytes]) -> dict[str, bytes]:
     """The waypoint file of every Plan file: ``mission.plan`` → ``mission.waypoints``,
     ``mission-01.plan`` → ``mission-01.waypoints`` …"""
     out = {}
-    for name, data in plans.items():
-        if name.endswith(".plan"):
-            stem = name[: -len(".plan")]
-            out[f"{stem}.waypoints"] = render_waypoints(data, note=f"the mission of {name}")
+    with stage("Mission Planner missions", len(plans), "sorties") as step:
+        for name, data in plans.items():
+            if name.endswith(".plan"):
+                stem = name[: -len(".plan")]
+                out[f"{stem}.waypoints"] = render_waypoints(data,
+                                                            note=f"the mission of {name}")
+            step()
     return out

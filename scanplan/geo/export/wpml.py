@@ -43,8 +43,9 @@ from xml.etree import ElementTree as ET
 
 import numpy as np
 
+from ...progress import stage
 from ..layout import FlightLayout
-from ..mission import sortie_missions
+from ..mission import SortieMission, sortie_missions
 from .common import GENERATOR, LonLat, lonlat
 from .qgc import MissionOptions, _home, waypoint_altitudes
 
@@ -452,7 +453,8 @@ def egm96_separation_m(lon_deg: np.ndarray, lat_deg: np.ndarray) -> np.ndarray |
 
 
 def sortie_route(layout: FlightLayout, sortie: int, options: MissionOptions, *,
-                 geo: LonLat | None = None, geoid: bool = False) -> list[RoutePoint]:
+                 geo: LonLat | None = None, geoid: bool = False,
+                 missions: Sequence[SortieMission] | None = None) -> list[RoutePoint]:
     """The route of one sortie: the waypoints of its mission (:mod:`scanplan.geo.mission`,
     the same the QGroundControl and Mission Planner files fly: run-in, runs of photos,
     run-out, turns) with the photos each run fires and their heights for WPML.
@@ -468,6 +470,9 @@ def sortie_route(layout: FlightLayout, sortie: int, options: MissionOptions, *,
     geo : LonLat, optional
     geoid : bool
         Add the EGM96 separation (ellipsoidal heights, for ``"amsl"``).
+    missions : sequence of SortieMission, optional
+        Every sortie's mission at the options' speed (made here when not given; a caller
+        that routes every sortie makes them once).
 
     Returns
     -------
@@ -479,8 +484,9 @@ def sortie_route(layout: FlightLayout, sortie: int, options: MissionOptions, *,
         When ``geoid`` is asked and PROJ has no EGM96 grid.
     """
     geo = geo if geo is not None else lonlat(layout)
-    mission = next(iter(sortie_missions(layout, options.speed_ms, numbers={sortie})),
-                   None)
+    if missions is None:
+        missions = sortie_missions(layout, options.speed_ms, numbers={sortie})
+    mission = next((m for m in missions if m.number == sortie), None)
     if mission is None:
         raise ValueError(f"sortie {sortie} has no photos")
     points = mission.points
@@ -580,16 +586,22 @@ def wpml_files(layout: FlightLayout, options: MissionOptions, camera_id: str, *,
               "area_lonlat": _outer_ring(geo)}
     common["forward_overlap_pct"], common["side_overlap_pct"] = _overlaps(layout)
     files: dict[str, bytes] = {}
-    for s in flown:
-        route = sortie_route(layout, s.number, options, geo=geo, geoid=terrain)
-        # above the take-off point (the take-off height), and the template's EGM96 height
-        relative = sortie_route(layout, s.number, replace(options, frame="relative"), geo=geo)
-        amsl = sortie_route(layout, s.number, options, geo=geo) if terrain else relative
-        mission = WpmlMission(
-            **common, takeoff_height_m=relative[0].height_m,
-            rth_height_m=max(p.height_m for p in relative),
-            area_height_m=float(np.median([p.height_m for p in amsl])),
-            area_ellipsoid_height_m=float(np.median([p.height_m for p in route])))
-        name = f"{stem}.kmz" if len(flown) == 1 else f"{stem}-{s.number:0{width}d}.kmz"
-        files[name] = render_kmz(route, mission)
+    missions = sortie_missions(layout, options.speed_ms)  # once: every route picks its own
+    with stage("DJI routes", len(flown), "sorties") as step:
+        for s in flown:
+            route = sortie_route(layout, s.number, options, geo=geo, geoid=terrain,
+                                 missions=missions)
+            # above the take-off point (the take-off height), and the template's EGM96 height
+            relative = sortie_route(layout, s.number, replace(options, frame="relative"),
+                                    geo=geo, missions=missions)
+            amsl = (sortie_route(layout, s.number, options, geo=geo, missions=missions)
+                    if terrain else relative)
+            mission = WpmlMission(
+                **common, takeoff_height_m=relative[0].height_m,
+                rth_height_m=max(p.height_m for p in relative),
+                area_height_m=float(np.median([p.height_m for p in amsl])),
+                area_ellipsoid_height_m=float(np.median([p.height_m for p in route])))
+            name = f"{stem}.kmz" if len(flown) == 1 else f"{stem}-{s.number:0{width}d}.kmz"
+            files[name] = render_kmz(route, mission)
+            step()
     return files, None
