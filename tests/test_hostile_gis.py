@@ -395,7 +395,8 @@ def test_hardening_prints_nothing_when_a_gdal_lacks_a_skipped_driver():
     """pyogrio's GDAL is built without some skipped drivers (CouchDB, TileDB): hardened
     before pyogrio was imported, its driver registration printed "Warning 1: Unable to find
     driver … to unload from GDAL_SKIP" to the user's terminal on every plan with a file
-    output. In a fresh interpreter: nothing on stderr, and the skipped drivers are gone."""
+    output. In a fresh interpreter — also one started by a hardened process, which
+    inherits its GDAL_SKIP — nothing on stderr, and the skipped drivers are gone."""
     import subprocess
     import sys
 
@@ -403,8 +404,13 @@ def test_hardening_prints_nothing_when_a_gdal_lacks_a_skipped_driver():
             "import pyogrio, rasterio\n"
             "d = pyogrio.list_drivers()\n"
             "assert 'VRT' not in d and 'OGR_VRT' not in d, sorted(d)\n")
-    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                       timeout=120, env={**__import__("os").environ,
-                                         "PYTHONPATH": str(Path(G.__file__).parents[2])})
-    assert r.returncode == 0, r.stderr
-    assert r.stderr == ""
+    import os
+
+    G.harden()
+    assert "CouchDB" in os.environ["GDAL_SKIP"]
+    for env in ({k: v for k, v in os.environ.items() if k != "GDAL_SKIP"}, dict(os.environ)):
+        env["PYTHONPATH"] = str(Path(G.__file__).parents[2])
+        r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                           timeout=120, env=env)
+        assert r.returncode == 0, r.stderr
+        assert r.stderr == "", ("GDAL_SKIP" in env, r.stderr)

@@ -83,8 +83,14 @@ def harden() -> None:
         # pyogrio's GDAL registers its drivers when imported, and would print "unable to
         # find driver" to stderr for each skipped one it was built without: imported
         # first, its drivers are re-registered below with its error handler in place
-        with contextlib.suppress(ImportError):
-            import pyogrio
+        # (also when a hardened parent process left GDAL_SKIP in the environment)
+        inherited = os.environ.pop("GDAL_SKIP", None)
+        try:
+            with contextlib.suppress(ImportError):
+                import pyogrio
+        finally:
+            if inherited is not None:
+                os.environ["GDAL_SKIP"] = inherited
     skip = " ".join(dict.fromkeys(
         [*os.environ.get("GDAL_SKIP", "").split(), *SKIPPED_DRIVERS]))
     wanted = {**GDAL_CONFIG, "GDAL_SKIP": skip}
