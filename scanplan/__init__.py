@@ -1,8 +1,9 @@
 """scanplan — photogrammetric scan and interpretation planner.
 
 The Instruction GKINP (GNTA)-02-036-02 scan-pixel rules (with the corrected P_R
-coefficient), seed 001's recognition model, and (for UAV cameras) the MTF ground
-resolution of seed 000, combined into a plan for a mapping contract.
+coefficient), the recognition model of Miheeva & Ilushenko (2015), and (for UAV cameras)
+the MTF ground resolution of the UAS-FP paper (Russian, on the linear resolution on the
+ground of UAV cameras), combined into a plan for a mapping contract.
 
 The top-level functions (:mod:`scanplan.api`) — :func:`plan`, :func:`scan`, :func:`uav`,
 :func:`batch` — return results with ``to_dict()`` (the ``--json`` document), ``to_frame()``
