@@ -157,3 +157,24 @@ def test_the_command_line_exits_2_naming_the_key(tmp_path, extra, key):
     assert result.exit_code == 2, result.output
     assert key in result.output and "must be ≥" in result.output
     assert "Traceback" not in result.output
+
+
+@pytest.mark.parametrize("key, ok, bad, message", [
+    ("turnaround_m", 5000.0, 10_001.0, "must be in (0, 10000] (got 10001.0)"),
+    ("turn_radius_m", 50_000.0, 0.0, "must be in (0, 50000] (got 0.0)"),
+    ("bank_deg", 60.0, 61.0, "must be in (0, 60] (got 61.0)"),
+])
+def test_the_turn_ranges_of_the_layout_are_the_registry_s(monkeypatch, key, ok, bad, message):
+    from scanplan.geo.area import rectangle_area
+    from scanplan.project.flightplan import LayoutOptions, check_options
+
+    area = rectangle_area(1000.0, 2000.0)
+    check_options(LayoutOptions(**{key: ok}), area, 10.0)
+    check_options(LayoutOptions(turnaround_m=0.0), area, 10.0)  # no run past the ends
+    with pytest.raises(InputError) as exc:
+        check_options(LayoutOptions(**{key: bad}), area, 10.0)
+    assert (exc.value.field, exc.value.message) == (key, message)
+    d = I.PROJECT_DOMAINS[key]
+    monkeypatch.setitem(I.PROJECT_DOMAINS, key, Domain(d.lo, ok / 2, d.unit, d.lo_open))
+    with pytest.raises(InputError):  # narrowed in the registry: refused where it is used
+        check_options(LayoutOptions(**{key: ok}), area, 10.0)

@@ -152,6 +152,10 @@ PROJECT_DOMAINS: dict[str, Domain] = {
     "turnaround_min": Domain(0, 1440, "min"),
     # one sortie is at most one day; ``meaning`` is what the error calls the value
     "sortie_time_min": Domain(0, 24 * 60.0, "min", lo_open=True, meaning="a flight time"),
+    # the turns between strips (the flight layout)
+    "turnaround_m": Domain(0, 10_000, "m"),
+    "turn_radius_m": Domain(0, 50_000, "m", lo_open=True),
+    "bank_deg": Domain(0, 60, "°", lo_open=True),
 }
 """The domains of keys only a project file has (the site, the schedule, the sortie), beside
 the inputs' :data:`~scanplan.core.domains.DOMAINS`: the range a value is read in, checked
@@ -403,11 +407,11 @@ _RECORDS: tuple[Input, ...] = (
           "strip, in photo bases", default=1),
     Input("turnaround_m", "uav", "turnaround_m", _NUM, "multirotor: distance flown past each "
           "strip end before turning [m]", "m", note="default: a semicircle across the line "
-          "spacing"),
+          "spacing", domain="turnaround_m"),
     Input("turn_radius_m", "uav", "turn_radius_m", _NUM, "fixed-wing: turn radius between "
-          "strips [m]", "m"),
+          "strips [m]", "m", domain="turn_radius_m"),
     Input("bank_deg", "uav", "bank_deg", _NUM, "fixed-wing: bank angle in the turns [°]; the "
-          "radius follows from the speed, r = v²/(g·tan φ)", "°"),
+          "radius follows from the speed, r = v²/(g·tan φ)", "°", domain="bank_deg"),
     Input("takeoff", "flight", "takeoff", "point", "take-off and landing point of every "
           "sortie, [lon, lat] (WGS 84): the missions' home; each sortie's transit to the "
           "block and back is flown within its battery and counted in the flight's length "
