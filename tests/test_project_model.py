@@ -178,3 +178,17 @@ def test_the_turn_ranges_of_the_layout_are_the_registry_s(monkeypatch, key, ok, 
     monkeypatch.setitem(I.PROJECT_DOMAINS, key, Domain(d.lo, ok / 2, d.unit, d.lo_open))
     with pytest.raises(InputError):  # narrowed in the registry: refused where it is used
         check_options(LayoutOptions(**{key: ok}), area, 10.0)
+
+
+def test_a_plan_result_pickles_with_its_model():
+    """A result (and its parsed project) travels between processes and notebooks as before."""
+    import pickle
+
+    from scanplan.project.spec import plan_project
+
+    result = plan_project(load_project(ROOT / "examples" / "uav-town-2000.toml"))
+    again = pickle.loads(pickle.dumps(result))
+    assert again.project == result.project
+    assert again.project.uav.given == result.project.uav.given
+    with pytest.raises(TypeError):
+        again.project.uav.given.update(height_m=1)

@@ -17,7 +17,6 @@ import datetime as dt
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
-from types import MappingProxyType
 from typing import TYPE_CHECKING, Any
 
 from ..core.domains import Domain, check_domain
@@ -28,9 +27,28 @@ from .inputs import by_key, domain_of, records
 if TYPE_CHECKING:
     from ..geo.terrain import TerrainConfig
 
-__all__ = ["AreaSection", "FieldMeta", "FilmSection", "FlightSection", "MapSection",
+__all__ = ["AreaSection", "FieldMeta", "FilmSection", "FlightSection", "FrozenMap", "MapSection",
            "NormsSection", "ProjectModel", "ScheduleSection", "Signing", "SiteSection",
            "TerrainSection", "UavSection", "build_model", "field_meta"]
+
+
+class FrozenMap(dict):  # type: ignore[type-arg]
+    """A read-only dict (a section's keys and values): it pickles and compares as a dict.
+
+    >>> m = FrozenMap(a=1)
+    >>> m["a"] = 2
+    Traceback (most recent call last):
+    TypeError: a parsed project file is read-only
+    """
+
+    def _read_only(self, *args: Any, **kwargs: Any) -> None:
+        raise TypeError("a parsed project file is read-only")
+
+    __setitem__ = __delitem__ = clear = pop = popitem = setdefault = update = _read_only
+    __ior__ = _read_only  # type: ignore[assignment]
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        return (FrozenMap, (dict(self),))
 
 
 @dataclass(frozen=True)
@@ -118,7 +136,7 @@ class FilmSection:
         Side overlap of the flight scheme [%] (the registry's default when not given).
     """
 
-    given: MappingProxyType[str, Any]
+    given: FrozenMap
     photo_scale: float | None
     side_overlap_pct: float
 
@@ -133,7 +151,7 @@ class UavSection:
     """``[uav]``: ``given`` as :attr:`FilmSection.given`; the planned height [m] (None: the
     specification recommends one) and the ground speed [m/s] (the registry's default)."""
 
-    given: MappingProxyType[str, Any]
+    given: FrozenMap
     height_m: float | None
     speed_ms: float
 
@@ -226,7 +244,7 @@ class ProjectModel:
     terrain: TerrainSection | None
     site: SiteSection | None
     schedule: ScheduleSection | None
-    lines: MappingProxyType[str, int] = field(default_factory=lambda: MappingProxyType({}))
+    lines: FrozenMap = field(default_factory=lambda: FrozenMap())
 
     def where(self, section: str, key: str | None = None) -> str:
         """``section.key (line N)`` — how errors name a key; ``where("site.lat_deg")`` too.
@@ -293,7 +311,7 @@ class _Reader:
             return value
         return dt.date.fromisoformat(value)
 
-    def given(self, plan: str) -> MappingProxyType[str, Any]:
+    def given(self, plan: str) -> FrozenMap:
         """Python name → value of every input of ``plan`` the file gives; a key of the
         plan's own section wins over a shared one (``[uav] height_formula`` over ``[norms]
         height_formula``)."""
@@ -306,7 +324,7 @@ class _Reader:
             value = self.p.get(r.section, r.key)
             if value is not None:
                 out[r.name] = value
-        return MappingProxyType(out)
+        return FrozenMap(out)
 
 
 def _meta(r: _Reader) -> ReportMeta:
@@ -457,4 +475,4 @@ def build_model(project: Project) -> ProjectModel:
                              g("uav", "bank_deg"), g("flight", "takeoff"), uav_sortie),
         film=film, uav=uav, terrain=terrain,
         site=site if project.has("site") else None, schedule=schedule,
-        lines=MappingProxyType(dict(project.lines)))
+        lines=FrozenMap(project.lines))
