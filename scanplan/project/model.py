@@ -22,7 +22,7 @@ from typing import TYPE_CHECKING, Any
 from ..core.domains import Domain, check_domain
 from ..errors import InputError
 from .file import Project, ReportMeta
-from .inputs import by_key, domain_of, records
+from .inputs import by_key, domain_of, project_key, records
 
 if TYPE_CHECKING:
     from ..geo.terrain import TerrainConfig
@@ -263,6 +263,24 @@ class ProjectModel:
     def at(self, section: str, key: str | None = None) -> str:
         """``FILE: section.key (line N)``: an error's field."""
         return f"{self.path}: {self.where(section, key)}"
+
+    def named(self, exc: InputError, plan: str, *, archive: bool = False) -> InputError:
+        """An engine's error (its ``field`` a Python name, :mod:`scanplan.project.inputs`)
+        naming the project key of ``plan`` and its line instead.
+
+        >>> m = build_model(Project(Path("p.toml"), "p", {"map": {"scale": 2000,
+        ...     "relief_interval_m": 1}, "uav": {"speed_ms": 900}}, {"uav.speed_ms": 5}))
+        >>> m.named(InputError("speed_ms", "must be ≤ 500 m/s"), "uav").field
+        'p.toml: uav.speed_ms (line 5)'
+        """
+        found = project_key(exc.field, plan)
+        if found is None:
+            return InputError(f"{self.path}: {exc.field}", exc.message)
+        section, key = found
+        if archive and (section, key) == ("film", "photo_scales"):
+            key = "photo_scale"  # existing photos: the one scale the file gave
+        where = self.where(section, key) if section else key
+        return InputError(f"{self.path}: {where}", exc.message)
 
 
 class _Reader:

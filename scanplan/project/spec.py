@@ -42,7 +42,7 @@ from .flightplan import (
     film_layout,
     layout_warnings,
 )
-from .inputs import by_key, project_key
+from .inputs import by_key
 from .model import ProjectModel, build_model
 from .results import FilmSpec, PlanResult, UavSpec
 from .sorties import sortie_length
@@ -59,19 +59,6 @@ DEFAULT_FILM_SIDE_OVERLAP_PCT: float = by_key("film", "side_overlap_pct").defaul
 """Side overlap of film photos when the project gives none [%] (the input registry's)."""
 _AREA_KEYS = ("file", "layer", "feature", "polygon", "crs", "plan_crs", "width_m", "length_m",
               "direction_deg", "extension_bases")
-
-
-def _as_project_error(project: ProjectModel, exc: InputError, plan: str,
-                      archive: bool = False) -> InputError:
-    """``exc`` (its ``field`` a Python name) naming the project key and its line."""
-    found = project_key(exc.field, plan)
-    if found is None:
-        return InputError(f"{project.path}: {exc.field}", exc.message)
-    section, key = found
-    if archive and (section, key) == ("film", "photo_scales"):
-        key = "photo_scale"
-    where = project.where(section, key) if section else key
-    return InputError(f"{project.path}: {where}", exc.message)
 
 
 def _job_kwargs(given: Any, takes: Any) -> dict[str, Any]:
@@ -93,7 +80,7 @@ def _film(project: ProjectModel, area: Area | None) -> FilmSpec:
     try:
         job = scan_job(**kw)
     except InputError as exc:
-        raise _as_project_error(project, exc, "film", archive_scale is not None) from None
+        raise project.named(exc, "film", archive=archive_scale is not None) from None
     if archive_scale is not None:
         raw = job
         job, best, reason = archive_film(job)
@@ -117,7 +104,7 @@ def _archive_over_terrain(project: ProjectModel, raw: ScanJob, job: ScanJob, bes
         layout = film_layout(best, inp.frame_width_mm, inp.frame_along_mm, inp.focal_mm,
                              inp.forward_overlap_pct, side, area, _layout_options(project))
     except InputError as exc:
-        raise _as_project_error(project, exc, "uav") from None
+        raise project.named(exc, "uav") from None
     got = archive_over_terrain(project, cfg, raw, job, best, layout)
     rec, layout = got.headline, got.layout
     frames = int(layout.notes.get("photos", len(layout.photos))) if layout else None
@@ -157,7 +144,7 @@ def _film_over_terrain(project: ProjectModel, job: ScanJob, side: float, area: A
             return film_layout(s, inp.frame_width_mm, inp.frame_along_mm, inp.focal_mm,
                                inp.forward_overlap_pct, side, area, _layout_options(project))
         except InputError as exc:
-            raise _as_project_error(project, exc, "uav") from None
+            raise project.named(exc, "uav") from None
 
     got = film_over_terrain(project, cfg, plan, candidates, layout_at,
                             lambda s: _feasible(plan, s))
@@ -212,7 +199,7 @@ def _film_spec(project: ProjectModel, job: ScanJob, best: ScanScenario | None, r
                                  inp.forward_overlap_pct, side, area,
                                  _layout_options(project))
         except InputError as exc:
-            raise _as_project_error(project, exc, "uav") from None
+            raise project.named(exc, "uav") from None
         strips = len(layout.strips)
         frames = int(layout.notes.get("photos", len(layout.photos)))
         gigabytes = frames * best.frame_megabytes / 1000.0
@@ -284,7 +271,7 @@ def _check_layout_keys(project: ProjectModel, area: Area | None) -> None:
     if area is None:
         if given:
             s, k = given[0]
-            raise InputError(f"{project.path}: {project.where(s, k)}", "applies to an area: "
+            raise InputError(project.at(s, k), "applies to an area: "
                              "give [area] file, polygon, or width_m and length_m")
         return
     speed = project.uav.speed_ms if project.uav is not None else by_key("uav",
@@ -292,7 +279,7 @@ def _check_layout_keys(project: ProjectModel, area: Area | None) -> None:
     try:
         check_options(_layout_options(project), area, speed if speed and speed > 0 else None)
     except InputError as exc:
-        raise _as_project_error(project, exc, "uav") from None
+        raise project.named(exc, "uav") from None
 
 
 def _layout_options(project: ProjectModel, platform: str = "uav") -> LayoutOptions:
@@ -342,7 +329,7 @@ def _uav(project: ProjectModel, the_area: Area | None) -> UavSpec:
                                                direction_deg=direction_deg)
             return uav_job(**kw)
         except InputError as exc:
-            raise _as_project_error(project, exc, "uav") from None
+            raise project.named(exc, "uav") from None
 
     first_height = planned if planned is not None else PROVISIONAL_HEIGHT_M
     first = job_at(first_height)
@@ -405,7 +392,7 @@ def _check_terrain(project: ProjectModel, area: Area | None) -> None:
     area to lay the photos over."""
     if project.terrain is not None and area is None:
         key = "dem" if project.terrain.config.dem is not None else "ground_elevation_m"
-        raise InputError(f"{project.path}: {project.where('terrain', key)}", "needs an area "
+        raise InputError(project.at("terrain", key), "needs an area "
                          "to lay the photos over ([area] width_m × length_m, polygon or file)")
 
 
