@@ -7,6 +7,10 @@ Run from the repository::
     python benchmarks/compare_outputs.py snap AFTER
     python benchmarks/compare_outputs.py compare BEFORE AFTER
 
+Take both snapshots in the same checkout (``git stash`` or ``git checkout`` between them):
+the JSON documents and the KML and GeoJSON files name the project and area files by their
+paths.
+
 ``snap`` plans each ``examples/*.toml`` with ``scanplan plan --json`` (the document, its
 exit code and its stderr) and with ``--out`` (the workbook, the PDF, the mission and GIS
 files). ``compare`` compares the JSON documents as data, the workbooks by cell values
