@@ -129,6 +129,9 @@ def test_the_range_is_the_registry_s(monkeypatch):
     assert _model(text).site.lat_deg == 70.0
     monkeypatch.setitem(I.PROJECT_DOMAINS, "lat_deg", Domain(-60, 60, "°"))
     assert _error(text).message == "must be ≥ -60 and ≤ 60 ° (got 70)"
+    monkeypatch.setitem(I.PROJECT_DOMAINS, "lat_deg", Domain(-70, 70, "°", hi_open=True))
+    assert _error(text).message == "must be ≥ -70 and < 70 ° (got 70)"
+    monkeypatch.setitem(I.PROJECT_DOMAINS, "lat_deg", Domain(-60, 60, "°"))
     meta = field_meta("site", "lat_deg")
     assert (meta.domain.lo, meta.domain.hi, meta.unit) == (-60, 60, "°")
 

@@ -308,11 +308,12 @@ class _Reader:
         d = domain_of(by_key(section, key))
         assert d is not None, f"{section}.{key} has no domain in the input registry"
         v = float(value)
-        if v < d.lo or v > d.hi or (d.lo_open and v == d.lo):
+        if v < d.lo or v > d.hi or (d.lo_open and v == d.lo) or (d.hi_open and v == d.hi):
             low = f"> {d.lo:g}" if d.lo_open else f"≥ {d.lo:g}"
+            high = f"< {d.hi:g}" if d.hi_open else f"≤ {d.hi:g}"
             raise InputError(self.where(section, key),
-                             f"must be {d.meaning + ' ' if d.meaning else ''}{low} and ≤ "
-                             f"{d.hi:g}{' ' + d.unit if d.unit else ''} (got {value!r})")
+                             f"must be {d.meaning + ' ' if d.meaning else ''}{low} and "
+                             f"{high}{' ' + d.unit if d.unit else ''} (got {value!r})")
         return v
 
     def choice(self, section: str, key: str, allowed: tuple[str, ...]) -> str | None:
