@@ -8,15 +8,14 @@ Run from the repository::
     python benchmarks/compare_outputs.py compare BEFORE AFTER
 
 Take both snapshots in the same checkout (``git stash`` or ``git checkout`` between them):
-the JSON documents and the KML and GeoJSON files name the project and area files by their
-paths.
+the JSON documents name the norm set by its folder's path.
 
 ``snap`` plans each ``examples/*.toml`` with ``scanplan plan --json`` (the document, its
-exit code and its stderr) and with ``--out`` (the workbook, the PDF, the mission and GIS
-files). ``compare`` compares the JSON documents as data, the workbooks by cell values
-(openpyxl), the PDFs by their text (``pdftotext -layout``), the GeoPackages by their rows
-(their timestamps aside) and every other file byte for byte; it lists each file that differs,
-is missing or is new, and exits 1 when any does.
+exit code and its stderr) and with ``--out`` (the terminal summary, the workbook, the PDF,
+the mission and GIS files). ``compare`` compares the JSON documents as data, the workbooks
+by cell values (openpyxl), the PDFs by their text (``pdftotext -layout``), the GeoPackages
+by their rows (their timestamps aside) and every other file byte for byte; it lists each
+file that differs, is missing or is new, and exits 1 when any does.
 """
 
 from __future__ import annotations
@@ -43,13 +42,14 @@ def snap(out: Path) -> None:
     env = {**os.environ, "PYTHONPATH": str(ROOT), "SCANPLAN_NO_FORK": "1"}
     for toml in sorted((ROOT / "examples").glob("*.toml")):
         name = toml.stem
-        cmd = [sys.executable, "-m", "scanplan", "plan", str(toml)]
+        cmd = [sys.executable, "-m", "scanplan", "plan", str(toml.relative_to(ROOT))]
         run = subprocess.run([*cmd, "--json"], capture_output=True, env=env, cwd=ROOT)
         (out / f"{name}.json").write_bytes(run.stdout)
         (out / f"{name}.json.err").write_bytes(run.stderr)
         (out / f"{name}.json.rc").write_text(f"{run.returncode}\n")
         run = subprocess.run([*cmd, "-q", "--out", str(out / name)], capture_output=True,
                              env=env, cwd=ROOT)
+        (out / f"{name}.out").write_bytes(run.stdout)  # the terminal summary
         (out / f"{name}.err").write_bytes(run.stderr)
         (out / f"{name}.rc").write_text(f"{run.returncode}\n")
         print(f"{name}: exit {run.returncode}", flush=True)
