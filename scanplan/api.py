@@ -346,7 +346,7 @@ def summary_row(result: PlanResult) -> dict[str, Any]:
     p = u.job.plan if u else None
     return {
         "project": result.meta.project, "file": str(result.project.path),
-        "map_scale": result.project.get("map", "scale"),
+        "map_scale": result.project.map.scale,
         "film_photo_scale": rec.photo_scale if rec else None,
         "film_scan_pixel_um": rec.scan_pixel_um if rec else None,
         "film_scanner_pixel_um": rec.scanner_pixel_um if rec else None,

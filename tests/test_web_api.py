@@ -265,6 +265,8 @@ def test_inputs_are_the_registry_and_the_catalogue_the_norm_sets(client):
         {(i.section, i.key) for i in INPUTS.values() if i.key}
     speed = next(r for r in rows if (r["section"], r["key"]) == ("uav", "speed_ms"))
     assert speed["unit"] == "m/s" and speed["default"] == 15.0 and "ground speed" in speed["help"]
+    lat = next(r for r in rows if (r["section"], r["key"]) == ("site", "lat_deg"))
+    assert (lat["min"], lat["max"]) == (-90, 90)  # a project-file key's own domain
     cat = client.get("/api/catalogue").json()
     assert any(c["id"] == "dji-zenmuse-p1-35" for c in cat["cameras"])
     assert all(s["pixels_um"] for s in cat["scanners"])

@@ -21,30 +21,19 @@ design sheet) and never recompute a number.
 from __future__ import annotations
 
 import datetime as dt
-from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
-from ..core.blocks import RELIEF_CLASSES, BlockHeightCheck, block_height_check
+from ..core.blocks import BlockHeightCheck, block_height_check
 from ..core.photoscale import height_at_photo_scale_m, scanned_ground_pixel_cm
 from ..errors import InputError
 from ..geo.layout import FlightLayout
-from ..geo.sun import (
-    FlyingDays,
-    SunWindow,
-    equal_sorties_s,
-    flying_days,
-    sun_windows,
-    time_zone_at,
-)
+from ..geo.sun import SunWindow, equal_sorties_s, flying_days, sun_windows, time_zone_at
 from ..messages import Message
-from ..norms.schema import GSD_AREAS
 from ..rules.results import PlanWarning
-from .file import Project
+from .model import ProjectModel
+from .results import FilmSpec, GsdCompliance, SunPlan, SurveyDesign, UavSpec
 from .site import area_site_warnings, site_of
 from .sorties import SORTIE_DEFAULTS_MIN, sortie_length
-
-if TYPE_CHECKING:
-    from .spec import FilmSpec, UavSpec
 
 __all__ = [
     "GsdCompliance",
@@ -61,110 +50,6 @@ DEFAULT_SCHEDULE_DAYS = 30
 """``[schedule] end_date`` defaults to this many days after the start."""
 MAX_SCHEDULE_DAYS = 366
 """Longest schedule the sun window is computed for [days]."""
-
-
-@dataclass(frozen=True)
-class GsdCompliance:
-    """The GSD of a workflow against the largest GSD of the plan scale (Table Б.1).
-
-    Attributes
-    ----------
-    workflow : {"digital", "film"}
-    map_scale : int
-    area : str
-        ``general`` or ``dense_urban``.
-    limit_cm : float
-        The table's largest GSD [cm].
-    gsd_cm : float
-        Digital: the GSD at the highest flown height of the recommended height; film: the
-        scanned ground pixel, scan pixel × Mc [cm].
-    complies : bool
-    binding : bool
-        Digital: GL is the binding constraint of the flight height.
-    source : str
-        The table row's source cell.
-    status : str
-        What the figure is (the row's status: a recommendation for Table Б.1).
-    set_aside : str
-        The project's reason for setting the recommendation aside (``""``: applied).
-    """
-
-    workflow: str
-    map_scale: int
-    area: str
-    limit_cm: float
-    gsd_cm: float
-    complies: bool
-    binding: bool
-    source: str
-    status: str = ""
-    set_aside: str = ""
-
-
-@dataclass(frozen=True)
-class SunPlan:
-    """The sun window at the site over the planned dates, and the flying days.
-
-    Attributes
-    ----------
-    lat_deg, lon_deg : float
-    utc_offset_h : float
-        Local time = UTC + offset on the first date [h].
-    min_elevation_deg : float
-    elevation_source : str
-        ``"project"`` or the norm set's parameter source.
-    start_date, end_date : datetime.date
-    windows : tuple of SunWindow
-    sortie_time_s, turnaround_s : float
-        The planned sortie (the one sortie length, :mod:`scanplan.project.sorties`; a
-        layout's sorties are at most this long) and the ground time between sorties [s].
-    flight_time_s : float or None
-        Flight time of the whole survey [s] (None: no ``[area]``, or film).
-    days : FlyingDays or None
-    time_zone : str or None
-        The site's IANA time zone the times are in (found from the coordinates); None
-        when the project gives ``utc_offset_h``.
-    """
-
-    lat_deg: float
-    lon_deg: float
-    utc_offset_h: float
-    min_elevation_deg: float
-    elevation_source: str
-    start_date: dt.date
-    end_date: dt.date
-    windows: tuple[SunWindow, ...]
-    sortie_time_s: float
-    turnaround_s: float
-    flight_time_s: float | None
-    days: FlyingDays | None
-    time_zone: str | None = None
-
-    @property
-    def window_hours(self) -> tuple[float, float]:
-        """Shortest and longest daily window over the dates [h]."""
-        hours = [w.hours for w in self.windows]
-        return min(hours), max(hours)
-
-
-@dataclass(frozen=True)
-class SurveyDesign:
-    """What the survey design sheet shows beyond the specification."""
-
-    gsd: tuple[GsdCompliance, ...]
-    block: BlockHeightCheck | None
-    block_source: str
-    sun: SunPlan | None
-    warnings: tuple[PlanWarning, ...]
-    block_ground: str = ""  # "dem": the DEM's samples; "range": [terrain] ground_elevation_m
-    block_waived: bool = False  # the flight follows the relief: the rule does not apply
-    block_status: str = ""  # what the block relief numbers are (a draft's recommendation)
-    block_set_aside: str = ""  # the project's reason for setting the rule aside
-    sun_status: str = ""  # what the norm set's sun elevation is (practice); "" if the project's
-
-
-def _where(project: Project, section: str, key: str) -> str:
-    return f"{project.path}: {project.where(section, key)}"
 
 
 def _worst_gsd_m(uav: UavSpec) -> float:
@@ -186,14 +71,14 @@ def _worst_gsd_m(uav: UavSpec) -> float:
     return max(flat, float(gsd_cm.max()) / 100.0 * up)
 
 
-def _gsd_checks(project: Project, film: FilmSpec | None, uav: UavSpec | None
+def _gsd_checks(project: ProjectModel, film: FilmSpec | None, uav: UavSpec | None
                 ) -> tuple[list[GsdCompliance], list[PlanWarning]]:
     out: list[GsdCompliance] = []
     warnings: list[PlanWarning] = []
-    area = project.get("norms", "gsd_area") or "general"
+    area = project.norms.gsd_area or "general"
     if uav is not None:
         inp = uav.job.plan.inputs
-        reason = project.get("norms.gsd_limits", "reason") or ""
+        reason = project.norms.gsd_limit_reason
         ns = uav.job.norm_set
         row = (ns.gsd_limit(inp.map_scale, area) if inp.map_scale is not None
                and "GL" in ns.parameters["constraints"] else None)
@@ -250,7 +135,7 @@ def _flight_height_m(film: FilmSpec | None, uav: UavSpec | None) -> float | None
     return None
 
 
-def _ground_samples(project: Project, film: FilmSpec | None, uav: UavSpec | None
+def _ground_samples(project: ProjectModel, film: FilmSpec | None, uav: UavSpec | None
                     ) -> tuple[Any, str] | None:
     """The ground elevations of the block [m] and where they come from.
 
@@ -276,20 +161,17 @@ def _ground_samples(project: Project, film: FilmSpec | None, uav: UavSpec | None
         z = z[np.isfinite(z)]
         if z.size:
             return np.append(z, ft.ground_low_m) if np.isfinite(ft.ground_low_m) else z, "dem"
-    ground = project.get("terrain", "ground_elevation_m")
+    ground = project.terrain.ground_elevation_m if project.terrain is not None else None
     if ground is not None:
         return ground, "range"
     return None
 
 
-def _block(project: Project, film: FilmSpec | None, uav: UavSpec | None
+def _block(project: ProjectModel, film: FilmSpec | None, uav: UavSpec | None
            ) -> tuple[BlockHeightCheck | None, str, list[PlanWarning], str, bool]:
     """The one-height rule (ГОСТ Р 59328 §6.2.1, second draft) on the block's ground:
     (check, its source, warnings, where the ground came from, waived)."""
-    relief = project.get("terrain", "relief_class", "flat")
-    if relief not in RELIEF_CLASSES:
-        raise InputError(_where(project, "terrain", "relief_class"),
-                         f"must be one of {', '.join(RELIEF_CLASSES)} (got {relief!r})")
+    relief = _relief_class(project)
     samples = _ground_samples(project, film, uav)
     height = _flight_height_m(film, uav)
     if samples is None or height is None:
@@ -300,8 +182,8 @@ def _block(project: Project, film: FilmSpec | None, uav: UavSpec | None
              "mountainous": "block_relief_mountain_pct"}[relief]
     check = block_height_check(ground, height, relief, float(ns.parameters[pname]))
     warnings = []
-    waived = project.get("terrain", "altitude_mode", "constant") == "follow"
-    set_aside = project.get("norms.block_relief", "reason") or ""
+    waived = project.terrain is not None and project.terrain.altitude_mode == "follow"
+    set_aside = project.norms.block_relief_reason
     if set_aside:
         warnings.append(PlanWarning("recommendation_set_aside", Message(
             "recommendation_set_aside", reason=set_aside, what=Message(
@@ -361,44 +243,45 @@ def _area_of(film: FilmSpec | None, uav: UavSpec | None) -> Any:
     return layout.area if layout is not None else None
 
 
-def _date(project: Project, key: str) -> dt.date | None:
-    value = project.get("schedule", key)
-    if value is None or isinstance(value, dt.date):
-        return value
-    return dt.date.fromisoformat(value)
+def _relief_class(project: ProjectModel) -> str:
+    """``[terrain] relief_class`` (flat without ``[terrain]``)."""
+    return project.terrain.relief_class if project.terrain is not None else "flat"
 
 
-def _sun(project: Project, film: FilmSpec | None, uav: UavSpec | None
+def _sun(project: ProjectModel, film: FilmSpec | None, uav: UavSpec | None
          ) -> tuple[SunPlan | None, list[PlanWarning]]:
-    lat = project.number("site", "lat_deg", -90, 90, None, "°")
-    lon = project.number("site", "lon_deg", -180, 180, None, "°")
+    site, schedule = project.site, project.schedule
+    lat = site.lat_deg if site is not None else None
+    lon = site.lon_deg if site is not None else None
     layout = layout_of(uav) or layout_of(film)
     centroid = layout_site(layout)
     if lat is None and lon is None and centroid is not None:  # [area] polygon: its centroid
         lat, lon = centroid
-    offset = project.number("schedule", "utc_offset_h", -12, 14, None, "h")
-    elev = project.number("schedule", "min_sun_elevation_deg", 0, 89.9, None, "°")
+    offset = schedule.utc_offset_h if schedule is not None else None
+    elev = schedule.min_sun_elevation_deg if schedule is not None else None
     platform = uav.job.plan.inputs.platform if uav is not None else "aircraft"
     sortie_d, turn_d = SORTIE_DEFAULTS_MIN.get(platform, SORTIE_DEFAULTS_MIN["uav"])
     # the one sortie length, the layout's too (scanplan.project.sorties)
     sortie = sortie_length(project, platform).minutes or sortie_d
-    turn = project.number("schedule", "turnaround_min", 0, 1440, turn_d, "min")
-    assert sortie is not None and turn is not None
-    start = _date(project, "start_date")
+    turn = schedule.turnaround_min if schedule is not None else None
+    turn = turn_d if turn is None else turn
+    assert sortie is not None
+    start = schedule.start_date if schedule is not None else None
     if start is None or lat is None or lon is None:
         for key, value in (("lat_deg", lat), ("lon_deg", lon), ("start_date", start)):
-            if value is None and (project.has("site") or project.has("schedule")):
+            if value is None and (site is not None or schedule is not None):
                 section = "schedule" if key == "start_date" else "site"
-                raise InputError(_where(project, section, key), "is required for the sun "
+                raise InputError(project.at(section, key), "is required for the sun "
                                  "window: give [site] lat_deg, lon_deg and [schedule] "
                                  "start_date")
         return None, []
-    end = _date(project, "end_date") or start + dt.timedelta(days=DEFAULT_SCHEDULE_DAYS - 1)
+    assert schedule is not None
+    end = schedule.end_date or start + dt.timedelta(days=DEFAULT_SCHEDULE_DAYS - 1)
     if end < start:
-        raise InputError(_where(project, "schedule", "end_date"),
+        raise InputError(project.at("schedule", "end_date"),
                          f"must not be before start_date {start.isoformat()}")
     if (end - start).days + 1 > MAX_SCHEDULE_DAYS:
-        raise InputError(_where(project, "schedule", "end_date"),
+        raise InputError(project.at("schedule", "end_date"),
                          f"the schedule may span at most {MAX_SCHEDULE_DAYS} days")
     zone = None if offset is not None else time_zone_at(lat, lon)
     ns = (uav.job.norm_set if uav is not None else film.job.norm_set)  # type: ignore[union-attr]
@@ -430,14 +313,14 @@ def _sun(project: Project, film: FilmSpec | None, uav: UavSpec | None
                    zone), warnings
 
 
-def survey_design(project: Project, film: FilmSpec | None, uav: UavSpec | None
+def survey_design(project: ProjectModel, film: FilmSpec | None, uav: UavSpec | None
                   ) -> SurveyDesign:
     """The survey design checks of a planned project.
 
     Parameters
     ----------
-    project : Project
-        The validated project file (``[terrain]``, ``[site]``, ``[schedule]``, ``[norms]
+    project : ProjectModel
+        The parsed project file (``[terrain]``, ``[site]``, ``[schedule]``, ``[norms]
         gsd_area`` are read here).
     film, uav : FilmSpec or UavSpec or None
         The specification's parts.
@@ -447,10 +330,6 @@ def survey_design(project: Project, film: FilmSpec | None, uav: UavSpec | None
     InputError
         Naming the project key and its line for an out-of-range value.
     """
-    area = project.get("norms", "gsd_area")
-    if area is not None and area not in GSD_AREAS:
-        raise InputError(_where(project, "norms", "gsd_area"),
-                         f"must be one of {', '.join(GSD_AREAS)} (got {area!r})")
     gsd, w1 = _gsd_checks(project, film, uav)
     block, block_source, w2, block_ground, waived = _block(project, film, uav)
     sun, w3 = _sun(project, film, uav)
@@ -458,14 +337,14 @@ def survey_design(project: Project, film: FilmSpec | None, uav: UavSpec | None
     ns = uav.job.norm_set if uav is not None else film.job.norm_set if film is not None \
         else None
     status = ns.parameter_status if ns is not None else {}
-    relief = project.get("terrain", "relief_class", "flat")
+    relief = _relief_class(project)
     pname = {"flat": "block_relief_flat_pct", "hilly": "block_relief_hilly_pct",
              "mountainous": "block_relief_mountain_pct"}.get(relief, "block_relief_flat_pct")
     sun_status = ("" if sun is None or sun.elevation_source == "project"
                   else status.get("min_sun_elevation_deg", ""))
     return SurveyDesign(tuple(gsd), block, block_source, sun, tuple(w1 + w2 + w3),
                         block_ground, waived, status.get(pname, ""),
-                        project.get("norms.block_relief", "reason") or "", sun_status)
+                        project.norms.block_relief_reason, sun_status)
 
 
 def design_dict(design: SurveyDesign) -> dict[str, Any]:

@@ -66,7 +66,11 @@ class ReportMeta:
 
 @dataclass(frozen=True)
 class Project:
-    """A validated project file."""
+    """A loaded project file: its keys, their types checked, with the line of each.
+
+    The planner reads it once, through :func:`scanplan.project.model.build_model` (typed
+    sections, every value in its registry domain); nothing else reads ``values``.
+    """
 
     path: Path
     name: str
@@ -86,31 +90,6 @@ class Project:
         dotted = f"{section}.{key}"
         line = self.lines.get(dotted) or self.lines.get(section)
         return f"{dotted} (line {line})" if line else dotted
-
-    def number(self, section: str, key: str, lo: float, hi: float, default: float | None = None,
-               unit: str = "", *, lo_open: bool = False, meaning: str = "") -> float | None:
-        """``values[section][key]`` (or ``default``) as a number within ``[lo, hi]``
-        (``(lo, hi]`` with ``lo_open``); None when it is absent and there is no default.
-
-        The file's loader has already checked it is a finite number; this is the range the
-        planner gives it meaning in.
-
-        Raises
-        ------
-        InputError
-            Naming the key with its line and the allowed range, e.g. ``schedule.
-            turnaround_min (line 12): must be ≥ 0 and ≤ 1440 min (got 2000)``.
-        """
-        value = self.get(section, key, default)
-        if value is None:
-            return None
-        v = float(value)
-        if v < lo or v > hi or (lo_open and v == lo):
-            low = f"> {lo:g}" if lo_open else f"≥ {lo:g}"
-            raise InputError(f"{self.path}: {self.where(section, key)}",
-                             f"must be {meaning + ' ' if meaning else ''}{low} and ≤ {hi:g}"
-                             f"{' ' + unit if unit else ''} (got {value!r})")
-        return v
 
 
 def _key_lines(text: str) -> dict[str, int]:

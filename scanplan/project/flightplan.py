@@ -28,6 +28,7 @@ from ..geo.layout import Area, FlightLayout
 from ..geo.lines import Turn, plan_lines, turn_radius_m
 from ..messages import Message
 from ..rules.results import PlanWarning, ScanScenario, UavPlan
+from .inputs import by_key, domain_of
 
 __all__ = ["LayoutOptions", "area_from_options", "check_options", "film_layout",
            "layout_warnings",
@@ -99,11 +100,12 @@ def check_options(opts: LayoutOptions, area: Area, speed_ms: float | None) -> No
              if getattr(opts, k) is not None]
     if len(turns) > 1:
         raise InputError(turns[1], f"give one turn: {' or '.join(turns)}, not both")
-    for key, lo, hi in (("turnaround_m", 0.0, 10_000.0), ("turn_radius_m", 0.0, 50_000.0),
-                        ("bank_deg", 0.0, 60.0), ("max_flight_time_min", 0.0, 24 * 60.0)):
+    for key in ("turnaround_m", "turn_radius_m", "bank_deg", "max_flight_time_min"):
         v = getattr(opts, key)
-        if v is not None and not (lo < v <= hi or (key == "turnaround_m" and v == 0)):
-            raise InputError(key, f"must be in ({lo:g}, {hi:g}] (got {v!r})")
+        d = domain_of(by_key("uav", key))  # the input registry's range of the key
+        assert d is not None
+        if v is not None and not ((d.lo < v or (v == d.lo and not d.lo_open)) and v <= d.hi):
+            raise InputError(key, f"must be in ({d.lo:g}, {d.hi:g}] (got {v!r})")
     if opts.bank_deg is not None and not speed_ms:
         raise InputError("bank_deg", "needs the ground speed (> 0) for the turn radius")
     if opts.takeoff_lonlat is not None and not area.georeferenced:

@@ -29,8 +29,10 @@ import re
 from dataclasses import dataclass
 from typing import Any
 
-__all__ = ["INPUTS", "Input", "by_key", "defaults", "describe", "get", "key_table",
-           "option_names", "project_key", "records", "update_docs"]
+from ..core.domains import DOMAINS, Domain
+
+__all__ = ["INPUTS", "PROJECT_DOMAINS", "Input", "by_key", "defaults", "describe", "domain_of",
+           "get", "key_table", "option_names", "project_key", "records", "update_docs"]
 
 FILM, UAV = "film", "uav"
 
@@ -60,7 +62,9 @@ class Input:
     note : str
         What follows the default in the help (``"required for a camera on an aircraft"``).
     domain : str
-        Its key in :data:`~scanplan.core.domains.DOMAINS` (``""``: no numeric domain).
+        Its key in :data:`~scanplan.core.domains.DOMAINS` or, for a key only the project file
+        has (the site, the schedule), in :data:`PROJECT_DOMAINS` (``""``: no numeric domain;
+        :func:`domain_of` gives the record).
     option : str
         The option of ``scanplan scan`` / ``uav`` (``""``: none).
     commands : tuple of str
@@ -139,6 +143,34 @@ def _project(key: str, help: str, **kw: Any) -> Input:
 
 
 _STR, _NUM, _INT = "str", "number", "int"
+
+PROJECT_DOMAINS: dict[str, Domain] = {
+    "lat_deg": Domain(-90, 90, "°"),
+    "lon_deg": Domain(-180, 180, "°"),
+    "utc_offset_h": Domain(-12, 14, "h"),
+    "min_sun_elevation_deg": Domain(0, 89.9, "°"),
+    "turnaround_min": Domain(0, 1440, "min"),
+    # one sortie is at most one day; ``meaning`` is what the error calls the value
+    "sortie_time_min": Domain(0, 24 * 60.0, "min", lo_open=True, meaning="a flight time"),
+    # the turns between strips (the flight layout)
+    "turnaround_m": Domain(0, 10_000, "m"),
+    "turn_radius_m": Domain(0, 50_000, "m", lo_open=True),
+    "bank_deg": Domain(0, 60, "°", lo_open=True),
+}
+"""The domains of keys only a project file has (the site, the schedule, the sortie), beside
+the inputs' :data:`~scanplan.core.domains.DOMAINS`: the range a value is read in, checked
+once when the file is parsed (:mod:`scanplan.project.model`)."""
+
+
+def domain_of(inp: Input) -> Domain | None:
+    """The domain record of an input (None: no numeric domain).
+
+    >>> domain_of(INPUTS["site.lat_deg"])
+    Domain(lo=-90, hi=90, unit='°', lo_open=False, hi_open=False, meaning='')
+    """
+    if not inp.domain:
+        return None
+    return DOMAINS.get(inp.domain) or PROJECT_DOMAINS[inp.domain]
 _FILM_SIDE_OVERLAP_PCT = 30.0  # film, and a digital camera on a manned aircraft
 
 _RECORDS: tuple[Input, ...] = (
@@ -383,11 +415,11 @@ _RECORDS: tuple[Input, ...] = (
           "strip, in photo bases", default=1),
     Input("turnaround_m", "uav", "turnaround_m", _NUM, "multirotor: distance flown past each "
           "strip end before turning [m]", "m", note="default: a semicircle across the line "
-          "spacing"),
+          "spacing", domain="turnaround_m"),
     Input("turn_radius_m", "uav", "turn_radius_m", _NUM, "fixed-wing: turn radius between "
-          "strips [m]", "m"),
+          "strips [m]", "m", domain="turn_radius_m"),
     Input("bank_deg", "uav", "bank_deg", _NUM, "fixed-wing: bank angle in the turns [°]; the "
-          "radius follows from the speed, r = v²/(g·tan φ)", "°"),
+          "radius follows from the speed, r = v²/(g·tan φ)", "°", domain="bank_deg"),
     Input("takeoff", "flight", "takeoff", "point", "take-off and landing point of every "
           "sortie, [lon, lat] (WGS 84): the missions' home; each sortie's transit to the "
           "block and back is flown within its battery and counted in the flight's length "
@@ -399,7 +431,7 @@ _RECORDS: tuple[Input, ...] = (
           "days from the same sorties", "min",
           note="default: [schedule] sortie_time_min; with [schedule] and neither key 25 for "
           "a UAV, 180 for an aircraft; else one flight", option="--max-flight-time-min",
-          commands=(UAV,)),
+          commands=(UAV,), domain="sortie_time_min"),
     Input("area_file", "", "", _STR, "contract polygon: KML, KMZ, GeoJSON, GeoPackage or "
           "Shapefile; strips and photos are laid out over it (not with --area-m)",
           option="--area-file", commands=(FILM, UAV), fields=("file",)),
@@ -439,25 +471,28 @@ _RECORDS: tuple[Input, ...] = (
           choices=("flat", "hilly", "mountainous")),
     # [site] and [schedule]: the sun window and the flying days
     Input("lat_deg", "site", "lat_deg", _NUM, "latitude of the site, WGS 84 [°], north "
-          "positive (sun window)", "°"),
+          "positive (sun window)", "°", domain="lat_deg"),
     Input("lon_deg", "site", "lon_deg", _NUM, "longitude of the site, WGS 84 [°], east "
-          "positive (sun window)", "°"),
+          "positive (sun window)", "°", domain="lon_deg"),
     Input("start_date", "schedule", "start_date", "date", "first planned flying date, e.g. "
           "2025-06-01"),
     Input("end_date", "schedule", "end_date", "date", "last planned flying date",
           note="default: 30 days after start_date"),
     Input("utc_offset_h", "schedule", "utc_offset_h", _NUM, "local time = UTC + offset [h]",
           "h", note="default: the legal time of the site's time zone, found from lat/lon, "
-          "summer time included"),
+          "summer time included", domain="utc_offset_h"),
     Input("sortie_time_min", "schedule", "sortie_time_min", _NUM, "flight time of one sortie "
           "(battery or fuel) [min]: the same number as [uav] max_flight_time_min (give one, "
           "or both equal; two different values are an error); it also splits the flight "
           "layout, so the layout and the schedule count the same sorties", "min",
-          note="default: [uav] max_flight_time_min, else 25 for a UAV, 180 for an aircraft"),
+          note="default: [uav] max_flight_time_min, else 25 for a UAV, 180 for an aircraft",
+          domain="sortie_time_min"),
     Input("turnaround_min", "schedule", "turnaround_min", _NUM, "ground time between "
-          "sorties [min]", "min", note="default 15 for a UAV, 60 for an aircraft"),
+          "sorties [min]", "min", note="default 15 for a UAV, 60 for an aircraft",
+          domain="turnaround_min"),
     Input("min_sun_elevation_deg", "schedule", "min_sun_elevation_deg", _NUM, "lowest sun "
-          "elevation for photography [°]", "°", note="default: the norm set's, 30°"),
+          "elevation for photography [°]", "°", note="default: the norm set's, 30°",
+          domain="min_sun_elevation_deg"),
     Input("area_m", "", "", _STR, "block to cover, WIDTHxLENGTH [m], e.g. 2000x3000", "m",
           option="--area-m", commands=(UAV,),
           fields=("area", "area_width_m", "area_length_m")),

@@ -143,20 +143,15 @@ def site_of(project: Any) -> tuple[float, float] | None:
 
     Parameters
     ----------
-    project : Project
-        The validated project file.
+    project : ProjectModel
+        The parsed project file (its ranges already checked).
 
     Returns
     -------
     tuple of float or None
         (lat, lon) [°] when both are given, else None.
-
-    Raises
-    ------
-    InputError
-        A latitude outside −90 … 90° or a longitude outside −180 … 180°, naming the key
-        and its line (the same check as the sun window's).
     """
-    lat = project.number("site", "lat_deg", -90, 90, None, "°")
-    lon = project.number("site", "lon_deg", -180, 180, None, "°")
+    site = project.site
+    lat = site.lat_deg if site is not None else None
+    lon = site.lon_deg if site is not None else None
     return None if lat is None or lon is None else (float(lat), float(lon))

@@ -19,21 +19,21 @@ everywhere. The one length comes from the project file:
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
-from ..errors import InputError
-from .file import Project
+from .inputs import PROJECT_DOMAINS
+
+if TYPE_CHECKING:
+    from .model import ProjectModel
 
 __all__ = ["MAX_SORTIE_MIN", "SORTIE_DEFAULTS_MIN", "SortieLength", "sortie_length"]
 
 SORTIE_DEFAULTS_MIN = {"uav": (25.0, 15.0), "aircraft": (180.0, 60.0)}
 """(sortie flight time, ground time between sorties) [min] when the project does not say:
 a multirotor battery gives 25–40 min, a survey aircraft's fuel several hours."""
-MAX_SORTIE_MIN = 24 * 60.0
-"""Longest sortie [min] (one day)."""
-
-_KEYS = (("uav", "max_flight_time_min"), ("schedule", "sortie_time_min"))
+MAX_SORTIE_MIN = PROJECT_DOMAINS["sortie_time_min"].hi
+"""Longest sortie [min] (one day; the input registry's domain of both keys)."""
 
 
 @dataclass(frozen=True)
@@ -54,45 +54,36 @@ class SortieLength:
     source: str
 
 
-def sortie_length(project: Project, platform: str = "uav") -> SortieLength:
-    """The one sortie length of ``project`` (see the module's rules).
+def sortie_length(model: ProjectModel, platform: str = "uav") -> SortieLength:
+    """The one sortie length of a project (see the module's rules).
+
+    Both keys were checked when the file was parsed (:func:`scanplan.project.model.
+    build_model`: in range, and the same number when both are given).
 
     Parameters
     ----------
-    project : Project
-        The project file.
+    model : ProjectModel
+        The parsed project file.
     platform : {"uav", "aircraft"}
         The carrier of the camera (its default sortie).
 
-    Raises
-    ------
-    InputError
-        Naming ``[schedule] sortie_time_min`` and ``[uav] max_flight_time_min`` (with
-        their lines) when both are given and differ, or a key out of range.
-
     Examples
     --------
-    >>> from scanplan.project.file import Project
-    >>> p = Project("p.toml", "p", {"schedule": {"sortie_time_min": 30}})
-    >>> sortie_length(p)
+    >>> from scanplan.project.file import parse_project
+    >>> from scanplan.project.model import build_model
+    >>> head = "[map]\\nscale = 2000\\nrelief_interval_m = 1\\n[uav]\\n"
+    >>> sortie_length(build_model(parse_project(head + "[schedule]\\nsortie_time_min = 30")))
     SortieLength(minutes=30.0, source='schedule')
-    >>> sortie_length(Project("p.toml", "p", {"uav": {}}))
+    >>> sortie_length(build_model(parse_project(head)))
     SortieLength(minutes=None, source='')
     """
-    uav, schedule = (project.number(s, k, 0, MAX_SORTIE_MIN, None, "min", lo_open=True,
-                                    meaning="a flight time") for s, k in _KEYS)
-    if uav is not None and schedule is not None and not math.isclose(uav, schedule,
-                                                                     rel_tol=1e-9):
-        raise InputError(
-            f"{project.path}: {project.where('schedule', 'sortie_time_min')}",
-            f"is {schedule:g} min but {project.where('uav', 'max_flight_time_min')} is "
-            f"{uav:g} min: both are the flight time of one sortie, which splits the flight "
-            "layout and counts the flying days; give one of them (or the same number)")
+    uav = model.flight.max_flight_time_min
+    schedule = model.schedule.sortie_time_min if model.schedule is not None else None
     if uav is not None:
         return SortieLength(uav, "uav")
     if schedule is not None:
         return SortieLength(schedule, "schedule")
-    if project.has("schedule"):
+    if model.schedule is not None:
         default = SORTIE_DEFAULTS_MIN.get(platform, SORTIE_DEFAULTS_MIN["uav"])[0]
         return SortieLength(default, "default")
     return SortieLength(None, "")

@@ -13,15 +13,14 @@ from __future__ import annotations
 
 import inspect
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import replace
 from typing import Any
 
-from ..core.domains import DOMAINS, check_domain
+from ..core.domains import DOMAINS
 from ..core.photoscale import scanned_ground_pixel_m
 from ..errors import InputError
 from ..geo.area import AreaSpec
 from ..geo.layout import Area, FlightLayout
-from ..geo.terrain import TerrainResult
 from ..geo.terrain_film import FilmTerrain
 from ..messages import Message
 from ..rules.film import PlanWarning, ScanScenario
@@ -35,8 +34,8 @@ from .api import (
     uav_job,
 )
 from .archive import archive_film
-from .design import SurveyDesign, survey_design
-from .file import Project, ReportMeta
+from .design import survey_design
+from .file import Project
 from .flightplan import (
     LayoutOptions,
     area_from_options,
@@ -44,13 +43,14 @@ from .flightplan import (
     film_layout,
     layout_warnings,
 )
-from .inputs import by_key, project_key, records
+from .inputs import by_key
+from .model import ProjectModel, build_model
+from .results import FilmSpec, PlanResult, UavSpec
 from .sorties import sortie_length
 from .terrainplan import (
     archive_over_terrain,
     film_over_terrain,
     film_terrain_spec,
-    terrain_config,
     uav_terrain_spec,
 )
 
@@ -62,146 +62,50 @@ _AREA_KEYS = ("file", "layer", "feature", "polygon", "crs", "plan_crs", "width_m
               "direction_deg", "extension_bases")
 
 
-def _as_project_error(project: Project, exc: InputError, plan: str,
-                      archive: bool = False) -> InputError:
-    """``exc`` (its ``field`` a Python name) naming the project key and its line."""
-    found = project_key(exc.field, plan)
-    if found is None:
-        return InputError(f"{project.path}: {exc.field}", exc.message)
-    section, key = found
-    if archive and (section, key) == ("film", "photo_scales"):
-        key = "photo_scale"
-    where = project.where(section, key) if section else key
-    return InputError(f"{project.path}: {where}", exc.message)
-
-
-def _job_kwargs(project: Project, plan: str, takes: Any) -> dict[str, Any]:
-    """The keyword arguments of :func:`scan_job` / :func:`uav_job` the project gives:
-    every key of the plan's inputs (the registry's) the job function ``takes`` and the
-    file holds. A key of the plan's own section wins over a shared one of the same name
-    (``[uav] height_formula`` over ``[norms] height_formula``); keys the file leaves out
-    take the API's defaults, which are the registry's."""
+def _job_kwargs(given: Any, takes: Any) -> dict[str, Any]:
+    """The keyword arguments of :func:`scan_job` / :func:`uav_job` the project gives: the
+    inputs of the plan's section of the model (:attr:`~scanplan.project.model.FilmSection.
+    given`) the job function ``takes``; keys the file leaves out take the API's defaults,
+    which are the registry's."""
     params = inspect.signature(takes).parameters
-    own = {r.name for r in records(plan) if r.section.split(".")[0] == plan}
-    kw: dict[str, Any] = {}
-    for r in records(plan):
-        shared = r.section.split(".")[0] != plan
-        if not r.key or r.name not in params or (shared and r.name in own):
-            continue
-        value = project.get(r.section, r.key)
-        if value is not None:
-            kw[r.name] = value
-    return kw
+    return {name: value for name, value in given.items() if name in params}
 
 
-@dataclass(frozen=True)
-class FilmSpec:
-    """The film part of a specification (``reason``: a :class:`~scanplan.messages.Message`,
-    English text that renders in another locale with ``.text(locale)``)."""
-
-    job: ScanJob
-    recommended: ScanScenario | None
-    reason: str
-    frames: int | None
-    strips: int | None
-    scanned_gigabytes: float | None
-    side_overlap_pct: float
-    archive: bool = False  # existing photos at a given scale ([film] photo_scale)
-    layout: FlightLayout | None = None  # the flight scheme at the recommended photo scale
-    terrain: FilmTerrain | None = None  # [terrain]: the local photo scale of every frame
-    flat: ScanScenario | None = None
-    """[terrain]: the recommended photo scale as the engine gives it on flat ground (for
-    comparison); ``recommended`` is then the engine's answer at the frame over the lowest
-    ground (its ``local_photo_scale``), which the specification states."""
-    rejected: tuple[tuple[ScanScenario, FilmTerrain], ...] = ()
-    """[terrain]: the candidate scales with fewer frames (larger Mc) the relief ruled out,
-    with their frames."""
-
-
-@dataclass(frozen=True)
-class UavSpec:
-    """The UAV part of a specification (the flight at the recommended height; ``reason``: a
-    :class:`~scanplan.messages.Message`)."""
-
-    job: UavJob
-    planned_height_m: float | None
-    recommended_height_m: float | None
-    max_height_m: float | None  # the maximum PLANNED height (highest flown meets every limit)
-    reason: str
-    terrain: TerrainResult | None = None  # [terrain]: every photo over its own ground
-    terrain_warnings: tuple[PlanWarning, ...] = ()
-
-    @property
-    def layout(self) -> FlightLayout | None:
-        """Strips and photo centres at the recommended height (None without an area)."""
-        return self.job.layout
-
-
-@dataclass(frozen=True)
-class PlanResult:
-    """Everything ``scanplan plan`` reports for one project."""
-
-    project: Project
-    meta: ReportMeta
-    film: FilmSpec | None
-    uav: UavSpec | None
-    comparison: list[dict[str, Any]] = field(default_factory=list)
-    warnings: tuple[PlanWarning, ...] = ()
-    design: SurveyDesign | None = None
-    """The survey design checks: GSD against ГОСТ Р 59562-2021 Table Б.1, the one-height
-    rule of a block, the sun window (:mod:`scanplan.project.design`)."""
-    area: Area | None = None  # the contract area ([area]), in its planning CRS
-
-    @property
-    def layouts(self) -> dict[str, FlightLayout]:
-        """The flight layouts by job, ``{"film": ..., "uav": ...}`` (those that exist)."""
-        out = {}
-        if self.film is not None and self.film.layout is not None:
-            out["film"] = self.film.layout
-        if self.uav is not None and self.uav.layout is not None:
-            out["uav"] = self.uav.layout
-        return out
-
-
-def _film(project: Project, area: Area | None) -> FilmSpec:
-    archive_scale = project.get("film", "photo_scale")
-    kw = _job_kwargs(project, "film", scan_job)
+def _film(project: ProjectModel, area: Area | None) -> FilmSpec:
+    assert project.film is not None
+    archive_scale = project.film.photo_scale
+    kw = _job_kwargs(project.film.given, scan_job)
     if archive_scale is not None:
         kw["photo_scales"] = [archive_scale]
-    side = project.get("film", "side_overlap_pct", DEFAULT_FILM_SIDE_OVERLAP_PCT)
-    try:
-        check_domain("side_overlap_pct", side)
-    except InputError as exc:
-        raise InputError(f"{project.path}: {project.where('film', 'side_overlap_pct')}",
-                         exc.message) from None
+    side = project.film.side_overlap_pct
     try:
         job = scan_job(**kw)
     except InputError as exc:
-        raise _as_project_error(project, exc, "film", archive_scale is not None) from None
+        raise project.named(exc, "film", archive=archive_scale is not None) from None
     if archive_scale is not None:
         raw = job
         job, best, reason = archive_film(job)
-        if area is not None and project.has("terrain"):
+        if area is not None and project.terrain is not None:
             return _archive_over_terrain(project, raw, job, best, side, area)
     else:
         best, reason = _choose_photo_scale(job)
-        if best is not None and area is not None and project.has("terrain"):
+        if best is not None and area is not None and project.terrain is not None:
             return _film_over_terrain(project, job, side, area)
     return _film_spec(project, job, best, reason, side, area)
 
 
-def _archive_over_terrain(project: Project, raw: ScanJob, job: ScanJob, best: ScanScenario,
+def _archive_over_terrain(project: ProjectModel, raw: ScanJob, job: ScanJob, best: ScanScenario,
                           side: float, area: Area) -> FilmSpec:
     """``[terrain]`` with archive photos: the scan pixel of the frame over the lowest
     ground (:func:`scanplan.project.terrainplan.archive_over_terrain`)."""
-    cfg = terrain_config(project)
-    assert cfg is not None
+    assert project.terrain is not None
+    cfg = project.terrain.config
     inp = job.plan.inputs
     try:
         layout = film_layout(best, inp.frame_width_mm, inp.frame_along_mm, inp.focal_mm,
                              inp.forward_overlap_pct, side, area, _layout_options(project))
     except InputError as exc:
-        raise _as_project_error(project, exc, "uav") from None
+        raise project.named(exc, "uav") from None
     got = archive_over_terrain(project, cfg, raw, job, best, layout)
     rec, layout = got.headline, got.layout
     frames = int(layout.notes.get("photos", len(layout.photos))) if layout else None
@@ -226,12 +130,12 @@ def _feasible(plan: Any, s: ScanScenario) -> bool:
             and s.scan_pixel_um >= finest)
 
 
-def _film_over_terrain(project: Project, job: ScanJob, side: float, area: Area) -> FilmSpec:
+def _film_over_terrain(project: ProjectModel, job: ScanJob, side: float, area: Area) -> FilmSpec:
     """``[terrain]``: the photo scale and scan pixel that hold at every frame over the
     relief (:func:`scanplan.project.terrainplan.film_over_terrain`)."""
     plan = job.plan
-    cfg = terrain_config(project)
-    assert cfg is not None
+    assert project.terrain is not None
+    cfg = project.terrain.config
     inp = plan.inputs
     candidates = sorted((s for s in plan.scenarios if _feasible(plan, s)),
                         key=lambda s: (s.photo_scale, s.scanner_pixel_um or 0), reverse=True)
@@ -241,7 +145,7 @@ def _film_over_terrain(project: Project, job: ScanJob, side: float, area: Area) 
             return film_layout(s, inp.frame_width_mm, inp.frame_along_mm, inp.focal_mm,
                                inp.forward_overlap_pct, side, area, _layout_options(project))
         except InputError as exc:
-            raise _as_project_error(project, exc, "uav") from None
+            raise project.named(exc, "uav") from None
 
     got = film_over_terrain(project, cfg, plan, candidates, layout_at,
                             lambda s: _feasible(plan, s))
@@ -281,7 +185,7 @@ def _choose_photo_scale(job: ScanJob) -> tuple[ScanScenario | None, str]:
     return best, reason
 
 
-def _film_spec(project: Project, job: ScanJob, best: ScanScenario | None, reason: str,
+def _film_spec(project: ProjectModel, job: ScanJob, best: ScanScenario | None, reason: str,
                side: float, area: Area | None) -> FilmSpec:
     """Frames and scanned volume of the recommended photo scale over ``[area]``: the aerial
     survey's flight scheme (strips and frames laid out over the area)."""
@@ -296,7 +200,7 @@ def _film_spec(project: Project, job: ScanJob, best: ScanScenario | None, reason
                                  inp.forward_overlap_pct, side, area,
                                  _layout_options(project))
         except InputError as exc:
-            raise _as_project_error(project, exc, "uav") from None
+            raise project.named(exc, "uav") from None
         strips = len(layout.strips)
         frames = int(layout.notes.get("photos", len(layout.photos)))
         gigabytes = frames * best.frame_megabytes / 1000.0
@@ -305,16 +209,16 @@ def _film_spec(project: Project, job: ScanJob, best: ScanScenario | None, reason
         job = replace(job, plan=replace(plan, warnings=plan.warnings + terrain.warnings))
     return FilmSpec(job=job, recommended=best, reason=reason, frames=frames, strips=strips,
                     scanned_gigabytes=gigabytes, side_overlap_pct=side,
-                    archive=project.get("film", "photo_scale") is not None, layout=layout,
+                    archive=project.film is not None and project.film.archive, layout=layout,
                     terrain=terrain)
 
 
-def _film_terrain(project: Project, plan: Any, best: ScanScenario | None,
+def _film_terrain(project: ProjectModel, plan: Any, best: ScanScenario | None,
                   layout: FlightLayout | None) -> FilmTerrain | None:
     """``[terrain]``: the local photo scale of every frame of the flight scheme."""
-    cfg = terrain_config(project)
-    if cfg is None or best is None or layout is None:
+    if project.terrain is None or best is None or layout is None:
         return None
+    cfg = project.terrain.config
     inp = plan.inputs
     obj = inp.object
     return film_terrain_spec(
@@ -327,24 +231,7 @@ def _film_terrain(project: Project, plan: Any, best: ScanScenario | None,
         shape_coefficient=obj.shape_coefficient if obj is not None else math.nan)
 
 
-def _area(project: Project) -> tuple[float, float] | None:
-    """``[area]`` width and length [m], both or neither; each in its domain."""
-    width, length = project.get("area", "width_m"), project.get("area", "length_m")
-    if width is None and length is None:
-        return None
-    for key, value in (("width_m", width), ("length_m", length)):
-        where = f"{project.path}: {project.where('area', key)}"
-        if value is None:
-            raise InputError(where, "is required with the other side of [area]: give both "
-                             "width_m and length_m")
-        try:
-            check_domain(f"area_{key}", value)
-        except InputError as exc:
-            raise InputError(where, exc.message) from None
-    return float(width), float(length)
-
-
-def project_area(project: Project) -> Area | None:
+def project_area(project: ProjectModel) -> Area | None:
     """The project's ``[area]`` in its planning CRS: a file, an inline polygon or the
     ``width_m × length_m`` block (None without one).
 
@@ -354,12 +241,9 @@ def project_area(project: Project) -> Area | None:
         Naming the project file, the ``[area]`` key and its line (and the area file and
         feature for a problem in the file).
     """
-    g = project.get
-    rect = _area(project)
-    spec = AreaSpec(file=g("area", "file"), layer=g("area", "layer"),
-                    feature=g("area", "feature"), polygon=g("area", "polygon"),
-                    crs=g("area", "crs"), plan_crs=g("area", "plan_crs"),
-                    width_m=rect[0] if rect else None, length_m=rect[1] if rect else None)
+    a = project.area
+    spec = AreaSpec(file=a.file, layer=a.layer, feature=a.feature, polygon=a.polygon,
+                    crs=a.crs, plan_crs=a.plan_crs, width_m=a.width_m, length_m=a.length_m)
     try:
         return area_from_options(spec)
     except InputError as exc:
@@ -370,37 +254,45 @@ def project_area(project: Project) -> Area | None:
         raise InputError(f"{project.path}: {where}", exc.message) from None
 
 
-_LAYOUT_KEYS = (("area", "direction_deg"), ("area", "extension_bases"),
-                ("uav", "turnaround_m"),
-                ("uav", "turn_radius_m"), ("uav", "bank_deg"), ("uav", "max_flight_time_min"),
-                ("flight", "takeoff"))
+def _layout_keys_given(project: ProjectModel) -> list[tuple[str, str]]:
+    """The flight layout's keys the file gives, in the order an error names the first."""
+    a, f = project.area, project.flight
+    keys = ((("area", "direction_deg"), a.direction_deg),
+            (("area", "extension_bases"), a.extension_bases),
+            (("uav", "turnaround_m"), f.turnaround_m), (("uav", "turn_radius_m"), f.turn_radius_m),
+            (("uav", "bank_deg"), f.bank_deg), (("uav", "max_flight_time_min"),
+                                                f.max_flight_time_min),
+            (("flight", "takeoff"), f.takeoff))
+    return [k for k, v in keys if v is not None]
 
 
-def _check_layout_keys(project: Project, area: Area | None) -> None:
+def _check_layout_keys(project: ProjectModel, area: Area | None) -> None:
     """The layout keys checked once, before any plan: in range, and only with an area."""
-    given = [(s, k) for s, k in _LAYOUT_KEYS if project.get(s, k) is not None]
+    given = _layout_keys_given(project)
     if area is None:
         if given:
             s, k = given[0]
-            raise InputError(f"{project.path}: {project.where(s, k)}", "applies to an area: "
+            raise InputError(project.at(s, k), "applies to an area: "
                              "give [area] file, polygon, or width_m and length_m")
         return
-    speed = project.get("uav", "speed_ms", by_key("uav", "speed_ms").default)
+    speed = project.uav.speed_ms if project.uav is not None else by_key("uav",
+                                                                         "speed_ms").default
     try:
         check_options(_layout_options(project), area, speed if speed and speed > 0 else None)
     except InputError as exc:
-        raise _as_project_error(project, exc, "uav") from None
+        raise project.named(exc, "uav") from None
 
 
-def _layout_options(project: Project, platform: str = "uav") -> LayoutOptions:
-    g = project.get
+def _layout_options(project: ProjectModel, platform: str = "uav") -> LayoutOptions:
+    a, f = project.area, project.flight
     return LayoutOptions(
-        direction_deg=g("area", "direction_deg"), extension_bases=g("area", "extension_bases", 1),
-        turnaround_m=g("uav", "turnaround_m"), turn_radius_m=g("uav", "turn_radius_m"),
-        bank_deg=g("uav", "bank_deg"),
+        direction_deg=a.direction_deg,
+        extension_bases=(a.extension_bases if a.extension_bases is not None
+                         else by_key("area", "extension_bases").default),
+        turnaround_m=f.turnaround_m, turn_radius_m=f.turn_radius_m, bank_deg=f.bank_deg,
         # the one sortie length: it splits the layout and counts the schedule's sorties
         max_flight_time_min=sortie_length(project, platform).minutes,
-        takeoff_lonlat=g("flight", "takeoff"))
+        takeoff_lonlat=f.takeoff)
 
 
 def _platform(kw: dict[str, Any]) -> str:
@@ -417,15 +309,18 @@ def _platform(kw: dict[str, Any]) -> str:
     return getattr(cam, "carrier", "uav") or "uav"
 
 
-def _uav_kwargs(project: Project, height_m: float, the_area: Area | None) -> dict[str, Any]:
-    kw = _job_kwargs(project, "uav", uav_job)
-    kw.update(height_m=height_m, area_m=_area(project), area=the_area,
+def _uav_kwargs(project: ProjectModel, height_m: float, the_area: Area | None
+                ) -> dict[str, Any]:
+    assert project.uav is not None
+    kw = _job_kwargs(project.uav.given, uav_job)
+    kw.update(height_m=height_m, area_m=project.area.rectangle, area=the_area,
               layout_options=_layout_options(project, _platform(kw)))
     return kw
 
 
-def _uav(project: Project, the_area: Area | None) -> UavSpec:
-    planned = project.get("uav", "height_m")
+def _uav(project: ProjectModel, the_area: Area | None) -> UavSpec:
+    assert project.uav is not None
+    planned = project.uav.height_m
 
     def job_at(height_m: float, direction_deg: float | None = None) -> UavJob:
         try:
@@ -435,7 +330,7 @@ def _uav(project: Project, the_area: Area | None) -> UavSpec:
                                                direction_deg=direction_deg)
             return uav_job(**kw)
         except InputError as exc:
-            raise _as_project_error(project, exc, "uav") from None
+            raise project.named(exc, "uav") from None
 
     first_height = planned if planned is not None else PROVISIONAL_HEIGHT_M
     first = job_at(first_height)
@@ -455,9 +350,9 @@ def _uav(project: Project, the_area: Area | None) -> UavSpec:
         rec = planned
         reason = Message("spec.uav_within", max=max_h)
     job = first if rec == first_height else job_at(rec)
-    cfg = terrain_config(project)
-    if cfg is None:
+    if project.terrain is None:
         return UavSpec(job, planned, rec, max_h, reason)
+    cfg = project.terrain.config
     job, terrain, lowered, why, warned = uav_terrain_spec(project, cfg, job, planned, job_at)
     if lowered is not None:
         rec, reason = lowered, why
@@ -494,40 +389,36 @@ def _comparison(film: FilmSpec, uav: UavSpec) -> list[dict[str, Any]]:
     return rows
 
 
-_SIGNING_KEYS = ("organisation", "contract_number", "compiled_by", "checked_by",
-                 "agreed_position", "agreed_name", "agreed_organisation")
-
-
-def _check_terrain(project: Project, area: Area | None) -> None:
-    """``[terrain]`` checked once before any plan: its keys, and that there is an area."""
-    cfg = terrain_config(project)
-    if cfg is not None and area is None:
-        key = "dem" if cfg.dem is not None else "ground_elevation_m"
-        raise InputError(f"{project.path}: {project.where('terrain', key)}", "needs an area "
+def _check_terrain(project: ProjectModel, area: Area | None) -> None:
+    """``[terrain]``, parsed with the file, checked once before any plan: that there is an
+    area to lay the photos over."""
+    if project.terrain is not None and area is None:
+        key = "dem" if project.terrain.config.dem is not None else "ground_elevation_m"
+        raise InputError(project.at("terrain", key), "needs an area "
                          "to lay the photos over ([area] width_m × length_m, polygon or file)")
 
 
-def plan_project(project: Project) -> PlanResult:
+def plan_project(project: Project | ProjectModel) -> PlanResult:
     """Compute the specification for a validated project.
+
+    Parameters
+    ----------
+    project : Project or ProjectModel
+        The loaded project file (parsed here into its model,
+        :func:`scanplan.project.model.build_model`) or its model.
 
     Raises
     ------
     InputError
         Naming the project key and its line for out-of-range values.
     """
-    g = project.get
-    meta = ReportMeta(project=project.name, customer=g("project", "customer", ""),
-                      contractor=g("project", "contractor", ""),
-                      locale=g("project", "locale", "en"),
-                      approver_position=g("project", "approver_position", ""),
-                      approver_name=g("project", "approver_name", ""),
-                      **{k: g("project", k, "") for k in _SIGNING_KEYS})
+    if isinstance(project, Project):
+        project = build_model(project)  # every key checked once, here
     area = project_area(project)  # checked even when no plan uses it
-    sortie_length(project)  # the one sortie length, checked once: in range, both keys agree
     _check_layout_keys(project, area)
     _check_terrain(project, area)
-    film = _film(project, area) if project.has("film") else None
-    uav = _uav(project, area) if project.has("uav") else None
+    film = _film(project, area) if project.film is not None else None
+    uav = _uav(project, area) if project.uav is not None else None
     warnings: list[PlanWarning] = []
     if film:
         warnings.extend(film.job.plan.warnings)
@@ -543,5 +434,5 @@ def plan_project(project: Project) -> PlanResult:
     comparison = _comparison(film, uav) if film and uav else []
     design = survey_design(project, film, uav)
     warnings.extend(design.warnings)
-    return PlanResult(project=project, meta=meta, film=film, uav=uav, comparison=comparison,
+    return PlanResult(project=project, meta=project.meta, film=film, uav=uav, comparison=comparison,
                       warnings=tuple(warnings), area=area, design=design)

@@ -15,11 +15,9 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, replace
-from pathlib import Path
 from typing import Any
 
 from ..errors import InputError
-from ..geo.dem_grid import DEFAULT_VOID_MARGIN_M, DEFAULT_VOID_RADIUS_M
 from ..geo.layout import FlightLayout
 from ..geo.terrain import Ground, TerrainConfig, TerrainResult, ground_under
 from ..geo.terrain_choice import DIRECTIONS_DEG, ModeHeights, mode_heights
@@ -33,7 +31,8 @@ from ..rules.terrain import (
     local_forward_overlap_pct,
 )
 from .api import UavJob, recommended_height_m
-from .file import KEYS, Project
+from .file import KEYS
+from .model import ProjectModel
 from .terraincheck import film_terrain, uav_terrain
 
 __all__ = ["TERRAIN_KEYS", "FilmOverTerrain", "archive_over_terrain", "film_over_terrain",
@@ -51,34 +50,14 @@ _MODE_NAMES = {
 _MAX_REFINE = 4  # re-layouts at a lower height before giving up
 
 
-def terrain_config(project: Project) -> TerrainConfig | None:
-    """The ``[terrain]`` section as a :class:`TerrainConfig` (None without it).
-
-    Raises
-    ------
-    InputError
-        Naming the key and its line.
-    """
-    if not project.has("terrain"):
-        return None
-    g = project.get
-    dem = g("terrain", "dem")
-    rng = g("terrain", "ground_elevation_m")
-    try:
-        return TerrainConfig(
-            dem=(Path(dem) if Path(dem).is_absolute() else project.path.parent / dem)
-            if dem is not None and dem.strip() else (Path("") if dem is not None else None),
-            ground_range_m=(float(rng[0]), float(rng[1])) if rng is not None else None,
-            altitude_mode=g("terrain", "altitude_mode", "constant"),
-            follow_tolerance_m=float(g("terrain", "follow_tolerance_m", 5.0)),
-            vertical_unit=g("terrain", "vertical_unit"),
-            void_fill_radius_m=float(g("terrain", "void_fill_radius_m", DEFAULT_VOID_RADIUS_M)),
-            void_fill_margin_m=float(g("terrain", "void_fill_margin_m", DEFAULT_VOID_MARGIN_M)))
-    except InputError as exc:
-        raise _named(project, exc) from None
+def terrain_config(project: ProjectModel) -> TerrainConfig | None:
+    """The ``[terrain]`` section as a :class:`TerrainConfig` (None without it), as parsed
+    once with the file (:func:`scanplan.project.model.build_model`, which names a bad key
+    and its line)."""
+    return project.terrain.config if project.terrain is not None else None
 
 
-def _named(project: Project, exc: InputError) -> InputError:
+def _named(project: ProjectModel, exc: InputError) -> InputError:
     """``terrain.dem`` → ``project.toml: terrain.dem (line 31)``."""
     field = exc.field
     if field.startswith("terrain.") or field == "terrain":
@@ -88,7 +67,7 @@ def _named(project: Project, exc: InputError) -> InputError:
     return exc
 
 
-def _ground(project: Project, cfg: TerrainConfig, layout: FlightLayout) -> Ground:
+def _ground(project: ProjectModel, cfg: TerrainConfig, layout: FlightLayout) -> Ground:
     if cfg.dem is not None and not layout.area.georeferenced:
         raise InputError(f"{project.path}: {project.where('terrain', 'dem')}",
                          "a DEM needs an area on the ground: give the area as a polygon or a "
@@ -100,7 +79,7 @@ def _ground(project: Project, cfg: TerrainConfig, layout: FlightLayout) -> Groun
         raise _named(project, exc) from None
 
 
-def uav_terrain_spec(project: Project, cfg: TerrainConfig, job: UavJob,
+def uav_terrain_spec(project: ProjectModel, cfg: TerrainConfig, job: UavJob,
                      planned_m: float | None, job_at: Callable[[float], UavJob]
                      ) -> tuple[UavJob, TerrainResult, float | None, Message | None,
                                 tuple[PlanWarning, ...]]:
@@ -147,7 +126,7 @@ def uav_terrain_spec(project: Project, cfg: TerrainConfig, job: UavJob,
             warnings + _height_accuracy_over_relief(job, res))
 
 
-def _settle(project: Project, cfg: TerrainConfig, job: UavJob,
+def _settle(project: ProjectModel, cfg: TerrainConfig, job: UavJob,
             job_at: Callable[[float], UavJob]
             ) -> tuple[UavJob, TerrainResult, float | None, TerrainResult]:
     """The job checked over the terrain, lowered (and laid out again) while its worst
@@ -173,9 +152,9 @@ def _settle(project: Project, cfg: TerrainConfig, job: UavJob,
     return job, res, rec, first
 
 
-def _auto_direction(project: Project, job: UavJob) -> bool:
+def _auto_direction(project: ProjectModel, job: UavJob) -> bool:
     """True when the project leaves the direction to scanplan over a real area."""
-    d = project.get("area", "direction_deg")
+    d = project.area.direction_deg
     return (d is None or d == "auto") and job.layout is not None \
         and job.layout.area.georeferenced
 
@@ -191,7 +170,7 @@ def _choices(cfg: TerrainConfig, job: UavJob, res: TerrainResult) -> ModeHeights
                         lay.footprint_across_m, cfg.follow_tolerance_m, dirs)
 
 
-def _strip_direction(project: Project, cfg: TerrainConfig, job: UavJob, res: TerrainResult,
+def _strip_direction(project: ProjectModel, cfg: TerrainConfig, job: UavJob, res: TerrainResult,
                      rec: float | None, first: TerrainResult,
                      job_at: Callable[..., UavJob], start_m: float,
                      choice: ModeHeights | None
@@ -286,7 +265,7 @@ def _missed_at_planned(checked: tuple[PlanWarning, ...], mode: str) -> Message |
     return None
 
 
-def film_terrain_spec(project: Project, cfg: TerrainConfig, layout: FlightLayout,
+def film_terrain_spec(project: ProjectModel, cfg: TerrainConfig, layout: FlightLayout,
                       rules: ScanRules, **scenario: Any) -> FilmTerrain:
     """The local photo scale of every frame of the flight scheme (see
     :func:`scanplan.project.terraincheck.film_terrain`)."""
@@ -370,7 +349,7 @@ def _rejected_fields(rejected: list[tuple[ScanScenario, FilmTerrain]]) -> dict[s
             "locals": [float(round(t.mc_max)) for _, t in rejected]}
 
 
-def film_over_terrain(project: Project, cfg: TerrainConfig, plan: ScanPlan,
+def film_over_terrain(project: ProjectModel, cfg: TerrainConfig, plan: ScanPlan,
                       candidates: list[ScanScenario],
                       layout_at: Callable[[ScanScenario], FlightLayout],
                       feasible: Callable[[ScanScenario], bool]) -> FilmOverTerrain:
@@ -415,7 +394,7 @@ def film_over_terrain(project: Project, cfg: TerrainConfig, plan: ScanPlan,
                            Message("no_feasible_photo_scale", why=why))
 
 
-def archive_over_terrain(project: Project, cfg: TerrainConfig, raw: Any, flat_job: Any,
+def archive_over_terrain(project: ProjectModel, cfg: TerrainConfig, raw: Any, flat_job: Any,
                          flat: ScanScenario, layout: FlightLayout) -> FilmOverTerrain:
     """Archive photos (``[film] photo_scale``, the scale given) over the relief: the scan
     pixel that holds at the frame over the lowest ground.

@@ -128,23 +128,23 @@ def _equation(cid: str, w: _W, limits: Any = ()) -> str:
 
 
 def _project_rows(spec: Any, w: _W) -> list[tuple[str, str, str]]:
-    p = spec.project
+    p = spec.project  # the parsed project file (scanplan.project.model)
     rows = []
-    purpose = p.get("project", "purpose") or p.name
+    purpose = p.signing.purpose or p.name
     rows.append((w.t("design_purpose"), purpose, w.t("design_norm_contract")))
-    rows.append((w.t("design_map"), w.t("design_map_value", scale=w.scale(p.get("map", "scale")),
-                                        hc=w.n(p.get("map", "relief_interval_m"), 2)),
+    rows.append((w.t("design_map"), w.t("design_map_value", scale=w.scale(p.map.scale),
+                                        hc=w.n(p.map.relief_interval_m, 2)),
                  w.t("design_norm_contract")))
     from ..project.design import layout_of
 
     layout = layout_of(spec.uav) or layout_of(spec.film)
-    width, length = p.get("area", "width_m"), p.get("area", "length_m")
+    width, length = p.area.width_m, p.area.length_m
     if layout is not None:  # the contract polygon, once the geography lays it out
         rows.append((w.t("design_area_km2"), w.fig(layout.area.area_km2, 2), ""))
     elif width and length:
         rows.append((w.t("design_area_km2"), w.fig(width * length / 1e6, 2), ""))
     for key in ("coordinate_system", "height_system"):
-        rows.append((w.t(f"design_{key}"), p.get("project", key) or "—",
+        rows.append((w.t(f"design_{key}"), getattr(p.signing, key) or "—",
                      w.t("design_norm_contract")))
     return rows
 

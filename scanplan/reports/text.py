@@ -116,9 +116,9 @@ def _plan_heading(result: Any, loc: str, T: _Terminal) -> list[str]:
     """The project, map scale and relief interval, the parties, the area and its flight
     lines."""
     meta = result.meta
-    inp_map = result.project.values["map"]
-    lines = [f"{meta.project} — {T['map']} {_sc(scale_value(inp_map['scale']), loc)}, "
-             f"{T['relief']} {_g(inp_map['relief_interval_m'], loc)} {T['m']}"]
+    inp_map = result.project.map
+    lines = [f"{meta.project} — {T['map']} {_sc(scale_value(inp_map.scale), loc)}, "
+             f"{T['relief']} {_g(inp_map.relief_interval_m, loc)} {T['m']}"]
     if meta.customer or meta.contractor:
         lines.append(", ".join(x for x in (f"{T['customer']} {meta.customer}"
                                            if meta.customer else "",
@@ -344,7 +344,7 @@ def batch_row(path: str, r: Any) -> list[str]:
     f, u = r.film, r.uav
     rec = f.recommended if f else None
     return [
-        os.path.basename(path), f"1:{r.project.values['map']['scale']}",
+        os.path.basename(path), f"1:{r.project.map.scale}",
         (f"1:{scale_value(rec.photo_scale)}" if rec else "none") if f else "—",
         (_um(rec.scanner_pixel_um or rec.scan_pixel_um) if rec else "—") if f else "—",
         _num(u.recommended_height_m, 0) if u else "—",

@@ -2,17 +2,17 @@
 
 One row per key of a project file, from :mod:`scanplan.project.inputs` (the names, units,
 defaults, choices and help the project file and the command line use) and the numeric
-domains of :mod:`scanplan.core.domains` (the ranges the server checks, with the command
-line's messages). The label is the reports' name of the quantity where the report catalogue
-has one in the page's language; the help is the registry's (English).
+domain of each record (:func:`~scanplan.project.inputs.domain_of`: the range the server
+checks, with the command line's and the project file's messages). The label is the
+reports' name of the quantity where the report catalogue has one in the page's language;
+the help is the registry's (English).
 """
 
 from __future__ import annotations
 
 from typing import Any
 
-from ..core.domains import DOMAINS
-from ..project.inputs import INPUTS, describe
+from ..project.inputs import INPUTS, describe, domain_of
 
 __all__ = ["MANAGED", "input_rows"]
 
@@ -43,7 +43,7 @@ def input_rows(locale: str = "en") -> list[dict[str, Any]]:
     for inp in INPUTS.values():
         if not inp.key:
             continue
-        dom = DOMAINS.get(inp.domain) if inp.domain else None
+        dom = domain_of(inp)
         rows.append({
             "section": inp.section, "key": inp.key, "name": inp.name, "kind": inp.kind,
             "unit": inp.unit or (dom.unit if dom else ""), "default": inp.default,

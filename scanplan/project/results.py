@@ -1,0 +1,196 @@
+"""The records of a planned project: what :func:`scanplan.project.spec.plan_project` returns.
+
+:class:`PlanResult` (the specification of one project file: its :class:`ProjectModel`, the
+film part :class:`FilmSpec`, the UAV part :class:`UavSpec`, the comparison, the warnings) and
+the survey design's records (:class:`SurveyDesign`, :class:`GsdCompliance`,
+:class:`SunPlan`, computed by :mod:`scanplan.project.design`). Records only: the modules that
+compute them and the reports that render them both import from here.
+"""
+
+from __future__ import annotations
+
+import datetime as dt
+from dataclasses import dataclass, field
+from typing import Any
+
+from ..core.blocks import BlockHeightCheck
+from ..geo.layout import Area, FlightLayout
+from ..geo.sun import FlyingDays, SunWindow
+from ..geo.terrain import TerrainResult
+from ..geo.terrain_film import FilmTerrain
+from ..rules.film import PlanWarning, ScanScenario
+from .api import ScanJob, UavJob
+from .file import ReportMeta
+from .model import ProjectModel
+
+__all__ = ["FilmSpec", "GsdCompliance", "PlanResult", "SunPlan", "SurveyDesign", "UavSpec"]
+
+
+@dataclass(frozen=True)
+class GsdCompliance:
+    """The GSD of a workflow against the largest GSD of the plan scale (Table Б.1).
+
+    Attributes
+    ----------
+    workflow : {"digital", "film"}
+    map_scale : int
+    area : str
+        ``general`` or ``dense_urban``.
+    limit_cm : float
+        The table's largest GSD [cm].
+    gsd_cm : float
+        Digital: the GSD at the highest flown height of the recommended height; film: the
+        scanned ground pixel, scan pixel × Mc [cm].
+    complies : bool
+    binding : bool
+        Digital: GL is the binding constraint of the flight height.
+    source : str
+        The table row's source cell.
+    status : str
+        What the figure is (the row's status: a recommendation for Table Б.1).
+    set_aside : str
+        The project's reason for setting the recommendation aside (``""``: applied).
+    """
+
+    workflow: str
+    map_scale: int
+    area: str
+    limit_cm: float
+    gsd_cm: float
+    complies: bool
+    binding: bool
+    source: str
+    status: str = ""
+    set_aside: str = ""
+
+
+@dataclass(frozen=True)
+class SunPlan:
+    """The sun window at the site over the planned dates, and the flying days.
+
+    Attributes
+    ----------
+    lat_deg, lon_deg : float
+    utc_offset_h : float
+        Local time = UTC + offset on the first date [h].
+    min_elevation_deg : float
+    elevation_source : str
+        ``"project"`` or the norm set's parameter source.
+    start_date, end_date : datetime.date
+    windows : tuple of SunWindow
+    sortie_time_s, turnaround_s : float
+        The planned sortie (the one sortie length, :mod:`scanplan.project.sorties`; a
+        layout's sorties are at most this long) and the ground time between sorties [s].
+    flight_time_s : float or None
+        Flight time of the whole survey [s] (None: no ``[area]``, or film).
+    days : FlyingDays or None
+    time_zone : str or None
+        The site's IANA time zone the times are in (found from the coordinates); None
+        when the project gives ``utc_offset_h``.
+    """
+
+    lat_deg: float
+    lon_deg: float
+    utc_offset_h: float
+    min_elevation_deg: float
+    elevation_source: str
+    start_date: dt.date
+    end_date: dt.date
+    windows: tuple[SunWindow, ...]
+    sortie_time_s: float
+    turnaround_s: float
+    flight_time_s: float | None
+    days: FlyingDays | None
+    time_zone: str | None = None
+
+    @property
+    def window_hours(self) -> tuple[float, float]:
+        """Shortest and longest daily window over the dates [h]."""
+        hours = [w.hours for w in self.windows]
+        return min(hours), max(hours)
+
+
+@dataclass(frozen=True)
+class SurveyDesign:
+    """What the survey design sheet shows beyond the specification."""
+
+    gsd: tuple[GsdCompliance, ...]
+    block: BlockHeightCheck | None
+    block_source: str
+    sun: SunPlan | None
+    warnings: tuple[PlanWarning, ...]
+    block_ground: str = ""  # "dem": the DEM's samples; "range": [terrain] ground_elevation_m
+    block_waived: bool = False  # the flight follows the relief: the rule does not apply
+    block_status: str = ""  # what the block relief numbers are (a draft's recommendation)
+    block_set_aside: str = ""  # the project's reason for setting the rule aside
+    sun_status: str = ""  # what the norm set's sun elevation is (practice); "" if the project's
+
+
+@dataclass(frozen=True)
+class FilmSpec:
+    """The film part of a specification (``reason``: a :class:`~scanplan.messages.Message`,
+    English text that renders in another locale with ``.text(locale)``)."""
+
+    job: ScanJob
+    recommended: ScanScenario | None
+    reason: str
+    frames: int | None
+    strips: int | None
+    scanned_gigabytes: float | None
+    side_overlap_pct: float
+    archive: bool = False  # existing photos at a given scale ([film] photo_scale)
+    layout: FlightLayout | None = None  # the flight scheme at the recommended photo scale
+    terrain: FilmTerrain | None = None  # [terrain]: the local photo scale of every frame
+    flat: ScanScenario | None = None
+    """[terrain]: the recommended photo scale as the engine gives it on flat ground (for
+    comparison); ``recommended`` is then the engine's answer at the frame over the lowest
+    ground (its ``local_photo_scale``), which the specification states."""
+    rejected: tuple[tuple[ScanScenario, FilmTerrain], ...] = ()
+    """[terrain]: the candidate scales with fewer frames (larger Mc) the relief ruled out,
+    with their frames."""
+
+
+@dataclass(frozen=True)
+class UavSpec:
+    """The UAV part of a specification (the flight at the recommended height; ``reason``: a
+    :class:`~scanplan.messages.Message`)."""
+
+    job: UavJob
+    planned_height_m: float | None
+    recommended_height_m: float | None
+    max_height_m: float | None  # the maximum PLANNED height (highest flown meets every limit)
+    reason: str
+    terrain: TerrainResult | None = None  # [terrain]: every photo over its own ground
+    terrain_warnings: tuple[PlanWarning, ...] = ()
+
+    @property
+    def layout(self) -> FlightLayout | None:
+        """Strips and photo centres at the recommended height (None without an area)."""
+        return self.job.layout
+
+
+@dataclass(frozen=True)
+class PlanResult:
+    """Everything ``scanplan plan`` reports for one project."""
+
+    project: ProjectModel
+    """The project file as parsed (:mod:`scanplan.project.model`)."""
+    meta: ReportMeta
+    film: FilmSpec | None
+    uav: UavSpec | None
+    comparison: list[dict[str, Any]] = field(default_factory=list)
+    warnings: tuple[PlanWarning, ...] = ()
+    design: SurveyDesign | None = None
+    """The survey design checks: GSD against ГОСТ Р 59562-2021 Table Б.1, the one-height
+    rule of a block, the sun window (:mod:`scanplan.project.design`)."""
+    area: Area | None = None  # the contract area ([area]), in its planning CRS
+
+    @property
+    def layouts(self) -> dict[str, FlightLayout]:
+        """The flight layouts by job, ``{"film": ..., "uav": ...}`` (those that exist)."""
+        out = {}
+        if self.film is not None and self.film.layout is not None:
+            out["film"] = self.film.layout
+        if self.uav is not None and self.uav.layout is not None:
+            out["uav"] = self.uav.layout
+        return out
