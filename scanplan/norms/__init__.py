@@ -4,6 +4,7 @@ One module per concept (imports point down this list):
 
 ``schema``     the tables, columns, parameters and value rules of a norm set
 ``paths``      where the bundled sets and the user's norm directory are
+``citations``  the papers' old names in norm files, read as authors and year
 ``recovery``   the norm directory lock; finishing an import a crash interrupted
 ``store``      finding, loading and caching norm sets and the camera/scanner catalogue
 ``limits``     the limits of an input file and the file check

@@ -6,6 +6,7 @@ import csv
 from pathlib import Path
 from typing import Any
 
+from .citations import modern_citation
 from .schema import PARAMETERS, TABLES, ValueSpec
 
 # =========================================================================================
@@ -17,7 +18,8 @@ def _raw_csv(path: Path) -> list[dict[str, str]]:
     if not path.is_file():
         return []
     with path.open(encoding="utf-8", newline="") as fh:
-        return [dict(r) for r in csv.DictReader(fh)]
+        return [{k: modern_citation(v) if isinstance(v, str) else v for k, v in r.items()}
+                for r in csv.DictReader(fh)]
 
 
 def _typed(text: object, spec: ValueSpec) -> Any:

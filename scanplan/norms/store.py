@@ -28,6 +28,7 @@ from typing import Any
 from ..errors import InputError, NotFoundError
 from ..io.files import dir_lock, read_limited
 from ..rules.film import ScanRules
+from .citations import modern_citation
 from .paths import CATALOGUE, DEFAULT_NORM_SET, bundled_norms_dir, user_norms_dir
 from .records import PITCH_TOLERANCE, Camera, GsdLimit, LensCurve, MapObject, ScannerStep
 from .recovery import recover_norm_dir
@@ -286,9 +287,12 @@ def _read_text(path: Path) -> str:
 
 
 def _read_csv(path: Path) -> list[dict[str, str]]:
+    """The rows of a norm file, each cell with the papers' old names written by authors and
+    year (:func:`~scanplan.norms.citations.modern_citation`)."""
     with io.StringIO(_read_text(path), newline="") as fh:
         try:
-            return [dict(row) for row in csv.DictReader(fh)]
+            return [{k: modern_citation(v) if isinstance(v, str) else v for k, v in row.items()}
+                    for row in csv.DictReader(fh)]
         except csv.Error as exc:
             raise InputError(str(path), f"cannot be read as CSV: {exc}") from None
 
@@ -607,7 +611,8 @@ def read_norm_set_folder(path: Path, *, bundled: bool = False) -> NormSet:
         If a file of the set breaks the schema (message names file, row and column).
     """
     try:
-        meta = tomllib.loads(_read_text(path / "set.toml")).get("set", {})
+        meta = {k: modern_citation(v) if isinstance(v, str) else v
+                for k, v in tomllib.loads(_read_text(path / "set.toml")).get("set", {}).items()}
     except (OSError, tomllib.TOMLDecodeError) as exc:
         raise InputError(f"{path / 'set.toml'}", f"cannot be read: {exc}") from None
     pfile = path / "parameters.csv"

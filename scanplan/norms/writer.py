@@ -18,6 +18,7 @@ from pathlib import Path
 from ..errors import InputError, WriteError
 from ..io.files import fsync_dir, write_all
 from . import store as _norms
+from .citations import modern_citation
 from .importer import ParsedNormSet, read_norm_file
 from .limits import META_KEYS
 from .recovery import _norm_dir_lock, _recover_locked
@@ -104,7 +105,7 @@ def _csv_text(spec: TableSpec, rows: Sequence[Mapping[str, str]]) -> str:
     w = csv.writer(buf, lineterminator="\n")
     w.writerow([c.name for c in spec.columns])
     for r in rows:
-        w.writerow([r.get(c.name, "") for c in spec.columns])
+        w.writerow([modern_citation(r.get(c.name, "")) for c in spec.columns])
     return buf.getvalue()
 
 
@@ -205,7 +206,7 @@ def _set_files(parsed: ParsedNormSet, name: str, title: str | None) -> dict[str,
     elif not meta.get("title"):
         meta["title"] = default_title
     toml = ["[set]", f"name = {_toml_str(name)}"]
-    toml += [f"{k} = {_toml_str(meta.get(k, ''))}" for k in META_KEYS]
+    toml += [f"{k} = {_toml_str(modern_citation(meta.get(k, '')))}" for k in META_KEYS]
     toml += [
         f"imported_from = {_toml_str(parsed.source_file)}",
         f"imported_at = {_toml_str(_now_iso())}",

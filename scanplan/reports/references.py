@@ -1,14 +1,16 @@
 """References of the reports: the bundled bibliography and a per-document citation list.
 
 The norm tables' ``source`` cells and the message catalogue name a work by a short form
-("seed 001 Table 3", "GKINP (GNTA)-02-036-02; seed 001 eq. 1", "Михеева, Илюшенко, 2015,
-ф. (16)"). A document numbers the works in the order it first cites them: each short form
-becomes ``[n]`` and its locator is written in the document's language ("[2], Table 3",
-"[2], табл. 3"); the list of references closes the document. A cell that names none of
-the known works — already a full citation, such as a user's norm set — is shown as is.
+("Miheeva & Ilushenko 2015, Table 3", "GKINP (GNTA)-02-036-02; Miheeva & Ilushenko 2015,
+eq. 1", "Михеева, Илюшенко, 2015, ф. (16)"). A document numbers the works in the order it
+first cites them: each short form becomes ``[n]`` and its locator is written in the
+document's language ("[2], Table 3", "[2], табл. 3"); the list of references closes the
+document. A cell that names none of the known works — already a full citation, such as a
+user's norm set — is shown as is.
 
 The bibliography is data: ``norms/references.toml`` (each work in English and Russian,
-the short forms it is cited by).
+the short forms it is cited by, and the old names of norm files written by earlier
+versions: recognised too, and never printed).
 """
 
 from __future__ import annotations
@@ -26,12 +28,14 @@ __all__ = ["Bibliography", "Reference", "author_cite", "references"]
 
 @dataclass(frozen=True)
 class Reference:
-    """One work: its id, the short forms that cite it, its entry in both languages."""
+    """One work: its id, the short forms that cite it, its entry in both languages, and
+    the old names norm files of earlier versions cite it by (read, never printed)."""
 
     id: str
     aliases: tuple[str, ...]
     en: str
     ru: str
+    old_aliases: tuple[str, ...] = ()
 
     def text(self, locale: str) -> str:
         """The bibliographic entry in ``locale`` (the Russian original in Russian)."""
@@ -42,13 +46,15 @@ class Reference:
 def references() -> tuple[Reference, ...]:
     """The bundled bibliography (``norms/references.toml``)."""
     data = tomllib.loads((bundled_norms_dir() / "references.toml").read_text("utf-8"))
-    return tuple(Reference(id=r["id"], aliases=tuple(r["aliases"]), en=r["en"], ru=r["ru"])
+    return tuple(Reference(id=r["id"], aliases=tuple(r["aliases"]), en=r["en"], ru=r["ru"],
+                           old_aliases=tuple(r.get("old_aliases", ())))
                  for r in data["reference"])
 
 
 @cache
 def _alias_pattern() -> tuple[re.Pattern[str], dict[str, Reference]]:
-    by_alias = {a.casefold(): ref for ref in references() for a in ref.aliases}
+    by_alias = {a.casefold(): ref for ref in references()
+                for a in (*ref.aliases, *ref.old_aliases)}
     alts = sorted(by_alias, key=len, reverse=True)
     pattern = re.compile("|".join(re.escape(a) for a in alts), re.IGNORECASE)
     return pattern, by_alias
@@ -89,9 +95,9 @@ def _locator(text: str, locale: str) -> str:
 
 
 def _short_name(ref: Reference, locale: str) -> str:
-    """The work's short form a reader knows (authors and year), never a ``seed 00x``
-    alias: the first Cyrillic alias in Russian, else the first Latin one."""
-    names = [a for a in ref.aliases if not a.casefold().startswith("seed ")]
+    """The work's short form a reader knows (authors and year), never an old name: the
+    first Cyrillic alias in Russian, else the first Latin one."""
+    names = list(ref.aliases)
     cyrillic = [a for a in names if re.search("[А-Яа-яЁё]", a)]
     latin = [a for a in names if a not in cyrillic]
     pick = (cyrillic or latin) if locale == "ru" else (latin or cyrillic)
