@@ -302,7 +302,7 @@ def test_survey_design_sheet_in_workbook_and_pdf(tmp_path, locale):
     res = CliRunner().invoke(main, ["plan", str(path), "--out", str(tmp_path)])
     assert res.exit_code == 0, res.output
     wb = openpyxl.load_workbook(tmp_path / "spec.xlsx")
-    name = "Технический проект АФС" if locale == "ru" else "Survey design"
+    name = "Технический проект АФС" if locale == "ru" else "Design"
     assert wb.sheetnames[1] == name
     ws = wb[name]
     rows = {r[0]: (r[1], r[2]) for r in ws.iter_rows(min_row=2, values_only=True) if r[0]}

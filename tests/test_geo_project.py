@@ -208,4 +208,4 @@ def test_scan_command_area_file():
     code, out, err = _cli("scan", "--map-scale", "2000", "--relief", "1", "--camera",
                           "afa-te-100", "--photo-scale", "8000",
                           "--area-file", str(EXAMPLES / "areas" / "town-film.kml"))
-    assert code == 0 and "Flight lines at 1:8000" in out
+    assert code == 0 and "Flight lines at scale 1:8000" in out

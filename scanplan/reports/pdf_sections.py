@@ -307,7 +307,7 @@ def _uav_inputs(job: UavJob, f: _Fmt) -> list[tuple[str, str]]:
     if inp.gsd_target_m is not None:
         inputs.append((f.label("gsd_target_cm"), f.g(inp.gsd_target_m * 100.0)))
     inputs += [
-        (f.label("pdf_speed_ms"), f.g(inp.speed_ms)),
+        (f.label("ground_speed_ms"), f.g(inp.speed_ms)),
         (f.label("pdf_exposure_s"), f.g(inp.exposure_s)),
         (f.label("design_overlaps"),
          f"{f.g(inp.forward_overlap_pct)} / {f.g(inp.side_overlap_pct)}"),

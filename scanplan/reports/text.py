@@ -176,7 +176,8 @@ def _comparison_lines(result: Any, loc: str, T: _Terminal) -> list[str]:
         return _n(x, 3, loc, True) if isinstance(x, float) else str(x)
 
     for c in result.comparison:
-        q = T.get(f"cmp_{c.get('key', '')}", c["quantity"])
+        key = c.get("key", "")  # the terminal's shorter word, else the documents' one
+        q = T.get(f"cmp_{key}", LABELS[loc].get(f"spec_cmp_{key}", c["quantity"]))
         unit = {"m": T["m"], "GB": T["gb"]}.get(c["unit"], c["unit"])
         rows.append([f"  {q}", v(c["film"]), v(c["uav"]), unit])
     lines.append(table(rows, align="lrrl"))
@@ -201,7 +202,7 @@ def _warning_lines(result: Any, loc: str, T: _Terminal) -> list[str]:
 
 
 _AREA_TEXT = {
-    "en": {"area": "Area", "perimeter": "perimeter", "lines": "Flight lines", "at": "at",
+    "en": {"area": "Area", "perimeter": "perimeter", "lines": "Flight lines", "at": "at scale",
            "direction": "direction", "strips": ("strip", "strips"), "photos": ("photo", "photos"),
            "turns": "turns", "sorties": "sorties", "not_feasible": "NOT FEASIBLE",
            "km2": "km²", "km": "km", "min": "min"},

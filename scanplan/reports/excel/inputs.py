@@ -102,7 +102,7 @@ def _inputs_uav(book: Book, ws: Worksheet, row: int, job: UavJob) -> int:
         ("height_m", inp.height_m, F1),
         ("xlsx_tolerance_up_pct", inp.height_tolerance_up_pct, F1),
         ("xlsx_tolerance_down_pct", inp.height_tolerance_down_pct, F1),
-        ("xlsx_speed_ms", inp.speed_ms, F1),
+        ("ground_speed_ms", inp.speed_ms, F1),
         ("xlsx_exposure_s", inp.exposure_s, "0.00000"),
         ("forward_overlap_pct", inp.forward_overlap_pct, F1),
         ("side_overlap_pct", inp.side_overlap_pct, F1),
