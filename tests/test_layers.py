@@ -333,6 +333,19 @@ def toml_reads(text: str, name: str) -> list[str]:
                 and node.args[0].value.split(".")[0] in _SECTIONS:
             found.append(f"{name}:{node.lineno} reads {node.args[0].value}."
                          f"{node.args[1].value} from the TOML")
+        if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) \
+                and node.func.id == "getattr" and len(node.args) >= 2 \
+                and isinstance(node.args[1], ast.Constant) and node.args[1].value in _RAW:
+            # getattr(project, "get", None): the loaded file's reader, looked up by name
+            found.append(f"{name}:{node.lineno} looks up the TOML reader "
+                         f"{node.args[1].value!r} with getattr")
+        if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) \
+                and node.args and isinstance(node.args[0], ast.Constant) \
+                and isinstance(node.args[0].value, str) \
+                and node.args[0].value.split(".")[0] in _SECTIONS \
+                and node.func.id in _RAW:
+            found.append(f"{name}:{node.lineno} reads [{node.args[0].value}] through a "
+                         f"bound {node.func.id}()")
         if isinstance(node, ast.Attribute) and node.attr in _RAW:
             owner = node.value
             last = owner.attr if isinstance(owner, ast.Attribute) else getattr(owner, "id", "")
@@ -351,7 +364,9 @@ def test_nothing_above_the_project_layer_reads_the_toml(path):
                                   'x = spec.project.get("map", "scale")',
                                   'x = p.get("project", "purpose")',
                                   'x = result.project.number("site", "lat_deg", -90, 90)',
-                                  'x = p.get("norms.gsd_limits", "reason")'])
+                                  'x = p.get("norms.gsd_limits", "reason")',
+                                  'get = getattr(spec.project, "get", None)',
+                                  'x = get("uav", key)'])
 def test_the_toml_guard_fails_on_a_read(line):
     """The check can fail: a TOML read added to a report module is reported."""
     text = (PKG / "reports" / "text.py").read_text(encoding="utf-8") + f"\n{line}\n"

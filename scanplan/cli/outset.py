@@ -120,12 +120,17 @@ def say_export_notes(result: Any, say: Callable[[str], None] | None) -> None:
 def project_inputs(result: Any) -> list[str]:
     """The files a planned project read besides itself: its area file, its DEM (never
     replaced by an output, even with ``--force``)."""
-    project = getattr(result, "project", None)
-    get = getattr(project, "get", None)
-    if get is None:
+    project = getattr(result, "project", None)  # the parsed model (project/model.py)
+    if project is None:
         return []
-    found = (get("area", "file"), get("terrain", "dem"))
-    return [os.path.expanduser(f) for f in found if isinstance(f, str) and f]
+    found: list[str] = []
+    area_file = project.area.file
+    if isinstance(area_file, str) and area_file:
+        found.append(os.path.expanduser(area_file))  # already resolved beside the project
+    terrain = project.terrain
+    if terrain is not None and terrain.config.dem is not None:
+        found.append(str(terrain.config.dem))  # resolved beside the project file
+    return found
 
 
 def refuse_dangling_link(path: str) -> None:

@@ -116,10 +116,9 @@ def mission_options(spec: Any, layout: FlightLayout) -> MissionOptions | None:
 def _vehicle(spec: Any) -> Literal["multirotor", "fixed_wing"]:
     """The aircraft, from the turn keys the project gives: ``[uav] turn_radius_m`` or
     ``[uav] bank_deg`` (turns of a fixed wing) → a fixed wing; otherwise a multirotor."""
-    project = getattr(spec, "project", None)
-    get = getattr(project, "get", None)
-    if get is not None and any(get("uav", key) is not None
-                               for key in ("turn_radius_m", "bank_deg")):
+    flight = getattr(getattr(spec, "project", None), "flight", None)
+    if flight is not None and (flight.turn_radius_m is not None
+                               or flight.bank_deg is not None):
         return "fixed_wing"
     return "multirotor"
 
