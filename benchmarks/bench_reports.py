@@ -19,7 +19,7 @@ import time
 from _common import Result
 from _timing import best_of
 
-from scanplan.project.api import scan_job, uav_job
+from scanplan.project.jobs import scan_job, uav_job
 from scanplan.reports import ReportMeta
 
 TARGET_S = 4.0

@@ -38,7 +38,7 @@ from .errors import InputError
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
 
-    from .project.api import ScanJob, UavJob
+    from .project.jobs import ScanJob, UavJob
     from .project.spec import PlanResult
 
 __all__ = [
@@ -582,7 +582,7 @@ def _registry_keywords(engine: Any, plan_kind: str, returns: str) -> Any:
 
 
 def _engine(name: str) -> Any:
-    from .project import api as engine
+    from .project import jobs as engine
 
     return getattr(engine, name)
 
@@ -600,7 +600,7 @@ def scan(**inputs: Any) -> ScanResult:
     >>> list(r.to_frame()["photo_scale"])
     [8000, 10000]
     """
-    from .project.api import scan_job
+    from .project.jobs import scan_job
     from .project.signature import plain
 
     return ScanResult(scan_job(**plain(inputs)))
@@ -620,7 +620,7 @@ def uav(**inputs: Any) -> UavResult:
     >>> "max_planned_height_m" in r.to_frame().columns
     True
     """
-    from .project.api import uav_job
+    from .project.jobs import uav_job
     from .project.signature import plain
 
     return UavResult(uav_job(**plain(inputs)))

@@ -21,8 +21,8 @@ from scanplan.core.blocks import block_bands, block_height_check
 from scanplan.errors import InputError
 from scanplan.geo.sun import SunWindow, flying_days, sun_elevation_deg, sun_windows
 from scanplan.norms import load_norm_set
-from scanplan.project.api import uav_job
 from scanplan.project.file import parse_project
+from scanplan.project.jobs import uav_job
 from scanplan.project.spec import plan_project
 
 # --- ГОСТ Р 59562-2021 Table Б.1 ---------------------------------------------------------

@@ -8,7 +8,7 @@ import pytest
 
 from scanplan.messages import localize
 from scanplan.norms import load_norm_set
-from scanplan.project.api import uav_job
+from scanplan.project.jobs import uav_job
 from scanplan.reports.references import Bibliography
 
 CAM = dict(camera="dji-mavic-3e", speed_ms=10.0, exposure_s=0.001)

@@ -14,8 +14,8 @@ import pytest
 
 import scanplan
 from scanplan.errors import InputError
-from scanplan.project.api import scan_job, uav_job
 from scanplan.project.inputs import get
+from scanplan.project.jobs import scan_job, uav_job
 from scanplan.project.sweep import SWEEP_FRAME_COLUMNS
 
 P1 = "dji-zenmuse-p1-35"

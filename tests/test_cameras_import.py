@@ -12,8 +12,8 @@ from click.testing import CliRunner
 from scanplan.cli.main import main
 from scanplan.errors import InputError
 from scanplan.norms import NormImportError, load_norm_set, write_template
-from scanplan.project.api import uav_job
 from scanplan.project.cameras import import_camera_file, read_camera_file, user_catalogue_dir
+from scanplan.project.jobs import uav_job
 
 # two entries in QGroundControl's own format (src/Camera/CameraMetaData.json)
 QGC = [

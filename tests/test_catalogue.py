@@ -30,7 +30,7 @@ from scanplan.norms import (
     load_norm_set,
     read_norm_set_folder,
 )
-from scanplan.project.api import uav_job
+from scanplan.project.jobs import uav_job
 
 CATALOGUE = bundled_norms_dir() / "catalogue"
 NS = load_norm_set()

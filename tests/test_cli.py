@@ -160,12 +160,12 @@ def test_cameras_list_and_show():
 
 
 def test_internal_error_is_exit_1_without_traceback(monkeypatch):
-    import scanplan.project.api
+    import scanplan.project.jobs
 
     def boom(**kw):
         raise RuntimeError("disk on fire")
 
-    monkeypatch.setattr(scanplan.project.api, "scan_job", boom)
+    monkeypatch.setattr(scanplan.project.jobs, "scan_job", boom)
     r = run(*BASE, "--photo-scale", "10000")
     assert r.exit_code == 1
     assert "disk on fire" in r.stderr and "Traceback" not in r.output

@@ -16,8 +16,8 @@ from click.testing import CliRunner
 from scanplan.cli.main import main
 from scanplan.errors import InputError
 from scanplan.norms import did_you_mean, load_norm_set
-from scanplan.project.api import USER_OBJECT_NAME, object_display_name, scan_job, uav_job
 from scanplan.project.file import parse_project
+from scanplan.project.jobs import USER_OBJECT_NAME, object_display_name, scan_job, uav_job
 from scanplan.project.spec import plan_project
 
 

@@ -12,9 +12,9 @@ from openpyxl import load_workbook
 
 from scanplan.cli.main import main
 from scanplan.errors import InputError
-from scanplan.project.api import uav_job
 from scanplan.project.file import load_project
 from scanplan.project.inputs import INPUTS
+from scanplan.project.jobs import uav_job
 from scanplan.project.spec import plan_project
 
 _CUSTOM = dict(pixel_um=4.4, focal_mm=35.0, sensor_mm="36x24", f_number=5.6, height_m=100.0)

@@ -34,7 +34,7 @@ def test_every_public_function_has_an_example(family):
     assert not missing
 
 
-@pytest.mark.parametrize("name", ["scanplan.project.inputs", "scanplan.project.api"])
+@pytest.mark.parametrize("name", ["scanplan.project.inputs", "scanplan.project.jobs"])
 def test_examples_of_the_project_layer_run(name):
     result = doctest.testmod(importlib.import_module(name), optionflags=doctest.ELLIPSIS)
     assert result.attempted and result.failed == 0, f"{result.failed} doctest(s) of {name}"

@@ -219,7 +219,7 @@ class Faults:
 
 @pytest.fixture(scope="module")
 def scan_job():
-    from scanplan.project.api import scan_job as make
+    from scanplan.project.jobs import scan_job as make
 
     return make(map_scale=2000, relief_interval_m=0.5, photo_scales=[10000], camera="rc30-153")
 
@@ -557,12 +557,12 @@ def test_debug_shows_the_traceback(work, fixed_renders, monkeypatch, fmp):
 
 def test_other_os_errors_name_the_file(work, monkeypatch):
     """An OSError that is not a write (here: reading the norm set) names its file too."""
-    import scanplan.project.api
+    import scanplan.project.jobs
 
     def boom(**kw):
         raise PermissionError(errno.EACCES, os.strerror(errno.EACCES), "/srv/norms/set.toml")
 
-    monkeypatch.setattr(scanplan.project.api, "scan_job", boom)
+    monkeypatch.setattr(scanplan.project.jobs, "scan_job", boom)
     r = cli("scan", "--map-scale", "2000", "--relief", "0.5", "--photo-scale", "10000",
             "--camera", "rc30-153")
     assert r.exit_code == 1

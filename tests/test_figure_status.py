@@ -10,9 +10,9 @@ from click.testing import CliRunner
 
 from scanplan.cli.main import main
 from scanplan.norms import load_norm_set
-from scanplan.project.api import uav_job
 from scanplan.project.design import design_dict
 from scanplan.project.file import parse_project
+from scanplan.project.jobs import uav_job
 from scanplan.project.spec import plan_project
 
 ROOT = Path(__file__).resolve().parent.parent

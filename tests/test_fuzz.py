@@ -35,8 +35,8 @@ from hypothesis import strategies as st
 
 from scanplan.cli.main import OPTION_NAMES, main
 from scanplan.errors import InputError
-from scanplan.project.api import scan_job, uav_job
 from scanplan.project.file import KEYS
+from scanplan.project.jobs import scan_job, uav_job
 
 LONG = os.environ.get("SCANPLAN_FUZZ") == "long"
 FACTOR = int(os.environ.get("SCANPLAN_FUZZ_FACTOR", "20")) if LONG else 1

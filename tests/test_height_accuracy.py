@@ -22,8 +22,8 @@ from scanplan.cli.main import main
 from scanplan.core import stereo as S
 from scanplan.errors import InputError
 from scanplan.norms import load_norm_set
-from scanplan.project.api import uav_job
 from scanplan.project.file import load_project
+from scanplan.project.jobs import uav_job
 from scanplan.project.spec import plan_project
 from scanplan.reports.jsondoc import plan_result_dict
 

@@ -18,8 +18,8 @@ from hypothesis import strategies as st
 
 from scanplan.core import stereo as S
 from scanplan.norms import load_norm_set
-from scanplan.project.api import uav_job
 from scanplan.project.file import parse_project
+from scanplan.project.jobs import uav_job
 from scanplan.project.spec import plan_project
 from scanplan.rules.constraints import height_accuracy, sigma_z_m
 

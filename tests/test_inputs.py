@@ -15,8 +15,8 @@ from scanplan.cli.main import OPTION_NAMES, main
 from scanplan.core.domains import DOMAINS
 from scanplan.errors import FieldValueError, InputError
 from scanplan.project import inputs as I
-from scanplan.project.api import AIRCRAFT_SIDE_OVERLAP_PCT, UAV_DEFAULTS, scan_job, uav_job
 from scanplan.project.file import KEYS, parse_project
+from scanplan.project.jobs import AIRCRAFT_SIDE_OVERLAP_PCT, UAV_DEFAULTS, scan_job, uav_job
 from scanplan.project.spec import DEFAULT_FILM_SIDE_OVERLAP_PCT
 
 ROOT = Path(__file__).resolve().parents[1]

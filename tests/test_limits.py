@@ -22,7 +22,7 @@ from norm_corpus import english_workbook
 from scanplan.cli.main import main
 from scanplan.core.domains import DOMAINS
 from scanplan.errors import InputError
-from scanplan.project.api import uav_job
+from scanplan.project.jobs import uav_job
 
 CANON = "canon-eos-5d-mark-ii-50"
 INTERNAL = re.compile(r"\b(r_lpmm|upper_lpmm|nyquist_lpmm|geometric_shift_mm|n_strips|"

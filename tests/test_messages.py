@@ -33,8 +33,8 @@ from scanplan.messages import (
     localize,
     placeholders,
 )
-from scanplan.project.api import scan_job, uav_job
 from scanplan.project.file import load_project
+from scanplan.project.jobs import scan_job, uav_job
 from scanplan.project.spec import PlanResult, plan_project
 from scanplan.reports.labels import LABELS
 from scanplan.reports.references import Bibliography

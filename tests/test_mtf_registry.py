@@ -17,7 +17,7 @@ from click.testing import CliRunner
 
 import scanplan.core.mtf as M
 from scanplan.cli.main import main
-from scanplan.project.api import uav_job
+from scanplan.project.jobs import uav_job
 from scanplan.reports import ReportMeta
 from scanplan.reports.excel import render_xlsx
 

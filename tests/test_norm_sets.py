@@ -44,7 +44,7 @@ def test_engine_reads_its_numbers_from_the_norm_set(tmp_path):
     o = dst / "objects.csv"
     o.write_text(o.read_text(encoding="utf-8").replace(",0.20,circle", ",0.40,circle"),
                  encoding="utf-8")
-    from scanplan.project.api import scan
+    from scanplan.project.jobs import scan
 
     a = scan(map_scale=2000, relief_interval_m=0.5, photo_scales=[10000], camera="rc30-153")
     b = scan(map_scale=2000, relief_interval_m=0.5, photo_scales=[10000], camera="rc30-153",

@@ -11,7 +11,7 @@ import zipfile
 import openpyxl
 import pytest
 
-from scanplan.project.api import scan_job, uav_job
+from scanplan.project.jobs import scan_job, uav_job
 from scanplan.reports import ReportMeta
 from scanplan.reports import excel as X
 from scanplan.reports.excel import render_xlsx, write_xlsx

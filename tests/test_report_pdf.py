@@ -20,7 +20,7 @@ from scanplan.reports.labels import LABELS
 pypdf = pytest.importorskip("pypdf")
 weasyprint = pytest.importorskip("weasyprint")
 
-from scanplan.project.api import scan_job, uav_job  # noqa: E402
+from scanplan.project.jobs import scan_job, uav_job  # noqa: E402
 from scanplan.reports import ReportMeta, templates_dir  # noqa: E402
 from scanplan.reports import pdf as P  # noqa: E402
 from scanplan.reports.plots import constraints_svg, number  # noqa: E402

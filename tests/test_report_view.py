@@ -10,7 +10,7 @@ import math
 import openpyxl
 import pytest
 
-from scanplan.project.api import scan_job, uav_job
+from scanplan.project.jobs import scan_job, uav_job
 from scanplan.reports import ReportMeta, plots, view
 from scanplan.reports import excel as X
 from scanplan.reports.labels import LABELS

@@ -15,7 +15,7 @@ from click.testing import CliRunner
 
 from scanplan.cli.main import main
 from scanplan.messages import MESSAGES, Message
-from scanplan.project.api import scan_job, uav_job
+from scanplan.project.jobs import scan_job, uav_job
 from scanplan.reports import ReportMeta
 from scanplan.reports.excel import render_xlsx
 from scanplan.rules import constraints, film, registry, results, uav

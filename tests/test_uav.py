@@ -15,7 +15,7 @@ from click.testing import CliRunner
 
 from scanplan.cli.main import main
 from scanplan.core import mtf
-from scanplan.project.api import uav_job
+from scanplan.project.jobs import uav_job
 
 SEED002 = dict(camera="canon-eos-5d-mark-ii-50", f_number=8.0, height_m=300.0,
                height_tolerance_pct=40.0, speed_ms=25.0, exposure_s=0.001,

@@ -374,7 +374,7 @@ def _scales(text: str | None) -> tuple[float, ...]:
 
 
 def _area(text: str | None) -> tuple[float, float] | None:
-    from ..project.api import parse_area_m
+    from ..project.jobs import parse_area_m
 
     return None if not text else parse_area_m(text, "--area-m")
 

@@ -396,7 +396,7 @@ def scan(as_json: bool, bits_per_band: str, **kwargs: Any) -> None:
       scanplan scan --map-scale 1:2000 --relief 1.0 --photo-scale 1:10000 \\
                     --camera afa-te-100 --resolving-power 40
     """
-    from ..project.api import scan_job
+    from ..project.jobs import scan_job
     from ..reports.jsondoc import scan_plan_dict
     from ..reports.terminal import format_scan_plan
 
@@ -477,8 +477,8 @@ def uav(as_json: bool, **kwargs: Any) -> None:
       scanplan uav --camera canon-eos-5d-mark-ii-50 --f-number 8 --height-m 300 \\
                    --height-tolerance-pct 40 --speed-ms 25 --map-scale 2000 --relief 0.5
     """
-    from ..project.api import uav_job
     from ..project.flightplan import LayoutOptions
+    from ..project.jobs import uav_job
     from ..reports.jsondoc import uav_plan_dict
     from ..reports.terminal import format_uav_plan
 

@@ -6,7 +6,7 @@
   value in its registry domain (what the specification and the reports read);
 - :mod:`~scanplan.project.spec` — a project turned into a specification (rules + norms),
   whose records are in :mod:`~scanplan.project.results`;
-- :mod:`~scanplan.project.api` — the Python functions behind the CLI (``scan``, ``uav``);
+- :mod:`~scanplan.project.jobs` — the Python functions behind the CLI (``scan``, ``uav``);
 - :mod:`~scanplan.project.archive` — archive (already flown) photos;
 - :mod:`~scanplan.project.cameras` — the camera catalogue and its import.
 """

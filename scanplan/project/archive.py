@@ -23,7 +23,7 @@ import numpy as np
 from ..core import formulas as F
 from ..messages import Message
 from ..rules.film import CONSTRAINTS, PlanWarning, ScanPlan, ScanScenario, round_to_scanner
-from .api import ScanJob
+from .jobs import ScanJob
 
 __all__ = ["ARCHIVE_REPLACED_CODES", "archive_film"]
 

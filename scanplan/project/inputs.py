@@ -6,7 +6,7 @@ Each :class:`Input` holds the Python (API) name, the unit, the domain
 Everything that names an input reads this module:
 
 - the project file's key table and its type checks (:data:`scanplan.project.file.KEYS`);
-- the defaults of the Python API (:func:`scanplan.project.api.uav_job`, ``scan_job``) and of
+- the defaults of the Python API (:func:`scanplan.project.jobs.uav_job`, ``scan_job``) and of
   the specification (:mod:`scanplan.project.spec`);
 - the options of ``scanplan scan`` and ``scanplan uav`` (``scanplan.cli.main``), their
   help and defaults;
@@ -79,7 +79,7 @@ class Input:
         Whether a project file must give it.
     by_carrier : bool
         ``default`` is the UAV's; a camera on a manned aircraft has another (or none), so
-        the API and the command line take None and :func:`scanplan.project.api.uav_job`
+        the API and the command line take None and :func:`scanplan.project.jobs.uav_job`
         chooses by carrier.
     """
 

@@ -19,8 +19,8 @@ from ..geo.sun import FlyingDays, SunWindow
 from ..geo.terrain import TerrainResult
 from ..geo.terrain_film import FilmTerrain
 from ..rules.film import PlanWarning, ScanScenario
-from .api import ScanJob, UavJob
 from .file import ReportMeta
+from .jobs import ScanJob, UavJob
 from .model import ProjectModel
 
 __all__ = ["FilmSpec", "GsdCompliance", "PlanResult", "SunPlan", "SurveyDesign", "UavSpec"]

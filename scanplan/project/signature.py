@@ -4,7 +4,7 @@
 (:mod:`scanplan.project.inputs`) as keywords. Their :class:`inspect.Signature` (what
 ``help()``, completion and ``inspect.signature`` show) and the *Parameters* section of
 their docstrings are generated here from the engine functions' keywords
-(:func:`scanplan.project.api.uav_job`, ``scan_job``) and the registry's help text and
+(:func:`scanplan.project.jobs.uav_job`, ``scan_job``) and the registry's help text and
 units, so neither is written twice.
 
 Numbers are taken as :class:`numbers.Real` (``np.int64``, ``np.float32``, ``Fraction``)

@@ -24,15 +24,6 @@ from ..geo.layout import Area, FlightLayout
 from ..geo.terrain_film import FilmTerrain
 from ..messages import Message
 from ..rules.film import PlanWarning, ScanScenario
-from .api import (
-    PROVISIONAL_HEIGHT_M,
-    ScanJob,
-    UavJob,
-    height_step_m,
-    recommended_height_m,
-    scan_job,
-    uav_job,
-)
 from .archive import archive_film
 from .design import survey_design
 from .file import Project
@@ -44,6 +35,15 @@ from .flightplan import (
     layout_warnings,
 )
 from .inputs import by_key
+from .jobs import (
+    PROVISIONAL_HEIGHT_M,
+    ScanJob,
+    UavJob,
+    height_step_m,
+    recommended_height_m,
+    scan_job,
+    uav_job,
+)
 from .model import ProjectModel, build_model
 from .results import FilmSpec, PlanResult, UavSpec
 from .sorties import sortie_length

@@ -1,7 +1,7 @@
 """A grid of UAV plans in one table: cameras × overlaps × heights.
 
 For each camera and pair of overlaps the inputs are resolved and the height limits found
-once (:func:`scanplan.project.api.uav_job` at the first height: the maximum planned height
+once (:func:`scanplan.project.jobs.uav_job` at the first height: the maximum planned height
 and its binding constraint do not depend on the planned height); every height is then
 evaluated in one vectorised pass of the engine (:func:`scanplan.rules.uav.height_sweep`:
 one MTF solve over all heights). Each row equals what ``scanplan.uav(...)`` gives for the
@@ -19,7 +19,7 @@ import numpy as np
 from ..core.domains import MAX_LIST_ITEMS
 from ..errors import InputError
 from ..rules.uav import SWEEP_COLUMNS, height_sweep
-from .api import uav_job
+from .jobs import uav_job
 
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd

@@ -30,8 +30,8 @@ from ..rules.terrain import (
     height_accuracy_warnings,
     local_forward_overlap_pct,
 )
-from .api import UavJob, recommended_height_m
 from .file import KEYS
+from .jobs import UavJob, recommended_height_m
 from .model import ProjectModel
 from .terraincheck import film_terrain, uav_terrain
 

@@ -1,7 +1,7 @@
 """The PDF report: jinja2 templates in ``templates/`` rendered by WeasyPrint.
 
-The report *renders* a :class:`scanplan.project.api.ScanJob` and/or
-:class:`scanplan.project.api.UavJob`
+The report *renders* a :class:`scanplan.project.jobs.ScanJob` and/or
+:class:`scanplan.project.jobs.UavJob`
 (their plans and norm set); every number comes from the plan objects, formatted per
 locale (decimal comma in Russian). The document is A4 with the approval block («УТВЕРЖДАЮ»
 / APPROVED) and, when the project names one, the agreement block («СОГЛАСОВАНО» / AGREED),
@@ -33,7 +33,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from ..project.api import ScanJob, UavJob
+from ..project.jobs import ScanJob, UavJob
 from . import ReportMeta, templates_dir, write_atomic  # noqa: F401  (templates_dir: tests)
 from .pdfhtml import _DEFAULT_META, _object_name, render_html  # noqa: F401  (_object_name: tests)
 from .pdfrender import (  # noqa: F401  (weasyprint, _font_config, warm_up: callers, tests)

@@ -20,7 +20,7 @@ from ..core.shown import shown_decimals
 from ..messages import localize
 from ..norms import NormSet
 from ..norms.schema import DIGITAL_ONLY_PARAMETERS
-from ..project.api import ScanJob, UavJob
+from ..project.jobs import ScanJob, UavJob
 from ..rules.film import CONSTRAINTS, ScanPlan
 from ..rules.uav import UavPlan
 from .design import relief_max_height_m
@@ -107,7 +107,7 @@ def _object_name(ns: NormSet, name: str, size_m: float, map_scale: int | None,
                  locale: str) -> str:
     """A norm-table object's name in the report's language (unnamed: "object of the given
     size")."""
-    from ..project.api import USER_OBJECT_NAME
+    from ..project.jobs import USER_OBJECT_NAME
 
     if map_scale is None and name == USER_OBJECT_NAME["en"]:  # a project's unnamed object
         return name_title("", "", locale)

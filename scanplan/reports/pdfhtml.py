@@ -17,7 +17,7 @@ from markupsafe import Markup, escape
 
 from .._version import __version__
 from ..messages import document_text, localize
-from ..project.api import ScanJob, UavJob
+from ..project.jobs import ScanJob, UavJob
 from . import ReportMeta, templates_dir
 from .design import design_view
 from .pdf_sections import (  # noqa: F401  (_object_name: tests)

@@ -30,8 +30,8 @@ from ..messages import scale_text
 from .labels import LABELS, t
 
 if TYPE_CHECKING:
-    from ..project.api import ScanJob, UavJob
     from ..project.file import ReportMeta
+    from ..project.jobs import ScanJob, UavJob
     from ..project.spec import PlanResult
 
 __all__ = ["LOCALES", "SECTION_ORDER", "Labels", "Numbers", "ReportView", "build_view",

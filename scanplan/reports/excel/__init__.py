@@ -58,7 +58,7 @@ from .terrain import terrain_sheet
 from .uav import mtf_sheet, uav_sheet
 
 if TYPE_CHECKING:
-    from ...project.api import ScanJob, UavJob
+    from ...project.jobs import ScanJob, UavJob
     from ...project.spec import PlanResult
 
 __all__ = ["SHEETS", "Book", "Sheet", "render_xlsx", "write_xlsx"]
@@ -129,9 +129,9 @@ def render_xlsx(
     Parameters
     ----------
     scan : ScanJob, optional
-        A film scan plan and its norm set (:func:`scanplan.project.api.scan_job`).
+        A film scan plan and its norm set (:func:`scanplan.project.jobs.scan_job`).
     uav : UavJob, optional
-        A UAV flight plan and its norm set (:func:`scanplan.project.api.uav_job`).
+        A UAV flight plan and its norm set (:func:`scanplan.project.jobs.uav_job`).
     meta : ReportMeta
         Title and approval blocks and the language (``meta.locale``: ``"en"``/``"ru"``).
     spec : PlanResult, optional

@@ -76,7 +76,7 @@ class Book:
     def obj_name(self, ns: NormSet, name: str, map_scale: int | None) -> str:
         """A norm object's name in the report's language (unnamed: "object of the given
         size")."""
-        from ...project.api import USER_OBJECT_NAME
+        from ...project.jobs import USER_OBJECT_NAME
 
         if map_scale is None and name == USER_OBJECT_NAME["en"]:  # a project's unnamed object
             return name_title("", "", self.loc)

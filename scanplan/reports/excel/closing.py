@@ -19,7 +19,7 @@ from ..wording import (
 
 if TYPE_CHECKING:
     from ...norms import NormSet
-    from ...project.api import ScanJob, UavJob
+    from ...project.jobs import ScanJob, UavJob
     from ...project.spec import PlanResult
     from ...rules.film import PlanWarning
 

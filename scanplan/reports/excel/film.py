@@ -14,7 +14,7 @@ from openpyxl.worksheet.worksheet import Worksheet
 from ...rules.film import CONSTRAINTS
 
 if TYPE_CHECKING:
-    from ...project.api import ScanJob
+    from ...project.jobs import ScanJob
     from ...project.spec import PlanResult
 
 from .book import Book

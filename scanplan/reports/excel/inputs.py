@@ -15,7 +15,7 @@ from ..wording import (
 
 if TYPE_CHECKING:
     from ...norms import NormSet
-    from ...project.api import ScanJob, UavJob
+    from ...project.jobs import ScanJob, UavJob
 
 from .book import Book
 from .cells import (

@@ -17,7 +17,7 @@ from ..wording import (
 )
 
 if TYPE_CHECKING:
-    from ...project.api import ScanJob, UavJob
+    from ...project.jobs import ScanJob, UavJob
     from ...project.spec import PlanResult
 
 from .book import Book

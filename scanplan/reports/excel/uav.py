@@ -13,7 +13,7 @@ from ...core.mtf import component_label
 from ...rules.film import CONSTRAINTS
 
 if TYPE_CHECKING:
-    from ...project.api import UavJob
+    from ...project.jobs import UavJob
     from ...rules.uav import UavPlan
 
 from .book import Book
