@@ -152,7 +152,7 @@ class NormImportError(InputError):
         )
 
 
-class _Problems:
+class Problems:
     """Collects problems (keeps the first _limits.MAX_ERRORS_KEPT, counts all)."""
 
     def __init__(self) -> None:
@@ -169,7 +169,7 @@ class _Problems:
             raise NormImportError(source, self.items, self.total)
 
 
-def _fail(source: str, message: str, hint: str = "", at: str | None = None) -> NormImportError:
+def fail(source: str, message: str, hint: str = "", at: str | None = None) -> NormImportError:
     """One problem of file ``source``, at cell ``at`` (default: the file itself)."""
     return NormImportError(source, [ImportProblem(at or source, message, hint=hint)])
 
@@ -229,7 +229,7 @@ def parse_number(text: str, *, scale: bool = False, percent: bool = False) -> fl
     return v
 
 
-def _num_text(v: float) -> str:
+def num_text(v: float) -> str:
     """Shortest text that reads back as ``v`` (``2000`` not ``2000.0``)."""
     if v == int(v) and abs(v) < 1e15:
         return str(int(v))
@@ -243,13 +243,13 @@ def _shown(raw: object) -> str:
     if isinstance(raw, bool):
         return "TRUE" if raw else "FALSE"
     if isinstance(raw, float):
-        return _num_text(raw)
+        return num_text(raw)
     if isinstance(raw, _dt.datetime | _dt.date | _dt.time):
         return raw.isoformat()
     return str(raw)
 
 
-class _Bad(Exception):
+class Bad(Exception):
     """A value breaks its rule (message, hint)."""
 
     def __init__(self, message: str, hint: str = "") -> None:
@@ -273,28 +273,28 @@ def _is_empty(raw: object) -> bool:
 def _convert(
     raw: object, spec: ValueSpec, *, scale: bool = False, percent_cell: bool = False
 ) -> str:
-    """Check one raw cell value against its rule; return its canonical text, or raise _Bad.
+    """Check one raw cell value against its rule; return its canonical text, or raise Bad.
 
     ``percent_cell``: the cell has a percent number format (Excel stores 60 % as 0.6).
     """
     if _is_empty(raw):
         if spec.required:
-            raise _Bad(f"is empty; must be {spec.describe()}", "fill in the cell")
+            raise Bad(f"is empty; must be {spec.describe()}", "fill in the cell")
         return ""
     if isinstance(raw, str) and raw.strip() in _EXCEL_ERRORS:
-        raise _Bad(
+        raise Bad(
             f"the cell shows an Excel error; must be {spec.describe()}",
             "fix the formula or type the value",
         )
     if isinstance(raw, _dt.datetime | _dt.date | _dt.time | _dt.timedelta):
-        raise _Bad(
+        raise Bad(
             f"is a date or time; must be {spec.describe()}",
             "Excel turned the value into a date: format the column as Text or "
             "Number and type the value again",
         )
     if spec.kind in ("float", "int"):
         if isinstance(raw, bool):
-            raise _Bad(f"must be {spec.describe()}", "type a number, not TRUE/FALSE")
+            raise Bad(f"must be {spec.describe()}", "type a number, not TRUE/FALSE")
         if isinstance(raw, int | float):
             v = float(raw)
             if percent_cell and spec.unit == "%":
@@ -304,7 +304,7 @@ def _convert(
             try:
                 v = parse_number(str(raw), scale=scale, percent=spec.unit == "%")
             except ValueError:
-                raise _Bad(f"must be {spec.describe()}", _number_hint(spec, scale)) from None
+                raise Bad(f"must be {spec.describe()}", _number_hint(spec, scale)) from None
         problem = spec.check(v)
         if problem:
             hint = (
@@ -316,16 +316,16 @@ def _convert(
                     else "check the value"
                 )
             )
-            raise _Bad(problem, hint)
-        return str(int(v)) if spec.kind == "int" else _num_text(v)
+            raise Bad(problem, hint)
+        return str(int(v)) if spec.kind == "int" else num_text(v)
     if isinstance(raw, bool):
         text = "TRUE" if raw else "FALSE"
     elif isinstance(raw, float):
-        text = _num_text(raw)
+        text = num_text(raw)
     else:
         text = str(raw).strip()
     if spec.kind == "text":
-        _check_text(text)
+        check_text(text)
     if spec.kind == "choice":
         folded = {c.casefold(): c for c in spec.choices}
         text = folded.get(text.casefold(), text)
@@ -335,7 +335,7 @@ def _convert(
         text = ",".join(folded.get(x.casefold(), x) for x in items)
     problem = spec.check(text)
     if problem:
-        raise _Bad(problem, "spelling matters" if spec.choices else "")
+        raise Bad(problem, "spelling matters" if spec.choices else "")
     return text
 
 
@@ -343,8 +343,8 @@ _CONTROL = re.compile(r"[\x00-\x08\x0b\x0c\x0e-\x1f\x7f-\x9f]")
 _FORMULA_START = "=+-@"
 
 
-def _check_text(text: str) -> None:
-    """Refuse text a norm set must not store (raise _Bad).
+def check_text(text: str) -> None:
+    """Refuse text a norm set must not store (raise Bad).
 
     A norm set is CSV files engineers open in Excel, and its text goes into workbooks:
     text starting with ``=``, ``+``, ``-`` or ``@`` would run as a formula there
@@ -354,19 +354,19 @@ def _check_text(text: str) -> None:
     refused too.
     """
     if len(text) > _limits.MAX_CELL_CHARS:
-        raise _Bad(
+        raise Bad(
             f"the text is {len(text):,} characters long; the limit is {_limits.MAX_CELL_CHARS:,} "
             "(Excel's, for one cell)",
             "shorten it",
         )
     bad = _CONTROL.search(text)
     if bad:
-        raise _Bad(
+        raise Bad(
             f"the text contains the control character U+{ord(bad.group()):04X}",
             "delete it (it comes with text copied from another program)",
         )
     if len(text) > 1 and text[0] in _FORMULA_START and not _NUMBER_RE.fullmatch(text):
-        raise _Bad(
+        raise Bad(
             f'text may not start with "{text[0]}": it would run as a formula in Excel '
             "(the norm set is stored as CSV files)",
             f'delete the leading "{text[0]}", or start the text with a letter or digit',
@@ -435,7 +435,11 @@ def _size(n: int) -> str:
     return f"{n / 2**20:.1f} MB" if n >= 2**20 else f"{n:,} bytes"
 
 
-def _check_file(path: Path) -> int:
+def check_file(path: Path) -> int:
+    """The size [bytes] of the norm file at ``path``, checked before it is read: a
+    regular file within :data:`~scanplan.norms.limits.MAX_FILE_BYTES` (else a
+    :class:`~scanplan.errors.NotFoundError`, :class:`~scanplan.errors.InputError` or
+    :class:`NormImportError` naming it)."""
     try:
         st = path.stat()
     except OSError as exc:
@@ -447,7 +451,7 @@ def _check_file(path: Path) -> int:
         )
     size = st.st_size
     if size > _limits.MAX_FILE_BYTES:
-        raise _fail(
+        raise fail(
             path.name,
             f"the file is {_size(size)}; the limit is {_size(_limits.MAX_FILE_BYTES)}",
             "a norm workbook is small: delete unused sheets, images and rows",

@@ -9,7 +9,7 @@ from pathlib import Path
 
 from ..io.files import read_limited
 from . import limits as _limits
-from .cells import _fail
+from .cells import fail
 from .grid import _Grid
 from .sheetscan import _WIDEST_TABLE
 
@@ -21,7 +21,7 @@ def _decode_text(data: bytes, name: str = "the file") -> str:
         try:
             text = data.decode("utf-16")
         except UnicodeDecodeError as exc:
-            raise _fail(
+            raise fail(
                 name, f"is not valid UTF-16 text (byte {exc.start:,}: {exc.reason})", hint
             ) from None
     else:
@@ -31,14 +31,14 @@ def _decode_text(data: bytes, name: str = "the file") -> str:
             try:  # a Russian-locale Excel "CSV (разделители - запятые)"
                 text = data.decode("cp1251")
             except UnicodeDecodeError as exc:
-                raise _fail(
+                raise fail(
                     name,
                     f"is neither UTF-8 nor Windows-1251 text (byte 0x{data[exc.start]:02X} at "
                     f"position {exc.start:,})",
                     hint,
                 ) from None
     if "\x00" in text:
-        raise _fail(
+        raise fail(
             name,
             "contains NUL characters: a binary file, or UTF-16 text without a byte-order mark",
             hint,
@@ -97,7 +97,7 @@ def _check_csv_row(row: list[str], n: int, cells: int, name: str, label: _Grid) 
     """Row ``n`` (trailing empty cells dropped in place) against the row, column and cell
     limits; returns the filled cells so far."""
     if n > _limits.MAX_ROWS + _limits.HEADER_SCAN_ROWS:
-        raise _fail(
+        raise fail(
             name,
             f"more than {_limits.MAX_ROWS:,} rows (row {n:,} is past the limit); refused "
             "without reading further",
@@ -107,7 +107,7 @@ def _check_csv_row(row: list[str], n: int, cells: int, name: str, label: _Grid) 
     while row and not row[-1]:  # Excel pads rows with separators
         row.pop()
     if len(row) > _limits.MAX_COLUMNS:
-        raise _fail(
+        raise fail(
             name,
             f"row {n:,} has {len(row):,} columns; the limit is "
             f"{_limits.MAX_COLUMNS} (a norm "
@@ -117,7 +117,7 @@ def _check_csv_row(row: list[str], n: int, cells: int, name: str, label: _Grid) 
         )
     cells += sum(1 for v in row if v)
     if cells > _limits.MAX_CELLS:
-        raise _fail(
+        raise fail(
             name,
             f"more than {_limits.MAX_CELLS:,} filled cells; refused without reading "
             "further",
@@ -148,7 +148,7 @@ def _read_csv_grid(path: Path) -> _Grid:
             cells = _check_csv_row(row, len(rows) + 1, cells, name, label)
             rows.append(tuple(row))
     except _RowTooLong:
-        raise _fail(
+        raise fail(
             name,
             f"row {len(rows) + 1:,} is longer than {_limits.MAX_CSV_ROW_CHARS:,} characters (a "
             "runaway quote, or not a CSV file)",
@@ -156,7 +156,7 @@ def _read_csv_grid(path: Path) -> _Grid:
             at=label.address(len(rows) + 1, 1),
         ) from None
     except csv.Error as exc:
-        raise _fail(
+        raise fail(
             name,
             f"cannot be read as CSV (line {reader.line_num:,}: {exc})",
             f"one cell holds at most {_limits.MAX_CELL_CHARS:,} characters; check the quotes",

@@ -14,7 +14,7 @@ from .schema import PARAMETERS, TABLES, ValueSpec
 # =========================================================================================
 
 
-def _raw_csv(path: Path) -> list[dict[str, str]]:
+def raw_csv(path: Path) -> list[dict[str, str]]:
     if not path.is_file():
         return []
     with path.open(encoding="utf-8", newline="") as fh:
@@ -37,7 +37,7 @@ def _typed(text: object, spec: ValueSpec) -> Any:
 
 def _set_rows(ns: Any, catalogue: bool = True) -> dict[str, list[dict[str, Any]]]:
     """Table name → rows of typed values (numbers as numbers) of a loaded norm set."""
-    raw_params = {r.get("name", ""): r for r in _raw_csv(ns.path / "parameters.csv")}
+    raw_params = {r.get("name", ""): r for r in raw_csv(ns.path / "parameters.csv")}
     out: dict[str, list[dict[str, Any]]] = {"parameters": [], "shapes": [], "objects": []}
     for pname, spec in PARAMETERS.items():
         v = ns.parameters[pname]

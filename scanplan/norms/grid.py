@@ -12,14 +12,14 @@ from . import limits as _limits
 from .cells import (
     _COLUMN_INDEX,
     _PARAMETER_INDEX,
+    Bad,
     ImportProblem,
-    _Bad,
+    Problems,
     _convert,
-    _fail,
     _is_empty,
     _match,
-    _Problems,
     _shown,
+    fail,
 )
 from .schema import PARAMETERS, TableSpec
 
@@ -128,7 +128,7 @@ class _Located:
     data_start: int
 
 
-def _find_header(grid: _Grid, spec: TableSpec, problems: _Problems | None) -> _Located | None:
+def _find_header(grid: _Grid, spec: TableSpec, problems: Problems | None) -> _Located | None:
     """The header row of ``grid`` for table ``spec``: the row matching most columns."""
     index = _COLUMN_INDEX[spec.name]
     last_row = min(_limits.HEADER_SCAN_ROWS, len(grid.rows))
@@ -245,7 +245,7 @@ class _Table:
     headers: dict[str, str]
 
 
-def _data_rows(loc: _Located, problems: _Problems) -> _Table:
+def _data_rows(loc: _Located, problems: Problems) -> _Table:
     """Convert every data row of a located table (problems collected, bad rows dropped)."""
     spec, grid = loc.spec, loc.grid
     cols = {name: c for name, (c, _) in loc.columns.items()}
@@ -268,7 +268,7 @@ def _data_rows(loc: _Located, problems: _Problems) -> _Table:
             continue  # blank (or trailing empty) row
         n_rows += 1
         if n_rows > _limits.MAX_ROWS:
-            raise _fail(
+            raise fail(
                 grid.address(r, 1),
                 f"more than {_limits.MAX_ROWS:,} rows in one table; split the table or delete "
                 "unused rows",
@@ -301,7 +301,7 @@ def _data_rows(loc: _Located, problems: _Problems) -> _Table:
                     scale=col.value.unit == "1:Mk",
                     percent_cell=c is not None and (r, c) in pc,
                 )
-            except _Bad as exc:
+            except Bad as exc:
                 problems.add(row.problem(col.name, exc.message, exc.hint))
                 bad = True
         if is_params:

@@ -15,13 +15,13 @@ from .cells import (
     _SHEET_INDEX,
     ImportProblem,
     NormImportError,
-    _check_file,
-    _fail,
+    Problems,
     _is_empty,
     _match,
     _norm,
     _printable,
-    _Problems,
+    check_file,
+    fail,
 )
 from .csvfile import _read_csv_grid
 from .grid import _data_rows, _find_header, _Grid, _Located, _Row, _Table
@@ -70,7 +70,7 @@ def _base_tables(base: str) -> tuple[dict[str, _Table], dict[str, str], str]:
     """The tables of a base norm set (as grids read from its CSV files)."""
     ns = _norms.load_norm_set(base)  # checks it and resolves name or path
     tables: dict[str, _Table] = {}
-    scratch = _Problems()
+    scratch = Problems()
     for spec in TABLES.values():
         p = ns.path / spec.file
         if not p.is_file():
@@ -88,7 +88,7 @@ def _base_tables(base: str) -> tuple[dict[str, _Table], dict[str, str], str]:
 
 
 def _locate_csv_table(grid: _Grid, table: str | None, name: str) -> _Located:
-    problems = _Problems()
+    problems = Problems()
     if table:
         spec = _ALL_TABLES.get(table) or _ALL_TABLES.get(_match(_SHEET_INDEX, table) or "")
         if spec is None or spec is META_TABLE:
@@ -110,13 +110,13 @@ def _locate_csv_table(grid: _Grid, table: str | None, name: str) -> _Located:
             scored.append((len(loc.columns) / len(spec.columns), len(loc.columns), loc))
     scored.sort(key=lambda t: (t[0], t[1]), reverse=True)
     if not scored:
-        raise _fail(
+        raise fail(
             name,
             "its header row matches no norm table",
             "name the file after the table (objects.csv, ...) or give --table " + "|".join(TABLES),
         )
     if len(scored) > 1 and scored[0][:2] == scored[1][:2]:
-        raise _fail(
+        raise fail(
             name,
             "its header row fits tables "
             f"{scored[0][2].spec.name!r} and {scored[1][2].spec.name!r} equally",
@@ -125,7 +125,7 @@ def _locate_csv_table(grid: _Grid, table: str | None, name: str) -> _Located:
     return scored[0][2]
 
 
-def _duplicate_keys(tables: dict[str, _Table], problems: _Problems) -> None:
+def _duplicate_keys(tables: dict[str, _Table], problems: Problems) -> None:
     """A second row with the key of an earlier one (in every table)."""
     for t in tables.values():
         seen: dict[tuple[str, ...], _Row] = {}
@@ -151,7 +151,7 @@ class _ShapeResolver:
     """Resolves a shape cell to a shape id of the shapes table (its Russian name or id,
     any case), reporting one it does not name."""
 
-    def __init__(self, shapes: _Table | None, problems: _Problems) -> None:
+    def __init__(self, shapes: _Table | None, problems: Problems) -> None:
         self.shapes = shapes
         self.problems = problems
         self.ids = [r.values["shape"] for r in shapes.rows if "shape" in r.values] if shapes else []
@@ -179,7 +179,7 @@ class _ShapeResolver:
         )
 
 
-def _check_parameters(params: _Table, resolve: _ShapeResolver, problems: _Problems) -> None:
+def _check_parameters(params: _Table, resolve: _ShapeResolver, problems: Problems) -> None:
     """The default shape names a shape; every parameter is defined."""
     for row in params.rows:
         if row.values.get("name") == "shape":
@@ -203,7 +203,7 @@ def _check_parameters(params: _Table, resolve: _ShapeResolver, problems: _Proble
 
 
 def _cross_checks(
-    tables: dict[str, _Table], problems: _Problems, label: str, present: set[str]
+    tables: dict[str, _Table], problems: Problems, label: str, present: set[str]
 ) -> None:
     """The rules the loader checks across rows and tables, all collected."""
     _duplicate_keys(tables, problems)
@@ -238,7 +238,7 @@ class _Found:
 
 
 def _locate_sheets(
-    grids: list[_Grid], label: str, problems: _Problems, warnings: list[str]
+    grids: list[_Grid], label: str, problems: Problems, warnings: list[str]
 ) -> _Found:
     """Each workbook sheet named after a table, its header row found; other sheets noted."""
     found = _Found([], None, set())
@@ -270,7 +270,7 @@ def _locate_sheets(
             found.located.append(loc)
     if not found.present:  # an import that takes nothing from the file is an error
         sheets = ", ".join(repr(_printable(g.label, 60)) for g in grids) or "none"
-        raise _fail(
+        raise fail(
             label,
             f"no sheet is a norm table (sheets: {sheets}); nothing would be imported",
             "name each sheet after its table: " + ", ".join(_ALL_TABLES)
@@ -280,7 +280,7 @@ def _locate_sheets(
 
 
 def _locate_file(
-    p: Path, table: str | None, problems: _Problems, warnings: list[str]
+    p: Path, table: str | None, problems: Problems, warnings: list[str]
 ) -> _Found:
     """The tables of a workbook or of a CSV (by the file's suffix); other files refused."""
     suffix = p.suffix.lower()
@@ -289,12 +289,12 @@ def _locate_file(
     if suffix in CSV_SUFFIXES:
         return _Found([_locate_csv_table(_read_csv_grid(p), table, p.name)], None, set())
     if suffix == ".xls":
-        raise _fail(
+        raise fail(
             p.name,
             "is an old binary Excel file (.xls)",
             'save it from Excel as "Excel Workbook (*.xlsx)"',
         )
-    raise _fail(p.name, f"unknown file type {suffix or '(none)'}; give .xlsx or .csv")
+    raise fail(p.name, f"unknown file type {suffix or '(none)'}; give .xlsx or .csv")
 
 
 def _note_ignored_columns(located: list[_Located], warnings: list[str]) -> None:
@@ -312,7 +312,7 @@ def _note_ignored_columns(located: list[_Located], warnings: list[str]) -> None:
 
 
 def _read_meta(
-    meta_loc: _Located, meta: dict[str, str], problems: _Problems, warnings: list[str]
+    meta_loc: _Located, meta: dict[str, str], problems: Problems, warnings: list[str]
 ) -> None:
     """The ``set`` sheet's title, title_ru and source into ``meta``; other keys noted."""
     for row in _data_rows(meta_loc, problems).rows:
@@ -365,8 +365,8 @@ def read_norm_file(
         For an unreadable file, or one over the size limits.
     """
     p = Path(path)
-    _check_file(p)
-    problems = _Problems()
+    check_file(p)
+    problems = Problems()
     warnings: list[str] = []
     found = _locate_file(p, table, problems, warnings)
     if p.suffix.lower() in CSV_SUFFIXES:

@@ -17,7 +17,7 @@ from .paths import CATALOGUE, user_norms_dir
 _LEFTOVER = re.compile(r"\.(?P<name>.+)\.(?P<kind>tmp|old)-[A-Za-z0-9_]{8}")
 
 
-def _norm_dir_lock(folder: Path) -> contextlib.AbstractContextManager[None]:
+def norm_dir_lock(folder: Path) -> contextlib.AbstractContextManager[None]:
     """Serialise imports and repairs in one norm directory, and keep loads out while a set
     is swapped (an exclusive ``flock``; loads take it shared; no-op without ``flock``)."""
     return dir_lock(folder, exclusive=True)
@@ -55,11 +55,13 @@ def recover_norm_dir(
     root_dir = Path(root) if root is not None else user_norms_dir()
     if not root_dir.is_dir():
         return []
-    with _norm_dir_lock(root_dir):
-        return _recover_locked(root_dir, name)
+    with norm_dir_lock(root_dir):
+        return recover_locked(root_dir, name)
 
 
-def _recover_locked(root_dir: Path, only: str | None = None) -> list[str]:
+def recover_locked(root_dir: Path, only: str | None = None) -> list[str]:
+    """:func:`recover_norm_dir` with the norm folder's lock already held by the caller
+    (what was done, one line each; ``only``: this set's leftovers only)."""
     found: dict[str, dict[str, list[Path]]] = {}
     for p in sorted(root_dir.iterdir()):
         m = _LEFTOVER.fullmatch(p.name)

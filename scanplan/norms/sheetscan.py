@@ -28,7 +28,7 @@ import zipfile
 from typing import Any
 
 from . import limits as _limits
-from .cells import NormImportError, _fail
+from .cells import NormImportError, fail
 from .grid import _cell_ref, _col_letter, _col_number, _Grid
 from .schema import TABLES
 
@@ -319,7 +319,7 @@ def _sheet_refusal(exc: _Refused, title: str, name: str) -> NormImportError:
     r, c = exc.where
     at = _Grid(title, []).address(r, max(c, 1))
     if exc.reason == "rows":
-        return _fail(
+        return fail(
             name,
             f"sheet {title!r} has more than {_limits.MAX_ROWS:,} rows (a value in row {r:,}); "
             "refused without reading further",
@@ -327,7 +327,7 @@ def _sheet_refusal(exc: _Refused, title: str, name: str) -> NormImportError:
             at=at,
         )
     if exc.reason == "columns":
-        return _fail(
+        return fail(
             name,
             f"a value in column {_col_letter(c)}, right of column "
             f"{_col_letter(_limits.MAX_COLUMNS)} "
@@ -336,7 +336,7 @@ def _sheet_refusal(exc: _Refused, title: str, name: str) -> NormImportError:
             at=at,
         )
     if exc.reason == "cells":
-        return _fail(
+        return fail(
             name,
             f"more than {_limits.MAX_CELLS:,} filled cells in the workbook; refused without "
             "reading further",
@@ -344,7 +344,7 @@ def _sheet_refusal(exc: _Refused, title: str, name: str) -> NormImportError:
             at=at,
         )
     if exc.reason == "area":
-        return _fail(
+        return fail(
             name,
             f"sheet {title!r} spans more than {_limits.MAX_SHEET_AREA:,} cells from A1 to its "
             f"last value (a value in row {r:,}, column {_col_letter(c)}); refused without "
@@ -353,13 +353,13 @@ def _sheet_refusal(exc: _Refused, title: str, name: str) -> NormImportError:
             at=at,
         )
     if exc.reason == "merged":
-        return _fail(
+        return fail(
             name,
             f"sheet {title!r} has more than {_limits.MAX_MERGED:,} merged cell ranges",
             "unmerge the cells (Home → Merge & Center → Unmerge Cells)",
             at=at,
         )
-    return _fail(
+    return fail(
         name,
         f"sheet {title!r} declares a DTD or XML entities; refused, nothing was read",
         "Excel never writes these",
@@ -384,14 +384,14 @@ def _parse_part(zf: zipfile.ZipFile, member: str, name: str) -> Any | None:
     try:
         return fromstring(data, forbid_dtd=True)
     except DefusedXmlException as exc:
-        raise _fail(
+        raise fail(
             name,
             f"zip member {member} declares a DTD or XML entities ({type(exc).__name__}); "
             "refused",
             "Excel never writes these: the file was made by something else",
         ) from None
     except Exception as exc:  # ParseError and the like for a damaged part
-        raise _fail(
+        raise fail(
             name,
             f"cannot be read as an .xlsx workbook (zip member {member}: {exc})",
             'open it in Excel and save it as "Excel Workbook (*.xlsx)"',
@@ -430,7 +430,7 @@ def _workbook_sheets(zf: zipfile.ZipFile, name: str) -> list[tuple[str, str, str
     member = _workbook_member(zf, name)
     root = _parse_part(zf, member, name)
     if root is None:
-        raise _fail(
+        raise fail(
             name,
             f"is not an .xlsx workbook (no workbook part {member})",
             'save it from Excel as "Excel Workbook (*.xlsx)"',

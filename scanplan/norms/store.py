@@ -310,7 +310,7 @@ def _typed_rows(path: Path, spec: TableSpec) -> list[dict[str, Any]]:
     return out
 
 
-def _load_cameras(path: Path) -> dict[str, Camera]:
+def load_cameras(path: Path) -> dict[str, Camera]:
     """Cameras of a catalogue file; ids unique, the exact pitch derived (file:row errors)."""
     out: dict[str, Camera] = {}
     for i, r in enumerate(_typed_rows(path, TABLES["cameras"]), start=2):
@@ -337,7 +337,7 @@ def _load_cameras(path: Path) -> dict[str, Camera]:
 _Scanners = tuple[dict[str, tuple[float, ...]], dict[str, str], dict[str, tuple[ScannerStep, ...]]]
 
 
-def _load_scanners(path: Path) -> _Scanners:
+def load_scanners(path: Path) -> _Scanners:
     """Steps, names and per-step details of a scanners file; a step listed twice for one
     scanner is an error (file:row)."""
     details: dict[str, list[ScannerStep]] = {}
@@ -355,7 +355,7 @@ def _load_scanners(path: Path) -> _Scanners:
     return {k: tuple(s.pixel_um for s in v) for k, v in det.items()}, names, det
 
 
-def _load_lens_mtf(path: Path) -> dict[str, dict[str, LensCurve]]:
+def load_lens_mtf(path: Path) -> dict[str, dict[str, LensCurve]]:
     """Lens MTF tables: camera → position → curve (≥ 2 points, one per frequency)."""
     points: dict[tuple[str, str], list[tuple[float, float, str, int]]] = {}
     for i, r in enumerate(_typed_rows(path, TABLES["lens_mtf"]), start=2):
@@ -393,9 +393,10 @@ def _load_gsd_limits(path: Path) -> tuple[GsdLimit, ...]:
 
 
 @lru_cache(maxsize=1)
-def _catalogue() -> tuple[dict[str, Camera], _Scanners]:
+def bundled_catalogue() -> tuple[dict[str, Camera], _Scanners]:
+    """The bundled camera and scanner catalogue (``norms/catalogue/``), as loaded."""
     folder = bundled_norms_dir() / CATALOGUE
-    return _load_cameras(folder / "cameras.csv"), _load_scanners(folder / "scanners.csv")
+    return load_cameras(folder / "cameras.csv"), load_scanners(folder / "scanners.csv")
 
 
 def is_set_name(text: str) -> bool:
@@ -583,19 +584,19 @@ def _set_catalogue(path: Path) -> tuple[dict[str, Camera], dict[str, tuple[float
                                          dict[str, dict[str, LensCurve]]]:
     """The cameras, scanner steps, scanner names and details, and lens tables a set sees:
     the bundled catalogue, the user catalogue (scanplan cameras import), the set's own."""
-    cams, (steps, names, details) = _catalogue()
+    cams, (steps, names, details) = bundled_catalogue()
     cams, steps, names, details = dict(cams), dict(steps), dict(names), dict(details)
     # the bundled lens tables, the user catalogue (scanplan cameras import), the set's own
     lens: dict[str, dict[str, LensCurve]] = {}
     for folder in (bundled_norms_dir() / CATALOGUE, user_norms_dir() / CATALOGUE, path):
         if (folder / "lens-mtf.csv").is_file():
-            for cam_id, curves in _load_lens_mtf(folder / "lens-mtf.csv").items():
+            for cam_id, curves in load_lens_mtf(folder / "lens-mtf.csv").items():
                 lens.setdefault(cam_id, {}).update(curves)
     for folder in (user_norms_dir() / CATALOGUE, path):
         if (folder / "cameras.csv").is_file():
-            cams.update(_load_cameras(folder / "cameras.csv"))
+            cams.update(load_cameras(folder / "cameras.csv"))
         if (folder / "scanners.csv").is_file():
-            s2, n2, d2 = _load_scanners(folder / "scanners.csv")
+            s2, n2, d2 = load_scanners(folder / "scanners.csv")
             steps.update(s2)
             names.update(n2)
             details.update(d2)
@@ -649,14 +650,14 @@ def read_norm_set_folder(path: Path, *, bundled: bool = False) -> NormSet:
         scanners=steps,
         scanner_names=names,
         scanner_details=details,
-        lens_mtf=_checked_lens(lens, cams),
+        lens_mtf=checked_lens(lens, cams),
         gsd_limits=(_load_gsd_limits(path / "gsd-limits.csv")
                     if (path / "gsd-limits.csv").is_file() else ()),
         parameter_status=statuses,
     )
 
 
-def _checked_lens(lens: dict[str, dict[str, LensCurve]], cams: Mapping[str, Camera]
+def checked_lens(lens: dict[str, dict[str, LensCurve]], cams: Mapping[str, Camera]
                   ) -> dict[str, dict[str, LensCurve]]:
     """Lens tables of known digital cameras only (an unknown id is an error)."""
     for cam_id in lens:

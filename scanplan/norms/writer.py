@@ -21,7 +21,7 @@ from . import store as _norms
 from .citations import modern_citation
 from .importer import ParsedNormSet, read_norm_file
 from .limits import META_KEYS
-from .recovery import _norm_dir_lock, _recover_locked
+from .recovery import norm_dir_lock, recover_locked
 from .schema import TABLES, TableSpec
 
 # =========================================================================================
@@ -164,12 +164,12 @@ def write_norm_set(
             root_dir.mkdir(parents=True, exist_ok=True)
         except OSError as exc:
             raise WriteError.from_os_error(str(root_dir), exc, action="create folder") from exc
-        with _norm_dir_lock(root_dir):
+        with norm_dir_lock(root_dir):
             try:
-                _recover_locked(root_dir, name)
+                recover_locked(root_dir, name)
                 if target.exists() and not force:  # a set the recovery put back
                     raise _set_exists(name, target)
-                _swap_in(root_dir, name, files)
+                swap_in(root_dir, name, files)
             except OSError as exc:
                 if isinstance(exc, WriteError):
                     raise
@@ -228,7 +228,7 @@ def _missing_parents(folder: Path) -> list[Path]:
     return created
 
 
-def _swap_in(root_dir: Path, name: str, files: Mapping[str, str],
+def swap_in(root_dir: Path, name: str, files: Mapping[str, str],
              verify: Callable[[Path], object] | None = None) -> None:
     """Write ``files`` as set ``name``: temporary folder, verify, rename (swap) into place.
 

@@ -23,7 +23,7 @@ from typing import Any
 
 from ..errors import InputError
 from . import limits as _limits
-from .cells import _SHEET_INDEX, _fail, _match, _size
+from .cells import _SHEET_INDEX, _match, _size, fail
 from .grid import _Grid
 from .sheetscan import (
     _dtd_refusing_parser,
@@ -102,7 +102,7 @@ def _inspect_xlsx(zf: zipfile.ZipFile, name: str) -> dict[str, zipfile.ZipInfo]:
     """
     infos = zf.infolist()
     if len(infos) > _limits.MAX_ZIP_MEMBERS:
-        raise _fail(
+        raise fail(
             name, f"has {len(infos):,} zip members (the limit is {_limits.MAX_ZIP_MEMBERS:,})",
             "not a norm workbook",
         )
@@ -115,7 +115,7 @@ def _inspect_xlsx(zf: zipfile.ZipFile, name: str) -> dict[str, zipfile.ZipInfo]:
             else "not a norm workbook"
         )
         if info.file_size > _limits.MAX_MEMBER_BYTES:
-            raise _fail(
+            raise fail(
                 name,
                 f"zip member {info.filename} would unpack to {_size(info.file_size)}; the "
                 f"limit is {_size(_limits.MAX_MEMBER_BYTES)}",
@@ -126,7 +126,7 @@ def _inspect_xlsx(zf: zipfile.ZipFile, name: str) -> dict[str, zipfile.ZipInfo]:
             and info.compress_size
             and info.file_size / info.compress_size > _limits.MAX_COMPRESSION_RATIO
         ):
-            raise _fail(
+            raise fail(
                 name,
                 f"zip member {info.filename} is compressed "
                 f"{info.file_size / info.compress_size:.0f}:1; the limit is "
@@ -135,7 +135,7 @@ def _inspect_xlsx(zf: zipfile.ZipFile, name: str) -> dict[str, zipfile.ZipInfo]:
             )
         total += info.file_size
     if total > _limits.MAX_TOTAL_UNCOMPRESSED_BYTES:
-        raise _fail(
+        raise fail(
             name,
             f"would unpack to {_size(total)}; the limit is "
             f"{_size(_limits.MAX_TOTAL_UNCOMPRESSED_BYTES)}",
@@ -170,7 +170,7 @@ class _ElementCount:
     def __call__(self, chunk: bytes) -> None:
         self.n += chunk.count(b"<") - chunk.count(b"</")
         if self.n > self.limit:
-            raise _fail(
+            raise fail(
                 self.name,
                 f"zip member {self.member} holds more than {self.limit:,} XML elements (the "
                 "limit); refused without reading it",
@@ -189,7 +189,7 @@ class _ElementCount:
         try:
             self.parser.Parse(chunk, final)
         except _Refused:
-            raise _fail(
+            raise fail(
                 self.name,
                 f"zip member {self.member} declares a DTD or XML entities (entity expansion, "
                 "'billion laughs', external entities); refused, nothing was read",
@@ -215,14 +215,14 @@ def _stream_member(
             while chunk := fh.read(_CHUNK):
                 got += len(chunk)
                 if got > _limits.MAX_MEMBER_BYTES:
-                    raise _fail(
+                    raise fail(
                         name,
                         f"{part} unpacks to more than {_size(_limits.MAX_MEMBER_BYTES)}",
                         "not a norm workbook",
                     )
                 window = tail + chunk
                 if (b"<!" in window or b"<\x00!" in window) and _DOCTYPE.search(window):
-                    raise _fail(
+                    raise fail(
                         name,
                         f"{part} declares a DTD or XML entities (entity expansion, "
                         "'billion laughs', external entities); refused, nothing was read",
@@ -231,7 +231,7 @@ def _stream_member(
                 tail = window[-_SCAN_OVERLAP:]
                 sink(chunk)
     except _ZIP_ERRORS as exc:
-        raise _fail(
+        raise fail(
             name,
             f"is a damaged .xlsx ({info.filename}: {exc})",
             "open it in Excel and save it again",
@@ -254,10 +254,10 @@ def _read_xlsx(path: Path) -> list[_Grid]:
     try:
         data = path.read_bytes()
     except OSError as exc:
-        raise _fail(name, f"cannot be read ({exc.strerror or exc})") from None
+        raise fail(name, f"cannot be read ({exc.strerror or exc})") from None
     directory = _zip_directory_size(io.BytesIO(data))
     if directory is not None and directory > _limits.MAX_ZIP_DIRECTORY_BYTES:
-        raise _fail(
+        raise fail(
             name,
             f"has a zip directory of {_size(directory)}; the limit is "
             f"{_size(_limits.MAX_ZIP_DIRECTORY_BYTES)}",
@@ -266,7 +266,7 @@ def _read_xlsx(path: Path) -> list[_Grid]:
     try:
         zf = zipfile.ZipFile(io.BytesIO(data))
     except Exception as exc:  # BadZipFile, OSError, ValueError, ... for a file that is no zip
-        raise _fail(
+        raise fail(
             name,
             f"is not an .xlsx workbook (not a zip file: {exc})",
             'save it from Excel as "Excel Workbook (*.xlsx)"',
@@ -295,7 +295,7 @@ def _scan_sheets(
             continue
         info = members.get(member)
         if info is None:
-            raise _fail(
+            raise fail(
                 name,
                 f"sheet {title!r} has no worksheet part ({member or '?'})",
                 "open it in Excel and save it again",
@@ -312,7 +312,7 @@ def _scan_sheets(
         except InputError:
             raise
         except Exception as exc:  # expat errors on a damaged sheet
-            raise _fail(
+            raise fail(
                 name,
                 f"sheet {title!r} cannot be read ({type(exc).__name__}: {exc})",
                 "open it in Excel and save it again",
@@ -344,7 +344,7 @@ def _calamine_grids(
     except InputError:
         raise
     except Exception as exc:  # calamine's errors for a damaged workbook or sheet
-        raise _fail(
+        raise fail(
             name,
             f"cannot be read as an .xlsx workbook ({type(exc).__name__}: {exc})",
             'open it in Excel and save it as "Excel Workbook (*.xlsx)"',

@@ -97,7 +97,7 @@ def _read_qgc_json(path: Path, source: str) -> ParsedCameras:
     """QGroundControl's camera list → catalogue rows (every entry checked)."""
     doc = _qgc_document(path)
     spec = TABLES["cameras"]
-    problems = norms_cells._Problems()
+    problems = norms_cells.Problems()
     rows: list[dict[str, str]] = []
     seen: dict[str, int] = {}
     for i, item in enumerate(doc, start=1):
@@ -121,7 +121,7 @@ def _read_qgc_json(path: Path, source: str) -> ParsedCameras:
         rows.append(row)
     problems.raise_if_any(path.name)
     if not rows:
-        raise norms_cells._fail(path.name, "has no cameras")
+        raise norms_cells.fail(path.name, "has no cameras")
     return ParsedCameras(path.name, rows, [])
 
 
@@ -131,19 +131,19 @@ def _qgc_document(path: Path) -> list[Any]:
     try:
         text = data.decode("utf-8-sig")
     except UnicodeDecodeError as exc:
-        raise norms_cells._fail(path.name, f"is not UTF-8 text (byte {exc.start:,})") from None
+        raise norms_cells.fail(path.name, f"is not UTF-8 text (byte {exc.start:,})") from None
     try:
         doc = json.loads(text, parse_constant=_refuse_constant)
     except json.JSONDecodeError as exc:
-        raise norms_cells._fail(path.name, f"is not valid JSON: {exc.msg}",
+        raise norms_cells.fail(path.name, f"is not valid JSON: {exc.msg}",
                              at=f"{path.name}:{exc.lineno}:{exc.colno}") from None
     except (ValueError, RecursionError) as exc:
-        raise norms_cells._fail(path.name, f"is not a camera list: {str(exc)[:200]}") from None
+        raise norms_cells.fail(path.name, f"is not a camera list: {str(exc)[:200]}") from None
     if not isinstance(doc, list):
-        raise norms_cells._fail(path.name, "is not a camera list: the top level must be a JSON "
+        raise norms_cells.fail(path.name, "is not a camera list: the top level must be a JSON "
                              "list of cameras, as QGroundControl's CameraMetaData.json")
     if len(doc) > MAX_JSON_ENTRIES:
-        raise norms_cells._fail(path.name, f"has {len(doc):,} entries; the limit is "
+        raise norms_cells.fail(path.name, f"has {len(doc):,} entries; the limit is "
                              f"{MAX_JSON_ENTRIES:,}")
     return doc
 
@@ -185,7 +185,7 @@ def _qgc_row(item: dict[str, Any], where: str, spec: Any, problems: Any
             problems.add(_norms.ImportProblem(f"{where} ({key})", problem, value=str(v)))
             ok = False
             continue
-        row[column] = norms_cells._num_text(float(v))
+        row[column] = norms_cells.num_text(float(v))
     landscape = item.get("landscape", True)
     if not isinstance(landscape, bool):
         problems.add(_norms.ImportProblem(f"{where} (landscape)",
@@ -202,14 +202,14 @@ def _qgc_row(item: dict[str, Any], where: str, spec: Any, problems: Any
             value=str(trigger)[:50]))
         ok = False
     elif trigger > 0:  # QGroundControl writes 0 for "not specified"
-        row["min_trigger_interval_s"] = norms_cells._num_text(float(trigger))
+        row["min_trigger_interval_s"] = norms_cells.num_text(float(trigger))
     return row if ok else None
 
 
 def _text_problem(text: str) -> str | None:
     try:
-        norms_cells._check_text(text)
-    except norms_cells._Bad as exc:
+        norms_cells.check_text(text)
+    except norms_cells.Bad as exc:
         return str(exc)
     return None
 
@@ -246,7 +246,7 @@ def read_camera_file(path: str | os.PathLike[str], *, source: str = "",
         raise InputError("--source", "must be text of at most 1,000 characters without "
                          "control characters")
     if p.suffix.lower() in JSON_SUFFIXES:
-        norms_cells._check_file(p)
+        norms_cells.check_file(p)
         parsed = _read_qgc_json(p, source)
     else:
         if p.suffix.lower() in norms_limits.CSV_SUFFIXES and table is None:
@@ -257,7 +257,7 @@ def read_camera_file(path: str | os.PathLike[str], *, source: str = "",
         parsed_set = _norms.read_norm_file(p, table=table, base=_norms.DEFAULT_NORM_SET)
         wanted = [t for t in parsed_set.from_file if t in ("cameras", "scanners", "lens_mtf")]
         if not wanted:
-            raise norms_cells._fail(p.name, "has no cameras or scanners table",
+            raise norms_cells.fail(p.name, "has no cameras or scanners table",
                                  'name the sheet "cameras" ("Камеры") or "scanners" '
                                  '("Сканеры"), or give --table')
         stamp = f"imported from {p.name}" + (f"; {source}" if source else "")
@@ -270,7 +270,7 @@ def read_camera_file(path: str | os.PathLike[str], *, source: str = "",
         parsed = ParsedCameras(p.name, out["cameras"], out["scanners"],
                                parsed_set.warnings, tuple(out["lens_mtf"]))
     if not (parsed.cameras or parsed.scanners or parsed.lens_mtf):
-        raise norms_cells._fail(p.name, "has no cameras: its table has a header and no rows",
+        raise norms_cells.fail(p.name, "has no cameras: its table has a header and no rows",
                                 "add a row per camera (scanplan norms template shows the "
                                 "columns)")
     _check_rows(parsed)
@@ -302,7 +302,7 @@ def _check_domains(parsed: ParsedCameras) -> None:
     planning domain of the input it becomes (a sensor of 1e-300 mm, an image of 1e20 px
     — a pixel of 1e-16 µm —, a 0.0001 µm scanner step), named by table, row and column
     with the allowed range."""
-    problems = norms_cells._Problems()
+    problems = norms_cells.Problems()
     src = parsed.source_file
 
     def bad(table: str, i: int, col: str, value: str, message: str) -> None:
@@ -362,22 +362,22 @@ def _check_rows(parsed: ParsedCameras, known_cameras: set[str] | None = None) ->
                 f.write_text(_csv_text(table, rows), encoding="utf-8")
                 try:
                     if table == "cameras":
-                        norms_store._load_cameras(f)
+                        norms_store.load_cameras(f)
                     elif table == "scanners":
-                        norms_store._load_scanners(f)
+                        norms_store.load_scanners(f)
                     else:
-                        norms_store._load_lens_mtf(f)
+                        norms_store.load_lens_mtf(f)
                 except InputError as exc:
                     msg = exc.message
                     m = re.match(r".*?:(\d+) \((\w+)\)$", exc.field)
                     at = (f"{parsed.source_file} {table} row {int(m.group(1)) - 1} "
                           f"({m.group(2)})" if m else parsed.source_file)
-                    raise norms_cells._fail(parsed.source_file, msg, at=at) from None
+                    raise norms_cells.fail(parsed.source_file, msg, at=at) from None
     if known_cameras is not None:
         digital = known_cameras | {r["id"] for r in parsed.cameras if r.get("kind") == "digital"}
         for i, r in enumerate(parsed.lens_mtf, start=1):
             if r.get("camera") not in digital:
-                raise norms_cells._fail(parsed.source_file, f"{r.get('camera')!r} is not a digital "
+                raise norms_cells.fail(parsed.source_file, f"{r.get('camera')!r} is not a digital "
                                      "camera of the catalogue or of this file",
                                      at=f"{parsed.source_file} lens_mtf row {i} (camera)")
 
@@ -386,7 +386,7 @@ def _existing(folder: Path, table: str) -> list[dict[str, str]]:
     f = folder / TABLES[table].file
     if not f.is_file():
         return []
-    return norms_export._raw_csv(f)
+    return norms_export.raw_csv(f)
 
 
 def import_camera_file(path: str | os.PathLike[str], *, force: bool = False,
@@ -425,11 +425,11 @@ def import_camera_file(path: str | os.PathLike[str], *, force: bool = False,
         root_dir.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
         raise WriteError.from_os_error(str(root_dir), exc, action="create folder") from exc
-    with norms_recovery._norm_dir_lock(root_dir):  # one import at a time: no lost update
+    with norms_recovery.norm_dir_lock(root_dir):  # one import at a time: no lost update
         try:
-            norms_recovery._recover_locked(root_dir, _norms.CATALOGUE)
+            norms_recovery.recover_locked(root_dir, _norms.CATALOGUE)
             files, dropped = _merge_into(folder, parsed, force)
-            norms_writer._swap_in(root_dir, _norms.CATALOGUE, files, verify=_verify_catalogue)
+            norms_writer.swap_in(root_dir, _norms.CATALOGUE, files, verify=_verify_catalogue)
         except OSError as exc:
             if isinstance(exc, WriteError):
                 raise
@@ -443,19 +443,19 @@ def import_camera_file(path: str | os.PathLike[str], *, force: bool = False,
 def _verify_catalogue(folder: Path) -> None:
     """The written catalogue ``folder`` loads as every command will load it: on top of
     the bundled catalogue, lens tables of digital cameras only."""
-    cams = dict(norms_store._catalogue()[0])
+    cams = dict(norms_store.bundled_catalogue()[0])
     lens: dict[str, dict[str, Any]] = {}
     bundled = _norms.bundled_norms_dir() / _norms.CATALOGUE
-    for f, load in ((bundled / "lens-mtf.csv", norms_store._load_lens_mtf),
-                    (folder / "lens-mtf.csv", norms_store._load_lens_mtf)):
+    for f, load in ((bundled / "lens-mtf.csv", norms_store.load_lens_mtf),
+                    (folder / "lens-mtf.csv", norms_store.load_lens_mtf)):
         if f.is_file():
             for cam_id, curves in load(f).items():
                 lens.setdefault(cam_id, {}).update(curves)
     if (folder / "cameras.csv").is_file():
-        cams.update(norms_store._load_cameras(folder / "cameras.csv"))
+        cams.update(norms_store.load_cameras(folder / "cameras.csv"))
     if (folder / "scanners.csv").is_file():
-        norms_store._load_scanners(folder / "scanners.csv")
-    norms_store._checked_lens(lens, cams)
+        norms_store.load_scanners(folder / "scanners.csv")
+    norms_store.checked_lens(lens, cams)
 
 
 def _merge_into(folder: Path, parsed: ParsedCameras, force: bool
@@ -477,11 +477,11 @@ def _merge_into(folder: Path, parsed: ParsedCameras, force: bool
     lens = [r for r in _existing(folder, "lens_mtf")
             if (r.get("camera"), r.get("position")) not in curves] + list(parsed.lens_mtf)
     # a lens table belongs to a digital camera: one replaced by a film camera loses it
-    bundled = {c.id: c.kind for c in norms_store._catalogue()[0].values()}
+    bundled = {c.id: c.kind for c in norms_store.bundled_catalogue()[0].values()}
     kinds = {**bundled, **{r.get("id", ""): r.get("kind", "") for r in cams}}
     for i, r in enumerate(parsed.lens_mtf, start=1):  # the file's own tables: refused
         if kinds.get(r.get("camera", "")) != "digital":
-            raise norms_cells._fail(parsed.source_file, f"{r.get('camera')!r} is not a "
+            raise norms_cells.fail(parsed.source_file, f"{r.get('camera')!r} is not a "
                                     "digital camera of the catalogue or of this file",
                                     at=f"{parsed.source_file} lens_mtf row {i} (camera)")
     # the catalogue's tables of a camera that is no longer digital: dropped, and said
