@@ -29,8 +29,9 @@ DEFAULT_FILM_CAMERA = "rc30-153"
 DEFAULT_UAV_CAMERA = "dji-zenmuse-p1-35"
 DEFAULT_RESOLVING_POWER = 40.0
 CANDIDATE_RATIOS = (3, 4, 5, 6)
-"""Candidate photo scales Mc = ratio × Mk when none are given (seed 001 studies Mc/Mk of
-about 2.5 to 6: finer ratios cost frames, coarser ones lose the map's small objects)."""
+"""Candidate photo scales Mc = ratio × Mk when none are given (Miheeva & Ilushenko 2015
+study Mc/Mk of about 2.5 to 6: finer ratios cost frames, coarser ones lose the map's small
+objects)."""
 
 
 @dataclass

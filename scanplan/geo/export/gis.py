@@ -311,8 +311,14 @@ def _kml_photos(ph: Any, terrain: bool = False) -> str:
                np.char.mod(f"%.{_DEG}f", np.asarray(ph["lon_deg"], float)), ",",
                np.char.mod(f"%.{_DEG}f", np.asarray(ph["lat_deg"], float)),
                "</coordinates></Point></Placemark>"]
-    # every placemark's pieces side by side, one row per photo, joined once
-    table = np.empty((len(ph), len(pieces)), dtype=object)
+    return _rows_joined(pieces, len(ph))
+
+
+def _rows_joined(pieces: list[Any], n: int) -> str:
+    """``n`` rows of text, row i the concatenation of each piece (a string, or an array of
+    ``n`` strings: its i-th), joined in one call — the pieces side by side in an object
+    table, instead of a Python loop over 10⁵ rows."""
+    table = np.empty((n, len(pieces)), dtype=object)
     for col, piece in enumerate(pieces):
         table[:, col] = piece
     return "".join(table.ravel().tolist())
@@ -404,16 +410,11 @@ def _geojson_photos(ph: Any) -> str:
     lon = _json_column(np.asarray(ph["lon_deg"]), _DEG)
     lat = _json_column(np.asarray(ph["lat_deg"]), _DEG)
     keys = [json.dumps(c) + ":" for c in cols]
-    # every feature's pieces side by side, one row per photo, joined once (one C join
-    # over all pieces instead of a Python loop over 10⁵ photos)
     pieces: list[Any] = ['{"type":"Feature","properties":{"kind":"photo",']
     for n, (k, v) in enumerate(zip(keys, lits, strict=True)):
         pieces += [("," + k) if n else k, v]
     pieces += ['},"geometry":{"type":"Point","coordinates":[', lon, ",", lat, "]}},"]
-    table = np.empty((len(ph), len(pieces)), dtype=object)
-    for j, piece in enumerate(pieces):
-        table[:, j] = piece
-    return "".join(table.ravel().tolist())[:-1]
+    return _rows_joined(pieces, len(ph))[:-1]  # the last feature's comma
 
 
 def render_csv(layout: FlightLayout) -> bytes:
