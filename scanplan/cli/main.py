@@ -21,7 +21,7 @@ from .._version import __version__
 from ..errors import InputError, WriteError
 from ..project.inputs import option_names
 from . import console, outputs
-from .options import decimal, input_option
+from .options import NORM_INPUTS, REPORT_INPUTS, decimal, input_option, unlisted_inputs
 from .outset import batch_text, project_inputs, refuse_dangling_link, say_export_notes, write_set
 from .projects import check_stdin
 
@@ -154,8 +154,7 @@ class _JsonStream:
 def norm_options(command: str) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
     """The norm options of ``command`` (scan or uav), from the input registry."""
     def decorate(f: Callable[..., Any]) -> Callable[..., Any]:
-        for name in reversed(["norms", "object_size_m", "shape", "object_name", "probability",
-                              "height_formula"]):
+        for name in reversed(NORM_INPUTS):
             f = input_option(command, name)(f)
         return f
     return decorate
@@ -188,8 +187,7 @@ def report_options(f: Callable[..., Any]) -> Callable[..., Any]:
                      help="Write the PDF specification to this file (atomically)."),
         click.option("--force", is_flag=True, help="Replace an existing --xlsx/--pdf file "
                      "that scanplan did not write."),
-        *(input_option("uav", name) for name in ("locale", "name", "customer", "contractor",
-                                                  "approver_position", "approver_name")),
+        *(input_option("uav", name) for name in REPORT_INPUTS),
     ]):
         f = opt(f)
     return f
@@ -373,15 +371,18 @@ def _inputs(command: str, names: list[str], **per_name: dict[str, Any]
     return decorate
 
 
+_SCAN_INPUTS = ["map_scale", "relief_interval_m", "photo_scales", "camera", "focal_mm", "frame_mm",
+                "resolving_power_lpmm", "forward_overlap_pct", "<norms>", "pr_coefficient",
+                "recognition_rounding", "scanner", "pixel_um", "bands", "bits_per_band"]
+_SCAN_AREA = ["area_file", "area_feature", "area_layer", "film_side_overlap_pct"]
+
+
 @main.command()
 @console.verbosity_options
-@_inputs("scan", ["map_scale", "relief_interval_m", "photo_scales", "camera", "focal_mm",
-                  "frame_mm", "resolving_power_lpmm", "forward_overlap_pct", "<norms>",
-                  "pr_coefficient", "recognition_rounding", "scanner", "pixel_um", "bands",
-                  "bits_per_band"],
+@_inputs("scan", _SCAN_INPUTS + unlisted_inputs("scan", _SCAN_INPUTS, _SCAN_AREA),
          map_scale={"required": True}, relief_interval_m={"required": True},
          photo_scales={"required": True})
-@_inputs("scan", ["area_file", "area_feature", "area_layer", "film_side_overlap_pct"])
+@_inputs("scan", _SCAN_AREA)
 @report_options
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
 @_writes_reports
@@ -449,21 +450,22 @@ def _film_schemes(job: Any, area: Any, side: float) -> list[tuple[Any, Any]]:
             for sc in job.plan.scenarios]
 
 
+_UAV_INPUTS = ["camera", "camera_name", "pixel_um", "focal_mm", "sensor_mm", "orientation",
+               "f_number", "height_m", "gsd_cm", "max_height_m", "gsd_area", "height_tolerance_pct",
+               "speed_ms", "exposure_s", "forward_overlap_pct", "side_overlap_pct", "map_scale",
+               "relief_interval_m", "<norms>", "r_max", "r_min", "haze_contrast", "threshold_k0",
+               "shift_factor", "random_speed_ms", "roll_rate_rad_s", "pitch_rate_rad_s",
+               "yaw_rate_rad_s", "area_m", "roll_deg", "pitch_deg", "parallax_error_px"]
+_UAV_AREA = ["area_file", "area_feature", "area_layer", "direction_deg", "max_flight_time_min"]
+
+
 @main.command()
 @console.verbosity_options
-@_inputs("uav", ["camera", "camera_name", "pixel_um", "focal_mm", "sensor_mm", "orientation",
-                 "f_number", "height_m", "gsd_cm", "max_height_m", "gsd_area",
-                 "height_tolerance_pct", "speed_ms", "exposure_s", "forward_overlap_pct",
-                 "side_overlap_pct", "map_scale",
-                 "relief_interval_m", "<norms>", "r_max", "r_min", "haze_contrast",
-                 "threshold_k0", "shift_factor", "random_speed_ms", "roll_rate_rad_s",
-                 "pitch_rate_rad_s", "yaw_rate_rad_s", "area_m", "roll_deg", "pitch_deg",
-                 "parallax_error_px"],
+@_inputs("uav", _UAV_INPUTS + unlisted_inputs("uav", _UAV_INPUTS, _UAV_AREA),
          map_scale={"help": "Map scale, 2000 or 1:2000: adds the constraints and the maximum "
                     "planned height."},
          relief_interval_m={"help": "Relief (contour) interval h_c [m] (with --map-scale)."})
-@_inputs("uav", ["area_file", "area_feature", "area_layer", "direction_deg",
-                 "max_flight_time_min"])
+@_inputs("uav", _UAV_AREA)
 @report_options
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
 @_writes_reports

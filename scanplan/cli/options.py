@@ -9,19 +9,36 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from typing import Any
 
 import click
 
 from ..errors import InputError
-from ..project.inputs import Input, describe, get
+from ..project.inputs import Input, describe, get, records
 
 __all__ = ["DECIMAL", "SCALE", "DecimalType", "ScaleType", "decimal", "finite", "input_option",
-           "text", "text_or_none"]
+           "text", "text_or_none", "unlisted_inputs"]
 
 PLAN_OF = {"scan": "film", "uav": "uav"}
 """The plan (registry scope) of each command."""
+
+NORM_INPUTS = ("norms", "object_size_m", "shape", "object_name", "probability",
+               "height_formula")
+"""The norm options of ``scan`` and ``uav``, in ``--help`` order."""
+REPORT_INPUTS = ("locale", "name", "customer", "contractor", "approver_position",
+                 "approver_name")
+"""The registry inputs among the report options (title and approval block)."""
+
+
+def unlisted_inputs(command: str, *listed: Iterable[str]) -> list[str]:
+    """The registry's options of ``command`` that none of the ``listed`` groups, the norm
+    options and the report options place: a new input record's option joins the command
+    without a list to edit (it shows at the end of the command's inputs)."""
+    placed = {*NORM_INPUTS, *REPORT_INPUTS}.union(*map(set, listed))
+    plan = PLAN_OF[command]
+    return list(dict.fromkeys(r.name for r in records(plan) if r.option
+                              and plan in r.commands and r.name not in placed))
 
 
 class ScaleType(click.ParamType):

@@ -12,12 +12,13 @@ Errors are :class:`scanplan.errors.InputError` whose ``field`` is the argument n
 from __future__ import annotations
 
 import math
+import numbers
 import os
 from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import Any
 
-from ..core.domains import MAX_LIST_ITEMS, check_domain
+from ..core.domains import DOMAINS, MAX_LIST_ITEMS, check_domain
 from ..core.mtf import DEFAULT_HAZE_CONTRAST, DEFAULT_K0
 from ..errors import InputError
 from ..geo.area import rectangle_area
@@ -29,7 +30,7 @@ from ..norms.store import GsdLimit
 from ..rules.film import ObjectSpec, ScanInputs, ScanPlan, ScanRules, plan_scan
 from ..rules.uav import UavInputs, UavPlan, plan_uav
 from .flightplan import LayoutOptions, uav_layout, with_layout
-from .inputs import by_key, defaults, records
+from .inputs import by_key, defaults, get, records
 
 _FILM = defaults("film")  # the input registry's defaults (scanplan.project.inputs)
 _UAV = defaults("uav")
@@ -201,6 +202,23 @@ def recognition_rows(ns: NormSet, map_scale: float | None) -> list[MapObject]:
     return rows
 
 
+def in_domains(plan: str, values: dict[str, Any]) -> None:
+    """Every number of ``values`` (keyword → value of a job of ``plan``) within the domain
+    of its input record (:class:`~scanplan.errors.InputError` naming the keyword and the
+    range): an input's range is checked from its record, whichever engine reads it."""
+    for name, value in values.items():
+        if (value is None or isinstance(value, bool) or not isinstance(value, numbers.Real)
+                or name not in _NUMERIC[plan]):
+            continue
+        check_domain(name, value, _NUMERIC[plan][name])
+
+
+_NUMERIC = {plan: {r.name: get(r.name, plan).domain for r in records(plan)
+                   if get(r.name, plan).kind in ("number", "int")
+                   and get(r.name, plan).domain in DOMAINS} for plan in ("film", "uav")}
+"""Per plan: the Python name → domain key of every numeric input (:func:`in_domains`)."""
+
+
 def scan_job(
     *,
     map_scale: object,
@@ -226,6 +244,7 @@ def scan_job(
     pixel_um: Iterable[float] = (),
 ) -> ScanJob:
     """Like :func:`scan`, returning the norm set too (for reports)."""
+    in_domains("film", locals())
     ns = load_norm_set(norms)
     mk = _scale(map_scale, "map_scale")
     if isinstance(photo_scales, str | bytes) or not isinstance(photo_scales, Iterable):
@@ -402,6 +421,7 @@ def uav_job(
     docstring; the work is in named steps: :func:`_carrier_defaults`,
     :func:`_digital_frame`, :func:`_map_constraints`, then the engine.
     """
+    in_domains("uav", locals())
     if height_m is None:
         if map_scale is None and gsd_cm is None:
             raise InputError("height_m", "give the planned flight height (m ≥ 1), a target "
