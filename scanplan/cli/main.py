@@ -2,7 +2,8 @@
 
 Exit codes: 0 ok; 2 bad usage or invalid input (the message names the option, key or
 cell and the allowed range); 1 runtime failure (a message, never a traceback — set
-``SCANPLAN_DEBUG=1`` to see one).
+``SCANPLAN_DEBUG=1`` to see one). The commands raise; one policy turns what they raise into
+the message and the exit code (:mod:`scanplan.cli.errors`).
 """
 
 from __future__ import annotations
@@ -21,6 +22,7 @@ from .._version import __version__
 from ..errors import InputError, WriteError
 from ..project.inputs import option_names
 from . import console, outputs
+from .errors import Failed, PolicyGroup
 from .options import decimal, input_option
 from .outset import batch_text, say_export_notes, write_reports
 from .projects import check_stdin
@@ -42,9 +44,12 @@ LAZY_COMMANDS = {
 name → (module, attribute, the short help ``--help`` lists)."""
 
 
-class ScanplanGroup(click.Group):
-    """A group that turns :class:`InputError` into exit 2 and crashes into exit 1, and
-    imports the heavy subcommands (:data:`LAZY_COMMANDS`) only when they are used."""
+class ScanplanGroup(PolicyGroup):
+    """The ``scanplan`` group: its commands run under the command line's error policy
+    (:mod:`scanplan.cli.errors`; errors name the option a user typed), and the heavy
+    subcommands (:data:`LAZY_COMMANDS`) are imported only when they are used."""
+
+    field_names = OPTION_NAMES
 
     def list_commands(self, ctx: click.Context) -> list[str]:
         return sorted(set(self.commands) | set(LAZY_COMMANDS))
@@ -80,39 +85,10 @@ class ScanplanGroup(click.Group):
 
     def invoke(self, ctx: click.Context) -> Any:
         console.setup_streams()  # every character written, in any terminal encoding
-        try:
-            with warnings.catch_warnings():
-                if not os.environ.get("SCANPLAN_DEBUG"):  # no library's warning on a
-                    warnings.simplefilter("ignore")  # user's terminal (the tests raise them)
-                return super().invoke(ctx)
-        except BrokenPipeError:  # stdout's reader has gone (| head): stop quietly
-            ctx.exit(console.closed_pipe())
-        except InputError as exc:
-            field = OPTION_NAMES.get(exc.field, exc.field)
-            click.echo(f"error: {field}: {exc.message}", err=True)
-            ctx.exit(2)
-        except (click.exceptions.ClickException, click.exceptions.Exit,
-                click.exceptions.Abort, SystemExit):
-            raise
-        except Exception as exc:  # an environment failure or a bug: no traceback for users
-            if os.environ.get("SCANPLAN_DEBUG"):
-                import traceback
-
-                traceback.print_exc()
-            click.echo(f"error: {_failure_text(exc)}", err=True)
-            ctx.exit(1)
-
-
-def _failure_text(exc: Exception) -> str:
-    """The one-line message of a runtime failure (exit 1)."""
-    if isinstance(exc, WriteError):  # disk full, no permission, an interrupted rename
-        return exc.message
-    if isinstance(exc, OSError):  # another environment failure: name the file and the reason
-        where = " -> ".join(os.fsdecode(f) if isinstance(f, str | bytes) else str(f)
-                            for f in (exc.filename, exc.filename2) if f is not None)
-        reason = exc.strerror or str(exc) or type(exc).__name__
-        return f"{where + ': ' if where else ''}{reason} (SCANPLAN_DEBUG=1 shows details)"
-    return f"{type(exc).__name__}: {exc} (SCANPLAN_DEBUG=1 shows details)"
+        with warnings.catch_warnings():
+            if not os.environ.get("SCANPLAN_DEBUG"):  # no library's warning on a
+                warnings.simplefilter("ignore")  # user's terminal (the tests raise them)
+            return super().invoke(ctx)
 
 
 def _echo_json(doc: Any) -> None:
@@ -688,15 +664,13 @@ def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: s
         click.echo(batch_table(lines, failed))
         if warned:
             click.echo("\n".join(warned))
-    for _path, msg in failed:
-        click.echo(f"error: {msg}", err=True)
+    errors = [msg for _path, msg in failed]
     if stopped:
-        click.echo(f"error: the batch stopped at {stopped} ({len(done)} of {len(files)} "
-                   "projects written" + (f"; not planned: {', '.join(not_run)}" if not_run
-                                         else "") + ")", err=True)
-        sys.exit(1)
+        raise Failed([*errors, f"the batch stopped at {stopped} ({len(done)} of {len(files)} "
+                      "projects written" + (f"; not planned: {', '.join(not_run)}" if not_run
+                                            else "") + ")"])
     if failed:
-        sys.exit(2)
+        raise Failed(errors, code=2)
 
 
 def run() -> None:  # pragma: no cover - console entry used by python -m scanplan
