@@ -67,39 +67,30 @@ def _json_round_trip(doc: Any) -> dict[str, Any]:
 def _write(out_dir: str | os.PathLike[str], stem: str, formats: Iterable[str], *,
            scan: Any = None, uav: Any = None, spec: Any = None, meta: Any = None,
            force: bool = False, inputs: Iterable[str] = ()) -> list[Path]:
-    """Render the reports to memory, then write them as one transaction (all or none);
-    the targets are checked as the command line's (never an input file, never a file
-    scanplan did not write unless ``force``)."""
-    from .io.targets import check_target
-    from .reports import ReportMeta, write_atomic_many
+    """Render the reports to memory, then write them as one transaction (all or none):
+    the command line's transaction (:func:`scanplan.reports.documents.write_documents`),
+    its targets checked as the command line's (never an input file — the project, its
+    area file, its DEM —, never a file scanplan did not write unless ``force``); a folder
+    ``out_dir`` that does not exist is created, and removed again if nothing was written."""
+    from .reports import ReportMeta
+    from .reports import documents as doc
 
     kinds = list(dict.fromkeys(formats))
     unknown = [k for k in kinds if k not in FORMATS]
     if unknown or not kinds:
         raise InputError("formats", f"must name some of {', '.join(FORMATS)} (got {kinds!r})")
-    folder = Path(out_dir)
-    folder.mkdir(parents=True, exist_ok=True)
-    targets = {kind: str(folder / f"{stem}.{kind}") for kind in kinds}
-
-    def check() -> None:
-        for kind, path in targets.items():
-            check_target(path, "out_dir", kind, inputs=inputs, force=force)
-
-    check()
-    files: dict[str, bytes] = {}
-    extra = {"spec": spec} if spec is not None else {}
-    meta = meta or ReportMeta()
-    if meta.locale in ("en", "ru"):  # one view for every document: plots drawn once
-        from .reports.view import build_view
-
-        extra["view"] = build_view(scan=scan, uav=uav, meta=meta, spec=spec)
-    for kind, path in targets.items():
-        if kind == "xlsx":
-            from .reports.excel import render_xlsx as render
-        else:
-            from .reports.pdf import render_pdf as render
-        files[path] = render(scan=scan, uav=uav, meta=meta, **extra)
-    return write_atomic_many(files, check=check)
+    folder = os.fspath(out_dir)
+    doc.refuse_folder(folder, "out_dir")
+    created = doc.make_folder(folder)
+    targets = [doc.Target(str(Path(folder) / f"{stem}.{kind}"), kind, "out_dir")
+               for kind in kinds]
+    try:
+        done = doc.write_documents(targets, scan=scan, uav=uav, spec=spec,
+                                   meta=meta or ReportMeta(), force=force,
+                                   inputs=[*inputs, *doc.project_inputs(spec)])
+    finally:  # a folder created here stays only if something was written into it
+        doc.remove_empty(created)
+    return [Path(p) for p in done.files]
 
 
 def _table_html(title: str, rows: list[tuple[str, Any]]) -> str:
@@ -470,7 +461,10 @@ class BatchResult:
         paths = [str(r.spec.project.path) for r in self.results]
         written: list[Path] = []
         for r, stem in zip(self.results, batch_stems(paths), strict=True):
-            written += r.write(out_dir, formats, name=stem, force=force)
+            s = r.spec  # as the command line's batch: no project file of the batch replaced
+            written += _write(out_dir, stem, formats, scan=s.film.job if s.film else None,
+                              uav=s.uav.job if s.uav else None, spec=s, meta=s.meta,
+                              force=force, inputs=paths)
         return written
 
     def _repr_html_(self) -> str:

@@ -4,6 +4,7 @@ to_frame (pandas), write and a notebook summary; batches with typed errors; --jo
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -176,3 +177,23 @@ def test_notebook_summaries_and_safe_writes(tmp_path):
         project.write(tmp_path, formats=["xlsx"])
     assert (tmp_path / "spec.xlsx").read_bytes() == b"someone else's workbook"
     assert project.write(tmp_path, formats=["xlsx"], force=True)[0].name == "spec.xlsx"
+
+
+def test_write_never_replaces_an_input_of_the_project(tmp_path):
+    """The API's write protects what the command line's does: the project's area file too
+    (here linked as the report's name), even with ``force``; a folder it created for
+    nothing is removed again."""
+    project = scanplan.plan(ROOT / "examples" / "uav-town-2000.toml")
+    area = project.spec.project.area.file
+    out = tmp_path / "out"
+    out.mkdir()
+    os.link(area, out / "spec.xlsx")
+    with pytest.raises(InputError, match="is the input file"):
+        project.write(out, formats=["xlsx"], force=True)
+    assert (out / "spec.xlsx").read_bytes() == Path(area).read_bytes()
+    (tmp_path / "a-file").write_text("x")
+    with pytest.raises(InputError, match="is not a folder"):
+        project.write(tmp_path / "a-file", formats=["xlsx"])
+    with pytest.raises(InputError, match="the file system allows"):
+        project.write(out / "new" / "deeper", formats=["xlsx"], name="x" * 300)
+    assert not (out / "new").exists()

@@ -2,7 +2,8 @@
 
 Exit codes: 0 ok; 2 bad usage or invalid input (the message names the option, key or
 cell and the allowed range); 1 runtime failure (a message, never a traceback — set
-``SCANPLAN_DEBUG=1`` to see one).
+``SCANPLAN_DEBUG=1`` to see one). The commands raise; one policy turns what they raise into
+the message and the exit code (:mod:`scanplan.cli.errors`).
 """
 
 from __future__ import annotations
@@ -21,8 +22,9 @@ from .._version import __version__
 from ..errors import InputError, WriteError
 from ..project.inputs import option_names
 from . import console, outputs
+from .errors import Failed, PolicyGroup
 from .options import NORM_INPUTS, REPORT_INPUTS, decimal, input_option, unlisted_inputs
-from .outset import batch_text, project_inputs, refuse_dangling_link, say_export_notes, write_set
+from .outset import batch_text, say_export_notes, write_reports
 from .projects import check_stdin
 
 OPTION_NAMES = option_names()
@@ -42,9 +44,12 @@ LAZY_COMMANDS = {
 name → (module, attribute, the short help ``--help`` lists)."""
 
 
-class ScanplanGroup(click.Group):
-    """A group that turns :class:`InputError` into exit 2 and crashes into exit 1, and
-    imports the heavy subcommands (:data:`LAZY_COMMANDS`) only when they are used."""
+class ScanplanGroup(PolicyGroup):
+    """The ``scanplan`` group: its commands run under the command line's error policy
+    (:mod:`scanplan.cli.errors`; errors name the option a user typed), and the heavy
+    subcommands (:data:`LAZY_COMMANDS`) are imported only when they are used."""
+
+    field_names = OPTION_NAMES
 
     def list_commands(self, ctx: click.Context) -> list[str]:
         return sorted(set(self.commands) | set(LAZY_COMMANDS))
@@ -80,39 +85,10 @@ class ScanplanGroup(click.Group):
 
     def invoke(self, ctx: click.Context) -> Any:
         console.setup_streams()  # every character written, in any terminal encoding
-        try:
-            with warnings.catch_warnings():
-                if not os.environ.get("SCANPLAN_DEBUG"):  # no library's warning on a
-                    warnings.simplefilter("ignore")  # user's terminal (the tests raise them)
-                return super().invoke(ctx)
-        except BrokenPipeError:  # stdout's reader has gone (| head): stop quietly
-            ctx.exit(console.closed_pipe())
-        except InputError as exc:
-            field = OPTION_NAMES.get(exc.field, exc.field)
-            click.echo(f"error: {field}: {exc.message}", err=True)
-            ctx.exit(2)
-        except (click.exceptions.ClickException, click.exceptions.Exit,
-                click.exceptions.Abort, SystemExit):
-            raise
-        except Exception as exc:  # an environment failure or a bug: no traceback for users
-            if os.environ.get("SCANPLAN_DEBUG"):
-                import traceback
-
-                traceback.print_exc()
-            click.echo(f"error: {_failure_text(exc)}", err=True)
-            ctx.exit(1)
-
-
-def _failure_text(exc: Exception) -> str:
-    """The one-line message of a runtime failure (exit 1)."""
-    if isinstance(exc, WriteError):  # disk full, no permission, an interrupted rename
-        return exc.message
-    if isinstance(exc, OSError):  # another environment failure: name the file and the reason
-        where = " -> ".join(os.fsdecode(f) if isinstance(f, str | bytes) else str(f)
-                            for f in (exc.filename, exc.filename2) if f is not None)
-        reason = exc.strerror or str(exc) or type(exc).__name__
-        return f"{where + ': ' if where else ''}{reason} (SCANPLAN_DEBUG=1 shows details)"
-    return f"{type(exc).__name__}: {exc} (SCANPLAN_DEBUG=1 shows details)"
+        with warnings.catch_warnings():
+            if not os.environ.get("SCANPLAN_DEBUG"):  # no library's warning on a
+                warnings.simplefilter("ignore")  # user's terminal (the tests raise them)
+            return super().invoke(ctx)
 
 
 def _echo_json(doc: Any) -> None:
@@ -193,121 +169,30 @@ def report_options(f: Callable[..., Any]) -> Callable[..., Any]:
     return f
 
 
-def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None,
-                   spec: Any = None) -> None:
-    """Write the requested reports as one transaction; say where on stderr (stdout may
-    carry --json).
-
-    Both reports are rendered to memory first (a rendering failure touches no file), then
-    written with :func:`scanplan.reports.write_atomic_many`: after any failure the previous
-    spec.xlsx and spec.pdf are both as they were — never a new workbook beside an old PDF.
-    The files ``plan --out`` exports beside them (``opts["exports"]``: path → (kind,
-    bytes): missions, KML, GeoJSON, GeoPackage, CSV) join the same transaction.
-    """
-    xlsx, pdf = opts.pop("xlsx_path"), opts.pop("pdf_path")
-    exports: dict[str, tuple[Any, bytes]] = opts.pop("exports", None) or {}
-    force, inputs = opts.pop("force", False), opts.pop("inputs", ())
-    fields = opts.pop("fields", {"xlsx": "--xlsx", "pdf": "--pdf"})
-    note = opts.pop("note", "")
-    say = opts.pop("say", None) or console.info
-    worker = opts.pop("pdf_worker", None)  # the PDF on the second core (reports.pdfworker)
-    sweep = opts.pop("sweep", None)  # the --out folder whose stale exports go (one project)
-    explicit = opts.pop("pdf_explicit", True)  # asked for by name: its absence fails at the end
-    from ..io.targets import check_target
+def _write_reports(opts: dict[str, Any], *, scan: Any = None, uav: Any = None) -> None:
+    """``scan``/``uav``'s --xlsx/--pdf (``opts``: :data:`REPORT_KEYS`), as one transaction
+    (:func:`scanplan.cli.outset.write_reports`)."""
     from ..reports import ReportMeta
 
-    meta = opts.pop("meta", None) or ReportMeta(
-        project=opts.pop("project_name"), customer=opts.pop("customer"),
-        contractor=opts.pop("contractor"), locale=opts.pop("locale"),
-        approver_position=opts.pop("approver_position"),
-        approver_name=opts.pop("approver_name"))
-    wanted = [(path, kind) for path, kind in ((xlsx, "xlsx"), (pdf, "pdf")) if path]
-
-    def check() -> None:  # before rendering, and again under the folder lock
-        for path, kind in wanted:
-            check_target(path, fields[kind], kind, inputs=inputs, force=force)
-        for path, (kind, _) in exports.items():
-            check_target(path, "--out", kind, inputs=inputs, force=force)
-
-    _check_folders(wanted, fields)
-    if len(wanted) == 2 and (os.path.normcase(os.path.realpath(xlsx))
-                             == os.path.normcase(os.path.realpath(pdf))):
-        raise InputError("--pdf", f"{pdf!r} is the file --xlsx writes; give another name")
-    check()
-    extra = {"spec": spec} if spec is not None else {}
-    from ..reports.view import build_view
-
-    # one view of the result for both documents: labels, numbers and plots built once
-    view = build_view(scan=scan, uav=uav, meta=meta, spec=spec)
-    # the PDF renders in the worker, from the HTML written here, while this process builds
-    # the workbook; a worker that fails gives None and the PDF is rendered here (any error
-    # is raised here)
-    forked = False
-    if worker is not None and pdf is not None:
-        from ..reports.pdfhtml import render_html
-
-        forked = worker.submit(render_html(view=view))
-    rendered: dict[str, bytes] = {}
-    for path, kind in console.staged(wanted, "reports", "documents"):
-        if kind == "xlsx":
-            from ..reports.excel import render_xlsx as render
-        elif forked or (render := outputs.pdf_renderer(explicit)) is None:
-            continue  # rendered by the worker, or no PDF engine here (a warning said so)
-        rendered[path] = render(scan=scan, uav=uav, meta=meta, view=view, **extra)
-    if forked:
-        data = worker.result()
-        if data is None and (render := outputs.pdf_renderer(explicit)) is not None:
-            data = render(scan=scan, uav=uav, meta=meta, view=view, **extra)
-        if data is not None:
-            rendered[pdf] = data
-    files = {p: rendered[p] for p, _ in wanted if p in rendered}  # the wrote lines' order
-    outputs.warn_stale([p for p, _ in wanted if p not in rendered])
-    files.update({path: data for path, (_, data) in exports.items()})
-    write_set(files, check=check, sweep=sweep, say=say, note=note)
-
-
-def _make_folder(path: str) -> list[str]:
-    """``os.makedirs(path)``; the folders it created, deepest first (to undo on failure)."""
-    created = []
-    probe = os.path.abspath(path)
-    while probe and not os.path.exists(probe):
-        created.append(probe)
-        probe = os.path.dirname(probe)
-    try:
-        os.makedirs(path, exist_ok=True)
-    except OSError as exc:
-        _remove_empty(created)
-        raise WriteError.from_os_error(path, exc, action="create folder") from exc
-    return created
-
-
-def _remove_empty(folders: list[str]) -> None:
-    """Remove the folders (deepest first) that are still empty."""
-    for folder in folders:
-        try:
-            os.rmdir(folder)
-        except OSError:
-            return
+    meta = ReportMeta(project=opts["project_name"], customer=opts["customer"],
+                      contractor=opts["contractor"], locale=opts["locale"],
+                      approver_position=opts["approver_position"],
+                      approver_name=opts["approver_name"])
+    write_reports(xlsx=opts["xlsx_path"], pdf=opts["pdf_path"], meta=meta, scan=scan, uav=uav,
+                  force=opts["force"], pdf_worker=opts["pdf_worker"])
 
 
 REPORT_KEYS = ("xlsx_path", "pdf_path", "force", "locale", "project_name", "customer", "contractor",
                "approver_position", "approver_name", "pdf_worker")
 
 
-def _check_folders(wanted: list[tuple[str, str]], fields: dict[str, str]) -> None:
-    """Each report's folder exists (checked before anything is planned, and again when
-    written): exit 2 naming the option."""
-    for path, kind in wanted:
-        folder = os.path.dirname(os.path.abspath(path))
-        if not os.path.isdir(folder):
-            raise InputError(fields[kind], f"folder {folder!r} does not exist")
-
-
 def _report_folders(xlsx_path: str | None, pdf_path: str | None) -> None:
-    """``--xlsx``/``--pdf`` point into existing folders: said before the plan is made,
-    not after it has been printed."""
-    _check_folders([(p, k) for p, k in ((xlsx_path, "xlsx"), (pdf_path, "pdf")) if p],
-                   {"xlsx": "--xlsx", "pdf": "--pdf"})
+    """``--xlsx``/``--pdf`` point into existing folders (and not at one file): said before
+    the plan is made, not after it has been printed."""
+    from ..reports.documents import Target, refuse_targets
+
+    refuse_targets([Target(p, k, f"--{k}") for p, k in ((xlsx_path, "xlsx"), (pdf_path, "pdf"))
+                    if p])
 
 
 @contextlib.contextmanager
@@ -578,17 +463,17 @@ def plan(projects: tuple[str, ...], out_dir: str | None, xlsx_path: str | None,
     if batch and (xlsx_path or pdf_path):
         raise InputError("--xlsx", "--xlsx/--pdf name one file; with several projects use --out")
     _report_folders(xlsx_path, pdf_path)
+    from ..reports.documents import make_folder, refuse_folder, remove_empty
+
     created: list[str] = []
     if out_dir:
-        if os.path.exists(out_dir) and not os.path.isdir(out_dir):
-            raise InputError("--out", f"{out_dir!r} is not a folder")
-        refuse_dangling_link(out_dir)
-        created = _make_folder(out_dir)
+        refuse_folder(out_dir, "--out")
+        created = make_folder(out_dir)
     try:
         _plan_files(files, batch, out_dir, xlsx_path, pdf_path, as_json, force,
                     jobs or os.cpu_count() or 1, formats)
     finally:  # a folder --out created stays only if something was written into it
-        _remove_empty(created)
+        remove_empty(created)
     outputs.pdf_failure_exit(bool(pdf_path) or "pdf" in (formats or ()))
 
 
@@ -607,15 +492,16 @@ def _run_project(path: str, out_dir: str | None, stem: str | None, xlsx_path: st
     receives the ``wrote FILE`` lines (default: stderr); ``pdf_worker`` (a
     :class:`scanplan.reports.pdfworker.PdfWorker`) renders the PDF on another core."""
     from ..project.spec import plan_project
+    from ..reports.documents import project_inputs
     from .projects import read_project
 
-    targets = {"xlsx_path": xlsx_path, "pdf_path": pdf_path}
-    fields = {"xlsx": "--xlsx", "pdf": "--pdf"}
+    fields = ("--xlsx", "--pdf")
     note = ""
+    explicit = bool(pdf_path) or "pdf" in (formats or ())  # its absence fails at the end
     if out_dir:
-        targets = {f"{k}_path": os.path.join(out_dir, (stem or "spec") + f".{k}")
-                   if outputs.selected(formats, k) else None for k in ("xlsx", "pdf")}
-        fields = {"xlsx": "--out", "pdf": "--out"}
+        xlsx_path, pdf_path = (os.path.join(out_dir, (stem or "spec") + f".{k}")
+                               if outputs.selected(formats, k) else None for k in ("xlsx", "pdf"))
+        fields = ("--out", "--out")
         if stem is not None:
             base = os.path.splitext(os.path.basename(path))[0]
             taken = ("the batch summary" if base.casefold() == "summary"
@@ -634,13 +520,12 @@ def _run_project(path: str, out_dir: str | None, stem: str | None, xlsx_path: st
             note=say or console.info), formats)
     film = result.film.job if result.film else None
     uav_ = result.uav.job if result.uav else None
-    _write_reports({**targets, "force": force, "inputs": files, "fields": fields,
-                    "note": note, "meta": result.meta, "say": say, "exports": exports,
-                    "pdf_worker": pdf_worker,
-                    # never leave a stale sortie of an earlier plan behind
-                    "sweep": out_dir if out_dir and stem is None else None,
-                    "pdf_explicit": bool(pdf_path) or "pdf" in (formats or ())},
-                   scan=film, uav=uav_, spec=result)
+    write_reports(xlsx=xlsx_path, pdf=pdf_path, meta=result.meta, scan=film, uav=uav_,
+                  spec=result, fields=fields, force=force, inputs=files, exports=exports,
+                  note=note, say=say, pdf_worker=pdf_worker,
+                  # never leave a stale sortie of an earlier plan behind
+                  sweep=out_dir if out_dir and stem is None else None,
+                  pdf_explicit=explicit)
     if out_dir:  # a mission or photo table not written is said, with the reason
         say_export_notes(result, say)
     return result
@@ -781,15 +666,13 @@ def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: s
         click.echo(batch_table(lines, failed))
         if warned:
             click.echo("\n".join(warned))
-    for _path, msg in failed:
-        click.echo(f"error: {msg}", err=True)
+    errors = [msg for _path, msg in failed]
     if stopped:
-        click.echo(f"error: the batch stopped at {stopped} ({len(done)} of {len(files)} "
-                   "projects written" + (f"; not planned: {', '.join(not_run)}" if not_run
-                                         else "") + ")", err=True)
-        sys.exit(1)
+        raise Failed([*errors, f"the batch stopped at {stopped} ({len(done)} of {len(files)} "
+                      "projects written" + (f"; not planned: {', '.join(not_run)}" if not_run
+                                            else "") + ")"])
     if failed:
-        sys.exit(2)
+        raise Failed(errors, code=2)
 
 
 def run() -> None:  # pragma: no cover - console entry used by python -m scanplan

@@ -4,103 +4,27 @@ Registered by :mod:`scanplan.cli.main` (``main.add_command(norms)``); it also ru
 (``norms.main(args)``). Every problem is an :class:`~scanplan.errors.InputError`: printed as
 ``error: ...`` on stderr (or as JSON with ``--json``) with exit code 2, never a traceback.
 A failure to write (:class:`~scanplan.errors.WriteError`: disk full, permission, an
-interrupted rename) is exit code 1 with ``error: cannot write PATH: REASON``.
+interrupted rename) is exit code 1 with ``error: cannot write PATH: REASON``. The commands
+raise; the group applies the command line's error policy (:mod:`scanplan.cli.errors`).
 """
 
 from __future__ import annotations
 
 import contextlib
-import functools
 import json
 import os
 import re
-import sys
-from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
 import click
 
 from .. import norms as _norms
-from ..errors import InputError, WriteError
+from ..errors import InputError
 from ..norms.schema import PARAMETERS, TABLES
+from .errors import PolicyGroup, json_errors
 
 __all__ = ["norms"]
-
-
-def _fail(exc: InputError, as_json: bool) -> None:
-    """Report an InputError (all problems of a NormImportError) and exit 2."""
-    if isinstance(exc, _norms.NormImportError):
-        problems = list(exc.problems)
-        total = exc.total
-    else:
-        problems = [_norms.ImportProblem(exc.field, exc.message)]
-        total = 1
-    if as_json:
-        click.echo(
-            json.dumps(
-                {
-                    "ok": False,
-                    "error_count": total,
-                    "errors": [p.as_dict() for p in problems],
-                    "errors_omitted": total - len(problems),
-                },
-                ensure_ascii=False,
-                indent=2,
-            )
-        )
-    else:
-        if isinstance(exc, _norms.NormImportError):
-            head = exc.message.split("\n", 1)[0]
-            click.echo(f"error: {exc.field}: {head}", err=True)
-            for line in _norms.format_problems(problems, total):
-                click.echo(f"  {line}", err=True)
-        else:
-            click.echo(f"error: {exc.field}: {exc.message}", err=True)
-    sys.exit(2)
-
-
-def _write_failed(exc: WriteError, as_json: bool) -> None:
-    """Report a failed write (the previous file or set is intact) and exit 1."""
-    if os.environ.get("SCANPLAN_DEBUG"):
-        import traceback
-
-        traceback.print_exc()
-    if as_json:
-        click.echo(
-            json.dumps(
-                {
-                    "ok": False,
-                    "error_count": 1,
-                    "errors": [
-                        _norms.ImportProblem(
-                            exc.path, "; ".join(x for x in (exc.reason, exc.note) if x)
-                        ).as_dict()
-                    ],
-                    "errors_omitted": 0,
-                },
-                ensure_ascii=False,
-                indent=2,
-            )
-        )
-    click.echo(f"error: {exc.message}", err=True)
-    sys.exit(1)
-
-
-def _guard(fn: Callable[..., Any]) -> Callable[..., Any]:
-    """Turn InputError into the documented exit 2 and WriteError into exit 1 (JSON when
-    ``--json`` was given)."""
-
-    @functools.wraps(fn)
-    def wrapper(*args: Any, **kwargs: Any) -> Any:
-        try:
-            return fn(*args, **kwargs)
-        except InputError as exc:
-            _fail(exc, bool(kwargs.get("as_json")))
-        except WriteError as exc:
-            _write_failed(exc, bool(kwargs.get("as_json")))
-
-    return wrapper
 
 
 def _table(rows: list[list[str]], header: list[str]) -> str:
@@ -125,7 +49,7 @@ def _txt(v: Any) -> str:
 _JSON = click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
 
 
-@click.group("norms")
+@click.group("norms", cls=PolicyGroup)
 def norms() -> None:
     """Norm sets: list, show, validate and import spreadsheets, write a template.
 
@@ -165,7 +89,7 @@ def _w(key: str, locale: str, **fields: Any) -> str:
 @norms.command("list")
 @_JSON
 @_LOCALE
-@_guard
+@json_errors
 def list_cmd(as_json: bool, locale: str = "en") -> None:
     """List the bundled and imported norm sets.
 
@@ -236,7 +160,7 @@ def list_cmd(as_json: bool, locale: str = "en") -> None:
 @click.argument("name")
 @_JSON
 @_LOCALE
-@_guard
+@json_errors
 def show_cmd(name: str, as_json: bool, locale: str = "en") -> None:
     """Show a norm set: meta, parameters (value, unit, source) and tables.
 
@@ -380,7 +304,7 @@ _BASE = click.option(
 @_TABLE
 @_BASE
 @_JSON
-@_guard
+@json_errors
 def validate_cmd(file: Path, table: str | None, base: str | None, as_json: bool) -> None:
     """Check a norm workbook (.xlsx) or CSV without writing anything.
 
@@ -417,7 +341,7 @@ def validate_cmd(file: Path, table: str | None, base: str | None, as_json: bool)
 @_TABLE
 @_BASE
 @_JSON
-@_guard
+@json_errors
 def import_cmd(
     file: Path,
     name: str,
@@ -482,7 +406,7 @@ def import_cmd(
 @click.option("--no-catalogue", is_flag=True, help="Leave out the cameras and scanners.")
 @click.option("--force", is_flag=True, help="Overwrite an existing file.")
 @_JSON
-@_guard
+@json_errors
 def template_cmd(
     file: Path, norm_set: str, lang: str, no_catalogue: bool, force: bool, as_json: bool
 ) -> None:

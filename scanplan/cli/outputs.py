@@ -128,8 +128,15 @@ def warn_stale(paths: list[str]) -> None:
 
 
 def pdf_failure_exit(explicit: bool) -> None:
-    """At the end of a command: exit 1 when a PDF asked for by name could not be made."""
+    """At the end of a command: fail (exit 1) when a PDF asked for by name could not be
+    made.
+
+    Raises
+    ------
+    scanplan.cli.errors.Failed
+    """
+    from .errors import Failed
+
     if explicit and _state["missing"] is not None:
-        click.echo("error: the PDF was not written: its engine could not load (see the "
-                   "warning above)", err=True)
-        sys.exit(1)
+        raise Failed(["the PDF was not written: its engine could not load (see the warning "
+                      "above)"])

@@ -1,31 +1,58 @@
-"""The output set of ``plan --out`` as the command line writes it: one transaction with
-the sweep of an earlier run's files, the lines it says, the inputs it protects, and the
-``--out`` folders it refuses (docs/reliability.md)."""
+"""The reports and the output set of ``plan --out`` as the command line writes them: the
+transaction of :mod:`scanplan.reports.documents` with the command line's PDF engine,
+warnings and progress, and the lines it says (docs/reliability.md)."""
 
 from __future__ import annotations
 
 import os
 import re
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from typing import Any
 
 import click
 
-from ..errors import InputError
 from ..progress import listened
-from .console import verbosity
+from .console import info, verbosity
 
 MANY_FILES = 50
 """From this many files on, a terminal drawing the stages of a plan is told before their
 write begins."""
 
 
+def write_reports(*, xlsx: str | None, pdf: str | None, meta: Any, scan: Any = None,
+                  uav: Any = None, spec: Any = None,
+                  fields: tuple[str, str] = ("--xlsx", "--pdf"), force: bool = False,
+                  inputs: Iterable[str] = (),
+                  exports: Mapping[str, tuple[Any, bytes]] | None = None,
+                  note: str = "", say: Callable[[str], None] | None = None,
+                  pdf_worker: Any = None, sweep: str | None = None,
+                  pdf_explicit: bool = True) -> None:
+    """Write the requested reports (and ``plan --out``'s ``exports``: path → (kind,
+    bytes)) as one transaction (:func:`scanplan.reports.documents.write_documents`); say
+    where on stderr (stdout may carry --json).
+
+    ``fields`` name the --xlsx and --pdf targets in messages; ``pdf_worker`` renders the
+    PDF on the second core; ``sweep`` is the --out folder whose stale exports go (one
+    project); ``pdf_explicit``: the PDF was asked for by name (without an engine the
+    command fails at the end).
+    """
+    from ..reports.documents import Target, write_documents
+    from . import outputs
+
+    targets = [Target(path, kind, field) for path, kind, field
+               in ((xlsx, "xlsx", fields[0]), (pdf, "pdf", fields[1])) if path]
+    done = write_documents(targets, scan=scan, uav=uav, spec=spec, meta=meta, extra=exports,
+                           inputs=inputs, force=force, sweep=sweep, pdf_worker=pdf_worker,
+                           pdf_engine=lambda: outputs.pdf_renderer(pdf_explicit),
+                           on_missing=outputs.warn_stale, announce=announce)
+    say_written(done.files, done.removed, say or info, note)
+
+
 def write_set(files: Mapping[str, bytes], *, check: Callable[[], None], sweep: str | None,
               say: Callable[[str], None], note: str = "") -> None:
-    """Write ``files`` as one transaction (:func:`scanplan.io.atomic.write_atomic_many`)
+    """Write ``files`` as one transaction (:func:`scanplan.reports.documents.commit`)
     together with the removal of the exported files of an earlier run into ``sweep``
-    that this run no longer writes (``mission-04.plan`` of six sorties, now three); then
-    say ``wrote FILE`` and ``removed FILE`` lines.
+    that this run no longer writes; then say ``wrote FILE`` and ``removed FILE`` lines.
 
     Parameters
     ----------
@@ -40,21 +67,23 @@ def write_set(files: Mapping[str, bytes], *, check: Callable[[], None], sweep: s
     note : str
         Added to each ``wrote`` line.
     """
-    from ..io.atomic import write_atomic_many
+    from ..reports.documents import commit
 
-    removed: list[str] = []
+    _, removed = commit(files, check=check, sweep=sweep, announce=announce)
+    say_written(list(files), removed, say, note)
 
-    def stale() -> list[str]:  # under the transaction's lock, after the check
-        from ..reports.exports import stale_exports
 
-        removed[:] = stale_exports(sweep, set(files)) if sweep else []
-        return removed
-
-    if len(files) >= MANY_FILES and listened():  # hundreds take seconds: say so at a terminal
+def announce(files: Mapping[str, bytes]) -> None:
+    """Hundreds of files take seconds: a terminal drawing the stages is told first."""
+    if len(files) >= MANY_FILES and listened():
         click.echo(f"writing {len(files)} files …", err=True)
-    write_atomic_many(files, check=check, remove=stale if sweep else None)
-    every = verbosity() >= 1  # -v: a line per file
-    for line in file_lines(list(files), every=every):
+
+
+def say_written(files: list[str], removed: list[str], say: Callable[[str], None],
+                note: str = "") -> None:
+    """The ``wrote FILE`` and ``removed FILE`` lines of a write (-v: a line per file)."""
+    every = verbosity() >= 1
+    for line in file_lines(files, every=every):
         say(f"wrote {line}{note}")
     for line in file_lines(removed, every=every):
         say(f"removed {line} (left from an earlier plan)")
@@ -115,38 +144,6 @@ def say_export_notes(result: Any, say: Callable[[str], None] | None) -> None:
     for line in export_notes(result):
         (say or (lambda text: click.echo(text, err=True)))(
             f"note: {line.text(result.meta.locale)}")
-
-
-def project_inputs(result: Any) -> list[str]:
-    """The files a planned project read besides itself: its area file, its DEM (never
-    replaced by an output, even with ``--force``)."""
-    project = getattr(result, "project", None)  # the parsed model (project/model.py)
-    if project is None:
-        return []
-    found: list[str] = []
-    area_file = project.area.file
-    if isinstance(area_file, str) and area_file:
-        found.append(os.path.expanduser(area_file))  # already resolved beside the project
-    terrain = project.terrain
-    if terrain is not None and terrain.config.dem is not None:
-        found.append(str(terrain.config.dem))  # resolved beside the project file
-    return found
-
-
-def refuse_dangling_link(path: str) -> None:
-    """``--out`` (or a folder above it) that is a symbolic link to nothing: exit 2 naming
-    it — scanplan creates missing folders, not the target of a broken link."""
-    probe = path
-    while probe and not os.path.exists(probe):
-        if os.path.islink(probe):
-            shown = "" if probe == path else f" (in {path!r})"
-            raise InputError("--out", f"{probe!r}{shown} is a symbolic link to "
-                             f"{os.readlink(probe)!r}, which does not exist; create that "
-                             "folder, or give another")
-        parent = os.path.dirname(probe.rstrip(os.sep))
-        if parent == probe:
-            break
-        probe = parent
 
 
 def batch_text(path: str, result: Any) -> tuple[list[str], str]:
