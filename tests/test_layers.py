@@ -140,9 +140,14 @@ def test_the_geo_guard_fails_on_a_rules_import(line):
 
 # -- no import circle inside a package, no private name imported from outside it ----------
 
-#: Packages kept free of import circles (lazy imports counted): a circle makes the import
-#: order matter and hides which module is below which.
-CIRCLE_FREE = ("scanplan.io", "scanplan.core", "scanplan.geo.export")
+#: Every package and sub-package of scanplan (found from the sources, ``scanplan`` itself
+#: included) is kept free of import circles (lazy imports counted): a circle makes the
+#: import order matter and hides which module is below which. These packages are let off,
+#: each with the reason; a circle wholly inside one of them is not reported by the packages
+#: around it either.
+PENDING: dict[str, str] = {
+    "scanplan.reports": "report tables being restructured",
+}
 #: Packages whose private names (``_name``) a module outside them never uses: what another
 #: package needs is a public name (``core/checks.py`` holds the core's input checks). Every
 #: top-level package and module of scanplan, and these sub-packages:
@@ -266,10 +271,66 @@ SOURCES = {_module_name(p): (p.read_text(encoding="utf-8"), p.name == "__init__.
            for p in MODULES}
 
 
-@pytest.mark.parametrize("package", CIRCLE_FREE)
+PACKAGES = sorted(name for name, (_, is_package) in SOURCES.items() if is_package)
+CHECKED = [p for p in PACKAGES if not any(_inside(p, pending) for pending in PENDING)]
+
+
+def package_circles(sources: dict[str, tuple[str, bool]], package: str,
+                    pending: dict[str, str] | None = None) -> list[list[str]]:
+    """The import circles among the modules of ``package`` (lazy imports counted), but for
+    those lying wholly inside one package of ``pending``."""
+    inside = {name: source for name, source in sources.items() if _inside(name, package)}
+    return [c for c in circles(import_graph(inside))
+            if not any(all(_inside(m, p) for m in c) for p in pending or {})]
+
+
+@pytest.mark.parametrize("package", CHECKED)
 def test_no_import_circle_inside_the_package(package):
-    inside = {name: source for name, source in SOURCES.items() if _inside(name, package)}
-    assert circles(import_graph(inside)) == []
+    found = package_circles(SOURCES, package, PENDING)
+    assert found == [], "\n".join(" ↔ ".join(c) for c in found)
+
+
+@pytest.mark.parametrize("package", sorted(PENDING))
+def test_a_pending_package_still_has_a_circle(package):
+    """A package let off still has a circle (remove it from PENDING when it has none)."""
+    assert package in PACKAGES, f"{package} is no package of scanplan"
+    assert package_circles(SOURCES, package), f"{package} has no circle: remove it from PENDING"
+
+
+def test_the_packages_are_found_from_the_sources():
+    """Every sub-package is checked, not a hand list: core/mtf, geo/export, rules, web …"""
+    assert {"scanplan", "scanplan.core.mtf", "scanplan.geo.export", "scanplan.rules",
+            "scanplan.project", "scanplan.web", "scanplan.norms"} <= set(CHECKED)
+    assert "scanplan.reports" not in CHECKED
+
+
+@pytest.mark.parametrize("package", ["scanplan.web", "scanplan"])
+def test_the_package_guard_sees_a_lazy_circle(package):
+    """The check can fail: a function-level import added to web/mapdata.py that reads
+    back from web/jobs.py (which calls it) is a circle of web/ and of scanplan."""
+    sources = dict(SOURCES)
+    text, is_package = sources["scanplan.web.mapdata"]
+    sources["scanplan.web.mapdata"] = (text + "\n\ndef _probe():\n    from .jobs import "
+                                       "PROJECT_NAME\n", is_package)
+    assert package_circles(SOURCES, package, PENDING) == []
+    assert package_circles(sources, package, PENDING) == [["scanplan.web.jobs",
+                                                           "scanplan.web.mapdata"]]
+
+
+def test_a_pending_package_is_let_off_only_inside():
+    """A circle wholly inside a pending package is not reported; one that leaves it is."""
+    sources = {
+        "scanplan.reports.a": ("from .b import x\n", False),
+        "scanplan.reports.b": ("def x():\n    from . import a\n", False),
+        "scanplan.web.c": ("from ..reports import a\n", False),
+    }
+    pending = {"scanplan.reports": "being restructured"}
+    assert package_circles(sources, "scanplan", pending) == []
+    assert package_circles(sources, "scanplan.reports") == [["scanplan.reports.a",
+                                                             "scanplan.reports.b"]]
+    sources["scanplan.reports.b"] = ("def x():\n    from ..web import c\n", False)
+    assert package_circles(sources, "scanplan", pending) == [
+        ["scanplan.reports.a", "scanplan.reports.b", "scanplan.web.c"]]
 
 
 SEALED = sorted({".".join(name.split(".")[:2]) for name in SOURCES} - set(NOT_YET_SEALED)
@@ -368,43 +429,3 @@ def test_the_toml_guard_fails_on_a_read(line):
     """The check can fail: a TOML read added to a report module is reported."""
     text = (PKG / "reports" / "text.py").read_text(encoding="utf-8") + f"\n{line}\n"
     assert toml_reads(text, "scanplan.reports.text")
-
-
-def _circles(package: str) -> list[set[str]]:
-    """The import circles (strongly connected modules, lazy imports counted) inside
-    ``package``."""
-    graph = {}
-    for p in MODULES:
-        name = _module_name(p)
-        if name.startswith(package + "."):
-            graph[name] = {t for _, t in imports_of(p.read_text(encoding="utf-8"), name,
-                                                    p.name == "__init__.py")}
-
-    def reach(start: str) -> set[str]:
-        seen, todo = set(), [start]
-        while todo:
-            for t in graph.get(todo.pop(), ()):
-                if t in graph and t not in seen:
-                    seen.add(t)
-                    todo.append(t)
-        return seen
-
-    reached = {n: reach(n) for n in graph}
-    circles: list[set[str]] = []
-    for n in graph:
-        circle = {m for m in reached[n] if n in reached[m]} | {n}
-        if len(circle) > 1 and circle not in circles:
-            circles.append(circle)
-    return circles
-
-
-KNOWN_CIRCLES = [
-    # the user's [project] defaults are checked with the project file's own type checks
-    {"scanplan.project.file", "scanplan.project.userconfig"},
-]
-
-
-def test_no_import_circle_inside_the_project_layer():
-    """The specification, the survey design and the records import one way (results ←
-    design ← spec); the one circle left is named in KNOWN_CIRCLES."""
-    assert [c for c in _circles("scanplan.project") if c not in KNOWN_CIRCLES] == []

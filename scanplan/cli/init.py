@@ -20,6 +20,7 @@ from typing import Any
 import click
 
 from ..errors import InputError, WriteError
+from ..project.inputs import INPUTS, shown
 from .options import DECIMAL
 
 __all__ = ["InitAnswers", "init", "project_text"]
@@ -71,7 +72,15 @@ def _s(text: str) -> str:
 
 
 def _n(x: float) -> str:
+    """A value the user gave, exactly (2000.0 → ``2000``, 0.123 → ``0.123``)."""
     return str(int(x)) if float(x).is_integer() else repr(float(x))
+
+
+def _v(key: str, value: float | None = None) -> str:
+    """An example value of ``section.key`` (default: the registry's default) as the input
+    registry shows it, with the record's digits (:func:`scanplan.project.inputs.shown`)."""
+    inp = INPUTS[key]
+    return shown(inp, inp.default if value is None else value)
 
 
 def default_photo_scales(map_scale: float) -> tuple[float, ...]:
@@ -216,23 +225,24 @@ def project_text(a: InitAnswers) -> str:
         "",
         "[norms]",
         f"set = {_s(a.norms)}\t# {c['norms']}",
-        f"# probability = 0.75\t# {c['probability']}",
+        f"# probability = {_v('norms.probability', 0.75)}\t# {c['probability']}",
         (f"object_name = {_s(a.object_name)}\t# {c['object']}" if a.object_name else
          f"# object_name = \"manhole covers\"\t# {c['object']}"),
         (f"object_size_m = {_n(a.object_size_m)}\t# {c['object_size']}"
-         if a.object_size_m is not None else f"# object_size_m = 0.6\t# {c['object_size']}"),
+         if a.object_size_m is not None else
+         f"# object_size_m = {_v('norms.object_size_m', 0.6)}\t# {c['object_size']}"),
         f"# shape = \"circle\"\t# {c['shape']}",
     ]
     if a.kind in ("film", "both"):
         out += ["", f"[film]\t# {c['film']}", f"camera = {_s(a.film_camera)}\t# {c['camera']}",
                 f"resolving_power_lpmm = {_n(a.resolving_power_lpmm)}\t# {c['r']}",
-                f"forward_overlap_pct = 60\t# {c['forward']}"]
+                f"forward_overlap_pct = {_v('film.forward_overlap_pct', 60)}\t# {c['forward']}"]
         if a.archive_photo_scale is not None:
             out += [f"photo_scale = {_n(a.archive_photo_scale)}\t# {c['archive']}"]
         else:
             scales = a.photo_scales or default_photo_scales(a.map_scale)
             out += [f"photo_scales = [{', '.join(_n(x) for x in scales)}]\t# {c['scales']}",
-                    f"# photo_scale = 12000\t# {c['scale_instead']}"]
+                    f"# photo_scale = {_v('film.photo_scale', 12000)}\t# {c['scale_instead']}"]
         out += [f"scanner = {_s(a.scanner)}" if a.scanner else
                 f"# scanner = \"photoscan-td\"\t# {c['scanner']}"]
     if a.kind in ("uav", "both"):
@@ -242,18 +252,21 @@ def project_text(a: InitAnswers) -> str:
         out += [f"width_m = {_n(a.area_m[0])}\t# {c['width']}",
                 f"length_m = {_n(a.area_m[1])}\t# {c['length']}"]
     else:
-        out += [f"# width_m = 2000\t# {c['width']}", f"# length_m = 3000\t# {c['length']}"]
+        out += [f"# width_m = {_v('area.width_m', 2000)}\t# {c['width']}",
+                f"# length_m = {_v('area.length_m', 3000)}\t# {c['length']}"]
     out += [f"# file = \"block.kml\"\t# {c['file']}"]
     if a.kind in ("uav", "both"):
         out += ["", f"# [terrain]\t# {c['terrain']}", f"# dem = \"dem.tif\"\t# {c['dem']}",
-                f"# ground_elevation_m = [150, 180]\t# {c['ground']}",
+                f"# ground_elevation_m = [{_v('terrain.ground_elevation_m', 150)}, "
+                f"{_v('terrain.ground_elevation_m', 180)}]\t# {c['ground']}",
                 f"# altitude_mode = \"constant\"\t# {c['mode']}",
-                "", f"# [site]\t# {c['site']}", f"# lat_deg = 55.75\t# {c['lat']}",
-                f"# lon_deg = 37.62\t# {c['lon']}",
+                "", f"# [site]\t# {c['site']}",
+                f"# lat_deg = {_v('site.lat_deg', 55.75)}\t# {c['lat']}",
+                f"# lon_deg = {_v('site.lon_deg', 37.62)}\t# {c['lon']}",
                 "", f"# [schedule]\t# {c['schedule']}",
                 f"# start_date = 2027-06-01\t# {c['start']}",
                 f"# end_date = 2027-06-30\t# {c['end']}",
-                f"# sortie_time_min = 25\t# {c['sortie']}"]
+                f"# sortie_time_min = {_v('schedule.sortie_time_min', 25)}\t# {c['sortie']}"]
     return "\n".join(_align(line) for line in out) + "\n"
 
 
@@ -263,18 +276,21 @@ def _uav_lines(a: InitAnswers, c: dict[str, str]) -> list[str]:
     out = ["", f"[uav]\t# {c['aircraft' if a.aircraft else 'uav']}",
            f"camera = {_s(a.uav_camera)}\t# {c['camera']}",
            (f"height_m = {_n(a.height_m)}\t# {c['height']}" if a.height_m is not None else
-            f"# height_m = 100\t# {c['height_default']}")]
+            f"# height_m = {_v('uav.height_m', 100)}\t# {c['height_default']}")]
     if a.f_number is not None:
         out.append(f"f_number = {_n(a.f_number)}\t# {c['f_number']}")
     if a.aircraft:
         return [*out, f"speed_ms = {_n(a.speed_ms or 0)}\t# {c['speed']}",
-                f"# forward_overlap_pct = 60\t# {c['overlaps_default']}",
-                f"# side_overlap_pct = 30\t# {c['overlaps_default']}"]
-    return [*out, f"height_tolerance_pct = 10\t# {c['tolerance']}",
-            f"speed_ms = {_n(a.speed_ms if a.speed_ms is not None else 10)}\t# {c['speed']}",
-            f"exposure_s = 0.0005\t# {c['exposure']}",
-            f"forward_overlap_pct = 80\t# {c['forward']}",
-            f"side_overlap_pct = 60\t# {c['side']}"]
+                f"# forward_overlap_pct = {_v('uav.forward_overlap_pct', 60)}\t"
+                f"# {c['overlaps_default']}",
+                f"# side_overlap_pct = {_v('film.side_overlap_pct')}\t# {c['overlaps_default']}"]
+    speed = _n(a.speed_ms) if a.speed_ms is not None else _v("uav.speed_ms", 10)
+    return [*out, f"height_tolerance_pct = {_v('uav.height_tolerance_pct', 10)}\t"
+            f"# {c['tolerance']}",
+            f"speed_ms = {speed}\t# {c['speed']}",
+            f"exposure_s = {_v('uav.exposure_s', 0.0005)}\t# {c['exposure']}",
+            f"forward_overlap_pct = {_v('uav.forward_overlap_pct')}\t# {c['forward']}",
+            f"side_overlap_pct = {_v('uav.side_overlap_pct')}\t# {c['side']}"]
 
 
 def check_answers(text: str, path: str) -> None:

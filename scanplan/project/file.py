@@ -8,8 +8,6 @@ shared/spec/interface.md and docs/project-file.md.
 
 from __future__ import annotations
 
-import datetime as dt
-import math
 import os
 import re
 import tomllib
@@ -17,10 +15,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from ..core.domains import MAX_LIST_ITEMS
 from ..errors import InputError
 from ..io.files import read_limited
-from .inputs import key_table
+from .keys import KEYS, check_text, check_type, key_lines, text_problem
+from .userconfig import with_user_defaults
 
 __all__ = ["KEYS", "Project", "ReportMeta", "load_project", "parse_project", "parse_project_bytes",
            "text_problem"]
@@ -30,14 +28,6 @@ MAX_PROJECT_BYTES = 1_000_000
 MAX_NESTING = 32
 """Deepest nesting of arrays and inline tables (no key of a project file nests at all; the
 bound keeps a hostile file from exhausting the parser's recursion)."""
-MAX_TEXT_CHARS = 1_000
-"""Longest text value (a project name, a customer, an id) [characters]."""
-_CONTROL = re.compile(r"[\x00-\x08\x0b-\x1f\x7f-\x9f]")
-
-KEYS: dict[str, dict[str, tuple[str, str]]] = key_table()
-"""Every key a project file may hold, section → key → (type, description with unit and
-default): the documented contract, read from the input registry
-(:mod:`scanplan.project.inputs`)."""
 
 
 @dataclass(frozen=True)
@@ -92,25 +82,6 @@ class Project:
         return f"{dotted} (line {line})" if line else dotted
 
 
-def _key_lines(text: str) -> dict[str, int]:
-    """Line of each ``section.key`` and ``[section]`` header (plain TOML, no inline tables)."""
-    lines: dict[str, int] = {}
-    section = ""
-    header = re.compile(r"^\s*\[\s*([A-Za-z0-9_.\- ]+?)\s*\]\s*(#.*)?$")
-    assign = re.compile(r"^\s*([A-Za-z0-9_\-]+|\"[^\"]+\")\s*=")
-    for no, line in enumerate(text.splitlines(), start=1):
-        m = header.match(line)
-        if m:
-            section = m.group(1).replace(" ", "")
-            lines.setdefault(section, no)
-            continue
-        m = assign.match(line)
-        if m:
-            key = m.group(1).strip('"')
-            lines.setdefault(f"{section}.{key}" if section else key, no)
-    return lines
-
-
 def _flatten(doc: dict[str, Any]) -> dict[str, dict[str, Any]]:
     """{"uav": {"camera": .., "target": {..}}} → {"uav": {...}, "uav.target": {...}}."""
     out: dict[str, dict[str, Any]] = {}
@@ -128,80 +99,6 @@ def _flatten(doc: dict[str, Any]) -> dict[str, dict[str, Any]]:
 
     walk("", doc)
     return out
-
-
-def _check_type(kind: str, value: Any) -> str | None:
-    if kind == "str":
-        return None if isinstance(value, str) else "must be text (in quotes)"
-    if kind == "int":
-        ok = isinstance(value, int) and not isinstance(value, bool)
-        return None if ok else "must be a whole number"
-    if kind == "number":
-        ok = isinstance(value, int | float) and not isinstance(value, bool)
-        if ok and not _finite(value):
-            return "must be a finite number (at most about 1.8e308)"
-        return None if ok else "must be a number"
-    if kind == "scale":
-        ok = (isinstance(value, int | float | str)) and not isinstance(value, bool)
-        if ok and not isinstance(value, str) and not _finite(value):
-            return "must be a finite scale denominator like 2000"
-        return None if ok else 'must be a scale denominator like 2000 or "1:2000"'
-    if kind == "feature":
-        ok = isinstance(value, str | int) and not isinstance(value, bool)
-        return None if ok else 'must be a name in quotes or a number from 1'
-    if kind == "crs":
-        ok = isinstance(value, str | int) and not isinstance(value, bool)
-        return None if ok else 'must be a CRS like "EPSG:32637" or 32637'
-    if kind == "direction":
-        if value == "auto":
-            return None
-        ok = isinstance(value, int | float) and not isinstance(value, bool) and _finite(value)
-        return None if ok else 'must be an angle in degrees or "auto"'
-    if kind == "polygon":
-        if not isinstance(value, list) or len(value) < 3:
-            return "must be a list of at least 3 [lon, lat] points"
-        return None
-    if kind == "scales":
-        if not isinstance(value, list) or not value:
-            return "must be a non-empty list of scales, e.g. [5000, 10000]"
-        if len(value) > MAX_LIST_ITEMS:
-            return f"has {len(value):,} scales; at most {MAX_LIST_ITEMS}"
-        bad = [v for v in value if isinstance(v, bool) or not isinstance(v, int | float | str)
-               or (not isinstance(v, str) and not _finite(v))]
-        return 'must be a list of finite scales like [5000, "1:10000"]' if bad else None
-    if kind == "point":
-        ok = (isinstance(value, list) and len(value) == 2
-              and all(isinstance(v, int | float) and not isinstance(v, bool) and _finite(v)
-                      for v in value))
-        if ok and not (-180 <= value[0] <= 180 and -90 <= value[1] <= 90):
-            return "must be [lon, lat] with lon in −180 … 180° and lat in −90 … 90°"
-        return None if ok else "must be a point [lon, lat] in degrees (WGS 84)"
-    if kind == "range":
-        ok = (isinstance(value, list) and len(value) == 2
-              and all(isinstance(v, int | float) and not isinstance(v, bool) and _finite(v)
-                      for v in value))
-        if ok and value[0] > value[1]:
-            return "must be [lowest, highest]: the first value may not exceed the second"
-        return None if ok else "must be two finite numbers [lowest, highest], e.g. [120, 185]"
-    if kind == "date":
-        if isinstance(value, dt.date) and not isinstance(value, dt.datetime):
-            return None
-        if isinstance(value, str):
-            try:
-                dt.date.fromisoformat(value)
-                return None
-            except ValueError:
-                pass
-        return "must be a date YYYY-MM-DD, e.g. 2025-06-01"
-    raise AssertionError(kind)
-
-
-def _finite(value: float) -> bool:
-    """Whether a TOML number is finite as a float (an integer of 400 digits is not)."""
-    try:
-        return math.isfinite(float(value))
-    except OverflowError:
-        return False
 
 
 _STRING = re.compile(
@@ -241,29 +138,6 @@ def _nesting_problem(text: str) -> tuple[int, str] | None:
     return None
 
 
-def _check_text(kind: str, value: Any) -> str | None:
-    return text_problem(value) if kind == "str" else None
-
-
-def text_problem(value: str) -> str | None:
-    """What is wrong with a user text shown on terminals and in reports, or None.
-
-    Bounded (:data:`MAX_TEXT_CHARS`) and free of control characters (terminal escapes).
-    HTML, URLs and formulas are fine: the reports show them as text.
-
-    Parameters
-    ----------
-    value : str
-        The text (a project name, customer, approver ...).
-    """
-    if len(value) > MAX_TEXT_CHARS:
-        return f"is {len(value):,} characters long; at most {MAX_TEXT_CHARS:,}"
-    bad = _CONTROL.search(value)
-    if bad:
-        return f"contains the control character U+{ord(bad.group()):04X}"
-    return None
-
-
 def _shown(value: Any) -> str:
     """``repr(value)``, cut to 200 characters."""
     try:
@@ -293,7 +167,7 @@ def _where_line(p: Path, lines: dict[str, int], line: int) -> str:
 def parse_project(text: str, path: str | os.PathLike[str] = "project.toml") -> Project:
     """Validate the text of a project file (see :func:`load_project`)."""
     p = Path(path)
-    lines = _key_lines(text)
+    lines = key_lines(text)
     deep = _nesting_problem(text)
     if deep:
         raise InputError(_where_line(p, lines, deep[0]), deep[1])
@@ -309,8 +183,6 @@ def parse_project(text: str, path: str | os.PathLike[str] = "project.toml") -> P
                          "(at most about 1.8e308)") from None
     except RecursionError:  # the nesting check above should make this unreachable
         raise InputError(str(p), "nests arrays or inline tables too deeply") from None
-    from .userconfig import with_user_defaults
-
     flat = with_user_defaults(_flatten(doc))  # the user's [project] defaults, if any
     for section, table in flat.items():
         if section not in KEYS:
@@ -325,7 +197,7 @@ def parse_project(text: str, path: str | os.PathLike[str] = "project.toml") -> P
                 raise InputError(where, f"unknown key{_did_you_mean(section, key)}; "
                                  f"[{section}] takes {', '.join(KEYS[section])}")
             kind, desc = KEYS[section][key]
-            problem = _check_type(kind, value) or _check_text(kind, value)
+            problem = check_type(kind, value) or check_text(kind, value)
             if problem:
                 raise InputError(where, f"{problem} — {desc} (got {_shown(value)})")
     if "map" not in flat or "scale" not in flat["map"]:

@@ -32,7 +32,8 @@ from typing import Any
 from ..core.domains import DOMAINS, Domain
 
 __all__ = ["INPUTS", "PROJECT_DOMAINS", "Input", "by_key", "defaults", "describe", "domain_of",
-           "get", "key_table", "option_names", "project_key", "records", "update_docs"]
+           "get", "key_table", "option_names", "project_key", "records", "shown",
+           "update_docs"]
 
 FILM, UAV = "film", "uav"
 
@@ -81,6 +82,11 @@ class Input:
         ``default`` is the UAV's; a camera on a manned aircraft has another (or none), so
         the API and the command line take None and :func:`scanplan.project.jobs.uav_job`
         chooses by carrier.
+    digits : int or None
+        The decimals a value of it is shown with (as QGroundControl's
+        ``FactMetaData::decimalPlaces``): the workbook's Inputs sheet, the survey design
+        sheet and ``init``'s written file show it so (:func:`shown`); the page gets it with
+        the key (``GET /api/inputs``). None for a text, a date, a CRS or a feature name.
     """
 
     name: str
@@ -99,6 +105,7 @@ class Input:
     choices: tuple[str, ...] = ()
     required: bool = False
     by_carrier: bool = False
+    digits: int | None = None
 
     @property
     def dotted(self) -> str:
@@ -119,6 +126,20 @@ def _shown(value: Any) -> str:
     if isinstance(value, float) and value.is_integer():
         return str(int(value))
     return f"{value:g}" if isinstance(value, float) else str(value)
+
+
+def shown(inp: Input, value: float) -> str:
+    """``value`` with at most the record's :attr:`~Input.digits` decimals, trailing zeros
+    dropped: how ``init`` writes an example or a default (a number TOML reads back as it
+    is written).
+
+    >>> shown(INPUTS["uav.exposure_s"], 0.0005), shown(INPUTS["uav.speed_ms"], 10.0)
+    ('0.0005', '10')
+    """
+    if inp.digits is None:
+        raise ValueError(f"{inp.dotted or inp.name} is not a number shown with decimals")
+    text = f"{value:.{inp.digits}f}"
+    return text.rstrip("0").rstrip(".") if "." in text else text
 
 
 def describe(inp: Input, *, cli: bool = False) -> str:
@@ -204,10 +225,11 @@ _RECORDS: tuple[Input, ...] = (
     # [map]
     Input("map_scale", "map", "scale", "scale",
           'map scale denominator Mk, 2000 or "1:2000"', required=True, domain="map_scale",
-          option="--map-scale", commands=(FILM, UAV), cli_help="map scale, 2000 or 1:2000"),
+          option="--map-scale", commands=(FILM, UAV), cli_help="map scale, 2000 or 1:2000",
+          digits=0),
     Input("relief_interval_m", "map", "relief_interval_m", _NUM,
           "relief (contour) interval h_c [m]", "m", required=True,
-          domain="relief_interval_m", option="--relief", commands=(FILM, UAV)),
+          domain="relief_interval_m", option="--relief", commands=(FILM, UAV), digits=2),
     # [norms]
     Input("norms", "norms", "set", _STR, "norm set name, or a folder relative to the "
           "project file", default="gkinp-02-036-02", option="--norms", commands=(FILM, UAV),
@@ -215,7 +237,7 @@ _RECORDS: tuple[Input, ...] = (
           cli_help="norm set name or folder (scanplan norms list)"),
     Input("pr_coefficient", "norms", "pr_coefficient", _NUM, "k_R in P_R = k_R/R",
           note="default: the set's, 0.5; the Instruction prints 0.4", domain="pr_coefficient",
-          option="--pr-coefficient", commands=(FILM,)),
+          option="--pr-coefficient", commands=(FILM,), digits=2),
     Input("height_formula", "norms", "height_formula", _STR, '"instruction" or "parallax": '
           "the film height constraint", note="default: the set's", option="--height-formula",
           commands=(FILM,), choices=("instruction", "parallax", "normal_case"),
@@ -223,13 +245,13 @@ _RECORDS: tuple[Input, ...] = (
           "only)"),
     Input("probability", "norms", "probability", _NUM,
           "required recognition probability, 0 < P < 1", note="default: the set's, 0.75",
-          domain="probability", option="--probability", commands=(FILM, UAV)),
+          domain="probability", option="--probability", commands=(FILM, UAV), digits=3),
     Input("shape", "norms", "shape", _STR, "shape of the object to interpret",
           note="default: the norm table's", option="--shape", commands=(FILM, UAV),
           cli_help="object shape: circle|rectangle|angle|square|wall"),
     Input("object_size_m", "norms", "object_size_m", _NUM, "size of the object to "
           "interpret [m]", "m", note="default: the norm table's for the map scale",
-          domain="object_size_m", option="--object-size-m", commands=(FILM, UAV)),
+          domain="object_size_m", option="--object-size-m", commands=(FILM, UAV), digits=3),
     Input("object_name", "norms", "object_name", _STR, "name of the project's own object "
           "(with object_size_m); shown in the reports as written", option="--object-name",
           commands=(FILM, UAV), cli_help="name of your own object (with --object-size-m), "
@@ -259,7 +281,7 @@ _RECORDS: tuple[Input, ...] = (
           note="optional; default: the catalogue's model name"),
     Input("focal_mm", "film", "focal_mm", _NUM, "focal length [mm]", "mm",
           domain="focal_mm", option="--focal-mm", commands=(FILM,),
-          cli_help="focal length [mm] (no --camera)"),
+          cli_help="focal length [mm] (no --camera)", digits=2),
     Input("frame_mm", "film", "frame_mm", _STR, 'frame "WxH" [mm], across × along track',
           "mm", option="--frame-mm", commands=(FILM,),
           fields=("frame_width_mm", "frame_along_mm"),
@@ -267,30 +289,31 @@ _RECORDS: tuple[Input, ...] = (
     Input("resolving_power_lpmm", "film", "resolving_power_lpmm", _NUM,
           "resolving power of the photos R [lines/mm]", "lines/mm",
           note="default: the camera's", domain="resolving_power_lpmm",
-          option="--resolving-power", commands=(FILM,)),
+          option="--resolving-power", commands=(FILM,), digits=1),
     Input("forward_overlap_pct", "film", "forward_overlap_pct", _NUM, "forward overlap [%]",
           "%", note="default: the norm set's, 60", domain="forward_overlap_pct",
-          option="--overlap-pct", commands=(FILM,)),
+          option="--overlap-pct", commands=(FILM,), digits=1),
     Input("side_overlap_pct", "film", "side_overlap_pct", _NUM, "side overlap [%]", "%",
-          default=_FILM_SIDE_OVERLAP_PCT, domain="side_overlap_pct"),
+          default=_FILM_SIDE_OVERLAP_PCT, domain="side_overlap_pct", digits=1),
     Input("photo_scales", "film", "photo_scales", "scales",
           "candidate photo scales Mc to choose from (or photo_scale)", domain="photo_scale",
           option="--photo-scale", commands=(FILM,), fields=("photo_scale",),
           cli_help="photo scale; repeat for a sweep (like Tables 6–9 of Miheeva & "
-          "Ilushenko 2015)"),
+          "Ilushenko 2015)", digits=0),
     Input("photo_scale", "film", "photo_scale", "scale", "the scale of existing (archive) "
           "photos to scan, e.g. 12000: given, not chosen (instead of photo_scales)",
-          domain="photo_scale"),
+          domain="photo_scale", digits=0),
     Input("scanner", "film", "scanner", _STR, "scanner id: scan pixels it offers",
           note="optional", option="--scanner", commands=(FILM,),
           cli_help="scanner id: round the pixel down to its steps"),
     Input("pixel_um", "", "", _NUM, "a scan pixel you have [µm]: show the largest photo "
-          "scale it supports (repeatable)", "µm", option="--pixel-um", commands=(FILM,)),
+          "scale it supports (repeatable)", "µm", option="--pixel-um", commands=(FILM,), digits=2),
     Input("bands", "film", "bands", _INT, "bands per scanned frame", default=1,
           domain="bands", option="--bands", commands=(FILM,),
-          cli_help="bands per scanned frame (1 panchromatic, 3 colour)"),
+          cli_help="bands per scanned frame (1 panchromatic, 3 colour)", digits=0),
     Input("bits_per_band", "film", "bits_per_band", _INT, "bits per band", default=8,
-          domain="bits_per_band", option="--bit-depth", commands=(FILM,), choices=("8", "16")),
+          domain="bits_per_band", option="--bit-depth", commands=(FILM,), choices=("8", "16"),
+          digits=0),
     # [uav]
     Input("camera", "uav", "camera", _STR, "digital camera id (or pixel_um + focal_mm + "
           "sensor_mm)", option="--camera", commands=(UAV,),
@@ -301,9 +324,10 @@ _RECORDS: tuple[Input, ...] = (
           commands=(UAV,), cli_help="the camera's name in the reports (a camera given by "
           "--pixel-um, --focal-mm and --sensor-mm)"),
     Input("pixel_um", "uav", "pixel_um", _NUM, "pixel pitch [µm]", "µm", domain="pixel_um",
-          option="--pixel-um", commands=(UAV,), cli_help="pixel pitch [µm] (no --camera)"),
+          option="--pixel-um", commands=(UAV,), cli_help="pixel pitch [µm] (no --camera)",
+          digits=2),
     Input("focal_mm", "uav", "focal_mm", _NUM, "focal length [mm]", "mm", domain="focal_mm",
-          option="--focal-mm", commands=(UAV,)),
+          option="--focal-mm", commands=(UAV,), digits=2),
     Input("sensor_mm", "uav", "sensor_mm", _STR, 'sensor "WxH" [mm], W across track when '
           "mounted landscape", "mm", option="--sensor-mm", commands=(UAV,),
           fields=("sensor_width_mm", "sensor_height_mm"),
@@ -315,45 +339,45 @@ _RECORDS: tuple[Input, ...] = (
           "footprint, spacing and base"),
     Input("f_number", "uav", "f_number", _NUM, "working f-number",
           note="default: the catalogue's", domain="f_number", option="--f-number",
-          commands=(UAV,)),
+          commands=(UAV,), digits=1),
     Input("height_m", "uav", "height_m", _NUM, "planned flight height above ground [m]", "m",
           note="default: the maximum planned height, rounded down to 5 m",
           domain="height_m", option="--height-m", commands=(UAV,),
           cli_help="planned flight height above ground [m]; without it --map-scale or --gsd-cm "
-          "give it"),
+          "give it", digits=1),
     Input("gsd_cm", "uav", "gsd_cm", _NUM, "target ground sample distance [cm]: the flight "
           "must deliver it at the highest flown height", "cm", note="optional",
-          domain="gsd_cm", option="--gsd-cm", commands=(UAV,)),
+          domain="gsd_cm", option="--gsd-cm", commands=(UAV,), digits=1),
     Input("parallax_error_px", "uav", "parallax_error_px", _NUM, "RMS error of a measured "
           "x-parallax σ_px in the height-accuracy model [px]: an assumption (tie-point "
           "reprojection errors of processing reports suggest 0.5–1.4 px)", "px",
           note="default: the norm set's image_measurement_px, 0.5",
-          domain="parallax_error_px", option="--parallax-error-px", commands=(UAV,)),
+          domain="parallax_error_px", option="--parallax-error-px", commands=(UAV,), digits=2),
     Input("max_height_m", "uav", "max_height_m", _NUM, "altitude ceiling for the highest "
           "flown height above ground [m]", "m", note="default for a UAV: the norm set's, "
           "150 m; none for an aircraft", domain="max_height_m", option="--max-height-m",
-          commands=(UAV,)),
+          commands=(UAV,), digits=0),
     Input("height_tolerance_pct", "uav", "height_tolerance_pct", _NUM, "how much higher the "
           "UAV may fly [%]", "%", default=0.0, domain="height_tolerance_up_pct",
           option="--height-tolerance-pct", commands=(UAV,),
           fields=("height_tolerance_up_pct",),
           cli_help="how much higher the UAV may fly than planned [%], e.g. 40: the Ptero-E "
-          "flight of 2014 was planned at 300 m and flew up to 420 m"),
+          "flight of 2014 was planned at 300 m and flew up to 420 m", digits=1),
     Input("speed_ms", "uav", "speed_ms", _NUM, "ground speed [m/s]", "m/s", default=15.0,
           by_carrier=True, note="required for a camera on an aircraft", domain="speed_ms",
-          option="--speed-ms", commands=(UAV,)),
+          option="--speed-ms", commands=(UAV,), digits=1),
     Input("exposure_s", "uav", "exposure_s", _NUM, "exposure time [s]", "s", default=0.001,
-          domain="exposure_s", option="--exposure-s", commands=(UAV,)),
+          domain="exposure_s", option="--exposure-s", commands=(UAV,), digits=5),
     Input("forward_overlap_pct", "uav", "forward_overlap_pct", _NUM, "forward overlap [%]",
           "%", default=80.0, by_carrier=True, note="on an aircraft the norm set's 60",
-          domain="forward_overlap_pct", option="--overlap-pct", commands=(UAV,)),
+          domain="forward_overlap_pct", option="--overlap-pct", commands=(UAV,), digits=1),
     Input("side_overlap_pct", "uav", "side_overlap_pct", _NUM, "side overlap [%]", "%",
           default=60.0, by_carrier=True, note=f"on an aircraft {_FILM_SIDE_OVERLAP_PCT:g}",
-          domain="side_overlap_pct", option="--side-overlap-pct", commands=(UAV,)),
+          domain="side_overlap_pct", option="--side-overlap-pct", commands=(UAV,), digits=1),
     Input("roll_deg", "uav", "roll_deg", _NUM, "roll for the tilted-frame corner GSD [°]",
-          "°", default=0.0, domain="roll_deg", option="--roll-deg", commands=(UAV,)),
+          "°", default=0.0, domain="roll_deg", option="--roll-deg", commands=(UAV,), digits=2),
     Input("pitch_deg", "uav", "pitch_deg", _NUM, "pitch for the tilted-frame corner GSD [°]",
-          "°", default=0.0, domain="pitch_deg", option="--pitch-deg", commands=(UAV,)),
+          "°", default=0.0, domain="pitch_deg", option="--pitch-deg", commands=(UAV,), digits=2),
     Input("height_formula", "uav", "height_formula", _STR, '"normal_case", "instruction" or '
           '"parallax": the height constraint of the digital block',
           note='default: the set\'s, "normal_case"', option="--height-formula",
@@ -362,39 +386,40 @@ _RECORDS: tuple[Input, ...] = (
           "only)"),
     Input("r_max", "uav.target", "r_max", _NUM,
           "brightness coefficient of the lightest detail", default=0.3, domain="r_max",
-          option="--r-max", commands=(UAV,)),
+          option="--r-max", commands=(UAV,), digits=3),
     Input("r_min", "uav.target", "r_min", _NUM, "brightness coefficient of the darkest detail",
-          default=0.1, domain="r_min", option="--r-min", commands=(UAV,)),
+          default=0.1, domain="r_min", option="--r-min", commands=(UAV,), digits=3),
     Input("threshold_k0", "uav.atmosphere", "threshold_k0", _NUM,
           "sensor threshold contrast at low frequency", default=0.03, domain="threshold_k0",
-          option="--k0", commands=(UAV,), fields=("k0",)),
+          option="--k0", commands=(UAV,), fields=("k0",), digits=3),
     Input("haze_contrast", "uav.atmosphere", "haze_contrast", _NUM,
           "contrast transmission of the air column c, 0 < c ≤ 1", default=0.9,
           note="clear air below 500 m", domain="haze_contrast", option="--haze-contrast",
-          commands=(UAV,)),
+          commands=(UAV,), digits=3),
     Input("shift_factor", "uav.motion", "shift_factor", _NUM,
           "photographic/geometric image shift, 0 < k ≤ 1", default=1.0,
           note="0.6–0.7 summer, 1 bright canopy", domain="shift_factor",
-          option="--shift-factor", commands=(UAV,)),
+          option="--shift-factor", commands=(UAV,), digits=2),
     Input("random_speed_ms", "uav.motion", "random_speed_ms", _NUM,
           "RMS random linear speed [m/s]", "m/s", default=0.0, domain="random_speed_ms",
           option="--random-speed-ms", commands=(UAV,),
-          cli_help="RMS random linear speed of a light UAV [m/s]"),
+          cli_help="RMS random linear speed of a light UAV [m/s]", digits=2),
     Input("roll_rate_rad_s", "uav.motion", "roll_rate_rad_s", _NUM, "RMS roll rate [rad/s]",
           "rad/s", default=0.0, domain="roll_rate_rad_s", option="--roll-rate",
-          commands=(UAV,), cli_help="RMS angular rate about the longitudinal axis [rad/s]"),
+          commands=(UAV,), cli_help="RMS angular rate about the longitudinal axis [rad/s]",
+          digits=4),
     Input("pitch_rate_rad_s", "uav.motion", "pitch_rate_rad_s", _NUM,
           "RMS pitch rate [rad/s]", "rad/s", default=0.0, domain="pitch_rate_rad_s",
           option="--pitch-rate", commands=(UAV,),
-          cli_help="RMS angular rate about the transverse axis [rad/s]"),
+          cli_help="RMS angular rate about the transverse axis [rad/s]", digits=4),
     Input("yaw_rate_rad_s", "uav.motion", "yaw_rate_rad_s", _NUM, "RMS yaw rate [rad/s]",
           "rad/s", default=0.0, domain="yaw_rate_rad_s", option="--yaw-rate",
-          commands=(UAV,), cli_help="RMS angular rate about the vertical axis [rad/s]"),
+          commands=(UAV,), cli_help="RMS angular rate about the vertical axis [rad/s]", digits=4),
     # [area]
     Input("area_width_m", "area", "width_m", _NUM, "block width across the flight lines [m]",
-          "m", domain="area_width_m"),
+          "m", domain="area_width_m", digits=1),
     Input("area_length_m", "area", "length_m", _NUM,
-          "block length along the flight lines [m]", "m", domain="area_length_m"),
+          "block length along the flight lines [m]", "m", domain="area_length_m", digits=1),
     Input("file", "area", "file", _STR, "the contract polygon: a KML, KMZ, GeoJSON, "
           "GeoPackage or Shapefile, or a CSV/TXT list of its vertices, relative to the "
           "project file"),
@@ -403,35 +428,35 @@ _RECORDS: tuple[Input, ...] = (
     Input("feature", "area", "feature", "feature", "the polygon's name, or its number from 1 "
           "(when the file holds several)"),
     Input("polygon", "area", "polygon", "polygon", "the contract polygon inline, [[lon, lat], "
-          "...] (WGS 84 unless crs)"),
+          "...] (WGS 84 unless crs)", digits=7),
     Input("crs", "area", "crs", "crs", 'CRS of the polygon\'s coordinates when not WGS 84, '
           'e.g. "EPSG:28407"'),
     Input("plan_crs", "area", "plan_crs", "crs", "projected CRS to plan in (default: the "
           "polygon's own when projected in metres, else the UTM zone of the area)"),
     Input("direction_deg", "area", "direction_deg", "direction", "flight-line direction "
           'clockwise from grid north [°], or "auto": the least flight length', "°",
-          default="auto", option="--direction-deg", commands=(UAV,)),
+          default="auto", option="--direction-deg", commands=(UAV,), digits=1),
     Input("extension_bases", "area", "extension_bases", _INT, "exposures past each end of a "
-          "strip, in photo bases", default=1),
+          "strip, in photo bases", default=1, digits=0),
     Input("turnaround_m", "uav", "turnaround_m", _NUM, "multirotor: distance flown past each "
           "strip end before turning [m]", "m", note="default: a semicircle across the line "
-          "spacing", domain="turnaround_m"),
+          "spacing", domain="turnaround_m", digits=0),
     Input("turn_radius_m", "uav", "turn_radius_m", _NUM, "fixed-wing: turn radius between "
-          "strips [m]", "m", domain="turn_radius_m"),
+          "strips [m]", "m", domain="turn_radius_m", digits=0),
     Input("bank_deg", "uav", "bank_deg", _NUM, "fixed-wing: bank angle in the turns [°]; the "
-          "radius follows from the speed, r = v²/(g·tan φ)", "°", domain="bank_deg"),
+          "radius follows from the speed, r = v²/(g·tan φ)", "°", domain="bank_deg", digits=1),
     Input("takeoff", "flight", "takeoff", "point", "take-off and landing point of every "
           "sortie, [lon, lat] (WGS 84): the missions' home; each sortie's transit to the "
           "block and back is flown within its battery and counted in the flight's length "
           "and time", note="default: none — no transit counted, each mission's home is its "
-          "first waypoint"),
+          "first waypoint", digits=7),
     Input("max_flight_time_min", "uav", "max_flight_time_min", _NUM, "flight time of one "
           "sortie [min]: the aircraft's endurance on one battery less the reserve; the block "
           "is split into sorties of at most this long, and the schedule counts its flying "
           "days from the same sorties", "min",
           note="default: [schedule] sortie_time_min; with [schedule] and neither key 25 for "
           "a UAV, 180 for an aircraft; else one flight", option="--max-flight-time-min",
-          commands=(UAV,), domain="sortie_time_min"),
+          commands=(UAV,), domain="sortie_time_min", digits=0),
     Input("area_file", "", "", _STR, "contract polygon: KML, KMZ, GeoJSON, GeoPackage or "
           "Shapefile; strips and photos are laid out over it (not with --area-m)",
           option="--area-file", commands=(FILM, UAV), fields=("file",)),
@@ -442,12 +467,12 @@ _RECORDS: tuple[Input, ...] = (
           option="--area-layer", commands=(FILM, UAV), fields=("layer",)),
     Input("film_side_overlap_pct", "", "", _NUM, "side overlap [%] of the flight scheme over "
           "--area-file", "%", note="default 30", option="--side-overlap-pct",
-          commands=(FILM,), domain="side_overlap_pct"),
+          commands=(FILM,), domain="side_overlap_pct", digits=1),
     # [terrain] (the one-height rule of GOST R 59328-2021 §6.2.1)
     Input("ground_elevation_m", "terrain", "ground_elevation_m", "range", "lowest and "
           "highest ground in the block, buildings included, [min, max] [m], without a DEM: "
           "the plan's ground range, checked against the one-height rule of GOST R 59328-2021 "
-          "§6.2.1", "m"),
+          "§6.2.1", "m", digits=1),
     Input("dem", "terrain", "dem", _STR, "digital elevation model: a GeoTIFF in any CRS, "
           "relative to the project file (or ground_elevation_m)"),
     Input("altitude_mode", "terrain", "altitude_mode", _STR, '"constant" (one altitude, the '
@@ -455,14 +480,14 @@ _RECORDS: tuple[Input, ...] = (
           "(terrain following)", default="constant",
           choices=("constant", "strip", "follow")),
     Input("follow_tolerance_m", "terrain", "follow_tolerance_m", _NUM, "follow mode: how far "
-          "the height above ground may exceed the planned height [m]", "m", default=5.0),
+          "the height above ground may exceed the planned height [m]", "m", default=5.0, digits=1),
     Input("void_fill_radius_m", "terrain", "void_fill_radius_m", _NUM, "no-data in the DEM "
           "within this distance of known ground is filled with the highest known ground "
           "within it plus void_fill_margin_m (farther no-data counts as missing) [m]", "m",
-          default=50.0),
+          default=50.0, digits=0),
     Input("void_fill_margin_m", "terrain", "void_fill_margin_m", _NUM, "added to the "
           "highest (taken from the lowest) known ground of a filled void [m]", "m",
-          default=10.0),
+          default=10.0, digits=1),
     Input("vertical_unit", "terrain", "vertical_unit", _STR, '"m", "ft", "us-ft", "dm" or '
           '"cm": the unit of the DEM\'s heights', default="m",
           choices=("m", "ft", "us-ft", "dm", "cm")),
@@ -471,28 +496,28 @@ _RECORDS: tuple[Input, ...] = (
           choices=("flat", "hilly", "mountainous")),
     # [site] and [schedule]: the sun window and the flying days
     Input("lat_deg", "site", "lat_deg", _NUM, "latitude of the site, WGS 84 [°], north "
-          "positive (sun window)", "°", domain="lat_deg"),
+          "positive (sun window)", "°", domain="lat_deg", digits=4),
     Input("lon_deg", "site", "lon_deg", _NUM, "longitude of the site, WGS 84 [°], east "
-          "positive (sun window)", "°", domain="lon_deg"),
+          "positive (sun window)", "°", domain="lon_deg", digits=4),
     Input("start_date", "schedule", "start_date", "date", "first planned flying date, e.g. "
           "2025-06-01"),
     Input("end_date", "schedule", "end_date", "date", "last planned flying date",
           note="default: 30 days after start_date"),
     Input("utc_offset_h", "schedule", "utc_offset_h", _NUM, "local time = UTC + offset [h]",
           "h", note="default: the legal time of the site's time zone, found from lat/lon, "
-          "summer time included", domain="utc_offset_h"),
+          "summer time included", domain="utc_offset_h", digits=2),
     Input("sortie_time_min", "schedule", "sortie_time_min", _NUM, "flight time of one sortie "
           "(battery or fuel) [min]: the same number as [uav] max_flight_time_min (give one, "
           "or both equal; two different values are an error); it also splits the flight "
           "layout, so the layout and the schedule count the same sorties", "min",
           note="default: [uav] max_flight_time_min, else 25 for a UAV, 180 for an aircraft",
-          domain="sortie_time_min"),
+          domain="sortie_time_min", digits=0),
     Input("turnaround_min", "schedule", "turnaround_min", _NUM, "ground time between "
           "sorties [min]", "min", note="default 15 for a UAV, 60 for an aircraft",
-          domain="turnaround_min"),
+          domain="turnaround_min", digits=0),
     Input("min_sun_elevation_deg", "schedule", "min_sun_elevation_deg", _NUM, "lowest sun "
           "elevation for photography [°]", "°", note="default: the norm set's, 30°",
-          domain="min_sun_elevation_deg"),
+          domain="min_sun_elevation_deg", digits=0),
     Input("area_m", "", "", _STR, "block to cover, WIDTHxLENGTH [m], e.g. 2000x3000", "m",
           option="--area-m", commands=(UAV,),
           fields=("area", "area_width_m", "area_length_m")),

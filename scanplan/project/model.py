@@ -69,6 +69,8 @@ class FieldMeta:
         Its range (None: no numeric domain).
     choices : tuple of str
         The allowed texts (empty: any).
+    digits : int or None
+        The decimals a value is shown with (None: not a number shown with decimals).
     """
 
     section: str
@@ -78,17 +80,19 @@ class FieldMeta:
     default: Any
     domain: Domain | None
     choices: tuple[str, ...]
+    digits: int | None = None
 
 
 def field_meta(section: str, key: str) -> FieldMeta:
     """The registry's record of ``section.key`` as :class:`FieldMeta`.
 
     >>> m = field_meta("site", "lat_deg")
-    >>> m.unit, m.domain.lo, m.domain.hi
-    ('°', -90, 90)
+    >>> m.unit, m.domain.lo, m.domain.hi, m.digits
+    ('°', -90, 90, 4)
     """
     r = by_key(section, key)
-    return FieldMeta(section, key, r.name, r.unit, r.default, domain_of(r), r.choices)
+    return FieldMeta(section, key, r.name, r.unit, r.default, domain_of(r), r.choices,
+                     r.digits)
 
 
 @dataclass(frozen=True)

@@ -25,6 +25,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import InputError
+from .keys import KEYS, check_text, check_type, key_lines
 
 __all__ = ["SECTION", "config_path", "user_defaults", "with_user_defaults"]
 
@@ -45,9 +46,7 @@ def config_path() -> Path:
 
 
 def _validate(doc: dict[str, Any], path: Path, text: str) -> dict[str, Any]:
-    from .file import KEYS, _check_text, _check_type, _key_lines
-
-    lines = _key_lines(text)
+    lines = key_lines(text)
 
     def where(key: str) -> str:
         dotted = f"{SECTION}.{key}" if key else SECTION
@@ -64,7 +63,7 @@ def _validate(doc: dict[str, Any], path: Path, text: str) -> dict[str, Any]:
             raise InputError(where(key), f"unknown key; [{SECTION}] of the configuration "
                              f"takes {', '.join(k for k in KEYS[SECTION] if k != 'name')}")
         kind, desc = KEYS[SECTION][key]
-        problem = _check_type(kind, value) or _check_text(kind, value)
+        problem = check_type(kind, value) or check_text(kind, value)
         if problem:
             raise InputError(where(key), f"{problem} — {desc}")
     if table.get("locale", "en") not in ("en", "ru"):

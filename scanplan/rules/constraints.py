@@ -1,6 +1,6 @@
 """The built-in constraints: seed 001's P_S, P_Z, P_P, P_R, P_D and the UAV-only limits.
 
-Each constraint is one :class:`~scanplan.rules.registry.Constraint` record plus the small
+Each constraint is one :class:`~scanplan.rules.record.Constraint` record plus the small
 functions it names: the film pixel (seed 001, eqs. 1–6), the reason with the contract's
 numbers, and the digital ground limit (the same limit on the ground, Mc = 1, compared with
 the GSD or the MTF ground resolution L; docs/uav-models.md §9–10). The texts are keys of
@@ -25,12 +25,12 @@ from ..core import formulas as F
 from ..core import photoscale as PS
 from ..core import stereo as S
 from ..messages import Message
-from .registry import Constraint, DigitalLimit, FilmArgs, register
+from .record import Constraint, DigitalLimit, FilmArgs
 
 if TYPE_CHECKING:
     from .results import ScanInputs, ScanRules, UavInputs
 
-__all__ = ["height_accuracy", "height_formula_name", "sigma_z_m", "stereo_geometry"]
+__all__ = ["BUILTIN", "height_accuracy", "height_formula_name", "sigma_z_m", "stereo_geometry"]
 
 
 def height_formula_name(formula: str) -> Message | str:
@@ -357,7 +357,7 @@ def _gl_ground(inp: UavInputs, rules: ScanRules | None) -> DigitalLimit | None:
                         {"area": inp.gsd_limit_area, "source": inp.gsd_limit_source})
 
 
-for _record in (
+BUILTIN: tuple[Constraint, ...] = (
     Constraint("PS", "planimetric accuracy", "точность в плане", Message("protects.PS"),
                Message("equation.PS"), True, "GSD", _ps_pixel, _ps_reason, None, _ps_ground),
     Constraint("PZ", "height accuracy", "точность по высоте", Message("protects.PZ"),
@@ -381,5 +381,6 @@ for _record in (
     Constraint("HC", "altitude ceiling", "предельная высота полёта", Message("protects.HC"),
                Message("equation.HC"), False, "H", ground_limit=_hc_ground,
                norm_switch=False, needs_map=False),
-):
-    register(_record)
+)
+"""The built-in records, in the Instruction's order, then the UAV-only limits (the
+registry, :mod:`scanplan.rules.registry`, holds them when it is imported)."""

@@ -34,15 +34,13 @@ from typing import Any
 from ..errors import InputError
 from .tomlfile import project_tables, project_toml
 
-__all__ = ["FILE_KEYS", "JOBS", "MAX_MAP_PHOTOS", "PROJECT_NAME", "catalogue_job", "files_job",
+__all__ = ["FILE_KEYS", "JOBS", "PROJECT_NAME", "catalogue_job", "files_job",
            "plan_job", "view_job"]
 
 PROJECT_NAME = "project.toml"
 """The project file's name in the job's folder (and in the messages)."""
 FILE_KEYS = (("area", "file"), ("terrain", "dem"))
 """The keys that name a file: on the page, only an uploaded one."""
-MAX_MAP_PHOTOS = 5_000
-"""Most photo centres drawn on the map; a larger flight shows every k-th."""
 _SAFE_PART = re.compile(r"^[A-Za-z0-9][A-Za-z0-9._-]*$")
 
 

@@ -2,7 +2,7 @@
 
 One FeatureCollection: the area (``kind: "area"``), each strip's photographed parts
 (``"strip"``, with its number and sortie), the photo centres (``"photos"``, one MultiPoint
-per flight, every k-th when there are more than :data:`~scanplan.web.jobs.MAX_MAP_PHOTOS`)
+per flight, every k-th when there are more than :data:`MAX_MAP_PHOTOS`)
 and each sortie's take-off (``"takeoff"``: its first photo, where the mission files put
 the home). Coordinates come from the same layout as the exported files; an abstract block
 (``width_m × length_m``) has no place on the map and gives an empty collection.
@@ -14,7 +14,10 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["map_features"]
+__all__ = ["MAX_MAP_PHOTOS", "map_features"]
+
+MAX_MAP_PHOTOS = 5_000
+"""Most photo centres drawn on the map; a larger flight shows every k-th."""
 
 
 def _feature(kind: str, geometry: dict[str, Any], **props: Any) -> dict[str, Any]:
@@ -66,7 +69,6 @@ def _layout(platform: str, layout: Any, most_photos: int) -> list[dict[str, Any]
 def map_features(result: Any) -> dict[str, Any]:
     """The GeoJSON FeatureCollection of a :class:`~scanplan.project.spec.PlanResult`."""
     from ..reports.exports import spec_layouts
-    from .jobs import MAX_MAP_PHOTOS
 
     features: list[dict[str, Any]] = []
     area = result.area

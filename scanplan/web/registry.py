@@ -1,7 +1,7 @@
 """The input registry as the page's form reads it (``GET /api/inputs``).
 
 One row per key of a project file, from :mod:`scanplan.project.inputs` (the names, units,
-defaults, choices and help the project file and the command line use) and the numeric
+defaults, choices, help and digits the project file and the command line use) and the numeric
 domain of each record (:func:`~scanplan.project.inputs.domain_of`: the range the server
 checks, with the command line's and the project file's messages). The label is the
 reports' name of the quantity where the report catalogue has one in the page's language;
@@ -32,12 +32,14 @@ def _label(name: str, key: str, locale: str) -> str:
 def input_rows(locale: str = "en") -> list[dict[str, Any]]:
     """Every key of a project file: ``section``, ``key``, ``name`` (the Python name),
     ``kind``, ``unit``, ``default``, ``choices``, ``required``, ``min``/``max`` (the
-    domain, with ``min_open``/``max_open``), ``help`` (with the default and note),
-    ``label`` and ``managed`` (set by the page itself).
+    domain, with ``min_open``/``max_open``), ``digits`` (the decimals the page shows a
+    value with: the default and a drawn polygon's coordinates; None for a text),
+    ``help`` (with the default and note), ``label`` and ``managed`` (set by the page
+    itself).
 
     >>> row = next(r for r in input_rows() if (r["section"], r["key"]) == ("uav", "speed_ms"))
-    >>> row["unit"], row["default"], row["min"], row["min_open"]
-    ('m/s', 15.0, 0, False)
+    >>> row["unit"], row["default"], row["min"], row["min_open"], row["digits"]
+    ('m/s', 15.0, 0, False, 1)
     """
     rows = []
     for inp in INPUTS.values():
@@ -50,6 +52,7 @@ def input_rows(locale: str = "en") -> list[dict[str, Any]]:
             "choices": list(inp.choices), "required": inp.required,
             "min": dom.lo if dom else None, "max": dom.hi if dom else None,
             "min_open": dom.lo_open if dom else False, "max_open": dom.hi_open if dom else False,
+            "digits": inp.digits,
             "help": describe(inp), "label": _label(inp.name, inp.key, locale),
             "managed": (inp.section, inp.key) in MANAGED})
     return rows

@@ -72,9 +72,15 @@
   const palette = ["#d94801", "#2171b5", "#238b45", "#6a51a3", "#cb181d", "#0e7c7b",
                    "#b8860b", "#7a0177"];
 
+  /* a number with the decimals of its key's registry record (GET /api/inputs: digits) */
+  function digitsOf(key) {
+    const row = state.inputs.find((r) => r.section + "." + r.key === key);
+    return row && row.digits != null ? row.digits : null;
+  }
+  const withDigits = (x, d) => d == null ? x : Number(x.toFixed(d));
   function drawnRing(layer) {
-    const ll = layer.getLatLngs()[0];
-    return ll.map((p) => [Number(p.lng.toFixed(7)), Number(p.lat.toFixed(7))]);
+    const ll = layer.getLatLngs()[0], d = digitsOf("area.polygon");
+    return ll.map((p) => [withDigits(p.lng, d), withDigits(p.lat, d)]);
   }
   function useDrawn(layer) {
     if (drawn && drawn !== layer) map.removeLayer(drawn);
@@ -268,7 +274,8 @@
     } else {
       el = document.createElement("input");
       el.type = "text";
-      el.placeholder = row.default != null ? String(row.default) : "";
+      el.placeholder = row.default == null ? "" : typeof row.default === "number"
+        ? String(withDigits(row.default, row.digits)) : String(row.default);
     }
     el.id = id; el.title = row.help + range; el.dataset.kind = row.kind;
     el.dataset.key = row.section + "." + row.key;
