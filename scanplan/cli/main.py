@@ -24,7 +24,7 @@ from ..project.inputs import option_names
 from . import console, outputs
 from .errors import Failed, PolicyGroup
 from .options import NORM_INPUTS, REPORT_INPUTS, decimal, input_option, unlisted_inputs
-from .outset import batch_text, say_export_notes, write_reports
+from .outset import batch_text, say_export_notes, write_reports, write_set
 from .projects import check_stdin
 
 OPTION_NAMES = option_names()
@@ -585,7 +585,6 @@ def _write_summary(out_dir: str, rows: list[dict[str, Any]], force: bool,
     """summary.csv and summary.xlsx of a batch (one row per project), as one transaction."""
     from ..api import SUMMARY_COLUMNS, summary_frame
     from ..io.targets import check_target
-    from ..reports import write_atomic_many
     from ..reports.summary import summary_csv, summary_xlsx
 
     frame = summary_frame(rows, [*SUMMARY_COLUMNS, "error"])
@@ -596,10 +595,8 @@ def _write_summary(out_dir: str, rows: list[dict[str, Any]], force: bool,
             check_target(path, "--out", kind, inputs=files, force=force)
 
     check()
-    write_atomic_many({targets["csv"]: summary_csv(frame),
-                       targets["xlsx"]: summary_xlsx(frame)}, check=check)
-    for path in targets.values():
-        console.info(f"wrote {path}")
+    write_set({targets["csv"]: summary_csv(frame), targets["xlsx"]: summary_xlsx(frame)},
+              check=check, sweep=None, say=console.info)
 
 
 def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: str | None,
