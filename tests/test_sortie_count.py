@@ -20,9 +20,9 @@ from click.testing import CliRunner
 import scanplan
 from scanplan.cli.main import main
 from scanplan.errors import InputError
+from scanplan.i18n.labels import t
 from scanplan.project.file import parse_project
 from scanplan.project.spec import plan_project
-from scanplan.reports.labels import t
 
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLES = sorted((ROOT / "examples").glob("*.toml"))

@@ -16,6 +16,8 @@ from pathlib import Path
 
 import pytest
 
+from scanplan.i18n.labels import t
+from scanplan.i18n.numbers import Numbers
 from scanplan.project.file import load_project
 from scanplan.project.spec import plan_project
 from scanplan.reports import plots
@@ -30,9 +32,7 @@ from scanplan.reports.chartscale import (
     nice_ticks,
     text_width_pt,
 )
-from scanplan.reports.labels import t
 from scanplan.reports.svgchart import Chart
-from scanplan.reports.view import Numbers
 from scanplan.rules.registry import CONSTRAINTS
 
 ROOT = Path(__file__).resolve().parents[1]

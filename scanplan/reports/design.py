@@ -18,10 +18,10 @@ from typing import Any
 from ..core import flight as FL
 from ..core.photoscale import height_at_photo_scale_m
 from ..geo.sun import zone_country
-from ..messages import Message, localize, plural, scale_text
+from ..i18n.labels import t
+from ..i18n.messages import Message, localize, plural, scale_text
+from ..i18n.numbers import Numbers
 from ..rules.registry import CONSTRAINTS
-from .labels import t
-from .view import Numbers
 from .wording import camera_title, display_message, document_date, sentence, with_status
 
 _PARTS = {"en": ("part", "parts"), "ru": ("часть", "части", "частей")}

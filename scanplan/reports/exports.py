@@ -24,8 +24,8 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Literal
 
 from ..geo.layout import FlightLayout
+from ..i18n.labels import t
 from ..io.targets import written_by_scanplan
-from .labels import t
 
 if TYPE_CHECKING:  # the writers (pandas, shapely) are imported when files are written
     from ..geo.export import ExportFormat, ExportNames, MissionOptions
@@ -197,7 +197,7 @@ def export_notes(spec: Any) -> list[Any]:
         One sentence per file not written (``.text(locale)`` in the project's language).
     """
     from ..geo.lines import MAX_PHOTO_CENTRES
-    from ..messages import Message
+    from ..i18n.messages import Message
 
     out = []
     for kind, layout in spec_layouts(spec):

@@ -24,9 +24,9 @@ import numpy as np
 
 from ..core.photoscale import height_at_photo_scale_m, photo_scale_at_height
 from ..geo.layout import FlightLayout
-from ..messages import scale_text
+from ..i18n.labels import t
+from ..i18n.messages import scale_text
 from . import exports as _exports
-from .labels import t
 from .plots import number
 
 #: matplotlib's style of the map page (the one figure still drawn with it): deterministic
@@ -207,7 +207,7 @@ def _km_ticks(axis: Any, locale: str) -> FuncFormatter:
 
 def _scale_ticks(locale: str) -> FuncFormatter:
     """Tick labels of the colour bar's local photo scales 1:Mc, written as the text writes
-    scales (:func:`scanplan.messages.scale_text` without ``1:``): 6000, 25000; Russian
+    scales (:func:`scanplan.i18n.messages.scale_text` without ``1:``): 6000, 25000; Russian
     6000, 25 000 — not the grouped numbers 6,000 / 6 000."""
     from matplotlib.ticker import FuncFormatter
 

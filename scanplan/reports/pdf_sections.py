@@ -17,14 +17,14 @@ from typing import TYPE_CHECKING, Any
 from ..core import flight as FL
 from ..core.flight import MAX_BLUR_PX
 from ..core.shown import shown_decimals
-from ..messages import localize
+from ..i18n.labels import LABELS
+from ..i18n.messages import localize
 from ..norms import NormSet
 from ..norms.schema import DIGITAL_ONLY_PARAMETERS
 from ..project.jobs import ScanJob, UavJob
 from ..rules.film import CONSTRAINTS, ScanPlan
 from ..rules.uav import UavPlan
 from .design import relief_max_height_m
-from .labels import LABELS
 from .references import Bibliography
 from .view import ReportView, warning_heading_key
 from .wording import (

@@ -16,7 +16,7 @@ import jinja2
 from markupsafe import Markup, escape
 
 from .._version import __version__
-from ..messages import document_text, localize
+from ..i18n.messages import document_text, localize
 from ..project.jobs import ScanJob, UavJob
 from . import ReportMeta, templates_dir
 from .design import design_view

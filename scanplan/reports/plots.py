@@ -13,12 +13,12 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from ..messages import scale_text
+from ..i18n.labels import t
+from ..i18n.messages import scale_text
+from ..i18n.numbers import Numbers
 from ..rules.film import CONSTRAINTS, ScanPlan
 from ..rules.uav import UavPlan
-from .labels import t
 from .svgchart import Chart, log_ticks
-from .view import Numbers
 
 __all__ = ["constraints_svg", "height_svg", "mtf_svg", "number", "terrain_svg"]
 
@@ -37,7 +37,7 @@ _TICK_GAP = 1.2  # the smallest ratio between neighbouring scale ticks (their la
 
 def number(x: float, digits: int, locale: str) -> str:
     """``x`` with ``digits`` decimals, decimal comma in Russian, thin-space thousands
-    (:meth:`scanplan.reports.view.Numbers.num`).
+    (:meth:`scanplan.i18n.numbers.Numbers.num`).
 
     Parameters
     ----------

@@ -8,11 +8,11 @@ import textwrap
 from collections.abc import Sequence
 from typing import Any
 
-from ..messages import scale_text
+from ..i18n.labels import LABELS, t
+from ..i18n.messages import scale_text
+from ..i18n.numbers import Numbers
 from ..rules.film import CONSTRAINTS
 from .jsondoc import scale_value
-from .labels import LABELS, t
-from .view import Numbers
 
 __all__ = ["format_plan_result", "table"]
 
@@ -136,7 +136,7 @@ def _plan_heading(result: Any, loc: str, T: _Terminal) -> list[str]:
 
 def _film_summary(f: Any, loc: str, T: _Terminal, cname: Any) -> list[str]:
     """The film block: photo scale, scan pixel, binding constraint, frames, the reason."""
-    from ..messages import localize
+    from ..i18n.messages import localize
 
     s = f.recommended
     lines = ["", T["film"]]
@@ -186,7 +186,7 @@ def _comparison_lines(result: Any, loc: str, T: _Terminal) -> list[str]:
 
 def _warning_lines(result: Any, loc: str, T: _Terminal) -> list[str]:
     """The warnings (``!``) and notes (``i``) with their codes."""
-    from ..messages import localize
+    from ..i18n.messages import localize
 
     lines = ["", T["warnings"]]
     for w in result.warnings:
@@ -254,7 +254,7 @@ def format_area(area: Any, locale: str = "en") -> str:
 def format_layout(layout: Any, scale: str = "", locale: str = "en") -> str:
     """One line per layout: direction, strips, photos, length (turns), time, sorties; the
     reason when it cannot be flown. Photo centres are in the exported files, not here."""
-    from ..messages import localize, plural
+    from ..i18n.messages import localize, plural
 
     T = _AREA_TEXT[locale]
     head = f"{T['lines']}" + (f" {T['at']} {scale}" if scale else "")
@@ -275,7 +275,7 @@ def format_layout(layout: Any, scale: str = "", locale: str = "en") -> str:
 
 def _uav_summary(u: Any, loc: str, T: _Terminal, cname: Any) -> list[str]:
     """The UAV part of :func:`format_plan_result`."""
-    from ..messages import localize
+    from ..i18n.messages import localize
 
     p = u.job.plan
     lines = ["", T["aircraft" if p.inputs.platform == "aircraft" else "uav"]]

@@ -10,7 +10,7 @@ functions that compute it for each workflow. A workflow whose function is None d
 know the constraint (P_R has no digital counterpart; the altitude ceiling has no film one).
 
 To add a constraint, write its function(s) and one :class:`Constraint` record in
-:mod:`scanplan.rules.constraints` (and its texts in :mod:`scanplan.messages`): the engines,
+:mod:`scanplan.rules.constraints` (and its texts in :mod:`scanplan.i18n.messages`): the engines,
 ``--json``, the terminal, the workbook and the PDF pick it up from here.
 
 >>> sorted(CONSTRAINTS)[:3]
@@ -29,6 +29,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+
+from ..i18n.labels import add_name_source
 
 if TYPE_CHECKING:
     from .results import ScanInputs, ScanRules, UavInputs
@@ -90,7 +92,7 @@ class Constraint:
     name, name_ru : str
         The human name in English and Russian (the reports' label for the id).
     protects, equation : str
-        :class:`~scanplan.messages.Message` s (or plain text): what the constraint protects;
+        :class:`~scanplan.i18n.messages.Message` s (or plain text): what the constraint protects;
         its equation and source citation.
     depends_on_photo_scale : bool
         Whether the film pixel is a ground limit divided by Mc (False for P_R).
@@ -143,6 +145,15 @@ ConstraintInfo = Constraint
 
 CONSTRAINTS: dict[str, Constraint] = {}
 """The registry: id → record, in the Instruction's order, then the UAV-only limits."""
+
+
+def _title(key: str, locale: str) -> str | None:
+    """A registered constraint's name, for the report labels (``t(cid, locale)``)."""
+    record = CONSTRAINTS.get(key)
+    return record.title(locale) if record is not None else None
+
+
+add_name_source(_title)
 
 
 def register(record: Constraint) -> Constraint:

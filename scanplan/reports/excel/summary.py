@@ -8,8 +8,8 @@ from typing import TYPE_CHECKING
 from openpyxl.worksheet.worksheet import Worksheet
 
 from ...core import flight as FL
+from ...i18n.labels import LABELS
 from ..design import relief_max_height_m
-from ..labels import LABELS
 from ..wording import (
     document_date,
     object_title,

@@ -1,5 +1,5 @@
-"""Report labels of the flight over the area (issue 11), merged into
-:data:`scanplan.reports.labels.LABELS`: the map page, the strips table, the Strips and Photos
+"""Report labels of the flight over the area, merged into
+:data:`scanplan.i18n.labels.LABELS`: the map page, the strips table, the Strips and Photos
 sheets and the names written inside the exported mission and GIS files."""
 
 from __future__ import annotations

@@ -4,11 +4,13 @@ Writers call :func:`t`; a missing key is a bug caught by ``tests`` (both locales
 the same keys). This module holds the labels of the film and UAV specifications; the rest of
 the catalogue lives by concept and is merged into :data:`LABELS` at the end: documents fit to
 sign, the terminal summary, the survey design sheet and terrain in
-:mod:`scanplan.reports.labels_more`, the flight over the area (map page, strips, exported
-files) in :mod:`scanplan.reports.labels_geo`.
+:mod:`scanplan.i18n.labels_more`, the flight over the area (map page, strips, exported
+files) in :mod:`scanplan.i18n.labels_geo`.
 """
 
 from __future__ import annotations
+
+from collections.abc import Callable
 
 LOCALES = ("en", "ru")
 
@@ -745,21 +747,36 @@ AIRCRAFT_LABELS: dict[str, dict[str, str]] = {
 ``platform = aircraft``) is an aerial survey with a digital camera, not a UAV flight."""
 
 
+_NAME_SOURCES: list[Callable[[str, str], str | None]] = []
+
+
+def add_name_source(lookup: Callable[[str, str], str | None]) -> None:
+    """Let :func:`t` name a key the catalogue does not hold: ``lookup(key, locale)`` gives
+    the name, or ``None``. The constraint registry (:mod:`scanplan.rules.registry`, a layer
+    above) adds its records' titles, so a registered constraint names itself."""
+    if lookup not in _NAME_SOURCES:
+        _NAME_SOURCES.append(lookup)
+
+
 def t(key: str, locale: str = "en", platform: str = "uav") -> str:
     """The label ``key`` in ``locale`` (``"en"`` or ``"ru"``); ``platform="aircraft"``
     words the digital-camera section as a manned aerial survey."""
     loc = locale if locale in LABELS else "en"
     if platform == "aircraft" and key in AIRCRAFT_LABELS[loc]:
         return AIRCRAFT_LABELS[loc][key]
-    if key not in LABELS[loc]:  # a registered constraint names itself
-        from ..rules.registry import CONSTRAINTS
-        if key in CONSTRAINTS:
-            return CONSTRAINTS[key].title(loc)
+    if key not in LABELS[loc]:  # e.g. a registered constraint names itself
+        for lookup in _NAME_SOURCES:
+            name = lookup(key, loc)
+            if name is not None:
+                return name
     return LABELS[loc][key]
 
 
+from .labels_geo import GEO as _GEO  # noqa: E402  (map page, strips, exported files)
+from .labels_more import DESIGN as _DESIGN  # noqa: E402  (the survey design sheet)
 from .labels_more import SIGNING as _SIGNING  # noqa: E402
 from .labels_more import TERMINAL as _TERMINAL  # noqa: E402
+from .labels_more import TERRAIN as _TERRAIN  # noqa: E402  (terrain: warnings, plot, sheet)
 
 for _loc in LOCALES:
     LABELS[_loc].update(_SIGNING[_loc])
@@ -777,15 +794,6 @@ LABELS["ru"]["reach_pixel"] = "Предельный масштаб снимко�
 LABELS["en"]["reach_interpretable"] = "Largest photo scale with the map object interpretable"
 LABELS["ru"]["reach_interpretable"] = "Предельный масштаб снимков с дешифрированием объекта"
 
-from .labels_more import DESIGN as _DESIGN  # noqa: E402  (the survey design sheet)
-
-for _loc in LOCALES:
-    LABELS[_loc].update(_DESIGN[_loc])
-from .labels_more import TERRAIN as _TERRAIN  # noqa: E402  (terrain: warnings, plot, sheet)
-
-for _loc in LOCALES:
-    LABELS[_loc].update(_TERRAIN[_loc])
-from .labels_geo import GEO as _GEO  # noqa: E402  (map page, strips, exported files)
-
-for _loc in LOCALES:
-    LABELS[_loc].update(_GEO[_loc])
+for _loc in LOCALES:  # in this order: the catalogue's keys keep their order
+    for _part in (_DESIGN, _TERRAIN, _GEO):
+        LABELS[_loc].update(_part[_loc])

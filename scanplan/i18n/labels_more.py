@@ -1,11 +1,11 @@
-"""More of the report label catalogue (:data:`scanplan.reports.labels.LABELS` merges
+"""More of the report label catalogue (:data:`scanplan.i18n.labels.LABELS` merges
 these): the labels of documents fit to sign, the words of the terminal summary of
 ``scanplan plan`` (keys ``term_*``, :func:`scanplan.reports.text.format_plan_result`) and
 the survey design sheet (:mod:`scanplan.reports.design`)."""
 
 from __future__ import annotations
 
-# Documents fit to sign (issue 13): parameter names with units, values in words, the
+# Documents fit to sign: parameter names with units, values in words, the
 # approval/agreement blocks, sheet numbering, references, the warnings box.
 SIGNING: dict[str, dict[str, str]] = {
     "en": {
@@ -92,7 +92,7 @@ SIGNING: dict[str, dict[str, str]] = {
     },
 }
 
-# The terminal summary of `scanplan plan` (issue 14: one catalogue for every renderer).
+# The terminal summary of `scanplan plan` (one catalogue for every renderer).
 TERMINAL: dict[str, dict[str, str]] = {
     "en": {
         "term_map": "map",
@@ -206,7 +206,7 @@ TERMINAL: dict[str, dict[str, str]] = {
 }
 
 
-# The survey design sheet («Технический проект АФС», issue 18): scanplan.reports.design
+# The survey design sheet («Технический проект АФС»): scanplan.reports.design
 DESIGN: dict[str, dict[str, str]] = {
     "en": {
         "design_title": "Survey design",
@@ -378,7 +378,7 @@ DESIGN: dict[str, dict[str, str]] = {
     },
 }
 
-# terrain (issue 12): warning headings, the heights-above-ground plot and sheet
+# terrain: warning headings, the heights-above-ground plot and sheet
 TERRAIN: dict[str, dict[str, str]] = {
     "en": {
         "pdf_warn_terrain_resolution": "Too high above low ground",
