@@ -17,7 +17,7 @@ _AXIS_KEYS = sorted(set(re.findall(r"set_[xy]label\(f?\"?\{?t\(\"([a-z0-9_]+)\""
 
 
 def test_axis_labels_are_found():
-    assert {"terrain_plot_x", "terrain_plot_y", "terrain_plot_y_amsl",
+    assert {"terrain_plot_x", "agl_m", "terrain_plot_y_amsl",
             "height_m"} <= set(_AXIS_KEYS)
 
 

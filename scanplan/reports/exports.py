@@ -84,12 +84,12 @@ def export_names(locale: str, title: str = "", film: bool = False) -> ExportName
 
     return ExportNames(
         title=title or t("geo_export_title", locale),
-        area=t("geo_area", locale),
-        strips=t("geo_strips", locale),
-        photos=t("geo_frames" if film else "geo_photos", locale),
+        area=t("area", locale),
+        strips=t("strips", locale),
+        photos=t("frame_centres" if film else "photo_centres", locale),
         strip=t("geo_strip_n", locale),
         sortie=t("geo_sortie_n", locale),
-        sorties=t("geo_sorties", locale), takeoff=t("geo_takeoff", locale))
+        sorties=t("sorties", locale), takeoff=t("takeoff_point", locale))
 
 
 def mission_options(spec: Any, layout: FlightLayout) -> MissionOptions | None:

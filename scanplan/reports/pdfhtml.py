@@ -124,7 +124,7 @@ def _terrain_rows(spec: Any, f: _Fmt) -> list[tuple[str, str]]:
     if tr is None:
         return []
     d = tr.summary()
-    m = f.label("terrain_facts_m")
+    m = f.label("m")
     rows = []
     if d["source"] == "dem":
         cell = d.get("dem_cell_size") or [None, None]

@@ -53,13 +53,15 @@ def _wrap(text: str, indent: str) -> str:
 
 
 class _Terminal:
-    """The terminal summary's words (``term_*`` of the label catalogue) in one language."""
+    """The terminal summary's words in one language: ``term_<key>`` of the label
+    catalogue, else the concept key ``<key>`` the other renderers share (``um``, ``km``)."""
 
     def __init__(self, locale: str) -> None:
         self.locale = locale
 
     def __getitem__(self, key: str) -> str:
-        return t(f"term_{key}", self.locale)
+        own = f"term_{key}"
+        return t(own if own in LABELS[self.locale] else key, self.locale)
 
     def get(self, key: str, default: str) -> str:
         """The word ``key``, or ``default`` when the catalogue has none."""
