@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import pytest
 
-from scanplan.messages import localize
+from scanplan.i18n.messages import localize
 from scanplan.norms import load_norm_set
 from scanplan.project.jobs import uav_job
 from scanplan.reports.references import Bibliography

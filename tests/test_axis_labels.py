@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from scanplan.reports.labels import LABELS
+from scanplan.i18n.labels import LABELS
 
 _PLOTS = Path(__file__).resolve().parent.parent / "scanplan" / "reports" / "plots.py"
 _AXIS_KEYS = sorted(set(re.findall(r"set_[xy]label\(f?\"?\{?t\(\"([a-z0-9_]+)\"",
@@ -17,7 +17,7 @@ _AXIS_KEYS = sorted(set(re.findall(r"set_[xy]label\(f?\"?\{?t\(\"([a-z0-9_]+)\""
 
 
 def test_axis_labels_are_found():
-    assert {"terrain_plot_x", "terrain_plot_y", "terrain_plot_y_amsl",
+    assert {"terrain_plot_x", "agl_m", "terrain_plot_y_amsl",
             "height_m"} <= set(_AXIS_KEYS)
 
 
@@ -51,7 +51,7 @@ def test_height_legend_gives_heights_as_the_tables_do(locale, text):
 def test_russian_height_column_heads_keep_the_unit_with_its_number():
     """'на 70 м' in a narrow column head broke before 'м' (Russian typesetting keeps a unit
     on the line of its number: a no-break space)."""
-    from scanplan.reports.labels import t
+    from scanplan.i18n.labels import t
 
     assert t("pdf_at_height", "ru").format(h="70") == "на 70\u00a0м"
     assert t("pdf_corner_at", "ru").format(h="77") == "угол кадра, 77\u00a0м"

@@ -11,7 +11,7 @@ from click.testing import CliRunner
 
 from scanplan.api import SUMMARY_COLUMNS, summary_row
 from scanplan.cli.main import main
-from scanplan.messages import MESSAGES
+from scanplan.i18n.messages import MESSAGES
 from scanplan.project.file import load_project
 from scanplan.project.spec import plan_project
 

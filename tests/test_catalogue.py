@@ -198,7 +198,7 @@ def test_aerial_survey_wording_not_uav(tmp_path):
     from openpyxl import load_workbook
     from pypdf import PdfReader
 
-    from scanplan.reports.labels import t
+    from scanplan.i18n.labels import t
 
     for locale, banned, wanted in (("en", "UAV", "Aerial survey"),
                                    ("ru", "БПЛА", "цифровой камерой")):

@@ -103,10 +103,10 @@ def test_uav_recognition_lists_the_map_scales_objects_once():
 
 def test_data_volume_says_uncompressed_and_estimates_jpeg():
     from scanplan.core.flight import JPEG_COMPRESSION_RATIO
-    from scanplan.reports.labels import LABELS
+    from scanplan.i18n.labels import LABELS
 
     assert JPEG_COMPRESSION_RATIO == 9.0  # Canon: 20.2 MP Large/Fine JPEG ≈ 6.6 MB vs 60.6 MB
-    for key in ("pdf_data_volume", "spec_data_gb", "spec_cmp_data_volume"):
+    for key in ("data_volume_gb", "data_volume_gb", "spec_cmp_data_volume"):
         assert "uncompressed" in LABELS["en"][key]
         assert "без сжатия" in LABELS["ru"][key]
     r = _cli("uav", "--camera", "dji-zenmuse-p1-35", "--height-m", "100", "--area-m",
@@ -210,7 +210,7 @@ def test_inverse_table_both_columns_in_the_reports(tmp_path):
 
 
 def test_unnamed_object_is_the_reports_label():
-    from scanplan.reports.labels import LABELS
+    from scanplan.i18n.labels import LABELS
 
     for loc in ("en", "ru"):
         assert USER_OBJECT_NAME[loc] == LABELS[loc]["obj_unnamed"]

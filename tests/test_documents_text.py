@@ -377,7 +377,7 @@ def test_every_warning_has_a_heading_in_both_languages():
     the engine can emit has one (``pdf_warn_<code>``) in English and Russian."""
     import pathlib
 
-    from scanplan.reports.labels import LABELS
+    from scanplan.i18n.labels import LABELS
 
     src = "".join(p.read_text(encoding="utf-8")
                   for p in pathlib.Path(norms_mod.__file__).parent.parent.rglob("*.py"))
@@ -404,7 +404,7 @@ def test_height_limits_print_heights_as_heights():
 
 
 def _warning_headings(locale: str) -> list[str]:
-    from scanplan.reports.labels import LABELS
+    from scanplan.i18n.labels import LABELS
 
     return [v for k, v in LABELS[locale].items() if k.startswith("pdf_warn_")]
 
@@ -572,7 +572,7 @@ def test_page_one_says_why_the_valley_plan_was_lowered(locale):
     """Over the valley the plan is lowered from 135 m to 70 m: page 1 lists the lowering once
     (its why is in the warning's text), not the finding at 135 m as a fault of the plan
     that is flown."""
-    from scanplan.reports.labels import LABELS
+    from scanplan.i18n.labels import LABELS
 
     items = _page_one_warnings(str(EXAMPLES[0].parent / "uav-town-valley-2000.toml"), locale)
     heads = [x.split(" — ")[0] for x in items]  # "… — see “Specification”"

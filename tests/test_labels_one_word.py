@@ -3,10 +3,10 @@ renderer: workbook, PDF, terminal, CLI listings, web page) must read the same in
 so a surveyor does not meet «Путевая скорость» in the PDF and «Скорость полёта» in the
 workbook for the same ground speed.
 
-The catalogues: the report labels (:data:`scanplan.reports.labels.LABELS`, which merges
+The catalogues: the report labels (:data:`scanplan.i18n.labels.LABELS`, which merges
 ``labels_more`` and ``labels_geo``, and the carrier-specific ``AIRCRAFT_LABELS`` that
-:func:`~scanplan.reports.labels.t` consults first), the terminal and listing templates
-(:data:`scanplan.reports.labels_cli.CLI`), the terminal summary's area and terrain words
+:func:`~scanplan.i18n.labels.t` consults first), the terminal and listing templates
+(:data:`scanplan.i18n.labels_cli.CLI`), the terminal summary's area and terrain words
 (:mod:`scanplan.reports.text`), the web page's texts (:data:`scanplan.web.page.TEXTS`) and the
 constraint names of the registry (which :func:`t` falls back to). Texts are compared after
 stripping surrounding whitespace; a trailing unit (", m") is part of the text. Two English
@@ -17,9 +17,9 @@ from __future__ import annotations
 
 from collections import defaultdict
 
+from scanplan.i18n.labels import AIRCRAFT_LABELS, LABELS
+from scanplan.i18n.labels_cli import CLI
 from scanplan.reports import text as _text
-from scanplan.reports.labels import AIRCRAFT_LABELS, LABELS
-from scanplan.reports.labels_cli import CLI
 from scanplan.rules.registry import CONSTRAINTS
 from scanplan.web.page import TEXTS
 

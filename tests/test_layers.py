@@ -18,8 +18,7 @@ PKG = Path(scanplan.__file__).parent
 
 # bottom → top; a module's layer is found by its first name below ``scanplan``
 LAYERS: list[tuple[str, set[str]]] = [
-    ("base", {"errors", "messages", "messages_archive", "messages_terrain", "_version", "io",
-              "messages_outputs", "messages_uav", "messages_site", "progress", "extras"}),
+    ("base", {"errors", "i18n", "_version", "io", "progress", "extras"}),
     ("core", {"core"}),
     ("rules", {"rules"}),
     ("norms", {"norms"}),

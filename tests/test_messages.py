@@ -1,4 +1,4 @@
-"""The engine's sentences as coded messages in English and Russian (scanplan.messages).
+"""The engine's sentences as coded messages in English and Russian (scanplan.i18n.messages).
 
 The catalogue has the same codes and the same template fields in both languages; every code
 the engine can emit is reached by a case below; a message is its English text (so the
@@ -25,7 +25,8 @@ import pytest
 from click.testing import CliRunner
 
 from scanplan.cli.main import main
-from scanplan.messages import (
+from scanplan.i18n.labels import LABELS
+from scanplan.i18n.messages import (
     LOCALES,
     MESSAGES,
     Message,
@@ -36,7 +37,6 @@ from scanplan.messages import (
 from scanplan.project.file import load_project
 from scanplan.project.jobs import scan_job, uav_job
 from scanplan.project.spec import PlanResult, plan_project
-from scanplan.reports.labels import LABELS
 from scanplan.reports.references import Bibliography
 from scanplan.reports.wording import camera_title, display_message, scanner_title, sentence
 from scanplan.rules.film import CONSTRAINTS, PlanWarning, plan_scan
@@ -143,7 +143,7 @@ def test_messages_module_is_pure():
 
     The catalogue is ``messages.py`` and its parts ``messages_*.py`` (merged into
     ``MESSAGES``); each imports nothing but these standard modules and the other parts."""
-    parts = sorted((ROOT / "scanplan").glob("messages*.py"))
+    parts = sorted((ROOT / "scanplan" / "i18n").glob("messages*.py"))
     assert parts[0].name == "messages.py"
     own = {p.stem for p in parts}
     for path in parts:
@@ -603,7 +603,7 @@ def test_motion_blur_is_never_shown_equal_to_its_limit(blur, en, ru):
     warning shows as many decimals as it takes to be above the limit."""
     from scanplan.core.flight import MAX_BLUR_PX
     from scanplan.core.shown import shown_above as _shown_above
-    from scanplan.messages import Message
+    from scanplan.i18n.messages import Message
 
     m = Message("motion_blur", blur=_shown_above(blur, MAX_BLUR_PX), height=70.0,
                 limit=MAX_BLUR_PX, denominator=2000, speed=12.0)
@@ -619,7 +619,7 @@ def test_motion_blur_is_never_shown_equal_to_its_limit(blur, en, ru):
     (22, "снимка"), (25, "снимков"), (101, "снимок"), (111, "снимков"), (1501, "снимок"),
     (12, "снимков"), (14, "снимков"), (1004, "снимка"), (0, "снимков")])
 def test_russian_plural_forms(n, form):
-    from scanplan.messages import plural
+    from scanplan.i18n.messages import plural
 
     assert plural(n, ("снимок", "снимка", "снимков"), "ru") == form
 

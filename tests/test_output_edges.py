@@ -94,7 +94,7 @@ def test_a_block_too_big_to_fly_or_list_says_which_files_it_lacks(town, monkeypa
     """Bug: a 9,999 km² block wrote no mission and no photos.csv without saying why."""
     import dataclasses
 
-    from scanplan.messages import Message
+    from scanplan.i18n.messages import Message
 
     base = make_layout()
     huge = dataclasses.replace(

@@ -179,7 +179,7 @@ def test_every_entry_is_a_citable_work():
 
 def test_a_paragraph_of_the_airspace_rules_has_one_form():
     """Para. 52(3), never 52.3 or 52.1, in every entry and every message."""
-    from scanplan.messages import MESSAGES
+    from scanplan.i18n.messages import MESSAGES
 
     texts = [t for r in references() for t in (r.en, r.ru)]
     texts += [t for m in MESSAGES.values() for t in m.values()]

@@ -15,7 +15,7 @@ from pathlib import Path
 
 import pytest
 
-from scanplan.reports.labels import LABELS
+from scanplan.i18n.labels import LABELS
 
 pypdf = pytest.importorskip("pypdf")
 weasyprint = pytest.importorskip("weasyprint")

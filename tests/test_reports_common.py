@@ -6,8 +6,8 @@ import os
 
 import pytest
 
+from scanplan.i18n.labels import LABELS, t
 from scanplan.reports import report_datetime, templates_dir, write_atomic
-from scanplan.reports.labels import LABELS, t
 
 
 def test_labels_have_the_same_keys_in_both_locales():

@@ -14,7 +14,7 @@ import pytest
 from click.testing import CliRunner
 
 from scanplan.cli.main import main
-from scanplan.messages import MESSAGES, Message
+from scanplan.i18n.messages import MESSAGES, Message
 from scanplan.project.jobs import scan_job, uav_job
 from scanplan.reports import ReportMeta
 from scanplan.reports.excel import render_xlsx

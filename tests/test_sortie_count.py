@@ -20,9 +20,9 @@ from click.testing import CliRunner
 import scanplan
 from scanplan.cli.main import main
 from scanplan.errors import InputError
+from scanplan.i18n.labels import t
 from scanplan.project.file import parse_project
 from scanplan.project.spec import plan_project
-from scanplan.reports.labels import t
 
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLES = sorted((ROOT / "examples").glob("*.toml"))
@@ -53,14 +53,14 @@ def _labels(key: str) -> tuple[str, ...]:
 def _text_counts(text: str) -> list[int]:
     """The sortie counts the terminal prints: the flight lines ("sorties: 6") and the survey
     design ("Sorties: 10 of up to 30 min")."""
-    words = "|".join(re.escape(w) for w in ("sorties", "вылетов", *_labels("design_sorties")))
+    words = "|".join(re.escape(w) for w in ("sorties", "вылетов", *_labels("sorties")))
     return [int(n) for n in re.findall(rf"(?:{words}): (\d+)", text)]
 
 
 def _xlsx_counts(path: Path) -> list[int]:
     openpyxl = pytest.importorskip("openpyxl")
     heads = set(_labels("xlsx_flight_sorties") + _labels("geo_n_sorties")
-                + _labels("design_sorties"))
+                + _labels("sorties"))
     out = []
     wb = openpyxl.load_workbook(path, read_only=True)
     for ws in wb.worksheets:
@@ -77,7 +77,7 @@ def _pdf_counts(path: Path) -> list[int]:
         pytest.skip("pdftotext is not installed")
     text = subprocess.run(["pdftotext", "-layout", str(path), "-"], capture_output=True,
                           text=True, check=True).stdout
-    heads = "|".join(re.escape(w) for w in _labels("geo_n_sorties") + _labels("design_sorties"))
+    heads = "|".join(re.escape(w) for w in _labels("geo_n_sorties") + _labels("sorties"))
     return [int(n) for n in re.findall(rf"^\s*(?:{heads})\s+(\d+)", text, flags=re.M)]
 
 

@@ -16,6 +16,8 @@ from pathlib import Path
 
 import pytest
 
+from scanplan.i18n.labels import t
+from scanplan.i18n.numbers import Numbers
 from scanplan.project.file import load_project
 from scanplan.project.spec import plan_project
 from scanplan.reports import plots
@@ -30,9 +32,7 @@ from scanplan.reports.chartscale import (
     nice_ticks,
     text_width_pt,
 )
-from scanplan.reports.labels import t
 from scanplan.reports.svgchart import Chart
-from scanplan.reports.view import Numbers
 from scanplan.rules.registry import CONSTRAINTS
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -239,7 +239,7 @@ def test_the_estimate_is_at_least_every_label_s_width(examples):
 def _expected_texts(r, plot: str, loc: str) -> list[str]:
     """Every legend label and annotation each plot had with matplotlib (same wording)."""
     n = Numbers(loc)
-    m = t("pdf_m", loc)
+    m = t("m", loc)
     if plot == "constraints":
         p = r.film.job.plan
         out = [f"{cid} — {CONSTRAINTS[cid].name_ru if loc == 'ru' else CONSTRAINTS[cid].name}"
@@ -253,20 +253,20 @@ def _expected_texts(r, plot: str, loc: str) -> list[str]:
                 f"R = {n.num(p.resolving_power_lpmm, 1)}", t("pdf_nyquist_short", loc),
                 t("frequency_lpmm", loc), t("contrast", loc)]
     if plot == "height":
-        out = ["GSD", "L", f"{t('pdf_h_planned', loc)}: ", f"{t('pdf_h_flown_max', loc)}: ",
+        out = ["GSD", "L", f"{t('planned', loc)}: ", f"{t('highest_flown', loc)}: ",
                t("pdf_h_max", loc).format(cid=p.binding) + f": {n.num(p.max_height_m, 0)} {m}",
                t("height_m", loc), f"GSD, L, {m}"]
         if p.max_flown_height_m and p.max_flown_height_m > p.max_height_m * (1 + 1e-9):
             out.append(f"{t('pdf_h_max_flown', loc)}: {n.num(p.max_flown_height_m, 0)} {m}")
         if p.ceiling_m is not None and p.ceiling_m <= max(p.height_curve["height_m"]):
-            out.append(f"{t('pdf_h_ceiling', loc)}: ")
+            out.append(f"{t('HC', loc)}: ")
         out += [f"{lim.compares} ≤ {n.num(lim.limit_m, 3)} {m} ({lim.id})"
                 for lim in p.limits if lim.binding and lim.compares in ("GSD", "L")]
         return out
     tr = r.uav.terrain
-    return [t("terrain_agl_m", loc), t("terrain_ground_m", loc), t("terrain_altitude_m", loc),
+    return [t("agl_m", loc), t("terrain_ground_m", loc), t("terrain_altitude_m", loc),
             f"{t('terrain_plot_planned', loc)}: {n.num(tr.height_m, 0)} {m}",
-            f"{t('terrain_plot_limit', loc)}", t("terrain_plot_x", loc)]
+            f"{t('max_height', loc)}", t("terrain_plot_x", loc)]
 
 
 @pytest.mark.parametrize("loc", ["en", "ru"])

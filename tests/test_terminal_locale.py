@@ -1,6 +1,6 @@
 """``scanplan scan`` and ``scanplan uav`` speak the language of ``--locale`` on the terminal,
 as ``scanplan plan`` speaks its project's ``[project] locale``: every word from the label
-catalogue (scanplan/reports/labels_cli.py), every message from scanplan/messages.py, every
+catalogue (scanplan/i18n/labels_cli.py), every message from scanplan/i18n/messages.py, every
 number with the decimal comma of the Russian reports.
 """
 
@@ -13,7 +13,7 @@ import pytest
 from click.testing import CliRunner
 
 from scanplan.cli.main import main
-from scanplan.reports.labels_cli import CLI
+from scanplan.i18n.labels_cli import CLI
 
 TOWN = str(Path(__file__).resolve().parent.parent / "examples" / "areas" / "town-uav.kml")
 SCAN = ["scan", "--map-scale", "1:2000", "--relief", "1.0", "--photo-scale", "10000",

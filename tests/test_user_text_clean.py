@@ -19,9 +19,9 @@ from click.testing import CliRunner
 
 import scanplan
 from scanplan.cli.main import main
-from scanplan.messages import MESSAGES
-from scanplan.reports.labels import AIRCRAFT_LABELS, LABELS
-from scanplan.reports.labels_cli import CLI
+from scanplan.i18n.labels import AIRCRAFT_LABELS, LABELS
+from scanplan.i18n.labels_cli import CLI
+from scanplan.i18n.messages import MESSAGES
 
 ROOT = Path(__file__).resolve().parent.parent
 

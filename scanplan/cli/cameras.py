@@ -26,7 +26,7 @@ def _num(text: str, locale: str) -> str:
 
 def _word(kind: str, value: str, locale: str) -> str:
     """A catalogue value in words: the camera's kind, what carries it."""
-    from ..reports.labels_cli import CLI
+    from ..i18n.labels_cli import CLI
 
     key = f"{kind}_{value}"
     return CLI[locale].get(key, value) if value else value
@@ -82,7 +82,7 @@ def cameras_list(kind: str | None, norms: str, as_json: bool, locale: str = "en"
         else:
             _echo_json([asdict(c) for c in cams])
         return
-    from ..reports.labels_cli import cli_text as w
+    from ..i18n.labels_cli import cli_text as w
     from ..reports.wording import camera_title, scanner_title
 
     loc = locale
@@ -124,8 +124,8 @@ def cameras_show(camera_id: str, norms: str, as_json: bool, locale: str = "en") 
     """Show one camera or scanner: CAMERA_ID from `scanplan cameras list`."""
     from dataclasses import asdict
 
+    from ..i18n.labels_cli import cli_text as w
     from ..norms import load_norm_set
-    from ..reports.labels_cli import cli_text as w
     from ..reports.text import table
     from ..reports.wording import scanner_title
 
@@ -172,8 +172,8 @@ def _key(key: str, locale: str) -> str:
     header (``scanplan norms template --locale ru``) in Russian."""
     if locale != "ru":
         return key
+    from ..i18n.labels_cli import CLI
     from ..norms.schema import TABLES
-    from ..reports.labels_cli import CLI
 
     for col in TABLES["cameras"].columns:
         if col.name == key and col.aliases:
@@ -196,7 +196,7 @@ def _value(key: str, value: object, ns: object, camera_id: str, locale: str) -> 
     if key == "shutter":
         return _word("shutter", str(value), locale)
     if key == "orientation":
-        from ..reports.labels import t
+        from ..i18n.labels import t
 
         return t(f"orientation_{value}", locale)
     if key == "name":

@@ -311,7 +311,7 @@ def scan(as_json: bool, bits_per_band: str, **kwargs: Any) -> None:
         click.echo(format_scan_plan(job.plan, job.norm_set.name, job.norm_set.title,
                                     locale=loc, norm_set=job.norm_set))
         if area is not None:
-            from ..messages import scale_text
+            from ..i18n.messages import scale_text
             from ..reports.text import format_area, format_layout
 
             click.echo("\n" + format_area(area, loc))

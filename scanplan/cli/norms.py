@@ -81,7 +81,7 @@ _LOCALE = click.option(
 
 
 def _w(key: str, locale: str, **fields: Any) -> str:
-    from ..reports.labels_cli import cli_text
+    from ..i18n.labels_cli import cli_text
 
     return cli_text(key, locale, **fields)
 
@@ -263,7 +263,7 @@ def _ru_header(col: Any) -> str:
 
 def _param_ru(ns: Any, key: str, value: Any) -> str:
     """A parameter's value in Russian words (a shape, a formula) or with a decimal comma."""
-    from ..reports.view import Numbers
+    from ..i18n.numbers import Numbers
     from ..reports.wording import param_value
 
     try:

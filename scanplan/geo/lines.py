@@ -54,7 +54,7 @@ import shapely
 from shapely import affinity
 
 from ..core import flight as FL
-from ..messages import Message
+from ..i18n.messages import Message
 from .layout import PHOTO_COLUMNS, Area, FlightLayout, Photos, Strip
 from .sorties import MAX_SORTIES, SortiePlan, pack_sorties, packing_bound
 

@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..messages import Message
+from ..i18n.messages import Message
 from .layout import Sortie
 
 __all__ = ["MAX_SORTIES", "SortiePlan", "pack_sorties"]

@@ -68,7 +68,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
-from ..messages import Message, PlanWarning, listing
+from ..i18n.messages import Message, PlanWarning, listing
 from . import dem as D
 from .dem_grid import DEFAULT_VOID_MARGIN_M, DEFAULT_VOID_RADIUS_M, GroundGrid, read_ground_grid
 from .layout import FlightLayout, Photos

@@ -31,7 +31,7 @@ from ..core.photoscale import (
     photo_scale_at_height,
     scanned_ground_pixel_cm,
 )
-from ..messages import PlanWarning
+from ..i18n.messages import PlanWarning
 from .layout import FlightLayout, Photos
 from .terrain import ALTITUDE_FRAME, DEFAULT_FOLLOW_TOLERANCE_M, Ground, strip_order, worst_ground
 

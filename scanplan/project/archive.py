@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 
 from ..core import formulas as F
-from ..messages import Message
+from ..i18n.messages import Message
 from ..rules.film import CONSTRAINTS, PlanWarning, ScanPlan, ScanScenario, round_to_scanner
 from .jobs import ScanJob
 

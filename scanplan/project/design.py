@@ -28,7 +28,7 @@ from ..core.photoscale import height_at_photo_scale_m, scanned_ground_pixel_cm
 from ..errors import InputError
 from ..geo.layout import FlightLayout
 from ..geo.sun import SunWindow, equal_sorties_s, flying_days, sun_windows, time_zone_at
-from ..messages import Message
+from ..i18n.messages import Message
 from ..rules.results import PlanWarning
 from .model import ProjectModel
 from .results import FilmSpec, GsdCompliance, SunPlan, SurveyDesign, UavSpec

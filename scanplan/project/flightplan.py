@@ -26,7 +26,7 @@ from ..errors import InputError
 from ..geo.area import MAX_SCALE_ERROR_PCT, AreaSpec, load_area, rectangle_area
 from ..geo.layout import Area, FlightLayout
 from ..geo.lines import Turn, plan_lines, turn_radius_m
-from ..messages import Message
+from ..i18n.messages import Message
 from ..rules.results import PlanWarning, ScanScenario, UavPlan
 from .inputs import by_key, domain_of
 

@@ -23,7 +23,7 @@ from ..core.mtf import DEFAULT_HAZE_CONTRAST, DEFAULT_K0
 from ..errors import InputError
 from ..geo.area import rectangle_area
 from ..geo.layout import Area, FlightLayout
-from ..messages import Message
+from ..i18n.messages import Message
 from ..norms import DEFAULT_NORM_SET, MapObject, NormSet, load_norm_set, parse_scale
 from ..norms.schema import GSD_AREAS, ORIENTATIONS, PARAMETERS
 from ..norms.store import GsdLimit

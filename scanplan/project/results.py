@@ -128,7 +128,7 @@ class SurveyDesign:
 
 @dataclass(frozen=True)
 class FilmSpec:
-    """The film part of a specification (``reason``: a :class:`~scanplan.messages.Message`,
+    """The film part of a specification (``reason``: a :class:`~scanplan.i18n.messages.Message`,
     English text that renders in another locale with ``.text(locale)``)."""
 
     job: ScanJob
@@ -153,7 +153,7 @@ class FilmSpec:
 @dataclass(frozen=True)
 class UavSpec:
     """The UAV part of a specification (the flight at the recommended height; ``reason``: a
-    :class:`~scanplan.messages.Message`)."""
+    :class:`~scanplan.i18n.messages.Message`)."""
 
     job: UavJob
     planned_height_m: float | None

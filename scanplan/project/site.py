@@ -25,7 +25,7 @@ import math
 from typing import Any
 
 from ..geo.layout import Area
-from ..messages import Message
+from ..i18n.messages import Message
 from ..rules.results import PlanWarning
 
 __all__ = ["SITE_FAR_KM", "area_site_warnings", "site_of", "swapped_reason"]

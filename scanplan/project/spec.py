@@ -22,7 +22,7 @@ from ..errors import InputError
 from ..geo.area import AreaSpec
 from ..geo.layout import Area, FlightLayout
 from ..geo.terrain_film import FilmTerrain
-from ..messages import Message
+from ..i18n.messages import Message
 from ..rules.film import PlanWarning, ScanScenario
 from .archive import archive_film
 from .design import survey_design

@@ -19,7 +19,7 @@ from ..geo import terrain as G
 from ..geo.layout import FlightLayout
 from ..geo.terrain_film import FilmTerrain, frame_scales
 from ..geo.terrain_overlaps import photo_overlaps
-from ..messages import Message
+from ..i18n.messages import Message
 from ..rules import terrain as RT
 from ..rules.results import ScanRules, UavInputs, UavPlan
 

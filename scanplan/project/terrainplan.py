@@ -22,7 +22,7 @@ from ..geo.layout import FlightLayout
 from ..geo.terrain import Ground, TerrainConfig, TerrainResult, ground_under
 from ..geo.terrain_choice import DIRECTIONS_DEG, ModeHeights, mode_heights
 from ..geo.terrain_film import FilmTerrain, frames_over_terrain
-from ..messages import Message
+from ..i18n.messages import Message
 from ..rules.results import PlanWarning, ScanPlan, ScanRules, ScanScenario
 from ..rules.terrain import (
     film_scale_warning,

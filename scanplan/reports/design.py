@@ -18,10 +18,10 @@ from typing import Any
 from ..core import flight as FL
 from ..core.photoscale import height_at_photo_scale_m
 from ..geo.sun import zone_country
-from ..messages import Message, localize, plural, scale_text
+from ..i18n.labels import t
+from ..i18n.messages import Message, localize, plural, scale_text
+from ..i18n.numbers import Numbers
 from ..rules.registry import CONSTRAINTS
-from .labels import t
-from .view import Numbers
 from .wording import camera_title, display_message, document_date, sentence, with_status
 
 _PARTS = {"en": ("part", "parts"), "ru": ("часть", "части", "частей")}
@@ -140,9 +140,9 @@ def _project_rows(spec: Any, w: _W) -> list[tuple[str, str, str]]:
     layout = layout_of(spec.uav) or layout_of(spec.film)
     width, length = p.area.width_m, p.area.length_m
     if layout is not None:  # the contract polygon, once the geography lays it out
-        rows.append((w.t("design_area_km2"), w.fig(layout.area.area_km2, 2), ""))
+        rows.append((w.t("area_km2"), w.fig(layout.area.area_km2, 2), ""))
     elif width and length:
-        rows.append((w.t("design_area_km2"), w.fig(width * length / 1e6, 2), ""))
+        rows.append((w.t("area_km2"), w.fig(width * length / 1e6, 2), ""))
     for key in ("coordinate_system", "height_system"):
         rows.append((w.t(f"design_{key}"), getattr(p.signing, key) or "—",
                      w.t("design_norm_contract")))
@@ -302,7 +302,7 @@ def _sun_rows(design: Any, w: _W) -> list[tuple[str, str, str]]:
                 lo=w.n(lo, 1), hi=w.n(hi, 1), zone=_zone(s, w)),
              f"{source}; {w.cite(SUN_POSITION)}")]
     if s.days is not None:
-        rows.append((w.t("design_sorties"), w.t(
+        rows.append((w.t("sorties"), w.t(
             "design_sorties_value", n=w.n(s.days.sorties, 0),
             sortie=w.n(s.sortie_time_s / 60, 0), turn=w.n(s.turnaround_s / 60, 0)),
             w.t("design_norm_project")))
@@ -402,7 +402,7 @@ def write_design_sheet(book: Any, spec: Any) -> None:
 
 
 TERMINAL_ROWS = ("design_gsd_digital", "design_gsd_film", "design_block", "design_sun_window",
-                 "design_sorties", "design_flying_days")
+                 "sorties", "design_flying_days")
 """The survey design rows the terminal summary shows."""
 
 

@@ -24,8 +24,8 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Literal
 
 from ..geo.layout import FlightLayout
+from ..i18n.labels import t
 from ..io.targets import written_by_scanplan
-from .labels import t
 
 if TYPE_CHECKING:  # the writers (pandas, shapely) are imported when files are written
     from ..geo.export import ExportFormat, ExportNames, MissionOptions
@@ -84,12 +84,12 @@ def export_names(locale: str, title: str = "", film: bool = False) -> ExportName
 
     return ExportNames(
         title=title or t("geo_export_title", locale),
-        area=t("geo_area", locale),
-        strips=t("geo_strips", locale),
-        photos=t("geo_frames" if film else "geo_photos", locale),
+        area=t("area", locale),
+        strips=t("strips", locale),
+        photos=t("frame_centres" if film else "photo_centres", locale),
         strip=t("geo_strip_n", locale),
         sortie=t("geo_sortie_n", locale),
-        sorties=t("geo_sorties", locale), takeoff=t("geo_takeoff", locale))
+        sorties=t("sorties", locale), takeoff=t("takeoff_point", locale))
 
 
 def mission_options(spec: Any, layout: FlightLayout) -> MissionOptions | None:
@@ -197,7 +197,7 @@ def export_notes(spec: Any) -> list[Any]:
         One sentence per file not written (``.text(locale)`` in the project's language).
     """
     from ..geo.lines import MAX_PHOTO_CENTRES
-    from ..messages import Message
+    from ..i18n.messages import Message
 
     out = []
     for kind, layout in spec_layouts(spec):

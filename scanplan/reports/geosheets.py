@@ -39,7 +39,7 @@ def add_geo_sheets(book: Any, spec: Any) -> None:
     (a :class:`scanplan.reports.excel._Book`)."""
     for kind, layout in _exports.spec_layouts(spec):
         film = kind == "film"
-        _strips_sheet(book, layout, "xlsx_sheet_strips_film" if film else "xlsx_sheet_strips",
+        _strips_sheet(book, layout, "xlsx_sheet_strips_film" if film else "strips",
                       _exports.files_beside(spec, layout))
         if layout.area.georeferenced and 0 < len(layout.photos) <= MAX_SHEET_PHOTOS:
             _photos_sheet(book, layout, "xlsx_sheet_frames" if film else "xlsx_sheet_photos")

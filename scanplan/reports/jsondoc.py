@@ -8,7 +8,7 @@ from typing import Any
 
 import numpy as np
 
-from ..messages import Message, params_json
+from ..i18n.messages import Message, params_json
 from ..norms import NormSet
 from ..rules.film import PlanWarning, ScanPlan
 from ..rules.uav import UavPlan

@@ -24,9 +24,9 @@ import numpy as np
 
 from ..core.photoscale import height_at_photo_scale_m, photo_scale_at_height
 from ..geo.layout import FlightLayout
-from ..messages import scale_text
+from ..i18n.labels import t
+from ..i18n.messages import scale_text
 from . import exports as _exports
-from .labels import t
 from .plots import number
 
 #: matplotlib's style of the map page (the one figure still drawn with it): deterministic
@@ -179,7 +179,7 @@ def _draw_sorties(ax: Any, layout: FlightLayout, scale: float, locale: str) -> N
                     linestyle=(0, (3, 2)), zorder=1.8,
                     label=t("map_legend_transit", locale) if k == 0 else None)
         ax.plot([tx], [ty], linestyle="none", marker="^", markersize=7, color="black",
-                zorder=7, label=t("map_legend_takeoff", locale))
+                zorder=7, label=t("takeoff_point", locale))
     if len(starts) < 2:
         return
     step = max(1, math.ceil(len(starts) / MAX_SORTIE_LABELS))
@@ -207,7 +207,7 @@ def _km_ticks(axis: Any, locale: str) -> FuncFormatter:
 
 def _scale_ticks(locale: str) -> FuncFormatter:
     """Tick labels of the colour bar's local photo scales 1:Mc, written as the text writes
-    scales (:func:`scanplan.messages.scale_text` without ``1:``): 6000, 25000; Russian
+    scales (:func:`scanplan.i18n.messages.scale_text` without ``1:``): 6000, 25000; Russian
     6000, 25 000 — not the grouped numbers 6,000 / 6 000."""
     from matplotlib.ticker import FuncFormatter
 
@@ -222,8 +222,8 @@ def _scale_bar(ax: Any, span_km: float, locale: str) -> None:
     bx, by = x1 - 0.05 * (x1 - x0) - length_km, y0 + 0.04 * (y1 - y0)
     ax.plot([bx, bx + length_km], [by, by], color="black", linewidth=2.5, zorder=6,
             solid_capstyle="butt")
-    text = (f"{number(length_km, 0 if length_km >= 1 else 1, locale)} {t('map_km', locale)}"
-            if length_km >= 1 else f"{number(length_km * 1000, 0, locale)} {t('map_m', locale)}")
+    text = (f"{number(length_km, 0 if length_km >= 1 else 1, locale)} {t('km', locale)}"
+            if length_km >= 1 else f"{number(length_km * 1000, 0, locale)} {t('m', locale)}")
     ax.text(bx + length_km / 2, by + 0.015 * (y1 - y0), text, ha="center", va="bottom",
             fontsize=7, zorder=6, bbox={"fc": "white", "ec": "none", "alpha": 0.8, "pad": 1})
 
@@ -359,7 +359,7 @@ def _draw_photos_agl(fig: Figure, ax: Any, layout: FlightLayout, mt: MapTerrain,
                     zorder=2.5, label=label, rasterized=True)
     cax = ax.inset_axes((1.03, 0.12, 0.025, 0.76))  # beside the map, which keeps its width
     cb = fig.colorbar(sc, cax=cax)
-    cb.set_label(t("map_agl_colorbar", locale))
+    cb.set_label(t("agl_m", locale))
     cb.ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _p: number(v, 0, locale)))
     if mt.focal_mm:
         f_mm = mt.focal_mm
@@ -415,7 +415,7 @@ def map_svg(layout: FlightLayout, locale: str = "en", terrain: MapTerrain | None
 
     def draw(fig: Figure) -> None:
         ax = fig.add_subplot()
-        _draw_area(ax, layout.area.geometry, scale, t("map_legend_area", locale))
+        _draw_area(ax, layout.area.geometry, scale, t("area", locale))
         _draw_strips(ax, layout, scale, t("map_legend_strips", locale))
         _draw_sorties(ax, layout, scale, locale)
         if len(ph) and terrain is not None:
@@ -459,7 +459,7 @@ def _draw_photos_plain(ax: Any, layout: FlightLayout, scale: float, locale: str)
     step = max(1, math.ceil(len(ph) / MAX_MAP_PHOTOS))
     x = np.asarray(ph["x_m"], float)[::step] / scale
     y = np.asarray(ph["y_m"], float)[::step] / scale
-    label = t("map_legend_frames" if layout.kind == "film" else "map_legend_photos", locale)
+    label = t("frame_centres" if layout.kind == "film" else "photo_centres", locale)
     if step > 1:
         label += f" ({t('map_one_in', locale).format(k=step)})"
     ax.plot(x, y, linestyle="none", marker="o", markersize=1.6, color="#2e7d32",
@@ -502,7 +502,7 @@ def summary_items(layout: FlightLayout, locale: str) -> list[tuple[str, Any, int
     a = layout.area
     rows: list[tuple[str, Any, int]] = [
         (t("map_crs", locale), crs_text(layout, locale), 0),
-        (t("geo_area_km2", locale), a.area_km2, 3),
+        (t("area_km2", locale), a.area_km2, 3),
         (t("geo_perimeter_km", locale), a.perimeter_km, 2),
         (t("geo_direction_deg", locale), layout.direction_deg, 1),
         (t("geo_spacing_m", locale), layout.spacing_m, 1),

@@ -17,14 +17,14 @@ from typing import TYPE_CHECKING, Any
 from ..core import flight as FL
 from ..core.flight import MAX_BLUR_PX
 from ..core.shown import shown_decimals
-from ..messages import localize
+from ..i18n.labels import LABELS
+from ..i18n.messages import localize
 from ..norms import NormSet
 from ..norms.schema import DIGITAL_ONLY_PARAMETERS
 from ..project.jobs import ScanJob, UavJob
 from ..rules.film import CONSTRAINTS, ScanPlan
 from ..rules.uav import UavPlan
 from .design import relief_max_height_m
-from .labels import LABELS
 from .references import Bibliography
 from .view import ReportView, warning_heading_key
 from .wording import (
@@ -53,7 +53,7 @@ _UAV_FORMULAS = (  # formula, meaning (label), source (label)
     ("L ≤ L_obj·sqrt(−ln P)/B", "pdf_f_pd", "pdf_src_pd"),
     ("H_max = H·(1 + Δ_H)", "pdf_f_tol", "pdf_src_tol"),
 )
-_COMPARISON_UNITS = {"m": "pdf_m", "GB": "pdf_gb"}
+_COMPARISON_UNITS = {"m": "m", "GB": "gb"}
 
 
 # ---------------------------------------------------------------------------------------
@@ -160,7 +160,7 @@ def _norm_view(ns: NormSet, f: _Fmt) -> dict[str, Any]:
 def _scan_view(job: ScanJob, f: _Fmt) -> dict[str, Any]:
     plan: ScanPlan = job.plan
     inp, rules, ns = plan.inputs, plan.rules, job.norm_set
-    um = f.label("pdf_um")
+    um = f.label("um")
     inputs: list[tuple[str, str]] = [
         (f.label("map_scale"), f.scale(inp.map_scale)),
         (f.label("relief_interval_m"), f.g(inp.relief_interval_m)),
@@ -180,7 +180,7 @@ def _scan_view(job: ScanJob, f: _Fmt) -> dict[str, Any]:
     if obj is not None:
         obj_name = object_title(obj, f.locale)
         inputs += [
-            (f.label("object"), f"{obj_name}: {f.g(obj.size_m)} {f.label('pdf_m')}, "
+            (f.label("object"), f"{obj_name}: {f.g(obj.size_m)} {f.label('m')}, "
                                 f"{_shape_name(ns, obj.shape, f.locale)}, "
                                 f"B = {f.g(obj.shape_coefficient)}"),
             (f.label("probability"), f.g(rules.probability)),
@@ -240,7 +240,7 @@ def _scan_view(job: ScanJob, f: _Fmt) -> dict[str, Any]:
 
 def _scan_table(plan: ScanPlan, scenarios: Any, f: _Fmt) -> dict[str, Any]:
     """The result table for some photo scales: constraints (binding flagged), summary rows."""
-    inp, um = plan.inputs, f.label("pdf_um")
+    inp, um = plan.inputs, f.label("um")
     obj = inp.object
     header = [f.scale(s.photo_scale) for s in scenarios]
     rows: list[dict[str, Any]] = [{
@@ -265,7 +265,7 @@ def _scan_table(plan: ScanPlan, scenarios: Any, f: _Fmt) -> dict[str, Any]:
                         "cells": [f.num(s.scanner_pixel_um, 1) for s in scenarios],
                         "strong": True})
     summary.append({"label": f.label("frame_megabytes").rsplit(",", 1)[0],
-                    "unit": f.label("pdf_mb"),
+                    "unit": f.label("mb"),
                     "cells": [f.num(s.frame_megabytes, 0) for s in scenarios],
                     "strong": False})
     summary.append({"label": f.label("pdf_resolution_on_ground"), "unit": f.label("pdf_mm"),
@@ -286,13 +286,13 @@ def _uav_inputs(job: UavJob, f: _Fmt) -> list[tuple[str, str]]:
     """The UAV section's inputs: camera, heights, speed, overlaps, scene, map."""
     plan: UavPlan = job.plan
     inp, ns, h = plan.inputs, job.norm_set, plan.heights_m
-    m = f.label("pdf_m")
+    m = f.label("m")
     cam = camera_title(ns, inp.camera, f.locale, inp.camera_name)
     inputs: list[tuple[str, str]] = []
     if cam:
         inputs.append((f.label("camera"), cam))
     inputs += [
-        (f.label("pdf_pixel_pitch_um"), f.view.numbers.sig(inp.pixel_um)),
+        (f.label("pixel_pitch_um"), f.view.numbers.sig(inp.pixel_um)),
         (f.label("focal_mm"), f.g(inp.focal_mm)),
         (f.label("pdf_f_number"), f.g(inp.f_number)),
         (f.label("pdf_sensor_mm"), f"{f.view.numbers.sig(inp.sensor_width_mm)} × "
@@ -308,11 +308,11 @@ def _uav_inputs(job: UavJob, f: _Fmt) -> list[tuple[str, str]]:
         inputs.append((f.label("gsd_target_cm"), f.g(inp.gsd_target_m * 100.0)))
     inputs += [
         (f.label("ground_speed_ms"), f.g(inp.speed_ms)),
-        (f.label("pdf_exposure_s"), f.g(inp.exposure_s)),
+        (f.label("exposure_s"), f.g(inp.exposure_s)),
         (f.label("design_overlaps"),
          f"{f.g(inp.forward_overlap_pct)} / {f.g(inp.side_overlap_pct)}"),
         (f.label("pdf_scene"), f"{f.g(inp.r_max)} / {f.g(inp.r_min)}"),
-        (f.label("pdf_threshold_k0"), f.g(inp.threshold_k0)),
+        (f.label("threshold_k0"), f.g(inp.threshold_k0)),
     ]
     if inp.map_scale is not None:
         inputs += [(f.label("map_scale"), f.scale(inp.map_scale)),
@@ -393,7 +393,7 @@ def _uav_flight(plan: UavPlan, f: _Fmt) -> list[tuple[str, str]]:
                        + (f.num(fl["flight_time_s"] / 60, 0) if fl.get("flight_time_s")
                           else "—")))
         if "data_volume_bytes" in fl:
-            flight.append((f.label("pdf_data_volume"), f.num(fl["data_volume_bytes"] / 1e9, 1)))
+            flight.append((f.label("data_volume_gb"), f.num(fl["data_volume_bytes"] / 1e9, 1)))
             flight.append((f.label("data_volume_jpeg_gb"),
                            f.num(float(FL.jpeg_volume_bytes(fl["data_volume_bytes"])) / 1e9, 1)))
     return flight
@@ -425,7 +425,7 @@ def _uav_limits(plan: UavPlan, f: _Fmt) -> dict[str, Any]:
     height_forms = ""
     acc = plan.height_accuracy
     if acc:
-        m = f.label("pdf_m")
+        m = f.label("m")
         height_forms = f.label("pdf_height_forms", sigma=f.num(
             acc["sigma_z_at_highest_flown_height_m"], 3), h=f.g(h["max"]),
             vz=f.g(acc["height_accuracy_m"]), forms="; ".join(
@@ -469,7 +469,7 @@ def _uav_view(job: UavJob, f: _Fmt) -> dict[str, Any]:
 
 def _comparison_view(scan: ScanJob, uav: UavJob, f: _Fmt) -> dict[str, Any]:
     sp, up = scan.plan, uav.plan
-    um, m = f.label("pdf_um"), f.label("pdf_m")
+    um, m = f.label("um"), f.label("m")
     film_result = "; ".join(f"{f.scale(s.photo_scale)}: {f.num(s.scan_pixel_um, 1)} {um} "
                             f"({s.binding})" for s in sp.scenarios)
     uav_result = (f"{f.label('max_height_m').split(',')[0]}: {f.num(up.max_height_m, 0)} {m}"
@@ -565,7 +565,7 @@ def _spec_view(spec: PlanResult, f: _Fmt) -> dict[str, Any]:
         if "photos" in p.flight:
             rows.append((f.label("spec_photos"), f.g(p.flight["photos"])))
         if "data_volume_bytes" in p.flight:
-            rows.append((f.label("spec_data_gb"), f.num(p.flight["data_volume_bytes"] / 1e9, 1)))
+            rows.append((f.label("data_volume_gb"), f.num(p.flight["data_volume_bytes"] / 1e9, 1)))
             rows.append((f.label("data_volume_jpeg_gb"), f.num(float(FL.jpeg_volume_bytes(
                 p.flight["data_volume_bytes"])) / 1e9, 1)))
         reasons.append(sentence(f.cite(display_message(u.reason, u.job.norm_set, f.locale))))

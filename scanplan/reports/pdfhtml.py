@@ -16,7 +16,7 @@ import jinja2
 from markupsafe import Markup, escape
 
 from .._version import __version__
-from ..messages import document_text, localize
+from ..i18n.messages import document_text, localize
 from ..project.jobs import ScanJob, UavJob
 from . import ReportMeta, templates_dir
 from .design import design_view
@@ -124,7 +124,7 @@ def _terrain_rows(spec: Any, f: _Fmt) -> list[tuple[str, str]]:
     if tr is None:
         return []
     d = tr.summary()
-    m = f.label("terrain_facts_m")
+    m = f.label("m")
     rows = []
     if d["source"] == "dem":
         cell = d.get("dem_cell_size") or [None, None]

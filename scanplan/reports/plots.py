@@ -13,12 +13,12 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from ..messages import scale_text
+from ..i18n.labels import t
+from ..i18n.messages import scale_text
+from ..i18n.numbers import Numbers
 from ..rules.film import CONSTRAINTS, ScanPlan
 from ..rules.uav import UavPlan
-from .labels import t
 from .svgchart import Chart, log_ticks
-from .view import Numbers
 
 __all__ = ["constraints_svg", "height_svg", "mtf_svg", "number", "terrain_svg"]
 
@@ -37,7 +37,7 @@ _TICK_GAP = 1.2  # the smallest ratio between neighbouring scale ticks (their la
 
 def number(x: float, digits: int, locale: str) -> str:
     """``x`` with ``digits`` decimals, decimal comma in Russian, thin-space thousands
-    (:meth:`scanplan.reports.view.Numbers.num`).
+    (:meth:`scanplan.i18n.numbers.Numbers.num`).
 
     Parameters
     ----------
@@ -200,13 +200,13 @@ def height_svg(plan: UavPlan, locale: str = "en") -> str:
     # planned / highest flown at the plan; maximum planned / its highest flown height:
     # a GSD or L limit line meets its curve at the highest flown height, not the plan
     marks: list[tuple[float, str, Any, str]] = [
-        (plan.heights_m["planned"], "#000000", "-", t("pdf_h_planned", locale))]
+        (plan.heights_m["planned"], "#000000", "-", t("planned", locale))]
     if plan.heights_m["max"] != plan.heights_m["planned"]:
-        marks.append((plan.heights_m["max"], "#808080", "--", t("pdf_h_flown_max", locale)))
+        marks.append((plan.heights_m["max"], "#808080", "--", t("highest_flown", locale)))
     # the ceiling before the maximum's lines: where the ceiling binds, the highest flown
     # height at the maximum is the ceiling, and its dash-dot is drawn over the solid line
     if plan.ceiling_m is not None and plan.ceiling_m <= max(hs):
-        marks.append((plan.ceiling_m, "#8c564b", "-", t("pdf_h_ceiling", locale)))
+        marks.append((plan.ceiling_m, "#8c564b", "-", t("HC", locale)))
     if plan.max_height_m is not None and plan.binding is not None:
         marks.append((plan.max_height_m, "#d62728", ":",
                       t("pdf_h_max", locale).format(cid=plan.binding)))
@@ -219,17 +219,17 @@ def height_svg(plan: UavPlan, locale: str = "en") -> str:
         text = (number(h, 0, locale) if h in (plan.max_height_m, plan.max_flown_height_m)
                 else Numbers(locale).height(h))
         ax.axvline(h, colour=colour, dash=style, width=0.9,
-                   label=f"{label}: {text} {t('pdf_m', locale)}")
+                   label=f"{label}: {text} {t('m', locale)}")
     for lim in plan.limits:
         if lim.binding and lim.compares in ("GSD", "L") and lim.limit_m <= max(
                 max(c["gsd_m"]), max((v for v in ls if v == v), default=0.0)) * 1.05:
             ax.axhline(lim.limit_m, colour="#d62728", width=0.6, dash="-.",
                        label=f"{lim.compares} ≤ {number(lim.limit_m, 3, locale)} "
-                             f"{t('pdf_m', locale)} ({lim.id})")
+                             f"{t('m', locale)} ({lim.id})")
     ax.set_xlim(0, max(hs))
     ax.set_ylim(bottom=0)
     ax.set_xlabel(t("height_m", locale))
-    ax.set_ylabel(f"GSD, L, {t('pdf_m', locale)}")
+    ax.set_ylabel(f"GSD, L, {t('m', locale)}")
     return chart.svg()
 
 
@@ -270,7 +270,7 @@ def terrain_svg(terrain: Any, limit_m: float | None, locale: str = "en") -> str:
     alt = np.asarray(ph["altitude_m"], dtype=float)
     ground = np.asarray(ph["ground_m"], dtype=float)
     ground = np.where(np.isfinite(ground), ground, alt - agl)
-    m = t("pdf_m", locale)
+    m = t("m", locale)
     chart = Chart(locale, (3.0, 2.0), plot_height_pt=220.0)
     top, bottom = chart.panels
 
@@ -279,16 +279,16 @@ def terrain_svg(terrain: Any, limit_m: float | None, locale: str = "en") -> str:
         ax.band(x, lo, hi, colour=colour, alpha=0.35, label=label)
         return x
 
-    strips = band(top, agl, "#1f77b4", t("terrain_agl_m", locale))
+    strips = band(top, agl, "#1f77b4", t("agl_m", locale))
     top.axhline(terrain.height_m, colour="#000000", width=0.9,
                 label=f"{t('terrain_plot_planned', locale)}: "
                       f"{number(terrain.height_m, 0, locale)} {m}")
     if limit_m is not None:
         top.axhline(limit_m, colour="#d62728", dash=":", width=1.0,
-                    label=f"{t('terrain_plot_limit', locale)}"
+                    label=f"{t('max_height', locale)}"
                           + (f" ({terrain.binding})" if terrain.binding else "")
                           + f": {number(limit_m, 0, locale)} {m}")
-    top.set_ylabel(t("terrain_plot_y", locale))
+    top.set_ylabel(t("agl_m", locale))
     top.set_ylim(bottom=0)
     band(bottom, ground, "#8c564b", t("terrain_ground_m", locale))
     band(bottom, alt, "#2ca02c", t("terrain_altitude_m", locale))

@@ -26,6 +26,7 @@ from collections.abc import Callable, Iterable, Sequence
 from itertools import pairwise
 from typing import Any
 
+from ..i18n.numbers import Numbers
 from .chartscale import (
     ADVANCE,
     ASCENT_EM,
@@ -36,7 +37,6 @@ from .chartscale import (
     nice_ticks,
     text_width_pt,
 )
-from .view import Numbers
 
 __all__ = ["ADVANCE", "Chart", "Panel", "estimate_width_pt", "log_ticks", "nice_ticks",
            "text_width_pt"]
@@ -348,7 +348,7 @@ class Chart:
     Parameters
     ----------
     locale : {"en", "ru"}
-        The tick labels' number format (:meth:`scanplan.reports.view.Numbers.tick`).
+        The tick labels' number format (:meth:`scanplan.i18n.numbers.Numbers.tick`).
     weights : sequence of float
         One panel per weight, top to bottom, heights in that ratio.
     plot_height_pt : float

@@ -1,7 +1,7 @@
 """The terminal reports of ``scanplan scan`` and ``scanplan uav``, in the language of
-``--locale`` (English or Russian): words from :mod:`scanplan.reports.labels_cli`, constraint
-names from the label catalogue, messages from :mod:`scanplan.messages`, numbers in the
-locale's convention (:class:`scanplan.reports.view.Numbers`: a decimal comma in Russian).
+``--locale`` (English or Russian): words from :mod:`scanplan.i18n.labels_cli`, constraint
+names from the label catalogue, messages from :mod:`scanplan.i18n.messages`, numbers in the
+locale's convention (:class:`scanplan.i18n.numbers.Numbers`: a decimal comma in Russian).
 """
 
 from __future__ import annotations
@@ -11,14 +11,14 @@ from typing import Any
 
 from ..core import flight as FL
 from ..core.shown import shown_decimals
-from ..messages import localize, scale_text
+from ..i18n.labels import t
+from ..i18n.labels_cli import cli_text
+from ..i18n.messages import localize, scale_text
+from ..i18n.numbers import Numbers
 from ..rules.film import ScanPlan
 from ..rules.uav import UavPlan
-from .labels import t
-from .labels_cli import cli_text
 from .references import author_cite
 from .text import _volume, _wrap, code_tag, table
-from .view import Numbers
 
 __all__ = ["format_scan_plan", "format_uav_plan"]
 
@@ -43,7 +43,8 @@ class _Words:
         return self.n.fixed(x, digits)
 
     def scale(self, x: float) -> str:
-        """``1:10000`` (English), ``1:10 000`` (Russian): :func:`scanplan.messages.scale_text`."""
+        """``1:10000`` (English), ``1:10 000`` (Russian):
+        :func:`scanplan.i18n.messages.scale_text`."""
         return scale_text(x, self.loc)
 
     def constraint(self, cid: str) -> str:

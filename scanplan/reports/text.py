@@ -8,11 +8,11 @@ import textwrap
 from collections.abc import Sequence
 from typing import Any
 
-from ..messages import scale_text
+from ..i18n.labels import LABELS, t
+from ..i18n.messages import scale_text
+from ..i18n.numbers import Numbers
 from ..rules.film import CONSTRAINTS
 from .jsondoc import scale_value
-from .labels import LABELS, t
-from .view import Numbers
 
 __all__ = ["format_plan_result", "table"]
 
@@ -53,13 +53,15 @@ def _wrap(text: str, indent: str) -> str:
 
 
 class _Terminal:
-    """The terminal summary's words (``term_*`` of the label catalogue) in one language."""
+    """The terminal summary's words in one language: ``term_<key>`` of the label
+    catalogue, else the concept key ``<key>`` the other renderers share (``um``, ``km``)."""
 
     def __init__(self, locale: str) -> None:
         self.locale = locale
 
     def __getitem__(self, key: str) -> str:
-        return t(f"term_{key}", self.locale)
+        own = f"term_{key}"
+        return t(own if own in LABELS[self.locale] else key, self.locale)
 
     def get(self, key: str, default: str) -> str:
         """The word ``key``, or ``default`` when the catalogue has none."""
@@ -136,7 +138,7 @@ def _plan_heading(result: Any, loc: str, T: _Terminal) -> list[str]:
 
 def _film_summary(f: Any, loc: str, T: _Terminal, cname: Any) -> list[str]:
     """The film block: photo scale, scan pixel, binding constraint, frames, the reason."""
-    from ..messages import localize
+    from ..i18n.messages import localize
 
     s = f.recommended
     lines = ["", T["film"]]
@@ -186,7 +188,7 @@ def _comparison_lines(result: Any, loc: str, T: _Terminal) -> list[str]:
 
 def _warning_lines(result: Any, loc: str, T: _Terminal) -> list[str]:
     """The warnings (``!``) and notes (``i``) with their codes."""
-    from ..messages import localize
+    from ..i18n.messages import localize
 
     lines = ["", T["warnings"]]
     for w in result.warnings:
@@ -254,7 +256,7 @@ def format_area(area: Any, locale: str = "en") -> str:
 def format_layout(layout: Any, scale: str = "", locale: str = "en") -> str:
     """One line per layout: direction, strips, photos, length (turns), time, sorties; the
     reason when it cannot be flown. Photo centres are in the exported files, not here."""
-    from ..messages import localize, plural
+    from ..i18n.messages import localize, plural
 
     T = _AREA_TEXT[locale]
     head = f"{T['lines']}" + (f" {T['at']} {scale}" if scale else "")
@@ -275,7 +277,7 @@ def format_layout(layout: Any, scale: str = "", locale: str = "en") -> str:
 
 def _uav_summary(u: Any, loc: str, T: _Terminal, cname: Any) -> list[str]:
     """The UAV part of :func:`format_plan_result`."""
-    from ..messages import localize
+    from ..i18n.messages import localize
 
     p = u.job.plan
     lines = ["", T["aircraft" if p.inputs.platform == "aircraft" else "uav"]]

@@ -12,9 +12,9 @@ import datetime as _dt
 import re
 from typing import Any
 
-from ..messages import Message, localize
+from ..i18n.labels import LABELS, t
+from ..i18n.messages import Message, localize
 from ..norms import NormSet
-from .labels import LABELS, t
 
 __all__ = ["camera_title", "display_message", "document_date", "name_title", "object_title",
            "param_name", "param_value", "scanner_title", "sentence", "shape_title"]

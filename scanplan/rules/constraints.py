@@ -4,7 +4,7 @@ Each constraint is one :class:`~scanplan.rules.record.Constraint` record plus th
 functions it names: the film pixel (seed 001, eqs. 1–6), the reason with the contract's
 numbers, and the digital ground limit (the same limit on the ground, Mc = 1, compared with
 the GSD or the MTF ground resolution L; docs/uav-models.md §9–10). The texts are keys of
-the message catalogue (:mod:`scanplan.messages`).
+the message catalogue (:mod:`scanplan.i18n.messages`).
 
 >>> from scanplan.rules.registry import CONSTRAINTS
 >>> [c.id for c in CONSTRAINTS.values() if "film" in c.workflows][:5]
@@ -24,7 +24,7 @@ from ..core import flight as FL
 from ..core import formulas as F
 from ..core import photoscale as PS
 from ..core import stereo as S
-from ..messages import Message
+from ..i18n.messages import Message
 from .record import Constraint, DigitalLimit, FilmArgs
 
 if TYPE_CHECKING:

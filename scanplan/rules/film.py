@@ -32,7 +32,7 @@ from ..core import formulas as F
 from ..core import photoscale as PS
 from ..core.domains import check_domain, check_range
 from ..errors import InputError
-from ..messages import Message
+from ..i18n.messages import Message
 from .constraints import height_formula_name
 from .registry import CONSTRAINTS, ConstraintInfo, FilmArgs, film_ids
 from .results import (

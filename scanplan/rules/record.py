@@ -66,7 +66,7 @@ class Constraint:
     name, name_ru : str
         The human name in English and Russian (the reports' label for the id).
     protects, equation : str
-        :class:`~scanplan.messages.Message` s (or plain text): what the constraint protects;
+        :class:`~scanplan.i18n.messages.Message` s (or plain text): what the constraint protects;
         its equation and source citation.
     depends_on_photo_scale : bool
         Whether the film pixel is a ground limit divided by Mc (False for P_R).

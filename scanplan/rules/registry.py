@@ -10,7 +10,7 @@ functions that compute it for each workflow. A workflow whose function is None d
 know the constraint (P_R has no digital counterpart; the altitude ceiling has no film one).
 
 To add a constraint, write its function(s) and one :class:`Constraint` record in
-:mod:`scanplan.rules.constraints` (and its texts in :mod:`scanplan.messages`): the engines,
+:mod:`scanplan.rules.constraints` (and its texts in :mod:`scanplan.i18n.messages`): the engines,
 ``--json``, the terminal, the workbook and the PDF pick it up from here.
 
 >>> sorted(CONSTRAINTS)[:3]
@@ -25,6 +25,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 
+from ..i18n.labels import add_name_source
 from .constraints import BUILTIN
 from .record import Constraint, DigitalLimit, FilmArgs
 
@@ -44,6 +45,15 @@ ConstraintInfo = Constraint
 
 CONSTRAINTS: dict[str, Constraint] = {}
 """The registry: id → record, in the Instruction's order, then the UAV-only limits."""
+
+
+def _title(key: str, locale: str) -> str | None:
+    """A registered constraint's name, for the report labels (``t(cid, locale)``)."""
+    record = CONSTRAINTS.get(key)
+    return record.title(locale) if record is not None else None
+
+
+add_name_source(_title)
 
 
 def register(record: Constraint) -> Constraint:
@@ -88,5 +98,5 @@ def digital_ids(enabled: Iterable[str], *, with_map: bool) -> tuple[str, ...]:
         or (not r.norm_switch and (with_map or not r.needs_map))))
 
 
-for _record in BUILTIN:  # seed 001's P_S, P_Z, P_P, P_R, P_D, then the UAV-only limits
+for _record in BUILTIN:  # P_S, P_Z, P_P, P_R, P_D, then the UAV-only limits
     register(_record)

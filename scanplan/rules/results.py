@@ -13,7 +13,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..core import mtf as M
-from ..messages import PlanWarning  # a record of the base layer, named here for importers
+from ..i18n.messages import PlanWarning  # a record of the base layer, named here for importers
 
 __all__ = [
     "ConstraintResult",
@@ -135,7 +135,7 @@ class ScanInputs:
 class ConstraintResult:
     """One constraint at one photo scale.
 
-    ``protects``, ``equation`` and ``reason`` are :class:`~scanplan.messages.Message` s:
+    ``protects``, ``equation`` and ``reason`` are :class:`~scanplan.i18n.messages.Message` s:
     English text that renders in another locale with ``.text(locale)``.
     """
 
@@ -154,7 +154,7 @@ class ConstraintResult:
 @dataclass(frozen=True)
 class ScanScenario:
     """The engine's answer at one photo scale (``explanation``: a
-    :class:`~scanplan.messages.Message`)."""
+    :class:`~scanplan.i18n.messages.Message`)."""
 
     photo_scale: float
     photo_to_map_ratio: float
@@ -303,7 +303,7 @@ class Recognition:
 class HeightLimit:
     """One constraint as a maximum planned flight height.
 
-    ``reason`` and ``equation`` are :class:`~scanplan.messages.Message` s: English text that
+    ``reason`` and ``equation`` are :class:`~scanplan.i18n.messages.Message` s: English text that
     renders in another locale with ``.text(locale)``.
     """
 

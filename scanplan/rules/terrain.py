@@ -34,7 +34,7 @@ from numpy.typing import NDArray
 from ..core import formulas as F
 from ..core.flight import actual_overlap_pct
 from ..core.photoscale import effective_resolving_power_lpmm, ground_pixel_m
-from ..messages import MAX_LISTED, Message, PlanWarning, listing
+from ..i18n.messages import MAX_LISTED, Message, PlanWarning, listing
 from .constraints import sigma_z_m
 from .film import evaluate
 from .results import ScanInputs, ScanRules, UavInputs, UavPlan

@@ -36,7 +36,7 @@ from ..core.domains import DOMAINS, check_domain
 from ..core.orientation import attitude_matrix, corner_gsd
 from ..core.shown import shown_above
 from ..errors import FieldValueError, InputError
-from ..messages import Message
+from ..i18n.messages import Message
 from .constraints import height_accuracy as _height_accuracy  # noqa: F401  (tests, importers)
 from .film import check_probability, overlap_warning
 from .registry import CONSTRAINTS, DigitalLimit, digital_ids

@@ -168,7 +168,7 @@ def _margins_at_planned(doc: dict[str, Any]) -> dict[str, float]:
 
 def _warnings(result: Any, locale: str) -> list[dict[str, str]]:
     """The plan's warnings in ``locale``, worded as the terminal summary words them."""
-    from ..messages import localize
+    from ..i18n.messages import localize
     from ..reports.wording import display_message
 
     out = []
@@ -182,7 +182,7 @@ def _warnings(result: Any, locale: str) -> list[dict[str, str]]:
 
 def _constraint_names(doc: dict[str, Any], locale: str) -> dict[str, str]:
     """The reports' name of each constraint the plan evaluated, in ``locale``."""
-    from ..reports.labels import t
+    from ..i18n.labels import t
 
     ids = set((doc.get("uav") or {}).get("constraints") or {})
     for s in (doc.get("film") or {}).get("scenarios") or []:

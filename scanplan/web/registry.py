@@ -21,7 +21,7 @@ MANAGED = {("area", "file"), ("area", "polygon"), ("terrain", "dem"), ("project"
 
 
 def _label(name: str, key: str, locale: str) -> str:
-    from ..reports.labels import LABELS
+    from ..i18n.labels import LABELS
 
     if name == "name":  # the report's "name" is a person's (signature block)
         return ""

@@ -39,10 +39,10 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from ...messages import document_text
+from ...i18n.labels import t as t  # re-exported: the sheets' labels
+from ...i18n.messages import document_text
 from .. import ReportMeta, write_atomic
 from ..design import write_design_sheet
-from ..labels import t as t  # re-exported: the sheets' labels
 from ..view import ReportView, build_view
 from .book import Book
 from .cells import _BINDING_FILL as _BINDING_FILL  # re-exported: the binding highlight

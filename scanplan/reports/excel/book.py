@@ -59,7 +59,7 @@ class Book:
         return self.view.labels(key)
 
     def text(self, value: object, ns: NormSet | None = None) -> str:
-        """An engine sentence (a :class:`~scanplan.messages.Message`) in the report's
+        """An engine sentence (a :class:`~scanplan.i18n.messages.Message`) in the report's
         language, ids shown by their names and the works it names by reference numbers."""
         return self.bib.cite(display_message(value, ns, self.loc))
 

@@ -18,7 +18,7 @@ from openpyxl.worksheet.worksheet import Worksheet
 
 # Invariant number formats (Excel shows them with the user's decimal separator).
 SCALE = '"1:"0'
-# A scale as a Russian document writes it (scanplan.messages.scale_text): the denominator
+# A scale as a Russian document writes it (scanplan.i18n.messages.scale_text): the denominator
 # grouped from five digits (1:25 000, with the user's separator), four digits whole (1:2000).
 SCALE_RU = '[>=10000]"1:"#,##0;"1:"0'
 INT = "#,##0"

@@ -44,7 +44,7 @@ def _warning_items(book: Book, scan: ScanJob | None, uav: UavJob | None,
     if scan is not None:
         items += [(book.t("xlsx_section_scan"), w, scan.norm_set) for w in scan.plan.warnings]
     if uav is not None:
-        items += [(book.t("xlsx_section_uav"), w, uav.norm_set) for w in uav.plan.warnings]
+        items += [(book.t("uav_section"), w, uav.norm_set) for w in uav.plan.warnings]
     if spec is not None:
         seen = {w.code for _, w, _ in items}
         items += [(book.t("spec_title"), w, None) for w in spec.warnings
@@ -86,7 +86,7 @@ def norms_sheet(book: Book, scan: ScanJob | None, uav: UavJob | None) -> None:
     used: list[tuple[NormSet, list[Any], str]] = []
     for job, obj, section in (
             (scan, scan.plan.inputs.object if scan else None, "xlsx_section_scan"),
-            (uav, uav.plan.inputs.map_object if uav else None, "xlsx_section_uav")):
+            (uav, uav.plan.inputs.map_object if uav else None, "uav_section")):
         if job is None:
             continue
         for ns, objs, _section in used:
@@ -97,7 +97,7 @@ def norms_sheet(book: Book, scan: ScanJob | None, uav: UavJob | None) -> None:
             used.append((job.norm_set, [obj], section))
     ws = book.sheet("xlsx_sheet_norms", landscape=True,
                     widths=(46, 34, 44, 12, 24, 50))
-    _header(ws, 1, [book.t("xlsx_parameter"), book.t("value"), book.t("source")])
+    _header(ws, 1, [book.t("parameter"), book.t("value"), book.t("source")])
     row = 2
     for ns, objs, _section in used:
         row = _norm_set(book, ws, row, ns, [o for o in objs if o is not None]) + 1
@@ -118,7 +118,7 @@ def _norm_set(book: Book, ws: Worksheet, row: int, ns: NormSet, objs: list[Any])
         row = book.kv(ws, row, book.t("xlsx_imported_from"), ns.imported_from)
         row = book.kv(ws, row, book.t("xlsx_imported_at"), ns.imported_at)
     row = book.section(ws, row + 1, book.t("xlsx_parameters"))
-    _header(ws, row, [book.t("xlsx_parameter"), book.t("value"), book.t("source")])
+    _header(ws, row, [book.t("parameter"), book.t("value"), book.t("source")])
     row += 1
     for key in ns.parameters:
         value = ns.parameters[key]
@@ -134,7 +134,7 @@ def _norm_set(book: Book, ws: Worksheet, row: int, ns: NormSet, objs: list[Any])
         row += 1
     shapes_used = {o.shape for o in objs}
     row = book.section(ws, row + 1, book.t("xlsx_shapes"))
-    _header(ws, row, [book.t("xlsx_shape"), book.t("xlsx_shape_coefficient"),
+    _header(ws, row, [book.t("shape"), book.t("xlsx_shape_coefficient"),
                       book.t("source"), book.t("xlsx_used")])
     row += 1
     for shape, coef in ns.shapes.items():
@@ -147,9 +147,9 @@ def _norm_set(book: Book, ws: Worksheet, row: int, ns: NormSet, objs: list[Any])
             _mark(cells)
         row += 1
     row = book.section(ws, row + 1, book.t("xlsx_objects"))
-    _header(ws, row, [book.t("map_scale"), book.t("xlsx_object_name"),
+    _header(ws, row, [book.t("map_scale"), book.t("object_name"),
                       book.t("xlsx_object_size_m"), book.t("xlsx_used"),
-                      book.t("xlsx_shape"), book.t("source")])
+                      book.t("shape"), book.t("source")])
     row += 1
     used_rows = {(o.map_scale, o.name, o.size_m) for o in objs if o.map_scale is not None}
     for obj in ns.objects:
@@ -169,7 +169,7 @@ def _norm_set(book: Book, ws: Worksheet, row: int, ns: NormSet, objs: list[Any])
 
 def warnings_sheet(book: Book, scan: ScanJob | None, uav: UavJob | None,
              spec: PlanResult | None = None) -> None:
-    ws = book.sheet("xlsx_sheet_warnings", landscape=True, widths=(20, 14, 30, 20, 90))
+    ws = book.sheet("warnings", landscape=True, widths=(20, 14, 30, 20, 90))
     _header(ws, 1, [book.t("xlsx_section"), book.t("xlsx_severity"), book.t("xlsx_warning"),
                     book.t("photo_scale"), book.t("xlsx_message")])
     items = _warning_items(book, scan, uav, spec)

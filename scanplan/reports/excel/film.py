@@ -71,7 +71,7 @@ def sweep_sheet(book: Book, job: ScanJob, spec: PlanResult | None = None) -> Non
     sweep = job.plan.sweep
     scales = list(sweep.get("photo_scale", []))
     ids = [cid for cid in job.plan.constraint_ids if cid in sweep]
-    ws = book.sheet("xlsx_sheet_sweep", landscape=True,
+    ws = book.sheet("sweep", landscape=True,
                     widths=(14,) + (16,) * len(ids) + (16, 30))
     heads = [book.t("photo_scale")] + [f"{book.cname(cid)}, µm" if book.loc == "en"
                                        else f"{book.cname(cid)}, мкм" for cid in ids]

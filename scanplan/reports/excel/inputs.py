@@ -32,9 +32,9 @@ from .cells import (
 
 
 def inputs_sheet(book: Book, scan: ScanJob | None, uav: UavJob | None) -> None:
-    ws = book.sheet("xlsx_sheet_inputs", landscape=False, widths=(46, 16, 12, 12, 12, 12,
+    ws = book.sheet("inputs", landscape=False, widths=(46, 16, 12, 12, 12, 12,
                                                                    12, 12))
-    _header(ws, 1, [book.t("xlsx_parameter"), book.t("value")])
+    _header(ws, 1, [book.t("parameter"), book.t("value")])
     row = 2
     if scan is not None:
         row = _inputs_scan(book, ws, row, scan) + 1
@@ -47,7 +47,7 @@ def _object_rows(book: Book, ws: Worksheet, row: int, obj: Any, ns: NormSet) -> 
         return book.kv(ws, row, book.t("object"), None)
     row = book.kv(ws, row, book.t("object"), object_title(obj, book.loc), wrap=True)
     row = book.kv(ws, row, book.t("xlsx_object_size_m"), obj.size_m, F3)
-    row = book.kv(ws, row, book.t("xlsx_shape"), book.shape_name(ns, obj.shape))
+    row = book.kv(ws, row, book.t("shape"), book.shape_name(ns, obj.shape))
     row = book.kv(ws, row, book.t("xlsx_shape_coefficient"), obj.shape_coefficient, F2)
     return book.kv(ws, row, book.t("xlsx_object_source"), book.text(obj.source),
                    wrap=True)
@@ -86,11 +86,11 @@ def _inputs_scan(book: Book, ws: Worksheet, row: int, job: ScanJob) -> int:
 
 def _inputs_uav(book: Book, ws: Worksheet, row: int, job: UavJob) -> int:
     inp = job.plan.inputs
-    row = book.section(ws, row, book.t("xlsx_section_uav"))
+    row = book.section(ws, row, book.t("uav_section"))
     rows: list[tuple[str, object, str | None]] = [
         ("camera", camera_title(job.norm_set, inp.camera, book.loc, inp.camera_name)
          or None, None),
-        ("xlsx_pixel_pitch_um", inp.pixel_um, F2),
+        ("pixel_pitch_um", inp.pixel_um, F2),
         ("focal_mm", inp.focal_mm, F2),
         ("xlsx_f_number", inp.f_number, F1),
         ("orientation", book.t(f"orientation_{inp.orientation}"), None),
@@ -103,7 +103,7 @@ def _inputs_uav(book: Book, ws: Worksheet, row: int, job: UavJob) -> int:
         ("xlsx_tolerance_up_pct", inp.height_tolerance_up_pct, F1),
         ("xlsx_tolerance_down_pct", inp.height_tolerance_down_pct, F1),
         ("ground_speed_ms", inp.speed_ms, F1),
-        ("xlsx_exposure_s", inp.exposure_s, "0.00000"),
+        ("exposure_s", inp.exposure_s, "0.00000"),
         ("forward_overlap_pct", inp.forward_overlap_pct, F1),
         ("side_overlap_pct", inp.side_overlap_pct, F1),
         ("xlsx_area_width_m", inp.area_width_m, M_LARGE),
@@ -116,7 +116,7 @@ def _inputs_uav(book: Book, ws: Worksheet, row: int, job: UavJob) -> int:
     row = _object_rows(book, ws, row, inp.map_object, job.norm_set)
     for key, value, fmt in [
         ("xlsx_r_max", inp.r_max, F3), ("xlsx_r_min", inp.r_min, F3),
-        ("xlsx_threshold_k0", inp.threshold_k0, F3),
+        ("threshold_k0", inp.threshold_k0, F3),
         ("xlsx_haze_contrast", inp.haze_contrast, F3),
         ("xlsx_shift_factor", inp.shift_factor, F2),
         ("xlsx_random_speed_ms", inp.random_speed_ms, F2),

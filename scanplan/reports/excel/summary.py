@@ -8,8 +8,8 @@ from typing import TYPE_CHECKING
 from openpyxl.worksheet.worksheet import Worksheet
 
 from ...core import flight as FL
+from ...i18n.labels import LABELS
 from ..design import relief_max_height_m
-from ..labels import LABELS
 from ..wording import (
     document_date,
     object_title,
@@ -43,7 +43,7 @@ from .closing import _warning_lines
 
 def summary_sheet(book: Book, scan: ScanJob | None, uav: UavJob | None,
             spec: PlanResult | None = None) -> None:
-    ws = book.sheet("xlsx_sheet_summary", landscape=True,
+    ws = book.sheet("summary", landscape=True,
                     widths=(34, 16, 26, 14, 14, 14, 14, 14, 14, 70))
     titles = ([book.t("title_scan")] if scan else []) + ([book.t("title_uav")] if uav else [])
     book.title_text = "; ".join(titles)
@@ -150,7 +150,7 @@ def _summary_spec(book: Book, ws: Worksheet, row: int, spec: PlanResult) -> int:
         if "photos" in p.flight:
             row = book.kv(ws, row, book.t("spec_photos"), p.flight["photos"], "#,##0")
         if "data_volume_bytes" in p.flight:
-            row = book.kv(ws, row, book.t("spec_data_gb"),
+            row = book.kv(ws, row, book.t("data_volume_gb"),
                           p.flight["data_volume_bytes"] / 1e9, "#,##0.0")
             row = book.kv(ws, row, book.t("data_volume_jpeg_gb"), float(
                 FL.jpeg_volume_bytes(p.flight["data_volume_bytes"])) / 1e9, "#,##0.0")
@@ -171,7 +171,7 @@ def _summary_spec(book: Book, ws: Worksheet, row: int, spec: PlanResult) -> int:
                             else "#,##0")
                 else:
                     put_text(ws, row, col, MISSING)
-            unit = {"m": "pdf_m", "GB": "pdf_gb"}.get(c["unit"])
+            unit = {"m": "m", "GB": "gb"}.get(c["unit"])
             put_text(ws, row, 4, book.t(unit) if unit else c["unit"])
             row += 1
     return row
@@ -222,8 +222,8 @@ def _summary_scan(book: Book, ws: Worksheet, row: int, job: ScanJob) -> int:
 
 def _summary_uav(book: Book, ws: Worksheet, row: int, job: UavJob) -> int:
     plan = job.plan
-    row = book.section(ws, row, f"{book.t('results')}: {book.t('xlsx_section_uav')}")
-    _header(ws, row, [book.t("xlsx_parameter"), book.t("value")])
+    row = book.section(ws, row, f"{book.t('results')}: {book.t('uav_section')}")
+    _header(ws, row, [book.t("parameter"), book.t("value")])
     row += 1
     row = book.kv(ws, row, book.t("height_m"), plan.heights_m.get("planned"), F1)
     row = book.kv(ws, row, book.t("gsd_m"), plan.gsd_m, F4)

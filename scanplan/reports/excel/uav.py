@@ -68,7 +68,7 @@ def uav_sheet(book: Book, job: UavJob) -> None:
     plan = job.plan
     ws = book.sheet("xlsx_sheet_uav", landscape=True,
                     widths=(46, 16, 16, 16, 16, 16, 14, 12, 50, 50))
-    _header(ws, 1, [book.t("xlsx_parameter"), book.t("value")])
+    _header(ws, 1, [book.t("parameter"), book.t("value")])
     row = 2
     h = plan.heights_m
     lr = plan.ground_resolution_m
@@ -141,8 +141,8 @@ def _recognition_rows(book: Book, ws: Worksheet, row: int, job: UavJob) -> int:
     if not plan.recognition:
         return row
     row = book.section(ws, row + 1, book.t("xlsx_recognition"))
-    _header(ws, row, [book.t("xlsx_object_name"), book.t("xlsx_object_size_m"),
-                      book.t("xlsx_shape"), book.t("map_scale"),
+    _header(ws, row, [book.t("object_name"), book.t("xlsx_object_size_m"),
+                      book.t("shape"), book.t("map_scale"),
                       book.t("xlsx_p_planned"), book.t("xlsx_p_max"),
                       book.t("xlsx_p_corner_max")])
     row += 1
@@ -219,10 +219,10 @@ def _height_markers(book: Book, chart: ScatterChart, ws: Worksheet, plan: Any, r
     m = " м" if book.loc == "ru" else " m"
     marks: list[tuple[str, float, float, float, float, str, str]] = []
     if h.get("planned"):
-        marks.append((f"{book.t('xlsx_planned')}: {book.numbers.height(h['planned'])}{m}",
+        marks.append((f"{book.t('planned')}: {book.numbers.height(h['planned'])}{m}",
                       h["planned"], 0.0, h["planned"], top, "000000", "solid"))
     if h.get("max") and h["max"] != h.get("planned"):
-        marks.append((f"{book.t('xlsx_highest_flown')}: {book.numbers.height(h['max'])}{m}",
+        marks.append((f"{book.t('highest_flown')}: {book.numbers.height(h['max'])}{m}",
                       h["max"], 0.0, h["max"], top, "7F7F7F", "dash"))
     if plan.max_height_m is not None:
         marks.append((f"{book.t('max_height_m').split(',')[0]} ({plan.binding}): "

@@ -4,7 +4,7 @@ of the catalogue listings (``scanplan cameras list/show``, ``scanplan norms list
 
 Each entry is a :meth:`str.format` template; its fields are numbers and names already
 written in the locale's convention (decimal comma in Russian,
-:class:`scanplan.reports.view.Numbers`).
+:class:`scanplan.i18n.numbers.Numbers`).
 """
 
 from __future__ import annotations

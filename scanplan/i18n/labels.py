@@ -4,11 +4,13 @@ Writers call :func:`t`; a missing key is a bug caught by ``tests`` (both locales
 the same keys). This module holds the labels of the film and UAV specifications; the rest of
 the catalogue lives by concept and is merged into :data:`LABELS` at the end: documents fit to
 sign, the terminal summary, the survey design sheet and terrain in
-:mod:`scanplan.reports.labels_more`, the flight over the area (map page, strips, exported
-files) in :mod:`scanplan.reports.labels_geo`.
+:mod:`scanplan.i18n.labels_more`, the flight over the area (map page, strips, exported
+files) in :mod:`scanplan.i18n.labels_geo`.
 """
 
 from __future__ import annotations
+
+from collections.abc import Callable
 
 LOCALES = ("en", "ru")
 
@@ -79,17 +81,13 @@ LABELS: dict[str, dict[str, str]] = {
         "PP": "graphic photo-plan",
         "PR": "resolving power of the photo",
         "PD": "interpretation",
-        "xlsx_sheet_summary": "Summary",
-        "xlsx_sheet_inputs": "Inputs",
         "xlsx_sheet_constraints": "Constraints",
-        "xlsx_sheet_sweep": "Sweep",
         "xlsx_sheet_uav": "UAV",
         "xlsx_sheet_mtf": "MTF",
         "xlsx_sheet_norms": "Norms",
-        "xlsx_sheet_warnings": "Warnings",
         "xlsx_section_scan": "Film scan",
-        "xlsx_section_uav": "UAV flight",
-        "xlsx_parameter": "Parameter",
+        "uav_section": "UAV flight",
+        "parameter": "Parameter",
         "xlsx_explanation": "Explanation",
         "xlsx_id": "ID",
         "xlsx_equation": "Equation",
@@ -112,14 +110,14 @@ LABELS: dict[str, dict[str, str]] = {
         "xlsx_frame_along_mm": "Frame along track, mm",
         "xlsx_object_size_m": "Object size, m",
         "xlsx_object_source": "Object source",
-        "xlsx_shape": "Shape",
+        "shape": "Shape",
         "xlsx_shape_coefficient": "Shape coefficient B",
         "xlsx_scanner_steps_um": "Scanner steps, µm",
         "xlsx_candidate_pixels_um": "Scan pixels asked about, µm",
         "xlsx_bands": "Bands",
         "xlsx_bits_per_band": "Bits per band",
         "xlsx_camera_name": "Camera model",
-        "xlsx_pixel_pitch_um": "Sensor pixel pitch, µm",
+        "pixel_pitch_um": "Sensor pixel pitch, µm",
         "xlsx_f_number": "F-number",
         "xlsx_sensor_width_mm": "Sensor side across track, mm",
         "xlsx_sensor_height_mm": "Sensor side along track, mm",
@@ -130,11 +128,11 @@ LABELS: dict[str, dict[str, str]] = {
         "orientation_portrait": "portrait (image width along track)",
         "xlsx_tolerance_up_pct": "Height tolerance up, %",
         "xlsx_tolerance_down_pct": "Height tolerance down, %",
-        "xlsx_exposure_s": "Exposure, s",
+        "exposure_s": "Exposure, s",
         "xlsx_min_trigger_interval_s": "Minimum trigger interval, s",
         "xlsx_r_max": "Brightness coefficient of the brighter detail r_max",
         "xlsx_r_min": "Brightness coefficient of the darker detail r_min",
-        "xlsx_threshold_k0": "Threshold contrast K0",
+        "threshold_k0": "Threshold contrast K0",
         "xlsx_haze_contrast": "Haze contrast coefficient",
         "xlsx_shift_factor": "Image shift factor k",
         "xlsx_random_speed_ms": "Random linear speed, m/s",
@@ -194,19 +192,18 @@ LABELS: dict[str, dict[str, str]] = {
         "xlsx_parameters": "Parameters",
         "xlsx_shapes": "Shape coefficients",
         "xlsx_objects": "Smallest objects to interpret",
-        "xlsx_object_name": "Object",
+        "object_name": "Object",
         "xlsx_used": "Used",
         "xlsx_height_formula": "Form of the height constraint P_Z",
         "xlsx_pr_coefficient": "Coefficient k_R",
         "pdf_title_plan": "Aerial survey and scan specification",
         "pdf_scan_section": "Film photos: scanning",
-        "pdf_uav_section": "UAV flight",
         "pdf_comparison": "Comparison",
         "pdf_result": "Result",
-        "pdf_um": "µm",
-        "pdf_m": "m",
+        "um": "µm",
+        "m": "m",
         "pdf_mm": "mm",
-        "pdf_mb": "MB",
+        "mb": "MB",
         "pdf_lpmm": "lines/mm",
         "pdf_none": "none",
         "pdf_binding_note": "highlighted: the binding constraint at each photo scale (the "
@@ -228,17 +225,13 @@ LABELS: dict[str, dict[str, str]] = {
         "pdf_formula": "Formula",
         "pdf_formula_source": "Formula and source",
         "pdf_meaning": "Meaning",
-        "pdf_parameter": "Parameter",
         "pdf_imported_from": "imported from",
         "pdf_generated_by": "Prepared with {generator}.",
-        "pdf_pixel_pitch_um": "Sensor pixel pitch, µm",
         "pdf_f_number": "f-number",
         "pdf_sensor_mm": "Sensor, across × along track, mm",
         "pdf_flown_heights": "Heights flown, m",
         "ground_speed_ms": "Ground speed, m/s",
-        "pdf_exposure_s": "Exposure, s",
         "pdf_scene": "Scene reflectances r_max / r_min",
-        "pdf_threshold_k0": "Threshold contrast K0",
         "pdf_at_height": "at {h} m",
         "pdf_corner_at": "corner, {h} m",
         "pdf_centre_corner": "(centre / corner)",
@@ -256,11 +249,9 @@ LABELS: dict[str, dict[str, str]] = {
         "pdf_strips": "Strips × photos per strip = photos",
         "pdf_strips_photos": "Strips / photos",
         "pdf_flight_length": "Flight length, km / time, min",
-        "pdf_data_volume": "Data volume, uncompressed, GB",
+        "data_volume_gb": "Data volume, uncompressed, GB",
         "pdf_recognition": "Recognition probability of the norm objects, P = exp(−(B·L/L_obj)²)",
-        "pdf_object": "Object",
         "pdf_size_m": "Size, m",
-        "pdf_shape": "Shape",
         "pdf_limits": "Maximum planned flight height for the map {scale}, relief interval {hc} m",
         "pdf_tol_note": " (limits checked at the highest flown height, +{tol} %)",
         "pdf_limit_on_ground": "Limit on the ground, m",
@@ -277,9 +268,9 @@ LABELS: dict[str, dict[str, str]] = {
         "pdf_src_p": "Miheeva & Ilushenko 2015, eq. 7",
         "pdf_src_pd": "Miheeva & Ilushenko 2015, eq. 16 with A ≡ L",
         "pdf_src_tol": "Zverev & Fisenko 2014",
-        "pdf_gb": "GB",
-        "pdf_h_planned": "planned",
-        "pdf_h_flown_max": "highest flown",
+        "gb": "GB",
+        "planned": "planned",
+        "highest_flown": "highest flown",
         "pdf_h_max": "maximum planned ({cid})",
         "pdf_nyquist_short": "Nyquist",
         "pdf_warn_not_interpretable": "Not interpretable",
@@ -305,7 +296,6 @@ LABELS: dict[str, dict[str, str]] = {
         "spec_recommended_height_m": "Recommended flight height, m",
         "spec_planned_height_m": "Flight height given in the project, m",
         "spec_photos": "Photos for the area",
-        "spec_data_gb": "Data volume, uncompressed, GB",
         "spec_reason": "Why",
         "spec_comparison": "Film and UAV side by side",
         "spec_quantity": "Quantity",
@@ -316,7 +306,6 @@ LABELS: dict[str, dict[str, str]] = {
         "spec_cmp_recognition": "recognition probability of the map object",
         "spec_cmp_frames": "frames / photos",
         "pdf_h_max_flown": "highest flown at the maximum",
-        "pdf_h_ceiling": "altitude ceiling",
         "max_planned_height_m": "Maximum planned flight height, m",
         "max_flown_height_m": "Highest flown height at the maximum, m",
         "ceiling_m": "Altitude ceiling (highest flown height), m",
@@ -424,17 +413,13 @@ LABELS: dict[str, dict[str, str]] = {
         "PP": "графический фотоплан",
         "PR": "разрешающая способность снимка",
         "PD": "дешифрирование",
-        "xlsx_sheet_summary": "Сводка",
-        "xlsx_sheet_inputs": "Исходные данные",
         "xlsx_sheet_constraints": "Условия",
-        "xlsx_sheet_sweep": "Ряд масштабов",
         "xlsx_sheet_uav": "БПЛА",
         "xlsx_sheet_mtf": "ФПМ",
         "xlsx_sheet_norms": "Нормативы",
-        "xlsx_sheet_warnings": "Предупреждения",
         "xlsx_section_scan": "Сканирование аэрофотоснимков",
-        "xlsx_section_uav": "Аэрофотосъёмка с БПЛА",
-        "xlsx_parameter": "Параметр",
+        "uav_section": "Аэрофотосъёмка с БПЛА",
+        "parameter": "Параметр",
         "xlsx_explanation": "Пояснение",
         "xlsx_id": "Обозначение",
         "xlsx_equation": "Формула",
@@ -458,14 +443,14 @@ LABELS: dict[str, dict[str, str]] = {
         "xlsx_frame_along_mm": "Кадр вдоль маршрута, мм",
         "xlsx_object_size_m": "Размер объекта, м",
         "xlsx_object_source": "Источник размера объекта",
-        "xlsx_shape": "Форма",
+        "shape": "Форма",
         "xlsx_shape_coefficient": "Коэффициент формы B",
         "xlsx_scanner_steps_um": "Шаги сканера, мкм",
         "xlsx_candidate_pixels_um": "Проверяемые пиксели, мкм",
         "xlsx_bands": "Число каналов",
         "xlsx_bits_per_band": "Бит на канал",
         "xlsx_camera_name": "Модель камеры",
-        "xlsx_pixel_pitch_um": "Размер пикселя матрицы, мкм",
+        "pixel_pitch_um": "Размер пикселя матрицы, мкм",
         "xlsx_f_number": "Диафрагменное число",
         "xlsx_sensor_width_mm": "Сторона матрицы поперёк маршрута, мм",
         "xlsx_sensor_height_mm": "Сторона матрицы вдоль маршрута, мм",
@@ -476,11 +461,11 @@ LABELS: dict[str, dict[str, str]] = {
         "orientation_portrait": "книжная (ширина снимка вдоль маршрута)",
         "xlsx_tolerance_up_pct": "Допуск высоты вверх, %",
         "xlsx_tolerance_down_pct": "Допуск высоты вниз, %",
-        "xlsx_exposure_s": "Выдержка, с",
+        "exposure_s": "Выдержка, с",
         "xlsx_min_trigger_interval_s": "Минимальный интервал срабатывания затвора, с",
         "xlsx_r_max": "Коэффициент яркости светлой детали r_max",
         "xlsx_r_min": "Коэффициент яркости тёмной детали r_min",
-        "xlsx_threshold_k0": "Пороговый контраст K0",
+        "threshold_k0": "Пороговый контраст K0",
         "xlsx_haze_contrast": "Коэффициент контраста дымки",
         "xlsx_shift_factor": "Коэффициент сдвига изображения k",
         "xlsx_random_speed_ms": "Случайная линейная скорость, м/с",
@@ -544,19 +529,18 @@ LABELS: dict[str, dict[str, str]] = {
         "xlsx_parameters": "Параметры",
         "xlsx_shapes": "Коэффициенты формы",
         "xlsx_objects": "Наименьшие объекты дешифрирования",
-        "xlsx_object_name": "Объект",
+        "object_name": "Объект",
         "xlsx_used": "Использовано",
         "xlsx_height_formula": "Форма условия P_Z",
         "xlsx_pr_coefficient": "Коэффициент k_R",
         "pdf_title_plan": "Техническое задание на аэрофотосъёмку и сканирование",
         "pdf_scan_section": "Плёночные аэроснимки: сканирование",
-        "pdf_uav_section": "Аэрофотосъёмка с БПЛА",
         "pdf_comparison": "Сопоставление вариантов",
         "pdf_result": "Результат",
-        "pdf_um": "мкм",
-        "pdf_m": "м",
+        "um": "мкм",
+        "m": "м",
         "pdf_mm": "мм",
-        "pdf_mb": "МБ",
+        "mb": "МБ",
         "pdf_lpmm": "мм⁻¹",
         "pdf_none": "нет",
         "pdf_binding_note": "выделено определяющее условие при каждом масштабе снимков "
@@ -577,17 +561,13 @@ LABELS: dict[str, dict[str, str]] = {
         "pdf_formula": "Формула",
         "pdf_formula_source": "Формула и источник",
         "pdf_meaning": "Смысл",
-        "pdf_parameter": "Параметр",
         "pdf_imported_from": "импортировано из",
         "pdf_generated_by": "Подготовлено программой {generator}.",
-        "pdf_pixel_pitch_um": "Размер пикселя матрицы, мкм",
         "pdf_f_number": "Диафрагменное число",
         "pdf_sensor_mm": "Размер матрицы поперёк × вдоль маршрута, мм",
         "pdf_flown_heights": "Фактические высоты полёта, м",
         "ground_speed_ms": "Путевая скорость, м/с",
-        "pdf_exposure_s": "Выдержка, с",
         "pdf_scene": "Коэффициенты яркости r_max / r_min",
-        "pdf_threshold_k0": "Пороговый контраст K0",
         # a no-break space keeps the unit with its number in a narrow column head
         "pdf_at_height": "на {h}\u00a0м",
         "pdf_corner_at": "угол кадра, {h}\u00a0м",
@@ -606,12 +586,10 @@ LABELS: dict[str, dict[str, str]] = {
         "pdf_strips": "Маршрутов × снимков в маршруте = снимков",
         "pdf_strips_photos": "Маршрутов / снимков",
         "pdf_flight_length": "Длина маршрутов, км / время, мин",
-        "pdf_data_volume": "Объём данных без сжатия, ГБ",
+        "data_volume_gb": "Объём данных без сжатия, ГБ",
         "pdf_recognition": "Вероятность распознавания объектов по нормативам, P = "
                            "exp(−(B·L/L_obj)²)",
-        "pdf_object": "Объект",
         "pdf_size_m": "Размер, м",
-        "pdf_shape": "Форма",
         "pdf_limits": "Максимальная плановая высота полёта для карты {scale}, сечение рельефа "
                       "{hc} м",
         "pdf_tol_note": " (условия проверены на наибольшей фактической высоте, +{tol} %)",
@@ -631,9 +609,9 @@ LABELS: dict[str, dict[str, str]] = {
         "pdf_src_p": "Михеева, Илюшенко, 2015, ф. (7)",
         "pdf_src_pd": "Михеева, Илюшенко, 2015, ф. (16) при A ≡ L",
         "pdf_src_tol": "Зверев, Фисенко, 2014",
-        "pdf_gb": "ГБ",
-        "pdf_h_planned": "плановая",
-        "pdf_h_flown_max": "наибольшая фактическая",
+        "gb": "ГБ",
+        "planned": "плановая",
+        "highest_flown": "наибольшая фактическая",
         "pdf_h_max": "максимальная плановая ({cid})",
         "pdf_nyquist_short": "Найквист",
         "pdf_warn_not_interpretable": "Дешифрирование невозможно",
@@ -660,7 +638,6 @@ LABELS: dict[str, dict[str, str]] = {
         "spec_recommended_height_m": "Рекомендуемая высота полёта, м",
         "spec_planned_height_m": "Высота полёта, заданная в проекте, м",
         "spec_photos": "Число снимков на объект",
-        "spec_data_gb": "Объём данных без сжатия, ГБ",
         "spec_reason": "Обоснование",
         "spec_comparison": "Сравнение плёночной съёмки и БПЛА",
         "spec_quantity": "Показатель",
@@ -671,7 +648,6 @@ LABELS: dict[str, dict[str, str]] = {
         "spec_cmp_recognition": "Вероятность распознавания объекта карты",
         "spec_cmp_frames": "Число снимков",
         "pdf_h_max_flown": "наибольшая фактическая при максимальной",
-        "pdf_h_ceiling": "предельная высота полёта",
         "max_planned_height_m": "Максимальная плановая высота полёта, м",
         "max_flown_height_m": "Наибольшая фактическая высота при максимальной плановой, м",
         "ceiling_m": "Предельная высота полёта (наибольшая фактическая), м",
@@ -727,16 +703,14 @@ AIRCRAFT_LABELS: dict[str, dict[str, str]] = {
     "en": {
         "title_uav": "Aerial survey specification (digital camera)",
         "xlsx_sheet_uav": "Aerial survey",
-        "xlsx_section_uav": "Aerial survey, digital camera",
-        "pdf_uav_section": "Aerial survey, digital camera",
+        "uav_section": "Aerial survey, digital camera",
         "spec_comparison": "Film and digital camera side by side",
         "spec_uav": "Digital camera",
     },
     "ru": {
         "title_uav": "Техническое задание на аэрофотосъёмку цифровой камерой",
         "xlsx_sheet_uav": "Аэрофотосъёмка",
-        "xlsx_section_uav": "Аэрофотосъёмка цифровой камерой",
-        "pdf_uav_section": "Аэрофотосъёмка цифровой камерой",
+        "uav_section": "Аэрофотосъёмка цифровой камерой",
         "spec_comparison": "Сравнение плёночной и цифровой съёмки",
         "spec_uav": "Цифровая камера",
     },
@@ -745,21 +719,36 @@ AIRCRAFT_LABELS: dict[str, dict[str, str]] = {
 ``platform = aircraft``) is an aerial survey with a digital camera, not a UAV flight."""
 
 
+_NAME_SOURCES: list[Callable[[str, str], str | None]] = []
+
+
+def add_name_source(lookup: Callable[[str, str], str | None]) -> None:
+    """Let :func:`t` name a key the catalogue does not hold: ``lookup(key, locale)`` gives
+    the name, or ``None``. The constraint registry (:mod:`scanplan.rules.registry`, a layer
+    above) adds its records' titles, so a registered constraint names itself."""
+    if lookup not in _NAME_SOURCES:
+        _NAME_SOURCES.append(lookup)
+
+
 def t(key: str, locale: str = "en", platform: str = "uav") -> str:
     """The label ``key`` in ``locale`` (``"en"`` or ``"ru"``); ``platform="aircraft"``
     words the digital-camera section as a manned aerial survey."""
     loc = locale if locale in LABELS else "en"
     if platform == "aircraft" and key in AIRCRAFT_LABELS[loc]:
         return AIRCRAFT_LABELS[loc][key]
-    if key not in LABELS[loc]:  # a registered constraint names itself
-        from ..rules.registry import CONSTRAINTS
-        if key in CONSTRAINTS:
-            return CONSTRAINTS[key].title(loc)
+    if key not in LABELS[loc]:  # e.g. a registered constraint names itself
+        for lookup in _NAME_SOURCES:
+            name = lookup(key, loc)
+            if name is not None:
+                return name
     return LABELS[loc][key]
 
 
+from .labels_geo import GEO as _GEO  # noqa: E402  (map page, strips, exported files)
+from .labels_more import DESIGN as _DESIGN  # noqa: E402  (the survey design sheet)
 from .labels_more import SIGNING as _SIGNING  # noqa: E402
 from .labels_more import TERMINAL as _TERMINAL  # noqa: E402
+from .labels_more import TERRAIN as _TERRAIN  # noqa: E402  (terrain: warnings, plot, sheet)
 
 for _loc in LOCALES:
     LABELS[_loc].update(_SIGNING[_loc])
@@ -777,15 +766,6 @@ LABELS["ru"]["reach_pixel"] = "Предельный масштаб снимко�
 LABELS["en"]["reach_interpretable"] = "Largest photo scale with the map object interpretable"
 LABELS["ru"]["reach_interpretable"] = "Предельный масштаб снимков с дешифрированием объекта"
 
-from .labels_more import DESIGN as _DESIGN  # noqa: E402  (the survey design sheet)
-
-for _loc in LOCALES:
-    LABELS[_loc].update(_DESIGN[_loc])
-from .labels_more import TERRAIN as _TERRAIN  # noqa: E402  (terrain: warnings, plot, sheet)
-
-for _loc in LOCALES:
-    LABELS[_loc].update(_TERRAIN[_loc])
-from .labels_geo import GEO as _GEO  # noqa: E402  (map page, strips, exported files)
-
-for _loc in LOCALES:
-    LABELS[_loc].update(_GEO[_loc])
+for _loc in LOCALES:  # in this order: the catalogue's keys keep their order
+    for _part in (_DESIGN, _TERRAIN, _GEO):
+        LABELS[_loc].update(_part[_loc])

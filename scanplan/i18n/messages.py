@@ -38,7 +38,7 @@ file), while the documents to sign (inside :func:`document_text`) show the words
 ``|`` — or nothing, with the brackets around it dropped — since the customer and the crew
 read what to do, not which key to type.
 
-Plain data and :meth:`str.format`; no I/O (core module).
+Plain data and :meth:`str.format`; no I/O (base module).
 """
 
 from __future__ import annotations
@@ -61,8 +61,8 @@ _NBSP = "\u00a0"
 _TIE = "~"  # in a Russian template: a no-break space (a number stays with its unit)
 _KEYREF = re.compile(r"⁅([^⁆|]*)(?:\|([^⁆]*))?⁆")  # ⁅project-file key|words for documents⁆
 _MEDIUM: ContextVar[str] = ContextVar("scanplan_text_medium", default="terminal")
-_M001 = "Михеева, Илюшенко, 2015"  # seed 001, as the Russian reports cite it
-_M001_EN = "Miheeva & Ilushenko 2015"  # seed 001, as the English reports cite it
+_M001 = "Михеева, Илюшенко, 2015"  # the paper, as the Russian reports cite it
+_M001_EN = "Miheeva & Ilushenko 2015"  # the paper, as the English reports cite it
 _TAIL_EN = (" They need R ≥ {need:.1f} lines/mm; the photo has {r:g}. Remedies: interpret them "
             "in the field, use photos with a higher resolving power, or fly a larger photo "
             "scale ({limit:scale} or larger, Mc/Mk ≤ {ratio:.1f}).")
@@ -165,7 +165,7 @@ MESSAGES: dict[str, dict[str, str]] = {
         "en": "; next is {cid} at {pixel:.1f} µm (+{margin:.0f} %)",
         "ru": "; следующее условие — {cid}, {pixel:.1f}~мкм (+{margin:.0f}~%)",
     },
-    # --- film warnings (seed 001's conclusions) -----------------------------------------
+    # --- film warnings (the conclusions of Miheeva & Ilushenko 2015) ------------------
     "at_scale": {
         "en": "at {scales:scale}",
         "ru": "При масштабе снимков {scales:scale}",
@@ -419,10 +419,10 @@ MESSAGES: dict[str, dict[str, str]] = {
 }
 """Message code → template per locale (same codes and the same fields in every locale)."""
 
-from .messages_archive import ARCHIVE as _ARCHIVE  # noqa: E402  (archive photos, issue 13)
+from .messages_archive import ARCHIVE as _ARCHIVE  # noqa: E402  (archive photos)
 
 MESSAGES.update(_ARCHIVE)
-from .messages_terrain import TERRAIN as _TERRAIN  # noqa: E402  (the terrain, issue 12)
+from .messages_terrain import TERRAIN as _TERRAIN  # noqa: E402  (the terrain)
 
 MESSAGES.update(_TERRAIN)
 from .messages_outputs import OUTPUTS as _OUTPUTS  # noqa: E402  (files not written)

@@ -1,7 +1,7 @@
 """The sentences about where the area is: coordinates that look swapped, a site of the sun
 window far from the area (:mod:`scanplan.project.site`). Part of the message catalogue:
-:data:`scanplan.messages.MESSAGES` merges them (same template rules, see
-:mod:`scanplan.messages`). Plain data; no I/O (base module)."""
+:data:`scanplan.i18n.messages.MESSAGES` merges them (same template rules, see
+:mod:`scanplan.i18n.messages`). Plain data; no I/O (base module)."""
 
 from __future__ import annotations
 

@@ -1,7 +1,7 @@
 """The sentences of a digital block's height accuracy, the altitude ceiling and the
 airspace rules, and the target GSD (:mod:`scanplan.rules.uav`). Part of the message
-catalogue: :data:`scanplan.messages.MESSAGES` merges them (same template rules, see
-:mod:`scanplan.messages`). Plain data; no I/O (base module)."""
+catalogue: :data:`scanplan.i18n.messages.MESSAGES` merges them (same template rules, see
+:mod:`scanplan.i18n.messages`). Plain data; no I/O (base module)."""
 
 from __future__ import annotations
 

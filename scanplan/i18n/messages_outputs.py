@@ -1,6 +1,6 @@
 """The sentences about files ``plan --out`` does not write, and why. Part of the message
-catalogue: :data:`scanplan.messages.MESSAGES` merges them (same template rules, see
-:mod:`scanplan.messages`). Plain data; no I/O (base module)."""
+catalogue: :data:`scanplan.i18n.messages.MESSAGES` merges them (same template rules, see
+:mod:`scanplan.i18n.messages`). Plain data; no I/O (base module)."""
 
 from __future__ import annotations
 

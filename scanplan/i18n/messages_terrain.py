@@ -1,7 +1,7 @@
-"""The engine's sentences about the terrain (issue 12): heights above ground from a DEM
+"""The engine's sentences about the terrain: heights above ground from a DEM
 (:mod:`scanplan.geo.terrain`), film frames over the relief (:mod:`scanplan.geo.terrain_film`),
-a height lowered over it. Part of the message catalogue: :data:`scanplan.messages.MESSAGES`
-merges them (same template rules, see :mod:`scanplan.messages`). Plain data; no I/O (base
+a height lowered over it. Part of the message catalogue: :data:`scanplan.i18n.messages.MESSAGES`
+merges them (same template rules, see :mod:`scanplan.i18n.messages`). Plain data; no I/O (base
 module)."""
 
 from __future__ import annotations

@@ -1,6 +1,6 @@
-"""The engine's sentences about archive photos (issue 13): the photo scale is given, not
-chosen. Part of the message catalogue: :data:`scanplan.messages.MESSAGES` merges them (same
-template rules, see :mod:`scanplan.messages`). Plain data; no I/O (base module)."""
+"""The engine's sentences about archive photos: the photo scale is given, not
+chosen. Part of the message catalogue: :data:`scanplan.i18n.messages.MESSAGES` merges them (same
+template rules, see :mod:`scanplan.i18n.messages`). Plain data; no I/O (base module)."""
 
 from __future__ import annotations
 

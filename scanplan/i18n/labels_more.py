@@ -1,11 +1,11 @@
-"""More of the report label catalogue (:data:`scanplan.reports.labels.LABELS` merges
+"""More of the report label catalogue (:data:`scanplan.i18n.labels.LABELS` merges
 these): the labels of documents fit to sign, the words of the terminal summary of
 ``scanplan plan`` (keys ``term_*``, :func:`scanplan.reports.text.format_plan_result`) and
 the survey design sheet (:mod:`scanplan.reports.design`)."""
 
 from __future__ import annotations
 
-# Documents fit to sign (issue 13): parameter names with units, values in words, the
+# Documents fit to sign: parameter names with units, values in words, the
 # approval/agreement blocks, sheet numbering, references, the warnings box.
 SIGNING: dict[str, dict[str, str]] = {
     "en": {
@@ -42,8 +42,6 @@ SIGNING: dict[str, dict[str, str]] = {
         "box_see": "{item} — see “{section}”",
         "pdf_table_of_objects": "norm table of the smallest objects",
         "xlsx_recommended": "recommended",
-        "xlsx_planned": "planned",
-        "xlsx_highest_flown": "highest flown",
         "xlsx_max_flown": "flown at the maximum height, up to",
         "xlsx_marker": "Chart marker",
         "pdf_warn_haze_default_height": "Haze contrast assumed for clear air",
@@ -84,15 +82,13 @@ SIGNING: dict[str, dict[str, str]] = {
         "box_see": "{item} — см. «{section}»",
         "pdf_table_of_objects": "таблица наименьших объектов нормативов",
         "xlsx_recommended": "рекомендуемый",
-        "xlsx_planned": "плановая",
-        "xlsx_highest_flown": "наибольшая фактическая",
         "xlsx_max_flown": "фактическая при максимальной высоте, до",
         "xlsx_marker": "Отметка на графике",
         "pdf_warn_haze_default_height": "Контраст дымки принят для чистого воздуха",
     },
 }
 
-# The terminal summary of `scanplan plan` (issue 14: one catalogue for every renderer).
+# The terminal summary of `scanplan plan` (one catalogue for every renderer).
 TERMINAL: dict[str, dict[str, str]] = {
     "en": {
         "term_map": "map",
@@ -113,7 +109,7 @@ TERMINAL: dict[str, dict[str, str]] = {
         "term_photo_scale_archive": "photo scale (existing photos, given)",
         "term_height": "recommended flight height",
         "term_flown": "flown up to",
-        "term_max_height": "maximum planned height",
+        "max_height": "maximum planned height",
         "term_gsd": "GSD / ground resolution L",
         "term_overlaps": "overlaps / base / spacing",
         "term_interval": "photo interval",
@@ -132,12 +128,12 @@ TERMINAL: dict[str, dict[str, str]] = {
         "term_uav_col": "UAV",
         "term_unit": "unit",
         "term_warnings": "Warnings:",
-        "term_m": "m",
-        "term_um": "µm",
-        "term_mb": "MB",
-        "term_gb": "GB",
+        "m": "m",
+        "um": "µm",
+        "mb": "MB",
+        "gb": "GB",
         "term_s": "s",
-        "term_km": "km",
+        "km": "km",
         "term_min": "min",
         "term_ms": "m/s",
         "term_no_ceiling": "without the ceiling",
@@ -167,7 +163,7 @@ TERMINAL: dict[str, dict[str, str]] = {
         "term_photo_scale_archive": "масштаб снимков (имеющиеся снимки, задан)",
         "term_height": "рекомендуемая высота полёта",
         "term_flown": "фактически до",
-        "term_max_height": "максимальная плановая высота",
+        "max_height": "максимальная плановая высота",
         "term_gsd": "GSD / линейное разрешение L",
         "term_overlaps": "перекрытия / базис / между маршрутами",
         "term_interval": "интервал фотографирования",
@@ -186,12 +182,12 @@ TERMINAL: dict[str, dict[str, str]] = {
         "term_uav_col": "БПЛА",
         "term_unit": "ед.",
         "term_warnings": "Предупреждения:",
-        "term_m": "м",
-        "term_um": "мкм",
-        "term_mb": "МБ",
-        "term_gb": "ГБ",
+        "m": "м",
+        "um": "мкм",
+        "mb": "МБ",
+        "gb": "ГБ",
         "term_s": "с",
-        "term_km": "км",
+        "km": "км",
         "term_min": "мин",
         "term_ms": "м/с",
         "term_no_ceiling": "без учёта предельной высоты",
@@ -206,7 +202,7 @@ TERMINAL: dict[str, dict[str, str]] = {
 }
 
 
-# The survey design sheet («Технический проект АФС», issue 18): scanplan.reports.design
+# The survey design sheet («Технический проект АФС»): scanplan.reports.design
 DESIGN: dict[str, dict[str, str]] = {
     "en": {
         "design_title": "Survey design",
@@ -228,7 +224,7 @@ DESIGN: dict[str, dict[str, str]] = {
         "design_norm_project": "the project",
         "design_map": "Plan scale, relief interval",
         "design_map_value": "{scale}, h_c = {hc} m",
-        "design_area_km2": "Area, km²",
+        "area_km2": "Area, km²",
         "design_coordinate_system": "Coordinate system",
         "design_height_system": "Height system",
         "design_gsd_planned": "GSD at the recommended height, cm",
@@ -269,7 +265,7 @@ DESIGN: dict[str, dict[str, str]] = {
         "design_zone_named": "time zone {name}, UTC{utc}",
         "design_zone_msk": "time zone {name} (MSK{msk}), UTC{utc}",
         "design_zone_offset": "UTC{utc}",
-        "design_sorties": "Sorties",
+        "sorties": "Sorties",
         "design_sorties_value": "{n} of up to {sortie} min, {turn} min between them",
         "design_flying_days": "Flying days needed",
         "design_days_value": "{n} (the last on {last})",
@@ -311,7 +307,7 @@ DESIGN: dict[str, dict[str, str]] = {
         "design_norm_project": "проект",
         "design_map": "Масштаб плана, высота сечения рельефа",
         "design_map_value": "{scale}, h_c = {hc} м",
-        "design_area_km2": "Площадь, км²",
+        "area_km2": "Площадь, км²",
         "design_coordinate_system": "Система координат",
         "design_height_system": "Система высот",
         "design_gsd_planned": "Размер пикселя на местности на рекомендуемой высоте, см",
@@ -351,7 +347,7 @@ DESIGN: dict[str, dict[str, str]] = {
         "design_zone_named": "часовой пояс {name}, всемирное время {utc} ч",
         "design_zone_msk": "время МСК{msk}, всемирное время {utc} ч",
         "design_zone_offset": "всемирное время {utc} ч",
-        "design_sorties": "Вылеты",
+        "sorties": "Вылеты",
         "design_sorties_value": "{n} продолжительностью до {sortie} мин, {turn} мин между "
                                 "вылетами",
         "design_flying_days": "Лётные дни",
@@ -378,7 +374,7 @@ DESIGN: dict[str, dict[str, str]] = {
     },
 }
 
-# terrain (issue 12): warning headings, the heights-above-ground plot and sheet
+# terrain: warning headings, the heights-above-ground plot and sheet
 TERRAIN: dict[str, dict[str, str]] = {
     "en": {
         "pdf_warn_terrain_resolution": "Too high above low ground",
@@ -393,16 +389,15 @@ TERRAIN: dict[str, dict[str, str]] = {
         "pdf_warn_terrain_film_scale_changed": "Relief rules out a smaller photo scale",
         "terrain_plot_title": "Heights above ground along the strips",
         "terrain_plot_x": "Strip number (range over its photos)",
-        "terrain_plot_y": "Height above ground, m",
+        "agl_m": "Height above ground, m",
         "terrain_plot_y_amsl": "Ground elevation and flight altitude, m",
-        "terrain_plot_limit": "maximum planned height",
+        "max_height": "maximum planned height",
         "terrain_plot_planned": "planned height",
         "terrain_ground_m": "Ground elevation, m",
-        "terrain_agl_m": "Height above ground, m",
         "terrain_altitude_m": "Flight altitude, m",
         "terrain_sheet": "Terrain",
         "terrain_facts": "Relief under the flight",
-        "terrain_facts_m": "m",
+        "m": "m",
         "terrain_facts_dem": "Ground heights from",
         "terrain_facts_dem_value": "digital elevation model {file}, {crs}, cell {cell}",
         "terrain_facts_range": "the range of ground elevations given for the area",
@@ -452,7 +447,6 @@ TERRAIN: dict[str, dict[str, str]] = {
         "map_legend_overlap_short": "Overlap below the planned one",
         "map_legend_binding_frame": "Binding frame {n} (smallest scale)",
         "map_legend_worst_photo": "Highest above ground: photo {n}",
-        "map_agl_colorbar": "Height above ground, m",
         "map_local_scale_axis": "Local photo scale, 1:",
         "photo_ground_min_m": "Lowest ground under the footprint, m",
         "photo_ground_max_m": "Highest ground under the footprint, m",
@@ -474,16 +468,15 @@ TERRAIN: dict[str, dict[str, str]] = {
         "pdf_warn_terrain_film_scale_changed": "Рельеф не позволяет взять более мелкий масштаб",
         "terrain_plot_title": "Высоты фотографирования над рельефом по маршрутам",
         "terrain_plot_x": "Номер маршрута (диапазон по его снимкам)",
-        "terrain_plot_y": "Высота над рельефом, м",
+        "agl_m": "Высота над рельефом, м",
         "terrain_plot_y_amsl": "Отметки рельефа и высота полёта, м",
-        "terrain_plot_limit": "максимальная плановая высота",
+        "max_height": "максимальная плановая высота",
         "terrain_plot_planned": "плановая высота",
         "terrain_ground_m": "Отметка земли, м",
-        "terrain_agl_m": "Высота над рельефом, м",
         "terrain_altitude_m": "Абсолютная высота полёта, м",
         "terrain_sheet": "Рельеф",
         "terrain_facts": "Рельеф под маршрутами",
-        "terrain_facts_m": "м",
+        "m": "м",
         "terrain_facts_dem": "Отметки рельефа",
         "terrain_facts_dem_value": "цифровая модель рельефа {file}, {crs}, размер ячейки {cell}",
         "terrain_facts_range": "диапазон отметок, заданный для участка",
@@ -535,7 +528,6 @@ TERRAIN: dict[str, dict[str, str]] = {
         "map_legend_overlap_short": "Перекрытие меньше планового",
         "map_legend_binding_frame": "Определяющий снимок {n} (мельчайший масштаб)",
         "map_legend_worst_photo": "Выше всех над рельефом: снимок {n}",
-        "map_agl_colorbar": "Высота над рельефом, м",
         "map_local_scale_axis": "Масштаб снимка, 1:",
         "photo_ground_min_m": "Наинизшая отметка под снимком, м",
         "photo_ground_max_m": "Наивысшая отметка под снимком, м",

@@ -1,0 +1,77 @@
+"""One concept, one key: no two report labels hold the same words.
+
+A label is keyed by what it means (``ground_speed``), not by the renderer that prints it
+(``xlsx_…``, ``pdf_…``, ``term_…``): two keys with the same English and the same Russian
+text — and the same wording for a manned aircraft, if any — are one concept under two
+names, and fail here. (That one English label has one Russian translation is
+``tests/test_labels_one_word.py``.)
+"""
+
+from __future__ import annotations
+
+from collections import defaultdict
+
+from scanplan.i18n.labels import AIRCRAFT_LABELS, LABELS
+from scanplan.i18n.labels_cli import CLI
+
+# Duplicates not merged yet: at least one key of each is built at run time (f"photo_{c}",
+# f"xlsx_flight_{key}", f"param_{key}", f"value_{key}_{value}", f"design_{key}", the
+# terminal's T.get(f"cmp_{key}")) or is also a data field's name. Only ever shrinks.
+KNOWN: set[tuple[str, ...]] = {
+    ("agl_m", "photo_agl_m"),
+    ("design_coordinate_system", "map_crs"),
+    ("forward_overlap_pct", "photo_forward_overlap_pct"),
+    ("geo_n_strips", "xlsx_flight_strips"),
+    ("image_measurement_px", "param_image_measurement_px"),
+    ("max_height_m", "max_planned_height_m"),
+    ("param_height_formula", "pdf_height_formula"),
+    ("pdf_base", "xlsx_flight_base_m"),
+    ("pdf_line_spacing", "xlsx_flight_line_spacing_m"),
+    ("pdf_photo_interval", "xlsx_flight_photo_interval_s"),
+    ("photo_altitude_m", "terrain_altitude_m"),
+    ("photo_ground_m", "terrain_ground_m"),
+    ("photo_recognition_p", "probability"),
+    ("photo_side_overlap_pct", "side_overlap_pct"),
+    ("photo_sortie", "strip_sortie"),
+    ("photo_strip", "strip_no", "terrain_col_strip"),
+    ("term_cmp_data_volume", "term_volume"),
+    ("value_digital_height_formula_instruction", "value_height_formula_instruction"),
+    ("value_digital_height_formula_parallax", "value_height_formula_parallax"),
+    ("warnings", "warnings_box"),
+    ("xlsx_flight_min_trigger_interval_s", "xlsx_min_trigger_interval_s"),
+    ("cam_pixel", "reach_pixel"),  # CLI
+}
+
+
+def duplicate_keys(catalogue: dict[str, dict[str, str]],
+                   aircraft: dict[str, dict[str, str]] | None = None) -> set[tuple[str, ...]]:
+    """The groups of keys of ``catalogue`` that hold the same English and Russian text (and
+    the same ``aircraft`` wording), each sorted."""
+    aircraft = aircraft or {"en": {}, "ru": {}}
+    keys: dict[tuple, list[str]] = defaultdict(list)
+    for key, en in catalogue["en"].items():
+        words = (en, catalogue["ru"][key], aircraft["en"].get(key), aircraft["ru"].get(key))
+        keys[words].append(key)
+    return {tuple(sorted(group)) for group in keys.values() if len(group) > 1}
+
+
+def test_one_concept_one_key():
+    found = duplicate_keys(LABELS, AIRCRAFT_LABELS) | duplicate_keys(CLI)
+    assert found - KNOWN == set(), "merge these keys into one concept key"
+    assert KNOWN - found == set(), "merged: drop them from KNOWN"
+
+
+def test_a_duplicate_is_found():
+    labels = {loc: dict(words) for loc, words in LABELS.items()}
+    labels["en"]["xlsx_copy_of_map_scale"] = labels["en"]["map_scale"]
+    labels["ru"]["xlsx_copy_of_map_scale"] = labels["ru"]["map_scale"]
+    assert ("map_scale", "xlsx_copy_of_map_scale") in duplicate_keys(labels, AIRCRAFT_LABELS)
+    labels["ru"]["xlsx_copy_of_map_scale"] += " (другой)"  # other Russian words: two concepts
+    assert not any("xlsx_copy_of_map_scale" in g for g in duplicate_keys(labels))
+
+
+def test_the_aircraft_wording_tells_keys_apart():
+    # "UAV" on the sheet tab and in the comparison's header are worded apart for an aircraft
+    labels = {"en": {"a": "UAV", "b": "UAV"}, "ru": {"a": "БПЛА", "b": "БПЛА"}}
+    assert duplicate_keys(labels) == {("a", "b")}
+    assert duplicate_keys(labels, {"en": {"a": "Aerial survey"}, "ru": {}}) == set()
