@@ -121,9 +121,7 @@ def write_atomic_many(files: Mapping[str | os.PathLike[str], bytes], *,
         if os.path.isdir(target):
             raise WriteError(shown, "it is a folder", errno.EISDIR)
     if not items and remove is None:  # nothing to write (`scan --json`): no journal, no fsync
-        if check is not None:
-            check()
-        return []
+        return _checked_only(check)
     folders = sorted({os.fspath(target.parent) for target, _, _ in items})
     with folder_lock(folders):
         _recover(folders)
@@ -139,6 +137,13 @@ def write_atomic_many(files: Mapping[str | os.PathLike[str], bytes], *,
         finally:
             for folder in folders:
                 fsync_dir(folder)
+
+
+def _checked_only(check: Callable[[], None] | None) -> list[Path]:
+    """An empty transaction: only the check (nothing is locked, journalled or synced)."""
+    if check is not None:
+        check()
+    return []
 
 
 def _recover(folders: list[str]) -> None:
