@@ -629,6 +629,24 @@ def test_write_atomic_many_api(tmp_path, monkeypatch):
     assert write_atomic(tmp_path / "c.bin", b"c") == tmp_path / "c.bin"
 
 
+def test_a_command_without_reports_writes_and_syncs_nothing(tmp_path, monkeypatch):
+    """``scan``/``uav`` with ``--json`` and no report: an empty transaction, which wrote a
+    journal into the current folder (five fsyncs a run) before; now it only checks."""
+    monkeypatch.chdir(tmp_path)
+    synced = []
+    real = os.fsync
+    monkeypatch.setattr(os, "fsync", lambda fd: synced.append(fd) or real(fd))
+    for args in (["scan", "--map-scale", "2000", "--relief", "2", "--photo-scale", "8000",
+                  "--camera", "rc30-153"],
+                 ["uav", "--camera", "dji-mavic-3e", "--height-m", "100"]):
+        r = CliRunner().invoke(main, [*args, "--json"])
+        assert r.exit_code == 0, r.output
+    assert synced == [] and list(tmp_path.iterdir()) == []
+    checked = []
+    assert write_atomic_many({}, check=lambda: checked.append(1)) == [] and checked == [1]
+    assert synced == [] and list(tmp_path.iterdir()) == []
+
+
 def test_backup_is_a_hard_link_while_renaming(tmp_path, monkeypatch):
     """Between the renames the previous file stays in place (a hard link backs it up), so
     even a process killed there leaves every target a complete file."""

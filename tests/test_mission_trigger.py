@@ -69,17 +69,33 @@ def simulate(items: list[dict], speed_ms: float, phase: float) -> list[tuple[flo
                 last = (lon[0], lat[0])
                 shots.append((lon[0], lat[0], False))
         j = 0
+        span = int(2 * dist_m / step) + 2 if dist_m > 0 else 0  # steps to the next shot, 2x
         while dist_m > 0 and last is not None and j < len(s):
-            _, _, d = GEOD.inv(np.full(len(s) - j, last[0]), np.full(len(s) - j, last[1]),
-                               lon[j:], lat[j:])
-            hit = np.flatnonzero(d >= dist_m)
-            if not len(hit):
+            hit = _first_at(last, lon, lat, j, dist_m, span)
+            if hit is None:
                 break
-            j += int(hit[0])
+            j = hit
             last = (lon[j], lat[j])
             shots.append((lon[j], lat[j], True))
             j += 1
     return shots
+
+
+def _first_at(last: tuple[float, float], lon: np.ndarray, lat: np.ndarray, j: int,
+              dist_m: float, span: int) -> int | None:
+    """The first loop step from ``j`` on at ``dist_m`` or more from ``last`` (None: none
+    on this segment). The steps are measured ``span`` at a time, nearest first: the same
+    first step as measuring every step to the segment's end, without measuring the whole
+    rest of a long strip again for each of its photos."""
+    while j < len(lon):
+        end = min(len(lon), j + span)
+        _, _, d = GEOD.inv(np.full(end - j, last[0]), np.full(end - j, last[1]),
+                           lon[j:end], lat[j:end])
+        hit = np.flatnonzero(d >= dist_m)
+        if len(hit):
+            return j + int(hit[0])
+        j = end
+    return None
 
 
 def _polygon_project(tmp: Path, name: str, ring: list[tuple[float, float]], extra: str = ""

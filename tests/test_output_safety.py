@@ -544,7 +544,8 @@ def town_plans(tmp_path_factory):
 
 @pytest.fixture()
 def planned(monkeypatch, town_plans, marked_renders):
-    """``plan`` returns the cached plan of the project file's stem (old/new/block)."""
+    """``plan`` returns the cached plan of the project file's stem (old/new/block), and
+    its mission and GIS files rendered once."""
     import scanplan.project.spec as spec_mod
 
     monkeypatch.setenv("SOURCE_DATE_EPOCH", "1700000000")  # the GeoPackage's timestamps
@@ -555,6 +556,29 @@ def planned(monkeypatch, town_plans, marked_renders):
         return town_plans[stem] if stem in town_plans else real(project)
 
     monkeypatch.setattr(spec_mod, "plan_project", cached)
+
+    # The mission and GIS files of a cached plan are rendered once per folder too: the
+    # rendering is nine tenths of a write, and these tests are about the transaction that
+    # writes the files (the same bytes every time: the tests compare sets byte for byte)
+    import scanplan.reports.exports as exports_mod
+
+    real_exports = exports_mod.export_files
+    rendered: dict[tuple[int, str, str], tuple[dict, list[str]]] = {}
+
+    def cached_exports(spec, folder, *, prefix="", note=None):
+        if not any(spec is p for p in town_plans.values()):
+            return real_exports(spec, folder, prefix=prefix, note=note)
+        key = (id(spec), folder, prefix)
+        if key not in rendered:
+            notes: list[str] = []
+            rendered[key] = (real_exports(spec, folder, prefix=prefix, note=notes.append),
+                             notes)
+        files, notes = rendered[key]
+        for line in notes if note else ():
+            note(line)
+        return dict(files)
+
+    monkeypatch.setattr(exports_mod, "export_files", cached_exports)
 
     def xlsx(**kw):  # as marked_renders, but the same bytes every time (a fixed zip date)
         buf = io.BytesIO()

@@ -88,7 +88,8 @@ def write_atomic_many(files: Mapping[str | os.PathLike[str], bytes], *,
     Parameters
     ----------
     files : mapping of path to bytes
-        Target → complete content, written in this order. Folders must exist.
+        Target → complete content, written in this order. Folders must exist. None
+        (and no ``remove``): nothing is locked, journalled or synced (``check`` is called).
     check : callable, optional
         Called under the lock before anything is written (re-checks the targets: what was
         checked before rendering may have changed since); its exception stops the write.
@@ -119,6 +120,8 @@ def write_atomic_many(files: Mapping[str | os.PathLike[str], bytes], *,
         seen.add(key)
         if os.path.isdir(target):
             raise WriteError(shown, "it is a folder", errno.EISDIR)
+    if not items and remove is None:  # nothing to write (`scan --json`): no journal, no fsync
+        return _checked_only(check)
     folders = sorted({os.fspath(target.parent) for target, _, _ in items})
     with folder_lock(folders):
         _recover(folders)
@@ -134,6 +137,13 @@ def write_atomic_many(files: Mapping[str | os.PathLike[str], bytes], *,
         finally:
             for folder in folders:
                 fsync_dir(folder)
+
+
+def _checked_only(check: Callable[[], None] | None) -> list[Path]:
+    """An empty transaction: only the check (nothing is locked, journalled or synced)."""
+    if check is not None:
+        check()
+    return []
 
 
 def _recover(folders: list[str]) -> None:
