@@ -70,6 +70,16 @@ def test_the_view_carries_the_plan_the_map_and_the_chart(client):
     assert v["charts"]["height"].startswith("<svg") or "<svg" in v["charts"]["height"][:200]
     assert set(v["names"]) == set(v["plan"]["uav"]["constraints"])
     assert v["toml"].startswith("# scanplan project file")
+    assert v["crs"] == "EPSG:32637 — WGS 84 / UTM zone 37N"
+
+
+def test_the_view_names_the_planning_crs_in_the_page_language(client):
+    """A Russian page names the planning system in Russian, as the Russian PDF does."""
+    req = {"project": {**UAV, "project": {"name": "Блок", "locale": "ru"}}}
+    v = client.post("/api/view", json=req).json()
+    assert v["crs"] == "EPSG:32637 — WGS 84 / UTM зона 37 с. ш."
+    local = {"project": {k: x for k, x in UAV.items() if k != "area"}}
+    assert client.post("/api/view", json=local).json()["crs"] is None
 
 
 def _cli_error(tmp_path: Path, project: dict) -> str:

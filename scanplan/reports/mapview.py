@@ -23,7 +23,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..core.photoscale import height_at_photo_scale_m, photo_scale_at_height
-from ..geo.layout import FlightLayout
+from ..geo.layout import Area, FlightLayout
 from ..i18n.labels import t
 from ..i18n.messages import scale_text
 from . import exports as _exports
@@ -55,8 +55,8 @@ if TYPE_CHECKING:  # matplotlib is imported when a map is drawn (the workbook dr
     from matplotlib.figure import Figure
     from matplotlib.ticker import FuncFormatter
 
-__all__ = ["MAX_MAP_PHOTOS", "MAX_TABLE_STRIPS", "MapTerrain", "crs_text", "geo_views",
-           "ground_known", "map_svg", "map_terrain"]
+__all__ = ["MAX_MAP_PHOTOS", "MAX_TABLE_STRIPS", "MapTerrain", "area_crs_text", "crs_text",
+           "geo_views", "ground_known", "map_svg", "map_terrain"]
 
 MAX_MAP_PHOTOS = 4000
 """Most photo centres drawn on the map (every k-th beyond it: the SVG stays small)."""
@@ -81,12 +81,17 @@ _RU_KEPT = {"EPSG", "UTM", "WGS", "GSK", "ETRS", "CS"}  # abbreviations kept in 
 
 
 def crs_text(layout: FlightLayout, locale: str) -> str:
-    """The planning CRS named for a report: ``EPSG:32635 — WGS 84 / UTM zone 35N``.
+    """The planning CRS of a layout's area named for a report (:func:`area_crs_text`)."""
+    return area_crs_text(layout.area, locale)
+
+
+def area_crs_text(area: Area, locale: str) -> str:
+    """The planning CRS of ``area`` named for a report or the page:
+    ``EPSG:32635 — WGS 84 / UTM zone 35N``.
 
     Russian names translate the common words (zone, Pulkovo, Gauss–Kruger); a name with
     other English words is left out (the EPSG code alone names the system).
     """
-    area = layout.area
     if not area.georeferenced:
         return t("map_local", locale)
     code = area.plan_crs if len(area.plan_crs) < 40 else ""  # a WKT is not shown

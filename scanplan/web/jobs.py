@@ -133,7 +133,8 @@ def plan_job(project: Any, files: Mapping[str, str]) -> dict[str, Any]:
 def view_job(project: Any, files: Mapping[str, str]) -> dict[str, Any]:
     """What the page shows: ``plan`` (the ``plan --json`` document), ``map`` (GeoJSON of
     the area, strips, photo centres and take-offs, WGS 84), ``charts`` (the documents'
-    SVG plots: the film plan's constraints, the UAV plan's heights) and ``toml``."""
+    SVG plots: the film plan's constraints, the UAV plan's heights), ``toml`` and ``crs`` (the
+    planning CRS named in the page's language)."""
     from ..reports.view import PLOT_JOBS, build_view
 
     with _planned(project, files) as (result, text, folder):
@@ -148,7 +149,17 @@ def view_job(project: Any, files: Mapping[str, str]) -> dict[str, Any]:
         return {"plan": doc, "map": map_features(result), "charts": charts, "toml": text,
                 "names": _constraint_names(doc, view.locale),
                 "margins_pct": _margins_at_planned(doc),
-                "warnings": _warnings(result, view.locale)}
+                "warnings": _warnings(result, view.locale),
+                "crs": _crs(result, view.locale)}
+
+
+def _crs(result: Any, locale: str) -> str | None:
+    """The planning CRS of the area named in ``locale`` as the documents name it (None
+    without a georeferenced area)."""
+    from ..reports.mapview import area_crs_text
+
+    area = result.area
+    return area_crs_text(area, locale) if area is not None and area.georeferenced else None
 
 
 def _margins_at_planned(doc: dict[str, Any]) -> dict[str, float]:

@@ -456,7 +456,7 @@
     }
     if (doc.area && doc.area.georeferenced) {
       figs.unshift(["area_km2", `${fmt(doc.area.area_km2, 2)} ${T.km2}`],
-                   ["plan_crs", doc.area.crs_name || doc.area.crs]);
+                   ["plan_crs", v.crs || doc.area.crs_name || doc.area.crs]);
     }
     $("headline").innerHTML = head;
     $("constraints").innerHTML = rows;
