@@ -25,6 +25,7 @@ from ..rules.film import CONSTRAINTS, ScanPlan
 from ..rules.uav import UavPlan
 from .design import relief_max_height_m
 from .labels import LABELS
+from .plots import view_plot_uri
 from .references import Bibliography
 from .view import ReportView, warning_heading_key
 from .wording import (
@@ -234,7 +235,7 @@ def _scan_view(job: ScanJob, f: _Fmt) -> dict[str, Any]:
         "reach_interpretable": obj is not None and mci is not None,
         "warnings": _warnings(plan.warnings, f, ns), "formulas": formulas, "params": params,
         "norm": _norm_view(ns, f),
-        "plot": f.view.plot_uri("constraints"),
+        "plot": view_plot_uri(f.view, "constraints"),
     }
 
 
@@ -461,8 +462,8 @@ def _uav_view(job: UavJob, f: _Fmt) -> dict[str, Any]:
             f.label("pdf_corner_at", h=f.g(h["max"]))],
         **_uav_limits(plan, f),
         "warnings": _warnings(plan.warnings, f, ns), "norm": _norm_view(ns, f),
-        "plot_mtf": f.view.plot_uri("mtf"),
-        "plot_height": f.view.plot_uri("height"),
+        "plot_mtf": view_plot_uri(f.view, "mtf"),
+        "plot_height": view_plot_uri(f.view, "height"),
         "not_resolvable": not plan.resolvable,
     }
 

@@ -5,8 +5,9 @@ norm set) becomes one :class:`ReportView`: the language, the sections present (i
 order), the labels of that language (:class:`Labels`, the one catalogue of
 :mod:`.labels`), the number formatter of that language (:class:`Numbers`: decimal comma
 and no-break-space thousands in Russian), the warnings as rows, and the plots as SVG —
-drawn on first use and kept, so a workbook, an HTML page and a PDF of one result share
-them (SVG written directly, :mod:`.svgchart`: no plotting library). The renderers (terminal
+drawn on first use by :func:`scanplan.reports.plots.view_plot` and kept in the view, so a
+workbook, an HTML page and a PDF of one result share them (SVG written directly,
+:mod:`.svgchart`: no plotting library). The renderers (terminal
 text, Excel, PDF; the JSON document needs no locale) lay out what the view holds; they
 never recompute a number.
 
@@ -22,7 +23,6 @@ from __future__ import annotations
 import base64
 import datetime as _dt
 import math
-from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
@@ -43,12 +43,6 @@ MISSING = "—"
 #: The sections of a report in document order. A section is present when
 #: :func:`section_names` says so; renderers iterate the names they know.
 SECTION_ORDER: tuple[str, ...] = ("spec", "film", "uav", "comparison")
-
-#: The plots a report draws and the plan each is drawn from: the film plan's constraints
-#: against the photo scale; the UAV plan's MTF at the frame centre and its GSD and L
-#: against the height (``plots.<name>_svg``).
-PLOT_JOBS: dict[str, str] = {"constraints": "scan", "mtf": "uav", "height": "uav"}
-
 
 # ---------------------------------------------------------------------------------------
 # Numbers: one formatter per locale
@@ -263,6 +257,9 @@ class ReportView:
         The labels of ``locale`` and ``platform``.
     sections : tuple of str
         The sections present, in order (:func:`section_names`).
+    charts : dict
+        The plots drawn so far, as SVG (:func:`scanplan.reports.plots.view_plot` draws
+        each on first use and keeps it here).
     citations : list
         The works cited so far, in order of first citation, shared by every document
         rendered from this view: the PDF and the workbook of one run number a work alike.
@@ -278,7 +275,7 @@ class ReportView:
     numbers: Numbers
     labels: Labels
     sections: tuple[str, ...]
-    _plots: dict[str, str] = field(default_factory=dict, repr=False)
+    charts: dict[str, str] = field(default_factory=dict, repr=False)
     _html: list[str] = field(default_factory=list, repr=False)  # the PDF's HTML, once
     citations: list[Any] = field(default_factory=list, repr=False)
 
@@ -286,39 +283,8 @@ class ReportView:
         """Whether the report has ``section``."""
         return section in self.sections
 
-    def plot(self, name: str) -> str:
-        """A plot as SVG text, drawn on first use and kept.
-
-        Parameters
-        ----------
-        name : {"constraints", "mtf", "height"}
-            The film plan's constraints against the photo scale; the UAV plan's MTF at the
-            frame centre; the UAV plan's GSD and L against the height.
-
-        Returns
-        -------
-        str
-            A deterministic SVG (:mod:`scanplan.reports.plots`).
-        """
-        if name not in self._plots:
-            from . import plots
-
-            svg: Callable[[Any, str], str] = getattr(plots, f"{name}_svg")
-            self._plots[name] = svg(self._job(PLOT_JOBS[name]).plan, self.locale)
-        return self._plots[name]
-
-    def draw_plots(self) -> None:
-        """Draw every plot this report has (of :data:`PLOT_JOBS` whose plan it carries),
-        so that they travel with the view (e.g. to the PDF worker)."""
-        for name, job in PLOT_JOBS.items():
-            if getattr(self, job) is not None:
-                self.plot(name)
-
-    def plot_uri(self, name: str) -> str:
-        """:meth:`plot` as a ``data:`` URI."""
-        return svg_data_uri(self.plot(name))
-
-    def _job(self, which: str) -> Any:
+    def job_of(self, which: str) -> Any:
+        """The ``"scan"`` or ``"uav"`` job; ValueError when the report has none."""
         job = self.scan if which == "scan" else self.uav
         if job is None:
             raise ValueError(f"this report has no {which} plan")

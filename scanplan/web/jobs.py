@@ -136,14 +136,15 @@ def view_job(project: Any, files: Mapping[str, str]) -> dict[str, Any]:
     """What the page shows: ``plan`` (the ``plan --json`` document), ``map`` (GeoJSON of
     the area, strips, photo centres and take-offs, WGS 84), ``charts`` (the documents'
     SVG plots: the film plan's constraints, the UAV plan's heights) and ``toml``."""
-    from ..reports.view import PLOT_JOBS, build_view
+    from ..reports.plots import PLOT_JOBS, view_plot
+    from ..reports.view import build_view
 
     with _planned(project, files) as (result, text, folder):
         doc = _plan_dict(result, folder)
         view = build_view(scan=result.film.job if result.film else None,
                           uav=result.uav.job if result.uav else None,
                           meta=result.meta, spec=result)
-        charts = {name: view.plot(name) for name, job in PLOT_JOBS.items()
+        charts = {name: view_plot(view, name) for name, job in PLOT_JOBS.items()
                   if name != "mtf" and getattr(view, job) is not None}
         from .mapdata import map_features
 

@@ -41,7 +41,6 @@ from typing import TYPE_CHECKING
 
 from ...messages import document_text
 from .. import ReportMeta, write_atomic
-from ..design import write_design_sheet
 from ..labels import t as t  # re-exported: the sheets' labels
 from ..view import ReportView, build_view
 from .book import Book
@@ -51,6 +50,7 @@ from .cells import _repack as _repack  # re-exported: the batch summary workbook
 from .cells import put_num as put_num
 from .cells import put_text as put_text
 from .closing import norms_sheet, references_sheet, warnings_sheet
+from .design import write_design_sheet
 from .film import constraints_sheet, sweep_sheet
 from .inputs import inputs_sheet
 from .summary import summary_sheet

@@ -23,7 +23,6 @@ if TYPE_CHECKING:
     from ...project.spec import PlanResult
     from ...rules.film import PlanWarning
 
-from ..design import write_gsd_limits
 from .book import Book
 from .cells import (
     _WARNING_FILL,
@@ -36,6 +35,7 @@ from .cells import (
     put_num,
     put_text,
 )
+from .design import write_gsd_limits
 
 
 def _warning_items(book: Book, scan: ScanJob | None, uav: UavJob | None,
