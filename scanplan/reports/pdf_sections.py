@@ -28,6 +28,7 @@ from .labels import LABELS
 from .plots import view_plot_uri
 from .references import Bibliography
 from .view import ReportView, warning_heading_key
+from .views import Row, Table
 from .wording import (
     camera_title,
     display_message,
@@ -202,7 +203,8 @@ def _scan_view(job: ScanJob, f: _Fmt) -> dict[str, Any]:
     scen = plan.scenarios
     n_tables = math.ceil(len(scen) / _MAX_COLUMNS)
     size = math.ceil(len(scen) / n_tables)
-    tables = [_scan_table(plan, scen[i:i + size], f) for i in range(0, len(scen), size)]
+    film = f.view.tables["film_constraints"]
+    tables = [_scan_table(film, slice(i, i + size), f) for i in range(0, len(scen), size)]
 
     explanations = [f.cite(display_message(s.explanation, ns, f.locale))
                     for s in plan.scenarios]
@@ -239,47 +241,46 @@ def _scan_view(job: ScanJob, f: _Fmt) -> dict[str, Any]:
     }
 
 
-def _scan_table(plan: ScanPlan, scenarios: Any, f: _Fmt) -> dict[str, Any]:
-    """The result table for some photo scales: constraints (binding flagged), summary rows."""
-    inp, um = plan.inputs, f.label("pdf_um")
-    obj = inp.object
-    header = [f.scale(s.photo_scale) for s in scenarios]
-    rows: list[dict[str, Any]] = [{
-        "label": f.label("photo_to_map"), "unit": "",
-        "cells": [{"text": f.num(s.photo_to_map_ratio, 1), "binding": False, "margin": ""}
-                  for s in scenarios], "kind": "ratio"}]
-    for cid in plan.constraint_ids:
-        rows.append({"label": f"{cid} — {f.cname(cid)}", "unit": um, "kind": "constraint",
-                     "cells": [{"text": f.num(s.constraint(cid).pixel_um, 1),
-                                "binding": s.constraint(cid).binding,
-                                "margin": "" if s.constraint(cid).binding
-                                else _margin(f, s.constraint(cid).margin_pct)}
-                               for s in scenarios]})
-    summary: list[dict[str, Any]] = [
-        {"label": f.label("binding"), "unit": "",
-         "cells": [s.binding for s in scenarios], "strong": False},
-        {"label": f.label("scan_pixel_um").rsplit(",", 1)[0], "unit": um,
-         "cells": [f.num(s.scan_pixel_um, 1) for s in scenarios], "strong": True},
-    ]
-    if inp.scanner:
-        summary.append({"label": f.label("scanner_pixel_um").rsplit(",", 1)[0], "unit": um,
-                        "cells": [f.num(s.scanner_pixel_um, 1) for s in scenarios],
-                        "strong": True})
-    summary.append({"label": f.label("frame_megabytes").rsplit(",", 1)[0],
-                    "unit": f.label("pdf_mb"),
-                    "cells": [f.num(s.frame_megabytes, 0) for s in scenarios],
-                    "strong": False})
-    summary.append({"label": f.label("pdf_resolution_on_ground"), "unit": f.label("pdf_mm"),
-                    "cells": [f.num(s.resolution_on_ground_mm, 1) for s in scenarios],
-                    "strong": False})
-    if obj is not None:
-        summary.append({"label": f.label("pdf_required_r"), "unit": f.label("pdf_lpmm"),
-                        "cells": [f.num(s.required_resolving_power_lpmm, 1)
-                                  for s in scenarios], "strong": False})
-        summary.append({"label": f.label("pdf_recognition_at_scan"), "unit": "",
-                        "cells": [f.num(s.recognition_probability, 2)
-                                  for s in scenarios], "strong": False})
+#: The label of each row of the film table (its unit after the comma dropped: ``strip``).
+_FILM_LABELS = {"photo_to_map": "photo_to_map", "binding": "binding",
+                "resolution_on_ground": "pdf_resolution_on_ground",
+                "required_r": "pdf_required_r",
+                "recognition_probability": "pdf_recognition_at_scan"}
+_FILM_UNITS = {"um": "pdf_um", "mb": "pdf_mb", "mm": "pdf_mm", "lpmm": "pdf_lpmm"}
 
+
+def _film_row_label(r: Row, f: _Fmt) -> str:
+    """A film table row's label: ``PZ — height accuracy``, a quantity without its unit."""
+    if "constraint" in r.flags:
+        return f"{r.key} — {f.cname(r.key)}"
+    if r.key in _FILM_LABELS:
+        return f.label(_FILM_LABELS[r.key])
+    return f.label(r.key).rsplit(",", 1)[0]
+
+
+def _scan_table(film: Table, part: slice, f: _Fmt) -> dict[str, Any]:
+    """The film table (:func:`scanplan.reports.views.film_constraints`) for some of its
+    photo scales: the constraints (binding flagged, others with their margin), then the
+    summary rows."""
+    header = [f.scale(c.value) for c in film.columns[part]]
+    rows: list[dict[str, Any]] = []
+    summary: list[dict[str, Any]] = []
+    for r in film.rows:
+        unit = f.label(_FILM_UNITS[r.unit]) if r.unit else ""
+        values = r.values[part]
+        texts = [v if isinstance(v, str) else f.num(v, r.digits or 0) for v in values]
+        if "summary" in r.flags:
+            summary.append({"label": _film_row_label(r, f), "unit": unit, "cells": texts,
+                            "strong": "emph" in r.flags})
+            continue
+        first = part.start or 0
+        binding = [r.flagged(first + i, "binding") for i in range(len(values))]
+        margins = r.margins[part] if r.margins else (None,) * len(values)
+        rows.append({"label": _film_row_label(r, f), "unit": unit,
+                     "kind": "constraint" if "constraint" in r.flags else "ratio",
+                     "cells": [{"text": text, "binding": b,
+                                "margin": "" if b or m is None else _margin(f, m)}
+                               for text, b, m in zip(texts, binding, margins, strict=True)]})
     return {"header": header, "rows": rows, "summary": summary}
 
 

@@ -14,11 +14,11 @@ from ..core.shown import shown_decimals
 from ..messages import localize, scale_text
 from ..rules.film import ScanPlan
 from ..rules.uav import UavPlan
-from .labels import t
 from .labels_cli import cli_text
 from .references import author_cite
-from .text import _volume, _wrap, code_tag, table
+from .text import _volume, _wrap, code_tag, table, text_table
 from .view import Numbers
+from .views import ResultTables, Row, constraint_title
 
 __all__ = ["format_scan_plan", "format_uav_plan"]
 
@@ -47,8 +47,8 @@ class _Words:
         return scale_text(x, self.loc)
 
     def constraint(self, cid: str) -> str:
-        """A constraint's name (the label catalogue's, a registered one its own)."""
-        return t(cid, self.loc)
+        """A constraint's name (the rules registry's)."""
+        return constraint_title(cid, self.loc)
 
     def object(self, name: str, size_m: float | None = None) -> str:
         """A norm object's name in the locale (the norm set's Russian name)."""
@@ -105,30 +105,12 @@ def format_scan_plan(plan: ScanPlan, norm_name: str = "", norm_title: str = "",
                        p=w.g(plan.rules.probability),
                        source=author_cite(localize(obj.source, w.loc), w.loc)))
     lines.append("")
-    um = w("um")
-    header = ["", "", *(w.scale(s.photo_scale) for s in plan.scenarios)]
-    rows = [header, ["Mc/Mk", "", *(w.f(s.photo_to_map_ratio, 1) for s in plan.scenarios)]]
-    for cid in plan.constraint_ids:
-        row = [f"{cid}  {w.constraint(cid)}", um]
-        for s in plan.scenarios:
-            c = s.constraint(cid)
-            row.append(w.n.um(c.pixel_um) + ("*" if c.binding else " "))
-        rows.append(row)
-    rows.append([w("binding"), "", *(s.binding + " " for s in plan.scenarios)])
-    rows.append([w("scan_pixel"), um, *(w.n.um(s.scan_pixel_um) + " " for s in plan.scenarios)])
-    if inp.scanner:
-        rows.append([w("scanner_step", scanner=inp.scanner), um,
-                     *(w.f(s.scanner_pixel_um) + " " for s in plan.scenarios)])
-    rows.append([w("scanned_frame", bands=inp.bands, bits=inp.bits_per_band), w("mb"),
-                 *(w.n.num(s.frame_megabytes, 0) + " " for s in plan.scenarios)])
-    rows.append([w("resolution_a"), w("mm"),
-                 *(w.f(s.resolution_on_ground_mm) + " " for s in plan.scenarios)])
-    if obj:
-        rows.append([w("r_needed"), w("lpmm"),
-                     *(w.f(s.required_resolving_power_lpmm) + " " for s in plan.scenarios)])
-        rows.append([w("p_at_pixel"), "",
-                     *(w.f(s.recognition_probability, 2) + " " for s in plan.scenarios)])
-    lines.append(table(rows, align="ll" + "r" * len(plan.scenarios)))
+    tbl = ResultTables(scan=plan)["film_constraints"]
+    lines.append(text_table(tbl, label=lambda r: _film_label(r, w),
+                            unit=lambda r: w(r.unit) if r.unit else "",
+                            cell=lambda r, i, v: _film_cell(r, i, v, w),
+                            head=["", "", *(w.scale(c.value) for c in tbl.columns)],
+                            align="ll" + "r" * len(tbl.columns)))
     lines.append(w("binding_note"))
     lines.append("")
     lines.append(w("why"))
@@ -144,6 +126,38 @@ def format_scan_plan(plan: ScanPlan, norm_name: str = "", norm_title: str = "",
     lines += _reach_lines(plan, w)
     lines += _warning_lines(plan.warnings, w, scan=True)
     return "\n".join(lines)
+
+
+#: The terminal's word (:mod:`.labels_cli`) of each row of the film table.
+_FILM_WORDS = {"binding": "binding", "scan_pixel_um": "scan_pixel",
+               "scanner_pixel_um": "scanner_step", "frame_megabytes": "scanned_frame",
+               "resolution_on_ground": "resolution_a", "required_r": "r_needed",
+               "recognition_probability": "p_at_pixel"}
+
+
+def _film_label(r: Row, w: _Words) -> str:
+    """A row's label in the film table: ``PZ  height accuracy``, ``Mc/Mk``, a word."""
+    if "constraint" in r.flags:
+        return f"{r.key}  {w.constraint(r.key)}"
+    if r.key == "photo_to_map":
+        return "Mc/Mk"
+    return w(_FILM_WORDS[r.key], **r.fields)
+
+
+def _film_cell(r: Row, i: int, v: Any, w: _Words) -> str:
+    """A value of the film table: pixels as µm (``*`` where a constraint binds; the other
+    results keep its column), the frame grouped."""
+    if r.key == "photo_to_map":
+        return w.f(v, r.digits or 0)
+    if isinstance(v, str):
+        text = v
+    elif "constraint" in r.flags or r.key == "scan_pixel_um":
+        text = w.n.um(v)
+    elif r.key == "frame_megabytes":
+        text = w.n.num(v, r.digits or 0)
+    else:
+        text = w.f(v, r.digits if r.digits is not None else 1)
+    return text + ("*" if r.flagged(i, "binding") else " ")
 
 
 def _warning_lines(warnings: Any, w: _Words, scan: bool = False) -> list[str]:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 import os
 import textwrap
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import Any
 
 from ..messages import scale_text
@@ -13,8 +13,9 @@ from ..rules.film import CONSTRAINTS
 from .jsondoc import scale_value
 from .labels import LABELS, t
 from .view import Numbers
+from .views import Row, Table
 
-__all__ = ["format_plan_result", "table"]
+__all__ = ["format_plan_result", "table", "text_table"]
 
 
 def table(rows: Sequence[Sequence[str]], *, align: str = "", gap: int = 2) -> str:
@@ -28,6 +29,38 @@ def table(rows: Sequence[Sequence[str]], *, align: str = "", gap: int = 2) -> st
             cells.append(cell.ljust(widths[i]) if a == "l" else cell.rjust(widths[i]))
         out.append((" " * gap).join(cells).rstrip())
     return "\n".join(out)
+
+
+def text_table(tbl: Table, *, label: Callable[[Row], str],
+               cell: Callable[[Row, int, Any], str], unit: Callable[[Row], str] | None = None,
+               head: Sequence[str] | None = None, align: str = "") -> str:
+    """A report table (:class:`scanplan.reports.views.Table`) as aligned text: the one
+    layout of the terminal's tables.
+
+    Parameters
+    ----------
+    tbl : Table
+        The table, built once per result.
+    label : callable
+        A row's label in the reader's language.
+    cell : callable
+        ``(row, i, value)`` → the text of value ``i`` of the row.
+    unit : callable, optional
+        A row's unit in words (a column after the label); none when not given.
+    head : sequence of str, optional
+        The heading row.
+    align : str
+        ``"l"`` / ``"r"`` per column (:func:`table`).
+
+    Returns
+    -------
+    str
+    """
+    rows = [list(head)] if head is not None else []
+    for r in tbl.rows:
+        rows.append([label(r), *([unit(r)] if unit is not None else []),
+                     *(cell(r, i, v) for i, v in enumerate(r.values))])
+    return table(rows, align=align)
 
 
 _EN = Numbers("en")  # English numbers (scanplan.reports.terminal writes `scan` and `uav`)

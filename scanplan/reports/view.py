@@ -28,6 +28,7 @@ from typing import TYPE_CHECKING, Any
 
 from ..messages import scale_text
 from .labels import LABELS, t
+from .views import ResultTables, constraint_title
 
 if TYPE_CHECKING:
     from ..project.file import ReportMeta
@@ -193,10 +194,7 @@ class Labels:
 
     def constraint(self, cid: str) -> str:
         """A constraint's name (the registry's record) in this language."""
-        from ..rules.registry import CONSTRAINTS
-
-        info = CONSTRAINTS[cid]
-        return info.name_ru if self.locale == "ru" else info.name
+        return constraint_title(cid, self.locale)
 
     def yes_no(self, value: bool) -> str:
         """Yes / Да."""
@@ -257,6 +255,9 @@ class ReportView:
         The labels of ``locale`` and ``platform``.
     sections : tuple of str
         The sections present, in order (:func:`section_names`).
+    tables : ResultTables
+        The result's tables (:mod:`scanplan.reports.views`), each built on first use and
+        laid out alike by every renderer of this view.
     charts : dict
         The plots drawn so far, as SVG (:func:`scanplan.reports.plots.view_plot` draws
         each on first use and keeps it here).
@@ -275,6 +276,7 @@ class ReportView:
     numbers: Numbers
     labels: Labels
     sections: tuple[str, ...]
+    tables: ResultTables = field(default_factory=ResultTables, repr=False)
     charts: dict[str, str] = field(default_factory=dict, repr=False)
     _html: list[str] = field(default_factory=list, repr=False)  # the PDF's HTML, once
     citations: list[Any] = field(default_factory=list, repr=False)
@@ -327,7 +329,8 @@ def build_view(*, scan: ScanJob | None = None, uav: UavJob | None = None,
                       when=when if when is not None else report_datetime(),
                       locale=locale, platform=platform, numbers=Numbers(locale),
                       labels=Labels(locale, platform),
-                      sections=section_names(scan, uav, spec))
+                      sections=section_names(scan, uav, spec),
+                      tables=ResultTables.of_jobs(scan, uav, spec))
 
 
 def warning_heading_key(warning: Any) -> str | None:

@@ -1,0 +1,91 @@
+"""Locale-free report tables, built once per result; the renderers only lay them out.
+
+A result's tables (:class:`ResultTables`) are built from its plan objects on first use and
+kept: the terminal (:func:`scanplan.reports.text.text_table`), the workbook, the PDF and a
+notebook's ``_repr_html_`` read the same :class:`~.table.Table` records — a title, columns
+and rows of raw values with their label keys, units, decimals and flags — and only word and
+format them. This package imports nothing of the renderers and no labels: it knows neither
+a language nor a number format; a constraint is named by the rules registry
+(:func:`~.table.constraint_title`).
+
+The tables (:data:`TABLES`): ``film_constraints`` (:func:`~.film.film_constraints`),
+``uav_results`` and ``uav_limits`` (:mod:`.uav`), ``comparison`` and the warnings
+``film_warnings``, ``uav_warnings``, ``spec_warnings`` (:mod:`.spec`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+from .film import film_constraints
+from .spec import comparison, warnings
+from .table import Column, Row, Table, constraint_title
+from .uav import uav_limits, uav_results
+
+__all__ = ["TABLES", "Column", "ResultTables", "Row", "Table", "comparison",
+           "constraint_title", "film_constraints", "uav_limits", "uav_results", "warnings"]
+
+#: Each table: the result it is built from (``"scan"`` / ``"uav"``: that plan;
+#: ``"spec"``: the specification) and its builder.
+TABLES: dict[str, tuple[str, Callable[[Any], Table]]] = {
+    "film_constraints": ("scan", film_constraints),
+    "uav_results": ("uav", uav_results),
+    "uav_limits": ("uav", uav_limits),
+    "comparison": ("spec", comparison),
+    "film_warnings": ("scan", lambda plan: warnings(plan.warnings, "film")),
+    "uav_warnings": ("uav", lambda plan: warnings(plan.warnings, "uav")),
+    "spec_warnings": ("spec", lambda spec: warnings(spec.warnings, "spec")),
+}
+
+
+@dataclass
+class ResultTables:
+    """The tables of one result, each built on first use and kept.
+
+    Parameters
+    ----------
+    scan, uav : plan or None
+        The film plan (``ScanPlan``) and the UAV plan (``UavPlan``).
+    spec : PlanResult or None
+        The specification of ``scanplan plan``.
+
+    Attributes
+    ----------
+    built : list of str
+        The tables built so far, in order (each once).
+
+    Examples
+    --------
+    >>> import scanplan
+    >>> tables = ResultTables(scan=scanplan.scan(map_scale=2000).job.plan)
+    >>> tables["film_constraints"] is tables["film_constraints"], tables.built
+    (True, ['film_constraints'])
+    """
+
+    scan: Any = None
+    uav: Any = None
+    spec: Any = None
+    built: list[str] = field(default_factory=list)
+    _tables: dict[str, Table] = field(default_factory=dict, repr=False)
+
+    def __getitem__(self, name: str) -> Table:
+        if name not in self._tables:
+            source, build = TABLES[name]
+            result = getattr(self, source)
+            if result is None:
+                raise KeyError(f"this result has no {source} plan for the table {name}")
+            self._tables[name] = build(result)
+            self.built.append(name)
+        return self._tables[name]
+
+    def has(self, name: str) -> bool:
+        """Whether the result has what table ``name`` is built from."""
+        return name in TABLES and getattr(self, TABLES[name][0]) is not None
+
+    @classmethod
+    def of_jobs(cls, scan: Any = None, uav: Any = None, spec: Any = None) -> ResultTables:
+        """The tables of a film and/or UAV job (their plans) and a specification."""
+        return cls(scan=scan.plan if scan is not None else None,
+                   uav=uav.plan if uav is not None else None, spec=spec)

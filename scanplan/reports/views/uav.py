@@ -1,0 +1,92 @@
+"""The UAV (digital camera) plan's tables: the results at the planned and the highest flown
+height, and the constraints as maximum planned heights — the terminal report of
+``scanplan uav``, the PDF's digital-camera section and a notebook's ``UavResult`` lay them
+out."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from ...core.flight import MAX_BLUR_PX
+from ...core.shown import shown_decimals
+from .table import Column, Row, Table
+
+__all__ = ["uav_limits", "uav_results"]
+
+
+def uav_results(plan: Any) -> Table:
+    """The results of a UAV plan at the planned height (and the highest flown one).
+
+    Parameters
+    ----------
+    plan : UavPlan
+
+    Returns
+    -------
+    Table
+        Columns ``at_height`` (``value``: the planned height; a second one at the highest
+        flown height when it differs); rows ``gsd_m``, ``nyquist_lpmm``,
+        ``resolving_power`` (a pair: centre, corner), ``ground_resolution_m``,
+        ``l_corner``, ``l_over_gsd``, ``motion_blur_px`` (field ``h``: the lowest flown
+        height; its decimals show the blur against the limit) and, for a tilted camera,
+        ``tilted_gsd`` (fields ``roll``, ``pitch``) in the last column.
+    """
+    h = plan.heights_m
+    two = h["max"] != h["planned"]
+    columns = [Column("at_height", h["planned"])]
+    if two:
+        columns.append(Column("at_height", h["max"]))
+
+    def both(at_planned: Any, at_max: Any) -> tuple[Any, ...]:
+        return (at_planned, at_max) if two else (at_planned,)
+
+    blur = plan.motion_blur_px
+    rows = [
+        Row("gsd_m", both(plan.gsd_m, plan.gsd_at_max_height_m), unit="m", digits=3),
+        Row("nyquist_lpmm", (plan.nyquist_lpmm,), unit="lpmm", digits=1),
+        Row("resolving_power", ((plan.resolving_power_lpmm,
+                                 plan.resolving_power_corner_lpmm),), unit="lpmm", digits=1),
+        Row("ground_resolution_m", both(plan.ground_resolution_m,
+                                        plan.ground_resolution_at_max_height_m),
+            unit="m", digits=3),
+        Row("l_corner", (plan.ground_resolution_corner_m,), unit="m", digits=3),
+        Row("l_over_gsd", (plan.ground_resolution_to_gsd,), digits=2),
+        Row("motion_blur_px", (blur,), unit="px", digits=shown_decimals(blur, MAX_BLUR_PX),
+            fields={"h": h["min"]}),
+    ]
+    if plan.tilted_corner_gsd_m is not None:
+        rows.append(Row("tilted_gsd", both(None, plan.tilted_corner_gsd_m) if two
+                        else (plan.tilted_corner_gsd_m,), unit="m", digits=3,
+                        fields={"roll": plan.inputs.roll_deg, "pitch": plan.inputs.pitch_deg}))
+    return Table("uav_results", "uav_results", tuple(columns), tuple(rows))
+
+
+def uav_limits(plan: Any) -> Table:
+    """The constraints of a UAV plan as maximum planned heights, lowest first.
+
+    Parameters
+    ----------
+    plan : UavPlan
+
+    Returns
+    -------
+    Table
+        One row per constraint (key: its id; flags ``"constraint"`` and, for the one that
+        binds, ``"binding"``); columns ``limit`` (the ground limit [m], or the ceiling),
+        ``compares`` (``GSD``, ``L`` or ``H``), ``max_height`` (the largest planned
+        height [m]), ``max_flown`` (its highest flown height [m]) and ``margin_pct``
+        (None for the binding one and an unlimited one). No rows without limits.
+    """
+    columns = (Column("limit", unit="m", digits=3), Column("compares"),
+               Column("max_height", unit="m", digits=0),
+               Column("max_flown", unit="m", digits=0),
+               Column("margin_pct", unit="pct", digits=0))
+    rows = []
+    for lim in sorted(plan.limits, key=lambda x: x.max_height_m):
+        margin = None if lim.binding or lim.margin_pct != lim.margin_pct \
+            or abs(lim.margin_pct) == float("inf") else lim.margin_pct
+        flags = {"constraint", "binding"} if lim.binding else {"constraint"}
+        rows.append(Row(lim.id, (lim.limit_m, lim.compares, lim.max_height_m,
+                                 lim.max_flown_height_m or lim.max_height_m, margin),
+                        unit="m", flags=frozenset(flags)))
+    return Table("uav_limits", "uav_limits", columns, tuple(rows))
