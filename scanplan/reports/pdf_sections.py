@@ -16,7 +16,6 @@ from typing import TYPE_CHECKING, Any
 
 from ..core import flight as FL
 from ..core.flight import MAX_BLUR_PX
-from ..core.shown import shown_decimals
 from ..messages import localize
 from ..norms import NormSet
 from ..norms.schema import DIGITAL_ONLY_PARAMETERS
@@ -332,38 +331,39 @@ def _uav_inputs(job: UavJob, f: _Fmt) -> list[tuple[str, str]]:
 def _uav_results(plan: UavPlan, f: _Fmt) -> tuple[list[str], list[dict[str, Any]], str]:
     """The result table's columns (the planned and the highest flown height), its rows
     and the motion-blur sentence."""
-    inp, h = plan.inputs, plan.heights_m
-    two = h["max"] != h["planned"]
-    cols = [f.label("pdf_at_height", h=f.g(h["planned"]))]
-    if two:
-        cols.append(f.label("pdf_at_height", h=f.g(h["max"])))
-
-    def row(label: str, *vals: str) -> dict[str, Any]:
-        cells = list(vals) + [""] * (len(cols) - len(vals))
-        return {"label": label, "cells": cells[:len(cols)]}
-
-    results = [
-        row(f.label("gsd_m"), f.num(plan.gsd_m, 3), f.num(plan.gsd_at_max_height_m, 3)),
-        row(f.label("nyquist_lpmm"), f.num(plan.nyquist_lpmm, 1)),
-        row(f.label("resolving_power_system") + " " + f.label("pdf_centre_corner"),
-            f"{f.num(plan.resolving_power_lpmm, 1)} / "
-            f"{f.num(plan.resolving_power_corner_lpmm, 1)}"),
-        row(f.label("ground_resolution_m"), f.num(plan.ground_resolution_m, 3),
-            f.num(plan.ground_resolution_at_max_height_m, 3)),
-        row(f.label("pdf_l_corner"), f.num(plan.ground_resolution_corner_m, 3)),
-        row(f.label("l_over_gsd"), f.num(plan.ground_resolution_to_gsd, 2)),
-        row(f.label("motion_blur_px") + f" ({f.label('pdf_at_height', h=f.g(h['min']))})",
-            f.num(plan.motion_blur_px, shown_decimals(plan.motion_blur_px, MAX_BLUR_PX))),
-    ]
-    if plan.tilted_corner_gsd_m is not None:
-        results.append(row(f.label("pdf_tilted_gsd", roll=f.g(inp.roll_deg),
-                                   pitch=f.g(inp.pitch_deg)),
-                           *(["", f.num(plan.tilted_corner_gsd_m, 3)] if two
-                             else [f.num(plan.tilted_corner_gsd_m, 3)])))
+    table = f.view.tables["uav_results"]
+    cols = [f.label("pdf_at_height", h=f.g(c.value)) for c in table.columns]
+    results = [{"label": _uav_row_label(r, f), "cells": [_uav_cell(r, v, f) for v in r.values]
+                + [""] * (len(cols) - len(r.values))}
+               for r in table.rows]
     blur = f.label("pdf_blur_limit", blur=f.g(MAX_BLUR_PX),
                    exposure=f"1/{math.ceil(1 / plan.max_exposure_s):d}",
                    speed=f.num(plan.max_speed_ms, 1))
     return cols, results, blur
+
+
+#: The label of each row of the UAV results (``{fields}`` filled by :func:`_uav_row_label`).
+_UAV_LABELS = {"l_corner": "pdf_l_corner", "tilted_gsd": "pdf_tilted_gsd"}
+
+
+def _uav_row_label(r: Row, f: _Fmt) -> str:
+    """A UAV result's label: the resolving power at the centre / corner, the blur at the
+    lowest flown height, a tilted camera's roll and pitch."""
+    if r.key == "resolving_power":
+        return f.label("resolving_power_system") + " " + f.label("pdf_centre_corner")
+    if r.key == "motion_blur_px":
+        return f.label("motion_blur_px") + f" ({f.label('pdf_at_height', h=f.g(r.fields['h']))})"
+    return f.label(_UAV_LABELS.get(r.key, r.key), **{k: f.g(v) for k, v in r.fields.items()})
+
+
+def _uav_cell(r: Row, v: Any, f: _Fmt) -> str:
+    """A UAV result: its decimals, a pair as ``centre / corner``, "" for none."""
+    if isinstance(v, str):
+        return v
+    digits = r.digits if r.digits is not None else 1
+    if isinstance(v, tuple):
+        return " / ".join(f.num(x, digits) for x in v)
+    return f.num(v, digits)
 
 
 def _uav_flight(plan: UavPlan, f: _Fmt) -> list[tuple[str, str]]:
@@ -405,14 +405,14 @@ def _uav_limits(plan: UavPlan, f: _Fmt) -> dict[str, Any]:
     """The constraints as maximum heights, the sentence on the binding one, the height
     accuracy forms and the formulas."""
     inp, h = plan.inputs, plan.heights_m
-    limits = [{"id": lim.id, "name": f.cname(lim.id),
-               "limit": f.num(lim.limit_m, 3 if lim.limit_m < 10 else 0),
-               "compares": lim.compares, "max_height": f.num(lim.max_height_m, 0),
-               "max_flown": f.num(lim.max_flown_height_m or lim.max_height_m, 0),
-               "margin": "" if lim.binding or not math.isfinite(lim.margin_pct)
-               else _margin(f, lim.margin_pct),
-               "binding": lim.binding}
-              for lim in sorted(plan.limits, key=lambda x: x.max_height_m)]
+    limits = [{"id": r.key, "name": f.cname(r.key),
+               "limit": f.num(limit, 3 if limit < 10 else 0),
+               "compares": compares, "max_height": f.num(top, 0),
+               "max_flown": f.num(flown, 0),
+               "margin": "" if margin is None else _margin(f, margin),
+               "binding": "binding" in r.flags}
+              for r in f.view.tables["uav_limits"].rows
+              for limit, compares, top, flown, margin in [r.values]]
     limits_title = ""
     max_sentence = ""
     if plan.limits and inp.map_scale is not None:

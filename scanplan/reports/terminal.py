@@ -9,8 +9,6 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from ..core import flight as FL
-from ..core.shown import shown_decimals
 from ..messages import localize, scale_text
 from ..rules.film import ScanPlan
 from ..rules.uav import UavPlan
@@ -232,36 +230,47 @@ def format_uav_plan(plan: UavPlan, norm_name: str = "", locale: str = "en",
         + (w("uav_norm", name=norm_name) if norm_name else ""),
         "",
     ]
-    rows = [["", "", w("at_height", h=w.g(h["planned"]))]]
-    if h["max"] != h["planned"]:
-        rows[0].append(w("at_height", h=w.g(h["max"])))
-    two = len(rows[0]) == 4
-    blank = [""] if two else []
-    m, lpmm = w("m"), w("lpmm")
-    rows.append([w("gsd"), m, w.f(plan.gsd_m, 3),
-                 *([w.f(plan.gsd_at_max_height_m, 3)] if two else [])])
-    rows.append([w("nyquist"), lpmm, w.f(plan.nyquist_lpmm, 1), *blank])
-    rows.append([w("resolving_power"), lpmm,
-                 f"{w.f(plan.resolving_power_lpmm)} / {w.f(plan.resolving_power_corner_lpmm)}",
-                 *blank])
-    rows.append([w("l_centre"), m, w.f(plan.ground_resolution_m, 3),
-                 *([w.f(plan.ground_resolution_at_max_height_m, 3)] if two else [])])
-    rows.append([w("l_corner"), m, w.f(plan.ground_resolution_corner_m, 3), *blank])
-    rows.append([w("l_gsd"), "", w.f(plan.ground_resolution_to_gsd, 2), *blank])
-    rows.append([w("blur", h=w.g(h["min"])), w("px"), w.f(plan.motion_blur_px,
-                                                   shown_decimals(plan.motion_blur_px,
-                                                                     FL.MAX_BLUR_PX)), *blank])
-    if plan.tilted_corner_gsd_m is not None:
-        rows.append([w("tilted", roll=w.g(inp.roll_deg), pitch=w.g(inp.pitch_deg)), m, "",
-                     *([w.f(plan.tilted_corner_gsd_m, 3)] if two else [])])
-    lines.append(table(rows, align="ll" + "r" * (len(rows[0]) - 2)))
+    tables = ResultTables(uav=plan)  # built once for this report
+    results = tables["uav_results"]
+    lines.append(text_table(
+        results, label=lambda r: w(_UAV_WORDS[r.key], **{k: w.g(v) for k, v in r.fields.items()}),
+        unit=lambda r: w(r.unit) if r.unit else "", cell=lambda r, i, v: _uav_cell(r, v, w),
+        head=["", "", *(w("at_height", h=w.g(c.value)) for c in results.columns)],
+        align="ll" + "r" * len(results.columns)))
     lines.append(w("blur_limit", denominator=math.ceil(1 / plan.max_exposure_s),
                    v=w.f(plan.max_speed_ms, 1)))
     lines += _flight_lines(plan, w)
     lines += _recognition_lines(plan, w)
-    lines += _limit_lines(plan, w)
+    lines += _limit_lines(plan, w, tables)
     lines += _warning_lines(plan.warnings, w)
     return "\n".join(lines)
+
+
+#: The terminal's word (:mod:`.labels_cli`) of each row of the UAV results.
+_UAV_WORDS = {"gsd_m": "gsd", "nyquist_lpmm": "nyquist", "resolving_power": "resolving_power",
+              "ground_resolution_m": "l_centre", "l_corner": "l_corner",
+              "l_over_gsd": "l_gsd", "motion_blur_px": "blur", "tilted_gsd": "tilted"}
+
+
+def _uav_cell(r: Row, v: Any, w: _Words) -> str:
+    """A UAV result: fixed decimals, a pair as ``centre / corner``, "" for none."""
+    if isinstance(v, str):
+        return v
+    digits = r.digits if r.digits is not None else 1
+    if isinstance(v, tuple):
+        return " / ".join(w.f(x, digits) for x in v)
+    return w.f(v, digits)
+
+
+def _limit_cell(r: Row, i: int, v: Any, w: _Words) -> str:
+    """A constraint as a maximum height: its limit (a height as given, a ground limit to
+    mm), what it compares, the maximum planned (``*`` where it binds) and flown height."""
+    m = w("m")
+    if i == 0:
+        return f"{w.g(v) if r.values[1] == 'H' else w.f(v, 3)} {m}"
+    if i == 1:
+        return str(v)
+    return f"{w.f(v, 0)} {m}" + (("*" if "binding" in r.flags else " ") if i == 2 else "")
 
 
 def _flight_lines(plan: UavPlan, w: _Words) -> list[str]:
@@ -310,26 +319,20 @@ def _recognition_lines(plan: UavPlan, w: _Words) -> list[str]:
     return ["", w("recognition_head"), table(rrows, align="llrlrrr")]
 
 
-def _limit_lines(plan: UavPlan, w: _Words) -> list[str]:
+def _limit_lines(plan: UavPlan, w: _Words, tables: ResultTables) -> list[str]:
     """The constraints as maximum planned heights, the binding one, height accuracy."""
     inp, h = plan.inputs, plan.heights_m
     if not plan.limits:
         return []
-    m = w("m")
     tol = inp.height_tolerance_up_pct
     head = (w("limits_head_map", map=w.scale(inp.map_scale), hc=w.g(inp.relief_interval_m))
             if inp.map_scale is not None else w("limits_head"))
     lines = ["", head + (w("limits_flown", tol=w.g(tol)) if tol else "") + ":"]
-    lrows = [[f"  {w('lim_constraint')}", w("lim_limit"), w("lim_compares"), w("lim_max"),
-              w("lim_flown")]]
-    for lim in sorted(plan.limits, key=lambda x: x.max_height_m):
-        limit = (w.g(lim.limit_m) if lim.compares == "H"  # a height: not "150,000 м"
-                 else w.f(lim.limit_m, 3))
-        lrows.append([f"  {lim.id}  {w.constraint(lim.id)}", f"{limit} {m}",
-                      lim.compares,
-                      f"{w.f(lim.max_height_m, 0)} {m}" + ("*" if lim.binding else " "),
-                      f"{w.f(lim.max_flown_height_m or lim.max_height_m, 0)} {m}"])
-    lines.append(table(lrows, align="lrlrr"))
+    lines.append(text_table(
+        tables["uav_limits"], label=lambda r: f"  {r.key}  {w.constraint(r.key)}",
+        cell=lambda r, i, v: _limit_cell(r, i, v, w), columns=(0, 1, 2, 3),
+        head=[f"  {w('lim_constraint')}", w("lim_limit"), w("lim_compares"), w("lim_max"),
+              w("lim_flown")], align="lrlrr"))
     b = next(x for x in plan.limits if x.binding)
     lines.append(_wrap(w("lim_sentence", max=w.f(plan.max_height_m, 0),
                          flown=w.f(plan.max_flown_height_m or plan.max_height_m, 0),

@@ -33,7 +33,8 @@ def table(rows: Sequence[Sequence[str]], *, align: str = "", gap: int = 2) -> st
 
 def text_table(tbl: Table, *, label: Callable[[Row], str],
                cell: Callable[[Row, int, Any], str], unit: Callable[[Row], str] | None = None,
-               head: Sequence[str] | None = None, align: str = "") -> str:
+               head: Sequence[str] | None = None, align: str = "",
+               columns: Sequence[int] | None = None) -> str:
     """A report table (:class:`scanplan.reports.views.Table`) as aligned text: the one
     layout of the terminal's tables.
 
@@ -51,6 +52,8 @@ def text_table(tbl: Table, *, label: Callable[[Row], str],
         The heading row.
     align : str
         ``"l"`` / ``"r"`` per column (:func:`table`).
+    columns : sequence of int, optional
+        The columns shown, in order (default: all).
 
     Returns
     -------
@@ -58,8 +61,9 @@ def text_table(tbl: Table, *, label: Callable[[Row], str],
     """
     rows = [list(head)] if head is not None else []
     for r in tbl.rows:
+        shown = range(len(r.values)) if columns is None else columns
         rows.append([label(r), *([unit(r)] if unit is not None else []),
-                     *(cell(r, i, v) for i, v in enumerate(r.values))])
+                     *(cell(r, i, r.values[i]) for i in shown)])
     return table(rows, align=align)
 
 

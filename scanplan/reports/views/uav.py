@@ -29,7 +29,8 @@ def uav_results(plan: Any) -> Table:
         ``resolving_power`` (a pair: centre, corner), ``ground_resolution_m``,
         ``l_corner``, ``l_over_gsd``, ``motion_blur_px`` (field ``h``: the lowest flown
         height; its decimals show the blur against the limit) and, for a tilted camera,
-        ``tilted_gsd`` (fields ``roll``, ``pitch``) in the last column.
+        ``tilted_gsd`` (fields ``roll``, ``pitch``) in the last column ("" in the first
+        of two: none there).
     """
     h = plan.heights_m
     two = h["max"] != h["planned"]
@@ -55,7 +56,7 @@ def uav_results(plan: Any) -> Table:
             fields={"h": h["min"]}),
     ]
     if plan.tilted_corner_gsd_m is not None:
-        rows.append(Row("tilted_gsd", both(None, plan.tilted_corner_gsd_m) if two
+        rows.append(Row("tilted_gsd", both("", plan.tilted_corner_gsd_m) if two
                         else (plan.tilted_corner_gsd_m,), unit="m", digits=3,
                         fields={"roll": plan.inputs.roll_deg, "pitch": plan.inputs.pitch_deg}))
     return Table("uav_results", "uav_results", tuple(columns), tuple(rows))
