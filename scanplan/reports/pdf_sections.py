@@ -490,17 +490,17 @@ def _comparison_view(scan: ScanJob, uav: UavJob, f: _Fmt) -> dict[str, Any]:
     ]}
 
 
-def _comparison_quantity(row: dict[str, Any], f: _Fmt) -> str:
+def _comparison_quantity(row: Row, f: _Fmt) -> str:
     """A row of the specification's film/UAV table named in the report's language."""
-    key = f"spec_cmp_{row.get('key', '')}"
-    return f.label(key) if key in LABELS["en"] else str(row["quantity"])
+    key = f"spec_cmp_{row.key}"
+    return f.label(key) if key in LABELS["en"] else str(row.fields["quantity"])
 
 
-def _comparison_value(x: Any, f: _Fmt) -> str:
-    """A value of the film/UAV table: counts as whole numbers, the rest with 3 decimals."""
+def _comparison_value(x: Any, digits: int | None, f: _Fmt) -> str:
+    """A value of the film/UAV table with the row's decimals (counts whole)."""
     if x is None:
         return "—"
-    return f.num(x, 0 if isinstance(x, int) else 3)
+    return f.num(x, digits if digits is not None else 3)
 
 
 def _film_relief_rows(fs: Any, f: _Fmt) -> list[tuple[str, str]]:
@@ -571,11 +571,11 @@ def _spec_view(spec: PlanResult, f: _Fmt) -> dict[str, Any]:
             rows.append((f.label("data_volume_jpeg_gb"), f.num(float(FL.jpeg_volume_bytes(
                 p.flight["data_volume_bytes"])) / 1e9, 1)))
         reasons.append(sentence(f.cite(display_message(u.reason, u.job.norm_set, f.locale))))
-    comparison = [(_comparison_quantity(c, f), _comparison_value(c["film"], f),
-                   _comparison_value(c["uav"], f),
-                   f.label(_COMPARISON_UNITS[c["unit"]]) if c["unit"] in _COMPARISON_UNITS
-                   else c["unit"])
-                  for c in spec.comparison]
+    comparison = [(_comparison_quantity(r, f),
+                   *(_comparison_value(x, r.digits, f) for x in r.values),
+                   f.label(_COMPARISON_UNITS[r.unit]) if r.unit in _COMPARISON_UNITS
+                   else r.unit)
+                  for r in f.view.tables["comparison"].rows]
     return {"rows": rows, "reasons": reasons, "comparison": comparison}
 
 

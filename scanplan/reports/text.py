@@ -13,7 +13,7 @@ from ..rules.film import CONSTRAINTS
 from .jsondoc import scale_value
 from .labels import LABELS, t
 from .view import Numbers
-from .views import Row, Table
+from .views import ResultTables, Row, Table
 
 __all__ = ["format_plan_result", "table", "text_table"]
 
@@ -34,7 +34,8 @@ def table(rows: Sequence[Sequence[str]], *, align: str = "", gap: int = 2) -> st
 def text_table(tbl: Table, *, label: Callable[[Row], str],
                cell: Callable[[Row, int, Any], str], unit: Callable[[Row], str] | None = None,
                head: Sequence[str] | None = None, align: str = "",
-               columns: Sequence[int] | None = None) -> str:
+               columns: Sequence[int] | None = None,
+               after: Callable[[Row], str] | None = None) -> str:
     """A report table (:class:`scanplan.reports.views.Table`) as aligned text: the one
     layout of the terminal's tables.
 
@@ -54,6 +55,8 @@ def text_table(tbl: Table, *, label: Callable[[Row], str],
         ``"l"`` / ``"r"`` per column (:func:`table`).
     columns : sequence of int, optional
         The columns shown, in order (default: all).
+    after : callable, optional
+        A last column after the values (a row's unit there, not after the label).
 
     Returns
     -------
@@ -63,7 +66,8 @@ def text_table(tbl: Table, *, label: Callable[[Row], str],
     for r in tbl.rows:
         shown = range(len(r.values)) if columns is None else columns
         rows.append([label(r), *([unit(r)] if unit is not None else []),
-                     *(cell(r, i, r.values[i]) for i in shown)])
+                     *(cell(r, i, r.values[i]) for i in shown),
+                     *([after(r)] if after is not None else [])])
     return table(rows, align=align)
 
 
@@ -132,6 +136,8 @@ def format_plan_result(result: Any, locale: str | None = None) -> str:
         info = CONSTRAINTS[cid]
         return info.name_ru if loc == "ru" else info.name
 
+    tables = ResultTables.of_jobs(result.film.job if result.film else None,
+                                  result.uav.job if result.uav else None, result)
     lines = _plan_heading(result, loc, T)
     lines += [_wrap(t, "") for t in format_terrain(result, loc)]
     if result.film:
@@ -139,7 +145,7 @@ def format_plan_result(result: Any, locale: str | None = None) -> str:
     if result.uav:
         lines += _uav_summary(result.uav, loc, T, cname)
     if result.comparison:
-        lines += _comparison_lines(result, loc, T)
+        lines += _comparison_lines(result, loc, T, tables)
     from .design import design_text_lines
 
     lines += [textwrap.fill(x.strip(), width=96, initial_indent="  ", subsequent_indent="    ")
@@ -200,25 +206,27 @@ def _film_summary(f: Any, loc: str, T: _Terminal, cname: Any) -> list[str]:
     return lines
 
 
-def _comparison_lines(result: Any, loc: str, T: _Terminal) -> list[str]:
-    """Film and digital camera side by side."""
+def _comparison_lines(result: Any, loc: str, T: _Terminal, tables: ResultTables) -> list[str]:
+    """Film and digital camera side by side (the ``comparison`` table; counts grouped as
+    the documents group them)."""
     aircraft = bool(result.uav) and result.uav.job.plan.inputs.platform == "aircraft"
-    lines = ["", T["side_by_side_aircraft" if aircraft else "side_by_side"]]
-    rows = [[f"  {T['quantity']}", T["film_col"],
-             T["digital_col" if aircraft else "uav_col"], T["unit"]]]
+    numbers = Numbers(loc)
 
-    def v(x: Any) -> str:
-        if x is None:
-            return "—"
-        return _n(x, 3, loc, True) if isinstance(x, float) else str(x)
+    def quantity(r: Row) -> str:  # the terminal's shorter word, else the documents' one
+        return "  " + T.get(f"cmp_{r.key}", LABELS[loc].get(f"spec_cmp_{r.key}",
+                                                               r.fields["quantity"]))
 
-    for c in result.comparison:
-        key = c.get("key", "")  # the terminal's shorter word, else the documents' one
-        q = T.get(f"cmp_{key}", LABELS[loc].get(f"spec_cmp_{key}", c["quantity"]))
-        unit = {"m": T["m"], "GB": T["gb"]}.get(c["unit"], c["unit"])
-        rows.append([f"  {q}", v(c["film"]), v(c["uav"]), unit])
-    lines.append(table(rows, align="lrrl"))
-    return lines
+    def cell(r: Row, i: int, x: Any) -> str:
+        return "—" if x is None else numbers.num(x, r.digits if r.digits is not None else 3)
+
+    def unit(r: Row) -> str:
+        return {"m": T["m"], "GB": T["gb"]}.get(r.unit, r.unit)
+
+    head = [f"  {T['quantity']}", T["film_col"], T["digital_col" if aircraft else "uav_col"],
+            T["unit"]]
+    text = text_table(tables["comparison"], label=quantity, cell=cell, head=head,
+                      align="lrrl", after=unit)
+    return ["", T["side_by_side_aircraft" if aircraft else "side_by_side"], text]
 
 
 def _warning_lines(result: Any, loc: str, T: _Terminal) -> list[str]:

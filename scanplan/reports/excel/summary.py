@@ -161,18 +161,16 @@ def _summary_spec(book: Book, ws: Worksheet, row: int, spec: PlanResult) -> int:
         _header(ws, row, [book.t("spec_quantity"), book.t("spec_film"), book.t("spec_uav"),
                           book.t("unit")])
         row += 1
-        for c in spec.comparison:
-            key = f"spec_cmp_{c.get('key', '')}"
-            put_text(ws, row, 1, book.t(key) if key in LABELS["en"] else c["quantity"])
-            for col, key in ((2, "film"), (3, "uav")):
-                value = c[key]
+        for r in book.view.tables["comparison"].rows:
+            key = f"spec_cmp_{r.key}"
+            put_text(ws, row, 1, book.t(key) if key in LABELS["en"] else r.fields["quantity"])
+            for col, value in enumerate(r.values, start=2):
                 if isinstance(value, int | float):
-                    put_num(ws, row, col, value, "#,##0.000" if isinstance(value, float)
-                            else "#,##0")
+                    put_num(ws, row, col, value, "#,##0" if r.digits == 0 else "#,##0.000")
                 else:
                     put_text(ws, row, col, MISSING)
-            unit = {"m": "pdf_m", "GB": "pdf_gb"}.get(c["unit"])
-            put_text(ws, row, 4, book.t(unit) if unit else c["unit"])
+            unit = {"m": "pdf_m", "GB": "pdf_gb"}.get(r.unit)
+            put_text(ws, row, 4, book.t(unit) if unit else r.unit)
             row += 1
     return row
 
