@@ -26,8 +26,9 @@ from .design import relief_max_height_m
 from .labels import LABELS
 from .plots import view_plot_uri
 from .references import Bibliography
+from .tablewords import row_label, row_unit, row_value
 from .view import ReportView, warning_heading_key
-from .views import Row, Table
+from .views import Table
 from .wording import (
     camera_title,
     display_message,
@@ -54,7 +55,6 @@ _UAV_FORMULAS = (  # formula, meaning (label), source (label)
     ("L ≤ L_obj·sqrt(−ln P)/B", "pdf_f_pd", "pdf_src_pd"),
     ("H_max = H·(1 + Δ_H)", "pdf_f_tol", "pdf_src_tol"),
 )
-_COMPARISON_UNITS = {"m": "pdf_m", "GB": "pdf_gb"}
 
 
 # ---------------------------------------------------------------------------------------
@@ -240,23 +240,6 @@ def _scan_view(job: ScanJob, f: _Fmt) -> dict[str, Any]:
     }
 
 
-#: The label of each row of the film table (its unit after the comma dropped: ``strip``).
-_FILM_LABELS = {"photo_to_map": "photo_to_map", "binding": "binding",
-                "resolution_on_ground": "pdf_resolution_on_ground",
-                "required_r": "pdf_required_r",
-                "recognition_probability": "pdf_recognition_at_scan"}
-_FILM_UNITS = {"um": "pdf_um", "mb": "pdf_mb", "mm": "pdf_mm", "lpmm": "pdf_lpmm"}
-
-
-def _film_row_label(r: Row, f: _Fmt) -> str:
-    """A film table row's label: ``PZ — height accuracy``, a quantity without its unit."""
-    if "constraint" in r.flags:
-        return f"{r.key} — {f.cname(r.key)}"
-    if r.key in _FILM_LABELS:
-        return f.label(_FILM_LABELS[r.key])
-    return f.label(r.key).rsplit(",", 1)[0]
-
-
 def _scan_table(film: Table, part: slice, f: _Fmt) -> dict[str, Any]:
     """The film table (:func:`scanplan.reports.views.film_constraints`) for some of its
     photo scales: the constraints (binding flagged, others with their margin), then the
@@ -265,17 +248,18 @@ def _scan_table(film: Table, part: slice, f: _Fmt) -> dict[str, Any]:
     rows: list[dict[str, Any]] = []
     summary: list[dict[str, Any]] = []
     for r in film.rows:
-        unit = f.label(_FILM_UNITS[r.unit]) if r.unit else ""
+        unit = row_unit(r.unit, f.view.labels)
         values = r.values[part]
-        texts = [v if isinstance(v, str) else f.num(v, r.digits or 0) for v in values]
+        texts = [row_value(r, v, f.view.numbers) for v in values]
+        label = row_label(r, f.view.labels, f.view.numbers)
         if "summary" in r.flags:
-            summary.append({"label": _film_row_label(r, f), "unit": unit, "cells": texts,
+            summary.append({"label": label, "unit": unit, "cells": texts,
                             "strong": "emph" in r.flags})
             continue
         first = part.start or 0
         binding = [r.flagged(first + i, "binding") for i in range(len(values))]
         margins = r.margins[part] if r.margins else (None,) * len(values)
-        rows.append({"label": _film_row_label(r, f), "unit": unit,
+        rows.append({"label": label, "unit": unit,
                      "kind": "constraint" if "constraint" in r.flags else "ratio",
                      "cells": [{"text": text, "binding": b,
                                 "margin": "" if b or m is None else _margin(f, m)}
@@ -333,37 +317,14 @@ def _uav_results(plan: UavPlan, f: _Fmt) -> tuple[list[str], list[dict[str, Any]
     and the motion-blur sentence."""
     table = f.view.tables["uav_results"]
     cols = [f.label("pdf_at_height", h=f.g(c.value)) for c in table.columns]
-    results = [{"label": _uav_row_label(r, f), "cells": [_uav_cell(r, v, f) for v in r.values]
+    results = [{"label": row_label(r, f.view.labels, f.view.numbers),
+                "cells": [row_value(r, v, f.view.numbers) for v in r.values]
                 + [""] * (len(cols) - len(r.values))}
                for r in table.rows]
     blur = f.label("pdf_blur_limit", blur=f.g(MAX_BLUR_PX),
                    exposure=f"1/{math.ceil(1 / plan.max_exposure_s):d}",
                    speed=f.num(plan.max_speed_ms, 1))
     return cols, results, blur
-
-
-#: The label of each row of the UAV results (``{fields}`` filled by :func:`_uav_row_label`).
-_UAV_LABELS = {"l_corner": "pdf_l_corner", "tilted_gsd": "pdf_tilted_gsd"}
-
-
-def _uav_row_label(r: Row, f: _Fmt) -> str:
-    """A UAV result's label: the resolving power at the centre / corner, the blur at the
-    lowest flown height, a tilted camera's roll and pitch."""
-    if r.key == "resolving_power":
-        return f.label("resolving_power_system") + " " + f.label("pdf_centre_corner")
-    if r.key == "motion_blur_px":
-        return f.label("motion_blur_px") + f" ({f.label('pdf_at_height', h=f.g(r.fields['h']))})"
-    return f.label(_UAV_LABELS.get(r.key, r.key), **{k: f.g(v) for k, v in r.fields.items()})
-
-
-def _uav_cell(r: Row, v: Any, f: _Fmt) -> str:
-    """A UAV result: its decimals, a pair as ``centre / corner``, "" for none."""
-    if isinstance(v, str):
-        return v
-    digits = r.digits if r.digits is not None else 1
-    if isinstance(v, tuple):
-        return " / ".join(f.num(x, digits) for x in v)
-    return f.num(v, digits)
 
 
 def _uav_flight(plan: UavPlan, f: _Fmt) -> list[tuple[str, str]]:
@@ -490,19 +451,6 @@ def _comparison_view(scan: ScanJob, uav: UavJob, f: _Fmt) -> dict[str, Any]:
     ]}
 
 
-def _comparison_quantity(row: Row, f: _Fmt) -> str:
-    """A row of the specification's film/UAV table named in the report's language."""
-    key = f"spec_cmp_{row.key}"
-    return f.label(key) if key in LABELS["en"] else str(row.fields["quantity"])
-
-
-def _comparison_value(x: Any, digits: int | None, f: _Fmt) -> str:
-    """A value of the film/UAV table with the row's decimals (counts whole)."""
-    if x is None:
-        return "—"
-    return f.num(x, digits if digits is not None else 3)
-
-
 def _film_relief_rows(fs: Any, f: _Fmt) -> list[tuple[str, str]]:
     """``[terrain]``: the frame the film specification holds at, and the flat-ground scan
     pixel beside it (issue 12)."""
@@ -571,10 +519,9 @@ def _spec_view(spec: PlanResult, f: _Fmt) -> dict[str, Any]:
             rows.append((f.label("data_volume_jpeg_gb"), f.num(float(FL.jpeg_volume_bytes(
                 p.flight["data_volume_bytes"])) / 1e9, 1)))
         reasons.append(sentence(f.cite(display_message(u.reason, u.job.norm_set, f.locale))))
-    comparison = [(_comparison_quantity(r, f),
-                   *(_comparison_value(x, r.digits, f) for x in r.values),
-                   f.label(_COMPARISON_UNITS[r.unit]) if r.unit in _COMPARISON_UNITS
-                   else r.unit)
+    comparison = [(row_label(r, f.view.labels, f.view.numbers),
+                   *(row_value(r, x, f.view.numbers) for x in r.values),
+                   row_unit(r.unit, f.view.labels))
                   for r in f.view.tables["comparison"].rows]
     return {"rows": rows, "reasons": reasons, "comparison": comparison}
 

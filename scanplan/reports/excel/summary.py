@@ -9,7 +9,7 @@ from openpyxl.worksheet.worksheet import Worksheet
 
 from ...core import flight as FL
 from ..design import relief_max_height_m
-from ..labels import LABELS
+from ..tablewords import row_label, row_unit
 from ..wording import (
     document_date,
     object_title,
@@ -162,15 +162,13 @@ def _summary_spec(book: Book, ws: Worksheet, row: int, spec: PlanResult) -> int:
                           book.t("unit")])
         row += 1
         for r in book.view.tables["comparison"].rows:
-            key = f"spec_cmp_{r.key}"
-            put_text(ws, row, 1, book.t(key) if key in LABELS["en"] else r.fields["quantity"])
+            put_text(ws, row, 1, row_label(r, book.view.labels, book.numbers))
             for col, value in enumerate(r.values, start=2):
                 if isinstance(value, int | float):
                     put_num(ws, row, col, value, "#,##0" if r.digits == 0 else "#,##0.000")
                 else:
                     put_text(ws, row, col, MISSING)
-            unit = {"m": "pdf_m", "GB": "pdf_gb"}.get(r.unit)
-            put_text(ws, row, 4, book.t(unit) if unit else r.unit)
+            put_text(ws, row, 4, row_unit(r.unit, book.view.labels))
             row += 1
     return row
 
