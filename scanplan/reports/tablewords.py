@@ -64,12 +64,16 @@ def row_unit(unit: str, labels: Labels) -> str:
     return labels(UNITS[unit]) if unit in UNITS else unit
 
 
-def row_value(r: Row, value: Any, numbers: Numbers) -> str:
-    """A value of a row as the documents print it: the row's decimals (thousands grouped),
-    a pair as ``centre / corner``, ``—`` for a missing number, a text as it is."""
+def row_value(r: Row, value: Any, numbers: Numbers, digits: int | None = None) -> str:
+    """A value of a row as the documents print it: the row's decimals (``digits`` when it
+    has none: its column's; else 3), thousands grouped, a pair as ``centre / corner``,
+    ``—`` for a missing number, a text as it is."""
     if isinstance(value, str):
         return value
-    digits = r.digits if r.digits is not None else 3
+    if r.digits is not None:
+        digits = r.digits
+    elif digits is None:
+        digits = 3
     if isinstance(value, tuple):
         return " / ".join(numbers.num(x, digits) for x in value)
     return numbers.num(value, digits)

@@ -89,5 +89,5 @@ def uav_limits(plan: Any) -> Table:
         flags = {"constraint", "binding"} if lim.binding else {"constraint"}
         rows.append(Row(lim.id, (lim.limit_m, lim.compares, lim.max_height_m,
                                  lim.max_flown_height_m or lim.max_height_m, margin),
-                        unit="m", flags=frozenset(flags)))
+                        flags=frozenset(flags)))
     return Table("uav_limits", "uav_limits", columns, tuple(rows))
