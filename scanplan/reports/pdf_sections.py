@@ -130,15 +130,17 @@ def _after_heading(message: str, heading: str) -> str:
     return sentence(message) if heading else message
 
 
-def _warnings(ws: Any, f: _Fmt, ns: NormSet | None = None) -> list[dict[str, Any]]:
+def _warnings(ws: Table, f: _Fmt, ns: NormSet | None = None) -> list[dict[str, Any]]:
+    """A section's warnings table as the templates show it: heading, scales, sentence."""
     out = []
-    for w in ws:
-        key = warning_heading_key(w)
+    for r in ws.rows:
+        message, scales = r.values
+        key = warning_heading_key(r.key)
         heading = f.label(key) if key else ""
-        scale_list = [f.scale(x) for x in getattr(w, "photo_scales", ()) or ()]
-        out.append({"code": w.code, "severity": w.severity, "heading": heading,
+        scale_list = [f.scale(x) for x in scales]
+        out.append({"code": r.key, "severity": r.fields["severity"], "heading": heading,
                     "scales": f.list_sep.join(scale_list), "scale_list": scale_list,
-                    "message": _after_heading(f.cite(display_message(w.message, ns, f.locale)),
+                    "message": _after_heading(f.cite(display_message(message, ns, f.locale)),
                                               heading)})
     return out
 
@@ -234,7 +236,8 @@ def _scan_view(job: ScanJob, f: _Fmt) -> dict[str, Any]:
         "inputs": inputs, "tables": tables,
         "explanations": explanations, "interpretation_limit": limit, "reach": reach,
         "reach_interpretable": obj is not None and mci is not None,
-        "warnings": _warnings(plan.warnings, f, ns), "formulas": formulas, "params": params,
+        "warnings": _warnings(f.view.tables["film_warnings"], f, ns), "formulas": formulas,
+        "params": params,
         "norm": _norm_view(ns, f),
         "plot": view_plot_uri(f.view, "constraints"),
     }
@@ -423,7 +426,8 @@ def _uav_view(job: UavJob, f: _Fmt) -> dict[str, Any]:
             f.label("pdf_at_height", h=f.g(h["max"])),
             f.label("pdf_corner_at", h=f.g(h["max"]))],
         **_uav_limits(plan, f),
-        "warnings": _warnings(plan.warnings, f, ns), "norm": _norm_view(ns, f),
+        "warnings": _warnings(f.view.tables["uav_warnings"], f, ns),
+        "norm": _norm_view(ns, f),
         "plot_mtf": view_plot_uri(f.view, "mtf"),
         "plot_height": view_plot_uri(f.view, "height"),
         "not_resolvable": not plan.resolvable,

@@ -16,7 +16,7 @@ from .labels_cli import cli_text
 from .references import author_cite
 from .text import _volume, _wrap, code_tag, table, text_table
 from .view import Numbers
-from .views import ResultTables, Row, constraint_title
+from .views import ResultTables, Row, Table, constraint_title
 
 __all__ = ["format_scan_plan", "format_uav_plan"]
 
@@ -103,7 +103,8 @@ def format_scan_plan(plan: ScanPlan, norm_name: str = "", norm_title: str = "",
                        p=w.g(plan.rules.probability),
                        source=author_cite(localize(obj.source, w.loc), w.loc)))
     lines.append("")
-    tbl = ResultTables(scan=plan)["film_constraints"]
+    tables = ResultTables(scan=plan)  # built once for this report
+    tbl = tables["film_constraints"]
     lines.append(text_table(tbl, label=lambda r: _film_label(r, w),
                             unit=lambda r: w(r.unit) if r.unit else "",
                             cell=lambda r, i, v: _film_cell(r, i, v, w),
@@ -122,7 +123,7 @@ def format_scan_plan(plan: ScanPlan, norm_name: str = "", norm_title: str = "",
             p=w.g(plan.rules.probability), scale=w.scale(math.floor(mci)),
             ratio=w.f(mci / inp.map_scale, 1), r=w.g(inp.resolving_power_lpmm)), ""))
     lines += _reach_lines(plan, w)
-    lines += _warning_lines(plan.warnings, w, scan=True)
+    lines += _warning_lines(tables["film_warnings"], w, scan=True)
     return "\n".join(lines)
 
 
@@ -158,13 +159,14 @@ def _film_cell(r: Row, i: int, v: Any, w: _Words) -> str:
     return text + ("*" if r.flagged(i, "binding") else " ")
 
 
-def _warning_lines(warnings: Any, w: _Words, scan: bool = False) -> list[str]:
-    if not warnings:
+def _warning_lines(warnings: Table, w: _Words, scan: bool = False) -> list[str]:
+    """The warnings table as lines: ``!`` before each (a film plan's notes: ``i``)."""
+    if not warnings.rows:
         return []
     out = ["", w("warnings")]
-    for x in warnings:
-        mark = "!" if (not scan or x.severity == "warning") else "i"
-        out.append(_wrap(x.text(w.loc) + code_tag(x.code, w.loc), f"  {mark} "))
+    for r in warnings.rows:
+        mark = "!" if (not scan or "warning" in r.flags) else "i"
+        out.append(_wrap(localize(r.values[0], w.loc) + code_tag(r.key, w.loc), f"  {mark} "))
     return out
 
 
@@ -242,7 +244,7 @@ def format_uav_plan(plan: UavPlan, norm_name: str = "", locale: str = "en",
     lines += _flight_lines(plan, w)
     lines += _recognition_lines(plan, w)
     lines += _limit_lines(plan, w, tables)
-    lines += _warning_lines(plan.warnings, w)
+    lines += _warning_lines(tables["uav_warnings"], w)
     return "\n".join(lines)
 
 

@@ -151,7 +151,7 @@ def format_plan_result(result: Any, locale: str | None = None) -> str:
     lines += [textwrap.fill(x.strip(), width=96, initial_indent="  ", subsequent_indent="    ")
               if x.startswith("  ") else x for x in design_text_lines(result, loc)]
     if result.warnings:
-        lines += _warning_lines(result, loc, T)
+        lines += _warning_lines(result, loc, T, tables)
     return "\n".join(lines)
 
 
@@ -229,20 +229,22 @@ def _comparison_lines(result: Any, loc: str, T: _Terminal, tables: ResultTables)
     return ["", T["side_by_side_aircraft" if aircraft else "side_by_side"], text]
 
 
-def _warning_lines(result: Any, loc: str, T: _Terminal) -> list[str]:
-    """The warnings (``!``) and notes (``i``) with their codes."""
+def _warning_lines(result: Any, loc: str, T: _Terminal, tables: ResultTables) -> list[str]:
+    """The warnings (``!``) and notes (``i``) with their codes (the ``spec_warnings``
+    table)."""
     from ..messages import localize
 
     lines = ["", T["warnings"]]
-    for w in result.warnings:
-        mark = "!" if w.severity == "warning" else "i"
-        text = localize(w.message, loc)
+    for r in tables["spec_warnings"].rows:
+        mark = "!" if "warning" in r.flags else "i"
+        message = r.values[0]
+        text = localize(message, loc)
         if loc == "ru":  # ids by their names, as the Russian documents show them
             from .wording import display_message
 
             ns = (result.film or result.uav).job.norm_set
-            text = display_message(w.message, ns, loc)
-        lines.append(_wrap(text + code_tag(w.code, loc), f"  {mark} "))
+            text = display_message(message, ns, loc)
+        lines.append(_wrap(text + code_tag(r.key, loc), f"  {mark} "))
     return lines
 
 

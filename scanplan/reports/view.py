@@ -339,13 +339,13 @@ def warning_heading_key(warning: Any) -> str | None:
 
     Parameters
     ----------
-    warning : PlanWarning
-        A warning with ``code`` and ``message``.
+    warning : PlanWarning or str
+        A warning with ``code`` and ``message``, or its code (a warnings table's row key).
 
     Returns
     -------
     str or None
         ``"pdf_warn_<code>"``.
     """
-    key = f"pdf_warn_{warning.code}"
+    key = f"pdf_warn_{warning if isinstance(warning, str) else warning.code}"
     return key if key in LABELS["en"] else None

@@ -99,7 +99,7 @@ SHEETS: tuple[Sheet, ...] = (
     Sheet("terrain", lambda b, v: terrain_sheet(b, v.spec), "spec"),
     Sheet("flight", lambda b, v: _flight_sheets(b, v)),  # issue 11: Strips, Photos
     Sheet("norms", lambda b, v: norms_sheet(b, v.scan, v.uav)),
-    Sheet("warnings", lambda b, v: warnings_sheet(b, v.scan, v.uav, v.spec)),
+    Sheet("warnings", lambda b, v: warnings_sheet(b, v.scan, v.uav)),
     Sheet("references", lambda b, v: references_sheet(b)),
 )
 

@@ -82,7 +82,7 @@ def summary_sheet(book: Book, scan: ScanJob | None, uav: UavJob | None,
         put_text(ws, row, 3, line)
         row += 1
     for key, info in (("warnings_box", False), ("notes_box", True)):
-        box = _warning_lines(book, scan, uav, spec, info=info)
+        box = _warning_lines(book, scan, uav, info=info)
         if box:
             row = book.section(ws, row + 1, book.t(key))
             for text in box:

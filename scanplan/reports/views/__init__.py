@@ -10,7 +10,8 @@ a language nor a number format; a constraint is named by the rules registry
 
 The tables (:data:`TABLES`): ``film_constraints`` (:func:`~.film.film_constraints`),
 ``uav_results`` and ``uav_limits`` (:mod:`.uav`), ``comparison`` and the warnings
-``film_warnings``, ``uav_warnings``, ``spec_warnings`` (:mod:`.spec`).
+``film_warnings``, ``uav_warnings``, ``spec_warnings`` and ``warnings`` (all of them once)
+(:mod:`.spec`).
 """
 
 from __future__ import annotations
@@ -20,15 +21,16 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from .film import film_constraints
-from .spec import comparison, warnings
+from .spec import all_warnings, comparison, warnings
 from .table import Column, Row, Table, constraint_title
 from .uav import uav_limits, uav_results
 
-__all__ = ["TABLES", "Column", "ResultTables", "Row", "Table", "comparison",
+__all__ = ["TABLES", "Column", "ResultTables", "Row", "Table", "all_warnings", "comparison",
            "constraint_title", "film_constraints", "uav_limits", "uav_results", "warnings"]
 
 #: Each table: the result it is built from (``"scan"`` / ``"uav"``: that plan;
-#: ``"spec"``: the specification) and its builder.
+#: ``"spec"``: the specification; ``"all"``: the :class:`ResultTables`, whichever it has)
+#: and its builder.
 TABLES: dict[str, tuple[str, Callable[[Any], Table]]] = {
     "film_constraints": ("scan", film_constraints),
     "uav_results": ("uav", uav_results),
@@ -37,6 +39,7 @@ TABLES: dict[str, tuple[str, Callable[[Any], Table]]] = {
     "film_warnings": ("scan", lambda plan: warnings(plan.warnings, "film")),
     "uav_warnings": ("uav", lambda plan: warnings(plan.warnings, "uav")),
     "spec_warnings": ("spec", lambda spec: warnings(spec.warnings, "spec")),
+    "warnings": ("all", lambda tables: all_warnings(tables.scan, tables.uav, tables.spec)),
 }
 
 
@@ -73,7 +76,7 @@ class ResultTables:
     def __getitem__(self, name: str) -> Table:
         if name not in self._tables:
             source, build = TABLES[name]
-            result = getattr(self, source)
+            result = self if source == "all" else getattr(self, source)
             if result is None:
                 raise KeyError(f"this result has no {source} plan for the table {name}")
             self._tables[name] = build(result)
@@ -82,7 +85,8 @@ class ResultTables:
 
     def has(self, name: str) -> bool:
         """Whether the result has what table ``name`` is built from."""
-        return name in TABLES and getattr(self, TABLES[name][0]) is not None
+        source = TABLES[name][0] if name in TABLES else ""
+        return source == "all" or (bool(source) and getattr(self, source) is not None)
 
     @classmethod
     def of_jobs(cls, scan: Any = None, uav: Any = None, spec: Any = None) -> ResultTables:

@@ -8,7 +8,7 @@ from typing import Any
 
 from .table import Column, Row, Table
 
-__all__ = ["comparison", "warnings"]
+__all__ = ["all_warnings", "comparison", "warnings"]
 
 
 def comparison(spec: Any) -> Table:
@@ -49,11 +49,39 @@ def warnings(found: Iterable[Any], section: str = "") -> Table:
     Table
         One row per warning: key its code, values ``(message, photo_scales)`` (the
         :class:`~scanplan.messages.Message` and the photo scales it concerns), flags
-        ``"warning"`` or ``"note"`` (an ``info``) and the ``section``.
+        ``"warning"`` or ``"note"`` (an ``info``), fields ``severity`` and ``section``.
     """
-    rows = tuple(Row(w.code, (w.message, tuple(getattr(w, "photo_scales", ()) or ())),
-                     flags=frozenset({"warning" if w.severity == "warning" else "note",
-                                      *([f"section:{section}"] if section else [])}),
-                     fields={"severity": w.severity})
-                 for w in found)
-    return Table("warnings", "warnings", (Column("message"), Column("photo_scale")), rows)
+    return Table("warnings", "warnings", (Column("message"), Column("photo_scale")),
+                 tuple(_warning_row(w, section) for w in found))
+
+
+def _warning_row(w: Any, section: str) -> Row:
+    return Row(w.code, (w.message, tuple(getattr(w, "photo_scales", ()) or ())),
+               flags=frozenset({"warning" if w.severity == "warning" else "note"}),
+               fields={"severity": w.severity, "section": section})
+
+
+def all_warnings(scan: Any = None, uav: Any = None, spec: Any = None) -> Table:
+    """Every warning of a result once: the film plan's, the UAV plan's, then those of the
+    specification that neither section states (by code).
+
+    Parameters
+    ----------
+    scan, uav : plan or None
+        The film and the UAV plan.
+    spec : PlanResult or None
+        The specification.
+
+    Returns
+    -------
+    Table
+        As :func:`warnings`, each row's ``section`` field ``"film"``, ``"uav"`` or
+        ``"spec"``.
+    """
+    rows = [_warning_row(w, "film") for w in (scan.warnings if scan is not None else ())]
+    rows += [_warning_row(w, "uav") for w in (uav.warnings if uav is not None else ())]
+    seen = {r.key for r in rows}
+    rows += [_warning_row(w, "spec") for w in (spec.warnings if spec is not None else ())
+             if w.code not in seen]
+    return Table("warnings", "warnings", (Column("message"), Column("photo_scale")),
+                 tuple(rows))
