@@ -22,6 +22,7 @@ from ..messages import Message, localize, plural, scale_text
 from ..rules.registry import CONSTRAINTS
 from .labels import t
 from .view import Numbers
+from .views import constraint_title
 from .wording import camera_title, display_message, document_date, sentence, with_status
 
 _PARTS = {"en": ("part", "parts"), "ru": ("часть", "части", "частей")}
@@ -110,10 +111,7 @@ class _W:
         return document_date(day, self.loc)
 
     def cname(self, cid: str) -> str:
-        rec = CONSTRAINTS.get(cid)
-        if rec is None:
-            return cid
-        return rec.title(self.loc)
+        return constraint_title(cid, self.loc)
 
 
 def _equation(cid: str, w: _W, limits: Any = ()) -> str:

@@ -14,11 +14,12 @@ import math
 from typing import Any
 
 from ..messages import scale_text
-from ..rules.film import CONSTRAINTS, ScanPlan
+from ..rules.film import ScanPlan
 from ..rules.uav import UavPlan
 from .labels import t
 from .svgchart import Chart, log_ticks
 from .view import Numbers, ReportView, svg_data_uri
+from .views import constraint_title
 
 __all__ = ["PLOT_JOBS", "constraints_svg", "draw_view_plots", "height_svg", "mtf_svg",
            "number", "terrain_svg", "view_plot", "view_plot_uri"]
@@ -93,7 +94,7 @@ def constraints_svg(plan: ScanPlan, locale: str = "en") -> str:
     ids = [cid for cid in plan.constraint_ids if cid in sweep]
     colours = {cid: _COLOURS.get(cid) or next(more, "#000000") for cid in ids}
     for cid in sorted(ids, key=lambda c: c in _DASHES):  # solid first, dashed over them
-        name = CONSTRAINTS[cid].name_ru if locale == "ru" else CONSTRAINTS[cid].name
+        name = constraint_title(cid, locale)
         ax.plot(xs, sweep[cid], colour=colours[cid], width=1.1, dash=_DASHES.get(cid),
                 label=f"{cid} — {name}")
     px = [s.photo_scale for s in plan.scenarios]

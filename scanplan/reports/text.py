@@ -9,11 +9,10 @@ from collections.abc import Callable, Sequence
 from typing import Any
 
 from ..messages import scale_text
-from ..rules.film import CONSTRAINTS
 from .jsondoc import scale_value
 from .labels import LABELS, t
 from .view import Numbers
-from .views import ResultTables, Row, Table
+from .views import ResultTables, Row, Table, constraint_title
 
 __all__ = ["format_plan_result", "table", "text_table"]
 
@@ -133,8 +132,7 @@ def format_plan_result(result: Any, locale: str | None = None) -> str:
     T = _Terminal(loc)
 
     def cname(cid: str) -> str:
-        info = CONSTRAINTS[cid]
-        return info.name_ru if loc == "ru" else info.name
+        return constraint_title(cid, loc)
 
     tables = ResultTables.of_jobs(result.film.job if result.film else None,
                                   result.uav.job if result.uav else None, result)

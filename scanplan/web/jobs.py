@@ -185,12 +185,12 @@ def _warnings(result: Any, locale: str) -> list[dict[str, str]]:
 
 def _constraint_names(doc: dict[str, Any], locale: str) -> dict[str, str]:
     """The reports' name of each constraint the plan evaluated, in ``locale``."""
-    from ..reports.labels import t
+    from ..reports.views import constraint_title
 
     ids = set((doc.get("uav") or {}).get("constraints") or {})
     for s in (doc.get("film") or {}).get("scenarios") or []:
         ids |= set(s.get("constraints") or {})
-    return {cid: t(cid, locale) for cid in sorted(ids)}
+    return {cid: constraint_title(cid, locale) for cid in sorted(ids)}
 
 
 def files_job(project: Any, files: Mapping[str, str], what: str) -> tuple[str, bytes]:

@@ -11,12 +11,11 @@ from openpyxl.chart.label import DataLabelList
 from openpyxl.chart.shapes import GraphicalProperties
 from openpyxl.worksheet.worksheet import Worksheet
 
-from ...rules.film import CONSTRAINTS
-
 if TYPE_CHECKING:
     from ...project.jobs import ScanJob
     from ...project.spec import PlanResult
 
+from ..views import constraint_title
 from .book import Book
 from .cells import (
     F2,
@@ -53,7 +52,7 @@ def constraints_sheet(book: Book, job: ScanJob) -> None:
             cells = [put_num(ws, row, 1, s.photo_scale, SCALE),
                      put_num(ws, row, 2, s.photo_to_map_ratio, F2),
                      put_text(ws, row, 3, c.id),
-                     put_text(ws, row, 4, book.t(c.id) if c.id in CONSTRAINTS else c.name),
+                     put_text(ws, row, 4, constraint_title(c.id, book.loc, c.name)),
                      put_num(ws, row, 5, c.pixel_um, UM),
                      put_num(ws, row, 6, c.margin_um, UM),
                      put_num(ws, row, 7, c.margin_pct, PCT),

@@ -10,12 +10,12 @@ from openpyxl.chart.axis import ChartLines
 from openpyxl.worksheet.worksheet import Worksheet
 
 from ...core.mtf import component_label
-from ...rules.film import CONSTRAINTS
 
 if TYPE_CHECKING:
     from ...project.jobs import UavJob
     from ...rules.uav import UavPlan
 
+from ..views import constraint_title
 from .book import Book
 from .cells import (
     F1,
@@ -119,8 +119,7 @@ def _limits_rows(book: Book, ws: Worksheet, row: int, plan: UavPlan) -> int:
     row += 1
     for lim in plan.limits:
         cells = [put_text(ws, row, 1, lim.id),
-                 put_text(ws, row, 2, book.t(lim.id) if lim.id in CONSTRAINTS
-                          else lim.name),
+                 put_text(ws, row, 2, constraint_title(lim.id, book.loc, lim.name)),
                  put_text(ws, row, 3, lim.compares),
                  put_num(ws, row, 4, lim.limit_m, F4),
                  put_num(ws, row, 5, lim.max_height_m, F1),

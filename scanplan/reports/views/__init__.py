@@ -62,7 +62,9 @@ class ResultTables:
     Examples
     --------
     >>> import scanplan
-    >>> tables = ResultTables(scan=scanplan.scan(map_scale=2000).job.plan)
+    >>> r = scanplan.scan(map_scale=2000, relief_interval_m=1.0, photo_scales=[8000],
+    ...                   camera="rc30-153")
+    >>> tables = ResultTables(scan=r.job.plan)
     >>> tables["film_constraints"] is tables["film_constraints"], tables.built
     (True, ['film_constraints'])
     """
