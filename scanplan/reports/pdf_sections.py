@@ -204,8 +204,8 @@ def _scan_view(job: ScanJob, f: _Fmt) -> dict[str, Any]:
     scen = plan.scenarios
     n_tables = math.ceil(len(scen) / _MAX_COLUMNS)
     size = math.ceil(len(scen) / n_tables)
-    film = f.view.tables["film_constraints"]
-    tables = [_scan_table(film, slice(i, i + size), f) for i in range(0, len(scen), size)]
+    tables = [_scan_table(f.view.tables["film_constraints"], slice(i, i + size), f)
+              for i in range(0, len(scen), size)]
 
     explanations = [f.cite(display_message(s.explanation, ns, f.locale))
                     for s in plan.scenarios]
@@ -237,8 +237,7 @@ def _scan_view(job: ScanJob, f: _Fmt) -> dict[str, Any]:
         "explanations": explanations, "interpretation_limit": limit, "reach": reach,
         "reach_interpretable": obj is not None and mci is not None,
         "warnings": _warnings(f.view.tables["film_warnings"], f, ns), "formulas": formulas,
-        "params": params,
-        "norm": _norm_view(ns, f),
+        "params": params, "norm": _norm_view(ns, f),
         "plot": view_plot_uri(f.view, "constraints"),
     }
 

@@ -124,9 +124,25 @@ def _sc(x: float, loc: str) -> str:
     return scale_text(x, loc)
 
 
-def format_plan_result(result: Any, locale: str | None = None) -> str:
+def format_plan_result(result: Any, locale: str | None = None,
+                       tables: ResultTables | None = None) -> str:
     """The concise terminal summary of ``scanplan plan``, in the project's language
-    (``[project] locale``) unless ``locale`` is given."""
+    (``[project] locale``) unless ``locale`` is given.
+
+    Parameters
+    ----------
+    result : PlanResult
+        The specification.
+    locale : {"en", "ru"}, optional
+        The language (default: the project's).
+    tables : ResultTables, optional
+        The result's tables when a view of it already holds them (``view.tables``): the
+        summary lays out the same records as the documents; built here otherwise.
+
+    Returns
+    -------
+    str
+    """
     meta = result.meta
     loc = locale or (meta.locale if meta.locale in LABELS else "en")
     T = _Terminal(loc)
@@ -134,8 +150,9 @@ def format_plan_result(result: Any, locale: str | None = None) -> str:
     def cname(cid: str) -> str:
         return constraint_title(cid, loc)
 
-    tables = ResultTables.of_jobs(result.film.job if result.film else None,
-                                  result.uav.job if result.uav else None, result)
+    if tables is None:
+        tables = ResultTables.of_jobs(result.film.job if result.film else None,
+                                      result.uav.job if result.uav else None, result)
     lines = _plan_heading(result, loc, T)
     lines += [_wrap(t, "") for t in format_terrain(result, loc)]
     if result.film:
