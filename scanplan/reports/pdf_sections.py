@@ -329,39 +329,36 @@ def _uav_results(plan: UavPlan, f: _Fmt) -> tuple[list[str], list[dict[str, Any]
     return cols, results, blur
 
 
-def _uav_flight(plan: UavPlan, f: _Fmt) -> list[tuple[str, str]]:
-    """The flight geometry at the planned height."""
-    h = plan.heights_m
-    fl = plan.flight
-    flight = [
-        (f.label("pdf_footprint"), f"{f.num(fl['footprint_across_m'], 0)} × "
-                                   f"{f.num(fl['footprint_along_m'], 0)}"),
-        (f.label("pdf_base"), f.num(fl["base_m"], 1)),
-        (f.label("pdf_line_spacing"), f.num(fl["line_spacing_m"], 1)),
-        (f.label("pdf_photo_interval"), f.num(fl["photo_interval_s"], 2)
-         + (f" ({f.label('pdf_trigger_min')} {f.g(fl['min_trigger_interval_s'])})"
-            if "min_trigger_interval_s" in fl else "")),
-        (f.label("pdf_overlap_at", lo=f.g(h["min"]), hi=f.g(h["max"])),
-         f"{f.num(fl['forward_overlap_at_min_height_pct'], 1)} / "
-         f"{f.num(fl['forward_overlap_at_max_height_pct'], 1)}"),
+def _uav_flight(flight: Table, f: _Fmt) -> list[tuple[str, str]]:
+    """The flight geometry at the planned height (the ``uav_flight`` table)."""
+    v = {r.key: r.value for r in flight.rows}
+    trigger, overlap = (next(r.fields for r in flight.rows if r.key == key)
+                        for key in ("photo_interval", "overlap_range"))
+    rows = [
+        (f.label("pdf_footprint"), f"{f.num(v['footprint'][0], 0)} × "
+                                   f"{f.num(v['footprint'][1], 0)}"),
+        (f.label("pdf_base"), f.num(v["base"], 1)),
+        (f.label("pdf_line_spacing"), f.num(v["line_spacing"], 1)),
+        (f.label("pdf_photo_interval"), f.num(v["photo_interval"], 2)
+         + (f" ({f.label('pdf_trigger_min')} {f.g(trigger['min_trigger'])})"
+            if trigger else "")),
+        (f.label("pdf_overlap_at", lo=f.g(overlap["lo"]), hi=f.g(overlap["hi"])),
+         f"{f.num(v['overlap_range'][0], 1)} / {f.num(v['overlap_range'][1], 1)}"),
     ]
-    if "strips" in fl:
-        if "photos_per_strip" in fl:
-            # counts grouped as page 1 and the flight-lines table give them (16,432)
-            flight.append((f.label("pdf_strips"), f"{f.num(fl['strips'], 0)} × "
-                           f"{f.num(fl['photos_per_strip'], 0)} = {f.num(fl['photos'], 0)}"))
-        else:  # a polygon: the strips differ in length
-            flight.append((f.label("pdf_strips_photos"),
-                           f"{f.num(fl['strips'], 0)} / {f.num(fl['photos'], 0)}"))
-        flight.append((f.label("pdf_flight_length"),
-                       f"{f.num(fl['flight_length_m'] / 1000, 1)} / "
-                       + (f.num(fl["flight_time_s"] / 60, 0) if fl.get("flight_time_s")
-                          else "—")))
-        if "data_volume_bytes" in fl:
-            flight.append((f.label("pdf_data_volume"), f.num(fl["data_volume_bytes"] / 1e9, 1)))
-            flight.append((f.label("data_volume_jpeg_gb"),
-                           f.num(float(FL.jpeg_volume_bytes(fl["data_volume_bytes"])) / 1e9, 1)))
-    return flight
+    if "strips" in v:  # counts grouped as page 1 and the flight-lines table give them
+        rows.append((f.label("pdf_strips"), " × ".join(f.num(x, 0) for x in v["strips"][:2])
+                     + f" = {f.num(v['strips'][2], 0)}"))
+    elif "strips_photos" in v:  # a polygon: the strips differ in length
+        rows.append((f.label("pdf_strips_photos"),
+                     " / ".join(f.num(x, 0) for x in v["strips_photos"])))
+    if "flight_length_km" in v:
+        minutes = v["flight_time_min"]
+        rows.append((f.label("pdf_flight_length"), f"{f.num(v['flight_length_km'], 1)} / "
+                     + (f.num(minutes, 0) if minutes is not None else "—")))
+    if "data_volume_gb" in v:
+        rows.append((f.label("pdf_data_volume"), f.num(v["data_volume_gb"], 1)))
+        rows.append((f.label("data_volume_jpeg_gb"), f.num(v["data_volume_jpeg_gb"], 1)))
+    return rows
 
 
 def _uav_limits(plan: UavPlan, f: _Fmt) -> dict[str, Any]:
@@ -419,7 +416,7 @@ def _uav_view(job: UavJob, f: _Fmt) -> dict[str, Any]:
         "p_corner": f.num(r.probability_corner_at_max_height, 2)} for r in plan.recognition]
     return {
         "inputs": _uav_inputs(job, f), "cols": cols, "results": results, "blur": blur,
-        "flight": _uav_flight(plan, f),
+        "flight": _uav_flight(f.view.tables["uav_flight"], f),
         "recognition": recognition, "recognition_cols": [
             f.label("pdf_at_height", h=f.g(h["planned"])),
             f.label("pdf_at_height", h=f.g(h["max"])),

@@ -14,7 +14,7 @@ from ..rules.film import ScanPlan
 from ..rules.uav import UavPlan
 from .labels_cli import cli_text
 from .references import author_cite
-from .text import _volume, _wrap, code_tag, table, text_table
+from .text import _wrap, code_tag, table, text_table, volume_text
 from .view import Numbers
 from .views import ResultTables, Row, Table, constraint_title
 
@@ -241,7 +241,7 @@ def format_uav_plan(plan: UavPlan, norm_name: str = "", locale: str = "en",
         align="ll" + "r" * len(results.columns)))
     lines.append(w("blur_limit", denominator=math.ceil(1 / plan.max_exposure_s),
                    v=w.f(plan.max_speed_ms, 1)))
-    lines += _flight_lines(plan, w)
+    lines += _flight_lines(tables["uav_flight"], w)
     lines += _recognition_lines(plan, w)
     lines += _limit_lines(plan, w, tables)
     lines += _warning_lines(tables["uav_warnings"], w)
@@ -275,33 +275,36 @@ def _limit_cell(r: Row, i: int, v: Any, w: _Words) -> str:
     return f"{w.f(v, 0)} {m}" + (("*" if "binding" in r.flags else " ") if i == 2 else "")
 
 
-def _flight_lines(plan: UavPlan, w: _Words) -> list[str]:
-    """The flight geometry at the planned height."""
-    h = plan.heights_m
-    fl = plan.flight
+def _flight_lines(flight: Table, w: _Words) -> list[str]:
+    """The flight geometry at the planned height (the ``uav_flight`` table), one line per
+    pair of its rows where the terminal joins them."""
+    v = {r.key: r.value for r in flight.rows}
+    fields = {r.key: r.fields for r in flight.rows}
     m, s = w("m"), w("s")
-    interval = fl["photo_interval_s"]
-    frows = [[w("footprint"), f"{w.f(fl['footprint_across_m'], 0)} × "
-              f"{w.f(fl['footprint_along_m'], 0)} {m}"],
-             [w("base_spacing"), f"{w.f(fl['base_m'], 1)} {m} / {w.f(fl['line_spacing_m'], 1)} "
-              f"{m}"],
+    interval, trigger = v["photo_interval"], fields["photo_interval"]
+    overlap = fields["overlap_range"]
+    frows = [[w("footprint"), f"{w.f(v['footprint'][0], 0)} × {w.f(v['footprint'][1], 0)} {m}"],
+             [w("base_spacing"), f"{w.f(v['base'], 1)} {m} / {w.f(v['line_spacing'], 1)} {m}"],
              [w("interval"), (f"{w.f(interval, 2)} {s}" if math.isfinite(interval)
                               else w("interval_none"))
-              + (w("camera_min", t=w.g(fl["min_trigger_interval_s"]))
-                 if "min_trigger_interval_s" in fl else "")],
-             [w("overlap_at", lo=w.g(h["min"]), hi=w.g(h["max"])),
-              f"{w.f(fl['forward_overlap_at_min_height_pct'], 1)} / "
-              f"{w.f(fl['forward_overlap_at_max_height_pct'], 1)} %"]]
-    if "strips" in fl:
-        frows += [[w("strips_photos"),
-                   w("strips_photos_value", strips=fl["strips"], per=fl["photos_per_strip"],
-                     photos=fl["photos"]) if "photos_per_strip" in fl else
-                   w("strips_photos_total", strips=fl["strips"], photos=fl["photos"])],
-                  [w("length_time"), f"{w.f(fl['flight_length_m'] / 1000, 1)} {w('km')} / "
-                   + (f"{w.f(fl['flight_time_s'] / 60, 0)} {w('min')}"
-                      if fl.get("flight_time_s") else "—")]]
-        if "data_volume_bytes" in fl:
-            frows.append([w("volume"), _volume(fl["data_volume_bytes"], w.loc)])
+              + (w("camera_min", t=w.g(trigger["min_trigger"])) if trigger else "")],
+             [w("overlap_at", lo=w.g(overlap["lo"]), hi=w.g(overlap["hi"])),
+              f"{w.f(v['overlap_range'][0], 1)} / {w.f(v['overlap_range'][1], 1)} %"]]
+    if "strips" in v:
+        strips, per, photos = v["strips"]
+        frows.append([w("strips_photos"), w("strips_photos_value", strips=strips, per=per,
+                                            photos=photos)])
+    elif "strips_photos" in v:
+        strips, photos = v["strips_photos"]
+        frows.append([w("strips_photos"), w("strips_photos_total", strips=strips,
+                                            photos=photos)])
+    if "flight_length_km" in v:
+        minutes = v["flight_time_min"]
+        frows.append([w("length_time"), f"{w.f(v['flight_length_km'], 1)} {w('km')} / "
+                      + (f"{w.f(minutes, 0)} {w('min')}" if minutes is not None else "—")])
+    if "data_volume_gb" in v:
+        frows.append([w("volume"), volume_text(v["data_volume_gb"], v["data_volume_jpeg_gb"],
+                                               w.loc)])
     return ["", w("flight_head"), table([[f"  {a}", b] for a, b in frows], align="ll")]
 
 

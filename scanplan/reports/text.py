@@ -14,7 +14,7 @@ from .labels import LABELS, t
 from .view import Numbers
 from .views import ResultTables, Row, Table, constraint_title
 
-__all__ = ["format_plan_result", "table", "text_table"]
+__all__ = ["format_plan_result", "table", "text_table", "volume_text"]
 
 
 def table(rows: Sequence[Sequence[str]], *, align: str = "", gap: int = 2) -> str:
@@ -435,14 +435,33 @@ def batch_summary(done: list[tuple[str, Any]], failed: list[tuple[str, str]]) ->
 def _volume(uncompressed_bytes: float, loc: str = "en") -> str:
     """``163.5 GB uncompressed (JPEG ≈ 18.2 GB at 9:1)``: the JPEG estimate of
     :func:`scanplan.core.flight.jpeg_volume_bytes`, in the locale's words and numbers."""
-    from ..core.flight import JPEG_COMPRESSION_RATIO, jpeg_volume_bytes
+    from ..core.flight import jpeg_volume_bytes
 
-    jpeg = float(jpeg_volume_bytes(uncompressed_bytes)) / 1e9
-    full = _n(uncompressed_bytes / 1e9, 1, loc, True)
+    return volume_text(uncompressed_bytes / 1e9,
+                       float(jpeg_volume_bytes(uncompressed_bytes)) / 1e9, loc)
+
+
+def volume_text(gigabytes: float, jpeg_gigabytes: float, loc: str = "en") -> str:
+    """``163.5 GB uncompressed (JPEG ≈ 18.2 GB at 9:1)`` in the locale's words and numbers.
+
+    Parameters
+    ----------
+    gigabytes, jpeg_gigabytes : float
+        The uncompressed volume and its JPEG estimate [GB].
+    loc : {"en", "ru"}
+
+    Returns
+    -------
+    str
+    """
+    from ..core.flight import JPEG_COMPRESSION_RATIO
+
+    full = _n(gigabytes, 1, loc, True)
+    jpeg = _n(jpeg_gigabytes, 1, loc, True)
     ratio = _g(JPEG_COMPRESSION_RATIO, loc)
     if loc == "ru":
-        return f"{full} ГБ без сжатия (JPEG ≈ {_n(jpeg, 1, loc, True)} ГБ при {ratio}:1)"
-    return f"{full} GB uncompressed (JPEG ≈ {_n(jpeg, 1, loc, True)} GB at {ratio}:1)"
+        return f"{full} ГБ без сжатия (JPEG ≈ {jpeg} ГБ при {ratio}:1)"
+    return f"{full} GB uncompressed (JPEG ≈ {jpeg} GB at {ratio}:1)"
 
 
 def project_warnings(path: str, r: Any) -> str:

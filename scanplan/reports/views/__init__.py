@@ -9,7 +9,7 @@ a language nor a number format; a constraint is named by the rules registry
 (:func:`~.table.constraint_title`).
 
 The tables (:data:`TABLES`): ``film_constraints`` (:func:`~.film.film_constraints`),
-``uav_results`` and ``uav_limits`` (:mod:`.uav`), ``comparison`` and the warnings
+``uav_results``, ``uav_limits`` and ``uav_flight`` (:mod:`.uav`), ``comparison`` and the warnings
 ``film_warnings``, ``uav_warnings``, ``spec_warnings`` and ``warnings`` (all of them once)
 (:mod:`.spec`).
 """
@@ -23,10 +23,11 @@ from typing import Any
 from .film import film_constraints
 from .spec import all_warnings, comparison, warnings
 from .table import Column, Row, Table, constraint_title
-from .uav import uav_limits, uav_results
+from .uav import uav_flight, uav_limits, uav_results
 
 __all__ = ["TABLES", "Column", "ResultTables", "Row", "Table", "all_warnings", "comparison",
-           "constraint_title", "film_constraints", "uav_limits", "uav_results", "warnings"]
+           "constraint_title", "film_constraints", "uav_flight", "uav_limits", "uav_results",
+           "warnings"]
 
 #: Each table: the result it is built from (``"scan"`` / ``"uav"``: that plan;
 #: ``"spec"``: the specification; ``"all"``: the :class:`ResultTables`, whichever it has)
@@ -35,6 +36,7 @@ TABLES: dict[str, tuple[str, Callable[[Any], Table]]] = {
     "film_constraints": ("scan", film_constraints),
     "uav_results": ("uav", uav_results),
     "uav_limits": ("uav", uav_limits),
+    "uav_flight": ("uav", uav_flight),
     "comparison": ("spec", comparison),
     "film_warnings": ("scan", lambda plan: warnings(plan.warnings, "film")),
     "uav_warnings": ("uav", lambda plan: warnings(plan.warnings, "uav")),

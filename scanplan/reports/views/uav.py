@@ -1,17 +1,17 @@
 """The UAV (digital camera) plan's tables: the results at the planned and the highest flown
-height, and the constraints as maximum planned heights — the terminal report of
-``scanplan uav``, the PDF's digital-camera section and a notebook's ``UavResult`` lay them
-out."""
+height, the constraints as maximum planned heights and the flight geometry — the terminal
+report of ``scanplan uav``, the PDF's digital-camera section and a notebook's ``UavResult``
+lay them out."""
 
 from __future__ import annotations
 
 from typing import Any
 
-from ...core.flight import MAX_BLUR_PX
+from ...core.flight import MAX_BLUR_PX, jpeg_volume_bytes
 from ...core.shown import shown_decimals
 from .table import Column, Row, Table
 
-__all__ = ["uav_limits", "uav_results"]
+__all__ = ["uav_flight", "uav_limits", "uav_results"]
 
 
 def uav_results(plan: Any) -> Table:
@@ -91,3 +91,53 @@ def uav_limits(plan: Any) -> Table:
                                  lim.max_flown_height_m or lim.max_height_m, margin),
                         flags=frozenset(flags)))
     return Table("uav_limits", "uav_limits", columns, tuple(rows))
+
+
+def uav_flight(plan: Any) -> Table:
+    """The flight geometry of a UAV plan at the planned height.
+
+    Parameters
+    ----------
+    plan : UavPlan
+
+    Returns
+    -------
+    Table
+        One column; rows ``footprint`` (a pair: across, along [m]), ``base`` and
+        ``line_spacing`` [m], ``photo_interval`` [s] (field ``min_trigger``: the camera's
+        shortest interval, when known), ``overlap_range`` (a pair: the forward overlap at
+        the lowest and the highest flown height [%]; fields ``lo``, ``hi``) and, with an
+        area, ``strips`` (strips, photos per strip, photos) or ``strips_photos`` (strips,
+        photos), ``flight_length_km``, ``flight_time_min`` (None without a speed) and
+        with a data volume ``data_volume_gb`` and ``data_volume_jpeg_gb``.
+    """
+    fl, h = plan.flight, plan.heights_m
+    trigger = {"min_trigger": fl["min_trigger_interval_s"]} \
+        if "min_trigger_interval_s" in fl else {}
+    rows = [Row("footprint", ((fl["footprint_across_m"], fl["footprint_along_m"]),),
+                unit="m", digits=0),
+            Row("base", (fl["base_m"],), unit="m", digits=1),
+            Row("line_spacing", (fl["line_spacing_m"],), unit="m", digits=1),
+            Row("photo_interval", (fl["photo_interval_s"],), unit="s", digits=2,
+                fields=trigger),
+            Row("overlap_range", ((fl["forward_overlap_at_min_height_pct"],
+                                   fl["forward_overlap_at_max_height_pct"]),),
+                unit="pct", digits=1, fields={"lo": h["min"], "hi": h["max"]})]
+    if "strips" in fl:
+        if "photos_per_strip" in fl:
+            rows.append(Row("strips", ((fl["strips"], fl["photos_per_strip"], fl["photos"]),),
+                            digits=0))
+        else:  # a polygon: the strips differ in length
+            rows.append(Row("strips_photos", ((fl["strips"], fl["photos"]),), digits=0))
+        rows.append(Row("flight_length_km", (fl["flight_length_m"] / 1000,), unit="km",
+                        digits=1))
+        rows.append(Row("flight_time_min", (fl["flight_time_s"] / 60
+                                            if fl.get("flight_time_s") else None,),
+                        unit="min", digits=0))
+        if "data_volume_bytes" in fl:
+            rows.append(Row("data_volume_gb", (fl["data_volume_bytes"] / 1e9,), unit="GB",
+                            digits=1))
+            rows.append(Row("data_volume_jpeg_gb",
+                            (float(jpeg_volume_bytes(fl["data_volume_bytes"])) / 1e9,),
+                            unit="GB", digits=1))
+    return Table("uav_flight", "uav_flight", (Column("value"),), tuple(rows))
