@@ -119,9 +119,12 @@ def test_the_same_table_reads_alike_in_the_terminal_the_workbook_and_the_pdf(bot
             shown = numbers.num(v, r.digits)
             assert shown in html and shown in text, (r.key, shown)
     film = view.tables["film_constraints"]
+    sheet = {(row[0], row[2]): row[4] for row in book["Constraints"].iter_rows(
+        min_row=2, values_only=True)}
     for r in film.rows:
-        if "constraint" in r.flags:  # every scan pixel of the film table is in the PDF
+        if "constraint" in r.flags:  # every scan pixel of the film table: PDF and workbook
             assert all(numbers.num(v, 1) in html for v in r.values if math.isfinite(v))
+            assert [sheet[(c.value, r.key)] for c in film.columns] == pytest.approx(r.values)
 
 
 def test_the_notebook_lays_out_the_tables():

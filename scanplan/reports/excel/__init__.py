@@ -92,7 +92,7 @@ SHEETS: tuple[Sheet, ...] = (
     Sheet("summary", lambda b, v: summary_sheet(b, v.scan, v.uav, v.spec)),
     Sheet("design", lambda b, v: write_design_sheet(b, v.spec), "spec"),
     Sheet("inputs", lambda b, v: inputs_sheet(b, v.scan, v.uav)),
-    Sheet("constraints", lambda b, v: constraints_sheet(b, v.scan), "film"),
+    Sheet("constraints", lambda b, v: constraints_sheet(b), "film"),
     Sheet("sweep", lambda b, v: sweep_sheet(b, v.scan, v.spec), "film"),
     Sheet("uav", lambda b, v: uav_sheet(b, v.uav), "uav"),
     Sheet("mtf", lambda b, v: mtf_sheet(b, v.uav), "uav"),

@@ -27,7 +27,8 @@ def film_constraints(plan: Any) -> Table:
     Table
         One column per candidate photo scale (``value``: its denominator); rows
         ``photo_to_map``, one per constraint (key: its id; flags ``"constraint"``; each
-        cell flagged ``"binding"`` where it binds, with its margin to the binding one),
+        cell flagged ``"binding"`` where it binds, with its margin to the binding one and,
+        in ``details``, its name, margins in µm and %, reason and equation),
         ``binding`` (the binding ids), ``scan_pixel_um``, ``scanner_pixel_um`` (with a
         scanner), ``frame_megabytes`` (fields ``bands``, ``bits``),
         ``resolution_on_ground``, and with a map object ``required_r`` and
@@ -47,7 +48,10 @@ def film_constraints(plan: Any) -> Table:
                         flags=frozenset({"constraint"}),
                         cells=tuple(frozenset({"binding"}) if c.binding else frozenset()
                                     for c in found),
-                        margins=tuple(None if c.binding else c.margin_pct for c in found)))
+                        margins=tuple(None if c.binding else c.margin_pct for c in found),
+                        details=tuple({"name": c.name, "margin_um": c.margin_um,
+                                       "margin_pct": c.margin_pct, "reason": c.reason,
+                                       "equation": c.equation} for c in found)))
     rows.append(Row("binding", values("binding"), flags=_SUMMARY))
     rows.append(Row("scan_pixel_um", values("scan_pixel_um"), unit="um", digits=1,
                     flags=_EMPH))

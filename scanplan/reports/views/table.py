@@ -68,6 +68,9 @@ class Row:
         Each value's margin to the binding one [%] (a constraint's row), or none.
     fields : mapping
         The raw values its label's ``{fields}`` are filled with (``h``: a height …).
+    details : tuple of mapping
+        Each value's further raw data, for a renderer that shows more of it (a
+        constraint's margin in µm and %, its reason and equation), or none.
     """
 
     key: str
@@ -78,6 +81,7 @@ class Row:
     cells: tuple[frozenset[str], ...] = ()
     margins: tuple[float | None, ...] = ()
     fields: Mapping[str, Any] = field(default_factory=dict)
+    details: tuple[Mapping[str, Any], ...] = ()
 
     def flagged(self, i: int, flag: str) -> bool:
         """Whether value ``i`` has ``flag`` (a cell's own mark)."""
