@@ -409,11 +409,12 @@ def _uav_view(job: UavJob, f: _Fmt) -> dict[str, Any]:
     ns, h = job.norm_set, plan.heights_m
     cols, results, blur = _uav_results(plan, f)
     recognition = [{
-        "object": _object_name(ns, r.object, r.object_size_m, r.map_scale, f.locale),
-        "map": f.scale(r.map_scale) if r.map_scale else "—", "size": f.g(r.object_size_m),
-        "shape": _shape_name(ns, r.shape, f.locale), "p": f.num(r.probability, 2),
-        "p_max": f.num(r.probability_at_max_height, 2),
-        "p_corner": f.num(r.probability_corner_at_max_height, 2)} for r in plan.recognition]
+        "object": _object_name(ns, r.fields["name"], size, scale, f.locale),
+        "map": f.scale(scale) if scale else "—", "size": f.g(size),
+        "shape": _shape_name(ns, shape, f.locale), "p": f.num(p, 2),
+        "p_max": f.num(p_max, 2), "p_corner": f.num(p_corner, 2)}
+        for r in f.view.tables["uav_recognition"].rows
+        for scale, size, shape, p, p_max, p_corner in [r.values]]
     return {
         "inputs": _uav_inputs(job, f), "cols": cols, "results": results, "blur": blur,
         "flight": _uav_flight(f.view.tables["uav_flight"], f),

@@ -242,7 +242,7 @@ def format_uav_plan(plan: UavPlan, norm_name: str = "", locale: str = "en",
     lines.append(w("blur_limit", denominator=math.ceil(1 / plan.max_exposure_s),
                    v=w.f(plan.max_speed_ms, 1)))
     lines += _flight_lines(tables["uav_flight"], w)
-    lines += _recognition_lines(plan, w)
+    lines += _recognition_lines(tables["uav_recognition"], w)
     lines += _limit_lines(plan, w, tables)
     lines += _warning_lines(tables["uav_warnings"], w)
     return "\n".join(lines)
@@ -308,20 +308,25 @@ def _flight_lines(flight: Table, w: _Words) -> list[str]:
     return ["", w("flight_head"), table([[f"  {a}", b] for a, b in frows], align="ll")]
 
 
-def _recognition_lines(plan: UavPlan, w: _Words) -> list[str]:
-    """The recognition probability of the norm objects."""
-    h = plan.heights_m
-    if not plan.recognition:
+def _recognition_lines(recognition: Table, w: _Words) -> list[str]:
+    """The recognition probability of the norm objects (the ``uav_recognition`` table)."""
+    if not recognition.rows:
         return []
-    rrows = [[f"  {w('rec_object')}", w("rec_map"), w("rec_size"), w("rec_shape"),
-              f"{w.g(h['planned'])} {w('m')}", f"{w.g(h['max'])} {w('m')}", w("rec_corner")]]
-    for r in plan.recognition:
-        rrows.append([f"  {w.object(r.object, r.object_size_m)}",
-                      w.scale(r.map_scale) if r.map_scale else "—",
-                      w.g(r.object_size_m), w.shape(r.shape), w.f(r.probability, 2),
-                      w.f(r.probability_at_max_height, 2),
-                      w.f(r.probability_corner_at_max_height, 2)])
-    return ["", w("recognition_head"), table(rrows, align="llrlrrr")]
+    cols = recognition.columns
+    head = [f"  {w('rec_object')}", w("rec_map"), w("rec_size"), w("rec_shape"),
+            f"{w.g(cols[3].value)} {w('m')}", f"{w.g(cols[4].value)} {w('m')}",
+            w("rec_corner")]
+
+    def cell(r: Row, i: int, v: Any) -> str:
+        if i == 0:
+            return w.scale(v) if v else "—"
+        if i == 1:
+            return w.g(v)
+        return w.shape(v) if i == 2 else w.f(v, cols[i].digits or 0)
+
+    text = text_table(recognition, head=head, align="llrlrrr", cell=cell,
+                      label=lambda r: f"  {w.object(r.fields['name'], r.fields['size_m'])}")
+    return ["", w("recognition_head"), text]
 
 
 def _limit_lines(plan: UavPlan, w: _Words, tables: ResultTables) -> list[str]:

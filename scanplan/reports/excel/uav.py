@@ -145,19 +145,17 @@ def _recognition_rows(book: Book, ws: Worksheet, row: int, job: UavJob) -> int:
                       book.t("xlsx_p_planned"), book.t("xlsx_p_max"),
                       book.t("xlsx_p_corner_max")])
     row += 1
-    mobj = plan.inputs.map_object
-    for rec in plan.recognition:
-        cells = [put_text(ws, row, 1, book.obj_name(job.norm_set, rec.object,
-                                                    rec.map_scale), wrap=True),
-                 put_num(ws, row, 2, rec.object_size_m, F3),
-                 put_text(ws, row, 3, book.shape_name(job.norm_set, rec.shape)),
-                 put_num(ws, row, 4, rec.map_scale, SCALE),
-                 put_num(ws, row, 5, rec.probability, F3),
-                 put_num(ws, row, 6, rec.probability_at_max_height, F3),
-                 put_num(ws, row, 7, rec.probability_corner_at_max_height, F3)]
-        if (mobj is not None and rec.object == mobj.name
-                and rec.object_size_m == mobj.size_m
-                and rec.map_scale == mobj.map_scale):
+    for r in book.view.tables["uav_recognition"].rows:
+        scale, size, shape, p, p_max, p_corner = r.values
+        cells = [put_text(ws, row, 1, book.obj_name(job.norm_set, r.fields["name"], scale),
+                          wrap=True),
+                 put_num(ws, row, 2, size, F3),
+                 put_text(ws, row, 3, book.shape_name(job.norm_set, shape)),
+                 put_num(ws, row, 4, scale, SCALE),
+                 put_num(ws, row, 5, p, F3),
+                 put_num(ws, row, 6, p_max, F3),
+                 put_num(ws, row, 7, p_corner, F3)]
+        if "emph" in r.flags:  # the map's own object
             _mark(cells)
         row += 1
     return row

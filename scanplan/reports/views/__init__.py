@@ -8,10 +8,10 @@ format them. This package imports nothing of the renderers and no labels: it kno
 a language nor a number format; a constraint is named by the rules registry
 (:func:`~.table.constraint_title`).
 
-The tables (:data:`TABLES`): ``film_constraints`` (:func:`~.film.film_constraints`),
-``uav_results``, ``uav_limits`` and ``uav_flight`` (:mod:`.uav`), ``comparison`` and the warnings
-``film_warnings``, ``uav_warnings``, ``spec_warnings`` and ``warnings`` (all of them once)
-(:mod:`.spec`).
+The tables (:data:`TABLES`): ``film_constraints`` (:func:`~.film.film_constraints`);
+``uav_results``, ``uav_limits``, ``uav_flight`` and ``uav_recognition`` (:mod:`.uav`);
+``comparison`` and the warnings ``film_warnings``, ``uav_warnings``, ``spec_warnings`` and
+``warnings`` (all of them once) (:mod:`.spec`).
 """
 
 from __future__ import annotations
@@ -20,8 +20,8 @@ from .film import film_constraints
 from .result import TABLES, ResultTables
 from .spec import all_warnings, comparison, warnings
 from .table import Column, Row, Table, constraint_title
-from .uav import uav_flight, uav_limits, uav_results
+from .uav import uav_flight, uav_limits, uav_recognition, uav_results
 
 __all__ = ["TABLES", "Column", "ResultTables", "Row", "Table", "all_warnings", "comparison",
-           "constraint_title", "film_constraints", "uav_flight", "uav_limits", "uav_results",
-           "warnings"]
+           "constraint_title", "film_constraints", "uav_flight", "uav_limits",
+           "uav_recognition", "uav_results", "warnings"]

@@ -9,7 +9,7 @@ from typing import Any
 from .film import film_constraints
 from .spec import all_warnings, comparison, warnings
 from .table import Table
-from .uav import uav_flight, uav_limits, uav_results
+from .uav import uav_flight, uav_limits, uav_recognition, uav_results
 
 __all__ = ["TABLES", "ResultTables"]
 
@@ -21,6 +21,7 @@ TABLES: dict[str, tuple[str, Callable[[Any], Table]]] = {
     "uav_results": ("uav", uav_results),
     "uav_limits": ("uav", uav_limits),
     "uav_flight": ("uav", uav_flight),
+    "uav_recognition": ("uav", uav_recognition),
     "comparison": ("spec", comparison),
     "film_warnings": ("scan", lambda plan: warnings(plan.warnings, "film")),
     "uav_warnings": ("uav", lambda plan: warnings(plan.warnings, "uav")),

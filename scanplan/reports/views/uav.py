@@ -11,7 +11,7 @@ from ...core.flight import MAX_BLUR_PX, jpeg_volume_bytes
 from ...core.shown import shown_decimals
 from .table import Column, Row, Table
 
-__all__ = ["uav_flight", "uav_limits", "uav_results"]
+__all__ = ["uav_flight", "uav_limits", "uav_recognition", "uav_results"]
 
 
 def uav_results(plan: Any) -> Table:
@@ -141,3 +141,37 @@ def uav_flight(plan: Any) -> Table:
                             (float(jpeg_volume_bytes(fl["data_volume_bytes"])) / 1e9,),
                             unit="GB", digits=1))
     return Table("uav_flight", "uav_flight", (Column("value"),), tuple(rows))
+
+
+def uav_recognition(plan: Any) -> Table:
+    """The recognition probability of the norm set's objects (P = exp(−(B·L/L_obj)²)).
+
+    Parameters
+    ----------
+    plan : UavPlan
+
+    Returns
+    -------
+    Table
+        One row per object (key ``"object"``; fields ``name``, ``size_m``, ``shape`` and
+        ``map_scale``: the object as the norm set gives it; flag ``"emph"`` on the map's
+        own object); columns ``map_scale``, ``size_m``, ``shape``, ``p`` at the planned
+        height, ``p_max`` at the highest flown one and ``p_corner`` there at the frame
+        corner (``value``: the height), probabilities to 2 decimals.
+    """
+    h = plan.heights_m
+    mobj = plan.inputs.map_object
+    columns = (Column("map_scale", unit="scale"), Column("size_m", unit="m"),
+               Column("shape"), Column("p", h["planned"], digits=2),
+               Column("p_max", h["max"], digits=2), Column("p_corner", h["max"], digits=2))
+    rows = []
+    for r in plan.recognition:
+        own = (mobj is not None and r.object == mobj.name and r.object_size_m == mobj.size_m
+               and r.map_scale == mobj.map_scale)
+        rows.append(Row("object", (r.map_scale, r.object_size_m, r.shape, r.probability,
+                                   r.probability_at_max_height,
+                                   r.probability_corner_at_max_height),
+                        flags=frozenset({"emph"}) if own else frozenset(),
+                        fields={"name": r.object, "size_m": r.object_size_m,
+                                "shape": r.shape, "map_scale": r.map_scale}))
+    return Table("uav_recognition", "recognition", columns, tuple(rows))
