@@ -114,6 +114,7 @@ def pdf_vs_floor(repeat: int, project: Path = PROJECT) -> dict[str, float]:
     from scanplan.project.spec import plan_project
     from scanplan.reports import templates_dir
     from scanplan.reports.pdf import BundledAssetFetcher, render_html, render_pdf, weasyprint
+    from scanplan.reports.plots import draw_view_plots
     from scanplan.reports.view import build_view
 
     FontConfiguration = weasyprint.text.fonts.FontConfiguration
@@ -127,7 +128,7 @@ def pdf_vs_floor(repeat: int, project: Path = PROJECT) -> dict[str, float]:
         return render_pdf(view=view)
 
     def draw() -> None:
-        build_view(**jobs).draw_plots()
+        draw_view_plots(build_view(**jobs))
 
     base = templates_dir().resolve().as_uri() + "/"
     render()  # warm-up: fonts, templates

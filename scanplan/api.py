@@ -215,9 +215,11 @@ class ScanResult(_JobPlan):
         return _write(out_dir, name, formats, scan=self.job, force=force)
 
     def _repr_html_(self) -> str:
-        rows = [(f"1:{r['photo_scale']:g}", f"{r['scan_pixel_um']:.1f} µm ({r['binding']})")
-                for r in self.to_frame().to_dict("records")]
-        return _table_html("scanplan: film scan pixel by photo scale", rows)
+        from .reports.notebook import table_html
+        from .reports.views import ResultTables
+
+        return table_html(ResultTables(scan=self.job.plan)["film_constraints"],
+                          "scanplan: film scan pixel by photo scale", units=True)
 
 
 @dataclass(frozen=True)
@@ -273,14 +275,17 @@ class UavResult(_JobPlan):
         return _write(out_dir, name, formats, uav=self.job, force=force)
 
     def _repr_html_(self) -> str:
+        from .reports.notebook import table_html
+        from .reports.views import ResultTables
+
         p = self.job.plan
-        return _table_html("scanplan: UAV flight", [
-            ("planned height", _fmt(p.heights_m["planned"], 0, "m")),
-            ("GSD", _fmt(p.gsd_m * 100, 2, "cm")),
-            ("ground resolution L", _fmt(p.ground_resolution_m and
-                                         p.ground_resolution_m * 100, 2, "cm")),
-            ("maximum planned height", _fmt(p.max_height_m, 0, "m")),
-            ("binding", p.binding or "—")])
+        tables = ResultTables(uav=p)
+        shown = table_html(tables["uav_results"], "scanplan: UAV flight",
+                           platform=p.inputs.platform)
+        if p.limits:
+            shown += table_html(tables["uav_limits"], "maximum planned height: "
+                                f"{_fmt(p.max_height_m, 0, 'm')} ({p.binding})")
+        return shown
 
 
 SUMMARY_COLUMNS = (
@@ -424,7 +429,14 @@ class ProjectResult:
     def _repr_html_(self) -> str:
         row = summary_row(self.spec)
         shown = [(k, v) for k, v in row.items() if v not in (None, "")]
-        return _table_html(f"scanplan: {self.spec.meta.project}", shown)
+        summary = _table_html(f"scanplan: {self.spec.meta.project}", shown)
+        if not self.spec.comparison:
+            return summary
+        from .reports.notebook import table_html
+        from .reports.views import ResultTables
+
+        return summary + table_html(ResultTables(spec=self.spec)["comparison"],
+                                    "film and digital camera side by side", units=True)
 
 
 @dataclass(frozen=True)

@@ -35,13 +35,14 @@ def test_height_legend_gives_heights_as_the_tables_do(locale, text):
     planned height is in whole metres, as the tables state it (136, not 136.4)."""
     from scanplan.project.file import load_project
     from scanplan.project.spec import plan_project
+    from scanplan.reports.plots import view_plot
     from scanplan.reports.view import build_view
 
     example = Path(__file__).resolve().parent.parent / "examples" / "uav-town-2000.toml"
     result = plan_project(load_project(example))
     meta = dataclasses.replace(result.meta, locale=locale)
     view = build_view(scan=None, uav=result.uav.job, meta=meta, spec=result)
-    svg = view.plot("height")
+    svg = view_plot(view, "height")
     legend = " ".join(re.findall(r">([^<>]*)</text>", svg))
     assert text in svg, legend
     assert re.search(r": \d+(?:[.,]0) ", svg) is None

@@ -22,12 +22,12 @@ from ..i18n.labels import t
 from ..i18n.messages import Message, localize, plural, scale_text
 from ..i18n.numbers import Numbers
 from ..rules.registry import CONSTRAINTS
+from .views import constraint_title
 from .wording import camera_title, display_message, document_date, sentence, with_status
 
 _PARTS = {"en": ("part", "parts"), "ru": ("часть", "части", "частей")}
 
-__all__ = ["DesignView", "Figure", "design_text_lines", "design_view", "relief_max_height_m",
-           "write_design_sheet", "write_gsd_limits"]
+__all__ = ["DesignView", "Figure", "design_text_lines", "design_view", "relief_max_height_m"]
 
 GSD_TABLE = "GOST R 59562-2021, Appendix B, Table B.1"
 SUN_POSITION = "Meeus 1998"
@@ -111,10 +111,7 @@ class _W:
         return document_date(day, self.loc)
 
     def cname(self, cid: str) -> str:
-        rec = CONSTRAINTS.get(cid)
-        if rec is None:
-            return cid
-        return rec.title(self.loc)
+        return constraint_title(cid, self.loc)
 
 
 def _equation(cid: str, w: _W, limits: Any = ()) -> str:
@@ -362,45 +359,6 @@ def design_view(spec: Any, locale: str, cite: Callable[[str], str]) -> DesignVie
     return DesignView(rows, notes, [w.key_of(label) for label, _, _ in rows])
 
 
-def write_design_sheet(book: Any, spec: Any) -> None:
-    """The survey design sheet of the workbook (after the Summary), from :func:`design_view`.
-
-    Parameters
-    ----------
-    book : scanplan.reports.excel.Book
-        The workbook being built (its sheet factory, labels and bibliography).
-    spec : PlanResult
-        The specification.
-    """
-    from openpyxl.styles import Alignment
-
-    from .excel import put_num, put_text  # (the excel package re-exports them)
-
-    top_left = Alignment(horizontal="left", vertical="top")
-    view = design_view(spec, book.loc, book.bib.cite)
-    if view is None:
-        return
-    ws = book.sheet("xlsx_sheet_design", landscape=True, widths=(46, 60, 50))
-    for col, key in enumerate(("design_quantity", "design_value", "design_norm"), start=1):
-        put_text(ws, 1, col, book.t(key), bold=True)
-    row = 2
-    for label, value, norm in view.rows:
-        put_text(ws, row, 1, label, wrap=True)
-        if isinstance(value, Figure):  # a number cell with its number format
-            put_num(ws, row, 2, value.value, value.number_format).alignment = top_left
-        else:
-            put_text(ws, row, 2, value, wrap=True)
-        put_text(ws, row, 3, norm, wrap=True)
-        row += 1
-    if view.notes:
-        row += 1
-        put_text(ws, row, 1, book.t("design_notes"), bold=True)
-        for note in view.notes:
-            row += 1
-            put_text(ws, row, 1, note, wrap=True)
-            ws.merge_cells(start_row=row, start_column=1, end_row=row, end_column=3)
-
-
 TERMINAL_ROWS = ("design_gsd_digital", "design_gsd_film", "design_block", "design_sun_window",
                  "sorties", "design_flying_days")
 """The survey design rows the terminal summary shows."""
@@ -419,25 +377,3 @@ def design_text_lines(spec: Any, locale: str) -> list[str]:
     out = ["", t("design_title", locale) + ":"]
     out += [f"  {label}: {value}" for label, value in rows]
     return out
-
-
-def write_gsd_limits(book: Any, ws: Any, row: int, ns: Any) -> int:
-    """The norm set's table of the largest GSD per plan scale on the workbook's norms sheet
-    (nothing when the set has none); returns the next row."""
-    if not ns.gsd_limits:
-        return row
-    from .excel import put_num, put_text  # (the excel package re-exports them)
-
-    row = book.section(ws, row + 1, book.t("xlsx_gsd_limits"))
-    for col, key in enumerate(("map_scale", "xlsx_gsd_area", "xlsx_max_gsd_cm", "source"),
-                              start=1):
-        put_text(ws, row, col, book.t(key), bold=True)
-    row += 1
-    for g in ns.gsd_limits:
-        put_num(ws, row, 1, g.map_scale, '"1:"0')
-        put_text(ws, row, 2, localize(Message(f"gsd_area.{g.area}"), book.loc), wrap=True)
-        put_num(ws, row, 3, g.max_gsd_cm, "0.##")
-        put_text(ws, row, 4, with_status(book.bib.cite(g.source), g.status, book.loc),
-                 wrap=True)
-        row += 1
-    return row

@@ -18,13 +18,11 @@ import numpy as np
 from ..geo.export.gis import photo_columns
 from ..geo.layout import FlightLayout
 from . import exports as _exports
-from .mapview import summary_items
+from .mapview import MAX_SHEET_PHOTOS, summary_items
 from .plots import number
 
-__all__ = ["MAX_SHEET_PHOTOS", "add_geo_sheets"]
+__all__ = ["MAX_SHEET_PHOTOS", "add_geo_sheets"]  # MAX_SHEET_PHOTOS: from .mapview
 
-MAX_SHEET_PHOTOS = 10_000
-"""Most photo centres put on the Photos sheet (openpyxl writes about 10⁴ rows a second)."""
 
 _PHOTO_FORMATS = {"photo": "0", "strip": "0", "index": "0", "sortie": "0",
                   "x_m": "0.000", "y_m": "0.000", "lon_deg": "0.00000000",

@@ -55,11 +55,14 @@ if TYPE_CHECKING:  # matplotlib is imported when a map is drawn (the workbook dr
     from matplotlib.figure import Figure
     from matplotlib.ticker import FuncFormatter
 
-__all__ = ["MAX_MAP_PHOTOS", "MAX_TABLE_STRIPS", "MapTerrain", "area_crs_text", "crs_text",
-           "geo_views", "ground_known", "map_svg", "map_terrain"]
+__all__ = ["MAX_MAP_PHOTOS", "MAX_SHEET_PHOTOS", "MAX_TABLE_STRIPS", "MapTerrain",
+           "area_crs_text", "crs_text", "geo_views", "ground_known", "map_svg", "map_terrain"]
 
 MAX_MAP_PHOTOS = 4000
 """Most photo centres drawn on the map (every k-th beyond it: the SVG stays small)."""
+MAX_SHEET_PHOTOS = 10_000
+"""Most photo centres put on the workbook's Photos sheet (openpyxl writes about 10⁴ rows a
+second; :mod:`.geosheets`); the map's notes say where a larger layout's photos are."""
 MAX_SORTIE_LABELS = 60
 """Most sortie numbers written on the map (beyond: every k-th sortie)."""
 MAX_TABLE_STRIPS = 150
@@ -579,8 +582,6 @@ def geo_views(spec: Any, locale: str) -> list[dict[str, Any]]:
             if not film and _exports.mission_options(spec, layout) is not None:
                 items.insert(0, t("geo_file_mission", locale))
             notes.append(t("geo_files_note", locale).format(items="; ".join(items)))
-        from .geosheets import MAX_SHEET_PHOTOS
-
         if layout.area.georeferenced and len(layout.photos) > MAX_SHEET_PHOTOS:
             notes.append(t("geo_photos_elsewhere" if _exports.files_beside(spec, layout)
                            else "geo_photos_too_many", locale).format(

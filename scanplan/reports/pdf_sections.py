@@ -16,7 +16,6 @@ from typing import TYPE_CHECKING, Any
 
 from ..core import flight as FL
 from ..core.flight import MAX_BLUR_PX
-from ..core.shown import shown_decimals
 from ..i18n.labels import LABELS
 from ..i18n.messages import localize
 from ..norms import NormSet
@@ -25,8 +24,11 @@ from ..project.jobs import ScanJob, UavJob
 from ..rules.film import CONSTRAINTS, ScanPlan
 from ..rules.uav import UavPlan
 from .design import relief_max_height_m
+from .plots import view_plot_uri
 from .references import Bibliography
+from .tablewords import row_label, row_unit, row_value
 from .view import ReportView, warning_heading_key
+from .views import Table
 from .wording import (
     camera_title,
     display_message,
@@ -53,7 +55,6 @@ _UAV_FORMULAS = (  # formula, meaning (label), source (label)
     ("L ≤ L_obj·sqrt(−ln P)/B", "pdf_f_pd", "pdf_src_pd"),
     ("H_max = H·(1 + Δ_H)", "pdf_f_tol", "pdf_src_tol"),
 )
-_COMPARISON_UNITS = {"m": "m", "GB": "gb"}
 
 
 # ---------------------------------------------------------------------------------------
@@ -129,15 +130,17 @@ def _after_heading(message: str, heading: str) -> str:
     return sentence(message) if heading else message
 
 
-def _warnings(ws: Any, f: _Fmt, ns: NormSet | None = None) -> list[dict[str, Any]]:
+def _warnings(ws: Table, f: _Fmt, ns: NormSet | None = None) -> list[dict[str, Any]]:
+    """A section's warnings table as the templates show it: heading, scales, sentence."""
     out = []
-    for w in ws:
-        key = warning_heading_key(w)
+    for r in ws.rows:
+        message, scales = r.values
+        key = warning_heading_key(r.key)
         heading = f.label(key) if key else ""
-        scale_list = [f.scale(x) for x in getattr(w, "photo_scales", ()) or ()]
-        out.append({"code": w.code, "severity": w.severity, "heading": heading,
+        scale_list = [f.scale(x) for x in scales]
+        out.append({"code": r.key, "severity": r.fields["severity"], "heading": heading,
                     "scales": f.list_sep.join(scale_list), "scale_list": scale_list,
-                    "message": _after_heading(f.cite(display_message(w.message, ns, f.locale)),
+                    "message": _after_heading(f.cite(display_message(message, ns, f.locale)),
                                               heading)})
     return out
 
@@ -201,7 +204,8 @@ def _scan_view(job: ScanJob, f: _Fmt) -> dict[str, Any]:
     scen = plan.scenarios
     n_tables = math.ceil(len(scen) / _MAX_COLUMNS)
     size = math.ceil(len(scen) / n_tables)
-    tables = [_scan_table(plan, scen[i:i + size], f) for i in range(0, len(scen), size)]
+    tables = [_scan_table(f.view.tables["film_constraints"], slice(i, i + size), f)
+              for i in range(0, len(scen), size)]
 
     explanations = [f.cite(display_message(s.explanation, ns, f.locale))
                     for s in plan.scenarios]
@@ -232,53 +236,36 @@ def _scan_view(job: ScanJob, f: _Fmt) -> dict[str, Any]:
         "inputs": inputs, "tables": tables,
         "explanations": explanations, "interpretation_limit": limit, "reach": reach,
         "reach_interpretable": obj is not None and mci is not None,
-        "warnings": _warnings(plan.warnings, f, ns), "formulas": formulas, "params": params,
-        "norm": _norm_view(ns, f),
-        "plot": f.view.plot_uri("constraints"),
+        "warnings": _warnings(f.view.tables["film_warnings"], f, ns), "formulas": formulas,
+        "params": params, "norm": _norm_view(ns, f),
+        "plot": view_plot_uri(f.view, "constraints"),
     }
 
 
-def _scan_table(plan: ScanPlan, scenarios: Any, f: _Fmt) -> dict[str, Any]:
-    """The result table for some photo scales: constraints (binding flagged), summary rows."""
-    inp, um = plan.inputs, f.label("um")
-    obj = inp.object
-    header = [f.scale(s.photo_scale) for s in scenarios]
-    rows: list[dict[str, Any]] = [{
-        "label": f.label("photo_to_map"), "unit": "",
-        "cells": [{"text": f.num(s.photo_to_map_ratio, 1), "binding": False, "margin": ""}
-                  for s in scenarios], "kind": "ratio"}]
-    for cid in plan.constraint_ids:
-        rows.append({"label": f"{cid} — {f.cname(cid)}", "unit": um, "kind": "constraint",
-                     "cells": [{"text": f.num(s.constraint(cid).pixel_um, 1),
-                                "binding": s.constraint(cid).binding,
-                                "margin": "" if s.constraint(cid).binding
-                                else _margin(f, s.constraint(cid).margin_pct)}
-                               for s in scenarios]})
-    summary: list[dict[str, Any]] = [
-        {"label": f.label("binding"), "unit": "",
-         "cells": [s.binding for s in scenarios], "strong": False},
-        {"label": f.label("scan_pixel_um").rsplit(",", 1)[0], "unit": um,
-         "cells": [f.num(s.scan_pixel_um, 1) for s in scenarios], "strong": True},
-    ]
-    if inp.scanner:
-        summary.append({"label": f.label("scanner_pixel_um").rsplit(",", 1)[0], "unit": um,
-                        "cells": [f.num(s.scanner_pixel_um, 1) for s in scenarios],
-                        "strong": True})
-    summary.append({"label": f.label("frame_megabytes").rsplit(",", 1)[0],
-                    "unit": f.label("mb"),
-                    "cells": [f.num(s.frame_megabytes, 0) for s in scenarios],
-                    "strong": False})
-    summary.append({"label": f.label("pdf_resolution_on_ground"), "unit": f.label("pdf_mm"),
-                    "cells": [f.num(s.resolution_on_ground_mm, 1) for s in scenarios],
-                    "strong": False})
-    if obj is not None:
-        summary.append({"label": f.label("pdf_required_r"), "unit": f.label("pdf_lpmm"),
-                        "cells": [f.num(s.required_resolving_power_lpmm, 1)
-                                  for s in scenarios], "strong": False})
-        summary.append({"label": f.label("pdf_recognition_at_scan"), "unit": "",
-                        "cells": [f.num(s.recognition_probability, 2)
-                                  for s in scenarios], "strong": False})
-
+def _scan_table(film: Table, part: slice, f: _Fmt) -> dict[str, Any]:
+    """The film table (:func:`scanplan.reports.views.film_constraints`) for some of its
+    photo scales: the constraints (binding flagged, others with their margin), then the
+    summary rows."""
+    header = [f.scale(c.value) for c in film.columns[part]]
+    rows: list[dict[str, Any]] = []
+    summary: list[dict[str, Any]] = []
+    for r in film.rows:
+        unit = row_unit(r.unit, f.view.labels)
+        values = r.values[part]
+        texts = [row_value(r, v, f.view.numbers) for v in values]
+        label = row_label(r, f.view.labels, f.view.numbers)
+        if "summary" in r.flags:
+            summary.append({"label": label, "unit": unit, "cells": texts,
+                            "strong": "emph" in r.flags})
+            continue
+        first = part.start or 0
+        binding = [r.flagged(first + i, "binding") for i in range(len(values))]
+        margins = r.margins[part] if r.margins else (None,) * len(values)
+        rows.append({"label": label, "unit": unit,
+                     "kind": "constraint" if "constraint" in r.flags else "ratio",
+                     "cells": [{"text": text, "binding": b,
+                                "margin": "" if b or m is None else _margin(f, m)}
+                               for text, b, m in zip(texts, binding, margins, strict=True)]})
     return {"header": header, "rows": rows, "summary": summary}
 
 
@@ -330,87 +317,62 @@ def _uav_inputs(job: UavJob, f: _Fmt) -> list[tuple[str, str]]:
 def _uav_results(plan: UavPlan, f: _Fmt) -> tuple[list[str], list[dict[str, Any]], str]:
     """The result table's columns (the planned and the highest flown height), its rows
     and the motion-blur sentence."""
-    inp, h = plan.inputs, plan.heights_m
-    two = h["max"] != h["planned"]
-    cols = [f.label("pdf_at_height", h=f.g(h["planned"]))]
-    if two:
-        cols.append(f.label("pdf_at_height", h=f.g(h["max"])))
-
-    def row(label: str, *vals: str) -> dict[str, Any]:
-        cells = list(vals) + [""] * (len(cols) - len(vals))
-        return {"label": label, "cells": cells[:len(cols)]}
-
-    results = [
-        row(f.label("gsd_m"), f.num(plan.gsd_m, 3), f.num(plan.gsd_at_max_height_m, 3)),
-        row(f.label("nyquist_lpmm"), f.num(plan.nyquist_lpmm, 1)),
-        row(f.label("resolving_power_system") + " " + f.label("pdf_centre_corner"),
-            f"{f.num(plan.resolving_power_lpmm, 1)} / "
-            f"{f.num(plan.resolving_power_corner_lpmm, 1)}"),
-        row(f.label("ground_resolution_m"), f.num(plan.ground_resolution_m, 3),
-            f.num(plan.ground_resolution_at_max_height_m, 3)),
-        row(f.label("pdf_l_corner"), f.num(plan.ground_resolution_corner_m, 3)),
-        row(f.label("l_over_gsd"), f.num(plan.ground_resolution_to_gsd, 2)),
-        row(f.label("motion_blur_px") + f" ({f.label('pdf_at_height', h=f.g(h['min']))})",
-            f.num(plan.motion_blur_px, shown_decimals(plan.motion_blur_px, MAX_BLUR_PX))),
-    ]
-    if plan.tilted_corner_gsd_m is not None:
-        results.append(row(f.label("pdf_tilted_gsd", roll=f.g(inp.roll_deg),
-                                   pitch=f.g(inp.pitch_deg)),
-                           *(["", f.num(plan.tilted_corner_gsd_m, 3)] if two
-                             else [f.num(plan.tilted_corner_gsd_m, 3)])))
+    table = f.view.tables["uav_results"]
+    cols = [f.label("pdf_at_height", h=f.g(c.value)) for c in table.columns]
+    results = [{"label": row_label(r, f.view.labels, f.view.numbers),
+                "cells": [row_value(r, v, f.view.numbers) for v in r.values]
+                + [""] * (len(cols) - len(r.values))}
+               for r in table.rows]
     blur = f.label("pdf_blur_limit", blur=f.g(MAX_BLUR_PX),
                    exposure=f"1/{math.ceil(1 / plan.max_exposure_s):d}",
                    speed=f.num(plan.max_speed_ms, 1))
     return cols, results, blur
 
 
-def _uav_flight(plan: UavPlan, f: _Fmt) -> list[tuple[str, str]]:
-    """The flight geometry at the planned height."""
-    h = plan.heights_m
-    fl = plan.flight
-    flight = [
-        (f.label("pdf_footprint"), f"{f.num(fl['footprint_across_m'], 0)} × "
-                                   f"{f.num(fl['footprint_along_m'], 0)}"),
-        (f.label("pdf_base"), f.num(fl["base_m"], 1)),
-        (f.label("pdf_line_spacing"), f.num(fl["line_spacing_m"], 1)),
-        (f.label("pdf_photo_interval"), f.num(fl["photo_interval_s"], 2)
-         + (f" ({f.label('pdf_trigger_min')} {f.g(fl['min_trigger_interval_s'])})"
-            if "min_trigger_interval_s" in fl else "")),
-        (f.label("pdf_overlap_at", lo=f.g(h["min"]), hi=f.g(h["max"])),
-         f"{f.num(fl['forward_overlap_at_min_height_pct'], 1)} / "
-         f"{f.num(fl['forward_overlap_at_max_height_pct'], 1)}"),
+def _uav_flight(flight: Table, f: _Fmt) -> list[tuple[str, str]]:
+    """The flight geometry at the planned height (the ``uav_flight`` table)."""
+    v = {r.key: r.value for r in flight.rows}
+    trigger, overlap = (next(r.fields for r in flight.rows if r.key == key)
+                        for key in ("photo_interval", "overlap_range"))
+    rows = [
+        (f.label("pdf_footprint"), f"{f.num(v['footprint'][0], 0)} × "
+                                   f"{f.num(v['footprint'][1], 0)}"),
+        (f.label("pdf_base"), f.num(v["base"], 1)),
+        (f.label("pdf_line_spacing"), f.num(v["line_spacing"], 1)),
+        (f.label("pdf_photo_interval"), f.num(v["photo_interval"], 2)
+         + (f" ({f.label('pdf_trigger_min')} {f.g(trigger['min_trigger'])})"
+            if trigger else "")),
+        (f.label("pdf_overlap_at", lo=f.g(overlap["lo"]), hi=f.g(overlap["hi"])),
+         f"{f.num(v['overlap_range'][0], 1)} / {f.num(v['overlap_range'][1], 1)}"),
     ]
-    if "strips" in fl:
-        if "photos_per_strip" in fl:
-            # counts grouped as page 1 and the flight-lines table give them (16,432)
-            flight.append((f.label("pdf_strips"), f"{f.num(fl['strips'], 0)} × "
-                           f"{f.num(fl['photos_per_strip'], 0)} = {f.num(fl['photos'], 0)}"))
-        else:  # a polygon: the strips differ in length
-            flight.append((f.label("pdf_strips_photos"),
-                           f"{f.num(fl['strips'], 0)} / {f.num(fl['photos'], 0)}"))
-        flight.append((f.label("pdf_flight_length"),
-                       f"{f.num(fl['flight_length_m'] / 1000, 1)} / "
-                       + (f.num(fl["flight_time_s"] / 60, 0) if fl.get("flight_time_s")
-                          else "—")))
-        if "data_volume_bytes" in fl:
-            flight.append((f.label("data_volume_gb"), f.num(fl["data_volume_bytes"] / 1e9, 1)))
-            flight.append((f.label("data_volume_jpeg_gb"),
-                           f.num(float(FL.jpeg_volume_bytes(fl["data_volume_bytes"])) / 1e9, 1)))
-    return flight
+    if "strips" in v:  # counts grouped as page 1 and the flight-lines table give them
+        rows.append((f.label("pdf_strips"), " × ".join(f.num(x, 0) for x in v["strips"][:2])
+                     + f" = {f.num(v['strips'][2], 0)}"))
+    elif "strips_photos" in v:  # a polygon: the strips differ in length
+        rows.append((f.label("pdf_strips_photos"),
+                     " / ".join(f.num(x, 0) for x in v["strips_photos"])))
+    if "flight_length_km" in v:
+        minutes = v["flight_time_min"]
+        rows.append((f.label("pdf_flight_length"), f"{f.num(v['flight_length_km'], 1)} / "
+                     + (f.num(minutes, 0) if minutes is not None else "—")))
+    if "data_volume_gb" in v:
+        rows.append((f.label("data_volume_gb"), f.num(v["data_volume_gb"], 1)))
+        rows.append((f.label("data_volume_jpeg_gb"), f.num(v["data_volume_jpeg_gb"], 1)))
+    return rows
 
 
 def _uav_limits(plan: UavPlan, f: _Fmt) -> dict[str, Any]:
     """The constraints as maximum heights, the sentence on the binding one, the height
     accuracy forms and the formulas."""
     inp, h = plan.inputs, plan.heights_m
-    limits = [{"id": lim.id, "name": f.cname(lim.id),
-               "limit": f.num(lim.limit_m, 3 if lim.limit_m < 10 else 0),
-               "compares": lim.compares, "max_height": f.num(lim.max_height_m, 0),
-               "max_flown": f.num(lim.max_flown_height_m or lim.max_height_m, 0),
-               "margin": "" if lim.binding or not math.isfinite(lim.margin_pct)
-               else _margin(f, lim.margin_pct),
-               "binding": lim.binding}
-              for lim in sorted(plan.limits, key=lambda x: x.max_height_m)]
+    limits = [{"id": r.key, "name": f.cname(r.key),
+               "limit": f.num(limit, 3 if limit < 10 else 0),
+               "compares": compares, "max_height": f.num(top, 0),
+               "max_flown": f.num(flown, 0),
+               "margin": "" if margin is None else _margin(f, margin),
+               "binding": "binding" in r.flags}
+              for r in f.view.tables["uav_limits"].rows
+              for limit, compares, top, flown, margin in [r.values]]
     limits_title = ""
     max_sentence = ""
     if plan.limits and inp.map_scale is not None:
@@ -447,22 +409,24 @@ def _uav_view(job: UavJob, f: _Fmt) -> dict[str, Any]:
     ns, h = job.norm_set, plan.heights_m
     cols, results, blur = _uav_results(plan, f)
     recognition = [{
-        "object": _object_name(ns, r.object, r.object_size_m, r.map_scale, f.locale),
-        "map": f.scale(r.map_scale) if r.map_scale else "—", "size": f.g(r.object_size_m),
-        "shape": _shape_name(ns, r.shape, f.locale), "p": f.num(r.probability, 2),
-        "p_max": f.num(r.probability_at_max_height, 2),
-        "p_corner": f.num(r.probability_corner_at_max_height, 2)} for r in plan.recognition]
+        "object": _object_name(ns, r.fields["name"], size, scale, f.locale),
+        "map": f.scale(scale) if scale else "—", "size": f.g(size),
+        "shape": _shape_name(ns, shape, f.locale), "p": f.num(p, 2),
+        "p_max": f.num(p_max, 2), "p_corner": f.num(p_corner, 2)}
+        for r in f.view.tables["uav_recognition"].rows
+        for scale, size, shape, p, p_max, p_corner in [r.values]]
     return {
         "inputs": _uav_inputs(job, f), "cols": cols, "results": results, "blur": blur,
-        "flight": _uav_flight(plan, f),
+        "flight": _uav_flight(f.view.tables["uav_flight"], f),
         "recognition": recognition, "recognition_cols": [
             f.label("pdf_at_height", h=f.g(h["planned"])),
             f.label("pdf_at_height", h=f.g(h["max"])),
             f.label("pdf_corner_at", h=f.g(h["max"]))],
         **_uav_limits(plan, f),
-        "warnings": _warnings(plan.warnings, f, ns), "norm": _norm_view(ns, f),
-        "plot_mtf": f.view.plot_uri("mtf"),
-        "plot_height": f.view.plot_uri("height"),
+        "warnings": _warnings(f.view.tables["uav_warnings"], f, ns),
+        "norm": _norm_view(ns, f),
+        "plot_mtf": view_plot_uri(f.view, "mtf"),
+        "plot_height": view_plot_uri(f.view, "height"),
         "not_resolvable": not plan.resolvable,
     }
 
@@ -486,19 +450,6 @@ def _comparison_view(scan: ScanJob, uav: UavJob, f: _Fmt) -> dict[str, Any]:
         (f.label("pdf_result"), film_result, uav_result),
         (f.label("warnings"), str(len(sp.warnings)), str(len(up.warnings))),
     ]}
-
-
-def _comparison_quantity(row: dict[str, Any], f: _Fmt) -> str:
-    """A row of the specification's film/UAV table named in the report's language."""
-    key = f"spec_cmp_{row.get('key', '')}"
-    return f.label(key) if key in LABELS["en"] else str(row["quantity"])
-
-
-def _comparison_value(x: Any, f: _Fmt) -> str:
-    """A value of the film/UAV table: counts as whole numbers, the rest with 3 decimals."""
-    if x is None:
-        return "—"
-    return f.num(x, 0 if isinstance(x, int) else 3)
 
 
 def _film_relief_rows(fs: Any, f: _Fmt) -> list[tuple[str, str]]:
@@ -569,11 +520,10 @@ def _spec_view(spec: PlanResult, f: _Fmt) -> dict[str, Any]:
             rows.append((f.label("data_volume_jpeg_gb"), f.num(float(FL.jpeg_volume_bytes(
                 p.flight["data_volume_bytes"])) / 1e9, 1)))
         reasons.append(sentence(f.cite(display_message(u.reason, u.job.norm_set, f.locale))))
-    comparison = [(_comparison_quantity(c, f), _comparison_value(c["film"], f),
-                   _comparison_value(c["uav"], f),
-                   f.label(_COMPARISON_UNITS[c["unit"]]) if c["unit"] in _COMPARISON_UNITS
-                   else c["unit"])
-                  for c in spec.comparison]
+    comparison = [(row_label(r, f.view.labels, f.view.numbers),
+                   *(row_value(r, x, f.view.numbers) for x in r.values),
+                   row_unit(r.unit, f.view.labels))
+                  for r in f.view.tables["comparison"].rows]
     return {"rows": rows, "reasons": reasons, "comparison": comparison}
 
 

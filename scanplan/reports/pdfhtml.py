@@ -30,6 +30,7 @@ from .pdf_sections import (  # noqa: F401  (_object_name: tests)
 )
 from .references import Bibliography
 from .view import ReportView, build_view, svg_data_uri, warning_heading_key
+from .views import Row
 from .wording import document_date
 
 if TYPE_CHECKING:
@@ -273,11 +274,9 @@ def _warnings_box(scan_view: Any, uav_view: Any, spec: PlanResult | None,
     items = [(sev, h + (f": {f.list_sep.join(xs)}" if xs else ""))
              for (sev, h), xs in scales.items()
              for _ in range(1 if xs else max(times[(sev, h)], 1))]
-    if spec is not None:
-        seen = {x["code"] for view in (scan_view, uav_view) if view
-                for x in view["warnings"]}
-        items += [(w.severity, _spec_item(w, spec, f)) for w in spec.warnings
-                  if w.code not in seen]
+    if spec is not None:  # the specification's own (the view's warnings table)
+        items += [(r.fields["severity"], _spec_item(r, spec, f))
+                  for r in f.view.tables["warnings"].rows if r.fields["section"] == "spec"]
     out: dict[str, list[str]] = {"warnings": [], "notes": []}
     for sev in ("warning", "info"):
         counts: dict[str, int] = {}
@@ -289,18 +288,19 @@ def _warnings_box(scan_view: Any, uav_view: Any, spec: PlanResult | None,
     return out
 
 
-def _spec_item(w: Any, spec: PlanResult, f: _Fmt) -> str:
-    """A warning of the specification alone (no section lists it) on page 1: its heading
-    and the section that explains it — the specification's reasons or the survey design's
-    notes — or, when neither does, its whole sentence."""
-    key = warning_heading_key(w)
+def _spec_item(r: Row, spec: PlanResult, f: _Fmt) -> str:
+    """A warning of the specification alone (no section lists it; a row of the warnings
+    table) on page 1: its heading and the section that explains it — the specification's
+    reasons or the survey design's notes — or, when neither does, its whole sentence."""
+    key = warning_heading_key(r.key)
+    message = r.values[0]
     reasons = [getattr(x, "reason", None) for x in (spec.uav, spec.film) if x is not None]
     design = getattr(spec, "design", None)
-    if key and w.message in reasons:
+    if key and message in reasons:
         return f.label("box_see", item=f.label(key), section=f.label("spec_title"))
-    if key and design is not None and any(x.code == w.code for x in design.warnings):
+    if key and design is not None and any(x.code == r.key for x in design.warnings):
         return f.label("box_see", item=f.label(key), section=f.label("design_title"))
-    return localize(w.message, f.locale)
+    return localize(message, f.locale)
 
 
 class _Labels:

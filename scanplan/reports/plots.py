@@ -16,11 +16,19 @@ from typing import Any
 from ..i18n.labels import t
 from ..i18n.messages import scale_text
 from ..i18n.numbers import Numbers
-from ..rules.film import CONSTRAINTS, ScanPlan
+from ..rules.film import ScanPlan
 from ..rules.uav import UavPlan
 from .svgchart import Chart, log_ticks
+from .view import ReportView, svg_data_uri
+from .views import constraint_title
 
-__all__ = ["constraints_svg", "height_svg", "mtf_svg", "number", "terrain_svg"]
+__all__ = ["PLOT_JOBS", "constraints_svg", "draw_view_plots", "height_svg", "mtf_svg",
+           "number", "terrain_svg", "view_plot", "view_plot_uri"]
+
+#: The plots a report draws and the plan each is drawn from: the film plan's constraints
+#: against the photo scale; the UAV plan's MTF at the frame centre and its GSD and L
+#: against the height (``<name>_svg``).
+PLOT_JOBS: dict[str, str] = {"constraints": "scan", "mtf": "uav", "height": "uav"}
 
 _COLOURS = {"PS": "#1f77b4", "PZ": "#d62728", "PP": "#2ca02c", "PR": "#9467bd",
             "PD": "#ff7f0e"}
@@ -87,7 +95,7 @@ def constraints_svg(plan: ScanPlan, locale: str = "en") -> str:
     ids = [cid for cid in plan.constraint_ids if cid in sweep]
     colours = {cid: _COLOURS.get(cid) or next(more, "#000000") for cid in ids}
     for cid in sorted(ids, key=lambda c: c in _DASHES):  # solid first, dashed over them
-        name = CONSTRAINTS[cid].name_ru if locale == "ru" else CONSTRAINTS[cid].name
+        name = constraint_title(cid, locale)
         ax.plot(xs, sweep[cid], colour=colours[cid], width=1.1, dash=_DASHES.get(cid),
                 label=f"{cid} — {name}")
     px = [s.photo_scale for s in plan.scenarios]
@@ -297,3 +305,38 @@ def terrain_svg(terrain: Any, limit_m: float | None, locale: str = "en") -> str:
     bottom.set_xlabel(t("terrain_plot_x", locale))
     bottom.set_ylabel(t("terrain_plot_y_amsl", locale))
     return chart.svg()
+
+
+def view_plot(view: ReportView, name: str) -> str:
+    """A plot of a report's view as SVG text, drawn on first use and kept in the view.
+
+    Parameters
+    ----------
+    view : ReportView
+        The result as the documents show it; its ``charts`` keep the plots drawn.
+    name : {"constraints", "mtf", "height"}
+        The film plan's constraints against the photo scale; the UAV plan's MTF at the
+        frame centre; the UAV plan's GSD and L against the height.
+
+    Returns
+    -------
+    str
+        A deterministic SVG.
+    """
+    if name not in view.charts:
+        draw = {"constraints": constraints_svg, "mtf": mtf_svg, "height": height_svg}[name]
+        view.charts[name] = draw(view.job_of(PLOT_JOBS[name]).plan, view.locale)
+    return view.charts[name]
+
+
+def view_plot_uri(view: ReportView, name: str) -> str:
+    """:func:`view_plot` as a ``data:`` URI (what the PDF's HTML embeds)."""
+    return svg_data_uri(view_plot(view, name))
+
+
+def draw_view_plots(view: ReportView) -> None:
+    """Draw every plot the report has (of :data:`PLOT_JOBS` whose plan it carries), so
+    that they travel with the view (e.g. to the PDF worker)."""
+    for name, job in PLOT_JOBS.items():
+        if getattr(view, job) is not None:
+            view_plot(view, name)

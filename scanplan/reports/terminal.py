@@ -9,16 +9,14 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from ..core import flight as FL
-from ..core.shown import shown_decimals
-from ..i18n.labels import t
 from ..i18n.labels_cli import cli_text
 from ..i18n.messages import localize, scale_text
 from ..i18n.numbers import Numbers
 from ..rules.film import ScanPlan
 from ..rules.uav import UavPlan
 from .references import author_cite
-from .text import _volume, _wrap, code_tag, table
+from .text import _wrap, code_tag, table, text_table, volume_text
+from .views import ResultTables, Row, Table, constraint_title
 
 __all__ = ["format_scan_plan", "format_uav_plan"]
 
@@ -48,8 +46,8 @@ class _Words:
         return scale_text(x, self.loc)
 
     def constraint(self, cid: str) -> str:
-        """A constraint's name (the label catalogue's, a registered one its own)."""
-        return t(cid, self.loc)
+        """A constraint's name (the rules registry's)."""
+        return constraint_title(cid, self.loc)
 
     def object(self, name: str, size_m: float | None = None) -> str:
         """A norm object's name in the locale (the norm set's Russian name)."""
@@ -106,30 +104,13 @@ def format_scan_plan(plan: ScanPlan, norm_name: str = "", norm_title: str = "",
                        p=w.g(plan.rules.probability),
                        source=author_cite(localize(obj.source, w.loc), w.loc)))
     lines.append("")
-    um = w("um")
-    header = ["", "", *(w.scale(s.photo_scale) for s in plan.scenarios)]
-    rows = [header, ["Mc/Mk", "", *(w.f(s.photo_to_map_ratio, 1) for s in plan.scenarios)]]
-    for cid in plan.constraint_ids:
-        row = [f"{cid}  {w.constraint(cid)}", um]
-        for s in plan.scenarios:
-            c = s.constraint(cid)
-            row.append(w.n.um(c.pixel_um) + ("*" if c.binding else " "))
-        rows.append(row)
-    rows.append([w("binding"), "", *(s.binding + " " for s in plan.scenarios)])
-    rows.append([w("scan_pixel"), um, *(w.n.um(s.scan_pixel_um) + " " for s in plan.scenarios)])
-    if inp.scanner:
-        rows.append([w("scanner_step", scanner=inp.scanner), um,
-                     *(w.f(s.scanner_pixel_um) + " " for s in plan.scenarios)])
-    rows.append([w("scanned_frame", bands=inp.bands, bits=inp.bits_per_band), w("mb"),
-                 *(w.n.num(s.frame_megabytes, 0) + " " for s in plan.scenarios)])
-    rows.append([w("resolution_a"), w("mm"),
-                 *(w.f(s.resolution_on_ground_mm) + " " for s in plan.scenarios)])
-    if obj:
-        rows.append([w("r_needed"), w("lpmm"),
-                     *(w.f(s.required_resolving_power_lpmm) + " " for s in plan.scenarios)])
-        rows.append([w("p_at_pixel"), "",
-                     *(w.f(s.recognition_probability, 2) + " " for s in plan.scenarios)])
-    lines.append(table(rows, align="ll" + "r" * len(plan.scenarios)))
+    tables = ResultTables(scan=plan)  # built once for this report
+    tbl = tables["film_constraints"]
+    lines.append(text_table(tbl, label=lambda r: _film_label(r, w),
+                            unit=lambda r: w(r.unit) if r.unit else "",
+                            cell=lambda r, i, v: _film_cell(r, i, v, w),
+                            head=["", "", *(w.scale(c.value) for c in tbl.columns)],
+                            align="ll" + "r" * len(tbl.columns)))
     lines.append(w("binding_note"))
     lines.append("")
     lines.append(w("why"))
@@ -143,17 +124,50 @@ def format_scan_plan(plan: ScanPlan, norm_name: str = "", norm_title: str = "",
             p=w.g(plan.rules.probability), scale=w.scale(math.floor(mci)),
             ratio=w.f(mci / inp.map_scale, 1), r=w.g(inp.resolving_power_lpmm)), ""))
     lines += _reach_lines(plan, w)
-    lines += _warning_lines(plan.warnings, w, scan=True)
+    lines += _warning_lines(tables["film_warnings"], w, scan=True)
     return "\n".join(lines)
 
 
-def _warning_lines(warnings: Any, w: _Words, scan: bool = False) -> list[str]:
-    if not warnings:
+#: The terminal's word (:mod:`.labels_cli`) of each row of the film table.
+_FILM_WORDS = {"binding": "binding", "scan_pixel_um": "scan_pixel",
+               "scanner_pixel_um": "scanner_step", "frame_megabytes": "scanned_frame",
+               "resolution_on_ground": "resolution_a", "required_r": "r_needed",
+               "recognition_probability": "p_at_pixel"}
+
+
+def _film_label(r: Row, w: _Words) -> str:
+    """A row's label in the film table: ``PZ  height accuracy``, ``Mc/Mk``, a word."""
+    if "constraint" in r.flags:
+        return f"{r.key}  {w.constraint(r.key)}"
+    if r.key == "photo_to_map":
+        return "Mc/Mk"
+    return w(_FILM_WORDS[r.key], **r.fields)
+
+
+def _film_cell(r: Row, i: int, v: Any, w: _Words) -> str:
+    """A value of the film table: pixels as µm (``*`` where a constraint binds; the other
+    results keep its column), the frame grouped."""
+    if r.key == "photo_to_map":
+        return w.f(v, r.digits or 0)
+    if isinstance(v, str):
+        text = v
+    elif "constraint" in r.flags or r.key == "scan_pixel_um":
+        text = w.n.um(v)
+    elif r.key == "frame_megabytes":
+        text = w.n.num(v, r.digits or 0)
+    else:
+        text = w.f(v, r.digits if r.digits is not None else 1)
+    return text + ("*" if r.flagged(i, "binding") else " ")
+
+
+def _warning_lines(warnings: Table, w: _Words, scan: bool = False) -> list[str]:
+    """The warnings table as lines: ``!`` before each (a film plan's notes: ``i``)."""
+    if not warnings.rows:
         return []
     out = ["", w("warnings")]
-    for x in warnings:
-        mark = "!" if (not scan or x.severity == "warning") else "i"
-        out.append(_wrap(x.text(w.loc) + code_tag(x.code, w.loc), f"  {mark} "))
+    for r in warnings.rows:
+        mark = "!" if (not scan or "warning" in r.flags) else "i"
+        out.append(_wrap(localize(r.values[0], w.loc) + code_tag(r.key, w.loc), f"  {mark} "))
     return out
 
 
@@ -219,104 +233,117 @@ def format_uav_plan(plan: UavPlan, norm_name: str = "", locale: str = "en",
         + (w("uav_norm", name=norm_name) if norm_name else ""),
         "",
     ]
-    rows = [["", "", w("at_height", h=w.g(h["planned"]))]]
-    if h["max"] != h["planned"]:
-        rows[0].append(w("at_height", h=w.g(h["max"])))
-    two = len(rows[0]) == 4
-    blank = [""] if two else []
-    m, lpmm = w("m"), w("lpmm")
-    rows.append([w("gsd"), m, w.f(plan.gsd_m, 3),
-                 *([w.f(plan.gsd_at_max_height_m, 3)] if two else [])])
-    rows.append([w("nyquist"), lpmm, w.f(plan.nyquist_lpmm, 1), *blank])
-    rows.append([w("resolving_power"), lpmm,
-                 f"{w.f(plan.resolving_power_lpmm)} / {w.f(plan.resolving_power_corner_lpmm)}",
-                 *blank])
-    rows.append([w("l_centre"), m, w.f(plan.ground_resolution_m, 3),
-                 *([w.f(plan.ground_resolution_at_max_height_m, 3)] if two else [])])
-    rows.append([w("l_corner"), m, w.f(plan.ground_resolution_corner_m, 3), *blank])
-    rows.append([w("l_gsd"), "", w.f(plan.ground_resolution_to_gsd, 2), *blank])
-    rows.append([w("blur", h=w.g(h["min"])), w("px"), w.f(plan.motion_blur_px,
-                                                   shown_decimals(plan.motion_blur_px,
-                                                                     FL.MAX_BLUR_PX)), *blank])
-    if plan.tilted_corner_gsd_m is not None:
-        rows.append([w("tilted", roll=w.g(inp.roll_deg), pitch=w.g(inp.pitch_deg)), m, "",
-                     *([w.f(plan.tilted_corner_gsd_m, 3)] if two else [])])
-    lines.append(table(rows, align="ll" + "r" * (len(rows[0]) - 2)))
+    tables = ResultTables(uav=plan)  # built once for this report
+    results = tables["uav_results"]
+    lines.append(text_table(
+        results, label=lambda r: w(_UAV_WORDS[r.key], **{k: w.g(v) for k, v in r.fields.items()}),
+        unit=lambda r: w(r.unit) if r.unit else "", cell=lambda r, i, v: _uav_cell(r, v, w),
+        head=["", "", *(w("at_height", h=w.g(c.value)) for c in results.columns)],
+        align="ll" + "r" * len(results.columns)))
     lines.append(w("blur_limit", denominator=math.ceil(1 / plan.max_exposure_s),
                    v=w.f(plan.max_speed_ms, 1)))
-    lines += _flight_lines(plan, w)
-    lines += _recognition_lines(plan, w)
-    lines += _limit_lines(plan, w)
-    lines += _warning_lines(plan.warnings, w)
+    lines += _flight_lines(tables["uav_flight"], w)
+    lines += _recognition_lines(tables["uav_recognition"], w)
+    lines += _limit_lines(plan, w, tables)
+    lines += _warning_lines(tables["uav_warnings"], w)
     return "\n".join(lines)
 
 
-def _flight_lines(plan: UavPlan, w: _Words) -> list[str]:
-    """The flight geometry at the planned height."""
-    h = plan.heights_m
-    fl = plan.flight
+#: The terminal's word (:mod:`.labels_cli`) of each row of the UAV results.
+_UAV_WORDS = {"gsd_m": "gsd", "nyquist_lpmm": "nyquist", "resolving_power": "resolving_power",
+              "ground_resolution_m": "l_centre", "l_corner": "l_corner",
+              "l_over_gsd": "l_gsd", "motion_blur_px": "blur", "tilted_gsd": "tilted"}
+
+
+def _uav_cell(r: Row, v: Any, w: _Words) -> str:
+    """A UAV result: fixed decimals, a pair as ``centre / corner``, "" for none."""
+    if isinstance(v, str):
+        return v
+    digits = r.digits if r.digits is not None else 1
+    if isinstance(v, tuple):
+        return " / ".join(w.f(x, digits) for x in v)
+    return w.f(v, digits)
+
+
+def _limit_cell(r: Row, i: int, v: Any, w: _Words) -> str:
+    """A constraint as a maximum height: its limit (a height as given, a ground limit to
+    mm), what it compares, the maximum planned (``*`` where it binds) and flown height."""
+    m = w("m")
+    if i == 0:
+        return f"{w.g(v) if r.values[1] == 'H' else w.f(v, 3)} {m}"
+    if i == 1:
+        return str(v)
+    return f"{w.f(v, 0)} {m}" + (("*" if "binding" in r.flags else " ") if i == 2 else "")
+
+
+def _flight_lines(flight: Table, w: _Words) -> list[str]:
+    """The flight geometry at the planned height (the ``uav_flight`` table), one line per
+    pair of its rows where the terminal joins them."""
+    v = {r.key: r.value for r in flight.rows}
+    fields = {r.key: r.fields for r in flight.rows}
     m, s = w("m"), w("s")
-    interval = fl["photo_interval_s"]
-    frows = [[w("footprint"), f"{w.f(fl['footprint_across_m'], 0)} × "
-              f"{w.f(fl['footprint_along_m'], 0)} {m}"],
-             [w("base_spacing"), f"{w.f(fl['base_m'], 1)} {m} / {w.f(fl['line_spacing_m'], 1)} "
-              f"{m}"],
+    interval, trigger = v["photo_interval"], fields["photo_interval"]
+    overlap = fields["overlap_range"]
+    frows = [[w("footprint"), f"{w.f(v['footprint'][0], 0)} × {w.f(v['footprint'][1], 0)} {m}"],
+             [w("base_spacing"), f"{w.f(v['base'], 1)} {m} / {w.f(v['line_spacing'], 1)} {m}"],
              [w("interval"), (f"{w.f(interval, 2)} {s}" if math.isfinite(interval)
                               else w("interval_none"))
-              + (w("camera_min", t=w.g(fl["min_trigger_interval_s"]))
-                 if "min_trigger_interval_s" in fl else "")],
-             [w("overlap_at", lo=w.g(h["min"]), hi=w.g(h["max"])),
-              f"{w.f(fl['forward_overlap_at_min_height_pct'], 1)} / "
-              f"{w.f(fl['forward_overlap_at_max_height_pct'], 1)} %"]]
-    if "strips" in fl:
-        frows += [[w("strips_photos"),
-                   w("strips_photos_value", strips=fl["strips"], per=fl["photos_per_strip"],
-                     photos=fl["photos"]) if "photos_per_strip" in fl else
-                   w("strips_photos_total", strips=fl["strips"], photos=fl["photos"])],
-                  [w("length_time"), f"{w.f(fl['flight_length_m'] / 1000, 1)} {w('km')} / "
-                   + (f"{w.f(fl['flight_time_s'] / 60, 0)} {w('min')}"
-                      if fl.get("flight_time_s") else "—")]]
-        if "data_volume_bytes" in fl:
-            frows.append([w("volume"), _volume(fl["data_volume_bytes"], w.loc)])
+              + (w("camera_min", t=w.g(trigger["min_trigger"])) if trigger else "")],
+             [w("overlap_at", lo=w.g(overlap["lo"]), hi=w.g(overlap["hi"])),
+              f"{w.f(v['overlap_range'][0], 1)} / {w.f(v['overlap_range'][1], 1)} %"]]
+    if "strips" in v:
+        strips, per, photos = v["strips"]
+        frows.append([w("strips_photos"), w("strips_photos_value", strips=strips, per=per,
+                                            photos=photos)])
+    elif "strips_photos" in v:
+        strips, photos = v["strips_photos"]
+        frows.append([w("strips_photos"), w("strips_photos_total", strips=strips,
+                                            photos=photos)])
+    if "flight_length_km" in v:
+        minutes = v["flight_time_min"]
+        frows.append([w("length_time"), f"{w.f(v['flight_length_km'], 1)} {w('km')} / "
+                      + (f"{w.f(minutes, 0)} {w('min')}" if minutes is not None else "—")])
+    if "data_volume_gb" in v:
+        frows.append([w("volume"), volume_text(v["data_volume_gb"], v["data_volume_jpeg_gb"],
+                                               w.loc)])
     return ["", w("flight_head"), table([[f"  {a}", b] for a, b in frows], align="ll")]
 
 
-def _recognition_lines(plan: UavPlan, w: _Words) -> list[str]:
-    """The recognition probability of the norm objects."""
-    h = plan.heights_m
-    if not plan.recognition:
+def _recognition_lines(recognition: Table, w: _Words) -> list[str]:
+    """The recognition probability of the norm objects (the ``uav_recognition`` table)."""
+    if not recognition.rows:
         return []
-    rrows = [[f"  {w('rec_object')}", w("rec_map"), w("rec_size"), w("rec_shape"),
-              f"{w.g(h['planned'])} {w('m')}", f"{w.g(h['max'])} {w('m')}", w("rec_corner")]]
-    for r in plan.recognition:
-        rrows.append([f"  {w.object(r.object, r.object_size_m)}",
-                      w.scale(r.map_scale) if r.map_scale else "—",
-                      w.g(r.object_size_m), w.shape(r.shape), w.f(r.probability, 2),
-                      w.f(r.probability_at_max_height, 2),
-                      w.f(r.probability_corner_at_max_height, 2)])
-    return ["", w("recognition_head"), table(rrows, align="llrlrrr")]
+    cols = recognition.columns
+    head = [f"  {w('rec_object')}", w("rec_map"), w("rec_size"), w("rec_shape"),
+            f"{w.g(cols[3].value)} {w('m')}", f"{w.g(cols[4].value)} {w('m')}",
+            w("rec_corner")]
+
+    def cell(r: Row, i: int, v: Any) -> str:
+        if i == 0:
+            return w.scale(v) if v else "—"
+        if i == 1:
+            return w.g(v)
+        return w.shape(v) if i == 2 else w.f(v, cols[i].digits or 0)
+
+    text = text_table(recognition, head=head, align="llrlrrr", cell=cell,
+                      label=lambda r: f"  {w.object(r.fields['name'], r.fields['size_m'])}")
+    return ["", w("recognition_head"), text]
 
 
-def _limit_lines(plan: UavPlan, w: _Words) -> list[str]:
+def _limit_lines(plan: UavPlan, w: _Words, tables: ResultTables) -> list[str]:
     """The constraints as maximum planned heights, the binding one, height accuracy."""
     inp, h = plan.inputs, plan.heights_m
     if not plan.limits:
         return []
-    m = w("m")
     tol = inp.height_tolerance_up_pct
     head = (w("limits_head_map", map=w.scale(inp.map_scale), hc=w.g(inp.relief_interval_m))
             if inp.map_scale is not None else w("limits_head"))
     lines = ["", head + (w("limits_flown", tol=w.g(tol)) if tol else "") + ":"]
-    lrows = [[f"  {w('lim_constraint')}", w("lim_limit"), w("lim_compares"), w("lim_max"),
-              w("lim_flown")]]
-    for lim in sorted(plan.limits, key=lambda x: x.max_height_m):
-        limit = (w.g(lim.limit_m) if lim.compares == "H"  # a height: not "150,000 м"
-                 else w.f(lim.limit_m, 3))
-        lrows.append([f"  {lim.id}  {w.constraint(lim.id)}", f"{limit} {m}",
-                      lim.compares,
-                      f"{w.f(lim.max_height_m, 0)} {m}" + ("*" if lim.binding else " "),
-                      f"{w.f(lim.max_flown_height_m or lim.max_height_m, 0)} {m}"])
-    lines.append(table(lrows, align="lrlrr"))
+    lines.append(text_table(
+        tables["uav_limits"], label=lambda r: f"  {r.key}  {w.constraint(r.key)}",
+        cell=lambda r, i, v: _limit_cell(r, i, v, w), columns=(0, 1, 2, 3),
+        head=[f"  {w('lim_constraint')}", w("lim_limit"), w("lim_compares"), w("lim_max"),
+              w("lim_flown")], align="lrlrr"))
     b = next(x for x in plan.limits if x.binding)
     lines.append(_wrap(w("lim_sentence", max=w.f(plan.max_height_m, 0),
                          flown=w.f(plan.max_flown_height_m or plan.max_height_m, 0),

@@ -5,16 +5,16 @@ from __future__ import annotations
 import math
 import os
 import textwrap
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import Any
 
 from ..i18n.labels import LABELS, t
 from ..i18n.messages import scale_text
 from ..i18n.numbers import Numbers
-from ..rules.film import CONSTRAINTS
 from .jsondoc import scale_value
+from .views import ResultTables, Row, Table, constraint_title
 
-__all__ = ["format_plan_result", "table"]
+__all__ = ["format_plan_result", "table", "text_table", "volume_text"]
 
 
 def table(rows: Sequence[Sequence[str]], *, align: str = "", gap: int = 2) -> str:
@@ -28,6 +28,46 @@ def table(rows: Sequence[Sequence[str]], *, align: str = "", gap: int = 2) -> st
             cells.append(cell.ljust(widths[i]) if a == "l" else cell.rjust(widths[i]))
         out.append((" " * gap).join(cells).rstrip())
     return "\n".join(out)
+
+
+def text_table(tbl: Table, *, label: Callable[[Row], str],
+               cell: Callable[[Row, int, Any], str], unit: Callable[[Row], str] | None = None,
+               head: Sequence[str] | None = None, align: str = "",
+               columns: Sequence[int] | None = None,
+               after: Callable[[Row], str] | None = None) -> str:
+    """A report table (:class:`scanplan.reports.views.Table`) as aligned text: the one
+    layout of the terminal's tables.
+
+    Parameters
+    ----------
+    tbl : Table
+        The table, built once per result.
+    label : callable
+        A row's label in the reader's language.
+    cell : callable
+        ``(row, i, value)`` → the text of value ``i`` of the row.
+    unit : callable, optional
+        A row's unit in words (a column after the label); none when not given.
+    head : sequence of str, optional
+        The heading row.
+    align : str
+        ``"l"`` / ``"r"`` per column (:func:`table`).
+    columns : sequence of int, optional
+        The columns shown, in order (default: all).
+    after : callable, optional
+        A last column after the values (a row's unit there, not after the label).
+
+    Returns
+    -------
+    str
+    """
+    rows = [list(head)] if head is not None else []
+    for r in tbl.rows:
+        shown = range(len(r.values)) if columns is None else columns
+        rows.append([label(r), *([unit(r)] if unit is not None else []),
+                     *(cell(r, i, r.values[i]) for i in shown),
+                     *([after(r)] if after is not None else [])])
+    return table(rows, align=align)
 
 
 _EN = Numbers("en")  # English numbers (scanplan.reports.terminal writes `scan` and `uav`)
@@ -86,17 +126,35 @@ def _sc(x: float, loc: str) -> str:
     return scale_text(x, loc)
 
 
-def format_plan_result(result: Any, locale: str | None = None) -> str:
+def format_plan_result(result: Any, locale: str | None = None,
+                       tables: ResultTables | None = None) -> str:
     """The concise terminal summary of ``scanplan plan``, in the project's language
-    (``[project] locale``) unless ``locale`` is given."""
+    (``[project] locale``) unless ``locale`` is given.
+
+    Parameters
+    ----------
+    result : PlanResult
+        The specification.
+    locale : {"en", "ru"}, optional
+        The language (default: the project's).
+    tables : ResultTables, optional
+        The result's tables when a view of it already holds them (``view.tables``): the
+        summary lays out the same records as the documents; built here otherwise.
+
+    Returns
+    -------
+    str
+    """
     meta = result.meta
     loc = locale or (meta.locale if meta.locale in LABELS else "en")
     T = _Terminal(loc)
 
     def cname(cid: str) -> str:
-        info = CONSTRAINTS[cid]
-        return info.name_ru if loc == "ru" else info.name
+        return constraint_title(cid, loc)
 
+    if tables is None:
+        tables = ResultTables.of_jobs(result.film.job if result.film else None,
+                                      result.uav.job if result.uav else None, result)
     lines = _plan_heading(result, loc, T)
     lines += [_wrap(t, "") for t in format_terrain(result, loc)]
     if result.film:
@@ -104,13 +162,13 @@ def format_plan_result(result: Any, locale: str | None = None) -> str:
     if result.uav:
         lines += _uav_summary(result.uav, loc, T, cname)
     if result.comparison:
-        lines += _comparison_lines(result, loc, T)
+        lines += _comparison_lines(result, loc, T, tables)
     from .design import design_text_lines
 
     lines += [textwrap.fill(x.strip(), width=96, initial_indent="  ", subsequent_indent="    ")
               if x.startswith("  ") else x for x in design_text_lines(result, loc)]
     if result.warnings:
-        lines += _warning_lines(result, loc, T)
+        lines += _warning_lines(result, loc, T, tables)
     return "\n".join(lines)
 
 
@@ -165,41 +223,45 @@ def _film_summary(f: Any, loc: str, T: _Terminal, cname: Any) -> list[str]:
     return lines
 
 
-def _comparison_lines(result: Any, loc: str, T: _Terminal) -> list[str]:
-    """Film and digital camera side by side."""
+def _comparison_lines(result: Any, loc: str, T: _Terminal, tables: ResultTables) -> list[str]:
+    """Film and digital camera side by side (the ``comparison`` table; counts grouped as
+    the documents group them)."""
     aircraft = bool(result.uav) and result.uav.job.plan.inputs.platform == "aircraft"
-    lines = ["", T["side_by_side_aircraft" if aircraft else "side_by_side"]]
-    rows = [[f"  {T['quantity']}", T["film_col"],
-             T["digital_col" if aircraft else "uav_col"], T["unit"]]]
+    numbers = Numbers(loc)
 
-    def v(x: Any) -> str:
-        if x is None:
-            return "—"
-        return _n(x, 3, loc, True) if isinstance(x, float) else str(x)
+    def quantity(r: Row) -> str:  # the terminal's shorter word, else the documents' one
+        return "  " + T.get(f"cmp_{r.key}", LABELS[loc].get(f"spec_cmp_{r.key}",
+                                                               r.fields["quantity"]))
 
-    for c in result.comparison:
-        key = c.get("key", "")  # the terminal's shorter word, else the documents' one
-        q = T.get(f"cmp_{key}", LABELS[loc].get(f"spec_cmp_{key}", c["quantity"]))
-        unit = {"m": T["m"], "GB": T["gb"]}.get(c["unit"], c["unit"])
-        rows.append([f"  {q}", v(c["film"]), v(c["uav"]), unit])
-    lines.append(table(rows, align="lrrl"))
-    return lines
+    def cell(r: Row, i: int, x: Any) -> str:
+        return "—" if x is None else numbers.num(x, r.digits if r.digits is not None else 3)
+
+    def unit(r: Row) -> str:
+        return {"m": T["m"], "GB": T["gb"]}.get(r.unit, r.unit)
+
+    head = [f"  {T['quantity']}", T["film_col"], T["digital_col" if aircraft else "uav_col"],
+            T["unit"]]
+    text = text_table(tables["comparison"], label=quantity, cell=cell, head=head,
+                      align="lrrl", after=unit)
+    return ["", T["side_by_side_aircraft" if aircraft else "side_by_side"], text]
 
 
-def _warning_lines(result: Any, loc: str, T: _Terminal) -> list[str]:
-    """The warnings (``!``) and notes (``i``) with their codes."""
+def _warning_lines(result: Any, loc: str, T: _Terminal, tables: ResultTables) -> list[str]:
+    """The warnings (``!``) and notes (``i``) with their codes (the ``spec_warnings``
+    table)."""
     from ..i18n.messages import localize
 
     lines = ["", T["warnings"]]
-    for w in result.warnings:
-        mark = "!" if w.severity == "warning" else "i"
-        text = localize(w.message, loc)
+    for r in tables["spec_warnings"].rows:
+        mark = "!" if "warning" in r.flags else "i"
+        message = r.values[0]
+        text = localize(message, loc)
         if loc == "ru":  # ids by their names, as the Russian documents show them
             from .wording import display_message
 
             ns = (result.film or result.uav).job.norm_set
-            text = display_message(w.message, ns, loc)
-        lines.append(_wrap(text + code_tag(w.code, loc), f"  {mark} "))
+            text = display_message(message, ns, loc)
+        lines.append(_wrap(text + code_tag(r.key, loc), f"  {mark} "))
     return lines
 
 
@@ -375,14 +437,33 @@ def batch_summary(done: list[tuple[str, Any]], failed: list[tuple[str, str]]) ->
 def _volume(uncompressed_bytes: float, loc: str = "en") -> str:
     """``163.5 GB uncompressed (JPEG ≈ 18.2 GB at 9:1)``: the JPEG estimate of
     :func:`scanplan.core.flight.jpeg_volume_bytes`, in the locale's words and numbers."""
-    from ..core.flight import JPEG_COMPRESSION_RATIO, jpeg_volume_bytes
+    from ..core.flight import jpeg_volume_bytes
 
-    jpeg = float(jpeg_volume_bytes(uncompressed_bytes)) / 1e9
-    full = _n(uncompressed_bytes / 1e9, 1, loc, True)
+    return volume_text(uncompressed_bytes / 1e9,
+                       float(jpeg_volume_bytes(uncompressed_bytes)) / 1e9, loc)
+
+
+def volume_text(gigabytes: float, jpeg_gigabytes: float, loc: str = "en") -> str:
+    """``163.5 GB uncompressed (JPEG ≈ 18.2 GB at 9:1)`` in the locale's words and numbers.
+
+    Parameters
+    ----------
+    gigabytes, jpeg_gigabytes : float
+        The uncompressed volume and its JPEG estimate [GB].
+    loc : {"en", "ru"}
+
+    Returns
+    -------
+    str
+    """
+    from ..core.flight import JPEG_COMPRESSION_RATIO
+
+    full = _n(gigabytes, 1, loc, True)
+    jpeg = _n(jpeg_gigabytes, 1, loc, True)
     ratio = _g(JPEG_COMPRESSION_RATIO, loc)
     if loc == "ru":
-        return f"{full} ГБ без сжатия (JPEG ≈ {_n(jpeg, 1, loc, True)} ГБ при {ratio}:1)"
-    return f"{full} GB uncompressed (JPEG ≈ {_n(jpeg, 1, loc, True)} GB at {ratio}:1)"
+        return f"{full} ГБ без сжатия (JPEG ≈ {jpeg} ГБ при {ratio}:1)"
+    return f"{full} GB uncompressed (JPEG ≈ {jpeg} GB at {ratio}:1)"
 
 
 def project_warnings(path: str, r: Any) -> str:

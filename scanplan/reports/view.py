@@ -5,8 +5,9 @@ norm set) becomes one :class:`ReportView`: the language, the sections present (i
 order), the labels of that language (:class:`Labels`, the one catalogue of
 :mod:`.labels`), the number formatter of that language (:class:`Numbers`: decimal comma
 and no-break-space thousands in Russian), the warnings as rows, and the plots as SVG —
-drawn on first use and kept, so a workbook, an HTML page and a PDF of one result share
-them (SVG written directly, :mod:`.svgchart`: no plotting library). The renderers (terminal
+drawn on first use by :func:`scanplan.reports.plots.view_plot` and kept in the view, so a
+workbook, an HTML page and a PDF of one result share them (SVG written directly,
+:mod:`.svgchart`: no plotting library). The renderers (terminal
 text, Excel, PDF; the JSON document needs no locale) lay out what the view holds; they
 never recompute a number.
 
@@ -21,12 +22,12 @@ from __future__ import annotations
 
 import base64
 import datetime as _dt
-from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 from ..i18n.labels import LABELS, t
 from ..i18n.numbers import Numbers
+from .views import ResultTables, constraint_title
 
 if TYPE_CHECKING:
     from ..project.file import ReportMeta
@@ -41,12 +42,6 @@ LOCALES = ("en", "ru")
 #: The sections of a report in document order. A section is present when
 #: :func:`section_names` says so; renderers iterate the names they know.
 SECTION_ORDER: tuple[str, ...] = ("spec", "film", "uav", "comparison")
-
-#: The plots a report draws and the plan each is drawn from: the film plan's constraints
-#: against the photo scale; the UAV plan's MTF at the frame centre and its GSD and L
-#: against the height (``plots.<name>_svg``).
-PLOT_JOBS: dict[str, str] = {"constraints": "scan", "mtf": "uav", "height": "uav"}
-
 
 # ---------------------------------------------------------------------------------------
 # Labels: the one catalogue, in one locale
@@ -86,10 +81,7 @@ class Labels:
 
     def constraint(self, cid: str) -> str:
         """A constraint's name (the registry's record) in this language."""
-        from ..rules.registry import CONSTRAINTS
-
-        info = CONSTRAINTS[cid]
-        return info.name_ru if self.locale == "ru" else info.name
+        return constraint_title(cid, self.locale)
 
     def yes_no(self, value: bool) -> str:
         """Yes / Да."""
@@ -150,6 +142,12 @@ class ReportView:
         The labels of ``locale`` and ``platform``.
     sections : tuple of str
         The sections present, in order (:func:`section_names`).
+    tables : ResultTables
+        The result's tables (:mod:`scanplan.reports.views`), each built on first use and
+        laid out alike by every renderer of this view.
+    charts : dict
+        The plots drawn so far, as SVG (:func:`scanplan.reports.plots.view_plot` draws
+        each on first use and keeps it here).
     citations : list
         The works cited so far, in order of first citation, shared by every document
         rendered from this view: the PDF and the workbook of one run number a work alike.
@@ -165,7 +163,8 @@ class ReportView:
     numbers: Numbers
     labels: Labels
     sections: tuple[str, ...]
-    _plots: dict[str, str] = field(default_factory=dict, repr=False)
+    tables: ResultTables = field(default_factory=ResultTables, repr=False)
+    charts: dict[str, str] = field(default_factory=dict, repr=False)
     _html: list[str] = field(default_factory=list, repr=False)  # the PDF's HTML, once
     citations: list[Any] = field(default_factory=list, repr=False)
 
@@ -173,39 +172,8 @@ class ReportView:
         """Whether the report has ``section``."""
         return section in self.sections
 
-    def plot(self, name: str) -> str:
-        """A plot as SVG text, drawn on first use and kept.
-
-        Parameters
-        ----------
-        name : {"constraints", "mtf", "height"}
-            The film plan's constraints against the photo scale; the UAV plan's MTF at the
-            frame centre; the UAV plan's GSD and L against the height.
-
-        Returns
-        -------
-        str
-            A deterministic SVG (:mod:`scanplan.reports.plots`).
-        """
-        if name not in self._plots:
-            from . import plots
-
-            svg: Callable[[Any, str], str] = getattr(plots, f"{name}_svg")
-            self._plots[name] = svg(self._job(PLOT_JOBS[name]).plan, self.locale)
-        return self._plots[name]
-
-    def draw_plots(self) -> None:
-        """Draw every plot this report has (of :data:`PLOT_JOBS` whose plan it carries),
-        so that they travel with the view (e.g. to the PDF worker)."""
-        for name, job in PLOT_JOBS.items():
-            if getattr(self, job) is not None:
-                self.plot(name)
-
-    def plot_uri(self, name: str) -> str:
-        """:meth:`plot` as a ``data:`` URI."""
-        return svg_data_uri(self.plot(name))
-
-    def _job(self, which: str) -> Any:
+    def job_of(self, which: str) -> Any:
+        """The ``"scan"`` or ``"uav"`` job; ValueError when the report has none."""
         job = self.scan if which == "scan" else self.uav
         if job is None:
             raise ValueError(f"this report has no {which} plan")
@@ -248,7 +216,8 @@ def build_view(*, scan: ScanJob | None = None, uav: UavJob | None = None,
                       when=when if when is not None else report_datetime(),
                       locale=locale, platform=platform, numbers=Numbers(locale),
                       labels=Labels(locale, platform),
-                      sections=section_names(scan, uav, spec))
+                      sections=section_names(scan, uav, spec),
+                      tables=ResultTables.of_jobs(scan, uav, spec))
 
 
 def warning_heading_key(warning: Any) -> str | None:
@@ -257,13 +226,13 @@ def warning_heading_key(warning: Any) -> str | None:
 
     Parameters
     ----------
-    warning : PlanWarning
-        A warning with ``code`` and ``message``.
+    warning : PlanWarning or str
+        A warning with ``code`` and ``message``, or its code (a warnings table's row key).
 
     Returns
     -------
     str or None
         ``"pdf_warn_<code>"``.
     """
-    key = f"pdf_warn_{warning.code}"
+    key = f"pdf_warn_{warning if isinstance(warning, str) else warning.code}"
     return key if key in LABELS["en"] else None

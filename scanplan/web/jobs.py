@@ -135,14 +135,15 @@ def view_job(project: Any, files: Mapping[str, str]) -> dict[str, Any]:
     the area, strips, photo centres and take-offs, WGS 84), ``charts`` (the documents'
     SVG plots: the film plan's constraints, the UAV plan's heights), ``toml`` and ``crs`` (the
     planning CRS named in the page's language)."""
-    from ..reports.view import PLOT_JOBS, build_view
+    from ..reports.plots import PLOT_JOBS, view_plot
+    from ..reports.view import build_view
 
     with _planned(project, files) as (result, text, folder):
         doc = _plan_dict(result, folder)
         view = build_view(scan=result.film.job if result.film else None,
                           uav=result.uav.job if result.uav else None,
                           meta=result.meta, spec=result)
-        charts = {name: view.plot(name) for name, job in PLOT_JOBS.items()
+        charts = {name: view_plot(view, name) for name, job in PLOT_JOBS.items()
                   if name != "mtf" and getattr(view, job) is not None}
         from .mapdata import map_features
 
@@ -193,12 +194,12 @@ def _warnings(result: Any, locale: str) -> list[dict[str, str]]:
 
 def _constraint_names(doc: dict[str, Any], locale: str) -> dict[str, str]:
     """The reports' name of each constraint the plan evaluated, in ``locale``."""
-    from ..i18n.labels import t
+    from ..reports.views import constraint_title
 
     ids = set((doc.get("uav") or {}).get("constraints") or {})
     for s in (doc.get("film") or {}).get("scenarios") or []:
         ids |= set(s.get("constraints") or {})
-    return {cid: t(cid, locale) for cid in sorted(ids)}
+    return {cid: constraint_title(cid, locale) for cid in sorted(ids)}
 
 
 def files_job(project: Any, files: Mapping[str, str], what: str) -> tuple[str, bytes]:

@@ -42,7 +42,6 @@ from typing import TYPE_CHECKING
 from ...i18n.labels import t as t  # re-exported: the sheets' labels
 from ...i18n.messages import document_text
 from .. import ReportMeta, write_atomic
-from ..design import write_design_sheet
 from ..view import ReportView, build_view
 from .book import Book
 from .cells import _BINDING_FILL as _BINDING_FILL  # re-exported: the binding highlight
@@ -51,6 +50,7 @@ from .cells import _repack as _repack  # re-exported: the batch summary workbook
 from .cells import put_num as put_num
 from .cells import put_text as put_text
 from .closing import norms_sheet, references_sheet, warnings_sheet
+from .design import write_design_sheet
 from .film import constraints_sheet, sweep_sheet
 from .inputs import inputs_sheet
 from .summary import summary_sheet
@@ -92,14 +92,14 @@ SHEETS: tuple[Sheet, ...] = (
     Sheet("summary", lambda b, v: summary_sheet(b, v.scan, v.uav, v.spec)),
     Sheet("design", lambda b, v: write_design_sheet(b, v.spec), "spec"),
     Sheet("inputs", lambda b, v: inputs_sheet(b, v.scan, v.uav)),
-    Sheet("constraints", lambda b, v: constraints_sheet(b, v.scan), "film"),
+    Sheet("constraints", lambda b, v: constraints_sheet(b), "film"),
     Sheet("sweep", lambda b, v: sweep_sheet(b, v.scan, v.spec), "film"),
     Sheet("uav", lambda b, v: uav_sheet(b, v.uav), "uav"),
     Sheet("mtf", lambda b, v: mtf_sheet(b, v.uav), "uav"),
     Sheet("terrain", lambda b, v: terrain_sheet(b, v.spec), "spec"),
     Sheet("flight", lambda b, v: _flight_sheets(b, v)),  # issue 11: Strips, Photos
     Sheet("norms", lambda b, v: norms_sheet(b, v.scan, v.uav)),
-    Sheet("warnings", lambda b, v: warnings_sheet(b, v.scan, v.uav, v.spec)),
+    Sheet("warnings", lambda b, v: warnings_sheet(b, v.scan, v.uav)),
     Sheet("references", lambda b, v: references_sheet(b)),
 )
 

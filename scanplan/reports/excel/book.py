@@ -14,7 +14,9 @@ from openpyxl.worksheet.worksheet import Worksheet
 from openpyxl.writer.excel import ExcelWriter
 
 from ..._version import __version__
+from ...rules.registry import CONSTRAINTS
 from ..references import Bibliography
+from ..views import constraint_title
 from ..wording import (
     display_message,
     name_title,
@@ -68,10 +70,7 @@ class Book:
 
     def cname(self, cid: str) -> str:
         """A constraint id with its localised name: ``PZ — height accuracy``."""
-        try:
-            return f"{cid} — {self.t(cid)}"
-        except KeyError:
-            return cid
+        return f"{cid} — {constraint_title(cid, self.loc)}" if cid in CONSTRAINTS else cid
 
     def obj_name(self, ns: NormSet, name: str, map_scale: int | None) -> str:
         """A norm object's name in the report's language (unnamed: "object of the given

@@ -9,6 +9,7 @@ from openpyxl.styles import Alignment
 from openpyxl.worksheet.worksheet import Worksheet
 
 from ..view import warning_heading_key
+from ..views import Row
 from ..wording import (
     object_title,
     param_name,
@@ -20,10 +21,7 @@ from ..wording import (
 if TYPE_CHECKING:
     from ...norms import NormSet
     from ...project.jobs import ScanJob, UavJob
-    from ...project.spec import PlanResult
-    from ...rules.film import PlanWarning
 
-from ..design import write_gsd_limits
 from .book import Book
 from .cells import (
     _WARNING_FILL,
@@ -36,39 +34,39 @@ from .cells import (
     put_num,
     put_text,
 )
+from .design import write_gsd_limits
+
+_SECTIONS = {"film": "xlsx_section_scan", "uav": "uav_section", "spec": "spec_title"}
 
 
-def _warning_items(book: Book, scan: ScanJob | None, uav: UavJob | None,
-                   spec: PlanResult | None = None) -> list[tuple[str, PlanWarning, Any]]:
-    items: list[tuple[str, PlanWarning, Any]] = []
-    if scan is not None:
-        items += [(book.t("xlsx_section_scan"), w, scan.norm_set) for w in scan.plan.warnings]
-    if uav is not None:
-        items += [(book.t("uav_section"), w, uav.norm_set) for w in uav.plan.warnings]
-    if spec is not None:
-        seen = {w.code for _, w, _ in items}
-        items += [(book.t("spec_title"), w, None) for w in spec.warnings
-                  if w.code not in seen]
-    return items
+def _warning_items(book: Book, scan: ScanJob | None,
+                   uav: UavJob | None) -> list[tuple[str, Row, Any]]:
+    """Every warning of the result once (the view's ``warnings`` table): its section's
+    name, its row and the norm set its sentence names ids of."""
+    norm_sets = {"film": scan.norm_set if scan is not None else None,
+                 "uav": uav.norm_set if uav is not None else None, "spec": None}
+    return [(book.t(_SECTIONS[r.fields["section"]]), r, norm_sets[r.fields["section"]])
+            for r in book.view.tables["warnings"].rows]
 
 
-def _heading(book: Book, w: PlanWarning) -> str:
-    key = warning_heading_key(w)
+def _heading(book: Book, r: Row) -> str:
+    key = warning_heading_key(r.key)
     return book.t(key) if key else ""
 
 
-def _warning_lines(book: Book, scan: ScanJob | None, uav: UavJob | None,
-                   spec: PlanResult | None, *, info: bool = False) -> list[str]:
+def _warning_lines(book: Book, scan: ScanJob | None, uav: UavJob | None, *,
+                   info: bool = False) -> list[str]:
     """Every warning in short form (the Summary sheet's box), ``"! "`` before each; with
     ``info``, the information and conditions checked instead, ``"i "`` before each (as the
     PDF's page 1 keeps them apart from what to act on)."""
     scales: dict[str, list[str]] = {}  # heading → photo scales, one line per heading
-    for _section, w, ns in _warning_items(book, scan, uav, spec):
-        if (getattr(w, "severity", "warning") == "info") != info:
+    for _section, r, ns in _warning_items(book, scan, uav):
+        if (r.fields["severity"] == "info") != info:
             continue
-        head = _heading(book, w) or book.text(w.message, ns)
+        message, photo_scales = r.values
+        head = _heading(book, r) or book.text(message, ns)
         listed = scales.setdefault(head, [])
-        listed += [x for x in (book.numbers.scale(s) for s in w.photo_scales)
+        listed += [x for x in (book.numbers.scale(s) for s in photo_scales)
                    if x not in listed]
     sep = _list_sep(book)
     mark = "i" if info else "!"
@@ -167,28 +165,29 @@ def _norm_set(book: Book, ws: Worksheet, row: int, ns: NormSet, objs: list[Any])
     return write_gsd_limits(book, ws, row, ns)
 
 
-def warnings_sheet(book: Book, scan: ScanJob | None, uav: UavJob | None,
-             spec: PlanResult | None = None) -> None:
+def warnings_sheet(book: Book, scan: ScanJob | None, uav: UavJob | None) -> None:
+    """Every warning of the result once (the view's ``warnings`` table), warnings filled."""
     ws = book.sheet("warnings", landscape=True, widths=(20, 14, 30, 20, 90))
     _header(ws, 1, [book.t("xlsx_section"), book.t("xlsx_severity"), book.t("xlsx_warning"),
                     book.t("photo_scale"), book.t("xlsx_message")])
-    items = _warning_items(book, scan, uav, spec)
+    items = _warning_items(book, scan, uav)
     if not items:
         put_text(ws, 2, 1, book.t("no_warnings"))
         return
-    for row, (section, w, ns) in enumerate(items, start=2):
+    for row, (section, r, ns) in enumerate(items, start=2):
+        message, photo_scales = r.values
         try:
-            severity = book.t(f"xlsx_severity_{w.severity}")
+            severity = book.t(f"xlsx_severity_{r.fields['severity']}")
         except KeyError:
-            severity = w.severity
+            severity = r.fields["severity"]
         cells = [put_text(ws, row, 1, section, wrap=True),
                  put_text(ws, row, 2, severity),
-                 put_text(ws, row, 3, _heading(book, w), wrap=True),
+                 put_text(ws, row, 3, _heading(book, r), wrap=True),
                  put_text(ws, row, 4, _list_sep(book).join(book.numbers.scale(s)
-                                                           for s in w.photo_scales),
+                                                           for s in photo_scales),
                           wrap=True),
-                 put_text(ws, row, 5, sentence(book.text(w.message, ns)), wrap=True)]
-        if w.severity == "warning":
+                 put_text(ws, row, 5, sentence(book.text(message, ns)), wrap=True)]
+        if r.fields["severity"] == "warning":
             for cell in cells:
                 cell.fill = _WARNING_FILL
     ws.auto_filter.ref = f"A1:E{len(items) + 1}"

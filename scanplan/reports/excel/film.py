@@ -11,12 +11,11 @@ from openpyxl.chart.label import DataLabelList
 from openpyxl.chart.shapes import GraphicalProperties
 from openpyxl.worksheet.worksheet import Worksheet
 
-from ...rules.film import CONSTRAINTS
-
 if TYPE_CHECKING:
     from ...project.jobs import ScanJob
     from ...project.spec import PlanResult
 
+from ..views import constraint_title
 from .book import Book
 from .cells import (
     F2,
@@ -40,27 +39,33 @@ from .charts import (
 )
 
 
-def constraints_sheet(book: Book, job: ScanJob) -> None:
+def constraints_sheet(book: Book) -> None:
+    """Every constraint at every photo scale, one row each (the view's film table, with
+    each constraint's margins, reason and equation); the binding ones marked."""
     ws = book.sheet("xlsx_sheet_constraints", landscape=True,
                     widths=(14, 9, 8, 34, 12, 12, 12, 12, 60, 60))
     _header(ws, 1, [book.t("photo_scale"), book.t("photo_to_map"), book.t("xlsx_id"),
                     book.t("constraint"), book.t("pixel_um"), book.t("xlsx_margin_um"),
                     book.t("margin_pct"), book.t("binding"), book.t("reason"),
                     book.t("xlsx_equation")])
+    film = book.view.tables["film_constraints"]
+    ratios = film.row("photo_to_map").values
+    constraints = [r for r in film.rows if "constraint" in r.flags]
     row = 2
-    for s in job.plan.scenarios:
-        for c in s.constraints:
-            cells = [put_num(ws, row, 1, s.photo_scale, SCALE),
-                     put_num(ws, row, 2, s.photo_to_map_ratio, F2),
-                     put_text(ws, row, 3, c.id),
-                     put_text(ws, row, 4, book.t(c.id) if c.id in CONSTRAINTS else c.name),
-                     put_num(ws, row, 5, c.pixel_um, UM),
-                     put_num(ws, row, 6, c.margin_um, UM),
-                     put_num(ws, row, 7, c.margin_pct, PCT),
-                     put_text(ws, row, 8, book.yes_no(c.binding))]
-            put_text(ws, row, 9, book.text(c.reason), wrap=True)
-            put_text(ws, row, 10, book.text(c.equation), wrap=True)
-            if c.binding:
+    for i, column in enumerate(film.columns):
+        for r in constraints:
+            d = r.details[i]
+            cells = [put_num(ws, row, 1, column.value, SCALE),
+                     put_num(ws, row, 2, ratios[i], F2),
+                     put_text(ws, row, 3, r.key),
+                     put_text(ws, row, 4, constraint_title(r.key, book.loc, d["name"])),
+                     put_num(ws, row, 5, r.values[i], UM),
+                     put_num(ws, row, 6, d["margin_um"], UM),
+                     put_num(ws, row, 7, d["margin_pct"], PCT),
+                     put_text(ws, row, 8, book.yes_no(r.flagged(i, "binding")))]
+            put_text(ws, row, 9, book.text(d["reason"]), wrap=True)
+            put_text(ws, row, 10, book.text(d["equation"]), wrap=True)
+            if r.flagged(i, "binding"):
                 _mark(cells)
             row += 1
     if row > 2:
@@ -117,32 +122,34 @@ def sweep_sheet(book: Book, job: ScanJob, spec: PlanResult | None = None) -> Non
     _add_series(chart, ws, xref, pixel_col, n, book.t("scan_pixel_um"), width_emu=44450,
                 dash="dash", color="000000")
     rec = spec.film.recommended if spec is not None and spec.film is not None else None
-    _candidate_markers(book, chart, ws, job, n + 3, rec.photo_scale if rec else None)
+    _candidate_markers(book, chart, ws, n + 3, rec.photo_scale if rec else None)
     _chart_below(ws, chart, n + 1 + 2 + len(job.plan.scenarios) + 2)
 
 
-def _candidate_markers(book: Book, chart: ScatterChart, ws: Worksheet, job: ScanJob,
-                       first_row: int, recommended: float | None) -> None:
+def _candidate_markers(book: Book, chart: ScatterChart, ws: Worksheet, first_row: int,
+                       recommended: float | None) -> None:
     """One labelled point per candidate photo scale at its scan pixel: the chart names
     every candidate scale (a log axis labels only 1:1000, 1:10000, ...); the
     recommended one (the smallest feasible scale) stands out."""
-    scen = job.plan.scenarios
+    film = book.view.tables["film_constraints"]
+    pixels, bindings = film.row("scan_pixel_um").values, film.row("binding").values
     _header(ws, first_row, [book.t("photo_scale"), book.t("scan_pixel_um"),
                             book.t("binding")])
-    for i, s in enumerate(scen):
+    for i, column in enumerate(film.columns):
         row = first_row + 1 + i
-        put_num(ws, row, 1, s.photo_scale, SCALE)
-        put_num(ws, row, 2, s.scan_pixel_um, UM)
-        put_text(ws, row, 3, s.binding)
-        label = book.numbers.scale(s.photo_scale)
-        if s.photo_scale == recommended:
+        scale = column.value
+        put_num(ws, row, 1, scale, SCALE)
+        put_num(ws, row, 2, pixels[i], UM)
+        put_text(ws, row, 3, bindings[i])
+        label = book.numbers.scale(scale)
+        if scale == recommended:
             label += " (" + book.t("xlsx_recommended") + ")"
         xref = Reference(ws, min_col=1, min_row=row, max_row=row)
         series = _add_series(chart, ws, xref, 2, 1, label, first_row=row)
         series.graphicalProperties.line.noFill = True
-        series.marker.symbol = "diamond" if s.photo_scale == recommended else "circle"
-        series.marker.size = 11 if s.photo_scale == recommended else 7
-        color = "C00000" if s.photo_scale == recommended else "000000"
+        series.marker.symbol = "diamond" if scale == recommended else "circle"
+        series.marker.size = 11 if scale == recommended else 7
+        color = "C00000" if scale == recommended else "000000"
         series.marker.graphicalProperties = GraphicalProperties(solidFill=color)
         series.marker.graphicalProperties.line.solidFill = color
         series.dLbls = DataLabelList()

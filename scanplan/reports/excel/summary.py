@@ -8,8 +8,8 @@ from typing import TYPE_CHECKING
 from openpyxl.worksheet.worksheet import Worksheet
 
 from ...core import flight as FL
-from ...i18n.labels import LABELS
 from ..design import relief_max_height_m
+from ..tablewords import row_label, row_unit
 from ..wording import (
     document_date,
     object_title,
@@ -82,7 +82,7 @@ def summary_sheet(book: Book, scan: ScanJob | None, uav: UavJob | None,
         put_text(ws, row, 3, line)
         row += 1
     for key, info in (("warnings_box", False), ("notes_box", True)):
-        box = _warning_lines(book, scan, uav, spec, info=info)
+        box = _warning_lines(book, scan, uav, info=info)
         if box:
             row = book.section(ws, row + 1, book.t(key))
             for text in box:
@@ -161,18 +161,14 @@ def _summary_spec(book: Book, ws: Worksheet, row: int, spec: PlanResult) -> int:
         _header(ws, row, [book.t("spec_quantity"), book.t("spec_film"), book.t("spec_uav"),
                           book.t("unit")])
         row += 1
-        for c in spec.comparison:
-            key = f"spec_cmp_{c.get('key', '')}"
-            put_text(ws, row, 1, book.t(key) if key in LABELS["en"] else c["quantity"])
-            for col, key in ((2, "film"), (3, "uav")):
-                value = c[key]
+        for r in book.view.tables["comparison"].rows:
+            put_text(ws, row, 1, row_label(r, book.view.labels, book.numbers))
+            for col, value in enumerate(r.values, start=2):
                 if isinstance(value, int | float):
-                    put_num(ws, row, col, value, "#,##0.000" if isinstance(value, float)
-                            else "#,##0")
+                    put_num(ws, row, col, value, "#,##0" if r.digits == 0 else "#,##0.000")
                 else:
                     put_text(ws, row, col, MISSING)
-            unit = {"m": "m", "GB": "gb"}.get(c["unit"])
-            put_text(ws, row, 4, book.t(unit) if unit else c["unit"])
+            put_text(ws, row, 4, row_unit(r.unit, book.view.labels))
             row += 1
     return row
 

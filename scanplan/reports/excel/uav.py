@@ -10,12 +10,12 @@ from openpyxl.chart.axis import ChartLines
 from openpyxl.worksheet.worksheet import Worksheet
 
 from ...core.mtf import component_label
-from ...rules.film import CONSTRAINTS
 
 if TYPE_CHECKING:
     from ...project.jobs import UavJob
     from ...rules.uav import UavPlan
 
+from ..views import constraint_title
 from .book import Book
 from .cells import (
     F1,
@@ -119,8 +119,7 @@ def _limits_rows(book: Book, ws: Worksheet, row: int, plan: UavPlan) -> int:
     row += 1
     for lim in plan.limits:
         cells = [put_text(ws, row, 1, lim.id),
-                 put_text(ws, row, 2, book.t(lim.id) if lim.id in CONSTRAINTS
-                          else lim.name),
+                 put_text(ws, row, 2, constraint_title(lim.id, book.loc, lim.name)),
                  put_text(ws, row, 3, lim.compares),
                  put_num(ws, row, 4, lim.limit_m, F4),
                  put_num(ws, row, 5, lim.max_height_m, F1),
@@ -146,19 +145,17 @@ def _recognition_rows(book: Book, ws: Worksheet, row: int, job: UavJob) -> int:
                       book.t("xlsx_p_planned"), book.t("xlsx_p_max"),
                       book.t("xlsx_p_corner_max")])
     row += 1
-    mobj = plan.inputs.map_object
-    for rec in plan.recognition:
-        cells = [put_text(ws, row, 1, book.obj_name(job.norm_set, rec.object,
-                                                    rec.map_scale), wrap=True),
-                 put_num(ws, row, 2, rec.object_size_m, F3),
-                 put_text(ws, row, 3, book.shape_name(job.norm_set, rec.shape)),
-                 put_num(ws, row, 4, rec.map_scale, SCALE),
-                 put_num(ws, row, 5, rec.probability, F3),
-                 put_num(ws, row, 6, rec.probability_at_max_height, F3),
-                 put_num(ws, row, 7, rec.probability_corner_at_max_height, F3)]
-        if (mobj is not None and rec.object == mobj.name
-                and rec.object_size_m == mobj.size_m
-                and rec.map_scale == mobj.map_scale):
+    for r in book.view.tables["uav_recognition"].rows:
+        scale, size, shape, p, p_max, p_corner = r.values
+        cells = [put_text(ws, row, 1, book.obj_name(job.norm_set, r.fields["name"], scale),
+                          wrap=True),
+                 put_num(ws, row, 2, size, F3),
+                 put_text(ws, row, 3, book.shape_name(job.norm_set, shape)),
+                 put_num(ws, row, 4, scale, SCALE),
+                 put_num(ws, row, 5, p, F3),
+                 put_num(ws, row, 6, p_max, F3),
+                 put_num(ws, row, 7, p_corner, F3)]
+        if "emph" in r.flags:  # the map's own object
             _mark(cells)
         row += 1
     return row

@@ -1,0 +1,27 @@
+"""Locale-free report tables, built once per result; the renderers only lay them out.
+
+A result's tables (:class:`ResultTables`) are built from its plan objects on first use and
+kept: the terminal (:func:`scanplan.reports.text.text_table`), the workbook, the PDF and a
+notebook's ``_repr_html_`` read the same :class:`~.table.Table` records — a title, columns
+and rows of raw values with their label keys, units, decimals and flags — and only word and
+format them. This package imports nothing of the renderers and no labels: it knows neither
+a language nor a number format; a constraint is named by the rules registry
+(:func:`~.table.constraint_title`).
+
+The tables (:data:`TABLES`): ``film_constraints`` (:func:`~.film.film_constraints`);
+``uav_results``, ``uav_limits``, ``uav_flight`` and ``uav_recognition`` (:mod:`.uav`);
+``comparison`` and the warnings ``film_warnings``, ``uav_warnings``, ``spec_warnings`` and
+``warnings`` (all of them once) (:mod:`.spec`).
+"""
+
+from __future__ import annotations
+
+from .film import film_constraints
+from .result import TABLES, ResultTables
+from .spec import all_warnings, comparison, warnings
+from .table import Column, Row, Table, constraint_title
+from .uav import uav_flight, uav_limits, uav_recognition, uav_results
+
+__all__ = ["TABLES", "Column", "ResultTables", "Row", "Table", "all_warnings", "comparison",
+           "constraint_title", "film_constraints", "uav_flight", "uav_limits",
+           "uav_recognition", "uav_results", "warnings"]

@@ -1,0 +1,84 @@
+"""The tables of one result, each built on first use and kept (:class:`ResultTables`)."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+from .film import film_constraints
+from .spec import all_warnings, comparison, warnings
+from .table import Table
+from .uav import uav_flight, uav_limits, uav_recognition, uav_results
+
+__all__ = ["TABLES", "ResultTables"]
+
+#: Each table: the result it is built from (``"scan"`` / ``"uav"``: that plan;
+#: ``"spec"``: the specification; ``"all"``: the :class:`ResultTables`, whichever it has)
+#: and its builder.
+TABLES: dict[str, tuple[str, Callable[[Any], Table]]] = {
+    "film_constraints": ("scan", film_constraints),
+    "uav_results": ("uav", uav_results),
+    "uav_limits": ("uav", uav_limits),
+    "uav_flight": ("uav", uav_flight),
+    "uav_recognition": ("uav", uav_recognition),
+    "comparison": ("spec", comparison),
+    "film_warnings": ("scan", lambda plan: warnings(plan.warnings, "film")),
+    "uav_warnings": ("uav", lambda plan: warnings(plan.warnings, "uav")),
+    "spec_warnings": ("spec", lambda spec: warnings(spec.warnings, "spec")),
+    "warnings": ("all", lambda tables: all_warnings(tables.scan, tables.uav, tables.spec)),
+}
+
+
+@dataclass
+class ResultTables:
+    """The tables of one result, each built on first use and kept.
+
+    Parameters
+    ----------
+    scan, uav : plan or None
+        The film plan (``ScanPlan``) and the UAV plan (``UavPlan``).
+    spec : PlanResult or None
+        The specification of ``scanplan plan``.
+
+    Attributes
+    ----------
+    built : list of str
+        The tables built so far, in order (each once).
+
+    Examples
+    --------
+    >>> import scanplan
+    >>> r = scanplan.scan(map_scale=2000, relief_interval_m=1.0, photo_scales=[8000],
+    ...                   camera="rc30-153")
+    >>> tables = ResultTables(scan=r.job.plan)
+    >>> tables["film_constraints"] is tables["film_constraints"], tables.built
+    (True, ['film_constraints'])
+    """
+
+    scan: Any = None
+    uav: Any = None
+    spec: Any = None
+    built: list[str] = field(default_factory=list)
+    _tables: dict[str, Table] = field(default_factory=dict, repr=False)
+
+    def __getitem__(self, name: str) -> Table:
+        if name not in self._tables:
+            source, build = TABLES[name]
+            result = self if source == "all" else getattr(self, source)
+            if result is None:
+                raise KeyError(f"this result has no {source} plan for the table {name}")
+            self._tables[name] = build(result)
+            self.built.append(name)
+        return self._tables[name]
+
+    def has(self, name: str) -> bool:
+        """Whether the result has what table ``name`` is built from."""
+        source = TABLES[name][0] if name in TABLES else ""
+        return source == "all" or (bool(source) and getattr(self, source) is not None)
+
+    @classmethod
+    def of_jobs(cls, scan: Any = None, uav: Any = None, spec: Any = None) -> ResultTables:
+        """The tables of a film and/or UAV job (their plans) and a specification."""
+        return cls(scan=scan.plan if scan is not None else None,
+                   uav=uav.plan if uav is not None else None, spec=spec)
