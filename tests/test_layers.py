@@ -141,10 +141,7 @@ def test_the_geo_guard_fails_on_a_rules_import(line):
 
 #: Every package and sub-package of scanplan (found from the sources, ``scanplan`` itself
 #: included) is kept free of import circles (lazy imports counted): a circle makes the
-#: import order matter and hides which module is below which. These packages are let off,
-#: each with the reason; a circle wholly inside one of them is not reported by the packages
-#: around it either.
-PENDING: dict[str, str] = {}
+#: import order matter and hides which module is below which.
 #: Packages whose private names (``_name``) a module outside them never uses: what another
 #: package needs is a public name (``core/checks.py`` holds the core's input checks). Every
 #: top-level package and module of scanplan, and these sub-packages:
@@ -269,36 +266,26 @@ SOURCES = {_module_name(p): (p.read_text(encoding="utf-8"), p.name == "__init__.
 
 
 PACKAGES = sorted(name for name, (_, is_package) in SOURCES.items() if is_package)
-CHECKED = [p for p in PACKAGES if not any(_inside(p, pending) for pending in PENDING)]
+CHECKED = PACKAGES
 
 
-def package_circles(sources: dict[str, tuple[str, bool]], package: str,
-                    pending: dict[str, str] | None = None) -> list[list[str]]:
-    """The import circles among the modules of ``package`` (lazy imports counted), but for
-    those lying wholly inside one package of ``pending``."""
+def package_circles(sources: dict[str, tuple[str, bool]], package: str) -> list[list[str]]:
+    """The import circles among the modules of ``package`` (lazy imports counted)."""
     inside = {name: source for name, source in sources.items() if _inside(name, package)}
-    return [c for c in circles(import_graph(inside))
-            if not any(all(_inside(m, p) for m in c) for p in pending or {})]
+    return circles(import_graph(inside))
 
 
 @pytest.mark.parametrize("package", CHECKED)
 def test_no_import_circle_inside_the_package(package):
-    found = package_circles(SOURCES, package, PENDING)
+    found = package_circles(SOURCES, package)
     assert found == [], "\n".join(" ↔ ".join(c) for c in found)
-
-
-@pytest.mark.parametrize("package", sorted(PENDING))
-def test_a_pending_package_still_has_a_circle(package):
-    """A package let off still has a circle (remove it from PENDING when it has none)."""
-    assert package in PACKAGES, f"{package} is no package of scanplan"
-    assert package_circles(SOURCES, package), f"{package} has no circle: remove it from PENDING"
 
 
 def test_the_packages_are_found_from_the_sources():
     """Every sub-package is checked, not a hand list: core/mtf, geo/export, rules, web …"""
     assert {"scanplan", "scanplan.core.mtf", "scanplan.geo.export", "scanplan.rules",
-            "scanplan.project", "scanplan.web", "scanplan.norms"} <= set(CHECKED)
-    assert "scanplan.reports" not in CHECKED
+            "scanplan.project", "scanplan.web", "scanplan.norms", "scanplan.reports",
+            "scanplan.reports.views", "scanplan.reports.excel", "scanplan.i18n"} <= set(CHECKED)
 
 
 @pytest.mark.parametrize("package", ["scanplan.web", "scanplan"])
@@ -309,25 +296,8 @@ def test_the_package_guard_sees_a_lazy_circle(package):
     text, is_package = sources["scanplan.web.mapdata"]
     sources["scanplan.web.mapdata"] = (text + "\n\ndef _probe():\n    from .jobs import "
                                        "PROJECT_NAME\n", is_package)
-    assert package_circles(SOURCES, package, PENDING) == []
-    assert package_circles(sources, package, PENDING) == [["scanplan.web.jobs",
-                                                           "scanplan.web.mapdata"]]
-
-
-def test_a_pending_package_is_let_off_only_inside():
-    """A circle wholly inside a pending package is not reported; one that leaves it is."""
-    sources = {
-        "scanplan.reports.a": ("from .b import x\n", False),
-        "scanplan.reports.b": ("def x():\n    from . import a\n", False),
-        "scanplan.web.c": ("from ..reports import a\n", False),
-    }
-    pending = {"scanplan.reports": "being restructured"}
-    assert package_circles(sources, "scanplan", pending) == []
-    assert package_circles(sources, "scanplan.reports") == [["scanplan.reports.a",
-                                                             "scanplan.reports.b"]]
-    sources["scanplan.reports.b"] = ("def x():\n    from ..web import c\n", False)
-    assert package_circles(sources, "scanplan", pending) == [
-        ["scanplan.reports.a", "scanplan.reports.b", "scanplan.web.c"]]
+    assert package_circles(SOURCES, package) == []
+    assert package_circles(sources, package) == [["scanplan.web.jobs", "scanplan.web.mapdata"]]
 
 
 SEALED = sorted({".".join(name.split(".")[:2]) for name in SOURCES} - set(NOT_YET_SEALED)
