@@ -9,11 +9,12 @@ compare them::
     python tools/compare_outputs.py compare before/ after/
 
 ``make`` copies the source tree of ``--source`` into a temporary folder, and
-``examples/`` beside it once per language (the ``[project] locale`` line set to ``en`` or
-``ru``), and runs ``scanplan plan PROJECT --out DIR`` (the files and the terminal
-summary) and ``scanplan plan PROJECT --json`` for each project with that copy of the
-code, ``SOURCE_DATE_EPOCH`` set and no user configuration or norm sets. (Both runs' paths
-— the bundled norm sets', the projects' — then differ only in the temporary folder.)
+``examples/`` (with ``tools/compare_projects/``) beside it once per language (the
+``[project] locale`` line set to ``en`` or ``ru``), and runs ``scanplan plan PROJECT
+--out DIR`` (the files and the terminal summary) and ``scanplan plan PROJECT --json`` for
+each project with that copy of the code, ``SOURCE_DATE_EPOCH`` set and no user
+configuration or norm sets. (Both runs' paths — the bundled norm sets', the projects' —
+then differ only in the temporary folder.)
 
 ``compare`` reads files that are not byte-identical as what a reader sees: a PDF's text
 (``pdftotext -layout``), a workbook's cell values (openpyxl), a GeoPackage's rows
@@ -38,6 +39,9 @@ from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[1]
+EXTRA_PROJECTS = Path(__file__).resolve().parent / "compare_projects"
+"""Projects compared beside the examples: what no example shows (film and a UAV in one
+project, the comparison table), planned with the examples' area files."""
 LOCALES = ("en", "ru")
 MANIFEST = "manifest.json"
 WORK_MARK = "<work>"
@@ -80,6 +84,8 @@ def copy_projects(examples: Path, into: Path, locale: str) -> list[Path]:
         The copied project files, sorted by name.
     """
     shutil.copytree(examples, into)
+    for extra in sorted(EXTRA_PROJECTS.glob("*.toml")):  # read beside the examples' files
+        shutil.copy2(extra, into / extra.name)
     projects = sorted(into.glob("*.toml"))
     for path in projects:
         path.write_text(with_locale(path.read_text(encoding="utf-8"), locale), encoding="utf-8")
