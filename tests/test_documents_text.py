@@ -83,23 +83,54 @@ def _catalogue_words() -> frozenset[str]:
     return frozenset(words - {"with", "and", "lens", "assumed"})
 
 
+# Each example is planned once per locale and each document rendered once (the plan, the
+# workbook's bytes, the PDF's text, page 1's HTML): the tests below read them many ways.
+
+
 @cache
-def _documents(example: str, locale: str) -> dict[str, str]:
-    """{'pdf page N' / 'xlsx SHEET' / 'xlsx chart N': text} for one example in one locale."""
+def _planned(example: str, locale: str):
+    """The plan of one example in one locale (``[project] locale`` set to it)."""
     project = load_project(example)
     values = {sec: dict(v) for sec, v in project.values.items()}
     values.setdefault("project", {})["locale"] = locale
-    project = dataclasses.replace(project, values=values)
-    result = plan_project(project)
-    scan = result.film.job if result.film else None
-    uav = result.uav.job if result.uav else None
+    return plan_project(dataclasses.replace(project, values=values))
+
+
+def _jobs(result) -> dict:
+    return {"scan": result.film.job if result.film else None,
+            "uav": result.uav.job if result.uav else None, "meta": result.meta,
+            "spec": result}
+
+
+@cache
+def _workbook(example: str, locale: str) -> bytes:
+    """spec.xlsx of one example in one locale."""
+    return render_xlsx(**_jobs(_planned(example, locale)))
+
+
+@cache
+def _loaded_workbook(example: str, locale: str):
+    """The workbook read back by openpyxl (the tests only read it)."""
+    return load_workbook(io.BytesIO(_workbook(example, locale)))
+
+
+@cache
+def _page_html(example: str, locale: str) -> str:
+    """The HTML the PDF of one example in one locale is made of."""
+    from scanplan.reports.pdf import render_html
+
+    return render_html(**_jobs(_planned(example, locale)))
+
+
+@cache
+def _documents(example: str, locale: str) -> dict[str, str]:
+    """{'pdf page N' / 'xlsx SHEET' / 'xlsx chart N': text} for one example in one locale."""
     out: dict[str, str] = {}
-    pdf = pypdf.PdfReader(io.BytesIO(render_pdf(scan=scan, uav=uav, meta=result.meta,
-                                                spec=result)))
+    pdf = pypdf.PdfReader(io.BytesIO(render_pdf(**_jobs(_planned(example, locale)))))
     for i, page in enumerate(pdf.pages, 1):
         out[f"pdf page {i}"] = page.extract_text()
-    data = render_xlsx(scan=scan, uav=uav, meta=result.meta, spec=result)
-    wb = load_workbook(io.BytesIO(data))
+    data = _workbook(example, locale)
+    wb = _loaded_workbook(example, locale)
     for ws in wb.worksheets:
         cells = [ws.title]
         for row in ws.iter_rows():
@@ -317,22 +348,17 @@ def test_terminal_summary_speaks_the_projects_language(tmp_path, locale):
         assert "recommended photo scale" in text and "8.3 µm" in text
 
 
+@pytest.mark.parametrize("locale", LOCALES)
 @pytest.mark.parametrize("example", [str(e) for e in EXAMPLES], ids=[e.stem for e in EXAMPLES])
-def test_wrapped_cells_have_room(example):
+def test_wrapped_cells_have_room(example, locale):
     """A wrapped cell longer than its column gets a row tall enough for its lines, so it
     does not run over the next row where the row height is taken from the file
-    (LibreOffice)."""
+    (LibreOffice). In both locales (the example's own is one of them)."""
     import math
 
     from openpyxl.utils import get_column_letter
 
-    from scanplan.reports.excel import render_xlsx as render
-
-    project = load_project(example)
-    result = plan_project(project)
-    data = render(scan=result.film.job if result.film else None,
-                  uav=result.uav.job if result.uav else None, meta=result.meta, spec=result)
-    wb = load_workbook(io.BytesIO(data))
+    wb = _loaded_workbook(example, locale)
     def col_width(c: int) -> float:
         return ws.column_dimensions[get_column_letter(c)].width or 8.43
 
@@ -537,15 +563,7 @@ def _page_one_warnings(example: str, locale: str, box: str = "warnbox") -> list[
     and conditions checked), from the HTML the PDF is made of."""
     import html as html_mod
 
-    from scanplan.reports.pdf import render_html
-
-    project = load_project(example)
-    values = {sec: dict(v) for sec, v in project.values.items()}
-    values.setdefault("project", {})["locale"] = locale
-    result = plan_project(dataclasses.replace(project, values=values))
-    page = render_html(scan=result.film.job if result.film else None,
-                       uav=result.uav.job if result.uav else None, meta=result.meta,
-                       spec=result)
+    page = _page_html(example, locale)
     box = re.search(rf'<div class="{box}">.*?<ul>(.*?)</ul>', page, re.S)
     return ([html_mod.unescape(x).strip() for x in re.findall(r"<li>(.*?)</li>", box[1], re.S)]
             if box else [])
@@ -592,13 +610,10 @@ def test_russian_page_one_lists_scales_as_the_messages_do():
 def test_the_photo_count_is_written_one_way_in_the_pdf(locale, sep):
     """The valley's 16,000-odd photos: page 1, the flight geometry ('strips / photos') and
     the flight-lines table group the count alike (the geometry said 88 / 16432)."""
-    from scanplan.reports.pdf import render_html
-
-    project = load_project(str(EXAMPLES[0].parent / "uav-town-valley-2000.toml"))
-    values = {sec: dict(v) for sec, v in project.values.items()}
-    values.setdefault("project", {})["locale"] = locale
-    result = plan_project(dataclasses.replace(project, values=values))
-    page = render_html(uav=result.uav.job, meta=result.meta, spec=result)
+    example = str(EXAMPLES[0].parent / "uav-town-valley-2000.toml")
+    result = _planned(example, locale)
+    assert result.film is None  # page 1 is the UAV plan's alone
+    page = _page_html(example, locale)
     n = int(result.uav.job.plan.flight["photos"])
     assert n > 10000
     photos = f"{n // 1000}{sep}{n % 1000:03d}"
@@ -616,7 +631,7 @@ def test_terrain_pdfs_state_the_dem_the_ground_and_the_altitude(example, source,
     """The crew and the approver read on paper what the terminal prints: where the ground
     heights come from, the ground under the photos, the flight altitude above sea level."""
     path = next(e for e in EXAMPLES if e.stem == example)
-    result = plan_project(load_project(path))
+    result = _planned(str(path), locale)  # the ground does not depend on the locale
     tr = result.uav.terrain
     d = tr.summary()
     pages = [t for w, t in _documents(str(path), locale).items() if w.startswith("pdf")]
