@@ -21,7 +21,6 @@ customer, ... — shown as typed).
 
 from __future__ import annotations
 
-import dataclasses
 import io
 import re
 import zipfile
@@ -33,13 +32,10 @@ import pytest
 pypdf = pytest.importorskip("pypdf")
 pytest.importorskip("weasyprint")
 
-from openpyxl import load_workbook  # noqa: E402
+import documents  # noqa: E402
 
 from scanplan.norms import store as norms_mod  # noqa: E402
 from scanplan.project.file import KEYS, load_project  # noqa: E402
-from scanplan.project.spec import plan_project  # noqa: E402
-from scanplan.reports.excel import render_xlsx  # noqa: E402
-from scanplan.reports.pdf import render_pdf  # noqa: E402
 
 EXAMPLES = sorted((Path(__file__).resolve().parent.parent / "examples").glob("*.toml"))
 LOCALES = ("en", "ru")
@@ -84,53 +80,19 @@ def _catalogue_words() -> frozenset[str]:
 
 
 # Each example is planned once per locale and each document rendered once (the plan, the
-# workbook's bytes, the PDF's text, page 1's HTML): the tests below read them many ways.
-
-
-@cache
-def _planned(example: str, locale: str):
-    """The plan of one example in one locale (``[project] locale`` set to it)."""
-    project = load_project(example)
-    values = {sec: dict(v) for sec, v in project.values.items()}
-    values.setdefault("project", {})["locale"] = locale
-    return plan_project(dataclasses.replace(project, values=values))
-
-
-def _jobs(result) -> dict:
-    return {"scan": result.film.job if result.film else None,
-            "uav": result.uav.job if result.uav else None, "meta": result.meta,
-            "spec": result}
-
-
-@cache
-def _workbook(example: str, locale: str) -> bytes:
-    """spec.xlsx of one example in one locale."""
-    return render_xlsx(**_jobs(_planned(example, locale)))
-
-
-@cache
-def _loaded_workbook(example: str, locale: str):
-    """The workbook read back by openpyxl (the tests only read it)."""
-    return load_workbook(io.BytesIO(_workbook(example, locale)))
-
-
-@cache
-def _page_html(example: str, locale: str) -> str:
-    """The HTML the PDF of one example in one locale is made of."""
-    from scanplan.reports.pdf import render_html
-
-    return render_html(**_jobs(_planned(example, locale)))
+# workbook, the PDF's text, page 1's HTML: tests/documents.py): the tests below read them
+# many ways.
+_planned, _workbook, _page_html = documents.planned, documents.workbook, documents.page_html
 
 
 @cache
 def _documents(example: str, locale: str) -> dict[str, str]:
     """{'pdf page N' / 'xlsx SHEET' / 'xlsx chart N': text} for one example in one locale."""
     out: dict[str, str] = {}
-    pdf = pypdf.PdfReader(io.BytesIO(render_pdf(**_jobs(_planned(example, locale)))))
-    for i, page in enumerate(pdf.pages, 1):
-        out[f"pdf page {i}"] = page.extract_text()
+    for i, text in enumerate(documents.pdf_pages(example, locale), 1):
+        out[f"pdf page {i}"] = text
     data = _workbook(example, locale)
-    wb = _loaded_workbook(example, locale)
+    wb = documents.loaded_workbook(example, locale)
     for ws in wb.worksheets:
         cells = [ws.title]
         for row in ws.iter_rows():
@@ -358,7 +320,7 @@ def test_wrapped_cells_have_room(example, locale):
 
     from openpyxl.utils import get_column_letter
 
-    wb = _loaded_workbook(example, locale)
+    wb = documents.loaded_workbook(example, locale)
     def col_width(c: int) -> float:
         return ws.column_dimensions[get_column_letter(c)].width or 8.43
 
