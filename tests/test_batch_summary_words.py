@@ -43,7 +43,8 @@ def test_a_russian_project_summary_speaks_russian(tmp_path):
 def test_summary_csv_holds_words_and_codes(tmp_path):
     out = tmp_path / "out"
     result = CliRunner().invoke(main, ["plan", str(EXAMPLES / "archive-12000-for-2000.toml"),
-                                       str(EXAMPLES / "film-1000.toml"), "--out", str(out)])
+                                       str(EXAMPLES / "film-1000.toml"), "--out", str(out),
+                                       "--formats", "xlsx"])  # the summary is always written
     assert result.exit_code == 0, result.output
     frame = pd.read_csv(io.BytesIO((out / "summary.csv").read_bytes()), encoding="utf-8-sig")
     row = frame[frame["file"].str.endswith("archive-12000-for-2000.toml")].iloc[0]

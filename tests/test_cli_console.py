@@ -155,20 +155,31 @@ def test_plan_reads_the_project_from_stdin(tmp_path):
     assert bad.exit_code == 2 and "<stdin>" in bad.output and "relief_interval_m" in bad.output
 
 
+def _small_polygon(tmp_path: Path) -> Path:
+    """POLYGON's project over a polygon of about 380 × 450 m (one sortie): the same kinds of output,
+    each a few photos long."""
+    path = tmp_path / "small-polygon.toml"
+    path.write_text(POLYGON.read_text(encoding="utf-8").split("[area]")[0] + (
+        "[area]\npolygon = [[37.600, 55.750], [37.606, 55.750], [37.606, 55.754], "
+        "[37.600, 55.754]]\n"), encoding="utf-8")
+    return path
+
+
 def test_formats_choose_the_outputs(tmp_path):
     runner = CliRunner()
-    r = runner.invoke(main, ["plan", str(POLYGON), "--out", str(tmp_path / "m"),
+    small = _small_polygon(tmp_path)
+    r = runner.invoke(main, ["plan", str(small), "--out", str(tmp_path / "m"),
                              "--formats", "missions"])
     assert r.exit_code == 0, r.output
     names = sorted(p.name for p in (tmp_path / "m").iterdir())
     assert names and all(n.startswith("mission") for n in names)
     assert any(n.endswith(".plan") for n in names) and any(n.endswith(".waypoints")
                                                             for n in names)
-    r = runner.invoke(main, ["plan", str(POLYGON), "--out", str(tmp_path / "g"),
+    r = runner.invoke(main, ["plan", str(small), "--out", str(tmp_path / "g"),
                              "--formats", "gis,xlsx"])
     assert sorted(p.name for p in (tmp_path / "g").iterdir()) == [
         "flight.geojson", "flight.gpkg", "flight.kml", "photos.csv", "spec.xlsx"]
-    bad = runner.invoke(main, ["plan", str(POLYGON), "--out", str(tmp_path / "x"),
+    bad = runner.invoke(main, ["plan", str(small), "--out", str(tmp_path / "x"),
                                "--formats", "xlsx,docx"])
     assert bad.exit_code == 2 and "--formats" in bad.output and "missions" in bad.output
 
@@ -189,7 +200,8 @@ def test_without_pdf_engine_the_rest_is_written(tmp_path, no_pdf_engine):
     import openpyxl
 
     out = tmp_path / "out"
-    r = _run(["plan", str(POLYGON), "--out", str(out)], no_pdf_engine)
+    small = _small_polygon(tmp_path)
+    r = _run(["plan", str(small), "--out", str(out)], no_pdf_engine)
     err = r.stderr.decode("utf-8")
     assert r.returncode == 0, err
     names = {p.name for p in out.iterdir()}
@@ -200,7 +212,7 @@ def test_without_pdf_engine_the_rest_is_written(tmp_path, no_pdf_engine):
     assert "apt-get install libpango-1.0-0" in err and "Traceback" not in err
     openpyxl.load_workbook(out / "spec.xlsx")  # a real workbook
     # asked for by name: the workbook is still written, and the run fails at the end
-    named = _run(["plan", str(POLYGON), "--out", str(tmp_path / "n"), "--formats",
+    named = _run(["plan", str(small), "--out", str(tmp_path / "n"), "--formats",
                   "xlsx,pdf"], no_pdf_engine)
     assert named.returncode == 1
     assert {p.name for p in (tmp_path / "n").iterdir()} == {"spec.xlsx"}

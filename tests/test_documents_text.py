@@ -21,7 +21,6 @@ customer, ... — shown as typed).
 
 from __future__ import annotations
 
-import dataclasses
 import io
 import re
 import zipfile
@@ -33,13 +32,10 @@ import pytest
 pypdf = pytest.importorskip("pypdf")
 pytest.importorskip("weasyprint")
 
-from openpyxl import load_workbook  # noqa: E402
+import documents  # noqa: E402
 
 from scanplan.norms import store as norms_mod  # noqa: E402
 from scanplan.project.file import KEYS, load_project  # noqa: E402
-from scanplan.project.spec import plan_project  # noqa: E402
-from scanplan.reports.excel import render_xlsx  # noqa: E402
-from scanplan.reports.pdf import render_pdf  # noqa: E402
 
 EXAMPLES = sorted((Path(__file__).resolve().parent.parent / "examples").glob("*.toml"))
 LOCALES = ("en", "ru")
@@ -83,23 +79,20 @@ def _catalogue_words() -> frozenset[str]:
     return frozenset(words - {"with", "and", "lens", "assumed"})
 
 
+# Each example is planned once per locale and each document rendered once (the plan, the
+# workbook, the PDF's text, page 1's HTML: tests/documents.py): the tests below read them
+# many ways.
+_planned, _workbook, _page_html = documents.planned, documents.workbook, documents.page_html
+
+
 @cache
 def _documents(example: str, locale: str) -> dict[str, str]:
     """{'pdf page N' / 'xlsx SHEET' / 'xlsx chart N': text} for one example in one locale."""
-    project = load_project(example)
-    values = {sec: dict(v) for sec, v in project.values.items()}
-    values.setdefault("project", {})["locale"] = locale
-    project = dataclasses.replace(project, values=values)
-    result = plan_project(project)
-    scan = result.film.job if result.film else None
-    uav = result.uav.job if result.uav else None
     out: dict[str, str] = {}
-    pdf = pypdf.PdfReader(io.BytesIO(render_pdf(scan=scan, uav=uav, meta=result.meta,
-                                                spec=result)))
-    for i, page in enumerate(pdf.pages, 1):
-        out[f"pdf page {i}"] = page.extract_text()
-    data = render_xlsx(scan=scan, uav=uav, meta=result.meta, spec=result)
-    wb = load_workbook(io.BytesIO(data))
+    for i, text in enumerate(documents.pdf_pages(example, locale), 1):
+        out[f"pdf page {i}"] = text
+    data = _workbook(example, locale)
+    wb = documents.loaded_workbook(example, locale)
     for ws in wb.worksheets:
         cells = [ws.title]
         for row in ws.iter_rows():
@@ -317,22 +310,17 @@ def test_terminal_summary_speaks_the_projects_language(tmp_path, locale):
         assert "recommended photo scale" in text and "8.3 µm" in text
 
 
+@pytest.mark.parametrize("locale", LOCALES)
 @pytest.mark.parametrize("example", [str(e) for e in EXAMPLES], ids=[e.stem for e in EXAMPLES])
-def test_wrapped_cells_have_room(example):
+def test_wrapped_cells_have_room(example, locale):
     """A wrapped cell longer than its column gets a row tall enough for its lines, so it
     does not run over the next row where the row height is taken from the file
-    (LibreOffice)."""
+    (LibreOffice). In both locales (the example's own is one of them)."""
     import math
 
     from openpyxl.utils import get_column_letter
 
-    from scanplan.reports.excel import render_xlsx as render
-
-    project = load_project(example)
-    result = plan_project(project)
-    data = render(scan=result.film.job if result.film else None,
-                  uav=result.uav.job if result.uav else None, meta=result.meta, spec=result)
-    wb = load_workbook(io.BytesIO(data))
+    wb = documents.loaded_workbook(example, locale)
     def col_width(c: int) -> float:
         return ws.column_dimensions[get_column_letter(c)].width or 8.43
 
@@ -537,15 +525,7 @@ def _page_one_warnings(example: str, locale: str, box: str = "warnbox") -> list[
     and conditions checked), from the HTML the PDF is made of."""
     import html as html_mod
 
-    from scanplan.reports.pdf import render_html
-
-    project = load_project(example)
-    values = {sec: dict(v) for sec, v in project.values.items()}
-    values.setdefault("project", {})["locale"] = locale
-    result = plan_project(dataclasses.replace(project, values=values))
-    page = render_html(scan=result.film.job if result.film else None,
-                       uav=result.uav.job if result.uav else None, meta=result.meta,
-                       spec=result)
+    page = _page_html(example, locale)
     box = re.search(rf'<div class="{box}">.*?<ul>(.*?)</ul>', page, re.S)
     return ([html_mod.unescape(x).strip() for x in re.findall(r"<li>(.*?)</li>", box[1], re.S)]
             if box else [])
@@ -592,13 +572,10 @@ def test_russian_page_one_lists_scales_as_the_messages_do():
 def test_the_photo_count_is_written_one_way_in_the_pdf(locale, sep):
     """The valley's 16,000-odd photos: page 1, the flight geometry ('strips / photos') and
     the flight-lines table group the count alike (the geometry said 88 / 16432)."""
-    from scanplan.reports.pdf import render_html
-
-    project = load_project(str(EXAMPLES[0].parent / "uav-town-valley-2000.toml"))
-    values = {sec: dict(v) for sec, v in project.values.items()}
-    values.setdefault("project", {})["locale"] = locale
-    result = plan_project(dataclasses.replace(project, values=values))
-    page = render_html(uav=result.uav.job, meta=result.meta, spec=result)
+    example = str(EXAMPLES[0].parent / "uav-town-valley-2000.toml")
+    result = _planned(example, locale)
+    assert result.film is None  # page 1 is the UAV plan's alone
+    page = _page_html(example, locale)
     n = int(result.uav.job.plan.flight["photos"])
     assert n > 10000
     photos = f"{n // 1000}{sep}{n % 1000:03d}"
@@ -616,7 +593,7 @@ def test_terrain_pdfs_state_the_dem_the_ground_and_the_altitude(example, source,
     """The crew and the approver read on paper what the terminal prints: where the ground
     heights come from, the ground under the photos, the flight altitude above sea level."""
     path = next(e for e in EXAMPLES if e.stem == example)
-    result = plan_project(load_project(path))
+    result = _planned(str(path), locale)  # the ground does not depend on the locale
     tr = result.uav.terrain
     d = tr.summary()
     pages = [t for w, t in _documents(str(path), locale).items() if w.startswith("pdf")]

@@ -242,7 +242,7 @@ def test_a_terrain_plan_flies_its_missions_above_sea_level(tmp_path):
 
     out = tmp_path / "out"
     res = CliRunner().invoke(main, ["plan", str(EXAMPLES / "uav-town-valley-2000.toml"),
-                                    "--out", str(out)])
+                                    "--out", str(out), "--formats", "missions,gis"])
     assert res.exit_code == 0, res.output
     photos = pd.read_csv(out / "photos.csv")
     altitudes = set(photos["altitude_m"].round(2))

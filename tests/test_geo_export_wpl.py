@@ -100,6 +100,7 @@ def test_town_examples_write_a_waypoint_file_beside_every_plan(tmp_path):
     for name, frame in (("uav-town-2000", 3), ("uav-town-valley-2000", 0)):
         out = tmp_path / name
         r = CliRunner().invoke(main, ["plan", str(root / f"{name}.toml"), "--out", str(out),
+                                      "--formats", "missions",  # the files read here
                                       "-v"])  # -v: a line per file
         assert r.exit_code == 0, r.output
         files = {p.name: p.read_bytes() for p in out.iterdir()}

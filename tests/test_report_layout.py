@@ -192,9 +192,12 @@ def test_film_chart_draws_coinciding_constraints_apart_and_ticks_a_lone_scale():
 def test_workbook_chart_legend_gives_a_height_as_the_pdf_does():
     """The highest flown height 148.5 m: the workbook's chart legend said 148 m beside the
     PDF's 148.5 m (one rounding rule, Numbers.height)."""
-    result = _plan("uav-town-2000.toml", "en")
+    import documents  # the town's English workbook, rendered once per run
+
+    town = str(documents.EXAMPLES / "uav-town-2000.toml")
+    result = documents.planned(town, "en")
     assert result.uav.job.plan.heights_m["max"] == pytest.approx(148.5)
-    wb = openpyxl.load_workbook(io.BytesIO(_render(result, "xlsx")))
+    wb = documents.loaded_workbook(town, "en")
     cells = {c.value for ws in wb.worksheets for row in ws.iter_rows() for c in row
              if isinstance(c.value, str)}
     assert "highest flown: 148.5 m" in cells

@@ -337,17 +337,9 @@ def test_the_formulas_heading_is_not_left_alone_at_a_page_foot():
     """The Russian valley report put «Формулы и источники» and its norm-set sentence at the
     foot of sheet 5 and the formula table on sheet 6: the heading and its lead paragraph
     now go with the table."""
-    import dataclasses
+    import documents  # the valley's Russian PDF, rendered once per run
 
-    from scanplan.project.file import load_project
-    from scanplan.project.spec import plan_project
-
-    project = load_project(Path(__file__).parent.parent / "examples" / "uav-town-valley-2000.toml")
-    values = {sec: dict(v) for sec, v in project.values.items()}
-    values["project"]["locale"] = "ru"
-    spec = plan_project(dataclasses.replace(project, values=values))
-    data = P.render_pdf(uav=spec.uav.job, meta=spec.meta, spec=spec)
-    pages = [p.extract_text() for p in pypdf.PdfReader(io.BytesIO(data)).pages]
+    pages = documents.pdf_pages(str(documents.EXAMPLES / "uav-town-valley-2000.toml"), "ru")
     (page,) = [p for p in pages if "Формулы и источники" in p]
     assert "Нормативы:" in page and "Смысл" in page  # the formula table's head
 

@@ -4,38 +4,26 @@ in the surveyor's order X (north), Y (east)."""
 
 from __future__ import annotations
 
-import dataclasses
-import io
-from functools import cache
 from pathlib import Path
 
+import documents
 import pytest
-from openpyxl import load_workbook
 
 from scanplan.norms import load_norm_set
-from scanplan.project.file import load_project
-from scanplan.project.spec import plan_project
-from scanplan.reports.excel import render_xlsx
 from scanplan.reports.mapview import strips_table
 from scanplan.reports.wording import camera_title, param_value
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
 
-@cache
 def _planned(example: str, locale: str):
-    project = load_project(EXAMPLES / example)
-    values = {sec: dict(v) for sec, v in project.values.items()}
-    values.setdefault("project", {})["locale"] = locale
-    return plan_project(dataclasses.replace(project, values=values))
+    """The example's plan in ``locale``, planned once per run (tests/documents.py)."""
+    return documents.planned(str(EXAMPLES / example), locale)
 
 
-@cache
 def _book(example: str, locale: str):
-    r = _planned(example, locale)
-    data = render_xlsx(scan=r.film.job if r.film else None, uav=r.uav.job if r.uav else None,
-                       meta=r.meta, spec=r)
-    return load_workbook(io.BytesIO(data))
+    """Its workbook read back, rendered once per run (tests/documents.py)."""
+    return documents.loaded_workbook(str(EXAMPLES / example), locale)
 
 
 def _texts(book) -> list[str]:

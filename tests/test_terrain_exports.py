@@ -29,8 +29,11 @@ TERRAIN_COLUMNS = ["ground_m", "altitude_m", "agl_m", "ground_min_m", "ground_ma
                    "forward_overlap_pct", "side_overlap_pct"]
 
 
-def _plan_out(project: Path, out: Path) -> None:
-    r = CliRunner().invoke(main, ["plan", str(project), "--out", str(out)])
+def _plan_out(project: Path, out: Path, formats: str) -> None:
+    """``scanplan plan --out`` writing the ``formats`` a test reads (``--formats`` only
+    chooses which of the files are written: scanplan/cli/outputs.py, chosen_exports)."""
+    r = CliRunner().invoke(main, ["plan", str(project), "--out", str(out),
+                                  "--formats", formats])
     assert r.exit_code == 0, r.output
 
 
@@ -54,7 +57,7 @@ def _csv(path: Path) -> dict[str, np.ndarray]:
 @pytest.fixture(scope="module")
 def valley_out(tmp_path_factory):
     out = tmp_path_factory.mktemp("valley")
-    _plan_out(VALLEY, out)
+    _plan_out(VALLEY, out, "gis,missions")
     return out
 
 
@@ -103,7 +106,7 @@ def test_strip_and_follow_missions_hold_every_altitude_of_the_plan(tmp_path, mod
     p = _valley(tmp_path, mode)
     spec = plan_project(load_project(p))
     out = tmp_path / "out"
-    _plan_out(p, out)
+    _plan_out(p, out, "missions")
     nav = []
     for f in sorted(glob.glob(str(out / "mission*.plan"))):
         items = json.loads(Path(f).read_text(encoding="utf-8"))["mission"]["items"]
@@ -131,7 +134,7 @@ def test_strip_and_follow_missions_hold_every_altitude_of_the_plan(tmp_path, mod
 
 
 def test_film_frames_carry_their_height_above_ground(tmp_path):
-    _plan_out(RELIEF, tmp_path)
+    _plan_out(RELIEF, tmp_path, "gis,xlsx")
     c = _csv(tmp_path / "film-frames.csv")
     # a ground range: the ground under a frame is unknown (empty), its altitude is held
     # over the highest ground (230 m + 0.1 m × 6000) and its height is the largest it may
