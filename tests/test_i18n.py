@@ -15,8 +15,8 @@ from scanplan.i18n.labels import AIRCRAFT_LABELS, LABELS
 from scanplan.i18n.labels_cli import CLI
 
 # Duplicates not merged yet: at least one key of each is built at run time (f"photo_{c}",
-# f"xlsx_flight_{key}", f"param_{key}", f"value_{key}_{value}", f"design_{key}", the
-# terminal's T.get(f"cmp_{key}")) or is also a data field's name. Only ever shrinks.
+# f"xlsx_flight_{key}", f"param_{key}", f"value_{key}_{value}", f"design_{key}") or is
+# also a data field's name. Only ever shrinks.
 KNOWN: set[tuple[str, ...]] = {
     ("agl_m", "photo_agl_m"),
     ("design_coordinate_system", "map_crs"),
@@ -34,7 +34,6 @@ KNOWN: set[tuple[str, ...]] = {
     ("photo_side_overlap_pct", "side_overlap_pct"),
     ("photo_sortie", "strip_sortie"),
     ("photo_strip", "strip_no", "terrain_col_strip"),
-    ("term_cmp_data_volume", "term_volume"),
     ("value_digital_height_formula_instruction", "value_height_formula_instruction"),
     ("value_digital_height_formula_parallax", "value_height_formula_parallax"),
     ("warnings", "warnings_box"),

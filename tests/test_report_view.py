@@ -83,7 +83,7 @@ def test_one_label_catalogue_for_documents_and_terminal():
     assert Labels("ru")("map_scale") == LABELS["ru"]["map_scale"]
     # the terminal summary's words live in the same catalogue, in both languages
     terminal = {k for k in LABELS["en"] if k.startswith("term_")}
-    assert "term_map" in terminal and "term_cmp_data_volume" in terminal
+    assert "term_map" in terminal and "term_volume" in terminal
     assert terminal == {k for k in LABELS["ru"] if k.startswith("term_")}
     assert Labels("ru")("term_map") == "карта"
     assert Labels("en", "aircraft")("title_uav") != Labels("en", "uav")("title_uav")

@@ -142,7 +142,6 @@ TERMINAL: dict[str, dict[str, str]] = {
         "term_at": "at",
         "term_required_rms": "required",
         "term_rms": "RMS",
-        "term_cmp_data_volume": "data volume",
     },
     "ru": {
         "term_map": "карта",
@@ -197,7 +196,6 @@ TERMINAL: dict[str, dict[str, str]] = {
         "term_at": "на высоте",
         "term_required_rms": "требуется",
         "term_rms": "СКО",
-        "term_cmp_data_volume": "объём данных",
     },
 }
 
