@@ -38,7 +38,6 @@ KNOWN: set[tuple[str, ...]] = {
     ("value_digital_height_formula_parallax", "value_height_formula_parallax"),
     ("warnings", "warnings_box"),
     ("xlsx_flight_min_trigger_interval_s", "xlsx_min_trigger_interval_s"),
-    ("cam_pixel", "reach_pixel"),  # CLI
 }
 
 
