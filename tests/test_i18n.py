@@ -14,33 +14,9 @@ from collections import defaultdict
 from scanplan.i18n.labels import AIRCRAFT_LABELS, LABELS
 from scanplan.i18n.labels_cli import CLI
 
-# Duplicates not merged yet: at least one key of each is built at run time (f"photo_{c}",
-# f"xlsx_flight_{key}", f"param_{key}", f"value_{key}_{value}", f"design_{key}", the
-# terminal's T.get(f"cmp_{key}")) or is also a data field's name. Only ever shrinks.
-KNOWN: set[tuple[str, ...]] = {
-    ("agl_m", "photo_agl_m"),
-    ("design_coordinate_system", "map_crs"),
-    ("forward_overlap_pct", "photo_forward_overlap_pct"),
-    ("geo_n_strips", "xlsx_flight_strips"),
-    ("image_measurement_px", "param_image_measurement_px"),
-    ("max_height_m", "max_planned_height_m"),
-    ("param_height_formula", "pdf_height_formula"),
-    ("pdf_base", "xlsx_flight_base_m"),
-    ("pdf_line_spacing", "xlsx_flight_line_spacing_m"),
-    ("pdf_photo_interval", "xlsx_flight_photo_interval_s"),
-    ("photo_altitude_m", "terrain_altitude_m"),
-    ("photo_ground_m", "terrain_ground_m"),
-    ("photo_recognition_p", "probability"),
-    ("photo_side_overlap_pct", "side_overlap_pct"),
-    ("photo_sortie", "strip_sortie"),
-    ("photo_strip", "strip_no", "terrain_col_strip"),
-    ("term_cmp_data_volume", "term_volume"),
-    ("value_digital_height_formula_instruction", "value_height_formula_instruction"),
-    ("value_digital_height_formula_parallax", "value_height_formula_parallax"),
-    ("warnings", "warnings_box"),
-    ("xlsx_flight_min_trigger_interval_s", "xlsx_min_trigger_interval_s"),
-    ("cam_pixel", "reach_pixel"),  # CLI
-}
+# Duplicates not merged yet (none: every label key is written out where it is used, a
+# field's label through an explicit mapping, never built at run time). Only ever shrinks.
+KNOWN: set[tuple[str, ...]] = set()
 
 
 def duplicate_keys(catalogue: dict[str, dict[str, str]],

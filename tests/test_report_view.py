@@ -83,7 +83,7 @@ def test_one_label_catalogue_for_documents_and_terminal():
     assert Labels("ru")("map_scale") == LABELS["ru"]["map_scale"]
     # the terminal summary's words live in the same catalogue, in both languages
     terminal = {k for k in LABELS["en"] if k.startswith("term_")}
-    assert "term_map" in terminal and "term_cmp_data_volume" in terminal
+    assert "term_map" in terminal and "term_volume" in terminal
     assert terminal == {k for k in LABELS["ru"] if k.startswith("term_")}
     assert Labels("ru")("term_map") == "карта"
     assert Labels("en", "aircraft")("title_uav") != Labels("en", "uav")("title_uav")
@@ -130,12 +130,12 @@ def test_a_new_sheet_is_one_record(scan, uav, monkeypatch):
     writer and one record in SHEETS; a sheet of a section the result lacks is left out."""
     def strips(book, v):
         ws = book.sheet("xlsx_flight", landscape=False, widths=(30, 12))
-        X.put_text(ws, 1, 1, book.t("xlsx_flight_strips"))
+        X.put_text(ws, 1, 1, book.t("n_strips"))
         X.put_num(ws, 1, 2, v.uav.plan.flight.get("strips", 0), "0")
 
     monkeypatch.setattr(X, "SHEETS", (*X.SHEETS, X.Sheet("strips", strips, "uav")))
     wb = openpyxl.load_workbook(io.BytesIO(X.render_xlsx(scan=scan, uav=uav)))
     assert wb.sheetnames[-1] == LABELS["en"]["xlsx_flight"]
-    assert wb.worksheets[-1]["A1"].value == LABELS["en"]["xlsx_flight_strips"]
+    assert wb.worksheets[-1]["A1"].value == LABELS["en"]["n_strips"]
     film_only = openpyxl.load_workbook(io.BytesIO(X.render_xlsx(scan=scan)))
     assert LABELS["en"]["xlsx_flight"] not in film_only.sheetnames

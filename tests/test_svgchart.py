@@ -264,7 +264,7 @@ def _expected_texts(r, plot: str, loc: str) -> list[str]:
                 for lim in p.limits if lim.binding and lim.compares in ("GSD", "L")]
         return out
     tr = r.uav.terrain
-    return [t("agl_m", loc), t("terrain_ground_m", loc), t("terrain_altitude_m", loc),
+    return [t("agl_m", loc), t("ground_m", loc), t("altitude_m", loc),
             f"{t('terrain_plot_planned', loc)}: {n.num(tr.height_m, 0)} {m}",
             f"{t('max_height', loc)}", t("terrain_plot_x", loc)]
 

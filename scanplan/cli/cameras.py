@@ -88,7 +88,7 @@ def cameras_list(kind: str | None, norms: str, as_json: bool, locale: str = "en"
     loc = locale
     if cams:
         rows = [[w(k, loc) for k in ("cam_id", "cam_kind", "cam_carried", "cam_frame",
-                                     "cam_image", "cam_f", "cam_pixel", "cam_name")]]
+                                     "cam_image", "cam_f", "pixel_um", "cam_name")]]
         for c in cams:
             px = (f"{c.image_width_px}×{c.image_height_px}"
                   if c.image_width_px and c.image_height_px else "—")
@@ -136,7 +136,7 @@ def cameras_show(camera_id: str, norms: str, as_json: bool, locale: str = "en") 
         if as_json:
             _echo_json(steps)
             return
-        rows = [[w(k, loc) for k in ("cam_pixel", "scn_depth", "scn_frame_min", "scn_note",
+        rows = [[w(k, loc) for k in ("pixel_um", "scn_depth", "scn_frame_min", "scn_note",
                                      "source")]]
         rows += [[_num(f"{s['pixel_um']:g}", loc), s["bit_depth"] or "—",
                   "—" if s["frame_scan_min"] is None else _num(f"{s['frame_scan_min']:g}", loc),

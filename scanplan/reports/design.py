@@ -140,9 +140,9 @@ def _project_rows(spec: Any, w: _W) -> list[tuple[str, str, str]]:
         rows.append((w.t("area_km2"), w.fig(layout.area.area_km2, 2), ""))
     elif width and length:
         rows.append((w.t("area_km2"), w.fig(width * length / 1e6, 2), ""))
-    for key in ("coordinate_system", "height_system"):
-        rows.append((w.t(f"design_{key}"), getattr(p.signing, key) or "—",
-                     w.t("design_norm_contract")))
+    for key, label in (("coordinate_system", "coordinate_system"),
+                       ("height_system", "design_height_system")):
+        rows.append((w.t(label), getattr(p.signing, key) or "—", w.t("design_norm_contract")))
     return rows
 
 

@@ -30,6 +30,16 @@ _PHOTO_FORMATS = {"photo": "0", "strip": "0", "index": "0", "sortie": "0",
                   "agl_m": "0.00", "gsd_cm": "0.000", "resolution_cm": "0.000",
                   "recognition_p": "0.0000", "ground_min_m": "0.00", "ground_max_m": "0.00",
                   "forward_overlap_pct": "0.0", "side_overlap_pct": "0.0"}
+#: The label of each photo column (:func:`~scanplan.geo.export.gis.photo_columns`).
+_PHOTO_LABELS = {"photo": "photo_photo", "strip": "strip", "index": "photo_index",
+                 "sortie": "sortie", "x_m": "photo_x_m", "y_m": "photo_y_m",
+                 "lon_deg": "photo_lon_deg", "lat_deg": "photo_lat_deg",
+                 "ground_m": "ground_m", "altitude_m": "altitude_m", "agl_m": "agl_m",
+                 "gsd_cm": "photo_gsd_cm", "resolution_cm": "photo_resolution_cm",
+                 "recognition_p": "probability", "ground_min_m": "photo_ground_min_m",
+                 "ground_max_m": "photo_ground_max_m",
+                 "forward_overlap_pct": "forward_overlap_pct",
+                 "side_overlap_pct": "side_overlap_pct"}
 
 
 def add_geo_sheets(book: Any, spec: Any) -> None:
@@ -70,7 +80,7 @@ def _strips_sheet(book: Any, layout: FlightLayout, key: str, files_beside: bool)
     xy_cols = _xy_order(loc)
     ends += [(book.t(e), book.t(c)) for e in ("strip_start", "strip_end") for c in xy_cols]
     i, j = (0, 1) if xy_cols[0] == "photo_x_m" else (1, 0)
-    head = [book.t("strip_no"), book.t("strip_sortie"),
+    head = [book.t("strip"), book.t("sortie"),
             book.t("strip_frames" if layout.kind == "film" else "strip_photos"),
             book.t("strip_length_m"), book.t("strip_parts"), *(f"{e}: {c}" for e, c in ends)]
     _header(ws, row, head)
@@ -115,7 +125,7 @@ def _photos_sheet(book: Any, layout: FlightLayout, key: str) -> None:
         a, b = cols.index("x_m"), cols.index("y_m")  # X (north) before Y (east)
         cols[a], cols[b] = cols[b], cols[a]
     ws = book.sheet(key, landscape=True, widths=[14] * len(cols))
-    _header(ws, 1, [book.t(f"photo_{c}") for c in cols])
+    _header(ws, 1, [book.t(_PHOTO_LABELS[c]) for c in cols])
     arrays = [np.asarray(ph[c]) for c in cols]
     fmts = [_PHOTO_FORMATS.get(c, "0.000") for c in cols]
     for i in range(len(ph)):

@@ -509,13 +509,13 @@ def summary_items(layout: FlightLayout, locale: str) -> list[tuple[str, Any, int
     film = layout.kind == "film"
     a = layout.area
     rows: list[tuple[str, Any, int]] = [
-        (t("map_crs", locale), crs_text(layout, locale), 0),
+        (t("coordinate_system", locale), crs_text(layout, locale), 0),
         (t("area_km2", locale), a.area_km2, 3),
         (t("geo_perimeter_km", locale), a.perimeter_km, 2),
         (t("geo_direction_deg", locale), layout.direction_deg, 1),
         (t("geo_spacing_m", locale), layout.spacing_m, 1),
         (t("geo_base_m", locale), layout.base_m, 1),
-        (t("geo_n_strips", locale), len(layout.strips), 0),
+        (t("n_strips", locale), len(layout.strips), 0),
         (t("geo_n_frames" if film else "geo_n_photos", locale), len(layout.photos), 0)]
     if not film:
         rows.append((t("geo_n_sorties", locale), len(layout.sorties), 0))
@@ -543,7 +543,7 @@ def strips_table(layout: FlightLayout, locale: str, limit: int | None = MAX_TABL
     film = layout.kind == "film"
     geo = lonlat(layout) if layout.area.georeferenced else None
     where = t("strip_lat_lon" if geo is not None else "strip_xy", locale)
-    head = [t("strip_no", locale), t("strip_sortie", locale),
+    head = [t("strip", locale), t("sortie", locale),
             t("strip_frames" if film else "strip_photos", locale), t("strip_length_m", locale),
             t("strip_parts", locale), f"{t('strip_start', locale)} ({where})",
             f"{t('strip_end', locale)} ({where})"]

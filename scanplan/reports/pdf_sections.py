@@ -192,7 +192,7 @@ def _scan_view(job: ScanJob, f: _Fmt) -> dict[str, Any]:
         ]
     if "PZ" in rules.constraints:
         key = f"pdf_hf_{rules.height_formula}"
-        inputs.append((f.label("pdf_height_formula"),
+        inputs.append((f.label("height_formula"),
                        f.label(key) if key in LABELS["en"] else rules.height_formula))
     if inp.scanner:
         inputs.append((f.label("scanner"), f"{scanner_title(ns, inp.scanner, f.locale)} ("
@@ -337,9 +337,9 @@ def _uav_flight(flight: Table, f: _Fmt) -> list[tuple[str, str]]:
     rows = [
         (f.label("pdf_footprint"), f"{f.num(v['footprint'][0], 0)} × "
                                    f"{f.num(v['footprint'][1], 0)}"),
-        (f.label("pdf_base"), f.num(v["base"], 1)),
-        (f.label("pdf_line_spacing"), f.num(v["line_spacing"], 1)),
-        (f.label("pdf_photo_interval"), f.num(v["photo_interval"], 2)
+        (f.label("base_m"), f.num(v["base"], 1)),
+        (f.label("line_spacing_m"), f.num(v["line_spacing"], 1)),
+        (f.label("photo_interval_s"), f.num(v["photo_interval"], 2)
          + (f" ({f.label('pdf_trigger_min')} {f.g(trigger['min_trigger'])})"
             if trigger else "")),
         (f.label("pdf_overlap_at", lo=f.g(overlap["lo"]), hi=f.g(overlap["hi"])),

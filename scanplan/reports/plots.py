@@ -298,8 +298,8 @@ def terrain_svg(terrain: Any, limit_m: float | None, locale: str = "en") -> str:
                           + f": {number(limit_m, 0, locale)} {m}")
     top.set_ylabel(t("agl_m", locale))
     top.set_ylim(bottom=0)
-    band(bottom, ground, "#8c564b", t("terrain_ground_m", locale))
-    band(bottom, alt, "#2ca02c", t("terrain_altitude_m", locale))
+    band(bottom, ground, "#8c564b", t("ground_m", locale))
+    band(bottom, alt, "#2ca02c", t("altitude_m", locale))
     bottom.set_xscale("linear", integer=True)
     bottom.set_xlim(min(strips) - 0.5, max(strips) + 0.5)  # each strip's step, whole
     bottom.set_xlabel(t("terrain_plot_x", locale))

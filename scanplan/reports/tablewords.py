@@ -10,12 +10,11 @@ from __future__ import annotations
 
 from typing import Any
 
-from ..i18n.labels import LABELS
 from ..i18n.numbers import Numbers
 from .view import Labels
 from .views import Row
 
-__all__ = ["UNITS", "row_label", "row_unit", "row_value"]
+__all__ = ["COMPARISON_LABELS", "UNITS", "row_label", "row_unit", "row_value"]
 
 #: The label of a row whose table key is not the catalogue's (a quantity's unit after its
 #: comma is dropped for the others: ``Scan pixel, µm`` → ``Scan pixel``).
@@ -26,6 +25,11 @@ _LABELS = {"photo_to_map": "photo_to_map", "binding": "binding",
 #: The label of each unit key.
 UNITS = {"um": "um", "mb": "mb", "mm": "pdf_mm", "lpmm": "pdf_lpmm", "m": "m",
          "GB": "gb"}
+#: The label of each row of the comparison, by its key (another: its English ``quantity``).
+COMPARISON_LABELS = {"ground_pixel": "spec_cmp_ground_pixel",
+                     "ground_resolution": "spec_cmp_ground_resolution",
+                     "recognition": "spec_cmp_recognition", "frames": "spec_cmp_frames",
+                     "data_volume": "spec_cmp_data_volume"}
 _UNIT_AFTER_COMMA = {"scan_pixel_um", "scanner_pixel_um", "frame_megabytes"}
 
 
@@ -53,8 +57,8 @@ def row_label(r: Row, labels: Labels, numbers: Numbers) -> str:
         at = labels("pdf_at_height", h=numbers.g(r.fields["h"]))
         return f"{labels('motion_blur_px')} ({at})"
     if "quantity" in r.fields:  # a comparison's row: the documents' word, else English
-        key = f"spec_cmp_{r.key}"
-        return labels(key) if key in LABELS["en"] else str(r.fields["quantity"])
+        key = COMPARISON_LABELS.get(r.key)
+        return labels(key) if key else str(r.fields["quantity"])
     if r.key in _UNIT_AFTER_COMMA:
         return labels(r.key).rsplit(",", 1)[0]
     return labels(_LABELS.get(r.key, r.key), **{k: numbers.g(v) for k, v in r.fields.items()})

@@ -182,7 +182,7 @@ def _reach_lines(plan: ScanPlan, w: _Words) -> list[str]:
                         "--pixel-um" if inp.candidate_pixels_um else "") if x)
         lines.append(w("reach_head", who=who))
         both = plan.interpretation_limit_photo_scale is not None
-        rows = [[w("reach_pixel"), w("reach_scale"), w("reach_limit")]
+        rows = [[w("pixel_um"), w("reach_scale"), w("reach_limit")]
                 + ([w("reach_interpretable")] if both else [])]
         for r in plan.max_photo_scales:
             if r.max_photo_scale > 0:

@@ -12,6 +12,7 @@ from ..i18n.labels import LABELS, t
 from ..i18n.messages import scale_text
 from ..i18n.numbers import Numbers
 from .jsondoc import scale_value
+from .tablewords import COMPARISON_LABELS
 from .views import ResultTables, Row, Table, constraint_title
 
 __all__ = ["format_plan_result", "table", "text_table", "volume_text"]
@@ -229,9 +230,9 @@ def _comparison_lines(result: Any, loc: str, T: _Terminal, tables: ResultTables)
     aircraft = bool(result.uav) and result.uav.job.plan.inputs.platform == "aircraft"
     numbers = Numbers(loc)
 
-    def quantity(r: Row) -> str:  # the terminal's shorter word, else the documents' one
-        return "  " + T.get(f"cmp_{r.key}", LABELS[loc].get(f"spec_cmp_{r.key}",
-                                                               r.fields["quantity"]))
+    def quantity(r: Row) -> str:  # the documents' word
+        key = COMPARISON_LABELS.get(r.key)
+        return "  " + (t(key, loc) if key else r.fields["quantity"])
 
     def cell(r: Row, i: int, x: Any) -> str:
         return "—" if x is None else numbers.num(x, r.digits if r.digits is not None else 3)

@@ -147,8 +147,47 @@ def object_status(ns: NormSet | None, obj: Any) -> str:
     return ""
 
 
+#: The label of each norm-set parameter (one without: its note, else its name).
+_PARAM_LABELS = {
+    "block_relief_flat_pct": "param_block_relief_flat_pct",
+    "block_relief_hilly_pct": "param_block_relief_hilly_pct",
+    "block_relief_mountain_pct": "param_block_relief_mountain_pct",
+    "constraints": "param_constraints",
+    "digital_height_formula": "param_digital_height_formula",
+    "height_accuracy_fraction": "param_height_accuracy_fraction",
+    "height_formula": "height_formula",
+    "image_measurement_px": "image_measurement_px",
+    "interpretation_max_lpmm": "param_interpretation_max_lpmm",
+    "interpretation_min_lpmm": "param_interpretation_min_lpmm",
+    "min_sun_elevation_deg": "param_min_sun_elevation_deg",
+    "multi_ray": "param_multi_ray",
+    "photoplan_resolution_mm": "param_photoplan_resolution_mm",
+    "planimetric_accuracy_mm": "param_planimetric_accuracy_mm",
+    "pr_coefficient": "param_pr_coefficient",
+    "probability": "param_probability",
+    "processing_loss_k": "param_processing_loss_k",
+    "recognition_rounding": "param_recognition_rounding",
+    "shape": "param_shape",
+    "standard_forward_overlap_pct": "param_standard_forward_overlap_pct",
+    "uav_max_height_m": "param_uav_max_height_m",
+    "uav_uncontrolled_aerodrome_km": "param_uav_uncontrolled_aerodrome_km",
+}
+#: The label of each worded value of a norm-set parameter (another: as it is).
+_VALUE_LABELS = {
+    ("digital_height_formula", "normal_case"): "value_digital_height_formula_normal_case",
+    ("digital_height_formula", "instruction"): "value_height_formula_instruction",
+    ("digital_height_formula", "parallax"): "value_height_formula_parallax",
+    ("height_formula", "instruction"): "value_height_formula_instruction",
+    ("height_formula", "parallax"): "value_height_formula_parallax",
+    ("multi_ray", "off"): "value_multi_ray_off",
+    ("multi_ray", "strip"): "value_multi_ray_strip",
+    ("recognition_rounding", "exact"): "value_recognition_rounding_exact",
+    ("recognition_rounding", "paper"): "value_recognition_rounding_paper",
+}
+
+
 def param_name(ns: NormSet, key: str, locale: str) -> str:
-    """A norm-set parameter by its human name with unit (``param_<key>`` label).
+    """A norm-set parameter by its human name with unit (its label, :data:`_PARAM_LABELS`).
 
     Parameters
     ----------
@@ -162,9 +201,8 @@ def param_name(ns: NormSet, key: str, locale: str) -> str:
     -------
     str
     """
-    label = f"param_{key}"
-    if label in LABELS["en"]:
-        return t(label, locale)
+    if key in _PARAM_LABELS:
+        return t(_PARAM_LABELS[key], locale)
     note = getattr(ns, "parameter_notes", {}).get(key, "") if ns is not None else ""
     return note or key.replace("_", " ")
 
@@ -202,7 +240,8 @@ def param_value(ns: NormSet, key: str, value: Any, locale: str,
         title = shape_title(ns, value, locale)
         return f"{title} (B = {number(coef) if number else coef})" if coef else title
     if isinstance(value, str):
-        return _label_or(f"value_{key}_{value}", locale, value)
+        label = _VALUE_LABELS.get((key, value))
+        return t(label, locale) if label else value
     if isinstance(value, list | tuple):
         return ("; " if locale == "ru" else ", ").join(
             number(v) if isinstance(v, int | float) and not isinstance(v, bool) else str(v)

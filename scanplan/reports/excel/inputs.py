@@ -98,7 +98,7 @@ def _inputs_uav(book: Book, ws: Worksheet, row: int, job: UavJob) -> int:
         ("xlsx_sensor_height_mm", inp.sensor_height_mm, F2),
         ("xlsx_image_width_px", inp.image_width_px, INT),
         ("xlsx_image_height_px", inp.image_height_px, INT),
-        ("xlsx_min_trigger_interval_s", inp.min_trigger_interval_s, F3),
+        ("min_trigger_interval_s", inp.min_trigger_interval_s, F3),
         ("height_m", inp.height_m, F1),
         ("xlsx_tolerance_up_pct", inp.height_tolerance_up_pct, F1),
         ("xlsx_tolerance_down_pct", inp.height_tolerance_down_pct, F1),

@@ -81,7 +81,7 @@ def summary_sheet(book: Book, scan: ScanJob | None, uav: UavJob | None,
         put_text(ws, row, 2, value or line)
         put_text(ws, row, 3, line)
         row += 1
-    for key, info in (("warnings_box", False), ("notes_box", True)):
+    for key, info in (("warnings", False), ("notes_box", True)):
         box = _warning_lines(book, scan, uav, info=info)
         if box:
             row = book.section(ws, row + 1, book.t(key))

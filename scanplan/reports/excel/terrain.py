@@ -22,7 +22,7 @@ def terrain_sheet(book: Book, spec: Any) -> None:
     ws = book.sheet("terrain_sheet", landscape=True, widths=[9, 12, 12, 12, 12, 12, 12, 14,
                                                               12, 10])
     _header(ws, 1, [book.t(k) for k in (
-        "terrain_col_strip", "terrain_col_ground_min", "terrain_col_ground_max",
+        "strip", "terrain_col_ground_min", "terrain_col_ground_max",
         "terrain_col_alt_min", "terrain_col_alt_max", "terrain_col_agl_min",
         "terrain_col_agl_max", "terrain_col_max_alt", "terrain_col_excess",
         "terrain_col_worst")])

@@ -161,16 +161,32 @@ def _recognition_rows(book: Book, ws: Worksheet, row: int, job: UavJob) -> int:
     return row
 
 
+#: The label of each figure of :attr:`UavPlan.flight` (another: by its name).
+_FLIGHT_LABELS = {
+    "footprint_across_m": "xlsx_flight_footprint_across_m",
+    "footprint_along_m": "xlsx_flight_footprint_along_m",
+    "base_m": "base_m", "line_spacing_m": "line_spacing_m",
+    "photo_interval_s": "photo_interval_s",
+    "forward_overlap_at_min_height_pct": "xlsx_flight_forward_overlap_at_min_height_pct",
+    "side_overlap_at_min_height_pct": "xlsx_flight_side_overlap_at_min_height_pct",
+    "forward_overlap_at_max_height_pct": "xlsx_flight_forward_overlap_at_max_height_pct",
+    "min_trigger_interval_s": "min_trigger_interval_s",
+    "max_speed_for_trigger_ms": "xlsx_flight_max_speed_for_trigger_ms",
+    "strips": "n_strips", "photos_per_strip": "xlsx_flight_photos_per_strip",
+    "photos": "xlsx_flight_photos", "sorties": "xlsx_flight_sorties",
+    "flight_length_m": "xlsx_flight_flight_length_m",
+    "flight_time_s": "xlsx_flight_flight_time_s",
+    "data_volume_bytes": "xlsx_flight_data_volume_bytes",
+}
+
+
 def _flight_rows(book: Book, ws: Worksheet, row: int, plan: UavPlan) -> int:
     """The flight geometry (footprint, base, line spacing, photos ...)."""
     if not plan.flight:
         return row
     row = book.section(ws, row + 1, book.t("xlsx_flight"))
     for key, value in plan.flight.items():
-        try:
-            label = book.t(f"xlsx_flight_{key}")
-        except KeyError:
-            label = key
+        label = book.t(_FLIGHT_LABELS[key]) if key in _FLIGHT_LABELS else key
         fmt = INT if (key.endswith("_bytes") or key in ("strips", "photos",
                                                         "photos_per_strip")) else F2
         row = book.kv(ws, row, label, value, fmt if not isinstance(value, str)
