@@ -235,3 +235,25 @@ def _toml(data: dict) -> str:
         for k, v in values.items():
             out.append(f"{k} = {v!r}".replace("'", '"'))
     return "\n".join(out) + "\n"
+
+
+def test_the_film_inputs_carry_the_registry_units_and_decimals(film):
+    """``film_inputs``: each number with its input record's unit and decimals; the
+    workbook's Inputs sheet formats its cells by them."""
+    from scanplan.project.inputs import get
+
+    plan = film.film.job.plan
+    view = build_view(scan=film.film.job, meta=film.meta, spec=film)
+    t = view.tables["film_inputs"]
+    for key in ("relief_interval_m", "focal_mm", "probability", "pr_coefficient", "bands"):
+        assert t.row(key).digits == get(key, "film").digits
+        assert t.row(key).unit == get(key, "film").unit
+    assert t.row("map_scale").unit == "scale" and t.row("map_scale").value == \
+        plan.inputs.map_scale
+    assert t.row("photo_scales").value == tuple(plan.inputs.photo_scales)
+    sheet = openpyxl.load_workbook(io.BytesIO(render_xlsx(view=view)))["Inputs"]
+    cells = {row[0].value: row[1] for row in sheet.iter_rows() if row[0].value}
+    relief = cells[view.labels("relief_interval_m")]
+    assert relief.value == plan.inputs.relief_interval_m and relief.number_format == "0.00"
+    assert cells[view.labels("xlsx_bands")].number_format == "#,##0"
+    assert view.tables.built.count("film_inputs") == 1

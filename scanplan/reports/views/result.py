@@ -8,6 +8,7 @@ from typing import Any
 
 from .film import film_constraints
 from .headline import spec_film, spec_uav
+from .inputs import film_inputs
 from .spec import all_warnings, comparison, warnings
 from .table import Table
 from .uav import uav_flight, uav_limits, uav_recognition, uav_results
@@ -19,6 +20,7 @@ __all__ = ["TABLES", "ResultTables"]
 #: it has that part; ``"all"``: the :class:`ResultTables`, whichever it has) and its builder.
 TABLES: dict[str, tuple[str, Callable[[Any], Table]]] = {
     "film_constraints": ("scan", film_constraints),
+    "film_inputs": ("scan", film_inputs),
     "uav_results": ("uav", uav_results),
     "uav_limits": ("uav", uav_limits),
     "uav_flight": ("uav", uav_flight),
