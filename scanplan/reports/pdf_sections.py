@@ -158,45 +158,58 @@ def _norm_view(ns: NormSet, f: _Fmt) -> dict[str, Any]:
             "imported_from": ns.imported_from, "imported_at": ns.imported_at}
 
 
+def _film_inputs(tbl: Table, ns: NormSet, f: _Fmt) -> list[tuple[str, str]]:
+    """The film section's inputs (the ``film_inputs`` table), each number in its shortest
+    form: scales, camera, frame, object, height formula, scanner, bands."""
+    r = {row.key: row for row in tbl.rows}
+    inputs: list[tuple[str, str]] = [
+        (f.label("map_scale"), f.scale(r["map_scale"].value)),
+        (f.label("relief_interval_m"), f.g(r["relief_interval_m"].value)),
+        (f.label("photo_scale"), f.list_sep.join(f.scale(x) for x in r["photo_scales"].value)),
+    ]
+    camera = r["camera"]
+    if camera.value or camera.fields["name"]:
+        inputs.append((f.label("camera"), camera_title(ns, camera.value, f.locale,
+                                                       camera.fields["name"])))
+    width, along = r["frame_mm"].value
+    inputs += [
+        (f.label("focal_mm"), f.g(r["focal_mm"].value)),
+        (f.label("frame_mm"), f"{f.g(width)} × {f.g(along)}"),
+        (f.label("resolving_power_lpmm"), f.g(r["resolving_power_lpmm"].value)),
+        (f.label("forward_overlap_pct"), f.g(r["forward_overlap_pct"].value)),
+    ]
+    obj = r["object"].value
+    if obj is not None:
+        inputs += [
+            (f.label("object"), f"{object_title(obj, f.locale)}: "
+                                f"{f.g(r['object_size_m'].value)} {f.label('m')}, "
+                                f"{_shape_name(ns, r['shape'].value, f.locale)}, "
+                                f"B = {f.g(r['shape_coefficient'].value)}"),
+            (f.label("probability"), f.g(r["probability"].value)),
+            (f.label("norm_rows"), with_status(f.cite(localize(r["object_source"].value,
+                                                               f.locale)),
+                                               object_status(ns, obj), f.locale)),
+        ]
+    formula = r["height_formula"]
+    if formula.fields["used"]:
+        key = f"pdf_hf_{formula.value}"
+        inputs.append((f.label("pdf_height_formula"),
+                       f.label(key) if key in LABELS["en"] else formula.value))
+    if r["scanner"].value:
+        steps = r["scanner_steps_um"].value if "scanner_steps_um" in r else ()
+        inputs.append((f.label("scanner"), f"{scanner_title(ns, r['scanner'].value, f.locale)}"
+                       " (" + f.list_sep.join(f.g(x) for x in steps) + f" {f.label('um')})"))
+    inputs.append((f.label("pdf_bands"), f"{r['bands'].value} × {r['bits_per_band'].value}"))
+    inputs.append((f.label("norm_set"), _norm_view(ns, f)["title"]))
+    return inputs
+
+
 def _scan_view(job: ScanJob, f: _Fmt) -> dict[str, Any]:
     plan: ScanPlan = job.plan
     inp, rules, ns = plan.inputs, plan.rules, job.norm_set
-    um = f.label("um")
-    inputs: list[tuple[str, str]] = [
-        (f.label("map_scale"), f.scale(inp.map_scale)),
-        (f.label("relief_interval_m"), f.g(inp.relief_interval_m)),
-        (f.label("photo_scale"), f.list_sep.join(f.scale(s) for s in inp.photo_scales)),
-    ]
-    if inp.camera or inp.camera_name:
-        inputs.append((f.label("camera"), camera_title(ns, inp.camera, f.locale,
-                                                       inp.camera_name)))
-    inputs += [
-        (f.label("focal_mm"), f.g(inp.focal_mm)),
-        (f.label("frame_mm"), f"{f.g(inp.frame_width_mm)} × {f.g(inp.frame_along_mm)}"),
-        (f.label("resolving_power_lpmm"), f.g(inp.resolving_power_lpmm)),
-        (f.label("forward_overlap_pct"), f.g(inp.forward_overlap_pct)),
-    ]
+    inputs = _film_inputs(f.view.tables["film_inputs"], ns, f)
     obj = inp.object
-    obj_name = ""
-    if obj is not None:
-        obj_name = object_title(obj, f.locale)
-        inputs += [
-            (f.label("object"), f"{obj_name}: {f.g(obj.size_m)} {f.label('m')}, "
-                                f"{_shape_name(ns, obj.shape, f.locale)}, "
-                                f"B = {f.g(obj.shape_coefficient)}"),
-            (f.label("probability"), f.g(rules.probability)),
-            (f.label("norm_rows"), with_status(f.cite(localize(obj.source, f.locale)),
-                                               object_status(ns, obj), f.locale)),
-        ]
-    if "PZ" in rules.constraints:
-        key = f"pdf_hf_{rules.height_formula}"
-        inputs.append((f.label("pdf_height_formula"),
-                       f.label(key) if key in LABELS["en"] else rules.height_formula))
-    if inp.scanner:
-        inputs.append((f.label("scanner"), f"{scanner_title(ns, inp.scanner, f.locale)} ("
-                       + f.list_sep.join(f.g(s) for s in inp.scanner_steps_um) + f" {um})"))
-    inputs.append((f.label("pdf_bands"), f"{inp.bands} × {inp.bits_per_band}"))
-    inputs.append((f.label("norm_set"), _norm_view(ns, f)["title"]))
+    obj_name = object_title(obj, f.locale) if obj is not None else ""
 
     # at most _MAX_COLUMNS photo scales per table, so a wide plan stays inside A4
     scen = plan.scenarios

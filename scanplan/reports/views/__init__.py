@@ -9,8 +9,8 @@ a language nor a number format; a constraint is named by the rules registry
 (:func:`~.table.constraint_title`).
 
 The tables (:data:`TABLES`): ``film_constraints`` (:func:`~.film.film_constraints`) and
-``film_inputs`` (:func:`~.inputs.film_inputs`: the Inputs sheet's film rows, the input
-registry's units and decimals);
+``film_inputs`` (:func:`~.inputs.film_inputs`: the film inputs of the Inputs sheet and the
+PDF, with the input registry's units and decimals);
 ``uav_results``, ``uav_limits``, ``uav_flight`` and ``uav_recognition`` (:mod:`.uav`);
 the specification's headline ``spec_film`` and ``spec_uav`` (:mod:`.headline`);
 ``comparison`` and the warnings ``film_warnings``, ``uav_warnings``, ``spec_warnings`` and

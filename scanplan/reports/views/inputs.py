@@ -1,6 +1,6 @@
 """The film plan's inputs: what the plan was computed from, each number with the input
 registry's unit and decimals (:mod:`scanplan.project.inputs`) — the workbook's Inputs sheet
-lays it out (:func:`film_inputs`)."""
+and the PDF's film section lay it out (:func:`film_inputs`)."""
 
 from __future__ import annotations
 
@@ -37,7 +37,8 @@ def film_inputs(plan: Any) -> Table:
         pair: across, along; the record has no decimals), ``resolving_power_lpmm``,
         ``forward_overlap_pct``, ``object`` (the map object or None; with one
         ``object_size_m``, ``shape`` (its id), ``shape_coefficient`` and ``object_source``
-        (a :class:`~scanplan.messages.Message`)), ``probability``, ``height_formula``,
+        (a :class:`~scanplan.messages.Message`)), ``probability``, ``height_formula``
+        (field ``used``: whether the height accuracy constraint is),
         ``pr_coefficient``, ``scanner``, with steps ``scanner_steps_um`` and with candidate
         pixels ``candidate_pixels_um`` (decimals of ``pixel_um``), ``bands`` and
         ``bits_per_band``.
@@ -59,7 +60,8 @@ def film_inputs(plan: Any) -> Table:
                  Row("shape_coefficient", (obj.shape_coefficient,), digits=2),
                  Row("object_source", (obj.source,))]
     rows += [_number("probability", rules.probability),
-             Row("height_formula", (rules.height_formula,)),
+             Row("height_formula", (rules.height_formula,),
+                 fields={"used": "PZ" in rules.constraints}),
              _number("pr_coefficient", rules.pr_coefficient),
              Row("scanner", (inp.scanner,))]
     if inp.scanner_steps_um:
