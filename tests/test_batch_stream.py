@@ -39,10 +39,10 @@ def test_a_text_batch_keeps_no_result_alive(tmp_path, monkeypatch):
     real = cli_main._run_project
 
     def tracked(*args, **kw):
-        result = real(*args, **kw)
-        assert isinstance(result, PlanResult)
+        result, tables = planned = real(*args, **kw)
+        assert isinstance(result, PlanResult) and tables.spec is result
         alive.append(weakref.ref(result))
-        return result
+        return planned
 
     monkeypatch.setattr(cli_main, "_run_project", tracked)
     import scanplan.reports.text as text_mod

@@ -151,3 +151,109 @@ def test_the_views_import_no_renderer_and_no_labels():
                 assert node.level == 1 or (node.level == 3 and node.module
                                            and not node.module.startswith("reports")), \
                     f"{path.name}:{node.lineno} imports {'.' * node.level}{node.module}"
+
+
+def test_the_headline_tables_hold_the_specification(both):
+    """``spec_film`` / ``spec_uav``: what the specification chose, built from the
+    ``PlanResult`` once, laid out by the terminal summary, the PDF and the workbook."""
+    tables = ResultTables.of_jobs(both.film.job, both.uav.job, both)
+    assert tables.has("spec_film") and tables.has("spec_uav")
+    film, rec = tables["spec_film"], both.film.recommended
+    assert film.row("photo_scale").value == rec.photo_scale
+    assert film.row("scan_pixel_um").value == rec.scan_pixel_um
+    assert film.row("binding").value == rec.binding and "constraint" in film.row(
+        "binding").flags
+    assert film.row("frames").value == both.film.frames
+    assert film.row("reason").value is both.film.reason
+    uav, p = tables["spec_uav"], both.uav.job.plan
+    assert uav.row("recommended_height_m").value == both.uav.recommended_height_m
+    assert uav.row("gsd_cm").value == pytest.approx(p.gsd_m * 100)
+    assert uav.row("photos").value == p.flight["photos"]
+    assert uav.keys()[-1] == "reason"
+    assert not ResultTables(scan=both.film.job.plan).has("spec_film")
+    view = build_view(scan=both.film.job, uav=both.uav.job, meta=both.meta, spec=both,
+                      tables=tables)
+    assert view.tables is tables
+    html = render_html(view=view)
+    book = openpyxl.load_workbook(io.BytesIO(render_xlsx(view=view)))
+    text = format_plan_result(both, tables=tables)
+    assert tables.built.count("spec_film") == 1 and tables.built.count("spec_uav") == 1
+    summary = {row[0]: row[1] for row in book["Summary"].iter_rows(values_only=True)}
+    assert summary[view.labels("spec_recommended_height_m")] == uav.row(
+        "recommended_height_m").value
+    numbers = Numbers("en")
+    for shown in (numbers.num(film.row("scan_pixel_um").value, 1),
+                  numbers.num(uav.row("recommended_height_m").value, 0)):
+        assert shown in html and shown in text
+
+
+def test_a_views_tables_are_its_results_only(both, film):
+    """Tables handed to a view must be of that result."""
+    other = ResultTables.of_jobs(film.film.job, None, film)
+    with pytest.raises(ValueError, match="not this result"):
+        build_view(scan=both.film.job, uav=both.uav.job, spec=both, tables=other)
+
+
+def test_plan_lays_out_one_view_in_the_terminal_and_the_documents(tmp_path, monkeypatch):
+    """``scanplan plan --out``: the terminal summary and the documents lay out one
+    ``ResultTables``, each table built once."""
+    from click.testing import CliRunner
+
+    import scanplan.reports.text as text_mod
+    import scanplan.reports.view as view_mod
+    from scanplan.cli.main import main
+
+    monkeypatch.setenv("SCANPLAN_NO_FORK", "1")
+    seen: dict[str, object] = {}
+    real_view, real_text = view_mod.build_view, text_mod.format_plan_result
+
+    def build_view_spy(**kw):
+        view = real_view(**kw)
+        seen["view"] = view.tables
+        return view
+
+    def format_spy(result, locale=None, tables=None):
+        seen["text"] = tables
+        return real_text(result, locale, tables)
+
+    monkeypatch.setattr(view_mod, "build_view", build_view_spy)
+    monkeypatch.setattr(text_mod, "format_plan_result", format_spy)
+    project = tmp_path / "p.toml"
+    project.write_text(_toml(BOTH), encoding="utf-8")
+    r = CliRunner().invoke(main, ["plan", str(project), "--xlsx", str(tmp_path / "p.xlsx")])
+    assert r.exit_code == 0, r.output
+    tables = seen["text"]
+    assert tables is seen["view"] and tables is not None
+    assert {"spec_film", "spec_uav", "comparison", "spec_warnings"} <= set(tables.built)
+    assert len(tables.built) == len(set(tables.built))
+
+
+def _toml(data: dict) -> str:
+    out = []
+    for section, values in data.items():
+        out.append(f"[{section}]")
+        for k, v in values.items():
+            out.append(f"{k} = {v!r}".replace("'", '"'))
+    return "\n".join(out) + "\n"
+
+
+def test_the_film_inputs_carry_the_registry_units_and_decimals(film):
+    """``film_inputs``: each number with its input record's unit and decimals; the
+    workbook's Inputs sheet formats its cells by them."""
+    from scanplan.project.inputs import get
+
+    plan = film.film.job.plan
+    view = build_view(scan=film.film.job, meta=film.meta, spec=film)
+    t = view.tables["film_inputs"]
+    for key in ("relief_interval_m", "focal_mm", "probability", "pr_coefficient", "bands"):
+        assert t.row(key).digits == get(key, "film").digits
+        assert t.row(key).unit == get(key, "film").unit
+    assert t.row("map_scale").unit == "scale" and t.row("map_scale").value == \
+        plan.inputs.map_scale
+    assert t.row("photo_scales").value == tuple(plan.inputs.photo_scales)
+    sheet = openpyxl.load_workbook(io.BytesIO(render_xlsx(view=view)))["Inputs"]
+    cells = {row[0].value: row[1] for row in sheet.iter_rows() if row[0].value}
+    relief = cells[view.labels("relief_interval_m")]
+    assert relief.value == plan.inputs.relief_interval_m and relief.number_format == "0.00"
+    assert cells[view.labels("xlsx_bands")].number_format == "#,##0"
+    assert view.tables.built.count("film_inputs") == 1

@@ -487,12 +487,15 @@ def batch_stems(files: list[str]) -> list[str]:
 def _run_project(path: str, out_dir: str | None, stem: str | None, xlsx_path: str | None,
                  pdf_path: str | None, files: list[str], force: bool,
                  say: Callable[[str], None] | None = None, pdf_worker: Any = None,
-                 formats: tuple[str, ...] | None = None) -> Any:
-    """Plan one project and write its reports (both or neither); the PlanResult. ``say``
-    receives the ``wrote FILE`` lines (default: stderr); ``pdf_worker`` (a
-    :class:`scanplan.reports.pdfworker.PdfWorker`) renders the PDF on another core."""
+                 formats: tuple[str, ...] | None = None) -> tuple[Any, Any]:
+    """Plan one project and write its reports (both or neither); the PlanResult and its
+    tables (one ``ResultTables``: the documents' view holds them, and the terminal summary
+    lays them out). ``say`` receives the ``wrote FILE`` lines (default: stderr);
+    ``pdf_worker`` (a :class:`scanplan.reports.pdfworker.PdfWorker`) renders the PDF on
+    another core."""
     from ..project.spec import plan_project
     from ..reports.documents import project_inputs
+    from ..reports.views import ResultTables
     from .projects import read_project
 
     fields = ("--xlsx", "--pdf")
@@ -520,15 +523,16 @@ def _run_project(path: str, out_dir: str | None, stem: str | None, xlsx_path: st
             note=say or console.info), formats)
     film = result.film.job if result.film else None
     uav_ = result.uav.job if result.uav else None
+    tables = ResultTables.of_jobs(film, uav_, result)
     write_reports(xlsx=xlsx_path, pdf=pdf_path, meta=result.meta, scan=film, uav=uav_,
                   spec=result, fields=fields, force=force, inputs=files, exports=exports,
                   note=note, say=say, pdf_worker=pdf_worker,
                   # never leave a stale sortie of an earlier plan behind
                   sweep=out_dir if out_dir and stem is None else None,
-                  pdf_explicit=explicit)
+                  pdf_explicit=explicit, tables=tables)
     if out_dir:  # a mission or photo table not written is said, with the reason
         say_export_notes(result, say)
-    return result
+    return result, tables
 
 
 def _batch_worker(task: tuple[Any, ...]) -> tuple[str, str, Any, list[str]]:
@@ -548,8 +552,8 @@ def _batch_worker(task: tuple[Any, ...]) -> tuple[str, str, Any, list[str]]:
         with warnings.catch_warnings():
             if not os.environ.get("SCANPLAN_DEBUG"):
                 warnings.simplefilter("ignore")
-            result = _run_project(path, out_dir, stem, None, None, files, force, said.append,
-                                  formats=formats)
+            result, _ = _run_project(path, out_dir, stem, None, None, files, force,
+                                     said.append, formats=formats)
         doc = json.loads(json.dumps(plan_result_dict(result), ensure_ascii=False,
                                     allow_nan=False)) if as_json else None
         text = None if as_json else batch_text(path, result)  # not the result itself
@@ -606,15 +610,15 @@ def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: s
     if not batch:
         pdf = bool(pdf_path or (out_dir and outputs.selected(formats, "pdf")))
         with _pdf_worker(pdf) as worker, console.stage_bars():
-            result = _run_project(files[0], out_dir, None, xlsx_path, pdf_path, files, force,
-                                  pdf_worker=worker, formats=formats)
+            result, tables = _run_project(files[0], out_dir, None, xlsx_path, pdf_path,
+                                          files, force, pdf_worker=worker, formats=formats)
         from ..reports.jsondoc import plan_result_dict
         from ..reports.text import format_plan_result
 
         if as_json:
             _echo_json(plan_result_dict(result))
         else:
-            click.echo(format_plan_result(result))
+            click.echo(format_plan_result(result, tables=tables))
         return
     stems = batch_stems(files)
     tasks = [(path, out_dir, stem, files, force, as_json, formats)

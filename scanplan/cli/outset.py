@@ -26,7 +26,7 @@ def write_reports(*, xlsx: str | None, pdf: str | None, meta: Any, scan: Any = N
                   exports: Mapping[str, tuple[Any, bytes]] | None = None,
                   note: str = "", say: Callable[[str], None] | None = None,
                   pdf_worker: Any = None, sweep: str | None = None,
-                  pdf_explicit: bool = True) -> None:
+                  pdf_explicit: bool = True, tables: Any = None) -> None:
     """Write the requested reports (and ``plan --out``'s ``exports``: path → (kind,
     bytes)) as one transaction (:func:`scanplan.reports.documents.write_documents`); say
     where on stderr (stdout may carry --json).
@@ -34,7 +34,8 @@ def write_reports(*, xlsx: str | None, pdf: str | None, meta: Any, scan: Any = N
     ``fields`` name the --xlsx and --pdf targets in messages; ``pdf_worker`` renders the
     PDF on the second core; ``sweep`` is the --out folder whose stale exports go (one
     project); ``pdf_explicit``: the PDF was asked for by name (without an engine the
-    command fails at the end).
+    command fails at the end); ``tables``: the result's tables (``ResultTables``) the
+    documents' view holds, when the terminal lays them out too.
     """
     from ..reports.documents import Target, write_documents
     from . import outputs
@@ -44,7 +45,7 @@ def write_reports(*, xlsx: str | None, pdf: str | None, meta: Any, scan: Any = N
     done = write_documents(targets, scan=scan, uav=uav, spec=spec, meta=meta, extra=exports,
                            inputs=inputs, force=force, sweep=sweep, pdf_worker=pdf_worker,
                            pdf_engine=lambda: outputs.pdf_renderer(pdf_explicit),
-                           on_missing=outputs.warn_stale, announce=announce)
+                           on_missing=outputs.warn_stale, announce=announce, tables=tables)
     say_written(done.files, done.removed, say or info, note)
 
 

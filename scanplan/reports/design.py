@@ -22,7 +22,7 @@ from ..i18n.labels import t
 from ..i18n.messages import Message, localize, plural, scale_text
 from ..i18n.numbers import Numbers
 from ..rules.registry import CONSTRAINTS
-from .views import constraint_title
+from .views import constraint_title, relief_max_height_m
 from .wording import camera_title, display_message, document_date, sentence, with_status
 
 _PARTS = {"en": ("part", "parts"), "ru": ("часть", "части", "частей")}
@@ -161,17 +161,6 @@ def _gsd_row(design: Any, workflow: str, w: _W) -> tuple[str, str, str] | None:
             label = "design_gsd_digital" if workflow == "digital" else "design_gsd_film"
             return (w.t(label), value, norm)
     return None
-
-
-def relief_max_height_m(uav: Any) -> float | None:
-    """The maximum planned height over the relief (``[terrain]``: the worst photo meets
-    its binding constraint up to it, above the reference ground) [m], when it is lower than
-    the flat-ground maximum the tables show beside it; None otherwise."""
-    terrain = getattr(uav, "terrain", None)
-    limit = getattr(terrain, "max_height_m", None)
-    if limit is None or uav.max_height_m is None or limit >= uav.max_height_m - 0.5:
-        return None
-    return float(limit)
 
 
 def _uav_rows(spec: Any, w: _W) -> list[tuple[str, str, str]]:

@@ -119,7 +119,7 @@ def _pdf_engine() -> Callable[..., bytes]:
 def render_documents(targets: Sequence[Target], *, scan: Any = None, uav: Any = None,
                      spec: Any = None, meta: Any = None,
                      pdf_engine: Callable[[], Callable[..., bytes] | None] | None = None,
-                     pdf_worker: Any = None) -> dict[str, bytes]:
+                     pdf_worker: Any = None, tables: Any = None) -> dict[str, bytes]:
     """Render the documents of ``targets`` to memory from one view of the result.
 
     Parameters
@@ -134,6 +134,9 @@ def render_documents(targets: Sequence[Target], *, scan: Any = None, uav: Any = 
     pdf_worker : PdfWorker, optional
         Renders the PDF in another process (:mod:`scanplan.reports.pdfworker`); a worker
         that fails gives way to the renderer here.
+    tables : ResultTables, optional
+        The result's tables, when the caller lays them out too (``scanplan plan``'s
+        terminal summary): the view holds these (:func:`scanplan.reports.view.build_view`).
 
     Returns
     -------
@@ -145,7 +148,7 @@ def render_documents(targets: Sequence[Target], *, scan: Any = None, uav: Any = 
     engine = pdf_engine or _pdf_engine
     extra = {"spec": spec} if spec is not None else {}
     # one view of the result for every document: labels, numbers and plots built once
-    view = build_view(scan=scan, uav=uav, meta=meta, spec=spec)
+    view = build_view(scan=scan, uav=uav, meta=meta, spec=spec, tables=tables)
     pdf = next((t.path for t in targets if t.kind == "pdf"), None)
     # the PDF renders in the worker, from the HTML written here, while this process builds
     # the workbook; a worker that fails gives None and the PDF is rendered here (any error
@@ -211,7 +214,8 @@ def write_documents(targets: Sequence[Target], *, scan: Any = None, uav: Any = N
                     pdf_engine: Callable[[], Callable[..., bytes] | None] | None = None,
                     pdf_worker: Any = None,
                     on_missing: Callable[[list[str]], None] | None = None,
-                    announce: Callable[[Mapping[str, bytes]], None] | None = None) -> Written:
+                    announce: Callable[[Mapping[str, bytes]], None] | None = None,
+                    tables: Any = None) -> Written:
     """Render the documents of ``targets`` and write them with ``extra`` as one
     transaction: all of them, or none (the module docstring's steps).
 
@@ -237,6 +241,8 @@ def write_documents(targets: Sequence[Target], *, scan: Any = None, uav: Any = N
         Told the documents not rendered, before anything is written.
     announce : callable, optional
         Told the whole set just before it is written.
+    tables : ResultTables, optional
+        As :func:`render_documents`.
 
     Raises
     ------
@@ -251,7 +257,7 @@ def write_documents(targets: Sequence[Target], *, scan: Any = None, uav: Any = N
     refuse_targets(targets)
     check()
     rendered = render_documents(targets, scan=scan, uav=uav, spec=spec, meta=meta,
-                                pdf_engine=pdf_engine, pdf_worker=pdf_worker)
+                                pdf_engine=pdf_engine, pdf_worker=pdf_worker, tables=tables)
     missing = [t.path for t in targets if t.path not in rendered]
     if missing and on_missing is not None:
         on_missing(missing)

@@ -14,7 +14,6 @@ import re
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
-from ..core import flight as FL
 from ..core.flight import MAX_BLUR_PX
 from ..i18n.labels import LABELS
 from ..i18n.messages import localize
@@ -23,12 +22,11 @@ from ..norms.schema import DIGITAL_ONLY_PARAMETERS
 from ..project.jobs import ScanJob, UavJob
 from ..rules.film import CONSTRAINTS, ScanPlan
 from ..rules.uav import UavPlan
-from .design import relief_max_height_m
 from .plots import view_plot_uri
 from .references import Bibliography
 from .tablewords import row_label, row_unit, row_value
 from .view import ReportView, warning_heading_key
-from .views import Table
+from .views import Row, Table
 from .wording import (
     camera_title,
     display_message,
@@ -160,45 +158,58 @@ def _norm_view(ns: NormSet, f: _Fmt) -> dict[str, Any]:
             "imported_from": ns.imported_from, "imported_at": ns.imported_at}
 
 
+def _film_inputs(tbl: Table, ns: NormSet, f: _Fmt) -> list[tuple[str, str]]:
+    """The film section's inputs (the ``film_inputs`` table), each number in its shortest
+    form: scales, camera, frame, object, height formula, scanner, bands."""
+    r = {row.key: row for row in tbl.rows}
+    inputs: list[tuple[str, str]] = [
+        (f.label("map_scale"), f.scale(r["map_scale"].value)),
+        (f.label("relief_interval_m"), f.g(r["relief_interval_m"].value)),
+        (f.label("photo_scale"), f.list_sep.join(f.scale(x) for x in r["photo_scales"].value)),
+    ]
+    camera = r["camera"]
+    if camera.value or camera.fields["name"]:
+        inputs.append((f.label("camera"), camera_title(ns, camera.value, f.locale,
+                                                       camera.fields["name"])))
+    width, along = r["frame_mm"].value
+    inputs += [
+        (f.label("focal_mm"), f.g(r["focal_mm"].value)),
+        (f.label("frame_mm"), f"{f.g(width)} × {f.g(along)}"),
+        (f.label("resolving_power_lpmm"), f.g(r["resolving_power_lpmm"].value)),
+        (f.label("forward_overlap_pct"), f.g(r["forward_overlap_pct"].value)),
+    ]
+    obj = r["object"].value
+    if obj is not None:
+        inputs += [
+            (f.label("object"), f"{object_title(obj, f.locale)}: "
+                                f"{f.g(r['object_size_m'].value)} {f.label('m')}, "
+                                f"{_shape_name(ns, r['shape'].value, f.locale)}, "
+                                f"B = {f.g(r['shape_coefficient'].value)}"),
+            (f.label("probability"), f.g(r["probability"].value)),
+            (f.label("norm_rows"), with_status(f.cite(localize(r["object_source"].value,
+                                                               f.locale)),
+                                               object_status(ns, obj), f.locale)),
+        ]
+    formula = r["height_formula"]
+    if formula.fields["used"]:
+        key = f"pdf_hf_{formula.value}"
+        inputs.append((f.label("height_formula"),
+                       f.label(key) if key in LABELS["en"] else formula.value))
+    if r["scanner"].value:
+        steps = r["scanner_steps_um"].value if "scanner_steps_um" in r else ()
+        inputs.append((f.label("scanner"), f"{scanner_title(ns, r['scanner'].value, f.locale)}"
+                       " (" + f.list_sep.join(f.g(x) for x in steps) + f" {f.label('um')})"))
+    inputs.append((f.label("pdf_bands"), f"{r['bands'].value} × {r['bits_per_band'].value}"))
+    inputs.append((f.label("norm_set"), _norm_view(ns, f)["title"]))
+    return inputs
+
+
 def _scan_view(job: ScanJob, f: _Fmt) -> dict[str, Any]:
     plan: ScanPlan = job.plan
     inp, rules, ns = plan.inputs, plan.rules, job.norm_set
-    um = f.label("um")
-    inputs: list[tuple[str, str]] = [
-        (f.label("map_scale"), f.scale(inp.map_scale)),
-        (f.label("relief_interval_m"), f.g(inp.relief_interval_m)),
-        (f.label("photo_scale"), f.list_sep.join(f.scale(s) for s in inp.photo_scales)),
-    ]
-    if inp.camera or inp.camera_name:
-        inputs.append((f.label("camera"), camera_title(ns, inp.camera, f.locale,
-                                                       inp.camera_name)))
-    inputs += [
-        (f.label("focal_mm"), f.g(inp.focal_mm)),
-        (f.label("frame_mm"), f"{f.g(inp.frame_width_mm)} × {f.g(inp.frame_along_mm)}"),
-        (f.label("resolving_power_lpmm"), f.g(inp.resolving_power_lpmm)),
-        (f.label("forward_overlap_pct"), f.g(inp.forward_overlap_pct)),
-    ]
+    inputs = _film_inputs(f.view.tables["film_inputs"], ns, f)
     obj = inp.object
-    obj_name = ""
-    if obj is not None:
-        obj_name = object_title(obj, f.locale)
-        inputs += [
-            (f.label("object"), f"{obj_name}: {f.g(obj.size_m)} {f.label('m')}, "
-                                f"{_shape_name(ns, obj.shape, f.locale)}, "
-                                f"B = {f.g(obj.shape_coefficient)}"),
-            (f.label("probability"), f.g(rules.probability)),
-            (f.label("norm_rows"), with_status(f.cite(localize(obj.source, f.locale)),
-                                               object_status(ns, obj), f.locale)),
-        ]
-    if "PZ" in rules.constraints:
-        key = f"pdf_hf_{rules.height_formula}"
-        inputs.append((f.label("height_formula"),
-                       f.label(key) if key in LABELS["en"] else rules.height_formula))
-    if inp.scanner:
-        inputs.append((f.label("scanner"), f"{scanner_title(ns, inp.scanner, f.locale)} ("
-                       + f.list_sep.join(f.g(s) for s in inp.scanner_steps_um) + f" {um})"))
-    inputs.append((f.label("pdf_bands"), f"{inp.bands} × {inp.bits_per_band}"))
-    inputs.append((f.label("norm_set"), _norm_view(ns, f)["title"]))
+    obj_name = object_title(obj, f.locale) if obj is not None else ""
 
     # at most _MAX_COLUMNS photo scales per table, so a wide plan stays inside A4
     scen = plan.scenarios
@@ -452,74 +463,97 @@ def _comparison_view(scan: ScanJob, uav: UavJob, f: _Fmt) -> dict[str, Any]:
     ]}
 
 
-def _film_relief_rows(fs: Any, f: _Fmt) -> list[tuple[str, str]]:
+def _film_relief_rows(tbl: Table, f: _Fmt) -> list[tuple[str, str]]:
     """``[terrain]``: the frame the film specification holds at, and the flat-ground scan
     pixel beside it (issue 12)."""
-    ft, flat = getattr(fs, "terrain", None), getattr(fs, "flat", None)
-    if ft is None or flat is None:
+    keys = tbl.keys()
+    if "relief_mc_max" not in keys:
         return []
-    where = (f"{f.label('terrain_film_frame')}: {ft.binding_frame} ({ft.binding_strip})"
-             if ft.ground_known else f.label("terrain_film_frame_range",
-                                            low=f.g(ft.ground_low_m)))
-    rows = [(f.label("terrain_film_mc_max"), f"{f.scale(round(ft.mc_max))}; {where}"),
+    mc = tbl.row("relief_mc_max")
+    where = (f"{f.label('terrain_film_frame')}: {mc.fields['frame']} ({mc.fields['strip']})"
+             if mc.fields["ground_known"] else f.label("terrain_film_frame_range",
+                                                       low=f.g(mc.fields["ground_low_m"])))
+    flat = tbl.row("relief_flat_pixel")
+    rows = [(f.label("terrain_film_mc_max"), f"{f.scale(mc.value)}; {where}"),
             (f.label("terrain_film_flat_pixel"),
-             f"{f.num(flat.scan_pixel_um, 1)} ({flat.binding})")]
-    if fs.rejected:
+             f"{f.num(flat.value, flat.digits)} ({flat.fields['binding']})")]
+    if "relief_rejected" in keys:
         rows.append((f.label("terrain_film_rejected"), "; ".join(
-            f.label("terrain_film_rejected_value", scale=f.scale(r.photo_scale),
-                    local=f.scale(round(t.mc_max))) for r, t in fs.rejected)))
+            f.label("terrain_film_rejected_value", scale=f.scale(scale), local=f.scale(local))
+            for scale, local in tbl.row("relief_rejected").values)))
+    return rows
+
+
+def _reason_text(r: Row, f: _Fmt) -> str:
+    return sentence(f.cite(display_message(r.value, r.details[0]["norm_set"], f.locale)))
+
+
+def _spec_film_rows(tbl: Table, f: _Fmt) -> list[tuple[str, str]]:
+    """The film's headline (the ``spec_film`` table): the scale, the scan pixel (and the
+    scanner's step after an arrow), the binding constraint, the relief, the probability,
+    the frames."""
+    if tbl.keys() == ["reason"]:
+        return []
+    r = {row.key: row for row in tbl.rows}
+    rows = [(f.label("spec_archive_photo_scale" if "archive" in r["photo_scale"].flags
+                     else "spec_recommended_photo_scale"), f.scale(r["photo_scale"].value))]
+    px, px_label = f.num(r["scan_pixel_um"].value, 1), "scan_pixel_um"
+    if "scanner_pixel_um" in r:  # "12.5 → 7.0" says what the arrow means
+        px += f" → {f.num(r['scanner_pixel_um'].value, 1)}"
+        px_label = "spec_scan_pixel_to_step_um"
+    rows.append((f.label(px_label), px))
+    binding = r["binding"].value
+    rows.append((f.label("binding"), f"{binding} — {f.cname(binding)}"))
+    rows += _film_relief_rows(tbl, f)
+    prob = r["probability"]
+    rows.append((f.label("terrain_film_probability" if "over_relief" in prob.flags
+                         else "probability"), f.num(prob.value, prob.digits)))
+    if "frames" in r:
+        rows.append((f.label("spec_frames"), f.g(r["frames"].value)))
+        rows.append((f.label("spec_scanned_gb"), f.num(r["scanned_gb"].value, 1)))
+    return rows
+
+
+def _spec_uav_rows(tbl: Table, f: _Fmt) -> list[tuple[str, str]]:
+    """The digital camera's headline (the ``spec_uav`` table): the heights, the binding
+    constraint and the contract's deliverables (the GSD and the overlaps the crew flies,
+    the photos, the data volume)."""
+    r = {row.key: row for row in tbl.rows}
+    rows: list[tuple[str, str]] = []
+    if "planned_height_m" in r:
+        rows.append((f.label("spec_planned_height_m"), f.num(r["planned_height_m"].value, 0)))
+    rows.append((f.label("spec_recommended_height_m"),
+                 f.num(r["recommended_height_m"].value, 0)))
+    rows.append((f.label("spec_max_height_flat_m" if "flat" in r["max_height_m"].flags
+                         else "max_height_m"), f.num(r["max_height_m"].value, 0)))
+    if "max_height_relief_m" in r:
+        rows.append((f.label("spec_max_height_relief_m"),
+                     f.num(r["max_height_relief_m"].value, 0)))
+    if "binding" in r:
+        binding = r["binding"].value
+        rows.append((f.label("binding"), f"{binding} — {f.cname(binding)}"))
+    rows.append((f.label("design_gsd_planned"), f.num(r["gsd_cm"].value, 2)))
+    rows.append((f.label("design_overlaps"), f.label(
+        "design_overlaps_value", fwd=f.num(r["forward_overlap_pct"].value, 0),
+        side=f.num(r["side_overlap_pct"].value, 0))))
+    if "photos" in r:
+        rows.append((f.label("spec_photos"), f.g(r["photos"].value)))
+    for key in ("data_volume_gb", "data_volume_jpeg_gb"):
+        if key in r:
+            rows.append((f.label(key), f.num(r[key].value, 1)))
     return rows
 
 
 def _spec_view(spec: PlanResult, f: _Fmt) -> dict[str, Any]:
-    """The specification of ``scanplan plan``: what was chosen, with its reason."""
+    """The specification of ``scanplan plan``: what was chosen, with its reason (the
+    ``spec_film`` and ``spec_uav`` tables), and the comparison."""
     rows: list[tuple[str, str]] = []
     reasons: list[str] = []
-    if spec.film is not None:
-        fs, rec = spec.film, spec.film.recommended
-        if rec is not None:
-            rows.append((f.label("spec_archive_photo_scale" if fs.archive
-                                 else "spec_recommended_photo_scale"), f.scale(rec.photo_scale)))
-            px, px_label = f.num(rec.scan_pixel_um, 1), "scan_pixel_um"
-            if rec.scanner_pixel_um is not None:  # "12.5 → 7.0" says what the arrow means
-                px += f" → {f.num(rec.scanner_pixel_um, 1)}"
-                px_label = "spec_scan_pixel_to_step_um"
-            rows.append((f.label(px_label), px))
-            rows.append((f.label("binding"), f"{rec.binding} — {f.cname(rec.binding)}"))
-            rows += _film_relief_rows(fs, f)
-            over_relief = getattr(fs, "terrain", None) is not None and getattr(
-                fs, "flat", None) is not None  # the headline is the lowest ground's frame
-            rows.append((f.label("terrain_film_probability" if over_relief else "probability"),
-                         f.num(rec.recognition_probability, 2)))
-            if fs.frames is not None:
-                rows.append((f.label("spec_frames"), f.g(fs.frames)))
-                rows.append((f.label("spec_scanned_gb"), f.num(fs.scanned_gigabytes, 1)))
-        reasons.append(sentence(f.cite(display_message(fs.reason, fs.job.norm_set,
-                                                       f.locale))))
-    if spec.uav is not None:
-        u, p = spec.uav, spec.uav.job.plan
-        if u.planned_height_m is not None:
-            rows.append((f.label("spec_planned_height_m"), f.num(u.planned_height_m, 0)))
-        rows.append((f.label("spec_recommended_height_m"), f.num(u.recommended_height_m, 0)))
-        relief = relief_max_height_m(u)
-        rows.append((f.label("max_height_m" if relief is None else "spec_max_height_flat_m"),
-                     f.num(u.max_height_m, 0)))
-        if relief is not None:
-            rows.append((f.label("spec_max_height_relief_m"), f.num(relief, 0)))
-        if p.binding:
-            rows.append((f.label("binding"), f"{p.binding} — {f.cname(p.binding)}"))
-        # the contract's deliverables: the GSD and the overlaps the crew flies
-        rows.append((f.label("design_gsd_planned"), f.num(p.gsd_m * 100.0, 2)))
-        rows.append((f.label("design_overlaps"), f.label(
-            "design_overlaps_value", fwd=f.num(p.inputs.forward_overlap_pct, 0),
-            side=f.num(p.inputs.side_overlap_pct, 0))))
-        if "photos" in p.flight:
-            rows.append((f.label("spec_photos"), f.g(p.flight["photos"])))
-        if "data_volume_bytes" in p.flight:
-            rows.append((f.label("data_volume_gb"), f.num(p.flight["data_volume_bytes"] / 1e9, 1)))
-            rows.append((f.label("data_volume_jpeg_gb"), f.num(float(FL.jpeg_volume_bytes(
-                p.flight["data_volume_bytes"])) / 1e9, 1)))
-        reasons.append(sentence(f.cite(display_message(u.reason, u.job.norm_set, f.locale))))
+    for name, lay_out in (("spec_film", _spec_film_rows), ("spec_uav", _spec_uav_rows)):
+        if f.view.tables.has(name):
+            tbl = f.view.tables[name]
+            rows += lay_out(tbl, f)
+            reasons.append(_reason_text(tbl.row("reason"), f))
     comparison = [(row_label(r, f.view.labels, f.view.numbers),
                    *(row_value(r, x, f.view.numbers) for x in r.values),
                    row_unit(r.unit, f.view.labels))

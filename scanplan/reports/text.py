@@ -9,7 +9,7 @@ from collections.abc import Callable, Sequence
 from typing import Any
 
 from ..i18n.labels import LABELS, t
-from ..i18n.messages import scale_text
+from ..i18n.messages import localize, scale_text
 from ..i18n.numbers import Numbers
 from .jsondoc import scale_value
 from .tablewords import COMPARISON_LABELS
@@ -159,9 +159,10 @@ def format_plan_result(result: Any, locale: str | None = None,
     lines = _plan_heading(result, loc, T)
     lines += [_wrap(t, "") for t in format_terrain(result, loc)]
     if result.film:
-        lines += _film_summary(result.film, loc, T, cname)
+        lines += _film_summary(tables["spec_film"], loc, T, cname)
     if result.uav:
-        lines += _uav_summary(result.uav, loc, T, cname)
+        lines += _uav_summary(tables["spec_uav"], result.uav.job.plan.inputs.platform, loc, T,
+                              cname)
     if result.comparison:
         lines += _comparison_lines(result, loc, T, tables)
     from .design import design_text_lines
@@ -195,33 +196,32 @@ def _plan_heading(result: Any, loc: str, T: _Terminal) -> list[str]:
     return lines
 
 
-def _film_summary(f: Any, loc: str, T: _Terminal, cname: Any) -> list[str]:
-    """The film block: photo scale, scan pixel, binding constraint, frames, the reason."""
-    from ..i18n.messages import localize
-
-    s = f.recommended
+def _film_summary(tbl: Table, loc: str, T: _Terminal, cname: Any) -> list[str]:
+    """The film block (the ``spec_film`` table): photo scale, scan pixel, binding
+    constraint, frames, the reason."""
+    r = {row.key: row for row in tbl.rows}
     lines = ["", T["film"]]
-    if s is None:
-        lines.append(_wrap(localize(f.reason, loc), "  "))
-        return lines
-    px = (f"{_um_loc(s.scan_pixel_um, loc)} {T['um']}"
-          + (f" → {T['scanner_step']} {_g(s.scanner_pixel_um, loc)} {T['um']}"
-             if s.scanner_pixel_um else ""))
-    rows = [[f"  {T['photo_scale_archive' if f.archive else 'photo_scale']}",
-             _sc(s.photo_scale, loc)],
+    reason = _wrap(localize(r["reason"].value, loc), "  ")
+    if "photo_scale" not in r:
+        return [*lines, reason]
+    px = (f"{_um_loc(r['scan_pixel_um'].value, loc)} {T['um']}"
+          + (f" → {T['scanner_step']} {_g(r['scanner_pixel_um'].value, loc)} {T['um']}"
+             if r.get("scanner_pixel_um") and r["scanner_pixel_um"].value else ""))
+    binding, scale = r["binding"].value, r["photo_scale"]
+    rows = [[f"  {T['photo_scale_archive' if 'archive' in scale.flags else 'photo_scale']}",
+             _sc(scale.value, loc)],
             [f"  {T['scan_pixel']}", px],
-            [f"  {T['binding']}", f"{s.binding} ({cname(s.binding)})"],
-            [f"  {T['recognition']}", _n(s.recognition_probability, 2, loc)],
-            [f"  {T['frame']}", f"{_n(s.frame_megabytes, 0, loc, True)} {T['mb']}"]]
-    if f.frames is not None:
-        rows.append([f"  {T['frames']}", f"{f.frames} ({f.strips} {T['strips']}), "
-                     f"{_n(f.scanned_gigabytes, 1, loc, True)} {T['gb']} "
-                     f"{T['scanned']}" if loc == "en" else
-                     f"{f.frames} ({T['strips']}: {f.strips}), {T['scanned']} "
-                     f"{_n(f.scanned_gigabytes, 1, loc, True)} {T['gb']}"])
-    lines.append(table(rows, align="ll"))
-    lines.append(_wrap(localize(f.reason, loc), "  "))
-    return lines
+            [f"  {T['binding']}", f"{binding} ({cname(binding)})"],
+            [f"  {T['recognition']}", _n(r["probability"].value, 2, loc)],
+            [f"  {T['frame']}", f"{_n(r['frame_megabytes'].value, 0, loc, True)} {T['mb']}"]]
+    if "frames" in r:
+        frames, strips = r["frames"].value, r["strips"].value
+        gb = _n(r["scanned_gb"].value, 1, loc, True)
+        rows.append([f"  {T['frames']}",
+                     f"{frames} ({strips} {T['strips']}), {gb} {T['gb']} {T['scanned']}"
+                     if loc == "en" else
+                     f"{frames} ({T['strips']}: {strips}), {T['scanned']} {gb} {T['gb']}"])
+    return [*lines, table(rows, align="ll"), reason]
 
 
 def _comparison_lines(result: Any, loc: str, T: _Terminal, tables: ResultTables) -> list[str]:
@@ -250,8 +250,6 @@ def _comparison_lines(result: Any, loc: str, T: _Terminal, tables: ResultTables)
 def _warning_lines(result: Any, loc: str, T: _Terminal, tables: ResultTables) -> list[str]:
     """The warnings (``!``) and notes (``i``) with their codes (the ``spec_warnings``
     table)."""
-    from ..i18n.messages import localize
-
     lines = ["", T["warnings"]]
     for r in tables["spec_warnings"].rows:
         mark = "!" if "warning" in r.flags else "i"
@@ -319,7 +317,7 @@ def format_area(area: Any, locale: str = "en") -> str:
 def format_layout(layout: Any, scale: str = "", locale: str = "en") -> str:
     """One line per layout: direction, strips, photos, length (turns), time, sorties; the
     reason when it cannot be flown. Photo centres are in the exported files, not here."""
-    from ..i18n.messages import localize, plural
+    from ..i18n.messages import plural
 
     T = _AREA_TEXT[locale]
     head = f"{T['lines']}" + (f" {T['at']} {scale}" if scale else "")
@@ -338,66 +336,83 @@ def format_layout(layout: Any, scale: str = "", locale: str = "en") -> str:
     return _wrap(text, "").replace("\0", " ")
 
 
-def _uav_summary(u: Any, loc: str, T: _Terminal, cname: Any) -> list[str]:
-    """The UAV part of :func:`format_plan_result`."""
-    from ..i18n.messages import localize
-
-    p = u.job.plan
-    lines = ["", T["aircraft" if p.inputs.platform == "aircraft" else "uav"]]
-    if u.recommended_height_m is None:
-        lines.append(_wrap(localize(u.reason, loc), "  "))
-        return lines
-    tol = p.inputs.height_tolerance_up_pct
-    m = T["m"]
-    rows = [[f"  {T['height']}", f"{_g(u.recommended_height_m, loc)} {m}"
-             + (f" ({T['flown']} {_g(p.heights_m['max'], loc)} {m}, +{_g(tol, loc)} %)"
-                if tol else "")],
-            [f"  {T['max_height']}", f"{_n(u.max_height_m, 0, loc)} {m}"
-             + (f" ({T['flown']} {_n(p.max_flown_height_m, 0, loc)} {m})"
-                if tol and p.max_flown_height_m is not None else "")
-             + f" ({p.binding} {cname(p.binding)})" if p.binding else "—"],
-            [f"  {T['gsd']}", f"{_n(p.gsd_m, 3, loc)} {m} / "
-             f"{_n(p.ground_resolution_m, 3, loc)} {m} (L/GSD "
-             f"{_n(p.ground_resolution_to_gsd, 2, loc)})"]]
-    if p.constraints_max_height_m is not None:
-        rows.append([f"  {T['no_ceiling']}", f"{_n(p.constraints_max_height_m, 0, loc)} {m} "
-                     f"{T['no_ceiling_note']}"])
-    acc = p.height_accuracy
-    if acc:
-        rows.append([f"  {T['sigma_z']}",
-                     f"{_n(acc['sigma_z_at_highest_flown_height_m'], 3, loc)} {m} {T['at']} "
-                     f"{_g(p.heights_m['max'], loc)} {m} ({T['required_rms']} "
-                     f"{_g(acc['height_accuracy_m'], loc)} {m} {T['rms']})"])
-    obj = p.inputs.map_object
-    if obj is not None:
-        rec = next((r for r in p.recognition if r.object == obj.name
-                    and r.object_size_m == obj.size_m), None)
-        if rec:
-            name = (obj.name_ru or obj.name) if loc == "ru" else obj.name
-            rows.append([f"  {T['recognition']}",
-                         f"{_n(rec.probability, 2, loc)} ({name}, {_g(obj.size_m, loc)} {m})"])
-    fl = p.flight
-    rows.append([f"  {T['overlaps']}",
-                 f"{_g(p.inputs.forward_overlap_pct, loc)} % / "
-                 f"{_g(p.inputs.side_overlap_pct, loc)} % "
-                 f"— {_n(fl['base_m'], 1, loc)} {m} / {_n(fl['line_spacing_m'], 1, loc)} {m}"])
-    rows.append([f"  {T['interval']}",
-                 _interval(fl["photo_interval_s"]) if loc == "en" else
-                 (f"{_n(fl['photo_interval_s'], 2, loc)} {T['s']}"
-                  if math.isfinite(fl["photo_interval_s"]) else "— (путевая скорость ≈ 0)")])
-    if "photos" in fl:
-        rows.append([f"  {T['photos']}",  # grouped as the flight-lines line and the PDF
-                     f"{_n(fl['photos'], 0, loc, True)} / {_n(fl['strips'], 0, loc, True)}"])
-        rows.append([f"  {T['flight']}", f"{_n(fl['flight_length_m'] / 1000, 1, loc)} {T['km']}"
-                     + (f", {_n(fl['flight_time_s'] / 60, 0, loc)} {T['min']}"
-                        if fl.get("flight_time_s") else "")])
-        if "data_volume_bytes" in fl:
-            rows.append([f"  {T['volume']}", _volume(fl["data_volume_bytes"], loc)])
-    rows.append([f"  {T['blur']}", f"{T['exposure']} ≤ 1/{math.ceil(1 / p.max_exposure_s):d} "
-                 f"{T['s']} {T['or_speed']} ≤ {_n(p.max_speed_ms, 1, loc)} {T['ms']}"])
+def _uav_summary(tbl: Table, platform: str, loc: str, T: _Terminal,
+                 cname: Any) -> list[str]:
+    """The UAV part of :func:`format_plan_result` (the ``spec_uav`` table)."""
+    r = {row.key: row for row in tbl.rows}
+    lines = ["", T["aircraft" if platform == "aircraft" else "uav"]]
+    reason = _wrap(localize(r["reason"].value, loc), "  ")
+    height = r["recommended_height_m"]
+    if height.value is None:
+        return [*lines, reason]
+    rows = _uav_heights(r, loc, T, cname)
+    rows += _uav_flight_rows(r, loc, T)
     lines.append(table(rows, align="ll"))
-    lines.append(_wrap(localize(u.reason, loc), "  "))
+    lines.append(reason)
     return lines
+
+
+def _uav_heights(r: dict[str, Row], loc: str, T: _Terminal, cname: Any) -> list[list[str]]:
+    """The heights, the binding constraint, the GSD, the height accuracy, the recognition."""
+    height = r["recommended_height_m"]
+    tol = height.fields["tolerance_pct"]
+    m = T["m"]
+    flown = r.get("max_flown_height_m")
+    binding = r["binding"].value if "binding" in r else None
+    rows = [[f"  {T['height']}", f"{_g(height.value, loc)} {m}"
+             + (f" ({T['flown']} {_g(height.fields['flown'], loc)} {m}, +{_g(tol, loc)} %)"
+                if tol else "")],
+            [f"  {T['max_height']}", f"{_n(r['max_height_m'].value, 0, loc)} {m}"
+             + (f" ({T['flown']} {_n(flown.value, 0, loc)} {m})"
+                if tol and flown is not None else "")
+             + f" ({binding} {cname(binding)})" if binding else "—"],
+            [f"  {T['gsd']}", f"{_n(r['gsd_m'].value, 3, loc)} {m} / "
+             f"{_n(r['ground_resolution_m'].value, 3, loc)} {m} (L/GSD "
+             f"{_n(r['l_over_gsd'].value, 2, loc)})"]]
+    if "constraints_max_height_m" in r:
+        rows.append([f"  {T['no_ceiling']}",
+                     f"{_n(r['constraints_max_height_m'].value, 0, loc)} {m} "
+                     f"{T['no_ceiling_note']}"])
+    if "sigma_z" in r:
+        sz = r["sigma_z"]
+        rows.append([f"  {T['sigma_z']}",
+                     f"{_n(sz.value, 3, loc)} {m} {T['at']} {_g(sz.fields['at'], loc)} {m} "
+                     f"({T['required_rms']} {_g(sz.fields['required'], loc)} {m} {T['rms']})"])
+    if "recognition" in r:
+        rec = r["recognition"]
+        name = (rec.fields["name_ru"] or rec.fields["name"]) if loc == "ru" \
+            else rec.fields["name"]
+        rows.append([f"  {T['recognition']}", f"{_n(rec.value, 2, loc)} ({name}, "
+                     f"{_g(rec.fields['size_m'], loc)} {m})"])
+    return rows
+
+
+def _uav_flight_rows(r: dict[str, Row], loc: str, T: _Terminal) -> list[list[str]]:
+    """The overlaps, the photo interval, the photos, the flight, the volume, the blur."""
+    m = T["m"]
+    interval = r["photo_interval"].value
+    rows = [[f"  {T['overlaps']}",
+             f"{_g(r['forward_overlap_pct'].value, loc)} % / "
+             f"{_g(r['side_overlap_pct'].value, loc)} % "
+             f"— {_n(r['base'].value, 1, loc)} {m} / {_n(r['line_spacing'].value, 1, loc)} {m}"],
+            [f"  {T['interval']}",
+             _interval(interval) if loc == "en" else
+             (f"{_n(interval, 2, loc)} {T['s']}"
+              if math.isfinite(interval) else "— (путевая скорость ≈ 0)")]]
+    if "photos" in r:
+        rows.append([f"  {T['photos']}",  # grouped as the flight-lines line and the PDF
+                     f"{_n(r['photos'].value, 0, loc, True)} / "
+                     f"{_n(r['strips'].value, 0, loc, True)}"])
+        minutes = r["flight_time_min"].value
+        rows.append([f"  {T['flight']}", f"{_n(r['flight_length_km'].value, 1, loc)} {T['km']}"
+                     + (f", {_n(minutes, 0, loc)} {T['min']}" if minutes else "")])
+        if "data_volume_gb" in r:
+            rows.append([f"  {T['volume']}", volume_text(
+                r["data_volume_gb"].value, r["data_volume_jpeg_gb"].value, loc)])
+    rows.append([f"  {T['blur']}",
+                 f"{T['exposure']} ≤ 1/{math.ceil(1 / r['max_exposure_s'].value):d} "
+                 f"{T['s']} {T['or_speed']} ≤ {_n(r['max_speed_ms'].value, 1, loc)} {T['ms']}"])
+    return rows
 
 
 _BATCH_HEADER = ["project", "map", "film: photo scale", "scan µm", "digital camera: height m",
@@ -433,15 +448,6 @@ def batch_table(rows: list[list[str]], failed: list[tuple[str, str]]) -> str:
 def batch_summary(done: list[tuple[str, Any]], failed: list[tuple[str, str]]) -> str:
     """One table for a batch of projects: the headline of each, then the failures."""
     return batch_table([batch_row(path, r) for path, r in done], failed)
-
-
-def _volume(uncompressed_bytes: float, loc: str = "en") -> str:
-    """``163.5 GB uncompressed (JPEG ≈ 18.2 GB at 9:1)``: the JPEG estimate of
-    :func:`scanplan.core.flight.jpeg_volume_bytes`, in the locale's words and numbers."""
-    from ..core.flight import jpeg_volume_bytes
-
-    return volume_text(uncompressed_bytes / 1e9,
-                       float(jpeg_volume_bytes(uncompressed_bytes)) / 1e9, loc)
 
 
 def volume_text(gigabytes: float, jpeg_gigabytes: float, loc: str = "en") -> str:

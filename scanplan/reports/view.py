@@ -182,7 +182,8 @@ class ReportView:
 
 def build_view(*, scan: ScanJob | None = None, uav: UavJob | None = None,
                meta: ReportMeta | None = None, spec: PlanResult | None = None,
-               when: _dt.datetime | None = None) -> ReportView:
+               when: _dt.datetime | None = None,
+               tables: ResultTables | None = None) -> ReportView:
     """The view of one result, for every renderer.
 
     Parameters
@@ -195,6 +196,9 @@ def build_view(*, scan: ScanJob | None = None, uav: UavJob | None = None,
         The specification of ``scanplan plan``.
     when : datetime, optional
         The creation time (default :func:`scanplan.reports.report_datetime`).
+    tables : ResultTables, optional
+        The result's tables when another renderer of the same result holds them already
+        (``scanplan plan``'s terminal summary); built here otherwise.
 
     Returns
     -------
@@ -203,7 +207,7 @@ def build_view(*, scan: ScanJob | None = None, uav: UavJob | None = None,
     Raises
     ------
     ValueError
-        If neither ``scan`` nor ``uav`` is given.
+        If neither ``scan`` nor ``uav`` is given, or ``tables`` are another result's.
     """
     from . import ReportMeta, report_datetime
 
@@ -212,12 +216,18 @@ def build_view(*, scan: ScanJob | None = None, uav: UavJob | None = None,
     meta = meta if meta is not None else ReportMeta()
     locale = meta.locale if meta.locale in LOCALES else "en"
     platform = uav.plan.inputs.platform if uav is not None else "uav"
+    if tables is None:
+        tables = ResultTables.of_jobs(scan, uav, spec)
+    elif any(mine is not theirs for mine, theirs in (
+            (tables.scan, scan.plan if scan is not None else None),
+            (tables.uav, uav.plan if uav is not None else None), (tables.spec, spec))):
+        raise ValueError("the tables given are not this result's")
     return ReportView(scan=scan, uav=uav, spec=spec, meta=meta,
                       when=when if when is not None else report_datetime(),
                       locale=locale, platform=platform, numbers=Numbers(locale),
                       labels=Labels(locale, platform),
                       sections=section_names(scan, uav, spec),
-                      tables=ResultTables.of_jobs(scan, uav, spec))
+                      tables=tables)
 
 
 def warning_heading_key(warning: Any) -> str | None:

@@ -17,6 +17,7 @@ if TYPE_CHECKING:
     from ...norms import NormSet
     from ...project.jobs import ScanJob, UavJob
 
+from ..views import Row
 from .book import Book
 from .cells import (
     F1,
@@ -26,7 +27,6 @@ from .cells import (
     INT,
     M_LARGE,
     SCALE,
-    UM,
     _header,
 )
 
@@ -53,35 +53,67 @@ def _object_rows(book: Book, ws: Worksheet, row: int, obj: Any, ns: NormSet) -> 
                    wrap=True)
 
 
+#: The Inputs sheet's label of each row of the ``film_inputs`` table.
+_FILM_LABELS = {"map_scale": "map_scale", "relief_interval_m": "relief_interval_m",
+                "photo_scales": "photo_scale", "focal_mm": "focal_mm",
+                "resolving_power_lpmm": "resolving_power_lpmm",
+                "forward_overlap_pct": "forward_overlap_pct",
+                "object_size_m": "xlsx_object_size_m",
+                "shape_coefficient": "xlsx_shape_coefficient", "probability": "probability",
+                "pr_coefficient": "xlsx_pr_coefficient",
+                "scanner_steps_um": "xlsx_scanner_steps_um",
+                "candidate_pixels_um": "xlsx_candidate_pixels_um", "bands": "xlsx_bands",
+                "bits_per_band": "xlsx_bits_per_band"}
+
+
+def _number_format(r: Row) -> str:
+    """A number's cell format: a scale, grouped digits for a count, else the row's
+    decimals (the input registry's)."""
+    if r.unit == "scale":
+        return SCALE
+    return INT if r.digits == 0 else "0." + "0" * (r.digits or 0)
+
+
 def _inputs_scan(book: Book, ws: Worksheet, row: int, job: ScanJob) -> int:
-    inp, rules = job.plan.inputs, job.plan.rules
+    """The film plan's inputs (the ``film_inputs`` table)."""
+    tbl = book.view.tables["film_inputs"]
     row = book.section(ws, row, book.t("xlsx_section_scan"))
-    row = book.kv(ws, row, book.t("map_scale"), inp.map_scale, SCALE)
-    row = book.kv(ws, row, book.t("relief_interval_m"), inp.relief_interval_m, F2)
-    row = book.kv_list(ws, row, book.t("photo_scale"), inp.photo_scales, SCALE)
-    row = book.kv(ws, row, book.t("camera"),
-                  camera_title(job.norm_set, inp.camera, book.loc, inp.camera_name) or None,
-                  wrap=True)
-    row = book.kv(ws, row, book.t("focal_mm"), inp.focal_mm, F2)
-    row = book.kv(ws, row, book.t("xlsx_frame_across_mm"), inp.frame_width_mm, F1)
-    row = book.kv(ws, row, book.t("xlsx_frame_along_mm"), inp.frame_along_mm, F1)
-    row = book.kv(ws, row, book.t("resolving_power_lpmm"), inp.resolving_power_lpmm, F1)
-    row = book.kv(ws, row, book.t("forward_overlap_pct"), inp.forward_overlap_pct, F1)
-    row = _object_rows(book, ws, row, inp.object, job.norm_set)
-    row = book.kv(ws, row, book.t("probability"), rules.probability, F3)
-    row = book.kv(ws, row, book.t("xlsx_height_formula"),
-                  book.text(height_formula_name(rules.height_formula)))
-    row = book.kv(ws, row, book.t("xlsx_pr_coefficient"), rules.pr_coefficient, F2)
-    row = book.kv(ws, row, book.t("scanner"),
-                  scanner_title(job.norm_set, inp.scanner, book.loc) or None)
-    if inp.scanner_steps_um:
-        row = book.kv_list(ws, row, book.t("xlsx_scanner_steps_um"), inp.scanner_steps_um,
-                           UM)
-    if inp.candidate_pixels_um:
-        row = book.kv_list(ws, row, book.t("xlsx_candidate_pixels_um"),
-                           inp.candidate_pixels_um, UM)
-    row = book.kv(ws, row, book.t("xlsx_bands"), inp.bands, INT)
-    return book.kv(ws, row, book.t("xlsx_bits_per_band"), inp.bits_per_band, INT)
+    for r in tbl.rows:
+        if isinstance(r.value, tuple) and r.key != "frame_mm":
+            row = book.kv_list(ws, row, book.t(_FILM_LABELS[r.key]), r.value,
+                               _number_format(r))
+        elif r.key in _FILM_LABELS:
+            row = book.kv(ws, row, book.t(_FILM_LABELS[r.key]), r.value, _number_format(r))
+        else:
+            row = _film_text(book, ws, row, r, job)
+    return row
+
+
+def _film_text(book: Book, ws: Worksheet, row: int, r: Row, job: ScanJob) -> int:
+    """A film input's row shown as a name, not a number (the frame: two rows)."""
+    ns = job.norm_set
+    if r.key == "camera":
+        return book.kv(ws, row, book.t("camera"),
+                       camera_title(ns, r.value, book.loc, r.fields["name"]) or None,
+                       wrap=True)
+    if r.key == "frame_mm":
+        row = book.kv(ws, row, book.t("xlsx_frame_across_mm"), r.value[0], F1)
+        return book.kv(ws, row, book.t("xlsx_frame_along_mm"), r.value[1], F1)
+    if r.key == "object":
+        if r.value is None:
+            return book.kv(ws, row, book.t("object"), None)
+        return book.kv(ws, row, book.t("object"), object_title(r.value, book.loc), wrap=True)
+    if r.key == "shape":
+        return book.kv(ws, row, book.t("shape"), book.shape_name(ns, r.value))
+    if r.key == "object_source":
+        return book.kv(ws, row, book.t("xlsx_object_source"), book.text(r.value), wrap=True)
+    if r.key == "height_formula":
+        return book.kv(ws, row, book.t("xlsx_height_formula"),
+                       book.text(height_formula_name(r.value)))
+    if r.key == "scanner":
+        return book.kv(ws, row, book.t("scanner"),
+                       scanner_title(ns, r.value, book.loc) or None)
+    raise KeyError(r.key)
 
 
 def _inputs_uav(book: Book, ws: Worksheet, row: int, job: UavJob) -> int:

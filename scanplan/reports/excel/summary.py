@@ -7,9 +7,8 @@ from typing import TYPE_CHECKING
 
 from openpyxl.worksheet.worksheet import Worksheet
 
-from ...core import flight as FL
-from ..design import relief_max_height_m
 from ..tablewords import row_label, row_unit
+from ..views import Row, Table
 from ..wording import (
     document_date,
     object_title,
@@ -99,63 +98,14 @@ def summary_sheet(book: Book, scan: ScanJob | None, uav: UavJob | None,
 
 
 def _summary_spec(book: Book, ws: Worksheet, row: int, spec: PlanResult) -> int:
-    """The specification of ``scanplan plan``: what was chosen and why."""
+    """The specification of ``scanplan plan``: what was chosen and why (the ``spec_film``
+    and ``spec_uav`` tables), and the comparison."""
     row = book.section(ws, row, book.t("spec_title"))
-    if spec.film is not None:
-        f, rec = spec.film, spec.film.recommended
-        if rec is not None:
-            key = ("spec_archive_photo_scale" if f.archive
-                   else "spec_recommended_photo_scale")
-            row = book.kv(ws, row, book.t(key), rec.photo_scale, '"1:"0')
-            row = book.kv(ws, row, book.t("scan_pixel_um"), rec.scan_pixel_um, "0.0")
-            if rec.scanner_pixel_um is not None:
-                row = book.kv(ws, row, book.t("scanner_pixel_um"), rec.scanner_pixel_um,
-                              "0.0")
-            row = book.kv(ws, row, book.t("binding"),
-                          book.cname(rec.binding))
-            over_relief = getattr(f, "terrain", None) is not None and getattr(
-                f, "flat", None) is not None  # the headline is the lowest ground's frame
-            row = book.kv(ws, row, book.t("terrain_film_probability" if over_relief
-                                          else "probability"),
-                          rec.recognition_probability, "0.00")
-            row = book.kv(ws, row, book.t("frame_megabytes"), rec.frame_megabytes, "#,##0")
-            if f.frames is not None:
-                row = book.kv(ws, row, book.t("spec_frames"), f.frames, "#,##0")
-                row = book.kv(ws, row, book.t("spec_scanned_gb"), f.scanned_gigabytes,
-                              "#,##0.0")
-        row = book._wide_kv(ws, row, book.t("spec_reason"),
-                            sentence(book.text(f.reason, f.job.norm_set)))
-    if spec.uav is not None:
-        u, p = spec.uav, spec.uav.job.plan
-        if u.planned_height_m is not None:
-            row = book.kv(ws, row, book.t("spec_planned_height_m"), u.planned_height_m,
-                          "0")
-        row = book.kv(ws, row, book.t("spec_recommended_height_m"),
-                      u.recommended_height_m, "0")
-        relief = relief_max_height_m(u)
-        row = book.kv(ws, row, book.t("max_height_m" if relief is None
-                                      else "spec_max_height_flat_m"), u.max_height_m, "0")
-        if relief is not None:
-            row = book.kv(ws, row, book.t("spec_max_height_relief_m"), relief, "0")
-        if p.max_flown_height_m is not None:
-            row = book.kv(ws, row, book.t("max_flown_height_m"), p.max_flown_height_m, "0")
-        if p.binding:
-            row = book.kv(ws, row, book.t("binding"),
-                          book.cname(p.binding))
-        row = book.kv(ws, row, book.t("design_gsd_planned"), p.gsd_m * 100.0, "0.00")
-        row = book.kv(ws, row, book.t("forward_overlap_pct"),
-                      p.inputs.forward_overlap_pct, "0")
-        row = book.kv(ws, row, book.t("side_overlap_pct"),
-                      p.inputs.side_overlap_pct, "0")
-        if "photos" in p.flight:
-            row = book.kv(ws, row, book.t("spec_photos"), p.flight["photos"], "#,##0")
-        if "data_volume_bytes" in p.flight:
-            row = book.kv(ws, row, book.t("data_volume_gb"),
-                          p.flight["data_volume_bytes"] / 1e9, "#,##0.0")
-            row = book.kv(ws, row, book.t("data_volume_jpeg_gb"), float(
-                FL.jpeg_volume_bytes(p.flight["data_volume_bytes"])) / 1e9, "#,##0.0")
-        row = book._wide_kv(ws, row, book.t("spec_reason"),
-                            sentence(book.text(u.reason, u.job.norm_set)))
+    tables = book.view.tables
+    if tables.has("spec_film"):
+        row = _spec_film(book, ws, row, tables["spec_film"])
+    if tables.has("spec_uav"):
+        row = _spec_uav(book, ws, row, tables["spec_uav"])
     if spec.comparison:
         row = book.section(ws, row + 1, book.t("spec_comparison"))
         _header(ws, row, [book.t("spec_quantity"), book.t("spec_film"), book.t("spec_uav"),
@@ -170,6 +120,70 @@ def _summary_spec(book: Book, ws: Worksheet, row: int, spec: PlanResult) -> int:
                     put_text(ws, row, col, MISSING)
             put_text(ws, row, 4, row_unit(r.unit, book.view.labels))
             row += 1
+    return row
+
+
+#: The workbook's number format of a headline row's decimals.
+_DIGITS = {0: "0", 1: "0.0", 2: "0.00"}
+#: The rows of the headlines shown with grouped thousands.
+_GROUPED = {"frame_megabytes": "#,##0", "frames": "#,##0", "scanned_gb": "#,##0.0",
+            "photos": "#,##0", "data_volume_gb": "#,##0.0", "data_volume_jpeg_gb": "#,##0.0"}
+
+
+def _headline_row(book: Book, ws: Worksheet, row: int, r: Row, label: str) -> int:
+    """One ``label | value`` row of a headline: a constraint by its name, a number in its
+    decimals, the reason across the sheet."""
+    if r.key == "reason":
+        return book._wide_kv(ws, row, label, sentence(book.text(r.value,
+                                                                r.details[0]["norm_set"])))
+    if "constraint" in r.flags:
+        return book.kv(ws, row, label, book.cname(r.value))
+    fmt = '"1:"0' if r.unit == "scale" else _GROUPED.get(r.key, _DIGITS[r.digits or 0])
+    return book.kv(ws, row, label, r.value, fmt)
+
+
+#: The film headline's rows the sheet shows and their labels.
+_FILM_LABELS = {"scan_pixel_um": "scan_pixel_um", "scanner_pixel_um": "scanner_pixel_um",
+                "binding": "binding", "frame_megabytes": "frame_megabytes",
+                "frames": "spec_frames", "scanned_gb": "spec_scanned_gb",
+                "reason": "spec_reason"}
+
+
+def _spec_film(book: Book, ws: Worksheet, row: int, tbl: Table) -> int:
+    for r in tbl.rows:
+        if r.key == "photo_scale":
+            key = ("spec_archive_photo_scale" if "archive" in r.flags
+                   else "spec_recommended_photo_scale")
+        elif r.key == "probability":
+            key = "terrain_film_probability" if "over_relief" in r.flags else "probability"
+        elif r.key in _FILM_LABELS:
+            key = _FILM_LABELS[r.key]
+        else:
+            continue
+        row = _headline_row(book, ws, row, r, book.t(key))
+    return row
+
+
+#: The digital camera headline's rows the sheet shows and their labels.
+_UAV_LABELS = {"planned_height_m": "spec_planned_height_m",
+               "recommended_height_m": "spec_recommended_height_m",
+               "max_height_relief_m": "spec_max_height_relief_m",
+               "max_flown_height_m": "max_flown_height_m", "binding": "binding",
+               "gsd_cm": "design_gsd_planned", "forward_overlap_pct": "forward_overlap_pct",
+               "side_overlap_pct": "side_overlap_pct", "photos": "spec_photos",
+               "data_volume_gb": "data_volume_gb",
+               "data_volume_jpeg_gb": "data_volume_jpeg_gb", "reason": "spec_reason"}
+
+
+def _spec_uav(book: Book, ws: Worksheet, row: int, tbl: Table) -> int:
+    for r in tbl.rows:
+        if r.key == "max_height_m":
+            key = "spec_max_height_flat_m" if "flat" in r.flags else "max_height_m"
+        elif r.key in _UAV_LABELS:
+            key = _UAV_LABELS[r.key]
+        else:
+            continue
+        row = _headline_row(book, ws, row, r, book.t(key))
     return row
 
 

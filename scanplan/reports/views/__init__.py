@@ -8,8 +8,11 @@ format them. This package imports nothing of the renderers and no labels: it kno
 a language nor a number format; a constraint is named by the rules registry
 (:func:`~.table.constraint_title`).
 
-The tables (:data:`TABLES`): ``film_constraints`` (:func:`~.film.film_constraints`);
+The tables (:data:`TABLES`): ``film_constraints`` (:func:`~.film.film_constraints`) and
+``film_inputs`` (:func:`~.inputs.film_inputs`: the film inputs of the Inputs sheet and the
+PDF, with the input registry's units and decimals);
 ``uav_results``, ``uav_limits``, ``uav_flight`` and ``uav_recognition`` (:mod:`.uav`);
+the specification's headline ``spec_film`` and ``spec_uav`` (:mod:`.headline`);
 ``comparison`` and the warnings ``film_warnings``, ``uav_warnings``, ``spec_warnings`` and
 ``warnings`` (all of them once) (:mod:`.spec`).
 """
@@ -17,11 +20,14 @@ The tables (:data:`TABLES`): ``film_constraints`` (:func:`~.film.film_constraint
 from __future__ import annotations
 
 from .film import film_constraints
+from .headline import relief_max_height_m, spec_film, spec_uav
+from .inputs import film_inputs
 from .result import TABLES, ResultTables
 from .spec import all_warnings, comparison, warnings
 from .table import Column, Row, Table, constraint_title
 from .uav import uav_flight, uav_limits, uav_recognition, uav_results
 
 __all__ = ["TABLES", "Column", "ResultTables", "Row", "Table", "all_warnings", "comparison",
-           "constraint_title", "film_constraints", "uav_flight", "uav_limits",
-           "uav_recognition", "uav_results", "warnings"]
+           "constraint_title", "film_constraints", "film_inputs", "relief_max_height_m",
+           "spec_film", "spec_uav", "uav_flight", "uav_limits", "uav_recognition",
+           "uav_results", "warnings"]

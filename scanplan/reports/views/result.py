@@ -7,6 +7,8 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from .film import film_constraints
+from .headline import spec_film, spec_uav
+from .inputs import film_inputs
 from .spec import all_warnings, comparison, warnings
 from .table import Table
 from .uav import uav_flight, uav_limits, uav_recognition, uav_results
@@ -14,14 +16,17 @@ from .uav import uav_flight, uav_limits, uav_recognition, uav_results
 __all__ = ["TABLES", "ResultTables"]
 
 #: Each table: the result it is built from (``"scan"`` / ``"uav"``: that plan;
-#: ``"spec"``: the specification; ``"all"``: the :class:`ResultTables`, whichever it has)
-#: and its builder.
+#: ``"spec"``: the specification; ``"spec.film"`` / ``"spec.uav"``: the specification, when
+#: it has that part; ``"all"``: the :class:`ResultTables`, whichever it has) and its builder.
 TABLES: dict[str, tuple[str, Callable[[Any], Table]]] = {
     "film_constraints": ("scan", film_constraints),
+    "film_inputs": ("scan", film_inputs),
     "uav_results": ("uav", uav_results),
     "uav_limits": ("uav", uav_limits),
     "uav_flight": ("uav", uav_flight),
     "uav_recognition": ("uav", uav_recognition),
+    "spec_film": ("spec.film", spec_film),
+    "spec_uav": ("spec.uav", spec_uav),
     "comparison": ("spec", comparison),
     "film_warnings": ("scan", lambda plan: warnings(plan.warnings, "film")),
     "uav_warnings": ("uav", lambda plan: warnings(plan.warnings, "uav")),
@@ -65,7 +70,7 @@ class ResultTables:
     def __getitem__(self, name: str) -> Table:
         if name not in self._tables:
             source, build = TABLES[name]
-            result = self if source == "all" else getattr(self, source)
+            result = self._source(source)
             if result is None:
                 raise KeyError(f"this result has no {source} plan for the table {name}")
             self._tables[name] = build(result)
@@ -74,8 +79,15 @@ class ResultTables:
 
     def has(self, name: str) -> bool:
         """Whether the result has what table ``name`` is built from."""
-        source = TABLES[name][0] if name in TABLES else ""
-        return source == "all" or (bool(source) and getattr(self, source) is not None)
+        return name in TABLES and self._source(TABLES[name][0]) is not None
+
+    def _source(self, source: str) -> Any:
+        """What a table is built from (None when the result has not got it)."""
+        if source == "all":
+            return self
+        head, _, part = source.partition(".")
+        found = getattr(self, head)
+        return None if found is None or (part and getattr(found, part) is None) else found
 
     @classmethod
     def of_jobs(cls, scan: Any = None, uav: Any = None, spec: Any = None) -> ResultTables:
