@@ -22,8 +22,9 @@ import pytest
 
 import scanplan
 
-PKG = Path(scanplan.__file__).parent
+PKG = Path(scanplan.__file__).parent  # the package under test (installed, or this checkout)
 ROOT = PKG.parent
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
 RECORD = ('    Input("glare_factor", "uav", "glare_factor", _NUM, "lens-hood glare factor", "",\n'
           '          default=1.0, domain="glare_factor", option="--glare-factor",\n'
@@ -66,7 +67,7 @@ def _run(tree: Path, *args: str, cwd: Path | None = None) -> subprocess.Complete
 
 
 def _project(tmp_path: Path, value: str) -> Path:
-    text = (ROOT / "examples" / "uav-canon-2000.toml").read_text(encoding="utf-8")
+    text = (EXAMPLES / "uav-canon-2000.toml").read_text(encoding="utf-8")
     text = text.replace("exposure_s = 0.001\n", f"exposure_s = 0.001\nglare_factor = {value}\n")
     path = tmp_path / "glare.toml"
     path.write_text(text, encoding="utf-8")
