@@ -83,12 +83,12 @@ def _startup_s(repeat: int) -> tuple[float, float]:
 
 def measure(quick: bool) -> list[Result]:
     """The slowest example's /api/view round trip, and the start of ``serve``."""
-    repeat = 3 if quick else 9
+    repeat = 1 if quick else 9  # quick (CI): one round trip per example, advisory
     times = _view_times(repeat)
     worst = max(times, key=lambda k: times[k][0])
     detail = "; ".join(f"{k} {a:.0f} ms (plan alone {b:.0f} ms, ×{a / b:.2f})"
                        for k, (a, b) in times.items())
-    start, bare = _startup_s(3 if quick else 5)
+    start, bare = _startup_s(1 if quick else 5)
     ratio = statistics.median(a / b for a, b in times.values())
     return [
         Result("serve.view_ms", times[worst][0], "ms", VIEW_TARGET_MS, "<=",
