@@ -213,9 +213,14 @@ def in_domains(plan: str, values: dict[str, Any]) -> None:
         check_domain(name, value, _NUMERIC[plan][name])
 
 
-_NUMERIC = {plan: {r.name: get(r.name, plan).domain for r in records(plan)
-                   if get(r.name, plan).kind in ("number", "int")
-                   and get(r.name, plan).domain in DOMAINS} for plan in ("film", "uav")}
+def _numeric_domains(plan: str) -> dict[str, str]:
+    """The Python name → domain key of every numeric input of ``plan`` (the record
+    :func:`~scanplan.project.inputs.get` gives: the plan's own section over a shared one)."""
+    own = (get(name, plan) for name in dict.fromkeys(r.name for r in records(plan)))
+    return {r.name: r.domain for r in own if r.kind in ("number", "int") and r.domain in DOMAINS}
+
+
+_NUMERIC = {plan: _numeric_domains(plan) for plan in ("film", "uav")}
 """Per plan: the Python name → domain key of every numeric input (:func:`in_domains`)."""
 
 
