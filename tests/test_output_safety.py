@@ -15,6 +15,7 @@ import io
 import multiprocessing as mp
 import os
 import stat
+import sys
 import zipfile
 from pathlib import Path
 
@@ -24,7 +25,7 @@ from click.testing import CliRunner
 import scanplan.reports.excel as excel_mod
 import scanplan.reports.pdf as pdf_mod
 from scanplan.cli.main import batch_stems, main
-from scanplan.errors import WriteError
+from scanplan.errors import InputError, WriteError
 from scanplan.io.targets import folder_lock, written_by_scanplan
 from scanplan.reports import write_atomic_many
 
@@ -668,6 +669,7 @@ def _writer_of(project: str, folder: str, rounds: int) -> None:
     for _ in range(rounds):
         r = cli("plan", project, "--out", folder, "--force")
         if r.exit_code != 0:
+            print(f"{project}: exit {r.exit_code}: {r.output}", file=sys.stderr, flush=True)
             os._exit(3)
 
 
@@ -683,6 +685,37 @@ def _set_checker(folder: str, sets: list[dict[str, bytes]], rounds: int,
         seen += 1
         mixed += files not in sets
     out.put((seen, mixed))
+
+
+@pytest.mark.parametrize("look", ["access", "written_by_scanplan"])
+def test_a_file_another_run_sweeps_away_during_the_check_is_not_refused(work, monkeypatch,
+                                                                        look):
+    """Bug: the check before rendering (it runs without the folder's lock) saw a mission
+    file, then another run's transaction swept it away; the next look at the vanished file
+    (may I write it? did scanplan write it?) said no, and the run stopped with "is
+    write-protected" (one run in a few hundred of the test below). A file gone meanwhile
+    has nothing to protect: the check under the lock decides."""
+    import scanplan.io.targets as targets
+
+    target = work / "gone.pdf"
+    target.write_bytes(b"%PDF-1.7 not ours")
+
+    def swept(real):
+        def look_after_sweep(*args, **kw):
+            target.unlink(missing_ok=True)  # another run's sweep, between two looks
+            return real(*args, **kw)
+        return look_after_sweep
+
+    if look == "access":
+        monkeypatch.setattr(targets.os, "access", swept(os.access))
+    else:
+        monkeypatch.setattr(targets, "written_by_scanplan", swept(written_by_scanplan))
+    targets.check_target(str(target), "--out", "pdf", force=False)  # no InputError
+    assert not target.exists()
+    target.write_bytes(b"%PDF-1.7 not ours")  # still there at every look: refused
+    monkeypatch.undo()
+    with pytest.raises(InputError, match="not written by scanplan"):
+        targets.check_target(str(target), "--out", "pdf", force=False)
 
 
 def test_different_projects_into_one_folder_never_delete_each_others_files(work, planned):

@@ -162,10 +162,14 @@ def check_target(path: str, field: str, kind: str | FileKind, *, inputs: Iterabl
         from .files import file_kind
 
         raise InputError(field, f"{shown} is {file_kind(st.st_mode)}; give a file name")
-    if not os.access(path, os.W_OK) or not st.st_mode & 0o222:  # root too: no write bit
+    # Another scanplan run may sweep the file away between these looks (this check runs
+    # once before rendering without the folder's lock): a file gone meanwhile has nothing
+    # to protect, and the check under the lock just before the write decides.
+    if (not os.access(path, os.W_OK) or not st.st_mode & 0o222) and os.path.lexists(path):
         raise InputError(field, f"{shown} is write-protected; scanplan leaves it alone "
-                         "(make it writable, or give another name)")
-    if st.st_size and not force and not written_by_scanplan(path, kind):
+                         "(make it writable, or give another name)")  # root too: no write bit
+    if (st.st_size and not force and not written_by_scanplan(path, kind)
+            and os.path.lexists(path)):
         raise InputError(field, f"{shown} exists and was not written by scanplan; give "
                          "--force to replace it, or another name")
 
