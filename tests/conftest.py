@@ -45,16 +45,42 @@ def paper_rules(norms) -> ScanRules:
 
 
 
-def pytest_terminal_summary(terminalreporter, exitstatus, config):
-    """Print how many generated inputs the fuzz suite ran (issue 7: at least 1,000)."""
+def _fuzz_counts() -> dict[str, int]:
+    """This process's count of generated inputs per fuzz family (none: not run here)."""
     import sys
 
-    fuzz = sys.modules.get("test_fuzz")
-    counts = getattr(fuzz, "COUNTS", None)
+    return dict(getattr(sys.modules.get("test_fuzz"), "COUNTS", None) or {})
+
+
+def pytest_sessionfinish(session, exitstatus):
+    """A pytest-xdist worker hands its fuzz counts to the controller."""
+    if hasattr(session.config, "workeroutput"):
+        session.config.workeroutput["fuzz_counts"] = _fuzz_counts()
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_testnodedown(node, error):
+    """The controller adds up the fuzz counts of its pytest-xdist workers."""
+    counts = node.config.stash.setdefault(_WORKER_COUNTS, {})
+    for family, n in (getattr(node, "workeroutput", None) or {}).get("fuzz_counts", {}).items():
+        counts[family] = counts.get(family, 0) + n
+
+
+_WORKER_COUNTS = pytest.StashKey[dict]()
+
+
+def pytest_terminal_summary(terminalreporter, exitstatus, config):
+    """Print how many generated inputs the fuzz suite ran (at least 1,000), over all
+    workers when the tests run in parallel (``-n``)."""
+    import os
+
+    counts = _fuzz_counts()
+    for family, n in config.stash.get(_WORKER_COUNTS, {}).items():
+        counts[family] = counts.get(family, 0) + n
     if not counts:
         return
     total = sum(counts.values())
-    profile = "long" if getattr(fuzz, "LONG", False) else "fast"
+    profile = "long" if os.environ.get("SCANPLAN_FUZZ") == "long" else "fast"  # test_fuzz.LONG
     terminalreporter.write_sep("-", f"fuzz: {total:,} generated inputs ({profile} profile)")
     for family, n in sorted(counts.items()):
         terminalreporter.write_line(f"  {family:<36} {n:>6,}")
