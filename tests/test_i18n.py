@@ -51,3 +51,31 @@ def test_the_aircraft_wording_tells_keys_apart():
     labels = {"en": {"a": "UAV", "b": "UAV"}, "ru": {"a": "БПЛА", "b": "БПЛА"}}
     assert duplicate_keys(labels) == {("a", "b")}
     assert duplicate_keys(labels, {"en": {"a": "Aerial survey"}, "ru": {}}) == set()
+
+
+def test_a_crs_name_reads_the_same_in_the_terminal_and_the_documents():
+    """Bug: the Russian terminal said ``WGS 84 / UTM, зона 37N`` and the PDF and the page
+    ``WGS 84 / UTM зона 37 с. ш.`` for the same system (two translators). One function
+    says a name in Russian; a name it cannot say leaves the EPSG code alone."""
+    from types import SimpleNamespace
+
+    from scanplan.i18n.labels_geo import crs_name
+    from scanplan.reports.mapview import area_crs_text
+    from scanplan.reports.text import format_area
+
+    assert crs_name("WGS 84 / UTM zone 37N", "ru") == "WGS 84 / UTM зона 37 с. ш."
+    assert crs_name("WGS 84 / UTM zone 19S", "ru") == "WGS 84 / UTM зона 19 ю. ш."
+    assert crs_name("Pulkovo 1942 / Gauss-Kruger zone 7", "ru") == (
+        "Пулково 1942 / Гаусса — Крюгера зона 7")
+    assert crs_name("NAD83 / New York Long Island (ftUS)", "ru") == ""
+    assert crs_name("WGS 84 / UTM zone 37N", "en") == "WGS 84 / UTM zone 37N"
+    for name, code in (("WGS 84 / UTM zone 37N", "EPSG:32637"),
+                       ("NAD83 / New York Long Island (ftUS)", "EPSG:2263")):
+        area = SimpleNamespace(
+            plan_crs=code, plan_crs_name=name, georeferenced=True, source_file="a.kml",
+            source_feature="A", source_layer="", source="a.kml", area_km2=1.0,
+            perimeter_km=4.0)
+        document = area_crs_text(area, "ru")
+        line = " ".join(format_area(area, "ru").split())
+        said = crs_name(name, "ru") or code
+        assert document.endswith(said) and line.endswith(f", {said}"), (document, line)

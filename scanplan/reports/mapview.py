@@ -16,7 +16,6 @@ from __future__ import annotations
 import base64
 import io
 import math
-import re
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -25,6 +24,7 @@ import numpy as np
 from ..core.photoscale import height_at_photo_scale_m, photo_scale_at_height
 from ..geo.layout import Area, FlightLayout
 from ..i18n.labels import t
+from ..i18n.labels_geo import crs_name
 from ..i18n.messages import scale_text
 from . import exports as _exports
 from .plots import number
@@ -75,14 +75,6 @@ photos), as one 300 dpi picture 0.1 s; printed or zoomed to 400 %, a dot looks t
 The area, the strips, the text and the legend stay vector."""
 _RASTER_DPI = 150  # the photo centres coloured by height above ground (terrain maps)
 
-# Russian for the words of common projected-CRS names (pyproj's names are English)
-_RU_CRS_WORDS = [(r"\bzone\b", "зона"), (r"\bPulkovo\b", "Пулково"),
-                 (r"\bGauss-Kruger\b", "Гаусса — Крюгера"), (r"\bCM\b", "осевой меридиан"),
-                 (r"\bN\b", "с. ш."), (r"\bS\b", "ю. ш.")]
-_LATIN_WORD = re.compile(r"[A-Za-z][A-Za-z'-]*[A-Za-z]")
-_RU_KEPT = {"EPSG", "UTM", "WGS", "GSK", "ETRS", "CS"}  # abbreviations kept in Russian
-
-
 def crs_text(layout: FlightLayout, locale: str) -> str:
     """The planning CRS of a layout's area named for a report (:func:`area_crs_text`)."""
     return area_crs_text(layout.area, locale)
@@ -92,19 +84,13 @@ def area_crs_text(area: Area, locale: str) -> str:
     """The planning CRS of ``area`` named for a report or the page:
     ``EPSG:32635 — WGS 84 / UTM zone 35N``.
 
-    Russian names translate the common words (zone, Pulkovo, Gauss–Kruger); a name with
-    other English words is left out (the EPSG code alone names the system).
+    Russian names translate the common words (:func:`scanplan.i18n.labels_geo.crs_name`);
+    a name with other English words is left out (the EPSG code alone names the system).
     """
     if not area.georeferenced:
         return t("map_local", locale)
     code = area.plan_crs if len(area.plan_crs) < 40 else ""  # a WKT is not shown
-    name = getattr(area, "plan_crs_name", "") or ""
-    if locale == "ru" and name:
-        name = re.sub(r"(\d)N\b", r"\1 с. ш.", re.sub(r"(\d)S\b", r"\1 ю. ш.", name))
-        for pattern, word in _RU_CRS_WORDS:
-            name = re.sub(pattern, word, name)
-        if any(w not in _RU_KEPT for w in _LATIN_WORD.findall(name)):
-            name = ""
+    name = crs_name(getattr(area, "plan_crs_name", "") or "", locale)
     parts = [p for p in (code, name) if p]
     return " — ".join(parts) if parts else t("map_local", locale)
 

@@ -9,6 +9,7 @@ from collections.abc import Callable, Sequence
 from typing import Any
 
 from ..i18n.labels import LABELS, t
+from ..i18n.labels_geo import crs_name
 from ..i18n.messages import localize, scale_text
 from ..i18n.numbers import Numbers
 from .jsondoc import scale_value
@@ -283,15 +284,6 @@ def code_tag(code: str, locale: str) -> str:
     return "" if locale == "ru" else f" [{code}]"
 
 
-def crs_words(name: str, locale: str) -> str:
-    """A coordinate system's name as pyproj gives it, its words in ``locale`` (Russian:
-    ``WGS 84 / UTM, зона 37N``)."""
-    if locale != "ru":
-        return name
-    return (name.replace("UTM zone", "UTM, зона").replace("Gauss-Kruger zone", "Гаусса — "
-            "Крюгера, зона").replace("Pulkovo 1942", "Пулково 1942"))
-
-
 def area_source(area: Any, locale: str = "en") -> str:
     """Where the area comes from, in ``locale``: the file and feature, an inline polygon, or
     the rectangle."""
@@ -308,7 +300,9 @@ def area_source(area: Any, locale: str = "en") -> str:
 def format_area(area: Any, locale: str = "en") -> str:
     """One line: where the area comes from, its size, perimeter and planning CRS."""
     T = _AREA_TEXT[locale]
-    crs = f", {crs_words(area.plan_crs_name, locale)}" if area.plan_crs_name else ""
+    name = crs_name(area.plan_crs_name or "", locale) or (
+        area.plan_crs if len(area.plan_crs or "") < 40 else "")  # the code; a WKT is not shown
+    crs = f", {name}" if area.plan_crs_name and name else ""
     return _wrap(f"{T['area']}: {area_source(area, locale)} — "
                  f"{_n(area.area_km2, 2, locale, True)} {T['km2']}, {T['perimeter']} "
                  f"{_n(area.perimeter_km, 1, locale, True)} {T['km']}{crs}", "")
