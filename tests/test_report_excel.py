@@ -156,6 +156,24 @@ def test_uav_sheet_height_limits_and_recognition(both_en, uav):
     assert ws[f"D{rec}"].value == 2000 and ws[f"D{rec}"].number_format == '"1:"0'
 
 
+def test_uav_limits_are_listed_lowest_first_as_on_the_pdf(both_en, uav):
+    """The workbook lays out the same constraints table as the PDF and the terminal
+    (lowest maximum height first); it listed them in the rules' order, so the two
+    documents of one plan read in different orders."""
+    ws = both_en["UAV"]
+    head = find_row(ws, A="ID")
+    ids, heights = [], []
+    row = head + 1
+    while ws[f"A{row}"].value:
+        ids.append(ws[f"A{row}"].value)
+        heights.append(ws[f"E{row}"].value)
+        row += 1
+    by_height = sorted(uav.plan.limits, key=lambda lim: lim.max_height_m)
+    assert ids == [lim.id for lim in by_height] and len(ids) >= 3
+    assert heights == sorted(heights) and heights == exact([lim.max_height_m for lim in by_height])
+    assert ids != [lim.id for lim in uav.plan.limits]  # the rules' order differs here
+
+
 def test_mtf_sheet_has_every_component_contrast_threshold_and_r(both_en, uav):
     ws = both_en["MTF"]
     mc = uav.plan.mtf_centre

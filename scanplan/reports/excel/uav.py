@@ -1,5 +1,10 @@
 """The UAV sheets: results, the limits as heights, recognition, flight geometry and the
-height chart; the MTF sheet."""
+height chart; the MTF sheet.
+
+The constraints and the recognition are the tables the PDF and the terminal lay out
+(:mod:`scanplan.reports.views`), in the same order. The results and the flight geometry
+are the workbook's own: every figure of the plan at full precision, one per row (the data
+a reader recomputes from), where the PDF's tables pick the ones a signer reads."""
 
 from __future__ import annotations
 
@@ -100,15 +105,17 @@ def uav_sheet(book: Book, job: UavJob) -> None:
         row = book.kv(ws, row, book.t("binding"), book.cname(plan.binding or ""))
         _mark((ws.cell(r0, 2), ws.cell(r0 + 1, 2)))
         row = _height_rows(book, ws, row, plan)
-    row = _limits_rows(book, ws, row, plan)
+    row = _limits_rows(book, ws, row)
     row = _recognition_rows(book, ws, row, job)
     row = _flight_rows(book, ws, row, plan)
     _height_chart(book, ws, row, plan)
 
 
-def _limits_rows(book: Book, ws: Worksheet, row: int, plan: UavPlan) -> int:
-    """The constraints as maximum flight heights (binding highlighted)."""
-    if not plan.limits:
+def _limits_rows(book: Book, ws: Worksheet, row: int) -> int:
+    """The constraints as maximum flight heights, lowest first as on the PDF's page (the
+    ``uav_limits`` table; binding highlighted), with each one's reason and equation."""
+    rows = book.view.tables["uav_limits"].rows
+    if not rows:
         return row
     row = book.section(ws, row + 1, book.t("xlsx_height_limits"))
     _header(ws, row, [book.t("xlsx_id"), book.t("constraint"), book.t("xlsx_compares"),
@@ -117,18 +124,20 @@ def _limits_rows(book: Book, ws: Worksheet, row: int, plan: UavPlan) -> int:
                       book.t("max_flown_height_m"), book.t("reason"),
                       book.t("xlsx_equation")])
     row += 1
-    for lim in plan.limits:
-        cells = [put_text(ws, row, 1, lim.id),
-                 put_text(ws, row, 2, constraint_title(lim.id, book.loc, lim.name)),
-                 put_text(ws, row, 3, lim.compares),
-                 put_num(ws, row, 4, lim.limit_m, F4),
-                 put_num(ws, row, 5, lim.max_height_m, F1),
-                 put_num(ws, row, 6, lim.margin_pct, PCT),
-                 put_text(ws, row, 7, book.yes_no(lim.binding)),
-                 put_num(ws, row, 8, lim.max_flown_height_m, F1)]
-        put_text(ws, row, 9, book.text(lim.reason), wrap=True)
-        put_text(ws, row, 10, book.text(lim.equation), wrap=True)
-        if lim.binding:
+    for r in rows:
+        limit_m, compares, max_height_m, _, _ = r.values
+        binding = "binding" in r.flags
+        cells = [put_text(ws, row, 1, r.key),
+                 put_text(ws, row, 2, constraint_title(r.key, book.loc, r.fields["name"])),
+                 put_text(ws, row, 3, compares),
+                 put_num(ws, row, 4, limit_m, F4),
+                 put_num(ws, row, 5, max_height_m, F1),
+                 put_num(ws, row, 6, r.fields["margin_pct"], PCT),
+                 put_text(ws, row, 7, book.yes_no(binding)),
+                 put_num(ws, row, 8, r.fields["max_flown_m"], F1)]
+        put_text(ws, row, 9, book.text(r.fields["reason"]), wrap=True)
+        put_text(ws, row, 10, book.text(r.fields["equation"]), wrap=True)
+        if binding:
             _mark(cells)
         row += 1
     return row

@@ -76,7 +76,11 @@ def uav_limits(plan: Any) -> Table:
         binds, ``"binding"``); columns ``limit`` (the ground limit [m], or the ceiling),
         ``compares`` (``GSD``, ``L`` or ``H``), ``max_height`` (the largest planned
         height [m]), ``max_flown`` (its highest flown height [m]) and ``margin_pct``
-        (None for the binding one and an unlimited one). No rows without limits.
+        (None for the binding one and an unlimited one). No rows without limits. Each
+        row's fields carry the constraint as the rules give it, for the workbook's full
+        table: ``name``, ``reason`` and ``equation`` (messages or text), ``margin_pct``
+        (its headroom, also for the binding one) and ``max_flown_m`` (None when not
+        computed).
     """
     columns = (Column("limit", unit="m", digits=3), Column("compares"),
                Column("max_height", unit="m", digits=0),
@@ -89,7 +93,10 @@ def uav_limits(plan: Any) -> Table:
         flags = {"constraint", "binding"} if lim.binding else {"constraint"}
         rows.append(Row(lim.id, (lim.limit_m, lim.compares, lim.max_height_m,
                                  lim.max_flown_height_m or lim.max_height_m, margin),
-                        flags=frozenset(flags)))
+                        flags=frozenset(flags),
+                        fields={"name": lim.name, "reason": lim.reason,
+                                "equation": lim.equation, "margin_pct": lim.margin_pct,
+                                "max_flown_m": lim.max_flown_height_m}))
     return Table("uav_limits", "uav_limits", columns, tuple(rows))
 
 
