@@ -53,7 +53,7 @@ def _pdf_pages(spec):
 def test_crs_named_in_both_languages():
     lay = make_layout()
     assert crs_text(_named(lay), "en") == "EPSG:32635 — WGS 84 / UTM zone 35N"
-    assert crs_text(_named(lay), "ru") == "EPSG:32635 — WGS 84 / UTM зона 35 с. ш."
+    assert crs_text(_named(lay), "ru") == "EPSG:32635 — WGS 84 / UTM зона 35\u00a0с.\u00a0ш."
     gk = _named(lay, "Pulkovo 1942 / Gauss-Kruger zone 5")
     assert crs_text(gk, "ru") == "EPSG:32635 — Пулково 1942 / Гаусса — Крюгера зона 5"
     assert crs_text(_named(lay, "NAD83 / Texas Central"), "ru") == "EPSG:32635"

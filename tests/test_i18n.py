@@ -63,8 +63,8 @@ def test_a_crs_name_reads_the_same_in_the_terminal_and_the_documents():
     from scanplan.reports.mapview import area_crs_text
     from scanplan.reports.text import format_area
 
-    assert crs_name("WGS 84 / UTM zone 37N", "ru") == "WGS 84 / UTM зона 37 с. ш."
-    assert crs_name("WGS 84 / UTM zone 19S", "ru") == "WGS 84 / UTM зона 19 ю. ш."
+    assert crs_name("WGS 84 / UTM zone 37N", "ru") == "WGS 84 / UTM зона 37\u00a0с.\u00a0ш."
+    assert crs_name("WGS 84 / UTM zone 19S", "ru") == "WGS 84 / UTM зона 19\u00a0ю.\u00a0ш."
     assert crs_name("Pulkovo 1942 / Gauss-Kruger zone 7", "ru") == (
         "Пулково 1942 / Гаусса — Крюгера зона 7")
     assert crs_name("NAD83 / New York Long Island (ftUS)", "ru") == ""
@@ -76,6 +76,6 @@ def test_a_crs_name_reads_the_same_in_the_terminal_and_the_documents():
             source_feature="A", source_layer="", source="a.kml", area_km2=1.0,
             perimeter_km=4.0)
         document = area_crs_text(area, "ru")
-        line = " ".join(format_area(area, "ru").split())
+        line = format_area(area, "ru").replace("\n", " ")
         said = crs_name(name, "ru") or code
         assert document.endswith(said) and line.endswith(f", {said}"), (document, line)

@@ -77,7 +77,7 @@ def test_the_view_names_the_planning_crs_in_the_page_language(client):
     """A Russian page names the planning system in Russian, as the Russian PDF does."""
     req = {"project": {**UAV, "project": {"name": "Блок", "locale": "ru"}}}
     v = client.post("/api/view", json=req).json()
-    assert v["crs"] == "EPSG:32637 — WGS 84 / UTM зона 37 с. ш."
+    assert v["crs"] == "EPSG:32637 — WGS 84 / UTM зона 37\u00a0с.\u00a0ш."
     local = {"project": {k: x for k, x in UAV.items() if k != "area"}}
     assert client.post("/api/view", json=local).json()["crs"] is None
 

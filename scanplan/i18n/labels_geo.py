@@ -9,7 +9,7 @@ import re
 # Russian for the words of common projected-CRS names (pyproj's names are English)
 _RU_CRS_WORDS = [(r"\bzone\b", "зона"), (r"\bPulkovo\b", "Пулково"),
                  (r"\bGauss-Kruger\b", "Гаусса — Крюгера"), (r"\bCM\b", "осевой меридиан"),
-                 (r"\bN\b", "с. ш."), (r"\bS\b", "ю. ш.")]
+                 (r"\bN\b", "с.\u00a0ш."), (r"\bS\b", "ю.\u00a0ш.")]
 _LATIN_WORD = re.compile(r"[A-Za-z][A-Za-z'-]*[A-Za-z]")
 _RU_KEPT = {"EPSG", "UTM", "WGS", "GSK", "ETRS", "CS"}  # abbreviations kept in Russian
 
@@ -17,12 +17,13 @@ _RU_KEPT = {"EPSG", "UTM", "WGS", "GSK", "ETRS", "CS"}  # abbreviations kept in 
 def crs_name(name: str, locale: str) -> str:
     """A coordinate system's name as pyproj gives it (``WGS 84 / UTM zone 37N``), its words
     in ``locale``: Russian ``WGS 84 / UTM зона 37 с. ш.`` (zone, Pulkovo, Gauss–Kruger, the
-    hemisphere). A Russian name that would keep other English words is ``""``: the EPSG code
-    alone names the system then.
+    hemisphere; no-break spaces keep ``37 с. ш.`` on one line). A Russian name that would
+    keep other English words is ``""``: the EPSG code alone names the system then.
     """
     if locale != "ru" or not name:
         return name
-    name = re.sub(r"(\d)N\b", r"\1 с. ш.", re.sub(r"(\d)S\b", r"\1 ю. ш.", name))
+    for letter, hemisphere in (("S", "ю.\u00a0ш."), ("N", "с.\u00a0ш.")):
+        name = re.sub(rf"(\d){letter}\b", f"\\1\u00a0{hemisphere}", name)
     for pattern, word in _RU_CRS_WORDS:
         name = re.sub(pattern, word, name)
     return "" if any(w not in _RU_KEPT for w in _LATIN_WORD.findall(name)) else name
