@@ -111,6 +111,15 @@ class Strip:
     segments: int = 1
     altitude_m: float | None = None  # strip altitude (terrain 'strip' mode), else None
     parts: tuple[tuple[tuple[float, float], tuple[float, float]], ...] = ()
+    continued: tuple[tuple[int, int], ...] = ()  # (sortie, its first photo) of each later
+    # sortie that continues the strip after a battery change mid-strip; () when one
+    # sortie flies it all
+
+    @property
+    def last_sortie(self) -> int:
+        """The sortie that flies the strip's end (:attr:`sortie` unless a later one
+        continues it)."""
+        return self.continued[-1][0] if self.continued else self.sortie
 
 
 @dataclass(frozen=True)

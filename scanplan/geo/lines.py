@@ -569,7 +569,8 @@ def _records(parts: _Parts, plan: SortiePlan, ex_strip: np.ndarray,
     empty, and the count noted, beyond :data:`MAX_PHOTO_CENTRES`)."""
     strips, (p_strip, p_start, pf, n_per), first_photo = _strip_records(
         parts.u_m, parts.p_strip, parts.first, parts.last, parts.n_per, parts.s_lo,
-        parts.s_hi, parts.photos_per_strip, plan.start(parts.n_strips, ex_strip), to_xy)
+        parts.s_hi, parts.photos_per_strip, plan.start(parts.n_strips, ex_strip), to_xy,
+        plan.continued(ex_strip))
     n_photos = int(parts.photos_per_strip.sum())
     if n_photos <= MAX_PHOTO_CENTRES:
         photos = _photos(n_per, p_strip, p_start, pf, parts.u_m, first_photo,
@@ -609,11 +610,13 @@ def _to_plan_xy(direction: float, origin: tuple[float, float]) -> Callable[
 def _strip_records(u: np.ndarray, p_strip: np.ndarray, first: np.ndarray, last: np.ndarray,
                    n_per: np.ndarray, s_lo: np.ndarray, s_hi: np.ndarray,
                    photos_per_strip: np.ndarray, sortie_of: np.ndarray,
-                   to_xy: Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]
+                   to_xy: Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]],
+                   continued: Mapping[int, tuple[tuple[int, int], ...]] | None = None,
                    ) -> tuple[tuple[Strip, ...], tuple[np.ndarray, ...], np.ndarray]:
-    """The :class:`Strip` records (serpentine: strip 1 flown +v), the photographed parts in
-    flight order (strip, first exposure along v, forward?, photos) and each strip's first
-    photo number."""
+    """The :class:`Strip` records (serpentine: strip 1 flown +v; ``continued``: strip →
+    the later sorties that continue it, :meth:`SortiePlan.continued`), the photographed
+    parts in flight order (strip, first exposure along v, forward?, photos) and each
+    strip's first photo number."""
     n_strips = len(u)
     forward = (np.arange(n_strips) % 2) == 0
     sx, sy = to_xy(u, np.where(forward, s_lo, s_hi))
@@ -636,7 +639,7 @@ def _strip_records(u: np.ndarray, p_strip: np.ndarray, first: np.ndarray, last: 
               end_xy_m=(float(ex[i]), float(ey[i])), length_m=float(s_hi[i] - s_lo[i]),
               photos=int(photos_per_strip[i]), first_photo=int(first_photo[i]),
               sortie=int(sortie_of[i]) + 1, segments=int(segs[i]),
-              parts=tuple(parts_of[i]))
+              parts=tuple(parts_of[i]), continued=(continued or {}).get(i, ()))
         for i in range(n_strips))
     return strips, (p_strip, p_start, pf, n_per), first_photo
 

@@ -61,6 +61,21 @@ class SortiePlan:
         out[exposure_strip[first]] = self.exposure_sortie[first]
         return out
 
+    def continued(self, exposure_strip: np.ndarray) -> dict[int, tuple[tuple[int, int], ...]]:
+        """The strips a later sortie continues (a battery change mid-strip): strip (from 0)
+        → (sortie, photo) for each sortie after the one it starts in — the sortie (from 1)
+        and the running number of its first photo on that strip (from 1: exposures are
+        numbered in flight order)."""
+        s = self.exposure_sortie
+        if len(s) < 2:
+            return {}
+        at = np.flatnonzero((s[1:] != s[:-1])
+                            & (exposure_strip[1:] == exposure_strip[:-1])) + 1
+        out: dict[int, list[tuple[int, int]]] = {}
+        for k in at:
+            out.setdefault(int(exposure_strip[k]), []).append((int(s[k]) + 1, int(k) + 1))
+        return {strip: tuple(v) for strip, v in out.items()}
+
     def records(self, speed_ms: float | None) -> tuple[Sortie, ...]:
         """The :class:`Sortie` records (times at ``speed_ms``)."""
         def time(m: float) -> float | None:

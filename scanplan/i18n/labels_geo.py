@@ -78,6 +78,9 @@ GEO: dict[str, dict[str, str]] = {
         "strip_lat_lon": "latitude, longitude, °",
         "strip_xy": "easting, northing, m",
         "strips_more": "The first {shown} of {total} strips; all of them are in the workbook.",
+        "strips_continued": "Battery changes in mid-strip (the next sortie continues the "
+                            "strip from where the previous one ended): {list}.",
+        "strip_continued_item": "strip {strip}, sortie {sortie} from photo {photo}",
         "geo_not_georeferenced": "The block is an abstract rectangle (width × length): it has "
                                  "no place on the map, so no map, mission or GIS files are "
                                  "written. Give the area as a polygon (a boundary file or a "
@@ -156,6 +159,9 @@ GEO: dict[str, dict[str, str]] = {
         "strip_lat_lon": "широта, долгота, °",
         "strip_xy": "координаты X (на север), Y (на восток), м",
         "strips_more": "Первые {shown} из {total} маршрутов; все — в рабочей книге.",
+        "strips_continued": "Смена аккумулятора в середине маршрута (следующий вылет "
+                            "продолжает маршрут с места окончания предыдущего): {list}.",
+        "strip_continued_item": "маршрут {strip}, вылет {sortie} со снимка {photo}",
         "geo_not_georeferenced": "Участок задан условным прямоугольником (ширина × длина): "
                                  "он не привязан к карте, поэтому схема, полётное задание и "
                                  "файлы для ГИС не создаются. Чтобы их получить, задайте "

@@ -18,7 +18,7 @@ import numpy as np
 from ..geo.export.gis import photo_columns
 from ..geo.layout import FlightLayout
 from . import exports as _exports
-from .mapview import MAX_SHEET_PHOTOS, summary_items
+from .mapview import MAX_SHEET_PHOTOS, continued_note, sortie_cell, summary_items
 from .plots import number
 
 __all__ = ["MAX_SHEET_PHOTOS", "add_geo_sheets"]  # MAX_SHEET_PHOTOS: from .mapview
@@ -72,7 +72,9 @@ def _strips_sheet(book: Any, layout: FlightLayout, key: str, files_beside: bool)
     elif len(layout.photos) > MAX_SHEET_PHOTOS:
         notes.append(book.t("geo_photos_elsewhere" if files_beside else "geo_photos_too_many")
                      .format(n=number(len(layout.photos), 0, loc)))
-    for note in notes:
+    if layout.kind != "film":
+        notes.append(continued_note(layout.strips, loc))
+    for note in filter(None, notes):
         row = book._wide_kv(ws, row, "", note)
     row += 1
     ends = [(book.t(e), book.t(c)) for e in ("strip_start", "strip_end")
@@ -94,7 +96,10 @@ def _strips_sheet(book: Any, layout: FlightLayout, key: str, files_beside: bool)
     ll = geo.points(ends) if geo is not None and len(ends) else np.full_like(ends, np.nan)
     for k, s in enumerate(layout.strips):
         put_num(ws, row, 1, s.number, "0")
-        put_num(ws, row, 2, s.sortie, "0")
+        if s.last_sortie == s.sortie:
+            put_num(ws, row, 2, s.sortie, "0")
+        else:  # a battery change mid-strip: the sorties, as text
+            put_text(ws, row, 2, sortie_cell(s))
         put_num(ws, row, 3, s.photos, "#,##0")
         put_num(ws, row, 4, s.length_m, "#,##0.0")
         put_num(ws, row, 5, max(s.segments, len(s.parts) or 1), "0")

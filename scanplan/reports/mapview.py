@@ -534,16 +534,35 @@ def strips_table(layout: FlightLayout, locale: str, limit: int | None = MAX_TABL
             t("strip_parts", locale), f"{t('strip_start', locale)} ({where})",
             f"{t('strip_end', locale)} ({where})"]
     shown = layout.strips if limit is None else layout.strips[:limit]
-    rows = [[str(s.number), str(s.sortie), number(s.photos, 0, locale),
+    rows = [[str(s.number), sortie_cell(s), number(s.photos, 0, locale),
              number(s.length_m, 0, locale), str(max(s.segments, len(s.parts) or 1)),
              _point_text(layout, s.start_xy_m, locale, geo),
              _point_text(layout, s.end_xy_m, locale, geo)] for s in shown]
     if film:  # an aerial survey has no sorties of a battery
         head = [h for k, h in enumerate(head) if k != 1]
         rows = [[c for k, c in enumerate(r) if k != 1] for r in rows]
-    note = (t("strips_more", locale).format(shown=len(shown), total=len(layout.strips))
-            if len(shown) < len(layout.strips) else "")
-    return {"head": head, "rows": rows, "note": note, "numeric": 4 if film else 5}
+    notes = [] if film else [continued_note(layout.strips, locale)]
+    if len(shown) < len(layout.strips):
+        notes.append(t("strips_more", locale).format(shown=len(shown),
+                                                     total=len(layout.strips)))
+    return {"head": head, "rows": rows, "note": " ".join(n for n in notes if n),
+            "numeric": 4 if film else 5}
+
+
+def sortie_cell(strip: Any) -> str:
+    """The sortie (or sorties, ``1–2``, when a battery change falls mid-strip) that fly
+    a strip."""
+    last = strip.last_sortie
+    return str(strip.sortie) if last == strip.sortie else f"{strip.sortie}–{last}"
+
+
+def continued_note(strips: Any, locale: str) -> str:
+    """Where a later sortie takes over a strip (the battery changes mid-strip): the strip,
+    the sortie and its first photo there; "" when every strip is flown in one sortie."""
+    items = [t("strip_continued_item", locale).format(
+        strip=s.number, sortie=sortie, photo=number(photo, 0, locale))
+        for s in strips for sortie, photo in s.continued]
+    return t("strips_continued", locale).format(list="; ".join(items)) if items else ""
 
 
 def geo_views(spec: Any, locale: str) -> list[dict[str, Any]]:

@@ -48,7 +48,7 @@ def _layout(platform: str, layout: Any, most_photos: int) -> list[dict[str, Any]
                  for a, b, c, d in zip(lon0, lat0, lon1, lat1, strict=True)]
         out.append(_feature("strip", {"type": "MultiLineString", "coordinates": lines},
                             platform=platform, number=s.number, sortie=s.sortie,
-                            photos=s.photos))
+                            last_sortie=s.last_sortie, photos=s.photos))
     ph = layout.photos
     n = len(ph)
     if n:
@@ -56,8 +56,10 @@ def _layout(platform: str, layout: Any, most_photos: int) -> list[dict[str, Any]
         lon, lat = ph["lon_deg"][::step], ph["lat_deg"][::step]
         out.append(_feature("photos", {"type": "MultiPoint", "coordinates": np.column_stack(
             [lon, lat]).round(7).tolist()}, platform=platform, count=n, every=step))
-        first = {k.number: layout.strips[k.strips[0] - 1].first_photo - 1
-                 for k in layout.sorties if k.strips}
+        # each sortie's first photo (photos are in flight order: their sorties ascend; a
+        # sortie may start in mid-strip, where the previous battery ran out)
+        sorties = np.asarray(ph["sortie"])
+        first = {k.number: int(np.searchsorted(sorties, k.number)) for k in layout.sorties}
         for number, i in first.items():
             if 0 <= i < n:
                 out.append(_feature("takeoff", {"type": "Point", "coordinates": [
