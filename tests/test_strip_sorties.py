@@ -104,3 +104,29 @@ def test_the_page_marks_each_sortie_where_its_first_photo_is(town):
     for s in layout.strips:
         assert (strips[s.number]["sortie"], strips[s.number]["last_sortie"]) == (
             s.sortie, s.last_sortie)
+
+
+def test_the_gis_files_carry_the_last_sortie_of_each_strip(town, tmp_path):
+    """flight.geojson, flight.kml and flight.gpkg: ``sortie`` (the one a strip starts in)
+    and ``last_sortie`` (the one that flies its end), read back by GDAL."""
+    pyogrio = pytest.importorskip("pyogrio")
+    from scanplan.geo.export.gis import render_geojson, render_kml
+    from scanplan.geo.export.gpkg import render_gpkg
+
+    _, layout = town
+    want = {s.number: (s.sortie, s.last_sortie) for s in layout.strips}
+    assert any(a != b for a, b in want.values())
+    (tmp_path / "flight.geojson").write_bytes(render_geojson(layout))
+    (tmp_path / "flight.gpkg").write_bytes(render_gpkg(layout))
+    kml = render_kml(layout).decode()
+    for name, layer in (("flight.geojson", None), ("flight.gpkg", "strips")):
+        _, _, _, fields = pyogrio.raw.read(tmp_path / name, layer=layer, read_geometry=False)
+        names = list(pyogrio.read_info(tmp_path / name, layer=layer)["fields"])
+        col = dict(zip(names, fields, strict=True))
+        rows = range(len(col["strip"]))
+        got = {int(col["strip"][i]): (int(col["sortie"][i]), int(col["last_sortie"][i]))
+               for i in rows if "kind" not in col or col["kind"][i] == "strip"}
+        assert got == want, name
+    for number, (first, last) in want.items():
+        if first != last:
+            assert f"<description>sortie {first}–{last}</description>" in kml, number

@@ -238,9 +238,12 @@ def _kml_strips(doc: ET.Element, layout: FlightLayout, geo: LonLat, names: Expor
                                                strict=True):
         pm = _sub(folder, "Placemark")
         _sub(pm, "name", names.strip.format(n=number))
-        _sub(pm, "description", names.sortie.format(n=strip.sortie))
+        flown = (str(strip.sortie) if strip.last_sortie == strip.sortie
+                 else f"{strip.sortie}–{strip.last_sortie}")  # a battery change mid-strip
+        _sub(pm, "description", names.sortie.format(n=flown))
         _sub(pm, "styleUrl", "#strip")
         _data(pm, {"strip": str(number), "sortie": str(strip.sortie),
+                   "last_sortie": str(strip.last_sortie),
                    "photos": str(strip.photos), "length_m": _fmt(strip.length_m, 1)})
         parent = _sub(pm, "MultiGeometry") if segments else pm
         for seg in segments or [line]:
@@ -372,7 +375,8 @@ def render_geojson(layout: FlightLayout, names: ExportNames | None = None) -> by
         features.append({
             "type": "Feature",
             "properties": {"kind": "strip", "name": names.strip.format(n=number),
-                           "strip": number, "sortie": strip.sortie, "photos": strip.photos,
+                           "strip": number, "sortie": strip.sortie,
+                           "last_sortie": strip.last_sortie, "photos": strip.photos,
                            "length_m": _num(round(strip.length_m, 2))},
             "geometry": geometry,
         })

@@ -111,6 +111,7 @@ def render_gpkg(layout: FlightLayout) -> bytes:
             _write(path, "strips", geoms, {
                 "strip": np.array([s.number for s in strips], np.int32),
                 "sortie": np.array([s.sortie for s in strips], np.int32),
+                "last_sortie": np.array([s.last_sortie for s in strips], np.int32),
                 "photos": np.array([s.photos for s in strips], np.int32),
                 "length_m": np.array([s.length_m for s in strips], float),
             }, "MultiLineString", crs, False)
