@@ -128,3 +128,21 @@ def test_a_closed_pipe_and_an_interrupt():
         raise KeyboardInterrupt
     r = CliRunner().invoke(_group(interrupt), ["run"])
     assert r.exit_code == 1 and r.stderr == "\nAborted!\n"
+
+
+@pytest.mark.parametrize(("args", "said"), [
+    (["scan", *FILM, "--relief", "1", "--side-overlap-pct", "-5"],
+     "error: --side-overlap-pct: must be a finite number ≥ 10"),
+    (["scan", *FILM, "--relief", "1", "--side-overlap-pct", "30"],
+     "error: --side-overlap-pct: sets the side overlap of the flight lines over --area-file"),
+    (["uav", "--camera", "canon-eos-5d-mark-ii-50", "--height-m", "100", "--relief", "0.5"],
+     "error: --relief: goes with the map scale"),
+])
+def test_an_option_that_would_do_nothing_is_refused(args, said):
+    """Bug: ``scan --side-overlap-pct -5`` without an area file printed its report and
+    exit 0 (the value was checked only with --area-file, where it shapes the flight
+    lines), and ``uav --relief`` without ``--map-scale`` was dropped unsaid. A value is
+    checked whenever it is given, and an option that would change nothing says what it
+    needs."""
+    r = CliRunner().invoke(main, args)
+    assert r.exit_code == 2 and said in r.stderr, r.output

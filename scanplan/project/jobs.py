@@ -585,6 +585,9 @@ def _map_constraints(ns: NormSet, map_scale: object | None, relief_interval_m: f
     rules = None
     mk = None
     map_obj = None
+    if map_scale is None and relief_interval_m is not None:  # never silently unused
+        raise InputError("relief_interval_m", "goes with the map scale (the map's accuracy "
+                         "constraints); give the map scale too")
     if map_scale is not None:
         mk = _scale(map_scale, "map_scale")
         if relief_interval_m is None:
