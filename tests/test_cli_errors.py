@@ -146,3 +146,14 @@ def test_an_option_that_would_do_nothing_is_refused(args, said):
     needs."""
     r = CliRunner().invoke(main, args)
     assert r.exit_code == 2 and said in r.stderr, r.output
+
+
+def test_scan_offers_only_the_height_formulas_of_film_photos():
+    """Bug: ``scan --help`` offered ``--height-formula normal_case`` (the digital block's
+    form, which the project's shared key may name) and ``scan`` then refused it."""
+    from scanplan.norms.schema import HEIGHT_FORMULAS
+
+    option = next(p for p in main.commands["scan"].params if p.name == "height_formula")
+    assert tuple(option.type.choices) == HEIGHT_FORMULAS
+    uav = next(p for p in main.commands["uav"].params if p.name == "height_formula")
+    assert "normal_case" in uav.type.choices
