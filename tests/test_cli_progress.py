@@ -178,6 +178,24 @@ def test_decimal_comma_in_the_direction_and_scan_options():
     assert comma.stdout == point.stdout
 
 
+def test_a_scale_with_thousands_commas_is_the_whole_denominator():
+    """Bug: ``--photo-scale 1:10,000`` (as English writes a scale) was read with a decimal
+    comma, 10.0, and refused as "got 10.0"; a comma before each group of three digits
+    groups thousands, any other comma is a decimal comma."""
+    from scanplan.norms import parse_scale
+
+    runner = CliRunner()
+    base = ["scan", "--relief", "1", "--camera", "afa-te-100", "--json"]
+    grouped = runner.invoke(main, [*base, "--map-scale", "1:2,000", "--photo-scale",
+                                   "1:10,000"])
+    plain = runner.invoke(main, [*base, "--map-scale", "2000", "--photo-scale", "10000"])
+    assert grouped.exit_code == 0, grouped.output
+    assert grouped.stdout == plain.stdout
+    assert parse_scale("1:1,250,000", "map_scale") == 1_250_000
+    assert parse_scale("7692,5", "photo_scale") == 7692.5
+    assert parse_scale("10,00", "photo_scale") == 10.0  # not groups of three: a decimal
+
+
 def test_a_terminal_is_told_before_a_write_of_many_files(tmp_path, loud, capsys):
     from scanplan.cli.outset import MANY_FILES, write_set
 

@@ -15,6 +15,7 @@ import glob
 import io
 import math
 import os
+import re
 import stat
 import tomllib
 from collections.abc import Iterable, Mapping
@@ -62,7 +63,12 @@ __all__ = [
 
 
 def parse_scale(value: object, field_name: str) -> float:
-    """A scale denominator from ``2000``, ``"2000"``, ``"1:2000"`` or ``"2 000"``.
+    """A scale denominator from ``2000``, ``"2000"``, ``"1:2000"``, ``"2 000"`` or
+    ``"1:10,000"`` (a comma before each group of three digits groups thousands: a scale
+    denominator of 10.000 is no scale; ``"7692,5"`` is a decimal comma).
+
+    >>> parse_scale("1:10,000", "map_scale"), parse_scale("1:2 000", "map_scale")
+    (10000.0, 2000.0)
 
     Raises
     ------
@@ -82,6 +88,8 @@ def parse_scale(value: object, field_name: str) -> float:
         text = str(value).strip().replace("\u00a0", "").replace("\u202f", "").replace(" ", "")
         if text.startswith("1:"):
             text = text[2:]
+        if re.fullmatch(r"\d{1,3}(,\d{3})+", text):  # 10,000: thousands, as English writes
+            text = text.replace(",", "")
         text = text.replace("\u2212", "-").replace(",", ".")
         try:
             v = float(text)
