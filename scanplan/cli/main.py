@@ -163,7 +163,12 @@ def _area_of(kwargs: dict[str, Any]) -> Any:
         feature = int(feature)
     if kwargs.get("area_m") is not None:
         raise InputError("--area-file", "give one area: --area-file or --area-m")
-    return load_area(AreaSpec(file=path, feature=feature, layer=layer))
+    try:
+        return load_area(AreaSpec(file=path, feature=feature, layer=layer))
+    except InputError as exc:
+        if exc.field != path:  # a feature, a layer: named already
+            raise
+        raise InputError("--area-file", f"{path}: {exc.message}") from None
 
 
 def report_options(f: Callable[..., Any]) -> Callable[..., Any]:

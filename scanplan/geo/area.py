@@ -344,7 +344,7 @@ _DRIVERS: dict[str, tuple[str, ...]] = {
     "kml": ("LIBKML", "KML"), "json": ("GeoJSON", "GeoJSONSeq"), "gpkg": ("GPKG",),
     "shp": ("ESRI Shapefile",)}
 """The GDAL drivers allowed to open each kind of area file (decided by content)."""
-_FORMATS = "KML, KMZ, GeoJSON, GeoPackage or Shapefile"
+_FORMATS = "KML, KMZ, GeoJSON, GeoPackage, Shapefile or a CSV/TXT list of vertices"
 MAX_COMPANION_TEXT_BYTES = 1024 * 1024
 """Largest text companion of a Shapefile (.prj, .cpg) [bytes]."""
 

@@ -74,6 +74,9 @@ class Input:
         Other error fields the engines raise for it (``sensor_width_mm`` for ``sensor_mm``).
     cli_help : str
         The option's help where it must differ from ``help`` (it names other options).
+    cli_note : str
+        The option's note where ``note`` speaks of project-file keys or norm-set parameter
+        names, which a command-line user does not write.
     choices : tuple of str
         The allowed texts, for the option.
     required : bool
@@ -102,6 +105,7 @@ class Input:
     commands: tuple[str, ...] = ()
     fields: tuple[str, ...] = ()
     cli_help: str = ""
+    cli_note: str = ""
     choices: tuple[str, ...] = ()
     required: bool = False
     by_carrier: bool = False
@@ -150,7 +154,8 @@ def describe(inp: Input, *, cli: bool = False) -> str:
     """
     text = (inp.cli_help or inp.help) if cli else inp.help
     extra = [f"default {_shown(inp.default)}"] if inp.default not in (None, "") else []
-    extra += [inp.note] if inp.note else []
+    note = (inp.cli_note or inp.note) if cli else inp.note
+    extra += [note] if note else []
     extra += ["required"] if inp.required and not cli else []
     if not extra:
         return text
@@ -352,6 +357,7 @@ _RECORDS: tuple[Input, ...] = (
           "x-parallax σ_px in the height-accuracy model [px]: an assumption (tie-point "
           "reprojection errors of processing reports suggest 0.5–1.4 px)", "px",
           note="default: the norm set's image_measurement_px, 0.5",
+          cli_note="default: the norm set's image measurement error, 0.5 px",
           domain="parallax_error_px", option="--parallax-error-px", commands=(UAV,), digits=2),
     Input("max_height_m", "uav", "max_height_m", _NUM, "altitude ceiling for the highest "
           "flown height above ground [m]", "m", note="default for a UAV: the norm set's, "
@@ -455,10 +461,12 @@ _RECORDS: tuple[Input, ...] = (
           "is split into sorties of at most this long, and the schedule counts its flying "
           "days from the same sorties", "min",
           note="default: [schedule] sortie_time_min; with [schedule] and neither key 25 for "
-          "a UAV, 180 for an aircraft; else one flight", option="--max-flight-time-min",
+          "a UAV, 180 for an aircraft; else one flight",
+          cli_note="default: one flight over the whole block", option="--max-flight-time-min",
           commands=(UAV,), domain="sortie_time_min", digits=0),
-    Input("area_file", "", "", _STR, "contract polygon: KML, KMZ, GeoJSON, GeoPackage or "
-          "Shapefile; strips and photos are laid out over it (not with --area-m)",
+    Input("area_file", "", "", _STR, "contract polygon: KML, KMZ, GeoJSON, GeoPackage, "
+          "Shapefile or a CSV/TXT list of its vertices; strips and photos are laid out over "
+          "it (not with --area-m)",
           option="--area-file", commands=(FILM, UAV), fields=("file",)),
     Input("area_feature", "", "", _STR, "the polygon's name or number from 1, when the file "
           "holds several", option="--area-feature", commands=(FILM, UAV),
