@@ -441,10 +441,11 @@ def uav(as_json: bool, **kwargs: Any) -> None:
 @click.option("--out", "out_dir", type=click.Path(file_okay=False),
               help="Write spec.xlsx and spec.pdf into this folder (batch: NAME.xlsx/.pdf, "
               "NAME-2.xlsx/.pdf for a second project named NAME); for an area given as a "
-              "polygon also the mission: mission.plan (QGroundControl) and mission.waypoints "
-              "(Mission Planner) — mission-01.plan, mission-01.waypoints … when it needs "
-              "several sorties — flight.kml, flight.geojson and photos.csv (film: "
-              "film-flight.kml, film-flight.geojson, film-frames.csv).")
+              "polygon also the mission: mission.plan (QGroundControl), mission.waypoints "
+              "(Mission Planner) and mission-dji.kmz (DJI Pilot 2) — mission-01.plan, "
+              "mission-01.waypoints, mission-dji-01.kmz … when it needs several sorties — "
+              "and flight.kml, flight.geojson, flight.gpkg and photos.csv (film: "
+              "film-flight.kml, film-flight.geojson, film-flight.gpkg, film-frames.csv).")
 @click.option("--xlsx", "xlsx_path", type=click.Path(dir_okay=False),
               help="Write the Excel report to this file (one project; not with --out).")
 @click.option("--pdf", "pdf_path", type=click.Path(dir_okay=False),
