@@ -442,8 +442,9 @@ def uav(as_json: bool, **kwargs: Any) -> None:
               help="Write spec.xlsx and spec.pdf into this folder (batch: NAME.xlsx/.pdf, "
               "NAME-2.xlsx/.pdf for a second project named NAME); for an area given as a "
               "polygon also the mission: mission.plan (QGroundControl), mission.waypoints "
-              "(Mission Planner) and, for a DJI camera, mission-dji.kmz (DJI Pilot 2) — mission-01.plan, "
-              "mission-01.waypoints, mission-dji-01.kmz … when it needs several sorties — "
+              "(Mission Planner) and, for a DJI camera, mission-dji.kmz (DJI Pilot 2) — "
+              "mission-01.plan, mission-01.waypoints, mission-dji-01.kmz … when it needs "
+              "several sorties — "
               "and flight.kml, flight.geojson, flight.gpkg and photos.csv (film: "
               "film-flight.kml, film-flight.geojson, film-flight.gpkg, film-frames.csv).")
 @click.option("--xlsx", "xlsx_path", type=click.Path(dir_okay=False),
