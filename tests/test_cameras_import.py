@@ -236,3 +236,18 @@ def test_a_workbook_with_an_external_entity_is_refused(tmp_path, user_dir):
     r = _cli("cameras", "import", str(bad))
     assert r.exit_code == 2 and "DTD or XML entities" in r.stderr and "root:" not in r.output
     assert not user_catalogue_dir().exists() or not any(user_catalogue_dir().iterdir())
+
+
+def test_the_refusals_name_what_cameras_import_takes(tmp_path, user_dir):
+    """Bug: a project file given to ``cameras import`` was told "give .xlsx or .csv" (the
+    QGroundControl list, .json, is taken too), and a CSV of no camera table was told
+    "give --table parameters|shapes|objects|…", tables ``cameras import`` refuses."""
+    toml = tmp_path / "project.toml"
+    toml.write_text("[map]\nscale = 2000\n")
+    r = _cli("cameras", "import", str(toml))
+    assert r.exit_code == 2 and ".json" in r.stderr and ".xlsx" in r.stderr, r.output
+    other = tmp_path / "mine.csv"
+    other.write_text("colour,weight\nred,1\n")
+    r = _cli("cameras", "import", str(other))
+    assert r.exit_code == 2 and "--table cameras|scanners|lens_mtf" in r.stderr, r.output
+    assert "objects" not in r.stderr

@@ -87,7 +87,8 @@ def _base_tables(base: str) -> tuple[dict[str, _Table], dict[str, str], str]:
     return tables, meta, ns.name
 
 
-def _locate_csv_table(grid: _Grid, table: str | None, name: str) -> _Located:
+def _locate_csv_table(grid: _Grid, table: str | None, name: str,
+                      candidates: tuple[str, ...] | None = None) -> _Located:
     problems = Problems()
     if table:
         spec = _ALL_TABLES.get(table) or _ALL_TABLES.get(_match(_SHEET_INDEX, table) or "")
@@ -97,14 +98,15 @@ def _locate_csv_table(grid: _Grid, table: str | None, name: str) -> _Located:
         problems.raise_if_any(name)
         assert loc is not None
         return loc
+    names = candidates or tuple(TABLES)
     by_name = _match(_SHEET_INDEX, grid.label)
-    if by_name in TABLES:
+    if by_name in names:
         loc = _find_header(grid, TABLES[by_name], problems)
         problems.raise_if_any(name)
         assert loc is not None
         return loc
     scored = []
-    for spec in TABLES.values():
+    for spec in (TABLES[n] for n in names):
         loc = _find_header(grid, spec, None)
         if loc is not None:
             scored.append((len(loc.columns) / len(spec.columns), len(loc.columns), loc))
@@ -113,7 +115,8 @@ def _locate_csv_table(grid: _Grid, table: str | None, name: str) -> _Located:
         raise fail(
             name,
             "its header row matches no norm table",
-            "name the file after the table (objects.csv, ...) or give --table " + "|".join(TABLES),
+            f"name the file after the table ({names[0]}.csv, ...) or give --table "
+            + "|".join(names),
         )
     if len(scored) > 1 and scored[0][:2] == scored[1][:2]:
         raise fail(
@@ -280,14 +283,16 @@ def _locate_sheets(
 
 
 def _locate_file(
-    p: Path, table: str | None, problems: Problems, warnings: list[str]
+    p: Path, table: str | None, problems: Problems, warnings: list[str],
+    candidates: tuple[str, ...] | None = None,
 ) -> _Found:
     """The tables of a workbook or of a CSV (by the file's suffix); other files refused."""
     suffix = p.suffix.lower()
     if suffix in XLSX_SUFFIXES:
         return _locate_sheets(_read_xlsx(p), p.name, problems, warnings)
     if suffix in CSV_SUFFIXES:
-        return _Found([_locate_csv_table(_read_csv_grid(p), table, p.name)], None, set())
+        return _Found([_locate_csv_table(_read_csv_grid(p), table, p.name, candidates)], None,
+                      set())
     if suffix == ".xls":
         raise fail(
             p.name,
@@ -337,7 +342,8 @@ def _merge_tables(tables: dict[str, _Table], file_tables: dict[str, _Table]) -> 
 
 
 def read_norm_file(
-    path: str | os.PathLike[str], *, table: str | None = None, base: str | None = None
+    path: str | os.PathLike[str], *, table: str | None = None, base: str | None = None,
+    candidates: tuple[str, ...] | None = None,
 ) -> ParsedNormSet:
     """Read and check a norm workbook (.xlsx) or a single-table CSV.
 
@@ -348,6 +354,9 @@ def read_norm_file(
         or their Russian titles). ``.csv``/``.txt``/``.tsv``: one table.
     table : str, optional
         The table a CSV holds (default: from the file name, else from its headers).
+    candidates : tuple of str, optional
+        The tables a CSV may hold when ``table`` is not given (default: every table);
+        ``scanplan cameras import`` takes cameras, scanners and lens MTF only.
     base : str, optional
         A norm set (name or folder) supplying what the file lacks. A CSV is always merged
         onto a base (default the bundled set); a workbook only when ``base`` is given.
@@ -368,7 +377,7 @@ def read_norm_file(
     check_file(p)
     problems = Problems()
     warnings: list[str] = []
-    found = _locate_file(p, table, problems, warnings)
+    found = _locate_file(p, table, problems, warnings, candidates)
     if p.suffix.lower() in CSV_SUFFIXES:
         base = base or _norms.DEFAULT_NORM_SET
     _note_ignored_columns(found.located, warnings)

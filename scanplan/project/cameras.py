@@ -46,6 +46,8 @@ MAX_JSON_BYTES = 5 * 1024 * 1024
 """Largest camera-list JSON read [bytes] (QGroundControl's is about 12 kB)."""
 MAX_JSON_ENTRIES = 5000
 JSON_SUFFIXES = (".json",)
+_CAMERA_TABLES = ("cameras", "scanners", "lens_mtf")
+"""The catalogue's tables a camera file may hold."""
 _QGC_NUMBERS = {  # QGroundControl key → (catalogue column, integer?)
     "sensorWidth": ("sensor_width_mm", False),
     "sensorHeight": ("sensor_height_mm", False),
@@ -240,7 +242,7 @@ def read_camera_file(path: str | os.PathLike[str], *, source: str = "",
         For an unreadable, oversized or hostile file.
     """
     p = Path(path)
-    if table is not None and table not in ("cameras", "scanners", "lens_mtf"):
+    if table is not None and table not in _CAMERA_TABLES:
         raise InputError("--table", f"must be cameras, scanners or lens_mtf (got {table!r})")
     if len(source) > 1000 or _text_problem(source):
         raise InputError("--source", "must be text of at most 1,000 characters without "
@@ -254,8 +256,14 @@ def read_camera_file(path: str | os.PathLike[str], *, source: str = "",
             table = ("lens_mtf" if "mtf" in stem or "чкх" in stem else
                      "scanners" if "scanner" in stem or "сканер" in stem else
                      "cameras" if "camera" in stem or "камер" in stem else None)
-        parsed_set = _norms.read_norm_file(p, table=table, base=_norms.DEFAULT_NORM_SET)
-        wanted = [t for t in parsed_set.from_file if t in ("cameras", "scanners", "lens_mtf")]
+        if p.suffix.lower() not in (*norms_limits.CSV_SUFFIXES, *norms_limits.XLSX_SUFFIXES,
+                                    ".xls"):
+            raise norms_cells.fail(p.name, f"unknown file type {p.suffix or '(none)'}; give "
+                                   "QGroundControl's camera list (.json), a workbook (.xlsx) "
+                                   "or a table (.csv)")
+        parsed_set = _norms.read_norm_file(p, table=table, base=_norms.DEFAULT_NORM_SET,
+                                           candidates=_CAMERA_TABLES)
+        wanted = [t for t in parsed_set.from_file if t in _CAMERA_TABLES]
         if not wanted:
             raise norms_cells.fail(p.name, "has no cameras or scanners table",
                                  'name the sheet "cameras" ("Камеры") or "scanners" '
