@@ -262,8 +262,10 @@ def scan_job(
     if camera is not None:
         cam = ns.camera(camera, "camera")
         if cam.kind != "film":
-            raise InputError("camera", f"{camera!r} is a digital camera; use `scanplan uav` "
-                             "for digital cameras, or a film camera (scanplan cameras list)")
+            raise InputError("camera", f"{camera!r} is a digital camera, not a film one: "
+                             "give a film camera (scanplan cameras list), or plan it as a "
+                             "digital camera (a project's [uav] camera, scanplan uav --camera, "
+                             "scanplan init --kind uav --uav-camera)")
         f = focal_mm if focal_mm is not None else cam.focal_mm
         w, h = (parse_frame_mm(frame_mm) if frame_mm is not None
                 else (cam.sensor_width_mm, cam.sensor_height_mm))
