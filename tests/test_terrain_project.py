@@ -252,3 +252,29 @@ def test_the_report_names_a_mode_or_direction_that_needs_far_fewer_photos(valley
     assert r.uav.job.layout.direction_deg == pytest.approx(135.0)  # the project's own
     w = next(w for w in r.warnings if w.code == "terrain_other_choice")
     assert "45°" in w.message
+
+
+@pytest.mark.parametrize(("example", "named"), [("uav-town-2000-afs.toml", False),
+                                                ("uav-town-valley-2000.toml", True)])
+def test_the_highest_agl_names_a_photo_only_over_a_dem(example, named):
+    """Bug: with the ground given only as a range of elevations the terminal and the PDF
+    said "90–145 m (largest at photo 1)": no photo's ground is known then, and photo 1 was
+    an arbitrary one. Over a DEM the photo is the one whose ground is lowest."""
+    import html
+    import re
+
+    from scanplan.project.file import load_project
+    from scanplan.project.spec import plan_project
+    from scanplan.reports.pdfhtml import render_html
+    from scanplan.reports.text import format_terrain
+
+    root = Path(__file__).resolve().parent.parent
+    result = plan_project(load_project(root / "examples" / example))
+    words = {"en": "largest at photo", "ru": "наибольшая у снимка"}
+    for locale, word in words.items():
+        line = " ".join(format_terrain(result, locale))
+        assert (word in line) is named and "–" in line, line
+    page = html.unescape(re.sub(r"<[^>]+>", " ", render_html(
+        uav=result.uav.job, meta=result.meta, spec=result)))
+    said = words[result.meta.locale]
+    assert (said in page) is named

@@ -146,9 +146,10 @@ def _terrain_rows(spec: Any, f: _Fmt) -> list[tuple[str, str]]:
             "terrain_facts_altitude_value", mode=f.label(f"terrain_facts_mode_{tr.mode}"),
             alt=f"{alts} {m}")))
     if d["agl_min_m"] is not None:
-        rows.append((f.label("terrain_facts_agl"), f.label(
-            "terrain_facts_agl_value", lo=f.num(d["agl_min_m"], 0),
-            hi=f.num(d["agl_max_m"], 0), unit=m, photo=tr.worst_resolution_photo)))
+        lo, hi = f.num(d["agl_min_m"], 0), f.num(d["agl_max_m"], 0)
+        rows.append((f.label("terrain_facts_agl"), f.label(  # a photo only over a DEM
+            "terrain_facts_agl_value", lo=lo, hi=hi, unit=m, photo=tr.worst_resolution_photo)
+            if d["source"] == "dem" else f"{lo}–{hi} {m}"))
     if tr.max_height_m is not None:
         rows.append((f.label("terrain_facts_max"), f"{f.num(tr.max_height_m, 0)} {m}"
                      + (f" ({f.cname(tr.binding)})" if tr.binding else "")))

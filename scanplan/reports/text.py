@@ -525,8 +525,10 @@ def format_terrain(result: Any, locale: str = "en") -> list[str]:
                 f"{_n(d['ground_max_m'], 1, locale)} {T['m']} {T['under']}; {T['mode']} "
                 f"{T[tr.mode]} {alts} {T['m']} ({T.get(tr.altitude_frame, tr.altitude_frame)}); "
                 f"{T['agl']} "
-                f"{_n(d['agl_min_m'], 0, locale)}–{_n(d['agl_max_m'], 0, locale)} {T['m']} "
-                f"({T['at_photo']} {tr.worst_resolution_photo})")
+                f"{_n(d['agl_min_m'], 0, locale)}–{_n(d['agl_max_m'], 0, locale)} {T['m']}"
+                # a photo is named only over a DEM: with a range, no photo's ground is known
+                + (f" ({T['at_photo']} {tr.worst_resolution_photo})" if d["source"] == "dem"
+                   else ""))
         if tr.max_height_m is not None:
             text += (f"; {T['max']} {_n(tr.max_height_m, 0, locale)} {T['m']}"
                      + (f" ({tr.binding})" if tr.binding else ""))
