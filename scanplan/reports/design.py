@@ -242,7 +242,7 @@ def _block_rows(design: Any, w: _W) -> list[tuple[str, str, str]]:
     value = w.t("design_block_value", lo=w.n(b.ground_min_m, 0), hi=w.n(b.ground_max_m, 0),
                 pct=w.n(b.range_pct, 1), limit=w.n(b.limit_pct, 0), relief=relief)
     if getattr(design, "block_ground", "") == "dem":
-        value += " " + w.t("design_block_dem", n=b.samples)
+        value += " " + w.t("design_block_dem", n=w.n(b.samples, 0))
     if getattr(design, "block_set_aside", ""):
         value += " — " + w.t("design_set_aside", reason=design.block_set_aside)
     elif getattr(design, "block_waived", False):
