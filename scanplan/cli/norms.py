@@ -14,6 +14,7 @@ import contextlib
 import json
 import os
 import re
+import textwrap
 from pathlib import Path
 from typing import Any
 
@@ -56,8 +57,9 @@ def norms() -> None:
     A norm set holds the coefficients of a technical instruction, shape coefficients,
     the smallest map objects per map scale, and optionally cameras and scanners. Bundled
     sets ship with scanplan; imported ones live in $SCANPLAN_NORMS_DIR (else the user data
-    folder: ~/.local/share/scanplan/norms on Linux, ~/Library/Application Support/scanplan/
-    norms on macOS, %LOCALAPPDATA%\\scanplan\\norms on Windows). See docs/norms.md.
+    folder: ~/.local/share/scanplan/norms on Linux,
+    ~/Library/Application Support/scanplan/norms on macOS,
+    %LOCALAPPDATA%\\scanplan\\norms on Windows). See docs/norms.md.
 
     \b
     Example:
@@ -147,7 +149,7 @@ def list_cmd(as_json: bool, locale: str = "en") -> None:
             i["name"],
             where_word.get(i["where"], i["where"]) + ("" if i["ok"] else _w("ns_broken", locale)),
             i["imported_at"][:10],
-            (i["title"] or i.get("error", ""))[:70],
+            textwrap.shorten(i["title"] or i.get("error", ""), 70, placeholder=" …"),
         ]
         for i in out
     ]
