@@ -46,8 +46,13 @@ def test_bad_configuration_names_file_key_and_line(tmp_path, monkeypatch):
                                                               "must be text"]),
                         ('[project]\nlocale = "de"\n', ["project.locale (line 2)", '"ru"']),
                         ('[project]\nboss = "x"\n', ["project.boss", "unknown key"]),
+                        ('[project]\norganisaton = "x"\n',
+                         ["project.organisaton (line 2)", "did you mean organisation?"]),
+                        ('[project\norganisation = "x"\n', ["is not valid TOML", "line 1"]),
+                        (b"[project]\norganisation = \"\xff\"\n".decode("latin-1"),
+                         ["is not UTF-8 text"]),
                         ('[uav]\nheight_m = 5\n', ["[uav]", "one table"])):
-        cfg.write_text(text, encoding="utf-8")
+        cfg.write_bytes(text.encode("latin-1" if "UTF-8" in words[0] else "utf-8"))
         r = CliRunner().invoke(main, ["plan", str(p)])
         assert r.exit_code == 2, r.output
         assert str(cfg) in r.output and all(w in r.output for w in words), r.output

@@ -60,8 +60,13 @@ def _validate(doc: dict[str, Any], path: Path, text: str) -> dict[str, Any]:
     table = doc.get(SECTION, {})
     for key, value in table.items():
         if key not in KEYS[SECTION] or key == "name":
-            raise InputError(where(key), f"unknown key; [{SECTION}] of the configuration "
-                             f"takes {', '.join(k for k in KEYS[SECTION] if k != 'name')}")
+            import difflib
+
+            takes = [k for k in KEYS[SECTION] if k != "name"]
+            close = difflib.get_close_matches(key, takes, n=1, cutoff=0.75)
+            hint = f" (did you mean {close[0]}?)" if close else ""
+            raise InputError(where(key), f"unknown key{hint}; [{SECTION}] of the "
+                             f"configuration takes {', '.join(takes)}")
         kind, desc = KEYS[SECTION][key]
         problem = check_type(kind, value) or check_text(kind, value)
         if problem:
@@ -93,9 +98,12 @@ def user_defaults() -> dict[str, Any]:
     data = read_limited(path, 100_000, field=str(path))
     try:
         text = data.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise InputError(str(path), f"is not UTF-8 text: {exc}") from None
+    try:
         doc = tomllib.loads(text)
-    except (UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:
-        raise InputError(str(path), f"is not a valid UTF-8 TOML file: {exc}") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError(str(path), f"is not valid TOML: {exc}") from None
     table = _validate(doc, path, text)
     _cache[key] = (st.st_mtime, st.st_size, table)
     return dict(table)
