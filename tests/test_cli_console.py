@@ -182,6 +182,10 @@ def test_formats_choose_the_outputs(tmp_path):
     bad = runner.invoke(main, ["plan", str(small), "--out", str(tmp_path / "x"),
                                "--formats", "xlsx,docx"])
     assert bad.exit_code == 2 and "--formats" in bad.output and "missions" in bad.output
+    # without --out there is nothing for it to choose: said, not silently ignored
+    alone = runner.invoke(main, ["plan", str(small), "--formats", "xlsx"])
+    assert alone.exit_code == 2 and "error: --formats: chooses the files --out writes" in (
+        alone.stderr), alone.output
 
 
 @pytest.fixture

@@ -491,6 +491,8 @@ def plan(projects: tuple[str, ...], out_dir: str | None, xlsx_path: str | None,
                          "--xlsx/--pdf (file names), not both")
     if batch and (xlsx_path or pdf_path):
         raise InputError("--xlsx", "--xlsx/--pdf name one file; with several projects use --out")
+    if formats is not None and not out_dir:  # never silently unused
+        raise InputError("--formats", "chooses the files --out writes; give --out")
     _report_folders(xlsx_path, pdf_path)
     from ..reports.documents import make_folder, refuse_folder, remove_empty
 
