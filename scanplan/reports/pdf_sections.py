@@ -403,6 +403,7 @@ def _uav_limits(plan: UavPlan, f: _Fmt) -> dict[str, Any]:
             acc["sigma_z_at_highest_flown_height_m"], 3), h=f.g(h["max"]),
             vz=f.g(acc["height_accuracy_m"]), forms="; ".join(
                 f"{f.label('hf_' + k)}: {f.num(acc['forms'][k]['max_planned_height_m'], 0)} {m}"
+                + (f" ({f.label('hf_used')})" if k == acc.get("formula") else "")
                 for k in ("normal_case", "instruction", "parallax")))
     formulas = [{"equation": eq, "meaning": f.label(key), "source": f.cite(f.label(src))}
                 for eq, key, src in _UAV_FORMULAS
