@@ -310,3 +310,22 @@ def test_the_film_maps_local_scale_axis_reads_as_scales():
         svg = map_svg(lay, loc, mt)
         labels = set(re.findall(r">(7[\s,\u00a0]?[02]00)<", svg))
         assert labels == {"7000", "7200"}, (loc, labels)
+
+
+def test_the_flight_altitude_over_the_relief_is_stated():
+    """Bug: over the relief the specification gave only "flight height above ground
+    (Mc × f) 600 m" without saying above which ground; the frames are flown at the
+    altitude of the highest ground plus 600 m (830 m here), which the crew flies. The
+    survey design and the terminal now state it."""
+    from scanplan.reports.design import design_view
+    from scanplan.reports.text import format_terrain
+
+    result = plan_project(load_project(EXAMPLES / "film-town-relief-10000.toml"))
+    ft = result.film.terrain
+    altitude = float(np.max(ft.altitude_m))
+    assert altitude == pytest.approx(830.0)  # 230 m highest ground + 1:6000 × 100 mm
+    assert "flight altitude 830 m" in " ".join(format_terrain(result, "en"))
+    assert "высота полёта 830 м" in " ".join(format_terrain(result, "ru"))
+    rows = {label: value for label, value, _ in design_view(result, "en", str).rows}
+    assert rows["Flight height above ground (Mc × f), m"].startswith(
+        "600 above the highest ground; flight altitude 830 m")

@@ -491,7 +491,8 @@ _TERRAIN_TEXT = {
            "max": "maximum height over the relief", "film": "Terrain (film): photo scale",
            "binds": "binds: scan pixel", "frame": "frame", "m": "m", "um": "µm",
            "lowest": "the frame over the lowest ground", "flat": "on flat ground",
-           "spec": "the specification's scan pixel is the binding frame's", "AMSL": "AMSL"},
+           "spec": "the specification's scan pixel is the binding frame's", "AMSL": "AMSL",
+           "film_alt": "flight altitude"},
     "ru": {"head": "Рельеф", "dem": "ЦМР", "range": "отметки заданы диапазоном",
            "ground": "отметки", "under": "под снимками", "mode": "высота полёта",
            "constant": "постоянная", "strip": "по маршрутам", "follow": "с огибанием рельефа",
@@ -501,7 +502,7 @@ _TERRAIN_TEXT = {
            "frame": "снимок", "m": "м", "um": "мкм",
            "lowest": "снимок над наинизшей точкой", "flat": "для плоской местности",
            "spec": "пиксель сканирования назначен по определяющему снимку",
-           "AMSL": "над уровнем моря"},
+           "AMSL": "над уровнем моря", "film_alt": "высота полёта"},
 }
 
 
@@ -543,5 +544,17 @@ def format_terrain(result: Any, locale: str = "en") -> list[str]:
                    f"{_um_loc(ft.scan_pixel_um, locale)} {T['um']} ({ft.binding}), {T['flat']} "
                    f"{_um_loc(ft.scan_pixel_planned_um, locale)} {T['um']} "
                    f"({ft.binding_planned or '—'})"
-                   + (f"; {T['spec']}" if getattr(film, "flat", None) is not None else ""))
+                   + (f"; {T['spec']}" if getattr(film, "flat", None) is not None else "")
+                   + _film_altitude(ft, T, locale))
     return out
+
+
+def _film_altitude(ft: Any, T: dict[str, str], locale: str) -> str:
+    """``; flight altitude 830 m`` of the frames over the relief ("" without frames)."""
+    alt = ft.altitude_m
+    if not len(alt):
+        return ""
+    lo, hi = float(min(alt)), float(max(alt))
+    said = (_n(hi, 0, locale) if hi - lo <= 0.5
+            else f"{_n(lo, 0, locale)}–{_n(hi, 0, locale)}")
+    return f"; {T['film_alt']} {said} {T['m']}"
