@@ -96,6 +96,26 @@ def test_prompts_at_a_terminal(tmp_path, monkeypatch):
     assert _cli("plan", str(p)).exit_code == 0
 
 
+def test_a_wrong_answer_is_said_and_asked_again(tmp_path, monkeypatch):
+    """Bug: answering 0 to "Map scale" ended the whole interview with an error naming
+    --map-scale (an option never typed), and a film camera id that was not one was found
+    wrong only after every question. Each answer is checked as it is read: the reason is
+    said and the question asked again."""
+    monkeypatch.setattr(cli_init, "_interactive", lambda: True)
+    p = tmp_path / "asked.toml"
+    # kind; map scale 0, then 2000; relief -1, then 1; name; locale; film camera: an
+    # unknown id, a digital camera, then a film one
+    r = _cli("init", str(p), input="film\n0\n2000\n-1\n1\n\nen\nnope\n"
+             "dji-zenmuse-p1-35\nrc30-153\nn\n\n")
+    assert r.exit_code == 0, r.output
+    said = r.output
+    assert said.count("Map scale") == 2 and said.count("Relief") == 2, said
+    assert said.count("Film camera id") == 3 and "is a digital camera" in said, said
+    doc = tomllib.loads(p.read_text(encoding="utf-8"))
+    assert doc["map"]["scale"] == 2000 and doc["map"]["relief_interval_m"] == 1
+    assert doc["film"]["camera"] == "rc30-153"
+
+
 def test_no_overwrite_race(tmp_path, monkeypatch):
     """A file that appears between the check and the write is not replaced."""
     p = tmp_path / "x.toml"

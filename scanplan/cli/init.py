@@ -376,6 +376,58 @@ def _umask() -> int:
     return mask
 
 
+class _Checked(click.ParamType):
+    """An answer at the prompt, checked as it is read (a value out of its range is said
+    and asked again, not found wrong after the whole interview): ``check(text)`` returns
+    the value or raises :class:`InputError`."""
+
+    name = "answer"
+
+    def __init__(self, check: Any) -> None:
+        self.check = check
+
+    def convert(self, value: Any, param: click.Parameter | None, ctx: click.Context | None
+                ) -> Any:
+        try:
+            return self.check(value)
+        except InputError as exc:
+            self.fail(exc.message, param, ctx)
+
+
+def _scale_answer(text: Any) -> float:
+    from ..core.domains import check_domain
+    from ..norms import parse_scale
+
+    scale = parse_scale(text, "--map-scale")
+    check_domain("map_scale", scale)
+    return scale
+
+
+def _relief_answer(text: Any) -> float:
+    from ..core.domains import check_domain
+
+    try:
+        value = DECIMAL.convert(text, None, None)
+    except click.BadParameter as exc:
+        raise InputError("--relief", exc.message) from None
+    check_domain("relief_interval_m", value)
+    return value
+
+
+def _camera_answer(kind: str, norms: str) -> Any:
+    """A check of a camera id: in the catalogue, and film or digital as asked."""
+    def check(text: Any) -> str:
+        from ..norms import load_norm_set
+
+        cam = load_norm_set(norms).camera(str(text).strip(), "camera")
+        if (cam.kind == "film") != (kind == "film"):
+            raise InputError("camera", f"{cam.id!r} is a {cam.kind} camera; give a "
+                             f"{'film' if kind == 'film' else 'digital'} camera "
+                             "(scanplan cameras list)")
+        return cam.id
+    return check
+
+
 def _interactive() -> bool:
     """Ask for missing answers only when a person is at a terminal."""
     return sys.stdin.isatty() and sys.stdout.isatty()
@@ -465,11 +517,12 @@ def init(project: str, force: bool, **opts: Any) -> None:
     if opts["relief_interval_m"] is None and not ask:
         raise InputError("--relief", "is required (or run at a terminal to be asked), e.g. "
                          "--relief 0.5")
-    map_scale = parse_scale(opts["map_scale"] if opts["map_scale"] is not None else
-                            click.prompt("Map scale (e.g. 2000 or 1:2000)"), "--map-scale")
+    map_scale = (parse_scale(opts["map_scale"], "--map-scale") if opts["map_scale"] is not None
+                 else click.prompt("Map scale (e.g. 2000 or 1:2000)",
+                                   type=_Checked(_scale_answer)))
     relief = opts["relief_interval_m"]
     if relief is None:
-        relief = click.prompt("Relief (contour) interval, m", type=DECIMAL)
+        relief = click.prompt("Relief (contour) interval, m", type=_Checked(_relief_answer))
     name = opts["name"]
     if name is None:
         name = click.prompt("Project name", default="") if ask else ""
@@ -478,12 +531,14 @@ def init(project: str, force: bool, **opts: Any) -> None:
     film_camera = opts["film_camera"]
     if film_camera is None:
         film_camera = (click.prompt("Film camera id (scanplan cameras list)",
-                                    default=DEFAULT_FILM_CAMERA)
+                                    default=DEFAULT_FILM_CAMERA,
+                                    type=_Checked(_camera_answer("film", opts["norms"])))
                        if ask and kind != "uav" else DEFAULT_FILM_CAMERA)
     uav_camera = opts["uav_camera"]
     if uav_camera is None:
         uav_camera = (click.prompt("UAV camera id (scanplan cameras list)",
-                                   default=DEFAULT_UAV_CAMERA)
+                                   default=DEFAULT_UAV_CAMERA,
+                                   type=_Checked(_camera_answer("digital", opts["norms"])))
                       if ask and kind != "film" else DEFAULT_UAV_CAMERA)
     f_number, speed_ms, aircraft = opts["f_number"], opts["speed_ms"], False
     if kind != "film":
