@@ -195,7 +195,7 @@ def test_inverse_table_both_columns_in_the_reports(tmp_path):
     pypdf = pytest.importorskip("pypdf")
     from openpyxl import load_workbook
 
-    for locale, label in (("en", "Largest photo scale with the map object interpretable"),
+    for locale, label in (("en", "Smallest photo scale with the map object interpretable"),
                           ("ru", "Предельный масштаб снимков с дешифрированием объекта")):
         x, p = tmp_path / f"{locale}.xlsx", tmp_path / f"{locale}.pdf"
         r = _cli("scan", "--map-scale", "2000", "--relief", "1", "--photo-scale", "10000",

@@ -104,7 +104,7 @@ LABELS: dict[str, dict[str, str]] = {
         "xlsx_required_r_lpmm": "Required resolving power, lines/mm",
         "xlsx_interpretation_limit": "Interpretation limit: largest photo scale denominator Mc",
         "xlsx_reach": "Largest photo scale denominator Mc per scan pixel",
-        "xlsx_max_photo_scale": "Largest photo scale",
+        "xlsx_max_photo_scale": "Smallest photo scale",
         "xlsx_limit": "Limiting constraint",
         "xlsx_frame_across_mm": "Frame across track, mm",
         "xlsx_frame_along_mm": "Frame along track, mm",
@@ -214,7 +214,7 @@ LABELS: dict[str, dict[str, str]] = {
         "pdf_interpretation_limit": "Interpretation limit: {object} can be recognised with P "
                                     "≥ {p} on photos up to {scale} (Mc/Mk ≤ {ratio}) at R = "
                                     "{r} lines/mm.",
-        "pdf_max_photo_scales": "Largest photo scale each scan pixel supports",
+        "pdf_max_photo_scales": "Smallest photo scale each scan pixel supports",
         "pdf_limited_by": "Limited by",
         "pdf_resolution_on_ground": "Photo resolution on the ground A",
         "pdf_required_r": "R needed to interpret",
@@ -745,11 +745,11 @@ LABELS["en"]["data_volume_jpeg_gb"] = "Data volume as JPEG (estimate, 9:1), GB"
 LABELS["ru"]["data_volume_jpeg_gb"] = "Объём данных в JPEG (оценка, 9:1), ГБ"
 LABELS["en"]["spec_archive_photo_scale"] = "Photo scale (existing photos, given)"
 LABELS["ru"]["spec_archive_photo_scale"] = "Масштаб снимков (имеющиеся снимки, задан)"
-# the inverse table: the largest photo scale per scan pixel, with and without the
+# the inverse table: the smallest photo scale (largest Mc) per scan pixel, with and without the
 # interpretation limit
-LABELS["en"]["reach_pixel"] = "Largest photo scale the pixel supports"
+LABELS["en"]["reach_pixel"] = "Smallest photo scale the pixel supports"
 LABELS["ru"]["reach_pixel"] = "Предельный масштаб снимков для пикселя"
-LABELS["en"]["reach_interpretable"] = "Largest photo scale with the map object interpretable"
+LABELS["en"]["reach_interpretable"] = "Smallest photo scale with the map object interpretable"
 LABELS["ru"]["reach_interpretable"] = "Предельный масштаб снимков с дешифрированием объекта"
 
 for _loc in LOCALES:  # in this order: the catalogue's keys keep their order

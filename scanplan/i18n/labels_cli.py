@@ -38,11 +38,11 @@ CLI: dict[str, dict[str, str]] = {
         "the_object": "the object",
         "interpretation_limit": "Interpretation limit: {obj} can be recognised with P ≥ {p} on "
                                 "photos up to {scale} (Mc/Mk ≤ {ratio}) at R {r} lines/mm.",
-        "reach_head": "Largest photo scale each scan pixel supports ({who}):",
+        "reach_head": "Smallest photo scale each scan pixel supports ({who}):",
         "reach_scanner": "scanner {scanner}",
         "reach_and": " and ",
         "pixel_um": "pixel µm",
-        "reach_scale": "largest photo scale",
+        "reach_scale": "smallest photo scale",
         "reach_limit": "limited by",
         "reach_interpretable": "with the object interpretable",
         "none": "none",

@@ -330,7 +330,7 @@ def scan(**kwargs: object) -> ScanPlan:
     bands, bits_per_band : int
         For the data volume of a scanned frame.
     pixel_um : iterable of float
-        Scan pixels [µm] to answer "what is the largest photo scale this pixel supports"
+        Scan pixels [µm] to answer "what is the smallest photo scale this pixel supports"
         (the scanner's steps are always answered).
 
     Returns

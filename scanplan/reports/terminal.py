@@ -172,7 +172,8 @@ def _warning_lines(warnings: Table, w: _Words, scan: bool = False) -> list[str]:
 
 
 def _reach_lines(plan: ScanPlan, w: _Words) -> list[str]:
-    """The largest photo scale each scan pixel supports (scanner steps, --pixel-um)."""
+    """The smallest photo scale (largest Mc) each scan pixel supports (scanner steps,
+    --pixel-um)."""
     inp = plan.inputs
     lines: list[str] = []
     if plan.max_photo_scales:

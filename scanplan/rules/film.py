@@ -11,7 +11,7 @@ Two layers:
 
 - :func:`evaluate` — one vectorised call over any number of scenarios (pure numpy).
 - :func:`plan_scan` — a film/scan plan for a handful of photo scales, with explanations,
-  inverse answers (largest photo scale for a scanner pixel, interpretation limit),
+  inverse answers (smallest photo scale, the largest Mc, for a scanner pixel, interpretation limit),
   scanner steps and data volume. Its result objects feed the terminal, ``--json`` and the
   reports alike.
 
@@ -462,7 +462,8 @@ def _scenario(inp: ScanInputs, rules: ScanRules, ev: Evaluation, ctx: dict[str, 
 
 def _pixel_reach(inp: ScanInputs, rules: ScanRules, common: dict[str, Any],
                  mc_interp: float | None) -> tuple[PixelReach, ...]:
-    """The inverse answers: the largest photo scale each scanner step or candidate supports."""
+    """The inverse answers: the smallest photo scale (largest Mc) each scanner step or
+    candidate supports."""
     pixels = sorted(set(inp.scanner_steps_um) | set(inp.candidate_pixels_um))
     if not pixels:
         return ()

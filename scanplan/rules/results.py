@@ -189,7 +189,8 @@ class ScanScenario:
 
 @dataclass(frozen=True)
 class PixelReach:
-    """The inverse answer for one available scan pixel: the largest photo scale it supports.
+    """The inverse answer for one available scan pixel: the smallest photo scale (the
+    largest Mc) it supports.
 
     ``max_photo_scale`` is 0 when the pixel is coarser than P_R (no photo scale keeps the
     photo's resolving power); ``limit`` names the constraint that sets it.
