@@ -389,7 +389,8 @@ def uav(as_json: bool, **kwargs: Any) -> None:
     \b
     Example (the Ptero-E flight of 2014, flown at 300–420 m):
       scanplan uav --camera canon-eos-5d-mark-ii-50 --f-number 8 --height-m 300 \\
-                   --height-tolerance-pct 40 --speed-ms 25 --map-scale 2000 --relief 0.5
+                   --height-tolerance-pct 40 --speed-ms 25 --shift-factor 0.65 \\
+                   --map-scale 2000 --relief 0.5
     """
     from ..project.flightplan import LayoutOptions
     from ..project.jobs import uav_job
