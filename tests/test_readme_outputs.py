@@ -1,10 +1,10 @@
-"""The terminal output the README shows is what the commands print today (a newcomer
-compares them; an outdated sample reads as a bug).
+"""The terminal output the README and the docs show is what the commands print today (a
+newcomer compares them; an outdated sample reads as a bug).
 
-Every ```text block of README.md that starts with ``$ scanplan …`` is run (continuation
-lines ending in ``\\`` joined) in the repository's folder and its output compared line by
-line; a block with a line ``...`` is abridged on purpose and only its shown lines are
-checked to appear in order.
+Every ```text block of README.md and docs/*.md that starts with ``$ scanplan …`` is run
+(continuation lines ending in ``\\`` joined) in the repository's folder and its output
+compared line by line; a block with a line ``...`` is abridged on purpose and only its
+shown lines are checked to appear in order.
 """
 
 from __future__ import annotations
@@ -23,9 +23,11 @@ _BLOCK = re.compile(r"```text\n(\$ scanplan .*?)```", re.S)
 
 
 def readme_samples() -> list[tuple[str, list[str]]]:
-    """(command, printed lines) of every terminal sample in README.md."""
+    """(command, printed lines) of every terminal sample in README.md and docs/*.md."""
     samples = []
-    for block in _BLOCK.findall((ROOT / "README.md").read_text(encoding="utf-8")):
+    pages = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
+    blocks = [b for page in pages for b in _BLOCK.findall(page.read_text(encoding="utf-8"))]
+    for block in blocks:
         lines = block.splitlines()
         cmd = lines.pop(0)[2:]
         while cmd.endswith("\\"):
