@@ -163,8 +163,8 @@ def english_in_russian(text: str) -> list[str]:
     """Latin words (3+ letters) in a Russian text that are not names, units or symbols."""
     allowed = _RU_ALLOWED | _catalogue_words() | _cited_originals(text)
     text = _PROJECT_KEY.sub(" ", text)  # a project-file key is typed as it is
-    def symbol(w: str) -> bool:  # a formula symbol with its subscript set: H_max → Hmax
-        return w[0].isupper() and w[1:].lower() in allowed
+    def symbol(w: str) -> bool:  # a formula symbol with its subscript set: H_max → Hmax,
+        return w[1:].lower() in allowed  # r_max → rmax (one letter, then a known subscript)
     return sorted({w for w in _LATIN_WORD.findall(text)
                    if len(w) >= 3 and w.lower() not in allowed and not symbol(w)})
 
@@ -191,6 +191,23 @@ def test_russian_documents_have_no_english(example):
         words = english_in_russian(_without_user_text(text, example))
         if words:
             problems.append(f"{where}: {', '.join(words)}")
+    assert not problems, "\n".join(problems)
+
+
+_UNDERSCORE_SYMBOL = re.compile(r"(?<![\w])[A-Za-zσΔ]_[A-Za-z0-9]{1,5}(?![\w])")
+
+
+@pytest.mark.parametrize(("example", "locale"), CASES)
+def test_pdf_sets_the_subscripts_of_its_symbols(example, locale):
+    """Bug: the PDF's sentences printed "P_R", "σ_Z", "h_c", "r_max / r_min" with the
+    underscore of plain text, where its formula tables set the subscripts as a printed
+    instruction does; every text of the PDF now sets them (P<sub>R</sub>)."""
+    problems = []
+    for where, text in _documents(example, locale).items():
+        if where.startswith("pdf"):
+            found = _UNDERSCORE_SYMBOL.findall(_without_user_text(text, example))
+            if found:
+                problems.append(f"{where}: {', '.join(sorted(set(found)))}")
     assert not problems, "\n".join(problems)
 
 
@@ -527,8 +544,9 @@ def _page_one_warnings(example: str, locale: str, box: str = "warnbox") -> list[
 
     page = _page_html(example, locale)
     box = re.search(rf'<div class="{box}">.*?<ul>(.*?)</ul>', page, re.S)
-    return ([html_mod.unescape(x).strip() for x in re.findall(r"<li>(.*?)</li>", box[1], re.S)]
-            if box else [])
+    items = re.findall(r"<li>(.*?)</li>", box[1], re.S) if box else []
+    # a subscript as the source writes it: P<sub>R</sub> → P_R
+    return [html_mod.unescape(re.sub(r"<sub>(.*?)</sub>", r"_\1", x)).strip() for x in items]
 
 
 @pytest.mark.parametrize("locale", LOCALES)
