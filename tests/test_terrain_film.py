@@ -327,5 +327,6 @@ def test_the_flight_altitude_over_the_relief_is_stated():
     assert "flight altitude 830 m" in " ".join(format_terrain(result, "en"))
     assert "высота полёта 830 м" in " ".join(format_terrain(result, "ru"))
     rows = {label: value for label, value, _ in design_view(result, "en", str).rows}
-    assert rows["Flight height above ground (Mc × f), m"].startswith(
-        "600 above the highest ground; flight altitude 830 m")
+    assert rows["Flight height above ground (Mc × f), m"] == "600"
+    assert rows["Flight altitude (the highest ground + Mc × f, in the ground's height "
+                "system), m"] == "830"

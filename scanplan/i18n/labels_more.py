@@ -234,8 +234,8 @@ DESIGN: dict[str, dict[str, str]] = {
         "design_camera_value": "pixel {pixel} µm, focal length {focal} mm",
         "design_film_camera_value": "focal length {focal} mm",
         "design_film_height": "Flight height above ground (Mc × f), m",
-        "design_film_height_relief": "{h} above the highest ground; flight altitude {alt} m "
-                                     "(in the height system of the ground elevations)",
+        "design_film_altitude": "Flight altitude (the highest ground + Mc × f, in the "
+                                "ground's height system), m",
         "design_overlaps": "Forward / side overlap, %",
         "design_overlaps_value": "{fwd} / {side}",
         "design_strips_photos": "Strips, photos",
@@ -319,8 +319,8 @@ DESIGN: dict[str, dict[str, str]] = {
         "design_camera_value": "пиксель {pixel} мкм, фокусное расстояние {focal} мм",
         "design_film_camera_value": "фокусное расстояние {focal} мм",
         "design_film_height": "Высота фотографирования (Mc × f), м",
-        "design_film_height_relief": "{h} над наивысшей точкой местности; высота полёта "
-                                     "{alt} м (в системе высот отметок местности)",
+        "design_film_altitude": "Абсолютная высота полёта (наивысшая отметка местности + "
+                                "Mc × f, в системе высот отметок), м",
         "design_overlaps": "Продольное / поперечное перекрытие, %",
         "design_overlaps_value": "{fwd} / {side}",
         "design_strips_photos": "Маршруты, снимки",

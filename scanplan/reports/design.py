@@ -213,13 +213,13 @@ def _film_rows(spec: Any, w: _W) -> list[tuple[str, str, str]]:
     rows.append((w.t("spec_archive_photo_scale" if f.archive else "spec_recommended_photo_scale"),
                  w.scale(rec.photo_scale), _equation(rec.binding, w)))
     if not f.archive:  # existing photos: no flight is planned, only their scan
-        height = w.fig(float(height_at_photo_scale_m(rec.photo_scale, inp.focal_mm)), 0)
+        rows.append((w.t("design_film_height"), w.fig(float(height_at_photo_scale_m(
+            rec.photo_scale, inp.focal_mm)), 0), ""))
         ft = getattr(f, "terrain", None)
         if ft is not None and len(ft.altitude_m):  # over the relief: the altitude flown
             lo, hi = float(np.min(ft.altitude_m)), float(np.max(ft.altitude_m))
-            alt = w.n(hi, 0) if hi - lo <= 0.5 else f"{w.n(lo, 0)}–{w.n(hi, 0)}"
-            height = w.t("design_film_height_relief", h=height, alt=alt)
-        rows.append((w.t("design_film_height"), height, ""))
+            rows.append((w.t("design_film_altitude"), w.fig(hi, 0) if hi - lo <= 0.5
+                         else f"{w.n(lo, 0)}–{w.n(hi, 0)}", ""))
     px = rec.scanner_pixel_um or rec.scan_pixel_um
     rows.append((w.t("scan_pixel_um"), w.fig(px, 1), ""))
     row = _gsd_row(spec.design, "film", w)
