@@ -172,3 +172,19 @@ def test_doubtful_dems_are_named_warnings_and_the_plan_goes_on(tmp_path):
     t = d["terrain"]["uav"]
     assert t["voids_filled_px"] == 16 and t["voids_filled_m2"] == pytest.approx(16 * 400.0)
     assert t["photos_without_ground"] == 0 and t["photos_on_filled_voids"] > 0
+
+
+@pytest.mark.parametrize(("key", "value", "said"), [
+    ("relief_class", '"x"', "terrain.relief_class (line 8): must be one of flat, hilly"),
+    ("altitude_mode", '"x"', "terrain.altitude_mode (line 8): must be one of"),
+])
+def test_a_bad_value_in_an_incomplete_terrain_section_is_named_first(tmp_path, key, value,
+                                                                      said):
+    """Bug (found by the fuzz suite in CI): ``[terrain] relief_class = "x"`` alone was told
+    "[terrain]: needs dem … or ground_elevation_m" — the section's completeness was
+    checked before the key's own value, so the bad key went unnamed."""
+    p = tmp_path / "p.toml"
+    p.write_text('[map]\nscale = 2000\nrelief_interval_m = 1\n[film]\ncamera = "rc30-153"\n'
+                 f'photo_scales = [10000]\n[terrain]\n{key} = {value}\n', encoding="utf-8")
+    r = CliRunner().invoke(main, ["plan", str(p)])
+    assert r.exit_code == 2 and said in r.stderr, r.output

@@ -406,6 +406,7 @@ def _terrain(r: _Reader) -> TerrainSection | None:
     dem = g("terrain", "dem")
     rng = g("terrain", "ground_elevation_m")
     mode = g("terrain", "altitude_mode", field_meta("terrain", "altitude_mode").default)
+    relief = _relief_class(r)  # each key's own value first (named), then the section's keys
     try:
         cfg = TerrainConfig(
             dem=(Path(dem) if Path(dem).is_absolute() else r.p.path.parent / dem)
@@ -423,7 +424,7 @@ def _terrain(r: _Reader) -> TerrainSection | None:
             where = r.p.where(section, key) if key else f"[{section}]"
             raise InputError(f"{r.p.path}: {where}", exc.message) from None
         raise
-    return TerrainSection(cfg, rng, _relief_class(r), mode)
+    return TerrainSection(cfg, rng, relief, mode)
 
 
 def _relief_class(r: _Reader) -> str:
