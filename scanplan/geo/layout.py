@@ -121,6 +121,13 @@ class Strip:
         continues it)."""
         return self.continued[-1][0] if self.continued else self.sortie
 
+    @property
+    def sorties_text(self) -> str:
+        """The sortie, or the sorties ``1–2`` when a battery change falls mid-strip, that
+        fly the strip (the strips table, the Strips sheet, the KML)."""
+        last = self.last_sortie
+        return str(self.sortie) if last == self.sortie else f"{self.sortie}–{last}"
+
 
 @dataclass(frozen=True)
 class Sortie:

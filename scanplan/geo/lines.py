@@ -611,7 +611,7 @@ def _strip_records(u: np.ndarray, p_strip: np.ndarray, first: np.ndarray, last: 
                    n_per: np.ndarray, s_lo: np.ndarray, s_hi: np.ndarray,
                    photos_per_strip: np.ndarray, sortie_of: np.ndarray,
                    to_xy: Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]],
-                   continued: Mapping[int, tuple[tuple[int, int], ...]] | None = None,
+                   continued: Mapping[int, tuple[tuple[int, int], ...]],
                    ) -> tuple[tuple[Strip, ...], tuple[np.ndarray, ...], np.ndarray]:
     """The :class:`Strip` records (serpentine: strip 1 flown +v; ``continued``: strip →
     the later sorties that continue it, :meth:`SortiePlan.continued`), the photographed
@@ -639,7 +639,7 @@ def _strip_records(u: np.ndarray, p_strip: np.ndarray, first: np.ndarray, last: 
               end_xy_m=(float(ex[i]), float(ey[i])), length_m=float(s_hi[i] - s_lo[i]),
               photos=int(photos_per_strip[i]), first_photo=int(first_photo[i]),
               sortie=int(sortie_of[i]) + 1, segments=int(segs[i]),
-              parts=tuple(parts_of[i]), continued=(continued or {}).get(i, ()))
+              parts=tuple(parts_of[i]), continued=continued.get(i, ()))
         for i in range(n_strips))
     return strips, (p_strip, p_start, pf, n_per), first_photo
 

@@ -18,7 +18,7 @@ import numpy as np
 from ..geo.export.gis import photo_columns
 from ..geo.layout import FlightLayout
 from . import exports as _exports
-from .mapview import MAX_SHEET_PHOTOS, continued_note, sortie_cell, summary_items
+from .mapview import MAX_SHEET_PHOTOS, continued_note, summary_items
 from .plots import number
 
 __all__ = ["MAX_SHEET_PHOTOS", "add_geo_sheets"]  # MAX_SHEET_PHOTOS: from .mapview
@@ -99,7 +99,7 @@ def _strips_sheet(book: Any, layout: FlightLayout, key: str, files_beside: bool)
         if s.last_sortie == s.sortie:
             put_num(ws, row, 2, s.sortie, "0")
         else:  # a battery change mid-strip: the sorties, as text
-            put_text(ws, row, 2, sortie_cell(s))
+            put_text(ws, row, 2, s.sorties_text)
         put_num(ws, row, 3, s.photos, "#,##0")
         put_num(ws, row, 4, s.length_m, "#,##0.0")
         put_num(ws, row, 5, max(s.segments, len(s.parts) or 1), "0")

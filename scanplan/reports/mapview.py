@@ -534,7 +534,7 @@ def strips_table(layout: FlightLayout, locale: str, limit: int | None = MAX_TABL
             t("strip_parts", locale), f"{t('strip_start', locale)} ({where})",
             f"{t('strip_end', locale)} ({where})"]
     shown = layout.strips if limit is None else layout.strips[:limit]
-    rows = [[str(s.number), sortie_cell(s), number(s.photos, 0, locale),
+    rows = [[str(s.number), s.sorties_text, number(s.photos, 0, locale),
              number(s.length_m, 0, locale), str(max(s.segments, len(s.parts) or 1)),
              _point_text(layout, s.start_xy_m, locale, geo),
              _point_text(layout, s.end_xy_m, locale, geo)] for s in shown]
@@ -547,13 +547,6 @@ def strips_table(layout: FlightLayout, locale: str, limit: int | None = MAX_TABL
                                                      total=len(layout.strips)))
     return {"head": head, "rows": rows, "note": " ".join(n for n in notes if n),
             "numeric": 4 if film else 5}
-
-
-def sortie_cell(strip: Any) -> str:
-    """The sortie (or sorties, ``1–2``, when a battery change falls mid-strip) that fly
-    a strip."""
-    last = strip.last_sortie
-    return str(strip.sortie) if last == strip.sortie else f"{strip.sortie}–{last}"
 
 
 def continued_note(strips: Any, locale: str) -> str:

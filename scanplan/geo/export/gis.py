@@ -238,9 +238,7 @@ def _kml_strips(doc: ET.Element, layout: FlightLayout, geo: LonLat, names: Expor
                                                strict=True):
         pm = _sub(folder, "Placemark")
         _sub(pm, "name", names.strip.format(n=number))
-        flown = (str(strip.sortie) if strip.last_sortie == strip.sortie
-                 else f"{strip.sortie}–{strip.last_sortie}")  # a battery change mid-strip
-        _sub(pm, "description", names.sortie.format(n=flown))
+        _sub(pm, "description", names.sortie.format(n=strip.sorties_text))
         _sub(pm, "styleUrl", "#strip")
         _data(pm, {"strip": str(number), "sortie": str(strip.sortie),
                    "last_sortie": str(strip.last_sortie),
