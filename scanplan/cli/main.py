@@ -309,7 +309,9 @@ def scan(as_json: bool, bits_per_band: str, **kwargs: Any) -> None:
         kwargs.pop(key)
     side = kwargs.pop("film_side_overlap_pct")
     if side is not None and area is None:  # checked, never silently unused
-        _check_side_overlap(side)
+        from ..core.domains import check_domain
+
+        check_domain("--side-overlap-pct", side, "side_overlap_pct")
         raise InputError("--side-overlap-pct", "sets the side overlap of the flight lines "
                          "over --area-file; give the file")
     if side is None:
@@ -341,21 +343,12 @@ def scan(as_json: bool, bits_per_band: str, **kwargs: Any) -> None:
     _write_reports(report, scan=job)
 
 
-def _check_side_overlap(side: float) -> None:
-    """``scan --side-overlap-pct`` within its domain (exit 2 naming the option)."""
-    from ..core.domains import check_domain
-
-    try:
-        check_domain("side_overlap_pct", side)
-    except InputError as exc:
-        raise InputError("--side-overlap-pct", exc.message) from None
-
-
 def _film_schemes(job: Any, area: Any, side: float) -> list[tuple[Any, Any]]:
     """The aerial survey's flight scheme over ``area`` at every photo scale of ``job``."""
+    from ..core.domains import check_domain
     from ..project.flightplan import film_layout
 
-    _check_side_overlap(side)
+    check_domain("--side-overlap-pct", side, "side_overlap_pct")
     inp = job.plan.inputs
     return [(sc, film_layout(sc, inp.frame_width_mm, inp.frame_along_mm, inp.focal_mm,
                              inp.forward_overlap_pct, side, area))
