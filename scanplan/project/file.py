@@ -17,7 +17,7 @@ from typing import Any
 
 from ..errors import InputError
 from ..io.files import read_limited
-from .keys import KEYS, check_text, check_type, key_lines, text_problem
+from .keys import KEYS, check_text, check_type, closest_key, key_lines, text_problem
 from .userconfig import with_user_defaults
 
 __all__ = ["KEYS", "Project", "ReportMeta", "load_project", "parse_project", "parse_project_bytes",
@@ -271,11 +271,9 @@ def _did_you_mean(section: str, key: str) -> str:
     """A hint for a mistyped key: the closest key of its section (``heigth_m`` →
     ``height_m``), or the section that takes this key (``[area] max_flight_time_min`` →
     ``[uav]``); "" when nothing is close."""
-    import difflib
-
-    close = difflib.get_close_matches(key, list(KEYS[section]), n=1, cutoff=0.75)
+    close = closest_key(key, KEYS[section])
     if close:
-        return f" (did you mean {close[0]}?)"
+        return close
     elsewhere = [sec for sec, keys in KEYS.items() if key in keys and sec != section]
     if elsewhere:
         return f" (it belongs in [{elsewhere[0]}])"

@@ -13,12 +13,14 @@ from __future__ import annotations
 import datetime as dt
 import math
 import re
+from collections.abc import Iterable
 from typing import Any
 
 from ..core.domains import MAX_LIST_ITEMS
 from .inputs import key_table
 
-__all__ = ["KEYS", "MAX_TEXT_CHARS", "check_text", "check_type", "key_lines", "text_problem"]
+__all__ = ["KEYS", "MAX_TEXT_CHARS", "check_text", "check_type", "closest_key", "key_lines",
+           "text_problem"]
 
 MAX_TEXT_CHARS = 1_000
 """Longest text value (a project name, a customer, an id) [characters]."""
@@ -47,6 +49,15 @@ def key_lines(text: str) -> dict[str, int]:
             key = m.group(1).strip('"')
             lines.setdefault(f"{section}.{key}" if section else key, no)
     return lines
+
+
+def closest_key(key: str, keys: Iterable[str]) -> str:
+    """`` (did you mean height_m?)`` for a mistyped key: the closest of ``keys``; ""
+    when none is close."""
+    import difflib
+
+    close = difflib.get_close_matches(key, list(keys), n=1, cutoff=0.75)
+    return f" (did you mean {close[0]}?)" if close else ""
 
 
 def check_type(kind: str, value: Any) -> str | None:

@@ -25,7 +25,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import InputError
-from .keys import KEYS, check_text, check_type, key_lines
+from .keys import KEYS, check_text, check_type, closest_key, key_lines
 
 __all__ = ["SECTION", "config_path", "user_defaults", "with_user_defaults"]
 
@@ -60,13 +60,9 @@ def _validate(doc: dict[str, Any], path: Path, text: str) -> dict[str, Any]:
     table = doc.get(SECTION, {})
     for key, value in table.items():
         if key not in KEYS[SECTION] or key == "name":
-            import difflib
-
             takes = [k for k in KEYS[SECTION] if k != "name"]
-            close = difflib.get_close_matches(key, takes, n=1, cutoff=0.75)
-            hint = f" (did you mean {close[0]}?)" if close else ""
-            raise InputError(where(key), f"unknown key{hint}; [{SECTION}] of the "
-                             f"configuration takes {', '.join(takes)}")
+            raise InputError(where(key), f"unknown key{closest_key(key, takes)}; [{SECTION}] "
+                             f"of the configuration takes {', '.join(takes)}")
         kind, desc = KEYS[SECTION][key]
         problem = check_type(kind, value) or check_text(kind, value)
         if problem:
