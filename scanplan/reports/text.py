@@ -8,6 +8,8 @@ import textwrap
 from collections.abc import Callable, Sequence
 from typing import Any
 
+import numpy as np
+
 from ..i18n.labels import LABELS, t
 from ..i18n.labels_geo import crs_name
 from ..i18n.messages import localize, scale_text
@@ -518,10 +520,7 @@ def format_terrain(result: Any, locale: str = "en") -> list[str]:
         d = tr.summary()
         src = (f"{T['dem']} {d['dem']} ({d['dem_crs']})" if d["source"] == "dem"
                else T["range"])
-        alt = tr.layout.photos["altitude_m"]
-        alts = (f"{_n(float(alt.min()), 0, locale)}–{_n(float(alt.max()), 0, locale)}"
-                if alt.size and alt.max() - alt.min() > 0.5
-                else _n(float(alt.max()) if alt.size else None, 0, locale))
+        alts = _altitudes(tr.layout.photos["altitude_m"], locale)
         text = (f"{T['head']}: {src}, {T['ground']} {_n(d['ground_min_m'], 1, locale)}–"
                 f"{_n(d['ground_max_m'], 1, locale)} {T['m']} {T['under']}; {T['mode']} "
                 f"{T[tr.mode]} {alts} {T['m']} ({T.get(tr.altitude_frame, tr.altitude_frame)}); "
@@ -549,12 +548,18 @@ def format_terrain(result: Any, locale: str = "en") -> list[str]:
     return out
 
 
+def _altitudes(alt: Any, locale: str) -> str:
+    """The flight altitudes of the photos [m]: ``235``, or ``233–295`` when they differ by
+    more than half a metre; ``—`` without photos."""
+    alt = np.asarray(alt, dtype=float)
+    if not alt.size:
+        return _n(None, 0, locale)
+    lo, hi = float(alt.min()), float(alt.max())
+    return f"{_n(lo, 0, locale)}–{_n(hi, 0, locale)}" if hi - lo > 0.5 else _n(hi, 0, locale)
+
+
 def _film_altitude(ft: Any, T: dict[str, str], locale: str) -> str:
     """``; flight altitude 830 m`` of the frames over the relief ("" without frames)."""
-    alt = ft.altitude_m
-    if not len(alt):
+    if not len(ft.altitude_m):
         return ""
-    lo, hi = float(min(alt)), float(max(alt))
-    said = (_n(hi, 0, locale) if hi - lo <= 0.5
-            else f"{_n(lo, 0, locale)}–{_n(hi, 0, locale)}")
-    return f"; {T['film_alt']} {said} {T['m']}"
+    return f"; {T['film_alt']} {_altitudes(ft.altitude_m, locale)} {T['m']}"
