@@ -20,7 +20,6 @@ import click
 
 from .._version import __version__
 from ..errors import InputError, WriteError
-from ..project.inputs import get as get_input
 from ..project.inputs import option_names
 from . import console, outputs
 from .errors import Failed, PolicyGroup
@@ -132,20 +131,9 @@ def norm_options(command: str) -> Callable[[Callable[..., Any]], Callable[..., A
     """The norm options of ``command`` (scan or uav), from the input registry."""
     def decorate(f: Callable[..., Any]) -> Callable[..., Any]:
         for name in reversed(NORM_INPUTS):
-            f = input_option(command, name, **_FILM_ONLY.get(name, {}) if command == "scan"
-                             else {})(f)
+            f = input_option(command, name)(f)
         return f
     return decorate
-
-
-_FILM_ONLY: dict[str, dict[str, Any]] = {
-    "height_formula": {"type": click.Choice([  # the norm sets' film forms (tested)
-        c for c in get_input("height_formula", "film").choices if c != "normal_case"]),
-                       "help": "Form of the height constraint P_Z of film photos (default: "
-                               "the set's)."},
-}
-"""``scan``'s own choices of a norm option the project file shares with the UAV plan
-(``[norms] height_formula`` may name the digital block's ``normal_case`` there)."""
 
 
 def _area_of(kwargs: dict[str, Any]) -> Any:

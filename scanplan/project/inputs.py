@@ -245,9 +245,8 @@ _RECORDS: tuple[Input, ...] = (
           option="--pr-coefficient", commands=(FILM,), digits=2),
     Input("height_formula", "norms", "height_formula", _STR, '"instruction" or "parallax": '
           "the film height constraint", note="default: the set's", option="--height-formula",
-          commands=(FILM,), choices=("instruction", "parallax", "normal_case"),
-          cli_help="form of the height constraint P_Z (normal_case for digital cameras "
-          "only)"),
+          commands=(FILM,), choices=("instruction", "parallax"),
+          cli_help="form of the height constraint P_Z of film photos"),
     Input("probability", "norms", "probability", _NUM,
           "required recognition probability, 0 < P < 1", note="default: the set's, 0.75",
           domain="probability", option="--probability", commands=(FILM, UAV), digits=3),
