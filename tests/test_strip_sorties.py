@@ -104,6 +104,8 @@ def test_the_page_marks_each_sortie_where_its_first_photo_is(town):
     for s in layout.strips:
         assert (strips[s.number]["sortie"], strips[s.number]["last_sortie"]) == (
             s.sortie, s.last_sortie)
+        assert strips[s.number]["sorties"] == (f"{s.sortie}–{s.last_sortie}" if s.continued
+                                               else str(s.sortie))
 
 
 def test_the_gis_files_carry_the_last_sortie_of_each_strip(town, tmp_path):

@@ -48,7 +48,8 @@ def _layout(platform: str, layout: Any, most_photos: int) -> list[dict[str, Any]
                  for a, b, c, d in zip(lon0, lat0, lon1, lat1, strict=True)]
         out.append(_feature("strip", {"type": "MultiLineString", "coordinates": lines},
                             platform=platform, number=s.number, sortie=s.sortie,
-                            last_sortie=s.last_sortie, photos=s.photos))
+                            last_sortie=s.last_sortie, sorties=s.sorties_text,
+                            photos=s.photos))
     ph = layout.photos
     n = len(ph)
     if n:

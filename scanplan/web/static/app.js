@@ -142,8 +142,7 @@
         const color = palette[(p.sortie - 1) % palette.length];
         g.coordinates.forEach((line) => L.polyline(line.map((c) => [c[1], c[0]]),
           {color, weight: 2.5, opacity: 0.9, pmIgnore: true, className: `strip strip-${p.number}`,
-           renderer: lines}).bindTooltip(`${T.strips} ${p.number} · ${T.sorties} ${p.sortie}` +
-             (p.last_sortie && p.last_sortie !== p.sortie ? `–${p.last_sortie}` : ""))
+           renderer: lines}).bindTooltip(`${T.strips} ${p.number} · ${T.sorties} ${p.sorties}`)
           .addTo(planLayer));
       } else if (p.kind === "photos") {
         for (const c of g.coordinates) {
