@@ -60,3 +60,23 @@ def test_the_locale_line_is_set_or_added(compare):
         '[project]\nname = "x"\nlocale = "ru"\n')
     assert compare.with_locale('[project]\nname = "x"\n', "ru") == (
         '[project]\nlocale = "ru"\nname = "x"\n')
+
+
+def test_the_page_gets_the_project_as_flat_tables(compare):
+    """A project file's sub-tables become the page's dotted sections, dates its text."""
+    import datetime as dt
+
+    faces = importlib.import_module("compare_faces")
+    doc = {"map": {"scale": 2000}, "uav": {"camera": "x", "target": {"r_max": 0.3}},
+           "schedule": {"start": dt.date(2024, 5, 1)}}
+    assert faces.page_tables(doc) == {"map": {"scale": 2000}, "uav": {"camera": "x"},
+                                      "uav.target": {"r_max": 0.3},
+                                      "schedule": {"start": "2024-05-01"}}
+
+
+def test_every_terminal_run_names_a_command(compare):
+    """The other commands compared are real commands of the command line."""
+    from scanplan.cli.main import main
+
+    for name, args in compare.TERMINALS.items():
+        assert args[0] in main.list_commands(None), name  # type: ignore[arg-type]

@@ -37,6 +37,7 @@ import tempfile
 import zipfile
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
+from typing import Any
 
 REPO = Path(__file__).resolve().parents[1]
 EXTRA_PROJECTS = Path(__file__).resolve().parent / "compare_projects"
@@ -47,6 +48,28 @@ MANIFEST = "manifest.json"
 WORK_MARK = "<work>"
 EPOCH = "1700000000"
 MAX_DIFF_LINES = 40
+FACES = Path(__file__).resolve().parent / "compare_faces.py"
+TERMINALS: dict[str, list[str]] = {
+    "scan-instruction": ["scan", "--map-scale", "1:2000", "--relief", "1.0", "--photo-scale",
+                         "1:10000", "--camera", "afa-te-100", "--resolving-power", "40",
+                         "--pdf", "scan.pdf", "--xlsx", "scan.xlsx"],
+    "scan-scales": ["scan", "--map-scale", "2000", "--relief", "0.5", "--camera", "rc30-153",
+                    "--photo-scale", "5000", "--photo-scale", "10000", "--photo-scale",
+                    "15000"],
+    "uav-ptero": ["uav", "--camera", "canon-eos-5d-mark-ii-50", "--f-number", "8",
+                  "--height-m", "300", "--height-tolerance-pct", "40", "--speed-ms", "25",
+                  "--shift-factor", "0.65", "--map-scale", "2000", "--relief", "0.5",
+                  "--pdf", "uav.pdf", "--xlsx", "uav.xlsx"],
+    "uav-area": ["uav", "--camera", "dji-zenmuse-p1-35", "--height-m", "100", "--area-m",
+                 "300x400"],
+    "cameras-list": ["cameras", "list"],
+    "cameras-show-film": ["cameras", "show", "rc30-153"],
+    "cameras-show-digital": ["cameras", "show", "dji-zenmuse-p1-35"],
+    "norms-list": ["norms", "list"],
+    "norms-show": ["norms", "show", "gkinp-02-036-02"],
+}
+"""The other commands whose terminal (and documents) are compared, by name: the
+arguments, to which ``--locale LOCALE`` is added."""
 NOT_CODE = (".git", "tests", "benchmarks", "docs", "examples", "tools", "__pycache__", "*.pyc")
 
 
@@ -117,6 +140,24 @@ def run_project(project: Path, out: Path, source: Path, home: Path) -> None:
     (out / "json-stderr.txt").write_text(as_json.stderr, encoding="utf-8")
     (out / "exit.txt").write_text(f"plan {plan.returncode}\njson {as_json.returncode}\n",
                                   encoding="utf-8")
+    faces = subprocess.run([sys.executable, str(FACES), project.name, str(out)],
+                           cwd=project.parent, env=env, capture_output=True, text=True,
+                           check=False)
+    (out / "faces-stderr.txt").write_text(f"exit {faces.returncode}\n{faces.stderr}",
+                                          encoding="utf-8")
+
+
+def run_terminal(args: list[str], locale: str, out: Path, source: Path, home: Path) -> None:
+    """Run ``scanplan ARGS --locale LOCALE`` in the folder ``out/files`` (where its
+    ``--pdf``/``--xlsx`` land); its terminal, errors and exit code into ``out``."""
+    files = out / "files"
+    files.mkdir(parents=True, exist_ok=True)
+    done = subprocess.run([sys.executable, "-m", "scanplan", *args, "--locale", locale],
+                          cwd=files, env=_environment(source, home), capture_output=True,
+                          text=True, check=False)
+    (out / "terminal.txt").write_text(done.stdout, encoding="utf-8")
+    (out / "stderr.txt").write_text(done.stderr.replace(str(files), "<out>"), encoding="utf-8")
+    (out / "exit.txt").write_text(f"{done.returncode}\n", encoding="utf-8")
 
 
 def make(out: Path, source: Path, examples: Path, jobs: int = 2,
@@ -142,13 +183,15 @@ def make(out: Path, source: Path, examples: Path, jobs: int = 2,
         shutil.copytree(source, work / "source", ignore=shutil.ignore_patterns(*NOT_CODE))
         source = work / "source"
         (work / "home" / "norms").mkdir(parents=True)
-        runs = []
+        runs: list[Any] = []
         for locale in LOCALES:
             for project in copy_projects(examples, work / locale, locale):
                 if not only or project.stem in only:
-                    runs.append((project, out / locale / project.stem))
+                    runs.append((run_project, project, out / locale / project.stem))
+            runs += [(run_terminal, args, locale, out / "terminals" / locale / name)
+                     for name, args in TERMINALS.items() if not only or name in only]
         with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
-            done = pool.map(lambda r: run_project(r[0], r[1], source, work / "home"), runs)
+            done = pool.map(lambda r: r[0](*r[1:], source, work / "home"), runs)
             list(done)
         manifest = {"work": str(work), "runs": len(runs)}
         (out / MANIFEST).write_text(json.dumps(manifest, indent=1), encoding="utf-8")
