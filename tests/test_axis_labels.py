@@ -54,5 +54,5 @@ def test_russian_height_column_heads_keep_the_unit_with_its_number():
     on the line of its number: a no-break space)."""
     from scanplan.i18n.labels import t
 
-    assert t("pdf_at_height", "ru").format(h="70") == "на 70\u00a0м"
-    assert t("pdf_corner_at", "ru").format(h="77") == "угол кадра, 77\u00a0м"
+    assert t("at_height", "ru").format(h="70") == "на 70\u00a0м"
+    assert t("corner_at", "ru").format(h="77") == "угол кадра, 77\u00a0м"

@@ -219,7 +219,7 @@ def test_aerial_survey_wording_not_uav(tmp_path):
         text = " ".join(" ".join(page.extract_text() for page in
                                  PdfReader(out / "spec.pdf").pages).split())
         # the one exception: the title of the cited paper on the MTF model of UAV cameras
-        text = text.replace(" ".join(t("pdf_src_l", locale).split()), "")
+        text = text.replace(" ".join(t("source_l", locale).split()), "")
         for doc in (cells, text, " ".join(wb.sheetnames)):
             assert banned not in doc
         assert wanted in cells and wanted in text

@@ -153,7 +153,7 @@ def test_plans_at_500_and_1000_run_out_of_the_box():
 
 
 def test_object_name_in_both_languages(tmp_path):
-    from scanplan.reports.pdf import _object_name
+    from scanplan.reports.formatter import formatter
 
     ns = load_norm_set("gkinp-02-036-02")
     base = ("[map]\nscale = 500\nrelief_interval_m = 0.5\n[norms]\n{norms}"
@@ -166,7 +166,7 @@ def test_object_name_in_both_languages(tmp_path):
                                          tmp_path / "b.toml"))
     obj = unnamed.film.job.plan.inputs.object
     assert obj.name == USER_OBJECT_NAME["en"] and obj.name_ru == USER_OBJECT_NAME["ru"]
-    assert _object_name(ns, obj.name, obj.size_m, None, "ru") == "объект заданного размера"
+    assert formatter("ru").object_named(ns, obj.name, obj.size_m) == "объект заданного размера"
     assert object_display_name(ns, obj.name, obj.size_m, None, "en") == "object of the given size"
     reason_ru = unnamed.film.job.plan.scenarios[0].constraint("PD").reason.text("ru")
     assert "объект заданного размера" in reason_ru and "object" not in reason_ru

@@ -392,7 +392,7 @@ def test_every_warning_has_a_heading_in_both_languages():
     codes |= {"not_interpretable", "above_interpretation_limit"}  # built from a variable
     assert len(codes) >= 10
     for loc in LOCALES:
-        missing = sorted(c for c in codes if f"pdf_warn_{c}" not in LABELS[loc])
+        missing = sorted(c for c in codes if f"warn_{c}" not in LABELS[loc])
         assert not missing, (loc, missing)
 
 
@@ -574,8 +574,8 @@ def test_page_one_says_why_the_valley_plan_was_lowered(locale):
 
     items = _page_one_warnings(str(EXAMPLES[0].parent / "uav-town-valley-2000.toml"), locale)
     heads = [x.split(" — ")[0] for x in items]  # "… — see “Specification”"
-    assert LABELS[locale]["pdf_warn_terrain_resolution"] not in heads, items
-    assert heads.count(LABELS[locale]["pdf_warn_height_lowered"]) == 1, items
+    assert LABELS[locale]["warn_terrain_resolution"] not in heads, items
+    assert heads.count(LABELS[locale]["warn_height_lowered"]) == 1, items
 
 
 def test_russian_page_one_lists_scales_as_the_messages_do():

@@ -3,34 +3,21 @@ renderer: workbook, PDF, terminal, CLI listings, web page) must read the same in
 so a surveyor does not meet «Путевая скорость» in the PDF and «Скорость полёта» in the
 workbook for the same ground speed.
 
-The catalogues: the report labels (:data:`scanplan.i18n.labels.LABELS`, which merges
-``labels_more`` and ``labels_geo``, and the carrier-specific ``AIRCRAFT_LABELS`` that
-:func:`~scanplan.i18n.labels.t` consults first), the terminal and listing templates
-(:data:`scanplan.i18n.labels_cli.CLI`), the terminal summary's area and terrain words
-(:mod:`scanplan.reports.text`), the web page's texts (:data:`scanplan.web.page.TEXTS`) and the
-constraint names of the registry (which :func:`t` falls back to). Texts are compared after
-stripping surrounding whitespace; a trailing unit (", m") is part of the text. Two English
-labels that mean different things must differ in English.
+The catalogues: every one of :func:`scanplan.i18n.catalogues` (the report labels, the
+carrier-specific wording, the terminal's templates and words, the page's texts) and the
+constraint names of the registry (which :func:`~scanplan.i18n.labels.t` falls back to).
+Texts are compared after stripping surrounding whitespace; a trailing unit (", m") is part
+of the text. Two English labels that mean different things must differ in English.
 """
 
 from __future__ import annotations
 
 from collections import defaultdict
 
-from scanplan.i18n.labels import AIRCRAFT_LABELS, LABELS
-from scanplan.i18n.labels_cli import CLI
-from scanplan.reports import text as _text
+from scanplan.i18n import catalogues
 from scanplan.rules.registry import CONSTRAINTS
-from scanplan.web.page import TEXTS
 
-CATALOGUES: dict[str, dict[str, dict]] = {
-    "labels": LABELS,
-    "aircraft": AIRCRAFT_LABELS,
-    "cli": CLI,
-    "text.area": _text._AREA_TEXT,
-    "text.terrain": _text._TERRAIN_TEXT,
-    "web": TEXTS,
-}
+CATALOGUES: dict[str, dict[str, dict]] = catalogues()
 
 
 def _pairs() -> list[tuple[str, str, str]]:

@@ -394,5 +394,5 @@ def test_nothing_above_the_project_layer_reads_the_toml(path):
                                   'x = get("uav", key)'])
 def test_the_toml_guard_fails_on_a_read(line):
     """The check can fail: a TOML read added to a report module is reported."""
-    text = (PKG / "reports" / "text.py").read_text(encoding="utf-8") + f"\n{line}\n"
-    assert toml_reads(text, "scanplan.reports.text")
+    text = (PKG / "reports" / "text" / "plan.py").read_text(encoding="utf-8") + f"\n{line}\n"
+    assert toml_reads(text, "scanplan.reports.text.plan")

@@ -197,7 +197,6 @@ def test_4_one_terminal_renderer_and_no_localized_view():
 # -- 5. label keys name concepts ---------------------------------------------------------
 
 
-@NOT_YET
 def test_5_no_label_key_is_named_after_a_renderer():
     from scanplan.i18n.labels import AIRCRAFT_LABELS, LABELS
 

@@ -223,7 +223,7 @@ def test_warnings_sheet(both_en, scan, uav):
     ws = both_en["Warnings"]
     headings = [ws.cell(r, 3).value for r in range(2, ws.max_row + 1)]
     # each warning by its heading, never by its code (issue 13)
-    assert headings == [X.t(f"pdf_warn_{w.code}", "en")
+    assert headings == [X.t(f"warn_{w.code}", "en")
                         for w in scan.plan.warnings + uav.plan.warnings]
     quiet = dataclasses.replace(scan, plan=dataclasses.replace(scan.plan, warnings=()))
     ws = load(render_xlsx(scan=quiet))["Warnings"]

@@ -69,11 +69,13 @@ def test_design_sheet_numbers_are_number_cells(name, locale):
 def test_uav_design_sheet_cites_the_digital_height_formula():
     """The UAV plan's P_Z is the digital normal case σ_Z (the one its table binds on); the
     design sheet cited the film formula P_Z = V_z·f/(k·Mc·b) beside it."""
-    from scanplan.reports.design import design_view
+    from scanplan.reports.formatter import formatter
+    from scanplan.reports.views import ResultTables
 
     result = _plan("uav-canon-2000.toml", "en")
     assert result.uav.job.plan.binding == "PZ"
-    norms = " ".join(norm for _, _, norm in design_view(result, "en", lambda s: s).rows)
+    f = formatter("en")
+    norms = " ".join(f.show(r.values[1]) for r in ResultTables(spec=result)["design"].rows)
     assert "σ_Z = (H/B)·(H/c)·σ_px" in norms
     assert "V_z·f/(k·Mc·b)" not in norms
 

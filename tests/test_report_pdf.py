@@ -293,7 +293,7 @@ def test_plan_with_both_sections_has_one_comparison_table(tmp_path):
     p.write_text(film.replace("[area]", uav[uav.index("[uav]"):uav.index("[area]")] + "[area]"),
                  encoding="utf-8")
     r = plan_project(load_project(p))
-    old_heading = f">{LABELS['en']['pdf_comparison']}<"
+    old_heading = f">{LABELS['en']['comparison']}<"
     html = render_html(scan=r.film.job, uav=r.uav.job, meta=r.meta, spec=r)
     assert html.count("Film and UAV side by side") == 1
     assert "pixel on the ground" in html

@@ -12,11 +12,11 @@ import openpyxl
 import pytest
 
 import scanplan
+from scanplan.i18n.numbers import Numbers
 from scanplan.reports.excel import render_xlsx
 from scanplan.reports.pdfhtml import render_html
-from scanplan.reports.tablewords import row_label
 from scanplan.reports.text import format_plan_result
-from scanplan.reports.view import Numbers, build_view
+from scanplan.reports.view import build_view
 from scanplan.reports.views import ResultTables, constraint_title
 from scanplan.rules.registry import CONSTRAINTS
 
@@ -112,7 +112,7 @@ def test_the_same_table_reads_alike_in_the_terminal_the_workbook_and_the_pdf(bot
     numbers = Numbers("en")
     summary = {row[0]: row[1:3] for row in book["Summary"].iter_rows(values_only=True)}
     for r in view.tables["comparison"].rows:
-        label = row_label(r, view.labels, view.numbers)
+        label = view.fmt.row_label(r)
         assert summary[label] == pytest.approx(tuple("—" if v is None else v
                                                      for v in r.values)), r.key
         for v in (v for v in r.values if v is not None):
@@ -179,7 +179,7 @@ def test_the_headline_tables_hold_the_specification(both):
     text = format_plan_result(both, tables=tables)
     assert tables.built.count("spec_film") == 1 and tables.built.count("spec_uav") == 1
     summary = {row[0]: row[1] for row in book["Summary"].iter_rows(values_only=True)}
-    assert summary[view.labels("spec_recommended_height_m")] == uav.row(
+    assert summary[view.fmt("spec_recommended_height_m")] == uav.row(
         "recommended_height_m").value
     numbers = Numbers("en")
     for shown in (numbers.num(film.row("scan_pixel_um").value, 1),
@@ -253,7 +253,7 @@ def test_the_film_inputs_carry_the_registry_units_and_decimals(film):
     assert t.row("photo_scales").value == tuple(plan.inputs.photo_scales)
     sheet = openpyxl.load_workbook(io.BytesIO(render_xlsx(view=view)))["Inputs"]
     cells = {row[0].value: row[1] for row in sheet.iter_rows() if row[0].value}
-    relief = cells[view.labels("relief_interval_m")]
+    relief = cells[view.fmt("relief_interval_m")]
     assert relief.value == plan.inputs.relief_interval_m and relief.number_format == "0.00"
-    assert cells[view.labels("xlsx_bands")].number_format == "#,##0"
+    assert cells[view.fmt("bands")].number_format == "#,##0"
     assert view.tables.built.count("film_inputs") == 1

@@ -14,9 +14,10 @@ from scanplan.i18n import numbers
 from scanplan.i18n.labels import LABELS
 from scanplan.i18n.numbers import Numbers
 from scanplan.project.jobs import scan_job, uav_job
-from scanplan.reports import ReportMeta, plots, view
+from scanplan.reports import ReportMeta, plots
 from scanplan.reports import excel as X
-from scanplan.reports.view import Labels, build_view, section_names
+from scanplan.reports.formatter import formatter
+from scanplan.reports.view import build_view, section_names
 
 
 @pytest.fixture(scope="module")
@@ -31,8 +32,10 @@ def uav():
                    speed_ms=25, map_scale=2000, relief_interval_m=0.5)
 
 
-def test_the_examples_of_the_view_module_run():
-    result = doctest.testmod(view, verbose=False)
+def test_the_examples_of_the_formatter_module_run():
+    from scanplan.reports import formatter as formatter_module
+
+    result = doctest.testmod(formatter_module, verbose=False)
     assert result.attempted >= 2 and result.failed == 0
     result = doctest.testmod(numbers, verbose=False)  # the number formatter's, beside it
     assert result.attempted >= 2 and result.failed == 0
@@ -79,15 +82,12 @@ def test_the_plot_module_formats_numbers_with_the_view():
     assert plots.number(1234.5, 1, "ru") == Numbers("ru").num(1234.5, 1) == "1\u00a0234,5"
 
 
-def test_one_label_catalogue_for_documents_and_terminal():
-    assert Labels("ru")("map_scale") == LABELS["ru"]["map_scale"]
-    # the terminal summary's words live in the same catalogue, in both languages
-    terminal = {k for k in LABELS["en"] if k.startswith("term_")}
-    assert "term_map" in terminal and "term_volume" in terminal
-    assert terminal == {k for k in LABELS["ru"] if k.startswith("term_")}
-    assert Labels("ru")("term_map") == "карта"
-    assert Labels("en", "aircraft")("title_uav") != Labels("en", "uav")("title_uav")
-    assert Labels("ru").constraint("PZ") == "точность по высоте"
+def test_one_formatter_for_documents_and_terminal():
+    assert formatter("ru")("map_scale") == LABELS["ru"]["map_scale"]
+    # the terminal's words are the terminal catalogue's, keyed by concept in both languages
+    assert formatter("ru").cli("map") == "карта" and formatter("en").cli("volume")
+    assert formatter("en", "aircraft")("title_uav") != formatter("en", "uav")("title_uav")
+    assert formatter("ru").constraint("PZ") == "точность по высоте"
 
 
 def test_sections_in_document_order(scan, uav):
@@ -129,13 +129,13 @@ def test_a_new_sheet_is_one_record(scan, uav, monkeypatch):
     """Extending the workbook (docs/architecture.md, "Adding a section or a sheet"): one
     writer and one record in SHEETS; a sheet of a section the result lacks is left out."""
     def strips(book, v):
-        ws = book.sheet("xlsx_flight", landscape=False, widths=(30, 12))
-        X.put_text(ws, 1, 1, book.t("n_strips"))
+        ws = book.sheet("flight_geometry", landscape=False, widths=(30, 12))
+        X.put_text(ws, 1, 1, book.f("n_strips"))
         X.put_num(ws, 1, 2, v.uav.plan.flight.get("strips", 0), "0")
 
     monkeypatch.setattr(X, "SHEETS", (*X.SHEETS, X.Sheet("strips", strips, "uav")))
     wb = openpyxl.load_workbook(io.BytesIO(X.render_xlsx(scan=scan, uav=uav)))
-    assert wb.sheetnames[-1] == LABELS["en"]["xlsx_flight"]
+    assert wb.sheetnames[-1] == LABELS["en"]["flight_geometry"]
     assert wb.worksheets[-1]["A1"].value == LABELS["en"]["n_strips"]
     film_only = openpyxl.load_workbook(io.BytesIO(X.render_xlsx(scan=scan)))
-    assert LABELS["en"]["xlsx_flight"] not in film_only.sheetnames
+    assert LABELS["en"]["flight_geometry"] not in film_only.sheetnames

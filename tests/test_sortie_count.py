@@ -59,7 +59,7 @@ def _text_counts(text: str) -> list[int]:
 
 def _xlsx_counts(path: Path) -> list[int]:
     openpyxl = pytest.importorskip("openpyxl")
-    heads = set(_labels("xlsx_flight_sorties") + _labels("geo_n_sorties")
+    heads = set(_labels("sorties_count") + _labels("geo_n_sorties")
                 + _labels("sorties"))
     out = []
     wb = openpyxl.load_workbook(path, read_only=True)

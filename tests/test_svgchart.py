@@ -250,14 +250,14 @@ def _expected_texts(r, plot: str, loc: str) -> list[str]:
     p = r.uav.job.plan
     if plot == "mtf":
         return [t("image_contrast", loc), t("threshold", loc),
-                f"R = {n.num(p.resolving_power_lpmm, 1)}", t("pdf_nyquist_short", loc),
+                f"R = {n.num(p.resolving_power_lpmm, 1)}", t("nyquist_short", loc),
                 t("frequency_lpmm", loc), t("contrast", loc)]
     if plot == "height":
         out = ["GSD", "L", f"{t('planned', loc)}: ", f"{t('highest_flown', loc)}: ",
-               t("pdf_h_max", loc).format(cid=p.binding) + f": {n.num(p.max_height_m, 0)} {m}",
+               t("h_max_planned", loc).format(cid=p.binding) + f": {n.num(p.max_height_m, 0)} {m}",
                t("height_m", loc), f"GSD, L, {m}"]
         if p.max_flown_height_m and p.max_flown_height_m > p.max_height_m * (1 + 1e-9):
-            out.append(f"{t('pdf_h_max_flown', loc)}: {n.num(p.max_flown_height_m, 0)} {m}")
+            out.append(f"{t('h_max_flown', loc)}: {n.num(p.max_flown_height_m, 0)} {m}")
         if p.ceiling_m is not None and p.ceiling_m <= max(p.height_curve["height_m"]):
             out.append(f"{t('HC', loc)}: ")
         out += [f"{lim.compares} ≤ {n.num(lim.limit_m, 3)} {m} ({lim.id})"

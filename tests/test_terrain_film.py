@@ -317,8 +317,9 @@ def test_the_flight_altitude_over_the_relief_is_stated():
     (Mc × f) 600 m" without saying above which ground; the frames are flown at the
     altitude of the highest ground plus 600 m (830 m here), which the crew flies. The
     survey design and the terminal now state it."""
-    from scanplan.reports.design import design_view
+    from scanplan.reports.formatter import formatter
     from scanplan.reports.text import format_terrain
+    from scanplan.reports.views import ResultTables
 
     result = plan_project(load_project(EXAMPLES / "film-town-relief-10000.toml"))
     ft = result.film.terrain
@@ -326,7 +327,8 @@ def test_the_flight_altitude_over_the_relief_is_stated():
     assert altitude == pytest.approx(830.0)  # 230 m highest ground + 1:6000 × 100 mm
     assert "flight altitude 830 m" in " ".join(format_terrain(result, "en"))
     assert "высота полёта 830 м" in " ".join(format_terrain(result, "ru"))
-    rows = {label: value for label, value, _ in design_view(result, "en", str).rows}
+    f = formatter("en")
+    rows = {f.row_label(r): f.show(r.values[0]) for r in ResultTables(spec=result)["design"].rows}
     assert rows["Flight height above ground (Mc × f), m"] == "600"
     assert rows["Flight altitude (the highest ground + Mc × f, in the ground's height "
                 "system), m"] == "830"

@@ -46,6 +46,9 @@ project, the comparison table), planned with the examples' area files."""
 LOCALES = ("en", "ru")
 MANIFEST = "manifest.json"
 WORK_MARK = "<work>"
+JOB_FOLDER = re.compile(r"scanplan-job-[A-Za-z0-9_]+")
+"""The page's temporary folder of one job, which its exported files name."""
+JOB_MARK = "scanplan-job-<id>"
 EPOCH = "1700000000"
 MAX_DIFF_LINES = 40
 FACES = Path(__file__).resolve().parent / "compare_faces.py"
@@ -252,7 +255,8 @@ def readable(path: Path, work: str) -> list[str]:
     Returns
     -------
     list of str
-        PDF text, workbook cells, GeoPackage rows, zip members or the text of the file.
+        PDF text, workbook cells, GeoPackage rows, zip members or the text of the file,
+        the page's job folder (``scanplan-job-…``) replaced by ``scanplan-job-<id>``.
     """
     suffix = path.suffix.lower()
     if suffix == ".pdf":
@@ -265,7 +269,8 @@ def readable(path: Path, work: str) -> list[str]:
         lines = _zip_members(path)
     else:
         lines = path.read_bytes().decode("utf-8", errors="replace").splitlines()
-    return [line.replace(work, WORK_MARK) for line in lines] if work else lines
+    lines = [line.replace(work, WORK_MARK) for line in lines] if work else lines
+    return [JOB_FOLDER.sub(JOB_MARK, line) for line in lines]
 
 
 def _work_of(folder: Path) -> str:
@@ -305,13 +310,16 @@ def compare_file(a: Path, b: Path, work_a: str = "", work_b: str = "") -> list[s
     return diff[:MAX_DIFF_LINES] + ([f"... {more} more diff lines"] if more > 0 else [])
 
 
-def compare_folders(a: Path, b: Path) -> list[str]:
+def compare_folders(a: Path, b: Path, subset: bool = False) -> list[str]:
     """Every difference between two output folders of ``make``.
 
     Parameters
     ----------
     a, b : Path
         The folders (the first run, the second run).
+    subset : bool
+        ``b`` holds some of the runs of ``a`` (``make --only``): the runs missing from
+        ``b`` are not differences.
 
     Returns
     -------
@@ -320,6 +328,9 @@ def compare_folders(a: Path, b: Path) -> list[str]:
         runs are the same.
     """
     files_a, files_b = _files(a), _files(b)
+    if subset:
+        runs = {_run_of(name) for name in files_b}
+        files_a = {name for name in files_a if _run_of(name) in runs}
     problems = [f"only in {a}: {name}" for name in sorted(files_a - files_b)]
     problems += [f"only in {b}: {name}" for name in sorted(files_b - files_a)]
     work_a, work_b = _work_of(a), _work_of(b)
@@ -328,6 +339,13 @@ def compare_folders(a: Path, b: Path) -> list[str]:
         if diff:
             problems.append(f"differs: {name}\n" + "\n".join(diff))
     return problems
+
+
+def _run_of(name: str) -> str:
+    """The run a file of a ``make`` folder belongs to: ``en/PROJECT``,
+    ``terminals/en/NAME``."""
+    parts = name.split("/")
+    return "/".join(parts[:3] if parts[0] == "terminals" else parts[:2])
 
 
 # -- command line -----------------------------------------------------------------------
@@ -347,14 +365,16 @@ def main(argv: list[str] | None = None) -> int:
     comparer = commands.add_parser("compare", help="compare two folders of make")
     comparer.add_argument("a", type=Path)
     comparer.add_argument("b", type=Path)
+    comparer.add_argument("--subset", action="store_true",
+                          help="the second folder holds some of the runs (make --only)")
     args = parser.parse_args(argv)
     if args.command == "make":
         make(args.out, args.source.resolve(), args.examples.resolve(), args.jobs, args.only)
         return 0
-    problems = compare_folders(args.a, args.b)
+    problems = compare_folders(args.a, args.b, args.subset)
     for problem in problems:
         print(problem)
-    count = len(_files(args.a) | _files(args.b))
+    count = len(_files(args.b) if args.subset else _files(args.a) | _files(args.b))
     print(f"{len(problems)} of {count} files differ" if problems else f"all {count} files match")
     return 1 if problems else 0
 

@@ -289,7 +289,7 @@ def scan(as_json: bool, bits_per_band: str, **kwargs: Any) -> None:
     """
     from ..project.jobs import scan_job
     from ..reports.jsondoc import scan_plan_dict
-    from ..reports.terminal import format_scan_plan
+    from ..reports.text import format_scan_plan
 
     report = _split_report_options(kwargs)
     area = _area_of({**kwargs, "area_m": None})
@@ -376,7 +376,7 @@ def uav(as_json: bool, **kwargs: Any) -> None:
     from ..project.flightplan import LayoutOptions
     from ..project.jobs import uav_job
     from ..reports.jsondoc import uav_plan_dict
-    from ..reports.terminal import format_uav_plan
+    from ..reports.text import format_uav_plan
 
     report = _split_report_options(kwargs)
     area = _area_of(kwargs)

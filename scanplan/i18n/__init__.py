@@ -47,3 +47,23 @@ To add a language string:
 Both languages must hold the same keys and fields (``tests/test_messages.py``,
 ``tests/test_labels_one_word.py``); an English label has one Russian translation.
 """
+
+from typing import Any
+
+
+def catalogues() -> dict[str, dict[str, dict[str, Any]]]:
+    """Every word catalogue, by name: each ``{locale: {key: text}}`` (one shape), keyed by
+    concept — the documents' labels (``labels``, with the carrier-specific
+    ``aircraft`` wording), the terminal's templates and words (``terminal``), the page of
+    ``scanplan serve`` (``page``) and the comments of ``scanplan init`` (``init``).
+
+    Returns
+    -------
+    dict
+        Name → catalogue.
+    """
+    from .labels import AIRCRAFT_LABELS, LABELS
+    from .labels_cli import CLI
+    from .labels_page import PAGE
+
+    return {"labels": LABELS, "aircraft": AIRCRAFT_LABELS, "terminal": CLI, "page": PAGE}

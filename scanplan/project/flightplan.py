@@ -170,7 +170,8 @@ def _takeoff_xy(opts: LayoutOptions, area: Area) -> tuple[float, float] | None:
 
 def uav_flight_figures(plan: UavPlan, layout: FlightLayout) -> dict[str, Any]:
     """The flight figures of the reports from a layout: strips, photos (per strip when
-    every strip has the same number), length, time, data volume, sorties."""
+    every strip has the same number), length, time, sorties, data volume — uncompressed,
+    and its JPEG estimate with the compression ratio assumed."""
     inp = plan.inputs
     per = {s.photos for s in layout.strips}
     photos = int(layout.notes.get("photos", len(layout.photos)))
@@ -185,6 +186,8 @@ def uav_flight_figures(plan: UavPlan, layout: FlightLayout) -> dict[str, Any]:
     if inp.image_width_px and inp.image_height_px:
         out["data_volume_bytes"] = float(FL.data_volume_bytes(
             photos, inp.image_width_px, inp.image_height_px, inp.bands, inp.bits_per_band))
+        out["data_volume_jpeg_bytes"] = float(FL.jpeg_volume_bytes(out["data_volume_bytes"]))
+        out["jpeg_compression_ratio"] = FL.JPEG_COMPRESSION_RATIO
     return out
 
 

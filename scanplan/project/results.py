@@ -13,7 +13,10 @@ import datetime as dt
 from dataclasses import dataclass, field
 from typing import Any
 
+import numpy as np
+
 from ..core.blocks import BlockHeightCheck
+from ..core.photoscale import height_at_photo_scale_m
 from ..geo.layout import Area, FlightLayout
 from ..geo.sun import FlyingDays, SunWindow
 from ..geo.terrain import TerrainResult
@@ -148,6 +151,26 @@ class FilmSpec:
     rejected: tuple[tuple[ScanScenario, FilmTerrain], ...] = ()
     """[terrain]: the candidate scales with fewer frames (larger Mc) the relief ruled out,
     with their frames."""
+
+    @property
+    def flight_height_m(self) -> float | None:
+        """The flight height above the ground of the recommended photo scale, H = Mc·f [m]
+        (:func:`scanplan.core.photoscale.height_at_photo_scale_m`); None without a
+        recommendation and for existing photos (no flight is planned)."""
+        if self.recommended is None or self.archive:
+            return None
+        return float(height_at_photo_scale_m(self.recommended.photo_scale,
+                                             self.job.plan.inputs.focal_mm))
+
+    @property
+    def flight_altitude_m(self) -> tuple[float, float] | None:
+        """[terrain]: the lowest and the highest flight altitude of the frames over the
+        relief [m] (the highest ground under a frame + Mc·f, in the ground's height system);
+        None without frames over the relief."""
+        ft = self.terrain
+        if ft is None or not len(ft.altitude_m):
+            return None
+        return float(np.min(ft.altitude_m)), float(np.max(ft.altitude_m))
 
 
 @dataclass(frozen=True)

@@ -47,10 +47,10 @@ def add_geo_sheets(book: Any, spec: Any) -> None:
     (a :class:`scanplan.reports.excel._Book`)."""
     for kind, layout in _exports.spec_layouts(spec):
         film = kind == "film"
-        _strips_sheet(book, layout, "xlsx_sheet_strips_film" if film else "strips",
+        _strips_sheet(book, layout, "sheet_strips_film" if film else "strips",
                       _exports.files_beside(spec, layout))
         if layout.area.georeferenced and 0 < len(layout.photos) <= MAX_SHEET_PHOTOS:
-            _photos_sheet(book, layout, "xlsx_sheet_frames" if film else "xlsx_sheet_photos")
+            _photos_sheet(book, layout, "sheet_frames" if film else "sheet_photos")
 
 
 def _strips_sheet(book: Any, layout: FlightLayout, key: str, files_beside: bool) -> None:
@@ -59,32 +59,32 @@ def _strips_sheet(book: Any, layout: FlightLayout, key: str, files_beside: bool)
     loc = book.loc
     ws = book.sheet(key, landscape=True,
                     widths=(46, 10, 10, 12, 14, 16, 16, 16, 16, 14, 14, 14, 14))
-    row = book.section(ws, 1, book.t("geo_summary"))
+    row = book.section(ws, 1, book.f("geo_summary"))
     for label, value, digits in summary_items(layout, loc):
         fmt = None if isinstance(value, str) else ("#,##0" if digits == 0 else
                                                    "#,##0." + "0" * digits)
         row = book.kv(ws, row, label, value, fmt)
     notes = []
     if not layout.feasible:
-        notes.append(book.t("geo_not_feasible").format(reason=layout.reason or ""))
+        notes.append(book.f("geo_not_feasible").format(reason=layout.reason or ""))
     if not layout.area.georeferenced:
-        notes.append(book.t("geo_not_georeferenced"))
+        notes.append(book.f("geo_not_georeferenced"))
     elif len(layout.photos) > MAX_SHEET_PHOTOS:
-        notes.append(book.t("geo_photos_elsewhere" if files_beside else "geo_photos_too_many")
+        notes.append(book.f("geo_photos_elsewhere" if files_beside else "geo_photos_too_many")
                      .format(n=number(len(layout.photos), 0, loc)))
     if layout.kind != "film":
         notes.append(continued_note(layout.strips, loc))
     for note in filter(None, notes):
         row = book._wide_kv(ws, row, "", note)
     row += 1
-    ends = [(book.t(e), book.t(c)) for e in ("strip_start", "strip_end")
+    ends = [(book.f(e), book.f(c)) for e in ("strip_start", "strip_end")
             for c in ("photo_lat_deg", "photo_lon_deg")]
     xy_cols = _xy_order(loc)
-    ends += [(book.t(e), book.t(c)) for e in ("strip_start", "strip_end") for c in xy_cols]
+    ends += [(book.f(e), book.f(c)) for e in ("strip_start", "strip_end") for c in xy_cols]
     i, j = (0, 1) if xy_cols[0] == "photo_x_m" else (1, 0)
-    head = [book.t("strip"), book.t("sortie"),
-            book.t("strip_frames" if layout.kind == "film" else "strip_photos"),
-            book.t("strip_length_m"), book.t("strip_parts"), *(f"{e}: {c}" for e, c in ends)]
+    head = [book.f("strip"), book.f("sortie"),
+            book.f("strip_frames" if layout.kind == "film" else "strip_photos"),
+            book.f("strip_length_m"), book.f("strip_parts"), *(f"{e}: {c}" for e, c in ends)]
     _header(ws, row, head)
     row += 1
     geo = None
@@ -130,7 +130,7 @@ def _photos_sheet(book: Any, layout: FlightLayout, key: str) -> None:
         a, b = cols.index("x_m"), cols.index("y_m")  # X (north) before Y (east)
         cols[a], cols[b] = cols[b], cols[a]
     ws = book.sheet(key, landscape=True, widths=[14] * len(cols))
-    _header(ws, 1, [book.t(_PHOTO_LABELS[c]) for c in cols])
+    _header(ws, 1, [book.f(_PHOTO_LABELS[c]) for c in cols])
     arrays = [np.asarray(ph[c]) for c in cols]
     fmts = [_PHOTO_FORMATS.get(c, "0.000") for c in cols]
     for i in range(len(ph)):

@@ -312,12 +312,6 @@ def terrain_dict(result: Any) -> dict[str, Any]:
 
 
 def _flight_json(flight: dict[str, Any]) -> dict[str, Any]:
-    """The flight dict, plus ``data_volume_jpeg_bytes`` (an estimate: the uncompressed
-    ``data_volume_bytes`` / :data:`scanplan.core.flight.JPEG_COMPRESSION_RATIO`) and the ratio."""
-    from ..core.flight import JPEG_COMPRESSION_RATIO, jpeg_volume_bytes
-
-    out = dict(flight)
-    if "data_volume_bytes" in out:
-        out["data_volume_jpeg_bytes"] = float(jpeg_volume_bytes(out["data_volume_bytes"]))
-        out["jpeg_compression_ratio"] = JPEG_COMPRESSION_RATIO
-    return out
+    """The flight dict as the plan carries it (with a data volume: its JPEG estimate
+    ``data_volume_jpeg_bytes`` and the ``jpeg_compression_ratio`` assumed)."""
+    return dict(flight)

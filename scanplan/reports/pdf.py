@@ -35,7 +35,7 @@ from typing import TYPE_CHECKING, Any
 
 from ..project.jobs import ScanJob, UavJob
 from . import ReportMeta, templates_dir, write_atomic  # noqa: F401  (templates_dir: tests)
-from .pdfhtml import _DEFAULT_META, _object_name, render_html  # noqa: F401  (_object_name: tests)
+from .pdfhtml import _DEFAULT_META, render_html
 from .pdfrender import (  # noqa: F401  (weasyprint, _font_config, warm_up: callers, tests)
     BundledAssetFetcher,
     _font_config,

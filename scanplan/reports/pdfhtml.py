@@ -19,16 +19,14 @@ from .._version import __version__
 from ..i18n.messages import document_text, localize
 from ..project.jobs import ScanJob, UavJob
 from . import ReportMeta, templates_dir
-from .design import design_view
-from .pdf_sections import (  # noqa: F401  (_object_name: tests)
+from .formatter import Formatter
+from .pdf_sections import (
     _comparison_view,
-    _Fmt,
-    _object_name,
+    _design_view,
     _scan_view,
     _spec_view,
     _uav_view,
 )
-from .references import Bibliography
 from .view import ReportView, build_view, svg_data_uri, warning_heading_key
 from .views import Row
 from .wording import document_date
@@ -106,7 +104,7 @@ def _environment() -> jinja2.Environment:
     return env
 
 
-def _terrain_plot(spec: Any, f: _Fmt) -> str | None:
+def _terrain_plot(spec: Any, f: Formatter) -> str | None:
     """The heights-above-ground figure of a ``[terrain]`` plan (issue 12), else None."""
     tr = getattr(getattr(spec, "uav", None), "terrain", None)
     if tr is None or len(tr.layout.photos) == 0 or tr.summary()["source"] != "dem":
@@ -117,7 +115,7 @@ def _terrain_plot(spec: Any, f: _Fmt) -> str | None:
     return svg_data_uri(plots.terrain_svg(tr, limit, f.locale))
 
 
-def _terrain_rows(spec: Any, f: _Fmt) -> list[tuple[str, str]]:
+def _terrain_rows(spec: Any, f: Formatter) -> list[tuple[str, str]]:
     """What the crew and the approver need of the relief, in words: the DEM (file, CRS,
     cell size) or the ground range given, the ground under the photos, the flight altitude
     above sea level, the heights above ground and the highest height over the relief."""
@@ -125,34 +123,34 @@ def _terrain_rows(spec: Any, f: _Fmt) -> list[tuple[str, str]]:
     if tr is None:
         return []
     d = tr.summary()
-    m = f.label("m")
+    m = f("m")
     rows = []
     if d["source"] == "dem":
         cell = d.get("dem_cell_size") or [None, None]
         size = (f"{f.g(cell[0] * 3600.0)}″" if d.get("dem_geographic")
                 else f"{f.g(abs(cell[0]))} {m}")
-        rows.append((f.label("terrain_facts_dem"), f.label(
+        rows.append((f("terrain_facts_dem"), f(
             "terrain_facts_dem_value", file=d["dem"], crs=d["dem_crs"], cell=size)))
     else:  # and no chart of flat ground along the strips: the note says why
-        rows.append((f.label("terrain_facts_dem"), f.label("terrain_facts_range") + ". "
-                     + f.label("terrain_facts_no_chart")))
-    rows.append((f.label("terrain_facts_ground"),
+        rows.append((f("terrain_facts_dem"), f("terrain_facts_range") + ". "
+                     + f("terrain_facts_no_chart")))
+    rows.append((f("terrain_facts_ground"),
                  f"{f.num(d['ground_min_m'], 1)}–{f.num(d['ground_max_m'], 1)} {m}"))
     alt = tr.layout.photos["altitude_m"]
     if alt.size:
         lo, hi = float(alt.min()), float(alt.max())
         alts = f"{f.num(lo, 0)}–{f.num(hi, 0)}" if hi - lo > 0.5 else f.num(hi, 0)
-        rows.append((f.label("terrain_facts_altitude"), f.label(
-            "terrain_facts_altitude_value", mode=f.label(f"terrain_facts_mode_{tr.mode}"),
+        rows.append((f("terrain_facts_altitude"), f(
+            "terrain_facts_altitude_value", mode=f(f"terrain_facts_mode_{tr.mode}"),
             alt=f"{alts} {m}")))
     if d["agl_min_m"] is not None:
         lo, hi = f.num(d["agl_min_m"], 0), f.num(d["agl_max_m"], 0)
-        rows.append((f.label("terrain_facts_agl"), f.label(  # a photo only over a DEM
+        rows.append((f("terrain_facts_agl"), f(  # a photo only over a DEM
             "terrain_facts_agl_value", lo=lo, hi=hi, unit=m, photo=tr.worst_resolution_photo)
             if d["source"] == "dem" else f"{lo}–{hi} {m}"))
     if tr.max_height_m is not None:
-        rows.append((f.label("terrain_facts_max"), f"{f.num(tr.max_height_m, 0)} {m}"
-                     + (f" ({f.cname(tr.binding)})" if tr.binding else "")))
+        rows.append((f("terrain_facts_max"), f"{f.num(tr.max_height_m, 0)} {m}"
+                     + (f" ({f.constraint(tr.binding)})" if tr.binding else "")))
     return rows
 
 
@@ -190,28 +188,28 @@ def render_html(*, scan: ScanJob | None = None, uav: UavJob | None = None,
     if view._html:  # already rendered from this view (the workbook numbers its works
         return view._html[0]  # by it, the PDF is made from it): the same document
     scan, uav, meta, spec = view.scan, view.uav, view.meta, view.spec
-    f = _Fmt(view, Bibliography(view.locale, view.citations))
+    f = view.document_fmt()
     now = view.when
     date = document_date(meta.date or now.date(), meta.locale)
     if scan is not None and uav is not None:
-        title = f.label("pdf_title_plan")
+        title = f("title_plan")
     elif scan is not None:
-        title = f.label("title_scan")
+        title = f("title_scan")
     else:
-        title = f.label("title_uav")
+        title = f("title_uav")
     if meta.locale == "ru":  # «Лист 2 / Листов 4»
-        footer = (f"{_css_string(f.label('sheet') + ' ')} counter(page) "
-                  f"{_css_string(' / ' + f.label('sheets_of') + ' ')} counter(pages)")
+        footer = (f"{_css_string(f('sheet') + ' ')} counter(page) "
+                  f"{_css_string(' / ' + f('sheets_of') + ' ')} counter(pages)")
     else:  # "Sheet 2 of 4"
-        footer = (f"{_css_string(f.label('sheet') + ' ')} counter(page) "
-                  f"{_css_string(' ' + f.label('sheets_of') + ' ')} counter(pages)")
-    scan_view = _scan_view(scan, f) if scan is not None else None
-    uav_view = _uav_view(uav, f) if uav is not None else None
+        footer = (f"{_css_string(f('sheet') + ' ')} counter(page) "
+                  f"{_css_string(' ' + f('sheets_of') + ' ')} counter(pages)")
+    scan_view = _scan_view(scan, view, f) if scan is not None else None
+    uav_view = _uav_view(uav, view, f) if uav is not None else None
     if uav_view is not None:
         uav_view["plot_terrain"] = _terrain_plot(spec, f)
         uav_view["terrain_rows"] = _terrain_rows(spec, f)
-    spec_view = _spec_view(spec, f) if spec is not None else None
-    design = design_view(spec, f.locale, f.cite) if spec is not None else None
+    spec_view = _spec_view(spec, view, f) if spec is not None else None
+    design = _design_view(view, f) if spec is not None else None
     ctx = {
         "lang": meta.locale, "title": title, "meta": meta, "date": date,
         "running_project": _shorten(" ".join(meta.project.split()), _RUNNING_HEADER_CHARS),
@@ -228,8 +226,8 @@ def render_html(*, scan: ScanJob | None = None, uav: UavJob | None = None,
         "spec": spec_view,
         "design": design,
         "geo": _geo_views(spec, uav, meta.locale),
-        "warnings_box": _warnings_box(scan_view, uav_view, spec, f),
-        "references": f.bib.entries(),
+        "warnings_box": _warnings_box(scan_view, uav_view, spec, view, f),
+        "references": f.references(),
     }
     view._html.append(_environment().get_template("report.html").render(**ctx))
     return view._html[0]
@@ -259,15 +257,15 @@ def _view(scan: ScanJob | None, uav: UavJob | None, meta: ReportMeta,
 
 
 def _warnings_box(scan_view: Any, uav_view: Any, spec: PlanResult | None,
-                  f: _Fmt) -> dict[str, list[str]]:
+                  view: ReportView, f: Formatter) -> dict[str, list[str]]:
     """Page 1's boxes in short form (an approver sees them before signing): ``warnings``,
     what to act on, apart from ``notes``, information and conditions checked. One line per
     kind, with all the photo scales it concerns (as the workbook's box lists them); a
     warning of the specification alone says which section explains it."""
     scales: dict[tuple[str, str], list[str]] = {}  # (severity, heading) → photo scales
     times: dict[tuple[str, str], int] = {}  # … → warnings without a photo scale under it
-    for view in (scan_view, uav_view):
-        for w in view["warnings"] if view is not None else ():
+    for part in (scan_view, uav_view):
+        for w in part["warnings"] if part is not None else ():
             head = (w["severity"], w["heading"] or w["message"])
             listed = scales.setdefault(head, [])
             listed += [x for x in w["scale_list"] if x not in listed]
@@ -277,7 +275,7 @@ def _warnings_box(scan_view: Any, uav_view: Any, spec: PlanResult | None,
              for _ in range(1 if xs else max(times[(sev, h)], 1))]
     if spec is not None:  # the specification's own (the view's warnings table)
         items += [(r.fields["severity"], _spec_item(r, spec, f))
-                  for r in f.view.tables["warnings"].rows if r.fields["section"] == "spec"]
+                  for r in view.tables["warnings"].rows if r.fields["section"] == "spec"]
     out: dict[str, list[str]] = {"warnings": [], "notes": []}
     for sev in ("warning", "info"):
         counts: dict[str, int] = {}
@@ -289,7 +287,7 @@ def _warnings_box(scan_view: Any, uav_view: Any, spec: PlanResult | None,
     return out
 
 
-def _spec_item(r: Row, spec: PlanResult, f: _Fmt) -> str:
+def _spec_item(r: Row, spec: PlanResult, f: Formatter) -> str:
     """A warning of the specification alone (no section lists it; a row of the warnings
     table) on page 1: its heading and the section that explains it — the specification's
     reasons or the survey design's notes — or, when neither does, its whole sentence."""
@@ -298,23 +296,23 @@ def _spec_item(r: Row, spec: PlanResult, f: _Fmt) -> str:
     reasons = [getattr(x, "reason", None) for x in (spec.uav, spec.film) if x is not None]
     design = getattr(spec, "design", None)
     if key and message in reasons:
-        return f.label("box_see", item=f.label(key), section=f.label("spec_title"))
+        return f("box_see", item=f(key), section=f("spec_title"))
     if key and design is not None and any(x.code == r.key for x in design.warnings):
-        return f.label("box_see", item=f.label(key), section=f.label("design_title"))
+        return f("box_see", item=f(key), section=f("survey_design"))
     return localize(message, f.locale)
 
 
 class _Labels:
     """``L.key`` / ``L('key', x=1)`` in templates: labels in the report's locale."""
 
-    def __init__(self, f: _Fmt) -> None:
+    def __init__(self, f: Formatter) -> None:
         self._f = f
 
     def __getattr__(self, key: str) -> str:
         try:
-            return self._f.label(key)
+            return self._f(key)
         except KeyError:
             raise AttributeError(key) from None
 
     def __call__(self, key: str, **kw: Any) -> str:
-        return self._f.label(key, **kw)
+        return self._f(key, **kw)

@@ -163,7 +163,7 @@ def mtf_svg(plan: UavPlan, locale: str = "en") -> str:
                     dx=-3 if near_end else 3, dy=10, anchor="end" if near_end else "start",
                     size=7)
     ax.axvline(plan.nyquist_lpmm, colour="#808080", width=0.6)
-    ax.annotate(t("pdf_nyquist_short", locale), plan.nyquist_lpmm,
+    ax.annotate(t("nyquist_short", locale), plan.nyquist_lpmm,
                 _clear_of(ax, m, freq, plan.nyquist_lpmm), y_axes=True, dx=-4, rotation=90,
                 anchor="middle", size=6.5, colour="#808080")
     ax.set_xlim(0, right)
@@ -217,10 +217,10 @@ def height_svg(plan: UavPlan, locale: str = "en") -> str:
         marks.append((plan.ceiling_m, "#8c564b", "-", t("HC", locale)))
     if plan.max_height_m is not None and plan.binding is not None:
         marks.append((plan.max_height_m, "#d62728", ":",
-                      t("pdf_h_max", locale).format(cid=plan.binding)))
+                      t("h_max_planned", locale).format(cid=plan.binding)))
         flown = plan.max_flown_height_m
         if flown is not None and flown > plan.max_height_m * (1 + 1e-9):
-            marks.append((flown, "#ff7f0e", (5, 2, 1, 2), t("pdf_h_max_flown", locale)))
+            marks.append((flown, "#ff7f0e", (5, 2, 1, 2), t("h_max_flown", locale)))
     for h, colour, style, label in marks:
         # the maximum planned height and its highest flown one in whole metres, as the
         # tables state them

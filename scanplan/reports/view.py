@@ -2,9 +2,9 @@
 
 A result (:class:`scanplan.project.spec.PlanResult`, or a film and/or UAV job with their
 norm set) becomes one :class:`ReportView`: the language, the sections present (in document
-order), the labels of that language (:class:`Labels`, the one catalogue of
-:mod:`.labels`), the number formatter of that language (:class:`Numbers`: decimal comma
-and no-break-space thousands in Russian), the warnings as rows, and the plots as SVG —
+order), the one formatter of that language (:class:`~.formatter.Formatter`: words by
+concept, numbers with the digits a row declares, decimal comma and no-break-space
+thousands in Russian), the result's tables (:mod:`.views`), and the plots as SVG —
 drawn on first use by :func:`scanplan.reports.plots.view_plot` and kept in the view, so a
 workbook, an HTML page and a PDF of one result share them (SVG written directly,
 :mod:`.svgchart`: no plotting library). The renderers (terminal
@@ -25,68 +25,22 @@ import datetime as _dt
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
-from ..i18n.labels import LABELS, t
-from ..i18n.numbers import Numbers
-from .views import ResultTables, constraint_title
+from ..i18n.labels import LABELS
+from .formatter import Formatter, formatter
+from .views import ResultTables
 
 if TYPE_CHECKING:
     from ..project.file import ReportMeta
     from ..project.jobs import ScanJob, UavJob
     from ..project.spec import PlanResult
 
-__all__ = ["LOCALES", "SECTION_ORDER", "Labels", "ReportView", "build_view",
-           "section_names"]
+__all__ = ["LOCALES", "SECTION_ORDER", "ReportView", "build_view", "section_names"]
 
 LOCALES = ("en", "ru")
 
 #: The sections of a report in document order. A section is present when
 #: :func:`section_names` says so; renderers iterate the names they know.
 SECTION_ORDER: tuple[str, ...] = ("spec", "film", "uav", "comparison")
-
-# ---------------------------------------------------------------------------------------
-# Labels: the one catalogue, in one locale
-# ---------------------------------------------------------------------------------------
-
-
-@dataclass(frozen=True)
-class Labels:
-    """The report labels (:data:`scanplan.i18n.labels.LABELS`) in one language.
-
-    ``platform`` picks the wording of the digital-camera sections: ``"uav"`` (a drone) or
-    ``"aircraft"`` (an aerial survey).
-
-    Examples
-    --------
-    >>> Labels("ru")("map_scale")
-    'Масштаб карты (плана)'
-    >>> Labels("en").has("no such key")
-    False
-    """
-
-    locale: str = "en"
-    platform: str = "uav"
-
-    def __call__(self, key: str, **kw: Any) -> str:
-        """The label ``key``, its ``{fields}`` filled from ``kw``; KeyError if unknown."""
-        text = t(key, self.locale, self.platform)
-        return text.format(**kw) if kw else text
-
-    def has(self, key: str) -> bool:
-        """Whether the catalogue has ``key``."""
-        return key in LABELS["en"]
-
-    def get(self, key: str, default: str) -> str:
-        """The label ``key``, or ``default`` when the catalogue has none."""
-        return self(key) if self.has(key) else default
-
-    def constraint(self, cid: str) -> str:
-        """A constraint's name (the registry's record) in this language."""
-        return constraint_title(cid, self.locale)
-
-    def yes_no(self, value: bool) -> str:
-        """Yes / Да."""
-        return self("xlsx_yes" if value else "xlsx_no")
-
 
 # ---------------------------------------------------------------------------------------
 # The view
@@ -136,10 +90,9 @@ class ReportView:
         The document's creation time (``SOURCE_DATE_EPOCH`` when set).
     locale, platform : str
         The language and the digital platform (``"uav"`` / ``"aircraft"``).
-    numbers : Numbers
-        The number formatter of ``locale``.
-    labels : Labels
-        The labels of ``locale`` and ``platform``.
+    fmt : Formatter
+        The words and numbers of ``locale`` and ``platform`` (a document that cites works
+        takes ``fmt.document(view.citations)``).
     sections : tuple of str
         The sections present, in order (:func:`section_names`).
     tables : ResultTables
@@ -160,8 +113,7 @@ class ReportView:
     when: _dt.datetime
     locale: str
     platform: str
-    numbers: Numbers
-    labels: Labels
+    fmt: Formatter
     sections: tuple[str, ...]
     tables: ResultTables = field(default_factory=ResultTables, repr=False)
     charts: dict[str, str] = field(default_factory=dict, repr=False)
@@ -171,6 +123,11 @@ class ReportView:
     def has(self, section: str) -> bool:
         """Whether the report has ``section``."""
         return section in self.sections
+
+    def document_fmt(self) -> Formatter:
+        """The formatter of one document of this view that cites works: its own reference
+        list, numbered as every other document of this result numbers the works."""
+        return self.fmt.document(self.citations)
 
     def job_of(self, which: str) -> Any:
         """The ``"scan"`` or ``"uav"`` job; ValueError when the report has none."""
@@ -224,8 +181,7 @@ def build_view(*, scan: ScanJob | None = None, uav: UavJob | None = None,
         raise ValueError("the tables given are not this result's")
     return ReportView(scan=scan, uav=uav, spec=spec, meta=meta,
                       when=when if when is not None else report_datetime(),
-                      locale=locale, platform=platform, numbers=Numbers(locale),
-                      labels=Labels(locale, platform),
+                      locale=locale, platform=platform, fmt=formatter(locale, platform),
                       sections=section_names(scan, uav, spec),
                       tables=tables)
 
@@ -244,5 +200,5 @@ def warning_heading_key(warning: Any) -> str | None:
     str or None
         ``"pdf_warn_<code>"``.
     """
-    key = f"pdf_warn_{warning if isinstance(warning, str) else warning.code}"
+    key = f"warn_{warning if isinstance(warning, str) else warning.code}"
     return key if key in LABELS["en"] else None

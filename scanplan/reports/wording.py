@@ -247,7 +247,7 @@ def param_value(ns: NormSet, key: str, value: Any, locale: str,
             number(v) if isinstance(v, int | float) and not isinstance(v, bool) else str(v)
             for v in value)
     if isinstance(value, bool):
-        return t("xlsx_yes" if value else "xlsx_no", locale)
+        return t("yes" if value else "no", locale)
     return number(value) if number else str(value)
 
 

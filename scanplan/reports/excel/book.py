@@ -1,5 +1,5 @@
 """The report workbook being filled sheet by sheet: page setup, label | value rows, sections,
-the labels and numbers of the report's view, the deterministic save."""
+the report's formatter (``book.f``: words and numbers), the deterministic save."""
 
 from __future__ import annotations
 
@@ -14,18 +14,8 @@ from openpyxl.worksheet.worksheet import Worksheet
 from openpyxl.writer.excel import ExcelWriter
 
 from ..._version import __version__
-from ...rules.registry import CONSTRAINTS
-from ..references import Bibliography
-from ..views import constraint_title
-from ..wording import (
-    display_message,
-    name_title,
-    object_title,
-    shape_title,
-)
 
 if TYPE_CHECKING:
-    from ...norms import NormSet
     from ..view import ReportView
 
 from .cells import (
@@ -49,54 +39,23 @@ class Book:
         self.meta = view.meta
         self.loc = view.locale
         self.platform = view.platform  # "aircraft": the sheets name an aerial survey
-        self.numbers = view.numbers  # the one number formatter of the report's locale
+        # the one formatter of the report's language, with this workbook's reference list
+        # (numbered as the PDF of the same result numbers the works)
+        self.f = view.document_fmt()
         self.when = view.when
         self.wb = Workbook()
         self._first = True
         self.title_text = ""
-        self.bib = Bibliography(self.loc, view.citations)  # numbered as the PDF numbers
-
-    def t(self, key: str) -> str:
-        """The label ``key`` in the report's language (:class:`..view.Labels`)."""
-        return self.view.labels(key)
-
-    def text(self, value: object, ns: NormSet | None = None) -> str:
-        """An engine sentence (a :class:`~scanplan.i18n.messages.Message`) in the report's
-        language, ids shown by their names and the works it names by reference numbers."""
-        return self.bib.cite(display_message(value, ns, self.loc))
-
-    def yes_no(self, value: bool) -> str:
-        return self.view.labels.yes_no(value)
-
-    def cname(self, cid: str) -> str:
-        """A constraint id with its localised name: ``PZ — height accuracy``."""
-        return f"{cid} — {constraint_title(cid, self.loc)}" if cid in CONSTRAINTS else cid
-
-    def obj_name(self, ns: NormSet, name: str, map_scale: int | None) -> str:
-        """A norm object's name in the report's language (unnamed: "object of the given
-        size")."""
-        from ...project.jobs import USER_OBJECT_NAME
-
-        if map_scale is None and name == USER_OBJECT_NAME["en"]:  # a project's unnamed object
-            return name_title("", "", self.loc)
-        for obj in ns.objects:
-            if obj.name == name and (map_scale is None or obj.map_scale == map_scale):
-                return object_title(obj, self.loc)
-        return name_title(name, "", self.loc)
-
-    def shape_name(self, ns: NormSet, shape: str) -> str:
-        """A shape in words in the report's language."""
-        return shape_title(ns, shape, self.loc)
 
     def sheet(self, key: str, *, landscape: bool, widths: Sequence[float],
               header_rows: int = 1) -> Worksheet:
         """A new sheet with A4 page setup, print titles and a frozen header."""
         if self._first:
             ws = self.wb.active
-            ws.title = self.t(key)
+            ws.title = self.f(key)
             self._first = False
         else:
-            ws = self.wb.create_sheet(self.t(key))
+            ws = self.wb.create_sheet(self.f(key))
         ws.page_setup.paperSize = ws.PAPERSIZE_A4
         ws.page_setup.orientation = "landscape" if landscape else "portrait"
         ws.page_setup.fitToWidth = 1
@@ -107,7 +66,7 @@ class Book:
         ws.print_title_rows = f"1:{header_rows}"
         ws.freeze_panes = f"A{header_rows + 1}"
         sep = " / " if self.loc == "ru" else " "
-        ws.oddFooter.center.text = f"{self.t('sheet')} &P{sep}{self.t('sheets_of')} &N"
+        ws.oddFooter.center.text = f"{self.f('sheet')} &P{sep}{self.f('sheets_of')} &N"
         ws.oddFooter.right.text = "&A"
         _widths(ws, widths)
         return ws
@@ -117,7 +76,7 @@ class Book:
         """One ``label | value`` row; returns the next row."""
         put_text(ws, row, 1, label, wrap=True)
         if isinstance(value, bool):
-            put_text(ws, row, 2, self.yes_no(value))
+            put_text(ws, row, 2, self.f.yes_no(value))
         elif fmt is not None:
             put_num(ws, row, 2, value, fmt)
         elif value is None or value == "":

@@ -15,7 +15,6 @@ if TYPE_CHECKING:
     from ...project.jobs import ScanJob
     from ...project.spec import PlanResult
 
-from ..views import constraint_title
 from .book import Book
 from .cells import (
     F2,
@@ -42,12 +41,12 @@ from .charts import (
 def constraints_sheet(book: Book) -> None:
     """Every constraint at every photo scale, one row each (the view's film table, with
     each constraint's margins, reason and equation); the binding ones marked."""
-    ws = book.sheet("xlsx_sheet_constraints", landscape=True,
+    ws = book.sheet("sheet_constraints", landscape=True,
                     widths=(14, 9, 8, 34, 12, 12, 12, 12, 60, 60))
-    _header(ws, 1, [book.t("photo_scale"), book.t("photo_to_map"), book.t("xlsx_id"),
-                    book.t("constraint"), book.t("pixel_um"), book.t("xlsx_margin_um"),
-                    book.t("margin_pct"), book.t("binding"), book.t("reason"),
-                    book.t("xlsx_equation")])
+    _header(ws, 1, [book.f("photo_scale"), book.f("photo_to_map"), book.f("id"),
+                    book.f("constraint"), book.f("pixel_um"), book.f("margin_um"),
+                    book.f("margin_pct"), book.f("binding"), book.f("reason"),
+                    book.f("equation")])
     film = book.view.tables["film_constraints"]
     ratios = film.row("photo_to_map").values
     constraints = [r for r in film.rows if "constraint" in r.flags]
@@ -58,13 +57,13 @@ def constraints_sheet(book: Book) -> None:
             cells = [put_num(ws, row, 1, column.value, SCALE),
                      put_num(ws, row, 2, ratios[i], F2),
                      put_text(ws, row, 3, r.key),
-                     put_text(ws, row, 4, constraint_title(r.key, book.loc, d["name"])),
+                     put_text(ws, row, 4, book.f.constraint(r.key, d["name"])),
                      put_num(ws, row, 5, r.values[i], UM),
                      put_num(ws, row, 6, d["margin_um"], UM),
                      put_num(ws, row, 7, d["margin_pct"], PCT),
-                     put_text(ws, row, 8, book.yes_no(r.flagged(i, "binding")))]
-            put_text(ws, row, 9, book.text(d["reason"]), wrap=True)
-            put_text(ws, row, 10, book.text(d["equation"]), wrap=True)
+                     put_text(ws, row, 8, book.f.yes_no(r.flagged(i, "binding")))]
+            put_text(ws, row, 9, book.f.message(d["reason"]), wrap=True)
+            put_text(ws, row, 10, book.f.message(d["equation"]), wrap=True)
             if r.flagged(i, "binding"):
                 _mark(cells)
             row += 1
@@ -78,9 +77,9 @@ def sweep_sheet(book: Book, job: ScanJob, spec: PlanResult | None = None) -> Non
     ids = [cid for cid in job.plan.constraint_ids if cid in sweep]
     ws = book.sheet("sweep", landscape=True,
                     widths=(14,) + (16,) * len(ids) + (16, 30))
-    heads = [book.t("photo_scale")] + [f"{book.cname(cid)}, µm" if book.loc == "en"
-                                       else f"{book.cname(cid)}, мкм" for cid in ids]
-    _header(ws, 1, [*heads, book.t("scan_pixel_um"), book.t("binding")])
+    heads = [book.f("photo_scale")] + [f"{book.f.cname(cid)}, µm" if book.loc == "en"
+                                       else f"{book.f.cname(cid)}, мкм" for cid in ids]
+    _header(ws, 1, [*heads, book.f("scan_pixel_um"), book.f("binding")])
     n = len(scales)
     pixel_col = len(ids) + 2
     binding = list(sweep.get("binding", []))
@@ -98,7 +97,7 @@ def sweep_sheet(book: Book, job: ScanJob, spec: PlanResult | None = None) -> Non
             put_text(ws, row, pixel_col + 1, binding[i])
     if n == 0:
         return
-    chart = _scatter(book.t("plot_constraints"), book.t("photo_scale"), book.t("pixel_um"))
+    chart = _scatter(book.f("plot_constraints"), book.f("photo_scale"), book.f("pixel_um"))
     chart.x_axis.number_format = SCALE_RU if book.loc == "ru" else SCALE
     # a linear axis whose ticks fall on every candidate photo scale (a log axis would
     # label only 1:1000, 1:10000, ...)
@@ -118,8 +117,8 @@ def sweep_sheet(book: Book, job: ScanJob, spec: PlanResult | None = None) -> Non
     chart.y_axis.minorGridlines = ChartLines()
     xref = Reference(ws, min_col=1, min_row=2, max_row=n + 1)
     for j, cid in enumerate(ids):
-        _add_series(chart, ws, xref, 2 + j, n, book.cname(cid))
-    _add_series(chart, ws, xref, pixel_col, n, book.t("scan_pixel_um"), width_emu=44450,
+        _add_series(chart, ws, xref, 2 + j, n, book.f.cname(cid))
+    _add_series(chart, ws, xref, pixel_col, n, book.f("scan_pixel_um"), width_emu=44450,
                 dash="dash", color="000000")
     rec = spec.film.recommended if spec is not None and spec.film is not None else None
     _candidate_markers(book, chart, ws, n + 3, rec.photo_scale if rec else None)
@@ -133,17 +132,17 @@ def _candidate_markers(book: Book, chart: ScatterChart, ws: Worksheet, first_row
     recommended one (the smallest feasible scale) stands out."""
     film = book.view.tables["film_constraints"]
     pixels, bindings = film.row("scan_pixel_um").values, film.row("binding").values
-    _header(ws, first_row, [book.t("photo_scale"), book.t("scan_pixel_um"),
-                            book.t("binding")])
+    _header(ws, first_row, [book.f("photo_scale"), book.f("scan_pixel_um"),
+                            book.f("binding")])
     for i, column in enumerate(film.columns):
         row = first_row + 1 + i
         scale = column.value
         put_num(ws, row, 1, scale, SCALE)
         put_num(ws, row, 2, pixels[i], UM)
         put_text(ws, row, 3, bindings[i])
-        label = book.numbers.scale(scale)
+        label = book.f.scale(scale)
         if scale == recommended:
-            label += " (" + book.t("xlsx_recommended") + ")"
+            label += " (" + book.f("recommended") + ")"
         xref = Reference(ws, min_col=1, min_row=row, max_row=row)
         series = _add_series(chart, ws, xref, 2, 1, label, first_row=row)
         series.graphicalProperties.line.noFill = True

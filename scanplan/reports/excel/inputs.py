@@ -7,11 +7,6 @@ from typing import TYPE_CHECKING, Any
 from openpyxl.worksheet.worksheet import Worksheet
 
 from ...rules.film import height_formula_name
-from ..wording import (
-    camera_title,
-    object_title,
-    scanner_title,
-)
 
 if TYPE_CHECKING:
     from ...norms import NormSet
@@ -34,7 +29,7 @@ from .cells import (
 def inputs_sheet(book: Book, scan: ScanJob | None, uav: UavJob | None) -> None:
     ws = book.sheet("inputs", landscape=False, widths=(46, 16, 12, 12, 12, 12,
                                                                    12, 12))
-    _header(ws, 1, [book.t("parameter"), book.t("value")])
+    _header(ws, 1, [book.f("parameter"), book.f("value")])
     row = 2
     if scan is not None:
         row = _inputs_scan(book, ws, row, scan) + 1
@@ -44,12 +39,12 @@ def inputs_sheet(book: Book, scan: ScanJob | None, uav: UavJob | None) -> None:
 
 def _object_rows(book: Book, ws: Worksheet, row: int, obj: Any, ns: NormSet) -> int:
     if obj is None:
-        return book.kv(ws, row, book.t("object"), None)
-    row = book.kv(ws, row, book.t("object"), object_title(obj, book.loc), wrap=True)
-    row = book.kv(ws, row, book.t("xlsx_object_size_m"), obj.size_m, F3)
-    row = book.kv(ws, row, book.t("shape"), book.shape_name(ns, obj.shape))
-    row = book.kv(ws, row, book.t("xlsx_shape_coefficient"), obj.shape_coefficient, F2)
-    return book.kv(ws, row, book.t("xlsx_object_source"), book.text(obj.source),
+        return book.kv(ws, row, book.f("object"), None)
+    row = book.kv(ws, row, book.f("object"), book.f.object(obj), wrap=True)
+    row = book.kv(ws, row, book.f("object_size_m"), obj.size_m, F3)
+    row = book.kv(ws, row, book.f("shape"), book.f.shape(ns, obj.shape))
+    row = book.kv(ws, row, book.f("shape_coefficient"), obj.shape_coefficient, F2)
+    return book.kv(ws, row, book.f("object_source"), book.f.message(obj.source),
                    wrap=True)
 
 
@@ -58,12 +53,12 @@ _FILM_LABELS = {"map_scale": "map_scale", "relief_interval_m": "relief_interval_
                 "photo_scales": "photo_scale", "focal_mm": "focal_mm",
                 "resolving_power_lpmm": "resolving_power_lpmm",
                 "forward_overlap_pct": "forward_overlap_pct",
-                "object_size_m": "xlsx_object_size_m",
-                "shape_coefficient": "xlsx_shape_coefficient", "probability": "probability",
-                "pr_coefficient": "xlsx_pr_coefficient",
-                "scanner_steps_um": "xlsx_scanner_steps_um",
-                "candidate_pixels_um": "xlsx_candidate_pixels_um", "bands": "xlsx_bands",
-                "bits_per_band": "xlsx_bits_per_band"}
+                "object_size_m": "object_size_m",
+                "shape_coefficient": "shape_coefficient", "probability": "probability",
+                "pr_coefficient": "pr_coefficient",
+                "scanner_steps_um": "scanner_steps_um",
+                "candidate_pixels_um": "candidate_pixels_um", "bands": "bands",
+                "bits_per_band": "bits_per_band"}
 
 
 def _number_format(r: Row) -> str:
@@ -77,13 +72,13 @@ def _number_format(r: Row) -> str:
 def _inputs_scan(book: Book, ws: Worksheet, row: int, job: ScanJob) -> int:
     """The film plan's inputs (the ``film_inputs`` table)."""
     tbl = book.view.tables["film_inputs"]
-    row = book.section(ws, row, book.t("xlsx_section_scan"))
+    row = book.section(ws, row, book.f("film_scan"))
     for r in tbl.rows:
         if isinstance(r.value, tuple) and r.key != "frame_mm":
-            row = book.kv_list(ws, row, book.t(_FILM_LABELS[r.key]), r.value,
+            row = book.kv_list(ws, row, book.f(_FILM_LABELS[r.key]), r.value,
                                _number_format(r))
         elif r.key in _FILM_LABELS:
-            row = book.kv(ws, row, book.t(_FILM_LABELS[r.key]), r.value, _number_format(r))
+            row = book.kv(ws, row, book.f(_FILM_LABELS[r.key]), r.value, _number_format(r))
         else:
             row = _film_text(book, ws, row, r, job)
     return row
@@ -93,72 +88,72 @@ def _film_text(book: Book, ws: Worksheet, row: int, r: Row, job: ScanJob) -> int
     """A film input's row shown as a name, not a number (the frame: two rows)."""
     ns = job.norm_set
     if r.key == "camera":
-        return book.kv(ws, row, book.t("camera"),
-                       camera_title(ns, r.value, book.loc, r.fields["name"]) or None,
+        return book.kv(ws, row, book.f("camera"),
+                       book.f.camera(ns, r.value, r.fields["name"]) or None,
                        wrap=True)
     if r.key == "frame_mm":
-        row = book.kv(ws, row, book.t("xlsx_frame_across_mm"), r.value[0], F1)
-        return book.kv(ws, row, book.t("xlsx_frame_along_mm"), r.value[1], F1)
+        row = book.kv(ws, row, book.f("frame_across_mm"), r.value[0], F1)
+        return book.kv(ws, row, book.f("frame_along_mm"), r.value[1], F1)
     if r.key == "object":
         if r.value is None:
-            return book.kv(ws, row, book.t("object"), None)
-        return book.kv(ws, row, book.t("object"), object_title(r.value, book.loc), wrap=True)
+            return book.kv(ws, row, book.f("object"), None)
+        return book.kv(ws, row, book.f("object"), book.f.object(r.value), wrap=True)
     if r.key == "shape":
-        return book.kv(ws, row, book.t("shape"), book.shape_name(ns, r.value))
+        return book.kv(ws, row, book.f("shape"), book.f.shape(ns, r.value))
     if r.key == "object_source":
-        return book.kv(ws, row, book.t("xlsx_object_source"), book.text(r.value), wrap=True)
+        return book.kv(ws, row, book.f("object_source"), book.f.message(r.value), wrap=True)
     if r.key == "height_formula":
-        return book.kv(ws, row, book.t("xlsx_height_formula"),
-                       book.text(height_formula_name(r.value)))
+        return book.kv(ws, row, book.f("height_formula_form"),
+                       book.f.message(height_formula_name(r.value)))
     if r.key == "scanner":
-        return book.kv(ws, row, book.t("scanner"),
-                       scanner_title(ns, r.value, book.loc) or None)
+        return book.kv(ws, row, book.f("scanner"),
+                       book.f.scanner(ns, r.value) or None)
     raise KeyError(r.key)
 
 
 def _inputs_uav(book: Book, ws: Worksheet, row: int, job: UavJob) -> int:
     inp = job.plan.inputs
-    row = book.section(ws, row, book.t("uav_section"))
+    row = book.section(ws, row, book.f("uav_section"))
     rows: list[tuple[str, object, str | None]] = [
-        ("camera", camera_title(job.norm_set, inp.camera, book.loc, inp.camera_name)
+        ("camera", book.f.camera(job.norm_set, inp.camera, inp.camera_name)
          or None, None),
         ("pixel_pitch_um", inp.pixel_um, F2),
         ("focal_mm", inp.focal_mm, F2),
-        ("xlsx_f_number", inp.f_number, F1),
-        ("orientation", book.t(f"orientation_{inp.orientation}"), None),
-        ("xlsx_sensor_width_mm", inp.sensor_width_mm, F2),
-        ("xlsx_sensor_height_mm", inp.sensor_height_mm, F2),
-        ("xlsx_image_width_px", inp.image_width_px, INT),
-        ("xlsx_image_height_px", inp.image_height_px, INT),
+        ("f_number", inp.f_number, F1),
+        ("orientation", book.f(f"orientation_{inp.orientation}"), None),
+        ("sensor_width_mm", inp.sensor_width_mm, F2),
+        ("sensor_height_mm", inp.sensor_height_mm, F2),
+        ("image_width_px", inp.image_width_px, INT),
+        ("image_height_px", inp.image_height_px, INT),
         ("min_trigger_interval_s", inp.min_trigger_interval_s, F3),
         ("height_m", inp.height_m, F1),
-        ("xlsx_tolerance_up_pct", inp.height_tolerance_up_pct, F1),
-        ("xlsx_tolerance_down_pct", inp.height_tolerance_down_pct, F1),
+        ("tolerance_up_pct", inp.height_tolerance_up_pct, F1),
+        ("tolerance_down_pct", inp.height_tolerance_down_pct, F1),
         ("ground_speed_ms", inp.speed_ms, F1),
         ("exposure_s", inp.exposure_s, "0.00000"),
         ("forward_overlap_pct", inp.forward_overlap_pct, F1),
         ("side_overlap_pct", inp.side_overlap_pct, F1),
-        ("xlsx_area_width_m", inp.area_width_m, M_LARGE),
-        ("xlsx_area_length_m", inp.area_length_m, M_LARGE),
+        ("area_width_m", inp.area_width_m, M_LARGE),
+        ("area_length_m", inp.area_length_m, M_LARGE),
         ("map_scale", inp.map_scale, SCALE),
         ("relief_interval_m", inp.relief_interval_m, F2),
     ]
     for key, value, fmt in rows:
-        row = book.kv(ws, row, book.t(key), value, fmt)
+        row = book.kv(ws, row, book.f(key), value, fmt)
     row = _object_rows(book, ws, row, inp.map_object, job.norm_set)
     for key, value, fmt in [
-        ("xlsx_r_max", inp.r_max, F3), ("xlsx_r_min", inp.r_min, F3),
+        ("r_max", inp.r_max, F3), ("r_min", inp.r_min, F3),
         ("threshold_k0", inp.threshold_k0, F3),
-        ("xlsx_haze_contrast", inp.haze_contrast, F3),
-        ("xlsx_shift_factor", inp.shift_factor, F2),
-        ("xlsx_random_speed_ms", inp.random_speed_ms, F2),
-        ("xlsx_roll_rate_rad_s", inp.roll_rate_rad_s, F4),
-        ("xlsx_pitch_rate_rad_s", inp.pitch_rate_rad_s, F4),
-        ("xlsx_yaw_rate_rad_s", inp.yaw_rate_rad_s, F4),
-        ("xlsx_roll_deg", inp.roll_deg, F2),
-        ("xlsx_pitch_deg", inp.pitch_deg, F2),
-        ("xlsx_bands", inp.bands, INT),
-        ("xlsx_bits_per_band", inp.bits_per_band, INT),
+        ("haze_contrast", inp.haze_contrast, F3),
+        ("shift_factor", inp.shift_factor, F2),
+        ("random_speed_ms", inp.random_speed_ms, F2),
+        ("roll_rate_rad_s", inp.roll_rate_rad_s, F4),
+        ("pitch_rate_rad_s", inp.pitch_rate_rad_s, F4),
+        ("yaw_rate_rad_s", inp.yaw_rate_rad_s, F4),
+        ("roll_deg", inp.roll_deg, F2),
+        ("pitch_deg", inp.pitch_deg, F2),
+        ("bands", inp.bands, INT),
+        ("bits_per_band", inp.bits_per_band, INT),
     ]:
-        row = book.kv(ws, row, book.t(key), value, fmt)
+        row = book.kv(ws, row, book.f(key), value, fmt)
     return row

@@ -7,11 +7,8 @@ from typing import TYPE_CHECKING
 
 from openpyxl.worksheet.worksheet import Worksheet
 
-from ..tablewords import row_label, row_unit
 from ..views import Row, Table
 from ..wording import (
-    document_date,
-    object_title,
     sentence,
 )
 
@@ -44,7 +41,7 @@ def summary_sheet(book: Book, scan: ScanJob | None, uav: UavJob | None,
             spec: PlanResult | None = None) -> None:
     ws = book.sheet("summary", landscape=True,
                     widths=(34, 16, 26, 14, 14, 14, 14, 14, 14, 70))
-    titles = ([book.t("title_scan")] if scan else []) + ([book.t("title_uav")] if uav else [])
+    titles = ([book.f("title_scan")] if scan else []) + ([book.f("title_uav")] if uav else [])
     book.title_text = "; ".join(titles)
     put_text(ws, 1, 1, book.title_text).font = _TITLE
     m = book.meta
@@ -52,9 +49,9 @@ def summary_sheet(book: Book, scan: ScanJob | None, uav: UavJob | None,
     block = [("project", m.project), ("customer", m.customer), ("contractor", m.contractor)]
     block += [(k, v) for k, v in (("organisation", m.organisation),
                                   ("contract_number", m.contract_number)) if v]
-    block.append(("date", document_date(m.date or book.when.date(), book.loc)))
+    block.append(("date", book.f.date(m.date or book.when.date())))
     for key, value in block:
-        put_text(ws, row, 1, book.t(key), bold=True)
+        put_text(ws, row, 1, book.f(key), bold=True)
         put_text(ws, row, 2, value)  # one line, running over the empty cells beside it
         row += 1
     line = "________________"
@@ -67,23 +64,23 @@ def summary_sheet(book: Book, scan: ScanJob | None, uav: UavJob | None,
                        m.agreed_name))
     for head, position, name in blocks:
         row += 1
-        put_text(ws, row, 1, book.t(head)).font = _SECTION
+        put_text(ws, row, 1, book.f(head)).font = _SECTION
         row += 1
         for key, value in (("position", position), ("name", name),
                            ("signature", line), ("date", line)):
-            put_text(ws, row, 1, book.t(key), bold=True)
+            put_text(ws, row, 1, book.f(key), bold=True)
             put_text(ws, row, 2, value)
             row += 1
     row += 1
     for key, value in (("compiled_by", m.compiled_by), ("checked_by", m.checked_by)):
-        put_text(ws, row, 1, book.t(key), bold=True)
+        put_text(ws, row, 1, book.f(key), bold=True)
         put_text(ws, row, 2, value or line)
         put_text(ws, row, 3, line)
         row += 1
     for key, info in (("warnings", False), ("notes_box", True)):
         box = _warning_lines(book, scan, uav, info=info)
         if box:
-            row = book.section(ws, row + 1, book.t(key))
+            row = book.section(ws, row + 1, book.f(key))
             for text in box:
                 cell = put_text(ws, row, 1, text, wrap=False)
                 if not info:  # what to act on is filled; information is not
@@ -100,25 +97,25 @@ def summary_sheet(book: Book, scan: ScanJob | None, uav: UavJob | None,
 def _summary_spec(book: Book, ws: Worksheet, row: int, spec: PlanResult) -> int:
     """The specification of ``scanplan plan``: what was chosen and why (the ``spec_film``
     and ``spec_uav`` tables), and the comparison."""
-    row = book.section(ws, row, book.t("spec_title"))
+    row = book.section(ws, row, book.f("spec_title"))
     tables = book.view.tables
     if tables.has("spec_film"):
         row = _spec_film(book, ws, row, tables["spec_film"])
     if tables.has("spec_uav"):
         row = _spec_uav(book, ws, row, tables["spec_uav"])
     if spec.comparison:
-        row = book.section(ws, row + 1, book.t("spec_comparison"))
-        _header(ws, row, [book.t("spec_quantity"), book.t("spec_film"), book.t("spec_uav"),
-                          book.t("unit")])
+        row = book.section(ws, row + 1, book.f("spec_comparison"))
+        _header(ws, row, [book.f("spec_quantity"), book.f("spec_film"), book.f("spec_uav"),
+                          book.f("unit")])
         row += 1
         for r in book.view.tables["comparison"].rows:
-            put_text(ws, row, 1, row_label(r, book.view.labels, book.numbers))
+            put_text(ws, row, 1, book.f.row_label(r))
             for col, value in enumerate(r.values, start=2):
                 if isinstance(value, int | float):
                     put_num(ws, row, col, value, "#,##0" if r.digits == 0 else "#,##0.000")
                 else:
                     put_text(ws, row, col, MISSING)
-            put_text(ws, row, 4, row_unit(r.unit, book.view.labels))
+            put_text(ws, row, 4, book.f.unit(r.unit))
             row += 1
     return row
 
@@ -134,10 +131,10 @@ def _headline_row(book: Book, ws: Worksheet, row: int, r: Row, label: str) -> in
     """One ``label | value`` row of a headline: a constraint by its name, a number in its
     decimals, the reason across the sheet."""
     if r.key == "reason":
-        return book._wide_kv(ws, row, label, sentence(book.text(r.value,
+        return book._wide_kv(ws, row, label, sentence(book.f.message(r.value,
                                                                 r.details[0]["norm_set"])))
     if "constraint" in r.flags:
-        return book.kv(ws, row, label, book.cname(r.value))
+        return book.kv(ws, row, label, book.f.cname(r.value))
     fmt = '"1:"0' if r.unit == "scale" else _GROUPED.get(r.key, _DIGITS[r.digits or 0])
     return book.kv(ws, row, label, r.value, fmt)
 
@@ -160,7 +157,7 @@ def _spec_film(book: Book, ws: Worksheet, row: int, tbl: Table) -> int:
             key = _FILM_LABELS[r.key]
         else:
             continue
-        row = _headline_row(book, ws, row, r, book.t(key))
+        row = _headline_row(book, ws, row, r, book.f(key))
     return row
 
 
@@ -169,7 +166,7 @@ _UAV_LABELS = {"planned_height_m": "spec_planned_height_m",
                "recommended_height_m": "spec_recommended_height_m",
                "max_height_relief_m": "spec_max_height_relief_m",
                "max_flown_height_m": "max_flown_height_m", "binding": "binding",
-               "gsd_cm": "design_gsd_planned", "forward_overlap_pct": "forward_overlap_pct",
+               "gsd_cm": "gsd_recommended_cm", "forward_overlap_pct": "forward_overlap_pct",
                "side_overlap_pct": "side_overlap_pct", "photos": "spec_photos",
                "data_volume_gb": "data_volume_gb",
                "data_volume_jpeg_gb": "data_volume_jpeg_gb", "reason": "spec_reason"}
@@ -183,23 +180,23 @@ def _spec_uav(book: Book, ws: Worksheet, row: int, tbl: Table) -> int:
             key = _UAV_LABELS[r.key]
         else:
             continue
-        row = _headline_row(book, ws, row, r, book.t(key))
+        row = _headline_row(book, ws, row, r, book.f(key))
     return row
 
 
 def _summary_scan(book: Book, ws: Worksheet, row: int, job: ScanJob) -> int:
     plan = job.plan
-    row = book.section(ws, row, f"{book.t('results')}: {book.t('xlsx_section_scan')}")
-    _header(ws, row, [book.t("photo_scale"), book.t("photo_to_map"), book.t("binding"),
-                      book.t("scan_pixel_um"), book.t("scanner_pixel_um"),
-                      book.t("frame_megabytes"), book.t("xlsx_resolution_on_ground_mm"),
-                      book.t("xlsx_required_r_lpmm"), book.t("probability"),
-                      book.t("xlsx_explanation")])
+    row = book.section(ws, row, f"{book.f('results')}: {book.f('film_scan')}")
+    _header(ws, row, [book.f("photo_scale"), book.f("photo_to_map"), book.f("binding"),
+                      book.f("scan_pixel_um"), book.f("scanner_pixel_um"),
+                      book.f("frame_megabytes"), book.f("resolution_on_ground_mm"),
+                      book.f("required_r_lpmm"), book.f("probability"),
+                      book.f("explanation")])
     row += 1
     for s in plan.scenarios:
         put_num(ws, row, 1, s.photo_scale, SCALE)
         put_num(ws, row, 2, s.photo_to_map_ratio, F2)
-        binding = put_text(ws, row, 3, book.cname(s.binding))
+        binding = put_text(ws, row, 3, book.f.cname(s.binding))
         pixel = put_num(ws, row, 4, s.scan_pixel_um, UM)
         _mark((binding, pixel))
         put_num(ws, row, 5, s.scanner_pixel_um, UM)
@@ -207,23 +204,23 @@ def _summary_scan(book: Book, ws: Worksheet, row: int, job: ScanJob) -> int:
         put_num(ws, row, 7, s.resolution_on_ground_mm, F1)
         put_num(ws, row, 8, s.required_resolving_power_lpmm, F1)
         put_num(ws, row, 9, s.recognition_probability, F3)
-        put_text(ws, row, 10, book.text(s.explanation, job.norm_set), wrap=True)
+        put_text(ws, row, 10, book.f.message(s.explanation, job.norm_set), wrap=True)
         row += 1
     row += 1
-    put_text(ws, row, 1, book.t("xlsx_interpretation_limit"), wrap=True)
+    put_text(ws, row, 1, book.f("interpretation_limit_mc"), wrap=True)
     put_num(ws, row, 2, plan.interpretation_limit_photo_scale, SCALE)
     row += 1
     if plan.max_photo_scales:
-        row = book.section(ws, row + 1, book.t("xlsx_reach"))
+        row = book.section(ws, row + 1, book.f("reach"))
         both = plan.interpretation_limit_photo_scale is not None
-        _header(ws, row, [book.t("pixel_um"), book.t("reach_pixel"), book.t("xlsx_limit")]
-                + ([book.t("reach_interpretable")] if both else []))
+        _header(ws, row, [book.f("pixel_um"), book.f("reach_pixel"), book.f("limiting_constraint")]
+                + ([book.f("reach_interpretable")] if both else []))
         row += 1
         for reach in plan.max_photo_scales:
             put_num(ws, row, 1, reach.pixel_um, UM)
             put_num(ws, row, 2, reach.max_photo_scale if reach.max_photo_scale > 0
                     else None, SCALE)
-            put_text(ws, row, 3, book.cname(reach.limit))
+            put_text(ws, row, 3, book.f.cname(reach.limit))
             if both:
                 put_num(ws, row, 4, reach.max_photo_scale_interpretable or None, SCALE)
             row += 1
@@ -232,29 +229,29 @@ def _summary_scan(book: Book, ws: Worksheet, row: int, job: ScanJob) -> int:
 
 def _summary_uav(book: Book, ws: Worksheet, row: int, job: UavJob) -> int:
     plan = job.plan
-    row = book.section(ws, row, f"{book.t('results')}: {book.t('uav_section')}")
-    _header(ws, row, [book.t("parameter"), book.t("value")])
+    row = book.section(ws, row, f"{book.f('results')}: {book.f('uav_section')}")
+    _header(ws, row, [book.f("parameter"), book.f("value")])
     row += 1
-    row = book.kv(ws, row, book.t("height_m"), plan.heights_m.get("planned"), F1)
-    row = book.kv(ws, row, book.t("gsd_m"), plan.gsd_m, F4)
+    row = book.kv(ws, row, book.f("height_m"), plan.heights_m.get("planned"), F1)
+    row = book.kv(ws, row, book.f("gsd_m"), plan.gsd_m, F4)
     if plan.ground_resolution_m is None:
-        row = book.kv(ws, row, book.t("ground_resolution_m"), book.t("not_resolvable"))
+        row = book.kv(ws, row, book.f("ground_resolution_m"), book.f("not_resolvable"))
     else:
-        row = book.kv(ws, row, book.t("ground_resolution_m"), plan.ground_resolution_m, F4)
-    row = book.kv(ws, row, book.t("l_over_gsd"), plan.ground_resolution_to_gsd, F2)
-    row = book.kv(ws, row, book.t("resolving_power_system"), plan.resolving_power_lpmm, F1)
+        row = book.kv(ws, row, book.f("ground_resolution_m"), plan.ground_resolution_m, F4)
+    row = book.kv(ws, row, book.f("l_over_gsd"), plan.ground_resolution_to_gsd, F2)
+    row = book.kv(ws, row, book.f("resolving_power_system"), plan.resolving_power_lpmm, F1)
     if plan.max_height_m is not None:
         r0 = row
-        row = book.kv(ws, row, book.t("max_height_m"), plan.max_height_m, F1)
-        row = book.kv(ws, row, book.t("binding"), book.cname(plan.binding or ""))
+        row = book.kv(ws, row, book.f("max_height_m"), plan.max_height_m, F1)
+        row = book.kv(ws, row, book.f("binding"), book.f.cname(plan.binding or ""))
         _mark((ws.cell(r0, 2), ws.cell(r0 + 1, 2)))
     obj = plan.inputs.map_object
     if obj is not None:
-        row = book.kv(ws, row, book.t("object"), object_title(obj, book.loc), wrap=True)
+        row = book.kv(ws, row, book.f("object"), book.f.object(obj), wrap=True)
         for rec in plan.recognition:
             if rec.object == obj.name and rec.object_size_m == obj.size_m:
-                row = book.kv(ws, row, book.t("xlsx_p_planned"), rec.probability, F3)
-                row = book.kv(ws, row, book.t("xlsx_p_max"),
+                row = book.kv(ws, row, book.f("p_planned"), rec.probability, F3)
+                row = book.kv(ws, row, book.f("p_max"),
                               rec.probability_at_max_height, F3)
                 break
     return row

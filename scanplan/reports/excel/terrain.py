@@ -21,7 +21,7 @@ def terrain_sheet(book: Book, spec: Any) -> None:
         return
     ws = book.sheet("terrain_sheet", landscape=True, widths=[9, 12, 12, 12, 12, 12, 12, 14,
                                                               12, 10])
-    _header(ws, 1, [book.t(k) for k in (
+    _header(ws, 1, [book.f(k) for k in (
         "strip", "terrain_col_ground_min", "terrain_col_ground_max",
         "terrain_col_alt_min", "terrain_col_alt_max", "terrain_col_agl_min",
         "terrain_col_agl_max", "terrain_col_max_alt", "terrain_col_excess",
@@ -46,23 +46,23 @@ def _film_sheet(book: Book, spec: Any, ws: Any = None, row: int = 1) -> None:
         return
     if ws is None:
         ws = book.sheet("terrain_sheet", landscape=False, widths=[52, 26])
-    row = book.section(ws, row, book.t("terrain_film_title"))
-    row = book.kv(ws, row, book.t("terrain_film_planned"), ft.photo_scale, '"1:"0')
-    row = book.kv(ws, row, book.t("terrain_film_mc_max"), round(ft.mc_max), '"1:"0')
+    row = book.section(ws, row, book.f("terrain_film_title"))
+    row = book.kv(ws, row, book.f("terrain_film_planned"), ft.photo_scale, '"1:"0')
+    row = book.kv(ws, row, book.f("terrain_film_mc_max"), round(ft.mc_max), '"1:"0')
     frame = (f"{ft.binding_frame} ({ft.binding_strip})" if ft.ground_known
-             else book.t("terrain_film_frame_range").format(low=f"{ft.ground_low_m:g}"))
-    row = book.kv(ws, row, book.t("terrain_film_frame"), frame)
-    row = book.kv(ws, row, book.t("terrain_film_binding"), book.cname(ft.binding))
-    row = book.kv(ws, row, book.t("terrain_film_pixel"), ft.scan_pixel_um, "0.0")
-    row = book.kv(ws, row, book.t("terrain_film_flat_pixel"), ft.scan_pixel_planned_um, "0.0")
-    row = book.kv(ws, row, book.t("terrain_film_flat_binding"),
-                  book.cname(ft.binding_planned) if ft.binding_planned else None)
+             else book.f("terrain_film_frame_range").format(low=f"{ft.ground_low_m:g}"))
+    row = book.kv(ws, row, book.f("terrain_film_frame"), frame)
+    row = book.kv(ws, row, book.f("terrain_film_binding"), book.f.cname(ft.binding))
+    row = book.kv(ws, row, book.f("terrain_film_pixel"), ft.scan_pixel_um, "0.0")
+    row = book.kv(ws, row, book.f("terrain_film_flat_pixel"), ft.scan_pixel_planned_um, "0.0")
+    row = book.kv(ws, row, book.f("terrain_film_flat_binding"),
+                  book.f.cname(ft.binding_planned) if ft.binding_planned else None)
     rejected = getattr(film, "rejected", ())
     if rejected:
-        row = book.kv(ws, row, book.t("terrain_film_rejected"), "; ".join(
-            book.t("terrain_film_rejected_value").format(
-                scale=book.numbers.scale(round(r.photo_scale)),
-                local=book.numbers.scale(round(t.mc_max)))
+        row = book.kv(ws, row, book.f("terrain_film_rejected"), "; ".join(
+            book.f("terrain_film_rejected_value").format(
+                scale=book.f.scale(round(r.photo_scale)),
+                local=book.f.scale(round(t.mc_max)))
             for r, t in rejected))
     if getattr(film, "flat", None) is not None:
-        book.kv(ws, row, book.t("terrain_film_specified"), True)
+        book.kv(ws, row, book.f("terrain_film_specified"), True)

@@ -19,6 +19,7 @@ the specification's headline ``spec_film`` and ``spec_uav`` (:mod:`.headline`);
 
 from __future__ import annotations
 
+from .design import design, design_notes
 from .film import film_constraints
 from .headline import relief_max_height_m, spec_film, spec_uav
 from .inputs import film_inputs
@@ -28,6 +29,6 @@ from .table import Column, Row, Table, constraint_title
 from .uav import uav_flight, uav_limits, uav_recognition, uav_results
 
 __all__ = ["TABLES", "Column", "ResultTables", "Row", "Table", "all_warnings", "comparison",
-           "constraint_title", "film_constraints", "film_inputs", "relief_max_height_m",
-           "spec_film", "spec_uav", "uav_flight", "uav_limits", "uav_recognition",
-           "uav_results", "warnings"]
+           "constraint_title", "design", "design_notes", "film_constraints", "film_inputs",
+           "relief_max_height_m", "spec_film", "spec_uav", "uav_flight", "uav_limits",
+           "uav_recognition", "uav_results", "warnings"]

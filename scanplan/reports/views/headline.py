@@ -8,7 +8,6 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from ...core.flight import jpeg_volume_bytes
 from .table import Column, Row, Table
 
 __all__ = ["relief_max_height_m", "spec_film", "spec_uav"]
@@ -172,7 +171,6 @@ def _uav_flight(p: Any, fl: Any) -> list[Row]:
                                          else None,), unit="min", digits=0)]
     if "data_volume_bytes" in fl:
         rows += [Row("data_volume_gb", (fl["data_volume_bytes"] / 1e9,), unit="GB", digits=1),
-                 Row("data_volume_jpeg_gb",
-                     (float(jpeg_volume_bytes(fl["data_volume_bytes"])) / 1e9,), unit="GB",
-                     digits=1)]
+                 Row("data_volume_jpeg_gb", (fl["data_volume_jpeg_bytes"] / 1e9,), unit="GB",
+                     digits=1, fields={"ratio": fl["jpeg_compression_ratio"]})]
     return rows

@@ -18,7 +18,93 @@ from typing import Any
 
 from ...rules.registry import CONSTRAINTS
 
-__all__ = ["Column", "Row", "Table", "constraint_title"]
+__all__ = ["Cited", "Column", "Date", "Joined", "Msg", "Named", "Num", "Phrase", "Plural",
+           "Row", "Scale", "Table", "constraint_title"]
+
+
+# -- the values of a row: raw, typed, locale-free ------------------------------------------
+# A row's value is a number, None, a text shown as it is, a Message (an engine sentence),
+# or one of these records, which the formatter (scanplan.reports.formatter.Formatter.show)
+# turns into the reader's words and numbers.
+
+
+@dataclass(frozen=True)
+class Num:
+    """A number with the decimals it is shown with (None: its shortest form)."""
+
+    value: float | None
+    digits: int | None = None
+
+
+@dataclass(frozen=True)
+class Scale:
+    """A scale ``1:value`` (a denominator)."""
+
+    value: float
+
+
+@dataclass(frozen=True)
+class Date:
+    """A date (a :class:`datetime.date` or ISO text), written as the document's
+    convention writes it."""
+
+    value: Any
+
+
+@dataclass(frozen=True)
+class Phrase:
+    """Words of the label catalogue (``key``) whose ``{fields}`` are raw values (each shown
+    as a row's value is)."""
+
+    key: str
+    fields: Mapping[str, Any] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class Msg:
+    """An engine sentence whose catalogue ids (camera, scanner) are named from
+    ``norm_set`` (None: as the sentence has them)."""
+
+    value: Any
+    norm_set: Any = None
+
+
+@dataclass(frozen=True)
+class Cited:
+    """A source the document cites by its reference number (a text or a sentence naming
+    known works), with what the figure taken from it is (``status``: ``"estimate"`` …)."""
+
+    text: Any
+    status: str = ""
+
+
+@dataclass(frozen=True)
+class Named:
+    """A thing named in the reader's language: ``kind`` ``"constraint"`` (its name),
+    ``"cname"`` (``PZ — its name``), ``"camera"``, ``"scanner"``, ``"shape"`` (from
+    ``norm_set``; ``default``: the name when the catalogue has none)."""
+
+    kind: str
+    id: str
+    norm_set: Any = None
+    default: str = ""
+
+
+@dataclass(frozen=True)
+class Plural:
+    """A noun in the form a count ``n`` takes (one/few/many in Russian): the label
+    ``forms`` holds the forms, ``|``-separated (``part|parts``)."""
+
+    n: int
+    forms: str
+
+
+@dataclass(frozen=True)
+class Joined:
+    """Values shown one after the other, joined by ``sep``."""
+
+    parts: tuple[Any, ...]
+    sep: str = "; "
 
 
 @dataclass(frozen=True)

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from ...core.flight import MAX_BLUR_PX, jpeg_volume_bytes
+from ...core.flight import MAX_BLUR_PX
 from ...core.shown import shown_decimals
 from .table import Column, Row, Table
 
@@ -144,9 +144,9 @@ def uav_flight(plan: Any) -> Table:
         if "data_volume_bytes" in fl:
             rows.append(Row("data_volume_gb", (fl["data_volume_bytes"] / 1e9,), unit="GB",
                             digits=1))
-            rows.append(Row("data_volume_jpeg_gb",
-                            (float(jpeg_volume_bytes(fl["data_volume_bytes"])) / 1e9,),
-                            unit="GB", digits=1))
+            rows.append(Row("data_volume_jpeg_gb", (fl["data_volume_jpeg_bytes"] / 1e9,),
+                            unit="GB", digits=1,
+                            fields={"ratio": fl["jpeg_compression_ratio"]}))
     return Table("uav_flight", "uav_flight", (Column("value"),), tuple(rows))
 
 
