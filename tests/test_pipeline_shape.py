@@ -221,7 +221,6 @@ def _en_ru_dicts(path: Path) -> list[int]:
     return lines
 
 
-@NOT_YET
 def test_6_no_en_ru_catalogue_outside_i18n():
     found = [f"{_rel(p)}:{line}" for p in sorted(PKG.rglob("*.py"))
              if p.relative_to(PKG).parts[0] != "i18n" for line in _en_ru_dicts(p)]
@@ -231,32 +230,39 @@ def test_6_no_en_ru_catalogue_outside_i18n():
 # -- 7. one Russian word per concept -----------------------------------------------------
 
 #: Concepts whose English word is shared by two things the Russian tells apart, with the
-#: reason (the English text as compared: lower case, without a trailing unit or colon).
+#: reason (the concept as compared: the English text's first phrase — up to a comma, a
+#: bracket, a colon, a slash or a dash — in lower case).
 TWO_WORDS = {
+    "aerial survey": "a workbook sheet's name holds 31 characters: «Аэрофотосъёмка» names "
+                     "the sheet of «Аэрофотосъёмка цифровой камерой»",
     "area": "«площадь» (a size, km²) and «участок» (the place surveyed)",
-    "frame": "«формат кадра» (its size, mm) and «снимок» (one photo)",
-    "name": "«Ф. И. О.» (a signer's) and «имя» (a norm set's)",
-    "map": "«карта» (the map made) and «подложка» (the page's background tiles)",
+    "data volume": "«объём данных без сжатия» (uncompressed, alone) and «объём данных» "
+                   "(given with its JPEG estimate beside it)",
+    "easting": "a single coordinate («Y» in the geodetic convention) and a pair of them "
+               "(«координаты X, Y»)",
+    "film": "«плёнка» (the medium: the comparison's column), «плёночная» (a camera's kind) "
+            "and «плёночная аэрофотосъёмка» (the film survey's section)",
+    "frame": "«формат кадра» (a frame's size, mm) and «снимок» (one photo)",
+    "frames": "«число снимков» (a count) and «кадры» (the sheet listing them)",
+    "highlighted": "two notes under two tables whose first words are the same",
     "id": "«обозначение» (a constraint's) and «камера» (the column of camera ids)",
-    "unit": "«ед. изм.» in the documents' tables and «ед.» in a narrow terminal column",
-    "strips": "a noun after a count takes the genitive plural (5 маршрутов)",
-    "sorties": "a noun after a count takes the genitive plural (5 вылетов)",
-    "camera": "«аэрофотоаппарат» (a film camera, the documents) and «камера» (any camera, "
-              "the catalogue listing)",
+    "map": "«карта» (the map made) and «подложка» (the page's background tiles)",
+    "name": "«Ф. И. О.» (a signer's) and «имя» (a norm set's)",
     "not resolvable": "a value («не разрешается») and a warning's heading that names its "
                       "subject («объект не разрешается»)",
-    "instruction": "«по Инструкции» (a formula's source) and «Инструкция» (the document)",
-    "data volume": "uncompressed («без сжатия») in the comparison, where the JPEG volume "
-                   "is not given beside it",
+    "photos": "«снимки» (a sheet, a layer) and «снимков» (the genitive after a count: "
+              "«снимков / маршрутов: 120 / 4»)",
+    "sorties": "«вылеты» (a list), «число вылетов» (a count) and «вылетов» (the genitive "
+               "after a count)",
+    "strips": "«маршруты» (a list) and «маршрутов» (the genitive after a count)",
+    "unit": "«ед. изм.» in the documents' tables and «ед.» in a narrow terminal column",
 }
 
 
 def _normalized(text: str) -> str:
-    text = text.strip().rstrip(":").strip()
-    if "," in text:  # a trailing unit: "Flight length, km"
-        text = text.rsplit(",", 1)[0]
-    text = re.sub(r"\s*\([^()]*\)\s*$", "", text)  # a trailing remark: "(estimate)"
-    return text.strip().lower()
+    """A text's first phrase in lower case: what it names before its unit, remark or
+    value (``Flight length, km / time, min`` → ``flight length``)."""
+    return re.split(r"[,(:/;]| — | – ", text.strip())[0].strip().lower()
 
 
 def concept_words() -> dict[str, dict[str, list[str]]]:
@@ -269,7 +275,8 @@ def concept_words() -> dict[str, dict[str, list[str]]]:
     for name, cat in catalogues().items():
         for key, en in cat["en"].items():
             ru = cat["ru"].get(key)
-            if isinstance(en, str) and isinstance(ru, str) and "{" not in en:
+            if isinstance(en, str) and isinstance(ru, str) and _normalized(en) \
+                    and "{" not in _normalized(en):
                 seen[_normalized(en)][_normalized(ru)].append(f"{name}:{key}")
     for cid, rec in CONSTRAINTS.items():
         seen[_normalized(rec.title("en"))][_normalized(rec.title("ru"))].append(
@@ -277,7 +284,6 @@ def concept_words() -> dict[str, dict[str, list[str]]]:
     return seen
 
 
-@NOT_YET
 def test_7_one_russian_word_per_concept():
     split = {en: dict(rus) for en, rus in concept_words().items()
              if len(rus) > 1 and en not in TWO_WORDS}

@@ -20,6 +20,7 @@ from typing import Any
 import click
 
 from ..errors import InputError, WriteError
+from ..i18n.labels_init import INIT
 from ..project.inputs import INPUTS, shown
 from .options import DECIMAL
 
@@ -99,97 +100,6 @@ def _align(line: str) -> str:
     return f"{code.ljust(COMMENT_COLUMN - 1)} {comment}" if sep else line
 
 
-# The comments of the written file, in the language of its reports. Keys stay as typed.
-_COMMENTS: dict[str, dict[str, str]] = {
-    "en": {
-        "head": "# scanplan project: one mapping contract. Plan it with\n"
-                "#   scanplan plan THIS-FILE.toml --out out/\n"
-                "# Every key is described in docs/project-file.md; unknown keys are errors.",
-        "default_name": "Topographic plan 1:{mk}",
-        "name": "title of the reports", "locale": "\"en\" or \"ru\": language of the reports",
-        "signing": "# for the documents to sign (title, approval and signature blocks):",
-        "organisation": "the contractor's organisation", "contract": "contract number",
-        "compiled": "compiled by (name)", "checked": "checked by (name)",
-        "approver": "approval block: position", "approver_name": "approval block: name",
-        "scale": "map scale denominator Mk (1:{mk})",
-        "relief": "relief (contour) interval h_c [m]",
-        "norms": "norm set (scanplan norms list)",
-        "probability": "required recognition probability",
-        "object": "your own object to interpret, with its size",
-        "object_size": "[m] (default: the norm table's for the map scale)",
-        "shape": "circle | rectangle | angle | square | wall",
-        "film": "film camera photos, scanned", "camera": "scanplan cameras list",
-        "r": "resolving power of the photos R [lines/mm]",
-        "forward": "[%], 50 or more (stereo)", "side": "[%], 10 or more",
-        "archive": "existing (archive) photos: their scale is given, not chosen",
-        "scales": "candidate photo scales Mc to choose from",
-        "scale_instead": "instead: the scale of existing photos",
-        "scanner": "round the scan pixel to a scanner's steps",
-        "uav": "digital camera on a UAV", "aircraft": "digital camera on a manned aircraft",
-        "height": "planned height above ground [m]",
-        "height_default": "planned height [m] (default: the highest allowed)",
-        "tolerance": "how much higher the UAV may fly [%]", "speed": "ground speed [m/s]",
-        "exposure": "exposure time [s]", "f_number": "working f-number of the lens",
-        "overlaps_default": "[%] (default: the norm set's standard overlaps)",
-        "area": "the block to cover (both sides, or neither)",
-        "width": "across the flight lines [m]", "length": "along the flight lines [m]",
-        "file": "or the contract polygon instead: KML, KMZ, GeoJSON, GeoPackage, Shapefile, "
-                "a CSV of its vertices",
-        "terrain": "the relief (optional): a DEM, or the ground's range",
-        "dem": "a GeoTIFF in any CRS", "ground": "or [lowest, highest] ground [m]",
-        "mode": "\"constant\", \"strip\" or \"follow\"",
-        "site": "where the sun window is computed (optional)",
-        "lat": "latitude [°], north positive", "lon": "longitude [°], east positive",
-        "schedule": "flying dates and sorties (optional)",
-        "start": "first flying date", "end": "last flying date",
-        "sortie": "flight time of one sortie [min]",
-    },
-    "ru": {
-        "head": "# Проект scanplan: один договор на картографирование. Расчёт:\n"
-                "#   scanplan plan ЭТОТ-ФАЙЛ.toml --out out/\n"
-                "# Все ключи описаны в docs/project-file.md; неизвестный ключ — ошибка.",
-        "default_name": "Топографический план 1:{mk}",
-        "name": "заголовок документов", "locale": "\"en\" или \"ru\": язык документов",
-        "signing": "# для документов на подпись (титул, утверждение, подписи):",
-        "organisation": "организация-исполнитель", "contract": "номер договора",
-        "compiled": "составил (Ф. И. О.)", "checked": "проверил (Ф. И. О.)",
-        "approver": "гриф утверждения: должность", "approver_name": "гриф утверждения: Ф. И. О.",
-        "scale": "знаменатель масштаба карты Mk (1:{mk})",
-        "relief": "высота сечения рельефа h_c [м]",
-        "norms": "набор нормативов (scanplan norms list)",
-        "probability": "требуемая вероятность распознавания",
-        "object": "свой объект дешифрирования и его размер",
-        "object_size": "[м] (по умолчанию — из таблицы нормативов для масштаба)",
-        "shape": "circle | rectangle | angle | square | wall (форма объекта)",
-        "film": "плёночные аэроснимки, сканируются", "camera": "scanplan cameras list",
-        "r": "разрешающая способность снимков R [лин/мм]",
-        "forward": "[%], не менее 50 (стереопары)", "side": "[%], не менее 10",
-        "archive": "имеющиеся (архивные) снимки: масштаб задан, не выбирается",
-        "scales": "рассматриваемые масштабы снимков Mc",
-        "scale_instead": "либо масштаб имеющихся снимков",
-        "scanner": "округлить пиксель сканирования до шагов сканера",
-        "uav": "цифровая камера на БПЛА", "aircraft": "цифровая камера на самолёте",
-        "height": "плановая высота над рельефом [м]",
-        "height_default": "плановая высота [м] (по умолчанию — наибольшая допустимая)",
-        "tolerance": "на сколько выше плана может лететь БПЛА [%]",
-        "speed": "путевая скорость [м/с]", "exposure": "выдержка [с]",
-        "f_number": "рабочее диафрагменное число объектива",
-        "overlaps_default": "[%] (по умолчанию — стандартные перекрытия нормативов)",
-        "area": "участок съёмки (обе стороны или ни одной)",
-        "width": "поперёк маршрутов [м]", "length": "вдоль маршрутов [м]",
-        "file": "или контур по договору: KML, KMZ, GeoJSON, GeoPackage, Shapefile, "
-                "CSV вершин",
-        "terrain": "рельеф (необязательно): ЦМР или диапазон отметок",
-        "dem": "GeoTIFF в любой системе координат",
-        "ground": "или [наинизшая, наивысшая] отметка [м]",
-        "mode": "\"constant\", \"strip\" или \"follow\" (высота полёта)",
-        "site": "для расчёта высоты Солнца (необязательно)",
-        "lat": "широта [°], северная положительна", "lon": "долгота [°], восточная положительна",
-        "schedule": "сроки и вылеты (необязательно)",
-        "start": "первый день съёмки", "end": "последний день съёмки",
-        "sortie": "продолжительность одного вылета [мин]",
-    },
-}
 
 
 def _optional(key: str, value: str, example: str, comment: str) -> str:
@@ -201,7 +111,7 @@ def _optional(key: str, value: str, example: str, comment: str) -> str:
 def project_text(a: InitAnswers) -> str:
     """The commented TOML text of a project (see docs/project-file.md), its comments in
     the language of its reports."""
-    c = _COMMENTS["ru" if a.locale == "ru" else "en"]
+    c = INIT["ru" if a.locale == "ru" else "en"]
     name = a.name or c["default_name"].format(mk=_n(a.map_scale))
     out = [
         c["head"],

@@ -68,7 +68,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
-from ..i18n.messages import Message, PlanWarning, listing
+from ..i18n.messages import Message, Names, PlanWarning, listing
 from . import dem as D
 from .dem_grid import DEFAULT_VOID_MARGIN_M, DEFAULT_VOID_RADIUS_M, GroundGrid, read_ground_grid
 from .layout import FlightLayout, Photos
@@ -326,9 +326,9 @@ def ground_under(layout: FlightLayout, cfg: TerrainConfig, key: str = "terrain.d
     if problem == "ft":
         warnings.append(PlanWarning("terrain_units_feet", Message(
             "terrain_units_feet", file=info.path.name, unit=(
-                {"en": "US survey feet", "ru": "американских геодезических футах"}
+                Names("US survey feet", "американских геодезических футах")
                 if "us" in info.horizontal_unit.lower()
-                else {"en": "feet", "ru": "футах"}))))
+                else Names("feet", "футах")))))
     lo = float(np.nanmin(s.elevation_m))
     hi = float(np.nanmax(s.elevation_m))
     filled = _on_filled_voids(layout, grid, known)

@@ -55,7 +55,8 @@ def catalogues() -> dict[str, dict[str, dict[str, Any]]]:
     """Every word catalogue, by name: each ``{locale: {key: text}}`` (one shape), keyed by
     concept — the documents' labels (``labels``, with the carrier-specific
     ``aircraft`` wording), the terminal's templates and words (``terminal``), the page of
-    ``scanplan serve`` (``page``) and the comments of ``scanplan init`` (``init``).
+    ``scanplan serve`` (``page``) and the comments of the project file ``scanplan init``
+    writes (``init``).
 
     Returns
     -------
@@ -64,6 +65,8 @@ def catalogues() -> dict[str, dict[str, dict[str, Any]]]:
     """
     from .labels import AIRCRAFT_LABELS, LABELS
     from .labels_cli import CLI
+    from .labels_init import INIT
     from .labels_page import PAGE
 
-    return {"labels": LABELS, "aircraft": AIRCRAFT_LABELS, "terminal": CLI, "page": PAGE}
+    return {"labels": LABELS, "aircraft": AIRCRAFT_LABELS, "terminal": CLI, "page": PAGE,
+            "init": INIT}

@@ -175,8 +175,8 @@ LABELS: dict[str, dict[str, str]] = {
         "photos_per_strip": "Photos per strip",
         "photos_total": "Total photos",
         "sorties_count": "Sorties (flights)",
-        "strips_length_m": "Length of the strips, m",
-        "strips_time_s": "Time on the strips, s",
+        "flight_length_m": "Flight length, m",
+        "flight_time_s": "Flight time, s",
         "data_volume_bytes": "Data volume, uncompressed, bytes",
         "mtf_components": "Modulation transfer functions at the frame centre",
         "mtf_system": "System MTF",
@@ -505,8 +505,8 @@ LABELS: dict[str, dict[str, str]] = {
         "photos_per_strip": "Снимков на маршруте",
         "photos_total": "Всего снимков",
         "sorties_count": "Число вылетов",
-        "strips_length_m": "Длина маршрутов, м",
-        "strips_time_s": "Время на маршрутах, с",
+        "flight_length_m": "Длина полёта, м",
+        "flight_time_s": "Время полёта, с",
         "data_volume_bytes": "Объём данных без сжатия, байт",
         "mtf_components": "Функции передачи модуляции в центре кадра",
         "mtf_system": "ФПМ системы",
@@ -543,7 +543,8 @@ LABELS: dict[str, dict[str, str]] = {
         "interpretation_limit_sentence": "Предел дешифрирования: {object} распознаются с "
                                     "вероятностью не ниже {p} на снимках масштаба до {scale} "
                                     "(Mc/Mk ≤ {ratio}) при R = {r} мм⁻¹.",
-        "max_photo_scales": "Предельный масштаб снимков для каждого размера пикселя",
+        "max_photo_scales": "Предельный масштаб снимков для каждого размера пикселя "
+                            "сканирования",
         "limited_by": "Ограничивающее условие",
         "resolution_on_ground": "Разрешение снимка на местности A",
         "required_r": "R, требуемая для дешифрирования",
@@ -567,13 +568,13 @@ LABELS: dict[str, dict[str, str]] = {
         "tilted_gsd": "Наибольший GSD в углу кадра, крен {roll}°, тангаж {pitch}°, м",
         "blur_limit": "Для смаза не более {blur} пикс. нужна выдержка не длиннее "
                           "{exposure} с или скорость не выше {speed} м/с.",
-        "flight_geometry_planned": "Параметры аэросъёмки на плановой высоте",
+        "flight_geometry_planned": "Геометрия аэрофотосъёмки на плановой высоте",
         "footprint": "Размер кадра на местности поперёк × вдоль маршрута, м",
         "trigger_min": "минимум камеры",
         "overlap_at": "Продольное перекрытие на {lo} / {hi} м, %",
         "strips_times_photos": "Маршрутов × снимков в маршруте = снимков",
         "strips_photos": "Маршрутов / снимков",
-        "flight_length": "Длина маршрутов, км / время, мин",
+        "flight_length": "Длина полёта, км / время, мин",
         "data_volume_gb": "Объём данных без сжатия, ГБ",
         "recognition_objects_p": "Вероятность распознавания объектов по нормативам, P = "
                            "exp(−(B·L/L_obj)²)",

@@ -189,6 +189,6 @@ GEO: dict[str, dict[str, str]] = {
         "photo_lon_deg": "Долгота, °",
         "photo_lat_deg": "Широта, °",
         "photo_gsd_cm": "GSD, см",
-        "photo_resolution_cm": "Разрешение на местности L, см",
+        "photo_resolution_cm": "Линейное разрешение на местности L, см",
     },
 }

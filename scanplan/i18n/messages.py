@@ -52,7 +52,7 @@ from contextvars import ContextVar
 from dataclasses import dataclass
 from typing import Any
 
-__all__ = ["LOCALES", "MAX_LISTED", "MESSAGES", "Message", "PlanWarning", "listing",
+__all__ = ["LOCALES", "MAX_LISTED", "MESSAGES", "Message", "Names", "PlanWarning", "listing",
            "localize", "params_json", "placeholders", "render", "scale_text"]
 
 LOCALES = ("en", "ru")
@@ -558,6 +558,47 @@ def _number(x: float, spec: str, locale: str) -> str:
     if spec in ("", "g") and float(x).is_integer() and abs(x) >= 10000:
         spec = ",.0f"  # the reports group whole numbers from 10 000
     return format(x, spec).replace(",", _NBSP).replace(".", ",")
+
+
+class Names(Mapping[str, str]):
+    """A name given in both languages, read as ``{"en": …, "ru": …}`` (a message
+    parameter: a constraint's, a norm object's, a shape's name; a registered component's
+    label). A message shows a Russian name left empty as the English one.
+
+    >>> n = Names("circle", "круг")
+    >>> n["ru"], dict(n), render("explanation.next", {"cid": Names("PS", ""), "pixel": 2,
+    ...                                               "margin": 5}, "ru")[:24]
+    ('круг', {'en': 'circle', 'ru': 'круг'}, '; следующее условие — PS')
+    """
+
+    __slots__ = ("_names",)
+
+    def __init__(self, en: str, ru: str = "") -> None:
+        self._names = (("en", en), ("ru", ru))
+
+    def __getitem__(self, locale: str) -> str:
+        for loc, name in self._names:
+            if loc == locale:
+                return name
+        raise KeyError(locale)
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(loc for loc, _ in self._names)
+
+    def __len__(self) -> int:
+        return len(self._names)
+
+    def __repr__(self) -> str:
+        return f"Names({self['en']!r}, {self['ru']!r})"
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, Mapping) and dict(self) == dict(other)
+
+    def __hash__(self) -> int:
+        return hash(self._names)
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        return (Names, (self["en"], self["ru"]))
 
 
 class _Param:

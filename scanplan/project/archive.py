@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 
 from ..core import formulas as F
-from ..i18n.messages import Message
+from ..i18n.messages import Message, Names
 from ..rules.film import CONSTRAINTS, PlanWarning, ScanPlan, ScanScenario, round_to_scanner
 from .jobs import ScanJob
 
@@ -35,7 +35,7 @@ replaced by ``archive_not_interpretable`` / ``archive_scanner_too_coarse``."""
 
 def _name(cid: str) -> dict[str, str]:
     info = CONSTRAINTS[cid]
-    return {"en": info.name, "ru": info.name_ru}
+    return Names(info.name, info.name_ru)
 
 
 def _without_pd(plan: ScanPlan, s: ScanScenario) -> ScanScenario:

@@ -23,7 +23,7 @@ from ..core.mtf import DEFAULT_HAZE_CONTRAST, DEFAULT_K0
 from ..errors import InputError
 from ..geo.area import rectangle_area
 from ..geo.layout import Area, FlightLayout
-from ..i18n.messages import Message
+from ..i18n.messages import Message, Names
 from ..norms import DEFAULT_NORM_SET, MapObject, NormSet, load_norm_set, parse_scale
 from ..norms.schema import GSD_AREAS, ORIENTATIONS, PARAMETERS
 from ..norms.store import GsdLimit
@@ -101,7 +101,7 @@ def _scale(value: object, field: str) -> float:
     return denominator
 
 
-USER_OBJECT_NAME = {"en": "object of the given size", "ru": "объект заданного размера"}
+USER_OBJECT_NAME = Names("object of the given size", "объект заданного размера")
 """The name of a project's own object when the project does not name it (the reports'
 label ``obj_unnamed``)."""
 

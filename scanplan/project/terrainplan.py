@@ -22,7 +22,7 @@ from ..geo.layout import FlightLayout
 from ..geo.terrain import Ground, TerrainConfig, TerrainResult, ground_under
 from ..geo.terrain_choice import DIRECTIONS_DEG, ModeHeights, mode_heights
 from ..geo.terrain_film import FilmTerrain, frames_over_terrain
-from ..i18n.messages import Message
+from ..i18n.messages import Message, Names
 from ..rules.results import PlanWarning, ScanPlan, ScanRules, ScanScenario
 from ..rules.terrain import (
     film_scale_warning,
@@ -42,9 +42,9 @@ TERRAIN_KEYS = KEYS["terrain"]
 """The ``[terrain]`` keys (defined with every project key in :mod:`.file`)."""
 
 _MODE_NAMES = {
-    "constant": {"en": '"constant"', "ru": "постоянной высоты"},
-    "strip": {"en": '"strip"', "ru": "высоты по маршрутам"},
-    "follow": {"en": '"follow"', "ru": "следования рельефу"},
+    "constant": Names('"constant"', "постоянной высоты"),
+    "strip": Names('"strip"', "высоты по маршрутам"),
+    "follow": Names('"follow"', "следования рельефу"),
 }  # [terrain] altitude_mode, as the reports name it
 
 _MAX_REFINE = 4  # re-layouts at a lower height before giving up

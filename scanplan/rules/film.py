@@ -32,7 +32,7 @@ from ..core import formulas as F
 from ..core import photoscale as PS
 from ..core.domains import check_domain, check_range
 from ..errors import InputError
-from ..i18n.messages import Message
+from ..i18n.messages import Message, Names
 from .constraints import height_formula_name
 from .registry import CONSTRAINTS, ConstraintInfo, FilmArgs, film_ids
 from .results import (
@@ -357,7 +357,7 @@ def check_probability(rules: Any) -> None:
 
 def _constraint_name(cid: str) -> dict[str, str]:
     info = CONSTRAINTS[cid]
-    return {"en": info.name, "ru": info.name_ru}
+    return Names(info.name, info.name_ru)
 
 
 def _common_args(inp: ScanInputs) -> dict[str, Any]:

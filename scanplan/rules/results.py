@@ -13,7 +13,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..core import mtf as M
-from ..i18n.messages import PlanWarning  # a record of the base layer, named here for importers
+from ..i18n.messages import (
+    Names,
+    PlanWarning,  # a record of the base layer, named here for importers
+)
 
 __all__ = [
     "ConstraintResult",
@@ -104,9 +107,9 @@ class ObjectSpec:
 
     def names(self) -> dict[str, Any]:
         """Message parameters naming the object: ``object``, ``size``, ``shape``."""
-        return {"object": {"en": self.name, "ru": self.name_ru or self.name},
+        return {"object": Names(self.name, self.name_ru or self.name),
                 "size": self.size_m,
-                "shape": {"en": self.shape, "ru": self.shape_ru or self.shape}}
+                "shape": Names(self.shape, self.shape_ru or self.shape)}
 
 
 @dataclass(frozen=True)

@@ -36,7 +36,7 @@ from ..core.domains import DOMAINS, check_domain
 from ..core.orientation import attitude_matrix, corner_gsd
 from ..core.shown import shown_above
 from ..errors import FieldValueError, InputError
-from ..i18n.messages import Message
+from ..i18n.messages import Message, Names
 from .constraints import height_accuracy as _height_accuracy  # noqa: F401  (tests, importers)
 from .film import check_probability, overlap_warning
 from .registry import CONSTRAINTS, DigitalLimit, digital_ids
@@ -267,7 +267,7 @@ def _ceiling_and_height_warnings(inp: UavInputs, rows: list[tuple[str, DigitalLi
         extra = {"lowest": lowest} if code == "height_not_feasible" else {}
         warnings.append(PlanWarning("height_above_max", Message(
             code, height=inp.height_m, max=max_h, cid=binding, **extra,
-            name={"en": info.name, "ru": info.name_ru},
+            name=Names(info.name, info.name_ru),
             tolerance=Message("height_above_max.tolerance",
                               tolerance=inp.height_tolerance_up_pct)
             if inp.height_tolerance_up_pct else None)))

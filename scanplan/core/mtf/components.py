@@ -48,6 +48,7 @@ from scanplan.core.mtf.motion import (
     photographic_image_shift_mm,
     random_shift_rms_mm,
 )
+from scanplan.i18n.messages import Names
 
 __all__ = [
     "COMPONENTS",
@@ -320,23 +321,23 @@ def _prepare_random_motion(s: Setup) -> Term | None:
 
 
 for _c in (
-    Component("haze", "atmosphere", _prepare_haze, {"en": "Haze", "ru": "Дымка"},
+    Component("haze", "atmosphere", _prepare_haze, Names("Haze", "Дымка"),
               "seed 000, eq. 1 (or the contrast coefficient of the text after eq. 2)"),
     Component("turbulence", "atmosphere", _prepare_turbulence,
-              {"en": "Turbulence", "ru": "Турбулентность"}, "seed 000, eq. 2"),
-    Component("lens", "lens", _prepare_lens, {"en": "Lens", "ru": "Объектив"},
+              Names("Turbulence", "Турбулентность"), "seed 000, eq. 2"),
+    Component("lens", "lens", _prepare_lens, Names("Lens", "Объектив"),
               "seed 000, eq. 3 (or the manufacturer's table)"),
     Component("pixel", "sensor", _prepare_pixel,
-              {"en": "Pixel aperture", "ru": "Апертура пикселя"}, "seed 000, eq. 4"),
+              Names("Pixel aperture", "Апертура пикселя"), "seed 000, eq. 4"),
     Component("charge_transfer", "sensor", _prepare_charge_transfer,
-              {"en": "Charge transfer", "ru": "Перенос заряда"}, "seed 000, eq. 4"),
+              Names("Charge transfer", "Перенос заряда"), "seed 000, eq. 4"),
     Component("diffusion", "sensor", _prepare_diffusion,
-              {"en": "Diffusion", "ru": "Диффузия"},
+              Names("Diffusion", "Диффузия"),
               "seed 000, eq. 4; form: D. H. Seib, IEEE Trans. Electron Devices 21 (1974) 210–217"),
     Component("linear_motion", "motion", _prepare_linear_motion,
-              {"en": "Linear motion", "ru": "Линейный сдвиг"}, "seed 000, eqs. 5–6"),
+              Names("Linear motion", "Линейный сдвиг"), "seed 000, eqs. 5–6"),
     Component("random_motion", "motion", _prepare_random_motion,
-              {"en": "Random motion", "ru": "Случайные колебания"}, "seed 000, eqs. 7–8"),
+              Names("Random motion", "Случайные колебания"), "seed 000, eqs. 7–8"),
 ):
     register(_c)
 

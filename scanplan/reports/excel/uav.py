@@ -182,8 +182,8 @@ _FLIGHT_LABELS = {
     "max_speed_for_trigger_ms": "max_speed_for_trigger_ms",
     "strips": "n_strips", "photos_per_strip": "photos_per_strip",
     "photos": "photos_total", "sorties": "sorties_count",
-    "flight_length_m": "strips_length_m",
-    "flight_time_s": "strips_time_s",
+    "flight_length_m": "flight_length_m",
+    "flight_time_s": "flight_time_s",
     "data_volume_bytes": "data_volume_bytes",
 }
 

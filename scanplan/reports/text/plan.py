@@ -138,11 +138,12 @@ def _comparison_lines(result: Any, f: Formatter, tables: ResultTables) -> list[s
     def unit(r: Row) -> str:
         return {"m": f.cli("m"), "GB": f.cli("gb")}.get(r.unit, r.unit)
 
-    head = [f"  {f.cli('quantity')}", f.cli("kind_film"),
-            f.cli("kind_digital" if aircraft else "carrier_uav"), f.cli("unit")]
+    words = formatter(f.locale, "aircraft" if aircraft else "uav")  # the documents' words
+    head = [f"  {words('spec_quantity')}", words("spec_film"), words("spec_uav"),
+            words("unit")]
     text = text_table(tables["comparison"], label=quantity, cell=cell, head=head,
                       align="lrrl", after=unit)
-    return ["", f.cli("side_by_side_aircraft" if aircraft else "side_by_side"), text]
+    return ["", words("spec_comparison") + ":", text]
 
 
 def _warning_lines(result: Any, f: Formatter, tables: ResultTables) -> list[str]:
