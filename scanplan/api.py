@@ -6,8 +6,9 @@
 - ``.to_dict()`` — exactly the ``--json`` document of the command line;
 - ``.to_frame()`` — a :class:`pandas.DataFrame` (units in the column names, see each
   class);
-- ``.write(out_dir, formats=("xlsx", "pdf"))`` — the reports, through the same atomic
-  writers as ``scanplan plan --out``;
+- ``.write(out_dir, formats=…)`` — what ``scanplan plan --out`` writes (a plan: the
+  documents, the missions, the GIS files; a scan or uav result: its documents), through
+  the same transaction;
 - ``_repr_html_`` — a short summary a notebook shows (and a one-line ``repr``).
 
 A UAV result also has ``.photos``, the photo centres of its flight layout as a DataFrame.
@@ -64,30 +65,43 @@ def _json_round_trip(doc: Any) -> dict[str, Any]:
     return json.loads(json.dumps(doc, ensure_ascii=False, allow_nan=False))
 
 
-def _write(out_dir: str | os.PathLike[str], stem: str, formats: Iterable[str], *,
+def _write(out_dir: str | os.PathLike[str], stem: str, formats: Iterable[str] | None, *,
            scan: Any = None, uav: Any = None, spec: Any = None, meta: Any = None,
-           force: bool = False, inputs: Iterable[str] = ()) -> list[Path]:
-    """Render the reports to memory, then write them as one transaction (all or none):
-    the command line's transaction (:func:`scanplan.reports.documents.write_documents`),
-    its targets checked as the command line's (never an input file — the project, its
-    area file, its DEM —, never a file scanplan did not write unless ``force``); a folder
-    ``out_dir`` that does not exist is created, and removed again if nothing was written."""
+           force: bool = False, inputs: Iterable[str] = (), batch: bool = False
+           ) -> list[Path]:
+    """Render the documents (and, for a specification, the exported files ``plan --out``
+    writes) to memory, then write them as one transaction (all or none): the command
+    line's transaction (:func:`scanplan.reports.documents.write_documents`), its targets
+    checked as the command line's (never an input file — the project, its area file, its
+    DEM —, never a file scanplan did not write unless ``force``); a folder ``out_dir``
+    that does not exist is created, and removed again if nothing was written."""
     from .reports import ReportMeta
     from .reports import documents as doc
 
-    kinds = list(dict.fromkeys(formats))
-    unknown = [k for k in kinds if k not in FORMATS]
-    if unknown or not kinds:
-        raise InputError("formats", f"must name some of {', '.join(FORMATS)} (got {kinds!r})")
     folder = os.fspath(out_dir)
+    if spec is None:  # a scan or uav job: its documents
+        kinds = doc.outputs_chosen(formats if formats is not None else doc.DOCUMENTS,
+                                   "formats")
+        if any(k not in doc.DOCUMENTS for k in kinds):
+            raise InputError("formats", f"must name some of {', '.join(doc.DOCUMENTS)} "
+                             f"(got {', '.join(kinds)}): a plan's missions and GIS files "
+                             "are written by scanplan.plan(...).write()")
     doc.refuse_folder(folder, "out_dir")
     created = doc.make_folder(folder)
-    targets = [doc.Target(str(Path(folder) / f"{stem}.{kind}"), kind, "out_dir")
-               for kind in kinds]
     try:
-        done = doc.write_documents(targets, scan=scan, uav=uav, spec=spec,
+        if spec is None:
+            outputs = doc.Outputs([doc.Target(str(Path(folder) / f"{stem}.{kind}"), kind,
+                                              "out_dir") for kind in kinds], {})
+        else:
+            outputs = doc.plan_outputs(spec, folder, formats,
+                                       stem=stem if batch or stem != "spec" else None,
+                                       field="out_dir", formats_field="formats")
+        done = doc.write_documents(outputs.targets, scan=scan, uav=uav, spec=spec,
                                    meta=meta or ReportMeta(), force=force,
-                                   inputs=[*inputs, *doc.project_inputs(spec)])
+                                   extra=outputs.exports, extra_field="out_dir",
+                                   inputs=[*inputs, *doc.project_inputs(spec)],
+                                   sweep=folder if spec is not None and not batch
+                                   and stem == "spec" else None)
     finally:  # a folder created here stays only if something was written into it
         doc.remove_empty(created)
     return [Path(p) for p in done.files]
@@ -97,10 +111,6 @@ def _table_html(title: str, rows: list[tuple[str, Any]]) -> str:
     body = "".join(f"<tr><th style='text-align:left'>{html.escape(k)}</th>"
                    f"<td>{html.escape(str(v))}</td></tr>" for k, v in rows)
     return f"<div><strong>{html.escape(title)}</strong><table>{body}</table></div>"
-
-
-def _fmt(x: float | None, digits: int = 1, unit: str = "") -> str:
-    return "—" if x is None else f"{x:,.{digits}f}{(' ' + unit) if unit else ''}"
 
 
 def _typed(frame: pd.DataFrame, strings: Iterable[str] = (), floats: Iterable[str] = (),
@@ -283,8 +293,11 @@ class UavResult(_JobPlan):
         shown = table_html(tables["uav_results"], "scanplan: UAV flight",
                            platform=p.inputs.platform)
         if p.limits:
-            shown += table_html(tables["uav_limits"], "maximum planned height: "
-                                f"{_fmt(p.max_height_m, 0, 'm')} ({p.binding})")
+            from .reports.formatter import formatter
+
+            top = "—" if p.max_height_m is None else f"{formatter('en').num(p.max_height_m, 0)} m"
+            shown += table_html(tables["uav_limits"],
+                                f"maximum planned height: {top} ({p.binding})")
         return shown
 
 
@@ -418,9 +431,41 @@ class ProjectResult:
         return (f"<ProjectResult {self.spec.meta.project!r}: "
                 f"{', '.join(p for p in parts if p)}; {warn} warning{'' if warn == 1 else 's'}>")
 
-    def write(self, out_dir: str | os.PathLike[str], formats: Iterable[str] = FORMATS, *,
-              name: str = "spec", force: bool = False) -> list[Path]:
-        """Write ``spec.xlsx`` / ``spec.pdf`` into ``out_dir`` as ``scanplan plan --out``."""
+    def write(self, out_dir: str | os.PathLike[str], formats: Iterable[str] | None = None,
+              *, name: str = "spec", force: bool = False) -> list[Path]:
+        """Write what ``scanplan plan --out`` writes into ``out_dir``, byte for byte: the
+        documents (``spec.xlsx``, ``spec.pdf``) and, over an area on the map, the missions
+        and the files for a GIS — all of them, or the outputs ``formats`` names.
+
+        Parameters
+        ----------
+        out_dir : str or path
+            The folder (created when it does not exist).
+        formats : iterable of str, optional
+            Some of ``"xlsx"``, ``"pdf"``, ``"missions"``, ``"gis"``
+            (:data:`scanplan.reports.documents.OUTPUTS`; ``plan --formats``); default all.
+        name : str
+            The documents' name (``NAME.xlsx``); another than ``"spec"`` also goes before
+            the exported files' names (``NAME-flight.kml``), as a batch names them.
+        force : bool
+            Replace files scanplan did not write (never the project's own input files).
+
+        Returns
+        -------
+        list of Path
+            The files written, documents first.
+
+        Raises
+        ------
+        InputError
+            A bad target or output (``formats``: ``gis`` for a project without an area
+            on the map …), naming it; nothing is written.
+        PdfEngineError
+            A PDF is asked for and the PDF engine (WeasyPrint, with the system's Pango)
+            cannot load; nothing is written.
+        WriteError
+            The write failed; every previous file is as it was.
+        """
         s = self.spec
         return _write(out_dir, name, formats, scan=s.film.job if s.film else None,
                       uav=s.uav.job if s.uav else None, spec=s, meta=s.meta, force=force,
@@ -464,10 +509,11 @@ class BatchResult:
     def __repr__(self) -> str:
         return f"<BatchResult {len(self.results)} planned, {len(self.errors)} errors>"
 
-    def write(self, out_dir: str | os.PathLike[str], formats: Iterable[str] = FORMATS, *,
-              force: bool = False) -> list[Path]:
-        """Each project's reports as ``STEM.xlsx`` / ``STEM.pdf`` (as ``scanplan plan DIR
-        --out``), each project all or nothing."""
+    def write(self, out_dir: str | os.PathLike[str], formats: Iterable[str] | None = None,
+              *, force: bool = False) -> list[Path]:
+        """Each project's outputs as ``scanplan plan DIR --out`` writes them
+        (``STEM.xlsx``, ``STEM.pdf``, ``STEM-flight.kml`` …; ``formats`` as
+        :meth:`ProjectResult.write`), each project all or nothing."""
         from .io.targets import batch_stems
 
         paths = [str(r.spec.project.path) for r in self.results]
@@ -476,7 +522,7 @@ class BatchResult:
             s = r.spec  # as the command line's batch: no project file of the batch replaced
             written += _write(out_dir, stem, formats, scan=s.film.job if s.film else None,
                               uav=s.uav.job if s.uav else None, spec=s, meta=s.meta,
-                              force=force, inputs=paths)
+                              force=force, inputs=paths, batch=True)
         return written
 
     def _repr_html_(self) -> str:

@@ -103,6 +103,33 @@ class WriteError(OSError):
         return cls(path, reason, exc.errno, action=action, note=note)
 
 
+class PdfEngineError(RuntimeError):
+    """The PDF engine (WeasyPrint) cannot load here — the system's Pango library is
+    missing — so no PDF can be made; every other document still can.
+
+    Parameters
+    ----------
+    reason : str
+        The library's own first line: what could not be loaded.
+    how : str
+        How to install what is missing on this platform.
+    """
+
+    def __init__(self, reason: str, how: str) -> None:
+        super().__init__(reason, how)
+        self.reason = reason
+        self.how = how
+
+    @property
+    def message(self) -> str:
+        """``no PDF written: the PDF engine (WeasyPrint) could not load (REASON); HOW``."""
+        return (f"no PDF written: the PDF engine (WeasyPrint) could not load "
+                f"({self.reason}); {self.how}")
+
+    def __str__(self) -> str:
+        return self.message
+
+
 def pick_method(methods: Mapping[str, T], name: str, label: str = "method") -> T:
     """``methods[name]`` for a model dispatch table, or a ValueError listing the names.
 

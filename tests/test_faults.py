@@ -40,6 +40,7 @@ from norm_corpus import english_workbook, russian_workbook, save
 
 import scanplan.reports.excel as excel_mod
 import scanplan.reports.pdf as pdf_mod
+from scanplan.api import ScanResult
 from scanplan.cli.main import main
 from scanplan.cli.norms import norms as norms_group
 from scanplan.errors import InputError, WriteError
@@ -47,8 +48,19 @@ from scanplan.norms import recovery as norms_recovery
 from scanplan.norms import store as norms_mod
 from scanplan.norms import writer as norms_writer
 from scanplan.reports import write_atomic, write_atomic_many
-from scanplan.reports.excel import write_xlsx
-from scanplan.reports.pdf import write_pdf
+
+
+def write_xlsx(path: str, scan: Any) -> Any:
+    """The Python API's write of one workbook (``ScanResult.write``): the one document
+    path's transaction."""
+    folder, name = os.path.split(path)
+    return ScanResult(scan).write(folder, ("xlsx",), name=name.removesuffix(".xlsx"))
+
+
+def write_pdf(path: str, scan: Any) -> Any:
+    """The Python API's write of one PDF (``ScanResult.write``)."""
+    folder, name = os.path.split(path)
+    return ScanResult(scan).write(folder, ("pdf",), name=name.removesuffix(".pdf"))
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 FILM = str(EXAMPLES / "instruction-2000-film.toml")
@@ -310,9 +322,9 @@ class WritePath:
 
 
 PATHS = (
-    WritePath("write_xlsx", ("out/spec.xlsx",), ("xlsx",),
+    WritePath("api-write-xlsx", ("out/spec.xlsx",), ("xlsx",),
               lambda job: write_xlsx("out/spec.xlsx", scan=job), is_cli=False),
-    WritePath("write_pdf", ("out/spec.pdf",), ("pdf",),
+    WritePath("api-write-pdf", ("out/spec.pdf",), ("pdf",),
               lambda job: write_pdf("out/spec.pdf", scan=job), is_cli=False),
     WritePath("scan", ("out/spec.xlsx", "out/spec.pdf"), ("xlsx", "pdf"),
               lambda job: cli("scan", "--map-scale", "2000", "--relief", "0.5",

@@ -302,7 +302,6 @@ RENDERER_HOMES = {"reports/documents.py", "reports/pdf.py", "reports/pdfhtml.py"
                   "reports/summary.py"}
 
 
-@NOT_YET
 def test_8_documents_are_rendered_only_by_documents_py():
     found = []
     for path in sorted(PKG.rglob("*.py")):

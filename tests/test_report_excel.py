@@ -7,6 +7,7 @@ import dataclasses
 import io
 import re
 import zipfile
+from pathlib import Path
 
 import openpyxl
 import pytest
@@ -14,7 +15,7 @@ import pytest
 from scanplan.project.jobs import scan_job, uav_job
 from scanplan.reports import ReportMeta
 from scanplan.reports import excel as X
-from scanplan.reports.excel import render_xlsx, write_xlsx
+from scanplan.reports.excel import render_xlsx
 
 INJECTION = '=HYPERLINK("http://x","y")'
 EN_SHEETS = ["Summary", "Inputs", "Constraints", "Sweep", "UAV", "MTF", "Norms", "Warnings",
@@ -269,12 +270,22 @@ def test_page_setup_frozen_headers_print_titles(both_en):
 # --- text stays text ----------------------------------------------------------------------
 
 
+
+def _write(path, kind, **jobs):
+    """One document written through the one document path (as ``--xlsx``/``--pdf`` with
+    ``--force``): the target checked, rendered to memory, written atomically."""
+    from scanplan.reports.documents import Target, write_documents
+
+    write_documents([Target(str(path), kind, "--" + kind)], force=True, **jobs)
+    return Path(path)
+
+
 def test_user_text_is_never_a_formula(both_en, tmp_path, scan):
     ws = both_en["Summary"]
     for coord, text in (("B3", INJECTION), ("B4", "+cmd|' /C calc'!A0"), ("B5", "@SUM(1)")):
         assert ws[coord].data_type == "s" and ws[coord].value == text
         assert ws[coord].quotePrefix  # Excel keeps it text when the cell is edited
-    path = write_xlsx(tmp_path / "r.xlsx", scan=scan, meta=ReportMeta(project=INJECTION))
+    path = _write(tmp_path / "r.xlsx", "xlsx", scan=scan, meta=ReportMeta(project=INJECTION))
     with zipfile.ZipFile(path) as z:
         for name in z.namelist():
             if name.startswith("xl/worksheets/"):
@@ -324,11 +335,11 @@ def test_failure_while_rendering_keeps_the_old_file(tmp_path, monkeypatch, scan,
     assert sheets != X.SHEETS
     monkeypatch.setattr(X, "SHEETS", sheets)
     with pytest.raises(RuntimeError, match="boom"):
-        write_xlsx(target, scan=scan, uav=uav)
+        _write(target, "xlsx", scan=scan, uav=uav)
     assert target.read_bytes() == b"previous"
     assert [p.name for p in tmp_path.iterdir()] == ["report.xlsx"]
     monkeypatch.undo()
-    assert write_xlsx(target, scan=scan, uav=uav) == target
+    assert _write(target, "xlsx", scan=scan, uav=uav) == target
     assert load(target.read_bytes()).sheetnames == EN_SHEETS
     assert [p.name for p in tmp_path.iterdir()] == ["report.xlsx"]
 

@@ -207,11 +207,21 @@ def test_same_input_gives_byte_identical_pdf(scan, uav, doc_en):
     assert again.data == doc_en.data
 
 
+
+def _write(path, kind, **jobs):
+    """One document written through the one document path (as ``--xlsx``/``--pdf`` with
+    ``--force``): the target checked, rendered to memory, written atomically."""
+    from scanplan.reports.documents import Target, write_documents
+
+    write_documents([Target(str(path), kind, "--" + kind)], force=True, **jobs)
+    return Path(path)
+
+
 def test_write_pdf_writes_atomically(uav, tmp_path, monkeypatch):
     monkeypatch.setenv("SOURCE_DATE_EPOCH", EPOCH)
     target = tmp_path / "uav.pdf"
     target.write_bytes(b"previous")
-    out = P.write_pdf(target, uav=uav, meta=ReportMeta(locale="ru"))
+    out = _write(target, "pdf", uav=uav, meta=ReportMeta(locale="ru"))
     assert out == target and target.read_bytes().startswith(b"%PDF-")
     text = " ".join(pypdf.PdfReader(target).pages[0].extract_text().split())
     assert "Техническое задание на аэрофотосъёмку с БПЛА" in text
@@ -227,7 +237,7 @@ def test_render_failure_leaves_the_old_report(scan, tmp_path, monkeypatch):
 
     monkeypatch.setattr(weasyprint.HTML, "write_pdf", broken)
     with pytest.raises(RuntimeError, match="renderer crashed"):
-        P.write_pdf(target, scan=scan)
+        _write(target, "pdf", scan=scan)
     assert target.read_bytes() == b"previous report"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["report.pdf"]
 

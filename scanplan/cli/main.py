@@ -507,33 +507,30 @@ def _run_project(path: str, out_dir: str | None, stem: str | None, xlsx_path: st
     ``pdf_worker`` (a :class:`scanplan.reports.pdfworker.PdfWorker`) renders the PDF on
     another core."""
     from ..project.spec import plan_project
-    from ..reports.documents import project_inputs
+    from ..reports.documents import plan_outputs, project_inputs
     from ..reports.views import ResultTables
     from .projects import read_project
 
     fields = ("--xlsx", "--pdf")
     note = ""
     explicit = bool(pdf_path) or "pdf" in (formats or ())  # its absence fails at the end
-    if out_dir:
-        xlsx_path, pdf_path = (os.path.join(out_dir, (stem or "spec") + f".{k}")
-                               if outputs.selected(formats, k) else None for k in ("xlsx", "pdf"))
-        fields = ("--out", "--out")
-        if stem is not None:
-            base = os.path.splitext(os.path.basename(path))[0]
-            taken = ("the batch summary" if base.casefold() == "summary"
-                     else "another project of this batch")
-            note = f" (for {path}" + (f"; the name {base} is taken by {taken}"
-                                      if stem != base else "") + ")"
+    if out_dir and stem is not None:
+        base = os.path.splitext(os.path.basename(path))[0]
+        taken = ("the batch summary" if base.casefold() == "summary"
+                 else "another project of this batch")
+        note = f" (for {path}" + (f"; the name {base} is taken by {taken}"
+                                  if stem != base else "") + ")"
     result = plan_project(read_project(path))
     # the project's own input files are never replaced either (an area saved as
     # OUT/flight.kml), even with --force
     files = [*files, *project_inputs(result)]
     exports = {}
-    if out_dir:  # the mission and GIS files join the reports' transaction
-        from ..reports.exports import export_files
-        exports = outputs.chosen_exports(export_files(
-            result, out_dir, prefix=f"{stem}-" if stem is not None else "",
-            note=say or console.info), formats)
+    if out_dir:  # the documents and the mission and GIS files: one transaction
+        chosen = plan_outputs(result, out_dir, formats, stem=stem, note=say or console.info)
+        docs = {t.kind: t.path for t in chosen.targets}
+        xlsx_path, pdf_path = docs.get("xlsx"), docs.get("pdf")
+        exports = chosen.exports
+        fields = ("--out", "--out")
     film = result.film.job if result.film else None
     uav_ = result.uav.job if result.uav else None
     tables = ResultTables.of_jobs(film, uav_, result)
@@ -602,7 +599,7 @@ def _write_summary(out_dir: str, rows: list[dict[str, Any]], force: bool,
     """summary.csv and summary.xlsx of a batch (one row per project), as one transaction."""
     from ..api import SUMMARY_COLUMNS, summary_frame
     from ..io.targets import check_target
-    from ..reports.summary import summary_csv, summary_xlsx
+    from ..reports.documents import render_summary
 
     frame = summary_frame(rows, [*SUMMARY_COLUMNS, "error"])
     targets = {kind: os.path.join(out_dir, f"summary.{kind}") for kind in ("csv", "xlsx")}
@@ -612,7 +609,8 @@ def _write_summary(out_dir: str, rows: list[dict[str, Any]], force: bool,
             check_target(path, "--out", kind, inputs=files, force=force)
 
     check()
-    write_set({targets["csv"]: summary_csv(frame), targets["xlsx"]: summary_xlsx(frame)},
+    rendered = render_summary(frame)
+    write_set({targets[kind]: rendered[kind] for kind in ("csv", "xlsx")},
               check=check, sweep=None, say=console.info)
 
 

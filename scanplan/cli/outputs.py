@@ -18,7 +18,6 @@ by name (``--formats pdf``, ``--pdf FILE``).
 
 from __future__ import annotations
 
-import sys
 from collections.abc import Callable
 from typing import Any
 
@@ -26,21 +25,13 @@ import click
 
 from ..errors import InputError
 
-__all__ = ["FORMATS", "PDF_HELP", "chosen_exports", "parse_formats",
-           "pdf_failure_exit", "pdf_missing", "pdf_renderer", "reset", "selected",
-           "warn_stale"]
+__all__ = ["FORMATS", "parse_formats", "pdf_failure_exit", "pdf_missing", "pdf_renderer",
+           "reset", "selected", "warn_stale"]
 
 FORMATS = ("xlsx", "pdf", "missions", "gis")
-"""The outputs ``--formats`` can name, in the order of the files written."""
-
-PDF_HELP = {
-    "linux": "install Pango (Debian/Ubuntu: apt-get install libpango-1.0-0 "
-             "libpangoft2-1.0-0; Fedora: dnf install pango)",
-    "darwin": "install Pango (brew install pango)",
-    "win32": "install the GTK3 runtime (which brings Pango), as WeasyPrint's installation "
-             "guide describes",
-}
-"""How to get the PDF engine's system library, by platform."""
+"""The outputs ``--formats`` can name, in the order of the files written
+(:data:`scanplan.reports.documents.OUTPUTS`; a test keeps the two alike: this module does
+not import the reports, so ``scanplan --help`` stays light)."""
 
 _state: dict[str, Any] = {"missing": None, "warned": False}
 
@@ -72,48 +63,33 @@ def selected(formats: tuple[str, ...] | None, name: str) -> bool:
     return formats is None or name in formats
 
 
-def chosen_exports(exports: dict[str, tuple[Any, bytes]],
-                   formats: tuple[str, ...] | None) -> dict[str, tuple[Any, bytes]]:
-    """The exported files (path → (format, bytes)) of the chosen outputs: those whose
-    format (:data:`scanplan.geo.export.formats.FORMATS`) belongs to one of ``formats``."""
-    if formats is None:
-        return exports
-    return {path: item for path, item in exports.items() if item[0].output in formats}
-
-
 def pdf_missing() -> str | None:
     """Why the PDF engine could not load in this run (None: it loaded, or was not tried)."""
     return _state["missing"]
 
 
-def _load_engine() -> Callable[..., bytes]:
-    from ..reports.pdf import render_pdf
-
-    return render_pdf
-
-
 def pdf_renderer(explicit: bool = False) -> Callable[..., bytes] | None:
     """:func:`scanplan.reports.pdf.render_pdf`, or None when its engine cannot load — then
-    a warning on stderr (once) says what is missing and how to install it.
+    a warning on stderr (once) says what is missing and how to install it
+    (:func:`scanplan.reports.documents.load_pdf_engine`).
 
     Parameters
     ----------
     explicit : bool
         The PDF was asked for by name: the warning says the command will fail at the end.
     """
+    from ..errors import PdfEngineError
+    from ..reports.documents import load_pdf_engine
+
     try:
-        return _load_engine()
-    except (OSError, ImportError) as exc:  # cffi's dlopen of Pango, or no WeasyPrint
-        text = str(exc)  # the library's own first line: what could not be loaded
-        reason = text.splitlines()[0] if text.strip() else type(exc).__name__
-        _state["missing"] = reason
+        return load_pdf_engine()
+    except PdfEngineError as exc:
+        _state["missing"] = exc.reason
         if not _state["warned"]:
             _state["warned"] = True
-            how = PDF_HELP.get(sys.platform, PDF_HELP["linux"])
             then = ("the other files are written, then the command fails" if explicit
                     else "the other files are written")
-            click.echo(f"warning: no PDF written: the PDF engine (WeasyPrint) could not "
-                       f"load ({reason}); {how}; {then}", err=True)
+            click.echo(f"warning: {exc.message}; {then}", err=True)
         return None
 
 

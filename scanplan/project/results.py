@@ -191,6 +191,21 @@ class UavSpec:
         """Strips and photo centres at the recommended height (None without an area)."""
         return self.job.layout
 
+    @property
+    def headroom_pct(self) -> dict[str, float]:
+        """Each constraint's headroom at the planned height [%]: how much higher than the
+        planned height H the flight may go before that constraint binds,
+        ``(H_max/H − 1)·100`` with ``H_max`` its maximum planned height (negative: the
+        planned height breaks it); by constraint id. ``plan --json``'s ``margin_pct`` is
+        the other view, against the binding constraint's height, which does not move
+        with the planned height. Empty without a planned height."""
+        plan = self.job.plan
+        planned = plan.heights_m.get("planned")
+        if not planned:
+            return {}
+        return {lim.id: (lim.max_height_m / planned - 1.0) * 100.0 for lim in plan.limits
+                if lim.max_height_m is not None}
+
 
 @dataclass(frozen=True)
 class PlanResult:

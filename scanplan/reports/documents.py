@@ -1,5 +1,11 @@
-"""The documents of one result written as one transaction: the command line's ``--xlsx``/
-``--pdf``/``plan --out`` and the Python API's ``.write()`` both go through here.
+"""The one path that renders and writes documents: the command line's ``--xlsx``/``--pdf``/
+``plan --out``, the Python API's ``.write()`` and the page's downloads all go through here
+(no other module calls the PDF or workbook renderers).
+
+What ``plan --out`` writes for one project — the documents and the exported files of the
+outputs chosen (``--formats``: :data:`OUTPUTS`) — is :func:`plan_outputs`; the documents
+of a result in memory (the page's downloads) are :func:`render`; the PDF engine is loaded
+by :func:`load_pdf_engine`, which says what is missing without touching standard output.
 
 :func:`write_documents` is the whole transaction:
 
@@ -21,18 +27,39 @@ prints nothing; it reports through :class:`Written` and the hooks it is given.
 
 from __future__ import annotations
 
+import contextlib
+import io
 import os
+import sys
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from ..errors import InputError, WriteError
+from ..errors import InputError, PdfEngineError, WriteError
 from ..io.targets import FileKind, check_target
 from ..progress import stage
 
-__all__ = ["Target", "Written", "commit", "make_folder", "project_inputs", "refuse_folder",
-           "refuse_targets", "remove_empty", "render_documents", "write_documents"]
+__all__ = ["DOCUMENTS", "OUTPUTS", "PDF_HELP", "Outputs", "Target", "Written", "commit",
+           "load_pdf_engine", "make_folder", "outputs_chosen", "plan_outputs",
+           "project_inputs", "refuse_folder", "refuse_targets", "remove_empty", "render",
+           "render_documents", "render_summary", "write_documents"]
+
+OUTPUTS = ("xlsx", "pdf", "missions", "gis")
+"""The outputs ``plan --out`` writes (``--formats``, ``ProjectResult.write(formats=…)``),
+in the order of the files written: the workbook, the PDF, the flight missions, the files
+for a GIS."""
+DOCUMENTS = ("xlsx", "pdf")
+"""The outputs that are documents of a result (the others are its exported files)."""
+
+PDF_HELP = {
+    "linux": "install Pango (Debian/Ubuntu: apt-get install libpango-1.0-0 "
+             "libpangoft2-1.0-0; Fedora: dnf install pango)",
+    "darwin": "install Pango (brew install pango)",
+    "win32": "install the GTK3 runtime (which brings Pango), as WeasyPrint's installation "
+             "guide describes",
+}
+"""How to get the PDF engine's system library, by platform."""
 
 
 @dataclass(frozen=True)
@@ -109,11 +136,30 @@ def _checker(targets: Sequence[Target], extra: Mapping[str, tuple[Any, bytes]],
     return check
 
 
-def _pdf_engine() -> Callable[..., bytes]:
-    """The PDF renderer; an engine that cannot load raises (OSError, ImportError)."""
-    from .pdf import render_pdf
+def load_pdf_engine() -> Callable[..., bytes]:
+    """The PDF renderer (:func:`scanplan.reports.pdf.render_pdf`).
 
+    WeasyPrint's own notice on a missing library (printed on standard output, where a
+    program reads ``--json``) is kept off it.
+
+    Raises
+    ------
+    PdfEngineError
+        WeasyPrint cannot load (no Pango): the library's reason and how to install it.
+    """
+    notice = io.StringIO()
+    try:
+        with contextlib.redirect_stdout(notice):
+            from .pdf import render_pdf
+    except (OSError, ImportError) as exc:  # cffi's dlopen of Pango, or no WeasyPrint
+        text = str(exc)  # the library's own first line: what could not be loaded
+        reason = text.splitlines()[0] if text.strip() else type(exc).__name__
+        raise PdfEngineError(reason, PDF_HELP.get(sys.platform, PDF_HELP["linux"])
+                             ) from None
     return render_pdf
+
+
+_pdf_engine = load_pdf_engine
 
 
 def render_documents(targets: Sequence[Target], *, scan: Any = None, uav: Any = None,
@@ -175,6 +221,136 @@ def render_documents(targets: Sequence[Target], *, scan: Any = None, uav: Any = 
         if data is not None:
             rendered[pdf] = data  # type: ignore[index]
     return {t.path: rendered[t.path] for t in targets if t.path in rendered}
+
+
+def render(kinds: Sequence[str], *, scan: Any = None, uav: Any = None, spec: Any = None,
+           meta: Any = None, tables: Any = None) -> dict[str, bytes]:
+    """The documents ``kinds`` (``"xlsx"``, ``"pdf"``) of one result, in memory, rendered
+    from one view as ``plan --out`` renders them (the page's downloads).
+
+    Raises
+    ------
+    PdfEngineError
+        A PDF is asked for and its engine cannot load.
+    """
+    targets = [Target(kind, kind, kind) for kind in kinds]
+    return render_documents(targets, scan=scan, uav=uav, spec=spec, meta=meta, tables=tables)
+
+
+def render_summary(frame: Any) -> dict[str, bytes]:
+    """A batch's summary (one row per project) as ``{"csv": …, "xlsx": …}``."""
+    from .summary import summary_csv, summary_xlsx
+
+    return {"csv": summary_csv(frame), "xlsx": summary_xlsx(frame)}
+
+
+@dataclass(frozen=True)
+class Outputs:
+    """What ``plan --out`` writes for one project.
+
+    Attributes
+    ----------
+    targets : list of Target
+        The documents (``NAME.xlsx``, ``NAME.pdf``) of the outputs chosen.
+    exports : dict
+        The exported files of the outputs chosen: path → (format, bytes).
+    """
+
+    targets: list[Target]
+    exports: dict[str, tuple[Any, bytes]]
+
+
+def outputs_chosen(formats: Iterable[str] | None, field: str) -> tuple[str, ...]:
+    """The outputs named by ``formats`` (None: all of :data:`OUTPUTS`), in their order.
+
+    Raises
+    ------
+    InputError
+        Naming ``field``: an unknown output, or none.
+    """
+    if formats is None:
+        return OUTPUTS
+    names = [str(f).strip().lower() for f in ([formats] if isinstance(formats, str)
+                                              else formats)]
+    bad = [n for n in names if n not in OUTPUTS]
+    if bad or not names:
+        raise InputError(field, f"must name some of {', '.join(OUTPUTS)} (got "
+                         f"{', '.join(names) if names else 'none'})")
+    return tuple(f for f in OUTPUTS if f in names)
+
+
+def plan_outputs(result: Any, out_dir: str, formats: Iterable[str] | None = None, *,
+                 stem: str | None = None, field: str = "--out",
+                 formats_field: str = "--formats",
+                 note: Callable[[str], None] | None = None) -> Outputs:
+    """The documents and exported files ``plan --out`` writes for one project into
+    ``out_dir``: the chosen outputs (``formats``, None: all of them).
+
+    An exported output named in ``formats`` that this project writes no file of — ``gis``
+    or ``missions`` for a project without a polygon, ``missions`` for a film survey — is
+    refused rather than silently skipped.
+
+    Parameters
+    ----------
+    result : PlanResult
+        The specification.
+    out_dir : str
+        The folder.
+    formats : iterable of str, optional
+        Some of :data:`OUTPUTS`.
+    stem : str, optional
+        A batch's name for the project: ``NAME.xlsx``, ``NAME-flight.kml`` (default
+        ``spec.xlsx``, ``flight.kml``).
+    field, formats_field : str
+        How messages name the folder and the outputs (``--out``, ``--formats``).
+    note : callable, optional
+        Told why an exported file the user may expect is not written.
+
+    Returns
+    -------
+    Outputs
+
+    Raises
+    ------
+    InputError
+        ``formats_field``: an unknown output, or one this project writes nothing of.
+    """
+    chosen = outputs_chosen(formats, formats_field)
+    targets = [Target(os.path.join(out_dir, (stem or "spec") + f".{kind}"), kind, field)
+               for kind in DOCUMENTS if kind in chosen]
+    exported = [o for o in chosen if o not in DOCUMENTS]
+    exports: dict[str, tuple[Any, bytes]] = {}
+    if exported:
+        from .exports import export_files
+
+        every = export_files(result, out_dir, prefix=f"{stem}-" if stem is not None else "",
+                             note=note)
+        exports = {path: item for path, item in every.items()
+                   if item[0].output in exported}
+        if formats is not None:
+            _refuse_unwritten(result, exported, exports, formats_field)
+    return Outputs(targets, exports)
+
+
+def _refuse_unwritten(result: Any, exported: list[str],
+                      exports: Mapping[str, tuple[Any, bytes]], field: str) -> None:
+    """An exported output asked for by name that this project writes no file of."""
+    written = {item[0].output for item in exports.values()}
+    missing = [o for o in exported if o not in written]
+    if not missing:
+        return
+    area = getattr(result, "area", None)
+    name = getattr(getattr(result, "project", None), "path", None) or "the project"
+    if area is None or not area.georeferenced:
+        why = (f"{name} has no area on the map: give [area] file or [area] polygon "
+               "(a width × length block has no place to fly over)")
+    else:
+        from .exports import export_notes
+
+        notes = [n.text("en") for n in export_notes(result)]
+        why = "; ".join(notes) if notes else f"{name} has no flight it can be written for"
+    raise InputError(field, f"{' and '.join(missing)} writes the flight over the area: "
+                     f"{why}")
 
 
 def commit(files: Mapping[str, bytes], *, check: Callable[[], None], sweep: str | None = None,

@@ -28,13 +28,11 @@ are deterministic, so the same input gives a byte-identical PDF.
 
 from __future__ import annotations
 
-import os
 from collections.abc import Callable
-from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from ..project.jobs import ScanJob, UavJob
-from . import ReportMeta, templates_dir, write_atomic  # noqa: F401  (templates_dir: tests)
+from . import ReportMeta, templates_dir  # noqa: F401  (templates_dir: tests)
 from .pdfhtml import _DEFAULT_META, render_html
 from .pdfrender import (  # noqa: F401  (weasyprint, _font_config, warm_up: callers, tests)
     BundledAssetFetcher,
@@ -48,7 +46,7 @@ from .view import ReportView
 if TYPE_CHECKING:
     from ..project.spec import PlanResult
 
-__all__ = ["BundledAssetFetcher", "render_html", "render_pdf", "write_pdf"]
+__all__ = ["BundledAssetFetcher", "render_html", "render_pdf"]
 
 
 def render_pdf(*, scan: ScanJob | None = None, uav: UavJob | None = None,
@@ -84,30 +82,3 @@ def render_pdf(*, scan: ScanJob | None = None, uav: UavJob | None = None,
     # from the last report, and fresh ones with a caller's own fetcher
     fetcher = url_fetcher if url_fetcher is not None else BundledAssetFetcher()
     return html_to_pdf(html, fetcher, fresh_fonts=url_fetcher is not None)
-
-
-def write_pdf(path: str | os.PathLike[str], *, scan: ScanJob | None = None,
-              uav: UavJob | None = None, meta: ReportMeta = _DEFAULT_META,
-              spec: PlanResult | None = None) -> Path:
-    """Render the report and write it atomically to ``path``.
-
-    The PDF is rendered in memory first; on any error an existing file at ``path`` is left
-    as it was and no temporary file remains.
-
-    Parameters
-    ----------
-    path : path
-        Target ``.pdf``.
-    scan, uav : optional
-        As :func:`render_pdf` (at least one).
-    meta : ReportMeta
-        Title and approval block, locale.
-    spec : PlanResult, optional
-        The specification of ``scanplan plan``.
-
-    Returns
-    -------
-    Path
-        ``path``.
-    """
-    return write_atomic(path, render_pdf(scan=scan, uav=uav, meta=meta, spec=spec))

@@ -4,8 +4,10 @@ Each job takes the project's tables (:mod:`scanplan.web.tomlfile`) and the uploa
 names, writes the project file and links the files into a fresh temporary folder, and runs
 the command line's own steps on it: :func:`~scanplan.project.file.parse_project` (the
 project file's checks and messages), :func:`~scanplan.project.spec.plan_project`,
-:func:`~scanplan.reports.jsondoc.plan_result_dict` (``plan --json``), the report renderers
-and :func:`~scanplan.reports.exports.export_files` (``plan --out``). The folder is removed
+:func:`~scanplan.reports.jsondoc.plan_result_dict` (``plan --json``) and the one document
+path of :mod:`scanplan.reports.documents` (``plan --out``'s documents and files; the
+warnings worded as the terminal words them, the constraints' headroom as the result
+carries it). The folder is removed
 when the job ends, and its path is taken out of every message and document, which name the
 files as the project does (``areas/town.kml``).
 
@@ -149,7 +151,7 @@ def view_job(project: Any, files: Mapping[str, str]) -> dict[str, Any]:
 
         return {"plan": doc, "map": map_features(result), "charts": charts, "toml": text,
                 "names": _constraint_names(doc, view.locale),
-                "margins_pct": _margins_at_planned(doc),
+                "margins_pct": dict(result.uav.headroom_pct) if result.uav else {},
                 "warnings": _warnings(result, view.locale),
                 "crs": _crs(result, view.locale)}
 
@@ -163,43 +165,23 @@ def _crs(result: Any, locale: str) -> str | None:
     return area_crs_text(area, locale) if area is not None and area.georeferenced else None
 
 
-def _margins_at_planned(doc: dict[str, Any]) -> dict[str, float]:
-    """Each UAV constraint's headroom at the planned height [%]: how much higher than the
-    planned height H the flight may go before that constraint binds, ``(H_max/H − 1)·100``
-    with ``H_max`` its maximum planned height (negative: the planned height breaks it).
-    ``plan --json``'s ``margin_pct`` is the other view, against the binding constraint's
-    height, which does not move with the planned height."""
-    uav = doc.get("uav") or {}
-    planned = (uav.get("heights_m") or {}).get("planned")
-    if not planned:
-        return {}
-    return {cid: (c["max_height_m"] / planned - 1.0) * 100.0
-            for cid, c in (uav.get("constraints") or {}).items()
-            if c.get("max_height_m") is not None}
-
-
 def _warnings(result: Any, locale: str) -> list[dict[str, str]]:
     """The plan's warnings in ``locale``, worded as the terminal summary words them."""
-    from ..i18n.messages import localize
-    from ..reports.wording import display_message
+    from ..reports.text import warning_items
 
-    out = []
-    for w in result.warnings:
-        text = localize(w.message, locale)
-        if locale == "ru":
-            text = display_message(w.message, (result.film or result.uav).job.norm_set, locale)
-        out.append({"code": w.code, "severity": w.severity, "text": text})
-    return out
+    return [{"code": code, "severity": severity, "text": text}
+            for code, severity, text in warning_items(result, locale)]
 
 
 def _constraint_names(doc: dict[str, Any], locale: str) -> dict[str, str]:
     """The reports' name of each constraint the plan evaluated, in ``locale``."""
-    from ..reports.views import constraint_title
+    from ..reports.formatter import formatter
 
     ids = set((doc.get("uav") or {}).get("constraints") or {})
     for s in (doc.get("film") or {}).get("scenarios") or []:
         ids |= set(s.get("constraints") or {})
-    return {cid: constraint_title(cid, locale) for cid in sorted(ids)}
+    f = formatter(locale)
+    return {cid: f.constraint(cid) for cid in sorted(ids)}
 
 
 def files_job(project: Any, files: Mapping[str, str], what: str) -> tuple[str, bytes]:
@@ -208,40 +190,26 @@ def files_job(project: Any, files: Mapping[str, str], what: str) -> tuple[str, b
     (file name, bytes)."""
     if what not in ("pdf", "xlsx", "zip"):
         raise InputError("what", f'must be "pdf", "xlsx" or "zip" (got {what!r})')
-    with _planned(project, files) as (result, text, folder):
-        reports = _reports(result, ("pdf", "xlsx") if what == "zip" else (what,))
-        if what != "zip":
-            return f"spec.{what}", reports[what]
-        from ..reports.exports import export_files
+    from ..reports import documents
 
+    with _planned(project, files) as (result, text, folder):
+        jobs = {"scan": result.film.job if result.film else None,
+                "uav": result.uav.job if result.uav else None,
+                "meta": result.meta, "spec": result}
+        if what != "zip":
+            return f"spec.{what}", documents.render((what,), **jobs)[what]
+        chosen = documents.plan_outputs(result, "")  # everything plan --out writes
+        rendered = documents.render([t.kind for t in chosen.targets], **jobs)
         out = io.BytesIO()
         with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as zf:
             zf.writestr(PROJECT_NAME, text)
             for name in sorted(files):
                 zf.write(folder / _file_name(name, "files"), _file_name(name, "files"))
-            for kind in ("pdf", "xlsx"):
-                zf.writestr(f"spec.{kind}", reports[kind])
-            for path, (_kind, data) in sorted(export_files(result, "").items()):
+            for t in sorted(chosen.targets, key=lambda t: t.kind != "pdf"):
+                zf.writestr(t.path, rendered[t.kind])
+            for path, (_kind, data) in sorted(chosen.exports.items()):
                 zf.writestr(path, data)
         return "scanplan.zip", out.getvalue()
-
-
-def _reports(result: Any, kinds: tuple[str, ...]) -> dict[str, bytes]:
-    """The PDF and/or workbook of ``result``, rendered as ``plan --out`` renders them (one
-    view for both)."""
-    from ..reports.view import build_view
-
-    film = result.film.job if result.film else None
-    uav = result.uav.job if result.uav else None
-    view = build_view(scan=film, uav=uav, meta=result.meta, spec=result)
-    out = {}
-    for kind in kinds:
-        if kind == "xlsx":
-            from ..reports.excel import render_xlsx as render
-        else:
-            from ..reports.pdf import render_pdf as render
-        out[kind] = render(scan=film, uav=uav, meta=result.meta, spec=result, view=view)
-    return out
 
 
 def catalogue_job(norms: str, locale: str) -> dict[str, Any]:

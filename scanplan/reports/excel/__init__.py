@@ -33,15 +33,13 @@ record in :data:`SHEETS` (see docs/architecture.md, "Reports").
 
 from __future__ import annotations
 
-import os
 from collections.abc import Callable
 from dataclasses import dataclass
-from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ...i18n.labels import t as t  # re-exported: the sheets' labels
 from ...i18n.messages import document_text
-from .. import ReportMeta, write_atomic
+from .. import ReportMeta
 from ..view import ReportView, build_view
 from .book import Book
 from .cells import _BINDING_FILL as _BINDING_FILL  # re-exported: the binding highlight
@@ -61,7 +59,7 @@ if TYPE_CHECKING:
     from ...project.jobs import ScanJob, UavJob
     from ...project.spec import PlanResult
 
-__all__ = ["SHEETS", "Book", "Sheet", "render_xlsx", "write_xlsx"]
+__all__ = ["SHEETS", "Book", "Sheet", "render_xlsx"]
 
 _DEFAULT_META = ReportMeta()
 _Book = Book  # the former name
@@ -165,29 +163,3 @@ def render_xlsx(
         if sheet.section is None or view.has(sheet.section):
             sheet.write(book, view)
     return book.to_bytes()
-
-
-def write_xlsx(
-    path: str | os.PathLike[str],
-    *,
-    scan: ScanJob | None = None,
-    uav: UavJob | None = None,
-    meta: ReportMeta = _DEFAULT_META,
-    spec: PlanResult | None = None,
-) -> Path:
-    """Render the Excel report (:func:`render_xlsx`) and write it atomically to ``path``.
-
-    Parameters
-    ----------
-    path : str or path
-        The ``.xlsx`` to write; an existing file is replaced only by a complete report.
-    scan, uav, meta
-        As for :func:`render_xlsx`.
-
-    Returns
-    -------
-    Path
-        The written file.
-    """
-    data = render_xlsx(scan=scan, uav=uav, meta=meta, spec=spec)
-    return write_atomic(path, data)

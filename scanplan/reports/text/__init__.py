@@ -17,10 +17,11 @@ from .plan import (
     batch_warnings,
     format_plan_result,
     project_warnings,
+    warning_items,
 )
 from .uav import format_uav_plan, volume_text
 
 __all__ = ["area_source", "batch_row", "batch_summary", "batch_table", "batch_warnings",
            "code_tag", "format_area", "format_layout", "format_plan_result",
            "format_scan_plan", "format_terrain", "format_uav_plan", "project_warnings",
-           "table", "text_table", "volume_text", "wrap"]
+           "table", "text_table", "volume_text", "warning_items", "wrap"]

@@ -16,7 +16,7 @@ from .layout import WIDTH, code_tag, table, text_table, wrap
 from .uav import volume_text
 
 __all__ = ["batch_row", "batch_summary", "batch_table", "batch_warnings",
-           "format_plan_result", "project_warnings"]
+           "format_plan_result", "project_warnings", "warning_items"]
 
 
 def format_plan_result(result: Any, locale: str | None = None,
@@ -146,16 +146,26 @@ def _comparison_lines(result: Any, f: Formatter, tables: ResultTables) -> list[s
     return ["", words("spec_comparison") + ":", text]
 
 
+def warning_items(result: Any, locale: str, tables: ResultTables | None = None
+                  ) -> list[tuple[str, str, str]]:
+    """The warnings of a specification (the ``spec_warnings`` table) as the terminal and
+    the page word them: (code, severity, sentence in ``locale``; in Russian the catalogue
+    ids by their names, as the Russian documents show them)."""
+    f = formatter(locale)
+    if tables is None:
+        tables = ResultTables(spec=result)
+    ns = (result.film or result.uav).job.norm_set if (result.film or result.uav) else None
+    return [(r.key, r.fields["severity"],
+             f.message(r.values[0], ns if f.locale == "ru" else None))
+            for r in tables["spec_warnings"].rows]
+
+
 def _warning_lines(result: Any, f: Formatter, tables: ResultTables) -> list[str]:
-    """The warnings (``!``) and notes (``i``) with their codes (the ``spec_warnings``
-    table)."""
+    """The warnings (``!``) and notes (``i``) with their codes."""
     lines = ["", f.cli("warnings")]
-    ns = (result.film or result.uav).job.norm_set
-    for r in tables["spec_warnings"].rows:
-        mark = "!" if "warning" in r.flags else "i"
-        # ids by their names in Russian, as the Russian documents show them
-        text = f.message(r.values[0], ns if f.locale == "ru" else None)
-        lines.append(wrap(text + code_tag(r.key, f.locale), f"  {mark} "))
+    for code, severity, text in warning_items(result, f.locale, tables):
+        mark = "!" if severity == "warning" else "i"
+        lines.append(wrap(text + code_tag(code, f.locale), f"  {mark} "))
     return lines
 
 
