@@ -129,3 +129,12 @@ def test_write_without_a_pdf_engine_is_scanplans_error(tmp_path, no_pdf_engine):
         capture_output=True, text=True, check=False)
     assert only.returncode == 0, only.stderr
     assert only.stdout == "" and sorted(os.listdir(tmp_path / "out")) == ["spec.xlsx"]
+
+
+def test_the_command_lines_outputs_are_the_document_paths():
+    """``--formats`` names the outputs of reports/documents.py (the command line keeps its
+    own copy so that ``scanplan --help`` imports no report)."""
+    from scanplan.cli.outputs import FORMATS
+    from scanplan.reports.documents import OUTPUTS
+
+    assert FORMATS == OUTPUTS

@@ -376,9 +376,10 @@ def test_norm_parameters_carry_their_sources():
 
 def test_height_plot_marks_planned_flown_and_maximum():
     from scanplan.reports.plots import height_svg
+    from scanplan.reports.views import ResultTables
 
-    plan = uav_job(**SEED002, map_scale=2000, relief_interval_m=0.5, max_height_m=500).plan
-    svg = height_svg(plan)
+    job = uav_job(**SEED002, map_scale=2000, relief_interval_m=0.5, max_height_m=500)
+    svg = height_svg(ResultTables.of_jobs(None, job))
     for text in ("planned: 300", "highest flown: 420", "maximum planned (PZ): 214",
                  "highest flown at the maximum: 300"):
         assert text in svg, text

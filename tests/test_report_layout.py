@@ -185,8 +185,10 @@ def test_film_chart_draws_coinciding_constraints_apart_and_ticks_a_lone_scale():
     """P_Z lies within 1 % of P_P for the Instruction's example: it is dashed and drawn
     over the solid P_P; an archive's single photo scale gets round scales beside it."""
     from scanplan.reports import plots
+    from scanplan.reports.views import ResultTables
 
-    svg = plots.constraints_svg(_plan("instruction-2000-film.toml", "en").film.job.plan)
+    film = _plan("instruction-2000-film.toml", "en").film.job
+    svg = plots.constraints_svg(ResultTables.of_jobs(film))
     red = re.findall(r'<(?:path|polyline)[^>]*stroke="#d62728"[^>]*>', svg)
     assert red and all("stroke-dasharray" in x for x in red), red[:2]
     assert svg.index('stroke="#2ca02c"') < svg.index('stroke="#d62728"')
@@ -208,5 +210,6 @@ def test_workbook_chart_legend_gives_a_height_as_the_pdf_does():
     assert "highest flown: 148.5 m" in cells
     assert "highest flown: 148 m" not in cells
     from scanplan.reports import plots
+    from scanplan.reports.views import ResultTables
 
-    assert "148.5 m" in plots.height_svg(result.uav.job.plan, "en")
+    assert "148.5 m" in plots.height_svg(ResultTables.of_jobs(None, result.uav.job), "en")

@@ -24,6 +24,7 @@ from scanplan.project.jobs import scan_job, uav_job  # noqa: E402
 from scanplan.reports import ReportMeta, templates_dir  # noqa: E402
 from scanplan.reports import pdf as P  # noqa: E402
 from scanplan.reports.plots import constraints_svg, number  # noqa: E402
+from scanplan.reports.views import ResultTables  # noqa: E402
 
 EPOCH = "1700000000"  # 2023-11-14T22:13:20Z
 INJECTION = 'Site <img src="file:///etc/passwd"> & <b>bold</b>'
@@ -268,7 +269,8 @@ def test_many_photo_scales_split_into_tables_that_fit_a4():
 
 
 def test_plots_are_deterministic_svg(scan):
-    a, b = constraints_svg(scan.plan, "ru"), constraints_svg(scan.plan, "ru")
+    tables = ResultTables.of_jobs(scan)
+    a, b = constraints_svg(tables, "ru"), constraints_svg(ResultTables.of_jobs(scan), "ru")
     assert a == b and a.lstrip().startswith("<?xml") and "<svg" in a
     assert "dc:date" not in a
 

@@ -254,6 +254,7 @@ def test_the_film_inputs_carry_the_registry_units_and_decimals(film):
     sheet = openpyxl.load_workbook(io.BytesIO(render_xlsx(view=view)))["Inputs"]
     cells = {row[0].value: row[1] for row in sheet.iter_rows() if row[0].value}
     relief = cells[view.fmt("relief_interval_m")]
-    assert relief.value == plan.inputs.relief_interval_m and relief.number_format == "0.00"
+    # the decimals the row declares, thousands grouped (one rule with the documents' text)
+    assert relief.value == plan.inputs.relief_interval_m and relief.number_format == "#,##0.00"
     assert cells[view.fmt("bands")].number_format == "#,##0"
     assert view.tables.built.count("film_inputs") == 1

@@ -33,6 +33,7 @@ from scanplan.reports.chartscale import (
     text_width_pt,
 )
 from scanplan.reports.svgchart import Chart
+from scanplan.reports.views import ResultTables
 from scanplan.rules.registry import CONSTRAINTS
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -208,10 +209,12 @@ def _all_svgs(examples) -> dict[tuple[str, str, str], str]:
     for name, r in examples.items():
         for loc in ("en", "ru"):
             if r.film is not None:
-                out[name, "constraints", loc] = plots.constraints_svg(r.film.job.plan, loc)
+                film = ResultTables.of_jobs(r.film.job)
+                out[name, "constraints", loc] = plots.constraints_svg(film, loc)
             if r.uav is not None:
-                out[name, "mtf", loc] = plots.mtf_svg(r.uav.job.plan, loc)
-                out[name, "height", loc] = plots.height_svg(r.uav.job.plan, loc)
+                uav = ResultTables.of_jobs(None, r.uav.job)
+                out[name, "mtf", loc] = plots.mtf_svg(uav, loc)
+                out[name, "height", loc] = plots.height_svg(uav, loc)
                 if r.uav.terrain is not None:
                     out[name, "terrain", loc] = plots.terrain_svg(
                         r.uav.terrain, r.uav.job.plan.max_height_m, loc)
@@ -377,7 +380,7 @@ def test_the_nyquist_label_stands_clear_of_the_curves(examples):
     for name, r in examples.items():
         if r.uav is None:
             continue
-        svg = plots.mtf_svg(r.uav.job.plan, "en")
+        svg = plots.mtf_svg(ResultTables.of_jobs(None, r.uav.job), "en")
         root = ET.fromstring(svg.encode("utf-8"))
         label = next(e for e in root.iter(f"{SVG}text") if e.text == "Nyquist")
         y = float(re.match(r"translate\(\S+ (\S+)\)", label.get("transform")).group(1))
@@ -394,7 +397,7 @@ def test_photo_scale_ticks_read_as_the_scales_in_the_text(locale, expected):
     """The constraints plot labels its photo scales as every sentence and table writes
     them (``1:10000``, ``1:10 000``): the denominator, not a grouped number (``10,000``)."""
     plan = plan_project(load_project(ROOT / "examples" / "instruction-2000-film.toml")).film
-    svg = plots.constraints_svg(plan.job.plan, locale)
+    svg = plots.constraints_svg(ResultTables.of_jobs(plan.job), locale)
     ticks = [x for x in _strings(svg) if x.replace("\u00a0", "").isdigit()]
     assert ticks[:3] == expected
 
@@ -405,7 +408,8 @@ def test_the_highest_flown_at_the_maximum_shows_over_the_ceiling_it_equals(examp
     so both lines of the legend can be seen (the solid line hid it)."""
     p = examples["uav-town-valley-2000"].uav.job.plan
     assert p.max_flown_height_m == pytest.approx(p.ceiling_m)
-    svg = plots.height_svg(p, "en")
+    svg = plots.height_svg(ResultTables.of_jobs(None, examples["uav-town-valley-2000"].uav.job),
+                           "en")
     ceiling = re.search(r'<path d="(M[\d.]+ [\d.]+V[\d.]+)"[^>]*stroke="#8c564b"', svg)
     flown = re.search(r'<path d="(M[\d.]+ [\d.]+V[\d.]+)"[^>]*stroke="#ff7f0e"', svg)
     assert ceiling and flown and ceiling[1] == flown[1]

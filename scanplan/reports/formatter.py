@@ -24,6 +24,7 @@ that constructs one.
 from __future__ import annotations
 
 import functools
+from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from typing import Any
 
@@ -292,6 +293,8 @@ class Formatter:
             return self.yes_no(value)
         if isinstance(value, int | float):
             return self.g(value)
+        if isinstance(value, Mapping):  # a name in both languages (i18n.messages.Names)
+            return str(value.get(self.locale) or value.get("en", ""))
         return self.message(value) if not isinstance(value, str) or hasattr(
             value, "code") else value
 

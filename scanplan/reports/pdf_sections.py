@@ -14,18 +14,15 @@ import math
 import re
 from typing import TYPE_CHECKING, Any
 
-from ..core.flight import MAX_BLUR_PX
 from ..i18n.labels import LABELS
 from ..i18n.messages import localize
 from ..norms import NormSet
 from ..norms.schema import DIGITAL_ONLY_PARAMETERS
 from ..project.jobs import ScanJob, UavJob
-from ..rules.film import CONSTRAINTS, ScanPlan
-from ..rules.uav import UavPlan
 from .formatter import Formatter
 from .plots import view_plot_uri
 from .view import ReportView, warning_heading_key
-from .views import Row, Table
+from .views import ResultTables, Row, Table
 from .wording import (
     object_status,
     param_name,
@@ -135,39 +132,41 @@ def _film_inputs(tbl: Table, ns: NormSet, f: Formatter) -> list[tuple[str, str]]
 
 
 def _scan_view(job: ScanJob, view: ReportView, f: Formatter) -> dict[str, Any]:
-    plan: ScanPlan = job.plan
-    inp, rules, ns = plan.inputs, plan.rules, job.norm_set
+    """The film section: its inputs, the constraints × photo scales tables, why each scale's
+    constraint binds, the interpretation limit, the smallest photo scale each scan pixel
+    supports, the formulas, the norm set's parameters, the warnings, the chart."""
+    ns = job.norm_set
     inputs = _film_inputs(view.tables["film_inputs"], ns, f)
-    obj = inp.object
+    obj = view.tables["film_inputs"].row("object").value
     obj_name = f.object(obj) if obj is not None else ""
 
     # at most _MAX_COLUMNS photo scales per table, so a wide plan stays inside A4
-    scen = plan.scenarios
-    n_tables = math.ceil(len(scen) / _MAX_COLUMNS)
-    size = math.ceil(len(scen) / n_tables)
-    tables = [_scan_table(view.tables["film_constraints"], slice(i, i + size), f)
-              for i in range(0, len(scen), size)]
+    film = view.tables["film_constraints"]
+    n_tables = math.ceil(len(film.columns) / _MAX_COLUMNS)
+    size = math.ceil(len(film.columns) / n_tables)
+    tables = [_scan_table(film, slice(i, i + size), f)
+              for i in range(0, len(film.columns), size)]
 
-    explanations = [f.message(s.explanation, ns)
-                    for s in plan.scenarios]
+    explanations = [f.message(r.value, ns) for r in view.tables["film_explanations"].rows]
 
+    reach_table = view.tables["film_reach"]
+    lim = reach_table.row("interpretation_limit")
+    mci = lim.value
     limit = ""
-    mci = plan.interpretation_limit_photo_scale
     if mci is not None and obj is not None:
-        limit = f("interpretation_limit_sentence", object=obj_name, p=f.g(rules.probability),
-                        scale=f.floor_scale(mci), ratio=f.num(mci / inp.map_scale, 1),
-                        r=f.g(inp.resolving_power_lpmm))
-    reach = [{"pixel": f.g(r.pixel_um),
-              "scale": f.floor_scale(r.max_photo_scale) if r.max_photo_scale > 0
-              else f("none"),
-              "limit": f.cname(r.limit),
-              "interpretable": (f.floor_scale(r.max_photo_scale_interpretable)
-                                if r.max_photo_scale_interpretable else f("none"))}
-             for r in plan.max_photo_scales]
-    formulas = [{"id": cid, "name": f.constraint(cid),
-                 "equation": f.cite(localize(CONSTRAINTS[cid].equation, f.locale)),
-                 "protects": localize(CONSTRAINTS[cid].protects, f.locale)}
-                for cid in plan.constraint_ids]
+        limit = f("interpretation_limit_sentence", object=obj_name,
+                  p=f.g(lim.fields["probability"]), scale=f.floor_scale(mci),
+                  ratio=f.num(lim.fields["ratio"], 1), r=f.g(lim.fields["resolving_power"]))
+    reach = [{"pixel": f.g(pixel),
+              "scale": f.floor_scale(largest) if largest is not None else f("none"),
+              "limit": f.cname(limiting),
+              "interpretable": f.floor_scale(interpretable) if interpretable
+              else f("none")}
+             for r in reach_table.rows if r.key == "reach"
+             for pixel, largest, limiting, interpretable in [r.values]]
+    formulas = [{"id": r.key, "name": f.constraint(r.key),
+                 "equation": f.cite(f.text(r.values[0])), "protects": f.text(r.values[1])}
+                for r in view.tables["film_formulas"].rows]
     params = [{"name": param_name(ns, k, f.locale),
                "value": param_value(ns, k, v, f.locale, f.g),
                "source": with_status(f.cite(ns.parameter_sources.get(k, "")),
@@ -210,52 +209,52 @@ def _scan_table(film: Table, part: slice, f: Formatter) -> dict[str, Any]:
     return {"header": header, "rows": rows, "summary": summary}
 
 
-def _uav_inputs(job: UavJob, f: Formatter) -> list[tuple[str, str]]:
-    """The UAV section's inputs: camera, heights, speed, overlaps, scene, map."""
-    plan: UavPlan = job.plan
-    inp, ns, h = plan.inputs, job.norm_set, plan.heights_m
+def _uav_inputs(tables: ResultTables, ns: NormSet, f: Formatter) -> list[tuple[str, str]]:
+    """The UAV section's inputs (the ``uav_inputs`` table), each number in its shortest
+    form, a measured size to 4 significant digits: camera, heights, speed, overlaps,
+    scene, map."""
+    r = {row.key: row for row in tables["uav_inputs"].rows}
+    v = {key: row.value for key, row in r.items()}
     m = f("m")
-    cam = f.camera(ns, inp.camera, inp.camera_name)
     inputs: list[tuple[str, str]] = []
-    if cam:
-        inputs.append((f("camera"), cam))
+    if v["camera"] is not None:
+        inputs.append((f("camera"), f.show(v["camera"])))
+    low, high = v["heights"]
+    planned = r["heights"].fields["planned"]
     inputs += [
-        (f("pixel_pitch_um"), f.sig(inp.pixel_um)),
-        (f("focal_mm"), f.g(inp.focal_mm)),
-        (f("f_number"), f.g(inp.f_number)),
-        (f("sensor_mm"), f"{f.sig(inp.sensor_width_mm)} × "
-                                   f"{f.sig(inp.sensor_height_mm)}"),
-        (f("orientation"), f(f"orientation_{inp.orientation}")),
-        (f("height_m"), f.g(h["planned"])),
+        (f("pixel_pitch_um"), f.sig(v["pixel_um"])),
+        (f("focal_mm"), f.g(v["focal_mm"])),
+        (f("f_number"), f.g(v["f_number"])),
+        (f("sensor_mm"), f"{f.sig(v['sensor_width_mm'])} × {f.sig(v['sensor_height_mm'])}"),
+        (f("orientation"), f(f"orientation_{v['orientation']}")),
+        (f("height_m"), f.g(planned)),
     ]
-    if h["max"] != h["min"] or h["min"] != h["planned"]:
-        inputs.append((f("flown_heights"), f"{f.g(h['min'])} – {f.g(h['max'])}"))
-    if inp.ceiling_m is not None:
-        inputs.append((f("ceiling_m"), f.g(inp.ceiling_m)))
-    if inp.gsd_target_m is not None:
-        inputs.append((f("gsd_target_cm"), f.g(inp.gsd_target_m * 100.0)))
+    if high != low or low != planned:
+        inputs.append((f("flown_heights"), f"{f.g(low)} – {f.g(high)}"))
+    if v["ceiling_m"] is not None:
+        inputs.append((f("ceiling_m"), f.g(v["ceiling_m"])))
+    if v["gsd_target_cm"] is not None:
+        inputs.append((f("gsd_target_cm"), f.g(v["gsd_target_cm"])))
     inputs += [
-        (f("ground_speed_ms"), f.g(inp.speed_ms)),
-        (f("exposure_s"), f.g(inp.exposure_s)),
-        (f("overlaps"),
-         f"{f.g(inp.forward_overlap_pct)} / {f.g(inp.side_overlap_pct)}"),
-        (f("scene"), f"{f.g(inp.r_max)} / {f.g(inp.r_min)}"),
-        (f("threshold_k0"), f.g(inp.threshold_k0)),
+        (f("ground_speed_ms"), f.g(v["speed_ms"])),
+        (f("exposure_s"), f.g(v["exposure_s"])),
+        (f("overlaps"), f"{f.g(v['forward_overlap_pct'])} / {f.g(v['side_overlap_pct'])}"),
+        (f("scene"), f"{f.g(v['r_max'])} / {f.g(v['r_min'])}"),
+        (f("threshold_k0"), f.g(v["threshold_k0"])),
     ]
-    if inp.map_scale is not None:
-        inputs += [(f("map_scale"), f.scale(inp.map_scale)),
-                   (f("relief_interval_m"), f.g(inp.relief_interval_m))]
-        obj = inp.map_object
-        if obj is not None:
-            name = f.object(obj)
-            inputs.append((f("object"), f"{name}: {f.g(obj.size_m)} {m}, "
-                                              f"{f.shape(ns, obj.shape)}, "
-                                              f"B = {f.g(obj.shape_coefficient)}"))
+    if v["map_scale"] is not None:
+        inputs += [(f("map_scale"), f.scale(v["map_scale"])),
+                   (f("relief_interval_m"), f.g(v["relief_interval_m"]))]
+        if v["object"] is not None:
+            inputs.append((f("object"), f"{f.object(v['object'])}: "
+                                        f"{f.g(v['object_size_m'])} {m}, "
+                                        f"{f.show(v['shape'])}, "
+                                        f"B = {f.g(v['shape_coefficient'])}"))
     inputs.append((f("norm_set"), _norm_view(ns, f)["title"]))
     return inputs
 
 
-def _uav_results(plan: UavPlan, view: ReportView, f: Formatter
+def _uav_results(view: ReportView, f: Formatter
                  ) -> tuple[list[str], list[dict[str, Any]], str]:
     """The result table's columns (the planned and the highest flown height), its rows
     and the motion-blur sentence."""
@@ -265,9 +264,10 @@ def _uav_results(plan: UavPlan, view: ReportView, f: Formatter
                 "cells": [f.value(r, v) for v in r.values]
                 + [""] * (len(cols) - len(r.values))}
                for r in table.rows]
-    blur = f("blur_limit", blur=f.g(MAX_BLUR_PX),
-                   exposure=f"1/{math.ceil(1 / plan.max_exposure_s):d}",
-                   speed=f.num(plan.max_speed_ms, 1))
+    exposure = view.tables["uav_figures"].row("max_exposure_s")
+    speed = view.tables["uav_figures"].row("max_speed_ms").value
+    blur = f("blur_limit", blur=f.g(exposure.fields["blur_px"]),
+             exposure=f"1/{math.ceil(1 / exposure.value):d}", speed=f.num(speed, 1))
     return cols, results, blur
 
 
@@ -278,7 +278,7 @@ def _uav_flight(flight: Table, f: Formatter) -> list[tuple[str, str]]:
                         for key in ("photo_interval", "overlap_range"))
     rows = [
         (f("footprint"), f"{f.num(v['footprint'][0], 0)} × "
-                                   f"{f.num(v['footprint'][1], 0)}"),
+                         f"{f.num(v['footprint'][1], 0)}"),
         (f("base_m"), f.num(v["base"], 1)),
         (f("line_spacing_m"), f.num(v["line_spacing"], 1)),
         (f("photo_interval_s"), f.num(v["photo_interval"], 2)
@@ -303,95 +303,108 @@ def _uav_flight(flight: Table, f: Formatter) -> list[tuple[str, str]]:
     return rows
 
 
-def _uav_limits(plan: UavPlan, view: ReportView, f: Formatter) -> dict[str, Any]:
-    """The constraints as maximum heights, the sentence on the binding one, the height
-    accuracy forms and the formulas."""
-    inp, h = plan.inputs, plan.heights_m
+def _uav_limits(view: ReportView, f: Formatter) -> dict[str, Any]:
+    """The constraints as maximum heights (the ``uav_limits`` table), the sentence on the
+    binding one, the height accuracy forms (``uav_accuracy``) and the formulas."""
+    limit_rows = view.tables["uav_limits"].rows
     limits = [{"id": r.key, "name": f.constraint(r.key),
                "limit": f.num(limit, 3 if limit < 10 else 0),
                "compares": compares, "max_height": f.num(top, 0),
                "max_flown": f.num(flown, 0),
                "margin": "" if margin is None else _margin(f, margin),
                "binding": "binding" in r.flags}
-              for r in view.tables["uav_limits"].rows
+              for r in limit_rows
               for limit, compares, top, flown, margin in [r.values]]
+    v = {row.key: row.value for row in view.tables["uav_inputs"].rows}
+    fig = {row.key: row.value for row in view.tables["uav_figures"].rows}
     limits_title = ""
     max_sentence = ""
-    if plan.limits and inp.map_scale is not None:
-        tol = inp.height_tolerance_up_pct
-        limits_title = f("limits_title", scale=f.scale(inp.map_scale),
-                               hc=f.g(inp.relief_interval_m)) + (
+    if limit_rows and v["map_scale"] is not None:
+        tol = v["height_tolerance_up_pct"]
+        limits_title = f("limits_title", scale=f.scale(v["map_scale"]),
+                         hc=f.g(v["relief_interval_m"])) + (
             f("tol_note", tol=f.g(tol)) if tol else "")
-        b = next(x for x in plan.limits if x.binding)
-        max_sentence = f("max_height_sentence", h=f.num(plan.max_height_m, 0),
-                               cid=b.id, name=f.constraint(b.id),
-                               reason=f.cite(localize(b.reason, f.locale)))
+        b = next(r for r in limit_rows if "binding" in r.flags)
+        max_sentence = f("max_height_sentence", h=f.num(fig.get("max_height_m"), 0),
+                         cid=b.key, name=f.constraint(b.key),
+                         reason=f.cite(f.text(b.fields["reason"])))
     height_forms = ""
-    acc = plan.height_accuracy
+    acc = {row.key: row for row in view.tables["uav_accuracy"].rows}
     if acc:
         m = f("m")
-        height_forms = f("height_forms_sentence", sigma=f.num(
-            acc["sigma_z_at_highest_flown_height_m"], 3), h=f.g(h["max"]),
-            vz=f.g(acc["height_accuracy_m"]), forms="; ".join(
-                f"{f('hf_' + k)}: {f.num(acc['forms'][k]['max_planned_height_m'], 0)} {m}"
-                + (f" ({f('hf_used')})" if k == acc.get("formula") else "")
-                for k in ("normal_case", "instruction", "parallax")))
+        sz = acc["sigma_z_m"]
+        height_forms = f("height_forms_sentence", sigma=f.num(sz.value, 3),
+                         h=f.g(sz.fields["at"]), vz=f.g(acc["height_accuracy_m"].value),
+                         forms="; ".join(
+            f"{f('hf_' + k)}: {f.num(acc['form_' + k].value, 0)} {m}"
+            + (f" ({f('hf_used')})" if "used" in acc["form_" + k].flags else "")
+            for k in ("normal_case", "instruction", "parallax")))
     formulas = [{"equation": eq, "meaning": f(key), "source": f.cite(f(src))}
                 for eq, key, src in _UAV_FORMULAS
-                if plan.limits or key not in ("formula_pd", "formula_tol")]
-    limit_formulas = [{"id": lim.id, "name": f.constraint(lim.id),
-                       "equation": f.cite(localize(lim.equation, f.locale))}
-                      for lim in plan.limits]
+                if limit_rows or key not in ("formula_pd", "formula_tol")]
+    limit_formulas = [{"id": r.key, "name": f.constraint(r.key),
+                       "equation": f.cite(f.text(r.fields["equation"]))}
+                      for r in limit_rows]
     return {"limits": limits, "limits_title": limits_title, "max_sentence": max_sentence,
             "height_forms": height_forms, "formulas": formulas,
             "limit_formulas": limit_formulas}
 
 
 def _uav_view(job: UavJob, view: ReportView, f: Formatter) -> dict[str, Any]:
-    plan: UavPlan = job.plan
-    ns, h = job.norm_set, plan.heights_m
-    cols, results, blur = _uav_results(plan, view, f)
+    """The digital-camera section: inputs, results, flight, recognition, the constraints
+    as heights, warnings, the charts."""
+    ns = job.norm_set
+    cols, results, blur = _uav_results(view, f)
+    recognition_table = view.tables["uav_recognition"]
     recognition = [{
         "object": f.object_named(ns, r.fields["name"], size, scale),
         "map": f.scale(scale) if scale else "—", "size": f.g(size),
         "shape": f.shape(ns, shape), "p": f.num(p, 2),
         "p_max": f.num(p_max, 2), "p_corner": f.num(p_corner, 2)}
-        for r in view.tables["uav_recognition"].rows
+        for r in recognition_table.rows
         for scale, size, shape, p, p_max, p_corner in [r.values]]
+    planned, highest = (c.value for c in recognition_table.columns[3:5])
     return {
-        "inputs": _uav_inputs(job, f), "cols": cols, "results": results, "blur": blur,
-        "flight": _uav_flight(view.tables["uav_flight"], f),
+        "inputs": _uav_inputs(view.tables, ns, f), "cols": cols, "results": results,
+        "blur": blur, "flight": _uav_flight(view.tables["uav_flight"], f),
         "recognition": recognition, "recognition_cols": [
-            f("at_height", h=f.g(h["planned"])),
-            f("at_height", h=f.g(h["max"])),
-            f("corner_at", h=f.g(h["max"]))],
-        **_uav_limits(plan, view, f),
+            f("at_height", h=f.g(planned)), f("at_height", h=f.g(highest)),
+            f("corner_at", h=f.g(highest))],
+        **_uav_limits(view, f),
         "warnings": _warnings(view.tables["uav_warnings"], f, ns),
         "norm": _norm_view(ns, f),
         "plot_mtf": view_plot_uri(view, "mtf"),
         "plot_height": view_plot_uri(view, "height"),
-        "not_resolvable": not plan.resolvable,
+        "not_resolvable": not view.tables["uav_figures"].row("resolvable").value,
     }
 
 
-def _comparison_view(scan: ScanJob, uav: UavJob, f: Formatter) -> dict[str, Any]:
-    sp, up = scan.plan, uav.plan
+def _comparison_view(view: ReportView, f: Formatter) -> dict[str, Any]:
+    """Film and digital camera side by side, without a specification (``scan`` and
+    ``uav`` in one report): the map scales, the binding constraints, the results, the
+    warnings."""
+    t = view.tables
+    film = t["film_constraints"]
+    scales = [c.value for c in film.columns]
+    pixels, bindings = film.row("scan_pixel_um").values, film.row("binding").values
+    fig = {row.key: row.value for row in t["uav_figures"].rows}
+    uav_scale = t["uav_inputs"].row("map_scale").value
     um, m = f("um"), f("m")
-    film_result = "; ".join(f"{f.scale(s.photo_scale)}: {f.num(s.scan_pixel_um, 1)} {um} "
-                            f"({s.binding})" for s in sp.scenarios)
-    uav_result = (f"{f('max_height_m').split(',')[0]}: {f.num(up.max_height_m, 0)} {m}"
-                  f" ({up.binding}); " if up.max_height_m is not None else "") + (
-        f"GSD {f.num(up.gsd_m, 3)} {m}, L {f.num(up.ground_resolution_m, 3)} {m} "
-        f"({f('at_height', h=f.g(up.heights_m['planned']))})")
-    film_binding = ", ".join(dict.fromkeys(f"{s.binding} — {f.constraint(s.binding)}"
-                                           for s in sp.scenarios))
+    film_result = "; ".join(f"{f.scale(sc)}: {f.num(px, 1)} {um} ({b})"
+                            for sc, px, b in zip(scales, pixels, bindings, strict=True))
+    binding = fig.get("binding")
+    uav_result = (f"{f('max_height_m').split(',')[0]}: {f.num(fig['max_height_m'], 0)} {m}"
+                  f" ({binding}); " if fig.get("max_height_m") is not None else "") + (
+        f"GSD {f.num(fig['gsd_m'], 3)} {m}, L {f.num(fig['ground_resolution_m'], 3)} {m} "
+        f"({f('at_height', h=f.g(fig['height_m']))})")
+    film_binding = ", ".join(dict.fromkeys(f"{b} — {f.constraint(b)}" for b in bindings))
     return {"rows": [
-        (f("map_scale"), f.scale(sp.inputs.map_scale),
-         f.scale(up.inputs.map_scale) if up.inputs.map_scale is not None else "—"),
-        (f("binding"), film_binding,
-         f"{up.binding} — {f.constraint(up.binding)}" if up.binding else "—"),
+        (f("map_scale"), f.scale(t["film_inputs"].row("map_scale").value),
+         f.scale(uav_scale) if uav_scale is not None else "—"),
+        (f("binding"), film_binding, f"{binding} — {f.constraint(binding)}" if binding
+         else "—"),
         (f("result"), film_result, uav_result),
-        (f("warnings"), str(len(sp.warnings)), str(len(up.warnings))),
+        (f("warnings"), str(len(t["film_warnings"].rows)), str(len(t["uav_warnings"].rows))),
     ]}
 
 

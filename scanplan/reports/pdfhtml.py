@@ -104,15 +104,15 @@ def _environment() -> jinja2.Environment:
     return env
 
 
-def _terrain_plot(spec: Any, f: Formatter) -> str | None:
-    """The heights-above-ground figure of a ``[terrain]`` plan (issue 12), else None."""
+def _terrain_plot(spec: Any, view: ReportView, f: Formatter) -> str | None:
+    """The heights-above-ground figure of a ``[terrain]`` plan, else None."""
     tr = getattr(getattr(spec, "uav", None), "terrain", None)
     if tr is None or len(tr.layout.photos) == 0 or tr.summary()["source"] != "dem":
         return None  # a ground range without a DEM: flat ground under every photo, not drawn
     from . import plots
 
-    limit = spec.uav.job.plan.max_height_m
-    return svg_data_uri(plots.terrain_svg(tr, limit, f.locale))
+    top = {r.key: r.value for r in view.tables["uav_figures"].rows}.get("max_height_m")
+    return svg_data_uri(plots.terrain_svg(tr, top, f.locale))
 
 
 def _terrain_rows(spec: Any, f: Formatter) -> list[tuple[str, str]]:
@@ -206,7 +206,7 @@ def render_html(*, scan: ScanJob | None = None, uav: UavJob | None = None,
     scan_view = _scan_view(scan, view, f) if scan is not None else None
     uav_view = _uav_view(uav, view, f) if uav is not None else None
     if uav_view is not None:
-        uav_view["plot_terrain"] = _terrain_plot(spec, f)
+        uav_view["plot_terrain"] = _terrain_plot(spec, view, f)
         uav_view["terrain_rows"] = _terrain_rows(spec, f)
     spec_view = _spec_view(spec, view, f) if spec is not None else None
     design = _design_view(view, f) if spec is not None else None
@@ -220,7 +220,7 @@ def render_html(*, scan: ScanJob | None = None, uav: UavJob | None = None,
         "scan": scan_view,
         "uav": uav_view,
         # with a specification its own side-by-side table is shown; not this one as well
-        "comparison": (_comparison_view(scan, uav, f)
+        "comparison": (_comparison_view(view, f)
                        if scan is not None and uav is not None
                        and not (spec is not None and spec.comparison) else None),
         "spec": spec_view,

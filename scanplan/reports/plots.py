@@ -1,11 +1,13 @@
-"""Plots for the PDF report: deterministic SVG written directly (:mod:`.svgchart`).
+"""Plots for the PDF report and the page: deterministic SVG written directly
+(:mod:`.svgchart`).
 
-Each function draws numbers already held by a plan object (``ScanPlan.sweep``,
-``UavPlan.mtf_centre``, ``UavPlan.height_curve``, a terrain result's photos) — nothing is
-recomputed here. No plotting library is imported: the charts are SVG text (polylines,
-circles, text) whose labels name the report's bundled DejaVu Sans (``Scanplan Sans``,
-templates/fonts), so the figures look the same on any machine, the PDF embeds only the
-bundled font and paints them quickly. The same plan gives the same bytes.
+Each function draws the tables of a result (:class:`~.views.ResultTables`: the film plan's
+sweep, the UAV plan's MTF and height curve, its heights and limits) or a terrain result's
+photos — nothing is recomputed here. No plotting library is imported: the charts are SVG
+text (polylines, circles, text) whose labels name the report's bundled DejaVu Sans
+(``Scanplan Sans``, templates/fonts), so the figures look the same on any machine, the PDF
+embeds only the bundled font and paints them quickly. The same plan gives the same
+bytes.
 """
 
 from __future__ import annotations
@@ -15,12 +17,10 @@ from typing import Any
 
 from ..i18n.labels import t
 from ..i18n.messages import scale_text
-from ..i18n.numbers import Numbers
-from ..rules.film import ScanPlan
-from ..rules.uav import UavPlan
+from .formatter import formatter
 from .svgchart import Chart, log_ticks
 from .view import ReportView, svg_data_uri
-from .views import constraint_title
+from .views import ResultTables, constraint_title
 
 __all__ = ["PLOT_JOBS", "constraints_svg", "draw_view_plots", "height_svg", "mtf_svg",
            "number", "terrain_svg", "view_plot", "view_plot_uri"]
@@ -62,21 +62,23 @@ def number(x: float, digits: int, locale: str) -> str:
         ``"12.5"`` / ``"12,5"``; ``"10,000"`` / ``"10 000"`` (no-break space); ``"—"`` for
         a non-finite value.
     """
-    return Numbers(locale).num(x, digits)
+    return formatter(locale).num(x, digits)
 
 
 
 
-def constraints_svg(plan: ScanPlan, locale: str = "en") -> str:
-    """Each constraint's scan pixel against the photo scale (``plan.sweep``), log–log.
+def constraints_svg(tables: ResultTables, locale: str = "en") -> str:
+    """Each constraint's scan pixel against the photo scale (the ``film_sweep`` table),
+    log–log.
 
     The evaluated photo scales are marked on the scan pixel curve (the minimum) and, when
-    at most six, labelled with the binding constraint and the scan pixel.
+    at most six, labelled with the binding constraint and the scan pixel
+    (``film_constraints``).
 
     Parameters
     ----------
-    plan : ScanPlan
-        A plan with its dense sweep.
+    tables : ResultTables
+        A film plan's tables.
     locale : {"en", "ru"}
         Language of the labels and decimal separator.
 
@@ -85,25 +87,26 @@ def constraints_svg(plan: ScanPlan, locale: str = "en") -> str:
     str
         An SVG document.
     """
-    sweep = plan.sweep
-    xs = list(sweep["photo_scale"])
+    sweep = {r.key: r for r in tables["film_sweep"].rows}
+    xs = list(sweep["photo_scale"].values)
     chart = Chart(locale)
     ax = chart.panels[0]
     more = iter(_MORE_COLOURS)
-    ax.plot(xs, sweep["scan_pixel_um"], colour="#000000", width=2.4, alpha=0.25,
+    ax.plot(xs, sweep["scan_pixel_um"].values, colour="#000000", width=2.4, alpha=0.25,
             label=t("scan_pixel_um", locale))  # beneath the constraints' lines
-    ids = [cid for cid in plan.constraint_ids if cid in sweep]
+    ids = [cid for cid, r in sweep.items() if "constraint" in r.flags]
     colours = {cid: _COLOURS.get(cid) or next(more, "#000000") for cid in ids}
     for cid in sorted(ids, key=lambda c: c in _DASHES):  # solid first, dashed over them
         name = constraint_title(cid, locale)
-        ax.plot(xs, sweep[cid], colour=colours[cid], width=1.1, dash=_DASHES.get(cid),
+        ax.plot(xs, sweep[cid].values, colour=colours[cid], width=1.1, dash=_DASHES.get(cid),
                 label=f"{cid} — {name}")
-    px = [s.photo_scale for s in plan.scenarios]
-    py = [s.scan_pixel_um for s in plan.scenarios]
+    film = tables["film_constraints"]
+    px = [c.value for c in film.columns]
+    py = list(film.row("scan_pixel_um").values)
     ax.markers(px, py, colour="#000000", size=4.5)
-    for s in plan.scenarios if len(plan.scenarios) <= 6 else ():
-        ax.annotate(f"{s.binding} {number(s.scan_pixel_um, 1, locale)}",
-                    s.photo_scale, s.scan_pixel_um, dy=11, anchor="middle", size=6.5)
+    for x, y, b in zip(px, py, film.row("binding").values, strict=True) if len(px) <= 6 \
+            else ():
+        ax.annotate(f"{b} {number(y, 1, locale)}", x, y, dy=11, anchor="middle", size=6.5)
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlim(min(xs), max(xs))
@@ -129,13 +132,14 @@ def _scale_ticks(evaluated: list[float], lo: float, hi: float) -> list[float]:
     return sorted(ticks)
 
 
-def mtf_svg(plan: UavPlan, locale: str = "en") -> str:
-    """Image contrast and threshold contrast against frequency, with R marked.
+def mtf_svg(tables: ResultTables, locale: str = "en") -> str:
+    """Image contrast and threshold contrast against frequency (the ``uav_mtf`` table, at
+    the planned height), with R and the sensor's limit marked.
 
     Parameters
     ----------
-    plan : UavPlan
-        A plan with ``mtf_centre`` (at the planned height).
+    tables : ResultTables
+        A UAV plan's tables.
     locale : {"en", "ru"}
         Language of the labels and decimal separator.
 
@@ -144,8 +148,9 @@ def mtf_svg(plan: UavPlan, locale: str = "en") -> str:
     str
         An SVG document.
     """
-    m = plan.mtf_centre
-    freq = list(m["freq_lpmm"])
+    rows = {r.key: r for r in tables["uav_mtf"].rows}
+    m = {key: list(r.values) for key, r in rows.items()}
+    freq = m["freq_lpmm"]
     chart = Chart(locale)
     ax = chart.panels[0]
     ax.set_yscale("log")
@@ -154,7 +159,7 @@ def mtf_svg(plan: UavPlan, locale: str = "en") -> str:
     ax.plot(freq, m["threshold"], colour="#d62728", width=1.2, dash="--",
             label=t("threshold", locale))
     right = max(freq) * 1.02 if freq else 1.0
-    r = plan.resolving_power_lpmm
+    r = rows["resolving_power"].value if "resolving_power" in rows else None
     if r is not None:
         ax.axvline(r, colour="#000000", width=0.8, dash=":")
         # beside the line, on the side with room for the text
@@ -162,9 +167,10 @@ def mtf_svg(plan: UavPlan, locale: str = "en") -> str:
         ax.annotate(f"R = {number(r, 1, locale)}", r, 1.0, y_axes=True,
                     dx=-3 if near_end else 3, dy=10, anchor="end" if near_end else "start",
                     size=7)
-    ax.axvline(plan.nyquist_lpmm, colour="#808080", width=0.6)
-    ax.annotate(t("nyquist_short", locale), plan.nyquist_lpmm,
-                _clear_of(ax, m, freq, plan.nyquist_lpmm), y_axes=True, dx=-4, rotation=90,
+    nyquist = tables["uav_figures"].row("nyquist_lpmm").value
+    ax.axvline(nyquist, colour="#808080", width=0.6)
+    ax.annotate(t("nyquist_short", locale), nyquist,
+                _clear_of(ax, m, freq, nyquist), y_axes=True, dx=-4, rotation=90,
                 anchor="middle", size=6.5, colour="#808080")
     ax.set_xlim(0, right)
     ax.set_xlabel(t("frequency_lpmm", locale))
@@ -183,13 +189,15 @@ def _clear_of(ax: Any, m: dict[str, Any], freq: list[float], at: float) -> float
     return max((0.5, 0.2, 0.8), key=lambda y: min((abs(y - f) for f in taken), default=1.0))
 
 
-def height_svg(plan: UavPlan, locale: str = "en") -> str:
-    """GSD and ground resolution L against flight height, planned/flown/maximum heights.
+def height_svg(tables: ResultTables, locale: str = "en") -> str:
+    """GSD and ground resolution L against flight height (the ``uav_height_curve``
+    table), the planned, flown and maximum heights (``uav_figures``), the binding limit
+    (``uav_limits``).
 
     Parameters
     ----------
-    plan : UavPlan
-        A plan with ``height_curve``.
+    tables : ResultTables
+        A UAV plan's tables.
     locale : {"en", "ru"}
         Language of the labels and decimal separator.
 
@@ -198,8 +206,12 @@ def height_svg(plan: UavPlan, locale: str = "en") -> str:
     str
         An SVG document.
     """
-    c = plan.height_curve
-    hs = list(c["height_m"])
+    c = {r.key: list(r.values) for r in tables["uav_height_curve"].rows}
+    fig = {r.key: r.value for r in tables["uav_figures"].rows}
+    planned, highest = fig["height_m"], fig["height_max_m"]
+    ceiling, top = fig.get("ceiling_m"), fig.get("max_height_m")
+    binding, flown = fig.get("binding"), fig.get("max_flown_height_m")
+    hs = c["height_m"]
     ls = [math.nan if v is None else v for v in c["ground_resolution_m"]]
     chart = Chart(locale)
     ax = chart.panels[0]
@@ -208,32 +220,31 @@ def height_svg(plan: UavPlan, locale: str = "en") -> str:
     # planned / highest flown at the plan; maximum planned / its highest flown height:
     # a GSD or L limit line meets its curve at the highest flown height, not the plan
     marks: list[tuple[float, str, Any, str]] = [
-        (plan.heights_m["planned"], "#000000", "-", t("planned", locale))]
-    if plan.heights_m["max"] != plan.heights_m["planned"]:
-        marks.append((plan.heights_m["max"], "#808080", "--", t("highest_flown", locale)))
+        (planned, "#000000", "-", t("planned", locale))]
+    if highest != planned:
+        marks.append((highest, "#808080", "--", t("highest_flown", locale)))
     # the ceiling before the maximum's lines: where the ceiling binds, the highest flown
     # height at the maximum is the ceiling, and its dash-dot is drawn over the solid line
-    if plan.ceiling_m is not None and plan.ceiling_m <= max(hs):
-        marks.append((plan.ceiling_m, "#8c564b", "-", t("HC", locale)))
-    if plan.max_height_m is not None and plan.binding is not None:
-        marks.append((plan.max_height_m, "#d62728", ":",
-                      t("h_max_planned", locale).format(cid=plan.binding)))
-        flown = plan.max_flown_height_m
-        if flown is not None and flown > plan.max_height_m * (1 + 1e-9):
+    if ceiling is not None and ceiling <= max(hs):
+        marks.append((ceiling, "#8c564b", "-", t("HC", locale)))
+    if top is not None and binding:
+        marks.append((top, "#d62728", ":", t("h_max_planned", locale).format(cid=binding)))
+        if flown is not None and flown > top * (1 + 1e-9):
             marks.append((flown, "#ff7f0e", (5, 2, 1, 2), t("h_max_flown", locale)))
+    f = formatter(locale)
     for h, colour, style, label in marks:
         # the maximum planned height and its highest flown one in whole metres, as the
         # tables state them
-        text = (number(h, 0, locale) if h in (plan.max_height_m, plan.max_flown_height_m)
-                else Numbers(locale).height(h))
+        text = f.num(h, 0) if h in (top, flown) else f.height(h)
         ax.axvline(h, colour=colour, dash=style, width=0.9,
                    label=f"{label}: {text} {t('m', locale)}")
-    for lim in plan.limits:
-        if lim.binding and lim.compares in ("GSD", "L") and lim.limit_m <= max(
+    for lim in tables["uav_limits"].rows:
+        limit_m, compares = lim.values[0], lim.values[1]
+        if "binding" in lim.flags and compares in ("GSD", "L") and limit_m <= max(
                 max(c["gsd_m"]), max((v for v in ls if v == v), default=0.0)) * 1.05:
-            ax.axhline(lim.limit_m, colour="#d62728", width=0.6, dash="-.",
-                       label=f"{lim.compares} ≤ {number(lim.limit_m, 3, locale)} "
-                             f"{t('m', locale)} ({lim.id})")
+            ax.axhline(limit_m, colour="#d62728", width=0.6, dash="-.",
+                       label=f"{compares} ≤ {number(limit_m, 3, locale)} "
+                             f"{t('m', locale)} ({lim.key})")
     ax.set_xlim(0, max(hs))
     ax.set_ylim(bottom=0)
     ax.set_xlabel(t("height_m", locale))
@@ -324,8 +335,9 @@ def view_plot(view: ReportView, name: str) -> str:
         A deterministic SVG.
     """
     if name not in view.charts:
+        view.job_of(PLOT_JOBS[name])  # ValueError when the report has not that plan
         draw = {"constraints": constraints_svg, "mtf": mtf_svg, "height": height_svg}[name]
-        view.charts[name] = draw(view.job_of(PLOT_JOBS[name]).plan, view.locale)
+        view.charts[name] = draw(view.tables, view.locale)
     return view.charts[name]
 
 

@@ -26,7 +26,6 @@ from collections.abc import Callable, Iterable, Sequence
 from itertools import pairwise
 from typing import Any
 
-from ..i18n.numbers import Numbers
 from .chartscale import (
     ADVANCE,
     ASCENT_EM,
@@ -37,6 +36,7 @@ from .chartscale import (
     nice_ticks,
     text_width_pt,
 )
+from .formatter import formatter
 
 __all__ = ["ADVANCE", "Chart", "Panel", "estimate_width_pt", "log_ticks", "nice_ticks",
            "text_width_pt"]
@@ -348,7 +348,7 @@ class Chart:
     Parameters
     ----------
     locale : {"en", "ru"}
-        The tick labels' number format (:meth:`scanplan.i18n.numbers.Numbers.tick`).
+        The tick labels' number format (:meth:`scanplan.reports.formatter.Formatter.tick`).
     weights : sequence of float
         One panel per weight, top to bottom, heights in that ratio.
     plot_height_pt : float
@@ -369,7 +369,7 @@ class Chart:
 
     def __init__(self, locale: str = "en", weights: Sequence[float] = (1.0,), *,
                  plot_height_pt: float = 140.0, width_pt: float = WIDTH_PT) -> None:
-        self.numbers = Numbers(locale)
+        self.numbers = formatter(locale)  # its tick labels in the report's convention
         self.panels = [Panel(w) for w in weights]
         self.plot_height_pt, self.width_pt = plot_height_pt, width_pt
 

@@ -32,6 +32,16 @@ MB = "#,##0.0"
 M_LARGE = "#,##0.0"
 
 MISSING = "—"
+
+
+def number_format(digits: int) -> str:
+    """The cell format of a number shown with ``digits`` decimals: thousands grouped (one
+    rule with the documents' text: ``2,093.5``, shown by a Russian Excel as ``2 093,5``).
+
+    >>> number_format(0), number_format(2)
+    ('#,##0', '#,##0.00')
+    """
+    return "#,##0" + ("." + "0" * digits if digits > 0 else "")
 _ZIP_EPOCH = (1980, 1, 1, 0, 0, 0)
 _MAX_CELL_TEXT = 32_767
 

@@ -74,16 +74,16 @@ def _warning_lines(book: Book, scan: ScanJob | None, uav: UavJob | None, *,
 
 
 def _list_sep(book: Book) -> str:
-    """Between the scales of a list: ``"; "`` in Russian, where the comma is the decimal
-    separator (as the messages join them), ``", "`` in English."""
-    return "; " if book.loc == "ru" else ", "
+    """Between the scales of a list (the formatter's list separator)."""
+    return book.f.list_sep
 
 
 def norms_sheet(book: Book, scan: ScanJob | None, uav: UavJob | None) -> None:
     used: list[tuple[NormSet, list[Any], str]] = []
+    tables = book.view.tables
     for job, obj, section in (
-            (scan, scan.plan.inputs.object if scan else None, "film_scan"),
-            (uav, uav.plan.inputs.map_object if uav else None, "uav_section")):
+            (scan, tables["film_inputs"].row("object").value if scan else None, "film_scan"),
+            (uav, tables["uav_inputs"].row("object").value if uav else None, "uav_section")):
         if job is None:
             continue
         for ns, objs, _section in used:

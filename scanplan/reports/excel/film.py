@@ -72,18 +72,22 @@ def constraints_sheet(book: Book) -> None:
 
 
 def sweep_sheet(book: Book, job: ScanJob, spec: PlanResult | None = None) -> None:
-    sweep = job.plan.sweep
-    scales = list(sweep.get("photo_scale", []))
-    ids = [cid for cid in job.plan.constraint_ids if cid in sweep]
+    """The dense photo-scale sweep (the ``film_sweep`` table) with its chart, the
+    candidate photo scales marked (the recommended one: the specification's)."""
+    tables = book.view.tables
+    rows = {r.key: r for r in tables["film_sweep"].rows}
+    sweep = {key: list(r.values) for key, r in rows.items()}
+    scales = sweep["photo_scale"]
+    ids = [key for key, r in rows.items() if "constraint" in r.flags]
+    candidates = [c.value for c in tables["film_constraints"].columns]
     ws = book.sheet("sweep", landscape=True,
                     widths=(14,) + (16,) * len(ids) + (16, 30))
-    heads = [book.f("photo_scale")] + [f"{book.f.cname(cid)}, µm" if book.loc == "en"
-                                       else f"{book.f.cname(cid)}, мкм" for cid in ids]
+    heads = [book.f("photo_scale")] + [f"{book.f.cname(cid)}, {book.f('um')}" for cid in ids]
     _header(ws, 1, [*heads, book.f("scan_pixel_um"), book.f("binding")])
     n = len(scales)
     pixel_col = len(ids) + 2
-    binding = list(sweep.get("binding", []))
-    scan_px = list(sweep.get("scan_pixel_um", []))
+    binding = sweep["binding"]
+    scan_px = sweep["scan_pixel_um"]
     for i in range(n):
         row = i + 2
         put_num(ws, row, 1, scales[i], SCALE, missing=None)
@@ -101,7 +105,7 @@ def sweep_sheet(book: Book, job: ScanJob, spec: PlanResult | None = None) -> Non
     chart.x_axis.number_format = SCALE_RU if book.loc == "ru" else SCALE
     # a linear axis whose ticks fall on every candidate photo scale (a log axis would
     # label only 1:1000, 1:10000, ...)
-    lo, hi, step = _scale_ticks([s.photo_scale for s in job.plan.scenarios],
+    lo, hi, step = _scale_ticks(candidates,
                                 _finite(scales[0]) or 0.0, _finite(scales[-1]) or 1.0)
     chart.x_axis.scaling.min = lo
     chart.x_axis.scaling.max = hi
@@ -120,9 +124,11 @@ def sweep_sheet(book: Book, job: ScanJob, spec: PlanResult | None = None) -> Non
         _add_series(chart, ws, xref, 2 + j, n, book.f.cname(cid))
     _add_series(chart, ws, xref, pixel_col, n, book.f("scan_pixel_um"), width_emu=44450,
                 dash="dash", color="000000")
-    rec = spec.film.recommended if spec is not None and spec.film is not None else None
-    _candidate_markers(book, chart, ws, n + 3, rec.photo_scale if rec else None)
-    _chart_below(ws, chart, n + 1 + 2 + len(job.plan.scenarios) + 2)
+    recommended = None
+    if tables.has("spec_film") and "photo_scale" in tables["spec_film"].keys():
+        recommended = tables["spec_film"].row("photo_scale").value
+    _candidate_markers(book, chart, ws, n + 3, recommended)
+    _chart_below(ws, chart, n + 1 + 2 + len(candidates) + 2)
 
 
 def _candidate_markers(book: Book, chart: ScatterChart, ws: Worksheet, first_row: int,

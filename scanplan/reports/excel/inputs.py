@@ -18,11 +18,9 @@ from .cells import (
     F1,
     F2,
     F3,
-    F4,
-    INT,
-    M_LARGE,
     SCALE,
     _header,
+    number_format,
 )
 
 
@@ -62,11 +60,11 @@ _FILM_LABELS = {"map_scale": "map_scale", "relief_interval_m": "relief_interval_
 
 
 def _number_format(r: Row) -> str:
-    """A number's cell format: a scale, grouped digits for a count, else the row's
-    decimals (the input registry's)."""
+    """A number's cell format: a scale, else the row's decimals (the input registry's),
+    thousands grouped (:func:`.cells.number_format`)."""
     if r.unit == "scale":
         return SCALE
-    return INT if r.digits == 0 else "0." + "0" * (r.digits or 0)
+    return number_format(r.digits or 0)
 
 
 def _inputs_scan(book: Book, ws: Worksheet, row: int, job: ScanJob) -> int:
@@ -111,49 +109,48 @@ def _film_text(book: Book, ws: Worksheet, row: int, r: Row, job: ScanJob) -> int
     raise KeyError(r.key)
 
 
+#: The Inputs sheet's rows of the ``uav_inputs`` table: (row key, label key) in the
+#: sheet's order (the map object's rows follow the relief interval).
+_UAV_ROWS = (
+    ("camera", "camera"), ("pixel_um", "pixel_pitch_um"), ("focal_mm", "focal_mm"),
+    ("f_number", "f_number"), ("orientation", "orientation"),
+    ("sensor_width_mm", "sensor_width_mm"), ("sensor_height_mm", "sensor_height_mm"),
+    ("image_width_px", "image_width_px"), ("image_height_px", "image_height_px"),
+    ("min_trigger_interval_s", "min_trigger_interval_s"), ("height_m", "height_m"),
+    ("height_tolerance_up_pct", "tolerance_up_pct"),
+    ("height_tolerance_down_pct", "tolerance_down_pct"), ("speed_ms", "ground_speed_ms"),
+    ("exposure_s", "exposure_s"), ("forward_overlap_pct", "forward_overlap_pct"),
+    ("side_overlap_pct", "side_overlap_pct"), ("area_width_m", "area_width_m"),
+    ("area_length_m", "area_length_m"), ("map_scale", "map_scale"),
+    ("relief_interval_m", "relief_interval_m"),
+)
+_UAV_SCENE = (
+    ("r_max", "r_max"), ("r_min", "r_min"), ("threshold_k0", "threshold_k0"),
+    ("haze_contrast", "haze_contrast"), ("shift_factor", "shift_factor"),
+    ("random_speed_ms", "random_speed_ms"), ("roll_rate_rad_s", "roll_rate_rad_s"),
+    ("pitch_rate_rad_s", "pitch_rate_rad_s"), ("yaw_rate_rad_s", "yaw_rate_rad_s"),
+    ("roll_deg", "roll_deg"), ("pitch_deg", "pitch_deg"), ("bands", "bands"),
+    ("bits_per_band", "bits_per_band"),
+)
+
+
+def _uav_value(book: Book, ws: Worksheet, row: int, r: Row, label: str) -> int:
+    """One input of the UAV plan: a number with its decimals, else its words."""
+    if r.key == "camera":
+        return book.kv(ws, row, label, book.f.show(r.value) if r.value is not None
+                       else None, wrap=True)
+    if r.key == "orientation":
+        return book.kv(ws, row, label, book.f(f"orientation_{r.value}"))
+    return book.kv(ws, row, label, r.value, _number_format(r))
+
+
 def _inputs_uav(book: Book, ws: Worksheet, row: int, job: UavJob) -> int:
-    inp = job.plan.inputs
+    """The UAV plan's inputs (the ``uav_inputs`` table)."""
+    r = {x.key: x for x in book.view.tables["uav_inputs"].rows}
     row = book.section(ws, row, book.f("uav_section"))
-    rows: list[tuple[str, object, str | None]] = [
-        ("camera", book.f.camera(job.norm_set, inp.camera, inp.camera_name)
-         or None, None),
-        ("pixel_pitch_um", inp.pixel_um, F2),
-        ("focal_mm", inp.focal_mm, F2),
-        ("f_number", inp.f_number, F1),
-        ("orientation", book.f(f"orientation_{inp.orientation}"), None),
-        ("sensor_width_mm", inp.sensor_width_mm, F2),
-        ("sensor_height_mm", inp.sensor_height_mm, F2),
-        ("image_width_px", inp.image_width_px, INT),
-        ("image_height_px", inp.image_height_px, INT),
-        ("min_trigger_interval_s", inp.min_trigger_interval_s, F3),
-        ("height_m", inp.height_m, F1),
-        ("tolerance_up_pct", inp.height_tolerance_up_pct, F1),
-        ("tolerance_down_pct", inp.height_tolerance_down_pct, F1),
-        ("ground_speed_ms", inp.speed_ms, F1),
-        ("exposure_s", inp.exposure_s, "0.00000"),
-        ("forward_overlap_pct", inp.forward_overlap_pct, F1),
-        ("side_overlap_pct", inp.side_overlap_pct, F1),
-        ("area_width_m", inp.area_width_m, M_LARGE),
-        ("area_length_m", inp.area_length_m, M_LARGE),
-        ("map_scale", inp.map_scale, SCALE),
-        ("relief_interval_m", inp.relief_interval_m, F2),
-    ]
-    for key, value, fmt in rows:
-        row = book.kv(ws, row, book.f(key), value, fmt)
-    row = _object_rows(book, ws, row, inp.map_object, job.norm_set)
-    for key, value, fmt in [
-        ("r_max", inp.r_max, F3), ("r_min", inp.r_min, F3),
-        ("threshold_k0", inp.threshold_k0, F3),
-        ("haze_contrast", inp.haze_contrast, F3),
-        ("shift_factor", inp.shift_factor, F2),
-        ("random_speed_ms", inp.random_speed_ms, F2),
-        ("roll_rate_rad_s", inp.roll_rate_rad_s, F4),
-        ("pitch_rate_rad_s", inp.pitch_rate_rad_s, F4),
-        ("yaw_rate_rad_s", inp.yaw_rate_rad_s, F4),
-        ("roll_deg", inp.roll_deg, F2),
-        ("pitch_deg", inp.pitch_deg, F2),
-        ("bands", inp.bands, INT),
-        ("bits_per_band", inp.bits_per_band, INT),
-    ]:
-        row = book.kv(ws, row, book.f(key), value, fmt)
+    for key, label in _UAV_ROWS:
+        row = _uav_value(book, ws, row, r[key], book.f(label))
+    row = _object_rows(book, ws, row, r["object"].value, job.norm_set)
+    for key, label in _UAV_SCENE:
+        row = _uav_value(book, ws, row, r[key], book.f(label))
     return row

@@ -185,7 +185,10 @@ def _spec_uav(book: Book, ws: Worksheet, row: int, tbl: Table) -> int:
 
 
 def _summary_scan(book: Book, ws: Worksheet, row: int, job: ScanJob) -> int:
-    plan = job.plan
+    """The film plan's results per photo scale (the ``film_constraints`` table and each
+    scale's explanation), the interpretation limit and the smallest photo scale each scan
+    pixel supports (``film_reach``)."""
+    tables = book.view.tables
     row = book.section(ws, row, f"{book.f('results')}: {book.f('film_scan')}")
     _header(ws, row, [book.f("photo_scale"), book.f("photo_to_map"), book.f("binding"),
                       book.f("scan_pixel_um"), book.f("scanner_pixel_um"),
@@ -193,65 +196,78 @@ def _summary_scan(book: Book, ws: Worksheet, row: int, job: ScanJob) -> int:
                       book.f("required_r_lpmm"), book.f("probability"),
                       book.f("explanation")])
     row += 1
-    for s in plan.scenarios:
-        put_num(ws, row, 1, s.photo_scale, SCALE)
-        put_num(ws, row, 2, s.photo_to_map_ratio, F2)
-        binding = put_text(ws, row, 3, book.f.cname(s.binding))
-        pixel = put_num(ws, row, 4, s.scan_pixel_um, UM)
+    film = tables["film_constraints"]
+    values = {r.key: r.values for r in film.rows}
+    explanations = [r.value for r in tables["film_explanations"].rows]
+    none = (None,) * len(film.columns)
+    for i, column in enumerate(film.columns):
+        put_num(ws, row, 1, column.value, SCALE)
+        put_num(ws, row, 2, values["photo_to_map"][i], F2)
+        binding = put_text(ws, row, 3, book.f.cname(values["binding"][i]))
+        pixel = put_num(ws, row, 4, values["scan_pixel_um"][i], UM)
         _mark((binding, pixel))
-        put_num(ws, row, 5, s.scanner_pixel_um, UM)
-        put_num(ws, row, 6, s.frame_megabytes, MB)
-        put_num(ws, row, 7, s.resolution_on_ground_mm, F1)
-        put_num(ws, row, 8, s.required_resolving_power_lpmm, F1)
-        put_num(ws, row, 9, s.recognition_probability, F3)
-        put_text(ws, row, 10, book.f.message(s.explanation, job.norm_set), wrap=True)
+        put_num(ws, row, 5, values.get("scanner_pixel_um", none)[i], UM)
+        put_num(ws, row, 6, values["frame_megabytes"][i], MB)
+        put_num(ws, row, 7, values["resolution_on_ground"][i], F1)
+        put_num(ws, row, 8, values.get("required_r", none)[i], F1)
+        put_num(ws, row, 9, values.get("recognition_probability", none)[i], F3)
+        put_text(ws, row, 10, book.f.message(explanations[i], job.norm_set), wrap=True)
         row += 1
     row += 1
+    reach = tables["film_reach"]
+    limit = reach.row("interpretation_limit").value
     put_text(ws, row, 1, book.f("interpretation_limit_mc"), wrap=True)
-    put_num(ws, row, 2, plan.interpretation_limit_photo_scale, SCALE)
+    put_num(ws, row, 2, limit, SCALE)
     row += 1
-    if plan.max_photo_scales:
+    pixels = [r for r in reach.rows if r.key == "reach"]
+    if pixels:
         row = book.section(ws, row + 1, book.f("reach"))
-        both = plan.interpretation_limit_photo_scale is not None
-        _header(ws, row, [book.f("pixel_um"), book.f("reach_pixel"), book.f("limiting_constraint")]
+        both = limit is not None
+        _header(ws, row, [book.f("pixel_um"), book.f("reach_pixel"),
+                          book.f("limiting_constraint")]
                 + ([book.f("reach_interpretable")] if both else []))
         row += 1
-        for reach in plan.max_photo_scales:
-            put_num(ws, row, 1, reach.pixel_um, UM)
-            put_num(ws, row, 2, reach.max_photo_scale if reach.max_photo_scale > 0
-                    else None, SCALE)
-            put_text(ws, row, 3, book.f.cname(reach.limit))
+        for r in pixels:
+            pixel, largest, limiting, interpretable = r.values
+            put_num(ws, row, 1, pixel, UM)
+            put_num(ws, row, 2, largest, SCALE)
+            put_text(ws, row, 3, book.f.cname(limiting))
             if both:
-                put_num(ws, row, 4, reach.max_photo_scale_interpretable or None, SCALE)
+                put_num(ws, row, 4, interpretable, SCALE)
             row += 1
     return row
 
 
 def _summary_uav(book: Book, ws: Worksheet, row: int, job: UavJob) -> int:
-    plan = job.plan
+    """The digital camera's headline results (the ``uav_figures`` table), the maximum
+    height and the map object's recognition (``uav_recognition``)."""
+    tables = book.view.tables
+    fig = {r.key: r for r in tables["uav_figures"].rows}
     row = book.section(ws, row, f"{book.f('results')}: {book.f('uav_section')}")
     _header(ws, row, [book.f("parameter"), book.f("value")])
     row += 1
-    row = book.kv(ws, row, book.f("height_m"), plan.heights_m.get("planned"), F1)
-    row = book.kv(ws, row, book.f("gsd_m"), plan.gsd_m, F4)
-    if plan.ground_resolution_m is None:
+    row = book.kv(ws, row, book.f("height_m"), fig["height_m"].value, F1)
+    row = book.kv(ws, row, book.f("gsd_m"), fig["gsd_m"].value, F4)
+    resolution = fig["ground_resolution_m"]
+    if "not_resolvable" in resolution.flags:
         row = book.kv(ws, row, book.f("ground_resolution_m"), book.f("not_resolvable"))
     else:
-        row = book.kv(ws, row, book.f("ground_resolution_m"), plan.ground_resolution_m, F4)
-    row = book.kv(ws, row, book.f("l_over_gsd"), plan.ground_resolution_to_gsd, F2)
-    row = book.kv(ws, row, book.f("resolving_power_system"), plan.resolving_power_lpmm, F1)
-    if plan.max_height_m is not None:
+        row = book.kv(ws, row, book.f("ground_resolution_m"), resolution.value, F4)
+    row = book.kv(ws, row, book.f("l_over_gsd"), fig["l_over_gsd"].value, F2)
+    row = book.kv(ws, row, book.f("resolving_power_system"),
+                  fig["resolving_power_system"].value, F1)
+    if "max_height_m" in fig:
         r0 = row
-        row = book.kv(ws, row, book.f("max_height_m"), plan.max_height_m, F1)
-        row = book.kv(ws, row, book.f("binding"), book.f.cname(plan.binding or ""))
+        row = book.kv(ws, row, book.f("max_height_m"), fig["max_height_m"].value, F1)
+        row = book.kv(ws, row, book.f("binding"), book.f.cname(fig["binding"].value))
         _mark((ws.cell(r0, 2), ws.cell(r0 + 1, 2)))
-    obj = plan.inputs.map_object
+    obj = tables["uav_inputs"].row("object").value
     if obj is not None:
         row = book.kv(ws, row, book.f("object"), book.f.object(obj), wrap=True)
-        for rec in plan.recognition:
-            if rec.object == obj.name and rec.object_size_m == obj.size_m:
-                row = book.kv(ws, row, book.f("p_planned"), rec.probability, F3)
-                row = book.kv(ws, row, book.f("p_max"),
-                              rec.probability_at_max_height, F3)
-                break
+        own = next((r for r in tables["uav_recognition"].rows
+                    if r.fields["name"] == obj.name and r.fields["size_m"] == obj.size_m),
+                   None)
+        if own is not None:
+            row = book.kv(ws, row, book.f("p_planned"), own.values[3], F3)
+            row = book.kv(ws, row, book.f("p_max"), own.values[4], F3)
     return row

@@ -14,11 +14,8 @@ from openpyxl.chart import Reference, ScatterChart
 from openpyxl.chart.axis import ChartLines
 from openpyxl.worksheet.worksheet import Worksheet
 
-from ...core.mtf import component_label
-
 if TYPE_CHECKING:
     from ...project.jobs import UavJob
-    from ...rules.uav import UavPlan
 
 from .book import Book
 from .cells import (
@@ -26,12 +23,12 @@ from .cells import (
     F2,
     F3,
     F4,
-    INT,
     PCT,
     SCALE,
     _finite,
     _header,
     _mark,
+    number_format,
     put_num,
     put_text,
 )
@@ -42,72 +39,61 @@ from .charts import (
     _scatter,
 )
 
+#: The UAV sheet's rows of the ``uav_figures`` table before the maximum height: (row key,
+#: the cell format).
+_FIGURES = (("height_m", F1), ("height_min_m", F1), ("height_max_m", F1), ("gsd_m", F4),
+            ("gsd_at_max_m", F4), ("ground_resolution_m", F4), ("l_corner_m", F4),
+            ("l_at_max_m", F4), ("l_over_gsd", F2), ("resolving_power_system", F1),
+            ("r_corner_lpmm", F1), ("nyquist_lpmm", F1), ("resolvable", None),
+            ("sensor_limited", None), ("motion_blur_px", F2), ("max_exposure_s", "0.00000"),
+            ("max_speed_ms", F1), ("tilted_corner_gsd_m", F4))
 
-def _height_rows(book: Book, ws: Worksheet, row: int, plan: UavPlan) -> int:
-    """Highest flown height at the maximum, the ceiling, and the height accuracy."""
-    row = book.kv(ws, row, book.f("max_flown_height_m"), plan.max_flown_height_m, F1)
-    if plan.ceiling_m is not None:
-        row = book.kv(ws, row, book.f("ceiling_m"), plan.ceiling_m, F1)
-    if plan.constraints_max_height_m is not None:
-        row = book.kv(ws, row, book.f("constraints_max_height_m"),
-                      plan.constraints_max_height_m, F1)
-    acc = plan.height_accuracy
+
+def _height_rows(book: Book, ws: Worksheet, row: int, fig: dict[str, Any]) -> int:
+    """Highest flown height at the maximum, the ceiling, and the height accuracy (the
+    ``uav_figures`` and ``uav_accuracy`` tables)."""
+    row = book.kv(ws, row, book.f("max_flown_height_m"), fig["max_flown_height_m"].value, F1)
+    for key in ("ceiling_m", "constraints_max_height_m"):
+        if key in fig:
+            row = book.kv(ws, row, book.f(key), fig[key].value, F1)
+    acc = {r.key: r for r in book.view.tables["uav_accuracy"].rows}
     if acc:
-        row = book.kv(ws, row, book.f("height_accuracy_m"), acc["height_accuracy_m"], F4)
-        row = book.kv(ws, row, book.f("sigma_z_m"),
-                      acc["sigma_z_at_highest_flown_height_m"], F4)
+        row = book.kv(ws, row, book.f("height_accuracy_m"), acc["height_accuracy_m"].value, F4)
+        row = book.kv(ws, row, book.f("sigma_z_m"), acc["sigma_z_m"].value, F4)
         row = book.kv(ws, row, book.f("stereo_base_to_height"),
-                      acc["stereo_base_to_height"], "0.000")
+                      acc["stereo_base_to_height"].value, "0.000")
         row = book.kv(ws, row, book.f("image_measurement_px"),
-                      acc["image_measurement_px"], F2)
+                      acc["image_measurement_px"].value, F2)
         for form in ("normal_case", "instruction", "parallax"):
             row = book.kv(ws, row, f"{book.f('height_forms')}: {book.f('hf_' + form)}",
-                          acc["forms"][form]["max_planned_height_m"], F1)
+                          acc["form_" + form].value, F1)
     return row
 
 
 def uav_sheet(book: Book, job: UavJob) -> None:
-    """The UAV sheet: results, the limits as heights, recognition, flight geometry,
-    GSD and L against the height (table and chart)."""
-    plan = job.plan
+    """The UAV sheet: results (the ``uav_figures`` table), the limits as heights,
+    recognition, flight geometry, GSD and L against the height (table and chart)."""
     ws = book.sheet("sheet_uav", landscape=True,
                     widths=(46, 16, 16, 16, 16, 16, 14, 12, 50, 50))
     _header(ws, 1, [book.f("parameter"), book.f("value")])
     row = 2
-    h = plan.heights_m
-    lr = plan.ground_resolution_m
-    for key, value, fmt in [
-        ("height_m", h.get("planned"), F1),
-        ("height_min_m", h.get("min"), F1),
-        ("height_max_m", h.get("max"), F1),
-        ("gsd_m", plan.gsd_m, F4),
-        ("gsd_at_max_m", plan.gsd_at_max_height_m, F4),
-        ("ground_resolution_m", lr if lr is not None else book.f("not_resolvable"),
-         F4 if lr is not None else None),
-        ("l_corner_m", plan.ground_resolution_corner_m, F4),
-        ("l_at_max_m", plan.ground_resolution_at_max_height_m, F4),
-        ("l_over_gsd", plan.ground_resolution_to_gsd, F2),
-        ("resolving_power_system", plan.resolving_power_lpmm, F1),
-        ("r_corner_lpmm", plan.resolving_power_corner_lpmm, F1),
-        ("nyquist_lpmm", plan.nyquist_lpmm, F1),
-        ("resolvable", bool(plan.resolvable), None),
-        ("sensor_limited", bool(plan.sensor_limited), None),
-        ("motion_blur_px", plan.motion_blur_px, F2),
-        ("max_exposure_s", plan.max_exposure_s, "0.00000"),
-        ("max_speed_ms", plan.max_speed_ms, F1),
-        ("tilted_corner_gsd_m", plan.tilted_corner_gsd_m, F4),
-    ]:
-        row = book.kv(ws, row, book.f(key), value, fmt)
-    if plan.max_height_m is not None:
+    fig = {r.key: r for r in book.view.tables["uav_figures"].rows}
+    for key, fmt in _FIGURES:
+        r = fig[key]
+        if "not_resolvable" in r.flags:
+            row = book.kv(ws, row, book.f(key), book.f("not_resolvable"))
+        else:
+            row = book.kv(ws, row, book.f(key), r.value, fmt)
+    if "max_height_m" in fig:
         r0 = row
-        row = book.kv(ws, row, book.f("max_height_m"), plan.max_height_m, F1)
-        row = book.kv(ws, row, book.f("binding"), book.f.cname(plan.binding or ""))
+        row = book.kv(ws, row, book.f("max_height_m"), fig["max_height_m"].value, F1)
+        row = book.kv(ws, row, book.f("binding"), book.f.cname(fig["binding"].value))
         _mark((ws.cell(r0, 2), ws.cell(r0 + 1, 2)))
-        row = _height_rows(book, ws, row, plan)
+        row = _height_rows(book, ws, row, fig)
     row = _limits_rows(book, ws, row)
     row = _recognition_rows(book, ws, row, job)
-    row = _flight_rows(book, ws, row, plan)
-    _height_chart(book, ws, row, plan)
+    row = _flight_rows(book, ws, row)
+    _height_chart(book, ws, row, fig)
 
 
 def _limits_rows(book: Book, ws: Worksheet, row: int) -> int:
@@ -143,9 +129,10 @@ def _limits_rows(book: Book, ws: Worksheet, row: int) -> int:
 
 
 def _recognition_rows(book: Book, ws: Worksheet, row: int, job: UavJob) -> int:
-    """Recognition of the norm objects (the map's object highlighted)."""
-    plan = job.plan
-    if not plan.recognition:
+    """Recognition of the norm objects (the ``uav_recognition`` table; the map's object
+    highlighted)."""
+    rows = book.view.tables["uav_recognition"].rows
+    if not rows:
         return row
     row = book.section(ws, row + 1, book.f("recognition_objects"))
     _header(ws, row, [book.f("object_name"), book.f("object_size_m"),
@@ -153,7 +140,7 @@ def _recognition_rows(book: Book, ws: Worksheet, row: int, job: UavJob) -> int:
                       book.f("p_planned"), book.f("p_max"),
                       book.f("p_corner_max")])
     row += 1
-    for r in book.view.tables["uav_recognition"].rows:
+    for r in rows:
         scale, size, shape, p, p_max, p_corner = r.values
         name = book.f.object_named(job.norm_set, r.fields["name"], None, scale)
         cells = [put_text(ws, row, 1, name, wrap=True),
@@ -169,48 +156,28 @@ def _recognition_rows(book: Book, ws: Worksheet, row: int, job: UavJob) -> int:
     return row
 
 
-#: The label of each figure of :attr:`UavPlan.flight` (another: by its name).
-_FLIGHT_LABELS = {
-    "footprint_across_m": "footprint_across_m",
-    "footprint_along_m": "footprint_along_m",
-    "base_m": "base_m", "line_spacing_m": "line_spacing_m",
-    "photo_interval_s": "photo_interval_s",
-    "forward_overlap_at_min_height_pct": "forward_overlap_at_min_height_pct",
-    "side_overlap_at_min_height_pct": "side_overlap_at_min_height_pct",
-    "forward_overlap_at_max_height_pct": "forward_overlap_at_max_height_pct",
-    "min_trigger_interval_s": "min_trigger_interval_s",
-    "max_speed_for_trigger_ms": "max_speed_for_trigger_ms",
-    "strips": "n_strips", "photos_per_strip": "photos_per_strip",
-    "photos": "photos_total", "sorties": "sorties_count",
-    "flight_length_m": "flight_length_m",
-    "flight_time_s": "flight_time_s",
-    "data_volume_bytes": "data_volume_bytes",
-}
-
-
-def _flight_rows(book: Book, ws: Worksheet, row: int, plan: UavPlan) -> int:
-    """The flight geometry (footprint, base, line spacing, photos ...)."""
-    if not plan.flight:
+def _flight_rows(book: Book, ws: Worksheet, row: int) -> int:
+    """The flight geometry (the ``uav_flight_figures`` table: footprint, base, line
+    spacing, photos ...)."""
+    rows = book.view.tables["uav_flight_figures"].rows
+    if not rows:
         return row
     row = book.section(ws, row + 1, book.f("flight_geometry"))
-    for key, value in plan.flight.items():
-        if key in ("data_volume_jpeg_bytes", "jpeg_compression_ratio"):
-            continue  # the sheet gives the uncompressed volume only
-        label = book.f(_FLIGHT_LABELS[key]) if key in _FLIGHT_LABELS else key
-        fmt = INT if (key.endswith("_bytes") or key in ("strips", "photos",
-                                                        "photos_per_strip")) else F2
-        row = book.kv(ws, row, label, value, fmt if not isinstance(value, str)
-                      else None)
+    for r in rows:
+        fmt = None if isinstance(r.value, str) else number_format(r.digits or 0)
+        row = book.kv(ws, row, book.f.get(r.key, r.key), r.value, fmt)
     return row
 
 
-def _height_chart(book: Book, ws: Worksheet, row: int, plan: UavPlan) -> None:
-    """GSD and L against the flight height: the table and its chart."""
-    curve = plan.height_curve
-    heights = list(curve.get("height_m", []))
+def _height_chart(book: Book, ws: Worksheet, row: int, fig: dict[str, Any]) -> None:
+    """GSD and L against the flight height (the ``uav_height_curve`` table): the table
+    and its chart."""
+    curve = {r.key: r.values for r in book.view.tables["uav_height_curve"].rows}
+    heights = list(curve["height_m"])
     if heights:
         row = book.section(ws, row + 1, book.f("plot_height"))
-        _header(ws, row, [book.f("height_m"), book.f("gsd_m"), book.f("ground_resolution_m")])
+        _header(ws, row, [book.f("height_m"), book.f("gsd_m"),
+                          book.f("ground_resolution_m")])
         first = row + 1
         for i, hm in enumerate(heights):
             put_num(ws, first + i, 1, hm, F1, missing=None)
@@ -228,38 +195,39 @@ def _height_chart(book: Book, ws: Worksheet, row: int, plan: UavPlan) -> None:
         _add_series(chart, ws, xref, 3, n, book.f("ground_resolution_m"), first_row=first)
         top = max((v for v in (_finite(x) for key in ("gsd_m", "ground_resolution_m")
                                for x in curve[key]) if v is not None), default=1.0)
-        end = _height_markers(book, chart, ws, plan, first + n + 1, top,
-                                   max(heights))
+        end = _height_markers(book, chart, ws, fig, first + n + 1, top, max(heights))
         _chart_below(ws, chart, end + 1)
 
 
-def _height_markers(book: Book, chart: ScatterChart, ws: Worksheet, plan: Any, row: int,
-                    top: float, right: float) -> int:
+def _height_markers(book: Book, chart: ScatterChart, ws: Worksheet, fig: dict[str, Any],
+                    row: int, top: float, right: float) -> int:
     """Vertical lines at the planned, highest flown and maximum heights and the binding
     ground limit as a horizontal line (two-point series, their cells below the curve).
     Returns the next free row."""
-    h = plan.heights_m
-    m = " м" if book.loc == "ru" else " m"
+    planned, highest = fig["height_m"].value, fig["height_max_m"].value
+    m = " " + book.f("m")
     marks: list[tuple[str, float, float, float, float, str, str]] = []
-    if h.get("planned"):
-        marks.append((f"{book.f('planned')}: {book.f.height(h['planned'])}{m}",
-                      h["planned"], 0.0, h["planned"], top, "000000", "solid"))
-    if h.get("max") and h["max"] != h.get("planned"):
-        marks.append((f"{book.f('highest_flown')}: {book.f.height(h['max'])}{m}",
-                      h["max"], 0.0, h["max"], top, "7F7F7F", "dash"))
-    if plan.max_height_m is not None:
-        marks.append((f"{book.f('max_height_m').split(',')[0]} ({plan.binding}): "
-                      f"{book.f.whole(round(plan.max_height_m))}{m}",
-                      plan.max_height_m, 0.0, plan.max_height_m, top, "C00000", "sysDot"))
-        ratio = h["max"] / h["planned"] if h.get("planned") and h.get("max") else 1.0
+    if planned:
+        marks.append((f"{book.f('planned')}: {book.f.height(planned)}{m}",
+                      planned, 0.0, planned, top, "000000", "solid"))
+    if highest and highest != planned:
+        marks.append((f"{book.f('highest_flown')}: {book.f.height(highest)}{m}",
+                      highest, 0.0, highest, top, "7F7F7F", "dash"))
+    if "max_height_m" in fig:
+        top_m = fig["max_height_m"].value
+        marks.append((f"{book.f('max_height_m').split(',')[0]} ({fig['binding'].value}): "
+                      f"{book.f.whole(round(top_m))}{m}",
+                      top_m, 0.0, top_m, top, "C00000", "sysDot"))
+        ratio = highest / planned if planned and highest else 1.0
         if ratio > 1:  # where the binding limit is checked: the maximum flown high
-            flown = plan.max_height_m * ratio
+            flown = top_m * ratio
             marks.append((f"{book.f('max_flown_at_max')}: {book.f.whole(flown)}{m}",
                           flown, 0.0, flown, top, "C00000", "dash"))
-    b = next((lim for lim in plan.limits if lim.binding), None)
-    if b is not None and b.limit_m <= top * 1.5:
-        marks.append((f"{b.compares} ≤ {book.f.fixed(b.limit_m, 3)}{m} "
-                      f"({b.id})", 0.0, b.limit_m, right, b.limit_m, "C00000", "dashDot"))
+    b = next((r for r in book.view.tables["uav_limits"].rows if "binding" in r.flags), None)
+    if b is not None and b.values[0] <= top * 1.5:
+        limit_m, compares = b.values[0], b.values[1]
+        marks.append((f"{compares} ≤ {book.f.fixed(limit_m, 3)}{m} "
+                      f"({b.key})", 0.0, limit_m, right, limit_m, "C00000", "dashDot"))
     if not marks:
         return row
     _header(ws, row, [book.f("chart_marker"), "x", "y"])
@@ -278,13 +246,15 @@ def _height_markers(book: Book, chart: ScatterChart, ws: Worksheet, plan: Any, r
 
 
 def mtf_sheet(book: Book, job: UavJob) -> None:
-    plan = job.plan
-    mc = plan.mtf_centre
-    freq = list(mc.get("freq_lpmm", []))
-    if not freq:
+    """The MTF of every component at the frame centre, the image contrast and the
+    threshold (the ``uav_mtf`` table), with a chart marking the resolving power R."""
+    rows = {r.key: r for r in book.view.tables["uav_mtf"].rows}
+    if not rows:
         return
-    special = ("freq_lpmm", "system", "image_contrast", "threshold")
-    comps = [k for k in mc if k not in special and isinstance(mc[k], list)]
+    freq = list(rows["freq_lpmm"].values)
+    mc = {key: list(r.values) for key, r in rows.items()
+          if key not in ("freq_lpmm", "resolving_power")}
+    comps = [key for key, r in rows.items() if "component" in r.flags]
     cols = comps + [k for k in ("system", "image_contrast", "threshold") if k in mc]
     heads = [book.f("frequency_lpmm")]
     for k in cols:
@@ -295,7 +265,7 @@ def mtf_sheet(book: Book, job: UavJob) -> None:
         elif k == "system":
             heads.append(book.f("mtf_system"))
         else:  # a registered MTF component names itself in both languages
-            heads.append(component_label(k, book.loc))
+            heads.append(book.f.show(rows[k].fields["label"]))
     ncol = len(cols) + 1
     ws = book.sheet("sheet_mtf", landscape=True,
                     widths=(14,) + (12,) * len(cols) + (3, 16, 12))
@@ -321,7 +291,7 @@ def mtf_sheet(book: Book, job: UavJob) -> None:
     for k in ("image_contrast", "threshold"):
         if k in cols:
             _add_series(chart, ws, xref, 2 + cols.index(k), n, heads[1 + cols.index(k)])
-    r = plan.resolving_power_lpmm
+    r = rows["resolving_power"].value if "resolving_power" in rows else None
     mcol = ncol + 2
     if r is not None and "image_contrast" in mc:
         # a two-point vertical series at R marks the crossing
@@ -331,7 +301,6 @@ def mtf_sheet(book: Book, job: UavJob) -> None:
             put_num(ws, 2 + i, mcol, r, F1)
             put_num(ws, 2 + i, mcol + 1, yv, F3)
         mref = Reference(ws, min_col=mcol, min_row=2, max_row=3)
-        unit = "мм⁻¹" if book.loc == "ru" else "lines/mm"
-        label = f"R = {book.f.fixed(r)} {unit}"
+        label = f"R = {book.f.fixed(r)} {book.f('lpmm')}"
         _add_series(chart, ws, mref, mcol + 1, 2, label, dash="dash", color="C00000")
     _chart_below(ws, chart, n + 3)

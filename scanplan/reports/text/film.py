@@ -45,29 +45,33 @@ def format_scan_plan(plan: ScanPlan, norm_name: str = "", norm_title: str = "",
         For the Russian names of objects and shapes.
     """
     f = formatter(locale)
-    inp = plan.inputs
-    frame = dict(f=f.short(inp.focal_mm), w=f.short(inp.frame_width_mm),
-                 l=f.short(inp.frame_along_mm))
-    cam = (f.cli("scan_camera", camera=inp.camera, **frame) if inp.camera
+    tables = ResultTables(scan=plan, scan_norms=norm_set)  # built once for this report
+    r = {row.key: row for row in tables["film_inputs"].rows}
+    width, along = r["frame_mm"].value
+    frame = dict(f=f.short(r["focal_mm"].value), w=f.short(width), l=f.short(along))
+    camera = r["camera"].value
+    cam = (f.cli("scan_camera", camera=camera, **frame) if camera
            else f.cli("scan_no_camera", **frame))
     lines = [
-        f.cli("scan_head", map=f.scale(inp.map_scale), hc=f.short(inp.relief_interval_m)),
-        f.cli("scan_camera_line", camera=cam, r=f.short(inp.resolving_power_lpmm),
-              p=f.short(inp.forward_overlap_pct)),
+        f.cli("scan_head", map=f.scale(r["map_scale"].value),
+              hc=f.short(r["relief_interval_m"].value)),
+        f.cli("scan_camera_line", camera=cam, r=f.short(r["resolving_power_lpmm"].value),
+              p=f.short(r["forward_overlap_pct"].value)),
     ]
     if norm_name:
         if f.locale == "ru" and getattr(norm_set, "title_ru", ""):
             norm_title = norm_set.title_ru
         lines.append(f.cli("norm_set", name=norm_name)
                      + (f" — {norm_title}" if norm_title else ""))
-    obj = inp.object
+    obj = r["object"].value
     if obj:
         lines.append(f.cli("scan_object", name=norm_object(f, norm_set, obj.name, obj.size_m),
-                           size=f.short(obj.size_m), shape=norm_shape(f, norm_set, obj.shape),
-                           b=f.short(obj.shape_coefficient), p=f.short(plan.rules.probability),
-                           source=author_cite(f.text(obj.source), f.locale)))
+                           size=f.short(r["object_size_m"].value),
+                           shape=norm_shape(f, norm_set, r["shape"].value),
+                           b=f.short(r["shape_coefficient"].value),
+                           p=f.short(r["probability"].value),
+                           source=author_cite(f.text(r["object_source"].value), f.locale)))
     lines.append("")
-    tables = ResultTables(scan=plan)  # built once for this report
     tbl = tables["film_constraints"]
     lines.append(text_table(tbl, label=lambda r: _film_label(r, f),
                             unit=lambda r: f.cli(r.unit) if r.unit else "",
@@ -77,17 +81,19 @@ def format_scan_plan(plan: ScanPlan, norm_name: str = "", norm_title: str = "",
     lines.append(f.cli("binding_note"))
     lines.append("")
     lines.append(f.cli("why"))
-    for s in plan.scenarios:
-        lines.append(wrap(f.text(s.explanation), "  "))
-    if plan.interpretation_limit_photo_scale is not None:
-        mci = plan.interpretation_limit_photo_scale
+    for row in tables["film_explanations"].rows:
+        lines.append(wrap(f.text(row.value), "  "))
+    reach = tables["film_reach"]
+    limit = reach.row("interpretation_limit")
+    if limit.value is not None:
         lines.append("")
         lines.append(wrap(f.cli(
             "interpretation_limit",
             obj=norm_object(f, norm_set, obj.name, obj.size_m) if obj else f.cli("the_object"),
-            p=f.short(plan.rules.probability), scale=f.scale(math.floor(mci)),
-            ratio=f.fixed(mci / inp.map_scale, 1), r=f.short(inp.resolving_power_lpmm)), ""))
-    lines += _reach_lines(plan, f)
+            p=f.short(limit.fields["probability"]), scale=f.scale(math.floor(limit.value)),
+            ratio=f.fixed(limit.fields["ratio"], 1),
+            r=f.short(limit.fields["resolving_power"])), ""))
+    lines += _reach_lines(reach, r, f)
     lines += warning_lines(tables["film_warnings"], f, scan=True)
     return "\n".join(lines)
 
@@ -135,28 +141,26 @@ def warning_lines(warnings: Table, f: Formatter, scan: bool = False) -> list[str
     return out
 
 
-def _reach_lines(plan: ScanPlan, f: Formatter) -> list[str]:
-    """The smallest photo scale (largest Mc) each scan pixel supports (scanner steps,
-    --pixel-um)."""
-    inp = plan.inputs
-    lines: list[str] = []
-    if plan.max_photo_scales:
-        lines.append("")
-        who = f.cli("reach_and").join(
-            x for x in (f.cli("reach_scanner", scanner=inp.scanner) if inp.scanner else "",
-                        "--pixel-um" if inp.candidate_pixels_um else "") if x)
-        lines.append(f.cli("reach_head", who=who))
-        both = plan.interpretation_limit_photo_scale is not None
-        rows = [[f.cli("pixel_um"), f.cli("reach_scale"), f.cli("reach_limit")]
-                + ([f.cli("reach_interpretable")] if both else [])]
-        for r in plan.max_photo_scales:
-            if r.max_photo_scale > 0:
-                row = [f.short(r.pixel_um), f.scale(math.floor(r.max_photo_scale)), r.limit]
-            else:
-                row = [f.short(r.pixel_um), f.cli("none"), f.cli("reach_pr")]
-            if both:
-                mi = r.max_photo_scale_interpretable
-                row.append(f.scale(math.floor(mi)) if mi else f.cli("none"))
-            rows.append(row)
-        lines.append(table(rows, align="rrlr" if both else "rrl"))
-    return lines
+def _reach_lines(reach: Table, inputs: dict[str, Row], f: Formatter) -> list[str]:
+    """The smallest photo scale (largest Mc) each scan pixel supports (the ``film_reach``
+    table: the scanner's steps, --pixel-um)."""
+    rows = [r for r in reach.rows if r.key == "reach"]
+    if not rows:
+        return []
+    scanner = inputs["scanner"].value
+    who = f.cli("reach_and").join(
+        x for x in (f.cli("reach_scanner", scanner=scanner) if scanner else "",
+                    "--pixel-um" if "candidate_pixels_um" in inputs else "") if x)
+    both = reach.row("interpretation_limit").value is not None
+    out = [[f.cli("pixel_um"), f.cli("reach_scale"), f.cli("reach_limit")]
+           + ([f.cli("reach_interpretable")] if both else [])]
+    for r in rows:
+        pixel, largest, limit, interpretable = r.values
+        if largest is not None:
+            row = [f.short(pixel), f.scale(math.floor(largest)), limit]
+        else:
+            row = [f.short(pixel), f.cli("none"), f.cli("reach_pr")]
+        if both:
+            row.append(f.scale(math.floor(interpretable)) if interpretable else f.cli("none"))
+        out.append(row)
+    return ["", f.cli("reach_head", who=who), table(out, align="rrlr" if both else "rrl")]

@@ -47,13 +47,18 @@ def format_plan_result(result: Any, locale: str | None = None,
     if result.film:
         lines += _film_summary(tables["spec_film"], f)
     if result.uav:
-        lines += _uav_summary(tables["spec_uav"], result.uav.job.plan.inputs.platform, f)
+        lines += _uav_summary(tables["spec_uav"], _platform(tables), f)
     if result.comparison:
         lines += _comparison_lines(result, f, tables)
     lines += _design_lines(tables, f)
     if result.warnings:
         lines += _warning_lines(result, f, tables)
     return "\n".join(lines)
+
+
+def _platform(tables: ResultTables) -> str:
+    """The digital camera's carrier (``"uav"``, ``"aircraft"``): the UAV inputs'."""
+    return str(tables["uav_inputs"].row("platform").value)
 
 
 def _design_lines(tables: ResultTables, f: Formatter) -> list[str]:
@@ -126,7 +131,7 @@ def _film_summary(tbl: Table, f: Formatter) -> list[str]:
 def _comparison_lines(result: Any, f: Formatter, tables: ResultTables) -> list[str]:
     """Film and digital camera side by side (the ``comparison`` table; counts grouped as
     the documents group them)."""
-    aircraft = bool(result.uav) and result.uav.job.plan.inputs.platform == "aircraft"
+    aircraft = bool(result.uav) and _platform(tables) == "aircraft"
 
     def quantity(r: Row) -> str:  # the documents' word
         key = COMPARISON_LABELS.get(r.key)
@@ -258,6 +263,10 @@ def batch_row(path: str, r: Any) -> list[str]:
     f = formatter("en")
     fs, u = r.film, r.uav
     rec = fs.recommended if fs else None
+    uav_binding = ""
+    if u:
+        head = {row.key: row.value for row in ResultTables(spec=r)["spec_uav"].rows}
+        uav_binding = head.get("binding") or ""
     return [
         os.path.basename(path), f"1:{r.project.map.scale}",
         (f"1:{scale_value(rec.photo_scale)}" if rec else "none") if fs else "—",
@@ -265,7 +274,7 @@ def batch_row(path: str, r: Any) -> list[str]:
         f.fixed(u.recommended_height_m, 0) if u else "—",
         f.fixed(u.max_height_m, 0) if u else "—",
         " / ".join(x for x in ((rec.binding if rec else "") if fs else "",
-                               (u.job.plan.binding or "") if u else "") if x) or "—"]
+                               uav_binding) if x) or "—"]
 
 
 def batch_table(rows: list[list[str]], failed: list[tuple[str, str]]) -> str:

@@ -31,28 +31,29 @@ def format_uav_plan(plan: UavPlan, norm_name: str = "", locale: str = "en",
         For the Russian names of objects and shapes.
     """
     f = formatter(locale)
-    inp = plan.inputs
-    h = plan.heights_m
-    carrier = f.cli("carrier_aircraft" if inp.platform == "aircraft" else "carrier_uav")
-    name = inp.camera_name
+    tables = ResultTables(uav=plan, uav_norms=norm_set)  # built once for this report
+    r = {row.key: row for row in tables["uav_inputs"].rows}
+    v = {key: row.value for key, row in r.items()}
+    camera_id, name = r["camera"].fields["id"], r["camera"].fields["name"]
+    carrier = f.cli("carrier_aircraft" if v["platform"] == "aircraft" else "carrier_uav")
     if name and f.locale == "ru" and norm_set is not None:  # English remarks dropped, units
-        name = f.camera(norm_set, inp.camera, name)
+        name = f.camera(norm_set, camera_id, name)
+    low, high = v["heights"]
+    planned = r["heights"].fields["planned"]
     lines = [
-        f.cli("uav_head", carrier=carrier, camera=inp.camera or name or f.cli("camera"))
-        + (f" ({name})" if name and inp.camera else ""),
-        f.cli("uav_line1", pixel=f.sig(inp.pixel_um), f=f.sig(inp.focal_mm),
-              n=f.short(inp.f_number), w=f.sig(inp.sensor_width_mm),
-              h=f.sig(inp.sensor_height_mm), height=f.short(h["planned"]))
-        + (f.cli("uav_flown", lo=f.short(h["min"]), hi=f.short(h["max"]))
-           if h["max"] != h["min"] else "")
-        + f.cli("uav_line1_tail", v=f.short(inp.speed_ms), t=f.short(inp.exposure_s),
-                fo=f.short(inp.forward_overlap_pct), so=f.short(inp.side_overlap_pct)),
-        f.cli("uav_line2", rmax=f.short(inp.r_max), rmin=f.short(inp.r_min),
-              k0=f.short(inp.threshold_k0))
+        f.cli("uav_head", carrier=carrier, camera=camera_id or name or f.cli("camera"))
+        + (f" ({name})" if name and camera_id else ""),
+        f.cli("uav_line1", pixel=f.sig(v["pixel_um"]), f=f.sig(v["focal_mm"]),
+              n=f.short(v["f_number"]), w=f.sig(v["sensor_width_mm"]),
+              h=f.sig(v["sensor_height_mm"]), height=f.short(planned))
+        + (f.cli("uav_flown", lo=f.short(low), hi=f.short(high)) if high != low else "")
+        + f.cli("uav_line1_tail", v=f.short(v["speed_ms"]), t=f.short(v["exposure_s"]),
+                fo=f.short(v["forward_overlap_pct"]), so=f.short(v["side_overlap_pct"])),
+        f.cli("uav_line2", rmax=f.short(v["r_max"]), rmin=f.short(v["r_min"]),
+              k0=f.short(v["threshold_k0"]))
         + (f.cli("uav_norm", name=norm_name) if norm_name else ""),
         "",
     ]
-    tables = ResultTables(uav=plan)  # built once for this report
     results = tables["uav_results"]
     lines.append(text_table(
         results, label=lambda r: f.cli(_UAV_WORDS[r.key],
@@ -60,11 +61,12 @@ def format_uav_plan(plan: UavPlan, norm_name: str = "", locale: str = "en",
         unit=lambda r: f.cli(r.unit) if r.unit else "", cell=lambda r, i, v: _uav_cell(r, v, f),
         head=["", "", *(f.cli("at_height", h=f.short(c.value)) for c in results.columns)],
         align="ll" + "r" * len(results.columns)))
-    lines.append(f.cli("blur_limit", denominator=math.ceil(1 / plan.max_exposure_s),
-                       v=f.fixed(plan.max_speed_ms, 1)))
+    fig = {row.key: row for row in tables["uav_figures"].rows}
+    lines.append(f.cli("blur_limit", denominator=math.ceil(1 / fig["max_exposure_s"].value),
+                       v=f.fixed(fig["max_speed_ms"].value, 1)))
     lines += _flight_lines(tables["uav_flight"], f)
     lines += _recognition_lines(tables["uav_recognition"], f, norm_set)
-    lines += _limit_lines(plan, f, tables)
+    lines += _limit_lines(tables, f)
     lines += warning_lines(tables["uav_warnings"], f)
     return "\n".join(lines)
 
@@ -164,34 +166,39 @@ def _recognition_lines(recognition: Table, f: Formatter, norm_set: Any) -> list[
     return ["", f.cli("recognition_head"), text]
 
 
-def _limit_lines(plan: UavPlan, f: Formatter, tables: ResultTables) -> list[str]:
-    """The constraints as maximum planned heights, the binding one, height accuracy."""
-    inp, h = plan.inputs, plan.heights_m
-    if not plan.limits:
+def _limit_lines(tables: ResultTables, f: Formatter) -> list[str]:
+    """The constraints as maximum planned heights (the ``uav_limits`` table), the binding
+    one, the height accuracy (``uav_accuracy``)."""
+    limits = tables["uav_limits"]
+    if not limits.rows:
         return []
-    tol = inp.height_tolerance_up_pct
-    head = (f.cli("limits_head_map", map=f.scale(inp.map_scale),
-                  hc=f.short(inp.relief_interval_m))
-            if inp.map_scale is not None else f.cli("limits_head"))
+    v = {row.key: row.value for row in tables["uav_inputs"].rows}
+    fig = {row.key: row for row in tables["uav_figures"].rows}
+    tol = v["height_tolerance_up_pct"]
+    head = (f.cli("limits_head_map", map=f.scale(v["map_scale"]),
+                  hc=f.short(v["relief_interval_m"]))
+            if v["map_scale"] is not None else f.cli("limits_head"))
     lines = ["", head + (f.cli("limits_flown", tol=f.short(tol)) if tol else "") + ":"]
     lines.append(text_table(
-        tables["uav_limits"], label=lambda r: f"  {r.key}  {f.constraint(r.key)}",
+        limits, label=lambda r: f"  {r.key}  {f.constraint(r.key)}",
         cell=lambda r, i, v: _limit_cell(r, i, v, f), columns=(0, 1, 2, 3),
         head=[f"  {f.cli('lim_constraint')}", f.cli("lim_limit"), f.cli("lim_compares"),
               f.cli("lim_max"), f.cli("lim_flown")], align="lrlrr"))
-    b = next(x for x in plan.limits if x.binding)
-    lines.append(wrap(f.cli("lim_sentence", max=f.fixed(plan.max_height_m, 0),
-                            flown=f.fixed(plan.max_flown_height_m or plan.max_height_m, 0),
-                            cid=b.id, name=f.constraint(b.id), reason=f.text(b.reason)), ""))
-    acc = plan.height_accuracy
+    b = next(r for r in limits.rows if "binding" in r.flags)
+    top = fig["max_height_m"].value if "max_height_m" in fig else None
+    flown = fig["max_flown_height_m"].value if "max_flown_height_m" in fig else None
+    lines.append(wrap(f.cli("lim_sentence", max=f.fixed(top, 0), flown=f.fixed(flown or top, 0),
+                            cid=b.key, name=f.constraint(b.key),
+                            reason=f.text(b.fields["reason"])), ""))
+    acc = {row.key: row for row in tables["uav_accuracy"].rows}
     if acc:
-        forms = acc["forms"]
+        used = next((row.fields["form"] for row in acc.values() if "used" in row.flags), None)
+        sz = acc["sigma_z_m"]
         lines.append(wrap(f.cli(
-            "accuracy", sz=f.fixed(acc["sigma_z_at_highest_flown_height_m"], 3),
-            h=f.short(h["max"]), req=f.short(acc["height_accuracy_m"]),
-            gsd=f.fixed(acc["sigma_z_in_gsd"], 2),
-            normal=f.fixed(forms["normal_case"]["max_planned_height_m"], 0),
-            instruction=f.fixed(forms["instruction"]["max_planned_height_m"], 0),
-            parallax=f.fixed(forms["parallax"]["max_planned_height_m"], 0),
-            used=f.cli(f"form_{acc['formula']}")), ""))
+            "accuracy", sz=f.fixed(sz.value, 3), h=f.short(sz.fields["at"]),
+            req=f.short(acc["height_accuracy_m"].value), gsd=f.fixed(sz.fields["in_gsd"], 2),
+            normal=f.fixed(acc["form_normal_case"].value, 0),
+            instruction=f.fixed(acc["form_instruction"].value, 0),
+            parallax=f.fixed(acc["form_parallax"].value, 0),
+            used=f.cli(f"form_{used}")), ""))
     return lines

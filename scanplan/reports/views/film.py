@@ -1,6 +1,8 @@
-"""The film plan's table: every constraint's scan pixel at every photo scale (the binding
+"""The film plan's tables: every constraint's scan pixel at every photo scale (the binding
 one flagged), then the scale's results — the terminal report of ``scanplan scan``, the
-PDF's film section and a notebook's ``ScanResult`` lay it out."""
+PDF's film section and a notebook's ``ScanResult`` lay it out (:func:`film_constraints`) —,
+why each scale's constraint binds, the smallest photo scale each scan pixel supports, the
+constraints' formulas and the dense sweep of the chart."""
 
 from __future__ import annotations
 
@@ -8,7 +10,8 @@ from typing import Any
 
 from .table import Column, Row, Table
 
-__all__ = ["film_constraints"]
+__all__ = ["film_constraints", "film_explanations", "film_formulas", "film_reach",
+           "film_sweep"]
 
 _SUMMARY = frozenset({"summary"})
 _EMPH = frozenset({"summary", "emph"})
@@ -69,3 +72,62 @@ def film_constraints(plan: Any) -> Table:
                         digits=2, flags=_SUMMARY))
     columns = tuple(Column(value=s.photo_scale, unit="scale") for s in scen)
     return Table("film_constraints", "film_constraints", columns, tuple(rows))
+
+
+def film_explanations(plan: Any) -> Table:
+    """Why each photo scale's binding constraint binds (the engine's sentence): one row per
+    candidate photo scale (key ``explanation``; field ``photo_scale``)."""
+    return Table("film_explanations", "film_constraints", (Column("message"),),
+                 tuple(Row("explanation", (s.explanation,), fields={
+                     "photo_scale": s.photo_scale}) for s in plan.scenarios))
+
+
+def film_reach(plan: Any) -> Table:
+    """The smallest photo scale (largest Mc) each scan pixel supports — the scanner's
+    steps, the pixels asked about — and the interpretation limit.
+
+    Returns
+    -------
+    Table
+        Columns ``pixel_um``, ``max_photo_scale`` (None: no photo scale; its limit is
+        then P_R), ``limit`` (the limiting constraint's id) and ``interpretable`` (the
+        smallest with the map object interpretable, None: none); one row per pixel (key
+        ``reach``), after a row ``interpretation_limit`` (values: the largest Mc at which
+        the object is recognised, or None; fields ``ratio`` Mc/Mk, ``probability``,
+        ``resolving_power``).
+    """
+    inp = plan.inputs
+    mci = plan.interpretation_limit_photo_scale
+    rows = [Row("interpretation_limit", (mci, None, None, None), unit="scale", fields={
+        "ratio": mci / inp.map_scale if mci is not None else None,
+        "probability": plan.rules.probability, "resolving_power": inp.resolving_power_lpmm})]
+    rows += [Row("reach", (r.pixel_um, r.max_photo_scale if r.max_photo_scale > 0 else None,
+                           r.limit, r.max_photo_scale_interpretable or None), unit="um")
+             for r in plan.max_photo_scales]
+    columns = (Column("pixel_um", unit="um"), Column("max_photo_scale", unit="scale"),
+               Column("limit"), Column("interpretable", unit="scale"))
+    return Table("film_reach", "max_photo_scales", columns, tuple(rows))
+
+
+def film_formulas(plan: Any) -> Table:
+    """The formula of each constraint the film plan evaluated: one row per constraint
+    (key: its id; flag ``"constraint"``), values its equation with its source and what it
+    protects (sentences of the rules registry)."""
+    from ...rules.registry import CONSTRAINTS
+
+    return Table("film_formulas", "formulas", (Column("equation"), Column("protects")),
+                 tuple(Row(cid, (CONSTRAINTS[cid].equation, CONSTRAINTS[cid].protects),
+                           flags=frozenset({"constraint"})) for cid in plan.constraint_ids))
+
+
+def film_sweep(plan: Any) -> Table:
+    """The dense photo-scale sweep (the chart's curves): rows ``photo_scale``, one per
+    constraint swept (key: its id; flag ``"constraint"``), ``scan_pixel_um`` and
+    ``binding``, each all the sweep's values."""
+    sweep = plan.sweep
+    rows = [Row("photo_scale", tuple(sweep.get("photo_scale", [])), unit="scale")]
+    rows += [Row(cid, tuple(sweep[cid]), unit="um", digits=2, flags=frozenset({"constraint"}))
+             for cid in plan.constraint_ids if cid in sweep]
+    rows += [Row("scan_pixel_um", tuple(sweep.get("scan_pixel_um", [])), unit="um", digits=2),
+             Row("binding", tuple(sweep.get("binding", [])))]
+    return Table("film_sweep", "plot_constraints", (), tuple(rows))

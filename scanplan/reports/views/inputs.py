@@ -1,15 +1,16 @@
-"""The film plan's inputs: what the plan was computed from, each number with the input
-registry's unit and decimals (:mod:`scanplan.project.inputs`) — the workbook's Inputs sheet
-and the PDF's film section lay it out (:func:`film_inputs`)."""
+"""A plan's inputs: what it was computed from, each number with the input registry's unit
+and decimals (:mod:`scanplan.project.inputs`) — the workbook's Inputs sheet, the PDF's
+film and digital-camera sections and the terminal's heading lay them out
+(:func:`film_inputs`, :func:`uav_inputs`)."""
 
 from __future__ import annotations
 
 from typing import Any
 
 from ...project.inputs import get
-from .table import Column, Row, Table
+from .table import Column, Named, Row, Table
 
-__all__ = ["film_inputs"]
+__all__ = ["film_inputs", "uav_inputs"]
 
 
 def _number(name: str, value: Any, key: str = "") -> Row:
@@ -71,3 +72,89 @@ def film_inputs(plan: Any) -> Table:
                             "candidate_pixels_um"))
     rows += [_number("bands", inp.bands), _number("bits_per_band", inp.bits_per_band)]
     return Table("film_inputs", "inputs", (Column("value"),), tuple(rows))
+
+
+def _uav(name: str, value: Any, key: str = "", digits: int | None = None) -> Row:
+    """A number of the UAV plan's inputs: the registry record's unit and decimals (a
+    figure the registry has no record of: ``digits``)."""
+    try:
+        rec = get(name, "uav")
+    except KeyError:
+        return Row(key or name, (value,), digits=digits)
+    unit = "scale" if rec.kind in ("scale", "scales") else rec.unit
+    return Row(key or name, (value,), unit=unit,
+               digits=rec.digits if digits is None else digits)
+
+
+def uav_inputs(job: Any) -> Table:
+    """The inputs of a UAV plan, in the order the Inputs sheet lists them, each number with
+    the input registry's unit and decimals.
+
+    Parameters
+    ----------
+    job : UavJob
+        The plan and its norm set (the camera's and the shapes' names).
+
+    Returns
+    -------
+    Table
+        One column; rows keyed by the input's Python name: ``camera`` (a
+        :class:`~.table.Named` camera; field ``id``), ``pixel_um``, ``focal_mm``,
+        ``f_number``, ``orientation``, ``sensor_width_mm``, ``sensor_height_mm`` (field
+        ``as_given``: the sides' decimals as measured), ``image_width_px``,
+        ``image_height_px``, ``min_trigger_interval_s``, ``height_m``, ``heights`` (a
+        pair: the lowest and highest flown height; field ``planned``),
+        ``height_tolerance_up_pct``, ``height_tolerance_down_pct``, ``ceiling_m``,
+        ``gsd_target_cm``, ``speed_ms``, ``exposure_s``, the overlaps, ``area_width_m``,
+        ``area_length_m``, ``map_scale``, ``relief_interval_m``, ``object`` (the map
+        object or None; with one ``object_size_m``, ``shape`` (Named), ``shape_coefficient``,
+        ``object_source``), the scene (``r_max``, ``r_min``, ``threshold_k0``,
+        ``haze_contrast``), the motion (``shift_factor``, ``random_speed_ms``, the rates),
+        ``roll_deg``, ``pitch_deg``, ``bands``, ``bits_per_band``, ``platform`` and
+        ``norm_set`` (its title in both languages: fields ``en``, ``ru``).
+    """
+    plan, ns = job.plan, job.norm_set
+    inp, h = plan.inputs, plan.heights_m
+    rows = [Row("camera", (Named("camera", inp.camera, ns, inp.camera_name)
+                           if inp.camera or inp.camera_name else None,),
+                fields={"id": inp.camera, "name": inp.camera_name}),
+            _uav("pixel_um", inp.pixel_um), _uav("focal_mm", inp.focal_mm),
+            _uav("f_number", inp.f_number), Row("orientation", (inp.orientation,)),
+            _uav("sensor_width_mm", inp.sensor_width_mm, digits=2),
+            _uav("sensor_height_mm", inp.sensor_height_mm, digits=2),
+            _uav("image_width_px", inp.image_width_px, digits=0),
+            _uav("image_height_px", inp.image_height_px, digits=0),
+            _uav("min_trigger_interval_s", inp.min_trigger_interval_s, digits=3),
+            _uav("height_m", h["planned"]),
+            Row("heights", ((h["min"], h["max"]),), unit="m", digits=1,
+                fields={"planned": h["planned"]}),
+            _uav("height_tolerance_pct", inp.height_tolerance_up_pct,
+                 "height_tolerance_up_pct"),
+            _uav("height_tolerance_pct", inp.height_tolerance_down_pct,
+                 "height_tolerance_down_pct"),
+            _uav("max_height_m", inp.ceiling_m, "ceiling_m"),
+            _uav("gsd_cm", inp.gsd_target_m * 100.0 if inp.gsd_target_m is not None
+                 else None, "gsd_target_cm"),
+            _uav("speed_ms", inp.speed_ms), _uav("exposure_s", inp.exposure_s),
+            _uav("forward_overlap_pct", inp.forward_overlap_pct),
+            _uav("side_overlap_pct", inp.side_overlap_pct),
+            Row("area_width_m", (inp.area_width_m,), unit="m", digits=1),
+            Row("area_length_m", (inp.area_length_m,), unit="m", digits=1),
+            _uav("map_scale", inp.map_scale),
+            _uav("relief_interval_m", inp.relief_interval_m),
+            Row("object", (inp.map_object,))]
+    obj = inp.map_object
+    if obj is not None:
+        rows += [_uav("object_size_m", obj.size_m), Row("shape", (Named("shape", obj.shape,
+                                                                          ns),)),
+                 Row("shape_coefficient", (obj.shape_coefficient,), digits=2),
+                 Row("object_source", (obj.source,))]
+    rows += [_uav(name, getattr(inp, name)) for name in (
+        "r_max", "r_min", "threshold_k0", "haze_contrast", "shift_factor", "random_speed_ms",
+        "roll_rate_rad_s", "pitch_rate_rad_s", "yaw_rate_rad_s", "roll_deg", "pitch_deg")]
+    rows += [Row("bands", (inp.bands,), digits=0),
+             Row("bits_per_band", (inp.bits_per_band,), digits=0),
+             Row("platform", (inp.platform,))]
+    if ns is not None:
+        rows.append(Row("norm_set", (ns.name,), fields={"en": ns.title, "ru": ns.title_ru}))
+    return Table("uav_inputs", "inputs", (Column("value"),), tuple(rows))

@@ -4,24 +4,43 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, NamedTuple
 
 from .design import design, design_notes
-from .film import film_constraints
+from .film import film_constraints, film_explanations, film_formulas, film_reach, film_sweep
 from .headline import spec_film, spec_uav
-from .inputs import film_inputs
+from .inputs import film_inputs, uav_inputs
 from .spec import all_warnings, comparison, warnings
 from .table import Table
 from .uav import uav_flight, uav_limits, uav_recognition, uav_results
+from .uav_data import (
+    uav_accuracy,
+    uav_figures,
+    uav_flight_figures,
+    uav_height_curve,
+    uav_mtf,
+)
 
 __all__ = ["TABLES", "ResultTables"]
 
 #: Each table: the result it is built from (``"scan"`` / ``"uav"``: that plan;
-#: ``"spec"``: the specification; ``"spec.film"`` / ``"spec.uav"``: the specification, when
-#: it has that part; ``"all"``: the :class:`ResultTables`, whichever it has) and its builder.
+#: ``"scan.job"`` / ``"uav.job"``: that plan with its norm set, as ``job.plan`` and
+#: ``job.norm_set``; ``"spec"``: the specification; ``"spec.film"`` / ``"spec.uav"`` /
+#: ``"spec.design"``: the specification, when it has that part; ``"all"``: the
+#: :class:`ResultTables`, whichever it has) and its builder.
 TABLES: dict[str, tuple[str, Callable[[Any], Table]]] = {
     "film_constraints": ("scan", film_constraints),
     "film_inputs": ("scan", film_inputs),
+    "film_explanations": ("scan", film_explanations),
+    "film_reach": ("scan", film_reach),
+    "film_formulas": ("scan", film_formulas),
+    "film_sweep": ("scan", film_sweep),
+    "uav_inputs": ("uav.job", uav_inputs),
+    "uav_figures": ("uav", uav_figures),
+    "uav_accuracy": ("uav", uav_accuracy),
+    "uav_flight_figures": ("uav", uav_flight_figures),
+    "uav_height_curve": ("uav", uav_height_curve),
+    "uav_mtf": ("uav", uav_mtf),
     "uav_results": ("uav", uav_results),
     "uav_limits": ("uav", uav_limits),
     "uav_flight": ("uav", uav_flight),
@@ -48,6 +67,8 @@ class ResultTables:
         The film plan (``ScanPlan``) and the UAV plan (``UavPlan``).
     spec : PlanResult or None
         The specification of ``scanplan plan``.
+    scan_norms, uav_norms : NormSet or None
+        The norm set of each plan (the names of its cameras, objects and shapes).
 
     Attributes
     ----------
@@ -67,6 +88,8 @@ class ResultTables:
     scan: Any = None
     uav: Any = None
     spec: Any = None
+    scan_norms: Any = None
+    uav_norms: Any = None
     built: list[str] = field(default_factory=list)
     _tables: dict[str, Table] = field(default_factory=dict, repr=False)
 
@@ -88,6 +111,9 @@ class ResultTables:
         """What a table is built from (None when the result has not got it)."""
         if source == "all":
             return self
+        if source in ("scan.job", "uav.job"):
+            plan = getattr(self, source[:-4])
+            return None if plan is None else _Job(plan, getattr(self, source[:-4] + "_norms"))
         head, _, part = source.partition(".")
         found = getattr(self, head)
         return None if found is None or (part and getattr(found, part) is None) else found
@@ -96,4 +122,13 @@ class ResultTables:
     def of_jobs(cls, scan: Any = None, uav: Any = None, spec: Any = None) -> ResultTables:
         """The tables of a film and/or UAV job (their plans) and a specification."""
         return cls(scan=scan.plan if scan is not None else None,
-                   uav=uav.plan if uav is not None else None, spec=spec)
+                   uav=uav.plan if uav is not None else None, spec=spec,
+                   scan_norms=scan.norm_set if scan is not None else None,
+                   uav_norms=uav.norm_set if uav is not None else None)
+
+
+class _Job(NamedTuple):
+    """A plan with its norm set (what a ``"scan.job"`` / ``"uav.job"`` table reads)."""
+
+    plan: Any
+    norm_set: Any
