@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import functools
 import re
+from collections.abc import Callable
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import jinja2
@@ -34,7 +36,7 @@ from .wording import document_date
 if TYPE_CHECKING:
     from ..project.spec import PlanResult
 
-__all__ = ["render_html"]
+__all__ = ["PDF_SECTIONS", "PdfSection", "render_html"]
 
 _DEFAULT_META = ReportMeta()
 
@@ -203,13 +205,9 @@ def render_html(*, scan: ScanJob | None = None, uav: UavJob | None = None,
     else:  # "Sheet 2 of 4"
         footer = (f"{_css_string(f('sheet') + ' ')} counter(page) "
                   f"{_css_string(' ' + f('sheets_of') + ' ')} counter(pages)")
-    scan_view = _scan_view(scan, view, f) if scan is not None else None
-    uav_view = _uav_view(uav, view, f) if uav is not None else None
-    if uav_view is not None:
-        uav_view["plot_terrain"] = _terrain_plot(spec, view, f)
-        uav_view["terrain_rows"] = _terrain_rows(spec, f)
-    spec_view = _spec_view(spec, view, f) if spec is not None else None
-    design = _design_view(view, f) if spec is not None else None
+    built = {}
+    for section in sorted(PDF_SECTIONS, key=lambda x: x.rank):  # works cited in this order
+        built[section.name] = section.build(view, f)
     ctx = {
         "lang": meta.locale, "title": title, "meta": meta, "date": date,
         "running_project": _shorten(" ".join(meta.project.split()), _RUNNING_HEADER_CHARS),
@@ -217,20 +215,82 @@ def render_html(*, scan: ScanJob | None = None, uav: UavJob | None = None,
         "generator": f"scanplan {__version__}",
         "footer_css": Markup(f"@page {{ @bottom-center {{ content: {footer}; }} }}"),
         "L": _Labels(f),
-        "scan": scan_view,
-        "uav": uav_view,
-        # with a specification its own side-by-side table is shown; not this one as well
-        "comparison": (_comparison_view(view, f)
-                       if scan is not None and uav is not None
-                       and not (spec is not None and spec.comparison) else None),
-        "spec": spec_view,
-        "design": design,
-        "geo": _geo_views(spec, uav, meta.locale),
-        "warnings_box": _warnings_box(scan_view, uav_view, spec, view, f),
+        **built,
+        "sections": [s for s in PDF_SECTIONS if built[s.name]],
+        "warnings_box": _warnings_box(built.get("scan"), built.get("uav"), spec, view, f),
         "references": f.references(),
     }
     view._html.append(_environment().get_template("report.html").render(**ctx))
     return view._html[0]
+
+
+def _scan_section(view: ReportView, f: Formatter) -> dict[str, Any] | None:
+    return _scan_view(view.scan, view, f) if view.scan is not None else None
+
+
+def _uav_section(view: ReportView, f: Formatter) -> dict[str, Any] | None:
+    if view.uav is None:
+        return None
+    out = _uav_view(view.uav, view, f)
+    out["plot_terrain"] = _terrain_plot(view.spec, view, f)
+    out["terrain_rows"] = _terrain_rows(view.spec, f)
+    return out
+
+
+def _spec_section(view: ReportView, f: Formatter) -> dict[str, Any] | None:
+    return _spec_view(view.spec, view, f) if view.spec is not None else None
+
+
+def _comparison_section(view: ReportView, f: Formatter) -> dict[str, Any] | None:
+    """Film and digital camera side by side — not with a specification, which shows its
+    own comparison."""
+    if view.scan is None or view.uav is None or (view.spec is not None
+                                                 and view.spec.comparison):
+        return None
+    return _comparison_view(view, f)
+
+
+def _geo_section(view: ReportView, f: Formatter) -> list[dict[str, Any]]:
+    return _geo_views(view.spec, view.uav, f.locale)
+
+
+@dataclass(frozen=True)
+class PdfSection:
+    """One section of the PDF.
+
+    Attributes
+    ----------
+    name : str
+        The name its template reads its dictionary under.
+    build : callable
+        ``build(view, f) -> dict | list | None``: the section's words and numbers (from
+        the view's tables, with the document's formatter ``f``); None or empty: the
+        document has no such section.
+    template : str
+        Its template in ``templates/`` (``_spec.html``).
+    rank : int
+        When it is built: works are numbered in the order they are first cited, so a
+        section's citations are numbered after those of the sections of a lower rank. A
+        new section keeps the default: after the others.
+    """
+
+    name: str
+    build: Callable[[ReportView, Formatter], Any]
+    template: str
+    rank: int = 100
+
+
+#: The PDF's sections in the order of the document (``report.html`` includes each
+#: present one's template after page 1's boxes).
+PDF_SECTIONS: tuple[PdfSection, ...] = (
+    PdfSection("spec", _spec_section, "_spec.html", rank=2),
+    PdfSection("design", lambda v, f: _design_view(v, f) if v.spec is not None else None,
+               "_design.html", rank=3),
+    PdfSection("scan", _scan_section, "_scan.html", rank=0),
+    PdfSection("uav", _uav_section, "_uav.html", rank=1),
+    PdfSection("comparison", _comparison_section, "_comparison.html", rank=4),
+    PdfSection("geo", _geo_section, "_map.html", rank=5),
+)
 
 
 def _geo_views(spec: PlanResult | None, uav: UavJob | None, locale: str

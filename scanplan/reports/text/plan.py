@@ -5,7 +5,8 @@ from __future__ import annotations
 import math
 import os
 import textwrap
-from typing import Any
+from collections.abc import Callable
+from typing import Any, NamedTuple
 
 from ..formatter import COMPARISON_LABELS, Formatter, formatter
 from ..jsondoc import scale_value
@@ -15,8 +16,8 @@ from .area import format_area, format_layout, format_terrain
 from .layout import WIDTH, code_tag, table, text_table, wrap
 from .uav import volume_text
 
-__all__ = ["batch_row", "batch_summary", "batch_table", "batch_warnings",
-           "format_plan_result", "project_warnings", "warning_items"]
+__all__ = ["PLAN_PARTS", "PlanPart", "batch_row", "batch_summary", "batch_table",
+           "batch_warnings", "format_plan_result", "project_warnings", "warning_items"]
 
 
 def format_plan_result(result: Any, locale: str | None = None,
@@ -42,17 +43,9 @@ def format_plan_result(result: Any, locale: str | None = None,
     if tables is None:
         tables = ResultTables.of_jobs(result.film.job if result.film else None,
                                       result.uav.job if result.uav else None, result)
-    lines = _plan_heading(result, f)
-    lines += [wrap(x, "") for x in format_terrain(result, f.locale)]
-    if result.film:
-        lines += _film_summary(tables["spec_film"], f)
-    if result.uav:
-        lines += _uav_summary(tables["spec_uav"], _platform(tables), f)
-    if result.comparison:
-        lines += _comparison_lines(result, f, tables)
-    lines += _design_lines(tables, f)
-    if result.warnings:
-        lines += _warning_lines(result, f, tables)
+    lines: list[str] = []
+    for part in PLAN_PARTS:
+        lines += part.lines(result, tables, f)
     return "\n".join(lines)
 
 
@@ -251,6 +244,29 @@ def _uav_flight_rows(r: dict[str, Row], f: Formatter) -> list[list[str]]:
                  f"{s} {f.cli('or_speed')} ≤ {f.fixed(r['max_speed_ms'].value, 1)} "
                  f"{f.cli('ms')}"])
     return rows
+
+
+class PlanPart(NamedTuple):
+    """One part of the terminal summary of ``scanplan plan``: ``lines(result, tables, f)``
+    gives its lines (none: the result has not got it), from the result's tables and the
+    terminal's formatter."""
+
+    name: str
+    lines: Callable[[Any, ResultTables, Formatter], list[str]]
+
+
+#: The parts of the terminal summary, in order.
+PLAN_PARTS: tuple[PlanPart, ...] = (
+    PlanPart("heading", lambda r, t, f: _plan_heading(r, f)),
+    PlanPart("terrain", lambda r, t, f: [wrap(x, "") for x in format_terrain(r, f.locale)]),
+    PlanPart("film", lambda r, t, f: _film_summary(t["spec_film"], f) if r.film else []),
+    PlanPart("uav", lambda r, t, f: _uav_summary(t["spec_uav"], _platform(t), f)
+             if r.uav else []),
+    PlanPart("comparison", lambda r, t, f: _comparison_lines(r, f, t) if r.comparison
+             else []),
+    PlanPart("design", lambda r, t, f: _design_lines(t, f)),
+    PlanPart("warnings", lambda r, t, f: _warning_lines(r, f, t) if r.warnings else []),
+)
 
 
 _BATCH_HEADER = ["project", "map", "film: photo scale", "scan µm", "digital camera: height m",
