@@ -15,10 +15,24 @@ for.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ._version import __version__
 from .errors import InputError
+
+if TYPE_CHECKING:  # what a type checker reads of the exports imported on first use
+    from .api import (
+        BatchResult,
+        ProjectResult,
+        ScanResult,
+        UavResult,
+        batch,
+        plan,
+        scan,
+        sweep,
+        uav,
+    )
+    from .norms import load_norm_set
 
 __all__ = ["BatchResult", "InputError", "ProjectResult", "ScanResult", "UavResult",
            "__version__", "batch", "load_norm_set", "plan", "scan", "sweep", "uav"]

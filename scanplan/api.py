@@ -37,8 +37,12 @@ from typing import TYPE_CHECKING, Any
 from .errors import InputError
 
 if TYPE_CHECKING:  # pragma: no cover
+    from typing import Literal, SupportsFloat, SupportsIndex
+
     import pandas as pd
 
+    from .geo.layout import Area
+    from .project.flightplan import LayoutOptions
     from .project.jobs import ScanJob, UavJob
     from .project.spec import PlanResult
 
@@ -620,14 +624,18 @@ def _registry_keywords(engine: Any, plan_kind: str, returns: str) -> Any:
     from .project.signature import parameters_doc, registry_signature
 
     def wrap(fn: Any) -> Any:
+        import inspect
+
         fn.__signature__ = registry_signature(engine, plan_kind, returns)
-        summary, _, examples = (fn.__doc__ or "").partition("    Examples\n")
-        params = "\n".join("    " + line if line else "" for line in
-                           parameters_doc(engine, plan_kind).splitlines())
-        fn.__doc__ = (summary.rstrip() + "\n\n" + params + "\n\n    Returns\n    -------\n"
-                      f"    {returns}\n\n    Raises\n    ------\n    InputError\n"
-                      "        Naming the input and its allowed range.\n\n"
-                      + ("    Examples\n" + examples if examples else ""))
+        summary, _, examples = inspect.cleandoc(fn.__doc__ or "").partition("\nExamples\n")
+        parts = [summary.rstrip(), parameters_doc(engine, plan_kind),
+                 f"Returns\n-------\n{returns}",
+                 "Raises\n------\nInputError\n    Naming the input and its allowed range."]
+        if examples:
+            parts.append("Examples\n" + examples.rstrip())
+        first, _, rest = "\n\n".join(parts).partition("\n")
+        fn.__doc__ = first + "\n" + "\n".join("    " + line if line else ""
+                                              for line in rest.splitlines()) + "\n"
         return fn
 
     return wrap
@@ -639,43 +647,115 @@ def _engine(name: str) -> Any:
     return getattr(engine, name)
 
 
-@_registry_keywords(_engine("scan_job"), "film", "ScanResult")
-def scan(**inputs: Any) -> ScanResult:
-    """Plan the scanning of film photos, as ``scanplan scan``: every constraint at each
-    candidate photo scale. Numbers may be any :class:`numbers.Real`.
+if TYPE_CHECKING:  # the signatures a type checker reads: the registry's keywords, typed
+    # <typed signatures: python -m scanplan.project.signature scanplan/api.py>
+    def scan(
+            *,
+            map_scale: SupportsFloat | str,
+            relief_interval_m: SupportsFloat,
+            photo_scales: Iterable[SupportsFloat | str],
+            camera: str | None = ...,
+            camera_name: str | None = ...,
+            focal_mm: SupportsFloat | None = ...,
+            frame_mm: str | None = ...,
+            resolving_power_lpmm: SupportsFloat | None = ...,
+            forward_overlap_pct: SupportsFloat | None = ...,
+            norms: str | os.PathLike[str] = ...,
+            object_size_m: SupportsFloat | None = ...,
+            shape: str | None = ...,
+            object_name: str | None = ...,
+            probability: SupportsFloat | None = ...,
+            height_formula: Literal['instruction', 'parallax'] | None = ...,
+            pr_coefficient: SupportsFloat | None = ...,
+            recognition_rounding: Literal['exact', 'paper'] | None = ...,
+            scanner: str | None = ...,
+            bands: SupportsIndex = ...,
+            bits_per_band: SupportsIndex = ...,
+            pixel_um: Iterable[SupportsFloat] = ...,
+    ) -> ScanResult: ...
 
-    Examples
-    --------
-    >>> import scanplan
-    >>> r = scanplan.scan(map_scale="1:2000", relief_interval_m=1.0,
-    ...                   photo_scales=[8000, 10000], camera="afa-te-100")
-    >>> list(r.to_frame()["photo_scale"])
-    [8000, 10000]
-    """
-    from .project.jobs import scan_job
-    from .project.signature import plain
+    def uav(
+            *,
+            height_m: SupportsFloat | None = ...,
+            camera: str | None = ...,
+            camera_name: str | None = ...,
+            pixel_um: SupportsFloat | None = ...,
+            focal_mm: SupportsFloat | None = ...,
+            sensor_mm: str | None = ...,
+            f_number: SupportsFloat | None = ...,
+            speed_ms: SupportsFloat | None = ...,
+            exposure_s: SupportsFloat = ...,
+            forward_overlap_pct: SupportsFloat | None = ...,
+            side_overlap_pct: SupportsFloat | None = ...,
+            height_tolerance_pct: SupportsFloat = ...,
+            map_scale: SupportsFloat | str | None = ...,
+            relief_interval_m: SupportsFloat | None = ...,
+            norms: str | os.PathLike[str] = ...,
+            object_size_m: SupportsFloat | None = ...,
+            shape: str | None = ...,
+            object_name: str | None = ...,
+            probability: SupportsFloat | None = ...,
+            height_formula: Literal['instruction', 'parallax', 'normal_case'] | None = ...,
+            r_max: SupportsFloat = ...,
+            r_min: SupportsFloat = ...,
+            threshold_k0: SupportsFloat | None = ...,
+            haze_contrast: SupportsFloat | None = ...,
+            shift_factor: SupportsFloat = ...,
+            random_speed_ms: SupportsFloat = ...,
+            roll_rate_rad_s: SupportsFloat = ...,
+            pitch_rate_rad_s: SupportsFloat = ...,
+            yaw_rate_rad_s: SupportsFloat = ...,
+            area_m: str | None = ...,
+            roll_deg: SupportsFloat = ...,
+            pitch_deg: SupportsFloat = ...,
+            orientation: Literal['landscape', 'portrait'] | None = ...,
+            max_height_m: SupportsFloat | None = ...,
+            gsd_cm: SupportsFloat | None = ...,
+            gsd_area: Literal['general', 'dense_urban'] = ...,
+            parallax_error_px: SupportsFloat | None = ...,
+            gsd_limit_reason: str | None = ...,
+            area: Area | None = ...,
+            layout_options: LayoutOptions | None = ...,
+    ) -> UavResult: ...
+    # </typed signatures>
+else:  # at run time: one keyword per input of the registry (its signature and its docs)
+    @_registry_keywords(_engine("scan_job"), "film", "ScanResult")
+    def scan(**inputs: Any) -> ScanResult:
+        """Plan the scanning of film photos, as ``scanplan scan``: every constraint at each
+        candidate photo scale. Numbers may be any :class:`numbers.Real`.
 
-    return ScanResult(scan_job(**plain(inputs)))
+        Examples
+        --------
+        >>> import scanplan
+        >>> r = scanplan.scan(map_scale="1:2000", relief_interval_m=1.0,
+        ...                   photo_scales=[8000, 10000], camera="afa-te-100")
+        >>> list(r.to_frame()["photo_scale"])
+        [8000, 10000]
+        """
+        from .project.jobs import scan_job
+        from .project.signature import plain
+
+        return ScanResult(scan_job(**plain(inputs)))
 
 
-@_registry_keywords(_engine("uav_job"), "uav", "UavResult")
-def uav(**inputs: Any) -> UavResult:
-    """Plan a digital-camera flight, as ``scanplan uav``: GSD, the MTF ground resolution,
-    blur, flight geometry and, with a map scale or a target GSD, the maximum planned
-    height under every limit. Numbers may be any :class:`numbers.Real`.
+    @_registry_keywords(_engine("uav_job"), "uav", "UavResult")
+    def uav(**inputs: Any) -> UavResult:
+        """Plan a digital-camera flight, as ``scanplan uav``: GSD, the MTF ground resolution,
+        blur, flight geometry and, with a map scale or a target GSD, the maximum planned
+        height under every limit. Numbers may be any :class:`numbers.Real`.
 
-    Examples
-    --------
-    >>> import numpy as np, scanplan
-    >>> r = scanplan.uav(camera="dji-zenmuse-p1-35", height_m=np.int64(100),
-    ...                  map_scale=1000, relief_interval_m=np.float32(0.5))
-    >>> "max_planned_height_m" in r.to_frame().columns
-    True
-    """
-    from .project.jobs import uav_job
-    from .project.signature import plain
+        Examples
+        --------
+        >>> import numpy as np, scanplan
+        >>> r = scanplan.uav(camera="dji-zenmuse-p1-35", height_m=np.int64(100),
+        ...                  map_scale=1000, relief_interval_m=np.float32(0.5))
+        >>> "max_planned_height_m" in r.to_frame().columns
+        True
+        """
+        from .project.jobs import uav_job
+        from .project.signature import plain
 
-    return UavResult(uav_job(**plain(inputs)))
+        return UavResult(uav_job(**plain(inputs)))
 
 
 def sweep(*, height_m: Any, camera: Any = None, forward_overlap_pct: Any = None,

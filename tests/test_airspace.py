@@ -51,7 +51,7 @@ def test_a_projects_own_ceiling_is_inclusive():
 def test_conditions_are_printed_with_the_plan():
     plan = uav_job(**CAM, height_m=100.0).plan
     w = next(x for x in plan.warnings if x.code == "airspace_conditions")
-    assert w.severity == "info"
+    assert w.severity == "warning"  # it asks the crew to check the rules on the flight date
     en, ru = w.text("en"), w.text("ru")
     km = load_norm_set().parameters["uav_uncontrolled_aerodrome_km"]
     assert km == 5

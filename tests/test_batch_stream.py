@@ -22,7 +22,8 @@ EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 def test_the_worker_sends_text_not_the_result(tmp_path):
     shutil.copy(EXAMPLES / "instruction-2000-film.toml", tmp_path / "a.toml")
     path = str(tmp_path / "a.toml")
-    _, outcome, payload, _ = cli_main._batch_worker((path, None, "a", [path], False, False, None))
+    _, outcome, payload, _ = cli_main._batch_worker((path, None, "a", [path], False, False, None,
+                                                     None))
     assert outcome == "ok"
     text, doc, row = payload
     row_cells, warnings = text

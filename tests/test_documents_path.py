@@ -138,3 +138,35 @@ def test_the_command_lines_outputs_are_the_document_paths():
     from scanplan.reports.documents import OUTPUTS
 
     assert FORMATS == OUTPUTS
+
+
+def test_shell_completion_offers_cameras_norm_sets_and_outputs(monkeypatch):
+    """Tab completes a camera id, a norm set and the outputs of ``--formats`` (click's
+    completion, as docs/cli.md tells a shell to use it)."""
+    from click.shell_completion import ShellComplete
+
+    def complete(args: list[str], incomplete: str) -> list[str]:
+        comp = ShellComplete(main, {}, "scanplan", "_SCANPLAN_COMPLETE")
+        return [c.value for c in comp.get_completions(args, incomplete)]
+
+    assert "dji-zenmuse-p1-35" in complete(["uav", "--camera"], "dji-zen")
+    assert "rc30-153" in complete(["cameras", "show"], "rc30")
+    assert "gkinp-02-036-02" in complete(["scan", "--norms"], "gk")
+    assert complete(["plan", "x.toml", "--formats"], "xlsx,m") == ["xlsx,missions"]
+    assert "pdf" not in complete(["plan", "x.toml", "--formats"], "pdf,")
+    text = (ROOT / "docs" / "cli.md").read_text(encoding="utf-8")
+    assert "_SCANPLAN_COMPLETE=bash_source scanplan" in text
+
+
+def test_plan_locale_overrides_the_projects_language(tmp_path):
+    """``plan --locale ru`` prints and writes in Russian an English project (a bundled
+    example is planned in Russian without editing it)."""
+    project = _block(tmp_path)  # no [project] locale: English
+    runner = CliRunner()
+    en = runner.invoke(main, ["plan", str(project)])
+    ru = runner.invoke(main, ["plan", str(project), "--locale", "ru"])
+    assert en.exit_code == 0 and ru.exit_code == 0, ru.output
+    assert "recommended flight height" in en.stdout
+    assert "рекомендуемая высота полёта" in ru.stdout and "recommended" not in ru.stdout
+    bad = runner.invoke(main, ["plan", str(project), "--locale", "de"])
+    assert bad.exit_code == 2 and "--locale" in bad.stderr

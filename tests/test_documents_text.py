@@ -59,6 +59,7 @@ _LATIN_WORD = re.compile(r"[A-Za-z][A-Za-z'’-]*[A-Za-z]")
 _RU_ALLOWED = {
     "scanplan", "gsd", "mtf", "ln", "sqrt", "exp", "max", "min", "obj", "thr", "mc", "mk",
     "px", "rgb", "jpeg", "tiff", "dpi", "uas-fp",
+    "gsdmax",  # GSD with its subscript "max", as a PDF's text joins them
     "epsg", "wgs", "utm",  # coordinate systems are named by their codes (issue 11)
 }
 
@@ -317,7 +318,7 @@ def test_terminal_summary_speaks_the_projects_language(tmp_path, locale):
     assert out.exit_code == 0, out.output
     text = out.stdout
     if locale == "ru":
-        for phrase in ("рекомендуемый масштаб снимков", "пиксель сканирования",
+        for phrase in ("рекомендуемый масштаб снимков", "размер пикселя сканирования",
                        "рекомендуемая высота полёта", "Предупреждения:", "8,3 мкм"):
             assert phrase in text, phrase
         # no English sentence: the words left are symbols, ids in brackets, names

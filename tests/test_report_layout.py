@@ -76,7 +76,7 @@ def test_uav_design_sheet_cites_the_digital_height_formula():
     assert result.uav.job.plan.binding == "PZ"
     f = formatter("en")
     norms = " ".join(f.show(r.values[1]) for r in ResultTables(spec=result)["design"].rows)
-    assert "σ_Z = (H/B)·(H/c)·σ_px" in norms
+    assert "σ_Z = (H/B)·(H/f)·σ_px" in norms
     assert "V_z·f/(k·Mc·b)" not in norms
 
 
@@ -90,12 +90,14 @@ def _box(html: str, cls: str) -> str:
 
 
 def test_page_one_keeps_warnings_apart_from_information():
-    """Page 1's red box holds what to act on; information and conditions checked (the haze
-    assumption, P_R driving the volume, the design's compliant GSD) have a box of their
-    own. A warning only the specification gives names the section that explains it."""
+    """Page 1's red box holds what to act on; information and conditions checked (P_R
+    driving the volume, the design's compliant GSD) have a box of their own. The haze
+    assumption asks for the flight's own value, so it is in the red box, not in the box
+    whose items need no action. A warning only the specification gives names the section
+    that explains it."""
     html = _render(_plan("aerial-ultracam-5000.toml", "en"), "html")
-    assert _box(html, "warnbox") == ""  # nothing to act on: no red box
-    assert "Haze contrast assumed" in _box(html, "warnbox notebox")
+    assert "Haze contrast assumed" in _box(html, "warnbox")
+    assert "Haze contrast assumed" not in _box(html, "warnbox notebox")
     html = _render(_plan("uav-canon-2000.toml", "en"), "html")
     warn = _box(html, "warnbox")
     assert "Motion blur" in warn

@@ -304,7 +304,8 @@ def test_the_film_maps_local_scale_axis_reads_as_scales():
     ft, focal = spec.film.terrain, spec.film.job.plan.inputs.focal_mm
     agl = np.asarray(lay.photos["agl_m"], dtype=float)
     none = np.zeros(agl.size, dtype=bool)
-    mt = MapTerrain(agl, none, none, focal_mm=focal, agl_range_m=(
+    mt = MapTerrain(agl, none, none, scale_of_height=lambda h: h * 1000.0 / focal,
+                    height_of_scale=lambda m: m * focal / 1000.0, agl_range_m=(
         ft.mc_min * focal / 1000.0, ft.mc_max * focal / 1000.0))  # as a DEM would colour it
     for loc in ("en", "ru"):
         svg = map_svg(lay, loc, mt)

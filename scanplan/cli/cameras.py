@@ -6,6 +6,8 @@ import os
 
 import click
 
+from .options import complete_camera, complete_norms
+
 
 def _echo_json(doc: object) -> None:
     from .main import _echo_json as echo
@@ -53,6 +55,7 @@ _CAMERA_KINDS = ("film", "digital", "uav", "aircraft", "scanner")
               help="Only film or digital cameras, cameras carried by a UAV or an aircraft, "
               "or the scanners.")
 @click.option("--norms", default="gkinp-02-036-02", show_default=True,
+              shell_complete=complete_norms,
               help="Norm set whose cameras to add to the catalogue.")
 @click.option("--json", "as_json", is_flag=True,
               help="Print as JSON (a list of cameras; of scanner steps with --kind scanner).")
@@ -115,8 +118,9 @@ def cameras_list(kind: str | None, norms: str, as_json: bool, locale: str = "en"
 
 
 @cameras.command("show")
-@click.argument("camera_id")
+@click.argument("camera_id", shell_complete=complete_camera)
 @click.option("--norms", default="gkinp-02-036-02", show_default=True,
+              shell_complete=complete_norms,
               help="Norm set whose cameras to add to the catalogue.")
 @click.option("--json", "as_json", is_flag=True, help="Print as JSON.")
 @LOCALE
@@ -167,9 +171,14 @@ def _positions() -> set[str]:
     return {"pos_centre", "pos_corner"}
 
 
+#: The terminal's word of a catalogue column's unit (the schema's unit, in English).
+_UNIT_WORDS = {"mm": "mm", "µm": "um", "px": "px", "s": "s", "lines/mm": "lpmm", "m": "m"}
+
+
 def _key(key: str, locale: str) -> str:
-    """A camera field by name: the schema's key (English), the norm workbook's Russian
-    header (``scanplan norms template --locale ru``) in Russian."""
+    """A camera field by name: the schema's key (English; its unit in the name), the norm
+    workbook's Russian header (``scanplan norms template --locale ru``) with its unit in
+    Russian."""
     if locale != "ru":
         return key
     from ..i18n.labels_cli import CLI
@@ -177,9 +186,11 @@ def _key(key: str, locale: str) -> str:
 
     for col in TABLES["cameras"].columns:
         if col.name == key and col.aliases:
-            return col.aliases[0]
-    extra = {"carried_by": "carried_effective", "lens_mtf": "ЧКХ объектива",
-             "published_pixel_um": "опубликованный размер пикселя"}.get(key, key)
+            unit = _UNIT_WORDS.get(col.value.unit)
+            return col.aliases[0] + (f", {CLI['ru'][unit]}" if unit else "")
+    if key == "published_pixel_um":
+        return f"{CLI['ru']['published_pixel']}, {CLI['ru']['um']}"
+    extra = {"carried_by": "carried_effective", "lens_mtf": "lens_mtf"}.get(key, key)
     return CLI["ru"].get(extra, extra)
 
 

@@ -23,7 +23,14 @@ from ..errors import InputError, WriteError
 from ..project.inputs import option_names
 from . import console, outputs
 from .errors import Failed, PolicyGroup
-from .options import NORM_INPUTS, REPORT_INPUTS, decimal, input_option, unlisted_inputs
+from .options import (
+    NORM_INPUTS,
+    REPORT_INPUTS,
+    complete_formats,
+    decimal,
+    input_option,
+    unlisted_inputs,
+)
 from .outset import batch_text, say_export_notes, write_reports, write_set
 from .projects import check_stdin
 
@@ -437,14 +444,18 @@ def uav(as_json: bool, **kwargs: Any) -> None:
               help="Replace existing report files that scanplan did not write.")
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
 @click.option("--formats", callback=outputs.parse_formats, metavar="LIST",
+              shell_complete=complete_formats,
               help="The outputs --out writes, comma-separated: xlsx, pdf, missions, gis "
               "(default: all). Without a PDF engine the others are still written.")
 @click.option("--jobs", type=click.IntRange(1, 256), default=None,
               help="Projects planned at once in worker processes (default: the machine's "
               "cores); the output is the same for any number.")
+@click.option("--locale", type=click.Choice(["en", "ru"]), default=None,
+              help="Language of the documents and the terminal summary, over the project's "
+              "[project] locale (default: the project's).")
 def plan(projects: tuple[str, ...], out_dir: str | None, xlsx_path: str | None,
          pdf_path: str | None, force: bool, as_json: bool, formats: tuple[str, ...] | None,
-         jobs: int | None) -> None:
+         jobs: int | None, locale: str | None) -> None:
     """The main job: the scan / flight specification for a mapping contract.
 
     PROJECTS are project files (TOML) or folders of them; several give a batch with one
@@ -454,6 +465,7 @@ def plan(projects: tuple[str, ...], out_dir: str | None, xlsx_path: str | None,
     \b
     Examples:
       scanplan plan examples/instruction-2000-film.toml --out out/
+      scanplan plan examples/uav-town-2000.toml --locale ru --out out-ru/
       scanplan plan examples/archive-12000-for-2000.toml
       scanplan plan examples/ --json
     """
@@ -484,7 +496,7 @@ def plan(projects: tuple[str, ...], out_dir: str | None, xlsx_path: str | None,
         created = make_folder(out_dir)
     try:
         _plan_files(files, batch, out_dir, xlsx_path, pdf_path, as_json, force,
-                    jobs or os.cpu_count() or 1, formats)
+                    jobs or os.cpu_count() or 1, formats, locale)
     finally:  # a folder --out created stays only if something was written into it
         remove_empty(created)
     outputs.pdf_failure_exit(bool(pdf_path) or "pdf" in (formats or ()))
@@ -500,7 +512,8 @@ def batch_stems(files: list[str]) -> list[str]:
 def _run_project(path: str, out_dir: str | None, stem: str | None, xlsx_path: str | None,
                  pdf_path: str | None, files: list[str], force: bool,
                  say: Callable[[str], None] | None = None, pdf_worker: Any = None,
-                 formats: tuple[str, ...] | None = None) -> tuple[Any, Any]:
+                 formats: tuple[str, ...] | None = None,
+                 locale: str | None = None) -> tuple[Any, Any]:
     """Plan one project and write its reports (both or neither); the PlanResult and its
     tables (one ``ResultTables``: the documents' view holds them, and the terminal summary
     lays them out). ``say`` receives the ``wrote FILE`` lines (default: stderr);
@@ -521,6 +534,11 @@ def _run_project(path: str, out_dir: str | None, stem: str | None, xlsx_path: st
         note = f" (for {path}" + (f"; the name {base} is taken by {taken}"
                                   if stem != base else "") + ")"
     result = plan_project(read_project(path))
+    if locale is not None:  # --locale: the documents' and the terminal's language
+        import dataclasses
+
+        result = dataclasses.replace(result, meta=dataclasses.replace(result.meta,
+                                                                      locale=locale))
     # the project's own input files are never replaced either (an area saved as
     # OUT/flight.kml), even with --force
     files = [*files, *project_inputs(result)]
@@ -551,7 +569,7 @@ def _batch_worker(task: tuple[Any, ...]) -> tuple[str, str, Any, list[str]]:
     table's row and the warnings, or None with --json; JSON document or None; summary
     row), ``"input"`` or ``"write"`` with the error text. No PlanResult leaves it: a batch
     of thousands keeps only these."""
-    path, out_dir, stem, files, force, as_json, formats = task
+    path, out_dir, stem, files, force, as_json, formats, locale = task
     import json
 
     from ..api import summary_row
@@ -563,7 +581,7 @@ def _batch_worker(task: tuple[Any, ...]) -> tuple[str, str, Any, list[str]]:
             if not os.environ.get("SCANPLAN_DEBUG"):
                 warnings.simplefilter("ignore")
             result, _ = _run_project(path, out_dir, stem, None, None, files, force,
-                                     said.append, formats=formats)
+                                     said.append, formats=formats, locale=locale)
         doc = json.loads(json.dumps(plan_result_dict(result), ensure_ascii=False,
                                     allow_nan=False)) if as_json else None
         text = None if as_json else batch_text(path, result)  # not the result itself
@@ -616,13 +634,15 @@ def _write_summary(out_dir: str, rows: list[dict[str, Any]], force: bool,
 
 def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: str | None,
                 pdf_path: str | None, as_json: bool, force: bool = False,
-                jobs: int = 1, formats: tuple[str, ...] | None = None) -> None:
+                jobs: int = 1, formats: tuple[str, ...] | None = None,
+                locale: str | None = None) -> None:
     """``plan`` after its arguments are checked: run one project or a batch."""
     if not batch:
         pdf = bool(pdf_path or (out_dir and outputs.selected(formats, "pdf")))
         with _pdf_worker(pdf) as worker, console.stage_bars():
             result, tables = _run_project(files[0], out_dir, None, xlsx_path, pdf_path,
-                                          files, force, pdf_worker=worker, formats=formats)
+                                          files, force, pdf_worker=worker, formats=formats,
+                                          locale=locale)
         from ..reports.jsondoc import plan_result_dict
         from ..reports.text import format_plan_result
 
@@ -632,7 +652,7 @@ def _plan_files(files: list[str], batch: bool, out_dir: str | None, xlsx_path: s
             click.echo(format_plan_result(result, tables=tables))
         return
     stems = batch_stems(files)
-    tasks = [(path, out_dir, stem, files, force, as_json, formats)
+    tasks = [(path, out_dir, stem, files, force, as_json, formats, locale)
              for path, stem in zip(files, stems, strict=True)]
     done: list[str] = []  # results are not kept: --json streams them, text keeps its lines
     lines: list[list[str]] = []  # the summary table's row of each project

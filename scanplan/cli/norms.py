@@ -24,6 +24,7 @@ from .. import norms as _norms
 from ..errors import InputError
 from ..norms.schema import PARAMETERS, TABLES
 from .errors import PolicyGroup, json_errors
+from .options import complete_norms
 
 __all__ = ["norms"]
 
@@ -159,7 +160,7 @@ def list_cmd(as_json: bool, locale: str = "en") -> None:
 
 
 @norms.command("show")
-@click.argument("name")
+@click.argument("name", shell_complete=complete_norms)
 @_JSON
 @_LOCALE
 @json_errors
@@ -265,11 +266,11 @@ def _ru_header(col: Any) -> str:
 
 def _param_ru(ns: Any, key: str, value: Any) -> str:
     """A parameter's value in Russian words (a shape, a formula) or with a decimal comma."""
-    from ..i18n.numbers import Numbers
+    from ..reports.formatter import formatter
     from ..reports.wording import param_value
 
     try:
-        text = param_value(ns, key, value, "ru", number=Numbers("ru").g)
+        text = param_value(ns, key, value, "ru", number=formatter("ru").g)
     except (KeyError, ValueError, TypeError):
         text = ""
     return text or _txt_ru(value)

@@ -183,8 +183,60 @@ def input_option(command: str, name: str, **overrides: Any) -> Callable[..., Any
         kw["multiple"] = True
     if inp.name == "pixel_um" and command == "scan":
         kw.update(multiple=True, callback=finite_each)
+    if inp.name in COMPLETIONS:
+        kw["shell_complete"] = COMPLETIONS[inp.name]
     kw.update(overrides)
     dest = inp.option.lstrip("-").replace("-", "_")
     same = dest == inp.name or inp.section == "project"  # --project-name → project_name
     decls = [inp.option] if same else [inp.option, inp.name]
     return click.option(*decls, **kw)
+
+
+# -- shell completion ---------------------------------------------------------------------
+# click completes the commands and options by itself (docs/cli.md, "Shell completion");
+# these complete the values a user would otherwise look up: a camera id, a norm set, the
+# outputs of --formats. Each imports what it reads only when a value is completed.
+
+
+def complete_camera(ctx: Any, param: Any, incomplete: str) -> list[Any]:
+    """The ids of the catalogue's cameras and scanners (``scanplan cameras list``)
+    starting with ``incomplete``."""
+    from click.shell_completion import CompletionItem
+
+    from ..norms import load_norm_set
+
+    norms = (ctx.params.get("norms") if ctx is not None else None) or "gkinp-02-036-02"
+    try:
+        ns = load_norm_set(norms)
+    except Exception:
+        return []
+    ids = sorted(set(ns.cameras) | set(ns.scanner_details))
+    return [CompletionItem(i, help=getattr(ns.cameras.get(i), "name", "")) for i in ids
+            if i.startswith(incomplete)]
+
+
+def complete_norms(ctx: Any, param: Any, incomplete: str) -> list[Any]:
+    """The names of the bundled and the user's norm sets (``scanplan norms list``)."""
+    from click.shell_completion import CompletionItem
+
+    from ..norms.store import list_norm_sets
+
+    return [CompletionItem(name) for name, _ in list_norm_sets()
+            if name.startswith(incomplete)]
+
+
+def complete_formats(ctx: Any, param: Any, incomplete: str) -> list[Any]:
+    """``--formats``: the outputs not yet in the comma-separated list, after it."""
+    from click.shell_completion import CompletionItem
+
+    from .outputs import FORMATS
+
+    done, _, last = incomplete.rpartition(",")
+    given = {x.strip() for x in done.split(",") if x.strip()}
+    head = done + "," if done else ""
+    return [CompletionItem(head + f) for f in FORMATS
+            if f not in given and f.startswith(last.strip())]
+
+
+#: The completion of an input's values, by its Python name.
+COMPLETIONS = {"camera": complete_camera, "norms": complete_norms}

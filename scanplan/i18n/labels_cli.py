@@ -64,7 +64,7 @@ CLI: dict[str, dict[str, str]] = {
         "resolving_power": "resolving power R, centre / corner",
         "l_centre": "ground resolution L (centre)",
         "l_corner": "L at the frame corner",
-        "l_gsd": "L / GSD",
+        "l_gsd": "L/GSD",
         "blur": "motion blur (at {h} m)",
         "tilted": "worst corner GSD, roll {roll}° pitch {pitch}°",
         "blur_limit": "blur ≤ 0.5 px needs exposure ≤ 1/{denominator} s or speed ≤ {v} m/s",
@@ -216,6 +216,8 @@ CLI: dict[str, dict[str, str]] = {
         "gb": "GB",
         "max_height": "maximum planned height",
         "volume_value": "{full} GB uncompressed (JPEG ≈ {jpeg} GB at {ratio}:1)",
+        "published_pixel": "published pixel pitch",
+        "lens_mtf": "lens MTF",
     },
     "ru": {
         "scan_head": "План сканирования — карта {map}, высота сечения рельефа {hc} м",
@@ -265,14 +267,15 @@ CLI: dict[str, dict[str, str]] = {
         "uav_line2": "контраст сцены r {rmax}/{rmin}, пороговый контраст K0 {k0}",
         "uav_norm": "; нормативы {name}",
         "at_height": "на {h}\u00a0м",
-        "gsd": "GSD",
+        "gsd": "размер пикселя на местности",
         "nyquist": "предел матрицы (Найквист)",
         "resolving_power": "разрешающая способность R, центр / угол",
         "l_centre": "линейное разрешение на местности L (центр)",
         "l_corner": "L в углу кадра",
-        "l_gsd": "L / GSD",
+        "l_gsd": "отношение L к размеру пикселя на местности",
         "blur": "смаз изображения (на {h} м)",
-        "tilted": "наибольший GSD в углу кадра, крен {roll}°, тангаж {pitch}°",
+        "tilted": "наибольший размер пикселя на местности в углу кадра, крен {roll}°, "
+                  "тангаж {pitch}°",
         "blur_limit": "для смаза ≤ 0,5 пикс. нужна выдержка ≤ 1/{denominator} с или скорость "
                       "≤ {v} м/с",
         "flight_head": "Геометрия аэрофотосъёмки (на плановой высоте):",
@@ -310,7 +313,8 @@ CLI: dict[str, dict[str, str]] = {
                         "м): определяет {cid} ({name}) — {reason}.",
         "accuracy": "Точность по высоте (идеализированная точность стереоизмерений): σ_Z {sz} м "
                     "на высоте {h} м (требуется {req} м СКО; "
-                    "{gsd} GSD). Максимальная плановая высота по формулам: нормальный случай "
+                    "{gsd} размера пикселя на местности). Максимальная плановая высота по "
+                    "формулам: нормальный случай "
                     "{normal} м, по Инструкции {instruction} м, параллактическая "
                     "(базис в один шаг) {parallax} м [принята: {used}].",
         "form_normal_case": "нормальный случай",
@@ -373,7 +377,7 @@ CLI: dict[str, dict[str, str]] = {
         "photo_scale_archive": "масштаб снимков (имеющиеся снимки, задан)",
         "recommended_height": "рекомендуемая высота полёта",
         "flown_up_to": "фактически до",
-        "gsd_and_l": "GSD / линейное разрешение L",
+        "gsd_and_l": "размер пикселя на местности / линейное разрешение L",
         "overlaps_base_spacing": "перекрытия / базис / между маршрутами",
         "photos_strips": "снимков / маршрутов",
         "flight": "полёт",
@@ -424,6 +428,8 @@ CLI: dict[str, dict[str, str]] = {
         "gb": "ГБ",
         "max_height": "максимальная плановая высота",
         "volume_value": "{full} ГБ без сжатия (JPEG ≈ {jpeg} ГБ при {ratio}:1)",
+        "published_pixel": "опубликованный размер пикселя",
+        "lens_mtf": "ЧКХ объектива",
     },
 }
 

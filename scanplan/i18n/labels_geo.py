@@ -188,7 +188,7 @@ GEO: dict[str, dict[str, str]] = {
         "photo_y_m": "X (на север), м",
         "photo_lon_deg": "Долгота, °",
         "photo_lat_deg": "Широта, °",
-        "photo_gsd_cm": "GSD, см",
+        "photo_gsd_cm": "Размер пикселя на местности, см",
         "photo_resolution_cm": "Линейное разрешение на местности L, см",
     },
 }

@@ -10,10 +10,11 @@ text (``Message`` subclasses ``str``), so ``warning.message``, ``constraint.reas
 
 Templates use :meth:`str.format` fields with these parameter kinds:
 
-- numbers, with an ordinary format spec (``{x:g}``, ``{x:.1f}``, ``{n:d}``); in Russian
-  the decimal point becomes a comma and thousands (``{x:,.0f}``, or a whole number
-  ≥ 10 000 under ``g``) are grouped with a no-break space — the rule of the Russian
-  reports (:func:`scanplan.reports.plots.number`);
+- numbers, with an ordinary format spec (``{x:g}``, ``{x:.1f}``, ``{n:d}``); a number of
+  1,000 or more is grouped as the reports' tables group it (:class:`scanplan.i18n.
+  numbers.Numbers`: ``2,093`` / ``2 093``, a no-break space in Russian, where the decimal
+  point becomes a comma); ``{n:id}`` — an identifier (a photo's number) or a shutter speed's
+  denominator (``1/1614 s``, as photographers write it), never grouped;
 - ``{x:scale}`` — a scale denominator (:func:`scale_text`: ``1:25000`` in English,
   ``1:25 000`` in Russian, ``1:8000`` in both); ``{x:denominator}`` — the same
   denominator without ``1:`` (``8000``, ``25000``; Russian ``25 000``), for a
@@ -248,9 +249,9 @@ MESSAGES: dict[str, dict[str, str]] = {
     },
     "motion_blur": {
         "en": "motion blur {blur:g} px at {height:g} m exceeds {limit:g} px: use an exposure ≤ "
-              "1/{denominator:d} s or a speed ≤ {speed:.1f} m/s",
+              "1/{denominator:id} s or a speed ≤ {speed:.1f} m/s",
         "ru": "Смаз {blur:g}~пикс. на высоте {height:g}~м больше допустимого {limit:g}~пикс.: "
-              "нужна выдержка не длиннее 1/{denominator:d}~с или скорость не выше {speed:.1f}~"
+              "нужна выдержка не длиннее 1/{denominator:id}~с или скорость не выше {speed:.1f}~"
               "м/с.",
     },
     "haze_default_height": {
@@ -407,10 +408,11 @@ MESSAGES: dict[str, dict[str, str]] = {
               "{cid}), округлённая в меньшую сторону с шагом {step:g}~м.",
     },
     "height_lowered": {
-        "en": "the planned {planned:g} m is above the maximum {max:.0f} m ({cid} binds); "
-              "lowered to {recommended:g} m",
-        "ru": "Плановая высота полёта {planned:g}~м выше максимальной {max:.0f}~м "
-              "(определяющее условие {cid}); высота понижена до {recommended:g}~м.",
+        "en": "the flight height given in the project, {planned:g} m, is above the maximum "
+              "planned height {max:.0f} m ({cid} binds); lowered to {recommended:g} m",
+        "ru": "Высота полёта, заданная в проекте, {planned:g}~м, выше максимальной плановой "
+              "{max:.0f}~м (определяющее условие {cid}); высота понижена до "
+              "{recommended:g}~м.",
     },
     "spec.uav_within": {
         "en": "the planned height is within the maximum planned height {max:.0f} m",
@@ -546,17 +548,32 @@ def scale_text(x: float, locale: str = "en") -> str:
     return "1:" + (f"{float(x):g}".replace(".", ",") if locale == "ru" else f"{float(x):g}")
 
 
+_SPEC = re.compile(r"^(?P<head>[^.,a-zA-Z%]*)(?P<group>,?)(?P<tail>(\.\d+)?[a-zA-Z%]?)$")
+
+
+def _grouped(spec: str, x: float) -> str:
+    """``spec`` with thousands grouped when ``|x|`` ≥ 1000 (the one rule of
+    :class:`scanplan.i18n.numbers.Numbers`: prose groups as tables do)."""
+    m = _SPEC.match(spec)
+    if m is None or abs(x) < 1000:
+        return spec
+    if m["tail"] in ("", "g") and float(x).is_integer():
+        return m["head"] + ",.0f"  # a whole number: no exponent, grouped
+    return m["head"] + "," + m["tail"]
+
+
 def _number(x: float, spec: str, locale: str) -> str:
     if spec == "scale":
         return scale_text(x, locale)
     if spec == "denominator":
         return scale_text(x, locale)[2:]
+    if spec == "id":  # an identifier (a photo's, a strip's number): never grouped
+        return str(int(x))
     if spec.endswith("d") and float(x).is_integer():
         x = int(x)
+    spec = _grouped(spec, x)
     if locale != "ru":
         return format(x, spec)
-    if spec in ("", "g") and float(x).is_integer() and abs(x) >= 10000:
-        spec = ",.0f"  # the reports group whole numbers from 10 000
     return format(x, spec).replace(",", _NBSP).replace(".", ",")
 
 

@@ -9,24 +9,24 @@ from __future__ import annotations
 TERRAIN: dict[str, dict[str, str]] = {
     "terrain_resolution": {
         "en": "over low ground the photos are too high above it: at a planned height of "
-              "{height:g} m photo {photo:d} (strip {strip:d}) is {agl:.0f} m above the ground "
+              "{height:g} m photo {photo:id} (strip {strip:id}) is {agl:.0f} m above the ground "
               "({flown:.0f} m with the height tolerance), {excess:.0f} m above the maximum "
               "planned height {limit:.0f} m set by {cid}; strips that fail: {count:d} "
               "({strips}; excess in m by strip — strip: m — {by}). {remedy}",
         "ru": "Над пониженным рельефом снимки получаются слишком высоко над землёй: при "
-              "плановой высоте {height:g}~м снимок {photo:d} (маршрут {strip:d}) — "
+              "плановой высоте {height:g}~м снимок {photo:id} (маршрут {strip:id}) — "
               "{agl:.0f}~м над землёй ({flown:.0f}~м с учётом допуска), выше максимальной "
               "плановой высоты {limit:.0f}~м по условию {cid} на {excess:.0f}~м; не "
               "выполняется на маршрутах: {count:d} ({strips}; превышение по маршрутам — "
               "маршрут: м — {by}). {remedy}",
     },
     "terrain_resolution_lowered": {  # the part of terrain_height_lowered that says why
-        "en": ". At the planned height of {height:g} m photo {photo:d} (strip {strip:d}) would "
+        "en": ". At the planned height of {height:g} m photo {photo:id} (strip {strip:id}) would "
               "be {agl:.0f} m above the ground ({flown:.0f} m with the height tolerance), "
               "{excess:.0f} m above the maximum planned height {limit:.0f} m set by {cid}; "
               "strips that would fail: {count:d} ({strips}; excess in m by strip — strip: m — "
               "{by}). {remedy}",
-        "ru": " При плановой высоте {height:g}~м снимок {photo:d} (маршрут {strip:d}) был бы "
+        "ru": " При плановой высоте {height:g}~м снимок {photo:id} (маршрут {strip:id}) был бы "
               "на {agl:.0f}~м над землёй ({flown:.0f}~м с учётом допуска), выше максимальной "
               "плановой высоты {limit:.0f}~м по условию {cid} на {excess:.0f}~м; не "
               "выполнялось бы на маршрутах: {count:d} ({strips}; превышение по маршрутам — "
@@ -82,24 +82,25 @@ TERRAIN: dict[str, dict[str, str]] = {
               "высоту до {max:.0f}~м.",
     },
     "terrain_forward_overlap": {
-        "en": "over high ground the forward overlap drops to {value:.1f} % (photos {a:d} and "
-              "{b:d}), below the planned {planned:g} % at {count:d} photo(s): {photos}.{floor} "
+        "en": "over high ground the forward overlap drops to {value:.1f} % (photos {a:id} and "
+              "{b:id}), below the planned {planned:g} % at {count:d} photo(s): {photos}.{floor} "
               "Remedies: hold the altitude over the highest ground (⁅[terrain] altitude_mode = "
               "\"constant\" or \"strip\"⁆), or raise the forward overlap "
               "(⁅[uav] forward_overlap_pct⁆)",
         "ru": "Над повышенным рельефом продольное перекрытие уменьшается до {value:.1f}~% (снимки "
-              "{a:d} и {b:d}) — меньше планового {planned:g}~% у снимков: {count:d} "
+              "{a:id} и {b:id}) — меньше планового {planned:g}~% у снимков: {count:d} "
               "({photos}).{floor} Выход: отсчитывать высоту от наивысшей точки блока или маршрута "
               "(⁅[terrain] altitude_mode⁆) или увеличить продольное перекрытие "
               "(⁅[uav] forward_overlap_pct⁆).",
     },
     "terrain_side_overlap": {
-        "en": "over high ground the side overlap drops to {value:.1f} % (photos {a:d} and {b:d}), "
-              "below the planned {planned:g} % at {count:d} photo(s): {photos}.{floor} Remedies: "
+        "en": "over high ground the side overlap drops to {value:.1f} % (photos {a:id} and "
+              "{b:id}), below the planned {planned:g} % at {count:d} photo(s): {photos}.{floor} "
+              "Remedies: "
               "hold the altitude over the highest ground (⁅[terrain] altitude_mode = "
               "\"constant\"⁆), or raise the side overlap (⁅[uav] side_overlap_pct⁆)",
         "ru": "Над повышенным рельефом поперечное перекрытие уменьшается до {value:.1f}~% (снимки "
-              "{a:d} и {b:d}) — меньше планового {planned:g}~% у снимков: {count:d} "
+              "{a:id} и {b:id}) — меньше планового {planned:g}~% у снимков: {count:d} "
               "({photos}).{floor} Выход: отсчитывать высоту от наивысшей точки блока (⁅[terrain] "
               "altitude_mode⁆) или увеличить поперечное перекрытие (⁅[uav] side_overlap_pct⁆).",
     },
@@ -145,8 +146,8 @@ TERRAIN: dict[str, dict[str, str]] = {
               "местности.",
     },
     "terrain_film_where.dem": {
-        "en": "(frame {frame:d}, strip {strip:d})",
-        "ru": "(снимок {frame:d}, маршрут {strip:d})",
+        "en": "(frame {frame:id}, strip {strip:id})",
+        "ru": "(снимок {frame:id}, маршрут {strip:id})",
     },
     "terrain_film_where.range": {
         "en": "(the ground is given as a range: any frame may lie over {low:g} m)",

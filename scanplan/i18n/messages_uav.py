@@ -8,23 +8,23 @@ from __future__ import annotations
 UAV: dict[str, dict[str, str]] = {
     # --- digital height accuracy, altitude ceiling, target GSD (scanplan.rules.uav) -------------
     "limit.PZ.normal_case": {
-        "en": "idealised stereo precision σ_Z = (H/B)·(H/c)·σ_px ≤ V_z = {vz:g} m RMS (relief "
+        "en": "idealised stereo precision σ_Z = (H/B)·(H/f)·σ_px ≤ V_z = {vz:g} m RMS (relief "
               "interval {hc:g} m) with a parallax error σ_px = {sigma:g} px (an assumption) and "
               "the base of a stereo pair with {overlap:g} % overlap at the highest flown "
               "height and the mission's trigger distance (B = {steps:.2f} × the photo step, "
               "B/H = {bh:.3f}){multi}",
-        "ru": "идеализированная точность стереоизмерений σ_Z = (H/B)·(H/c)·σ_px ≤ V_z = "
+        "ru": "идеализированная точность стереоизмерений σ_Z = (H/B)·(H/f)·σ_px ≤ V_z = "
               "{vz:g}~м (СКО; высота сечения рельефа {hc:g}~м) при ошибке измерения "
               "параллакса σ_px = {sigma:g}~пикс. (допущение) и базисе стереопары с "
               "перекрытием {overlap:g}~% на наибольшей фактической высоте при шаге "
               "фотографирования задания (B = {steps:.2f}~× шаг, B/H = {bh:.3f}){multi}",
     },
     "equation.PZ.normal_case": {
-        "en": "σ_Z = (H/B)·(H/c)·σ_px ≤ V_z, B the base of a pair with the standard overlap "
+        "en": "σ_Z = (H/B)·(H/f)·σ_px ≤ V_z, B the base of a pair with the standard overlap "
               "(a bound of the multi-ray intersection) — idealised stereo precision of the "
               "normal case, Kraus (2007), Luhmann et al. (2014); ground control, camera "
               "calibration and the surface are not in it",
-        "ru": "σ_Z = (H/B)·(H/c)·σ_px ≤ V_z, B — базис стереопары со стандартным продольным "
+        "ru": "σ_Z = (H/B)·(H/f)·σ_px ≤ V_z, B — базис стереопары со стандартным продольным "
               "перекрытием (оценка сверху для многолучевой засечки) — идеализированная "
               "точность стереоизмерений нормального случая, Краус (2007), Луман и др. (2014); "
               "опорные точки, калибровка камеры и поверхность в ней не учтены",
@@ -40,12 +40,13 @@ UAV: dict[str, dict[str, str]] = {
               "стандартом для масштаба плана",
     },
     "equation.GL": {
-        "en": "GSD = p·H/c ≤ GSD_max(Mk) — GOST R 59562-2021, Appendix B, Table B.1",
-        "ru": "GSD = p·H/c ≤ GSD_max(Mk) — ГОСТ Р 59562-2021, прил. Б, табл. Б.1",
+        "en": "GSD = p·H/f ≤ GSD_max(Mk) — GOST R 59562-2021, Appendix B, Table B.1",
+        "ru": "GSD = p·H/f ≤ GSD_max(Mk) — ГОСТ Р 59562-2021, прил. Б, табл. Б.1",
     },
     "limit.GL": {
         "en": "GSD at the highest flown height ≤ {gsd:g} cm for {map:scale} ({area})",
-        "ru": "GSD на наибольшей фактической высоте ≤ {gsd:g}~см для масштаба {map:scale} "
+        "ru": "Размер пикселя на местности на наибольшей фактической высоте ≤ {gsd:g}~см "
+              "для масштаба {map:scale} "
               "({area})",
     },
     "gsd_area.general": {
@@ -137,8 +138,8 @@ UAV: dict[str, dict[str, str]] = {
         "ru": "обеспечивает заданный заказчиком размер пикселя на местности",
     },
     "equation.GSD": {
-        "en": "GSD = p·H/c ≤ the target GSD",
-        "ru": "GSD = p·H/c ≤ заданного значения",
+        "en": "GSD = p·H/f ≤ the target GSD",
+        "ru": "GSD = p·H/f ≤ заданного значения",
     },
     "protects.HC": {
         "en": "keeps the highest flown height within the legal or airframe altitude ceiling",
@@ -153,7 +154,8 @@ UAV: dict[str, dict[str, str]] = {
     },
     "limit.GSD": {
         "en": "GSD at the highest flown height ≤ the target {gsd:g} cm",
-        "ru": "GSD на наибольшей фактической высоте ≤ заданного {gsd:g}~см",
+        "ru": "Размер пикселя на местности на наибольшей фактической высоте ≤ заданного "
+              "{gsd:g}~см",
     },
     "limit.HC": {
         "en": "highest flown height ≤ the altitude ceiling {ceiling:g} m ({source})",

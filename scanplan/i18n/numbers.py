@@ -29,10 +29,11 @@ class Numbers:
     """Every number a document prints, in one locale's convention.
 
     English: ``12.5``, ``4,575``; Russian: ``12,5``, ``4 575`` (a no-break space groups
-    thousands). One rule for every document: a number of 1,000 or more is grouped, whichever
-    method prints it, so a count reads the same on every page; only a scale's denominator
-    keeps four digits whole (``1:2000``, as Russian maps write it) and the terminal's
-    :meth:`fixed` and :meth:`short` are never grouped. A missing or non-finite value prints
+    thousands). One rule for every document, the terminal and the engine's sentences
+    (:mod:`scanplan.i18n.messages`): a number of 1,000 or more is grouped, whichever method
+    prints it, so a count or a height reads the same in prose and in tables; only a scale
+    (``1:2000``, ``1:25 000``: :func:`~scanplan.i18n.messages.scale_text`) and an
+    identifier (a photo's number) keep their own form. A missing or non-finite value prints
     as ``—``.
 
     Parameters
@@ -64,10 +65,8 @@ class Numbers:
         return self._dec(f"{float(x):,.{digits}f}")  # type: ignore[arg-type]
 
     def fixed(self, x: float | None, digits: int = 1) -> str:
-        """``x`` with ``digits`` decimals, thousands not grouped (chart labels, terminal)."""
-        if not _finite(x):
-            return MISSING
-        return self._dec(f"{x:.{digits}f}")
+        """``x`` with ``digits`` decimals (:meth:`num`: thousands grouped, as everywhere)."""
+        return self.num(x, digits)
 
     def whole(self, x: float) -> str:
         """``x`` rounded to a whole number, grouped (``4,575``, ``4 575``)."""
@@ -79,32 +78,34 @@ class Numbers:
         return self.num(x, 0 if abs(float(x) - round(float(x))) < 0.05 else 1)
 
     def g(self, x: float | None) -> str:
-        """Shortest form (like ``:g``); whole numbers from 1,000 up grouped."""
+        """Shortest form (like ``:g``), 1,000 and more grouped."""
         if not _finite(x):
             return MISSING
         text = f"{float(x):g}"  # type: ignore[arg-type]
         if "e" in text:
             return text
-        if abs(float(x)) >= 1000 and float(x).is_integer():  # type: ignore[arg-type]
-            return self.num(x, 0)
+        if abs(float(x)) >= 1000:  # type: ignore[arg-type]
+            if float(x).is_integer():  # type: ignore[arg-type]
+                return self.num(x, 0)
+            return self._dec(f"{float(x):,.6g}")  # type: ignore[arg-type]
         return self._dec(text)
 
     def short(self, x: float) -> str:
-        """Shortest form (like ``:g``), never grouped (the terminal's inputs)."""
-        return self._dec(f"{x:g}")
+        """Shortest form: :meth:`g` (the terminal's inputs, grouped as everywhere)."""
+        return self.g(x)
 
     def sig(self, x: float | None, digits: int = 4) -> str:
         """A measured size to ``digits`` significant digits (a pixel pitch of 4.38232 µm is
-        4.382, a derived sensor side of 23.9275 mm is 23.93), never grouped."""
+        4.382, a derived sensor side of 23.9275 mm is 23.93), 1,000 and more grouped."""
         if not _finite(x):
             return MISSING
-        return self._dec(f"{float(x):.{digits}g}")  # type: ignore[arg-type]
+        return self._dec(f"{float(x):,.{digits}g}")  # type: ignore[arg-type]
 
     def tick(self, x: float) -> str:
         """A plot's tick label: whole numbers grouped, others with up to 6 digits."""
         if float(x).is_integer():
             return self.num(x, 0)
-        return self._dec(f"{x:.6g}")
+        return self._dec(f"{x:,.6g}")
 
     def um(self, x: float | None) -> str:
         """A pixel [µm]: one decimal, or two significant digits below 1 µm (never ``0.0``)."""

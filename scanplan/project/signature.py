@@ -134,3 +134,80 @@ def parameters_doc(engine: Callable[..., Any], plan: str) -> str:
         lines += textwrap.wrap(text + ".", 84, initial_indent="    ",
                                subsequent_indent="    ")
     return "\n".join(lines)
+
+
+#: The static type of each kind of input, as a type checker reads it (numbers as any
+#: ``SupportsFloat``: ``int``, ``float``, ``np.float32``, ``Fraction``).
+_STATIC = {"number": "SupportsFloat", "int": "SupportsIndex", "scale": "SupportsFloat | str",
+           "scales": "Iterable[SupportsFloat | str]", "date": "datetime.date | str"}
+_STATIC_EXTRA = {"area": "Area | None", "layout_options": "LayoutOptions | None"}
+MARKERS = ("    # <typed signatures: python -m scanplan.project.signature scanplan/api.py>",
+           "    # </typed signatures>")
+"""The lines around the generated signatures in :mod:`scanplan.api`."""
+
+
+def _static(name: str, plan: str, default: Any, original: Any) -> str:
+    rec = _record(name, plan)
+    if rec is None:
+        return _STATIC_EXTRA.get(name, "Any")
+    if rec.name == "norms":
+        text = "str | os.PathLike[str]"
+    elif rec.name == "pixel_um" and default == ():
+        text = "Iterable[SupportsFloat]"
+    elif rec.choices and rec.kind == "str":
+        text = "Literal[" + ", ".join(repr(c) for c in rec.choices) + "]"
+    else:
+        text = _STATIC.get(rec.kind, "str")
+    return f"{text} | None" if default is None or "None" in str(original) else text
+
+
+def typed_stub(engine: Callable[..., Any], plan: str, name: str, returns: str) -> str:
+    """The definition a type checker reads of the API function ``name``: every keyword
+    of ``engine`` with its static type (from the registry) and ``...`` for its default.
+
+    Parameters
+    ----------
+    engine : callable
+        The engine function (``uav_job``, ``scan_job``).
+    plan : str
+        ``"uav"`` or ``"film"``.
+    name : str
+        The API function's name.
+    returns : str
+        Its return type.
+
+    Returns
+    -------
+    str
+        ``def name(*, kw: type = ..., …) -> returns: ...`` over lines of at most 100
+        characters, indented for the ``if TYPE_CHECKING:`` block of :mod:`scanplan.api`.
+    """
+    params = []
+    for key, p in inspect.signature(engine).parameters.items():
+        default = "" if p.default is inspect.Parameter.empty else " = ..."
+        params.append(f"{key}: {_static(key, plan, p.default, p.annotation)}{default}")
+    lines = [f"    def {name}(", "            *,"]
+    for param in params:
+        lines.append(f"            {param},")
+    lines.append(f"    ) -> {returns}: ...")
+    return "\n".join(lines)
+
+
+def typed_block() -> str:
+    """The generated block of :mod:`scanplan.api`: the typed signatures of ``scan`` and
+    ``uav`` between :data:`MARKERS`."""
+    from .jobs import scan_job, uav_job
+
+    return "\n".join([MARKERS[0], typed_stub(scan_job, "film", "scan", "ScanResult"),
+                      "", typed_stub(uav_job, "uav", "uav", "UavResult"), MARKERS[1]])
+
+
+if __name__ == "__main__":  # pragma: no cover - maintenance: regenerate the api's block
+    import sys
+    from pathlib import Path
+
+    target = Path(sys.argv[1])
+    text = target.read_text(encoding="utf-8")
+    start = text.index(MARKERS[0])
+    end = text.index(MARKERS[1]) + len(MARKERS[1])
+    target.write_text(text[:start] + typed_block() + text[end:], encoding="utf-8")

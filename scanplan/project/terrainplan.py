@@ -235,7 +235,7 @@ def _other_choice(cfg: TerrainConfig, res: TerrainResult, choice: ModeHeights,
             if d is not None else Message("terrain_choice.mode", mode=_MODE_NAMES[mode]))
     return PlanWarning("terrain_other_choice", Message(
         "terrain_other_choice", what=what, height=h_alt, current=h, photos=float(n_alt),
-        now=n, pct=(1.0 - n_alt / n) * 100.0), severity="info")
+        now=n, pct=(1.0 - n_alt / n) * 100.0))  # a choice to make: what to act on
 
 
 def _height_accuracy_over_relief(job: UavJob, res: TerrainResult) -> tuple[PlanWarning, ...]:

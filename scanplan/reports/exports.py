@@ -52,7 +52,7 @@ class _UavPart:
 
 
 @dataclass(frozen=True)
-class _JobsView:
+class _JobParts:
     """A UAV job without a specification (``scanplan uav --area-file … --pdf``), shaped
     like the specification's parts that :func:`spec_layouts` reads."""
 
@@ -68,7 +68,7 @@ def view_of(spec: Any, uav: Any = None) -> Any:
         return spec
     layout = getattr(uav, "layout", None) if uav is not None else None
     if isinstance(layout, FlightLayout) and layout.area.georeferenced:
-        return _JobsView(_UavPart(uav, uav.layout))
+        return _JobParts(_UavPart(uav, uav.layout))
     return None
 
 

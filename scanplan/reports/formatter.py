@@ -151,6 +151,12 @@ class Formatter:
         name = constraint_title(cid, self.locale, "")
         return f"{cid} — {name}" if name else cid
 
+    def compared(self, symbol: str) -> str:
+        """What a constraint compares (``GSD``, ``L``, ``H``) as a document writes it: the
+        ground sample distance by its words in Russian (GSD is a symbol of the formulas,
+        listed with them), the others as their symbols."""
+        return self("gsd_symbol") if symbol == "GSD" else symbol
+
     def yes_no(self, value: bool) -> str:
         """Yes / Да."""
         return self("yes" if value else "no")
@@ -327,7 +333,7 @@ class Formatter:
         if "quantity" in r.fields:  # a comparison's row: the documents' word, else English
             key = COMPARISON_LABELS.get(r.key)
             return self(key) if key else str(r.fields["quantity"])
-        if r.key in _UNIT_AFTER_COMMA:
+        if r.key in _UNIT_AFTER_COMMA and r.unit:  # its unit in a column of its own
             return self(r.key).rsplit(",", 1)[0]
         return self(_ROW_LABELS.get(r.key, r.key),
                     **{k: self.show(v) for k, v in r.fields.items()})

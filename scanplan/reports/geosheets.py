@@ -11,15 +11,17 @@ sheet. Film layouts get the same sheets for the flight scheme's frames.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ..geo.export.gis import photo_columns
-from ..geo.layout import FlightLayout
 from . import exports as _exports
 from .mapview import MAX_SHEET_PHOTOS, continued_note, summary_items
 from .plots import number
+from .views.flight import photo_columns, strip_ends_lonlat
+
+if TYPE_CHECKING:
+    from ..geo.layout import FlightLayout
 
 __all__ = ["MAX_SHEET_PHOTOS", "add_geo_sheets"]  # MAX_SHEET_PHOTOS: from .mapview
 
@@ -30,7 +32,7 @@ _PHOTO_FORMATS = {"photo": "0", "strip": "0", "index": "0", "sortie": "0",
                   "agl_m": "0.00", "gsd_cm": "0.000", "resolution_cm": "0.000",
                   "recognition_p": "0.0000", "ground_min_m": "0.00", "ground_max_m": "0.00",
                   "forward_overlap_pct": "0.0", "side_overlap_pct": "0.0"}
-#: The label of each photo column (:func:`~scanplan.geo.export.gis.photo_columns`).
+#: The label of each photo column (:func:`~scanplan.reports.views.flight.photo_columns`).
 _PHOTO_LABELS = {"photo": "photo_photo", "strip": "strip", "index": "photo_index",
                  "sortie": "sortie", "x_m": "photo_x_m", "y_m": "photo_y_m",
                  "lon_deg": "photo_lon_deg", "lat_deg": "photo_lat_deg",
@@ -87,13 +89,9 @@ def _strips_sheet(book: Any, layout: FlightLayout, key: str, files_beside: bool)
             book.f("strip_length_m"), book.f("strip_parts"), *(f"{e}: {c}" for e, c in ends)]
     _header(ws, row, head)
     row += 1
-    geo = None
-    if layout.area.georeferenced:
-        from ..geo.export.common import lonlat
-
-        geo = lonlat(layout)
-    ends = np.array([[s.start_xy_m, s.end_xy_m] for s in layout.strips], float).reshape(-1, 2)
-    ll = geo.points(ends) if geo is not None and len(ends) else np.full_like(ends, np.nan)
+    lonlat = strip_ends_lonlat(layout)
+    ll = (lonlat.reshape(-1, 2) if lonlat is not None
+          else np.full((2 * len(layout.strips), 2), np.nan))
     for k, s in enumerate(layout.strips):
         put_num(ws, row, 1, s.number, "0")
         if s.last_sortie == s.sortie:
@@ -125,7 +123,7 @@ def _photos_sheet(book: Any, layout: FlightLayout, key: str) -> None:
     from .excel.cells import _header, put_num
 
     ph = layout.photos
-    cols = photo_columns(ph)
+    cols = photo_columns(layout)
     if _xy_order(book.loc)[0] == "photo_y_m" and {"x_m", "y_m"} <= set(cols):
         a, b = cols.index("x_m"), cols.index("y_m")  # X (north) before Y (east)
         cols[a], cols[b] = cols[b], cols[a]

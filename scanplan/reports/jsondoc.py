@@ -267,7 +267,9 @@ def plan_result_dict(result: Any) -> dict[str, Any]:
             "side_overlap_pct": p.inputs.side_overlap_pct,
             "orientation": p.inputs.orientation, "platform": p.inputs.platform,
             "motion_blur_px": p.motion_blur_px, "max_exposure_s": p.max_exposure_s,
-            "max_speed_ms": p.max_speed_ms, **p.flight,
+            "max_speed_ms": p.max_speed_ms,
+            # the flight's figures (its JPEG estimate is uav.flight's, as it always was)
+            **{k: v for k, v in p.flight.items() if k not in _JPEG_KEYS},
         }
         if u.layout is not None:
             spec["uav"]["layout"] = layout_dict(u.layout)
@@ -309,6 +311,9 @@ def terrain_dict(result: Any) -> dict[str, Any]:
                            {"photo_scale": r.photo_scale, "photo_scale_max": t.mc_max}
                            for r, t in getattr(film, "rejected", ())]}
     return out
+
+
+_JPEG_KEYS = ("data_volume_jpeg_bytes", "jpeg_compression_ratio")
 
 
 def _flight_json(flight: dict[str, Any]) -> dict[str, Any]:

@@ -8,7 +8,8 @@ the meridian convergence), a scale bar and the CRS named. :func:`geo_views` give
 its map page, a summary and a strips table per layout; an abstract width × length block
 gets a sentence saying why it has no map and no files.
 
-Nothing is recomputed here: every number comes from the :class:`FlightLayout`.
+Nothing is recomputed here: every number comes from the :class:`FlightLayout` and the
+view :mod:`scanplan.reports.views.flight` (heights above ground, strip ends as lon/lat).
 """
 
 from __future__ import annotations
@@ -16,18 +17,16 @@ from __future__ import annotations
 import base64
 import io
 import math
-from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ..core.photoscale import height_at_photo_scale_m, photo_scale_at_height
-from ..geo.layout import Area, FlightLayout
 from ..i18n.labels import t
 from ..i18n.labels_geo import crs_name
 from ..i18n.messages import scale_text
 from . import exports as _exports
 from .plots import number
+from .views.flight import MapTerrain, ground_known, map_terrain, strip_ends_lonlat
 
 #: matplotlib's style of the map page (the one figure still drawn with it): deterministic
 #: SVG, text as text, the same font, sizes and grid as the line charts
@@ -54,6 +53,8 @@ _RC: dict[str, Any] = {
 if TYPE_CHECKING:  # matplotlib is imported when a map is drawn (the workbook draws none)
     from matplotlib.figure import Figure
     from matplotlib.ticker import FuncFormatter
+
+    from ..geo.layout import Area, FlightLayout
 
 __all__ = ["MAX_MAP_PHOTOS", "MAX_SHEET_PHOTOS", "MAX_TABLE_STRIPS", "MapTerrain",
            "area_crs_text", "crs_text", "geo_views", "ground_known", "map_svg", "map_terrain"]
@@ -234,96 +235,6 @@ def _north_arrow(ax: Any, north_deg: float, locale: str) -> None:
             ha="center", va="center", fontsize=9, fontweight="bold", zorder=7)
 
 
-@dataclass(frozen=True)
-class MapTerrain:
-    """What the map shows of a ``[terrain]`` plan: the photo centres coloured by their height
-    above ground, and the photos that break a constraint marked.
-
-    Attributes
-    ----------
-    agl_m : ndarray
-        Height above ground of every photo (the layout's order) [m].
-    too_high : ndarray of bool
-        Photos above the maximum planned height (resolution / interpretation fail).
-    overlap_short : ndarray of bool
-        Photos whose forward or side overlap falls below the planned one.
-    limit_m : float or None
-        The maximum planned height [m] and ``cid`` the constraint that sets it.
-    highlight : int or None
-        Running number of the photo to mark (the worst photo, the binding frame).
-    highlight_key : str
-        Its legend label.
-    focal_mm : float or None
-        Film: the focal length, for the colour bar's second axis of local photo scales.
-    """
-
-    agl_m: np.ndarray
-    too_high: np.ndarray
-    overlap_short: np.ndarray
-    limit_m: float | None = None
-    cid: str = ""
-    highlight: int | None = None
-    highlight_key: str = "map_legend_worst_photo"
-    focal_mm: float | None = None
-    agl_range_m: tuple[float, float] | None = None  # the colour bar's span [m]
-
-
-def map_terrain(spec: Any, kind: str, layout: FlightLayout) -> MapTerrain | None:
-    """The :class:`MapTerrain` of a layout of ``spec`` (None when its plan has no
-    ``[terrain]``, i.e. the layout's notes name no altitude mode)."""
-    ph = layout.photos
-    if "altitude_mode" not in layout.notes or len(ph) == 0 or "agl_m" not in ph.columns:
-        return None
-    if not ground_known(spec, kind):
-        return None  # one height above ground for every photo: no colours to tell apart
-    agl = np.asarray(ph["agl_m"], dtype=float)
-    none = np.zeros(agl.size, dtype=bool)
-    if kind == "film":
-        film = getattr(spec, "film", None)
-        ft = getattr(film, "terrain", None)
-        inp = film.job.plan.inputs if film is not None else None
-        span = None
-        if ft is not None and inp is not None:  # a ground range: the heights it allows
-            span = (float(height_at_photo_scale_m(ft.mc_min, inp.focal_mm)),
-                    float(height_at_photo_scale_m(ft.mc_max, inp.focal_mm)))
-        return MapTerrain(agl, none, none, highlight=(ft.binding_frame if ft is not None
-                                                      and ft.ground_known else None),
-                          highlight_key="map_legend_binding_frame",
-                          focal_mm=inp.focal_mm if inp is not None else None,
-                          agl_range_m=span)
-    uav = getattr(spec, "uav", None)
-    tr = getattr(uav, "terrain", None)
-    if uav is None or tr is None:
-        return MapTerrain(agl, none, none)
-    plan = uav.job.plan
-    limit = plan.max_height_m
-    high = agl > limit + 1e-6 if limit is not None else none
-    short = none
-    cols = ph.columns
-    if "forward_overlap_pct" in cols and "side_overlap_pct" in cols:
-        with np.errstate(invalid="ignore"):
-            short = ((np.asarray(cols["forward_overlap_pct"], float)
-                      < plan.inputs.forward_overlap_pct - 0.05)
-                     | (np.asarray(cols["side_overlap_pct"], float)
-                        < plan.inputs.side_overlap_pct - 0.05))
-    d = tr.summary()
-    span = ((d["agl_min_m"], d["agl_max_m"]) if d.get("agl_min_m") is not None
-            and d.get("agl_max_m") is not None else None)
-    return MapTerrain(agl, high, short, limit_m=limit, cid=plan.binding or "",
-                      highlight=tr.worst_resolution_photo or None, agl_range_m=span)
-
-
-def ground_known(spec: Any, kind: str) -> bool:
-    """Whether the ground under each photo of a ``[terrain]`` plan is known (a DEM); with
-    only a range of ground elevations every photo is planned over the same ground, and a
-    map coloured by height above ground showed every frame in one colour."""
-    if kind == "film":
-        ft = getattr(getattr(spec, "film", None), "terrain", None)
-        return ft is None or bool(getattr(ft, "ground_known", True))
-    tr = getattr(getattr(spec, "uav", None), "terrain", None)
-    return tr is None or tr.summary().get("source") == "dem"
-
-
 def _draw_photos_agl(fig: Figure, ax: Any, layout: FlightLayout, mt: MapTerrain,
                      scale: float, locale: str) -> None:
     """The photo centres coloured by height above ground (one scatter), a colour bar in
@@ -355,10 +266,8 @@ def _draw_photos_agl(fig: Figure, ax: Any, layout: FlightLayout, mt: MapTerrain,
     cb = fig.colorbar(sc, cax=cax)
     cb.set_label(t("agl_m", locale))
     cb.ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _p: number(v, 0, locale)))
-    if mt.focal_mm:
-        f_mm = mt.focal_mm
-        sec = cb.ax.secondary_yaxis("left", functions=(
-            lambda a: photo_scale_at_height(a, f_mm), lambda m: height_at_photo_scale_m(m, f_mm)))
+    if mt.scale_of_height is not None and mt.height_of_scale is not None:
+        sec = cb.ax.secondary_yaxis("left", functions=(mt.scale_of_height, mt.height_of_scale))
         sec.set_ylabel(t("map_local_scale_axis", locale))
         sec.yaxis.set_major_formatter(_scale_ticks(locale))
         sec.tick_params(labelsize=6)
@@ -481,12 +390,13 @@ def _svg_uri(svg: str) -> str:
     return "data:image/svg+xml;base64," + base64.b64encode(svg.encode("utf-8")).decode()
 
 
-def _point_text(layout: FlightLayout, xy: tuple[float, float], locale: str,
-                geo: Any) -> str:
-    if geo is None:  # a Russian surveyor reads X (north) first, then Y (east)
+def _point_text(xy: tuple[float, float], lonlat: Any, locale: str) -> str:
+    """A strip's end: latitude; longitude, or the plane coordinates of an area without a
+    coordinate system (``lonlat`` None)."""
+    if lonlat is None:  # a Russian surveyor reads X (north) first, then Y (east)
         first, second = (xy[1], xy[0]) if locale == "ru" else xy
         return f"{number(first, 0, locale)}; {number(second, 0, locale)}"
-    lon, lat = geo.points(np.array([xy]))[0]
+    lon, lat = lonlat
     return f"{number(lat, 6, locale)}; {number(lon, 6, locale)}"
 
 
@@ -496,8 +406,8 @@ def summary_items(layout: FlightLayout, locale: str) -> list[tuple[str, Any, int
     a = layout.area
     rows: list[tuple[str, Any, int]] = [
         (t("coordinate_system", locale), crs_text(layout, locale), 0),
-        (t("area_km2", locale), a.area_km2, 3),
-        (t("geo_perimeter_km", locale), a.perimeter_km, 2),
+        (t("area_km2", locale), a.area_km2, 2),  # the digits of every other document
+        (t("geo_perimeter_km", locale), a.perimeter_km, 1),
         (t("geo_direction_deg", locale), layout.direction_deg, 1),
         (t("geo_spacing_m", locale), layout.spacing_m, 1),
         (t("geo_base_m", locale), layout.base_m, 1),
@@ -505,12 +415,12 @@ def summary_items(layout: FlightLayout, locale: str) -> list[tuple[str, Any, int
         (t("geo_n_frames" if film else "geo_n_photos", locale), len(layout.photos), 0)]
     if not film:
         rows.append((t("geo_n_sorties", locale), len(layout.sorties), 0))
-    rows.append((t("geo_flight_km", locale), layout.flight_length_m / 1000, 2))
+    rows.append((t("geo_flight_km", locale), layout.flight_length_m / 1000, 1))
     if layout.notes.get("takeoff_xy_m") is not None:
         rows.append((t("geo_transit_km", locale),
-                     float(layout.notes.get("transit_m", 0.0)) / 1000, 2))
+                     float(layout.notes.get("transit_m", 0.0)) / 1000, 1))
     if layout.flight_time_s:
-        rows.append((t("geo_flight_min", locale), layout.flight_time_s / 60, 1))
+        rows.append((t("geo_flight_min", locale), layout.flight_time_s / 60, 0))
     return rows
 
 
@@ -524,11 +434,9 @@ def strips_table(layout: FlightLayout, locale: str, limit: int | None = MAX_TABL
                  ) -> dict[str, Any]:
     """The strips as table rows (the first ``limit``), with their header and a note; the
     numeric columns first (``numeric``: how many)."""
-    from ..geo.export.common import lonlat
-
     film = layout.kind == "film"
-    geo = lonlat(layout) if layout.area.georeferenced else None
-    where = t("strip_lat_lon" if geo is not None else "strip_xy", locale)
+    ends = strip_ends_lonlat(layout)
+    where = t("strip_lat_lon" if ends is not None else "strip_xy", locale)
     head = [t("strip", locale), t("sortie", locale),
             t("strip_frames" if film else "strip_photos", locale), t("strip_length_m", locale),
             t("strip_parts", locale), f"{t('strip_start', locale)} ({where})",
@@ -536,8 +444,9 @@ def strips_table(layout: FlightLayout, locale: str, limit: int | None = MAX_TABL
     shown = layout.strips if limit is None else layout.strips[:limit]
     rows = [[str(s.number), s.sorties_text, number(s.photos, 0, locale),
              number(s.length_m, 0, locale), str(max(s.segments, len(s.parts) or 1)),
-             _point_text(layout, s.start_xy_m, locale, geo),
-             _point_text(layout, s.end_xy_m, locale, geo)] for s in shown]
+             _point_text(s.start_xy_m, None if ends is None else ends[k][0], locale),
+             _point_text(s.end_xy_m, None if ends is None else ends[k][1], locale)]
+            for k, s in enumerate(shown)]
     if film:  # an aerial survey has no sorties of a battery
         head = [h for k, h in enumerate(head) if k != 1]
         rows = [[c for k, c in enumerate(r) if k != 1] for r in rows]

@@ -225,7 +225,8 @@ def _uav_inputs(tables: ResultTables, ns: NormSet, f: Formatter) -> list[tuple[s
         (f("pixel_pitch_um"), f.sig(v["pixel_um"])),
         (f("focal_mm"), f.g(v["focal_mm"])),
         (f("f_number"), f.g(v["f_number"])),
-        (f("sensor_mm"), f"{f.sig(v['sensor_width_mm'])} × {f.sig(v['sensor_height_mm'])}"),
+        (f("sensor_mm"), " × ".join(f.value(r[k], r[k].value)  # the sides alike
+                                    for k in ("sensor_width_mm", "sensor_height_mm"))),
         (f("orientation"), f(f"orientation_{v['orientation']}")),
         (f("height_m"), f.g(planned)),
     ]
@@ -309,7 +310,7 @@ def _uav_limits(view: ReportView, f: Formatter) -> dict[str, Any]:
     limit_rows = view.tables["uav_limits"].rows
     limits = [{"id": r.key, "name": f.constraint(r.key),
                "limit": f.num(limit, 3 if limit < 10 else 0),
-               "compares": compares, "max_height": f.num(top, 0),
+               "compares": f.compared(compares), "max_height": f.num(top, 0),
                "max_flown": f.num(flown, 0),
                "margin": "" if margin is None else _margin(f, margin),
                "binding": "binding" in r.flags}
@@ -344,7 +345,7 @@ def _uav_limits(view: ReportView, f: Formatter) -> dict[str, Any]:
                 if limit_rows or key not in ("formula_pd", "formula_tol")]
     limit_formulas = [{"id": r.key, "name": f.constraint(r.key),
                        "equation": f.cite(f.text(r.fields["equation"]))}
-                      for r in limit_rows]
+                      for r in sorted(limit_rows, key=lambda r: r.fields["rank"])]
     return {"limits": limits, "limits_title": limits_title, "max_sentence": max_sentence,
             "height_forms": height_forms, "formulas": formulas,
             "limit_formulas": limit_formulas}

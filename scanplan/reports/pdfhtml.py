@@ -81,13 +81,18 @@ def _breakable(value: Any) -> Any:
     return value
 
 
-_SUBSCRIPT = re.compile(r"(?<![\w])([A-Za-zσΔ])_([A-Za-z0-9]{1,5})(?![\w])")
+_SUBSCRIPT = re.compile(r"(?<![\w])([A-Za-zσΔ]{1,3})_([A-Za-z0-9]{1,5})(?![\w])")
 
 
 def typeset(value: Any) -> Markup:
     """A formula as a printed instruction shows it: ``P_S = V_s·Mk/(k·Mc)`` with its
-    subscripts set as subscripts (``P<sub>S</sub>``) and ``sqrt(`` as a root sign; the
-    rest escaped. The ``formula`` filter of the templates."""
+    subscripts set as subscripts (``P<sub>S</sub>``; a symbol of up to three letters:
+    ``GSD_max`` → ``GSD<sub>max</sub>``) and ``sqrt(`` as a root sign; the rest escaped.
+    The ``formula`` filter of the templates.
+
+    >>> str(typeset("GSD = p·H/f ≤ GSD_max(Mk), k_R < 1"))
+    'GSD = p·H/f ≤ GSD<sub>max</sub>(Mk), k<sub>R</sub> &lt; 1'
+    """
     text = str(escape(_breakable(value)))
     text = text.replace("sqrt(", "√(")
     return Markup(_SUBSCRIPT.sub(r"\1<sub>\2</sub>", text))
@@ -290,6 +295,9 @@ PDF_SECTIONS: tuple[PdfSection, ...] = (
     PdfSection("uav", _uav_section, "_uav.html", rank=1),
     PdfSection("comparison", _comparison_section, "_comparison.html", rank=4),
     PdfSection("geo", _geo_section, "_map.html", rank=5),
+    PdfSection("symbols", lambda v, f: [(r.value, f(r.fields["meaning"]))
+                                        for r in v.tables["symbols"].rows],
+               "_symbols.html"),
 )
 
 

@@ -215,7 +215,8 @@ def height_svg(tables: ResultTables, locale: str = "en") -> str:
     ls = [math.nan if v is None else v for v in c["ground_resolution_m"]]
     chart = Chart(locale)
     ax = chart.panels[0]
-    ax.plot(hs, c["gsd_m"], colour="#2ca02c", width=1.3, label="GSD")
+    f = formatter(locale)
+    ax.plot(hs, c["gsd_m"], colour="#2ca02c", width=1.3, label=f.compared("GSD"))
     ax.plot(hs, ls, colour="#1f77b4", width=1.3, label="L")
     # planned / highest flown at the plan; maximum planned / its highest flown height:
     # a GSD or L limit line meets its curve at the highest flown height, not the plan
@@ -231,7 +232,6 @@ def height_svg(tables: ResultTables, locale: str = "en") -> str:
         marks.append((top, "#d62728", ":", t("h_max_planned", locale).format(cid=binding)))
         if flown is not None and flown > top * (1 + 1e-9):
             marks.append((flown, "#ff7f0e", (5, 2, 1, 2), t("h_max_flown", locale)))
-    f = formatter(locale)
     for h, colour, style, label in marks:
         # the maximum planned height and its highest flown one in whole metres, as the
         # tables state them
@@ -243,12 +243,12 @@ def height_svg(tables: ResultTables, locale: str = "en") -> str:
         if "binding" in lim.flags and compares in ("GSD", "L") and limit_m <= max(
                 max(c["gsd_m"]), max((v for v in ls if v == v), default=0.0)) * 1.05:
             ax.axhline(limit_m, colour="#d62728", width=0.6, dash="-.",
-                       label=f"{compares} ≤ {number(limit_m, 3, locale)} "
+                       label=f"{f.compared(compares)} ≤ {number(limit_m, 3, locale)} "
                              f"{t('m', locale)} ({lim.key})")
     ax.set_xlim(0, max(hs))
     ax.set_ylim(bottom=0)
     ax.set_xlabel(t("height_m", locale))
-    ax.set_ylabel(f"GSD, L, {t('m', locale)}")
+    ax.set_ylabel(f"{f.compared('GSD')}, L, {t('m', locale)}")
     return chart.svg()
 
 

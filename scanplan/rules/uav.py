@@ -233,7 +233,7 @@ def _airspace_warnings(inp: UavInputs) -> list[PlanWarning]:
     out = [PlanWarning("airspace_conditions", Message(
         "airspace_conditions", ceiling=inp.ceiling_m,
         aerodrome=inp.aerodrome_distance_km if inp.aerodrome_distance_km is not None
-        else float("nan")), severity="info")]
+        else float("nan")))]  # conditions the crew must meet: what to act on
     up = 1.0 + inp.height_tolerance_up_pct / 100.0
     flown = inp.height_m * up
     if flown >= inp.ceiling_m * (1.0 - _BELOW):
@@ -331,7 +331,7 @@ def _blur(inp: UavInputs, gsd_lo: float, h_lo: float, h_hi: float,
     if inp.haze_contrast == M.DEFAULT_HAZE_CONTRAST and h_hi > M.DEFAULT_HAZE_MAX_HEIGHT_M:
         warnings.append(PlanWarning("haze_default_height", Message(
             "haze_default_height", c=inp.haze_contrast, valid=M.DEFAULT_HAZE_MAX_HEIGHT_M,
-            height=h_hi, key="[uav.atmosphere] haze_contrast"), severity="info"))
+            height=h_hi, key="[uav.atmosphere] haze_contrast")))  # give the value
     blur = float(FL.motion_blur_px(inp.speed_ms, inp.exposure_s, gsd_lo))
     max_exp = float(FL.max_exposure_for_blur_s(max(inp.speed_ms, 1e-12), gsd_lo))
     max_speed = float(FL.max_speed_for_blur_ms(inp.exposure_s, gsd_lo))

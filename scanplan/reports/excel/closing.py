@@ -193,9 +193,19 @@ def warnings_sheet(book: Book, scan: ScanJob | None, uav: UavJob | None) -> None
 
 
 def references_sheet(book: Book) -> None:
-    """The works the workbook cites, numbered as in its cells."""
+    """The works the workbook cites, numbered as in its cells; then the list of symbols of
+    its formulas (the view's ``symbols`` table)."""
     ws = book.sheet("references", landscape=False, widths=(8, 110, 8))
     _header(ws, 1, ["№", book.f("references")])
-    for row, (n, text) in enumerate(book.f.references(), start=2):
+    row = 2
+    for n, text in book.f.references():
         put_num(ws, row, 1, n, INT)
         put_text(ws, row, 2, text, wrap=True)
+        row += 1
+    symbols = book.view.tables["symbols"].rows
+    if symbols:
+        row = book.section(ws, row + 1, book.f("symbols"))
+        for r in symbols:
+            put_text(ws, row, 1, r.value)
+            put_text(ws, row, 2, book.f(r.fields["meaning"]), wrap=True)
+            row += 1

@@ -114,7 +114,7 @@ def _limits_rows(book: Book, ws: Worksheet, row: int) -> int:
         binding = "binding" in r.flags
         cells = [put_text(ws, row, 1, r.key),
                  put_text(ws, row, 2, book.f.constraint(r.key, r.fields["name"])),
-                 put_text(ws, row, 3, compares),
+                 put_text(ws, row, 3, book.f.compared(compares)),
                  put_num(ws, row, 4, limit_m, F4),
                  put_num(ws, row, 5, max_height_m, F1),
                  put_num(ws, row, 6, r.fields["margin_pct"], PCT),
@@ -226,7 +226,7 @@ def _height_markers(book: Book, chart: ScatterChart, ws: Worksheet, fig: dict[st
     b = next((r for r in book.view.tables["uav_limits"].rows if "binding" in r.flags), None)
     if b is not None and b.values[0] <= top * 1.5:
         limit_m, compares = b.values[0], b.values[1]
-        marks.append((f"{compares} ≤ {book.f.fixed(limit_m, 3)}{m} "
+        marks.append((f"{book.f.compared(compares)} ≤ {book.f.fixed(limit_m, 3)}{m} "
                       f"({b.key})", 0.0, limit_m, right, limit_m, "C00000", "dashDot"))
     if not marks:
         return row

@@ -197,7 +197,7 @@ def _uav_heights(r: dict[str, Row], f: Formatter) -> list[list[str]]:
                 if tol and flown is not None else "")
              + f" ({binding} {f.constraint(binding)})" if binding else "—"],
             [f"  {f.cli('gsd_and_l')}", f"{f.fixed(r['gsd_m'].value, 3)} {m} / "
-             f"{f.fixed(r['ground_resolution_m'].value, 3)} {m} (L/GSD "
+             f"{f.fixed(r['ground_resolution_m'].value, 3)} {m} ({f.cli('l_gsd')} "
              f"{f.fixed(r['l_over_gsd'].value, 2)})"]]
     if "constraints_max_height_m" in r:
         rows.append([f"  {f.cli('no_ceiling')}",

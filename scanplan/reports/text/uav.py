@@ -44,8 +44,9 @@ def format_uav_plan(plan: UavPlan, norm_name: str = "", locale: str = "en",
         f.cli("uav_head", carrier=carrier, camera=camera_id or name or f.cli("camera"))
         + (f" ({name})" if name and camera_id else ""),
         f.cli("uav_line1", pixel=f.sig(v["pixel_um"]), f=f.sig(v["focal_mm"]),
-              n=f.short(v["f_number"]), w=f.sig(v["sensor_width_mm"]),
-              h=f.sig(v["sensor_height_mm"]), height=f.short(planned))
+              n=f.short(v["f_number"]), w=f.value(r["sensor_width_mm"], v["sensor_width_mm"]),
+              h=f.value(r["sensor_height_mm"], v["sensor_height_mm"]),
+              height=f.short(planned))
         + (f.cli("uav_flown", lo=f.short(low), hi=f.short(high)) if high != low else "")
         + f.cli("uav_line1_tail", v=f.short(v["speed_ms"]), t=f.short(v["exposure_s"]),
                 fo=f.short(v["forward_overlap_pct"]), so=f.short(v["side_overlap_pct"])),
@@ -94,7 +95,7 @@ def _limit_cell(r: Row, i: int, v: Any, f: Formatter) -> str:
     if i == 0:
         return f"{f.short(v) if r.values[1] == 'H' else f.fixed(v, 3)} {m}"
     if i == 1:
-        return str(v)
+        return f.cli("gsd") if v == "GSD" else str(v)
     return f"{f.fixed(v, 0)} {m}" + (("*" if "binding" in r.flags else " ") if i == 2 else "")
 
 

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from ...i18n.messages import Names
 from ...project.inputs import get
 from .table import Column, Named, Row, Table
 
@@ -156,5 +157,5 @@ def uav_inputs(job: Any) -> Table:
              Row("bits_per_band", (inp.bits_per_band,), digits=0),
              Row("platform", (inp.platform,))]
     if ns is not None:
-        rows.append(Row("norm_set", (ns.name,), fields={"en": ns.title, "ru": ns.title_ru}))
+        rows.append(Row("norm_set", (ns.name,), fields={"title": Names(ns.title, ns.title_ru)}))
     return Table("uav_inputs", "inputs", (Column("value"),), tuple(rows))

@@ -10,7 +10,7 @@ from .design import design, design_notes
 from .film import film_constraints, film_explanations, film_formulas, film_reach, film_sweep
 from .headline import spec_film, spec_uav
 from .inputs import film_inputs, uav_inputs
-from .spec import all_warnings, comparison, warnings
+from .spec import all_warnings, comparison, symbols, warnings
 from .table import Table
 from .uav import uav_flight, uav_limits, uav_recognition, uav_results
 from .uav_data import (
@@ -54,6 +54,7 @@ TABLES: dict[str, tuple[str, Callable[[Any], Table]]] = {
     "uav_warnings": ("uav", lambda plan: warnings(plan.warnings, "uav")),
     "spec_warnings": ("spec", lambda spec: warnings(spec.warnings, "spec")),
     "warnings": ("all", lambda tables: all_warnings(tables.scan, tables.uav, tables.spec)),
+    "symbols": ("all", symbols),
 }
 
 

@@ -8,7 +8,7 @@ from typing import Any
 
 from .table import Column, Row, Table
 
-__all__ = ["all_warnings", "comparison", "warnings"]
+__all__ = ["FILM_SYMBOLS", "UAV_SYMBOLS", "all_warnings", "comparison", "symbols", "warnings"]
 
 
 def comparison(spec: Any) -> Table:
@@ -85,3 +85,32 @@ def all_warnings(scan: Any = None, uav: Any = None, spec: Any = None) -> Table:
              if w.code not in seen]
     return Table("warnings", "warnings", (Column("message"), Column("photo_scale")),
                  tuple(rows))
+
+
+#: The symbols of the digital camera's formulas and of the film's, as the formulas write
+#: them (the label ``symbol_<key>`` says what each means).
+UAV_SYMBOLS = (("GSD", "GSD"), ("L", "L"), ("H", "H"), ("f", "f"), ("p", "p"), ("R", "R"),
+               ("K", "K"), ("B", "B"), ("P", "P"), ("L_obj", "L_obj"), ("σ_Z", "sigma_Z"),
+               ("V_z", "V_z"))
+FILM_SYMBOLS = (("Mc", "Mc"), ("Mk", "Mk"), ("f", "f"), ("b", "b"), ("R", "R"),
+                ("V_s", "V_s"), ("V_z", "V_z"), ("k", "k"), ("k_R", "k_R"), ("B", "B"),
+                ("P", "P"), ("L_obj", "L_obj"))
+
+
+def symbols(tables: Any) -> Table:
+    """The list of symbols of a document's formulas: the digital camera's (with a UAV
+    plan), then the film's (with a film plan), each once.
+
+    Returns
+    -------
+    Table
+        One row per symbol (key ``symbol``; value: the symbol as the formulas write it;
+        field ``meaning``: the label of what it means).
+    """
+    seen: dict[str, str] = {}
+    for present, group in ((tables.uav is not None, UAV_SYMBOLS),
+                           (tables.scan is not None, FILM_SYMBOLS)):
+        for symbol, key in group if present else ():
+            seen.setdefault(symbol, f"symbol_{key}")
+    return Table("symbols", "symbols", (Column("symbol"),),
+                 tuple(Row("symbol", (s,), fields={"meaning": m}) for s, m in seen.items()))

@@ -79,8 +79,8 @@ def uav_limits(plan: Any) -> Table:
         (None for the binding one and an unlimited one). No rows without limits. Each
         row's fields carry the constraint as the rules give it, for the workbook's full
         table: ``name``, ``reason`` and ``equation`` (messages or text), ``margin_pct``
-        (its headroom, also for the binding one) and ``max_flown_m`` (None when not
-        computed).
+        (its headroom, also for the binding one), ``max_flown_m`` (None when not
+        computed) and ``rank`` (its place in the registry's order: the formulas' list).
     """
     columns = (Column("limit", unit="m", digits=3), Column("compares"),
                Column("max_height", unit="m", digits=0),
@@ -96,7 +96,8 @@ def uav_limits(plan: Any) -> Table:
                         flags=frozenset(flags),
                         fields={"name": lim.name, "reason": lim.reason,
                                 "equation": lim.equation, "margin_pct": lim.margin_pct,
-                                "max_flown_m": lim.max_flown_height_m}))
+                                "max_flown_m": lim.max_flown_height_m,
+                                "rank": plan.limits.index(lim)}))
     return Table("uav_limits", "uav_limits", columns, tuple(rows))
 
 
