@@ -37,7 +37,7 @@ import numpy as np
 
 from .layout import FlightLayout
 
-__all__ = ["CAMERA_LOOP_HZ", "MissionPoint", "SortieMission", "sortie_missions"]
+__all__ = ["CAMERA_LOOP_HZ", "MissionPoint", "SortieMission", "sortie_missions", "turn_path"]
 
 CAMERA_LOOP_HZ = 50.0
 """How often the autopilot checks the trigger distance [Hz]: ArduPilot runs
@@ -229,7 +229,7 @@ class _Context:
             nxt = groups[g + 1]
             q = np.array([self.x[nxt[0]], self.y[nxt[0]]])
             alt_ref = self._higher(end, int(nxt[0]))
-            path = _turn_path(pe, h, q, self.lead_m, self.turn_kind)
+            path = turn_path(pe, h, q, self.lead_m, self.turn_kind)
             pts += _with_trigger_off(pe, path, base / 2.0, number, alt_ref)
         return pts
 
@@ -293,8 +293,8 @@ class _Context:
         return self.geo
 
 
-def _turn_path(p: np.ndarray, h: np.ndarray, q: np.ndarray, lead_m: float,
-               kind: str) -> list[tuple[float, float]]:
+def turn_path(p: np.ndarray, h: np.ndarray, q: np.ndarray, lead_m: float,
+              kind: str) -> list[tuple[float, float]]:
     """The waypoints from a strip's last photo ``p`` (heading ``h``) to the next strip's
     first photo ``q`` (heading −h), ``q`` included, ``p`` not: the run-out, the turn, the
     run-in (:func:`scanplan.geo.lines.turn_length_m`)."""

@@ -182,6 +182,8 @@ def uav_flight_figures(plan: UavPlan, layout: FlightLayout) -> dict[str, Any]:
     }
     if out["photos_per_strip"] is None:
         del out["photos_per_strip"]
+    if not layout.notes.get("max_flight_time_min"):  # no sortie time: not counted
+        del out["sorties"]
     if inp.image_width_px and inp.image_height_px:
         out["data_volume_bytes"] = float(FL.data_volume_bytes(
             photos, inp.image_width_px, inp.image_height_px, inp.bands, inp.bits_per_band))

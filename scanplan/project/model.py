@@ -193,6 +193,7 @@ class FlightSection:
     bank_deg: float | None = None
     takeoff: list[float] | None = None
     max_flight_time_min: float | None = None
+    aircraft: str | None = None
 
 
 @dataclass(frozen=True)
@@ -225,6 +226,7 @@ class ScheduleSection:
     sortie_time_min: float | None = None
     turnaround_min: float | None = None
     min_sun_elevation_deg: float | None = None
+    max_flying_days: int | None = None
 
 
 @dataclass(frozen=True)
@@ -395,6 +397,19 @@ def _sortie(r: _Reader) -> tuple[float | None, float | None]:
     return uav, schedule
 
 
+def _aircraft(r: _Reader) -> str | None:
+    """``[uav] aircraft``: a catalogue id (else exit 2 naming the key and the ids)."""
+    value = r.raw("uav", "aircraft")
+    if value is None:
+        return None
+    from ..norms.aircraft import aircraft
+
+    try:
+        return aircraft(str(value)).id
+    except InputError as exc:
+        raise InputError(r.where("uav", "aircraft"), exc.message) from None
+
+
 def _terrain(r: _Reader) -> TerrainSection | None:
     """``[terrain]`` as a checked configuration (the DEM beside the project file)."""
     if not r.p.has("terrain"):
@@ -456,10 +471,12 @@ def _schedule(r: _Reader, sortie_min: float | None) -> ScheduleSection | None:
     offset = r.ranged("schedule", "utc_offset_h")
     elev = r.ranged("schedule", "min_sun_elevation_deg")
     turn = r.ranged("schedule", "turnaround_min")
+    days = r.ranged("schedule", "max_flying_days")
     if not r.p.has("schedule"):
         return None
     return ScheduleSection(r.date("schedule", "start_date"), r.date("schedule", "end_date"),
-                           offset, sortie_min, turn, elev)
+                           offset, sortie_min, turn, elev,
+                           int(days) if days is not None else None)
 
 
 def build_model(project: Project) -> ProjectModel:
@@ -496,7 +513,8 @@ def build_model(project: Project) -> ProjectModel:
                            r.text("norms.block_relief", "reason")),
         area=area,
         flight=FlightSection(g("uav", "turnaround_m"), g("uav", "turn_radius_m"),
-                             g("uav", "bank_deg"), g("flight", "takeoff"), uav_sortie),
+                             g("uav", "bank_deg"), g("flight", "takeoff"), uav_sortie,
+                             _aircraft(r)),
         film=film, uav=uav, terrain=terrain,
         site=site if project.has("site") else None, schedule=schedule,
         lines=FrozenMap(project.lines))

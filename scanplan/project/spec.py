@@ -24,6 +24,7 @@ from ..geo.layout import Area, FlightLayout
 from ..geo.terrain_film import FilmTerrain
 from ..i18n.messages import Message
 from ..rules.film import PlanWarning, ScanScenario
+from .aircraftplan import aircraft_warnings
 from .archive import archive_film
 from .design import survey_design
 from .file import Project
@@ -46,7 +47,7 @@ from .jobs import (
 )
 from .model import ProjectModel, build_model
 from .results import FilmSpec, PlanResult, UavSpec
-from .sorties import sortie_length
+from .sorties import project_aircraft, sortie_length
 from .terrainplan import (
     archive_over_terrain,
     film_over_terrain,
@@ -313,6 +314,13 @@ def _uav_kwargs(project: ProjectModel, height_m: float, the_area: Area | None
                 ) -> dict[str, Any]:
     assert project.uav is not None
     kw = _job_kwargs(project.uav.given, uav_job)
+    craft = project_aircraft(project)
+    if craft is not None and "speed_ms" not in kw:  # the aircraft's cruise speed, if known
+        from ..norms.aircraft import aircraft
+
+        cruise = aircraft(craft).cruise_speed_ms
+        if cruise is not None:
+            kw["speed_ms"] = cruise
     kw.update(height_m=height_m, area_m=project.area.rectangle, area=the_area,
               layout_options=_layout_options(project, _platform(kw)))
     return kw
@@ -434,5 +442,6 @@ def plan_project(project: Project | ProjectModel) -> PlanResult:
     comparison = _comparison(film, uav) if film and uav else []
     design = survey_design(project, film, uav)
     warnings.extend(design.warnings)
+    warnings.extend(aircraft_warnings(project, uav, design))
     return PlanResult(project=project, meta=project.meta, film=film, uav=uav, comparison=comparison,
                       warnings=tuple(warnings), area=area, design=design)
