@@ -91,8 +91,9 @@ class SortieMission:
     points : tuple of MissionPoint
         The waypoints in flight order.
     takeoff_xy_m : (float, float) or None
-        The take-off point in the planning CRS [m] (None: not given; the mission's home is
-        then its first waypoint).
+        The take-off point in the planning CRS [m]: the given one, else the area's boundary
+        point nearest the sortie's run-in (None: an area with no place on the map; the
+        mission's home is then its first waypoint).
     photos : int
         The photos the sortie takes.
     """
@@ -152,8 +153,10 @@ def sortie_missions(layout: FlightLayout, speed_ms: float, *,
         mine = order[sortie[order] == s.number]
         if not len(mine):
             continue
-        out.append(SortieMission(s.number, tuple(ctx.sortie_points(mine)),
-                                 ctx.takeoff, len(mine)))
+        # the sortie's own take-off point (the given one, else the area's boundary point
+        # nearest its run-in: geo/sorties.py), else the layout's
+        home = s.takeoff_xy_m if s.takeoff_xy_m is not None else ctx.takeoff
+        out.append(SortieMission(s.number, tuple(ctx.sortie_points(mine)), home, len(mine)))
     return tuple(out)
 
 
