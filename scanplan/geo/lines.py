@@ -385,6 +385,8 @@ def plan_lines(
     kind: str = "uav",
     takeoff_xy_m: tuple[float, float] | None = None,
     flight_model: FlightModel | None = None,
+    manned: bool = False,
+    climb_m: float | None = None,
 ) -> FlightLayout:
     """Strips, photo centres, turns and sorties over ``area``.
 
@@ -423,6 +425,12 @@ def plan_lines(
         run-in and returns there.
     flight_model : FlightModel, optional
         The numbers of the time as flown (default: ``norms/catalogue/flight-model.csv``).
+    manned : bool
+        A camera on a manned survey aircraft: its sorties are its length at the speed (a
+        multirotor's flight model and a take-off from the area's boundary do not apply).
+    climb_m : float, optional
+        The height each sortie climbs after take-off and descends to land [m] (default
+        ``height_m``; over relief, more).
 
     Returns
     -------
@@ -460,8 +468,9 @@ def plan_lines(
                   else _to_rotated_uv(direction, origin)(*takeoff_xy_m))
     plan, ex_strip, reason = _sortie_plan(
         parts, turn, takeoff_uv, speed_ms, max_flight_time_min, notes,
-        _Airborne(rot.boundary if kind == "uav" else None, height_m,
-                  flight_model or FlightModel.bundled()))
+        None if manned or kind != "uav" else _Airborne(
+            rot.boundary, height_m if climb_m is None else climb_m,
+            flight_model or FlightModel.bundled()))
     length = float(np.sum(plan.length_m))
     turns = _turns_flown(plan, ex_strip, parts.conn)
     notes["transit_m"] = float(np.sum(plan.transit_m))
@@ -755,7 +764,7 @@ def _sortie_plan(parts: _Parts, turn: Turn, takeoff_uv: tuple[float, float] | No
     penalty = overhead = None
     if timed and air is not None and speed_ms is not None and len(ex_v):
         penalty = turn_penalties_m(ex_strip, ex_v, parts.u_m, turn.kind, turn.lead_m,
-                                   speed_ms, air.model)
+                                   speed_ms, air.model, parts.base_m / 2.0)
         overhead = sortie_overhead_m(speed_ms, air.height_m, air.model)
         notes["sortie_overhead_s"] = overhead / speed_ms
     limit = None

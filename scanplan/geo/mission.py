@@ -37,7 +37,8 @@ import numpy as np
 
 from .layout import FlightLayout
 
-__all__ = ["CAMERA_LOOP_HZ", "MissionPoint", "SortieMission", "sortie_missions", "turn_path"]
+__all__ = ["CAMERA_LOOP_HZ", "MissionPoint", "SortieMission", "sortie_missions",
+           "trigger_off_points", "turn_path"]
 
 CAMERA_LOOP_HZ = 50.0
 """How often the autopilot checks the trigger distance [Hz]: ArduPilot runs
@@ -341,6 +342,13 @@ def turn_path(p: np.ndarray, h: np.ndarray, q: np.ndarray, lead_m: float,
     else:
         out[-1] = (float(q[0]), float(q[1]))
     return out
+
+
+def trigger_off_points(p: np.ndarray, path: list[tuple[float, float]], after_m: float
+                       ) -> list[MissionPoint]:
+    """The waypoints of a turn as the mission writes them (:func:`_with_trigger_off`; the
+    strip and photo left 0): for the time a turn takes."""
+    return _with_trigger_off(p, path, after_m, 0, 0)
 
 
 def _with_trigger_off(p: np.ndarray, path: list[tuple[float, float]], after_m: float,

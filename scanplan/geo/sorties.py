@@ -375,8 +375,8 @@ def _failed(n: int, plan: SortiePlan) -> SortiePlan:
 
 
 def turn_penalties_m(exposure_strip: np.ndarray, along_m: np.ndarray, across_m: np.ndarray,
-                     turn_kind: str, lead_m: float, speed_ms: float, model: FlightModel
-                     ) -> np.ndarray:
+                     turn_kind: str, lead_m: float, speed_ms: float, model: FlightModel,
+                     trigger_off_m: float = 0.0) -> np.ndarray:
     """The time the turns cost beyond their length at the cruise speed, as metres,
     summed along the serpentine up to each exposure [m] (:func:`pack_sorties`'s
     ``penalty_m``).
@@ -384,10 +384,11 @@ def turn_penalties_m(exposure_strip: np.ndarray, along_m: np.ndarray, across_m: 
     The exposures are in the packing's frame: ``across_m`` the line's position of each
     strip (by strip index), ``along_m`` each exposure's place along its line; an
     even-numbered strip is flown towards +along, the next back. Each turn is flown through
-    the waypoints the mission writes for it (:func:`scanplan.geo.mission.turn_path`),
-    entered and left at the cruise speed.
+    the waypoints the mission writes for it (:func:`scanplan.geo.mission.turn_path`, with
+    the camera's trigger-off point ``trigger_off_m`` along it), entered and left at the
+    cruise speed.
     """
-    from .mission import turn_path
+    from .mission import trigger_off_points, turn_path
 
     ex = np.asarray(exposure_strip)
     out = np.zeros(len(ex))
@@ -395,12 +396,18 @@ def turn_penalties_m(exposure_strip: np.ndarray, along_m: np.ndarray, across_m: 
         return out
     change = np.flatnonzero(np.diff(ex))
     extra = np.zeros(len(change))
+    run_up = speed_ms ** 2 / (2.0 * model.accel_ms2) + 1.0  # [m]
     for j, k in enumerate(change):
         s0, s1 = int(ex[k]), int(ex[k + 1])
         p = np.array([across_m[s0], along_m[k]], dtype=float)
         q = np.array([across_m[s1], along_m[k + 1]], dtype=float)
         h = np.array([0.0, 1.0 if s0 % 2 == 0 else -1.0])
-        poly = np.vstack([p, np.array(turn_path(p, h, q, lead_m, turn_kind))])
+        path = turn_path(p, h, q, lead_m, turn_kind)
+        mid = [(m.x_m, m.y_m) for m in trigger_off_points(p, path, trigger_off_m)]
+        # the straights before and after at full length: the braking for the turn begins
+        # on the strip, before its last photo (an upper bound where the strip is shorter)
+        poly = np.vstack([p - run_up * h, p, *(np.array(mid).reshape(-1, 2),),
+                          np.array(path[-1:]), q - run_up * h])
         length = float(np.sum(np.hypot(*np.diff(poly, axis=0).T)))
         t = path_time_s(poly, speed_ms, model, start_ms=speed_ms, end_ms=speed_ms)
         extra[j] = max(0.0, t * speed_ms - length)

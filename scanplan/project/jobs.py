@@ -491,7 +491,7 @@ def uav_job(
         area = rectangle_area(area_w, area_l)
     if area is None:
         return UavJob(plan, ns)
-    layout = uav_layout(plan, area, layout_options)
+    layout = uav_layout(plan, area, layout_options, manned=aircraft)
     return UavJob(with_layout(plan, layout), ns, layout)
 
 

@@ -24,7 +24,8 @@ everywhere. The one length comes from the project file:
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from functools import lru_cache
+from typing import TYPE_CHECKING, Any
 
 from .inputs import PROJECT_DOMAINS
 
@@ -32,7 +33,12 @@ if TYPE_CHECKING:
     from .model import ProjectModel
 
 __all__ = ["MAX_SORTIE_MIN", "SORTIE_DEFAULTS_MIN", "SortieLength", "project_aircraft",
-           "sortie_length"]
+           "sortie_length", "terrain_relief_m"]
+
+RELIEF_SAMPLES = 96
+"""The DEM is sampled on a grid of this many points a side over the area for its relief."""
+RELIEF_MARGIN = 0.05
+"""Added to a sampled relief (a grid can miss the highest and lowest ground) [share]."""
 
 SORTIE_DEFAULTS_MIN = {"uav": (25.0, 15.0), "aircraft": (180.0, 60.0)}
 """(sortie flight time, ground time between sorties) [min] when the project does not say:
@@ -115,3 +121,40 @@ def sortie_length(model: ProjectModel, platform: str = "uav") -> SortieLength:
         default = SORTIE_DEFAULTS_MIN.get(platform, SORTIE_DEFAULTS_MIN["uav"])[0]
         return SortieLength(default, "default", craft)
     return SortieLength(None, "", craft)
+
+
+def terrain_relief_m(model: ProjectModel, area: Any) -> float:
+    """The ground's height range under the area [m] (0 without ``[terrain]``): what a
+    sortie may climb and descend beyond its planned height above the ground between its
+    take-off point and its altitude (:func:`scanplan.geo.lines.plan_lines`, ``climb_m``).
+
+    ``ground_elevation_m`` when given; else the DEM sampled on a
+    :data:`RELIEF_SAMPLES`-square grid over the area, plus :data:`RELIEF_MARGIN`.
+    """
+    terrain = model.terrain
+    if terrain is None or area is None:
+        return 0.0
+    cfg = terrain.config
+    if cfg.ground_range_m is not None:
+        return float(cfg.ground_range_m[1] - cfg.ground_range_m[0])
+    if cfg.dem is None or not str(cfg.dem) or not area.georeferenced:
+        return 0.0
+    return _dem_relief_m(str(cfg.dem), cfg.vertical_unit, tuple(area.geometry.bounds),
+                         area.plan_crs)
+
+
+@lru_cache(maxsize=8)
+def _dem_relief_m(dem: str, unit: str | None, bounds: tuple[float, ...], plan_crs: str
+                  ) -> float:
+    import numpy as np
+
+    from ..geo.dem import open_dem, sample_dem, vertical_factor
+
+    info = open_dem(dem)
+    factor, _ = vertical_factor(info, unit)
+    x0, y0, x1, y1 = bounds
+    gx, gy = np.meshgrid(np.linspace(x0, x1, RELIEF_SAMPLES), np.linspace(y0, y1, RELIEF_SAMPLES))
+    z = np.asarray(sample_dem(info, gx.ravel(), gy.ravel(), plan_crs, factor).elevation_m,
+                   dtype=float)
+    z = z[np.isfinite(z)]
+    return float(np.ptp(z)) * (1.0 + RELIEF_MARGIN) if z.size else 0.0

@@ -47,7 +47,7 @@ from .jobs import (
 )
 from .model import ProjectModel, build_model
 from .results import FilmSpec, PlanResult, UavSpec
-from .sorties import project_aircraft, sortie_length
+from .sorties import project_aircraft, sortie_length, terrain_relief_m
 from .terrainplan import (
     archive_over_terrain,
     film_over_terrain,
@@ -284,7 +284,8 @@ def _check_layout_keys(project: ProjectModel, area: Area | None) -> None:
         raise project.named(exc, "uav") from None
 
 
-def _layout_options(project: ProjectModel, platform: str = "uav") -> LayoutOptions:
+def _layout_options(project: ProjectModel, platform: str = "uav",
+                    relief_m: float = 0.0) -> LayoutOptions:
     a, f = project.area, project.flight
     return LayoutOptions(
         direction_deg=a.direction_deg,
@@ -293,7 +294,7 @@ def _layout_options(project: ProjectModel, platform: str = "uav") -> LayoutOptio
         turnaround_m=f.turnaround_m, turn_radius_m=f.turn_radius_m, bank_deg=f.bank_deg,
         # the one sortie length: it splits the layout and counts the schedule's sorties
         max_flight_time_min=sortie_length(project, platform).minutes,
-        takeoff_lonlat=f.takeoff)
+        takeoff_lonlat=f.takeoff, relief_m=relief_m)
 
 
 def _platform(kw: dict[str, Any]) -> str:
@@ -322,7 +323,8 @@ def _uav_kwargs(project: ProjectModel, height_m: float, the_area: Area | None
         if cruise is not None:
             kw["speed_ms"] = cruise
     kw.update(height_m=height_m, area_m=project.area.rectangle, area=the_area,
-              layout_options=_layout_options(project, _platform(kw)))
+              layout_options=_layout_options(project, _platform(kw),
+                                             terrain_relief_m(project, the_area)))
     return kw
 
 
