@@ -46,11 +46,11 @@ FLIGHT: dict[str, dict[str, str]] = {
               "⁅[flight] takeoff|точку взлёта⁆, откуда взлетает экипаж.",
     },
     "flying_days_exceeded": {
-        "en": "the flight needs {needed}, more than the {most:,} the crew has (⁅[schedule] "
+        "en": "the flight needs {needed}, more than the {most:,} the crew has (⁅[flight] "
               "max_flying_days|the most flying days⁆): split the area, fly higher or bring "
               "more aircraft",
         "ru": "Для полёта нужно {needed} — больше, чем {most:,}, которые есть у экипажа "
-              "(⁅[schedule] max_flying_days|наибольшее число лётных дней⁆): разделите "
+              "(⁅[flight] max_flying_days|наибольшее число лётных дней⁆): разделите "
               "участок, поднимите высоту или привлеките больше носителей.",
     },
     "flying_days.at_least": {

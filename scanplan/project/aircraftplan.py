@@ -10,7 +10,7 @@ After the UAV plan and the survey design, :func:`aircraft_warnings` states:
   aircraft's maximum (warnings);
 - the take-off point assumed when none is given (information: each sortie takes off from
   the area's boundary point nearest its first strip, :mod:`scanplan.geo.sorties`);
-- a plan that needs more flying days than ``[schedule] max_flying_days``: by the survey
+- a plan that needs more flying days than ``[flight] max_flying_days``: by the survey
   design's sun windows when it counts them, else at least the flight time and the ground
   time between sorties flown around the clock (a warning).
 """
@@ -92,9 +92,8 @@ def aircraft_warnings(project: ProjectModel, uav: UavSpec | None,
             "takeoff_assumed", km=sum(s.transit_m for s in layout.sorties) / 1000.0),
             severity="info"))
     days, bound = flying_days_needed(project, uav, design)
-    most = (project.schedule.max_flying_days if project.schedule is not None
-            and project.schedule.max_flying_days is not None
-            else by_key("schedule", "max_flying_days").default)
+    most = (project.flight.max_flying_days if project.flight.max_flying_days is not None
+            else by_key("flight", "max_flying_days").default)
     if days is not None and days > most:
         needed = Message("flying_days.at_least" if bound else "flying_days.by_schedule",
                          days=days)

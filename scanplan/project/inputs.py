@@ -531,7 +531,7 @@ _RECORDS: tuple[Input, ...] = (
           note="default: [uav] max_flight_time_min, else the aircraft's usable flight time, "
           "else 25 for a UAV, 180 for an aircraft",
           domain="sortie_time_min", digits=0),
-    Input("max_flying_days", "schedule", "max_flying_days", _INT, "the most flying days the "
+    Input("max_flying_days", "flight", "max_flying_days", _INT, "the most flying days the "
           "crew can give the job: a plan that needs more is warned about (the survey "
           "design's flying days when [site] and [schedule] are given, else a lower bound: "
           "the flight time and the ground time between sorties, flown around the clock)",

@@ -194,6 +194,7 @@ class FlightSection:
     takeoff: list[float] | None = None
     max_flight_time_min: float | None = None
     aircraft: str | None = None
+    max_flying_days: int | None = None
 
 
 @dataclass(frozen=True)
@@ -226,7 +227,6 @@ class ScheduleSection:
     sortie_time_min: float | None = None
     turnaround_min: float | None = None
     min_sun_elevation_deg: float | None = None
-    max_flying_days: int | None = None
 
 
 @dataclass(frozen=True)
@@ -397,6 +397,12 @@ def _sortie(r: _Reader) -> tuple[float | None, float | None]:
     return uav, schedule
 
 
+def _flying_days(r: _Reader) -> int | None:
+    """``[flight] max_flying_days`` in range (None when not given)."""
+    days = r.ranged("flight", "max_flying_days")
+    return None if days is None else int(days)
+
+
 def _aircraft(r: _Reader) -> str | None:
     """``[uav] aircraft``: a catalogue id (else exit 2 naming the key and the ids)."""
     value = r.raw("uav", "aircraft")
@@ -471,12 +477,10 @@ def _schedule(r: _Reader, sortie_min: float | None) -> ScheduleSection | None:
     offset = r.ranged("schedule", "utc_offset_h")
     elev = r.ranged("schedule", "min_sun_elevation_deg")
     turn = r.ranged("schedule", "turnaround_min")
-    days = r.ranged("schedule", "max_flying_days")
     if not r.p.has("schedule"):
         return None
     return ScheduleSection(r.date("schedule", "start_date"), r.date("schedule", "end_date"),
-                           offset, sortie_min, turn, elev,
-                           int(days) if days is not None else None)
+                           offset, sortie_min, turn, elev)
 
 
 def build_model(project: Project) -> ProjectModel:
@@ -514,7 +518,7 @@ def build_model(project: Project) -> ProjectModel:
         area=area,
         flight=FlightSection(g("uav", "turnaround_m"), g("uav", "turn_radius_m"),
                              g("uav", "bank_deg"), g("flight", "takeoff"), uav_sortie,
-                             _aircraft(r)),
+                             _aircraft(r), _flying_days(r)),
         film=film, uav=uav, terrain=terrain,
         site=site if project.has("site") else None, schedule=schedule,
         lines=FrozenMap(project.lines))
