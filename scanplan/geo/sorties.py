@@ -397,11 +397,16 @@ def turn_penalties_m(exposure_strip: np.ndarray, along_m: np.ndarray, across_m: 
     change = np.flatnonzero(np.diff(ex))
     extra = np.zeros(len(change))
     run_up = speed_ms ** 2 / (2.0 * model.accel_ms2) + 1.0  # [m]
+    seen: dict[tuple[float, float], float] = {}  # a turn's time depends on its shape only
     for j, k in enumerate(change):
         s0, s1 = int(ex[k]), int(ex[k + 1])
         p = np.array([across_m[s0], along_m[k]], dtype=float)
         q = np.array([across_m[s1], along_m[k + 1]], dtype=float)
         h = np.array([0.0, 1.0 if s0 % 2 == 0 else -1.0])
+        key = (round(float((q - p) @ h), 3), round(abs(float(q[0] - p[0])), 3))
+        if key in seen:
+            extra[j] = seen[key]
+            continue
         path = turn_path(p, h, q, lead_m, turn_kind)
         mid = [(m.x_m, m.y_m) for m in trigger_off_points(p, path, trigger_off_m)]
         # the straights before and after at full length: the braking for the turn begins
@@ -410,7 +415,7 @@ def turn_penalties_m(exposure_strip: np.ndarray, along_m: np.ndarray, across_m: 
                           np.array(path[-1:]), q - run_up * h])
         length = float(np.sum(np.hypot(*np.diff(poly, axis=0).T)))
         t = path_time_s(poly, speed_ms, model, start_ms=speed_ms, end_ms=speed_ms)
-        extra[j] = max(0.0, t * speed_ms - length)
+        extra[j] = seen[key] = max(0.0, t * speed_ms - length)
     steps = np.zeros(len(ex))
     steps[change + 1] = extra
     return np.cumsum(steps)
