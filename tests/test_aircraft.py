@@ -70,7 +70,7 @@ def test_the_catalogue_holds_the_aircraft_the_cameras_fly_on():
     cameras, _ = bundled_catalogue()
     for a in all_aircraft().values():
         assert set(a.cameras) <= set(cameras), a.id  # catalogue cameras only
-        assert a.source and a.max_flight_time_min and a.flight_time_conditions, a.id
+        assert a.source and a.max_flight_time_min and a.flight_time_basis, a.id
 
 
 def test_every_value_names_its_source_and_blanks_are_said():

@@ -57,8 +57,8 @@ def aircraft_list(camera: str | None, as_json: bool, locale: str = "en") -> None
     def n(v: float | None, fmt: str = "g") -> str:
         return "—" if v is None else _num(format(v, fmt), loc)
 
-    rows = [[w(k, loc) for k in ("ac_id", "ac_kind", "ac_time", "ac_usable", "ac_speed",
-                                 "ac_wind", "ac_rtk", "ac_cameras", "ac_name")]]
+    rows = [[w(k, loc) for k in ("ac_id", "cam_kind", "ac_time", "ac_usable", "ac_speed",
+                                 "ac_wind", "ac_rtk", "ac_cameras", "cam_name")]]
     for a in crafts:
         rtk = "—" if a.rtk is None else w("ac_yes" if a.rtk else "ac_no", loc)
         rows.append([a.id, w(f"ac_kind_{a.kind}", loc), n(a.max_flight_time_min),

@@ -24,6 +24,12 @@ FLIGHT: dict[str, dict[str, str]] = {
               "{name} {published:g}~мин ({conditions}) за вычетом резерва аккумулятора "
               "{reserve:g}~%.",
     },
+    "flight_time.no_payload_windless_to_empty": {
+        "en": "without payload, in still air, until the battery is empty",
+        "ru": "без полезной нагрузки, в безветрие, до полного разряда аккумулятора",
+    },
+    "flight_time.approximate": {"en": "an approximate figure",
+                                "ru": "приблизительное значение"},
     "aircraft_camera_unlisted": {
         "en": "the catalogue does not list the camera {camera} on the {name} (it lists "
               "{cameras}); check that the aircraft carries it",

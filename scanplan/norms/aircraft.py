@@ -32,15 +32,19 @@ from pathlib import Path
 from ..errors import InputError
 from .paths import CATALOGUE, bundled_norms_dir
 
-__all__ = ["AIRCRAFT_COLUMNS", "Aircraft", "FlightModelParam", "aircraft", "all_aircraft",
-           "carriers_of", "flight_model_params", "load_aircraft"]
+__all__ = ["AIRCRAFT_COLUMNS", "FLIGHT_TIME_BASES", "Aircraft", "FlightModelParam", "aircraft",
+           "all_aircraft", "carriers_of", "flight_model_params", "load_aircraft"]
 
-AIRCRAFT_COLUMNS = ("id", "name", "kind", "max_flight_time_min", "flight_time_conditions",
+AIRCRAFT_COLUMNS = ("id", "name", "kind", "max_flight_time_min", "flight_time_basis",
                     "cruise_speed_ms", "max_speed_ms", "max_wind_ms", "rtk", "cameras", "note",
                     "source", "name_ru")
 """The columns of ``aircraft.csv``, in order."""
 _NUMBERS = ("max_flight_time_min", "cruise_speed_ms", "max_speed_ms", "max_wind_ms")
 _KINDS = ("multirotor", "fixed_wing", "vtol")
+FLIGHT_TIME_BASES = ("no_payload_windless_to_empty", "approximate")
+"""How a published flight time was measured (their words: the message catalogue's
+``flight_time.<basis>``): DJI's "without payloads in a windless environment until the
+battery reached 0 %", or a figure published as approximate."""
 
 
 @dataclass(frozen=True)
@@ -65,8 +69,8 @@ class Aircraft:
         Catalogue id and the model's name (English, Russian).
     kind : {"multirotor", "fixed_wing", "vtol"}
     max_flight_time_min : float or None
-        The published flight time of one battery [min], measured as
-        ``flight_time_conditions`` says.
+        The published flight time of one battery [min], measured as ``flight_time_basis``
+        says (one of :data:`FLIGHT_TIME_BASES`).
     cruise_speed_ms, max_speed_ms, max_wind_ms : float or None
         Cruise and maximum horizontal speed, and the wind it is rated for [m/s].
     rtk : bool or None
@@ -81,7 +85,7 @@ class Aircraft:
     name: str
     kind: str
     max_flight_time_min: float | None
-    flight_time_conditions: str = ""
+    flight_time_basis: str = ""
     cruise_speed_ms: float | None = None
     max_speed_ms: float | None = None
     max_wind_ms: float | None = None
@@ -140,9 +144,12 @@ def load_aircraft(path: Path) -> dict[str, Aircraft]:
         if r["rtk"].strip() not in ("yes", "no", ""):
             raise InputError(f"{where} (rtk)", "must be yes, no or empty")
         cams = tuple(c.strip() for c in r["cameras"].split(";") if c.strip())
+        if r["flight_time_basis"] not in (*FLIGHT_TIME_BASES, ""):
+            raise InputError(f"{where} (flight_time_basis)",
+                             f"must be one of {', '.join(FLIGHT_TIME_BASES)}")
         out[r["id"]] = Aircraft(
             id=r["id"], name=r["name"], kind=r["kind"], **nums,
-            flight_time_conditions=r["flight_time_conditions"], rtk=rtk, cameras=cams,
+            flight_time_basis=r["flight_time_basis"], rtk=rtk, cameras=cams,
             note=r["note"], source=r["source"], name_ru=r["name_ru"])
     return out
 

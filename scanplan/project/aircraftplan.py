@@ -76,7 +76,8 @@ def aircraft_warnings(project: ProjectModel, uav: UavSpec | None,
             out.append(PlanWarning("aircraft_sortie", Message(
                 "aircraft_sortie", minutes=length.minutes, name=craft.name,
                 published=craft.max_flight_time_min,
-                conditions=craft.flight_time_conditions, reserve=reserve), severity="info"))
+                conditions=Message(f"flight_time.{craft.flight_time_basis or 'approximate'}"),
+                reserve=reserve), severity="info"))
         if isinstance(camera, str) and craft.cameras and camera not in craft.cameras:
             out.append(PlanWarning("aircraft_camera_unlisted", Message(
                 "aircraft_camera_unlisted", camera=camera, name=craft.name,
