@@ -139,8 +139,13 @@ def terrain_relief_m(model: ProjectModel, area: Any) -> float:
         return float(cfg.ground_range_m[1] - cfg.ground_range_m[0])
     if cfg.dem is None or not str(cfg.dem) or not area.georeferenced:
         return 0.0
-    return _dem_relief_m(str(cfg.dem), cfg.vertical_unit, tuple(area.geometry.bounds),
-                         area.plan_crs)
+    from ..errors import InputError
+
+    try:
+        return _dem_relief_m(str(cfg.dem), cfg.vertical_unit, tuple(area.geometry.bounds),
+                             area.plan_crs)
+    except InputError:  # a DEM the terrain check refuses, naming the key and its line
+        return 0.0
 
 
 @lru_cache(maxsize=8)
