@@ -730,6 +730,7 @@ def t(key: str, locale: str = "en", platform: str = "uav") -> str:
     return LABELS[loc][key]
 
 
+from .labels_control import CONTROL as _CONTROL  # noqa: E402  (ground control, checkpoints)
 from .labels_geo import GEO as _GEO  # noqa: E402  (map page, strips, exported files)
 from .labels_more import DESIGN as _DESIGN  # noqa: E402  (the survey design sheet)
 from .labels_more import SIGNING as _SIGNING  # noqa: E402
@@ -753,5 +754,5 @@ LABELS["en"]["reach_interpretable"] = "Smallest photo scale with the map object 
 LABELS["ru"]["reach_interpretable"] = "Предельный масштаб снимков с дешифрированием объекта"
 
 for _loc in LOCALES:  # in this order: the catalogue's keys keep their order
-    for _part in (_DESIGN, _TERRAIN, _GEO):
+    for _part in (_DESIGN, _TERRAIN, _GEO, _CONTROL):
         LABELS[_loc].update(_part[_loc])
