@@ -24,7 +24,7 @@ from ..norms.control import ControlRule, control_rules
 from ..rules.film import PlanWarning
 from .model import ControlSection, ProjectModel
 
-__all__ = ["ControlSpec", "plan_control"]
+__all__ = ["ControlSpec", "control_dict", "plan_control"]
 
 
 @dataclass(frozen=True)
@@ -227,3 +227,36 @@ def plan_control(project: ProjectModel, job: Any, area: Area | None,
     checks = _checks(c, budget, rules)
     return ControlSpec(c.mode, pts, rules, spacing, inset, lay.separation_m, how, figures, budget,
                        checks, c, _warnings(checks, budget, pts, figures))
+
+
+def control_dict(spec: ControlSpec) -> dict[str, Any]:
+    """The ``control`` section of ``plan --json``: the counts, the figures, the rules with
+    their sources and statuses, the error budget (RMSE "at best") and the checks, and the
+    markers themselves (the columns of control.csv)."""
+    c = spec.points.columns
+    points = []
+    for i in range(len(spec.points)):
+        row: dict[str, Any] = {}
+        for k, v in c.items():
+            x = v[i]
+            row[k] = (str(x) if k in ("id", "role") else int(x) if k in ("block", "photos")
+                      else (float(x) if np.isfinite(x) else None))
+        points.append(row)
+    return {
+        "mode": spec.mode,
+        "gcp_sigma_xy_m": spec.section.gcp_sigma_xy_m,
+        "gcp_sigma_z_m": spec.section.gcp_sigma_z_m,
+        "n_gcp": spec.points.n_gcp, "n_check": spec.points.n_check,
+        "n_corner_gcp": spec.points.corners,
+        "checkpoints_rule": spec.checkpoints_rule,
+        "spacing_m": spec.spacing_m, "inset_m": spec.inset_m,
+        "separation_m": spec.separation_m,
+        "moved_off_steep_ground": spec.points.moved, "left_on_steep_ground": spec.points.steep,
+        **spec.figures,
+        "budget": {**spec.budget, "meaning": "at best: RMSE = sqrt(model² + control² + "
+                   "checkpoint²); calibration, blur and the markers' identification add to it"},
+        "checks": spec.checks,
+        "rules": {name: {"value": r.value, "unit": r.unit, "source": r.source,
+                         "status": r.status, "note": r.note} for name, r in spec.rules.items()},
+        "points": points,
+    }
