@@ -356,7 +356,8 @@ def layout_control(area: shapely.Geometry, mode: str, rules: ControlLayoutRules,
     keep = _mode_keep(mode, gcp_all, gcp_block, kind_arr, blocks, rules)
     gcp, gblock = gcp_all[keep], gcp_block[keep]
     chk, cblock = _checkpoints(blocks, gcp_all, rules, area, checkpoints_field)
-    free = allowed.difference(shapely.points(gcp_all).buffer(rules.separation_m).union_all()) \
+    free = allowed.difference(shapely.union_all(shapely.buffer(shapely.points(gcp_all),
+                                                               rules.separation_m))) \
         if len(gcp_all) and ground is not None else allowed
     chk, m2, s2 = _off_steep(chk, free, ground, rules)
     xy = np.vstack([gcp, chk]) if len(chk) else gcp
