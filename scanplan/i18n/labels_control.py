@@ -34,8 +34,11 @@ CONTROL: dict[str, dict[str, str]] = {
         "control_sigma_model_h": "σ of the block in plan (√2·σ_px·GSD), m",
         "control_target_z": "Required height accuracy V_z, m",
         "control_target_h": "Required planimetric accuracy V_s·Mk, m",
-        "control_at_best": "at best: calibration, blur and the markers' identification add "
-                           "to it",
+        "control_at_best": "at best",
+        "control_at_best_note": "The RMSE at best is the least the checkpoints can show: the "
+                                "block's own precision, the control's and the checkpoints' "
+                                "survey errors added as independent errors; calibration, image "
+                                "blur and the identification of the markers add to it.",
         "control_check": "Control precision against the target",
         "control_ratio": "target / precision",
         "control_required": "required",
@@ -68,6 +71,8 @@ CONTROL: dict[str, dict[str, str]] = {
         "control_rule_rtk_interior_gcps": "RTK/PPK: interior GCPs per block",
         "control_rule_max_marker_slope_pct": "Steepest ground for a marker, %",
         "control_sheet": "Control",
+        "control_source_scanplan": "the planner's own layout rule (no norm read gives one)",
+        "control_source_practice": "common practice (no norm read gives a number)",
     },
     "ru": {
         "control_points": "Опознаки и контрольные точки",
@@ -99,8 +104,12 @@ CONTROL: dict[str, dict[str, str]] = {
         "control_sigma_model_h": "σ блока в плане (√2·σ_px·GSD), м",
         "control_target_z": "Требуемая точность по высоте V_z, м",
         "control_target_h": "Требуемая точность в плане V_s·Mk, м",
-        "control_at_best": "в лучшем случае: калибровка, смаз и опознавание маркеров "
-                           "добавят к ней",
+        "control_at_best": "в лучшем случае",
+        "control_at_best_note": "СКП в лучшем случае — наименьшая, какую могут показать "
+                                "контрольные точки: собственная точность блока, ошибки "
+                                "определения опознаков и контрольных точек, сложенные как "
+                                "независимые; калибровка, смаз изображения и опознавание "
+                                "маркеров добавят к ней.",
         "control_check": "Точность привязки относительно требуемой",
         "control_ratio": "требуемая / точность",
         "control_required": "требуется",
@@ -135,6 +144,10 @@ CONTROL: dict[str, dict[str, str]] = {
         "control_rule_rtk_interior_gcps": "RTK/PPK: опознаков внутри блока",
         "control_rule_max_marker_slope_pct": "Наибольшая крутизна склона под маркером, %",
         "control_sheet": "Привязка",
+        "control_source_scanplan": "правило размещения планировщика (в прочитанных нормах "
+                                   "его нет)",
+        "control_source_practice": "распространённая практика (в прочитанных нормах числа "
+                                   "нет)",
     },
 }
 """Label key → text per locale."""

@@ -49,6 +49,9 @@ def rule_rows(tables: ResultTables, loc: str) -> list[tuple[str, str, str, str]]
     out = []
     for r in tables["control_rules"].rows:
         v: Any = r.value
+        source = r.fields["source"]
+        if source in ("scanplan", "practice"):  # the planner's own rule, or common practice
+            source = t(f"control_source_{source}", loc)
         out.append((t(r.key, loc), n.num(v, 0 if float(v).is_integer() else 2),
-                     t(r.fields["status"], loc), r.fields["source"]))
+                     t(r.fields["status"], loc), source))
     return out
