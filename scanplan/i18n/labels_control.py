@@ -71,6 +71,8 @@ CONTROL: dict[str, dict[str, str]] = {
         "control_rule_rtk_interior_gcps": "RTK/PPK: interior GCPs per block",
         "control_rule_max_marker_slope_pct": "Steepest ground for a marker, %",
         "control_sheet": "Control",
+        "map_legend_gcp": "Ground control points (GCPs)",
+        "map_legend_checkpoint": "Checkpoints",
         "control_source_scanplan": "the planner's own layout rule (no norm read gives one)",
         "control_source_practice": "common practice (no norm read gives a number)",
     },
@@ -144,6 +146,8 @@ CONTROL: dict[str, dict[str, str]] = {
         "control_rule_rtk_interior_gcps": "RTK/PPK: опознаков внутри блока",
         "control_rule_max_marker_slope_pct": "Наибольшая крутизна склона под маркером, %",
         "control_sheet": "Привязка",
+        "map_legend_gcp": "Опознаки",
+        "map_legend_checkpoint": "Контрольные точки",
         "control_source_scanplan": "правило размещения планировщика (в прочитанных нормах "
                                    "его нет)",
         "control_source_practice": "распространённая практика (в прочитанных нормах числа "

@@ -381,8 +381,20 @@ def _draw_photos_agl(fig: Figure, ax: Any, layout: FlightLayout, mt: MapTerrain,
                        label=t(mt.highlight_key, locale).format(n=mt.highlight))
 
 
-def map_svg(layout: FlightLayout, locale: str = "en", terrain: MapTerrain | None = None
-            ) -> str:
+def _draw_control(ax: Any, control: Any, scale: float, locale: str) -> None:
+    """The GCPs (red triangles) and the checkpoints (blue circles) of ``[control]``."""
+    c = control.columns
+    for role, marker, colour, key in (("gcp", "^", "#c62828", "map_legend_gcp"),
+                                      ("check", "o", "#1565c0", "map_legend_checkpoint")):
+        m = control.role(role)
+        if m.any():
+            ax.scatter(c["x_m"][m] / scale, c["y_m"][m] / scale, marker=marker, s=30,
+                       facecolor=colour, edgecolor="black", linewidth=0.4, zorder=8,
+                       label=t(key, locale))
+
+
+def map_svg(layout: FlightLayout, locale: str = "en", terrain: MapTerrain | None = None,
+            control: Any = None) -> str:
     """The flight layout drawn in its planning CRS (see the module docstring).
 
     Parameters
@@ -395,6 +407,8 @@ def map_svg(layout: FlightLayout, locale: str = "en", terrain: MapTerrain | None
         ``[terrain]``: the photo centres are coloured by their height above ground, with a
         colour bar, and the photos that break a constraint are marked
         (:func:`map_terrain`).
+    control : ControlPoints, optional
+        ``[control]``: the GCPs (triangles) and checkpoints (circles) over the flight.
 
     Returns
     -------
@@ -416,6 +430,8 @@ def map_svg(layout: FlightLayout, locale: str = "en", terrain: MapTerrain | None
             _draw_photos_agl(fig, ax, layout, terrain, scale, locale)
         elif len(ph):
             _draw_photos_plain(ax, layout, scale, locale)
+        if control is not None and len(control):
+            _draw_control(ax, control, scale, locale)
         ax.set_aspect("equal", adjustable="datalim")
         ax.margins(0.1)
         ax.xaxis.set_major_formatter(_km_ticks(ax.xaxis, locale))
@@ -558,6 +574,12 @@ def continued_note(strips: Any, locale: str) -> str:
     return t("strips_continued", locale).format(list="; ".join(items)) if items else ""
 
 
+def _control_of(spec: Any) -> Any:
+    """The GCPs and checkpoints of a specification's ``[control]``, or None."""
+    control = getattr(spec, "control", None)
+    return control.points if control is not None else None
+
+
 def geo_views(spec: Any, locale: str) -> list[dict[str, Any]]:
     """The PDF's map pages: one per flight layout of ``spec`` (UAV first, then film).
 
@@ -587,7 +609,8 @@ def geo_views(spec: Any, locale: str) -> list[dict[str, Any]]:
         views.append({
             "title": t("map_title_film" if film else "map_title", locale)
             if layout.area.georeferenced else t("geo_summary", locale),
-            "map": _svg_uri(map_svg(layout, locale, map_terrain(spec, _kind, layout)))
+            "map": _svg_uri(map_svg(layout, locale, map_terrain(spec, _kind, layout),
+                                    None if film else _control_of(spec)))
             if layout.area.georeferenced else None,
             "caption": crs_text(layout, locale),
             "rows": summary_rows(layout, locale),
