@@ -3,8 +3,8 @@
 One FeatureCollection: the area (``kind: "area"``), each strip's photographed parts
 (``"strip"``, with its number and sortie), the photo centres (``"photos"``, one MultiPoint
 per flight, every k-th when there are more than :data:`MAX_MAP_PHOTOS`)
-and each sortie's take-off (``"takeoff"``: its first photo, where the mission files put
-the home). Coordinates come from the same layout as the exported files; an abstract block
+each sortie's take-off (``"takeoff"``: its first photo, where the mission files put
+the home) and, with ``[control]``, the GCPs (``"gcp"``) and checkpoints (``"check"``). Coordinates come from the same layout as the exported files; an abstract block
 (``width_m × length_m``) has no place on the map and gives an empty collection.
 """
 
@@ -79,4 +79,17 @@ def map_features(result: Any) -> dict[str, Any]:
         features.append(_area(area))
         for platform, layout in spec_layouts(result):
             features += _layout(platform, layout, MAX_MAP_PHOTOS)
+        features += _control(result)
     return {"type": "FeatureCollection", "features": features}
+
+
+def _control(result: Any) -> list[dict[str, Any]]:
+    """The GCPs (``kind: "gcp"``) and checkpoints (``"check"``) of ``[control]``, each a
+    Point named by its id — the same points as control.csv."""
+    control = getattr(result, "control", None)
+    if control is None:
+        return []
+    c = control.points.columns
+    return [_feature(str(c["role"][i]), {"type": "Point", "coordinates": [
+        round(float(c["lon_deg"][i]), 8), round(float(c["lat_deg"][i]), 8)]},
+        id=str(c["id"][i]), photos=int(c["photos"][i])) for i in range(len(control.points))]

@@ -46,6 +46,7 @@ TEXTS: dict[str, dict[str, str]] = {
         "cm": "cm", "m": "m", "min": "min", "um": "µm", "ms": "ms",
         "legend_strip": "flight lines", "legend_photo": "photo centres",
         "legend_takeoff": "take-off", "legend_area": "area",
+        "legend_gcp": "GCP", "legend_check": "checkpoint",
         "start": "Draw or drop the area and choose a camera: the plan follows every change.",
         "every": "1 in {k} shown", "planned_in": "planned in {ms} ms", "lang_other": "Русский",
         "area_km2": "Area size", "km2": "km²", "plan_crs": "Planning CRS",
@@ -87,6 +88,7 @@ TEXTS: dict[str, dict[str, str]] = {
         "cm": "см", "m": "м", "min": "мин", "um": "мкм", "ms": "мс",
         "legend_strip": "маршруты", "legend_photo": "центры снимков",
         "legend_takeoff": "взлёт", "legend_area": "участок",
+        "legend_gcp": "опознак", "legend_check": "контрольная точка",
         "start": "Нарисуйте или перетащите участок и выберите камеру: расчёт следует за "
                  "каждым изменением.",
         "every": "показан 1 из {k}", "planned_in": "рассчитано за {ms} мс", "lang_other": "English",

@@ -155,6 +155,11 @@
           icon: L.divIcon({className: "takeoff-icon", html: String(p.sortie),
             iconSize: [18, 18]})}).bindTooltip(`${T.legend_takeoff} ${p.sortie}`)
           .addTo(planLayer);
+      } else if (p.kind === "gcp" || p.kind === "check") {  // [control]: the markers
+        L.circleMarker([g.coordinates[1], g.coordinates[0]], {radius: p.kind === "gcp" ? 4 : 3.5,
+          color: "#000", weight: 1, fillColor: p.kind === "gcp" ? "#c62828" : "#1565c0",
+          fillOpacity: 1, pmIgnore: true}).bindTooltip(
+          `${p.kind === "gcp" ? T.legend_gcp : T.legend_check} ${p.id}`).addTo(planLayer);
       }
     }
     const e = document.getElementById("every"); if (e) e.textContent = every;
