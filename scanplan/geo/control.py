@@ -26,12 +26,13 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from itertools import pairwise
 from dataclasses import dataclass, field
 
 import numpy as np
 import shapely
-from shapely.ops import polylabel
 from numpy.typing import NDArray
+from shapely.ops import polylabel
 
 from ..errors import InputError
 from .layout import FlightLayout
@@ -155,7 +156,7 @@ def _edge_points(inner: shapely.Polygon, corners: NDArray[np.float64],
     total = ring.length
     stops = np.append(at, at[0] + total)
     out = []
-    for a, b in zip(stops[:-1], stops[1:], strict=True):
+    for a, b in pairwise(stops):
         n = math.ceil((b - a) / spacing_m - 1e-9)
         for k in range(1, n):
             out.append(ring.interpolate((a + (b - a) * k / n) % total).coords[0])

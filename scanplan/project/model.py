@@ -27,9 +27,9 @@ from .inputs import by_key, domain_of, project_key, records
 if TYPE_CHECKING:
     from ..geo.terrain import TerrainConfig
 
-__all__ = ["AreaSection", "ControlSection", "FieldMeta", "FilmSection", "FlightSection", "FrozenMap", "MapSection",
-           "NormsSection", "ProjectModel", "ScheduleSection", "Signing", "SiteSection",
-           "TerrainSection", "UavSection", "build_model", "field_meta"]
+__all__ = ["AreaSection", "ControlSection", "FieldMeta", "FilmSection", "FlightSection",
+           "FrozenMap", "MapSection", "NormsSection", "ProjectModel", "ScheduleSection",
+           "Signing", "SiteSection", "TerrainSection", "UavSection", "build_model", "field_meta"]
 
 
 class FrozenMap(dict):  # type: ignore[type-arg]

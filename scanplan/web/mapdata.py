@@ -4,7 +4,8 @@ One FeatureCollection: the area (``kind: "area"``), each strip's photographed pa
 (``"strip"``, with its number and sortie), the photo centres (``"photos"``, one MultiPoint
 per flight, every k-th when there are more than :data:`MAX_MAP_PHOTOS`)
 each sortie's take-off (``"takeoff"``: its first photo, where the mission files put
-the home) and, with ``[control]``, the GCPs (``"gcp"``) and checkpoints (``"check"``). Coordinates come from the same layout as the exported files; an abstract block
+the home) and, with ``[control]``, the GCPs (``"gcp"``) and checkpoints (``"check"``).
+Coordinates come from the same layout as the exported files; an abstract block
 (``width_m × length_m``) has no place on the map and gives an empty collection.
 """
 

@@ -21,9 +21,9 @@ from functools import cached_property
 from typing import Literal
 
 from ...io.targets import OUR_MARK, FileKind
+from ..control import ControlPoints
 from ..layout import FlightLayout
 from .common import LonLat, lonlat
-from ..control import ControlPoints
 from .gis import ExportNames, render_control_csv, render_csv, render_geojson, render_kml
 from .gpkg import render_gpkg
 from .qgc import MissionOptions, plan_files
