@@ -548,7 +548,8 @@ _RECORDS: tuple[Input, ...] = (
           "area: a foreign recommendation) or a number", default="asprs",
           domain="checkpoints", digits=0),
     Input("gcp_per_ha", "control", "gcp_per_ha", _NUM, "density of the GCP layout [GCP/ha]: "
-          "the spacing along the boundary and of the interior grid is 100 m / sqrt(density)",
+          "the spacing along the boundary and of the interior grid is 100 m divided by the "
+          "square root of the density",
           "GCP/ha", note="default 0.5: an estimate, the lower end of Martínez-Carricondo et "
           "al. 2018 on their site", domain="gcp_per_ha", digits=2),
     Input("area_m", "", "", _STR, "block to cover, WIDTHxLENGTH [m], e.g. 2000x3000", "m",
