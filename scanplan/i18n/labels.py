@@ -328,8 +328,9 @@ LABELS: dict[str, dict[str, str]] = {
         "param_block_relief_mountain_pct": "Ground height range of a block at one height, "
                                            "mountainous terrain, % of the flight height",
         "param_min_sun_elevation_deg": "Lowest sun elevation for photography, °",
-        "param_uav_uncontrolled_aerodrome_km": "Least distance from uncontrolled aerodromes "
-                                               "without an airspace-use permission, km",
+        "param_uav_uncontrolled_aerodrome_km": "Least distance from the reference points of "
+                                               "uncontrolled aerodromes without an "
+                                               "airspace-use permission (2020 wording), km",
         "value_digital_height_formula_normal_case": "normal-case stereo (B/f)",
         "value_multi_ray_off": "off (one stereo pair)",
         "value_multi_ray_strip": "all photos of the strip",
@@ -668,9 +669,10 @@ LABELS: dict[str, dict[str, str]] = {
                                            "одной высоте фотографирования, горная местность, % "
                                            "от высоты",
         "param_min_sun_elevation_deg": "Наименьшая высота Солнца при аэрофотосъёмке, °",
-        "param_uav_uncontrolled_aerodrome_km": "Наименьшее удаление от неконтролируемых "
-                                               "аэродромов без разрешения на использование "
-                                               "воздушного пространства, км",
+        "param_uav_uncontrolled_aerodrome_km": "Наименьшее удаление от контрольных точек "
+                                               "неконтролируемых аэродромов без разрешения "
+                                               "на использование воздушного пространства "
+                                               "(ред. 2020 г.), км",
         "value_digital_height_formula_normal_case": "нормальный случай стереосъёмки (B/f)",
         "value_multi_ray_off": "нет (одна стереопара)",
         "value_multi_ray_strip": "все снимки маршрута",

@@ -169,7 +169,7 @@ UAV: dict[str, dict[str, str]] = {
               "from 01.03.2024): a UAV of up to 30 kg, in visual line of sight, in daylight, "
               "strictly below {ceiling:g} m above the ground or water, outside controlled "
               "aerodrome zones and prohibited, restricted and special zones, and at least "
-              "{aerodrome:g} km from the boundaries of uncontrolled aerodromes; over a "
+              "{aerodrome:g} km from the reference points of uncontrolled aerodromes; over a "
               "settlement, aerial photography and the flight need the local government's "
               "permission at any height (para. 49). Check the rules in force on the flying "
               "date",
@@ -180,10 +180,21 @@ UAV: dict[str, dict[str, str]] = {
               "на высоте менее "
               "{ceiling:g}~м от земной или водной поверхности, вне диспетчерских зон "
               "аэродромов, запретных зон, зон ограничения полётов и специальных зон, не "
-              "ближе {aerodrome:g}~км от границ неконтролируемых аэродромов; над населённым "
-              "пунктом аэрофотосъёмка и полёт на любой высоте требуют разрешения органа "
+              "ближе {aerodrome:g}~км от контрольных точек неконтролируемых аэродромов; над "
+              "населённым пунктом аэрофотосъёмка и полёт на любой высоте требуют разрешения органа "
               "местного самоуправления (п. 49). Проверьте правила, действующие на дату "
               "полётов.",
+    },
+    "airspace_conditions.data": {
+        "en": "conditions of this plan without an airspace-use permission (Federal Rules for "
+              "the Use of the Airspace, as amended by Decree No. 1016 of 21.06.2023; the "
+              "wording in force from {date}, as secondary sources describe it): "
+              "{conditions}. Check the rules in force on the flying date",
+        "ru": "Условия плана без разрешения на использование воздушного пространства "
+              "(Федеральные правила использования воздушного пространства в ред. "
+              "постановления от 21~июня 2023~г. №~1016; редакция, действующая с {date}, "
+              "в изложении вторичных источников): {conditions}. Проверьте правила, "
+              "действующие на дату полётов.",
     },
     "airspace_not_below": {
         "en": "the highest flown height {flown:g} m (planned {planned:g} m) is not below the "

@@ -357,6 +357,22 @@ class UavJob:
     layout: FlightLayout | None = None
 
 
+def _airspace(ceiling_m: float | None) -> dict[str, Any]:
+    """The conditions of flights without an airspace-use permission, from the data of
+    :mod:`scanplan.norms.airspace` (none for a project's own ceiling or an aircraft)."""
+    if ceiling_m is None:
+        return {}
+    from ..norms.airspace import airspace_conditions
+
+    conds = airspace_conditions()
+    ceiling = f"{ceiling_m:g}"
+    return {"airspace_conditions": {
+        "en": "; ".join(c.text_en.replace("{ceiling}", ceiling) for c in conds),
+        "ru": "; ".join(c.text_ru.replace("{ceiling}", ceiling).replace(" м ", "\u00a0м ")
+                        .replace(" км ", "\u00a0км ") for c in conds)},
+        "airspace_wording": max(c.wording_date for c in conds)}
+
+
 def uav_job(
     *,
     height_m: float | None = None,
@@ -482,6 +498,8 @@ def uav_job(
         ceiling_from_project=max_height_m is not None,
         aerodrome_distance_km=None if aircraft or max_height_m is not None
         else float(ns.parameters["uav_uncontrolled_aerodrome_km"]),
+        **_airspace(None if aircraft or max_height_m is not None
+                    else float(ns.parameters["uav_max_height_m"])),
         gsd_target_m=gsd_cm / 100.0 if gsd_cm is not None else None,
         gsd_limit_m=gsd_row.max_gsd_cm / 100.0 if gsd_row else None,
         gsd_limit_area=gsd_row.area if gsd_row else "general",

@@ -230,10 +230,17 @@ def _airspace_warnings(inp: UavInputs) -> list[PlanWarning]:
     if not _strict_ceiling(inp):
         return []
     assert inp.ceiling_m is not None
-    out = [PlanWarning("airspace_conditions", Message(
-        "airspace_conditions", ceiling=inp.ceiling_m,
-        aerodrome=inp.aerodrome_distance_km if inp.aerodrome_distance_km is not None
-        else float("nan")), severity="info")]
+    if inp.airspace_conditions is not None:  # the wording in force, as data
+        ymd = inp.airspace_wording.split("-")  # ISO → the printed 01.03.2024
+        out = [PlanWarning("airspace_conditions", Message(
+            "airspace_conditions.data", conditions=inp.airspace_conditions,
+            date=".".join(reversed(ymd)) if len(ymd) == 3 else inp.airspace_wording),
+            severity="info")]
+    else:
+        out = [PlanWarning("airspace_conditions", Message(
+            "airspace_conditions", ceiling=inp.ceiling_m,
+            aerodrome=inp.aerodrome_distance_km if inp.aerodrome_distance_km is not None
+            else float("nan")), severity="info")]
     up = 1.0 + inp.height_tolerance_up_pct / 100.0
     flown = inp.height_m * up
     if flown >= inp.ceiling_m * (1.0 - _BELOW):
