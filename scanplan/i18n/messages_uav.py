@@ -105,10 +105,12 @@ UAV: dict[str, dict[str, str]] = {
               "рекомендуемом {limit:g}~см)",
     },
     "set_aside.block_relief": {
-        "en": "the one-height rule of a block (GOST R 59328-2021, second draft: {limit:g} % of "
-              "the flight height, a recommendation; the ground height range is {pct:.1f} %)",
-        "ru": "Рекомендация одной высоты фотографирования на участок (ГОСТ Р 59328-2021, "
-              "проект 2-й редакции: {limit:g}~% высоты фотографирования; перепад высот "
+        "en": "the one-height rule of a block (GOST R 59328-2021 §6.2.1, a requirement of the "
+              "standard's body with an exception, in the second draft's wording: {limit:g} % "
+              "of the flight height; the ground height range is {pct:.1f} %)",
+        "ru": "Требование одной высоты фотографирования на участок (ГОСТ Р 59328-2021, "
+              "п. 6.2.1 — требование основной части стандарта с исключением, в редакции "
+              "проекта 2-й редакции: {limit:g}~% высоты фотографирования; перепад высот "
               "{pct:.1f}~%)",
     },
     "block.band": {

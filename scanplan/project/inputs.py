@@ -275,9 +275,9 @@ _RECORDS: tuple[Input, ...] = (
           "aside for this project, for the reason given; the specification prints it",
           note="optional", commands=(UAV,)),
     Input("block_relief_reason", "norms.block_relief", "reason", _STR, "sets the one-height "
-          "rule of a block (GOST R 59328-2021 §6.2.1, the second draft's 7/15/25 %, a "
-          "recommendation) aside for this project, for the reason given; the specification "
-          "prints it", note="optional"),
+          "rule of a block (GOST R 59328-2021 §6.2.1, the second draft's 7/15/25 %: a "
+          "requirement of the standard's body with an exception) aside for this project, for "
+          "the reason given (the exception invoked); the specification prints it", note="optional"),
     Input("recognition_rounding", "", "", _STR, "sqrt(-ln P) exactly, or the paper's "
           "rounded 0.53", option="--rounding", commands=(FILM,), choices=("exact", "paper")),
     # [film]

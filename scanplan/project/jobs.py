@@ -176,7 +176,8 @@ def norm_object_spec(ns: NormSet, obj: MapObject, shape: str | None = None) -> O
                       Message("object_source.norm", name=ns.name, map=obj.map_scale,
                               source=obj.source),
                       map_scale=obj.map_scale, name_ru=obj.name_ru,
-                      shape_ru=ns.shape_rows.get(shape_id, {}).get("name_ru", ""))
+                      shape_ru=ns.shape_rows.get(shape_id, {}).get("name_ru", ""),
+                      status=obj.status)
 
 
 def recognition_rows(ns: NormSet, map_scale: float | None) -> list[MapObject]:

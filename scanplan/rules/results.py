@@ -101,6 +101,7 @@ class ObjectSpec:
     map_scale: int | None = None  # the norm table row's map scale, if it came from one
     name_ru: str = ""   # the norm table's Russian name (reports in Russian)
     shape_ru: str = ""  # the shape's Russian name
+    status: str = ""  # the norm row's status (norm, estimate …); "" for the user's object
 
     def names(self) -> dict[str, Any]:
         """Message parameters naming the object: ``object``, ``size``, ``shape``."""
