@@ -290,3 +290,36 @@ def test_the_api_gives_the_markers_as_a_dataframe(tmp_path):
     assert list(df.columns)[:5] == ["id", "role", "block", "x_m", "y_m"]
     assert (df["role"] == "check").sum() == 12 and (df["role"] == "gcp").sum() > 0
     assert r.to_dict()["specification"]["control"]["checkpoints_rule"] == "project"
+
+
+def test_photos_seeing_a_marker_match_the_footprints_drawn_by_shapely():
+    """The count per marker equals the photos whose footprint rectangle (turned to the
+    strips' direction, shapely) contains it."""
+    import shapely.affinity
+
+    import scanplan
+    from scanplan.geo.control import photos_seeing
+
+    r = scanplan.uav(camera="dji-zenmuse-p1-35", height_m=100, area_m="400x600")
+    lay = r.job.layout
+    xs, ys = np.asarray(lay.photos["x_m"], float), np.asarray(lay.photos["y_m"], float)
+    pts = np.array([[50.0, 60.0], [200.0, 300.0], [390.0, 590.0], [-300.0, -300.0]])
+    got = photos_seeing(lay, pts, 100.0)
+    fa, fc = lay.footprint_along_m, lay.footprint_across_m
+    # a footprint: across × along, the along side turned to direction_deg (clockwise from
+    # grid north, shapely rotates counter-clockwise)
+    want = []
+    for x, y in pts:
+        n = 0
+        for cx, cy in zip(xs, ys, strict=True):
+            box = shapely.box(cx - fc / 2, cy - fa / 2, cx + fc / 2, cy + fa / 2)
+            box = shapely.affinity.rotate(box, -lay.direction_deg, origin=(cx, cy))
+            n += bool(box.covers(shapely.Point(x, y)))
+        want.append(n)
+    assert got.tolist() == want and want[1] > 4 and want[3] == 0
+
+
+def test_a_density_beyond_the_bound_names_the_key(tmp_path):
+    path = _town(tmp_path, "gcp_per_ha = 90\n")
+    r = CliRunner().invoke(main, ["plan", str(path)])
+    assert r.exit_code == 2 and "control.gcp_per_ha" in r.stderr and "at most 20,000" in r.stderr

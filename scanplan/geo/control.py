@@ -303,14 +303,17 @@ def photos_seeing(layout: FlightLayout, xy: NDArray[np.float64], planned_agl_m: 
     half_across = 0.5 * layout.footprint_across_m * k
     d = math.radians(layout.direction_deg)
     u = (math.sin(d), math.cos(d))  # along track, clockwise from grid north
-    counts = np.zeros(len(xy), np.int64)
-    for i, (x, y) in enumerate(xy):
-        dx, dy = px - x, py - y
-        along = dx * u[0] + dy * u[1]
-        across = dx * u[1] - dy * u[0]
-        counts[i] = int(np.count_nonzero((np.abs(along) <= half_along)
-                                         & (np.abs(across) <= half_across)))
-    return counts
+    # the photos near each marker (an STRtree of the photo centres, boxes of the largest
+    # footprint's half-diagonal), then the turned-footprint test on those pairs only
+    reach = float(np.hypot(half_along, half_across).max())
+    tree = shapely.STRtree(shapely.points(px, py))
+    mi, pj = tree.query(shapely.box(xy[:, 0] - reach, xy[:, 1] - reach,
+                                    xy[:, 0] + reach, xy[:, 1] + reach))
+    dx, dy = px[pj] - xy[mi, 0], py[pj] - xy[mi, 1]
+    along = dx * u[0] + dy * u[1]
+    across = dx * u[1] - dy * u[0]
+    seen = (np.abs(along) <= half_along[pj]) & (np.abs(across) <= half_across[pj])
+    return np.bincount(mi[seen], minlength=len(xy)).astype(np.int64)
 
 
 def layout_control(area: shapely.Geometry, mode: str, rules: ControlLayoutRules, *,

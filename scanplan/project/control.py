@@ -24,7 +24,10 @@ from ..norms.control import ControlRule, control_rules
 from ..rules.film import PlanWarning
 from .model import ControlSection, ProjectModel
 
-__all__ = ["ControlSpec", "control_dict", "plan_control"]
+__all__ = ["MAX_GCPS", "ControlSpec", "control_dict", "plan_control"]
+
+MAX_GCPS = 20_000
+"""Most GCPs one plan lays out (a regional programme is split into areas)."""
 
 
 @dataclass(frozen=True)
@@ -204,6 +207,12 @@ def plan_control(project: ProjectModel, job: Any, area: Area | None,
     spacing = 100.0 / math.sqrt(density)
     inset = rules["inset_footprint"].value * min(layout.footprint_across_m,
                                                  layout.footprint_along_m)
+    expected = area.area_km2 * 100.0 * density + area.perimeter_km * 1000.0 / spacing
+    if expected > MAX_GCPS:
+        key = "gcp_per_ha" if c.gcp_per_ha is not None else "mode"
+        raise InputError(project.at("control", key), f"would set about {expected:,.0f} GCPs "
+                         f"over this area ({density:g} GCP/ha); at most {MAX_GCPS:,}: give a "
+                         "lower gcp_per_ha, or split the area")
     count, how = _checkpoint_count(project, c, area, rules)
     lay = ControlLayoutRules(
         spacing_m=spacing, inset_m=inset, separation_m=rules["check_separation"].value * spacing,
