@@ -323,3 +323,26 @@ def test_a_density_beyond_the_bound_names_the_key(tmp_path):
     path = _town(tmp_path, "gcp_per_ha = 90\n")
     r = CliRunner().invoke(main, ["plan", str(path)])
     assert r.exit_code == 2 and "control.gcp_per_ha" in r.stderr and "at most 20,000" in r.stderr
+
+
+def test_with_the_valley_dem_markers_leave_steep_ground(tmp_path):
+    """The synthetic valley DEM: every marker gets its ground height, markers on the valley's
+    walls move to flatter ground, those that cannot are counted and warned of."""
+    pytest.importorskip("rasterio")
+    shutil.copytree(EXAMPLES / "areas", tmp_path / "areas")
+    shutil.copytree(EXAMPLES / "dem", tmp_path / "dem")
+    text = (EXAMPLES / "uav-town-valley-2000.toml").read_text(encoding="utf-8")
+    path = tmp_path / "valley.toml"
+    path.write_text(text + '\n[control]\nmode = "gcp"\n', encoding="utf-8")
+    r = plan_project(load_project(path))
+    c = r.control
+    assert np.isfinite(c.points.columns["ground_m"]).all()
+    assert c.points.moved > 0
+    from scanplan.geo.control import slope_pct
+
+    g = r.uav.terrain.ground
+    xy = np.column_stack([c.points.columns["x_m"], c.points.columns["y_m"]])
+    slope = slope_pct(lambda x, y: g.sample(x, y, r.area.plan_crs), xy, c.inset_m / 10)
+    steep = int((slope > 10.0).sum())
+    assert steep == c.points.steep
+    assert ("control_steep" in {w.code for w in r.warnings}) == (steep > 0)
