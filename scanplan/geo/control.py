@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from itertools import pairwise
 
 import numpy as np
@@ -109,7 +109,6 @@ class ControlPoints:
     moved: int = 0
     steep: int = 0
     corners: int = 0
-    notes: dict[str, float] = field(default_factory=dict)
 
     def __len__(self) -> int:
         return len(self.columns["id"])

@@ -89,10 +89,9 @@ def _checkpoint_count(project: ProjectModel, c: ControlSection, area: Area,
 
 
 def _area_key(project: ProjectModel) -> str:
-    for key in ("file", "polygon", "width_m"):
-        if getattr(project.area, key if key != "width_m" else "width_m") is not None:
-            return project.at("area", key)
-    return project.at("area", "file")
+    """How an error names the area: the key the project gives it by."""
+    given = [k for k in ("file", "polygon", "width_m") if getattr(project.area, k) is not None]
+    return project.at("area", given[0] if given else "file")
 
 
 def _figures(layout: FlightLayout, pts: ControlPoints, area: Area) -> dict[str, Any]:
