@@ -331,7 +331,8 @@
     const num = (s) => { const x = Number(s.replace(",", ".")); return isNaN(x) ? s : x; };
     switch (el.dataset.kind) {
       case "number": case "int": return num(text);
-      case "scale": case "feature": case "crs": case "direction": return num(text);
+      case "scale": case "feature": case "crs": case "direction": case "checkpoints":
+        return num(text);
       case "scales": return text.split(/[;\s]+|,\s+/).filter(Boolean).map(num);
       case "range": return text.split(/[;\s]+|,\s+/).filter(Boolean).map(num);
       default: return text;
