@@ -346,3 +346,14 @@ def test_with_the_valley_dem_markers_leave_steep_ground(tmp_path):
     steep = int((slope > 10.0).sum())
     assert steep == c.points.steep
     assert ("control_steep" in {w.code for w in r.warnings}) == (steep > 0)
+
+
+def test_the_pages_map_data_carries_the_markers(town):
+    from scanplan.web.mapdata import map_features
+
+    fc = map_features(town[0])
+    marks = [f for f in fc["features"] if f["properties"]["kind"] in ("gcp", "check")]
+    c = town[0].control.points.columns
+    assert [f["properties"]["id"] for f in marks] == list(c["id"])
+    lon = np.array([f["geometry"]["coordinates"][0] for f in marks])
+    assert np.abs(lon - c["lon_deg"]).max() < 1e-8
