@@ -7,7 +7,6 @@ from __future__ import annotations
 CONTROL: dict[str, dict[str, str]] = {
     "en": {
         "control_points": "Ground control and checkpoints",
-        "control_title": "Ground control and checkpoints",
         "control_mode": "Control of the block",
         "control_mode_gcp": "ground control points (GCPs)",
         "control_mode_rtk": "RTK camera positions, GCPs at the corners and the centre",
@@ -41,7 +40,6 @@ CONTROL: dict[str, dict[str, str]] = {
                                 "blur and the identification of the markers add to it.",
         "control_check": "Control precision against the target",
         "control_ratio": "target / precision",
-        "control_required": "required",
         "control_ok": "met",
         "control_not_ok": "not met",
         "control_axis_z": "height",
@@ -71,14 +69,16 @@ CONTROL: dict[str, dict[str, str]] = {
         "control_rule_rtk_interior_gcps": "RTK/PPK: interior GCPs per block",
         "control_rule_max_marker_slope_pct": "Steepest ground for a marker, %",
         "control_sheet": "Control",
-        "map_legend_gcp": "Ground control points (GCPs)",
+        "pdf_warn_control_too_coarse": "Ground control too coarse for the target",
+        "pdf_warn_control_budget_z": "Height target not reachable at checkpoints",
+        "pdf_warn_control_steep": "Markers on steep ground",
+        "map_legend_gcp": "GCPs",
         "map_legend_checkpoint": "Checkpoints",
         "control_source_scanplan": "the planner's own layout rule (no norm read gives one)",
         "control_source_practice": "common practice (no norm read gives a number)",
     },
     "ru": {
         "control_points": "Опознаки и контрольные точки",
-        "control_title": "Планово-высотная подготовка и контрольные точки",
         "control_mode": "Привязка блока",
         "control_mode_gcp": "по опознакам",
         "control_mode_rtk": "центры фотографирования RTK, опознаки в углах и в центре",
@@ -114,7 +114,6 @@ CONTROL: dict[str, dict[str, str]] = {
                                 "маркеров добавят к ней.",
         "control_check": "Точность привязки относительно требуемой",
         "control_ratio": "требуемая / точность",
-        "control_required": "требуется",
         "control_ok": "выполнено",
         "control_not_ok": "не выполнено",
         "control_axis_z": "высота",
@@ -146,6 +145,10 @@ CONTROL: dict[str, dict[str, str]] = {
         "control_rule_rtk_interior_gcps": "RTK/PPK: опознаков внутри блока",
         "control_rule_max_marker_slope_pct": "Наибольшая крутизна склона под маркером, %",
         "control_sheet": "Привязка",
+        "pdf_warn_control_too_coarse": "Привязка грубее требуемой точности",
+        "pdf_warn_control_budget_z": "Требуемая точность по высоте недостижима на "
+                                     "контрольных точках",
+        "pdf_warn_control_steep": "Маркеры на крутых склонах",
         "map_legend_gcp": "Опознаки",
         "map_legend_checkpoint": "Контрольные точки",
         "control_source_scanplan": "правило размещения планировщика (в прочитанных нормах "

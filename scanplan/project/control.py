@@ -58,7 +58,7 @@ class ControlSpec:
         / σ), ``required``, ``ok``, ``status``.
     warnings : tuple of PlanWarning
         A control too coarse for the target, a target not reachable at best, markers left on
-        steep ground, markers seen by few photos.
+        steep ground.
     """
 
     mode: str
@@ -152,23 +152,20 @@ def _checks(c: ControlSection, budget: dict[str, float], rules: dict[str, Contro
     return out
 
 
-def _warnings(spec_checks: list[dict[str, Any]], budget: dict[str, float], pts: ControlPoints,
-              figures: dict[str, Any]) -> tuple[PlanWarning, ...]:
+def _warnings(spec_checks: list[dict[str, Any]], budget: dict[str, float], pts: ControlPoints
+              ) -> tuple[PlanWarning, ...]:
     out = []
     for chk in spec_checks:
         if not chk["ok"] and chk["rule"] != "eea_control_ratio_recommended":
             out.append(PlanWarning("control_too_coarse", Message(
-                "control.too_coarse", axis=chk["axis"], sigma=chk["sigma_m"],
+                "control_too_coarse", axis=chk["axis"], sigma=chk["sigma_m"],
                 target=chk["target_m"], ratio=chk["ratio"], required=chk["required"],
-                source=chk["source"])))
+                source=Message(f"control_source.{chk['rule']}"))))
     if budget["rmse_z_m"] > budget["target_z_m"]:
         out.append(PlanWarning("control_budget_z", Message(
-            "control.budget_over", rmse=budget["rmse_z_m"], target=budget["target_z_m"])))
+            "control_budget_z", rmse=budget["rmse_z_m"], target=budget["target_z_m"])))
     if pts.steep:
-        out.append(PlanWarning("control_steep", Message("control.steep", n=pts.steep)))
-    few = figures.get("min_photos_per_marker")
-    if few is not None and few < 2:
-        out.append(PlanWarning("control_few_photos", Message("control.few_photos", n=few)))
+        out.append(PlanWarning("control_steep", Message("control_steep", n=pts.steep)))
     return tuple(out)
 
 
@@ -234,7 +231,7 @@ def plan_control(project: ProjectModel, job: Any, area: Area | None,
     budget = _budget(job, c, c.mode, float(project.map.scale))
     checks = _checks(c, budget, rules)
     return ControlSpec(c.mode, pts, rules, spacing, inset, lay.separation_m, how, figures, budget,
-                       checks, c, _warnings(checks, budget, pts, figures))
+                       checks, c, _warnings(checks, budget, pts))
 
 
 def control_dict(spec: ControlSpec) -> dict[str, Any]:

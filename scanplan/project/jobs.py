@@ -14,6 +14,7 @@ from __future__ import annotations
 import math
 import numbers
 import os
+import re
 from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import Any
@@ -369,8 +370,8 @@ def _airspace(ceiling_m: float | None) -> dict[str, Any]:
     ceiling = f"{ceiling_m:g}"
     return {"airspace_conditions": {
         "en": "; ".join(c.text_en.replace("{ceiling}", ceiling) for c in conds),
-        "ru": "; ".join(c.text_ru.replace("{ceiling}", ceiling).replace(" м ", "\u00a0м ")
-                        .replace(" км ", "\u00a0км ") for c in conds)},
+        "ru": "; ".join(re.sub(r"(\d) (км|м|кг)\b", "\\1\u00a0\\2",
+                               c.text_ru.replace("{ceiling}", ceiling)) for c in conds)},
         "airspace_wording": max(c.wording_date for c in conds)}
 
 

@@ -259,7 +259,7 @@ def _control_lines(tables: ResultTables, loc: str) -> list[str]:
 
     rows = summary_rows(tables, loc)
     width = max(len(label) for label, _, _ in rows)
-    lines = ["", t("control_title", loc) + ":"]
+    lines = ["", t("control_points", loc) + ":"]
     lines += [f"  {label:<{width}}  {value}" for label, value, _ in rows]
     lines.append(f"  {t('control_check', loc)}:")
     for rule, axis, ratio, required, ok, _ in check_rows(tables, loc):

@@ -31,7 +31,7 @@ def control_sheet(book: Any, spec: Any) -> None:
         return
     tables = book.view.tables
     ws = book.sheet("control_sheet", landscape=True, widths=(60, 16, 14, 14, 60))
-    put_text(ws, 1, 1, book.t("control_title"), bold=True)
+    put_text(ws, 1, 1, book.t("control_points"), bold=True)
     row = 2
     for r in tables["control"].rows:
         put_text(ws, row, 1, book.t(r.key), wrap=True)
@@ -49,7 +49,7 @@ def control_sheet(book: Any, spec: Any) -> None:
     row += 2
     put_text(ws, row, 1, book.t("control_check"), bold=True)
     row += 1
-    for col, key in enumerate(("control_rule", "control_ratio", "control_required",
+    for col, key in enumerate(("control_rule", "control_ratio", "term_required_rms",
                                "control_ok", "control_source"), start=1):
         put_text(ws, row, col, book.t(key), bold=True)
     for (rule, axis, _, _, ok, source), r in zip(check_rows(tables, book.loc),

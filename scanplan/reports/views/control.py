@@ -50,7 +50,7 @@ def control_summary(spec: Any) -> Table:
         Row("control_budget_h", (b["rmse_h_m"],), digits=3, flags=frozenset({"emph"})),
         Row("control_target_h", (b["target_h_m"],), digits=3),
     ]
-    return Table("control", "control_title", (Column(),), tuple(rows))
+    return Table("control", "control_points", (Column(),), tuple(rows))
 
 
 def control_checks(spec: Any) -> Table:
@@ -63,7 +63,7 @@ def control_checks(spec: Any) -> Table:
                              "status": f"status_{chk['status']}"})
                  for chk in spec.control.checks)
     return Table("control_checks", "control_check",
-                 (Column("control_ratio"), Column("control_required"), Column("control_ok")),
+                 (Column("control_ratio"), Column("term_required_rms"), Column("control_ok")),
                  rows)
 
 
