@@ -266,3 +266,28 @@ def catalogue_job(norms: str, locale: str) -> dict[str, Any]:
 
 JOBS = {"plan": plan_job, "view": view_job, "files": files_job, "catalogue": catalogue_job}
 """The jobs the worker runs, by name."""
+
+
+def area_job(project: Any, files: Mapping[str, str]) -> dict[str, Any]:
+    """The outline of the project's ``[area]`` alone (GeoJSON FeatureCollection, WGS 84;
+    empty for a width × length block or none): the page draws a dropped file before the
+    plan can be made (no camera chosen yet). Read by the command line's area reader."""
+    from ..project.model import build_model
+    from ..project.file import parse_project
+    from ..project.spec import project_area
+    from .mapdata import area_features
+
+    tables = project_tables(project)
+    only: dict[str, Any] = {"map": {"scale": 2000, "relief_interval_m": 1},
+                            "uav": {"height_m": 100}}
+    if "area" in tables:
+        only["area"] = {k: v for k, v in tables["area"].items() if k != "direction_deg"}
+    with _staged(only, files) as (folder, text):
+        try:
+            area = project_area(build_model(parse_project(text, folder / PROJECT_NAME)))
+        except InputError as exc:
+            raise InputError(_scrub(exc.field, folder), _scrub(exc.message, folder)) from None
+        return area_features(area)
+
+
+JOBS["area"] = area_job
