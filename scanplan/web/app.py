@@ -120,7 +120,8 @@ def _language(request: Request, lang: str | None) -> str:
 
 
 def create_app(*, token: str | None = None, planner: Planner | None = None,
-               uploads: UploadStore | None = None, tiles: str | None = None) -> FastAPI:
+               uploads: UploadStore | None = None, tiles: str | None = None,
+               basemaps: Any = None) -> FastAPI:
     """The application.
 
     Parameters
@@ -132,9 +133,14 @@ def create_app(*, token: str | None = None, planner: Planner | None = None,
     uploads : UploadStore or None
         Keeps the uploads (default: a new store, removed when the application stops).
     tiles : str or None
-        The page's default tile layer: a URL template, ``"osm"`` (OpenStreetMap, the
-        default) or ``"none"`` (no background map: offline).
+        The page's tile layer: a URL template, ``"osm"`` (OpenStreetMap, the
+        default) or ``"none"`` (no background map: offline); ignored with ``basemaps``.
+    basemaps : scanplan.web.basemap.Basemaps or None
+        The background maps offered (tiles, MBTiles, their cache); default: ``tiles``'s.
     """
+    from .basemap import Basemaps
+
+    basemaps = basemaps if basemaps is not None else Basemaps(tiles or "osm")
     planner = planner if planner is not None else Planner()
     store = uploads if uploads is not None else UploadStore()
 
@@ -189,7 +195,8 @@ def create_app(*, token: str | None = None, planner: Planner | None = None,
 
     @app.get("/", response_class=HTMLResponse, include_in_schema=False)
     def page(request: Request, lang: str | None = None) -> HTMLResponse:
-        return HTMLResponse(page_html(_language(request, lang), tiles or "osm"))
+        return HTMLResponse(page_html(_language(request, lang), basemaps.page_list(),
+                                      basemaps.default))
 
     @app.get("/favicon.ico", include_in_schema=False)
     def favicon() -> Response:
@@ -198,7 +205,7 @@ def create_app(*, token: str | None = None, planner: Planner | None = None,
     _routes(app, planner, store)
     from .pageroutes import page_routes
 
-    page_routes(app, planner, store)
+    page_routes(app, planner, store, basemaps)
     return app
 
 

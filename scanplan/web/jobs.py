@@ -290,4 +290,12 @@ def area_job(project: Any, files: Mapping[str, str]) -> dict[str, Any]:
         return area_features(area)
 
 
+def ortho_job(path: str, cache: str) -> dict[str, Any]:
+    """An uploaded GeoTIFF as the page's background (:func:`scanplan.web.basemap.ortho_job`)."""
+    from .basemap import ortho_job as job
+
+    return job(path, cache)
+
+
 JOBS["area"] = area_job
+JOBS["ortho"] = ortho_job

@@ -9,7 +9,11 @@ page's zip opened again, the outline of an area before it can be planned.
   ones still to be uploaded (``missing``). Only the project file and the files it names are
   read from a zip, each within the upload store's bounds;
 - ``POST /api/area`` — the outline of the request's ``[area]`` (GeoJSON, WGS 84): a
-  dropped file is drawn before a camera is chosen.
+  dropped file is drawn before a camera is chosen;
+- ``GET /api/tiles/{source}/{z}/{x}/{y}`` — a tile of a source the server was configured
+  with (:mod:`scanplan.web.basemap`);
+- ``GET /api/basemap/{id}`` and ``…/image.png`` — an uploaded GeoTIFF warped to Web
+  Mercator: its bounds and size, and the picture.
 
 Each is safe by construction: a client names an upload only by the id the store gave, a
 zip member only by the names a project may use (:func:`scanplan.web.jobs._file_name`).
@@ -27,6 +31,7 @@ from fastapi import FastAPI, HTTPException
 from pydantic import BaseModel, Field
 
 from ..errors import InputError
+from .basemap import Basemaps
 from .uploads import UploadStore
 from .worker import Planner
 
@@ -148,8 +153,10 @@ def open_project(store: UploadStore, upload_id: str) -> dict[str, Any]:
             "missing": [v for v in wanted if v not in named]}
 
 
-def page_routes(app: FastAPI, planner: Planner, store: UploadStore) -> None:
+def page_routes(app: FastAPI, planner: Planner, store: UploadStore, basemaps: Basemaps
+                ) -> None:
     """Add the page's routes (see the module docstring) to ``app``."""
+    _basemap_routes(app, planner, store, basemaps)
     @app.get("/api/upload/{upload_id}")
     def upload_info(upload_id: str) -> dict[str, Any]:
         """The upload ``upload_id`` if the server still keeps it: id, stored name, size."""
@@ -169,3 +176,38 @@ def page_routes(app: FastAPI, planner: Planner, store: UploadStore) -> None:
         """The outline of the request's ``[area]`` (GeoJSON FeatureCollection, WGS 84)."""
         files = {name: str(store.path(i, f"files.{name}")) for name, i in req.files.items()}
         return planner.run("area", req.project, files)  # type: ignore[no-any-return]
+
+
+def _basemap_routes(app: FastAPI, planner: Planner, store: UploadStore,
+                    basemaps: Basemaps) -> None:
+    """The tiles and the orthophoto (:mod:`scanplan.web.basemap`)."""
+    import json
+
+    from fastapi.responses import FileResponse, Response
+
+    @app.get("/api/tiles/{source}/{z}/{x}/{y}")
+    def tile(source: str, z: int, x: int, y: int) -> Response:
+        """A tile of a configured source (fetched once, then from the disk cache)."""
+        got = basemaps.tile(source, z, x, y)
+        if got is None:
+            return Response(status_code=404)
+        return Response(got[0], media_type=got[1],
+                        headers={"Cache-Control": "private, max-age=86400"})
+
+    def _ortho(upload_id: str) -> tuple[Path, dict[str, Any]]:
+        path = store.path(upload_id, "file")
+        png, meta = path.parent / "basemap.png", path.parent / "basemap.json"
+        if not meta.is_file():
+            info = planner.run("ortho", str(path), str(png))
+            meta.write_text(json.dumps(info), encoding="utf-8")
+        return png, json.loads(meta.read_text(encoding="utf-8"))
+
+    @app.get("/api/basemap/{upload_id}")
+    def ortho(upload_id: str) -> dict[str, Any]:
+        """An uploaded GeoTIFF as a background: bounds [[s, w], [n, e]] [°], size [px]."""
+        return _ortho(upload_id)[1]
+
+    @app.get("/api/basemap/{upload_id}/image.png")
+    def ortho_png(upload_id: str) -> FileResponse:
+        """The picture of :func:`ortho` (PNG, Web Mercator)."""
+        return FileResponse(_ortho(upload_id)[0], media_type="image/png")

@@ -1,0 +1,229 @@
+/* scanplan serve: the map of the page — the background, the drawn area, the plan's layers.
+   The plan's layers are updated in place: a strip whose line did not change keeps its
+   element, the photo centres are one canvas drawn from the packed coordinates. */
+"use strict";
+window.SP = window.SP || {};
+(function (SP) {
+  const PALETTE = ["#d94801", "#2171b5", "#238b45", "#6a51a3", "#cb181d", "#0e7c7b",
+                   "#b8860b", "#7a0177"];
+  SP.PALETTE = PALETTE;
+
+  /* packed photo centres (mapdata.pack_lonlat): base64 of int32 lon, lat in 1e-7° */
+  SP.unpack = function (packed) {
+    const bin = atob(packed), bytes = new Uint8Array(bin.length);
+    for (let i = 0; i < bin.length; i++) bytes[i] = bin.charCodeAt(i);
+    return new Int32Array(bytes.buffer);
+  };
+
+  /* every photo centre on one canvas, redrawn after a move or zoom */
+  const PhotoLayer = L.Layer.extend({
+    initialize() { this._pts = new Int32Array(0); },
+    setPoints(pts) { this._pts = pts; this._redraw(); },
+    count() { return this._pts.length / 2; },
+    onAdd(map) {
+      this._canvas = L.DomUtil.create("canvas", "photo-layer leaflet-zoom-hide");
+      this._canvas.setAttribute("aria-hidden", "true");
+      map.getPanes().overlayPane.appendChild(this._canvas);
+      map.on("moveend zoomend resize viewreset", this._redraw, this);
+      this._redraw();
+    },
+    onRemove(map) {
+      L.DomUtil.remove(this._canvas);
+      map.off("moveend zoomend resize viewreset", this._redraw, this);
+    },
+    _redraw() {
+      const map = this._map; if (!map) return;
+      const size = map.getSize(), dpr = window.devicePixelRatio || 1, c = this._canvas;
+      c.width = size.x * dpr; c.height = size.y * dpr;
+      c.style.width = size.x + "px"; c.style.height = size.y + "px";
+      L.DomUtil.setPosition(c, map.containerPointToLayerPoint([0, 0]));
+      const ctx = c.getContext("2d");
+      ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
+      ctx.fillStyle = "rgba(40,40,40,0.75)";
+      const p = this._pts;
+      for (let i = 0; i < p.length; i += 2) {
+        const pt = map.latLngToContainerPoint([p[i + 1] * 1e-7, p[i] * 1e-7]);
+        if (pt.x < -2 || pt.y < -2 || pt.x > size.x + 2 || pt.y > size.y + 2) continue;
+        ctx.fillRect(pt.x - 1.5, pt.y - 1.5, 3, 3);
+      }
+    },
+  });
+
+  SP.createMap = function (T, LANG, CFG) {
+    const esc = SP.esc;
+    const map = L.map("map", {preferCanvas: false, keyboard: true, tap: true})
+      .setView([55.75, 37.62], 13);
+    L.control.scale({imperial: false}).addTo(map);
+    map.getContainer().setAttribute("aria-label", T.map_label);
+
+    /* ------------------------------------------------------------ the background */
+    const sources = CFG.basemaps || [];
+    let base = null, ortho = null, offlineShown = false;
+    const note = document.getElementById("map-note");
+    function showNote(html) { note.innerHTML = html; note.hidden = !html; }
+    function offerChoices(why) {
+      const opts = sources.filter((s) => s.id !== "none").map((s) =>
+        `<button type="button" data-basemap="${esc(s.id)}">${esc(s.name)}</button>`).join(" ");
+      showNote(`<p>${esc(why)}</p><p class="choices">${opts}` +
+        ` <button type="button" data-basemap="ortho">${esc(T.basemap_ortho)}</button></p>`);
+    }
+    note.addEventListener("click", (e) => {
+      const b = e.target.closest("button[data-basemap]");
+      if (b && api.onBasemapChoice) api.onBasemapChoice(b.dataset.basemap);
+    });
+    function setBasemap(id) {
+      if (base) { map.removeLayer(base); base = null; }
+      offlineShown = false;
+      const s = sources.find((x) => x.id === id);
+      if (!s || s.id === "none") {
+        if (!ortho) offerChoices(T.no_basemap);
+        else showNote("");
+        return;
+      }
+      showNote("");
+      let failed = 0, loaded = 0;
+      base = L.tileLayer(s.url, {maxZoom: s.max_zoom || 19, maxNativeZoom: s.max_zoom || 19,
+        attribution: s.attribution ? esc(s.attribution) : ""});
+      base.on("tileerror", () => {
+        failed += 1;
+        if (!loaded && failed >= 4 && !offlineShown) {
+          offlineShown = true; offerChoices(T.basemap_unreachable.replace("{name}", s.name));
+        }
+      });
+      base.on("tileload", () => { loaded += 1; if (offlineShown) { offlineShown = false; showNote(""); } });
+      base.addTo(map);
+    }
+    function setOrtho(info) {  // {url, bounds: [[s, w], [n, e]], attribution}
+      if (ortho) { map.removeLayer(ortho); ortho = null; }
+      if (!info) return;
+      ortho = L.imageOverlay(info.url, info.bounds, {opacity: 1, className: "ortho",
+        attribution: info.attribution ? esc(info.attribution) : "", alt: info.name || ""});
+      ortho.addTo(map); ortho.bringToBack();
+      showNote("");
+    }
+
+    /* ------------------------------------------------------------ drawing */
+    map.pm.setLang(LANG === "ru" ? "ru" : "en");
+    map.pm.addControls({position: "topleft", drawMarker: false, drawCircleMarker: false,
+      drawPolyline: false, drawCircle: false, drawText: false, cutPolygon: false,
+      rotateMode: false, drawRectangle: true, drawPolygon: true, editMode: true,
+      dragMode: true, removalMode: true});
+    // the drawing buttons as buttons: a name, the keyboard (Enter, Space), a state
+    const NAMES = {"polygon": T.tool_polygon, "rectangle": T.tool_rectangle,
+      "edit": T.tool_edit, "drag": T.tool_drag, "delete": T.tool_delete};
+    document.querySelectorAll(".leaflet-pm-toolbar .button-container").forEach((c) => {
+      const a = c.querySelector("a.leaflet-buttons-control-button");
+      const icon = c.querySelector(".control-icon");
+      if (!a || !icon) return;
+      const kind = Object.keys(NAMES).find((k) => icon.classList.contains("leaflet-pm-icon-" + k));
+      if (!kind) return;
+      a.setAttribute("role", "button"); a.setAttribute("tabindex", "0");
+      a.setAttribute("aria-label", NAMES[kind]); a.setAttribute("title", NAMES[kind]);
+      a.dataset.tool = kind;
+      a.addEventListener("keydown", (e) => {
+        if (e.key === "Enter" || e.key === " ") { e.preventDefault(); a.click(); }
+      });
+    });
+    // a cancel/finish action link of geoman: a name and the keyboard as well
+    map.on("pm:buttonclick pm:actionclick pm:drawstart pm:globaleditmodetoggled", () =>
+      setTimeout(() => document.querySelectorAll(".leaflet-pm-actions-container a")
+        .forEach((a) => { a.setAttribute("role", "button"); a.setAttribute("tabindex", "0"); }), 0));
+
+    /* ------------------------------------------------------------ the plan's layers */
+    const areaLayer = L.layerGroup().addTo(map);
+    const stripLayer = L.layerGroup().addTo(map);
+    const takeoffLayer = L.layerGroup().addTo(map);
+    const photos = new PhotoLayer().addTo(map);
+    const lines = L.svg({padding: 0.3}).addTo(map);  // each strip an element (class "strip")
+    let areaKey = "";
+    const strips = new Map();   // number -> {key, layers}
+    const takeoffs = new Map(); // sortie -> marker
+    let selectStrip = null;
+
+    function stripText(p) {
+      return T.strip_tip.replace("{n}", p.number).replace("{s}", p.sorties);
+    }
+    function drawArea(f, drawnNow) {
+      const key = f && !drawnNow ? JSON.stringify(f.geometry) : "";
+      if (key === areaKey) return;
+      areaKey = key; areaLayer.clearLayers();
+      if (key) {
+        L.geoJSON(f, {pmIgnore: true, interactive: false, style: {color: "#1f3b57", weight: 2,
+          fill: true, fillOpacity: 0.06}}).addTo(areaLayer);
+      }
+    }
+    function drawStrips(feats) {
+      const seen = new Set();
+      for (const f of feats) {
+        const p = f.properties, n = p.number;
+        seen.add(n);
+        const key = JSON.stringify(f.geometry.coordinates) + "|" + p.sortie + "|" + p.sorties;
+        const old = strips.get(n);
+        if (old && old.key === key) continue;
+        if (old) old.layers.forEach((l) => stripLayer.removeLayer(l));
+        const color = PALETTE[(p.sortie - 1) % PALETTE.length];
+        const layers = f.geometry.coordinates.map((line) => L.polyline(
+          line.map((c) => [c[1], c[0]]), {color, weight: 3, opacity: 0.9, pmIgnore: true,
+            className: `strip strip-${n}`, renderer: lines})
+          .bindTooltip(stripText(p)).on("click", () => selectStrip && selectStrip(n))
+          .addTo(stripLayer));
+        strips.set(n, {key, layers});
+      }
+      for (const [n, s] of strips) {
+        if (!seen.has(n)) { s.layers.forEach((l) => stripLayer.removeLayer(l)); strips.delete(n); }
+      }
+    }
+    function drawTakeoffs(feats) {
+      const seen = new Set();
+      for (const f of feats) {
+        const p = f.properties, ll = [f.geometry.coordinates[1], f.geometry.coordinates[0]];
+        seen.add(p.sortie);
+        const old = takeoffs.get(p.sortie);
+        if (old) { old.setLatLng(ll); continue; }
+        takeoffs.set(p.sortie, L.marker(ll, {pmIgnore: true, keyboard: false,
+          icon: L.divIcon({className: "takeoff-icon", html: String(p.sortie), iconSize: [18, 18]})})
+          .bindTooltip(`${T.legend_takeoff} ${p.sortie}`).addTo(takeoffLayer));
+      }
+      for (const [k, m] of takeoffs) {
+        if (!seen.has(k)) { takeoffLayer.removeLayer(m); takeoffs.delete(k); }
+      }
+    }
+    /* the plan's map (GeoJSON of /api/view); ``drawnNow``: the area is the drawn layer */
+    function showPlan(fc, drawnNow) {
+      const by = {area: [], strip: [], photos: [], takeoff: []};
+      for (const f of fc.features) (by[f.properties.kind] || []).push(f);
+      drawArea(by.area[0], drawnNow);
+      drawStrips(by.strip);
+      drawTakeoffs(by.takeoff);
+      let every = "";
+      if (by.photos.length) {
+        const parts = by.photos.map((f) => SP.unpack(f.properties.packed));
+        const all = new Int32Array(parts.reduce((n, a) => n + a.length, 0));
+        let at = 0; for (const a of parts) { all.set(a, at); at += a.length; }
+        photos.setPoints(all);
+        const k = Math.max(...by.photos.map((f) => f.properties.every));
+        if (k > 1) every = " (" + T.every.replace("{k}", k) + ")";
+      } else photos.setPoints(new Int32Array(0));
+      const e = document.getElementById("every"); if (e) e.textContent = every;
+    }
+    function clearPlan() { showPlan({features: []}, false); }
+
+    const legend = L.control({position: "bottomright"});
+    legend.onAdd = () => {
+      const d = L.DomUtil.create("div", "legend");
+      d.innerHTML = `<div><i style="background:#1f3b57"></i>${esc(T.legend_area)}</div>` +
+        `<div><i style="background:${PALETTE[0]}"></i>${esc(T.legend_strip)}</div>` +
+        `<div><i class="dot" style="background:#333"></i>${esc(T.legend_photo)}` +
+        `<span id="every"></span></div>` +
+        `<div><i class="dot" style="background:#1f3b57;border:1px solid #fff"></i>` +
+        `${esc(T.legend_takeoff)}</div>`;
+      return d;
+    };
+    legend.addTo(map);
+
+    const api = {map, setBasemap, setOrtho, showPlan, clearPlan, drawArea, photos,
+      strips, onBasemapChoice: null, offerChoices,
+      set onStrip(f) { selectStrip = f; }};
+    return api;
+  };
+})(window.SP);
