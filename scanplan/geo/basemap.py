@@ -98,7 +98,7 @@ def read_basemap(path: str | Path, dst_crs: str, *, max_px: int = 2048,
     from rasterio.enums import Resampling
     from rasterio.errors import RasterioError
     from rasterio.transform import from_bounds
-    from rasterio.warp import calculate_default_transform, reproject
+    from rasterio.warp import reproject
 
     p = Path(path)
     try:
@@ -115,13 +115,16 @@ def read_basemap(path: str | Path, dst_crs: str, *, max_px: int = 2048,
     except (RasterioError, OSError, ValueError, MemoryError) as exc:
         raise InputError(key, f"{p.name}: cannot be read ({str(exc)[:200]})") from None
     rgba = _rgba(data, mask)
-    dst_t, width, height = calculate_default_transform(src_crs, dst_crs, cols, rows,
-                                                       *info.bounds)
-    scale = max(1.0, max(width, height) / max_px)
-    width, height = max(1, round(width / scale)), max(1, round(height / scale))
-    left, top = dst_t.c, dst_t.f
-    right = left + dst_t.a * width * scale
-    bottom = top + dst_t.e * height * scale
+    # the destination's extent: the source's edges transformed densely (pyproj; GDAL's
+    # own default-transform helper opens a VRT, a driver the hardened GDAL has not)
+    import pyproj
+
+    left, bottom, right, top = pyproj.Transformer.from_crs(
+        pyproj.CRS.from_user_input(src_crs.to_wkt()), pyproj.CRS.from_user_input(dst_crs),
+        always_xy=True).transform_bounds(*info.bounds, densify_pts=64)
+    step = max(right - left, top - bottom) / max_px
+    width = max(1, round((right - left) / step))
+    height = max(1, round((top - bottom) / step))
     out = np.zeros((4, height, width), dtype=np.uint8)
     dst_transform = from_bounds(left, bottom, right, top, width, height)
     for b in range(4):

@@ -39,7 +39,7 @@ __all__ = ["FILE_KEYS", "JOBS", "PROJECT_NAME", "catalogue_job", "files_job",
 
 PROJECT_NAME = "project.toml"
 """The project file's name in the job's folder (and in the messages)."""
-FILE_KEYS = (("area", "file"), ("terrain", "dem"))
+FILE_KEYS = (("area", "file"), ("terrain", "dem"), ("map", "basemap"))
 """The keys that name a file: on the page, only an uploaded one."""
 _SAFE_PART = re.compile(r"^[A-Za-z0-9][A-Za-z0-9._-]*$")
 

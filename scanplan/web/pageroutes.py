@@ -42,8 +42,6 @@ MAX_PROJECT_BYTES = 1024 * 1024
 """Largest project file opened [bytes] (a polygon of ~20,000 typed vertices)."""
 MAX_ZIP_MEMBERS = 10_000
 """Most entries of a zip looked through for the project file and its files."""
-PROJECT_FILE_KEYS = (("area", "file"), ("terrain", "dem"))
-"""The keys of a project file that name a file the page uploads."""
 
 
 class AreaRequest(BaseModel):
@@ -116,7 +114,7 @@ def _text(data: bytes, name: str) -> str:
 
 def open_project(store: UploadStore, upload_id: str) -> dict[str, Any]:
     """What ``POST /api/open`` answers for the upload ``upload_id`` (see the module)."""
-    from .jobs import PROJECT_NAME, _file_name
+    from .jobs import FILE_KEYS, PROJECT_NAME, _file_name
 
     path = store.path(upload_id, "file")
     named = {}
@@ -131,7 +129,7 @@ def open_project(store: UploadStore, upload_id: str) -> dict[str, Any]:
             if info.file_size > MAX_PROJECT_BYTES:
                 _text(b" " * (MAX_PROJECT_BYTES + 1), PROJECT_NAME)
             tables = project_tables_of(_text(zf.read(info), PROJECT_NAME), PROJECT_NAME)
-            for section, key in PROJECT_FILE_KEYS:
+            for section, key in FILE_KEYS:
                 value = tables.get(section, {}).get(key)
                 if not isinstance(value, str):
                     continue
@@ -147,7 +145,7 @@ def open_project(store: UploadStore, upload_id: str) -> dict[str, Any]:
                 named[value] = {"id": item.id, "name": item.name}
     else:
         tables = project_tables_of(_text(path.read_bytes(), path.name), path.name)
-    wanted = [v for s, k in PROJECT_FILE_KEYS
+    wanted = [v for s, k in FILE_KEYS
               if isinstance(v := tables.get(s, {}).get(k), str)]
     return {"project": tables, "files": named,
             "missing": [v for v in wanted if v not in named]}

@@ -446,6 +446,9 @@
         if (key === "area.polygon") { state.polygon = v; continue; }
         if (key === "area.file" && files[v]) { state.areaFile = {name: v, id: files[v].id}; continue; }
         if (key === "terrain.dem" && files[v]) { setDem({name: v, id: files[v].id}); continue; }
+        if (key === "map.basemap" && files[v]) {
+          state.ortho = {name: v, id: files[v].id}; state.basemap = "ortho"; continue;
+        }
         if (key === "area.width_m") { $("block-w").value = String(v); continue; }
         if (key === "area.length_m") { $("block-l").value = String(v); continue; }
         const el = state.fields[key];
@@ -458,6 +461,7 @@
     if (state.polygon) drawPolygon(state.polygon);
     setAreaStatus();
     if (state.areaFile) previewArea();
+    if (state.basemap === "ortho" && state.ortho) setBasemap("ortho", true);
   }
 
   /* ---------------------------------------------------------------- the request */
@@ -493,6 +497,10 @@
       (project.terrain = project.terrain || {}).dem = state.dem.name;
       files[state.dem.name] = state.dem.id;
     }
+    if (state.basemap === "ortho" && state.ortho) {  // printed on the PDF's map page too
+      (project.map = project.map || {}).basemap = state.ortho.name;
+      files[state.ortho.name] = state.ortho.id;
+    } else if (project.map) delete project.map.basemap;
     return {project, files};
   }
 
