@@ -617,6 +617,7 @@
     }
     $("error").hidden = true;
     markStale(false);
+    if ($("dl-status").dataset.error) { $("dl-status").textContent = ""; delete $("dl-status").dataset.error; }
     $("state").textContent = T.planned_in.replace("{ms}", fmt(ms, 0));
     const t1 = performance.now();
     showResult(body);
@@ -748,7 +749,11 @@
       r = await api(withLang(path), {method: "POST", headers: {"Content-Type": "application/json"},
                                      body: JSON.stringify(request())});
     } catch (err) { $("dl-status").textContent = String(err); return; }
-    if (!r.ok) { $("dl-status").textContent = errorText(await r.json()); return; }
+    if (!r.ok) {
+      $("dl-status").textContent = errorText(await r.json()); $("dl-status").dataset.error = "1";
+      return;
+    }
+    delete $("dl-status").dataset.error;
     const blob = await r.blob();
     const cd = r.headers.get("Content-Disposition") || "";
     const m = /filename="([^"]+)"/.exec(cd);
@@ -772,5 +777,6 @@
     if (had) plan(); else $("state").textContent = T.start;
   });
   window.scanplanMap = map;  // for the browser tests and the console
+  window.scanplanMapLayers = M;
   window.scanplanPage = {state, request, plan};
 })(window.SP);

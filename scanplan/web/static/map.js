@@ -23,7 +23,9 @@ window.SP = window.SP || {};
     onAdd(map) {
       this._canvas = L.DomUtil.create("canvas", "photo-layer leaflet-zoom-hide");
       this._canvas.setAttribute("aria-hidden", "true");
-      map.getPanes().overlayPane.appendChild(this._canvas);
+      if (!map.getPane("photos")) map.createPane("photos").style.zIndex = 450;
+      map.getPane("photos").style.pointerEvents = "none";
+      map.getPane("photos").appendChild(this._canvas);
       map.on("moveend zoomend resize viewreset", this._redraw, this);
       this._redraw();
     },
