@@ -375,8 +375,10 @@ def test_tablet_and_phone_layouts(server, browser, width, height, lang):
     page.evaluate("window.scrollTo(0, 0)")
     page.tap("[data-tool=polygon]")
     box = page.locator("#map").bounding_box()
-    for x, y in [(0.3, 0.3), (0.7, 0.3), (0.7, 0.7), (0.3, 0.7), (0.3, 0.3)]:
+    # (right of the drawing tool's actions, which open beside it)
+    for x, y in [(0.5, 0.4), (0.85, 0.4), (0.85, 0.8), (0.5, 0.8), (0.5, 0.4)]:
         page.touchscreen.tap(box["x"] + box["width"] * x, box["y"] + box["height"] * y)
+        page.wait_for_timeout(400)
     page.wait_for_function("document.querySelectorAll('path.strip').length > 0 && "
                            "!document.body.dataset.planning", timeout=60_000)
     page.evaluate("window.scrollTo(0, 0)")
@@ -464,10 +466,10 @@ def test_tiles_from_a_local_tile_server_and_an_mbtiles_file(browser, tmp_path):
         try:
             page = _open(browser, url)
             assert page.input_value("#basemap") == "mbtiles"  # offline first
+            page.set_input_files("#area-file", str(TOWN))  # the map goes to the town
             page.wait_for_function("document.querySelectorAll('.leaflet-tile-loaded')"
                                    ".length > 0", timeout=60_000)
-            page.set_input_files("#area-file", str(TOWN))
-            page.wait_for_timeout(1500)
+            page.wait_for_timeout(1000)
             assert "Test tiles © the test" in page.inner_text(".leaflet-control-attribution")
             assert sum(_near(c, (30, 160, 60)) for c in _pixels(page, "#map")) >= 10
             page.select_option("#basemap", "tiles")

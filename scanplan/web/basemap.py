@@ -141,8 +141,8 @@ class Basemaps:
         """The sources as the page's configuration lists them."""
         q = "" if not token else "?token=" + token
         return [{"id": s.id, "name": s.name, "attribution": s.attribution,
-                 "max_zoom": s.max_zoom, "url": f"api/tiles/{s.id}/{{z}}/{{x}}/{{y}}{q}"}
-                for s in self.sources.values()]
+                 "max_zoom": s.max_zoom, "url": f"api/tiles/{s.id}/{{z}}/{{x}}/{{y}}{q}",
+                 "offline": s.path is not None} for s in self.sources.values()]
 
     def tile(self, source: str, z: int, x: int, y: int) -> tuple[bytes, str] | None:
         """The tile's bytes and media type; None when the source has none there.

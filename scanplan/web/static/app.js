@@ -719,11 +719,22 @@
     $("warnings").innerHTML = ws.length ? `<h3>${esc(T.warnings)}</h3><ul>` + ws.map((w) =>
       `<li class="${esc(w.severity)}">${esc(w.text)}</li>`).join("") + "</ul>" : "";
     $("charts").innerHTML = Object.entries(v.charts || {}).map(([k, svg]) =>
-      `<figure><img alt="${esc(T["chart_" + k] || T.chart)}" data-chart="${esc(k)}" ` +
-      `src="data:image/svg+xml;charset=utf-8,${encodeURIComponent(svg)}"></figure>`).join("");
+      `<button type="button" class="chart" aria-describedby="chart-hint">` +
+      `<img alt="${esc(T["chart_" + k] || T.chart)}" data-chart="${esc(k)}" ` +
+      `src="data:image/svg+xml;charset=utf-8,${encodeURIComponent(svg)}"></button>`).join("") +
+      (v.charts && Object.keys(v.charts).length ?
+        `<p class="chart-hint" id="chart-hint">${esc(T.chart_open)}</p>` : "");
     M.showPlan(v.map, !!drawn);
     fitTo(v.map);
   }
+  /* a chart at the size it was drawn (its text as large as on paper) */
+  $("charts").addEventListener("click", (e) => {
+    const b = e.target.closest("button.chart"); if (!b) return;
+    const img = b.querySelector("img");
+    $("chart-dialog-img").src = img.src; $("chart-dialog-img").alt = img.alt;
+    $("chart-dialog-title").textContent = img.alt;
+    $("chart-dialog").showModal();
+  });
   /* a table of the plan's alternatives, when the result carries them (a list of rows) */
   function showAlternatives(list) {
     const box = $("alternatives");

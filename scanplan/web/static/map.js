@@ -87,6 +87,7 @@ window.SP = window.SP || {};
       base = L.tileLayer(s.url, {maxZoom: s.max_zoom || 19, maxNativeZoom: s.max_zoom || 19,
         attribution: s.attribution ? esc(s.attribution) : ""});
       base.on("tileerror", () => {
+        if (s.offline) return;  // an MBTiles file without a tile there: not "unreachable"
         failed += 1;
         if (!loaded && failed >= 4 && !offlineShown) {
           offlineShown = true; offerChoices(T.basemap_unreachable.replace("{name}", s.name));
