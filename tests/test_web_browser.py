@@ -302,8 +302,10 @@ def test_a_whole_plan_with_the_keyboard_alone(server, browser):
     _tab_to(page, "button[data-what='zip']")
     with page.expect_download(timeout=180_000) as dl:
         page.keyboard.press("Enter")
-    names = set(zipfile.ZipFile(io.BytesIO(Path(dl.value.path()).read_bytes())).namelist())
-    assert {"spec.pdf", "spec.xlsx", "project.toml", "town-uav.kml"} <= names
+    zf = zipfile.ZipFile(io.BytesIO(Path(dl.value.path()).read_bytes()))
+    assert {"spec.pdf", "spec.xlsx", "project.toml", "town-uav.kml"} <= set(zf.namelist())
+    # no name typed: the documents are named after the area file, never "project"
+    assert 'name = "town-uav"' in zf.read("project.toml").decode()
     # the drawing tools are named buttons the keyboard reaches
     for tool in ("polygon", "rectangle", "edit", "drag", "delete"):
         el = page.locator(f"[data-tool={tool}]")

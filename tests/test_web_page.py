@@ -151,6 +151,11 @@ def test_the_downloaded_zip_opens_with_its_files(client):
                       content=z.content).json()["id"]
     opened = client.post("/api/open", json={"id": zid}).json()
     assert opened["missing"] == []
+    # the GIS files name the area file as the project does, not the job's temporary folder
+    members = zipfile.ZipFile(io.BytesIO(z.content))
+    for name in members.namelist():
+        assert b"scanplan-job-" not in members.read(name), name
+    assert b"areas/town-uav.kml" in members.read("flight.geojson")
     files = {name: f["id"] for name, f in opened["files"].items()}
     assert set(files) == set(req["files"])
     for name, uid in files.items():

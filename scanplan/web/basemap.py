@@ -184,7 +184,7 @@ class Basemaps:
         req = urllib.request.Request(url, headers={
             "User-Agent": f"scanplan/{__version__} (survey planning; tile cache)"})
         try:
-            with urllib.request.urlopen(req, timeout=FETCH_TIMEOUT_S) as r:  # noqa: S310
+            with urllib.request.urlopen(req, timeout=FETCH_TIMEOUT_S) as r:
                 data = r.read(MAX_TILE_BYTES + 1)
         except (OSError, ValueError):
             return None

@@ -222,8 +222,22 @@ def files_job(project: Any, files: Mapping[str, str], what: str) -> tuple[str, b
             for kind in ("pdf", "xlsx"):
                 zf.writestr(f"spec.{kind}", reports[kind])
             for path, (_kind, data) in sorted(export_files(result, "").items()):
-                zf.writestr(path, data)
+                zf.writestr(path, _scrub_text_file(path, data, folder))
         return "scanplan.zip", out.getvalue()
+
+
+_TEXT_EXPORTS = (".kml", ".geojson", ".csv", ".plan", ".waypoints", ".txt")
+
+
+def _scrub_text_file(name: str, data: bytes, folder: Path) -> bytes:
+    """A text export (KML, GeoJSON, CSV, mission) naming the area file as the project does,
+    not by the job's temporary folder; other files unchanged."""
+    if not name.lower().endswith(_TEXT_EXPORTS):
+        return data
+    try:
+        return _scrub(data.decode("utf-8"), folder).encode("utf-8")
+    except UnicodeDecodeError:
+        return data
 
 
 def _reports(result: Any, kinds: tuple[str, ...]) -> dict[str, bytes]:
@@ -272,8 +286,8 @@ def area_job(project: Any, files: Mapping[str, str]) -> dict[str, Any]:
     """The outline of the project's ``[area]`` alone (GeoJSON FeatureCollection, WGS 84;
     empty for a width × length block or none): the page draws a dropped file before the
     plan can be made (no camera chosen yet). Read by the command line's area reader."""
-    from ..project.model import build_model
     from ..project.file import parse_project
+    from ..project.model import build_model
     from ..project.spec import project_area
     from .mapdata import area_features
 

@@ -97,7 +97,12 @@
     M.drawArea(null, false);
     setAreaStatus();
   }
+  function defaultName() {  // a plan without a name is named after its area file
+    return state.areaFile ? state.areaFile.name.split("/").pop().replace(/\.[^.]*$/, "")
+      : T.default_name;
+  }
   function setAreaStatus() {
+    if (state.fields["project.name"]) state.fields["project.name"].placeholder = defaultName();
     $("area-status").textContent = state.areaFile ? `${T.area_file}: ${state.areaFile.name}`
       : state.polygon ? T.area_drawn : T.no_area;
   }
@@ -497,6 +502,8 @@
       (project.terrain = project.terrain || {}).dem = state.dem.name;
       files[state.dem.name] = state.dem.id;
     }
+    // the documents' title: never the server's "project" (its project file's name)
+    if (!project.project.name) project.project.name = defaultName();
     if (state.basemap === "ortho" && state.ortho) {  // printed on the PDF's map page too
       (project.map = project.map || {}).basemap = state.ortho.name;
       files[state.ortho.name] = state.ortho.id;
