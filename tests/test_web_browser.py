@@ -488,3 +488,46 @@ def test_tiles_from_a_local_tile_server_and_an_mbtiles_file(browser, tmp_path):
             srv.should_exit = True
             thread.join(30)
     assert list((tmp_path / "cache").rglob("*/*/*/[0-9]*"))  # kept on disk
+
+
+def _direction(page) -> float:
+    """The plan's flight-line direction [°, clockwise from grid north]."""
+    return page.evaluate("window.scanplanPage.lastDirection()")
+
+
+def test_the_line_direction_by_a_handle_on_the_map(server, browser):
+    """As QGroundControl's survey: a handle turns the strips — dragged with the mouse, or
+    moved with the arrow keys (a slider for a screen reader)."""
+    page = _open(browser, server)
+    _town_plan(page)
+    first = _direction(page)
+    handle = page.locator(".direction-handle")
+    assert handle.get_attribute("role") == "slider"
+    assert abs(float(handle.get_attribute("aria-valuenow")) - first % 180) < 0.06
+    # the keyboard: Shift+→ turns by 10°
+    handle.focus()
+    before = _seq(page)
+    page.keyboard.press("Shift+ArrowRight")
+    _planned(page, before)
+    want = round((first + 10) % 180, 1)
+    assert float(page.input_value("#f-area-direction_deg").replace(",", ".")) == want
+    assert abs(_direction(page) - want) < 0.06
+    # the mouse: dragged a quarter turn about the area's centre
+    box = handle.bounding_box()
+    hx, hy = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
+    cx, cy = page.evaluate("""() => { const m = window.scanplanMap;
+        const p = m.latLngToContainerPoint(window.scanplanMapLayers.handleCenter());
+        const r = m.getContainer().getBoundingClientRect();
+        return [r.left + p.x, r.top + p.y]; }""")
+    before = _seq(page)
+    page.mouse.move(hx, hy)
+    page.mouse.down()
+    tx, ty = cx - (hy - cy), cy + (hx - cx)  # the handle turned by 90° on the screen
+    for k in range(1, 11):
+        page.mouse.move(hx + (tx - hx) * k / 10, hy + (ty - hy) * k / 10)
+    page.mouse.up()
+    _planned(page, before)
+    turned = (_direction(page) - want) % 180
+    assert abs(turned - 90) < 3, (want, _direction(page))
+    assert page.locator("path.strip").count() > 0
+    assert not page.errors, page.errors

@@ -42,6 +42,7 @@ TEXTS: dict[str, dict[str, str]] = {
         "strip_tip": "Strip {n} · sortie {s}", "m2": "m²", "s": "s", "unit_mm": "mm",
         "downloaded": "Downloaded", "alternatives": "Alternatives", "close": "Close",
         "default_name": "Survey plan",
+        "direction_handle": "Flight-line direction: drag the handle or use the arrow keys",
         "chart_open": "Click a chart to see it at full size.",
         "chart_height": "GSD and ground resolution L against the flight height",
         "chart_constraints": "The constraints' scan pixel against the photo scale",
@@ -125,6 +126,7 @@ TEXTS: dict[str, dict[str, str]] = {
         "strip_tip": "Маршрут {n} · вылет {s}", "m2": "м²", "s": "с", "unit_mm": "мм",
         "downloaded": "Скачано", "alternatives": "Варианты", "close": "Закрыть",
         "default_name": "План съёмки",
+        "direction_handle": "Направление маршрутов: перетащите маркер или нажимайте стрелки",
         "chart_open": "Щелчок по графику открывает его в полном размере.",
         "chart_height": "GSD и разрешение на местности L в зависимости от высоты полёта",
         "chart_constraints": "Пиксель сканирования по условиям в зависимости от масштаба "

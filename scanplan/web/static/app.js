@@ -130,6 +130,12 @@
     if (!state.lastOk) M.drawArea(fc.features[0], false);
     fitTo(fc);
   }
+  /* the direction handle sets the direction field (as typed: the plan follows) */
+  M.onDirection = (deg) => {
+    const el = state.fields["area.direction_deg"]; if (!el) return;
+    el.value = NF(1).format(deg).replace(/\s/g, ""); delete el.dataset.orig;
+    schedule();
+  };
   function fitTo(fc) {
     if (state.fitted || !fc.features.length) return;
     const b = L.geoJSON(fc.features[0]).getBounds();
@@ -731,7 +737,8 @@
       `src="data:image/svg+xml;charset=utf-8,${encodeURIComponent(svg)}"></button>`).join("") +
       (v.charts && Object.keys(v.charts).length ?
         `<p class="chart-hint" id="chart-hint">${esc(T.chart_open)}</p>` : "");
-    M.showPlan(v.map, !!drawn);
+    const lay = (spec.uav || spec.film || {}).layout || {};
+    M.showPlan(v.map, !!drawn, lay.direction_deg);
     fitTo(v.map);
   }
   /* a chart at the size it was drawn (its text as large as on paper) */
@@ -796,5 +803,9 @@
   });
   window.scanplanMap = map;  // for the browser tests and the console
   window.scanplanMapLayers = M;
-  window.scanplanPage = {state, request, plan};
+  window.scanplanPage = {state, request, plan, lastDirection: () => {
+    const sp = state.lastOk && state.lastOk.plan.specification;
+    const lay = sp && (sp.uav || sp.film || {}).layout;
+    return lay ? lay.direction_deg : null;
+  }};
 })(window.SP);

@@ -192,9 +192,10 @@ window.SP = window.SP || {};
       }
     }
     /* the plan's map (GeoJSON of /api/view); ``drawnNow``: the area is the drawn layer */
-    function showPlan(fc, drawnNow) {
+    function showPlan(fc, drawnNow, directionDeg) {
       const by = {area: [], strip: [], photos: [], takeoff: []};
       for (const f of fc.features) (by[f.properties.kind] || []).push(f);
+      showHandle(by.area[0], by.strip[0], directionDeg);
       drawArea(by.area[0], drawnNow);
       drawStrips(by.strip);
       drawTakeoffs(by.takeoff);
@@ -209,7 +210,78 @@ window.SP = window.SP || {};
       } else photos.setPoints(new Int32Array(0));
       const e = document.getElementById("every"); if (e) e.textContent = every;
     }
-    function clearPlan() { showPlan({features: []}, false); }
+    function clearPlan() { showPlan({features: []}, false, null); }
+
+    /* ------------------------------------------------------------ the line direction */
+    // a handle on a line from the area's centre along the strips: dragged (or moved with
+    // the arrow keys) it turns the strips; the angle is the plan's, clockwise from grid
+    // north, calibrated on the drawn strips (their true bearing against the plan's
+    // direction: the meridian convergence, with no formula of our own)
+    const R_EARTH_M = 6371008.8;
+    const rad = Math.PI / 180;
+    function bearing(a, b) {  // true bearing from a to b [°], [lat, lng] pairs
+      const f1 = a[0] * rad, f2 = b[0] * rad, dl = (b[1] - a[1]) * rad;
+      return Math.atan2(Math.sin(dl) * Math.cos(f2),
+        Math.cos(f1) * Math.sin(f2) - Math.sin(f1) * Math.cos(f2) * Math.cos(dl)) / rad;
+    }
+    function along(c, deg, m) {  // the point m metres from c along the true bearing deg
+      const b = deg * rad;
+      return [c[0] + m * Math.cos(b) / R_EARTH_M / rad,
+              c[1] + m * Math.sin(b) / (R_EARTH_M * Math.cos(c[0] * rad)) / rad];
+    }
+    let dir = null;  // {center, radius, offset, grid, marker, line}
+    let onDirection = null;
+    function removeHandle() {
+      if (dir) { map.removeLayer(dir.marker); map.removeLayer(dir.line); dir = null; }
+    }
+    function placeHandle(grid) {
+      const trueDeg = grid - dir.offset;
+      const end = along(dir.center, trueDeg, dir.radius);
+      dir.marker.setLatLng(end);
+      dir.line.setLatLngs([along(dir.center, trueDeg + 180, dir.radius), end]);
+      dir.grid = grid;
+      const el = dir.marker.getElement();
+      if (el) el.setAttribute("aria-valuenow", grid.toFixed(1));
+    }
+    function gridOf(latlng) {
+      const g = (bearing(dir.center, [latlng.lat, latlng.lng]) + dir.offset) % 180;
+      return Math.round((g < 0 ? g + 180 : g) * 10) / 10;
+    }
+    function showHandle(areaF, stripF, gridDeg) {
+      if (!areaF || !stripF || gridDeg == null || !isFinite(gridDeg)) { removeHandle(); return; }
+      const b = L.geoJSON(areaF).getBounds(), c = b.getCenter();
+      const line = stripF.geometry.coordinates[0];
+      const trueStrip = bearing([line[0][1], line[0][0]], [line[1][1], line[1][0]]);
+      let offset = (gridDeg - trueStrip) % 180;
+      if (offset > 90) offset -= 180;
+      if (offset < -90) offset += 180;
+      const radius = 0.45 * map.distance(b.getSouthWest(), b.getNorthEast());
+      if (!dir) {
+        const marker = L.marker(c, {draggable: true, keyboard: true, pmIgnore: true,
+          title: T.direction_handle, alt: T.direction_handle,
+          icon: L.divIcon({className: "direction-handle", iconSize: [22, 22], html: "⟳"})});
+        const guide = L.polyline([c, c], {color: "#1f3b57", weight: 2, dashArray: "6 5",
+          interactive: false, pmIgnore: true});
+        dir = {marker, line: guide};
+        guide.addTo(map); marker.addTo(map);
+        marker.on("drag", (e) => placeHandle(gridOf(e.target.getLatLng())));
+        marker.on("dragend", () => onDirection && onDirection(dir.grid));
+        const el = marker.getElement();
+        el.setAttribute("role", "slider");
+        el.setAttribute("aria-label", T.direction_handle);
+        el.setAttribute("aria-valuemin", "0"); el.setAttribute("aria-valuemax", "180");
+        el.addEventListener("keydown", (e) => {
+          const step = e.shiftKey ? 10 : 1;
+          const by = {ArrowRight: step, ArrowUp: step, ArrowLeft: -step, ArrowDown: -step}[e.key];
+          if (by === undefined) return;
+          e.preventDefault(); e.stopPropagation();
+          placeHandle(((dir.grid + by) % 180 + 180) % 180);
+          if (onDirection) onDirection(dir.grid);
+        });
+      }
+      Object.assign(dir, {center: [c.lat, c.lng], radius, offset});
+      placeHandle(((gridDeg % 180) + 180) % 180);
+    }
 
     const legend = L.control({position: "bottomright"});
     legend.onAdd = () => {
@@ -225,8 +297,10 @@ window.SP = window.SP || {};
     legend.addTo(map);
 
     const api = {map, setBasemap, setOrtho, showPlan, clearPlan, drawArea, photos,
-      strips, onBasemapChoice: null, offerChoices,
-      set onStrip(f) { selectStrip = f; }};
+      strips, onBasemapChoice: null, offerChoices, removeHandle,
+      get direction() { return dir ? dir.grid : null; },
+      handleCenter: () => dir && dir.center,
+      set onStrip(f) { selectStrip = f; }, set onDirection(f) { onDirection = f; }};
     return api;
   };
 })(window.SP);
