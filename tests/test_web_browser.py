@@ -246,6 +246,16 @@ def test_a_dropped_area_and_dem_fly_in_sorties(server, browser):
     assert sorties > 1
     expect(page.locator(".takeoff-icon")).to_have_count(sorties)
     assert page.locator("#warnings li").count() > 0
+    # terrain following: a strip's profile, the ground under each photo from the DEM and
+    # the flight altitude above it; a strip clicked on the map is the one shown
+    assert page.locator("#profile svg polygon").count() == 1
+    alt = page.evaluate("window.scanplanPage.state.lastOk.map.features.find(f => "
+                        "f.properties.number === 5 && f.properties.kind === 'strip')"
+                        ".properties.profile")
+    assert min(a - g for a, g in zip(alt["altitude_m"], alt["ground_m"], strict=True)) > 0
+    assert max(alt["ground_m"]) - min(alt["ground_m"]) > 5  # the valley under the strip
+    page.locator("path.strip-5").first.click(force=True)
+    assert page.input_value("#profile-strip") == "5"
     page.hover("#constraints tr.binding")
     _shot(page, "serve-town-dem")
     assert "terrain" in page.evaluate("JSON.stringify(window.scanplanPage.request().project)")

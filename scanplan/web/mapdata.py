@@ -1,7 +1,8 @@
 """The map of a plan as GeoJSON (WGS 84, lon/lat) for the page.
 
 One FeatureCollection: the area (``kind: "area"``), each strip's photographed parts
-(``"strip"``, with its number and sortie), the photo centres (``"photos"``, one feature per
+(``"strip"``, with its number and sortie, and over a DEM its height ``profile``: the
+ground under each photo and its flight altitude), the photo centres (``"photos"``, one feature per
 flight, every k-th when there are more than :data:`MAX_MAP_PHOTOS`, in the compact form of
 :func:`pack_lonlat` — no geometry, ``properties.packed``: a few bytes a photo instead of a
 JSON pair of numbers; :func:`unpack_lonlat` reads it back)
@@ -64,7 +65,25 @@ def _area(area: Any) -> dict[str, Any]:
     return _feature("area", shapely.geometry.mapping(geom))
 
 
-def _layout(platform: str, layout: Any, most_photos: int) -> list[dict[str, Any]]:
+def _profile(photos: Any, number: int) -> dict[str, Any]:
+    """A strip's height profile over the DEM (``photos`` None without one): each photo's
+    distance along the strip from its first photo [m], the ground under it and its flight
+    altitude [m, the DEM's height system], to 0.1 m; nothing without known ground."""
+    if photos is None or not len(photos) or "ground_m" not in photos.columns:
+        return {}
+    mine = np.asarray(photos["strip"]) == number
+    ground = np.asarray(photos["ground_m"], dtype=float)[mine]
+    if not len(ground) or not np.isfinite(ground).all():
+        return {}
+    x, y = np.asarray(photos["x_m"], float)[mine], np.asarray(photos["y_m"], float)[mine]
+    d = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(x), np.diff(y)))])
+    alt = np.asarray(photos["altitude_m"], dtype=float)[mine]
+    return {"profile": {"d_m": d.round(1).tolist(), "ground_m": ground.round(1).tolist(),
+                        "altitude_m": alt.round(1).tolist()}}
+
+
+def _layout(platform: str, layout: Any, most_photos: int, dem: bool = False
+            ) -> list[dict[str, Any]]:
     import pyproj
 
     tr = pyproj.Transformer.from_crs(layout.area.plan_crs, 4326, always_xy=True)
@@ -79,7 +98,8 @@ def _layout(platform: str, layout: Any, most_photos: int) -> list[dict[str, Any]
         out.append(_feature("strip", {"type": "MultiLineString", "coordinates": lines},
                             platform=platform, number=s.number, sortie=s.sortie,
                             last_sortie=s.last_sortie, sorties=s.sorties_text,
-                            photos=s.photos))
+                            photos=s.photos,
+                            **_profile(layout.photos if dem else None, s.number)))
     ph = layout.photos
     n = len(ph)
     if n:
@@ -110,11 +130,13 @@ def area_features(area: Any) -> dict[str, Any]:
 def map_features(result: Any) -> dict[str, Any]:
     """The GeoJSON FeatureCollection of a :class:`~scanplan.project.spec.PlanResult`."""
     from ..reports.exports import spec_layouts
+    from ..reports.mapview import ground_known
 
     features: list[dict[str, Any]] = []
     area = result.area
     if area is not None and area.georeferenced:
         features.append(_area(area))
         for platform, layout in spec_layouts(result):
-            features += _layout(platform, layout, MAX_MAP_PHOTOS)
+            dem = "altitude_mode" in layout.notes and ground_known(result, platform)
+            features += _layout(platform, layout, MAX_MAP_PHOTOS, dem)
     return {"type": "FeatureCollection", "features": features}

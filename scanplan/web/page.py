@@ -42,6 +42,10 @@ TEXTS: dict[str, dict[str, str]] = {
         "strip_tip": "Strip {n} · sortie {s}", "m2": "m²", "s": "s", "unit_mm": "mm",
         "downloaded": "Downloaded", "alternatives": "Alternatives", "close": "Close",
         "default_name": "Survey plan",
+        "profile": "Strip profile over the DEM", "profile_strip": "Strip (or click one on "
+        "the map)", "profile_x": "distance along the strip, km", "profile_y": "height, m",
+        "profile_flight": "flight altitude", "profile_ground": "ground under each photo",
+        "profile_aria": "Strip {n}: the ground under each photo and the flight altitude",
         "direction_handle": "Flight-line direction: drag the handle or use the arrow keys",
         "chart_open": "Click a chart to see it at full size.",
         "chart_height": "GSD and ground resolution L against the flight height",
@@ -126,6 +130,11 @@ TEXTS: dict[str, dict[str, str]] = {
         "strip_tip": "Маршрут {n} · вылет {s}", "m2": "м²", "s": "с", "unit_mm": "мм",
         "downloaded": "Скачано", "alternatives": "Варианты", "close": "Закрыть",
         "default_name": "План съёмки",
+        "profile": "Профиль маршрута по ЦМР", "profile_strip": "Маршрут (или щёлкните по "
+        "нему на карте)", "profile_x": "расстояние вдоль маршрута, км",
+        "profile_y": "высота, м", "profile_flight": "высота полёта",
+        "profile_ground": "рельеф под каждым снимком",
+        "profile_aria": "Маршрут {n}: рельеф под каждым снимком и высота полёта",
         "direction_handle": "Направление маршрутов: перетащите маркер или нажимайте стрелки",
         "chart_open": "Щелчок по графику открывает его в полном размере.",
         "chart_height": "GSD и разрешение на местности L в зависимости от высоты полёта",

@@ -739,8 +739,62 @@
         `<p class="chart-hint" id="chart-hint">${esc(T.chart_open)}</p>` : "");
     const lay = (spec.uav || spec.film || {}).layout || {};
     M.showPlan(v.map, !!drawn, lay.direction_deg);
+    takeProfiles(v.map);
     fitTo(v.map);
   }
+  /* the height profile of a strip over the DEM (terrain following): the ground under each
+     photo and the flight altitude; a strip is chosen on the map or in the list */
+  let profiles = new Map(), profileStrip = null;
+  function takeProfiles(fc) {
+    profiles = new Map(fc.features.filter((f) => f.properties.kind === "strip" &&
+      f.properties.profile).map((f) => [f.properties.number, f.properties.profile]));
+    const box = $("profile");
+    if (!profiles.size) { box.hidden = true; box.innerHTML = ""; profileStrip = null; return; }
+    if (!profiles.has(profileStrip)) profileStrip = profiles.keys().next().value;
+    box.hidden = false;
+    box.innerHTML = `<h3 id="profile-title">${esc(T.profile)}</h3>` +
+      `<label for="profile-strip">${esc(T.profile_strip)}</label> <select id="profile-strip">` +
+      [...profiles.keys()].map((n) => `<option value="${n}">${n}</option>`).join("") +
+      `</select><div id="profile-chart"></div>`;
+    $("profile-strip").value = String(profileStrip);
+    $("profile-strip").addEventListener("change", (e) => showProfile(Number(e.target.value)));
+    showProfile(profileStrip);
+  }
+  function showProfile(n) {
+    const pr = profiles.get(n); if (!pr) return;
+    profileStrip = n;
+    if ($("profile-strip")) $("profile-strip").value = String(n);
+    const W = 340, H = 170, L0 = 44, R0 = 8, T0 = 10, B0 = 30;
+    const d = pr.d_m, g = pr.ground_m, a = pr.altitude_m;
+    const dmax = Math.max(d[d.length - 1], 1);
+    let lo = Math.min(...g), hi = Math.max(...a);
+    const pad = Math.max(5, (hi - lo) * 0.08); lo -= pad; hi += pad;
+    const x = (v) => L0 + (W - L0 - R0) * v / dmax;
+    const y = (v) => T0 + (H - T0 - B0) * (hi - v) / (hi - lo);
+    const line = (vs) => vs.map((v, i) => `${x(d[i]).toFixed(1)},${y(v).toFixed(1)}`).join(" ");
+    const ground = `${x(0)},${y(lo)} ${line(g)} ${x(dmax)},${y(lo)}`;
+    const ticks = (a0, a1, k) => { const st = Math.pow(10, Math.floor(Math.log10((a1 - a0) / k)));
+      const step = [1, 2, 5, 10].map((m) => m * st).find((s) => (a1 - a0) / s <= k) || st * 10;
+      const out = []; for (let v = Math.ceil(a0 / step) * step; v <= a1; v += step) out.push(v);
+      return out; };
+    const yt = ticks(lo, hi, 5).map((v) => `<line x1="${L0}" x2="${W - R0}" y1="${y(v)}" ` +
+      `y2="${y(v)}" stroke="#e3e7eb"/><text x="${L0 - 4}" y="${y(v) + 4}" ` +
+      `text-anchor="end">${fmt(v, 0)}</text>`).join("");
+    const xt = ticks(0, dmax / 1000, 5).map((v) => `<text x="${x(v * 1000)}" y="${H - B0 + 14}" ` +
+      `text-anchor="middle">${fmt(v, v < 1 && v > 0 ? 1 : 0)}</text>`).join("");
+    $("profile-chart").innerHTML = `<svg viewBox="0 0 ${W} ${H}" width="100%" role="img" ` +
+      `aria-label="${esc(T.profile_aria.replace("{n}", n))}" font-size="11" ` +
+      `font-family="DejaVu Sans, sans-serif" fill="#26323e">${yt}${xt}` +
+      `<polygon points="${ground}" fill="#c9b79c" stroke="#7a5c2e" stroke-width="1"/>` +
+      `<polyline points="${line(a)}" fill="none" stroke="#2171b5" stroke-width="2"/>` +
+      `<text x="${L0}" y="${H - 4}">${esc(T.profile_x)}</text>` +
+      `<text x="${L0 + 4}" y="${T0 + 12}">${esc(T.profile_y)}</text>` +
+      `</svg><p class="legend-line"><i class="sw" style="background:#2171b5"></i>` +
+      `${esc(T.profile_flight)} <i class="sw" style="background:#c9b79c"></i>` +
+      `${esc(T.profile_ground)}</p>`;
+  }
+  M.onStrip = (n) => { if (profiles.has(n)) { showProfile(n); $("profile").scrollIntoView({block: "nearest"}); } };
+
   /* a chart at the size it was drawn (its text as large as on paper) */
   $("charts").addEventListener("click", (e) => {
     const b = e.target.closest("button.chart"); if (!b) return;
