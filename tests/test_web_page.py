@@ -327,3 +327,10 @@ def test_the_basemap_is_printed_on_the_pdf_map_page(tmp_path):
     (tmp_path / "ortho.tif").write_text("not a tiff", encoding="utf-8")
     r = CliRunner().invoke(main, ["plan", str(tmp_path / "p.toml")])
     assert r.exit_code == 2 and "map.basemap (line" in r.stderr and "GeoTIFF" in r.stderr
+
+
+def test_the_page_routes_are_in_the_api_description(client):
+    paths = client.get("/openapi.json").json()["paths"]
+    assert {"/api/upload/{upload_id}", "/api/open", "/api/area",
+            "/api/tiles/{source}/{z}/{x}/{y}", "/api/basemap/{upload_id}",
+            "/api/basemap/{upload_id}/image.png"} <= set(paths)

@@ -28,6 +28,7 @@ from pathlib import Path
 from typing import Any
 
 from fastapi import FastAPI, HTTPException
+from fastapi.responses import FileResponse, Response
 from pydantic import BaseModel, Field
 
 from ..errors import InputError
@@ -181,9 +182,7 @@ def _basemap_routes(app: FastAPI, planner: Planner, store: UploadStore,
     """The tiles and the orthophoto (:mod:`scanplan.web.basemap`)."""
     import json
 
-    from fastapi.responses import FileResponse, Response
-
-    @app.get("/api/tiles/{source}/{z}/{x}/{y}")
+    @app.get("/api/tiles/{source}/{z}/{x}/{y}", response_class=Response)
     def tile(source: str, z: int, x: int, y: int) -> Response:
         """A tile of a configured source (fetched once, then from the disk cache)."""
         got = basemaps.tile(source, z, x, y)
@@ -205,7 +204,7 @@ def _basemap_routes(app: FastAPI, planner: Planner, store: UploadStore,
         """An uploaded GeoTIFF as a background: bounds [[s, w], [n, e]] [°], size [px]."""
         return _ortho(upload_id)[1]
 
-    @app.get("/api/basemap/{upload_id}/image.png")
+    @app.get("/api/basemap/{upload_id}/image.png", response_class=FileResponse)
     def ortho_png(upload_id: str) -> FileResponse:
         """The picture of :func:`ortho` (PNG, Web Mercator)."""
         return FileResponse(_ortho(upload_id)[0], media_type="image/png")

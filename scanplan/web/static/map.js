@@ -62,7 +62,11 @@ window.SP = window.SP || {};
     const sources = CFG.basemaps || [];
     let base = null, ortho = null, offlineShown = false;
     const note = document.getElementById("map-note");
-    function showNote(html) { note.innerHTML = html; note.hidden = !html; }
+    function showNote(html) {
+      note.innerHTML = html ? html + `<button type="button" class="close" aria-label="` +
+        `${esc(T.close)}">×</button>` : "";
+      note.hidden = !html;
+    }
     function offerChoices(why) {
       const opts = sources.filter((s) => s.id !== "none").map((s) =>
         `<button type="button" data-basemap="${esc(s.id)}">${esc(s.name)}</button>`).join(" ");
@@ -70,6 +74,7 @@ window.SP = window.SP || {};
         ` <button type="button" data-basemap="ortho">${esc(T.basemap_ortho)}</button></p>`);
     }
     note.addEventListener("click", (e) => {
+      if (e.target.closest("button.close")) { showNote(""); return; }
       const b = e.target.closest("button[data-basemap]");
       if (b && api.onBasemapChoice) api.onBasemapChoice(b.dataset.basemap);
     });
