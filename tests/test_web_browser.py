@@ -256,6 +256,7 @@ def test_a_dropped_area_and_dem_fly_in_sorties(server, browser):
     assert max(alt["ground_m"]) - min(alt["ground_m"]) > 5  # the valley under the strip
     page.locator("path.strip-5").first.click(force=True)
     assert page.input_value("#profile-strip") == "5"
+    assert page.inner_text("#state").startswith("planned in"), page.inner_text("#state")
     page.hover("#constraints tr.binding")
     _shot(page, "serve-town-dem")
     assert "terrain" in page.evaluate("JSON.stringify(window.scanplanPage.request().project)")

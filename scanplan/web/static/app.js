@@ -374,8 +374,8 @@
     el.setAttribute("aria-describedby", id + "-err");
     if (START[el.dataset.key]) el.value = START[el.dataset.key];
     const onEdit = () => { delete el.dataset.orig; schedule(); };
-    el.addEventListener("input", onEdit);
-    el.addEventListener("change", onEdit);
+    // a text field plans on every keystroke; its "change" on leaving it is no new edit
+    el.addEventListener(el.tagName === "SELECT" ? "change" : "input", onEdit);
     div.appendChild(el);
     const err = document.createElement("p");
     err.className = "field-error"; err.id = id + "-err";
@@ -598,6 +598,9 @@
       markStale(!!state.lastOk);
       return;
     }
+    const body0 = JSON.stringify(request());
+    if (body0 === state.sent && !state.controller) return;  // nothing changed since
+    state.sent = body0;
     const seq = ++state.seq;
     if (state.controller) state.controller.abort();
     const controller = state.controller = new AbortController();
@@ -608,13 +611,14 @@
     try {
       r = await api(withLang("view"), {method: "POST", signal: controller.signal,
         headers: {"Content-Type": "application/json", "X-Scanplan-Edit": `${PAGE_ID}/${seq}`},
-        body: JSON.stringify(request())});
+        body: body0});
       body = await r.json();
     } catch (err) {
       if (err.name === "AbortError") return;
       body = {detail: String(err)}; r = {ok: false, status: 0};
     }
     if (seq !== state.seq || r.status === 409) return;  // a newer edit is on its way
+    state.controller = null;
     delete document.body.dataset.planning;
     const ms = Math.round(performance.now() - t0);
     markFields(r.ok ? null : body);
