@@ -98,6 +98,7 @@ def test_the_view_answers_a_superseded_edit_409(client):
 def test_the_photo_centres_are_packed_and_read_back_to_7_decimals(client):
     req = example_request(client, EXAMPLES / "uav-town-2000.toml")
     v = client.post("/api/view", json=req)
+    assert "margins_pct" not in v.json()  # one margin: plan --json's, the documents' one
     photos = next(f for f in v.json()["map"]["features"] if f["properties"]["kind"] == "photos")
     p = photos["properties"]
     assert photos["geometry"] is None and p["every"] == 1 and p["shown"] == p["count"]

@@ -149,7 +149,6 @@ def view_job(project: Any, files: Mapping[str, str]) -> dict[str, Any]:
 
         return {"plan": doc, "map": map_features(result), "charts": charts, "toml": text,
                 "names": _constraint_names(doc, view.locale),
-                "margins_pct": _margins_at_planned(doc),
                 "warnings": _warnings(result, view.locale),
                 "crs": _crs(result, view.locale)}
 
@@ -161,21 +160,6 @@ def _crs(result: Any, locale: str) -> str | None:
 
     area = result.area
     return area_crs_text(area, locale) if area is not None and area.georeferenced else None
-
-
-def _margins_at_planned(doc: dict[str, Any]) -> dict[str, float]:
-    """Each UAV constraint's headroom at the planned height [%]: how much higher than the
-    planned height H the flight may go before that constraint binds, ``(H_max/H − 1)·100``
-    with ``H_max`` its maximum planned height (negative: the planned height breaks it).
-    ``plan --json``'s ``margin_pct`` is the other view, against the binding constraint's
-    height, which does not move with the planned height."""
-    uav = doc.get("uav") or {}
-    planned = (uav.get("heights_m") or {}).get("planned")
-    if not planned:
-        return {}
-    return {cid: (c["max_height_m"] / planned - 1.0) * 100.0
-            for cid, c in (uav.get("constraints") or {}).items()
-            if c.get("max_height_m") is not None}
 
 
 def _warnings(result: Any, locale: str) -> list[dict[str, str]]:
