@@ -91,7 +91,7 @@ TEXTS: dict[str, dict[str, str]] = {
         "flight_time": "Flight time", "warnings": "Warnings", "chart": "Chart",
         "downloads": "Downloads", "dl_toml": "Project file (TOML)", "dl_pdf": "PDF",
         "dl_xlsx": "Workbook", "dl_zip": "Everything (zip)", "rendering": "Rendering…",
-        "cm": "cm", "m": "m", "min": "min", "um": "µm", "ms": "ms",
+        "cm": "cm", "m": "m", "km": "km", "min": "min", "um": "µm", "ms": "ms",
         "legend_strip": "flight lines", "legend_photo": "photo centres",
         "legend_takeoff": "take-off", "legend_area": "area",
         "start": "Draw or drop the area and choose a camera: the plan follows every change.",
@@ -181,7 +181,7 @@ TEXTS: dict[str, dict[str, str]] = {
         "flight_time": "Время полёта", "warnings": "Предупреждения", "chart": "График",
         "downloads": "Скачать", "dl_toml": "Файл проекта (TOML)", "dl_pdf": "PDF",
         "dl_xlsx": "Книга Excel", "dl_zip": "Всё (zip)", "rendering": "Формирование…",
-        "cm": "см", "m": "м", "min": "мин", "um": "мкм", "ms": "мс",
+        "cm": "см", "m": "м", "km": "км", "min": "мин", "um": "мкм", "ms": "мс",
         "legend_strip": "маршруты", "legend_photo": "центры снимков",
         "legend_takeoff": "взлёт", "legend_area": "участок",
         "start": "Нарисуйте или перетащите участок и выберите камеру: расчёт следует за "

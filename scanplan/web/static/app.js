@@ -768,7 +768,7 @@
     const pr = profiles.get(n); if (!pr) return;
     profileStrip = n;
     if ($("profile-strip")) $("profile-strip").value = String(n);
-    const W = 340, H = 170, L0 = 44, R0 = 8, T0 = 10, B0 = 30;
+    const W = 340, H = 180, L0 = 44, R0 = 8, T0 = 22, B0 = 30;
     const d = pr.d_m, g = pr.ground_m, a = pr.altitude_m;
     const dmax = Math.max(d[d.length - 1], 1);
     let lo = Math.min(...g), hi = Math.max(...a);
@@ -792,7 +792,7 @@
       `<polygon points="${ground}" fill="#c9b79c" stroke="#7a5c2e" stroke-width="1"/>` +
       `<polyline points="${line(a)}" fill="none" stroke="#2171b5" stroke-width="2"/>` +
       `<text x="${L0}" y="${H - 4}">${esc(T.profile_x)}</text>` +
-      `<text x="${L0 + 4}" y="${T0 + 12}">${esc(T.profile_y)}</text>` +
+      `<text x="4" y="13">${esc(T.profile_y)}</text>` +
       `</svg><p class="legend-line"><i class="sw" style="background:#2171b5"></i>` +
       `${esc(T.profile_flight)} <i class="sw" style="background:#c9b79c"></i>` +
       `${esc(T.profile_ground)}</p>`;

@@ -55,7 +55,13 @@ window.SP = window.SP || {};
     const esc = SP.esc;
     const map = L.map("map", {preferCanvas: false, keyboard: true, tap: true})
       .setView([55.75, 37.62], 13);
-    L.control.scale({imperial: false}).addTo(map);
+    const scale = L.control.scale({imperial: false});
+    scale._updateMetric = function (maxMeters) {  // the scale bar in the page's language
+      const m = this._getRoundNum(maxMeters);
+      this._updateScale(this._mScale, m < 1000 ? `${m} ${T.m}` : `${m / 1000} ${T.km}`,
+                        m / maxMeters);
+    };
+    scale.addTo(map);
     map.getContainer().setAttribute("aria-label", T.map_label);
 
     /* ------------------------------------------------------------ the background */
