@@ -63,7 +63,8 @@ def write_mbtiles(path: Path, colour: tuple[int, int, int], zooms: range = range
                "integer, tile_data blob)")
     db.executemany("INSERT INTO metadata VALUES (?, ?)", [
         ("name", "test tiles"), ("format", "png"), ("attribution", attribution),
-        ("minzoom", str(zooms.start)), ("maxzoom", str(zooms.stop - 1))])
+        ("minzoom", str(zooms.start)), ("maxzoom", str(zooms.stop - 1)),
+        ("bounds", ",".join(str(v) for v in bounds))])
 
     def xy(lon: float, lat: float, z: int) -> tuple[int, int]:
         n = 2 ** z

@@ -300,14 +300,18 @@ def test_an_orthophoto_is_warped_to_web_mercator_on_the_server(client, tmp_path)
     assert r.status_code == 422 and "not a readable GeoTIFF" in r.json()["detail"]
 
 
-def test_the_basemap_is_printed_on_the_pdf_map_page(tmp_path):
-    """``[map] basemap``: the orthophoto under the flight on the map page, its source
-    named; a file that is not a GeoTIFF stops the plan naming the key."""
+@pytest.mark.parametrize("kind", ["ortho.tif", "tiles.mbtiles"])
+def test_the_basemap_is_printed_on_the_pdf_map_page(tmp_path, kind):
+    """``[map] basemap``: an orthophoto (or an MBTiles file's tiles) under the flight on the
+    map page, its source named; a file that is neither stops the plan naming the key."""
     (tmp_path / "areas").mkdir()
     (tmp_path / "areas" / "town-uav.kml").write_bytes(TOWN.read_bytes())
-    write_ortho(tmp_path / "ortho.tif")
+    if kind.endswith(".tif"):
+        write_ortho(tmp_path / kind)
+    else:
+        write_mbtiles(tmp_path / kind, ORTHO_COLOUR)
     text = (EXAMPLES / "uav-town-2000.toml").read_text(encoding="utf-8")
-    text = text.replace("[map]\n", '[map]\nbasemap = "ortho.tif"\nbasemap_attribution = '
+    text = text.replace("[map]\n", f'[map]\nbasemap = "{kind}"\nbasemap_attribution = '
                         '"Orthophoto 2026, the town survey"\n', 1)
     (tmp_path / "p.toml").write_text(text, encoding="utf-8")
     r = CliRunner().invoke(main, ["plan", str(tmp_path / "p.toml"), "--out",
@@ -324,8 +328,8 @@ def test_the_basemap_is_printed_on_the_pdf_map_page(tmp_path):
     (png,) = tmp_path.glob("map*.png")
     img = np.asarray(Image.open(png).convert("RGB")).reshape(-1, 3).astype(int)
     magenta = (np.abs(img - np.array(ORTHO_COLOUR)) < 40).all(axis=1).sum()
-    assert magenta > 2000  # the orthophoto's squares on the page
-    (tmp_path / "ortho.tif").write_text("not a tiff", encoding="utf-8")
+    assert magenta > 2000  # the orthophoto's squares (the tiles' colour) on the page
+    (tmp_path / kind).write_text("not a tiff", encoding="utf-8")
     r = CliRunner().invoke(main, ["plan", str(tmp_path / "p.toml")])
     assert r.exit_code == 2 and "map.basemap (line" in r.stderr and "GeoTIFF" in r.stderr
 

@@ -400,16 +400,16 @@ def _sortie(r: _Reader) -> tuple[float | None, float | None]:
 
 
 def _basemap(r: _Reader) -> Path | None:
-    """``[map] basemap``: the GeoTIFF beside the project file, its header checked as a
-    DEM's (:func:`scanplan.geo.dem.open_dem`); None without one."""
+    """``[map] basemap``: the GeoTIFF (its header checked as a DEM's) or MBTiles file beside
+    the project file (:func:`scanplan.geo.basemap.check_basemap`); None without one."""
     name = r.text("map", "basemap").strip()
     if not name:
         return None
-    from ..geo.dem import open_dem
+    from ..geo.basemap import check_basemap
 
     path = Path(name) if Path(name).is_absolute() else r.p.path.parent / name
     try:
-        open_dem(path, "basemap")
+        check_basemap(path, "basemap")
     except InputError as exc:
         raise InputError(r.where("map", "basemap"), exc.message) from None
     return path

@@ -458,9 +458,16 @@ def map_basemap(spec: Any, layout: FlightLayout) -> Any:
     path = getattr(getattr(project, "map", None), "basemap", None)
     if path is None or not layout.area.georeferenced:
         return None
+    import pyproj
+
     from ..geo.basemap import read_basemap
 
-    return read_basemap(path, str(layout.area.plan_crs), max_px=1600)
+    minx, miny, maxx, maxy = layout.area.geometry.bounds
+    pad = 0.15 * max(maxx - minx, maxy - miny)  # the map's margins around the area
+    around = pyproj.Transformer.from_crs(pyproj.CRS.from_user_input(layout.area.plan_crs),
+                                         4326, always_xy=True).transform_bounds(
+        minx - pad, miny - pad, maxx + pad, maxy + pad, densify_pts=21)
+    return read_basemap(path, str(layout.area.plan_crs), max_px=1600, area_lonlat=around)
 
 
 def _draw_basemap(ax: Any, image: Any, scale: float) -> None:

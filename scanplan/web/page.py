@@ -26,8 +26,9 @@ TEXTS: dict[str, dict[str, str]] = {
         "open": "Open a project file or the downloaded zip", "opened": "Opened",
         "open_missing": "Opened; upload {files} as well (the project names it)",
         "upload_lost": "The server no longer keeps {files}: choose it again",
-        "basemap": "Background map", "basemap_ortho": "An orthophoto or GeoTIFF…",
-        "ortho_choose": "Choose a GeoTIFF", "no_basemap": "No background map: the area is "
+        "basemap": "Background map", "basemap_ortho": "An orthophoto, GeoTIFF or MBTiles…",
+        "ortho_choose": "Choose a GeoTIFF or MBTiles",
+        "no_basemap": "No background map: the area is "
         "drawn blind. Choose one:",
         "basemap_unreachable": "{name} does not answer (offline?). Choose another background:",
         "camera": "Camera", "no_camera": "No camera chosen yet",
@@ -114,8 +115,9 @@ TEXTS: dict[str, dict[str, str]] = {
         "open": "Открыть файл проекта или скачанный zip", "opened": "Открыт",
         "open_missing": "Открыт; загрузите также {files} (файл назван в проекте)",
         "upload_lost": "Сервер больше не хранит {files}: выберите файл снова",
-        "basemap": "Подложка", "basemap_ortho": "Ортофотоплан или GeoTIFF…",
-        "ortho_choose": "Выбрать GeoTIFF", "no_basemap": "Нет подложки: участок рисуется "
+        "basemap": "Подложка", "basemap_ortho": "Ортофотоплан, GeoTIFF или MBTiles…",
+        "ortho_choose": "Выбрать GeoTIFF или MBTiles",
+        "no_basemap": "Нет подложки: участок рисуется "
         "вслепую. Выберите:",
         "basemap_unreachable": "{name} не отвечает (нет сети?). Выберите другую подложку:",
         "camera": "Камера", "no_camera": "Камера не выбрана",
