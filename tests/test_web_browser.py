@@ -60,10 +60,12 @@ def _serve(app):
 
 @pytest.fixture(scope="module")
 def server():
-    """``scanplan serve``'s application (worker process and all), offline (no tiles)."""
+    """``scanplan serve``'s application (worker process and all), offline (no tiles); the
+    downloads' time limit generous (a shared, loaded machine renders slowly)."""
     from scanplan.web.app import create_app
+    from scanplan.web.worker import Planner
 
-    srv, thread, url = _serve(create_app(tiles="none"))
+    srv, thread, url = _serve(create_app(tiles="none", planner=Planner(report_limit_s=600)))
     yield url
     srv.should_exit = True
     thread.join(30)
@@ -122,7 +124,9 @@ def test_draw_choose_see_change_download(server, browser, tmp_path):
     page = _open(browser, server)
     expect(page.locator("h1")).to_have_text(TEXTS["en"]["title"])
     _choose_camera(page, "zenmuse p1", "dji-zenmuse-p1-35")
-    # draw a polygon with the drawing tool: four clicks and the first vertex again
+    # draw a polygon with the drawing tool: four clicks and the first vertex again (a
+    # block of about 0.8 × 0.6 km at zoom 15: its zip renders in seconds)
+    page.evaluate("window.scanplanMap.setZoom(15, {animate: false})")
     page.click("[data-tool=polygon]")
     box = page.locator("#map").bounding_box()
     pts = [(0.35, 0.3), (0.65, 0.28), (0.7, 0.7), (0.4, 0.72), (0.35, 0.3)]
@@ -175,7 +179,7 @@ def test_draw_choose_see_change_download(server, browser, tmp_path):
     assert not page.locator("#stale-note").is_visible()
     assert page.inner_text("#f-uav-height_m-err") == ""
     # download everything as one zip: the PDF prints the margins the page shows
-    with page.expect_download(timeout=180_000) as dl:
+    with page.expect_download(timeout=600_000) as dl:
         page.click("button[data-what='zip']")
     data = Path(dl.value.path()).read_bytes()
     zf = zipfile.ZipFile(io.BytesIO(data))
@@ -286,7 +290,7 @@ def test_a_whole_plan_with_the_keyboard_alone(server, browser):
     _tab_to(page, "#drop")
     outline = page.evaluate("getComputedStyle(document.activeElement).outlineStyle")
     assert outline != "none"
-    with page.expect_file_chooser() as fc:
+    with page.expect_file_chooser(timeout=120_000) as fc:
         page.keyboard.press("Enter")
     fc.value.set_files(str(TOWN))
     page.wait_for_function("document.querySelector('#area-status').textContent"
@@ -311,7 +315,7 @@ def test_a_whole_plan_with_the_keyboard_alone(server, browser):
     assert not page.locator("#error").is_visible(), page.inner_text("#error")
     # the zip with Enter on its button
     _tab_to(page, "button[data-what='zip']")
-    with page.expect_download(timeout=180_000) as dl:
+    with page.expect_download(timeout=600_000) as dl:
         page.keyboard.press("Enter")
     zf = zipfile.ZipFile(io.BytesIO(Path(dl.value.path()).read_bytes()))
     assert {"spec.pdf", "spec.xlsx", "project.toml", "town-uav.kml"} <= set(zf.namelist())
@@ -456,7 +460,7 @@ def test_an_orthophoto_under_the_plan(server, browser, tmp_path):
     # the project names it; the PDF's map page prints it
     request = page.evaluate("window.scanplanPage.request()")
     assert request["project"]["map"]["basemap"] == "ortho.tif"
-    with page.expect_download(timeout=180_000) as dl:
+    with page.expect_download(timeout=600_000) as dl:
         page.click("button[data-what='pdf']")
     pdf = tmp_path / "spec.pdf"
     pdf.write_bytes(Path(dl.value.path()).read_bytes())
