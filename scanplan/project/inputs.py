@@ -239,6 +239,11 @@ _RECORDS: tuple[Input, ...] = (
     Input("relief_interval_m", "map", "relief_interval_m", _NUM,
           "relief (contour) interval h_c [m]", "m", required=True,
           domain="relief_interval_m", option="--relief", commands=(FILM, UAV), digits=2),
+    Input("basemap", "map", "basemap", _STR, "background of the PDF's map page: an "
+          "orthophoto or any GeoTIFF (the `terrain` extra), or an MBTiles file, relative to "
+          "the project file"),
+    Input("basemap_attribution", "map", "basemap_attribution", _STR, "the background's "
+          "source, printed under the map (default: the file's name)"),
     # [norms]
     Input("norms", "norms", "set", _STR, "norm set name, or a folder relative to the "
           "project file", default="gkinp-02-036-02", option="--norms", commands=(FILM, UAV),

@@ -97,10 +97,14 @@ def field_meta(section: str, key: str) -> FieldMeta:
 
 @dataclass(frozen=True)
 class MapSection:
-    """``[map]``: the map scale denominator Mk and the relief interval h_c [m]."""
+    """``[map]``: the map scale denominator Mk and the relief interval h_c [m]; the
+    background of the PDF's map page (a GeoTIFF beside the project file, header checked)
+    and its attribution."""
 
     scale: float
     relief_interval_m: float
+    basemap: Path | None = None
+    basemap_attribution: str = ""
 
 
 @dataclass(frozen=True)
@@ -409,6 +413,22 @@ def _sortie(r: _Reader) -> tuple[float | None, float | None]:
     return uav, schedule
 
 
+def _basemap(r: _Reader) -> Path | None:
+    """``[map] basemap``: the GeoTIFF (its header checked as a DEM's) or MBTiles file beside
+    the project file (:func:`scanplan.geo.basemap.check_basemap`); None without one."""
+    name = r.text("map", "basemap").strip()
+    if not name:
+        return None
+    from ..geo.basemap import check_basemap
+
+    path = Path(name) if Path(name).is_absolute() else r.p.path.parent / name
+    try:
+        check_basemap(path, "basemap")
+    except InputError as exc:
+        raise InputError(r.where("map", "basemap"), exc.message) from None
+    return path
+
+
 def _terrain(r: _Reader) -> TerrainSection | None:
     """``[terrain]`` as a checked configuration (the DEM beside the project file)."""
     if not r.p.has("terrain"):
@@ -525,7 +545,8 @@ def build_model(project: Project) -> ProjectModel:
         path=project.path, name=project.name, meta=_meta(r),
         signing=Signing(r.text("project", "purpose"), r.text("project", "coordinate_system"),
                         r.text("project", "height_system")),
-        map=MapSection(g("map", "scale"), g("map", "relief_interval_m")),
+        map=MapSection(g("map", "scale"), g("map", "relief_interval_m"), _basemap(r),
+                       r.text("map", "basemap_attribution")),
         norms=NormsSection(gsd_area, r.text("norms.gsd_limits", "reason"),
                            r.text("norms.block_relief", "reason")),
         area=area,
