@@ -173,21 +173,7 @@ def create_app(*, token: str | None = None, planner: Planner | None = None,
 
     app.add_middleware(_BodyLimit, limit=MAX_BODY_BYTES)
 
-    @app.exception_handler(InputError)
-    async def on_input(request: Request, exc: InputError) -> JSONResponse:
-        return _input_error(exc, request.query_params.get("lang"))
-
-    @app.exception_handler(TimedOut)
-    async def on_timeout(request: Request, exc: TimedOut) -> JSONResponse:
-        return JSONResponse({"detail": str(exc)}, 504)
-
-    @app.exception_handler(Busy)
-    async def on_busy(request: Request, exc: Busy) -> JSONResponse:
-        return JSONResponse({"detail": str(exc)}, 503)
-
-    @app.exception_handler(Failed)
-    async def on_failed(request: Request, exc: Failed) -> JSONResponse:
-        return JSONResponse({"detail": str(exc)}, 500)
+    _error_handlers(app)
 
     from .page import page_html
 
@@ -207,6 +193,26 @@ def create_app(*, token: str | None = None, planner: Planner | None = None,
 
     page_routes(app, planner, store, basemaps)
     return app
+
+
+def _error_handlers(app: FastAPI) -> None:
+    """Each error of a plan answered with its HTTP status and message."""
+
+    @app.exception_handler(InputError)
+    async def on_input(request: Request, exc: InputError) -> JSONResponse:
+        return _input_error(exc, request.query_params.get("lang"))
+
+    @app.exception_handler(TimedOut)
+    async def on_timeout(request: Request, exc: TimedOut) -> JSONResponse:
+        return JSONResponse({"detail": str(exc)}, 504)
+
+    @app.exception_handler(Busy)
+    async def on_busy(request: Request, exc: Busy) -> JSONResponse:
+        return JSONResponse({"detail": str(exc)}, 503)
+
+    @app.exception_handler(Failed)
+    async def on_failed(request: Request, exc: Failed) -> JSONResponse:
+        return JSONResponse({"detail": str(exc)}, 500)
 
 
 def _files(store: UploadStore, files: dict[str, str]) -> dict[str, str]:
