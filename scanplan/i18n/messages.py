@@ -437,6 +437,9 @@ MESSAGES.update(_SITE)
 from .messages_flight import FLIGHT as _FLIGHT  # noqa: E402  (the aircraft, the sorties)
 
 MESSAGES.update(_FLIGHT)
+from .messages_control import CONTROL as _CONTROL  # noqa: E402  (ground control)
+
+MESSAGES.update(_CONTROL)
 
 
 @contextmanager
