@@ -70,9 +70,12 @@ def _project_keys() -> set[tuple[str, str]]:
 
 @cache
 def _catalogue_words() -> frozenset[str]:
-    """Words of the catalogue's model names (the part before any parenthesis)."""
+    """Words of the catalogues' model names (the part before any parenthesis)."""
     ns = norms_mod.load_norm_set()
-    names = [c.name for c in ns.cameras.values()] + list(ns.scanner_names.values())
+    from scanplan.norms.aircraft import all_aircraft
+
+    names = ([c.name for c in ns.cameras.values()] + list(ns.scanner_names.values())
+             + [a.name for a in all_aircraft().values()])  # and the aircraft's models
     words: set[str] = set()
     for name in names:
         model = re.sub(r"\([^)]*\)", " ", name)
@@ -380,7 +383,7 @@ def test_film_and_uav_document_is_clean_and_ends_on_a_full_page(tmp_path, locale
 
 def test_every_warning_has_a_heading_in_both_languages():
     """The page-1 warnings box names each warning by a short heading: every warning code
-    the engine can emit has one (``pdf_warn_<code>``) in English and Russian."""
+    the engine can emit has one (``warn_<code>``) in English and Russian."""
     import pathlib
 
     from scanplan.i18n.labels import LABELS
@@ -412,7 +415,7 @@ def test_height_limits_print_heights_as_heights():
 def _warning_headings(locale: str) -> list[str]:
     from scanplan.i18n.labels import LABELS
 
-    return [v for k, v in LABELS[locale].items() if k.startswith("pdf_warn_")]
+    return [v for k, v in LABELS[locale].items() if k.startswith("warn_")]
 
 
 @pytest.mark.parametrize("example", [str(e) for e in EXAMPLES], ids=[e.stem for e in EXAMPLES])

@@ -301,6 +301,21 @@ def emitted(tmp_path_factory) -> dict[str, list[Any]]:
         .replace("length_m = 3000", "") + "\n[flight]\ntakeoff = [39.5, 55.7]\n",
         "plan uav too many strips": uav_toml.replace("height_m = 300", "height_m = 5").replace(
             "width_m = 2000", "width_m = 1000000"),
+        # the aircraft (docs/aircraft.md): a camera not listed on it, a speed above its
+        # maximum, more flying days than the crew has (around the clock; by the sun)
+        "plan uav aircraft": uav_toml.replace("[uav]\n", '[uav]\naircraft = "dji-m350-rtk"\n'),
+        "plan uav aircraft too slow": uav_toml.replace(
+            'camera = "canon-eos-5d-mark-ii-50"', 'camera = "dji-phantom-4-rtk"'),
+        "plan uav approximate battery": uav_toml.replace(
+            'camera = "canon-eos-5d-mark-ii-50"', 'camera = "dji-phantom-4-rtk"').replace(
+            "speed_ms = 25", "speed_ms = 12"),
+        "plan uav flying days": uav_toml.replace("width_m = 2000", "width_m = 60000")
+        + "\n[flight]\nmax_flying_days = 1\n",
+        "plan uav flying days by the sun": uav_toml.replace("[uav]\n",
+                                                            "[uav]\nmax_flight_time_min = 20\n")
+        .replace("width_m = 2000", "width_m = 20000")
+        + ("\n[flight]\nmax_flying_days = 1\n[site]\nlat_deg = 56\nlon_deg = 37\n"
+           "[schedule]\nstart_date = 2025-06-01\n"),
         # archive photos: the scale is given (issue 13)
         "plan archive": archive_toml,
         "plan archive over relief": archive_toml + "\n[terrain]\nground_elevation_m = [120, 260]\n",
@@ -349,6 +364,16 @@ def emitted(tmp_path_factory) -> dict[str, list[Any]]:
         # where the area is: coordinates swapped (shown by the site, by the CRS), a site
         # far from the area
         **_site_variants(uav_toml),
+        # ground control: a survey too coarse for the height target (and beyond it even at
+        # best); markers on the valley's steep walls
+        "plan control coarse": (EXAMPLES / "uav-town-2000.toml").read_text(
+            encoding="utf-8").replace('file = "areas/',
+                                      f'file = "{(EXAMPLES / "areas").as_posix()}/')
+        + "\n[control]\ngcp_sigma_z_m = 0.08\n",
+        "plan control valley": (EXAMPLES / "uav-town-valley-2000.toml").read_text(
+            encoding="utf-8").replace('dem = "dem/', f'dem = "{(EXAMPLES / "dem").as_posix()}/')
+        .replace('file = "areas/', f'file = "{(EXAMPLES / "areas").as_posix()}/')
+        + '\n[control]\nmode = "rtk"\n',
     }
     variants["plan uav no height is feasible"] = uav_toml.replace(  # at most 0.56 m
         "max_height_m = 500", "max_height_m = 500\ngsd_cm = 0.01")
@@ -395,8 +420,8 @@ def test_every_catalogue_code_is_reached_and_every_sentence_is_a_message(emitted
 
 
 def test_every_warning_code_is_its_message_code(emitted):
-    warning_codes = {k.removeprefix("pdf_warn_") for k in LABELS["en"]
-                     if k.startswith("pdf_warn_")}
+    warning_codes = {k.removeprefix("warn_") for k in LABELS["en"]
+                     if k.startswith("warn_")}
     seen = set()
     for found in emitted.values():
         for value in found:
@@ -433,7 +458,9 @@ def test_english_text_is_what_the_engine_always_said(emitted):
     assert "P_S = V_s·Mk/(k·Mc) — GKINP (GNTA)-02-036-02; Miheeva & Ilushenko 2015, eq. (1)" \
         in film  # issue 13: works by author and year, never "seed 001"
     uav = " ".join(map(str, emitted["plan uav lowered"]))
-    assert "the planned 500 m is above the maximum 214 m (PZ binds); lowered to 210 m" in uav
+    # the height given (500 m) is not called "planned", which is the lowered 210 m
+    assert ("the flight height given in the project, 500 m, is above the maximum planned "
+            "height 214 m (PZ binds); lowered to 210 m") in uav
     assert CONSTRAINTS["PR"].equation == ("P_R = k_R/R, k_R = 0.5 (printed 0.4) — "
                                           "Miheeva & Ilushenko 2015, eqs. (4)–(6)")
 
@@ -443,11 +470,12 @@ def test_json_keeps_english_and_adds_the_parameters():
     assert r.exit_code == 0, r.output
     doc = json.loads(r.stdout)
     blur = next(w for w in doc["warnings"] if w["code"] == "motion_blur")
-    # the example is lowered from the planned 300 m to 210 m (the digital height accuracy)
+    # the example is lowered from the given 300 m to 210 m (the digital height accuracy)
     assert blur["message"].startswith("motion blur 0.93 px at 210 m exceeds 0.5 px")
     assert blur["params"]["denominator"] == 1858 and blur["params"]["height"] == 210
-    assert doc["specification"]["uav"]["reason"] == ("the planned 300 m is above the maximum "
-                                                     "214 m (PZ binds); lowered to 210 m")
+    assert doc["specification"]["uav"]["reason"] == (
+        "the flight height given in the project, 300 m, is above the maximum planned height "
+        "214 m (PZ binds); lowered to 210 m")
     assert PlanWarning("x", "plain").text("ru") == "plain"  # a plain string stays as it is
 
 
@@ -508,7 +536,8 @@ def russian(request, tmp_path_factory):
         mp.setenv("SOURCE_DATE_EPOCH", EPOCH)
         pdf = render_pdf(**kw)
         xlsx = render_xlsx(**kw)
-    text = "\n".join(p.extract_text() for p in pypdf.PdfReader(io.BytesIO(pdf)).pages)
+    text = "\n".join(_body(p.extract_text(), result.project.name)
+                     for p in pypdf.PdfReader(io.BytesIO(pdf)).pages)
     book = openpyxl.load_workbook(io.BytesIO(xlsx))
     cells = [c.value for ws in book for row in ws.iter_rows() for c in row
              if isinstance(c.value, str)]
@@ -524,12 +553,24 @@ def _engine_sentences(result: PlanResult) -> list[Message]:
     return [m for m in found if isinstance(m, Message)]
 
 
+def _body(page: str, name: str) -> str:
+    """A page's text without what closes every page — the sheet number, the running head
+    (the project's name and the document's title) and the empty list markers around
+    them —, so a sentence the page break cuts reads on."""
+    lines = page.split("\n")
+    while lines and (lines[-1].strip() in ("", "•")
+                     or re.fullmatch(r"(Лист|Sheet) \d+ (/ Листов|of) \d+", lines[-1].strip())
+                     or lines[-1].startswith(name)):
+        lines.pop()
+    return "\n".join(lines)
+
+
 def _squeeze(text: str) -> str:
     """Text without any whitespace (the PDF wraps lines anywhere, even after a slash), the
-    documents' reference numbers made alike, formulas as typeset (P_S → P<sub>S</sub>,
-    read back as PS; sqrt( → √()."""
+    documents' reference numbers made alike, formulas as typeset (P_S → P<sub>S</sub>, GSD_max →
+    GSD<sub>max</sub>, read back as PS, GSDmax; sqrt( → √()."""
     text = re.sub(r"</?sub>", "", text).replace("sqrt(", "√(")
-    text = re.sub(r"(?<![\w])([A-Za-zσΔ])_([A-Za-z0-9]{1,5})(?![\w])", r"\1\2", text)
+    text = re.sub(r"(?<![\w])([A-Za-zσΔ]{1,3})_([A-Za-z0-9]{1,5})(?![\w])", r"\1\2", text)
     return re.sub(r"\[\d+\]", "[n]", re.sub(r"\s", "", text))
 
 

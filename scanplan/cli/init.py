@@ -176,8 +176,27 @@ def project_text(a: InitAnswers) -> str:
                 "", f"# [schedule]\t# {c['schedule']}",
                 f"# start_date = 2027-06-01\t# {c['start']}",
                 f"# end_date = 2027-06-30\t# {c['end']}",
-                f"# sortie_time_min = {_v('schedule.sortie_time_min', 25)}\t# {c['sortie']}"]
+                f"# sortie_time_min = {_v('schedule.sortie_time_min', 25)}\t# {c['sortie']}",
+                "", f"# [control]\t# {c['control']}",
+                f"# mode = {_s(INPUTS['control.mode'].default)}\t# {c['control_mode']}",
+                f"# gcp_sigma_xy_m = {_v('control.gcp_sigma_xy_m')}\t# {c['control_xy']}",
+                f"# gcp_sigma_z_m = {_v('control.gcp_sigma_z_m')}\t# {c['control_z']}",
+                f"# checkpoints = {_s(INPUTS['control.checkpoints'].default)}\t"
+                f"# {c['control_check']}"]
     return "\n".join(_align(line) for line in out) + "\n"
+
+
+def _aircraft_line(camera: str, c: dict[str, str]) -> str:
+    """``aircraft = "…"`` for the camera's one catalogue carrier (the plan's default, said
+    so), else a commented example naming the aircraft that carry it."""
+    from ..norms.aircraft import carriers_of
+
+    carriers = [x.id for x in carriers_of(camera)]
+    if len(carriers) == 1:
+        return f"aircraft = {_s(carriers[0])}\t# {c['aircraft_id']}"
+    example = carriers[-1] if carriers else "dji-m350-rtk"
+    more = f": {', '.join(carriers)}" if len(carriers) > 1 else ""
+    return f"# aircraft = {_s(example)}\t# {c['aircraft_id']}{more}"
 
 
 def _uav_lines(a: InitAnswers, c: dict[str, str]) -> list[str]:
@@ -185,6 +204,7 @@ def _uav_lines(a: InitAnswers, c: dict[str, str]) -> list[str]:
     set's overlaps; the f-number when the catalogue has none for the camera."""
     out = ["", f"[uav]\t# {c['aircraft' if a.aircraft else 'uav']}",
            f"camera = {_s(a.uav_camera)}\t# {c['camera']}",
+           *([] if a.aircraft else [_aircraft_line(a.uav_camera, c)]),
            (f"height_m = {_n(a.height_m)}\t# {c['height']}" if a.height_m is not None else
             f"# height_m = {_v('uav.height_m', 100)}\t# {c['height_default']}")]
     if a.f_number is not None:

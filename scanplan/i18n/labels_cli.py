@@ -1,5 +1,5 @@
 """The words of the terminal reports of ``scanplan scan`` and ``scanplan uav`` (English and
-Russian), rendered by :mod:`scanplan.reports.terminal` in the language of ``--locale``, and
+Russian), rendered by :mod:`scanplan.reports.text` in the language of ``--locale``, and
 of the catalogue listings (``scanplan cameras list/show``, ``scanplan norms list/show``).
 
 Each entry is a :meth:`str.format` template; its fields are numbers and names already
@@ -116,6 +116,21 @@ CLI: dict[str, dict[str, str]] = {
         "cam_f": "f mm",
         "cam_name": "model",
         "cam_count": "{n} cameras",
+        # aircraft list / show
+        "ac_id": "aircraft id",
+        "ac_time": "flight time min",
+        "ac_usable": "sortie min",
+        "ac_speed": "max speed m/s",
+        "ac_wind": "wind m/s",
+        "ac_rtk": "RTK",
+        "ac_cameras": "cameras",
+        "ac_count": "{n} aircraft; sortie = the published flight time less the {reserve:g} % "
+                    "battery reserve ({status}: {source})",
+        "ac_kind_multirotor": "multirotor",
+        "ac_kind_fixed_wing": "fixed wing",
+        "ac_kind_vtol": "VTOL",
+        "ac_yes": "yes",
+        "ac_no": "no",
         "kind_film": "film",
         "kind_digital": "digital",
         "by_uav": "uav",
@@ -328,6 +343,20 @@ CLI: dict[str, dict[str, str]] = {
         "cam_f": "f, мм",
         "cam_name": "модель",
         "cam_count": "камер: {n}",
+        "ac_id": "носитель",
+        "ac_time": "время полёта, мин",
+        "ac_usable": "вылет, мин",
+        "ac_speed": "макс. скорость, м/с",
+        "ac_wind": "ветер, м/с",
+        "ac_rtk": "RTK",
+        "ac_cameras": "камеры",
+        "ac_count": "носителей: {n}; вылет — опубликованное время полёта за вычетом резерва "
+                    "аккумулятора {reserve:g} % ({status}: {source})",
+        "ac_kind_multirotor": "мультиротор",
+        "ac_kind_fixed_wing": "самолёт",
+        "ac_kind_vtol": "СВВП",
+        "ac_yes": "да",
+        "ac_no": "нет",
         "kind_film": "плёночная",
         "kind_digital": "цифровая",
         "by_uav": "БПЛА",

@@ -31,6 +31,8 @@ INIT: dict[str, dict[str, str]] = {
         "scale_instead": "instead: the scale of existing photos",
         "scanner": "round the scan pixel to a scanner's steps",
         "uav": "digital camera on a UAV", "aircraft": "digital camera on a manned aircraft",
+        "aircraft_id": "the aircraft that carries it: its battery sets the sorties "
+                       "(scanplan aircraft list)",
         "height": "planned height above ground [m]",
         "height_default": "planned height [m] (default: the highest allowed)",
         "tolerance": "how much higher the UAV may fly [%]", "speed": "ground speed [m/s]",
@@ -48,6 +50,11 @@ INIT: dict[str, dict[str, str]] = {
         "schedule": "flying dates and sorties (optional)",
         "start": "first flying date", "end": "last flying date",
         "sortie": "flight time of one sortie [min]",
+        "control": "ground control points and checkpoints (optional)",
+        "control_mode": "\"gcp\", \"rtk\", \"ppk\" or \"direct\"",
+        "control_xy": "the markers' survey precision in plan [m] (an assumption: give yours)",
+        "control_z": "the markers' survey precision in height [m] (an assumption)",
+        "control_check": "\"asprs\" (the ASPRS count for the area) or a number",
     },
     "ru": {
         "head": "# Проект scanplan: один договор на картографирование. Расчёт:\n"
@@ -74,6 +81,8 @@ INIT: dict[str, dict[str, str]] = {
         "scale_instead": "либо масштаб имеющихся снимков",
         "scanner": "округлить пиксель сканирования до шагов сканера",
         "uav": "цифровая камера на БПЛА", "aircraft": "цифровая камера на самолёте",
+        "aircraft_id": "носитель камеры: его аккумулятор задаёт вылеты "
+                       "(scanplan aircraft list)",
         "height": "плановая высота над рельефом [м]",
         "height_default": "плановая высота [м] (по умолчанию — наибольшая допустимая)",
         "tolerance": "на сколько выше плана может лететь БПЛА [%]",
@@ -93,5 +102,10 @@ INIT: dict[str, dict[str, str]] = {
         "schedule": "сроки и вылеты (необязательно)",
         "start": "первый день съёмки", "end": "последний день съёмки",
         "sortie": "продолжительность одного вылета [мин]",
+        "control": "опознаки и контрольные точки (необязательно)",
+        "control_mode": "\"gcp\", \"rtk\", \"ppk\" или \"direct\"",
+        "control_xy": "точность определения маркеров в плане [м] (допущение: укажите свою)",
+        "control_z": "точность определения маркеров по высоте [м] (допущение)",
+        "control_check": "\"asprs\" (число ASPRS для площади) или число",
     },
 }

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import datetime as dt
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -25,6 +25,9 @@ from ..rules.film import PlanWarning, ScanScenario
 from .file import ReportMeta
 from .jobs import ScanJob, UavJob
 from .model import ProjectModel
+
+if TYPE_CHECKING:
+    from .control import ControlSpec
 
 __all__ = ["FilmSpec", "GsdCompliance", "PlanResult", "SunPlan", "SurveyDesign", "UavSpec"]
 
@@ -191,21 +194,6 @@ class UavSpec:
         """Strips and photo centres at the recommended height (None without an area)."""
         return self.job.layout
 
-    @property
-    def headroom_pct(self) -> dict[str, float]:
-        """Each constraint's headroom at the planned height [%]: how much higher than the
-        planned height H the flight may go before that constraint binds,
-        ``(H_max/H − 1)·100`` with ``H_max`` its maximum planned height (negative: the
-        planned height breaks it); by constraint id. ``plan --json``'s ``margin_pct`` is
-        the other view, against the binding constraint's height, which does not move
-        with the planned height. Empty without a planned height."""
-        plan = self.job.plan
-        planned = plan.heights_m.get("planned")
-        if not planned:
-            return {}
-        return {lim.id: (lim.max_height_m / planned - 1.0) * 100.0 for lim in plan.limits
-                if lim.max_height_m is not None}
-
 
 @dataclass(frozen=True)
 class PlanResult:
@@ -222,6 +210,7 @@ class PlanResult:
     """The survey design checks: GSD against ГОСТ Р 59562-2021 Table Б.1, the one-height
     rule of a block, the sun window (:mod:`scanplan.project.design`)."""
     area: Area | None = None  # the contract area ([area]), in its planning CRS
+    control: ControlSpec | None = None  # [control]: GCPs, checkpoints, the error budget
 
     @property
     def layouts(self) -> dict[str, FlightLayout]:

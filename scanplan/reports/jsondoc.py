@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import asdict
 from typing import Any
 
@@ -25,7 +26,7 @@ def scale_value(x: float) -> int | float:
 def _clean(x: Any) -> Any:
     if isinstance(x, float) and not math.isfinite(x):
         return None
-    if isinstance(x, dict):
+    if isinstance(x, Mapping):  # a dict, or a name in both languages (i18n Names)
         return {k: _clean(v) for k, v in x.items()}
     if isinstance(x, list | tuple):
         return [_clean(v) for v in x]
@@ -275,6 +276,10 @@ def plan_result_dict(result: Any) -> dict[str, Any]:
             spec["uav"]["layout"] = layout_dict(u.layout)
     if result.comparison:
         spec["comparison"] = result.comparison
+    if getattr(result, "control", None) is not None:
+        from ..project.control import control_dict
+
+        spec["control"] = control_dict(result.control)
     doc["specification"] = spec
     if getattr(result, "design", None) is not None:
         from ..project.design import design_dict

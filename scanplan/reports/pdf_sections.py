@@ -247,10 +247,9 @@ def _uav_inputs(tables: ResultTables, ns: NormSet, f: Formatter) -> list[tuple[s
         inputs += [(f("map_scale"), f.scale(v["map_scale"])),
                    (f("relief_interval_m"), f.g(v["relief_interval_m"]))]
         if v["object"] is not None:
-            inputs.append((f("object"), f"{f.object(v['object'])}: "
-                                        f"{f.g(v['object_size_m'])} {m}, "
-                                        f"{f.show(v['shape'])}, "
-                                        f"B = {f.g(v['shape_coefficient'])}"))
+            text = (f"{f.object(v['object'])}: {f.g(v['object_size_m'])} {m}, "
+                    f"{f.show(v['shape'])}, B = {f.g(v['shape_coefficient'])}")
+            inputs.append((f("object"), with_status(text, v["object_status"], f.locale)))
     inputs.append((f("norm_set"), _norm_view(ns, f)["title"]))
     return inputs
 

@@ -255,6 +255,18 @@ def _comparison_section(view: ReportView, f: Formatter) -> dict[str, Any] | None
     return _comparison_view(view, f)
 
 
+def _control_section(view: ReportView, f: Formatter) -> dict[str, Any] | None:
+    """The ground control (``templates/_control.html``): the rows of the control tables,
+    worded once (:mod:`scanplan.reports.controlwords`), their sources cited."""
+    if view.spec is None or getattr(view.spec, "control", None) is None:
+        return None
+    from .controlwords import check_rows, rule_rows, summary_rows
+
+    return {"summary": summary_rows(view.tables, f),
+            "checks": [(*r[:5], f.cite(r[5])) for r in check_rows(view.tables, f)],
+            "rules": [(*r[:3], f.cite(r[3])) for r in rule_rows(view.tables, f)]}
+
+
 def _geo_section(view: ReportView, f: Formatter) -> list[dict[str, Any]]:
     return _geo_views(view.spec, view.uav, f.locale)
 
@@ -291,10 +303,11 @@ PDF_SECTIONS: tuple[PdfSection, ...] = (
     PdfSection("spec", _spec_section, "_spec.html", rank=2),
     PdfSection("design", lambda v, f: _design_view(v, f) if v.spec is not None else None,
                "_design.html", rank=3),
+    PdfSection("control", _control_section, "_control.html", rank=5),
     PdfSection("scan", _scan_section, "_scan.html", rank=0),
     PdfSection("uav", _uav_section, "_uav.html", rank=1),
     PdfSection("comparison", _comparison_section, "_comparison.html", rank=4),
-    PdfSection("geo", _geo_section, "_map.html", rank=5),
+    PdfSection("geo", _geo_section, "_map.html", rank=6),
     PdfSection("symbols", lambda v, f: [(r.value, f(r.fields["meaning"]))
                                         for r in v.tables["symbols"].rows],
                "_symbols.html"),

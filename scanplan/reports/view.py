@@ -188,7 +188,7 @@ def build_view(*, scan: ScanJob | None = None, uav: UavJob | None = None,
 
 def warning_heading_key(warning: Any) -> str | None:
     """The label key of a warning's short heading (page 1, the Warnings sheet, the PDF's
-    warnings): ``pdf_warn_<code>``, None when the catalogue has none.
+    warnings): ``warn_<code>``, None when the catalogue has none.
 
     Parameters
     ----------
@@ -198,7 +198,7 @@ def warning_heading_key(warning: Any) -> str | None:
     Returns
     -------
     str or None
-        ``"pdf_warn_<code>"``.
+        ``"warn_<code>"``.
     """
     key = f"warn_{warning if isinstance(warning, str) else warning.code}"
     return key if key in LABELS["en"] else None

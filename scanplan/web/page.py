@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import html
 import json
+from typing import Any
 
 from .._version import __version__
 from ..i18n.labels_page import PAGE as TEXTS
@@ -17,14 +18,17 @@ from ..i18n.labels_page import PAGE as TEXTS
 __all__ = ["TEXTS", "page_html"]
 
 
-
-def page_html(lang: str, tiles: str = "osm") -> str:
-    """The page in ``lang`` (``"en"`` or ``"ru"``) with the default tile layer ``tiles``
-    (``"osm"``, ``"none"`` or a URL template with ``{z}/{x}/{y}``)."""
+def page_html(lang: str, basemaps: list[dict[str, Any]] | None = None,
+              default: str = "none") -> str:
+    """The page in ``lang`` (``"en"`` or ``"ru"``) offering the background maps ``basemaps``
+    (:meth:`scanplan.web.basemap.Basemaps.page_list`; "none" always) with ``default`` shown
+    first."""
     from pathlib import Path
 
     lang = lang if lang in TEXTS else "en"
-    config = {"lang": lang, "texts": TEXTS[lang], "tiles": tiles, "version": __version__}
+    none = {"id": "none", "name": TEXTS[lang]["tiles_none"]}
+    config = {"lang": lang, "texts": TEXTS[lang], "basemaps": [*(basemaps or []), none],
+              "basemap_default": default, "version": __version__}
     text = (Path(__file__).parent / "static" / "index.html").read_text(encoding="utf-8")
     blob = json.dumps(config, ensure_ascii=False).replace("</", "<\\/")
     return (text.replace("{{lang}}", lang)

@@ -68,6 +68,21 @@ def _design_lines(tables: ResultTables, f: Formatter) -> list[str]:
                       subsequent_indent="    ") for label, value in rows)]
 
 
+def _control_lines(tables: ResultTables, f: Formatter) -> list[str]:
+    """The ground control: counts, figures and the error budget at best, and the control's
+    precision against the target (the ``control`` and ``control_checks`` tables)."""
+    from ..controlwords import check_rows, summary_rows
+
+    rows = summary_rows(tables, f)
+    width = max(len(label) for label, _, _ in rows)
+    lines = ["", f("control_points") + ":"]
+    lines += [f"  {label:<{width}}  {value}" for label, value, _ in rows]
+    lines.append(f"  {f('control_check')}:")
+    for rule, axis, ratio, required, ok, _ in check_rows(tables, f):
+        lines.append(f"    {rule} ({axis}): {ratio} / {required} — {ok}")
+    return lines
+
+
 def _plan_heading(result: Any, f: Formatter) -> list[str]:
     """The project, map scale and relief interval, the parties, the area and its flight
     lines."""
@@ -264,6 +279,8 @@ PLAN_PARTS: tuple[PlanPart, ...] = (
              if r.uav else []),
     PlanPart("comparison", lambda r, t, f: _comparison_lines(r, f, t) if r.comparison
              else []),
+    PlanPart("control", lambda r, t, f: _control_lines(t, f)
+             if getattr(r, "control", None) is not None else []),
     PlanPart("design", lambda r, t, f: _design_lines(t, f)),
     PlanPart("warnings", lambda r, t, f: _warning_lines(r, f, t) if r.warnings else []),
 )

@@ -5,7 +5,8 @@ need of a plan and of the engine, ready to draw and to write (no words, no numbe
   a constraint (a :class:`MapTerrain`), or None without ``[terrain]``;
 - :func:`ground_known` — whether the ground under each photo is known (a DEM);
 - :func:`strip_ends_lonlat` — the strips' start and end as longitude/latitude;
-- :func:`photo_columns` — the photo table's columns, in the GIS files' order.
+- :func:`photo_columns` — the photo table's columns, in the GIS files' order;
+- :func:`map_basemap` — ``[map] basemap`` warped under the map.
 
 The layouts (:mod:`scanplan.reports.mapview`, :mod:`scanplan.reports.geosheets`) read these
 and the :class:`~scanplan.geo.layout.FlightLayout`'s own figures; they import no engine.
@@ -24,7 +25,8 @@ from ...core.photoscale import height_at_photo_scale_m, photo_scale_at_height
 if TYPE_CHECKING:
     from ...geo.layout import FlightLayout
 
-__all__ = ["MapTerrain", "ground_known", "map_terrain", "photo_columns", "strip_ends_lonlat"]
+__all__ = ["MapTerrain", "ground_known", "map_basemap", "map_terrain", "photo_columns",
+           "strip_ends_lonlat"]
 
 
 @dataclass(frozen=True)
@@ -143,6 +145,25 @@ def strip_ends_lonlat(layout: FlightLayout) -> np.ndarray | None:
     if not len(ends):
         return np.zeros((0, 2, 2))
     return np.asarray(lonlat(layout).points(ends), float).reshape(-1, 2, 2)
+
+
+def map_basemap(spec: Any, layout: FlightLayout) -> Any:
+    """``[map] basemap`` of the project warped into the layout's planning CRS
+    (:func:`scanplan.geo.basemap.read_basemap`), or None without one."""
+    project = getattr(spec, "project", None)
+    path = getattr(getattr(project, "map", None), "basemap", None)
+    if path is None or not layout.area.georeferenced:
+        return None
+    import pyproj
+
+    from ...geo.basemap import read_basemap
+
+    minx, miny, maxx, maxy = layout.area.geometry.bounds
+    pad = 0.15 * max(maxx - minx, maxy - miny)  # the map's margins around the area
+    around = pyproj.Transformer.from_crs(pyproj.CRS.from_user_input(layout.area.plan_crs),
+                                         4326, always_xy=True).transform_bounds(
+        minx - pad, miny - pad, maxx + pad, maxy + pad, densify_pts=21)
+    return read_basemap(path, str(layout.area.plan_crs), max_px=1600, area_lonlat=around)
 
 
 def photo_columns(layout: FlightLayout) -> list[str]:

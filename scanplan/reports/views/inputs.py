@@ -108,7 +108,8 @@ def uav_inputs(job: Any) -> Table:
         ``height_tolerance_up_pct``, ``height_tolerance_down_pct``, ``ceiling_m``,
         ``gsd_target_cm``, ``speed_ms``, ``exposure_s``, the overlaps, ``area_width_m``,
         ``area_length_m``, ``map_scale``, ``relief_interval_m``, ``object`` (the map
-        object or None; with one ``object_size_m``, ``shape`` (Named), ``shape_coefficient``,
+        object or None; with one ``object_size_m``, ``object_status`` (its norm row's
+        status, "" for the user's object), ``shape`` (Named), ``shape_coefficient``,
         ``object_source``), the scene (``r_max``, ``r_min``, ``threshold_k0``,
         ``haze_contrast``), the motion (``shift_factor``, ``random_speed_ms``, the rates),
         ``roll_deg``, ``pitch_deg``, ``bands``, ``bits_per_band``, ``platform`` and
@@ -146,8 +147,8 @@ def uav_inputs(job: Any) -> Table:
             Row("object", (inp.map_object,))]
     obj = inp.map_object
     if obj is not None:
-        rows += [_uav("object_size_m", obj.size_m), Row("shape", (Named("shape", obj.shape,
-                                                                          ns),)),
+        rows += [_uav("object_size_m", obj.size_m), Row("object_status", (obj.status,)),
+                 Row("shape", (Named("shape", obj.shape, ns),)),
                  Row("shape_coefficient", (obj.shape_coefficient,), digits=2),
                  Row("object_source", (obj.source,))]
     rows += [_uav(name, getattr(inp, name)) for name in (

@@ -6,6 +6,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any, NamedTuple
 
+from .control import control_checks, control_rules_table, control_summary
 from .design import design, design_notes
 from .film import film_constraints, film_explanations, film_formulas, film_reach, film_sweep
 from .headline import spec_film, spec_uav
@@ -50,6 +51,9 @@ TABLES: dict[str, tuple[str, Callable[[Any], Table]]] = {
     "comparison": ("spec", comparison),
     "design": ("spec.design", design),
     "design_notes": ("spec.design", design_notes),
+    "control": ("spec.control", control_summary),
+    "control_checks": ("spec.control", control_checks),
+    "control_rules": ("spec.control", control_rules_table),
     "film_warnings": ("scan", lambda plan: warnings(plan.warnings, "film")),
     "uav_warnings": ("uav", lambda plan: warnings(plan.warnings, "uav")),
     "spec_warnings": ("spec", lambda spec: warnings(spec.warnings, "spec")),
