@@ -6,8 +6,10 @@ workbook for the same ground speed.
 The catalogues: every one of :func:`scanplan.i18n.catalogues` (the report labels, the
 carrier-specific wording, the terminal's templates and words, the page's texts) and the
 constraint names of the registry (which :func:`~scanplan.i18n.labels.t` falls back to).
-Texts are compared after stripping surrounding whitespace; a trailing unit (", m") is part
-of the text. Two English labels that mean different things must differ in English.
+Texts are compared after stripping surrounding whitespace, the Russian with its first
+letter in lower case (a table's row starts with a capital, a terminal's line does not); a
+trailing unit (", m") is part of the text. Two English labels that mean different things
+must differ in English.
 """
 
 from __future__ import annotations
@@ -37,7 +39,7 @@ def conflicts() -> dict[str, dict[str, list[str]]]:
     """English text → {Russian text: [where, …]} for the texts with two Russian words."""
     seen: dict[str, dict[str, list[str]]] = defaultdict(lambda: defaultdict(list))
     for en, ru, where in _pairs():
-        seen[en][ru].append(where)
+        seen[en][ru[:1].lower() + ru[1:]].append(where)  # «Отношение …» heads a row
     return {en: dict(rus) for en, rus in seen.items() if len(rus) > 1}
 
 

@@ -25,7 +25,7 @@ LAYERS: list[tuple[str, set[str]]] = [
     ("geo", {"geo"}),
     ("project", {"project"}),
     ("reports", {"reports"}),
-    ("api", {"api"}),
+    ("api", {"api", "api_frames"}),
     ("web", {"web"}),
     ("cli", {"cli", "__main__", "__init__"}),
 ]

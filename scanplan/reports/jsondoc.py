@@ -209,6 +209,68 @@ def uav_plan_dict(plan: UavPlan, ns: NormSet | None = None) -> dict[str, Any]:
     return _clean(doc)
 
 
+def _film_spec(f: Any) -> dict[str, Any]:
+    """``specification.film`` of ``plan --json``: the recommended photo scale and scan pixel,
+    the margins, the frames, the flat-ground figures of a ``[terrain]`` plan, the layout."""
+    rec = f.recommended
+    out: dict[str, Any] = {
+        "recommended_photo_scale": scale_value(rec.photo_scale) if rec else None,
+        "archive": f.archive,
+        "reason": f.reason,
+        "binding": rec.binding if rec else None,
+        "scan_pixel_um": rec.scan_pixel_um if rec else None,
+        "scanner_pixel_um": rec.scanner_pixel_um if rec else None,
+        "margins_pct": {c.id: c.margin_pct for c in rec.constraints} if rec else None,
+        "recognition_probability": rec.recognition_probability if rec else None,
+        "frame_megabytes": rec.frame_megabytes if rec else None,
+        "frames": f.frames, "strips": f.strips, "scanned_gigabytes": f.scanned_gigabytes,
+        "side_overlap_pct": f.side_overlap_pct,
+    }
+    flat = getattr(f, "flat", None)
+    if rec is not None and flat is not None:  # [terrain]: held at the worst frame
+        out["local_photo_scale"] = rec.local_photo_scale
+        out["flat_ground"] = {
+            "photo_scale": scale_value(flat.photo_scale), "binding": flat.binding,
+            "scan_pixel_um": flat.scan_pixel_um,
+            "scanner_pixel_um": flat.scanner_pixel_um,
+            "frame_megabytes": flat.frame_megabytes}
+    if f.layout is not None:
+        out["layout"] = layout_dict(f.layout)
+    return out
+
+
+def _uav_spec(u: Any) -> dict[str, Any]:
+    """``specification.uav`` of ``plan --json``: the heights, the binding constraint, the
+    ground resolution, the overlaps, the motion, the flight's figures, the layout."""
+    p = u.job.plan
+    out: dict[str, Any] = {
+        "planned_height_m": u.planned_height_m,
+        "recommended_height_m": u.recommended_height_m,
+        "max_height_m": u.max_height_m, "max_planned_height_m": u.max_height_m,
+        "max_flown_height_m": p.max_flown_height_m,
+        "recommended_flown_height_m": p.heights_m["max"],
+        "ceiling_m": p.ceiling_m,
+        "constraints_max_height_m": p.constraints_max_height_m,
+        "height_accuracy_m": p.height_accuracy.get("height_accuracy_m"),
+        "sigma_z_m": p.height_accuracy.get("sigma_z_at_highest_flown_height_m"),
+        "reason": u.reason, "binding": p.binding,
+        "height_tolerance_pct": p.inputs.height_tolerance_up_pct,
+        "gsd_m": p.gsd_m, "ground_resolution_m": p.ground_resolution_m,
+        "ground_resolution_to_gsd": p.ground_resolution_to_gsd,
+        "recognition": [asdict(r) for r in p.recognition],
+        "forward_overlap_pct": p.inputs.forward_overlap_pct,
+        "side_overlap_pct": p.inputs.side_overlap_pct,
+        "orientation": p.inputs.orientation, "platform": p.inputs.platform,
+        "motion_blur_px": p.motion_blur_px, "max_exposure_s": p.max_exposure_s,
+        "max_speed_ms": p.max_speed_ms,
+        # the flight's figures (its JPEG estimate is uav.flight's, as it always was)
+        **{k: v for k, v in p.flight.items() if k not in _JPEG_KEYS},
+    }
+    if u.layout is not None:
+        out["layout"] = layout_dict(u.layout)
+    return out
+
+
 def plan_result_dict(result: Any) -> dict[str, Any]:
     """The ``scanplan plan --json`` document: project, film, uav, specification, warnings."""
     from dataclasses import asdict as _asdict
@@ -219,61 +281,11 @@ def plan_result_dict(result: Any) -> dict[str, Any]:
         doc["area"] = area_dict(result.area)
     spec: dict[str, Any] = {}
     if result.film:
-        f = result.film
-        doc["film"] = scan_plan_dict(f.job.plan, f.job.norm_set)
-        rec = f.recommended
-        spec["film"] = {
-            "recommended_photo_scale": scale_value(rec.photo_scale) if rec else None,
-            "archive": f.archive,
-            "reason": f.reason,
-            "binding": rec.binding if rec else None,
-            "scan_pixel_um": rec.scan_pixel_um if rec else None,
-            "scanner_pixel_um": rec.scanner_pixel_um if rec else None,
-            "margins_pct": {c.id: c.margin_pct for c in rec.constraints} if rec else None,
-            "recognition_probability": rec.recognition_probability if rec else None,
-            "frame_megabytes": rec.frame_megabytes if rec else None,
-            "frames": f.frames, "strips": f.strips, "scanned_gigabytes": f.scanned_gigabytes,
-            "side_overlap_pct": f.side_overlap_pct,
-        }
-        flat = getattr(f, "flat", None)
-        if rec is not None and flat is not None:  # [terrain]: held at the worst frame
-            spec["film"]["local_photo_scale"] = rec.local_photo_scale
-            spec["film"]["flat_ground"] = {
-                "photo_scale": scale_value(flat.photo_scale), "binding": flat.binding,
-                "scan_pixel_um": flat.scan_pixel_um,
-                "scanner_pixel_um": flat.scanner_pixel_um,
-                "frame_megabytes": flat.frame_megabytes}
-        if f.layout is not None:
-            spec["film"]["layout"] = layout_dict(f.layout)
+        doc["film"] = scan_plan_dict(result.film.job.plan, result.film.job.norm_set)
+        spec["film"] = _film_spec(result.film)
     if result.uav:
-        u = result.uav
-        p = u.job.plan
-        doc["uav"] = uav_plan_dict(p, u.job.norm_set)
-        spec["uav"] = {
-            "planned_height_m": u.planned_height_m,
-            "recommended_height_m": u.recommended_height_m,
-            "max_height_m": u.max_height_m, "max_planned_height_m": u.max_height_m,
-            "max_flown_height_m": p.max_flown_height_m,
-            "recommended_flown_height_m": p.heights_m["max"],
-            "ceiling_m": p.ceiling_m,
-            "constraints_max_height_m": p.constraints_max_height_m,
-            "height_accuracy_m": p.height_accuracy.get("height_accuracy_m"),
-            "sigma_z_m": p.height_accuracy.get("sigma_z_at_highest_flown_height_m"),
-            "reason": u.reason, "binding": p.binding,
-            "height_tolerance_pct": p.inputs.height_tolerance_up_pct,
-            "gsd_m": p.gsd_m, "ground_resolution_m": p.ground_resolution_m,
-            "ground_resolution_to_gsd": p.ground_resolution_to_gsd,
-            "recognition": [asdict(r) for r in p.recognition],
-            "forward_overlap_pct": p.inputs.forward_overlap_pct,
-            "side_overlap_pct": p.inputs.side_overlap_pct,
-            "orientation": p.inputs.orientation, "platform": p.inputs.platform,
-            "motion_blur_px": p.motion_blur_px, "max_exposure_s": p.max_exposure_s,
-            "max_speed_ms": p.max_speed_ms,
-            # the flight's figures (its JPEG estimate is uav.flight's, as it always was)
-            **{k: v for k, v in p.flight.items() if k not in _JPEG_KEYS},
-        }
-        if u.layout is not None:
-            spec["uav"]["layout"] = layout_dict(u.layout)
+        doc["uav"] = uav_plan_dict(result.uav.job.plan, result.uav.job.norm_set)
+        spec["uav"] = _uav_spec(result.uav)
     if result.comparison:
         spec["comparison"] = result.comparison
     if getattr(result, "control", None) is not None:
