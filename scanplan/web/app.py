@@ -17,13 +17,15 @@ Routes (``/docs`` shows them with their schemas, ``/openapi.json`` is the OpenAP
 A project is sent as ``{"project": {section: {key: value}}, "files": {name: upload id}}``.
 A bad input answers 422 with the command line's message (``{"detail": "project.toml:
 uav.speed_ms (line 9): must be …", "field": …, "message": …}``). Bodies are bounded
-(:data:`MAX_BODY_BYTES`; uploads by :mod:`scanplan.web.uploads`). With a ``token`` every
-``/api/`` request must carry it (header ``X-Scanplan-Token`` or ``?token=``).
+(:data:`MAX_BODY_BYTES`; uploads by :mod:`scanplan.web.uploads`). Every request passes
+:class:`scanplan.web.guard.RequestGuard` first: a foreign Host or Origin, a cross-site
+fetch and a body type another site's page could send are refused, on every route; with a
+``token`` every ``/api/`` request must carry it (header ``X-Scanplan-Token`` or
+``?token=``).
 """
 
 from __future__ import annotations
 
-import secrets
 from contextlib import asynccontextmanager
 from pathlib import Path
 from typing import Any
@@ -35,6 +37,7 @@ from pydantic import BaseModel, Field
 
 from .._version import __version__
 from ..errors import InputError
+from .guard import RequestGuard, allowed_hosts
 from .uploads import UploadStore
 from .worker import Busy, Failed, Planner, TimedOut
 
@@ -112,13 +115,15 @@ def _language(request: Request, lang: str | None) -> str:
 
 
 def create_app(*, token: str | None = None, planner: Planner | None = None,
-               uploads: UploadStore | None = None, tiles: str | None = None) -> FastAPI:
+               uploads: UploadStore | None = None, tiles: str | None = None,
+               host: str | None = None) -> FastAPI:
     """The application.
 
     Parameters
     ----------
     token : str or None
-        Required on every ``/api/`` request when given (serving off localhost).
+        Required on every ``/api/`` request when given (serving off localhost), and on
+        every request naming a host other than ``host`` and this machine's names.
     planner : Planner or None
         Runs the plans (default: a worker process with the default time limits).
     uploads : UploadStore or None
@@ -126,6 +131,9 @@ def create_app(*, token: str | None = None, planner: Planner | None = None,
     tiles : str or None
         The page's default tile layer: a URL template, ``"osm"`` (OpenStreetMap, the
         default) or ``"none"`` (no background map: offline).
+    host : str or None
+        The address the server listens on: a Host header may name it (besides
+        ``localhost``, ``127.0.0.1`` and ``::1``).
     """
     planner = planner if planner is not None else Planner()
     store = uploads if uploads is not None else UploadStore()
@@ -147,17 +155,9 @@ def create_app(*, token: str | None = None, planner: Planner | None = None,
                   "prints for the same project file.")
     app.state.planner, app.state.uploads, app.state.token = planner, store, token
 
-    @app.middleware("http")
-    async def check_token(request: Request, call_next: Any) -> Any:
-        if token and request.url.path.startswith("/api/"):
-            given = request.headers.get("x-scanplan-token") or \
-                request.query_params.get("token") or ""
-            if not secrets.compare_digest(given.encode(), token.encode()):
-                return JSONResponse({"detail": "a valid token is required (the one "
-                                     "`scanplan serve` printed)"}, 403)
-        return await call_next(request)
-
     app.add_middleware(_BodyLimit, limit=MAX_BODY_BYTES)
+    # added last: the outermost layer, in front of every route (those added later too)
+    app.add_middleware(RequestGuard, hosts=allowed_hosts(host), token=token)
 
     @app.exception_handler(InputError)
     async def on_input(request: Request, exc: InputError) -> JSONResponse:
