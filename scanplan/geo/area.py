@@ -44,6 +44,7 @@ from shapely.validation import explain_validity
 from ..errors import InputError
 from ..io.files import read_limited, size_text
 from .gdal_guard import KIND_NAMES, harden, indirection, read_head, sniff
+from .grids import require_grids
 from .layout import Area
 from .vertices import VERTEX_SUFFIXES, read_vertices
 
@@ -263,6 +264,8 @@ def _read_file(path: Path, layer: str | None, feature: str | int | None
             continue
         geoms = shapely.from_wkb(wkb, on_invalid="ignore")
         crs = pyproj.CRS.from_user_input(meta["crs"]) if meta.get("crs") else None
+        if crs is not None:
+            require_grids(crs, name)
         labels = _labels(meta, fields, len(geoms))
         for label, g in zip(labels, geoms, strict=True):
             if g is None or g.is_empty:
@@ -510,11 +513,13 @@ def _crs(value: str | int, key: str) -> pyproj.CRS:
     import pyproj
 
     try:
-        return pyproj.CRS.from_user_input(value)
+        crs = pyproj.CRS.from_user_input(value)
     except (pyproj.exceptions.CRSError, TypeError, ValueError):
         raise InputError(key, f"{value!r} is not a CRS that pyproj knows; give an EPSG code "
                          "such as \"EPSG:32637\" (UTM 37N) or \"EPSG:28407\" (Pulkovo 1942 / "
                          "Gauss–Krüger zone 7)") from None
+    require_grids(crs, key)
+    return crs
 
 
 def _n_vertices(geom: Any) -> int:
