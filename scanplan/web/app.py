@@ -17,7 +17,8 @@ Routes (``/docs`` shows them with their schemas, ``/openapi.json`` is the OpenAP
 A project is sent as ``{"project": {section: {key: value}}, "files": {name: upload id}}``.
 A bad input answers 422 with the command line's message (``{"detail": "project.toml:
 uav.speed_ms (line 9): must be …", "field": …, "message": …}``). Bodies are bounded
-(:data:`MAX_BODY_BYTES`; uploads by :mod:`scanplan.web.uploads`). Every request passes
+and JSON bodies checked for depth and lone surrogates (:mod:`scanplan.web.bodies`; uploads
+are bounded by :mod:`scanplan.web.uploads`). Every request passes
 :class:`scanplan.web.guard.RequestGuard` first: a foreign Host or Origin, a cross-site
 fetch and a body type another site's page could send are refused, on every route; with a
 ``token`` every ``/api/`` request must carry it (header ``X-Scanplan-Token`` or
@@ -37,6 +38,7 @@ from pydantic import BaseModel, Field
 
 from .._version import __version__
 from ..errors import InputError
+from .bodies import MAX_BODY_BYTES, BodyGuard, printable
 from .guard import RequestGuard, allowed_hosts
 from .uploads import UploadStore
 from .worker import Busy, Failed, Planner, TimedOut
@@ -44,8 +46,6 @@ from .worker import Busy, Failed, Planner, TimedOut
 __all__ = ["MAX_BODY_BYTES", "PlanRequest", "create_app"]
 
 STATIC = Path(__file__).parent / "static"
-MAX_BODY_BYTES = 8 * 1024 * 1024
-"""Largest JSON request [bytes] (a project with an inline polygon of ~200,000 points)."""
 
 
 class PlanRequest(BaseModel):
@@ -58,48 +58,10 @@ class PlanRequest(BaseModel):
                                   "uses ([area] file, [terrain] dem) → the id of its upload")
 
 
-class _BodyLimit:
-    """ASGI middleware: a request body past ``limit`` bytes is refused with 413 (uploads
-    are bounded by the upload store instead)."""
-
-    def __init__(self, app: Any, limit: int) -> None:
-        self.app, self.limit = app, limit
-
-    async def __call__(self, scope: Any, receive: Any, send: Any) -> None:
-        if scope["type"] != "http" or scope["path"] == "/api/upload":
-            await self.app(scope, receive, send)
-            return
-        declared = dict(scope.get("headers") or []).get(b"content-length", b"0")
-        if declared.isdigit() and int(declared) > self.limit:
-            await _too_large(self.limit)(scope, receive, send)
-            return
-        seen = 0
-
-        async def bounded() -> Any:
-            nonlocal seen
-            message = await receive()
-            seen += len(message.get("body", b""))
-            if seen > self.limit:
-                raise _TooLarge
-            return message
-
-        try:
-            await self.app(scope, bounded, send)
-        except _TooLarge:
-            await _too_large(self.limit)(scope, receive, send)
-
-
-class _TooLarge(Exception):
-    pass
-
-
-def _too_large(limit: int) -> JSONResponse:
-    return JSONResponse({"detail": f"the request is larger than {limit:,} bytes"}, 413)
-
-
 def _input_error(exc: InputError) -> JSONResponse:
-    return JSONResponse({"detail": f"{exc.field}: {exc.message}", "field": exc.field,
-                         "message": exc.message}, 422)
+    field, message = printable(exc.field), printable(exc.message)
+    return JSONResponse({"detail": f"{field}: {message}", "field": field,
+                         "message": message}, 422)
 
 
 def _language(request: Request, lang: str | None) -> str:
@@ -155,7 +117,7 @@ def create_app(*, token: str | None = None, planner: Planner | None = None,
                   "prints for the same project file.")
     app.state.planner, app.state.uploads, app.state.token = planner, store, token
 
-    app.add_middleware(_BodyLimit, limit=MAX_BODY_BYTES)
+    app.add_middleware(BodyGuard, limit=MAX_BODY_BYTES)
     # added last: the outermost layer, in front of every route (those added later too)
     app.add_middleware(RequestGuard, hosts=allowed_hosts(host), token=token)
 

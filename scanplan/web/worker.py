@@ -51,16 +51,19 @@ class Failed(Exception):
 
 def _answer(job: str, args: tuple[Any, ...]) -> tuple[str, Any]:
     """Run one job; the tagged answer (``ok``, ``input`` or ``failed``)."""
+    from .bodies import printable, printable_data
     from .jobs import JOBS
 
     try:
-        return "ok", JOBS[job](*args)
+        return "ok", printable_data(JOBS[job](*args))
     except InputError as exc:
-        return "input", (exc.field, exc.message)
+        return "input", (printable(exc.field), printable(exc.message))
     except MemoryError:
         return "failed", "the plan needs more memory than the machine has"
+    except RecursionError:
+        return "failed", "the project is nested too deeply to be planned"
     except Exception as exc:  # a bug or the environment: one line, never a traceback
-        return "failed", f"{type(exc).__name__}: {exc}"[:500]
+        return "failed", printable(f"{type(exc).__name__}: {exc}"[:500])
 
 
 def _loop(conn: Any, folder: str) -> None:  # pragma: no cover - runs in the child process
