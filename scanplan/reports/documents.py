@@ -202,7 +202,8 @@ def commit(files: Mapping[str, bytes], *, check: Callable[[], None], sweep: str 
 
     if announce is not None:
         announce(files)
-    written = write_atomic_many(files, check=check, remove=stale if sweep else None)
+    written = write_atomic_many(files, check=check, remove=stale if sweep else None,
+                                as_set=sweep)
     return written, removed
 
 

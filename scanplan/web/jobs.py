@@ -251,13 +251,13 @@ def _inputs_apart(project: Any, files: Mapping[str, str]) -> tuple[Any, dict[str
                if isinstance(name, str) and _is_output_name(name)}
     if not renamed or not isinstance(project, dict):
         return project, dict(files)
-    project = {section: dict(table) if isinstance(table, dict) else table
-               for section, table in project.items()}
+    tables = {section: dict(table) if isinstance(table, dict) else table
+              for section, table in project.items()}
     for section, key in FILE_KEYS:
-        table = project.get(section)
-        if isinstance(table, dict) and table.get(key) in renamed:
+        table = tables[section] if section in tables else None
+        if isinstance(table, dict) and key in table and table[key] in renamed:
             table[key] = renamed[table[key]]
-    return project, {renamed.get(name, name): path for name, path in files.items()}
+    return tables, {renamed.get(name, name): path for name, path in files.items()}
 
 
 def _reports(result: Any, kinds: tuple[str, ...]) -> dict[str, bytes]:
