@@ -32,6 +32,7 @@ import os
 import re
 import warnings
 import zipfile
+import zlib
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -497,8 +498,8 @@ def _kmz_document(data: bytes, name: str) -> bytes:
         try:
             with zf.open(doc) as fh:
                 out = fh.read(doc.file_size + 1)
-        except (zipfile.BadZipFile, OSError, ValueError, RuntimeError,
-                NotImplementedError) as exc:
+        except (zipfile.BadZipFile, OSError, ValueError, RuntimeError, EOFError,
+                NotImplementedError, zlib.error) as exc:  # zlib: damaged compressed data
             raise InputError(name, f"entry {doc.filename!r} cannot be read: {exc}") from None
         if len(out) > doc.file_size:
             raise InputError(name, f"entry {doc.filename!r} is larger than its zip directory "

@@ -5,8 +5,8 @@ the application does: past :data:`MAX_BODY_BYTES` it is refused with 413 (the up
 :data:`UPLOAD_PATHS`, stream their bodies into the upload store, which bounds them); a JSON
 body must be UTF-8 JSON nested at most :data:`MAX_JSON_DEPTH` deep, with no lone
 surrogate (``"\\ud800"``: half of a character, which no file and no answer can hold) in any
-key or string — else 422 with the message, as an input error of the command line. Every
-route added later is covered.
+key or string and no number past a double's range (``1e400``, ``NaN``) — else 422 with the
+message, as an input error of the command line. Every route added later is covered.
 
 :func:`printable` is the other side: text that goes into an answer (a message quoting a
 file's feature names, a document) with every lone surrogate written as its escape, so an
@@ -16,6 +16,7 @@ answer never fails to encode.
 from __future__ import annotations
 
 import json
+import math
 from collections.abc import Iterator
 from typing import Any
 
@@ -64,6 +65,9 @@ def json_problem(doc: Any, limit: int = MAX_JSON_DEPTH) -> tuple[str, str] | Non
             if _lone_surrogate(value):
                 return path or "request", _surrogate_text(value)
             continue
+        if isinstance(value, float) and not math.isfinite(value):
+            return path or "request", ("holds a number that is not finite (NaN, Infinity or "
+                                       "past 1.8e308)")
         if not isinstance(value, dict | list):
             continue
         if depth > limit:  # named by the key that holds it (not by a thousand indices)
