@@ -218,3 +218,25 @@ def test_a_run_scope_locks_its_folder_and_removes_it(tmp_path, monkeypatch):
             os.close(fd)
         assert rundir.sweep(tmp_path) == []
     assert not folder.exists() and tempfile.gettempdir() == str(tmp_path)
+
+
+def test_a_pdf_renders_after_its_font_folder_was_cleaned_away(tmp_path, monkeypatch):
+    """A long-running process (the page's worker, a notebook) whose temporary folder a
+    cleaner emptied (systemd-tmpfiles, another program): WeasyPrint's cached fonts named
+    files that were gone, and every later PDF failed (a 500 on the page)."""
+    import shutil
+    import tempfile
+
+    from scanplan.project.jobs import scan_job
+    from scanplan.reports.pdf import render_pdf
+
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
+    job = scan_job(map_scale=2000, relief_interval_m=0.5, photo_scales=[10000],
+                   camera="rc30-153")
+    first = render_pdf(scan=job)
+    folders = list(tmp_path.glob("weasyprint-*"))
+    assert folders
+    for folder in folders:
+        shutil.rmtree(folder)
+    again = render_pdf(scan=job)
+    assert again.startswith(b"%PDF") and len(again) == pytest.approx(len(first), rel=0.01)

@@ -49,7 +49,7 @@ def require_grids(crs: Any, field: str) -> None:
             group = TransformerGroup(crs, pyproj.CRS.from_epsg(4326), always_xy=True)
         except pyproj.exceptions.ProjError as exc:
             raise InputError(field, f"{crs.name} cannot be related to WGS 84: "
-                             f"{str(exc).splitlines()[0][:200]}") from None
+                             f"{str(exc)[:200]}".replace("\n", " ")) from None
     if group.transformers:
         return
     grids = sorted({g.short_name for op in group.unavailable_operations

@@ -111,7 +111,7 @@ def html_to_pdf(html: str, url_fetcher: Any = None, *, fresh_fonts: bool = False
     fetcher = url_fetcher if url_fetcher is not None else BundledAssetFetcher()
     root = templates_dir().resolve()
     doc = weasyprint.HTML(string=html, base_url=root.as_uri() + "/", url_fetcher=fetcher)
-    fonts = FontConfiguration() if fresh_fonts else _font_config(str(root), _temp())
+    fonts = FontConfiguration() if fresh_fonts else _fonts(str(root))
     return doc.write_pdf(pdf_identifier=True,  # type: ignore[no-any-return]
                          font_config=fonts)
 
@@ -122,6 +122,19 @@ def _temp() -> str:
     import tempfile
 
     return tempfile.gettempdir()
+
+
+def _fonts(root: str) -> FontConfiguration:
+    """:func:`_font_config` of the templates folder ``root`` and the temporary folder, made
+    again when the folder WeasyPrint keeps the fonts in has gone meanwhile (a run's
+    folder removed, a temporary folder cleaned by another program): its cached fonts would
+    name files that no longer exist."""
+    fonts = _font_config(root, _temp())
+    folder = getattr(fonts, "_folder", None)  # WeasyPrint's folder of @font-face files
+    if folder is not None and not os.path.isdir(folder):
+        _font_config.cache_clear()
+        fonts = _font_config(root, _temp())
+    return fonts
 
 
 @functools.lru_cache(maxsize=2)
@@ -152,4 +165,4 @@ def warm_up() -> None:
     root = templates_dir().resolve()
     weasyprint.HTML(string=_WARM_UP_HTML, base_url=root.as_uri() + "/",
                     url_fetcher=BundledAssetFetcher()).write_pdf(
-                        font_config=_font_config(str(root), _temp()))
+                        font_config=_fonts(str(root)))
