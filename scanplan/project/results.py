@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import datetime as dt
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ..core.blocks import BlockHeightCheck
 from ..geo.layout import Area, FlightLayout
@@ -22,6 +22,9 @@ from ..rules.film import PlanWarning, ScanScenario
 from .file import ReportMeta
 from .jobs import ScanJob, UavJob
 from .model import ProjectModel
+
+if TYPE_CHECKING:
+    from .control import ControlSpec
 
 __all__ = ["FilmSpec", "GsdCompliance", "PlanResult", "SunPlan", "SurveyDesign", "UavSpec"]
 
@@ -184,6 +187,7 @@ class PlanResult:
     """The survey design checks: GSD against ГОСТ Р 59562-2021 Table Б.1, the one-height
     rule of a block, the sun window (:mod:`scanplan.project.design`)."""
     area: Area | None = None  # the contract area ([area]), in its planning CRS
+    control: ControlSpec | None = None  # [control]: GCPs, checkpoints, the error budget
 
     @property
     def layouts(self) -> dict[str, FlightLayout]:

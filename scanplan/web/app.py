@@ -58,10 +58,19 @@ class PlanRequest(BaseModel):
                                   "uses ([area] file, [terrain] dem) → the id of its upload")
 
 
-def _input_error(exc: InputError) -> JSONResponse:
+def _input_error(exc: InputError, lang: str | None = None) -> JSONResponse:
+    """422 with the command line's message (every lone surrogate a file brought written as
+    its escape: :func:`scanplan.web.bodies.printable`); with ``lang`` (``?lang=`` of the
+    page's requests) also ``page``: the key, label and text the page shows by the field
+    (:func:`scanplan.web.pagewords.page_error`)."""
     field, message = printable(exc.field), printable(exc.message)
-    return JSONResponse({"detail": f"{field}: {message}", "field": field,
-                         "message": message}, 422)
+    body: dict[str, Any] = {"detail": f"{field}: {message}", "field": field,
+                            "message": message}
+    if lang in ("en", "ru"):
+        from .pagewords import page_error
+
+        body["page"] = page_error(field, message, lang)
+    return JSONResponse(body, 422)
 
 
 def _language(request: Request, lang: str | None) -> str:
@@ -78,7 +87,7 @@ def _language(request: Request, lang: str | None) -> str:
 
 def create_app(*, token: str | None = None, planner: Planner | None = None,
                uploads: UploadStore | None = None, tiles: str | None = None,
-               host: str | None = None) -> FastAPI:
+               basemaps: Any = None, host: str | None = None) -> FastAPI:
     """The application.
 
     Parameters
@@ -91,12 +100,17 @@ def create_app(*, token: str | None = None, planner: Planner | None = None,
     uploads : UploadStore or None
         Keeps the uploads (default: a new store, removed when the application stops).
     tiles : str or None
-        The page's default tile layer: a URL template, ``"osm"`` (OpenStreetMap, the
-        default) or ``"none"`` (no background map: offline).
+        The page's tile layer: a URL template, ``"osm"`` (OpenStreetMap, the
+        default) or ``"none"`` (no background map: offline); ignored with ``basemaps``.
+    basemaps : scanplan.web.basemap.Basemaps or None
+        The background maps offered (tiles, MBTiles, their cache); default: ``tiles``'s.
     host : str or None
         The address the server listens on: a Host header may name it (besides
         ``localhost``, ``127.0.0.1`` and ``::1``).
     """
+    from .basemap import Basemaps
+
+    basemaps = basemaps if basemaps is not None else Basemaps(tiles or "osm")
     planner = planner if planner is not None else Planner()
     store = uploads if uploads is not None else UploadStore()
 
@@ -121,9 +135,34 @@ def create_app(*, token: str | None = None, planner: Planner | None = None,
     # added last: the outermost layer, in front of every route (those added later too)
     app.add_middleware(RequestGuard, hosts=allowed_hosts(host), token=token)
 
+    _error_handlers(app)
+
+    from .page import page_html
+
+    app.mount("/static", StaticFiles(directory=STATIC), name="static")
+
+    @app.get("/", response_class=HTMLResponse, include_in_schema=False)
+    def page(request: Request, lang: str | None = None) -> HTMLResponse:
+        return HTMLResponse(page_html(_language(request, lang), basemaps.page_list(),
+                                      basemaps.default))
+
+    @app.get("/favicon.ico", include_in_schema=False)
+    def favicon() -> Response:
+        return Response((STATIC / "favicon.svg").read_bytes(), media_type="image/svg+xml")
+
+    _routes(app, planner, store)
+    from .pageroutes import page_routes
+
+    page_routes(app, planner, store, basemaps)
+    return app
+
+
+def _error_handlers(app: FastAPI) -> None:
+    """Each error of a plan answered with its HTTP status and message."""
+
     @app.exception_handler(InputError)
     async def on_input(request: Request, exc: InputError) -> JSONResponse:
-        return _input_error(exc)
+        return _input_error(exc, request.query_params.get("lang"))
 
     @app.exception_handler(TimedOut)
     async def on_timeout(request: Request, exc: TimedOut) -> JSONResponse:
@@ -136,21 +175,6 @@ def create_app(*, token: str | None = None, planner: Planner | None = None,
     @app.exception_handler(Failed)
     async def on_failed(request: Request, exc: Failed) -> JSONResponse:
         return JSONResponse({"detail": str(exc)}, 500)
-
-    from .page import page_html
-
-    app.mount("/static", StaticFiles(directory=STATIC), name="static")
-
-    @app.get("/", response_class=HTMLResponse, include_in_schema=False)
-    def page(request: Request, lang: str | None = None) -> HTMLResponse:
-        return HTMLResponse(page_html(_language(request, lang), tiles or "osm"))
-
-    @app.get("/favicon.ico", include_in_schema=False)
-    def favicon() -> Response:
-        return Response((STATIC / "favicon.svg").read_bytes(), media_type="image/svg+xml")
-
-    _routes(app, planner, store)
-    return app
 
 
 def _files(store: UploadStore, files: dict[str, str]) -> dict[str, str]:
@@ -195,10 +219,22 @@ def _routes(app: FastAPI, planner: Planner, store: UploadStore) -> None:
         """The ``scanplan plan --json`` document of the project."""
         return planner.run("plan", req.project, _files(store, req.files))  # type: ignore
 
-    @app.post("/api/view")
-    def view(req: PlanRequest) -> dict[str, Any]:
-        """``plan`` (as /api/plan), ``map`` (GeoJSON, WGS 84), ``charts`` (SVG), ``toml``."""
-        return planner.run("view", req.project, _files(store, req.files))  # type: ignore
+    from .edits import EditGate, Superseded, parse_edit, superseded_answer
+
+    gate = EditGate(planner.wait_s)
+
+    @app.post("/api/view", response_model=None)
+    def view(req: PlanRequest, request: Request) -> dict[str, Any] | JSONResponse:
+        """``plan`` (as /api/plan), ``map`` (GeoJSON, WGS 84), ``charts`` (SVG), ``toml``.
+        With ``X-Scanplan-Edit: PAGE/N`` an edit a newer one of the same page replaced is
+        answered 409 without being planned (:mod:`scanplan.web.edits`)."""
+        edit = parse_edit(request.headers.get("x-scanplan-edit"))
+        try:
+            return gate.run(edit, lambda: planner.run(  # type: ignore[no-any-return]
+                "view", req.project, _files(store, req.files)),
+                lambda: Busy(f"another plan is running; tried for {gate.wait_s:g} s"))
+        except Superseded:
+            return JSONResponse(superseded_answer(), 409)
 
     @app.post("/api/project.toml")
     def project_file(req: PlanRequest) -> Response:
