@@ -81,7 +81,11 @@ def test_this_machines_names_are_answered(app, host):
         for method, path in _requests(app):
             if method == "GET" and path != "/api/catalogue":
                 r = c.get(path, headers={"Host": host})
-                assert r.status_code == 200, (path, host, r.status_code)
+                # a route with parameters (filled with "pdf": no such upload or tile)
+                # answers for itself, 404 or 422, past the guard
+                allowed = {200, 404, 422} if "/pdf" in path else {200}
+                assert r.status_code in allowed, (path, host, r.status_code, r.text[:200])
+                assert "this computer only" not in r.text
 
 
 def test_a_cross_site_text_plain_upload_is_refused(app, store):
