@@ -198,8 +198,11 @@ BASE: dict[str, dict[str, str]] = {
 
 
 def project_text(overrides: dict[tuple[str, str], str]) -> str:
-    """The base project with ``(section, key) → TOML value`` set (sections added)."""
+    """The base project with ``(section, key) → TOML value`` set (sections added); an
+    area given as a file or a polygon replaces the base's block (one area a project)."""
     doc = {s: dict(t) for s, t in BASE.items()}
+    if {("area", "file"), ("area", "polygon")} & set(overrides):
+        doc["area"] = {}
     for (section, key), value in overrides.items():
         doc.setdefault(section, {})[key] = value
     return "".join(f"[{s}]\n" + "".join(f"{k} = {v}\n" for k, v in t.items())
@@ -315,6 +318,17 @@ def test_every_option_of_scan_and_uav(env):
                      [command, *required, name, value])
 
 
+def test_every_argument_of_the_aircraft_catalogue(env):
+    """``aircraft show ID`` and ``aircraft list --camera ID``: any text is a name that is
+    found or refused (exit 2), in both languages and as JSON."""
+    rng = random.Random(SEED + 6)
+    for text in [*_sample(TEXTS, 16, rng), "dji-m350-rtk", "DJI-M350-RTK", "-"]:
+        text = _fill(text, env.port)
+        for args in (["show", text], ["show", text, "--json", "--locale", "ru"],
+                     ["list", "--camera", text], ["list", "--camera", text, "--json"]):
+            _cli(env, "aircraft argument", " ".join(args), ["aircraft", *args])
+
+
 # --------------------------------------------------------------------------------------
 # Files: areas, vertex lists, DEMs — one FileKind per kind
 # --------------------------------------------------------------------------------------
@@ -364,10 +378,94 @@ def _dem() -> bytes:
     return buf.getvalue()
 
 
+def _orthophoto() -> bytes:
+    """An RGB GeoTIFF over the area (a background of the PDF's map page)."""
+    import numpy as np
+    import rasterio
+    from rasterio.transform import from_origin
+
+    buf = io.BytesIO()
+    with rasterio.MemoryFile() as mem:
+        with mem.open(driver="GTiff", width=40, height=40, count=3, dtype="uint8",
+                      crs="EPSG:4326", transform=from_origin(37.59, 55.76, 0.0005, 0.0005)
+                      ) as ds:
+            ds.write(np.arange(3 * 40 * 40, dtype="uint32").reshape(3, 40, 40)
+                     .astype("uint8"))
+        buf.write(mem.read())
+    return buf.getvalue()
+
+
+def _png(width: int = 256, height: int = 256) -> bytes:
+    from PIL import Image
+
+    buf = io.BytesIO()
+    Image.new("RGB", (width, height), (40, 120, 40)).save(buf, "PNG")
+    return buf.getvalue()
+
+
+def _png_claiming(width: int, height: int) -> bytes:
+    """A tiny PNG whose header claims ``width`` × ``height`` pixels (a decompression bomb's
+    header; its CRC made right so a reader believes it)."""
+    import struct
+    import zlib
+
+    data = bytearray(_png(1, 1))
+    ihdr = struct.pack(">II", width, height) + bytes(data[24:29])
+    data[16:29] = ihdr
+    data[29:33] = struct.pack(">I", zlib.crc32(b"IHDR" + ihdr))
+    return bytes(data)
+
+
+def _mbtiles(rows: Iterable[tuple[Any, Any, Any, Any]] | None = None,
+             metadata: Iterable[tuple[str, str]] | None = (("name", "t"),),
+             schema: str | None = None) -> bytes:
+    """An MBTiles file (SQLite) of ``rows`` (zoom, column, TMS row, data); default one
+    tile at zoom 14 over the area."""
+    import sqlite3
+
+    if rows is None:  # the tile of the area's corner at zoom 14: x 9903, y 5122
+        rows = [(14, 9903, 2 ** 14 - 1 - 5122, _png())]
+    with tempfile.TemporaryDirectory(dir=Path.cwd()) as folder:
+        path = Path(folder) / "t.mbtiles"
+        db = sqlite3.connect(path)
+        db.executescript(schema if schema is not None else
+                         "CREATE TABLE metadata (name TEXT, value TEXT);"
+                         "CREATE TABLE tiles (zoom_level INTEGER, tile_column INTEGER, "
+                         "tile_row INTEGER, tile_data BLOB);")
+        if metadata is not None:
+            db.executemany("INSERT INTO metadata VALUES (?, ?)", list(metadata))
+        if rows := list(rows):
+            db.executemany("INSERT INTO tiles VALUES (?, ?, ?, ?)", rows)
+        db.commit()
+        db.close()
+        return path.read_bytes()
+
+
+def _mbtiles_mutations(port: int) -> list[bytes]:
+    corner = (9903, 2 ** 14 - 1 - 5122)
+    return [
+        _mbtiles(schema="CREATE TABLE tiles (zoom_level, tile_column, tile_row, tile_data);",
+                 metadata=None),  # no metadata table
+        _mbtiles(schema="CREATE TABLE other (x);", metadata=None, rows=[]),  # no tiles
+        _mbtiles(rows=[]),
+        _mbtiles(rows=[(14, *corner, b"\x89PNG\r\n\x1a\n" + b"\x00" * 40)]),
+        _mbtiles(rows=[(14, *corner, _png_claiming(100_000, 100_000))]),  # a bomb's header
+        _mbtiles(rows=[(14, *corner, _png_claiming(12_000, 12_000))]),
+        _mbtiles(rows=[(14, *corner, f"{URL.format(port=port)}/tile.png".encode())]),
+        _mbtiles(rows=[("x", *corner, _png())]), _mbtiles(rows=[(None, None, None, None)]),
+        _mbtiles(rows=[(99, 0, 0, _png())]), _mbtiles(rows=[(-3, -1, -1, _png())]),
+        _mbtiles(rows=[(14, 2 ** 62, 2 ** 62, _png())]),
+        _mbtiles(rows=[(z, 0, 0, _png()) for z in range(0, 30)]),
+        _mbtiles(metadata=[("bounds", "nan,nan,inf,inf"), ("name", "\x00\x1b[2J" * 100)]),
+    ]
+
+
 @dataclass(frozen=True)
 class FileKind:
     """A kind of file scanplan reads: its suffix, the project key that names it, a small
-    valid file and mutations of its own (the generic ones are added to every kind)."""
+    valid file and mutations of its own (the generic ones are added to every kind);
+    ``formats``: the outputs written (``plan --out DIR --formats``) when the file is read
+    only then (a background of the PDF's map page), else the plan only."""
 
     name: str
     suffix: str
@@ -375,6 +473,7 @@ class FileKind:
     valid: Callable[[], bytes]
     mutations: Callable[[int], list[bytes]]
     extra: dict[tuple[str, str], str] = field(default_factory=dict)
+    formats: str | None = None
 
 
 FILE_KINDS = [
@@ -417,6 +516,12 @@ FILE_KINDS = [
     FileKind("DEM", ".tif", ("terrain", "dem"), _dem, lambda port: [
         b"II*\x00" + b"\xff" * 200, b"MM\x00*" + b"\x00" * 8, b"II+\x00" + b"\x00" * 12],
         extra={("area", "polygon"): str([[x, y] for x, y in RING])}),
+    FileKind("GeoTIFF background", ".tif", ("map", "basemap"), _orthophoto, lambda port: [
+        b"II*\x00" + b"\xff" * 200, _dem()],
+        extra={("area", "polygon"): str([[x, y] for x, y in RING])}, formats="pdf"),
+    FileKind("MBTiles background", ".mbtiles", ("map", "basemap"), _mbtiles,
+             _mbtiles_mutations, extra={("area", "polygon"): str([[x, y] for x, y in RING])},
+             formats="pdf"),
 ]
 """The kinds of file scanplan reads, each with hostile variants (docstring at the top:
 one entry per new kind)."""
@@ -437,18 +542,18 @@ def _generic(valid: bytes, rng: random.Random) -> list[bytes]:
 def test_every_kind_of_file(env, kind):
     rng = random.Random(f"{SEED}{kind.name}")
     valid = kind.valid()
-    variants = [valid, *kind.mutations(env.port), *_generic(valid, rng)]
+    generic = _generic(valid, rng)
+    if kind.formats:  # each file read makes a document: the generic shapes, not the flips
+        generic = generic[:5]
+    variants = [valid, *kind.mutations(env.port), *generic]
     name = f"input{kind.suffix}"
     for data in variants:
         (env.tmp / name).write_bytes(data)
-        overrides = {kind.key: json.dumps(name), **kind.extra}
-        if kind.key[0] == "area":
-            overrides[("area", "width_m")] = overrides[("area", "length_m")] = "0"
-        text = project_text(overrides)
-        if kind.key[0] == "area":  # the file instead of the block
-            text = text.replace("width_m = 0\n", "").replace("length_m = 0\n", "")
-        p = _write(env.tmp / "f.toml", text)
-        _cli(env, f"file: {kind.name}", f"{name}: {data[:60]!r}", ["plan", str(p)])
+        p = _write(env.tmp / "f.toml", project_text({kind.key: json.dumps(name),
+                                                      **kind.extra}))
+        out = ["--out", str(env.tmp / "out"), "--formats", kind.formats] if kind.formats \
+            else []
+        _cli(env, f"file: {kind.name}", f"{name}: {data[:60]!r}", ["plan", str(p), *out])
 
 
 # --------------------------------------------------------------------------------------

@@ -24,13 +24,17 @@ import numpy as np
 
 from ..errors import InputError
 
-__all__ = ["MAX_SOURCE_PX", "MAX_TILES", "Basemap", "check_basemap", "is_mbtiles", "png_bytes",
-           "read_basemap"]
+__all__ = ["MAX_SOURCE_PX", "MAX_TILES", "MAX_TILE_PX", "MAX_ZOOM", "Basemap", "check_basemap",
+           "is_mbtiles", "png_bytes", "read_basemap"]
 
 MAX_SOURCE_PX = 4096
 """Most pixels a side read from the source image (it is decimated to this on reading)."""
 MAX_TILES = 256
 """Most tiles of an MBTiles file stitched for one picture (16 × 16: 4,096 pixels a side)."""
+MAX_ZOOM = 30
+"""Deepest zoom level of an MBTiles file read (the XYZ tiling's zoom 30: 4 cm tiles)."""
+MAX_TILE_PX = 1024
+"""Largest tile read from an MBTiles file [pixels a side] (tiles are 256 or 512)."""
 _SQLITE = b"SQLite format 3\x00"
 
 
@@ -187,44 +191,75 @@ def _tile_xy(lon: float, lat: float, z: int) -> tuple[int, int]:
 
 def _read_mbtiles(path: Path, dst_crs: str, max_px: int, key: str,
                   area: tuple[float, float, float, float] | None) -> Basemap:
-    """An MBTiles file's tiles over ``area`` stitched (Web Mercator) and warped."""
+    """An MBTiles file's tiles over ``area`` stitched (Web Mercator) and warped; a
+    database error (a table missing, a damaged file) is an input error naming ``key``."""
+    import sqlite3
+
+    db = _mbtiles(path, key)
+    try:
+        return _mbtiles_picture(db, path, dst_crs, max_px, key, area)
+    except sqlite3.Error as exc:
+        raise InputError(key, f"{path.name}: is not an MBTiles file scanplan reads "
+                         f"({str(exc)[:200]})") from None
+    finally:
+        db.close()
+
+
+def _tile_image(data: Any, size: int) -> Any:
+    """One tile's picture as RGBA ``size`` × ``size``, or None when it is not a picture
+    of a tile: damaged, not an image, or declaring more than :data:`MAX_TILE_PX` pixels a
+    side (a decompression bomb's header) — it stays transparent."""
     import io
+
+    from PIL import Image
+
+    if not isinstance(data, bytes):
+        return None
+    try:
+        tile = Image.open(io.BytesIO(data))
+        if max(tile.size) > MAX_TILE_PX:
+            return None
+        return tile.convert("RGBA").resize((size, size))
+    except (OSError, ValueError, Image.DecompressionBombError):
+        return None
+
+
+def _mbtiles_picture(db: Any, path: Path, dst_crs: str, max_px: int, key: str,
+                     area: tuple[float, float, float, float] | None) -> Basemap:
+    """:func:`_read_mbtiles` on the open database ``db``."""
     import math
 
     from PIL import Image
 
-    db = _mbtiles(path, key)
-    try:
-        meta = dict(db.execute("SELECT name, value FROM metadata").fetchall())
-        if area is None:
-            try:
-                area = tuple(float(v) for v in str(meta["bounds"]).split(","))  # type: ignore
-            except (KeyError, ValueError):
-                raise InputError(key, f"{path.name}: names no bounds; the area to cover "
-                                 "is needed") from None
-        assert area is not None
-        zooms = [int(z) for (z,) in db.execute(
-            "SELECT DISTINCT zoom_level FROM tiles ORDER BY zoom_level DESC")]
-        for z in zooms:
-            x0, y0 = _tile_xy(area[0], area[3], z)
-            x1, y1 = _tile_xy(area[2], area[1], z)
-            if (x1 - x0 + 1) * (y1 - y0 + 1) <= MAX_TILES:
-                break
-        else:
-            raise InputError(key, f"{path.name}: holds no tiles")
-        size = 256
-        mosaic = Image.new("RGBA", ((x1 - x0 + 1) * size, (y1 - y0 + 1) * size))
-        rows = db.execute("SELECT tile_column, tile_row, tile_data FROM tiles WHERE "
-                          "zoom_level=? AND tile_column BETWEEN ? AND ? AND tile_row BETWEEN "
-                          "? AND ?", (z, x0, x1, 2 ** z - 1 - y1, 2 ** z - 1 - y0))
-        for x, row, data in rows:
-            try:
-                tile = Image.open(io.BytesIO(data)).convert("RGBA").resize((size, size))
-            except (OSError, ValueError):
-                continue  # a damaged tile stays transparent
+    meta = dict(db.execute("SELECT name, value FROM metadata").fetchall())
+    if area is None:
+        try:
+            area = tuple(float(v) for v in str(meta["bounds"]).split(","))  # type: ignore
+            if len(area) != 4 or not all(math.isfinite(v) for v in area):
+                raise ValueError
+        except (KeyError, ValueError):
+            raise InputError(key, f"{path.name}: names no bounds; the area to cover "
+                             "is needed") from None
+    assert area is not None
+    zooms = [z for (z,) in db.execute(  # the zooms of the XYZ tiling, whole numbers
+        "SELECT DISTINCT zoom_level FROM tiles WHERE typeof(zoom_level) = 'integer' "
+        f"AND zoom_level BETWEEN 0 AND {MAX_ZOOM} ORDER BY zoom_level DESC")]
+    for z in zooms:
+        x0, y0 = _tile_xy(area[0], area[3], z)
+        x1, y1 = _tile_xy(area[2], area[1], z)
+        if (x1 - x0 + 1) * (y1 - y0 + 1) <= MAX_TILES:
+            break
+    else:
+        raise InputError(key, f"{path.name}: holds no tiles")
+    size = 256
+    mosaic = Image.new("RGBA", ((x1 - x0 + 1) * size, (y1 - y0 + 1) * size))
+    rows = db.execute("SELECT tile_column, tile_row, tile_data FROM tiles WHERE "
+                      "zoom_level=? AND tile_column BETWEEN ? AND ? AND tile_row BETWEEN "
+                      "? AND ?", (z, x0, x1, 2 ** z - 1 - y1, 2 ** z - 1 - y0))
+    for x, row, data in rows:
+        tile = _tile_image(data, size)
+        if tile is not None and isinstance(x, int) and isinstance(row, int):
             mosaic.paste(tile, ((x - x0) * size, (2 ** z - 1 - row - y0) * size))
-    finally:
-        db.close()
     half = math.pi * 6378137.0
     step = 2 * half / 2 ** z
     left, top = -half + x0 * step, half - y0 * step
