@@ -3,7 +3,8 @@ input scanplan takes, each delivered the way a user or a web page delivers it, e
 to the same rules:
 
 * the command line answers 0 or 2 (never 1: a hostile input is an input error), the page's
-  API 200, 403, 413, 415 or 422 (never 500), and never a traceback;
+  API 200, 403, 404 (an id that names nothing), 413, 415 or 422 (never 500), and never a
+  traceback;
 * nothing connects to the local listener every hostile URL and PROJ's CDN point at;
 * an output folder holding a previous set and a user's file loses no byte;
 * no temporary file or folder is left behind.
@@ -561,7 +562,8 @@ def test_every_kind_of_file(env, kind):
 # --------------------------------------------------------------------------------------
 UPLOAD_ROUTES = {"/api/upload": "name"}
 """Routes whose body is an uploaded file → the query parameter naming it."""
-OK_STATUSES = {200, 403, 413, 415, 422}
+OK_STATUSES = {200, 403, 404, 413, 415, 422}
+"""Clean answers; 404: a route naming an upload or a tile by id, and no such one."""
 
 
 @pytest.fixture
