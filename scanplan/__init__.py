@@ -19,6 +19,9 @@ from typing import TYPE_CHECKING, Any
 
 from ._version import __version__
 from .errors import InputError
+from .offline import proj_offline
+
+proj_offline()  # before any CRS is built, in every process that runs scanplan
 
 if TYPE_CHECKING:  # what a type checker reads of the exports imported on first use
     from .api import (

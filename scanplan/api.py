@@ -99,6 +99,8 @@ def _write(out_dir: str | os.PathLike[str], stem: str, formats: Iterable[str] | 
                              "are written by scanplan.plan(...).write()")
     doc.refuse_folder(folder, "out_dir")
     created = doc.make_folder(folder)
+    from .io.rundir import temporaries
+
     try:
         if spec is None:
             outputs = doc.Outputs([doc.Target(str(Path(folder) / f"{stem}.{kind}"), kind,
@@ -107,12 +109,13 @@ def _write(out_dir: str | os.PathLike[str], stem: str, formats: Iterable[str] | 
             outputs = doc.plan_outputs(spec, folder, formats,
                                        stem=stem if batch or stem != "spec" else None,
                                        field="out_dir", formats_field="formats")
-        done = doc.write_documents(outputs.targets, scan=scan, uav=uav, spec=spec,
-                                   meta=meta or ReportMeta(), force=force,
-                                   extra=outputs.exports, extra_field="out_dir",
-                                   inputs=[*inputs, *doc.project_inputs(spec)],
-                                   sweep=folder if spec is not None and not batch
-                                   and stem == "spec" else None)
+        with temporaries():  # the renderers' temporary files in the process's run folder
+            done = doc.write_documents(outputs.targets, scan=scan, uav=uav, spec=spec,
+                                       meta=meta or ReportMeta(), force=force,
+                                       extra=outputs.exports, extra_field="out_dir",
+                                       inputs=[*inputs, *doc.project_inputs(spec)],
+                                       sweep=folder if spec is not None and not batch
+                                       and stem == "spec" else None)
     finally:  # a folder created here stays only if something was written into it
         doc.remove_empty(created)
     return [Path(p) for p in done.files]

@@ -30,8 +30,10 @@ from .views.flight import (
     MapTerrain,
     ground_known,
     map_basemap,
+    map_extent,
     map_terrain,
     strip_ends_lonlat,
+    tile_host,
 )
 
 #: matplotlib's style of the map page (the one figure still drawn with it): deterministic
@@ -411,15 +413,7 @@ def _draw_photos_plain(ax: Any, layout: FlightLayout, scale: float, locale: str)
 def _map_size_in(layout: FlightLayout) -> tuple[float, float]:
     """The map figure's (width, height) [in]: the page's width, a height the area (its
     strips and take-off point included) fills."""
-    minx, miny, maxx, maxy = layout.area.geometry.bounds
-    if layout.strips:
-        ends = np.array([p for s in layout.strips for p in (s.start_xy_m, s.end_xy_m)])
-        minx, miny = min(minx, ends[:, 0].min()), min(miny, ends[:, 1].min())
-        maxx, maxy = max(maxx, ends[:, 0].max()), max(maxy, ends[:, 1].max())
-    takeoff = layout.notes.get("takeoff_xy_m")
-    if takeoff is not None:
-        minx, miny = min(minx, takeoff[0]), min(miny, takeoff[1])
-        maxx, maxy = max(maxx, takeoff[0]), max(maxy, takeoff[1])
+    minx, miny, maxx, maxy = map_extent(layout)
     width_in, max_h = _MAP_SIZE_IN
     ratio = (maxy - miny) / (maxx - minx) if maxx > minx else 1.0
     return width_in, min(max(width_in * 0.85 * ratio + 1.2, 3.8), max_h)
@@ -512,11 +506,17 @@ def _control_of(spec: Any) -> Any:
     return control.points if control is not None else None
 
 
-def _background_note(spec: Any, layout: FlightLayout, locale: str) -> str:
+def _background_note(spec: Any, layout: FlightLayout, kind: str, locale: str) -> str:
     """The map's background named as its attribution asks (``[map] basemap_attribution``,
-    else the file's name); empty without a background."""
+    else the file's name); empty without a background (none asked, or no tile came)."""
     m = getattr(getattr(spec, "project", None), "map", None)
-    if getattr(m, "basemap", None) is None or not layout.area.georeferenced:
+    if not layout.area.georeferenced or m is None:
+        return ""
+    if getattr(m, "basemap_url", None):
+        if kind not in (getattr(spec, "backgrounds", None) or {}):
+            return t("map_background_none", locale).format(host=tile_host(m.basemap_url))
+        return t("map_background", locale).format(source=m.basemap_attribution)
+    if getattr(m, "basemap", None) is None:
         return ""
     return t("map_background", locale).format(source=m.basemap_attribution or m.basemap.name)
 
@@ -543,7 +543,7 @@ def geo_views(spec: Any, locale: str) -> list[dict[str, Any]]:
             if not film and _exports.mission_options(spec, layout) is not None:
                 items.insert(0, t("geo_file_mission", locale))
             notes.append(t("geo_files_note", locale).format(items="; ".join(items)))
-        background = _background_note(spec, layout, locale)
+        background = _background_note(spec, layout, _kind, locale)
         if background:
             notes.append(background)
         if layout.area.georeferenced and len(layout.photos) > MAX_SHEET_PHOTOS:
@@ -554,7 +554,7 @@ def geo_views(spec: Any, locale: str) -> list[dict[str, Any]]:
             "title": t("map_title_film" if film else "map_title", locale)
             if layout.area.georeferenced else t("geo_summary", locale),
             "map": _svg_uri(map_svg(layout, locale, map_terrain(spec, _kind, layout),
-                                    map_basemap(spec, layout),
+                                    map_basemap(spec, layout, _kind),
                                     None if film else _control_of(spec)))
             if layout.area.georeferenced else None,
             "caption": crs_text(layout, locale),

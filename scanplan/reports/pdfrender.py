@@ -111,21 +111,45 @@ def html_to_pdf(html: str, url_fetcher: Any = None, *, fresh_fonts: bool = False
     fetcher = url_fetcher if url_fetcher is not None else BundledAssetFetcher()
     root = templates_dir().resolve()
     doc = weasyprint.HTML(string=html, base_url=root.as_uri() + "/", url_fetcher=fetcher)
-    fonts = FontConfiguration() if fresh_fonts else _font_config(str(root))
+    fonts = FontConfiguration() if fresh_fonts else _fonts(str(root))
     return doc.write_pdf(pdf_identifier=True,  # type: ignore[no-any-return]
                          font_config=fonts)
 
 
+def _temp() -> str:
+    """The temporary folder WeasyPrint's font folder goes into (the run's folder:
+    :mod:`scanplan.io.rundir`)."""
+    import tempfile
+
+    return tempfile.gettempdir()
+
+
+def _fonts(root: str) -> FontConfiguration:
+    """:func:`_font_config` of the templates folder ``root`` and the temporary folder, made
+    again when the folder WeasyPrint keeps the fonts in has gone meanwhile (a run's
+    folder removed, a temporary folder cleaned by another program): its cached fonts would
+    name files that no longer exist."""
+    fonts = _font_config(root, _temp())
+    folder = getattr(fonts, "_folder", None)  # WeasyPrint's folder of @font-face files
+    if folder is not None and not os.path.isdir(folder):
+        _font_config.cache_clear()
+        fonts = _font_config(root, _temp())
+    return fonts
+
+
 @functools.lru_cache(maxsize=2)
-def _font_config(root: str) -> FontConfiguration:
+def _font_config(root: str, temp: str = "") -> FontConfiguration:
     """The fonts, ready for every PDF of this process (a batch renders many).
 
     A :class:`weasyprint.text.fonts.FontConfiguration` loads fontconfig's list of the
     system's fonts when made, and registers the bundled fonts of ``@font-face`` the first
-    time a document names them; one per templates folder ``root`` and process keeps both
-    (and WeasyPrint's per-font caches) from one report to the next.
+    time a document names them, writing them into a folder of the temporary folder
+    ``temp``; one per templates folder ``root``, temporary folder and process keeps both
+    (and WeasyPrint's per-font caches) from one report to the next. A run's temporary
+    folder is removed when the run ends (:mod:`scanplan.io.rundir`): the next run in the
+    same process (a test's) gets fonts of its own.
     """
-    del root  # the cache key: the bundled fonts of another folder get their own
+    del root, temp  # the cache key: another folder gets fonts of its own
     return FontConfiguration()
 
 
@@ -141,4 +165,4 @@ def warm_up() -> None:
     root = templates_dir().resolve()
     weasyprint.HTML(string=_WARM_UP_HTML, base_url=root.as_uri() + "/",
                     url_fetcher=BundledAssetFetcher()).write_pdf(
-                        font_config=_font_config(str(root)))
+                        font_config=_fonts(str(root)))

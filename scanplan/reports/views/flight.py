@@ -6,7 +6,8 @@ need of a plan and of the engine, ready to draw and to write (no words, no numbe
 - :func:`ground_known` — whether the ground under each photo is known (a DEM);
 - :func:`strip_ends_lonlat` — the strips' start and end as longitude/latitude;
 - :func:`photo_columns` — the photo table's columns, in the GIS files' order;
-- :func:`map_basemap` — ``[map] basemap`` warped under the map.
+- :func:`map_basemap` — ``[map] basemap`` warped under the map (a file, or the tiles the
+  plan fetched); :func:`map_extent` the map's extent; :func:`tile_host` a tile URL's host.
 
 The layouts (:mod:`scanplan.reports.mapview`, :mod:`scanplan.reports.geosheets`) read these
 and the :class:`~scanplan.geo.layout.FlightLayout`'s own figures; they import no engine.
@@ -25,8 +26,8 @@ from ...core.photoscale import height_at_photo_scale_m, photo_scale_at_height
 if TYPE_CHECKING:
     from ...geo.layout import FlightLayout
 
-__all__ = ["MapTerrain", "ground_known", "map_basemap", "map_terrain", "photo_columns",
-           "strip_ends_lonlat"]
+__all__ = ["MapTerrain", "ground_known", "map_basemap", "map_extent", "map_terrain",
+           "photo_columns", "strip_ends_lonlat", "tile_host"]
 
 
 @dataclass(frozen=True)
@@ -147,23 +148,40 @@ def strip_ends_lonlat(layout: FlightLayout) -> np.ndarray | None:
     return np.asarray(lonlat(layout).points(ends), float).reshape(-1, 2, 2)
 
 
-def map_basemap(spec: Any, layout: FlightLayout) -> Any:
-    """``[map] basemap`` of the project warped into the layout's planning CRS
-    (:func:`scanplan.geo.basemap.read_basemap`), or None without one."""
+def map_basemap(spec: Any, layout: FlightLayout, kind: str = "uav") -> Any:
+    """The background of a layout's map in its planning CRS, or None without one: the
+    tiles the plan fetched for job ``kind`` (``[map] basemap`` as a tile URL,
+    :mod:`scanplan.project.background`), else ``[map] basemap`` as a file, read here
+    (:func:`scanplan.geo.basemap.read_basemap`)."""
+    if not layout.area.georeferenced:
+        return None
+    fetched = (getattr(spec, "backgrounds", None) or {}).get(kind)
+    if fetched is not None:
+        return fetched
     project = getattr(spec, "project", None)
     path = getattr(getattr(project, "map", None), "basemap", None)
-    if path is None or not layout.area.georeferenced:
+    if path is None:
         return None
-    import pyproj
+    from ...geo.basemap import layout_extent_lonlat, read_basemap
 
-    from ...geo.basemap import read_basemap
+    return read_basemap(path, str(layout.area.plan_crs), max_px=1600,
+                        area_lonlat=layout_extent_lonlat(layout))
 
-    minx, miny, maxx, maxy = layout.area.geometry.bounds
-    pad = 0.15 * max(maxx - minx, maxy - miny)  # the map's margins around the area
-    around = pyproj.Transformer.from_crs(pyproj.CRS.from_user_input(layout.area.plan_crs),
-                                         4326, always_xy=True).transform_bounds(
-        minx - pad, miny - pad, maxx + pad, maxy + pad, densify_pts=21)
-    return read_basemap(path, str(layout.area.plan_crs), max_px=1600, area_lonlat=around)
+
+def map_extent(layout: FlightLayout) -> tuple[float, float, float, float]:
+    """The map's extent in the planning CRS [m]: the area, its strips and the take-off
+    point (:func:`scanplan.geo.basemap.layout_extent`)."""
+    from ...geo.basemap import layout_extent
+
+    return layout_extent(layout)
+
+
+def tile_host(url: str) -> str:
+    """The host of a tile URL template, as the map's note names it
+    (:func:`scanplan.geo.tiles.template_host`)."""
+    from ...geo.tiles import template_host
+
+    return template_host(url)
 
 
 def photo_columns(layout: FlightLayout) -> list[str]:
