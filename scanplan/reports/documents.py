@@ -260,6 +260,20 @@ class Outputs:
     exports: dict[str, tuple[Any, bytes]]
 
 
+def is_output_name(name: str) -> bool:
+    """Whether ``name`` is a file ``plan --out`` may write at its folder's top: the reports
+    (``spec.pdf``, ``spec.xlsx``) or an exported file
+    (:data:`scanplan.geo.export.formats.FORMATS`, a film layout's ``film-`` ones too)."""
+    import re
+
+    from ..geo.export.formats import FORMATS
+
+    if name.casefold() in {"spec.pdf", "spec.xlsx"}:
+        return True
+    return any(re.fullmatch(f"(?:film-)?{f.name_pattern()}", name, re.IGNORECASE)
+               for f in FORMATS)
+
+
 def outputs_chosen(formats: Iterable[str] | None, field: str) -> tuple[str, ...]:
     """The outputs named by ``formats`` (None: all of :data:`OUTPUTS`), in their order.
 

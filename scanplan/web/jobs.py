@@ -220,12 +220,9 @@ INPUTS_FOLDER = "inputs"
 def _is_output_name(name: str) -> bool:
     """Whether a file of the zip's top level could have this name: the reports, the
     project file, an exported file (:data:`scanplan.geo.export.formats.FORMATS`)."""
-    from ..geo.export.formats import FORMATS
+    from ..reports.documents import is_output_name
 
-    if name.casefold() in {PROJECT_NAME, "spec.pdf", "spec.xlsx"}:
-        return True
-    return any(re.fullmatch(f"(?:film-)?{f.name_pattern()}", name, re.IGNORECASE)
-               for f in FORMATS)
+    return name.casefold() == PROJECT_NAME or is_output_name(name)
 
 
 def _inputs_apart(project: Any, files: Mapping[str, str]) -> tuple[Any, dict[str, str]]:
