@@ -241,11 +241,10 @@ def _other_choice(cfg: TerrainConfig, res: TerrainResult, choice: ModeHeights,
 def _height_accuracy_over_relief(job: UavJob, res: TerrainResult) -> tuple[PlanWarning, ...]:
     """σ_Z at the photo highest above its ground, at its highest flown height, with the
     mission's trigger distance (fixed in metres at the planned height): a warning when it
-    exceeds V_z. The terrain check holds every photo to the flat limit, which is exact for a
-    block flown at the standard overlap or more (the base of the standard pair grows with
-    the height above ground); below it the one-step base is fixed in metres and the photos
-    over low ground can miss V_z (docs/uav-models.md §9): see
-    :func:`scanplan.rules.terrain.height_accuracy_warnings`."""
+    exceeds V_z. The terrain check holds every photo to the flat limit, which is exact at
+    every overlap (the base grows with the height above ground and never falls with the
+    overlap flown, docs/uav-models.md §9), so it fires for a photo left above the limit:
+    see :func:`scanplan.rules.terrain.height_accuracy_warnings`."""
     acc = job.plan.height_accuracy
     if acc.get("formula") != "normal_case":
         return ()
