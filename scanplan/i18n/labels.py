@@ -229,6 +229,8 @@ LABELS: dict[str, dict[str, str]] = {
         "pdf_f_number": "f-number",
         "pdf_sensor_mm": "Sensor, across × along track, mm",
         "pdf_flown_heights": "Heights flown, m",
+        "pdf_flown_heights_relief": "Heights flown above the ground (lowest – highest, "
+                                    "tolerances included), m",
         "ground_speed_ms": "Ground speed, m/s",
         "pdf_scene": "Scene reflectances r_max / r_min",
         "pdf_at_height": "at {h} m",
@@ -267,6 +269,7 @@ LABELS: dict[str, dict[str, str]] = {
         "gb": "GB",
         "planned": "planned",
         "highest_flown": "highest flown",
+        "lowest_flown": "lowest flown",
         "pdf_h_max": "maximum planned ({cid})",
         "pdf_nyquist_short": "Nyquist",
         "pdf_warn_not_interpretable": "Not interpretable",
@@ -558,6 +561,8 @@ LABELS: dict[str, dict[str, str]] = {
         "pdf_f_number": "Диафрагменное число",
         "pdf_sensor_mm": "Размер матрицы поперёк × вдоль маршрута, мм",
         "pdf_flown_heights": "Фактические высоты полёта, м",
+        "pdf_flown_heights_relief": "Фактические высоты над землёй (наименьшая – "
+                                    "наибольшая, с допусками), м",
         "ground_speed_ms": "Путевая скорость, м/с",
         "pdf_scene": "Коэффициенты яркости r_max / r_min",
         # a no-break space keeps the unit with its number in a narrow column head
@@ -601,6 +606,7 @@ LABELS: dict[str, dict[str, str]] = {
         "gb": "ГБ",
         "planned": "плановая",
         "highest_flown": "наибольшая фактическая",
+        "lowest_flown": "наименьшая фактическая",
         "pdf_h_max": "максимальная плановая ({cid})",
         "pdf_nyquist_short": "Найквист",
         "pdf_warn_not_interpretable": "Дешифрирование невозможно",
@@ -732,6 +738,7 @@ def t(key: str, locale: str = "en", platform: str = "uav") -> str:
 
 from .labels_geo import GEO as _GEO  # noqa: E402  (map page, strips, exported files)
 from .labels_more import DESIGN as _DESIGN  # noqa: E402  (the survey design sheet)
+from .labels_more import PLANS as _PLANS  # noqa: E402  (the plans compared)
 from .labels_more import SIGNING as _SIGNING  # noqa: E402
 from .labels_more import TERMINAL as _TERMINAL  # noqa: E402
 from .labels_more import TERRAIN as _TERRAIN  # noqa: E402  (terrain: warnings, plot, sheet)
@@ -753,5 +760,5 @@ LABELS["en"]["reach_interpretable"] = "Smallest photo scale with the map object 
 LABELS["ru"]["reach_interpretable"] = "Предельный масштаб снимков с дешифрированием объекта"
 
 for _loc in LOCALES:  # in this order: the catalogue's keys keep their order
-    for _part in (_DESIGN, _TERRAIN, _GEO):
+    for _part in (_DESIGN, _TERRAIN, _GEO, _PLANS):
         LABELS[_loc].update(_part[_loc])

@@ -105,6 +105,8 @@ TERMINAL: dict[str, dict[str, str]] = {
         "term_photo_scale_archive": "photo scale (existing photos, given)",
         "term_height": "recommended flight height",
         "term_flown": "flown up to",
+        "term_flown_relief": "flown above the ground, tolerances included:",
+        "term_at_highest": "at the highest flown",
         "max_height": "maximum planned height",
         "term_gsd": "GSD / ground resolution L",
         "term_overlaps": "overlaps / base / spacing",
@@ -158,6 +160,8 @@ TERMINAL: dict[str, dict[str, str]] = {
         "term_photo_scale_archive": "масштаб снимков (имеющиеся снимки, задан)",
         "term_height": "рекомендуемая высота полёта",
         "term_flown": "фактически до",
+        "term_flown_relief": "фактически над землёй, с допусками:",
+        "term_at_highest": "на наибольшей фактической высоте",
         "max_height": "максимальная плановая высота",
         "term_gsd": "GSD / линейное разрешение L",
         "term_overlaps": "перекрытия / базис / между маршрутами",
@@ -380,7 +384,6 @@ TERRAIN: dict[str, dict[str, str]] = {
         "pdf_warn_terrain_side_overlap": "Side overlap lost over high ground",
         "pdf_warn_terrain_no_ground": "Photos without ground elevation",
         "pdf_warn_terrain_voids_filled": "DEM voids filled",
-        "pdf_warn_terrain_other_choice": "Another direction or mode needs fewer photos",
         "pdf_warn_terrain_units_feet": "DEM heights may be in feet",
         "pdf_warn_terrain_geographic": "DEM in geographic coordinates",
         "pdf_warn_terrain_film_scale": "Relief changes the photo scale",
@@ -457,7 +460,6 @@ TERRAIN: dict[str, dict[str, str]] = {
                                          "недостаточно",
         "pdf_warn_terrain_no_ground": "Снимки без отметки рельефа",
         "pdf_warn_terrain_voids_filled": "Пропуски ЦМР заполнены",
-        "pdf_warn_terrain_other_choice": "Другое направление или режим требует меньше снимков",
         "pdf_warn_terrain_units_feet": "Высоты ЦМР, возможно, в футах",
         "pdf_warn_terrain_geographic": "ЦМР в географических координатах",
         "pdf_warn_terrain_film_scale": "Рельеф изменяет масштаб снимков",
@@ -527,5 +529,96 @@ TERRAIN: dict[str, dict[str, str]] = {
         "map_local_scale_axis": "Масштаб снимка, 1:",
         "photo_ground_min_m": "Наинизшая отметка под снимком, м",
         "photo_ground_max_m": "Наивысшая отметка под снимком, м",
+    },
+}
+
+
+# the plans compared for a UAV block (scanplan.reports.views.plans): the table, its words
+PLANS: dict[str, dict[str, str]] = {
+    "en": {
+        "plans_title": "Plans compared",
+        "plans_note": "The plans a crew would consider for this block — the lines' direction "
+                      "and the altitude mode — each laid out, held to the highest height "
+                      "its own layout allows and costed with the flying time of its sorties "
+                      "(turns, run-in and run-out included). Recommended: the least flying "
+                      "time, then the fewest photos, among the plans meeting every "
+                      "constraint that the project's choices allow. An estimate (≈) is "
+                      "costed from its layout at the height it would allow, not laid out "
+                      "part by part nor checked photo by photo.",
+        "plans_mode": "How flown",
+        "plans_lines": "Lines",
+        "plans_height": "Height, m",
+        "plans_photos": "Photos",
+        "plans_volume": "Data, GB",
+        "plans_time": "Flying time, min",
+        "plans_sorties": "Sorties",
+        "plans_gsd": "GSD flown, cm",
+        "plans_binding": "Binding",
+        "plans_verdict": "Every constraint met? Why not",
+        "plans_ok": "meets every constraint",
+        "plans_recommended": "recommended",
+        "plans_not_allowed": "not the project's choice",
+        "plans_dir_auto": "least length",
+        "plans_dir_long_axis": "long axis",
+        "plans_dir_relief": "least relief",
+        "plans_dir_project": "the project's",
+        "plans_dir_block": "along the block",
+        "pdf_warn_plan_choice_costs": "The project's choice costs far more flying time",
+        "pdf_warn_plan_choice_needs": "A plan meeting every constraint needs more data",
+        "term_plans": "Plans compared (recommended: the least flying time meeting every "
+                      "constraint):",
+        "term_plans_mode": "how flown",
+        "term_plans_lines": "lines",
+        "term_plans_height": "m",
+        "term_plans_photos": "photos",
+        "term_plans_volume": "GB",
+        "term_plans_time": "min",
+        "term_plans_sorties": "sorties",
+        "term_plans_gsd": "GSD, cm",
+        "term_plans_binding": "binds",
+    },
+    "ru": {
+        "plans_title": "Сравнение вариантов плана",
+        "plans_note": "Варианты, которые рассмотрел бы экипаж для этого участка, — "
+                      "направление маршрутов и режим высоты; каждый размечен, поднят до "
+                      "наибольшей высоты, которую допускает его собственная разметка, и "
+                      "оценён временем полёта по его вылетам (с разворотами, заходами и "
+                      "выходами). Рекомендуется вариант с наименьшим временем полёта, затем "
+                      "с наименьшим числом снимков, среди удовлетворяющих всем условиям и "
+                      "допускаемых выбором проекта. Оценка (≈) рассчитана по разметке на "
+                      "допускаемой ею высоте, без разметки по частям и проверки каждого "
+                      "снимка.",
+        "plans_mode": "Режим",
+        "plans_lines": "Маршруты",
+        "plans_height": "Высота, м",
+        "plans_photos": "Снимков",
+        "plans_volume": "Данные, ГБ",
+        "plans_time": "Время полёта, мин",
+        "plans_sorties": "Вылетов",
+        "plans_gsd": "GSD фактический, см",
+        "plans_binding": "Определяет",
+        "plans_verdict": "Все условия выполнены? Почему нет",
+        "plans_ok": "все условия выполнены",
+        "plans_recommended": "рекомендуется",
+        "plans_not_allowed": "не выбор проекта",
+        "plans_dir_auto": "мин. длина",
+        "plans_dir_long_axis": "длинная ось",
+        "plans_dir_relief": "мин. перепад",
+        "plans_dir_project": "задано проектом",
+        "plans_dir_block": "вдоль участка",
+        "pdf_warn_plan_choice_costs": "Выбор проекта заметно увеличивает время полёта",
+        "pdf_warn_plan_choice_needs": "Для варианта, удовлетворяющего всем условиям, нужны "
+                                      "данные",
+        "term_plans": "Сравнение вариантов (рекомендуется наименьшее время полёта при "
+                      "выполнении всех условий):",
+        "term_plans_mode": "режим",
+        "term_plans_lines": "маршруты",
+        "term_plans_height": "м",
+        "term_plans_photos": "снимков",
+        "term_plans_volume": "ГБ",
+        "term_plans_time": "мин",
+        "term_plans_sorties": "вылетов",
+        "term_plans_gsd": "GSD, см",
+        "term_plans_binding": "условие",
     },
 }

@@ -210,22 +210,4 @@ TERRAIN: dict[str, dict[str, str]] = {
               "радиусе {radius:g}~м плюс {margin:g}~м, для масштаба снимков наинизшей минус "
               "{margin:g}~м; на них приходятся центры {photos:d} снимков.",
     },
-    "terrain_other_choice": {
-        "en": "{what} would allow about {height:.0f} m above the reference ground instead of "
-              "{current:.0f} m over this relief: about {photos:,.0f} photos instead of "
-              "{now:,d} ({pct:.0f} % fewer; an estimate from the DEM)",
-        "ru": "{what} позволил бы высоту около {height:.0f}~м над опорной отметкой вместо "
-              "{current:.0f}~м над этим рельефом: около {photos:,.0f} снимков вместо {now:,d} "
-              "(на {pct:.0f}~% меньше; оценка по ЦМР).",
-    },
-    "terrain_choice.mode": {
-        "en": "the altitude mode {mode} (⁅[terrain] altitude_mode⁆)",
-        "ru": "Режим {mode} (⁅[terrain] altitude_mode⁆)",
-    },
-    "terrain_choice.strip": {
-        "en": "the altitude mode {mode} with the lines at {direction:.0f}° (⁅[terrain] "
-              "altitude_mode, [area] direction_deg⁆)",
-        "ru": "Режим {mode} при направлении маршрутов {direction:.0f}° (⁅[terrain] "
-              "altitude_mode, [area] direction_deg⁆)",
-    },
 }

@@ -399,6 +399,7 @@ def uav_job(
     gsd_limit_reason: str | None = None,
     area: Area | None = None,
     layout_options: LayoutOptions | None = None,
+    flown_band_m: tuple[float, float] | None = None,
 ) -> UavJob:
     """Plan a UAV flight (see :func:`scanplan.rules.uav.plan_uav`); names as the CLI options.
 
@@ -422,7 +423,9 @@ def uav_job(
     the strips and photo centres out (``layout_options``: direction, turns, sorties); the
     flight figures (strips, photos, length, time, data volume) come from that layout.
     Without ``height_m`` the flight is planned at the maximum planned height, rounded
-    down to :data:`HEIGHT_STEP_M` (needs a map scale or a target GSD).
+    down to :data:`HEIGHT_STEP_M` (needs a map scale or a target GSD). ``flown_band_m``:
+    over relief, the lowest and highest heights above the ground really flown [m]
+    (:func:`scanplan.rules.uav.plan_uav`).
 
     Long because: its keyword arguments (one per input of the registry) and this
     docstring; the work is in named steps: :func:`_carrier_defaults`,
@@ -486,7 +489,7 @@ def uav_job(
         gsd_limit_m=gsd_row.max_gsd_cm / 100.0 if gsd_row else None,
         gsd_limit_area=gsd_row.area if gsd_row else "general",
         gsd_limit_source=gsd_row.source if gsd_row else "")
-    plan = plan_uav(inputs, rules)
+    plan = plan_uav(inputs, rules, flown_band_m)
     if area is None and area_w is not None and area_l is not None:
         area = rectangle_area(area_w, area_l)
     if area is None:

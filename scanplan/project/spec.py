@@ -24,6 +24,7 @@ from ..geo.layout import Area, FlightLayout
 from ..geo.terrain_film import FilmTerrain
 from ..i18n.messages import Message
 from ..rules.film import PlanWarning, ScanScenario
+from .alternatives import JobAt, choose_plan
 from .archive import archive_film
 from .design import survey_design
 from .file import Project
@@ -51,7 +52,6 @@ from .terrainplan import (
     archive_over_terrain,
     film_over_terrain,
     film_terrain_spec,
-    uav_terrain_spec,
 )
 
 __all__ = ["FilmSpec", "PlanResult", "UavSpec", "plan_project", "project_area"]
@@ -321,17 +321,7 @@ def _uav_kwargs(project: ProjectModel, height_m: float, the_area: Area | None
 def _uav(project: ProjectModel, the_area: Area | None) -> UavSpec:
     assert project.uav is not None
     planned = project.uav.height_m
-
-    def job_at(height_m: float, direction_deg: float | None = None) -> UavJob:
-        try:
-            kw = _uav_kwargs(project, height_m, the_area)
-            if direction_deg is not None:  # the terrain's choice of direction
-                kw["layout_options"] = replace(kw["layout_options"],
-                                               direction_deg=direction_deg)
-            return uav_job(**kw)
-        except InputError as exc:
-            raise project.named(exc, "uav") from None
-
+    job_at = _jobs(project, the_area)
     first_height = planned if planned is not None else PROVISIONAL_HEIGHT_M
     first = job_at(first_height)
     max_h = first.plan.max_height_m
@@ -350,15 +340,45 @@ def _uav(project: ProjectModel, the_area: Area | None) -> UavSpec:
         rec = planned
         reason = Message("spec.uav_within", max=max_h)
     job = first if rec == first_height else job_at(rec)
-    if project.terrain is None:
-        return UavSpec(job, planned, rec, max_h, reason)
-    cfg = project.terrain.config
-    job, terrain, lowered, why, warned = uav_terrain_spec(project, cfg, job, planned, job_at)
-    if lowered is not None:
-        rec, reason = lowered, why
-    if warned:  # shown with the UAV plan's own warnings (terminal, JSON, PDF, workbook)
-        job = replace(job, plan=replace(job.plan, warnings=job.plan.warnings + warned))
-    return UavSpec(job, planned, rec, max_h, reason, terrain, warned)
+    if job.layout is None or (project.terrain is None and not job.layout.area.georeferenced):
+        return UavSpec(job, planned, rec, max_h, reason)  # nothing to choose
+    choice = choose_plan(project, job, job_at, planned)
+    if choice.lowered is not None:
+        rec, reason = choice.height_m, choice.lowered
+    if choice.choice is not None:
+        reason = Message("plan_choice.reason", why=reason, choice=choice.choice)
+    job = choice.job
+    if choice.warnings:  # shown with the UAV plan's own warnings (terminal, JSON, PDF, workbook)
+        job = replace(job, plan=replace(job.plan, warnings=job.plan.warnings + choice.warnings))
+    return UavSpec(job, planned, rec, max_h, reason, choice.terrain, choice.warnings,
+                   choice.alternatives)
+
+
+def _jobs(project: ProjectModel, the_area: Area | None) -> JobAt:
+    """The project's UAV job at a height (:data:`scanplan.project.alternatives.JobAt`),
+    each laid out once: along the project's direction or another one, its figures at the
+    heights really flown over relief."""
+    done: dict[tuple[Any, ...], UavJob] = {}
+    own = project.area.direction_deg
+
+    def job_at(height_m: float, direction_deg: float | str | None = None,
+               flown_band_m: tuple[float, float] | None = None) -> UavJob:
+        if direction_deg is not None and (direction_deg == own or (
+                own is None and direction_deg == "auto")):
+            direction_deg = None  # the project's own
+        key = (float(height_m), direction_deg, flown_band_m)
+        if key not in done:
+            try:
+                kw = _uav_kwargs(project, height_m, the_area)
+                if direction_deg is not None:
+                    kw["layout_options"] = replace(kw["layout_options"],
+                                                   direction_deg=direction_deg)
+                done[key] = uav_job(**kw, flown_band_m=flown_band_m)
+            except InputError as exc:
+                raise project.named(exc, "uav") from None
+        return done[key]
+
+    return job_at
 
 
 def _comparison(film: FilmSpec, uav: UavSpec) -> list[dict[str, Any]]:

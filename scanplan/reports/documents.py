@@ -253,6 +253,11 @@ def write_documents(targets: Sequence[Target], *, scan: Any = None, uav: Any = N
     """
     extra = dict(extra or {})
     targets = list(targets)
+    if spec is not None:  # what the documents may say is beside them: this set's exports
+        from .exports import with_exports
+
+        spec = with_exports(spec, (kind for kind, _ in extra.values()))
+        tables = tables.with_spec(spec) if tables is not None else None
     check = _checker(targets, extra, extra_field, inputs, force)
     refuse_targets(targets)
     check()

@@ -299,7 +299,9 @@ def _uav_inputs(job: UavJob, f: _Fmt) -> list[tuple[str, str]]:
         (f.label("height_m"), f.g(h["planned"])),
     ]
     if h["max"] != h["min"] or h["min"] != h["planned"]:
-        inputs.append((f.label("pdf_flown_heights"), f"{f.g(h['min'])} – {f.g(h['max'])}"))
+        hf = f.view.numbers.height if plan.over_relief else f.g  # over relief: as flown
+        inputs.append((f.label("pdf_flown_heights_relief" if plan.over_relief
+                               else "pdf_flown_heights"), f"{hf(h['min'])} – {hf(h['max'])}"))
     if inp.ceiling_m is not None:
         inputs.append((f.label("ceiling_m"), f.g(inp.ceiling_m)))
     if inp.gsd_target_m is not None:
@@ -400,7 +402,8 @@ def _uav_limits(plan: UavPlan, f: _Fmt) -> dict[str, Any]:
     if acc:
         m = f.label("m")
         height_forms = f.label("pdf_height_forms", sigma=f.num(
-            acc["sigma_z_at_highest_flown_height_m"], 3), h=f.g(h["max"]),
+            acc["sigma_z_at_highest_flown_height_m"], 3),
+            h=f.view.numbers.height(h["max"]) if plan.over_relief else f.g(h["max"]),
             vz=f.g(acc["height_accuracy_m"]), forms="; ".join(
                 f"{f.label('hf_' + k)}: {f.num(acc['forms'][k]['max_planned_height_m'], 0)} {m}"
                 + (f" ({f.label('hf_used')})" if k == acc.get("formula") else "")

@@ -209,6 +209,9 @@ def height_svg(plan: UavPlan, locale: str = "en") -> str:
     # a GSD or L limit line meets its curve at the highest flown height, not the plan
     marks: list[tuple[float, str, Any, str]] = [
         (plan.heights_m["planned"], "#000000", "-", t("planned", locale))]
+    if plan.over_relief and plan.heights_m["min"] < plan.heights_m["planned"] - 0.05:
+        # over relief the photos fly from the lowest to the highest height above the ground
+        marks.append((plan.heights_m["min"], "#808080", ":", t("lowest_flown", locale)))
     if plan.heights_m["max"] != plan.heights_m["planned"]:
         marks.append((plan.heights_m["max"], "#808080", "--", t("highest_flown", locale)))
     # the ceiling before the maximum's lines: where the ceiling binds, the highest flown

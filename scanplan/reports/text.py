@@ -166,6 +166,8 @@ def format_plan_result(result: Any, locale: str | None = None,
     if result.uav:
         lines += _uav_summary(tables["spec_uav"], result.uav.job.plan.inputs.platform, loc, T,
                               cname)
+        if tables.has("plans") and tables["plans"].rows:
+            lines += _plans_lines(tables["plans"], loc, T)
     if result.comparison:
         lines += _comparison_lines(result, loc, T, tables)
     from .design import design_text_lines
@@ -225,6 +227,25 @@ def _film_summary(tbl: Table, loc: str, T: _Terminal, cname: Any) -> list[str]:
                      if loc == "en" else
                      f"{frames} ({T['strips']}: {strips}), {T['scanned']} {gb} {T['gb']}"])
     return [*lines, table(rows, align="ll"), reason]
+
+
+def _plans_lines(tbl: Table, loc: str, T: _Terminal) -> list[str]:
+    """The plans compared (the ``plans`` table, words of :mod:`.planwords`): one aligned
+    row each, the recommended one marked ``>``, and under it whether it meets every
+    constraint or what it misses."""
+    from .planwords import plan_cells, plan_head
+
+    head = plan_head(loc, terminal=True)[:-1]
+    cells = [plan_cells(r, loc) for r in tbl.rows]
+    marks = [">" if "recommended" in r.flags else " " for r in tbl.rows]
+    body = table([["", *head], *[[m, *c[:-1]] for m, c in zip(marks, cells, strict=True)]],
+                 align="ll" + "r" * (len(head) - 1)).split("\n")
+    out = ["", T["plans"], "  " + body[0]]
+    for line, c in zip(body[1:], cells, strict=True):
+        out.append("  " + line)
+        out.append(textwrap.fill(c[-1], width=96, initial_indent="      ",
+                                 subsequent_indent="        "))
+    return out
 
 
 def _comparison_lines(result: Any, loc: str, T: _Terminal, tables: ResultTables) -> list[str]:
@@ -355,24 +376,31 @@ def _uav_heights(r: dict[str, Row], loc: str, T: _Terminal, cname: Any) -> list[
     m = T["m"]
     flown = r.get("max_flown_height_m")
     binding = r["binding"].value if "binding" in r else None
-    rows = [[f"  {T['height']}", f"{_g(height.value, loc)} {m}"
-             + (f" ({T['flown']} {_g(height.fields['flown'], loc)} {m}, +{_g(tol, loc)} %)"
-                if tol else "")],
+    relief = height.fields.get("over_relief")
+    if relief:  # the heights really flown above the ground, tolerances included
+        flown_text = (f" ({T['flown_relief']} {_n(height.fields['lowest'], 0, loc)}–"
+                      f"{_n(height.fields['flown'], 0, loc)} {m})")
+    else:
+        flown_text = (f" ({T['flown']} {_g(height.fields['flown'], loc)} {m}, "
+                      f"+{_g(tol, loc)} %)" if tol else "")
+    rows = [[f"  {T['height']}", f"{_g(height.value, loc)} {m}" + flown_text],
             [f"  {T['max_height']}", f"{_n(r['max_height_m'].value, 0, loc)} {m}"
              + (f" ({T['flown']} {_n(flown.value, 0, loc)} {m})"
                 if tol and flown is not None else "")
              + f" ({binding} {cname(binding)})" if binding else "—"],
             [f"  {T['gsd']}", f"{_n(r['gsd_m'].value, 3, loc)} {m} / "
              f"{_n(r['ground_resolution_m'].value, 3, loc)} {m} (L/GSD "
-             f"{_n(r['l_over_gsd'].value, 2, loc)})"]]
+             f"{_n(r['l_over_gsd'].value, 2, loc)})" + _at_highest(r, loc, T)]]
     if "constraints_max_height_m" in r:
         rows.append([f"  {T['no_ceiling']}",
                      f"{_n(r['constraints_max_height_m'].value, 0, loc)} {m} "
                      f"{T['no_ceiling_note']}"])
     if "sigma_z" in r:
         sz = r["sigma_z"]
+        at = (_n(sz.fields["at"], 0, loc) if sz.fields.get("over_relief")
+              else _g(sz.fields["at"], loc))
         rows.append([f"  {T['sigma_z']}",
-                     f"{_n(sz.value, 3, loc)} {m} {T['at']} {_g(sz.fields['at'], loc)} {m} "
+                     f"{_n(sz.value, 3, loc)} {m} {T['at']} {at} {m} "
                      f"({T['required_rms']} {_g(sz.fields['required'], loc)} {m} {T['rms']})"])
     if "recognition" in r:
         rec = r["recognition"]
@@ -381,6 +409,16 @@ def _uav_heights(r: dict[str, Row], loc: str, T: _Terminal, cname: Any) -> list[
         rows.append([f"  {T['recognition']}", f"{_n(rec.value, 2, loc)} ({name}, "
                      f"{_g(rec.fields['size_m'], loc)} {m})"])
     return rows
+
+
+def _at_highest(r: dict[str, Row], loc: str, T: _Terminal) -> str:
+    """Over relief: the GSD and L at the highest height flown above the ground."""
+    gsd, lr = r["gsd_m"].fields.get("at_max"), r["ground_resolution_m"].fields.get("at_max")
+    if gsd is None:
+        return ""
+    m = T["m"]
+    return (f"; {T['at_highest']} {_n(gsd, 3, loc)} {m} / "
+            f"{'—' if lr is None else _n(lr, 3, loc)} {m}")
 
 
 def _uav_flight_rows(r: dict[str, Row], loc: str, T: _Terminal) -> list[list[str]]:

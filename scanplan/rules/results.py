@@ -354,6 +354,9 @@ class UavPlan:
     ceiling_m: float | None = None
     constraints_max_height_m: float | None = None
     height_accuracy: dict[str, Any] = field(default_factory=dict)
+    over_relief: bool = False
+    """``heights_m["min"]``/``["max"]`` are the lowest and highest heights above the ground
+    really flown over relief (not the planned height ± its tolerance)."""
 
     @property
     def max_planned_height_m(self) -> float | None:

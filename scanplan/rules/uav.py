@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
+from functools import lru_cache
 from typing import Any
 
 import numpy as np
@@ -112,6 +113,10 @@ def _f(x: Any) -> float | None:
 def max_height_for_ground_resolution(inp: UavInputs, limit_m: float) -> float:
     """Highest height at which the centre L does not exceed ``limit_m``.
 
+    The answer does not depend on the planned height ``inp.height_m``; it is computed once
+    per camera, flight and target (a plan laid out at several heights — the plans compared
+    of :mod:`scanplan.project.alternatives` — asks for it at each).
+
     Vectorised search: L on a log grid of heights from 1 m to the search ceiling in one
     call, then passes that cut the bracket of the *first* crossing 63-fold each, again one
     call per pass, until it is narrower than 1 mm (about four MTF solves in all, instead of
@@ -131,6 +136,18 @@ def max_height_for_ground_resolution(inp: UavInputs, limit_m: float) -> float:
     float
         The maximum height [m], within 1 mm below the crossing.
     """
+    key = replace(inp, height_m=1.0)
+    try:
+        hash(key)
+    except TypeError:  # an input given as a list: not cached
+        return _max_height_for_l.__wrapped__(key, float(limit_m))
+    return _max_height_for_l(key, float(limit_m))
+
+
+@lru_cache(maxsize=64)
+def _max_height_for_l(inp: UavInputs, limit_m: float) -> float:
+    """:func:`max_height_for_ground_resolution` for inputs whose planned height is set
+    aside (the cache's key)."""
     def ok(heights_m: np.ndarray) -> np.ndarray:
         lr = np.asarray(_resolution(inp, heights_m).centre.ground_resolution_m, dtype=float)
         return np.isfinite(lr) & (lr <= limit_m)
@@ -425,7 +442,8 @@ def _curves(inp: UavInputs, h_plan: float, h_hi: float, max_flown: float | None
     return height_curve, mtf_centre
 
 
-def plan_uav(inp: UavInputs, rules: ScanRules | None = None) -> UavPlan:
+def plan_uav(inp: UavInputs, rules: ScanRules | None = None,
+             flown_band_m: tuple[float, float] | None = None) -> UavPlan:
     """Plan a UAV flight: GSD, MTF ground resolution, blur, flight geometry, and — with a map
     scale — the maximum flight height under the norm set's constraints.
 
@@ -439,6 +457,13 @@ def plan_uav(inp: UavInputs, rules: ScanRules | None = None) -> UavPlan:
         Camera, flight, scene and map.
     rules : ScanRules, optional
         Needed when ``inp.map_scale`` is given.
+    flown_band_m : (float, float), optional
+        The lowest and highest heights above ground really flown [m], tolerances included
+        — over relief the photos fly from the planned height over the highest ground to
+        far above the lowest (:mod:`scanplan.geo.terrain`). The figures at the lowest and
+        highest flown heights (GSD, L, recognition, blur, overlaps, σ_Z, the plots'
+        marks) are then taken there instead of at H·(1 − tolerance) and H·(1 + tolerance);
+        the limits (maximum heights) do not change; ``over_relief`` is True.
 
     Returns
     -------
@@ -463,6 +488,8 @@ def plan_uav(inp: UavInputs, rules: ScanRules | None = None) -> UavPlan:
     band = FL.height_band(inp.height_m, inp.height_tolerance_up_pct / 100.0,
                           inp.height_tolerance_down_pct / 100.0)
     h_plan, h_lo, h_hi = inp.height_m, float(band.min_m), float(band.max_m)
+    if flown_band_m is not None:  # over relief: the heights really flown
+        h_lo, h_hi = (float(x) for x in flown_band_m)
     res = _resolution(inp, np.array([h_plan, h_hi]))
     c, k = res.centre, res.corner
     gsd = FL.ground_sample_distance_m(inp.pixel_um, np.array([h_plan, h_lo, h_hi]),
@@ -485,8 +512,11 @@ def plan_uav(inp: UavInputs, rules: ScanRules | None = None) -> UavPlan:
     up = 1.0 + inp.height_tolerance_up_pct / 100.0
     max_flown = max_h * up if max_h is not None else None
     height_curve, mtf_centre = _curves(inp, h_plan, h_hi, max_flown)
+    if flown_band_m is not None and accuracy and rules is not None:
+        accuracy = _accuracy_at(inp, rules, accuracy, h_lo, h_hi)
     return UavPlan(
         inputs=inp, heights_m={"planned": h_plan, "min": h_lo, "max": h_hi},
+        over_relief=flown_band_m is not None,
         gsd_m=gsd_plan, gsd_at_max_height_m=gsd_hi,
         nyquist_lpmm=float(M.nyquist_lpmm(inp.pixel_um)),
         resolving_power_lpmm=_f(np.asarray(c.r_lpmm)[0]),
@@ -504,6 +534,21 @@ def plan_uav(inp: UavInputs, rules: ScanRules | None = None) -> UavPlan:
         max_flown_height_m=max_flown, ceiling_m=inp.ceiling_m,
         constraints_max_height_m=allow, height_accuracy=accuracy, mtf_centre=mtf_centre)
 
+
+
+def _accuracy_at(inp: UavInputs, rules: ScanRules, accuracy: dict[str, Any], h_lo: float,
+                 h_hi: float) -> dict[str, Any]:
+    """The height accuracy's σ_Z at the lowest and highest heights really flown over relief
+    (the mission's trigger distance, fixed at the planned height: :func:`~scanplan.rules.
+    constraints.sigma_z_m`) [m], with those heights."""
+    from .constraints import sigma_z_m
+
+    used = replace(rules, image_measurement_px=accuracy["image_measurement_px"],
+                   multi_ray=accuracy["multi_ray"])
+    lo, hi = (float(x) for x in sigma_z_m(inp, used, np.array([h_lo, h_hi])))
+    return {**accuracy, "sigma_z_at_highest_flown_height_m": hi,
+            "sigma_z_at_lowest_flown_height_m": lo, "highest_flown_height_m": h_hi,
+            "lowest_flown_height_m": h_lo}
 
 
 SWEEP_COLUMNS: dict[str, str] = {

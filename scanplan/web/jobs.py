@@ -209,11 +209,13 @@ def files_job(project: Any, files: Mapping[str, str], what: str) -> tuple[str, b
     if what not in ("pdf", "xlsx", "zip"):
         raise InputError("what", f'must be "pdf", "xlsx" or "zip" (got {what!r})')
     with _planned(project, files) as (result, text, folder):
+        from ..reports.exports import export_files, with_exports
+
+        exports = export_files(result, "") if what == "zip" else {}
+        result = with_exports(result, (kind for kind, _ in exports.values()))
         reports = _reports(result, ("pdf", "xlsx") if what == "zip" else (what,))
         if what != "zip":
             return f"spec.{what}", reports[what]
-        from ..reports.exports import export_files
-
         out = io.BytesIO()
         with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as zf:
             zf.writestr(PROJECT_NAME, text)
@@ -221,7 +223,7 @@ def files_job(project: Any, files: Mapping[str, str], what: str) -> tuple[str, b
                 zf.write(folder / _file_name(name, "files"), _file_name(name, "files"))
             for kind in ("pdf", "xlsx"):
                 zf.writestr(f"spec.{kind}", reports[kind])
-            for path, (_kind, data) in sorted(export_files(result, "").items()):
+            for path, (_kind, data) in sorted(exports.items()):
                 zf.writestr(path, data)
         return "scanplan.zip", out.getvalue()
 

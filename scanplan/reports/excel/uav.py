@@ -243,6 +243,9 @@ def _height_markers(book: Book, chart: ScatterChart, ws: Worksheet, plan: Any, r
     if h.get("planned"):
         marks.append((f"{book.t('planned')}: {book.numbers.height(h['planned'])}{m}",
                       h["planned"], 0.0, h["planned"], top, "000000", "solid"))
+    if plan.over_relief and h.get("min") and h["min"] < h.get("planned", 0.0) - 0.05:
+        marks.append((f"{book.t('lowest_flown')}: {book.numbers.height(h['min'])}{m}",
+                      h["min"], 0.0, h["min"], top, "7F7F7F", "sysDot"))
     if h.get("max") and h["max"] != h.get("planned"):
         marks.append((f"{book.t('highest_flown')}: {book.numbers.height(h['max'])}{m}",
                       h["max"], 0.0, h["max"], top, "7F7F7F", "dash"))
@@ -250,9 +253,8 @@ def _height_markers(book: Book, chart: ScatterChart, ws: Worksheet, plan: Any, r
         marks.append((f"{book.t('max_height_m').split(',')[0]} ({plan.binding}): "
                       f"{book.numbers.whole(round(plan.max_height_m))}{m}",
                       plan.max_height_m, 0.0, plan.max_height_m, top, "C00000", "sysDot"))
-        ratio = h["max"] / h["planned"] if h.get("planned") and h.get("max") else 1.0
-        if ratio > 1:  # where the binding limit is checked: the maximum flown high
-            flown = plan.max_height_m * ratio
+        flown = plan.max_flown_height_m  # where the binding limit is checked
+        if flown is not None and flown > plan.max_height_m * (1 + 1e-9):
             marks.append((f"{book.t('xlsx_max_flown')}: {book.numbers.whole(flown)}{m}",
                           flown, 0.0, flown, top, "C00000", "dash"))
     b = next((lim for lim in plan.limits if lim.binding), None)

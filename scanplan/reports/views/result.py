@@ -9,6 +9,7 @@ from typing import Any
 from .film import film_constraints
 from .headline import spec_film, spec_uav
 from .inputs import film_inputs
+from .plans import plans
 from .spec import all_warnings, comparison, warnings
 from .table import Table
 from .uav import uav_flight, uav_limits, uav_recognition, uav_results
@@ -28,6 +29,7 @@ TABLES: dict[str, tuple[str, Callable[[Any], Table]]] = {
     "spec_film": ("spec.film", spec_film),
     "spec_uav": ("spec.uav", spec_uav),
     "comparison": ("spec", comparison),
+    "plans": ("spec.uav", plans),
     "film_warnings": ("scan", lambda plan: warnings(plan.warnings, "film")),
     "uav_warnings": ("uav", lambda plan: warnings(plan.warnings, "uav")),
     "spec_warnings": ("spec", lambda spec: warnings(spec.warnings, "spec")),
@@ -88,6 +90,12 @@ class ResultTables:
         head, _, part = source.partition(".")
         found = getattr(self, head)
         return None if found is None or (part and getattr(found, part) is None) else found
+
+    def with_spec(self, spec: Any) -> ResultTables:
+        """These tables for a restatement of the same specification that none of them
+        shows (which files the run writes beside the documents): the tables built so far
+        are kept."""
+        return ResultTables(self.scan, self.uav, spec, list(self.built), dict(self._tables))
 
     @classmethod
     def of_jobs(cls, scan: Any = None, uav: Any = None, spec: Any = None) -> ResultTables:
