@@ -40,7 +40,7 @@ from ..core.photoscale import ground_pixel_m
 from ..geo.directions import long_axis_deg, same_direction
 from ..geo.terrain import TerrainConfig, TerrainResult
 from ..geo.terrain_choice import DIRECTIONS_DEG, mode_heights
-from ..i18n.messages import Message
+from ..i18n.messages import Message, params_json
 from ..rules.results import PlanWarning
 from .design import block_rule, terrain_ground_m
 from .flightplan import uav_flight_figures
@@ -58,7 +58,7 @@ from .terrainplan import (
 )
 
 __all__ = ["MAX_PARTS", "OVERLAP_SLACK_PCT", "PINNED_EXTRA", "Candidate", "JobAt",
-           "PlanChoice", "choose_plan"]
+           "PlanChoice", "alternatives_dicts", "choose_plan", "describe"]
 
 OVERLAP_SLACK_PCT = 1.0
 """An overlap this many percentage points below the planned one is a finding, not a reason
@@ -468,7 +468,7 @@ def _choice_warnings(chosen: Alternative, alts: tuple[Alternative, ...],
             "plan_choice_costs", what=describe(chosen), figures=_figures(chosen),
             keys=_pinned_keys(project), better=describe(best), better_figures=_figures(best),
             pct=_saving(chosen, best) * 100.0)))
-    if not chosen.feasible:
+    if best is None and not chosen.feasible:  # nothing laid out meets every constraint
         hope = min((a for a in alts if a.estimate and len(a.rejected_because) == 1
                     and a.cost < chosen.cost), key=lambda a: a.cost, default=None)
         if hope is not None:
@@ -509,5 +509,7 @@ def alternatives_dicts(alts: tuple[Alternative, ...]) -> list[dict[str, Any]]:
              "flight_length_m": a.flight_length_m, "flight_time_s": a.flight_time_s,
              "data_volume_bytes": a.data_volume_bytes, "gsd_min_m": a.gsd_min_m,
              "gsd_max_m": a.gsd_max_m, "binding": a.binding, "feasible": a.feasible,
-             "rejected_because": list(a.rejected_because), "estimate": a.estimate,
+             "rejected_because": [{"code": m.code, "message": str(m),
+                                   "params": params_json(m.params)}
+                                  for m in a.rejected_because], "estimate": a.estimate,
              "allowed": a.allowed, "recommended": a.recommended} for a in alts]

@@ -271,6 +271,10 @@ def plan_result_dict(result: Any) -> dict[str, Any]:
         }
         if u.layout is not None:
             spec["uav"]["layout"] = layout_dict(u.layout)
+            if u.alternatives:  # the plans compared, the recommended one marked
+                from ..project.alternatives import alternatives_dicts
+
+                spec["uav"]["layout"]["alternatives"] = alternatives_dicts(u.alternatives)
     if result.comparison:
         spec["comparison"] = result.comparison
     doc["specification"] = spec

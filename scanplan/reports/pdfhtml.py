@@ -226,6 +226,7 @@ def render_html(*, scan: ScanJob | None = None, uav: UavJob | None = None,
                        if scan is not None and uav is not None
                        and not (spec is not None and spec.comparison) else None),
         "spec": spec_view,
+        "plans": _plans_view(view),
         "design": design,
         "geo": _geo_views(spec, uav, meta.locale),
         "warnings_box": _warnings_box(scan_view, uav_view, spec, f),
@@ -233,6 +234,20 @@ def render_html(*, scan: ScanJob | None = None, uav: UavJob | None = None,
     }
     view._html.append(_environment().get_template("report.html").render(**ctx))
     return view._html[0]
+
+
+def _plans_view(view: ReportView) -> dict[str, Any] | None:
+    """The plans compared (the ``plans`` table, words of :mod:`.planwords`), or None."""
+    if not view.tables.has("plans") or not view.tables["plans"].rows:
+        return None
+    from .planwords import plan_cells, plan_head
+
+    tbl = view.tables["plans"]
+    loc = view.locale
+    return {"title": view.labels("plans_title"), "note": view.labels("plans_note"),
+            "head": plan_head(loc),
+            "rows": [{"cells": plan_cells(r, loc), "css": " ".join(sorted(r.flags))}
+                     for r in tbl.rows]}
 
 
 def _geo_views(spec: PlanResult | None, uav: UavJob | None, locale: str

@@ -53,6 +53,7 @@ from .closing import norms_sheet, references_sheet, warnings_sheet
 from .design import write_design_sheet
 from .film import constraints_sheet, sweep_sheet
 from .inputs import inputs_sheet
+from .plans import write_plans_sheet
 from .summary import summary_sheet
 from .terrain import terrain_sheet
 from .uav import mtf_sheet, uav_sheet
@@ -91,6 +92,7 @@ class Sheet:
 SHEETS: tuple[Sheet, ...] = (
     Sheet("summary", lambda b, v: summary_sheet(b, v.scan, v.uav, v.spec)),
     Sheet("design", lambda b, v: write_design_sheet(b, v.spec), "spec"),
+    Sheet("plans", write_plans_sheet, "spec"),
     Sheet("inputs", lambda b, v: inputs_sheet(b, v.scan, v.uav)),
     Sheet("constraints", lambda b, v: constraints_sheet(b), "film"),
     Sheet("sweep", lambda b, v: sweep_sheet(b, v.scan, v.spec), "film"),
