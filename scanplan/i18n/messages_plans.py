@@ -40,8 +40,12 @@ PLANS: dict[str, dict[str, str]] = {
     "plan_choice.needs_parts": {
         "en": "an estimate: the {n:d} parts by ground height are not laid out here (their "
               "outlines follow the relief; each part adds its own edge strips)",
-        "ru": "оценка: {n:d} частей по высоте местности здесь не размечены (их границы "
-              "следуют рельефу; каждая часть добавляет свои краевые маршруты)",
+        "ru": "оценка: {n:d|часть|части|частей} по высоте местности здесь не размечены (их "
+              "границы следуют рельефу; каждая часть добавляет свои краевые маршруты)",
+    },
+    "plan_choice.within": {
+        "en": "{what}, within the {slack:g}-point allowance",
+        "ru": "{what}, в пределах допуска {slack:g}~п.",
     },
     # --- how a plan is flown --------------------------------------------------------------
     "plan_choice.mode.flat": {"en": "flat ground", "ru": "без рельефа"},
@@ -61,31 +65,25 @@ PLANS: dict[str, dict[str, str]] = {
         "ru": "{photos:,d} снимков, {time:,.0f}~мин, вылетов: {sorties:d}",
     },
     # --- why this plan ---------------------------------------------------------------------
-    "plan_choice.reason": {
-        "en": "{why}. {choice}",
-        "ru": "{why} {choice}",
-    },
     "plan_choice.chosen": {
-        "en": "Of {n:d} plans compared (lines, altitude mode) it is the one with the least "
-              "flying time that meets every constraint: {what} ({figures})",
-        "ru": "Из {n:d} сравнённых вариантов (направление маршрутов, режим высоты) это "
-              "вариант с наименьшим временем полёта, удовлетворяющий всем условиям: {what} "
-              "({figures}).",
+        "en": "Of {n:d} plans compared it is the one with the least flying time that meets "
+              "every constraint: {what} ({figures})",
+        "ru": "Из сравнённых вариантов ({n:d}) это вариант с наименьшим временем полёта, "
+              "удовлетворяющий всем условиям: {what} ({figures}).",
     },
     "plan_choice.chosen_allowed": {
-        "en": "Of {n:d} plans compared (lines, altitude mode) it is the one with the least "
-              "flying time that meets every constraint among those the project's choices "
-              "allow: {what} ({figures})",
-        "ru": "Из {n:d} сравнённых вариантов (направление маршрутов, режим высоты) это "
-              "вариант с наименьшим временем полёта, удовлетворяющий всем условиям, среди "
-              "допускаемых выбором проекта: {what} ({figures}).",
+        "en": "Of {n:d} plans compared it is the one with the least flying time that meets "
+              "every constraint among those the project's choices allow: {what} ({figures})",
+        "ru": "Из сравнённых вариантов ({n:d}) это вариант с наименьшим временем полёта, "
+              "удовлетворяющий всем условиям, среди допускаемых выбором проекта: {what} "
+              "({figures}).",
     },
     "plan_choice.chosen_none": {
-        "en": "None of the {n:d} plans compared (lines, altitude mode) meets every "
-              "constraint; this is the one with the least flying time the project allows: "
+        "en": "None of the {n:d} plans compared meets every constraint with what the project "
+              "gives; this is the one laid out with the least flying time the project allows: "
               "{what} ({figures})",
-        "ru": "Ни один из {n:d} сравнённых вариантов (направление маршрутов, режим высоты) не "
-              "удовлетворяет всем условиям; это вариант с наименьшим временем полёта из "
+        "ru": "Ни один из сравнённых вариантов ({n:d}) не удовлетворяет всем условиям при "
+              "данных проекта; это размеченный вариант с наименьшим временем полёта из "
               "допускаемых проектом: {what} ({figures}).",
     },
     # --- warnings -------------------------------------------------------------------------

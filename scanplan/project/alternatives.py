@@ -267,9 +267,9 @@ def _plan(project: ProjectModel, check: _Checks | None, cand: Candidate, h0: flo
         settled = settle(lambda j: check(j, mode), first,
                          lambda h: job_at(h, cand.direction_deg))
         job, res = settled.job, settled.result
-    why = _verdict(project, job, res, cand.mode)
+    why, notes = _verdict(project, job, res, cand.mode)
     alt = _alternative(cand, job, res, why, _allowed(project, cand.mode, cand.direction))
-    return _Planned(cand, job, settled, alt)
+    return _Planned(cand, job, settled, replace(alt, findings=notes))
 
 
 def _allowed(project: ProjectModel, mode: str | None, direction: str, parts: int = 1) -> bool:
@@ -310,15 +310,17 @@ def _alternative(cand: Candidate, job: UavJob, res: TerrainResult | None,
 
 
 def _verdict(project: ProjectModel, job: UavJob, res: TerrainResult | None,
-             mode: str | None) -> tuple[Message, ...]:
-    """What a laid-out plan misses: its layout cannot be flown, its worst photo misses a
-    limit, an overlap falls short, the one-height rule fails."""
+             mode: str | None) -> tuple[tuple[Message, ...], tuple[Message, ...]]:
+    """What a laid-out plan misses — its layout cannot be flown, its worst photo misses a
+    limit, an overlap falls short, the one-height rule fails — and what it holds only
+    within the overlap allowance (:data:`OVERLAP_SLACK_PCT`)."""
     why: list[Message] = []
+    notes: list[Message] = []
     lay = job.layout
     if lay is not None and not lay.feasible:
         why.append(Message("plan_choice.not_feasible", why=lay.reason or ""))
     if res is None:
-        return tuple(why)
+        return tuple(why), ()
     h = res.height_m
     if res.max_height_m is not None and res.max_height_m < h - 1e-9:
         why.append(Message("plan_choice.limit", cid=res.binding or "",
@@ -327,13 +329,16 @@ def _verdict(project: ProjectModel, job: UavJob, res: TerrainResult | None,
     for kind, worst, planned in (("forward", res.min_forward_overlap_pct,
                                   inp.forward_overlap_pct),
                                  ("side", res.min_side_overlap_pct, inp.side_overlap_pct)):
+        short = Message(f"plan_choice.overlap.{kind}", value=worst, planned=planned)
         if math.isfinite(worst) and worst < planned - OVERLAP_SLACK_PCT:
-            why.append(Message(f"plan_choice.overlap.{kind}", value=worst, planned=planned))
+            why.append(short)
+        elif math.isfinite(worst) and worst < planned - 0.05:  # as the overlap warnings
+            notes.append(Message("plan_choice.within", what=short, slack=OVERLAP_SLACK_PCT))
     check, holds = block_rule(project, job.norm_set, terrain_ground_m(project, res), h, mode)
     if not holds and check is not None:
         why.append(Message("plan_choice.block", range=check.range_m, pct=check.range_pct,
                            limit=check.limit_pct, n=check.blocks))
-    return tuple(why)
+    return tuple(why), tuple(notes)
 
 
 # --- estimates: what cannot be laid out here ------------------------------------------------
@@ -446,7 +451,7 @@ def _figures(alt: Alternative) -> Message:
 
 def _choice_reason(chosen: Alternative, alts: tuple[Alternative, ...]) -> Message:
     """Why this plan: of how many, and on what ground."""
-    n = sum(1 for a in alts if not a.estimate)
+    n = len(alts)
     if chosen.feasible and all(a.allowed for a in alts if not a.estimate):
         code = "plan_choice.chosen"
     elif chosen.feasible:
@@ -511,5 +516,6 @@ def alternatives_dicts(alts: tuple[Alternative, ...]) -> list[dict[str, Any]]:
              "gsd_max_m": a.gsd_max_m, "binding": a.binding, "feasible": a.feasible,
              "rejected_because": [{"code": m.code, "message": str(m),
                                    "params": params_json(m.params)}
-                                  for m in a.rejected_because], "estimate": a.estimate,
+                                  for m in a.rejected_because],
+             "findings": [str(m) for m in a.findings], "estimate": a.estimate,
              "allowed": a.allowed, "recommended": a.recommended} for a in alts]

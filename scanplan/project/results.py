@@ -184,6 +184,8 @@ class Alternative:
         Meets every constraint (``rejected_because`` is empty).
     rejected_because : tuple of Message
         What it misses.
+    findings : tuple of Message
+        What it holds only within an allowance (an overlap a few tenths short).
     estimate : bool
         Costed but not laid out and checked photo by photo (what it needs is in
         ``rejected_because``).
@@ -213,6 +215,7 @@ class Alternative:
     estimate: bool = False
     allowed: bool = True
     recommended: bool = False
+    findings: tuple[Any, ...] = ()
 
     @property
     def cost(self) -> tuple[float, float]:
@@ -236,6 +239,8 @@ class UavSpec:
     terrain_warnings: tuple[PlanWarning, ...] = ()
     alternatives: tuple[Alternative, ...] = ()
     """The plans compared (one marked ``recommended``); empty when there was no choice."""
+    choice: str | None = None
+    """Why this plan among the plans compared (a Message; None without a choice)."""
 
     @property
     def layout(self) -> FlightLayout | None:

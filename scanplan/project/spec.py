@@ -345,13 +345,11 @@ def _uav(project: ProjectModel, the_area: Area | None) -> UavSpec:
     choice = choose_plan(project, job, job_at, planned)
     if choice.lowered is not None:
         rec, reason = choice.height_m, choice.lowered
-    if choice.choice is not None:
-        reason = Message("plan_choice.reason", why=reason, choice=choice.choice)
     job = choice.job
     if choice.warnings:  # shown with the UAV plan's own warnings (terminal, JSON, PDF, workbook)
         job = replace(job, plan=replace(job.plan, warnings=job.plan.warnings + choice.warnings))
     return UavSpec(job, planned, rec, max_h, reason, choice.terrain, choice.warnings,
-                   choice.alternatives)
+                   choice.alternatives, choice.choice)
 
 
 def _jobs(project: ProjectModel, the_area: Area | None) -> JobAt:

@@ -258,7 +258,7 @@ def plan_result_dict(result: Any) -> dict[str, Any]:
             "constraints_max_height_m": p.constraints_max_height_m,
             "height_accuracy_m": p.height_accuracy.get("height_accuracy_m"),
             "sigma_z_m": p.height_accuracy.get("sigma_z_at_highest_flown_height_m"),
-            "reason": u.reason, "binding": p.binding,
+            "reason": u.reason, "choice": getattr(u, "choice", None), "binding": p.binding,
             "height_tolerance_pct": p.inputs.height_tolerance_up_pct,
             "gsd_m": p.gsd_m, "ground_resolution_m": p.ground_resolution_m,
             "ground_resolution_to_gsd": p.ground_resolution_to_gsd,

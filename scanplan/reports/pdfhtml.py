@@ -244,7 +244,9 @@ def _plans_view(view: ReportView) -> dict[str, Any] | None:
 
     tbl = view.tables["plans"]
     loc = view.locale
+    choice = getattr(view.spec.uav, "choice", None) if view.spec is not None else None
     return {"title": view.labels("plans_title"), "note": view.labels("plans_note"),
+            "choice": localize(choice, loc) if choice is not None else "",
             "head": plan_head(loc),
             "rows": [{"cells": plan_cells(r, loc), "css": " ".join(sorted(r.flags))}
                      for r in tbl.rows]}

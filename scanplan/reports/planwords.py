@@ -15,15 +15,17 @@ from .views import PLAN_COLUMNS, Row, Table
 __all__ = ["plan_cells", "plan_head"]
 
 
+#: The terminal's shorter headings, by column (a unit where the unit says it).
+_TERMINAL = {"plans_mode": "term_plans_mode", "plans_lines": "term_plans_lines",
+             "plans_height": "m", "plans_photos": "term_plans_photos", "plans_volume": "gb",
+             "plans_time": "term_min", "plans_sorties": "term_plans_sorties",
+             "plans_gsd": "photo_gsd_cm", "plans_binding": "term_plans_binding"}
+
+
 def plan_head(locale: str, terminal: bool = False) -> list[str]:
-    """The columns' headings (the terminal's shorter ones, ``term_plans_*``)."""
-    from ..i18n.labels import LABELS
-
-    def word(key: str) -> str:
-        short = f"term_{key}"
-        return t(short if terminal and short in LABELS[locale] else key, locale)
-
-    return [word(key) for key, _, _ in PLAN_COLUMNS]
+    """The columns' headings (the terminal's shorter ones)."""
+    return [t(_TERMINAL.get(key, key) if terminal else key, locale)
+            for key, _, _ in PLAN_COLUMNS]
 
 
 def plan_cells(r: Row, locale: str) -> list[str]:
@@ -41,6 +43,9 @@ def plan_cells(r: Row, locale: str) -> list[str]:
     lines = "—" if deg is None else f"{n.fixed(deg, 1)}° ({t('plans_dir_' + r.key, locale)})"
     gsd_text = "—" if gsd is None else f"{n.fixed(gsd[0], 2)}–{n.fixed(gsd[1], 2)}"
     verdict = "; ".join(localize(m, locale) for m in why) if why else t("plans_ok", locale)
+    findings = r.fields.get("findings") or ()
+    if findings:
+        verdict = "; ".join([verdict, *(localize(m, locale) for m in findings)])
     marks = [t(k, locale) for k, flag in (("plans_recommended", "recommended"),
                                           ("plans_not_allowed", "not_allowed"))
              if flag in r.flags]

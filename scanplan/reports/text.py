@@ -167,7 +167,7 @@ def format_plan_result(result: Any, locale: str | None = None,
         lines += _uav_summary(tables["spec_uav"], result.uav.job.plan.inputs.platform, loc, T,
                               cname)
         if tables.has("plans") and tables["plans"].rows:
-            lines += _plans_lines(tables["plans"], loc, T)
+            lines += _plans_lines(tables["plans"], loc, T, result.uav.choice)
     if result.comparison:
         lines += _comparison_lines(result, loc, T, tables)
     from .design import design_text_lines
@@ -229,10 +229,10 @@ def _film_summary(tbl: Table, loc: str, T: _Terminal, cname: Any) -> list[str]:
     return [*lines, table(rows, align="ll"), reason]
 
 
-def _plans_lines(tbl: Table, loc: str, T: _Terminal) -> list[str]:
-    """The plans compared (the ``plans`` table, words of :mod:`.planwords`): one aligned
-    row each, the recommended one marked ``>``, and under it whether it meets every
-    constraint or what it misses."""
+def _plans_lines(tbl: Table, loc: str, T: _Terminal, choice: Any) -> list[str]:
+    """The plans compared (the ``plans`` table, words of :mod:`.planwords`): why the plan
+    was chosen, then one aligned row each, the recommended one marked ``>``, and under it
+    whether it meets every constraint or what it misses."""
     from .planwords import plan_cells, plan_head
 
     head = plan_head(loc, terminal=True)[:-1]
@@ -240,7 +240,10 @@ def _plans_lines(tbl: Table, loc: str, T: _Terminal) -> list[str]:
     marks = [">" if "recommended" in r.flags else " " for r in tbl.rows]
     body = table([["", *head], *[[m, *c[:-1]] for m, c in zip(marks, cells, strict=True)]],
                  align="ll" + "r" * (len(head) - 1)).split("\n")
-    out = ["", T["plans"], "  " + body[0]]
+    out = ["", T["plans"]]
+    if choice is not None:
+        out.append(_wrap(localize(choice, loc), "  "))
+    out.append("  " + body[0])
     for line, c in zip(body[1:], cells, strict=True):
         out.append("  " + line)
         out.append(textwrap.fill(c[-1], width=96, initial_indent="      ",

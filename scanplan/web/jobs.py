@@ -133,8 +133,9 @@ def plan_job(project: Any, files: Mapping[str, str]) -> dict[str, Any]:
 def view_job(project: Any, files: Mapping[str, str]) -> dict[str, Any]:
     """What the page shows: ``plan`` (the ``plan --json`` document), ``map`` (GeoJSON of
     the area, strips, photo centres and take-offs, WGS 84), ``charts`` (the documents'
-    SVG plots: the film plan's constraints, the UAV plan's heights), ``toml`` and ``crs`` (the
-    planning CRS named in the page's language)."""
+    SVG plots: the film plan's constraints, the UAV plan's heights), ``plans`` (the plans
+    compared, worded, :func:`_plans`), ``toml`` and ``crs`` (the planning CRS named in the
+    page's language)."""
     from ..reports.plots import PLOT_JOBS, view_plot
     from ..reports.view import build_view
 
@@ -151,7 +152,26 @@ def view_job(project: Any, files: Mapping[str, str]) -> dict[str, Any]:
                 "names": _constraint_names(doc, view.locale),
                 "margins_pct": _margins_at_planned(doc),
                 "warnings": _warnings(result, view.locale),
+                "plans": _plans(view),
                 "crs": _crs(result, view.locale)}
+
+
+def _plans(view: Any) -> dict[str, Any] | None:
+    """The plans compared, worded as the documents word them (:mod:`scanplan.reports.
+    planwords`): ``title``, ``choice`` (why the plan), ``head`` and ``rows`` (``cells``,
+    ``flags``); None without a choice."""
+    if not view.tables.has("plans") or not view.tables["plans"].rows:
+        return None
+    from ..i18n.messages import localize
+    from ..reports.planwords import plan_cells, plan_head
+
+    loc = view.locale
+    choice = getattr(view.spec.uav, "choice", None)
+    return {"title": view.labels("plans_title"),
+            "choice": localize(choice, loc) if choice is not None else "",
+            "head": plan_head(loc, terminal=True),
+            "rows": [{"cells": plan_cells(r, loc), "flags": sorted(r.flags)}
+                     for r in view.tables["plans"].rows]}
 
 
 def _crs(result: Any, locale: str) -> str | None:

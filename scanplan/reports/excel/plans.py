@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from ...i18n.messages import localize
 from ..planwords import plan_cells, plan_head
 from .cells import put_num, put_text
 
@@ -54,5 +55,9 @@ def write_plans_sheet(book: Any, view: Any) -> None:
         put_text(ws, row, 11, binding or "")
         put_text(ws, row, 12, words[-1], wrap=True)
         row += 1
-    put_text(ws, row + 1, 1, book.t("plans_note"), wrap=True)
-    ws.merge_cells(start_row=row + 1, start_column=1, end_row=row + 1, end_column=12)
+    choice = getattr(view.spec.uav, "choice", None)
+    notes = ([localize(choice, loc)] if choice is not None else []) + [book.t("plans_note")]
+    for note in notes:
+        row += 1
+        put_text(ws, row, 1, note, wrap=True)
+        ws.merge_cells(start_row=row, start_column=1, end_row=row, end_column=12)

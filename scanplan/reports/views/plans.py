@@ -38,7 +38,8 @@ def plans(spec: Any) -> Table:
         flown (a :class:`Message`), the lines' direction [°], the height [m], photos, the
         data volume [GB], the flying time [min], sorties, the GSD at the lowest and highest
         heights flown (a pair) [cm], the binding constraint, and what it misses (a tuple of
-        Messages; empty when it meets every constraint). Flags ``"recommended"``,
+        Messages; empty when it meets every constraint). Fields ``findings``: what it holds
+        only within an allowance (Messages). Flags ``"recommended"``,
         ``"feasible"``, ``"estimate"``, ``"not_allowed"`` (the project's choices rule it
         out). No rows without alternatives.
     """
@@ -58,6 +59,7 @@ def plans(spec: Any) -> Table:
             a.data_volume_bytes / 1e9 if a.data_volume_bytes is not None else None,
             a.flight_time_s / 60.0 if a.flight_time_s is not None else None,
             a.n_sorties, gsd, a.binding, tuple(a.rejected_because)),
-            flags=frozenset(flags), fields={"mode": a.mode, "parts": a.parts}))
+            flags=frozenset(flags),
+            fields={"mode": a.mode, "parts": a.parts, "findings": tuple(a.findings)}))
     columns = tuple(Column(key, unit=unit, digits=digits) for key, unit, digits in PLAN_COLUMNS)
     return Table("plans", "plans_title", columns, tuple(rows))

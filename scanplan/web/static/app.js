@@ -466,10 +466,23 @@
     const ws = v.warnings || [];
     $("warnings").innerHTML = ws.length ? `<h3>${esc(T.warnings)}</h3><ul>` + ws.map((w) =>
       `<li class="${esc(w.severity)}">${esc(w.text)}</li>`).join("") + "</ul>" : "";
+    $("plans").innerHTML = plansHtml(v.plans);
     $("charts").innerHTML = Object.entries(v.charts || {}).map(([k, svg]) =>
       `<img alt="${esc(k)}" data-chart="${esc(k)}" src="data:image/svg+xml;charset=utf-8,` +
       `${encodeURIComponent(svg)}">`).join("");
     showMap(v.map);
+  }
+
+  /* the plans compared, worded by the server as the documents word them */
+  function plansHtml(p) {
+    if (!p || !p.rows || !p.rows.length) return "";
+    const n = p.head.length - 1;
+    return `<h3>${esc(p.title)}</h3>` + (p.choice ? `<p class="choice">${esc(p.choice)}</p>` : "") +
+      `<table class="plans"><tr>${p.head.slice(0, n).map((h) => `<th>${esc(h)}</th>`).join("")}</tr>` +
+      p.rows.map((r) => `<tr class="${esc(r.flags.join(" "))}">` +
+        r.cells.slice(0, n).map((c) => `<td>${esc(c)}</td>`).join("") + `</tr>` +
+        `<tr class="why ${esc(r.flags.join(" "))}"><td colspan="${n}">${esc(r.cells[n])}</td></tr>`)
+        .join("") + "</table>";
   }
 
   /* ---------------------------------------------------------------- downloads */
