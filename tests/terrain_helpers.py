@@ -119,6 +119,9 @@ def terrain_cases(tmp: Path) -> dict[str, list]:
     res = TC.uav_terrain(lay, T.ground_under(lay, T.TerrainConfig(dem=tilt)), inp,
                         plan_uav(inp))
     out["terrain overlaps"] = [w.message for w in res.warnings]
+    from scanplan.project.alternatives import overlap_findings
+    short, within = overlap_findings(inp, res)  # a plan compared: rejected for it
+    out["plans compared, overlaps short"] = short + within
     inp = uav_inputs(100.0, down_pct=30.0)
     res = TC.uav_terrain(lay, T.ground_under(lay, T.TerrainConfig(dem=tilt)), inp,
                         plan_uav(inp))
@@ -135,15 +138,6 @@ def terrain_cases(tmp: Path) -> dict[str, list]:
         nodata=-9999.0)
     out["terrain nodata unfilled"] = [w.message for w in T.ground_under(
         lay, T.TerrainConfig(dem=pin, void_fill_radius_m=0.0)).warnings]
-    # another altitude mode named: follow far above the strips' height
-    from scanplan.geo.terrain_choice import ModeHeights
-    from scanplan.project.terrainplan import _other_choice
-    inp = uav_inputs(100.0)
-    flat = TC.uav_terrain(lay, T.ground_under(lay, T.TerrainConfig(dem=tilt)), inp,
-                         plan_uav(inp), "strip")
-    hint = _other_choice(T.TerrainConfig(dem=tilt, altitude_mode="strip"), flat,
-                         ModeHeights(60.0, 200.0, (0.0,), (100.0,)), 300.0)
-    out["terrain other mode"] = [hint.message]
     to = Transformer.from_crs(PLAN_CRS, "EPSG:4326", always_xy=True)
     lon, lat = to.transform(ph["x_m"], ph["y_m"])
     geo = write_dem(tmp / "geo-cases.tif", lambda x, y: np.full_like(x, 150.0),

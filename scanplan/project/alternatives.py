@@ -58,7 +58,7 @@ from .terrainplan import (
 )
 
 __all__ = ["MAX_PARTS", "OVERLAP_SLACK_PCT", "PINNED_EXTRA", "Candidate", "JobAt",
-           "PlanChoice", "alternatives_dicts", "choose_plan", "describe"]
+           "PlanChoice", "alternatives_dicts", "choose_plan", "describe", "overlap_findings"]
 
 OVERLAP_SLACK_PCT = 1.0
 """An overlap this many percentage points below the planned one is a finding, not a reason
@@ -325,20 +325,33 @@ def _verdict(project: ProjectModel, job: UavJob, res: TerrainResult | None,
     if res.max_height_m is not None and res.max_height_m < h - 1e-9:
         why.append(Message("plan_choice.limit", cid=res.binding or "",
                            max=max(res.max_height_m, 0.0)))
-    inp = job.plan.inputs
-    for kind, worst, planned in (("forward", res.min_forward_overlap_pct,
-                                  inp.forward_overlap_pct),
-                                 ("side", res.min_side_overlap_pct, inp.side_overlap_pct)):
-        short = Message(f"plan_choice.overlap.{kind}", value=worst, planned=planned)
-        if math.isfinite(worst) and worst < planned - OVERLAP_SLACK_PCT:
-            why.append(short)
-        elif math.isfinite(worst) and worst < planned - 0.05:  # as the overlap warnings
-            notes.append(Message("plan_choice.within", what=short, slack=OVERLAP_SLACK_PCT))
+    short, within = overlap_findings(job.plan.inputs, res)
+    why += short
+    notes += within
     check, holds = block_rule(project, job.norm_set, terrain_ground_m(project, res), h, mode)
     if not holds and check is not None:
         why.append(Message("plan_choice.block", range=check.range_m, pct=check.range_pct,
                            limit=check.limit_pct, n=check.blocks))
     return tuple(why), tuple(notes)
+
+
+def overlap_findings(inp: Any, res: TerrainResult
+                     ) -> tuple[list[Message], list[Message]]:
+    """The overlaps of a plan over relief against the planned ones: (those short by more
+    than :data:`OVERLAP_SLACK_PCT`, those short within it), as the terrain check's overlap
+    warnings count them (by more than 0.05 %)."""
+    out: tuple[list[Message], list[Message]] = ([], [])
+    for kind, worst, planned in (("forward", res.min_forward_overlap_pct,
+                                  inp.forward_overlap_pct),
+                                 ("side", res.min_side_overlap_pct, inp.side_overlap_pct)):
+        if not (math.isfinite(worst) and worst < planned - 0.05):
+            continue
+        short = Message(f"plan_choice.overlap.{kind}", value=worst, planned=planned)
+        if worst < planned - OVERLAP_SLACK_PCT:
+            out[0].append(short)
+        else:
+            out[1].append(Message("plan_choice.within", what=short, slack=OVERLAP_SLACK_PCT))
+    return out
 
 
 # --- estimates: what cannot be laid out here ------------------------------------------------

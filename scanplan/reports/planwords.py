@@ -17,8 +17,8 @@ __all__ = ["plan_cells", "plan_head"]
 
 #: The terminal's shorter headings, by column (a unit where the unit says it).
 _TERMINAL = {"plans_mode": "term_plans_mode", "plans_lines": "term_plans_lines",
-             "plans_height": "m", "plans_photos": "term_plans_photos", "plans_volume": "gb",
-             "plans_time": "term_min", "plans_sorties": "term_plans_sorties",
+             "plans_height": "m", "geo_n_photos": "term_plans_photos", "plans_volume": "gb",
+             "plans_time": "term_min", "sorties": "term_plans_sorties",
              "plans_gsd": "photo_gsd_cm", "plans_binding": "term_plans_binding"}
 
 
@@ -46,7 +46,7 @@ def plan_cells(r: Row, locale: str) -> list[str]:
     findings = r.fields.get("findings") or ()
     if findings:
         verdict = "; ".join([verdict, *(localize(m, locale) for m in findings)])
-    marks = [t(k, locale) for k, flag in (("plans_recommended", "recommended"),
+    marks = [t(k, locale) for k, flag in (("xlsx_recommended", "recommended"),
                                           ("plans_not_allowed", "not_allowed"))
              if flag in r.flags]
     if marks:

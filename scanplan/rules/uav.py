@@ -442,6 +442,27 @@ def _curves(inp: UavInputs, h_plan: float, h_hi: float, max_flown: float | None
     return height_curve, mtf_centre
 
 
+def _resolvable_warning(inp: UavInputs, resolvable: bool) -> list[PlanWarning]:
+    """``not_resolvable`` when the object's contrast stays below the threshold."""
+    if resolvable:
+        return []
+    return [PlanWarning("not_resolvable", Message(
+        "not_resolvable", contrast=float(M.object_contrast(inp.r_max, inp.r_min)),
+        threshold=inp.threshold_k0))]
+
+
+def _heights(inp: UavInputs, flown_band_m: tuple[float, float] | None
+             ) -> tuple[float, float, float]:
+    """The planned, lowest and highest flown heights above the ground [m]: the planned
+    height ± its tolerances, or over relief the heights really flown."""
+    if flown_band_m is not None:
+        lo, hi = (float(x) for x in flown_band_m)
+        return float(inp.height_m), lo, hi
+    band = FL.height_band(inp.height_m, inp.height_tolerance_up_pct / 100.0,
+                          inp.height_tolerance_down_pct / 100.0)
+    return float(inp.height_m), float(band.min_m), float(band.max_m)
+
+
 def plan_uav(inp: UavInputs, rules: ScanRules | None = None,
              flown_band_m: tuple[float, float] | None = None) -> UavPlan:
     """Plan a UAV flight: GSD, MTF ground resolution, blur, flight geometry, and — with a map
@@ -458,12 +479,8 @@ def plan_uav(inp: UavInputs, rules: ScanRules | None = None,
     rules : ScanRules, optional
         Needed when ``inp.map_scale`` is given.
     flown_band_m : (float, float), optional
-        The lowest and highest heights above ground really flown [m], tolerances included
-        — over relief the photos fly from the planned height over the highest ground to
-        far above the lowest (:mod:`scanplan.geo.terrain`). The figures at the lowest and
-        highest flown heights (GSD, L, recognition, blur, overlaps, σ_Z, the plots'
-        marks) are then taken there instead of at H·(1 − tolerance) and H·(1 + tolerance);
-        the limits (maximum heights) do not change; ``over_relief`` is True.
+        Over relief, the lowest and highest heights above ground really flown [m], in
+        place of H ± the tolerance (the limits do not change; ``over_relief``).
 
     Returns
     -------
@@ -485,11 +502,7 @@ def plan_uav(inp: UavInputs, rules: ScanRules | None = None,
     _check_inputs(inp)
     if rules is not None:
         check_probability(rules)
-    band = FL.height_band(inp.height_m, inp.height_tolerance_up_pct / 100.0,
-                          inp.height_tolerance_down_pct / 100.0)
-    h_plan, h_lo, h_hi = inp.height_m, float(band.min_m), float(band.max_m)
-    if flown_band_m is not None:  # over relief: the heights really flown
-        h_lo, h_hi = (float(x) for x in flown_band_m)
+    h_plan, h_lo, h_hi = _heights(inp, flown_band_m)
     res = _resolution(inp, np.array([h_plan, h_hi]))
     c, k = res.centre, res.corner
     gsd = FL.ground_sample_distance_m(inp.pixel_um, np.array([h_plan, h_lo, h_hi]),
@@ -502,17 +515,14 @@ def plan_uav(inp: UavInputs, rules: ScanRules | None = None,
     tilt = _tilted_corner_gsd(inp, h_hi)
     l_plan = _f(np.asarray(c.ground_resolution_m)[0])
     l_hi = _f(np.asarray(c.ground_resolution_m)[1])
-    if not resolvable:
-        warnings.append(PlanWarning("not_resolvable", Message(
-            "not_resolvable", contrast=float(M.object_contrast(inp.r_max, inp.r_min)),
-            threshold=inp.threshold_k0)))
+    warnings += _resolvable_warning(inp, resolvable)
     recognition = _recognition(inp, l_plan, l_hi, _f(np.asarray(k.ground_resolution_m)[1]))
     limits, max_h, binding, allow, accuracy, lim_warnings = _height_limits(inp, rules)
     warnings.extend(lim_warnings)
     up = 1.0 + inp.height_tolerance_up_pct / 100.0
     max_flown = max_h * up if max_h is not None else None
     height_curve, mtf_centre = _curves(inp, h_plan, h_hi, max_flown)
-    if flown_band_m is not None and accuracy and rules is not None:
+    if flown_band_m is not None and accuracy and rules is not None:  # σ_Z as flown
         accuracy = _accuracy_at(inp, rules, accuracy, h_lo, h_hi)
     return UavPlan(
         inputs=inp, heights_m={"planned": h_plan, "min": h_lo, "max": h_hi},

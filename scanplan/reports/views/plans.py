@@ -14,8 +14,8 @@ __all__ = ["PLAN_COLUMNS", "plans"]
 #: The columns, in order: (label key, unit key, decimals).
 PLAN_COLUMNS: tuple[tuple[str, str, int | None], ...] = (
     ("plans_mode", "", None), ("plans_lines", "deg", 1), ("plans_height", "m", 0),
-    ("plans_photos", "", 0), ("plans_volume", "GB", 0), ("plans_time", "min", 0),
-    ("plans_sorties", "", 0), ("plans_gsd", "cm", 2), ("plans_binding", "", None),
+    ("geo_n_photos", "", 0), ("plans_volume", "GB", 0), ("plans_time", "min", 0),
+    ("sorties", "", 0), ("plans_gsd", "cm", 2), ("plans_binding", "", None),
     ("plans_verdict", "", None))
 
 _MODE = {None: "plan_choice.mode.flat", "constant": "plan_choice.mode.constant",
