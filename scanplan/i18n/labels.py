@@ -229,8 +229,8 @@ LABELS: dict[str, dict[str, str]] = {
         "pdf_f_number": "f-number",
         "pdf_sensor_mm": "Sensor, across × along track, mm",
         "pdf_flown_heights": "Heights flown, m",
-        "pdf_flown_heights_relief": "Heights flown above the ground (lowest – highest, "
-                                    "tolerances included), m",
+        "pdf_flown_heights_relief": "Heights above the ground the photos show (lowest – "
+                                    "highest, tolerances included), m",
         "ground_speed_ms": "Ground speed, m/s",
         "pdf_scene": "Scene reflectances r_max / r_min",
         "pdf_at_height": "at {h} m",
@@ -561,7 +561,7 @@ LABELS: dict[str, dict[str, str]] = {
         "pdf_f_number": "Диафрагменное число",
         "pdf_sensor_mm": "Размер матрицы поперёк × вдоль маршрута, мм",
         "pdf_flown_heights": "Фактические высоты полёта, м",
-        "pdf_flown_heights_relief": "Фактические высоты над землёй (наименьшая – "
+        "pdf_flown_heights_relief": "Высоты над снимаемой местностью (наименьшая – "
                                     "наибольшая, с допусками), м",
         "ground_speed_ms": "Путевая скорость, м/с",
         "pdf_scene": "Коэффициенты яркости r_max / r_min",
