@@ -269,7 +269,8 @@ def _plan(project: ProjectModel, check: _Checks | None, cand: Candidate, h0: flo
         job, res = settled.job, settled.result
     why, notes = _verdict(project, job, res, cand.mode)
     alt = _alternative(cand, job, res, why, _allowed(project, cand.mode, cand.direction))
-    return _Planned(cand, job, settled, replace(alt, findings=notes))
+    tried = settled.tried if settled is not None else ()
+    return _Planned(cand, job, settled, replace(alt, findings=notes, heights_tried=tried))
 
 
 def _allowed(project: ProjectModel, mode: str | None, direction: str, parts: int = 1) -> bool:
@@ -530,5 +531,6 @@ def alternatives_dicts(alts: tuple[Alternative, ...]) -> list[dict[str, Any]]:
              "rejected_because": [{"code": m.code, "message": str(m),
                                    "params": params_json(m.params)}
                                   for m in a.rejected_because],
-             "findings": [str(m) for m in a.findings], "estimate": a.estimate,
+             "findings": [str(m) for m in a.findings],
+             "heights_tried_m": [[h, ok] for h, ok in a.heights_tried], "estimate": a.estimate,
              "allowed": a.allowed, "recommended": a.recommended} for a in alts]

@@ -186,6 +186,9 @@ class Alternative:
         What it misses.
     findings : tuple of Message
         What it holds only within an allowance (an overlap a few tenths short).
+    heights_tried : tuple of (float, bool)
+        Over relief, every height its layout was laid out at and checked, and whether its
+        worst photo met every limit, in the order tried [m] (the fixed point).
     estimate : bool
         Costed but not laid out and checked photo by photo (what it needs is in
         ``rejected_because``).
@@ -216,6 +219,7 @@ class Alternative:
     allowed: bool = True
     recommended: bool = False
     findings: tuple[Any, ...] = ()
+    heights_tried: tuple[tuple[float, bool], ...] = ()
 
     @property
     def cost(self) -> tuple[float, float]:
