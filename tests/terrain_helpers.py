@@ -166,3 +166,20 @@ def terrain_cases(tmp: Path) -> dict[str, list]:
                         resolving_power_lpmm=40, object_size_m=0.2, shape_coefficient=0.97)
     out["terrain film"] = [w.message for w in ft.warnings]
     return out
+
+
+def valley_pinned(tmp: Path, mode: str = "constant") -> Path:
+    """The valley example (with its KML and DEM) in ``tmp``, its altitude mode pinned: the
+    example leaves the mode to scanplan, which follows the terrain there."""
+    import shutil
+
+    examples = Path(__file__).resolve().parent.parent / "examples"
+    for folder in ("areas", "dem"):
+        if not (tmp / folder).exists():
+            shutil.copytree(examples / folder, tmp / folder)
+    text = (examples / "uav-town-valley-2000.toml").read_text(encoding="utf-8")
+    assert 'altitude_mode = "auto"' in text
+    p = tmp / f"uav-town-valley-2000-{mode}.toml"
+    p.write_text(text.replace('altitude_mode = "auto"', f'altitude_mode = "{mode}"'),
+                 encoding="utf-8")
+    return p

@@ -8,6 +8,7 @@ as an RMS error, σ_px = 0.5 px (norm parameter ``image_measurement_px``).
 from __future__ import annotations
 
 import dataclasses
+import itertools
 import json
 import math
 from pathlib import Path
@@ -70,7 +71,7 @@ def test_the_height_allowed_does_not_fall_from_55_to_60_pct_overlap():
     lsq = float(S.multi_ray_base_fraction(60) / S.multi_ray_base_fraction(55))
     assert gain == pytest.approx(lsq, rel=1e-9) and gain == pytest.approx(1.0264, abs=1e-4)
     heights = [pz_flat(p) for p in np.arange(50.0, 95.01, 0.5)]
-    assert all(b >= a * (1 - 1e-12) for a, b in zip(heights, heights[1:], strict=False))
+    assert all(b >= a * (1 - 1e-12) for a, b in itertools.pairwise(heights))
 
 
 def test_strip_multi_ray_factor_closed_form():

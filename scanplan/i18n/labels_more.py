@@ -254,8 +254,7 @@ DESIGN: dict[str, dict[str, str]] = {
                               "terrain",
         "design_block_one": "one height for the block",
         "design_block_dem": "(the DEM under the photos, {n} samples)",
-        "design_block_waived": "not applied: the flight follows the relief "
-                               "(altitude_mode = \"follow\")",
+        "design_block_waived": "not applied: the flight follows the relief",
         "design_site": "Site (latitude, longitude)",
         "design_site_value": "{lat}°, {lon}°",
         "design_dates": "Planned flying dates",

@@ -83,7 +83,7 @@ TERRAIN: dict[str, dict[str, str]] = {
     },
     "terrain_forward_overlap": {
         "en": "over high ground the forward overlap drops to {value:.1f} % (photos {a:d} and "
-              "{b:d}), below the planned {planned:g} % at {count:d} photo(s): {photos}.{floor} "
+              "{b:d}), below the planned {planned:g} % at {count:d|photo|photos}: {photos}.{floor} "
               "Remedies: hold the altitude over the highest ground (⁅[terrain] altitude_mode = "
               "\"constant\" or \"strip\"⁆), or raise the forward overlap "
               "(⁅[uav] forward_overlap_pct⁆)",
@@ -95,8 +95,8 @@ TERRAIN: dict[str, dict[str, str]] = {
     },
     "terrain_side_overlap": {
         "en": "over high ground the side overlap drops to {value:.1f} % (photos {a:d} and {b:d}), "
-              "below the planned {planned:g} % at {count:d} photo(s): {photos}.{floor} Remedies: "
-              "hold the altitude over the highest ground (⁅[terrain] altitude_mode = "
+              "below the planned {planned:g} % at {count:d|photo|photos}: {photos}.{floor} "
+              "Remedies: hold the altitude over the highest ground (⁅[terrain] altitude_mode = "
               "\"constant\"⁆), or raise the side overlap (⁅[uav] side_overlap_pct⁆)",
         "ru": "Над повышенным рельефом поперечное перекрытие уменьшается до {value:.1f}~% (снимки "
               "{a:d} и {b:d}) — меньше планового {planned:g}~% у снимков: {count:d} "

@@ -257,7 +257,8 @@ def write_documents(targets: Sequence[Target], *, scan: Any = None, uav: Any = N
         from .exports import with_exports
 
         spec = with_exports(spec, (kind for kind, _ in extra.values()))
-        tables = tables.with_spec(spec) if tables is not None else None
+        if tables is not None:  # the caller's tables, of the same result: nothing they show
+            tables.spec = spec  # depends on which files the run writes beside them
     check = _checker(targets, extra, extra_field, inputs, force)
     refuse_targets(targets)
     check()

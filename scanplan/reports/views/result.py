@@ -91,12 +91,6 @@ class ResultTables:
         found = getattr(self, head)
         return None if found is None or (part and getattr(found, part) is None) else found
 
-    def with_spec(self, spec: Any) -> ResultTables:
-        """These tables for a restatement of the same specification that none of them
-        shows (which files the run writes beside the documents): the tables built so far
-        are kept."""
-        return ResultTables(self.scan, self.uav, spec, list(self.built), dict(self._tables))
-
     @classmethod
     def of_jobs(cls, scan: Any = None, uav: Any = None, spec: Any = None) -> ResultTables:
         """The tables of a film and/or UAV job (their plans) and a specification."""
