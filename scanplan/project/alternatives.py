@@ -57,8 +57,9 @@ from .terrainplan import (
     terrain_outcome,
 )
 
-__all__ = ["MAX_PARTS", "OVERLAP_SLACK_PCT", "PINNED_EXTRA", "Candidate", "JobAt",
-           "PlanChoice", "alternatives_dicts", "choose_plan", "describe", "overlap_findings"]
+__all__ = ["LARGE_PLAN_PHOTOS", "MAX_PARTS", "OVERLAP_SLACK_PCT", "PINNED_EXTRA", "Candidate",
+           "JobAt", "PlanChoice", "alternatives_dicts", "choose_plan", "describe",
+           "overlap_findings"]
 
 OVERLAP_SLACK_PCT = 1.0
 """An overlap this many percentage points below the planned one is a finding, not a reason
@@ -69,11 +70,15 @@ PINNED_EXTRA = 0.25
 every constraint is a warning (below it a note in the plans compared only)."""
 MAX_PARTS = 20
 """Most parts a block is split into by ground height."""
+LARGE_PLAN_PHOTOS = 100_000
+"""A block of more photos is compared along its own direction (the project's, or the least
+flight length) only: every mode, not every direction (each plan costs a layout and a check
+of every photo)."""
 
 JobAt = Callable[..., UavJob]
-"""``job_at(height_m, direction=None, flown_band_m=None)``: the job at a planned height,
-laid out along ``direction`` (None: the project's own, ``"auto"`` or degrees), its
-figures at ``flown_band_m`` over relief."""
+"""``job_at(height_m, direction=None, flown_band_m=None, laid_out=None)``: the job at a
+planned height, laid out along ``direction`` (None: the project's own, ``"auto"`` or
+degrees), its figures at ``flown_band_m`` over relief (keeping the layout ``laid_out``)."""
 
 
 @dataclass(frozen=True)
@@ -151,23 +156,74 @@ def choose_plan(project: ProjectModel, start: UavJob, job_at: JobAt,
     cfg = terrain.config if terrain is not None else None
     h0 = float(start.plan.inputs.height_m)
     check = _Checks(project, cfg) if cfg is not None else None
-    planned: list[_Planned] = []
-    for cand in _candidates(project, start, job_at, h0, cfg):
-        planned.append(_plan(project, check, cand, h0, job_at))
-    if cfg is not None and cfg.dem is not None:
-        relief = _relief_direction(planned, start, cfg)
+    large = start.layout is not None and start.layout.n_photos > LARGE_PLAN_PHOTOS
+    cands = _candidates(project, start, job_at, h0, cfg, large)
+    done = _Compared(light=large)
+    for cand in cands:
+        done.add(_plan(project, check, cand, h0, job_at))
+    if cfg is not None and cfg.dem is not None and not large:
+        relief = _relief_direction(done, start, cfg)
         if relief is not None:
             for mode in _modes(cfg):
-                planned.append(_plan(project, check, Candidate(mode, "relief", relief), h0,
-                                     job_at))
-    estimates = _estimates(project, cfg, start, job_at, h0, planned)
-    pick = _pick(planned)
-    alts = tuple(replace(p.alternative, recommended=p is pick) for p in planned) + estimates
-    job, res, lowered, warned = _outcome(pick, job_at, planned_m)
+                done.add(_plan(project, check, Candidate(mode, "relief", relief), h0, job_at))
+    pick = done.best
+    assert pick is not None
+    estimates = _estimates(project, cfg, start, job_at, h0, done, cands[0])
+    alts = tuple(replace(a, recommended=a is pick.alternative) for a in done.alts) + estimates
+    rechecked = pick.settled is None and pick.candidate.mode is not None and check is not None
+    if rechecked:  # a large block: its chosen plan checked again, with the MTF figures
+        assert check is not None
+        pick = replace(pick, settled=_rechecked(pick, check, job_at))
+    job, res, lowered, warned = _outcome(pick, job_at, planned_m, figures=rechecked)
     choice = _choice_reason(pick.alternative, alts) if len(alts) > 1 else None
     warnings = warned + _choice_warnings(pick.alternative, alts, project)
     return PlanChoice(alts, job, res, float(job.plan.inputs.height_m), lowered, choice,
                       warnings)
+
+
+def _rank(a: Alternative) -> tuple[bool, bool, tuple[float, float]]:
+    """The order of the choice: the project's choices allow it, it meets every constraint,
+    the least flying time, then the fewest photos."""
+    return (not a.allowed, not a.feasible, a.cost)
+
+
+class _Compared:
+    """The plans laid out so far: every record, and the best one kept whole (its job and
+    settled layout) — the others only as their records, so that a block does not hold a
+    layout per plan; a large block (``light``) keeps not even the best one's checked
+    layout (:func:`_rechecked` checks it again at the end). The ground of the first check:
+    its DEM grid (the relief direction) and its lowest and highest ground (the estimates).
+    """
+
+    def __init__(self, light: bool = False) -> None:
+        self.light = light
+        self.alts: list[Alternative] = []
+        self.best: _Planned | None = None
+        self.ground: Any = None
+        self.ground_range: tuple[float, float] | None = None
+
+    def add(self, p: _Planned) -> None:
+        self.alts.append(p.alternative)
+        if self.ground_range is None and p.settled is not None:
+            g = p.settled.first.ground
+            self.ground_range = (float(g.low_m), float(g.high_m))
+            self.ground = None if self.light else g
+        if self.best is None or _rank(p.alternative) < _rank(self.best.alternative):
+            self.best = replace(p, settled=None) if self.light else p
+
+
+def _rechecked(pick: _Planned, check: _Checks, job_at: JobAt) -> Settled:
+    """A large block's chosen plan checked again at its settled height (and, when it was
+    lowered, at the start: what the height the project gave would miss)."""
+    mode = pick.candidate.mode
+    assert mode is not None and pick.alternative.height_m is not None
+    tried = pick.alternative.heights_tried
+    job = job_at(pick.alternative.height_m, pick.candidate.direction_deg)
+    res = check.full(job, mode)
+    top = tried[0][0] if tried else pick.alternative.height_m
+    first = res if top == pick.alternative.height_m else check.full(
+        job_at(top, pick.candidate.direction_deg), mode)
+    return Settled(job, res, first, tried)
 
 
 # --- the candidates ----------------------------------------------------------------------
@@ -190,8 +246,10 @@ def _project_direction(project: ProjectModel) -> float | None:
 
 
 def _candidates(project: ProjectModel, start: UavJob, job_at: JobAt, h0: float,
-                cfg: TerrainConfig | None) -> list[Candidate]:
-    """Modes × directions, each direction once (within a degree)."""
+                cfg: TerrainConfig | None, large: bool) -> list[Candidate]:
+    """Modes × directions, each direction once (within a degree), the project's own (or
+    the least flight length) first; a large block (:data:`LARGE_PLAN_PHOTOS`) along that
+    one only."""
     assert start.layout is not None
     area = start.layout.area
     dirs: list[tuple[str, float | str | None, float]] = []
@@ -201,10 +259,11 @@ def _candidates(project: ProjectModel, start: UavJob, job_at: JobAt, h0: float,
         given = _project_direction(project)
         if given is not None:
             dirs.append(("project", given, given))
-        auto = start if given is None else job_at(h0, "auto")
-        assert auto.layout is not None
-        dirs.append(("auto", "auto", auto.layout.direction_deg))
-        axis = long_axis_deg(area.geometry)
+        if given is None or not large:
+            auto = start if given is None else job_at(h0, "auto")
+            assert auto.layout is not None
+            dirs.append(("auto", "auto", auto.layout.direction_deg))
+        axis = long_axis_deg(area.geometry) if not large else None
         if axis is not None:
             dirs.append(("long_axis", axis, axis))
     kept: list[tuple[str, float | str | None, float]] = []
@@ -214,22 +273,21 @@ def _candidates(project: ProjectModel, start: UavJob, job_at: JobAt, h0: float,
     return [Candidate(mode, kind, asked) for kind, asked, _ in kept for mode in _modes(cfg)]
 
 
-def _relief_direction(planned: list[_Planned], start: UavJob,
-                      cfg: TerrainConfig) -> float | None:
+def _relief_direction(done: _Compared, start: UavJob, cfg: TerrainConfig) -> float | None:
     """Over a DEM, the direction whose strips span the least relief (strip mode's height
     estimate, :func:`scanplan.geo.terrain_choice.mode_heights`), when no direction laid out
     yet is within a degree of it."""
-    first = next((p.settled.first for p in planned if p.settled is not None), None)
+    ground = done.ground
     lay = start.layout
     limit = start.plan.max_height_m
-    if first is None or lay is None or limit is None or first.ground.grid is None \
+    if ground is None or lay is None or limit is None or ground.grid is None \
             or not lay.n_photos or not lay.area.georeferenced:
         return None
-    est = mode_heights(first.ground.grid, lay.area.geometry, limit, lay.spacing_m,
+    est = mode_heights(ground.grid, lay.area.geometry, limit, lay.spacing_m,
                        lay.footprint_across_m, cfg.follow_tolerance_m, DIRECTIONS_DEG)
     best, _ = est.best_strip()
-    if any(p.alternative.direction_deg is not None
-           and same_direction(best, p.alternative.direction_deg) for p in planned):
+    if any(a.direction_deg is not None and same_direction(best, a.direction_deg)
+           for a in done.alts):
         return None
     return float(best)
 
@@ -240,18 +298,27 @@ class _Checks:
     """The terrain checks of the plans compared: the ground under each layout read once
     (the modes of one layout share it), the photos' MTF figures left for the one chosen."""
 
+    KEEP = 2
+    """Layouts whose ground is kept (the modes of one layout are checked one after the
+    other; a DEM grid per layout is large)."""
+
     def __init__(self, project: ProjectModel, cfg: TerrainConfig) -> None:
         self.project = project
         self.cfg = cfg
-        self._ground: dict[int, tuple[Any, Any]] = {}
+        self._ground: list[tuple[Any, Any]] = []  # (layout, its ground), the latest last
 
     def __call__(self, job: UavJob, mode: str) -> TerrainResult:
         assert job.layout is not None
-        key = id(job.layout)
-        if key not in self._ground:  # the layout kept with it: its id stays its own
-            self._ground[key] = (job.layout, ground_of(self.project, self.cfg, job.layout))
-        return terrain_check(self.project, self.cfg, job, mode,
-                             ground=self._ground[key][1], figures=False)
+        ground = next((g for lay, g in self._ground if lay is job.layout), None)
+        if ground is None:
+            ground = ground_of(self.project, self.cfg, job.layout)
+            self._ground = [*self._ground[-(self.KEEP - 1):], (job.layout, ground)]
+        return terrain_check(self.project, self.cfg, job, mode, ground=ground,
+                             figures=False)
+
+    def full(self, job: UavJob, mode: str) -> TerrainResult:
+        """The check with every photo's MTF figures (the plan chosen)."""
+        return terrain_check(self.project, self.cfg, job, mode)
 
 
 def _plan(project: ProjectModel, check: _Checks | None, cand: Candidate, h0: float,
@@ -358,19 +425,18 @@ def overlap_findings(inp: Any, res: TerrainResult
 # --- estimates: what cannot be laid out here ------------------------------------------------
 
 def _estimates(project: ProjectModel, cfg: TerrainConfig | None, start: UavJob,
-               job_at: JobAt, h0: float, planned: list[_Planned]) -> tuple[Alternative, ...]:
+               job_at: JobAt, h0: float, done: _Compared, own: Candidate
+               ) -> tuple[Alternative, ...]:
     """Over a ground range, following the terrain; where the one-height rule fails for
     every plan at one altitude, the block split into parts by ground height: costed from
-    the layout at the height each would allow, not checked photo by photo."""
+    the layout at the height each would allow along the first direction compared (``own``),
+    not checked photo by photo."""
     limit = start.plan.max_height_m
     if cfg is None or limit is None or start.layout is None:
         return ()
     out: list[Alternative] = []
-    auto = next((p for p in planned if p.candidate.direction in ("auto", "block")), planned[0])
-    direction = auto.candidate.direction_deg
-    ground = (cfg.ground_range_m if cfg.dem is None
-              else (auto.settled.first.ground.low_m, auto.settled.first.ground.high_m)
-              if auto.settled is not None else None)
+    direction = own.direction_deg
+    ground = cfg.ground_range_m if cfg.dem is None else done.ground_range
     if cfg.dem is None:
         h = recommended_height_m(min(limit - cfg.follow_tolerance_m, h0))
         if h is not None:
@@ -379,12 +445,11 @@ def _estimates(project: ProjectModel, cfg: TerrainConfig | None, start: UavJob,
                     (h + cfg.follow_tolerance_m)
                     * (1.0 + job.plan.inputs.height_tolerance_up_pct / 100.0))
             out.append(_alternative(
-                Candidate("follow", auto.candidate.direction, direction), job, None,
+                Candidate("follow", own.direction, direction), job, None,
                 (Message("plan_choice.needs_dem.follow"),),
-                _allowed(project, "follow", auto.candidate.direction), estimate=True,
-                band=band))
-    block_fails = any(any(m.code == "plan_choice.block" for m in p.alternative.rejected_because)
-                      for p in planned)
+                _allowed(project, "follow", own.direction), estimate=True, band=band))
+    block_fails = any(any(m.code == "plan_choice.block" for m in a.rejected_because)
+                      for a in done.alts)
     if block_fails and ground is not None:
         split = _split(project, start, ground, limit, h0)
         if split is not None:
@@ -394,9 +459,9 @@ def _estimates(project: ProjectModel, cfg: TerrainConfig | None, start: UavJob,
             flown = (h * (1.0 - inp.height_tolerance_down_pct / 100.0),
                      (h + band_m) * (1.0 + inp.height_tolerance_up_pct / 100.0))
             out.append(_alternative(
-                Candidate("constant", auto.candidate.direction, direction), job, None,
+                Candidate("constant", own.direction, direction), job, None,
                 (Message("plan_choice.needs_parts", n=n),),
-                _allowed(project, "constant", auto.candidate.direction, parts=n), parts=n,
+                _allowed(project, "constant", own.direction, parts=n), parts=n,
                 estimate=True, band=flown))
     return tuple(out)
 
@@ -420,29 +485,24 @@ def _split(project: ProjectModel, start: UavJob, ground: tuple[float, float], li
 
 # --- the choice -----------------------------------------------------------------------------
 
-def _pick(planned: list[_Planned]) -> _Planned:
-    """The least flying time (then fewest photos) among the laid-out plans the project
-    allows that meet every constraint; when none does, among those it allows."""
-    allowed = [p for p in planned if p.alternative.allowed] or planned
-    ok = [p for p in allowed if p.alternative.feasible]
-    return min(ok or allowed, key=lambda p: p.alternative.cost)
-
-
-def _outcome(pick: _Planned, job_at: JobAt, planned_m: float | None
+def _outcome(pick: _Planned, job_at: JobAt, planned_m: float | None, figures: bool = False
              ) -> tuple[UavJob, TerrainResult | None, Message | None, tuple[PlanWarning, ...]]:
     """The recommended plan as the specification carries it: over relief its terrain
-    result, the reason it was lowered and its findings, and its figures at the heights
-    really flown (:func:`scanplan.rules.uav.plan_uav`'s ``flown_band_m``)."""
+    result (with every photo's MTF figures, unless ``figures`` says it has them), the
+    reason it was lowered and its findings, and its figures at the heights really flown
+    (:func:`scanplan.rules.uav.plan_uav`'s ``flown_band_m``)."""
     if pick.settled is None or pick.candidate.mode is None:
         return pick.job, None, None, ()
     settled = pick.settled
-    settled = replace(settled, result=with_photo_figures(settled.result,
-                                                         settled.job.plan.inputs))
+    if not figures:  # checked without them
+        settled = replace(settled, result=with_photo_figures(settled.result,
+                                                             settled.job.plan.inputs))
     res, lowered, warned = terrain_outcome(settled, pick.candidate.mode, planned_m)
     job = pick.job
     band = flown_band_m(res, job.plan.inputs)
-    if band is not None:
-        job = job_at(float(job.plan.inputs.height_m), pick.candidate.direction_deg, band)
+    if band is not None:  # the same layout, its figures at the heights really flown
+        job = job_at(float(job.plan.inputs.height_m), pick.candidate.direction_deg, band,
+                     job.layout)
     return replace(job, layout=res.layout), res, lowered, warned
 
 

@@ -400,6 +400,7 @@ def uav_job(
     area: Area | None = None,
     layout_options: LayoutOptions | None = None,
     flown_band_m: tuple[float, float] | None = None,
+    laid_out: FlightLayout | None = None,
 ) -> UavJob:
     """Plan a UAV flight (see :func:`scanplan.rules.uav.plan_uav`); names as the CLI options.
 
@@ -425,7 +426,8 @@ def uav_job(
     Without ``height_m`` the flight is planned at the maximum planned height, rounded
     down to :data:`HEIGHT_STEP_M` (needs a map scale or a target GSD). ``flown_band_m``:
     over relief, the lowest and highest heights above the ground really flown [m]
-    (:func:`scanplan.rules.uav.plan_uav`).
+    (:func:`scanplan.rules.uav.plan_uav`); ``laid_out``: the layout of this very plan
+    already laid out over ``area`` (the plan restated at those heights keeps it).
 
     Long because: its keyword arguments (one per input of the registry) and this
     docstring; the work is in named steps: :func:`_carrier_defaults`,
@@ -494,7 +496,7 @@ def uav_job(
         area = rectangle_area(area_w, area_l)
     if area is None:
         return UavJob(plan, ns)
-    layout = uav_layout(plan, area, layout_options)
+    layout = laid_out if laid_out is not None else uav_layout(plan, area, layout_options)
     return UavJob(with_layout(plan, layout), ns, layout)
 
 

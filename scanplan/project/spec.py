@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import inspect
 import math
+from collections import OrderedDict
 from dataclasses import replace
 from typing import Any
 
@@ -352,15 +353,21 @@ def _uav(project: ProjectModel, the_area: Area | None) -> UavSpec:
                    choice.alternatives, choice.choice)
 
 
+_JOBS_KEPT = 6
+"""Jobs kept for reuse while the plans are compared (the modes of a direction share its
+layouts; a job is laid out again when it was dropped)."""
+
+
 def _jobs(project: ProjectModel, the_area: Area | None) -> JobAt:
     """The project's UAV job at a height (:data:`scanplan.project.alternatives.JobAt`),
     each laid out once: along the project's direction or another one, its figures at the
     heights really flown over relief."""
-    done: dict[tuple[Any, ...], UavJob] = {}
+    done: OrderedDict[tuple[Any, ...], UavJob] = OrderedDict()
     own = project.area.direction_deg
 
     def job_at(height_m: float, direction_deg: float | str | None = None,
-               flown_band_m: tuple[float, float] | None = None) -> UavJob:
+               flown_band_m: tuple[float, float] | None = None,
+               laid_out: FlightLayout | None = None) -> UavJob:
         if direction_deg is not None and (direction_deg == own or (
                 own is None and direction_deg == "auto")):
             direction_deg = None  # the project's own
@@ -371,9 +378,12 @@ def _jobs(project: ProjectModel, the_area: Area | None) -> JobAt:
                 if direction_deg is not None:
                     kw["layout_options"] = replace(kw["layout_options"],
                                                    direction_deg=direction_deg)
-                done[key] = uav_job(**kw, flown_band_m=flown_band_m)
+                done[key] = uav_job(**kw, flown_band_m=flown_band_m, laid_out=laid_out)
             except InputError as exc:
                 raise project.named(exc, "uav") from None
+            while len(done) > _JOBS_KEPT:  # the oldest layouts go (a large block's memory)
+                done.popitem(last=False)
+        done.move_to_end(key)
         return done[key]
 
     return job_at

@@ -174,39 +174,44 @@ def settle(check: Callable[[UavJob], TerrainResult], start: UavJob,
     Settled
     """
     top = float(start.plan.inputs.height_m)
-    done: dict[float, tuple[UavJob, TerrainResult]] = {}
+    done: dict[float, tuple[bool, float | None]] = {}  # height → (passes, its hint)
+    kept: dict[float, tuple[UavJob, TerrainResult]] = {}  # the start, the best so far
     order: list[float] = []
     h: float | None = top
-    job = start
     while h is not None and h not in done and len(done) < MAX_TRIES:
         job = start if h == top else job_at(h)
         if job.layout is None:
             break
-        done[h] = (job, check(job))
+        res = check(job)
+        done[h] = (passes(res), res.max_height_m)
         order.append(h)
+        kept[h] = (job, res)
+        best = _best_height(done)
+        kept = {x: v for x, v in kept.items() if x in (top, best)}  # the others' layouts go
         h = _next_height(done, top)
-    good = [x for x in done if passes(done[x][1])]
-    best = max(good) if good else min(done)
-    job, res = done[best]
-    return Settled(job, res, done[top][1],
-                   tuple((x, passes(done[x][1])) for x in order))
+    job, res = kept[_best_height(done)]
+    return Settled(job, res, kept[top][1], tuple((x, done[x][0]) for x in order))
 
 
-def _next_height(done: dict[float, tuple[UavJob, TerrainResult]], top: float
-                 ) -> float | None:
+def _best_height(done: dict[float, tuple[bool, float | None]]) -> float:
+    """The highest height that passes, else the lowest tried."""
+    good = [x for x in done if done[x][0]]
+    return max(good) if good else min(done)
+
+
+def _next_height(done: dict[float, tuple[bool, float | None]], top: float) -> float | None:
     """The next height to lay out (see :func:`settle`), None when the search is over."""
-    ok = {x: passes(r) for x, (_, r) in done.items()}
-    good = [x for x in ok if ok[x]]
+    good = [x for x in done if done[x][0]]
     if not good:  # nothing passes yet: down, by the lowest failing layout's hint
-        low = min(ok)
-        nxt = recommended_height_m(done[low][1].max_height_m)
+        low = min(done)
+        nxt = recommended_height_m(done[low][1])
         if nxt is None or nxt >= low:
             nxt = _below(low)
         return nxt
     lo = max(good)
-    above = [x for x in ok if not ok[x] and x > lo]
+    above = [x for x in done if not done[x][0] and x > lo]
     cap = _below(min(above)) if above else top
-    hint = recommended_height_m(done[lo][1].max_height_m)
+    hint = recommended_height_m(done[lo][1])
     if cap is None or hint is None:
         return None
     nxt = min(hint, cap)
