@@ -351,6 +351,16 @@ def emitted(tmp_path_factory) -> dict[str, list[Any]]:
         # where the area is: coordinates swapped (shown by the site, by the CRS), a site
         # far from the area
         **_site_variants(uav_toml),
+        # ground control: a survey too coarse for the height target (and beyond it even at
+        # best); markers on the valley's steep walls
+        "plan control coarse": (EXAMPLES / "uav-town-2000.toml").read_text(
+            encoding="utf-8").replace('file = "areas/',
+                                      f'file = "{(EXAMPLES / "areas").as_posix()}/')
+        + "\n[control]\ngcp_sigma_z_m = 0.08\n",
+        "plan control valley": (EXAMPLES / "uav-town-valley-2000.toml").read_text(
+            encoding="utf-8").replace('dem = "dem/', f'dem = "{(EXAMPLES / "dem").as_posix()}/')
+        .replace('file = "areas/', f'file = "{(EXAMPLES / "areas").as_posix()}/')
+        + '\n[control]\nmode = "rtk"\n',
     }
     variants["plan uav no height is feasible"] = uav_toml.replace(  # at most 0.56 m
         "max_height_m = 500", "max_height_m = 500\ngsd_cm = 0.01")

@@ -143,6 +143,11 @@ _COMMENTS: dict[str, dict[str, str]] = {
         "schedule": "flying dates and sorties (optional)",
         "start": "first flying date", "end": "last flying date",
         "sortie": "flight time of one sortie [min]",
+        "control": "ground control points and checkpoints (optional)",
+        "control_mode": "\"gcp\", \"rtk\", \"ppk\" or \"direct\"",
+        "control_xy": "the markers' survey precision in plan [m] (an assumption: give yours)",
+        "control_z": "the markers' survey precision in height [m] (an assumption)",
+        "control_check": "\"asprs\" (the ASPRS count for the area) or a number",
     },
     "ru": {
         "head": "# Проект scanplan: один договор на картографирование. Расчёт:\n"
@@ -188,6 +193,11 @@ _COMMENTS: dict[str, dict[str, str]] = {
         "schedule": "сроки и вылеты (необязательно)",
         "start": "первый день съёмки", "end": "последний день съёмки",
         "sortie": "продолжительность одного вылета [мин]",
+        "control": "опознаки и контрольные точки (необязательно)",
+        "control_mode": "\"gcp\", \"rtk\", \"ppk\" или \"direct\"",
+        "control_xy": "точность определения маркеров в плане [м] (допущение: укажите свою)",
+        "control_z": "точность определения маркеров по высоте [м] (допущение)",
+        "control_check": "\"asprs\" (число ASPRS для площади) или число",
     },
 }
 
@@ -266,7 +276,13 @@ def project_text(a: InitAnswers) -> str:
                 "", f"# [schedule]\t# {c['schedule']}",
                 f"# start_date = 2027-06-01\t# {c['start']}",
                 f"# end_date = 2027-06-30\t# {c['end']}",
-                f"# sortie_time_min = {_v('schedule.sortie_time_min', 25)}\t# {c['sortie']}"]
+                f"# sortie_time_min = {_v('schedule.sortie_time_min', 25)}\t# {c['sortie']}",
+                "", f"# [control]\t# {c['control']}",
+                f"# mode = {_s(INPUTS['control.mode'].default)}\t# {c['control_mode']}",
+                f"# gcp_sigma_xy_m = {_v('control.gcp_sigma_xy_m')}\t# {c['control_xy']}",
+                f"# gcp_sigma_z_m = {_v('control.gcp_sigma_z_m')}\t# {c['control_z']}",
+                f"# checkpoints = {_s(INPUTS['control.checkpoints'].default)}\t"
+                f"# {c['control_check']}"]
     return "\n".join(_align(line) for line in out) + "\n"
 
 

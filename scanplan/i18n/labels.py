@@ -331,8 +331,9 @@ LABELS: dict[str, dict[str, str]] = {
         "param_block_relief_mountain_pct": "Ground height range of a block at one height, "
                                            "mountainous terrain, % of the flight height",
         "param_min_sun_elevation_deg": "Lowest sun elevation for photography, °",
-        "param_uav_uncontrolled_aerodrome_km": "Least distance from uncontrolled aerodromes "
-                                               "without an airspace-use permission, km",
+        "param_uav_uncontrolled_aerodrome_km": "Least distance from the reference points of "
+                                               "uncontrolled aerodromes without an "
+                                               "airspace-use permission (2020 wording), km",
         "value_digital_height_formula_normal_case": "normal-case stereo (B/f)",
         "value_multi_ray_off": "off (one stereo pair)",
         "value_multi_ray_strip": "all photos of the strip",
@@ -674,9 +675,10 @@ LABELS: dict[str, dict[str, str]] = {
                                            "одной высоте фотографирования, горная местность, % "
                                            "от высоты",
         "param_min_sun_elevation_deg": "Наименьшая высота Солнца при аэрофотосъёмке, °",
-        "param_uav_uncontrolled_aerodrome_km": "Наименьшее удаление от неконтролируемых "
-                                               "аэродромов без разрешения на использование "
-                                               "воздушного пространства, км",
+        "param_uav_uncontrolled_aerodrome_km": "Наименьшее удаление от контрольных точек "
+                                               "неконтролируемых аэродромов без разрешения "
+                                               "на использование воздушного пространства "
+                                               "(ред. 2020 г.), км",
         "value_digital_height_formula_normal_case": "нормальный случай стереосъёмки (B/f)",
         "value_multi_ray_off": "нет (одна стереопара)",
         "value_multi_ray_strip": "все снимки маршрута",
@@ -736,6 +738,7 @@ def t(key: str, locale: str = "en", platform: str = "uav") -> str:
     return LABELS[loc][key]
 
 
+from .labels_control import CONTROL as _CONTROL  # noqa: E402  (ground control, checkpoints)
 from .labels_geo import GEO as _GEO  # noqa: E402  (map page, strips, exported files)
 from .labels_more import DESIGN as _DESIGN  # noqa: E402  (the survey design sheet)
 from .labels_more import PLANS as _PLANS  # noqa: E402  (the plans compared)
@@ -760,5 +763,5 @@ LABELS["en"]["reach_interpretable"] = "Smallest photo scale with the map object 
 LABELS["ru"]["reach_interpretable"] = "Предельный масштаб снимков с дешифрированием объекта"
 
 for _loc in LOCALES:  # in this order: the catalogue's keys keep their order
-    for _part in (_DESIGN, _TERRAIN, _GEO, _PLANS):
+    for _part in (_DESIGN, _TERRAIN, _GEO, _CONTROL, _PLANS):
         LABELS[_loc].update(_part[_loc])

@@ -434,6 +434,9 @@ MESSAGES.update(_UAV)
 from .messages_site import SITE as _SITE  # noqa: E402  (where the area is: swap, site)
 
 MESSAGES.update(_SITE)
+from .messages_control import CONTROL as _CONTROL  # noqa: E402  (ground control)
+
+MESSAGES.update(_CONTROL)
 from .messages_plans import PLANS as _PLANS  # noqa: E402  (the plans compared, the choice)
 
 MESSAGES.update(_PLANS)

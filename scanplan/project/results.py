@@ -12,7 +12,7 @@ from __future__ import annotations
 import datetime as dt
 import math
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ..core.blocks import BlockHeightCheck
 from ..geo.layout import Area, FlightLayout
@@ -23,6 +23,9 @@ from ..rules.film import PlanWarning, ScanScenario
 from .file import ReportMeta
 from .jobs import ScanJob, UavJob
 from .model import ProjectModel
+
+if TYPE_CHECKING:
+    from .control import ControlSpec
 
 __all__ = ["Alternative", "FilmSpec", "GsdCompliance", "PlanResult", "SunPlan", "SurveyDesign",
            "UavSpec"]
@@ -267,6 +270,7 @@ class PlanResult:
     """The survey design checks: GSD against ГОСТ Р 59562-2021 Table Б.1, the one-height
     rule of a block, the sun window (:mod:`scanplan.project.design`)."""
     area: Area | None = None  # the contract area ([area]), in its planning CRS
+    control: ControlSpec | None = None  # [control]: GCPs, checkpoints, the error budget
     exports_written: frozenset[str] | None = None
     """The exported formats (``csv``, ``plan`` … :data:`scanplan.geo.export.FORMATS` names)
     the run that renders the documents writes beside them; None: the documents alone

@@ -27,6 +27,7 @@ from ..i18n.messages import Message
 from ..rules.film import PlanWarning, ScanScenario
 from .alternatives import JobAt, choose_plan
 from .archive import archive_film
+from .control import ControlSpec, plan_control
 from .design import survey_design
 from .file import Project
 from .flightplan import (
@@ -462,5 +463,24 @@ def plan_project(project: Project | ProjectModel) -> PlanResult:
     comparison = _comparison(film, uav) if film and uav else []
     design = survey_design(project, film, uav)
     warnings.extend(design.warnings)
+    control = _control(project, uav, area)
+    if control is not None:
+        warnings.extend(control.warnings)
     return PlanResult(project=project, meta=project.meta, film=film, uav=uav, comparison=comparison,
-                      warnings=tuple(warnings), area=area, design=design)
+                      warnings=tuple(warnings), area=area, design=design, control=control)
+
+
+def _control(project: ProjectModel, uav: UavSpec | None, area: Area | None
+             ) -> ControlSpec | None:
+    """``[control]`` over the UAV flight (the DEM, when given, keeps markers off steep
+    ground)."""
+    if project.control is None:
+        return None
+    ground = None
+    terrain = uav.terrain if uav is not None else None
+    if terrain is not None and terrain.ground.dem is not None and area is not None:
+        g = terrain.ground
+
+        def ground(x: Any, y: Any) -> Any:
+            return g.sample(x, y, area.plan_crs)
+    return plan_control(project, uav.job if uav is not None else None, area, ground)

@@ -170,6 +170,8 @@ def format_plan_result(result: Any, locale: str | None = None,
             lines += _plans_lines(tables["plans"], loc, T, result.uav.choice)
     if result.comparison:
         lines += _comparison_lines(result, loc, T, tables)
+    if getattr(result, "control", None) is not None:
+        lines += _control_lines(tables, loc)
     from .design import design_text_lines
 
     lines += [textwrap.fill(x.strip(), width=96, initial_indent="  ", subsequent_indent="    ")
@@ -272,6 +274,21 @@ def _comparison_lines(result: Any, loc: str, T: _Terminal, tables: ResultTables)
     text = text_table(tables["comparison"], label=quantity, cell=cell, head=head,
                       align="lrrl", after=unit)
     return ["", T["side_by_side_aircraft" if aircraft else "side_by_side"], text]
+
+
+def _control_lines(tables: ResultTables, loc: str) -> list[str]:
+    """The ground control: counts, figures and the error budget at best, and the control's
+    precision against the target (the ``control`` and ``control_checks`` tables)."""
+    from .controlwords import check_rows, summary_rows
+
+    rows = summary_rows(tables, loc)
+    width = max(len(label) for label, _, _ in rows)
+    lines = ["", t("control_points", loc) + ":"]
+    lines += [f"  {label:<{width}}  {value}" for label, value, _ in rows]
+    lines.append(f"  {t('control_check', loc)}:")
+    for rule, axis, ratio, required, ok, _ in check_rows(tables, loc):
+        lines.append(f"    {rule} ({axis}): {ratio} / {required} — {ok}")
+    return lines
 
 
 def _warning_lines(result: Any, loc: str, T: _Terminal, tables: ResultTables) -> list[str]:
