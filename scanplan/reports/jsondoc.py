@@ -270,11 +270,7 @@ def plan_result_dict(result: Any) -> dict[str, Any]:
             "max_speed_ms": p.max_speed_ms, **p.flight,
         }
         if u.layout is not None:
-            spec["uav"]["layout"] = layout_dict(u.layout)
-            if u.alternatives:  # the plans compared, the recommended one marked
-                from ..project.alternatives import alternatives_dicts
-
-                spec["uav"]["layout"]["alternatives"] = alternatives_dicts(u.alternatives)
+            spec["uav"]["layout"] = _uav_layout_dict(u)
     if result.comparison:
         spec["comparison"] = result.comparison
     if getattr(result, "control", None) is not None:
@@ -291,6 +287,17 @@ def plan_result_dict(result: Any) -> dict[str, Any]:
         doc["terrain"] = terrain
     doc["warnings"] = [warning_dict(w) for w in result.warnings]
     return _clean(doc)
+
+
+def _uav_layout_dict(uav: Any) -> dict[str, Any]:
+    """The UAV flight layout with the plans compared (``alternatives``, the recommended one
+    marked: docs/plan-choice.md) when there was a choice."""
+    out = layout_dict(uav.layout)
+    if getattr(uav, "alternatives", ()):
+        from ..project.alternatives import alternatives_dicts
+
+        out["alternatives"] = alternatives_dicts(uav.alternatives)
+    return out
 
 
 def terrain_dict(result: Any) -> dict[str, Any]:
