@@ -45,7 +45,8 @@ PLANS: dict[str, dict[str, str]] = {
     },
     "plan_choice.within": {
         "en": "{what}, within the {slack:g}-point allowance",
-        "ru": "{what}, в пределах допуска {slack:g}~п.",
+        "ru": "{what}, в пределах допуска в {slack:g|процентный пункт|процентных пункта|"
+              "процентных пунктов}",
     },
     # --- how a plan is flown --------------------------------------------------------------
     "plan_choice.mode.flat": {"en": "flat ground", "ru": "без рельефа"},
