@@ -176,6 +176,7 @@ PROJECT_DOMAINS: dict[str, Domain] = {
     "utc_offset_h": Domain(-12, 14, "h"),
     "min_sun_elevation_deg": Domain(0, 89.9, "°"),
     "turnaround_min": Domain(0, 1440, "min"),
+    "flying_days": Domain(0, 3660, "days", lo_open=True),
     # one sortie is at most one day; ``meaning`` is what the error calls the value
     "sortie_time_min": Domain(0, 24 * 60.0, "min", lo_open=True, meaning="a flight time"),
     # the turns between strips (the flight layout)
@@ -464,12 +465,22 @@ _RECORDS: tuple[Input, ...] = (
           "block and back is flown within its battery and counted in the flight's length "
           "and time", note="default: none — no transit counted, each mission's home is its "
           "first waypoint", digits=7),
+    Input("aircraft", "uav", "aircraft", _STR, "the aircraft that carries the camera, a "
+          "catalogue id: its battery's usable flight time (the published flight time less "
+          "the battery reserve) is the sortie time, its cruise speed the ground speed where "
+          "the catalogue gives one",
+          note="default: the one catalogue aircraft that carries the camera, when only one "
+          "does; else none — give max_flight_time_min",
+          cli_note="default: the one catalogue aircraft that carries the camera",
+          option="--aircraft", commands=(UAV,),
+          cli_help="catalogue aircraft id (scanplan aircraft list)"),
     Input("max_flight_time_min", "uav", "max_flight_time_min", _NUM, "flight time of one "
           "sortie [min]: the aircraft's endurance on one battery less the reserve; the block "
           "is split into sorties of at most this long, and the schedule counts its flying "
           "days from the same sorties", "min",
-          note="default: [schedule] sortie_time_min; with [schedule] and neither key 25 for "
-          "a UAV, 180 for an aircraft; else one flight",
+          note="default: [schedule] sortie_time_min, else the aircraft's usable flight "
+          "time; with [schedule] and none of them 25 for a UAV, 180 for an aircraft; else "
+          "one flight",
           cli_note="default: one flight over the whole block", option="--max-flight-time-min",
           commands=(UAV,), domain="sortie_time_min", digits=0),
     Input("area_file", "", "", _STR, "contract polygon: KML, KMZ, GeoJSON, GeoPackage, "
@@ -527,8 +538,14 @@ _RECORDS: tuple[Input, ...] = (
           "(battery or fuel) [min]: the same number as [uav] max_flight_time_min (give one, "
           "or both equal; two different values are an error); it also splits the flight "
           "layout, so the layout and the schedule count the same sorties", "min",
-          note="default: [uav] max_flight_time_min, else 25 for a UAV, 180 for an aircraft",
+          note="default: [uav] max_flight_time_min, else the aircraft's usable flight time, "
+          "else 25 for a UAV, 180 for an aircraft",
           domain="sortie_time_min", digits=0),
+    Input("max_flying_days", "flight", "max_flying_days", _INT, "the most flying days the "
+          "crew can give the job: a plan that needs more is warned about (the survey "
+          "design's flying days when [site] and [schedule] are given, else a lower bound: "
+          "the flight time and the ground time between sorties, flown around the clock)",
+          "days", default=30, domain="flying_days", digits=0),
     Input("turnaround_min", "schedule", "turnaround_min", _NUM, "ground time between "
           "sorties [min]", "min", note="default 15 for a UAV, 60 for an aircraft",
           domain="turnaround_min", digits=0),

@@ -516,7 +516,8 @@ def uav_job(
         area = rectangle_area(area_w, area_l)
     if area is None:
         return UavJob(plan, ns)
-    layout = laid_out if laid_out is not None else uav_layout(plan, area, layout_options)
+    layout = laid_out if laid_out is not None else uav_layout(plan, area, layout_options,
+                                                              manned=aircraft)
     return UavJob(with_layout(plan, layout), ns, layout)
 
 

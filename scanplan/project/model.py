@@ -202,6 +202,8 @@ class FlightSection:
     bank_deg: float | None = None
     takeoff: list[float] | None = None
     max_flight_time_min: float | None = None
+    aircraft: str | None = None
+    max_flying_days: int | None = None
 
 
 @dataclass(frozen=True)
@@ -421,6 +423,25 @@ def _sortie(r: _Reader) -> tuple[float | None, float | None]:
     return uav, schedule
 
 
+def _flying_days(r: _Reader) -> int | None:
+    """``[flight] max_flying_days`` in range (None when not given)."""
+    days = r.ranged("flight", "max_flying_days")
+    return None if days is None else int(days)
+
+
+def _aircraft(r: _Reader) -> str | None:
+    """``[uav] aircraft``: a catalogue id (else exit 2 naming the key and the ids)."""
+    value = r.raw("uav", "aircraft")
+    if value is None:
+        return None
+    from ..norms.aircraft import aircraft
+
+    try:
+        return aircraft(str(value)).id
+    except InputError as exc:
+        raise InputError(r.where("uav", "aircraft"), exc.message) from None
+
+
 def _basemap(r: _Reader) -> Path | None:
     """``[map] basemap``: the GeoTIFF (its header checked as a DEM's) or MBTiles file beside
     the project file (:func:`scanplan.geo.basemap.check_basemap`); None without one."""
@@ -559,7 +580,8 @@ def build_model(project: Project) -> ProjectModel:
                            r.text("norms.block_relief", "reason")),
         area=area,
         flight=FlightSection(g("uav", "turnaround_m"), g("uav", "turn_radius_m"),
-                             g("uav", "bank_deg"), g("flight", "takeoff"), uav_sortie),
+                             g("uav", "bank_deg"), g("flight", "takeoff"), uav_sortie,
+                             _aircraft(r), _flying_days(r)),
         film=film, uav=uav, terrain=terrain,
         site=site if project.has("site") else None, schedule=schedule,
         lines=FrozenMap(project.lines), control=control)

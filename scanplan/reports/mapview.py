@@ -555,7 +555,7 @@ def summary_items(layout: FlightLayout, locale: str) -> list[tuple[str, Any, int
         (t("geo_base_m", locale), layout.base_m, 1),
         (t("n_strips", locale), len(layout.strips), 0),
         (t("geo_n_frames" if film else "geo_n_photos", locale), len(layout.photos), 0)]
-    if not film:
+    if not film and layout.notes.get("max_flight_time_min"):  # the sortie time known
         rows.append((t("geo_n_sorties", locale), len(layout.sorties), 0))
     rows.append((t("geo_flight_km", locale), layout.flight_length_m / 1000, 2))
     if layout.notes.get("takeoff_xy_m") is not None:

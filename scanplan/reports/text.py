@@ -366,7 +366,7 @@ def format_layout(layout: Any, scale: str = "", locale: str = "en") -> str:
             f"({T['turns']} {_n(layout.turn_length_m / 1000, 1, locale, True)} {T['km']})")
     if layout.flight_time_s:
         text += f", {_n(layout.flight_time_s / 60, 0, locale, True)} {T['min']}"
-    if layout.kind == "uav":
+    if layout.kind == "uav" and layout.notes.get("max_flight_time_min"):  # sortie time known
         text += f", {T['sorties']}:\0{len(layout.sorties)}"  # kept on one line
     if not layout.feasible:
         text += f" — {T['not_feasible']}: {localize(layout.reason, locale)}"
