@@ -120,6 +120,24 @@ def test_the_plans_compared_are_printed_everywhere(valley, tmp_path):
     assert doc["specification"]["uav"]["choice"].startswith("Of 10 plans compared")
 
 
+def test_every_plan_is_costed_with_its_sorties_as_flown(valley, afs):
+    """The flying time of a plan compared is its sorties' time as flown (the climb, the
+    acceleration, the corners, the way back: geo/sorties.py) — the model of the plan flown —
+    not its path at the cruise speed: the recommended plan's is the sum of its sorties'
+    times, and every plan laid out takes longer than its path at the speed."""
+    for res in (valley, afs):
+        u = res.uav
+        chosen = next(a for a in u.alternatives if a.recommended)
+        sorties = u.job.layout.sorties
+        assert chosen.n_sorties == len(sorties)
+        assert chosen.flight_time_s == pytest.approx(sum(s.time_s for s in sorties))
+        speed = u.job.plan.inputs.speed_ms
+        laid_out = [a for a in u.alternatives if not a.estimate]
+        assert laid_out
+        for a in laid_out:
+            assert a.flight_time_s > 1.02 * a.flight_length_m / speed, a
+
+
 # --- the afs example: split and follow, priced -------------------------------------------
 
 def test_afs_is_compared_with_its_split_and_follow_alternatives(afs):
@@ -130,8 +148,10 @@ def test_afs_is_compared_with_its_split_and_follow_alternatives(afs):
     and a warning names the cheaper one and what it needs."""
     alts = afs.uav.alternatives
     one = next(a for a in alts if a.recommended)
-    assert (one.mode, one.n_photos, one.n_sorties) == ("constant", 16_796, 10)
-    assert round(one.flight_time_s / 60) == 291 and not one.feasible
+    # 341 min in 12 sorties of 30 min: the sorties' time as flown (the climb, the corners,
+    # the way back), no longer the path at the speed (291 min, 10 sorties)
+    assert (one.mode, one.n_photos, one.n_sorties) == ("constant", 16_796, 12)
+    assert round(one.flight_time_s / 60) == 341 and not one.feasible
     follow = next(a for a in alts if a.mode == "follow")
     split = next(a for a in alts if a.parts > 1)
     for alt in (follow, split):
