@@ -272,6 +272,11 @@ def test_a_failing_worker_still_writes_the_pdf(tmp_path, monkeypatch):
     (["plan", str(EXAMPLE)], ("matplotlib", "weasyprint", "pandas", "pyproj", "openpyxl")),
     (["plan", str(EXAMPLE), "--xlsx", "{tmp}/s.xlsx"], ("matplotlib", "weasyprint", "pandas",
                                                         "pyproj")),
+    # a polygon from a KML file: GDAL reads it without pandas, no relief module, no
+    # spreadsheet reader of the norm importer
+    (["plan", str(EXAMPLE.parent / "uav-town-2000.toml")],
+     ("matplotlib", "weasyprint", "pandas", "openpyxl", "scanplan.geo.terrain",
+      "scanplan.geo.dem", "scanplan.norms.importer", "scanplan.norms.xlsx")),
 ])
 def test_what_a_run_does_not_import(tmp_path, args, absent):
     """A plan without reports imports no report library; a workbook alone no plotting,

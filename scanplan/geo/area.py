@@ -27,12 +27,14 @@ refused with their count, never cut (docs/gis-inputs.md).
 
 from __future__ import annotations
 
+import hashlib
 import io
 import math
 import os
 import re
 import warnings
 import zipfile
+from collections import OrderedDict
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -45,7 +47,7 @@ from shapely.validation import explain_validity
 from ..errors import InputError
 from ..io.files import read_limited, size_text
 from . import crs as geocrs
-from .gdal_guard import KIND_NAMES, harden, indirection, read_head, sniff
+from .gdal_guard import KIND_NAMES, harden, import_pyogrio, indirection, read_head, sniff
 from .layout import Area
 from .vertices import VERTEX_SUFFIXES, read_vertices
 
@@ -156,6 +158,44 @@ def load_area(spec: AreaSpec) -> Area | None:
                              "is required with the other side of [area]: give both width_m "
                              "and length_m")
         return rectangle_area(float(spec.width_m), float(spec.length_m))
+    key = _kept_key(spec)
+    if key is not None and key in _KEPT:
+        _KEPT.move_to_end(key)
+        return _KEPT[key]
+    area = _load_polygon(spec)
+    if key is not None:
+        _KEPT[key] = area
+        while len(_KEPT) > _KEPT_AREAS:
+            _KEPT.popitem(last=False)
+    return area
+
+
+_KEPT: OrderedDict[tuple[Any, ...], Area] = OrderedDict()
+_KEPT_AREAS = 32
+"""Polygons kept read and projected (the page re-plans the same area on every edit)."""
+
+
+def _kept_key(spec: AreaSpec) -> tuple[Any, ...] | None:
+    """What a polygon's :class:`Area` depends on: the keys, and the file's bytes (their
+    SHA-256) — None for a Shapefile, whose companion files matter too (read every time)."""
+    keys = (spec.layer, spec.feature, repr(spec.crs), repr(spec.plan_crs))
+    if spec.file is None:
+        try:
+            return ("polygon", repr(spec.polygon), *keys)
+        except RecursionError:  # a nesting no polygon has: refused by the reader
+            return None
+    path = Path(spec.file)
+    try:
+        data = read_limited(path, MAX_FILE_BYTES, field=str(path))
+    except (InputError, OSError):  # refused as before by the reader, in its words
+        return None
+    if path.suffix.lower() not in VERTEX_SUFFIXES and sniff(data) == "shp":
+        return None
+    return ("file", str(path), hashlib.sha256(data).hexdigest(), *keys)
+
+
+def _load_polygon(spec: AreaSpec) -> Area:
+    """:func:`load_area` of a file or an inline polygon, read and projected."""
     user_crs = _crs(spec.crs, "crs") if spec.crs is not None else None
     if spec.file is not None:
         geom, file_crs, where, parts = _read_source(Path(spec.file), spec.layer, spec.feature)
@@ -229,7 +269,7 @@ def _read_file(path: Path, layer: str | None, feature: str | int | None
                ) -> tuple[Any, pyproj.CRS | None, str, tuple[str, str, str | None]]:
     """The chosen polygon of a GIS file, its CRS (None if it declares none), its name, and
     (file, feature, layer) for reports."""
-    import pyogrio
+    pyogrio = import_pyogrio()
 
     name = str(path)
     source, layers = _layers(path, name)
@@ -397,7 +437,7 @@ def _source(path: Path, name: str) -> tuple[str | io.BytesIO, tuple[str, ...]]:
 def _layers(path: Path, name: str) -> tuple[str | io.BytesIO, Any]:
     """The source pyogrio reads (:func:`_source`) and its layers, the driver GDAL used
     checked against the kind the content says."""
-    import pyogrio
+    pyogrio = import_pyogrio()
 
     source, drivers = _source(path, name)
     try:
@@ -423,7 +463,7 @@ def _rewound(source: str | io.BytesIO) -> bool:
 
 def _feature_count(source: str | io.BytesIO, layer: int) -> str:
     """The number of features of a layer (``"more than N"`` when GDAL cannot count)."""
-    import pyogrio
+    pyogrio = import_pyogrio()
 
     _rewound(source)
     try:

@@ -415,12 +415,11 @@ def _costs_chunk(u0: np.ndarray, v0: np.ndarray, u1: np.ndarray, v1: np.ndarray,
     start_next = np.where(forward, last[1:], first[1:])
     conn = turn_length_m((u[1:] - u[:-1])[same], (start_next - end_i)[same], turn)
     conn_start = np.r_[0, np.cumsum(np.maximum(m - 1, 0))[:-1]]  # direction i's first
+    span = last - first
     costs = []
-    for i in range(n_dir):
-        a_, b_ = int(start[i]), int(start[i] + m[i])
-        c_ = int(conn_start[i])
-        strips = np.add.reduce(last[a_:b_] - first[a_:b_])  # np.sum's pairwise sum
-        turns = np.add.reduce(conn[c_:c_ + max(int(m[i]) - 1, 0)].copy())
+    for a_, m_, c_ in zip(start.tolist(), m.tolist(), conn_start.tolist(), strict=True):
+        strips = np.add.reduce(span[a_:a_ + m_])  # np.sum's pairwise sum, as in _cost
+        turns = np.add.reduce(conn[c_:c_ + max(m_ - 1, 0)])
         costs.append(float(strips + turns))
     return costs
 

@@ -11,17 +11,19 @@ from __future__ import annotations
 
 import datetime as dt
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ..core.blocks import BlockHeightCheck
 from ..geo.layout import Area, FlightLayout
 from ..geo.sun import FlyingDays, SunWindow
-from ..geo.terrain import TerrainResult
-from ..geo.terrain_film import FilmTerrain
 from ..rules.film import PlanWarning, ScanScenario
 from .file import ReportMeta
 from .jobs import ScanJob, UavJob
 from .model import ProjectModel
+
+if TYPE_CHECKING:  # the relief's modules are imported for a plan with [terrain] only
+    from ..geo.terrain import TerrainResult
+    from ..geo.terrain_film import FilmTerrain
 
 __all__ = ["FilmSpec", "GsdCompliance", "PlanResult", "SunPlan", "SurveyDesign", "UavSpec"]
 

@@ -25,6 +25,7 @@ from typing import Any
 import numpy as np
 import shapely
 
+from ..gdal_guard import import_pyogrio
 from ..layout import FlightLayout
 from .common import GENERATOR, photos_by_strip
 from .gis import photo_columns
@@ -60,6 +61,7 @@ def _strip_geometries(layout: FlightLayout) -> list[Any]:
 
 def _write(path: str, layer: str, geoms: list[Any], fields: dict[str, np.ndarray],
            geometry_type: str, crs: str, first: bool) -> None:
+    import_pyogrio()
     from pyogrio.raw import write
 
     write(path, np.array(shapely.to_wkb(geoms), dtype=object),
@@ -94,8 +96,7 @@ def render_gpkg(layout: FlightLayout) -> bytes:
     bytes
         The ``.gpkg`` file.
     """
-    import pyogrio
-
+    pyogrio = import_pyogrio()
     crs = layout.area.plan_crs
     area = layout.area.geometry
     strips = layout.strips
