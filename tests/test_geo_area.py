@@ -294,6 +294,13 @@ def test_the_same_file_is_read_once_and_a_changed_one_again(tmp_path, monkeypatc
     assert len(reads) == 2 and again.area_km2 > 1.5 * first.area_km2
     assert load_area(AreaSpec(file=f, plan_crs="EPSG:32638")).plan_crs == "EPSG:32638"
     assert load_area(AreaSpec(polygon=RING)) is load_area(AreaSpec(polygon=RING))
+    moved = tmp_path / "elsewhere" / "copy.kml"  # the same bytes under another name
+    moved.parent.mkdir()
+    moved.write_bytes(f.read_bytes())
+    other = load_area(AreaSpec(file=moved))
+    assert str(moved) not in reads
+    assert other.source_file == str(moved) and other.source.startswith(str(moved))
+    assert str(f) not in other.source and other.geometry.equals(again.geometry)
 
 
 def test_a_shapefile_is_read_every_time(tmp_path, monkeypatch):

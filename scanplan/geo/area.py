@@ -159,25 +159,36 @@ def load_area(spec: AreaSpec) -> Area | None:
                              "and length_m")
         return rectangle_area(float(spec.width_m), float(spec.length_m))
     key = _kept_key(spec)
+    name = str(spec.file) if spec.file is not None else ""
     if key is not None and key in _KEPT:
         _KEPT.move_to_end(key)
-        return _KEPT[key]
+        was, area = _KEPT[key]
+        return area if was == name else _renamed(area, was, name)
     area = _load_polygon(spec)
     if key is not None:
-        _KEPT[key] = area
+        _KEPT[key] = (name, area)
         while len(_KEPT) > _KEPT_AREAS:
             _KEPT.popitem(last=False)
     return area
 
 
-_KEPT: OrderedDict[tuple[Any, ...], Area] = OrderedDict()
+def _renamed(area: Area, was: str, name: str) -> Area:
+    """A kept area read from the same bytes under another name (the page stages every
+    request's uploads in a folder of its own): the file named as it is now."""
+    return replace(area, source=name + area.source[len(was):] if area.source.startswith(was)
+                   else area.source,
+                   source_file=name if area.source_file == was else area.source_file)
+
+
+_KEPT: OrderedDict[tuple[Any, ...], tuple[str, Area]] = OrderedDict()
 _KEPT_AREAS = 32
 """Polygons kept read and projected (the page re-plans the same area on every edit)."""
 
 
 def _kept_key(spec: AreaSpec) -> tuple[Any, ...] | None:
     """What a polygon's :class:`Area` depends on: the keys, and the file's bytes (their
-    SHA-256) — None for a Shapefile, whose companion files matter too (read every time)."""
+    SHA-256; the file's name is only its label) — None for a Shapefile, whose companion
+    files matter too (read every time)."""
     keys = (spec.layer, spec.feature, repr(spec.crs), repr(spec.plan_crs))
     if spec.file is None:
         try:
@@ -191,7 +202,7 @@ def _kept_key(spec: AreaSpec) -> tuple[Any, ...] | None:
         return None
     if path.suffix.lower() not in VERTEX_SUFFIXES and sniff(data) == "shp":
         return None
-    return ("file", str(path), hashlib.sha256(data).hexdigest(), *keys)
+    return ("file", hashlib.sha256(data).hexdigest(), *keys)
 
 
 def _load_polygon(spec: AreaSpec) -> Area:

@@ -35,6 +35,7 @@ from pydantic import BaseModel, Field
 
 from .._version import __version__
 from ..errors import InputError
+from .documents import Documents
 from .uploads import UploadStore
 from .worker import Busy, Failed, Planner, TimedOut
 
@@ -129,6 +130,9 @@ def create_app(*, token: str | None = None, planner: Planner | None = None,
     """
     planner = planner if planner is not None else Planner()
     store = uploads if uploads is not None else UploadStore()
+    documents = Documents(Planner(limit_s=planner.limit_s, report_limit_s=planner.report_limit_s,
+                                  wait_s=planner.wait_s, inline=planner.inline),
+                          lambda files: _files(store, dict(files)))
 
     @asynccontextmanager
     async def lifespan(app: FastAPI) -> Any:
@@ -138,6 +142,7 @@ def create_app(*, token: str | None = None, planner: Planner | None = None,
         try:
             yield
         finally:
+            documents.close()
             planner.close()
             store.close()
 
@@ -146,6 +151,7 @@ def create_app(*, token: str | None = None, planner: Planner | None = None,
                   "`scanplan serve` shows. `/api/plan` answers what `scanplan plan --json` "
                   "prints for the same project file.")
     app.state.planner, app.state.uploads, app.state.token = planner, store, token
+    app.state.documents = documents
 
     @app.middleware("http")
     async def check_token(request: Request, call_next: Any) -> Any:
@@ -187,7 +193,7 @@ def create_app(*, token: str | None = None, planner: Planner | None = None,
     def favicon() -> Response:
         return Response((STATIC / "favicon.svg").read_bytes(), media_type="image/svg+xml")
 
-    _routes(app, planner, store)
+    _routes(app, planner, store, documents)
     return app
 
 
@@ -197,7 +203,7 @@ def _files(store: UploadStore, files: dict[str, str]) -> dict[str, str]:
             for name, upload_id in files.items()}
 
 
-def _routes(app: FastAPI, planner: Planner, store: UploadStore) -> None:
+def _routes(app: FastAPI, planner: Planner, store: UploadStore, documents: Documents) -> None:
     """The API's routes."""
 
     @app.get("/api/inputs")
@@ -236,7 +242,9 @@ def _routes(app: FastAPI, planner: Planner, store: UploadStore) -> None:
     @app.post("/api/view")
     def view(req: PlanRequest) -> dict[str, Any]:
         """``plan`` (as /api/plan), ``map`` (GeoJSON, WGS 84), ``charts`` (SVG), ``toml``."""
-        return planner.run("view", req.project, _files(store, req.files))  # type: ignore
+        shown = planner.run("view", req.project, _files(store, req.files))
+        documents.ahead(req.project, req.files)  # the downloads, while the user looks
+        return shown  # type: ignore[no-any-return]
 
     @app.post("/api/project.toml")
     def project_file(req: PlanRequest) -> Response:
@@ -250,8 +258,7 @@ def _routes(app: FastAPI, planner: Planner, store: UploadStore) -> None:
     @app.post("/api/download/{what}")
     def download(what: str, req: PlanRequest) -> Response:
         """``pdf``, ``xlsx``, or ``zip``: the reports, missions, GIS files, project file."""
-        name, data = planner.run("files", req.project, _files(store, req.files), what,
-                                 limit_s=planner.report_limit_s)
+        name, data = documents.get(req.project, req.files, what)
         kind = {"pdf": "application/pdf", "zip": "application/zip"}.get(
             what, "application/vnd.openxmlformats-officedocument.spreadsheetml.sheet")
         return Response(data, media_type=kind,

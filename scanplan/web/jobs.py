@@ -34,7 +34,7 @@ from typing import Any
 from ..errors import InputError
 from .tomlfile import project_tables, project_toml
 
-__all__ = ["FILE_KEYS", "JOBS", "PROJECT_NAME", "catalogue_job", "files_job",
+__all__ = ["FILE_KEYS", "JOBS", "PROJECT_NAME", "catalogue_job", "documents_job", "files_job",
            "plan_job", "view_job"]
 
 PROJECT_NAME = "project.toml"
@@ -212,18 +212,35 @@ def files_job(project: Any, files: Mapping[str, str], what: str) -> tuple[str, b
         reports = _reports(result, ("pdf", "xlsx") if what == "zip" else (what,))
         if what != "zip":
             return f"spec.{what}", reports[what]
-        from ..reports.exports import export_files
+        return "scanplan.zip", _zip(result, text, folder, files, reports)
 
-        out = io.BytesIO()
-        with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as zf:
-            zf.writestr(PROJECT_NAME, text)
-            for name in sorted(files):
-                zf.write(folder / _file_name(name, "files"), _file_name(name, "files"))
-            for kind in ("pdf", "xlsx"):
-                zf.writestr(f"spec.{kind}", reports[kind])
-            for path, (_kind, data) in sorted(export_files(result, "").items()):
-                zf.writestr(path, data)
-        return "scanplan.zip", out.getvalue()
+
+def documents_job(project: Any, files: Mapping[str, str]) -> dict[str, tuple[str, bytes]]:
+    """Every download of the project at once, from one plan and one rendering of each
+    report: ``{"pdf": …, "xlsx": …, "zip": …}`` as :func:`files_job` gives each
+    (:mod:`scanplan.web.documents` renders them while the user looks at the plan)."""
+    with _planned(project, files) as (result, text, folder):
+        reports = _reports(result, ("pdf", "xlsx"))
+        return {"pdf": ("spec.pdf", reports["pdf"]), "xlsx": ("spec.xlsx", reports["xlsx"]),
+                "zip": ("scanplan.zip", _zip(result, text, folder, files, reports))}
+
+
+def _zip(result: Any, text: str, folder: Path, files: Mapping[str, str],
+         reports: Mapping[str, bytes]) -> bytes:
+    """The zip of everything: the project file, its uploads, the reports, the mission and
+    GIS files of ``plan --out``."""
+    from ..reports.exports import export_files
+
+    out = io.BytesIO()
+    with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as zf:
+        zf.writestr(PROJECT_NAME, text)
+        for name in sorted(files):
+            zf.write(folder / _file_name(name, "files"), _file_name(name, "files"))
+        for kind in ("pdf", "xlsx"):
+            zf.writestr(f"spec.{kind}", reports[kind])
+        for path, (_kind, data) in sorted(export_files(result, "").items()):
+            zf.writestr(path, data)
+    return out.getvalue()
 
 
 def _reports(result: Any, kinds: tuple[str, ...]) -> dict[str, bytes]:
@@ -264,5 +281,6 @@ def catalogue_job(norms: str, locale: str) -> dict[str, Any]:
     return {"norms": norms, "cameras": cams, "scanners": scanners}
 
 
-JOBS = {"plan": plan_job, "view": view_job, "files": files_job, "catalogue": catalogue_job}
+JOBS = {"plan": plan_job, "view": view_job, "files": files_job, "documents": documents_job,
+        "catalogue": catalogue_job}
 """The jobs the worker runs, by name."""
