@@ -22,17 +22,14 @@ Run: ``python benchmarks/bench_plan_warm.py``
 from __future__ import annotations
 
 import math
-import os
 import resource
 import statistics
 import subprocess
 import sys
-import tempfile
 import time
-from pathlib import Path
 
 import numpy as np
-from _common import ROOT, Result
+from _common import ROOT, Result, child_env
 
 TOWN = ROOT / "examples" / "uav-town-2000.toml"
 WARM_TARGET_MS = 50.0
@@ -90,16 +87,6 @@ def warm(repeat: int) -> tuple[float, float, dict[str, object]]:
     facts = {"strips": len(lay.strips), "photos": lay.notes["photos"],
              "direction": lay.direction_deg}
     return statistics.median(plan_t), statistics.median(base_t), facts
-
-
-def child_env() -> dict[str, str]:
-    """The environment of a fresh process as a user's: compiled bytecode kept and used (as
-    ``pip install`` leaves it; here in a folder of its own, not beside the sources) even
-    where the shell says ``PYTHONDONTWRITEBYTECODE``, and no GDAL options this process set."""
-    env = {k: v for k, v in os.environ.items()
-           if not k.startswith(("GDAL_", "CPL_")) and k != "PYTHONDONTWRITEBYTECODE"}
-    env["PYTHONPYCACHEPREFIX"] = str(Path(tempfile.gettempdir()) / "scanplan-bench-pycache")
-    return env
 
 
 def edited(repeat: int) -> float:
