@@ -14,7 +14,8 @@ from hypothesis import strategies as st
 from shapely import affinity
 
 from scanplan.core import flight as FL
-from scanplan.geo import lines as L
+from scanplan.geo import direction as D
+from scanplan.geo import strips as S
 from scanplan.geo.area import AreaSpec, load_area, rectangle_area
 from scanplan.geo.layout import PHOTO_COLUMNS, Area
 from scanplan.geo.lines import (
@@ -392,7 +393,7 @@ def test_sorties_property(geom, limit, speed, turn):
 def _one_at_a_time(geom, origin, spacing_m, base_m, extension, turn):
     """The "auto" search as it was: each candidate's flight length by its own ``_cost``."""
     simple = shapely.simplify(geom, min(spacing_m, base_m) / 4.0, preserve_topology=True)
-    edges = L._edges(simple)
+    edges = D._edges(simple)
     hull = shapely.get_coordinates(shapely.convex_hull(simple))
     d = np.diff(hull, axis=0)
     d = d[np.hypot(d[:, 0], d[:, 1]) > 0]
@@ -402,7 +403,7 @@ def _one_at_a_time(geom, origin, spacing_m, base_m, extension, turn):
     def run(cands):
         for c in np.unique(np.round(np.asarray(cands) % 180.0, 6)):
             if float(c) not in tried:
-                tried[float(c)] = L._cost(edges, float(c), origin, spacing_m, base_m,
+                tried[float(c)] = D._cost(edges, float(c), origin, spacing_m, base_m,
                                           extension, turn)
 
     run(np.r_[hull_dirs, np.arange(0.0, 180.0, 2.0)])
@@ -419,7 +420,7 @@ def _random_case(rng):
         geom = geom.difference(shapely.Point(rng.uniform(-100, 100, 2)).buffer(
             rng.uniform(10, 300)))
     spacing, base = rng.uniform(10, 300), rng.uniform(5, 200)
-    ext = L._Extension(int(rng.integers(0, 3)), rng.uniform(1, 300))
+    ext = S._Extension(int(rng.integers(0, 3)), rng.uniform(1, 300))
     return geom, (geom.centroid.x, geom.centroid.y), spacing, base, ext
 
 
@@ -429,11 +430,11 @@ def test_directions_costed_together_equal_each_costed_alone(turn, monkeypatch):
     rng = np.random.default_rng(21)
     for trial in range(40):
         geom, origin, s, b, ext = _random_case(rng)
-        edges = L._edges(shapely.simplify(geom, min(s, b) / 4.0, preserve_topology=True))
+        edges = D._edges(shapely.simplify(geom, min(s, b) / 4.0, preserve_topology=True))
         dirs = [*rng.uniform(0, 180, 25).tolist(), 0.0, 90.0, 179.9]
-        monkeypatch.setattr(L, "_COST_CHUNK_BANDS", [500_000, 40][trial % 2])
-        together = L._costs(edges, dirs, origin, s, b, ext, turn)
-        alone = [L._cost(edges, d, origin, s, b, ext, turn) for d in dirs]
+        monkeypatch.setattr(D, "_COST_CHUNK_BANDS", [500_000, 40][trial % 2])
+        together = D._costs(edges, dirs, origin, s, b, ext, turn)
+        alone = [D._cost(edges, d, origin, s, b, ext, turn) for d in dirs]
         assert together.tolist() == alone
 
 
@@ -443,5 +444,5 @@ def test_auto_picks_what_the_one_at_a_time_search_picked():
     for trial in range(45):
         geom, origin, s, b, ext = _random_case(rng)
         turn = turns[trial % 3]
-        assert L._auto_direction(geom, origin, s, b, ext, turn) == _one_at_a_time(
+        assert D._auto_direction(geom, origin, s, b, ext, turn) == _one_at_a_time(
             geom, origin, s, b, ext, turn)

@@ -36,7 +36,8 @@ The layout, in a frame rotated so that the flight direction is +v:
 - **Direction.** A given ``direction_deg`` (clockwise from grid north), or ``"auto"``: the
   direction of the least flight length among every edge direction of the convex hull and a
   sweep every 2°, refined around the best to 0.1° (the exact length of each, on a slightly
-  simplified outline).
+  simplified outline: :mod:`.direction`). The turns and the exposures of a strip:
+  :mod:`.strips`.
 - **Sorties.** With ``max_flight_time_min`` the serpentine is cut into sorties, each
   flying the longest stretch its battery allows — whole strips and a part of a strip,
   the run-in and run-out, and the transit from and to the take-off point when one is
@@ -46,7 +47,7 @@ The layout, in a frame rotated so that the flight direction is +v:
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
 import numpy as np
@@ -56,93 +57,25 @@ from shapely import affinity
 from ..core import flight as FL
 from ..i18n.messages import Message
 from . import crs as geocrs
+from .direction import _auto_direction, band_extents
 from .layout import PHOTO_COLUMNS, Area, FlightLayout, Photos, Strip
 from .sorties import MAX_SORTIES, SortiePlan, pack_sorties, packing_bound
+from .strips import (
+    G_MS2,
+    MAX_STRIPS,
+    Turn,
+    _connections,
+    _Extension,
+    _strip_spans,
+    turn_length_m,
+    turn_radius_m,
+)
 
-__all__ = ["MAX_PHOTO_CENTRES", "MAX_SORTIES", "MAX_STRIPS", "Turn", "band_extents",
-           "grid_scale", "plan_lines",
-           "turn_length_m", "turn_radius_m"]
+__all__ = ["G_MS2", "MAX_PHOTO_CENTRES", "MAX_SORTIES", "MAX_STRIPS", "Turn", "band_extents",
+           "grid_scale", "plan_lines", "turn_length_m", "turn_radius_m"]
 
-G_MS2 = 9.80665
-"""Standard gravity [m/s²] (CGPM 1901)."""
-MAX_STRIPS = 100_000
-"""Most strips a layout computes (beyond: not feasible)."""
 MAX_PHOTO_CENTRES = 2_000_000
 """Most photo centres kept as a table (beyond: counted, not listed)."""
-_AUTO_SWEEP_DEG = 2.0
-_COST_CHUNK_BANDS = 500_000
-"""Bands (plus edges) per chunk of directions in the "auto" search's costing (memory bound)."""
-
-
-@dataclass(frozen=True)
-class Turn:
-    """How the aircraft turns between strips.
-
-    ``kind``: ``"semicircle"`` (a half circle across the line spacing), ``"turnaround"``
-    (multirotor: ``value_m`` flown past the strip end, across, and back in) or ``"radius"``
-    (fixed-wing: turn radius ``value_m``).
-    """
-
-    kind: str = "semicircle"
-    value_m: float = 0.0
-
-    def describe(self) -> str:
-        """``semicircle``, ``turnaround 20 m``, ``radius 150 m`` (for reports)."""
-        return self.kind if self.kind == "semicircle" else f"{self.kind} {self.value_m:g} m"
-
-    @property
-    def lead_m(self) -> float:
-        """The straight flown on the line before its first exposure and past its last
-        (run-in and run-out) [m]: a multirotor's turnaround, a fixed wing's turn radius (it
-        is on the line, wings level, before the camera fires); none for the semicircle."""
-        return 0.0 if self.kind == "semicircle" else float(self.value_m)
-
-
-def turn_radius_m(speed_ms: float, bank_deg: float) -> float:
-    """Radius of a level coordinated turn, r = v²/(g·tan φ) [m].
-
-    Parameters
-    ----------
-    speed_ms : float
-        True airspeed ≈ ground speed in still air [m/s].
-    bank_deg : float
-        Bank angle φ [°], 0 < φ < 90.
-
-    Notes
-    -----
-    FAA, *Pilot's Handbook of Aeronautical Knowledge* (FAA-H-8083-25C, 2023), ch. 5
-    "Aerodynamics of Flight", forces in turns: the horizontal lift component L·sin φ is the
-    centripetal force m·v²/r while L·cos φ = m·g.
-    """
-    return speed_ms ** 2 / (G_MS2 * math.tan(math.radians(bank_deg)))
-
-
-def turn_length_m(across_m: np.ndarray, offset_m: np.ndarray, turn: Turn) -> np.ndarray:
-    """Path flown from the end of one strip to the start of the next [m].
-
-    Parameters
-    ----------
-    across_m : array_like
-        Distance between the two lines [m].
-    offset_m : array_like
-        Difference of the two strip ends along the lines [m] (flown straight).
-    turn : Turn
-        The turn pattern; a fixed wing's includes the run-out and the run-in of one turn
-        radius each (:attr:`Turn.lead_m`), a multirotor's the turnaround out and back.
-    """
-    d = np.asarray(across_m, dtype=float)
-    off = np.abs(np.asarray(offset_m, dtype=float))
-    if turn.kind == "semicircle":
-        return np.pi * d / 2.0 + off
-    if turn.kind == "turnaround":
-        return 2.0 * turn.value_m + d + off
-    if turn.kind == "radius":
-        r = turn.value_m
-        wide = np.pi * r + (d - 2.0 * r)
-        beta = np.arccos(np.clip((d / 2.0 + r) / (2.0 * r), -1.0, 1.0))
-        omega = r * (np.pi + 4.0 * beta)
-        return np.where(d >= 2.0 * r, wide, omega) + off + 2.0 * r  # run-out, run-in
-    raise ValueError(f"turn kind must be semicircle, turnaround or radius (got {turn.kind!r})")
 
 
 # -------------------------------------------------------------------------------------------
@@ -215,246 +148,6 @@ def _merge(b: _Bands, gap_m: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]
     return strip, out_lo, out_hi
 
 
-class _Extension(int):
-    """Exposures past each end of a part (the int), and how far along the line a photo's
-    footprint reaches from its centre [m] (``reach_m``): an extension exposure is kept only
-    while its footprint reaches into the part — one that misses the area adds no coverage."""
-
-    reach_m: float
-
-    def __new__(cls, bases: int, reach_m: float) -> _Extension:
-        obj = int.__new__(cls, bases)
-        obj.reach_m = reach_m if math.isfinite(reach_m) and reach_m > 0 else math.inf
-        return obj
-
-
-def _photos_per_part(length_m: np.ndarray, base_m: float, extension: int) -> np.ndarray:
-    """ceil(L/B) + 1 + 2e' exposures: e' ≤ e extension exposures past each end, those whose
-    footprint still reaches into the part (j·B < reach − δ, δ the core's overhang past the
-    part's end, ((n₀ − 1)·B − L)/2)."""
-    length = np.maximum(length_m, 1e-300)
-    core = FL.photos_per_strip(length, base_m, 0)
-    reach = getattr(extension, "reach_m", math.inf)
-    if not int(extension) or not math.isfinite(reach):
-        return core + 2 * int(extension)
-    delta = ((core - 1) * base_m - length) / 2.0
-    kept = np.clip(np.ceil((reach - delta) / base_m) - 1, 0, int(extension)).astype(np.int64)
-    return core + 2 * kept
-
-
-def _strip_spans(strip: np.ndarray, lo: np.ndarray, hi: np.ndarray, base_m: float,
-                 extension: int, n_strips: int) -> tuple[np.ndarray, ...]:
-    """Per part: photos, first and last exposure along v; per strip: first/last exposure."""
-    n = _photos_per_part(hi - lo, base_m, extension)
-    half = (n - 1) * base_m / 2.0
-    mid = (lo + hi) / 2.0
-    first, last = mid - half, mid + half
-    s_lo = np.full(n_strips, np.inf)
-    s_hi = np.full(n_strips, -np.inf)
-    np.minimum.at(s_lo, strip, first)
-    np.maximum.at(s_hi, strip, last)
-    return n, first, last, s_lo, s_hi
-
-
-def _connections(u: np.ndarray, s_lo: np.ndarray, s_hi: np.ndarray, turn: Turn
-                 ) -> np.ndarray:
-    """Path between strip i and i + 1 (serpentine: strip 0 flown +v) [m]."""
-    if len(u) < 2:
-        return np.zeros(0)
-    forward = (np.arange(len(u) - 1) % 2) == 0  # strip i flown +v ends at its top
-    end_i = np.where(forward, s_hi[:-1], s_lo[:-1])
-    start_next = np.where(forward, s_hi[1:], s_lo[1:])
-    return turn_length_m(np.diff(u), start_next - end_i, turn)
-
-
-def _edges(geom: object) -> np.ndarray:
-    """Every boundary edge of the area as rows (x0, y0, x1, y1) [m]."""
-    rings = shapely.get_rings(shapely.get_parts(geom))
-    out = []
-    for ring in rings:
-        c = shapely.get_coordinates(ring)
-        out.append(np.hstack([c[:-1], c[1:]]))
-    return np.vstack(out) if out else np.zeros((0, 4))
-
-
-def band_extents(edges: np.ndarray, u_start_m: float, spacing_m: float, n: int
-                 ) -> tuple[np.ndarray, np.ndarray]:
-    """Along-line extent (v_min, v_max) of the area in each of ``n`` bands of width
-    ``spacing_m`` from ``u_start_m`` (±inf for a band that misses it).
-
-    The extent of a polygon within a band is that of its boundary within the band (the
-    band's own edges inside the polygon end on the boundary), so each edge is cut to the
-    bands it crosses — numpy over every (edge, band) pair at once. This is the cost of the
-    "auto" direction search, evaluated ~150 times per plan; it agrees with shapely's
-    intersection bounds (tests/test_geo_lines.py) and runs a hundred times faster.
-    """
-    u0, v0, u1, v1 = edges.T
-    lo_u, hi_u = np.minimum(u0, u1), np.maximum(u0, u1)
-    k0 = np.clip(np.floor((lo_u - u_start_m) / spacing_m), 0, n - 1).astype(np.int64)
-    k1 = np.clip(np.floor((hi_u - u_start_m) / spacing_m), 0, n - 1).astype(np.int64)
-    counts = k1 - k0 + 1
-    e = np.repeat(np.arange(len(edges)), counts)
-    k = k0[e] + (np.arange(int(counts.sum())) - np.repeat(np.cumsum(counts) - counts, counts))
-    a = u_start_m + k * spacing_m
-    du, dv = (u1 - u0)[e], (v1 - v0)[e]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        ta, tb = (a - u0[e]) / du, (a + spacing_m - u0[e]) / du
-    flat = du == 0
-    t_lo = np.where(flat, 0.0, np.clip(np.minimum(ta, tb), 0.0, 1.0))
-    t_hi = np.where(flat, 1.0, np.clip(np.maximum(ta, tb), 0.0, 1.0))
-    va, vb = v0[e] + t_lo * dv, v0[e] + t_hi * dv
-    lo = np.full(n, np.inf)
-    hi = np.full(n, -np.inf)
-    np.minimum.at(lo, k, np.minimum(va, vb))
-    np.maximum.at(hi, k, np.maximum(va, vb))
-    return lo, hi
-
-
-def _cost(edges: np.ndarray, direction_deg: float, origin: tuple[float, float],
-          spacing_m: float, base_m: float, extension: int, turn: Turn) -> float:
-    """Flight length of the serpentine at a direction (strips + connections) [m]."""
-    t = math.radians(direction_deg)
-    c, s = math.cos(t), math.sin(t)
-    x0, y0 = edges[:, 0] - origin[0], edges[:, 1] - origin[1]
-    x1, y1 = edges[:, 2] - origin[0], edges[:, 3] - origin[1]
-    uv = np.column_stack([x0 * c - y0 * s, x0 * s + y0 * c, x1 * c - y1 * s, x1 * s + y1 * c])
-    umin = float(min(uv[:, 0].min(), uv[:, 2].min()))
-    width = float(max(uv[:, 0].max(), uv[:, 2].max())) - umin
-    n = max(1, int(FL.strip_count(max(width, 1e-300), spacing_m)))
-    if n > MAX_STRIPS:
-        return math.inf
-    u_start = umin + (width - n * spacing_m) / 2.0
-    lo, hi = band_extents(uv, u_start, spacing_m, n)
-    keep = np.isfinite(lo)
-    u = u_start + (np.arange(n) + 0.5) * spacing_m
-    lo, hi, u = lo[keep], hi[keep], u[keep]
-    m = len(u)
-    _, _, _, s_lo, s_hi = _strip_spans(np.arange(m), lo, hi, base_m, extension, m)
-    return float(np.sum(s_hi - s_lo) + np.sum(_connections(u, s_lo, s_hi, turn)))
-
-
-def _costs(edges: np.ndarray, directions_deg: Sequence[float], origin: tuple[float, float],
-           spacing_m: float, base_m: float, extension: int, turn: Turn) -> np.ndarray:
-    """Flight length of the serpentine at each direction (strips + connections) [m], for
-    many directions at once: :func:`_cost` of every direction, bit for bit (the same
-    operations on the same numbers, each direction's sums taken over its own part), in a
-    few vectorised passes over every (direction, edge, band) instead of one layout each.
-
-    Directions whose strip count exceeds :data:`MAX_STRIPS` cost ``inf``; the directions
-    are taken in chunks of at most :data:`_COST_CHUNK_BANDS` bands in all (memory)."""
-    dirs = [float(d) for d in directions_deg]
-    out = np.full(len(dirs), math.inf)
-    if not dirs:
-        return out
-    rad = [math.radians(d) for d in dirs]
-    c = np.array([math.cos(t) for t in rad])[:, None]
-    s = np.array([math.sin(t) for t in rad])[:, None]
-    x0, y0 = edges[:, 0] - origin[0], edges[:, 1] - origin[1]
-    x1, y1 = edges[:, 2] - origin[0], edges[:, 3] - origin[1]
-    u0, v0 = x0 * c - y0 * s, x0 * s + y0 * c  # (directions, edges)
-    u1, v1 = x1 * c - y1 * s, x1 * s + y1 * c
-    umin = np.minimum(u0.min(axis=1), u1.min(axis=1))
-    width = np.maximum(u0.max(axis=1), u1.max(axis=1)) - umin
-    n = np.maximum(1, FL.strip_count(np.maximum(width, 1e-300), spacing_m))
-    u_start = umin + (width - n * spacing_m) / 2.0
-    todo = np.flatnonzero(n <= MAX_STRIPS)
-    budget = np.cumsum(n[todo] + len(edges)) // _COST_CHUNK_BANDS
-    for chunk in np.split(todo, np.flatnonzero(np.diff(budget)) + 1):
-        if len(chunk):
-            out[chunk] = _costs_chunk(u0[chunk], v0[chunk], u1[chunk], v1[chunk], n[chunk],
-                                      u_start[chunk], spacing_m, base_m, extension, turn)
-    return out
-
-
-def _costs_chunk(u0: np.ndarray, v0: np.ndarray, u1: np.ndarray, v1: np.ndarray,
-                 n: np.ndarray, u_start: np.ndarray, spacing_m: float, base_m: float,
-                 extension: int, turn: Turn) -> list[float]:
-    """:func:`_costs` of the directions whose edges (rows of ``u0`` … ``v1``), strip counts
-    ``n`` and first band edges ``u_start`` are given: :func:`band_extents` over every
-    (direction, edge) pair, then each direction's strips and connections."""
-    n_dir, n_edges = u0.shape
-    lo_u, hi_u = np.minimum(u0, u1), np.maximum(u0, u1)
-    top = (n - 1)[:, None]
-    k0 = np.clip(np.floor((lo_u - u_start[:, None]) / spacing_m), 0, top).astype(np.int64)
-    k1 = np.clip(np.floor((hi_u - u_start[:, None]) / spacing_m), 0, top).astype(np.int64)
-    counts = (k1 - k0 + 1).ravel()
-    pair = np.repeat(np.arange(n_dir * n_edges), counts)  # (direction, edge) of each band cut
-    d = pair // n_edges
-    k = k0.ravel()[pair] + (np.arange(int(counts.sum()))
-                            - np.repeat(np.cumsum(counts) - counts, counts))
-    a = u_start[d] + k * spacing_m
-    u0f, v0f = u0.ravel()[pair], v0.ravel()[pair]
-    du, dv = u1.ravel()[pair] - u0f, v1.ravel()[pair] - v0f
-    with np.errstate(divide="ignore", invalid="ignore"):
-        ta, tb = (a - u0f) / du, (a + spacing_m - u0f) / du
-    flat = du == 0
-    t_lo = np.where(flat, 0.0, np.clip(np.minimum(ta, tb), 0.0, 1.0))
-    t_hi = np.where(flat, 1.0, np.clip(np.maximum(ta, tb), 0.0, 1.0))
-    va, vb = v0f + t_lo * dv, v0f + t_hi * dv
-    band0 = np.r_[0, np.cumsum(n)[:-1]]  # each direction's first band
-    lo = np.full(int(n.sum()), np.inf)
-    hi = np.full(int(n.sum()), -np.inf)
-    np.minimum.at(lo, band0[d] + k, np.minimum(va, vb))
-    np.maximum.at(hi, band0[d] + k, np.maximum(va, vb))
-    band_dir = np.repeat(np.arange(n_dir), n)
-    band_k = np.arange(len(lo)) - band0[band_dir]
-    keep = np.isfinite(lo)
-    lo, hi, band_dir = lo[keep], hi[keep], band_dir[keep]
-    u = u_start[band_dir] + (band_k[keep] + 0.5) * spacing_m
-    n_photos = _photos_per_part(hi - lo, base_m, extension)
-    half = (n_photos - 1) * base_m / 2.0
-    mid = (lo + hi) / 2.0
-    first, last = mid - half, mid + half
-    m = np.bincount(band_dir, minlength=n_dir)  # strips kept per direction
-    start = np.r_[0, np.cumsum(m)[:-1]]
-    # connection i → i + 1 within a direction; strip j of a direction is flown +v when even
-    j = np.arange(len(u)) - start[band_dir]
-    same = band_dir[1:] == band_dir[:-1]
-    forward = (j[:-1] % 2) == 0
-    end_i = np.where(forward, last[:-1], first[:-1])
-    start_next = np.where(forward, last[1:], first[1:])
-    conn = turn_length_m((u[1:] - u[:-1])[same], (start_next - end_i)[same], turn)
-    conn_start = np.r_[0, np.cumsum(np.maximum(m - 1, 0))[:-1]]  # direction i's first
-    span = last - first
-    costs = []
-    for a_, m_, c_ in zip(start.tolist(), m.tolist(), conn_start.tolist(), strict=True):
-        strips = np.add.reduce(span[a_:a_ + m_])  # np.sum's pairwise sum, as in _cost
-        turns = np.add.reduce(conn[c_:c_ + max(m_ - 1, 0)])
-        costs.append(float(strips + turns))
-    return costs
-
-
-def _auto_direction(geom: object, origin: tuple[float, float], spacing_m: float,
-                    base_m: float, extension: int, turn: Turn) -> tuple[float, int]:
-    """The direction of least flight length, and how many directions were tried.
-
-    The candidates: every edge direction of the convex hull (the least width across the
-    lines, which sets the number of strips, lies along one of them: rotating calipers) and
-    a sweep every 2°, then twice around the best three (0.5° steps within ±2°, 0.1° steps
-    within ±0.5°); each stage's new directions are costed in one call of :func:`_costs`.
-    """
-    simple = shapely.simplify(geom, min(spacing_m, base_m) / 4.0, preserve_topology=True)
-    edges = _edges(simple)
-    hull = shapely.get_coordinates(shapely.convex_hull(simple))
-    d = np.diff(hull, axis=0)
-    d = d[np.hypot(d[:, 0], d[:, 1]) > 0]
-    hull_dirs = np.round(np.degrees(np.arctan2(d[:, 0], d[:, 1])) % 180.0, 6)
-    tried: dict[float, float] = {}
-
-    def run(cands: np.ndarray) -> None:
-        new = [float(c) for c in np.unique(np.round(np.asarray(cands) % 180.0, 6))
-               if float(c) not in tried]
-        tried.update(zip(new, _costs(edges, new, origin, spacing_m, base_m, extension,
-                                     turn).tolist(), strict=True))
-
-    run(np.r_[hull_dirs, np.arange(0.0, 180.0, _AUTO_SWEEP_DEG)])
-    for step, reach in ((0.5, 2.0), (0.1, 0.5)):
-        best = sorted(tried, key=tried.__getitem__)[:3]
-        run(np.concatenate([b + np.arange(-reach, reach + 1e-9, step) for b in best]))
-    best = min(tried, key=lambda k: (tried[k], k))
-    return float(best % 180.0), len(tried)
-
-
 # -------------------------------------------------------------------------------------------
 # The layout
 # -------------------------------------------------------------------------------------------
@@ -468,7 +161,7 @@ def plan_lines(
     height_m: float,
     direction_deg: float | str = "auto",
     extension_bases: int = 1,
-    turn: Turn = Turn(),
+    turn: Turn = Turn(),  # noqa: B008 - a frozen dataclass: one immutable default
     speed_ms: float | None = None,
     max_flight_time_min: float | None = None,
     ground_m: float = 0.0,

@@ -130,9 +130,7 @@ def create_app(*, token: str | None = None, planner: Planner | None = None,
     """
     planner = planner if planner is not None else Planner()
     store = uploads if uploads is not None else UploadStore()
-    documents = Documents(Planner(limit_s=planner.limit_s, report_limit_s=planner.report_limit_s,
-                                  wait_s=planner.wait_s, inline=planner.inline),
-                          lambda files: _files(store, dict(files)))
+    documents = Documents.beside(planner, lambda files: _files(store, dict(files)))
 
     @asynccontextmanager
     async def lifespan(app: FastAPI) -> Any:
@@ -151,7 +149,6 @@ def create_app(*, token: str | None = None, planner: Planner | None = None,
                   "`scanplan serve` shows. `/api/plan` answers what `scanplan plan --json` "
                   "prints for the same project file.")
     app.state.planner, app.state.uploads, app.state.token = planner, store, token
-    app.state.documents = documents
 
     @app.middleware("http")
     async def check_token(request: Request, call_next: Any) -> Any:
@@ -205,6 +202,7 @@ def _files(store: UploadStore, files: dict[str, str]) -> dict[str, str]:
 
 def _routes(app: FastAPI, planner: Planner, store: UploadStore, documents: Documents) -> None:
     """The API's routes."""
+    app.state.documents = documents  # the downloads, rendered while the user looks
 
     @app.get("/api/inputs")
     def inputs(lang: str = Query("en", pattern="^(en|ru)$")) -> list[dict[str, Any]]:

@@ -66,6 +66,14 @@ class Documents:
         self._closed = False
         self._thread: threading.Thread | None = None
 
+    @classmethod
+    def beside(cls, planner: Planner,
+               resolve: Callable[[Mapping[str, str]], dict[str, str]]) -> Documents:
+        """Documents rendered by a worker of their own, with ``planner``'s limits (in this
+        process when ``planner`` runs inline)."""
+        return cls(Planner(limit_s=planner.limit_s, report_limit_s=planner.report_limit_s,
+                           wait_s=planner.wait_s, inline=planner.inline), resolve)
+
     # -- rendering ahead --------------------------------------------------------------
     def ahead(self, project: Mapping[str, Any], files: Mapping[str, str]) -> None:
         """Render the downloads of this request once the inputs are quiet (the request
