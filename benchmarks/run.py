@@ -59,6 +59,7 @@ BENCHMARKS: dict[str, str] = {
     "hostile_gis": "bench_hostile_gis",
     "sweep": "bench_sweep",
     "serve": "bench_serve",
+    "page": "bench_page",
 }
 
 RATIO_FOOTNOTE = (

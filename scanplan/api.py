@@ -407,6 +407,21 @@ class ProjectResult:
         part = self.spec.uav or self.spec.film
         return photos_frame(getattr(part, "layout", None) if part is not None else None)
 
+    @property
+    def control(self) -> pd.DataFrame | None:
+        """The GCPs and checkpoints of ``[control]``, one row each (the columns of
+        ``control.csv``: :data:`scanplan.geo.control.CONTROL_COLUMNS`, units in the names);
+        None without ``[control]``. The counts, the rules and the error budget are
+        ``to_dict()["specification"]["control"]``."""
+        import pandas as pd
+
+        from .geo.control import CONTROL_COLUMNS
+
+        control = self.spec.control
+        if control is None:
+            return None
+        return pd.DataFrame({k: control.points.columns[k] for k in CONTROL_COLUMNS})
+
     def __repr__(self) -> str:
         row = summary_row(self.spec)
         parts = [f"1:{row['map_scale']}" if row["map_scale"] else ""]

@@ -56,10 +56,15 @@ def test_conditions_are_printed_with_the_plan():
     km = load_norm_set().parameters["uav_uncontrolled_aerodrome_km"]
     assert km == 5
     assert "No. 1016 of 21.06.2023" in en and "01.03.2024" in en
-    assert "5 km from the boundaries of uncontrolled aerodromes" in en
+    # the conditions are data (norms/catalogue/airspace-conditions.csv), their wording's
+    # date printed; «контрольные точки аэродромов» are reference points, not boundaries
+    assert "10 km from the reference points of aerodromes and 2 km from landing sites" in en
+    assert "boundaries" not in en and "границ" not in ru
+    assert "25 km of the state border" in en and "0.25 kg" in en
     assert "settlement" in en and "local government" in en and "para. 49" in en
     assert "№\u00a01016" in ru and "населённым пунктом" in ru and "п. 49" in ru
-    assert "5\u00a0км" in ru
+    assert "10\u00a0км от контрольных точек аэродромов" in ru
+    assert "as secondary sources describe it" in en
     hc = next(x for x in plan.limits if x.id == "HC")
     assert "below 150 m" in localize(hc.reason, "en")
     assert "менее 150" in localize(hc.reason, "ru")
@@ -77,3 +82,20 @@ def test_reference_cites_the_amendment():
     text = " ".join(t for _, t in bib.entries())
     assert cited.startswith("[1]")
     assert "Decree No. 1016 of 21 June 2023" in text and "52(3)" in text
+
+
+def test_conditions_come_from_the_data_with_their_wording_date():
+    """An update of the rules is an edit of the data file: every condition has a source, a
+    wording date and a status, and the plan prints that date."""
+    from scanplan.norms.airspace import airspace_conditions
+
+    conds = airspace_conditions()
+    assert {c.id for c in conds} >= {"vlos", "below_150", "below_100", "border", "settlement"}
+    assert all(c.source and c.status in ("norm", "secondary") for c in conds)
+    date = max(c.wording_date for c in conds)
+    plan = uav_job(**CAM, height_m=100.0).plan
+    en = next(x for x in plan.warnings if x.code == "airspace_conditions").text("en")
+    y, m, d = date.split("-")
+    assert f"in force from {d}.{m}.{y}" in en
+    for c in conds:
+        assert c.text_en.replace("{ceiling}", "150") in en

@@ -61,7 +61,10 @@ def test_one_height_rule_is_waived_when_following_the_relief():
     w = next(x for x in r.warnings if x.code == "block_height_waived")
     assert "follow" in w.text("en") and "огибанием рельефа" in w.text("ru")
     from scanplan.project.design import design_dict
-    assert design_dict(d)["block_height"]["waived"] is True
+    block = design_dict(d)["block_height"]
+    # waived: the JSON does not ask for a split beside "waived" (the range still exceeds it)
+    assert block["waived"] is True and block["split_needed"] is False
+    assert block["exceeds_limit"] is True and block["blocks"] == 1
 
 
 def test_range_is_still_used_without_a_dem():

@@ -69,9 +69,12 @@ def _project_keys() -> set[tuple[str, str]]:
 
 @cache
 def _catalogue_words() -> frozenset[str]:
-    """Words of the catalogue's model names (the part before any parenthesis)."""
+    """Words of the catalogues' model names (the part before any parenthesis)."""
     ns = norms_mod.load_norm_set()
-    names = [c.name for c in ns.cameras.values()] + list(ns.scanner_names.values())
+    from scanplan.norms.aircraft import all_aircraft
+
+    names = ([c.name for c in ns.cameras.values()] + list(ns.scanner_names.values())
+             + [a.name for a in all_aircraft().values()])  # and the aircraft's models
     words: set[str] = set()
     for name in names:
         model = re.sub(r"\([^)]*\)", " ", name)

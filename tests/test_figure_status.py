@@ -26,13 +26,15 @@ def test_the_bundled_figures_carry_their_status():
     assert {g.status for g in ns.gsd_limits} == {"recommendation"}       # Appendix Б
     by_scale = {o.map_scale: o.status for o in ns.objects}
     assert by_scale[500] == "estimate" and by_scale[2000] == "norm"
+    assert by_scale[1000] == "estimate"  # Table 3 of Miheeva & Ilushenko has no 1:1000 row
     st = ns.parameter_status
     assert st["min_sun_elevation_deg"] == "practice"
-    assert st["block_relief_flat_pct"] == "recommendation"
+    # a requirement of ГОСТ Р 59328's body with an exception, in the second draft's wording
+    assert st["block_relief_flat_pct"] == "requirement_draft"
     assert st["image_measurement_px"] == "estimate"
     assert st["uav_max_height_m"] == "norm"
     assert set(st) == set(ns.parameters) and set(st.values()) <= {
-        "norm", "recommendation", "estimate", "practice"}
+        "norm", "recommendation", "estimate", "practice", "requirement_draft"}
     printed = load_norm_set("gkinp-02-036-02-printed")
     assert printed.parameter_status["planimetric_accuracy_mm"] == "norm"
 

@@ -61,7 +61,11 @@ def test_rectangle_layout_is_the_block_formulas(w, length, s, b, ext):
     assert len(lay.strips) == n
     assert {st_.photos for st_ in lay.strips} == {k}
     assert lay.notes["photos"] == n * k
-    assert lay.flight_length_m == pytest.approx(
+    # and the transit from the take-off point and back: the block's boundary point
+    # nearest the run-in when none is given (geo/sorties.py), at most half the block away
+    transit = lay.notes["transit_m"]
+    assert 0.0 <= transit <= 2 * (math.hypot(w, length) + (2 * ext + 2) * b + s)
+    assert lay.flight_length_m - transit == pytest.approx(
         float(FL.flight_length_m(n, (k - 1) * b, s)) + b / 2.0, rel=1e-12)
 
 
@@ -277,10 +281,14 @@ def test_sorties_split_the_block_between_strips():
     assert sorted(set(flown)) == list(range(1, len(lay.strips) + 1))
     assert flown == sorted(flown) and len(flown) <= len(lay.strips) + len(lay.sorties) - 1
     assert sum(k.length_m for k in lay.sorties) == pytest.approx(lay.flight_length_m)
-    # packed along the serpentine: no sortie but the last could take the next exposure
-    assert len(lay.sorties) == lay.notes["packing_bound"]
+    # packed along the serpentine: no packing beats the serpentine over one battery, and
+    # every sortie but the last is full (the next exposure would not fit: at most a base,
+    # a turn and the longer way back less)
+    assert len(lay.sorties) >= lay.notes["packing_bound"]
+    assert all(k.time_s >= 0.9 * 20 * 60 for k in lay.sorties[:-1])
     one = _lay(rectangle_area(3000, 3000), speed_ms=10.0)
-    assert len(one.sorties) == 1 and one.flight_length_m > lay.flight_length_m
+    # one flight has one way out and back; the sorties each their own
+    assert len(one.sorties) == 1 and one.flight_length_m < lay.flight_length_m
 
 
 def test_a_strip_longer_than_a_sortie_is_flown_in_pieces():
@@ -291,7 +299,8 @@ def test_a_strip_longer_than_a_sortie_is_flown_in_pieces():
     assert all(k.time_s <= 600 + 1e-9 for k in lay.sorties)
     assert sum(k.length_m for k in lay.sorties) == pytest.approx(lay.flight_length_m)
     first = [k for k in lay.sorties if 1 in k.strips]
-    assert len(first) == 4  # 20,042 m in pieces of ≤ 6,000 m
+    # 20,042 m in pieces of ≤ 6,000 m (less the climb, the descent and the way back)
+    assert len(first) >= 4
     p = lay.photos
     s1 = p["strip"] == 1
     assert (np.diff(p["sortie"][s1]) >= 0).all()
@@ -308,16 +317,16 @@ def test_a_sortie_never_flies_a_bridge_alone():
     """A long strip over a large hole: the pieces are cut at exposures, so every sortie
     takes photos (none flies only the gap with the camera off)."""
     geom = shapely.box(0, 0, 400, 3000).difference(shapely.box(-1, 800, 401, 2200))
-    lay = _lay(_local(geom), speed_ms=5.0, max_flight_time_min=2.0)  # 600 m sorties
+    lay = _lay(_local(geom), speed_ms=5.0, max_flight_time_min=4.0)  # 1,200 m sorties
     assert lay.feasible and lay.notes["bridged_m"] > 0
     assert set(np.unique(lay.photos["sortie"])) == {k.number for k in lay.sorties}
-    assert all(k.time_s <= 120 + 1e-9 for k in lay.sorties)
+    assert all(k.time_s <= 240 + 1e-9 for k in lay.sorties)
 
 
 def test_not_feasible_plans_say_why():
     short = _lay(rectangle_area(500, 2000), speed_ms=10.0, max_flight_time_min=0.01)
     assert not short.feasible and short.reason.code == "layout.sortie_too_short"
-    many = _lay(rectangle_area(200_000, 300), fa=40, speed_ms=15.0, max_flight_time_min=0.5)
+    many = _lay(rectangle_area(200_000, 300), fa=40, speed_ms=15.0, max_flight_time_min=3.0)
     assert not many.feasible and many.reason.code == "layout.too_many_sorties"
     assert len(many.sorties) >= MAX_SORTIES
     narrow = _lay(rectangle_area(10, 1000))
@@ -363,17 +372,22 @@ def test_rectangles_agree_with_qgroundcontrol(w, length, fa, fl, side, fwd):
 
 
 @settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-@given(geom=polygons(), limit=st.floats(2, 60), speed=st.floats(3, 30),
+@given(geom=polygons(), limit=st.floats(5, 60), speed=st.floats(3, 30),
        turn=st.sampled_from([Turn(), Turn("turnaround", 15.0), Turn("radius", 80.0)]))
 def test_sorties_property(geom, limit, speed, turn):
     """Every strip is flown, in order (a long one over consecutive sorties); no sortie is
     longer than the limit; the sortie lengths add up to the flight length; times are
-    length / speed."""
+    the time as flown: at least length / speed (geo/sorties.py)."""
     lay = _lay(_local(geom), speed_ms=speed, max_flight_time_min=limit, turn=turn)
     if not lay.feasible and lay.reason.code == "layout.single_strip":
         # an area narrower than one line spacing is "not feasible" by design (the
         # single-strip case has its own test); check that the reason is true, then skip
         assert lay.reason.params["spacing"] > lay.reason.params["width"]
+        return
+    if not lay.feasible and lay.reason.code == "layout.sortie_cannot_reach":
+        # a short battery at a low speed: the climb, the descent and the way there and
+        # back leave no time for one exposure — true, then skip
+        assert lay.reason.params["need"] > lay.reason.params["have"]
         return
     assert lay.feasible, lay.reason
     flown = [i for k in lay.sorties for i in k.strips]
@@ -381,7 +395,8 @@ def test_sorties_property(geom, limit, speed, turn):
         range(1, len(lay.strips) + 1))
     assert all(k.time_s <= limit * 60 * (1 + 1e-12) for k in lay.sorties)
     assert sum(k.length_m for k in lay.sorties) == pytest.approx(lay.flight_length_m)
-    assert lay.flight_time_s == pytest.approx(lay.flight_length_m / speed)
+    assert lay.flight_time_s == pytest.approx(sum(k.time_s for k in lay.sorties))
+    assert lay.flight_time_s >= lay.flight_length_m / speed
     assert all(s_.sortie == min(k.number for k in lay.sorties if s_.number in k.strips)
                for s_ in lay.strips)
     assert set(np.unique(lay.photos["sortie"])) == {k.number for k in lay.sorties}

@@ -20,7 +20,8 @@ from scanplan.project.model import field_meta
 from scanplan.reports.excel import cells
 from scanplan.web.registry import input_rows
 
-NUMERIC = {"number", "int", "scale", "scales", "range", "direction", "point", "polygon"}
+NUMERIC = {"number", "int", "scale", "scales", "range", "direction", "point", "polygon",
+           "checkpoints"}
 APP_JS = Path(__file__).parents[1] / "scanplan" / "web" / "static" / "app.js"
 
 

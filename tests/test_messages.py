@@ -301,6 +301,21 @@ def emitted(tmp_path_factory) -> dict[str, list[Any]]:
         .replace("length_m = 3000", "") + "\n[flight]\ntakeoff = [39.5, 55.7]\n",
         "plan uav too many strips": uav_toml.replace("height_m = 300", "height_m = 5").replace(
             "width_m = 2000", "width_m = 1000000"),
+        # the aircraft (docs/aircraft.md): a camera not listed on it, a speed above its
+        # maximum, more flying days than the crew has (around the clock; by the sun)
+        "plan uav aircraft": uav_toml.replace("[uav]\n", '[uav]\naircraft = "dji-m350-rtk"\n'),
+        "plan uav aircraft too slow": uav_toml.replace(
+            'camera = "canon-eos-5d-mark-ii-50"', 'camera = "dji-phantom-4-rtk"'),
+        "plan uav approximate battery": uav_toml.replace(
+            'camera = "canon-eos-5d-mark-ii-50"', 'camera = "dji-phantom-4-rtk"').replace(
+            "speed_ms = 25", "speed_ms = 12"),
+        "plan uav flying days": uav_toml.replace("width_m = 2000", "width_m = 60000")
+        + "\n[flight]\nmax_flying_days = 1\n",
+        "plan uav flying days by the sun": uav_toml.replace("[uav]\n",
+                                                            "[uav]\nmax_flight_time_min = 20\n")
+        .replace("width_m = 2000", "width_m = 20000")
+        + ("\n[flight]\nmax_flying_days = 1\n[site]\nlat_deg = 56\nlon_deg = 37\n"
+           "[schedule]\nstart_date = 2025-06-01\n"),
         # archive photos: the scale is given (issue 13)
         "plan archive": archive_toml,
         "plan archive over relief": archive_toml + "\n[terrain]\nground_elevation_m = [120, 260]\n",
@@ -349,6 +364,16 @@ def emitted(tmp_path_factory) -> dict[str, list[Any]]:
         # where the area is: coordinates swapped (shown by the site, by the CRS), a site
         # far from the area
         **_site_variants(uav_toml),
+        # ground control: a survey too coarse for the height target (and beyond it even at
+        # best); markers on the valley's steep walls
+        "plan control coarse": (EXAMPLES / "uav-town-2000.toml").read_text(
+            encoding="utf-8").replace('file = "areas/',
+                                      f'file = "{(EXAMPLES / "areas").as_posix()}/')
+        + "\n[control]\ngcp_sigma_z_m = 0.08\n",
+        "plan control valley": (EXAMPLES / "uav-town-valley-2000.toml").read_text(
+            encoding="utf-8").replace('dem = "dem/', f'dem = "{(EXAMPLES / "dem").as_posix()}/')
+        .replace('file = "areas/', f'file = "{(EXAMPLES / "areas").as_posix()}/')
+        + '\n[control]\nmode = "rtk"\n',
     }
     variants["plan uav no height is feasible"] = uav_toml.replace(  # at most 0.56 m
         "max_height_m = 500", "max_height_m = 500\ngsd_cm = 0.01")
@@ -508,7 +533,8 @@ def russian(request, tmp_path_factory):
         mp.setenv("SOURCE_DATE_EPOCH", EPOCH)
         pdf = render_pdf(**kw)
         xlsx = render_xlsx(**kw)
-    text = "\n".join(p.extract_text() for p in pypdf.PdfReader(io.BytesIO(pdf)).pages)
+    text = "\n".join(_body(p.extract_text(), result.project.name)
+                     for p in pypdf.PdfReader(io.BytesIO(pdf)).pages)
     book = openpyxl.load_workbook(io.BytesIO(xlsx))
     cells = [c.value for ws in book for row in ws.iter_rows() for c in row
              if isinstance(c.value, str)]
@@ -522,6 +548,18 @@ def _engine_sentences(result: PlanResult) -> list[Message]:
     if result.uav:
         found += [result.uav.reason, *_uav_messages(result.uav.job.plan)]
     return [m for m in found if isinstance(m, Message)]
+
+
+def _body(page: str, name: str) -> str:
+    """A page's text without what closes every page — the sheet number, the running head
+    (the project's name and the document's title) and the empty list markers around
+    them —, so a sentence the page break cuts reads on."""
+    lines = page.split("\n")
+    while lines and (lines[-1].strip() in ("", "•")
+                     or re.fullmatch(r"(Лист|Sheet) \d+ (/ Листов|of) \d+", lines[-1].strip())
+                     or lines[-1].startswith(name)):
+        lines.pop()
+    return "\n".join(lines)
 
 
 def _squeeze(text: str) -> str:

@@ -126,6 +126,8 @@ _COMMENTS: dict[str, dict[str, str]] = {
         "scale_instead": "instead: the scale of existing photos",
         "scanner": "round the scan pixel to a scanner's steps",
         "uav": "digital camera on a UAV", "aircraft": "digital camera on a manned aircraft",
+        "aircraft_id": "the aircraft that carries it: its battery sets the sorties "
+                       "(scanplan aircraft list)",
         "height": "planned height above ground [m]",
         "height_default": "planned height [m] (default: the highest allowed)",
         "tolerance": "how much higher the UAV may fly [%]", "speed": "ground speed [m/s]",
@@ -143,6 +145,11 @@ _COMMENTS: dict[str, dict[str, str]] = {
         "schedule": "flying dates and sorties (optional)",
         "start": "first flying date", "end": "last flying date",
         "sortie": "flight time of one sortie [min]",
+        "control": "ground control points and checkpoints (optional)",
+        "control_mode": "\"gcp\", \"rtk\", \"ppk\" or \"direct\"",
+        "control_xy": "the markers' survey precision in plan [m] (an assumption: give yours)",
+        "control_z": "the markers' survey precision in height [m] (an assumption)",
+        "control_check": "\"asprs\" (the ASPRS count for the area) or a number",
     },
     "ru": {
         "head": "# Проект scanplan: один договор на картографирование. Расчёт:\n"
@@ -169,6 +176,8 @@ _COMMENTS: dict[str, dict[str, str]] = {
         "scale_instead": "либо масштаб имеющихся снимков",
         "scanner": "округлить пиксель сканирования до шагов сканера",
         "uav": "цифровая камера на БПЛА", "aircraft": "цифровая камера на самолёте",
+        "aircraft_id": "носитель камеры: его аккумулятор задаёт вылеты "
+                       "(scanplan aircraft list)",
         "height": "плановая высота над рельефом [м]",
         "height_default": "плановая высота [м] (по умолчанию — наибольшая допустимая)",
         "tolerance": "на сколько выше плана может лететь БПЛА [%]",
@@ -188,6 +197,11 @@ _COMMENTS: dict[str, dict[str, str]] = {
         "schedule": "сроки и вылеты (необязательно)",
         "start": "первый день съёмки", "end": "последний день съёмки",
         "sortie": "продолжительность одного вылета [мин]",
+        "control": "опознаки и контрольные точки (необязательно)",
+        "control_mode": "\"gcp\", \"rtk\", \"ppk\" или \"direct\"",
+        "control_xy": "точность определения маркеров в плане [м] (допущение: укажите свою)",
+        "control_z": "точность определения маркеров по высоте [м] (допущение)",
+        "control_check": "\"asprs\" (число ASPRS для площади) или число",
     },
 }
 
@@ -266,8 +280,27 @@ def project_text(a: InitAnswers) -> str:
                 "", f"# [schedule]\t# {c['schedule']}",
                 f"# start_date = 2027-06-01\t# {c['start']}",
                 f"# end_date = 2027-06-30\t# {c['end']}",
-                f"# sortie_time_min = {_v('schedule.sortie_time_min', 25)}\t# {c['sortie']}"]
+                f"# sortie_time_min = {_v('schedule.sortie_time_min', 25)}\t# {c['sortie']}",
+                "", f"# [control]\t# {c['control']}",
+                f"# mode = {_s(INPUTS['control.mode'].default)}\t# {c['control_mode']}",
+                f"# gcp_sigma_xy_m = {_v('control.gcp_sigma_xy_m')}\t# {c['control_xy']}",
+                f"# gcp_sigma_z_m = {_v('control.gcp_sigma_z_m')}\t# {c['control_z']}",
+                f"# checkpoints = {_s(INPUTS['control.checkpoints'].default)}\t"
+                f"# {c['control_check']}"]
     return "\n".join(_align(line) for line in out) + "\n"
+
+
+def _aircraft_line(camera: str, c: dict[str, str]) -> str:
+    """``aircraft = "…"`` for the camera's one catalogue carrier (the plan's default, said
+    so), else a commented example naming the aircraft that carry it."""
+    from ..norms.aircraft import carriers_of
+
+    carriers = [x.id for x in carriers_of(camera)]
+    if len(carriers) == 1:
+        return f"aircraft = {_s(carriers[0])}\t# {c['aircraft_id']}"
+    example = carriers[-1] if carriers else "dji-m350-rtk"
+    more = f": {', '.join(carriers)}" if len(carriers) > 1 else ""
+    return f"# aircraft = {_s(example)}\t# {c['aircraft_id']}{more}"
 
 
 def _uav_lines(a: InitAnswers, c: dict[str, str]) -> list[str]:
@@ -275,6 +308,7 @@ def _uav_lines(a: InitAnswers, c: dict[str, str]) -> list[str]:
     set's overlaps; the f-number when the catalogue has none for the camera."""
     out = ["", f"[uav]\t# {c['aircraft' if a.aircraft else 'uav']}",
            f"camera = {_s(a.uav_camera)}\t# {c['camera']}",
+           *([] if a.aircraft else [_aircraft_line(a.uav_camera, c)]),
            (f"height_m = {_n(a.height_m)}\t# {c['height']}" if a.height_m is not None else
             f"# height_m = {_v('uav.height_m', 100)}\t# {c['height_default']}")]
     if a.f_number is not None:

@@ -32,6 +32,8 @@ OPTION_NAMES = option_names()
 
 
 LAZY_COMMANDS = {
+    "aircraft": ("scanplan.cli.aircraft", "aircraft",
+                 "The aircraft catalogue: flight time per battery, speeds, wind,..."),
     "cameras": ("scanplan.cli.cameras", "cameras",
                 "The camera and scanner catalogue (film, digital on UAVs,..."),
     "init": ("scanplan.cli.init", "init",
@@ -349,7 +351,8 @@ _UAV_INPUTS = ["camera", "camera_name", "pixel_um", "focal_mm", "sensor_mm", "or
                "relief_interval_m", "<norms>", "r_max", "r_min", "haze_contrast", "threshold_k0",
                "shift_factor", "random_speed_ms", "roll_rate_rad_s", "pitch_rate_rad_s",
                "yaw_rate_rad_s", "area_m", "roll_deg", "pitch_deg", "parallax_error_px"]
-_UAV_AREA = ["area_file", "area_feature", "area_layer", "direction_deg", "max_flight_time_min"]
+_UAV_AREA = ["area_file", "area_feature", "area_layer", "direction_deg", "max_flight_time_min",
+             "aircraft"]
 
 
 @main.command()
@@ -389,8 +392,18 @@ def uav(as_json: bool, **kwargs: Any) -> None:
         except ValueError:
             raise InputError("--direction-deg", f'must be an angle in degrees or "auto" (got '
                              f"{direction!r})") from None
-    opts = LayoutOptions(direction_deg=direction,
-                         max_flight_time_min=kwargs.pop("max_flight_time_min"))
+    sortie_min = kwargs.pop("max_flight_time_min")
+    craft = kwargs.pop("aircraft")
+    if sortie_min is None and (area is not None or kwargs.get("area_m") is not None):
+        from ..norms.aircraft import aircraft as catalogue_aircraft
+        from ..norms.aircraft import carriers_of
+
+        if craft is None:  # the camera's one carrier, if only one carries it
+            carriers = carriers_of(kwargs.get("camera"))
+            craft = carriers[0].id if len(carriers) == 1 else None
+        if craft is not None:  # the aircraft's battery, less the reserve
+            sortie_min = catalogue_aircraft(craft, "--aircraft").usable_flight_time_min()
+    opts = LayoutOptions(direction_deg=direction, max_flight_time_min=sortie_min)
     if area is None and kwargs.get("area_m") is None and (
             direction is not None or opts.max_flight_time_min is not None):
         raise InputError("--direction-deg" if direction is not None

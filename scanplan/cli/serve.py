@@ -30,9 +30,18 @@ def _loopback(host: str) -> bool:
 @click.option("--tiles", default="osm", show_default=True,
               help='Background map of the page: "osm" (OpenStreetMap), "none" (offline) or '
               "a tile URL with {z}/{x}/{y}.")
+@click.option("--tiles-attribution", default=None,
+              help="The attribution of the --tiles URL's map, shown on the map and printed "
+              "(the tile provider's terms ask for it).")
+@click.option("--mbtiles", type=click.Path(exists=True, dir_okay=False), default=None,
+              help="An MBTiles file of background tiles, offered on the page (offline use).")
+@click.option("--tile-cache", type=click.Path(file_okay=False), default=None,
+              help="Folder where fetched tiles are kept [default: the user's cache folder, "
+              "scanplan/tiles].")
 @click.option("--time-limit", "limit_s", type=click.FloatRange(1, 3600), default=30.0,
               show_default=True, help="Longest one plan may run [s] (reports: four times).")
 def serve(host: str, port: int, open_browser: bool, allow_remote: bool, tiles: str,
+          tiles_attribution: str | None, mbtiles: str | None, tile_cache: str | None,
           limit_s: float) -> None:
     """Plan on a map in the browser: draw or drop the area, choose the camera, see the
     binding constraint and the strips, download the project file, reports and missions.
@@ -49,10 +58,14 @@ def serve(host: str, port: int, open_browser: bool, allow_remote: bool, tiles: s
             raise InputError("--host", f"{host} is reachable from other machines; add "
                              "--allow-remote to serve there (a token is then required)")
         token = secrets.token_urlsafe(18)
-    if tiles not in ("osm", "none") and not (tiles.startswith(("https://", "http://"))
-                                            and "{z}" in tiles):
-        raise InputError("--tiles", 'must be "osm", "none" or an http(s) URL with {z}/{x}/{y} '
-                         f"(got {tiles!r})")
+    from pathlib import Path
+
+    from ..web.basemap import Basemaps, check_template
+
+    if tiles not in ("osm", "none"):
+        check_template(tiles)
+    basemaps = Basemaps(tiles, tiles_attribution, Path(mbtiles) if mbtiles else None,
+                        Path(tile_cache) if tile_cache else None)
     from ..extras import require
 
     require("serve", "scanplan serve", "the web page")  # fastapi, uvicorn: an extra of the install
@@ -62,7 +75,7 @@ def serve(host: str, port: int, open_browser: bool, allow_remote: bool, tiles: s
     from ..web.worker import Planner
 
     planner = Planner(limit_s=limit_s, report_limit_s=4 * limit_s)
-    app = create_app(token=token, planner=planner, tiles=tiles)
+    app = create_app(token=token, planner=planner, basemaps=basemaps)
     config = uvicorn.Config(app, host=host, port=port, log_level="warning")
     server = uvicorn.Server(config)
     shown = f"[{host}]" if ":" in host else host

@@ -134,7 +134,11 @@ class Sortie:
     """One flight on one battery: its strips (whole or in part), length and time.
 
     ``length_m`` includes the run-in and run-out and ``transit_m``, the flight from the
-    take-off point to the block and back (0 without a take-off point) [m].
+    take-off point to the block and back [m]; ``time_s`` is the time as flown: climb,
+    acceleration, the path with its corners, braking and descent
+    (:mod:`scanplan.geo.sorties`); ``takeoff_xy_m`` the take-off and landing point in the
+    planning CRS (the given one, else the area's boundary point nearest the sortie's
+    start; None for an area with no place on the map).
     """
 
     number: int
@@ -142,6 +146,7 @@ class Sortie:
     length_m: float
     time_s: float | None
     transit_m: float = 0.0
+    takeoff_xy_m: tuple[float, float] | None = None
 
 
 @dataclass(frozen=True)

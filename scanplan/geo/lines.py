@@ -59,7 +59,16 @@ from ..i18n.messages import Message
 from . import crs as geocrs
 from .direction import _auto_direction, band_extents
 from .layout import PHOTO_COLUMNS, Area, FlightLayout, Photos, Strip
-from .sorties import MAX_SORTIES, SortiePlan, pack_sorties, packing_bound
+from .sorties import (
+    MAX_SORTIES,
+    FlightModel,
+    SortiePlan,
+    boundary_transit,
+    pack_sorties,
+    packing_bound,
+    sortie_overhead_m,
+    turn_penalties_m,
+)
 from .strips import (
     G_MS2,
     MAX_STRIPS,
@@ -168,6 +177,9 @@ def plan_lines(
     photo_values: Mapping[str, float] | None = None,
     kind: str = "uav",
     takeoff_xy_m: tuple[float, float] | None = None,
+    flight_model: FlightModel | None = None,
+    manned: bool = False,
+    climb_m: float | None = None,
 ) -> FlightLayout:
     """Strips, photo centres, turns and sorties over ``area``.
 
@@ -202,6 +214,16 @@ def plan_lines(
     takeoff_xy_m : (float, float), optional
         The take-off (and landing) point in the planning CRS [m]: each sortie's transit
         from it to the block and back is flown, counted and packed into the battery.
+        Not given, a UAV's sortie takes off from the area's boundary point nearest its
+        run-in and returns there.
+    flight_model : FlightModel, optional
+        The numbers of the time as flown (default: ``norms/catalogue/flight-model.csv``).
+    manned : bool
+        A camera on a manned survey aircraft: its sorties are its length at the speed (a
+        multirotor's flight model and a take-off from the area's boundary do not apply).
+    climb_m : float, optional
+        The height each sortie climbs after take-off and descends to land [m] (default
+        ``height_m``; over relief, more).
 
     Returns
     -------
@@ -237,8 +259,11 @@ def plan_lines(
     notes["bridged_m"] = parts.bridged_m()
     takeoff_uv = (None if takeoff_xy_m is None
                   else _to_rotated_uv(direction, origin)(*takeoff_xy_m))
-    plan, ex_strip, reason = _sortie_plan(parts, turn, takeoff_uv, speed_ms,
-                                          max_flight_time_min, notes)
+    plan, ex_strip, reason = _sortie_plan(
+        parts, turn, takeoff_uv, speed_ms, max_flight_time_min, notes,
+        None if manned or kind != "uav" else _Airborne(
+            rot.boundary, height_m if climb_m is None else climb_m,
+            flight_model or FlightModel.bundled()))
     length = float(np.sum(plan.length_m))
     turns = _turns_flown(plan, ex_strip, parts.conn)
     notes["transit_m"] = float(np.sum(plan.transit_m))
@@ -246,9 +271,13 @@ def plan_lines(
         reason = _single_strip_reason(parts, spacing_m, rot)
     strips, photos = _records(parts, plan, ex_strip, _to_plan_xy(direction, origin), area,
                               height_m, ground_m, photo_values or {}, notes)
-    return FlightLayout(strips=strips, sorties=plan.records(speed_ms), photos=photos,
+    sorties = plan.records(speed_ms, _to_plan_xy(direction, origin))
+    flown = [s.time_s for s in sorties]
+    return FlightLayout(strips=strips, sorties=sorties, photos=photos,
                         flight_length_m=length, turn_length_m=turns,
-                        flight_time_s=_time_s(length, speed_ms), feasible=reason is None,
+                        flight_time_s=(float(sum(flown)) if flown and None not in flown
+                                       else _time_s(length, speed_ms)),
+                        feasible=reason is None,
                         reason=reason, notes=notes, **common)
 
 
@@ -480,27 +509,54 @@ def _flight_order(parts: _Parts, most: int = MAX_PHOTO_CENTRES
     return strip, v, start[strip] + np.abs(v - parts.forward_v[strip])
 
 
+@dataclass(frozen=True)
+class _Airborne:
+    """What the sorties' time as flown needs beyond the strips: the area's outline in the
+    packing frame (the default take-off points; None: no transit without a take-off
+    point, as for film), the climb height and the flight model."""
+
+    boundary: object | None
+    height_m: float
+    model: FlightModel
+
+
 def _sortie_plan(parts: _Parts, turn: Turn, takeoff_uv: tuple[float, float] | None,
-                 speed_ms: float | None, max_min: float | None, notes: dict[str, object]
+                 speed_ms: float | None, max_min: float | None, notes: dict[str, object],
+                 air: _Airborne | None = None
                  ) -> tuple[SortiePlan, np.ndarray, Message | None]:
     """The sorties (:func:`scanplan.geo.sorties.pack_sorties`), the strip of every
     exposure in flight order, and why the block cannot be flown (None if it can).
 
     Each sortie flies its run-in (:attr:`Turn.lead_m`) before its first exposure and a
     run-out of at least half a base past its last (where the camera trigger stops,
-    :mod:`scanplan.geo.mission`); with a take-off point, the transit there and back.
+    :mod:`scanplan.geo.mission`), and the transit from the take-off point and back: the
+    given one, else the area's boundary point nearest the sortie's run-in. With a speed,
+    the battery holds the time as flown: the turns' corners, the climb, the descent, the
+    start and the stop (:mod:`scanplan.geo.sorties`).
     """
     ex_strip, ex_v, path = _flight_order(parts)
     lead_in = turn.lead_m
     lead_out = max(turn.lead_m, parts.base_m / 2.0)
+    sign = np.where(ex_strip % 2 == 0, 1.0, -1.0)
+    u = parts.u_m[ex_strip]
+    start_xy = np.column_stack([u, ex_v - sign * lead_in])
+    end_xy = np.column_stack([u, ex_v + sign * lead_out])
+    transit = None
     zeros = np.zeros(len(ex_v))
-    if takeoff_uv is None:
-        t_in = t_out = zeros
-    else:
-        sign = np.where(ex_strip % 2 == 0, 1.0, -1.0)
-        du = parts.u_m[ex_strip] - takeoff_uv[0]
-        t_in = np.hypot(du, ex_v - sign * lead_in - takeoff_uv[1])
-        t_out = np.hypot(du, ex_v + sign * lead_out - takeoff_uv[1])
+    t_in = t_out = zeros
+    if takeoff_uv is not None or (air is not None and air.boundary is not None):
+        transit = boundary_transit(air.boundary if air is not None else None, start_xy,
+                                   end_xy, takeoff_uv)
+        if takeoff_uv is not None:  # the transits of a fixed take-off point, as before
+            t_in = np.hypot(*(start_xy - np.asarray(takeoff_uv)).T)
+            t_out = np.hypot(*(end_xy - np.asarray(takeoff_uv)).T)
+    timed = bool(speed_ms and speed_ms > 0 and air is not None and math.isfinite(speed_ms))
+    penalty = overhead = None
+    if timed and air is not None and speed_ms is not None and len(ex_v):
+        penalty = turn_penalties_m(ex_strip, ex_v, parts.u_m, turn.kind, turn.lead_m,
+                                   speed_ms, air.model, parts.base_m / 2.0)
+        overhead = sortie_overhead_m(speed_ms, air.height_m, air.model)
+        notes["sortie_overhead_s"] = overhead / speed_ms
     limit = None
     if max_min and speed_ms:
         with np.errstate(over="ignore"):
@@ -509,14 +565,16 @@ def _sortie_plan(parts: _Parts, turn: Turn, takeoff_uv: tuple[float, float] | No
             limit = None
         elif limit < parts.base_m:
             plan, _ = pack_sorties(path, ex_strip, t_in, t_out, lead_in_m=lead_in,
-                                   lead_out_m=lead_out, limit_m=None)
+                                   lead_out_m=lead_out, limit_m=None, transit=transit)
             return plan, ex_strip, Message("layout.sortie_too_short", limit=max_min,
                                            base=parts.base_m, speed=speed_ms)
     if limit is not None and len(path):
         notes["packing_bound"] = packing_bound(float(path[-1] - path[0]) + lead_in
                                                + lead_out, limit)
     plan, reason = pack_sorties(path, ex_strip, t_in, t_out, lead_in_m=lead_in,
-                                lead_out_m=lead_out, limit_m=limit, max_minutes=max_min)
+                                lead_out_m=lead_out, limit_m=limit, max_minutes=max_min,
+                                transit=transit, penalty_m=penalty,
+                                overhead_m=overhead or 0.0)
     return plan, ex_strip, reason
 
 

@@ -37,7 +37,8 @@ import numpy as np
 
 from .layout import FlightLayout
 
-__all__ = ["CAMERA_LOOP_HZ", "MissionPoint", "SortieMission", "sortie_missions"]
+__all__ = ["CAMERA_LOOP_HZ", "MissionPoint", "SortieMission", "sortie_missions",
+           "trigger_off_points", "turn_path"]
 
 CAMERA_LOOP_HZ = 50.0
 """How often the autopilot checks the trigger distance [Hz]: ArduPilot runs
@@ -91,8 +92,9 @@ class SortieMission:
     points : tuple of MissionPoint
         The waypoints in flight order.
     takeoff_xy_m : (float, float) or None
-        The take-off point in the planning CRS [m] (None: not given; the mission's home is
-        then its first waypoint).
+        The take-off point in the planning CRS [m]: the given one, else the area's boundary
+        point nearest the sortie's run-in (None: an area with no place on the map; the
+        mission's home is then its first waypoint).
     photos : int
         The photos the sortie takes.
     """
@@ -152,8 +154,10 @@ def sortie_missions(layout: FlightLayout, speed_ms: float, *,
         mine = order[sortie[order] == s.number]
         if not len(mine):
             continue
-        out.append(SortieMission(s.number, tuple(ctx.sortie_points(mine)),
-                                 ctx.takeoff, len(mine)))
+        # the sortie's own take-off point (the given one, else the area's boundary point
+        # nearest its run-in: geo/sorties.py), else the layout's
+        home = s.takeoff_xy_m if s.takeoff_xy_m is not None else ctx.takeoff
+        out.append(SortieMission(s.number, tuple(ctx.sortie_points(mine)), home, len(mine)))
     return tuple(out)
 
 
@@ -229,7 +233,7 @@ class _Context:
             nxt = groups[g + 1]
             q = np.array([self.x[nxt[0]], self.y[nxt[0]]])
             alt_ref = self._higher(end, int(nxt[0]))
-            path = _turn_path(pe, h, q, self.lead_m, self.turn_kind)
+            path = turn_path(pe, h, q, self.lead_m, self.turn_kind)
             pts += _with_trigger_off(pe, path, base / 2.0, number, alt_ref)
         return pts
 
@@ -293,8 +297,8 @@ class _Context:
         return self.geo
 
 
-def _turn_path(p: np.ndarray, h: np.ndarray, q: np.ndarray, lead_m: float,
-               kind: str) -> list[tuple[float, float]]:
+def turn_path(p: np.ndarray, h: np.ndarray, q: np.ndarray, lead_m: float,
+              kind: str) -> list[tuple[float, float]]:
     """The waypoints from a strip's last photo ``p`` (heading ``h``) to the next strip's
     first photo ``q`` (heading −h), ``q`` included, ``p`` not: the run-out, the turn, the
     run-in (:func:`scanplan.geo.lines.turn_length_m`)."""
@@ -338,6 +342,13 @@ def _turn_path(p: np.ndarray, h: np.ndarray, q: np.ndarray, lead_m: float,
     else:
         out[-1] = (float(q[0]), float(q[1]))
     return out
+
+
+def trigger_off_points(p: np.ndarray, path: list[tuple[float, float]], after_m: float
+                       ) -> list[MissionPoint]:
+    """The waypoints of a turn as the mission writes them (:func:`_with_trigger_off`; the
+    strip and photo left 0): for the time a turn takes."""
+    return _with_trigger_off(p, path, after_m, 0, 0)
 
 
 def _with_trigger_off(p: np.ndarray, path: list[tuple[float, float]], after_m: float,

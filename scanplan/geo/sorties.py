@@ -1,37 +1,203 @@
-"""Sorties: the serpentine cut into flights of one battery each (docs/flight-lines.md).
+"""Sorties: the serpentine cut into flights of one battery each, and their time as flown
+(docs/flight-lines.md).
 
 The block is flown as one serpentine — strips, and the turns between them, in flight
 order. Every exposure has a place on it: the path distance ``c`` from the first exposure
 of the block. A sortie flies one stretch of it, from an exposure *a* to an exposure *b*
-(whole strips, or a part of a strip at either end), and costs
+(whole strips, or a part of a strip at either end), and flies
 
     (c_b − c_a) + run-in + run-out + transit(take-off → run-in of a)
                 + transit(run-out of b → take-off)
 
-metres of flight, which must fit the battery: speed × the sortie's flight time. The
-sorties are packed greedily: each one runs as far along the serpentine as the battery
+metres. The take-off point is the given one, else the area's boundary point nearest the
+sortie's run-in (the crew drives along the boundary to the launch site nearest each
+sortie): the return leg is always flown and counted.
+
+**The time as flown** (:class:`FlightModel`, its numbers and their sources in
+``norms/catalogue/flight-model.csv``): the climb from the take-off point to the mission
+height and the descent back at the autopilot's climb and descent speeds; the path at the
+ground speed ``v`` with a trapezoidal speed profile — acceleration and braking at ``a``
+between the nodes' speed limits (:func:`profile_time_s`); a node where the path turns by
+θ is passed at most at ``sqrt(a_c · r)``, r = t / tan(θ/2) the radius of the arc that cuts
+the corner a tangent length ``t`` before it (:func:`corner_speeds_ms`); a waypoint where
+the aircraft stops (a DJI ``toPointAndStop…`` turn mode, the take-off and landing) at 0.
+In the packing each turn between strips costs its own time as flown (its waypoints,
+:func:`scanplan.geo.mission.turn_path`), and each sortie the climb, the descent, the start
+and the stop and two corners onto and off the block counted as stops (an upper bound).
+
+The sorties are packed greedily: each one runs as far along the serpentine as the battery
 allows and the next resumes at the next exposure. For a cost that grows with the stretch
 this gives the fewest sorties for the flight order (the greedy cover of a line by
 intervals); the packing bound — the serpentine's length divided by one battery — is what
 no packing can beat, and the greedy one stays within a run-in, a run-out and the transit
-of it per sortie. Without a take-off point the transit is not known and not counted (the
-crew launches beside each sortie's run-in).
+of it per sortie.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from collections.abc import Callable
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..i18n.messages import Message
 from .layout import Sortie
 
-__all__ = ["MAX_SORTIES", "SortiePlan", "pack_sorties"]
+__all__ = ["MAX_SORTIES", "FlightModel", "SortiePlan", "boundary_transit", "corner_speeds_ms",
+           "pack_sorties", "path_time_s", "profile_time_s", "sortie_overhead_m",
+           "turn_penalties_m", "vertical_time_s"]
 
 MAX_SORTIES = 1_000
 """Most sorties (beyond: not feasible)."""
+
+
+@dataclass(frozen=True)
+class FlightModel:
+    """The numbers of the time as flown (``norms/catalogue/flight-model.csv``).
+
+    Attributes
+    ----------
+    accel_ms2 : float
+        Acceleration and braking along the path [m/s²].
+    corner_accel_ms2 : float
+        Lateral acceleration through a corner [m/s²].
+    corner_radius_m : float
+        How far before a corner the aircraft starts to turn (the tangent length) [m].
+    climb_speed_ms, descent_speed_ms : float
+        Vertical speeds of the climb after take-off and the descent to land [m/s].
+    """
+
+    accel_ms2: float
+    corner_accel_ms2: float
+    corner_radius_m: float
+    climb_speed_ms: float
+    descent_speed_ms: float
+
+    @classmethod
+    def bundled(cls) -> FlightModel:
+        """The model of the bundled ``flight-model.csv``."""
+        from ..norms.aircraft import flight_model_params
+
+        p = flight_model_params()
+        return cls(p["horizontal_accel_ms2"].value, p["corner_accel_ms2"].value,
+                   p["corner_radius_m"].value, p["climb_speed_ms"].value,
+                   p["descent_speed_ms"].value)
+
+
+def profile_time_s(leg_m: np.ndarray, node_ms: np.ndarray, speed_ms: float,
+                   accel_ms2: float) -> float:
+    """Time over a chain of legs with a speed limit at every node [s].
+
+    Parameters
+    ----------
+    leg_m : ndarray
+        The legs' lengths [m], n of them.
+    node_ms : ndarray
+        The speed limit at each of the n + 1 nodes [m/s] (0: a stop).
+    speed_ms : float
+        The cruise speed [m/s] (> 0).
+    accel_ms2 : float
+        Acceleration and braking [m/s²] (> 0).
+
+    Notes
+    -----
+    The trapezoidal speed profile: a forward pass caps each node at the speed reachable
+    from the one before, u_{i+1} ≤ sqrt(u_i² + 2aL_i), a backward pass at the speed it can
+    still brake from, u_i ≤ sqrt(u_{i+1}² + 2aL_i); each leg is then flown accelerating
+    from u_0 to its peak v_p = min(v, sqrt((2aL + u_0² + u_1²)/2)), cruising, and braking
+    to u_1: t = (v_p − u_0)/a + (v_p − u_1)/a + (L − (2v_p² − u_0² − u_1²)/(2a))/v_p.
+
+    >>> round(profile_time_s(np.array([100.0]), np.array([0.0, 0.0]), 10.0, 2.5), 3)
+    14.0
+    >>> round(profile_time_s(np.array([100.0]), np.array([10.0, 10.0]), 10.0, 2.5), 3)
+    10.0
+    """
+    leg = np.asarray(leg_m, dtype=float)
+    u = np.minimum(np.asarray(node_ms, dtype=float), speed_ms).copy()
+    a = accel_ms2
+    two_a_l = 2.0 * a * leg
+    for i in range(len(leg)):  # forward: what can be reached
+        u[i + 1] = min(u[i + 1], math.sqrt(u[i] ** 2 + two_a_l[i]))
+    for i in range(len(leg) - 1, -1, -1):  # backward: what can still brake
+        u[i] = min(u[i], math.sqrt(u[i + 1] ** 2 + two_a_l[i]))
+    u0, u1 = u[:-1], u[1:]
+    vp = np.minimum(speed_ms, np.sqrt((two_a_l + u0 ** 2 + u1 ** 2) / 2.0))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        cruise = (leg - (2.0 * vp ** 2 - u0 ** 2 - u1 ** 2) / (2.0 * a)) / vp
+        t = (vp - u0) / a + (vp - u1) / a + np.where(vp > 0, np.maximum(cruise, 0.0), 0.0)
+    return float(np.sum(np.where(leg > 0, t, 0.0)))
+
+
+def corner_speeds_ms(xy: np.ndarray, speed_ms: float, model: FlightModel,
+                     tangent_m: np.ndarray | float | None = None) -> np.ndarray:
+    """The speed limit at each node of a path [m/s]: the cruise speed where the path goes
+    straight on, ``sqrt(a_c · r)`` where it turns by θ — r = t / tan(θ/2), the arc that
+    cuts the corner a tangent length t before the node, t at most half of either leg — and
+    the cruise speed at the two ends (the caller sets where the aircraft stops).
+
+    >>> m = FlightModel(2.5, 5.0, 2.0, 2.5, 1.5)
+    >>> corner_speeds_ms(np.array([[0.0, 0], [100, 0], [100, 100]]), 12.0, m).round(2)
+    array([12.  ,  3.16, 12.  ])
+    """
+    xy = np.asarray(xy, dtype=float)
+    n = len(xy)
+    out = np.full(n, float(speed_ms))
+    if n < 3:
+        return out
+    d = np.diff(xy, axis=0)
+    seg = np.hypot(d[:, 0], d[:, 1])
+    a, b = d[:-1], d[1:]
+    la, lb = seg[:-1], seg[1:]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        cos = np.clip(np.sum(a * b, axis=1) / (la * lb), -1.0, 1.0)
+    theta = np.arccos(np.where((la > 0) & (lb > 0), cos, 1.0))
+    t = model.corner_radius_m if tangent_m is None else np.asarray(tangent_m, float)[1:-1] \
+        if np.ndim(tangent_m) else float(tangent_m)
+    t = np.minimum(np.minimum(t, la / 2.0), lb / 2.0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        r = t / np.tan(theta / 2.0)
+        v = np.sqrt(model.corner_accel_ms2 * np.maximum(r, 0.0))
+    out[1:-1] = np.where(theta > 1e-6, np.minimum(v, speed_ms), speed_ms)
+    return out
+
+
+def path_time_s(xy: np.ndarray, speed_ms: float, model: FlightModel, *,
+                start_ms: float = 0.0, end_ms: float = 0.0, stops: np.ndarray | None = None,
+                tangent_m: np.ndarray | float | None = None) -> float:
+    """Time to fly the polyline ``xy`` [s]: its corners (:func:`corner_speeds_ms`), the
+    nodes in ``stops`` (a boolean per node) at rest, entered at ``start_ms`` and left at
+    ``end_ms`` (:func:`profile_time_s`).
+
+    >>> m = FlightModel(2.5, 5.0, 2.0, 2.5, 1.5)
+    >>> round(path_time_s(np.array([[0.0, 0], [100, 0]]), 10.0, m), 3)
+    14.0
+    """
+    xy = np.asarray(xy, dtype=float)
+    if len(xy) < 2:
+        return 0.0
+    d = np.diff(xy, axis=0)
+    leg = np.hypot(d[:, 0], d[:, 1])
+    node = corner_speeds_ms(xy, speed_ms, model, tangent_m)
+    node[0], node[-1] = min(start_ms, speed_ms), min(end_ms, speed_ms)
+    if stops is not None:
+        node = np.where(np.asarray(stops, bool), 0.0, node)
+    return profile_time_s(leg, node, speed_ms, model.accel_ms2)
+
+
+def vertical_time_s(climb_m: float, descent_m: float, model: FlightModel) -> float:
+    """The climb after take-off and the descent to land [s]."""
+    return max(climb_m, 0.0) / model.climb_speed_ms + max(descent_m, 0.0) / \
+        model.descent_speed_ms
+
+
+def sortie_overhead_m(speed_ms: float, height_m: float, model: FlightModel) -> float:
+    """What a sortie costs beyond its path, as metres at the cruise speed: the climb and
+    the descent, the start from rest and the stop (v/(2a) each), and the two corners onto
+    the block and off it counted as stops (v/a each) — an upper bound of the time as
+    flown, as a stop costs at most v/a over cruising its leg."""
+    t = vertical_time_s(height_m, height_m, model) + 3.0 * speed_ms / model.accel_ms2
+    return t * speed_ms
 
 
 @dataclass
@@ -46,12 +212,21 @@ class SortiePlan:
         The strips (from 0) each sortie flies, whole or in part.
     length_m, transit_m : list of float
         Each sortie's flight length, transit included, and the transit's share [m].
+    cost_m : list of float
+        Each sortie's time as flown, as metres at the cruise speed [m] (empty: the length).
+    first : list of int
+        Each sortie's first exposure (flight order).
+    takeoff_uv : list of (float, float)
+        Each sortie's take-off point in the packing's frame (empty: none).
     """
 
     exposure_sortie: np.ndarray
     strips: list[list[int]]
     length_m: list[float]
     transit_m: list[float]
+    cost_m: list[float] = field(default_factory=list)
+    first: list[int] = field(default_factory=list)
+    takeoff_uv: list[tuple[float, float]] = field(default_factory=list)
 
     def start(self, n_strips: int, exposure_strip: np.ndarray) -> np.ndarray:
         """The sortie each strip starts in (that of its first exposure)."""
@@ -76,22 +251,35 @@ class SortiePlan:
             out.setdefault(int(exposure_strip[k]), []).append((int(s[k]) + 1, int(k) + 1))
         return {strip: tuple(v) for strip, v in out.items()}
 
-    def records(self, speed_ms: float | None) -> tuple[Sortie, ...]:
-        """The :class:`Sortie` records (times at ``speed_ms``)."""
+    def records(self, speed_ms: float | None,
+                to_xy: Callable[[float, float], tuple[float, float]] | None = None
+                ) -> tuple[Sortie, ...]:
+        """The :class:`Sortie` records: times as flown at ``speed_ms`` (the cost, else the
+        length), take-off points through ``to_xy`` (packing frame → planning CRS)."""
         def time(m: float) -> float | None:
             if not speed_ms or speed_ms <= 0:
                 return None
             t = m / speed_ms
             return t if math.isfinite(t) else None
+        costs = self.cost_m if len(self.cost_m) == len(self.length_m) else self.length_m
+        homes: list[tuple[float, float] | None] = (
+            [to_xy(*t) if to_xy else t for t in self.takeoff_uv]
+            if len(self.takeoff_uv) == len(self.length_m) else [None] * len(self.length_m))
         return tuple(Sortie(number=k + 1, strips=tuple(i + 1 for i in st), length_m=ln,
-                            time_s=time(ln), transit_m=tr)
-                     for k, (st, ln, tr) in enumerate(zip(self.strips, self.length_m,
-                                                          self.transit_m, strict=True)))
+                            time_s=time(c), transit_m=tr,
+                            takeoff_xy_m=(None if h is None else (float(h[0]), float(h[1]))))
+                     for k, (st, ln, tr, c, h) in enumerate(zip(
+                         self.strips, self.length_m, self.transit_m, costs, homes,
+                         strict=True)))
 
 
 def pack_sorties(path_m: np.ndarray, exposure_strip: np.ndarray, run_in_m: np.ndarray,
                  run_out_m: np.ndarray, *, lead_in_m: float, lead_out_m: float,
-                 limit_m: float | None, max_minutes: float | None = None
+                 limit_m: float | None, max_minutes: float | None = None,
+                 transit: Callable[[int, np.ndarray], tuple[float, np.ndarray,
+                                                            tuple[float, float] | None]]
+                 | None = None,
+                 penalty_m: np.ndarray | None = None, overhead_m: float = 0.0
                  ) -> tuple[SortiePlan, Message | None]:
     """Sorties over the serpentine, and why it cannot be flown (None if it can).
 
@@ -104,55 +292,161 @@ def pack_sorties(path_m: np.ndarray, exposure_strip: np.ndarray, run_in_m: np.nd
         The strip (from 0) of every exposure.
     run_in_m, run_out_m : ndarray
         Transit from the take-off point to the run-in before each exposure, and from the
-        run-out after it back [m] (zeros without a take-off point).
+        run-out after it back [m] (used when ``transit`` is not given).
     lead_in_m, lead_out_m : float
         Run-in before a sortie's first exposure and run-out after its last one [m].
     limit_m : float or None
-        The flight length of one battery [m] (None: one sortie).
+        What one battery flies, as metres at the cruise speed [m] (None: one sortie).
     max_minutes : float, optional
         The battery's flight time [min] (for the message).
+    transit : callable, optional
+        ``transit(a, b)`` → the transit to the run-in of exposure ``a`` [m], the transits
+        back from the run-out of each exposure of the array ``b`` [m], and the take-off
+        point: a take-off point that depends on where the sortie starts.
+    penalty_m : ndarray, optional
+        The time the path up to each exposure costs beyond its length at the cruise speed
+        (its corners), as metres [m] (ascending; default none).
+    overhead_m : float
+        What every sortie costs beyond its path (climb, descent, start, stop), as metres.
+
+    Returns
+    -------
+    SortiePlan, Message or None
+        ``cost_m`` is each sortie's time as flown in metres at the cruise speed (what the
+        battery limit is checked against), ``length_m`` its geometric length.
     """
     n = len(path_m)
     fixed = lead_in_m + lead_out_m
+    pen = np.zeros(n) if penalty_m is None else np.asarray(penalty_m, dtype=float)
+    eq = path_m + pen  # the path as time, in metres at the cruise speed
+
+    def legs(a: int, b: np.ndarray) -> tuple[float, np.ndarray, tuple[float, float] | None]:
+        if transit is not None:
+            return transit(a, b)
+        return float(run_in_m[a]), np.asarray(run_out_m[b], dtype=float), None
+
     if n == 0:
         return SortiePlan(np.zeros(0, dtype=np.int64), [], [], []), None
     if limit_m is None or not math.isfinite(limit_m):
-        length = float(path_m[-1] - path_m[0]) + fixed + float(run_in_m[0] + run_out_m[-1])
+        t_in, t_out, home = legs(0, np.array([n - 1]))
+        length = float(path_m[-1] - path_m[0]) + fixed + t_in + float(t_out[0])
+        cost = float(eq[-1] - eq[0]) + fixed + t_in + float(t_out[0]) + overhead_m
         return SortiePlan(np.zeros(n, dtype=np.int64),
                           [sorted(set(exposure_strip.tolist()))],
-                          [length], [float(run_in_m[0] + run_out_m[-1])]), None
+                          [length], [t_in + float(t_out[0])], [cost], [0],
+                          [home] if home is not None else []), None
     sortie = np.zeros(n, dtype=np.int64)
-    strips: list[list[int]] = []
-    lengths: list[float] = []
-    transits: list[float] = []
+    plan = SortiePlan(sortie, [], [], [])
     a = 0
     while a < n:
         # Only exposures within one battery of path from ``a`` can end its sortie (the
         # cost never falls below the path flown): the work stays linear in exposures.
-        end = a + int(np.searchsorted(path_m[a:], path_m[a] + limit_m - fixed, "right"))
+        end = a + int(np.searchsorted(eq[a:], eq[a] + limit_m - fixed - overhead_m,
+                                      "right"))
         end = max(end, a + 1)
-        cost = path_m[a:end] - path_m[a] + fixed + run_in_m[a] + run_out_m[a:end]
+        window = np.arange(a, end)
+        t_in, t_out, home = legs(a, window)
+        cost = eq[a:end] - eq[a] + fixed + overhead_m + t_in + t_out
         fits = np.flatnonzero(cost <= limit_m)
         if not len(fits) or fits[0] != 0:
-            return _failed(n, strips, lengths, transits), Message(
+            return _failed(n, plan), Message(
                 "layout.sortie_cannot_reach", limit=max_minutes or 0.0,
                 have=float(limit_m), need=float(cost[0]))
-        b = a + int(fits[-1])
-        sortie[a:b + 1] = len(strips)
-        strips.append(sorted(set(exposure_strip[a:b + 1].tolist())))
-        lengths.append(float(cost[b - a]))
-        transits.append(float(run_in_m[a] + run_out_m[b]))
-        if len(strips) > MAX_SORTIES:
-            return _failed(n, strips, lengths, transits), Message(
+        k = int(fits[-1])
+        b = a + k
+        sortie[a:b + 1] = len(plan.strips)
+        plan.strips.append(sorted(set(exposure_strip[a:b + 1].tolist())))
+        plan.length_m.append(float(path_m[b] - path_m[a]) + fixed + t_in + float(t_out[k]))
+        plan.transit_m.append(t_in + float(t_out[k]))
+        plan.cost_m.append(float(cost[k]))
+        plan.first.append(a)
+        if home is not None:
+            plan.takeoff_uv.append(home)
+        if len(plan.strips) > MAX_SORTIES:
+            return _failed(n, plan), Message(
                 "layout.too_many_sorties", most=MAX_SORTIES, limit=max_minutes or 0.0)
         a = b + 1
-    return SortiePlan(sortie, strips, lengths, transits), None
+    return plan, None
 
 
-def _failed(n: int, strips: list[list[int]], lengths: list[float],
-            transits: list[float]) -> SortiePlan:
-    return SortiePlan(np.zeros(n, dtype=np.int64), strips or [[]], lengths or [0.0],
-                      transits or [0.0])
+def _failed(n: int, plan: SortiePlan) -> SortiePlan:
+    return SortiePlan(np.zeros(n, dtype=np.int64), plan.strips or [[]],
+                      plan.length_m or [0.0], plan.transit_m or [0.0])
+
+
+def turn_penalties_m(exposure_strip: np.ndarray, along_m: np.ndarray, across_m: np.ndarray,
+                     turn_kind: str, lead_m: float, speed_ms: float, model: FlightModel,
+                     trigger_off_m: float = 0.0) -> np.ndarray:
+    """The time the turns cost beyond their length at the cruise speed, as metres,
+    summed along the serpentine up to each exposure [m] (:func:`pack_sorties`'s
+    ``penalty_m``).
+
+    The exposures are in the packing's frame: ``across_m`` the line's position of each
+    strip (by strip index), ``along_m`` each exposure's place along its line; an
+    even-numbered strip is flown towards +along, the next back. Each turn is flown through
+    the waypoints the mission writes for it (:func:`scanplan.geo.mission.turn_path`, with
+    the camera's trigger-off point ``trigger_off_m`` along it), entered and left at the
+    cruise speed.
+    """
+    from .mission import trigger_off_points, turn_path
+
+    ex = np.asarray(exposure_strip)
+    out = np.zeros(len(ex))
+    if len(ex) < 2 or not speed_ms or speed_ms <= 0:
+        return out
+    change = np.flatnonzero(np.diff(ex))
+    extra = np.zeros(len(change))
+    run_up = speed_ms ** 2 / (2.0 * model.accel_ms2) + 1.0  # [m]
+    seen: dict[tuple[float, float], float] = {}  # a turn's time depends on its shape only
+    for j, k in enumerate(change):
+        s0, s1 = int(ex[k]), int(ex[k + 1])
+        p = np.array([across_m[s0], along_m[k]], dtype=float)
+        q = np.array([across_m[s1], along_m[k + 1]], dtype=float)
+        h = np.array([0.0, 1.0 if s0 % 2 == 0 else -1.0])
+        key = (round(float((q - p) @ h), 3), round(abs(float(q[0] - p[0])), 3))
+        if key in seen:
+            extra[j] = seen[key]
+            continue
+        path = turn_path(p, h, q, lead_m, turn_kind)
+        mid = [(m.x_m, m.y_m) for m in trigger_off_points(p, path, trigger_off_m)]
+        # the straights before and after at full length: the braking for the turn begins
+        # on the strip, before its last photo (an upper bound where the strip is shorter)
+        poly = np.vstack([p - run_up * h, p, *(np.array(mid).reshape(-1, 2),),
+                          np.array(path[-1:]), q - run_up * h])
+        length = float(np.sum(np.hypot(*np.diff(poly, axis=0).T)))
+        t = path_time_s(poly, speed_ms, model, start_ms=speed_ms, end_ms=speed_ms)
+        extra[j] = seen[key] = max(0.0, t * speed_ms - length)
+    steps = np.zeros(len(ex))
+    steps[change + 1] = extra
+    return np.cumsum(steps)
+
+
+def boundary_transit(boundary: object, start_xy: np.ndarray, end_xy: np.ndarray,
+                     takeoff_xy: tuple[float, float] | None
+                     ) -> Callable[[int, np.ndarray], tuple[float, np.ndarray,
+                                                            tuple[float, float] | None]]:
+    """:func:`pack_sorties`'s ``transit``: from the take-off point to a sortie's run-in and
+    back from its run-out. The take-off point is ``takeoff_xy`` when given, else the point
+    of ``boundary`` (the area's outline, a shapely geometry in the same frame) nearest the
+    run-in of the sortie's first exposure.
+
+    ``start_xy``/``end_xy`` are each exposure's run-in and run-out points (n × 2) [m].
+    """
+    import shapely
+
+    def transit(a: int, b: np.ndarray) -> tuple[float, np.ndarray, tuple[float, float]]:
+        if takeoff_xy is not None:
+            home = (float(takeoff_xy[0]), float(takeoff_xy[1]))
+        else:
+            pt = shapely.points(start_xy[a])
+            near = shapely.line_interpolate_point(boundary, shapely.line_locate_point(
+                boundary, pt))
+            home = (float(shapely.get_x(near)), float(shapely.get_y(near)))
+        t_in = float(math.hypot(start_xy[a][0] - home[0], start_xy[a][1] - home[1]))
+        t_out = np.hypot(end_xy[b, 0] - home[0], end_xy[b, 1] - home[1])
+        return t_in, t_out, home
+
+    return transit
 
 
 def packing_bound(serpentine_m: float, limit_m: float) -> int:

@@ -317,6 +317,12 @@ LABELS: dict[str, dict[str, str]] = {
         "GSD": "target GSD",
         "HC": "altitude ceiling",
         "pdf_warn_ceiling_binds": "The altitude ceiling binds",
+        "pdf_warn_sortie_time_unknown": "The sortie time is unknown",
+        "pdf_warn_aircraft_sortie": "Sorties from the aircraft's battery",
+        "pdf_warn_aircraft_camera_unlisted": "A camera the aircraft is not listed with",
+        "pdf_warn_aircraft_speed_above_max": "Faster than the aircraft flies",
+        "pdf_warn_takeoff_assumed": "The take-off point is assumed",
+        "pdf_warn_flying_days_exceeded": "More flying days than the crew has",
         "gsd_target_cm": "Target GSD, cm",
         "param_digital_height_formula": "Height accuracy of digital blocks",
         "param_multi_ray": "Multi-ray improvement of the height error",
@@ -328,8 +334,9 @@ LABELS: dict[str, dict[str, str]] = {
         "param_block_relief_mountain_pct": "Ground height range of a block at one height, "
                                            "mountainous terrain, % of the flight height",
         "param_min_sun_elevation_deg": "Lowest sun elevation for photography, °",
-        "param_uav_uncontrolled_aerodrome_km": "Least distance from uncontrolled aerodromes "
-                                               "without an airspace-use permission, km",
+        "param_uav_uncontrolled_aerodrome_km": "Least distance from the reference points of "
+                                               "uncontrolled aerodromes without an "
+                                               "airspace-use permission (2020 wording), km",
         "value_digital_height_formula_normal_case": "normal-case stereo (B/f)",
         "value_multi_ray_off": "off (one stereo pair)",
         "value_multi_ray_strip": "all photos of the strip",
@@ -653,6 +660,12 @@ LABELS: dict[str, dict[str, str]] = {
         "GSD": "заданный размер пикселя на местности",
         "HC": "предельная высота полёта",
         "pdf_warn_ceiling_binds": "Высоту ограничивает предельная высота полёта",
+        "pdf_warn_sortie_time_unknown": "Продолжительность вылета неизвестна",
+        "pdf_warn_aircraft_sortie": "Вылеты по аккумулятору носителя",
+        "pdf_warn_aircraft_camera_unlisted": "Камера не указана для носителя",
+        "pdf_warn_aircraft_speed_above_max": "Скорость больше наибольшей скорости носителя",
+        "pdf_warn_takeoff_assumed": "Точка взлёта принята",
+        "pdf_warn_flying_days_exceeded": "Лётных дней больше, чем есть у экипажа",
         "gsd_target_cm": "Заданный размер пикселя на местности, см",
         "param_digital_height_formula": "Точность высот цифровой аэросъёмки",
         "param_multi_ray": "Многолучевое уточнение ошибки высот",
@@ -668,9 +681,10 @@ LABELS: dict[str, dict[str, str]] = {
                                            "одной высоте фотографирования, горная местность, % "
                                            "от высоты",
         "param_min_sun_elevation_deg": "Наименьшая высота Солнца при аэрофотосъёмке, °",
-        "param_uav_uncontrolled_aerodrome_km": "Наименьшее удаление от неконтролируемых "
-                                               "аэродромов без разрешения на использование "
-                                               "воздушного пространства, км",
+        "param_uav_uncontrolled_aerodrome_km": "Наименьшее удаление от контрольных точек "
+                                               "неконтролируемых аэродромов без разрешения "
+                                               "на использование воздушного пространства "
+                                               "(ред. 2020 г.), км",
         "value_digital_height_formula_normal_case": "нормальный случай стереосъёмки (B/f)",
         "value_multi_ray_off": "нет (одна стереопара)",
         "value_multi_ray_strip": "все снимки маршрута",
@@ -730,6 +744,7 @@ def t(key: str, locale: str = "en", platform: str = "uav") -> str:
     return LABELS[loc][key]
 
 
+from .labels_control import CONTROL as _CONTROL  # noqa: E402  (ground control, checkpoints)
 from .labels_geo import GEO as _GEO  # noqa: E402  (map page, strips, exported files)
 from .labels_more import DESIGN as _DESIGN  # noqa: E402  (the survey design sheet)
 from .labels_more import SIGNING as _SIGNING  # noqa: E402
@@ -753,5 +768,5 @@ LABELS["en"]["reach_interpretable"] = "Smallest photo scale with the map object 
 LABELS["ru"]["reach_interpretable"] = "Предельный масштаб снимков с дешифрированием объекта"
 
 for _loc in LOCALES:  # in this order: the catalogue's keys keep their order
-    for _part in (_DESIGN, _TERRAIN, _GEO):
+    for _part in (_DESIGN, _TERRAIN, _GEO, _CONTROL):
         LABELS[_loc].update(_part[_loc])

@@ -434,6 +434,12 @@ MESSAGES.update(_UAV)
 from .messages_site import SITE as _SITE  # noqa: E402  (where the area is: swap, site)
 
 MESSAGES.update(_SITE)
+from .messages_flight import FLIGHT as _FLIGHT  # noqa: E402  (the aircraft, the sorties)
+
+MESSAGES.update(_FLIGHT)
+from .messages_control import CONTROL as _CONTROL  # noqa: E402  (ground control)
+
+MESSAGES.update(_CONTROL)
 
 
 @contextmanager

@@ -105,10 +105,12 @@ UAV: dict[str, dict[str, str]] = {
               "рекомендуемом {limit:g}~см)",
     },
     "set_aside.block_relief": {
-        "en": "the one-height rule of a block (GOST R 59328-2021, second draft: {limit:g} % of "
-              "the flight height, a recommendation; the ground height range is {pct:.1f} %)",
-        "ru": "Рекомендация одной высоты фотографирования на участок (ГОСТ Р 59328-2021, "
-              "проект 2-й редакции: {limit:g}~% высоты фотографирования; перепад высот "
+        "en": "the one-height rule of a block (GOST R 59328-2021 §6.2.1, a requirement of the "
+              "standard's body with an exception, in the second draft's wording: {limit:g} % "
+              "of the flight height; the ground height range is {pct:.1f} %)",
+        "ru": "Требование одной высоты фотографирования на участок (ГОСТ Р 59328-2021, "
+              "п. 6.2.1 — требование основной части стандарта с исключением, в редакции "
+              "проекта 2-й редакции: {limit:g}~% высоты фотографирования; перепад высот "
               "{pct:.1f}~%)",
     },
     "block.band": {
@@ -165,25 +167,14 @@ UAV: dict[str, dict[str, str]] = {
     },
     "airspace_conditions": {
         "en": "conditions of this plan without an airspace-use permission (Federal Rules for "
-              "the Use of the Airspace, as amended by Decree No. 1016 of 21.06.2023, in force "
-              "from 01.03.2024): a UAV of up to 30 kg, in visual line of sight, in daylight, "
-              "strictly below {ceiling:g} m above the ground or water, outside controlled "
-              "aerodrome zones and prohibited, restricted and special zones, and at least "
-              "{aerodrome:g} km from the boundaries of uncontrolled aerodromes; over a "
-              "settlement, aerial photography and the flight need the local government's "
-              "permission at any height (para. 49). Check the rules in force on the flying "
-              "date",
+              "the Use of the Airspace, as amended by Decree No. 1016 of 21.06.2023; the "
+              "wording in force from {date}, as secondary sources describe it): "
+              "{conditions}. Check the rules in force on the flying date",
         "ru": "Условия плана без разрешения на использование воздушного пространства "
               "(Федеральные правила использования воздушного пространства в ред. "
-              "постановления от 21~июня 2023~г. №~1016, действующей с 1~марта 2024~г.): "
-              "БВС массой до 30~кг, в пределах прямой видимости, в светлое время суток, "
-              "на высоте менее "
-              "{ceiling:g}~м от земной или водной поверхности, вне диспетчерских зон "
-              "аэродромов, запретных зон, зон ограничения полётов и специальных зон, не "
-              "ближе {aerodrome:g}~км от границ неконтролируемых аэродромов; над населённым "
-              "пунктом аэрофотосъёмка и полёт на любой высоте требуют разрешения органа "
-              "местного самоуправления (п. 49). Проверьте правила, действующие на дату "
-              "полётов.",
+              "постановления от 21~июня 2023~г. №~1016; редакция, действующая с {date}, "
+              "в изложении вторичных источников): {conditions}. Проверьте правила, "
+              "действующие на дату полётов.",
     },
     "airspace_not_below": {
         "en": "the highest flown height {flown:g} m (planned {planned:g} m) is not below the "
@@ -220,3 +211,20 @@ UAV: dict[str, dict[str, str]] = {
         "ru": "с допуском высоты +{tolerance:g}~% ",
     },
 }
+
+RU_MONTHS_GENITIVE = ("января", "февраля", "марта", "апреля", "мая", "июня", "июля",
+                      "августа", "сентября", "октября", "ноября", "декабря")
+"""Russian month names in the genitive (a date in words: «1 марта 2024 г.»)."""
+
+
+def date_words(iso: str) -> dict[str, str]:
+    """An ISO date as a message parameter in both languages: ``01.03.2024`` and
+    «1 марта 2024 г.», no-break spaces (a Russian sentence writes the date in words, so no
+    digit-dot-digit reads as a decimal).
+
+    >>> date_words("2024-03-01")["ru"]
+    '1\\xa0марта 2024\\xa0г.'
+    """
+    y, m, d = (int(x) for x in iso.split("-"))
+    return {"en": f"{d:02d}.{m:02d}.{y}",
+            "ru": f"{d}\u00a0{RU_MONTHS_GENITIVE[m - 1]} {y}\u00a0г."}

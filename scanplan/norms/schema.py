@@ -298,11 +298,14 @@ class TableSpec:
 _TEXT = ValueSpec("text")
 _TEXT_OPT = ValueSpec("text", required=False)
 _SOURCE = ColumnSpec("source", _TEXT_OPT, "where the value comes from", ("источник",))
-FIGURE_STATUSES = ("norm", "recommendation", "estimate", "practice")
-"""What a norm figure is: a requirement of a norm, a recommendation (a recommended appendix, a
-draft's number: a project may set it aside with a reason), an estimate, or practice."""
+FIGURE_STATUSES = ("norm", "recommendation", "estimate", "practice", "requirement_draft")
+"""What a norm figure is: a requirement of a norm, a recommendation (a recommended appendix: a
+project may set it aside with a reason), an estimate, practice, or a requirement of a
+standard's body with an exception known in a draft's wording only (``requirement_draft``:
+the approved text not read; a project may invoke the exception with a reason)."""
 _STATUS = ColumnSpec("status", ValueSpec("choice", choices=FIGURE_STATUSES, required=False),
-                     "what the figure is: norm, recommendation, estimate or practice",
+                     "what the figure is: norm, recommendation, estimate, practice or "
+                     "requirement_draft",
                      ("статус",))
 
 TABLES: dict[str, TableSpec] = {

@@ -360,8 +360,14 @@ def design_dict(design: SurveyDesign) -> dict[str, Any]:
             "relief_class": b.relief_class, "limit_pct": b.limit_pct,
             "flight_height_m": b.flight_height_m, "ground_min_m": b.ground_min_m,
             "ground_max_m": b.ground_max_m, "range_m": b.range_m,
-            "range_pct": round(b.range_pct, 3), "split_needed": b.split_needed,
-            "blocks": b.blocks, "bands_m": [list(x) for x in b.bands_m],
+            "range_pct": round(b.range_pct, 3),
+            # the rule applies unless the flight follows the relief or the project sets it
+            # aside: only then does the range split the block (exceeds_limit says the range)
+            "split_needed": b.split_needed and not (design.block_waived
+                                                    or design.block_set_aside),
+            "exceeds_limit": b.split_needed,
+            "blocks": b.blocks if not (design.block_waived or design.block_set_aside) else 1,
+            "bands_m": [list(x) for x in b.bands_m],
             "samples": b.samples, "ground": design.block_ground,
             "waived": design.block_waived, "source": design.block_source,
             "status": design.block_status, "set_aside": design.block_set_aside or None}

@@ -58,6 +58,9 @@ class LayoutOptions:
         elevation of the flat ground [m] (API only; default 0).
     takeoff_lonlat : (float, float) or None
         ``[flight] takeoff``: the take-off and landing point of every sortie, WGS 84 [°].
+    relief_m : float
+        The ground's height range under the area [m]: a sortie climbs and descends at
+        most this much more than its planned height (the sortie time).
     """
 
     direction_deg: float | str | None = None
@@ -68,6 +71,7 @@ class LayoutOptions:
     max_flight_time_min: float | None = None
     ground_m: float = 0.0
     takeoff_lonlat: tuple[float, float] | None = None
+    relief_m: float = 0.0
 
 
 def area_from_options(spec: AreaSpec, area_m: tuple[float, float] | None = None
@@ -132,8 +136,11 @@ def _direction(opts: LayoutOptions, area: Area) -> float | str:
     return "auto" if opts.direction_deg in (None, "auto") else float(opts.direction_deg)
 
 
-def uav_layout(plan: UavPlan, area: Area, opts: LayoutOptions | None = None) -> FlightLayout:
-    """Strips and photo centres of a UAV plan (at its planned height) over ``area``."""
+def uav_layout(plan: UavPlan, area: Area, opts: LayoutOptions | None = None,
+               manned: bool = False) -> FlightLayout:
+    """Strips and photo centres of a UAV plan (at its planned height) over ``area``
+    (``manned``: the camera is on a manned survey aircraft, whose sorties are their length
+    at the speed, :func:`scanplan.geo.lines.plan_lines`)."""
     opts = opts or LayoutOptions()
     inp = plan.inputs
     speed = inp.speed_ms if inp.speed_ms > 0 else None
@@ -154,7 +161,8 @@ def uav_layout(plan: UavPlan, area: Area, opts: LayoutOptions | None = None) -> 
         height_m=plan.heights_m["planned"], direction_deg=_direction(opts, area),
         extension_bases=opts.extension_bases, turn=_turn(opts, speed), speed_ms=speed,
         max_flight_time_min=opts.max_flight_time_min, ground_m=opts.ground_m,
-        photo_values=values, kind="uav", takeoff_xy_m=_takeoff_xy(opts, area))
+        photo_values=values, kind="uav", takeoff_xy_m=_takeoff_xy(opts, area),
+        manned=manned, climb_m=plan.heights_m["planned"] + opts.relief_m)
 
 
 def _takeoff_xy(opts: LayoutOptions, area: Area) -> tuple[float, float] | None:
@@ -181,6 +189,8 @@ def uav_flight_figures(plan: UavPlan, layout: FlightLayout) -> dict[str, Any]:
     }
     if out["photos_per_strip"] is None:
         del out["photos_per_strip"]
+    if not layout.notes.get("max_flight_time_min"):  # no sortie time: not counted
+        del out["sorties"]
     if inp.image_width_px and inp.image_height_px:
         out["data_volume_bytes"] = float(FL.data_volume_bytes(
             photos, inp.image_width_px, inp.image_height_px, inp.bands, inp.bits_per_band))

@@ -176,12 +176,17 @@ PROJECT_DOMAINS: dict[str, Domain] = {
     "utc_offset_h": Domain(-12, 14, "h"),
     "min_sun_elevation_deg": Domain(0, 89.9, "°"),
     "turnaround_min": Domain(0, 1440, "min"),
+    "flying_days": Domain(0, 3660, "days", lo_open=True),
     # one sortie is at most one day; ``meaning`` is what the error calls the value
     "sortie_time_min": Domain(0, 24 * 60.0, "min", lo_open=True, meaning="a flight time"),
     # the turns between strips (the flight layout)
     "turnaround_m": Domain(0, 10_000, "m"),
     "turn_radius_m": Domain(0, 50_000, "m", lo_open=True),
     "bank_deg": Domain(0, 60, "°", lo_open=True),
+    # [control]: the survey's precision (RMSE) and the density of the GCP layout
+    "gcp_sigma_m": Domain(0, 10, "m", lo_open=True, meaning="a survey precision"),
+    "gcp_per_ha": Domain(0, 100, "GCP/ha", lo_open=True),
+    "checkpoints": Domain(3, 1000, "points"),
 }
 """The domains of keys only a project file has (the site, the schedule, the sortie), beside
 the inputs' :data:`~scanplan.core.domains.DOMAINS`: the range a value is read in, checked
@@ -235,6 +240,11 @@ _RECORDS: tuple[Input, ...] = (
     Input("relief_interval_m", "map", "relief_interval_m", _NUM,
           "relief (contour) interval h_c [m]", "m", required=True,
           domain="relief_interval_m", option="--relief", commands=(FILM, UAV), digits=2),
+    Input("basemap", "map", "basemap", _STR, "background of the PDF's map page: an "
+          "orthophoto or any GeoTIFF (the `terrain` extra), or an MBTiles file, relative to "
+          "the project file"),
+    Input("basemap_attribution", "map", "basemap_attribution", _STR, "the background's "
+          "source, printed under the map (default: the file's name)"),
     # [norms]
     Input("norms", "norms", "set", _STR, "norm set name, or a folder relative to the "
           "project file", default="gkinp-02-036-02", option="--norms", commands=(FILM, UAV),
@@ -271,9 +281,9 @@ _RECORDS: tuple[Input, ...] = (
           "aside for this project, for the reason given; the specification prints it",
           note="optional", commands=(UAV,)),
     Input("block_relief_reason", "norms.block_relief", "reason", _STR, "sets the one-height "
-          "rule of a block (GOST R 59328-2021 §6.2.1, the second draft's 7/15/25 %, a "
-          "recommendation) aside for this project, for the reason given; the specification "
-          "prints it", note="optional"),
+          "rule of a block (GOST R 59328-2021 §6.2.1, the second draft's 7/15/25 %: a "
+          "requirement of the standard's body with an exception) aside for this project, for "
+          "the reason given (the exception invoked); the specification prints it", note="optional"),
     Input("recognition_rounding", "", "", _STR, "sqrt(-ln P) exactly, or the paper's "
           "rounded 0.53", option="--rounding", commands=(FILM,), choices=("exact", "paper")),
     # [film]
@@ -455,12 +465,22 @@ _RECORDS: tuple[Input, ...] = (
           "block and back is flown within its battery and counted in the flight's length "
           "and time", note="default: none — no transit counted, each mission's home is its "
           "first waypoint", digits=7),
+    Input("aircraft", "uav", "aircraft", _STR, "the aircraft that carries the camera, a "
+          "catalogue id: its battery's usable flight time (the published flight time less "
+          "the battery reserve) is the sortie time, its cruise speed the ground speed where "
+          "the catalogue gives one",
+          note="default: the one catalogue aircraft that carries the camera, when only one "
+          "does; else none — give max_flight_time_min",
+          cli_note="default: the one catalogue aircraft that carries the camera",
+          option="--aircraft", commands=(UAV,),
+          cli_help="catalogue aircraft id (scanplan aircraft list)"),
     Input("max_flight_time_min", "uav", "max_flight_time_min", _NUM, "flight time of one "
           "sortie [min]: the aircraft's endurance on one battery less the reserve; the block "
           "is split into sorties of at most this long, and the schedule counts its flying "
           "days from the same sorties", "min",
-          note="default: [schedule] sortie_time_min; with [schedule] and neither key 25 for "
-          "a UAV, 180 for an aircraft; else one flight",
+          note="default: [schedule] sortie_time_min, else the aircraft's usable flight "
+          "time; with [schedule] and none of them 25 for a UAV, 180 for an aircraft; else "
+          "one flight",
           cli_note="default: one flight over the whole block", option="--max-flight-time-min",
           commands=(UAV,), domain="sortie_time_min", digits=0),
     Input("area_file", "", "", _STR, "contract polygon: KML, KMZ, GeoJSON, GeoPackage, "
@@ -517,14 +537,43 @@ _RECORDS: tuple[Input, ...] = (
           "(battery or fuel) [min]: the same number as [uav] max_flight_time_min (give one, "
           "or both equal; two different values are an error); it also splits the flight "
           "layout, so the layout and the schedule count the same sorties", "min",
-          note="default: [uav] max_flight_time_min, else 25 for a UAV, 180 for an aircraft",
+          note="default: [uav] max_flight_time_min, else the aircraft's usable flight time, "
+          "else 25 for a UAV, 180 for an aircraft",
           domain="sortie_time_min", digits=0),
+    Input("max_flying_days", "flight", "max_flying_days", _INT, "the most flying days the "
+          "crew can give the job: a plan that needs more is warned about (the survey "
+          "design's flying days when [site] and [schedule] are given, else a lower bound: "
+          "the flight time and the ground time between sorties, flown around the clock)",
+          "days", default=30, domain="flying_days", digits=0),
     Input("turnaround_min", "schedule", "turnaround_min", _NUM, "ground time between "
           "sorties [min]", "min", note="default 15 for a UAV, 60 for an aircraft",
           domain="turnaround_min", digits=0),
     Input("min_sun_elevation_deg", "schedule", "min_sun_elevation_deg", _NUM, "lowest sun "
           "elevation for photography [°]", "°", note="default: the norm set's, 30°",
           domain="min_sun_elevation_deg", digits=0),
+    # [control]: ground control and checkpoints (docs/control.md)
+    Input("control_mode", "control", "mode", _STR, '"gcp" (ground control points over the '
+          'block), "rtk" or "ppk" (the camera positions control the block: GCPs at its '
+          'corners and one near its centre), or "direct" (no GCPs): the layout of the '
+          "markers, control.csv and the error budget", default="gcp",
+          choices=("gcp", "rtk", "ppk", "direct")),
+    Input("gcp_sigma_xy_m", "control", "gcp_sigma_xy_m", _NUM, "horizontal precision (RMSE_H) "
+          "of the survey of the GCPs and checkpoints [m]", "m", default=0.02,
+          note="an assumption, typical of a network-RTK survey: give your survey's",
+          domain="gcp_sigma_m", digits=3),
+    Input("gcp_sigma_z_m", "control", "gcp_sigma_z_m", _NUM, "vertical precision (RMSE_Z) of "
+          "the survey of the GCPs and checkpoints [m]", "m", default=0.03,
+          note="an assumption, typical of a network-RTK survey: give your survey's",
+          domain="gcp_sigma_m", digits=3),
+    Input("checkpoints", "control", "checkpoints", "checkpoints", 'independent checkpoints: '
+          '"asprs" (the count of ASPRS Positional Accuracy Standards, Edition 2, for the '
+          "area: a foreign recommendation) or a number", default="asprs",
+          domain="checkpoints", digits=0),
+    Input("gcp_per_ha", "control", "gcp_per_ha", _NUM, "density of the GCP layout [GCP/ha]: "
+          "the spacing along the boundary and of the interior grid is 100 m divided by the "
+          "square root of the density",
+          "GCP/ha", note="default 0.5: an estimate, the lower end of Martínez-Carricondo et "
+          "al. 2018 on their site", domain="gcp_per_ha", digits=2),
     Input("area_m", "", "", _STR, "block to cover, WIDTHxLENGTH [m], e.g. 2000x3000", "m",
           option="--area-m", commands=(UAV,),
           fields=("area", "area_width_m", "area_length_m")),
@@ -603,7 +652,7 @@ def option_names() -> dict[str, str]:
 
 
 KINDS = ("str", "int", "number", "scale", "scales", "range", "date", "feature", "polygon",
-         "crs", "direction", "point")
+         "crs", "direction", "point", "checkpoints")
 
 
 def key_table() -> dict[str, dict[str, tuple[str, str]]]:

@@ -14,6 +14,7 @@ from __future__ import annotations
 import math
 import numbers
 import os
+import re
 from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import Any
@@ -176,7 +177,8 @@ def norm_object_spec(ns: NormSet, obj: MapObject, shape: str | None = None) -> O
                       Message("object_source.norm", name=ns.name, map=obj.map_scale,
                               source=obj.source),
                       map_scale=obj.map_scale, name_ru=obj.name_ru,
-                      shape_ru=ns.shape_rows.get(shape_id, {}).get("name_ru", ""))
+                      shape_ru=ns.shape_rows.get(shape_id, {}).get("name_ru", ""),
+                      status=obj.status)
 
 
 def recognition_rows(ns: NormSet, map_scale: float | None) -> list[MapObject]:
@@ -357,6 +359,22 @@ class UavJob:
     layout: FlightLayout | None = None
 
 
+def _airspace(ceiling_m: float | None) -> dict[str, Any]:
+    """The conditions of flights without an airspace-use permission, from the data of
+    :mod:`scanplan.norms.airspace` (none for a project's own ceiling or an aircraft)."""
+    if ceiling_m is None:
+        return {}
+    from ..norms.airspace import airspace_conditions
+
+    conds = airspace_conditions()
+    ceiling = f"{ceiling_m:g}"
+    return {"airspace_conditions": {
+        "en": "; ".join(c.text_en.replace("{ceiling}", ceiling) for c in conds),
+        "ru": "; ".join(re.sub(r"(\d) (км|м|кг)\b", "\\1\u00a0\\2",
+                               c.text_ru.replace("{ceiling}", ceiling)) for c in conds)},
+        "airspace_wording": max(c.wording_date for c in conds)}
+
+
 def uav_job(
     *,
     height_m: float | None = None,
@@ -488,6 +506,8 @@ def uav_job(
         ceiling_from_project=max_height_m is not None,
         aerodrome_distance_km=None if aircraft or max_height_m is not None
         else float(ns.parameters["uav_uncontrolled_aerodrome_km"]),
+        **_airspace(None if aircraft or max_height_m is not None
+                    else float(ns.parameters["uav_max_height_m"])),
         gsd_target_m=gsd_cm / 100.0 if gsd_cm is not None else None,
         gsd_limit_m=gsd_row.max_gsd_cm / 100.0 if gsd_row else None,
         gsd_limit_area=gsd_row.area if gsd_row else "general",
@@ -497,7 +517,7 @@ def uav_job(
         area = rectangle_area(area_w, area_l)
     if area is None:
         return UavJob(plan, ns)
-    layout = uav_layout(plan, area, layout_options)
+    layout = uav_layout(plan, area, layout_options, manned=aircraft)
     return UavJob(with_layout(plan, layout), ns, layout)
 
 

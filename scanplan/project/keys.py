@@ -89,6 +89,11 @@ def check_type(kind: str, value: Any) -> str | None:
             return None
         ok = isinstance(value, int | float) and not isinstance(value, bool) and _finite(value)
         return None if ok else 'must be an angle in degrees or "auto"'
+    if kind == "checkpoints":
+        if value == "asprs":
+            return None
+        ok = isinstance(value, int) and not isinstance(value, bool)
+        return None if ok else 'must be "asprs" or a whole number of checkpoints'
     if kind == "polygon":
         if not isinstance(value, list) or len(value) < 3:
             return "must be a list of at least 3 [lon, lat] points"

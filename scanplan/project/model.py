@@ -27,9 +27,9 @@ from .inputs import by_key, domain_of, project_key, records
 if TYPE_CHECKING:
     from ..geo.terrain import TerrainConfig
 
-__all__ = ["AreaSection", "FieldMeta", "FilmSection", "FlightSection", "FrozenMap", "MapSection",
-           "NormsSection", "ProjectModel", "ScheduleSection", "Signing", "SiteSection",
-           "TerrainSection", "UavSection", "build_model", "field_meta"]
+__all__ = ["AreaSection", "ControlSection", "FieldMeta", "FilmSection", "FlightSection",
+           "FrozenMap", "MapSection", "NormsSection", "ProjectModel", "ScheduleSection",
+           "Signing", "SiteSection", "TerrainSection", "UavSection", "build_model", "field_meta"]
 
 
 class FrozenMap(dict):  # type: ignore[type-arg]
@@ -97,10 +97,14 @@ def field_meta(section: str, key: str) -> FieldMeta:
 
 @dataclass(frozen=True)
 class MapSection:
-    """``[map]``: the map scale denominator Mk and the relief interval h_c [m]."""
+    """``[map]``: the map scale denominator Mk and the relief interval h_c [m]; the
+    background of the PDF's map page (a GeoTIFF beside the project file, header checked)
+    and its attribution."""
 
     scale: float
     relief_interval_m: float
+    basemap: Path | None = None
+    basemap_attribution: str = ""
 
 
 @dataclass(frozen=True)
@@ -193,6 +197,8 @@ class FlightSection:
     bank_deg: float | None = None
     takeoff: list[float] | None = None
     max_flight_time_min: float | None = None
+    aircraft: str | None = None
+    max_flying_days: int | None = None
 
 
 @dataclass(frozen=True)
@@ -228,6 +234,19 @@ class ScheduleSection:
 
 
 @dataclass(frozen=True)
+class ControlSection:
+    """``[control]``: how the block is controlled (``mode``), the survey's precision of the
+    GCPs and checkpoints [m], the checkpoints (None: the ASPRS count for the area) and the
+    GCP density [GCP/ha] (None: the rule's)."""
+
+    mode: str
+    gcp_sigma_xy_m: float
+    gcp_sigma_z_m: float
+    checkpoints: int | None
+    gcp_per_ha: float | None = None
+
+
+@dataclass(frozen=True)
 class ProjectModel:
     """A project file parsed once (see the module).
 
@@ -249,6 +268,7 @@ class ProjectModel:
     site: SiteSection | None
     schedule: ScheduleSection | None
     lines: FrozenMap = field(default_factory=lambda: FrozenMap())
+    control: ControlSection | None = None
 
     def where(self, section: str, key: str | None = None) -> str:
         """``section.key (line N)`` — how errors name a key; ``where("site.lat_deg")`` too.
@@ -395,6 +415,41 @@ def _sortie(r: _Reader) -> tuple[float | None, float | None]:
     return uav, schedule
 
 
+def _flying_days(r: _Reader) -> int | None:
+    """``[flight] max_flying_days`` in range (None when not given)."""
+    days = r.ranged("flight", "max_flying_days")
+    return None if days is None else int(days)
+
+
+def _aircraft(r: _Reader) -> str | None:
+    """``[uav] aircraft``: a catalogue id (else exit 2 naming the key and the ids)."""
+    value = r.raw("uav", "aircraft")
+    if value is None:
+        return None
+    from ..norms.aircraft import aircraft
+
+    try:
+        return aircraft(str(value)).id
+    except InputError as exc:
+        raise InputError(r.where("uav", "aircraft"), exc.message) from None
+
+
+def _basemap(r: _Reader) -> Path | None:
+    """``[map] basemap``: the GeoTIFF (its header checked as a DEM's) or MBTiles file beside
+    the project file (:func:`scanplan.geo.basemap.check_basemap`); None without one."""
+    name = r.text("map", "basemap").strip()
+    if not name:
+        return None
+    from ..geo.basemap import check_basemap
+
+    path = Path(name) if Path(name).is_absolute() else r.p.path.parent / name
+    try:
+        check_basemap(path, "basemap")
+    except InputError as exc:
+        raise InputError(r.where("map", "basemap"), exc.message) from None
+    return path
+
+
 def _terrain(r: _Reader) -> TerrainSection | None:
     """``[terrain]`` as a checked configuration (the DEM beside the project file)."""
     if not r.p.has("terrain"):
@@ -462,6 +517,25 @@ def _schedule(r: _Reader, sortie_min: float | None) -> ScheduleSection | None:
                            offset, sortie_min, turn, elev)
 
 
+def _control(r: _Reader) -> ControlSection | None:
+    """``[control]``: every key in its domain (a count of 10⁷ checkpoints or a negative
+    precision is refused naming the key and the range)."""
+    if not r.p.has("control"):
+        return None
+    mode = r.choice("control", "mode", field_meta("control", "mode").choices) \
+        or field_meta("control", "mode").default
+    checkpoints = r.raw("control", "checkpoints", "asprs")
+    count = None if checkpoints == "asprs" else r.ranged("control", "checkpoints")
+
+    def sigma(key: str) -> float:
+        v = r.ranged("control", key)
+        return float(field_meta("control", key).default) if v is None else v
+
+    return ControlSection(mode, sigma("gcp_sigma_xy_m"), sigma("gcp_sigma_z_m"),
+                          None if count is None else int(count),
+                          r.ranged("control", "gcp_per_ha"))
+
+
 def build_model(project: Project) -> ProjectModel:
     """The project file as a :class:`ProjectModel`, every key checked against the registry.
 
@@ -486,17 +560,20 @@ def build_model(project: Project) -> ProjectModel:
     gsd_area = r.choice("norms", "gsd_area", field_meta("norms", "gsd_area").choices)
     site = SiteSection(r.ranged("site", "lat_deg"), r.ranged("site", "lon_deg"))
     schedule = _schedule(r, schedule_sortie)
+    control = _control(r)
     g = r.raw
     return ProjectModel(
         path=project.path, name=project.name, meta=_meta(r),
         signing=Signing(r.text("project", "purpose"), r.text("project", "coordinate_system"),
                         r.text("project", "height_system")),
-        map=MapSection(g("map", "scale"), g("map", "relief_interval_m")),
+        map=MapSection(g("map", "scale"), g("map", "relief_interval_m"), _basemap(r),
+                       r.text("map", "basemap_attribution")),
         norms=NormsSection(gsd_area, r.text("norms.gsd_limits", "reason"),
                            r.text("norms.block_relief", "reason")),
         area=area,
         flight=FlightSection(g("uav", "turnaround_m"), g("uav", "turn_radius_m"),
-                             g("uav", "bank_deg"), g("flight", "takeoff"), uav_sortie),
+                             g("uav", "bank_deg"), g("flight", "takeoff"), uav_sortie,
+                             _aircraft(r), _flying_days(r)),
         film=film, uav=uav, terrain=terrain,
         site=site if project.has("site") else None, schedule=schedule,
-        lines=FrozenMap(project.lines))
+        lines=FrozenMap(project.lines), control=control)

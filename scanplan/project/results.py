@@ -24,6 +24,7 @@ from .model import ProjectModel
 if TYPE_CHECKING:  # the relief's modules are imported for a plan with [terrain] only
     from ..geo.terrain import TerrainResult
     from ..geo.terrain_film import FilmTerrain
+    from .control import ControlSpec
 
 __all__ = ["FilmSpec", "GsdCompliance", "PlanResult", "SunPlan", "SurveyDesign", "UavSpec"]
 
@@ -186,6 +187,7 @@ class PlanResult:
     """The survey design checks: GSD against ГОСТ Р 59562-2021 Table Б.1, the one-height
     rule of a block, the sun window (:mod:`scanplan.project.design`)."""
     area: Area | None = None  # the contract area ([area]), in its planning CRS
+    control: ControlSpec | None = None  # [control]: GCPs, checkpoints, the error budget
 
     @property
     def layouts(self) -> dict[str, FlightLayout]:

@@ -25,7 +25,9 @@ from ..geo.layout import Area, FlightLayout
 from ..i18n.messages import Message
 from ..norms.store import one_version
 from ..rules.film import PlanWarning, ScanScenario
+from .aircraftplan import aircraft_warnings
 from .archive import archive_film
+from .control import ControlSpec, plan_control
 from .design import survey_design
 from .file import Project
 from .flightplan import (
@@ -47,7 +49,7 @@ from .jobs import (
 )
 from .model import ProjectModel, build_model
 from .results import FilmSpec, PlanResult, UavSpec
-from .sorties import sortie_length
+from .sorties import project_aircraft, sortie_length, terrain_relief_m
 
 if TYPE_CHECKING:  # the relief's modules are imported for a plan with [terrain] only
     from ..geo.terrain_film import FilmTerrain
@@ -293,7 +295,8 @@ def _check_layout_keys(project: ProjectModel, area: Area | None) -> None:
         raise project.named(exc, "uav") from None
 
 
-def _layout_options(project: ProjectModel, platform: str = "uav") -> LayoutOptions:
+def _layout_options(project: ProjectModel, platform: str = "uav",
+                    relief_m: float = 0.0) -> LayoutOptions:
     a, f = project.area, project.flight
     return LayoutOptions(
         direction_deg=a.direction_deg,
@@ -302,7 +305,7 @@ def _layout_options(project: ProjectModel, platform: str = "uav") -> LayoutOptio
         turnaround_m=f.turnaround_m, turn_radius_m=f.turn_radius_m, bank_deg=f.bank_deg,
         # the one sortie length: it splits the layout and counts the schedule's sorties
         max_flight_time_min=sortie_length(project, platform).minutes,
-        takeoff_lonlat=f.takeoff)
+        takeoff_lonlat=f.takeoff, relief_m=relief_m)
 
 
 def _platform(kw: dict[str, Any]) -> str:
@@ -323,8 +326,16 @@ def _uav_kwargs(project: ProjectModel, height_m: float, the_area: Area | None
                 ) -> dict[str, Any]:
     assert project.uav is not None
     kw = _job_kwargs(project.uav.given, uav_job)
+    craft = project_aircraft(project)
+    if craft is not None and "speed_ms" not in kw:  # the aircraft's cruise speed, if known
+        from ..norms.aircraft import aircraft
+
+        cruise = aircraft(craft).cruise_speed_ms
+        if cruise is not None:
+            kw["speed_ms"] = cruise
     kw.update(height_m=height_m, area_m=project.area.rectangle, area=the_area,
-              layout_options=_layout_options(project, _platform(kw)))
+              layout_options=_layout_options(project, _platform(kw),
+                                             terrain_relief_m(project, the_area)))
     return kw
 
 
@@ -456,5 +467,25 @@ def _planned(project: ProjectModel) -> PlanResult:
     comparison = _comparison(film, uav) if film and uav else []
     design = survey_design(project, film, uav)
     warnings.extend(design.warnings)
+    warnings.extend(aircraft_warnings(project, uav, design))
+    control = _control(project, uav, area)
+    if control is not None:
+        warnings.extend(control.warnings)
     return PlanResult(project=project, meta=project.meta, film=film, uav=uav, comparison=comparison,
-                      warnings=tuple(warnings), area=area, design=design)
+                      warnings=tuple(warnings), area=area, design=design, control=control)
+
+
+def _control(project: ProjectModel, uav: UavSpec | None, area: Area | None
+             ) -> ControlSpec | None:
+    """``[control]`` over the UAV flight (the DEM, when given, keeps markers off steep
+    ground)."""
+    if project.control is None:
+        return None
+    ground = None
+    terrain = uav.terrain if uav is not None else None
+    if terrain is not None and terrain.ground.dem is not None and area is not None:
+        g = terrain.ground
+
+        def ground(x: Any, y: Any) -> Any:
+            return g.sample(x, y, area.plan_crs)
+    return plan_control(project, uav.job if uav is not None else None, area, ground)

@@ -89,7 +89,8 @@ def export_names(locale: str, title: str = "", film: bool = False) -> ExportName
         photos=t("frame_centres" if film else "photo_centres", locale),
         strip=t("geo_strip_n", locale),
         sortie=t("geo_sortie_n", locale),
-        sorties=t("sorties", locale), takeoff=t("takeoff_point", locale))
+        sorties=t("sorties", locale), takeoff=t("takeoff_point", locale),
+        control=t("control_points", locale))
 
 
 def mission_options(spec: Any, layout: FlightLayout) -> MissionOptions | None:
@@ -167,12 +168,19 @@ def export_files(spec: Any, folder: str, *, prefix: str = "",
             layout, names=export_names(locale, title, film), mission=mission,
             prefix=prefix + ("film-" if film else ""),
             photos_name="frames" if film else "photos",
-            camera=None if film else camera_id(spec), note=note)
+            camera=None if film else camera_id(spec), note=note,
+            control=None if film else _control_points(spec))
         by_suffix = _formats_by_suffix()
         for name, data in rendered.items():
             suffix = os.path.splitext(name)[1].lower()
             files[os.path.join(folder, name)] = (by_suffix[suffix], data)
     return files
+
+
+def _control_points(spec: Any) -> Any:
+    """The specification's GCPs and checkpoints (``[control]``), or None."""
+    control = getattr(spec, "control", None)
+    return control.points if control is not None else None
 
 
 def _formats_by_suffix() -> dict[str, ExportFormat]:

@@ -273,6 +273,10 @@ def plan_result_dict(result: Any) -> dict[str, Any]:
             spec["uav"]["layout"] = layout_dict(u.layout)
     if result.comparison:
         spec["comparison"] = result.comparison
+    if getattr(result, "control", None) is not None:
+        from ..project.control import control_dict
+
+        spec["control"] = control_dict(result.control)
     doc["specification"] = spec
     if getattr(result, "design", None) is not None:
         from ..project.design import design_dict

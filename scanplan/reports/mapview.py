@@ -381,8 +381,20 @@ def _draw_photos_agl(fig: Figure, ax: Any, layout: FlightLayout, mt: MapTerrain,
                        label=t(mt.highlight_key, locale).format(n=mt.highlight))
 
 
-def map_svg(layout: FlightLayout, locale: str = "en", terrain: MapTerrain | None = None
-            ) -> str:
+def _draw_control(ax: Any, control: Any, scale: float, locale: str) -> None:
+    """The GCPs (red triangles) and the checkpoints (blue circles) of ``[control]``."""
+    c = control.columns
+    for role, marker, colour, key in (("gcp", "^", "#c62828", "map_legend_gcp"),
+                                      ("check", "o", "#1565c0", "map_legend_checkpoint")):
+        m = control.role(role)
+        if m.any():
+            ax.scatter(c["x_m"][m] / scale, c["y_m"][m] / scale, marker=marker, s=30,
+                       facecolor=colour, edgecolor="black", linewidth=0.4, zorder=8,
+                       label=t(key, locale))
+
+
+def map_svg(layout: FlightLayout, locale: str = "en", terrain: MapTerrain | None = None,
+            basemap: Any = None, control: Any = None) -> str:
     """The flight layout drawn in its planning CRS (see the module docstring).
 
     Parameters
@@ -395,6 +407,11 @@ def map_svg(layout: FlightLayout, locale: str = "en", terrain: MapTerrain | None
         ``[terrain]``: the photo centres are coloured by their height above ground, with a
         colour bar, and the photos that break a constraint are marked
         (:func:`map_terrain`).
+    basemap : scanplan.geo.basemap.Basemap, optional
+        ``[map] basemap``: the background image in the layout's planning CRS, drawn under
+        everything (:func:`map_basemap`).
+    control : ControlPoints, optional
+        ``[control]``: the GCPs (triangles) and checkpoints (circles) over the flight.
 
     Returns
     -------
@@ -416,6 +433,10 @@ def map_svg(layout: FlightLayout, locale: str = "en", terrain: MapTerrain | None
             _draw_photos_agl(fig, ax, layout, terrain, scale, locale)
         elif len(ph):
             _draw_photos_plain(ax, layout, scale, locale)
+        if basemap is not None:
+            _draw_basemap(ax, basemap, scale)
+        if control is not None and len(control):
+            _draw_control(ax, control, scale, locale)
         ax.set_aspect("equal", adjustable="datalim")
         ax.margins(0.1)
         ax.xaxis.set_major_formatter(_km_ticks(ax.xaxis, locale))
@@ -444,6 +465,37 @@ def map_svg(layout: FlightLayout, locale: str = "en", terrain: MapTerrain | None
                     dpi=_RASTER_DPI if terrain is not None else _PHOTO_DPI)
     return buf.getvalue().replace("'DejaVu Sans'", "'Scanplan Sans'").replace(
         '"DejaVu Sans"', '"Scanplan Sans"').replace("DejaVu Sans", "Scanplan Sans")
+
+
+def map_basemap(spec: Any, layout: FlightLayout) -> Any:
+    """``[map] basemap`` of the project warped into the layout's planning CRS
+    (:func:`scanplan.geo.basemap.read_basemap`), or None without one."""
+    project = getattr(spec, "project", None)
+    path = getattr(getattr(project, "map", None), "basemap", None)
+    if path is None or not layout.area.georeferenced:
+        return None
+    import pyproj
+
+    from ..geo.basemap import read_basemap
+
+    minx, miny, maxx, maxy = layout.area.geometry.bounds
+    pad = 0.15 * max(maxx - minx, maxy - miny)  # the map's margins around the area
+    around = pyproj.Transformer.from_crs(pyproj.CRS.from_user_input(layout.area.plan_crs),
+                                         4326, always_xy=True).transform_bounds(
+        minx - pad, miny - pad, maxx + pad, maxy + pad, densify_pts=21)
+    return read_basemap(path, str(layout.area.plan_crs), max_px=1600, area_lonlat=around)
+
+
+def _draw_basemap(ax: Any, image: Any, scale: float) -> None:
+    """The background image under everything, the map's extent kept to the flight's; the
+    area (and its holes) outlined only, so the ground shows through."""
+    for patch in ax.patches:
+        patch.set_facecolor("none")
+    flight = ax.dataLim.frozen()
+    left, bottom, right, top = (v / scale for v in image.bounds)
+    ax.imshow(image.rgba, extent=(left, right, bottom, top), origin="upper", zorder=0,
+              interpolation="bilinear", rasterized=True, aspect="equal")
+    ax.dataLim.set(flight)  # the image does not widen the map
 
 
 def _draw_photos_plain(ax: Any, layout: FlightLayout, scale: float, locale: str) -> None:
@@ -503,7 +555,7 @@ def summary_items(layout: FlightLayout, locale: str) -> list[tuple[str, Any, int
         (t("geo_base_m", locale), layout.base_m, 1),
         (t("n_strips", locale), len(layout.strips), 0),
         (t("geo_n_frames" if film else "geo_n_photos", locale), len(layout.photos), 0)]
-    if not film:
+    if not film and layout.notes.get("max_flight_time_min"):  # the sortie time known
         rows.append((t("geo_n_sorties", locale), len(layout.sorties), 0))
     rows.append((t("geo_flight_km", locale), layout.flight_length_m / 1000, 2))
     if layout.notes.get("takeoff_xy_m") is not None:
@@ -558,6 +610,21 @@ def continued_note(strips: Any, locale: str) -> str:
     return t("strips_continued", locale).format(list="; ".join(items)) if items else ""
 
 
+def _control_of(spec: Any) -> Any:
+    """The GCPs and checkpoints of a specification's ``[control]``, or None."""
+    control = getattr(spec, "control", None)
+    return control.points if control is not None else None
+
+
+def _background_note(spec: Any, layout: FlightLayout, locale: str) -> str:
+    """The map's background named as its attribution asks (``[map] basemap_attribution``,
+    else the file's name); empty without a background."""
+    m = getattr(getattr(spec, "project", None), "map", None)
+    if getattr(m, "basemap", None) is None or not layout.area.georeferenced:
+        return ""
+    return t("map_background", locale).format(source=m.basemap_attribution or m.basemap.name)
+
+
 def geo_views(spec: Any, locale: str) -> list[dict[str, Any]]:
     """The PDF's map pages: one per flight layout of ``spec`` (UAV first, then film).
 
@@ -580,6 +647,9 @@ def geo_views(spec: Any, locale: str) -> list[dict[str, Any]]:
             if not film and _exports.mission_options(spec, layout) is not None:
                 items.insert(0, t("geo_file_mission", locale))
             notes.append(t("geo_files_note", locale).format(items="; ".join(items)))
+        background = _background_note(spec, layout, locale)
+        if background:
+            notes.append(background)
         if layout.area.georeferenced and len(layout.photos) > MAX_SHEET_PHOTOS:
             notes.append(t("geo_photos_elsewhere" if _exports.files_beside(spec, layout)
                            else "geo_photos_too_many", locale).format(
@@ -587,7 +657,9 @@ def geo_views(spec: Any, locale: str) -> list[dict[str, Any]]:
         views.append({
             "title": t("map_title_film" if film else "map_title", locale)
             if layout.area.georeferenced else t("geo_summary", locale),
-            "map": _svg_uri(map_svg(layout, locale, map_terrain(spec, _kind, layout)))
+            "map": _svg_uri(map_svg(layout, locale, map_terrain(spec, _kind, layout),
+                                    map_basemap(spec, layout),
+                                    None if film else _control_of(spec)))
             if layout.area.georeferenced else None,
             "caption": crs_text(layout, locale),
             "rows": summary_rows(layout, locale),

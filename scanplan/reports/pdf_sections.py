@@ -318,9 +318,9 @@ def _uav_inputs(job: UavJob, f: _Fmt) -> list[tuple[str, str]]:
         obj = inp.map_object
         if obj is not None:
             name = object_title(obj, f.locale)
-            inputs.append((f.label("object"), f"{name}: {f.g(obj.size_m)} {m}, "
-                                              f"{_shape_name(ns, obj.shape, f.locale)}, "
-                                              f"B = {f.g(obj.shape_coefficient)}"))
+            inputs.append((f.label("object"), with_status(
+                f"{name}: {f.g(obj.size_m)} {m}, {_shape_name(ns, obj.shape, f.locale)}, "
+                f"B = {f.g(obj.shape_coefficient)}", obj.status, f.locale)))
     inputs.append((f.label("norm_set"), _norm_view(ns, f)["title"]))
     return inputs
 

@@ -227,12 +227,25 @@ def render_html(*, scan: ScanJob | None = None, uav: UavJob | None = None,
                        and not (spec is not None and spec.comparison) else None),
         "spec": spec_view,
         "design": design,
+        "control": _control_view(view, f) if spec is not None and getattr(
+            spec, "control", None) is not None else None,
         "geo": _geo_views(spec, uav, meta.locale),
         "warnings_box": _warnings_box(scan_view, uav_view, spec, f),
         "references": f.bib.entries(),
     }
     view._html.append(_environment().get_template("report.html").render(**ctx))
     return view._html[0]
+
+
+def _control_view(view: ReportView, f: Any) -> dict[str, Any]:
+    """The control section (``templates/_control.html``): the rows of the control tables,
+    worded once (:mod:`scanplan.reports.controlwords`), their sources cited."""
+    from .controlwords import check_rows, rule_rows, summary_rows
+
+    loc = view.locale
+    return {"summary": summary_rows(view.tables, loc),
+            "checks": [(*r[:5], f.cite(r[5])) for r in check_rows(view.tables, loc)],
+            "rules": [(*r[:3], f.cite(r[3])) for r in rule_rows(view.tables, loc)]}
 
 
 def _geo_views(spec: PlanResult | None, uav: UavJob | None, locale: str

@@ -168,6 +168,8 @@ def format_plan_result(result: Any, locale: str | None = None,
                               cname)
     if result.comparison:
         lines += _comparison_lines(result, loc, T, tables)
+    if getattr(result, "control", None) is not None:
+        lines += _control_lines(tables, loc)
     from .design import design_text_lines
 
     lines += [textwrap.fill(x.strip(), width=96, initial_indent="  ", subsequent_indent="    ")
@@ -250,6 +252,21 @@ def _comparison_lines(result: Any, loc: str, T: _Terminal, tables: ResultTables)
     return ["", T["side_by_side_aircraft" if aircraft else "side_by_side"], text]
 
 
+def _control_lines(tables: ResultTables, loc: str) -> list[str]:
+    """The ground control: counts, figures and the error budget at best, and the control's
+    precision against the target (the ``control`` and ``control_checks`` tables)."""
+    from .controlwords import check_rows, summary_rows
+
+    rows = summary_rows(tables, loc)
+    width = max(len(label) for label, _, _ in rows)
+    lines = ["", t("control_points", loc) + ":"]
+    lines += [f"  {label:<{width}}  {value}" for label, value, _ in rows]
+    lines.append(f"  {t('control_check', loc)}:")
+    for rule, axis, ratio, required, ok, _ in check_rows(tables, loc):
+        lines.append(f"    {rule} ({axis}): {ratio} / {required} — {ok}")
+    return lines
+
+
 def _warning_lines(result: Any, loc: str, T: _Terminal, tables: ResultTables) -> list[str]:
     """The warnings (``!``) and notes (``i``) with their codes (the ``spec_warnings``
     table)."""
@@ -325,7 +342,7 @@ def format_layout(layout: Any, scale: str = "", locale: str = "en") -> str:
             f"({T['turns']} {_n(layout.turn_length_m / 1000, 1, locale, True)} {T['km']})")
     if layout.flight_time_s:
         text += f", {_n(layout.flight_time_s / 60, 0, locale, True)} {T['min']}"
-    if layout.kind == "uav":
+    if layout.kind == "uav" and layout.notes.get("max_flight_time_min"):  # sortie time known
         text += f", {T['sorties']}:\0{len(layout.sorties)}"  # kept on one line
     if not layout.feasible:
         text += f" — {T['not_feasible']}: {localize(layout.reason, locale)}"

@@ -109,6 +109,7 @@ class ObjectSpec:
     map_scale: int | None = None  # the norm table row's map scale, if it came from one
     name_ru: str = ""   # the norm table's Russian name (reports in Russian)
     shape_ru: str = ""  # the shape's Russian name
+    status: str = ""  # the norm row's status (norm, estimate …); "" for the user's object
 
     def names(self) -> dict[str, Any]:
         """Message parameters naming the object: ``object``, ``size``, ``shape``."""
@@ -285,8 +286,13 @@ class UavInputs:
     ceiling_m: float | None = None
     ceiling_from_project: bool = False
     aerodrome_distance_km: float | None = None
-    """The norm set's distance from uncontrolled aerodromes for flights without an
-    airspace-use permission [km] (printed with the ceiling's conditions)."""
+    """The norm set's distance from the reference points of uncontrolled aerodromes for
+    flights without an airspace-use permission in the 2020 wording [km]."""
+    airspace_conditions: dict[str, str] | None = None
+    """The conditions of flights without an airspace-use permission, ``{"en": …, "ru": …}``
+    (``norms/catalogue/airspace-conditions.csv``, :mod:`scanplan.norms.airspace`)."""
+    airspace_wording: str = ""
+    """The date of the conditions' wording (ISO)."""
     gsd_target_m: float | None = None
     gsd_limit_m: float | None = None
     """The norm set's largest GSD for the map scale (table ``gsd_limits``) [m]."""

@@ -37,6 +37,7 @@ from ..core.orientation import attitude_matrix, corner_gsd
 from ..core.shown import shown_above
 from ..errors import FieldValueError, InputError
 from ..i18n.messages import Message
+from ..i18n.messages_uav import date_words
 from .constraints import height_accuracy as _height_accuracy  # noqa: F401  (tests, importers)
 from .film import check_probability, overlap_warning
 from .registry import CONSTRAINTS, DigitalLimit, digital_ids
@@ -177,9 +178,9 @@ def _airspace_warnings(inp: UavInputs) -> list[PlanWarning]:
         return []
     assert inp.ceiling_m is not None
     out = [PlanWarning("airspace_conditions", Message(
-        "airspace_conditions", ceiling=inp.ceiling_m,
-        aerodrome=inp.aerodrome_distance_km if inp.aerodrome_distance_km is not None
-        else float("nan")), severity="info")]
+        "airspace_conditions", conditions=inp.airspace_conditions or {"en": "", "ru": ""},
+        date=date_words(inp.airspace_wording) if inp.airspace_wording else ""),
+        severity="info")]
     up = 1.0 + inp.height_tolerance_up_pct / 100.0
     flown = inp.height_m * up
     if flown >= inp.ceiling_m * (1.0 - _BELOW):

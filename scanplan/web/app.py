@@ -95,9 +95,17 @@ def _too_large(limit: int) -> JSONResponse:
     return JSONResponse({"detail": f"the request is larger than {limit:,} bytes"}, 413)
 
 
-def _input_error(exc: InputError) -> JSONResponse:
-    return JSONResponse({"detail": f"{exc.field}: {exc.message}", "field": exc.field,
-                         "message": exc.message}, 422)
+def _input_error(exc: InputError, lang: str | None = None) -> JSONResponse:
+    """422 with the command line's message; with ``lang`` (``?lang=`` of the page's
+    requests) also ``page``: the key, label and text the page shows by the field
+    (:func:`scanplan.web.pagewords.page_error`)."""
+    body: dict[str, Any] = {"detail": f"{exc.field}: {exc.message}", "field": exc.field,
+                            "message": exc.message}
+    if lang in ("en", "ru"):
+        from .pagewords import page_error
+
+        body["page"] = page_error(exc.field, exc.message, lang)
+    return JSONResponse(body, 422)
 
 
 def _language(request: Request, lang: str | None) -> str:
@@ -113,7 +121,8 @@ def _language(request: Request, lang: str | None) -> str:
 
 
 def create_app(*, token: str | None = None, planner: Planner | None = None,
-               uploads: UploadStore | None = None, tiles: str | None = None) -> FastAPI:
+               uploads: UploadStore | None = None, tiles: str | None = None,
+               basemaps: Any = None) -> FastAPI:
     """The application.
 
     Parameters
@@ -125,9 +134,14 @@ def create_app(*, token: str | None = None, planner: Planner | None = None,
     uploads : UploadStore or None
         Keeps the uploads (default: a new store, removed when the application stops).
     tiles : str or None
-        The page's default tile layer: a URL template, ``"osm"`` (OpenStreetMap, the
-        default) or ``"none"`` (no background map: offline).
+        The page's tile layer: a URL template, ``"osm"`` (OpenStreetMap, the
+        default) or ``"none"`` (no background map: offline); ignored with ``basemaps``.
+    basemaps : scanplan.web.basemap.Basemaps or None
+        The background maps offered (tiles, MBTiles, their cache); default: ``tiles``'s.
     """
+    from .basemap import Basemaps
+
+    basemaps = basemaps if basemaps is not None else Basemaps(tiles or "osm")
     planner = planner if planner is not None else Planner()
     store = uploads if uploads is not None else UploadStore()
     documents = Documents.beside(planner, lambda files: _files(store, dict(files)))
@@ -162,9 +176,34 @@ def create_app(*, token: str | None = None, planner: Planner | None = None,
 
     app.add_middleware(_BodyLimit, limit=MAX_BODY_BYTES)
 
+    _error_handlers(app)
+
+    from .page import page_html
+
+    app.mount("/static", StaticFiles(directory=STATIC), name="static")
+
+    @app.get("/", response_class=HTMLResponse, include_in_schema=False)
+    def page(request: Request, lang: str | None = None) -> HTMLResponse:
+        return HTMLResponse(page_html(_language(request, lang), basemaps.page_list(),
+                                      basemaps.default))
+
+    @app.get("/favicon.ico", include_in_schema=False)
+    def favicon() -> Response:
+        return Response((STATIC / "favicon.svg").read_bytes(), media_type="image/svg+xml")
+
+    _routes(app, planner, store, documents)
+    from .pageroutes import page_routes
+
+    page_routes(app, planner, store, basemaps)
+    return app
+
+
+def _error_handlers(app: FastAPI) -> None:
+    """Each error of a plan answered with its HTTP status and message."""
+
     @app.exception_handler(InputError)
     async def on_input(request: Request, exc: InputError) -> JSONResponse:
-        return _input_error(exc)
+        return _input_error(exc, request.query_params.get("lang"))
 
     @app.exception_handler(TimedOut)
     async def on_timeout(request: Request, exc: TimedOut) -> JSONResponse:
@@ -177,21 +216,6 @@ def create_app(*, token: str | None = None, planner: Planner | None = None,
     @app.exception_handler(Failed)
     async def on_failed(request: Request, exc: Failed) -> JSONResponse:
         return JSONResponse({"detail": str(exc)}, 500)
-
-    from .page import page_html
-
-    app.mount("/static", StaticFiles(directory=STATIC), name="static")
-
-    @app.get("/", response_class=HTMLResponse, include_in_schema=False)
-    def page(request: Request, lang: str | None = None) -> HTMLResponse:
-        return HTMLResponse(page_html(_language(request, lang), tiles or "osm"))
-
-    @app.get("/favicon.ico", include_in_schema=False)
-    def favicon() -> Response:
-        return Response((STATIC / "favicon.svg").read_bytes(), media_type="image/svg+xml")
-
-    _routes(app, planner, store, documents)
-    return app
 
 
 def _files(store: UploadStore, files: dict[str, str]) -> dict[str, str]:
@@ -237,10 +261,22 @@ def _routes(app: FastAPI, planner: Planner, store: UploadStore, documents: Docum
         """The ``scanplan plan --json`` document of the project."""
         return planner.run("plan", req.project, _files(store, req.files))  # type: ignore
 
-    @app.post("/api/view")
-    def view(req: PlanRequest) -> dict[str, Any]:
-        """``plan`` (as /api/plan), ``map`` (GeoJSON, WGS 84), ``charts`` (SVG), ``toml``."""
-        shown = planner.run("view", req.project, _files(store, req.files))
+    from .edits import EditGate, Superseded, parse_edit, superseded_answer
+
+    gate = EditGate(planner.wait_s)
+
+    @app.post("/api/view", response_model=None)
+    def view(req: PlanRequest, request: Request) -> dict[str, Any] | JSONResponse:
+        """``plan`` (as /api/plan), ``map`` (GeoJSON, WGS 84), ``charts`` (SVG), ``toml``.
+        With ``X-Scanplan-Edit: PAGE/N`` an edit a newer one of the same page replaced is
+        answered 409 without being planned (:mod:`scanplan.web.edits`)."""
+        edit = parse_edit(request.headers.get("x-scanplan-edit"))
+        try:
+            shown = gate.run(edit, lambda: planner.run(
+                "view", req.project, _files(store, req.files)),
+                lambda: Busy(f"another plan is running; tried for {gate.wait_s:g} s"))
+        except Superseded:
+            return JSONResponse(superseded_answer(), 409)
         documents.ahead(req.project, req.files)  # the downloads, while the user looks
         return shown  # type: ignore[no-any-return]
 

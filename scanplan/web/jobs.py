@@ -39,7 +39,7 @@ __all__ = ["FILE_KEYS", "JOBS", "PROJECT_NAME", "catalogue_job", "documents_job"
 
 PROJECT_NAME = "project.toml"
 """The project file's name in the job's folder (and in the messages)."""
-FILE_KEYS = (("area", "file"), ("terrain", "dem"))
+FILE_KEYS = (("area", "file"), ("terrain", "dem"), ("map", "basemap"))
 """The keys that name a file: on the page, only an uploaded one."""
 _SAFE_PART = re.compile(r"^[A-Za-z0-9][A-Za-z0-9._-]*$")
 
@@ -149,7 +149,6 @@ def view_job(project: Any, files: Mapping[str, str]) -> dict[str, Any]:
 
         return {"plan": doc, "map": map_features(result), "charts": charts, "toml": text,
                 "names": _constraint_names(doc, view.locale),
-                "margins_pct": _margins_at_planned(doc),
                 "warnings": _warnings(result, view.locale),
                 "crs": _crs(result, view.locale)}
 
@@ -161,21 +160,6 @@ def _crs(result: Any, locale: str) -> str | None:
 
     area = result.area
     return area_crs_text(area, locale) if area is not None and area.georeferenced else None
-
-
-def _margins_at_planned(doc: dict[str, Any]) -> dict[str, float]:
-    """Each UAV constraint's headroom at the planned height [%]: how much higher than the
-    planned height H the flight may go before that constraint binds, ``(H_max/H − 1)·100``
-    with ``H_max`` its maximum planned height (negative: the planned height breaks it).
-    ``plan --json``'s ``margin_pct`` is the other view, against the binding constraint's
-    height, which does not move with the planned height."""
-    uav = doc.get("uav") or {}
-    planned = (uav.get("heights_m") or {}).get("planned")
-    if not planned:
-        return {}
-    return {cid: (c["max_height_m"] / planned - 1.0) * 100.0
-            for cid, c in (uav.get("constraints") or {}).items()
-            if c.get("max_height_m") is not None}
 
 
 def _warnings(result: Any, locale: str) -> list[dict[str, str]]:
@@ -214,7 +198,6 @@ def files_job(project: Any, files: Mapping[str, str], what: str) -> tuple[str, b
             return f"spec.{what}", reports[what]
         return "scanplan.zip", _zip(result, text, folder, files, reports)
 
-
 def documents_job(project: Any, files: Mapping[str, str]) -> dict[str, tuple[str, bytes]]:
     """Every download of the project at once, from one plan and one rendering of each
     report: ``{"pdf": …, "xlsx": …, "zip": …}`` as :func:`files_job` gives each
@@ -239,8 +222,22 @@ def _zip(result: Any, text: str, folder: Path, files: Mapping[str, str],
         for kind in ("pdf", "xlsx"):
             zf.writestr(f"spec.{kind}", reports[kind])
         for path, (_kind, data) in sorted(export_files(result, "").items()):
-            zf.writestr(path, data)
+            zf.writestr(path, _scrub_text_file(path, data, folder))
     return out.getvalue()
+
+
+_TEXT_EXPORTS = (".kml", ".geojson", ".csv", ".plan", ".waypoints", ".txt")
+
+
+def _scrub_text_file(name: str, data: bytes, folder: Path) -> bytes:
+    """A text export (KML, GeoJSON, CSV, mission) naming the area file as the project does,
+    not by the job's temporary folder; other files unchanged."""
+    if not name.lower().endswith(_TEXT_EXPORTS):
+        return data
+    try:
+        return _scrub(data.decode("utf-8"), folder).encode("utf-8")
+    except UnicodeDecodeError:
+        return data
 
 
 def _reports(result: Any, kinds: tuple[str, ...]) -> dict[str, bytes]:
@@ -284,3 +281,36 @@ def catalogue_job(norms: str, locale: str) -> dict[str, Any]:
 JOBS = {"plan": plan_job, "view": view_job, "files": files_job, "documents": documents_job,
         "catalogue": catalogue_job}
 """The jobs the worker runs, by name."""
+
+
+def area_job(project: Any, files: Mapping[str, str]) -> dict[str, Any]:
+    """The outline of the project's ``[area]`` alone (GeoJSON FeatureCollection, WGS 84;
+    empty for a width × length block or none): the page draws a dropped file before the
+    plan can be made (no camera chosen yet). Read by the command line's area reader."""
+    from ..project.file import parse_project
+    from ..project.model import build_model
+    from ..project.spec import project_area
+    from .mapdata import area_features
+
+    tables = project_tables(project)
+    only: dict[str, Any] = {"map": {"scale": 2000, "relief_interval_m": 1},
+                            "uav": {"height_m": 100}}
+    if "area" in tables:
+        only["area"] = {k: v for k, v in tables["area"].items() if k != "direction_deg"}
+    with _staged(only, files) as (folder, text):
+        try:
+            area = project_area(build_model(parse_project(text, folder / PROJECT_NAME)))
+        except InputError as exc:
+            raise InputError(_scrub(exc.field, folder), _scrub(exc.message, folder)) from None
+        return area_features(area)
+
+
+def ortho_job(path: str, cache: str) -> dict[str, Any]:
+    """An uploaded GeoTIFF as the page's background (:func:`scanplan.web.basemap.ortho_job`)."""
+    from .basemap import ortho_job as job
+
+    return job(path, cache)
+
+
+JOBS["area"] = area_job
+JOBS["ortho"] = ortho_job

@@ -16,8 +16,10 @@ from ..project.inputs import INPUTS, describe, domain_of
 
 __all__ = ["MANAGED", "input_rows"]
 
-MANAGED = {("area", "file"), ("area", "polygon"), ("terrain", "dem"), ("project", "locale")}
-"""Keys the page sets itself: the drawn or dropped area, the uploaded DEM, the language."""
+MANAGED = {("area", "file"), ("area", "polygon"), ("terrain", "dem"), ("project", "locale"),
+           ("map", "basemap")}
+"""Keys the page sets itself: the drawn or dropped area, the uploaded DEM, the language, the
+uploaded background."""
 
 
 def _label(name: str, key: str, locale: str) -> str:

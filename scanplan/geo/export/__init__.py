@@ -12,6 +12,7 @@ georeferenced) gets none of them; a plan that is not feasible gets no mission.
 | ``flight.kml`` | area, strips, numbered photo centres for Google Earth | :mod:`.gis` |
 | ``flight.geojson`` | the same as RFC 7946 GeoJSON | :mod:`.gis` |
 | ``photos.csv`` | every photo centre with its figures | :mod:`.gis` |
+| ``control.csv`` | GCPs and checkpoints (``[control]``) | :mod:`.gis` |
 | ``flight.gpkg`` | area, strips, photo centres, sorties as one GeoPackage | :mod:`.gpkg` |
 | ``mission-dji.kmz`` (``mission-dji-01.kmz`` …) | the mission for DJI Pilot 2 | :mod:`.wpml` |
 
@@ -25,17 +26,19 @@ import itertools
 from collections.abc import Callable
 
 from ...progress import stage
+from ..control import ControlPoints
 from ..layout import FlightLayout
 from .common import GENERATOR
 from .formats import FORMATS, ExportFormat, ExportJob, format_named
-from .gis import ExportNames, render_csv, render_geojson, render_kml
+from .gis import ExportNames, render_control_csv, render_csv, render_geojson, render_kml
 from .gpkg import render_gpkg
 from .qgc import MissionOptions, plan_files, render_plan
 from .wpl import render_waypoints, waypoint_files
 from .wpml import wpml_files
 
 __all__ = ["FORMATS", "GENERATOR", "ExportFormat", "ExportJob", "ExportNames", "MissionOptions",
-           "format_named", "layout_files", "plan_files", "render_csv", "render_geojson",
+           "format_named", "layout_files", "plan_files", "render_control_csv", "render_csv",
+           "render_geojson",
            "render_gpkg", "render_kml", "render_plan", "render_waypoints", "waypoint_files",
            "wpml_files"]
 
@@ -43,7 +46,8 @@ __all__ = ["FORMATS", "GENERATOR", "ExportFormat", "ExportJob", "ExportNames", "
 def layout_files(layout: FlightLayout, *, names: ExportNames | None = None,
                  mission: MissionOptions | None = None, prefix: str = "",
                  photos_name: str = "photos", camera: str | None = None,
-                 note: Callable[[str], None] | None = None) -> dict[str, bytes]:
+                 note: Callable[[str], None] | None = None,
+                 control: ControlPoints | None = None) -> dict[str, bytes]:
     """Every exported file of ``layout``: file name → content.
 
     Parameters
@@ -65,6 +69,9 @@ def layout_files(layout: FlightLayout, *, names: ExportNames | None = None,
     note : callable, optional
         Told why a file the user may expect is not written, one line each
         (``"no mission-dji.kmz: …"``).
+    control : ControlPoints, optional
+        GCPs and checkpoints: ``control.csv``, and their points in the KML, GeoJSON and
+        GeoPackage.
 
     Returns
     -------
@@ -73,7 +80,7 @@ def layout_files(layout: FlightLayout, *, names: ExportNames | None = None,
     """
     if not layout.area.georeferenced:
         return {}
-    job = ExportJob(layout, names, mission, photos_name, camera)
+    job = ExportJob(layout, names, mission, photos_name, camera, control=control)
     # a format written per sortie shows its own progress by sortie; the others, one file
     # each, are one stage
     for per_sortie, run in itertools.groupby(FORMATS, key=lambda f: f.per_sortie):

@@ -21,9 +21,10 @@ from functools import cached_property
 from typing import Literal
 
 from ...io.targets import OUR_MARK, FileKind
+from ..control import ControlPoints
 from ..layout import FlightLayout
 from .common import LonLat, lonlat
-from .gis import ExportNames, render_csv, render_geojson, render_kml
+from .gis import ExportNames, render_control_csv, render_csv, render_geojson, render_kml
 from .gpkg import render_gpkg
 from .qgc import MissionOptions, plan_files
 from .wpl import waypoint_files
@@ -52,6 +53,8 @@ class ExportJob:
         The files written so far, by name (the waypoint files read the Plan files).
     notes : list of str
         Why a file the user may expect is not written (``"mission-dji.kmz: …"``).
+    control : ControlPoints or None
+        GCPs and checkpoints (``[control]``): control.csv, and in the GIS files.
     """
 
     layout: FlightLayout
@@ -61,6 +64,7 @@ class ExportJob:
     camera: str | None = None
     written: dict[str, bytes] = field(default_factory=dict)
     notes: list[str] = field(default_factory=list)
+    control: ControlPoints | None = None
 
     @cached_property
     def geo(self) -> LonLat:
@@ -136,9 +140,12 @@ def _waypoints(job: ExportJob, fmt: ExportFormat) -> dict[str, bytes]:
 
 
 def _photos(job: ExportJob, fmt: ExportFormat) -> dict[str, bytes]:
-    if not len(job.layout.photos):
-        return {}
-    return {f"{job.photos_name}{fmt.suffix}": render_csv(job.layout)}
+    out = {}
+    if len(job.layout.photos):
+        out[f"{job.photos_name}{fmt.suffix}"] = render_csv(job.layout)
+    if job.control is not None and len(job.control):  # the markers' table beside it
+        out[f"control{fmt.suffix}"] = render_control_csv(job.control)
+    return out
 
 
 def _dji(job: ExportJob, fmt: ExportFormat) -> dict[str, bytes]:
@@ -168,18 +175,21 @@ FORMATS: list[ExportFormat] = [
     ExportFormat(name="kml", suffix=".kml", what="KML file",
                  is_ours=_text_mark(rb"\A<\?xml[^>]*\?>\s*<!-- scanplan "),
                  stems=("flight",), output="gis", per_sortie=False,
-                 write=_one_file(lambda job: render_kml(job.layout, job.names))),
+                 write=_one_file(lambda job: render_kml(job.layout, job.names, job.control))),
     ExportFormat(name="geojson", suffix=".geojson", what="GeoJSON file",
                  is_ours=_text_mark(rb'"generator"\s*:\s*"scanplan[ "]'),
                  stems=("flight",), output="gis", per_sortie=False,
-                 write=_one_file(lambda job: render_geojson(job.layout, job.names))),
+                 write=_one_file(lambda job: render_geojson(job.layout, job.names,
+                                                            job.control))),
     ExportFormat(name="gpkg", suffix=".gpkg", what="GeoPackage", is_ours=_gpkg_is_ours,
                  stems=("flight",), output="gis", per_sortie=False,
-                 write=_one_file(lambda job: render_gpkg(job.layout))),
-    # the photo table's header: a CSV has no place for a comment
+                 write=_one_file(lambda job: render_gpkg(job.layout, job.control))),
+    # the photo table's and the control table's header: a CSV has no place for a comment
     ExportFormat(name="csv", suffix=".csv", what="table",
-                 is_ours=_text_mark(rb"\Aphoto,strip,index,sortie,x_m,y_m,lon_deg,lat_deg,"),
-                 stems=("photos", "frames"), output="gis", per_sortie=False, write=_photos),
+                 is_ours=_text_mark(rb"\A(?:photo,strip,index,sortie,x_m,y_m,lon_deg,lat_deg,"
+                                    rb"|id,role,block,x_m,y_m,lon_deg,lat_deg,)"),
+                 stems=("photos", "frames", "control"), output="gis", per_sortie=False,
+                 write=_photos),
     ExportFormat(name="kmz", suffix=".kmz", what="DJI route file", is_ours=_zip_comment_is_ours,
                  stems=("mission-dji",), output="missions", per_sortie=True, write=_dji),
 ]

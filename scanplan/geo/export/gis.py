@@ -30,13 +30,14 @@ from typing import Any
 import numpy as np
 import shapely
 
+from ..control import CONTROL_COLUMNS, ControlPoints
 from ..layout import PHOTO_COLUMNS, FlightLayout
 from ..mission import sortie_missions
 from ..terrain import TERRAIN_PHOTO_COLUMNS
 from .common import GENERATOR, LonLat, lonlat, photos_by_strip
 
-__all__ = ["CSV_DECIMALS", "ExportNames", "photo_columns", "render_csv", "render_geojson",
-           "render_kml"]
+__all__ = ["CONTROL_DECIMALS", "CSV_DECIMALS", "ExportNames", "photo_columns",
+           "render_control_csv", "render_csv", "render_geojson", "render_kml"]
 
 _KML_NS = "http://www.opengis.net/kml/2.2"
 _DEG = 7  # decimals of a degree written (1e-7° ≈ 1 cm)
@@ -48,6 +49,9 @@ CSV_DECIMALS = {"x_m": 3, "y_m": 3, "lon_deg": 8, "lat_deg": 8, "ground_m": 2,
                 "side_overlap_pct": 2,
                 "recognition_p": 4}
 _INT_COLUMNS = ("photo", "strip", "index", "sortie")
+#: Decimals of the control points' coordinates in every file: 8 of a degree (about 1 mm),
+#: 3 of a metre — control.csv, the GeoPackage, KML and GeoJSON agree to well under 1 cm.
+CONTROL_DECIMALS = {"x_m": 3, "y_m": 3, "lon_deg": 8, "lat_deg": 8, "ground_m": 3}
 
 
 def photo_columns(photos: Any) -> list[str]:
@@ -71,6 +75,7 @@ class ExportNames:
     sortie: str = "sortie {n}"
     sorties: str = "Sorties"
     takeoff: str = "Take-off point"
+    control: str = "Ground control and checkpoints"
 
 
 def _coords(points: np.ndarray) -> str:
@@ -153,7 +158,8 @@ def _strip_lines(layout: FlightLayout, geo: LonLat
     return out
 
 
-def render_kml(layout: FlightLayout, names: ExportNames | None = None) -> bytes:
+def render_kml(layout: FlightLayout, names: ExportNames | None = None,
+               control: ControlPoints | None = None) -> bytes:
     """The flight scheme as KML for Google Earth (see the module docstring).
 
     Parameters
@@ -162,6 +168,9 @@ def render_kml(layout: FlightLayout, names: ExportNames | None = None) -> bytes:
         A georeferenced layout.
     names : ExportNames, optional
         The names of the document, folders and strips (default English).
+    control : ControlPoints, optional
+        GCPs and checkpoints: a folder of their own (a triangle for a GCP, a circle for a
+        checkpoint).
 
     Returns
     -------
@@ -180,6 +189,8 @@ def render_kml(layout: FlightLayout, names: ExportNames | None = None) -> bytes:
     _kml_area(doc, layout, geo, names)
     _kml_strips(doc, layout, geo, names)
     _kml_sorties(doc, layout, geo, names)
+    if control is not None and len(control):
+        _kml_control(doc, control, names)
     folder = _sub(doc, "Folder")
     _sub(folder, "name", names.photos)
     _sub(folder, "Placemark").text = _PHOTOS_MARK  # the photo placemarks go here
@@ -209,6 +220,72 @@ def _kml_styles(doc: ET.Element, n_photos: int) -> None:
         pair = _sub(smap, "Pair")
         _sub(pair, "key", key)
         _sub(pair, "styleUrl", f"#photo-{key}")
+
+
+_CONTROL_ICONS = {"gcp": "http://maps.google.com/mapfiles/kml/shapes/triangle.png",
+                  "check": "http://maps.google.com/mapfiles/kml/shapes/target.png"}
+
+
+def _kml_control(doc: ET.Element, control: ControlPoints, names: ExportNames) -> None:
+    """The markers' folder: a placemark per GCP (red triangle) and checkpoint (blue target),
+    named by its id, with its columns as data."""
+    for role, colour in (("gcp", "ff0000ff"), ("check", "ffff0000")):
+        st = _sub(doc, "Style")
+        st.set("id", f"control-{role}")
+        ic = _sub(st, "IconStyle")
+        _sub(ic, "color", colour)
+        _sub(ic, "scale", "0.9")
+        _sub(_sub(ic, "Icon"), "href", _CONTROL_ICONS[role])
+    folder = _sub(doc, "Folder")
+    _sub(folder, "name", names.control)
+    c = control.columns
+    for i in range(len(control)):
+        pm = _sub(folder, "Placemark")
+        _sub(pm, "name", str(c["id"][i]))
+        _sub(pm, "styleUrl", f"#control-{c['role'][i]}")
+        _data(pm, {k: _control_cell(c, k, i) for k in CONTROL_COLUMNS
+                   if k not in ("id", "lon_deg", "lat_deg")})
+        _sub(_sub(pm, "Point"), "coordinates",
+             f"{float(c['lon_deg'][i]):.{CONTROL_DECIMALS['lon_deg']}f},"
+             f"{float(c['lat_deg'][i]):.{CONTROL_DECIMALS['lat_deg']}f}")
+
+
+def _control_cell(c: dict[str, np.ndarray], key: str, i: int) -> str:
+    """One control point's value as the files write it (empty for NaN)."""
+    v = c[key][i]
+    if key in CONTROL_DECIMALS:
+        return _fmt(v, CONTROL_DECIMALS[key])
+    return str(v)
+
+
+def render_control_csv(control: ControlPoints) -> bytes:
+    """``control.csv``: one row per marker, the columns of
+    :data:`~scanplan.geo.control.CONTROL_COLUMNS` (GCPs first), comma-separated, a dot for
+    decimals, UTF-8, an empty cell for a ground height without a DEM."""
+    buf = io.StringIO()
+    buf.write(",".join(CONTROL_COLUMNS) + "\n")
+    for i in range(len(control)):
+        buf.write(",".join(_control_cell(control.columns, k, i) for k in CONTROL_COLUMNS)
+                  + "\n")
+    return buf.getvalue().encode("utf-8")
+
+
+def _geojson_control(control: ControlPoints) -> list[dict[str, Any]]:
+    """The markers as GeoJSON Point features (``"kind"``: ``gcp`` / ``check``)."""
+    c = control.columns
+    out = []
+    for i in range(len(control)):
+        props: dict[str, Any] = {"kind": str(c["role"][i]), "name": str(c["id"][i])}
+        for k in CONTROL_COLUMNS:
+            if k in ("lon_deg", "lat_deg"):
+                continue
+            v = c[k][i]
+            props[k] = (_num(round(float(v), CONTROL_DECIMALS[k])) if k in CONTROL_DECIMALS
+                        else _num(v) if k in ("block", "photos") else str(v))
+        out.append({"type": "Feature", "properties": props, "geometry": {
+            "type": "Point", "coordinates": [round(float(c["lon_deg"][i]), 8),
+                                             round(float(c["lat_deg"][i]), 8)]}})
+    return out
 
 
 def _kml_area(doc: ET.Element, layout: FlightLayout, geo: LonLat, names: ExportNames) -> None:
@@ -348,8 +425,10 @@ def _num(value: Any) -> Any:
     return int(v) if v.is_integer() and abs(v) < 2**53 else v
 
 
-def render_geojson(layout: FlightLayout, names: ExportNames | None = None) -> bytes:
-    """The flight scheme as one RFC 7946 FeatureCollection (see the module docstring).
+def render_geojson(layout: FlightLayout, names: ExportNames | None = None,
+                   control: ControlPoints | None = None) -> bytes:
+    """The flight scheme as one RFC 7946 FeatureCollection (see the module docstring);
+    with ``control``, its GCPs and checkpoints as Point features after the strips.
 
     Returns
     -------
@@ -378,6 +457,8 @@ def render_geojson(layout: FlightLayout, names: ExportNames | None = None) -> by
                            "length_m": _num(round(strip.length_m, 2))},
             "geometry": geometry,
         })
+    if control is not None:
+        features.extend(_geojson_control(control))
     doc = {"type": "FeatureCollection", "name": names.title, "generator": GENERATOR,
            "features": features}
     text = json.dumps(doc, ensure_ascii=False, allow_nan=False, separators=(",", ":"))

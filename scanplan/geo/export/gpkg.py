@@ -8,7 +8,10 @@ CRS of the layout (metric: UTM or the project's CRS), one layer per feature kind
   ``photos``, ``length_m``; a strip split over a gap has one line per photographed part);
 * ``photos`` — every photo centre as a Point with every column of photos.csv;
 * ``sorties`` — one MultiLineString per sortie (its strips), with ``sortie``, ``strips``,
-  ``length_m`` and ``time_min``.
+  ``length_m`` and ``time_min``;
+* ``control`` — with ``[control]``, every GCP and checkpoint as a Point with the columns of
+  control.csv (``id``, ``role``, ``block``, ``x_m``, ``y_m``, ``lon_deg``, ``lat_deg``,
+  ``ground_m``, ``photos``).
 
 The project has no take-off site, so no take-off layer is written. GDAL writes to a file,
 so the GeoPackage is built in a private temporary folder and returned as bytes; the caller
@@ -25,6 +28,7 @@ from typing import Any
 import numpy as np
 import shapely
 
+from ..control import ControlPoints
 from ..gdal_guard import import_pyogrio
 from ..layout import FlightLayout
 from .common import GENERATOR, photos_by_strip
@@ -83,13 +87,15 @@ def _build_time() -> str:
     return when.strftime("%Y-%m-%dT%H:%M:%S.000Z")
 
 
-def render_gpkg(layout: FlightLayout) -> bytes:
+def render_gpkg(layout: FlightLayout, control: ControlPoints | None = None) -> bytes:
     """``layout`` as a GeoPackage: layers :data:`GPKG_LAYERS` in the planning CRS.
 
     Parameters
     ----------
     layout : FlightLayout
         A georeferenced layout.
+    control : ControlPoints, optional
+        GCPs and checkpoints: a ``control`` layer of Points with the columns of control.csv.
 
     Returns
     -------
@@ -135,6 +141,12 @@ def render_gpkg(layout: FlightLayout) -> bytes:
                 "time_min": np.array([s.time_s / 60.0 if s.time_s is not None else np.nan
                                       for s in flown], float),
             }, "MultiLineString", crs, False)
+        if control is not None and len(control):
+            c = control.columns
+            _write(path, "control", list(shapely.points(c["x_m"], c["y_m"])), {
+                k: (np.asarray(c[k]).astype(np.int32) if k in ("block", "photos")
+                    else np.asarray(c[k], dtype=object) if k in ("id", "role")
+                    else np.asarray(c[k], float)) for k in c}, "Point", crs, False)
         takeoff = layout.notes.get("takeoff_xy_m")
         if takeoff is not None:  # [flight] takeoff: where every sortie starts and returns
             _write(path, "takeoff", [shapely.Point(*takeoff)],

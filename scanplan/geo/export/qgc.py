@@ -28,7 +28,9 @@ Each sortie is one mission, rendered from the format-neutral
 A DO command acts once the aircraft has reached the NAV waypoint before it: the camera
 fires from the first photo centre of a run to half a base past its last one, never in a
 turn (:mod:`scanplan.geo.mission` states the trigger behaviour relied on). The planned
-home is the take-off point (``[flight] takeoff``), else the sortie's first waypoint.
+home is the sortie's take-off point: ``[flight] takeoff``, else the area's boundary point
+nearest the sortie's run-in (:mod:`scanplan.geo.sorties`; the sortie's time counts the way
+there and back), else — a block with no place on the map — its first waypoint.
 
 Altitudes: one per waypoint (:func:`waypoint_altitudes`, or given). The frame is stated on
 every item: MAV_FRAME_GLOBAL_RELATIVE_ALT (3, above the home) for flat ground,

@@ -20,8 +20,26 @@ the part's length on the ellipsoid divided by its photo count less one, written 
 down to 0.1 mm, so the last photo falls on the part's last waypoint (at most a millimetre
 before it, never past it) and the part fires exactly its photos of photos.csv. A
 part of one photo fires once on arrival (``reachPoint``). The aircraft heads along the
-route (``followWayline``) and flies straight lines between waypoints, stopping at each
-(``toPointAndStopWithDiscontinuityCurvature``): the turns are the run-in and run-out legs.
+route (``followWayline``).
+
+**No needless stops.** A photographed part is one action group from its first photo to its
+last, however long: DJI's distance trigger counts from the group's start, so it is not cut
+into pieces for an autopilot's trigger lateness as the MAVLink missions are
+(:mod:`scanplan.geo.mission`). A waypoint stands only where the path turns, the trigger
+starts or ends, or the height changes (a point straight on at the same height with no
+photo to end is left out). Every waypoint but the first and the last is flown through
+without stopping: ``toPointAndPassWithContinuityCurvature`` ("fly in a curve and the
+aircraft will not stop at the point") with ``useStraightLine`` 1 (the segments as straight
+lines: DJI Pilot 2's "turns before waypoint, flies through"), its
+``waypointTurnDampingDist`` — how far before the waypoint the turn begins, required for
+that mode with ``useStraightLine`` 1, in (0, the segment's length] — 0.45 of the shorter
+of its two segments (so two neighbours' turns never meet on a segment, as the
+documentation requires) and at most :data:`MAX_DAMPING_M`; on a straight photo run the
+turn angle is zero and the path stays on the line. The first and the last waypoint, where
+the aircraft starts from and ends at rest, use ``toPointAndStopWithDiscontinuityCurvature``
+("fly in a straight line and the aircraft stops at the point"). Enums and ranges: DJI
+Cloud API, DJI WPML, "Common Elements", ``wpml:waypointTurnParam``
+(developer.dji.com/doc/cloud-api-tutorial/en/api-reference/dji-wpml/common-element.html).
 
 Heights: relative to the take-off point (``relativeToStartPoint``) for a flat plan;
 WGS 84 ellipsoidal heights (``WGS84``) for a terrain plan: the photos' altitudes (the
@@ -49,8 +67,9 @@ from ..mission import SortieMission, sortie_missions
 from .common import GENERATOR, LonLat, lonlat
 from .qgc import MissionOptions, _home, waypoint_altitudes
 
-__all__ = ["DJI_CAMERAS", "KML_NS", "WPML_NS", "DjiPayload", "RoutePoint", "WpmlMission",
-           "egm96_separation_m", "render_kmz", "render_template", "render_waylines",
+__all__ = ["DJI_CAMERAS", "KML_NS", "PASS_THROUGH", "STOP", "WPML_NS", "DjiPayload",
+           "RoutePoint", "WpmlMission", "damping_distances_m", "egm96_separation_m",
+           "render_kmz", "render_template", "render_waylines", "segment_lengths_m",
            "sortie_route", "wpml_files"]
 
 KML_NS = "http://www.opengis.net/kml/2.2"
@@ -61,6 +80,17 @@ ET.register_namespace("wpml", WPML_NS)
 
 #: The largest ``wpml:globalTransitionalSpeed`` the format allows (Waylines.wpml: 0 … 15).
 MAX_TRANSITIONAL_SPEED = 15.0
+#: Turn modes written (DJI WPML "Common Elements", ``wpml:waypointTurnMode``): flown
+#: through, and the stop at the route's first and last waypoint.
+PASS_THROUGH = "toPointAndPassWithContinuityCurvature"
+STOP = "toPointAndStopWithDiscontinuityCurvature"
+#: The largest damping distance written [m]: the turn at a strip's end begins at most this
+#: far before its corner.
+MAX_DAMPING_M = 10.0
+#: Share of the shorter neighbouring segment a waypoint's turn may take (two neighbours'
+#: turns then never overlap: the documentation asks a segment to be longer than the sum
+#: of the turn intercepts at its two ends).
+DAMPING_SHARE = 0.45
 #: The ZIP's fixed time stamp: the same plan gives the same bytes.
 _ZIP_TIME = (2020, 1, 1, 0, 0, 0)
 
@@ -153,6 +183,10 @@ class WpmlMission:
     area_ellipsoid_height_m : float
         The same height above the WGS 84 ellipsoid (terrain); a flat plan, whose take-off
         site's ellipsoidal height is unknown, repeats ``area_height_m`` [m].
+    surface_follow : bool
+        The plan follows the terrain (``altitude_mode = "follow"``): the template asks DJI
+        Pilot 2 to follow the surface at ``shoot_height_m``
+        (``wpml:surfaceFollowModeEnable`` 1, ``wpml:surfaceRelativeHeight``).
     """
 
     payload: DjiPayload
@@ -168,6 +202,7 @@ class WpmlMission:
     area_lonlat: Sequence[tuple[float, float]]
     area_height_m: float
     area_ellipsoid_height_m: float
+    surface_follow: bool = False
 
 
 def _sub(parent: ET.Element, tag: str, text: Any = None, ns: str = _W) -> ET.Element:
@@ -266,6 +301,32 @@ def trigger_interval_m(a: RoutePoint, b: RoutePoint, photos: int) -> float:
     return float(dist) / (photos - 1)
 
 
+def segment_lengths_m(points: Sequence[RoutePoint]) -> np.ndarray:
+    """The length of each segment between consecutive waypoints on the WGS 84 ellipsoid,
+    from the coordinates as written (8 decimals) [m]."""
+    from pyproj import Geod
+
+    if len(points) < 2:
+        return np.zeros(0)
+    lon = np.round([p.lon_deg for p in points], 8)
+    lat = np.round([p.lat_deg for p in points], 8)
+    _, _, d = Geod(ellps="WGS84").inv(lon[:-1], lat[:-1], lon[1:], lat[1:])
+    return np.asarray(d, dtype=float)
+
+
+def damping_distances_m(points: Sequence[RoutePoint]) -> np.ndarray:
+    """Each waypoint's ``waypointTurnDampingDist`` [m]: :data:`DAMPING_SHARE` of the
+    shorter of its two segments, at most :data:`MAX_DAMPING_M` (0 at the first and the
+    last waypoint, which are stops)."""
+    n = len(points)
+    out = np.zeros(n)
+    if n < 3:
+        return out
+    seg = segment_lengths_m(points)
+    out[1:-1] = np.minimum(DAMPING_SHARE * np.minimum(seg[:-1], seg[1:]), MAX_DAMPING_M)
+    return out
+
+
 def render_waylines(points: Sequence[RoutePoint], mission: WpmlMission) -> bytes:
     """The route of one sortie: ``wpmz/waylines.wpml``.
 
@@ -294,6 +355,7 @@ def render_waylines(points: Sequence[RoutePoint], mission: WpmlMission) -> bytes
     _sub(folder, "waylineId", 0)
     _sub(folder, "autoFlightSpeed", round(mission.speed_ms, 2))
     group_id = 0
+    damping = damping_distances_m(points)
     for k, p in enumerate(points):
         pm = ET.SubElement(folder, _K + "Placemark")
         pt = ET.SubElement(pm, _K + "Point")
@@ -304,9 +366,11 @@ def render_waylines(points: Sequence[RoutePoint], mission: WpmlMission) -> bytes
         heading = _sub(pm, "waypointHeadingParam")
         _sub(heading, "waypointHeadingMode", "followWayline")
         turn = _sub(pm, "waypointTurnParam")
-        _sub(turn, "waypointTurnMode", "toPointAndStopWithDiscontinuityCurvature")
-        # no waypointTurnDampingDist: required only for the curved turn modes, and its
-        # range (0, segment length] excludes 0
+        if k == 0 or k == len(points) - 1 or not damping[k] > 0:
+            _sub(turn, "waypointTurnMode", STOP)  # at rest: the start, the end
+        else:  # flown through; the damping distance (0, segment] is then required
+            _sub(turn, "waypointTurnMode", PASS_THROUGH)
+            _sub(turn, "waypointTurnDampingDist", math.floor(damping[k] * 1000) / 1000)
         _sub(pm, "useStraightLine", 1)
         if k == 0:  # the camera looks straight down for the whole route
             _gimbal_nadir(_action_group(pm, group_id, 0, 0, "reachPoint", None))
@@ -354,7 +418,11 @@ def render_template(mission: WpmlMission, *, created_ms: int = 0) -> bytes:
     _sub(sys_, "heightMode", "relativeToStartPoint" if mission.height_mode ==
          "relativeToStartPoint" else "EGM96")
     _sub(sys_, "globalShootHeight", round(mission.shoot_height_m, 2))
-    _sub(sys_, "surfaceFollowModeEnable", 0)
+    # Template.kml, wpml:waylineCoordinateSysParam: surface following at a height above
+    # the ground, as the plan's terrain following flies
+    _sub(sys_, "surfaceFollowModeEnable", int(mission.surface_follow))
+    if mission.surface_follow:
+        _sub(sys_, "surfaceRelativeHeight", round(mission.shoot_height_m, 2))
     _sub(folder, "autoFlightSpeed", round(mission.speed_ms, 2))
     payload = _sub(folder, "payloadParam")
     _sub(payload, "payloadPositionIndex", 0)
@@ -485,7 +553,8 @@ def sortie_route(layout: FlightLayout, sortie: int, options: MissionOptions, *,
     """
     geo = geo if geo is not None else lonlat(layout)
     if missions is None:
-        missions = sortie_missions(layout, options.speed_ms, numbers={sortie})
+        missions = sortie_missions(layout, options.speed_ms, numbers={sortie},
+                                   loop_hz=math.inf)
     mission = next((m for m in missions if m.number == sortie), None)
     if mission is None:
         raise ValueError(f"sortie {sortie} has no photos")
@@ -511,7 +580,36 @@ def sortie_route(layout: FlightLayout, sortie: int, options: MissionOptions, *,
             continue  # the last photo of a one-photo part: the same place as its first
         out.append(RoutePoint(float(lonlats[k, 0]), float(lonlats[k, 1]), float(heights[k]),
                               int(wp.strip), photos))
-    return out
+    return _needed(out)
+
+
+_STRAIGHT_DEG = 0.01
+"""A waypoint whose path turns by less than this is straight on [°]."""
+
+
+def _needed(points: list[RoutePoint]) -> list[RoutePoint]:
+    """The route without the waypoints nothing happens at: straight on, at the height of
+    both neighbours, firing no photos and ending no photographed part (the MAVLink
+    missions' trigger-off points, which DJI's action groups do not need)."""
+    from pyproj import Geod
+
+    if len(points) < 3:
+        return points
+    geod = Geod(ellps="WGS84")
+    keep = [points[0]]
+    for k in range(1, len(points) - 1):
+        a, p, b = keep[-1], points[k], points[k + 1]
+        if p.photos or a.photos > 1:  # fires, or ends the part the one before starts
+            keep.append(p)
+            continue
+        same_height = abs(p.height_m - a.height_m) < 0.01 and abs(p.height_m - b.height_m) < 0.01
+        az1, _, d1 = geod.inv(a.lon_deg, a.lat_deg, p.lon_deg, p.lat_deg)
+        az2, _, d2 = geod.inv(p.lon_deg, p.lat_deg, b.lon_deg, b.lat_deg)
+        turn = abs((az2 - az1 + 180.0) % 360.0 - 180.0) if d1 > 0 and d2 > 0 else 0.0
+        if not (same_height and turn < _STRAIGHT_DEG):
+            keep.append(p)
+    keep.append(points[-1])
+    return keep
 
 
 def _overlaps(layout: FlightLayout) -> tuple[float, float]:
@@ -583,10 +681,13 @@ def wpml_files(layout: FlightLayout, options: MissionOptions, camera_id: str, *,
               "height_mode": "WGS84" if terrain else "relativeToStartPoint",
               "shoot_height_m": float(np.nanmedian(np.asarray(layout.photos["agl_m"], float))),
               "direction_deg": _true_direction(layout, geo), "margin_m": 0.0,
-              "area_lonlat": _outer_ring(geo)}
+              "area_lonlat": _outer_ring(geo),
+              "surface_follow": layout.notes.get("altitude_mode") == "follow"}
     common["forward_overlap_pct"], common["side_overlap_pct"] = _overlaps(layout)
     files: dict[str, bytes] = {}
-    missions = sortie_missions(layout, options.speed_ms)  # once: every route picks its own
+    # once: every route picks its own; DJI's distance trigger counts from each part's
+    # start, so the parts are not cut for an autopilot loop's lateness (loop_hz = inf)
+    missions = sortie_missions(layout, options.speed_ms, loop_hz=math.inf)
     with stage("DJI routes", len(flown), "sorties") as step:
         for s in flown:
             route = sortie_route(layout, s.number, options, geo=geo, geoid=terrain,

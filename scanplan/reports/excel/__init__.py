@@ -50,6 +50,7 @@ from .cells import _repack as _repack  # re-exported: the batch summary workbook
 from .cells import put_num as put_num
 from .cells import put_text as put_text
 from .closing import norms_sheet, references_sheet, warnings_sheet
+from .control import control_sheet
 from .design import write_design_sheet
 from .film import constraints_sheet, sweep_sheet
 from .inputs import inputs_sheet
@@ -91,6 +92,7 @@ class Sheet:
 SHEETS: tuple[Sheet, ...] = (
     Sheet("summary", lambda b, v: summary_sheet(b, v.scan, v.uav, v.spec)),
     Sheet("design", lambda b, v: write_design_sheet(b, v.spec), "spec"),
+    Sheet("control", lambda b, v: control_sheet(b, v.spec), "spec"),
     Sheet("inputs", lambda b, v: inputs_sheet(b, v.scan, v.uav)),
     Sheet("constraints", lambda b, v: constraints_sheet(b), "film"),
     Sheet("sweep", lambda b, v: sweep_sheet(b, v.scan, v.spec), "film"),

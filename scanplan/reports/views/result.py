@@ -6,6 +6,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
+from .control import control_checks, control_rules_table, control_summary
 from .film import film_constraints
 from .headline import spec_film, spec_uav
 from .inputs import film_inputs
@@ -28,6 +29,9 @@ TABLES: dict[str, tuple[str, Callable[[Any], Table]]] = {
     "spec_film": ("spec.film", spec_film),
     "spec_uav": ("spec.uav", spec_uav),
     "comparison": ("spec", comparison),
+    "control": ("spec.control", control_summary),
+    "control_checks": ("spec.control", control_checks),
+    "control_rules": ("spec.control", control_rules_table),
     "film_warnings": ("scan", lambda plan: warnings(plan.warnings, "film")),
     "uav_warnings": ("uav", lambda plan: warnings(plan.warnings, "uav")),
     "spec_warnings": ("spec", lambda spec: warnings(spec.warnings, "spec")),
