@@ -34,6 +34,9 @@ BAD = {
     "scanplan norms import": (["norms", "import", "bad.csv", "--name", "x"],
                               "error: bad.csv: "),
     "scanplan norms template": (["norms", "template", "out.txt"], "error: FILE: "),
+    "scanplan aircraft list": (["aircraft", "list", "--camera", "nosuch"], "error: --camera: "),
+    "scanplan aircraft show": (["aircraft", "show", "nosuch"],
+                               "error: AIRCRAFT_ID: unknown aircraft 'nosuch'"),
 }
 """A bad input for every command (``norms list`` takes none but a bad choice)."""
 

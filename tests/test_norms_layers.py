@@ -15,8 +15,8 @@ PKG = Path(scanplan.__file__).parent
 NORMS = PKG / "norms"
 
 # Bottom first: a module may import only the modules listed before it.
-ORDER = ("schema", "paths", "citations", "control", "airspace", "limits", "recovery", "records",
-         "store", "cells", "grid",
+ORDER = ("schema", "paths", "citations", "control", "airspace", "aircraft", "limits",
+         "recovery", "records", "store", "cells", "grid",
          "sheetscan", "xlsx",
          "csvfile", "importer", "writer", "export", "template")
 # scanplan modules above the norms layer (reports, project files, the CLI and the API).

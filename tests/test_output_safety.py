@@ -523,10 +523,12 @@ def test_a_report_into_a_missing_folder_is_refused_before_the_plan(args, tmp_pat
 
 
 def _polygon_project(folder: Path, name: str, flight_min: int) -> Path:
-    """The town example as ``name`` with ``max_flight_time_min`` (sorties change with it)."""
+    """The town example as ``name`` with ``max_flight_time_min`` in place of its aircraft
+    (sorties change with it)."""
     text = (EXAMPLES / "uav-town-2000.toml").read_text(encoding="utf-8")
     text = text.replace('file = "areas/', f'file = "{EXAMPLES}/areas/')
-    text = text.replace("max_flight_time_min = 25", f"max_flight_time_min = {flight_min}")
+    text = text.replace('aircraft = "dji-m350-rtk"', f"max_flight_time_min = {flight_min}")
+    assert f"max_flight_time_min = {flight_min}" in text  # the example still names its aircraft
     path = folder / name
     path.write_text(text, encoding="utf-8")
     return path

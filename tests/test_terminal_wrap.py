@@ -12,6 +12,7 @@ scale = 2000
 relief_interval_m = 0.5
 [uav]
 camera = "dji-zenmuse-p1-35"
+max_flight_time_min = 60   # one sortie: the P1 is carried by more than one aircraft
 [area]
 polygon = [[55.08, 38.78], [55.08, 38.80], [55.07, 38.80], [55.07, 38.78]]
 """

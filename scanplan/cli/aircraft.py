@@ -48,6 +48,10 @@ def aircraft_list(camera: str | None, as_json: bool, locale: str = "en") -> None
     from ..norms.aircraft import all_aircraft, carriers_of, flight_model_params
     from ..reports.text import table
 
+    if camera:
+        from ..norms import load_norm_set
+
+        load_norm_set("gkinp-02-036-02").camera(camera, "--camera")  # an unknown id: exit 2
     crafts = carriers_of(camera) if camera else [a for _, a in sorted(all_aircraft().items())]
     if as_json:
         _echo_json([_record(a) for a in crafts])

@@ -335,6 +335,19 @@ def pack_sorties(path_m: np.ndarray, exposure_strip: np.ndarray, run_in_m: np.nd
                           [sorted(set(exposure_strip.tolist()))],
                           [length], [t_in + float(t_out[0])], [cost], [0],
                           [home] if home is not None else []), None
+    return _pack_greedy(path_m, eq, exposure_strip, legs, fixed, overhead_m, float(limit_m),
+                        max_minutes)
+
+
+def _pack_greedy(path_m: np.ndarray, eq: np.ndarray, exposure_strip: np.ndarray,
+                 legs: Callable[[int, np.ndarray], tuple[float, np.ndarray,
+                                                         tuple[float, float] | None]],
+                 fixed: float, overhead_m: float, limit_m: float,
+                 max_minutes: float | None) -> tuple[SortiePlan, Message | None]:
+    """Each sortie as long as the battery allows, in flight order: the sorties of
+    :func:`pack_sorties` when a battery limit is given (``fixed``: the run-in and the
+    run-out, ``overhead_m``: what every sortie costs beyond its path) [m]."""
+    n = len(path_m)
     sortie = np.zeros(n, dtype=np.int64)
     plan = SortiePlan(sortie, [], [], [])
     a = 0

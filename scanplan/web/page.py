@@ -121,8 +121,8 @@ TEXTS: dict[str, dict[str, str]] = {
         "no_basemap": "Нет подложки: участок рисуется "
         "вслепую. Выберите:",
         "basemap_unreachable": "{name} не отвечает (нет сети?). Выберите другую подложку:",
-        "camera": "Камера", "no_camera": "Камера не выбрана",
-        "need_camera": "Выберите камеру: расчёт последует.",
+        "camera": "Аэрофотоаппарат", "no_camera": "Аэрофотоаппарат не выбран",
+        "need_camera": "Выберите аэрофотоаппарат: расчёт последует.",
         "stale": "Показаны результаты последних данных, по которым удалось рассчитать, а не "
                  "текущих.",
         "constraints_caption": "Условия и их пределы",
@@ -155,7 +155,7 @@ TEXTS: dict[str, dict[str, str]] = {
         "lbl.project.agreed_position": "Согласовано (заказчик): должность",
         "lbl.project.agreed_name": "Согласовано (заказчик): ФИО",
         "lbl.project.agreed_organisation": "Согласовано (заказчик): организация",
-        "lbl.project.purpose": "Назначение съёмки", "lbl.project.height_system":
+        "lbl.project.purpose": "Назначение работ", "lbl.project.height_system":
         "Система высот",
         "area": "Участок", "draw": "Нарисуйте участок на карте (многоугольник, слева вверху)",
         "drop": "…или перетащите сюда KML, KMZ, GeoJSON, GeoPackage или CSV вершин",
