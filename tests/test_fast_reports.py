@@ -178,7 +178,8 @@ def test_plan_out_with_and_without_the_worker_is_byte_identical(tmp_path, monkey
         out = tmp_path / name
         r = CliRunner().invoke(main, ["plan", str(EXAMPLE), "--out", str(out)])
         assert r.exit_code == 0, r.output
-        outs[name] = {p.name: p.read_bytes() for p in sorted(out.iterdir())}
+        outs[name] = {p.name: p.read_bytes() for p in sorted(out.iterdir())
+                      if not p.name.startswith(".")}  # the files, not their sets' folder
     assert outs["worker"] == outs["inprocess"]
     assert set(outs["worker"]) == {"spec.pdf", "spec.xlsx"}
 

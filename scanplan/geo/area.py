@@ -34,6 +34,7 @@ import os
 import re
 import warnings
 import zipfile
+import zlib
 from collections import OrderedDict
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
@@ -48,6 +49,7 @@ from ..errors import InputError
 from ..io.files import read_limited, size_text
 from . import crs as geocrs
 from .gdal_guard import KIND_NAMES, harden, import_pyogrio, indirection, read_head, sniff
+from .grids import require_grids
 from .layout import Area
 from .vertices import VERTEX_SUFFIXES, read_vertices
 
@@ -312,6 +314,8 @@ def _read_file(path: Path, layer: str | None, feature: str | int | None
             continue
         geoms = shapely.from_wkb(wkb, on_invalid="ignore")
         crs = geocrs.crs(meta["crs"]) if meta.get("crs") else None
+        if crs is not None:
+            require_grids(crs, name)
         labels = _labels(meta, fields, len(geoms))
         for label, g in zip(labels, geoms, strict=True):
             if g is None or g.is_empty:
@@ -543,8 +547,8 @@ def _kmz_document(data: bytes, name: str) -> bytes:
         try:
             with zf.open(doc) as fh:
                 out = fh.read(doc.file_size + 1)
-        except (zipfile.BadZipFile, OSError, ValueError, RuntimeError,
-                NotImplementedError) as exc:
+        except (zipfile.BadZipFile, OSError, ValueError, RuntimeError, EOFError,
+                NotImplementedError, zlib.error) as exc:  # zlib: damaged compressed data
             raise InputError(name, f"entry {doc.filename!r} cannot be read: {exc}") from None
         if len(out) > doc.file_size:
             raise InputError(name, f"entry {doc.filename!r} is larger than its zip directory "
@@ -559,11 +563,13 @@ def _crs(value: str | int, key: str) -> pyproj.CRS:
     import pyproj
 
     try:
-        return geocrs.crs(value)
+        crs = geocrs.crs(value)
     except (pyproj.exceptions.CRSError, TypeError, ValueError):
         raise InputError(key, f"{value!r} is not a CRS that pyproj knows; give an EPSG code "
                          "such as \"EPSG:32637\" (UTM 37N) or \"EPSG:28407\" (Pulkovo 1942 / "
                          "Gauss–Krüger zone 7)") from None
+    require_grids(crs, key)
+    return crs
 
 
 def _n_vertices(geom: Any) -> int:

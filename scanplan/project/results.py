@@ -188,6 +188,10 @@ class PlanResult:
     rule of a block, the sun window (:mod:`scanplan.project.design`)."""
     area: Area | None = None  # the contract area ([area]), in its planning CRS
     control: ControlSpec | None = None  # [control]: GCPs, checkpoints, the error budget
+    backgrounds: dict[str, Any] = field(default_factory=dict)
+    """``[map] basemap`` as a tile URL: each map page's background by job (``"uav"``,
+    ``"film"``), a :class:`scanplan.geo.basemap.Basemap` in its layout's planning CRS
+    (:mod:`scanplan.project.background`)."""
 
     @property
     def layouts(self) -> dict[str, FlightLayout]:

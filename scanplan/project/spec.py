@@ -27,6 +27,7 @@ from ..norms.store import one_version
 from ..rules.film import PlanWarning, ScanScenario
 from .aircraftplan import aircraft_warnings
 from .archive import archive_film
+from .background import map_backgrounds
 from .control import ControlSpec, plan_control
 from .design import survey_design
 from .file import Project
@@ -471,8 +472,13 @@ def _planned(project: ProjectModel) -> PlanResult:
     control = _control(project, uav, area)
     if control is not None:
         warnings.extend(control.warnings)
+    layouts = {k: p.layout for k, p in (("uav", uav), ("film", film))
+               if p is not None and p.layout is not None}
+    backgrounds, warned = map_backgrounds(project, layouts)
+    warnings.extend(warned)
     return PlanResult(project=project, meta=project.meta, film=film, uav=uav, comparison=comparison,
-                      warnings=tuple(warnings), area=area, design=design, control=control)
+                      warnings=tuple(warnings), area=area, design=design, control=control,
+                      backgrounds=backgrounds)
 
 
 def _control(project: ProjectModel, uav: UavSpec | None, area: Area | None

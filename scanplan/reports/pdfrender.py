@@ -110,12 +110,12 @@ def html_to_pdf(html: str, url_fetcher: Any = None, *, fresh_fonts: bool = False
     """
     fetcher = url_fetcher if url_fetcher is not None else BundledAssetFetcher()
     root = templates_dir().resolve()
+    fonts = FontConfiguration() if fresh_fonts else _fonts(str(root))  # before the sheet
     sheets = []
     if not fresh_fonts and _STYLESHEET_LINK in html:  # the stylesheet parsed once
         html = html.replace(_STYLESHEET_LINK, "", 1)
         sheets = [_stylesheet(str(root))]
     doc = weasyprint.HTML(string=html, base_url=root.as_uri() + "/", url_fetcher=fetcher)
-    fonts = FontConfiguration() if fresh_fonts else _font_config(str(root))
     return doc.write_pdf(pdf_identifier=True,  # type: ignore[no-any-return]
                          font_config=fonts, stylesheets=sheets)
 
@@ -138,19 +138,44 @@ def _stylesheet(root: str) -> Any:
     """
     path = Path(root) / "report.css"
     return weasyprint.CSS(string=path.read_text(encoding="utf-8"), base_url=path.as_uri(),
-                          url_fetcher=BundledAssetFetcher(root), font_config=_font_config(root))
+                          url_fetcher=BundledAssetFetcher(root), font_config=_fonts(root))
+
+
+def _temp() -> str:
+    """The temporary folder WeasyPrint's font folder goes into (the run's folder:
+    :mod:`scanplan.io.rundir`)."""
+    import tempfile
+
+    return tempfile.gettempdir()
+
+
+def _fonts(root: str) -> FontConfiguration:
+    """:func:`_font_config` of the templates folder ``root`` and the temporary folder, made
+    again when the folder WeasyPrint keeps the fonts in has gone meanwhile (a run's
+    folder removed, a temporary folder cleaned by another program): its cached fonts would
+    name files that no longer exist."""
+    fonts = _font_config(root, _temp())
+    folder = getattr(fonts, "_folder", None)  # WeasyPrint's folder of @font-face files
+    if folder is not None and not os.path.isdir(folder):
+        _font_config.cache_clear()
+        _stylesheet.cache_clear()  # its @font-face files were in the folder that went
+        fonts = _font_config(root, _temp())
+    return fonts
 
 
 @functools.lru_cache(maxsize=2)
-def _font_config(root: str) -> FontConfiguration:
+def _font_config(root: str, temp: str = "") -> FontConfiguration:
     """The fonts, ready for every PDF of this process (a batch renders many).
 
     A :class:`weasyprint.text.fonts.FontConfiguration` loads fontconfig's list of the
     system's fonts when made, and registers the bundled fonts of ``@font-face`` the first
-    time a document names them; one per templates folder ``root`` and process keeps both
-    (and WeasyPrint's per-font caches) from one report to the next.
+    time a document names them, writing them into a folder of the temporary folder
+    ``temp``; one per templates folder ``root``, temporary folder and process keeps both
+    (and WeasyPrint's per-font caches) from one report to the next. A run's temporary
+    folder is removed when the run ends (:mod:`scanplan.io.rundir`): the next run in the
+    same process (a test's) gets fonts of its own.
     """
-    del root  # the cache key: the bundled fonts of another folder get their own
+    del root, temp  # the cache key: another folder gets fonts of its own
     return FontConfiguration()
 
 

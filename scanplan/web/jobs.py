@@ -192,6 +192,8 @@ def files_job(project: Any, files: Mapping[str, str], what: str) -> tuple[str, b
     (file name, bytes)."""
     if what not in ("pdf", "xlsx", "zip"):
         raise InputError("what", f'must be "pdf", "xlsx" or "zip" (got {what!r})')
+    if what == "zip":
+        project, files = _inputs_apart(project, files)
     with _planned(project, files) as (result, text, folder):
         reports = _reports(result, ("pdf", "xlsx") if what == "zip" else (what,))
         if what != "zip":
@@ -224,6 +226,38 @@ def _zip(result: Any, text: str, folder: Path, files: Mapping[str, str],
         for path, (_kind, data) in sorted(export_files(result, "").items()):
             zf.writestr(path, _scrub_text_file(path, data, folder))
     return out.getvalue()
+
+
+INPUTS_FOLDER = "inputs"
+"""The zip's folder for an uploaded file named like one of the outputs."""
+
+
+def _is_output_name(name: str) -> bool:
+    """Whether a file of the zip's top level could have this name: the reports, the
+    project file, an exported file (:data:`scanplan.geo.export.formats.FORMATS`)."""
+    from ..geo.export.formats import FORMATS
+
+    if name.casefold() in {PROJECT_NAME, "spec.pdf", "spec.xlsx"}:
+        return True
+    return any(re.fullmatch(f"(?:film-)?{f.name_pattern()}", name, re.IGNORECASE)
+               for f in FORMATS)
+
+
+def _inputs_apart(project: Any, files: Mapping[str, str]) -> tuple[Any, dict[str, str]]:
+    """The project and its uploads with every upload named like an output
+    (``flight.kml``) moved to ``inputs/`` — the project's keys follow — so that the zip
+    holds each file once and, unpacked, plans the same area again."""
+    renamed = {name: f"{INPUTS_FOLDER}/{name}" for name in files
+               if isinstance(name, str) and _is_output_name(name)}
+    if not renamed or not isinstance(project, dict):
+        return project, dict(files)
+    tables = {section: dict(table) if isinstance(table, dict) else table
+              for section, table in project.items()}
+    for section, key in FILE_KEYS:
+        table = tables[section] if section in tables else None
+        if isinstance(table, dict) and key in table and table[key] in renamed:
+            table[key] = renamed[table[key]]
+    return tables, {renamed.get(name, name): path for name, path in files.items()}
 
 
 _TEXT_EXPORTS = (".kml", ".geojson", ".csv", ".plan", ".waypoints", ".txt")
