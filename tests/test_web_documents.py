@@ -9,6 +9,7 @@ import time
 
 import pytest
 from fastapi.testclient import TestClient
+from web_helpers import LOCAL
 
 import scanplan.web.documents as docs
 from scanplan.web import jobs
@@ -50,7 +51,7 @@ def _settled(app, timeout_s: float = 120.0) -> None:
 
 def test_a_download_after_the_view_is_the_rendered_one(counted):
     app = create_app(planner=Planner(inline=True))
-    with TestClient(app) as client:
+    with TestClient(app, base_url=LOCAL) as client:
         assert client.post("/api/view", json={"project": UAV}).status_code == 200
         _settled(app)
         assert counted == [120]
@@ -63,7 +64,7 @@ def test_a_download_after_the_view_is_the_rendered_one(counted):
 def test_the_downloads_are_the_download_jobs_bytes(counted, monkeypatch):
     monkeypatch.setenv("SOURCE_DATE_EPOCH", "1700000000")
     app = create_app(planner=Planner(inline=True))
-    with TestClient(app) as client:
+    with TestClient(app, base_url=LOCAL) as client:
         client.post("/api/view", json={"project": UAV})
         _settled(app)
         for what in ("pdf", "xlsx"):
@@ -74,7 +75,7 @@ def test_the_downloads_are_the_download_jobs_bytes(counted, monkeypatch):
 def test_only_the_latest_quiet_request_is_rendered_ahead(counted, monkeypatch):
     monkeypatch.setattr(docs, "QUIET_S", 1.0)
     app = create_app(planner=Planner(inline=True))
-    with TestClient(app) as client:
+    with TestClient(app, base_url=LOCAL) as client:
         for h in (100, 110, 120):  # a user typing: each request shown replaces the last
             app.state.documents.ahead({**UAV, "uav": {**UAV["uav"], "height_m": h}}, {})
         _settled(app)
@@ -89,6 +90,6 @@ def test_only_the_latest_quiet_request_is_rendered_ahead(counted, monkeypatch):
 def test_a_bad_input_is_refused_as_before(counted):
     bad = {"project": {**UAV, "uav": {**UAV["uav"], "speed_ms": -3}}}
     app = create_app(planner=Planner(inline=True))
-    with TestClient(app) as client:
+    with TestClient(app, base_url=LOCAL) as client:
         r = client.post("/api/download/pdf", json=bad)
         assert r.status_code == 422 and "speed_ms" in r.json()["detail"]

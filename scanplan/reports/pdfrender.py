@@ -114,7 +114,7 @@ def html_to_pdf(html: str, url_fetcher: Any = None, *, fresh_fonts: bool = False
     sheets = []
     if not fresh_fonts and _STYLESHEET_LINK in html:  # the stylesheet parsed once
         html = html.replace(_STYLESHEET_LINK, "", 1)
-        sheets = [_stylesheet(str(root))]
+        sheets = [_stylesheet(str(root), fonts)]
     doc = weasyprint.HTML(string=html, base_url=root.as_uri() + "/", url_fetcher=fetcher)
     return doc.write_pdf(pdf_identifier=True,  # type: ignore[no-any-return]
                          font_config=fonts, stylesheets=sheets)
@@ -125,7 +125,7 @@ _STYLESHEET_LINK = '<link rel="stylesheet" href="report.css">'
 
 
 @functools.lru_cache(maxsize=2)
-def _stylesheet(root: str) -> Any:
+def _stylesheet(root: str, fonts: FontConfiguration) -> Any:
     """The bundled ``report.css``, parsed once per process (and its fonts registered with
     the process's fonts): WeasyPrint would parse it, and compile its selectors, for every
     document — about a tenth of a report's render.
@@ -134,11 +134,12 @@ def _stylesheet(root: str) -> Any:
     report's only other styles are its ``<style>`` (the page footer), which follows the
     link and so won over it before as it wins over a user stylesheet now, and the user
     agent's, which both override alike; the stylesheet has no ``!important``. The pages are
-    the same (tests/test_fast_reports.py compares them as images).
+    the same (tests/test_fast_reports.py compares them as images). Kept per font
+    configuration ``fonts``: its @font-face files are registered with those fonts.
     """
     path = Path(root) / "report.css"
     return weasyprint.CSS(string=path.read_text(encoding="utf-8"), base_url=path.as_uri(),
-                          url_fetcher=BundledAssetFetcher(root), font_config=_fonts(root))
+                          url_fetcher=BundledAssetFetcher(root), font_config=fonts)
 
 
 def _temp() -> str:
@@ -158,7 +159,6 @@ def _fonts(root: str) -> FontConfiguration:
     folder = getattr(fonts, "_folder", None)  # WeasyPrint's folder of @font-face files
     if folder is not None and not os.path.isdir(folder):
         _font_config.cache_clear()
-        _stylesheet.cache_clear()  # its @font-face files were in the folder that went
         fonts = _font_config(root, _temp())
     return fonts
 
