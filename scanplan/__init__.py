@@ -19,6 +19,9 @@ from typing import Any
 
 from ._version import __version__
 from .errors import InputError
+from .offline import proj_offline
+
+proj_offline()  # before any CRS is built, in every process that runs scanplan
 
 __all__ = ["BatchResult", "InputError", "ProjectResult", "ScanResult", "UavResult",
            "__version__", "batch", "load_norm_set", "plan", "scan", "sweep", "uav"]

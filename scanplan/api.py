@@ -84,10 +84,13 @@ def _write(out_dir: str | os.PathLike[str], stem: str, formats: Iterable[str], *
     created = doc.make_folder(folder)
     targets = [doc.Target(str(Path(folder) / f"{stem}.{kind}"), kind, "out_dir")
                for kind in kinds]
+    from .io.rundir import temporaries
+
     try:
-        done = doc.write_documents(targets, scan=scan, uav=uav, spec=spec,
-                                   meta=meta or ReportMeta(), force=force,
-                                   inputs=[*inputs, *doc.project_inputs(spec)])
+        with temporaries():  # the renderers' temporary files in the process's run folder
+            done = doc.write_documents(targets, scan=scan, uav=uav, spec=spec,
+                                       meta=meta or ReportMeta(), force=force,
+                                       inputs=[*inputs, *doc.project_inputs(spec)])
     finally:  # a folder created here stays only if something was written into it
         doc.remove_empty(created)
     return [Path(p) for p in done.files]

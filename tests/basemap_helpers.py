@@ -6,6 +6,7 @@ from __future__ import annotations
 import io
 import sqlite3
 import threading
+from collections.abc import Callable
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from pathlib import Path
 
@@ -84,10 +85,12 @@ def write_mbtiles(path: Path, colour: tuple[int, int, int], zooms: range = range
 
 
 class TileServer:
-    """An XYZ tile server on 127.0.0.1 answering every ``/{z}/{x}/{y}.png`` with one colour,
-    counting the requests (``hits``); a context manager."""
+    """An XYZ tile server on 127.0.0.1 answering every ``/{z}/{x}/{y}.png`` with one colour
+    (only those ``has(z, x, y)`` is true for, when given; 404 for the others), counting the
+    requests (``hits``); a context manager."""
 
-    def __init__(self, colour: tuple[int, int, int]) -> None:
+    def __init__(self, colour: tuple[int, int, int],
+                 has: Callable[[int, int, int], bool] | None = None) -> None:
         data = tile_png(colour)
         hits: list[str] = []
         self.hits = hits
@@ -95,6 +98,10 @@ class TileServer:
         class Handler(BaseHTTPRequestHandler):
             def do_GET(self) -> None:
                 hits.append(self.path)
+                z, x, y = (int(v) for v in self.path.removesuffix(".png").split("/")[-3:])
+                if has is not None and not has(z, x, y):
+                    self.send_error(404)
+                    return
                 self.send_response(200)
                 self.send_header("Content-Type", "image/png")
                 self.send_header("Content-Length", str(len(data)))

@@ -52,21 +52,58 @@ def _fuzz_counts() -> dict[str, int]:
     return dict(getattr(sys.modules.get("test_fuzz"), "COUNTS", None) or {})
 
 
+def _campaign() -> dict[str, dict[str, int]]:
+    """This process's hostile-input campaign: inputs per kind, and outcomes
+    (tests/test_campaign.py; none: not run here)."""
+    import sys
+
+    module = sys.modules.get("test_campaign")
+    return {"campaign_counts": dict(getattr(module, "COUNTS", None) or {}),
+            "campaign_outcomes": dict(getattr(module, "OUTCOMES", None) or {})}
+
+
 def pytest_sessionfinish(session, exitstatus):
-    """A pytest-xdist worker hands its fuzz counts to the controller."""
+    """A pytest-xdist worker hands its fuzz and campaign counts to the controller."""
     if hasattr(session.config, "workeroutput"):
         session.config.workeroutput["fuzz_counts"] = _fuzz_counts()
+        session.config.workeroutput.update(_campaign())
 
 
 @pytest.hookimpl(optionalhook=True)
 def pytest_testnodedown(node, error):
-    """The controller adds up the fuzz counts of its pytest-xdist workers."""
-    counts = node.config.stash.setdefault(_WORKER_COUNTS, {})
-    for family, n in (getattr(node, "workeroutput", None) or {}).get("fuzz_counts", {}).items():
-        counts[family] = counts.get(family, 0) + n
+    """The controller adds up the fuzz and campaign counts of its pytest-xdist workers."""
+    output = getattr(node, "workeroutput", None) or {}
+    for key, stash in (("fuzz_counts", _WORKER_COUNTS), ("campaign_counts", _CAMPAIGN),
+                       ("campaign_outcomes", _OUTCOMES)):
+        counts = node.config.stash.setdefault(stash, {})
+        for family, n in output.get(key, {}).items():
+            counts[family] = counts.get(family, 0) + n
 
 
 _WORKER_COUNTS = pytest.StashKey[dict]()
+_CAMPAIGN = pytest.StashKey[dict]()
+_OUTCOMES = pytest.StashKey[dict]()
+
+
+def _campaign_summary(terminalreporter, config) -> None:
+    """Print the hostile-input campaign: inputs per kind and every outcome counted."""
+    own = _campaign()
+    totals = []
+    for key, stash in (("campaign_counts", _CAMPAIGN), ("campaign_outcomes", _OUTCOMES)):
+        counts = dict(own[key])
+        for family, n in config.stash.get(stash, {}).items():
+            counts[family] = counts.get(family, 0) + n
+        totals.append(counts)
+    counts, outcomes = totals
+    if not counts:
+        return
+    terminalreporter.write_sep("-", f"hostile-input campaign: {sum(counts.values()):,} inputs")
+    for family, n in sorted(counts.items()):
+        terminalreporter.write_line(f"  {family:<36} {n:>6,}")
+    for name in ("tracebacks", "connections", "bytes lost", "litter left"):
+        outcomes.setdefault(name, 0)
+    terminalreporter.write_line("  outcomes: " + ", ".join(
+        f"{name} {n:,}" for name, n in sorted(outcomes.items())))
 
 
 def pytest_terminal_summary(terminalreporter, exitstatus, config):
@@ -74,6 +111,7 @@ def pytest_terminal_summary(terminalreporter, exitstatus, config):
     workers when the tests run in parallel (``-n``)."""
     import os
 
+    _campaign_summary(terminalreporter, config)
     counts = _fuzz_counts()
     for family, n in config.stash.get(_WORKER_COUNTS, {}).items():
         counts[family] = counts.get(family, 0) + n

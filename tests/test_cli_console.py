@@ -171,13 +171,13 @@ def test_formats_choose_the_outputs(tmp_path):
     r = runner.invoke(main, ["plan", str(small), "--out", str(tmp_path / "m"),
                              "--formats", "missions"])
     assert r.exit_code == 0, r.output
-    names = sorted(p.name for p in (tmp_path / "m").iterdir())
+    names = sorted(p.name for p in (tmp_path / "m").iterdir() if not p.name.startswith("."))
     assert names and all(n.startswith("mission") for n in names)
     assert any(n.endswith(".plan") for n in names) and any(n.endswith(".waypoints")
                                                             for n in names)
     r = runner.invoke(main, ["plan", str(small), "--out", str(tmp_path / "g"),
                              "--formats", "gis,xlsx"])
-    assert sorted(p.name for p in (tmp_path / "g").iterdir()) == [
+    assert sorted(p.name for p in (tmp_path / "g").iterdir() if p.name[0] != ".") == [
         "flight.geojson", "flight.gpkg", "flight.kml", "photos.csv", "spec.xlsx"]
     bad = runner.invoke(main, ["plan", str(small), "--out", str(tmp_path / "x"),
                                "--formats", "xlsx,docx"])
@@ -208,7 +208,7 @@ def test_without_pdf_engine_the_rest_is_written(tmp_path, no_pdf_engine):
     r = _run(["plan", str(small), "--out", str(out)], no_pdf_engine)
     err = r.stderr.decode("utf-8")
     assert r.returncode == 0, err
-    names = {p.name for p in out.iterdir()}
+    names = {p.name for p in out.iterdir() if not p.name.startswith(".")}
     assert "spec.xlsx" in names and "spec.pdf" not in names
     assert {"flight.kml", "flight.geojson", "photos.csv"} <= names
     assert any(n.startswith("mission") and n.endswith(".plan") for n in names)
@@ -219,5 +219,5 @@ def test_without_pdf_engine_the_rest_is_written(tmp_path, no_pdf_engine):
     named = _run(["plan", str(small), "--out", str(tmp_path / "n"), "--formats",
                   "xlsx,pdf"], no_pdf_engine)
     assert named.returncode == 1
-    assert {p.name for p in (tmp_path / "n").iterdir()} == {"spec.xlsx"}
+    assert {p.name for p in (tmp_path / "n").iterdir() if p.name[0] != "."} == {"spec.xlsx"}
     assert "error: the PDF was not written" in named.stderr.decode("utf-8")

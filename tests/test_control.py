@@ -357,3 +357,30 @@ def test_the_pages_map_data_carries_the_markers(town):
     assert [f["properties"]["id"] for f in marks] == list(c["id"])
     lon = np.array([f["geometry"]["coordinates"][0] for f in marks])
     assert np.abs(lon - c["lon_deg"]).max() < 1e-8
+
+
+def test_asprs_count_stops_where_the_read_row_of_its_table_ends(tmp_path):
+    """ASPRS Ed. 2, Annex C, Table C.1: only its first row (30 checkpoints up to 500 km²) is
+    encoded — the primary table was not read, and the further rows seen only at second hand
+    are not encoded (docs/control.md, "What was read of each source"). So 500 km² still
+    gets the table's 30, and 501 km² with ``checkpoints = "asprs"`` is refused naming the
+    key, while a number given by the project is taken as it is."""
+    from types import SimpleNamespace
+
+    from scanplan.project.control import _checkpoint_count
+    from scanplan.project.model import build_model
+
+    rules = control_rules()
+    project = build_model(load_project(_town(tmp_path, 'mode = "gcp"\n')))
+    c = project.control
+    assert _checkpoint_count(project, c, SimpleNamespace(area_km2=500.0), rules) == (30, "asprs")
+    with pytest.raises(InputError) as e:
+        _checkpoint_count(project, c, SimpleNamespace(area_km2=501.0), rules)
+    assert "control.checkpoints" in e.value.field
+    assert "further rows were not read" in e.value.message
+    assert "not read" in rules["asprs_checkpoints"].note
+    assert "not read" in rules["asprs_control_ratio"].note
+    (tmp_path / "n").mkdir()
+    given = build_model(load_project(_town(tmp_path / "n", 'mode = "gcp"\ncheckpoints = 40\n')))
+    assert _checkpoint_count(given, given.control, SimpleNamespace(area_km2=501.0),
+                             rules) == (40, "project")

@@ -18,7 +18,7 @@ PKG = Path(scanplan.__file__).parent
 
 # bottom → top; a module's layer is found by its first name below ``scanplan``
 LAYERS: list[tuple[str, set[str]]] = [
-    ("base", {"errors", "i18n", "_version", "io", "progress", "extras"}),
+    ("base", {"errors", "i18n", "_version", "io", "progress", "extras", "offline"}),
     ("core", {"core"}),
     ("rules", {"rules"}),
     ("norms", {"norms"}),

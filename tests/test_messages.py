@@ -384,6 +384,7 @@ def emitted(tmp_path_factory) -> dict[str, list[Any]]:
         'pixel_um = 100\nfocal_mm = 1\nsensor_mm = "36x24"').replace(
         "max_height_m = 500", "max_height_m = 500\ngsd_cm = 0.01")
     out["files not written"] = _export_notes_cases()
+    out.update(_tile_cases(tmp))
     for name, text in variants.items():
         r = _project(tmp, name.replace(" ", "-"), text)
         found = [w.message for w in r.warnings]
@@ -403,6 +404,32 @@ def _plans_messages(uav: Any) -> list[Any]:
     out: list[Any] = [uav.choice] if uav.choice is not None else []
     for a in uav.alternatives:
         out += [describe(a), *a.rejected_because, *a.findings]
+    return out
+
+
+def _tile_cases(tmp: Path) -> dict[str, list[Any]]:
+    """``[map] basemap`` as a tile URL whose server is gone, or lacks some tiles (a tile
+    server on 127.0.0.1; the tile cache in ``tmp``)."""
+    import socket
+
+    from basemap_helpers import TileServer
+
+    town = (EXAMPLES / "uav-town-2000.toml").read_text(encoding="utf-8").replace(
+        'file = "areas/', f'file = "{(EXAMPLES / "areas").as_posix()}/')
+    with socket.socket() as sock:
+        sock.bind(("127.0.0.1", 0))
+        closed = sock.getsockname()[1]
+    out: dict[str, list[Any]] = {}
+    with pytest.MonkeyPatch.context() as mp, TileServer((0, 0, 0), has=lambda z, x, y: x % 2
+                                                        ) as tiles:
+        mp.setenv("XDG_CACHE_HOME", str(tmp / "cache"))
+        for name, url in (("plan tiles unreachable", f"http://localhost:{closed}/{{z}}/{{x}}/"
+                           "{y}.png"), ("plan tiles missing", tiles.url.replace(
+                               "127.0.0.1", "localhost"))):  # a host name, as in use
+            text = town.replace("[map]\n", f'[map]\nbasemap = "{url}"\n'
+                                'basemap_attribution = "test"\n', 1)
+            out[name] = [w.message for w in _project(tmp, name.replace(" ", "-"),
+                                                     text).warnings]
     return out
 
 

@@ -10,6 +10,7 @@ temporaries of a killed write are removed by the next write). Most cases render 
 
 from __future__ import annotations
 
+import contextlib
 import errno
 import io
 import multiprocessing as mp
@@ -595,7 +596,27 @@ def planned(monkeypatch, town_plans, marked_renders):
 
 
 def _visible(folder: Path) -> dict[str, bytes]:
-    return {p.name: p.read_bytes() for p in folder.iterdir() if not p.name.startswith(".")}
+    """The files a reader finds in ``folder``: name → bytes (a link that leads nowhere —
+    a name the visible set does not hold — is no file)."""
+    out = {}
+    for p in folder.iterdir():
+        if not p.name.startswith("."):
+            with contextlib.suppress(FileNotFoundError):
+                out[p.name] = p.read_bytes()
+    return out
+
+
+def _hidden(folder: Path) -> list[str]:
+    """Hidden things in ``folder`` other than its sets, and in its sets anything but the
+    current set and the one before it (a temporary, a backup, a journal, a half-made set)."""
+    from scanplan.io.folderset import SETS
+
+    sets = folder / SETS
+    inside = sorted(os.listdir(sets)) if sets.is_dir() else []
+    keep = {"current", "previous", *(os.readlink(sets / n) for n in ("current", "previous")
+                                      if (sets / n).is_symlink())}
+    return [n for n in os.listdir(folder) if n.startswith(".") and n != SETS] + [
+        f"{SETS}/{n}" for n in inside if n not in keep]
 
 
 def _write_set(work: Path, stem: str) -> dict[str, bytes]:
@@ -607,18 +628,20 @@ def _write_set(work: Path, stem: str) -> dict[str, bytes]:
 
 def _killed_at(step: int, work: Path) -> int:
     """Run ``plan new.toml --out out`` in a child that is killed (SIGKILL) just before its
-    ``step``-th rename, link or unlink in the folder; its exit code (0: it finished)."""
+    ``step``-th change of the folder's entries (a rename, a link or symbolic link, an
+    unlink, a folder made or removed); its exit code (0: it finished)."""
     import signal
 
     out = os.path.abspath(work / "out")
 
     def child() -> None:
         count = [0]
-        for name in ("replace", "rename", "link", "unlink"):
+        for name in ("replace", "rename", "link", "symlink", "unlink", "mkdir", "rmdir"):
             real = getattr(os, name)
 
             def op(*args, _real=real, **kw):
-                if any(os.path.abspath(os.fspath(a)).startswith(out) for a in args[:2]):
+                if any(os.path.abspath(os.fspath(a)).startswith(out) for a in args[:2]
+                       if isinstance(a, str | os.PathLike)):
                     count[0] += 1
                     if count[0] == step:
                         os.kill(os.getpid(), signal.SIGKILL)
@@ -626,6 +649,8 @@ def _killed_at(step: int, work: Path) -> int:
 
             setattr(os, name, op)
         r = cli("plan", "new.toml", "--out", "out", "--force")
+        if r.exit_code:
+            print(r.output, repr(r.exception), file=sys.stderr, flush=True)
         os._exit(r.exit_code)
 
     p = mp.get_context("fork").Process(target=child)
@@ -635,36 +660,55 @@ def _killed_at(step: int, work: Path) -> int:
 
 
 def test_a_polygon_plan_killed_at_every_step_leaves_all_old_or_all_new(work, planned):
-    """Bug: a kill -9 after the reports' commit left an old mission-03 beside a new plan
-    of fewer sorties (29 of 42 crash points gave a mixed set). Killed before each rename,
-    link and unlink of the set (reports, missions, GIS files, photo table, the sweep of
-    the stale missions), the folder — once the next write has recovered it — holds the old
-    set or the new one, byte for byte, and nothing else."""
-    from scanplan.io.journal import recover
-
+    """Bug: a kill -9 between two renames left an old mission-03 beside a new plan of
+    fewer sorties in the folder, until the next write recovered it — a crew copying the
+    missions after a crash took a mixed set. Killed before each change of the folder's
+    entries (every rename, link, unlink, folder made or removed: the new set built, the
+    plain files of the old layout adopted, the links made, the swap, the stale missions'
+    links dropped), the folder **at the instant after the kill** — no recovery — shows a
+    reader the old set or the new one, byte for byte; the next write leaves nothing
+    behind."""
     _polygon_project(work, "old.toml", 25)
     _polygon_project(work, "new.toml", 60)
     new = _write_set(work, "new")
     old = _write_set(work, "old")
     assert len([n for n in old if n.endswith(".plan")]) > len(
         [n for n in new if n.endswith(".plan")])  # the new plan has fewer sorties
-    outcomes = []
-    for step in range(1, 500):
-        code = _killed_at(step, work)
-        if code == 0:  # the child ran to the end: every step was tried
-            break
-        assert code == -9, code
-        recover([work / "out"])  # what the next write into the folder does first
-        after = _visible(work / "out")
-        assert after in (old, new), (f"killed at step {step}: a mixed set", sorted(
-            n for n in set(after) | set(old) if after.get(n) != old.get(n)), sorted(
-            n for n in set(after) | set(new) if after.get(n) != new.get(n)))
-        outcomes.append("new" if after == new else "old")
-        _write_set(work, "old")  # the next write: the old set again, nothing left over
-        assert [n for n in os.listdir(work / "out") if n.startswith(".")] == []
-    assert _visible(work / "out") == new
-    assert len(outcomes) > 2 * len(new)  # a link and a rename per file, the sweep, journal
-    assert "old" in outcomes and "new" in outcomes  # the commit point lies between
+    for plain in (False, True):  # a folder of sets; one of plain files (adopted first)
+        outcomes = []
+        for step in range(1, 1000):
+            if plain:
+                _plain_files(work / "out")
+            code = _killed_at(step, work)
+            after = _visible(work / "out")  # the instant after the kill: nothing recovered
+            if code == 0:  # the child ran to the end: every step was tried
+                break
+            assert code == -9, code
+            assert after in (old, new), (f"killed at step {step}: a mixed set", sorted(
+                n for n in set(after) | set(old) if after.get(n) != old.get(n)), sorted(
+                n for n in set(after) | set(new) if after.get(n) != new.get(n)))
+            outcomes.append("new" if after == new else "old")
+            _write_set(work, "old")  # the next write: the old set again, nothing left over
+            assert _hidden(work / "out") == []
+        assert _visible(work / "out") == new
+        assert "old" in outcomes and "new" in outcomes  # the commit point lies between
+        if plain:  # each plain file linked and renamed while adopted
+            assert len(outcomes) > 2 * len(old)
+        _write_set(work, "old")
+
+
+def _plain_files(folder: Path) -> None:
+    """The folder as an earlier scanplan left it: plain files, no sets."""
+    import shutil
+
+    from scanplan.io.folderset import SETS
+
+    files = _visible(folder)
+    shutil.rmtree(folder / SETS, ignore_errors=True)
+    for p in folder.iterdir():
+        p.unlink()
+    for name, data in files.items():
+        (folder / name).write_bytes(data)
 
 
 def _writer_of(project: str, folder: str, rounds: int) -> None:
@@ -742,7 +786,7 @@ def test_different_projects_into_one_folder_never_delete_each_others_files(work,
     seen, mixed = q.get(timeout=10)
     assert seen > 0 and mixed == 0
     assert _visible(work / "out") in (town, block)
-    assert [n for n in os.listdir(work / "out") if n.startswith(".")] == []
+    assert _hidden(work / "out") == []
 
 
 @pytest.mark.parametrize("name", ["flight.kml", "flight.geojson"])

@@ -18,7 +18,7 @@ from click.testing import CliRunner
 from terrain_helpers import write_dem
 
 from scanplan.cli.main import main
-from scanplan.geo.directions import long_axis_deg
+from scanplan.geo.direction import long_axis_deg
 from scanplan.project.file import load_project, parse_project
 from scanplan.project.flightplan import uav_flight_figures
 from scanplan.project.spec import plan_project

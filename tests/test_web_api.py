@@ -15,7 +15,7 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 from fastapi.testclient import TestClient
-from web_helpers import EXAMPLES, example_request
+from web_helpers import EXAMPLES, LOCAL, UPLOAD, example_request
 
 from scanplan.cli.main import main
 from scanplan.web.app import MAX_BODY_BYTES, create_app
@@ -33,7 +33,8 @@ UAV = {"project": {"name": "Block", "locale": "en"},
 @pytest.fixture(scope="module")
 def client():
     store = UploadStore(max_upload_bytes=4 * 1024 * 1024)
-    with TestClient(create_app(planner=Planner(inline=True), uploads=store)) as c:
+    with TestClient(create_app(planner=Planner(inline=True), uploads=store),
+                    base_url=LOCAL) as c:
         yield c
     assert not store.root.exists()  # every upload removed when the server stops
 
@@ -198,7 +199,8 @@ def test_hostile_uploads_are_refused_by_the_cli_readers(client, tmp_path, case):
         data = _huge_dem(tmp_path) if case == "huge dem" else b"%PDF-1.4 not a raster"
         key = ("terrain", "dem")
         says = "more than 1,000,000" if case == "huge dem" else "not a readable GeoTIFF"
-    up = client.post("/api/upload", params={"name": name}, content=data).json()
+    up = client.post("/api/upload", params={"name": name}, content=data,
+                     headers=UPLOAD).json()
     req["project"][key[0]][key[1]] = up["name"]
     req["files"][up["name"]] = up["id"]
     r = client.post("/api/plan", json=req)
@@ -209,11 +211,13 @@ def test_hostile_uploads_are_refused_by_the_cli_readers(client, tmp_path, case):
 
 def test_uploads_are_bounded_and_named_by_the_server(client):
     r = client.post("/api/upload", params={"name": "../../big.tif"},
-                    content=b"x" * (4 * 1024 * 1024 + 1))
+                    content=b"x" * (4 * 1024 * 1024 + 1), headers=UPLOAD)
     assert r.status_code == 422 and "larger than 4.0 MB" in r.json()["detail"]
-    r = client.post("/api/upload", params={"name": "/etc/../a b.kml"}, content=b"<kml/>")
+    r = client.post("/api/upload", params={"name": "/etc/../a b.kml"}, content=b"<kml/>",
+                    headers=UPLOAD)
     assert r.status_code == 200 and r.json()["name"] == "a_b.kml"
-    assert client.post("/api/upload", params={"name": "e.kml"}, content=b"").status_code == 422
+    assert client.post("/api/upload", params={"name": "e.kml"}, content=b"",
+                       headers=UPLOAD).status_code == 422
 
 
 def test_a_body_past_the_bound_is_refused(client):
@@ -291,7 +295,8 @@ def test_the_page_speaks_the_browsers_language(client):
 
 
 def test_a_token_guards_every_api_call():
-    with TestClient(create_app(token="s3cret", planner=Planner(inline=True))) as c:
+    with TestClient(create_app(token="s3cret", planner=Planner(inline=True)),
+                    base_url=LOCAL) as c:
         assert c.get("/api/inputs").status_code == 403
         assert c.get("/api/inputs", headers={"X-Scanplan-Token": "wrong"}).status_code == 403
         assert c.get("/api/inputs", headers={"X-Scanplan-Token": "s3cret"}).status_code == 200
@@ -300,7 +305,7 @@ def test_a_token_guards_every_api_call():
 
 def test_a_plan_past_its_time_limit_is_stopped_and_the_next_one_runs():
     planner = Planner(limit_s=1e-4)
-    with TestClient(create_app(planner=planner)) as c:
+    with TestClient(create_app(planner=planner), base_url=LOCAL) as c:
         r = c.post("/api/plan", json={"project": UAV})
         assert r.status_code == 504 and "was stopped" in r.json()["detail"]
         planner.limit_s = 120

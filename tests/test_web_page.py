@@ -18,7 +18,7 @@ import pytest
 from basemap_helpers import ORTHO_COLOUR, TileServer, write_mbtiles, write_ortho
 from click.testing import CliRunner
 from fastapi.testclient import TestClient
-from web_helpers import EXAMPLES, example_request
+from web_helpers import EXAMPLES, LOCAL, UPLOAD, example_request
 
 from scanplan.cli.main import main
 from scanplan.web.app import create_app
@@ -35,13 +35,13 @@ TOWN = EXAMPLES / "areas" / "town-uav.kml"
 @pytest.fixture(scope="module")
 def client():
     with TestClient(create_app(planner=Planner(inline=True),
-                               basemaps=Basemaps("none"))) as c:
+                               basemaps=Basemaps("none")), base_url=LOCAL) as c:
         yield c
 
 
 def _upload(client, path: Path, name: str | None = None) -> str:
     r = client.post("/api/upload", params={"name": name or path.name},
-                    content=path.read_bytes())
+                    content=path.read_bytes(), headers=UPLOAD)
     assert r.status_code == 200, r.text
     return r.json()["id"]
 
@@ -134,7 +134,7 @@ def test_a_project_file_opened_again_downloads_the_same_bytes(client, example):
     first = client.post("/api/project.toml", json=req)
     assert first.status_code == 200, first.text
     tid = client.post("/api/upload", params={"name": "project.toml"},
-                      content=first.content).json()["id"]
+                      content=first.content, headers=UPLOAD).json()["id"]
     opened = client.post("/api/open", json={"id": tid}).json()
     files = dict(req["files"])
     assert sorted(opened["missing"]) == sorted(files)  # a bare project file has no files
@@ -149,7 +149,7 @@ def test_the_downloaded_zip_opens_with_its_files(client):
     z = client.post("/api/download/zip", json=req)
     assert z.status_code == 200, z.text
     zid = client.post("/api/upload", params={"name": "scanplan.zip"},
-                      content=z.content).json()["id"]
+                      content=z.content, headers=UPLOAD).json()["id"]
     opened = client.post("/api/open", json={"id": zid}).json()
     assert opened["missing"] == []
     # the GIS files name the area file as the project does, not the job's temporary folder
@@ -167,20 +167,23 @@ def test_the_downloaded_zip_opens_with_its_files(client):
 
 
 def test_opening_refuses_what_is_not_a_project(client):
-    bad = client.post("/api/upload", params={"name": "p.toml"}, content=b"[map\nscale=").json()
+    bad = client.post("/api/upload", params={"name": "p.toml"}, content=b"[map\nscale=",
+                      headers=UPLOAD).json()
     r = client.post("/api/open", json={"id": bad["id"]}, params={"lang": "en"})
     assert r.status_code == 422 and "is not valid TOML" in r.json()["detail"]
     buf = io.BytesIO()
     with zipfile.ZipFile(buf, "w") as zf:
         zf.writestr("other.txt", "x")
-    zid = client.post("/api/upload", params={"name": "a.zip"}, content=buf.getvalue()).json()
+    zid = client.post("/api/upload", params={"name": "a.zip"}, content=buf.getvalue(),
+                      headers=UPLOAD).json()
     r = client.post("/api/open", json={"id": zid["id"]})
     assert r.status_code == 422 and "holds no project.toml" in r.json()["detail"]
     # a zip naming a file outside itself: never opened
     buf = io.BytesIO()
     with zipfile.ZipFile(buf, "w") as zf:
         zf.writestr("project.toml", '[map]\nscale = 2000\n[area]\nfile = "../../etc/passwd"\n')
-    zid = client.post("/api/upload", params={"name": "a.zip"}, content=buf.getvalue()).json()
+    zid = client.post("/api/upload", params={"name": "a.zip"}, content=buf.getvalue(),
+                      headers=UPLOAD).json()
     r = client.post("/api/open", json={"id": zid["id"]})
     assert r.status_code == 422 and "must name an uploaded file" in r.json()["detail"]
 
@@ -239,7 +242,7 @@ def test_every_field_of_the_form_has_its_own_label():
 def test_tiles_come_from_the_configured_server_only_and_are_kept_on_disk(tmp_path):
     with TileServer((40, 90, 200)) as tiles:
         b = Basemaps(tiles.url, "Local tiles © test", cache=tmp_path / "cache")
-        with TestClient(create_app(planner=Planner(inline=True), basemaps=b)) as c:
+        with TestClient(create_app(planner=Planner(inline=True), basemaps=b), base_url=LOCAL) as c:
             r = c.get("/api/tiles/tiles/12/2489/1293")
             assert r.status_code == 200 and r.headers["content-type"] == "image/png"
             assert tiles.hits == ["/12/2489/1293.png"]
@@ -254,7 +257,7 @@ def test_tiles_come_from_the_configured_server_only_and_are_kept_on_disk(tmp_pat
             html = c.get("/").text
             assert "Local tiles © test" in html and tiles.url not in html
     # offline now: the kept tile still comes
-    with TestClient(create_app(planner=Planner(inline=True), basemaps=b)) as c:
+    with TestClient(create_app(planner=Planner(inline=True), basemaps=b), base_url=LOCAL) as c:
         assert c.get("/api/tiles/tiles/12/2489/1293").status_code == 200
         assert c.get("/api/tiles/tiles/12/2489/1294").status_code == 404
 
@@ -265,7 +268,7 @@ def test_an_mbtiles_file_serves_its_tiles_read_only(tmp_path):
     mb = write_mbtiles(tmp_path / "t.mbtiles", (30, 160, 60), zooms=range(0, 3))
     b = Basemaps("none", mbtiles=mb)
     assert b.default == "mbtiles" and b.page_list()[0]["attribution"] == "Test tiles © the test"
-    with TestClient(create_app(planner=Planner(inline=True), basemaps=b)) as c:
+    with TestClient(create_app(planner=Planner(inline=True), basemaps=b), base_url=LOCAL) as c:
         r = c.get("/api/tiles/mbtiles/0/0/0")
         assert r.status_code == 200
         assert Image.open(io.BytesIO(r.content)).getpixel((5, 5)) == (30, 160, 60)

@@ -7,6 +7,12 @@ from pathlib import Path
 from typing import Any
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+LOCAL = "http://127.0.0.1:8765"
+"""The test client's base URL: a Host the server answers (``testserver`` is refused as a
+foreign host, as a DNS-rebinding page's name is)."""
+UPLOAD = {"Content-Type": "application/octet-stream"}
+"""An upload's body type, as the page sends it (a simple type is refused: no cross-site
+form can post an upload)."""
 
 
 def example_request(client: Any, path: Path) -> dict[str, Any]:
@@ -31,7 +37,7 @@ def example_request(client: Any, path: Path) -> dict[str, Any]:
         name = tables.get(section, {}).get(key)
         if name:
             r = client.post("/api/upload", params={"name": Path(name).name},
-                            content=(path.parent / name).read_bytes())
+                            content=(path.parent / name).read_bytes(), headers=UPLOAD)
             assert r.status_code == 200, r.text
             files[name] = r.json()["id"]
     return {"project": tables, "files": files}

@@ -233,8 +233,10 @@ def _work_of(folder: Path) -> str:
 
 
 def _files(folder: Path) -> set[str]:
+    """The files a reader sees: an output folder's set of files by their names (the links
+    through ``.scanplan-sets/current``), not the sets' own folder."""
     return {p.relative_to(folder).as_posix() for p in folder.rglob("*")
-            if p.is_file() and p.name != MANIFEST}
+            if p.is_file() and p.name != MANIFEST and ".scanplan-sets" not in p.parts}
 
 
 def compare_file(a: Path, b: Path, work_a: str = "", work_b: str = "") -> list[str]:

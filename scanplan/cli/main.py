@@ -250,6 +250,11 @@ def main() -> None:
       scanplan cameras list
       scanplan norms list
     """
+    from ..io.rundir import run_scope
+
+    # the command's temporary folder: every temporary file of the run (and of the libraries
+    # it drives) lives there, removed however the command ends (SIGTERM included)
+    click.get_current_context().with_resource(run_scope())
 
 
 def _inputs(command: str, names: list[str], **per_name: dict[str, Any]

@@ -75,7 +75,7 @@ def serve(host: str, port: int, open_browser: bool, allow_remote: bool, tiles: s
     from ..web.worker import Planner
 
     planner = Planner(limit_s=limit_s, report_limit_s=4 * limit_s)
-    app = create_app(token=token, planner=planner, basemaps=basemaps)
+    app = create_app(token=token, planner=planner, basemaps=basemaps, host=host)
     config = uvicorn.Config(app, host=host, port=port, log_level="warning")
     server = uvicorn.Server(config)
     shown = f"[{host}]" if ":" in host else host

@@ -1,5 +1,5 @@
 """A background image under the plan: a user's orthophoto or any GeoTIFF, or the tiles of
-an MBTiles file, reprojected.
+an MBTiles file or of a tile server, reprojected.
 
 :func:`read_basemap` reads a GeoTIFF — checked as a DEM is (:func:`scanplan.geo.dem.open_dem`:
 a TIFF by content, GDAL's GTiff driver alone, a north-up georeference, a CRS, sane
@@ -11,7 +11,9 @@ bytes: three or more 8-bit bands as colour (a fourth as alpha), anything else (a
 outside of the image transparent. An MBTiles file (an SQLite database of Web Mercator
 tiles, recognised by its first bytes, opened read-only) gives the tiles over the area asked
 for, at the deepest zoom that needs at most :data:`MAX_TILES` of them, stitched and warped
-the same way.
+the same way. :func:`read_tiles` does the same with a tile server's XYZ tiles (fetched and
+kept on disk by :class:`scanplan.geo.tiles.TileCache`) at the zoom a picture of ``max_px``
+pixels needs (:func:`tiles_zoom`).
 """
 
 from __future__ import annotations
@@ -24,13 +26,22 @@ import numpy as np
 
 from ..errors import InputError
 
-__all__ = ["MAX_SOURCE_PX", "MAX_TILES", "Basemap", "check_basemap", "is_mbtiles", "png_bytes",
-           "read_basemap"]
+__all__ = ["DEFAULT_MAX_ZOOM", "MAX_MBTILES_ZOOM", "MAX_SOURCE_PX", "MAX_TILES", "MAX_TILE_PX",
+           "Basemap", "TilesRead",
+           "check_basemap", "is_mbtiles", "layout_extent", "layout_extent_lonlat", "png_bytes",
+           "read_basemap", "read_tiles", "tiles_zoom"]
 
 MAX_SOURCE_PX = 4096
 """Most pixels a side read from the source image (it is decimated to this on reading)."""
 MAX_TILES = 256
 """Most tiles of an MBTiles file stitched for one picture (16 × 16: 4,096 pixels a side)."""
+DEFAULT_MAX_ZOOM = 19
+"""Deepest zoom of an XYZ template's tiles asked for the PDF (OpenStreetMap's deepest)."""
+MAX_MBTILES_ZOOM = 30
+"""Deepest zoom level of an MBTiles file read (the XYZ tiling's zoom 30: 4 cm tiles)."""
+MAX_TILE_PX = 1024
+"""Largest tile read [pixels a side] (tiles are 256 or 512; a larger header is a
+decompression bomb's: the tile stays transparent)."""
 _SQLITE = b"SQLite format 3\x00"
 
 
@@ -185,13 +196,54 @@ def _tile_xy(lon: float, lat: float, z: int) -> tuple[int, int]:
     return min(max(x, 0), n - 1), min(max(y, 0), n - 1)
 
 
-def _read_mbtiles(path: Path, dst_crs: str, max_px: int, key: str,
-                  area: tuple[float, float, float, float] | None) -> Basemap:
-    """An MBTiles file's tiles over ``area`` stitched (Web Mercator) and warped."""
+def _tile_range(area: tuple[float, float, float, float], z: int) -> tuple[int, int, int, int]:
+    """(x0, y0, x1, y1): the tiles of zoom ``z`` over ``area`` (west, south, east, north)."""
+    x0, y0 = _tile_xy(area[0], area[3], z)
+    x1, y1 = _tile_xy(area[2], area[1], z)
+    return x0, y0, x1, y1
+
+
+def _tile_count(area: tuple[float, float, float, float], z: int) -> int:
+    x0, y0, x1, y1 = _tile_range(area, z)
+    return (x1 - x0 + 1) * (y1 - y0 + 1)
+
+
+def _stitch(tiles: dict[tuple[int, int], bytes], z: int, x0: int, y0: int, x1: int, y1: int,
+            dst_crs: str, max_px: int, name: str) -> Basemap:
+    """The tiles ``{(x, y): image bytes}`` of zoom ``z`` over columns ``x0 … x1`` and rows
+    ``y0 … y1`` stitched in Web Mercator (a missing or damaged tile transparent) and warped
+    into ``dst_crs``."""
     import io
     import math
 
     from PIL import Image
+
+    size = 256
+    mosaic = Image.new("RGBA", ((x1 - x0 + 1) * size, (y1 - y0 + 1) * size))
+    for (x, y), data in tiles.items():
+        try:
+            tile = Image.open(io.BytesIO(data))
+            if max(tile.size) > MAX_TILE_PX:
+                continue  # a bomb's header: transparent, never decoded
+            tile = tile.convert("RGBA").resize((size, size))
+        except (OSError, ValueError, Image.DecompressionBombError):
+            continue  # a damaged tile stays transparent
+        mosaic.paste(tile, ((x - x0) * size, (y - y0) * size))
+    half = math.pi * 6378137.0  # the Web Mercator square's half side [m]
+    step = 2 * half / 2 ** z
+    left, top = -half + x0 * step, half - y0 * step
+    right, bottom = -half + (x1 + 1) * step, half - (y1 + 1) * step
+    return _warp(np.asarray(mosaic), (left, bottom, right, top), "EPSG:3857", dst_crs,
+                 max_px, name)
+
+
+def _read_mbtiles(path: Path, dst_crs: str, max_px: int, key: str,
+                  area: tuple[float, float, float, float] | None) -> Basemap:
+    """An MBTiles file's tiles over ``area`` stitched (Web Mercator) and warped; a
+    database error (a table missing, a damaged file) is an input error naming ``key``, a
+    zoom level that is not a whole number from 0 to :data:`MAX_MBTILES_ZOOM` is not read."""
+    import math
+    import sqlite3
 
     db = _mbtiles(path, key)
     try:
@@ -199,38 +251,148 @@ def _read_mbtiles(path: Path, dst_crs: str, max_px: int, key: str,
         if area is None:
             try:
                 area = tuple(float(v) for v in str(meta["bounds"]).split(","))  # type: ignore
+                if len(area) != 4 or not all(math.isfinite(v) for v in area):
+                    raise ValueError
             except (KeyError, ValueError):
                 raise InputError(key, f"{path.name}: names no bounds; the area to cover "
                                  "is needed") from None
         assert area is not None
-        zooms = [int(z) for (z,) in db.execute(
-            "SELECT DISTINCT zoom_level FROM tiles ORDER BY zoom_level DESC")]
+        zooms = [z for (z,) in db.execute(
+            "SELECT DISTINCT zoom_level FROM tiles WHERE typeof(zoom_level) = 'integer' "
+            f"AND zoom_level BETWEEN 0 AND {MAX_MBTILES_ZOOM} ORDER BY zoom_level DESC")]
         for z in zooms:
-            x0, y0 = _tile_xy(area[0], area[3], z)
-            x1, y1 = _tile_xy(area[2], area[1], z)
-            if (x1 - x0 + 1) * (y1 - y0 + 1) <= MAX_TILES:
+            if _tile_count(area, z) <= MAX_TILES:
                 break
         else:
             raise InputError(key, f"{path.name}: holds no tiles")
-        size = 256
-        mosaic = Image.new("RGBA", ((x1 - x0 + 1) * size, (y1 - y0 + 1) * size))
+        x0, y0, x1, y1 = _tile_range(area, z)
         rows = db.execute("SELECT tile_column, tile_row, tile_data FROM tiles WHERE "
                           "zoom_level=? AND tile_column BETWEEN ? AND ? AND tile_row BETWEEN "
                           "? AND ?", (z, x0, x1, 2 ** z - 1 - y1, 2 ** z - 1 - y0))
-        for x, row, data in rows:
-            try:
-                tile = Image.open(io.BytesIO(data)).convert("RGBA").resize((size, size))
-            except (OSError, ValueError):
-                continue  # a damaged tile stays transparent
-            mosaic.paste(tile, ((x - x0) * size, (2 ** z - 1 - row - y0) * size))
+        tiles = {(x, 2 ** z - 1 - row): data for x, row, data in rows
+                 if isinstance(x, int) and isinstance(row, int) and isinstance(data, bytes)
+                 and data}  # MBTiles count rows from the south (TMS)
+    except sqlite3.Error as exc:
+        raise InputError(key, f"{path.name}: is not an MBTiles file scanplan reads "
+                         f"({str(exc)[:200]})") from None
     finally:
         db.close()
-    half = math.pi * 6378137.0
-    step = 2 * half / 2 ** z
-    left, top = -half + x0 * step, half - y0 * step
-    right, bottom = -half + (x1 + 1) * step, half - (y1 + 1) * step
-    return _warp(np.asarray(mosaic), (left, bottom, right, top), "EPSG:3857", dst_crs,
-                 max_px, path.name)
+    return _stitch(tiles, z, x0, y0, x1, y1, dst_crs, max_px, path.name)
+
+
+def tiles_zoom(area: tuple[float, float, float, float], max_px: int,
+               max_zoom: int = DEFAULT_MAX_ZOOM) -> int:
+    """The zoom whose tiles print ``area`` (west, south, east, north) [°] at ``max_px``
+    pixels across its longer side: the shallowest whose pixel is at most the printed one
+    on the ground at the area's middle latitude, at most ``max_zoom`` and at most
+    :data:`MAX_TILES` tiles.
+
+    A Web Mercator tile pixel at zoom z covers 2πR·cos φ / (256 · 2^z) metres of ground
+    (R = 6,378,137 m; https://wiki.openstreetmap.org/wiki/Zoom_levels), so
+    z = ⌈log₂(2πR·cos φ / (256 · pixel_m))⌉.
+    """
+    import math
+
+    import pyproj
+
+    geod = pyproj.Geod(ellps="WGS84")
+    mid_lat = (area[1] + area[3]) / 2
+    mid_lon = (area[0] + area[2]) / 2
+    across_m = geod.inv(area[0], mid_lat, area[2], mid_lat)[2]
+    along_m = geod.inv(mid_lon, area[1], mid_lon, area[3])[2]
+    pixel_m = max(across_m, along_m, 1.0) / max_px
+    ground = 2 * math.pi * 6378137.0 * math.cos(math.radians(mid_lat)) / 256
+    z = min(max(0, math.ceil(math.log2(ground / pixel_m))), max_zoom)
+    while z > 0 and _tile_count(area, z) > MAX_TILES:
+        z -= 1
+    return z
+
+
+@dataclass(frozen=True)
+class TilesRead:
+    """What :func:`read_tiles` got: the picture (None when no tile came), the tiles asked
+    for and those that did not come, and the host asked."""
+
+    image: Basemap | None
+    asked: int
+    missing: int
+    host: str
+
+
+def read_tiles(url: str, dst_crs: str, area_lonlat: tuple[float, float, float, float], *,
+               max_px: int = 1600, name: str = "", cache: Path | None = None,
+               max_zoom: int = DEFAULT_MAX_ZOOM) -> TilesRead:
+    """The XYZ tiles of the template ``url`` over ``area_lonlat`` at the zoom the picture
+    needs (:func:`tiles_zoom`), from the disk cache or fetched and kept there
+    (:class:`scanplan.geo.tiles.TileCache`), stitched and warped into ``dst_crs``.
+
+    Never raises for the network: once the server does not answer, the rest come from
+    the cache only; the tiles that did not come are counted (``missing``) and left
+    transparent, and without any tile ``image`` is None.
+
+    Parameters
+    ----------
+    url : str
+        The template (checked: :func:`scanplan.geo.tiles.check_template`).
+    dst_crs : str
+        The CRS to warp into.
+    area_lonlat : tuple of float
+        (west, south, east, north) [°] the picture covers.
+    max_px : int
+        Most pixels a side of the result (and the print resolution the zoom is chosen for).
+    name : str
+        What the picture is called (its attribution).
+    cache : Path or None
+        The cache folder (default: the user's, as the page's).
+    max_zoom : int
+        Deepest zoom asked for.
+    """
+    from .tiles import TileCache, TileUnreachable, template_host
+
+    tiles_cache = TileCache(cache)
+    z = tiles_zoom(area_lonlat, max_px, max_zoom)
+    x0, y0, x1, y1 = _tile_range(area_lonlat, z)
+    got: dict[tuple[int, int], bytes] = {}
+    online = True
+    for y in range(y0, y1 + 1):
+        for x in range(x0, x1 + 1):
+            try:
+                tile = tiles_cache.get(url, z, x, y, fetch=online)
+            except TileUnreachable:
+                online, tile = False, None  # the rest from the cache only
+            if tile is not None:
+                got[(x, y)] = tile[0]
+    asked = (x1 - x0 + 1) * (y1 - y0 + 1)
+    image = _stitch(got, z, x0, y0, x1, y1, dst_crs, max_px, name) if got else None
+    return TilesRead(image, asked, asked - len(got), template_host(url))
+
+
+def layout_extent_lonlat(layout: Any, pad: float = 0.15) -> tuple[float, float, float, float]:
+    """(west, south, east, north) [°] of what a layout's map shows: the area, the strips'
+    ends and the take-off point, widened by ``pad`` of the longer side each way (the map's
+    margins)."""
+    import pyproj
+
+    minx, miny, maxx, maxy = layout_extent(layout)
+    margin = pad * max(maxx - minx, maxy - miny)
+    return pyproj.Transformer.from_crs(pyproj.CRS.from_user_input(layout.area.plan_crs),
+                                       4326, always_xy=True).transform_bounds(
+        minx - margin, miny - margin, maxx + margin, maxy + margin, densify_pts=21)
+
+
+def layout_extent(layout: Any) -> tuple[float, float, float, float]:
+    """(minx, miny, maxx, maxy) in the planning CRS [m]: the area, the strips' ends and the
+    take-off point of a :class:`~scanplan.geo.layout.FlightLayout`."""
+    minx, miny, maxx, maxy = layout.area.geometry.bounds
+    if layout.strips:
+        ends = np.array([p for s in layout.strips for p in (s.start_xy_m, s.end_xy_m)])
+        minx, miny = min(minx, ends[:, 0].min()), min(miny, ends[:, 1].min())
+        maxx, maxy = max(maxx, ends[:, 0].max()), max(maxy, ends[:, 1].max())
+    takeoff = layout.notes.get("takeoff_xy_m")
+    if takeoff is not None:
+        minx, miny = min(minx, takeoff[0]), min(miny, takeoff[1])
+        maxx, maxy = max(maxx, takeoff[0]), max(maxy, takeoff[1])
+    return float(minx), float(miny), float(maxx), float(maxy)
 
 
 def _warp(rgba: np.ndarray, bounds: tuple[float, float, float, float], src_crs: str,

@@ -34,6 +34,7 @@ from numpy.typing import NDArray
 from ..errors import InputError
 from ..extras import require
 from .gdal_guard import KIND_NAMES, gdal_messages, harden, read_head, sniff
+from .grids import require_grids
 
 __all__ = ["UNIT_FACTORS", "DemInfo", "Samples", "dem_transformer", "open_dem", "sample_dem",
            "unit_problem"]
@@ -262,6 +263,7 @@ def dem_transformer(info: DemInfo, plan_crs: str, key: str = "terrain.dem") -> A
         src = CRS.from_user_input(plan_crs)
         if src == dem_crs:
             return None
+        require_grids(dem_crs, key)
         return Transformer.from_crs(src, dem_crs, always_xy=True)
     except (CRSError, ProjError) as exc:
         raise _refuse(key, info.path, f"its CRS cannot be related to the planning CRS "

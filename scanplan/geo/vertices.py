@@ -190,8 +190,17 @@ def _columns(header: list[str], name: str, line: int) -> tuple[Any, Any, str, st
 
 def _wkt_table(lines: list[tuple[int, str]], sep: str | None, name: str) -> shapely.Geometry:
     """The union of the polygons of a table with a WKT column (one geometry a row)."""
-    rows = list(csv.reader(io.StringIO("\n".join(line for _, line in lines)),
-                           delimiter=sep or ","))
+    # a polygon's WKT is one cell of up to the file's own bound (csv allows 128 KiB by
+    # default: a 20,000-vertex boundary is 0.44 MB)
+    limit = csv.field_size_limit()
+    csv.field_size_limit(max(limit, MAX_VERTEX_BYTES))
+    try:
+        rows = list(csv.reader(io.StringIO("\n".join(line for _, line in lines)),
+                               delimiter=sep or ","))
+    except csv.Error as exc:
+        raise InputError(name, f"is not a table of WKT polygons: {exc}") from None
+    finally:
+        csv.field_size_limit(limit)
     head = [c.strip().lower() for c in rows[0]]
     k = next(i for i, c in enumerate(head) if c in _GEOMETRY_NAMES)
     parts = []

@@ -60,7 +60,7 @@ def write_atomic(path: str | os.PathLike[str], data: bytes) -> Path:
 def write_atomic_many(files: Mapping[str | os.PathLike[str], bytes], *,
                       check: Callable[[], None] | None = None,
                       remove: Callable[[], Iterable[str | os.PathLike[str]]] | None = None,
-                      ) -> list[Path]:
+                      as_set: str | os.PathLike[str] | None = None) -> list[Path]:
     """Write several files as one transaction: all of them are replaced, or none is.
 
     Every file is first written to a temporary file beside its target (``.NAME.*.tmp``,
@@ -76,26 +76,25 @@ def write_atomic_many(files: Mapping[str | os.PathLike[str], bytes], *,
     journal; the next write into the folder rolls the set back (before the commit point)
     or finishes it (after), so every file is old or every file is new.
 
-    The whole transaction — the check, the sweep, the writes — holds an exclusive lock on
-    the targets' folders (:func:`scanplan.io.targets.folder_lock`), so two scanplan runs
-    writing into one folder never interleave their files and one run's sweep never removes
-    what another has just written. Under that lock, a killed run's journal is recovered
-    first, then temporaries and backups of these targets that a killed run left behind
-    (``.NAME.*.tmp``, ``.NAME.*.old``) are deleted; after the renames the folders are
-    fsynced. A name up to the file system's limit (255 bytes) is fine: the temporary names
-    are shortened.
+    The whole transaction holds an exclusive lock on the targets' folders
+    (:func:`scanplan.io.targets.folder_lock`): two runs never interleave their files, one
+    run's sweep never removes what another has just written. Under it a killed run's
+    journal is recovered, its temporaries and backups deleted; the folders are fsynced
+    after the renames. Names up to the file system's limit work (temporaries shortened).
 
     Parameters
     ----------
     files : mapping of path to bytes
-        Target → complete content, written in this order. Folders must exist. None
-        (and no ``remove``): nothing is locked, journalled or synced (``check`` is called).
+        Target → complete content, in order; folders must exist. None (and no ``remove``):
+        only ``check`` is called.
     check : callable, optional
-        Called under the lock before anything is written (re-checks the targets: what was
-        checked before rendering may have changed since); its exception stops the write.
+        Re-checks the targets under the lock before anything is written; raises to stop.
     remove : callable, optional
         Called under the lock after ``check``: the files to remove in the same transaction
         (none of the targets).
+    as_set : path, optional
+        The folder of every file: written as its new set, whole at every instant
+        (:mod:`scanplan.io.folderset`) where its file system has links.
 
     Returns
     -------
@@ -112,16 +111,13 @@ def write_atomic_many(files: Mapping[str | os.PathLike[str], bytes], *,
         The same file is named twice.
     """
     items = [(Path(p), os.fspath(p), data) for p, data in files.items()]
-    seen: set[str] = set()
-    for target, shown, _ in items:
-        key = os.path.normcase(os.path.realpath(target))
-        if key in seen:
-            raise ValueError(f"{shown!r} is named twice")
-        seen.add(key)
-        if os.path.isdir(target):
-            raise WriteError(shown, "it is a folder", errno.EISDIR)
+    seen = _distinct(items)
     if not items and remove is None:  # nothing to write (`scan --json`): no journal, no fsync
         return _checked_only(check)
+    if as_set is not None and _as_set(items, as_set):
+        from .folderset import write_set
+
+        return write_set(as_set, items, check=check, remove=remove)
     folders = sorted({os.fspath(target.parent) for target, _, _ in items})
     with folder_lock(folders):
         _recover(folders)
@@ -137,6 +133,29 @@ def write_atomic_many(files: Mapping[str | os.PathLike[str], bytes], *,
         finally:
             for folder in folders:
                 fsync_dir(folder)
+
+
+def _distinct(items: list[tuple[Path, str, bytes]]) -> set[str]:
+    """The targets' real paths; a file named twice or a folder is refused."""
+    seen: set[str] = set()
+    for target, shown, _ in items:
+        key = os.path.normcase(os.path.realpath(target))
+        if key in seen:
+            raise ValueError(f"{shown!r} is named twice")
+        seen.add(key)
+        if os.path.isdir(target):
+            raise WriteError(shown, "it is a folder", errno.EISDIR)
+    return seen
+
+
+def _as_set(items: list[tuple[Path, str, bytes]], folder: str | os.PathLike[str]) -> bool:
+    """Whether the files are written as ``folder``'s set: every target lies in it (not
+    below it) and its file system has links."""
+    from .folderset import supported
+
+    real = os.path.realpath(folder)
+    return bool(items) and all(os.path.realpath(t.parent) == real for t, _, _ in items) \
+        and supported(folder)
 
 
 def _checked_only(check: Callable[[], None] | None) -> list[Path]:

@@ -10,7 +10,9 @@ anything is rendered and again, under a lock on its folder, just before it is wr
   ``.csv`` for a batch summary table (and for each file ``plan --out`` exports, the suffix
   of its format: :data:`scanplan.geo.export.formats.FORMATS`).
 * A symbolic link, a folder, a FIFO or a device is refused (scanplan replaces regular files
-  by renaming a new file over them; that would replace a link, not the file it points to).
+  by renaming a new file over them; that would replace a link, not the file it points to)
+  — except scanplan's own link of an output folder's set (:func:`is_managed`,
+  :mod:`scanplan.io.folderset`), which is checked as the file it leads to.
 * A write-protected file is refused, even with ``--force`` (its protection is the owner's
   statement; make it writable first).
 * A file name longer than the folder's limit (255 bytes on common file systems) is refused.
@@ -46,8 +48,8 @@ from dataclasses import dataclass
 
 from ..errors import InputError
 
-__all__ = ["KINDS", "OUR_MARK", "FileKind", "check_target", "folder_lock", "name_max",
-           "written_by_scanplan"]
+__all__ = ["KINDS", "OUR_MARK", "SETS", "FileKind", "check_target", "folder_lock",
+           "is_managed", "link_text", "name_max", "written_by_scanplan"]
 
 OUR_MARK = b"scanplan"
 """Start of the creator property of every report scanplan writes."""
@@ -85,6 +87,25 @@ class FileKind:
     suffix: str
     what: str
     is_ours: Callable[[bytes], bool]
+
+
+SETS = ".scanplan-sets"
+"""The folder of an output folder's file sets (:mod:`scanplan.io.folderset`)."""
+
+
+def link_text(name: str) -> str:
+    """What scanplan's link of the file ``name`` of an output folder's set says:
+    ``.scanplan-sets/current/NAME``."""
+    return f"{SETS}/current/{name}"
+
+
+def is_managed(path: str | os.PathLike[str]) -> bool:
+    """Whether ``path`` is scanplan's link of a file of its folder's set (it says exactly
+    :func:`link_text` of its own name; a user's link says anything else)."""
+    try:
+        return os.readlink(path) == link_text(os.path.basename(os.fspath(path)))
+    except (OSError, ValueError):
+        return False
 
 
 def name_max(folder: str | os.PathLike[str]) -> int:
@@ -132,9 +153,9 @@ def check_target(path: str, field: str, kind: str | FileKind, *, inputs: Iterabl
                          f"{limit}")
     shown = repr(path)
     try:
-        st = os.lstat(path)
+        st = os.stat(path) if is_managed(path) else os.lstat(path)
     except FileNotFoundError:
-        st = None
+        st = None  # also scanplan's link to a file the folder's set does not hold
     except OSError as exc:
         raise InputError(field, f"{shown} cannot be checked: {exc.strerror or exc}") from None
     real = None

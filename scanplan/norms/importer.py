@@ -382,6 +382,11 @@ def read_norm_file(
         base = base or _norms.DEFAULT_NORM_SET
     _note_ignored_columns(found.located, warnings)
     file_tables = {loc.spec.name: _data_rows(loc, problems) for loc in found.located}
+    if p.suffix.lower() in CSV_SUFFIXES and candidates is None:  # cameras: their own word
+        for name, t in file_tables.items():
+            if not t.rows:  # merged onto the base, a header alone would import nothing
+                raise fail(p.name, f"holds the header of the {name} table and no rows; give "
+                           "at least one row (a norm set's own values)")
 
     meta = {k: "" for k in META_KEYS}
     base_name = None

@@ -8,7 +8,7 @@ the serpentine with its turns, run-in and run-out, packed into sorties by
 :mod:`scanplan.geo.sorties`):
 
 - **line direction** (an area on the map): the direction of the least flight length
-  (``"auto"``), the area's long axis (:func:`scanplan.geo.directions.long_axis_deg`), over a
+  (``"auto"``), the area's long axis (:func:`scanplan.geo.direction.long_axis_deg`), over a
   DEM the direction whose strips span the least relief
   (:func:`scanplan.geo.terrain_choice.mode_heights`), and the project's own;
 - **altitude mode** (``[terrain]``): ``constant``, ``strip`` and ``follow``, each held
@@ -37,7 +37,7 @@ from dataclasses import dataclass, replace
 from typing import Any
 
 from ..core.photoscale import ground_pixel_m
-from ..geo.directions import long_axis_deg, same_direction
+from ..geo.direction import long_axis_deg, same_direction
 from ..geo.terrain import TerrainConfig, TerrainResult
 from ..geo.terrain_choice import DIRECTIONS_DEG, mode_heights
 from ..i18n.messages import Message, params_json

@@ -17,6 +17,7 @@ from typing import Any
 
 from ..errors import InputError
 from ..io.files import read_limited
+from .bounds import nesting_problem
 from .keys import KEYS, check_text, check_type, closest_key, key_lines, text_problem
 from .userconfig import with_user_defaults
 
@@ -25,9 +26,6 @@ __all__ = ["KEYS", "Project", "ReportMeta", "load_project", "parse_project", "pa
 
 MAX_PROJECT_BYTES = 1_000_000
 """Largest project file [bytes]."""
-MAX_NESTING = 32
-"""Deepest nesting of arrays and inline tables (no key of a project file nests at all; the
-bound keeps a hostile file from exhausting the parser's recursion)."""
 
 
 @dataclass(frozen=True)
@@ -101,43 +99,6 @@ def _flatten(doc: dict[str, Any]) -> dict[str, dict[str, Any]]:
     return out
 
 
-_STRING = re.compile(
-    r'"""(?:[^\\]|\\.)*?"""'  # multi-line basic string
-    r"|'''.*?'''"  # multi-line literal string
-    r'|"(?:[^"\\\n]|\\.)*"'  # basic string
-    r"|'[^'\n]*'"  # literal string
-    r"|#[^\n]*",  # comment
-    re.DOTALL)
-_BRACKET = re.compile(r"[\[\]{}\n]")
-
-
-def _nesting_problem(text: str) -> tuple[int, str] | None:
-    """(line, message) where arrays or inline tables nest deeper than :data:`MAX_NESTING`.
-
-    Strings and comments are skipped; table headers (``[x]`` at the start of a line)
-    open and close on their line, so they count as depth 1 at most.
-    """
-    depth = 0
-    line = 1
-    pos = 0
-    skips = [(m.start(), m.end()) for m in _STRING.finditer(text)] + [(len(text), len(text))]
-    for start, end in skips:
-        for b in _BRACKET.finditer(text, pos, start):
-            ch = b.group()
-            if ch == "\n":
-                line += 1
-            elif ch in "[{":
-                depth += 1
-                if depth > MAX_NESTING:
-                    return line, (f"nests arrays or inline tables more than {MAX_NESTING} "
-                                  "deep")
-            else:
-                depth = max(depth - 1, 0)
-        line += text.count("\n", start, end)
-        pos = end
-    return None
-
-
 def _shown(value: Any) -> str:
     """``repr(value)``, cut to 200 characters."""
     try:
@@ -168,7 +129,7 @@ def parse_project(text: str, path: str | os.PathLike[str] = "project.toml") -> P
     """Validate the text of a project file (see :func:`load_project`)."""
     p = Path(path)
     lines = key_lines(text)
-    deep = _nesting_problem(text)
+    deep = nesting_problem(text)
     if deep:
         raise InputError(_where_line(p, lines, deep[0]), deep[1])
     try:

@@ -242,9 +242,11 @@ _RECORDS: tuple[Input, ...] = (
           domain="relief_interval_m", option="--relief", commands=(FILM, UAV), digits=2),
     Input("basemap", "map", "basemap", _STR, "background of the PDF's map page: an "
           "orthophoto or any GeoTIFF (the `terrain` extra), or an MBTiles file, relative to "
-          "the project file"),
+          "the project file; or tiles: \"osm\" or an http(s) URL with {z}, {x} and {y}, "
+          "fetched with the plan and kept in the user's tile cache"),
     Input("basemap_attribution", "map", "basemap_attribution", _STR, "the background's "
-          "source, printed under the map (default: the file's name)"),
+          "source, printed under the map (default: the file's name; required with a tile "
+          "URL; \"osm\": © OpenStreetMap contributors)"),
     # [norms]
     Input("norms", "norms", "set", _STR, "norm set name, or a folder relative to the "
           "project file", default="gkinp-02-036-02", option="--norms", commands=(FILM, UAV),

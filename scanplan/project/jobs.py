@@ -457,13 +457,19 @@ def uav_job(
             raise InputError("height_m", "give the planned flight height (m ≥ 1), a target "
                              "GSD, or a map scale to derive it from")
         kw = dict(locals())
-        first = uav_job(**{**kw, "height_m": PROVISIONAL_HEIGHT_M})
+        if area_m is not None:
+            parse_area_m(area_m, "area_m")  # refused before the heights, as it was
+        # the limits do not depend on the area: the strips are laid out at the height chosen
+        first = uav_job(**{**kw, "height_m": PROVISIONAL_HEIGHT_M, "area": None,
+                           "area_m": None})
         rec = recommended_height_m(first.plan.max_height_m)
         if rec is None:
             raise InputError("height_m", "no flight height of 1 m or more meets every limit "
                              f"(maximum {first.plan.max_height_m or 0:.2f} m); give the "
                              "planned height to see the plan")
-        return first if rec == PROVISIONAL_HEIGHT_M else uav_job(**{**kw, "height_m": rec})
+        if rec == PROVISIONAL_HEIGHT_M and area is None and area_m is None:
+            return first
+        return uav_job(**{**kw, "height_m": rec})
     ns = load_norm_set(norms)
     cam = ns.camera(camera, "camera") if camera is not None else None
     if cam is not None and cam.kind != "digital":

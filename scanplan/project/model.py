@@ -103,13 +103,15 @@ def field_meta(section: str, key: str) -> FieldMeta:
 @dataclass(frozen=True)
 class MapSection:
     """``[map]``: the map scale denominator Mk and the relief interval h_c [m]; the
-    background of the PDF's map page (a GeoTIFF beside the project file, header checked)
-    and its attribution."""
+    background of the PDF's map page — a GeoTIFF or MBTiles file beside the project file
+    (header checked, ``basemap``) or an XYZ tile URL template (``basemap_url``) — and its
+    attribution."""
 
     scale: float
     relief_interval_m: float
     basemap: Path | None = None
     basemap_attribution: str = ""
+    basemap_url: str | None = None
 
 
 @dataclass(frozen=True)
@@ -442,12 +444,32 @@ def _aircraft(r: _Reader) -> str | None:
         raise InputError(r.where("uav", "aircraft"), exc.message) from None
 
 
-def _basemap(r: _Reader) -> Path | None:
-    """``[map] basemap``: the GeoTIFF (its header checked as a DEM's) or MBTiles file beside
-    the project file (:func:`scanplan.geo.basemap.check_basemap`); None without one."""
+def _basemap(r: _Reader) -> tuple[Path | None, str | None, str]:
+    """``[map] basemap`` and its attribution: (file, URL template, attribution).
+
+    A file — a GeoTIFF (its header checked as a DEM's) or an MBTiles file beside the project
+    file (:func:`scanplan.geo.basemap.check_basemap`) —, or ``"osm"`` (OpenStreetMap's
+    tiles) or an XYZ URL template (:func:`scanplan.geo.tiles.check_template`), whose
+    tiles are printed only with their attribution (``[map] basemap_attribution``,
+    OpenStreetMap's own for ``"osm"``)."""
     name = r.text("map", "basemap").strip()
+    attribution = r.text("map", "basemap_attribution").strip()
     if not name:
-        return None
+        return None, None, attribution
+    from ..geo.tiles import OSM_ATTRIBUTION, OSM_URL, check_template
+
+    if name == "osm":
+        return None, OSM_URL, attribution or OSM_ATTRIBUTION
+    if "://" in name or any(k in name for k in ("{z}", "{x}", "{y}")):
+        try:
+            check_template(name, allowed='a GeoTIFF or MBTiles file, "osm" or ')
+        except InputError as exc:
+            raise InputError(r.where("map", "basemap"), exc.message) from None
+        if not attribution:
+            raise InputError(r.where("map", "basemap_attribution"), "is needed with a tile "
+                             "URL: the tiles' source as their provider asks it printed, e.g. "
+                             '"© OpenStreetMap contributors"')
+        return None, name, attribution
     from ..geo.basemap import check_basemap
 
     path = Path(name) if Path(name).is_absolute() else r.p.path.parent / name
@@ -455,7 +477,14 @@ def _basemap(r: _Reader) -> Path | None:
         check_basemap(path, "basemap")
     except InputError as exc:
         raise InputError(r.where("map", "basemap"), exc.message) from None
-    return path
+    return path, None, attribution
+
+
+def _map_section(r: _Reader) -> MapSection:
+    """``[map]``: the scale, the relief interval and the background."""
+    path, url, attribution = _basemap(r)
+    return MapSection(r.raw("map", "scale"), r.raw("map", "relief_interval_m"), path,
+                      attribution, url)
 
 
 def _terrain(r: _Reader) -> TerrainSection | None:
@@ -574,8 +603,7 @@ def build_model(project: Project) -> ProjectModel:
         path=project.path, name=project.name, meta=_meta(r),
         signing=Signing(r.text("project", "purpose"), r.text("project", "coordinate_system"),
                         r.text("project", "height_system")),
-        map=MapSection(g("map", "scale"), g("map", "relief_interval_m"), _basemap(r),
-                       r.text("map", "basemap_attribution")),
+        map=_map_section(r),
         norms=NormsSection(gsd_area, r.text("norms.gsd_limits", "reason"),
                            r.text("norms.block_relief", "reason")),
         area=area,

@@ -17,14 +17,14 @@ from typing import TYPE_CHECKING, Any
 from ..core.blocks import BlockHeightCheck
 from ..geo.layout import Area, FlightLayout
 from ..geo.sun import FlyingDays, SunWindow
-from ..geo.terrain import TerrainResult
-from ..geo.terrain_film import FilmTerrain
 from ..rules.film import PlanWarning, ScanScenario
 from .file import ReportMeta
 from .jobs import ScanJob, UavJob
 from .model import ProjectModel
 
-if TYPE_CHECKING:
+if TYPE_CHECKING:  # the relief's modules are imported for a plan with [terrain] only
+    from ..geo.terrain import TerrainResult
+    from ..geo.terrain_film import FilmTerrain
     from .control import ControlSpec
 
 __all__ = ["Alternative", "FilmSpec", "GsdCompliance", "PlanResult", "SunPlan", "SurveyDesign",
@@ -275,6 +275,10 @@ class PlanResult:
     """The exported formats (``csv``, ``plan`` … :data:`scanplan.geo.export.FORMATS` names)
     the run that renders the documents writes beside them; None: the documents alone
     (``--pdf FILE``, the API's ``write``), so they never say a file is beside them."""
+    backgrounds: dict[str, Any] = field(default_factory=dict)
+    """``[map] basemap`` as a tile URL: each map page's background by job (``"uav"``,
+    ``"film"``), a :class:`scanplan.geo.basemap.Basemap` in its layout's planning CRS
+    (:mod:`scanplan.project.background`)."""
 
     @property
     def layouts(self) -> dict[str, FlightLayout]:

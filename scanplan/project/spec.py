@@ -15,19 +15,21 @@ import inspect
 import math
 from collections import OrderedDict
 from dataclasses import replace
-from typing import Any
+from functools import cache
+from typing import TYPE_CHECKING, Any
 
 from ..core.domains import DOMAINS
 from ..core.photoscale import scanned_ground_pixel_m
 from ..errors import InputError
 from ..geo.area import AreaSpec
 from ..geo.layout import Area, FlightLayout
-from ..geo.terrain_film import FilmTerrain
 from ..i18n.messages import Message
+from ..norms.store import one_version
 from ..rules.film import PlanWarning, ScanScenario
 from .aircraftplan import aircraft_warnings
 from .alternatives import JobAt, choose_plan
 from .archive import archive_film
+from .background import map_backgrounds
 from .control import ControlSpec, plan_control
 from .design import survey_design
 from .file import Project
@@ -51,11 +53,9 @@ from .jobs import (
 from .model import ProjectModel, build_model
 from .results import FilmSpec, PlanResult, UavSpec
 from .sorties import project_aircraft, sortie_length, terrain_relief_m
-from .terrainplan import (
-    archive_over_terrain,
-    film_over_terrain,
-    film_terrain_spec,
-)
+
+if TYPE_CHECKING:  # the relief's modules are imported for a plan with [terrain] only
+    from ..geo.terrain_film import FilmTerrain
 
 __all__ = ["FilmSpec", "PlanResult", "UavSpec", "plan_project", "project_area"]
 
@@ -70,8 +70,14 @@ def _job_kwargs(given: Any, takes: Any) -> dict[str, Any]:
     inputs of the plan's section of the model (:attr:`~scanplan.project.model.FilmSection.
     given`) the job function ``takes``; keys the file leaves out take the API's defaults,
     which are the registry's."""
-    params = inspect.signature(takes).parameters
+    params = _parameters(takes)
     return {name: value for name, value in given.items() if name in params}
+
+
+@cache
+def _parameters(func: Any) -> frozenset[str]:
+    """The names of ``func``'s parameters (read once: inspect takes a millisecond)."""
+    return frozenset(inspect.signature(func).parameters)
 
 
 def _film(project: ProjectModel, area: Area | None) -> FilmSpec:
@@ -109,6 +115,8 @@ def _archive_over_terrain(project: ProjectModel, raw: ScanJob, job: ScanJob, bes
                              inp.forward_overlap_pct, side, area, _layout_options(project))
     except InputError as exc:
         raise project.named(exc, "uav") from None
+    from .terrainplan import archive_over_terrain
+
     got = archive_over_terrain(project, cfg, raw, job, best, layout)
     rec, layout = got.headline, got.layout
     frames = int(layout.notes.get("photos", len(layout.photos))) if layout else None
@@ -149,6 +157,8 @@ def _film_over_terrain(project: ProjectModel, job: ScanJob, side: float, area: A
                                inp.forward_overlap_pct, side, area, _layout_options(project))
         except InputError as exc:
             raise project.named(exc, "uav") from None
+
+    from .terrainplan import film_over_terrain
 
     got = film_over_terrain(project, cfg, plan, candidates, layout_at,
                             lambda s: _feasible(plan, s))
@@ -224,6 +234,8 @@ def _film_terrain(project: ProjectModel, plan: Any, best: ScanScenario | None,
     cfg = project.terrain.config
     inp = plan.inputs
     obj = inp.object
+    from .terrainplan import film_terrain_spec
+
     return film_terrain_spec(
         project, cfg, layout, plan.rules, map_scale=inp.map_scale,
         photo_scale=best.photo_scale, relief_interval_m=inp.relief_interval_m,
@@ -335,11 +347,12 @@ def _uav(project: ProjectModel, the_area: Area | None) -> UavSpec:
     planned = project.uav.height_m
     job_at = _jobs(project, the_area)
     first_height = planned if planned is not None else PROVISIONAL_HEIGHT_M
-    first = job_at(first_height)
+    # the limits do not depend on the area: the layout is made once, at the height chosen
+    first = job_at(first_height, limits_only=True)
     max_h = first.plan.max_height_m
     rounded = recommended_height_m(max_h)
     if max_h is None or rounded is None:
-        return UavSpec(first, planned, None, max_h, Message("spec.uav_none"))
+        return UavSpec(job_at(first_height), planned, None, max_h, Message("spec.uav_none"))
     if planned is None:
         rec = rounded
         reason = Message("spec.uav_rounded", max=max_h, cid=first.plan.binding,
@@ -351,7 +364,7 @@ def _uav(project: ProjectModel, the_area: Area | None) -> UavSpec:
     else:
         rec = planned
         reason = Message("spec.uav_within", max=max_h)
-    job = first if rec == first_height else job_at(rec)
+    job = job_at(rec)
     if job.layout is None or (project.terrain is None and not job.layout.area.georeferenced):
         return UavSpec(job, planned, rec, max_h, reason)  # nothing to choose
     choice = choose_plan(project, job, job_at, planned)
@@ -378,17 +391,19 @@ def _jobs(project: ProjectModel, the_area: Area | None) -> JobAt:
 
     def job_at(height_m: float, direction_deg: float | str | None = None,
                flown_band_m: tuple[float, float] | None = None,
-               laid_out: FlightLayout | None = None) -> UavJob:
+               laid_out: FlightLayout | None = None, limits_only: bool = False) -> UavJob:
         if direction_deg is not None and (direction_deg == own or (
                 own is None and direction_deg == "auto")):
             direction_deg = None  # the project's own
-        key = (float(height_m), direction_deg, flown_band_m)
+        key = (float(height_m), direction_deg, flown_band_m, limits_only)
         if key not in done:
             try:
                 kw = _uav_kwargs(project, height_m, the_area)
                 if direction_deg is not None:
                     kw["layout_options"] = replace(kw["layout_options"],
                                                    direction_deg=direction_deg)
+                if limits_only:  # only its limits are asked for: no strips over the area
+                    kw.update(area=None, area_m=None)
                 done[key] = uav_job(**kw, flown_band_m=flown_band_m, laid_out=laid_out)
             except InputError as exc:
                 raise project.named(exc, "uav") from None
@@ -453,6 +468,12 @@ def plan_project(project: Project | ProjectModel) -> PlanResult:
     """
     if isinstance(project, Project):
         project = build_model(project)  # every key checked once, here
+    with one_version():  # every job of the plan reads one version of each norm set
+        return _planned(project)
+
+
+def _planned(project: ProjectModel) -> PlanResult:
+    """:func:`plan_project` of the model."""
     area = project_area(project)  # checked even when no plan uses it
     _check_layout_keys(project, area)
     _check_terrain(project, area)
@@ -477,8 +498,13 @@ def plan_project(project: Project | ProjectModel) -> PlanResult:
     control = _control(project, uav, area)
     if control is not None:
         warnings.extend(control.warnings)
+    layouts = {k: p.layout for k, p in (("uav", uav), ("film", film))
+               if p is not None and p.layout is not None}
+    backgrounds, warned = map_backgrounds(project, layouts)
+    warnings.extend(warned)
     return PlanResult(project=project, meta=project.meta, film=film, uav=uav, comparison=comparison,
-                      warnings=tuple(warnings), area=area, design=design, control=control)
+                      warnings=tuple(warnings), area=area, design=design, control=control,
+                      backgrounds=backgrounds)
 
 
 def _control(project: ProjectModel, uav: UavSpec | None, area: Area | None

@@ -25,6 +25,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import InputError
+from .bounds import nesting_problem
 from .keys import KEYS, check_text, check_type, closest_key, key_lines
 
 __all__ = ["SECTION", "config_path", "user_defaults", "with_user_defaults"]
@@ -96,10 +97,15 @@ def user_defaults() -> dict[str, Any]:
         text = data.decode("utf-8-sig")
     except UnicodeDecodeError as exc:
         raise InputError(str(path), f"is not UTF-8 text: {exc}") from None
+    deep = nesting_problem(text)
+    if deep:
+        raise InputError(f"{path} (line {deep[0]})", deep[1])
     try:
         doc = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise InputError(str(path), f"is not valid TOML: {exc}") from None
+    except ValueError:  # an integer over Python's 4,300-digit conversion limit
+        raise InputError(str(path), "holds a number of more than 4,300 digits") from None
     table = _validate(doc, path, text)
     _cache[key] = (st.st_mtime, st.st_size, table)
     return dict(table)

@@ -202,7 +202,8 @@ def commit(files: Mapping[str, bytes], *, check: Callable[[], None], sweep: str 
 
     if announce is not None:
         announce(files)
-    written = write_atomic_many(files, check=check, remove=stale if sweep else None)
+    written = write_atomic_many(files, check=check, remove=stale if sweep else None,
+                                as_set=sweep)
     return written, removed
 
 
@@ -290,8 +291,8 @@ def project_inputs(result: Any) -> list[str]:
 
 def refuse_folder(path: str, field: str) -> None:
     """The folder the documents go into (``--out``, ``out_dir``) may be created: not an
-    existing file, nor (or a folder above it) a symbolic link to nothing — scanplan
-    creates missing folders, not the target of a broken link.
+    existing file, not below one (``FILE/x``), nor (or a folder above it) a symbolic link
+    to nothing — scanplan creates missing folders, not the target of a broken link.
 
     Raises
     ------
@@ -311,6 +312,9 @@ def refuse_folder(path: str, field: str) -> None:
         if parent == probe:
             break
         probe = parent
+    if probe and probe != path and os.path.exists(probe) and not os.path.isdir(probe):
+        raise InputError(field, f"{path!r} cannot be created: {probe!r} is a file, not a "
+                         "folder; give another folder")
 
 
 def make_folder(path: str) -> list[str]:

@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING, Any, Literal
 
 from ..geo.layout import FlightLayout
 from ..i18n.labels import t
-from ..io.targets import written_by_scanplan
+from ..io.targets import is_managed, written_by_scanplan
 
 if TYPE_CHECKING:  # the writers (pandas, shapely) are imported when files are written
     from ..geo.export import ExportFormat, ExportNames, MissionOptions
@@ -283,8 +283,8 @@ def stale_exports(folder: str, written: set[str]) -> list[str]:
         if fmt is None:
             continue
         path = os.path.join(folder, name)
-        if os.path.normcase(os.path.abspath(path)) in keep or os.path.islink(path) \
-                or not os.path.isfile(path):
+        if os.path.normcase(os.path.abspath(path)) in keep or (
+                os.path.islink(path) and not is_managed(path)) or not os.path.isfile(path):
             continue
         if written_by_scanplan(path, fmt):
             out.append(path)

@@ -467,23 +467,24 @@ def map_svg(layout: FlightLayout, locale: str = "en", terrain: MapTerrain | None
         '"DejaVu Sans"', '"Scanplan Sans"').replace("DejaVu Sans", "Scanplan Sans")
 
 
-def map_basemap(spec: Any, layout: FlightLayout) -> Any:
-    """``[map] basemap`` of the project warped into the layout's planning CRS
-    (:func:`scanplan.geo.basemap.read_basemap`), or None without one."""
+def map_basemap(spec: Any, layout: FlightLayout, kind: str = "uav") -> Any:
+    """The background of a layout's map in its planning CRS, or None without one: the
+    tiles the plan fetched for job ``kind`` (``[map] basemap`` as a tile URL,
+    :mod:`scanplan.project.background`), else ``[map] basemap`` as a file, read here
+    (:func:`scanplan.geo.basemap.read_basemap`)."""
+    if not layout.area.georeferenced:
+        return None
+    fetched = (getattr(spec, "backgrounds", None) or {}).get(kind)
+    if fetched is not None:
+        return fetched
     project = getattr(spec, "project", None)
     path = getattr(getattr(project, "map", None), "basemap", None)
-    if path is None or not layout.area.georeferenced:
+    if path is None:
         return None
-    import pyproj
+    from ..geo.basemap import layout_extent_lonlat, read_basemap
 
-    from ..geo.basemap import read_basemap
-
-    minx, miny, maxx, maxy = layout.area.geometry.bounds
-    pad = 0.15 * max(maxx - minx, maxy - miny)  # the map's margins around the area
-    around = pyproj.Transformer.from_crs(pyproj.CRS.from_user_input(layout.area.plan_crs),
-                                         4326, always_xy=True).transform_bounds(
-        minx - pad, miny - pad, maxx + pad, maxy + pad, densify_pts=21)
-    return read_basemap(path, str(layout.area.plan_crs), max_px=1600, area_lonlat=around)
+    return read_basemap(path, str(layout.area.plan_crs), max_px=1600,
+                        area_lonlat=layout_extent_lonlat(layout))
 
 
 def _draw_basemap(ax: Any, image: Any, scale: float) -> None:
@@ -515,15 +516,9 @@ def _draw_photos_plain(ax: Any, layout: FlightLayout, scale: float, locale: str)
 def _map_size_in(layout: FlightLayout) -> tuple[float, float]:
     """The map figure's (width, height) [in]: the page's width, a height the area (its
     strips and take-off point included) fills."""
-    minx, miny, maxx, maxy = layout.area.geometry.bounds
-    if layout.strips:
-        ends = np.array([p for s in layout.strips for p in (s.start_xy_m, s.end_xy_m)])
-        minx, miny = min(minx, ends[:, 0].min()), min(miny, ends[:, 1].min())
-        maxx, maxy = max(maxx, ends[:, 0].max()), max(maxy, ends[:, 1].max())
-    takeoff = layout.notes.get("takeoff_xy_m")
-    if takeoff is not None:
-        minx, miny = min(minx, takeoff[0]), min(miny, takeoff[1])
-        maxx, maxy = max(maxx, takeoff[0]), max(maxy, takeoff[1])
+    from ..geo.basemap import layout_extent
+
+    minx, miny, maxx, maxy = layout_extent(layout)
     width_in, max_h = _MAP_SIZE_IN
     ratio = (maxy - miny) / (maxx - minx) if maxx > minx else 1.0
     return width_in, min(max(width_in * 0.85 * ratio + 1.2, 3.8), max_h)
@@ -616,11 +611,19 @@ def _control_of(spec: Any) -> Any:
     return control.points if control is not None else None
 
 
-def _background_note(spec: Any, layout: FlightLayout, locale: str) -> str:
+def _background_note(spec: Any, layout: FlightLayout, kind: str, locale: str) -> str:
     """The map's background named as its attribution asks (``[map] basemap_attribution``,
-    else the file's name); empty without a background."""
+    else the file's name); empty without a background (none asked, or no tile came)."""
     m = getattr(getattr(spec, "project", None), "map", None)
-    if getattr(m, "basemap", None) is None or not layout.area.georeferenced:
+    if not layout.area.georeferenced or m is None:
+        return ""
+    if getattr(m, "basemap_url", None):
+        if kind not in (getattr(spec, "backgrounds", None) or {}):
+            from ..geo.tiles import template_host
+
+            return t("map_background_none", locale).format(host=template_host(m.basemap_url))
+        return t("map_background", locale).format(source=m.basemap_attribution)
+    if getattr(m, "basemap", None) is None:
         return ""
     return t("map_background", locale).format(source=m.basemap_attribution or m.basemap.name)
 
@@ -647,7 +650,7 @@ def geo_views(spec: Any, locale: str) -> list[dict[str, Any]]:
             if not film and _exports.mission_options(spec, layout) is not None:
                 items.insert(0, t("geo_file_mission", locale))
             notes.append(t("geo_files_note", locale).format(items="; ".join(items)))
-        background = _background_note(spec, layout, locale)
+        background = _background_note(spec, layout, _kind, locale)
         if background:
             notes.append(background)
         if layout.area.georeferenced and len(layout.photos) > MAX_SHEET_PHOTOS:
@@ -658,7 +661,7 @@ def geo_views(spec: Any, locale: str) -> list[dict[str, Any]]:
             "title": t("map_title_film" if film else "map_title", locale)
             if layout.area.georeferenced else t("geo_summary", locale),
             "map": _svg_uri(map_svg(layout, locale, map_terrain(spec, _kind, layout),
-                                    map_basemap(spec, layout),
+                                    map_basemap(spec, layout, _kind),
                                     None if film else _control_of(spec)))
             if layout.area.georeferenced else None,
             "caption": crs_text(layout, locale),

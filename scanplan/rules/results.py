@@ -7,6 +7,7 @@ terminal, ``--json``, the workbook and the PDF render them and never recompute a
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -57,7 +58,7 @@ class ScanRules:
     uav_max_height_m: float
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class Evaluation:
     """Vectorised engine output.
 
@@ -65,8 +66,9 @@ class Evaluation:
     ----------
     ids : tuple of str
         Enabled constraints, in the order of the first axis of ``pixel_um``.
-    pixel_um : ndarray, shape (n_constraints, ...)
-        Each constraint's largest allowed scan pixel [µm].
+    pixels : tuple of ndarray
+        Each constraint's largest allowed scan pixel [µm], in the order of ``ids``, each
+        broadcast to the scenarios' shape.
     binding_index : ndarray of int
         Index into ``ids`` of the binding constraint.
     scan_pixel_um : ndarray
@@ -74,9 +76,15 @@ class Evaluation:
     """
 
     ids: tuple[str, ...]
-    pixel_um: NDArray[np.float64]
+    pixels: tuple[NDArray[np.float64], ...]
     binding_index: NDArray[np.intp]
     scan_pixel_um: NDArray[np.float64]
+
+    @cached_property
+    def pixel_um(self) -> NDArray[np.float64]:
+        """Each constraint's pixel as one array, shape (n_constraints, ...) [µm] (stacked
+        when first asked for: the binding constraint and the scan pixel do not need it)."""
+        return np.stack(self.pixels)
 
     @property
     def binding(self) -> NDArray[np.str_]:

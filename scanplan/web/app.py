@@ -17,13 +17,16 @@ Routes (``/docs`` shows them with their schemas, ``/openapi.json`` is the OpenAP
 A project is sent as ``{"project": {section: {key: value}}, "files": {name: upload id}}``.
 A bad input answers 422 with the command line's message (``{"detail": "project.toml:
 uav.speed_ms (line 9): must be …", "field": …, "message": …}``). Bodies are bounded
-(:data:`MAX_BODY_BYTES`; uploads by :mod:`scanplan.web.uploads`). With a ``token`` every
-``/api/`` request must carry it (header ``X-Scanplan-Token`` or ``?token=``).
+and JSON bodies checked for depth and lone surrogates (:mod:`scanplan.web.bodies`; uploads
+are bounded by :mod:`scanplan.web.uploads`). Every request passes
+:class:`scanplan.web.guard.RequestGuard` first: a foreign Host or Origin, a cross-site
+fetch and a body type another site's page could send are refused, on every route; with a
+``token`` every ``/api/`` request must carry it (header ``X-Scanplan-Token`` or
+``?token=``).
 """
 
 from __future__ import annotations
 
-import secrets
 from contextlib import asynccontextmanager
 from pathlib import Path
 from typing import Any
@@ -35,14 +38,15 @@ from pydantic import BaseModel, Field
 
 from .._version import __version__
 from ..errors import InputError
+from .bodies import MAX_BODY_BYTES, BodyGuard, printable
+from .documents import Documents
+from .guard import RequestGuard, allowed_hosts
 from .uploads import UploadStore
 from .worker import Busy, Failed, Planner, TimedOut
 
 __all__ = ["MAX_BODY_BYTES", "PlanRequest", "create_app"]
 
 STATIC = Path(__file__).parent / "static"
-MAX_BODY_BYTES = 8 * 1024 * 1024
-"""Largest JSON request [bytes] (a project with an inline polygon of ~200,000 points)."""
 
 
 class PlanRequest(BaseModel):
@@ -55,55 +59,18 @@ class PlanRequest(BaseModel):
                                   "uses ([area] file, [terrain] dem) → the id of its upload")
 
 
-class _BodyLimit:
-    """ASGI middleware: a request body past ``limit`` bytes is refused with 413 (uploads
-    are bounded by the upload store instead)."""
-
-    def __init__(self, app: Any, limit: int) -> None:
-        self.app, self.limit = app, limit
-
-    async def __call__(self, scope: Any, receive: Any, send: Any) -> None:
-        if scope["type"] != "http" or scope["path"] == "/api/upload":
-            await self.app(scope, receive, send)
-            return
-        declared = dict(scope.get("headers") or []).get(b"content-length", b"0")
-        if declared.isdigit() and int(declared) > self.limit:
-            await _too_large(self.limit)(scope, receive, send)
-            return
-        seen = 0
-
-        async def bounded() -> Any:
-            nonlocal seen
-            message = await receive()
-            seen += len(message.get("body", b""))
-            if seen > self.limit:
-                raise _TooLarge
-            return message
-
-        try:
-            await self.app(scope, bounded, send)
-        except _TooLarge:
-            await _too_large(self.limit)(scope, receive, send)
-
-
-class _TooLarge(Exception):
-    pass
-
-
-def _too_large(limit: int) -> JSONResponse:
-    return JSONResponse({"detail": f"the request is larger than {limit:,} bytes"}, 413)
-
-
 def _input_error(exc: InputError, lang: str | None = None) -> JSONResponse:
-    """422 with the command line's message; with ``lang`` (``?lang=`` of the page's
-    requests) also ``page``: the key, label and text the page shows by the field
+    """422 with the command line's message (every lone surrogate a file brought written as
+    its escape: :func:`scanplan.web.bodies.printable`); with ``lang`` (``?lang=`` of the
+    page's requests) also ``page``: the key, label and text the page shows by the field
     (:func:`scanplan.web.pagewords.page_error`)."""
-    body: dict[str, Any] = {"detail": f"{exc.field}: {exc.message}", "field": exc.field,
-                            "message": exc.message}
+    field, message = printable(exc.field), printable(exc.message)
+    body: dict[str, Any] = {"detail": f"{field}: {message}", "field": field,
+                            "message": message}
     if lang in ("en", "ru"):
         from .pagewords import page_error
 
-        body["page"] = page_error(exc.field, exc.message, lang)
+        body["page"] = page_error(field, message, lang)
     return JSONResponse(body, 422)
 
 
@@ -121,13 +88,14 @@ def _language(request: Request, lang: str | None) -> str:
 
 def create_app(*, token: str | None = None, planner: Planner | None = None,
                uploads: UploadStore | None = None, tiles: str | None = None,
-               basemaps: Any = None) -> FastAPI:
+               basemaps: Any = None, host: str | None = None) -> FastAPI:
     """The application.
 
     Parameters
     ----------
     token : str or None
-        Required on every ``/api/`` request when given (serving off localhost).
+        Required on every ``/api/`` request when given (serving off localhost), and on
+        every request naming a host other than ``host`` and this machine's names.
     planner : Planner or None
         Runs the plans (default: a worker process with the default time limits).
     uploads : UploadStore or None
@@ -137,12 +105,16 @@ def create_app(*, token: str | None = None, planner: Planner | None = None,
         default) or ``"none"`` (no background map: offline); ignored with ``basemaps``.
     basemaps : scanplan.web.basemap.Basemaps or None
         The background maps offered (tiles, MBTiles, their cache); default: ``tiles``'s.
+    host : str or None
+        The address the server listens on: a Host header may name it (besides
+        ``localhost``, ``127.0.0.1`` and ``::1``).
     """
     from .basemap import Basemaps
 
     basemaps = basemaps if basemaps is not None else Basemaps(tiles or "osm")
     planner = planner if planner is not None else Planner()
     store = uploads if uploads is not None else UploadStore()
+    documents = Documents.beside(planner, lambda files: _files(store, dict(files)))
 
     @asynccontextmanager
     async def lifespan(app: FastAPI) -> Any:
@@ -152,6 +124,7 @@ def create_app(*, token: str | None = None, planner: Planner | None = None,
         try:
             yield
         finally:
+            documents.close()
             planner.close()
             store.close()
 
@@ -161,17 +134,9 @@ def create_app(*, token: str | None = None, planner: Planner | None = None,
                   "prints for the same project file.")
     app.state.planner, app.state.uploads, app.state.token = planner, store, token
 
-    @app.middleware("http")
-    async def check_token(request: Request, call_next: Any) -> Any:
-        if token and request.url.path.startswith("/api/"):
-            given = request.headers.get("x-scanplan-token") or \
-                request.query_params.get("token") or ""
-            if not secrets.compare_digest(given.encode(), token.encode()):
-                return JSONResponse({"detail": "a valid token is required (the one "
-                                     "`scanplan serve` printed)"}, 403)
-        return await call_next(request)
-
-    app.add_middleware(_BodyLimit, limit=MAX_BODY_BYTES)
+    app.add_middleware(BodyGuard, limit=MAX_BODY_BYTES)
+    # added last: the outermost layer, in front of every route (those added later too)
+    app.add_middleware(RequestGuard, hosts=allowed_hosts(host), token=token)
 
     _error_handlers(app)
 
@@ -188,7 +153,7 @@ def create_app(*, token: str | None = None, planner: Planner | None = None,
     def favicon() -> Response:
         return Response((STATIC / "favicon.svg").read_bytes(), media_type="image/svg+xml")
 
-    _routes(app, planner, store)
+    _routes(app, planner, store, documents)
     from .pageroutes import page_routes
 
     page_routes(app, planner, store, basemaps)
@@ -221,8 +186,9 @@ def _files(store: UploadStore, files: dict[str, str]) -> dict[str, str]:
             for name, upload_id in files.items()}
 
 
-def _routes(app: FastAPI, planner: Planner, store: UploadStore) -> None:
+def _routes(app: FastAPI, planner: Planner, store: UploadStore, documents: Documents) -> None:
     """The API's routes."""
+    app.state.documents = documents  # the downloads, rendered while the user looks
 
     @app.get("/api/inputs")
     def inputs(lang: str = Query("en", pattern="^(en|ru)$")) -> list[dict[str, Any]]:
@@ -268,11 +234,13 @@ def _routes(app: FastAPI, planner: Planner, store: UploadStore) -> None:
         answered 409 without being planned (:mod:`scanplan.web.edits`)."""
         edit = parse_edit(request.headers.get("x-scanplan-edit"))
         try:
-            return gate.run(edit, lambda: planner.run(  # type: ignore[no-any-return]
+            shown = gate.run(edit, lambda: planner.run(
                 "view", req.project, _files(store, req.files)),
                 lambda: Busy(f"another plan is running; tried for {gate.wait_s:g} s"))
         except Superseded:
             return JSONResponse(superseded_answer(), 409)
+        documents.ahead(req.project, req.files)  # the downloads, while the user looks
+        return shown  # type: ignore[no-any-return]
 
     @app.post("/api/project.toml")
     def project_file(req: PlanRequest) -> Response:
@@ -286,8 +254,7 @@ def _routes(app: FastAPI, planner: Planner, store: UploadStore) -> None:
     @app.post("/api/download/{what}")
     def download(what: str, req: PlanRequest) -> Response:
         """``pdf``, ``xlsx``, or ``zip``: the reports, missions, GIS files, project file."""
-        name, data = planner.run("files", req.project, _files(store, req.files), what,
-                                 limit_s=planner.report_limit_s)
+        name, data = documents.get(req.project, req.files, what)
         kind = {"pdf": "application/pdf", "zip": "application/zip"}.get(
             what, "application/vnd.openxmlformats-officedocument.spreadsheetml.sheet")
         return Response(data, media_type=kind,

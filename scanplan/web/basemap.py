@@ -8,7 +8,8 @@ a user's orthophoto.
   id and three integers, checked (``z`` ≤ :data:`MAX_ZOOM`, ``x``, ``y`` < 2^z), and the
   server fills its own template. A fetched tile (an image, at most :data:`MAX_TILE_BYTES`)
   is kept on disk (``--tile-cache``, by default the user's cache folder) and served from
-  there afterwards — also offline; the cache keeps at most :data:`MAX_CACHE_TILES` tiles;
+  there afterwards — also offline; the cache keeps at most :data:`MAX_CACHE_TILES` tiles
+  (:class:`scanplan.geo.tiles.TileCache`, which the PDF's map page uses too);
 - an MBTiles file (``--mbtiles FILE``: a SQLite database of tiles, the format QGIS, GDAL and
   the tile tools write) is read with :mod:`sqlite3`, read-only — offline by nature.
 
@@ -23,33 +24,29 @@ beside the upload as a PNG and shown under the plan; the project names it as
 from __future__ import annotations
 
 import contextlib
-import hashlib
 import os
-import re
 import sqlite3
-import tempfile
-import threading
-import urllib.request
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from .._version import __version__
 from ..errors import InputError
+from ..geo.tiles import (
+    MAX_CACHE_TILES,
+    MAX_TILE_BYTES,
+    MAX_ZOOM,
+    OSM_ATTRIBUTION,
+    OSM_URL,
+    TileCache,
+    TileUnreachable,
+    check_template,
+    default_cache,
+    image_type,
+    template_host,
+)
 
 __all__ = ["MAX_CACHE_TILES", "MAX_TILE_BYTES", "MAX_ZOOM", "OSM_ATTRIBUTION", "OSM_URL",
-           "Basemaps", "TileSource", "ortho_job"]
-
-OSM_URL = "https://tile.openstreetmap.org/{z}/{x}/{y}.png"
-OSM_ATTRIBUTION = "© OpenStreetMap contributors"
-MAX_ZOOM = 22
-"""Deepest zoom level a tile is asked for."""
-MAX_TILE_BYTES = 2 * 1024 * 1024
-"""Largest tile fetched or read [bytes]."""
-MAX_CACHE_TILES = 200_000
-"""Most tiles the disk cache keeps (a town at zoom 12–19 is a few thousand)."""
-FETCH_TIMEOUT_S = 10.0
-_IMAGE = (b"\x89PNG\r\n\x1a\n", b"\xff\xd8\xff", b"RIFF", b"GIF8")
+           "Basemaps", "TileSource", "check_template", "default_cache", "ortho_job"]
 
 
 @dataclass(frozen=True)
@@ -63,24 +60,6 @@ class TileSource:
     url: str | None = None
     path: Path | None = None
     max_zoom: int = 19
-
-
-def _image_type(data: bytes) -> str | None:
-    if data.startswith(_IMAGE[0]):
-        return "image/png"
-    if data.startswith(_IMAGE[1]):
-        return "image/jpeg"
-    if data.startswith(_IMAGE[2]) and data[8:12] == b"WEBP":
-        return "image/webp"
-    if data.startswith(_IMAGE[3]):
-        return "image/gif"
-    return None
-
-
-def default_cache() -> Path:
-    """The user's cache folder for tiles (``$XDG_CACHE_HOME/scanplan/tiles``)."""
-    root = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
-    return Path(root) / "scanplan" / "tiles"
 
 
 def _mbtiles_meta(path: Path) -> dict[str, str]:
@@ -123,8 +102,8 @@ class Basemaps:
             self.sources["osm"] = TileSource("osm", "OpenStreetMap", OSM_ATTRIBUTION, OSM_URL)
         elif tiles != "none":
             check_template(tiles)
-            self.sources["tiles"] = TileSource("tiles", attribution or _host(tiles),
-                                               attribution or _host(tiles), tiles)
+            self.sources["tiles"] = TileSource("tiles", attribution or template_host(tiles),
+                                               attribution or template_host(tiles), tiles)
         if mbtiles is not None:
             meta = _mbtiles_meta(Path(mbtiles))
             zoom = int(meta["maxzoom"]) if meta.get("maxzoom", "").isdigit() else MAX_ZOOM
@@ -133,9 +112,9 @@ class Basemaps:
                 meta.get("attribution") or meta.get("name") or Path(mbtiles).name,
                 path=Path(mbtiles), max_zoom=min(zoom, MAX_ZOOM))
         self.cache = cache if cache is not None else default_cache()
+        self._tiles = TileCache(self.cache)
         self.default = "mbtiles" if "mbtiles" in self.sources else next(
             iter(self.sources), "none")
-        self._lock = threading.Lock()
 
     def page_list(self, token: str | None = None) -> list[dict[str, Any]]:
         """The sources as the page's configuration lists them."""
@@ -168,65 +147,15 @@ class Basemaps:
         if row is None or not row[0] or len(row[0]) > MAX_TILE_BYTES:
             return None
         data = bytes(row[0])
-        kind = _image_type(data)
+        kind = image_type(data)
         return (data, kind) if kind else None
 
     def _fetched(self, s: TileSource, z: int, x: int, y: int) -> tuple[bytes, str] | None:
         assert s.url is not None
-        folder = self.cache / hashlib.sha256(s.url.encode()).hexdigest()[:16] / str(z) / str(x)
-        cached = folder / str(y)
-        if cached.is_file():
-            data = cached.read_bytes()
-            kind = _image_type(data)
-            if kind:
-                return data, kind
-        url = s.url.replace("{z}", str(z)).replace("{x}", str(x)).replace("{y}", str(y))
-        req = urllib.request.Request(url, headers={
-            "User-Agent": f"scanplan/{__version__} (survey planning; tile cache)"})
         try:
-            with urllib.request.urlopen(req, timeout=FETCH_TIMEOUT_S) as r:
-                data = r.read(MAX_TILE_BYTES + 1)
-        except (OSError, ValueError):
+            return self._tiles.get(s.url, z, x, y)
+        except TileUnreachable:
             return None
-        kind = _image_type(data)
-        if len(data) > MAX_TILE_BYTES or kind is None:
-            return None
-        self._keep(folder, cached, data)
-        return data, kind
-
-    def _keep(self, folder: Path, path: Path, data: bytes) -> None:
-        """Write a tile into the cache (atomically; nothing past :data:`MAX_CACHE_TILES`)."""
-        with self._lock:
-            root = folder.parents[2]
-            count_file = root / "count"
-            try:
-                count = int(count_file.read_text()) if count_file.is_file() else 0
-            except (OSError, ValueError):
-                count = 0
-            if count >= MAX_CACHE_TILES:
-                return
-            try:
-                folder.mkdir(parents=True, exist_ok=True)
-                fd, tmp = tempfile.mkstemp(dir=folder, prefix=".tile-")
-                with os.fdopen(fd, "wb") as f:
-                    f.write(data)
-                os.replace(tmp, path)
-                count_file.write_text(str(count + 1))
-            except OSError:
-                return
-
-
-def _host(url: str) -> str:
-    m = re.match(r"^https?://([^/]+)", url)
-    return m.group(1) if m else url
-
-
-def check_template(url: str, field: str = "--tiles") -> None:
-    """Refuse a tile URL that is not http(s) with ``{z}``, ``{x}`` and ``{y}``."""
-    if not (url.startswith(("https://", "http://")) and all(
-            k in url for k in ("{z}", "{x}", "{y}"))):
-        raise InputError(field, 'must be "osm", "none" or an http(s) URL with {z}/{x}/{y} '
-                         f"(got {url!r})")
 
 
 def ortho_job(path: str, cache: str) -> dict[str, Any]:

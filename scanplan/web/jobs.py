@@ -34,7 +34,7 @@ from typing import Any
 from ..errors import InputError
 from .tomlfile import project_tables, project_toml
 
-__all__ = ["FILE_KEYS", "JOBS", "PROJECT_NAME", "catalogue_job", "files_job",
+__all__ = ["FILE_KEYS", "JOBS", "PROJECT_NAME", "catalogue_job", "documents_job", "files_job",
            "plan_job", "view_job"]
 
 PROJECT_NAME = "project.toml"
@@ -212,6 +212,8 @@ def files_job(project: Any, files: Mapping[str, str], what: str) -> tuple[str, b
     (file name, bytes)."""
     if what not in ("pdf", "xlsx", "zip"):
         raise InputError("what", f'must be "pdf", "xlsx" or "zip" (got {what!r})')
+    if what == "zip":
+        project, files = _inputs_apart(project, files)
     with _planned(project, files) as (result, text, folder):
         from ..reports.exports import export_files, with_exports
 
@@ -220,16 +222,71 @@ def files_job(project: Any, files: Mapping[str, str], what: str) -> tuple[str, b
         reports = _reports(result, ("pdf", "xlsx") if what == "zip" else (what,))
         if what != "zip":
             return f"spec.{what}", reports[what]
-        out = io.BytesIO()
-        with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as zf:
-            zf.writestr(PROJECT_NAME, text)
-            for name in sorted(files):
-                zf.write(folder / _file_name(name, "files"), _file_name(name, "files"))
-            for kind in ("pdf", "xlsx"):
-                zf.writestr(f"spec.{kind}", reports[kind])
-            for path, (_kind, data) in sorted(exports.items()):
-                zf.writestr(path, _scrub_text_file(path, data, folder))
-        return "scanplan.zip", out.getvalue()
+        return "scanplan.zip", _zip(text, folder, files, reports, exports)
+
+
+def documents_job(project: Any, files: Mapping[str, str]) -> dict[str, tuple[str, bytes]]:
+    """Every download of the project at once, from one plan and one rendering of each
+    report: ``{"pdf": …, "xlsx": …, "zip": …}`` as :func:`files_job` gives each
+    (:mod:`scanplan.web.documents` renders them while the user looks at the plan)."""
+    from ..reports.exports import export_files, with_exports
+
+    project, files = _inputs_apart(project, files)  # the zip holds each file once
+    with _planned(project, files) as (result, text, folder):
+        alone = _reports(result, ("pdf", "xlsx"))  # downloaded alone: no file beside them
+        exports = export_files(result, "")
+        beside = _reports(with_exports(result, (kind for kind, _ in exports.values())),
+                          ("pdf", "xlsx"))
+        return {"pdf": ("spec.pdf", alone["pdf"]), "xlsx": ("spec.xlsx", alone["xlsx"]),
+                "zip": ("scanplan.zip", _zip(text, folder, files, beside, exports))}
+
+
+def _zip(text: str, folder: Path, files: Mapping[str, str], reports: Mapping[str, bytes],
+         exports: Mapping[str, tuple[str, bytes]]) -> bytes:
+    """The zip of everything: the project file, its uploads, the reports, the mission and
+    GIS files of ``plan --out`` (``exports``: path → (format, bytes))."""
+    out = io.BytesIO()
+    with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as zf:
+        zf.writestr(PROJECT_NAME, text)
+        for name in sorted(files):
+            zf.write(folder / _file_name(name, "files"), _file_name(name, "files"))
+        for kind in ("pdf", "xlsx"):
+            zf.writestr(f"spec.{kind}", reports[kind])
+        for path, (_kind, data) in sorted(exports.items()):
+            zf.writestr(path, _scrub_text_file(path, data, folder))
+    return out.getvalue()
+
+
+INPUTS_FOLDER = "inputs"
+"""The zip's folder for an uploaded file named like one of the outputs."""
+
+
+def _is_output_name(name: str) -> bool:
+    """Whether a file of the zip's top level could have this name: the reports, the
+    project file, an exported file (:data:`scanplan.geo.export.formats.FORMATS`)."""
+    from ..geo.export.formats import FORMATS
+
+    if name.casefold() in {PROJECT_NAME, "spec.pdf", "spec.xlsx"}:
+        return True
+    return any(re.fullmatch(f"(?:film-)?{f.name_pattern()}", name, re.IGNORECASE)
+               for f in FORMATS)
+
+
+def _inputs_apart(project: Any, files: Mapping[str, str]) -> tuple[Any, dict[str, str]]:
+    """The project and its uploads with every upload named like an output
+    (``flight.kml``) moved to ``inputs/`` — the project's keys follow — so that the zip
+    holds each file once and, unpacked, plans the same area again."""
+    renamed = {name: f"{INPUTS_FOLDER}/{name}" for name in files
+               if isinstance(name, str) and _is_output_name(name)}
+    if not renamed or not isinstance(project, dict):
+        return project, dict(files)
+    tables = {section: dict(table) if isinstance(table, dict) else table
+              for section, table in project.items()}
+    for section, key in FILE_KEYS:
+        table = tables[section] if section in tables else None
+        if isinstance(table, dict) and key in table and table[key] in renamed:
+            table[key] = renamed[table[key]]
+    return tables, {renamed.get(name, name): path for name, path in files.items()}
 
 
 _TEXT_EXPORTS = (".kml", ".geojson", ".csv", ".plan", ".waypoints", ".txt")
@@ -284,7 +341,8 @@ def catalogue_job(norms: str, locale: str) -> dict[str, Any]:
     return {"norms": norms, "cameras": cams, "scanners": scanners}
 
 
-JOBS = {"plan": plan_job, "view": view_job, "files": files_job, "catalogue": catalogue_job}
+JOBS = {"plan": plan_job, "view": view_job, "files": files_job, "documents": documents_job,
+        "catalogue": catalogue_job}
 """The jobs the worker runs, by name."""
 
 

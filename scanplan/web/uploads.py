@@ -102,7 +102,10 @@ class UploadStore:
 
     def __init__(self, *, max_upload_bytes: int = MAX_UPLOAD_BYTES,
                  max_store_bytes: int = MAX_STORE_BYTES, max_files: int = MAX_FILES) -> None:
-        self.root = Path(tempfile.mkdtemp(prefix="scanplan-serve-"))
+        from ..io.rundir import run_dir
+
+        # in the run's folder: removed with it, or swept when a killed server left it
+        self.root = Path(tempfile.mkdtemp(prefix="scanplan-serve-", dir=run_dir()))
         self.max_upload_bytes = max_upload_bytes
         self.max_store_bytes = max_store_bytes
         self.max_files = max_files

@@ -8,13 +8,23 @@ is ended by killing the process, which is started again for the next request. Th
 answers with the result, or the field and message of an input error (the command line's),
 or a one-line failure.
 
+Each worker has a temporary folder of its own in the run's folder
+(:func:`scanplan.io.rundir.run_dir`): the jobs' folders (``scanplan-job-*``, hard links to
+the uploads), WeasyPrint's fonts, openpyxl's and the GeoPackage writer's temporaries all go
+there, and the folder is removed whenever the worker is stopped — a job past its limit
+leaves nothing behind, not even a link that keeps a removed upload's bytes on the disk.
+
 ``inline=True`` runs the jobs in the server's own process (the tests of the API, where the
 time limit is not what is tested); the lock still gives one plan at a time.
 """
 
 from __future__ import annotations
 
+import contextlib
 import multiprocessing
+import os
+import shutil
+import tempfile
 import threading
 from typing import Any
 
@@ -41,29 +51,58 @@ class Failed(Exception):
 
 def _answer(job: str, args: tuple[Any, ...]) -> tuple[str, Any]:
     """Run one job; the tagged answer (``ok``, ``input`` or ``failed``)."""
+    from .bodies import printable, printable_data
     from .jobs import JOBS
 
     try:
-        return "ok", JOBS[job](*args)
+        return "ok", printable_data(JOBS[job](*args))
     except InputError as exc:
-        return "input", (exc.field, exc.message)
+        return "input", (printable(exc.field), printable(exc.message))
     except MemoryError:
         return "failed", "the plan needs more memory than the machine has"
+    except RecursionError:
+        return "failed", "the project is nested too deeply to be planned"
     except Exception as exc:  # a bug or the environment: one line, never a traceback
-        return "failed", f"{type(exc).__name__}: {exc}"[:500]
+        return "failed", printable(f"{type(exc).__name__}: {exc}"[:500])
 
 
-def _loop(conn: Any) -> None:  # pragma: no cover - runs in the child process
-    """The worker: answer jobs until the pipe closes."""
+def _loop(conn: Any, folder: str) -> None:  # pragma: no cover - runs in the child process
+    """The worker: answer jobs until the pipe closes; every temporary file in ``folder``."""
     import warnings
 
     warnings.simplefilter("ignore")  # as the command line: no library warning on stderr
+    tempfile.tempdir = folder
+    for key in ("TMPDIR", "TMP", "TEMP", "CPL_TMPDIR"):
+        os.environ[key] = folder
     while True:
         try:
             job, args = conn.recv()
         except (EOFError, OSError):
             return
         conn.send(_answer(job, args))
+
+
+_SOCKET_ROOM = 50
+"""Longest temporary folder [bytes] the fork server's socket is made in (a socket's path
+has at most 107 bytes; multiprocessing adds some 40)."""
+
+
+@contextlib.contextmanager
+def _socket_folder() -> Any:
+    """Where multiprocessing makes its fork server's socket (on the fork server's first
+    start): the run's folder, or the system's temporary folder when the run's is too deep
+    for a socket's path."""
+    if len(os.fsencode(tempfile.gettempdir())) <= _SOCKET_ROOM:
+        yield
+        return
+    saved = tempfile.tempdir
+    tempfile.tempdir = None  # TMPDIR is the run's folder: the system's default instead
+    try:
+        base = os.path.dirname(saved or "") if saved else None
+        tempfile.tempdir = base if base and len(os.fsencode(base)) <= _SOCKET_ROOM else "/tmp"
+        yield
+    finally:
+        tempfile.tempdir = saved
 
 
 class Planner:
@@ -90,13 +129,19 @@ class Planner:
         self._lock = threading.Lock()
         self._proc: Any = None
         self._conn: Any = None
+        self._folder: str | None = None
 
     def _start(self) -> None:
+        from ..io.rundir import run_dir
+
         ctx = multiprocessing.get_context("forkserver")
         ctx.set_forkserver_preload(PRELOAD)
+        self._folder = tempfile.mkdtemp(prefix="worker-", dir=run_dir())
         parent, child = ctx.Pipe()
-        proc = ctx.Process(target=_loop, args=(child,), daemon=True, name="scanplan-plan")
-        proc.start()
+        proc = ctx.Process(target=_loop, args=(child, self._folder), daemon=True,
+                           name="scanplan-plan")
+        with _socket_folder():
+            proc.start()
         child.close()
         self._proc, self._conn = proc, parent
 
@@ -105,7 +150,9 @@ class Planner:
             self._proc.kill()
             self._proc.join(5)
             self._conn.close()
-        self._proc = self._conn = None
+        if self._folder is not None:  # the worker's temporaries, a killed job's folder too
+            shutil.rmtree(self._folder, ignore_errors=True)
+        self._proc = self._conn = self._folder = None
 
     def warm_up(self) -> None:
         """Start the worker now (the first plan then does not wait for the imports)."""

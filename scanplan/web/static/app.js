@@ -185,7 +185,8 @@
   /* ---------------------------------------------------------------- uploads */
   async function upload(file) {
     const r = await api(withLang("upload?name=" + encodeURIComponent(file.name)),
-                        {method: "POST", body: file});
+                        {method: "POST", body: file,
+                         headers: {"Content-Type": "application/octet-stream"}});
     const body = await r.json();
     if (!r.ok) throw new Error(errorText(body) || r.statusText);
     return body;
