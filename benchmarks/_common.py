@@ -18,7 +18,9 @@ A ratio of 0.5 therefore means "twice as good as the target", 2.0 "twice as bad"
 from __future__ import annotations
 
 import math
+import os
 import sys
+import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -142,3 +144,20 @@ def error_result(name: str, exc: BaseException) -> Result:
     message = str(exc).strip().splitlines()
     text = f"{type(exc).__name__}: {message[0]}" if message else type(exc).__name__
     return Result(name, math.nan, "", math.nan, "<=", error=text)
+
+
+def child_env() -> dict[str, str]:
+    """The environment of a fresh process as a user's: compiled bytecode kept and used (as
+    ``pip install`` leaves it; here in a folder of its own, not beside the sources) even
+    where the shell says ``PYTHONDONTWRITEBYTECODE``, and no GDAL options this process set.
+
+    Returns
+    -------
+    dict
+        ``os.environ`` without ``GDAL_*``, ``CPL_*`` and ``PYTHONDONTWRITEBYTECODE``, with
+        ``PYTHONPYCACHEPREFIX`` set.
+    """
+    env = {k: v for k, v in os.environ.items()
+           if not k.startswith(("GDAL_", "CPL_")) and k != "PYTHONDONTWRITEBYTECODE"}
+    env["PYTHONPYCACHEPREFIX"] = str(Path(tempfile.gettempdir()) / "scanplan-bench-pycache")
+    return env

@@ -55,6 +55,7 @@ BENCHMARKS: dict[str, str] = {
     "terrain": "bench_terrain",
     "terrain_block": "bench_terrain_block",
     "flight_layout": "bench_flight_layout",
+    "plan_warm": "bench_plan_warm",
     "hostile_gis": "bench_hostile_gis",
     "sweep": "bench_sweep",
     "serve": "bench_serve",

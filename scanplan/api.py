@@ -48,7 +48,7 @@ if TYPE_CHECKING:  # pragma: no cover
 
     import pandas as pd
 
-    from .geo.layout import Area
+    from .geo.layout import Area, FlightLayout
     from .project.flightplan import LayoutOptions
     from .project.jobs import ScanJob, UavJob
     from .project.spec import PlanResult
@@ -619,6 +619,8 @@ if TYPE_CHECKING:  # the signatures a type checker reads: the registry's keyword
             gsd_limit_reason: str | None = ...,
             area: Area | None = ...,
             layout_options: LayoutOptions | None = ...,
+            flown_band_m: tuple[float, float] | None = ...,
+            laid_out: FlightLayout | None = ...,
     ) -> UavResult: ...
     # </typed signatures>
 else:  # at run time: one keyword per input of the registry (its signature and its docs)

@@ -119,6 +119,9 @@ def terrain_cases(tmp: Path) -> dict[str, list]:
     res = TC.uav_terrain(lay, T.ground_under(lay, T.TerrainConfig(dem=tilt)), inp,
                         plan_uav(inp))
     out["terrain overlaps"] = [w.message for w in res.warnings]
+    from scanplan.project.alternatives import overlap_findings
+    short, within = overlap_findings(inp, res)  # a plan compared: rejected for it
+    out["plans compared, overlaps short"] = short + within
     inp = uav_inputs(100.0, down_pct=30.0)
     res = TC.uav_terrain(lay, T.ground_under(lay, T.TerrainConfig(dem=tilt)), inp,
                         plan_uav(inp))
@@ -135,15 +138,6 @@ def terrain_cases(tmp: Path) -> dict[str, list]:
         nodata=-9999.0)
     out["terrain nodata unfilled"] = [w.message for w in T.ground_under(
         lay, T.TerrainConfig(dem=pin, void_fill_radius_m=0.0)).warnings]
-    # another altitude mode named: follow far above the strips' height
-    from scanplan.geo.terrain_choice import ModeHeights
-    from scanplan.project.terrainplan import _other_choice
-    inp = uav_inputs(100.0)
-    flat = TC.uav_terrain(lay, T.ground_under(lay, T.TerrainConfig(dem=tilt)), inp,
-                         plan_uav(inp), "strip")
-    hint = _other_choice(T.TerrainConfig(dem=tilt, altitude_mode="strip"), flat,
-                         ModeHeights(60.0, 200.0, (0.0,), (100.0,)), 300.0)
-    out["terrain other mode"] = [hint.message]
     to = Transformer.from_crs(PLAN_CRS, "EPSG:4326", always_xy=True)
     lon, lat = to.transform(ph["x_m"], ph["y_m"])
     geo = write_dem(tmp / "geo-cases.tif", lambda x, y: np.full_like(x, 150.0),
@@ -172,3 +166,20 @@ def terrain_cases(tmp: Path) -> dict[str, list]:
                         resolving_power_lpmm=40, object_size_m=0.2, shape_coefficient=0.97)
     out["terrain film"] = [w.message for w in ft.warnings]
     return out
+
+
+def valley_pinned(tmp: Path, mode: str = "constant") -> Path:
+    """The valley example (with its KML and DEM) in ``tmp``, its altitude mode pinned: the
+    example leaves the mode to scanplan, which follows the terrain there."""
+    import shutil
+
+    examples = Path(__file__).resolve().parent.parent / "examples"
+    for folder in ("areas", "dem"):
+        if not (tmp / folder).exists():
+            shutil.copytree(examples / folder, tmp / folder)
+    text = (examples / "uav-town-valley-2000.toml").read_text(encoding="utf-8")
+    assert 'altitude_mode = "auto"' in text
+    p = tmp / f"uav-town-valley-2000-{mode}.toml"
+    p.write_text(text.replace('altitude_mode = "auto"', f'altitude_mode = "{mode}"'),
+                 encoding="utf-8")
+    return p

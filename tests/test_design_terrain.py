@@ -30,7 +30,8 @@ def _plan(path: Path, replace: tuple[str, str] | None = None):
 
 @pytest.fixture(scope="module")
 def valley():
-    return _plan(VALLEY)
+    """The valley flown at one altitude (the example leaves the mode to scanplan)."""
+    return _plan(VALLEY, ('altitude_mode = "auto"', 'altitude_mode = "constant"'))
 
 
 def test_one_height_rule_runs_on_the_dem(valley):
@@ -53,7 +54,8 @@ def test_one_height_rule_runs_on_the_dem(valley):
 
 
 def test_one_height_rule_is_waived_when_following_the_relief():
-    r = _plan(VALLEY, ('altitude_mode = "constant"', 'altitude_mode = "follow"'))
+    r = _plan(VALLEY)  # the example leaves the mode to scanplan: it follows the relief
+    assert r.uav.terrain.mode == "follow"
     d = r.design
     assert d.block is not None and d.block_waived and d.block.split_needed
     codes = {w.code for w in r.warnings}

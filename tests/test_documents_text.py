@@ -503,12 +503,20 @@ def test_no_page_holds_only_a_heading(example, locale):
     assert not short, short
 
 
+@pytest.fixture(scope="module")
+def valley_constant(tmp_path_factory):
+    """The valley at one altitude (the example leaves the mode to scanplan)."""
+    from terrain_helpers import valley_pinned
+
+    return str(valley_pinned(tmp_path_factory.mktemp("valley")))
+
+
 @pytest.mark.parametrize("locale", LOCALES)
-def test_relief_maximum_height_stands_beside_the_flat_one(locale):
+def test_relief_maximum_height_stands_beside_the_flat_one(locale, valley_constant):
     """Over a DEM the plan is lowered to 70 m because the worst photo meets HC only up to
-    72 m: page 1, the survey design and the summary sheet show that 72 m beside the
-    flat-ground 136 m (not a bare "maximum 136 m" above a recommended 70 m)."""
-    docs = _documents(str(EXAMPLES[0].parent / "uav-town-valley-2000.toml"), locale)
+    72 m at one altitude: page 1, the survey design and the summary sheet show that 72 m
+    beside the flat-ground 136 m (not a bare "maximum 136 m" above a recommended 70 m)."""
+    docs = _documents(valley_constant, locale)
     flat_label, relief_label = (
         ("Maximum planned flight height on flat ground, m 136",
          "Maximum planned flight height over the relief (above the reference ground), m 72")
@@ -570,13 +578,13 @@ def test_page_one_groups_the_photo_scales_of_a_warning():
 
 
 @pytest.mark.parametrize("locale", LOCALES)
-def test_page_one_says_why_the_valley_plan_was_lowered(locale):
+def test_page_one_says_why_the_valley_plan_was_lowered(locale, valley_constant):
     """Over the valley the plan is lowered from 135 m to 70 m: page 1 lists the lowering once
     (its why is in the warning's text), not the finding at 135 m as a fault of the plan
     that is flown."""
     from scanplan.i18n.labels import LABELS
 
-    items = _page_one_warnings(str(EXAMPLES[0].parent / "uav-town-valley-2000.toml"), locale)
+    items = _page_one_warnings(valley_constant, locale)
     heads = [x.split(" — ")[0] for x in items]  # "… — see “Specification”"
     assert LABELS[locale]["warn_terrain_resolution"] not in heads, items
     assert heads.count(LABELS[locale]["warn_height_lowered"]) == 1, items
@@ -591,10 +599,11 @@ def test_russian_page_one_lists_scales_as_the_messages_do():
 
 
 @pytest.mark.parametrize(("locale", "sep"), [("en", ","), ("ru", "\u00a0")])
-def test_the_photo_count_is_written_one_way_in_the_pdf(locale, sep):
-    """The valley's 16,000-odd photos: page 1, the flight geometry ('strips / photos') and
-    the flight-lines table group the count alike (the geometry said 88 / 16432)."""
-    example = str(EXAMPLES[0].parent / "uav-town-valley-2000.toml")
+def test_the_photo_count_is_written_one_way_in_the_pdf(locale, sep, valley_constant):
+    """The valley's 16,000-odd photos at one altitude: page 1, the flight geometry ('strips /
+    photos') and the flight-lines table group the count alike (the geometry said 88 /
+    16432)."""
+    example = valley_constant
     result = _planned(example, locale)
     assert result.film is None  # page 1 is the UAV plan's alone
     page = _page_html(example, locale)

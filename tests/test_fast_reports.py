@@ -273,6 +273,11 @@ def test_a_failing_worker_still_writes_the_pdf(tmp_path, monkeypatch):
     (["plan", str(EXAMPLE)], ("matplotlib", "weasyprint", "pandas", "pyproj", "openpyxl")),
     (["plan", str(EXAMPLE), "--xlsx", "{tmp}/s.xlsx"], ("matplotlib", "weasyprint", "pandas",
                                                         "pyproj")),
+    # a polygon from a KML file: GDAL reads it without pandas, no relief module, no
+    # spreadsheet reader of the norm importer
+    (["plan", str(EXAMPLE.parent / "uav-town-2000.toml")],
+     ("matplotlib", "weasyprint", "pandas", "openpyxl", "scanplan.geo.terrain",
+      "scanplan.geo.dem", "scanplan.norms.importer", "scanplan.norms.xlsx")),
 ])
 def test_what_a_run_does_not_import(tmp_path, args, absent):
     """A plan without reports imports no report library; a workbook alone no plotting,
@@ -285,3 +290,35 @@ def test_what_a_run_does_not_import(tmp_path, args, absent):
     r = _run_python(code)
     assert r.returncode == 0, r.stderr
     assert r.stdout.strip().splitlines()[-1] == "[]"
+
+
+def _pages(pdf: bytes, tmp: Path) -> list[bytes]:
+    import shutil
+
+    if shutil.which("pdftoppm") is None:
+        pytest.skip("pdftoppm (poppler) is not installed")
+    (tmp / "d.pdf").write_bytes(pdf)
+    subprocess.run(["pdftoppm", "-r", "60", "-png", "d.pdf", "p"], cwd=tmp, check=True)
+    return [p.read_bytes() for p in sorted(tmp.glob("p*.png"))]
+
+
+@pytest.mark.parametrize("name", ["uav-canon-2000.toml", "film-town-10000.toml"])
+def test_the_stylesheet_parsed_once_gives_the_same_pages(name, tmp_path, monkeypatch):
+    """report.css is parsed once per process and given as a stylesheet of the document
+    (pdfrender._stylesheet): every page is the image of the document that links it."""
+    monkeypatch.setenv("SOURCE_DATE_EPOCH", "1700000000")
+    r = plan_project(load_project(ROOT / "examples" / name))
+    html = render_html(view=build_view(scan=r.film.job if r.film else None,
+                                       uav=r.uav.job if r.uav else None, meta=r.meta, spec=r))
+    assert pdfrender._STYLESHEET_LINK in html
+    parsed: list[str] = []
+    real = pdfrender.weasyprint.CSS
+    monkeypatch.setattr(pdfrender.weasyprint, "CSS", lambda **kw: parsed.append(
+        kw["base_url"]) or real(**kw))
+    pdfrender._stylesheet.cache_clear()
+    ours = [pdfrender.html_to_pdf(html), pdfrender.html_to_pdf(html)]
+    assert len(parsed) == 1 and ours[0] == ours[1]
+    linked = pdfrender.html_to_pdf(html, fresh_fonts=True)  # WeasyPrint reads the <link>
+    (tmp_path / "a").mkdir()
+    (tmp_path / "b").mkdir()
+    assert _pages(ours[0], tmp_path / "a") == _pages(linked, tmp_path / "b")

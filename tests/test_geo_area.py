@@ -272,3 +272,67 @@ def test_hostile_files_are_refused_before_gdal_opens_them(tmp_path):
     (tmp_path / "z.kml").symlink_to("/dev/zero")
     e = _err(AreaSpec(file=tmp_path / "z.kml"))
     assert "not a regular file" in e.message
+
+
+# -------------------------------------------------------------------------------------------
+# Kept between plans: the page re-plans the same area on every edit
+# -------------------------------------------------------------------------------------------
+def test_the_same_file_is_read_once_and_a_changed_one_again(tmp_path, monkeypatch):
+    from collections import OrderedDict
+
+    import scanplan.geo.area as A
+
+    # an empty store: another test of this worker may have read the same bytes under its
+    # own name (each call then gives that area renamed, a new object each time)
+    monkeypatch.setattr(A, "_KEPT", OrderedDict())
+    reads: list[str] = []
+    real = A._load_polygon
+    monkeypatch.setattr(A, "_load_polygon", lambda spec: reads.append(str(spec.file)) or
+                        real(spec))
+    f = tmp_path / "block.kml"
+    f.write_text(_kml(("Town", _poly_kml(RING))), encoding="utf-8")
+    first = load_area(AreaSpec(file=f))
+    assert load_area(AreaSpec(file=f)) is first and len(reads) == 1
+    wider = [[37.60, 55.75], [37.66, 55.75], [37.66, 55.77], [37.60, 55.77]]
+    f.write_text(_kml(("Town", _poly_kml(wider))), encoding="utf-8")  # same name, new bytes
+    again = load_area(AreaSpec(file=f))
+    assert len(reads) == 2 and again.area_km2 > 1.5 * first.area_km2
+    assert load_area(AreaSpec(file=f, plan_crs="EPSG:32638")).plan_crs == "EPSG:32638"
+    assert load_area(AreaSpec(polygon=RING)) is load_area(AreaSpec(polygon=RING))
+    moved = tmp_path / "elsewhere" / "copy.kml"  # the same bytes under another name
+    moved.parent.mkdir()
+    moved.write_bytes(f.read_bytes())
+    other = load_area(AreaSpec(file=moved))
+    assert str(moved) not in reads
+    assert other.source_file == str(moved) and other.source.startswith(str(moved))
+    assert str(f) not in other.source and other.geometry.equals(again.geometry)
+
+
+def test_a_shapefile_is_read_every_time(tmp_path, monkeypatch):
+    import scanplan.geo.area as A
+
+    reads: list[str] = []
+    real = A._load_polygon
+    monkeypatch.setattr(A, "_load_polygon", lambda spec: reads.append(str(spec.file)) or
+                        real(spec))
+    f = _write(tmp_path / "b.shp", [shapely.Polygon(RING)], ["Town"], "ESRI Shapefile")
+    load_area(AreaSpec(file=f))
+    load_area(AreaSpec(file=f))
+    assert len(reads) == 2  # its .prj and .dbf are files of their own
+
+
+def test_pyogrio_is_imported_without_pandas_and_pandas_still_works():
+    """pyogrio's package imports pandas only for GeoPandas' data frames; without GeoPandas
+    scanplan imports pyogrio without it (0.3–0.9 s), and pandas imports as ever after."""
+    import subprocess
+    import sys
+
+    code = ("import sys\n"
+            "from scanplan.geo.gdal_guard import import_pyogrio\n"
+            "p = import_pyogrio()\n"
+            "print('pandas' in sys.modules, p.__version__ is not None)\n"
+            "import pandas\n"
+            "print(pandas.DataFrame({'a': [1]}).shape)\n")
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                       check=True)
+    assert r.stdout.split("\n")[:2] == ["False True", "(1, 1)"]

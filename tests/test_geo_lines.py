@@ -14,6 +14,8 @@ from hypothesis import strategies as st
 from shapely import affinity
 
 from scanplan.core import flight as FL
+from scanplan.geo import direction as D
+from scanplan.geo import strips as S
 from scanplan.geo.area import AreaSpec, load_area, rectangle_area
 from scanplan.geo.layout import PHOTO_COLUMNS, Area
 from scanplan.geo.lines import (
@@ -398,3 +400,64 @@ def test_sorties_property(geom, limit, speed, turn):
     assert all(s_.sortie == min(k.number for k in lay.sorties if s_.number in k.strips)
                for s_ in lay.strips)
     assert set(np.unique(lay.photos["sortie"])) == {k.number for k in lay.sorties}
+
+
+# -------------------------------------------------------------------------------------------
+# The "auto" search: every direction of a stage costed at once, as one at a time
+# -------------------------------------------------------------------------------------------
+def _one_at_a_time(geom, origin, spacing_m, base_m, extension, turn):
+    """The "auto" search as it was: each candidate's flight length by its own ``_cost``."""
+    simple = shapely.simplify(geom, min(spacing_m, base_m) / 4.0, preserve_topology=True)
+    edges = D._edges(simple)
+    hull = shapely.get_coordinates(shapely.convex_hull(simple))
+    d = np.diff(hull, axis=0)
+    d = d[np.hypot(d[:, 0], d[:, 1]) > 0]
+    hull_dirs = np.round(np.degrees(np.arctan2(d[:, 0], d[:, 1])) % 180.0, 6)
+    tried: dict[float, float] = {}
+
+    def run(cands):
+        for c in np.unique(np.round(np.asarray(cands) % 180.0, 6)):
+            if float(c) not in tried:
+                tried[float(c)] = D._cost(edges, float(c), origin, spacing_m, base_m,
+                                          extension, turn)
+
+    run(np.r_[hull_dirs, np.arange(0.0, 180.0, 2.0)])
+    for step, reach in ((0.5, 2.0), (0.1, 0.5)):
+        best = sorted(tried, key=tried.__getitem__)[:3]
+        run(np.concatenate([b + np.arange(-reach, reach + 1e-9, step) for b in best]))
+    best = min(tried, key=lambda k: (tried[k], k))
+    return float(best % 180.0), len(tried)
+
+
+def _random_case(rng):
+    geom = _star(rng, int(rng.integers(5, 60)), rng.uniform(200, 4000), rng.uniform(0, 0.8))
+    if rng.uniform() < 0.3:
+        geom = geom.difference(shapely.Point(rng.uniform(-100, 100, 2)).buffer(
+            rng.uniform(10, 300)))
+    spacing, base = rng.uniform(10, 300), rng.uniform(5, 200)
+    ext = S._Extension(int(rng.integers(0, 3)), rng.uniform(1, 300))
+    return geom, (geom.centroid.x, geom.centroid.y), spacing, base, ext
+
+
+@pytest.mark.parametrize("turn", [Turn(), Turn("turnaround", 20.0), Turn("radius", 80.0)])
+def test_directions_costed_together_equal_each_costed_alone(turn, monkeypatch):
+    """Bit for bit, over random concave polygons with holes, in chunks of any size."""
+    rng = np.random.default_rng(21)
+    for trial in range(40):
+        geom, origin, s, b, ext = _random_case(rng)
+        edges = D._edges(shapely.simplify(geom, min(s, b) / 4.0, preserve_topology=True))
+        dirs = [*rng.uniform(0, 180, 25).tolist(), 0.0, 90.0, 179.9]
+        monkeypatch.setattr(D, "_COST_CHUNK_BANDS", [500_000, 40][trial % 2])
+        together = D._costs(edges, dirs, origin, s, b, ext, turn)
+        alone = [D._cost(edges, d, origin, s, b, ext, turn) for d in dirs]
+        assert together.tolist() == alone
+
+
+def test_auto_picks_what_the_one_at_a_time_search_picked():
+    rng = np.random.default_rng(8)
+    turns = [Turn(), Turn("turnaround", 20.0), Turn("radius", 80.0)]
+    for trial in range(45):
+        geom, origin, s, b, ext = _random_case(rng)
+        turn = turns[trial % 3]
+        assert D._auto_direction(geom, origin, s, b, ext, turn) == _one_at_a_time(
+            geom, origin, s, b, ext, turn)

@@ -8,6 +8,7 @@ as an RMS error, σ_px = 0.5 px (norm parameter ``image_measurement_px``).
 from __future__ import annotations
 
 import dataclasses
+import itertools
 import json
 import math
 from pathlib import Path
@@ -36,9 +37,41 @@ SEED002 = dict(camera="canon-eos-5d-mark-ii-50", f_number=8.0, height_m=300.0,
 # --- the formulas -------------------------------------------------------------------------
 def test_standard_stereo_base_is_continuous():
     """From the standard overlap on, the base is that of a pair with exactly 60 % overlap,
-    0.4·footprint, a real multiple of the photo step; below it the single step."""
+    0.4·footprint, a real multiple of the photo step; below it the pair's share of the
+    least-squares base of every ray, 0.4/0.506 × B_eff: 0.3897 at 55 % (B_eff 0.4930)."""
     got = S.stereo_base_fraction([60, 70, 79, 80, 85, 90, 55], 60)
-    assert got == pytest.approx([0.4, 0.4, 0.4, 0.4, 0.4, 0.4, 0.45])
+    ratio = 0.4 / float(S.multi_ray_base_fraction(60))
+    assert ratio == pytest.approx(0.7906, abs=1e-4)
+    assert got == pytest.approx([0.4, 0.4, 0.4, 0.4, 0.4, 0.4, ratio * 0.49295], rel=1e-4)
+
+
+def test_the_height_allowed_does_not_fall_from_55_to_60_pct_overlap():
+    """Bug: the P_Z height limit fell by 11 % as the forward overlap rose from 55 to 60 %
+    (the single step, 0.45 of the footprint, gave way to the standard pair, 0.40), while the
+    least-squares intersection of every ray of the strip gains 2.6 % over that range
+    (B_eff 0.4930 → 0.5060 of the footprint). Now it rises with B_eff, by the same 2.6 %,
+    and never falls anywhere from 50 to 95 %."""
+    def pz_max(overlap: float) -> float:
+        plan = uav_job(**{**SEED002, "forward_overlap_pct": overlap}, map_scale=2000,
+                       relief_interval_m=0.5, max_height_m=2000).plan
+        return next(x for x in plan.limits if x.id == "PZ").max_height_m
+
+    # flown +40 %: the trigger distance fixed at the planned height, the overlap at the
+    # highest flown height is 1 − (1 − p)/1.4: 67.9 % at 55 %, above the standard 60 % —
+    # so the limit is the standard pair's at both; without a tolerance the overlaps differ
+    flat = {**SEED002, "height_tolerance_pct": 0.0}
+
+    def pz_flat(overlap: float) -> float:
+        plan = uav_job(**{**flat, "forward_overlap_pct": overlap}, map_scale=2000,
+                       relief_interval_m=0.5, max_height_m=2000).plan
+        return next(x for x in plan.limits if x.id == "PZ").max_height_m
+
+    assert pz_max(60.0) >= pz_max(55.0) * (1 - 1e-12)
+    gain = pz_flat(60.0) / pz_flat(55.0)
+    lsq = float(S.multi_ray_base_fraction(60) / S.multi_ray_base_fraction(55))
+    assert gain == pytest.approx(lsq, rel=1e-9) and gain == pytest.approx(1.0264, abs=1e-4)
+    heights = [pz_flat(p) for p in np.arange(50.0, 95.01, 0.5)]
+    assert all(b >= a * (1 - 1e-12) for a, b in itertools.pairwise(heights))
 
 
 def test_strip_multi_ray_factor_closed_form():
@@ -120,15 +153,17 @@ def test_sigma_z_monotone(h, b, f, p, s, k):
 
 @settings(max_examples=100, deadline=None)
 @given(p=st.floats(50, 95), q=st.floats(50, 95))
-def test_the_standard_base_is_at_least_one_step_and_continuous(p, q):
-    """The standard base is at least the single step, 1 − p_min from the standard overlap on,
-    and Lipschitz in the overlap (no jumps)."""
-    lo = min(p, q)
+def test_the_standard_base_never_falls_and_bounds_every_ray(p, q):
+    """The standard base never falls as the overlap rises, is 1 − p_min from the standard
+    overlap on, stays below the least-squares base of every ray (a conservative bound of
+    the block), and is Lipschitz in the overlap (no jumps)."""
+    lo, hi = min(p, q), max(p, q)
     frac = float(S.stereo_base_fraction(lo, 60))
-    assert frac >= (1 - lo / 100) - 1e-12
+    assert float(S.stereo_base_fraction(hi, 60)) >= frac - 1e-12
+    assert frac <= float(S.multi_ray_base_fraction(lo)) + 1e-12
     if lo >= 60:
         assert frac == pytest.approx(0.4)
-    assert abs(frac - float(S.stereo_base_fraction(q, 60))) <= abs(p - q) / 100 + 1e-12
+    assert abs(frac - float(S.stereo_base_fraction(hi, 60))) <= abs(p - q) / 100 + 1e-12
 
 
 # --- the published anchor --------------------------------------------------------------------

@@ -343,10 +343,12 @@ def emitted(tmp_path_factory) -> dict[str, list[Any]]:
         # the valley flown per strip and following the terrain: the height the plan was
         # lowered from, and how to fly higher in that mode
         **{f"plan valley {mode}": (EXAMPLES / "uav-town-valley-2000.toml").read_text(
-            encoding="utf-8").replace('altitude_mode = "constant"', f'altitude_mode = "{mode}"')
+            encoding="utf-8").replace('altitude_mode = "auto"', f'altitude_mode = "{mode}"')
            .replace('dem = "dem/', f'dem = "{(EXAMPLES / "dem").as_posix()}/')
            .replace('file = "areas/', f'file = "{(EXAMPLES / "areas").as_posix()}/')
-           for mode in ("strip", "follow", "constant")},
+           for mode in ("strip", "follow", "constant", "auto")},
+        # ground deeper than the ceiling: no height holds at the worst photo
+        "plan uav relief too deep": uav_toml + "\n[terrain]\nground_elevation_m = [0, 600]\n",
         # recommendations set aside with a reason; the one-step base over relief
         "plan set aside": uav_toml.replace("[uav]", '[norms.gsd_limits]\nreason = "agreed"\n'
                                            '\n[norms.block_relief]\nreason = "agreed"\n\n[uav]')
@@ -390,7 +392,18 @@ def emitted(tmp_path_factory) -> dict[str, list[Any]]:
             found += [r.film.reason, *_scan_messages(r.film.job.plan)]
         if r.uav:
             found += [r.uav.reason, *_uav_messages(r.uav.job.plan)]
+            found += _plans_messages(r.uav)
         out[name] = found
+    return out
+
+
+def _plans_messages(uav: Any) -> list[Any]:
+    """The plans compared: why this one, how each is flown, what each misses."""
+    from scanplan.project.alternatives import describe
+
+    out: list[Any] = [uav.choice] if uav.choice is not None else []
+    for a in uav.alternatives:
+        out += [describe(a), *a.rejected_because, *a.findings]
     return out
 
 

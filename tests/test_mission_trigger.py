@@ -27,6 +27,7 @@ import pandas as pd
 import pytest
 from pyproj import Geod, Transformer
 from scipy.spatial import cKDTree
+from terrain_helpers import valley_pinned
 
 from scanplan.project.file import load_project
 from scanplan.project.spec import plan_project
@@ -114,21 +115,13 @@ def _rect(lon: float, lat: float, w_deg: float, h_deg: float) -> list[tuple[floa
             (lon, lat)]
 
 
-def _follow(tmp: Path) -> Path:
-    src = (EXAMPLES / "uav-town-valley-2000.toml").read_text()
-    assert 'altitude_mode = "constant"' in src
-    path = tmp / "valley-follow.toml"
-    path.write_text(src.replace('altitude_mode = "constant"', 'altitude_mode = "follow"')
-                    .replace('"areas/', f'"{EXAMPLES}/areas/').replace('"dem/',
-                                                                       f'"{EXAMPLES}/dem/'))
-    return path
-
-
 def _projects(tmp: Path) -> list[Path]:
     return [
         EXAMPLES / "uav-town-2000.toml",
-        EXAMPLES / "uav-town-valley-2000.toml",
-        _follow(tmp),
+        # the valley at one altitude, and following the terrain (the example leaves the
+        # mode to scanplan, which follows the terrain there)
+        valley_pinned(tmp, "constant"),
+        valley_pinned(tmp, "follow"),
         # Gauss–Krüger zone 7 (central meridian 39°E): k > 1 off the meridian
         _polygon_project(tmp, "gk", _rect(40.9, 55.70, 0.05, 0.03),
                          'plan_crs = "EPSG:28407"'),

@@ -6,6 +6,7 @@ from __future__ import annotations
 import dataclasses
 
 import numpy as np
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -162,3 +163,22 @@ def test_scanner_rounding_and_volume():
     # 230 mm at 12.5 µm = 18400 px per side
     assert F.scanned_frame_bytes(230, 230, 12.5) == 18400 ** 2
     assert F.scanned_frame_bytes(230, 230, 12.5, bands=3, bits_per_band=16) == 18400 ** 2 * 6
+
+
+def test_the_binding_constraint_is_numpys_argmin_with_ties_and_nan():
+    """The engine picks the binding constraint one constraint after the other (no stacked
+    copy, rules.film._binding): the same index as ``np.argmin`` over the stacked pixels —
+    the first of equal pixels, the first NaN — and the same value, for every pattern."""
+    from scanplan.rules.film import _binding
+
+    rng = np.random.default_rng(7)
+    for _ in range(200):
+        k, n = int(rng.integers(1, 7)), int(rng.integers(1, 50))
+        a = rng.choice([1.0, 2.0, 3.0, np.inf, np.nan], size=(k, n),
+                       p=[0.3, 0.3, 0.2, 0.1, 0.1])
+        idx, scan = _binding(tuple(a), (n,))
+        assert np.array_equal(idx, np.argmin(a, axis=0))
+        assert np.array_equal(scan, np.take_along_axis(a, idx[None], axis=0)[0],
+                              equal_nan=True)
+    with pytest.raises(ValueError):
+        _binding((), (3,))

@@ -153,8 +153,10 @@ def test_a_plan_past_its_time_limit_leaves_no_job_folder_and_no_link(tmp_path):
         start = time.monotonic()
         assert c.post("/api/download/pdf", json=req).status_code == 200
         took_s = time.monotonic() - start
-        folder = Path(planner._folder)
-        planner.report_limit_s = took_s / 4
+        renderer = c.app.state.documents.planner  # the downloads' worker of their own
+        folder = Path(renderer._folder)
+        renderer.report_limit_s = took_s / 4
+        req["project"]["project"]["name"] += " (again)"  # not the rendered one kept
         r = c.post("/api/download/pdf", json=req)
         assert r.status_code == 504, r.text
         assert not list(rundir.run_dir().rglob("scanplan-job-*"))  # the killed job's

@@ -21,6 +21,7 @@ import scanplan
 from scanplan.cli.main import main
 from scanplan.errors import InputError
 from scanplan.i18n.labels import t
+from scanplan.i18n.messages import render
 from scanplan.project.file import parse_project
 from scanplan.project.spec import plan_project
 
@@ -50,11 +51,23 @@ def _labels(key: str) -> tuple[str, ...]:
     return tuple(t(key, loc) for loc in ("en", "ru"))
 
 
-def _text_counts(text: str) -> list[int]:
+def _text_counts(text: str, doc: dict | None = None) -> list[int]:
     """The sortie counts the terminal prints: the flight lines ("sorties: 6") and the survey
-    design ("Sorties: 10 of up to 30 min")."""
+    design ("Sorties: 10 of up to 30 min") — of the plan flown, not the figures of the other
+    plans compared that the choice's sentences name."""
+    flat = re.sub(r"\s+", " ", text)
+    alts = ((((doc or {}).get("specification") or {}).get("uav") or {}).get("layout")
+            or {}).get("alternatives") or []
+    for a in alts:
+        if a["recommended"] or a.get("n_sorties") is None:
+            continue
+        for loc in ("en", "ru"):
+            said = render("plan_choice.figures", {"photos": a["n_photos"],
+                                                  "time": a["flight_time_s"] / 60.0,
+                                                  "sorties": a["n_sorties"]}, loc)
+            flat = flat.replace(re.sub(r"\s+", " ", said), "")
     words = "|".join(re.escape(w) for w in ("sorties", "вылетов", *_labels("sorties")))
-    return [int(n) for n in re.findall(rf"(?:{words}): (\d+)", text)]
+    return [int(n) for n in re.findall(rf"(?:{words}): (\d+)", flat)]
 
 
 def _xlsx_counts(path: Path) -> list[int]:
@@ -88,7 +101,7 @@ def test_every_document_shows_the_same_sortie_count(tmp_path, example):
     out = tmp_path / "out"
     res = CliRunner().invoke(main, ["plan", str(example), "--out", str(out)])
     assert res.exit_code == 0, res.output
-    found = {"json": sorted(set(counts.values())), "text": _text_counts(res.stdout),
+    found = {"json": sorted(set(counts.values())), "text": _text_counts(res.stdout, doc),
              "xlsx": _xlsx_counts(out / "spec.xlsx"), "pdf": _pdf_counts(out / "spec.pdf")}
     missions = sorted(out.glob("mission*.plan"))
     if missions:

@@ -41,7 +41,7 @@ def _valley(tmp: Path, mode: str) -> Path:
     shutil.copytree(EXAMPLES / "areas", tmp / "areas")
     shutil.copytree(EXAMPLES / "dem", tmp / "dem")
     text = VALLEY.read_text(encoding="utf-8").replace(
-        'altitude_mode = "constant"', f'altitude_mode = "{mode}"')
+        'altitude_mode = "auto"', f'altitude_mode = "{mode}"')
     p = tmp / f"valley-{mode}.toml"
     p.write_text(text, encoding="utf-8")
     return p
@@ -55,14 +55,23 @@ def _csv(path: Path) -> dict[str, np.ndarray]:
 
 
 @pytest.fixture(scope="module")
-def valley_out(tmp_path_factory):
+def valley_constant(tmp_path_factory):
+    """The valley at one altitude (the example leaves the mode to scanplan)."""
+    from terrain_helpers import valley_pinned
+
+    return valley_pinned(tmp_path_factory.mktemp("valley-project"))
+
+
+@pytest.fixture(scope="module")
+def valley_out(tmp_path_factory, valley_constant):
     out = tmp_path_factory.mktemp("valley")
-    _plan_out(VALLEY, out, "gis,missions")
+    _plan_out(valley_constant, out, "gis,missions")
     return out
 
 
-def test_photos_csv_geojson_and_kml_carry_ground_and_height_above_ground(valley_out):
-    spec = plan_project(load_project(VALLEY))
+def test_photos_csv_geojson_and_kml_carry_ground_and_height_above_ground(valley_out,
+                                                                       valley_constant):
+    spec = plan_project(load_project(valley_constant))
     ph = spec.uav.layout.photos
     c = _csv(valley_out / "photos.csv")
     for k in TERRAIN_COLUMNS:
@@ -88,8 +97,9 @@ def test_photos_csv_geojson_and_kml_carry_ground_and_height_above_ground(valley_
         np.testing.assert_allclose(kml, c[k], atol=0.051, err_msg=k)  # one decimal
 
 
-def test_the_constant_mission_is_above_sea_level_at_the_block_altitude(valley_out):
-    spec = plan_project(load_project(VALLEY))
+def test_the_constant_mission_is_above_sea_level_at_the_block_altitude(valley_out,
+                                                                     valley_constant):
+    spec = plan_project(load_project(valley_constant))
     alt = float(spec.uav.layout.photos["altitude_m"][0])
     for f in sorted(glob.glob(str(valley_out / "mission*.plan"))):
         items = json.loads(Path(f).read_text(encoding="utf-8"))["mission"]["items"]

@@ -204,11 +204,14 @@ def test_text_excel_and_pdf_report_the_local_scales(tmp_path):
 
 # --- the map page coloured by height above ground ---------------------------------------------
 
-def test_the_map_colours_photos_by_height_above_ground_in_one_raster_layer():
+def test_the_map_colours_photos_by_height_above_ground_in_one_raster_layer(tmp_path):
+    from terrain_helpers import valley_pinned
+
     from scanplan.reports.exports import spec_layouts
     from scanplan.reports.mapview import map_svg, map_terrain
 
-    spec = plan_project(load_project(EXAMPLES / "uav-town-valley-2000.toml"))
+    # one altitude over the valley: 16,442 photos (following the terrain needs 6,217)
+    spec = plan_project(load_project(valley_pinned(tmp_path)))
     (kind, lay), = spec_layouts(spec)
     mt = map_terrain(spec, kind, lay)
     assert mt is not None and mt.agl_m.size == len(lay.photos) > 10_000

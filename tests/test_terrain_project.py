@@ -33,8 +33,14 @@ def _copy_example(tmp: Path, extra: str = "", drop: str = "") -> Path:
 
 
 @pytest.fixture(scope="module")
-def valley():
-    return plan_project(load_project(VALLEY))
+def valley(tmp_path_factory):
+    """The valley example flown at one altitude, as the project pins it
+    (``altitude_mode = "constant"``; the example leaves the mode to scanplan)."""
+    p = _copy_example(tmp_path_factory.mktemp("valley"))
+    p.write_text(p.read_text(encoding="utf-8").replace('altitude_mode = "auto"',
+                                                       'altitude_mode = "constant"'),
+                 encoding="utf-8")
+    return plan_project(load_project(p))
 
 
 def test_the_valley_shows_what_flat_ground_misses(valley):
@@ -86,17 +92,20 @@ def test_json_has_the_terrain_section():
     t = doc["terrain"]["uav"]
     assert t["source"] == "dem" and t["dem"] == "town-valley.tif"
     assert t["dem_crs"] == "EPSG:32637" and t["altitude_frame"] == "AMSL"
-    assert t["agl_max_m"] <= doc["specification"]["uav"]["max_planned_height_m"] + 1e-6
+    # the example leaves the mode to scanplan: it follows the terrain; the aircraft's height
+    # over the ground under its path is held to the ceiling's maximum (the ground at the
+    # footprint's far edge, the GSD's, may lie lower)
+    assert t["altitude_mode"] == "follow"
+    assert t["path_agl_max_m"] <= doc["specification"]["uav"]["max_planned_height_m"] + 1e-6
     assert len(t["strips"]) == doc["specification"]["uav"]["strips"]
     assert all(s["excess_m"] == 0 for s in t["strips"])
 
 
 @pytest.mark.parametrize("mode", ["strip", "follow"])
 def test_strip_and_follow_modes_allow_a_higher_plan(valley, tmp_path, mode):
-    p = _copy_example(tmp_path, drop='altitude_mode = "constant"')
+    p = _copy_example(tmp_path)
     p.write_text(p.read_text(encoding="utf-8").replace(
-        'dem = "dem/town-valley.tif"', f'dem = "dem/town-valley.tif"\naltitude_mode = "{mode}"'),
-        encoding="utf-8")
+        'altitude_mode = "auto"', f'altitude_mode = "{mode}"'), encoding="utf-8")
     r = plan_project(load_project(p))
     tr = r.uav.terrain
     assert tr.mode == mode
@@ -105,9 +114,12 @@ def test_strip_and_follow_modes_allow_a_higher_plan(valley, tmp_path, mode):
         assert all(s.altitude_m is not None for s in tr.layout.strips)
         lay = r.uav.job.layout
         assert abs(lay.direction_deg - 45.0) <= 2.0
-        chosen = lay.notes["terrain_direction"]
-        assert chosen["photos_instead_of"] == valley.uav.job.layout.n_photos
-        assert lay.n_photos < 0.45 * valley.uav.job.layout.n_photos  # 6,272 vs 16,432
+        chosen = next(a for a in r.uav.alternatives if a.recommended)
+        assert chosen.mode == "strip" and chosen.direction == "relief"
+        across = next(a for a in r.uav.alternatives if a.mode == "strip"
+                      and a.direction == "auto")
+        assert across.n_photos == valley.uav.job.layout.n_photos  # 70 m across the valley
+        assert lay.n_photos < 0.45 * valley.uav.job.layout.n_photos  # 6,277 vs 16,442
         assert r.uav.job.plan.flight["photos"] == lay.n_photos
     else:
         assert r.uav.recommended_height_m > valley.uav.recommended_height_m
@@ -225,24 +237,26 @@ def test_the_workbook_has_a_terrain_sheet_per_strip(valley):
     assert "Terrain" not in names
 
 
-def test_the_report_names_a_mode_or_direction_that_needs_far_fewer_photos(valley, tmp_path):
-    """Constant altitude over the valley: strips along it would need far fewer photos —
-    an info note, in both languages; in ``follow`` mode there is nothing better to name;
-    strips held across the valley by the project name the direction along it."""
-    w = next(w for w in valley.warnings if w.code == "terrain_other_choice")
-    assert w.severity == "info"
-    assert '"strip" with the lines at 45°' in w.message and "fewer" in w.message
-    n_now = valley.uav.job.layout.n_photos
-    assert f"instead of {n_now:,}" in w.message
-    pct = float(w.message.split("(")[-1].split(" %")[0])
-    assert pct >= 50.0
+def test_a_pinned_mode_that_costs_far_more_is_a_warning_with_the_saving(valley, tmp_path):
+    """Bug: one altitude over the valley needs 16,442 photos where following the terrain
+    needs 6,217 — said only in the "for information" box. Now the project's pinned mode
+    is kept, and a warning (page 1) names the plan meeting every constraint and the
+    flying time it saves, in both languages; with the mode that is the best one pinned,
+    nothing is said; strips held across the valley by the project name the better plan."""
+    w = next(w for w in valley.warnings if w.code == "plan_choice_costs")
+    assert w.severity == "warning"
+    assert valley.uav.terrain.mode == "constant"  # the project's choice kept
+    assert "following the terrain, lines at 97.6°, 115 m" in w.message
+    assert "6,217 photos" in w.message and "16,442 photos" in w.message
+    pct = float(w.message.split("costs ")[1].split(" %")[0])
+    assert pct >= 25.0
     ru = w.message.text("ru")
-    assert "при направлении маршрутов 45°" in ru and "снимков вместо" in ru
-    follow = _copy_example(tmp_path, drop='altitude_mode = "constant"')
+    assert "огибание рельефа, маршруты под 97,6°" in ru and "экономия" in ru
+    assert "[terrain] altitude_mode" in w.message
+    follow = _copy_example(tmp_path)
     follow.write_text(follow.read_text(encoding="utf-8").replace(
-        'dem = "dem/town-valley.tif"', 'dem = "dem/town-valley.tif"\naltitude_mode = "follow"'),
-        encoding="utf-8")
-    assert "terrain_other_choice" not in [w.code for w in plan_project(
+        'altitude_mode = "auto"', 'altitude_mode = "follow"'), encoding="utf-8")
+    assert "plan_choice_costs" not in [w.code for w in plan_project(
         load_project(follow)).warnings]
     across = tmp_path / "across.toml"
     across.write_text(follow.read_text(encoding="utf-8").replace(
@@ -250,8 +264,9 @@ def test_the_report_names_a_mode_or_direction_that_needs_far_fewer_photos(valley
         'direction_deg = "auto"', "direction_deg = 135"), encoding="utf-8")
     r = plan_project(load_project(across))
     assert r.uav.job.layout.direction_deg == pytest.approx(135.0)  # the project's own
-    w = next(w for w in r.warnings if w.code == "terrain_other_choice")
-    assert "45°" in w.message
+    w = next(w for w in r.warnings if w.code == "plan_choice_costs")
+    assert "[terrain] altitude_mode, [area] direction_deg" in w.message
+    assert "following the terrain" in w.message
 
 
 @pytest.mark.parametrize(("example", "named"), [("uav-town-2000-afs.toml", False),

@@ -110,3 +110,27 @@ def test_a_ridge_under_a_line_between_the_centres_lifts_the_altitude(tmp_path):
     assert alts[2] == pytest.approx(FLAT_M + DEPTH_M + H)
     assert {k: v for k, v in alts.items() if k != 2} == pytest.approx(
         {k: FLAT_M + H for k in alts if k != 2})
+
+
+def test_the_pyramid_is_read_once_until_the_dem_changes(tmp_path, monkeypatch):
+    """A re-plan that leaves the photos' extent alone reuses the DEM's min-max pyramid; a
+    rewritten DEM file is read again."""
+    import time
+
+    from scanplan.geo import dem as D
+    from scanplan.geo import dem_grid as G
+
+    lay = layout()
+    path = dem_around(tmp_path / "dem.tif", lambda x, y: 100.0 + 0 * x, lay)
+    reads: list[int] = []
+    real = G._read_ground_grid
+    monkeypatch.setattr(G, "_read_ground_grid", lambda *a: reads.append(1) or real(*a))
+    x0, y0, x1, y1 = lay.area.geometry.bounds
+    args = ((x0, y0, x1, y1), lay.area.geometry, lay.area.plan_crs)
+    first = G.read_ground_grid(D.open_dem(path), *args)
+    assert G.read_ground_grid(D.open_dem(path), *args) is first and len(reads) == 1
+    assert not first.lo[0].flags.writeable  # shared: never changed in place
+    time.sleep(0.01)
+    dem_around(path, lambda x, y: 50.0 + 0 * x, lay)  # the same file name, new heights
+    again = G.read_ground_grid(D.open_dem(path), *args)
+    assert len(reads) == 2 and float(np.nanmax(again.hi[0])) == pytest.approx(50.0)

@@ -546,3 +546,22 @@ def test_the_line_direction_by_a_handle_on_the_map(server, browser):
     assert abs(turned - 90) < 3, (want, _direction(page))
     assert page.locator("path.strip").count() > 0
     assert not page.errors, page.errors
+
+
+def test_the_plans_compared_are_shown_under_the_figures(server, browser):
+    """The town on flat ground: the least flight length and the long axis compared — the
+    table in the results panel, worded as the documents word it, the recommended plan first
+    and marked, why it was chosen above the table."""
+    page = _open(browser, server)
+    _town_plan(page)
+    box = page.locator("#alternatives")
+    expect(box).to_be_visible()
+    assert page.inner_text("#alternatives h3") == "Plans compared"
+    assert page.inner_text("#alternatives p.choice").startswith("Of 2 plans compared")
+    rows = page.locator("#alternatives table.plans tr.recommended:not(.why)")
+    expect(rows).to_have_count(1)
+    first = page.locator("#alternatives table.plans tr:not(.why)").nth(1).inner_text()
+    assert "(least length)" in first, first
+    assert "(long axis)" in page.inner_text("#alternatives table.plans")
+    assert "meets every constraint (recommended)" in page.inner_text("#alternatives")
+    assert not page.errors, page.errors

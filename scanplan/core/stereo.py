@@ -39,13 +39,16 @@ def stereo_base_fraction(
     A block flown with forward overlap p ≥ p_min (the standard stereo overlap) is held to
     the precision of one stereo pair with exactly the standard overlap,
     B / footprint = 1 − p_min, a real (not a whole) multiple of the photo step
-    (1 − p)·footprint; below the standard overlap only neighbouring photos overlap and the
-    base is the single step, B / footprint = 1 − p:
+    (1 − p)·footprint. Below the standard overlap no pair has it; the block is held to the
+    same share of the least-squares intersection of every ray of the strip
+    (:func:`multi_ray_base_fraction`, B_eff) as at p_min:
 
-        B / footprint = max(1 − p, 1 − p_min).
+        B / footprint = 1 − p_min                                  (p ≥ p_min),
+        B / footprint = (1 − p_min) · B_eff(max(p, 50 %)) / B_eff(p_min)   (p < p_min).
 
-    Continuous in p and constant from p_min on, so a higher overlap never lowers the
-    height that meets an accuracy.
+    Continuous in p and never falling as p rises: B_eff never falls from 50 % on, and the
+    pair is constant from p_min on, so a higher overlap never lowers the height that meets
+    an accuracy.
 
     Parameters
     ----------
@@ -61,25 +64,38 @@ def stereo_base_fraction(
     -------
     ndarray
         B / footprint_along [-]: 0.4 for every block flown at 60 % or more with
-        p_min = 60 %, 0.45 at 55 %.
+        p_min = 60 %; 0.3897 at 50–55 %, rising to 0.4 at 60 %.
 
     Notes
     -----
     Why one standard pair, whatever the overlap above p_min: the least-squares
     intersection of every ray of the strip (:func:`multi_ray_base_fraction`) is at
-    least as precise as this pair for every p ≥ 55 % (its effective base is 0.506 of
-    the footprint at 60 % and grows with p), so the pair is a conservative bound of the
-    multi-view block, with no jump where the widest whole-step pair changes (the model
-    before this one allowed 437 m at 80 % and 229 m at 79 % for the same camera).
+    least as precise as this pair for every p ≥ 50 % (its effective base is 0.493 of
+    the footprint at 50–55 %, 0.506 at 60 %, and never falls with p), so the pair is a
+    conservative bound of the multi-view block, with no jump where the widest whole-step
+    pair changes (the model before this one allowed 437 m at 80 % and 229 m at 79 % for
+    the same camera).
+
+    Why not the single step below p_min (the model before this one, B = 1 − p): it made
+    the base fall from 0.45 at 55 % to 0.40 at 60 % — the height allowed fell by 11 %
+    as the overlap rose, while the least-squares intersection of the same rays gains
+    2.6 % (0.493 → 0.506). Scaling the pair with B_eff below p_min keeps the model's
+    ratio to the multi-ray block, 0.4/0.506 = 0.79, the same at every overlap up to
+    p_min, so it rises where the block's precision rises (docs/deviations.md).
 
     Examples
     --------
-    >>> [round(float(x), 4) for x in stereo_base_fraction([55.0, 60.0, 79.0, 80.0], 60.0)]
-    [0.45, 0.4, 0.4, 0.4]
+    >>> [round(float(x), 4) for x in stereo_base_fraction([50.0, 55.0, 58.0, 60.0, 80.0],
+    ...                                                    60.0)]
+    [0.3897, 0.3897, 0.3929, 0.4, 0.4]
     """
-    step = 1.0 - _f(forward_overlap_pct) / 100.0
-    room = 1.0 - _f(min_stereo_overlap_pct) / 100.0
-    return np.maximum(step, room)
+    p = _f(forward_overlap_pct)
+    p_min = _f(min_stereo_overlap_pct)
+    room = 1.0 - p_min / 100.0
+    floor = 50.0  # below it some ground is seen by one photo only: no stereo there
+    below = room * (multi_ray_base_fraction(np.maximum(p, floor))
+                    / multi_ray_base_fraction(np.maximum(p_min, floor)))
+    return np.where(p >= p_min, room, np.minimum(below, room))
 
 
 def _dip_end(n: FloatArray) -> FloatArray:

@@ -11,7 +11,8 @@ Sources (one of them):
 
 Planning happens in a projected metric CRS: ``plan_crs`` when given; else the CRS the
 coordinates came in, when that is projected in metres (a Gauss–Krüger zone, a local
-system); else the UTM zone of the area's centroid (pyproj's database of UTM zones).
+system); else the UTM zone of a point inside the area (by the zone rule, with the UTM grid's
+Norway and Svalbard exceptions: :mod:`.crs`).
 
 Every problem is an :class:`~scanplan.errors.InputError` naming the file (and feature) or
 the key, what is wrong and what is allowed; nothing is guessed. Hostile files are refused
@@ -26,6 +27,7 @@ refused with their count, never cut (docs/gis-inputs.md).
 
 from __future__ import annotations
 
+import hashlib
 import io
 import math
 import os
@@ -33,6 +35,7 @@ import re
 import warnings
 import zipfile
 import zlib
+from collections import OrderedDict
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -44,7 +47,8 @@ from shapely.validation import explain_validity
 
 from ..errors import InputError
 from ..io.files import read_limited, size_text
-from .gdal_guard import KIND_NAMES, harden, indirection, read_head, sniff
+from . import crs as geocrs
+from .gdal_guard import KIND_NAMES, harden, import_pyogrio, indirection, read_head, sniff
 from .grids import require_grids
 from .layout import Area
 from .vertices import VERTEX_SUFFIXES, read_vertices
@@ -156,8 +160,55 @@ def load_area(spec: AreaSpec) -> Area | None:
                              "is required with the other side of [area]: give both width_m "
                              "and length_m")
         return rectangle_area(float(spec.width_m), float(spec.length_m))
-    import pyproj
+    key = _kept_key(spec)
+    name = str(spec.file) if spec.file is not None else ""
+    if key is not None and key in _KEPT:
+        _KEPT.move_to_end(key)
+        was, area = _KEPT[key]
+        return area if was == name else _renamed(area, was, name)
+    area = _load_polygon(spec)
+    if key is not None:
+        _KEPT[key] = (name, area)
+        while len(_KEPT) > _KEPT_AREAS:
+            _KEPT.popitem(last=False)
+    return area
 
+
+def _renamed(area: Area, was: str, name: str) -> Area:
+    """A kept area read from the same bytes under another name (the page stages every
+    request's uploads in a folder of its own): the file named as it is now."""
+    return replace(area, source=name + area.source[len(was):] if area.source.startswith(was)
+                   else area.source,
+                   source_file=name if area.source_file == was else area.source_file)
+
+
+_KEPT: OrderedDict[tuple[Any, ...], tuple[str, Area]] = OrderedDict()
+_KEPT_AREAS = 32
+"""Polygons kept read and projected (the page re-plans the same area on every edit)."""
+
+
+def _kept_key(spec: AreaSpec) -> tuple[Any, ...] | None:
+    """What a polygon's :class:`Area` depends on: the keys, and the file's bytes (their
+    SHA-256; the file's name is only its label) — None for a Shapefile, whose companion
+    files matter too (read every time)."""
+    keys = (spec.layer, spec.feature, repr(spec.crs), repr(spec.plan_crs))
+    if spec.file is None:
+        try:
+            return ("polygon", repr(spec.polygon), *keys)
+        except RecursionError:  # a nesting no polygon has: refused by the reader
+            return None
+    path = Path(spec.file)
+    try:
+        data = read_limited(path, MAX_FILE_BYTES, field=str(path))
+    except (InputError, OSError):  # refused as before by the reader, in its words
+        return None
+    if path.suffix.lower() not in VERTEX_SUFFIXES and sniff(data) == "shp":
+        return None
+    return ("file", hashlib.sha256(data).hexdigest(), *keys)
+
+
+def _load_polygon(spec: AreaSpec) -> Area:
+    """:func:`load_area` of a file or an inline polygon, read and projected."""
     user_crs = _crs(spec.crs, "crs") if spec.crs is not None else None
     if spec.file is not None:
         geom, file_crs, where, parts = _read_source(Path(spec.file), spec.layer, spec.feature)
@@ -165,13 +216,13 @@ def load_area(spec: AreaSpec) -> Area | None:
             raise InputError("crs", f"{user_crs.to_string()} differs from the CRS "
                              f"{file_crs.to_string()} that {where} declares; remove "
                              "[area] crs (it is for coordinates without a CRS)")
-        in_crs = file_crs or user_crs or pyproj.CRS.from_epsg(4326)
+        in_crs = file_crs or user_crs or geocrs.epsg_crs(4326)
     else:
         geom = _inline(spec.polygon)
         file_crs = None
         where = "inline polygon"
         parts = (None, None, None)
-        in_crs = user_crs or pyproj.CRS.from_epsg(4326)
+        in_crs = user_crs or geocrs.epsg_crs(4326)
     field = where if spec.file is not None else "polygon"
     assumed = spec.file is not None and file_crs is None and user_crs is None
     try:
@@ -231,7 +282,7 @@ def _read_file(path: Path, layer: str | None, feature: str | int | None
                ) -> tuple[Any, pyproj.CRS | None, str, tuple[str, str, str | None]]:
     """The chosen polygon of a GIS file, its CRS (None if it declares none), its name, and
     (file, feature, layer) for reports."""
-    import pyogrio
+    pyogrio = import_pyogrio()
 
     name = str(path)
     source, layers = _layers(path, name)
@@ -241,8 +292,6 @@ def _read_file(path: Path, layer: str | None, feature: str | int | None
             raise InputError("layer", f"{layer!r} is not a layer of {name}; its layers: "
                              f"{_listed(names)}")
         names = [layer]
-    import pyproj
-
     found: list[tuple[str, str, Any, pyproj.CRS | None]] = []  # (label, layer, geom, crs)
     other = 0
     all_names = [str(n) for n, _ in layers]
@@ -264,7 +313,7 @@ def _read_file(path: Path, layer: str | None, feature: str | int | None
         if wkb is None:
             continue
         geoms = shapely.from_wkb(wkb, on_invalid="ignore")
-        crs = pyproj.CRS.from_user_input(meta["crs"]) if meta.get("crs") else None
+        crs = geocrs.crs(meta["crs"]) if meta.get("crs") else None
         if crs is not None:
             require_grids(crs, name)
         labels = _labels(meta, fields, len(geoms))
@@ -403,7 +452,7 @@ def _source(path: Path, name: str) -> tuple[str | io.BytesIO, tuple[str, ...]]:
 def _layers(path: Path, name: str) -> tuple[str | io.BytesIO, Any]:
     """The source pyogrio reads (:func:`_source`) and its layers, the driver GDAL used
     checked against the kind the content says."""
-    import pyogrio
+    pyogrio = import_pyogrio()
 
     source, drivers = _source(path, name)
     try:
@@ -429,7 +478,7 @@ def _rewound(source: str | io.BytesIO) -> bool:
 
 def _feature_count(source: str | io.BytesIO, layer: int) -> str:
     """The number of features of a layer (``"more than N"`` when GDAL cannot count)."""
-    import pyogrio
+    pyogrio = import_pyogrio()
 
     _rewound(source)
     try:
@@ -514,7 +563,7 @@ def _crs(value: str | int, key: str) -> pyproj.CRS:
     import pyproj
 
     try:
-        crs = pyproj.CRS.from_user_input(value)
+        crs = geocrs.crs(value)
     except (pyproj.exceptions.CRSError, TypeError, ValueError):
         raise InputError(key, f"{value!r} is not a CRS that pyproj knows; give an EPSG code "
                          "such as \"EPSG:32637\" (UTM 37N) or \"EPSG:28407\" (Pulkovo 1942 / "
@@ -568,11 +617,8 @@ def _check_input_geometry(geom: Any, crs: pyproj.CRS, field: str) -> None:
 
 
 def _plan_crs(value: str | int | None, in_crs: pyproj.CRS, geom: Any) -> pyproj.CRS:
-    """The planning CRS: given, else the input's when metric projected, else UTM."""
-    import pyproj
-    from pyproj.aoi import AreaOfInterest
-    from pyproj.database import query_utm_crs_info
-
+    """The planning CRS: given, else the input's when metric projected, else the UTM zone
+    of a point inside the area (:func:`.crs.utm_epsg`)."""
     if value is not None:
         plan = _crs(value, "plan_crs")
         if not _metric_projected(plan):
@@ -581,17 +627,13 @@ def _plan_crs(value: str | int | None, in_crs: pyproj.CRS, geom: Any) -> pyproj.
         return plan
     if _metric_projected(in_crs):
         return in_crs
-    to_ll = pyproj.Transformer.from_crs(in_crs, 4326, always_xy=True)
     c = geom.representative_point() if not geom.is_empty else geom
-    lon, lat = to_ll.transform(c.x, c.y)
-    zones = query_utm_crs_info(datum_name="WGS 84", area_of_interest=AreaOfInterest(
-        lon, lat, lon, lat))
-    if not zones:
+    lon, lat = geocrs.transformer(in_crs, 4326).transform(c.x, c.y)
+    code = geocrs.utm_epsg(lon, lat)
+    if code is None:
         raise InputError("plan_crs", f"no UTM zone covers lon {lon:.4f}, lat {lat:.4f} (polar "
                          "area); give [area] plan_crs, e.g. \"EPSG:3413\"")
-    zones.sort(key=lambda z: (abs((z.area_of_use.west + z.area_of_use.east) / 2 - lon),
-                              z.code))
-    return pyproj.CRS.from_epsg(int(zones[0].code))
+    return geocrs.epsg_crs(code)
 
 
 def _metric_projected(crs: pyproj.CRS) -> bool:
@@ -600,9 +642,7 @@ def _metric_projected(crs: pyproj.CRS) -> bool:
 
 
 def _project(geom: Any, in_crs: pyproj.CRS, plan: pyproj.CRS, where: str, field: str) -> Area:
-    import pyproj
-
-    tr = pyproj.Transformer.from_crs(in_crs, plan, always_xy=True)
+    tr = geocrs.transformer(in_crs, plan)
 
     def fwd(xy: np.ndarray) -> np.ndarray:
         x, y = tr.transform(xy[:, 0], xy[:, 1])
@@ -625,7 +665,7 @@ def _project(geom: Any, in_crs: pyproj.CRS, plan: pyproj.CRS, where: str, field:
         raise InputError(field, f"encloses {area_m2 / 1e6:,.0f} km²; at most "
                          f"{MAX_AREA_KM2:,.0f} km² — split a regional programme into blocks "
                          "(or are the coordinates in the wrong CRS? set [area] crs)")
-    to_ll = pyproj.Transformer.from_crs(plan, 4326, always_xy=True)
+    to_ll = geocrs.transformer(plan, 4326)
     c = projected.centroid
     lon, lat = to_ll.transform(c.x, c.y)
     epsg = plan.to_epsg()
@@ -651,12 +691,11 @@ def _scale_error(geom: Any, in_crs: pyproj.CRS, plan: pyproj.CRS
     import pyproj
 
     xy = shapely.get_coordinates(geom)
-    lon, lat = pyproj.Transformer.from_crs(in_crs, 4326, always_xy=True).transform(
-        xy[:, 0], xy[:, 1])
+    lon, lat = geocrs.transformer(in_crs, 4326).transform(xy[:, 0], xy[:, 1])
     lon, lat = np.asarray(lon, dtype=float), np.asarray(lat, dtype=float)
     with np.errstate(all="ignore"):
         try:
-            factors = pyproj.Proj(plan).get_factors(lon, lat, errcheck=False)
+            factors = geocrs.proj(plan).get_factors(lon, lat, errcheck=False)
             k = np.concatenate([np.atleast_1d(factors.meridional_scale),
                                 np.atleast_1d(factors.parallel_scale)]).astype(float)
         except (pyproj.exceptions.ProjError, ValueError, TypeError):

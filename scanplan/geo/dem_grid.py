@@ -42,7 +42,10 @@ it is counted (inside the area) with the area the DEM's extent misses, under one
 from __future__ import annotations
 
 import math
+import os
+from collections import OrderedDict
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -395,6 +398,51 @@ def read_ground_grid(info: D.DemInfo, bounds_m: tuple[float, float, float, float
     InputError
         When the window exceeds :data:`~scanplan.geo.dem.MAX_READ_PX` or the file fails.
     """
+    memo = _memo_key(info, bounds_m, area_geometry, plan_crs, factor_m, radius_m, margin_m,
+                     key)
+    if memo is not None and memo in _GRIDS:
+        _GRIDS.move_to_end(memo)
+        return _GRIDS[memo]
+    grid = _read_ground_grid(info, bounds_m, area_geometry, plan_crs, factor_m, radius_m,
+                             margin_m, key)
+    if memo is not None:
+        if grid is not None:
+            for a in (*grid.lo, *grid.hi):
+                a.setflags(write=False)  # shared by later plans: never changed
+        _GRIDS[memo] = grid
+        while len(_GRIDS) > _KEPT_GRIDS:
+            _GRIDS.popitem(last=False)
+    return grid
+
+
+_GRIDS: OrderedDict[tuple[Any, ...], GroundGrid | None] = OrderedDict()
+_KEPT_GRIDS = 4
+"""Pyramids kept (an edit that leaves the photos' extent alone — a relief interval, an
+object, the norm set — re-plans over the same one)."""
+
+
+def _memo_key(info: D.DemInfo, bounds_m: tuple[float, float, float, float],
+              area_geometry: object, plan_crs: str, *rest: Any) -> tuple[Any, ...] | None:
+    """What a pyramid depends on: the DEM file (its name, size, time and inode), the
+    rectangle, the area (its WKB's SHA-256), the CRS and the fill's settings (None when the
+    file cannot be looked at: read as before)."""
+    import hashlib
+
+    import shapely
+
+    try:
+        st = os.stat(info.path)
+    except OSError:
+        return None
+    area = hashlib.sha256(shapely.to_wkb(area_geometry)).hexdigest()
+    return (str(info.path), st.st_size, st.st_mtime_ns, st.st_ino, st.st_ctime_ns, info,
+            tuple(map(float, bounds_m)), area, plan_crs, *rest)
+
+
+def _read_ground_grid(info: D.DemInfo, bounds_m: tuple[float, float, float, float],
+                      area_geometry: object, plan_crs: str, factor_m: float, radius_m: float,
+                      margin_m: float, key: str) -> GroundGrid | None:
+    """:func:`read_ground_grid`, read and built."""
     win = _window(info, plan_crs, bounds_m)
     if win is None:
         return None

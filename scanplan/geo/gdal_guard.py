@@ -25,6 +25,7 @@ refuse the file with one clean message.
 from __future__ import annotations
 
 import contextlib
+import importlib.util
 import io
 import logging
 import os
@@ -34,6 +35,7 @@ import warnings
 import zipfile
 from collections.abc import Iterator
 from dataclasses import dataclass, field
+from types import ModuleType
 from typing import Any
 
 __all__ = ["GDAL_CONFIG", "KIND_NAMES", "SKIPPED_DRIVERS", "GdalMessages", "gdal_messages",
@@ -71,6 +73,30 @@ URLs to open (virtual and tile-index formats, web services)."""
 _state = {"done": False}
 
 
+def import_pyogrio() -> ModuleType:
+    """pyogrio, imported without pandas where nothing can need it.
+
+    pyogrio's package imports its GeoPandas layer, which imports pandas (0.3–0.9 s) only to
+    note its version for ``read_dataframe``/``write_dataframe`` — functions that need
+    GeoPandas. scanplan reads and writes with ``pyogrio.raw``; so where GeoPandas is not
+    installed and pandas not yet imported, pandas is hidden while pyogrio is imported
+    (pyogrio then notes "no pandas", which without GeoPandas changes nothing it can do).
+    pandas itself stays importable afterwards.
+    """
+    if "pyogrio" in sys.modules or "pandas" in sys.modules or \
+            importlib.util.find_spec("geopandas") is not None:
+        import pyogrio
+
+        return pyogrio
+    sys.modules["pandas"] = None  # type: ignore[assignment]  # "import pandas" fails
+    try:
+        import pyogrio
+    finally:
+        if sys.modules.get("pandas", 0) is None:
+            del sys.modules["pandas"]
+    return pyogrio
+
+
 def harden() -> None:
     """Set :data:`GDAL_CONFIG` and :data:`SKIPPED_DRIVERS` for the process (idempotent).
 
@@ -87,7 +113,7 @@ def harden() -> None:
         inherited = os.environ.pop("GDAL_SKIP", None)
         try:
             with contextlib.suppress(ImportError):
-                import pyogrio
+                import_pyogrio()
         finally:
             if inherited is not None:
                 os.environ["GDAL_SKIP"] = inherited

@@ -36,7 +36,8 @@ The layout, in a frame rotated so that the flight direction is +v:
 - **Direction.** A given ``direction_deg`` (clockwise from grid north), or ``"auto"``: the
   direction of the least flight length among every edge direction of the convex hull and a
   sweep every 2°, refined around the best to 0.1° (the exact length of each, on a slightly
-  simplified outline).
+  simplified outline: :mod:`.direction`). The turns and the exposures of a strip:
+  :mod:`.strips`.
 - **Sorties.** With ``max_flight_time_min`` the serpentine is cut into sorties, each
   flying the longest stretch its battery allows — whole strips and a part of a strip,
   the run-in and run-out, and the transit from and to the take-off point when one is
@@ -55,6 +56,8 @@ from shapely import affinity
 
 from ..core import flight as FL
 from ..i18n.messages import Message
+from . import crs as geocrs
+from .direction import _auto_direction, band_extents
 from .layout import PHOTO_COLUMNS, Area, FlightLayout, Photos, Strip
 from .sorties import (
     MAX_SORTIES,
@@ -66,17 +69,22 @@ from .sorties import (
     sortie_overhead_m,
     turn_penalties_m,
 )
-from .strips import Turn, turn_length_m, turn_radius_m
+from .strips import (
+    G_MS2,
+    MAX_STRIPS,
+    Turn,
+    _connections,
+    _Extension,
+    _strip_spans,
+    turn_length_m,
+    turn_radius_m,
+)
 
-__all__ = ["MAX_PHOTO_CENTRES", "MAX_SORTIES", "MAX_STRIPS", "Turn", "band_extents",
-           "grid_scale", "plan_lines",
-           "turn_length_m", "turn_radius_m"]
+__all__ = ["G_MS2", "MAX_PHOTO_CENTRES", "MAX_SORTIES", "MAX_STRIPS", "Turn", "band_extents",
+           "grid_scale", "plan_lines", "turn_length_m", "turn_radius_m"]
 
-MAX_STRIPS = 100_000
-"""Most strips a layout computes (beyond: not feasible)."""
 MAX_PHOTO_CENTRES = 2_000_000
 """Most photo centres kept as a table (beyond: counted, not listed)."""
-_AUTO_SWEEP_DEG = 2.0
 
 
 # -------------------------------------------------------------------------------------------
@@ -147,149 +155,6 @@ def _merge(b: _Bands, gap_m: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]
     out_hi = run[last] - shift[last]
     del group
     return strip, out_lo, out_hi
-
-
-class _Extension(int):
-    """Exposures past each end of a part (the int), and how far along the line a photo's
-    footprint reaches from its centre [m] (``reach_m``): an extension exposure is kept only
-    while its footprint reaches into the part — one that misses the area adds no coverage."""
-
-    reach_m: float
-
-    def __new__(cls, bases: int, reach_m: float) -> _Extension:
-        obj = int.__new__(cls, bases)
-        obj.reach_m = reach_m if math.isfinite(reach_m) and reach_m > 0 else math.inf
-        return obj
-
-
-def _photos_per_part(length_m: np.ndarray, base_m: float, extension: int) -> np.ndarray:
-    """ceil(L/B) + 1 + 2e' exposures: e' ≤ e extension exposures past each end, those whose
-    footprint still reaches into the part (j·B < reach − δ, δ the core's overhang past the
-    part's end, ((n₀ − 1)·B − L)/2)."""
-    length = np.maximum(length_m, 1e-300)
-    core = FL.photos_per_strip(length, base_m, 0)
-    reach = getattr(extension, "reach_m", math.inf)
-    if not int(extension) or not math.isfinite(reach):
-        return core + 2 * int(extension)
-    delta = ((core - 1) * base_m - length) / 2.0
-    kept = np.clip(np.ceil((reach - delta) / base_m) - 1, 0, int(extension)).astype(np.int64)
-    return core + 2 * kept
-
-
-def _strip_spans(strip: np.ndarray, lo: np.ndarray, hi: np.ndarray, base_m: float,
-                 extension: int, n_strips: int) -> tuple[np.ndarray, ...]:
-    """Per part: photos, first and last exposure along v; per strip: first/last exposure."""
-    n = _photos_per_part(hi - lo, base_m, extension)
-    half = (n - 1) * base_m / 2.0
-    mid = (lo + hi) / 2.0
-    first, last = mid - half, mid + half
-    s_lo = np.full(n_strips, np.inf)
-    s_hi = np.full(n_strips, -np.inf)
-    np.minimum.at(s_lo, strip, first)
-    np.maximum.at(s_hi, strip, last)
-    return n, first, last, s_lo, s_hi
-
-
-def _connections(u: np.ndarray, s_lo: np.ndarray, s_hi: np.ndarray, turn: Turn
-                 ) -> np.ndarray:
-    """Path between strip i and i + 1 (serpentine: strip 0 flown +v) [m]."""
-    if len(u) < 2:
-        return np.zeros(0)
-    forward = (np.arange(len(u) - 1) % 2) == 0  # strip i flown +v ends at its top
-    end_i = np.where(forward, s_hi[:-1], s_lo[:-1])
-    start_next = np.where(forward, s_hi[1:], s_lo[1:])
-    return turn_length_m(np.diff(u), start_next - end_i, turn)
-
-
-def _edges(geom: object) -> np.ndarray:
-    """Every boundary edge of the area as rows (x0, y0, x1, y1) [m]."""
-    rings = shapely.get_rings(shapely.get_parts(geom))
-    out = []
-    for ring in rings:
-        c = shapely.get_coordinates(ring)
-        out.append(np.hstack([c[:-1], c[1:]]))
-    return np.vstack(out) if out else np.zeros((0, 4))
-
-
-def band_extents(edges: np.ndarray, u_start_m: float, spacing_m: float, n: int
-                 ) -> tuple[np.ndarray, np.ndarray]:
-    """Along-line extent (v_min, v_max) of the area in each of ``n`` bands of width
-    ``spacing_m`` from ``u_start_m`` (±inf for a band that misses it).
-
-    The extent of a polygon within a band is that of its boundary within the band (the
-    band's own edges inside the polygon end on the boundary), so each edge is cut to the
-    bands it crosses — numpy over every (edge, band) pair at once. This is the cost of the
-    "auto" direction search, evaluated ~150 times per plan; it agrees with shapely's
-    intersection bounds (tests/test_geo_lines.py) and runs a hundred times faster.
-    """
-    u0, v0, u1, v1 = edges.T
-    lo_u, hi_u = np.minimum(u0, u1), np.maximum(u0, u1)
-    k0 = np.clip(np.floor((lo_u - u_start_m) / spacing_m), 0, n - 1).astype(np.int64)
-    k1 = np.clip(np.floor((hi_u - u_start_m) / spacing_m), 0, n - 1).astype(np.int64)
-    counts = k1 - k0 + 1
-    e = np.repeat(np.arange(len(edges)), counts)
-    k = k0[e] + (np.arange(int(counts.sum())) - np.repeat(np.cumsum(counts) - counts, counts))
-    a = u_start_m + k * spacing_m
-    du, dv = (u1 - u0)[e], (v1 - v0)[e]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        ta, tb = (a - u0[e]) / du, (a + spacing_m - u0[e]) / du
-    flat = du == 0
-    t_lo = np.where(flat, 0.0, np.clip(np.minimum(ta, tb), 0.0, 1.0))
-    t_hi = np.where(flat, 1.0, np.clip(np.maximum(ta, tb), 0.0, 1.0))
-    va, vb = v0[e] + t_lo * dv, v0[e] + t_hi * dv
-    lo = np.full(n, np.inf)
-    hi = np.full(n, -np.inf)
-    np.minimum.at(lo, k, np.minimum(va, vb))
-    np.maximum.at(hi, k, np.maximum(va, vb))
-    return lo, hi
-
-
-def _cost(edges: np.ndarray, direction_deg: float, origin: tuple[float, float],
-          spacing_m: float, base_m: float, extension: int, turn: Turn) -> float:
-    """Flight length of the serpentine at a direction (strips + connections) [m]."""
-    t = math.radians(direction_deg)
-    c, s = math.cos(t), math.sin(t)
-    x0, y0 = edges[:, 0] - origin[0], edges[:, 1] - origin[1]
-    x1, y1 = edges[:, 2] - origin[0], edges[:, 3] - origin[1]
-    uv = np.column_stack([x0 * c - y0 * s, x0 * s + y0 * c, x1 * c - y1 * s, x1 * s + y1 * c])
-    umin = float(min(uv[:, 0].min(), uv[:, 2].min()))
-    width = float(max(uv[:, 0].max(), uv[:, 2].max())) - umin
-    n = max(1, int(FL.strip_count(max(width, 1e-300), spacing_m)))
-    if n > MAX_STRIPS:
-        return math.inf
-    u_start = umin + (width - n * spacing_m) / 2.0
-    lo, hi = band_extents(uv, u_start, spacing_m, n)
-    keep = np.isfinite(lo)
-    u = u_start + (np.arange(n) + 0.5) * spacing_m
-    lo, hi, u = lo[keep], hi[keep], u[keep]
-    m = len(u)
-    _, _, _, s_lo, s_hi = _strip_spans(np.arange(m), lo, hi, base_m, extension, m)
-    return float(np.sum(s_hi - s_lo) + np.sum(_connections(u, s_lo, s_hi, turn)))
-
-
-def _auto_direction(geom: object, origin: tuple[float, float], spacing_m: float,
-                    base_m: float, extension: int, turn: Turn) -> tuple[float, int]:
-    """The direction of least flight length, and how many directions were tried."""
-    simple = shapely.simplify(geom, min(spacing_m, base_m) / 4.0, preserve_topology=True)
-    edges = _edges(simple)
-    hull = shapely.get_coordinates(shapely.convex_hull(simple))
-    d = np.diff(hull, axis=0)
-    d = d[np.hypot(d[:, 0], d[:, 1]) > 0]
-    hull_dirs = np.round(np.degrees(np.arctan2(d[:, 0], d[:, 1])) % 180.0, 6)
-    tried: dict[float, float] = {}
-
-    def run(cands: np.ndarray) -> None:
-        for c in np.unique(np.round(np.asarray(cands) % 180.0, 6)):
-            if float(c) not in tried:
-                tried[float(c)] = _cost(edges, float(c), origin, spacing_m, base_m,
-                                        extension, turn)
-
-    run(np.r_[hull_dirs, np.arange(0.0, 180.0, _AUTO_SWEEP_DEG)])
-    for step, reach in ((0.5, 2.0), (0.1, 0.5)):
-        best = sorted(tried, key=tried.__getitem__)[:3]
-        run(np.concatenate([b + np.arange(-reach, reach + 1e-9, step) for b in best]))
-    best = min(tried, key=lambda k: (tried[k], k))
-    return float(best % 180.0), len(tried)
 
 
 # -------------------------------------------------------------------------------------------
@@ -430,15 +295,12 @@ def grid_scale(area: Area) -> float:
     """
     if not area.georeferenced:
         return 1.0
-    from pyproj import Proj, Transformer
-
     geom = area.geometry
     xy = np.vstack([shapely.get_coordinates(geom),
                     [[geom.centroid.x, geom.centroid.y]]])
-    lon, lat = Transformer.from_crs(area.plan_crs, 4326, always_xy=True).transform(
-        xy[:, 0], xy[:, 1])
+    lon, lat = geocrs.transformer(area.plan_crs, 4326).transform(xy[:, 0], xy[:, 1])
     try:
-        f = Proj(area.plan_crs).get_factors(lon, lat)
+        f = geocrs.proj(area.plan_crs).get_factors(lon, lat)
         k = np.minimum(np.asarray(f.meridional_scale), np.asarray(f.parallel_scale))
     except Exception:  # a CRS without factors (not a projection): no correction
         return 1.0
@@ -740,10 +602,7 @@ def _photos(n_per: np.ndarray, p_strip: np.ndarray, p_start: np.ndarray, pf: np.
     x, y = to_xy(u[strip0], v)  # type: ignore[operator]
     running = np.arange(1, total + 1)  # flight order: the order of ``sortie``
     if area.georeferenced:
-        import pyproj
-
-        tr = pyproj.Transformer.from_crs(area.plan_crs, 4326, always_xy=True)
-        lon, lat = tr.transform(x, y)
+        lon, lat = geocrs.transformer(area.plan_crs, 4326).transform(x, y)
         lon, lat = np.asarray(lon, dtype=float), np.asarray(lat, dtype=float)
     else:
         lon = lat = np.full(total, np.nan)

@@ -1,6 +1,11 @@
-"""The turns between strips: the path flown from the end of one strip to the start of the
-next (a semicircle, a multirotor's turnaround, a fixed wing's turn of a radius,
-:func:`turn_radius_m`), shared by the layout (:mod:`.lines`) and its sorties.
+"""One strip and the turns between strips: the arithmetic the layout (:mod:`.lines`) and
+the "auto" direction's search (:mod:`.direction`) share.
+
+- :class:`Turn` and :func:`turn_length_m` — the path between two strips (a semicircle, a
+  multirotor's turnaround, a fixed wing's turn of a radius, :func:`turn_radius_m`);
+- the exposures of a photographed part of a strip (ceil(L/B) + 1, and the extension
+  exposures past each end whose footprint still reaches into the part), each strip's first
+  and last exposure, and the connections of a serpentine.
 
 docs/flight-lines.md describes the model.
 """
@@ -12,10 +17,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["G_MS2", "Turn", "turn_length_m", "turn_radius_m"]
+from ..core import flight as FL
+
+__all__ = ["G_MS2", "MAX_STRIPS", "Turn", "turn_length_m", "turn_radius_m"]
 
 G_MS2 = 9.80665
 """Standard gravity [m/s²] (CGPM 1901)."""
+MAX_STRIPS = 100_000
+"""Most strips a layout computes (beyond: not feasible)."""
+
 
 @dataclass(frozen=True)
 class Turn:
@@ -86,3 +96,55 @@ def turn_length_m(across_m: np.ndarray, offset_m: np.ndarray, turn: Turn) -> np.
         omega = r * (np.pi + 4.0 * beta)
         return np.where(d >= 2.0 * r, wide, omega) + off + 2.0 * r  # run-out, run-in
     raise ValueError(f"turn kind must be semicircle, turnaround or radius (got {turn.kind!r})")
+
+
+class _Extension(int):
+    """Exposures past each end of a part (the int), and how far along the line a photo's
+    footprint reaches from its centre [m] (``reach_m``): an extension exposure is kept only
+    while its footprint reaches into the part — one that misses the area adds no coverage."""
+
+    reach_m: float
+
+    def __new__(cls, bases: int, reach_m: float) -> _Extension:
+        obj = int.__new__(cls, bases)
+        obj.reach_m = reach_m if math.isfinite(reach_m) and reach_m > 0 else math.inf
+        return obj
+
+
+def _photos_per_part(length_m: np.ndarray, base_m: float, extension: int) -> np.ndarray:
+    """ceil(L/B) + 1 + 2e' exposures: e' ≤ e extension exposures past each end, those whose
+    footprint still reaches into the part (j·B < reach − δ, δ the core's overhang past the
+    part's end, ((n₀ − 1)·B − L)/2)."""
+    length = np.maximum(length_m, 1e-300)
+    core = FL.photos_per_strip(length, base_m, 0)
+    reach = getattr(extension, "reach_m", math.inf)
+    if not int(extension) or not math.isfinite(reach):
+        return core + 2 * int(extension)
+    delta = ((core - 1) * base_m - length) / 2.0
+    kept = np.clip(np.ceil((reach - delta) / base_m) - 1, 0, int(extension)).astype(np.int64)
+    return core + 2 * kept
+
+
+def _strip_spans(strip: np.ndarray, lo: np.ndarray, hi: np.ndarray, base_m: float,
+                 extension: int, n_strips: int) -> tuple[np.ndarray, ...]:
+    """Per part: photos, first and last exposure along v; per strip: first/last exposure."""
+    n = _photos_per_part(hi - lo, base_m, extension)
+    half = (n - 1) * base_m / 2.0
+    mid = (lo + hi) / 2.0
+    first, last = mid - half, mid + half
+    s_lo = np.full(n_strips, np.inf)
+    s_hi = np.full(n_strips, -np.inf)
+    np.minimum.at(s_lo, strip, first)
+    np.maximum.at(s_hi, strip, last)
+    return n, first, last, s_lo, s_hi
+
+
+def _connections(u: np.ndarray, s_lo: np.ndarray, s_hi: np.ndarray, turn: Turn
+                 ) -> np.ndarray:
+    """Path between strip i and i + 1 (serpentine: strip 0 flown +v) [m]."""
+    if len(u) < 2:
+        return np.zeros(0)
+    forward = (np.arange(len(u) - 1) % 2) == 0  # strip i flown +v ends at its top
+    end_i = np.where(forward, s_hi[:-1], s_lo[:-1])
+    start_next = np.where(forward, s_hi[1:], s_lo[1:])
+    return turn_length_m(np.diff(u), start_next - end_i, turn)

@@ -593,22 +593,37 @@ def strip_rows(cols: dict[str, NDArray[Any]], g_res: NDArray[np.float64],
     -------
     tuple of StripTerrain
     """
+    strip = np.asarray(cols["strip"])
+    if strip.size == 0:
+        return ()
+    order = np.argsort(strip, kind="stable")  # one pass over the photos, strip by strip
+    numbers, first = np.unique(strip[order], return_index=True)
+    group = np.repeat(np.arange(first.size), np.diff(np.append(first, strip.size)))
+
+    def per(values: NDArray[Any], how: Any) -> NDArray[np.float64]:
+        return how.reduceat(np.asarray(values, dtype=float)[order], first)
+
+    alt = np.asarray(cols["altitude_m"], dtype=float)[order]
+    agl = alt - np.asarray(g_res, dtype=float)[order]
+    agl_max = np.maximum.reduceat(agl, first)
+    # the first photo of each strip with its largest AGL (NaN first where the max is NaN)
+    hit = (agl == agl_max[group]) | (np.isnan(agl) & np.isnan(agl_max[group]))
+    at = np.flatnonzero(hit)
+    worst = at[np.unique(group[at], return_index=True)[1]]
+    g_min = per(g_res, np.minimum)
+    lo, hi = per(cols["ground_min_m"], np.fmin), per(cols["ground_max_m"], np.fmax)
+    a_lo, a_hi = np.minimum.reduceat(alt, first), np.maximum.reduceat(alt, first)
+    clear = np.minimum.reduceat(alt - np.asarray(g_alt, dtype=float)[order], first)
+    photo = np.asarray(cols["photo"])[order]
     rows = []
-    strip = cols["strip"]
-    for k in np.unique(strip):
-        sel = strip == k
-        alt = cols["altitude_m"][sel]
-        agl = alt - g_res[sel]
-        gmin = float(g_res[sel].min())
-        max_alt = gmin + limit_m if limit_m is not None else None
-        excess = max(0.0, float(agl.max()) - limit_m) if limit_m is not None else 0.0
+    for i, k in enumerate(numbers):
+        excess = agl_max[i] - limit_m if limit_m is not None else 0.0
         rows.append(StripTerrain(
-            number=int(k), ground_min_m=float(np.nanmin(cols["ground_min_m"][sel])),
-            ground_max_m=float(np.nanmax(cols["ground_max_m"][sel])),
-            altitude_min_m=float(alt.min()), altitude_max_m=float(alt.max()),
-            agl_min_m=float((alt - g_alt[sel]).min()), agl_max_m=float(agl.max()),
-            max_altitude_m=max_alt,
-            excess_m=excess, worst_photo=int(cols["photo"][sel][int(np.argmax(agl))])))
+            number=int(k), ground_min_m=float(lo[i]), ground_max_m=float(hi[i]),
+            altitude_min_m=float(a_lo[i]), altitude_max_m=float(a_hi[i]),
+            agl_min_m=float(clear[i]), agl_max_m=float(agl_max[i]),
+            max_altitude_m=float(g_min[i]) + limit_m if limit_m is not None else None,
+            excess_m=float(excess) if excess > 0 else 0.0, worst_photo=int(photo[worst[i]])))
     return tuple(rows)
 
 

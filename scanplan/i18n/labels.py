@@ -228,6 +228,8 @@ LABELS: dict[str, dict[str, str]] = {
         "generated_by": "Prepared with {generator}.",
         "sensor_mm": "Sensor, across × along track, mm",
         "flown_heights": "Heights flown, m",
+        "flown_heights_relief": "Heights above the ground the photos show (lowest – "
+                                "highest, tolerances included), m",
         "ground_speed_ms": "Ground speed, m/s",
         "scene": "Scene reflectances r_max / r_min",
         "at_height": "at {h} m",
@@ -285,6 +287,7 @@ LABELS: dict[str, dict[str, str]] = {
         "warn_height_lowered": "Flight height lowered",
         "film_height_formula_instruction": "as printed in the Instruction, V_z·f/(k·Mc·b)",
         "film_height_formula_parallax": "parallax form, V_z·b/(k·Mc·f)",
+        "lowest_flown": "lowest flown",
         "spec_title": "Specification",
         "spec_recommended_photo_scale": "Recommended photo scale",
         "spec_frames": "Frames for the area",
@@ -566,6 +569,8 @@ LABELS: dict[str, dict[str, str]] = {
         "generated_by": "Подготовлено программой {generator}.",
         "sensor_mm": "Размер матрицы поперёк × вдоль маршрута, мм",
         "flown_heights": "Фактические высоты полёта, м",
+        "flown_heights_relief": "Высоты над снимаемой местностью (наименьшая – "
+                                "наибольшая, с допусками), м",
         "ground_speed_ms": "Путевая скорость, м/с",
         "scene": "Коэффициенты яркости r_max / r_min",
         # a no-break space keeps the unit with its number in a narrow column head
@@ -610,6 +615,7 @@ LABELS: dict[str, dict[str, str]] = {
         "gb": "ГБ",
         "planned": "плановая",
         "highest_flown": "наибольшая фактическая",
+        "lowest_flown": "наименьшая фактическая",
         "h_max_planned": "максимальная плановая ({cid})",
         "nyquist_short": "Найквист",
         "warn_not_interpretable": "Дешифрирование невозможно",
@@ -749,6 +755,7 @@ def t(key: str, locale: str = "en", platform: str = "uav") -> str:
 from .labels_control import CONTROL as _CONTROL  # noqa: E402  (ground control, checkpoints)
 from .labels_geo import GEO as _GEO  # noqa: E402  (map page, strips, exported files)
 from .labels_more import DESIGN as _DESIGN  # noqa: E402  (the survey design sheet)
+from .labels_more import PLANS as _PLANS  # noqa: E402  (the plans compared)
 from .labels_more import SIGNING as _SIGNING  # noqa: E402
 from .labels_more import TERMINAL as _TERMINAL  # noqa: E402
 from .labels_more import TERRAIN as _TERRAIN  # noqa: E402  (terrain: warnings, plot, sheet)
@@ -770,5 +777,5 @@ LABELS["en"]["reach_interpretable"] = "Smallest photo scale with the map object 
 LABELS["ru"]["reach_interpretable"] = "Предельный масштаб снимков с дешифрированием объекта"
 
 for _loc in LOCALES:  # in this order: the catalogue's keys keep their order
-    for _part in (_DESIGN, _TERRAIN, _GEO, _CONTROL):
+    for _part in (_DESIGN, _TERRAIN, _GEO, _CONTROL, _PLANS):
         LABELS[_loc].update(_part[_loc])

@@ -162,8 +162,7 @@ DESIGN: dict[str, dict[str, str]] = {
         "block_one": "one height for the block",
         "part_forms": "part|parts",
         "block_dem": "(the DEM under the photos, {n} samples)",
-        "block_waived": "not applied: the flight follows the relief "
-                               "(altitude_mode = \"follow\")",
+        "block_waived": "not applied: the flight follows the relief",
         "site": "Site (latitude, longitude)",
         "site_value": "{lat}°, {lon}°",
         "flying_dates": "Planned flying dates",
@@ -315,7 +314,6 @@ TERRAIN: dict[str, dict[str, str]] = {
         "warn_terrain_side_overlap": "Side overlap lost over high ground",
         "warn_terrain_no_ground": "Photos without ground elevation",
         "warn_terrain_voids_filled": "DEM voids filled",
-        "warn_terrain_other_choice": "Another direction or mode needs fewer photos",
         "warn_terrain_units_feet": "DEM heights may be in feet",
         "warn_terrain_geographic": "DEM in geographic coordinates",
         "warn_terrain_film_scale": "Relief changes the photo scale",
@@ -412,7 +410,6 @@ TERRAIN: dict[str, dict[str, str]] = {
                                          "недостаточно",
         "warn_terrain_no_ground": "Снимки без отметки рельефа",
         "warn_terrain_voids_filled": "Пропуски ЦМР заполнены",
-        "warn_terrain_other_choice": "Другое направление или режим требует меньше снимков",
         "warn_terrain_units_feet": "Высоты ЦМР, возможно, в футах",
         "warn_terrain_geographic": "ЦМР в географических координатах",
         "warn_terrain_film_scale": "Рельеф изменяет масштаб снимков",
@@ -482,5 +479,86 @@ TERRAIN: dict[str, dict[str, str]] = {
         "map_local_scale_axis": "Масштаб снимка, 1:",
         "photo_ground_min_m": "Наинизшая отметка под снимком, м",
         "photo_ground_max_m": "Наивысшая отметка под снимком, м",
+    },
+}
+
+
+# the plans compared for a UAV block (scanplan.reports.views.plans): the table, its words
+PLANS: dict[str, dict[str, str]] = {
+    "en": {
+        "plans_title": "Plans compared",
+        "plans_note": "The plans a crew would consider for this block — the lines' direction "
+                      "and the altitude mode — each laid out, held to the highest height "
+                      "its own layout allows and costed with the flying time of its sorties "
+                      "(turns, run-in and run-out included). Recommended: the least flying "
+                      "time, then the fewest photos, among the plans meeting every "
+                      "constraint that the project's choices allow. An estimate (≈) is "
+                      "costed from its layout at the height it would allow, not laid out "
+                      "part by part nor checked photo by photo.",
+        "plans_mode": "How flown",
+        "plans_lines": "Flight lines",
+        "plans_height": "Height, m",
+        "plans_volume": "Data, GB",
+        "plans_time": "Flying time, min",
+        "plans_gsd": "GSD flown, cm",
+        "plans_binding": "Binding",
+        "plans_verdict": "Every constraint met? Why not",
+        "plans_ok": "meets every constraint",
+        "plans_not_allowed": "not the project's choice",
+        "plans_dir_auto": "least length",
+        "plans_dir_long_axis": "long axis",
+        "plans_dir_relief": "least relief",
+        "plans_dir_project": "the project's",
+        "plans_dir_block": "along the block",
+        "warn_plan_choice_costs": "The project's choice costs far more flying time",
+        "warn_plan_choice_needs": "A plan meeting every constraint needs more data",
+        "plans_intro": "Plans compared (recommended: the least flying time meeting every "
+                      "constraint):",
+        "how_flown": "how flown",
+        "plan_lines": "flight lines",
+        "photos_counted": "photos",
+        "sorties_counted": "sorties",
+        "binds": "binds",
+        "min": "min",
+        "cm": "cm",
+    },
+    "ru": {
+        "plans_title": "Сравнение вариантов плана",
+        "plans_note": "Варианты, которые рассмотрел бы экипаж для этого участка, — "
+                      "направление маршрутов и режим высоты; каждый размечен, поднят до "
+                      "наибольшей высоты, которую допускает его собственная разметка, и "
+                      "оценён временем полёта по его вылетам (с разворотами, заходами и "
+                      "выходами). Рекомендуется вариант с наименьшим временем полёта, затем "
+                      "с наименьшим числом снимков, среди удовлетворяющих всем условиям и "
+                      "допускаемых выбором проекта. Оценка (≈) рассчитана по разметке на "
+                      "допускаемой ею высоте, без разметки по частям и проверки каждого "
+                      "снимка.",
+        "plans_mode": "Режим",
+        "plans_lines": "Маршруты",
+        "plans_height": "Высота, м",
+        "plans_volume": "Данные, ГБ",
+        "plans_time": "Время полёта, мин",
+        "plans_gsd": "Фактический размер пикселя на местности, см",
+        "plans_binding": "Определяет",
+        "plans_verdict": "Все условия выполнены? Почему нет",
+        "plans_ok": "все условия выполнены",
+        "plans_not_allowed": "не выбор проекта",
+        "plans_dir_auto": "мин. длина",
+        "plans_dir_long_axis": "длинная ось",
+        "plans_dir_relief": "мин. перепад",
+        "plans_dir_project": "задано проектом",
+        "plans_dir_block": "вдоль участка",
+        "warn_plan_choice_costs": "Выбор проекта заметно увеличивает время полёта",
+        "warn_plan_choice_needs": "Для варианта, удовлетворяющего всем условиям, нужны "
+                                      "данные",
+        "plans_intro": "Сравнение вариантов плана (рекомендуется наименьшее время полёта при "
+                      "выполнении всех условий):",
+        "how_flown": "режим",
+        "plan_lines": "маршруты",
+        "photos_counted": "снимков",
+        "sorties_counted": "вылетов",
+        "binds": "определяет",
+        "min": "мин",
+        "cm": "см",
     },
 }

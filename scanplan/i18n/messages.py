@@ -442,6 +442,9 @@ MESSAGES.update(_FLIGHT)
 from .messages_control import CONTROL as _CONTROL  # noqa: E402  (ground control)
 
 MESSAGES.update(_CONTROL)
+from .messages_plans import PLANS as _PLANS  # noqa: E402  (the plans compared, the choice)
+
+MESSAGES.update(_PLANS)
 
 
 @contextmanager

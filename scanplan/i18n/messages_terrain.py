@@ -83,7 +83,8 @@ TERRAIN: dict[str, dict[str, str]] = {
     },
     "terrain_forward_overlap": {
         "en": "over high ground the forward overlap drops to {value:.1f} % (photos {a:id} and "
-              "{b:id}), below the planned {planned:g} % at {count:d} photo(s): {photos}.{floor} "
+              "{b:id}), below the planned {planned:g} % at {count:d|photo|photos}: "
+              "{photos}.{floor} "
               "Remedies: hold the altitude over the highest ground (⁅[terrain] altitude_mode = "
               "\"constant\" or \"strip\"⁆), or raise the forward overlap "
               "(⁅[uav] forward_overlap_pct⁆)",
@@ -95,9 +96,9 @@ TERRAIN: dict[str, dict[str, str]] = {
     },
     "terrain_side_overlap": {
         "en": "over high ground the side overlap drops to {value:.1f} % (photos {a:id} and "
-              "{b:id}), below the planned {planned:g} % at {count:d} photo(s): {photos}.{floor} "
-              "Remedies: "
-              "hold the altitude over the highest ground (⁅[terrain] altitude_mode = "
+              "{b:id}), below the planned {planned:g} % at {count:d|photo|photos}: "
+              "{photos}.{floor} "
+              "Remedies: hold the altitude over the highest ground (⁅[terrain] altitude_mode = "
               "\"constant\"⁆), or raise the side overlap (⁅[uav] side_overlap_pct⁆)",
         "ru": "Над повышенным рельефом поперечное перекрытие уменьшается до {value:.1f}~% (снимки "
               "{a:id} и {b:id}) — меньше планового {planned:g}~% у снимков: {count:d} "
@@ -210,23 +211,5 @@ TERRAIN: dict[str, dict[str, str]] = {
               "рельефа заполнены с запасом — для высоты полёта наивысшей известной отметкой в "
               "радиусе {radius:g}~м плюс {margin:g}~м, для масштаба снимков наинизшей минус "
               "{margin:g}~м; на них приходятся центры {photos:d} снимков.",
-    },
-    "terrain_other_choice": {
-        "en": "{what} would allow about {height:.0f} m above the reference ground instead of "
-              "{current:.0f} m over this relief: about {photos:,.0f} photos instead of "
-              "{now:,d} ({pct:.0f} % fewer; an estimate from the DEM)",
-        "ru": "{what} позволил бы высоту около {height:.0f}~м над опорной отметкой вместо "
-              "{current:.0f}~м над этим рельефом: около {photos:,.0f} снимков вместо {now:,d} "
-              "(на {pct:.0f}~% меньше; оценка по ЦМР).",
-    },
-    "terrain_choice.mode": {
-        "en": "the altitude mode {mode} (⁅[terrain] altitude_mode⁆)",
-        "ru": "Режим {mode} (⁅[terrain] altitude_mode⁆)",
-    },
-    "terrain_choice.strip": {
-        "en": "the altitude mode {mode} with the lines at {direction:.0f}° (⁅[terrain] "
-              "altitude_mode, [area] direction_deg⁆)",
-        "ru": "Режим {mode} при направлении маршрутов {direction:.0f}° (⁅[terrain] "
-              "altitude_mode, [area] direction_deg⁆)",
     },
 }

@@ -92,7 +92,7 @@ UAV: dict[str, dict[str, str]] = {
               "не применяется: полёт "
               "выполняется с огибанием рельефа (⁅режим [terrain] altitude_mode⁆), высота "
               "фотографирования выдерживается над местностью (перепад высот {range:.0f}~м — "
-              "{pct:.1f}~% высоты фотографирования {h:g}~м)",
+              "{pct:.1f}~% высоты фотографирования {h:g}~м).",
     },
     "recommendation_set_aside": {
         "en": "{what} is set aside by the project: {reason}",

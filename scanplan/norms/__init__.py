@@ -17,14 +17,17 @@ One module per concept (imports point down this list):
 ``export``     a norm set as plain data
 ``template``   the template workbook
 
-Everything other modules use is re-exported here (``from scanplan.norms import X``).
+Everything other modules use is re-exported here (``from scanplan.norms import X``). What
+only importing a spreadsheet, writing a set or the template needs (``cells`` … ``template``)
+is imported when first asked for, so a plan that only loads a set does not import the
+spreadsheet readers.
 """
 
 from __future__ import annotations
 
-from .cells import ImportProblem, NormImportError, format_problems, parse_number
-from .export import norm_set_dict
-from .importer import ParsedNormSet, read_norm_file
+import importlib
+from typing import TYPE_CHECKING, Any
+
 from .limits import (
     HEADER_SCAN_ROWS,
     MAX_CELL_CHARS,
@@ -60,8 +63,30 @@ from .store import (
     parse_scale,
     read_norm_set_folder,
 )
-from .template import write_template
-from .writer import check_set_name, import_norm_file, write_norm_set
+
+if TYPE_CHECKING:
+    from .cells import ImportProblem, NormImportError, format_problems, parse_number
+    from .export import norm_set_dict
+    from .importer import ParsedNormSet, read_norm_file
+    from .template import write_template
+    from .writer import check_set_name, import_norm_file, write_norm_set
+
+_LATER = {"ImportProblem": "cells", "NormImportError": "cells", "format_problems": "cells",
+          "parse_number": "cells", "norm_set_dict": "export", "ParsedNormSet": "importer",
+          "read_norm_file": "importer", "write_template": "template",
+          "check_set_name": "writer", "import_norm_file": "writer",
+          "write_norm_set": "writer"}
+"""The re-exports imported on first use: name → module of this package."""
+
+
+def __getattr__(name: str) -> Any:
+    """A re-export of :data:`_LATER`, imported now (PEP 562)."""
+    module = _LATER.get(name)
+    if module is None:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(importlib.import_module(f"{__name__}.{module}"), name)
+    globals()[name] = value
+    return value
 
 __all__ = [
     "CATALOGUE",

@@ -10,6 +10,8 @@ platform's user data folder: :func:`scanplan.norms.paths.user_norms_dir`).
 
 from __future__ import annotations
 
+import contextlib
+import contextvars
 import csv
 import glob
 import io
@@ -18,7 +20,7 @@ import os
 import re
 import stat
 import tomllib
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
 from difflib import get_close_matches
 from functools import lru_cache
@@ -55,6 +57,7 @@ __all__ = [
     "did_you_mean",
     "list_norm_sets",
     "load_norm_set",
+    "one_version",
     "parse_scale",
     "read_norm_set_folder",
     "user_norms_dir",
@@ -489,6 +492,23 @@ def _put_back_catalogue() -> None:
         pass
 
 
+_HELD_SETS: contextvars.ContextVar[dict[str, NormSet] | None] = contextvars.ContextVar(
+    "scanplan_norm_sets", default=None)
+
+
+@contextlib.contextmanager
+def one_version() -> Iterator[None]:
+    """Within it, each norm set is read (and its files looked at) once: a plan made of
+    several jobs uses one version of a set, and does not take the norm folder's lock and
+    look at every file of the set for each job (per thread and task: a context variable).
+    """
+    token = _HELD_SETS.set({})
+    try:
+        yield
+    finally:
+        _HELD_SETS.reset(token)
+
+
 def load_norm_set(name_or_path: str | os.PathLike[str] = DEFAULT_NORM_SET) -> NormSet:
     """Load a norm set by bundled/user name or folder path.
 
@@ -508,6 +528,17 @@ def load_norm_set(name_or_path: str | os.PathLike[str] = DEFAULT_NORM_SET) -> No
     InputError
         If a file of the set breaks the schema (the message names file, row and column).
     """
+    held = _HELD_SETS.get()
+    key = os.fspath(name_or_path)
+    if held is not None and key in held:
+        return held[key]
+    found = _load_norm_set(name_or_path)
+    if held is not None:
+        held[key] = found
+    return found
+
+
+def _load_norm_set(name_or_path: str | os.PathLike[str]) -> NormSet:
     _put_back_catalogue()
     for _ in range(3):
         path, bundled = _resolve(name_or_path)

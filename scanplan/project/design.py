@@ -39,11 +39,13 @@ __all__ = [
     "GsdCompliance",
     "SunPlan",
     "SurveyDesign",
+    "block_rule",
     "design_dict",
     "layout_of",
     "layout_site",
     "layout_sorties_s",
     "survey_design",
+    "terrain_ground_m",
 ]
 
 DEFAULT_SCHEDULE_DAYS = 30
@@ -147,14 +149,7 @@ def _ground_samples(project: ProjectModel, film: FilmSpec | None, uav: UavSpec |
 
     terrain = getattr(uav, "terrain", None)
     if terrain is not None and terrain.ground.source == "dem":
-        cols = terrain.layout.photos.columns
-        parts = [np.asarray(cols[k], dtype=float).ravel()
-                 for k in ("ground_min_m", "ground_max_m", "ground_m") if k in cols]
-        z = np.concatenate(parts) if parts else np.zeros(0)
-        z = z[np.isfinite(z)]
-        if z.size:
-            return z, "dem"
-        return np.array([terrain.ground.low_m, terrain.ground.high_m]), "dem"
+        return terrain_ground_m(project, terrain), "dem"
     ft = getattr(film, "terrain", None)
     if ft is not None and ft.ground_known and ft.ground_m is not None:
         z = np.asarray(ft.ground_m, dtype=float)
@@ -165,6 +160,40 @@ def _ground_samples(project: ProjectModel, film: FilmSpec | None, uav: UavSpec |
     if ground is not None:
         return ground, "range"
     return None
+
+
+def terrain_ground_m(project: ProjectModel, terrain: Any) -> Any:
+    """The ground elevations a UAV terrain result flies over [m]: over a DEM the lowest and
+    highest ground under every photo's footprint and its centre, else ``[terrain]
+    ground_elevation_m``'s two ends (what the one-height rule is checked on)."""
+    import numpy as np
+
+    if terrain.ground.source == "dem":
+        cols = terrain.layout.photos.columns
+        parts = [np.asarray(cols[k], dtype=float).ravel()
+                 for k in ("ground_min_m", "ground_max_m", "ground_m") if k in cols]
+        z = np.concatenate(parts) if parts else np.zeros(0)
+        z = z[np.isfinite(z)]
+        return z if z.size else np.array([terrain.ground.low_m, terrain.ground.high_m])
+    return np.array([terrain.ground.low_m, terrain.ground.high_m])
+
+
+def block_rule(project: ProjectModel, ns: Any, ground_m: Any, height_m: float,
+               mode: str | None) -> tuple[BlockHeightCheck | None, bool]:
+    """The one-height rule (ГОСТ Р 59328 §6.2.1, second draft) for a block flown at
+    ``height_m`` over ``ground_m`` in altitude ``mode``: (the check, whether it holds).
+
+    It holds when the ground range is within the norm's share of the height, when the
+    flight follows the relief (waived: the check is None) and when the project sets the
+    rule aside (``[norms] block_relief_reason``: None).
+    """
+    if project.norms.block_relief_reason or mode == "follow":
+        return None, True
+    relief = _relief_class(project)
+    pname = {"flat": "block_relief_flat_pct", "hilly": "block_relief_hilly_pct",
+             "mountainous": "block_relief_mountain_pct"}[relief]
+    check = block_height_check(ground_m, height_m, relief, float(ns.parameters[pname]))
+    return check, not check.split_needed
 
 
 def _block(project: ProjectModel, film: FilmSpec | None, uav: UavSpec | None
@@ -182,7 +211,7 @@ def _block(project: ProjectModel, film: FilmSpec | None, uav: UavSpec | None
              "mountainous": "block_relief_mountain_pct"}[relief]
     check = block_height_check(ground, height, relief, float(ns.parameters[pname]))
     warnings = []
-    waived = project.terrain is not None and project.terrain.altitude_mode == "follow"
+    waived = _flown_mode(project, uav) == "follow"
     set_aside = project.norms.block_relief_reason
     if set_aside:
         warnings.append(PlanWarning("recommendation_set_aside", Message(
@@ -199,6 +228,16 @@ def _block(project: ProjectModel, film: FilmSpec | None, uav: UavSpec | None
             limit=check.limit_pct, relief=Message(f"relief.{relief}"), n=check.blocks,
             bands=[Message("block.band", lo=lo, hi=hi) for lo, hi in check.bands_m])))
     return check, ns.parameter_sources.get(pname, ""), warnings, origin, waived
+
+
+def _flown_mode(project: ProjectModel, uav: UavSpec | None) -> str | None:
+    """The altitude mode the plan flies: the UAV terrain result's (the mode chosen when the
+    project leaves it to scanplan), else the project's (a film plan flies ``constant``
+    unless told otherwise); None without ``[terrain]``."""
+    terrain = getattr(uav, "terrain", None)
+    if terrain is not None:
+        return str(terrain.mode)
+    return project.terrain.config.altitude_mode if project.terrain is not None else None
 
 
 def layout_of(spec: FilmSpec | UavSpec | None) -> FlightLayout | None:

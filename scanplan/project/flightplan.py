@@ -169,10 +169,9 @@ def _takeoff_xy(opts: LayoutOptions, area: Area) -> tuple[float, float] | None:
     """The take-off point in the area's planning CRS [m] (None when not given)."""
     if opts.takeoff_lonlat is None or not area.georeferenced:
         return None
-    from pyproj import Transformer
+    from ..geo.crs import transformer
 
-    tr = Transformer.from_crs(4326, area.plan_crs, always_xy=True)
-    x, y = tr.transform(*map(float, opts.takeoff_lonlat))
+    x, y = transformer(4326, area.plan_crs).transform(*map(float, opts.takeoff_lonlat))
     return float(x), float(y)
 
 

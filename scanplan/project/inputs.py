@@ -504,10 +504,11 @@ _RECORDS: tuple[Input, ...] = (
           "§6.2.1", "m", digits=1),
     Input("dem", "terrain", "dem", _STR, "digital elevation model: a GeoTIFF in any CRS, "
           "relative to the project file (or ground_elevation_m)"),
-    Input("altitude_mode", "terrain", "altitude_mode", _STR, '"constant" (one altitude, the '
-          'planned height over the highest ground), "strip" (one per strip) or "follow" '
-          "(terrain following)", default="constant",
-          choices=("constant", "strip", "follow")),
+    Input("altitude_mode", "terrain", "altitude_mode", _STR, '"auto" (scanplan compares the '
+          "modes and flies the one with the least flying time that meets every constraint), "
+          '"constant" (one altitude, the planned height over the highest ground), "strip" '
+          '(one per strip) or "follow" (terrain following); a mode given is kept',
+          default="auto", choices=("auto", "constant", "strip", "follow")),
     Input("follow_tolerance_m", "terrain", "follow_tolerance_m", _NUM, "follow mode: how far "
           "the height above ground may exceed the planned height [m]", "m", default=5.0, digits=1),
     Input("void_fill_radius_m", "terrain", "void_fill_radius_m", _NUM, "no-data in the DEM "

@@ -417,6 +417,8 @@ def uav_job(
     gsd_limit_reason: str | None = None,
     area: Area | None = None,
     layout_options: LayoutOptions | None = None,
+    flown_band_m: tuple[float, float] | None = None,
+    laid_out: FlightLayout | None = None,
 ) -> UavJob:
     """Plan a UAV flight (see :func:`scanplan.rules.uav.plan_uav`); names as the CLI options.
 
@@ -440,7 +442,10 @@ def uav_job(
     the strips and photo centres out (``layout_options``: direction, turns, sorties); the
     flight figures (strips, photos, length, time, data volume) come from that layout.
     Without ``height_m`` the flight is planned at the maximum planned height, rounded
-    down to :data:`HEIGHT_STEP_M` (needs a map scale or a target GSD).
+    down to :data:`HEIGHT_STEP_M` (needs a map scale or a target GSD). ``flown_band_m``:
+    over relief, the lowest and highest heights above the ground really flown [m]
+    (:func:`scanplan.rules.uav.plan_uav`); ``laid_out``: the layout of this very plan
+    already laid out over ``area`` (the plan restated at those heights keeps it).
 
     Long because: its keyword arguments (one per input of the registry) and this
     docstring; the work is in named steps: :func:`_carrier_defaults`,
@@ -452,13 +457,19 @@ def uav_job(
             raise InputError("height_m", "give the planned flight height (m ≥ 1), a target "
                              "GSD, or a map scale to derive it from")
         kw = dict(locals())
-        first = uav_job(**{**kw, "height_m": PROVISIONAL_HEIGHT_M})
+        if area_m is not None:
+            parse_area_m(area_m, "area_m")  # refused before the heights, as it was
+        # the limits do not depend on the area: the strips are laid out at the height chosen
+        first = uav_job(**{**kw, "height_m": PROVISIONAL_HEIGHT_M, "area": None,
+                           "area_m": None})
         rec = recommended_height_m(first.plan.max_height_m)
         if rec is None:
             raise InputError("height_m", "no flight height of 1 m or more meets every limit "
                              f"(maximum {first.plan.max_height_m or 0:.2f} m); give the "
                              "planned height to see the plan")
-        return first if rec == PROVISIONAL_HEIGHT_M else uav_job(**{**kw, "height_m": rec})
+        if rec == PROVISIONAL_HEIGHT_M and area is None and area_m is None:
+            return first
+        return uav_job(**{**kw, "height_m": rec})
     ns = load_norm_set(norms)
     cam = ns.camera(camera, "camera") if camera is not None else None
     if cam is not None and cam.kind != "digital":
@@ -506,12 +517,13 @@ def uav_job(
         gsd_limit_m=gsd_row.max_gsd_cm / 100.0 if gsd_row else None,
         gsd_limit_area=gsd_row.area if gsd_row else "general",
         gsd_limit_source=gsd_row.source if gsd_row else "")
-    plan = plan_uav(inputs, rules)
+    plan = plan_uav(inputs, rules, flown_band_m)
     if area is None and area_w is not None and area_l is not None:
         area = rectangle_area(area_w, area_l)
     if area is None:
         return UavJob(plan, ns)
-    layout = uav_layout(plan, area, layout_options, manned=aircraft)
+    layout = laid_out if laid_out is not None else uav_layout(plan, area, layout_options,
+                                                              manned=aircraft)
     return UavJob(with_layout(plan, layout), ns, layout)
 
 

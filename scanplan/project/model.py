@@ -27,9 +27,14 @@ from .inputs import by_key, domain_of, project_key, records
 if TYPE_CHECKING:
     from ..geo.terrain import TerrainConfig
 
-__all__ = ["AreaSection", "ControlSection", "FieldMeta", "FilmSection", "FlightSection",
-           "FrozenMap", "MapSection", "NormsSection", "ProjectModel", "ScheduleSection",
-           "Signing", "SiteSection", "TerrainSection", "UavSection", "build_model", "field_meta"]
+__all__ = ["AUTO_MODE", "AreaSection", "ControlSection", "FieldMeta", "FilmSection",
+           "FlightSection", "FrozenMap", "MapSection", "NormsSection", "ProjectModel",
+           "ScheduleSection", "Signing", "SiteSection", "TerrainSection", "UavSection",
+           "build_model", "field_meta"]
+
+
+AUTO_MODE = "auto"
+"""``[terrain] altitude_mode`` that leaves the mode to the specification (the default)."""
 
 
 class FrozenMap(dict):  # type: ignore[type-arg]
@@ -212,6 +217,9 @@ class TerrainSection:
     ground_elevation_m: list[float] | None
     relief_class: str
     altitude_mode: str
+    """``[terrain] altitude_mode`` as given: a mode the plan keeps, or ``"auto"`` (the
+    default: the specification compares the modes, :mod:`scanplan.project.alternatives`);
+    ``config.altitude_mode`` is then ``"constant"``, the mode a film plan flies."""
 
 
 @dataclass(frozen=True)
@@ -496,7 +504,7 @@ def _terrain(r: _Reader) -> TerrainSection | None:
             dem=(Path(dem) if Path(dem).is_absolute() else r.p.path.parent / dem)
             if dem is not None and dem.strip() else (Path("") if dem is not None else None),
             ground_range_m=(float(rng[0]), float(rng[1])) if rng is not None else None,
-            altitude_mode=mode,
+            altitude_mode="constant" if mode == AUTO_MODE else mode,  # auto: chosen later
             follow_tolerance_m=float(g("terrain", "follow_tolerance_m",
                                        field_meta("terrain", "follow_tolerance_m").default)),
             vertical_unit=g("terrain", "vertical_unit"),

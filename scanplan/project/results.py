@@ -10,6 +10,7 @@ compute them and the reports that render them both import from here.
 from __future__ import annotations
 
 import datetime as dt
+import math
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
@@ -19,17 +20,18 @@ from ..core.blocks import BlockHeightCheck
 from ..core.photoscale import height_at_photo_scale_m
 from ..geo.layout import Area, FlightLayout
 from ..geo.sun import FlyingDays, SunWindow
-from ..geo.terrain import TerrainResult
-from ..geo.terrain_film import FilmTerrain
 from ..rules.film import PlanWarning, ScanScenario
 from .file import ReportMeta
 from .jobs import ScanJob, UavJob
 from .model import ProjectModel
 
-if TYPE_CHECKING:
+if TYPE_CHECKING:  # the relief's modules are imported for a plan with [terrain] only
+    from ..geo.terrain import TerrainResult
+    from ..geo.terrain_film import FilmTerrain
     from .control import ControlSpec
 
-__all__ = ["FilmSpec", "GsdCompliance", "PlanResult", "SunPlan", "SurveyDesign", "UavSpec"]
+__all__ = ["Alternative", "FilmSpec", "GsdCompliance", "PlanResult", "SunPlan", "SurveyDesign",
+           "UavSpec"]
 
 
 @dataclass(frozen=True)
@@ -177,6 +179,83 @@ class FilmSpec:
 
 
 @dataclass(frozen=True)
+class Alternative:
+    """One plan a crew would consider for a UAV block, planned and costed
+    (:mod:`scanplan.project.alternatives`, docs/plan-choice.md).
+
+    Attributes
+    ----------
+    mode : str or None
+        Altitude mode (``constant``, ``strip``, ``follow``; None on flat ground).
+    direction : str
+        Which line direction: ``auto`` (the least flight length), ``long_axis`` (the area's
+        long axis), ``relief`` (strips spanning the least relief), ``project`` (the one the
+        project gives), ``block`` (the ``width_m × length_m`` block, flown along its length).
+    direction_deg : float or None
+        The lines' direction as laid out, clockwise from grid north [°].
+    parts : int
+        Parts of the block flown at their own height (> 1: split by ground height).
+    height_m : float or None
+        The planned height above the reference ground [m].
+    n_photos, n_strips, n_sorties : int or None
+    flight_length_m, flight_time_s : float or None
+        With the turns, the run-in and run-out and the sorties' transit [m], [s].
+    data_volume_bytes : float or None
+        Uncompressed.
+    gsd_min_m, gsd_max_m : float or None
+        GSD at the lowest and the highest heights above ground flown [m].
+    binding : str or None
+        The constraint that sets the height.
+    feasible : bool
+        Meets every constraint (``rejected_because`` is empty).
+    rejected_because : tuple of Message
+        What it misses.
+    findings : tuple of Message
+        What it holds only within an allowance (an overlap a few tenths short).
+    heights_tried : tuple of (float, bool)
+        Over relief, every height its layout was laid out at and checked, and whether its
+        worst photo met every limit, in the order tried [m] (the fixed point).
+    estimate : bool
+        Costed but not laid out and checked photo by photo (what it needs is in
+        ``rejected_because``).
+    allowed : bool
+        The project's choices (``[terrain] altitude_mode``, ``[area] direction_deg``)
+        allow it.
+    recommended : bool
+        The plan of the specification.
+    """
+
+    mode: str | None
+    direction: str
+    direction_deg: float | None
+    parts: int
+    height_m: float | None
+    n_photos: int | None
+    n_strips: int | None
+    n_sorties: int | None
+    flight_length_m: float | None
+    flight_time_s: float | None
+    data_volume_bytes: float | None
+    gsd_min_m: float | None
+    gsd_max_m: float | None
+    binding: str | None
+    feasible: bool
+    rejected_because: tuple[Any, ...] = ()
+    estimate: bool = False
+    allowed: bool = True
+    recommended: bool = False
+    findings: tuple[Any, ...] = ()
+    heights_tried: tuple[tuple[float, bool], ...] = ()
+
+    @property
+    def cost(self) -> tuple[float, float]:
+        """What the choice minimises: (flying time [s], photos); unknown ones last."""
+        t = self.flight_time_s
+        n = self.n_photos
+        return (t if t is not None else math.inf, float(n) if n is not None else math.inf)
+
+
+@dataclass(frozen=True)
 class UavSpec:
     """The UAV part of a specification (the flight at the recommended height; ``reason``: a
     :class:`~scanplan.i18n.messages.Message`)."""
@@ -188,6 +267,10 @@ class UavSpec:
     reason: str
     terrain: TerrainResult | None = None  # [terrain]: every photo over its own ground
     terrain_warnings: tuple[PlanWarning, ...] = ()
+    alternatives: tuple[Alternative, ...] = ()
+    """The plans compared (one marked ``recommended``); empty when there was no choice."""
+    choice: str | None = None
+    """Why this plan among the plans compared (a Message; None without a choice)."""
 
     @property
     def layout(self) -> FlightLayout | None:
@@ -211,6 +294,10 @@ class PlanResult:
     rule of a block, the sun window (:mod:`scanplan.project.design`)."""
     area: Area | None = None  # the contract area ([area]), in its planning CRS
     control: ControlSpec | None = None  # [control]: GCPs, checkpoints, the error budget
+    exports_written: frozenset[str] | None = None
+    """The exported formats (``csv``, ``plan`` … :data:`scanplan.geo.export.FORMATS` names)
+    the run that renders the documents writes beside them; None: the documents alone
+    (``--pdf FILE``, the API's ``write``), so they never say a file is beside them."""
     backgrounds: dict[str, Any] = field(default_factory=dict)
     """``[map] basemap`` as a tile URL: each map page's background by job (``"uav"``,
     ``"film"``), a :class:`scanplan.geo.basemap.Basemap` in its layout's planning CRS

@@ -140,7 +140,9 @@ def parameters_doc(engine: Callable[..., Any], plan: str) -> str:
 #: ``SupportsFloat``: ``int``, ``float``, ``np.float32``, ``Fraction``).
 _STATIC = {"number": "SupportsFloat", "int": "SupportsIndex", "scale": "SupportsFloat | str",
            "scales": "Iterable[SupportsFloat | str]", "date": "datetime.date | str"}
-_STATIC_EXTRA = {"area": "Area | None", "layout_options": "LayoutOptions | None"}
+_STATIC_EXTRA = {"area": "Area | None", "layout_options": "LayoutOptions | None",
+                 "flown_band_m": "tuple[float, float] | None",
+                 "laid_out": "FlightLayout | None"}
 MARKERS = ("    # <typed signatures: python -m scanplan.project.signature scanplan/api.py>",
            "    # </typed signatures>")
 """The lines around the generated signatures in :mod:`scanplan.api`."""

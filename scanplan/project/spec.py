@@ -13,18 +13,21 @@ from __future__ import annotations
 
 import inspect
 import math
+from collections import OrderedDict
 from dataclasses import replace
-from typing import Any
+from functools import cache
+from typing import TYPE_CHECKING, Any
 
 from ..core.domains import DOMAINS
 from ..core.photoscale import scanned_ground_pixel_m
 from ..errors import InputError
 from ..geo.area import AreaSpec
 from ..geo.layout import Area, FlightLayout
-from ..geo.terrain_film import FilmTerrain
 from ..i18n.messages import Message
+from ..norms.store import one_version
 from ..rules.film import PlanWarning, ScanScenario
 from .aircraftplan import aircraft_warnings
+from .alternatives import JobAt, choose_plan
 from .archive import archive_film
 from .background import map_backgrounds
 from .control import ControlSpec, plan_control
@@ -50,12 +53,9 @@ from .jobs import (
 from .model import ProjectModel, build_model
 from .results import FilmSpec, PlanResult, UavSpec
 from .sorties import project_aircraft, sortie_length, terrain_relief_m
-from .terrainplan import (
-    archive_over_terrain,
-    film_over_terrain,
-    film_terrain_spec,
-    uav_terrain_spec,
-)
+
+if TYPE_CHECKING:  # the relief's modules are imported for a plan with [terrain] only
+    from ..geo.terrain_film import FilmTerrain
 
 __all__ = ["FilmSpec", "PlanResult", "UavSpec", "plan_project", "project_area"]
 
@@ -70,8 +70,14 @@ def _job_kwargs(given: Any, takes: Any) -> dict[str, Any]:
     inputs of the plan's section of the model (:attr:`~scanplan.project.model.FilmSection.
     given`) the job function ``takes``; keys the file leaves out take the API's defaults,
     which are the registry's."""
-    params = inspect.signature(takes).parameters
+    params = _parameters(takes)
     return {name: value for name, value in given.items() if name in params}
+
+
+@cache
+def _parameters(func: Any) -> frozenset[str]:
+    """The names of ``func``'s parameters (read once: inspect takes a millisecond)."""
+    return frozenset(inspect.signature(func).parameters)
 
 
 def _film(project: ProjectModel, area: Area | None) -> FilmSpec:
@@ -109,6 +115,8 @@ def _archive_over_terrain(project: ProjectModel, raw: ScanJob, job: ScanJob, bes
                              inp.forward_overlap_pct, side, area, _layout_options(project))
     except InputError as exc:
         raise project.named(exc, "uav") from None
+    from .terrainplan import archive_over_terrain
+
     got = archive_over_terrain(project, cfg, raw, job, best, layout)
     rec, layout = got.headline, got.layout
     frames = int(layout.notes.get("photos", len(layout.photos))) if layout else None
@@ -149,6 +157,8 @@ def _film_over_terrain(project: ProjectModel, job: ScanJob, side: float, area: A
                                inp.forward_overlap_pct, side, area, _layout_options(project))
         except InputError as exc:
             raise project.named(exc, "uav") from None
+
+    from .terrainplan import film_over_terrain
 
     got = film_over_terrain(project, cfg, plan, candidates, layout_at,
                             lambda s: _feasible(plan, s))
@@ -224,6 +234,8 @@ def _film_terrain(project: ProjectModel, plan: Any, best: ScanScenario | None,
     cfg = project.terrain.config
     inp = plan.inputs
     obj = inp.object
+    from .terrainplan import film_terrain_spec
+
     return film_terrain_spec(
         project, cfg, layout, plan.rules, map_scale=inp.map_scale,
         photo_scale=best.photo_scale, relief_interval_m=inp.relief_interval_m,
@@ -333,23 +345,14 @@ def _uav_kwargs(project: ProjectModel, height_m: float, the_area: Area | None
 def _uav(project: ProjectModel, the_area: Area | None) -> UavSpec:
     assert project.uav is not None
     planned = project.uav.height_m
-
-    def job_at(height_m: float, direction_deg: float | None = None) -> UavJob:
-        try:
-            kw = _uav_kwargs(project, height_m, the_area)
-            if direction_deg is not None:  # the terrain's choice of direction
-                kw["layout_options"] = replace(kw["layout_options"],
-                                               direction_deg=direction_deg)
-            return uav_job(**kw)
-        except InputError as exc:
-            raise project.named(exc, "uav") from None
-
+    job_at = _jobs(project, the_area)
     first_height = planned if planned is not None else PROVISIONAL_HEIGHT_M
-    first = job_at(first_height)
+    # the limits do not depend on the area: the layout is made once, at the height chosen
+    first = job_at(first_height, limits_only=True)
     max_h = first.plan.max_height_m
     rounded = recommended_height_m(max_h)
     if max_h is None or rounded is None:
-        return UavSpec(first, planned, None, max_h, Message("spec.uav_none"))
+        return UavSpec(job_at(first_height), planned, None, max_h, Message("spec.uav_none"))
     if planned is None:
         rec = rounded
         reason = Message("spec.uav_rounded", max=max_h, cid=first.plan.binding,
@@ -361,16 +364,55 @@ def _uav(project: ProjectModel, the_area: Area | None) -> UavSpec:
     else:
         rec = planned
         reason = Message("spec.uav_within", max=max_h)
-    job = first if rec == first_height else job_at(rec)
-    if project.terrain is None:
-        return UavSpec(job, planned, rec, max_h, reason)
-    cfg = project.terrain.config
-    job, terrain, lowered, why, warned = uav_terrain_spec(project, cfg, job, planned, job_at)
-    if lowered is not None:
-        rec, reason = lowered, why
-    if warned:  # shown with the UAV plan's own warnings (terminal, JSON, PDF, workbook)
-        job = replace(job, plan=replace(job.plan, warnings=job.plan.warnings + warned))
-    return UavSpec(job, planned, rec, max_h, reason, terrain, warned)
+    job = job_at(rec)
+    if job.layout is None or (project.terrain is None and not job.layout.area.georeferenced):
+        return UavSpec(job, planned, rec, max_h, reason)  # nothing to choose
+    choice = choose_plan(project, job, job_at, planned)
+    if choice.lowered is not None:
+        rec, reason = choice.height_m, choice.lowered
+    job = choice.job
+    if choice.warnings:  # shown with the UAV plan's own warnings (terminal, JSON, PDF, workbook)
+        job = replace(job, plan=replace(job.plan, warnings=job.plan.warnings + choice.warnings))
+    return UavSpec(job, planned, rec, max_h, reason, choice.terrain, choice.warnings,
+                   choice.alternatives, choice.choice)
+
+
+_JOBS_KEPT = 6
+"""Jobs kept for reuse while the plans are compared (the modes of a direction share its
+layouts; a job is laid out again when it was dropped)."""
+
+
+def _jobs(project: ProjectModel, the_area: Area | None) -> JobAt:
+    """The project's UAV job at a height (:data:`scanplan.project.alternatives.JobAt`),
+    each laid out once: along the project's direction or another one, its figures at the
+    heights really flown over relief."""
+    done: OrderedDict[tuple[Any, ...], UavJob] = OrderedDict()
+    own = project.area.direction_deg
+
+    def job_at(height_m: float, direction_deg: float | str | None = None,
+               flown_band_m: tuple[float, float] | None = None,
+               laid_out: FlightLayout | None = None, limits_only: bool = False) -> UavJob:
+        if direction_deg is not None and (direction_deg == own or (
+                own is None and direction_deg == "auto")):
+            direction_deg = None  # the project's own
+        key = (float(height_m), direction_deg, flown_band_m, limits_only)
+        if key not in done:
+            try:
+                kw = _uav_kwargs(project, height_m, the_area)
+                if direction_deg is not None:
+                    kw["layout_options"] = replace(kw["layout_options"],
+                                                   direction_deg=direction_deg)
+                if limits_only:  # only its limits are asked for: no strips over the area
+                    kw.update(area=None, area_m=None)
+                done[key] = uav_job(**kw, flown_band_m=flown_band_m, laid_out=laid_out)
+            except InputError as exc:
+                raise project.named(exc, "uav") from None
+            while len(done) > _JOBS_KEPT:  # the oldest layouts go (a large block's memory)
+                done.popitem(last=False)
+        done.move_to_end(key)
+        return done[key]
+
+    return job_at
 
 
 def _comparison(film: FilmSpec, uav: UavSpec) -> list[dict[str, Any]]:
@@ -426,6 +468,12 @@ def plan_project(project: Project | ProjectModel) -> PlanResult:
     """
     if isinstance(project, Project):
         project = build_model(project)  # every key checked once, here
+    with one_version():  # every job of the plan reads one version of each norm set
+        return _planned(project)
+
+
+def _planned(project: ProjectModel) -> PlanResult:
+    """:func:`plan_project` of the model."""
     area = project_area(project)  # checked even when no plan uses it
     _check_layout_keys(project, area)
     _check_terrain(project, area)

@@ -11,24 +11,26 @@ at the frame with the largest Mc. The geometry (which ground, which altitude) st
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 
 from ..core.photoscale import footprint_side_m
 from ..geo import terrain as G
-from ..geo.layout import FlightLayout
+from ..geo.layout import FlightLayout, Photos
 from ..geo.terrain_film import FilmTerrain, frame_scales
 from ..geo.terrain_overlaps import photo_overlaps
 from ..i18n.messages import Message
 from ..rules import terrain as RT
 from ..rules.results import ScanRules, UavInputs, UavPlan
 
-__all__ = ["film_terrain", "uav_terrain"]
+__all__ = ["film_terrain", "uav_terrain", "with_photo_figures"]
 
 
 def uav_terrain(layout: FlightLayout, ground: G.Ground, inp: UavInputs, plan: UavPlan,
                 mode: str = "constant",
-                follow_tolerance_m: float = G.DEFAULT_FOLLOW_TOLERANCE_M) -> G.TerrainResult:
+                follow_tolerance_m: float = G.DEFAULT_FOLLOW_TOLERANCE_M,
+                figures: bool = True) -> G.TerrainResult:
     """Every photo at its own AGL; the constraints at the worst photo.
 
     Steps: the photos in strip order with their ground
@@ -53,6 +55,10 @@ def uav_terrain(layout: FlightLayout, ground: G.Ground, inp: UavInputs, plan: Ua
         ``constant``, ``strip`` or ``follow``.
     follow_tolerance_m : float
         How far the AGL may exceed the planned height in ``follow`` mode [m].
+    figures : bool
+        Every photo's GSD, L and recognition probability at its AGL (the MTF chain at
+        every photo); False leaves the layout's flat values, for a plan only compared
+        (:func:`with_photo_figures` adds them later).
 
     Returns
     -------
@@ -71,7 +77,8 @@ def uav_terrain(layout: FlightLayout, ground: G.Ground, inp: UavInputs, plan: Ua
     g_alt, alt = wg.path_high_m, wg.altitude_m
     agl = alt - wg.footprint_low_m
     up = inp.height_tolerance_up_pct / 100.0
-    cols.update(ground_m=wg.centre_m, altitude_m=alt, agl_m=agl, **RT.photo_figures(inp, agl))
+    cols.update(ground_m=wg.centre_m, altitude_m=alt, agl_m=agl,
+                **(RT.photo_figures(inp, agl) if figures else {}))
     ov = photo_overlaps(layout, cols, alt, ground, inp.sensor_width_mm, inp.sensor_height_mm,
                         inp.focal_mm, inp.height_tolerance_down_pct / 100.0)
     cols.update(ground_min_m=wg.footprint_low_m, ground_max_m=wg.footprint_high_m,
@@ -99,6 +106,15 @@ def uav_terrain(layout: FlightLayout, ground: G.Ground, inp: UavInputs, plan: Ua
         min_side_overlap_pct=float(np.nanmin(ov.side_pct)) if ov.side_pct.size else math.nan,
         waypoints=G.altitude_waypoints(cols, mode), warnings=tuple(warnings), ground=ground,
         path=G.path_summary(alt, wg))
+
+
+def with_photo_figures(res: G.TerrainResult, inp: UavInputs) -> G.TerrainResult:
+    """``res`` with every photo's GSD, L and recognition probability at its own AGL
+    (:func:`scanplan.rules.terrain.photo_figures`), for a result checked without them."""
+    ph = res.layout.photos
+    cols = dict(ph.columns)
+    cols.update(RT.photo_figures(inp, np.asarray(cols["agl_m"], dtype=float)))
+    return replace(res, layout=replace(res.layout, photos=Photos(cols)))
 
 
 def film_terrain(layout: FlightLayout, ground: G.Ground, rules: ScanRules, *, map_scale: float,

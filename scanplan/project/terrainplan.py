@@ -20,10 +20,9 @@ from typing import Any
 from ..errors import InputError
 from ..geo.layout import FlightLayout
 from ..geo.terrain import Ground, TerrainConfig, TerrainResult, ground_under
-from ..geo.terrain_choice import DIRECTIONS_DEG, ModeHeights, mode_heights
 from ..geo.terrain_film import FilmTerrain, frames_over_terrain
 from ..i18n.messages import Message, Names
-from ..rules.results import PlanWarning, ScanPlan, ScanRules, ScanScenario
+from ..rules.results import PlanWarning, ScanPlan, ScanRules, ScanScenario, UavInputs
 from ..rules.terrain import (
     film_scale_warning,
     frame_recognition_p,
@@ -35,19 +34,20 @@ from .jobs import UavJob, recommended_height_m
 from .model import ProjectModel
 from .terraincheck import film_terrain, uav_terrain
 
-__all__ = ["TERRAIN_KEYS", "FilmOverTerrain", "archive_over_terrain", "film_over_terrain",
-           "film_terrain_spec", "terrain_config", "uav_terrain_spec"]
+__all__ = ["MAX_TRIES", "MODE_NAMES", "TERRAIN_KEYS", "FilmOverTerrain", "Settled",
+           "archive_over_terrain", "film_over_terrain", "film_terrain_spec", "flown_band_m",
+           "ground_of",
+           "passes", "settle", "terrain_check", "terrain_config", "terrain_outcome"]
 
 TERRAIN_KEYS = KEYS["terrain"]
 """The ``[terrain]`` keys (defined with every project key in :mod:`.file`)."""
 
-_MODE_NAMES = {
+MODE_NAMES = _MODE_NAMES = {
     "constant": Names('"constant"', "постоянной высоты"),
     "strip": Names('"strip"', "высоты по маршрутам"),
     "follow": Names('"follow"', "следования рельефу"),
 }  # [terrain] altitude_mode, as the reports name it
 
-_MAX_REFINE = 4  # re-layouts at a lower height before giving up
 
 
 def terrain_config(project: ProjectModel) -> TerrainConfig | None:
@@ -79,173 +79,187 @@ def _ground(project: ProjectModel, cfg: TerrainConfig, layout: FlightLayout) -> 
         raise _named(project, exc) from None
 
 
-def uav_terrain_spec(project: ProjectModel, cfg: TerrainConfig, job: UavJob,
-                     planned_m: float | None, job_at: Callable[[float], UavJob]
-                     ) -> tuple[UavJob, TerrainResult, float | None, Message | None,
-                                tuple[PlanWarning, ...]]:
-    """The UAV job over the terrain.
-
-    The job at the flat-ground recommendation is checked photo by photo. When the
-    project gave no height, or a height its worst photo cannot meet, the recommendation
-    becomes the largest height above the reference ground the worst photo allows
-    (:attr:`TerrainResult.max_height_m`, rounded down), re-laid out and re-checked (the
-    photo centres move with the height).
-
-    Returns
-    -------
-    job, terrain result, the recommended height [m] (None when nothing is recommended
-    anew), the reason (a Message; when a height the project gave was lowered, with what
-    that height would miss: which strips and photos, by how much — the specification's
-    ``height_lowered`` warning), the warnings of the final check.
-    """
+def terrain_check(project: ProjectModel, cfg: TerrainConfig, job: UavJob, mode: str, *,
+                  ground: Ground | None = None, figures: bool = True) -> TerrainResult:
+    """The UAV job's photos over the terrain flown in altitude ``mode``, checked photo by
+    photo (:func:`scanplan.project.terraincheck.uav_terrain`; ``ground``: the ground under
+    the job's layout when known, :func:`ground_of`; ``figures``: every photo's GSD, L and
+    recognition probability)."""
     if job.layout is None:
         raise InputError(f"{project.path}: [terrain]", "needs an area to lay the photos over "
                          "([area] width_m × length_m, polygon or file)")
-    start_m = job.plan.inputs.height_m
-    job, res, rec, first = _settle(project, cfg, job, job_at)
-    choice = _choices(cfg, job, res)
-    if choice is not None and _auto_direction(project, job):
-        if cfg.altitude_mode == "strip":
-            job, res, rec, first = _strip_direction(project, cfg, job, res, rec, first,
-                                                    job_at, start_m, choice)
+    if ground is None:
+        ground = _ground(project, cfg, job.layout)
+    return uav_terrain(job.layout, ground, job.plan.inputs, job.plan, mode,
+                       cfg.follow_tolerance_m, figures)
+
+
+def ground_of(project: ProjectModel, cfg: TerrainConfig, layout: FlightLayout) -> Ground:
+    """The ground under a layout's photos (the DEM read under it, or the range), its
+    errors named by the project's keys."""
+    return _ground(project, cfg, layout)
+
+
+def passes(res: TerrainResult) -> bool:
+    """Whether the worst photo meets every limit at the height the result was planned at."""
+    return res.max_height_m is None or res.max_height_m >= res.height_m - 1e-9
+
+
+@dataclass(frozen=True)
+class Settled:
+    """A layout and the height it is flown at, held to a fixed point (:func:`settle`).
+
+    Attributes
+    ----------
+    job : UavJob
+        The job at the height found (its layout laid out at that height).
+    result : TerrainResult
+        Its check over the terrain.
+    first : TerrainResult
+        The check at the height the search started from.
+    tried : tuple of (float, bool)
+        Every height laid out and checked, and whether its worst photo met every limit, in
+        the order tried [m].
+    """
+
+    job: UavJob
+    result: TerrainResult
+    first: TerrainResult
+    tried: tuple[tuple[float, bool], ...]
+
+    @property
+    def lowered_m(self) -> float | None:
+        """The height when it is below the start, else None [m]."""
+        start = self.tried[0][0]
+        h = self.result.height_m
+        return h if h < start - 1e-9 else None
+
+
+MAX_TRIES = 8
+"""Most heights laid out and checked for one layout's fixed point."""
+
+
+def _below(height_m: float) -> float | None:
+    """The recommended height one step below ``height_m`` [m] (None below 1 m)."""
+    return recommended_height_m(height_m - 1e-6)
+
+
+def settle(check: Callable[[UavJob], TerrainResult], start: UavJob,
+           job_at: Callable[[float], UavJob]) -> Settled:
+    """The highest height whose own layout meets every limit over the terrain: layout and
+    height iterated to a fixed point.
+
+    The photo centres move with the height (the base and the line spacing scale with it),
+    so a height lowered for the ground under one layout may be too low for the layout at
+    that height: a narrow spike under a line of the 120 m layout lowers it to 105 m, and
+    the lines laid out at 105 m miss the spike, whose check then allows more. Each layout's
+    check gives the largest height *its* ground allows (closed form, :attr:`TerrainResult.
+    max_height_m`); the search tries, on the grid of recommended heights, the height that
+    hint gives — down while nothing passes, then up between the highest height that passes
+    and the lowest above it that fails — until no height between them is left untried, at
+    most :data:`MAX_TRIES` layouts. It returns the highest that passes (the lowest tried
+    when none does), never above the start.
+
+    Parameters
+    ----------
+    check : callable
+        A job → its check over the terrain (:func:`terrain_check` in one altitude mode).
+    start : UavJob
+        The job at the height to start from (the flat recommendation or the project's).
+    job_at : callable
+        A height [m] → the job laid out at that height.
+
+    Returns
+    -------
+    Settled
+    """
+    top = float(start.plan.inputs.height_m)
+    done: dict[float, tuple[bool, float | None]] = {}  # height → (passes, its hint)
+    kept: dict[float, tuple[UavJob, TerrainResult]] = {}  # the start, the best so far
+    order: list[float] = []
+    h: float | None = top
+    while h is not None and h not in done and len(done) < MAX_TRIES:
+        job = start if h == top else job_at(h)
+        if job.layout is None:
+            break
+        res = check(job)
+        done[h] = (passes(res), res.max_height_m)
+        order.append(h)
+        kept[h] = (job, res)
+        best = _best_height(done)
+        kept = {x: v for x, v in kept.items() if x in (top, best)}  # the others' layouts go
+        h = _next_height(done, top)
+    job, res = kept[_best_height(done)]
+    return Settled(job, res, kept[top][1], tuple((x, done[x][0]) for x in order))
+
+
+def _best_height(done: dict[float, tuple[bool, float | None]]) -> float:
+    """The highest height that passes, else the lowest tried."""
+    good = [x for x in done if done[x][0]]
+    return max(good) if good else min(done)
+
+
+def _next_height(done: dict[float, tuple[bool, float | None]], top: float) -> float | None:
+    """The next height to lay out (see :func:`settle`), None when the search is over."""
+    good = [x for x in done if done[x][0]]
+    if not good:  # nothing passes yet: down, by the lowest failing layout's hint
+        low = min(done)
+        nxt = recommended_height_m(done[low][1])
+        if nxt is None or nxt >= low:
+            nxt = _below(low)
+        return nxt
+    lo = max(good)
+    above = [x for x in done if not done[x][0] and x > lo]
+    cap = _below(min(above)) if above else top
+    hint = recommended_height_m(done[lo][1])
+    if cap is None or hint is None:
+        return None
+    nxt = min(hint, cap)
+    return nxt if nxt > lo + 1e-9 else None
+
+
+def flown_band_m(res: TerrainResult, inp: UavInputs) -> tuple[float, float] | None:
+    """The lowest and highest heights above the ground the photos are really flown at over
+    the relief, the height tolerances included [m]: the least height over the ground under
+    a photo centre (the highest ground under it where unknown) × (1 − down) and the photo
+    highest above its ground (:attr:`TerrainResult.layout` ``agl_m``) × (1 + up); None
+    without photos."""
+    summary = res.summary()
+    lo, hi = summary.get("agl_min_m"), summary.get("agl_max_m")
+    if lo is None or hi is None or not (math.isfinite(lo) and math.isfinite(hi)):
+        return None
+    return (lo * (1.0 - inp.height_tolerance_down_pct / 100.0),
+            hi * (1.0 + inp.height_tolerance_up_pct / 100.0))
+
+
+def terrain_outcome(settled: Settled, mode: str, planned_m: float | None
+                    ) -> tuple[TerrainResult, Message | None, tuple[PlanWarning, ...]]:
+    """The specification's terrain result of a settled layout: the result with its
+    altitude waypoints in the layout's notes, the reason when the height was lowered
+    from the start (with what the height the project gave would miss), and the warnings
+    of the final check with the height accuracy over the relief."""
+    job, res, first = settled.job, settled.result, settled.first
+    rec = settled.lowered_m
     reason: Message | None = None
     if rec is not None:  # with what the height the project gave would miss, as the why
         reason = Message("terrain_height_lowered", planned=planned_m or 0.0,
                          flat=job.plan.max_height_m or 0.0, max=res.max_height_m or 0.0,
-                         recommended=rec, mode=_MODE_NAMES[cfg.altitude_mode],
-                         cid=res.binding or "",
-                         why=(_missed_at_planned(first.warnings, cfg.altitude_mode)
+                         recommended=rec, mode=_MODE_NAMES[mode], cid=res.binding or "",
+                         why=(_missed_at_planned(first.warnings, mode)
                               if planned_m is not None else None))
     notes = dict(res.layout.notes)
     notes["waypoints"] = res.waypoints
-    layout = replace(res.layout, notes=notes)
-    res = replace(res, layout=layout)
-    hint = _other_choice(cfg, res, choice, start_m) if choice is not None else None
-    warnings = res.warnings + ((hint,) if hint is not None else ())
-    return (replace(job, layout=layout), res, rec, reason,
-            warnings + _height_accuracy_over_relief(job, res))
-
-
-def _settle(project: ProjectModel, cfg: TerrainConfig, job: UavJob,
-            job_at: Callable[[float], UavJob]
-            ) -> tuple[UavJob, TerrainResult, float | None, TerrainResult]:
-    """The job checked over the terrain, lowered (and laid out again) while its worst
-    photo fails: (job, result, the lowered height or None, the first result)."""
-    assert job.layout is not None
-    res = uav_terrain(job.layout, _ground(project, cfg, job.layout), job.plan.inputs,
-                      job.plan, cfg.altitude_mode, cfg.follow_tolerance_m)
-    height = job.plan.inputs.height_m
-    first = res
-    rec: float | None = None
-    for _ in range(_MAX_REFINE):
-        if res.max_height_m is None or res.max_height_m >= height - 1e-9:
-            break
-        lower = recommended_height_m(res.max_height_m)
-        if lower is None or lower >= height:
-            break
-        job = job_at(lower)
-        if job.layout is None:
-            break
-        res = uav_terrain(job.layout, _ground(project, cfg, job.layout), job.plan.inputs,
-                          job.plan, cfg.altitude_mode, cfg.follow_tolerance_m)
-        height, rec = lower, lower
-    return job, res, rec, first
-
-
-def _auto_direction(project: ProjectModel, job: UavJob) -> bool:
-    """True when the project leaves the direction to scanplan over a real area."""
-    d = project.area.direction_deg
-    return (d is None or d == "auto") and job.layout is not None \
-        and job.layout.area.georeferenced
-
-
-def _choices(cfg: TerrainConfig, job: UavJob, res: TerrainResult) -> ModeHeights | None:
-    """The heights each mode and strip direction allow over this DEM (an estimate)."""
-    lay = job.layout
-    limit = job.plan.max_height_m
-    if lay is None or limit is None or res.ground.grid is None or not lay.n_photos:
-        return None
-    dirs = tuple(sorted({*DIRECTIONS_DEG, round(lay.direction_deg % 180.0, 3)}))
-    return mode_heights(res.ground.grid, lay.area.geometry, limit, lay.spacing_m,
-                        lay.footprint_across_m, cfg.follow_tolerance_m, dirs)
-
-
-def _strip_direction(project: ProjectModel, cfg: TerrainConfig, job: UavJob, res: TerrainResult,
-                     rec: float | None, first: TerrainResult,
-                     job_at: Callable[..., UavJob], start_m: float,
-                     choice: ModeHeights | None
-                     ) -> tuple[UavJob, TerrainResult, float | None, TerrainResult]:
-    """``strip`` mode with the automatic direction: the direction whose strips span the
-    least relief, when it allows a markedly higher plan than the direction of the least
-    flight length, laid out and checked; taken when it needs fewer photos."""
-    if choice is None or job.layout is None:
-        return job, res, rec, first
-    d_best, h_best = choice.best_strip()
-    here = choice.strip_m[choice.directions_deg.index(round(job.layout.direction_deg % 180.0,
-                                                            3))]
-    if h_best < here + max(5.0, 0.05 * here) or res.height_m >= start_m - 1e-9:
-        return job, res, rec, first
-    other = job_at(start_m, d_best)
-    if other.layout is None:
-        return job, res, rec, first
-    o_job, o_res, o_rec, o_first = _settle(project, cfg, other,
-                                           lambda h: job_at(h, d_best))
-    if o_job.layout is None or o_job.layout.n_photos >= job.layout.n_photos:
-        return job, res, rec, first
-    notes = dict(o_res.layout.notes)
-    notes["terrain_direction"] = {"direction_deg": d_best,
-                                  "instead_of_deg": job.layout.direction_deg,
-                                  "photos_instead_of": job.layout.n_photos}
-    o_res = replace(o_res, layout=replace(o_res.layout, notes=notes))
-    return replace(o_job, layout=o_res.layout), o_res, o_rec, o_first
-
-
-FAR_FEWER = 0.25
-"""Another mode or direction is named when it needs at least this share fewer photos."""
-
-
-def _other_choice(cfg: TerrainConfig, res: TerrainResult, choice: ModeHeights,
-                  start_m: float) -> PlanWarning | None:
-    """An info note when another altitude mode or strip direction would need far fewer
-    photos (photos ∝ 1/H² at the heights :func:`~scanplan.geo.terrain_choice.mode_heights`
-    estimates, each rounded down like a recommended height and at most the height the
-    plan started from)."""
-    n = res.layout.n_photos
-    h = res.height_m
-    if not n or not h > 0:
-        return None
-    d_best, h_strip = choice.best_strip()
-    options = {"constant": (choice.constant_m, None), "follow": (choice.follow_m, None),
-               "strip": (h_strip, d_best)}
-    best = None
-    for mode, (h_est, d) in options.items():
-        if mode == cfg.altitude_mode and (mode != "strip" or abs(
-                ((d - res.layout.direction_deg) + 90.0) % 180.0 - 90.0) < 10.0):
-            continue
-        h_alt = min(recommended_height_m(h_est) or 0.0, start_m)
-        if h_alt <= h:
-            continue
-        n_alt = n * (h / h_alt) ** 2
-        if n_alt <= (1.0 - FAR_FEWER) * n and (best is None or n_alt < best[2]):
-            best = (mode, d, n_alt, h_alt)
-    if best is None:
-        return None
-    mode, d, n_alt, h_alt = best
-    what = (Message("terrain_choice.strip", mode=_MODE_NAMES[mode], direction=d)
-            if d is not None else Message("terrain_choice.mode", mode=_MODE_NAMES[mode]))
-    return PlanWarning("terrain_other_choice", Message(
-        "terrain_other_choice", what=what, height=h_alt, current=h, photos=float(n_alt),
-        now=n, pct=(1.0 - n_alt / n) * 100.0))  # a choice to make: what to act on
+    res = replace(res, layout=replace(res.layout, notes=notes))
+    return res, reason, res.warnings + _height_accuracy_over_relief(job, res)
 
 
 def _height_accuracy_over_relief(job: UavJob, res: TerrainResult) -> tuple[PlanWarning, ...]:
     """σ_Z at the photo highest above its ground, at its highest flown height, with the
     mission's trigger distance (fixed in metres at the planned height): a warning when it
-    exceeds V_z. The terrain check holds every photo to the flat limit, which is exact for a
-    block flown at the standard overlap or more (the base of the standard pair grows with
-    the height above ground); below it the one-step base is fixed in metres and the photos
-    over low ground can miss V_z (docs/uav-models.md §9): see
-    :func:`scanplan.rules.terrain.height_accuracy_warnings`."""
+    exceeds V_z. The terrain check holds every photo to the flat limit, which is exact at
+    every overlap (the base grows with the height above ground and never falls with the
+    overlap flown, docs/uav-models.md §9), so it fires for a photo left above the limit:
+    see :func:`scanplan.rules.terrain.height_accuracy_warnings`."""
     acc = job.plan.height_accuracy
     if acc.get("formula") != "normal_case":
         return ()

@@ -224,9 +224,13 @@ def render_documents(targets: Sequence[Target], *, scan: Any = None, uav: Any = 
 
 
 def render(kinds: Sequence[str], *, scan: Any = None, uav: Any = None, spec: Any = None,
-           meta: Any = None, tables: Any = None) -> dict[str, bytes]:
+           meta: Any = None, tables: Any = None, beside: Iterable[Any] = ()
+           ) -> dict[str, bytes]:
     """The documents ``kinds`` (``"xlsx"``, ``"pdf"``) of one result, in memory, rendered
     from one view as ``plan --out`` renders them (the page's downloads).
+
+    ``beside``: the exported formats (file kinds or their names) written beside the
+    documents — what they may say is beside them (none: downloaded alone).
 
     Raises
     ------
@@ -234,6 +238,10 @@ def render(kinds: Sequence[str], *, scan: Any = None, uav: Any = None, spec: Any
         A PDF is asked for and its engine cannot load.
     """
     targets = [Target(kind, kind, kind) for kind in kinds]
+    if spec is not None:
+        from .exports import with_exports
+
+        spec = with_exports(spec, beside)
     return render_documents(targets, scan=scan, uav=uav, spec=spec, meta=meta, tables=tables)
 
 
@@ -444,6 +452,12 @@ def write_documents(targets: Sequence[Target], *, scan: Any = None, uav: Any = N
     """
     extra = dict(extra or {})
     targets = list(targets)
+    if spec is not None:  # what the documents may say is beside them: this set's exports
+        from .exports import with_exports
+
+        spec = with_exports(spec, (kind for kind, _ in extra.values()))
+        if tables is not None:  # the caller's tables, of the same result: nothing they show
+            tables.spec = spec  # depends on which files the run writes beside them
     check = _checker(targets, extra, extra_field, inputs, force)
     refuse_targets(targets)
     check()

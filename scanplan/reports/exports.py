@@ -30,7 +30,8 @@ from ..io.targets import is_managed, written_by_scanplan
 if TYPE_CHECKING:  # the writers (pandas, shapely) are imported when files are written
     from ..geo.export import ExportFormat, ExportNames, MissionOptions
 
-__all__ = ["export_files", "export_notes", "spec_layouts", "stale_exports", "view_of"]
+__all__ = ["export_files", "export_notes", "files_beside", "spec_layouts", "stale_exports",
+           "view_of", "with_exports"]
 
 
 def spec_layouts(spec: Any) -> list[tuple[str, FlightLayout]]:
@@ -73,9 +74,23 @@ def view_of(spec: Any, uav: Any = None) -> Any:
 
 
 def files_beside(spec: Any, layout: FlightLayout) -> bool:
-    """Whether the exported files (missions, photo table) are written beside the report of
-    ``spec``: only for an area on the map, and only by a specification's run."""
-    return layout.area.georeferenced and getattr(spec, "writes_files", True)
+    """Whether the photo-centre table is written beside the report of ``spec``: only for
+    an area on the map, and only when the run writing the report writes the table too
+    (``plan --out`` with the ``gis`` output; not ``--formats pdf,xlsx``, ``--pdf FILE``
+    or the documents alone: :attr:`scanplan.project.results.PlanResult.exports_written`)."""
+    written = getattr(spec, "exports_written", None)
+    return (layout.area.georeferenced and getattr(spec, "writes_files", True)
+            and written is not None and "csv" in written)
+
+
+def with_exports(spec: Any, kinds: Any) -> Any:
+    """``spec`` as the documents of one run see it: the exported formats ``kinds`` (file
+    kinds or their names) written beside them (a specification; anything else as it is)."""
+    if spec is None or not hasattr(spec, "exports_written"):
+        return spec
+    from dataclasses import replace
+
+    return replace(spec, exports_written=frozenset(getattr(k, "name", k) for k in kinds))
 
 
 def export_names(locale: str, title: str = "", film: bool = False) -> ExportNames:

@@ -253,7 +253,7 @@ def _uav_spec(u: Any) -> dict[str, Any]:
         "constraints_max_height_m": p.constraints_max_height_m,
         "height_accuracy_m": p.height_accuracy.get("height_accuracy_m"),
         "sigma_z_m": p.height_accuracy.get("sigma_z_at_highest_flown_height_m"),
-        "reason": u.reason, "binding": p.binding,
+        "reason": u.reason, "choice": getattr(u, "choice", None), "binding": p.binding,
         "height_tolerance_pct": p.inputs.height_tolerance_up_pct,
         "gsd_m": p.gsd_m, "ground_resolution_m": p.ground_resolution_m,
         "ground_resolution_to_gsd": p.ground_resolution_to_gsd,
@@ -267,7 +267,7 @@ def _uav_spec(u: Any) -> dict[str, Any]:
         **{k: v for k, v in p.flight.items() if k not in _JPEG_KEYS},
     }
     if u.layout is not None:
-        out["layout"] = layout_dict(u.layout)
+        out["layout"] = _uav_layout_dict(u)
     return out
 
 
@@ -302,6 +302,17 @@ def plan_result_dict(result: Any) -> dict[str, Any]:
         doc["terrain"] = terrain
     doc["warnings"] = [warning_dict(w) for w in result.warnings]
     return _clean(doc)
+
+
+def _uav_layout_dict(uav: Any) -> dict[str, Any]:
+    """The UAV flight layout with the plans compared (``alternatives``, the recommended one
+    marked: docs/plan-choice.md) when there was a choice."""
+    out = layout_dict(uav.layout)
+    if getattr(uav, "alternatives", ()):
+        from ..project.alternatives import alternatives_dicts
+
+        out["alternatives"] = alternatives_dicts(uav.alternatives)
+    return out
 
 
 def terrain_dict(result: Any) -> dict[str, Any]:

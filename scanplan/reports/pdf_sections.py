@@ -231,7 +231,10 @@ def _uav_inputs(tables: ResultTables, ns: NormSet, f: Formatter) -> list[tuple[s
         (f("height_m"), f.g(planned)),
     ]
     if high != low or low != planned:
-        inputs.append((f("flown_heights"), f"{f.g(low)} – {f.g(high)}"))
+        relief = r["heights"].fields.get("over_relief")
+        hf = f.height if relief else f.g  # over relief: the heights as flown
+        inputs.append((f("flown_heights_relief" if relief else "flown_heights"),
+                       f"{hf(low)} – {hf(high)}"))
     if v["ceiling_m"] is not None:
         inputs.append((f("ceiling_m"), f.g(v["ceiling_m"])))
     if v["gsd_target_cm"] is not None:
@@ -333,8 +336,10 @@ def _uav_limits(view: ReportView, f: Formatter) -> dict[str, Any]:
     if acc:
         m = f("m")
         sz = acc["sigma_z_m"]
+        at = sz.fields["at"]
         height_forms = f("height_forms_sentence", sigma=f.num(sz.value, 3),
-                         h=f.g(sz.fields["at"]), vz=f.g(acc["height_accuracy_m"].value),
+                         h=f.height(at) if sz.fields.get("over_relief") else f.g(at),
+                         vz=f.g(acc["height_accuracy_m"].value),
                          forms="; ".join(
             f"{f('hf_' + k)}: {f.num(acc['form_' + k].value, 0)} {m}"
             + (f" ({f('hf_used')})" if "used" in acc["form_" + k].flags else "")

@@ -246,6 +246,20 @@ def _spec_section(view: ReportView, f: Formatter) -> dict[str, Any] | None:
     return _spec_view(view.spec, view, f) if view.spec is not None else None
 
 
+def _plans_section(view: ReportView, f: Formatter) -> dict[str, Any] | None:
+    """The plans compared (the ``plans`` table, words of :mod:`.planwords`), or None."""
+    if view.spec is None or not view.tables.has("plans") or not view.tables["plans"].rows:
+        return None
+    from .planwords import plan_cells, plan_head
+
+    choice = getattr(view.spec.uav, "choice", None)
+    return {"title": f("plans_title"), "note": f("plans_note"),
+            "choice": f.message(choice) if choice is not None else "",
+            "head": plan_head(f),
+            "rows": [{"cells": plan_cells(r, f), "css": " ".join(sorted(r.flags))}
+                     for r in view.tables["plans"].rows]}
+
+
 def _comparison_section(view: ReportView, f: Formatter) -> dict[str, Any] | None:
     """Film and digital camera side by side — not with a specification, which shows its
     own comparison."""
@@ -301,6 +315,7 @@ class PdfSection:
 #: present one's template after page 1's boxes).
 PDF_SECTIONS: tuple[PdfSection, ...] = (
     PdfSection("spec", _spec_section, "_spec.html", rank=2),
+    PdfSection("plans", _plans_section, "_plans.html", rank=2),
     PdfSection("design", lambda v, f: _design_view(v, f) if v.spec is not None else None,
                "_design.html", rank=3),
     PdfSection("control", _control_section, "_control.html", rank=5),

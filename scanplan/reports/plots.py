@@ -222,6 +222,11 @@ def height_svg(tables: ResultTables, locale: str = "en") -> str:
     # a GSD or L limit line meets its curve at the highest flown height, not the plan
     marks: list[tuple[float, str, Any, str]] = [
         (planned, "#000000", "-", t("planned", locale))]
+    lowest = fig["height_min_m"]
+    if "over_relief" in tables["uav_figures"].row("height_min_m").flags \
+            and lowest is not None and lowest < planned - 0.05:
+        # over relief the photos fly from the lowest to the highest height above the ground
+        marks.append((lowest, "#808080", ":", t("lowest_flown", locale)))
     if highest != planned:
         marks.append((highest, "#808080", "--", t("highest_flown", locale)))
     # the ceiling before the maximum's lines: where the ceiling binds, the highest flown

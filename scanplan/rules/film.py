@@ -164,10 +164,28 @@ def evaluate(
     shape = np.broadcast_shapes(*(np.shape(x) for x in (
         map_scale, photo_scale, relief_interval_m, focal_mm, frame_along_mm,
         forward_overlap_pct, resolving_power_lpmm, object_size_m, shape_coefficient)))
-    stacked = np.stack([np.broadcast_to(v, shape) for v in values.values()])
-    idx = np.argmin(stacked, axis=0)
-    scan = np.take_along_axis(stacked, idx[np.newaxis], axis=0)[0]
-    return Evaluation(ids=ids, pixel_um=stacked, binding_index=idx, scan_pixel_um=scan)
+    pixels = tuple(np.broadcast_to(np.asarray(v, dtype=np.float64), shape)
+                   for v in values.values())
+    idx, scan = _binding(pixels, shape)
+    return Evaluation(ids=ids, pixels=pixels, binding_index=idx, scan_pixel_um=scan)
+
+
+def _binding(pixels: tuple[NDArray[np.float64], ...], shape: tuple[int, ...]
+             ) -> tuple[NDArray[np.intp], NDArray[np.float64]]:
+    """The index of the smallest pixel and its value, per scenario: ``np.argmin`` over the
+    constraints and the value there (the first of equal ones; the first NaN where there is
+    one, whose value is NaN), taken one constraint after the other over contiguous arrays
+    instead of across a stacked copy."""
+    if not pixels:
+        np.stack(pixels)  # ValueError: no constraint is enabled (as ever)
+    idx = np.zeros(shape, dtype=np.intp)
+    scan = np.array(pixels[0], dtype=np.float64)
+    for i, v in enumerate(pixels[1:], start=1):
+        with np.errstate(invalid="ignore"):
+            better = (v < scan) | (np.isnan(v) & ~np.isnan(scan))
+        idx[better] = i
+        scan = np.minimum(scan, v)  # a NaN stays: nothing is less than it
+    return idx, scan
 
 
 def max_photo_scale(

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -61,7 +62,7 @@ class ScanRules:
     uav_max_height_m: float
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class Evaluation:
     """Vectorised engine output.
 
@@ -69,8 +70,9 @@ class Evaluation:
     ----------
     ids : tuple of str
         Enabled constraints, in the order of the first axis of ``pixel_um``.
-    pixel_um : ndarray, shape (n_constraints, ...)
-        Each constraint's largest allowed scan pixel [µm].
+    pixels : tuple of ndarray
+        Each constraint's largest allowed scan pixel [µm], in the order of ``ids``, each
+        broadcast to the scenarios' shape.
     binding_index : ndarray of int
         Index into ``ids`` of the binding constraint.
     scan_pixel_um : ndarray
@@ -78,9 +80,15 @@ class Evaluation:
     """
 
     ids: tuple[str, ...]
-    pixel_um: NDArray[np.float64]
+    pixels: tuple[NDArray[np.float64], ...]
     binding_index: NDArray[np.intp]
     scan_pixel_um: NDArray[np.float64]
+
+    @cached_property
+    def pixel_um(self) -> NDArray[np.float64]:
+        """Each constraint's pixel as one array, shape (n_constraints, ...) [µm] (stacked
+        when first asked for: the binding constraint and the scan pixel do not need it)."""
+        return np.stack(self.pixels)
 
     @property
     def binding(self) -> NDArray[np.str_]:
@@ -365,6 +373,9 @@ class UavPlan:
     ceiling_m: float | None = None
     constraints_max_height_m: float | None = None
     height_accuracy: dict[str, Any] = field(default_factory=dict)
+    over_relief: bool = False
+    """``heights_m["min"]``/``["max"]`` are the lowest and highest heights above the ground
+    really flown over relief (not the planned height ± its tolerance)."""
 
     @property
     def max_planned_height_m(self) -> float | None:

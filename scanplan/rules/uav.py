@@ -41,6 +41,12 @@ from ..i18n.messages_uav import date_words
 from .constraints import height_accuracy as _height_accuracy  # noqa: F401  (tests, importers)
 from .film import check_probability, overlap_warning
 from .registry import CONSTRAINTS, DigitalLimit, digital_ids
+from .resolution import (
+    centre_resolution_m,
+    chain,
+    max_height_for_ground_resolution,
+    resolution_at,
+)
 from .results import (
     HeightLimit,
     ObjectSpec,
@@ -52,25 +58,10 @@ from .results import (
 )
 
 __all__ = ["SWEEP_COLUMNS", "HeightLimit", "Recognition", "UavInputs", "UavPlan",
-           "ground_resolution_m", "height_sweep", "plan_uav"]
+           "ground_resolution_m", "height_sweep", "max_height_for_ground_resolution",
+           "plan_uav"]
 
-_HEIGHT_GRID_POINTS = 257  # 1 m … 20 km in steps of 4 %
-_HEIGHT_PASS_POINTS = 62  # each refinement pass cuts the bracket 63-fold
-_HEIGHT_TOLERANCE_M = 1e-3
-_MAX_SEARCH_HEIGHT_M = 20_000.0
-
-
-def _chain(inp: UavInputs, height_m: Any) -> tuple[M.Camera, M.Flight, M.Atmosphere,
-                                                   M.Motion, M.Scene, M.Threshold]:
-    cam = M.Camera(inp.pixel_um, inp.focal_mm, inp.f_number, inp.sensor_width_mm,
-                   inp.sensor_height_mm, lens_table_centre=inp.lens_table_centre,
-                   lens_table_corner=inp.lens_table_corner)
-    fl = M.Flight(height_m, inp.speed_ms, inp.exposure_s, inp.shift_factor)
-    atm = M.Atmosphere(contrast_coefficient=inp.haze_contrast)
-    mot = M.Motion(inp.random_speed_ms, inp.roll_rate_rad_s, inp.pitch_rate_rad_s,
-                   inp.yaw_rate_rad_s)
-    return cam, fl, atm, mot, M.Scene(inp.r_max, inp.r_min), M.Threshold(
-        params={"k0": inp.threshold_k0})
+_chain = chain  # the MTF chain's descriptions at a height (.resolution)
 
 
 def _resolution(inp: UavInputs, height_m: Any) -> M.UAVResolution:
@@ -83,8 +74,9 @@ def _resolution(inp: UavInputs, height_m: Any) -> M.UAVResolution:
 def ground_resolution_m(inp: UavInputs, heights_m: Any) -> np.ndarray:
     """The MTF ground resolution L at the frame centre for an array of heights [m].
 
-    One vectorised solve (seed 000: L = H/(2·R·f)); NaN where nothing is resolved. Used by
-    the terrain layer for every photo's own height above ground.
+    One vectorised solve of the heights not solved before for this camera chain
+    (seed 000: L = H/(2·R·f), :func:`.resolution.centre_resolution_m`); NaN where nothing
+    is resolved. Used by the terrain layer for every photo's own height above ground.
 
     Parameters
     ----------
@@ -101,58 +93,12 @@ def ground_resolution_m(inp: UavInputs, heights_m: Any) -> np.ndarray:
     h = np.asarray(heights_m, dtype=float)
     if h.size == 0:
         return np.zeros(h.shape)
-    lr = _resolution(inp, h.ravel()).centre.ground_resolution_m
-    return np.asarray(lr, dtype=float).reshape(h.shape)
+    return centre_resolution_m(inp, h)
 
 
 def _f(x: Any) -> float | None:
     v = float(np.asarray(x))
     return v if math.isfinite(v) else None
-
-
-def max_height_for_ground_resolution(inp: UavInputs, limit_m: float) -> float:
-    """Highest height at which the centre L does not exceed ``limit_m``.
-
-    Vectorised search: L on a log grid of heights from 1 m to the search ceiling in one
-    call, then passes that cut the bracket of the *first* crossing 63-fold each, again one
-    call per pass, until it is narrower than 1 mm (about four MTF solves in all, instead of
-    a scalar bisection's 25). L grows with height (tests/test_mtf.py); should it not, the
-    first crossing is the safe answer. Where L is not resolvable it is taken as exceeding
-    every limit. Returns 0 if even 1 m fails, the ceiling if nothing fails below it.
-
-    Parameters
-    ----------
-    inp : UavInputs
-        Camera, flight and target.
-    limit_m : float
-        The largest ground resolution L allowed [m].
-
-    Returns
-    -------
-    float
-        The maximum height [m], within 1 mm below the crossing.
-    """
-    def ok(heights_m: np.ndarray) -> np.ndarray:
-        lr = np.asarray(_resolution(inp, heights_m).centre.ground_resolution_m, dtype=float)
-        return np.isfinite(lr) & (lr <= limit_m)
-
-    grid = np.geomspace(1.0, _MAX_SEARCH_HEIGHT_M, _HEIGHT_GRID_POINTS)
-    fails = np.flatnonzero(~ok(grid))
-    if fails.size == 0:
-        return _MAX_SEARCH_HEIGHT_M
-    if fails[0] == 0:
-        return 0.0
-    lo, hi = float(grid[fails[0] - 1]), float(grid[fails[0]])
-    while hi - lo >= _HEIGHT_TOLERANCE_M:
-        inner = np.linspace(lo, hi, _HEIGHT_PASS_POINTS + 2)[1:-1]
-        fails = np.flatnonzero(~ok(inner))
-        if fails.size == 0:
-            lo = float(inner[-1])
-        else:
-            hi = float(inner[fails[0]])
-            if fails[0] > 0:
-                lo = float(inner[fails[0] - 1])
-    return lo
 
 
 def _check_inputs(inp: UavInputs) -> None:
@@ -413,12 +359,13 @@ def _curves(inp: UavInputs, h_plan: float, h_hi: float, max_flown: float | None
     vectorised call each)."""
     top = max(h_hi, max_flown or 0.0) * 1.3
     hs = np.linspace(top / 30.0, top, 30)
-    curve = _resolution(inp, hs).centre
+    curve = centre_resolution_m(inp, hs)
+    gsd = FL.ground_sample_distance_m(inp.pixel_um, hs, inp.focal_mm)
     height_curve = {"height_m": hs.tolist(),
-                    "gsd_m": np.asarray(curve.gsd_m).ravel().tolist(),
+                    "gsd_m": np.asarray(gsd, dtype=float).ravel().tolist(),
                     "ground_resolution_m": [
                         None if not math.isfinite(v) else v
-                        for v in np.asarray(curve.ground_resolution_m).ravel().tolist()]}
+                        for v in np.asarray(curve).ravel().tolist()]}
     freq = np.linspace(0, float(M.nyquist_lpmm(inp.pixel_um)), 41)
     curves = M.contrast_curves(freq, *_chain(inp, h_plan))
     mtf_centre = {"freq_lpmm": freq.tolist(),
@@ -426,7 +373,29 @@ def _curves(inp: UavInputs, h_plan: float, h_hi: float, max_flown: float | None
     return height_curve, mtf_centre
 
 
-def plan_uav(inp: UavInputs, rules: ScanRules | None = None) -> UavPlan:
+def _resolvable_warning(inp: UavInputs, resolvable: bool) -> list[PlanWarning]:
+    """``not_resolvable`` when the object's contrast stays below the threshold."""
+    if resolvable:
+        return []
+    return [PlanWarning("not_resolvable", Message(
+        "not_resolvable", contrast=float(M.object_contrast(inp.r_max, inp.r_min)),
+        threshold=inp.threshold_k0))]
+
+
+def _heights(inp: UavInputs, flown_band_m: tuple[float, float] | None
+             ) -> tuple[float, float, float]:
+    """The planned, lowest and highest flown heights above the ground [m]: the planned
+    height ± its tolerances, or over relief the heights really flown."""
+    if flown_band_m is not None:
+        lo, hi = (float(x) for x in flown_band_m)
+        return float(inp.height_m), lo, hi
+    band = FL.height_band(inp.height_m, inp.height_tolerance_up_pct / 100.0,
+                          inp.height_tolerance_down_pct / 100.0)
+    return float(inp.height_m), float(band.min_m), float(band.max_m)
+
+
+def plan_uav(inp: UavInputs, rules: ScanRules | None = None,
+             flown_band_m: tuple[float, float] | None = None) -> UavPlan:
     """Plan a UAV flight: GSD, MTF ground resolution, blur, flight geometry, and — with a map
     scale — the maximum flight height under the norm set's constraints.
 
@@ -440,6 +409,9 @@ def plan_uav(inp: UavInputs, rules: ScanRules | None = None) -> UavPlan:
         Camera, flight, scene and map.
     rules : ScanRules, optional
         Needed when ``inp.map_scale`` is given.
+    flown_band_m : (float, float), optional
+        Over relief, the lowest and highest heights above ground really flown [m], in
+        place of H ± the tolerance (the limits do not change; ``over_relief``).
 
     Returns
     -------
@@ -461,43 +433,40 @@ def plan_uav(inp: UavInputs, rules: ScanRules | None = None) -> UavPlan:
     _check_inputs(inp)
     if rules is not None:
         check_probability(rules)
-    band = FL.height_band(inp.height_m, inp.height_tolerance_up_pct / 100.0,
-                          inp.height_tolerance_down_pct / 100.0)
-    h_plan, h_lo, h_hi = inp.height_m, float(band.min_m), float(band.max_m)
-    res = _resolution(inp, np.array([h_plan, h_hi]))
-    c, k = res.centre, res.corner
+    h_plan, h_lo, h_hi = _heights(inp, flown_band_m)
+    c = resolution_at(inp, [h_plan, h_hi], "centre")
+    k = resolution_at(inp, [h_plan, h_hi], "corner")
     gsd = FL.ground_sample_distance_m(inp.pixel_um, np.array([h_plan, h_lo, h_hi]),
                                       inp.focal_mm)
     gsd_plan, gsd_lo, gsd_hi = (float(x) for x in gsd)
-    resolvable = bool(np.asarray(c.resolvable)[0])
+    resolvable = bool(c["resolvable"][0])
     warnings: list[PlanWarning] = []
     blur, max_exp, max_speed = _blur(inp, gsd_lo, h_lo, h_hi, warnings)
     fl = _flight_geometry(inp, h_plan, h_lo, h_hi, warnings)
     tilt = _tilted_corner_gsd(inp, h_hi)
-    l_plan = _f(np.asarray(c.ground_resolution_m)[0])
-    l_hi = _f(np.asarray(c.ground_resolution_m)[1])
-    if not resolvable:
-        warnings.append(PlanWarning("not_resolvable", Message(
-            "not_resolvable", contrast=float(M.object_contrast(inp.r_max, inp.r_min)),
-            threshold=inp.threshold_k0)))
-    recognition = _recognition(inp, l_plan, l_hi, _f(np.asarray(k.ground_resolution_m)[1]))
+    l_plan = _f(c["ground_resolution_m"][0])
+    l_hi = _f(c["ground_resolution_m"][1])
+    warnings += _resolvable_warning(inp, resolvable)
+    recognition = _recognition(inp, l_plan, l_hi, _f(k["ground_resolution_m"][1]))
     limits, max_h, binding, allow, accuracy, lim_warnings = _height_limits(inp, rules)
     warnings.extend(lim_warnings)
     up = 1.0 + inp.height_tolerance_up_pct / 100.0
     max_flown = max_h * up if max_h is not None else None
     height_curve, mtf_centre = _curves(inp, h_plan, h_hi, max_flown)
+    if flown_band_m is not None and accuracy and rules is not None:  # σ_Z as flown
+        accuracy = _accuracy_at(inp, rules, accuracy, h_lo, h_hi)
     return UavPlan(
         inputs=inp, heights_m={"planned": h_plan, "min": h_lo, "max": h_hi},
+        over_relief=flown_band_m is not None,
         gsd_m=gsd_plan, gsd_at_max_height_m=gsd_hi,
         nyquist_lpmm=float(M.nyquist_lpmm(inp.pixel_um)),
-        resolving_power_lpmm=_f(np.asarray(c.r_lpmm)[0]),
-        resolving_power_corner_lpmm=_f(np.asarray(k.r_lpmm)[0]),
-        ground_resolution_m=l_plan, ground_resolution_corner_m=_f(
-            np.asarray(k.ground_resolution_m)[0]),
+        resolving_power_lpmm=_f(c["r_lpmm"][0]),
+        resolving_power_corner_lpmm=_f(k["r_lpmm"][0]),
+        ground_resolution_m=l_plan, ground_resolution_corner_m=_f(k["ground_resolution_m"][0]),
         ground_resolution_at_max_height_m=l_hi,
-        ground_resolution_to_gsd=_f(np.asarray(c.l_over_gsd)[0]),
+        ground_resolution_to_gsd=_f(c["l_over_gsd"][0]),
         resolvable=resolvable,
-        sensor_limited=bool(np.asarray(c.resolving_power.sensor_limited)[0]),
+        sensor_limited=bool(c["sensor_limited"][0]),
         motion_blur_px=blur, max_exposure_s=max_exp, max_speed_ms=max_speed,
         tilted_corner_gsd_m=tilt, flight=fl, height_curve=height_curve,
         recognition=recognition, limits=limits,
@@ -505,6 +474,21 @@ def plan_uav(inp: UavInputs, rules: ScanRules | None = None) -> UavPlan:
         max_flown_height_m=max_flown, ceiling_m=inp.ceiling_m,
         constraints_max_height_m=allow, height_accuracy=accuracy, mtf_centre=mtf_centre)
 
+
+
+def _accuracy_at(inp: UavInputs, rules: ScanRules, accuracy: dict[str, Any], h_lo: float,
+                 h_hi: float) -> dict[str, Any]:
+    """The height accuracy's σ_Z at the lowest and highest heights really flown over relief
+    (the mission's trigger distance, fixed at the planned height: :func:`~scanplan.rules.
+    constraints.sigma_z_m`) [m], with those heights."""
+    from .constraints import sigma_z_m
+
+    used = replace(rules, image_measurement_px=accuracy["image_measurement_px"],
+                   multi_ray=accuracy["multi_ray"])
+    lo, hi = (float(x) for x in sigma_z_m(inp, used, np.array([h_lo, h_hi])))
+    return {**accuracy, "sigma_z_at_highest_flown_height_m": hi,
+            "sigma_z_at_lowest_flown_height_m": lo, "highest_flown_height_m": h_hi,
+            "lowest_flown_height_m": h_lo}
 
 
 SWEEP_COLUMNS: dict[str, str] = {
@@ -547,8 +531,7 @@ def height_sweep(inp: UavInputs, heights_m: Any) -> dict[str, np.ndarray]:
     band = FL.height_band(h, inp.height_tolerance_up_pct / 100.0,
                           inp.height_tolerance_down_pct / 100.0)
     h_lo, h_hi = np.asarray(band.min_m, dtype=float), np.asarray(band.max_m, dtype=float)
-    lr = np.asarray(_resolution(inp, np.concatenate([h, h_hi])).centre.ground_resolution_m,
-                    dtype=float).ravel()
+    lr = np.asarray(centre_resolution_m(inp, np.concatenate([h, h_hi])), dtype=float).ravel()
     pitch = inp.pixel_um
     gsd_lo = FL.ground_sample_distance_m(pitch, h_lo, inp.focal_mm)
     fp_across = FL.footprint_m(inp.sensor_width_mm, h, inp.focal_mm)

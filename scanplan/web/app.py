@@ -39,6 +39,7 @@ from pydantic import BaseModel, Field
 from .._version import __version__
 from ..errors import InputError
 from .bodies import MAX_BODY_BYTES, BodyGuard, printable
+from .documents import Documents
 from .guard import RequestGuard, allowed_hosts
 from .uploads import UploadStore
 from .worker import Busy, Failed, Planner, TimedOut
@@ -113,6 +114,7 @@ def create_app(*, token: str | None = None, planner: Planner | None = None,
     basemaps = basemaps if basemaps is not None else Basemaps(tiles or "osm")
     planner = planner if planner is not None else Planner()
     store = uploads if uploads is not None else UploadStore()
+    documents = Documents.beside(planner, lambda files: _files(store, dict(files)))
 
     @asynccontextmanager
     async def lifespan(app: FastAPI) -> Any:
@@ -122,6 +124,7 @@ def create_app(*, token: str | None = None, planner: Planner | None = None,
         try:
             yield
         finally:
+            documents.close()
             planner.close()
             store.close()
 
@@ -150,7 +153,7 @@ def create_app(*, token: str | None = None, planner: Planner | None = None,
     def favicon() -> Response:
         return Response((STATIC / "favicon.svg").read_bytes(), media_type="image/svg+xml")
 
-    _routes(app, planner, store)
+    _routes(app, planner, store, documents)
     from .pageroutes import page_routes
 
     page_routes(app, planner, store, basemaps)
@@ -183,8 +186,9 @@ def _files(store: UploadStore, files: dict[str, str]) -> dict[str, str]:
             for name, upload_id in files.items()}
 
 
-def _routes(app: FastAPI, planner: Planner, store: UploadStore) -> None:
+def _routes(app: FastAPI, planner: Planner, store: UploadStore, documents: Documents) -> None:
     """The API's routes."""
+    app.state.documents = documents  # the downloads, rendered while the user looks
 
     @app.get("/api/inputs")
     def inputs(lang: str = Query("en", pattern="^(en|ru)$")) -> list[dict[str, Any]]:
@@ -230,11 +234,13 @@ def _routes(app: FastAPI, planner: Planner, store: UploadStore) -> None:
         answered 409 without being planned (:mod:`scanplan.web.edits`)."""
         edit = parse_edit(request.headers.get("x-scanplan-edit"))
         try:
-            return gate.run(edit, lambda: planner.run(  # type: ignore[no-any-return]
+            shown = gate.run(edit, lambda: planner.run(
                 "view", req.project, _files(store, req.files)),
                 lambda: Busy(f"another plan is running; tried for {gate.wait_s:g} s"))
         except Superseded:
             return JSONResponse(superseded_answer(), 409)
+        documents.ahead(req.project, req.files)  # the downloads, while the user looks
+        return shown  # type: ignore[no-any-return]
 
     @app.post("/api/project.toml")
     def project_file(req: PlanRequest) -> Response:
@@ -248,8 +254,7 @@ def _routes(app: FastAPI, planner: Planner, store: UploadStore) -> None:
     @app.post("/api/download/{what}")
     def download(what: str, req: PlanRequest) -> Response:
         """``pdf``, ``xlsx``, or ``zip``: the reports, missions, GIS files, project file."""
-        name, data = planner.run("files", req.project, _files(store, req.files), what,
-                                 limit_s=planner.report_limit_s)
+        name, data = documents.get(req.project, req.files, what)
         kind = {"pdf": "application/pdf", "zip": "application/zip"}.get(
             what, "application/vnd.openxmlformats-officedocument.spreadsheetml.sheet")
         return Response(data, media_type=kind,

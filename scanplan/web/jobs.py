@@ -35,7 +35,7 @@ from typing import Any
 from ..errors import InputError
 from .tomlfile import project_tables, project_toml
 
-__all__ = ["FILE_KEYS", "JOBS", "PROJECT_NAME", "catalogue_job", "files_job",
+__all__ = ["FILE_KEYS", "JOBS", "PROJECT_NAME", "catalogue_job", "documents_job", "files_job",
            "plan_job", "view_job"]
 
 PROJECT_NAME = "project.toml"
@@ -134,8 +134,9 @@ def plan_job(project: Any, files: Mapping[str, str]) -> dict[str, Any]:
 def view_job(project: Any, files: Mapping[str, str]) -> dict[str, Any]:
     """What the page shows: ``plan`` (the ``plan --json`` document), ``map`` (GeoJSON of
     the area, strips, photo centres and take-offs, WGS 84), ``charts`` (the documents'
-    SVG plots: the film plan's constraints, the UAV plan's heights), ``toml`` and ``crs`` (the
-    planning CRS named in the page's language)."""
+    SVG plots: the film plan's constraints, the UAV plan's heights), ``plans`` (the plans
+    compared, worded, :func:`_plans`), ``toml`` and ``crs`` (the planning CRS named in the
+    page's language)."""
     from ..reports.plots import PLOT_JOBS, view_plot
     from ..reports.view import build_view
 
@@ -151,7 +152,25 @@ def view_job(project: Any, files: Mapping[str, str]) -> dict[str, Any]:
         return {"plan": doc, "map": map_features(result), "charts": charts, "toml": text,
                 "names": _constraint_names(doc, view.locale),
                 "warnings": _warnings(result, view.locale),
+                "plans": _plans(view),
                 "crs": _crs(result, view.locale)}
+
+
+def _plans(view: Any) -> dict[str, Any] | None:
+    """The plans compared, worded as the documents word them (:mod:`scanplan.reports.
+    planwords`): ``title``, ``choice`` (why the plan), ``head`` and ``rows`` (``cells``,
+    ``flags``); None without a choice."""
+    if view.spec is None or not view.tables.has("plans") or not view.tables["plans"].rows:
+        return None
+    from ..reports.planwords import plan_cells, plan_head
+
+    f = view.fmt
+    choice = getattr(view.spec.uav, "choice", None)
+    return {"title": f("plans_title"),
+            "choice": f.text(choice) if choice is not None else "",
+            "head": plan_head(f, terminal=True),
+            "rows": [{"cells": plan_cells(r, f), "flags": sorted(r.flags)}
+                     for r in view.tables["plans"].rows]}
 
 
 def _crs(result: Any, locale: str) -> str | None:
@@ -192,25 +211,54 @@ def files_job(project: Any, files: Mapping[str, str], what: str) -> tuple[str, b
 
     if what == "zip":
         project, files = _inputs_apart(project, files)
-
     with _planned(project, files) as (result, text, folder):
-        jobs = {"scan": result.film.job if result.film else None,
-                "uav": result.uav.job if result.uav else None,
-                "meta": result.meta, "spec": result}
-        if what != "zip":
+        jobs = _jobs(result)
+        if what != "zip":  # downloaded alone: no file is beside it
             return f"spec.{what}", documents.render((what,), **jobs)[what]
-        chosen = documents.plan_outputs(result, "")  # everything plan --out writes
-        rendered = documents.render([t.kind for t in chosen.targets], **jobs)
-        out = io.BytesIO()
-        with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as zf:
-            zf.writestr(PROJECT_NAME, text)
-            for name in sorted(files):
-                zf.write(folder / _file_name(name, "files"), _file_name(name, "files"))
-            for t in sorted(chosen.targets, key=lambda t: t.kind != "pdf"):
-                zf.writestr(t.path, rendered[t.kind])
-            for path, (_kind, data) in sorted(chosen.exports.items()):
-                zf.writestr(path, _scrub_text_file(path, data, folder))
-        return "scanplan.zip", out.getvalue()
+        return "scanplan.zip", _zip(result, jobs, text, folder, files)
+
+
+def documents_job(project: Any, files: Mapping[str, str]) -> dict[str, tuple[str, bytes]]:
+    """Every download of the project at once, from one plan: ``{"pdf": …, "xlsx": …,
+    "zip": …}`` as :func:`files_job` gives each (:mod:`scanplan.web.documents` renders
+    them while the user looks at the plan). The PDF and the workbook downloaded alone say
+    no file is beside them; those in the zip say which are."""
+    from ..reports import documents
+
+    project, files = _inputs_apart(project, files)  # the zip holds each upload once
+    with _planned(project, files) as (result, text, folder):
+        jobs = _jobs(result)
+        alone = documents.render(("pdf", "xlsx"), **jobs)
+        return {"pdf": ("spec.pdf", alone["pdf"]), "xlsx": ("spec.xlsx", alone["xlsx"]),
+                "zip": ("scanplan.zip", _zip(result, jobs, text, folder, files))}
+
+
+def _jobs(result: Any) -> dict[str, Any]:
+    """The result as :func:`scanplan.reports.documents.render` takes it."""
+    return {"scan": result.film.job if result.film else None,
+            "uav": result.uav.job if result.uav else None,
+            "meta": result.meta, "spec": result}
+
+
+def _zip(result: Any, jobs: Mapping[str, Any], text: str, folder: Path,
+         files: Mapping[str, str]) -> bytes:
+    """The zip of everything: the project file, its uploads, everything ``plan --out``
+    writes — the reports (saying which files are beside them), the mission and GIS files."""
+    from ..reports import documents
+
+    chosen = documents.plan_outputs(result, "")  # everything plan --out writes
+    rendered = documents.render([t.kind for t in chosen.targets], **jobs,
+                                beside=[kind for kind, _ in chosen.exports.values()])
+    out = io.BytesIO()
+    with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as zf:
+        zf.writestr(PROJECT_NAME, text)
+        for name in sorted(files):
+            zf.write(folder / _file_name(name, "files"), _file_name(name, "files"))
+        for t in sorted(chosen.targets, key=lambda t: t.kind != "pdf"):
+            zf.writestr(t.path, rendered[t.kind])
+        for path, (_kind, data) in sorted(chosen.exports.items()):
+            zf.writestr(path, _scrub_text_file(path, data, folder))
+    return out.getvalue()
 
 
 INPUTS_FOLDER = "inputs"
@@ -276,7 +324,8 @@ def catalogue_job(norms: str, locale: str) -> dict[str, Any]:
     return {"norms": norms, "cameras": cams, "scanners": scanners}
 
 
-JOBS = {"plan": plan_job, "view": view_job, "files": files_job, "catalogue": catalogue_job}
+JOBS = {"plan": plan_job, "view": view_job, "files": files_job, "documents": documents_job,
+        "catalogue": catalogue_job}
 """The jobs the worker runs, by name."""
 
 

@@ -29,6 +29,7 @@ import numpy as np
 import shapely
 
 from ..control import ControlPoints
+from ..gdal_guard import import_pyogrio
 from ..layout import FlightLayout
 from .common import GENERATOR, photos_by_strip
 from .gis import photo_columns
@@ -64,6 +65,7 @@ def _strip_geometries(layout: FlightLayout) -> list[Any]:
 
 def _write(path: str, layer: str, geoms: list[Any], fields: dict[str, np.ndarray],
            geometry_type: str, crs: str, first: bool) -> None:
+    import_pyogrio()
     from pyogrio.raw import write
 
     write(path, np.array(shapely.to_wkb(geoms), dtype=object),
@@ -100,8 +102,7 @@ def render_gpkg(layout: FlightLayout, control: ControlPoints | None = None) -> b
     bytes
         The ``.gpkg`` file.
     """
-    import pyogrio
-
+    pyogrio = import_pyogrio()
     crs = layout.area.plan_crs
     area = layout.area.geometry
     strips = layout.strips

@@ -52,6 +52,7 @@ from .control import control_sheet
 from .design import write_design_sheet
 from .film import constraints_sheet, sweep_sheet
 from .inputs import inputs_sheet
+from .plans import write_plans_sheet
 from .summary import summary_sheet
 from .terrain import terrain_sheet
 from .uav import mtf_sheet, uav_sheet
@@ -90,6 +91,7 @@ class Sheet:
 SHEETS: tuple[Sheet, ...] = (
     Sheet("summary", lambda b, v: summary_sheet(b, v.scan, v.uav, v.spec)),
     Sheet("design", lambda b, v: write_design_sheet(b, v.spec), "spec"),
+    Sheet("plans", write_plans_sheet, "spec"),
     Sheet("control", lambda b, v: control_sheet(b, v.spec), "spec"),
     Sheet("inputs", lambda b, v: inputs_sheet(b, v.scan, v.uav)),
     Sheet("constraints", lambda b, v: constraints_sheet(b), "film"),

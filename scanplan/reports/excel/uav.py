@@ -210,6 +210,10 @@ def _height_markers(book: Book, chart: ScatterChart, ws: Worksheet, fig: dict[st
     if planned:
         marks.append((f"{book.f('planned')}: {book.f.height(planned)}{m}",
                       planned, 0.0, planned, top, "000000", "solid"))
+    low = fig["height_min_m"]
+    if "over_relief" in low.flags and low.value and low.value < (planned or 0.0) - 0.05:
+        marks.append((f"{book.f('lowest_flown')}: {book.f.height(low.value)}{m}",
+                      low.value, 0.0, low.value, top, "7F7F7F", "sysDot"))
     if highest and highest != planned:
         marks.append((f"{book.f('highest_flown')}: {book.f.height(highest)}{m}",
                       highest, 0.0, highest, top, "7F7F7F", "dash"))
@@ -218,9 +222,8 @@ def _height_markers(book: Book, chart: ScatterChart, ws: Worksheet, fig: dict[st
         marks.append((f"{book.f('max_height_m').split(',')[0]} ({fig['binding'].value}): "
                       f"{book.f.whole(round(top_m))}{m}",
                       top_m, 0.0, top_m, top, "C00000", "sysDot"))
-        ratio = highest / planned if planned and highest else 1.0
-        if ratio > 1:  # where the binding limit is checked: the maximum flown high
-            flown = top_m * ratio
+        flown = fig["max_flown_height_m"].value  # where the binding limit is checked
+        if flown is not None and flown > top_m * (1 + 1e-9):
             marks.append((f"{book.f('max_flown_at_max')}: {book.f.whole(flown)}{m}",
                           flown, 0.0, flown, top, "C00000", "dash"))
     b = next((r for r in book.view.tables["uav_limits"].rows if "binding" in r.flags), None)

@@ -204,25 +204,31 @@ def _uav_heights(r: dict[str, Row], f: Formatter) -> list[list[str]]:
     m = f.cli("m")
     flown = r.get("max_flown_height_m")
     binding = r["binding"].value if "binding" in r else None
-    rows = [[f"  {f.cli('recommended_height')}", f"{f.short(height.value)} {m}"
-             + (f" ({f.cli('flown_up_to')} {f.short(height.fields['flown'])} {m}, "
-                f"+{f.short(tol)} %)" if tol else "")],
+    if height.fields.get("over_relief"):  # the heights really flown above the ground
+        flown_text = (f" ({f.cli('flown_relief')} {f.num(height.fields['lowest'], 0)}–"
+                      f"{f.num(height.fields['flown'], 0)} {m})")
+    else:
+        flown_text = (f" ({f.cli('flown_up_to')} {f.short(height.fields['flown'])} {m}, "
+                      f"+{f.short(tol)} %)" if tol else "")
+    rows = [[f"  {f.cli('recommended_height')}", f"{f.short(height.value)} {m}" + flown_text],
             [f"  {f.cli('max_height')}", f"{f.fixed(r['max_height_m'].value, 0)} {m}"
              + (f" ({f.cli('flown_up_to')} {f.fixed(flown.value, 0)} {m})"
                 if tol and flown is not None else "")
              + f" ({binding} {f.constraint(binding)})" if binding else "—"],
             [f"  {f.cli('gsd_and_l')}", f"{f.fixed(r['gsd_m'].value, 3)} {m} / "
              f"{f.fixed(r['ground_resolution_m'].value, 3)} {m} ({f.cli('l_gsd')} "
-             f"{f.fixed(r['l_over_gsd'].value, 2)})"]]
+             f"{f.fixed(r['l_over_gsd'].value, 2)})" + _at_highest(r, f)]]
     if "constraints_max_height_m" in r:
         rows.append([f"  {f.cli('no_ceiling')}",
                      f"{f.fixed(r['constraints_max_height_m'].value, 0)} {m} "
                      f"{f.cli('no_ceiling_note')}"])
     if "sigma_z" in r:
         sz = r["sigma_z"]
+        at = (f.num(sz.fields["at"], 0) if sz.fields.get("over_relief")
+              else f.short(sz.fields["at"]))
         rows.append([f"  {f.cli('sigma_z')}",
                      f"{f.fixed(sz.value, 3)} {m} {f.cli('at_height_word')} "
-                     f"{f.short(sz.fields['at'])} {m} ({f.cli('required')} "
+                     f"{at} {m} ({f.cli('required')} "
                      f"{f.short(sz.fields['required'])} {m} {f.cli('rms')})"])
     if "recognition" in r:
         rec = r["recognition"]
@@ -231,6 +237,41 @@ def _uav_heights(r: dict[str, Row], f: Formatter) -> list[list[str]]:
         rows.append([f"  {f.cli('recognition_map_object')}",
                      f"{f.fixed(rec.value, 2)} ({name}, {f.short(rec.fields['size_m'])} {m})"])
     return rows
+
+
+def _at_highest(r: dict[str, Row], f: Formatter) -> str:
+    """Over relief: the GSD and L at the highest height flown above the ground."""
+    gsd, lr = r["gsd_m"].fields.get("at_max"), r["ground_resolution_m"].fields.get("at_max")
+    if gsd is None:
+        return ""
+    m = f.cli("m")
+    return (f"; {f.cli('at_highest')} {f.fixed(gsd, 3)} {m} / "
+            f"{'—' if lr is None else f.fixed(lr, 3)} {m}")
+
+
+def _plans_lines(tables: ResultTables, f: Formatter, choice: Any) -> list[str]:
+    """The plans compared (the ``plans`` table, words of :mod:`..planwords`): why the plan
+    was chosen, then one aligned row each, the recommended one marked ``>``, and under it
+    whether it meets every constraint or what it misses."""
+    if not tables.has("plans") or not tables["plans"].rows:
+        return []
+    from ..planwords import plan_cells, plan_head
+
+    rows = tables["plans"].rows
+    head = plan_head(f, terminal=True)[:-1]
+    cells = [plan_cells(r, f) for r in rows]
+    marks = [">" if "recommended" in r.flags else " " for r in rows]
+    body = table([["", *head], *[[mk, *c[:-1]] for mk, c in zip(marks, cells, strict=True)]],
+                 align="ll" + "r" * (len(head) - 1)).split("\n")
+    out = ["", f("plans_intro")]
+    if choice is not None:
+        out.append(wrap(f.text(choice), "  "))
+    out.append("  " + body[0])
+    for line, c in zip(body[1:], cells, strict=True):
+        out.append("  " + line)
+        out.append(textwrap.fill(c[-1], width=96, initial_indent="      ",
+                                 subsequent_indent="        "))
+    return out
 
 
 def _uav_flight_rows(r: dict[str, Row], f: Formatter) -> list[list[str]]:
@@ -276,6 +317,8 @@ PLAN_PARTS: tuple[PlanPart, ...] = (
     PlanPart("terrain", lambda r, t, f: [wrap(x, "") for x in format_terrain(r, f.locale)]),
     PlanPart("film", lambda r, t, f: _film_summary(t["spec_film"], f) if r.film else []),
     PlanPart("uav", lambda r, t, f: _uav_summary(t["spec_uav"], _platform(t), f)
+             if r.uav else []),
+    PlanPart("plans", lambda r, t, f: _plans_lines(t, f, getattr(r.uav, "choice", None))
              if r.uav else []),
     PlanPart("comparison", lambda r, t, f: _comparison_lines(r, f, t) if r.comparison
              else []),

@@ -13,6 +13,7 @@ The tables (:data:`TABLES`): ``film_constraints`` (:func:`~.film.film_constraint
 PDF, with the input registry's units and decimals);
 ``uav_results``, ``uav_limits``, ``uav_flight`` and ``uav_recognition`` (:mod:`.uav`);
 the specification's headline ``spec_film`` and ``spec_uav`` (:mod:`.headline`);
+the plans compared for a UAV block, ``plans`` (:mod:`.plans`);
 ``comparison`` and the warnings ``film_warnings``, ``uav_warnings``, ``spec_warnings`` and
 ``warnings`` (all of them once) (:mod:`.spec`).
 """
@@ -23,12 +24,13 @@ from .design import design, design_notes
 from .film import film_constraints
 from .headline import relief_max_height_m, spec_film, spec_uav
 from .inputs import film_inputs
+from .plans import PLAN_COLUMNS, plans
 from .result import TABLES, ResultTables
 from .spec import all_warnings, comparison, warnings
 from .table import Column, Row, Table, constraint_title
 from .uav import uav_flight, uav_limits, uav_recognition, uav_results
 
-__all__ = ["TABLES", "Column", "ResultTables", "Row", "Table", "all_warnings", "comparison",
-           "constraint_title", "design", "design_notes", "film_constraints", "film_inputs",
-           "relief_max_height_m", "spec_film", "spec_uav", "uav_flight", "uav_limits",
-           "uav_recognition", "uav_results", "warnings"]
+__all__ = ["PLAN_COLUMNS", "TABLES", "Column", "ResultTables", "Row", "Table", "all_warnings",
+           "comparison", "constraint_title", "design", "design_notes", "film_constraints",
+           "film_inputs", "plans", "relief_max_height_m", "spec_film", "spec_uav",
+           "uav_flight", "uav_limits", "uav_recognition", "uav_results", "warnings"]

@@ -96,9 +96,12 @@ def spec_uav(spec: Any) -> Table:
     Table
         One column; the rows ``planned_height_m`` (when given), ``recommended_height_m``
         (None when no height is; fields ``flown``: the highest flown height,
-        ``tolerance_pct``), ``max_height_m`` (flag
+        ``tolerance_pct``, ``lowest``: the lowest flown height, ``over_relief``: both are
+        the heights really flown above the ground over relief), ``max_height_m`` (flag
         ``"flat"`` when ``max_height_relief_m`` follows), ``max_flown_height_m`` (when
-        known), ``binding`` (with one), ``gsd_m``, ``gsd_cm``, ``ground_resolution_m``,
+        known), ``binding`` (with one), ``gsd_m``, ``gsd_cm``, ``ground_resolution_m``
+        (over relief ``gsd_m`` and ``ground_resolution_m`` with field ``at_max``: at the
+        highest height flown above the ground),
         ``l_over_gsd``, ``constraints_max_height_m`` (the constraints' maximum above a
         ceiling), ``sigma_z`` (with a height accuracy; fields ``at``, ``required``),
         ``recognition`` (the map object's; fields ``name``, ``name_ru``, ``size_m``),
@@ -114,7 +117,8 @@ def spec_uav(spec: Any) -> Table:
     rows = [] if u.planned_height_m is None else [
         Row("planned_height_m", (u.planned_height_m,), unit="m", digits=0)]
     rows.append(Row("recommended_height_m", (u.recommended_height_m,), unit="m", digits=0,
-                    fields={"flown": h["max"], "tolerance_pct": inp.height_tolerance_up_pct}))
+                    fields={"flown": h["max"], "tolerance_pct": inp.height_tolerance_up_pct,
+                            "lowest": h["min"], "over_relief": p.over_relief}))
     relief = relief_max_height_m(u)
     rows.append(Row("max_height_m", (u.max_height_m,), unit="m", digits=0,
                     flags=frozenset() if relief is None else frozenset({"flat"})))
@@ -124,9 +128,13 @@ def spec_uav(spec: Any) -> Table:
         rows.append(Row("max_flown_height_m", (p.max_flown_height_m,), unit="m", digits=0))
     if p.binding:
         rows.append(Row("binding", (p.binding,), flags=frozenset({"constraint"})))
-    rows += [Row("gsd_m", (p.gsd_m,), unit="m", digits=3),
+    # over relief: also at the highest height really flown above the ground
+    top = ({"at_max": p.gsd_at_max_height_m} if p.over_relief else {},
+           {"at_max": p.ground_resolution_at_max_height_m} if p.over_relief else {})
+    rows += [Row("gsd_m", (p.gsd_m,), unit="m", digits=3, fields=top[0]),
              Row("gsd_cm", (p.gsd_m * 100.0,), unit="cm", digits=2),
-             Row("ground_resolution_m", (p.ground_resolution_m,), unit="m", digits=3),
+             Row("ground_resolution_m", (p.ground_resolution_m,), unit="m", digits=3,
+                 fields=top[1]),
              Row("l_over_gsd", (p.ground_resolution_to_gsd,), digits=2)]
     if p.constraints_max_height_m is not None:
         rows.append(Row("constraints_max_height_m", (p.constraints_max_height_m,), unit="m",
@@ -134,7 +142,8 @@ def spec_uav(spec: Any) -> Table:
     if p.height_accuracy:
         acc = p.height_accuracy
         rows.append(Row("sigma_z", (acc["sigma_z_at_highest_flown_height_m"],), unit="m",
-                        digits=3, fields={"at": h["max"], "required": acc["height_accuracy_m"]}))
+                        digits=3, fields={"at": h["max"], "required": acc["height_accuracy_m"],
+                                          "over_relief": p.over_relief}))
     rows += _uav_recognition(p)
     rows += _uav_flight(p, fl)
     rows += [Row("max_exposure_s", (p.max_exposure_s,), unit="s"),

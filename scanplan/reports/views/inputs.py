@@ -129,7 +129,7 @@ def uav_inputs(job: Any) -> Table:
             _uav("min_trigger_interval_s", inp.min_trigger_interval_s, digits=3),
             _uav("height_m", h["planned"]),
             Row("heights", ((h["min"], h["max"]),), unit="m", digits=1,
-                fields={"planned": h["planned"]}),
+                fields={"planned": h["planned"], "over_relief": plan.over_relief}),
             _uav("height_tolerance_pct", inp.height_tolerance_up_pct,
                  "height_tolerance_up_pct"),
             _uav("height_tolerance_pct", inp.height_tolerance_down_pct,

@@ -11,6 +11,7 @@ from .design import design, design_notes
 from .film import film_constraints, film_explanations, film_formulas, film_reach, film_sweep
 from .headline import spec_film, spec_uav
 from .inputs import film_inputs, uav_inputs
+from .plans import plans
 from .spec import all_warnings, comparison, symbols, warnings
 from .table import Table
 from .uav import uav_flight, uav_limits, uav_recognition, uav_results
@@ -51,6 +52,7 @@ TABLES: dict[str, tuple[str, Callable[[Any], Table]]] = {
     "comparison": ("spec", comparison),
     "design": ("spec.design", design),
     "design_notes": ("spec.design", design_notes),
+    "plans": ("spec.uav", plans),
     "control": ("spec.control", control_summary),
     "control_checks": ("spec.control", control_checks),
     "control_rules": ("spec.control", control_rules_table),

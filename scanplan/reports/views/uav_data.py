@@ -31,7 +31,8 @@ def uav_figures(plan: Any) -> Table:
     Returns
     -------
     Table
-        One column; rows (key: the label) ``height_m`` (planned), ``height_min_m``,
+        One column; rows (key: the label) ``height_m`` (planned), ``height_min_m``
+        (flagged ``"over_relief"`` when the heights are those flown above the relief),
         ``height_max_m`` (flown), ``gsd_m``, ``gsd_at_max_m``, ``ground_resolution_m``
         (None, flagged ``"not_resolvable"``, when the detail is not resolved),
         ``l_corner_m``, ``l_at_max_m``, ``l_over_gsd``, ``resolving_power_system``,
@@ -45,7 +46,8 @@ def uav_figures(plan: Any) -> Table:
     h = plan.heights_m
     lr = plan.ground_resolution_m
     rows = [Row("height_m", (h.get("planned"),), unit="m", digits=1),
-            Row("height_min_m", (h.get("min"),), unit="m", digits=1),
+            Row("height_min_m", (h.get("min"),), unit="m", digits=1,
+                flags=frozenset({"over_relief"}) if plan.over_relief else frozenset()),
             Row("height_max_m", (h.get("max"),), unit="m", digits=1),
             Row("gsd_m", (plan.gsd_m,), unit="m", digits=4),
             Row("gsd_at_max_m", (plan.gsd_at_max_height_m,), unit="m", digits=4),
@@ -102,7 +104,8 @@ def uav_accuracy(plan: Any) -> Table:
         return Table("uav_accuracy", "height_forms", _VALUE, ())
     rows = [Row("height_accuracy_m", (acc["height_accuracy_m"],), unit="m", digits=4),
             Row("sigma_z_m", (acc["sigma_z_at_highest_flown_height_m"],), unit="m", digits=4,
-                fields={"at": plan.heights_m["max"], "in_gsd": acc["sigma_z_in_gsd"]}),
+                fields={"at": plan.heights_m["max"], "in_gsd": acc["sigma_z_in_gsd"],
+                        "over_relief": plan.over_relief}),
             Row("stereo_base_to_height", (acc["stereo_base_to_height"],), digits=3),
             Row("image_measurement_px", (acc["image_measurement_px"],), unit="px",
                 digits=2)]

@@ -70,7 +70,7 @@ window.SP = window.SP || {};
       $("figures").innerHTML = "<dl>" + figs.map(([k, x]) =>
         `<dt>${esc(T[k])}</dt><dd data-k="${esc(k)}">${esc(x)}</dd>`)
         .join("") + "</dl>";
-      showAlternatives(doc.alternatives);
+      showAlternatives(v.plans || doc.alternatives);
       const ws = v.warnings || [];
       $("warnings").innerHTML = ws.length ? `<h3>${esc(T.warnings)}</h3><ul>` + ws.map((w) =>
         `<li class="${esc(w.severity)}">${esc(w.text)}</li>`).join("") + "</ul>" : "";
@@ -146,8 +146,24 @@ window.SP = window.SP || {};
       $("chart-dialog").showModal();
     });
     /* a table of the plan's alternatives, when the result carries them (a list of rows) */
+    /* the plans compared, worded by the server as the documents word them (v.plans) */
+    function plansHtml(p) {
+      const n = p.head.length - 1;
+      return `<h3>${esc(p.title)}</h3>` + (p.choice ? `<p class="choice">${esc(p.choice)}</p>` : "") +
+        `<table class="plans"><tr>${p.head.slice(0, n).map((h) => `<th scope="col">${esc(h)}</th>`).join("")}</tr>` +
+        p.rows.map((r) => `<tr class="${esc(r.flags.join(" "))}">` +
+          r.cells.slice(0, n).map((c) => `<td>${esc(c)}</td>`).join("") + "</tr>" +
+          `<tr class="why ${esc(r.flags.join(" "))}"><td colspan="${n}">${esc(r.cells[n])}</td></tr>`)
+          .join("") + "</table>";
+    }
+
     function showAlternatives(list) {
       const box = $("alternatives");
+      if (list && Array.isArray(list.rows)) {
+        box.innerHTML = list.rows.length ? plansHtml(list) : "";
+        box.hidden = !list.rows.length;
+        return;
+      }
       if (!Array.isArray(list) || !list.length || typeof list[0] !== "object") {
         box.hidden = true; box.innerHTML = ""; return;
       }
