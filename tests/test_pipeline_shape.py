@@ -459,3 +459,50 @@ def test_10_a_type_checker_reads_the_api(tmp_path):
     assert any(":6:" in line and '"camera"' in line and '"int"' in line for line in lines), \
         done.stdout
     assert len(lines) == 2, done.stdout
+
+
+# -- a table every layout shows: the plans compared ---------------------------------------
+
+
+def test_the_plans_compared_have_one_entry_in_each_registry_and_words_by_concept():
+    """The plans compared are one table (``views/plans.py``), worded once
+    (``planwords.py``, through the document's Formatter) and laid out by one entry of each
+    layout's registry: a PDF section, a workbook sheet, a part of the terminal summary."""
+    from scanplan.reports.excel import SHEETS
+    from scanplan.reports.pdfhtml import PDF_SECTIONS
+    from scanplan.reports.text.plan import PLAN_PARTS
+
+    for names in ([s.name for s in PDF_SECTIONS], [s.name for s in SHEETS],
+                  [p.name for p in PLAN_PARTS]):
+        assert names.count("plans") == 1, names
+    pdf = [s.name for s in PDF_SECTIONS]
+    assert pdf.index("plans") == pdf.index("spec") + 1  # right after the specification
+    words = (REPORTS / "planwords.py").read_text(encoding="utf-8")
+    assert not re.search(r"""["'](?:term|xlsx|pdf|design)_""", words)
+    assert not [name for _, name in _calls(REPORTS / "planwords.py")
+                if name in FORMATTERS | {"t", "localize"}]
+
+
+def test_the_plans_cells_are_formatted_by_the_documents_formatter():
+    """A plan's cells read as every other figure of the document: counts grouped by the
+    language's rule (a no-break space in Russian), the verdict and the marks in the
+    catalogue's words; an estimate's counts with ≈."""
+    from scanplan.i18n.messages import Message
+    from scanplan.reports.formatter import formatter
+    from scanplan.reports.planwords import plan_cells, plan_head
+    from scanplan.reports.views import Row
+
+    row = Row("auto", (Message("plan_choice.mode.follow"), 97.6, 115.0, 6217, 834.2, 167.4,
+                       4, (1.44, 2.24), "HC", ()), flags=frozenset({"recommended"}),
+              fields={"findings": ()})
+    en, ru = plan_cells(row, formatter("en")), plan_cells(row, formatter("ru"))
+    assert en[1:8] == ["97.6° (least length)", "115", "6,217", "834", "167", "4",
+                       "1.44–2.24"]
+    assert ru[1:8] == ["97,6° (мин. длина)", "115", "6\u00a0217", "834", "167", "4",
+                       "1,44–2,24"]
+    assert en[-1] == "meets every constraint (recommended)"
+    assert ru[-1] == "все условия выполнены (рекомендуемый)"
+    guess = Row("block", row.values, flags=frozenset({"estimate"}), fields={})
+    assert plan_cells(guess, formatter("en"))[3] == "≈6,217"
+    assert plan_head(formatter("ru"))[0] == "Режим"
+    assert plan_head(formatter("en"), terminal=True)[2] == "m"

@@ -317,6 +317,7 @@ def test_sigma_z_and_the_heights_printed_over_relief_are_the_heights_flown(afs):
     are at the heights really flown: JSON, the terminal, the PDF sentence and the chart."""
     from scanplan.norms import load_norm_set
     from scanplan.reports.plots import height_svg
+    from scanplan.reports.views import ResultTables
     from scanplan.rules.constraints import sigma_z_m
 
     u = afs.uav
@@ -336,7 +337,7 @@ def test_sigma_z_and_the_heights_printed_over_relief_are_the_heights_flown(afs):
     assert doc["uav"]["height_accuracy"]["sigma_z_at_highest_flown_height_m"] == \
         pytest.approx(acc["sigma_z_at_highest_flown_height_m"])
     assert doc["specification"]["uav"]["recommended_flown_height_m"] == pytest.approx(hi)
-    svg = height_svg(plan, "en")
+    svg = height_svg(ResultTables.of_jobs(None, u.job), "en")
     assert "highest flown: 145 m" in svg
     out = CliRunner().invoke(main, ["plan", str(AFS)]).output
     assert re.search(r"ошибка высот σ_Z\s+0,0\d\d м на высоте 145 м", out)
