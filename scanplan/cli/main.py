@@ -552,6 +552,10 @@ def _run_project(path: str, out_dir: str | None, stem: str | None, xlsx_path: st
         exports = outputs.chosen_exports(export_files(
             result, out_dir, prefix=f"{stem}-" if stem is not None else "",
             note=say or console.info), formats)
+    from ..reports.exports import with_exports
+
+    # the result as this run's documents see it (the files written beside them): one object
+    result = with_exports(result, (kind for kind, _ in exports.values()))
     film = result.film.job if result.film else None
     uav_ = result.uav.job if result.uav else None
     tables = ResultTables.of_jobs(film, uav_, result)
