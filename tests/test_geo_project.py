@@ -85,7 +85,7 @@ def test_town_example_json_has_area_strips_sorties_but_no_photo_centres():
     assert lay["turn"] == "turnaround 20 m" and lay["feasible"]
     s0 = lay["strips"][0]
     assert 38.7 < s0["start_lonlat"][0] < 38.9 and 55.0 < s0["start_lonlat"][1] < 55.2
-    assert "lon_deg" not in out and "x_m\"" not in out  # photo centres are for the files
+    assert "\"lon_deg\"" not in out and "\"x_m\"" not in out  # photo centres: the files
 
 
 def test_town_example_layout_photos_carry_the_plan_figures(tmp_path):

@@ -567,6 +567,10 @@ def _run_project(path: str, out_dir: str | None, stem: str | None, xlsx_path: st
         xlsx_path, pdf_path = docs.get("xlsx"), docs.get("pdf")
         exports = chosen.exports
         fields = ("--out", "--out")
+    from ..reports.exports import with_exports
+
+    # the result as this run's documents see it (the files written beside them): one object
+    result = with_exports(result, (kind for kind, _ in exports.values()))
     film = result.film.job if result.film else None
     uav_ = result.uav.job if result.uav else None
     tables = ResultTables.of_jobs(film, uav_, result)

@@ -34,12 +34,10 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ..core.photoscale import ground_pixel_m
 from ..geo.direction import long_axis_deg, same_direction
-from ..geo.terrain import TerrainConfig, TerrainResult
-from ..geo.terrain_choice import DIRECTIONS_DEG, mode_heights
 from ..i18n.messages import Message, params_json
 from ..rules.results import PlanWarning
 from .design import block_rule, terrain_ground_m
@@ -47,15 +45,10 @@ from .flightplan import uav_flight_figures
 from .jobs import UavJob, recommended_height_m
 from .model import AUTO_MODE, ProjectModel
 from .results import Alternative
-from .terraincheck import with_photo_figures
-from .terrainplan import (
-    Settled,
-    flown_band_m,
-    ground_of,
-    settle,
-    terrain_check,
-    terrain_outcome,
-)
+
+if TYPE_CHECKING:  # the relief's modules are imported for a plan with [terrain] only
+    from ..geo.terrain import TerrainConfig, TerrainResult
+    from .terrainplan import Settled
 
 __all__ = ["LARGE_PLAN_PHOTOS", "MAX_PARTS", "OVERLAP_SLACK_PCT", "PINNED_EXTRA", "Candidate",
            "JobAt", "PlanChoice", "alternatives_dicts", "choose_plan", "describe",
@@ -277,6 +270,8 @@ def _relief_direction(done: _Compared, start: UavJob, cfg: TerrainConfig) -> flo
     """Over a DEM, the direction whose strips span the least relief (strip mode's height
     estimate, :func:`scanplan.geo.terrain_choice.mode_heights`), when no direction laid out
     yet is within a degree of it."""
+    from ..geo.terrain_choice import DIRECTIONS_DEG, mode_heights
+
     ground = done.ground
     lay = start.layout
     limit = start.plan.max_height_m
@@ -308,6 +303,8 @@ class _Checks:
         self._ground: list[tuple[Any, Any]] = []  # (layout, its ground), the latest last
 
     def __call__(self, job: UavJob, mode: str) -> TerrainResult:
+        from .terrainplan import ground_of, terrain_check
+
         assert job.layout is not None
         ground = next((g for lay, g in self._ground if lay is job.layout), None)
         if ground is None:
@@ -318,6 +315,8 @@ class _Checks:
 
     def full(self, job: UavJob, mode: str) -> TerrainResult:
         """The check with every photo's MTF figures (the plan chosen)."""
+        from .terrainplan import terrain_check
+
         return terrain_check(self.project, self.cfg, job, mode)
 
 
@@ -330,6 +329,8 @@ def _plan(project: ProjectModel, check: _Checks | None, cand: Candidate, h0: flo
     job = first
     res = None
     if check is not None and cand.mode is not None and first.layout is not None:
+        from .terrainplan import settle
+
         mode = cand.mode
         settled = settle(lambda j: check(j, mode), first,
                          lambda h: job_at(h, cand.direction_deg))
@@ -361,8 +362,10 @@ def _alternative(cand: Candidate, job: UavJob, res: TerrainResult | None,
     inp = plan.inputs
     lay = job.layout
     fig = uav_flight_figures(plan, lay) if lay is not None else {}
-    if band is None:
-        band = flown_band_m(res, inp) if res is not None else None
+    if band is None and res is not None:  # over relief: the heights really flown
+        from .terrainplan import flown_band_m
+
+        band = flown_band_m(res, inp)
     if band is None:
         band = (plan.heights_m["min"], plan.heights_m["max"])
     gsd = [float(ground_pixel_m(inp.pixel_um, h, inp.focal_mm)) for h in band]
@@ -493,6 +496,9 @@ def _outcome(pick: _Planned, job_at: JobAt, planned_m: float | None, figures: bo
     (:func:`scanplan.rules.uav.plan_uav`'s ``flown_band_m``)."""
     if pick.settled is None or pick.candidate.mode is None:
         return pick.job, None, None, ()
+    from .terraincheck import with_photo_figures
+    from .terrainplan import flown_band_m, terrain_outcome
+
     settled = pick.settled
     if not figures:  # checked without them
         settled = replace(settled, result=with_photo_figures(settled.result,

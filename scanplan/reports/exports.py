@@ -90,7 +90,10 @@ def with_exports(spec: Any, kinds: Any) -> Any:
         return spec
     from dataclasses import replace
 
-    return replace(spec, exports_written=frozenset(getattr(k, "name", k) for k in kinds))
+    names = frozenset(getattr(k, "name", k) for k in kinds)
+    if spec.exports_written == names:  # already so: the same result, not a copy
+        return spec
+    return replace(spec, exports_written=names)
 
 
 def export_names(locale: str, title: str = "", film: bool = False) -> ExportNames:
