@@ -15,6 +15,8 @@ from click.testing import CliRunner
 import scanplan
 from scanplan.cli.main import main
 from scanplan.errors import InputError
+from scanplan.io.folderset import current_set, read_manifest, supported
+from scanplan.io.targets import SETS, is_managed
 
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLES = ROOT / "examples"
@@ -40,8 +42,14 @@ def _block(tmp_path: Path) -> Path:
     return path
 
 
+def _visible(folder: Path) -> list[str]:
+    """The names a reader of ``folder`` sees: its files, not the folder of file sets."""
+    return sorted(p.name for p in folder.iterdir() if p.name != SETS)
+
+
 def _files(folder: Path) -> dict[str, bytes]:
-    return {p.name: p.read_bytes() for p in sorted(folder.iterdir())}
+    """What a reader of ``folder`` opens: each visible file's bytes (a link followed)."""
+    return {name: (folder / name).read_bytes() for name in _visible(folder)}
 
 
 def test_write_writes_every_file_plan_out_writes_byte_for_byte(tmp_path, monkeypatch):
@@ -59,6 +67,11 @@ def test_write_writes_every_file_plan_out_writes_byte_for_byte(tmp_path, monkeyp
     assert sorted(api) == sorted(cli)
     assert [n for n in cli if api[n] != cli[n]] == []
     assert [p.name for p in written][:2] == ["spec.xlsx", "spec.pdf"]
+    # written as plan --out writes: one set swapped in at once, each name a link into it
+    assert supported(tmp_path)
+    for folder in (tmp_path / "cli", tmp_path / "api"):
+        assert [n for n in _visible(folder) if not is_managed(folder / n)] == []
+        assert sorted(read_manifest(current_set(folder))) == sorted(cli)
 
 
 def test_write_chooses_outputs_as_formats_does(tmp_path):
@@ -123,12 +136,14 @@ def test_write_without_a_pdf_engine_is_scanplans_error(tmp_path, no_pdf_engine):
     assert done.stdout == ""
     assert "no PDF written: the PDF engine (WeasyPrint) could not load" in done.stderr
     assert "libpango" in done.stderr and "apt-get install" in done.stderr
-    assert not (tmp_path / "out").exists()
+    assert not (tmp_path / "out").exists()  # not even the folder of file sets
     only = subprocess.run([sys.executable, "-c", script.replace(
         "r.write(", "r.write(formats=['xlsx'], out_dir=")], env=no_pdf_engine,
         capture_output=True, text=True, check=False)
     assert only.returncode == 0, only.stderr
-    assert only.stdout == "" and sorted(os.listdir(tmp_path / "out")) == ["spec.xlsx"]
+    assert only.stdout == "" and _visible(tmp_path / "out") == ["spec.xlsx"]
+    assert sorted(os.listdir(tmp_path / "out")) == [SETS, "spec.xlsx"]  # one set, no leftovers
+    assert sorted(read_manifest(current_set(tmp_path / "out"))) == ["spec.xlsx"]
 
 
 def test_the_command_lines_outputs_are_the_document_paths():

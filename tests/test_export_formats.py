@@ -4,16 +4,22 @@ as a stale file of an earlier run — nothing else names it."""
 
 from __future__ import annotations
 
+import os
 import re
+from pathlib import Path
 
 import pytest
 from layouts import make_layout
 
-from scanplan.cli.outputs import chosen_exports
 from scanplan.errors import InputError
 from scanplan.geo.export import FORMATS, ExportFormat, MissionOptions, format_named, layout_files
 from scanplan.io.targets import check_target, written_by_scanplan
+from scanplan.project.file import load_project
+from scanplan.project.spec import plan_project
+from scanplan.reports.documents import plan_outputs
 from scanplan.reports.exports import stale_exports
+
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
 
 def _routes(job, fmt):
@@ -68,10 +74,21 @@ def test_a_new_format_is_swept_as_stale_and_chosen_by_its_output(with_route, tmp
     (tmp_path / "my-route.route").write_bytes(b"ROUTE scanplan\n")  # not an export's name
     assert stale_exports(str(tmp_path), {str(tmp_path / "route-01.route")}) == [
         str(tmp_path / "film-route.route"), str(tmp_path / "route-03.route")]
-    exports = {"out/route-01.route": (with_route, b"ROUTE scanplan 1\n"),
-               "out/flight.kml": (format_named("kml"), b"<kml/>")}
-    assert list(chosen_exports(exports, ("missions",))) == ["out/route-01.route"]
-    assert list(chosen_exports(exports, ("gis",))) == ["out/flight.kml"]
+    # chosen by its output through plan --out's one path (plan_outputs), for a real plan
+    spec = plan_project(load_project(EXAMPLES / "uav-town-2000.toml"))
+    out = str(tmp_path / "out")
+
+    def chosen(*formats):
+        exports = plan_outputs(spec, out, formats).exports
+        return {os.path.basename(path): fmt for path, (fmt, _) in exports.items()}
+
+    routes = {f"route-{i:02d}.route" for i in range(1, len(spec.uav.layout.sorties) + 1)}
+    missions, gis = chosen("missions"), chosen("gis")
+    assert len(routes) > 1 and routes <= set(missions)
+    assert all(missions[name] is with_route for name in routes)
+    assert {fmt.output for fmt in missions.values()} == {"missions"}
+    assert "flight.kml" in gis and not any(name.endswith(".route") for name in gis)
+    assert {fmt.output for fmt in gis.values()} == {"gis"}
 
 
 def test_every_format_has_a_distinct_name_suffix_and_file_names():
