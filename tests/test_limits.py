@@ -272,9 +272,10 @@ def test_extreme_film_input_prints_no_zero_pixel_inf_or_nan(mk, mc, relief, size
     rows = [line for line in text.stdout.splitlines()
             if re.match(r"(P[SZPRD]  |scan pixel)", line)]
     assert rows
-    for line in rows:
+    for line in rows:  # an English number, its thousands grouped: 5,529.5
         value = line.split()[-1].rstrip("*")
-        assert float(value) > 0, (args, line)
+        assert re.fullmatch(r"\d{1,3}(,\d{3})*(\.\d+)?", value), (args, line)
+        assert float(value.replace(",", "")) > 0, (args, line)
 
 
 # ---------------------------------------------------------------------------------------
