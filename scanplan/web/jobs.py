@@ -209,20 +209,10 @@ def _constraint_names(doc: dict[str, Any], locale: str) -> dict[str, str]:
 def files_job(project: Any, files: Mapping[str, str], what: str) -> tuple[str, bytes]:
     """A download: ``"pdf"``, ``"xlsx"`` (the reports) or ``"zip"`` (the reports, the
     mission and GIS files of ``plan --out``, the project file and its uploads) as
-    (file name, bytes)."""
+    (file name, bytes): the one of :func:`documents_job` (the bytes the page serves)."""
     if what not in ("pdf", "xlsx", "zip"):
         raise InputError("what", f'must be "pdf", "xlsx" or "zip" (got {what!r})')
-    if what == "zip":
-        project, files = _inputs_apart(project, files)
-    with _planned(project, files) as (result, text, folder):
-        from ..reports.exports import export_files, with_exports
-
-        exports = export_files(result, "") if what == "zip" else {}
-        result = with_exports(result, (kind for kind, _ in exports.values()))
-        reports = _reports(result, ("pdf", "xlsx") if what == "zip" else (what,))
-        if what != "zip":
-            return f"spec.{what}", reports[what]
-        return "scanplan.zip", _zip(text, folder, files, reports, exports)
+    return documents_job(project, files)[what]
 
 
 def documents_job(project: Any, files: Mapping[str, str]) -> dict[str, tuple[str, bytes]]:
