@@ -208,6 +208,8 @@ class _Compared:
 def _rechecked(pick: _Planned, check: _Checks, job_at: JobAt) -> Settled:
     """A large block's chosen plan checked again at its settled height (and, when it was
     lowered, at the start: what the height the project gave would miss)."""
+    from .terrainplan import Settled
+
     mode = pick.candidate.mode
     assert mode is not None and pick.alternative.height_m is not None
     tried = pick.alternative.heights_tried

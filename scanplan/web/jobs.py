@@ -204,18 +204,10 @@ def _constraint_names(doc: dict[str, Any], locale: str) -> dict[str, str]:
 def files_job(project: Any, files: Mapping[str, str], what: str) -> tuple[str, bytes]:
     """A download: ``"pdf"``, ``"xlsx"`` (the reports) or ``"zip"`` (the reports, the
     mission and GIS files of ``plan --out``, the project file and its uploads) as
-    (file name, bytes)."""
+    (file name, bytes): the one of :func:`documents_job` (the bytes the page serves)."""
     if what not in ("pdf", "xlsx", "zip"):
         raise InputError("what", f'must be "pdf", "xlsx" or "zip" (got {what!r})')
-    from ..reports import documents
-
-    if what == "zip":
-        project, files = _inputs_apart(project, files)
-    with _planned(project, files) as (result, text, folder):
-        jobs = _jobs(result)
-        if what != "zip":  # downloaded alone: no file is beside it
-            return f"spec.{what}", documents.render((what,), **jobs)[what]
-        return "scanplan.zip", _zip(result, jobs, text, folder, files)
+    return documents_job(project, files)[what]
 
 
 def documents_job(project: Any, files: Mapping[str, str]) -> dict[str, tuple[str, bytes]]:
