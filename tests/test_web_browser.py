@@ -103,6 +103,7 @@ def _open(browser, url: str, lang: str = "en", **kw):
     page.on("pageerror", lambda e: page.errors.append(str(e)))
     page.goto(url + f"?lang={lang}")
     page.wait_for_selector("body[data-ready]", state="attached", timeout=60_000)
+    page.bring_to_front()  # the focused tab: a file chooser opens only there
     return page
 
 
