@@ -26,7 +26,6 @@ pandas is imported inside ``to_frame`` only: ``import scanplan`` stays light.
 
 from __future__ import annotations
 
-import html
 import json
 import os
 from collections.abc import Iterable, Mapping
@@ -122,6 +121,8 @@ def _write(out_dir: str | os.PathLike[str], stem: str, formats: Iterable[str] | 
 
 
 def _table_html(title: str, rows: list[tuple[str, Any]]) -> str:
+    import html  # a notebook's display only: not imported by a plan
+
     body = "".join(f"<tr><th style='text-align:left'>{html.escape(k)}</th>"
                    f"<td>{html.escape(str(v))}</td></tr>" for k, v in rows)
     return f"<div><strong>{html.escape(title)}</strong><table>{body}</table></div>"
@@ -433,6 +434,8 @@ class BatchResult:
         return written
 
     def _repr_html_(self) -> str:
+        import html
+
         frame = self.to_frame()
         errors = "".join(f"<li>{html.escape(f)}: {html.escape(e.message)}</li>"
                          for f, e in self.errors.items())

@@ -277,7 +277,8 @@ def test_a_failing_worker_still_writes_the_pdf(tmp_path, monkeypatch):
     # spreadsheet reader of the norm importer
     (["plan", str(EXAMPLE.parent / "uav-town-2000.toml")],
      ("matplotlib", "weasyprint", "pandas", "openpyxl", "scanplan.geo.terrain",
-      "scanplan.geo.dem", "scanplan.norms.importer", "scanplan.norms.xlsx")),
+      "scanplan.geo.dem", "scanplan.norms.importer", "scanplan.norms.xlsx",
+      "numpy.ma")),  # numpy's masked arrays: np.unique imports them to look for a mask
 ])
 def test_what_a_run_does_not_import(tmp_path, args, absent):
     """A plan without reports imports no report library; a workbook alone no plotting,
@@ -290,6 +291,23 @@ def test_what_a_run_does_not_import(tmp_path, args, absent):
     r = _run_python(code)
     assert r.returncode == 0, r.stderr
     assert r.stdout.strip().splitlines()[-1] == "[]"
+
+
+def test_the_worker_forks_before_the_writers_are_imported():
+    """The PDF worker's child needs the renderer only: importing the worker (the parent
+    forks right after) reads neither the file writers nor the project file, which the
+    parent imports after the fork; the names the package re-exports still resolve."""
+    r = _run_python("import sys\n"
+                    "import scanplan.reports.pdfworker\n"
+                    "print(sorted(m for m in sys.modules if m.startswith(("
+                    "'scanplan.io', 'scanplan.project'))))\n"
+                    "from scanplan.reports import ReportMeta, write_atomic, write_atomic_many\n"
+                    "print(ReportMeta.__module__, write_atomic.__module__, "
+                    "write_atomic_many.__module__)\n")
+    assert r.returncode == 0, r.stderr
+    before, names = r.stdout.strip().splitlines()[-2:]
+    assert before == "[]"
+    assert names == "scanplan.project.file scanplan.io.atomic scanplan.io.atomic"
 
 
 def _pages(pdf: bytes, tmp: Path) -> list[bytes]:

@@ -222,3 +222,15 @@ def test_a_scale_written_1_colon_n_never_prints_1_1_n(tmp_path, example, edits):
     for kind, shown_text in texts.items():
         assert "1:1:" not in shown_text, kind
         assert re.search(r"1:2[  ]?000|1:10[  ]?000|2000", shown_text), kind
+
+
+def test_a_plans_records_are_made_once():
+    """A plan asks for its inputs' records hundreds of times (defaults, domains, kwargs):
+    the tuple of a plan's records and each name's lookup are made once per process."""
+    assert I.records("uav") is I.records("uav")
+    assert I.records() is I.records()
+    assert [r.name for r in I.records("uav")] == [
+        r.name for r in I._RECORDS if "uav" in r.plans]
+    # the plan's own section still wins over a shared one, from the cache as without it
+    assert I.get("forward_overlap_pct", "uav").section == "uav"
+    assert I.get("forward_overlap_pct", "uav") is I.get("forward_overlap_pct", "uav")

@@ -212,8 +212,10 @@ def _auto_direction(geom: object, origin: tuple[float, float], spacing_m: float,
     tried: dict[float, float] = {}
 
     def run(cands: np.ndarray) -> None:
-        new = [float(c) for c in np.unique(np.round(np.asarray(cands) % 180.0, 6))
-               if float(c) not in tried]
+        # the distinct directions, ascending (sorted(set()), not np.unique: that imports
+        # numpy.ma, a tenth of a first plan's own time, to check for a mask)
+        new = [c for c in sorted(set(np.round(np.asarray(cands, dtype=float) % 180.0,
+                                              6).tolist())) if c not in tried]
         tried.update(zip(new, _costs(edges, new, origin, spacing_m, base_m, extension,
                                      turn).tolist(), strict=True))
 

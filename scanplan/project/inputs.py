@@ -25,6 +25,7 @@ This module imports nothing heavy (no numpy): ``scanplan --help`` reads it.
 
 from __future__ import annotations
 
+import functools
 import re
 from dataclasses import dataclass
 from typing import Any
@@ -587,9 +588,11 @@ INPUTS: dict[str, Input] = {(r.dotted or r.name): r for r in _RECORDS}
 record."""
 
 
+@functools.cache
 def get(name: str, plan: str) -> Input:
     """The record of Python name ``name`` in ``plan`` (``"film"`` or ``"uav"``); the
-    plan's own section wins over a shared one.
+    plan's own section wins over a shared one. Looked up once per name and plan (a plan
+    asks for its inputs hundreds of times; the records never change).
 
     >>> get("forward_overlap_pct", "uav").default
     80.0
@@ -601,8 +604,10 @@ def get(name: str, plan: str) -> Input:
     return (own or found)[0]
 
 
+@functools.cache
 def records(plan: str | None = None) -> tuple[Input, ...]:
-    """Every record, or those of one plan (``"film"``, ``"uav"``), in registry order."""
+    """Every record, or those of one plan (``"film"``, ``"uav"``), in registry order (the
+    tuple made once per plan)."""
     return tuple(r for r in _RECORDS if plan is None or plan in r.plans)
 
 

@@ -18,12 +18,31 @@ from __future__ import annotations
 import datetime as _dt
 import os
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
-from ..io.atomic import write_atomic, write_atomic_many  # the writers live below reports
-from ..project.file import ReportMeta  # project metadata; it lives with the project file
+if TYPE_CHECKING:
+    from ..io.atomic import write_atomic, write_atomic_many
+    from ..project.file import ReportMeta
 
 __all__ = ["ReportMeta", "report_datetime", "templates_dir", "write_atomic",
            "write_atomic_many"]
+
+_LAZY = {"write_atomic": "..io.atomic", "write_atomic_many": "..io.atomic",  # the writers
+         "ReportMeta": "..project.file"}  # project metadata: it lives with the project file
+"""Names re-exported from below, imported when first asked for: the PDF worker's child
+(:mod:`.pdfworker`), forked once this package is imported, needs only
+:func:`templates_dir`, so the fork does not wait for the file writers and the project
+file's reader."""
+
+
+def __getattr__(name: str) -> Any:
+    if name in _LAZY:
+        import importlib
+
+        value = getattr(importlib.import_module(_LAZY[name], __name__), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def report_datetime() -> _dt.datetime:
