@@ -62,6 +62,24 @@ def _campaign() -> dict[str, dict[str, int]]:
             "campaign_outcomes": dict(getattr(module, "OUTCOMES", None) or {})}
 
 
+def pytest_collection_modifyitems(config, items):
+    """Mark the slow profile (tests/slow_profile.py) ``slow``; a listed test that its
+    collected module does not define is a usage error (the list follows renames)."""
+    from slow_profile import SLOW_MODULES, SLOW_TESTS
+
+    modules = {}
+    for item in items:
+        module = item.path.stem
+        modules.setdefault(module, getattr(item, "module", None))
+        name = getattr(item, "originalname", item.name)
+        if module in SLOW_MODULES or name in SLOW_TESTS.get(module, ()):
+            item.add_marker(pytest.mark.slow)
+    missing = [f"{m}::{n}" for m, obj in modules.items() if obj is not None
+               for n in sorted(SLOW_TESTS.get(m, ())) if not hasattr(obj, n)]
+    if missing:
+        raise pytest.UsageError(f"tests/slow_profile.py names tests that do not exist: {missing}")
+
+
 def pytest_sessionfinish(session, exitstatus):
     """A pytest-xdist worker hands its fuzz and campaign counts to the controller."""
     if hasattr(session.config, "workeroutput"):
