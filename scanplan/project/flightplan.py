@@ -61,6 +61,9 @@ class LayoutOptions:
     relief_m : float
         The ground's height range under the area [m]: a sortie climbs and descends at
         most this much more than its planned height (the sortie time).
+    crosshatch : bool
+        ``[uav] crosshatch``: fly the area twice, the second pass at the direction + 90°
+        (a double grid, :mod:`scanplan.geo.crosshatch`; default False).
     """
 
     direction_deg: float | str | None = None
@@ -72,6 +75,7 @@ class LayoutOptions:
     ground_m: float = 0.0
     takeoff_lonlat: tuple[float, float] | None = None
     relief_m: float = 0.0
+    crosshatch: bool = False
 
 
 def area_from_options(spec: AreaSpec, area_m: tuple[float, float] | None = None
@@ -112,6 +116,8 @@ def check_options(opts: LayoutOptions, area: Area, speed_ms: float | None) -> No
             raise InputError(key, f"must be in ({d.lo:g}, {d.hi:g}] (got {v!r})")
     if opts.bank_deg is not None and not speed_ms:
         raise InputError("bank_deg", "needs the ground speed (> 0) for the turn radius")
+    if not isinstance(opts.crosshatch, bool):
+        raise InputError("crosshatch", f"must be true or false (got {opts.crosshatch!r})")
     if opts.takeoff_lonlat is not None and not area.georeferenced:
         raise InputError("takeoff", "applies to a polygon area; the width_m × length_m "
                          "block has no place on the map")
@@ -162,7 +168,8 @@ def uav_layout(plan: UavPlan, area: Area, opts: LayoutOptions | None = None,
         extension_bases=opts.extension_bases, turn=_turn(opts, speed), speed_ms=speed,
         max_flight_time_min=opts.max_flight_time_min, ground_m=opts.ground_m,
         photo_values=values, kind="uav", takeoff_xy_m=_takeoff_xy(opts, area),
-        manned=manned, climb_m=plan.heights_m["planned"] + opts.relief_m)
+        manned=manned, climb_m=plan.heights_m["planned"] + opts.relief_m,
+        crosshatch=opts.crosshatch)
 
 
 def _takeoff_xy(opts: LayoutOptions, area: Area) -> tuple[float, float] | None:
