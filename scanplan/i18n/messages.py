@@ -392,6 +392,16 @@ MESSAGES: dict[str, dict[str, str]] = {
               "разделите блок по зонам или задайте проекцию для середины участка "
               "(⁅[area] plan_crs⁆).",
     },
+    "crosshatch": {
+        "en": "crosshatch: the area is flown twice, the second pass's {second} strips at "
+              "{cross:.1f}° after the first pass's {first} at {direction:.1f}° (a pass "
+              "transit of {transit:,.0f} m between them); every plan compared is flown so, as "
+              "⁅[uav] crosshatch⁆ asks",
+        "ru": "Двойная сетка: участок облетается дважды — после {first} маршрутов первого "
+              "прохода под {direction:.1f}° {second} маршрутов второго под {cross:.1f}° "
+              "(переход между проходами {transit:,.0f}~м); так облетаются все сравниваемые "
+              "планы, как задано ⁅[uav] crosshatch⁆.",
+    },
     "flight_not_feasible": {
         "en": "the flight plan over the area is not feasible: {why}",
         "ru": "План полёта над участком невыполним: {why}",

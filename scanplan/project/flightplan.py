@@ -227,6 +227,12 @@ def layout_warnings(layout: FlightLayout) -> tuple[PlanWarning, ...]:
         out += (PlanWarning("area_scale_distortion", Message(
             "area_scale_distortion", crs=area.plan_crs, pct=area.scale_error_pct,
             west=west, east=east)),)
+    if layout.crosshatch and layout.feasible:
+        n = layout.first_pass_strips or 0
+        out += (PlanWarning("crosshatch", Message(
+            "crosshatch", first=n, second=len(layout.strips) - n,
+            direction=layout.direction_deg, cross=layout.cross_direction_deg,
+            transit=float(layout.notes.get("pass_transit_m", 0.0))), severity="info"),)
     if not layout.feasible:
         out += (PlanWarning("flight_not_feasible", Message("flight_not_feasible",
                                                            why=layout.reason or "")),)
