@@ -180,8 +180,32 @@ def test_the_documents_say_crosshatch_and_fly_both_passes(tmp_path, locale, word
         headings |= {round(a) for a in az[np.hypot(*d.T) > 1e-3]}
     assert any(abs(h - 88) <= 1 for h in headings)
     assert any(abs(h - 178) <= 1 or h <= 0 for h in headings)
+    # the GIS files read by GDAL: both passes' strips and every photo
+    from pyogrio.raw import read
+
+    def count(path: Path, layer: str | int | None = None) -> int:
+        return len(read(path, layer=layer, read_geometry=False)[3][0])
+
+    for name, strips, photos in (("flight.gpkg", "strips", "photos"),
+                                 ("flight.kml", 1, 3)):  # KML folders in the language
+        assert count(out / name, strips) == lay["n_strips"]
+        assert count(out / name, photos) == lay["n_photos"]
+    meta, _fid, _geom, fields = read(out / "flight.geojson", read_geometry=False)
+    kind = fields[list(meta["fields"]).index("kind")]
+    assert (kind == "strip").sum() == lay["n_strips"]
     # every DJI route a WPML zip whose waylines hold waypoints
     for kmz in sorted(out.glob("mission-dji-*.kmz")):
         with zipfile.ZipFile(kmz) as zf:
             assert b"<wpml:waypointHeadingMode>followWayline<" in zf.read(
                 "wpmz/waylines.wpml")
+
+
+def test_a_crosshatch_without_an_area_exits_2_naming_the_key(tmp_path):
+    """Without an area there are no lines to fly twice: refused like the other layout
+    keys."""
+    p = tmp_path / "no-area.toml"
+    p.write_text('[map]\nscale = 2000\nrelief_interval_m = 0.5\n\n[uav]\ncrosshatch = true\n'
+                 'camera = "dji-zenmuse-p1-35"\n', encoding="utf-8")
+    res = CliRunner().invoke(main, ["plan", str(p)])
+    assert res.exit_code == 2, res.output
+    assert "uav.crosshatch" in res.output and "applies to an area" in res.output

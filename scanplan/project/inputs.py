@@ -471,8 +471,8 @@ _RECORDS: tuple[Input, ...] = (
           "first waypoint", digits=7),
     Input("crosshatch", "uav", "crosshatch", "bool", "fly the area twice, the second pass's "
           "lines at the direction + 90° (a double grid): every point photographed along two "
-          "line directions, for 3D models of buildings and a stronger block; twice the "
-          "strips, photos and flying time", default=False),
+          "line directions, for 3D models of buildings and a stronger block; the strips, "
+          "photos and flying time of both passes", default=False),
     Input("aircraft", "uav", "aircraft", _STR, "the aircraft that carries the camera, a "
           "catalogue id: its battery's usable flight time (the published flight time less "
           "the battery reserve) is the sortie time, its cruise speed the ground speed where "
