@@ -13,6 +13,7 @@ import shapely
 from click.testing import CliRunner
 
 from scanplan.cli.main import main
+from scanplan.geo.crosshatch import plan_crosshatch
 from scanplan.geo.layout import Area
 from scanplan.geo.lines import Turn, plan_lines
 
@@ -24,10 +25,11 @@ def _local(geom: object) -> Area:
     return Area(geom, "LOCAL", "test polygon", False, geom.area / 1e6, geom.length / 1e3)
 
 
-def _lay(area: Area, direction: float, **kw: object):
-    return plan_lines(area, spacing_m=60.0, base_m=40.0, footprint_across_m=150.0,
-                      footprint_along_m=100.0, height_m=100.0, direction_deg=direction,
-                      turn=Turn("turnaround", 20.0), speed_ms=10.0, **kw)
+def _lay(area: Area, direction: float, crosshatch: bool = False, **kw: object):
+    lay_out = plan_crosshatch if crosshatch else plan_lines
+    return lay_out(area, spacing_m=60.0, base_m=40.0, footprint_across_m=150.0,
+                   footprint_along_m=100.0, height_m=100.0, direction_deg=direction,
+                   turn=Turn("turnaround", 20.0), speed_ms=10.0, **kw)
 
 
 # an L (no side an exact multiple of the base: the second pass begun from the other side

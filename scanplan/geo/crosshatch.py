@@ -52,11 +52,12 @@ from .lines import (
     _to_plan_xy,
     _TooMany,
     _turns_flown,
+    plan_lines,
 )
 from .sorties import FlightModel, SortiePlan, path_time_s, turn_penalties_m
 from .strips import Turn
 
-__all__ = ["crosshatch_layout"]
+__all__ = ["crosshatch_layout", "plan_crosshatch"]
 
 
 class _Pass:
@@ -116,6 +117,57 @@ def _junction_penalty_m(poly: np.ndarray, h1: np.ndarray, h2: np.ndarray, speed_
     length = float(np.sum(np.hypot(*np.diff(full, axis=0).T)))
     t = path_time_s(full, speed_ms, model, start_ms=speed_ms, end_ms=speed_ms)
     return max(0.0, t * speed_ms - length)
+
+
+def plan_crosshatch(area: Area, *, spacing_m: float, base_m: float,
+                    footprint_across_m: float, footprint_along_m: float, height_m: float,
+                    direction_deg: float | str = "auto", extension_bases: int = 1,
+                    turn: Turn = Turn(),  # noqa: B008 - a frozen dataclass
+                    speed_ms: float | None = None, max_flight_time_min: float | None = None,
+                    ground_m: float = 0.0, photo_values: Mapping[str, float] | None = None,
+                    kind: str = "uav", takeoff_xy_m: tuple[float, float] | None = None,
+                    flight_model: FlightModel | None = None, manned: bool = False,
+                    climb_m: float | None = None) -> FlightLayout:
+    """Both passes of a crosshatch over ``area`` (module notes): the parameters and the
+    result of :func:`scanplan.geo.lines.plan_lines`, the result with
+    ``cross_direction_deg`` and ``first_pass_strips`` set.
+
+    The first pass's direction (``"auto"``: the least flight length of one pass) and the
+    grid's scale come from :func:`~scanplan.geo.lines.plan_lines` itself, laid out as one
+    sortie without times; a block that cannot be laid out (too many strips) is returned
+    as it says.
+    """
+    one = plan_lines(area, spacing_m=spacing_m, base_m=base_m,
+                     footprint_across_m=footprint_across_m,
+                     footprint_along_m=footprint_along_m, height_m=height_m,
+                     direction_deg=direction_deg, extension_bases=extension_bases, turn=turn,
+                     ground_m=ground_m, photo_values=photo_values, kind=kind, manned=True)
+    if not one.strips:
+        return one
+    geom = area.geometry
+    origin = (float(geom.centroid.x), float(geom.centroid.y))
+    k = float(one.notes.get("grid_scale", 1.0))
+    notes: dict[str, object] = {"max_flight_time_min": max_flight_time_min,
+                                "turn_kind": turn.kind, "turn_m": turn.value_m,
+                                "takeoff_xy_m": takeoff_xy_m}
+    if "grid_scale" in one.notes:
+        notes["grid_scale"] = k
+    if "auto_directions_tried" in one.notes:
+        notes["auto_directions_tried"] = one.notes["auto_directions_tried"]
+    common = dict(area=area, direction_deg=one.direction_deg, spacing_m=spacing_m,
+                  base_m=base_m, extension_bases=float(int(extension_bases)), kind=kind,
+                  footprint_across_m=footprint_across_m, footprint_along_m=footprint_along_m,
+                  speed_ms=speed_ms, turn=turn.describe())
+    ext = _Extension(int(extension_bases), footprint_along_m * k / 2.0)
+    parts = _pass_parts(geom, one.direction_deg, origin, spacing_m * k, base_m * k, ext, turn)
+    air = None if manned or kind != "uav" else _Airborne(
+        geom.boundary, height_m if climb_m is None else climb_m,
+        flight_model or FlightModel.bundled())
+    return crosshatch_layout(
+        area, parts, direction=one.direction_deg, origin=origin, spacing_m=spacing_m * k,
+        base_m=base_m * k, ext=ext, turn=turn, takeoff_xy_m=takeoff_xy_m, speed_ms=speed_ms,
+        max_flight_time_min=max_flight_time_min, air=air, height_m=height_m,
+        ground_m=ground_m, photo_values=photo_values or {}, notes=notes, common=common)
 
 
 def crosshatch_layout(area: Area, first_parts: _Parts, *, direction: float,
@@ -178,6 +230,7 @@ def crosshatch_layout(area: Area, first_parts: _Parts, *, direction: float,
     assert best is not None
     b = best[1]
     n_a = a.parts.n_strips
+    notes["bridged_m"] = a.parts.bridged_m() + b.parts.bridged_m()
     junction, poly = _junction(a, b, turn) if len(a.path) and len(b.path) else (0.0, None)
     notes["pass_transit_m"] = junction
     path = np.r_[a.path, (a.path[-1] if len(a.path) else 0.0) + junction + b.path]

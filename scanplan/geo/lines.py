@@ -180,7 +180,6 @@ def plan_lines(
     flight_model: FlightModel | None = None,
     manned: bool = False,
     climb_m: float | None = None,
-    crosshatch: bool = False,
 ) -> FlightLayout:
     """Strips, photo centres, turns and sorties over ``area``.
 
@@ -225,16 +224,13 @@ def plan_lines(
     climb_m : float, optional
         The height each sortie climbs after take-off and descends to land [m] (default
         ``height_m``; over relief, more).
-    crosshatch : bool
-        Fly the area twice, the second pass at the direction + 90° (a double grid,
-        :mod:`.crosshatch`).
 
     Returns
     -------
     FlightLayout
         ``feasible`` False with a ``reason`` when the block cannot be flown as planned.
 
-    Long because: seventeen inputs, each documented above; the body is the layout's steps
+    Long because: sixteen inputs, each documented above; the body is the layout's steps
     in order (grid scale, direction, bands, parts, sorties, records), each one call.
     """
     geom = area.geometry
@@ -261,18 +257,6 @@ def plan_lines(
                                   most=MAX_STRIPS), notes, common)
     parts = _Parts.of(bands, base_m, _Extension(ext, footprint_along_m * k / 2.0), turn)
     notes["bridged_m"] = parts.bridged_m()
-    if crosshatch:
-        from .crosshatch import crosshatch_layout
-
-        air = None if manned or kind != "uav" else _Airborne(
-            geom.boundary, height_m if climb_m is None else climb_m,
-            flight_model or FlightModel.bundled())
-        return crosshatch_layout(
-            area, parts, direction=direction, origin=origin, spacing_m=spacing_m,
-            base_m=base_m, ext=_Extension(ext, footprint_along_m * k / 2.0), turn=turn,
-            takeoff_xy_m=takeoff_xy_m, speed_ms=speed_ms,
-            max_flight_time_min=max_flight_time_min, air=air, height_m=height_m,
-            ground_m=ground_m, photo_values=photo_values or {}, notes=notes, common=common)
     takeoff_uv = (None if takeoff_xy_m is None
                   else _to_rotated_uv(direction, origin)(*takeoff_xy_m))
     plan, ex_strip, reason = _sortie_plan(

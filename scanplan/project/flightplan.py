@@ -161,15 +161,17 @@ def uav_layout(plan: UavPlan, area: Area, opts: LayoutOptions | None = None,
               "resolution_cm": (plan.ground_resolution_m * 100.0
                                 if plan.ground_resolution_m is not None else math.nan),
               "recognition_p": p_rec if p_rec is not None else math.nan}
-    return plan_lines(
+    lay_out = plan_lines
+    if opts.crosshatch:  # the area flown twice, the second pass at + 90°
+        from ..geo.crosshatch import plan_crosshatch as lay_out
+    return lay_out(
         area, spacing_m=fl["line_spacing_m"], base_m=fl["base_m"],
         footprint_across_m=fl["footprint_across_m"], footprint_along_m=fl["footprint_along_m"],
         height_m=plan.heights_m["planned"], direction_deg=_direction(opts, area),
         extension_bases=opts.extension_bases, turn=_turn(opts, speed), speed_ms=speed,
         max_flight_time_min=opts.max_flight_time_min, ground_m=opts.ground_m,
         photo_values=values, kind="uav", takeoff_xy_m=_takeoff_xy(opts, area),
-        manned=manned, climb_m=plan.heights_m["planned"] + opts.relief_m,
-        crosshatch=opts.crosshatch)
+        manned=manned, climb_m=plan.heights_m["planned"] + opts.relief_m)
 
 
 def _takeoff_xy(opts: LayoutOptions, area: Area) -> tuple[float, float] | None:
