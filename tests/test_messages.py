@@ -372,6 +372,11 @@ def emitted(tmp_path_factory) -> dict[str, list[Any]]:
             encoding="utf-8").replace('file = "areas/',
                                       f'file = "{(EXAMPLES / "areas").as_posix()}/')
         + "\n[control]\ngcp_sigma_z_m = 0.08\n",
+        # a crosshatch: the area flown twice, every plan compared so too
+        "plan crosshatch": (EXAMPLES / "uav-town-2000.toml").read_text(
+            encoding="utf-8").replace('file = "areas/',
+                                      f'file = "{(EXAMPLES / "areas").as_posix()}/')
+        .replace("[uav]\n", "[uav]\ncrosshatch = true\n", 1),
         "plan control valley": (EXAMPLES / "uav-town-valley-2000.toml").read_text(
             encoding="utf-8").replace('dem = "dem/', f'dem = "{(EXAMPLES / "dem").as_posix()}/')
         .replace('file = "areas/', f'file = "{(EXAMPLES / "areas").as_posix()}/')

@@ -127,7 +127,19 @@ def _projects(tmp: Path) -> list[Path]:
                          'plan_crs = "EPSG:28407"'),
         _polygon_project(tmp, "south", _rect(-47.95, -15.80, 0.04, 0.03)),
         _polygon_project(tmp, "zones", _rect(35.97, 55.70, 0.06, 0.02)),
+        # a crosshatch: both passes, the pass transit between them, a sortie across it
+        _crosshatched(_polygon_project(tmp, "crosshatch", _rect(37.2, 55.70, 0.02, 0.012))),
+        # a crosshatch following the terrain: each strip at its own direction's ground
+        _crosshatched(valley_pinned(tmp, "follow"), "valley-crosshatch"),
     ]
+
+
+def _crosshatched(path: Path, name: str | None = None) -> Path:
+    """The project ``path`` flown as a crosshatch (``[uav] crosshatch = true``)."""
+    text = path.read_text(encoding="utf-8")
+    out = path.with_name(f"{name or path.stem}.toml")
+    out.write_text(text.replace("[uav]\n", "[uav]\ncrosshatch = true\n", 1), encoding="utf-8")
+    return out
 
 
 def _from_waypoints(path: Path) -> list[dict]:
@@ -171,6 +183,13 @@ def _check(path: Path, tmp: Path) -> dict[str, float]:
         lat = np.array([s[1] for s in shots])
         x, y = tr.transform(lon, lat)
         _, nearest = tree.query(np.column_stack([x, y]))
+        if layout.crosshatch:  # the passes' centres cross: the sortie's photos in order
+            mine = np.flatnonzero(photos["sortie"].to_numpy() == k + 1)
+            assert len(shots) == len(mine), (path.name, plan.name)
+            off = np.hypot(x - photos["x_m"].to_numpy()[mine],
+                           y - photos["y_m"].to_numpy()[mine])
+            assert np.all(off <= layout.base_m / 2.0), (plan.name, float(off.max()))
+            nearest = mine
         matched += nearest.tolist()
         by_dist = np.array([s[2] for s in shots])
         _, _, d = GEOD.inv(lon[:-1], lat[:-1], lon[1:], lat[1:])
@@ -182,14 +201,19 @@ def _check(path: Path, tmp: Path) -> dict[str, float]:
     planned = 1.0 - layout.base_m / layout.footprint_along_m
     overlap = 1.0 - np.asarray(spacings) / layout.footprint_along_m
     assert np.all(np.abs(overlap - planned) <= 0.01), path.name
-    return {"photos": len(photos), "worst_pp": float(np.max(np.abs(overlap - planned)) * 100)}
+    directions = {round(layout.strip_direction_deg(int(k)), 6) for k in photos["strip"]}
+    return {"photos": len(photos), "worst_pp": float(np.max(np.abs(overlap - planned)) * 100),
+            "directions": len(directions)}
 
 
-@pytest.mark.parametrize("which", range(6), ids=["town", "valley", "valley-follow",
-                                                  "gauss-kruger", "southern", "zone-edge"])
+@pytest.mark.parametrize("which", range(8), ids=["town", "valley", "valley-follow",
+                                                  "gauss-kruger", "southern", "zone-edge",
+                                                  "crosshatch", "valley-crosshatch"])
 def test_the_distance_trigger_fires_every_photo_of_photos_csv(tmp_path, which):
     path = _projects(tmp_path)[which]
-    _check(path, tmp_path)
+    got = _check(path, tmp_path)
+    if "crosshatch" in path.stem:  # both passes flown: strips in two directions
+        assert got["directions"] == 2
 
 
 def _path_m(items: list[dict], home: tuple[float, float] | None) -> float:
@@ -235,6 +259,25 @@ def test_the_mission_path_is_the_reported_flight_length(tmp_path, turn, takeoff)
     assert layout.notes["transit_m"] > 0  # the return leg always
     assert sum(s.transit_m for s in layout.sorties) == pytest.approx(
         layout.notes["transit_m"])
+
+
+def test_a_crosshatch_mission_path_is_the_reported_flight_length(tmp_path):
+    """Both passes and the pass transit between them: the written waypoints' path is the
+    reported length within 1 %, with the turnaround's run-in and run-out at the pass
+    transit too."""
+    path = _crosshatched(_polygon_project(tmp_path, "cross", _rect(37.2, 55.70, 0.02, 0.012)))
+    spec = plan_project(load_project(path))
+    layout = spec.uav.layout
+    assert layout.crosshatch and layout.feasible and layout.notes["pass_transit_m"] > 0
+    files = export_files(spec, str(tmp_path))
+    plans = sorted((p, d) for p, (kind, d) in files.items() if kind.name == "plan")
+    assert len(plans) == len(layout.sorties)
+    total = 0.0
+    for _name, data in plans:
+        doc = json.loads(data)
+        lat, lon, _ = doc["mission"]["plannedHomePosition"]
+        total += _path_m(doc["mission"]["items"], (lon, lat))
+    assert total == pytest.approx(layout.flight_length_m, rel=0.01)
 
 
 def _armed_on_the_line(items: list[dict], radius_m: float) -> None:
@@ -364,8 +407,9 @@ def simulate_wpml(data: bytes) -> list[tuple[float, float, int]]:
     return shots
 
 
-@pytest.mark.parametrize("which", range(6), ids=["town", "valley", "valley-follow",
-                                                  "gauss-kruger", "southern", "zone-edge"])
+@pytest.mark.parametrize("which", range(8), ids=["town", "valley", "valley-follow",
+                                                  "gauss-kruger", "southern", "zone-edge",
+                                                  "crosshatch", "valley-crosshatch"])
 def test_the_dji_route_fires_every_photo_of_photos_csv(tmp_path, which):
     """Every DJI route of the sorties fires each photo of photos.csv once (matched to its
     nearest centre within 5 cm), strip by strip; the runs are flown through (no stopping

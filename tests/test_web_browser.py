@@ -566,3 +566,54 @@ def test_the_plans_compared_are_shown_under_the_figures(server, browser):
     assert "(long axis)" in page.inner_text("#alternatives table.plans")
     assert "meets every constraint (recommended)" in page.inner_text("#alternatives")
     assert not page.errors, page.errors
+
+
+def _strip_angles(page) -> list[float]:
+    """Each drawn strip's direction on the screen [°, 0 … 180), from its path's ends."""
+    return page.evaluate("""() => [...document.querySelectorAll('path.strip')].map((p) => {
+        const n = (p.getAttribute('d').match(/-?[0-9.]+/g) || []).map(Number);
+        if (n.length < 4) return null;
+        const dx = n[n.length - 2] - n[0], dy = n[n.length - 1] - n[1];
+        return ((Math.atan2(dx, -dy) * 180 / Math.PI) % 180 + 180) % 180;
+      }).filter((a) => a !== null)""")
+
+
+def test_a_crosshatch_by_its_checkbox_draws_strips_in_two_directions(server, browser):
+    """The "Crosshatch (double grid)" checkbox among the UAV inputs, ticked from the
+    keyboard: the map draws the second pass's strips at + 90° beside the first's, the
+    figures count both; it is kept across a reload and sent as ``[uav] crosshatch``."""
+    page = _open(browser, server)
+    _town_plan(page)
+    one = _strip_angles(page)
+    assert max(one) - min(one) < 2, one  # one direction
+    n_one = len(one)
+    box = page.locator("#f-uav-crosshatch")
+    expect(box).to_be_visible()
+    assert page.inner_text("label[for='f-uav-crosshatch']") == "Crosshatch (double grid)"
+    box.focus()
+    before = _seq(page)
+    page.keyboard.press("Space")
+    assert box.is_checked()
+    _planned(page, before)
+    page.wait_for_function(f"document.querySelectorAll('path.strip').length > {n_one}")
+    both = _strip_angles(page)
+    first = one[0]
+    turned = [a for a in both if abs(((a - first + 90) % 180) - 90) > 45]
+    assert turned and len(turned) < len(both), both
+    assert all(abs(((a - first) % 180) - 90) < 3 for a in turned), (first, turned)
+    _shot(page, "crosshatch-en")
+    # kept in the saved state: a reload ticks it again and plans both passes
+    before = 0
+    page.reload()
+    page.wait_for_selector("body[data-ready]", state="attached", timeout=60_000)
+    _planned(page, before)
+    expect(page.locator("#f-uav-crosshatch")).to_be_checked()
+    page.wait_for_function(f"document.querySelectorAll('path.strip').length > {n_one}")
+    assert not page.errors, page.errors
+
+
+def test_the_crosshatch_checkbox_speaks_russian(server, browser):
+    page = _open(browser, server, lang="ru")
+    assert page.inner_text("label[for='f-uav-crosshatch']") == (
+        "Двойная сетка (второй проход под 90°)")
+    assert not page.errors, page.errors

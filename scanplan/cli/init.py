@@ -220,7 +220,8 @@ def _uav_lines(a: InitAnswers, c: dict[str, str]) -> list[str]:
             f"speed_ms = {speed}\t# {c['speed']}",
             f"exposure_s = {_v('uav.exposure_s', 0.0005)}\t# {c['exposure']}",
             f"forward_overlap_pct = {_v('uav.forward_overlap_pct')}\t# {c['forward']}",
-            f"side_overlap_pct = {_v('uav.side_overlap_pct')}\t# {c['side']}"]
+            f"side_overlap_pct = {_v('uav.side_overlap_pct')}\t# {c['side']}",
+            f"# crosshatch = false\t# {c['crosshatch']}"]
 
 
 def check_answers(text: str, path: str) -> None:

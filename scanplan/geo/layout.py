@@ -201,7 +201,14 @@ class FlightLayout:
         ``"radius 150 m"``), for reports.
     notes : dict
         Extra figures (``bridged_m``: gap length flown with the camera off [m];
-        ``candidates``: directions tried by "auto").
+        ``candidates``: directions tried by "auto"; a crosshatch's ``pass_transit_m``: the
+        flight from the first pass's last photo to the second pass's first).
+    cross_direction_deg : float or None
+        A crosshatch (double grid): the second pass's line direction, ``direction_deg`` +
+        90° [°], 0 … 180; None for one pass.
+    first_pass_strips : int or None
+        A crosshatch: how many strips the first pass has (strips 1 … n at
+        ``direction_deg``, the rest at ``cross_direction_deg``); None for one pass.
     """
 
     area: Area
@@ -224,7 +231,35 @@ class FlightLayout:
     speed_ms: float | None = None
     turn: str = "semicircle"
 
+    cross_direction_deg: float | None = None
+    first_pass_strips: int | None = None
+
     @property
     def n_photos(self) -> int:
         """Number of photo centres."""
         return len(self.photos)
+
+    @property
+    def crosshatch(self) -> bool:
+        """Whether the area is flown twice, the second pass at ``direction_deg`` + 90°."""
+        return self.cross_direction_deg is not None
+
+    def strip_pass(self, number: int) -> int:
+        """The pass (1, or 2 for a crosshatch's second) that flies strip ``number``
+        (from 1)."""
+        n = self.first_pass_strips
+        return 2 if n is not None and number > n else 1
+
+    def strip_direction_deg(self, number: int) -> float:
+        """The line direction of strip ``number`` (from 1) [°], 0 … 180."""
+        if self.cross_direction_deg is not None and self.strip_pass(number) == 2:
+            return self.cross_direction_deg
+        return self.direction_deg
+
+    def directions_deg(self, strip: np.ndarray) -> float | np.ndarray:
+        """The line direction of each photo of the strips ``strip`` (from 1) [°]: the one
+        ``direction_deg`` for a single pass, else one value per photo."""
+        if self.cross_direction_deg is None or self.first_pass_strips is None:
+            return self.direction_deg
+        return np.where(np.asarray(strip) > self.first_pass_strips,
+                        self.cross_direction_deg, self.direction_deg)

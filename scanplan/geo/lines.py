@@ -541,8 +541,42 @@ def _sortie_plan(parts: _Parts, turn: Turn, takeoff_uv: tuple[float, float] | No
     u = parts.u_m[ex_strip]
     start_xy = np.column_stack([u, ex_v - sign * lead_in])
     end_xy = np.column_stack([u, ex_v + sign * lead_out])
+
+    def penalty(speed_ms: float, model: FlightModel) -> np.ndarray:
+        return turn_penalties_m(ex_strip, ex_v, parts.u_m, turn.kind, turn.lead_m,
+                                speed_ms, model, parts.base_m / 2.0)
+
+    return _packed(_Serpentine(ex_strip, path, start_xy, end_xy, penalty, parts.base_m),
+                   turn, takeoff_uv, speed_ms, max_min, notes, air)
+
+
+@dataclass(frozen=True)
+class _Serpentine:
+    """Every exposure in flight order as the packing sees it, in one metric frame: its
+    strip (from 0), its path distance from the first exposure [m], the run-in point before
+    it and the run-out point past it (n × 2) [m], and the turns' time beyond their length
+    (``penalty(speed_ms, model)``, :func:`~scanplan.geo.sorties.turn_penalties_m`)."""
+
+    ex_strip: np.ndarray
+    path: np.ndarray
+    start_xy: np.ndarray
+    end_xy: np.ndarray
+    penalty: Callable[[float, FlightModel], np.ndarray]
+    base_m: float
+
+
+def _packed(serp: _Serpentine, turn: Turn, takeoff_uv: tuple[float, float] | None,
+            speed_ms: float | None, max_min: float | None, notes: dict[str, object],
+            air: _Airborne | None = None
+            ) -> tuple[SortiePlan, np.ndarray, Message | None]:
+    """:func:`_sortie_plan` over a serpentine already laid out (one pass, or both passes
+    of a crosshatch, :mod:`.crosshatch`); ``takeoff_uv`` and ``air.boundary`` in the
+    serpentine's frame."""
+    ex_strip, path, start_xy, end_xy = serp.ex_strip, serp.path, serp.start_xy, serp.end_xy
+    lead_in = turn.lead_m
+    lead_out = max(turn.lead_m, serp.base_m / 2.0)
     transit = None
-    zeros = np.zeros(len(ex_v))
+    zeros = np.zeros(len(path))
     t_in = t_out = zeros
     if takeoff_uv is not None or (air is not None and air.boundary is not None):
         transit = boundary_transit(air.boundary if air is not None else None, start_xy,
@@ -552,9 +586,8 @@ def _sortie_plan(parts: _Parts, turn: Turn, takeoff_uv: tuple[float, float] | No
             t_out = np.hypot(*(end_xy - np.asarray(takeoff_uv)).T)
     timed = bool(speed_ms and speed_ms > 0 and air is not None and math.isfinite(speed_ms))
     penalty = overhead = None
-    if timed and air is not None and speed_ms is not None and len(ex_v):
-        penalty = turn_penalties_m(ex_strip, ex_v, parts.u_m, turn.kind, turn.lead_m,
-                                   speed_ms, air.model, parts.base_m / 2.0)
+    if timed and air is not None and speed_ms is not None and len(path):
+        penalty = serp.penalty(speed_ms, air.model)
         overhead = sortie_overhead_m(speed_ms, air.height_m, air.model)
         notes["sortie_overhead_s"] = overhead / speed_ms
     limit = None
@@ -563,11 +596,11 @@ def _sortie_plan(parts: _Parts, turn: Turn, takeoff_uv: tuple[float, float] | No
             limit = max_min * 60.0 * speed_ms
         if not math.isfinite(limit) or not np.isfinite(path).all():
             limit = None
-        elif limit < parts.base_m:
+        elif limit < serp.base_m:
             plan, _ = pack_sorties(path, ex_strip, t_in, t_out, lead_in_m=lead_in,
                                    lead_out_m=lead_out, limit_m=None, transit=transit)
             return plan, ex_strip, Message("layout.sortie_too_short", limit=max_min,
-                                           base=parts.base_m, speed=speed_ms)
+                                           base=serp.base_m, speed=speed_ms)
     if limit is not None and len(path):
         notes["packing_bound"] = packing_bound(float(path[-1] - path[0]) + lead_in
                                                + lead_out, limit)

@@ -233,8 +233,27 @@ class _Context:
             nxt = groups[g + 1]
             q = np.array([self.x[nxt[0]], self.y[nxt[0]]])
             alt_ref = self._higher(end, int(nxt[0]))
+            following = int(self.strip[nxt[0]])
+            if self.layout.strip_pass(following) != self.layout.strip_pass(number):
+                pts += self._pass_transit(pe, h, q, self._heading(following, nxt), number,
+                                          alt_ref)
+                continue
             path = turn_path(pe, h, q, self.lead_m, self.turn_kind)
             pts += _with_trigger_off(pe, path, base / 2.0, number, alt_ref)
+        return pts
+
+    def _pass_transit(self, pe: np.ndarray, h: np.ndarray, q: np.ndarray, h2: np.ndarray,
+                      number: int, photo: int) -> list[MissionPoint]:
+        """From a crosshatch's first pass to its second (:mod:`.crosshatch`): disarmed
+        half a base past the last photo, the run-out, straight to the run-in before the
+        next strip's first photo ``q`` (heading ``h2``; its run puts ``q``)."""
+        base = self.layout.base_m
+        out = max(self.lead_m, base / 2.0)
+        pts = [MissionPoint(*(pe + base / 2.0 * h), "trigger_off", number, photo, 0.0)]
+        if out > base / 2.0:
+            pts.append(MissionPoint(*(pe + out * h), "run_out", number, photo))
+        if self.lead_m > 0:
+            pts.append(MissionPoint(*(q - self.lead_m * h2), "run_in", number + 1, photo))
         return pts
 
     def _runs(self, mine: np.ndarray) -> list[np.ndarray]:

@@ -529,7 +529,8 @@ def worst_ground(layout: FlightLayout, ground: Ground, cols: dict[str, NDArray[A
     g = np.asarray(centre_m, dtype=float)
     x, y = cols["x_m"].astype(float), cols["y_m"].astype(float)
     strip = cols["strip"].astype(np.int64)
-    path = path_ground(ground.grid, x, y, strip, layout.direction_deg, run_in_m(layout),
+    directions = layout.directions_deg(strip)  # each strip's own (a crosshatch's passes)
+    path = path_ground(ground.grid, x, y, strip, directions, run_in_m(layout),
                        ground.low_m, ground.high_m)
     # a centre with ground known on a path without (outside the DEM's grid) keeps its own
     p_hi = np.where(path.known | ~np.isfinite(g), path.high_m, np.fmax(g, path.high_m))
@@ -539,7 +540,7 @@ def worst_ground(layout: FlightLayout, ground: Ground, cols: dict[str, NDArray[A
         p_lo = np.where(np.isfinite(g), g, ground.low_m)
     alt = altitudes_m(p_hi, strip, mode, height_m, follow_tolerance_m)
     f_lo, f_hi = footprint_ground(ground.grid, x, y, alt, np.where(np.isfinite(g), g, p_lo),
-                                  layout.direction_deg, across_per_m, along_per_m,
+                                  directions, across_per_m, along_per_m,
                                   ground.low_m, ground.high_m)
     return WorstGround(g, p_lo, p_hi, f_lo, f_hi, alt)
 

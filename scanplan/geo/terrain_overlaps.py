@@ -26,7 +26,13 @@ if TYPE_CHECKING:
 
 # --- overlaps ------------------------------------------------------------------------------
 
-def _axes(direction_deg: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+def _axes(direction_deg: float | NDArray[np.float64]
+          ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The unit vectors along and across the lines (x, y); one per photo (2 × n) for one
+    direction per photo (a crosshatch's two passes)."""
+    if np.ndim(direction_deg):
+        t = np.radians(np.asarray(direction_deg, dtype=float))
+        return np.array([np.sin(t), np.cos(t)]), np.array([np.cos(t), -np.sin(t)])
     t = math.radians(direction_deg)
     return np.array([math.sin(t), math.cos(t)]), np.array([math.cos(t), -math.sin(t)])
 
@@ -59,8 +65,16 @@ def _side_pairs(x: NDArray[np.float64], y: NDArray[np.float64], strip: NDArray[n
     numbers = np.unique(strip)
     mean_v = np.array([v[strip == k].mean() for k in numbers])
     by_v = numbers[np.argsort(mean_v)]
+    pairs = list(itertools.pairwise(by_v))
+    if np.ndim(along) > 1:  # a crosshatch: neighbours within each pass (one direction)
+        first = {int(k): int(np.flatnonzero(strip == k)[0]) for k in numbers}
+        heading = {k: (round(float(along[0][i]), 9), round(float(along[1][i]), 9))
+                   for k, i in first.items()}
+        pairs = [(k0, k1) for k0, k1 in (
+            pair for d in dict.fromkeys(heading.values())
+            for pair in itertools.pairwise([k for k in by_v if heading[int(k)] == d]))]
     a_all, b_all, d_all = [], [], []
-    for k0, k1 in itertools.pairwise(by_v):
+    for k0, k1 in pairs:
         i0 = np.flatnonzero(strip == k0)
         i1 = np.flatnonzero(strip == k1)
         order = np.argsort(u[i1])
@@ -124,7 +138,7 @@ def photo_overlaps(layout: FlightLayout, cols: dict[str, NDArray[Any]], alt: NDA
     x, y = cols["x_m"].astype(float), cols["y_m"].astype(float)
     strip = cols["strip"].astype(np.int64)
     plan_crs = layout.area.plan_crs
-    along, across = _axes(layout.direction_deg)
+    along, across = _axes(layout.directions_deg(strip))
     fw = _forward_pairs(x, y, strip, along, layout.base_m)
     sd = _side_pairs(x, y, strip, along, across)
     fw_pct = _pair_overlap_pct(fw, x, y, alt, ground, plan_crs, sensor_height_mm, focal_mm,

@@ -50,7 +50,13 @@ def run_in_m(layout: FlightLayout) -> float:
     return layout.spacing_m / 2.0 if math.isfinite(layout.spacing_m) else 0.0
 
 
-def _axes(direction_deg: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+def _axes(direction_deg: float | NDArray[np.float64]
+          ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The unit vectors along and across the lines (x, y); one per photo (2 × n) for one
+    direction per photo (a crosshatch's two passes)."""
+    if np.ndim(direction_deg):
+        t = np.radians(np.asarray(direction_deg, dtype=float))
+        return np.array([np.sin(t), np.cos(t)]), np.array([np.cos(t), -np.sin(t)])
     t = math.radians(direction_deg)
     return np.array([math.sin(t), math.cos(t)]), np.array([math.cos(t), -math.sin(t)])
 
@@ -66,7 +72,8 @@ class PathGround:
 
 
 def path_ground(grid: GroundGrid | None, x_m: NDArray[np.float64], y_m: NDArray[np.float64],
-                strip: NDArray[np.int64], direction_deg: float, extend_m: float,
+                strip: NDArray[np.int64], direction_deg: float | NDArray[np.float64],
+                extend_m: float,
                 low_m: float, high_m: float) -> PathGround:
     """The ground under each photo's stretch of its flight line (module notes).
 
@@ -76,8 +83,8 @@ def path_ground(grid: GroundGrid | None, x_m: NDArray[np.float64], y_m: NDArray[
         None without a DEM: every stretch lies between ``low_m`` and ``high_m``.
     x_m, y_m, strip : ndarray
         Photo centres in strip order, each strip in flight order.
-    direction_deg : float
-        The lines' direction [°].
+    direction_deg : float or ndarray
+        The lines' direction [°] (one per photo for a crosshatch).
     extend_m : float
         Run-in and run-out past the first and last photo of a strip [m].
     low_m, high_m : float
@@ -115,7 +122,8 @@ def path_ground(grid: GroundGrid | None, x_m: NDArray[np.float64], y_m: NDArray[
 
 def footprint_ground(grid: GroundGrid | None, x_m: NDArray[np.float64],
                      y_m: NDArray[np.float64], altitude_m: NDArray[np.float64],
-                     ground_m: NDArray[np.float64], direction_deg: float,
+                     ground_m: NDArray[np.float64],
+                     direction_deg: float | NDArray[np.float64],
                      across_per_m: float, along_per_m: float, low_m: float, high_m: float
                      ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Lowest and highest ground over each footprint [m] (the block's extremes where

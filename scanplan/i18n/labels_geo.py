@@ -32,6 +32,8 @@ def crs_name(name: str, locale: str) -> str:
 GEO: dict[str, dict[str, str]] = {
     "en": {
         "warn_area_scale_distortion": "The planning projection distorts the area",
+        "warn_crosshatch": "Crosshatch (double grid)",
+        "geo_crosshatch": "crosshatch (two passes at {first}° and {second}°)",
         "warn_area_latlon_swapped": "Latitude and longitude of the area look swapped",
         "warn_site_far_from_area": "The site of the sun window is far from the area",
         "warn_map_tiles_unreachable": "The map's background did not come",
@@ -117,6 +119,8 @@ GEO: dict[str, dict[str, str]] = {
     },
     "ru": {
         "warn_area_scale_distortion": "Проекция планирования искажает участок",
+        "warn_crosshatch": "Двойная сетка",
+        "geo_crosshatch": "двойная сетка (два прохода: {first}° и {second}°)",
         "warn_area_latlon_swapped": "Широта и долгота участка, похоже, перепутаны",
         "warn_site_far_from_area": "Место расчёта окна съёмки по Солнцу далеко от участка",
         "warn_map_tiles_unreachable": "Подложка карты не получена",

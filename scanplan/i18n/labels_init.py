@@ -26,6 +26,8 @@ INIT: dict[str, dict[str, str]] = {
         "film": "film camera photos, scanned", "camera": "scanplan cameras list",
         "r": "resolving power of the photos R [lines/mm]",
         "forward": "[%], 50 or more (stereo)", "side": "[%], 10 or more",
+        "crosshatch": "true: fly the area twice, the second pass at the direction + 90° "
+                      "(a double grid, for 3D models)",
         "archive": "existing (archive) photos: their scale is given, not chosen",
         "scales": "candidate photo scales Mc to choose from",
         "scale_instead": "instead: the scale of existing photos",
@@ -76,6 +78,8 @@ INIT: dict[str, dict[str, str]] = {
         "film": "плёночные аэроснимки, сканируются", "camera": "scanplan cameras list",
         "r": "разрешающая способность снимков R [лин/мм]",
         "forward": "[%], не менее 50 (стереопары)", "side": "[%], не менее 10",
+        "crosshatch": "true: облететь участок дважды, второй проход под углом 90° к первому "
+                      "(двойная сетка, для 3D-моделей)",
         "archive": "имеющиеся (архивные) снимки: масштаб задан, не выбирается",
         "scales": "рассматриваемые масштабы снимков Mc",
         "scale_instead": "либо масштаб имеющихся снимков",

@@ -91,6 +91,7 @@ PAGE: dict[str, dict[str, str]] = {
         "area_km2": "Area size", "km2": "km²", "plan_crs": "Planning CRS",
         "lbl.uav.speed_ms": "Ground speed", "lbl.uav.max_flight_time_min":
         "Flight time of one sortie", "lbl.area.direction_deg": "Flight-line direction",
+        "lbl.uav.crosshatch": "Crosshatch (double grid)",
         "lbl.film.photo_scales": "Candidate photo scales",
         "unit.m": "m", "unit.m/s": "m/s", "unit.min": "min", "unit.s": "s", "unit.mm": "mm",
         "unit.µm": "µm", "unit.cm": "cm", "unit.h": "h", "unit.rad/s": "rad/s",
@@ -186,6 +187,7 @@ PAGE: dict[str, dict[str, str]] = {
         "area_km2": "Площадь", "km2": "км²", "plan_crs": "Система координат расчёта",
         "lbl.uav.speed_ms": "Путевая скорость", "lbl.uav.max_flight_time_min":
         "Продолжительность одного вылета", "lbl.area.direction_deg": "Направление маршрутов",
+        "lbl.uav.crosshatch": "Двойная сетка (второй проход под 90°)",
         "lbl.film.photo_scales": "Масштабы снимков (варианты)",
         "unit.m": "м", "unit.m/s": "м/с", "unit.min": "мин", "unit.s": "с", "unit.mm": "мм",
         "unit.µm": "мкм", "unit.cm": "см", "unit.h": "ч", "unit.rad/s": "рад/с",

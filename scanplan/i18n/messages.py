@@ -392,6 +392,16 @@ MESSAGES: dict[str, dict[str, str]] = {
               "разделите блок по зонам или задайте проекцию для середины участка "
               "(⁅[area] plan_crs⁆).",
     },
+    "crosshatch": {
+        "en": "crosshatch: the area is flown twice — the first pass at {direction:.1f}° "
+              "({first} strips), then the second at {cross:.1f}° ({second} strips), with a "
+              "pass transit of {transit:,.0f} m between them; every plan compared is flown "
+              "so, as ⁅[uav] crosshatch⁆ asks",
+        "ru": "Двойная сетка: участок облетается дважды — первый проход под {direction:.1f}° "
+              "(маршрутов: {first}), затем второй под {cross:.1f}° (маршрутов: {second}), "
+              "переход между проходами {transit:,.0f}~м; так облетаются все сравниваемые "
+              "планы, как задано ⁅[uav] crosshatch⁆.",
+    },
     "flight_not_feasible": {
         "en": "the flight plan over the area is not feasible: {why}",
         "ru": "План полёта над участком невыполним: {why}",

@@ -61,6 +61,9 @@ class LayoutOptions:
     relief_m : float
         The ground's height range under the area [m]: a sortie climbs and descends at
         most this much more than its planned height (the sortie time).
+    crosshatch : bool
+        ``[uav] crosshatch``: fly the area twice, the second pass at the direction + 90°
+        (a double grid, :mod:`scanplan.geo.crosshatch`; default False).
     """
 
     direction_deg: float | str | None = None
@@ -72,6 +75,7 @@ class LayoutOptions:
     ground_m: float = 0.0
     takeoff_lonlat: tuple[float, float] | None = None
     relief_m: float = 0.0
+    crosshatch: bool = False
 
 
 def area_from_options(spec: AreaSpec, area_m: tuple[float, float] | None = None
@@ -112,6 +116,8 @@ def check_options(opts: LayoutOptions, area: Area, speed_ms: float | None) -> No
             raise InputError(key, f"must be in ({d.lo:g}, {d.hi:g}] (got {v!r})")
     if opts.bank_deg is not None and not speed_ms:
         raise InputError("bank_deg", "needs the ground speed (> 0) for the turn radius")
+    if not isinstance(opts.crosshatch, bool):
+        raise InputError("crosshatch", f"must be true or false (got {opts.crosshatch!r})")
     if opts.takeoff_lonlat is not None and not area.georeferenced:
         raise InputError("takeoff", "applies to a polygon area; the width_m × length_m "
                          "block has no place on the map")
@@ -155,7 +161,10 @@ def uav_layout(plan: UavPlan, area: Area, opts: LayoutOptions | None = None,
               "resolution_cm": (plan.ground_resolution_m * 100.0
                                 if plan.ground_resolution_m is not None else math.nan),
               "recognition_p": p_rec if p_rec is not None else math.nan}
-    return plan_lines(
+    lay_out = plan_lines
+    if opts.crosshatch:  # the area flown twice, the second pass at + 90°
+        from ..geo.crosshatch import plan_crosshatch as lay_out
+    return lay_out(
         area, spacing_m=fl["line_spacing_m"], base_m=fl["base_m"],
         footprint_across_m=fl["footprint_across_m"], footprint_along_m=fl["footprint_along_m"],
         height_m=plan.heights_m["planned"], direction_deg=_direction(opts, area),
@@ -220,6 +229,12 @@ def layout_warnings(layout: FlightLayout) -> tuple[PlanWarning, ...]:
         out += (PlanWarning("area_scale_distortion", Message(
             "area_scale_distortion", crs=area.plan_crs, pct=area.scale_error_pct,
             west=west, east=east)),)
+    if layout.crosshatch and layout.feasible:
+        n = layout.first_pass_strips or 0
+        out += (PlanWarning("crosshatch", Message(
+            "crosshatch", first=n, second=len(layout.strips) - n,
+            direction=layout.direction_deg, cross=layout.cross_direction_deg,
+            transit=float(layout.notes.get("pass_transit_m", 0.0))), severity="info"),)
     if not layout.feasible:
         out += (PlanWarning("flight_not_feasible", Message("flight_not_feasible",
                                                            why=layout.reason or "")),)

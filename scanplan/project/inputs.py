@@ -128,6 +128,8 @@ def _shown(value: Any) -> str:
     """A default as the help shows it: 15.0 → ``15``, ``"en"`` → ``"en"``."""
     if isinstance(value, str):
         return f'"{value}"'
+    if isinstance(value, bool):  # as TOML writes it
+        return "true" if value else "false"
     if isinstance(value, float) and value.is_integer():
         return str(int(value))
     return f"{value:g}" if isinstance(value, float) else str(value)
@@ -468,6 +470,10 @@ _RECORDS: tuple[Input, ...] = (
           "block and back is flown within its battery and counted in the flight's length "
           "and time", note="default: none — no transit counted, each mission's home is its "
           "first waypoint", digits=7),
+    Input("crosshatch", "uav", "crosshatch", "bool", "fly the area twice, the second pass's "
+          "lines at the direction + 90° (a double grid): every point photographed along two "
+          "line directions, for 3D models of buildings and a stronger block; the strips, "
+          "photos and flying time of both passes", default=False),
     Input("aircraft", "uav", "aircraft", _STR, "the aircraft that carries the camera, a "
           "catalogue id: its battery's usable flight time (the published flight time less "
           "the battery reserve) is the sortie time, its cruise speed the ground speed where "
@@ -659,7 +665,7 @@ def option_names() -> dict[str, str]:
     return out
 
 
-KINDS = ("str", "int", "number", "scale", "scales", "range", "date", "feature", "polygon",
+KINDS = ("str", "bool", "int", "number", "scale", "scales", "range", "date", "feature", "polygon",
          "crs", "direction", "point", "checkpoints")
 
 

@@ -65,6 +65,8 @@ def check_type(kind: str, value: Any) -> str | None:
     ``"str"``, ``"number"``, ``"scale"`` …), or None."""
     if kind == "str":
         return None if isinstance(value, str) else "must be text (in quotes)"
+    if kind == "bool":
+        return None if isinstance(value, bool) else "must be true or false"
     if kind == "int":
         ok = isinstance(value, int) and not isinstance(value, bool)
         return None if ok else "must be a whole number"

@@ -206,6 +206,7 @@ class FlightSection:
     max_flight_time_min: float | None = None
     aircraft: str | None = None
     max_flying_days: int | None = None
+    crosshatch: bool = False
 
 
 @dataclass(frozen=True)
@@ -609,7 +610,7 @@ def build_model(project: Project) -> ProjectModel:
         area=area,
         flight=FlightSection(g("uav", "turnaround_m"), g("uav", "turn_radius_m"),
                              g("uav", "bank_deg"), g("flight", "takeoff"), uav_sortie,
-                             _aircraft(r), _flying_days(r)),
+                             _aircraft(r), _flying_days(r), bool(g("uav", "crosshatch", False))),
         film=film, uav=uav, terrain=terrain,
         site=site if project.has("site") else None, schedule=schedule,
         lines=FrozenMap(project.lines), control=control)

@@ -277,7 +277,8 @@ def _layout_keys_given(project: ProjectModel) -> list[tuple[str, str]]:
             (("uav", "turnaround_m"), f.turnaround_m), (("uav", "turn_radius_m"), f.turn_radius_m),
             (("uav", "bank_deg"), f.bank_deg), (("uav", "max_flight_time_min"),
                                                 f.max_flight_time_min),
-            (("flight", "takeoff"), f.takeoff))
+            (("flight", "takeoff"), f.takeoff),
+            (("uav", "crosshatch"), f.crosshatch or None))
     return [k for k, v in keys if v is not None]
 
 
@@ -308,7 +309,7 @@ def _layout_options(project: ProjectModel, platform: str = "uav",
         turnaround_m=f.turnaround_m, turn_radius_m=f.turn_radius_m, bank_deg=f.bank_deg,
         # the one sortie length: it splits the layout and counts the schedule's sorties
         max_flight_time_min=sortie_length(project, platform).minutes,
-        takeoff_lonlat=f.takeoff, relief_m=relief_m)
+        takeoff_lonlat=f.takeoff, relief_m=relief_m, crosshatch=f.crosshatch)
 
 
 def _platform(kw: dict[str, Any]) -> str:

@@ -68,8 +68,14 @@ def layout_dict(layout: Any) -> dict[str, Any]:
         if lonlat is not None:
             row["start_lonlat"] = [float(lonlat[i, 0]), float(lonlat[i, 1])]
             row["end_lonlat"] = [float(lonlat[i, 2]), float(lonlat[i, 3])]
+        if layout.crosshatch:
+            row["direction_deg"] = layout.strip_direction_deg(s.number)
         strips.append(row)
-    return _clean({
+    cross = ({"crosshatch": True, "cross_direction_deg": layout.cross_direction_deg,
+              "first_pass_strips": layout.first_pass_strips,
+              "pass_transit_m": layout.notes.get("pass_transit_m")}
+             if layout.crosshatch else {})
+    return _clean({**cross,
         "kind": layout.kind, "direction_deg": layout.direction_deg,
         "line_spacing_m": layout.spacing_m, "base_m": layout.base_m,
         "footprint_across_m": layout.footprint_across_m,

@@ -433,6 +433,15 @@ def _point_text(xy: tuple[float, float], lonlat: Any, locale: str) -> str:
     return f"{number(lat, 6, locale)}; {number(lon, 6, locale)}"
 
 
+def _direction(layout: FlightLayout, locale: str) -> float | str:
+    """The lines' direction [°]; a crosshatch's two as words."""
+    if layout.cross_direction_deg is None:
+        return layout.direction_deg
+    return t("geo_crosshatch", locale).format(first=number(layout.direction_deg, 1, locale),
+                                              second=number(layout.cross_direction_deg, 1,
+                                                            locale))
+
+
 def summary_items(layout: FlightLayout, locale: str) -> list[tuple[str, Any, int]]:
     """The layout's figures as (label, value, decimals); the CRS is text."""
     film = layout.kind == "film"
@@ -441,7 +450,7 @@ def summary_items(layout: FlightLayout, locale: str) -> list[tuple[str, Any, int
         (t("coordinate_system", locale), crs_text(layout, locale), 0),
         (t("area_km2", locale), a.area_km2, 2),  # the digits of every other document
         (t("geo_perimeter_km", locale), a.perimeter_km, 1),
-        (t("geo_direction_deg", locale), layout.direction_deg, 1),
+        (t("geo_direction_deg", locale), _direction(layout, locale), 1),
         (t("geo_spacing_m", locale), layout.spacing_m, 1),
         (t("geo_base_m", locale), layout.base_m, 1),
         (t("n_strips", locale), len(layout.strips), 0),

@@ -50,7 +50,12 @@ def format_layout(layout: Any, scale: str = "", locale: str = "en") -> str:
     head = f.cli("flight_lines") + (f" {f.cli('at_scale')} {scale}" if scale else "")
     n_photos = int(layout.notes.get("photos", len(layout.photos)))
     n_strips = len(layout.strips)
-    text = (f"{head}: {f.cli('direction')} {f.fixed(layout.direction_deg, 1)}°, "
+    lines = f"{f.cli('direction')} {f.fixed(layout.direction_deg, 1)}°"
+    cross = getattr(layout, "cross_direction_deg", None)  # a crosshatch's second pass
+    if cross is not None:
+        lines = f.cli("crosshatch", first=f.fixed(layout.direction_deg, 1),
+                      second=f.fixed(cross, 1))
+    text = (f"{head}: {lines}, "
             f"{n_strips} {plural(n_strips, _forms(f, 'strip_forms'), f.locale)}, "
             f"{f.num(n_photos, 0)} {plural(n_photos, _forms(f, 'photo_forms'), f.locale)}, "
             f"{f.num(layout.flight_length_m / 1000, 1)} {f.cli('km')} "

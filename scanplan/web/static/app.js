@@ -334,7 +334,8 @@
   /* ---------------------------------------------------------------- the form */
   const MAIN = {
     uav: ["map.scale", "map.relief_interval_m", "uav.height_m", "uav.forward_overlap_pct",
-          "uav.side_overlap_pct", "uav.speed_ms", "uav.max_flight_time_min", "area.direction_deg"],
+          "uav.side_overlap_pct", "uav.speed_ms", "uav.max_flight_time_min", "area.direction_deg",
+          "uav.crosshatch"],
     film: ["map.scale", "map.relief_interval_m", "film.photo_scales", "film.forward_overlap_pct",
            "film.side_overlap_pct", "area.direction_deg"],
   };
@@ -359,7 +360,14 @@
     if (row.min != null) range = ` ${row.min_open ? "(" : "["}${row.min} … ${row.max}${row.max_open ? ")" : "]"}`;
     div.innerHTML = `<label for="${id}">${esc(label)}${esc(unit)}</label>`;
     let el;
-    if (row.choices.length) {
+    if (row.kind === "bool") {  // a checkbox whose value reads "true" or "" like a text's
+      el = document.createElement("input");
+      el.type = "checkbox";
+      div.classList.add("check");
+      Object.defineProperty(el, "value", {
+        get() { return this.checked ? "true" : ""; },
+        set(v) { this.checked = v === true || v === "true"; }});
+    } else if (row.choices.length) {
       el = document.createElement("select");
       el.innerHTML = `<option value=""></option>` + row.choices.map((c) =>
         `<option value="${esc(c)}">${esc(c)}</option>`).join("");
@@ -376,8 +384,9 @@
     if (START[el.dataset.key]) el.value = START[el.dataset.key];
     const onEdit = () => { delete el.dataset.orig; schedule(); };
     // a text field plans on every keystroke; its "change" on leaving it is no new edit
-    el.addEventListener(el.tagName === "SELECT" ? "change" : "input", onEdit);
-    div.appendChild(el);
+    el.addEventListener(el.tagName === "SELECT" || el.type === "checkbox" ? "change" : "input",
+                        onEdit);
+    if (el.type === "checkbox") div.insertBefore(el, div.firstChild); else div.appendChild(el);
     const err = document.createElement("p");
     err.className = "field-error"; err.id = id + "-err";
     div.appendChild(err);
@@ -424,6 +433,7 @@
     if (text === "") return undefined;
     const num = (s) => { const x = Number(s.replace(",", ".")); return isNaN(x) ? s : x; };
     switch (el.dataset.kind) {
+      case "bool": return text === "true" ? true : undefined;
       case "number": case "int": return num(text);
       case "scale": case "feature": case "crs": case "direction": case "checkpoints":
         return num(text);
