@@ -630,6 +630,8 @@ def _bad_for(kind: str) -> list[str]:
     if kind == "point":  # [flight] takeoff = [lon, lat]
         return ["[]", "[1]", '"abc"', "[1, 2, 3]", "[200, 50]", "[10, 95]", "[nan, 1]",
                 "true", '[1, "a"]']
+    if kind == "bool":  # [uav] crosshatch = true | false
+        return ['"yes"', "1", "0", "[true]", '"true"', "1.5", "{ a = 1 }"]
     if kind == "checkpoints":  # [control] checkpoints = "asprs" | N
         return ['"all"', "true", "1.5", "[1]", "2", "-1", "10000000", "1e400"]
     raise AssertionError(kind)

@@ -28,6 +28,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import replace
+from typing import Any
 
 import numpy as np
 
@@ -216,34 +217,14 @@ def crosshatch_layout(area: Area, first_parts: _Parts, *, direction: float,
     """
     geom = area.geometry
     a = _Pass(first_parts, direction, origin, turn)
-    best: tuple[float, _Pass] | None = None
-    for turned in (direction + 90.0, direction + 270.0):  # begun from either side
-        try:
-            parts = _pass_parts(geom, turned, origin, spacing_m, base_m, ext, turn)
-        except _TooMany as exc:
-            return _not_flown(Message("layout.too_many_strips", n=exc.n, spacing=spacing_m,
-                                      most=MAX_STRIPS), notes, common)
-        b = _Pass(parts, turned, origin, turn)
-        gap = float(np.hypot(*(b.start_xy[0] - a.end_xy[-1]))) if len(b.path) else math.inf
-        if best is None or gap < best[0]:
-            best = (gap, b)
-    assert best is not None
-    b = best[1]
+    try:
+        b = _second_pass(geom, a, direction, origin, spacing_m, base_m, ext, turn)
+    except _TooMany as exc:
+        return _not_flown(Message("layout.too_many_strips", n=exc.n, spacing=spacing_m,
+                                  most=MAX_STRIPS), notes, common)
     n_a = a.parts.n_strips
     notes["bridged_m"] = a.parts.bridged_m() + b.parts.bridged_m()
-    junction, poly = _junction(a, b, turn) if len(a.path) and len(b.path) else (0.0, None)
-    notes["pass_transit_m"] = junction
-    path = np.r_[a.path, (a.path[-1] if len(a.path) else 0.0) + junction + b.path]
-
-    def penalty(speed: float, model: FlightModel) -> np.ndarray:
-        pa, pb = a.penalty(turn, speed, model), b.penalty(turn, speed, model)
-        jp = (_junction_penalty_m(poly, a.heading(len(a.path) - 1), b.heading(0), speed,
-                                  model) if poly is not None else 0.0)
-        return np.r_[pa, (pa[-1] if len(pa) else 0.0) + jp + pb]
-
-    serp = _Serpentine(np.r_[a.ex_strip, b.ex_strip + n_a], path,
-                       np.vstack([a.start_xy, b.start_xy]), np.vstack([a.end_xy, b.end_xy]),
-                       penalty, base_m)
+    serp, notes["pass_transit_m"] = _joined(a, b, turn, base_m)
     if air is not None:
         air = _Airborne(geom.boundary if air.boundary is not None else None, air.height_m,
                         air.model)
@@ -268,6 +249,39 @@ def crosshatch_layout(area: Area, first_parts: _Parts, *, direction: float,
                         feasible=reason is None, reason=reason, notes=notes,
                         cross_direction_deg=(direction + 90.0) % 180.0,
                         first_pass_strips=n_a, **common)  # type: ignore[arg-type]
+
+
+def _second_pass(geom: Any, a: _Pass, direction: float, origin: tuple[float, float],
+                 spacing_m: float, base_m: float, ext: _Extension, turn: Turn) -> _Pass:
+    """The second pass at ``direction`` + 90°, begun from the side nearer the first pass's
+    end (raises :class:`_TooMany` past the strip limit)."""
+    best: tuple[float, _Pass] | None = None
+    for turned in (direction + 90.0, direction + 270.0):  # begun from either side
+        parts = _pass_parts(geom, turned, origin, spacing_m, base_m, ext, turn)
+        b = _Pass(parts, turned, origin, turn)
+        gap = float(np.hypot(*(b.start_xy[0] - a.end_xy[-1]))) if len(b.path) else math.inf
+        if best is None or gap < best[0]:
+            best = (gap, b)
+    assert best is not None
+    return best[1]
+
+
+def _joined(a: _Pass, b: _Pass, turn: Turn, base_m: float) -> tuple[_Serpentine, float]:
+    """Both passes as one serpentine to pack into sorties, and the transit between the
+    passes [m] (no turn of the strips' own: flown straight from pass to pass)."""
+    junction, poly = _junction(a, b, turn) if len(a.path) and len(b.path) else (0.0, None)
+    path = np.r_[a.path, (a.path[-1] if len(a.path) else 0.0) + junction + b.path]
+
+    def penalty(speed: float, model: FlightModel) -> np.ndarray:
+        pa, pb = a.penalty(turn, speed, model), b.penalty(turn, speed, model)
+        jp = (_junction_penalty_m(poly, a.heading(len(a.path) - 1), b.heading(0), speed,
+                                  model) if poly is not None else 0.0)
+        return np.r_[pa, (pa[-1] if len(pa) else 0.0) + jp + pb]
+
+    serp = _Serpentine(np.r_[a.ex_strip, b.ex_strip + a.parts.n_strips], path,
+                       np.vstack([a.start_xy, b.start_xy]), np.vstack([a.end_xy, b.end_xy]),
+                       penalty, base_m)
+    return serp, junction
 
 
 def _records(a: _Pass, b: _Pass, plan: SortiePlan, ex_strip: np.ndarray, area: Area,

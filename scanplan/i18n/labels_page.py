@@ -187,7 +187,7 @@ PAGE: dict[str, dict[str, str]] = {
         "area_km2": "Площадь", "km2": "км²", "plan_crs": "Система координат расчёта",
         "lbl.uav.speed_ms": "Путевая скорость", "lbl.uav.max_flight_time_min":
         "Продолжительность одного вылета", "lbl.area.direction_deg": "Направление маршрутов",
-        "lbl.uav.crosshatch": "Двойная сетка (второй проход под 90°)",
+        "lbl.uav.crosshatch": "Двойная сетка",
         "lbl.film.photo_scales": "Масштабы снимков (варианты)",
         "unit.m": "м", "unit.m/s": "м/с", "unit.min": "мин", "unit.s": "с", "unit.mm": "мм",
         "unit.µm": "мкм", "unit.cm": "см", "unit.h": "ч", "unit.rad/s": "рад/с",
