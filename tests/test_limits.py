@@ -15,7 +15,7 @@ import zipfile
 
 import pytest
 from click.testing import CliRunner
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 from norm_corpus import english_workbook
 
@@ -252,6 +252,7 @@ def _log(name: str) -> st.SearchStrategy[float]:
 
 
 @settings(max_examples=120, deadline=None)
+@example(mk=100.0, mc=1e6, relief=0.01, size=1.0, r=1.0, focal=1.0)  # P_Z 0.000011 µm
 @given(mk=_log("map_scale"), mc=_log("photo_scale"), relief=_log("relief_interval_m"),
        size=_log("object_size_m"), r=_log("resolving_power_lpmm"), focal=_log("focal_mm"))
 def test_extreme_film_input_prints_no_zero_pixel_inf_or_nan(mk, mc, relief, size, r, focal):

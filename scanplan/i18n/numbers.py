@@ -109,9 +109,12 @@ class Numbers:
 
     def um(self, x: float | None) -> str:
         """A pixel [µm]: one decimal, or two significant digits below 1 µm (never ``0.0``)."""
-        if not _finite(x) or x >= 0.95:  # type: ignore[operator]
+        if not _finite(x) or x >= 0.95 or x <= 0:  # type: ignore[operator]
             return self.fixed(x, 1)
-        return self._dec(f"{x:.2g}")
+        text = f"{x:.2g}"
+        if "e" in text:  # two significant digits written out: 0.000011, not 1.1e-05
+            text = f"{float(text):.{1 - math.floor(math.log10(float(text)))}f}"
+        return self._dec(text)
 
     def scale(self, x: float) -> str:
         """A scale as every document writes it (:func:`scanplan.i18n.messages.scale_text`):
