@@ -18,7 +18,8 @@ Templates use :meth:`str.format` fields with these parameter kinds:
 - ``{x:scale}`` — a scale denominator (:func:`scale_text`: ``1:25000`` in English,
   ``1:25 000`` in Russian, ``1:8000`` in both); ``{x:denominator}`` — the same
   denominator without ``1:`` (``8000``, ``25000``; Russian ``25 000``), for a
-  computation with the scale number (``7 µm × 8000``);
+  computation with the scale number (``7 µm × 8000``); ``{x:um}`` — a pixel [µm] as the
+  tables give it (one decimal; two significant digits below 1 µm, never ``0.0``);
 - lists, each item formatted with the spec and joined by ``", "`` (English) or ``"; "``
   (Russian, where the comma is the decimal separator); a spec starting with ``;`` joins
   with ``"; "`` in both languages;
@@ -158,13 +159,13 @@ MESSAGES: dict[str, dict[str, str]] = {
     },
     # --- the binding constraint at one photo scale -------------------------------------
     "explanation": {
-        "en": "{cid} ({name}) binds at {scale:scale}: {pixel:.1f} µm {reason}{next}.",
-        "ru": "При масштабе {scale:scale} размер пикселя сканирования {pixel:.1f}~мкм "
+        "en": "{cid} ({name}) binds at {scale:scale}: {pixel:um} µm {reason}{next}.",
+        "ru": "При масштабе {scale:scale} размер пикселя сканирования {pixel:um}~мкм "
               "определяет условие {cid} ({name}): такой пиксель {reason}{next}.",
     },
     "explanation.next": {
-        "en": "; next is {cid} at {pixel:.1f} µm (+{margin:.0f} %)",
-        "ru": "; следующее условие — {cid}, {pixel:.1f}~мкм (+{margin:.0f}~%)",
+        "en": "; next is {cid} at {pixel:um} µm (+{margin:.0f} %)",
+        "ru": "; следующее условие — {cid}, {pixel:um}~мкм (+{margin:.0f}~%)",
     },
     # --- film warnings (the conclusions of Miheeva & Ilushenko 2015) ------------------
     "at_scale": {
@@ -586,6 +587,10 @@ def _number(x: float, spec: str, locale: str) -> str:
         return scale_text(x, locale)
     if spec == "denominator":
         return scale_text(x, locale)[2:]
+    if spec == "um":  # a pixel as the tables give it: 12.5, 0.55, 0.000011 (never 0.0)
+        from .numbers import Numbers
+
+        return Numbers(locale).um(x)
     if spec == "id":  # an identifier (a photo's, a strip's number): never grouped
         return str(int(x))
     if spec.endswith("d") and float(x).is_integer():
