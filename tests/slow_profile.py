@@ -44,6 +44,7 @@ SLOW_TESTS: dict[str, frozenset[str]] = {
         "test_without_pdf_engine_the_rest_is_written",
     }),
     "test_control": frozenset({"test_with_the_valley_dem_markers_leave_steep_ground"}),
+    "test_crosshatch": frozenset({"test_the_documents_say_crosshatch_and_fly_both_passes"}),
     "test_documents_path": frozenset({
         "test_write_writes_every_file_plan_out_writes_byte_for_byte",
     }),
@@ -80,6 +81,8 @@ SLOW_TESTS: dict[str, frozenset[str]] = {
         "test_10_a_type_checker_reads_the_api",
         "test_8_documents_are_rendered_only_by_documents_py",
         "test_9_no_ungrouped_number_with_a_unit_in_any_document",
+        "test_9_no_underscore_between_letters_in_a_pdf",
+        "test_9_no_latin_gsd_in_russian_documents_but_as_a_symbol",
     }),
     "test_plan_choice": frozenset({
         "test_a_spike_under_a_line_no_longer_keeps_the_height_lowered_for_it",
