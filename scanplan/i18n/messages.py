@@ -45,6 +45,7 @@ Plain data and :meth:`str.format`; no I/O (base module).
 
 from __future__ import annotations
 
+import math
 import numbers
 import re
 import string
@@ -582,15 +583,27 @@ def _grouped(spec: str, x: float) -> str:
     return m["head"] + "," + m["tail"]
 
 
+def pixel_text(x: float, locale: str) -> str:
+    """A pixel [µm] as every document prints it: one decimal (thousands grouped), or two
+    significant digits below 1 µm written out (``0.55``, ``0.000011``; never ``0.0``)."""
+    if x >= 0.95 or x <= 0:
+        text = format(x, ",.1f")
+    else:
+        text = f"{x:.2g}"
+        if "e" in text:  # two significant digits written out: 0.000011, not 1.1e-05
+            text = f"{float(text):.{1 - math.floor(math.log10(float(text)))}f}"
+    if locale != "ru":
+        return text
+    return text.replace(",", _NBSP).replace(".", ",")
+
+
 def _number(x: float, spec: str, locale: str) -> str:
     if spec == "scale":
         return scale_text(x, locale)
     if spec == "denominator":
         return scale_text(x, locale)[2:]
     if spec == "um":  # a pixel as the tables give it: 12.5, 0.55, 0.000011 (never 0.0)
-        from .numbers import Numbers
-
-        return Numbers(locale).um(x)
+        return pixel_text(x, locale)
     if spec == "id":  # an identifier (a photo's, a strip's number): never grouped
         return str(int(x))
     if spec.endswith("d") and float(x).is_integer():

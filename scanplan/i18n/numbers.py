@@ -13,7 +13,7 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
-from .messages import scale_text
+from .messages import pixel_text, scale_text
 
 __all__ = ["MISSING", "Numbers"]
 
@@ -111,10 +111,7 @@ class Numbers:
         """A pixel [µm]: one decimal, or two significant digits below 1 µm (never ``0.0``)."""
         if not _finite(x) or x >= 0.95 or x <= 0:  # type: ignore[operator]
             return self.fixed(x, 1)
-        text = f"{x:.2g}"
-        if "e" in text:  # two significant digits written out: 0.000011, not 1.1e-05
-            text = f"{float(text):.{1 - math.floor(math.log10(float(text)))}f}"
-        return self._dec(text)
+        return pixel_text(float(x), self.locale)  # type: ignore[arg-type]
 
     def scale(self, x: float) -> str:
         """A scale as every document writes it (:func:`scanplan.i18n.messages.scale_text`):
