@@ -57,10 +57,11 @@ def _feature(kind: str, geometry: dict[str, Any], **props: Any) -> dict[str, Any
 
 
 def _area(area: Any) -> dict[str, Any]:
-    import pyproj
     import shapely
 
-    tr = pyproj.Transformer.from_crs(area.plan_crs, 4326, always_xy=True)
+    from ..geo.crs import transformer
+
+    tr = transformer(area.plan_crs, 4326)
     geom = shapely.transform(area.geometry, tr.transform,
                              interleaved=False)
     return _feature("area", shapely.geometry.mapping(geom))
@@ -85,9 +86,9 @@ def _profile(photos: Any, number: int) -> dict[str, Any]:
 
 def _layout(platform: str, layout: Any, most_photos: int, dem: bool = False
             ) -> list[dict[str, Any]]:
-    import pyproj
+    from ..geo.crs import transformer
 
-    tr = pyproj.Transformer.from_crs(layout.area.plan_crs, 4326, always_xy=True)
+    tr = transformer(layout.area.plan_crs, 4326)
     out = []
     for s in layout.strips:
         parts = s.parts or ((s.start_xy_m, s.end_xy_m),)
