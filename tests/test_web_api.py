@@ -83,6 +83,33 @@ def test_the_view_names_the_planning_crs_in_the_page_language(client):
     assert client.post("/api/view", json=local).json()["crs"] is None
 
 
+def test_the_views_json_text_is_the_answer_a_dict_would_have_been(client, monkeypatch):
+    """The worker's JSON text of the view (the plan's text spliced in as it was written) is
+    byte for byte what FastAPI sends for :func:`view_job`'s dict; a lone surrogate in the
+    plan's text is escaped as in any other answer."""
+    from fastapi.responses import JSONResponse
+
+    from scanplan.web import jobs
+    from scanplan.web.bodies import printable_data
+
+    req = example_request(client, EXAMPLES / "uav-town-2000.toml")
+    files = {name: str(client.app.state.uploads.path(i, "f")) for name, i in
+             req["files"].items()}
+    text = jobs.view_json_job(req["project"], files)
+    assert text == JSONResponse(printable_data(jobs.view_job(req["project"], files))).body
+    assert client.post("/api/view", json=req).content == text
+    made = jobs._plan_doc
+
+    def lone(result, folder):
+        doc, plan_text = made(result, folder)
+        return doc, plan_text.replace('"project":{', '"project":{"x":"a\ud800",', 1)
+
+    monkeypatch.setattr(jobs, "_plan_doc", lone)
+    v = json.loads(jobs.view_json_job(req["project"], files))
+    assert v["plan"]["project"]["x"] == "a\\ud800"
+    assert v["map"] == json.loads(text)["map"]
+
+
 def _cli_error(tmp_path: Path, project: dict) -> str:
     """What ``scanplan plan`` says on stderr for the project file of ``project``."""
     f = tmp_path / "project.toml"

@@ -616,3 +616,31 @@ def test_the_crosshatch_checkbox_speaks_russian(server, browser):
     page = _open(browser, server, lang="ru")
     assert page.inner_text("label[for='f-uav-crosshatch']") == "Двойная сетка"
     assert not page.errors, page.errors
+
+
+def test_a_lone_edit_is_asked_for_at_once_and_an_identical_one_not_again(server, browser):
+    """The first edit after a pause goes out in its own event (no pause before the
+    request); the same input again within the gathering time sends nothing new: one
+    request, its answer shown."""
+    page = _open(browser, server)
+    _town_plan(page)
+    sent = []
+    page.on("request", lambda r: sent.append(r.url) if "/api/view" in r.url else None)
+    before = _seq(page)
+    at_once = page.evaluate("""() => {
+      const el = document.getElementById('f-uav-height_m');
+      el.value = '125';
+      el.dispatchEvent(new Event('input', {bubbles: true}));
+      const planning = document.body.dataset.planning === '1';
+      el.dispatchEvent(new Event('input', {bubbles: true}));
+      return planning;
+    }""")
+    assert at_once
+    _planned(page, before)
+    page.wait_for_timeout(300)  # the gathered second event's turn has passed
+    assert len(sent) == 1, sent
+    assert _seq(page) == before + 1
+    assert page.evaluate("document.body.dataset.result") == "ok"
+    assert page.input_value("#f-uav-height_m") == "125"
+    assert not page.errors, page.errors
+    page.close()

@@ -23,7 +23,20 @@ def scale_value(x: float) -> int | float:
     return int(x) if math.isfinite(x) and float(x).is_integer() else x
 
 
+_PLAIN = (str, int, bool, type(None))
+
+
 def _clean(x: Any) -> Any:
+    """``x`` with every non-finite float None, mappings as dicts, sequences as lists."""
+    kind = type(x)  # the plain types first, without the ABC checks below (same answers)
+    if kind is dict:
+        return {k: _clean(v) for k, v in x.items()}
+    if kind is float:
+        return x if math.isfinite(x) else None
+    if kind in _PLAIN:
+        return x
+    if kind is list or kind is tuple:
+        return [_clean(v) for v in x]
     if isinstance(x, float) and not math.isfinite(x):
         return None
     if isinstance(x, Mapping):  # a dict, or a name in both languages (i18n Names)
@@ -53,9 +66,9 @@ def layout_dict(layout: Any) -> dict[str, Any]:
     ends = np.array([[*s.start_xy_m, *s.end_xy_m] for s in layout.strips]).reshape(-1, 4)
     lonlat = None
     if layout.area.georeferenced and len(ends):
-        import pyproj
+        from ..geo.crs import transformer
 
-        tr = pyproj.Transformer.from_crs(layout.area.plan_crs, 4326, always_xy=True)
+        tr = transformer(layout.area.plan_crs, 4326)
         lon0, lat0 = tr.transform(ends[:, 0], ends[:, 1])
         lon1, lat1 = tr.transform(ends[:, 2], ends[:, 3])
         lonlat = np.column_stack([lon0, lat0, lon1, lat1])

@@ -227,20 +227,21 @@ def _routes(app: FastAPI, planner: Planner, store: UploadStore, documents: Docum
 
     gate = EditGate(planner.wait_s)
 
-    @app.post("/api/view", response_model=None)
-    def view(req: PlanRequest, request: Request) -> dict[str, Any] | JSONResponse:
+    @app.post("/api/view", response_model=None, response_class=JSONResponse)
+    def view(req: PlanRequest, request: Request) -> Response:
         """``plan`` (as /api/plan), ``map`` (GeoJSON, WGS 84), ``charts`` (SVG), ``toml``.
         With ``X-Scanplan-Edit: PAGE/N`` an edit a newer one of the same page replaced is
-        answered 409 without being planned (:mod:`scanplan.web.edits`)."""
+        answered 409 without being planned (:mod:`scanplan.web.edits`). The worker gives
+        the answer's JSON text, sent as it is (the same bytes a dict's answer has)."""
         edit = parse_edit(request.headers.get("x-scanplan-edit"))
         try:
             shown = gate.run(edit, lambda: planner.run(
-                "view", req.project, _files(store, req.files)),
+                "view_json", req.project, _files(store, req.files)),
                 lambda: Busy(f"another plan is running; tried for {gate.wait_s:g} s"))
         except Superseded:
             return JSONResponse(superseded_answer(), 409)
         documents.ahead(req.project, req.files)  # the downloads, while the user looks
-        return shown  # type: ignore[no-any-return]
+        return Response(shown, media_type="application/json")
 
     @app.post("/api/project.toml")
     def project_file(req: PlanRequest) -> Response:

@@ -36,7 +36,7 @@ from ..errors import InputError
 from .tomlfile import project_tables, project_toml
 
 __all__ = ["FILE_KEYS", "JOBS", "PROJECT_NAME", "catalogue_job", "documents_job", "files_job",
-           "plan_job", "view_job"]
+           "plan_job", "view_job", "view_json_job"]
 
 PROJECT_NAME = "project.toml"
 """The project file's name in the job's folder (and in the messages)."""
@@ -117,12 +117,19 @@ def _planned(project: Any, files: Mapping[str, str]) -> Iterator[tuple[Any, str,
         yield result, text, folder
 
 
-def _plan_dict(result: Any, folder: Path) -> dict[str, Any]:
-    """``plan --json`` of the result (as printed and read back), the folder scrubbed."""
+def _plan_doc(result: Any, folder: Path) -> tuple[dict[str, Any], str]:
+    """``plan --json`` of the result: the document and its compact JSON text with the
+    folder scrubbed (the document's keys hold no path: it is read for them alone)."""
     from ..reports.jsondoc import plan_result_dict
 
-    text = json.dumps(plan_result_dict(result), ensure_ascii=False, allow_nan=False)
-    return json.loads(_scrub(text, folder))
+    doc = plan_result_dict(result)
+    text = json.dumps(doc, ensure_ascii=False, allow_nan=False, separators=(",", ":"))
+    return doc, _scrub(text, folder)
+
+
+def _plan_dict(result: Any, folder: Path) -> dict[str, Any]:
+    """``plan --json`` of the result (as printed and read back), the folder scrubbed."""
+    return json.loads(_plan_doc(result, folder)[1])  # type: ignore[no-any-return]
 
 
 def plan_job(project: Any, files: Mapping[str, str]) -> dict[str, Any]:
@@ -137,23 +144,43 @@ def view_job(project: Any, files: Mapping[str, str]) -> dict[str, Any]:
     SVG plots: the film plan's constraints, the UAV plan's heights), ``plans`` (the plans
     compared, worded, :func:`_plans`), ``toml`` and ``crs`` (the planning CRS named in the
     page's language)."""
-    from ..reports.plots import PLOT_JOBS, view_plot
-    from ..reports.view import build_view
-
     with _planned(project, files) as (result, text, folder):
         doc = _plan_dict(result, folder)
-        view = build_view(scan=result.film.job if result.film else None,
-                          uav=result.uav.job if result.uav else None,
-                          meta=result.meta, spec=result)
-        charts = {name: view_plot(view, name) for name, job in PLOT_JOBS.items()
-                  if name != "mtf" and getattr(view, job) is not None}
-        from .mapdata import map_features
+        return {"plan": doc, **_view_rest(result, text, doc)}
 
-        return {"plan": doc, "map": map_features(result), "charts": charts, "toml": text,
-                "names": _constraint_names(doc, view.locale),
-                "warnings": _warnings(result, view.locale),
-                "plans": _plans(view),
-                "crs": _crs(result, view.locale)}
+
+def view_json_job(project: Any, files: Mapping[str, str]) -> bytes:
+    """:func:`view_job`'s answer as the UTF-8 JSON text the server sends
+    (:func:`~scanplan.web.bodies.json_bytes`), made once: the ``plan --json`` document's
+    text goes in as it is written, not read back and written again."""
+    from .bodies import json_bytes
+
+    with _planned(project, files) as (result, text, folder):
+        doc, plan_text = _plan_doc(result, folder)
+        rest = _view_rest(result, text, doc)
+    try:  # the plan's text, then the rest's members: the keys in view_job's order
+        return (f'{{"plan":{plan_text},'.encode() + json_bytes(rest)[1:])
+    except UnicodeEncodeError:  # a lone surrogate in the plan: escaped as printable_data does
+        return json_bytes({"plan": json.loads(plan_text), **rest})
+
+
+def _view_rest(result: Any, text: str, doc: dict[str, Any]) -> dict[str, Any]:
+    """The members of :func:`view_job`'s answer after ``plan`` (``doc``: the plan's
+    document, for the names of its constraints)."""
+    from ..reports.plots import PLOT_JOBS, view_plot
+    from ..reports.view import build_view
+    from .mapdata import map_features
+
+    view = build_view(scan=result.film.job if result.film else None,
+                      uav=result.uav.job if result.uav else None,
+                      meta=result.meta, spec=result)
+    charts = {name: view_plot(view, name) for name, job in PLOT_JOBS.items()
+              if name != "mtf" and getattr(view, job) is not None}
+    return {"map": map_features(result), "charts": charts, "toml": text,
+            "names": _constraint_names(doc, view.locale),
+            "warnings": _warnings(result, view.locale),
+            "plans": _plans(view),
+            "crs": _crs(result, view.locale)}
 
 
 def _plans(view: Any) -> dict[str, Any] | None:
@@ -316,8 +343,8 @@ def catalogue_job(norms: str, locale: str) -> dict[str, Any]:
     return {"norms": norms, "cameras": cams, "scanners": scanners}
 
 
-JOBS = {"plan": plan_job, "view": view_job, "files": files_job, "documents": documents_job,
-        "catalogue": catalogue_job}
+JOBS = {"plan": plan_job, "view": view_job, "view_json": view_json_job, "files": files_job,
+        "documents": documents_job, "catalogue": catalogue_job}
 """The jobs the worker runs, by name."""
 
 

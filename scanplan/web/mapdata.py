@@ -14,6 +14,7 @@ Coordinates come from the same layout as the exported files; an abstract block
 
 from __future__ import annotations
 
+import functools
 from typing import Any
 
 import numpy as np
@@ -52,15 +53,23 @@ def unpack_lonlat(packed: str) -> np.ndarray:
     return np.round(ints * LONLAT_UNIT_DEG, 7)
 
 
+@functools.lru_cache(maxsize=8)
+def _to_wgs84(plan_crs: Any) -> Any:
+    """The transformer from an area's planning CRS to WGS 84 (lon, lat), made once per CRS
+    (the jobs that draw the map run one at a time)."""
+    import pyproj
+
+    return pyproj.Transformer.from_crs(plan_crs, 4326, always_xy=True)
+
+
 def _feature(kind: str, geometry: dict[str, Any], **props: Any) -> dict[str, Any]:
     return {"type": "Feature", "geometry": geometry, "properties": {"kind": kind, **props}}
 
 
 def _area(area: Any) -> dict[str, Any]:
-    import pyproj
     import shapely
 
-    tr = pyproj.Transformer.from_crs(area.plan_crs, 4326, always_xy=True)
+    tr = _to_wgs84(area.plan_crs)
     geom = shapely.transform(area.geometry, tr.transform,
                              interleaved=False)
     return _feature("area", shapely.geometry.mapping(geom))
@@ -85,9 +94,7 @@ def _profile(photos: Any, number: int) -> dict[str, Any]:
 
 def _layout(platform: str, layout: Any, most_photos: int, dem: bool = False
             ) -> list[dict[str, Any]]:
-    import pyproj
-
-    tr = pyproj.Transformer.from_crs(layout.area.plan_crs, 4326, always_xy=True)
+    tr = _to_wgs84(layout.area.plan_crs)
     out = []
     for s in layout.strips:
         parts = s.parts or ((s.start_xy_m, s.end_xy_m),)

@@ -593,11 +593,16 @@
   });
 
   /* ---------------------------------------------------------------- planning */
-  let timer = null;
+  const GATHER_MS = 40;  // edits closer together than this are planned as one
+  let timer = null, lastEdit = -Infinity;
   function schedule() {
     save();
     clearTimeout(timer);
-    timer = setTimeout(plan, 40);  // stale edits are dropped, here and on the server
+    const now = performance.now(), alone = now - lastEdit > GATHER_MS;
+    lastEdit = now;
+    // the first edit after a pause is planned at once; a burst's later ones once it stops
+    // (stale edits are dropped, here and on the server)
+    if (alone) { timer = null; plan(); } else timer = setTimeout(plan, GATHER_MS);
   }
   function ready() {  // what a plan needs before it is asked for
     return !!state.cameras[state.platform] || !!(state.extra[state.platform] || {}).camera;
@@ -611,7 +616,7 @@
       return;
     }
     const body0 = JSON.stringify(request());
-    if (body0 === state.sent && !state.controller) return;  // nothing changed since
+    if (body0 === state.sent) return;  // nothing changed since (shown, or on its way)
     state.sent = body0;
     const seq = ++state.seq;
     if (state.controller) state.controller.abort();
@@ -653,6 +658,7 @@
     state.lastOk = body;
     document.body.dataset.result = "ok";
     document.body.dataset.drawMs = String(Math.round(performance.now() - t1));
+    document.body.dataset.requestMs = String(ms);  // sent → answer read (for the benchmark)
     document.body.dataset.seq = String(seq);
   }
   function errorText(body) {
