@@ -13,6 +13,7 @@ rectangle in a local metric frame, ``georeferenced`` is False and the lon/lat ar
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -263,3 +264,14 @@ class FlightLayout:
             return self.direction_deg
         return np.where(np.asarray(strip) > self.first_pass_strips,
                         self.cross_direction_deg, self.direction_deg)
+
+
+def line_axes(direction_deg: float | np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The unit vectors along and across the flight lines (x, y) of a line direction
+    [° clockwise from grid north]; one per photo (2 × n) for one direction per photo (a
+    crosshatch's two passes: :meth:`FlightLayout.directions_deg`)."""
+    if np.ndim(direction_deg):
+        t = np.radians(np.asarray(direction_deg, dtype=float))
+        return np.array([np.sin(t), np.cos(t)]), np.array([np.cos(t), -np.sin(t)])
+    t = math.radians(direction_deg)
+    return np.array([math.sin(t), math.cos(t)]), np.array([math.cos(t), -math.sin(t)])

@@ -11,7 +11,6 @@ down, the footprint shrinks by (1 − tolerance). Whether they are short of the 
 from __future__ import annotations
 
 import itertools
-import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -19,23 +18,12 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..core.photoscale import footprint_side_m
-from .layout import FlightLayout
+from .layout import FlightLayout, line_axes
 
 if TYPE_CHECKING:
     from .terrain import Ground
 
 # --- overlaps ------------------------------------------------------------------------------
-
-def _axes(direction_deg: float | NDArray[np.float64]
-          ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """The unit vectors along and across the lines (x, y); one per photo (2 × n) for one
-    direction per photo (a crosshatch's two passes)."""
-    if np.ndim(direction_deg):
-        t = np.radians(np.asarray(direction_deg, dtype=float))
-        return np.array([np.sin(t), np.cos(t)]), np.array([np.cos(t), -np.sin(t)])
-    t = math.radians(direction_deg)
-    return np.array([math.sin(t), math.cos(t)]), np.array([math.cos(t), -math.sin(t)])
-
 
 @dataclass(frozen=True)
 class Pairs:
@@ -138,7 +126,7 @@ def photo_overlaps(layout: FlightLayout, cols: dict[str, NDArray[Any]], alt: NDA
     x, y = cols["x_m"].astype(float), cols["y_m"].astype(float)
     strip = cols["strip"].astype(np.int64)
     plan_crs = layout.area.plan_crs
-    along, across = _axes(layout.directions_deg(strip))
+    along, across = line_axes(layout.directions_deg(strip))
     fw = _forward_pairs(x, y, strip, along, layout.base_m)
     sd = _side_pairs(x, y, strip, along, across)
     fw_pct = _pair_overlap_pct(fw, x, y, alt, ground, plan_crs, sensor_height_mm, focal_mm,

@@ -30,7 +30,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .dem_grid import GroundGrid
-from .layout import FlightLayout
+from .layout import FlightLayout, line_axes
 
 __all__ = ["PathGround", "footprint_ground", "path_ground", "run_in_m"]
 
@@ -48,17 +48,6 @@ def run_in_m(layout: FlightLayout) -> float:
     if m:
         return float(m.group(2))
     return layout.spacing_m / 2.0 if math.isfinite(layout.spacing_m) else 0.0
-
-
-def _axes(direction_deg: float | NDArray[np.float64]
-          ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """The unit vectors along and across the lines (x, y); one per photo (2 × n) for one
-    direction per photo (a crosshatch's two passes)."""
-    if np.ndim(direction_deg):
-        t = np.radians(np.asarray(direction_deg, dtype=float))
-        return np.array([np.sin(t), np.cos(t)]), np.array([np.cos(t), -np.sin(t)])
-    t = math.radians(direction_deg)
-    return np.array([math.sin(t), math.cos(t)]), np.array([math.cos(t), -math.sin(t)])
 
 
 @dataclass(frozen=True)
@@ -93,7 +82,7 @@ def path_ground(grid: GroundGrid | None, x_m: NDArray[np.float64], y_m: NDArray[
     n = x_m.size
     if grid is None or n == 0:
         return PathGround(np.full(n, low_m), np.full(n, high_m), np.zeros(n, dtype=bool))
-    along, _ = _axes(direction_deg)
+    along, _ = line_axes(direction_deg)
     u = x_m * along[0] + y_m * along[1]
     first = np.ones(n, dtype=bool)
     first[1:] = strip[1:] != strip[:-1]
@@ -136,7 +125,7 @@ def footprint_ground(grid: GroundGrid | None, x_m: NDArray[np.float64],
     n = x_m.size
     if grid is None or n == 0:
         return np.full(n, low_m), np.full(n, high_m)
-    along, across = _axes(direction_deg)
+    along, across = line_axes(direction_deg)
     g = np.asarray(ground_m, dtype=float)
     for _ in range(2):
         agl = np.maximum(altitude_m - g, 0.0)

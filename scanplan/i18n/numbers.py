@@ -109,8 +109,8 @@ class Numbers:
 
     def um(self, x: float | None) -> str:
         """A pixel [µm]: one decimal, or two significant digits below 1 µm (never ``0.0``)."""
-        if not _finite(x) or x >= 0.95 or x <= 0:  # type: ignore[operator]
-            return self.fixed(x, 1)
+        if not _finite(x) or not math.isfinite(float(x)):  # type: ignore[arg-type]
+            return MISSING
         return pixel_text(float(x), self.locale)  # type: ignore[arg-type]
 
     def scale(self, x: float) -> str:
