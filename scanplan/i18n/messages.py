@@ -586,12 +586,9 @@ def _grouped(spec: str, x: float) -> str:
 def pixel_text(x: float, locale: str) -> str:
     """A pixel [µm] as every document prints it: one decimal (thousands grouped), or two
     significant digits below 1 µm written out (``0.55``, ``0.000011``; never ``0.0``)."""
-    if x >= 0.95 or x <= 0:
-        text = format(x, ",.1f")
-    else:
-        text = f"{x:.2g}"
-        if "e" in text:  # two significant digits written out: 0.000011, not 1.1e-05
-            text = f"{float(text):.{1 - math.floor(math.log10(float(text)))}f}"
+    text = format(x, ",.1f") if x >= 0.95 or x <= 0 else f"{x:.2g}"
+    if "e" in text:  # two significant digits written out: 0.000011, not 1.1e-05
+        text = f"{float(text):.{1 - math.floor(math.log10(float(text)))}f}"
     if locale != "ru":
         return text
     return text.replace(",", _NBSP).replace(".", ",")
