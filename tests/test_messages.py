@@ -158,9 +158,9 @@ def test_messages_module_is_pure():
                     continue
                 imported.add(node.module.split(".")[0])
         # contextvars: the medium a document sets; dataclasses: the PlanWarning record
-        # every layer states its findings with
-        assert imported <= {"__future__", "numbers", "re", "string", "collections", "typing",
-                            "contextlib", "contextvars", "dataclasses"}
+        # every layer states its findings with; math: the written pixel's significant digits
+        assert imported <= {"__future__", "math", "numbers", "re", "string", "collections",
+                            "typing", "contextlib", "contextvars", "dataclasses"}
 
 
 # --- every code the engine can emit -------------------------------------------------------------
