@@ -38,7 +38,7 @@ import numpy as np
 from .layout import FlightLayout
 
 __all__ = ["CAMERA_LOOP_HZ", "MissionPoint", "SortieMission", "sortie_missions",
-           "trigger_off_points", "turn_path"]
+           "trigger_off_xy", "turn_path"]
 
 CAMERA_LOOP_HZ = 50.0
 """How often the autopilot checks the trigger distance [Hz]: ArduPilot runs
@@ -363,11 +363,34 @@ def turn_path(p: np.ndarray, h: np.ndarray, q: np.ndarray, lead_m: float,
     return out
 
 
-def trigger_off_points(p: np.ndarray, path: list[tuple[float, float]], after_m: float
-                       ) -> list[MissionPoint]:
-    """The waypoints of a turn as the mission writes them (:func:`_with_trigger_off`; the
-    strip and photo left 0): for the time a turn takes."""
-    return _with_trigger_off(p, path, after_m, 0, 0)
+def trigger_off_xy(p: np.ndarray, path: list[tuple[float, float]], after_m: float
+                   ) -> np.ndarray:
+    """The waypoints of a turn as the mission writes them (:func:`_with_trigger_off`), as
+    coordinates (n × 2) [m]: for the time a turn takes."""
+    xy, k, off = _trigger_off_at(p, path, after_m)
+    return np.vstack([xy[1:k], off, _after_off(xy, k, off)])
+
+
+def _trigger_off_at(p: np.ndarray, path: list[tuple[float, float]], after_m: float
+                    ) -> tuple[np.ndarray, int, np.ndarray]:
+    """The turn from ``p`` through ``path`` (n × 2), the index of the point that ends the
+    segment holding the trigger-off point, and that point: ``after_m`` along the turn, at
+    most half the way."""
+    xy = np.vstack([p, np.array(path)])
+    seg = np.hypot(*np.diff(xy, axis=0).T)
+    cum = np.concatenate(([0.0], np.cumsum(seg)))
+    at = min(after_m, cum[-1] / 2.0)
+    k = int(np.searchsorted(cum, at, side="right"))  # the segment ending at point k
+    k = min(max(k, 1), len(xy) - 1)
+    t = (at - cum[k - 1]) / seg[k - 1] if seg[k - 1] > 0 else 0.0
+    return xy, k, xy[k - 1] + t * (xy[k] - xy[k - 1])
+
+
+def _after_off(xy: np.ndarray, k: int, off: np.ndarray) -> np.ndarray:
+    """The turn's points after the trigger-off point (n × 2), the last one (the next
+    strip's first photo) left out, and one on the trigger-off point itself."""
+    rest = xy[k:-1]
+    return rest[np.hypot(rest[:, 0] - off[0], rest[:, 1] - off[1]) > 1e-6]
 
 
 def _with_trigger_off(p: np.ndarray, path: list[tuple[float, float]], after_m: float,
@@ -375,16 +398,9 @@ def _with_trigger_off(p: np.ndarray, path: list[tuple[float, float]], after_m: f
     """The turn's waypoints with the trigger-off point ``after_m`` along it from ``p`` (at
     most half the way; the last point, the next strip's first photo, is left out: its run
     puts it)."""
-    xy = np.vstack([p, np.array(path)])
-    seg = np.hypot(*np.diff(xy, axis=0).T)
-    cum = np.r_[0.0, np.cumsum(seg)]
-    at = min(after_m, cum[-1] / 2.0)
-    k = int(np.searchsorted(cum, at, side="right"))  # the segment ending at point k
-    k = min(max(k, 1), len(xy) - 1)
-    t = (at - cum[k - 1]) / seg[k - 1] if seg[k - 1] > 0 else 0.0
-    off = xy[k - 1] + t * (xy[k] - xy[k - 1])
+    xy, k, off = _trigger_off_at(p, path, after_m)
     pts = [MissionPoint(float(x), float(y), "turn", number, photo) for x, y in xy[1:k]]
     pts.append(MissionPoint(float(off[0]), float(off[1]), "trigger_off", number, photo, 0.0))
-    pts += [MissionPoint(float(x), float(y), "turn", number, photo) for x, y in xy[k:-1]
-            if float(np.hypot(x - off[0], y - off[1])) > 1e-6]
+    pts += [MissionPoint(float(x), float(y), "turn", number, photo)
+            for x, y in _after_off(xy, k, off)]
     return pts

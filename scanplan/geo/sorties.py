@@ -45,7 +45,7 @@ from ..i18n.messages import Message
 from .layout import Sortie
 
 __all__ = ["MAX_SORTIES", "FlightModel", "SortiePlan", "boundary_transit", "corner_speeds_ms",
-           "pack_sorties", "path_time_s", "profile_time_s", "sortie_overhead_m",
+           "pack_sorties", "path_time_s", "paths_time_s", "profile_time_s", "sortie_overhead_m",
            "turn_penalties_m", "vertical_time_s"]
 
 MAX_SORTIES = 1_000
@@ -114,19 +114,40 @@ def profile_time_s(leg_m: np.ndarray, node_ms: np.ndarray, speed_ms: float,
     10.0
     """
     leg = np.asarray(leg_m, dtype=float)
-    u = np.minimum(np.asarray(node_ms, dtype=float), speed_ms).copy()
-    a = accel_ms2
+    u = _capped_speeds(leg, np.asarray(node_ms, dtype=float), speed_ms, accel_ms2,
+                       [(0, len(leg))])
+    return float(np.sum(_leg_times_s(leg, u, speed_ms, accel_ms2)))
+
+
+def _capped_speeds(leg_m: np.ndarray, node_ms: np.ndarray, speed_ms: float, accel_ms2: float,
+                   chains: list[tuple[int, int]]) -> np.ndarray:
+    """:func:`profile_time_s`'s two passes: each node's speed limit capped at what can be
+    reached from the node before and braked from to the node after [m/s]. ``chains``: the
+    (first, last) node of each chain of legs (its legs ``first … last − 1``); a leg between
+    chains is not flown."""
+    u = np.minimum(node_ms, speed_ms).tolist()  # Python floats: the passes go node by node
+    two_a_l = (2.0 * accel_ms2 * leg_m).tolist()
+    sqrt = math.sqrt
+    for first, last in chains:
+        for i in range(first, last):  # forward: what can be reached
+            u[i + 1] = min(u[i + 1], sqrt(u[i] ** 2 + two_a_l[i]))
+        for i in range(last - 1, first - 1, -1):  # backward: what can still brake
+            u[i] = min(u[i], sqrt(u[i + 1] ** 2 + two_a_l[i]))
+    return np.array(u)
+
+
+def _leg_times_s(leg_m: np.ndarray, u_ms: np.ndarray, speed_ms: float, accel_ms2: float
+                 ) -> np.ndarray:
+    """The time of each leg between node speeds ``u_ms`` (:func:`profile_time_s`'s
+    trapezoid) [s]; 0 for a leg of no length."""
+    a, leg = accel_ms2, leg_m
     two_a_l = 2.0 * a * leg
-    for i in range(len(leg)):  # forward: what can be reached
-        u[i + 1] = min(u[i + 1], math.sqrt(u[i] ** 2 + two_a_l[i]))
-    for i in range(len(leg) - 1, -1, -1):  # backward: what can still brake
-        u[i] = min(u[i], math.sqrt(u[i + 1] ** 2 + two_a_l[i]))
-    u0, u1 = u[:-1], u[1:]
+    u0, u1 = u_ms[:-1], u_ms[1:]
     vp = np.minimum(speed_ms, np.sqrt((two_a_l + u0 ** 2 + u1 ** 2) / 2.0))
     with np.errstate(divide="ignore", invalid="ignore"):
         cruise = (leg - (2.0 * vp ** 2 - u0 ** 2 - u1 ** 2) / (2.0 * a)) / vp
         t = (vp - u0) / a + (vp - u1) / a + np.where(vp > 0, np.maximum(cruise, 0.0), 0.0)
-    return float(np.sum(np.where(leg > 0, t, 0.0)))
+    return np.where(leg > 0, t, 0.0)
 
 
 def corner_speeds_ms(xy: np.ndarray, speed_ms: float, model: FlightModel,
@@ -183,6 +204,35 @@ def path_time_s(xy: np.ndarray, speed_ms: float, model: FlightModel, *,
     if stops is not None:
         node = np.where(np.asarray(stops, bool), 0.0, node)
     return profile_time_s(leg, node, speed_ms, model.accel_ms2)
+
+
+def paths_time_s(paths: list[np.ndarray], speed_ms: float, model: FlightModel, *,
+                 start_ms: float = 0.0, end_ms: float = 0.0
+                 ) -> tuple[np.ndarray, np.ndarray]:
+    """Time to fly each polyline of ``paths`` [s], as :func:`path_time_s` gives it, and its
+    length [m] — the paths' corners and legs computed together (the turns of a layout).
+
+    >>> m = FlightModel(2.5, 5.0, 2.0, 2.5, 1.5)
+    >>> t, length = paths_time_s([np.array([[0.0, 0], [100, 0]])] * 2, 10.0, m)
+    >>> t.round(3).tolist(), length.tolist()
+    ([14.0, 14.0], [100.0, 100.0])
+    """
+    sizes = [len(p) for p in paths]
+    if not paths or min(sizes) < 2:
+        raise ValueError("paths_time_s: every path needs two points or more")
+    xy = np.concatenate([np.asarray(p, dtype=float) for p in paths])
+    d = np.diff(xy, axis=0)
+    leg = np.hypot(d[:, 0], d[:, 1])  # the leg from one path's end to the next: not flown
+    node = corner_speeds_ms(xy, speed_ms, model)  # each path's interior nodes as alone
+    ends = np.cumsum(sizes)
+    starts = ends - np.asarray(sizes)
+    node[starts], node[ends - 1] = min(start_ms, speed_ms), min(end_ms, speed_ms)
+    chains = [(int(a), int(b) - 1) for a, b in zip(starts, ends, strict=True)]
+    t = _leg_times_s(leg, _capped_speeds(leg, node, speed_ms, model.accel_ms2, chains),
+                     speed_ms, model.accel_ms2)
+    times = np.array([float(np.sum(t[a:b])) for a, b in chains])
+    lengths = np.array([float(np.sum(leg[a:b])) for a, b in chains])
+    return times, lengths
 
 
 def vertical_time_s(climb_m: float, descent_m: float, model: FlightModel) -> float:
@@ -401,36 +451,39 @@ def turn_penalties_m(exposure_strip: np.ndarray, along_m: np.ndarray, across_m: 
     the camera's trigger-off point ``trigger_off_m`` along it), entered and left at the
     cruise speed.
     """
-    from .mission import trigger_off_points, turn_path
+    from .mission import trigger_off_xy, turn_path
 
     ex = np.asarray(exposure_strip)
     out = np.zeros(len(ex))
     if len(ex) < 2 or not speed_ms or speed_ms <= 0:
         return out
     change = np.flatnonzero(np.diff(ex))
-    extra = np.zeros(len(change))
+    if not len(change):
+        return out
     run_up = speed_ms ** 2 / (2.0 * model.accel_ms2) + 1.0  # [m]
-    seen: dict[tuple[float, float], float] = {}  # a turn's time depends on its shape only
+    seen: dict[tuple[float, float], int] = {}  # a turn's time depends on its shape only
+    turn_of = np.empty(len(change), dtype=np.int64)
+    polys: list[np.ndarray] = []
     for j, k in enumerate(change):
         s0, s1 = int(ex[k]), int(ex[k + 1])
         p = np.array([across_m[s0], along_m[k]], dtype=float)
         q = np.array([across_m[s1], along_m[k + 1]], dtype=float)
         h = np.array([0.0, 1.0 if s0 % 2 == 0 else -1.0])
         key = (round(float((q - p) @ h), 3), round(abs(float(q[0] - p[0])), 3))
-        if key in seen:
-            extra[j] = seen[key]
-            continue
-        path = turn_path(p, h, q, lead_m, turn_kind)
-        mid = [(m.x_m, m.y_m) for m in trigger_off_points(p, path, trigger_off_m)]
-        # the straights before and after at full length: the braking for the turn begins
-        # on the strip, before its last photo (an upper bound where the strip is shorter)
-        poly = np.vstack([p - run_up * h, p, *(np.array(mid).reshape(-1, 2),),
-                          np.array(path[-1:]), q - run_up * h])
-        length = float(np.sum(np.hypot(*np.diff(poly, axis=0).T)))
-        t = path_time_s(poly, speed_ms, model, start_ms=speed_ms, end_ms=speed_ms)
-        extra[j] = seen[key] = max(0.0, t * speed_ms - length)
+        if key not in seen:
+            path = turn_path(p, h, q, lead_m, turn_kind)
+            # the straights before and after at full length: the braking for the turn
+            # begins on the strip, before its last photo (an upper bound where the strip
+            # is shorter)
+            seen[key] = len(polys)
+            polys.append(np.vstack([p - run_up * h, p, trigger_off_xy(p, path, trigger_off_m),
+                                    np.array(path[-1:]), q - run_up * h]))
+        turn_of[j] = seen[key]
+    times, lengths = paths_time_s(polys, speed_ms, model, start_ms=speed_ms, end_ms=speed_ms)
+    extra = [max(0.0, float(t) * speed_ms - float(length))
+             for t, length in zip(times, lengths, strict=True)]
     steps = np.zeros(len(ex))
-    steps[change + 1] = extra
+    steps[change + 1] = np.array(extra)[turn_of]
     return np.cumsum(steps)
 
 

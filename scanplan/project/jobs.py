@@ -16,7 +16,7 @@ import numbers
 import os
 import re
 from collections.abc import Iterable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 from ..core.domains import DOMAINS, MAX_LIST_ITEMS, check_domain
@@ -357,6 +357,9 @@ class UavJob:
     plan: UavPlan
     norm_set: NormSet
     layout: FlightLayout | None = None
+    limits: UavPlan | None = field(default=None, repr=False, compare=False)
+    """The plan before the layout (``plan`` without an area): the limits, the same for
+    every direction and layout at this height (:func:`uav_job`'s ``limits``)."""
 
 
 def _airspace(ceiling_m: float | None) -> dict[str, Any]:
@@ -419,6 +422,7 @@ def uav_job(
     layout_options: LayoutOptions | None = None,
     flown_band_m: tuple[float, float] | None = None,
     laid_out: FlightLayout | None = None,
+    limits: UavPlan | None = None,
 ) -> UavJob:
     """Plan a UAV flight (see :func:`scanplan.rules.uav.plan_uav`); names as the CLI options.
 
@@ -445,7 +449,9 @@ def uav_job(
     down to :data:`HEIGHT_STEP_M` (needs a map scale or a target GSD). ``flown_band_m``:
     over relief, the lowest and highest heights above the ground really flown [m]
     (:func:`scanplan.rules.uav.plan_uav`); ``laid_out``: the layout of this very plan
-    already laid out over ``area`` (the plan restated at those heights keeps it).
+    already laid out over ``area`` (the plan restated at those heights keeps it);
+    ``limits``: the plan of these very inputs solved before (:attr:`UavJob.limits` of a job
+    at this height along another direction), used instead of solving it again.
 
     Long because: its keyword arguments (one per input of the registry) and this
     docstring; the work is in named steps: :func:`_carrier_defaults`,
@@ -517,14 +523,17 @@ def uav_job(
         gsd_limit_m=gsd_row.max_gsd_cm / 100.0 if gsd_row else None,
         gsd_limit_area=gsd_row.area if gsd_row else "general",
         gsd_limit_source=gsd_row.source if gsd_row else "")
-    plan = plan_uav(inputs, rules, flown_band_m)
+    if limits is not None and (limits.inputs != inputs
+                               or limits.over_relief != (flown_band_m is not None)):
+        raise ValueError("uav_job: limits solved for other inputs")  # a caller's mistake
+    plan = limits if limits is not None else plan_uav(inputs, rules, flown_band_m)
     if area is None and area_w is not None and area_l is not None:
         area = rectangle_area(area_w, area_l)
     if area is None:
-        return UavJob(plan, ns)
+        return UavJob(plan, ns, limits=plan)
     layout = laid_out if laid_out is not None else uav_layout(plan, area, layout_options,
                                                               manned=aircraft)
-    return UavJob(with_layout(plan, layout), ns, layout)
+    return UavJob(with_layout(plan, layout), ns, layout, limits=plan)
 
 
 def _carrier_defaults(ns: NormSet, camera: str | None, aircraft: bool,

@@ -56,6 +56,7 @@ from .sorties import project_aircraft, sortie_length, terrain_relief_m
 
 if TYPE_CHECKING:  # the relief's modules are imported for a plan with [terrain] only
     from ..geo.terrain_film import FilmTerrain
+    from ..rules.results import UavPlan
 
 __all__ = ["FilmSpec", "PlanResult", "UavSpec", "plan_project", "project_area"]
 
@@ -388,6 +389,7 @@ def _jobs(project: ProjectModel, the_area: Area | None) -> JobAt:
     each laid out once: along the project's direction or another one, its figures at the
     heights really flown over relief."""
     done: OrderedDict[tuple[Any, ...], UavJob] = OrderedDict()
+    limits: OrderedDict[tuple[Any, ...], UavPlan] = OrderedDict()  # per height, any direction
     own = project.area.direction_deg
 
     def job_at(height_m: float, direction_deg: float | str | None = None,
@@ -405,11 +407,17 @@ def _jobs(project: ProjectModel, the_area: Area | None) -> JobAt:
                                                    direction_deg=direction_deg)
                 if limits_only:  # only its limits are asked for: no strips over the area
                     kw.update(area=None, area_m=None)
-                done[key] = uav_job(**kw, flown_band_m=flown_band_m, laid_out=laid_out)
+                same = (float(height_m), flown_band_m, kw["area_m"])  # the same inputs
+                done[key] = job = uav_job(**kw, flown_band_m=flown_band_m, laid_out=laid_out,
+                                          limits=limits.get(same))
             except InputError as exc:
                 raise project.named(exc, "uav") from None
-            while len(done) > _JOBS_KEPT:  # the oldest layouts go (a large block's memory)
-                done.popitem(last=False)
+            if job.limits is not None:
+                limits[same] = job.limits
+                limits.move_to_end(same)
+            for kept in (done, limits):  # the oldest go (a large block's memory)
+                while len(kept) > _JOBS_KEPT:
+                    kept.popitem(last=False)
         done.move_to_end(key)
         return done[key]
 
