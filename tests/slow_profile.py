@@ -3,9 +3,10 @@ command (``pytest -n auto``, which deselects ``slow`` in pyproject's addopts) le
 
 CI runs both profiles, so nothing here is dropped: each entry is a whole-document sweep (every
 example rendered to PDF and workbook, in both languages), a process killed or a server started,
-a browser driven, or a fuzz/hostile-input campaign — each took 15 s or more of a worker on a
-2-core machine. :func:`conftest.pytest_collection_modifyitems` marks them; an entry that names
-no collected test is an error, so the list cannot rot.
+a browser driven, or a fuzz/hostile-input campaign — each module took 15 s or more of a worker
+on a 2-core machine, each single test 6 s or more.
+:func:`conftest.pytest_collection_modifyitems` marks them; an entry that names no collected
+test is an error, so the list cannot rot.
 """
 
 from __future__ import annotations
@@ -37,12 +38,14 @@ SLOW_TESTS: dict[str, frozenset[str]] = {
         "test_batch_jobs_1_and_2_write_identical_files",
         "test_to_dict_is_the_cli_json",
     }),
+    "test_area_site": frozenset({"test_the_swap_is_in_the_terminal_the_json_and_the_workbook"}),
     "test_bounded_errors": frozenset({"test_an_area_uploaded_as_flight_kml_is_once_in_the_zip"}),
     "test_catalogue": frozenset({"test_aerial_survey_wording_not_uav"}),
     "test_cli_console": frozenset({
         "test_quiet_and_verbose",
         "test_without_pdf_engine_the_rest_is_written",
     }),
+    "test_consistency": frozenset({"test_inverse_table_both_columns_in_the_reports"}),
     "test_control": frozenset({"test_with_the_valley_dem_markers_leave_steep_ground"}),
     "test_crosshatch": frozenset({"test_the_documents_say_crosshatch_and_fly_both_passes"}),
     "test_documents_path": frozenset({
@@ -52,6 +55,7 @@ SLOW_TESTS: dict[str, frozenset[str]] = {
     "test_fast_reports": frozenset({
         "test_subsetting_without_layout_tables_gives_the_same_pdf",
         "test_the_stylesheet_parsed_once_gives_the_same_pages",
+        "test_plan_out_with_and_without_the_worker_is_byte_identical",
     }),
     "test_geo_export_cli": frozenset({"test_a_terrain_plan_flies_its_missions_above_sea_level"}),
     "test_geo_export_dji": frozenset({
@@ -103,6 +107,7 @@ SLOW_TESTS: dict[str, frozenset[str]] = {
     }),
     "test_sortie_time_as_flown": frozenset({"test_no_sortie_exceeds_its_battery_as_flown"}),
     "test_strip_sorties": frozenset({"test_the_workbook_strips_sheet_shows_both_sorties"}),
+    "test_svgchart": frozenset({"test_a_plan_with_both_reports_imports_no_matplotlib"}),
     "test_terrain_exports": frozenset({
         "test_strip_and_follow_missions_hold_every_altitude_of_the_plan",
     }),
@@ -123,11 +128,16 @@ SLOW_TESTS: dict[str, frozenset[str]] = {
         "test_pdf_and_workbook_downloads",
         "test_the_project_file_round_trips_to_the_cli",
         "test_the_zip_holds_reports_missions_gis_and_a_project_that_runs",
+        "test_no_job_folder_is_left_behind",
     }),
     "test_web_documents": frozenset({
         "test_only_the_latest_quiet_request_is_rendered_ahead",
         "test_the_downloads_are_the_download_jobs_bytes",
+        "test_a_download_after_the_view_is_the_rendered_one",
     }),
-    "test_web_page": frozenset({"test_the_downloaded_zip_opens_with_its_files"}),
+    "test_web_page": frozenset({
+        "test_the_downloaded_zip_opens_with_its_files",
+        "test_the_basemap_is_printed_on_the_pdf_map_page",
+    }),
 }
 """Single slow tests (every parameter of each) in modules that are otherwise quick."""
