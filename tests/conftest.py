@@ -15,9 +15,9 @@ def user_dir(tmp_path, monkeypatch):
     d = tmp_path / "user-norms"
     d.mkdir()
     monkeypatch.setenv("SCANPLAN_NORMS_DIR", str(d))
-    norms_mod._load_path.cache_clear()
+    norms_mod.forget_read_sets()
     yield d
-    norms_mod._load_path.cache_clear()
+    norms_mod.forget_read_sets()
 
 
 @pytest.fixture(scope="session")

@@ -51,7 +51,7 @@ def test_reimporting_a_lens_camera_as_film_never_bricks_the_catalogue(tmp_path, 
     r = _cli("cameras", "import", film, "--force")
     assert r.exit_code == 0, r.output
     assert "lens MTF table of 'my-cam' was removed" in r.stderr
-    norms_store._load_path.cache_clear()
+    norms_store.forget_read_sets()
     ns = load_norm_set()
     assert ns.cameras["my-cam"].kind == "film" and "my-cam" not in ns.lens_mtf
     for args in (("cameras", "list"), ("cameras", "show", "my-cam"),
@@ -149,7 +149,7 @@ def test_a_kill_between_the_replacements_is_recovered(tmp_path, user_dir):
     seen = set()
     for step in range(1, 20):
         code = _killed_import(step, new)
-        norms_store._load_path.cache_clear()
+        norms_store.forget_read_sets()
         ns = load_norm_set()  # a load puts a set-aside catalogue back
         state = (ns.cameras["cam"].name, ns.scanners["scn"])
         assert state in {("Camera old", (5.0,)), ("Camera new", (10.0,))}, (step, state)
@@ -171,7 +171,7 @@ def _importer(paths: list[str], rounds: int) -> None:
 def _reader(rounds: int, out: mp.Queue) -> None:
     mixed = 0
     for _ in range(rounds):
-        norms_store._load_path.cache_clear()
+        norms_store.forget_read_sets()
         ns = load_norm_set()
         tag = ns.cameras["cam"].name.split()[-1]
         mixed += ns.scanner_names["scn"].split()[-1] != tag

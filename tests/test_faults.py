@@ -789,9 +789,9 @@ def user_dir(tmp_path, monkeypatch):
     d = tmp_path / "nwork" / "user-norms"
     d.mkdir(parents=True)
     monkeypatch.setenv("SCANPLAN_NORMS_DIR", str(d))
-    norms_mod._load_path.cache_clear()
+    norms_mod.forget_read_sets()
     yield d
-    norms_mod._load_path.cache_clear()
+    norms_mod.forget_read_sets()
 
 
 @pytest.fixture(scope="module")
@@ -878,7 +878,7 @@ def test_norm_import_faults(stage, existing, user_dir, sources, set_files, fmp):
         assert r.exit_code == 1
         assert r.stderr == (f"error: cannot write norm set 'mine' to {user_dir / 'mine'}: "
                             f"{error.strerror}\n")
-    norms_mod._load_path.cache_clear()
+    norms_mod.forget_read_sets()
     if existing:
         assert norms_mod.load_norm_set("mine").parameters["planimetric_accuracy_mm"] == 0.2
     r = cli("norms", "list", "--json")
@@ -901,7 +901,7 @@ def test_norm_import_end_to_end_then_success(user_dir, sources, fmp):
     fmp.undo()
     assert snapshot(user_dir.parent) == before
     norms_writer.import_norm_file(sources["ru"], "mine", force=True, root=user_dir)
-    norms_mod._load_path.cache_clear()
+    norms_mod.forget_read_sets()
     assert norms_mod.load_norm_set(user_dir / "mine").parameters[
         "planimetric_accuracy_mm"] == pytest.approx(0.4)
     assert leftovers(user_dir.parent) == []
@@ -943,7 +943,7 @@ def test_crash_between_swap_renames_load_puts_the_set_back(user_dir, sources):
     prepare_sets(user_dir, sources, existing=True)
     before = snapshot(user_dir.parent)
     crash_between_renames(user_dir)
-    norms_mod._load_path.cache_clear()
+    norms_mod.forget_read_sets()
     assert norms_mod.load_norm_set("mine").parameters["planimetric_accuracy_mm"] == 0.2
     assert snapshot(user_dir.parent) == before and leftovers(user_dir.parent) == []
 

@@ -80,7 +80,7 @@ def test_every_help_example_runs(tmp_path, monkeypatch):
     shutil.copy(ROOT / "norms" / "gkinp-02-036-02" / "objects.csv", work / "objects.csv")
     monkeypatch.chdir(work)
     monkeypatch.setenv("SCANPLAN_NORMS_DIR", str(tmp_path / "user-norms"))
-    norms_mod._load_path.cache_clear()
+    norms_mod.forget_read_sets()
     runner = CliRunner()
     # files the user brings: QGroundControl's camera list, a camera workbook of their own
     (work / "CameraMetaData.json").write_text(json.dumps([{
@@ -102,7 +102,7 @@ def test_every_help_example_runs(tmp_path, monkeypatch):
             assert result.exit_code == 0, (line, result.output, result.exception)
             ran += 1
     finally:
-        norms_mod._load_path.cache_clear()
+        norms_mod.forget_read_sets()
     assert ran >= 20
     assert (work / "out" / "spec.pdf").is_file()  # plan ... --out out/
 

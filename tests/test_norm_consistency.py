@@ -57,7 +57,7 @@ def _reader(root: str, out, go) -> None:
     os.environ["SCANPLAN_NORMS_DIR"] = root
     from scanplan.norms import store as norms
 
-    norms._load_path.cache_clear()
+    norms.forget_read_sets()
     seen, failed = [], []
     go.wait(30)
     for _ in range(LOADS):

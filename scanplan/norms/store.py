@@ -20,6 +20,7 @@ import os
 import re
 import stat
 import tomllib
+from collections import OrderedDict
 from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
 from difflib import get_close_matches
@@ -543,16 +544,19 @@ def _load_norm_set(name_or_path: str | os.PathLike[str]) -> NormSet:
     for _ in range(3):
         path, bundled = _resolve(name_or_path)
         path = path.resolve()
+        known = _read_before(path, bundled)
+        if known is not None:
+            return known
         # An import replaces a set, or the user camera catalogue, under an exclusive lock on
         # the norm directory; reading under a shared lock sees the old version or the new
         # one, never a mix, and never one missing half-way through the swap.
         with dir_lock(user_norms_dir(), exclusive=False):
             user_cat = _user_catalogue_fingerprint()
             if bundled:  # read-only, part of the installation
-                return _load_path(path, bundled, _fingerprint(path), user_cat)
+                return _read_locked(path, bundled, _fingerprint(path), user_cat)
             with dir_lock(path.parent, exclusive=False):
                 if (path / "set.toml").is_file():
-                    return _load_path(path, bundled, _fingerprint(path), user_cat)
+                    return _read_locked(path, bundled, _fingerprint(path), user_cat)
     raise NotFoundError("--norms", f"norm set {os.fspath(name_or_path)!r} disappeared while "
                         "it was read (replaced or deleted by another program); try again")
 
@@ -577,11 +581,43 @@ def _fingerprint(path: Path) -> tuple[tuple[str, int, int, int, int], ...]:
     return tuple(out)
 
 
-@lru_cache(maxsize=16)
-def _load_path(path: Path, bundled: bool,
-               fingerprint: tuple[tuple[str, int, int, int, int], ...],
-               user_catalogue: tuple[tuple[str, int, int, int, int], ...] = ()) -> NormSet:
-    return read_norm_set_folder(path, bundled=bundled)
+_Fingerprint = tuple[tuple[str, int, int, int, int], ...]
+_READ: OrderedDict[tuple[Path, bool, _Fingerprint, _Fingerprint], NormSet] = OrderedDict()
+"""The norm sets read under the lock, by folder and the fingerprints of its files and of the
+user catalogue's (the last :data:`_READ_KEPT`)."""
+_READ_KEPT = 16
+
+
+def forget_read_sets() -> None:
+    """Forget every norm set read (the next load reads the files again)."""
+    _READ.clear()
+
+
+def _read_before(path: Path, bundled: bool) -> NormSet | None:
+    """The set as read before, when its files and the user catalogue's are still the very
+    files read then (the same fingerprints, taken without the lock); else None.
+
+    No lock is needed to see that: an import writes new files (other inodes and ctimes), so
+    a fingerprint taken while one swaps a set in is a mix that matches no version read
+    under the lock, and the set is then read under it."""
+    try:
+        key = (path, bundled, _fingerprint(path), _user_catalogue_fingerprint())
+    except OSError:  # gone or being swapped: read under the lock
+        return None
+    return _READ.get(key)
+
+
+def _read_locked(path: Path, bundled: bool, fingerprint: _Fingerprint,
+                 user_catalogue: _Fingerprint = ()) -> NormSet:
+    """The set read (under the caller's lock), or the one read before with these very
+    files."""
+    key = (path, bundled, fingerprint, user_catalogue)
+    if key not in _READ:
+        _READ[key] = read_norm_set_folder(path, bundled=bundled)
+        while len(_READ) > _READ_KEPT:
+            _READ.popitem(last=False)
+    _READ.move_to_end(key)
+    return _READ[key]
 
 
 def _read_parameters(pfile: Path, bundled: bool
