@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from scanplan.geo.mission import trigger_off_xy, turn_path
+from scanplan.geo.mission import _with_trigger_off, turn_path
 from scanplan.geo.sorties import FlightModel, path_time_s, paths_time_s, turn_penalties_m
 
 MODEL = FlightModel(2.5, 5.0, 2.0, 2.5, 1.5)
@@ -47,8 +47,9 @@ def _penalties_turn_by_turn(ex, along, across, kind, lead, speed, off):
         q = np.array([across[s1], along[k + 1]])
         h = np.array([0.0, 1.0 if s0 % 2 == 0 else -1.0])
         path = turn_path(p, h, q, lead, kind)
-        poly = np.vstack([p - run_up * h, p, trigger_off_xy(p, path, off),
-                          np.array(path[-1:]), q - run_up * h])
+        mid = [(m.x_m, m.y_m) for m in _with_trigger_off(p, path, off, 0, 0)]  # as written
+        poly = np.vstack([p - run_up * h, p, np.array(mid), np.array(path[-1:]),
+                          q - run_up * h])
         length = float(np.sum(np.hypot(*np.diff(poly, axis=0).T)))
         t = path_time_s(poly, speed, MODEL, start_ms=speed, end_ms=speed)
         steps[k + 1] = max(0.0, t * speed - length)

@@ -28,6 +28,8 @@ altitude steps are run boundaries like any other.
 
 from __future__ import annotations
 
+import bisect
+import itertools
 import math
 from collections.abc import Collection
 from dataclasses import dataclass
@@ -38,7 +40,7 @@ import numpy as np
 from .layout import FlightLayout
 
 __all__ = ["CAMERA_LOOP_HZ", "MissionPoint", "SortieMission", "sortie_missions",
-           "trigger_off_xy", "turn_path"]
+           "turn_path", "turns_trigger_off"]
 
 CAMERA_LOOP_HZ = 50.0
 """How often the autopilot checks the trigger distance [Hz]: ArduPilot runs
@@ -363,44 +365,57 @@ def turn_path(p: np.ndarray, h: np.ndarray, q: np.ndarray, lead_m: float,
     return out
 
 
-def trigger_off_xy(p: np.ndarray, path: list[tuple[float, float]], after_m: float
-                   ) -> np.ndarray:
-    """The waypoints of a turn as the mission writes them (:func:`_with_trigger_off`), as
-    coordinates (n × 2) [m]: for the time a turn takes."""
-    xy, k, off = _trigger_off_at(p, path, after_m)
-    return np.vstack([xy[1:k], off, _after_off(xy, k, off)])
+Point = tuple[float, float]
 
 
-def _trigger_off_at(p: np.ndarray, path: list[tuple[float, float]], after_m: float
-                    ) -> tuple[np.ndarray, int, np.ndarray]:
-    """The turn from ``p`` through ``path`` (n × 2), the index of the point that ends the
-    segment holding the trigger-off point, and that point: ``after_m`` along the turn, at
-    most half the way."""
-    xy = np.vstack([p, np.array(path)])
-    seg = np.hypot(*np.diff(xy, axis=0).T)
-    cum = np.concatenate(([0.0], np.cumsum(seg)))
-    at = min(after_m, cum[-1] / 2.0)
-    k = int(np.searchsorted(cum, at, side="right"))  # the segment ending at point k
-    k = min(max(k, 1), len(xy) - 1)
-    t = (at - cum[k - 1]) / seg[k - 1] if seg[k - 1] > 0 else 0.0
-    return xy, k, xy[k - 1] + t * (xy[k] - xy[k - 1])
+def turns_trigger_off(starts: list[Point], paths: list[list[Point]], after_m: float
+                      ) -> list[tuple[list[Point], Point, list[Point]]]:
+    """Where each turn disarms the camera: for the turn from ``starts[i]`` (a strip's last
+    photo) through the waypoints ``paths[i]`` (:func:`turn_path`), its waypoints before the
+    trigger-off point, that point — ``after_m`` along the turn, at most half the way — and
+    the waypoints after it, the last one (the next strip's first photo, which its run puts)
+    and any on the trigger-off point itself left out [m]. The turns' legs are measured
+    together (the turns of a layout, :func:`scanplan.geo.sorties.turn_penalties_m`).
+
+    >>> turns_trigger_off([(0.0, 0.0)], [[(0.0, 10.0), (20.0, 10.0), (20.0, 0.0)]], 15.0)
+    [([(0.0, 10.0)], (5.0, 10.0), [(20.0, 10.0)])]
+    """
+    rings = [[start, *path] for start, path in zip(starts, paths, strict=True)]
+    xy = np.array([pt for ring in rings for pt in ring], dtype=float)
+    legs = np.hypot(*np.diff(xy, axis=0).T).tolist()  # a ring's last to the next: unused
+    cut: list[tuple[int, Point]] = []
+    first = 0
+    for ring in rings:
+        seg = legs[first:first + len(ring) - 1]
+        cum = [0.0, *itertools.accumulate(seg)]
+        at = min(after_m, cum[-1] / 2.0)
+        k = bisect.bisect_right(cum, at)  # the segment ending at point k
+        k = min(max(k, 1), len(ring) - 1)
+        t = (at - cum[k - 1]) / seg[k - 1] if seg[k - 1] > 0 else 0.0
+        (x0, y0), (x1, y1) = ring[k - 1], ring[k]
+        cut.append((k, (x0 + t * (x1 - x0), y0 + t * (y1 - y0))))
+        first += len(ring)
+    rest = [ring[k:-1] for ring, (k, _) in zip(rings, cut, strict=True)]
+    pts = np.array([pt for r in rest for pt in r], dtype=float).reshape(-1, 2)
+    offs = np.array([off for r, (_, off) in zip(rest, cut, strict=True) for _ in r],
+                    dtype=float).reshape(-1, 2)
+    apart = (np.hypot(pts[:, 0] - offs[:, 0], pts[:, 1] - offs[:, 1]) > 1e-6).tolist()
+    out = []
+    first = 0
+    for ring, r, (k, off) in zip(rings, rest, cut, strict=True):
+        after = [pt for pt, keep in zip(r, apart[first:first + len(r)], strict=True) if keep]
+        out.append((ring[1:k], off, after))
+        first += len(r)
+    return out
 
 
-def _after_off(xy: np.ndarray, k: int, off: np.ndarray) -> np.ndarray:
-    """The turn's points after the trigger-off point (n × 2), the last one (the next
-    strip's first photo) left out, and one on the trigger-off point itself."""
-    rest = xy[k:-1]
-    return rest[np.hypot(rest[:, 0] - off[0], rest[:, 1] - off[1]) > 1e-6]
-
-
-def _with_trigger_off(p: np.ndarray, path: list[tuple[float, float]], after_m: float,
+def _with_trigger_off(p: np.ndarray, path: list[Point], after_m: float,
                       number: int, photo: int) -> list[MissionPoint]:
     """The turn's waypoints with the trigger-off point ``after_m`` along it from ``p`` (at
     most half the way; the last point, the next strip's first photo, is left out: its run
-    puts it)."""
-    xy, k, off = _trigger_off_at(p, path, after_m)
-    pts = [MissionPoint(float(x), float(y), "turn", number, photo) for x, y in xy[1:k]]
-    pts.append(MissionPoint(float(off[0]), float(off[1]), "trigger_off", number, photo, 0.0))
-    pts += [MissionPoint(float(x), float(y), "turn", number, photo)
-            for x, y in _after_off(xy, k, off)]
+    puts it; :func:`turns_trigger_off`)."""
+    [(before, off, after)] = turns_trigger_off([(float(p[0]), float(p[1]))], [path], after_m)
+    pts = [MissionPoint(x, y, "turn", number, photo) for x, y in before]
+    pts.append(MissionPoint(off[0], off[1], "trigger_off", number, photo, 0.0))
+    pts += [MissionPoint(x, y, "turn", number, photo) for x, y in after]
     return pts

@@ -44,6 +44,8 @@ import numpy as np
 from ..i18n.messages import Message
 from .layout import Sortie
 
+Point = tuple[float, float]
+
 __all__ = ["MAX_SORTIES", "FlightModel", "SortiePlan", "boundary_transit", "corner_speeds_ms",
            "pack_sorties", "path_time_s", "paths_time_s", "profile_time_s", "sortie_overhead_m",
            "turn_penalties_m", "vertical_time_s"]
@@ -220,7 +222,14 @@ def paths_time_s(paths: list[np.ndarray], speed_ms: float, model: FlightModel, *
     sizes = [len(p) for p in paths]
     if not paths or min(sizes) < 2:
         raise ValueError("paths_time_s: every path needs two points or more")
-    xy = np.concatenate([np.asarray(p, dtype=float) for p in paths])
+    return _chains_time_s(np.concatenate([np.asarray(p, dtype=float) for p in paths]),
+                          sizes, speed_ms, model, start_ms, end_ms)
+
+
+def _chains_time_s(xy: np.ndarray, sizes: list[int], speed_ms: float, model: FlightModel,
+                   start_ms: float, end_ms: float) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`paths_time_s` of the paths one after the other in ``xy``, ``sizes[i]``
+    points each."""
     d = np.diff(xy, axis=0)
     leg = np.hypot(d[:, 0], d[:, 1])  # the leg from one path's end to the next: not flown
     node = corner_speeds_ms(xy, speed_ms, model)  # each path's interior nodes as alone
@@ -451,7 +460,7 @@ def turn_penalties_m(exposure_strip: np.ndarray, along_m: np.ndarray, across_m: 
     the camera's trigger-off point ``trigger_off_m`` along it), entered and left at the
     cruise speed.
     """
-    from .mission import trigger_off_xy, turn_path
+    from .mission import turn_path, turns_trigger_off
 
     ex = np.asarray(exposure_strip)
     out = np.zeros(len(ex))
@@ -462,24 +471,36 @@ def turn_penalties_m(exposure_strip: np.ndarray, along_m: np.ndarray, across_m: 
         return out
     run_up = speed_ms ** 2 / (2.0 * model.accel_ms2) + 1.0  # [m]
     seen: dict[tuple[float, float], int] = {}  # a turn's time depends on its shape only
-    turn_of = np.empty(len(change), dtype=np.int64)
-    polys: list[np.ndarray] = []
-    for j, k in enumerate(change):
-        s0, s1 = int(ex[k]), int(ex[k + 1])
-        p = np.array([across_m[s0], along_m[k]], dtype=float)
-        q = np.array([across_m[s1], along_m[k + 1]], dtype=float)
-        h = np.array([0.0, 1.0 if s0 % 2 == 0 else -1.0])
-        key = (round(float((q - p) @ h), 3), round(abs(float(q[0] - p[0])), 3))
+    turn_of = []
+    ends: list[tuple[Point, Point, float]] = []  # each distinct turn's p, q and heading
+    paths: list[list[Point]] = []
+    across, along = np.asarray(across_m, dtype=float), np.asarray(along_m, dtype=float)
+    for k, s0, s1 in zip(change.tolist(), ex[change].tolist(), ex[change + 1].tolist(),
+                         strict=True):
+        p = (float(across[s0]), float(along[k]))
+        q = (float(across[s1]), float(along[k + 1]))
+        hy = 1.0 if s0 % 2 == 0 else -1.0
+        key = (round(hy * (q[1] - p[1]), 3), round(abs(q[0] - p[0]), 3))
         if key not in seen:
-            path = turn_path(p, h, q, lead_m, turn_kind)
-            # the straights before and after at full length: the braking for the turn
-            # begins on the strip, before its last photo (an upper bound where the strip
-            # is shorter)
-            seen[key] = len(polys)
-            polys.append(np.vstack([p - run_up * h, p, trigger_off_xy(p, path, trigger_off_m),
-                                    np.array(path[-1:]), q - run_up * h]))
-        turn_of[j] = seen[key]
-    times, lengths = paths_time_s(polys, speed_ms, model, start_ms=speed_ms, end_ms=speed_ms)
+            seen[key] = len(paths)
+            ends.append((p, q, hy))
+            paths.append(turn_path(np.array(p), np.array([0.0, hy]), np.array(q), lead_m,
+                                   turn_kind))
+        turn_of.append(seen[key])
+    # each turn with the straights before and after at full length: the braking for the
+    # turn begins on the strip, before its last photo (an upper bound where the strip is
+    # shorter)
+    rows: list[Point] = []
+    sizes = []
+    for (p, q, hy), path, (before, off, after) in zip(
+            ends, paths, turns_trigger_off([e[0] for e in ends], paths, trigger_off_m),
+            strict=True):
+        turn = [(p[0] - run_up * 0.0, p[1] - run_up * hy), p, *before, off, *after,
+                path[-1], (q[0] - run_up * 0.0, q[1] - run_up * hy)]
+        rows += turn
+        sizes.append(len(turn))
+    times, lengths = _chains_time_s(np.array(rows), sizes, speed_ms, model, speed_ms,
+                                    speed_ms)
     extra = [max(0.0, float(t) * speed_ms - float(length))
              for t, length in zip(times, lengths, strict=True)]
     steps = np.zeros(len(ex))
