@@ -331,9 +331,10 @@ def turn_path(p: np.ndarray, h: np.ndarray, q: np.ndarray, lead_m: float,
     apex_out = p + (max(0.0, off) + lead_m) * h
     apex_in = apex_out + d * n
 
+    ox, oy, nx, ny, hx, hy = (float(v) for v in (*apex_out, *n, *h))
+
     def at(a: float, b: float) -> tuple[float, float]:  # local (across, along) → plan
-        xy = apex_out + a * n + b * h
-        return float(xy[0]), float(xy[1])
+        return ox + a * nx + b * hx, oy + a * ny + b * hy  # as apex_out + a·n + b·h
 
     def arc(ca: float, cb: float, r: float, a0: float, a1: float) -> list[tuple[float, float]]:
         k = max(1, math.ceil(abs(math.degrees(a1 - a0)) / ARC_STEP_DEG))
