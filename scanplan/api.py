@@ -51,6 +51,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from .project.flightplan import LayoutOptions
     from .project.jobs import ScanJob, UavJob
     from .project.spec import PlanResult
+    from .rules.results import UavPlan
 
 __all__ = [
     "BatchResult",
@@ -624,6 +625,7 @@ if TYPE_CHECKING:  # the signatures a type checker reads: the registry's keyword
             layout_options: LayoutOptions | None = ...,
             flown_band_m: tuple[float, float] | None = ...,
             laid_out: FlightLayout | None = ...,
+            limits: UavPlan | None = ...,
     ) -> UavResult: ...
     # </typed signatures>
 else:  # at run time: one keyword per input of the registry (its signature and its docs)

@@ -142,7 +142,7 @@ _STATIC = {"number": "SupportsFloat", "int": "SupportsIndex", "scale": "Supports
            "scales": "Iterable[SupportsFloat | str]", "date": "datetime.date | str"}
 _STATIC_EXTRA = {"area": "Area | None", "layout_options": "LayoutOptions | None",
                  "flown_band_m": "tuple[float, float] | None",
-                 "laid_out": "FlightLayout | None"}
+                 "laid_out": "FlightLayout | None", "limits": "UavPlan | None"}
 MARKERS = ("    # <typed signatures: python -m scanplan.project.signature scanplan/api.py>",
            "    # </typed signatures>")
 """The lines around the generated signatures in :mod:`scanplan.api`."""
