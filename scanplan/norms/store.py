@@ -612,12 +612,15 @@ def _read_locked(path: Path, bundled: bool, fingerprint: _Fingerprint,
     """The set read (under the caller's lock), or the one read before with these very
     files."""
     key = (path, bundled, fingerprint, user_catalogue)
-    if key not in _READ:
-        _READ[key] = read_norm_set_folder(path, bundled=bundled)
+    found = _READ.get(key)
+    if found is None:
+        found = _READ[key] = read_norm_set_folder(path, bundled=bundled)
         while len(_READ) > _READ_KEPT:
             _READ.popitem(last=False)
-    _READ.move_to_end(key)
-    return _READ[key]
+    else:
+        with contextlib.suppress(KeyError):  # another thread may have let it go meanwhile
+            _READ.move_to_end(key)
+    return found
 
 
 def _read_parameters(pfile: Path, bundled: bool
