@@ -495,8 +495,8 @@ def turn_penalties_m(exposure_strip: np.ndarray, along_m: np.ndarray, across_m: 
     for (p, q, hy), path, (before, off, after) in zip(
             ends, paths, turns_trigger_off([e[0] for e in ends], paths, trigger_off_m),
             strict=True):
-        turn = [(p[0] - run_up * 0.0, p[1] - run_up * hy), p, *before, off, *after,
-                path[-1], (q[0] - run_up * 0.0, q[1] - run_up * hy)]
+        turn = [(p[0], p[1] - run_up * hy), p, *before, off, *after,
+                path[-1], (q[0], q[1] - run_up * hy)]
         rows += turn
         sizes.append(len(turn))
     times, lengths = _chains_time_s(np.array(rows), sizes, speed_ms, model, speed_ms,
