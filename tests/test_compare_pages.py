@@ -71,6 +71,15 @@ def test_a_changed_cell_and_another_page_count_are_differences(pages, tmp_path, 
         "r-p1-after.png", "r-p1-before.png", "r-p1-diff.png"]
 
 
+def test_an_output_sets_own_folder_is_read_through_its_links(pages, tmp_path, capsys):
+    for side, name in (("a", "1111"), ("b", "2222")):  # the set folder: another name per run
+        pdf = _pdf(tmp_path / side / "files" / ".scanplan-sets" / name / "spec.pdf", TABLE)
+        link = tmp_path / side / "files" / "spec.pdf"
+        link.symlink_to(pdf.relative_to(link.parent))
+    assert pages.main([str(tmp_path / "a"), str(tmp_path / "b")]) == 0
+    assert "1 PDFs, 1 pages compared at 100 dpi: 0 pages differ" in capsys.readouterr().out
+
+
 def test_a_missing_pdf_is_a_difference(pages, tmp_path, capsys):
     _pdf(tmp_path / "a" / "r.pdf", TABLE)
     (tmp_path / "b").mkdir()

@@ -6,15 +6,16 @@ way) is proven with this script instead::
 
     python tools/compare_pages.py BEFORE AFTER [--dpi 100] [--diffs DIR]
 
-Every ``*.pdf`` under the folder ``BEFORE`` (by its path relative to the folder) is
-compared with the file of the same path under ``AFTER``. Each PDF is rasterised with
-poppler's ``pdftoppm -png -r DPI`` (a file whose bytes are those of one already
-rasterised is not rasterised again) and each page compared pixel by pixel (Pillow's
-``ImageChops.difference``): the count of differing pixels and the largest difference of a
-channel (0–255). A PDF missing on either side, or with another page count, or a page of
-another size, is a difference too. With ``--diffs``, each differing page is written there
-as ``NAME-pPAGE-before.png``, ``-after.png`` and ``-diff.png`` (the difference, stretched
-to be seen) to look at.
+Every ``*.pdf`` under the folder ``BEFORE`` (by its path relative to the folder; an output
+set's own folder ``.scanplan-sets/`` is read through the output folder's links, as
+``compare_outputs.py`` does) is compared with the file of the same path under ``AFTER``.
+Each PDF is rasterised with poppler's ``pdftoppm -png -r DPI`` (a file whose bytes are
+those of one already rasterised is not rasterised again) and each page compared pixel by
+pixel (Pillow's ``ImageChops.difference``): the count of pixels that differ in any colour
+channel and the largest difference of a channel (0–255). A PDF missing on either side, or
+with another page count, or a page of another size, is a difference too. With ``--diffs``,
+each differing page is written there as ``NAME-pPAGE-before.png``, ``-after.png`` and
+``-diff.png`` (the difference, stretched to be seen) to look at.
 
 Prints one line per differing page and a summary; exits 0 when every page of every PDF is
 the same picture, 1 otherwise.
@@ -135,9 +136,13 @@ def compare_pdfs(before: Path, after: Path, pages: _Pages) -> tuple[int, list[Pa
 
 
 def _pdfs(root: Path) -> list[Path]:
+    """The PDFs under ``root`` by the names a reader sees: an output folder's files through
+    their links, not the output set's own folder (``.scanplan-sets/HASH/``, whose name
+    differs from run to run), as ``compare_outputs.py`` reads them."""
     if root.is_file():
         return [Path(root.name)]
-    return sorted(p.relative_to(root) for p in root.rglob("*.pdf"))
+    return sorted(p.relative_to(root) for p in root.rglob("*.pdf")
+                  if ".scanplan-sets" not in p.relative_to(root).parts)
 
 
 def _save_diff(name: str, page: int, a: Path, b: Path, into: Path) -> None:
