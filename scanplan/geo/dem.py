@@ -240,6 +240,12 @@ def unit_problem(values_m: NDArray[np.float64], info: DemInfo, source: str) -> s
     return None
 
 
+_DEM_TRANSFORMERS: dict[tuple[str, str], Any] = {}
+"""The transformer (or None) of each (DEM CRS, planning CRS) pair met, refusals not kept
+(pyproj's transformers are thread-safe since pyproj 3.1)."""
+_MAX_TRANSFORMERS = 32
+
+
 def dem_transformer(info: DemInfo, plan_crs: str, key: str = "terrain.dem") -> Any:
     """The pyproj transformer from the planning CRS to the DEM's (None: the same frame).
 
@@ -258,16 +264,24 @@ def dem_transformer(info: DemInfo, plan_crs: str, key: str = "terrain.dem") -> A
         raise _refuse(key, info.path, "is in a local (engineering) coordinate system, tied "
                       "to no place on the Earth, while the area is georeferenced: give a "
                       "DEM in a geographic or projected CRS (e.g. its EPSG code)")
+    kept = (info.crs_wkt, plan_crs)
+    if kept in _DEM_TRANSFORMERS:  # a plan samples the same DEM many times
+        return _DEM_TRANSFORMERS[kept]
     try:
         dem_crs = CRS.from_wkt(info.crs_wkt)
         src = CRS.from_user_input(plan_crs)
         if src == dem_crs:
-            return None
-        require_grids(dem_crs, key)
-        return Transformer.from_crs(src, dem_crs, always_xy=True)
+            tr = None
+        else:
+            require_grids(dem_crs, key)
+            tr = Transformer.from_crs(src, dem_crs, always_xy=True)
     except (CRSError, ProjError) as exc:
         raise _refuse(key, info.path, f"its CRS cannot be related to the planning CRS "
                       f"{plan_crs} ({_short(exc)})") from None
+    if len(_DEM_TRANSFORMERS) >= _MAX_TRANSFORMERS:
+        _DEM_TRANSFORMERS.pop(next(iter(_DEM_TRANSFORMERS)), None)
+    _DEM_TRANSFORMERS[kept] = tr
+    return tr
 
 
 def _to_dem_crs(x: NDArray[np.float64], y: NDArray[np.float64], plan_crs: str,

@@ -63,6 +63,8 @@ DEFAULT_VOID_MARGIN_M = 10.0
 :data:`DEFAULT_VOID_RADIUS_M`, the rise of an 11° slope over the radius."""
 BLOCKS_PER_SIDE = 16
 """Pyramid blocks a query rectangle spans at most per side (the over-reach is < 1/8)."""
+_GATHER_VALUES = 1 << 20
+"""Block values a direct look-up gathers at once (bounds its memory, 4 MB a side)."""
 _M_PER_DEG_LAT = 110_574.0  # WGS 84, metres per degree of latitude (mean, at 0°…)
 _M_PER_DEG_LON_EQ = 111_320.0  # … and of longitude at the equator
 
@@ -226,13 +228,18 @@ def _blocks_range(lo: NDArray[np.float32], hi: NDArray[np.float32], bi0: NDArray
 def _gather(lo: NDArray[np.float32], hi: NDArray[np.float32], bi0: NDArray[np.int64],
             bj0: NDArray[np.int64], w: int, h: int
             ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """min/max over the w × h blocks from (bj0, bi0), one look-up per block."""
-    out_lo = np.full(bi0.size, np.inf)
-    out_hi = np.full(bi0.size, -np.inf)
-    for dj in range(h):
-        for di in range(w):
-            np.minimum(out_lo, lo[bj0 + dj, bi0 + di], out=out_lo)
-            np.maximum(out_hi, hi[bj0 + dj, bi0 + di], out=out_hi)
+    """min/max over the w × h blocks from (bj0, bi0): each box's blocks gathered at once
+    (n × h × w values, in chunks of about a million) and reduced per box."""
+    out_lo = np.empty(bi0.size)
+    out_hi = np.empty(bi0.size)
+    dj = np.arange(h)[None, :, None]
+    di = np.arange(w)[None, None, :]
+    chunk = max(1, _GATHER_VALUES // (w * h))
+    for s in range(0, bi0.size, chunk):
+        jj = bj0[s:s + chunk, None, None] + dj
+        ii = bi0[s:s + chunk, None, None] + di
+        out_lo[s:s + chunk] = lo[jj, ii].min(axis=(1, 2))
+        out_hi[s:s + chunk] = hi[jj, ii].max(axis=(1, 2))
     return out_lo, out_hi
 
 

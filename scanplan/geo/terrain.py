@@ -430,18 +430,22 @@ def _follow_runs(g: NDArray[np.float64], strip: NDArray[np.int64], tol: float
                  ) -> NDArray[np.int64]:
     """Run id of every photo (in strip order): a run is consecutive photos of one strip
     whose ground spans at most ``tol`` (greedy, in flight order)."""
-    run = np.empty(g.size, dtype=np.int64)
+    run = [0] * g.size
     rid, lo, hi, prev = -1, math.inf, -math.inf, None
-    for i in range(g.size):
-        v = g[i]
-        if prev is None or strip[i] != prev or max(hi, v) - min(lo, v) > tol + 1e-9:
-            rid += 1
-            lo = hi = v
-        else:
-            lo, hi = min(lo, v), max(hi, v)
+    limit = tol + 1e-9
+    for i, (v, k) in enumerate(zip(g.tolist(), strip.tolist(), strict=True)):  # floats
+        if k == prev:  # max(hi, v) and min(lo, v), spelt out (the loop's hot path)
+            top = v if v > hi else hi
+            low = v if v < lo else lo
+            if not top - low > limit:  # (NaN continues the run, as before)
+                lo, hi = low, top
+                run[i] = rid
+                continue
+        rid += 1
+        lo = hi = v
         run[i] = rid
-        prev = strip[i]
-    return run
+        prev = k
+    return np.array(run, dtype=np.int64)
 
 
 def _group_max(values: NDArray[np.float64], groups: NDArray[np.int64]) -> NDArray[np.float64]:
