@@ -71,10 +71,13 @@ def _side_pairs(x: NDArray[np.float64], y: NDArray[np.float64], strip: NDArray[n
         i1 = members[int(k1)]
         order = np.argsort(u[i1])
         us = u[i1][order]
-        pos = np.clip(np.searchsorted(us, u[i0]), 1, max(us.size - 1, 1))
-        left = np.clip(pos - 1, 0, us.size - 1)
-        right = np.clip(pos, 0, us.size - 1)
-        pick = np.where(np.abs(us[left] - u[i0]) <= np.abs(us[right] - u[i0]), left, right)
+        u0 = u[i0]
+        if us.size == 1:  # the one photo of the next strip
+            pick = np.zeros(u0.size, dtype=np.int64)
+        else:  # the nearer of the two photos on either side along the line
+            right = np.minimum(np.maximum(np.searchsorted(us, u0), 1), us.size - 1)
+            left = right - 1
+            pick = np.where(np.abs(us[left] - u0) <= np.abs(us[right] - u0), left, right)
         j = i1[order][pick]
         a_all.append(i0)
         b_all.append(j)
