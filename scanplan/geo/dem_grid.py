@@ -229,14 +229,18 @@ def _tables_range(tlo: NDArray[np.float32], thi: NDArray[np.float32], bi0: NDArr
     the four windows of 2^a × 2^b blocks (the largest powers of two within the box's
     sides) anchored at its corners cover it exactly; an unknown block makes the range
     unknown (NaN). The same values as :func:`_blocks_range`."""
+    n, _n, h, w = tlo.shape
     a = np.log2(bi1 - bi0 + 1).astype(np.int64)  # exact: the widths are small integers
     b = np.log2(bj1 - bj0 + 1).astype(np.int64)
     ie = bi1 - (1 << a) + 1
     je = bj1 - (1 << b) + 1
+    table = (a * n + b) * (h * w)  # flat indices of the four windows: one gather each
+    first, last = table + bj0 * w, table + je * w
+    corners = (first + bi0, first + ie, last + bi0, last + ie)
     out = []
-    for t, reduce in ((tlo, np.minimum), (thi, np.maximum)):
-        v = reduce(reduce(t[a, b, bj0, bi0], t[a, b, bj0, ie]),
-                   reduce(t[a, b, je, bi0], t[a, b, je, ie]))
+    for t, reduce in ((tlo.reshape(-1), np.minimum), (thi.reshape(-1), np.maximum)):
+        v = reduce(reduce(t.take(corners[0]), t.take(corners[1])),
+                   reduce(t.take(corners[2]), t.take(corners[3])))
         out.append(v.astype(np.float64))
     bad = ~np.isfinite(out[0]) | ~np.isfinite(out[1])
     return np.where(bad, np.nan, out[0]), np.where(bad, np.nan, out[1])
