@@ -21,6 +21,7 @@ sys.path.insert(0, str(Path(__file__).parent))
 
 from terrain_helpers import dem_around, layout
 
+from scanplan.errors import InputError
 from scanplan.geo import dem as D
 from scanplan.geo import dem_grid as G
 from scanplan.geo import terrain as T
@@ -134,3 +135,17 @@ def test_a_small_dem_is_read_once_and_again_when_rewritten(tmp_path, monkeypatch
     info = D.open_dem(path)
     rewritten = D.sample_dem(info, xs, ys, lay.area.plan_crs).elevation_m
     np.testing.assert_allclose(rewritten, 50.0)
+
+
+def test_an_accepted_dem_header_is_kept_until_the_file_or_a_companion_changes(tmp_path):
+    lay = layout()
+    path = dem_around(tmp_path / "dem.tif", lambda x, y: 100.0 + 0 * x, lay)
+    first = D.open_dem(path)
+    assert D.open_dem(path) is first  # each layout of a plan opens it: read once
+    time.sleep(0.01)
+    dem_around(path, lambda x, y: 100.0 + 0 * x, lay, cell=4.0)  # rewritten: 4 m cells
+    again = D.open_dem(path)
+    assert again is not first and again.cell_size == (4.0, 4.0)
+    (tmp_path / "dem.tif.ovr").write_text("not a TIFF")  # a companion GDAL would open
+    with pytest.raises(InputError, match="ovr"):
+        D.open_dem(path)

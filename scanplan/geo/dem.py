@@ -142,6 +142,10 @@ def open_dem(path: str | Path, key: str = "terrain.dem") -> DemInfo:
     p = Path(path)
     if not p.is_file():
         raise _refuse(key, p, "no such file")
+    memo = _file_version(p)
+    with _KEPT_LOCK:
+        if memo is not None and memo in _OPENED:  # a plan opens its DEM for every layout
+            return _OPENED[memo]
     _check_tiff(p, key)
     try:
         with gdal_messages() as said, rasterio.open(p, driver=GTIFF) as src:
@@ -153,7 +157,32 @@ def open_dem(path: str | Path, key: str = "terrain.dem") -> DemInfo:
     damage = said.damage()
     if damage is not None:
         raise _refuse(key, p, f"is a damaged GeoTIFF: {damage}; save it again from your GIS")
+    if memo is not None:
+        with _KEPT_LOCK:
+            _OPENED[memo] = info
+            while len(_OPENED) > _KEPT_OPENED:
+                _OPENED.popitem(last=False)
     return info
+
+
+_OPENED: OrderedDict[tuple[Any, ...], DemInfo] = OrderedDict()
+"""The headers of the DEMs opened and accepted, by file version (refusals not kept)."""
+_KEPT_OPENED = 8
+
+
+def _file_version(p: Path) -> tuple[Any, ...] | None:
+    """What an accepted DEM's header depends on: the file as given (its name, size, times,
+    inode and device) and its ``.ovr`` / ``.msk`` companions'; None when they cannot be
+    looked at (the file is then opened and checked as always)."""
+    try:
+        st = p.stat()
+        stem = p.name.casefold() + "."
+        mates = sorted((q.name, q.stat().st_size, q.stat().st_mtime_ns)
+                       for q in p.parent.iterdir() if q.name.casefold().startswith(stem))
+    except OSError:
+        return None
+    return (str(p), str(Path.cwd()), st.st_size, st.st_mtime_ns, st.st_ctime_ns, st.st_ino,
+            st.st_dev, tuple(mates))
 
 
 def _header(src: Any, p: Path, key: str) -> DemInfo:
@@ -440,7 +469,7 @@ kept while the file is unchanged (a plan samples it many times); a larger one is
 windows under the points every time."""
 _WHOLE: OrderedDict[tuple[Any, ...], NDArray[np.float64]] = OrderedDict()
 _KEPT_WHOLE = 2
-_WHOLE_LOCK = threading.Lock()
+_KEPT_LOCK = threading.Lock()
 
 
 def _whole(info: DemInfo) -> NDArray[np.float64] | None:
@@ -458,7 +487,7 @@ def _whole(info: DemInfo) -> NDArray[np.float64] | None:
     except OSError:
         return None
     memo = (str(info.path), st.st_size, st.st_mtime_ns, st.st_ino, st.st_ctime_ns, info)
-    with _WHOLE_LOCK:
+    with _KEPT_LOCK:
         if memo in _WHOLE:
             _WHOLE.move_to_end(memo)
             return _WHOLE[memo]
@@ -470,7 +499,7 @@ def _whole(info: DemInfo) -> NDArray[np.float64] | None:
     if said.damage() is not None or data.shape != (info.height_px, info.width_px):
         return None
     data.setflags(write=False)
-    with _WHOLE_LOCK:
+    with _KEPT_LOCK:
         _WHOLE[memo] = data
         while len(_WHOLE) > _KEPT_WHOLE:
             _WHOLE.popitem(last=False)

@@ -567,9 +567,13 @@ def terrain_layout(layout: FlightLayout, cols: dict[str, NDArray[Any]],
     inverse = np.empty(n, dtype=np.int64)
     inverse[order] = np.arange(n)
     photos = Photos({k: np.asarray(v)[inverse] for k, v in cols.items()})
+    altitude: dict[int, float | None] = {}
+    if mode != "follow":
+        for r in strips:
+            altitude.setdefault(r.number, r.altitude_max_m)  # the first of its number
     new_strips = tuple(
-        replace(s, altitude_m=(next((r.altitude_max_m for r in strips if r.number == s.number),
-                                    None) if mode != "follow" else None))
+        s if s.altitude_m is None and altitude.get(s.number) is None
+        else replace(s, altitude_m=altitude.get(s.number))
         for s in layout.strips)
     notes = dict(layout.notes)
     notes.update(altitude_mode=mode, altitude_frame=ALTITUDE_FRAME)
