@@ -538,7 +538,8 @@ def coverage_gap(info: DemInfo, area_geometry: object, plan_crs: str,
         (:func:`dem_transformer`).
     """
     import shapely
-    from pyproj import CRS, Transformer
+
+    from . import crs as geocrs
 
     dem_transformer(info, plan_crs, key)  # a local DEM under a georeferenced area: refused
     left, bottom, right, top = info.bounds
@@ -549,8 +550,7 @@ def coverage_gap(info: DemInfo, area_geometry: object, plan_crs: str,
     ys = np.concatenate([np.full(k, bottom), bottom + (top - bottom) * t,
                          np.full(k, top), top - (top - bottom) * t])
     if plan_crs.upper() != "LOCAL":
-        tr = Transformer.from_crs(CRS.from_wkt(info.crs_wkt), CRS.from_user_input(plan_crs),
-                                  always_xy=True)
+        tr = geocrs.transformer(info.crs_wkt, plan_crs)  # made once per process
         xs, ys = (np.asarray(v, dtype=float) for v in tr.transform(xs, ys))
     extent = shapely.Polygon(np.column_stack([xs, ys]))
     if not extent.is_valid:

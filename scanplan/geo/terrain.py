@@ -59,6 +59,7 @@ Mc), see :mod:`scanplan.geo.terrain_film`.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -411,7 +412,9 @@ def _grid(layout: FlightLayout, info: D.DemInfo, cfg: TerrainConfig, factor: flo
     return grid
 
 
+@functools.lru_cache(maxsize=32)
 def _crs_name(wkt: str) -> str:
+    """``EPSG:n`` of a DEM's CRS, else its name (looked up once per CRS)."""
     from pyproj import CRS
 
     crs = CRS.from_wkt(wkt)
