@@ -87,6 +87,9 @@ def test_follow_runs_split_where_the_ground_spans_more_than_the_tolerance(seed):
     strip = np.sort(rng.integers(0, 7, n))
     tol = float(rng.uniform(0.5, 8.0))
     np.testing.assert_array_equal(T._follow_runs(g, strip, tol), _runs_loop(g, strip, tol))
+    again = T._follow_runs(g.copy(), strip.copy(), tol)  # asked again: kept, read-only
+    assert again is T._follow_runs(g, strip, tol) and not again.flags.writeable
+    np.testing.assert_array_equal(T._greedy_runs(g, strip, tol), again)
 
 
 def test_each_photo_pairs_with_the_nearest_photo_of_the_next_strip():

@@ -432,7 +432,28 @@ def strip_order(ph: Photos) -> NDArray[np.int64]:
 def _follow_runs(g: NDArray[np.float64], strip: NDArray[np.int64], tol: float
                  ) -> NDArray[np.int64]:
     """Run id of every photo (in strip order): a run is consecutive photos of one strip
-    whose ground spans at most ``tol`` (greedy, in flight order)."""
+    whose ground spans at most ``tol`` (greedy, in flight order). Read-only: the last
+    few are kept (a check asks the runs of its altitudes and of its height limit)."""
+    import hashlib
+
+    g = np.asarray(g, dtype=float)
+    strip = np.asarray(strip, dtype=np.int64)
+    key = (hashlib.blake2b(g.tobytes() + strip.tobytes()).digest(), g.size, float(tol))
+    kept = _RUNS.get(key)
+    if kept is None:
+        kept = _RUNS[key] = _greedy_runs(g, strip, tol)
+        kept.setflags(write=False)
+        while len(_RUNS) > 4:
+            _RUNS.pop(next(iter(_RUNS)), None)
+    return kept
+
+
+_RUNS: dict[tuple[bytes, int, float], NDArray[np.int64]] = {}
+
+
+def _greedy_runs(g: NDArray[np.float64], strip: NDArray[np.int64], tol: float
+                 ) -> NDArray[np.int64]:
+    """:func:`_follow_runs`, computed."""
     run = [0] * g.size
     rid, lo, hi, prev = -1, math.inf, -math.inf, None
     limit = tol + 1e-9
