@@ -10,7 +10,8 @@ Rows:
   it in this process: the same projected polygon rotated to the plan's direction, cut into
   the plan's number of parallel strips by one ``shapely.intersection`` of their bands, and
   the plan's number of photo centres spread along the pieces with numpy and rotated back;
-  target 10×.
+  target 10×. Its note adds the warm CPU time of the page's heaviest examples
+  (:data:`HEAVY`), without a target of their own (``serve.view_ms`` has the page's).
 - ``plan_warm.first_over_bare_s`` — a fresh ``python -c "import scanplan;
   scanplan.plan(...)"`` over a bare ``python -c pass``, both as whole processes, CPU time
   (user + system of the child, ``resource.getrusage``), medians, interleaved; target 0.6 s.
@@ -32,6 +33,9 @@ import numpy as np
 from _common import ROOT, Result, child_env
 
 TOWN = ROOT / "examples" / "uav-town-2000.toml"
+HEAVY = {"uav-town-valley-2000": "the valley over its DEM, nine plans compared",
+         "uav-town-2000-afs": "the town with a schedule's sun windows"}
+"""The page's heaviest examples, timed warm for the note."""
 WARM_TARGET_MS = 50.0
 OVER_SHAPELY_TARGET = 10.0
 FIRST_TARGET_S = 0.6
@@ -113,6 +117,20 @@ def edited(repeat: int) -> float:
     return statistics.median(times)
 
 
+def heavy(repeat: int) -> dict[str, float]:
+    """Median CPU seconds of a warm plan of each of :data:`HEAVY` (after two warm-ups)."""
+    import scanplan
+
+    out = {}
+    for name in HEAVY:
+        path = ROOT / "examples" / f"{name}.toml"
+        scanplan.plan(path)
+        scanplan.plan(path)
+        out[name] = statistics.median(_cpu(lambda p=path: scanplan.plan(p))
+                                      for _ in range(repeat))
+    return out
+
+
 def _child(code: str) -> tuple[float, float]:
     """(wall, CPU) seconds of a fresh ``python -c code``."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
@@ -152,12 +170,15 @@ def measure(quick: bool = False) -> list[Result]:
     plan_s, base_s, facts = warm(5 if quick else 21)
     edit_s = edited(5 if quick else 21)
     f = first(3 if quick else 7)
+    others = "; ".join(f"{HEAVY[k]} ({k}) {v * 1000:,.0f} ms"
+                       for k, v in heavy(3 if quick else 7).items())
     return [
         Result("plan_warm.cpu_ms", plan_s * 1000, "ms", WARM_TARGET_MS, "<=",
                note=f"warm scanplan.plan of uav-town-2000 (no reports): {facts['strips']} "
                f"strips, {facts['photos']:,} photo centres, direction "
                f"{facts['direction']:.1f}°; CPU time, median. With a vertex moved before "
-               f"each plan (the area read and projected again): {edit_s * 1000:.1f} ms"),
+               f"each plan (the area read and projected again): {edit_s * 1000:.1f} ms. "
+               f"The heaviest examples, warm, CPU, median: {others}"),
         Result("plan_warm.over_shapely", plan_s / base_s, "x", OVER_SHAPELY_TARGET, "<=",
                note=f"over a bare shapely cut of the same polygon into the same strips and "
                f"photo centres, interleaved: {base_s * 1000:.1f} ms CPU"),

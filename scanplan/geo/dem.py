@@ -1,10 +1,12 @@
 """Ground elevations from a digital elevation model (a GeoTIFF in any CRS).
 
-The DEM is opened with rasterio and never read whole: the points to sample (photo centres
-in the planning CRS) are reprojected into the DEM's own CRS with pyproj — the DEM is not
-warped, so a geographic DEM (degrees) is sampled exactly where its own grid is — and then
-read tile by tile (windows of at most :data:`TILE_PX` × :data:`TILE_PX` pixels, only the
-tiles that hold points), so memory stays bounded whatever the size of the file.
+The DEM is opened with rasterio: the points to sample (photo centres in the planning CRS)
+are reprojected into the DEM's own CRS with pyproj — the DEM is not warped, so a
+geographic DEM (degrees) is sampled exactly where its own grid is — and then read tile by
+tile (windows of at most :data:`TILE_PX` × :data:`TILE_PX` pixels, only the tiles that
+hold points), so memory stays bounded whatever the size of the file. A small DEM (at most
+:data:`WHOLE_MAX_PX` pixels) is read whole once and kept while its file is unchanged: a
+plan samples it many times, and the pixels are the same.
 
 Sampling is bilinear between the four pixel centres around a point (a point within half a
 pixel of the raster's edge takes the edge pixels; outside the raster it has no value). A
@@ -23,7 +25,10 @@ naming the key (and saying how much is missing).
 from __future__ import annotations
 
 import math
+import os
 import re
+import threading
+from collections import OrderedDict
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -137,6 +142,10 @@ def open_dem(path: str | Path, key: str = "terrain.dem") -> DemInfo:
     p = Path(path)
     if not p.is_file():
         raise _refuse(key, p, "no such file")
+    memo = _file_version(p)
+    with _KEPT_LOCK:
+        if memo is not None and memo in _OPENED:  # a plan opens its DEM for every layout
+            return _OPENED[memo]
     _check_tiff(p, key)
     try:
         with gdal_messages() as said, rasterio.open(p, driver=GTIFF) as src:
@@ -148,7 +157,32 @@ def open_dem(path: str | Path, key: str = "terrain.dem") -> DemInfo:
     damage = said.damage()
     if damage is not None:
         raise _refuse(key, p, f"is a damaged GeoTIFF: {damage}; save it again from your GIS")
+    if memo is not None:
+        with _KEPT_LOCK:
+            _OPENED[memo] = info
+            while len(_OPENED) > _KEPT_OPENED:
+                _OPENED.popitem(last=False)
     return info
+
+
+_OPENED: OrderedDict[tuple[Any, ...], DemInfo] = OrderedDict()
+"""The headers of the DEMs opened and accepted, by file version (refusals not kept)."""
+_KEPT_OPENED = 8
+
+
+def _file_version(p: Path) -> tuple[Any, ...] | None:
+    """What an accepted DEM's header depends on: the file as given (its name, size, times,
+    inode and device) and its ``.ovr`` / ``.msk`` companions'; None when they cannot be
+    looked at (the file is then opened and checked as always)."""
+    try:
+        st = p.stat()
+        stem = p.name.casefold() + "."
+        mates = sorted((q.name, q.stat().st_size, q.stat().st_mtime_ns)
+                       for q in p.parent.iterdir() if q.name.casefold().startswith(stem))
+    except OSError:
+        return None
+    return (str(p), str(Path.cwd()), st.st_size, st.st_mtime_ns, st.st_ctime_ns, st.st_ino,
+            st.st_dev, tuple(mates))
 
 
 def _header(src: Any, p: Path, key: str) -> DemInfo:
@@ -240,6 +274,12 @@ def unit_problem(values_m: NDArray[np.float64], info: DemInfo, source: str) -> s
     return None
 
 
+_DEM_TRANSFORMERS: dict[tuple[str, str], Any] = {}
+"""The transformer (or None) of each (DEM CRS, planning CRS) pair met, refusals not kept
+(pyproj's transformers are thread-safe since pyproj 3.1)."""
+_MAX_TRANSFORMERS = 32
+
+
 def dem_transformer(info: DemInfo, plan_crs: str, key: str = "terrain.dem") -> Any:
     """The pyproj transformer from the planning CRS to the DEM's (None: the same frame).
 
@@ -258,16 +298,24 @@ def dem_transformer(info: DemInfo, plan_crs: str, key: str = "terrain.dem") -> A
         raise _refuse(key, info.path, "is in a local (engineering) coordinate system, tied "
                       "to no place on the Earth, while the area is georeferenced: give a "
                       "DEM in a geographic or projected CRS (e.g. its EPSG code)")
+    kept = (info.crs_wkt, plan_crs)
+    if kept in _DEM_TRANSFORMERS:  # a plan samples the same DEM many times
+        return _DEM_TRANSFORMERS[kept]
     try:
         dem_crs = CRS.from_wkt(info.crs_wkt)
         src = CRS.from_user_input(plan_crs)
         if src == dem_crs:
-            return None
-        require_grids(dem_crs, key)
-        return Transformer.from_crs(src, dem_crs, always_xy=True)
+            tr = None
+        else:
+            require_grids(dem_crs, key)
+            tr = Transformer.from_crs(src, dem_crs, always_xy=True)
     except (CRSError, ProjError) as exc:
         raise _refuse(key, info.path, f"its CRS cannot be related to the planning CRS "
                       f"{plan_crs} ({_short(exc)})") from None
+    if len(_DEM_TRANSFORMERS) >= _MAX_TRANSFORMERS:
+        _DEM_TRANSFORMERS.pop(next(iter(_DEM_TRANSFORMERS)), None)
+    _DEM_TRANSFORMERS[kept] = tr
+    return tr
 
 
 def _to_dem_crs(x: NDArray[np.float64], y: NDArray[np.float64], plan_crs: str,
@@ -378,33 +426,84 @@ def _read_windows(info: DemInfo, pos: _Positions, elev: NDArray[np.float64],
     ntc = info.width_px // TILE_PX + 1
     tile_id = (r0 // TILE_PX) * ntc + c0 // TILE_PX
     order = np.argsort(tile_id, kind="stable")
-    ids, starts = np.unique(tile_id[order], return_index=True)
+    _ids, starts = np.unique(tile_id[order], return_index=True)
     ends = np.append(starts[1:], order.size)
+    windows = []
     read_px = 0
+    for s, e in zip(starts.tolist(), ends.tolist(), strict=True):
+        sel = order[s:e]
+        r_lo, c_lo = int(r0[sel].min()), int(c0[sel].min())
+        r_hi = min(int(r0[sel].max()) + 2, info.height_px)
+        c_hi = min(int(c0[sel].max()) + 2, info.width_px)
+        read_px += (r_hi - r_lo) * (c_hi - c_lo)
+        if read_px > MAX_READ_PX:
+            raise _refuse(key, info.path, f"the area covers more than {MAX_READ_PX:,} of its "
+                          "pixels: resample the DEM to a coarser grid under the area first")
+        windows.append((sel, r_lo, c_lo, r_hi, c_hi))
+
+    def put(data: NDArray[np.float64], sel: NDArray[np.int64], r_lo: int, c_lo: int) -> None:
+        _bilinear(data, pos.col[sel] - c_lo, pos.row[sel] - r_lo, c0[sel] - c_lo,
+                  r0[sel] - r_lo, pos.inside[sel], elev, nodata)
+
+    whole = _whole(info)
+    if whole is not None:  # a small DEM, read once: the same pixels as the windows'
+        for sel, r_lo, c_lo, r_hi, c_hi in windows:
+            put(whole[r_lo:r_hi, c_lo:c_hi], sel, r_lo, c_lo)
+        return
     try:
         with gdal_messages() as said, rasterio.open(info.path, driver=GTIFF) as src:
-            for _tid, s, e in zip(ids.tolist(), starts.tolist(), ends.tolist(), strict=True):
-                sel = order[s:e]
-                r_lo, c_lo = int(r0[sel].min()), int(c0[sel].min())
-                r_hi = min(int(r0[sel].max()) + 2, info.height_px)
-                c_hi = min(int(c0[sel].max()) + 2, info.width_px)
-                read_px += (r_hi - r_lo) * (c_hi - c_lo)
-                if read_px > MAX_READ_PX:
-                    raise _refuse(key, info.path, f"the area covers more than {MAX_READ_PX:,} "
-                                  "of its pixels: resample the DEM to a coarser grid under "
-                                  "the area first")
+            for sel, r_lo, c_lo, r_hi, c_hi in windows:
                 win = Window(c_lo, r_lo, c_hi - c_lo, r_hi - r_lo)
                 block = src.read(1, window=win, masked=True).astype(np.float64)
-                data = np.ma.filled(block, np.nan)
-                _bilinear(data, pos.col[sel] - c_lo, pos.row[sel] - r_lo, c0[sel] - c_lo,
-                          r0[sel] - r_lo, pos.inside[sel], elev, nodata)
-    except InputError:
-        raise
+                put(np.ma.filled(block, np.nan), sel, r_lo, c_lo)
     except (RasterioError, OSError, ValueError, MemoryError) as exc:
         raise _refuse(key, info.path, f"could not be read ({_short(exc)})") from None
     damage = said.damage()
     if damage is not None:
         raise _refuse(key, info.path, f"could not be read ({damage})")
+
+
+WHOLE_MAX_PX = 1 << 22
+"""A DEM of at most this many pixels (4 Mpx, 32 MB as float64) is read whole once and
+kept while the file is unchanged (a plan samples it many times); a larger one is read in
+windows under the points every time."""
+_WHOLE: OrderedDict[tuple[Any, ...], NDArray[np.float64]] = OrderedDict()
+_KEPT_WHOLE = 2
+_KEPT_LOCK = threading.Lock()
+
+
+def _whole(info: DemInfo) -> NDArray[np.float64] | None:
+    """A small DEM's pixels (float64, NaN on no-data, read-only), read once per file
+    version (its name, size, times and inode); None for a large DEM, a file that cannot
+    be looked at, or one whose whole read fails or draws a GDAL message (it is then read
+    in windows, which says why as before)."""
+    import rasterio
+    from rasterio.errors import RasterioError
+
+    if info.width_px * info.height_px > WHOLE_MAX_PX:
+        return None
+    try:
+        st = os.stat(info.path)
+    except OSError:
+        return None
+    memo = (str(info.path), st.st_size, st.st_mtime_ns, st.st_ino, st.st_ctime_ns, info)
+    with _KEPT_LOCK:
+        if memo in _WHOLE:
+            _WHOLE.move_to_end(memo)
+            return _WHOLE[memo]
+    try:
+        with gdal_messages() as said, rasterio.open(info.path, driver=GTIFF) as src:
+            data = np.ma.filled(src.read(1, masked=True).astype(np.float64), np.nan)
+    except (RasterioError, OSError, ValueError, MemoryError):
+        return None
+    if said.damage() is not None or data.shape != (info.height_px, info.width_px):
+        return None
+    data.setflags(write=False)
+    with _KEPT_LOCK:
+        _WHOLE[memo] = data
+        while len(_WHOLE) > _KEPT_WHOLE:
+            _WHOLE.popitem(last=False)
+    return data
 
 
 def _bilinear(data: NDArray[np.float64], fc: NDArray[np.float64], fr: NDArray[np.float64],
@@ -439,7 +538,8 @@ def coverage_gap(info: DemInfo, area_geometry: object, plan_crs: str,
         (:func:`dem_transformer`).
     """
     import shapely
-    from pyproj import CRS, Transformer
+
+    from . import crs as geocrs
 
     dem_transformer(info, plan_crs, key)  # a local DEM under a georeferenced area: refused
     left, bottom, right, top = info.bounds
@@ -450,8 +550,7 @@ def coverage_gap(info: DemInfo, area_geometry: object, plan_crs: str,
     ys = np.concatenate([np.full(k, bottom), bottom + (top - bottom) * t,
                          np.full(k, top), top - (top - bottom) * t])
     if plan_crs.upper() != "LOCAL":
-        tr = Transformer.from_crs(CRS.from_wkt(info.crs_wkt), CRS.from_user_input(plan_crs),
-                                  always_xy=True)
+        tr = geocrs.transformer(info.crs_wkt, plan_crs)  # made once per process
         xs, ys = (np.asarray(v, dtype=float) for v in tr.transform(xs, ys))
     extent = shapely.Polygon(np.column_stack([xs, ys]))
     if not extent.is_valid:

@@ -44,7 +44,7 @@ from __future__ import annotations
 import math
 import os
 from collections import OrderedDict
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -63,6 +63,14 @@ DEFAULT_VOID_MARGIN_M = 10.0
 :data:`DEFAULT_VOID_RADIUS_M`, the rise of an 11° slope over the radius."""
 BLOCKS_PER_SIDE = 16
 """Pyramid blocks a query rectangle spans at most per side (the over-reach is < 1/8)."""
+_TABLE_EXPONENTS = (BLOCKS_PER_SIDE + 1).bit_length()
+"""Range tables hold windows of 2^0 … 2^4 blocks a side: a box spans at most
+:data:`BLOCKS_PER_SIDE` + 1 blocks of its level."""
+_TABLE_MAX_BLOCKS = 1 << 16
+"""Levels of at most this many blocks answer from range tables (25 windows a block, 2 ×
+6.6 MB at most); a larger level by running extremes and gathers."""
+_GATHER_VALUES = 1 << 20
+"""Block values a direct look-up gathers at once (bounds its memory, 4 MB a side)."""
 _M_PER_DEG_LAT = 110_574.0  # WGS 84, metres per degree of latitude (mean, at 0°…)
 _M_PER_DEG_LON_EQ = 111_320.0  # … and of longitude at the equator
 
@@ -107,6 +115,9 @@ class GroundGrid:
     hi: tuple[NDArray[np.float32], ...]
     plan_crs: str
     voids: VoidFill
+    _tables: dict[int, tuple[NDArray[np.float32], NDArray[np.float32]]] = field(
+        default_factory=dict, init=False, repr=False, compare=False)
+    """Each level's range tables, made when the level is first asked (:func:`_tables`)."""
 
     # --- coordinates -------------------------------------------------------------------
     def to_pixels(self, x_m: NDArray[np.float64], y_m: NDArray[np.float64]
@@ -172,10 +183,67 @@ class GroundGrid:
         level = np.minimum(level, len(self.lo) - 1)
         for k in np.unique(level[ok]).tolist():
             sel = np.flatnonzero(ok & (level == k))
-            lo_out[sel], hi_out[sel] = _blocks_range(
-                self.lo[k], self.hi[k], i0[sel] >> k, i1[sel] >> k, j0[sel] >> k,
-                j1[sel] >> k)
+            box = (i0[sel] >> k, i1[sel] >> k, j0[sel] >> k, j1[sel] >> k)
+            widest = int(max((box[1] - box[0]).max(), (box[3] - box[2]).max())) + 1
+            if self.lo[k].size <= _TABLE_MAX_BLOCKS and widest < 2 << _TABLE_EXPONENTS - 1:
+                if k not in self._tables:
+                    self._tables[k] = _tables(self.lo[k], self.hi[k])
+                lo_out[sel], hi_out[sel] = _tables_range(*self._tables[k], *box)
+            else:
+                lo_out[sel], hi_out[sel] = _blocks_range(self.lo[k], self.hi[k], *box)
         return lo_out, hi_out
+
+
+def _tables(lo: NDArray[np.float32], hi: NDArray[np.float32]
+            ) -> tuple[NDArray[np.float32], NDArray[np.float32]]:
+    """Range tables of one level: ``t[a, b, j, i]`` the min (max) over the 2^a × 2^b
+    blocks from (j, i) (a along the rows, b down the columns), for 2^a, 2^b up to the
+    widest box a level is asked (:data:`BLOCKS_PER_SIDE` + 1 blocks). Unknown ground
+    (NaN) is the extreme that wins (−inf, +inf); a window reaching past the level's edge
+    holds what lies inside it (it is never asked)."""
+    n = _TABLE_EXPONENTS
+    out = []
+    for z, fill, reduce in ((lo, -np.inf, np.minimum), (hi, np.inf, np.maximum)):
+        z = np.where(np.isnan(z), np.float32(fill), z)
+        h, w = z.shape
+        t = np.empty((n, n, h, w), dtype=np.float32)
+        t[0, 0] = z
+        for a in range(1, n):  # along the rows: windows 2^a blocks wide
+            s = 1 << (a - 1)
+            m = max(w - s, 0)
+            t[a, 0] = t[a - 1, 0]
+            reduce(t[a - 1, 0, :, :m], t[a - 1, 0, :, s:s + m], out=t[a, 0, :, :m])
+        for b in range(1, n):  # down the columns: 2^b blocks high
+            s = 1 << (b - 1)
+            m = max(h - s, 0)
+            t[:, b] = t[:, b - 1]
+            reduce(t[:, b - 1, :m], t[:, b - 1, s:s + m], out=t[:, b, :m])
+        out.append(t)
+    return out[0], out[1]
+
+
+def _tables_range(tlo: NDArray[np.float32], thi: NDArray[np.float32], bi0: NDArray[np.int64],
+                  bi1: NDArray[np.int64], bj0: NDArray[np.int64], bj1: NDArray[np.int64]
+                  ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """min/max over the blocks [bi0, bi1] × [bj0, bj1] (inclusive) from the range tables:
+    the four windows of 2^a × 2^b blocks (the largest powers of two within the box's
+    sides) anchored at its corners cover it exactly; an unknown block makes the range
+    unknown (NaN). The same values as :func:`_blocks_range`."""
+    n, _n, h, w = tlo.shape
+    a = np.log2(bi1 - bi0 + 1).astype(np.int64)  # exact: the widths are small integers
+    b = np.log2(bj1 - bj0 + 1).astype(np.int64)
+    ie = bi1 - (1 << a) + 1
+    je = bj1 - (1 << b) + 1
+    table = (a * n + b) * (h * w)  # flat indices of the four windows: one gather each
+    first, last = table + bj0 * w, table + je * w
+    corners = (first + bi0, first + ie, last + bi0, last + ie)
+    out = []
+    for t, reduce in ((tlo.reshape(-1), np.minimum), (thi.reshape(-1), np.maximum)):
+        v = reduce(reduce(t.take(corners[0]), t.take(corners[1])),
+                   reduce(t.take(corners[2]), t.take(corners[3])))
+        out.append(v.astype(np.float64))
+    bad = ~np.isfinite(out[0]) | ~np.isfinite(out[1])
+    return np.where(bad, np.nan, out[0]), np.where(bad, np.nan, out[1])
 
 
 def _blocks_range(lo: NDArray[np.float32], hi: NDArray[np.float32], bi0: NDArray[np.int64],
@@ -226,13 +294,18 @@ def _blocks_range(lo: NDArray[np.float32], hi: NDArray[np.float32], bi0: NDArray
 def _gather(lo: NDArray[np.float32], hi: NDArray[np.float32], bi0: NDArray[np.int64],
             bj0: NDArray[np.int64], w: int, h: int
             ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """min/max over the w × h blocks from (bj0, bi0), one look-up per block."""
-    out_lo = np.full(bi0.size, np.inf)
-    out_hi = np.full(bi0.size, -np.inf)
-    for dj in range(h):
-        for di in range(w):
-            np.minimum(out_lo, lo[bj0 + dj, bi0 + di], out=out_lo)
-            np.maximum(out_hi, hi[bj0 + dj, bi0 + di], out=out_hi)
+    """min/max over the w × h blocks from (bj0, bi0): each box's blocks gathered at once
+    (n × h × w values, in chunks of about a million) and reduced per box."""
+    out_lo = np.empty(bi0.size)
+    out_hi = np.empty(bi0.size)
+    dj = np.arange(h)[None, :, None]
+    di = np.arange(w)[None, None, :]
+    chunk = max(1, _GATHER_VALUES // (w * h))
+    for s in range(0, bi0.size, chunk):
+        jj = bj0[s:s + chunk, None, None] + dj
+        ii = bi0[s:s + chunk, None, None] + di
+        out_lo[s:s + chunk] = lo[jj, ii].min(axis=(1, 2))
+        out_hi[s:s + chunk] = hi[jj, ii].max(axis=(1, 2))
     return out_lo, out_hi
 
 
@@ -330,6 +403,10 @@ def _read(info: D.DemInfo, win: tuple[int, int, int, int], factor_m: float, key:
     if w * h > D.MAX_READ_PX:
         raise D._refuse(key, info.path, f"the area covers more than {D.MAX_READ_PX:,} of its "
                         "pixels: resample the DEM to a coarser grid under the area first")
+    whole = D._whole(info)
+    if whole is not None:  # a small DEM, read once: the same pixels
+        z = whole[r0:r0 + h, c0:c0 + w].astype(np.float32)
+        return _metres(z, factor_m)
     z = np.empty((h, w), dtype=np.float32)
     try:
         # the file open_dem checked, opened as it was: GeoTIFF only, GDAL's messages kept
@@ -341,6 +418,11 @@ def _read(info: D.DemInfo, win: tuple[int, int, int, int], factor_m: float, key:
                     z[rr:rr + th, cc:cc + tw] = np.ma.filled(block.astype(np.float32), np.nan)
     except (RasterioError, OSError, ValueError, MemoryError) as exc:
         raise D._refuse(key, info.path, f"could not be read ({D._short(exc)})") from None
+    return _metres(z, factor_m)
+
+
+def _metres(z: NDArray[np.float32], factor_m: float) -> NDArray[np.float32]:
+    """``z`` (changed in place) in metres, NaN where it is not finite."""
     z[~np.isfinite(z)] = np.nan
     if factor_m != 1.0:
         z *= np.float32(factor_m)

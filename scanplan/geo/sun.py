@@ -25,6 +25,7 @@ astronomy and no time-zone rule is written here.
 from __future__ import annotations
 
 import datetime as dt
+import functools
 import math
 import zoneinfo
 from collections.abc import Sequence
@@ -204,6 +205,18 @@ def sun_windows(dates: Sequence[dt.date], lat_deg: float, lon_deg: float,
     """
     if not dates:
         return ()
+    return _sun_windows(tuple(dates), float(lat_deg), float(lon_deg), float(min_elevation_deg),
+                        None if utc_offset_h is None else float(utc_offset_h), time_zone,
+                        float(step_min))
+
+
+@functools.lru_cache(maxsize=32)
+def _sun_windows(dates: tuple[dt.date, ...], lat_deg: float, lon_deg: float,
+                 min_elevation_deg: float, utc_offset_h: float | None, time_zone: str | None,
+                 step_min: float) -> tuple[SunWindow, ...]:
+    """:func:`sun_windows`, each site's and dates' windows computed once per process (a
+    re-plan that moves no date and not the site asks them again; the windows are
+    immutable)."""
     if utc_offset_h is not None:
         offsets = [float(utc_offset_h)] * len(dates)
     else:

@@ -59,6 +59,7 @@ Mc), see :mod:`scanplan.geo.terrain_film`.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -411,7 +412,9 @@ def _grid(layout: FlightLayout, info: D.DemInfo, cfg: TerrainConfig, factor: flo
     return grid
 
 
+@functools.lru_cache(maxsize=32)
 def _crs_name(wkt: str) -> str:
+    """``EPSG:n`` of a DEM's CRS, else its name (looked up once per CRS)."""
     from pyproj import CRS
 
     crs = CRS.from_wkt(wkt)
@@ -429,19 +432,44 @@ def strip_order(ph: Photos) -> NDArray[np.int64]:
 def _follow_runs(g: NDArray[np.float64], strip: NDArray[np.int64], tol: float
                  ) -> NDArray[np.int64]:
     """Run id of every photo (in strip order): a run is consecutive photos of one strip
-    whose ground spans at most ``tol`` (greedy, in flight order)."""
-    run = np.empty(g.size, dtype=np.int64)
+    whose ground spans at most ``tol`` (greedy, in flight order). Read-only: the last
+    few are kept (a check asks the runs of its altitudes and of its height limit)."""
+    import hashlib
+
+    g = np.asarray(g, dtype=float)
+    strip = np.asarray(strip, dtype=np.int64)
+    key = (hashlib.blake2b(g.tobytes() + strip.tobytes()).digest(), g.size, float(tol))
+    kept = _RUNS.get(key)
+    if kept is None:
+        kept = _RUNS[key] = _greedy_runs(g, strip, tol)
+        kept.setflags(write=False)
+        while len(_RUNS) > 4:
+            _RUNS.pop(next(iter(_RUNS)), None)
+    return kept
+
+
+_RUNS: dict[tuple[bytes, int, float], NDArray[np.int64]] = {}
+
+
+def _greedy_runs(g: NDArray[np.float64], strip: NDArray[np.int64], tol: float
+                 ) -> NDArray[np.int64]:
+    """:func:`_follow_runs`, computed."""
+    run = [0] * g.size
     rid, lo, hi, prev = -1, math.inf, -math.inf, None
-    for i in range(g.size):
-        v = g[i]
-        if prev is None or strip[i] != prev or max(hi, v) - min(lo, v) > tol + 1e-9:
-            rid += 1
-            lo = hi = v
-        else:
-            lo, hi = min(lo, v), max(hi, v)
+    limit = tol + 1e-9
+    for i, (v, k) in enumerate(zip(g.tolist(), strip.tolist(), strict=True)):  # floats
+        if k == prev:  # max(hi, v) and min(lo, v), spelt out (the loop's hot path)
+            top = v if v > hi else hi
+            low = v if v < lo else lo
+            if not top - low > limit:  # (NaN continues the run, as before)
+                lo, hi = low, top
+                run[i] = rid
+                continue
+        rid += 1
+        lo = hi = v
         run[i] = rid
-        prev = strip[i]
-    return run
+        prev = k
+    return np.array(run, dtype=np.int64)
 
 
 def _group_max(values: NDArray[np.float64], groups: NDArray[np.int64]) -> NDArray[np.float64]:
@@ -563,9 +591,13 @@ def terrain_layout(layout: FlightLayout, cols: dict[str, NDArray[Any]],
     inverse = np.empty(n, dtype=np.int64)
     inverse[order] = np.arange(n)
     photos = Photos({k: np.asarray(v)[inverse] for k, v in cols.items()})
+    altitude: dict[int, float | None] = {}
+    if mode != "follow":
+        for r in strips:
+            altitude.setdefault(r.number, r.altitude_max_m)  # the first of its number
     new_strips = tuple(
-        replace(s, altitude_m=(next((r.altitude_max_m for r in strips if r.number == s.number),
-                                    None) if mode != "follow" else None))
+        s if s.altitude_m is None and altitude.get(s.number) is None
+        else replace(s, altitude_m=altitude.get(s.number))
         for s in layout.strips)
     notes = dict(layout.notes)
     notes.update(altitude_mode=mode, altitude_frame=ALTITUDE_FRAME)

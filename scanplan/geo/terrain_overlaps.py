@@ -50,12 +50,16 @@ def _side_pairs(x: NDArray[np.float64], y: NDArray[np.float64], strip: NDArray[n
     """Each photo and the nearest photo (along the line) of the next strip across."""
     u = x * along[0] + y * along[1]
     v = x * across[0] + y * across[1]
-    numbers = np.unique(strip)
-    mean_v = np.array([v[strip == k].mean() for k in numbers])
+    by_strip = np.argsort(strip, kind="stable")  # each strip's photos, in their order
+    numbers, starts = np.unique(strip[by_strip], return_index=True)
+    ends = np.append(starts[1:], strip.size)[:starts.size]
+    members = {int(k): by_strip[s:e] for k, s, e in zip(numbers.tolist(), starts.tolist(),
+                                                         ends.tolist(), strict=True)}
+    mean_v = np.array([v[members[k]].mean() for k in numbers.tolist()])
     by_v = numbers[np.argsort(mean_v)]
     pairs = list(itertools.pairwise(by_v))
     if np.ndim(along) > 1:  # a crosshatch: neighbours within each pass (one direction)
-        first = {int(k): int(np.flatnonzero(strip == k)[0]) for k in numbers}
+        first = {k: int(members[k][0]) for k in numbers.tolist()}
         heading = {k: (round(float(along[0][i]), 9), round(float(along[1][i]), 9))
                    for k, i in first.items()}
         pairs = [(k0, k1) for k0, k1 in (
@@ -63,14 +67,17 @@ def _side_pairs(x: NDArray[np.float64], y: NDArray[np.float64], strip: NDArray[n
             for pair in itertools.pairwise([k for k in by_v if heading[int(k)] == d]))]
     a_all, b_all, d_all = [], [], []
     for k0, k1 in pairs:
-        i0 = np.flatnonzero(strip == k0)
-        i1 = np.flatnonzero(strip == k1)
+        i0 = members[int(k0)]
+        i1 = members[int(k1)]
         order = np.argsort(u[i1])
         us = u[i1][order]
-        pos = np.clip(np.searchsorted(us, u[i0]), 1, max(us.size - 1, 1))
-        left = np.clip(pos - 1, 0, us.size - 1)
-        right = np.clip(pos, 0, us.size - 1)
-        pick = np.where(np.abs(us[left] - u[i0]) <= np.abs(us[right] - u[i0]), left, right)
+        u0 = u[i0]
+        if us.size == 1:  # the one photo of the next strip
+            pick = np.zeros(u0.size, dtype=np.int64)
+        else:  # the nearer of the two photos on either side along the line
+            right = np.minimum(np.maximum(np.searchsorted(us, u0), 1), us.size - 1)
+            left = right - 1
+            pick = np.where(np.abs(us[left] - u0) <= np.abs(us[right] - u0), left, right)
         j = i1[order][pick]
         a_all.append(i0)
         b_all.append(j)

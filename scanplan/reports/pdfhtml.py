@@ -9,9 +9,13 @@ autoescaped, so user text (project, customer, ...) is always shown as text.
 from __future__ import annotations
 
 import functools
+import hashlib
+import os
 import re
+import sys
 from collections.abc import Callable
 from dataclasses import dataclass
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import jinja2
@@ -98,11 +102,47 @@ def typeset(value: Any) -> Markup:
     return Markup(_SUBSCRIPT.sub(r"\1<sub>\2</sub>", text))
 
 
+class _KeptTemplates(jinja2.FileSystemBytecodeCache):
+    """Compiled templates kept between processes in the user's cache folder (jinja2 checks
+    each against its template's source; a new Python or jinja2 is another folder): a
+    fresh ``scanplan plan`` writes its HTML without compiling the templates again. A folder
+    that cannot be made or written, or a damaged file, is compiled again, never an error."""
+
+    def load_bytecode(self, bucket: jinja2.bccache.Bucket) -> None:
+        try:
+            super().load_bytecode(bucket)
+        except Exception:  # damaged or unreadable: compiled as without it
+            bucket.reset()
+
+    def dump_bytecode(self, bucket: jinja2.bccache.Bucket) -> None:
+        try:
+            os.makedirs(self.directory, exist_ok=True)
+            super().dump_bytecode(bucket)
+        except OSError:
+            pass  # nothing kept: the next process compiles them again
+
+
+def _kept_templates() -> _KeptTemplates | None:
+    """The cache of compiled templates: ``templates`` in the user's cache folder
+    (platformdirs), one folder per Python, jinja2 and this module's text (which sets how
+    templates compile); None when no cache folder can be named."""
+    import platformdirs
+
+    try:
+        here = hashlib.sha256(Path(__file__).read_bytes())
+        here.update(f"{sys.version}|{jinja2.__version__}".encode())
+        root = platformdirs.user_cache_path("scanplan", appauthor=False)
+    except (OSError, RuntimeError, KeyError):
+        return None
+    return _KeptTemplates(str(root / "templates" / here.hexdigest()[:16]))
+
+
 @functools.lru_cache(maxsize=1)
 def _environment() -> jinja2.Environment:
-    """The templates' environment (one per process: templates are compiled once)."""
+    """The templates' environment (one per process: templates are compiled once, and kept
+    compiled between processes by :class:`_KeptTemplates`)."""
     env = jinja2.Environment(
-        loader=jinja2.FileSystemLoader(str(templates_dir())),
+        loader=jinja2.FileSystemLoader(str(templates_dir())), bytecode_cache=_kept_templates(),
         autoescape=jinja2.select_autoescape(["html", "htm", "xml"], default=True,
                                             default_for_string=True),
         undefined=jinja2.StrictUndefined, trim_blocks=True, lstrip_blocks=True,

@@ -23,6 +23,7 @@ Nothing here changes a result; it only avoids solving the same equation twice.
 
 from __future__ import annotations
 
+import hashlib
 import math
 from collections import OrderedDict
 from typing import Any
@@ -45,7 +46,8 @@ _MEMO_CHAINS = 16
 _MEMO_HEIGHTS = 8_192
 """Heights kept per chain (the chain's values are dropped beyond: a bound, not a policy)."""
 _MEMO_BATCH = 1_024
-"""Larger requests (every photo of a terrain plan) are solved directly, not looked up."""
+"""Larger requests (every photo of a terrain plan) are solved in one call and kept whole
+(:data:`_BATCHES`), not looked up height by height."""
 
 _CHAIN_FIELDS = ("pixel_um", "focal_mm", "f_number", "sensor_width_mm", "sensor_height_mm",
                  "lens_table_centre", "lens_table_corner", "speed_ms", "exposure_s",
@@ -83,6 +85,9 @@ def chain_key(inp: UavInputs) -> tuple[Any, ...]:
 
 _MEMO: OrderedDict[tuple[Any, ...], dict[float, tuple[float, ...]]] = OrderedDict()
 _MAX_HEIGHTS: OrderedDict[tuple[Any, ...], float] = OrderedDict()
+_BATCHES: OrderedDict[tuple[Any, ...], list[tuple[float, ...]]] = OrderedDict()
+"""Batches of more than :data:`_MEMO_BATCH` heights solved, by chain, image point and the
+heights' bytes (a re-plan over the same ground asks the same photos' heights again)."""
 
 
 def _memo(key: tuple[Any, ...]) -> dict[float, tuple[float, ...]]:
@@ -145,8 +150,15 @@ def resolution_at(inp: UavInputs, heights_m: Any, field: str = "centre"
     """
     h = np.asarray(heights_m, dtype=float)
     flat = h.ravel().tolist()
-    if len(flat) > _MEMO_BATCH:
-        rows = _solve(inp, h.ravel(), field)
+    if len(flat) > _MEMO_BATCH:  # every photo's own height: the batch is kept whole
+        batch = (chain_key(inp), field, hashlib.blake2b(h.tobytes()).digest(), h.size)
+        rows = _BATCHES.get(batch)
+        if rows is None:
+            rows = _BATCHES[batch] = _solve(inp, h.ravel(), field)
+            while len(_BATCHES) > _MEMO_CHAINS:
+                _BATCHES.popitem(last=False)
+        else:
+            _BATCHES.move_to_end(batch)
     else:
         values = _memo((chain_key(inp), field))
         missing = sorted({x for x in flat if x not in values})

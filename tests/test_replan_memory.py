@@ -1,0 +1,52 @@
+"""What a re-plan asks again is answered from memory, with the very values computed.
+
+The page re-plans a project on every edit; an edit that moves neither the dates nor the
+site asks the same sun windows, and one that leaves the layout over the ground alone asks
+the resolving power at the same photos' heights. Both are kept per process; these tests
+check the second answer is the first one and that nothing was computed again.
+"""
+
+from __future__ import annotations
+
+import datetime as dt
+import sys
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).parent))
+
+from terrain_helpers import uav_inputs
+
+from scanplan.geo import sun as S
+from scanplan.rules import resolution as R
+
+
+def test_sun_windows_are_computed_once_per_site_and_dates(monkeypatch):
+    dates = [dt.date(2025, 5, 1) + dt.timedelta(days=i) for i in range(5)]
+    calls: list[int] = []
+    real = S.sun_elevation_deg
+    monkeypatch.setattr(S, "sun_elevation_deg", lambda *a: calls.append(1) or real(*a))
+    S._sun_windows.cache_clear()
+    first = S.sun_windows(dates, 56.34, 37.52, 20.0, time_zone="Europe/Moscow")
+    again = S.sun_windows(list(dates), 56.34, 37.52, 20.0, time_zone="Europe/Moscow")
+    assert again == first and len(calls) == 1
+    other = S.sun_windows(dates, 56.34, 37.52, 25.0, time_zone="Europe/Moscow")
+    assert len(calls) == 2 and other[0].hours < first[0].hours  # a higher sun: a new answer
+
+
+def test_every_photos_heights_are_solved_once_and_given_back_unchanged(monkeypatch):
+    inp = uav_inputs()
+    heights = np.linspace(80.0, 130.0, R._MEMO_BATCH + 500)  # a terrain plan's photos
+    solves: list[int] = []
+    real = R._solve
+    monkeypatch.setattr(R, "_solve", lambda *a: solves.append(1) or real(*a))
+    first = R.resolution_at(inp, heights)
+    first["ground_resolution_m"][:] = -1.0  # a caller's own array: the memory is not touched
+    again = R.resolution_at(inp, heights.copy())
+    assert len(solves) == 1
+    direct = R.resolution_at(inp, heights[:10])  # the plain path, height by height
+    np.testing.assert_array_equal(again["ground_resolution_m"][:10],
+                                  direct["ground_resolution_m"])
+    R.resolution_at(inp, heights + 0.5)  # other heights: solved
+    assert len(solves) == 3
