@@ -137,6 +137,28 @@ def test_worker_error_gives_none_and_a_reason(monkeypatch):
 
 
 @fork_only
+def test_worker_renders_without_the_garbage_collector(monkeypatch):
+    """The child lives for one document: its collector is off from the start (the parent's
+    is left as it was)."""
+    import gc
+
+    from scanplan.reports import pdfworker
+
+    seen: list[bool] = []
+    monkeypatch.setattr(pdfworker, "_warm", lambda: None)
+    monkeypatch.setattr(pdfrender, "html_to_pdf",  # the child is forked with it
+                        lambda html: f"collector on: {gc.isenabled()}".encode())
+    worker = PdfWorker.start()
+    assert worker is not None
+    try:
+        assert worker.submit("<p>a report</p>")
+        seen.append(worker.result() == b"collector on: False")
+    finally:
+        worker.stop()
+    assert seen == [True] and gc.isenabled()
+
+
+@fork_only
 def test_worker_refuses_what_is_not_a_text_and_stops():
     for bad in (lambda: None, "lone surrogate \udc80"):
         worker = PdfWorker.start()

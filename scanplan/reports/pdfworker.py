@@ -26,6 +26,7 @@ processes already keep the cores busy.
 
 from __future__ import annotations
 
+import gc
 import os
 import pickle
 import signal
@@ -63,7 +64,13 @@ def _write_all(fd: int, data: bytes) -> None:
 
 
 def _child(requests: int, replies: int) -> None:
-    """The child's whole life; never returns (``os._exit``)."""
+    """The child's whole life; never returns (``os._exit``).
+
+    Its garbage collector is off: the child renders one document and exits, taking its
+    garbage with it. A collection would walk every object inherited from the parent too
+    (copying their pages) and costs about a tenth of the import and render; with it off,
+    a 100 km² block's report (a 560,000-character HTML) peaks 5 % higher in memory."""
+    gc.disable()
     code = 0
     try:
         try:
