@@ -13,10 +13,12 @@ every footprint and run-in) are read with rasterio in windows of at most
 warping). From it a **min-max pyramid** is built: level k holds the minimum and the
 maximum of every aligned 2^k × 2^k block (level 0 is the DEM itself). A query rectangle of
 w × h pixels is answered at the level where it spans at most :data:`BLOCKS_PER_SIDE`
-blocks a side; the rectangles are grouped by their extent in blocks (few distinct ones),
-and each group is answered by one separable running minimum and maximum of that extent
-over the level (``scipy.ndimage``) and one gather — no Python loop over photos or
-pixels. The answer is conservative: the
+blocks a side. A level of up to 65,536 blocks has range tables, made the first time it is
+asked (the min and max over every window of 2^a × 2^b blocks): a rectangle is four
+look-ups, the windows anchored at its corners. A larger level groups the rectangles by
+their extent in blocks (few distinct ones) and answers each group by one separable running
+minimum and maximum of that extent over the level (``scipy.ndimage``) and one gather. No
+Python loop runs over photos or pixels. The answer is conservative: the
 blocks cover the rectangle and at most one block (< 1/BLOCKS_PER_SIDE of its side) beyond
 each edge, so the lowest ground is never higher and the highest never lower than the
 ground under the rectangle.
