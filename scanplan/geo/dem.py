@@ -170,19 +170,30 @@ _OPENED: OrderedDict[tuple[Any, ...], DemInfo] = OrderedDict()
 _KEPT_OPENED = 8
 
 
-def _file_version(p: Path) -> tuple[Any, ...] | None:
-    """What an accepted DEM's header depends on: the file as given (its name, size, times,
-    inode and device) and its ``.ovr`` / ``.msk`` companions'; None when they cannot be
-    looked at (the file is then opened and checked as always)."""
+def file_stamp(path: str | os.PathLike[str]) -> tuple[Any, ...] | None:
+    """One version of a file: its name as given, size, modification and change times,
+    inode and device — a file rewritten or replaced has another (None when it cannot be
+    looked at). What the DEM's header, its pixels and its pyramid are kept by."""
     try:
-        st = p.stat()
+        st = os.stat(path)
+    except OSError:
+        return None
+    return (os.fspath(path), st.st_size, st.st_mtime_ns, st.st_ctime_ns, st.st_ino, st.st_dev)
+
+
+def _file_version(p: Path) -> tuple[Any, ...] | None:
+    """What an accepted DEM's header depends on: the file as given (:func:`file_stamp`, and
+    the working folder a relative name is read from) and its ``.ovr`` / ``.msk``
+    companions'; None when they cannot be looked at (the file is then opened and checked
+    as always)."""
+    stamp = file_stamp(p)
+    try:
         stem = p.name.casefold() + "."
         mates = sorted((q.name, q.stat().st_size, q.stat().st_mtime_ns)
                        for q in p.parent.iterdir() if q.name.casefold().startswith(stem))
     except OSError:
         return None
-    return (str(p), str(Path.cwd()), st.st_size, st.st_mtime_ns, st.st_ctime_ns, st.st_ino,
-            st.st_dev, tuple(mates))
+    return None if stamp is None else (stamp, str(Path.cwd()), tuple(mates))
 
 
 def _header(src: Any, p: Path, key: str) -> DemInfo:
@@ -474,7 +485,7 @@ _KEPT_LOCK = threading.Lock()
 
 def _whole(info: DemInfo) -> NDArray[np.float64] | None:
     """A small DEM's pixels (float64, NaN on no-data, read-only), read once per file
-    version (its name, size, times and inode); None for a large DEM, a file that cannot
+    version (:func:`file_stamp`); None for a large DEM, a file that cannot
     be looked at, or one whose whole read fails or draws a GDAL message (it is then read
     in windows, which says why as before)."""
     import rasterio
@@ -482,11 +493,10 @@ def _whole(info: DemInfo) -> NDArray[np.float64] | None:
 
     if info.width_px * info.height_px > WHOLE_MAX_PX:
         return None
-    try:
-        st = os.stat(info.path)
-    except OSError:
+    stamp = file_stamp(info.path)
+    if stamp is None:
         return None
-    memo = (str(info.path), st.st_size, st.st_mtime_ns, st.st_ino, st.st_ctime_ns, info)
+    memo = (stamp, info)
     with _KEPT_LOCK:
         if memo in _WHOLE:
             _WHOLE.move_to_end(memo)

@@ -44,7 +44,6 @@ it is counted (inside the area) with the area the DEM's extent misses, under one
 from __future__ import annotations
 
 import math
-import os
 from collections import OrderedDict
 from dataclasses import dataclass, field
 from typing import Any
@@ -68,6 +67,9 @@ BLOCKS_PER_SIDE = 16
 _TABLE_EXPONENTS = (BLOCKS_PER_SIDE + 1).bit_length()
 """Range tables hold windows of 2^0 … 2^4 blocks a side: a box spans at most
 :data:`BLOCKS_PER_SIDE` + 1 blocks of its level."""
+_TABLE_MAX_SPAN = (2 << (_TABLE_EXPONENTS - 1)) - 1
+"""The widest box the tables answer [blocks]: two windows of the largest size, 2^4, cover
+up to 31 blocks."""
 _TABLE_MAX_BLOCKS = 1 << 16
 """Levels of at most this many blocks answer from range tables (25 windows a block, 2 ×
 6.6 MB at most); a larger level by running extremes and gathers."""
@@ -187,7 +189,7 @@ class GroundGrid:
             sel = np.flatnonzero(ok & (level == k))
             box = (i0[sel] >> k, i1[sel] >> k, j0[sel] >> k, j1[sel] >> k)
             widest = int(max((box[1] - box[0]).max(), (box[3] - box[2]).max())) + 1
-            if self.lo[k].size <= _TABLE_MAX_BLOCKS and widest < 2 << _TABLE_EXPONENTS - 1:
+            if self.lo[k].size <= _TABLE_MAX_BLOCKS and widest <= _TABLE_MAX_SPAN:
                 if k not in self._tables:
                     self._tables[k] = _tables(self.lo[k], self.hi[k])
                 lo_out[sel], hi_out[sel] = _tables_range(*self._tables[k], *box)
@@ -507,20 +509,18 @@ object, the norm set — re-plans over the same one)."""
 
 def _memo_key(info: D.DemInfo, bounds_m: tuple[float, float, float, float],
               area_geometry: object, plan_crs: str, *rest: Any) -> tuple[Any, ...] | None:
-    """What a pyramid depends on: the DEM file (its name, size, time and inode), the
-    rectangle, the area (its WKB's SHA-256), the CRS and the fill's settings (None when the
-    file cannot be looked at: read as before)."""
+    """What a pyramid depends on: the DEM file's version (:func:`~scanplan.geo.dem.
+    file_stamp`), the rectangle, the area (its WKB's SHA-256), the CRS and the fill's
+    settings (None when the file cannot be looked at: read as before)."""
     import hashlib
 
     import shapely
 
-    try:
-        st = os.stat(info.path)
-    except OSError:
+    stamp = D.file_stamp(info.path)
+    if stamp is None:
         return None
     area = hashlib.sha256(shapely.to_wkb(area_geometry)).hexdigest()
-    return (str(info.path), st.st_size, st.st_mtime_ns, st.st_ino, st.st_ctime_ns, info,
-            tuple(map(float, bounds_m)), area, plan_crs, *rest)
+    return (stamp, info, tuple(map(float, bounds_m)), area, plan_crs, *rest)
 
 
 def _read_ground_grid(info: D.DemInfo, bounds_m: tuple[float, float, float, float],

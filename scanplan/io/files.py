@@ -24,7 +24,7 @@ from typing import Any
 from ..errors import InputError, NotFoundError
 
 __all__ = ["csv_safe", "csv_safe_frame", "dir_lock", "file_kind", "fsync_dir", "lock_file_for",
-           "read_limited", "size_text", "write_all"]
+           "read_limited", "size_text", "user_cache_dir", "write_all"]
 
 
 _FORMULA_START = ("=", "+", "-", "@", "\t", "\r")
@@ -203,18 +203,24 @@ def fsync_dir(folder: str | os.PathLike[str]) -> None:
 _HELD: dict[str, int] = {}  # folders this process holds a dir_lock on → nesting depth
 
 
-def lock_file_for(folder: str | os.PathLike[str]) -> Path:
-    """The lock file of ``folder``: in the user's cache folder (the platform's, through
-    platformdirs), named by a hash of the folder's real path — never a file inside the
-    folder itself, which may be read-only or a user's own project folder."""
-    import hashlib
-
+def user_cache_dir() -> Path:
+    """scanplan's folder in the user's cache folder (the platform's, through platformdirs:
+    ``$XDG_CACHE_HOME/scanplan`` on Linux): the norm folder's lock files, the compiled
+    report templates."""
     import platformdirs
+
+    return platformdirs.user_cache_path("scanplan", appauthor=False)
+
+
+def lock_file_for(folder: str | os.PathLike[str]) -> Path:
+    """The lock file of ``folder``: in the user's cache folder (:func:`user_cache_dir`),
+    named by a hash of the folder's real path — never a file inside the folder itself,
+    which may be read-only or a user's own project folder."""
+    import hashlib
 
     real = os.path.normcase(os.path.realpath(folder))
     digest = hashlib.sha256(os.fsencode(real)).hexdigest()[:32]
-    return platformdirs.user_cache_path("scanplan", appauthor=False) / "locks" / \
-        f"{digest}.lock"
+    return user_cache_dir() / "locks" / f"{digest}.lock"
 
 
 @contextlib.contextmanager

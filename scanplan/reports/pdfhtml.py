@@ -124,14 +124,15 @@ class _KeptTemplates(jinja2.FileSystemBytecodeCache):
 
 def _kept_templates() -> _KeptTemplates | None:
     """The cache of compiled templates: ``templates`` in the user's cache folder
-    (platformdirs), one folder per Python, jinja2 and this module's text (which sets how
-    templates compile); None when no cache folder can be named."""
-    import platformdirs
+    (:func:`scanplan.io.files.user_cache_dir`), one folder per Python, jinja2 and this
+    module's text (which sets how templates compile); None when no cache folder can be
+    named."""
+    from ..io.files import user_cache_dir
 
     try:
         here = hashlib.sha256(Path(__file__).read_bytes())
         here.update(f"{sys.version}|{jinja2.__version__}".encode())
-        root = platformdirs.user_cache_path("scanplan", appauthor=False)
+        root = user_cache_dir()
     except (OSError, RuntimeError, KeyError):
         return None
     return _KeptTemplates(str(root / "templates" / here.hexdigest()[:16]))
