@@ -2,7 +2,13 @@
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
+import importlib
+import sys
+from collections.abc import Iterator
+from pathlib import Path
+from types import ModuleType
 
 from scanplan.rules.film import ObjectSpec, ScanInputs, ScanRules
 
@@ -22,3 +28,14 @@ def film_inputs(norms, *, map_scale, relief, photo_scales, size_m, frame=230.0, 
 
 def only(rules: ScanRules, *ids: str) -> ScanRules:
     return dataclasses.replace(rules, constraints=ids)
+
+
+@contextlib.contextmanager
+def script_module(folder: Path, name: str) -> Iterator[ModuleType]:
+    """A script of the repository (``tools/``, ``benchmarks/``) imported as a module, its
+    folder on ``sys.path`` only while it is in use."""
+    sys.path.insert(0, str(folder))
+    try:
+        yield importlib.import_module(name)
+    finally:
+        sys.path.remove(str(folder))

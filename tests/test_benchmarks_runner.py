@@ -6,24 +6,20 @@ Nothing here times anything: speed is measured by ``python benchmarks/run.py`` i
 from __future__ import annotations
 
 import ast
-import importlib
 import json
 import math
-import sys
 from pathlib import Path
 
 import pytest
+from helpers import script_module
 
 BENCHMARKS = Path(__file__).resolve().parents[1] / "benchmarks"
 
 
 @pytest.fixture(scope="module")
 def runner():
-    sys.path.insert(0, str(BENCHMARKS))
-    try:
-        yield importlib.import_module("run")
-    finally:
-        sys.path.remove(str(BENCHMARKS))
+    with script_module(BENCHMARKS, "run") as module:
+        yield module
 
 
 @pytest.fixture(scope="module")

@@ -6,22 +6,19 @@ from __future__ import annotations
 
 import importlib
 import json
-import sys
 import zipfile
 from pathlib import Path
 
 import pytest
+from helpers import script_module
 
 TOOLS = Path(__file__).resolve().parents[1] / "tools"
 
 
 @pytest.fixture(scope="module")
 def compare():
-    sys.path.insert(0, str(TOOLS))
-    try:
-        yield importlib.import_module("compare_outputs")
-    finally:
-        sys.path.remove(str(TOOLS))
+    with script_module(TOOLS, "compare_outputs") as module:
+        yield module
 
 
 def _run(folder: Path, work: str, waypoints: str, csv_row: str) -> Path:

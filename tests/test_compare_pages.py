@@ -4,12 +4,11 @@ and a pixel that differs in one colour channel only is counted."""
 
 from __future__ import annotations
 
-import importlib
 import shutil
-import sys
 from pathlib import Path
 
 import pytest
+from helpers import script_module
 from PIL import Image
 
 TOOLS = Path(__file__).resolve().parents[1] / "tools"
@@ -20,11 +19,8 @@ pytestmark = pytest.mark.skipif(shutil.which("pdftoppm") is None,
 
 @pytest.fixture(scope="module")
 def pages():
-    sys.path.insert(0, str(TOOLS))
-    try:
-        yield importlib.import_module("compare_pages")
-    finally:
-        sys.path.remove(str(TOOLS))
+    with script_module(TOOLS, "compare_pages") as module:
+        yield module
 
 
 def _pdf(path: Path, body: str, title: str = "t") -> Path:
