@@ -280,7 +280,7 @@ def _work_of(folder: Path) -> str:
     return json.loads(manifest.read_text(encoding="utf-8")).get("work", "")
 
 
-def _files(folder: Path) -> set[str]:
+def reader_files(folder: Path) -> set[str]:
     """The files a reader sees: an output folder's set of files by their names (the links
     through ``.scanplan-sets/current``), not the sets' own folder."""
     return {p.relative_to(folder).as_posix() for p in folder.rglob("*")
@@ -329,7 +329,7 @@ def compare_folders(a: Path, b: Path, subset: bool = False) -> list[str]:
         One block of lines per file missing on one side or differing; empty when the two
         runs are the same.
     """
-    files_a, files_b = _files(a), _files(b)
+    files_a, files_b = reader_files(a), reader_files(b)
     if subset:
         runs = {_run_of(name) for name in files_b}
         files_a = {name for name in files_a if _run_of(name) in runs}
@@ -376,7 +376,8 @@ def main(argv: list[str] | None = None) -> int:
     problems = compare_folders(args.a, args.b, args.subset)
     for problem in problems:
         print(problem)
-    count = len(_files(args.b) if args.subset else _files(args.a) | _files(args.b))
+    count = len(reader_files(args.b) if args.subset
+                else reader_files(args.a) | reader_files(args.b))
     print(f"{len(problems)} of {count} files differ" if problems else f"all {count} files match")
     return 1 if problems else 0
 

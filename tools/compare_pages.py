@@ -33,6 +33,7 @@ from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 
+from compare_outputs import reader_files
 from PIL import Image, ImageChops
 
 
@@ -138,11 +139,10 @@ def compare_pdfs(before: Path, after: Path, pages: _Pages) -> tuple[int, list[Pa
 def _pdfs(root: Path) -> list[Path]:
     """The PDFs under ``root`` by the names a reader sees: an output folder's files through
     their links, not the output set's own folder (``.scanplan-sets/HASH/``, whose name
-    differs from run to run), as ``compare_outputs.py`` reads them."""
+    differs from run to run): ``compare_outputs.reader_files``."""
     if root.is_file():
         return [Path(root.name)]
-    return sorted(p.relative_to(root) for p in root.rglob("*.pdf")
-                  if ".scanplan-sets" not in p.relative_to(root).parts)
+    return sorted(Path(f) for f in reader_files(root) if f.endswith(".pdf"))
 
 
 def _save_diff(name: str, page: int, a: Path, b: Path, into: Path) -> None:
