@@ -14,12 +14,13 @@ rectangle in a local metric frame, ``georeferenced`` is False and the lon/lat ar
 from __future__ import annotations
 
 import math
+from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
-__all__ = ["PHOTO_COLUMNS", "Area", "FlightLayout", "Photos", "Sortie", "Strip"]
+__all__ = ["PHOTO_COLUMNS", "Area", "FlightLayout", "LonLatColumns", "Photos", "Sortie", "Strip"]
 
 #: The per-photo columns of :class:`Photos`, with their units (the CSV/GeoJSON/sheet header).
 PHOTO_COLUMNS: dict[str, str] = {
@@ -150,11 +151,59 @@ class Sortie:
     takeoff_xy_m: tuple[float, float] | None = None
 
 
+class LonLatColumns(Mapping[str, np.ndarray]):
+    """Photo columns whose WGS 84 ``lon_deg``/``lat_deg`` are projected from ``x_m``/``y_m``
+    when first read: a compared layout that is not chosen, or a plan nobody exports, never
+    pays for them. The values are those an eager projection gives (the same transformer on
+    the same numbers); a copy or a pickle holds them computed.
+
+    Parameters
+    ----------
+    columns : dict of str to ndarray
+        Every column but ``lon_deg``/``lat_deg``, in :data:`PHOTO_COLUMNS` order.
+    plan_crs : str
+        The planning CRS of ``x_m``/``y_m``.
+    """
+
+    __slots__ = ("_columns", "_plan_crs")
+    _LAZY = ("lon_deg", "lat_deg")
+
+    def __init__(self, columns: Mapping[str, np.ndarray], plan_crs: str) -> None:
+        self._columns: dict[str, np.ndarray | None] = {
+            k: columns.get(k) for k in PHOTO_COLUMNS if k in columns or k in self._LAZY}
+        self._plan_crs = plan_crs
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        value = self._columns[name]
+        if value is None:
+            from .crs import transformer
+
+            lon, lat = transformer(self._plan_crs, 4326).transform(
+                self._columns["x_m"], self._columns["y_m"])
+            # both at once (a reader in another thread computes the same values)
+            self._columns.update(lon_deg=np.asarray(lon, dtype=float),
+                                 lat_deg=np.asarray(lat, dtype=float))
+            value = self._columns[name]
+        return value  # type: ignore[return-value]
+
+    def __contains__(self, name: object) -> bool:
+        return name in self._columns
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._columns)
+
+    def __len__(self) -> int:
+        return len(self._columns)
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        return dict, (dict(self.items()),)
+
+
 @dataclass(frozen=True)
 class Photos:
     """Photo centres as columns (numpy arrays of one length); see :data:`PHOTO_COLUMNS`."""
 
-    columns: dict[str, np.ndarray]
+    columns: Mapping[str, np.ndarray]
 
     def __len__(self) -> int:
         first = next(iter(self.columns.values()), None)

@@ -58,7 +58,7 @@ from ..core import flight as FL
 from ..i18n.messages import Message
 from . import crs as geocrs
 from .direction import _auto_direction, band_extents
-from .layout import PHOTO_COLUMNS, Area, FlightLayout, Photos, Strip
+from .layout import PHOTO_COLUMNS, Area, FlightLayout, LonLatColumns, Photos, Strip
 from .sorties import (
     MAX_SORTIES,
     FlightModel,
@@ -634,11 +634,7 @@ def _photos(n_per: np.ndarray, p_strip: np.ndarray, p_start: np.ndarray, pf: np.
     strip0 = p_strip[part]
     x, y = to_xy(u[strip0], v)  # type: ignore[operator]
     running = np.arange(1, total + 1)  # flight order: the order of ``sortie``
-    if area.georeferenced:
-        lon, lat = geocrs.transformer(area.plan_crs, 4326).transform(x, y)
-        lon, lat = np.asarray(lon, dtype=float), np.asarray(lat, dtype=float)
-    else:
-        lon = lat = np.full(total, np.nan)
+    lon = lat = None if area.georeferenced else np.full(total, np.nan)  # None: when read
     full = np.full(total, 1.0)
     cols = {
         "photo": running, "strip": strip0 + 1, "index": running - first_photo[strip0] + 1,
@@ -651,4 +647,4 @@ def _photos(n_per: np.ndarray, p_strip: np.ndarray, p_start: np.ndarray, pf: np.
         "recognition_p": full * values.get("recognition_p", np.nan),
     }
     assert list(cols) == list(PHOTO_COLUMNS)
-    return Photos(cols)
+    return Photos(LonLatColumns(cols, area.plan_crs) if area.georeferenced else cols)
