@@ -182,3 +182,32 @@ def test_the_binding_constraint_is_numpys_argmin_with_ties_and_nan():
                               equal_nan=True)
     with pytest.raises(ValueError):
         _binding((), (3,))
+
+
+def _checked(f, *args, **kw):
+    """What an input check gives: the float64 array's bytes and shape, or the error."""
+    from scanplan.errors import FieldValueError
+
+    try:
+        arr = f(*args, **kw)
+    except FieldValueError as e:
+        return "error", e.field, str(e)
+    return arr.dtype.str, arr.shape, arr.tobytes()
+
+
+@settings(max_examples=300, deadline=None)
+@given(v=st.one_of(st.floats(allow_nan=True, allow_infinity=True), st.integers(-10**6, 10**6),
+                   st.sampled_from([0.0, -0.0, 0, 100, 100.0, 1e-300, -1e-300])),
+       low=st.sampled_from([0.0, 1.0]), high=st.sampled_from([5.0, 100.0]),
+       inclusive=st.tuples(st.booleans(), st.booleans()))
+def test_a_python_number_is_checked_as_its_array_is(v, low, high, inclusive):
+    """The input checks take a plain ``float``/``int`` without numpy's array passes; the
+    value and the error are those of the same number as a numpy scalar (the array path)."""
+    from scanplan.core import checks as C
+
+    as_array = np.float64(v)
+    for check in (C.finite, C.positive, C.nonnegative):
+        assert _checked(check, "x_m", v) == _checked(check, "x_m", as_array)
+    kw = dict(low_inclusive=inclusive[0], high_inclusive=inclusive[1])
+    assert _checked(C.in_range, "x_pct", v, low, high, **kw) == \
+        _checked(C.in_range, "x_pct", as_array, low, high, **kw)

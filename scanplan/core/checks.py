@@ -8,6 +8,8 @@ the input's name as its ``field`` and the first bad element: ``"pixel_um must be
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import numpy.typing as npt
 
@@ -21,6 +23,18 @@ NDArrayFloat = npt.NDArray[np.float64]
 def _first_bad(arr: np.ndarray, bad: np.ndarray) -> str:
     value = np.broadcast_to(arr, bad.shape)[bad].flat[0]
     return f"{float(value):g}"
+
+
+def _number(name: str, value: object) -> float | None:
+    """A plain Python ``float`` or ``int`` as a finite float (None for anything else): the
+    formulas' scalar inputs, checked without numpy's array passes (the same value, the same
+    error)."""
+    if type(value) is not float and type(value) is not int:
+        return None
+    x = float(value)  # type: ignore[arg-type]
+    if not math.isfinite(x):
+        raise FieldValueError(name, f"must be finite (got {x:g})")
+    return x
 
 
 def finite(name: str, value: npt.ArrayLike) -> NDArrayFloat:
@@ -48,6 +62,9 @@ def finite(name: str, value: npt.ArrayLike) -> NDArrayFloat:
     >>> finite("height_m", [100, 120]).tolist()
     [100.0, 120.0]
     """
+    x = _number(name, value)
+    if x is not None:
+        return np.asarray(x)
     arr = np.asarray(value, dtype=float)
     bad = ~np.isfinite(arr)
     if bad.any():
@@ -82,6 +99,9 @@ def positive(name: str, value: npt.ArrayLike) -> NDArrayFloat:
     ...
     scanplan.errors.FieldValueError: pixel_um must be > 0 (got -1)
     """
+    x = _number(name, value)
+    if x is not None and x > 0:
+        return np.asarray(x)
     arr = finite(name, value)
     bad = ~(arr > 0)
     if bad.any():
@@ -114,6 +134,9 @@ def nonnegative(name: str, value: npt.ArrayLike) -> NDArrayFloat:
     >>> float(nonnegative("wind_ms", 0))
     0.0
     """
+    x = _number(name, value)
+    if x is not None and x >= 0:
+        return np.asarray(x)
     arr = finite(name, value)
     bad = ~(arr >= 0)
     if bad.any():
@@ -160,6 +183,10 @@ def in_range(
     ...
     scanplan.errors.FieldValueError: forward_overlap_pct must be in [0, 100) (got 100)
     """
+    x = _number(name, value)
+    if x is not None and (x >= low if low_inclusive else x > low) and \
+            (x <= high if high_inclusive else x < high):
+        return np.asarray(x)
     arr = finite(name, value)
     ok_low = arr >= low if low_inclusive else arr > low
     ok_high = arr <= high if high_inclusive else arr < high
