@@ -29,7 +29,7 @@ from ..norms import DEFAULT_NORM_SET, MapObject, NormSet, load_norm_set, parse_s
 from ..norms.schema import GSD_AREAS, ORIENTATIONS, PARAMETERS
 from ..norms.store import GsdLimit
 from ..rules.film import ObjectSpec, ScanInputs, ScanPlan, ScanRules, plan_scan
-from ..rules.uav import UavInputs, UavPlan, plan_uav
+from ..rules.uav import UavInputs, UavPlan, plan_uav, with_curves
 from .flightplan import LayoutOptions, uav_layout, with_layout
 from .inputs import by_key, defaults, get, records
 
@@ -423,6 +423,7 @@ def uav_job(
     flown_band_m: tuple[float, float] | None = None,
     laid_out: FlightLayout | None = None,
     limits: UavPlan | None = None,
+    curves: bool = True,
 ) -> UavJob:
     """Plan a UAV flight (see :func:`scanplan.rules.uav.plan_uav`); names as the CLI options.
 
@@ -451,7 +452,9 @@ def uav_job(
     (:func:`scanplan.rules.uav.plan_uav`); ``laid_out``: the layout of this very plan
     already laid out over ``area`` (the plan restated at those heights keeps it);
     ``limits``: the plan of these very inputs solved before (:attr:`UavJob.limits` of a job
-    at this height along another direction), used instead of solving it again.
+    at this height along another direction), used instead of solving it again;
+    ``curves=False``: the plan without its curves for plots (a plan whose limits or figures
+    alone are asked; :func:`scanplan.rules.uav.with_curves` adds them).
 
     Long because: its keyword arguments (one per input of the registry) and this
     docstring; the work is in named steps: :func:`_carrier_defaults`,
@@ -526,7 +529,8 @@ def uav_job(
     if limits is not None and (limits.inputs != inputs
                                or limits.over_relief != (flown_band_m is not None)):
         raise ValueError("uav_job: limits solved for other inputs")  # a caller's mistake
-    plan = limits if limits is not None else plan_uav(inputs, rules, flown_band_m)
+    plan = plan_uav(inputs, rules, flown_band_m, curves=curves) if limits is None \
+        else with_curves(limits) if curves else limits
     if area is None and area_w is not None and area_l is not None:
         area = rectangle_area(area_w, area_l)
     if area is None:

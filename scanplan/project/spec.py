@@ -26,6 +26,7 @@ from ..geo.layout import Area, FlightLayout
 from ..i18n.messages import Message
 from ..norms.store import one_version
 from ..rules.film import PlanWarning, ScanScenario
+from ..rules.uav import with_curves
 from .aircraftplan import aircraft_warnings
 from .alternatives import JobAt, choose_plan
 from .archive import archive_film
@@ -345,6 +346,13 @@ def _uav_kwargs(project: ProjectModel, height_m: float, the_area: Area | None
 
 
 def _uav(project: ProjectModel, the_area: Area | None) -> UavSpec:
+    """The UAV plan chosen, with the curves for plots of its plan alone (the plans solved
+    to choose it are planned without them: :func:`_jobs`)."""
+    spec = _uav_chosen(project, the_area)
+    return replace(spec, job=replace(spec.job, plan=with_curves(spec.job.plan)))
+
+
+def _uav_chosen(project: ProjectModel, the_area: Area | None) -> UavSpec:
     assert project.uav is not None
     planned = project.uav.height_m
     job_at = _jobs(project, the_area)
@@ -387,7 +395,8 @@ layouts; a job is laid out again when it was dropped)."""
 def _jobs(project: ProjectModel, the_area: Area | None) -> JobAt:
     """The project's UAV job at a height (:data:`scanplan.project.alternatives.JobAt`),
     each laid out once: along the project's direction or another one, its figures at the
-    heights really flown over relief."""
+    heights really flown over relief. Their plans have no curves for plots (:func:`_uav`
+    adds them to the plan chosen)."""
     done: OrderedDict[tuple[Any, ...], UavJob] = OrderedDict()
     limits: OrderedDict[tuple[Any, ...], UavPlan] = OrderedDict()  # per height, any direction
     own = project.area.direction_deg
@@ -409,7 +418,7 @@ def _jobs(project: ProjectModel, the_area: Area | None) -> JobAt:
                     kw.update(area=None, area_m=None)
                 same = (float(height_m), flown_band_m, kw["area_m"])  # the same inputs
                 done[key] = job = uav_job(**kw, flown_band_m=flown_band_m, laid_out=laid_out,
-                                          limits=limits.get(same))
+                                          limits=limits.get(same), curves=False)
             except InputError as exc:
                 raise project.named(exc, "uav") from None
             if job.limits is not None:

@@ -59,7 +59,7 @@ from .results import (
 
 __all__ = ["SWEEP_COLUMNS", "HeightLimit", "Recognition", "UavInputs", "UavPlan",
            "ground_resolution_m", "height_sweep", "max_height_for_ground_resolution",
-           "plan_uav"]
+           "plan_uav", "with_curves"]
 
 _chain = chain  # the MTF chain's descriptions at a height (.resolution)
 
@@ -395,7 +395,8 @@ def _heights(inp: UavInputs, flown_band_m: tuple[float, float] | None
 
 
 def plan_uav(inp: UavInputs, rules: ScanRules | None = None,
-             flown_band_m: tuple[float, float] | None = None) -> UavPlan:
+             flown_band_m: tuple[float, float] | None = None, *,
+             curves: bool = True) -> UavPlan:
     """Plan a UAV flight: GSD, MTF ground resolution, blur, flight geometry, and — with a map
     scale — the maximum flight height under the norm set's constraints.
 
@@ -412,6 +413,9 @@ def plan_uav(inp: UavInputs, rules: ScanRules | None = None,
     flown_band_m : (float, float), optional
         Over relief, the lowest and highest heights above ground really flown [m], in
         place of H ± the tolerance (the limits do not change; ``over_relief``).
+    curves : bool, optional
+        False: the curves for plots (``height_curve``, ``mtf_centre``) are left empty, for
+        a plan whose limits or figures alone are asked (:func:`with_curves` adds them).
 
     Returns
     -------
@@ -452,7 +456,7 @@ def plan_uav(inp: UavInputs, rules: ScanRules | None = None,
     warnings.extend(lim_warnings)
     up = 1.0 + inp.height_tolerance_up_pct / 100.0
     max_flown = max_h * up if max_h is not None else None
-    height_curve, mtf_centre = _curves(inp, h_plan, h_hi, max_flown)
+    height_curve, mtf_centre = _curves(inp, h_plan, h_hi, max_flown) if curves else ({}, {})
     if flown_band_m is not None and accuracy and rules is not None:  # σ_Z as flown
         accuracy = _accuracy_at(inp, rules, accuracy, h_lo, h_hi)
     return UavPlan(
@@ -474,6 +478,27 @@ def plan_uav(inp: UavInputs, rules: ScanRules | None = None,
         max_flown_height_m=max_flown, ceiling_m=inp.ceiling_m,
         constraints_max_height_m=allow, height_accuracy=accuracy, mtf_centre=mtf_centre)
 
+
+
+def with_curves(plan: UavPlan) -> UavPlan:
+    """``plan`` with its curves for plots, when it was planned without them
+    (``plan_uav(..., curves=False)``): the very curves :func:`plan_uav` gives, from the
+    plan's inputs, planned and highest flown heights and highest flown height allowed.
+
+    Parameters
+    ----------
+    plan : UavPlan
+
+    Returns
+    -------
+    UavPlan
+        ``plan`` itself when it has its curves.
+    """
+    if plan.height_curve and plan.mtf_centre:
+        return plan
+    height_curve, mtf_centre = _curves(plan.inputs, plan.heights_m["planned"],
+                                       plan.heights_m["max"], plan.max_flown_height_m)
+    return replace(plan, height_curve=height_curve, mtf_centre=mtf_centre)
 
 
 def _accuracy_at(inp: UavInputs, rules: ScanRules, accuracy: dict[str, Any], h_lo: float,
