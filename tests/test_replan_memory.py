@@ -3,7 +3,9 @@
 The page re-plans a project on every edit; an edit that moves neither the dates nor the
 site asks the same sun windows, and one that leaves the layout over the ground alone asks
 the resolving power at the same photos' heights. Both are kept per process; these tests
-check the second answer is the first one and that nothing was computed again.
+check the second answer is the first one and that nothing was computed again. The plans
+solved only to choose one leave out the curves for plots, which the plan chosen gets later:
+the same curves.
 """
 
 from __future__ import annotations
@@ -50,3 +52,22 @@ def test_every_photos_heights_are_solved_once_and_given_back_unchanged(monkeypat
                                   direct["ground_resolution_m"])
     R.resolution_at(inp, heights + 0.5)  # other heights: solved
     assert len(solves) == 3
+
+
+def test_a_plan_solved_without_its_curves_gets_the_very_curves_later():
+    """The plans solved to choose a UAV plan leave out the curves for plots; the plan chosen
+    gets them afterwards (``with_curves``): equal to the plan solved with them, over relief
+    too, and a plan that has them is given back as it is."""
+    from scanplan.project.jobs import uav_job
+    from scanplan.rules.uav import with_curves
+
+    for kw in ({"map_scale": 2000, "relief_interval_m": 0.5},
+               {"map_scale": 2000, "relief_interval_m": 0.5, "flown_band_m": (80.0, 140.0)},
+               {"height_m": 120.0}):
+        args = dict(camera="dji-phantom-4-rtk", **{"height_m": None, **kw})
+        whole = uav_job(**args).plan
+        bare = uav_job(**args, curves=False).plan
+        assert not bare.height_curve and not bare.mtf_centre
+        assert whole.height_curve and whole.mtf_centre
+        assert with_curves(bare) == whole
+        assert with_curves(whole) is whole
