@@ -4,6 +4,8 @@ the limits of a job at one height, solved once, serve every direction's job at i
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 
@@ -92,3 +94,63 @@ def test_one_direction_s_limits_serve_another():
     assert across.plan == alone.plan and across.layout.n_photos == alone.layout.n_photos
     with pytest.raises(ValueError, match="other inputs"):
         uav_job(**{**kw, "height_m": 150.0}, limits=along.limits)
+
+
+def _turn_path_arrays(p, h, q, lead_m, kind):
+    """The turn's waypoints written out with numpy 2-vectors and an arc's angles from
+    np.linspace at each call: the plain form of ``turn_path``."""
+    w = q - p
+    off = float(w @ h)
+    nv = w - off * h
+    d = float(np.hypot(*nv))
+    n = nv / d if d > 0 else np.array([h[1], -h[0]])
+    apex_out = p + (max(0.0, off) + lead_m) * h
+    apex_in = apex_out + d * n
+    ox, oy, nx, ny, hx, hy = (float(v) for v in (*apex_out, *n, *h))
+
+    def at(a, b):
+        return ox + a * nx + b * hx, oy + a * ny + b * hy
+
+    def arc(ca, cb, r, a0, a1):
+        k = max(1, math.ceil(abs(math.degrees(a1 - a0)) / 20.0))
+        return [at(ca + r * math.cos(t), cb + r * math.sin(t))
+                for t in np.linspace(a0, a1, k + 1)[1:]]
+
+    out = []
+    if float(np.hypot(*(apex_out - p))) > 1e-6:
+        out.append(at(0.0, 0.0))
+    if kind == "turnaround" or d == 0:
+        out.append(at(d, 0.0))
+    elif kind == "semicircle":
+        out += arc(d / 2.0, 0.0, d / 2.0, math.pi, 0.0)
+    else:
+        r = lead_m
+        if d >= 2.0 * r:
+            out += arc(r, 0.0, r, math.pi, math.pi / 2.0) + arc(d - r, 0.0, r, math.pi / 2.0, 0.0)
+        else:
+            beta = math.acos((d / 2.0 + r) / (2.0 * r))
+            y = 2.0 * r * math.sin(beta)
+            out += arc(-r, 0.0, r, 0.0, beta) + arc(d / 2.0, y, r, math.pi + beta, -beta) \
+                + arc(d + r, 0.0, r, math.pi - beta, math.pi)
+    if float(np.hypot(*(q - apex_in))) > 1e-6:
+        out.append((float(q[0]), float(q[1])))
+    else:
+        out[-1] = (float(q[0]), float(q[1]))
+    return out
+
+
+@pytest.mark.parametrize("kind", ["semicircle", "turnaround", "dubins"])
+def test_turn_path_is_its_plain_form_to_the_last_bit(kind):
+    """The turn's waypoints, computed on Python floats with each arc's steps kept, are the
+    plain numpy form's bit for bit: any heading, the packing frame's ±north, a next strip
+    straight ahead, no lead, a Dubins turn tighter than its radius."""
+    rng = np.random.default_rng(7)
+    for i in range(3000):
+        p = rng.uniform(-5e5, 5e5, 2) if i % 3 else np.round(rng.uniform(-1e3, 1e3, 2), 1)
+        a = rng.uniform(0, 2 * np.pi)
+        h = np.array([math.sin(a), math.cos(a)]) if i % 2 else np.array([0.0, (-1.0) ** i])
+        q = p + rng.normal(0, 80, 2) * (i % 11 != 0)
+        lead = float(rng.choice([0.0, 5.0, 12.0, 150.0, rng.uniform(0, 200)]))
+        got, want = turn_path(p, h, q, lead, kind), _turn_path_arrays(p, h, q, lead, kind)
+        assert [(x.hex(), y.hex()) for x, y in got] == \
+            [(float(x).hex(), float(y).hex()) for x, y in want]

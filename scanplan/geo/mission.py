@@ -29,6 +29,7 @@ altitude steps are run boundaries like any other.
 from __future__ import annotations
 
 import bisect
+import functools
 import itertools
 import math
 from collections.abc import Collection
@@ -323,26 +324,22 @@ def turn_path(p: np.ndarray, h: np.ndarray, q: np.ndarray, lead_m: float,
     """The waypoints from a strip's last photo ``p`` (heading ``h``) to the next strip's
     first photo ``q`` (heading −h), ``q`` included, ``p`` not: the run-out, the turn, the
     run-in (:func:`scanplan.geo.lines.turn_length_m`)."""
-    w = q - p
-    off = float(w @ h)
-    nv = w - off * h
-    d = float(np.hypot(*nv))
-    n = nv / d if d > 0 else np.array([h[1], -h[0]])
-    apex_out = p + (max(0.0, off) + lead_m) * h
-    apex_in = apex_out + d * n
-
-    ox, oy, nx, ny, hx, hy = (float(v) for v in (*apex_out, *n, *h))
+    off = float((q - p) @ h)
+    px, py, qx, qy, hx, hy = (float(v) for v in (p[0], p[1], q[0], q[1], h[0], h[1]))
+    nvx, nvy = (qx - px) - off * hx, (qy - py) - off * hy  # the across part of q − p
+    d = float(np.hypot(nvx, nvy))
+    nx, ny = (nvx / d, nvy / d) if d > 0 else (hy, -hx)
+    ox, oy = px + (max(0.0, off) + lead_m) * hx, py + (max(0.0, off) + lead_m) * hy
+    ix, iy = ox + d * nx, oy + d * ny  # the apex of the run-in
 
     def at(a: float, b: float) -> tuple[float, float]:  # local (across, along) → plan
         return ox + a * nx + b * hx, oy + a * ny + b * hy  # as apex_out + a·n + b·h
 
     def arc(ca: float, cb: float, r: float, a0: float, a1: float) -> list[tuple[float, float]]:
-        k = max(1, math.ceil(abs(math.degrees(a1 - a0)) / ARC_STEP_DEG))
-        return [at(ca + r * math.cos(t), cb + r * math.sin(t))
-                for t in np.linspace(a0, a1, k + 1)[1:]]
+        return [at(ca + r * c, cb + r * s) for c, s in _arc_steps(a0, a1)]
 
     out: list[tuple[float, float]] = []
-    if float(np.hypot(*(apex_out - p))) > 1e-6:
+    if float(np.hypot(ox - px, oy - py)) > 1e-6:
         out.append(at(0.0, 0.0))
     if kind == "turnaround" or d == 0:
         out.append(at(d, 0.0))
@@ -359,11 +356,19 @@ def turn_path(p: np.ndarray, h: np.ndarray, q: np.ndarray, lead_m: float,
             out += arc(-r, 0.0, r, 0.0, beta)
             out += arc(d / 2.0, y, r, math.pi + beta, -beta)
             out += arc(d + r, 0.0, r, math.pi - beta, math.pi)
-    if float(np.hypot(*(q - apex_in))) > 1e-6:
-        out.append((float(q[0]), float(q[1])))
+    if float(np.hypot(qx - ix, qy - iy)) > 1e-6:
+        out.append((qx, qy))
     else:
-        out[-1] = (float(q[0]), float(q[1]))
+        out[-1] = (qx, qy)
     return out
+
+
+@functools.lru_cache(maxsize=1024)
+def _arc_steps(a0: float, a1: float) -> tuple[tuple[float, float], ...]:
+    """(cos t, sin t) of an arc's waypoints from angle ``a0`` to ``a1`` [rad], ``a0`` left
+    out: equal steps of at most :data:`ARC_STEP_DEG` (a turn's arcs recur turn after turn)."""
+    k = max(1, math.ceil(abs(math.degrees(a1 - a0)) / ARC_STEP_DEG))
+    return tuple((math.cos(t), math.sin(t)) for t in np.linspace(a0, a1, k + 1)[1:].tolist())
 
 
 Point = tuple[float, float]
