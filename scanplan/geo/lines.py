@@ -450,15 +450,19 @@ def _strip_records(u: np.ndarray, p_strip: np.ndarray, first: np.ndarray, last: 
     segs = np.bincount(p_strip, minlength=n_strips)
     parts_of: list[list[tuple[tuple[float, float], tuple[float, float]]]] = [
         [] for _ in range(n_strips)]
-    for k in range(len(p_strip)):
-        parts_of[int(p_strip[k])].append(((float(psx[k]), float(psy[k])),
-                                          (float(pex[k]), float(pey[k]))))
+    for k, a, b, c, d in zip(p_strip.tolist(), *(np.asarray(z, dtype=float).tolist()
+                                                  for z in (psx, psy, pex, pey)), strict=True):
+        parts_of[k].append(((a, b), (c, d)))
+    # Python numbers, column by column (as float()/int() of each element gives them)
+    sx_, sy_, ex_, ey_, len_ = (np.asarray(z, dtype=float).tolist()
+                                for z in (sx, sy, ex, ey, s_hi - s_lo))
+    photos_, first_, sortie_, segs_ = (np.asarray(z).astype(np.int64).tolist() for z in (
+        photos_per_strip, first_photo, sortie_of, segs))
     strips = tuple(
-        Strip(number=i + 1, start_xy_m=(float(sx[i]), float(sy[i])),
-              end_xy_m=(float(ex[i]), float(ey[i])), length_m=float(s_hi[i] - s_lo[i]),
-              photos=int(photos_per_strip[i]), first_photo=int(first_photo[i]),
-              sortie=int(sortie_of[i]) + 1, segments=int(segs[i]),
-              parts=tuple(parts_of[i]), continued=continued.get(i, ()))
+        Strip(number=i + 1, start_xy_m=(sx_[i], sy_[i]), end_xy_m=(ex_[i], ey_[i]),
+              length_m=len_[i], photos=photos_[i], first_photo=first_[i],
+              sortie=sortie_[i] + 1, segments=segs_[i], parts=tuple(parts_of[i]),
+              continued=continued.get(i, ()))
         for i in range(n_strips))
     return strips, (p_strip, p_start, pf, n_per), first_photo
 
