@@ -278,13 +278,12 @@ def test_hostile_files_are_refused_before_gdal_opens_them(tmp_path):
 # Kept between plans: the page re-plans the same area on every edit
 # -------------------------------------------------------------------------------------------
 def test_the_same_file_is_read_once_and_a_changed_one_again(tmp_path, monkeypatch):
-    from collections import OrderedDict
-
     import scanplan.geo.area as A
+    from scanplan.io.kept import Kept
 
     # an empty store: another test of this worker may have read the same bytes under its
     # own name (each call then gives that area renamed, a new object each time)
-    monkeypatch.setattr(A, "_KEPT", OrderedDict())
+    monkeypatch.setattr(A, "_KEPT", Kept(A._KEPT_AREAS))
     reads: list[str] = []
     real = A._load_polygon
     monkeypatch.setattr(A, "_load_polygon", lambda spec: reads.append(str(spec.file)) or

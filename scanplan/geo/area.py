@@ -35,7 +35,6 @@ import re
 import warnings
 import zipfile
 import zlib
-from collections import OrderedDict
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -47,6 +46,7 @@ from shapely.validation import explain_validity
 
 from ..errors import InputError
 from ..io.files import read_limited, size_text
+from ..io.kept import MISSING, Kept
 from . import crs as geocrs
 from .gdal_guard import KIND_NAMES, harden, import_pyogrio, indirection, read_head, sniff
 from .grids import require_grids
@@ -162,15 +162,13 @@ def load_area(spec: AreaSpec) -> Area | None:
         return rectangle_area(float(spec.width_m), float(spec.length_m))
     key = _kept_key(spec)
     name = str(spec.file) if spec.file is not None else ""
-    if key is not None and key in _KEPT:
-        _KEPT.move_to_end(key)
-        was, area = _KEPT[key]
+    found = _KEPT.get(key) if key is not None else MISSING
+    if found is not MISSING:
+        was, area = found  # type: ignore[misc]
         return area if was == name else _renamed(area, was, name)
     area = _load_polygon(spec)
     if key is not None:
-        _KEPT[key] = (name, area)
-        while len(_KEPT) > _KEPT_AREAS:
-            _KEPT.popitem(last=False)
+        _KEPT.put(key, (name, area))
     return area
 
 
@@ -182,8 +180,8 @@ def _renamed(area: Area, was: str, name: str) -> Area:
                    source_file=name if area.source_file == was else area.source_file)
 
 
-_KEPT: OrderedDict[tuple[Any, ...], tuple[str, Area]] = OrderedDict()
 _KEPT_AREAS = 32
+_KEPT: Kept[tuple[Any, ...], tuple[str, Area]] = Kept(_KEPT_AREAS)
 """Polygons kept read and projected (the page re-plans the same area on every edit)."""
 
 

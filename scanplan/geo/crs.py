@@ -25,6 +25,8 @@ import math
 from functools import cache
 from typing import TYPE_CHECKING, Any
 
+from ..io.kept import Kept
+
 if TYPE_CHECKING:
     import pyproj
 
@@ -79,24 +81,10 @@ def _key(value: Any) -> tuple[str, str]:
     return (type(value).__name__, str(value))
 
 
-_CRS_CACHE: dict[tuple[str, str], Any] = {}
-_TRANSFORMERS: dict[tuple[tuple[str, str], tuple[str, str]], Any] = {}
-_PROJS: dict[tuple[str, str], Any] = {}
 _MAX_KEPT = 64
-
-
-def _kept(cache: dict[Any, Any], key: Any, make: Any) -> Any:
-    """``cache[key]``, made by ``make()`` the first time (the oldest dropped beyond
-    :data:`_MAX_KEPT`)."""
-    try:
-        return cache[key]
-    except KeyError:
-        pass
-    value = make()
-    if len(cache) >= _MAX_KEPT:
-        cache.pop(next(iter(cache)))
-    cache[key] = value
-    return value
+_CRS_CACHE: Kept[tuple[str, str], Any] = Kept(_MAX_KEPT)
+_TRANSFORMERS: Kept[tuple[tuple[str, str], tuple[str, str]], Any] = Kept(_MAX_KEPT)
+_PROJS: Kept[tuple[str, str], Any] = Kept(_MAX_KEPT)
 
 
 def crs(value: Any) -> pyproj.CRS:
@@ -111,7 +99,7 @@ def crs(value: Any) -> pyproj.CRS:
 
     if isinstance(value, pyproj.CRS):
         return value
-    return _kept(_CRS_CACHE, _key(value), lambda: pyproj.CRS.from_user_input(value))
+    return _CRS_CACHE.made(_key(value), lambda: pyproj.CRS.from_user_input(value))
 
 
 def transformer(src: Any, dst: Any) -> pyproj.Transformer:
@@ -124,15 +112,15 @@ def transformer(src: Any, dst: Any) -> pyproj.Transformer:
     """
     import pyproj
 
-    return _kept(_TRANSFORMERS, (_key(src), _key(dst)),
-                 lambda: pyproj.Transformer.from_crs(src, dst, always_xy=True))
+    return _TRANSFORMERS.made((_key(src), _key(dst)),
+                              lambda: pyproj.Transformer.from_crs(src, dst, always_xy=True))
 
 
 def proj(value: Any) -> pyproj.Proj:
     """``pyproj.Proj(value)`` (for its scale factors), made once per process."""
     import pyproj
 
-    return _kept(_PROJS, _key(value), lambda: pyproj.Proj(value))
+    return _PROJS.made(_key(value), lambda: pyproj.Proj(value))
 
 
 @cache

@@ -27,8 +27,6 @@ from __future__ import annotations
 import math
 import os
 import re
-import threading
-from collections import OrderedDict
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -38,6 +36,7 @@ from numpy.typing import NDArray
 
 from ..errors import InputError
 from ..extras import require
+from ..io.kept import MISSING, Kept
 from .gdal_guard import KIND_NAMES, gdal_messages, harden, read_head, sniff
 from .grids import require_grids
 
@@ -143,9 +142,9 @@ def open_dem(path: str | Path, key: str = "terrain.dem") -> DemInfo:
     if not p.is_file():
         raise _refuse(key, p, "no such file")
     memo = _file_version(p)
-    with _KEPT_LOCK:
-        if memo is not None and memo in _OPENED:  # a plan opens its DEM for every layout
-            return _OPENED[memo]
+    found = _OPENED.get(memo) if memo is not None else MISSING
+    if found is not MISSING:  # a plan opens its DEM for every layout
+        return found  # type: ignore[return-value]
     _check_tiff(p, key)
     try:
         with gdal_messages() as said, rasterio.open(p, driver=GTIFF) as src:
@@ -158,16 +157,13 @@ def open_dem(path: str | Path, key: str = "terrain.dem") -> DemInfo:
     if damage is not None:
         raise _refuse(key, p, f"is a damaged GeoTIFF: {damage}; save it again from your GIS")
     if memo is not None:
-        with _KEPT_LOCK:
-            _OPENED[memo] = info
-            while len(_OPENED) > _KEPT_OPENED:
-                _OPENED.popitem(last=False)
+        _OPENED.put(memo, info)
     return info
 
 
-_OPENED: OrderedDict[tuple[Any, ...], DemInfo] = OrderedDict()
-"""The headers of the DEMs opened and accepted, by file version (refusals not kept)."""
 _KEPT_OPENED = 8
+_OPENED: Kept[tuple[Any, ...], DemInfo] = Kept(_KEPT_OPENED)
+"""The headers of the DEMs opened and accepted, by file version (refusals not kept)."""
 
 
 def file_stamp(path: str | os.PathLike[str]) -> tuple[Any, ...] | None:
@@ -285,10 +281,10 @@ def unit_problem(values_m: NDArray[np.float64], info: DemInfo, source: str) -> s
     return None
 
 
-_DEM_TRANSFORMERS: dict[tuple[str, str], Any] = {}
+_MAX_TRANSFORMERS = 32
+_DEM_TRANSFORMERS: Kept[tuple[str, str], Any] = Kept(_MAX_TRANSFORMERS)
 """The transformer (or None) of each (DEM CRS, planning CRS) pair met, refusals not kept
 (pyproj's transformers are thread-safe since pyproj 3.1)."""
-_MAX_TRANSFORMERS = 32
 
 
 def dem_transformer(info: DemInfo, plan_crs: str, key: str = "terrain.dem") -> Any:
@@ -310,8 +306,9 @@ def dem_transformer(info: DemInfo, plan_crs: str, key: str = "terrain.dem") -> A
                       "to no place on the Earth, while the area is georeferenced: give a "
                       "DEM in a geographic or projected CRS (e.g. its EPSG code)")
     kept = (info.crs_wkt, plan_crs)
-    if kept in _DEM_TRANSFORMERS:  # a plan samples the same DEM many times
-        return _DEM_TRANSFORMERS[kept]
+    found = _DEM_TRANSFORMERS.get(kept)
+    if found is not MISSING:  # a plan samples the same DEM many times
+        return found
     try:
         dem_crs = CRS.from_wkt(info.crs_wkt)
         src = CRS.from_user_input(plan_crs)
@@ -323,10 +320,7 @@ def dem_transformer(info: DemInfo, plan_crs: str, key: str = "terrain.dem") -> A
     except (CRSError, ProjError) as exc:
         raise _refuse(key, info.path, f"its CRS cannot be related to the planning CRS "
                       f"{plan_crs} ({_short(exc)})") from None
-    if len(_DEM_TRANSFORMERS) >= _MAX_TRANSFORMERS:
-        _DEM_TRANSFORMERS.pop(next(iter(_DEM_TRANSFORMERS)), None)
-    _DEM_TRANSFORMERS[kept] = tr
-    return tr
+    return _DEM_TRANSFORMERS.put(kept, tr)
 
 
 def _to_dem_crs(x: NDArray[np.float64], y: NDArray[np.float64], plan_crs: str,
@@ -478,9 +472,8 @@ WHOLE_MAX_PX = 1 << 22
 """A DEM of at most this many pixels (4 Mpx, 32 MB as float64) is read whole once and
 kept while the file is unchanged (a plan samples it many times); a larger one is read in
 windows under the points every time."""
-_WHOLE: OrderedDict[tuple[Any, ...], NDArray[np.float64]] = OrderedDict()
 _KEPT_WHOLE = 2
-_KEPT_LOCK = threading.Lock()
+_WHOLE: Kept[tuple[Any, ...], NDArray[np.float64]] = Kept(_KEPT_WHOLE)
 
 
 def _whole(info: DemInfo) -> NDArray[np.float64] | None:
@@ -497,10 +490,9 @@ def _whole(info: DemInfo) -> NDArray[np.float64] | None:
     if stamp is None:
         return None
     memo = (stamp, info)
-    with _KEPT_LOCK:
-        if memo in _WHOLE:
-            _WHOLE.move_to_end(memo)
-            return _WHOLE[memo]
+    found = _WHOLE.get(memo)
+    if found is not MISSING:
+        return found  # type: ignore[return-value]
     try:
         with gdal_messages() as said, rasterio.open(info.path, driver=GTIFF) as src:
             data = np.ma.filled(src.read(1, masked=True).astype(np.float64), np.nan)
@@ -509,11 +501,7 @@ def _whole(info: DemInfo) -> NDArray[np.float64] | None:
     if said.damage() is not None or data.shape != (info.height_px, info.width_px):
         return None
     data.setflags(write=False)
-    with _KEPT_LOCK:
-        _WHOLE[memo] = data
-        while len(_WHOLE) > _KEPT_WHOLE:
-            _WHOLE.popitem(last=False)
-    return data
+    return _WHOLE.put(memo, data)
 
 
 def _bilinear(data: NDArray[np.float64], fc: NDArray[np.float64], fr: NDArray[np.float64],

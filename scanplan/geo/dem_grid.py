@@ -44,7 +44,6 @@ it is counted (inside the area) with the area the DEM's extent misses, under one
 from __future__ import annotations
 
 import math
-from collections import OrderedDict
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -52,6 +51,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
+from ..io.kept import MISSING, Kept
 from . import dem as D
 
 __all__ = ["BLOCKS_PER_SIDE", "DEFAULT_VOID_MARGIN_M", "DEFAULT_VOID_RADIUS_M", "GroundGrid",
@@ -486,23 +486,21 @@ def read_ground_grid(info: D.DemInfo, bounds_m: tuple[float, float, float, float
     """
     memo = _memo_key(info, bounds_m, area_geometry, plan_crs, factor_m, radius_m, margin_m,
                      key)
-    if memo is not None and memo in _GRIDS:
-        _GRIDS.move_to_end(memo)
-        return _GRIDS[memo]
+    found = _GRIDS.get(memo) if memo is not None else MISSING
+    if found is not MISSING:
+        return found  # type: ignore[return-value]
     grid = _read_ground_grid(info, bounds_m, area_geometry, plan_crs, factor_m, radius_m,
                              margin_m, key)
     if memo is not None:
         if grid is not None:
             for a in (*grid.lo, *grid.hi):
                 a.setflags(write=False)  # shared by later plans: never changed
-        _GRIDS[memo] = grid
-        while len(_GRIDS) > _KEPT_GRIDS:
-            _GRIDS.popitem(last=False)
+        _GRIDS.put(memo, grid)
     return grid
 
 
-_GRIDS: OrderedDict[tuple[Any, ...], GroundGrid | None] = OrderedDict()
 _KEPT_GRIDS = 4
+_GRIDS: Kept[tuple[Any, ...], GroundGrid | None] = Kept(_KEPT_GRIDS)
 """Pyramids kept (an edit that leaves the photos' extent alone — a relief interval, an
 object, the norm set — re-plans over the same one)."""
 

@@ -70,6 +70,7 @@ from numpy.typing import NDArray
 
 from ..errors import InputError
 from ..i18n.messages import Message, Names, PlanWarning, listing
+from ..io.kept import Kept
 from . import dem as D
 from .dem_grid import DEFAULT_VOID_MARGIN_M, DEFAULT_VOID_RADIUS_M, GroundGrid, read_ground_grid
 from .layout import FlightLayout, Photos
@@ -439,16 +440,15 @@ def _follow_runs(g: NDArray[np.float64], strip: NDArray[np.int64], tol: float
     g = np.asarray(g, dtype=float)
     strip = np.asarray(strip, dtype=np.int64)
     key = (hashlib.blake2b(g.tobytes() + strip.tobytes()).digest(), g.size, float(tol))
-    kept = _RUNS.get(key)
-    if kept is None:
-        kept = _RUNS[key] = _greedy_runs(g, strip, tol)
-        kept.setflags(write=False)
-        while len(_RUNS) > 4:
-            _RUNS.pop(next(iter(_RUNS)), None)
-    return kept
+    return _RUNS.made(key, lambda: _read_only(_greedy_runs(g, strip, tol)))
 
 
-_RUNS: dict[tuple[bytes, int, float], NDArray[np.int64]] = {}
+_RUNS: Kept[tuple[bytes, int, float], NDArray[np.int64]] = Kept(4)
+
+
+def _read_only(a: NDArray[np.int64]) -> NDArray[np.int64]:
+    a.setflags(write=False)
+    return a
 
 
 def _greedy_runs(g: NDArray[np.float64], strip: NDArray[np.int64], tol: float

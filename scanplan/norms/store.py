@@ -20,7 +20,6 @@ import os
 import re
 import stat
 import tomllib
-from collections import OrderedDict
 from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
 from difflib import get_close_matches
@@ -31,6 +30,7 @@ from typing import Any
 
 from ..errors import InputError, NotFoundError
 from ..io.files import dir_lock, read_limited
+from ..io.kept import Kept
 from ..rules.film import ScanRules
 from .citations import modern_citation
 from .paths import CATALOGUE, DEFAULT_NORM_SET, bundled_norms_dir, user_norms_dir
@@ -582,10 +582,10 @@ def _fingerprint(path: Path) -> tuple[tuple[str, int, int, int, int], ...]:
 
 
 _Fingerprint = tuple[tuple[str, int, int, int, int], ...]
-_READ: OrderedDict[tuple[Path, bool, _Fingerprint, _Fingerprint], NormSet] = OrderedDict()
+_READ_KEPT = 16
+_READ: Kept[tuple[Path, bool, _Fingerprint, _Fingerprint], NormSet] = Kept(_READ_KEPT)
 """The norm sets read under the lock, by folder and the fingerprints of its files and of the
 user catalogue's (the last :data:`_READ_KEPT`)."""
-_READ_KEPT = 16
 
 
 def forget_read_sets() -> None:
@@ -604,7 +604,7 @@ def _read_before(path: Path, bundled: bool) -> NormSet | None:
         key = (path, bundled, _fingerprint(path), _user_catalogue_fingerprint())
     except OSError:  # gone or being swapped: read under the lock
         return None
-    return _READ.get(key)
+    return _READ.get(key, None)  # type: ignore[return-value]
 
 
 def _read_locked(path: Path, bundled: bool, fingerprint: _Fingerprint,
@@ -612,15 +612,7 @@ def _read_locked(path: Path, bundled: bool, fingerprint: _Fingerprint,
     """The set read (under the caller's lock), or the one read before with these very
     files."""
     key = (path, bundled, fingerprint, user_catalogue)
-    found = _READ.get(key)
-    if found is None:
-        found = _READ[key] = read_norm_set_folder(path, bundled=bundled)
-        while len(_READ) > _READ_KEPT:
-            _READ.popitem(last=False)
-    else:
-        with contextlib.suppress(KeyError):  # another thread may have let it go meanwhile
-            _READ.move_to_end(key)
-    return found
+    return _READ.made(key, lambda: read_norm_set_folder(path, bundled=bundled))
 
 
 def _read_parameters(pfile: Path, bundled: bool

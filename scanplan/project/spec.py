@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import inspect
 import math
-from collections import OrderedDict
 from dataclasses import replace
 from functools import cache
 from typing import TYPE_CHECKING, Any
@@ -24,6 +23,7 @@ from ..errors import InputError
 from ..geo.area import AreaSpec
 from ..geo.layout import Area, FlightLayout
 from ..i18n.messages import Message
+from ..io.kept import MISSING, Kept
 from ..norms.store import one_version
 from ..rules.film import PlanWarning, ScanScenario
 from ..rules.uav import with_curves
@@ -397,8 +397,8 @@ def _jobs(project: ProjectModel, the_area: Area | None) -> JobAt:
     each laid out once: along the project's direction or another one, its figures at the
     heights really flown over relief. Their plans have no curves for plots (:func:`_uav`
     adds them to the plan chosen)."""
-    done: OrderedDict[tuple[Any, ...], UavJob] = OrderedDict()
-    limits: OrderedDict[tuple[Any, ...], UavPlan] = OrderedDict()  # per height, any direction
+    done: Kept[tuple[Any, ...], UavJob] = Kept(_JOBS_KEPT)
+    limits: Kept[tuple[Any, ...], UavPlan] = Kept(_JOBS_KEPT)  # per height, any direction
     own = project.area.direction_deg
 
     def job_at(height_m: float, direction_deg: float | str | None = None,
@@ -408,27 +408,24 @@ def _jobs(project: ProjectModel, the_area: Area | None) -> JobAt:
                 own is None and direction_deg == "auto")):
             direction_deg = None  # the project's own
         key = (float(height_m), direction_deg, flown_band_m, limits_only)
-        if key not in done:
-            try:
-                kw = _uav_kwargs(project, height_m, the_area)
-                if direction_deg is not None:
-                    kw["layout_options"] = replace(kw["layout_options"],
-                                                   direction_deg=direction_deg)
-                if limits_only:  # only its limits are asked for: no strips over the area
-                    kw.update(area=None, area_m=None)
-                same = (float(height_m), flown_band_m, kw["area_m"])  # the same inputs
-                done[key] = job = uav_job(**kw, flown_band_m=flown_band_m, laid_out=laid_out,
-                                          limits=limits.get(same), curves=False)
-            except InputError as exc:
-                raise project.named(exc, "uav") from None
-            if job.limits is not None:
-                limits[same] = job.limits
-                limits.move_to_end(same)
-            for kept in (done, limits):  # the oldest go (a large block's memory)
-                while len(kept) > _JOBS_KEPT:
-                    kept.popitem(last=False)
-        done.move_to_end(key)
-        return done[key]
+        job = done.get(key)
+        if job is not MISSING:
+            return job  # type: ignore[return-value]
+        try:
+            kw = _uav_kwargs(project, height_m, the_area)
+            if direction_deg is not None:
+                kw["layout_options"] = replace(kw["layout_options"],
+                                               direction_deg=direction_deg)
+            if limits_only:  # only its limits are asked for: no strips over the area
+                kw.update(area=None, area_m=None)
+            same = (float(height_m), flown_band_m, kw["area_m"])  # the same inputs
+            made = done.put(key, uav_job(**kw, flown_band_m=flown_band_m, laid_out=laid_out,
+                                         limits=limits.get(same, None), curves=False))
+        except InputError as exc:
+            raise project.named(exc, "uav") from None
+        if made.limits is not None:
+            limits.put(same, made.limits)
+        return made
 
     return job_at
 

@@ -25,13 +25,13 @@ from __future__ import annotations
 
 import hashlib
 import math
-from collections import OrderedDict
 from typing import Any
 
 import numpy as np
 
 from ..core import mtf as M
 from ..errors import FieldValueError, InputError
+from ..io.kept import MISSING, Kept
 from .results import UavInputs
 
 __all__ = ["FIGURES", "centre_resolution_m", "chain", "chain_key",
@@ -83,22 +83,15 @@ def chain_key(inp: UavInputs) -> tuple[Any, ...]:
             tuple((c.name, id(c)) for c in M.REGISTRY))
 
 
-_MEMO: OrderedDict[tuple[Any, ...], dict[float, tuple[float, ...]]] = OrderedDict()
-_MAX_HEIGHTS: OrderedDict[tuple[Any, ...], float] = OrderedDict()
-_BATCHES: OrderedDict[tuple[Any, ...], list[tuple[float, ...]]] = OrderedDict()
+_MEMO: Kept[tuple[Any, ...], dict[float, tuple[float, ...]]] = Kept(_MEMO_CHAINS)
+_MAX_HEIGHTS: Kept[tuple[Any, ...], float] = Kept(4 * _MEMO_CHAINS)
+_BATCHES: Kept[tuple[Any, ...], list[tuple[float, ...]]] = Kept(_MEMO_CHAINS)
 """Batches of more than :data:`_MEMO_BATCH` heights solved, by chain, image point and the
 heights' bytes (a re-plan over the same ground asks the same photos' heights again)."""
 
 
 def _memo(key: tuple[Any, ...]) -> dict[float, tuple[float, ...]]:
-    values = _MEMO.get(key)
-    if values is None:
-        values = _MEMO[key] = {}
-        while len(_MEMO) > _MEMO_CHAINS:
-            _MEMO.popitem(last=False)
-    else:
-        _MEMO.move_to_end(key)
-    return values
+    return _MEMO.made(key, dict)
 
 
 FIGURES = ("r_lpmm", "resolvable", "sensor_limited", "ground_resolution_m", "l_over_gsd")
@@ -152,13 +145,7 @@ def resolution_at(inp: UavInputs, heights_m: Any, field: str = "centre"
     flat = h.ravel().tolist()
     if len(flat) > _MEMO_BATCH:  # every photo's own height: the batch is kept whole
         batch = (chain_key(inp), field, hashlib.blake2b(h.tobytes()).digest(), h.size)
-        rows = _BATCHES.get(batch)
-        if rows is None:
-            rows = _BATCHES[batch] = _solve(inp, h.ravel(), field)
-            while len(_BATCHES) > _MEMO_CHAINS:
-                _BATCHES.popitem(last=False)
-        else:
-            _BATCHES.move_to_end(batch)
+        rows = _BATCHES.made(batch, lambda: _solve(inp, h.ravel(), field))
     else:
         values = _memo((chain_key(inp), field))
         missing = sorted({x for x in flat if x not in values})
@@ -241,9 +228,9 @@ def max_height_for_ground_resolution(inp: UavInputs, limit_m: float) -> float:
         The maximum height [m], within 1 mm below the crossing.
     """
     key = (chain_key(inp), float(limit_m))
-    if key in _MAX_HEIGHTS:
-        _MAX_HEIGHTS.move_to_end(key)
-        return _MAX_HEIGHTS[key]
+    found = _MAX_HEIGHTS.get(key)
+    if found is not MISSING:
+        return found  # type: ignore[return-value]
     values = _memo((key[0], "centre"))
 
     def ok(heights_m: np.ndarray) -> np.ndarray:
@@ -270,7 +257,4 @@ def max_height_for_ground_resolution(inp: UavInputs, limit_m: float) -> float:
                 if fails[0] > 0:
                     lo = float(inner[fails[0] - 1])
         result = lo
-    _MAX_HEIGHTS[key] = result
-    while len(_MAX_HEIGHTS) > 4 * _MEMO_CHAINS:
-        _MAX_HEIGHTS.popitem(last=False)
-    return result
+    return _MAX_HEIGHTS.put(key, result)
