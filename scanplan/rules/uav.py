@@ -395,14 +395,12 @@ def _heights(inp: UavInputs, flown_band_m: tuple[float, float] | None
 
 
 def plan_uav(inp: UavInputs, rules: ScanRules | None = None,
-             flown_band_m: tuple[float, float] | None = None, *,
-             curves: bool = True) -> UavPlan:
+             flown_band_m: tuple[float, float] | None = None, *, curves: bool = True) -> UavPlan:
     """Plan a UAV flight: GSD, MTF ground resolution, blur, flight geometry, and — with a map
     scale — the maximum flight height under the norm set's constraints.
 
-    Steps: check the inputs; the height band and the MTF resolution at the planned and
-    highest heights; blur; flight geometry; tilt; recognition; the registry's limits as
-    heights; the curves for plots.
+    Steps: the inputs checked; the height band and the MTF resolution at the planned and
+    highest heights; blur; geometry; tilt; recognition; the limits as heights; the curves.
 
     Parameters
     ----------
@@ -414,8 +412,7 @@ def plan_uav(inp: UavInputs, rules: ScanRules | None = None,
         Over relief, the lowest and highest heights above ground really flown [m], in
         place of H ± the tolerance (the limits do not change; ``over_relief``).
     curves : bool, optional
-        False: the curves for plots (``height_curve``, ``mtf_centre``) are left empty, for
-        a plan whose limits or figures alone are asked (:func:`with_curves` adds them).
+        False: no curves for plots (``height_curve``, ``mtf_centre``; :func:`with_curves`).
 
     Returns
     -------
