@@ -154,3 +154,19 @@ def test_turn_path_is_its_plain_form_to_the_last_bit(kind):
         got, want = turn_path(p, h, q, lead, kind), _turn_path_arrays(p, h, q, lead, kind)
         assert [(x.hex(), y.hex()) for x, y in got] == \
             [(float(x).hex(), float(y).hex()) for x, y in want]
+
+
+def test_run_sums_are_each_runs_own_sum_to_the_last_bit():
+    """The sums of many runs in one call per length equal ``np.sum`` of each run alone
+    (the turns' times and lengths, the "auto" direction's strips and turns): runs of length
+    0 to 3,000, overlapping, at any start, over values of mixed magnitude."""
+    from scanplan.geo.strips import run_sums
+
+    rng = np.random.default_rng(5)
+    values = rng.normal(0, 1, 40_000) * 10.0 ** rng.integers(-6, 7, 40_000)
+    lengths = np.r_[np.arange(0, 260), rng.integers(0, 3001, 300), [8, 8, 8, 128, 129, 1024]]
+    starts = rng.integers(0, len(values) - 3001, len(lengths))
+    got = run_sums(values, starts, lengths)
+    want = [np.sum(values[a:a + n]) for a, n in zip(starts, lengths, strict=True)]
+    assert [float(x).hex() for x in got] == [float(x).hex() for x in want]
+    assert run_sums(values, np.array([], dtype=np.int64), np.array([], dtype=np.int64)).size == 0

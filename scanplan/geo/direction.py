@@ -28,7 +28,15 @@ import numpy as np
 import shapely
 
 from ..core import flight as FL
-from .strips import MAX_STRIPS, Turn, _connections, _photos_per_part, _strip_spans, turn_length_m
+from .strips import (
+    MAX_STRIPS,
+    Turn,
+    _connections,
+    _photos_per_part,
+    _strip_spans,
+    run_sums,
+    turn_length_m,
+)
 
 __all__ = ["band_extents", "long_axis_deg", "same_direction"]
 
@@ -185,13 +193,10 @@ def _costs_chunk(u0: np.ndarray, v0: np.ndarray, u1: np.ndarray, v1: np.ndarray,
     start_next = np.where(forward, last[1:], first[1:])
     conn = turn_length_m((u[1:] - u[:-1])[same], (start_next - end_i)[same], turn)
     conn_start = np.r_[0, np.cumsum(np.maximum(m - 1, 0))[:-1]]  # direction i's first
-    span = last - first
-    costs = []
-    for a_, m_, c_ in zip(start.tolist(), m.tolist(), conn_start.tolist(), strict=True):
-        strips = np.add.reduce(span[a_:a_ + m_])  # np.sum's pairwise sum, as in _cost
-        turns = np.add.reduce(conn[c_:c_ + max(m_ - 1, 0)])
-        costs.append(float(strips + turns))
-    return costs
+    # each direction's sums over its own strips and turns: np.sum's, as in _cost
+    strips = run_sums(last - first, start, m)
+    turns = run_sums(conn, conn_start, np.maximum(m - 1, 0))
+    return (strips + turns).tolist()
 
 
 def _auto_direction(geom: object, origin: tuple[float, float], spacing_m: float,

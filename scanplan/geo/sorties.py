@@ -43,6 +43,7 @@ import numpy as np
 
 from ..i18n.messages import Message
 from .layout import Sortie
+from .strips import run_sums
 
 Point = tuple[float, float]
 
@@ -239,9 +240,7 @@ def _chains_time_s(xy: np.ndarray, sizes: list[int], speed_ms: float, model: Fli
     chains = [(int(a), int(b) - 1) for a, b in zip(starts, ends, strict=True)]
     t = _leg_times_s(leg, _capped_speeds(leg, node, speed_ms, model.accel_ms2, chains),
                      speed_ms, model.accel_ms2)
-    times = np.array([float(np.sum(t[a:b])) for a, b in chains])
-    lengths = np.array([float(np.sum(leg[a:b])) for a, b in chains])
-    return times, lengths
+    return run_sums(t, starts, ends - 1 - starts), run_sums(leg, starts, ends - 1 - starts)
 
 
 def vertical_time_s(climb_m: float, descent_m: float, model: FlightModel) -> float:
