@@ -160,7 +160,8 @@ class LonLatColumns(Mapping[str, np.ndarray]):
     Parameters
     ----------
     columns : dict of str to ndarray
-        Every column but ``lon_deg``/``lat_deg``, in :data:`PHOTO_COLUMNS` order.
+        The columns of :data:`PHOTO_COLUMNS`; ``lon_deg``/``lat_deg`` left out or None are
+        projected when first read.
     plan_crs : str
         The planning CRS of ``x_m``/``y_m``.
     """
