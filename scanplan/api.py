@@ -626,6 +626,7 @@ if TYPE_CHECKING:  # the signatures a type checker reads: the registry's keyword
             flown_band_m: tuple[float, float] | None = ...,
             laid_out: FlightLayout | None = ...,
             limits: UavPlan | None = ...,
+            curves: bool = ...,
     ) -> UavResult: ...
     # </typed signatures>
 else:  # at run time: one keyword per input of the registry (its signature and its docs)

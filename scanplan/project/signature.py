@@ -36,6 +36,9 @@ _EXTRA = {  # engine keywords that are not registry inputs (objects, not values)
              "(:func:`scanplan.geo.area.load_area`); lays the strips and photo centres out"),
     "layout_options": ("scanplan.project.flightplan.LayoutOptions, optional",
                        "flight direction, turns and sorties of the layout"),
+    "curves": ("bool, optional", "False: the plan without its curves for plots (GSD and L "
+               "against the height, the MTF at the planned height), where only its figures "
+               "are asked; default True"),
 }
 
 
@@ -142,7 +145,8 @@ _STATIC = {"number": "SupportsFloat", "int": "SupportsIndex", "scale": "Supports
            "scales": "Iterable[SupportsFloat | str]", "date": "datetime.date | str"}
 _STATIC_EXTRA = {"area": "Area | None", "layout_options": "LayoutOptions | None",
                  "flown_band_m": "tuple[float, float] | None",
-                 "laid_out": "FlightLayout | None", "limits": "UavPlan | None"}
+                 "laid_out": "FlightLayout | None", "limits": "UavPlan | None",
+                 "curves": "bool"}
 MARKERS = ("    # <typed signatures: python -m scanplan.project.signature scanplan/api.py>",
            "    # </typed signatures>")
 """The lines around the generated signatures in :mod:`scanplan.api`."""
