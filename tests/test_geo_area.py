@@ -305,6 +305,10 @@ def test_the_same_file_is_read_once_and_a_changed_one_again(tmp_path, monkeypatc
     assert str(moved) not in reads
     assert other.source_file == str(moved) and other.source.startswith(str(moved))
     assert str(f) not in other.source and other.geometry.equals(again.geometry)
+    A.forget_read_areas()  # forgotten: read and projected again, the same area
+    fresh = load_area(AreaSpec(file=moved))
+    assert reads.count(str(moved)) == 1 and fresh is not other
+    assert fresh.geometry.equals(other.geometry) and fresh.plan_crs == other.plan_crs
 
 
 def test_a_shapefile_is_read_every_time(tmp_path, monkeypatch):

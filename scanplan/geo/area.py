@@ -56,7 +56,7 @@ from .vertices import VERTEX_SUFFIXES, read_vertices
 if TYPE_CHECKING:  # pyproj (60 ms) is imported when a polygon is read, not for a block
     import pyproj
 
-__all__ = ["MAX_AREA_KM2", "AreaSpec", "load_area", "rectangle_area"]
+__all__ = ["MAX_AREA_KM2", "AreaSpec", "forget_read_areas", "load_area", "rectangle_area"]
 
 MAX_AREA_KM2 = 10_000.0
 """Largest contract area [km²] (a larger block is a regional programme, not one plan)."""
@@ -183,6 +183,12 @@ def _renamed(area: Area, was: str, name: str) -> Area:
 _KEPT_AREAS = 32
 _KEPT: Kept[tuple[Any, ...], tuple[str, Area]] = Kept(_KEPT_AREAS)
 """Polygons kept read and projected (the page re-plans the same area on every edit)."""
+
+
+def forget_read_areas() -> None:
+    """Forget every polygon kept read and projected (the next :func:`load_area` of a file
+    or an inline polygon reads and projects it again)."""
+    _KEPT.clear()
 
 
 def _kept_key(spec: AreaSpec) -> tuple[Any, ...] | None:
