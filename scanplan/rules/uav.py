@@ -38,12 +38,14 @@ from ..core.shown import shown_above
 from ..errors import FieldValueError, InputError
 from ..i18n.messages import Message, Names
 from ..i18n.messages_uav import date_words
+from ..io.kept import Kept
 from .constraints import height_accuracy as _height_accuracy  # noqa: F401  (tests, importers)
 from .film import check_probability, overlap_warning
 from .registry import CONSTRAINTS, DigitalLimit, digital_ids
 from .resolution import (
     centre_resolution_m,
     chain,
+    chain_key,
     max_height_for_ground_resolution,
     resolution_at,
 )
@@ -353,8 +355,28 @@ def _recognition(inp: UavInputs, l_plan: float | None, l_hi: float | None,
         for o in inp.objects)
 
 
+_CURVES_KEPT = 8
+_CURVES: Kept[tuple[Any, ...], tuple[dict[str, Any], dict[str, Any]]] = Kept(_CURVES_KEPT)
+"""The curves for plots of the last plans, by their inputs, heights and the MTF components
+registered (the page re-plans with the same camera chain on every edit)."""
+
+
 def _curves(inp: UavInputs, h_plan: float, h_hi: float, max_flown: float | None
             ) -> tuple[dict[str, Any], dict[str, Any]]:
+    """GSD and L against height, and the MTF at the planned height, for plots: as made by
+    :func:`_made_curves`, kept for the same inputs and heights (each plan is given lists
+    of its own)."""
+    key = (inp, chain_key(inp)[1], float(h_plan), float(h_hi), max_flown)
+    try:
+        hash(key)
+    except TypeError:  # inputs given as lists (the API's own types are hashable)
+        return _made_curves(inp, h_plan, h_hi, max_flown)
+    kept = _CURVES.made(key, lambda: _made_curves(inp, h_plan, h_hi, max_flown))
+    return tuple({k: list(v) for k, v in d.items()} for d in kept)  # type: ignore[return-value]
+
+
+def _made_curves(inp: UavInputs, h_plan: float, h_hi: float, max_flown: float | None
+                 ) -> tuple[dict[str, Any], dict[str, Any]]:
     """GSD and L against height, and the MTF at the planned height, for plots (one
     vectorised call each)."""
     top = max(h_hi, max_flown or 0.0) * 1.3
