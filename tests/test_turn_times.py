@@ -9,7 +9,7 @@ import math
 import numpy as np
 import pytest
 
-from scanplan.geo.mission import _with_trigger_off, turn_path
+from scanplan.geo.mission import _with_trigger_off, turn_path, turn_path_xy
 from scanplan.geo.sorties import FlightModel, path_time_s, paths_time_s, turn_penalties_m
 
 MODEL = FlightModel(2.5, 5.0, 2.0, 2.5, 1.5)
@@ -154,6 +154,27 @@ def test_turn_path_is_its_plain_form_to_the_last_bit(kind):
         got, want = turn_path(p, h, q, lead, kind), _turn_path_arrays(p, h, q, lead, kind)
         assert [(x.hex(), y.hex()) for x, y in got] == \
             [(float(x).hex(), float(y).hex()) for x, y in want]
+
+
+@pytest.mark.parametrize("kind", ["semicircle", "turnaround", "dubins"])
+def test_the_penalties_offset_along_the_grid_is_turn_path_s(kind):
+    """The turn penalties give the turn its offset along the heading (0, ±1) as the along
+    part times ±1 plus the across part times 0 (no numpy dot per turn): the waypoints are
+    :func:`turn_path`'s bit for bit — q straight across from p (an offset of ±0), q = p,
+    q behind p, no lead."""
+    rng = np.random.default_rng(5)
+    for i in range(3000):
+        p = rng.uniform(-5e5, 5e5, 2) if i % 3 else np.round(rng.uniform(-1e3, 1e3, 2), 1)
+        hy = (-1.0) ** i
+        q = p + rng.normal(0, 80, 2) * (i % 11 != 0)
+        if i % 5 == 0:
+            q[1] = p[1]  # straight across: an offset of zero, of either sign
+        lead = float(rng.choice([0.0, 5.0, 12.0, rng.uniform(0, 200)]))
+        px, py, qx, qy = (float(v) for v in (*p, *q))
+        off = (qx - px) * 0.0 + (qy - py) * hy
+        got = turn_path_xy(px, py, 0.0, hy, qx, qy, off, lead, kind)
+        want = turn_path(p, np.array([0.0, hy]), q, lead, kind)
+        assert [(x.hex(), y.hex()) for x, y in got] == [(x.hex(), y.hex()) for x, y in want]
 
 
 def test_run_sums_are_each_runs_own_sum_to_the_last_bit():

@@ -326,6 +326,14 @@ def turn_path(p: np.ndarray, h: np.ndarray, q: np.ndarray, lead_m: float,
     run-in (:func:`scanplan.geo.lines.turn_length_m`)."""
     off = float((q - p) @ h)
     px, py, qx, qy, hx, hy = (float(v) for v in (p[0], p[1], q[0], q[1], h[0], h[1]))
+    return turn_path_xy(px, py, hx, hy, qx, qy, off, lead_m, kind)
+
+
+def turn_path_xy(px: float, py: float, hx: float, hy: float, qx: float, qy: float,
+                 off: float, lead_m: float, kind: str) -> list[tuple[float, float]]:
+    """:func:`turn_path` of Python floats: ``p`` (``px``, ``py``), the heading (``hx``,
+    ``hy``), ``q`` (``qx``, ``qy``) and ``off``, how far ``q`` lies ahead of ``p`` along
+    the heading ((q − p) · h) [m]."""
     nvx, nvy = (qx - px) - off * hx, (qy - py) - off * hy  # the across part of q − p
     d = float(np.hypot(nvx, nvy))
     nx, ny = (nvx / d, nvy / d) if d > 0 else (hy, -hx)

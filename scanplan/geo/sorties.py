@@ -459,7 +459,7 @@ def turn_penalties_m(exposure_strip: np.ndarray, along_m: np.ndarray, across_m: 
     the camera's trigger-off point ``trigger_off_m`` along it), entered and left at the
     cruise speed.
     """
-    from .mission import turn_path, turns_trigger_off
+    from .mission import turn_path_xy, turns_trigger_off
 
     ex = np.asarray(exposure_strip)
     out = np.zeros(len(ex))
@@ -483,8 +483,11 @@ def turn_penalties_m(exposure_strip: np.ndarray, along_m: np.ndarray, across_m: 
         if key not in seen:
             seen[key] = len(paths)
             ends.append((p, q, hy))
-            paths.append(turn_path(np.array(p), np.array([0.0, hy]), np.array(q), lead_m,
-                                   turn_kind))
+            # (q − p) · (0, hy): exactly the along part times hy (the across part times 0
+            # adds a zero, whose sign no waypoint keeps)
+            off = (q[0] - p[0]) * 0.0 + (q[1] - p[1]) * hy
+            paths.append(turn_path_xy(p[0], p[1], 0.0, hy, q[0], q[1], off, lead_m,
+                                      turn_kind))
         turn_of.append(seen[key])
     # each turn with the straights before and after at full length: the braking for the
     # turn begins on the strip, before its last photo (an upper bound where the strip is
