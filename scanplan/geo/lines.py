@@ -56,6 +56,7 @@ from shapely import affinity
 
 from ..core import flight as FL
 from ..i18n.messages import Message
+from ..io.kept import Kept
 from . import crs as geocrs
 from .direction import _auto_direction, band_extents
 from .layout import PHOTO_COLUMNS, Area, FlightLayout, LonLatColumns, Photos, Strip
@@ -295,6 +296,17 @@ def grid_scale(area: Area) -> float:
     """
     if not area.georeferenced:
         return 1.0
+    key = (area.plan_crs, shapely.to_wkb(area.geometry))
+    return _GRID_SCALES.made(key, lambda: _grid_scale(area))  # type: ignore[return-value]
+
+
+_GRID_SCALES: Kept[tuple[str, bytes], float] = Kept(32)
+""":func:`grid_scale` of the last areas, by planning CRS and geometry (each plan lays the
+same area out along several directions, and the page re-plans it on every edit)."""
+
+
+def _grid_scale(area: Area) -> float:
+    """:func:`grid_scale` of a georeferenced area, computed."""
     geom = area.geometry
     xy = np.vstack([shapely.get_coordinates(geom),
                     [[geom.centroid.x, geom.centroid.y]]])

@@ -11,6 +11,7 @@ Errors are :class:`scanplan.errors.InputError` whose ``field`` is the argument n
 
 from __future__ import annotations
 
+import functools
 import math
 import numbers
 import os
@@ -367,6 +368,13 @@ def _airspace(ceiling_m: float | None) -> dict[str, Any]:
     :mod:`scanplan.norms.airspace` (none for a project's own ceiling or an aircraft)."""
     if ceiling_m is None:
         return {}
+    return dict(_airspace_worded(ceiling_m))
+
+
+@functools.lru_cache(maxsize=16)
+def _airspace_worded(ceiling_m: float) -> dict[str, Any]:
+    """:func:`_airspace` at a ceiling, worded once (the bundled conditions do not change
+    while scanplan runs)."""
     from ..norms.airspace import airspace_conditions
 
     conds = airspace_conditions()
