@@ -21,6 +21,7 @@ Distances are geodesic on the WGS 84 ellipsoid (:class:`pyproj.Geod`).
 
 from __future__ import annotations
 
+import functools
 import math
 from typing import Any
 
@@ -56,6 +57,22 @@ def _inside_use(crs_text: str | None, lon: float, lat: float) -> tuple[bool, str
     has no bounded area of use (WGS 84 covers the world)."""
     if not crs_text or crs_text == "LOCAL":
         return None
+    found = _area_of_use(crs_text)
+    if found is None:
+        return None
+    west, east, south, north, name = found
+    if west <= east:
+        in_lon = west <= lon <= east
+    else:  # an area of use across the antimeridian
+        in_lon = lon >= west or lon <= east
+    return in_lon and south <= lat <= north, name
+
+
+@functools.lru_cache(maxsize=64)
+def _area_of_use(crs_text: str) -> tuple[float, float, float, float, str] | None:
+    """The bounded area of use of ``crs_text`` (west, east, south, north [°]) and its name
+    in the reports, or None (looked up in PROJ's database once per CRS: the page re-plans
+    the same area on every edit)."""
     import pyproj
 
     try:
@@ -65,12 +82,8 @@ def _inside_use(crs_text: str | None, lon: float, lat: float) -> tuple[bool, str
     use = crs.area_of_use
     if use is None or (use.east - use.west >= 359.0 and use.north - use.south >= 179.0):
         return None
-    if use.west <= use.east:
-        in_lon = use.west <= lon <= use.east
-    else:  # an area of use across the antimeridian
-        in_lon = lon >= use.west or lon <= use.east
     code = crs.to_epsg()
-    return in_lon and use.south <= lat <= use.north, f"EPSG:{code}" if code else crs.name
+    return use.west, use.east, use.south, use.north, f"EPSG:{code}" if code else crs.name
 
 
 def swapped_reason(area: Area, site: tuple[float, float] | None) -> Message | None:
