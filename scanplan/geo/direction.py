@@ -169,7 +169,7 @@ def _costs_chunk(u0: np.ndarray, v0: np.ndarray, u1: np.ndarray, v1: np.ndarray,
     t_lo = np.where(flat, 0.0, np.clip(np.minimum(ta, tb), 0.0, 1.0))
     t_hi = np.where(flat, 1.0, np.clip(np.maximum(ta, tb), 0.0, 1.0))
     va, vb = v0f + t_lo * dv, v0f + t_hi * dv
-    band0 = np.r_[0, np.cumsum(n)[:-1]]  # each direction's first band
+    band0 = np.concatenate(([0], np.cumsum(n)[:-1]))  # each direction's first band
     lo = np.full(int(n.sum()), np.inf)
     hi = np.full(int(n.sum()), -np.inf)
     np.minimum.at(lo, band0[d] + k, np.minimum(va, vb))
@@ -184,7 +184,7 @@ def _costs_chunk(u0: np.ndarray, v0: np.ndarray, u1: np.ndarray, v1: np.ndarray,
     mid = (lo + hi) / 2.0
     first, last = mid - half, mid + half
     m = np.bincount(band_dir, minlength=n_dir)  # strips kept per direction
-    start = np.r_[0, np.cumsum(m)[:-1]]
+    start = np.concatenate(([0], np.cumsum(m)[:-1]))
     # connection i → i + 1 within a direction; strip j of a direction is flown +v when even
     j = np.arange(len(u)) - start[band_dir]
     same = band_dir[1:] == band_dir[:-1]
@@ -192,7 +192,7 @@ def _costs_chunk(u0: np.ndarray, v0: np.ndarray, u1: np.ndarray, v1: np.ndarray,
     end_i = np.where(forward, last[:-1], first[:-1])
     start_next = np.where(forward, last[1:], first[1:])
     conn = turn_length_m((u[1:] - u[:-1])[same], (start_next - end_i)[same], turn)
-    conn_start = np.r_[0, np.cumsum(np.maximum(m - 1, 0))[:-1]]  # direction i's first
+    conn_start = np.concatenate(([0], np.cumsum(np.maximum(m - 1, 0))[:-1]))  # direction i's first
     # each direction's sums over its own strips and turns: np.sum's, as in _cost
     strips = run_sums(last - first, start, m)
     turns = run_sums(conn, conn_start, np.maximum(m - 1, 0))

@@ -150,7 +150,7 @@ def _merge(b: _Bands, gap_m: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]
     new[1:] = (lo[1:] > run[:-1] + gap_m) | (b.parts_strip[1:] != b.parts_strip[:-1])
     group = np.cumsum(new) - 1
     first = np.flatnonzero(new)
-    last = np.r_[first[1:], len(lo)] - 1
+    last = np.concatenate((first[1:], [len(lo)])) - 1
     strip = b.parts_strip[first]
     out_lo = b.parts_lo[first]
     out_hi = run[last] - shift[last]
@@ -458,7 +458,7 @@ def _strip_records(u: np.ndarray, p_strip: np.ndarray, first: np.ndarray, last: 
     p_start = np.where(pf, first, last)
     psx, psy = to_xy(u[p_strip], p_start)
     pex, pey = to_xy(u[p_strip], np.where(pf, last, first))
-    first_photo = np.r_[0, np.cumsum(photos_per_strip)[:-1]] + 1
+    first_photo = np.concatenate(([0], np.cumsum(photos_per_strip)[:-1])) + 1
     segs = np.bincount(p_strip, minlength=n_strips)
     parts_of: list[list[tuple[tuple[float, float], tuple[float, float]]]] = [
         [] for _ in range(n_strips)]
@@ -515,13 +515,13 @@ def _flight_order(parts: _Parts, most: int = MAX_PHOTO_CENTRES
     k = max(1, math.ceil(total / most))
     kept = np.where(n_per > 0, (n_per - 1) // k + 1 + ((n_per - 1) % k != 0), 0)
     part = np.repeat(np.arange(len(n_per)), kept)
-    nth = np.arange(int(kept.sum())) - np.r_[0, np.cumsum(kept)[:-1]][part]
+    nth = np.arange(int(kept.sum())) - np.concatenate(([0], np.cumsum(kept)[:-1]))[part]
     local = np.minimum(nth * k, n_per[part] - 1)
     v = parts.first[part] + parts.base_m * local
     strip = parts.p_strip[part]
     order = np.lexsort((np.where(strip % 2 == 0, v, -v), strip))
     strip, v = strip[order], v[order]
-    start = np.r_[0.0, np.cumsum(parts.strip_len[:-1] + parts.conn)]
+    start = np.concatenate(([0.0], np.cumsum(parts.strip_len[:-1] + parts.conn)))
     return strip, v, start[strip] + np.abs(v - parts.forward_v[strip])
 
 
@@ -643,7 +643,7 @@ def _photos(n_per: np.ndarray, p_strip: np.ndarray, p_start: np.ndarray, pf: np.
             values: Mapping[str, float]) -> Photos:
     total = int(n_per.sum())
     part = np.repeat(np.arange(len(n_per)), n_per)
-    starts = np.r_[0, np.cumsum(n_per)[:-1]]
+    starts = np.concatenate(([0], np.cumsum(n_per)[:-1]))
     local = np.arange(total) - starts[part]
     sign = np.where(pf, 1.0, -1.0)[part]
     v = p_start[part] + sign * base_m * local
