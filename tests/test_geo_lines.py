@@ -92,6 +92,23 @@ def test_rectangle_polygon_in_a_projected_crs_equals_the_block():
     assert np.isfinite(poly.photos["lon_deg"]).all() and np.isnan(rect.photos["lon_deg"]).all()
 
 
+def test_the_grid_scale_kept_is_each_area_s_own():
+    """The least scale factor is kept by planning CRS and geometry: the same area gives
+    the value computed, another polygon or another CRS its own."""
+    import scanplan.geo.lines as L
+
+    x0, y0 = 400_000.0, 6_100_000.0
+    ring = [[x0, y0], [x0 + 2000, y0], [x0 + 2000, y0 + 3000], [x0, y0 + 3000]]
+    near = load_area(AreaSpec(polygon=ring, crs="EPSG:32637"))
+    far = load_area(AreaSpec(polygon=[[x + 280_000, y] for x, y in ring], crs="EPSG:32637"))
+    other = load_area(AreaSpec(polygon=ring, crs="EPSG:32637", plan_crs="EPSG:3857"))
+    for area in (near, far, other, near):
+        assert L.grid_scale(area) == L._grid_scale(area)
+    assert L.grid_scale(far) > L.grid_scale(near) + 1e-4  # farther from the meridian
+    assert L.grid_scale(other) != L.grid_scale(near)
+    assert L.grid_scale(rectangle_area(100.0, 200.0)) == 1.0
+
+
 def test_photo_columns_and_flight_order():
     lay = _lay(rectangle_area(600, 800), speed_ms=10.0)
     assert list(lay.photos.columns) == list(PHOTO_COLUMNS)

@@ -71,3 +71,28 @@ def test_a_plan_solved_without_its_curves_gets_the_very_curves_later():
         assert whole.height_curve and whole.mtf_centre
         assert with_curves(bare) == whole
         assert with_curves(whole) is whole
+
+
+def test_the_curves_kept_are_each_plan_s_own_lists():
+    """The curves are kept by the plan's inputs and heights: a re-plan gets equal curves in
+    lists of its own (a caller changing one plan's curve changes no other), and another
+    camera or height its own curves."""
+    from scanplan.project.jobs import uav_job
+    from scanplan.rules import uav as U
+
+    U._CURVES.clear()
+    a = uav_job(camera="dji-phantom-4-rtk", height_m=120.0).plan
+    b = uav_job(camera="dji-phantom-4-rtk", height_m=120.0).plan
+    assert a.height_curve == b.height_curve and a.mtf_centre == b.mtf_centre
+    assert len(U._CURVES) == 1
+    a.height_curve["gsd_m"][0] = -1.0
+    a.mtf_centre["system"].clear()
+    c = uav_job(camera="dji-phantom-4-rtk", height_m=120.0).plan
+    assert c.height_curve == b.height_curve and c.mtf_centre == b.mtf_centre
+    assert c.height_curve["gsd_m"][0] > 0 and c.mtf_centre["system"]
+    U._CURVES.clear()
+    assert uav_job(camera="dji-phantom-4-rtk", height_m=120.0).plan.mtf_centre == \
+        b.mtf_centre  # made again: the same curves
+    higher = uav_job(camera="dji-phantom-4-rtk", height_m=150.0).plan
+    other = uav_job(camera="dji-zenmuse-p1-35", height_m=120.0).plan
+    assert higher.height_curve != b.height_curve and other.mtf_centre != b.mtf_centre
