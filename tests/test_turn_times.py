@@ -177,6 +177,33 @@ def test_the_penalties_offset_along_the_grid_is_turn_path_s(kind):
         assert [(x.hex(), y.hex()) for x, y in got] == [(x.hex(), y.hex()) for x, y in want]
 
 
+def test_turnaround_rows_are_the_turn_by_turn_rows_to_the_last_bit():
+    """The turnaround turns' waypoints made for every turn at once (the penalties' fast
+    path) are those of each turn made alone through ``turn_path`` and its trigger-off point:
+    q ahead of p and behind it, straight across (no apex of the run-out), q at p, no lead,
+    no trigger-off distance and one longer than the turn, next strips either side."""
+    from scanplan.geo.sorties import _turn_rows, turnaround_rows
+
+    rng = np.random.default_rng(23)
+    for i in range(400):
+        n = int(rng.integers(1, 30))
+        p = np.where(i % 4 == 0, np.round(rng.uniform(-500, 500, (n, 2)), 1),
+                     rng.uniform(-5e5, 5e5, (n, 2)))
+        q = p + rng.normal(0, 60, (n, 2)) * (rng.random((n, 1)) > 0.1)
+        across = rng.random(n) < 0.2
+        q[across, 1] = p[across, 1]  # straight across: the apex is q's own line
+        hy = np.where(rng.random(n) < 0.5, 1.0, -1.0)
+        lead = float(rng.choice([0.0, 5.0, rng.uniform(0, 120)]))
+        run_up = float(rng.uniform(1, 40))
+        off = float(rng.choice([0.0, 3.0, 1e4, rng.uniform(0, 80)]))
+        args = (p[:, 0], p[:, 1], q[:, 0], q[:, 1], hy)
+        got, got_sizes = turnaround_rows(*args, lead, run_up, off)
+        want, want_sizes = _turn_rows(*args, "turnaround", lead, run_up, off)
+        assert got_sizes == want_sizes
+        assert got.shape == want.shape and np.array_equal(got.view(np.int64),
+                                                          want.view(np.int64))
+
+
 def test_run_sums_are_each_runs_own_sum_to_the_last_bit():
     """The sums of many runs in one call per length equal ``np.sum`` of each run alone
     (the turns' times and lengths, the "auto" direction's strips and turns): runs of length

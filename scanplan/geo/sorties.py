@@ -459,8 +459,6 @@ def turn_penalties_m(exposure_strip: np.ndarray, along_m: np.ndarray, across_m: 
     the camera's trigger-off point ``trigger_off_m`` along it), entered and left at the
     cruise speed.
     """
-    from .mission import turn_path_xy, turns_trigger_off
-
     ex = np.asarray(exposure_strip)
     out = np.zeros(len(ex))
     if len(ex) < 2 or not speed_ms or speed_ms <= 0:
@@ -469,45 +467,130 @@ def turn_penalties_m(exposure_strip: np.ndarray, along_m: np.ndarray, across_m: 
     if not len(change):
         return out
     run_up = speed_ms ** 2 / (2.0 * model.accel_ms2) + 1.0  # [m]
-    seen: dict[tuple[float, float], int] = {}  # a turn's time depends on its shape only
-    turn_of = []
-    ends: list[tuple[Point, Point, float]] = []  # each distinct turn's p, q and heading
-    paths: list[list[Point]] = []
     across, along = np.asarray(across_m, dtype=float), np.asarray(along_m, dtype=float)
-    for k, s0, s1 in zip(change.tolist(), ex[change].tolist(), ex[change + 1].tolist(),
-                         strict=True):
-        p = (float(across[s0]), float(along[k]))
-        q = (float(across[s1]), float(along[k + 1]))
-        hy = 1.0 if s0 % 2 == 0 else -1.0
-        key = (round(hy * (q[1] - p[1]), 3), round(abs(q[0] - p[0]), 3))
+    s0 = ex[change]
+    px, py = across[s0], along[change]
+    qx, qy = across[ex[change + 1]], along[change + 1]
+    hy = np.where(s0 % 2 == 0, 1.0, -1.0)
+    # a turn's time depends on its shape only: each shape timed once, at its first turn
+    seen: dict[tuple[float, float], int] = {}
+    turn_of: list[int] = []
+    first: list[int] = []  # each shape's first turn
+    for i, (a, b) in enumerate(zip((hy * (qy - py)).tolist(), np.abs(qx - px).tolist(),
+                                   strict=True)):
+        key = (round(a, 3), round(b, 3))
         if key not in seen:
-            seen[key] = len(paths)
-            ends.append((p, q, hy))
-            # (q − p) · (0, hy): exactly the along part times hy (the across part times 0
-            # adds a zero, whose sign no waypoint keeps)
-            off = (q[0] - p[0]) * 0.0 + (q[1] - p[1]) * hy
-            paths.append(turn_path_xy(p[0], p[1], 0.0, hy, q[0], q[1], off, lead_m,
-                                      turn_kind))
+            seen[key] = len(first)
+            first.append(i)
         turn_of.append(seen[key])
+    ends = (px[first], py[first], qx[first], qy[first], hy[first])
     # each turn with the straights before and after at full length: the braking for the
     # turn begins on the strip, before its last photo (an upper bound where the strip is
     # shorter)
-    rows: list[Point] = []
-    sizes = []
-    for (p, q, hy), path, (before, off, after) in zip(
-            ends, paths, turns_trigger_off([e[0] for e in ends], paths, trigger_off_m),
-            strict=True):
-        turn = [(p[0], p[1] - run_up * hy), p, *before, off, *after,
-                path[-1], (q[0], q[1] - run_up * hy)]
-        rows += turn
-        sizes.append(len(turn))
-    times, lengths = _chains_time_s(np.array(rows), sizes, speed_ms, model, speed_ms,
-                                    speed_ms)
+    if turn_kind == "turnaround":
+        rows, sizes = turnaround_rows(*ends, lead_m, run_up, trigger_off_m)
+    else:
+        rows, sizes = _turn_rows(*ends, turn_kind, lead_m, run_up, trigger_off_m)
+    times, lengths = _chains_time_s(rows, sizes, speed_ms, model, speed_ms, speed_ms)
     extra = [max(0.0, float(t) * speed_ms - float(length))
              for t, length in zip(times, lengths, strict=True)]
     steps = np.zeros(len(ex))
     steps[change + 1] = np.array(extra)[turn_of]
     return np.cumsum(steps)
+
+
+def _turn_rows(px: np.ndarray, py: np.ndarray, qx: np.ndarray, qy: np.ndarray,
+               hy: np.ndarray, turn_kind: str, lead_m: float, run_up_m: float,
+               trigger_off_m: float) -> tuple[np.ndarray, list[int]]:
+    """The waypoints each turn is timed through (:func:`turn_penalties_m`), one turn after
+    the other (n × 2), and how many each turn has: the run-up before the strip's last photo
+    ``p``, ``p``, the turn's waypoints (:func:`scanplan.geo.mission.turn_path`) with the
+    trigger-off point, the next strip's first photo ``q`` and the run-up past it [m]."""
+    from .mission import turn_path_xy, turns_trigger_off
+
+    starts: list[Point] = []
+    paths: list[list[Point]] = []
+    for p0, p1, q0, q1, h in zip(px.tolist(), py.tolist(), qx.tolist(), qy.tolist(),
+                                 hy.tolist(), strict=True):
+        # (q − p) · (0, h): exactly the along part times h (the across part times 0 adds
+        # a zero, whose sign no waypoint keeps)
+        off = (q0 - p0) * 0.0 + (q1 - p1) * h
+        starts.append((p0, p1))
+        paths.append(turn_path_xy(p0, p1, 0.0, h, q0, q1, off, lead_m, turn_kind))
+    rows: list[Point] = []
+    sizes = []
+    for (p0, p1), h, path, (before, off_pt, after) in zip(
+            starts, hy.tolist(), paths, turns_trigger_off(starts, paths, trigger_off_m),
+            strict=True):
+        q0, q1 = path[-1]
+        turn = [(p0, p1 - run_up_m * h), (p0, p1), *before, off_pt, *after, path[-1],
+                (q0, q1 - run_up_m * h)]
+        rows += turn
+        sizes.append(len(turn))
+    return np.array(rows, dtype=float).reshape(-1, 2), sizes
+
+
+def turnaround_rows(px: np.ndarray, py: np.ndarray, qx: np.ndarray, qy: np.ndarray,
+                    hy: np.ndarray, lead_m: float, run_up_m: float, trigger_off_m: float
+                    ) -> tuple[np.ndarray, list[int]]:
+    """:func:`_turn_rows` of turnaround turns, for every turn at once: the same waypoints
+    to the last bit (the same operations on the same numbers, tests/test_turn_times.py).
+
+    A turnaround (:func:`scanplan.geo.mission.turn_path`) from ``p`` heading (0, hy) to
+    ``q``: the run-out apex A (``lead_m`` past the farther of ``p`` and ``q`` along the
+    heading; left out where it is ``p`` itself), the run-in apex B across from it (left
+    out where it is ``q``), and ``q``; the camera is disarmed ``trigger_off_m`` along that
+    ring from ``p``, at most half way (:func:`scanplan.geo.mission.turns_trigger_off`).
+    """
+    n = len(px)
+    zero = np.zeros(n)
+    off = (qx - px) * 0.0 + (qy - py) * hy  # (q − p) · (0, hy), as _turn_rows
+    nvx, nvy = (qx - px) - off * zero, (qy - py) - off * hy  # the across part of q − p
+    d = np.hypot(nvx, nvy)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        nx = np.where(d > 0, nvx / d, hy)
+        ny = np.where(d > 0, nvy / d, -zero)
+    ahead = np.where(off > 0.0, off, 0.0) + lead_m  # max(0, off) + lead
+    ox, oy = px + ahead * zero, py + ahead * hy
+    ix, iy = ox + d * nx, oy + d * ny
+    ax, ay = ox + 0.0 * nx + 0.0 * zero, oy + 0.0 * ny + 0.0 * hy  # A: at(0, 0)
+    bx, by = ox + d * nx + 0.0 * zero, oy + d * ny + 0.0 * hy  # B: at(d, 0)
+    has_a = np.hypot(ox - px, oy - py) > 1e-6
+    has_b = np.hypot(qx - ix, qy - iy) > 1e-6  # else q takes B's place
+    # the ring p, [A], [B], q, its points moved to the front of four places
+    cand = np.stack([np.column_stack([px, py]), np.column_stack([ax, ay]),
+                     np.column_stack([bx, by]), np.column_stack([qx, qy])], axis=1)
+    keep = np.column_stack([np.ones(n, bool), has_a, has_b, np.ones(n, bool)])
+    size = keep.sum(axis=1)  # 2 … 4 points
+    ring = np.full((n, 4, 2), np.nan)
+    ring[np.nonzero(keep)[0], (np.cumsum(keep, axis=1) - 1)[keep]] = cand[keep]
+    # the trigger-off point: at = min(after, half the ring), in the segment ending at k
+    seg = np.hypot(*np.moveaxis(np.diff(ring, axis=1), 2, 0))  # NaN past the ring's end
+    cum = np.concatenate([zero[:, None], np.cumsum(seg, axis=1)], axis=1)
+    total = cum[np.arange(n), size - 1]
+    half = total / 2.0
+    at = np.where(half < trigger_off_m, half, trigger_off_m)
+    k = np.clip((cum <= at[:, None]).sum(axis=1), 1, size - 1)
+    rows_i = np.arange(n)
+    seg_k, cum_k = seg[rows_i, k - 1], cum[rows_i, k - 1]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = np.where(seg_k > 0, (at - cum_k) / seg_k, 0.0)
+    (x0, y0), (x1, y1) = ring[rows_i, k - 1].T, ring[rows_i, k].T
+    cut = np.column_stack([x0 + t * (x1 - x0), y0 + t * (y1 - y0)])
+    # each turn's rows: the run-up, p, the ring's points before k, the trigger-off point,
+    # those from k on (not the last) apart from it, q, the run-up past q
+    j = np.arange(1, 3)  # the ring's inner points
+    inner = ring[:, 1:3]
+    apart = np.hypot(inner[..., 0] - cut[:, None, 0], inner[..., 1] - cut[:, None, 1]) > 1e-6
+    before = j[None, :] < k[:, None]
+    after = (j[None, :] >= k[:, None]) & (j[None, :] <= (size - 2)[:, None]) & apart
+    last = ring[rows_i, size - 1]
+    slots = np.stack([np.column_stack([px, py - run_up_m * hy]), np.column_stack([px, py]),
+                      inner[:, 0], inner[:, 1], cut, inner[:, 0], inner[:, 1], last,
+                      np.column_stack([last[:, 0], last[:, 1] - run_up_m * hy])], axis=1)
+    use = np.column_stack([np.ones((n, 2), bool), before, np.ones(n, bool), after,
+                           np.ones((n, 2), bool)])
+    return slots[use], use.sum(axis=1).tolist()
 
 
 def boundary_transit(boundary: object, start_xy: np.ndarray, end_xy: np.ndarray,
