@@ -426,7 +426,9 @@ def _pack_greedy(path_m: np.ndarray, eq: np.ndarray, exposure_strip: np.ndarray,
         k = int(fits[-1])
         b = a + k
         sortie[a:b + 1] = len(plan.strips)
-        plan.strips.append(sorted(set(exposure_strip[a:b + 1].tolist())))
+        flown = exposure_strip[a:b + 1]
+        heads = np.flatnonzero(flown[1:] != flown[:-1]) + 1  # each run's first exposure
+        plan.strips.append(sorted({int(flown[0]), *flown[heads].tolist()}))
         plan.length_m.append(float(path_m[b] - path_m[a]) + fixed + t_in + float(t_out[k]))
         plan.transit_m.append(t_in + float(t_out[k]))
         plan.cost_m.append(float(cost[k]))
