@@ -152,3 +152,34 @@ def test_an_accepted_dem_header_is_kept_until_the_file_or_a_companion_changes(tm
     (tmp_path / "dem.tif.ovr").write_text("not a TIFF")  # a companion GDAL would open
     with pytest.raises(InputError, match="ovr"):
         D.open_dem(path)
+
+
+def test_the_path_ground_kept_is_the_one_computed_over_its_own_grid(tmp_path):
+    """The ground under the path is kept by grid (the object itself), photos and run-in:
+    the same inputs give the very result (read-only) equal to a fresh computation; another
+    grid over other ground, or other photos, their own."""
+    from scanplan.geo.terrain_worst import path_ground
+
+    lay = layout()
+    ph = lay.photos
+    x, y = ph["x_m"].astype(float), ph["y_m"].astype(float)
+    strip = ph["strip"].astype(np.int64)
+    grids = []
+    for name, base in (("a.tif", 100.0), ("b.tif", 300.0)):
+        info = D.open_dem(dem_around(tmp_path / name, lambda x, y, b=base: b + 0.01 * x, lay))
+        grids.append(G.read_ground_grid(info, lay.area.geometry.bounds, lay.area.geometry,
+                                        lay.area.plan_crs))
+    T._PATHS.clear()
+    args = (x, y, strip, 0.0, 20.0, 50.0, 400.0)
+    kept = T._kept_path_ground(grids[0], *args)
+    assert T._kept_path_ground(grids[0], *args) is kept and len(T._PATHS) == 1
+    fresh = path_ground(grids[0], *args)
+    for a, b in ((kept.low_m, fresh.low_m), (kept.high_m, fresh.high_m),
+                 (kept.known, fresh.known)):
+        np.testing.assert_array_equal(a, b)
+        assert not a.flags.writeable
+    other = T._kept_path_ground(grids[1], *args)
+    np.testing.assert_array_equal(other.low_m, path_ground(grids[1], *args).low_m)
+    assert np.all(other.low_m > kept.low_m + 150.0)
+    moved = T._kept_path_ground(grids[0], x + 10.0, *args[1:])
+    assert moved is not kept and len(T._PATHS) == 3

@@ -74,7 +74,7 @@ from ..io.kept import Kept
 from . import dem as D
 from .dem_grid import DEFAULT_VOID_MARGIN_M, DEFAULT_VOID_RADIUS_M, GroundGrid, read_ground_grid
 from .layout import FlightLayout, Photos
-from .terrain_worst import footprint_ground, path_ground, run_in_m
+from .terrain_worst import PathGround, footprint_ground, path_ground, run_in_m
 
 __all__ = [
     "ALTITUDE_MODES",
@@ -558,8 +558,8 @@ def worst_ground(layout: FlightLayout, ground: Ground, cols: dict[str, NDArray[A
     x, y = cols["x_m"].astype(float), cols["y_m"].astype(float)
     strip = cols["strip"].astype(np.int64)
     directions = layout.directions_deg(strip)  # each strip's own (a crosshatch's passes)
-    path = path_ground(ground.grid, x, y, strip, directions, run_in_m(layout),
-                       ground.low_m, ground.high_m)
+    path = _kept_path_ground(ground.grid, x, y, strip, directions, run_in_m(layout),
+                             ground.low_m, ground.high_m)
     # a centre with ground known on a path without (outside the DEM's grid) keeps its own
     p_hi = np.where(path.known | ~np.isfinite(g), path.high_m, np.fmax(g, path.high_m))
     p_lo = np.where(path.known | ~np.isfinite(g), path.low_m, np.fmin(g, path.low_m))
@@ -571,6 +571,52 @@ def worst_ground(layout: FlightLayout, ground: Ground, cols: dict[str, NDArray[A
                                   directions, across_per_m, along_per_m,
                                   ground.low_m, ground.high_m)
     return WorstGround(g, p_lo, p_hi, f_lo, f_hi, alt)
+
+
+class _Same:
+    """A key that is its object itself (compared by identity; holding it keeps its ``id``
+    from being another object's)."""
+
+    __slots__ = ("obj",)
+
+    def __init__(self, obj: object) -> None:
+        self.obj = obj
+
+    def __hash__(self) -> int:
+        return id(self.obj)
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, _Same) and other.obj is self.obj
+
+
+_PATHS_KEPT = 8
+_PATHS: Kept[tuple[Any, ...], PathGround] = Kept(_PATHS_KEPT)
+"""The ground under the path of the last layouts checked, by DEM grid (the object itself),
+the photos' bytes and the run-in: the altitude modes of one layout, and the heights a
+settled plan tries again, fly the same path over the same ground."""
+
+
+def _kept_path_ground(grid: GroundGrid | None, x: NDArray[np.float64],
+                      y: NDArray[np.float64], strip: NDArray[np.int64],
+                      directions: float | NDArray[np.float64], extend_m: float,
+                      low_m: float, high_m: float) -> PathGround:
+    """:func:`~scanplan.geo.terrain_worst.path_ground`, kept (its arrays read-only)."""
+    import hashlib
+
+    digest = hashlib.blake2b(digest_size=20)
+    for a in (x, y, strip, np.asarray(directions, dtype=float)):
+        a = np.ascontiguousarray(a)
+        digest.update(f"{a.dtype.str}{a.shape}".encode())
+        digest.update(a.tobytes())
+    key = (_Same(grid), digest.digest(), float(extend_m), float(low_m), float(high_m))
+
+    def made() -> PathGround:
+        path = path_ground(grid, x, y, strip, directions, extend_m, low_m, high_m)
+        for arr in (path.low_m, path.high_m, path.known):
+            arr.setflags(write=False)
+        return path
+
+    return _PATHS.made(key, made)
 
 
 def path_summary(alt: NDArray[np.float64], wg: WorstGround) -> dict[str, float | None]:
