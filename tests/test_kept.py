@@ -68,3 +68,30 @@ def test_threads_share_it_within_its_size():
     for t in threads:
         t.join()
     assert not errors and len(kept) <= 8
+
+
+def test_a_copy_or_a_pickle_is_an_empty_memory_of_the_same_size():
+    import copy
+    import pickle
+
+    kept = Kept(3)
+    kept.put("a", 1)
+    for twin in (copy.copy(kept), copy.deepcopy(kept), pickle.loads(pickle.dumps(kept))):
+        assert isinstance(twin, Kept) and twin.size == 3 and len(twin) == 0
+        assert twin.made("a", lambda: 2) == 2  # made again; the original keeps its own
+    assert kept.get("a") == 1
+
+
+def test_arrays_key_tells_arrays_by_dtype_shape_and_bytes():
+    import numpy as np
+
+    from scanplan.io.kept import arrays_key
+
+    a = np.arange(6.0)
+    assert arrays_key(a) == arrays_key(a.copy()) == arrays_key(a[::-1][::-1])
+    assert arrays_key(a) != arrays_key(a.reshape(2, 3))
+    assert arrays_key(a) != arrays_key(a.astype(np.float32))
+    assert arrays_key(a, a) != arrays_key(a)
+    b = a.copy()
+    b[3] = np.nextafter(b[3], 10.0)  # one bit
+    assert arrays_key(a) != arrays_key(b)

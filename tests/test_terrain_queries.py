@@ -155,9 +155,12 @@ def test_an_accepted_dem_header_is_kept_until_the_file_or_a_companion_changes(tm
 
 
 def test_the_path_ground_kept_is_the_one_computed_over_its_own_grid(tmp_path):
-    """The ground under the path is kept by grid (the object itself), photos and run-in:
-    the same inputs give the very result (read-only) equal to a fresh computation; another
-    grid over other ground, or other photos, their own."""
+    """The ground under the path is kept with its grid, by photos and run-in: the same
+    inputs give the very result (read-only) equal to a fresh computation; another grid over
+    other ground, or other photos, their own; a grid copied or pickled keeps nothing."""
+    import copy
+    import pickle
+
     from scanplan.geo.terrain_worst import path_ground
 
     lay = layout()
@@ -169,10 +172,11 @@ def test_the_path_ground_kept_is_the_one_computed_over_its_own_grid(tmp_path):
         info = D.open_dem(dem_around(tmp_path / name, lambda x, y, b=base: b + 0.01 * x, lay))
         grids.append(G.read_ground_grid(info, lay.area.geometry.bounds, lay.area.geometry,
                                         lay.area.plan_crs))
-    T._PATHS.clear()
+    grids[0].kept.clear()
+    grids[1].kept.clear()
     args = (x, y, strip, 0.0, 20.0, 50.0, 400.0)
     kept = T._kept_path_ground(grids[0], *args)
-    assert T._kept_path_ground(grids[0], *args) is kept and len(T._PATHS) == 1
+    assert T._kept_path_ground(grids[0], *args) is kept and len(grids[0].kept) == 1
     fresh = path_ground(grids[0], *args)
     for a, b in ((kept.low_m, fresh.low_m), (kept.high_m, fresh.high_m),
                  (kept.known, fresh.known)):
@@ -180,6 +184,12 @@ def test_the_path_ground_kept_is_the_one_computed_over_its_own_grid(tmp_path):
         assert not a.flags.writeable
     other = T._kept_path_ground(grids[1], *args)
     np.testing.assert_array_equal(other.low_m, path_ground(grids[1], *args).low_m)
-    assert np.all(other.low_m > kept.low_m + 150.0)
+    assert np.all(other.low_m > kept.low_m + 150.0) and len(grids[1].kept) == 1
     moved = T._kept_path_ground(grids[0], x + 10.0, *args[1:])
-    assert moved is not kept and len(T._PATHS) == 3
+    assert moved is not kept and len(grids[0].kept) == 2
+    for twin in (copy.deepcopy(grids[0]), pickle.loads(pickle.dumps(grids[0]))):
+        assert len(twin.kept) == 0 and twin.kept.size == grids[0].kept.size
+        again = T._kept_path_ground(twin, *args)
+        np.testing.assert_array_equal(again.high_m, kept.high_m)
+    no_dem = T._kept_path_ground(None, *args)
+    assert not no_dem.known.any() and np.all(no_dem.low_m == 50.0)

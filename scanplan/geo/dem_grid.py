@@ -70,6 +70,8 @@ _TABLE_EXPONENTS = (BLOCKS_PER_SIDE + 1).bit_length()
 _TABLE_MAX_SPAN = (2 << (_TABLE_EXPONENTS - 1)) - 1
 """The widest box the tables answer [blocks]: two windows of the largest size, 2^4, cover
 up to 31 blocks."""
+_KEPT_PER_GRID = 8
+"""Values kept with each grid (:attr:`GroundGrid.kept`)."""
 _TABLE_MAX_BLOCKS = 1 << 16
 """Levels of at most this many blocks answer from range tables (25 windows a block, 2 ×
 6.6 MB at most); a larger level by running extremes and gathers."""
@@ -122,6 +124,11 @@ class GroundGrid:
     _tables: dict[int, tuple[NDArray[np.float32], NDArray[np.float32]]] = field(
         default_factory=dict, init=False, repr=False, compare=False)
     """Each level's range tables, made when the level is first asked (:func:`_tables`)."""
+    kept: Kept[tuple[Any, ...], Any] = field(
+        default_factory=lambda: Kept(_KEPT_PER_GRID), init=False, repr=False, compare=False)
+    """What is computed over this grid and asked again (the ground under a layout's flight
+    path: the altitude modes of one layout fly the same path), kept with the grid and gone
+    with it."""
 
     # --- coordinates -------------------------------------------------------------------
     def to_pixels(self, x_m: NDArray[np.float64], y_m: NDArray[np.float64]

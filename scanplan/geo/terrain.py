@@ -70,7 +70,7 @@ from numpy.typing import NDArray
 
 from ..errors import InputError
 from ..i18n.messages import Message, Names, PlanWarning, listing
-from ..io.kept import Kept
+from ..io.kept import Kept, arrays_key
 from . import dem as D
 from .dem_grid import DEFAULT_VOID_MARGIN_M, DEFAULT_VOID_RADIUS_M, GroundGrid, read_ground_grid
 from .layout import FlightLayout, Photos
@@ -435,18 +435,16 @@ def _follow_runs(g: NDArray[np.float64], strip: NDArray[np.int64], tol: float
     """Run id of every photo (in strip order): a run is consecutive photos of one strip
     whose ground spans at most ``tol`` (greedy, in flight order). Read-only: the last
     few are kept (a check asks the runs of its altitudes and of its height limit)."""
-    import hashlib
-
     g = np.asarray(g, dtype=float)
     strip = np.asarray(strip, dtype=np.int64)
-    key = (hashlib.blake2b(g.tobytes() + strip.tobytes()).digest(), g.size, float(tol))
+    key = (arrays_key(g, strip), float(tol))
     return _RUNS.made(key, lambda: _read_only(_greedy_runs(g, strip, tol)))
 
 
-_RUNS: Kept[tuple[bytes, int, float], NDArray[np.int64]] = Kept(4)
+_RUNS: Kept[tuple[bytes, float], NDArray[np.int64]] = Kept(4)
 
 
-def _read_only(a: NDArray[np.int64]) -> NDArray[np.int64]:
+def _read_only(a: NDArray[Any]) -> NDArray[Any]:
     a.setflags(write=False)
     return a
 
@@ -573,50 +571,25 @@ def worst_ground(layout: FlightLayout, ground: Ground, cols: dict[str, NDArray[A
     return WorstGround(g, p_lo, p_hi, f_lo, f_hi, alt)
 
 
-class _Same:
-    """A key that is its object itself (compared by identity; holding it keeps its ``id``
-    from being another object's)."""
-
-    __slots__ = ("obj",)
-
-    def __init__(self, obj: object) -> None:
-        self.obj = obj
-
-    def __hash__(self) -> int:
-        return id(self.obj)
-
-    def __eq__(self, other: object) -> bool:
-        return isinstance(other, _Same) and other.obj is self.obj
-
-
-_PATHS_KEPT = 8
-_PATHS: Kept[tuple[Any, ...], PathGround] = Kept(_PATHS_KEPT)
-"""The ground under the path of the last layouts checked, by DEM grid (the object itself),
-the photos' bytes and the run-in: the altitude modes of one layout, and the heights a
-settled plan tries again, fly the same path over the same ground."""
-
-
 def _kept_path_ground(grid: GroundGrid | None, x: NDArray[np.float64],
                       y: NDArray[np.float64], strip: NDArray[np.int64],
                       directions: float | NDArray[np.float64], extend_m: float,
                       low_m: float, high_m: float) -> PathGround:
-    """:func:`~scanplan.geo.terrain_worst.path_ground`, kept (its arrays read-only)."""
-    import hashlib
-
-    digest = hashlib.blake2b(digest_size=20)
-    for a in (x, y, strip, np.asarray(directions, dtype=float)):
-        a = np.ascontiguousarray(a)
-        digest.update(f"{a.dtype.str}{a.shape}".encode())
-        digest.update(a.tobytes())
-    key = (_Same(grid), digest.digest(), float(extend_m), float(low_m), float(high_m))
+    """:func:`~scanplan.geo.terrain_worst.path_ground`, kept with the grid
+    (:attr:`~scanplan.geo.dem_grid.GroundGrid.kept`) by the photos and the run-in, its
+    arrays read-only; without a grid (no DEM) computed, as it costs nothing."""
+    if grid is None:
+        return path_ground(grid, x, y, strip, directions, extend_m, low_m, high_m)
+    key = ("path", arrays_key(x, y, strip, np.asarray(directions, dtype=float)),
+           float(extend_m), float(low_m), float(high_m))
 
     def made() -> PathGround:
         path = path_ground(grid, x, y, strip, directions, extend_m, low_m, high_m)
         for arr in (path.low_m, path.high_m, path.known):
-            arr.setflags(write=False)
+            _read_only(arr)
         return path
 
-    return _PATHS.made(key, made)
+    return grid.kept.made(key, made)  # type: ignore[return-value]
 
 
 def path_summary(alt: NDArray[np.float64], wg: WorstGround) -> dict[str, float | None]:

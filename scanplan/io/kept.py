@@ -9,18 +9,39 @@ again, the same.
 
 from __future__ import annotations
 
+import hashlib
 import threading
 from collections import OrderedDict
 from collections.abc import Callable, Hashable, Iterator
-from typing import Generic, TypeVar
+from typing import Any, Generic, TypeVar
 
-__all__ = ["MISSING", "Kept"]
+__all__ = ["MISSING", "Kept", "arrays_key"]
 
 K = TypeVar("K", bound=Hashable)
 V = TypeVar("V")
 
 MISSING: object = object()
 """What :meth:`Kept.get` gives by default for a key not kept (None may be a value kept)."""
+
+
+def arrays_key(*arrays: Any) -> bytes:
+    """A key for values computed from numpy arrays: a digest of each array's dtype, shape
+    and bytes (arrays equal in all three give the same key).
+
+    >>> import numpy as np
+    >>> arrays_key(np.arange(3.0)) == arrays_key(np.array([0.0, 1.0, 2.0]))
+    True
+    >>> arrays_key(np.arange(3.0)) == arrays_key(np.arange(3))
+    False
+    """
+    import numpy as np
+
+    digest = hashlib.blake2b(digest_size=20)
+    for a in arrays:
+        a = np.ascontiguousarray(a)
+        digest.update(f"{a.dtype.str}{a.shape}".encode())
+        digest.update(a.tobytes())
+    return digest.digest()
 
 
 class Kept(Generic[K, V]):
@@ -97,3 +118,8 @@ class Kept(Generic[K, V]):
     def __iter__(self) -> Iterator[K]:
         with self._lock:
             return iter(list(self._items))
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        """A copy or a pickle is an empty memory of the same size (what it keeps is made
+        again, the same; its lock is never copied)."""
+        return Kept, (self.size,)

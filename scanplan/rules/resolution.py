@@ -23,7 +23,6 @@ Nothing here changes a result; it only avoids solving the same equation twice.
 
 from __future__ import annotations
 
-import hashlib
 import math
 from typing import Any
 
@@ -31,7 +30,7 @@ import numpy as np
 
 from ..core import mtf as M
 from ..errors import FieldValueError, InputError
-from ..io.kept import MISSING, Kept
+from ..io.kept import MISSING, Kept, arrays_key
 from .results import UavInputs
 
 __all__ = ["FIGURES", "centre_resolution_m", "chain", "chain_key",
@@ -144,7 +143,7 @@ def resolution_at(inp: UavInputs, heights_m: Any, field: str = "centre"
     h = np.asarray(heights_m, dtype=float)
     flat = h.ravel().tolist()
     if len(flat) > _MEMO_BATCH:  # every photo's own height: the batch is kept whole
-        batch = (chain_key(inp), field, hashlib.blake2b(h.tobytes()).digest(), h.size)
+        batch = (chain_key(inp), field, arrays_key(h))
         rows = _BATCHES.made(batch, lambda: _solve(inp, h.ravel(), field))
     else:
         values = _memo((chain_key(inp), field))
